@@ -1,0 +1,60 @@
+/*
+ * touchdown/dofs.h - the one place that states DOF ordering, units and sign conventions.
+ *
+ * Every other file refers here rather than restating these facts.
+ *
+ * Units: SI throughout. Lengths m, masses kg, inertias kg m^2, forces N, moments N m, angles rad,
+ * speeds rad/s, time s, stiffness N/m, damping N s/m, unbalance kg m, AMB gains ki N/A, kp A/m,
+ * kd A s/m, currents A.
+ *
+ * Axes: the shaft axis is z, running from node 0 (the non-driven end, NDE) to the last node
+ * (the driven end, DE). x and y are fixed (non-rotating) lateral axes with x, y, z right-handed.
+ * The rotor spins about +z at speed Omega > 0 (forward spin: from x towards y).
+ *
+ * Degrees of freedom: four per node, interleaved node by node (this keeps the matrices banded):
+ *
+ *   q[4 i + TD_DOF_X]      x_i      lateral displacement along x                       (m)
+ *   q[4 i + TD_DOF_Y]      y_i      lateral displacement along y                       (m)
+ *   q[4 i + TD_DOF_THETA]  theta_i  small rotation about the x axis,  theta = -dy/dz   (rad)
+ *   q[4 i + TD_DOF_PHI]    phi_i    small rotation about the y axis,  phi   = +dx/dz   (rad)
+ *
+ * This is the paper's q = [x, y, theta, phi] (eq. 2) regrouped per node, and the convention of
+ * Friswell et al., "Dynamics of Rotating Machines" (2010), which ross-rotordynamics also follows.
+ *
+ * Equations of motion of the contact-free rotor (the paper's eq. 1 with gyroscopics explicit):
+ *
+ *   M q'' + (C + Omega G) q' + K q = f(t)
+ *
+ * with G skew-symmetric; for a disc G has +Ip at (theta, phi) and -Ip at (phi, theta), so the
+ * forward whirl frequency rises with speed.
+ *
+ * Forces: a force on the rotor is positive along +x / +y; a contact normal force N >= 0 pushes
+ * the rotor towards the retainer centre; a friction force is tangential, positive along the
+ * whirl direction t = (-sin(whirl angle), cos(whirl angle)).
+ */
+#ifndef TOUCHDOWN_DOFS_H
+#define TOUCHDOWN_DOFS_H
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/** Degrees of freedom per node. */
+#define TD_DOFS_PER_NODE 4
+
+/** Offsets of the four nodal DOFs inside a node's block. */
+enum td_dof_offset {
+    TD_DOF_X = 0,     /**< x displacement, m */
+    TD_DOF_Y = 1,     /**< y displacement, m */
+    TD_DOF_THETA = 2, /**< rotation about x (= -dy/dz), rad */
+    TD_DOF_PHI = 3    /**< rotation about y (= +dx/dz), rad */
+};
+
+/** Global index of DOF `offset` (a td_dof_offset) at node `node`. */
+#define TD_DOF(node, offset) (TD_DOFS_PER_NODE * (node) + (offset))
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* TOUCHDOWN_DOFS_H */

@@ -1,0 +1,179 @@
+/*
+ * touchdown/model.h - a plain description of a rotor/AMB machine: no matrices, no solver.
+ *
+ * A td_model is built part by part, either in code (embedding) or by the case-file reader
+ * (touchdown/case.h). Every td_model_add_* call copies its argument and validates it; node
+ * numbers are checked against the shaft once the model is complete (td_model_validate).
+ * Units and DOF conventions: touchdown/dofs.h.
+ */
+#ifndef TOUCHDOWN_MODEL_H
+#define TOUCHDOWN_MODEL_H
+
+#include "touchdown/error.h"
+#include "touchdown/export.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct td_model td_model;
+
+/** Beam theory of the shaft elements. */
+typedef enum td_beam_theory {
+    TD_BEAM_EULER_BERNOULLI = 0, /**< shear deformation neglected (the reference rig) */
+    TD_BEAM_TIMOSHENKO = 1       /**< shear deformation included */
+} td_beam_theory;
+
+/** Mass matrix form of the shaft elements. */
+typedef enum td_mass_form {
+    TD_MASS_CONSISTENT = 0, /**< consistent mass with rotary inertia (the reference rig) */
+    TD_MASS_LUMPED = 1      /**< half the element's mass and rotary inertia at each end (the paper) */
+} td_mass_form;
+
+/** Isotropic linear-elastic material. */
+typedef struct td_material {
+    double E;       /**< Young's modulus, Pa */
+    double G;       /**< shear modulus, Pa */
+    double density; /**< kg/m^3 */
+} td_material;
+
+/** One shaft element; element i joins node i and node i + 1. */
+typedef struct td_shaft_element {
+    double length;         /**< m, > 0 */
+    double outer_diameter; /**< m, > 0 */
+    double inner_diameter; /**< m, 0 <= inner < outer (hollow shafts) */
+    td_material material;
+} td_shaft_element;
+
+/** Options that apply to the whole shaft. */
+typedef struct td_shaft_options {
+    td_beam_theory beam;
+    td_mass_form mass;
+    double rayleigh_alpha; /**< C += alpha M_shaft, 1/s */
+    double rayleigh_beta;  /**< C += beta K_shaft, s */
+} td_shaft_options;
+
+/** A rigid disc (or, with Ip = Id = 0, a point mass) attached to a node. */
+typedef struct td_disc {
+    int node;
+    double mass; /**< kg, > 0 */
+    double Ip;   /**< polar moment of inertia, kg m^2, >= 0 */
+    double Id;   /**< diametral moment of inertia, kg m^2, >= 0 */
+} td_disc;
+
+/**
+ * An active magnetic bearing, each lateral axis controlled on its own (reference-rig.md):
+ *   force on the rotor        F  = ks x + Fc                      (x at `node`)
+ *   current-controlled force  tau dFc/dt = -Fc - ki (kp xs + kd dxs/dt)   (xs at `sensor_node`)
+ * ks > 0 is the negative-stiffness term of the magnet. With saturation on, F is clipped to
+ * +-force_capacity.
+ */
+typedef struct td_amb {
+    int node;              /**< actuator node */
+    int sensor_node;       /**< sensor node (collocated: equal to node) */
+    double ks;             /**< negative-stiffness coefficient, N/m */
+    double ki;             /**< force/current gain, N/A */
+    double kp;             /**< proportional gain, A/m */
+    double kd;             /**< derivative gain, A s/m */
+    double tau;            /**< force lag time constant, s (1/(2 pi bandwidth)); 0: no lag */
+    double force_capacity; /**< N, > 0 */
+    int saturation;        /**< nonzero: clip the total axis force at +-force_capacity */
+    double air_gap;        /**< radial air gap, m (0: unknown); a retainer must be tighter */
+} td_amb;
+
+/** A plain linear bearing (spring and damper per axis) for non-AMB supports. */
+typedef struct td_bearing {
+    int node;
+    double kxx, kyy; /**< N/m */
+    double cxx, cyy; /**< N s/m */
+} td_bearing;
+
+/** A retainer (backup, touchdown) bearing around the shaft at a node. */
+typedef struct td_retainer {
+    int node;
+    double clearance;    /**< radial clearance c = bore_radius - shaft_radius, m, > 0 */
+    double shaft_radius; /**< R_s, m */
+    double bore_radius;  /**< R_b, m */
+    double friction;     /**< Coulomb coefficient mu, >= 0 */
+    double bore_speed;   /**< Omega_b, rotation speed of the bore (rolling-element race), rad/s */
+    double restitution;  /**< e in [0, 1]: radial velocity after impact = -e times before */
+} td_retainer;
+
+/** An unbalance: F_x = U Omega^2 cos(Omega t + phase), F_y = U Omega^2 sin(Omega t + phase). */
+typedef struct td_unbalance {
+    int node;
+    double magnitude; /**< U, kg m, >= 0 */
+    double phase;     /**< rad */
+} td_unbalance;
+
+/** What a timed change does. */
+typedef enum td_change_kind {
+    TD_CHANGE_UNBALANCE = 0, /**< set unbalance `index` to magnitude/phase */
+    TD_CHANGE_AMB_OFF = 1,   /**< AMB `index` fails: its forces drop to zero */
+    TD_CHANGE_AMB_ON = 2     /**< AMB `index` is restored */
+} td_change_kind;
+
+/** A timed change of the machine during a run. */
+typedef struct td_change {
+    double time; /**< s */
+    td_change_kind kind;
+    int index;        /**< unbalance or AMB index, in order of addition */
+    double magnitude; /**< TD_CHANGE_UNBALANCE: new U, kg m */
+    double phase;     /**< TD_CHANGE_UNBALANCE: new phase, rad */
+} td_change;
+
+/** Create an empty model (speed 0, gravity off, Euler-Bernoulli, consistent mass). */
+TD_API td_status td_model_create(td_model **out, td_error *err);
+/** Free a model and set *model to NULL. Accepts NULL and *model == NULL. */
+TD_API void td_model_free(td_model **model);
+/** Deep copy. */
+TD_API td_status td_model_clone(const td_model *model, td_model **out, td_error *err);
+
+TD_API td_status td_model_set_shaft_options(td_model *m, const td_shaft_options *opt, td_error *err);
+TD_API td_status td_model_add_shaft_element(td_model *m, const td_shaft_element *el, td_error *err);
+TD_API td_status td_model_add_disc(td_model *m, const td_disc *disc, td_error *err);
+/** A point mass: a disc without rotary inertia. */
+TD_API td_status td_model_add_point_mass(td_model *m, int node, double mass, td_error *err);
+TD_API td_status td_model_add_amb(td_model *m, const td_amb *amb, td_error *err);
+TD_API td_status td_model_add_bearing(td_model *m, const td_bearing *b, td_error *err);
+TD_API td_status td_model_add_retainer(td_model *m, const td_retainer *r, td_error *err);
+TD_API td_status td_model_add_unbalance(td_model *m, const td_unbalance *u, td_error *err);
+TD_API td_status td_model_add_change(td_model *m, const td_change *c, td_error *err);
+/** Rotor speed Omega, rad/s (constant between changes). */
+TD_API td_status td_model_set_speed(td_model *m, double omega, td_error *err);
+/** Gravity acceleration vector in the x-y plane, m/s^2 (e.g. 0, -9.81); both 0: off. */
+TD_API td_status td_model_set_gravity(td_model *m, double gx, double gy, td_error *err);
+
+/** Check cross-references (nodes in range, retainer tighter than its AMB air gap, ...). */
+TD_API td_status td_model_validate(const td_model *m, td_error *err);
+
+/* Read access. Getters return counts; td_model_get_* copy item i into *out (TD_ERR_INVALID if out of range). */
+TD_API int td_model_node_count(const td_model *m);
+TD_API int td_model_dof_count(const td_model *m);
+TD_API int td_model_shaft_element_count(const td_model *m);
+TD_API int td_model_disc_count(const td_model *m);
+TD_API int td_model_amb_count(const td_model *m);
+TD_API int td_model_bearing_count(const td_model *m);
+TD_API int td_model_retainer_count(const td_model *m);
+TD_API int td_model_unbalance_count(const td_model *m);
+TD_API int td_model_change_count(const td_model *m);
+TD_API double td_model_speed(const td_model *m);
+TD_API void td_model_gravity(const td_model *m, double *gx, double *gy);
+TD_API void td_model_shaft_options(const td_model *m, td_shaft_options *out);
+/** Axial position of a node, m (node 0 at z = 0). */
+TD_API double td_model_node_position(const td_model *m, int node);
+/** Total rotor mass, kg: shaft, discs and point masses. */
+TD_API double td_model_total_mass(const td_model *m);
+TD_API td_status td_model_get_shaft_element(const td_model *m, int i, td_shaft_element *out);
+TD_API td_status td_model_get_disc(const td_model *m, int i, td_disc *out);
+TD_API td_status td_model_get_amb(const td_model *m, int i, td_amb *out);
+TD_API td_status td_model_get_bearing(const td_model *m, int i, td_bearing *out);
+TD_API td_status td_model_get_retainer(const td_model *m, int i, td_retainer *out);
+TD_API td_status td_model_get_unbalance(const td_model *m, int i, td_unbalance *out);
+TD_API td_status td_model_get_change(const td_model *m, int i, td_change *out);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* TOUCHDOWN_MODEL_H */

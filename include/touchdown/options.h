@@ -1,0 +1,97 @@
+/*
+ * touchdown/options.h - how to run a model: contact law, solver, start state, output, modal analysis.
+ *
+ * Plain structs, filled with defaults by td_*_options_default() and then edited; the case-file
+ * reader (touchdown/case.h) fills them from a case file. Units: touchdown/dofs.h.
+ */
+#ifndef TOUCHDOWN_OPTIONS_H
+#define TOUCHDOWN_OPTIONS_H
+
+#include "touchdown/export.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/** How rotor-retainer contact is modelled. */
+typedef enum td_contact_model {
+    TD_CONTACT_CONSTRAINT = 0, /**< holonomic constraint with a Lagrange multiplier (paper eqs. 5-15) */
+    TD_CONTACT_PENALTY = 1     /**< penalty force F_n = Kc delta^p (+ damping) (paper eq. 4) */
+} td_contact_model;
+
+/** Damping law added to a penalty contact; none of them ever pulls (F_n >= 0). */
+typedef enum td_contact_damping {
+    TD_DAMPING_NONE = 0,          /**< F_n = Kc delta^p */
+    TD_DAMPING_HUNT_CROSSLEY = 1, /**< F_n = Kc delta^p (1 + damping * ddelta/dt), clipped at 0; damping in s/m */
+    TD_DAMPING_KELVIN_VOIGT = 2   /**< F_n = max(0, Kc delta^p + damping * ddelta/dt); damping in N s/m */
+} td_contact_damping;
+
+typedef struct td_contact_options {
+    td_contact_model model;
+    double stiffness;           /**< penalty Kc, N/m^exponent (N/m when linear) */
+    double exponent;            /**< penalty exponent p: 1 linear (eq. 4), 1.5 Hertzian */
+    td_contact_damping damping; /**< penalty damping law */
+    double damping_coefficient; /**< s/m (Hunt-Crossley) or N s/m (Kelvin-Voigt) */
+} td_contact_options;
+
+/** Linear solver inside IDA's Newton iteration. */
+typedef enum td_linear_solver {
+    TD_LINSOL_KLU = 0,  /**< sparse LU (SuiteSparse KLU), symbolic factorisation once */
+    TD_LINSOL_DENSE = 1 /**< dense LU, for comparison */
+} td_linear_solver;
+
+typedef struct td_solver_options {
+    double rtol;           /**< relative tolerance */
+    double atol;           /**< absolute tolerance on displacements, m; other states are scaled from it */
+    double max_step;       /**< largest step, s; 0: chosen from the whirl period */
+    double initial_step;   /**< first step and restart step after an event, s; 0: chosen by IDA */
+    int max_order;         /**< BDF order limit, 1..5 */
+    td_linear_solver linear_solver;
+} td_solver_options;
+
+/** State at t = 0. */
+typedef enum td_start {
+    TD_START_ORBIT = 0, /**< steady harmonic orbit of the contact-free linear system (plus static sag) */
+    TD_START_REST = 1   /**< centred, at rest, AMB filter states zero */
+} td_start;
+
+typedef struct td_sim_options {
+    td_contact_options contact;
+    td_solver_options solver;
+    td_start start;
+    double t0;          /**< start time, s */
+} td_sim_options;
+
+/** Largest number of nodes an output can select. */
+#define TD_OUTPUT_MAX_NODES 64
+/** Longest output path, NUL included. */
+#define TD_OUTPUT_PATH_SIZE 1024
+
+typedef struct td_output_options {
+    char hdf5_path[TD_OUTPUT_PATH_SIZE]; /**< "" : no HDF5 file */
+    char csv_path[TD_OUTPUT_PATH_SIZE];  /**< "" : no CSV file */
+    double sample_rate;                  /**< samples per second on a uniform grid (events added), Hz */
+    int node_count;                      /**< number of nodes whose displacements are written; 0: all */
+    int nodes[TD_OUTPUT_MAX_NODES];
+} td_output_options;
+
+typedef struct td_modal_options {
+    double speed_min;  /**< Campbell diagram speed range, rad/s */
+    double speed_max;
+    int speed_steps;   /**< number of speeds, >= 2 */
+    int mode_count;    /**< modes reported (lowest damped natural frequencies), > 0 */
+    int response_speed_count;  /**< harmonic unbalance response speeds */
+    double response_speeds[64];/**< rad/s */
+} td_modal_options;
+
+TD_API void td_contact_options_default(td_contact_options *o);
+TD_API void td_solver_options_default(td_solver_options *o);
+TD_API void td_sim_options_default(td_sim_options *o);
+TD_API void td_output_options_default(td_output_options *o);
+TD_API void td_modal_options_default(td_modal_options *o);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* TOUCHDOWN_OPTIONS_H */

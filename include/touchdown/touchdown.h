@@ -1,0 +1,14 @@
+/*
+ * touchdown/touchdown.h - umbrella header: everything a program linking libtouchdown needs.
+ */
+#ifndef TOUCHDOWN_TOUCHDOWN_H
+#define TOUCHDOWN_TOUCHDOWN_H
+
+#include "touchdown/dofs.h"
+#include "touchdown/error.h"
+#include "touchdown/model.h"
+#include "touchdown/options.h"
+#include "touchdown/system.h"
+#include "touchdown/version.h"
+
+#endif /* TOUCHDOWN_TOUCHDOWN_H */

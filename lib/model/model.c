@@ -1,0 +1,407 @@
+/*
+ * The machine description: growable arrays of parts, each validated as it is added.
+ * Cross-references (node numbers, clearances against air gaps) wait for td_model_validate,
+ * because parts may be added before the shaft is complete.
+ */
+#include "model/model_internal.h"
+#include "util/error_internal.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "util/numeric.h"
+
+/* Append one item of `size` bytes to a part array; grows geometrically. */
+static td_status part_append(void **items, int *count, int *capacity, size_t size, const void *item,
+                             td_error *err)
+{
+    if (*count == *capacity) {
+        int cap = *capacity ? 2 * *capacity : 8;
+        void *p = realloc(*items, (size_t)cap * size);
+        if (!p)
+            return td_error_set(err, TD_ERR_NOMEM, "out of memory adding a model part");
+        *items = p;
+        *capacity = cap;
+    }
+    memcpy((char *)*items + (size_t)*count * size, item, size);
+    (*count)++;
+    return TD_OK;
+}
+
+#define APPEND(arr, item, err) \
+    part_append((void **)&(arr).items, &(arr).count, &(arr).capacity, sizeof *(arr).items, (item), (err))
+
+static int finite_positive(double v) { return isfinite(v) && v > 0.0; }
+static int finite_nonnegative(double v) { return isfinite(v) && v >= 0.0; }
+
+td_status td_model_create(td_model **out, td_error *err)
+{
+    td_model *m;
+    if (!out)
+        return td_error_set(err, TD_ERR_INVALID, "td_model_create: NULL output pointer");
+    m = calloc(1, sizeof *m);
+    if (!m)
+        return td_error_set(err, TD_ERR_NOMEM, "out of memory creating a model");
+    m->shaft.beam = TD_BEAM_EULER_BERNOULLI;
+    m->shaft.mass = TD_MASS_CONSISTENT;
+    *out = m;
+    return TD_OK;
+}
+
+void td_model_free(td_model **model)
+{
+    td_model *m;
+    if (!model || !*model)
+        return;
+    m = *model;
+    free(m->elements.items);
+    free(m->discs.items);
+    free(m->ambs.items);
+    free(m->bearings.items);
+    free(m->retainers.items);
+    free(m->unbalances.items);
+    free(m->changes.items);
+    free(m);
+    *model = NULL;
+}
+
+/* Duplicate `count` items of `size` bytes; NULL stays NULL. */
+static void *dup_items(const void *items, int count, size_t size, int *ok)
+{
+    void *p;
+    if (count == 0)
+        return NULL;
+    p = malloc((size_t)count * size);
+    if (!p) {
+        *ok = 0;
+        return NULL;
+    }
+    memcpy(p, items, (size_t)count * size);
+    return p;
+}
+
+#define CLONE(dst, src, ok)                                                           \
+    do {                                                                              \
+        (dst).items = dup_items((src).items, (src).count, sizeof *(src).items, &(ok)); \
+        (dst).count = (dst).capacity = (src).count;                                   \
+    } while (0)
+
+td_status td_model_clone(const td_model *model, td_model **out, td_error *err)
+{
+    td_model *m;
+    int ok = 1;
+    if (!model || !out)
+        return td_error_set(err, TD_ERR_INVALID, "td_model_clone: NULL argument");
+    m = calloc(1, sizeof *m);
+    if (!m)
+        return td_error_set(err, TD_ERR_NOMEM, "out of memory cloning a model");
+    m->shaft = model->shaft;
+    m->speed = model->speed;
+    m->gravity[0] = model->gravity[0];
+    m->gravity[1] = model->gravity[1];
+    CLONE(m->elements, model->elements, ok);
+    CLONE(m->discs, model->discs, ok);
+    CLONE(m->ambs, model->ambs, ok);
+    CLONE(m->bearings, model->bearings, ok);
+    CLONE(m->retainers, model->retainers, ok);
+    CLONE(m->unbalances, model->unbalances, ok);
+    CLONE(m->changes, model->changes, ok);
+    if (!ok) {
+        td_model_free(&m);
+        return td_error_set(err, TD_ERR_NOMEM, "out of memory cloning a model");
+    }
+    *out = m;
+    return TD_OK;
+}
+
+td_status td_model_set_shaft_options(td_model *m, const td_shaft_options *opt, td_error *err)
+{
+    if (!m || !opt)
+        return td_error_set(err, TD_ERR_INVALID, "shaft options: NULL argument");
+    if (opt->beam != TD_BEAM_EULER_BERNOULLI && opt->beam != TD_BEAM_TIMOSHENKO)
+        return td_error_set(err, TD_ERR_INVALID, "shaft options: unknown beam theory %d", (int)opt->beam);
+    if (opt->mass != TD_MASS_CONSISTENT && opt->mass != TD_MASS_LUMPED)
+        return td_error_set(err, TD_ERR_INVALID, "shaft options: unknown mass form %d", (int)opt->mass);
+    if (!finite_nonnegative(opt->rayleigh_alpha) || !finite_nonnegative(opt->rayleigh_beta))
+        return td_error_set(err, TD_ERR_INVALID, "shaft options: Rayleigh alpha and beta must be finite and >= 0");
+    m->shaft = *opt;
+    return TD_OK;
+}
+
+td_status td_model_add_shaft_element(td_model *m, const td_shaft_element *el, td_error *err)
+{
+    if (!m || !el)
+        return td_error_set(err, TD_ERR_INVALID, "shaft element: NULL argument");
+    if (!finite_positive(el->length))
+        return td_error_set(err, TD_ERR_INVALID, "shaft element: length must be finite and > 0");
+    if (!finite_positive(el->outer_diameter))
+        return td_error_set(err, TD_ERR_INVALID, "shaft element: outer diameter must be finite and > 0");
+    if (!finite_nonnegative(el->inner_diameter) || el->inner_diameter >= el->outer_diameter)
+        return td_error_set(err, TD_ERR_INVALID,
+                            "shaft element: inner diameter must be >= 0 and smaller than the outer diameter");
+    if (!finite_positive(el->material.E) || !finite_positive(el->material.G) ||
+        !finite_positive(el->material.density))
+        return td_error_set(err, TD_ERR_INVALID, "shaft element: E, G and density must be finite and > 0");
+    return APPEND(m->elements, el, err);
+}
+
+td_status td_model_add_disc(td_model *m, const td_disc *disc, td_error *err)
+{
+    if (!m || !disc)
+        return td_error_set(err, TD_ERR_INVALID, "disc: NULL argument");
+    if (disc->node < 0)
+        return td_error_set(err, TD_ERR_INVALID, "disc: node must be >= 0");
+    if (!finite_positive(disc->mass))
+        return td_error_set(err, TD_ERR_INVALID, "disc: mass must be finite and > 0");
+    if (!finite_nonnegative(disc->Ip) || !finite_nonnegative(disc->Id))
+        return td_error_set(err, TD_ERR_INVALID, "disc: Ip and Id must be finite and >= 0");
+    return APPEND(m->discs, disc, err);
+}
+
+td_status td_model_add_point_mass(td_model *m, int node, double mass, td_error *err)
+{
+    td_disc d;
+    d.node = node;
+    d.mass = mass;
+    d.Ip = 0.0;
+    d.Id = 0.0;
+    return td_model_add_disc(m, &d, err);
+}
+
+td_status td_model_add_amb(td_model *m, const td_amb *amb, td_error *err)
+{
+    if (!m || !amb)
+        return td_error_set(err, TD_ERR_INVALID, "amb: NULL argument");
+    if (amb->node < 0 || amb->sensor_node < 0)
+        return td_error_set(err, TD_ERR_INVALID, "amb: node and sensor node must be >= 0");
+    if (!isfinite(amb->ks) || !isfinite(amb->ki) || !isfinite(amb->kp) || !isfinite(amb->kd))
+        return td_error_set(err, TD_ERR_INVALID, "amb: ks, ki, kp and kd must be finite");
+    if (!finite_nonnegative(amb->tau))
+        return td_error_set(err, TD_ERR_INVALID, "amb: filter time constant must be finite and >= 0");
+    if (!finite_positive(amb->force_capacity))
+        return td_error_set(err, TD_ERR_INVALID, "amb: force capacity must be finite and > 0");
+    if (!finite_nonnegative(amb->air_gap))
+        return td_error_set(err, TD_ERR_INVALID, "amb: air gap must be finite and >= 0");
+    return APPEND(m->ambs, amb, err);
+}
+
+td_status td_model_add_bearing(td_model *m, const td_bearing *b, td_error *err)
+{
+    if (!m || !b)
+        return td_error_set(err, TD_ERR_INVALID, "bearing: NULL argument");
+    if (b->node < 0)
+        return td_error_set(err, TD_ERR_INVALID, "bearing: node must be >= 0");
+    if (!finite_nonnegative(b->kxx) || !finite_nonnegative(b->kyy) || !finite_nonnegative(b->cxx) ||
+        !finite_nonnegative(b->cyy))
+        return td_error_set(err, TD_ERR_INVALID, "bearing: stiffness and damping must be finite and >= 0");
+    return APPEND(m->bearings, b, err);
+}
+
+td_status td_model_add_retainer(td_model *m, const td_retainer *r, td_error *err)
+{
+    if (!m || !r)
+        return td_error_set(err, TD_ERR_INVALID, "retainer: NULL argument");
+    if (r->node < 0)
+        return td_error_set(err, TD_ERR_INVALID, "retainer: node must be >= 0");
+    if (!finite_positive(r->clearance))
+        return td_error_set(err, TD_ERR_INVALID, "retainer: clearance must be finite and > 0");
+    if (!finite_positive(r->shaft_radius) || !finite_positive(r->bore_radius))
+        return td_error_set(err, TD_ERR_INVALID, "retainer: shaft and bore radii must be finite and > 0");
+    if (fabs(r->bore_radius - r->shaft_radius - r->clearance) > 1e-9 * r->bore_radius)
+        return td_error_set(err, TD_ERR_INVALID,
+                            "retainer: bore radius (%g m) must equal shaft radius (%g m) plus clearance (%g m)",
+                            r->bore_radius, r->shaft_radius, r->clearance);
+    if (!finite_nonnegative(r->friction))
+        return td_error_set(err, TD_ERR_INVALID, "retainer: friction coefficient must be finite and >= 0");
+    if (!isfinite(r->bore_speed))
+        return td_error_set(err, TD_ERR_INVALID, "retainer: bore speed must be finite");
+    if (!isfinite(r->restitution) || r->restitution < 0.0 || r->restitution > 1.0)
+        return td_error_set(err, TD_ERR_INVALID, "retainer: restitution must lie in [0, 1]");
+    return APPEND(m->retainers, r, err);
+}
+
+td_status td_model_add_unbalance(td_model *m, const td_unbalance *u, td_error *err)
+{
+    if (!m || !u)
+        return td_error_set(err, TD_ERR_INVALID, "unbalance: NULL argument");
+    if (u->node < 0)
+        return td_error_set(err, TD_ERR_INVALID, "unbalance: node must be >= 0");
+    if (!finite_nonnegative(u->magnitude) || !isfinite(u->phase))
+        return td_error_set(err, TD_ERR_INVALID, "unbalance: magnitude must be finite and >= 0, phase finite");
+    return APPEND(m->unbalances, u, err);
+}
+
+td_status td_model_add_change(td_model *m, const td_change *c, td_error *err)
+{
+    td_status st;
+    int i;
+    if (!m || !c)
+        return td_error_set(err, TD_ERR_INVALID, "change: NULL argument");
+    if (!finite_nonnegative(c->time))
+        return td_error_set(err, TD_ERR_INVALID, "change: time must be finite and >= 0");
+    if (c->kind != TD_CHANGE_UNBALANCE && c->kind != TD_CHANGE_AMB_OFF && c->kind != TD_CHANGE_AMB_ON)
+        return td_error_set(err, TD_ERR_INVALID, "change: unknown kind %d", (int)c->kind);
+    if (c->index < 0)
+        return td_error_set(err, TD_ERR_INVALID, "change: index must be >= 0");
+    if (c->kind == TD_CHANGE_UNBALANCE && (!finite_nonnegative(c->magnitude) || !isfinite(c->phase)))
+        return td_error_set(err, TD_ERR_INVALID, "change: unbalance magnitude must be finite and >= 0");
+    st = APPEND(m->changes, c, err);
+    if (st != TD_OK)
+        return st;
+    /* keep the schedule sorted by time; equal times keep their order of addition */
+    for (i = m->changes.count - 1; i > 0 && m->changes.items[i - 1].time > m->changes.items[i].time; i--) {
+        td_change tmp = m->changes.items[i - 1];
+        m->changes.items[i - 1] = m->changes.items[i];
+        m->changes.items[i] = tmp;
+    }
+    return TD_OK;
+}
+
+td_status td_model_set_speed(td_model *m, double omega, td_error *err)
+{
+    if (!m)
+        return td_error_set(err, TD_ERR_INVALID, "speed: NULL model");
+    if (!isfinite(omega))
+        return td_error_set(err, TD_ERR_INVALID, "speed must be finite");
+    m->speed = omega;
+    return TD_OK;
+}
+
+td_status td_model_set_gravity(td_model *m, double gx, double gy, td_error *err)
+{
+    if (!m)
+        return td_error_set(err, TD_ERR_INVALID, "gravity: NULL model");
+    if (!isfinite(gx) || !isfinite(gy))
+        return td_error_set(err, TD_ERR_INVALID, "gravity must be finite");
+    m->gravity[0] = gx;
+    m->gravity[1] = gy;
+    return TD_OK;
+}
+
+static td_status check_node(const td_model *m, const char *part, int i, int node, td_error *err)
+{
+    int nodes = td_model_node_count(m);
+    if (node < 0 || node >= nodes)
+        return td_error_set(err, TD_ERR_INVALID, "%s %d: node %d is out of range (the shaft has nodes 0..%d)", part,
+                            i, node, nodes - 1);
+    return TD_OK;
+}
+
+td_status td_model_validate(const td_model *m, td_error *err)
+{
+    int i, j;
+    if (!m)
+        return td_error_set(err, TD_ERR_INVALID, "validate: NULL model");
+    if (m->elements.count < 1)
+        return td_error_set(err, TD_ERR_INVALID, "the shaft has no elements");
+    for (i = 0; i < m->discs.count; i++)
+        if (check_node(m, "disc", i, m->discs.items[i].node, err))
+            return TD_ERR_INVALID;
+    for (i = 0; i < m->ambs.count; i++) {
+        if (check_node(m, "amb", i, m->ambs.items[i].node, err) ||
+            check_node(m, "amb", i, m->ambs.items[i].sensor_node, err))
+            return TD_ERR_INVALID;
+        for (j = 0; j < i; j++)
+            if (m->ambs.items[j].node == m->ambs.items[i].node)
+                return td_error_set(err, TD_ERR_INVALID, "amb %d: node %d already has amb %d", i,
+                                    m->ambs.items[i].node, j);
+    }
+    for (i = 0; i < m->bearings.count; i++)
+        if (check_node(m, "bearing", i, m->bearings.items[i].node, err))
+            return TD_ERR_INVALID;
+    for (i = 0; i < m->retainers.count; i++) {
+        const td_retainer *r = &m->retainers.items[i];
+        if (check_node(m, "retainer", i, r->node, err))
+            return TD_ERR_INVALID;
+        for (j = 0; j < i; j++)
+            if (m->retainers.items[j].node == r->node)
+                return td_error_set(err, TD_ERR_INVALID, "retainer %d: node %d already has retainer %d", i, r->node,
+                                    j);
+        for (j = 0; j < m->ambs.count; j++)
+            if (m->ambs.items[j].air_gap > 0.0 && r->clearance >= m->ambs.items[j].air_gap)
+                return td_error_set(err, TD_ERR_INVALID,
+                                    "retainer %d: clearance %g m is not smaller than the air gap %g m of amb %d", i,
+                                    r->clearance, m->ambs.items[j].air_gap, j);
+    }
+    for (i = 0; i < m->unbalances.count; i++)
+        if (check_node(m, "unbalance", i, m->unbalances.items[i].node, err))
+            return TD_ERR_INVALID;
+    for (i = 0; i < m->changes.count; i++) {
+        const td_change *c = &m->changes.items[i];
+        int limit = c->kind == TD_CHANGE_UNBALANCE ? m->unbalances.count : m->ambs.count;
+        if (c->index >= limit)
+            return td_error_set(err, TD_ERR_INVALID, "change %d at t = %g s: %s index %d is out of range (%d defined)",
+                                i, c->time, c->kind == TD_CHANGE_UNBALANCE ? "unbalance" : "amb", c->index, limit);
+    }
+    return TD_OK;
+}
+
+int td_model_node_count(const td_model *m) { return m && m->elements.count ? m->elements.count + 1 : 0; }
+int td_model_dof_count(const td_model *m) { return 4 * td_model_node_count(m); }
+int td_model_shaft_element_count(const td_model *m) { return m ? m->elements.count : 0; }
+int td_model_disc_count(const td_model *m) { return m ? m->discs.count : 0; }
+int td_model_amb_count(const td_model *m) { return m ? m->ambs.count : 0; }
+int td_model_bearing_count(const td_model *m) { return m ? m->bearings.count : 0; }
+int td_model_retainer_count(const td_model *m) { return m ? m->retainers.count : 0; }
+int td_model_unbalance_count(const td_model *m) { return m ? m->unbalances.count : 0; }
+int td_model_change_count(const td_model *m) { return m ? m->changes.count : 0; }
+double td_model_speed(const td_model *m) { return m ? m->speed : 0.0; }
+
+void td_model_gravity(const td_model *m, double *gx, double *gy)
+{
+    if (gx)
+        *gx = m ? m->gravity[0] : 0.0;
+    if (gy)
+        *gy = m ? m->gravity[1] : 0.0;
+}
+
+void td_model_shaft_options(const td_model *m, td_shaft_options *out)
+{
+    if (m && out)
+        *out = m->shaft;
+}
+
+double td_model_node_position(const td_model *m, int node)
+{
+    double z = 0.0;
+    int i;
+    if (!m)
+        return 0.0;
+    for (i = 0; i < node && i < m->elements.count; i++)
+        z += m->elements.items[i].length;
+    return z;
+}
+
+double td_model_total_mass(const td_model *m)
+{
+    double total = 0.0;
+    int i;
+    if (!m)
+        return 0.0;
+    for (i = 0; i < m->elements.count; i++) {
+        const td_shaft_element *e = &m->elements.items[i];
+        double area = TD_PI / 4.0 * (e->outer_diameter * e->outer_diameter - e->inner_diameter * e->inner_diameter);
+        total += e->material.density * area * e->length;
+    }
+    for (i = 0; i < m->discs.count; i++)
+        total += m->discs.items[i].mass;
+    return total;
+}
+
+#define GETTER(fn, type, arr)                                                           \
+    td_status fn(const td_model *m, int i, type *out)                                   \
+    {                                                                                   \
+        if (!m || !out || i < 0 || i >= m->arr.count)                                   \
+            return TD_ERR_INVALID;                                                      \
+        *out = m->arr.items[i];                                                         \
+        return TD_OK;                                                                   \
+    }
+
+GETTER(td_model_get_shaft_element, td_shaft_element, elements)
+GETTER(td_model_get_disc, td_disc, discs)
+GETTER(td_model_get_amb, td_amb, ambs)
+GETTER(td_model_get_bearing, td_bearing, bearings)
+GETTER(td_model_get_retainer, td_retainer, retainers)
+GETTER(td_model_get_unbalance, td_unbalance, unbalances)
+GETTER(td_model_get_change, td_change, changes)

@@ -1,0 +1,3 @@
+#include "touchdown/version.h"
+
+const char *td_version(void) { return TD_VERSION; }

@@ -1,0 +1,30 @@
+#include "td_test.h"
+
+#include <math.h>
+#include <stdio.h>
+
+void td_assert_close_impl(double actual, double expected, double rtol, double atol, const char *expr,
+                          const char *file, int line)
+{
+    double tol = atol + rtol * fabs(expected);
+    if (!(fabs(actual - expected) <= tol)) {
+        print_error("%s = %.17g, expected %.17g (|diff| %.3g > tol %.3g)\n", expr, actual, expected,
+                    fabs(actual - expected), tol);
+        _fail(file, line);
+    }
+}
+
+double td_rel_diff(double a, double b)
+{
+    double d = fabs(b) > 1e-300 ? fabs(b) : 1e-300;
+    return fabs(a - b) / d;
+}
+
+const char *td_source_path(const char *relative)
+{
+    static char buf[8][1024];
+    static int slot;
+    slot = (slot + 1) % 8;
+    snprintf(buf[slot], sizeof buf[slot], "%s/%s", TD_SOURCE_DIR, relative);
+    return buf[slot];
+}

@@ -1,0 +1,26 @@
+/* Shared test helpers: double comparisons (cmocka 1.1.5's assert_float_equal casts to float). */
+#ifndef TD_TEST_H
+#define TD_TEST_H
+
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include <cmocka.h>
+
+#define TD_PI 3.14159265358979323846
+
+/* Fails the test unless |actual - expected| <= atol + rtol |expected|; prints both with 17 digits. */
+void td_assert_close_impl(double actual, double expected, double rtol, double atol, const char *expr,
+                          const char *file, int line);
+#define assert_close(actual, expected, rtol, atol) \
+    td_assert_close_impl((actual), (expected), (rtol), (atol), #actual, __FILE__, __LINE__)
+
+/* Relative difference |a - b| / max(|b|, tiny). */
+double td_rel_diff(double a, double b);
+
+/* Path of a file in the source tree (tests/..., cases/...), in a static buffer per call slot. */
+const char *td_source_path(const char *relative);
+
+#endif
