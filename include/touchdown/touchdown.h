@@ -8,6 +8,7 @@
 #include "touchdown/error.h"
 #include "touchdown/model.h"
 #include "touchdown/options.h"
+#include "touchdown/sim.h"
 #include "touchdown/system.h"
 #include "touchdown/version.h"
 

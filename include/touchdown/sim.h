@@ -1,0 +1,125 @@
+/*
+ * touchdown/sim.h - time-domain simulation through retainer contact on SUNDIALS IDA.
+ *
+ * A td_sim integrates the rotor of a td_model from t0, steps to output times or to the next
+ * event, and lets the caller read state and contact forces and change the machine between
+ * steps (unbalance, speed, AMB forces: the AMBs may be driven by the caller's own sampled
+ * controller instead of the built-in PD law). Two simulations never share state.
+ * Units, DOF ordering and sign conventions: touchdown/dofs.h.
+ */
+#ifndef TOUCHDOWN_SIM_H
+#define TOUCHDOWN_SIM_H
+
+#include "touchdown/error.h"
+#include "touchdown/export.h"
+#include "touchdown/model.h"
+#include "touchdown/options.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct td_sim td_sim;
+
+/** What stopped a step early. */
+typedef enum td_event_kind {
+    TD_EVENT_CONTACT_ONSET = 0,     /**< rotor reached the clearance circle moving outward (impact) */
+    TD_EVENT_RELEASE = 1,           /**< normal force reached zero: the rotor leaves the retainer */
+    TD_EVENT_FRICTION_REVERSAL = 2, /**< sliding velocity (eq. 16) through zero */
+    TD_EVENT_SCHEDULE = 3,          /**< a timed change of the model (unbalance step, AMB failure) */
+    TD_EVENT_PENALTY_ENTER = 4,     /**< penalty model: penetration delta became positive */
+    TD_EVENT_PENALTY_EXIT = 5       /**< penalty model: penetration delta returned to zero */
+} td_event_kind;
+
+/** One event, as recorded in the event table. Velocities are of the retainer node. */
+typedef struct td_event {
+    td_event_kind kind;
+    double time;                     /**< s */
+    int retainer;                    /**< retainer index, -1 for schedule events */
+    int change;                      /**< schedule index for TD_EVENT_SCHEDULE, else -1 */
+    double radial_velocity_before;   /**< m/s, positive outward */
+    double radial_velocity_after;
+    double tangential_velocity_before; /**< m/s, positive along the whirl direction */
+    double tangential_velocity_after;
+    double impulse;                  /**< N s, normal impulse of the impact map (onset only) */
+    double normal_force;             /**< N, right after the event */
+} td_event;
+
+/** Contact state of one retainer at the current time. */
+typedef struct td_retainer_state {
+    double x, y;           /**< node displacement, m */
+    double radius;         /**< radial position r = sqrt(x^2 + y^2), m */
+    double radial_velocity;/**< m/s */
+    double whirl_angle;    /**< atan2(y, x), rad */
+    double normal_force;   /**< N >= 0 while in contact */
+    double friction_force; /**< N, tangential, positive along the whirl direction */
+    double sliding_velocity; /**< eq. 16, m/s */
+    int in_contact;        /**< 1 while the contact is active */
+} td_retainer_state;
+
+/** How an AMB is driven. */
+typedef enum td_amb_mode {
+    TD_AMB_PD = 0,       /**< built-in PD current control with force lag (the default) */
+    TD_AMB_EXTERNAL = 1, /**< control force held at the value set by td_sim_set_amb_control (zero-order hold) */
+    TD_AMB_OFF = 2       /**< failed: no force at all */
+} td_amb_mode;
+
+/** Running totals across every restart of the integrator. */
+typedef struct td_sim_stats {
+    long steps;
+    long residual_evals;
+    long jacobian_evals;
+    long linear_setups;
+    long nonlinear_iters;
+    long error_test_fails;
+    long nonlinear_fails;
+    long restarts;          /**< re-initialisations after events */
+    long events;            /**< events of any kind */
+    long contact_onsets;
+    long releases;
+    double worst_drift;     /**< max |r - c| while in constrained contact, m */
+    double peak_normal_force; /**< N */
+    double time_in_contact; /**< s, summed over retainers */
+    double first_contact_time; /**< s, -1 if none */
+    double wall_time;       /**< s spent inside td_sim_step */
+} td_sim_stats;
+
+/** Create a simulation of `model` (copied) with `options` (copied; NULL: defaults).
+ *  Sets the start state (steady orbit or rest) at options->t0. */
+TD_API td_status td_sim_create(const td_model *model, const td_sim_options *options, td_sim **out, td_error *err);
+/** Free and set *sim to NULL; accepts NULL. */
+TD_API void td_sim_free(td_sim **sim);
+/** Message of the last failure of this simulation ("" if none). Owned by the sim. */
+TD_API const char *td_sim_errmsg(const td_sim *sim);
+
+/** Advance towards `tout` (> current time). Returns TD_OK having reached tout, TD_EVENT having
+ *  stopped at an event (read it with td_sim_last_event; call again to go on), or a negative
+ *  status on failure (the state stays at the last good time). *t_reached may be NULL. */
+TD_API td_status td_sim_step(td_sim *sim, double tout, double *t_reached);
+/** Current time, s. */
+TD_API double td_sim_time(const td_sim *sim);
+/** The event that stopped the last td_sim_step with TD_EVENT. */
+TD_API td_status td_sim_last_event(const td_sim *sim, td_event *ev);
+
+/** Number of mechanical DOFs. */
+TD_API int td_sim_dof_count(const td_sim *sim);
+/** Copy displacements q and velocities v (each td_sim_dof_count long; either may be NULL). */
+TD_API td_status td_sim_get_state(const td_sim *sim, double *q, double *v);
+TD_API td_status td_sim_retainer_state(const td_sim *sim, int retainer, td_retainer_state *out);
+/** Total force of AMB `amb` on the rotor, f[0] along x, f[1] along y, N. */
+TD_API td_status td_sim_amb_force(const td_sim *sim, int amb, double f[2]);
+TD_API td_status td_sim_stats_get(const td_sim *sim, td_sim_stats *out);
+
+/* Changes between steps; each takes effect from the current time (the integrator restarts). */
+TD_API td_status td_sim_set_unbalance(td_sim *sim, int unbalance, double magnitude, double phase);
+TD_API td_status td_sim_set_speed(td_sim *sim, double omega);
+TD_API td_status td_sim_set_amb_mode(td_sim *sim, int amb, td_amb_mode mode);
+/** Control force (ki times current) of AMB `amb` for TD_AMB_EXTERNAL, held until the next call:
+ *  the total force is ks x + f (clipped when the AMB saturates), N. */
+TD_API td_status td_sim_set_amb_control(td_sim *sim, int amb, double fx, double fy);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* TOUCHDOWN_SIM_H */
