@@ -61,5 +61,4 @@ target_include_directories(td_deps INTERFACE
   ${HDF5_C_INCLUDE_DIRS} ${HDF5_INCLUDE_DIRS} ${LIBCONFIG_INCLUDE_DIR})
 target_compile_definitions(td_deps INTERFACE ${HDF5_C_DEFINITIONS} ${HDF5_DEFINITIONS})
 target_link_libraries(td_deps INTERFACE ${TD_SUNDIALS_LIBS} ${KLU_LIBRARY} ${CXSPARSE_LIBRARY}
-  GSL::gsl GSL::gslcblas ${HDF5_C_LIBRARIES} ${LIBCONFIG_LIBRARY} m)
-install(TARGETS td_deps EXPORT touchdownTargets)
+  ${GSL_LIBRARIES} ${HDF5_C_LIBRARIES} ${LIBCONFIG_LIBRARY} m)

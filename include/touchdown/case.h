@@ -1,0 +1,89 @@
+/*
+ * touchdown/case.h - read a case file: one file that describes a whole run (machine, speed,
+ * schedule, contact law, solver, output, modal analysis).
+ *
+ * Case files use the libconfig 1.5 syntax; every key, its unit and its default are listed in
+ * docs/case-format.md. Units and DOF conventions: touchdown/dofs.h.
+ *
+ * Errors are one line, "FILE:LINE: KEY: what is wrong" (KEY is the full path of the setting,
+ * e.g. "retainers[1].clearance"); a value set by an override reads
+ * "FILE: --set 'KEY=VALUE': KEY: what is wrong". Syntax errors found by libconfig read
+ * "FILE:LINE: syntax error".
+ *
+ * libconfig 1.5 converts numbers with the C library, so a program that changes LC_NUMERIC
+ * (setlocale) away from "C" may see "1.5" misread; keep LC_NUMERIC at "C" while loading.
+ * td_case_load has no other global effect and may run in several threads at once.
+ */
+#ifndef TOUCHDOWN_CASE_H
+#define TOUCHDOWN_CASE_H
+
+#include "touchdown/error.h"
+#include "touchdown/export.h"
+#include "touchdown/model.h"
+#include "touchdown/options.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct td_case td_case;
+
+/** Largest number of shaft elements a case file may ask for. */
+#define TD_CASE_MAX_ELEMENTS 10000
+/** Largest case file (or included file) read, bytes. */
+#define TD_CASE_MAX_FILE_SIZE (16L * 1024L * 1024L)
+/** Largest number of output samples (sample_rate x end_time) a case may ask for. */
+#define TD_CASE_MAX_SAMPLES 1e8
+
+/**
+ * Read and validate a case file.
+ *
+ * path         the case file; "@include" paths inside it are relative to its directory.
+ * overrides    n_overrides strings "KEY=VALUE" (as given to --set on the command line), applied
+ *              in order after parsing and before validation, so they are checked like the file.
+ *              KEY is a dotted path; list entries are addressed as name[i] (e.g.
+ *              "retainers[0].friction=0.2"). VALUE is a libconfig value (190, 1e-8, true,
+ *              "text", [2, 10]); a value that does not parse and does not start with one of
+ *              " [ ( { is taken as a bare string (contact.model=penalty). May be NULL when
+ *              n_overrides is 0. Borrowed for the duration of the call.
+ * out          receives the new case (caller frees with td_case_free); set to NULL on failure.
+ * err          may be NULL.
+ *
+ * Returns TD_OK; TD_ERR_IO if the file (or the path) cannot be read as a regular file;
+ * TD_ERR_PARSE for a syntax error, an unknown, missing, mistyped or invalid key, or a bad
+ * override; TD_ERR_NOMEM; TD_ERR_INVALID for NULL path/out or n_overrides < 0.
+ */
+TD_API td_status td_case_load(const char *path, const char *const *overrides, int n_overrides, td_case **out,
+                              td_error *err);
+
+/** Free a case and set *c to NULL. Accepts NULL and *c == NULL. */
+TD_API void td_case_free(td_case **c);
+
+/** The machine (borrowed; lives as long as the case). Already checked with td_model_validate. */
+TD_API const td_model *td_case_model(const td_case *c);
+/** Contact, solver and start options (borrowed). */
+TD_API const td_sim_options *td_case_sim_options(const td_case *c);
+/** Output options (borrowed). */
+TD_API const td_output_options *td_case_output_options(const td_case *c);
+/** Modal-analysis options (borrowed). */
+TD_API const td_modal_options *td_case_modal_options(const td_case *c);
+/** End time of the run, s. */
+TD_API double td_case_end_time(const td_case *c);
+/**
+ * The case text as read (borrowed, NUL-terminated): the file with every @include expanded in
+ * place between "# >>> @include" and "# <<< end of" comment lines, followed by the overrides as
+ * comment lines. Meant to be stored with the results (e.g. as an HDF5 attribute).
+ */
+TD_API const char *td_case_text(const td_case *c);
+/** The path given to td_case_load (borrowed copy). */
+TD_API const char *td_case_path(const td_case *c);
+/** The file's base name without a ".cfg" extension, e.g. "paper-a" (borrowed). */
+TD_API const char *td_case_name(const td_case *c);
+/** The optional "description" string of the case; "" when absent (borrowed). */
+TD_API const char *td_case_description(const td_case *c);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* TOUCHDOWN_CASE_H */

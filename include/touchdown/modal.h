@@ -1,0 +1,241 @@
+/*
+ * touchdown/modal.h - eigen-analysis of the contact-free rotor/AMB system: modes, Campbell
+ * diagram, critical speeds, steady-state unbalance response and the steady starting orbit.
+ *
+ * Every function here works on the first-order form of the linear, contact-free system at a
+ * rotor speed Omega, with the state vector
+ *
+ *   z = [q (ndof); v = q' (ndof); w (n_filter_states)]
+ *
+ * where q follows touchdown/dofs.h and w holds the lagged AMB control forces Fc, N, one per AMB
+ * axis with tau > 0, in the order of the system's AMB axis table (filter-state index). AMB axes
+ * with tau == 0 enter as their exact spring-damper. Saturation is ignored (linear analysis);
+ * contact is absent. The state dimension is td_modal_state_count(sys).
+ *
+ * Eigenvalues s = sigma + i omega_d. A complex pair is reported once, as a td_mode with
+ * omega_d > 0; real eigenvalues (overdamped modes, filter lags) are reported apart.
+ * Damping ratio zeta = -sigma / |s|.
+ *
+ * Whirl: a mode's motion at node i is x = Re(X_i e^{st}), y = Re(Y_i e^{st}). Its orbit turns
+ * with the spin (forward, x towards y) where h_i = -2 Im(conj(X_i) Y_i) / (|X_i|^2 + |Y_i|^2) > 0.
+ * The mode's whirl index is the amplitude-weighted mean of h_i over the nodes, in [-1, 1];
+ * the mode is TD_WHIRL_FORWARD when every node with a visible amplitude whirls forward,
+ * TD_WHIRL_BACKWARD when every one whirls backward, and TD_WHIRL_MIXED otherwise (e.g. planar
+ * modes of a non-spinning isotropic rotor, where forward and backward are degenerate).
+ *
+ * GSL: these functions call gsl_set_error_handler_off() (the library's one side effect on GSL)
+ * and check every GSL return code. Ownership: the system is borrowed for the duration of the
+ * call only; result handles own their data and are freed with their _free function.
+ */
+#ifndef TOUCHDOWN_MODAL_H
+#define TOUCHDOWN_MODAL_H
+
+#include "touchdown/error.h"
+#include "touchdown/export.h"
+#include "touchdown/model.h"
+#include "touchdown/options.h"
+#include "touchdown/system.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/** Whirl direction of a mode (see the header comment). */
+typedef enum td_whirl {
+    TD_WHIRL_BACKWARD = -1, /**< against the spin */
+    TD_WHIRL_MIXED = 0,     /**< some nodes forward, some backward (or planar) */
+    TD_WHIRL_FORWARD = 1    /**< with the spin */
+} td_whirl;
+
+/** One oscillatory mode (the omega_d > 0 member of a complex pair). */
+typedef struct td_mode {
+    double sigma;       /**< real part of the eigenvalue, 1/s (negative: decaying) */
+    double omega_d;     /**< damped natural frequency, rad/s, > 0 */
+    double freq_hz;     /**< omega_d / (2 pi), Hz */
+    double omega_n;     /**< |s|, rad/s */
+    double zeta;        /**< damping ratio -sigma/|s| */
+    double whirl_index; /**< amplitude-weighted whirl sense in [-1, 1] (+1: forward circular) */
+    td_whirl whirl;
+} td_mode;
+
+/* ---------------------------------------------------------------------------------------- */
+/* State-space form                                                                          */
+
+/** Number of first-order states: 2 ndof + number of AMB axes with tau > 0. */
+TD_API int td_modal_state_count(const td_system *sys);
+
+/**
+ * Dense first-order system matrix A at speed `omega` (z' = A z + b), column-major n x n with
+ * n = td_modal_state_count(sys): entry (i, j) at A[i + j n]. Caller allocates n*n doubles.
+ * Returns TD_ERR_NUMERIC if M is singular. A is left unspecified on failure.
+ */
+TD_API td_status td_modal_state_matrix(const td_system *sys, double omega, double *A, td_error *err);
+
+/* ---------------------------------------------------------------------------------------- */
+/* Modes at one speed                                                                        */
+
+typedef struct td_modal td_modal;
+
+/**
+ * Eigen-analysis at speed `omega` (rad/s; the model's own speed is ignored). On success *out
+ * holds every eigenvalue: oscillatory modes sorted by ascending omega_d (ties by sigma), real
+ * eigenvalues sorted by descending value (least stable first), with mode shapes.
+ * Caller frees with td_modal_free. On failure *out is NULL.
+ */
+TD_API td_status td_modal_solve(const td_system *sys, double omega, td_modal **out, td_error *err);
+/** Free and set *m to NULL; accepts NULL. */
+TD_API void td_modal_free(td_modal **m);
+/** Speed of the analysis, rad/s. */
+TD_API double td_modal_speed(const td_modal *m);
+/** Number of oscillatory modes (complex pairs). */
+TD_API int td_modal_mode_count(const td_modal *m);
+/** Copy oscillatory mode i (0: lowest omega_d) into *out. TD_ERR_INVALID when out of range. */
+TD_API td_status td_modal_get_mode(const td_modal *m, int i, td_mode *out);
+/** Number of real eigenvalues. */
+TD_API int td_modal_real_count(const td_modal *m);
+/** Real eigenvalue i, 1/s (0: largest, i.e. least stable). NAN when out of range. */
+TD_API double td_modal_real_eigenvalue(const td_modal *m, int i);
+/** Number of nodes of the mode shapes. */
+TD_API int td_modal_node_count(const td_modal *m);
+/**
+ * Mode shape of oscillatory mode i at the nodes: complex X and Y displacement amplitudes
+ * (real and imaginary parts, each array td_modal_node_count long; any pointer may be NULL).
+ * Normalised so that the largest |X_k| or |Y_k| is 1 and that component is real and positive.
+ */
+TD_API td_status td_modal_mode_shape(const td_modal *m, int i, double *x_re, double *x_im, double *y_re, double *y_im);
+/** Largest real part over all eigenvalues, 1/s: < 0 means the contact-free system is stable. */
+TD_API double td_modal_max_real_part(const td_modal *m);
+
+/* ---------------------------------------------------------------------------------------- */
+/* Campbell diagram                                                                          */
+
+typedef struct td_campbell td_campbell;
+
+/**
+ * Oscillatory modes over opt->speed_steps speeds evenly spaced from opt->speed_min to
+ * opt->speed_max (inclusive), the lowest opt->mode_count at each speed. Branch j at a speed is
+ * the j-th lowest damped frequency there (branches are tracked by sorting), each point labelled
+ * with its own whirl. A speed with fewer modes leaves its missing points with omega_d = NAN.
+ * Caller frees with td_campbell_free.
+ */
+TD_API td_status td_campbell_compute(const td_system *sys, const td_modal_options *opt, td_campbell **out,
+                                     td_error *err);
+TD_API void td_campbell_free(td_campbell **c);
+TD_API int td_campbell_speed_count(const td_campbell *c);
+TD_API int td_campbell_branch_count(const td_campbell *c);
+/** Speed number k, rad/s (NAN when out of range). */
+TD_API double td_campbell_speed(const td_campbell *c, int k);
+/** Branch j at speed number k. */
+TD_API td_status td_campbell_get(const td_campbell *c, int k, int j, td_mode *out);
+
+/* ---------------------------------------------------------------------------------------- */
+/* Critical speeds                                                                           */
+
+/** A speed where a whirl branch crosses the synchronous (1x) line omega_d = Omega. */
+typedef struct td_critical_speed {
+    double speed;   /**< rad/s, = omega_d of the mode there (to ~1e-12 relative) */
+    double freq_hz; /**< speed / (2 pi) */
+    double zeta;    /**< damping ratio of the crossing mode */
+    double sigma;   /**< real part of its eigenvalue, 1/s */
+    td_whirl whirl; /**< TD_WHIRL_FORWARD or TD_WHIRL_BACKWARD */
+    int branch;     /**< index of the branch among the modes of that whirl (0: lowest) */
+} td_critical_speed;
+
+/**
+ * Critical speeds in [opt->speed_min, opt->speed_max]: each forward branch (k-th lowest
+ * forward-whirling mode) and, separately, each backward branch, bracketed on the Campbell grid
+ * (opt->speed_steps speeds) and refined by bisection/secant (Illinois) on fresh eigen-solves
+ * of omega_d(Omega) - Omega until the bracket is narrower than 1e-12 relative. Crossings
+ * closer together than one grid step can be missed: refine the grid. Results are sorted by
+ * speed; up to `capacity` go to `out` (may be NULL when capacity is 0) and *count receives
+ * the number found (which may exceed capacity).
+ */
+TD_API td_status td_modal_critical_speeds(const td_system *sys, const td_modal_options *opt, td_critical_speed *out,
+                                          int capacity, int *count, td_error *err);
+
+/* ---------------------------------------------------------------------------------------- */
+/* Harmonic (steady-state) unbalance response                                                */
+
+typedef struct td_harmonic td_harmonic;
+
+/**
+ * Steady-state response at speed `omega` to the unbalances u[0..n_u-1] (copied), each
+ * F_x = U omega^2 cos(omega t + phase), F_y = U omega^2 sin(omega t + phase) at its node
+ * (touchdown/model.h). The state is z(t) = Re(Z e^{i omega t}) with (i omega I - A) Z = F_z
+ * (complex LU). n_u may be 0 (zero response). Fails with TD_ERR_NUMERIC when i omega is an
+ * eigenvalue of A (undamped resonance). Caller frees with td_harmonic_free.
+ */
+TD_API td_status td_harmonic_compute(const td_system *sys, double omega, const td_unbalance *u, int n_u,
+                                     td_harmonic **out, td_error *err);
+TD_API void td_harmonic_free(td_harmonic **h);
+TD_API double td_harmonic_speed(const td_harmonic *h);
+TD_API int td_harmonic_node_count(const td_harmonic *h);
+/** Number of entries of the complex state amplitude (td_modal_state_count of its system). */
+TD_API int td_harmonic_state_count(const td_harmonic *h);
+/** Complex amplitude of state i (layout of the header comment) into re, im (either may be NULL). */
+TD_API td_status td_harmonic_state(const td_harmonic *h, int i, double *re, double *im);
+
+/** Orbit of one node: x = Re(X e^{i omega t}), y = Re(Y e^{i omega t}). */
+typedef struct td_orbit {
+    double x_re, x_im;     /**< complex X, m */
+    double y_re, y_im;     /**< complex Y, m */
+    double x_amp, x_phase; /**< |X| m, arg X rad */
+    double y_amp, y_phase; /**< |Y| m, arg Y rad */
+    double forward;        /**< radius of the forward circular component |X + iY|/2, m */
+    double backward;       /**< radius of the backward circular component |X - iY|/2, m */
+    double major;          /**< major semi-axis forward + backward, m */
+    double minor;          /**< minor semi-axis |forward - backward|, m */
+} td_orbit;
+
+/** Orbit of node `node`. */
+TD_API td_status td_harmonic_orbit(const td_harmonic *h, int node, td_orbit *out);
+
+/**
+ * Steady starting state at time t for the simulation's TD_START_ORBIT:
+ *
+ *   z(t) = Re(Z e^{i omega t}) + z_s
+ *
+ * Z the harmonic response to the unbalances u[0..n_u-1] at speed omega (as td_harmonic_compute),
+ * z_s the static deflection under the system's gravity load (A z_s = -[0; M^-1 f_g; 0], which has
+ * v = 0 and the AMB filter states at their steady values) when `with_gravity` is nonzero, else 0.
+ * z has td_modal_state_count(sys) entries in the layout [q (ndof), v (ndof), w (n_filter_states)]
+ * (w = the lagged AMB forces Fc, by filter-state index). omega == 0 or n_u == 0 give the static
+ * state only. On failure z is left unspecified.
+ */
+TD_API td_status td_modal_start_state(const td_system *sys, double omega, const td_unbalance *u, int n_u,
+                                      int with_gravity, double t, double *z, td_error *err);
+
+/* ---------------------------------------------------------------------------------------- */
+/* Writers (lib/io/modal_writer.c)                                                           */
+
+/**
+ * Results to write; any pointer may be NULL (that part is skipped). `modes` is written with all
+ * its oscillatory modes, its real eigenvalues and mode shapes; `harmonics` is an array of
+ * n_harmonics responses.
+ */
+typedef struct td_modal_results {
+    const td_modal *modes;
+    const td_campbell *campbell;
+    const td_critical_speed *critical;
+    int n_critical;
+    const td_harmonic *const *harmonics;
+    int n_harmonics;
+} td_modal_results;
+
+/**
+ * CSV: one file with sections, each a '# section: NAME' line, then a header line of column
+ * names with units, then rows; numbers as "%.12g". Sections: modes, real_eigenvalues,
+ * mode_shapes, campbell, critical_speeds, harmonic.
+ */
+TD_API td_status td_modal_write_csv(const char *path, const td_modal_results *r, td_error *err);
+/**
+ * HDF5: groups /modes, /campbell, /critical_speeds, /harmonic/<k> with one-dimensional (or 2-D for
+ * Campbell and mode shapes) double datasets, each with a "units" string attribute.
+ */
+TD_API td_status td_modal_write_hdf5(const char *path, const td_modal_results *r, td_error *err);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* TOUCHDOWN_MODAL_H */

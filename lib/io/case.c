@@ -1,0 +1,267 @@
+/*
+ * td_case_load: read the case file, let libconfig 1.5 parse it (with @include relative to the
+ * file's directory), apply the --set overrides, then read every section into a td_model and the
+ * option structs. Each step stops at the first error with a "FILE:LINE: KEY: what" message.
+ */
+#include "io/case_internal.h"
+#include "util/error_internal.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+static const char *const top_keys[] = {"description",  "speed",   "end_time", "start",     "shaft",      "discs",
+                                       "point_masses", "ambs",    "bearings", "retainers", "unbalances", "schedule",
+                                       "gravity",      "contact", "solver",   "output",    "modal",      NULL};
+
+static char *dup_string(const char *s, size_t n)
+{
+    char *p = malloc(n + 1);
+    if (p) {
+        memcpy(p, s, n);
+        p[n] = '\0';
+    }
+    return p;
+}
+
+/* "dir/paper-a.cfg" -> "paper-a" */
+static char *base_name(const char *path)
+{
+    const char *slash = strrchr(path, '/');
+    const char *base = slash ? slash + 1 : path;
+    size_t n = strlen(base);
+    if (n > 4 && strcmp(base + n - 4, ".cfg") == 0)
+        n -= 4;
+    return dup_string(base, n);
+}
+
+/* The include directory: the case file's directory ("." when the path has none). */
+static td_status set_dir(td_case_reader *r)
+{
+    const char *slash = strrchr(r->path, '/');
+    r->has_dir = slash != NULL;
+    r->dir = slash ? dup_string(r->path, slash == r->path ? 1 : (size_t)(slash - r->path)) : dup_string(".", 1);
+    return r->dir ? TD_OK : td_error_set(r->err, TD_ERR_NOMEM, "%s: out of memory", r->path);
+}
+
+static td_status syntax_error(td_case_reader *r)
+{
+    char shown[1024];
+    const char *text = config_error_text(&r->cfg) ? config_error_text(&r->cfg) : "parse error";
+    td_cr_file_shown(r, config_error_file(&r->cfg), shown, sizeof shown);
+    if (strcmp(text, "cannot open include file") == 0)
+        return td_error_set(r->err, TD_ERR_PARSE, "%s:%d: %s (@include paths are relative to %s)", shown,
+                            config_error_line(&r->cfg), text, r->dir);
+    return td_error_set(r->err, TD_ERR_PARSE, "%s:%d: %s", shown, config_error_line(&r->cfg), text);
+}
+
+/* The first integer setting at file:line under s (file NULL: the main file). */
+static const config_setting_t *find_int_at(const config_setting_t *s, const char *file, int line)
+{
+    int i;
+    if (config_setting_type(s) == CONFIG_TYPE_INT && (int)config_setting_source_line(s) == line) {
+        const char *f = config_setting_source_file(s);
+        if ((!f && !file) || (f && file && strcmp(f, file) == 0))
+            return s;
+    }
+    if (config_setting_is_aggregate(s))
+        for (i = 0; i < config_setting_length(s); i++) {
+            const config_setting_t *hit = find_int_at(config_setting_get_elem(s, (unsigned)i), file, line);
+            if (hit)
+                return hit;
+        }
+    return NULL;
+}
+
+/* Report the first integer literal that libconfig wrapped to 32 bits. */
+static td_status check_wraps(td_case_reader *r)
+{
+    const td_cr_wrap_site *w;
+    const config_setting_t *s;
+    char shown[1024];
+    if (r->wrap_count == 0)
+        return TD_OK;
+    w = &r->wraps[0];
+    s = find_int_at(config_root_setting(&r->cfg), w->file, w->line);
+    if (s)
+        return td_cr_fail(r, s, NULL, "integer %s is out of range (at most 2147483647; libconfig would read %d)",
+                          w->literal, config_setting_get_int(s));
+    td_cr_file_shown(r, w->file, shown, sizeof shown);
+    return td_error_set(r->err, TD_ERR_PARSE, "%s:%d: integer %s is out of range (at most 2147483647)", shown, w->line,
+                        w->literal);
+}
+
+static td_case *case_new(const char *path)
+{
+    td_case *c = calloc(1, sizeof *c);
+    if (!c)
+        return NULL;
+    td_sim_options_default(&c->sim);
+    td_output_options_default(&c->output);
+    td_modal_options_default(&c->modal);
+    c->path = dup_string(path, strlen(path));
+    c->name = base_name(path);
+    if (!c->path || !c->name || td_model_create(&c->model, NULL) != TD_OK)
+        td_case_free(&c);
+    return c;
+}
+
+/* Finish the case text: a final newline, then the overrides as comment lines; hands it to the case. */
+static td_status finish_text(td_case_reader *r, td_cr_buf *buf, const char *const *ov, int n)
+{
+    int i;
+    if (buf->len > 0 && buf->data[buf->len - 1] != '\n')
+        td_cr_buf_append(buf, "\n", 1);
+    if (n > 0)
+        td_cr_buf_printf(buf, "# >>> overrides (--set), applied after parsing\n");
+    for (i = 0; i < n; i++) {
+        td_cr_buf_append(buf, "# --set ", 8);
+        td_cr_buf_append(buf, ov[i], strlen(ov[i])); /* one line: checked by td_cr_apply_override */
+        td_cr_buf_append(buf, "\n", 1);
+    }
+    if (!buf->data)
+        td_cr_buf_append(buf, "", 0);
+    if (buf->failed)
+        return td_error_set(r->err, TD_ERR_NOMEM, "%s: out of memory", r->path);
+    r->c->text = buf->data;
+    buf->data = NULL;
+    return TD_OK;
+}
+
+/* Every section, in dependency order: the shaft fixes the nodes, AMBs come before retainers. */
+static td_status read_case(td_case_reader *r)
+{
+    const config_setting_t *root = config_root_setting(&r->cfg);
+    const char *desc;
+    td_error merr;
+    td_status st = td_cr_check_keys(r, root, top_keys);
+    if (st == TD_OK)
+        st = td_cr_string(r, root, "description", "", &desc);
+    if (st == TD_OK && !(r->c->description = dup_string(desc, strlen(desc))))
+        st = td_error_set(r->err, TD_ERR_NOMEM, "%s: out of memory", r->path);
+    if (st == TD_OK)
+        st = td_cr_read_shaft(r, root);
+    if (st == TD_OK)
+        st = td_cr_read_parts(r, root);
+    if (st == TD_OK)
+        st = td_cr_read_options(r, root);
+    /* everything td_model_validate checks was checked above with locations; this is a backstop */
+    if (st == TD_OK && td_model_validate(r->c->model, &merr) != TD_OK)
+        st = td_error_set(r->err, TD_ERR_PARSE, "%s: %s", r->path, merr.message);
+    return st;
+}
+
+static td_status load(td_case_reader *r, const char *const *overrides, int n_overrides)
+{
+    char *main_text = NULL;
+    td_cr_buf text = {NULL, 0, 0, 0};
+    int i;
+    td_status st = set_dir(r);
+    if (st == TD_OK)
+        st = td_cr_read_file(r->path, r->path, &main_text, r->err);
+    if (st == TD_OK)
+        st = td_cr_expand(r, main_text, NULL, 0, &text);
+    if (st != TD_OK) {
+        free(main_text);
+        free(text.data);
+        return st;
+    }
+    config_init(&r->cfg);
+    config_set_include_dir(&r->cfg, r->dir);
+    /* parse the text already read (no second open); settings of the main file have no file name */
+    if (!config_read_string(&r->cfg, main_text))
+        st = syntax_error(r);
+    free(main_text);
+    if (st == TD_OK)
+        st = check_wraps(r);
+    if (st == TD_OK && config_setting_length(config_root_setting(&r->cfg)) == 0)
+        st = td_error_set(r->err, TD_ERR_PARSE, "%s:1: the case file is empty (no settings)", r->path);
+    for (i = 0; st == TD_OK && i < n_overrides; i++)
+        st = td_cr_apply_override(r, overrides[i]);
+    if (st == TD_OK)
+        st = read_case(r);
+    if (st == TD_OK)
+        st = finish_text(r, &text, overrides, n_overrides);
+    free(text.data);
+    config_destroy(&r->cfg);
+    return st;
+}
+
+td_status td_case_load(const char *path, const char *const *overrides, int n_overrides, td_case **out, td_error *err)
+{
+    td_case_reader r;
+    td_status st;
+    int i;
+    if (!out)
+        return td_error_set(err, TD_ERR_INVALID, "td_case_load: NULL output pointer");
+    *out = NULL;
+    if (!path || n_overrides < 0 || (n_overrides > 0 && !overrides))
+        return td_error_set(err, TD_ERR_INVALID, "td_case_load: NULL path, or bad override array");
+    memset(&r, 0, sizeof r);
+    r.path = path;
+    r.err = err;
+    r.c = case_new(path);
+    if (!r.c)
+        return td_error_set(err, TD_ERR_NOMEM, "%s: out of memory", path);
+    st = load(&r, overrides, n_overrides);
+    for (i = 0; i < r.wrap_count; i++)
+        free(r.wraps[i].file);
+    free(r.wraps);
+    free(r.dir);
+    if (st != TD_OK) {
+        td_case_free(&r.c);
+        return st;
+    }
+    td_error_clear(err);
+    *out = r.c;
+    return TD_OK;
+}
+
+void td_case_free(td_case **c)
+{
+    if (!c || !*c)
+        return;
+    td_model_free(&(*c)->model);
+    free((*c)->text);
+    free((*c)->path);
+    free((*c)->name);
+    free((*c)->description);
+    free(*c);
+    *c = NULL;
+}
+
+const td_model *td_case_model(const td_case *c)
+{
+    return c ? c->model : NULL;
+}
+const td_sim_options *td_case_sim_options(const td_case *c)
+{
+    return c ? &c->sim : NULL;
+}
+const td_output_options *td_case_output_options(const td_case *c)
+{
+    return c ? &c->output : NULL;
+}
+const td_modal_options *td_case_modal_options(const td_case *c)
+{
+    return c ? &c->modal : NULL;
+}
+double td_case_end_time(const td_case *c)
+{
+    return c ? c->end_time : 0.0;
+}
+const char *td_case_text(const td_case *c)
+{
+    return c ? c->text : NULL;
+}
+const char *td_case_path(const td_case *c)
+{
+    return c ? c->path : NULL;
+}
+const char *td_case_name(const td_case *c)
+{
+    return c ? c->name : NULL;
+}
+const char *td_case_description(const td_case *c)
+{
+    return c && c->description ? c->description : "";
+}

@@ -1,0 +1,133 @@
+/*
+ * Case-file reader internals: the td_case record, the reader state shared by the section
+ * readers, and the typed getters that turn libconfig settings into checked values with
+ * "FILE:LINE: KEY: what is wrong" errors.
+ */
+#ifndef TD_IO_CASE_INTERNAL_H
+#define TD_IO_CASE_INTERNAL_H
+
+#include <libconfig.h>
+#include <stddef.h>
+
+#include "touchdown/case.h"
+
+struct td_case {
+    td_model *model;
+    td_sim_options sim;
+    td_output_options output;
+    td_modal_options modal;
+    double end_time;
+    char *text;        /* expanded case text + overrides as comments */
+    char *path;        /* as given */
+    char *name;        /* base name without .cfg */
+    char *description; /* "" when absent */
+};
+
+/* A decimal or hex integer literal that libconfig 1.5 silently wraps to 32 bits (it has no
+ * overflow check); found by td_cr_scan_text, reported against the setting on that line. */
+typedef struct td_cr_wrap_site {
+    char *file; /* file name as libconfig records it (the @include string); NULL: main file */
+    int line;
+    char literal[40];
+} td_cr_wrap_site;
+
+/* A growable NUL-terminated text buffer; `failed` is set once an allocation fails. */
+typedef struct td_cr_buf {
+    char *data;
+    size_t len, cap;
+    int failed;
+} td_cr_buf;
+
+typedef struct td_case_reader {
+    config_t cfg;
+    const char *path; /* the case file as given */
+    char *dir;        /* include directory: the case file's directory, "." when none */
+    int has_dir;      /* path names a directory: included files are shown as dir/name */
+    td_error *err;
+    td_case *c;
+    int nodes;                    /* shaft node count, once the shaft is read */
+    const config_setting_t *ambs; /* the "ambs" list (entry i is AMB i), or NULL */
+    td_cr_wrap_site *wraps;
+    int wrap_count, wrap_cap;
+} td_case_reader;
+
+/* Range a real value must lie in. */
+typedef enum td_cr_range {
+    TD_CR_FINITE = 0,      /* any finite value */
+    TD_CR_POSITIVE = 1,    /* > 0 */
+    TD_CR_NONNEGATIVE = 2, /* >= 0 */
+    TD_CR_FRACTION = 3,    /* [0, 1] */
+    TD_CR_OPEN_UNIT = 4    /* (0, 1) */
+} td_cr_range;
+
+/* ---- text (case_text.c) ---------------------------------------------------------------- */
+void td_cr_buf_append(td_cr_buf *b, const char *s, size_t n);
+void td_cr_buf_printf(td_cr_buf *b, const char *fmt, ...);
+/* Read a regular file of at most TD_CASE_MAX_FILE_SIZE bytes, rejecting binary data.
+ * `shown` names the file in messages. TD_ERR_IO if unreadable, TD_ERR_PARSE if binary. */
+td_status td_cr_read_file(const char *shown, const char *path, char **text, td_error *err);
+/* Append `text` (the file libconfig calls `file`, NULL for the main file) to `out` with every
+ * @include expanded in place, and record integer literals libconfig would wrap. */
+td_status td_cr_expand(td_case_reader *r, const char *text, const char *file, int depth, td_cr_buf *out);
+/* Scan one value string (an override) for literals libconfig would wrap; returns 1 if found. */
+int td_cr_value_wraps(const char *text, char *literal, size_t n);
+
+/* ---- locations and getters (case_value.c) ------------------------------------------------ */
+/* How a file libconfig recorded (NULL: main) is shown in messages. */
+void td_cr_file_shown(const td_case_reader *r, const char *file, char *buf, size_t n);
+/* Full key of a setting, e.g. "retainers[1].clearance"; "" for the root. */
+void td_cr_key(const config_setting_t *s, char *buf, size_t n);
+/* "FILE:LINE" or "FILE: --set 'K=V'" of a setting. */
+void td_cr_where(const td_case_reader *r, const config_setting_t *s, char *buf, size_t n);
+/* Fail with "WHERE: KEY[.sub]: message"; returns TD_ERR_PARSE. `sub` may be NULL. */
+td_status td_cr_fail(td_case_reader *r, const config_setting_t *s, const char *sub, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 4, 5)))
+#endif
+    ;
+/* Re-word an error of a td_model_* call with the location of the setting it came from. */
+td_status td_cr_model_fail(td_case_reader *r, const config_setting_t *s, td_status st, const td_error *merr);
+/* Reject members of group g whose names are not in the NULL-terminated `allowed`. */
+td_status td_cr_check_keys(td_case_reader *r, const config_setting_t *g, const char *const *allowed);
+/* 1 if group g has member `key`. */
+int td_cr_has(const config_setting_t *g, const char *key);
+td_status td_cr_missing(td_case_reader *r, const config_setting_t *g, const char *key, const char *what);
+
+td_status td_cr_value_real(td_case_reader *r, const config_setting_t *s, td_cr_range range, double *out);
+td_status td_cr_value_int(td_case_reader *r, const config_setting_t *s, long lo, long hi, int *out);
+/* Optional/required members. `what` describes the key for "missing" messages (NULL: optional,
+ * then `def` is stored when absent). */
+td_status td_cr_real(td_case_reader *r, const config_setting_t *g, const char *key, const char *what, double def,
+                     td_cr_range range, double *out);
+td_status td_cr_int(td_case_reader *r, const config_setting_t *g, const char *key, const char *what, int def, long lo,
+                    long hi, int *out);
+td_status td_cr_node(td_case_reader *r, const config_setting_t *g, const char *key, const char *what, int def,
+                     int *out);
+td_status td_cr_bool(td_case_reader *r, const config_setting_t *g, const char *key, int def, int *out);
+td_status td_cr_string(td_case_reader *r, const config_setting_t *g, const char *key, const char *def,
+                       const char **out);
+/* A string member that must be one of `names` (n of them); *out is its index. */
+td_status td_cr_enum(td_case_reader *r, const config_setting_t *g, const char *key, const char *const *names, int n,
+                     int def, int *out);
+/* An optional group member: *out is NULL when absent. */
+td_status td_cr_group(td_case_reader *r, const config_setting_t *g, const char *key, const char *what,
+                      const config_setting_t **out);
+/* An optional list of groups "( {...}, ... )": *out is NULL when absent, entries checked by td_cr_entry. */
+td_status td_cr_list(td_case_reader *r, const config_setting_t *g, const char *key, const config_setting_t **out);
+td_status td_cr_entry(td_case_reader *r, const config_setting_t *list, int i, const config_setting_t **out);
+/* An optional array or list of at most `max` numbers (or integers) into out[]; *n = count (0 when absent). */
+td_status td_cr_reals(td_case_reader *r, const config_setting_t *g, const char *key, int max, td_cr_range range,
+                      double *out, int *n);
+td_status td_cr_ints(td_case_reader *r, const config_setting_t *g, const char *key, int max, long lo, long hi, int *out,
+                     int *n);
+
+/* ---- overrides (case_override.c) --------------------------------------------------------- */
+/* Apply one "KEY=VALUE" string to the parsed configuration. */
+td_status td_cr_apply_override(td_case_reader *r, const char *ov);
+
+/* ---- section readers (case_shaft.c, case_parts.c, case_options.c) ------------------------- */
+td_status td_cr_read_shaft(td_case_reader *r, const config_setting_t *root);
+td_status td_cr_read_parts(td_case_reader *r, const config_setting_t *root);
+td_status td_cr_read_options(td_case_reader *r, const config_setting_t *root);
+
+#endif

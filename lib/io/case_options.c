@@ -1,0 +1,230 @@
+/*
+ * Run settings: speed, gravity, end time, start state, and the option groups contact, solver,
+ * output and modal. Defaults come from td_*_options_default (lib/util/options.c), so the case
+ * reader never restates them.
+ */
+#include "io/case_internal.h"
+#include "util/error_internal.h"
+
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <string.h>
+
+static const char *const gravity_keys[] = {"enabled", "g", "direction", NULL};
+static const char *const contact_keys[] = {"model", "stiffness", "exponent", "damping", "damping_coefficient", NULL};
+static const char *const solver_keys[] = {"rtol",      "atol",          "max_step", "initial_step",
+                                          "max_order", "linear_solver", NULL};
+static const char *const output_keys[] = {"hdf5", "csv", "sample_rate", "nodes", NULL};
+static const char *const modal_keys[] = {"speed_min", "speed_max", "speed_steps", "modes", "response_speeds", NULL};
+
+static const char *const start_names[] = {"orbit", "rest"};
+static const char *const contact_names[] = {"constraint", "penalty"};
+static const char *const damping_names[] = {"none", "hunt-crossley", "kelvin-voigt"};
+static const char *const linsol_names[] = {"klu", "dense"};
+
+/* Fail at member `key` of g when it is there (its line), else at g naming the key. */
+static td_status fail_at(td_case_reader *r, const config_setting_t *g, const char *key, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 4, 5)))
+#endif
+    ;
+static td_status fail_at(td_case_reader *r, const config_setting_t *g, const char *key, const char *fmt, ...)
+{
+    const config_setting_t *s = config_setting_get_member(g, key);
+    char msg[256];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(msg, sizeof msg, fmt, ap);
+    va_end(ap);
+    return s ? td_cr_fail(r, s, NULL, "%s", msg) : td_cr_fail(r, g, key, "%s", msg);
+}
+
+/* gravity { enabled; g; direction [gx, gy]; }: acceleration g along the (normalised) direction. */
+static td_status read_gravity(td_case_reader *r, const config_setting_t *root)
+{
+    const config_setting_t *grav;
+    double g = 9.81, dir[2] = {0.0, -1.0}, norm;
+    int enabled = 0, n = 2;
+    td_error merr;
+    td_status st = td_cr_group(r, root, "gravity", NULL, &grav);
+    if (st != TD_OK || !grav)
+        return st;
+    st = td_cr_check_keys(r, grav, gravity_keys);
+    if (st == TD_OK)
+        st = td_cr_bool(r, grav, "enabled", 1, &enabled);
+    if (st == TD_OK)
+        st = td_cr_real(r, grav, "g", NULL, 9.81, TD_CR_NONNEGATIVE, &g);
+    if (st == TD_OK && td_cr_has(grav, "direction")) {
+        const config_setting_t *d = config_setting_get_member(grav, "direction");
+        st = td_cr_reals(r, grav, "direction", 2, TD_CR_FINITE, dir, &n);
+        if (st == TD_OK && n != 2)
+            return td_cr_fail(r, d, NULL, "expected two components [gx, gy], got %d", n);
+        norm = hypot(dir[0], dir[1]);
+        if (st == TD_OK && !(norm > 0.0))
+            return td_cr_fail(r, d, NULL, "must not be the zero vector");
+        if (st == TD_OK) {
+            dir[0] /= norm;
+            dir[1] /= norm;
+        }
+    }
+    if (st != TD_OK)
+        return st;
+    if (!enabled)
+        g = 0.0;
+    st = td_model_set_gravity(r->c->model, g * dir[0], g * dir[1], &merr);
+    return st == TD_OK ? TD_OK : td_cr_model_fail(r, grav, st, &merr);
+}
+
+static td_status read_contact(td_case_reader *r, const config_setting_t *root, td_contact_options *o)
+{
+    const config_setting_t *g, *e;
+    int model = (int)o->model, damping = (int)o->damping;
+    td_status st = td_cr_group(r, root, "contact", NULL, &g);
+    if (st != TD_OK || !g)
+        return st;
+    st = td_cr_check_keys(r, g, contact_keys);
+    if (st == TD_OK)
+        st = td_cr_enum(r, g, "model", contact_names, 2, model, &model);
+    if (st == TD_OK)
+        st = td_cr_real(r, g, "stiffness", NULL, o->stiffness, TD_CR_POSITIVE, &o->stiffness);
+    if (st == TD_OK)
+        st = td_cr_real(r, g, "exponent", NULL, o->exponent, TD_CR_POSITIVE, &o->exponent);
+    if (st == TD_OK && o->exponent < 1.0 && (e = config_setting_get_member(g, "exponent")) != NULL)
+        /* p < 1 gives an infinite contact stiffness dF/ddelta at first touch */
+        st = td_cr_fail(r, e, NULL, "must be >= 1 (got %g)", o->exponent);
+    if (st == TD_OK)
+        st = td_cr_enum(r, g, "damping", damping_names, 3, damping, &damping);
+    if (st == TD_OK)
+        st = td_cr_real(r, g, "damping_coefficient", NULL, o->damping_coefficient, TD_CR_NONNEGATIVE,
+                        &o->damping_coefficient);
+    o->model = (td_contact_model)model;
+    o->damping = (td_contact_damping)damping;
+    return st;
+}
+
+static td_status read_solver(td_case_reader *r, const config_setting_t *root, td_solver_options *o)
+{
+    const config_setting_t *g;
+    int linsol = (int)o->linear_solver;
+    td_status st = td_cr_group(r, root, "solver", NULL, &g);
+    if (st != TD_OK || !g)
+        return st;
+    st = td_cr_check_keys(r, g, solver_keys);
+    if (st == TD_OK)
+        st = td_cr_real(r, g, "rtol", NULL, o->rtol, TD_CR_OPEN_UNIT, &o->rtol);
+    if (st == TD_OK)
+        st = td_cr_real(r, g, "atol", NULL, o->atol, TD_CR_POSITIVE, &o->atol);
+    if (st == TD_OK)
+        st = td_cr_real(r, g, "max_step", NULL, o->max_step, TD_CR_NONNEGATIVE, &o->max_step);
+    if (st == TD_OK)
+        st = td_cr_real(r, g, "initial_step", NULL, o->initial_step, TD_CR_NONNEGATIVE, &o->initial_step);
+    if (st == TD_OK && o->max_step > 0.0 && o->initial_step > o->max_step)
+        st = fail_at(r, g, "initial_step", "%g s is larger than max_step %g s", o->initial_step, o->max_step);
+    if (st == TD_OK)
+        st = td_cr_int(r, g, "max_order", NULL, o->max_order, 1, 5, &o->max_order);
+    if (st == TD_OK)
+        st = td_cr_enum(r, g, "linear_solver", linsol_names, 2, linsol, &linsol);
+    o->linear_solver = (td_linear_solver)linsol;
+    return st;
+}
+
+/* A path string member into a fixed buffer. */
+static td_status read_path(td_case_reader *r, const config_setting_t *g, const char *key, char *buf)
+{
+    const char *v;
+    td_status st = td_cr_string(r, g, key, "", &v);
+    if (st != TD_OK)
+        return st;
+    if (strlen(v) >= TD_OUTPUT_PATH_SIZE)
+        return td_cr_fail(r, config_setting_get_member(g, key), NULL, "path too long (%lu characters, at most %d)",
+                          (unsigned long)strlen(v), TD_OUTPUT_PATH_SIZE - 1);
+    strcpy(buf, v);
+    return TD_OK;
+}
+
+static td_status read_output(td_case_reader *r, const config_setting_t *root, double end_time, td_output_options *o)
+{
+    const config_setting_t *g, *list;
+    int i, j;
+    td_status st = td_cr_group(r, root, "output", NULL, &g);
+    if (st != TD_OK || !g)
+        return st;
+    st = td_cr_check_keys(r, g, output_keys);
+    if (st == TD_OK)
+        st = read_path(r, g, "hdf5", o->hdf5_path);
+    if (st == TD_OK)
+        st = read_path(r, g, "csv", o->csv_path);
+    if (st == TD_OK)
+        st = td_cr_real(r, g, "sample_rate", NULL, o->sample_rate, TD_CR_POSITIVE, &o->sample_rate);
+    if (st == TD_OK && o->sample_rate * end_time > TD_CASE_MAX_SAMPLES)
+        st = fail_at(r, g, "sample_rate", "%g Hz over end_time %g s makes %.3g samples (at most %.0e)", o->sample_rate,
+                     end_time, o->sample_rate * end_time, TD_CASE_MAX_SAMPLES);
+    if (st == TD_OK)
+        st = td_cr_ints(r, g, "nodes", TD_OUTPUT_MAX_NODES, -2147483647L, 2147483647L, o->nodes, &o->node_count);
+    if (st != TD_OK)
+        return st;
+    list = config_setting_get_member(g, "nodes");
+    for (i = 0; i < o->node_count; i++) {
+        const config_setting_t *s = config_setting_get_elem(list, (unsigned)i);
+        if (o->nodes[i] < 0 || o->nodes[i] >= r->nodes)
+            return td_cr_fail(r, s, NULL, "node %d is out of range (the shaft has nodes 0..%d)", o->nodes[i],
+                              r->nodes - 1);
+        for (j = 0; j < i; j++)
+            if (o->nodes[j] == o->nodes[i])
+                return td_cr_fail(r, s, NULL, "node %d is listed twice", o->nodes[i]);
+    }
+    return TD_OK;
+}
+
+static td_status read_modal(td_case_reader *r, const config_setting_t *root, td_modal_options *o)
+{
+    const config_setting_t *g;
+    int dofs = 4 * r->nodes;
+    td_status st = td_cr_group(r, root, "modal", NULL, &g);
+    if (st != TD_OK || !g)
+        return st;
+    st = td_cr_check_keys(r, g, modal_keys);
+    if (st == TD_OK)
+        st = td_cr_real(r, g, "speed_min", NULL, o->speed_min, TD_CR_NONNEGATIVE, &o->speed_min);
+    if (st == TD_OK)
+        st = td_cr_real(r, g, "speed_max", NULL, o->speed_max, TD_CR_POSITIVE, &o->speed_max);
+    if (st == TD_OK && !(o->speed_max > o->speed_min))
+        st = fail_at(r, g, td_cr_has(g, "speed_max") ? "speed_max" : "speed_min",
+                     "speed_max (%g rad/s) must be larger than speed_min (%g rad/s)", o->speed_max, o->speed_min);
+    if (st == TD_OK)
+        st = td_cr_int(r, g, "speed_steps", NULL, o->speed_steps, 2, 100000, &o->speed_steps);
+    if (st == TD_OK)
+        st = td_cr_int(r, g, "modes", NULL, o->mode_count < dofs ? o->mode_count : dofs, 1, dofs, &o->mode_count);
+    if (st == TD_OK)
+        st = td_cr_reals(r, g, "response_speeds", (int)(sizeof o->response_speeds / sizeof o->response_speeds[0]),
+                         TD_CR_NONNEGATIVE, o->response_speeds, &o->response_speed_count);
+    return st;
+}
+
+td_status td_cr_read_options(td_case_reader *r, const config_setting_t *root)
+{
+    td_case *c = r->c;
+    double speed;
+    int start = (int)c->sim.start;
+    td_error merr;
+    td_status st = td_cr_real(r, root, "speed", "rotor speed Omega, rad/s", 0.0, TD_CR_NONNEGATIVE, &speed);
+    if (st == TD_OK && (st = td_model_set_speed(c->model, speed, &merr)) != TD_OK)
+        st = td_cr_model_fail(r, config_setting_get_member(root, "speed"), st, &merr);
+    if (st == TD_OK)
+        st = read_gravity(r, root);
+    if (st == TD_OK)
+        st = td_cr_real(r, root, "end_time", "end time of the run, s", 0.0, TD_CR_POSITIVE, &c->end_time);
+    if (st == TD_OK)
+        st = td_cr_enum(r, root, "start", start_names, 2, start, &start);
+    c->sim.start = (td_start)start;
+    if (st == TD_OK)
+        st = read_contact(r, root, &c->sim.contact);
+    if (st == TD_OK)
+        st = read_solver(r, root, &c->sim.solver);
+    if (st == TD_OK)
+        st = read_output(r, root, c->end_time, &c->output);
+    if (st == TD_OK)
+        st = read_modal(r, root, &c->modal);
+    return st;
+}

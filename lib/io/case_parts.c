@@ -1,0 +1,369 @@
+/*
+ * The machine's parts: discs, point masses, AMBs, plain bearings, retainers, unbalances and the
+ * schedule of timed changes. Each list entry becomes one td_model_add_* call; the cross-checks
+ * td_model_validate would make (nodes in range, one AMB / retainer per node, retainer tighter
+ * than every AMB air gap, schedule indices) are made here first so that they name the setting.
+ */
+#include "io/case_internal.h"
+#include "util/error_internal.h"
+
+#include <math.h>
+#include <string.h>
+
+#include "util/numeric.h"
+
+static const char *const disc_keys[] = {"node",      "mass",    "Ip",          "Id", "radius",
+                                        "thickness", "density", "bore_radius", NULL};
+static const char *const point_mass_keys[] = {"node", "mass", NULL};
+static const char *const amb_keys[] = {"node",      "sensor_node",    "ks",         "ki",      "kp", "kd", "tau",
+                                       "bandwidth", "force_capacity", "saturation", "air_gap", NULL};
+static const char *const bearing_keys[] = {"node", "kxx", "kyy", "cxx", "cyy", NULL};
+static const char *const retainer_keys[] = {"node",     "clearance",  "shaft_radius", "bore_radius",
+                                            "friction", "bore_speed", "restitution",  NULL};
+static const char *const unbalance_keys[] = {"node", "magnitude", "phase", NULL};
+static const char *const change_keys[] = {"time", "unbalance", "magnitude", "phase", "amb_off", "amb_on", NULL};
+
+/* The first member of g among the NULL-terminated keys, or NULL. */
+static const config_setting_t *first_of(const config_setting_t *g, const char *const *keys)
+{
+    int i;
+    for (i = 0; keys[i]; i++)
+        if (config_setting_get_member(g, keys[i]))
+            return config_setting_get_member(g, keys[i]);
+    return NULL;
+}
+
+/* A solid (or bored) cylindrical disc: m = rho pi (R^2 - r^2) t, Ip = m (R^2 + r^2) / 2,
+ * Id = m (3 (R^2 + r^2) + t^2) / 12 (about a diameter through the centre of mass). */
+static td_status read_disc_geometry(td_case_reader *r, const config_setting_t *g, td_disc *d)
+{
+    double R, t, rho, bore;
+    td_status st = td_cr_real(r, g, "radius", "outer radius, m", 0.0, TD_CR_POSITIVE, &R);
+    if (st == TD_OK)
+        st = td_cr_real(r, g, "thickness", "axial thickness, m", 0.0, TD_CR_POSITIVE, &t);
+    if (st == TD_OK)
+        st = td_cr_real(r, g, "density", "density, kg/m^3", 0.0, TD_CR_POSITIVE, &rho);
+    if (st == TD_OK)
+        st = td_cr_real(r, g, "bore_radius", NULL, 0.0, TD_CR_NONNEGATIVE, &bore);
+    if (st != TD_OK)
+        return st;
+    if (bore >= R)
+        return td_cr_fail(r, config_setting_get_member(g, "bore_radius"), NULL,
+                          "must be smaller than the radius %g m (got %g m)", R, bore);
+    d->mass = rho * TD_PI * (R * R - bore * bore) * t;
+    d->Ip = d->mass * (R * R + bore * bore) / 2.0;
+    d->Id = d->mass * (3.0 * (R * R + bore * bore) + t * t) / 12.0;
+    return TD_OK;
+}
+
+static td_status read_disc(td_case_reader *r, const config_setting_t *g)
+{
+    static const char *const geometric[] = {"radius", "thickness", "density", "bore_radius", NULL};
+    static const char *const inertial[] = {"mass", "Ip", "Id", NULL};
+    const config_setting_t *geo;
+    td_disc d;
+    td_error merr;
+    td_status st = td_cr_check_keys(r, g, disc_keys);
+    if (st == TD_OK)
+        st = td_cr_node(r, g, "node", "node the disc sits on", 0, &d.node);
+    if (st != TD_OK)
+        return st;
+    geo = first_of(g, geometric);
+    if (geo && first_of(g, inertial))
+        return td_cr_fail(r, geo, NULL, "give either mass + Ip + Id or radius + thickness + density, not both");
+    if (geo) {
+        st = read_disc_geometry(r, g, &d);
+    } else {
+        st = td_cr_real(r, g, "mass", "disc mass, kg; or give radius + thickness + density", 0.0, TD_CR_POSITIVE,
+                        &d.mass);
+        if (st == TD_OK)
+            st = td_cr_real(r, g, "Ip", "polar moment of inertia, kg m^2", 0.0, TD_CR_NONNEGATIVE, &d.Ip);
+        if (st == TD_OK)
+            st = td_cr_real(r, g, "Id", "diametral moment of inertia, kg m^2", 0.0, TD_CR_NONNEGATIVE, &d.Id);
+    }
+    if (st != TD_OK)
+        return st;
+    st = td_model_add_disc(r->c->model, &d, &merr);
+    return st == TD_OK ? TD_OK : td_cr_model_fail(r, g, st, &merr);
+}
+
+static td_status read_point_mass(td_case_reader *r, const config_setting_t *g)
+{
+    int node;
+    double mass;
+    td_error merr;
+    td_status st = td_cr_check_keys(r, g, point_mass_keys);
+    if (st == TD_OK)
+        st = td_cr_node(r, g, "node", "node the mass sits on", 0, &node);
+    if (st == TD_OK)
+        st = td_cr_real(r, g, "mass", "mass, kg", 0.0, TD_CR_POSITIVE, &mass);
+    if (st != TD_OK)
+        return st;
+    st = td_model_add_point_mass(r->c->model, node, mass, &merr);
+    return st == TD_OK ? TD_OK : td_cr_model_fail(r, g, st, &merr);
+}
+
+/* tau, or bandwidth bw in Hz with tau = 1 / (2 pi bw); exactly one of them. */
+static td_status read_amb_lag(td_case_reader *r, const config_setting_t *g, double *tau)
+{
+    const config_setting_t *t = config_setting_get_member(g, "tau");
+    const config_setting_t *bw = config_setting_get_member(g, "bandwidth");
+    double hz;
+    td_status st;
+    if (t && bw)
+        return td_cr_fail(r, bw, NULL, "give either tau or bandwidth, not both");
+    if (t)
+        return td_cr_value_real(r, t, TD_CR_NONNEGATIVE, tau);
+    if (!bw)
+        return td_cr_missing(r, g, "bandwidth", "force bandwidth, Hz; or give the time constant tau, s");
+    st = td_cr_value_real(r, bw, TD_CR_POSITIVE, &hz);
+    if (st == TD_OK)
+        *tau = 1.0 / (2.0 * TD_PI * hz);
+    return st;
+}
+
+static td_status read_amb(td_case_reader *r, const config_setting_t *list, int index)
+{
+    const config_setting_t *g;
+    td_amb a, other;
+    td_error merr;
+    int j;
+    td_status st = td_cr_entry(r, list, index, &g);
+    if (st == TD_OK)
+        st = td_cr_check_keys(r, g, amb_keys);
+    if (st == TD_OK)
+        st = td_cr_node(r, g, "node", "actuator node", 0, &a.node);
+    if (st == TD_OK)
+        st = td_cr_node(r, g, "sensor_node", NULL, a.node, &a.sensor_node);
+    if (st == TD_OK)
+        st = td_cr_real(r, g, "ks", "negative-stiffness coefficient, N/m", 0.0, TD_CR_NONNEGATIVE, &a.ks);
+    if (st == TD_OK)
+        st = td_cr_real(r, g, "ki", "force/current gain, N/A", 0.0, TD_CR_POSITIVE, &a.ki);
+    if (st == TD_OK)
+        st = td_cr_real(r, g, "kp", "proportional gain, A/m", 0.0, TD_CR_NONNEGATIVE, &a.kp);
+    if (st == TD_OK)
+        st = td_cr_real(r, g, "kd", "derivative gain, A s/m", 0.0, TD_CR_NONNEGATIVE, &a.kd);
+    if (st == TD_OK)
+        st = read_amb_lag(r, g, &a.tau);
+    if (st == TD_OK)
+        st = td_cr_real(r, g, "force_capacity", "force capacity per axis, N", 0.0, TD_CR_POSITIVE, &a.force_capacity);
+    if (st == TD_OK)
+        st = td_cr_bool(r, g, "saturation", 0, &a.saturation);
+    a.air_gap = 0.0; /* absent: unknown, no retainer check */
+    if (st == TD_OK && td_cr_has(g, "air_gap"))
+        st = td_cr_real(r, g, "air_gap", NULL, 0.0, TD_CR_POSITIVE, &a.air_gap);
+    if (st != TD_OK)
+        return st;
+    for (j = 0; j < index; j++) {
+        td_model_get_amb(r->c->model, j, &other);
+        if (other.node == a.node) {
+            char where[1200];
+            td_cr_where(r, config_setting_get_elem(list, (unsigned)j), where, sizeof where);
+            return td_cr_fail(r, config_setting_get_member(g, "node"), NULL,
+                              "node %d already has an AMB (ambs[%d], %s)", a.node, j, where);
+        }
+    }
+    st = td_model_add_amb(r->c->model, &a, &merr);
+    return st == TD_OK ? TD_OK : td_cr_model_fail(r, g, st, &merr);
+}
+
+static td_status read_bearing(td_case_reader *r, const config_setting_t *g)
+{
+    td_bearing b;
+    td_error merr;
+    td_status st = td_cr_check_keys(r, g, bearing_keys);
+    if (st == TD_OK)
+        st = td_cr_node(r, g, "node", "bearing node", 0, &b.node);
+    if (st == TD_OK)
+        st = td_cr_real(r, g, "kxx", "stiffness along x, N/m", 0.0, TD_CR_NONNEGATIVE, &b.kxx);
+    if (st == TD_OK)
+        st = td_cr_real(r, g, "kyy", NULL, b.kxx, TD_CR_NONNEGATIVE, &b.kyy);
+    if (st == TD_OK)
+        st = td_cr_real(r, g, "cxx", NULL, 0.0, TD_CR_NONNEGATIVE, &b.cxx);
+    if (st == TD_OK)
+        st = td_cr_real(r, g, "cyy", NULL, b.cxx, TD_CR_NONNEGATIVE, &b.cyy);
+    if (st != TD_OK)
+        return st;
+    st = td_model_add_bearing(r->c->model, &b, &merr);
+    return st == TD_OK ? TD_OK : td_cr_model_fail(r, g, st, &merr);
+}
+
+/* A retainer must be tighter than every AMB air gap (or the rotor would hit the stator first). */
+static td_status check_against_ambs(td_case_reader *r, const config_setting_t *g, const td_retainer *ret)
+{
+    int j;
+    td_amb a;
+    for (j = 0; j < td_model_amb_count(r->c->model); j++) {
+        td_model_get_amb(r->c->model, j, &a);
+        if (a.air_gap > 0.0 && ret->clearance >= a.air_gap) {
+            char where[1200];
+            td_cr_where(r, config_setting_get_elem(r->ambs, (unsigned)j), where, sizeof where);
+            return td_cr_fail(r, config_setting_get_member(g, "clearance"), NULL,
+                              "clearance %g m is not smaller than the air gap %g m of ambs[%d] (%s)", ret->clearance,
+                              a.air_gap, j, where);
+        }
+    }
+    return TD_OK;
+}
+
+static td_status read_retainer(td_case_reader *r, const config_setting_t *list, int index)
+{
+    const config_setting_t *g, *bore;
+    td_retainer ret, other;
+    td_error merr;
+    int j;
+    td_status st = td_cr_entry(r, list, index, &g);
+    if (st == TD_OK)
+        st = td_cr_check_keys(r, g, retainer_keys);
+    if (st == TD_OK)
+        st = td_cr_node(r, g, "node", "retainer node", 0, &ret.node);
+    if (st == TD_OK)
+        st = td_cr_real(r, g, "clearance", "radial clearance, m", 0.0, TD_CR_POSITIVE, &ret.clearance);
+    if (st == TD_OK)
+        st =
+            td_cr_real(r, g, "shaft_radius", "shaft radius at the retainer, m", 0.0, TD_CR_POSITIVE, &ret.shaft_radius);
+    if (st == TD_OK)
+        st = td_cr_real(r, g, "bore_radius", NULL, ret.shaft_radius + ret.clearance, TD_CR_POSITIVE, &ret.bore_radius);
+    if (st == TD_OK)
+        st = td_cr_real(r, g, "friction", "Coulomb friction coefficient", 0.0, TD_CR_NONNEGATIVE, &ret.friction);
+    if (st == TD_OK)
+        st = td_cr_real(r, g, "bore_speed", NULL, 0.0, TD_CR_FINITE, &ret.bore_speed);
+    if (st == TD_OK)
+        st = td_cr_real(r, g, "restitution", NULL, 0.0, TD_CR_FRACTION, &ret.restitution);
+    if (st != TD_OK)
+        return st;
+    bore = config_setting_get_member(g, "bore_radius");
+    if (bore && fabs(ret.bore_radius - ret.shaft_radius - ret.clearance) > 1e-9 * ret.bore_radius)
+        return td_cr_fail(r, bore, NULL, "must equal shaft_radius + clearance = %.9g m (got %.9g m)",
+                          ret.shaft_radius + ret.clearance, ret.bore_radius);
+    for (j = 0; j < index; j++) {
+        td_model_get_retainer(r->c->model, j, &other);
+        if (other.node == ret.node) {
+            char where[1200];
+            td_cr_where(r, config_setting_get_elem(list, (unsigned)j), where, sizeof where);
+            return td_cr_fail(r, config_setting_get_member(g, "node"), NULL,
+                              "node %d already has a retainer (retainers[%d], %s)", ret.node, j, where);
+        }
+    }
+    st = check_against_ambs(r, g, &ret);
+    if (st != TD_OK)
+        return st;
+    st = td_model_add_retainer(r->c->model, &ret, &merr);
+    return st == TD_OK ? TD_OK : td_cr_model_fail(r, g, st, &merr);
+}
+
+static td_status read_unbalance(td_case_reader *r, const config_setting_t *g)
+{
+    td_unbalance u;
+    td_error merr;
+    td_status st = td_cr_check_keys(r, g, unbalance_keys);
+    if (st == TD_OK)
+        st = td_cr_node(r, g, "node", "unbalance node", 0, &u.node);
+    if (st == TD_OK)
+        st = td_cr_real(r, g, "magnitude", "unbalance U, kg m", 0.0, TD_CR_NONNEGATIVE, &u.magnitude);
+    if (st == TD_OK)
+        st = td_cr_real(r, g, "phase", NULL, 0.0, TD_CR_FINITE, &u.phase);
+    if (st != TD_OK)
+        return st;
+    st = td_model_add_unbalance(r->c->model, &u, &merr);
+    return st == TD_OK ? TD_OK : td_cr_model_fail(r, g, st, &merr);
+}
+
+/* The index of a schedule entry: an unbalance or AMB that exists. */
+static td_status read_change_index(td_case_reader *r, const config_setting_t *s, const char *what, int count,
+                                   int *index)
+{
+    td_status st = td_cr_value_int(r, s, -2147483647L, 2147483647L, index);
+    if (st != TD_OK)
+        return st;
+    if (*index < 0 || *index >= count)
+        return td_cr_fail(r, s, NULL, "%s %d does not exist (%d defined, indices start at 0)", what, *index, count);
+    return TD_OK;
+}
+
+/* One entry of "schedule": { time; unbalance; magnitude; phase; } or { time; amb_off; } or { time; amb_on; } */
+static td_status read_change(td_case_reader *r, const config_setting_t *g)
+{
+    static const char *const kinds[] = {"unbalance", "amb_off", "amb_on", NULL};
+    static const char *const unbalance_only[] = {"magnitude", "phase", NULL};
+    const config_setting_t *kind, *extra;
+    td_change c;
+    td_unbalance u;
+    td_error merr;
+    int k;
+    td_status st = td_cr_check_keys(r, g, change_keys);
+    if (st == TD_OK)
+        st = td_cr_real(r, g, "time", "time of the change, s", 0.0, TD_CR_NONNEGATIVE, &c.time);
+    if (st != TD_OK)
+        return st;
+    for (k = 0, kind = NULL; kinds[k]; k++) {
+        const config_setting_t *s = config_setting_get_member(g, kinds[k]);
+        if (s && kind)
+            return td_cr_fail(r, s, NULL, "a schedule entry makes one change: unbalance, amb_off or amb_on");
+        if (s) {
+            kind = s;
+            c.kind = k == 0 ? TD_CHANGE_UNBALANCE : k == 1 ? TD_CHANGE_AMB_OFF : TD_CHANGE_AMB_ON;
+        }
+    }
+    if (!kind)
+        return td_cr_missing(r, g, "unbalance", "what changes: unbalance = INDEX, amb_off = INDEX or amb_on = INDEX");
+    c.magnitude = 0.0;
+    c.phase = 0.0;
+    if (c.kind == TD_CHANGE_UNBALANCE) {
+        st = read_change_index(r, kind, "unbalance", td_model_unbalance_count(r->c->model), &c.index);
+        if (st != TD_OK)
+            return st;
+        td_model_get_unbalance(r->c->model, c.index, &u);
+        st = td_cr_real(r, g, "magnitude", "new unbalance U, kg m", 0.0, TD_CR_NONNEGATIVE, &c.magnitude);
+        if (st == TD_OK)
+            st = td_cr_real(r, g, "phase", NULL, u.phase, TD_CR_FINITE, &c.phase);
+    } else {
+        st = read_change_index(r, kind, "AMB", td_model_amb_count(r->c->model), &c.index);
+        if (st == TD_OK && (extra = first_of(g, unbalance_only)) != NULL)
+            st = td_cr_fail(r, extra, NULL, "only an unbalance change takes a magnitude or phase");
+    }
+    if (st != TD_OK)
+        return st;
+    st = td_model_add_change(r->c->model, &c, &merr);
+    return st == TD_OK ? TD_OK : td_cr_model_fail(r, g, st, &merr);
+}
+
+/* Read every entry of the list `key` with `one` (entries that are groups). */
+static td_status read_each(td_case_reader *r, const config_setting_t *root, const char *key,
+                           td_status (*one)(td_case_reader *, const config_setting_t *))
+{
+    const config_setting_t *list, *g;
+    int i;
+    td_status st = td_cr_list(r, root, key, &list);
+    for (i = 0; st == TD_OK && list && i < config_setting_length(list); i++) {
+        st = td_cr_entry(r, list, i, &g);
+        if (st == TD_OK)
+            st = one(r, g);
+    }
+    return st;
+}
+
+td_status td_cr_read_parts(td_case_reader *r, const config_setting_t *root)
+{
+    const config_setting_t *list = NULL;
+    int i;
+    td_status st = read_each(r, root, "discs", read_disc);
+    if (st == TD_OK)
+        st = read_each(r, root, "point_masses", read_point_mass);
+    if (st == TD_OK)
+        st = td_cr_list(r, root, "ambs", &list);
+    r->ambs = list;
+    for (i = 0; st == TD_OK && list && i < config_setting_length(list); i++)
+        st = read_amb(r, list, i);
+    if (st == TD_OK)
+        st = read_each(r, root, "bearings", read_bearing);
+    if (st == TD_OK)
+        st = td_cr_list(r, root, "retainers", &list);
+    for (i = 0; st == TD_OK && list && i < config_setting_length(list); i++)
+        st = read_retainer(r, list, i);
+    if (st == TD_OK)
+        st = read_each(r, root, "unbalances", read_unbalance);
+    if (st == TD_OK)
+        st = read_each(r, root, "schedule", read_change);
+    return st;
+}

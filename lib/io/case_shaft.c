@@ -1,0 +1,249 @@
+/*
+ * The "shaft" group: geometry (uniform length + elements, or node positions), per-element
+ * diameters and material with sections for stepped and hollow shafts, beam theory, mass form
+ * and Rayleigh damping. Element i joins nodes i and i + 1 (touchdown/model.h).
+ */
+#include "io/case_internal.h"
+#include "util/error_internal.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+static const char *const shaft_keys[] = {"length",         "elements", "nodes",    "outer_diameter",
+                                         "inner_diameter", "material", "sections", "beam",
+                                         "mass",           "rayleigh", NULL};
+static const char *const material_keys[] = {"E", "G", "density", NULL};
+static const char *const section_keys[] = {"element",        "from",     "to", "outer_diameter",
+                                           "inner_diameter", "material", NULL};
+static const char *const rayleigh_keys[] = {"alpha", "beta", NULL};
+static const char *const beam_names[] = {"euler-bernoulli", "timoshenko"};
+static const char *const mass_names[] = {"consistent", "lumped"};
+
+/* Element lengths from "length" + "elements" or from the node positions "nodes";
+ * *lengths is allocated (caller frees). */
+static td_status read_lengths(td_case_reader *r, const config_setting_t *shaft, double **lengths, int *count)
+{
+    const config_setting_t *nodes = config_setting_get_member(shaft, "nodes");
+    double length, *z;
+    int n, i;
+    td_status st;
+
+    *lengths = NULL;
+    if (nodes) {
+        if (td_cr_has(shaft, "length") || td_cr_has(shaft, "elements"))
+            return td_cr_fail(r, nodes, NULL, "give either 'nodes' or 'length' + 'elements', not both");
+        z = malloc((TD_CASE_MAX_ELEMENTS + 1) * sizeof *z);
+        if (!z)
+            return td_error_set(r->err, TD_ERR_NOMEM, "%s: out of memory", r->path);
+        st = td_cr_reals(r, shaft, "nodes", TD_CASE_MAX_ELEMENTS + 1, TD_CR_FINITE, z, &n);
+        if (st == TD_OK && n < 2)
+            st = td_cr_fail(r, nodes, NULL, "needs at least 2 node positions (got %d)", n);
+        for (i = 1; st == TD_OK && i < n; i++) {
+            if (!(z[i] > z[i - 1]))
+                st = td_cr_fail(r, config_setting_get_elem(nodes, (unsigned)i), NULL,
+                                "node positions must increase strictly (%g m follows %g m)", z[i], z[i - 1]);
+            z[i - 1] = z[i] - z[i - 1]; /* position -> length of element i - 1 */
+        }
+        if (st != TD_OK) {
+            free(z);
+            return st;
+        }
+        *lengths = z;
+        *count = n - 1;
+        return TD_OK;
+    }
+    st = td_cr_real(r, shaft, "length", "shaft length, m; or give 'nodes'", 0.0, TD_CR_POSITIVE, &length);
+    if (st == TD_OK)
+        st = td_cr_int(r, shaft, "elements", "number of equal shaft elements", 0, 1, TD_CASE_MAX_ELEMENTS, &n);
+    if (st != TD_OK)
+        return st;
+    z = malloc((size_t)n * sizeof *z);
+    if (!z)
+        return td_error_set(r->err, TD_ERR_NOMEM, "%s: out of memory", r->path);
+    for (i = 0; i < n; i++)
+        z[i] = length / n;
+    *lengths = z;
+    *count = n;
+    return TD_OK;
+}
+
+/* A material group; keys absent keep the values already in *m when `partial`, else are required. */
+static td_status read_material(td_case_reader *r, const config_setting_t *g, int partial, td_material *m)
+{
+    td_status st = td_cr_check_keys(r, g, material_keys);
+    if (st == TD_OK)
+        st = td_cr_real(r, g, "E", partial ? NULL : "Young's modulus, Pa", m->E, TD_CR_POSITIVE, &m->E);
+    if (st == TD_OK)
+        st = td_cr_real(r, g, "G", partial ? NULL : "shear modulus, Pa", m->G, TD_CR_POSITIVE, &m->G);
+    if (st == TD_OK)
+        st = td_cr_real(r, g, "density", partial ? NULL : "density, kg/m^3", m->density, TD_CR_POSITIVE, &m->density);
+    return st;
+}
+
+/* Inner diameter below outer: blame whichever of the two the group `g` sets (g itself otherwise). */
+static td_status check_diameters(td_case_reader *r, const config_setting_t *g, const td_shaft_element *e, int index)
+{
+    const config_setting_t *s;
+    if (e->inner_diameter < e->outer_diameter)
+        return TD_OK;
+    s = config_setting_get_member(g, "inner_diameter");
+    if (!s)
+        s = config_setting_get_member(g, "outer_diameter");
+    return td_cr_fail(r, s ? s : g, NULL,
+                      "element %d: inner diameter %g m must be smaller than the outer diameter %g m", index,
+                      e->inner_diameter, e->outer_diameter);
+}
+
+/* One entry of "sections": element range [from, to], then diameter and material overrides. */
+static td_status read_section(td_case_reader *r, const config_setting_t *sec, int count, int *owner, int index,
+                              td_shaft_element *els)
+{
+    const config_setting_t *mat;
+    td_shaft_element proto;
+    int from, to, i;
+    td_status st = td_cr_check_keys(r, sec, section_keys);
+    if (st != TD_OK)
+        return st;
+    if (td_cr_has(sec, "element")) {
+        if (td_cr_has(sec, "from") || td_cr_has(sec, "to"))
+            return td_cr_fail(r, config_setting_get_member(sec, "element"), NULL,
+                              "give either 'element' or 'from' + 'to', not both");
+        st = td_cr_int(r, sec, "element", NULL, 0, 0, count - 1, &from);
+        to = from;
+    } else {
+        st = td_cr_int(r, sec, "from", "first element of the section; or give 'element'", 0, 0, count - 1, &from);
+        if (st == TD_OK)
+            st = td_cr_int(r, sec, "to", "last element of the section (inclusive)", 0, 0, count - 1, &to);
+        if (st == TD_OK && to < from)
+            return td_cr_fail(r, config_setting_get_member(sec, "to"), NULL, "must be >= from (%d), got %d", from, to);
+    }
+    if (st != TD_OK)
+        return st;
+    proto = els[from];
+    st = td_cr_real(r, sec, "outer_diameter", NULL, proto.outer_diameter, TD_CR_POSITIVE, &proto.outer_diameter);
+    if (st == TD_OK)
+        st = td_cr_real(r, sec, "inner_diameter", NULL, proto.inner_diameter, TD_CR_NONNEGATIVE, &proto.inner_diameter);
+    if (st == TD_OK)
+        st = td_cr_group(r, sec, "material", NULL, &mat);
+    if (st == TD_OK && mat)
+        st = read_material(r, mat, 1, &proto.material);
+    if (st == TD_OK)
+        st = check_diameters(r, sec, &proto, from);
+    for (i = from; st == TD_OK && i <= to; i++) {
+        if (owner[i] >= 0)
+            return td_cr_fail(r, sec, NULL, "element %d is already in sections[%d]; sections must not overlap", i,
+                              owner[i]);
+        owner[i] = index;
+        proto.length = els[i].length;
+        els[i] = proto;
+    }
+    return st;
+}
+
+/* beam, mass, rayleigh { alpha; beta; } */
+static td_status read_shaft_options(td_case_reader *r, const config_setting_t *shaft)
+{
+    const config_setting_t *ray;
+    td_shaft_options o;
+    td_error merr;
+    int beam, mass;
+    td_status st;
+    memset(&o, 0, sizeof o);
+    st = td_cr_enum(r, shaft, "beam", beam_names, 2, TD_BEAM_EULER_BERNOULLI, &beam);
+    if (st == TD_OK)
+        st = td_cr_enum(r, shaft, "mass", mass_names, 2, TD_MASS_CONSISTENT, &mass);
+    if (st == TD_OK)
+        st = td_cr_group(r, shaft, "rayleigh", NULL, &ray);
+    if (st == TD_OK && ray) {
+        st = td_cr_check_keys(r, ray, rayleigh_keys);
+        if (st == TD_OK)
+            st = td_cr_real(r, ray, "alpha", NULL, 0.0, TD_CR_NONNEGATIVE, &o.rayleigh_alpha);
+        if (st == TD_OK)
+            st = td_cr_real(r, ray, "beta", NULL, 0.0, TD_CR_NONNEGATIVE, &o.rayleigh_beta);
+    }
+    if (st != TD_OK)
+        return st;
+    o.beam = (td_beam_theory)beam;
+    o.mass = (td_mass_form)mass;
+    st = td_model_set_shaft_options(r->c->model, &o, &merr);
+    return st == TD_OK ? TD_OK : td_cr_model_fail(r, shaft, st, &merr);
+}
+
+/* Fill els[0..count) from the shaft defaults and the sections. */
+static td_status read_elements(td_case_reader *r, const config_setting_t *shaft, td_shaft_element *els, int count,
+                               int *owner)
+{
+    const config_setting_t *mat, *sections, *sec;
+    td_shaft_element proto;
+    int i;
+    td_status st;
+
+    memset(&proto, 0, sizeof proto);
+    st = td_cr_real(r, shaft, "outer_diameter", "outer diameter of every element, m", 0.0, TD_CR_POSITIVE,
+                    &proto.outer_diameter);
+    if (st == TD_OK)
+        st = td_cr_real(r, shaft, "inner_diameter", NULL, 0.0, TD_CR_NONNEGATIVE, &proto.inner_diameter);
+    if (st == TD_OK)
+        st = check_diameters(r, shaft, &proto, 0);
+    if (st == TD_OK)
+        st = td_cr_group(r, shaft, "material", "material { E; G; density; } of the shaft", &mat);
+    if (st == TD_OK)
+        st = read_material(r, mat, 0, &proto.material);
+    if (st != TD_OK)
+        return st;
+    for (i = 0; i < count; i++) {
+        double length = els[i].length;
+        els[i] = proto;
+        els[i].length = length;
+        owner[i] = -1;
+    }
+    st = td_cr_list(r, shaft, "sections", &sections);
+    for (i = 0; st == TD_OK && sections && i < config_setting_length(sections); i++) {
+        st = td_cr_entry(r, sections, i, &sec);
+        if (st == TD_OK)
+            st = read_section(r, sec, count, owner, i, els);
+    }
+    return st;
+}
+
+td_status td_cr_read_shaft(td_case_reader *r, const config_setting_t *root)
+{
+    const config_setting_t *shaft;
+    td_shaft_element *els = NULL;
+    double *lengths = NULL;
+    int *owner = NULL, count = 0, i;
+    td_error merr;
+    td_status st =
+        td_cr_group(r, root, "shaft", "the shaft { length; elements; outer_diameter; material; ... }", &shaft);
+    if (st == TD_OK)
+        st = td_cr_check_keys(r, shaft, shaft_keys);
+    if (st == TD_OK)
+        st = read_lengths(r, shaft, &lengths, &count);
+    if (st != TD_OK)
+        return st;
+    els = calloc((size_t)count, sizeof *els);
+    owner = malloc((size_t)count * sizeof *owner);
+    if (!els || !owner) {
+        st = td_error_set(r->err, TD_ERR_NOMEM, "%s: out of memory", r->path);
+        goto done;
+    }
+    for (i = 0; i < count; i++)
+        els[i].length = lengths[i];
+    st = read_elements(r, shaft, els, count, owner);
+    for (i = 0; st == TD_OK && i < count; i++) {
+        st = td_model_add_shaft_element(r->c->model, &els[i], &merr);
+        if (st != TD_OK) {
+            const config_setting_t *sections = config_setting_get_member(shaft, "sections");
+            const config_setting_t *s = owner[i] >= 0 ? config_setting_get_elem(sections, (unsigned)owner[i]) : shaft;
+            st = td_cr_model_fail(r, s, st, &merr);
+        }
+    }
+    if (st == TD_OK)
+        st = read_shaft_options(r, shaft);
+    r->nodes = count + 1;
+done:
+    free(lengths);
+    free(els);
+    free(owner);
+    return st;
+}

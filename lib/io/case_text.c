@@ -1,0 +1,366 @@
+/*
+ * Case-file text: reading files safely (regular files only, size limit, no binary data),
+ * expanding @include in place for td_case_text, and two guards against libconfig 1.5 defects
+ * that its parser reports nowhere:
+ *   - integer literals beyond 32 bits are silently wrapped (10000000000 reads as 1410065408);
+ *   - an unterminated block comment silently drops the rest of the file.
+ * The scan only tokenises comments, strings and numbers; all parsing stays with libconfig.
+ */
+#include "io/case_internal.h"
+#include "util/error_internal.h"
+
+#include <ctype.h>
+#include <errno.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+/* libconfig 1.5's include nesting limit. */
+#define TD_CR_MAX_INCLUDE_DEPTH 10
+
+void td_cr_buf_append(td_cr_buf *b, const char *s, size_t n)
+{
+    if (b->failed)
+        return;
+    if (b->len + n + 1 > b->cap) {
+        size_t cap = b->cap ? b->cap : 1024;
+        char *p;
+        while (cap < b->len + n + 1)
+            cap *= 2;
+        p = realloc(b->data, cap);
+        if (!p) {
+            b->failed = 1;
+            return;
+        }
+        b->data = p;
+        b->cap = cap;
+    }
+    memcpy(b->data + b->len, s, n);
+    b->len += n;
+    b->data[b->len] = '\0';
+}
+
+void td_cr_buf_printf(td_cr_buf *b, const char *fmt, ...)
+{
+    char tmp[2048];
+    va_list ap;
+    int n;
+    va_start(ap, fmt);
+    n = vsnprintf(tmp, sizeof tmp, fmt, ap);
+    va_end(ap);
+    if (n < 0)
+        return;
+    td_cr_buf_append(b, tmp, (size_t)n < sizeof tmp ? (size_t)n : sizeof tmp - 1);
+}
+
+/* A control character that does not belong in a text file (NUL, BEL, ESC, ...). */
+static int binary_byte(unsigned char ch)
+{
+    return (ch < 0x20 && ch != '\t' && ch != '\n' && ch != '\r' && ch != '\f' && ch != '\v') || ch == 0x7f;
+}
+
+td_status td_cr_read_file(const char *shown, const char *path, char **text, td_error *err)
+{
+    struct stat st;
+    FILE *f;
+    char *buf;
+    size_t n, i;
+    int line = 1;
+
+    *text = NULL;
+    if (stat(path, &st) != 0)
+        return td_error_set(err, TD_ERR_IO, "%s: cannot read the case file: %s", shown, strerror(errno));
+    if (S_ISDIR(st.st_mode))
+        return td_error_set(err, TD_ERR_IO, "%s: cannot read the case file: it is a directory", shown);
+    if (!S_ISREG(st.st_mode)) /* FIFOs and devices could block or never end */
+        return td_error_set(err, TD_ERR_IO, "%s: cannot read the case file: not a regular file", shown);
+    if ((long long)st.st_size > (long long)TD_CASE_MAX_FILE_SIZE)
+        return td_error_set(err, TD_ERR_IO, "%s: the case file is too large (%lld bytes, limit %ld)", shown,
+                            (long long)st.st_size, (long)TD_CASE_MAX_FILE_SIZE);
+    f = fopen(path, "rb");
+    if (!f)
+        return td_error_set(err, TD_ERR_IO, "%s: cannot read the case file: %s", shown, strerror(errno));
+    buf = malloc((size_t)st.st_size + 1);
+    if (!buf) {
+        fclose(f);
+        return td_error_set(err, TD_ERR_NOMEM, "%s: out of memory reading the case file", shown);
+    }
+    /* read at most the size stat() saw; a file growing meanwhile is cut there */
+    n = fread(buf, 1, (size_t)st.st_size, f);
+    if (ferror(f)) {
+        int e = errno;
+        fclose(f);
+        free(buf);
+        return td_error_set(err, TD_ERR_IO, "%s: cannot read the case file: %s", shown, strerror(e));
+    }
+    fclose(f);
+    buf[n] = '\0';
+    for (i = 0; i < n; i++) {
+        unsigned char ch = (unsigned char)buf[i];
+        if (binary_byte(ch)) {
+            free(buf);
+            return td_error_set(err, TD_ERR_PARSE, "%s:%d: binary data (byte 0x%02x): a case file is text", shown, line,
+                                ch);
+        }
+        if (ch == '\n')
+            line++;
+    }
+    *text = buf;
+    return TD_OK;
+}
+
+/* Record an integer literal libconfig would wrap. */
+static td_status add_wrap(td_case_reader *r, const char *file, int line, const char *lit, size_t n)
+{
+    td_cr_wrap_site *s;
+    if (r->wrap_count == r->wrap_cap) {
+        int cap = r->wrap_cap ? 2 * r->wrap_cap : 4;
+        td_cr_wrap_site *p = realloc(r->wraps, (size_t)cap * sizeof *p);
+        if (!p)
+            return td_error_set(r->err, TD_ERR_NOMEM, "%s: out of memory", r->path);
+        r->wraps = p;
+        r->wrap_cap = cap;
+    }
+    s = &r->wraps[r->wrap_count];
+    s->file = NULL;
+    if (file) {
+        s->file = malloc(strlen(file) + 1);
+        if (!s->file)
+            return td_error_set(r->err, TD_ERR_NOMEM, "%s: out of memory", r->path);
+        strcpy(s->file, file);
+    }
+    s->line = line;
+    if (n >= sizeof s->literal)
+        n = sizeof s->literal - 1;
+    memcpy(s->literal, lit, n);
+    s->literal[n] = '\0';
+    r->wrap_count++;
+    return TD_OK;
+}
+
+/* Does the number token tok[0..n) (no sign) overflow libconfig 1.5's 32-bit integers?
+ * Floats (with '.', exponent) and 64-bit literals (suffix L) are fine. */
+static int token_wraps(const char *tok, size_t n, int negative)
+{
+    size_t i, start;
+    if (n > 2 && tok[0] == '0' && (tok[1] == 'x' || tok[1] == 'X')) {
+        for (i = 2; i < n; i++)
+            if (!isxdigit((unsigned char)tok[i]))
+                return 0; /* 0x...L or malformed: libconfig's business */
+        for (start = 2; start < n && tok[start] == '0'; start++)
+            ;
+        return n - start > 8;
+    }
+    for (i = 0; i < n; i++)
+        if (!isdigit((unsigned char)tok[i]))
+            return 0;
+    for (start = 0; start + 1 < n && tok[start] == '0'; start++)
+        ;
+    if (n - start != 10)
+        return n - start > 10;
+    return strncmp(tok + start, negative ? "2147483648" : "2147483647", 10) > 0;
+}
+
+/* Length of the number token at s: digits, letters, '.', and a sign right after an exponent. */
+static size_t number_length(const char *s)
+{
+    size_t n = 0;
+    int hex = s[0] == '0' && (s[1] == 'x' || s[1] == 'X');
+    while (isalnum((unsigned char)s[n]) || s[n] == '.' || s[n] == '_' ||
+           (!hex && n > 0 && (s[n] == '+' || s[n] == '-') && (s[n - 1] == 'e' || s[n - 1] == 'E')))
+        n++;
+    return n;
+}
+
+/* The include name of an "@include "name"" line, as libconfig 1.5 recognises it (at the start of a
+ * line, after blanks); copies it into name and returns 1. */
+static int include_line(const char *line, char *name, size_t n)
+{
+    const char *p = line, *q;
+    while (*p == ' ' || *p == '\t')
+        p++;
+    if (strncmp(p, "@include", 8) != 0)
+        return 0;
+    p += 8;
+    if (*p != ' ' && *p != '\t')
+        return 0;
+    while (*p == ' ' || *p == '\t')
+        p++;
+    if (*p != '"')
+        return 0;
+    q = strchr(p + 1, '"');
+    if (!q || (size_t)(q - p - 1) >= n)
+        return 0;
+    memcpy(name, p + 1, (size_t)(q - p - 1));
+    name[q - p - 1] = '\0';
+    return 1;
+}
+
+/* Expand one @include (on line `line_no` of `file`): append the included file's text between
+ * marker comments. An include that cannot be read is reported here, before libconfig would open
+ * it: libconfig 1.5 would block on a FIFO and misreport a directory. */
+static td_status expand_include(td_case_reader *r, const char *file, int line_no, const char *line, size_t line_len,
+                                const char *name, int depth, td_cr_buf *out)
+{
+    char path[4096], shown[4096], including[4096];
+    char *text = NULL;
+    td_error ierr;
+    td_status st;
+    if (depth >= TD_CR_MAX_INCLUDE_DEPTH) {
+        /* libconfig reports "include file nesting too deep" at this line */
+        td_cr_buf_append(out, line, line_len);
+        return TD_OK;
+    }
+    if (name[0] == '/') {
+        td_cr_file_shown(r, file, including, sizeof including);
+        return td_error_set(r->err, TD_ERR_PARSE,
+                            "%s:%d: cannot open include file \"%.200s\" (absolute @include paths are not supported: "
+                            "libconfig 1.5 reads them relative to %.200s)",
+                            including, line_no, name, r->dir);
+    }
+    snprintf(path, sizeof path, "%s/%s", r->dir, name);
+    td_cr_file_shown(r, name, shown, sizeof shown);
+    st = td_cr_read_file(shown, path, &text, &ierr);
+    if (st == TD_ERR_IO) {
+        td_cr_file_shown(r, file, including, sizeof including);
+        return td_error_set(
+            r->err, TD_ERR_PARSE,
+            "%s:%d: cannot open include file \"%.200s\" (%.200s; @include paths are relative to %.200s)", including,
+            line_no, name, ierr.message, r->dir);
+    }
+    if (st != TD_OK) {
+        if (r->err)
+            *r->err = ierr;
+        return st;
+    }
+    td_cr_buf_printf(out, "# >>> @include \"%s\" (%s)\n", name, shown);
+    st = td_cr_expand(r, text, name, depth + 1, out);
+    if (out->len > 0 && out->data[out->len - 1] != '\n')
+        td_cr_buf_append(out, "\n", 1);
+    td_cr_buf_printf(out, "# <<< end of \"%s\"\n", name);
+    free(text);
+    return st;
+}
+
+typedef enum scan_state { SCAN_CODE, SCAN_LINE_COMMENT, SCAN_BLOCK_COMMENT, SCAN_STRING } scan_state;
+
+td_status td_cr_expand(td_case_reader *r, const char *text, const char *file, int depth, td_cr_buf *out)
+{
+    const char *p = text, *line_start = text;
+    scan_state state = SCAN_CODE;
+    int line = 1, comment_line = 0;
+    char shown[4096], name[1024];
+    td_status st;
+
+    while (*p) {
+        if (p == line_start && state == SCAN_CODE && include_line(p, name, sizeof name)) {
+            const char *end = strchr(p, '\n');
+            size_t n = end ? (size_t)(end - p + 1) : strlen(p);
+            st = expand_include(r, file, line, p, n, name, depth, out);
+            if (st != TD_OK)
+                return st;
+            p += n;
+            line_start = p;
+            line++;
+            continue;
+        }
+        if (*p == '\n') {
+            td_cr_buf_append(out, p, 1);
+            p++;
+            line_start = p;
+            line++;
+            if (state == SCAN_LINE_COMMENT)
+                state = SCAN_CODE;
+            continue;
+        }
+        switch (state) {
+        case SCAN_LINE_COMMENT: break;
+        case SCAN_BLOCK_COMMENT:
+            if (p[0] == '*' && p[1] == '/') {
+                td_cr_buf_append(out, p, 1);
+                p++;
+                state = SCAN_CODE;
+            }
+            break;
+        case SCAN_STRING:
+            if (p[0] == '\\' && p[1] != '\0' && p[1] != '\n') {
+                td_cr_buf_append(out, p, 1);
+                p++;
+            } else if (*p == '"') {
+                state = SCAN_CODE;
+            }
+            break;
+        case SCAN_CODE:
+            if (*p == '#' || (p[0] == '/' && p[1] == '/')) {
+                state = SCAN_LINE_COMMENT;
+            } else if (p[0] == '/' && p[1] == '*') {
+                state = SCAN_BLOCK_COMMENT;
+                comment_line = line;
+                td_cr_buf_append(out, p, 1);
+                p++;
+            } else if (*p == '"') {
+                state = SCAN_STRING;
+            } else if (isalpha((unsigned char)*p) || *p == '_' || *p == '*') {
+                /* a name or true/false: skip it whole so digits inside it are not numbers */
+                size_t n = 1;
+                while (isalnum((unsigned char)p[n]) || p[n] == '_' || p[n] == '*' || p[n] == '-')
+                    n++;
+                td_cr_buf_append(out, p, n - 1);
+                p += n - 1;
+            } else if (isdigit((unsigned char)*p) || (*p == '.' && isdigit((unsigned char)p[1]))) {
+                size_t n = number_length(p);
+                int negative = p > text && p[-1] == '-';
+                if (token_wraps(p, n, negative)) {
+                    st = add_wrap(r, file, line, p, n);
+                    if (st != TD_OK)
+                        return st;
+                }
+                td_cr_buf_append(out, p, n - 1);
+                p += n - 1;
+            }
+            break;
+        }
+        td_cr_buf_append(out, p, 1);
+        p++;
+    }
+    if (state == SCAN_BLOCK_COMMENT) {
+        td_cr_file_shown(r, file, shown, sizeof shown);
+        return td_error_set(r->err, TD_ERR_PARSE,
+                            "%s:%d: unterminated /* comment (libconfig would silently ignore the rest of the file)",
+                            shown, comment_line);
+    }
+    if (out->failed)
+        return td_error_set(r->err, TD_ERR_NOMEM, "%s: out of memory", r->path);
+    return TD_OK;
+}
+
+int td_cr_value_wraps(const char *text, char *literal, size_t n)
+{
+    const char *p = text;
+    int in_string = 0;
+    for (; *p; p++) {
+        if (in_string) {
+            if (*p == '\\' && p[1])
+                p++;
+            else if (*p == '"')
+                in_string = 0;
+        } else if (*p == '"') {
+            in_string = 1;
+        } else if (isalpha((unsigned char)*p) || *p == '_') {
+            while (isalnum((unsigned char)p[1]) || p[1] == '_' || p[1] == '-')
+                p++;
+        } else if (isdigit((unsigned char)*p)) {
+            size_t len = number_length(p);
+            if (token_wraps(p, len, p > text && p[-1] == '-')) {
+                size_t k = len < n ? len : n - 1;
+                memcpy(literal, p, k);
+                literal[k] = '\0';
+                return 1;
+            }
+            p += len - 1;
+        }
+    }
+    return 0;
+}

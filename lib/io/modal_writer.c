@@ -1,0 +1,376 @@
+/*
+ * Writers of modal results (touchdown/modal.h): one CSV file with sections, or one HDF5 file with
+ * a group per part and a "units" attribute on every dataset. Numbers carry 12 significant digits
+ * in CSV ("%.12g") and full double precision in HDF5.
+ */
+#include "touchdown/modal.h"
+#include "util/error_internal.h"
+
+#include <hdf5.h>
+
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static const char *whirl_name(td_whirl w)
+{
+    return w == TD_WHIRL_FORWARD ? "forward" : (w == TD_WHIRL_BACKWARD ? "backward" : "mixed");
+}
+
+/* ---- CSV --------------------------------------------------------------------------------- */
+
+static void csv_modes(FILE *f, const td_modal *m)
+{
+    int i, k, nn = td_modal_node_count(m);
+    double *s = malloc(4u * (size_t)(nn > 0 ? nn : 1) * sizeof *s);
+    fprintf(f, "# section: modes\n# speed_rad_s = %.12g\n", td_modal_speed(m));
+    fprintf(f, "mode,sigma_1_s,omega_d_rad_s,freq_hz,omega_n_rad_s,zeta,whirl_index,whirl\n");
+    for (i = 0; i < td_modal_mode_count(m); i++) {
+        td_mode md;
+        td_modal_get_mode(m, i, &md);
+        fprintf(f, "%d,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%s\n", i, md.sigma, md.omega_d, md.freq_hz, md.omega_n,
+                md.zeta, md.whirl_index, whirl_name(md.whirl));
+    }
+    fprintf(f, "\n# section: real_eigenvalues\nindex,s_1_s\n");
+    for (i = 0; i < td_modal_real_count(m); i++)
+        fprintf(f, "%d,%.12g\n", i, td_modal_real_eigenvalue(m, i));
+    fprintf(f, "\n# section: mode_shapes\nmode,node,x_re,x_im,y_re,y_im\n");
+    for (i = 0; s && i < td_modal_mode_count(m); i++) {
+        td_modal_mode_shape(m, i, s, s + nn, s + 2 * nn, s + 3 * nn);
+        for (k = 0; k < nn; k++)
+            fprintf(f, "%d,%d,%.12g,%.12g,%.12g,%.12g\n", i, k, s[k], s[nn + k], s[2 * nn + k], s[3 * nn + k]);
+    }
+    fprintf(f, "\n");
+    free(s);
+}
+
+static void csv_campbell(FILE *f, const td_campbell *c)
+{
+    int k, j;
+    fprintf(f, "# section: campbell\nspeed_rad_s,branch,omega_d_rad_s,freq_hz,sigma_1_s,zeta,whirl\n");
+    for (k = 0; k < td_campbell_speed_count(c); k++)
+        for (j = 0; j < td_campbell_branch_count(c); j++) {
+            td_mode md;
+            td_campbell_get(c, k, j, &md);
+            fprintf(f, "%.12g,%d,%.12g,%.12g,%.12g,%.12g,%s\n", td_campbell_speed(c, k), j, md.omega_d, md.freq_hz,
+                    md.sigma, md.zeta, whirl_name(md.whirl));
+        }
+    fprintf(f, "\n");
+}
+
+static void csv_critical(FILE *f, const td_critical_speed *cs, int n)
+{
+    int i;
+    fprintf(f, "# section: critical_speeds\nspeed_rad_s,freq_hz,whirl,branch,zeta,sigma_1_s\n");
+    for (i = 0; i < n; i++)
+        fprintf(f, "%.12g,%.12g,%s,%d,%.12g,%.12g\n", cs[i].speed, cs[i].freq_hz, whirl_name(cs[i].whirl), cs[i].branch,
+                cs[i].zeta, cs[i].sigma);
+    fprintf(f, "\n");
+}
+
+static void csv_harmonic(FILE *f, const td_harmonic *const *h, int n)
+{
+    int i, k;
+    fprintf(f, "# section: harmonic\nspeed_rad_s,node,x_amp_m,x_phase_rad,y_amp_m,y_phase_rad,forward_m,backward_m,"
+               "major_m,minor_m\n");
+    for (i = 0; i < n; i++)
+        for (k = 0; h[i] && k < td_harmonic_node_count(h[i]); k++) {
+            td_orbit o;
+            td_harmonic_orbit(h[i], k, &o);
+            fprintf(f, "%.12g,%d,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g\n", td_harmonic_speed(h[i]), k,
+                    o.x_amp, o.x_phase, o.y_amp, o.y_phase, o.forward, o.backward, o.major, o.minor);
+        }
+    fprintf(f, "\n");
+}
+
+td_status td_modal_write_csv(const char *path, const td_modal_results *r, td_error *err)
+{
+    FILE *f;
+    if (!path || !r)
+        return td_error_set(err, TD_ERR_INVALID, "td_modal_write_csv: NULL argument");
+    if (r->n_critical < 0 || (r->n_critical > 0 && !r->critical) || r->n_harmonics < 0 ||
+        (r->n_harmonics > 0 && !r->harmonics))
+        return td_error_set(err, TD_ERR_INVALID, "td_modal_write_csv: bad result counts");
+    f = fopen(path, "w");
+    if (!f)
+        return td_error_set(err, TD_ERR_IO, "%s: cannot open for writing: %s", path, strerror(errno));
+    fprintf(f, "# touchdown modal results\n\n");
+    if (r->modes)
+        csv_modes(f, r->modes);
+    if (r->campbell)
+        csv_campbell(f, r->campbell);
+    if (r->critical)
+        csv_critical(f, r->critical, r->n_critical);
+    if (r->n_harmonics > 0)
+        csv_harmonic(f, r->harmonics, r->n_harmonics);
+    if (ferror(f)) {
+        fclose(f);
+        return td_error_set(err, TD_ERR_IO, "%s: write failed", path);
+    }
+    if (fclose(f) != 0)
+        return td_error_set(err, TD_ERR_IO, "%s: close failed: %s", path, strerror(errno));
+    return TD_OK;
+}
+
+/* ---- HDF5 -------------------------------------------------------------------------------- */
+
+/* Attach a string attribute. */
+static int h5_attr_string(hid_t obj, const char *name, const char *value)
+{
+    hid_t type = H5Tcopy(H5T_C_S1), space = H5Screate(H5S_SCALAR), attr = -1;
+    int ok = type >= 0 && space >= 0 && H5Tset_size(type, strlen(value) + 1) >= 0;
+    if (ok)
+        attr = H5Acreate2(obj, name, type, space, H5P_DEFAULT, H5P_DEFAULT);
+    ok = ok && attr >= 0 && H5Awrite(attr, type, value) >= 0;
+    if (attr >= 0)
+        H5Aclose(attr);
+    if (space >= 0)
+        H5Sclose(space);
+    if (type >= 0)
+        H5Tclose(type);
+    return ok;
+}
+
+static int h5_attr_double(hid_t obj, const char *name, double value)
+{
+    hid_t space = H5Screate(H5S_SCALAR), attr = -1;
+    int ok = space >= 0;
+    if (ok)
+        attr = H5Acreate2(obj, name, H5T_NATIVE_DOUBLE, space, H5P_DEFAULT, H5P_DEFAULT);
+    ok = ok && attr >= 0 && H5Awrite(attr, H5T_NATIVE_DOUBLE, &value) >= 0;
+    if (attr >= 0)
+        H5Aclose(attr);
+    if (space >= 0)
+        H5Sclose(space);
+    return ok;
+}
+
+/* A 1-D (cols == 0) or 2-D dataset of doubles or ints with a "units" attribute. */
+static int h5_dataset(hid_t group, const char *name, hid_t memtype, const void *data, hsize_t rows, hsize_t cols,
+                      const char *units)
+{
+    hsize_t dims[2];
+    hid_t space, set = -1;
+    int ok;
+    dims[0] = rows;
+    dims[1] = cols;
+    space = H5Screate_simple(cols ? 2 : 1, dims, NULL);
+    ok = space >= 0;
+    if (ok)
+        set = H5Dcreate2(group, name, memtype == H5T_NATIVE_INT ? H5T_STD_I32LE : H5T_IEEE_F64LE, space, H5P_DEFAULT,
+                         H5P_DEFAULT, H5P_DEFAULT);
+    ok = ok && set >= 0 && (rows == 0 || H5Dwrite(set, memtype, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) >= 0);
+    ok = ok && h5_attr_string(set, "units", units);
+    if (set >= 0)
+        H5Dclose(set);
+    if (space >= 0)
+        H5Sclose(space);
+    return ok;
+}
+
+/* Columns of a td_mode array, gathered one field at a time. */
+enum mode_field { F_SIGMA, F_OMEGA_D, F_FREQ, F_OMEGA_N, F_ZETA, F_WHIRL_INDEX };
+
+static double mode_field(const td_mode *m, int field)
+{
+    switch (field) {
+    case F_SIGMA: return m->sigma;
+    case F_OMEGA_D: return m->omega_d;
+    case F_FREQ: return m->freq_hz;
+    case F_OMEGA_N: return m->omega_n;
+    case F_ZETA: return m->zeta;
+    default: return m->whirl_index;
+    }
+}
+
+static const struct {
+    const char *name, *units;
+} mode_fields[6] = {{"sigma", "1/s"},     {"omega_d", "rad/s"}, {"freq_hz", "Hz"},
+                    {"omega_n", "rad/s"}, {"zeta", "1"},        {"whirl_index", "1"}};
+
+/* Write the td_mode fields of `modes` (count rows x cols, cols 0: 1-D) plus an int "whirl" dataset. */
+static int h5_mode_table(hid_t g, const td_mode *modes, hsize_t rows, hsize_t cols)
+{
+    size_t n = (size_t)rows * (size_t)(cols ? cols : 1), i;
+    double *d = malloc((n ? n : 1) * sizeof *d);
+    int *w = malloc((n ? n : 1) * sizeof *w);
+    int ok = d && w, f;
+    for (f = 0; ok && f < 6; f++) {
+        for (i = 0; i < n; i++)
+            d[i] = mode_field(&modes[i], f);
+        ok = h5_dataset(g, mode_fields[f].name, H5T_NATIVE_DOUBLE, d, rows, cols, mode_fields[f].units);
+    }
+    for (i = 0; ok && i < n; i++)
+        w[i] = (int)modes[i].whirl;
+    ok = ok && h5_dataset(g, "whirl", H5T_NATIVE_INT, w, rows, cols, "1: forward, -1: backward, 0: mixed");
+    free(d);
+    free(w);
+    return ok;
+}
+
+static int h5_modes(hid_t file, const td_modal *m)
+{
+    int nm = td_modal_mode_count(m), nr = td_modal_real_count(m), nn = td_modal_node_count(m), i, ok;
+    td_mode *modes = malloc((size_t)(nm ? nm : 1) * sizeof *modes);
+    double *real = malloc((size_t)(nr ? nr : 1) * sizeof *real);
+    double *sh = malloc(4u * (size_t)(nm ? nm : 1) * (size_t)(nn ? nn : 1) * sizeof *sh);
+    double *part = malloc((size_t)(nm ? nm : 1) * (size_t)(nn ? nn : 1) * sizeof *part);
+    hid_t g = H5Gcreate2(file, "modes", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    static const char *names[4] = {"shape_x_re", "shape_x_im", "shape_y_re", "shape_y_im"};
+    ok = modes && real && sh && part && g >= 0;
+    for (i = 0; ok && i < nm; i++) {
+        td_modal_get_mode(m, i, &modes[i]);
+        td_modal_mode_shape(m, i, sh + (size_t)(4 * i) * (size_t)nn, sh + (size_t)(4 * i + 1) * (size_t)nn,
+                            sh + (size_t)(4 * i + 2) * (size_t)nn, sh + (size_t)(4 * i + 3) * (size_t)nn);
+    }
+    for (i = 0; ok && i < nr; i++)
+        real[i] = td_modal_real_eigenvalue(m, i);
+    ok = ok && h5_attr_double(g, "speed", td_modal_speed(m)) && h5_attr_string(g, "speed_units", "rad/s");
+    ok = ok && h5_mode_table(g, modes, (hsize_t)nm, 0);
+    ok = ok && h5_dataset(g, "real_eigenvalues", H5T_NATIVE_DOUBLE, real, (hsize_t)nr, 0, "1/s");
+    for (i = 0; ok && i < 4; i++) {
+        int k, j;
+        for (k = 0; k < nm; k++)
+            for (j = 0; j < nn; j++)
+                part[(size_t)k * (size_t)nn + (size_t)j] = sh[(size_t)(4 * k + i) * (size_t)nn + (size_t)j];
+        ok = h5_dataset(g, names[i], H5T_NATIVE_DOUBLE, part, (hsize_t)nm, (hsize_t)nn,
+                        "1 (normalised: largest |X| or |Y| = 1); rows: modes, columns: nodes");
+    }
+    if (g >= 0)
+        H5Gclose(g);
+    free(modes);
+    free(real);
+    free(sh);
+    free(part);
+    return ok;
+}
+
+static int h5_campbell(hid_t file, const td_campbell *c)
+{
+    int ns = td_campbell_speed_count(c), nb = td_campbell_branch_count(c), k, j, ok;
+    td_mode *pts = malloc((size_t)(ns ? ns : 1) * (size_t)(nb ? nb : 1) * sizeof *pts);
+    double *sp = malloc((size_t)(ns ? ns : 1) * sizeof *sp);
+    hid_t g = H5Gcreate2(file, "campbell", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    ok = pts && sp && g >= 0;
+    for (k = 0; ok && k < ns; k++) {
+        sp[k] = td_campbell_speed(c, k);
+        for (j = 0; j < nb; j++)
+            td_campbell_get(c, k, j, &pts[(size_t)k * (size_t)nb + (size_t)j]);
+    }
+    ok = ok && h5_dataset(g, "speed", H5T_NATIVE_DOUBLE, sp, (hsize_t)ns, 0, "rad/s");
+    ok = ok && h5_mode_table(g, pts, (hsize_t)ns, (hsize_t)nb);
+    ok = ok && h5_attr_string(g, "layout", "rows: speeds, columns: branches (j-th lowest omega_d)");
+    if (g >= 0)
+        H5Gclose(g);
+    free(pts);
+    free(sp);
+    return ok;
+}
+
+static int h5_critical(hid_t file, const td_critical_speed *cs, int n)
+{
+    double *d = malloc((size_t)(n ? n : 1) * 4u * sizeof *d);
+    int *w = malloc((size_t)(n ? n : 1) * 2u * sizeof *w), i, ok;
+    hid_t g = H5Gcreate2(file, "critical_speeds", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    ok = d && w && g >= 0;
+    for (i = 0; ok && i < n; i++) {
+        d[i] = cs[i].speed;
+        d[n + i] = cs[i].freq_hz;
+        d[2 * n + i] = cs[i].zeta;
+        d[3 * n + i] = cs[i].sigma;
+        w[i] = (int)cs[i].whirl;
+        w[n + i] = cs[i].branch;
+    }
+    ok = ok && h5_dataset(g, "speed", H5T_NATIVE_DOUBLE, d, (hsize_t)n, 0, "rad/s");
+    ok = ok && h5_dataset(g, "freq_hz", H5T_NATIVE_DOUBLE, d + n, (hsize_t)n, 0, "Hz");
+    ok = ok && h5_dataset(g, "zeta", H5T_NATIVE_DOUBLE, d + 2 * n, (hsize_t)n, 0, "1");
+    ok = ok && h5_dataset(g, "sigma", H5T_NATIVE_DOUBLE, d + 3 * n, (hsize_t)n, 0, "1/s");
+    ok = ok && h5_dataset(g, "whirl", H5T_NATIVE_INT, w, (hsize_t)n, 0, "1: forward, -1: backward");
+    ok = ok && h5_dataset(g, "branch", H5T_NATIVE_INT, w + n, (hsize_t)n, 0, "index among modes of that whirl");
+    if (g >= 0)
+        H5Gclose(g);
+    free(d);
+    free(w);
+    return ok;
+}
+
+static int h5_harmonic_one(hid_t parent, int index, const td_harmonic *h)
+{
+    static const struct {
+        const char *name, *units;
+    } cols[8] = {{"x_amp", "m"},   {"x_phase", "rad"}, {"y_amp", "m"}, {"y_phase", "rad"},
+                 {"forward", "m"}, {"backward", "m"},  {"major", "m"}, {"minor", "m"}};
+    int nn = td_harmonic_node_count(h), ns = td_harmonic_state_count(h), k, c, ok;
+    double *d = malloc((size_t)(nn > ns ? nn : ns) * 2u * sizeof *d);
+    char name[32];
+    hid_t g;
+    snprintf(name, sizeof name, "%d", index);
+    g = H5Gcreate2(parent, name, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    ok = d && g >= 0 && h5_attr_double(g, "speed", td_harmonic_speed(h)) && h5_attr_string(g, "speed_units", "rad/s");
+    for (c = 0; ok && c < 8; c++) {
+        for (k = 0; k < nn; k++) {
+            td_orbit o;
+            double v[8];
+            td_harmonic_orbit(h, k, &o);
+            v[0] = o.x_amp, v[1] = o.x_phase, v[2] = o.y_amp, v[3] = o.y_phase;
+            v[4] = o.forward, v[5] = o.backward, v[6] = o.major, v[7] = o.minor;
+            d[k] = v[c];
+        }
+        ok = h5_dataset(g, cols[c].name, H5T_NATIVE_DOUBLE, d, (hsize_t)nn, 0, cols[c].units);
+    }
+    for (k = 0; ok && k < ns; k++)
+        td_harmonic_state(h, k, &d[k], &d[ns + k]);
+    ok = ok && h5_dataset(g, "state_re", H5T_NATIVE_DOUBLE, d, (hsize_t)ns, 0, "SI per state: m, m/s, N");
+    ok = ok && h5_dataset(g, "state_im", H5T_NATIVE_DOUBLE, d + ns, (hsize_t)ns, 0, "SI per state: m, m/s, N");
+    if (g >= 0)
+        H5Gclose(g);
+    free(d);
+    return ok;
+}
+
+static int h5_harmonics(hid_t file, const td_harmonic *const *h, int n)
+{
+    hid_t g = H5Gcreate2(file, "harmonic", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    int ok = g >= 0, i;
+    for (i = 0; ok && i < n; i++)
+        ok = !h[i] || h5_harmonic_one(g, i, h[i]);
+    if (g >= 0)
+        H5Gclose(g);
+    return ok;
+}
+
+/* Create the file and write every part; 0 on any failure. */
+static int h5_write_all(const char *path, const td_modal_results *r)
+{
+    hid_t file = H5Fcreate(path, H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+    int ok = file >= 0;
+    ok = ok && h5_attr_string(file, "producer", "touchdown modal analysis");
+    ok = ok && (!r->modes || h5_modes(file, r->modes));
+    ok = ok && (!r->campbell || h5_campbell(file, r->campbell));
+    ok = ok && (!r->critical || h5_critical(file, r->critical, r->n_critical));
+    ok = ok && (r->n_harmonics == 0 || h5_harmonics(file, r->harmonics, r->n_harmonics));
+    if (file >= 0 && H5Fclose(file) < 0)
+        ok = 0;
+    return ok;
+}
+
+td_status td_modal_write_hdf5(const char *path, const td_modal_results *r, td_error *err)
+{
+    int ok = 0;
+    if (!path || !r)
+        return td_error_set(err, TD_ERR_INVALID, "td_modal_write_hdf5: NULL argument");
+    if (r->n_critical < 0 || (r->n_critical > 0 && !r->critical) || r->n_harmonics < 0 ||
+        (r->n_harmonics > 0 && !r->harmonics))
+        return td_error_set(err, TD_ERR_INVALID, "td_modal_write_hdf5: bad result counts");
+    /* HDF5 would print its error stack; the try block silences it only for this call */
+    H5E_BEGIN_TRY
+    {
+        ok = h5_write_all(path, r);
+    }
+    H5E_END_TRY;
+    if (!ok)
+        return td_error_set(err, TD_ERR_IO, "%s: writing the HDF5 file failed", path);
+    return TD_OK;
+}

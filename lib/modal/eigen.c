@@ -1,0 +1,361 @@
+/*
+ * Eigen-analysis of the first-order system at one speed (gsl_eigen_nonsymmv, with balancing:
+ * the state mixes metres, metres per second and newtons, and the v rows carry M^-1 K, so the
+ * unbalanced A spans many decades). Complex pairs are kept once (omega_d > 0), real eigenvalues
+ * apart; each mode gets its normalised shape and its whirl sense (touchdown/modal.h).
+ */
+#include "modal/modal_internal.h"
+#include "util/error_internal.h"
+#include "util/numeric.h"
+
+#include <gsl/gsl_complex_math.h>
+#include <gsl/gsl_eigen.h>
+#include <gsl/gsl_errno.h>
+
+#include <float.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* A node whose squared amplitude is below this fraction of the largest one does not vote on the whirl. */
+#define TD_WHIRL_AMPLITUDE_FLOOR 1e-8
+/* |h| below this at a voting node counts as planar (no sense). */
+#define TD_WHIRL_SENSE_FLOOR 1e-6
+
+/* An eigenvalue and the column of its eigenvector, for sorting. */
+typedef struct eig_ref {
+    double re, im;
+    size_t col;
+} eig_ref;
+
+static int cmp_oscillatory(const void *a, const void *b)
+{
+    const eig_ref *x = a, *y = b;
+    if (x->im != y->im)
+        return x->im < y->im ? -1 : 1;
+    if (x->re != y->re)
+        return x->re < y->re ? -1 : 1;
+    return 0;
+}
+
+static int cmp_desc(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return x > y ? -1 : (x < y ? 1 : 0);
+}
+
+/* A pair whose imaginary part is this small against |s| is a (numerically split) real double root. */
+static int is_real(gsl_complex s)
+{
+    return fabs(GSL_IMAG(s)) <= 64.0 * DBL_EPSILON * gsl_complex_abs(s);
+}
+
+/* Normalise the nodal X, Y of eigenvector column `col` into shape[4 nnodes] and classify the whirl. */
+static void shape_and_whirl(const gsl_matrix_complex *V, size_t col, int nnodes, double *shape, td_mode *mode)
+{
+    double *xr = shape, *xi = shape + nnodes, *yr = shape + 2 * nnodes, *yi = shape + 3 * nnodes;
+    gsl_complex big = gsl_complex_rect(1.0, 0.0);
+    double bigabs = -1.0, wmax = 0.0, cross = 0.0, total = 0.0;
+    int k, nfwd = 0, nbwd = 0, nplanar = 0;
+    for (k = 0; k < nnodes; k++) {
+        gsl_complex X = gsl_matrix_complex_get(V, (size_t)TD_DOF(k, TD_DOF_X), col);
+        gsl_complex Y = gsl_matrix_complex_get(V, (size_t)TD_DOF(k, TD_DOF_Y), col);
+        if (gsl_complex_abs(X) > bigabs) {
+            bigabs = gsl_complex_abs(X);
+            big = X;
+        }
+        if (gsl_complex_abs(Y) > bigabs) {
+            bigabs = gsl_complex_abs(Y);
+            big = Y;
+        }
+    }
+    for (k = 0; k < nnodes; k++) {
+        gsl_complex X = gsl_matrix_complex_get(V, (size_t)TD_DOF(k, TD_DOF_X), col);
+        gsl_complex Y = gsl_matrix_complex_get(V, (size_t)TD_DOF(k, TD_DOF_Y), col);
+        double w;
+        if (bigabs > 0.0) {
+            X = gsl_complex_div(X, big);
+            Y = gsl_complex_div(Y, big);
+        }
+        xr[k] = GSL_REAL(X);
+        xi[k] = GSL_IMAG(X);
+        yr[k] = GSL_REAL(Y);
+        yi[k] = GSL_IMAG(Y);
+        w = gsl_complex_abs2(X) + gsl_complex_abs2(Y);
+        if (w > wmax)
+            wmax = w;
+    }
+    for (k = 0; k < nnodes; k++) {
+        /* Im(conj(X) Y) = xr yi - xi yr; forward (x towards y) when it is negative */
+        double c = xr[k] * yi[k] - xi[k] * yr[k];
+        double w = xr[k] * xr[k] + xi[k] * xi[k] + yr[k] * yr[k] + yi[k] * yi[k];
+        double h;
+        cross += c;
+        total += w;
+        if (w <= TD_WHIRL_AMPLITUDE_FLOOR * wmax)
+            continue;
+        h = -2.0 * c / w;
+        if (h > TD_WHIRL_SENSE_FLOOR)
+            nfwd++;
+        else if (h < -TD_WHIRL_SENSE_FLOOR)
+            nbwd++;
+        else
+            nplanar++;
+    }
+    mode->whirl_index = total > 0.0 ? -2.0 * cross / total : 0.0;
+    if (nfwd > 0 && nbwd == 0 && nplanar == 0)
+        mode->whirl = TD_WHIRL_FORWARD;
+    else if (nbwd > 0 && nfwd == 0 && nplanar == 0)
+        mode->whirl = TD_WHIRL_BACKWARD;
+    else
+        mode->whirl = TD_WHIRL_MIXED;
+}
+
+/* Two eigenvalues closer than this (relative) are one degenerate pair (an isotropic rotor at rest,
+ * or one without gyroscopic coupling), whose eigenvectors the solver returns in an arbitrary basis. */
+#define TD_DEGENERATE_RTOL 1e-8
+/* A rotated basis vector counts as a pure whirl when its other-sense part is this small (energy). */
+#define TD_PURE_WHIRL_TOL 1e-6
+
+/* Circular parts of an eigenvector: the forward part X + iY, Theta + i Phi (zero for a backward
+ * whirl) when sense = +1, the backward part X - iY, Theta - i Phi when sense = -1. A forward
+ * circular whirl x = cos, y = sin has Y = -iX and, as theta = -dy/dz, Theta = i Phi. */
+static gsl_complex circular_part(const gsl_matrix_complex *V, size_t col, int node, int rot, int sense)
+{
+    size_t a = (size_t)TD_DOF(node, rot ? TD_DOF_THETA : TD_DOF_X),
+           b = (size_t)TD_DOF(node, rot ? TD_DOF_PHI : TD_DOF_Y);
+    gsl_complex u = gsl_matrix_complex_get(V, a, col), v = gsl_matrix_complex_get(V, b, col);
+    return gsl_complex_add(u, gsl_complex_mul(gsl_complex_rect(0.0, (double)sense), v));
+}
+
+/* Unit c minimising |c1 p(u1) + c2 p(u2)|^2 (p the circular part of `sense`): the eigenvector of the
+ * smallest eigenvalue of the Hermitian Gram matrix. Returns that eigenvalue over the trace. */
+static double null_combination(const gsl_matrix_complex *V, size_t c1, size_t c2, int nnodes, int sense,
+                               gsl_complex c[2])
+{
+    double a = 0.0, d = 0.0, lam, nrm;
+    gsl_complex z = GSL_COMPLEX_ZERO, v1, v2;
+    int k, r;
+    for (k = 0; k < nnodes; k++)
+        for (r = 0; r < 2; r++) {
+            gsl_complex p1 = circular_part(V, c1, k, r, sense), p2 = circular_part(V, c2, k, r, sense);
+            a += gsl_complex_abs2(p1);
+            d += gsl_complex_abs2(p2);
+            z = gsl_complex_add(z, gsl_complex_mul(gsl_complex_conjugate(p1), p2));
+        }
+    lam = 0.5 * (a + d) - sqrt(0.25 * (a - d) * (a - d) + gsl_complex_abs2(z));
+    if (gsl_complex_abs(z) > 0.0) {
+        v1 = z;
+        v2 = gsl_complex_rect(lam - a, 0.0);
+    } else {
+        v1 = gsl_complex_rect(a <= d ? 1.0 : 0.0, 0.0);
+        v2 = gsl_complex_rect(a <= d ? 0.0 : 1.0, 0.0);
+    }
+    nrm = sqrt(gsl_complex_abs2(v1) + gsl_complex_abs2(v2));
+    c[0] = gsl_complex_div_real(v1, nrm);
+    c[1] = gsl_complex_div_real(v2, nrm);
+    return a + d > 0.0 ? lam / (a + d) : 1.0;
+}
+
+/* Rotate the eigenvectors of a degenerate pair (columns lo, hi) into the pure backward whirl
+ * (stored in lo, the lower eigenvalue) and the pure forward whirl (in hi), as gyroscopic stiffening
+ * would order them at the slightest speed. Left alone unless both pure whirls exist in the span. */
+static void resolve_degenerate_pair(gsl_matrix_complex *V, size_t lo, size_t hi, int nnodes)
+{
+    gsl_complex cf[2], cb[2];
+    size_t i;
+    double rf = null_combination(V, lo, hi, nnodes, -1, cf); /* forward: no backward part */
+    double rb = null_combination(V, lo, hi, nnodes, +1, cb); /* backward: no forward part */
+    if (rf > TD_PURE_WHIRL_TOL || rb > TD_PURE_WHIRL_TOL)
+        return;
+    for (i = 0; i < V->size1; i++) {
+        gsl_complex u1 = gsl_matrix_complex_get(V, i, lo), u2 = gsl_matrix_complex_get(V, i, hi);
+        gsl_complex f = gsl_complex_add(gsl_complex_mul(cf[0], u1), gsl_complex_mul(cf[1], u2));
+        gsl_complex b = gsl_complex_add(gsl_complex_mul(cb[0], u1), gsl_complex_mul(cb[1], u2));
+        gsl_matrix_complex_set(V, i, lo, b);
+        gsl_matrix_complex_set(V, i, hi, f);
+    }
+}
+
+/* Find degenerate pairs among the sorted oscillatory eigenvalues and resolve them. */
+static void resolve_degenerate(gsl_matrix_complex *V, const eig_ref *osc, int nosc, int nnodes)
+{
+    int k = 0;
+    while (k + 1 < nosc) {
+        double scale = hypot(osc[k].re, osc[k].im);
+        int close = hypot(osc[k + 1].re - osc[k].re, osc[k + 1].im - osc[k].im) <= TD_DEGENERATE_RTOL * scale;
+        int triple =
+            k + 2 < nosc && hypot(osc[k + 2].re - osc[k].re, osc[k + 2].im - osc[k].im) <= TD_DEGENERATE_RTOL * scale;
+        if (close && !triple) {
+            resolve_degenerate_pair(V, osc[k].col, osc[k + 1].col, nnodes);
+            k += 2;
+        } else
+            k++;
+    }
+}
+
+static td_modal *modal_alloc(int nnodes, int nmodes, int nreal)
+{
+    td_modal *m = calloc(1, sizeof *m);
+    if (!m)
+        return NULL;
+    m->nnodes = nnodes;
+    m->modes = calloc((size_t)(nmodes > 0 ? nmodes : 1), sizeof *m->modes);
+    m->shapes = calloc((size_t)(nmodes > 0 ? nmodes : 1) * 4u * (size_t)nnodes, sizeof *m->shapes);
+    m->real = calloc((size_t)(nreal > 0 ? nreal : 1), sizeof *m->real);
+    if (!m->modes || !m->shapes || !m->real)
+        td_modal_free(&m);
+    return m;
+}
+
+/* Sort and store the eigenvalues/vectors into a new td_modal. */
+static td_status collect(const gsl_vector_complex *eval, gsl_matrix_complex *evec, int nnodes, double omega,
+                         td_modal **out, td_error *err)
+{
+    size_t n = eval->size, i;
+    eig_ref *osc = malloc(n * sizeof *osc);
+    int nosc = 0, nreal = 0, k;
+    double maxre = -HUGE_VAL;
+    td_modal *m;
+    if (!osc)
+        return td_error_set(err, TD_ERR_NOMEM, "modal: out of memory sorting eigenvalues");
+    for (i = 0; i < n; i++) {
+        gsl_complex s = gsl_vector_complex_get(eval, i);
+        if (GSL_REAL(s) > maxre)
+            maxre = GSL_REAL(s);
+        if (is_real(s))
+            nreal++;
+        else if (GSL_IMAG(s) > 0.0) {
+            osc[nosc].re = GSL_REAL(s);
+            osc[nosc].im = GSL_IMAG(s);
+            osc[nosc].col = i;
+            nosc++;
+        }
+    }
+    m = modal_alloc(nnodes, nosc, nreal);
+    if (!m) {
+        free(osc);
+        return td_error_set(err, TD_ERR_NOMEM, "modal: out of memory storing modes");
+    }
+    m->omega = omega;
+    m->max_real = maxre;
+    qsort(osc, (size_t)nosc, sizeof *osc, cmp_oscillatory);
+    resolve_degenerate(evec, osc, nosc, nnodes);
+    for (k = 0; k < nosc; k++) {
+        td_mode *md = &m->modes[k];
+        md->sigma = osc[k].re;
+        md->omega_d = osc[k].im;
+        md->freq_hz = osc[k].im / (2.0 * TD_PI);
+        md->omega_n = hypot(osc[k].re, osc[k].im);
+        md->zeta = -osc[k].re / md->omega_n;
+        shape_and_whirl(evec, osc[k].col, nnodes, m->shapes + (size_t)k * 4u * (size_t)nnodes, md);
+    }
+    m->n_modes = nosc;
+    for (i = 0; i < n; i++) {
+        gsl_complex s = gsl_vector_complex_get(eval, i);
+        if (is_real(s))
+            m->real[m->n_real++] = GSL_REAL(s);
+    }
+    qsort(m->real, (size_t)m->n_real, sizeof *m->real, cmp_desc);
+    free(osc);
+    *out = m;
+    return TD_OK;
+}
+
+td_status td_modal_solve(const td_system *sys, double omega, td_modal **out, td_error *err)
+{
+    td_state_space ss;
+    gsl_vector_complex *eval = NULL;
+    gsl_matrix_complex *evec = NULL;
+    gsl_eigen_nonsymmv_workspace *w = NULL;
+    td_status st;
+    if (!out)
+        return td_error_set(err, TD_ERR_INVALID, "td_modal_solve: NULL output pointer");
+    *out = NULL;
+    st = td_state_space_build(sys, omega, &ss, err);
+    if (st != TD_OK)
+        return st;
+    eval = gsl_vector_complex_alloc((size_t)ss.n);
+    evec = gsl_matrix_complex_alloc((size_t)ss.n, (size_t)ss.n);
+    w = gsl_eigen_nonsymmv_alloc((size_t)ss.n);
+    if (!eval || !evec || !w)
+        st = td_error_set(err, TD_ERR_NOMEM, "modal: out of memory for the eigen-solver (%d states)", ss.n);
+    else {
+        gsl_eigen_nonsymmv_params(1, w); /* balance */
+        if (gsl_eigen_nonsymmv(ss.A, eval, evec, w) != GSL_SUCCESS)
+            st = td_error_set(err, TD_ERR_NUMERIC, "modal: the eigen-solver did not converge at %g rad/s", omega);
+        else
+            st = collect(eval, evec, sys->nnodes, omega, out, err);
+    }
+    gsl_eigen_nonsymmv_free(w);
+    gsl_matrix_complex_free(evec);
+    gsl_vector_complex_free(eval);
+    td_state_space_free(&ss);
+    return st;
+}
+
+void td_modal_free(td_modal **m)
+{
+    if (!m || !*m)
+        return;
+    free((*m)->modes);
+    free((*m)->shapes);
+    free((*m)->real);
+    free(*m);
+    *m = NULL;
+}
+
+double td_modal_speed(const td_modal *m)
+{
+    return m ? m->omega : NAN;
+}
+int td_modal_mode_count(const td_modal *m)
+{
+    return m ? m->n_modes : 0;
+}
+int td_modal_real_count(const td_modal *m)
+{
+    return m ? m->n_real : 0;
+}
+int td_modal_node_count(const td_modal *m)
+{
+    return m ? m->nnodes : 0;
+}
+double td_modal_max_real_part(const td_modal *m)
+{
+    return m ? m->max_real : NAN;
+}
+
+td_status td_modal_get_mode(const td_modal *m, int i, td_mode *out)
+{
+    if (!m || !out || i < 0 || i >= m->n_modes)
+        return TD_ERR_INVALID;
+    *out = m->modes[i];
+    return TD_OK;
+}
+
+double td_modal_real_eigenvalue(const td_modal *m, int i)
+{
+    if (!m || i < 0 || i >= m->n_real)
+        return NAN;
+    return m->real[i];
+}
+
+td_status td_modal_mode_shape(const td_modal *m, int i, double *x_re, double *x_im, double *y_re, double *y_im)
+{
+    const double *s;
+    size_t nn;
+    if (!m || i < 0 || i >= m->n_modes)
+        return TD_ERR_INVALID;
+    nn = (size_t)m->nnodes;
+    s = m->shapes + (size_t)i * 4u * nn;
+    if (x_re)
+        memcpy(x_re, s, nn * sizeof *s);
+    if (x_im)
+        memcpy(x_im, s + nn, nn * sizeof *s);
+    if (y_re)
+        memcpy(y_re, s + 2 * nn, nn * sizeof *s);
+    if (y_im)
+        memcpy(y_im, s + 3 * nn, nn * sizeof *s);
+    return TD_OK;
+}

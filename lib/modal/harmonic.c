@@ -1,0 +1,262 @@
+/*
+ * Steady-state (harmonic) unbalance response and the steady starting state.
+ *
+ * With z' = A z + b(t) and b(t) = Re(B e^{i W t}), B = [0; M^-1 F; 0] (F the complex unbalance
+ * forces of touchdown/model.h at W = Omega), the periodic solution is z = Re(Z e^{i W t}) with
+ * (i W I - A) Z = B, solved by complex LU. The static sag under gravity solves A z_s = -[0; M^-1 f_g; 0].
+ */
+#include "modal/modal_internal.h"
+#include "util/error_internal.h"
+
+#include <gsl/gsl_complex_math.h>
+#include <gsl/gsl_errno.h>
+#include <gsl/gsl_linalg.h>
+
+#include <math.h>
+#include <stdlib.h>
+
+struct td_harmonic {
+    double omega;
+    int nnodes;
+    int n;      /* states */
+    double *re; /* n */
+    double *im; /* n */
+};
+
+void td_harmonic_free(td_harmonic **h)
+{
+    if (!h || !*h)
+        return;
+    free((*h)->re);
+    free((*h)->im);
+    free(*h);
+    *h = NULL;
+}
+
+/* A zero LU pivot (or a non-finite one) means i W is an eigenvalue of A. */
+static int complex_lu_singular(const gsl_matrix_complex *LU)
+{
+    size_t i;
+    for (i = 0; i < LU->size1; i++) {
+        double a = gsl_complex_abs(gsl_matrix_complex_get(LU, i, i));
+        if (a == 0.0 || !isfinite(a))
+            return 1;
+    }
+    return 0;
+}
+
+/* Z (re, im; ss->n entries) of the response to complex forces F = fre + i fim at frequency W. */
+static td_status solve_harmonic(const td_state_space *ss, double W, const double *fre, const double *fim, double *zre,
+                                double *zim, td_error *err)
+{
+    size_t n = (size_t)ss->n, i, j;
+    gsl_matrix_complex *T = gsl_matrix_complex_alloc(n, n);
+    gsl_vector_complex *b = gsl_vector_complex_alloc(n);
+    gsl_permutation *p = gsl_permutation_alloc(n);
+    td_status st = TD_OK;
+    int sign;
+    if (!T || !b || !p) {
+        st = td_error_set(err, TD_ERR_NOMEM, "modal: out of memory for the harmonic solve");
+        goto done;
+    }
+    /* b = [0; M^-1 F; 0], real and imaginary parts separately */
+    st = td_state_space_load(ss, fre, zre, err);
+    if (st == TD_OK)
+        st = td_state_space_load(ss, fim, zim, err);
+    if (st != TD_OK)
+        goto done;
+    for (i = 0; i < n; i++)
+        gsl_vector_complex_set(b, i, gsl_complex_rect(zre[i], zim[i]));
+    /* T = i W I - A */
+    for (i = 0; i < n; i++)
+        for (j = 0; j < n; j++)
+            gsl_matrix_complex_set(T, i, j, gsl_complex_rect(-gsl_matrix_get(ss->A, i, j), i == j ? W : 0.0));
+    if (gsl_linalg_complex_LU_decomp(T, p, &sign) != GSL_SUCCESS || complex_lu_singular(T) ||
+        gsl_linalg_complex_LU_svx(T, p, b) != GSL_SUCCESS) {
+        st = td_error_set(err, TD_ERR_NUMERIC, "modal: i*%g is an eigenvalue of the system (undamped resonance)", W);
+        goto done;
+    }
+    for (i = 0; i < n; i++) {
+        zre[i] = GSL_REAL(gsl_vector_complex_get(b, i));
+        zim[i] = GSL_IMAG(gsl_vector_complex_get(b, i));
+    }
+done:
+    gsl_permutation_free(p);
+    gsl_vector_complex_free(b);
+    gsl_matrix_complex_free(T);
+    return st;
+}
+
+/* Response amplitudes into freshly allocated zre, zim (ss->n each); zero when there is no force. */
+static td_status unbalance_response(const td_system *sys, const td_state_space *ss, const td_unbalance *u, int n_u,
+                                    double *zre, double *zim, td_error *err)
+{
+    double *f = malloc(2u * (size_t)sys->ndof * sizeof *f);
+    td_status st;
+    int i, any = 0;
+    if (!f)
+        return td_error_set(err, TD_ERR_NOMEM, "modal: out of memory for the unbalance forces");
+    st = td_unbalance_forces(sys, ss->omega, u, n_u, f, f + sys->ndof, err);
+    for (i = 0; st == TD_OK && i < 2 * sys->ndof; i++)
+        any |= f[i] != 0.0;
+    if (st == TD_OK && any)
+        st = solve_harmonic(ss, ss->omega, f, f + sys->ndof, zre, zim, err);
+    else if (st == TD_OK)
+        for (i = 0; i < ss->n; i++)
+            zre[i] = zim[i] = 0.0;
+    free(f);
+    return st;
+}
+
+td_status td_harmonic_compute(const td_system *sys, double omega, const td_unbalance *u, int n_u, td_harmonic **out,
+                              td_error *err)
+{
+    td_state_space ss;
+    td_harmonic *h;
+    td_status st;
+    if (!out)
+        return td_error_set(err, TD_ERR_INVALID, "td_harmonic_compute: NULL output pointer");
+    *out = NULL;
+    st = td_state_space_build(sys, omega, &ss, err);
+    if (st != TD_OK)
+        return st;
+    h = calloc(1, sizeof *h);
+    if (h) {
+        h->re = malloc((size_t)ss.n * sizeof *h->re);
+        h->im = malloc((size_t)ss.n * sizeof *h->im);
+    }
+    if (!h || !h->re || !h->im) {
+        td_harmonic_free(&h);
+        td_state_space_free(&ss);
+        return td_error_set(err, TD_ERR_NOMEM, "modal: out of memory for the harmonic response");
+    }
+    h->omega = omega;
+    h->nnodes = sys->nnodes;
+    h->n = ss.n;
+    st = unbalance_response(sys, &ss, u, n_u, h->re, h->im, err);
+    td_state_space_free(&ss);
+    if (st != TD_OK) {
+        td_harmonic_free(&h);
+        return st;
+    }
+    *out = h;
+    return TD_OK;
+}
+
+double td_harmonic_speed(const td_harmonic *h)
+{
+    return h ? h->omega : NAN;
+}
+int td_harmonic_node_count(const td_harmonic *h)
+{
+    return h ? h->nnodes : 0;
+}
+int td_harmonic_state_count(const td_harmonic *h)
+{
+    return h ? h->n : 0;
+}
+
+td_status td_harmonic_state(const td_harmonic *h, int i, double *re, double *im)
+{
+    if (!h || i < 0 || i >= h->n)
+        return TD_ERR_INVALID;
+    if (re)
+        *re = h->re[i];
+    if (im)
+        *im = h->im[i];
+    return TD_OK;
+}
+
+td_status td_harmonic_orbit(const td_harmonic *h, int node, td_orbit *o)
+{
+    int ix, iy;
+    if (!h || !o || node < 0 || node >= h->nnodes)
+        return TD_ERR_INVALID;
+    ix = TD_DOF(node, TD_DOF_X);
+    iy = TD_DOF(node, TD_DOF_Y);
+    o->x_re = h->re[ix];
+    o->x_im = h->im[ix];
+    o->y_re = h->re[iy];
+    o->y_im = h->im[iy];
+    o->x_amp = hypot(o->x_re, o->x_im);
+    o->y_amp = hypot(o->y_re, o->y_im);
+    o->x_phase = atan2(o->x_im, o->x_re);
+    o->y_phase = atan2(o->y_im, o->y_re);
+    /* x + i y = (X + iY)/2 e^{iWt} + (conj X + i conj Y)/2 e^{-iWt} */
+    o->forward = 0.5 * hypot(o->x_re - o->y_im, o->x_im + o->y_re);
+    o->backward = 0.5 * hypot(o->x_re + o->y_im, o->x_im - o->y_re);
+    o->major = o->forward + o->backward;
+    o->minor = fabs(o->forward - o->backward);
+    return TD_OK;
+}
+
+/* Static state z_s with A z_s = -[0; M^-1 f_g; 0] (real LU). */
+static td_status static_state(const td_system *sys, const td_state_space *ss, double *zs, td_error *err)
+{
+    size_t n = (size_t)ss->n, i;
+    gsl_matrix *LU = gsl_matrix_alloc(n, n);
+    gsl_permutation *p = gsl_permutation_alloc(n);
+    gsl_vector_view x = gsl_vector_view_array(zs, n);
+    td_status st;
+    int sign;
+    if (!LU || !p) {
+        gsl_matrix_free(LU);
+        gsl_permutation_free(p);
+        return td_error_set(err, TD_ERR_NOMEM, "modal: out of memory for the static solve");
+    }
+    st = td_state_space_load(ss, sys->gravity_load, zs, err);
+    if (st == TD_OK) {
+        for (i = 0; i < n; i++)
+            zs[i] = -zs[i];
+        gsl_matrix_memcpy(LU, ss->A);
+        if (gsl_linalg_LU_decomp(LU, p, &sign) != GSL_SUCCESS || gsl_linalg_LU_det(LU, sign) == 0.0 ||
+            gsl_linalg_LU_svx(LU, p, &x.vector) != GSL_SUCCESS)
+            st = td_error_set(err, TD_ERR_NUMERIC,
+                              "modal: the static deflection under gravity is undefined (the rotor is not held)");
+    }
+    gsl_permutation_free(p);
+    gsl_matrix_free(LU);
+    return st;
+}
+
+static int has_gravity(const td_system *sys)
+{
+    int i;
+    for (i = 0; sys->gravity_load && i < sys->ndof; i++)
+        if (sys->gravity_load[i] != 0.0)
+            return 1;
+    return 0;
+}
+
+td_status td_modal_start_state(const td_system *sys, double omega, const td_unbalance *u, int n_u, int with_gravity,
+                               double t, double *z, td_error *err)
+{
+    td_state_space ss;
+    double *work;
+    td_status st;
+    int i;
+    if (!z || !isfinite(t))
+        return td_error_set(err, TD_ERR_INVALID, "td_modal_start_state: NULL state or non-finite time");
+    st = td_state_space_build(sys, omega, &ss, err);
+    if (st != TD_OK)
+        return st;
+    work = malloc(3u * (size_t)ss.n * sizeof *work);
+    if (!work) {
+        td_state_space_free(&ss);
+        return td_error_set(err, TD_ERR_NOMEM, "modal: out of memory for the start state");
+    }
+    st = unbalance_response(sys, &ss, u, n_u, work, work + ss.n, err);
+    for (i = 0; i < ss.n; i++)
+        work[2 * ss.n + i] = 0.0;
+    if (st == TD_OK && with_gravity && has_gravity(sys))
+        st = static_state(sys, &ss, work + 2 * ss.n, err);
+    if (st == TD_OK) {
+        double c = cos(omega * t), s = sin(omega * t);
+        /* Re((re + i im)(c + i s)) = re c - im s */
+        for (i = 0; i < ss.n; i++)
+            z[i] = work[i] * c - work[ss.n + i] * s + work[2 * ss.n + i];
+    }
+    free(work);
+    td_state_space_free(&ss);
+    return st;
+}

@@ -1,0 +1,231 @@
+/*
+ * The first-order form of the contact-free system (touchdown/modal.h):
+ *
+ *   q' = v
+ *   M v' = -K_eff q - C_eff v + B_w w
+ *   w'   = (command(xs, vs) - w) / tau          (one per AMB axis with tau > 0)
+ *
+ * K_eff = K - ks at (actuator, actuator) for every AMB axis; C_eff = C + Omega G. An axis with
+ * tau == 0 has no filter state: its force ks x + command(xs, vs) is exactly a spring-damper,
+ * -ki kp at (actuator, sensor) moved to K_eff and -ki kd to C_eff. The AMB coefficients come from
+ * the axis law in model/amb.c (evaluated at unit inputs, which is exact for a linear law), so the
+ * AMB physics lives in one place.
+ */
+#include "modal/modal_internal.h"
+#include "util/error_internal.h"
+
+#include <gsl/gsl_errno.h>
+#include <gsl/gsl_linalg.h>
+
+#include <math.h>
+#include <stdlib.h>
+
+void td_modal_gsl_quiet(void)
+{
+    gsl_set_error_handler_off();
+}
+
+int td_modal_state_count(const td_system *sys)
+{
+    return sys ? 2 * sys->ndof + sys->n_filter_states : 0;
+}
+
+/* dense(i, j) += scale * S(i, j) */
+static void add_sparse(gsl_matrix *D, const cs_di *S, double scale)
+{
+    int j, p;
+    for (j = 0; j < S->n; j++)
+        for (p = S->p[j]; p < S->p[j + 1]; p++)
+            *gsl_matrix_ptr(D, (size_t)S->i[p], (size_t)j) += scale * S->x[p];
+}
+
+/* Linear coefficients of one AMB axis, from the law functions of system_internal.h. */
+typedef struct amb_coeffs {
+    double dfdx;                   /* d(force)/dx at the actuator: ks (unsaturated, enabled) */
+    double dfdfc;                  /* d(force)/d(Fc): 1 */
+    double cmd_x;                  /* d(command)/d(xs) = -ki kp */
+    double cmd_v;                  /* d(command)/d(vs) = -ki kd */
+    double rate_x, rate_v, rate_w; /* d(dFc/dt)/d(xs, vs, Fc), tau > 0 only */
+} amb_coeffs;
+
+static amb_coeffs amb_axis_coeffs(const td_amb_axis *a)
+{
+    amb_coeffs c = {0};
+    (void)td_amb_axis_force(a, 1, 0.0, 0.0, &c.dfdx, &c.dfdfc);
+    c.cmd_x = td_amb_axis_command(a, 1.0, 0.0);
+    c.cmd_v = td_amb_axis_command(a, 0.0, 1.0);
+    if (a->state >= 0) {
+        c.rate_x = td_amb_axis_filter_rate(a, 1.0, 0.0, 0.0);
+        c.rate_v = td_amb_axis_filter_rate(a, 0.0, 1.0, 0.0);
+        c.rate_w = td_amb_axis_filter_rate(a, 0.0, 0.0, 1.0);
+    }
+    return c;
+}
+
+/* Right-hand blocks [K_eff | C_eff | B_w] (ndof x (2 ndof + nfilter)) of M v' = -K_eff q - C_eff v + B_w w,
+ * stored with the signs of the state equation: R = [-K_eff | -C_eff | B_w]. */
+static void fill_rhs_blocks(const td_system *sys, double omega, gsl_matrix *R)
+{
+    int nd = sys->ndof, k;
+    gsl_matrix_view Kb = gsl_matrix_submatrix(R, 0, 0, (size_t)nd, (size_t)nd);
+    gsl_matrix_view Cb = gsl_matrix_submatrix(R, 0, (size_t)nd, (size_t)nd, (size_t)nd);
+    gsl_matrix_set_zero(R);
+    add_sparse(&Kb.matrix, sys->K, -1.0);
+    add_sparse(&Cb.matrix, sys->C, -1.0);
+    add_sparse(&Cb.matrix, sys->G, -omega);
+    for (k = 0; k < sys->n_amb_axes; k++) {
+        const td_amb_axis *a = &sys->amb_axes[k];
+        amb_coeffs c = amb_axis_coeffs(a);
+        size_t act = (size_t)a->actuator_dof, sen = (size_t)a->sensor_dof;
+        /* F = ks x + Fc on the right-hand side: +ks x */
+        *gsl_matrix_ptr(R, act, act) += c.dfdx;
+        if (a->state < 0) {
+            /* lag-free: Fc = command(xs, vs) exactly */
+            *gsl_matrix_ptr(R, act, sen) += c.dfdfc * c.cmd_x;
+            *gsl_matrix_ptr(R, act, (size_t)nd + sen) += c.dfdfc * c.cmd_v;
+        } else {
+            *gsl_matrix_ptr(R, act, (size_t)(2 * nd + a->state)) += c.dfdfc;
+        }
+    }
+}
+
+/* Filter rows w' = rate_x xs + rate_v vs + rate_w w. */
+static void fill_filter_rows(const td_system *sys, gsl_matrix *A)
+{
+    int nd = sys->ndof, k;
+    for (k = 0; k < sys->n_amb_axes; k++) {
+        const td_amb_axis *a = &sys->amb_axes[k];
+        amb_coeffs c;
+        size_t row;
+        if (a->state < 0)
+            continue;
+        c = amb_axis_coeffs(a);
+        row = (size_t)(2 * nd + a->state);
+        *gsl_matrix_ptr(A, row, (size_t)a->sensor_dof) += c.rate_x;
+        *gsl_matrix_ptr(A, row, (size_t)(nd + a->sensor_dof)) += c.rate_v;
+        *gsl_matrix_ptr(A, row, row) += c.rate_w;
+    }
+}
+
+void td_state_space_free(td_state_space *ss)
+{
+    if (!ss)
+        return;
+    gsl_matrix_free(ss->A);
+    gsl_matrix_free(ss->L);
+    ss->A = ss->L = NULL;
+}
+
+/* L = Cholesky factor of the dense M. */
+static td_status factor_mass(const td_system *sys, gsl_matrix *L, td_error *err)
+{
+    gsl_matrix_set_zero(L);
+    add_sparse(L, sys->M, 1.0);
+    if (gsl_linalg_cholesky_decomp1(L) != GSL_SUCCESS)
+        return td_error_set(err, TD_ERR_NUMERIC,
+                            "modal: the mass matrix is not positive definite (a DOF without mass or inertia?)");
+    return TD_OK;
+}
+
+td_status td_state_space_build(const td_system *sys, double omega, td_state_space *ss, td_error *err)
+{
+    gsl_matrix *R = NULL;
+    size_t nd, n;
+    td_status st;
+    if (!sys || !ss)
+        return td_error_set(err, TD_ERR_INVALID, "modal: NULL system");
+    if (!isfinite(omega))
+        return td_error_set(err, TD_ERR_INVALID, "modal: speed must be finite");
+    td_modal_gsl_quiet();
+    ss->ndof = sys->ndof;
+    ss->nfilter = sys->n_filter_states;
+    ss->n = td_modal_state_count(sys);
+    ss->omega = omega;
+    nd = (size_t)ss->ndof;
+    n = (size_t)ss->n;
+    ss->A = gsl_matrix_calloc(n, n);
+    ss->L = gsl_matrix_alloc(nd, nd);
+    R = gsl_matrix_alloc(nd, n);
+    if (!ss->A || !ss->L || !R) {
+        gsl_matrix_free(R);
+        td_state_space_free(ss);
+        return td_error_set(err, TD_ERR_NOMEM, "modal: out of memory for a %d-state system", ss->n);
+    }
+    st = factor_mass(sys, ss->L, err);
+    if (st == TD_OK) {
+        size_t i;
+        /* v rows: M^-1 [-K_eff | -C_eff | B_w] */
+        fill_rhs_blocks(sys, omega, R);
+        if (gsl_linalg_cholesky_svx_mat(ss->L, R) != GSL_SUCCESS)
+            st = td_error_set(err, TD_ERR_NUMERIC, "modal: solving with the mass matrix failed");
+        else {
+            gsl_matrix_view vrows = gsl_matrix_submatrix(ss->A, nd, 0, nd, n);
+            gsl_matrix_memcpy(&vrows.matrix, R);
+            for (i = 0; i < nd; i++) /* q' = v */
+                gsl_matrix_set(ss->A, i, nd + i, 1.0);
+            fill_filter_rows(sys, ss->A);
+        }
+    }
+    gsl_matrix_free(R);
+    if (st != TD_OK)
+        td_state_space_free(ss);
+    return st;
+}
+
+td_status td_state_space_load(const td_state_space *ss, const double *f, double *out, td_error *err)
+{
+    int i;
+    gsl_vector_view x;
+    for (i = 0; i < ss->n; i++)
+        out[i] = 0.0;
+    for (i = 0; i < ss->ndof; i++)
+        out[ss->ndof + i] = f[i];
+    x = gsl_vector_view_array(out + ss->ndof, (size_t)ss->ndof);
+    if (gsl_linalg_cholesky_svx(ss->L, &x.vector) != GSL_SUCCESS)
+        return td_error_set(err, TD_ERR_NUMERIC, "modal: solving with the mass matrix failed");
+    return TD_OK;
+}
+
+td_status td_unbalance_forces(const td_system *sys, double omega, const td_unbalance *u, int n_u, double *fre,
+                              double *fim, td_error *err)
+{
+    int i;
+    for (i = 0; i < sys->ndof; i++)
+        fre[i] = fim[i] = 0.0;
+    if (n_u < 0 || (n_u > 0 && !u))
+        return td_error_set(err, TD_ERR_INVALID, "modal: bad unbalance list");
+    for (i = 0; i < n_u; i++) {
+        double a = u[i].magnitude * omega * omega, c = cos(u[i].phase), s = sin(u[i].phase);
+        int x, y;
+        if (u[i].node < 0 || u[i].node >= sys->nnodes)
+            return td_error_set(err, TD_ERR_INVALID, "modal: unbalance %d: node %d out of range (0..%d)", i, u[i].node,
+                                sys->nnodes - 1);
+        if (!isfinite(a) || !isfinite(u[i].phase))
+            return td_error_set(err, TD_ERR_INVALID, "modal: unbalance %d: magnitude and phase must be finite", i);
+        x = TD_DOF(u[i].node, TD_DOF_X);
+        y = TD_DOF(u[i].node, TD_DOF_Y);
+        /* F_x = Re(U w^2 e^{ip} e^{iwt}) = U w^2 cos(wt + p); F_y = Re(-i U w^2 e^{ip} e^{iwt}) = U w^2 sin(wt + p) */
+        fre[x] += a * c;
+        fim[x] += a * s;
+        fre[y] += a * s;
+        fim[y] -= a * c;
+    }
+    return TD_OK;
+}
+
+td_status td_modal_state_matrix(const td_system *sys, double omega, double *A, td_error *err)
+{
+    td_state_space ss;
+    td_status st;
+    int i, j;
+    if (!A)
+        return td_error_set(err, TD_ERR_INVALID, "modal: NULL output matrix");
+    st = td_state_space_build(sys, omega, &ss, err);
+    if (st != TD_OK)
+        return st;
+    for (j = 0; j < ss.n; j++)
+        for (i = 0; i < ss.n; i++)
+            A[i + (size_t)j * (size_t)ss.n] = gsl_matrix_get(ss.A, (size_t)i, (size_t)j);
+    td_state_space_free(&ss);
+    return TD_OK;
+}

@@ -1,0 +1,976 @@
+/*
+ * The case-file reader (td_case_load): every documented key lands where it should, the paper
+ * cases carry the reference rig's numbers (reference-rig.md), overrides work and bad ones fail,
+ * and every broken file under tests/data/bad/ fails with FILE:LINE: KEY in its message.
+ */
+#include "td_test.h"
+
+#include "touchdown/case.h"
+#include "touchdown/model.h"
+
+#include <dirent.h>
+#include <errno.h>
+#include <fcntl.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/types.h>
+#include <unistd.h>
+
+/* ---- helpers ------------------------------------------------------------------------------ */
+
+static td_case *load_ok(const char *relative, const char *const *ov, int n)
+{
+    td_case *c = NULL;
+    td_error err;
+    td_status st = td_case_load(td_source_path(relative), ov, n, &c, &err);
+    if (st != TD_OK)
+        print_error("td_case_load(%s): %s\n", relative, err.message);
+    assert_int_equal(st, TD_OK);
+    assert_non_null(c);
+    return c;
+}
+
+/* A scratch directory in the build tree for files made at test time. */
+static const char *scratch(const char *name)
+{
+    static char buf[4][1024];
+    static int slot;
+    slot = (slot + 1) % 4;
+    mkdir(TD_BINARY_DIR "/tests", 0755);
+    mkdir(TD_BINARY_DIR "/tests/case-scratch", 0755);
+    snprintf(buf[slot], sizeof buf[slot], "%s/tests/case-scratch/%s", TD_BINARY_DIR, name);
+    return buf[slot];
+}
+
+static void write_file(const char *path, const char *text)
+{
+    FILE *f = fopen(path, "w");
+    assert_non_null(f);
+    fputs(text, f);
+    fclose(f);
+}
+
+static char *read_all(const char *path)
+{
+    FILE *f = fopen(path, "rb");
+    long n;
+    char *buf;
+    assert_non_null(f);
+    fseek(f, 0, SEEK_END);
+    n = ftell(f);
+    fseek(f, 0, SEEK_SET);
+    buf = malloc((size_t)n + 1);
+    assert_non_null(buf);
+    assert_int_equal(fread(buf, 1, (size_t)n, f), (size_t)n);
+    buf[n] = '\0';
+    fclose(f);
+    return buf;
+}
+
+static void assert_contains(const char *haystack, const char *needle)
+{
+    if (!strstr(haystack, needle)) {
+        print_error("expected \"%s\" in \"%s\"\n", needle, haystack);
+        fail();
+    }
+}
+
+/* ---- the reference rig and the paper cases ------------------------------------------------ */
+
+/* Closed-form rig mass (reference-rig.md): shaft rho pi r^2 L + four 10 kg discs + two 14.6 kg
+ * AMB journals. */
+static double rig_mass(void)
+{
+    return 7810.0 * TD_PI * 0.025 * 0.025 * 2.0 + 4 * 10.0 + 2 * 14.6;
+}
+
+static void check_rig(const td_model *m)
+{
+    static const int disc_nodes[] = {1, 5, 7, 11};
+    td_shaft_element el;
+    td_shaft_options so;
+    td_disc d;
+    td_amb a;
+    td_retainer r;
+    double gx, gy;
+    int i;
+
+    assert_int_equal(td_model_node_count(m), 13);
+    assert_int_equal(td_model_shaft_element_count(m), 12);
+    for (i = 0; i < 12; i++) {
+        assert_int_equal(td_model_get_shaft_element(m, i, &el), TD_OK);
+        assert_close(el.length, 1.0 / 6.0, 1e-15, 0.0);
+        assert_close(el.outer_diameter, 0.05, 0.0, 0.0);
+        assert_close(el.inner_diameter, 0.0, 0.0, 0.0);
+        assert_close(el.material.E, 2.11e11, 0.0, 0.0);
+        assert_close(el.material.G, 8.1e10, 0.0, 0.0);
+        assert_close(el.material.density, 7810.0, 0.0, 0.0);
+    }
+    assert_close(td_model_node_position(m, 12), 2.0, 1e-14, 0.0);
+    td_model_shaft_options(m, &so);
+    assert_int_equal(so.beam, TD_BEAM_EULER_BERNOULLI);
+    assert_int_equal(so.mass, TD_MASS_CONSISTENT);
+    assert_close(so.rayleigh_alpha, 0.0, 0.0, 0.0);
+    assert_close(so.rayleigh_beta, 0.0, 0.0, 0.0);
+
+    /* 4 discs then 2 point masses */
+    assert_int_equal(td_model_disc_count(m), 6);
+    for (i = 0; i < 4; i++) {
+        assert_int_equal(td_model_get_disc(m, i, &d), TD_OK);
+        assert_int_equal(d.node, disc_nodes[i]);
+        assert_close(d.mass, 10.0, 0.0, 0.0);
+        assert_close(d.Ip, 10.0 * 0.12 * 0.12 / 2.0, 1e-15, 0.0);
+        /* Id = m (3R^2 + t^2)/12 with t = m / (rho pi R^2); the table rounds to 0.036668 */
+        assert_close(d.Id, 10.0 * (3 * 0.0144 + pow(10.0 / (7810.0 * TD_PI * 0.0144), 2)) / 12.0, 2e-5, 0.0);
+    }
+    for (i = 4; i < 6; i++) {
+        assert_int_equal(td_model_get_disc(m, i, &d), TD_OK);
+        assert_int_equal(d.node, i == 4 ? 3 : 9);
+        assert_close(d.mass, 14.6, 0.0, 0.0);
+        assert_close(d.Ip, 0.0, 0.0, 0.0);
+        assert_close(d.Id, 0.0, 0.0, 0.0);
+    }
+    assert_close(td_model_total_mass(m), rig_mass(), 1e-13, 0.0);
+    assert_close(td_model_total_mass(m), 99.87, 0.0, 0.005); /* "rotor mass 99.87 kg in all" */
+
+    assert_int_equal(td_model_amb_count(m), 2);
+    for (i = 0; i < 2; i++) {
+        assert_int_equal(td_model_get_amb(m, i, &a), TD_OK);
+        assert_int_equal(a.node, i == 0 ? 3 : 9);
+        assert_int_equal(a.sensor_node, a.node);
+        assert_close(a.ks, 1.0e6, 0.0, 0.0);
+        assert_close(a.ki, 200.0, 0.0, 0.0);
+        assert_close(a.kp, 1.0e4, 0.0, 0.0);
+        assert_close(a.kd, 40.0, 0.0, 0.0);
+        assert_close(a.tau, 1.0 / (2.0 * TD_PI * 100.0), 1e-15, 0.0);
+        assert_close(a.force_capacity, 1700.0, 0.0, 0.0);
+        assert_int_equal(a.saturation, 0);
+        assert_close(a.air_gap, 1.2e-3, 0.0, 0.0);
+    }
+    assert_int_equal(td_model_bearing_count(m), 0);
+    assert_int_equal(td_model_retainer_count(m), 2);
+    for (i = 0; i < 2; i++) {
+        assert_int_equal(td_model_get_retainer(m, i, &r), TD_OK);
+        assert_int_equal(r.node, i == 0 ? 2 : 10);
+        assert_close(r.clearance, 0.75e-3, 0.0, 0.0);
+        assert_close(r.shaft_radius, 0.025, 0.0, 0.0);
+        assert_close(r.bore_radius, 0.025 + 0.75e-3, 1e-15, 0.0);
+        assert_close(r.friction, 0.1, 0.0, 0.0);
+        assert_close(r.bore_speed, 0.0, 0.0, 0.0);
+        assert_close(r.restitution, 0.0, 0.0, 0.0);
+    }
+    td_model_gravity(m, &gx, &gy);
+    assert_close(gx, 0.0, 0.0, 0.0);
+    assert_close(gy, 0.0, 0.0, 0.0);
+    assert_int_equal(td_model_validate(m, NULL), TD_OK);
+}
+
+typedef struct paper_case {
+    const char *file, *name;
+    double speed, u_low, u_high; /* unbalance before 0.1 s and after 1.1 s, and in between */
+    td_contact_model contact;
+    double kc;
+} paper_case;
+
+static const paper_case paper_cases[] = {
+    {"cases/paper-a.cfg", "paper-a", 90.0, 0.02, 0.10, TD_CONTACT_CONSTRAINT, 0.0},
+    {"cases/paper-b.cfg", "paper-b", 190.0, 0.01, 0.03, TD_CONTACT_CONSTRAINT, 0.0},
+    {"cases/paper-c.cfg", "paper-c", 90.0, 0.02, 0.10, TD_CONTACT_PENALTY, 1.25e12},
+    {"cases/paper-d-kc1.25e12.cfg", "paper-d-kc1.25e12", 190.0, 0.01, 0.03, TD_CONTACT_PENALTY, 1.25e12},
+    {"cases/paper-d-kc1.25e10.cfg", "paper-d-kc1.25e10", 190.0, 0.01, 0.03, TD_CONTACT_PENALTY, 1.25e10},
+};
+
+static void test_paper_cases(void **state)
+{
+    size_t k;
+    (void)state;
+    for (k = 0; k < sizeof paper_cases / sizeof paper_cases[0]; k++) {
+        const paper_case *p = &paper_cases[k];
+        td_case *c = load_ok(p->file, NULL, 0);
+        const td_model *m = td_case_model(c);
+        const td_sim_options *so = td_case_sim_options(c);
+        td_unbalance u;
+        td_change ch;
+
+        check_rig(m);
+        assert_string_equal(td_case_name(c), p->name);
+        assert_string_equal(td_case_path(c), td_source_path(p->file));
+        assert_close(td_model_speed(m), p->speed, 0.0, 0.0);
+        assert_close(td_case_end_time(c), 2.0, 0.0, 0.0);
+        assert_int_equal(so->start, TD_START_ORBIT);
+        assert_int_equal(so->contact.model, p->contact);
+        if (p->contact == TD_CONTACT_PENALTY) {
+            assert_close(so->contact.stiffness, p->kc, 0.0, 0.0);
+            assert_close(so->contact.exponent, 1.0, 0.0, 0.0);
+            assert_int_equal(so->contact.damping, TD_DAMPING_NONE);
+        }
+        /* unbalance at the NDE disc (node 1): U0 at t = 0, stepped at 0.1 s and back at 1.1 s */
+        assert_int_equal(td_model_unbalance_count(m), 1);
+        assert_int_equal(td_model_get_unbalance(m, 0, &u), TD_OK);
+        assert_int_equal(u.node, 1);
+        assert_close(u.magnitude, p->u_low, 0.0, 0.0);
+        assert_close(u.phase, 0.0, 0.0, 0.0);
+        assert_int_equal(td_model_change_count(m), 2);
+        assert_int_equal(td_model_get_change(m, 0, &ch), TD_OK);
+        assert_close(ch.time, 0.1, 0.0, 0.0);
+        assert_int_equal(ch.kind, TD_CHANGE_UNBALANCE);
+        assert_int_equal(ch.index, 0);
+        assert_close(ch.magnitude, p->u_high, 0.0, 0.0);
+        assert_int_equal(td_model_get_change(m, 1, &ch), TD_OK);
+        assert_close(ch.time, 1.1, 0.0, 0.0);
+        assert_close(ch.magnitude, p->u_low, 0.0, 0.0);
+        /* the include is expanded in the text kept with the results */
+        assert_contains(td_case_text(c), "# >>> @include \"rig.cfg\"");
+        assert_contains(td_case_text(c), "force_capacity = 1700.0");
+        assert_contains(td_case_description(c), "Paper case");
+        td_case_free(&c);
+        assert_null(c);
+    }
+}
+
+/* The expanded text is a self-contained case that reads back to the same machine. */
+static void test_text_is_self_contained(void **state)
+{
+    td_case *a = load_ok("cases/paper-c.cfg", NULL, 0), *b = NULL;
+    const char *copy = scratch("paper-c-expanded.cfg");
+    td_error err;
+    td_change ca, cb;
+    int i;
+    (void)state;
+    assert_null(strstr(td_case_text(a), "\n@include"));
+    write_file(copy, td_case_text(a));
+    assert_int_equal(td_case_load(copy, NULL, 0, &b, &err), TD_OK);
+    check_rig(td_case_model(b));
+    assert_close(td_model_speed(td_case_model(b)), td_model_speed(td_case_model(a)), 0.0, 0.0);
+    assert_int_equal(td_model_change_count(td_case_model(b)), td_model_change_count(td_case_model(a)));
+    for (i = 0; i < td_model_change_count(td_case_model(a)); i++) {
+        td_model_get_change(td_case_model(a), i, &ca);
+        td_model_get_change(td_case_model(b), i, &cb);
+        assert_memory_equal(&ca, &cb, sizeof ca);
+    }
+    assert_memory_equal(td_case_sim_options(a), td_case_sim_options(b), sizeof(td_sim_options));
+    assert_string_equal(td_case_text(a), td_case_text(b)); /* nothing left to expand */
+    td_case_free(&a);
+    td_case_free(&b);
+}
+
+static void test_other_examples(void **state)
+{
+    td_case *c = load_ok("cases/rotor-drop.cfg", NULL, 0);
+    const td_model *m = td_case_model(c);
+    td_change ch;
+    td_disc d;
+    double gx, gy, mass;
+    (void)state;
+    assert_close(td_model_total_mass(m), rig_mass(), 1e-13, 0.0);
+    td_model_gravity(m, &gx, &gy);
+    assert_close(gx, 0.0, 0.0, 0.0);
+    assert_close(gy, -9.81, 1e-15, 0.0);
+    assert_int_equal(td_model_change_count(m), 2);
+    assert_int_equal(td_model_get_change(m, 0, &ch), TD_OK);
+    assert_int_equal(ch.kind, TD_CHANGE_AMB_OFF);
+    assert_int_equal(ch.index, 0);
+    assert_close(ch.time, 0.1, 0.0, 0.0);
+    assert_int_equal(td_model_get_change(m, 1, &ch), TD_OK);
+    assert_int_equal(ch.kind, TD_CHANGE_AMB_OFF);
+    assert_int_equal(ch.index, 1);
+    assert_close(td_case_end_time(c), 0.5, 0.0, 0.0);
+    assert_string_equal(td_case_output_options(c)->hdf5_path, "rotor-drop.h5");
+    td_case_free(&c);
+
+    c = load_ok("cases/jeffcott.cfg", NULL, 0);
+    m = td_case_model(c);
+    assert_int_equal(td_model_node_count(m), 7);
+    assert_int_equal(td_model_bearing_count(m), 2);
+    assert_int_equal(td_model_amb_count(m), 0);
+    assert_int_equal(td_model_retainer_count(m), 0);
+    /* disc from geometry: m = rho pi R^2 t, Ip = m R^2/2, Id = m (3R^2 + t^2)/12 */
+    mass = 7810.0 * TD_PI * 0.1 * 0.1 * 0.02;
+    assert_int_equal(td_model_get_disc(m, 0, &d), TD_OK);
+    assert_close(d.mass, mass, 1e-14, 0.0);
+    assert_close(d.Ip, mass * 0.01 / 2.0, 1e-14, 0.0);
+    assert_close(d.Id, mass * (3 * 0.01 + 0.02 * 0.02) / 12.0, 1e-14, 0.0);
+    assert_int_equal(td_case_modal_options(c)->response_speed_count, 4);
+    td_case_free(&c);
+}
+
+/* ---- every key ---------------------------------------------------------------------------- */
+
+static void check_element(const td_model *m, int i, double od, double id, double E, double G, double rho)
+{
+    td_shaft_element el;
+    assert_int_equal(td_model_get_shaft_element(m, i, &el), TD_OK);
+    assert_close(el.length, 0.2, 1e-15, 0.0);
+    assert_close(el.outer_diameter, od, 0.0, 0.0);
+    assert_close(el.inner_diameter, id, 0.0, 0.0);
+    assert_close(el.material.E, E, 0.0, 0.0);
+    assert_close(el.material.G, G, 0.0, 0.0);
+    assert_close(el.material.density, rho, 0.0, 0.0);
+}
+
+static void check_all_keys_model(const td_model *m)
+{
+    td_shaft_options so;
+    td_disc d;
+    td_amb a;
+    td_bearing b;
+    td_retainer r;
+    td_unbalance u;
+    td_change ch;
+    double gx, gy, disc_m, shaft_m;
+    int i;
+
+    assert_close(td_model_speed(m), 150.0, 0.0, 0.0); /* written as the integer 150 */
+    assert_int_equal(td_model_shaft_element_count(m), 6);
+    check_element(m, 0, 0.06, 0.0, 1.1e11, 4.2e10, 4500.0);
+    check_element(m, 1, 0.06, 0.0, 1.1e11, 4.2e10, 4500.0);
+    check_element(m, 2, 0.04, 0.01, 2.0e11, 7.7e10, 7800.0);
+    check_element(m, 3, 0.04, 0.01, 2.0e11, 7.7e10, 7800.0);
+    check_element(m, 4, 0.04, 0.02, 2.0e11, 7.7e10, 2700.0);
+    check_element(m, 5, 0.04, 0.01, 2.0e11, 7.7e10, 7800.0);
+    td_model_shaft_options(m, &so);
+    assert_int_equal(so.beam, TD_BEAM_TIMOSHENKO);
+    assert_int_equal(so.mass, TD_MASS_LUMPED);
+    assert_close(so.rayleigh_alpha, 0.5, 0.0, 0.0);
+    assert_close(so.rayleigh_beta, 1.0e-5, 0.0, 0.0);
+
+    assert_int_equal(td_model_disc_count(m), 3);
+    td_model_get_disc(m, 0, &d);
+    assert_int_equal(d.node, 1);
+    assert_close(d.mass, 8.0, 0.0, 0.0);
+    assert_close(d.Ip, 0.05, 0.0, 0.0);
+    assert_close(d.Id, 0.03, 0.0, 0.0);
+    /* bored disc: m = rho pi (R^2 - r^2) t, Ip = m (R^2 + r^2)/2, Id = m (3 (R^2 + r^2) + t^2)/12 */
+    disc_m = 7800.0 * TD_PI * (0.01 - 0.0004) * 0.02;
+    td_model_get_disc(m, 1, &d);
+    assert_int_equal(d.node, 5);
+    assert_close(d.mass, disc_m, 1e-14, 0.0);
+    assert_close(d.Ip, disc_m * 0.0104 / 2.0, 1e-14, 0.0);
+    assert_close(d.Id, disc_m * (3 * 0.0104 + 0.0004) / 12.0, 1e-14, 0.0);
+    td_model_get_disc(m, 2, &d);
+    assert_int_equal(d.node, 2);
+    assert_close(d.mass, 3.5, 0.0, 0.0);
+    assert_close(d.Ip + d.Id, 0.0, 0.0, 0.0);
+    shaft_m = 0.2 * TD_PI / 4.0 * (2 * 4500.0 * 0.0036 + 3 * 7800.0 * (0.0016 - 0.0001) + 2700.0 * (0.0016 - 0.0004));
+    assert_close(td_model_total_mass(m), shaft_m + 8.0 + disc_m + 3.5, 1e-13, 0.0);
+
+    assert_int_equal(td_model_amb_count(m), 2);
+    td_model_get_amb(m, 0, &a);
+    assert_int_equal(a.node, 2);
+    assert_int_equal(a.sensor_node, 1);
+    assert_close(a.ks, 5.0e5, 0.0, 0.0);
+    assert_close(a.ki, 150.0, 0.0, 0.0);
+    assert_close(a.kp, 8.0e3, 0.0, 0.0);
+    assert_close(a.kd, 30.0, 0.0, 0.0);
+    assert_close(a.tau, 2.0e-3, 0.0, 0.0);
+    assert_close(a.force_capacity, 1200.0, 0.0, 0.0);
+    assert_int_equal(a.saturation, 1);
+    assert_close(a.air_gap, 1.0e-3, 0.0, 0.0);
+    td_model_get_amb(m, 1, &a);
+    assert_int_equal(a.node, 4);
+    assert_int_equal(a.sensor_node, 4);                           /* default: collocated */
+    assert_close(a.tau, 1.0 / (2.0 * TD_PI * 200.0), 1e-15, 0.0); /* from the bandwidth */
+    assert_int_equal(a.saturation, 0);
+    assert_close(a.air_gap, 0.0, 0.0, 0.0);
+
+    assert_int_equal(td_model_bearing_count(m), 2);
+    td_model_get_bearing(m, 0, &b);
+    assert_int_equal(b.node, 0);
+    assert_close(b.kxx, 1.0e7, 0.0, 0.0);
+    assert_close(b.kyy, 2.0e7, 0.0, 0.0);
+    assert_close(b.cxx, 100.0, 0.0, 0.0);
+    assert_close(b.cyy, 200.0, 0.0, 0.0);
+    td_model_get_bearing(m, 1, &b);
+    assert_int_equal(b.node, 6);
+    assert_close(b.kyy, 3.0e7, 0.0, 0.0); /* default kxx */
+    assert_close(b.cyy, 50.0, 0.0, 0.0);  /* default cxx */
+
+    assert_int_equal(td_model_retainer_count(m), 2);
+    td_model_get_retainer(m, 0, &r);
+    assert_int_equal(r.node, 1);
+    assert_close(r.clearance, 0.5e-3, 0.0, 0.0);
+    assert_close(r.shaft_radius, 0.03, 0.0, 0.0);
+    assert_close(r.bore_radius, 0.0305, 0.0, 0.0);
+    assert_close(r.friction, 0.15, 0.0, 0.0);
+    assert_close(r.bore_speed, 10.0, 0.0, 0.0);
+    assert_close(r.restitution, 0.3, 0.0, 0.0);
+    td_model_get_retainer(m, 1, &r);
+    assert_int_equal(r.node, 5);
+    assert_close(r.bore_radius, 0.0204, 1e-15, 0.0); /* default shaft_radius + clearance */
+    assert_close(r.bore_speed, 0.0, 0.0, 0.0);
+    assert_close(r.restitution, 0.0, 0.0, 0.0);
+
+    assert_int_equal(td_model_unbalance_count(m), 2);
+    td_model_get_unbalance(m, 0, &u);
+    assert_int_equal(u.node, 5);
+    assert_close(u.magnitude, 0.001, 0.0, 0.0);
+    assert_close(u.phase, 0.5, 0.0, 0.0);
+    td_model_get_unbalance(m, 1, &u);
+    assert_int_equal(u.node, 1);
+    assert_close(u.phase, 0.0, 0.0, 0.0);
+
+    /* the schedule comes back sorted by time */
+    assert_int_equal(td_model_change_count(m), 4);
+    td_model_get_change(m, 0, &ch);
+    assert_close(ch.time, 0.05, 0.0, 0.0);
+    assert_int_equal(ch.kind, TD_CHANGE_UNBALANCE);
+    assert_int_equal(ch.index, 1);
+    assert_close(ch.magnitude, 0.004, 0.0, 0.0);
+    assert_close(ch.phase, 1.0, 0.0, 0.0);
+    td_model_get_change(m, 1, &ch);
+    assert_close(ch.time, 0.1, 0.0, 0.0);
+    assert_int_equal(ch.index, 0);
+    assert_close(ch.magnitude, 0.0, 0.0, 0.0);
+    assert_close(ch.phase, 0.5, 0.0, 0.0); /* default: the unbalance's own phase */
+    td_model_get_change(m, 2, &ch);
+    assert_close(ch.time, 0.15, 0.0, 0.0);
+    assert_int_equal(ch.kind, TD_CHANGE_AMB_OFF);
+    assert_int_equal(ch.index, 0);
+    td_model_get_change(m, 3, &ch);
+    assert_close(ch.time, 0.2, 0.0, 0.0);
+    assert_int_equal(ch.kind, TD_CHANGE_AMB_ON);
+
+    td_model_gravity(m, &gx, &gy); /* 9.8 along [3, -4]/5 */
+    assert_close(gx, 9.8 * 0.6, 1e-15, 0.0);
+    assert_close(gy, -9.8 * 0.8, 1e-15, 0.0);
+    (void)i;
+}
+
+static void test_all_keys(void **state)
+{
+    td_case *c = load_ok("tests/data/case/all-keys.cfg", NULL, 0);
+    const td_sim_options *so = td_case_sim_options(c);
+    const td_output_options *oo = td_case_output_options(c);
+    const td_modal_options *mo = td_case_modal_options(c);
+    (void)state;
+    check_all_keys_model(td_case_model(c));
+    assert_string_equal(td_case_description(c), "every key");
+    assert_string_equal(td_case_name(c), "all-keys");
+    assert_close(td_case_end_time(c), 0.25, 0.0, 0.0);
+    assert_int_equal(so->start, TD_START_REST);
+    assert_int_equal(so->contact.model, TD_CONTACT_PENALTY);
+    assert_close(so->contact.stiffness, 2.0e9, 0.0, 0.0);
+    assert_close(so->contact.exponent, 1.5, 0.0, 0.0);
+    assert_int_equal(so->contact.damping, TD_DAMPING_HUNT_CROSSLEY);
+    assert_close(so->contact.damping_coefficient, 0.2, 0.0, 0.0);
+    assert_close(so->solver.rtol, 1e-7, 0.0, 0.0);
+    assert_close(so->solver.atol, 1e-10, 0.0, 0.0);
+    assert_close(so->solver.max_step, 1e-4, 0.0, 0.0);
+    assert_close(so->solver.initial_step, 1e-6, 0.0, 0.0);
+    assert_int_equal(so->solver.max_order, 3);
+    assert_int_equal(so->solver.linear_solver, TD_LINSOL_DENSE);
+    assert_string_equal(oo->hdf5_path, "out/all.h5");
+    assert_string_equal(oo->csv_path, "out/all.csv");
+    assert_close(oo->sample_rate, 2000.0, 0.0, 0.0);
+    assert_int_equal(oo->node_count, 2);
+    assert_int_equal(oo->nodes[0], 1);
+    assert_int_equal(oo->nodes[1], 5);
+    assert_close(mo->speed_min, 10.0, 0.0, 0.0);
+    assert_close(mo->speed_max, 500.0, 0.0, 0.0);
+    assert_int_equal(mo->speed_steps, 50);
+    assert_int_equal(mo->mode_count, 4);
+    assert_int_equal(mo->response_speed_count, 2);
+    assert_close(mo->response_speeds[0], 100.0, 0.0, 0.0);
+    assert_close(mo->response_speeds[1], 200.0, 0.0, 0.0);
+    td_case_free(&c);
+}
+
+/* The other forms, and the defaults of everything left out. */
+static void test_other_forms_and_defaults(void **state)
+{
+    td_case *c = load_ok("tests/data/case/all-keys-nodes.cfg", NULL, 0);
+    const td_model *m = td_case_model(c);
+    td_sim_options sdef;
+    td_output_options odef;
+    td_modal_options mdef;
+    td_shaft_element el;
+    td_shaft_options so;
+    td_bearing b;
+    double gx, gy;
+    (void)state;
+    assert_int_equal(td_model_node_count(m), 4);
+    td_model_get_shaft_element(m, 0, &el);
+    assert_close(el.length, 0.1, 1e-15, 0.0);
+    assert_close(el.inner_diameter, 0.0, 0.0, 0.0);
+    td_model_get_shaft_element(m, 1, &el);
+    assert_close(el.length, 0.15, 1e-14, 0.0);
+    td_model_get_shaft_element(m, 2, &el);
+    assert_close(el.length, 0.2, 1e-14, 0.0);
+    assert_close(td_model_node_position(m, 3), 0.45, 1e-14, 0.0);
+    td_model_shaft_options(m, &so);
+    assert_int_equal(so.beam, TD_BEAM_EULER_BERNOULLI);
+    assert_int_equal(so.mass, TD_MASS_CONSISTENT);
+    assert_int_equal(td_model_disc_count(m), 0);
+    assert_int_equal(td_model_amb_count(m), 0);
+    td_model_get_bearing(m, 1, &b);
+    assert_close(b.kyy, 1e6, 0.0, 0.0);
+    assert_close(b.cxx + b.cyy, 0.0, 0.0, 0.0);
+    td_model_gravity(m, &gx, &gy); /* a gravity group is on by default, along -y */
+    assert_close(gx, 0.0, 0.0, 0.0);
+    assert_close(gy, -9.81, 1e-15, 0.0);
+    assert_close(td_model_speed(m), 0.0, 0.0, 0.0);
+    assert_string_equal(td_case_description(c), "");
+
+    td_sim_options_default(&sdef);
+    sdef.contact.damping = TD_DAMPING_KELVIN_VOIGT;
+    sdef.contact.damping_coefficient = 1.0e3;
+    assert_memory_equal(td_case_sim_options(c), &sdef, sizeof sdef);
+    td_output_options_default(&odef);
+    assert_memory_equal(td_case_output_options(c), &odef, sizeof odef);
+    td_modal_options_default(&mdef);
+    assert_memory_equal(td_case_modal_options(c), &mdef, sizeof mdef);
+    td_case_free(&c);
+}
+
+/* Every key in the tables of docs/case-format.md is used by the all-keys files, and every key the
+ * reader accepts is documented (the reader lists the valid keys of a group when it meets an
+ * unknown one far from all of them). */
+static void test_docs_match_reader(void **state)
+{
+    static const char *const groups[] = {"",
+                                         "shaft.",
+                                         "shaft.material.",
+                                         "shaft.sections[0].",
+                                         "shaft.rayleigh.",
+                                         "discs[0].",
+                                         "point_masses[0].",
+                                         "ambs[0].",
+                                         "bearings[0].",
+                                         "retainers[0].",
+                                         "unbalances[0].",
+                                         "schedule[0].",
+                                         "gravity.",
+                                         "contact.",
+                                         "solver.",
+                                         "output.",
+                                         "modal."};
+    char *doc = read_all(td_source_path("docs/case-format.md"));
+    char *a = read_all(td_source_path("tests/data/case/all-keys.cfg"));
+    char *b = read_all(td_source_path("tests/data/case/all-keys-nodes.cfg"));
+    const char *p = doc;
+    int documented = 0;
+    size_t g;
+    (void)state;
+    while ((p = strstr(p, "\n| `")) != NULL) {
+        char key[128], leaf[160];
+        const char *end = strchr(p + 4, '`'), *dot;
+        size_t n = (size_t)(end - (p + 4));
+        assert_true(n < sizeof key);
+        memcpy(key, p + 4, n);
+        key[n] = '\0';
+        dot = strrchr(key, '.');
+        snprintf(leaf, sizeof leaf, "%s =", dot ? dot + 1 : key);
+        if (!strstr(a, leaf) && !strstr(b, leaf)) {
+            print_error("documented key %s is not used by the all-keys files\n", key);
+            fail();
+        }
+        documented++;
+        p = end;
+    }
+    assert_true(documented >= 90);
+
+    for (g = 0; g < sizeof groups / sizeof groups[0]; g++) {
+        char ov[160], docprefix[160], *q, *list;
+        const char *ovs[1];
+        td_case *c = NULL;
+        td_error err;
+        snprintf(ov, sizeof ov, "%szzzzzzzzzz=1", groups[g]);
+        ovs[0] = ov;
+        assert_int_equal(td_case_load(td_source_path("tests/data/case/all-keys.cfg"), ovs, 1, &c, &err), TD_ERR_PARSE);
+        list = strstr(err.message, "(valid here: ");
+        if (!list) {
+            print_error("%s: %s\n", ov, err.message);
+            fail();
+        }
+        list += strlen("(valid here: ");
+        snprintf(docprefix, sizeof docprefix, "%s", groups[g]);
+        if ((q = strstr(docprefix, "[0]")) != NULL)
+            memmove(q + 1, q + 2, strlen(q + 2) + 1); /* "discs[0]." -> "discs[]." */
+        for (q = strtok(list, ", )"); q; q = strtok(NULL, ", )")) {
+            char want[200];
+            snprintf(want, sizeof want, "| `%s%s` |", docprefix, q);
+            if (!strstr(doc, want)) {
+                print_error("the reader accepts %s%s but docs/case-format.md has no row for it\n", docprefix, q);
+                fail();
+            }
+        }
+    }
+    free(doc);
+    free(a);
+    free(b);
+}
+
+/* ---- overrides ---------------------------------------------------------------------------- */
+
+static void test_overrides(void **state)
+{
+    static const char *const ov[] = {"speed=100",
+                                     "speed=190", /* a later override wins */
+                                     "contact.model=penalty",
+                                     "contact.stiffness=1.25e10",
+                                     "solver.rtol=1e-8",
+                                     " solver.max_order = 2 ",
+                                     "retainers[1].friction=0.2",
+                                     "ambs[0].saturation=true",
+                                     "output.nodes=[2, 10]",
+                                     "output.hdf5=runs/a.h5",
+                                     "gravity.g=9.5",
+                                     "gravity.enabled=true",
+                                     "modal.response_speeds=[150.0]",
+                                     "unbalances=({ node = 5; magnitude = 0.05; })",
+                                     "schedule.[1].magnitude=0.07"};
+    td_case *c = load_ok("cases/paper-a.cfg", ov, (int)(sizeof ov / sizeof ov[0]));
+    const td_model *m = td_case_model(c);
+    const td_sim_options *so = td_case_sim_options(c);
+    td_retainer r;
+    td_amb a;
+    td_unbalance u;
+    td_change ch;
+    double gx, gy;
+    (void)state;
+    assert_close(td_model_speed(m), 190.0, 0.0, 0.0);
+    assert_int_equal(so->contact.model, TD_CONTACT_PENALTY);
+    assert_close(so->contact.stiffness, 1.25e10, 0.0, 0.0);
+    assert_close(so->solver.rtol, 1e-8, 0.0, 0.0);
+    assert_int_equal(so->solver.max_order, 2);
+    td_model_get_retainer(m, 1, &r);
+    assert_close(r.friction, 0.2, 0.0, 0.0);
+    td_model_get_retainer(m, 0, &r);
+    assert_close(r.friction, 0.1, 0.0, 0.0);
+    td_model_get_amb(m, 0, &a);
+    assert_int_equal(a.saturation, 1);
+    assert_int_equal(td_case_output_options(c)->node_count, 2);
+    assert_int_equal(td_case_output_options(c)->nodes[1], 10);
+    assert_string_equal(td_case_output_options(c)->hdf5_path, "runs/a.h5");
+    td_model_gravity(m, &gx, &gy);
+    assert_close(gy, -9.5, 0.0, 0.0);
+    assert_int_equal(td_case_modal_options(c)->response_speed_count, 1);
+    td_model_get_unbalance(m, 0, &u);
+    assert_int_equal(u.node, 5);
+    assert_close(u.magnitude, 0.05, 0.0, 0.0);
+    td_model_get_change(m, 1, &ch);
+    assert_close(ch.magnitude, 0.07, 0.0, 0.0);
+    assert_close(td_model_total_mass(m), rig_mass(), 1e-13, 0.0);
+    /* the overrides are kept with the text, as comments */
+    assert_contains(td_case_text(c), "\n# --set speed=190\n");
+    assert_contains(td_case_text(c), "\n# --set output.nodes=[2, 10]\n");
+    td_case_free(&c);
+}
+
+typedef struct bad_override {
+    const char *ov;
+    const char *expect; /* in the message, after "FILE: --set 'OV': " */
+} bad_override;
+
+static void test_bad_overrides(void **state)
+{
+    static const bad_override bad[] = {
+        {"speed", "expected KEY=VALUE"},
+        {"=190", "non-empty key"},
+        {"speed=", "value after '=' is empty"},
+        {"speed=abc", "speed: expected a number"},
+        {"speed=nan", "speed: expected a number, got \"nan\" (NaN"},
+        {"speed=-inf", "speed: expected a number, got \"-inf\" (NaN"},
+        {"speed=1e999", "speed: must be finite"},
+        {"speed=-5", "speed: must be >= 0"},
+        {"sped=190", "sped: unknown key; did you mean 'speed'?"},
+        {"contact.model=hertz", "contact.model: must be one of"},
+        {"contact.modle=penalty", "contact.modle: unknown key; did you mean 'model'?"},
+        {"retainers[7].friction=0.1", "index [7] is out of range (the list has 2 entries)"},
+        {"retainers[x].friction=0.1", "malformed key"},
+        {"retainers..friction=0.1", "malformed key"},
+        {"speed.x=1", "its parent is not a group"},
+        {"shaft.elements=4294967297", "integer 4294967297 is out of range"},
+        {"shaft.elements=100000000", "shaft.elements: must lie in [1, 10000]"},
+        {"solver.rtol=-1", "solver.rtol: must lie in (0, 1)"},
+        {"solver.rtol=0", "solver.rtol: must lie in (0, 1)"},
+        {"output.nodes=[1, 2", "cannot parse the value"},
+        {"output.nodes=[1, 2.0]", "cannot parse the value"},
+        {"output.nodes=[1, 13]", "output.nodes[1]: node 13 is out of range"},
+        {"speed=1; end_time=5", "more than one value"},
+        {"ambs[1].node=3", "ambs[1].node: node 3 already has an AMB"},
+        {"retainers[0].clearance=1.5e-3", "retainers[0].clearance: clearance 0.0015 m is not smaller than the air gap"},
+        {"retainers[0].node=13", "retainers[0].node: node 13 is out of range"},
+        {"schedule[0].unbalance=3", "schedule[0].unbalance: unbalance 3 does not exist"},
+        {"discs[0].mass=0", "discs[0].mass: must be > 0"},
+        {"shaft.elements=12.5", "shaft.elements: expected an integer"},
+        {"1bad=3", "'1bad' is not a valid key name"},
+        {"end_time=\"2\"", "end_time: expected a number, got the string \"2\""},
+        {"gravity.direction=[0.0, 0.0]", "gravity.direction: must not be the zero vector"},
+        {"discs[0]=3", "must have the type of the entry it replaces"},
+    };
+    size_t k;
+    (void)state;
+    for (k = 0; k < sizeof bad / sizeof bad[0]; k++) {
+        const char *ovs[1];
+        char prefix[256];
+        td_case *c = (td_case *)&prefix; /* must come back NULL */
+        td_error err;
+        td_status st;
+        ovs[0] = bad[k].ov;
+        st = td_case_load(td_source_path("cases/paper-a.cfg"), ovs, 1, &c, &err);
+        if (st != TD_ERR_PARSE || !strstr(err.message, bad[k].expect)) {
+            print_error("--set '%s': status %d, message \"%s\"; expected \"%s\"\n", bad[k].ov, (int)st, err.message,
+                        bad[k].expect);
+            fail();
+        }
+        assert_null(c);
+        snprintf(prefix, sizeof prefix, "paper-a.cfg: --set '");
+        assert_contains(err.message, prefix);
+        assert_null(strchr(err.message, '\n'));
+    }
+}
+
+/* ---- broken files ------------------------------------------------------------------------- */
+
+typedef struct bad_file {
+    const char *file;  /* under tests/data/bad/ */
+    int line;          /* line the message must name */
+    const char *key;   /* key the message must name (NULL: file-level or syntax error) */
+    const char *shown; /* file the message names, when not `file` (an included file) */
+} bad_file;
+
+static const bad_file bad_files[] = {
+    {"amb-duplicate-node.cfg", 6, "ambs[1].node", NULL},
+    {"amb-missing-ki.cfg", 5, "ambs[0].ki", NULL},
+    {"amb-saturation-int.cfg", 6, "ambs[0].saturation", NULL},
+    {"amb-tau-and-bandwidth.cfg", 6, "ambs[0].bandwidth", NULL},
+    {"amb-zero-capacity.cfg", 6, "ambs[0].force_capacity", NULL},
+    {"binary.cfg", 2, NULL, NULL},
+    {"comments-only.cfg", 1, NULL, NULL},
+    {"contact-bad-model.cfg", 5, "contact.model", NULL},
+    {"contact-exponent-below-one.cfg", 6, "contact.exponent", NULL},
+    {"contact-zero-stiffness.cfg", 6, "contact.stiffness", NULL},
+    {"disc-bore-too-big.cfg", 5, "discs[0].bore_radius", NULL},
+    {"disc-mixed-forms.cfg", 5, "discs[0].radius", NULL},
+    {"disc-negative-node.cfg", 5, "discs[0].node", NULL},
+    {"disc-node-out-of-range.cfg", 6, "discs[1].node", NULL},
+    {"disc-zero-mass.cfg", 5, "discs[0].mass", NULL},
+    {"discs-not-list.cfg", 4, "discs", NULL},
+    {"duplicate-key.cfg", 4, NULL, NULL},
+    {"empty.cfg", 1, NULL, NULL},
+    {"end-time-zero.cfg", 4, "end_time", NULL},
+    {"gravity-enabled-string.cfg", 5, "gravity.enabled", NULL},
+    {"gravity-zero-direction.cfg", 6, "gravity.direction", NULL},
+    {"include-missing.cfg", 3, NULL, NULL},
+    {"junk-bytes.cfg", 1, NULL, NULL},
+    {"material-missing-E.cfg", 7, "shaft.material.E", NULL},
+    {"material-string-density.cfg", 8, "shaft.material.density", NULL},
+    {"missing-end-time.cfg", 1, "end_time", NULL},
+    {"missing-shaft.cfg", 1, "shaft", NULL},
+    {"missing-speed.cfg", 1, "speed", NULL},
+    {"modal-speed-range.cfg", 6, "modal.speed_max", NULL},
+    {"output-node-out-of-range.cfg", 6, "output.nodes[1]", NULL},
+    {"output-sample-absurd.cfg", 5, "output.sample_rate", NULL},
+    {"point-mass-negative.cfg", 5, "point_masses[0].mass", NULL},
+    {"retainer-bore-mismatch.cfg", 6, "retainers[0].bore_radius", NULL},
+    {"retainer-clearance-ge-airgap.cfg", 8, "retainers[0].clearance", NULL},
+    {"retainer-duplicate-node.cfg", 6, "retainers[1].node", NULL},
+    {"retainer-restitution.cfg", 6, "retainers[0].restitution", NULL},
+    {"retainer-zero-clearance.cfg", 5, "retainers[0].clearance", NULL},
+    {"schedule-bad-index.cfg", 6, "schedule[0].unbalance", NULL},
+    {"schedule-negative-time.cfg", 8, "schedule[0].time", NULL},
+    {"schedule-two-kinds.cfg", 10, "schedule[0].amb_off", NULL},
+    {"shaft-bad-beam.cfg", 8, "shaft.beam", NULL},
+    {"shaft-elements-absurd.cfg", 5, "shaft.elements", NULL},
+    {"shaft-elements-float.cfg", 5, "shaft.elements", NULL},
+    {"shaft-elements-wrap.cfg", 5, "shaft.elements", NULL},
+    {"shaft-hollow-too-thick.cfg", 7, "shaft.inner_diameter", NULL},
+    {"shaft-length-and-nodes.cfg", 6, "shaft.nodes", NULL},
+    {"shaft-negative-diameter.cfg", 6, "shaft.outer_diameter", NULL},
+    {"shaft-nodes-decreasing.cfg", 5, "shaft.nodes[2]", NULL},
+    {"shaft-not-group.cfg", 3, "shaft", NULL},
+    {"shaft-section-out-of-range.cfg", 10, "shaft.sections[0].to", NULL},
+    {"shaft-section-overlap.cfg", 10, "shaft.sections[1]", NULL},
+    {"shaft-zero-length.cfg", 4, "shaft.length", NULL},
+    {"solver-atol-negative.cfg", 6, "solver.atol", NULL},
+    {"solver-max-order.cfg", 5, "solver.max_order", NULL},
+    {"solver-rtol-zero.cfg", 5, "solver.rtol", NULL},
+    {"solver-unknown-linsol.cfg", 5, "solver.linear_solver", NULL},
+    {"speed-inf.cfg", 3, "speed", NULL},
+    {"speed-negative.cfg", 3, "speed", NULL},
+    {"speed-string.cfg", 3, "speed", NULL},
+    {"start-unknown.cfg", 4, "start", NULL},
+    {"syntax-error.cfg", 4, NULL, NULL},
+    {"syntax-mixed-array.cfg", 4, NULL, NULL},
+    {"syntax-nan.cfg", 3, NULL, NULL},
+    {"syntax-unclosed-group.cfg", 6, NULL, NULL},
+    {"unbalance-negative.cfg", 5, "unbalances[0].magnitude", NULL},
+    {"unknown-nested-key.cfg", 5, "retainers[0].clearence", NULL},
+    {"unknown-top-key.cfg", 4, "strat", NULL},
+    {"unterminated-comment.cfg", 4, NULL, NULL},
+    {"include-error.cfg", 4, "point_masses[0].mass", "bad-fragment.cfg"},
+};
+
+static void check_bad_file(const bad_file *b)
+{
+    char rel[256], where[320];
+    td_case *c = (td_case *)&where; /* must come back NULL */
+    td_error err;
+    td_status st;
+    snprintf(rel, sizeof rel, "tests/data/bad/%s", b->file);
+    st = td_case_load(td_source_path(rel), NULL, 0, &c, &err);
+    if (st != TD_ERR_PARSE) {
+        print_error("%s: status %d (%s), expected TD_ERR_PARSE\n", b->file, (int)st, err.message);
+        fail();
+    }
+    assert_null(c);
+    /* "FILE:LINE: KEY: what" with FILE ending in the file's name */
+    if (b->key)
+        snprintf(where, sizeof where, "%s:%d: %s: ", b->shown ? b->shown : b->file, b->line, b->key);
+    else
+        snprintf(where, sizeof where, "%s:%d: ", b->shown ? b->shown : b->file, b->line);
+    if (!strstr(err.message, where)) {
+        print_error("%s: message \"%s\" lacks \"%s\"\n", b->file, err.message, where);
+        fail();
+    }
+    assert_null(strchr(err.message, '\n'));
+    assert_true(strlen(err.message) > strlen(where) + 5); /* says what is wrong, too */
+}
+
+static void test_bad_files(void **state)
+{
+    size_t k, n = sizeof bad_files / sizeof bad_files[0], seen = 0;
+    DIR *dir;
+    struct dirent *e;
+    (void)state;
+    assert_true(n >= 40);
+    for (k = 0; k < n; k++)
+        check_bad_file(&bad_files[k]);
+    /* every file in the corpus is in the table */
+    dir = opendir(td_source_path("tests/data/bad"));
+    assert_non_null(dir);
+    while ((e = readdir(dir)) != NULL) {
+        size_t len = strlen(e->d_name);
+        if (len < 5 || strcmp(e->d_name + len - 4, ".cfg") != 0)
+            continue;
+        for (k = 0; k < n && strcmp(bad_files[k].file, e->d_name) != 0; k++)
+            ;
+        if (k == n) {
+            print_error("tests/data/bad/%s is not in the table of test_case.c\n", e->d_name);
+            fail();
+        }
+        seen++;
+    }
+    closedir(dir);
+    assert_int_equal(seen, n);
+}
+
+/* Paths that cannot be read as a case file: TD_ERR_IO naming the path, never a hang. */
+static void test_unreadable_paths(void **state)
+{
+    const char *fifo = scratch("fifo.cfg"), *locked = scratch("locked.cfg");
+    const char *paths[5];
+    td_case *c = NULL;
+    td_error err;
+    size_t k;
+    int fd;
+    (void)state;
+    paths[0] = td_source_path("tests/data/bad");                     /* a directory */
+    paths[1] = td_source_path("tests/data/no-such-case.cfg");        /* missing */
+    paths[2] = td_source_path("tests/data/case/run.cfg/inside.cfg"); /* through a file */
+    paths[3] = fifo;                                                 /* would block a reader */
+    paths[4] = locked;
+    unlink(fifo);
+    assert_int_equal(mkfifo(fifo, 0600), 0);
+    write_file(locked, "speed = 1;\n");
+    assert_int_equal(chmod(locked, 0), 0);
+    for (k = 0; k < 5; k++) {
+        td_status st = td_case_load(paths[k], NULL, 0, &c, &err);
+        if (k == 4 && (fd = open(locked, O_RDONLY)) >= 0) {
+            close(fd); /* running as root: permissions do not apply, the file is readable */
+            assert_int_equal(st, TD_ERR_PARSE);
+            continue;
+        }
+        if (st != TD_ERR_IO) {
+            print_error("%s: status %d (%s), expected TD_ERR_IO\n", paths[k], (int)st, err.message);
+            fail();
+        }
+        assert_null(c);
+        assert_contains(err.message, paths[k]);
+        assert_contains(err.message, "cannot read the case file");
+    }
+    assert_contains(td_case_load(paths[0], NULL, 0, &c, &err) == TD_ERR_IO ? err.message : "", "directory");
+    unlink(fifo);
+    chmod(locked, 0600);
+    unlink(locked);
+}
+
+/* Includes that cannot be read: binary data, a FIFO (libconfig would block opening it), a
+ * directory, an absolute path; each names the including file and line, or the included file. */
+static void test_bad_includes(void **state)
+{
+    static const struct {
+        const char *text, *expect;
+    } cases[] = {
+        {"# a file with a NUL byte\n@include \"binary-part.cfg\"\n", "binary-part.cfg:2: binary data (byte 0x00)"},
+        {"speed = 1.0;\n@include \"fifo-part.cfg\"\n",
+         "with-include.cfg:2: cannot open include file \"fifo-part.cfg\""},
+        {"speed = 1.0;\n\n@include \"..\"\n", "with-include.cfg:3: cannot open include file \"..\""},
+        {"@include \"/etc/hostname\"\n", "with-include.cfg:1: cannot open include file \"/etc/hostname\" (absolute"},
+    };
+    const char *main_file = scratch("with-include.cfg");
+    const char *bin = scratch("binary-part.cfg"), *fifo = scratch("fifo-part.cfg");
+    FILE *f = fopen(bin, "wb");
+    td_case *c = NULL;
+    td_error err;
+    size_t k;
+    (void)state;
+    assert_non_null(f);
+    fputs("speed = 1;\nend_time", f);
+    fputc('\0', f);
+    fputs(" = 1;\n", f);
+    fclose(f);
+    unlink(fifo);
+    assert_int_equal(mkfifo(fifo, 0600), 0);
+    for (k = 0; k < sizeof cases / sizeof cases[0]; k++) {
+        write_file(main_file, cases[k].text);
+        assert_int_equal(td_case_load(main_file, NULL, 0, &c, &err), TD_ERR_PARSE);
+        assert_null(c);
+        assert_contains(err.message, cases[k].expect);
+    }
+    unlink(fifo);
+}
+
+static void test_api_misuse(void **state)
+{
+    td_case *c = NULL;
+    td_error err;
+    const char *ov[1] = {"speed=1"};
+    (void)state;
+    assert_int_equal(td_case_load(td_source_path("cases/paper-a.cfg"), NULL, 0, NULL, &err), TD_ERR_INVALID);
+    assert_int_equal(td_case_load(NULL, NULL, 0, &c, &err), TD_ERR_INVALID);
+    assert_null(c);
+    assert_int_equal(td_case_load(td_source_path("cases/paper-a.cfg"), NULL, 1, &c, &err), TD_ERR_INVALID);
+    assert_int_equal(td_case_load(td_source_path("cases/paper-a.cfg"), ov, -1, &c, &err), TD_ERR_INVALID);
+    assert_int_equal(td_case_load(td_source_path("cases/paper-a.cfg"), NULL, 0, &c, NULL), TD_OK); /* err optional */
+    td_case_free(&c);
+    assert_int_equal(td_case_load(td_source_path("tests/data/bad/empty.cfg"), NULL, 0, &c, NULL), TD_ERR_PARSE);
+    td_case_free(&c);
+    td_case_free(NULL);
+    assert_null(td_case_model(NULL));
+    assert_null(td_case_text(NULL));
+    assert_string_equal(td_case_description(NULL), "");
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_paper_cases),
+        cmocka_unit_test(test_text_is_self_contained),
+        cmocka_unit_test(test_other_examples),
+        cmocka_unit_test(test_all_keys),
+        cmocka_unit_test(test_other_forms_and_defaults),
+        cmocka_unit_test(test_docs_match_reader),
+        cmocka_unit_test(test_overrides),
+        cmocka_unit_test(test_bad_overrides),
+        cmocka_unit_test(test_bad_files),
+        cmocka_unit_test(test_unreadable_paths),
+        cmocka_unit_test(test_bad_includes),
+        cmocka_unit_test(test_api_misuse),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}

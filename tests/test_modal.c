@@ -1,0 +1,429 @@
+/*
+ * td_modal API: argument checks, the state matrix layout, Campbell labelling, critical speeds
+ * against a fine scan, and the CSV/HDF5 writers read back (HDF5 through its C API).
+ */
+#include "td_test.h"
+
+#include "model/system_internal.h"
+#include "touchdown/modal.h"
+#include "touchdown/touchdown.h"
+
+#include <hdf5.h>
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* An overhung rotor: 4 elements of 0.2 m, bearings (damped) at nodes 0 and 2, a disc at the tip. */
+static td_system *overhung(void)
+{
+    td_model *m = NULL;
+    td_system *s = NULL;
+    td_shaft_element el = {0.2, 0.04, 0.0, {2.11e11, 8.1e10, 7810.0}};
+    td_bearing b0 = {0, 2e7, 2e7, 400.0, 400.0}, b2 = {2, 2e7, 2e7, 400.0, 400.0};
+    td_disc d = {4, 8.0, 0.064, 0.033};
+    td_error err;
+    int i;
+    assert_int_equal(td_model_create(&m, NULL), TD_OK);
+    for (i = 0; i < 4; i++)
+        assert_int_equal(td_model_add_shaft_element(m, &el, NULL), TD_OK);
+    assert_int_equal(td_model_add_disc(m, &d, NULL), TD_OK);
+    assert_int_equal(td_model_add_bearing(m, &b0, NULL), TD_OK);
+    assert_int_equal(td_model_add_bearing(m, &b2, NULL), TD_OK);
+    if (td_system_create(m, &s, &err) != TD_OK)
+        fail_msg("%s", err.message);
+    td_model_free(&m);
+    return s;
+}
+
+static void test_arguments(void **state)
+{
+    td_system *s = overhung();
+    td_modal *md = NULL;
+    td_campbell *c = NULL;
+    td_modal_options opt;
+    td_mode mode;
+    td_error err;
+    int n = 0;
+    (void)state;
+    assert_int_equal(td_modal_solve(NULL, 0.0, &md, &err), TD_ERR_INVALID);
+    assert_null(md);
+    assert_int_equal(td_modal_solve(s, 0.0, NULL, &err), TD_ERR_INVALID);
+    assert_int_equal(td_modal_solve(s, NAN, &md, &err), TD_ERR_INVALID);
+    td_modal_options_default(&opt);
+    opt.speed_steps = 1;
+    assert_int_equal(td_campbell_compute(s, &opt, &c, &err), TD_ERR_INVALID);
+    assert_non_null(strstr(err.message, "speed_steps"));
+    td_modal_options_default(&opt);
+    opt.speed_max = opt.speed_min - 1.0;
+    assert_int_equal(td_modal_critical_speeds(s, &opt, NULL, 0, &n, &err), TD_ERR_INVALID);
+    opt.speed_max = 10.0;
+    opt.mode_count = 0;
+    assert_int_equal(td_campbell_compute(s, &opt, &c, &err), TD_ERR_INVALID);
+    assert_null(c);
+    assert_int_equal(td_modal_critical_speeds(s, NULL, NULL, 0, &n, &err), TD_ERR_INVALID);
+    assert_int_equal(td_modal_solve(s, 100.0, &md, &err), TD_OK);
+    assert_int_equal(td_modal_get_mode(md, -1, &mode), TD_ERR_INVALID);
+    assert_int_equal(td_modal_get_mode(md, td_modal_mode_count(md), &mode), TD_ERR_INVALID);
+    assert_true(isnan(td_modal_real_eigenvalue(md, 0)));
+    assert_int_equal(td_modal_mode_shape(md, 0, NULL, NULL, NULL, NULL), TD_OK);
+    assert_close(td_modal_speed(md), 100.0, 0.0, 0.0);
+    /* 2 ndof states, all in complex pairs for this lightly damped rotor */
+    assert_int_equal(2 * td_modal_mode_count(md) + td_modal_real_count(md), 2 * 20);
+    td_modal_free(&md);
+    assert_null(md);
+    td_modal_free(&md);
+    td_modal_free(NULL);
+    td_campbell_free(NULL);
+    td_harmonic_free(NULL);
+    td_system_free(&s);
+}
+
+static void test_state_matrix_layout(void **state)
+{
+    td_system *s = overhung();
+    int nd = td_system_dof_count(s), n = td_modal_state_count(s), i, j;
+    double *A = malloc((size_t)n * (size_t)n * sizeof *A), *M = malloc((size_t)nd * (size_t)nd * sizeof *M);
+    double *K = malloc((size_t)nd * (size_t)nd * sizeof *K);
+    (void)state;
+    assert_int_equal(n, 2 * nd);
+    assert_int_equal(td_modal_state_matrix(s, 50.0, A, NULL), TD_OK);
+    assert_int_equal(td_system_dense(s, TD_MATRIX_MASS, M, NULL), TD_OK);
+    assert_int_equal(td_system_dense(s, TD_MATRIX_STIFFNESS, K, NULL), TD_OK);
+    for (i = 0; i < nd; i++)
+        for (j = 0; j < n; j++)
+            assert_close(A[i + (size_t)j * (size_t)n], j == nd + i ? 1.0 : 0.0, 0.0, 0.0);
+    /* M times the (v, q) block is -K */
+    for (i = 0; i < nd; i++)
+        for (j = 0; j < nd; j++) {
+            double sum = 0.0, scale = 0.0;
+            int k;
+            for (k = 0; k < nd; k++) {
+                sum += M[i + (size_t)k * (size_t)nd] * A[(size_t)(nd + k) + (size_t)j * (size_t)n];
+                scale += fabs(M[i + (size_t)k * (size_t)nd] * A[(size_t)(nd + k) + (size_t)j * (size_t)n]);
+            }
+            assert_close(sum, -K[i + (size_t)j * (size_t)nd], 0.0, 1e-12 * scale + 1e-6);
+        }
+    free(A);
+    free(M);
+    free(K);
+    td_system_free(&s);
+}
+
+/* A DOF without mass makes M singular: reported, not crashed. */
+static void test_singular_mass(void **state)
+{
+    td_system *s = calloc(1, sizeof *s);
+    cs_di *T[4];
+    td_modal *md = NULL;
+    td_error err;
+    int i, k;
+    (void)state;
+    s->nnodes = 1;
+    s->ndof = 4;
+    for (k = 0; k < 4; k++) {
+        T[k] = cs_di_spalloc(4, 4, 4, 1, 1);
+        for (i = 0; i < 4; i++)
+            cs_di_entry(T[k], i, i, k == 0 ? (i == 3 ? 0.0 : 1.0) : (k == 1 ? 1.0 : 0.0));
+    }
+    s->M = cs_di_compress(T[0]);
+    s->K = cs_di_compress(T[1]);
+    s->C = cs_di_compress(T[2]);
+    s->G = cs_di_compress(T[3]);
+    for (k = 0; k < 4; k++)
+        cs_di_spfree(T[k]);
+    assert_int_equal(td_modal_solve(s, 0.0, &md, &err), TD_ERR_NUMERIC);
+    assert_non_null(strstr(err.message, "mass matrix"));
+    assert_null(md);
+    td_system_free(&s);
+}
+
+/* Lowest forward and backward frequency at Campbell speed k (NAN if none). */
+static void lowest_whirls(const td_campbell *c, int k, double *fwd, double *bwd)
+{
+    int j;
+    *fwd = *bwd = NAN;
+    for (j = 0; j < td_campbell_branch_count(c); j++) {
+        td_mode m;
+        assert_int_equal(td_campbell_get(c, k, j, &m), TD_OK);
+        if (m.whirl == TD_WHIRL_FORWARD && isnan(*fwd))
+            *fwd = m.omega_d;
+        if (m.whirl == TD_WHIRL_BACKWARD && isnan(*bwd))
+            *bwd = m.omega_d;
+    }
+}
+
+static void test_campbell_labels(void **state)
+{
+    td_system *s = overhung();
+    td_campbell *c = NULL;
+    td_modal_options opt;
+    double f0, b0;
+    int k, j;
+    (void)state;
+    td_modal_options_default(&opt);
+    opt.speed_min = 0.0;
+    opt.speed_max = 3000.0;
+    opt.speed_steps = 16;
+    opt.mode_count = 6;
+    assert_int_equal(td_campbell_compute(s, &opt, &c, NULL), TD_OK);
+    assert_int_equal(td_campbell_speed_count(c), 16);
+    assert_int_equal(td_campbell_branch_count(c), 6);
+    assert_close(td_campbell_speed(c, 15), 3000.0, 0.0, 0.0);
+    assert_close(td_campbell_speed(c, 1), 200.0, 1e-15, 0.0);
+    assert_true(isnan(td_campbell_speed(c, 16)));
+    lowest_whirls(c, 0, &f0, &b0);
+    for (k = 0; k < 16; k++) {
+        double f, b;
+        for (j = 0; j < 6; j++) {
+            td_mode m, prev;
+            td_campbell_get(c, k, j, &m);
+            /* an isotropic rotor whirls in circles: every mode is purely forward or backward
+             * (at rest the degenerate pairs are split into the two circular whirls) */
+            assert_true(m.whirl != TD_WHIRL_MIXED);
+            assert_close(fabs(m.whirl_index), 1.0, 0.0, 1e-6);
+            if (j > 0) {
+                td_campbell_get(c, k, j - 1, &prev);
+                assert_true(m.omega_d >= prev.omega_d); /* branches are sorted */
+            }
+        }
+        lowest_whirls(c, k, &f, &b);
+        /* gyroscopic stiffening: the lowest forward whirl rises, the lowest backward one falls */
+        if (k > 0) {
+            assert_true(f > f0);
+            assert_true(b < b0);
+        }
+        f0 = f;
+        b0 = b;
+    }
+    td_campbell_free(&c);
+    assert_null(c);
+    td_system_free(&s);
+}
+
+/* omega_d - Omega of the lowest forward mode. */
+static double forward_gap(const td_system *s, double omega)
+{
+    td_modal *md = NULL;
+    double g = NAN;
+    int i;
+    assert_int_equal(td_modal_solve(s, omega, &md, NULL), TD_OK);
+    for (i = 0; i < td_modal_mode_count(md); i++) {
+        td_mode m;
+        td_modal_get_mode(md, i, &m);
+        if (m.whirl == TD_WHIRL_FORWARD) {
+            g = m.omega_d - omega;
+            break;
+        }
+    }
+    td_modal_free(&md);
+    return g;
+}
+
+static void test_critical_speed_vs_scan(void **state)
+{
+    td_system *s = overhung();
+    td_modal_options opt;
+    td_critical_speed cs[16];
+    const td_critical_speed *first = NULL;
+    int n = 0, i, found = 0;
+    double lo, hi, glo, ghi, root;
+    (void)state;
+    td_modal_options_default(&opt);
+    opt.speed_min = 0.0;
+    opt.speed_max = 3000.0;
+    opt.speed_steps = 7;
+    assert_int_equal(td_modal_critical_speeds(s, &opt, cs, 16, &n, NULL), TD_OK);
+    assert_true(n >= 1 && n <= 16);
+    for (i = 0; i < n; i++) {
+        if (i > 0)
+            assert_true(cs[i].speed >= cs[i - 1].speed);
+        if (!first && cs[i].whirl == TD_WHIRL_FORWARD && cs[i].branch == 0)
+            first = &cs[i];
+        print_message("critical speed %.12g rad/s %s branch %d zeta %.4g\n", cs[i].speed,
+                      cs[i].whirl == TD_WHIRL_FORWARD ? "forward" : "backward", cs[i].branch, cs[i].zeta);
+    }
+    assert_non_null(first);
+    /* independent: a fine scan of the lowest forward mode, 2001 speeds over the whole range,
+     * then linear interpolation in the bracketing step (error ~ step^2 g''/8, about 1e-6 rad/s) */
+    lo = 0.0;
+    glo = forward_gap(s, lo);
+    for (i = 1; i <= 2000 && !found; i++) {
+        hi = 3000.0 * i / 2000.0;
+        ghi = forward_gap(s, hi);
+        if ((glo > 0.0) != (ghi > 0.0))
+            found = 1;
+        else {
+            lo = hi;
+            glo = ghi;
+        }
+    }
+    assert_true(found);
+    root = lo - glo * (hi - lo) / (ghi - glo);
+    print_message("fine scan: %.12g rad/s, root finder: %.12g rad/s (rel diff %.2e)\n", root, first->speed,
+                  td_rel_diff(first->speed, root));
+    assert_close(first->speed, root, 1e-7, 0.0);
+    /* and the root is on the 1x line to the promised 1e-9 */
+    assert_close(forward_gap(s, first->speed), 0.0, 0.0, 1e-9 * first->speed);
+    /* count-only call */
+    assert_int_equal(td_modal_critical_speeds(s, &opt, NULL, 0, &i, NULL), TD_OK);
+    assert_int_equal(i, n);
+    td_system_free(&s);
+}
+
+/* Find the line after "# section: NAME" and the header; returns the open file positioned there. */
+static FILE *csv_section(const char *path, const char *name)
+{
+    FILE *f = fopen(path, "r");
+    char line[1024], want[128];
+    assert_non_null(f);
+    snprintf(want, sizeof want, "# section: %s\n", name);
+    while (fgets(line, sizeof line, f))
+        if (strcmp(line, want) == 0) {
+            do
+                assert_non_null(fgets(line, sizeof line, f));
+            while (line[0] == '#'); /* comment lines, then the header */
+            return f;
+        }
+    fclose(f);
+    fail_msg("section %s not found in %s", name, path);
+    return NULL;
+}
+
+static double h5_read_scalar(hid_t file, const char *path, int index, char *units, size_t units_size)
+{
+    hid_t d = H5Dopen2(file, path, H5P_DEFAULT), sp, a, t;
+    hssize_t n;
+    double *buf, v;
+    assert_true(d >= 0);
+    sp = H5Dget_space(d);
+    n = H5Sget_simple_extent_npoints(sp);
+    assert_true(index < n);
+    buf = malloc((size_t)n * sizeof *buf);
+    assert_true(H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, buf) >= 0);
+    v = buf[index];
+    free(buf);
+    a = H5Aopen(d, "units", H5P_DEFAULT);
+    assert_true(a >= 0);
+    t = H5Aget_type(a);
+    assert_true(H5Tget_size(t) <= units_size);
+    assert_true(H5Aread(a, t, units) >= 0);
+    H5Tclose(t);
+    H5Aclose(a);
+    H5Sclose(sp);
+    H5Dclose(d);
+    return v;
+}
+
+static void test_writers_round_trip(void **state)
+{
+    td_system *s = overhung();
+    td_modal *md = NULL;
+    td_campbell *c = NULL;
+    td_harmonic *h[2] = {NULL, NULL};
+    td_critical_speed cs[16];
+    td_modal_options opt;
+    td_modal_results r;
+    td_unbalance u = {4, 1e-4, 0.0};
+    td_mode m2;
+    td_orbit o;
+    td_error err;
+    FILE *f;
+    char line[1024], units[128];
+    int n = 0, mode_idx, node;
+    double sigma, wd, v[12];
+    hid_t file;
+    (void)state;
+    td_modal_options_default(&opt);
+    opt.speed_max = 2000.0;
+    opt.speed_steps = 5;
+    opt.mode_count = 4;
+    assert_int_equal(td_modal_solve(s, 500.0, &md, NULL), TD_OK);
+    assert_int_equal(td_campbell_compute(s, &opt, &c, NULL), TD_OK);
+    assert_int_equal(td_modal_critical_speeds(s, &opt, cs, 16, &n, NULL), TD_OK);
+    assert_int_equal(td_harmonic_compute(s, 300.0, &u, 1, &h[0], NULL), TD_OK);
+    assert_int_equal(td_harmonic_compute(s, 900.0, &u, 1, &h[1], NULL), TD_OK);
+    memset(&r, 0, sizeof r);
+    r.modes = md;
+    r.campbell = c;
+    r.critical = cs;
+    r.n_critical = n < 16 ? n : 16;
+    r.harmonics = (const td_harmonic *const *)h;
+    r.n_harmonics = 2;
+    assert_int_equal(td_modal_write_csv("test_modal_out.csv", &r, &err), TD_OK);
+    assert_int_equal(td_modal_write_hdf5("test_modal_out.h5", &r, &err), TD_OK);
+    assert_int_equal(td_modal_write_csv("/nonexistent-dir/x.csv", &r, &err), TD_ERR_IO);
+    assert_int_equal(td_modal_write_hdf5("/nonexistent-dir/x.h5", &r, &err), TD_ERR_IO);
+
+    /* CSV: mode 2 and the harmonic orbit of the disc node at 900 rad/s, 12 significant digits */
+    td_modal_get_mode(md, 2, &m2);
+    f = csv_section("test_modal_out.csv", "modes");
+    do
+        assert_non_null(fgets(line, sizeof line, f));
+    while (strncmp(line, "2,", 2) != 0);
+    assert_int_equal(sscanf(line, "%d,%lf,%lf", &mode_idx, &sigma, &wd), 3);
+    assert_close(wd, m2.omega_d, 1e-11, 0.0);
+    assert_close(sigma, m2.sigma, 1e-11, 0.0);
+    fclose(f);
+    f = csv_section("test_modal_out.csv", "harmonic");
+    td_harmonic_orbit(h[1], 4, &o);
+    while (fgets(line, sizeof line, f)) {
+        if (sscanf(line, "%lf,%d,%lf,%lf,%lf,%lf,%lf,%lf,%lf,%lf", &v[0], &node, &v[1], &v[2], &v[3], &v[4], &v[5],
+                   &v[6], &v[7], &v[8]) == 10 &&
+            v[0] == 900.0 && node == 4)
+            break;
+    }
+    assert_close(v[1], o.x_amp, 1e-11, 0.0);
+    assert_close(v[5], o.forward, 1e-11, 0.0);
+    fclose(f);
+    f = csv_section("test_modal_out.csv", "critical_speeds");
+    assert_non_null(fgets(line, sizeof line, f));
+    assert_close(strtod(line, NULL), cs[0].speed, 1e-11, 0.0);
+    fclose(f);
+
+    /* HDF5: exact doubles, units attributes, 2-D Campbell */
+    file = H5Fopen("test_modal_out.h5", H5F_ACC_RDONLY, H5P_DEFAULT);
+    assert_true(file >= 0);
+    assert_close(h5_read_scalar(file, "/modes/omega_d", 2, units, sizeof units), m2.omega_d, 0.0, 0.0);
+    assert_string_equal(units, "rad/s");
+    assert_close(h5_read_scalar(file, "/critical_speeds/speed", 0, units, sizeof units), cs[0].speed, 0.0, 0.0);
+    assert_string_equal(units, "rad/s");
+    assert_close(h5_read_scalar(file, "/harmonic/1/x_amp", 4, units, sizeof units), o.x_amp, 0.0, 0.0);
+    assert_string_equal(units, "m");
+    {
+        td_mode p;
+        hid_t d = H5Dopen2(file, "/campbell/omega_d", H5P_DEFAULT), sp = H5Dget_space(d);
+        hsize_t dims[2];
+        assert_int_equal(H5Sget_simple_extent_ndims(sp), 2);
+        H5Sget_simple_extent_dims(sp, dims, NULL);
+        assert_int_equal((int)dims[0], 5);
+        assert_int_equal((int)dims[1], 4);
+        H5Sclose(sp);
+        H5Dclose(d);
+        td_campbell_get(c, 3, 1, &p);
+        assert_close(h5_read_scalar(file, "/campbell/omega_d", 3 * 4 + 1, units, sizeof units), p.omega_d, 0.0, 0.0);
+        assert_close(h5_read_scalar(file, "/campbell/speed", 3, units, sizeof units), 1500.0, 0.0, 0.0);
+    }
+    H5Fclose(file);
+    remove("test_modal_out.csv");
+    remove("test_modal_out.h5");
+    td_harmonic_free(&h[0]);
+    td_harmonic_free(&h[1]);
+    td_campbell_free(&c);
+    td_modal_free(&md);
+    td_system_free(&s);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_arguments),
+        cmocka_unit_test(test_state_matrix_layout),
+        cmocka_unit_test(test_singular_mass),
+        cmocka_unit_test(test_campbell_labels),
+        cmocka_unit_test(test_critical_speed_vs_scan),
+        cmocka_unit_test(test_writers_round_trip),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
