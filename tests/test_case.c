@@ -612,7 +612,7 @@ static void test_overrides(void **state)
                                      "contact.model=penalty",
                                      "contact.stiffness=1.25e10",
                                      "solver.rtol=1e-8",
-                                     " solver.max_order = 2 ",
+                                     " solver.max_order = 4 ",
                                      "retainers[1].friction=0.2",
                                      "ambs[0].saturation=true",
                                      "output.nodes=[2, 10]",
@@ -635,7 +635,7 @@ static void test_overrides(void **state)
     assert_int_equal(so->contact.model, TD_CONTACT_PENALTY);
     assert_close(so->contact.stiffness, 1.25e10, 0.0, 0.0);
     assert_close(so->solver.rtol, 1e-8, 0.0, 0.0);
-    assert_int_equal(so->solver.max_order, 2);
+    assert_int_equal(so->solver.max_order, 4);
     td_model_get_retainer(m, 1, &r);
     assert_close(r.friction, 0.2, 0.0, 0.0);
     td_model_get_retainer(m, 0, &r);

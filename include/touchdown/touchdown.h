@@ -4,10 +4,14 @@
 #ifndef TOUCHDOWN_TOUCHDOWN_H
 #define TOUCHDOWN_TOUCHDOWN_H
 
+#include "touchdown/case.h"
 #include "touchdown/dofs.h"
 #include "touchdown/error.h"
+#include "touchdown/modal.h"
 #include "touchdown/model.h"
 #include "touchdown/options.h"
+#include "touchdown/output.h"
+#include "touchdown/run.h"
 #include "touchdown/sim.h"
 #include "touchdown/system.h"
 #include "touchdown/version.h"

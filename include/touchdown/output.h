@@ -1,0 +1,118 @@
+/*
+ * touchdown/output.h - result files (HDF5 or CSV) written sample by sample.
+ *
+ * A td_writer never sees the solver: the caller hands it one sample at a time (time, the chosen
+ * nodes' x/y displacements, every retainer's contact state, every AMB's force), the events, and
+ * named attributes (case text, solver statistics, summary numbers). docs/output-format.md lists
+ * every dataset, column, unit and attribute. Units and signs: touchdown/dofs.h.
+ *
+ * Completeness rule: everything is written to PATH.partial (same directory) and renamed to PATH
+ * only by td_writer_close, after the attributes and, last of all, the completeness flag
+ * ("complete" attribute 1/0 in HDF5; final line "# complete" or "# incomplete: REASON" in CSV)
+ * have been written and flushed to disk. A file at PATH therefore always carries a flag, and
+ * says "complete" only if the writer was closed as complete with every write successful.
+ * td_writer_open removes a stale file at PATH once the new PATH.partial has been created, so an
+ * old result is never mistaken for the new one; a failed open leaves nothing behind.
+ */
+#ifndef TOUCHDOWN_OUTPUT_H
+#define TOUCHDOWN_OUTPUT_H
+
+#include <stddef.h>
+
+#include "touchdown/error.h"
+#include "touchdown/export.h"
+#include "touchdown/sim.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct td_writer td_writer;
+
+/** File format. */
+typedef enum td_writer_kind {
+    TD_WRITER_HDF5 = 0, /**< one HDF5 file, extendible chunked datasets */
+    TD_WRITER_CSV = 1   /**< PATH (samples) and a sibling events file (see td_writer_events_path) */
+} td_writer_kind;
+
+/** What one sample holds. */
+typedef struct td_output_layout {
+    int node_count;     /**< nodes whose x, y displacements are written, >= 0 */
+    const int *nodes;   /**< node numbers, node_count of them (copied by td_writer_open) */
+    int retainer_count; /**< retainers, >= 0 */
+    int amb_count;      /**< AMBs, >= 0 */
+} td_output_layout;
+
+/**
+ * Create a writer on PATH.partial. `layout` is copied. On failure nothing is left on disk and
+ * *out is NULL. Errors: TD_ERR_INVALID (NULL/empty path, bad layout, path too long),
+ * TD_ERR_IO (the file cannot be created), TD_ERR_NOMEM.
+ */
+TD_API td_status td_writer_open(td_writer_kind kind, const char *path, const td_output_layout *layout, td_writer **out,
+                                td_error *err);
+
+/**
+ * Append one sample at time `t` (s). `node_xy`: 2 node_count values x0, y0, x1, y1, ... (m);
+ * `ret`: retainer_count states; `amb_f`: 2 amb_count values Fx0, Fy0, ... (N). Arrays may be
+ * NULL only when their count is 0. Samples need not be strictly increasing in time (an event
+ * that falls on a grid time gives two samples at that time). After a failed write the writer
+ * only accepts td_writer_close (which then marks the file incomplete).
+ */
+TD_API td_status td_writer_sample(td_writer *w, double t, const double *node_xy, const td_retainer_state *ret,
+                                  const double *amb_f, td_error *err);
+
+/**
+ * Append one event. `sample` is the row (from 0) of the sample that shows the state right after
+ * the event, normally td_writer_sample_count(w) - 1 just after writing it; -1 if there is none.
+ * It must be -1 or an existing row (else TD_ERR_INVALID). The run loop takes one sample per event
+ * instant, so rows not referenced by any event form the uniform grid.
+ */
+TD_API td_status td_writer_event(td_writer *w, const td_event *ev, long sample, td_error *err);
+
+/**
+ * Named attributes, written at close (root attributes in HDF5, "# name = value" lines at the end
+ * of the CSV). Names: 1..63 characters of [A-Za-z0-9_.-]; "complete" and "incomplete_reason" are
+ * the writer's own. Setting a name again replaces its value. Values are copied.
+ */
+TD_API td_status td_writer_set_string(td_writer *w, const char *name, const char *value, td_error *err);
+TD_API td_status td_writer_set_double(td_writer *w, const char *name, double value, td_error *err);
+TD_API td_status td_writer_set_long(td_writer *w, const char *name, long value, td_error *err);
+/** Arrays of n >= 1 values (1-D attributes in HDF5, space separated in CSV). */
+TD_API td_status td_writer_set_doubles(td_writer *w, const char *name, const double *values, int n, td_error *err);
+TD_API td_status td_writer_set_longs(td_writer *w, const char *name, const long *values, int n, td_error *err);
+/** Every field of `stats` as an attribute named after the field (steps, residual_evals, ...,
+ *  worst_drift, wall_time), plus library_version = td_version(). */
+TD_API td_status td_writer_set_stats(td_writer *w, const td_sim_stats *stats, td_error *err);
+
+/** Number of samples and events written so far. */
+TD_API long td_writer_sample_count(const td_writer *w);
+TD_API long td_writer_event_count(const td_writer *w);
+
+/**
+ * Finish the file and free the writer (*w set to NULL; NULL or *w == NULL accepted: TD_OK).
+ * Writes the buffered samples, the attributes, library_version, then the completeness flag:
+ * complete = 1 only if `complete` is nonzero and every earlier write succeeded; else complete = 0
+ * with `reason` (NULL: "unspecified") as incomplete_reason. Then flushes to disk and renames
+ * PATH.partial to PATH. Returns TD_OK when the file is at PATH with its flag (even if the flag is
+ * 0), TD_ERR_IO when it could not be finished: then PATH.partial is removed and no file is at PATH.
+ */
+TD_API td_status td_writer_close(td_writer **w, int complete, const char *reason, td_error *err);
+
+/** Abandon a writer: remove PATH.partial, leave nothing at PATH, free. Accepts NULL. */
+TD_API void td_writer_discard(td_writer **w);
+
+/**
+ * Path of the CSV events file that goes with the samples file `csv_path`: a trailing ".csv" is
+ * replaced by ".events.csv", otherwise ".events.csv" is appended. Returns the length it needs
+ * (like snprintf); the result is truncated but NUL-terminated when n is too small.
+ */
+TD_API int td_writer_events_path(const char *csv_path, char *buf, size_t n);
+
+/** Lower-case name of an event kind ("contact_onset", "release", ...); "unknown" otherwise. */
+TD_API const char *td_event_kind_name(td_event_kind kind);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* TOUCHDOWN_OUTPUT_H */

@@ -1,0 +1,110 @@
+/*
+ * touchdown/run.h - the run loop: step a td_sim to t_end, write samples and events, summarise.
+ *
+ * td_run samples the simulation on a uniform grid t0 + k / sample_rate (IDA's interpolant: the
+ * simulation steps to each output time, no extra steps), adds one sample at every event instant,
+ * writes the event table, the solver statistics and the summary into the result files
+ * (touchdown/output.h, docs/output-format.md), and closes them complete or incomplete.
+ * The library prints nothing: the tool prints td_run_summary_format / td_run_summary_json.
+ */
+#ifndef TOUCHDOWN_RUN_H
+#define TOUCHDOWN_RUN_H
+
+#include <signal.h>
+#include <stddef.h>
+
+#include "touchdown/error.h"
+#include "touchdown/export.h"
+#include "touchdown/model.h"
+#include "touchdown/options.h"
+#include "touchdown/sim.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/** "Returned to a free orbit" means: no retainer in contact during the last this many revolutions. */
+#define TD_RUN_FREE_REVOLUTIONS 5
+
+/** Progress callback: simulated time t (s), fraction of the run done (0..1), contact onsets so
+ *  far, the user pointer. Return 0 to go on, nonzero to stop the run (incomplete, TD_ERR_INTERRUPTED). */
+typedef int (*td_progress_fn)(double t, double fraction, long contacts, void *user);
+
+/** Optional hooks; a NULL td_run_hooks pointer means none. */
+typedef struct td_run_hooks {
+    td_progress_fn progress;       /**< NULL: no progress calls */
+    void *user;                    /**< passed to progress */
+    double progress_interval;      /**< simulated s between progress calls (0: after every sample);
+                                        a last call is made at the end of a complete run */
+    volatile sig_atomic_t *cancel; /**< NULL, or a flag (e.g. set by a signal handler) checked before
+                                        every td_sim_step; nonzero stops the run (TD_ERR_INTERRUPTED) */
+} td_run_hooks;
+
+/** What a run did. Times in s, forces in N; -1 marks "none"/"undefined" where stated. */
+typedef struct td_run_summary {
+    td_status status;                    /**< what td_run returned */
+    int complete;                        /**< 1 if the run reached t_end and every file was finished complete */
+    char message[TD_ERROR_MESSAGE_SIZE]; /**< why the run is incomplete ("" if complete) */
+    double t_start;                      /**< simulation time when td_run began */
+    double t_end;                        /**< requested end */
+    double t_reached;                    /**< last time reached */
+    double speed;                        /**< rotor speed used to count revolutions (the model's), rad/s */
+    long samples;                        /**< samples taken (grid + event samples) */
+    long grid_samples;                   /**< of which on the uniform grid */
+    long events;                         /**< events seen (td_sim_step returned TD_EVENT) */
+    long contacts;                       /**< contact onsets: TD_EVENT_CONTACT_ONSET + TD_EVENT_PENALTY_ENTER */
+    double first_contact_time;           /**< -1 if no contact */
+    double last_contact_time;            /**< time the last contact ended (t_reached if still in contact), -1 if none */
+    double peak_normal_force;            /**< largest normal force: solver statistics, samples and events */
+    double contact_time;                 /**< time with at least one retainer in contact */
+    double contact_fraction;             /**< contact_time / (t_reached - t_start) */
+    double free_window;                  /**< TD_RUN_FREE_REVOLUTIONS revolutions, s (-1 if speed <= 0) */
+    int free_at_end;                     /**< 1: no contact during the last free_window of the run; 0: contact
+                                              in it; -1: undetermined (speed <= 0 or run shorter than the window) */
+    int returned_to_free_orbit;          /**< 1: contacts > 0 and free_at_end == 1; 0: contacts == 0 or
+                                              free_at_end == 0; -1: undetermined */
+    double revolutions;                  /**< speed (t_reached - t_start) / (2 pi) */
+    double revolutions_after_contact;    /**< speed (t_reached - first_contact_time) / (2 pi), 0 if no contact */
+    double wall_time;                    /**< wall-clock time of the whole td_run (solver + output), s */
+    double solver_wall_time;             /**< wall-clock time inside td_sim_step, s */
+    double wall_time_per_revolution;     /**< the paper's figure of merit: solver wall time after the first
+                                              contact / revolutions after it; -1 if undefined */
+    double realtime_factor;              /**< simulated seconds per wall-clock second of the whole run (> 1:
+                                              faster than real time); -1 if undefined */
+    td_sim_stats stats;                  /**< the simulation's statistics at the end (steps, events, worst_drift...) */
+} td_run_summary;
+
+/**
+ * Run `sim` from its current time t0 to `t_end` (> t0).
+ *
+ * model:     the model `sim` was created from (borrowed, read only): node, retainer and AMB
+ *            counts for the output layout, node numbers and clearances written as attributes,
+ *            the speed used to count revolutions. Its DOF count must match the simulation's.
+ * out:       files and sampling (sample_rate > 0; nodes in range; node_count 0: every node);
+ *            both paths empty: no files, the summary is still filled.
+ * hooks:     progress callback and cancel flag, or NULL.
+ * case_text: written as the case_text attribute (NULL: "").
+ * summary:   filled in every case once the run has started (may be NULL).
+ *
+ * Returns TD_OK when t_end was reached and every file closed complete. On a solver failure
+ * (TD_ERR_SOLVER or the sim's status), a cancel or a progress stop (TD_ERR_INTERRUPTED) or a
+ * write failure (TD_ERR_IO) the files are kept at their paths with everything written so far,
+ * marked incomplete, and the status is returned with `err` saying what happened and when.
+ * Invalid arguments (TD_ERR_INVALID) or a file that cannot be created (TD_ERR_IO) return before
+ * any step, leaving no file behind.
+ */
+TD_API td_status td_run(td_sim *sim, const td_model *model, double t_end, const td_output_options *out,
+                        const td_run_hooks *hooks, const char *case_text, td_run_summary *summary, td_error *err);
+
+/** Human-readable multi-line summary (times with 10 decimals). Returns the length needed, like
+ *  snprintf; buf is always NUL-terminated when n > 0. */
+TD_API int td_run_summary_format(char *buf, size_t n, const td_run_summary *s);
+/** The summary as one JSON object (doubles with 17 significant digits, -1 sentinels as null).
+ *  Returns the length needed, like snprintf. */
+TD_API int td_run_summary_json(char *buf, size_t n, const td_run_summary *s);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* TOUCHDOWN_RUN_H */

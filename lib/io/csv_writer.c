@@ -1,0 +1,229 @@
+/*
+ * CSV back end of td_writer (docs/output-format.md lists the columns).
+ *
+ * Two files: the samples (one header line naming each column with its unit, one row per sample)
+ * and the events (same style). Comma separated, numbers with 17 significant digits so every
+ * double reads back to the same bits; attributes and the completeness line are '#' comments at
+ * the end, which gnuplot and pandas (comment='#') skip.
+ */
+#include "io/writer_internal.h"
+#include "util/error_internal.h"
+
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+typedef struct csv_impl {
+    FILE *samples;
+    FILE *events;
+} csv_impl;
+
+static td_status io_fail(td_error *err, const char *path, const char *what)
+{
+    return td_error_set(err, TD_ERR_IO, "%s: %s: %s", path, what, errno ? strerror(errno) : "write error");
+}
+
+/* The shortest of %.15g, %.16g, %.17g that reads back to the same double: grid times print as
+ * 0.0002, not 0.00020000000000000001. Used for times and attributes; the bulk data use %.17g. */
+static const char *exact_text(double v, char *buf, size_t n)
+{
+    int digits;
+    for (digits = 15; digits < 17; digits++) {
+        snprintf(buf, n, "%.*g", digits, v);
+        if (strtod(buf, NULL) == v)
+            return buf;
+    }
+    snprintf(buf, n, "%.17g", v);
+    return buf;
+}
+
+/* ---- headers ----------------------------------------------------------------------------- */
+
+static int write_sample_header(FILE *f, const td_writer *w)
+{
+    static const char *ret_cols[] = {"x", "y", "r", "vr", "theta", "N", "Ff", "vs", "contact"};
+    static const char *ret_units[] = {"m", "m", "m", "m/s", "rad", "N", "N", "m/s", "-"};
+    int i, k, rc = fputs("t [s]", f) < 0;
+    for (i = 0; i < w->node_count; i++)
+        rc |= fprintf(f, ",x_n%d [m],y_n%d [m]", w->nodes[i], w->nodes[i]) < 0;
+    for (i = 0; i < w->retainer_count; i++)
+        for (k = 0; k < 9; k++)
+            rc |= fprintf(f, ",%s_ret%d [%s]", ret_cols[k], i, ret_units[k]) < 0;
+    for (i = 0; i < w->amb_count; i++)
+        rc |= fprintf(f, ",Fx_amb%d [N],Fy_amb%d [N]", i, i) < 0;
+    rc |= fputc('\n', f) == EOF;
+    return rc;
+}
+
+static int write_event_header(FILE *f)
+{
+    return fputs("t [s],kind [-],kind_name,retainer [-],change [-],sample [-],vr_before [m/s],vr_after [m/s],"
+                 "vt_before [m/s],vt_after [m/s],impulse [N s],N [N]\n",
+                 f) < 0;
+}
+
+static void csv_destroy(td_writer *w);
+
+static td_status csv_open(td_writer *w, td_error *err)
+{
+    csv_impl *c = calloc(1, sizeof *c);
+    td_status st = TD_OK;
+    if (!c)
+        return td_error_set(err, TD_ERR_NOMEM, "out of memory opening %s", w->path);
+    w->impl = c;
+    errno = 0;
+    c->samples = fopen(w->tmp_path, "w");
+    if (!c->samples) {
+        st = io_fail(err, w->tmp_path, "cannot create");
+        csv_destroy(w);
+        return st;
+    }
+    c->events = fopen(w->events_tmp, "w");
+    if (!c->events)
+        st = io_fail(err, w->events_tmp, "cannot create");
+    else if (write_sample_header(c->samples, w) || write_event_header(c->events))
+        st = io_fail(err, w->tmp_path, "cannot write the header");
+    if (st != TD_OK) {
+        csv_destroy(w);
+        remove(w->tmp_path);
+        remove(w->events_tmp);
+    }
+    return st;
+}
+
+/* ---- rows -------------------------------------------------------------------------------- */
+
+static td_status csv_sample(td_writer *w, double t, const double *node_xy, const td_retainer_state *ret,
+                            const double *amb_f, td_error *err)
+{
+    FILE *f = ((csv_impl *)w->impl)->samples;
+    char tbuf[32];
+    int i, rc;
+    errno = 0;
+    rc = fputs(exact_text(t, tbuf, sizeof tbuf), f) < 0;
+    for (i = 0; i < 2 * w->node_count; i++)
+        rc |= fprintf(f, ",%.17g", node_xy[i]) < 0;
+    for (i = 0; i < w->retainer_count; i++) {
+        const td_retainer_state *s = &ret[i];
+        rc |=
+            fprintf(f, ",%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%d", s->x, s->y, s->radius, s->radial_velocity,
+                    s->whirl_angle, s->normal_force, s->friction_force, s->sliding_velocity, s->in_contact ? 1 : 0) < 0;
+    }
+    for (i = 0; i < 2 * w->amb_count; i++)
+        rc |= fprintf(f, ",%.17g", amb_f[i]) < 0;
+    rc |= fputc('\n', f) == EOF;
+    return rc ? io_fail(err, w->tmp_path, "cannot write a sample") : TD_OK;
+}
+
+static td_status csv_event(td_writer *w, const td_event *ev, long sample, td_error *err)
+{
+    FILE *f = ((csv_impl *)w->impl)->events;
+    char tbuf[32];
+    errno = 0;
+    if (fprintf(f, "%s,%d,%s,%d,%d,%ld,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n", exact_text(ev->time, tbuf, sizeof tbuf),
+                (int)ev->kind, td_event_kind_name(ev->kind), ev->retainer, ev->change, sample,
+                ev->radial_velocity_before, ev->radial_velocity_after, ev->tangential_velocity_before,
+                ev->tangential_velocity_after, ev->impulse, ev->normal_force) < 0)
+        return io_fail(err, w->events_tmp, "cannot write an event");
+    return TD_OK;
+}
+
+/* ---- finish ------------------------------------------------------------------------------ */
+
+/* A string attribute: one line "# name = value", or for text with newlines "# name:" and one
+ * "#| line" per line, so the text can be recovered exactly. */
+static int write_string_attr(FILE *f, const char *name, const char *text)
+{
+    int rc;
+    if (!strchr(text, '\n'))
+        return fprintf(f, "# %s = %s\n", name, text) < 0;
+    rc = fprintf(f, "# %s:\n#| ", name) < 0;
+    for (; *text; text++) {
+        rc |= fputc(*text, f) == EOF;
+        if (*text == '\n' && text[1])
+            rc |= fputs("#| ", f) < 0;
+    }
+    if (text[-1] != '\n')
+        rc |= fputc('\n', f) == EOF;
+    return rc;
+}
+
+static int write_attr(FILE *f, const td_attr *a)
+{
+    char buf[32];
+    int i, rc = 0;
+    if (a->type == TD_ATTR_STRING)
+        return write_string_attr(f, a->name, a->text);
+    rc |= fprintf(f, "# %s =", a->name) < 0;
+    for (i = 0; i < a->count; i++) {
+        if (a->type == TD_ATTR_DOUBLE)
+            rc |= fprintf(f, " %s", exact_text(a->doubles[i], buf, sizeof buf)) < 0;
+        else
+            rc |= fprintf(f, " %ld", a->longs[i]) < 0;
+    }
+    rc |= fputc('\n', f) == EOF;
+    return rc;
+}
+
+/* The completeness line, the last line of each file. Newlines in the reason become spaces. */
+static int write_flag(FILE *f, int complete, const char *reason)
+{
+    int rc;
+    if (complete)
+        return fputs("# complete\n", f) < 0;
+    rc = fputs("# incomplete: ", f) < 0;
+    for (; *reason; reason++)
+        rc |= fputc(*reason == '\n' || *reason == '\r' ? ' ' : *reason, f) == EOF;
+    rc |= fputc('\n', f) == EOF;
+    return rc;
+}
+
+/* Flush and close one file; nonzero if anything failed (including earlier buffered writes). */
+static int close_file(FILE **f)
+{
+    int rc = 0;
+    if (*f) {
+        rc |= fflush(*f) != 0;
+        rc |= ferror(*f) != 0;
+        rc |= fclose(*f) != 0;
+        *f = NULL;
+    }
+    return rc;
+}
+
+static td_status csv_finish(td_writer *w, int complete, const char *reason, td_error *err)
+{
+    csv_impl *c = w->impl;
+    td_status st = TD_OK;
+    int i, rc = 0;
+    errno = 0;
+    for (i = 0; i < w->attr_count; i++)
+        rc |= write_attr(c->samples, &w->attrs[i]);
+    if (!complete)
+        rc |= write_string_attr(c->samples, "incomplete_reason", reason);
+    /* Events file first, samples file last: its flag line is the authority. */
+    rc |= write_flag(c->events, complete, reason);
+    if (close_file(&c->events))
+        st = io_fail(err, w->events_tmp, "cannot finish");
+    rc |= write_flag(c->samples, complete, reason);
+    rc |= close_file(&c->samples);
+    if (rc && st == TD_OK)
+        st = io_fail(err, w->tmp_path, "cannot finish");
+    free(c);
+    w->impl = NULL;
+    return st;
+}
+
+static void csv_destroy(td_writer *w)
+{
+    csv_impl *c = w->impl;
+    if (!c)
+        return;
+    close_file(&c->samples);
+    close_file(&c->events);
+    free(c);
+    w->impl = NULL;
+}
+
+const td_writer_ops td_csv_writer_ops = {csv_open, csv_sample, csv_event, csv_finish, csv_destroy};

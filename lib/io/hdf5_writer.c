@@ -1,0 +1,623 @@
+/*
+ * HDF5 back end of td_writer (docs/output-format.md lists the layout).
+ *
+ * Samples are buffered one chunk at a time and written as whole chunks of extendible datasets,
+ * so a long run costs one H5Dwrite per dataset per chunk, not per sample; events likewise (a
+ * contact-rich run has thousands, and extending a dataset per event cost about 0.2 ms each).
+ * The file uses the HDF5 1.8 format (readable by every HDF5 >= 1.8) so that a long case text
+ * fits in a root attribute (the 1.6 format caps attributes at 64 KiB).
+ * Every HDF5 call runs inside H5E_BEGIN_TRY/H5E_END_TRY: the library never prints, and the
+ * automatic error printing of the calling program is restored afterwards.
+ */
+#include "io/writer_internal.h"
+#include "util/error_internal.h"
+
+#include <hdf5.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* Largest number of sample datasets: time, displacement, 9 retainer fields, AMB force. */
+#define H5_MAX_SERIES 12
+/* Chunk of the sample datasets: at most this many rows and about this many bytes. */
+#define H5_CHUNK_ROWS 1024
+#define H5_CHUNK_BYTES (512 * 1024)
+#define H5_EVENT_CHUNK 256 /* events per chunk, and per buffered write */
+
+/* One extendible dataset with rows of `row_len` values (shape [rows, row_dims...]). */
+typedef struct h5_series {
+    hid_t dset;
+    int rank; /* 1 + number of row dimensions */
+    hsize_t row_dims[2];
+    size_t row_len; /* values per row */
+    int is_int8;    /* contact_state: int8, otherwise double */
+    void *buf;      /* chunk_rows rows */
+} h5_series;
+
+/* One event row in memory (the file type is the packed copy). */
+typedef struct h5_event_row {
+    double time;
+    int kind;
+    int retainer;
+    int change;
+    int64_t sample;
+    double radial_velocity_before;
+    double radial_velocity_after;
+    double tangential_velocity_before;
+    double tangential_velocity_after;
+    double impulse;
+    double normal_force;
+} h5_event_row;
+
+typedef struct h5_impl {
+    hid_t file;
+    hid_t event_dset, event_mtype, event_ftype, kind_type;
+    h5_series series[H5_MAX_SERIES];
+    int series_count;
+    int idx_time, idx_disp, idx_ret, idx_amb; /* first series of each part, -1 if absent */
+    size_t chunk_rows, buffered;
+    hsize_t flushed;
+    hsize_t event_rows;      /* events in the file */
+    h5_event_row *event_buf; /* H5_EVENT_CHUNK buffered events */
+    size_t events_buffered;
+} h5_impl;
+
+/* Retainer fields in the order of the /retainers datasets. */
+static const struct {
+    const char *name;
+    const char *units;
+    size_t offset;
+} ret_fields[] = {{"x", "m", offsetof(td_retainer_state, x)},
+                  {"y", "m", offsetof(td_retainer_state, y)},
+                  {"radial_position", "m", offsetof(td_retainer_state, radius)},
+                  {"radial_velocity", "m/s", offsetof(td_retainer_state, radial_velocity)},
+                  {"whirl_angle", "rad", offsetof(td_retainer_state, whirl_angle)},
+                  {"normal_force", "N", offsetof(td_retainer_state, normal_force)},
+                  {"friction_force", "N", offsetof(td_retainer_state, friction_force)},
+                  {"sliding_velocity", "m/s", offsetof(td_retainer_state, sliding_velocity)}};
+#define RET_FIELD_COUNT ((int)(sizeof ret_fields / sizeof ret_fields[0]))
+
+/* ---- errors ------------------------------------------------------------------------------ */
+
+typedef struct h5_msg {
+    char text[256];
+} h5_msg;
+
+/* H5Ewalk callback: keep the innermost entry (the first one walking upward). */
+static herr_t keep_innermost(unsigned n, const H5E_error2_t *e, void *data)
+{
+    h5_msg *m = data;
+    if (n == 0)
+        snprintf(m->text, sizeof m->text, "%s: %s", e->func_name ? e->func_name : "?", e->desc ? e->desc : "?");
+    return 0;
+}
+
+/* Fill err with `what` and HDF5's own innermost message. */
+static td_status h5_fail(td_error *err, const td_writer *w, const char *what)
+{
+    h5_msg m;
+    m.text[0] = '\0';
+    H5Ewalk2(H5E_DEFAULT, H5E_WALK_UPWARD, keep_innermost, &m);
+    H5Eclear2(H5E_DEFAULT);
+    return td_error_set(err, TD_ERR_IO, "%s: %s%s%s", w->tmp_path, what, m.text[0] ? " (HDF5 " : "",
+                        m.text[0] ? m.text : "");
+}
+
+/* ---- small attribute helpers ------------------------------------------------------------- */
+
+static herr_t attr_string(hid_t obj, const char *name, const char *value)
+{
+    size_t len = strlen(value);
+    hid_t type = H5Tcopy(H5T_C_S1), space = H5Screate(H5S_SCALAR), attr = -1;
+    herr_t rc = -1;
+    if (type >= 0 && space >= 0 && H5Tset_size(type, len + 1) >= 0 && H5Tset_strpad(type, H5T_STR_NULLTERM) >= 0 &&
+        H5Tset_cset(type, H5T_CSET_UTF8) >= 0) {
+        if (H5Aexists(obj, name) > 0)
+            H5Adelete(obj, name);
+        attr = H5Acreate2(obj, name, type, space, H5P_DEFAULT, H5P_DEFAULT);
+        if (attr >= 0)
+            rc = H5Awrite(attr, type, value);
+    }
+    if (attr >= 0 && H5Aclose(attr) < 0)
+        rc = -1;
+    if (space >= 0)
+        H5Sclose(space);
+    if (type >= 0)
+        H5Tclose(type);
+    return rc;
+}
+
+/* Numeric attribute: scalar when !is_array, else 1-D of n values. */
+static herr_t attr_numeric(hid_t obj, const char *name, hid_t file_type, hid_t mem_type, const void *values, int n,
+                           int is_array)
+{
+    hsize_t dims[1];
+    hid_t space, attr = -1;
+    herr_t rc = -1;
+    dims[0] = (hsize_t)n;
+    space = is_array ? H5Screate_simple(1, dims, NULL) : H5Screate(H5S_SCALAR);
+    if (space < 0)
+        return -1;
+    if (H5Aexists(obj, name) > 0)
+        H5Adelete(obj, name);
+    attr = H5Acreate2(obj, name, file_type, space, H5P_DEFAULT, H5P_DEFAULT);
+    if (attr >= 0)
+        rc = H5Awrite(attr, mem_type, values);
+    if (attr >= 0 && H5Aclose(attr) < 0)
+        rc = -1;
+    H5Sclose(space);
+    return rc;
+}
+
+static herr_t attr_int(hid_t obj, const char *name, int value)
+{
+    return attr_numeric(obj, name, H5T_STD_I32LE, H5T_NATIVE_INT, &value, 1, 0);
+}
+
+/* ---- creation ---------------------------------------------------------------------------- */
+
+/* Create one extendible sample dataset under `loc`. */
+static td_status add_series(td_writer *w, h5_impl *h, hid_t loc, const char *name, const char *units, int rank,
+                            const hsize_t *row_dims, int is_int8, td_error *err)
+{
+    h5_series *s = &h->series[h->series_count];
+    hsize_t dims[3], maxdims[3], chunk[3];
+    hid_t space, dcpl, dset = -1;
+    int i;
+    s->rank = rank;
+    s->row_len = 1;
+    for (i = 0; i + 1 < rank; i++) {
+        s->row_dims[i] = row_dims[i];
+        s->row_len *= (size_t)row_dims[i];
+    }
+    s->is_int8 = is_int8;
+    s->dset = -1;
+    s->buf = malloc(h->chunk_rows * s->row_len * (is_int8 ? sizeof(int8_t) : sizeof(double)));
+    if (!s->buf)
+        return td_error_set(err, TD_ERR_NOMEM, "out of memory for the %s buffer", name);
+    h->series_count++; /* from here on destroy() frees the buffer */
+    dims[0] = 0;
+    maxdims[0] = H5S_UNLIMITED;
+    chunk[0] = (hsize_t)h->chunk_rows;
+    for (i = 1; i < rank; i++)
+        dims[i] = maxdims[i] = chunk[i] = row_dims[i - 1];
+    space = H5Screate_simple(rank, dims, maxdims);
+    dcpl = H5Pcreate(H5P_DATASET_CREATE);
+    if (space >= 0 && dcpl >= 0 && H5Pset_chunk(dcpl, rank, chunk) >= 0)
+        dset = H5Dcreate2(loc, name, is_int8 ? H5T_STD_I8LE : H5T_IEEE_F64LE, space, H5P_DEFAULT, dcpl, H5P_DEFAULT);
+    if (dcpl >= 0)
+        H5Pclose(dcpl);
+    if (space >= 0)
+        H5Sclose(space);
+    if (dset < 0)
+        return h5_fail(err, w, "cannot create a sample dataset");
+    s->dset = dset;
+    if (attr_string(dset, "units", units) < 0)
+        return h5_fail(err, w, "cannot write a units attribute");
+    return TD_OK;
+}
+
+static hid_t make_group(hid_t file, const char *name, int count)
+{
+    hid_t g = H5Gcreate2(file, name, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    if (g >= 0 && attr_int(g, "count", count) < 0) {
+        H5Gclose(g);
+        return -1;
+    }
+    return g;
+}
+
+static td_status create_nodes(td_writer *w, h5_impl *h, td_error *err)
+{
+    hid_t g = make_group(h->file, "nodes", w->node_count);
+    hsize_t row[2];
+    td_status st = TD_OK;
+    if (g < 0)
+        return h5_fail(err, w, "cannot create /nodes");
+    if (w->node_count > 0) {
+        row[0] = (hsize_t)w->node_count;
+        row[1] = 2;
+        h->idx_disp = h->series_count;
+        st = add_series(w, h, g, "displacement", "m", 3, row, 0, err);
+        if (st == TD_OK && (attr_numeric(h->series[h->idx_disp].dset, "nodes", H5T_STD_I32LE, H5T_NATIVE_INT, w->nodes,
+                                         w->node_count, 1) < 0 ||
+                            attr_string(h->series[h->idx_disp].dset, "components", "x,y") < 0))
+            st = h5_fail(err, w, "cannot write the node attributes");
+    }
+    H5Gclose(g);
+    return st;
+}
+
+static td_status create_retainers(td_writer *w, h5_impl *h, td_error *err)
+{
+    hid_t g = make_group(h->file, "retainers", w->retainer_count);
+    hsize_t row[1];
+    td_status st = TD_OK;
+    int i;
+    if (g < 0)
+        return h5_fail(err, w, "cannot create /retainers");
+    if (w->retainer_count > 0) {
+        row[0] = (hsize_t)w->retainer_count;
+        h->idx_ret = h->series_count;
+        for (i = 0; i < RET_FIELD_COUNT && st == TD_OK; i++)
+            st = add_series(w, h, g, ret_fields[i].name, ret_fields[i].units, 2, row, 0, err);
+        if (st == TD_OK)
+            st = add_series(w, h, g, "contact_state", "1", 2, row, 1, err);
+    }
+    H5Gclose(g);
+    return st;
+}
+
+static td_status create_ambs(td_writer *w, h5_impl *h, td_error *err)
+{
+    hid_t g = make_group(h->file, "ambs", w->amb_count);
+    hsize_t row[2];
+    td_status st = TD_OK;
+    if (g < 0)
+        return h5_fail(err, w, "cannot create /ambs");
+    if (w->amb_count > 0) {
+        row[0] = (hsize_t)w->amb_count;
+        row[1] = 2;
+        h->idx_amb = h->series_count;
+        st = add_series(w, h, g, "force", "N", 3, row, 0, err);
+        if (st == TD_OK && attr_string(h->series[h->idx_amb].dset, "components", "x,y") < 0)
+            st = h5_fail(err, w, "cannot write the AMB attributes");
+    }
+    H5Gclose(g);
+    return st;
+}
+
+/* The event kind enum, the compound row types and the /events dataset. */
+static td_status create_events(td_writer *w, h5_impl *h, td_error *err)
+{
+    static const td_event_kind kinds[] = {TD_EVENT_CONTACT_ONSET, TD_EVENT_RELEASE,       TD_EVENT_FRICTION_REVERSAL,
+                                          TD_EVENT_SCHEDULE,      TD_EVENT_PENALTY_ENTER, TD_EVENT_PENALTY_EXIT};
+    hsize_t dims[1] = {0}, maxdims[1] = {H5S_UNLIMITED}, chunk[1] = {H5_EVENT_CHUNK};
+    hid_t m, space = -1, dcpl = -1;
+    size_t i;
+    int ok;
+    char names[256] = "";
+    h->kind_type = H5Tenum_create(H5T_NATIVE_INT);
+    ok = h->kind_type >= 0;
+    for (i = 0; ok && i < sizeof kinds / sizeof kinds[0]; i++) {
+        int v = (int)kinds[i];
+        size_t len = strlen(names);
+        ok = H5Tenum_insert(h->kind_type, td_event_kind_name(kinds[i]), &v) >= 0;
+        snprintf(names + len, sizeof names - len, "%s%d=%s", i ? "," : "", v, td_event_kind_name(kinds[i]));
+    }
+    h->event_mtype = m = ok ? H5Tcreate(H5T_COMPOUND, sizeof(h5_event_row)) : -1;
+    ok =
+        m >= 0 && H5Tinsert(m, "time", HOFFSET(h5_event_row, time), H5T_NATIVE_DOUBLE) >= 0 &&
+        H5Tinsert(m, "kind", HOFFSET(h5_event_row, kind), h->kind_type) >= 0 &&
+        H5Tinsert(m, "retainer", HOFFSET(h5_event_row, retainer), H5T_NATIVE_INT) >= 0 &&
+        H5Tinsert(m, "change", HOFFSET(h5_event_row, change), H5T_NATIVE_INT) >= 0 &&
+        H5Tinsert(m, "sample", HOFFSET(h5_event_row, sample), H5T_NATIVE_INT64) >= 0 &&
+        H5Tinsert(m, "radial_velocity_before", HOFFSET(h5_event_row, radial_velocity_before), H5T_NATIVE_DOUBLE) >= 0 &&
+        H5Tinsert(m, "radial_velocity_after", HOFFSET(h5_event_row, radial_velocity_after), H5T_NATIVE_DOUBLE) >= 0 &&
+        H5Tinsert(m, "tangential_velocity_before", HOFFSET(h5_event_row, tangential_velocity_before),
+                  H5T_NATIVE_DOUBLE) >= 0 &&
+        H5Tinsert(m, "tangential_velocity_after", HOFFSET(h5_event_row, tangential_velocity_after),
+                  H5T_NATIVE_DOUBLE) >= 0 &&
+        H5Tinsert(m, "impulse", HOFFSET(h5_event_row, impulse), H5T_NATIVE_DOUBLE) >= 0 &&
+        H5Tinsert(m, "normal_force", HOFFSET(h5_event_row, normal_force), H5T_NATIVE_DOUBLE) >= 0;
+    if (ok) {
+        h->event_ftype = H5Tcopy(m);
+        ok = h->event_ftype >= 0 && H5Tpack(h->event_ftype) >= 0;
+    }
+    if (ok) {
+        space = H5Screate_simple(1, dims, maxdims);
+        dcpl = H5Pcreate(H5P_DATASET_CREATE);
+        ok = space >= 0 && dcpl >= 0 && H5Pset_chunk(dcpl, 1, chunk) >= 0;
+    }
+    if (ok)
+        h->event_dset = H5Dcreate2(h->file, "events", h->event_ftype, space, H5P_DEFAULT, dcpl, H5P_DEFAULT);
+    if (dcpl >= 0)
+        H5Pclose(dcpl);
+    if (space >= 0)
+        H5Sclose(space);
+    if (!ok || h->event_dset < 0)
+        return h5_fail(err, w, "cannot create /events");
+    if (attr_string(h->event_dset, "kind_names", names) < 0 ||
+        attr_string(h->event_dset, "units",
+                    "time: s; radial_velocity_*, tangential_velocity_*: m/s; impulse: N s; normal_force: N") < 0)
+        return h5_fail(err, w, "cannot write the /events attributes");
+    return TD_OK;
+}
+
+static size_t choose_chunk_rows(const td_writer *w)
+{
+    size_t widest = sizeof(double) * 2 * (size_t)(w->node_count > w->amb_count ? w->node_count : w->amb_count);
+    size_t rows = H5_CHUNK_ROWS;
+    if ((size_t)w->retainer_count * sizeof(double) > widest)
+        widest = (size_t)w->retainer_count * sizeof(double);
+    if (widest > 0 && H5_CHUNK_BYTES / widest < rows)
+        rows = H5_CHUNK_BYTES / widest;
+    return rows < 16 ? 16 : rows;
+}
+
+static void h5_destroy(td_writer *w);
+
+static td_status open_impl(td_writer *w, h5_impl *h, td_error *err)
+{
+    hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
+    td_status st;
+    if (fapl < 0 || H5Pset_libver_bounds(fapl, H5F_LIBVER_V18, H5F_LIBVER_LATEST) < 0) {
+        if (fapl >= 0)
+            H5Pclose(fapl);
+        return h5_fail(err, w, "cannot set up file access");
+    }
+    h->file = H5Fcreate(w->tmp_path, H5F_ACC_TRUNC, H5P_DEFAULT, fapl);
+    H5Pclose(fapl);
+    if (h->file < 0)
+        return h5_fail(err, w, "cannot create the file");
+    h->idx_time = h->series_count;
+    if ((st = add_series(w, h, h->file, "time", "s", 1, NULL, 0, err)) != TD_OK ||
+        (st = create_nodes(w, h, err)) != TD_OK || (st = create_retainers(w, h, err)) != TD_OK ||
+        (st = create_ambs(w, h, err)) != TD_OK || (st = create_events(w, h, err)) != TD_OK)
+        return st;
+    if (attr_string(h->file, "units", "SI (touchdown/dofs.h); each dataset has a units attribute") < 0)
+        return h5_fail(err, w, "cannot write the units attribute");
+    return TD_OK;
+}
+
+static td_status h5_open(td_writer *w, td_error *err)
+{
+    h5_impl *h = calloc(1, sizeof *h);
+    td_status st;
+    if (!h)
+        return td_error_set(err, TD_ERR_NOMEM, "out of memory opening %s", w->path);
+    h->file = h->event_dset = h->event_mtype = h->event_ftype = h->kind_type = -1;
+    h->idx_time = h->idx_disp = h->idx_ret = h->idx_amb = -1;
+    h->chunk_rows = choose_chunk_rows(w);
+    w->impl = h;
+    h->event_buf = malloc(H5_EVENT_CHUNK * sizeof *h->event_buf);
+    if (!h->event_buf) {
+        free(h);
+        w->impl = NULL;
+        return td_error_set(err, TD_ERR_NOMEM, "out of memory opening %s", w->path);
+    }
+    H5E_BEGIN_TRY
+    {
+        st = open_impl(w, h, err);
+    }
+    H5E_END_TRY;
+    if (st != TD_OK) {
+        int created = h->file >= 0;
+        h5_destroy(w);
+        if (created)
+            remove(w->tmp_path);
+    }
+    return st;
+}
+
+/* ---- samples ----------------------------------------------------------------------------- */
+
+/* Write the buffered rows to the end of every sample dataset. */
+static td_status flush_rows(td_writer *w, h5_impl *h, td_error *err)
+{
+    int i, k;
+    if (h->buffered == 0)
+        return TD_OK;
+    for (i = 0; i < h->series_count; i++) {
+        h5_series *s = &h->series[i];
+        hsize_t dims[3], start[3], count[3];
+        hid_t fspace = -1, mspace = -1;
+        herr_t rc = -1;
+        dims[0] = h->flushed + h->buffered;
+        start[0] = h->flushed;
+        count[0] = h->buffered;
+        for (k = 1; k < s->rank; k++) {
+            dims[k] = count[k] = s->row_dims[k - 1];
+            start[k] = 0;
+        }
+        if (H5Dset_extent(s->dset, dims) >= 0 && (fspace = H5Dget_space(s->dset)) >= 0 &&
+            H5Sselect_hyperslab(fspace, H5S_SELECT_SET, start, NULL, count, NULL) >= 0 &&
+            (mspace = H5Screate_simple(s->rank, count, NULL)) >= 0)
+            rc = H5Dwrite(s->dset, s->is_int8 ? H5T_NATIVE_INT8 : H5T_NATIVE_DOUBLE, mspace, fspace, H5P_DEFAULT,
+                          s->buf);
+        if (mspace >= 0)
+            H5Sclose(mspace);
+        if (fspace >= 0)
+            H5Sclose(fspace);
+        if (rc < 0)
+            return h5_fail(err, w, "cannot write samples");
+    }
+    h->flushed += h->buffered;
+    h->buffered = 0;
+    return TD_OK;
+}
+
+static void buffer_row(const td_writer *w, h5_impl *h, double t, const double *node_xy, const td_retainer_state *ret,
+                       const double *amb_f)
+{
+    size_t r = h->buffered;
+    int i, f;
+    ((double *)h->series[h->idx_time].buf)[r] = t;
+    if (h->idx_disp >= 0)
+        memcpy((double *)h->series[h->idx_disp].buf + r * 2 * (size_t)w->node_count, node_xy,
+               2 * (size_t)w->node_count * sizeof(double));
+    if (h->idx_ret >= 0) {
+        for (f = 0; f < RET_FIELD_COUNT; f++) {
+            double *row = (double *)h->series[h->idx_ret + f].buf + r * (size_t)w->retainer_count;
+            for (i = 0; i < w->retainer_count; i++)
+                memcpy(&row[i], (const char *)&ret[i] + ret_fields[f].offset, sizeof(double));
+        }
+        for (i = 0; i < w->retainer_count; i++)
+            ((int8_t *)h->series[h->idx_ret + RET_FIELD_COUNT].buf)[r * (size_t)w->retainer_count + (size_t)i] =
+                (int8_t)(ret[i].in_contact ? 1 : 0);
+    }
+    if (h->idx_amb >= 0)
+        memcpy((double *)h->series[h->idx_amb].buf + r * 2 * (size_t)w->amb_count, amb_f,
+               2 * (size_t)w->amb_count * sizeof(double));
+    h->buffered++;
+}
+
+static td_status h5_sample(td_writer *w, double t, const double *node_xy, const td_retainer_state *ret,
+                           const double *amb_f, td_error *err)
+{
+    h5_impl *h = w->impl;
+    td_status st = TD_OK;
+    buffer_row(w, h, t, node_xy, ret, amb_f);
+    if (h->buffered == h->chunk_rows) {
+        H5E_BEGIN_TRY
+        {
+            st = flush_rows(w, h, err);
+        }
+        H5E_END_TRY;
+    }
+    return st;
+}
+
+/* ---- events ------------------------------------------------------------------------------ */
+
+/* Append the buffered events to /events. */
+static td_status flush_events(td_writer *w, h5_impl *h, td_error *err)
+{
+    hsize_t dims[1], start[1], count[1];
+    hid_t fspace = -1, mspace = -1;
+    herr_t rc = -1;
+    if (h->events_buffered == 0)
+        return TD_OK;
+    dims[0] = h->event_rows + h->events_buffered;
+    start[0] = h->event_rows;
+    count[0] = h->events_buffered;
+    if (H5Dset_extent(h->event_dset, dims) >= 0 && (fspace = H5Dget_space(h->event_dset)) >= 0 &&
+        H5Sselect_hyperslab(fspace, H5S_SELECT_SET, start, NULL, count, NULL) >= 0 &&
+        (mspace = H5Screate_simple(1, count, NULL)) >= 0)
+        rc = H5Dwrite(h->event_dset, h->event_mtype, mspace, fspace, H5P_DEFAULT, h->event_buf);
+    if (mspace >= 0)
+        H5Sclose(mspace);
+    if (fspace >= 0)
+        H5Sclose(fspace);
+    if (rc < 0)
+        return h5_fail(err, w, "cannot write events");
+    h->event_rows += h->events_buffered;
+    h->events_buffered = 0;
+    return TD_OK;
+}
+
+static td_status h5_event(td_writer *w, const td_event *ev, long sample, td_error *err)
+{
+    h5_impl *h = w->impl;
+    h5_event_row *row = &h->event_buf[h->events_buffered++];
+    td_status st = TD_OK;
+    memset(row, 0, sizeof *row);
+    row->time = ev->time;
+    row->kind = (int)ev->kind;
+    row->retainer = ev->retainer;
+    row->change = ev->change;
+    row->sample = (int64_t)sample;
+    row->radial_velocity_before = ev->radial_velocity_before;
+    row->radial_velocity_after = ev->radial_velocity_after;
+    row->tangential_velocity_before = ev->tangential_velocity_before;
+    row->tangential_velocity_after = ev->tangential_velocity_after;
+    row->impulse = ev->impulse;
+    row->normal_force = ev->normal_force;
+    if (h->events_buffered == H5_EVENT_CHUNK) {
+        H5E_BEGIN_TRY
+        {
+            st = flush_events(w, h, err);
+        }
+        H5E_END_TRY;
+    }
+    return st;
+}
+
+/* ---- finish ------------------------------------------------------------------------------ */
+
+static herr_t write_attr(hid_t file, const td_attr *a)
+{
+    switch (a->type) {
+    case TD_ATTR_STRING: return attr_string(file, a->name, a->text);
+    case TD_ATTR_DOUBLE:
+        return attr_numeric(file, a->name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, a->doubles, a->count, a->is_array);
+    case TD_ATTR_LONG:
+        return attr_numeric(file, a->name, H5T_STD_I64LE, H5T_NATIVE_LONG, a->longs, a->count, a->is_array);
+    }
+    return -1;
+}
+
+static td_status finish_impl(td_writer *w, h5_impl *h, int complete, const char *reason, td_error *err)
+{
+    td_status st = flush_rows(w, h, err);
+    int i;
+    if (st == TD_OK)
+        st = flush_events(w, h, err);
+    if (st != TD_OK)
+        return st;
+    for (i = 0; i < w->attr_count; i++)
+        if (write_attr(h->file, &w->attrs[i]) < 0)
+            return h5_fail(err, w, "cannot write a root attribute");
+    if (!complete && attr_string(h->file, "incomplete_reason", reason) < 0)
+        return h5_fail(err, w, "cannot write incomplete_reason");
+    /* The flag last: a file that stops before this line has no flag at all. */
+    if (attr_int(h->file, "complete", complete ? 1 : 0) < 0)
+        return h5_fail(err, w, "cannot write the completeness flag");
+    if (H5Fflush(h->file, H5F_SCOPE_GLOBAL) < 0)
+        return h5_fail(err, w, "cannot flush the file");
+    return TD_OK;
+}
+
+/* Close every handle; returns -1 if closing the file failed (its data may be lost). */
+static herr_t close_handles(h5_impl *h)
+{
+    herr_t rc = 0;
+    int i;
+    for (i = 0; i < h->series_count; i++) {
+        if (h->series[i].dset >= 0)
+            H5Dclose(h->series[i].dset);
+        free(h->series[i].buf);
+        h->series[i].dset = -1;
+        h->series[i].buf = NULL;
+    }
+    h->series_count = 0;
+    free(h->event_buf);
+    h->event_buf = NULL;
+    if (h->event_dset >= 0)
+        H5Dclose(h->event_dset);
+    if (h->event_ftype >= 0)
+        H5Tclose(h->event_ftype);
+    if (h->event_mtype >= 0)
+        H5Tclose(h->event_mtype);
+    if (h->kind_type >= 0)
+        H5Tclose(h->kind_type);
+    h->event_dset = h->event_ftype = h->event_mtype = h->kind_type = -1;
+    if (h->file >= 0)
+        rc = H5Fclose(h->file);
+    h->file = -1;
+    return rc;
+}
+
+static td_status h5_finish(td_writer *w, int complete, const char *reason, td_error *err)
+{
+    h5_impl *h = w->impl;
+    td_status st;
+    H5E_BEGIN_TRY
+    {
+        st = finish_impl(w, h, complete, reason, err);
+        if (close_handles(h) < 0 && st == TD_OK)
+            st = h5_fail(err, w, "cannot close the file");
+    }
+    H5E_END_TRY;
+    free(h);
+    w->impl = NULL;
+    return st;
+}
+
+static void h5_destroy(td_writer *w)
+{
+    h5_impl *h = w->impl;
+    if (!h)
+        return;
+    H5E_BEGIN_TRY
+    {
+        close_handles(h);
+    }
+    H5E_END_TRY;
+    free(h);
+    w->impl = NULL;
+}
+
+const td_writer_ops td_hdf5_writer_ops = {h5_open, h5_sample, h5_event, h5_finish, h5_destroy};

@@ -1,0 +1,278 @@
+/* The bridge between a td_sim and the writers (recorder.h). */
+#include "io/recorder.h"
+#include "util/error_internal.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "touchdown/dofs.h"
+
+#define REC_MAX_WRITERS 2
+
+struct td_recorder {
+    td_writer *writers[REC_MAX_WRITERS];
+    int writer_count;
+    int dof_count;
+    int node_count; /* nodes written */
+    int *nodes;
+    int retainer_count, amb_count;
+    double *q;       /* dof_count */
+    double *node_xy; /* 2 node_count */
+    td_retainer_state *ret;
+    double *amb_f; /* 2 amb_count */
+};
+
+static void recorder_free(td_recorder *r)
+{
+    if (!r)
+        return;
+    free(r->nodes);
+    free(r->q);
+    free(r->node_xy);
+    free(r->ret);
+    free(r->amb_f);
+    free(r);
+}
+
+void td_recorder_discard(td_recorder **rec)
+{
+    int i;
+    if (!rec || !*rec)
+        return;
+    for (i = 0; i < (*rec)->writer_count; i++)
+        td_writer_discard(&(*rec)->writers[i]);
+    recorder_free(*rec);
+    *rec = NULL;
+}
+
+/* The output nodes: out->nodes checked against the model, or every node. */
+static td_status choose_nodes(td_recorder *r, const td_model *model, const td_output_options *out, td_error *err)
+{
+    int n = td_model_node_count(model), i;
+    if (out->node_count < 0 || out->node_count > TD_OUTPUT_MAX_NODES)
+        return td_error_set(err, TD_ERR_INVALID, "output: node_count %d outside 0..%d", out->node_count,
+                            TD_OUTPUT_MAX_NODES);
+    r->node_count = out->node_count > 0 ? out->node_count : n;
+    if (r->node_count == 0)
+        return TD_OK;
+    r->nodes = malloc((size_t)r->node_count * sizeof *r->nodes);
+    if (!r->nodes)
+        return td_error_set(err, TD_ERR_NOMEM, "out of memory for the output node list");
+    for (i = 0; i < r->node_count; i++) {
+        r->nodes[i] = out->node_count > 0 ? out->nodes[i] : i;
+        if (r->nodes[i] < 0 || r->nodes[i] >= n)
+            return td_error_set(err, TD_ERR_INVALID, "output: node %d does not exist (the shaft has nodes 0..%d)",
+                                r->nodes[i], n - 1);
+    }
+    return TD_OK;
+}
+
+static td_status allocate_scratch(td_recorder *r, td_error *err)
+{
+    r->q = malloc((size_t)(r->dof_count > 0 ? r->dof_count : 1) * sizeof *r->q);
+    r->node_xy = malloc((size_t)(2 * r->node_count + 1) * sizeof *r->node_xy);
+    r->ret = calloc((size_t)r->retainer_count + 1, sizeof *r->ret);
+    r->amb_f = malloc((size_t)(2 * r->amb_count + 1) * sizeof *r->amb_f);
+    if (!r->q || !r->node_xy || !r->ret || !r->amb_f)
+        return td_error_set(err, TD_ERR_NOMEM, "out of memory for the output buffers");
+    return TD_OK;
+}
+
+/* Retainer nodes and clearances, AMB nodes: what a plot of the orbit needs besides the samples. */
+static td_status model_tables(const td_recorder *r, const td_model *model, long *ret_nodes, double *clearance,
+                              long *amb_nodes, td_error *err)
+{
+    int i;
+    for (i = 0; i < r->retainer_count; i++) {
+        td_retainer ret;
+        if (td_model_get_retainer(model, i, &ret) != TD_OK)
+            return td_error_set(err, TD_ERR_INVALID, "output: cannot read retainer %d of the model", i);
+        ret_nodes[i] = ret.node;
+        clearance[i] = ret.clearance;
+    }
+    for (i = 0; i < r->amb_count; i++) {
+        td_amb amb;
+        if (td_model_get_amb(model, i, &amb) != TD_OK)
+            return td_error_set(err, TD_ERR_INVALID, "output: cannot read AMB %d of the model", i);
+        amb_nodes[i] = amb.node;
+    }
+    return TD_OK;
+}
+
+static td_status write_model_attributes(td_recorder *r, const td_model *model, const td_output_options *out,
+                                        td_error *err)
+{
+    long *ret_nodes = malloc((size_t)(r->retainer_count + 1) * sizeof *ret_nodes);
+    double *clearance = malloc((size_t)(r->retainer_count + 1) * sizeof *clearance);
+    long *amb_nodes = malloc((size_t)(r->amb_count + 1) * sizeof *amb_nodes);
+    td_status st = TD_OK;
+    int w;
+    if (!ret_nodes || !clearance || !amb_nodes)
+        st = td_error_set(err, TD_ERR_NOMEM, "out of memory for the output attributes");
+    if (st == TD_OK)
+        st = model_tables(r, model, ret_nodes, clearance, amb_nodes, err);
+    for (w = 0; w < r->writer_count && st == TD_OK; w++) {
+        td_writer *wr = r->writers[w];
+        st = td_writer_set_double(wr, "sample_rate", out->sample_rate, err);
+        if (st == TD_OK && r->retainer_count > 0)
+            st = td_writer_set_longs(wr, "retainer_nodes", ret_nodes, r->retainer_count, err);
+        if (st == TD_OK && r->retainer_count > 0)
+            st = td_writer_set_doubles(wr, "retainer_clearance", clearance, r->retainer_count, err);
+        if (st == TD_OK && r->amb_count > 0)
+            st = td_writer_set_longs(wr, "amb_nodes", amb_nodes, r->amb_count, err);
+    }
+    free(ret_nodes);
+    free(clearance);
+    free(amb_nodes);
+    return st;
+}
+
+static td_status open_writers(td_recorder *r, const td_output_options *out, td_error *err)
+{
+    td_output_layout layout;
+    td_status st = TD_OK;
+    layout.node_count = r->node_count;
+    layout.nodes = r->nodes;
+    layout.retainer_count = r->retainer_count;
+    layout.amb_count = r->amb_count;
+    if (out->hdf5_path[0])
+        st = td_writer_open(TD_WRITER_HDF5, out->hdf5_path, &layout, &r->writers[r->writer_count++], err);
+    if (st == TD_OK && out->csv_path[0])
+        st = td_writer_open(TD_WRITER_CSV, out->csv_path, &layout, &r->writers[r->writer_count++], err);
+    return st;
+}
+
+td_status td_recorder_create(const td_model *model, const td_output_options *out, td_recorder **rec, td_error *err)
+{
+    td_recorder *r;
+    td_status st;
+    if (!rec)
+        return td_error_set(err, TD_ERR_INVALID, "td_recorder_create: NULL output pointer");
+    *rec = NULL;
+    if (!model || !out)
+        return td_error_set(err, TD_ERR_INVALID, "td_recorder_create: NULL model or output options");
+    if (!isfinite(out->sample_rate) || out->sample_rate <= 0.0)
+        return td_error_set(err, TD_ERR_INVALID, "output: sample_rate must be > 0 Hz (got %g)", out->sample_rate);
+    if (!memchr(out->hdf5_path, '\0', sizeof out->hdf5_path) || !memchr(out->csv_path, '\0', sizeof out->csv_path))
+        return td_error_set(err, TD_ERR_INVALID, "output: path not NUL-terminated");
+    r = calloc(1, sizeof *r);
+    if (!r)
+        return td_error_set(err, TD_ERR_NOMEM, "out of memory creating the recorder");
+    r->dof_count = td_model_dof_count(model);
+    r->retainer_count = td_model_retainer_count(model);
+    r->amb_count = td_model_amb_count(model);
+    if ((st = choose_nodes(r, model, out, err)) != TD_OK || (st = allocate_scratch(r, err)) != TD_OK ||
+        (st = open_writers(r, out, err)) != TD_OK || (st = write_model_attributes(r, model, out, err)) != TD_OK) {
+        td_recorder_discard(&r);
+        return st;
+    }
+    *rec = r;
+    return TD_OK;
+}
+
+/* Read nodes, retainers and AMBs from the simulation into the scratch buffers. */
+static td_status read_state(td_recorder *r, const td_sim *sim, td_error *err)
+{
+    td_status st = td_sim_get_state(sim, r->q, NULL);
+    int i;
+    if (st != TD_OK)
+        return td_error_set(err, st, "reading the state at t = %.17g s: %s", td_sim_time(sim), td_sim_errmsg(sim));
+    for (i = 0; i < r->node_count; i++) {
+        r->node_xy[2 * i] = r->q[TD_DOF(r->nodes[i], TD_DOF_X)];
+        r->node_xy[2 * i + 1] = r->q[TD_DOF(r->nodes[i], TD_DOF_Y)];
+    }
+    for (i = 0; i < r->retainer_count; i++)
+        if ((st = td_sim_retainer_state(sim, i, &r->ret[i])) != TD_OK)
+            return td_error_set(err, st, "reading retainer %d: %s", i, td_sim_errmsg(sim));
+    for (i = 0; i < r->amb_count; i++)
+        if ((st = td_sim_amb_force(sim, i, &r->amb_f[2 * i])) != TD_OK)
+            return td_error_set(err, st, "reading AMB %d: %s", i, td_sim_errmsg(sim));
+    return TD_OK;
+}
+
+td_status td_recorder_sample(td_recorder *r, const td_sim *sim, double t, td_error *err)
+{
+    td_status st;
+    int i;
+    if (!r || !sim)
+        return td_error_set(err, TD_ERR_INVALID, "td_recorder_sample: NULL argument");
+    if (td_sim_dof_count(sim) != r->dof_count)
+        return td_error_set(err, TD_ERR_INVALID, "the simulation has %d DOFs, the output layout %d",
+                            td_sim_dof_count(sim), r->dof_count);
+    if ((st = read_state(r, sim, err)) != TD_OK)
+        return st;
+    for (i = 0; i < r->writer_count; i++)
+        if ((st = td_writer_sample(r->writers[i], t, r->node_xy, r->ret, r->amb_f, err)) != TD_OK)
+            return st;
+    return TD_OK;
+}
+
+const td_retainer_state *td_recorder_retainers(const td_recorder *r)
+{
+    return r->ret;
+}
+int td_recorder_retainer_count(const td_recorder *r)
+{
+    return r->retainer_count;
+}
+
+td_status td_recorder_event(td_recorder *r, const td_event *ev, long sample, td_error *err)
+{
+    td_status st;
+    int i;
+    for (i = 0; i < r->writer_count; i++)
+        if ((st = td_writer_event(r->writers[i], ev, sample, err)) != TD_OK)
+            return st;
+    return TD_OK;
+}
+
+/* Apply one td_writer_set_* call to every writer. */
+#define FOR_EACH_WRITER(r, call)                                                                                       \
+    do {                                                                                                               \
+        int i_;                                                                                                        \
+        td_status st_;                                                                                                 \
+        for (i_ = 0; i_ < (r)->writer_count; i_++) {                                                                   \
+            td_writer *w_ = (r)->writers[i_];                                                                          \
+            if ((st_ = (call)) != TD_OK)                                                                               \
+                return st_;                                                                                            \
+        }                                                                                                              \
+        return TD_OK;                                                                                                  \
+    } while (0)
+
+td_status td_recorder_set_string(td_recorder *r, const char *name, const char *value, td_error *err)
+{
+    FOR_EACH_WRITER(r, td_writer_set_string(w_, name, value, err));
+}
+
+td_status td_recorder_set_double(td_recorder *r, const char *name, double value, td_error *err)
+{
+    FOR_EACH_WRITER(r, td_writer_set_double(w_, name, value, err));
+}
+
+td_status td_recorder_set_long(td_recorder *r, const char *name, long value, td_error *err)
+{
+    FOR_EACH_WRITER(r, td_writer_set_long(w_, name, value, err));
+}
+
+td_status td_recorder_set_stats(td_recorder *r, const td_sim_stats *stats, td_error *err)
+{
+    FOR_EACH_WRITER(r, td_writer_set_stats(w_, stats, err));
+}
+
+td_status td_recorder_close(td_recorder **rec, int complete, const char *reason, td_error *err)
+{
+    td_status first = TD_OK;
+    int i;
+    if (!rec || !*rec)
+        return TD_OK;
+    for (i = 0; i < (*rec)->writer_count; i++) {
+        td_error local;
+        td_status st = td_writer_close(&(*rec)->writers[i], complete, reason, &local);
+        if (st != TD_OK && first == TD_OK)
+            first = td_error_set(err, st, "%s", local.message);
+    }
+    recorder_free(*rec);
+    *rec = NULL;
+    return first;
+}

@@ -1,0 +1,450 @@
+/*
+ * The format-independent half of td_writer: argument checks, the attribute list and the
+ * PATH.partial -> PATH protocol that keeps an unfinished file from ever looking finished.
+ */
+#include "io/writer_internal.h"
+#include "util/error_internal.h"
+
+#include <errno.h>
+#include <fcntl.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "touchdown/version.h"
+
+static const char partial_suffix[] = ".partial";
+
+const char *td_event_kind_name(td_event_kind kind)
+{
+    switch (kind) {
+    case TD_EVENT_CONTACT_ONSET: return "contact_onset";
+    case TD_EVENT_RELEASE: return "release";
+    case TD_EVENT_FRICTION_REVERSAL: return "friction_reversal";
+    case TD_EVENT_SCHEDULE: return "schedule";
+    case TD_EVENT_PENALTY_ENTER: return "penalty_enter";
+    case TD_EVENT_PENALTY_EXIT: return "penalty_exit";
+    }
+    return "unknown";
+}
+
+int td_writer_events_path(const char *csv_path, char *buf, size_t n)
+{
+    static const char ext[] = ".csv";
+    size_t len = csv_path ? strlen(csv_path) : 0;
+    size_t ext_len = sizeof ext - 1;
+    if (len >= ext_len && strcmp(csv_path + len - ext_len, ext) == 0)
+        len -= ext_len;
+    return snprintf(buf, n, "%.*s.events.csv", (int)len, csv_path ? csv_path : "");
+}
+
+td_status td_io_fsync_path(const char *path, td_error *err)
+{
+    int fd = open(path, O_RDONLY);
+    int rc;
+    if (fd < 0)
+        return td_error_set(err, TD_ERR_IO, "%s: cannot reopen to flush: %s", path, strerror(errno));
+    rc = fsync(fd);
+    if (close(fd) != 0 || rc != 0)
+        return td_error_set(err, TD_ERR_IO, "%s: flush to disk failed: %s", path, strerror(errno));
+    return TD_OK;
+}
+
+/* ---- open / free ------------------------------------------------------------------------- */
+
+static td_status check_layout(const td_output_layout *layout, td_error *err)
+{
+    int i;
+    if (!layout)
+        return td_error_set(err, TD_ERR_INVALID, "td_writer_open: NULL layout");
+    if (layout->node_count < 0 || layout->retainer_count < 0 || layout->amb_count < 0)
+        return td_error_set(err, TD_ERR_INVALID, "td_writer_open: negative count in the output layout");
+    if (layout->node_count > 0 && !layout->nodes)
+        return td_error_set(err, TD_ERR_INVALID, "td_writer_open: %d nodes but no node list", layout->node_count);
+    for (i = 0; i < layout->node_count; i++)
+        if (layout->nodes[i] < 0)
+            return td_error_set(err, TD_ERR_INVALID, "td_writer_open: node number %d is negative", layout->nodes[i]);
+    return TD_OK;
+}
+
+static void attr_release(td_attr *a)
+{
+    free(a->text);
+    free(a->doubles);
+    free(a->longs);
+    a->text = NULL;
+    a->doubles = NULL;
+    a->longs = NULL;
+}
+
+static void writer_free(td_writer *w)
+{
+    int i;
+    if (!w)
+        return;
+    for (i = 0; i < w->attr_count; i++)
+        attr_release(&w->attrs[i]);
+    free(w->attrs);
+    free(w->nodes);
+    free(w->path);
+    free(w->tmp_path);
+    free(w->events_path);
+    free(w->events_tmp);
+    free(w);
+}
+
+static char *string_copy(const char *s, const char *suffix)
+{
+    size_t a = strlen(s), b = suffix ? strlen(suffix) : 0;
+    char *p = malloc(a + b + 1);
+    if (p) {
+        memcpy(p, s, a);
+        if (b)
+            memcpy(p + a, suffix, b);
+        p[a + b] = '\0';
+    }
+    return p;
+}
+
+/* CSV: the events file's final and temporary names. */
+static td_status events_paths(td_writer *w)
+{
+    int n = td_writer_events_path(w->path, NULL, 0);
+    w->events_path = malloc((size_t)n + 1);
+    if (!w->events_path)
+        return TD_ERR_NOMEM;
+    td_writer_events_path(w->path, w->events_path, (size_t)n + 1);
+    w->events_tmp = string_copy(w->events_path, partial_suffix);
+    return w->events_tmp ? TD_OK : TD_ERR_NOMEM;
+}
+
+/* Remove a stale result at `path` (absent is fine): a file at PATH must belong to this run. */
+static td_status remove_stale(const char *path, td_error *err)
+{
+    if (unlink(path) != 0 && errno != ENOENT)
+        return td_error_set(err, TD_ERR_IO, "%s: cannot remove the old file: %s", path, strerror(errno));
+    return TD_OK;
+}
+
+td_status td_writer_open(td_writer_kind kind, const char *path, const td_output_layout *layout, td_writer **out,
+                         td_error *err)
+{
+    td_writer *w;
+    td_status st;
+    if (!out)
+        return td_error_set(err, TD_ERR_INVALID, "td_writer_open: NULL output pointer");
+    *out = NULL;
+    if (!path || !path[0])
+        return td_error_set(err, TD_ERR_INVALID, "td_writer_open: empty path");
+    if (kind != TD_WRITER_HDF5 && kind != TD_WRITER_CSV)
+        return td_error_set(err, TD_ERR_INVALID, "td_writer_open: unknown writer kind %d", (int)kind);
+    if ((st = check_layout(layout, err)) != TD_OK)
+        return st;
+    w = calloc(1, sizeof *w);
+    if (!w)
+        return td_error_set(err, TD_ERR_NOMEM, "out of memory opening %s", path);
+    w->kind = kind;
+    w->ops = kind == TD_WRITER_HDF5 ? &td_hdf5_writer_ops : &td_csv_writer_ops;
+    w->path = string_copy(path, NULL);
+    w->tmp_path = string_copy(path, partial_suffix);
+    if (kind == TD_WRITER_CSV && (st = events_paths(w)) != TD_OK) {
+        writer_free(w);
+        return td_error_set(err, st, "out of memory opening %s", path);
+    }
+    w->node_count = layout->node_count;
+    w->retainer_count = layout->retainer_count;
+    w->amb_count = layout->amb_count;
+    if (layout->node_count > 0) {
+        w->nodes = malloc((size_t)layout->node_count * sizeof *w->nodes);
+        if (w->nodes)
+            memcpy(w->nodes, layout->nodes, (size_t)layout->node_count * sizeof *w->nodes);
+    }
+    if (!w->path || !w->tmp_path || (layout->node_count > 0 && !w->nodes)) {
+        writer_free(w);
+        return td_error_set(err, TD_ERR_NOMEM, "out of memory opening %s", path);
+    }
+    if ((st = w->ops->open(w, err)) != TD_OK) {
+        writer_free(w); /* the back end removed whatever it had created */
+        return st;
+    }
+    if ((st = remove_stale(w->path, err)) != TD_OK ||
+        (w->events_path && (st = remove_stale(w->events_path, err)) != TD_OK)) {
+        td_writer_discard(&w);
+        return st;
+    }
+    *out = w;
+    return TD_OK;
+}
+
+/* ---- samples and events ------------------------------------------------------------------ */
+
+static td_status usable(const td_writer *w, const char *what, td_error *err)
+{
+    if (!w)
+        return td_error_set(err, TD_ERR_INVALID, "%s: NULL writer", what);
+    if (w->failed)
+        return td_error_set(err, TD_ERR_STATE, "%s: an earlier write to %s failed (%s)", what, w->path, w->failure);
+    return TD_OK;
+}
+
+/* Remember the first failure; the file can then only be closed incomplete. */
+static td_status mark_failed(td_writer *w, td_status st, const td_error *local, td_error *err)
+{
+    w->failed = 1;
+    snprintf(w->failure, sizeof w->failure, "%s", local->message);
+    return td_error_set(err, st, "%s", local->message);
+}
+
+td_status td_writer_sample(td_writer *w, double t, const double *node_xy, const td_retainer_state *ret,
+                           const double *amb_f, td_error *err)
+{
+    td_status st = usable(w, "td_writer_sample", err);
+    td_error local;
+    if (st != TD_OK)
+        return st;
+    if ((w->node_count > 0 && !node_xy) || (w->retainer_count > 0 && !ret) || (w->amb_count > 0 && !amb_f))
+        return td_error_set(err, TD_ERR_INVALID, "td_writer_sample: NULL array for a non-empty part of the layout");
+    td_error_clear(&local);
+    st = w->ops->sample(w, t, node_xy, ret, amb_f, &local);
+    if (st != TD_OK)
+        return mark_failed(w, st, &local, err);
+    w->samples++;
+    return TD_OK;
+}
+
+td_status td_writer_event(td_writer *w, const td_event *ev, long sample, td_error *err)
+{
+    td_status st = usable(w, "td_writer_event", err);
+    td_error local;
+    if (st != TD_OK)
+        return st;
+    if (!ev)
+        return td_error_set(err, TD_ERR_INVALID, "td_writer_event: NULL event");
+    if (sample < -1 || sample >= w->samples)
+        return td_error_set(err, TD_ERR_INVALID, "td_writer_event: sample %ld is not a written row (0..%ld)", sample,
+                            w->samples - 1);
+    td_error_clear(&local);
+    st = w->ops->event(w, ev, sample, &local);
+    if (st != TD_OK)
+        return mark_failed(w, st, &local, err);
+    w->events++;
+    return TD_OK;
+}
+
+long td_writer_sample_count(const td_writer *w)
+{
+    return w ? w->samples : 0;
+}
+long td_writer_event_count(const td_writer *w)
+{
+    return w ? w->events : 0;
+}
+
+/* ---- attributes -------------------------------------------------------------------------- */
+
+static int name_char_ok(char c)
+{
+    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' || c == '.' ||
+           c == '-';
+}
+
+static td_status check_name(const td_writer *w, const char *name, td_error *err)
+{
+    size_t i, len;
+    if (!w)
+        return td_error_set(err, TD_ERR_INVALID, "td_writer_set_*: NULL writer");
+    if (!name || !name[0])
+        return td_error_set(err, TD_ERR_INVALID, "td_writer_set_*: empty attribute name");
+    len = strlen(name);
+    if (len >= TD_ATTR_NAME_SIZE)
+        return td_error_set(err, TD_ERR_INVALID, "attribute name '%.20s...' longer than %d characters", name,
+                            TD_ATTR_NAME_SIZE - 1);
+    for (i = 0; i < len; i++)
+        if (!name_char_ok(name[i]))
+            return td_error_set(err, TD_ERR_INVALID, "attribute name '%s': only letters, digits, '_', '.', '-'", name);
+    if (strcmp(name, "complete") == 0 || strcmp(name, "incomplete_reason") == 0)
+        return td_error_set(err, TD_ERR_INVALID, "attribute name '%s' is reserved for the writer", name);
+    return TD_OK;
+}
+
+/* The slot for `name`: the existing one (its old value released) or a new one. */
+static td_attr *attr_slot(td_writer *w, const char *name)
+{
+    int i;
+    for (i = 0; i < w->attr_count; i++)
+        if (strcmp(w->attrs[i].name, name) == 0) {
+            attr_release(&w->attrs[i]);
+            return &w->attrs[i];
+        }
+    if (w->attr_count == w->attr_capacity) {
+        int cap = w->attr_capacity ? 2 * w->attr_capacity : 32;
+        td_attr *p = realloc(w->attrs, (size_t)cap * sizeof *p);
+        if (!p)
+            return NULL;
+        w->attrs = p;
+        w->attr_capacity = cap;
+    }
+    memset(&w->attrs[w->attr_count], 0, sizeof w->attrs[0]);
+    snprintf(w->attrs[w->attr_count].name, TD_ATTR_NAME_SIZE, "%s", name);
+    return &w->attrs[w->attr_count++];
+}
+
+/* Store a copy of `values`: n items of `size` bytes. Strings: n = strlen + 1. */
+static td_status attr_store(td_writer *w, const char *name, td_attr_type type, const void *values, int n, int is_array,
+                            td_error *err)
+{
+    td_status st = check_name(w, name, err);
+    size_t size = type == TD_ATTR_STRING ? 1 : type == TD_ATTR_DOUBLE ? sizeof(double) : sizeof(long);
+    void *copy;
+    td_attr *a;
+    if (st != TD_OK)
+        return st;
+    if (!values || n < 1)
+        return td_error_set(err, TD_ERR_INVALID, "attribute '%s': no values", name);
+    copy = malloc((size_t)n * size);
+    if (!copy)
+        return td_error_set(err, TD_ERR_NOMEM, "out of memory storing attribute '%s'", name);
+    memcpy(copy, values, (size_t)n * size);
+    a = attr_slot(w, name);
+    if (!a) {
+        free(copy);
+        return td_error_set(err, TD_ERR_NOMEM, "out of memory storing attribute '%s'", name);
+    }
+    a->type = type;
+    a->count = type == TD_ATTR_STRING ? 1 : n;
+    a->is_array = is_array;
+    if (type == TD_ATTR_STRING)
+        a->text = copy;
+    else if (type == TD_ATTR_DOUBLE)
+        a->doubles = copy;
+    else
+        a->longs = copy;
+    return TD_OK;
+}
+
+td_status td_writer_set_string(td_writer *w, const char *name, const char *value, td_error *err)
+{
+    if (!value)
+        value = "";
+    if (strlen(value) >= 0x7fffffff)
+        return td_error_set(err, TD_ERR_INVALID, "attribute '%s': string too long", name ? name : "");
+    return attr_store(w, name, TD_ATTR_STRING, value, (int)strlen(value) + 1, 0, err);
+}
+
+td_status td_writer_set_double(td_writer *w, const char *name, double value, td_error *err)
+{
+    return attr_store(w, name, TD_ATTR_DOUBLE, &value, 1, 0, err);
+}
+
+td_status td_writer_set_long(td_writer *w, const char *name, long value, td_error *err)
+{
+    return attr_store(w, name, TD_ATTR_LONG, &value, 1, 0, err);
+}
+
+td_status td_writer_set_doubles(td_writer *w, const char *name, const double *values, int n, td_error *err)
+{
+    return attr_store(w, name, TD_ATTR_DOUBLE, values, n, 1, err);
+}
+
+td_status td_writer_set_longs(td_writer *w, const char *name, const long *values, int n, td_error *err)
+{
+    return attr_store(w, name, TD_ATTR_LONG, values, n, 1, err);
+}
+
+td_status td_writer_set_stats(td_writer *w, const td_sim_stats *s, td_error *err)
+{
+    const struct {
+        const char *name;
+        long value;
+    } counts[] = {{"steps", s ? s->steps : 0},
+                  {"residual_evals", s ? s->residual_evals : 0},
+                  {"jacobian_evals", s ? s->jacobian_evals : 0},
+                  {"linear_setups", s ? s->linear_setups : 0},
+                  {"nonlinear_iters", s ? s->nonlinear_iters : 0},
+                  {"error_test_fails", s ? s->error_test_fails : 0},
+                  {"nonlinear_fails", s ? s->nonlinear_fails : 0},
+                  {"restarts", s ? s->restarts : 0},
+                  {"events", s ? s->events : 0},
+                  {"contact_onsets", s ? s->contact_onsets : 0},
+                  {"releases", s ? s->releases : 0}};
+    const struct {
+        const char *name;
+        double value;
+    } reals[] = {{"worst_drift", s ? s->worst_drift : 0.0},
+                 {"peak_normal_force", s ? s->peak_normal_force : 0.0},
+                 {"time_in_contact", s ? s->time_in_contact : 0.0},
+                 {"first_contact_time", s ? s->first_contact_time : 0.0},
+                 {"wall_time", s ? s->wall_time : 0.0}};
+    size_t i;
+    td_status st;
+    if (!s)
+        return td_error_set(err, TD_ERR_INVALID, "td_writer_set_stats: NULL statistics");
+    for (i = 0; i < sizeof counts / sizeof counts[0]; i++)
+        if ((st = td_writer_set_long(w, counts[i].name, counts[i].value, err)) != TD_OK)
+            return st;
+    for (i = 0; i < sizeof reals / sizeof reals[0]; i++)
+        if ((st = td_writer_set_double(w, reals[i].name, reals[i].value, err)) != TD_OK)
+            return st;
+    return td_writer_set_string(w, "library_version", td_version(), err);
+}
+
+/* ---- close ------------------------------------------------------------------------------- */
+
+void td_writer_discard(td_writer **wp)
+{
+    td_writer *w;
+    if (!wp || !*wp)
+        return;
+    w = *wp;
+    w->ops->destroy(w);
+    remove(w->tmp_path);
+    if (w->events_tmp)
+        remove(w->events_tmp);
+    writer_free(w);
+    *wp = NULL;
+}
+
+td_status td_writer_close(td_writer **wp, int complete, const char *reason, td_error *err)
+{
+    td_writer *w;
+    td_status st;
+    td_error local;
+    char why[TD_ERROR_MESSAGE_SIZE];
+    if (!wp || !*wp)
+        return TD_OK;
+    w = *wp;
+    td_error_clear(&local);
+    /* library_version always goes in, whoever set it before. */
+    st = td_writer_set_string(w, "library_version", td_version(), &local);
+    if (st != TD_OK && !w->failed)
+        mark_failed(w, st, &local, NULL);
+    if (w->failed) {
+        complete = 0;
+        snprintf(why, sizeof why, "write failed: %.400s", w->failure);
+    } else {
+        snprintf(why, sizeof why, "%s", reason && reason[0] ? reason : "unspecified");
+    }
+    st = w->ops->finish(w, complete, complete ? NULL : why, &local);
+    if (st == TD_OK)
+        st = td_io_fsync_path(w->tmp_path, &local);
+    if (st == TD_OK && w->events_tmp)
+        st = td_io_fsync_path(w->events_tmp, &local);
+    /* The events file first: the samples file carries the authoritative flag. */
+    if (st == TD_OK && w->events_tmp && rename(w->events_tmp, w->events_path) != 0)
+        st = td_error_set(&local, TD_ERR_IO, "%s: cannot rename to %s: %s", w->events_tmp, w->events_path,
+                          strerror(errno));
+    if (st == TD_OK && rename(w->tmp_path, w->path) != 0) {
+        st = td_error_set(&local, TD_ERR_IO, "%s: cannot rename to %s: %s", w->tmp_path, w->path, strerror(errno));
+        if (w->events_path)
+            remove(w->events_path);
+    }
+    if (st != TD_OK) {
+        td_error_set(err, st, "%s", local.message);
+        td_writer_discard(wp);
+        return st;
+    }
+    writer_free(w);
+    *wp = NULL;
+    return TD_OK;
+}

@@ -1,0 +1,67 @@
+/*
+ * The td_writer record shared by the format back ends (hdf5_writer.c, csv_writer.c).
+ *
+ * writer.c owns what both formats share: argument checks, the layout copy, the attribute list,
+ * the PATH.partial -> PATH protocol. A back end implements four operations on its own state.
+ */
+#ifndef TD_IO_WRITER_INTERNAL_H
+#define TD_IO_WRITER_INTERNAL_H
+
+#include "touchdown/output.h"
+
+/** Longest attribute name, NUL included. */
+#define TD_ATTR_NAME_SIZE 64
+
+typedef enum td_attr_type { TD_ATTR_STRING = 0, TD_ATTR_DOUBLE = 1, TD_ATTR_LONG = 2 } td_attr_type;
+
+/** One named attribute, kept until close. */
+typedef struct td_attr {
+    char name[TD_ATTR_NAME_SIZE];
+    td_attr_type type;
+    int count;       /**< values (strings: 1) */
+    int is_array;    /**< written as a 1-D array even if count == 1 */
+    char *text;      /**< TD_ATTR_STRING */
+    double *doubles; /**< TD_ATTR_DOUBLE */
+    long *longs;     /**< TD_ATTR_LONG */
+} td_attr;
+
+typedef struct td_writer_ops td_writer_ops;
+
+struct td_writer {
+    td_writer_kind kind;
+    char *path;        /**< final path of the main file */
+    char *tmp_path;    /**< path + ".partial" */
+    char *events_path; /**< CSV only: the events file (td_writer_events_path), else NULL */
+    char *events_tmp;  /**< CSV only: events_path + ".partial" */
+    int node_count, retainer_count, amb_count;
+    int *nodes; /**< node_count numbers (NULL if 0) */
+    td_attr *attrs;
+    int attr_count, attr_capacity;
+    long samples, events;
+    int failed; /**< a write failed: the file can only be closed incomplete */
+    char failure[TD_ERROR_MESSAGE_SIZE];
+    const td_writer_ops *ops;
+    void *impl; /**< back end state */
+};
+
+/** Back-end operations. Each returns a status and fills err; finish and destroy release impl. */
+struct td_writer_ops {
+    td_status (*open)(td_writer *w, td_error *err); /* create w->tmp_path */
+    td_status (*sample)(td_writer *w, double t, const double *node_xy, const td_retainer_state *ret,
+                        const double *amb_f, td_error *err);
+    td_status (*event)(td_writer *w, const td_event *ev, long sample, td_error *err);
+    /* Write the buffered data, every attribute, then complete/incomplete_reason last, flush and
+     * close the file(s) (not renamed yet), release impl and set it to NULL, even on failure.
+     * `reason` is NULL when complete. */
+    td_status (*finish)(td_writer *w, int complete, const char *reason, td_error *err);
+    /* Release impl (may be NULL) without finishing; the caller removes the files. */
+    void (*destroy)(td_writer *w);
+};
+
+extern const td_writer_ops td_hdf5_writer_ops;
+extern const td_writer_ops td_csv_writer_ops;
+
+/** Flush a closed file's data to disk (fsync); TD_ERR_IO on failure. */
+td_status td_io_fsync_path(const char *path, td_error *err);
+
+#endif

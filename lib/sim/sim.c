@@ -1,0 +1,950 @@
+/*
+ * td_sim: creation, the IDA set-up, the step loop and the public accessors (touchdown/sim.h).
+ * The DAE itself is in sim_residual.c, mode switching in sim_modes.c.
+ */
+#include "sim/sim_internal.h"
+#include "touchdown/modal.h"
+#include "util/error_internal.h"
+#include "util/numeric.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include <ida/ida_ls.h>
+#include <sunlinsol/sunlinsol_dense.h>
+#include <sunlinsol/sunlinsol_klu.h>
+#include <sunmatrix/sunmatrix_dense.h>
+#include <sunmatrix/sunmatrix_sparse.h>
+#include <sunnonlinsol/sunnonlinsol_newton.h>
+
+/* ---- IDA callbacks ----------------------------------------------------------------------- */
+
+static int res_cb(sunrealtype t, N_Vector y, N_Vector yp, N_Vector r, void *data)
+{
+    td_sim_residual((const td_sim *)data, t, N_VGetArrayPointer(y), N_VGetArrayPointer(yp), N_VGetArrayPointer(r));
+    return 0;
+}
+
+static int jac_cb(sunrealtype t, sunrealtype cj, N_Vector y, N_Vector yp, N_Vector r, SUNMatrix J, void *data,
+                  N_Vector t1, N_Vector t2, N_Vector t3)
+{
+    td_sim *s = (td_sim *)data;
+    int j, p;
+    (void)yp, (void)r, (void)t1, (void)t2, (void)t3;
+    td_sim_jacobian(s, t, cj, N_VGetArrayPointer(y));
+    if (SUNMatGetID(J) == SUNMATRIX_SPARSE) {
+        /* IDA's SUNMatZero cleared the index arrays too: write the whole pattern every time */
+        sunindextype *cp = SUNSparseMatrix_IndexPointers(J), *ri = SUNSparseMatrix_IndexValues(J);
+        sunrealtype *d = SUNSparseMatrix_Data(J);
+        for (j = 0; j <= s->neq; j++)
+            cp[j] = s->colptr[j];
+        for (p = 0; p < s->nnz; p++) {
+            ri[p] = s->rowind[p];
+            d[p] = s->jdata[p];
+        }
+    } else {
+        SUNMatZero(J);
+        for (j = 0; j < s->neq; j++) {
+            sunrealtype *col = SUNDenseMatrix_Column(J, j);
+            for (p = s->colptr[j]; p < s->colptr[j + 1]; p++)
+                col[s->rowind[p]] = s->jdata[p];
+        }
+    }
+    return 0;
+}
+
+static int root_cb(sunrealtype t, N_Vector y, N_Vector yp, sunrealtype *g, void *data)
+{
+    (void)yp;
+    td_sim_roots((const td_sim *)data, t, N_VGetArrayPointer(y), g);
+    return 0;
+}
+
+/*
+ * Newton convergence test: IDA's own test (a weighted RMS norm of the last correction over all
+ * unknowns, with the convergence rate of earlier steps), and then every active contact
+ * constraint |g| <= constraint_tol at the iterate. Why the second test: the RMS over ~100
+ * unknowns lets a single component sit at a few times its weight, and IDA accepts a single
+ * modified-Newton iteration when earlier steps converged fast. On case A that let the constraint
+ * residual and the GGL multiplier eta grow in a two-step oscillation (eta ~ g/h alternating in
+ * sign, |r - c| up to 5e-9 m) until a convergence failure reset it. Demanding the constraint
+ * itself at acceptance costs an extra iteration now and then and keeps |r - c| below the
+ * tolerance at every step.
+ */
+static int conv_test_cb(SUNNonlinearSolver nls, N_Vector ycor, N_Vector del, sunrealtype tol, N_Vector ewt, void *data)
+{
+    td_sim *s = (td_sim *)data;
+    sunrealtype tcur, cj;
+    N_Vector ypred, yppred, yyn, ypn, res;
+    void *user;
+    const double *cor, *pred;
+    int k, flag = s->ida_ctest(nls, ycor, del, tol, ewt, s->ida_ctest_data);
+    if (flag != SUN_NLS_SUCCESS)
+        return flag;
+    if (IDAGetNonlinearSystemData(s->ida, &tcur, &ypred, &yppred, &yyn, &ypn, &res, &cj, &user) != IDA_SUCCESS)
+        return flag;
+    cor = N_VGetArrayPointer(ycor);
+    pred = N_VGetArrayPointer(ypred);
+    for (k = 0; k < s->nr; k++) {
+        const td_sim_retainer *r = &s->ret[k];
+        double x, y;
+        if (r->mode != TD_RMODE_CONTACT)
+            continue;
+        x = pred[s->oq + r->dx] + cor[s->oq + r->dx];
+        y = pred[s->oq + r->dy] + cor[s->oq + r->dy];
+        if (fabs(td_contact_constraint(x, y, r->r.clearance)) > s->constraint_tol)
+            return SUN_NLS_CONTINUE;
+    }
+    return flag;
+}
+
+/* IDA's messages go into the sim's buffers: errors into errmsg, warnings into warnmsg. */
+static void message_sink(int code, const char *function, const char *msg, void *data)
+{
+    td_sim *s = (td_sim *)data;
+    if (code < 0)
+        snprintf(s->errmsg, sizeof s->errmsg, "IDA %s: %s", function ? function : "", msg ? msg : "");
+    else
+        snprintf(s->warnmsg, sizeof s->warnmsg, "IDA %s: %s", function ? function : "", msg ? msg : "");
+}
+
+/* ---- creation ---------------------------------------------------------------------------- */
+
+static td_status check_options(const td_sim_options *o, td_error *err)
+{
+    const td_solver_options *so = &o->solver;
+    const td_contact_options *co = &o->contact;
+    if (!(so->rtol > 0.0 && so->rtol < 1.0) || !(so->atol > 0.0) || !isfinite(so->atol))
+        return td_error_set(err, TD_ERR_INVALID, "solver tolerances must be positive (rtol < 1)");
+    if (!(so->max_step >= 0.0) || !(so->initial_step >= 0.0) || !isfinite(so->max_step) || !isfinite(so->initial_step))
+        return td_error_set(err, TD_ERR_INVALID, "solver max_step and initial_step must be >= 0");
+    if (so->max_order < 1 || so->max_order > 5)
+        return td_error_set(err, TD_ERR_INVALID, "solver max_order must be 1..5, got %d", so->max_order);
+    if (so->linear_solver != TD_LINSOL_KLU && so->linear_solver != TD_LINSOL_DENSE)
+        return td_error_set(err, TD_ERR_INVALID, "unknown linear solver %d", (int)so->linear_solver);
+    if (co->model != TD_CONTACT_CONSTRAINT && co->model != TD_CONTACT_PENALTY)
+        return td_error_set(err, TD_ERR_INVALID, "unknown contact model %d", (int)co->model);
+    if (co->model == TD_CONTACT_PENALTY) {
+        if (!(co->stiffness > 0.0) || !isfinite(co->stiffness))
+            return td_error_set(err, TD_ERR_INVALID, "penalty stiffness must be positive");
+        if (!(co->exponent >= 1.0) || !isfinite(co->exponent))
+            return td_error_set(err, TD_ERR_INVALID, "penalty exponent must be >= 1");
+        if (co->damping != TD_DAMPING_NONE && co->damping != TD_DAMPING_HUNT_CROSSLEY &&
+            co->damping != TD_DAMPING_KELVIN_VOIGT)
+            return td_error_set(err, TD_ERR_INVALID, "unknown contact damping law %d", (int)co->damping);
+        if (!(co->damping_coefficient >= 0.0) || !isfinite(co->damping_coefficient))
+            return td_error_set(err, TD_ERR_INVALID, "contact damping coefficient must be >= 0");
+    }
+    if (o->start != TD_START_ORBIT && o->start != TD_START_REST)
+        return td_error_set(err, TD_ERR_INVALID, "unknown start state %d", (int)o->start);
+    if (!isfinite(o->t0))
+        return td_error_set(err, TD_ERR_INVALID, "t0 must be finite");
+    return TD_OK;
+}
+
+static td_status alloc_arrays(td_sim *s, td_error *err)
+{
+    int na = td_model_amb_count(s->model), i, ok = 1;
+    size_t nr = (size_t)(s->nr > 0 ? s->nr : 1);
+    s->nu = td_model_unbalance_count(s->model);
+    s->unb = calloc((size_t)(s->nu > 0 ? s->nu : 1), sizeof *s->unb);
+    s->amb_mode = calloc((size_t)(na > 0 ? na : 1), sizeof *s->amb_mode);
+    s->amb_control = calloc((size_t)(2 * na + 2), sizeof(double));
+    s->ret = calloc(nr, sizeof *s->ret);
+    s->amb_coef = calloc((size_t)(s->sys->n_amb_axes + 1), sizeof *s->amb_coef);
+    s->q_cap = 4 * s->nr + td_model_change_count(s->model) + 4;
+    s->queue = calloc((size_t)s->q_cap, sizeof *s->queue);
+    for (i = 0; i < 4; i++)
+        ok = ok && (s->wn[i] = calloc((size_t)s->n, sizeof(double))) != NULL;
+    s->wm = calloc(nr * (nr + 1) + 2 * nr, sizeof(double));
+    s->wmn = calloc((size_t)s->n * nr, sizeof(double));
+    s->rows = calloc(nr, sizeof *s->rows);
+    s->act = calloc(4 * nr, sizeof(int));
+    s->rootdir = calloc(TD_ROOTS_PER_RETAINER * nr, sizeof(int));
+    s->rootsfound = calloc(TD_ROOTS_PER_RETAINER * nr, sizeof(int));
+    s->ysave = calloc((size_t)s->neq, sizeof(double));
+    s->ypsave = calloc((size_t)s->neq, sizeof(double));
+    if (!ok || !s->unb || !s->amb_mode || !s->amb_control || !s->ret || !s->amb_coef || !s->queue || !s->wm ||
+        !s->wmn || !s->rows || !s->act || !s->rootdir || !s->rootsfound || !s->ysave || !s->ypsave)
+        return td_error_set(err, TD_ERR_NOMEM, "out of memory creating a simulation");
+    return TD_OK;
+}
+
+/* Machine state at the start: the model's unbalances, AMBs on, retainers free. */
+static void init_machine(td_sim *s)
+{
+    int i, na = td_model_amb_count(s->model);
+    s->omega = td_model_speed(s->model);
+    for (i = 0; i < s->nu; i++)
+        td_model_get_unbalance(s->model, i, &s->unb[i]);
+    for (i = 0; i < na; i++)
+        s->amb_mode[i] = TD_AMB_PD;
+    for (i = 0; i < s->nr; i++) {
+        td_sim_retainer *r = &s->ret[i];
+        td_model_get_retainer(s->model, i, &r->r);
+        r->dx = TD_DOF(r->r.node, TD_DOF_X);
+        r->dy = TD_DOF(r->r.node, TD_DOF_Y);
+        r->mode = TD_RMODE_FREE;
+        r->armed = 1;
+        r->slip = 1;
+    }
+    /* the AMB laws are linear (model/amb.c): unit probes give their coefficients exactly */
+    for (i = 0; i < s->sys->n_amb_axes; i++) {
+        const td_amb_axis *a = &s->sys->amb_axes[i];
+        td_sim_amb_coef *c = &s->amb_coef[i];
+        c->cmd_x = td_amb_axis_command(a, 1.0, 0.0) - td_amb_axis_command(a, 0.0, 0.0);
+        c->cmd_v = td_amb_axis_command(a, 0.0, 1.0) - td_amb_axis_command(a, 0.0, 0.0);
+        if (a->state >= 0) {
+            double r0 = td_amb_axis_filter_rate(a, 0.0, 0.0, 0.0);
+            c->rate_x = td_amb_axis_filter_rate(a, 1.0, 0.0, 0.0) - r0;
+            c->rate_v = td_amb_axis_filter_rate(a, 0.0, 1.0, 0.0) - r0;
+            c->rate_w = td_amb_axis_filter_rate(a, 0.0, 0.0, 1.0) - r0;
+        }
+    }
+}
+
+/* Highest natural frequency sqrt(lambda_max(M^-1 K)) of the shaft, by 60 power iterations with
+ * the Rayleigh quotient (an estimate from below, good to a few per cent: it only sets a tolerance). */
+static double highest_frequency(const td_sim *s)
+{
+    double *x = s->wn[0], *kx = s->wn[1], lam = 0.0;
+    int i, it;
+    for (i = 0; i < s->n; i++)
+        x[i] = (i % 2 ? 1.0 : -1.0) * (1.0 + 0.1 * (i % 7));
+    for (it = 0; it < 60; it++) {
+        double num = 0.0, den = 0.0, norm = 0.0;
+        memset(kx, 0, sizeof(double) * (size_t)s->n);
+        cs_di_gaxpy(s->sys->K, x, kx);
+        for (i = 0; i < s->n; i++)
+            num += x[i] * kx[i];
+        td_sim_mass_solve(s, kx); /* kx = M^-1 K x */
+        memset(s->wn[2], 0, sizeof(double) * (size_t)s->n);
+        cs_di_gaxpy(s->sys->M, x, s->wn[2]);
+        for (i = 0; i < s->n; i++)
+            den += x[i] * s->wn[2][i];
+        if (den > 0.0)
+            lam = num / den;
+        for (i = 0; i < s->n; i++)
+            norm = fmax(norm, fabs(kx[i]));
+        if (!(norm > 0.0))
+            break;
+        for (i = 0; i < s->n; i++)
+            x[i] = kx[i] / norm;
+    }
+    return lam > 0.0 ? sqrt(lam) : 0.0;
+}
+
+/*
+ * Scales for the tolerances and the step bound. Forces scale with a stiffness: the AMB's
+ * (|ks| + ki kp, the largest axis) or, without AMBs, the largest diagonal of K. Velocities scale
+ * with a frequency: the larger of the speed and sqrt(stiffness / rotor mass), the rigid-body
+ * bearing frequency.
+ */
+static void set_scales(td_sim *s)
+{
+    double k = 0.0, mass = td_model_total_mass(s->model), cmin = HUGE_VAL;
+    int i;
+    for (i = 0; i < s->sys->n_amb_axes; i++) {
+        const td_amb_axis *a = &s->sys->amb_axes[i];
+        double ka = fabs(a->ks) + fabs(s->amb_coef[i].cmd_x);
+        if (ka > k)
+            k = ka;
+    }
+    if (k == 0.0) {
+        const cs_di *K = s->sys->K;
+        int j, p;
+        for (j = 0; j < K->n; j++)
+            for (p = K->p[j]; p < K->p[j + 1]; p++)
+                if (K->i[p] == j && fabs(K->x[p]) > k)
+                    k = fabs(K->x[p]);
+    }
+    if (!(k > 0.0))
+        k = 1.0;
+    s->stiff_scale = k;
+    s->freq_scale = mass > 0.0 ? sqrt(k / mass) : 1.0;
+    if (fabs(s->omega) > s->freq_scale)
+        s->freq_scale = fabs(s->omega);
+    if (s->freq_scale < 1.0)
+        s->freq_scale = 1.0;
+    for (i = 0; i < s->nr; i++)
+        if (s->ret[i].r.clearance < cmin)
+            cmin = s->ret[i].r.clearance;
+    if (s->nr == 0)
+        cmin = s->opt.solver.atol * 1e3;
+    s->freq_max = highest_frequency(s);
+    if (s->freq_max < s->freq_scale)
+        s->freq_max = s->freq_scale;
+    /* contact constraints hold to a tenth of the displacement tolerance at every step */
+    s->constraint_tol = 0.1 * s->opt.solver.atol;
+    /* hysteresis of the onset root after a release or a bounce: a gap or penetration of a tenth of
+     * the displacement tolerance (the accuracy the constraint is held to) is not a new contact; far
+     * above rounding (1e-19 m), so a rotor grazing the circle does not chatter */
+    s->rearm_eps = s->opt.solver.atol;
+    /* impacts slower than 1e-3 of the typical impact speed c * freq_scale become plastic */
+    s->rebound_min = 1e-3 * cmin * s->freq_scale;
+}
+
+/* Step bound: 1/20 of the shortest period among the spin and the bearing frequency, so that a
+ * gap cannot close and open again (two roots) inside one step unnoticed. */
+static double default_max_step(const td_sim *s)
+{
+    double w = fabs(s->omega) > s->freq_scale ? fabs(s->omega) : s->freq_scale;
+    return 2.0 * TD_PI / w / 20.0;
+}
+
+/*
+ * Per-component absolute tolerances (IDASVtolerances):
+ *   q       atol on displacements (m); atol / L_e on the slopes (rad), L_e the mean length of the
+ *           shaft elements at the node: a slope error e moves the beam's deflection by ~ e L_e;
+ *   v       atol * freq_max, the velocity of a displacement atol in the fastest mode of the shaft.
+ *           The shaft has no structural damping, so every impact or force step sets its highest
+ *           modes ringing (amplitude ~ impulse / (m omega), undamped for ever). A velocity
+ *           tolerance at the slow scale (atol * the bearing frequency) would make IDA resolve that
+ *           ringing in v long after it is below atol in q (measured on case A: 6x more steps); at
+ *           freq_max the velocity test is no stricter than the displacement test for any mode,
+ *           and the displacements, what the run reports, stay controlled to atol + rtol |q|;
+ *   w       atol times the axis's control stiffness ki kp (the force error of a position error atol);
+ *   lambda  atol * stiff_scale (N); eta (a velocity correction, m/s): atol * freq_scale. lambda and
+ *           eta are algebraic and excluded from the error test, but the Newton convergence test
+ *           still weighs them.
+ */
+static void set_tolerances(td_sim *s)
+{
+    double *at = N_VGetArrayPointer(s->atol), *id = N_VGetArrayPointer(s->id), atol = s->opt.solver.atol;
+    int i;
+    int ne = td_model_shaft_element_count(s->model);
+    for (i = 0; i < s->n; i++) {
+        int node = i / TD_DOFS_PER_NODE, off = i % TD_DOFS_PER_NODE;
+        double scale = 1.0;
+        if (off == TD_DOF_THETA || off == TD_DOF_PHI) {
+            /* a slope error e moves the interpolated deflection by about e L_e */
+            double len = 0.0;
+            int cnt = 0;
+            td_shaft_element el;
+            if (node > 0 && node - 1 < ne && td_model_get_shaft_element(s->model, node - 1, &el) == TD_OK)
+                len += el.length, cnt++;
+            if (node < ne && td_model_get_shaft_element(s->model, node, &el) == TD_OK)
+                len += el.length, cnt++;
+            if (cnt > 0 && len > 0.0)
+                scale = cnt / len;
+        }
+        at[s->oq + i] = atol * scale;
+        at[s->ov + i] = atol * scale * s->freq_max;
+        id[s->oq + i] = id[s->ov + i] = 1.0;
+    }
+    for (i = 0; i < s->sys->n_amb_axes; i++) {
+        const td_amb_axis *a = &s->sys->amb_axes[i];
+        double kc = fabs(s->amb_coef[i].cmd_x);
+        if (a->state >= 0) {
+            at[s->ow + a->state] = atol * (kc > 1.0 ? kc : 1.0);
+            id[s->ow + a->state] = 1.0;
+        }
+    }
+    for (i = 0; i < s->nr; i++) {
+        at[s->ol + i] = atol * s->stiff_scale;
+        at[s->ou + i] = atol * s->freq_scale;
+        id[s->ol + i] = id[s->ou + i] = 0.0;
+    }
+}
+
+static td_status factor_mass(td_sim *s, td_error *err)
+{
+    s->Ms = cs_di_sqr(1, s->sys->M, 0);
+    if (!s->Ms)
+        return td_error_set(err, TD_ERR_NOMEM, "out of memory factorising the mass matrix");
+    s->Mn = cs_di_lu(s->sys->M, s->Ms, 1.0);
+    if (!s->Mn)
+        return td_error_set(err, TD_ERR_NUMERIC, "the mass matrix is singular");
+    return TD_OK;
+}
+
+/* A start orbit at most this far outside a clearance circle (relative) counts as touching it. */
+#define TD_START_TOUCH_TOLERANCE 1e-6
+
+static td_status start_state(td_sim *s, td_error *err)
+{
+    double *y = N_VGetArrayPointer(s->y);
+    int *touching = s->act + 3 * s->nr; /* past the three lists sim_modes.c uses */
+    double gx, gy;
+    int k;
+    td_status st;
+    N_VConst(0.0, s->y);
+    N_VConst(0.0, s->yp);
+    if (s->opt.start == TD_START_ORBIT) {
+        td_model_gravity(s->model, &gx, &gy);
+        st = td_modal_start_state(s->sys, s->omega, s->unb, s->nu, gx != 0.0 || gy != 0.0, s->t, y + s->oq, err);
+        if (st != TD_OK)
+            return st;
+    }
+    for (k = 0; k < s->nr; k++) {
+        td_sim_retainer *r = &s->ret[k];
+        double rad = hypot(y[s->oq + r->dx], y[s->oq + r->dy]), c = r->r.clearance;
+        touching[k] = 0;
+        if (rad <= c)
+            continue;
+        if (s->opt.contact.model == TD_CONTACT_PENALTY) {
+            r->mode = TD_RMODE_PENETRATING;
+            r->slip = td_sim_sliding_velocity(s, k, y) < 0.0 ? -1 : 1;
+        } else if (rad - c <= TD_START_TOUCH_TOLERANCE * c) {
+            touching[k] = 1; /* grazing start: into contact as at an onset, if it presses */
+        } else {
+            return td_error_set(err, TD_ERR_INVALID,
+                                "the start state is outside the clearance of retainer %d (r = %.9g m > c = %.9g m): "
+                                "the free orbit is not contact-free; start at rest or reduce the unbalance",
+                                k, rad, c);
+        }
+    }
+    st = td_sim_start_contacts(s, touching);
+    return st == TD_OK ? TD_OK : td_error_set(err, st, "inconsistent start state: %s", s->errmsg);
+}
+
+/* IDA set-up; failures leave their message in s->errmsg. */
+static td_status setup_ida(td_sim *s, td_error *err)
+{
+    if (td_sun_context_create(&s->ctx) != 0)
+        return td_error_set(err, TD_ERR_NOMEM, "SUNContext_Create failed");
+    s->y = N_VNew_Serial(s->neq, s->ctx);
+    if (!s->y)
+        return td_error_set(err, TD_ERR_NOMEM, "out of memory creating the state vectors");
+    s->yp = N_VClone(s->y);
+    s->id = N_VClone(s->y);
+    s->atol = N_VClone(s->y);
+    s->ida = IDACreate(s->ctx);
+    if (!s->yp || !s->id || !s->atol || !s->ida)
+        return td_error_set(err, TD_ERR_NOMEM, "out of memory creating the integrator");
+    s->sink.fn = message_sink;
+    s->sink.data = s;
+    if (td_sun_install_message_sink(s->ctx, s->ida, &s->sink) != 0)
+        return td_error_set(err, TD_ERR_SOLVER, "cannot install the IDA error handler");
+    return TD_OK;
+}
+
+static td_status attach_ida(td_sim *s, td_error *err)
+{
+    int flag = IDAInit(s->ida, res_cb, s->t, s->y, s->yp);
+    if (flag == IDA_SUCCESS)
+        flag = IDASVtolerances(s->ida, s->opt.solver.rtol, s->atol);
+    if (flag == IDA_SUCCESS)
+        flag = IDASetUserData(s->ida, s);
+    if (flag == IDA_SUCCESS)
+        flag = IDASetId(s->ida, s->id);
+    if (flag == IDA_SUCCESS)
+        flag = IDASetSuppressAlg(s->ida, SUNTRUE);
+    if (flag == IDA_SUCCESS)
+        flag = IDASetMaxOrd(s->ida, s->opt.solver.max_order);
+    if (flag == IDA_SUCCESS)
+        flag = IDASetMaxNumSteps(s->ida, 100000);
+    if (flag != IDA_SUCCESS)
+        return td_error_set(err, TD_ERR_SOLVER, "IDA set-up failed: %s", s->errmsg);
+    /* our own Newton solver, so that its convergence test can be wrapped (conv_test_cb) */
+    s->NLS = SUNNonlinSol_Newton(s->y, s->ctx);
+    if (!s->NLS)
+        return td_error_set(err, TD_ERR_NOMEM, "out of memory creating the nonlinear solver");
+    if (IDASetNonlinearSolver(s->ida, s->NLS) != IDA_SUCCESS)
+        return td_error_set(err, TD_ERR_SOLVER, "IDA set-up failed: %s", s->errmsg);
+    {
+        SUNNonlinearSolverContent_Newton c = (SUNNonlinearSolverContent_Newton)s->NLS->content;
+        s->ida_ctest = c->CTest;
+        s->ida_ctest_data = c->ctest_data;
+        if (!s->ida_ctest || SUNNonlinSolSetConvTestFn(s->NLS, conv_test_cb, s) != SUN_NLS_SUCCESS)
+            return td_error_set(err, TD_ERR_SOLVER, "cannot install the Newton convergence test");
+    }
+    if (s->opt.solver.linear_solver == TD_LINSOL_KLU) {
+        s->A = SUNSparseMatrix(s->neq, s->neq, s->nnz, CSC_MAT, s->ctx);
+        s->LS = s->A ? SUNLinSol_KLU(s->y, s->A, s->ctx) : NULL;
+    } else {
+        s->A = SUNDenseMatrix(s->neq, s->neq, s->ctx);
+        s->LS = s->A ? SUNLinSol_Dense(s->y, s->A, s->ctx) : NULL;
+    }
+    if (!s->A || !s->LS)
+        return td_error_set(err, TD_ERR_NOMEM, "out of memory creating the linear solver");
+    flag = IDASetLinearSolver(s->ida, s->LS, s->A);
+    if (flag == IDA_SUCCESS)
+        flag = IDASetJacFn(s->ida, jac_cb);
+    s->nroots = TD_ROOTS_PER_RETAINER * s->nr;
+    if (flag == IDA_SUCCESS && s->nroots > 0) {
+        flag = IDARootInit(s->ida, s->nroots, root_cb);
+        if (flag == IDA_SUCCESS)
+            flag = IDASetNoInactiveRootWarn(s->ida);
+    }
+    if (flag != IDA_SUCCESS)
+        return td_error_set(err, TD_ERR_SOLVER, "IDA set-up failed: %s", s->errmsg);
+    /* directions, first step, step bound and stop time as at every restart */
+    if (td_sim_restart(s) != TD_OK)
+        return td_error_set(err, TD_ERR_SOLVER, "IDA set-up failed: %s", s->errmsg);
+    s->stats.restarts = 0;
+    return TD_OK;
+}
+
+td_status td_sim_create(const td_model *model, const td_sim_options *options, td_sim **out, td_error *err)
+{
+    td_sim *s;
+    td_status st;
+    if (!model || !out)
+        return td_error_set(err, TD_ERR_INVALID, "td_sim_create: NULL argument");
+    *out = NULL;
+    s = calloc(1, sizeof *s);
+    if (!s)
+        return td_error_set(err, TD_ERR_NOMEM, "out of memory creating a simulation");
+    if (options)
+        s->opt = *options;
+    else
+        td_sim_options_default(&s->opt);
+    st = check_options(&s->opt, err);
+    if (st == TD_OK)
+        st = td_system_create(model, &s->sys, err);
+    if (st == TD_OK) {
+        s->model = td_system_model(s->sys);
+        s->n = s->sys->ndof;
+        s->nw = s->sys->n_filter_states;
+        s->nr = td_model_retainer_count(s->model);
+        s->oq = 0;
+        s->ov = s->n;
+        s->ow = 2 * s->n;
+        s->ol = s->ow + s->nw;
+        s->ou = s->ol + s->nr;
+        s->neq = s->ou + s->nr;
+        s->t = s->t_ida = s->t_acc = s->opt.t0;
+        s->stats.first_contact_time = -1.0;
+        s->law.stiffness = s->opt.contact.stiffness;
+        s->law.exponent = s->opt.contact.exponent;
+        s->law.damping = s->opt.contact.damping;
+        s->law.coefficient = s->opt.contact.damping_coefficient;
+        st = alloc_arrays(s, err);
+    }
+    if (st == TD_OK) {
+        init_machine(s);
+        td_sim_apply_past_changes(s);
+        s->spin_ref = s->omega * s->t;
+        s->t_spin_ref = s->t;
+        st = factor_mass(s, err);
+    }
+    if (st == TD_OK) {
+        set_scales(s);
+        s->hmax = s->opt.solver.max_step > 0.0 ? s->opt.solver.max_step : default_max_step(s);
+    }
+    if (st == TD_OK)
+        st = td_sim_pattern_build(s, err);
+    if (st == TD_OK)
+        st = setup_ida(s, err);
+    if (st == TD_OK) {
+        set_tolerances(s);
+        st = start_state(s, err);
+    }
+    if (st == TD_OK)
+        st = attach_ida(s, err);
+    if (st != TD_OK) {
+        td_sim_free(&s);
+        return st;
+    }
+    s->q_len = s->q_pos = 0; /* contacts at the start are a state, not events */
+    s->stats.events = s->stats.releases = s->stats.contact_onsets = 0;
+    *out = s;
+    return TD_OK;
+}
+
+void td_sim_free(td_sim **sim)
+{
+    td_sim *s;
+    int i;
+    if (!sim || !*sim)
+        return;
+    s = *sim;
+    if (s->ida)
+        IDAFree(&s->ida);
+    if (s->LS)
+        SUNLinSolFree(s->LS);
+    if (s->NLS)
+        SUNNonlinSolFree(s->NLS);
+    if (s->A)
+        SUNMatDestroy(s->A);
+    if (s->y)
+        N_VDestroy(s->y);
+    if (s->yp)
+        N_VDestroy(s->yp);
+    if (s->id)
+        N_VDestroy(s->id);
+    if (s->atol)
+        N_VDestroy(s->atol);
+    if (s->ctx)
+        SUNContext_Free(&s->ctx);
+    cs_di_sfree(s->Ms);
+    cs_di_nfree(s->Mn);
+    free(s->colptr);
+    free(s->rowind);
+    free(s->jdata);
+    free(s->map_M);
+    free(s->map_C);
+    free(s->map_G);
+    free(s->map_K);
+    free(s->unb);
+    free(s->amb_mode);
+    free(s->amb_control);
+    free(s->ret);
+    free(s->amb_coef);
+    free(s->queue);
+    for (i = 0; i < 4; i++)
+        free(s->wn[i]);
+    free(s->wm);
+    free(s->wmn);
+    free(s->rows);
+    free(s->act);
+    free(s->rootdir);
+    free(s->rootsfound);
+    free(s->ysave);
+    free(s->ypsave);
+    td_system_free(&s->sys);
+    free(s);
+    *sim = NULL;
+}
+
+const char *td_sim_errmsg(const td_sim *sim)
+{
+    return sim ? sim->errmsg : "";
+}
+
+/* ---- stepping ---------------------------------------------------------------------------- */
+
+static double wall_clock(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+/* Statistics at the state in s->y (time t): contact time, peak normal force, and, at integrator
+ * steps only (at_step; interpolated states carry the interpolation error), the drift. */
+static void monitor_at(td_sim *s, double t, int at_step)
+{
+    const double *y = N_VGetArrayPointer(s->y);
+    double dt = t - s->t_acc;
+    int k;
+    for (k = 0; k < s->nr; k++) {
+        const td_sim_retainer *r = &s->ret[k];
+        double fn;
+        if (r->mode == TD_RMODE_FREE)
+            continue;
+        if (dt > 0.0)
+            s->stats.time_in_contact += dt;
+        if (r->mode == TD_RMODE_CONTACT && at_step) {
+            double drift = fabs(hypot(y[s->oq + r->dx], y[s->oq + r->dy]) - r->r.clearance);
+            if (drift > s->stats.worst_drift)
+                s->stats.worst_drift = drift;
+        }
+        fn = td_sim_normal_force(s, k, y);
+        if (fn > s->stats.peak_normal_force)
+            s->stats.peak_normal_force = fn;
+    }
+    if (t > s->t_acc)
+        s->t_acc = t;
+}
+
+#define monitor(s, t) monitor_at((s), (t), 0)
+
+static int pop_event(td_sim *s)
+{
+    if (s->q_pos >= s->q_len) {
+        s->q_pos = s->q_len = 0;
+        return 0;
+    }
+    s->last = s->queue[s->q_pos++];
+    s->have_last = 1;
+    if (s->q_pos >= s->q_len)
+        s->q_pos = s->q_len = 0;
+    return 1;
+}
+
+/* y, yp at time t inside IDA's last step. */
+static td_status interpolate(td_sim *s, double t)
+{
+    if (IDAGetDky(s->ida, t, 0, s->y) != IDA_SUCCESS || IDAGetDky(s->ida, t, 1, s->yp) != IDA_SUCCESS)
+        return TD_ERR_SOLVER;
+    s->t = t;
+    return TD_OK;
+}
+
+/* An IDA failure: keep the state of the last successful step. */
+static td_status solver_failure(td_sim *s, int flag)
+{
+    char msg[TD_ERROR_MESSAGE_SIZE];
+    double tn = s->t;
+    snprintf(msg, sizeof msg, "%s", s->errmsg);
+    if (IDAGetCurrentTime(s->ida, &tn) == IDA_SUCCESS && tn >= s->t && interpolate(s, tn) == TD_OK) {
+        /* state at tn */
+    } else {
+        memcpy(N_VGetArrayPointer(s->y), s->ysave, sizeof(double) * (size_t)s->neq);
+        memcpy(N_VGetArrayPointer(s->yp), s->ypsave, sizeof(double) * (size_t)s->neq);
+    }
+    snprintf(s->errmsg, sizeof s->errmsg, "t = %.9g s: IDA failed (flag %d): %.400s", s->t, flag, msg);
+    return TD_ERR_SOLVER;
+}
+
+/* Restart after a change made between steps or at a schedule time. */
+static td_status restart_after_change(td_sim *s)
+{
+    td_status st = td_sim_make_consistent(s, NULL);
+    if (st == TD_OK)
+        st = td_sim_restart(s);
+    return st;
+}
+
+/* Handle a root (IDAGetRootInfo in s->rootsfound) or the stop time at s->t. */
+static td_status handle_stop(td_sim *s, int kind)
+{
+    td_status st;
+    if (kind == IDA_ROOT_RETURN) {
+        int restart = 0;
+        st = td_sim_handle_roots(s, &restart);
+        if (st == TD_OK && restart)
+            st = td_sim_restart(s);
+        return st;
+    }
+    st = td_sim_apply_due_changes(s);
+    if (st == TD_OK)
+        st = restart_after_change(s);
+    return st;
+}
+
+static td_status advance(td_sim *s, double tout)
+{
+    for (;;) {
+        sunrealtype tret = s->t, tn = s->t;
+        int flag;
+        td_status st;
+        if (s->pending) {
+            /* a root or the stop time that IDA found beyond the last output time */
+            int kind = s->pending == 1 ? IDA_ROOT_RETURN : IDA_TSTOP_RETURN;
+            if (s->t_pending > tout) {
+                st = interpolate(s, tout);
+                monitor(s, tout);
+                return st;
+            }
+            s->pending = 0;
+            st = interpolate(s, s->t_pending);
+            monitor(s, s->t);
+            if (st == TD_OK)
+                st = handle_stop(s, kind);
+            if (st != TD_OK)
+                return st;
+            if (pop_event(s))
+                return TD_EVENT;
+            continue;
+        }
+        if (s->t_ida >= tout) {
+            st = interpolate(s, tout);
+            monitor(s, tout);
+            return st;
+        }
+        if (tout - s->t <= 1e-14 * (1.0 + fabs(tout))) { /* too close for IDA to start: nothing moves */
+            s->t = tout;
+            return TD_OK;
+        }
+        flag = IDASolve(s->ida, tout, &tret, s->y, s->yp, IDA_ONE_STEP);
+        if (flag < 0)
+            return solver_failure(s, flag);
+        if (IDAGetCurrentTime(s->ida, &tn) == IDA_SUCCESS && tn > s->t_ida)
+            s->t_ida = tn;
+        if (flag == IDA_ROOT_RETURN || flag == IDA_TSTOP_RETURN) {
+            if (flag == IDA_ROOT_RETURN)
+                IDAGetRootInfo(s->ida, s->rootsfound);
+            s->pending = flag == IDA_ROOT_RETURN ? 1 : 2;
+            s->t_pending = tret;
+            continue;
+        }
+        s->t = tret;
+        monitor_at(s, tret, 1);
+        memcpy(s->ysave, N_VGetArrayPointer(s->y), sizeof(double) * (size_t)s->neq);
+        memcpy(s->ypsave, N_VGetArrayPointer(s->yp), sizeof(double) * (size_t)s->neq);
+        if (tret >= tout)
+            return tret > tout ? interpolate(s, tout) : TD_OK;
+    }
+}
+
+td_status td_sim_step(td_sim *sim, double tout, double *t_reached)
+{
+    td_status st;
+    double w0;
+    if (!sim)
+        return TD_ERR_INVALID;
+    if (pop_event(sim)) {
+        if (t_reached)
+            *t_reached = sim->t;
+        return TD_EVENT;
+    }
+    if (!isfinite(tout) || tout < sim->t) {
+        snprintf(sim->errmsg, sizeof sim->errmsg, "td_sim_step: tout = %.17g is before the current time %.17g", tout,
+                 sim->t);
+        return TD_ERR_INVALID;
+    }
+    w0 = wall_clock();
+    st = tout > sim->t ? advance(sim, tout) : TD_OK;
+    sim->stats.wall_time += wall_clock() - w0;
+    if (t_reached)
+        *t_reached = sim->t;
+    return st;
+}
+
+double td_sim_time(const td_sim *sim)
+{
+    return sim ? sim->t : NAN;
+}
+
+td_status td_sim_last_event(const td_sim *sim, td_event *ev)
+{
+    if (!sim || !ev)
+        return TD_ERR_INVALID;
+    if (!sim->have_last)
+        return TD_ERR_STATE;
+    *ev = sim->last;
+    return TD_OK;
+}
+
+/* ---- accessors --------------------------------------------------------------------------- */
+
+int td_sim_dof_count(const td_sim *sim)
+{
+    return sim ? sim->n : 0;
+}
+
+td_status td_sim_get_state(const td_sim *sim, double *q, double *v)
+{
+    const double *y;
+    if (!sim)
+        return TD_ERR_INVALID;
+    y = N_VGetArrayPointer(sim->y);
+    if (q)
+        memcpy(q, y + sim->oq, sizeof(double) * (size_t)sim->n);
+    if (v)
+        memcpy(v, y + sim->ov, sizeof(double) * (size_t)sim->n);
+    return TD_OK;
+}
+
+td_status td_sim_retainer_state(const td_sim *sim, int retainer, td_retainer_state *out)
+{
+    const double *y;
+    const td_sim_retainer *r;
+    double vx, vy;
+    if (!sim || !out || retainer < 0 || retainer >= sim->nr)
+        return TD_ERR_INVALID;
+    y = N_VGetArrayPointer(sim->y);
+    r = &sim->ret[retainer];
+    out->x = y[sim->oq + r->dx];
+    out->y = y[sim->oq + r->dy];
+    vx = y[sim->ov + r->dx];
+    vy = y[sim->ov + r->dy];
+    out->radius = hypot(out->x, out->y);
+    out->radial_velocity = td_contact_radial_velocity(out->x, out->y, vx, vy);
+    out->whirl_angle = atan2(out->y, out->x);
+    out->normal_force = td_sim_normal_force(sim, retainer, y);
+    out->in_contact = r->mode != TD_RMODE_FREE;
+    out->friction_force = out->in_contact ? td_contact_friction_force(r->r.friction, r->slip, out->normal_force) : 0.0;
+    out->sliding_velocity = td_sim_sliding_velocity(sim, retainer, y);
+    return TD_OK;
+}
+
+td_status td_sim_amb_force(const td_sim *sim, int amb, double f[2])
+{
+    const double *y;
+    int k;
+    if (!sim || !f || amb < 0 || amb >= td_model_amb_count(sim->model))
+        return TD_ERR_INVALID;
+    y = N_VGetArrayPointer(sim->y);
+    f[0] = f[1] = 0.0;
+    for (k = 0; k < sim->sys->n_amb_axes; k++)
+        if (sim->sys->amb_axes[k].amb == amb)
+            f[sim->sys->amb_axes[k].axis] = td_sim_amb_axis_force(sim, k, y);
+    return TD_OK;
+}
+
+td_status td_sim_stats_get(const td_sim *sim, td_sim_stats *out)
+{
+    long v;
+    if (!sim || !out)
+        return TD_ERR_INVALID;
+    *out = sim->stats;
+    out->steps = sim->base.steps;
+    out->residual_evals = sim->base.res;
+    out->jacobian_evals = sim->base.jac;
+    out->linear_setups = sim->base.setups;
+    out->nonlinear_iters = sim->base.nli;
+    out->error_test_fails = sim->base.etf;
+    out->nonlinear_fails = sim->base.ncf;
+    if (IDAGetNumSteps(sim->ida, &v) == IDA_SUCCESS)
+        out->steps += v;
+    if (IDAGetNumResEvals(sim->ida, &v) == IDA_SUCCESS)
+        out->residual_evals += v;
+    if (IDAGetNumJacEvals(sim->ida, &v) == IDA_SUCCESS)
+        out->jacobian_evals += v;
+    if (IDAGetNumLinSolvSetups(sim->ida, &v) == IDA_SUCCESS)
+        out->linear_setups += v;
+    if (IDAGetNumNonlinSolvIters(sim->ida, &v) == IDA_SUCCESS)
+        out->nonlinear_iters += v;
+    if (IDAGetNumErrTestFails(sim->ida, &v) == IDA_SUCCESS)
+        out->error_test_fails += v;
+    if (IDAGetNumNonlinSolvConvFails(sim->ida, &v) == IDA_SUCCESS)
+        out->nonlinear_fails += v;
+    return TD_OK;
+}
+
+/* ---- changes between steps --------------------------------------------------------------- */
+
+td_status td_sim_set_unbalance(td_sim *sim, int unbalance, double magnitude, double phase)
+{
+    if (!sim)
+        return TD_ERR_INVALID;
+    if (unbalance < 0 || unbalance >= sim->nu || !(magnitude >= 0.0) || !isfinite(magnitude) || !isfinite(phase)) {
+        snprintf(sim->errmsg, sizeof sim->errmsg, "td_sim_set_unbalance: invalid unbalance %d or value", unbalance);
+        return TD_ERR_INVALID;
+    }
+    sim->unb[unbalance].magnitude = magnitude;
+    sim->unb[unbalance].phase = phase;
+    return restart_after_change(sim);
+}
+
+td_status td_sim_set_speed(td_sim *sim, double omega)
+{
+    if (!sim)
+        return TD_ERR_INVALID;
+    if (!isfinite(omega)) {
+        snprintf(sim->errmsg, sizeof sim->errmsg, "td_sim_set_speed: speed must be finite");
+        return TD_ERR_INVALID;
+    }
+    /* keep the spin angle continuous: the unbalance force turns on from where it is */
+    sim->spin_ref = td_sim_spin_angle(sim, sim->t);
+    sim->t_spin_ref = sim->t;
+    sim->omega = omega;
+    if (sim->opt.solver.max_step <= 0.0) {
+        sim->hmax = default_max_step(sim);
+    }
+    return restart_after_change(sim);
+}
+
+td_status td_sim_set_amb_mode(td_sim *sim, int amb, td_amb_mode mode)
+{
+    if (!sim)
+        return TD_ERR_INVALID;
+    if (amb < 0 || amb >= td_model_amb_count(sim->model) ||
+        (mode != TD_AMB_PD && mode != TD_AMB_EXTERNAL && mode != TD_AMB_OFF)) {
+        snprintf(sim->errmsg, sizeof sim->errmsg, "td_sim_set_amb_mode: invalid AMB %d or mode %d", amb, (int)mode);
+        return TD_ERR_INVALID;
+    }
+    sim->amb_mode[amb] = mode;
+    return restart_after_change(sim);
+}
+
+td_status td_sim_set_amb_control(td_sim *sim, int amb, double fx, double fy)
+{
+    if (!sim)
+        return TD_ERR_INVALID;
+    if (amb < 0 || amb >= td_model_amb_count(sim->model) || !isfinite(fx) || !isfinite(fy)) {
+        snprintf(sim->errmsg, sizeof sim->errmsg, "td_sim_set_amb_control: invalid AMB %d or force", amb);
+        return TD_ERR_INVALID;
+    }
+    sim->amb_control[2 * amb] = fx;
+    sim->amb_control[2 * amb + 1] = fy;
+    /* the held force jumps: restart only when it acts now */
+    return sim->amb_mode[amb] == TD_AMB_EXTERNAL ? restart_after_change(sim) : TD_OK;
+}

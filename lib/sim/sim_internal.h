@@ -1,0 +1,201 @@
+/*
+ * The td_sim record and the pieces of the contact DAE, inside the library only.
+ *
+ * Unknowns, one fixed layout for the whole run (offsets oq, ov, ow, ol, ou):
+ *
+ *   y = [ q (n) | v (n) | w (nw AMB filter states) | lambda (nr) | eta (nr) ]
+ *
+ * lambda_k is the normal force of retainer k (N) and eta_k the GGL multiplier of its position
+ * constraint (the "mu" of the stabilised index-2 form; called eta here so that mu stays the
+ * friction coefficient). Residual rows, F(t, y, y') = 0:
+ *
+ *   q rows   q' - v + sum_k J_k^T eta_k                                   (GGL, eq. 6 stabilised)
+ *   v rows   M v' - f(t, q, v, w) + sum_k B_k lambda_k                    (eq. 6)
+ *   w rows   w' - (command(xs, vs) - w) / tau                             (AMB force lag)
+ *   lambda   g_k(q) = (x^2 + y^2 - c^2)/(2c)   in contact, lambda_k = 0 otherwise   (eq. 5 scaled)
+ *   eta      J_k v = (x vx + y vy)/c           in contact, eta_k = 0 otherwise      (eq. 13a scaled)
+ *
+ * with f = f_unbalance + f_gravity + f_amb - (C + Omega G) v - K q - f_penalty, and
+ * B_k = J_k^T + s_k mu_k t_k (the normal direction plus the Coulomb friction of eq. 17 with the
+ * slip sign s_k, a discrete mode): friction is proportional to the same, implicit, lambda_k.
+ */
+#ifndef TD_SIM_INTERNAL_H
+#define TD_SIM_INTERNAL_H
+
+#include "contact/contact.h"
+#include "model/system_internal.h"
+#include "sim/sundials_compat.h"
+#include "touchdown/sim.h"
+
+#include <nvector/nvector_serial.h>
+#include <suitesparse/cs.h>
+#include <sundials/sundials_linearsolver.h>
+#include <sundials/sundials_matrix.h>
+#include <sundials/sundials_nonlinearsolver.h>
+
+/* Contact mode of one retainer. */
+typedef enum td_rmode {
+    TD_RMODE_FREE = 0,       /* no contact: lambda = eta = 0 */
+    TD_RMODE_CONTACT = 1,    /* constrained contact: g = 0, J v = 0, lambda >= 0 */
+    TD_RMODE_PENETRATING = 2 /* penalty contact: delta = r - c > 0, force F_n(delta, rate) */
+} td_rmode;
+
+/* Root functions, three per retainer (their meaning depends on the mode, see sim_residual.c). */
+enum { TD_ROOT_CONTACT = 0, TD_ROOT_SLIP = 1, TD_ROOT_REARM = 2, TD_ROOTS_PER_RETAINER = 3 };
+
+typedef struct td_sim_retainer {
+    td_retainer r; /* the model's data */
+    int dx, dy;    /* global DOFs x, y of its node */
+    td_rmode mode;
+    int armed; /* constraint model, free: onset root at gap = 0 (1) or at gap = -eps (0, after a
+                * release or a rejected/bouncing onset; re-armed when the gap exceeds +eps) */
+    int slip;  /* sgn(v_s) of eq. (17), +1 or -1 */
+} td_sim_retainer;
+
+/* Linear coefficients of one AMB axis law (probed from model/amb.c, exact for the linear law). */
+typedef struct td_sim_amb_coef {
+    double cmd_x, cmd_v;           /* d(command)/d(xs), d(command)/d(vs) */
+    double rate_x, rate_v, rate_w; /* d(dFc/dt)/d(xs, vs, Fc), tau > 0 only */
+} td_sim_amb_coef;
+
+/* Running totals of the IDA counters, which IDAReInit resets. */
+typedef struct td_sim_counters {
+    long steps, res, jac, setups, nli, etf, ncf;
+} td_sim_counters;
+
+struct td_sim {
+    td_system *sys;        /* owned */
+    const td_model *model; /* the system's copy */
+    td_sim_options opt;
+    td_penalty_law law;
+
+    int n, nw, nr, neq;     /* DOFs, filter states, retainers, equations */
+    int oq, ov, ow, ol, ou; /* block offsets in y */
+
+    /* the machine as it is now (changed by the schedule and the td_sim_set_* calls) */
+    double omega;
+    double spin_ref, t_spin_ref; /* spin angle phi(t) = spin_ref + omega (t - t_spin_ref) */
+    int nu;
+    td_unbalance *unb;
+    td_amb_mode *amb_mode; /* per AMB */
+    double *amb_control;   /* per AMB, x and y: held control force (TD_AMB_EXTERNAL) */
+    int next_change;       /* first schedule entry not yet applied */
+    td_sim_retainer *ret;
+    td_sim_amb_coef *amb_coef; /* per AMB axis */
+
+    /* scales */
+    double freq_scale;  /* rad/s, the bearing frequency or the speed: step bound, rebound speed */
+    double freq_max;    /* rad/s, estimate of the highest natural frequency: velocity tolerance */
+    double stiff_scale; /* N/m, forces ~ stiff_scale * displacements */
+    double rearm_eps;   /* m, hysteresis of the onset root (constraint model) */
+    double rebound_min; /* m/s, radial speed below which an impact with e > 0 becomes plastic */
+
+    /* mass matrix factorisation (LU, CXSparse), for consistent accelerations and the impact map */
+    cs_dis *Ms;
+    cs_din *Mn;
+
+    /* Jacobian: one fixed CSC pattern (superset of every mode), values rebuilt at every call */
+    int nnz;
+    int *colptr, *rowind;
+    double *jdata;
+    int *map_M, *map_C, *map_G, *map_K; /* position of each stored entry of the system matrices */
+
+    /* SUNDIALS */
+    SUNContext ctx;
+    void *ida;
+    N_Vector y, yp, id, atol;
+    SUNMatrix A;
+    SUNLinearSolver LS;
+    SUNNonlinearSolver NLS;
+    SUNNonlinSolConvTestFn ida_ctest; /* IDA's own Newton convergence test, wrapped by the sim's */
+    void *ida_ctest_data;
+    double constraint_tol; /* m: |g| of every contact at an accepted Newton iterate */
+    td_sun_message_sink sink;
+    int nroots;
+    int *rootdir, *rootsfound;
+    double hmax;
+
+    /* time */
+    double t;         /* current time: y, yp hold the state here */
+    double t_ida;     /* IDA's internal time (>= t after an interpolated output) */
+    double t_acc;     /* contact time accumulated up to here */
+    int pending;      /* a root (1) or the stop time (2) found by IDA beyond the last output time */
+    double t_pending; /* where */
+
+    /* events */
+    td_event *queue;
+    int q_len, q_pos, q_cap;
+    td_event last;
+    int have_last;
+
+    /* statistics */
+    td_sim_stats stats;   /* event totals, drift, forces, times (counters filled on demand) */
+    td_sim_counters base; /* IDA counters of finished integrator runs */
+
+    /* work space */
+    double *wn[4]; /* four vectors of length n */
+    double *wm;    /* nr * (nr + 1) + 2 nr */
+    double *wmn;   /* n * nr: M^-1 B_k or M^-1 J_k^T columns */
+    td_contact_row *rows;
+    int *act;               /* nr: indices of constraints in a small system */
+    double *ysave, *ypsave; /* last good state */
+
+    char errmsg[TD_ERROR_MESSAGE_SIZE];
+    char warnmsg[TD_ERROR_MESSAGE_SIZE];
+};
+
+/* ---- sim_residual.c: the DAE ------------------------------------------------------------- */
+
+/* Generalised force f(t, q, v, w) of the header comment (everything but inertia and constraints). */
+void td_sim_forces(const td_sim *s, double t, const double *y, double *f);
+/* F(t, y, y'). */
+void td_sim_residual(const td_sim *s, double t, const double *y, const double *yp, double *res);
+/* dF/dy + cj dF/dy' into s->jdata (pattern s->colptr, s->rowind). */
+void td_sim_jacobian(td_sim *s, double t, double cj, const double *y);
+/* Root functions (TD_ROOTS_PER_RETAINER per retainer) and their directions for the current modes. */
+void td_sim_roots(const td_sim *s, double t, const double *y, double *g);
+void td_sim_root_directions(const td_sim *s, int *dir);
+/* Force of AMB axis k at state y (N), with the mode of its AMB. */
+double td_sim_amb_axis_force(const td_sim *s, int k, const double *y);
+/* Normal force of retainer k at state y: lambda (contact), F_n (penetrating) or 0. */
+double td_sim_normal_force(const td_sim *s, int k, const double *y);
+/* Sliding velocity eq. (16) of retainer k at state y. */
+double td_sim_sliding_velocity(const td_sim *s, int k, const double *y);
+/* Spin angle phi(t). */
+double td_sim_spin_angle(const td_sim *s, double t);
+
+/* ---- sim_pattern.c: the Jacobian's sparsity pattern -------------------------------------- */
+
+/* Build s->colptr, s->rowind, s->jdata and the maps of the system matrices. */
+td_status td_sim_pattern_build(td_sim *s, td_error *err);
+/* Position of (row, col) in the pattern, -1 if absent. */
+int td_sim_pattern_find(const td_sim *s, int row, int col);
+
+/* ---- sim_modes.c: mode switching, consistent restarts, events ---------------------------- */
+
+/* x = M^-1 b in place (length n). */
+void td_sim_mass_solve(const td_sim *s, double *b);
+/* Make (y, y') consistent with the current modes at time t: eta = 0, lambda of free retainers 0,
+ * q' = v, w' = filter rate, and [v'; lambda] from the KKT system. Contacts whose lambda comes out
+ * negative (or <= 0 for those flagged in just_entered) are released and the solve repeated; each
+ * release is queued as an event unless just entered (then the onset event records it). */
+td_status td_sim_make_consistent(td_sim *s, const int *just_entered);
+/* Start of a run with the retainers flagged in `touching` on (or a hair outside) their circles:
+ * projection and impact as at an onset, then td_sim_make_consistent. */
+td_status td_sim_start_contacts(td_sim *s, const int *touching);
+/* Handle the roots found at s->t (IDAGetRootInfo in s->rootsfound). *restart is set when the
+ * integrator must be re-initialised. */
+td_status td_sim_handle_roots(td_sim *s, int *restart);
+/* Apply every schedule change due at s->t, queueing TD_EVENT_SCHEDULE events. */
+td_status td_sim_apply_due_changes(td_sim *s);
+/* Apply silently every change due at or before s->t (before the start of the run). */
+void td_sim_apply_past_changes(td_sim *s);
+/* Re-initialise IDA at s->t from s->y, s->yp (counters saved, root directions, restart step,
+ * stop time, KLU refactorisation). */
+td_status td_sim_restart(td_sim *s);
+/* Append an event to the queue (and the statistics). */
+void td_sim_queue_event(td_sim *s, const td_event *ev);
+/* Fill the velocity fields of an event from the node velocity of retainer k. */
+void td_sim_event_velocities(const td_sim *s, int k, const double *y, int after, td_event *ev);
+
+#endif

@@ -1,0 +1,537 @@
+/*
+ * Mode switching of the contact DAE: impacts, consistent re-initialisation, the event queue,
+ * the schedule, and IDA restarts.
+ *
+ * Why GGL, and why it holds the rotor on the circle (text for docs/theory.md)
+ * -------------------------------------------------------------------------
+ * The paper differentiates the contact constraint g(q) = 0 (eq. 5) twice and solves the
+ * acceleration-level system (eq. 7) for q'' and lambda. That index-1 form only enforces g'' = 0:
+ * g and g' are left to drift with the integration error, which grows linearly (g') and
+ * quadratically (g) in time; on a test chain at rtol 1e-6 |g|/c^2 reached 5e-2 in 0.5 s, i.e. the
+ * rotor sinks into or floats off the retainer it is supposed to roll on. Baumgarte feedback damps
+ * the drift but needs tuned gains and changes the dynamics.
+ *
+ * The Gear-Gupta-Leimkuhler (GGL) form instead keeps the position AND velocity constraints as
+ * algebraic equations of the DAE and adds a second multiplier eta so that the system is not
+ * over-determined:
+ *
+ *     q' = v - J^T eta,    M v' = f - J^T lambda,    g(q) = 0,    J v = 0.
+ *
+ * On the exact solution eta = 0 (differentiate g = 0: J q' = J v - J J^T eta = -|J|^2 eta = 0), so
+ * the physics is unchanged; numerically the BDF corrector solves g(q_n) = 0 and J v_n = 0 at every
+ * step together with the dynamics, so the constraint holds to the Newton tolerance at every step,
+ * whatever the step count, with no drift to accumulate. The price is an index-2 DAE: lambda and
+ * eta are algebraic (IDASetId 0) and excluded from the error test (IDASetSuppressAlg), as is usual
+ * for index-2 multipliers, and the constraint rows are scaled (divided by -2c) so that lambda is
+ * the normal force in N and the row residuals are in m and m/s, comparable with the tolerances
+ * of q and v. IDACalcIC is meant for index-1 systems, so consistent lambda and v' are computed
+ * here after every mode switch by one KKT solve (td_sim_make_consistent).
+ */
+#include "sim/sim_internal.h"
+#include "util/error_internal.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include <ida/ida_ls.h>
+
+void td_sim_mass_solve(const td_sim *s, double *b)
+{
+    double *x = s->wn[3];
+    cs_di_ipvec(s->Mn->pinv, b, x, s->n);
+    cs_di_lsolve(s->Mn->L, x);
+    cs_di_usolve(s->Mn->U, x);
+    cs_di_ipvec(s->Ms->q, x, b, s->n);
+}
+
+void td_sim_queue_event(td_sim *s, const td_event *ev)
+{
+    if (s->q_len < s->q_cap)
+        s->queue[s->q_len++] = *ev;
+    s->stats.events++;
+    switch (ev->kind) {
+    case TD_EVENT_CONTACT_ONSET:
+    case TD_EVENT_PENALTY_ENTER:
+        s->stats.contact_onsets++;
+        if (s->stats.first_contact_time < 0.0)
+            s->stats.first_contact_time = ev->time;
+        break;
+    case TD_EVENT_RELEASE:
+    case TD_EVENT_PENALTY_EXIT: s->stats.releases++; break;
+    default: break;
+    }
+}
+
+void td_sim_event_velocities(const td_sim *s, int k, const double *y, int after, td_event *ev)
+{
+    const td_sim_retainer *r = &s->ret[k];
+    double x = y[s->oq + r->dx], yy = y[s->oq + r->dy], vx = y[s->ov + r->dx], vy = y[s->ov + r->dy];
+    double vr = td_contact_radial_velocity(x, yy, vx, vy), vt = td_contact_tangential_velocity(x, yy, vx, vy);
+    if (after) {
+        ev->radial_velocity_after = vr;
+        ev->tangential_velocity_after = vt;
+    } else {
+        ev->radial_velocity_before = ev->radial_velocity_after = vr;
+        ev->tangential_velocity_before = ev->tangential_velocity_after = vt;
+    }
+}
+
+static td_event event_of(const td_sim *s, td_event_kind kind, int k)
+{
+    td_event ev;
+    memset(&ev, 0, sizeof ev);
+    ev.kind = kind;
+    ev.time = s->t;
+    ev.retainer = k;
+    ev.change = -1;
+    return ev;
+}
+
+/* +1 or -1: the sign of v, or `otherwise` at v == 0. */
+static int sign_or(double v, int otherwise)
+{
+    return v > 0.0 ? 1 : (v < 0.0 ? -1 : otherwise);
+}
+
+/* Contact row of retainer k at the state y (J_k = (x, y)/c on its node). */
+static void contact_row(const td_sim *s, int k, const double *y, td_contact_row *row)
+{
+    const td_sim_retainer *r = &s->ret[k];
+    row->dof[0] = r->dx;
+    row->dof[1] = r->dy;
+    td_contact_constraint_jacobian(y[s->oq + r->dx], y[s->oq + r->dy], r->r.clearance, row->j);
+}
+
+/* Column B_k = J_k^T + s mu t_k (normal force plus its friction) of retainer k, length n. */
+static void contact_column(const td_sim *s, int k, const double *y, double *col)
+{
+    const td_sim_retainer *r = &s->ret[k];
+    double x = y[s->oq + r->dx], yy = y[s->oq + r->dy], c = r->r.clearance, rad = hypot(x, yy);
+    double sm = r->slip * r->r.friction;
+    memset(col, 0, sizeof(double) * (size_t)s->n);
+    col[r->dx] = x / c - sm * yy / rad;
+    col[r->dy] = yy / c + sm * x / rad;
+}
+
+/* Project retainer k's node radially onto its clearance circle (x, y scaled). */
+static void project_onto_circle(td_sim *s, int k, double *y)
+{
+    const td_sim_retainer *r = &s->ret[k];
+    double x = y[s->oq + r->dx], yy = y[s->oq + r->dy], rad = hypot(x, yy);
+    if (rad > 0.0) {
+        y[s->oq + r->dx] = x * (r->r.clearance / rad);
+        y[s->oq + r->dy] = yy * (r->r.clearance / rad);
+    }
+}
+
+/* One KKT solve with the current contact set: [M, B; J, 0][v'; lambda] = [f; -D] by the Schur
+ * complement (J M^-1 B) lambda = J M^-1 f + D (m x m, m = contacts), v' = M^-1 (f - B lambda).
+ * Fills yp's v block and y's lambda entries. Returns the number of contacts, or -1 if singular. */
+static int kkt_solve(td_sim *s, double *y, double *yp)
+{
+    double *a = s->wn[1], *S = s->wm, *rhs, *vp = yp + s->ov;
+    int m = 0, i, j, k;
+    td_sim_forces(s, s->t, y, a);
+    td_sim_mass_solve(s, a);
+    for (k = 0; k < s->nr; k++)
+        if (s->ret[k].mode == TD_RMODE_CONTACT)
+            s->act[m++] = k;
+    rhs = S + m * m;
+    for (i = 0; i < m; i++) {
+        double *z = s->wmn + (size_t)i * s->n;
+        contact_column(s, s->act[i], y, z);
+        td_sim_mass_solve(s, z);
+        contact_row(s, s->act[i], y, &s->rows[i]);
+    }
+    for (i = 0; i < m; i++) {
+        const td_contact_row *row = &s->rows[i];
+        const td_sim_retainer *r = &s->ret[s->act[i]];
+        for (j = 0; j < m; j++) {
+            const double *z = s->wmn + (size_t)j * s->n;
+            S[i + j * m] = row->j[0] * z[row->dof[0]] + row->j[1] * z[row->dof[1]];
+        }
+        /* eq. (13b): J v' = -D */
+        rhs[i] = row->j[0] * a[row->dof[0]] + row->j[1] * a[row->dof[1]] +
+                 td_contact_constraint_dterm(y[s->ov + r->dx], y[s->ov + r->dy], r->r.clearance);
+    }
+    if (m > 0 && td_contact_dense_solve(m, S, rhs) != 0)
+        return -1;
+    for (i = 0; i < s->n; i++)
+        vp[i] = a[i];
+    for (j = 0; j < m; j++) {
+        const double *z = s->wmn + (size_t)j * s->n;
+        for (i = 0; i < s->n; i++)
+            vp[i] -= z[i] * rhs[j];
+        y[s->ol + s->act[j]] = rhs[j];
+    }
+    return m;
+}
+
+td_status td_sim_make_consistent(td_sim *s, const int *just_entered)
+{
+    double *y = N_VGetArrayPointer(s->y), *yp = N_VGetArrayPointer(s->yp);
+    int i, k, pass;
+    for (k = 0; k < s->nr; k++) {
+        y[s->ou + k] = 0.0;
+        yp[s->ol + k] = yp[s->ou + k] = 0.0;
+        if (s->ret[k].mode != TD_RMODE_CONTACT)
+            y[s->ol + k] = 0.0;
+        else
+            project_onto_circle(s, k, y); /* removes the (tolerance-level) drift at every restart */
+    }
+    for (pass = 0; pass <= s->nr; pass++) {
+        int worst = -1;
+        double worst_lam = 0.0;
+        if (kkt_solve(s, y, yp) < 0) {
+            snprintf(s->errmsg, sizeof s->errmsg,
+                     "t = %.9g s: the contact constraints are singular (J M^-1 J^T not invertible)", s->t);
+            return TD_ERR_NUMERIC;
+        }
+        /* a contact that would need a pulling force is released (eq. 10 and the text after it) */
+        for (k = 0; k < s->nr; k++) {
+            double lam = y[s->ol + k];
+            int reject;
+            if (s->ret[k].mode != TD_RMODE_CONTACT)
+                continue;
+            reject = (just_entered && just_entered[k]) ? !(lam > 0.0) : lam < 0.0;
+            if (reject && (worst < 0 || lam < worst_lam)) {
+                worst = k;
+                worst_lam = lam;
+            }
+        }
+        if (worst < 0)
+            break;
+        s->ret[worst].mode = TD_RMODE_FREE;
+        s->ret[worst].armed = 0;
+        y[s->ol + worst] = 0.0;
+        if (!(just_entered && just_entered[worst])) {
+            td_event ev = event_of(s, TD_EVENT_RELEASE, worst);
+            td_sim_event_velocities(s, worst, y, 0, &ev);
+            td_sim_queue_event(s, &ev);
+        }
+    }
+    /* q' = v, w' = the filter rate */
+    for (i = 0; i < s->n; i++)
+        yp[s->oq + i] = y[s->ov + i];
+    for (k = 0; k < s->sys->n_amb_axes; k++) {
+        const td_amb_axis *a = &s->sys->amb_axes[k];
+        if (a->state >= 0)
+            yp[s->ow + a->state] =
+                td_amb_axis_filter_rate(a, y[s->oq + a->sensor_dof], y[s->ov + a->sensor_dof], y[s->ow + a->state]);
+    }
+    return TD_OK;
+}
+
+/*
+ * Impacts at the retainers flagged in `onset` (constraint model): project each node onto its
+ * circle, apply the impact map with every contact already active (e = 0 keeps them on the circle)
+ * and the new ones (their restitution, or 0 below the minimum rebound speed), queue the onset
+ * events. New contacts with e = 0 become CONTACT (tentatively: the KKT solve may still reject
+ * them); bouncing ones stay free, disarmed until the gap opens again. entered[k] flags the former.
+ * Returns the number of onset events queued.
+ */
+static int impacts(td_sim *s, const int *onset, int *entered)
+{
+    double *y = N_VGetArrayPointer(s->y), *v = y + s->ov;
+    double *e = s->wm, *P = s->wm + s->nr, *work = s->wm + 2 * s->nr;
+    int m = 0, k, i, queued = 0, first_event = s->q_len;
+    for (k = 0; k < s->nr; k++) {
+        entered[k] = 0;
+        if (onset[k])
+            project_onto_circle(s, k, y);
+    }
+    for (k = 0; k < s->nr; k++) {
+        const td_sim_retainer *r = &s->ret[k];
+        double vr;
+        if (r->mode == TD_RMODE_CONTACT) {
+            e[m] = 0.0;
+            s->act[m++] = k;
+        } else if (onset[k]) {
+            vr = td_contact_radial_velocity(y[s->oq + r->dx], y[s->oq + r->dy], v[r->dx], v[r->dy]);
+            if (!(vr > 0.0)) /* touching while already moving inward: no impact, stay free */
+                continue;
+            e[m] = (r->r.restitution > 0.0 && vr >= s->rebound_min) ? r->r.restitution : 0.0;
+            s->act[m++] = k;
+        }
+    }
+    for (i = 0; i < m; i++) {
+        double *col = s->wmn + (size_t)i * s->n;
+        contact_row(s, s->act[i], y, &s->rows[i]);
+        memset(col, 0, sizeof(double) * (size_t)s->n);
+        col[s->rows[i].dof[0]] = s->rows[i].j[0];
+        col[s->rows[i].dof[1]] = s->rows[i].j[1];
+        td_sim_mass_solve(s, col);
+    }
+    for (i = 0; i < m; i++) {
+        k = s->act[i];
+        if (!onset[k] || s->ret[k].mode == TD_RMODE_CONTACT)
+            continue;
+        {
+            td_event ev = event_of(s, TD_EVENT_CONTACT_ONSET, k);
+            td_sim_event_velocities(s, k, y, 0, &ev);
+            td_sim_queue_event(s, &ev);
+            queued++;
+        }
+    }
+    if (m > 0 && td_contact_impact_map(s->n, m, s->rows, s->wmn, e, v, P, work) != 0)
+        return -1;
+    for (i = 0; i < m; i++) {
+        td_sim_retainer *r;
+        k = s->act[i];
+        r = &s->ret[k];
+        if (!onset[k] || r->mode == TD_RMODE_CONTACT)
+            continue;
+        if (e[i] > 0.0) {
+            r->armed = 0; /* bounced: free until the gap has opened */
+        } else {
+            r->mode = TD_RMODE_CONTACT;
+            r->slip = sign_or(td_sim_sliding_velocity(s, k, y), 1);
+            entered[k] = 1;
+        }
+    }
+    /* complete the queued onset events (in queue order = retainer order) */
+    for (i = 0; i < m; i++) {
+        int q;
+        k = s->act[i];
+        if (!onset[k])
+            continue;
+        for (q = first_event; q < s->q_len; q++)
+            if (s->queue[q].retainer == k && s->queue[q].kind == TD_EVENT_CONTACT_ONSET) {
+                td_sim_event_velocities(s, k, y, 1, &s->queue[q]);
+                s->queue[q].impulse = P[i];
+            }
+    }
+    /* onsets with no outward velocity: disarm, nothing happened */
+    for (k = 0; k < s->nr; k++)
+        if (onset[k] && s->ret[k].mode == TD_RMODE_FREE)
+            s->ret[k].armed = 0;
+    return queued;
+}
+
+td_status td_sim_handle_roots(td_sim *s, int *restart)
+{
+    double *y = N_VGetArrayPointer(s->y);
+    int *onset = s->act + s->nr, *entered = s->act + 2 * s->nr;
+    int k, any_onset = 0, first_event = s->q_len;
+    td_status st;
+    *restart = 0;
+    for (k = 0; k < s->nr; k++) {
+        td_sim_retainer *r = &s->ret[k];
+        const int *f = s->rootsfound + TD_ROOTS_PER_RETAINER * k;
+        onset[k] = 0;
+        if (f[TD_ROOT_CONTACT] != 0) {
+            td_event ev;
+            switch (r->mode) {
+            case TD_RMODE_FREE:
+                if (s->opt.contact.model == TD_CONTACT_CONSTRAINT) {
+                    onset[k] = any_onset = 1;
+                } else {
+                    r->mode = TD_RMODE_PENETRATING;
+                    r->slip = sign_or(td_sim_sliding_velocity(s, k, y), 1);
+                    ev = event_of(s, TD_EVENT_PENALTY_ENTER, k);
+                    td_sim_event_velocities(s, k, y, 0, &ev);
+                    td_sim_queue_event(s, &ev);
+                    *restart = 1;
+                }
+                break;
+            case TD_RMODE_CONTACT:
+                r->mode = TD_RMODE_FREE;
+                r->armed = 0; /* left at r = c: no onset until the gap has opened (grazing guard) */
+                y[s->ol + k] = 0.0;
+                ev = event_of(s, TD_EVENT_RELEASE, k);
+                td_sim_event_velocities(s, k, y, 0, &ev);
+                td_sim_queue_event(s, &ev);
+                *restart = 1;
+                break;
+            case TD_RMODE_PENETRATING:
+                r->mode = TD_RMODE_FREE;
+                r->armed = 1;
+                ev = event_of(s, TD_EVENT_PENALTY_EXIT, k);
+                td_sim_event_velocities(s, k, y, 0, &ev);
+                td_sim_queue_event(s, &ev);
+                *restart = 1;
+                break;
+            }
+        } else if (f[TD_ROOT_SLIP] != 0 && r->mode != TD_RMODE_FREE) {
+            td_event ev = event_of(s, TD_EVENT_FRICTION_REVERSAL, k);
+            /* just past the crossing: the new sign is that of v_s now (flip if exactly 0) */
+            r->slip = sign_or(td_sim_sliding_velocity(s, k, y), -r->slip);
+            td_sim_event_velocities(s, k, y, 0, &ev);
+            td_sim_queue_event(s, &ev);
+            *restart = 1;
+        }
+        if (f[TD_ROOT_REARM] != 0 && r->mode == TD_RMODE_FREE && !r->armed)
+            r->armed = 1; /* internal: only the root function changes (IDA re-evaluates it at tlo) */
+    }
+    if (any_onset) {
+        if (impacts(s, onset, entered) < 0) {
+            snprintf(s->errmsg, sizeof s->errmsg, "t = %.9g s: impact map singular", s->t);
+            return TD_ERR_NUMERIC;
+        }
+        *restart = 1;
+    } else {
+        for (k = 0; k < s->nr; k++)
+            entered[k] = 0;
+    }
+    if (!*restart)
+        return TD_OK;
+    st = td_sim_make_consistent(s, entered);
+    if (st != TD_OK)
+        return st;
+    /* record the normal force right after each event of this instant */
+    for (k = first_event; k < s->q_len; k++)
+        if (s->queue[k].retainer >= 0)
+            s->queue[k].normal_force = td_sim_normal_force(s, s->queue[k].retainer, y);
+    return TD_OK;
+}
+
+td_status td_sim_start_contacts(td_sim *s, const int *touching)
+{
+    int *onset = s->act + s->nr, *entered = s->act + 2 * s->nr, k, any = 0;
+    for (k = 0; k < s->nr; k++) {
+        onset[k] = touching[k];
+        any = any || onset[k];
+    }
+    if (any && impacts(s, onset, entered) < 0) {
+        snprintf(s->errmsg, sizeof s->errmsg, "t = %.9g s: impact map singular", s->t);
+        return TD_ERR_NUMERIC;
+    }
+    if (!any)
+        for (k = 0; k < s->nr; k++)
+            entered[k] = 0;
+    return td_sim_make_consistent(s, entered);
+}
+
+/* Apply schedule entry c (the model's TD_CHANGE_*). */
+static void apply_change(td_sim *s, const td_change *c)
+{
+    switch (c->kind) {
+    case TD_CHANGE_UNBALANCE:
+        if (c->index >= 0 && c->index < s->nu) {
+            s->unb[c->index].magnitude = c->magnitude;
+            s->unb[c->index].phase = c->phase;
+        }
+        break;
+    case TD_CHANGE_AMB_OFF:
+        if (c->index >= 0 && c->index < td_model_amb_count(s->model))
+            s->amb_mode[c->index] = TD_AMB_OFF;
+        break;
+    case TD_CHANGE_AMB_ON:
+        if (c->index >= 0 && c->index < td_model_amb_count(s->model))
+            s->amb_mode[c->index] = TD_AMB_PD;
+        break;
+    }
+}
+
+/* Changes at most this close after t count as due at t (the stop time lands on them exactly). */
+static double due_tolerance(double t)
+{
+    return 1e-14 * (1.0 + fabs(t));
+}
+
+td_status td_sim_apply_due_changes(td_sim *s)
+{
+    int count = td_model_change_count(s->model);
+    while (s->next_change < count) {
+        td_change c;
+        td_event ev;
+        td_model_get_change(s->model, s->next_change, &c);
+        if (c.time > s->t + due_tolerance(s->t))
+            break;
+        apply_change(s, &c);
+        ev = event_of(s, TD_EVENT_SCHEDULE, -1);
+        ev.change = s->next_change;
+        td_sim_queue_event(s, &ev);
+        s->next_change++;
+    }
+    return TD_OK;
+}
+
+void td_sim_apply_past_changes(td_sim *s)
+{
+    int count = td_model_change_count(s->model);
+    while (s->next_change < count) {
+        td_change c;
+        td_model_get_change(s->model, s->next_change, &c);
+        if (c.time > s->t + due_tolerance(s->t))
+            break;
+        apply_change(s, &c);
+        s->next_change++;
+    }
+}
+
+static void save_counters(td_sim *s)
+{
+    long v;
+    if (IDAGetNumSteps(s->ida, &v) == IDA_SUCCESS)
+        s->base.steps += v;
+    if (IDAGetNumResEvals(s->ida, &v) == IDA_SUCCESS)
+        s->base.res += v;
+    if (IDAGetNumJacEvals(s->ida, &v) == IDA_SUCCESS)
+        s->base.jac += v;
+    if (IDAGetNumLinSolvSetups(s->ida, &v) == IDA_SUCCESS)
+        s->base.setups += v;
+    if (IDAGetNumNonlinSolvIters(s->ida, &v) == IDA_SUCCESS)
+        s->base.nli += v;
+    if (IDAGetNumErrTestFails(s->ida, &v) == IDA_SUCCESS)
+        s->base.etf += v;
+    if (IDAGetNumNonlinSolvConvFails(s->ida, &v) == IDA_SUCCESS)
+        s->base.ncf += v;
+}
+
+/*
+ * Restart step: BDF restarts at order 1, whose local error is about h^2/2 |q''| on the
+ * displacements; choose h so that this is a quarter of the displacement tolerance at the
+ * largest acceleration, within [1e-12 s, hmax] (or the user's initial_step).
+ */
+static double restart_step(const td_sim *s)
+{
+    const double *y = N_VGetArrayPointer(s->y), *yp = N_VGetArrayPointer(s->yp);
+    double amax = 0.0, h;
+    int i;
+    if (s->opt.solver.initial_step > 0.0)
+        return s->opt.solver.initial_step;
+    for (i = 0; i < s->n; i++) {
+        double tol = s->opt.solver.rtol * fabs(y[s->oq + i]) + s->opt.solver.atol;
+        double a = fabs(yp[s->ov + i]) / tol;
+        if (a > amax)
+            amax = a;
+    }
+    h = amax > 0.0 ? sqrt(0.5 / amax) : s->hmax;
+    if (h > s->hmax)
+        h = s->hmax;
+    if (h < 1e-12)
+        h = 1e-12;
+    return h;
+}
+
+td_status td_sim_restart(td_sim *s)
+{
+    int flag;
+    save_counters(s);
+    flag = IDAReInit(s->ida, s->t, s->y, s->yp);
+    if (flag == IDA_SUCCESS) {
+        td_sim_root_directions(s, s->rootdir);
+        if (s->nroots > 0)
+            flag = IDASetRootDirection(s->ida, s->rootdir);
+    }
+    if (flag == IDA_SUCCESS)
+        flag = IDASetInitStep(s->ida, restart_step(s));
+    if (flag == IDA_SUCCESS)
+        flag = IDASetMaxStep(s->ida, s->hmax);
+    if (flag == IDA_SUCCESS && s->next_change < td_model_change_count(s->model)) {
+        td_change c;
+        td_model_get_change(s->model, s->next_change, &c);
+        flag = IDASetStopTime(s->ida, c.time);
+    }
+    if (flag != IDA_SUCCESS) {
+        if (!s->errmsg[0])
+            snprintf(s->errmsg, sizeof s->errmsg, "t = %.9g s: IDA re-initialisation failed (%d)", s->t, flag);
+        return TD_ERR_SOLVER;
+    }
+    s->t_ida = s->t;
+    s->pending = 0; /* whatever IDA had found beyond s->t belongs to the discarded integration */
+    s->stats.restarts++;
+    return TD_OK;
+}

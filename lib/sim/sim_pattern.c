@@ -1,0 +1,125 @@
+/*
+ * The Jacobian's sparsity pattern: one fixed compressed-column pattern, the union of every entry
+ * any mode can write (system matrices, AMB couplings, every retainer's constraint, friction and
+ * penalty blocks, the diagonal of the multiplier rows). A mode switch therefore never changes
+ * the structure: KLU's symbolic analysis is done once.
+ */
+#include "sim/sim_internal.h"
+#include "util/error_internal.h"
+
+#include <stdlib.h>
+
+/* Entry (row, col) into the triplet matrix T. */
+static int put(cs_di *T, int row, int col)
+{
+    return cs_di_entry(T, row, col, 1.0);
+}
+
+/* The 2 x 2 block rows {r0, r1} x cols {c0, c1}. */
+static int put_block(cs_di *T, int r0, int r1, int c0, int c1)
+{
+    return put(T, r0, c0) && put(T, r0, c1) && put(T, r1, c0) && put(T, r1, c1);
+}
+
+static int put_matrix(cs_di *T, const cs_di *A, int roff, int coff)
+{
+    int j, p;
+    for (j = 0; j < A->n; j++)
+        for (p = A->p[j]; p < A->p[j + 1]; p++)
+            if (!put(T, roff + A->i[p], coff + j))
+                return 0;
+    return 1;
+}
+
+static int put_all(const td_sim *s, cs_di *T)
+{
+    const td_system *sys = s->sys;
+    int i, k, ok = 1;
+    for (i = 0; i < s->n && ok; i++)
+        ok = put(T, s->oq + i, s->oq + i) && put(T, s->oq + i, s->ov + i);
+    ok = ok && put_matrix(T, sys->M, s->ov, s->ov) && put_matrix(T, sys->C, s->ov, s->ov) &&
+         put_matrix(T, sys->G, s->ov, s->ov) && put_matrix(T, sys->K, s->ov, s->oq);
+    for (k = 0; k < sys->n_amb_axes && ok; k++) {
+        const td_amb_axis *a = &sys->amb_axes[k];
+        int act = a->actuator_dof, sen = a->sensor_dof;
+        ok = put(T, s->ov + act, s->oq + act) && put(T, s->ov + act, s->oq + sen) && put(T, s->ov + act, s->ov + sen);
+        if (ok && a->state >= 0) {
+            int w = s->ow + a->state;
+            ok = put(T, s->ov + act, w) && put(T, w, w) && put(T, w, s->oq + sen) && put(T, w, s->ov + sen);
+        }
+    }
+    for (k = 0; k < s->nr && ok; k++) {
+        const td_sim_retainer *r = &s->ret[k];
+        int qx = s->oq + r->dx, qy = s->oq + r->dy, vx = s->ov + r->dx, vy = s->ov + r->dy;
+        int lk = s->ol + k, uk = s->ou + k;
+        ok = put_block(T, vx, vy, qx, qy) && put_block(T, vx, vy, vx, vy) && put(T, vx, lk) && put(T, vy, lk) &&
+             put(T, qx, uk) && put(T, qy, uk) && put(T, lk, lk) && put(T, lk, qx) && put(T, lk, qy) && put(T, uk, uk) &&
+             put(T, uk, qx) && put(T, uk, qy) && put(T, uk, vx) && put(T, uk, vy);
+    }
+    return ok;
+}
+
+int td_sim_pattern_find(const td_sim *s, int row, int col)
+{
+    int lo = s->colptr[col], hi = s->colptr[col + 1] - 1;
+    while (lo <= hi) {
+        int mid = (lo + hi) / 2, r = s->rowind[mid];
+        if (r == row)
+            return mid;
+        if (r < row)
+            lo = mid + 1;
+        else
+            hi = mid - 1;
+    }
+    return -1;
+}
+
+static int *map_matrix(const td_sim *s, const cs_di *A, int roff, int coff)
+{
+    int j, p, nz = A->p[A->n];
+    int *map = malloc(sizeof(int) * (size_t)(nz > 0 ? nz : 1));
+    if (!map)
+        return NULL;
+    for (j = 0; j < A->n; j++)
+        for (p = A->p[j]; p < A->p[j + 1]; p++)
+            map[p] = td_sim_pattern_find(s, roff + A->i[p], coff + j);
+    return map;
+}
+
+td_status td_sim_pattern_build(td_sim *s, td_error *err)
+{
+    cs_di *T = cs_di_spalloc(s->neq, s->neq, 16 * s->neq, 1, 1), *C = NULL, *Ct = NULL, *S = NULL;
+    int ok = T != NULL && put_all(s, T);
+    /* compress, sum duplicates, and sort row indices by transposing twice */
+    if (ok)
+        ok = (C = cs_di_compress(T)) != NULL && cs_di_dupl(C) && (Ct = cs_di_transpose(C, 1)) != NULL &&
+             (S = cs_di_transpose(Ct, 1)) != NULL;
+    cs_di_spfree(T);
+    cs_di_spfree(C);
+    cs_di_spfree(Ct);
+    if (!ok) {
+        cs_di_spfree(S);
+        return td_error_set(err, TD_ERR_NOMEM, "out of memory building the Jacobian pattern");
+    }
+    s->nnz = S->p[S->n];
+    s->colptr = malloc(sizeof(int) * (size_t)(s->neq + 1));
+    s->rowind = malloc(sizeof(int) * (size_t)s->nnz);
+    s->jdata = calloc((size_t)s->nnz, sizeof(double));
+    if (s->colptr && s->rowind && s->jdata) {
+        int i;
+        for (i = 0; i <= s->neq; i++)
+            s->colptr[i] = S->p[i];
+        for (i = 0; i < s->nnz; i++)
+            s->rowind[i] = S->i[i];
+    }
+    cs_di_spfree(S);
+    if (!s->colptr || !s->rowind || !s->jdata)
+        return td_error_set(err, TD_ERR_NOMEM, "out of memory building the Jacobian pattern");
+    s->map_M = map_matrix(s, s->sys->M, s->ov, s->ov);
+    s->map_C = map_matrix(s, s->sys->C, s->ov, s->ov);
+    s->map_G = map_matrix(s, s->sys->G, s->ov, s->ov);
+    s->map_K = map_matrix(s, s->sys->K, s->ov, s->oq);
+    if (!s->map_M || !s->map_C || !s->map_G || !s->map_K)
+        return td_error_set(err, TD_ERR_NOMEM, "out of memory building the Jacobian pattern");
+    return TD_OK;
+}

@@ -1,0 +1,363 @@
+/*
+ * The contact DAE of sim_internal.h: generalised forces, residual, analytic Jacobian, root
+ * functions. Everything here is a pure function of the sim's current modes and machine state.
+ */
+#include "sim/sim_internal.h"
+
+#include <math.h>
+#include <string.h>
+
+double td_sim_spin_angle(const td_sim *s, double t)
+{
+    return s->spin_ref + s->omega * (t - s->t_spin_ref);
+}
+
+/* Control force Fc of AMB axis k that enters F = ks x + Fc: the lagged state (tau > 0), the
+ * lag-free command (tau == 0) or the caller's held value (TD_AMB_EXTERNAL). */
+static double amb_axis_fc(const td_sim *s, int k, const double *y)
+{
+    const td_amb_axis *a = &s->sys->amb_axes[k];
+    if (s->amb_mode[a->amb] == TD_AMB_EXTERNAL)
+        return s->amb_control[2 * a->amb + a->axis];
+    if (a->state >= 0)
+        return y[s->ow + a->state];
+    return td_amb_axis_command(a, y[s->oq + a->sensor_dof], y[s->ov + a->sensor_dof]);
+}
+
+double td_sim_amb_axis_force(const td_sim *s, int k, const double *y)
+{
+    const td_amb_axis *a = &s->sys->amb_axes[k];
+    int enabled = s->amb_mode[a->amb] != TD_AMB_OFF;
+    return td_amb_axis_force(a, enabled, y[s->oq + a->actuator_dof], amb_axis_fc(s, k, y), NULL, NULL);
+}
+
+/* Node coordinates of retainer k. */
+static void node_state(const td_sim *s, int k, const double *y, double *x, double *yy, double *vx, double *vy)
+{
+    const td_sim_retainer *r = &s->ret[k];
+    *x = y[s->oq + r->dx];
+    *yy = y[s->oq + r->dy];
+    *vx = y[s->ov + r->dx];
+    *vy = y[s->ov + r->dy];
+}
+
+/* Penalty normal force of retainer k and its partials by delta and its rate. */
+static double penalty_force(const td_sim *s, int k, const double *y, double *fd, double *fr)
+{
+    double x, yy, vx, vy, r;
+    node_state(s, k, y, &x, &yy, &vx, &vy);
+    r = hypot(x, yy);
+    return td_contact_penalty_force(&s->law, r - s->ret[k].r.clearance, td_contact_radial_velocity(x, yy, vx, vy), fd,
+                                    fr);
+}
+
+double td_sim_normal_force(const td_sim *s, int k, const double *y)
+{
+    switch (s->ret[k].mode) {
+    case TD_RMODE_CONTACT: return y[s->ol + k];
+    case TD_RMODE_PENETRATING: return penalty_force(s, k, y, NULL, NULL);
+    case TD_RMODE_FREE:
+    default: return 0.0;
+    }
+}
+
+double td_sim_sliding_velocity(const td_sim *s, int k, const double *y)
+{
+    double x, yy, vx, vy;
+    node_state(s, k, y, &x, &yy, &vx, &vy);
+    return td_contact_sliding_velocity(&s->ret[k].r, s->omega, x, yy, vx, vy);
+}
+
+/* out += scale * A x for a CSC matrix. */
+static void spmv_add(const cs_di *A, const double *x, double scale, double *out)
+{
+    int j, p;
+    for (j = 0; j < A->n; j++) {
+        double xj = scale * x[j];
+        if (xj == 0.0)
+            continue;
+        for (p = A->p[j]; p < A->p[j + 1]; p++)
+            out[A->i[p]] += A->x[p] * xj;
+    }
+}
+
+void td_sim_forces(const td_sim *s, double t, const double *y, double *f)
+{
+    const td_system *sys = s->sys;
+    const double *q = y + s->oq, *v = y + s->ov;
+    double w2 = s->omega * s->omega, phi = td_sim_spin_angle(s, t);
+    int i, k;
+
+    for (i = 0; i < s->n; i++)
+        f[i] = sys->gravity_load[i];
+    spmv_add(sys->C, v, -1.0, f);
+    if (s->omega != 0.0)
+        spmv_add(sys->G, v, -s->omega, f);
+    spmv_add(sys->K, q, -1.0, f);
+    /* unbalance: U Omega^2 (cos, sin)(phi + phase) at its node (touchdown/model.h) */
+    for (i = 0; i < s->nu; i++) {
+        const td_unbalance *u = &s->unb[i];
+        double a = u->magnitude * w2;
+        f[TD_DOF(u->node, TD_DOF_X)] += a * cos(phi + u->phase);
+        f[TD_DOF(u->node, TD_DOF_Y)] += a * sin(phi + u->phase);
+    }
+    for (k = 0; k < sys->n_amb_axes; k++)
+        f[sys->amb_axes[k].actuator_dof] += td_sim_amb_axis_force(s, k, y);
+    /* penalty contacts: force -F_n (n + s mu t) on the rotor (eqs. 4, 17) */
+    for (k = 0; k < s->nr; k++) {
+        const td_sim_retainer *r = &s->ret[k];
+        double x, yy, vx, vy, rad, fn, sm;
+        if (r->mode != TD_RMODE_PENETRATING)
+            continue;
+        node_state(s, k, y, &x, &yy, &vx, &vy);
+        rad = hypot(x, yy);
+        fn = penalty_force(s, k, y, NULL, NULL);
+        sm = r->slip * r->r.friction;
+        f[r->dx] -= fn * (x - sm * yy) / rad;
+        f[r->dy] -= fn * (yy + sm * x) / rad;
+    }
+}
+
+void td_sim_residual(const td_sim *s, double t, const double *y, const double *yp, double *res)
+{
+    const td_system *sys = s->sys;
+    const double *v = y + s->ov, *vp = yp + s->ov;
+    double *rq = res + s->oq, *rv = res + s->ov;
+    int i, k;
+
+    /* q rows: q' - v (+ J^T eta below) */
+    for (i = 0; i < s->n; i++)
+        rq[i] = yp[s->oq + i] - v[i];
+    /* v rows: M v' - f */
+    td_sim_forces(s, t, y, rv);
+    for (i = 0; i < s->n; i++)
+        rv[i] = -rv[i];
+    spmv_add(sys->M, vp, 1.0, rv);
+    /* w rows: the AMB force lag */
+    for (k = 0; k < sys->n_amb_axes; k++) {
+        const td_amb_axis *a = &sys->amb_axes[k];
+        if (a->state < 0)
+            continue;
+        res[s->ow + a->state] =
+            yp[s->ow + a->state] -
+            td_amb_axis_filter_rate(a, y[s->oq + a->sensor_dof], y[s->ov + a->sensor_dof], y[s->ow + a->state]);
+    }
+    /* retainer rows */
+    for (k = 0; k < s->nr; k++) {
+        const td_sim_retainer *r = &s->ret[k];
+        double lam = y[s->ol + k], eta = y[s->ou + k];
+        if (r->mode == TD_RMODE_CONTACT) {
+            double x, yy, vx, vy, c = r->r.clearance, rad, sm = r->slip * r->r.friction;
+            node_state(s, k, y, &x, &yy, &vx, &vy);
+            rad = hypot(x, yy);
+            /* eq. (6): + J^T lambda, and the friction of eq. (17) with N = lambda */
+            rv[r->dx] += lam * (x / c - sm * yy / rad);
+            rv[r->dy] += lam * (yy / c + sm * x / rad);
+            /* GGL: q' = v - J^T eta */
+            rq[r->dx] += eta * x / c;
+            rq[r->dy] += eta * yy / c;
+            res[s->ol + k] = td_contact_constraint(x, yy, c); /* eq. (5) / (-2c) */
+            res[s->ou + k] = (x * vx + yy * vy) / c;          /* eq. (13a) / (-2c) */
+        } else {
+            res[s->ol + k] = lam;
+            res[s->ou + k] = eta;
+        }
+    }
+}
+
+/* jdata[pos(row, col)] += v; the pattern is a superset of every entry written here. */
+static void jadd(td_sim *s, int row, int col, double v)
+{
+    int p = td_sim_pattern_find(s, row, col);
+    if (p >= 0)
+        s->jdata[p] += v;
+}
+
+/* Add the stored entries of a system matrix times `scale` through its position map. */
+static void jadd_matrix(td_sim *s, const cs_di *A, const int *map, double scale)
+{
+    int p, nz = A->p[A->n];
+    if (scale == 0.0)
+        return;
+    for (p = 0; p < nz; p++)
+        s->jdata[map[p]] += scale * A->x[p];
+}
+
+static void jacobian_amb(td_sim *s, const double *y)
+{
+    const td_system *sys = s->sys;
+    int k;
+    for (k = 0; k < sys->n_amb_axes; k++) {
+        const td_amb_axis *a = &sys->amb_axes[k];
+        const td_sim_amb_coef *co = &s->amb_coef[k];
+        td_amb_mode mode = s->amb_mode[a->amb];
+        int act = a->actuator_dof, sen = a->sensor_dof;
+        double dfdx, dfdfc;
+        td_amb_axis_force(a, mode != TD_AMB_OFF, y[s->oq + act], amb_axis_fc(s, k, y), &dfdx, &dfdfc);
+        /* v rows carry -f_amb */
+        jadd(s, s->ov + act, s->oq + act, -dfdx);
+        if (mode == TD_AMB_PD) {
+            if (a->state >= 0) {
+                jadd(s, s->ov + act, s->ow + a->state, -dfdfc);
+            } else {
+                jadd(s, s->ov + act, s->oq + sen, -dfdfc * co->cmd_x);
+                jadd(s, s->ov + act, s->ov + sen, -dfdfc * co->cmd_v);
+            }
+        }
+        if (a->state >= 0) {
+            int row = s->ow + a->state;
+            jadd(s, row, s->oq + sen, -co->rate_x);
+            jadd(s, row, s->ov + sen, -co->rate_v);
+            jadd(s, row, row, -co->rate_w);
+        }
+    }
+}
+
+/* Constrained contact k: d/dq of lambda (J^T + s mu t) and the GGL and constraint rows. */
+static void jacobian_contact(td_sim *s, int k, const double *y)
+{
+    const td_sim_retainer *r = &s->ret[k];
+    double x, yy, vx, vy, c = r->r.clearance, rad, r3, sm = r->slip * r->r.friction;
+    double lam = y[s->ol + k], eta = y[s->ou + k];
+    int qx = s->oq + r->dx, qy = s->oq + r->dy, vxr = s->ov + r->dx, vyr = s->ov + r->dy;
+    int lk = s->ol + k, uk = s->ou + k;
+    node_state(s, k, y, &x, &yy, &vx, &vy);
+    rad = hypot(x, yy);
+    r3 = rad * rad * rad;
+    /* lambda (x/c - sm y/r, y/c + sm x/r) */
+    jadd(s, vxr, qx, lam * (1.0 / c + sm * x * yy / r3));
+    jadd(s, vxr, qy, lam * (-sm * x * x / r3));
+    jadd(s, vyr, qx, lam * (sm * yy * yy / r3));
+    jadd(s, vyr, qy, lam * (1.0 / c - sm * x * yy / r3));
+    jadd(s, vxr, lk, x / c - sm * yy / rad);
+    jadd(s, vyr, lk, yy / c + sm * x / rad);
+    /* q rows: eta (x, y)/c */
+    jadd(s, qx, qx, eta / c);
+    jadd(s, qy, qy, eta / c);
+    jadd(s, qx, uk, x / c);
+    jadd(s, qy, uk, yy / c);
+    /* g row and J v row */
+    jadd(s, lk, qx, x / c);
+    jadd(s, lk, qy, yy / c);
+    jadd(s, uk, qx, vx / c);
+    jadd(s, uk, qy, vy / c);
+    jadd(s, uk, vxr, x / c);
+    jadd(s, uk, vyr, yy / c);
+}
+
+/* Penalty contact k: d/dq and d/dv of F_n(delta, rate) u, u = (x - sm y, y + sm x)/r. */
+static void jacobian_penalty(td_sim *s, int k, const double *y)
+{
+    const td_sim_retainer *r = &s->ret[k];
+    double x, yy, vx, vy, rad, r3, sm = r->slip * r->r.friction, fd, fr, fn, rate;
+    double d_x, d_y, rt_x, rt_y, rt_vx, rt_vy, f_x, f_y, u1, u2, u1x, u1y, u2x, u2y;
+    int qx = s->oq + r->dx, qy = s->oq + r->dy, vxr = s->ov + r->dx, vyr = s->ov + r->dy;
+    node_state(s, k, y, &x, &yy, &vx, &vy);
+    rad = hypot(x, yy);
+    r3 = rad * rad * rad;
+    fn = penalty_force(s, k, y, &fd, &fr);
+    rate = (x * vx + yy * vy) / rad;
+    d_x = x / rad;
+    d_y = yy / rad;
+    rt_x = vx / rad - rate * x / (rad * rad);
+    rt_y = vy / rad - rate * yy / (rad * rad);
+    rt_vx = x / rad;
+    rt_vy = yy / rad;
+    f_x = fd * d_x + fr * rt_x;
+    f_y = fd * d_y + fr * rt_y;
+    u1 = (x - sm * yy) / rad;
+    u2 = (yy + sm * x) / rad;
+    u1x = 1.0 / rad - (x - sm * yy) * x / r3;
+    u1y = -sm / rad - (x - sm * yy) * yy / r3;
+    u2x = sm / rad - (yy + sm * x) * x / r3;
+    u2y = 1.0 / rad - (yy + sm * x) * yy / r3;
+    jadd(s, vxr, qx, u1 * f_x + fn * u1x);
+    jadd(s, vxr, qy, u1 * f_y + fn * u1y);
+    jadd(s, vyr, qx, u2 * f_x + fn * u2x);
+    jadd(s, vyr, qy, u2 * f_y + fn * u2y);
+    jadd(s, vxr, vxr, u1 * fr * rt_vx);
+    jadd(s, vxr, vyr, u1 * fr * rt_vy);
+    jadd(s, vyr, vxr, u2 * fr * rt_vx);
+    jadd(s, vyr, vyr, u2 * fr * rt_vy);
+}
+
+void td_sim_jacobian(td_sim *s, double t, double cj, const double *y)
+{
+    const td_system *sys = s->sys;
+    int i, k;
+    (void)t;
+    memset(s->jdata, 0, sizeof(double) * (size_t)s->nnz);
+    for (i = 0; i < s->n; i++) {
+        jadd(s, s->oq + i, s->oq + i, cj);
+        jadd(s, s->oq + i, s->ov + i, -1.0);
+    }
+    for (i = 0; i < s->nw; i++)
+        jadd(s, s->ow + i, s->ow + i, cj);
+    jadd_matrix(s, sys->M, s->map_M, cj);
+    jadd_matrix(s, sys->C, s->map_C, 1.0);
+    jadd_matrix(s, sys->G, s->map_G, s->omega);
+    jadd_matrix(s, sys->K, s->map_K, 1.0);
+    jacobian_amb(s, y);
+    for (k = 0; k < s->nr; k++) {
+        if (s->ret[k].mode == TD_RMODE_CONTACT) {
+            jacobian_contact(s, k, y);
+            continue;
+        }
+        if (s->ret[k].mode == TD_RMODE_PENETRATING)
+            jacobian_penalty(s, k, y);
+        /* free and penalty contacts: the multiplier rows are lambda = eta = 0 */
+        jadd(s, s->ol + k, s->ol + k, 1.0);
+        jadd(s, s->ou + k, s->ou + k, 1.0);
+    }
+}
+
+/*
+ * Root functions, three per retainer, by mode:
+ *   slot 0  free, constraint model, armed:     gap = (c^2 - r^2)/(2c), decreasing  -> onset
+ *           free, constraint model, disarmed:  gap + eps, decreasing                -> onset (late)
+ *           free, penalty model:               gap, decreasing                      -> penalty enter
+ *           contact:                           lambda, decreasing                   -> release
+ *           penetrating:                       gap, increasing                      -> penalty exit
+ *   slot 1  contact or penetrating with mu > 0: v_s (eq. 16), either way           -> friction reversal
+ *   slot 2  free, disarmed:                    gap - eps, increasing                -> re-arm (internal)
+ * Unused slots hold the constant 1, which never has a root.
+ */
+void td_sim_roots(const td_sim *s, double t, const double *y, double *g)
+{
+    int k;
+    (void)t;
+    for (k = 0; k < s->nr; k++) {
+        const td_sim_retainer *r = &s->ret[k];
+        double *gk = g + TD_ROOTS_PER_RETAINER * k;
+        double x = y[s->oq + r->dx], yy = y[s->oq + r->dy];
+        double gap = -td_contact_constraint(x, yy, r->r.clearance);
+        gk[TD_ROOT_CONTACT] = 1.0;
+        gk[TD_ROOT_SLIP] = 1.0;
+        gk[TD_ROOT_REARM] = 1.0;
+        switch (r->mode) {
+        case TD_RMODE_FREE:
+            if (r->armed) {
+                gk[TD_ROOT_CONTACT] = gap;
+            } else {
+                gk[TD_ROOT_CONTACT] = gap + s->rearm_eps;
+                gk[TD_ROOT_REARM] = gap - s->rearm_eps;
+            }
+            break;
+        case TD_RMODE_CONTACT: gk[TD_ROOT_CONTACT] = y[s->ol + k]; break;
+        case TD_RMODE_PENETRATING: gk[TD_ROOT_CONTACT] = gap; break;
+        }
+        if (r->mode != TD_RMODE_FREE && r->r.friction > 0.0)
+            gk[TD_ROOT_SLIP] = td_sim_sliding_velocity(s, k, y);
+    }
+}
+
+void td_sim_root_directions(const td_sim *s, int *dir)
+{
+    int k;
+    for (k = 0; k < s->nr; k++) {
+        int *dk = dir + TD_ROOTS_PER_RETAINER * k;
+        dk[TD_ROOT_CONTACT] = s->ret[k].mode == TD_RMODE_PENETRATING ? 1 : -1;
+        dk[TD_ROOT_SLIP] = 0;
+        dk[TD_ROOT_REARM] = 1;
+    }
+}

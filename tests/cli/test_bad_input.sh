@@ -1,0 +1,214 @@
+#!/usr/bin/env bash
+# Bad input through the tool: every broken case file under tests/data/bad/, plus a directory, a
+# missing path, a path through a file, a FIFO, an unreadable file, random binary junk, an empty
+# file, bad --set overrides and bad usage.
+#
+# For each bad case file, `touchdown run FILE` and `touchdown info FILE` must
+#   - exit with status 2,
+#   - print exactly one line on stderr (nothing on stdout) naming the file, and, where the file
+#     has them, the line and the key: the expected FILE:LINE: KEY of every file is read from the
+#     table bad_files[] of tests/test_case.c (one table for the library and the tool),
+#   - create no file: each command runs in an empty scratch directory that must stay empty, and
+#     the source's tests/data/bad/ must not change.
+# Bad usage (unknown option, no case, two cases, unknown command) exits 2 and writes no file.
+# Args: $1 = the touchdown binary, $2 = the source directory. Runs in the build's tests directory.
+set -u
+tool=$1
+src=$2
+fails=0
+checks=0
+work=$(mktemp -d "${PWD}/bad-input.XXXXXX")
+trap 'chmod -R u+rwx "$work" 2>/dev/null; rm -rf "$work"' EXIT
+scratch=$work/cwd
+mkdir -p "$scratch"
+
+fail() { echo "FAIL: $*"; fails=$((fails + 1)); }
+pass() { echo "ok:   $*"; }
+
+# Run the tool in the empty scratch directory: sets rc, err (stderr text), out (stdout text).
+# ${runner[@]} (normally empty) is put in front of the tool, e.g. to drop privileges.
+runner=()
+run_tool() {
+    (cd "$scratch" && "${runner[@]}" "$tool" "$@" >"$work/out" 2>"$work/err" </dev/null)
+    rc=$?
+    err=$(cat "$work/err")
+    out=$(cat "$work/out")
+}
+
+# The scratch directory must be empty (no output file, no .partial left behind).
+scratch_empty() {
+    local left
+    left=$(ls -A "$scratch")
+    if [ -n "$left" ]; then
+        rm -rf "${scratch:?}"/* "${scratch:?}"/.[!.]* 2>/dev/null
+        echo "$left" | tr '\n' ' '
+        return 1
+    fi
+    return 0
+}
+
+# expect_bad WHAT NEEDLE... -- ARGS: exit 2, one stderr line containing every NEEDLE, empty
+# stdout, no file created.
+expect_bad() {
+    local what=$1 needles=() n lines left ok=1
+    shift
+    while [ "$1" != "--" ]; do needles+=("$1"); shift; done
+    shift
+    checks=$((checks + 1))
+    run_tool "$@"
+    lines=$(wc -l <"$work/err")
+    if [ "$rc" != 2 ]; then
+        fail "$what: exit $rc, expected 2 (stderr: $(head -c 300 "$work/err"))"; ok=0
+    fi
+    if [ "$lines" != 1 ]; then
+        fail "$what: $lines lines on stderr, expected 1: $(head -n 3 "$work/err")"; ok=0
+    fi
+    if [ -n "$out" ]; then
+        fail "$what: stdout not empty: $(head -c 200 "$work/out")"; ok=0
+    fi
+    for n in "${needles[@]}"; do
+        case "$err" in
+        *"$n"*) ;;
+        *) fail "$what: stderr lacks '$n': $err"; ok=0 ;;
+        esac
+    done
+    if ! left=$(scratch_empty); then
+        fail "$what: created files: $left"; ok=0
+    fi
+    [ $ok = 1 ] && pass "$what -> 2: $err"
+}
+
+# expect_usage WHAT ARGS: exit 2 and no file created (the usage text may take several lines).
+expect_usage() {
+    local what=$1 left
+    shift
+    checks=$((checks + 1))
+    run_tool "$@"
+    if [ "$rc" != 2 ]; then
+        fail "$what: exit $rc, expected 2 ($(head -n 2 "$work/err"))"
+    elif [ ! -s "$work/err" ]; then
+        fail "$what: exit 2 but nothing on stderr"
+    elif ! left=$(scratch_empty); then
+        fail "$what: created files: $left"
+    else
+        pass "$what -> 2: $(head -n 1 "$work/err")"
+    fi
+}
+
+bad_dir=$src/tests/data/bad
+before=$(ls -la --time-style=+%s "$bad_dir" | md5sum)
+
+# ---- the table of tests/test_case.c: "file", line, "key"|NULL, "shown"|NULL ------------------
+table=$(sed -n '/^static const bad_file bad_files\[\] = {/,/^};/p' "$src/tests/test_case.c" |
+    sed -nE 's/^[[:space:]]*\{"([^"]+)", ([0-9]+), (NULL|"[^"]*"), (NULL|"[^"]*")\},.*/\1 \2 \3 \4/p' |
+    tr -d '"')
+n_table=$(printf '%s\n' "$table" | grep -c .)
+if [ "$n_table" -lt 40 ]; then
+    fail "read only $n_table entries from the bad_files table of tests/test_case.c"
+fi
+
+n_files=0
+for path in "$bad_dir"/*.cfg; do
+    file=$(basename "$path")
+    n_files=$((n_files + 1))
+    entry=$(printf '%s\n' "$table" | awk -v f="$file" '$1 == f { print; exit }')
+    if [ -z "$entry" ]; then
+        fail "$file is not in the bad_files table of tests/test_case.c (checking exit code only)"
+        for cmd in run info; do expect_bad "$cmd $file" "$file" -- "$cmd" "$path"; done
+        continue
+    fi
+    read -r _ line key shown <<<"$entry"
+    [ "$shown" = NULL ] && shown=$file
+    # the message names the file (as given, or the included file) and its line, then the key
+    if [ "$shown" = "$file" ]; then name=$path; else name=$shown; fi
+    if [ "$key" = NULL ]; then where="$shown:$line: "; else where="$shown:$line: $key: "; fi
+    for cmd in run info; do
+        expect_bad "$cmd $file" "touchdown" "$name" "$where" -- "$cmd" "$path"
+    done
+done
+if [ "$n_files" -lt 40 ] || [ "$n_files" != "$n_table" ]; then
+    fail "$n_files files under tests/data/bad/, $n_table in the table of tests/test_case.c"
+fi
+
+# ---- paths that are not readable case files -----------------------------------------------
+mkdir -p "$work/in"
+: >"$work/in/empty.cfg"
+head -c 4096 /dev/urandom >"$work/in/junk.cfg"                 # random binary junk
+printf 'speed = 1;\x00\x01\x02 end_time = 1;\n' >"$work/in/nul.cfg" # text with a NUL byte
+mkfifo "$work/in/fifo.cfg"
+printf 'speed = 1.0;\n' >"$work/in/locked.cfg"
+chmod 000 "$work/in/locked.cfg"
+for cmd in run info; do
+    expect_bad "$cmd on a directory" "$src/cases" "directory" -- "$cmd" "$src/cases"
+    expect_bad "$cmd on a missing path" "$work/in/no-such.cfg" -- "$cmd" "$work/in/no-such.cfg"
+    expect_bad "$cmd on a path through a file" "$src/cases/paper-a.cfg/x.cfg" -- "$cmd" "$src/cases/paper-a.cfg/x.cfg"
+    expect_bad "$cmd on a FIFO" "$work/in/fifo.cfg" -- "$cmd" "$work/in/fifo.cfg"
+    expect_bad "$cmd on an empty file" "$work/in/empty.cfg:1: " -- "$cmd" "$work/in/empty.cfg"
+    expect_bad "$cmd on binary junk" "$work/in/junk.cfg" -- "$cmd" "$work/in/junk.cfg"
+    expect_bad "$cmd on a file with a NUL byte" "$work/in/nul.cfg:1: " -- "$cmd" "$work/in/nul.cfg"
+    expect_bad "$cmd on an empty path" "cannot read" -- "$cmd" ""
+done
+# An unreadable file: root ignores permissions, so drop to 'nobody' when running as root.
+if [ "$(id -u)" != 0 ]; then
+    for cmd in run info; do
+        expect_bad "$cmd on an unreadable file" "$work/in/locked.cfg" "ermission denied" -- "$cmd" "$work/in/locked.cfg"
+    done
+elif command -v setpriv >/dev/null && setpriv --reuid=65534 --regid=65534 --clear-groups true 2>/dev/null &&
+    setpriv --reuid=65534 --regid=65534 --clear-groups "$tool" --version >/dev/null 2>&1; then
+    chmod 777 "$scratch" "$work" "$work/in"
+    runner=(setpriv --reuid=65534 --regid=65534 --clear-groups)
+    for cmd in run info; do
+        expect_bad "$cmd on an unreadable file (as nobody)" "$work/in/locked.cfg" "ermission denied" -- \
+            "$cmd" "$work/in/locked.cfg"
+    done
+    runner=()
+    chmod 700 "$scratch" "$work" "$work/in"
+else
+    echo "skip: unreadable file (running as root without a usable setpriv)"
+fi
+
+# ---- bad --set overrides: one line naming the case, the override and the key --------------
+case_a=$src/cases/paper-a.cfg
+while IFS='|' read -r set needle; do
+    [ -z "$set" ] && continue
+    for cmd in run info; do
+        expect_bad "$cmd --set '$set'" "$case_a" "--set '$set'" "$needle" -- "$cmd" --set "$set" "$case_a"
+    done
+done <<'EOF'
+speed=fast|speed: 
+speed=-1|speed: 
+speed=1e999|speed: 
+speed=nan|speed
+speed=[1,2]|speed: 
+nokey=1|nokey: 
+retainers[0].clearence=1e-3|retainers[0].clearence: 
+retainers[7].friction=0.1|[7]
+retainers[0].clearance=0.01|retainers[0].clearance: 
+contact.model=hertz|contact.model: 
+solver.rtol=0|solver.rtol: 
+shaft.elements=0|shaft.elements: 
+end_time=0|end_time: 
+speed|KEY=VALUE
+=1|KEY=VALUE
+speed="abc|speed
+EOF
+
+# ---- bad usage -----------------------------------------------------------------------------
+expect_usage "no arguments"
+expect_usage "unknown command" frobnicate "$case_a"
+for cmd in run info modal; do
+    expect_usage "$cmd without a case" "$cmd"
+    expect_usage "$cmd with two cases" "$cmd" "$case_a" "$case_a"
+    expect_usage "$cmd with an unknown option" "$cmd" --bogus "$case_a"
+    expect_usage "$cmd -s without its argument" "$cmd" "$case_a" -s
+done
+expect_usage "run --output without its argument" run "$case_a" --output
+expect_usage "info --modes 0" info --modes 0 "$case_a"
+expect_usage "info --modes x" info --modes x "$case_a"
+
+after=$(ls -la --time-style=+%s "$bad_dir" | md5sum)
+checks=$((checks + 1))
+if [ "$before" != "$after" ]; then fail "tests/data/bad/ changed while the tool read it"; else pass "tests/data/bad/ unchanged"; fi
+
+echo "$((checks - fails)) passed, $fails failed"
+[ "$fails" = 0 ]

@@ -1,0 +1,124 @@
+#!/usr/bin/env bash
+# The tool's basic contract: help and version, exit codes, where `touchdown run` writes its files
+# (default names, -o, --hdf5/--csv, '' for none), -q, --json, --set, no progress line when stderr
+# is not a terminal, `info` on every shipped case, `modal` on the Jeffcott case.
+# Args: $1 = the touchdown binary, $2 = the source directory. Runs in the build's tests directory.
+set -u
+tool=$1
+src=$2
+fails=0
+checks=0
+work=$(mktemp -d "${PWD}/cli-basics.XXXXXX")
+trap 'rm -rf "$work"' EXIT
+case_a=$src/cases/paper-a.cfg
+
+fail() { echo "FAIL: $*"; fails=$((fails + 1)); checks=$((checks + 1)); }
+pass() { echo "ok:   $*"; checks=$((checks + 1)); }
+check() { # DESCRIPTION COMMAND...
+    local what=$1
+    shift
+    if "$@"; then pass "$what"; else fail "$what"; fi
+}
+
+# t DIR ARGS...: run the tool in DIR (created empty); rc, and DIR/.out, DIR/.err.
+t() {
+    local d=$1
+    shift
+    mkdir -p "$d"
+    (cd "$d" && "$tool" "$@" >"$d/.out" 2>"$d/.err" </dev/null)
+    rc=$?
+}
+files_in() { (cd "$1" && ls | tr '\n' ' ' | sed 's/ $//'); }
+json_field() { sed -nE "s/.*\"$2\":(\"[^\"]*\"|[^,}]*).*/\\1/p" "$1" | head -n 1; }
+
+# ---- help and version ----------------------------------------------------------------------
+for h in --help -h help; do
+    t "$work/help$h" "$h"
+    check "touchdown $h: exit 0, usage on stdout, nothing on stderr" \
+        test "$rc" = 0 -a ! -s "$work/help$h/.err" -a -n "$(grep '^usage: touchdown COMMAND' "$work/help$h/.out")"
+done
+t "$work/noargs"
+check "touchdown (no arguments): exit 2, usage on stderr" \
+    test "$rc" = 2 -a ! -s "$work/noargs/.out" -a -n "$(grep '^usage:' "$work/noargs/.err")"
+t "$work/version" --version
+check "touchdown --version: exit 0, 'touchdown X.Y.Z' ($(cat "$work/version/.out"))" \
+    test "$rc" = 0 -a -n "$(grep -E '^touchdown [0-9]+\.[0-9]+\.[0-9]+' "$work/version/.out")"
+for cmd in run info modal plot; do
+    t "$work/help-$cmd" "$cmd" --help
+    check "touchdown $cmd --help: exit 0, its usage on stdout" \
+        test "$rc" = 0 -a ! -s "$work/help-$cmd/.err" -a -n "$(grep "^usage: touchdown $cmd" "$work/help-$cmd/.out")"
+done
+check "touchdown --help documents the exit codes" grep -q "exit codes: 0 success, 1 .*, 2 bad input" "$work/help--help/.out"
+
+# ---- run: default names, summary, no progress line off a terminal -------------------------
+d=$work/default
+t "$d" run --set end_time=0.02 "$case_a"
+check "run: exit 0 (stderr: $(head -c 200 "$d/.err"))" test "$rc" = 0
+check "run: default outputs CASENAME.h5, .csv, .events.csv in the current directory ($(files_in "$d"))" \
+    test "$(files_in "$d")" = "paper-a.csv paper-a.events.csv paper-a.h5"
+check "run: nothing on stderr when it is not a terminal (no progress line)" test ! -s "$d/.err"
+check "run: the summary says complete" grep -qE "^status +complete" "$d/.out"
+for field in "first contact" "contact onsets" "peak normal force" "time in contact" "returned to free orbit" \
+    "wall time per revolution"; do
+    check "run: the summary gives '$field'" grep -q "$field" "$d/.out"
+done
+check "run: the CSV has a header and 201 samples at 10 kHz" \
+    test "$(grep -vc '^#' "$d/paper-a.csv")" = 202 -a -n "$(head -n 1 "$d/paper-a.csv" | grep '^t \[s\],')"
+
+# ---- -o PREFIX, --hdf5 / --csv, '' for none ------------------------------------------------
+d=$work/prefix
+t "$d" run -q -o sub-result --set end_time=0.01 "$case_a"
+check "run -o PREFIX -q: exit 0, PREFIX.* written, nothing printed ($(files_in "$d"))" \
+    test "$rc" = 0 -a "$(files_in "$d")" = "sub-result.csv sub-result.events.csv sub-result.h5" \
+    -a ! -s "$d/.out" -a ! -s "$d/.err"
+d=$work/only-h5
+t "$d" run -q --csv '' --hdf5 only.h5 --set end_time=0.01 "$case_a"
+check "run --csv '' --hdf5 only.h5: only only.h5 ($(files_in "$d"))" test "$rc" = 0 -a "$(files_in "$d")" = "only.h5"
+d=$work/only-csv
+t "$d" run -q --hdf5 '' --csv only.csv --set end_time=0.01 "$case_a"
+check "run --hdf5 '' --csv only.csv: only the CSV and its events ($(files_in "$d"))" \
+    test "$rc" = 0 -a "$(files_in "$d")" = "only.csv only.events.csv"
+d=$work/none
+t "$d" run --hdf5 '' --csv '' --set end_time=0.01 "$case_a"
+check "run --hdf5 '' --csv '': no file, still a summary ($(files_in "$d"))" \
+    test "$rc" = 0 -a -z "$(files_in "$d")" -a -n "$(grep -E '^status +complete' "$d/.out")"
+
+# ---- --json and --set ----------------------------------------------------------------------
+d=$work/json
+t "$d" run --json --hdf5 '' --csv '' --set end_time=0.0123 --set speed=95 "$case_a"
+check "run --json: exit 0, one line holding one JSON object" \
+    test "$rc" = 0 -a "$(wc -l <"$d/.out")" = 1 -a -n "$(grep -E '^\{.*\}$' "$d/.out")"
+check "run --json: complete true, status success" \
+    test "$(json_field "$d/.out" complete)" = true -a "$(json_field "$d/.out" status)" = '"success"'
+check "run --set end_time=0.0123: t_reached $(json_field "$d/.out" t_reached)" \
+    awk -v t="$(json_field "$d/.out" t_reached)" 'BEGIN { exit !(t == 0.0123) }'
+check "run --set speed=95: speed $(json_field "$d/.out" speed)" test "$(json_field "$d/.out" speed)" = 95
+check "run --json: library_version is the tool's ($(json_field "$d/.out" library_version))" \
+    test "touchdown $(json_field "$d/.out" library_version | tr -d '"')" = "$(cat "$work/version/.out")"
+
+# ---- info on every shipped case; the rig alone is not a case --------------------------------
+for c in "$src"/cases/*.cfg; do
+    name=$(basename "$c" .cfg)
+    t "$work/info-$name" info "$c"
+    if [ "$name" = rig ]; then
+        check "info cases/rig.cfg: exit 2 (a machine, not a run: $(head -c 120 "$work/info-$name/.err"))" test "$rc" = 2
+        continue
+    fi
+    check "info cases/$name.cfg: exit 0, names the case, lists modes" \
+        test "$rc" = 0 -a -n "$(grep "^case *$name " "$work/info-$name/.out")" \
+        -a -n "$(grep '^first modes' "$work/info-$name/.out")" -a -z "$(files_in "$work/info-$name")"
+done
+check "info paper-a: 13 nodes, 2 AMBs, 2 retainers, 52 DOFs" \
+    test -n "$(grep -E '^shaft +12 elements, 13 nodes' "$work/info-paper-a/.out")" \
+    -a "$(grep -c '^amb ' "$work/info-paper-a/.out")" = 2 -a "$(grep -c '^retainer ' "$work/info-paper-a/.out")" = 2 \
+    -a -n "$(grep -E '^DOFs +52 mechanical' "$work/info-paper-a/.out")"
+
+# ---- modal ---------------------------------------------------------------------------------
+d=$work/modal
+t "$d" modal "$src/cases/jeffcott.cfg"
+check "modal jeffcott: exit 0, writes jeffcott-modal.csv and .h5 ($(files_in "$d"))" \
+    test "$rc" = 0 -a "$(files_in "$d")" = "jeffcott-modal.csv jeffcott-modal.h5"
+check "modal jeffcott: lists critical speeds" grep -q "critical speeds" "$d/.out"
+
+echo "$((checks - fails)) passed, $fails failed"
+[ "$fails" = 0 ]

@@ -1,0 +1,234 @@
+#!/usr/bin/env bash
+# Faults during `touchdown run`, and the completeness rule of docs/output-format.md:
+#   1. while a run goes on only PATH.partial exists (the directory is listed while it runs), a
+#      stale result at PATH is removed, and a file at a final path is always complete; a finished
+#      run leaves its three files at their final paths, complete (HDF5 complete = 1, CSV and event
+#      CSV end with "# complete"), and no .partial;
+#   2. SIGINT and SIGTERM, sent about 1 s into cases/paper-a.cfg: exit 1, an error line with the
+#      reason and the simulated time, the files at their final paths with complete = 0, the
+#      incomplete_reason and the CSV's "# incomplete: ..." line giving the same time, t_reached
+#      in the HDF5 file equal to that time, no .partial left;
+#   3. a solver failure (solver.atol = 1e-300, accepted by the case reader; IDA fails at the
+#      first impact): exit 1, the message, incomplete files;
+#   4. SIGKILL (cannot be caught): only .partial files remain, nothing at a final path;
+#   5. an output path that cannot be created: exit 1, one error line, no file left.
+# HDF5 attributes are read with h5dump (Debian package hdf5-tools); without it those checks are
+# skipped and said so. Args: $1 = the touchdown binary, $2 = the source directory.
+set -u
+tool=$1
+src=$2
+fails=0
+checks=0
+case_a=$src/cases/paper-a.cfg
+work=$(mktemp -d "${PWD}/run-faults.XXXXXX")
+pids=()
+cleanup() {
+    local p
+    for p in "${pids[@]}"; do kill -9 "$p" 2>/dev/null; done
+    rm -rf "$work"
+}
+trap cleanup EXIT
+
+fail() { echo "FAIL: $*"; fails=$((fails + 1)); checks=$((checks + 1)); }
+pass() { echo "ok:   $*"; checks=$((checks + 1)); }
+check() { # DESCRIPTION COMMAND...: pass if the command succeeds
+    local what=$1
+    shift
+    if "$@"; then pass "$what"; else fail "$what"; fi
+}
+
+have_h5dump=0
+if command -v h5dump >/dev/null; then have_h5dump=1; else echo "skip: h5dump not found (apt-get install hdf5-tools): HDF5 attributes not checked"; fi
+
+# h5attr FILE NAME: the value of a root attribute (strings without quotes); fails if absent.
+h5attr() {
+    h5dump -m '%.17g' -a "/$2" "$1" 2>/dev/null | sed -nE 's/^[[:space:]]*\(0\): "?([^"]*)"?[[:space:]]*$/\1/p' | head -n 1 | grep .
+}
+last_line() { tail -n 1 "$1" 2>/dev/null; }
+same_time() { awk -v a="$1" -v b="$2" 'BEGIN { d = a - b; if (d < 0) d = -d; exit !(a != "" && b != "" && d <= 1e-9) }'; }
+
+# wait_for_data DIR: wait (at most 60 s) until DIR/paper-a.csv.partial holds data.
+wait_for_data() {
+    local i
+    for ((i = 0; i < 1200; i++)); do
+        [ -s "$1/paper-a.csv.partial" ] && return 0
+        sleep 0.05
+    done
+    return 1
+}
+# wait_exit PID SECONDS: wait for the process; kill it (and fail) if it outlives SECONDS.
+wait_exit() {
+    local pid=$1 limit=$2 i
+    for ((i = 0; i < limit * 20; i++)); do
+        kill -0 "$pid" 2>/dev/null || break
+        sleep 0.05
+    done
+    if kill -0 "$pid" 2>/dev/null; then
+        kill -9 "$pid" 2>/dev/null
+        wait "$pid" 2>/dev/null
+        rc=timeout
+        return 1
+    fi
+    wait "$pid"
+    rc=$?
+    return 0
+}
+
+# check_final DIR WANT(complete|incomplete) [REASON_WORD]: the three files at final paths, no
+# .partial, and their flags. Sets reason_time to the time named in the CSV's incomplete line.
+check_final() {
+    local d=$1 want=$2 word=${3:-} f last reason h5c h5r tr
+    reason_time=""
+    for f in paper-a.h5 paper-a.csv paper-a.events.csv; do
+        check "$want: $f at its final path" test -s "$d/$f"
+        check "$want: no $f.partial left" test ! -e "$d/$f.partial"
+    done
+    for f in paper-a.csv paper-a.events.csv; do
+        last=$(last_line "$d/$f")
+        if [ "$want" = complete ]; then
+            check "$want: $f ends with '# complete' (got '$last')" test "$last" = "# complete"
+        else
+            case "$last" in
+            "# incomplete: "*"$word"*) pass "$want: $f ends with '$last'" ;;
+            *) fail "$want: $f ends with '$last', expected '# incomplete: ...$word...'" ;;
+            esac
+        fi
+    done
+    reason=$(last_line "$d/paper-a.csv")
+    reason_time=$(printf '%s\n' "$reason" | grep -oE 't = [0-9.eE+-]+ s' | head -n 1 | sed -E 's/t = (.*) s/\1/')
+    [ "$have_h5dump" = 1 ] || return 0
+    h5c=$(h5attr "$d/paper-a.h5" complete)
+    if [ "$want" = complete ]; then
+        check "HDF5 complete = 1 (got '$h5c')" test "$h5c" = 1
+        check "HDF5 has no incomplete_reason" test -z "$(h5attr "$d/paper-a.h5" incomplete_reason)"
+    else
+        check "HDF5 complete = 0 (got '$h5c')" test "$h5c" = 0
+        h5r=$(h5attr "$d/paper-a.h5" incomplete_reason)
+        case "$h5r" in
+        *"$word"*) pass "HDF5 incomplete_reason '$h5r'" ;;
+        *) fail "HDF5 incomplete_reason '$h5r' lacks '$word'" ;;
+        esac
+        check "HDF5 incomplete_reason equals the CSV's ('$h5r')" test "# incomplete: $h5r" = "$reason"
+        tr=$(h5attr "$d/paper-a.h5" t_reached)
+        check "HDF5 t_reached ($tr) is the time in the reason ($reason_time)" same_time "$tr" "$reason_time"
+    fi
+}
+
+# ---- 1. during a run: only .partial; after it: complete files at final paths -----------------
+d=$work/listing
+mkdir -p "$d"
+echo "stale" >"$d/paper-a.csv"
+echo "stale" >"$d/paper-a.h5"
+(cd "$d" && exec "$tool" run -q --set end_time=0.3 "$case_a" >"$work/l.out" 2>"$work/l.err") &
+pid=$!
+pids+=("$pid")
+polls=0
+partial_only=0
+stale_gone=0
+bad_final=""
+while kill -0 "$pid" 2>/dev/null; do
+    polls=$((polls + 1))
+    have_partial=0
+    [ -e "$d/paper-a.csv.partial" ] && have_partial=1
+    for f in paper-a.csv paper-a.events.csv; do
+        if [ -e "$d/$f" ] && [ "$(cat "$d/$f" 2>/dev/null | head -c 5)" != "stale" ] &&
+            [ "$(last_line "$d/$f")" != "# complete" ] && [ -e "$d/$f" ]; then
+            bad_final="$bad_final $f(poll $polls: last line '$(last_line "$d/$f")')"
+        fi
+    done
+    if [ $have_partial = 1 ] && [ ! -e "$d/paper-a.csv" ] && [ ! -e "$d/paper-a.h5" ] &&
+        [ ! -e "$d/paper-a.events.csv" ]; then
+        partial_only=$((partial_only + 1))
+        stale_gone=1
+    fi
+    sleep 0.05
+done
+wait "$pid"
+rc=$?
+check "complete run: exit 0 (got $rc; $(head -c 200 "$work/l.err"))" test "$rc" = 0
+check "complete run: nothing on stderr" test ! -s "$work/l.err"
+check "while running: $partial_only of $polls listings showed only .partial files (stale results removed)" \
+    test "$partial_only" -ge 1 -a "$stale_gone" = 1
+check "while running: no incomplete file at a final path${bad_final:+ (saw$bad_final)}" test -z "$bad_final"
+check_final "$d" complete
+
+# ---- 2. SIGINT and SIGTERM about 1 s into the run ------------------------------------------
+for sig in INT TERM; do
+    d=$work/sig$sig
+    mkdir -p "$d"
+    (cd "$d" && exec "$tool" run "$case_a" >"$work/s.out" 2>"$work/s.err") &
+    pid=$!
+    pids+=("$pid")
+    if ! wait_for_data "$d"; then
+        fail "SIG$sig: no data written within 60 s"
+        continue
+    fi
+    sleep 1
+    kill -"$sig" "$pid"
+    if ! wait_exit "$pid" 30; then
+        fail "SIG$sig: the run did not stop within 30 s"
+        continue
+    fi
+    err=$(cat "$work/s.err")
+    check "SIG$sig: exit 1 (got $rc)" test "$rc" = 1
+    check "SIG$sig: one error line on stderr (got $(wc -l <"$work/s.err"))" test "$(wc -l <"$work/s.err")" = 1
+    msg_time=$(printf '%s\n' "$err" | sed -nE 's/.*interrupted at t = ([0-9.eE+-]+) s.*/\1/p')
+    check "SIG$sig: the message gives the reason and the simulated time: $err" test -n "$msg_time"
+    check "SIG$sig: the message names the case" grep -qF "$case_a" "$work/s.err"
+    check "SIG$sig: stopped inside the run (0 < t = $msg_time < 2)" \
+        awk -v t="$msg_time" 'BEGIN { exit !(t > 0 && t < 2) }'
+    check "SIG$sig: the summary on stdout says INCOMPLETE" grep -q "INCOMPLETE (interrupted)" "$work/s.out"
+    check_final "$d" incomplete interrupted
+    check "SIG$sig: the CSV's reason gives the same time ($reason_time)" same_time "$reason_time" "$msg_time"
+    last_t=$(grep -v '^#' "$d/paper-a.csv" | tail -n 1 | cut -d, -f1)
+    check "SIG$sig: the last CSV row ($last_t s) is at that time" same_time "$last_t" "$msg_time"
+done
+
+# ---- 3. a solver failure: an impossible tolerance that the case reader accepts ---------------
+d=$work/solver
+mkdir -p "$d"
+(cd "$d" && timeout -s KILL 120 "$tool" run --set end_time=0.3 --set solver.atol=1e-300 "$case_a" \
+    >"$work/f.out" 2>"$work/f.err")
+rc=$?
+err=$(cat "$work/f.err")
+check "solver failure: exit 1 (got $rc)" test "$rc" = 1
+check "solver failure: one error line (got $(wc -l <"$work/f.err"))" test "$(wc -l <"$work/f.err")" = 1
+check "solver failure: the message says what failed and when: $err" \
+    grep -qE "fail.*t = [0-9]" "$work/f.err"
+check "solver failure: the summary on stdout says INCOMPLETE" grep -q "INCOMPLETE (solver failure)" "$work/f.out"
+check_final "$d" incomplete fail
+if [ "$have_h5dump" = 1 ]; then
+    st=$(h5attr "$d/paper-a.h5" status)
+    check "solver failure: HDF5 status '$st'" test "$st" = "solver failure"
+fi
+
+# ---- 4. SIGKILL: nothing can be finished, so nothing may appear at a final path ------------
+d=$work/kill
+mkdir -p "$d"
+(cd "$d" && exec "$tool" run -q "$case_a" >/dev/null 2>&1) &
+pid=$!
+pids+=("$pid")
+if wait_for_data "$d"; then
+    sleep 0.3
+    kill -9 "$pid"
+    wait "$pid" 2>/dev/null
+    check "SIGKILL: .partial files remain" test -e "$d/paper-a.csv.partial" -a -e "$d/paper-a.h5.partial"
+    check "SIGKILL: nothing at the final paths ($(ls "$d" | tr '\n' ' '))" \
+        test ! -e "$d/paper-a.csv" -a ! -e "$d/paper-a.h5" -a ! -e "$d/paper-a.events.csv"
+else
+    fail "SIGKILL: no data written within 60 s"
+fi
+
+# ---- 5. an output file that cannot be created ----------------------------------------------
+d=$work/nodir
+mkdir -p "$d"
+(cd "$d" && "$tool" run --set end_time=0.01 --hdf5 "$d/missing-dir/x.h5" --csv "$d/x.csv" "$case_a" \
+    >"$work/n.out" 2>"$work/n.err")
+rc=$?
+check "uncreatable output: exit 1 (got $rc)" test "$rc" = 1
+check "uncreatable output: one error line naming the path: $(cat "$work/n.err")" \
+    test "$(wc -l <"$work/n.err")" = 1 -a -n "$(grep -F "missing-dir/x.h5" "$work/n.err")"
+check "uncreatable output: no file left ($(ls -A "$d" | tr '\n' ' '))" test -z "$(ls -A "$d")"
+
+echo "$((checks - fails)) passed, $fails failed"
+[ "$fails" = 0 ]

@@ -1,0 +1,967 @@
+/*
+ * td_writer: synthetic samples and events written to HDF5 and CSV are read back independently
+ * (HDF5 C API, a CSV parser with strtod) and compared bit for bit; the completeness protocol
+ * (PATH.partial, flag last, rename) is checked for complete, incomplete and failed files.
+ */
+#include "td_test.h"
+
+#include "touchdown/output.h"
+#include "touchdown/version.h"
+
+#include <errno.h>
+#include <float.h>
+#include <hdf5.h>
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#define NODES 3
+#define RETS 2
+#define AMBS 2
+#define ROWS 2500  /* more than two HDF5 chunks of 1024 rows, the last one partial */
+#define EVENTS 300 /* more than one HDF5 event chunk of 256 */
+
+static const int node_list[NODES] = {2, 7, 11};
+
+/* ---- synthetic data ---------------------------------------------------------------------- */
+
+static uint64_t splitmix(uint64_t *s)
+{
+    uint64_t z = (*s += 0x9e3779b97f4a7c15ULL);
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+    return z ^ (z >> 31);
+}
+
+/* Any finite double, by bit pattern (subnormals, -0 and huge values included), with a few
+ * special values mixed in. */
+static double any_double(uint64_t *s)
+{
+    static const double specials[] = {
+        0.0, -0.0, 0.1, 1.0 / 3.0, DBL_MAX, -DBL_MAX, DBL_MIN, 4.9406564584124654e-324, 1e-10, 2.0000000001};
+    for (;;) {
+        uint64_t bits = splitmix(s);
+        double d;
+        if ((bits & 0xff) < 10)
+            return specials[bits & 0xff];
+        memcpy(&d, &bits, sizeof d);
+        if (isfinite(d))
+            return d;
+    }
+}
+
+typedef struct sample_set {
+    double t[ROWS];
+    double xy[ROWS][2 * NODES];
+    td_retainer_state ret[ROWS][RETS];
+    double amb[ROWS][2 * AMBS];
+    td_event ev[EVENTS];
+} sample_set;
+
+static sample_set *make_samples(void)
+{
+    sample_set *d = calloc(1, sizeof *d);
+    uint64_t seed = 12345;
+    int r, i;
+    assert_non_null(d);
+    for (r = 0; r < ROWS; r++) {
+        d->t[r] = r < 10 ? (double)r / 10000.0 : any_double(&seed);
+        for (i = 0; i < 2 * NODES; i++)
+            d->xy[r][i] = any_double(&seed);
+        for (i = 0; i < RETS; i++) {
+            td_retainer_state *s = &d->ret[r][i];
+            s->x = any_double(&seed);
+            s->y = any_double(&seed);
+            s->radius = any_double(&seed);
+            s->radial_velocity = any_double(&seed);
+            s->whirl_angle = any_double(&seed);
+            s->normal_force = any_double(&seed);
+            s->friction_force = any_double(&seed);
+            s->sliding_velocity = any_double(&seed);
+            s->in_contact = (int)(splitmix(&seed) & 1);
+        }
+        for (i = 0; i < 2 * AMBS; i++)
+            d->amb[r][i] = any_double(&seed);
+    }
+    for (i = 0; i < EVENTS; i++) {
+        td_event *e = &d->ev[i];
+        e->kind = (td_event_kind)(i % 6);
+        e->time = any_double(&seed);
+        e->retainer = e->kind == TD_EVENT_SCHEDULE ? -1 : i % RETS;
+        e->change = e->kind == TD_EVENT_SCHEDULE ? i : -1;
+        e->radial_velocity_before = any_double(&seed);
+        e->radial_velocity_after = any_double(&seed);
+        e->tangential_velocity_before = any_double(&seed);
+        e->tangential_velocity_after = any_double(&seed);
+        e->impulse = any_double(&seed);
+        e->normal_force = any_double(&seed);
+    }
+    return d;
+}
+
+static const char case_text[] = "# a case\nspeed = 90.0;\nname = \"A \\\"quoted\\\" = name\";\n";
+
+static td_output_layout full_layout(void)
+{
+    td_output_layout l;
+    l.node_count = NODES;
+    l.nodes = node_list;
+    l.retainer_count = RETS;
+    l.amb_count = AMBS;
+    return l;
+}
+
+static td_sim_stats some_stats(void)
+{
+    td_sim_stats s;
+    memset(&s, 0, sizeof s);
+    s.steps = 123456789L;
+    s.residual_evals = 234567890L;
+    s.jacobian_evals = 3456L;
+    s.linear_setups = 4567L;
+    s.nonlinear_iters = 5678L;
+    s.error_test_fails = 67L;
+    s.nonlinear_fails = 7L;
+    s.restarts = 89L;
+    s.events = 90L;
+    s.contact_onsets = 12L;
+    s.releases = 11L;
+    s.worst_drift = 1.2345678901234567e-13;
+    s.peak_normal_force = 1834.5678901234567;
+    s.time_in_contact = 0.12345678901234567;
+    s.first_contact_time = 0.10000000012345678;
+    s.wall_time = 3.1415926535897931;
+    return s;
+}
+
+/* Writes the whole sample set (events after samples 5*i), attributes, and closes. */
+static void write_all(td_writer_kind kind, const char *path, const sample_set *d, int complete)
+{
+    td_output_layout l = full_layout();
+    td_writer *w = NULL;
+    td_error err;
+    td_sim_stats stats = some_stats();
+    const double clearance[2] = {0.75e-3, 0.7500000000000001e-3};
+    const long ret_nodes[2] = {2, 10};
+    int r, e = 0;
+    struct stat sb;
+    assert_int_equal(td_writer_open(kind, path, &l, &w, &err), TD_OK);
+    for (r = 0; r < ROWS; r++) {
+        assert_int_equal(td_writer_sample(w, d->t[r], d->xy[r], d->ret[r], d->amb[r], &err), TD_OK);
+        if (e < EVENTS && r == 5 * e + 3)
+            assert_int_equal(td_writer_event(w, &d->ev[e++], td_writer_sample_count(w) - 1, &err), TD_OK);
+        /* While writing, nothing is at the final path. */
+        if (r == ROWS / 2)
+            assert_int_not_equal(stat(path, &sb), 0);
+    }
+    assert_int_equal(td_writer_sample_count(w), ROWS);
+    assert_int_equal(td_writer_event_count(w), EVENTS);
+    /* an event must point at a written row (or -1) */
+    assert_int_equal(td_writer_event(w, &d->ev[0], ROWS, &err), TD_ERR_INVALID);
+    assert_int_equal(td_writer_event(w, &d->ev[0], -2, &err), TD_ERR_INVALID);
+    assert_int_equal(td_writer_event_count(w), EVENTS);
+    assert_int_equal(td_writer_set_string(w, "case_text", case_text, &err), TD_OK);
+    assert_int_equal(td_writer_set_string(w, "note", "first", &err), TD_OK);
+    assert_int_equal(td_writer_set_string(w, "note", "replaced value", &err), TD_OK);
+    assert_int_equal(td_writer_set_double(w, "speed", 90.000000000000014, &err), TD_OK);
+    assert_int_equal(td_writer_set_long(w, "summary_contacts", -42L, &err), TD_OK);
+    assert_int_equal(td_writer_set_doubles(w, "retainer_clearance", clearance, 2, &err), TD_OK);
+    assert_int_equal(td_writer_set_longs(w, "retainer_nodes", ret_nodes, 2, &err), TD_OK);
+    assert_int_equal(td_writer_set_stats(w, &stats, &err), TD_OK);
+    assert_int_equal(td_writer_close(&w, complete, complete ? NULL : "solver failed at t = 0.5 s\nsecond line", &err),
+                     TD_OK);
+    assert_null(w);
+}
+
+static void tmp_name(char *buf, size_t n, const char *name)
+{
+    snprintf(buf, n, "%s/output_%ld_%s", TD_BINARY_DIR, (long)getpid(), name);
+}
+
+static int exists(const char *path)
+{
+    struct stat sb;
+    return stat(path, &sb) == 0;
+}
+
+static int bits_equal(double a, double b)
+{
+    return memcmp(&a, &b, sizeof a) == 0;
+}
+
+#define assert_bits(actual, expected)                                                                                  \
+    do {                                                                                                               \
+        double a_ = (actual), e_ = (expected);                                                                         \
+        if (!bits_equal(a_, e_)) {                                                                                     \
+            print_error("%s = %.17g, expected %.17g (bitwise)\n", #actual, a_, e_);                                    \
+            fail();                                                                                                    \
+        }                                                                                                              \
+    } while (0)
+
+/* ---- HDF5 reading helpers ---------------------------------------------------------------- */
+
+static char *h5_attr_string(hid_t obj, const char *name)
+{
+    hid_t a = H5Aopen(obj, name, H5P_DEFAULT), t, mt;
+    size_t size;
+    char *s;
+    assert_true(a >= 0);
+    t = H5Aget_type(a);
+    assert_int_equal(H5Tget_class(t), H5T_STRING);
+    size = H5Tget_size(t);
+    mt = H5Tcopy(t); /* same character set (UTF-8) */
+    H5Tset_size(mt, size + 1);
+    s = calloc(size + 2, 1);
+    assert_non_null(s);
+    assert_true(H5Aread(a, mt, s) >= 0);
+    H5Tclose(mt);
+    H5Tclose(t);
+    H5Aclose(a);
+    return s;
+}
+
+static int h5_attr_count(hid_t obj, const char *name)
+{
+    hid_t a = H5Aopen(obj, name, H5P_DEFAULT), sp;
+    int n;
+    assert_true(a >= 0);
+    sp = H5Aget_space(a);
+    n = (int)H5Sget_simple_extent_npoints(sp);
+    H5Sclose(sp);
+    H5Aclose(a);
+    return n;
+}
+
+static void h5_attr_read(hid_t obj, const char *name, hid_t mem_type, void *out)
+{
+    hid_t a = H5Aopen(obj, name, H5P_DEFAULT);
+    assert_true(a >= 0);
+    assert_true(H5Aread(a, mem_type, out) >= 0);
+    H5Aclose(a);
+}
+
+static double h5_attr_double(hid_t obj, const char *name)
+{
+    double v;
+    assert_int_equal(h5_attr_count(obj, name), 1);
+    h5_attr_read(obj, name, H5T_NATIVE_DOUBLE, &v);
+    return v;
+}
+
+static long long h5_attr_ll(hid_t obj, const char *name)
+{
+    long long v;
+    assert_int_equal(h5_attr_count(obj, name), 1);
+    h5_attr_read(obj, name, H5T_NATIVE_LLONG, &v);
+    return v;
+}
+
+/* Read a whole dataset; checks its shape against dims (rank entries). */
+static void *h5_read(hid_t file, const char *name, hid_t mem_type, size_t elem, int rank, const hsize_t *dims)
+{
+    hid_t d = H5Dopen2(file, name, H5P_DEFAULT), sp;
+    hsize_t got[4];
+    size_t total = 1;
+    void *buf;
+    int i;
+    assert_true(d >= 0);
+    sp = H5Dget_space(d);
+    assert_int_equal(H5Sget_simple_extent_ndims(sp), rank);
+    H5Sget_simple_extent_dims(sp, got, NULL);
+    for (i = 0; i < rank; i++) {
+        assert_int_equal(got[i], dims[i]);
+        total *= (size_t)dims[i];
+    }
+    buf = malloc(total * elem + 1);
+    assert_non_null(buf);
+    assert_true(H5Dread(d, mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, buf) >= 0);
+    H5Sclose(sp);
+    H5Dclose(d);
+    return buf;
+}
+
+static void h5_check_units(hid_t file, const char *dataset, const char *units)
+{
+    hid_t d = H5Dopen2(file, dataset, H5P_DEFAULT);
+    char *u;
+    assert_true(d >= 0);
+    u = h5_attr_string(d, "units");
+    assert_string_equal(u, units);
+    free(u);
+    H5Dclose(d);
+}
+
+typedef struct ev_row {
+    double time;
+    int kind;
+    int retainer;
+    int change;
+    long long sample;
+    double vr_b, vr_a, vt_b, vt_a, impulse, normal_force;
+} ev_row;
+
+static hid_t event_mem_type(void)
+{
+    hid_t kind = H5Tenum_create(H5T_NATIVE_INT), m = H5Tcreate(H5T_COMPOUND, sizeof(ev_row));
+    int v;
+    for (v = 0; v < 6; v++)
+        H5Tenum_insert(kind, td_event_kind_name((td_event_kind)v), &v);
+    H5Tinsert(m, "time", HOFFSET(ev_row, time), H5T_NATIVE_DOUBLE);
+    H5Tinsert(m, "kind", HOFFSET(ev_row, kind), kind);
+    H5Tinsert(m, "retainer", HOFFSET(ev_row, retainer), H5T_NATIVE_INT);
+    H5Tinsert(m, "change", HOFFSET(ev_row, change), H5T_NATIVE_INT);
+    H5Tinsert(m, "sample", HOFFSET(ev_row, sample), H5T_NATIVE_LLONG);
+    H5Tinsert(m, "radial_velocity_before", HOFFSET(ev_row, vr_b), H5T_NATIVE_DOUBLE);
+    H5Tinsert(m, "radial_velocity_after", HOFFSET(ev_row, vr_a), H5T_NATIVE_DOUBLE);
+    H5Tinsert(m, "tangential_velocity_before", HOFFSET(ev_row, vt_b), H5T_NATIVE_DOUBLE);
+    H5Tinsert(m, "tangential_velocity_after", HOFFSET(ev_row, vt_a), H5T_NATIVE_DOUBLE);
+    H5Tinsert(m, "impulse", HOFFSET(ev_row, impulse), H5T_NATIVE_DOUBLE);
+    H5Tinsert(m, "normal_force", HOFFSET(ev_row, normal_force), H5T_NATIVE_DOUBLE);
+    H5Tclose(kind);
+    return m;
+}
+
+/* ---- HDF5 -------------------------------------------------------------------------------- */
+
+static void test_hdf5_round_trip(void **state)
+{
+    sample_set *d = make_samples();
+    char path[512], partial[1100];
+    hid_t f, g, mt;
+    hsize_t dims[3];
+    double *t, *xy, *amb;
+    int8_t *contact;
+    int *nodes, r, i, e;
+    ev_row *ev;
+    char *s;
+    double clearance[2];
+    long long ret_nodes[2];
+    td_sim_stats stats = some_stats();
+    static const char *fields[] = {"x",
+                                   "y",
+                                   "radial_position",
+                                   "radial_velocity",
+                                   "whirl_angle",
+                                   "normal_force",
+                                   "friction_force",
+                                   "sliding_velocity"};
+    (void)state;
+    tmp_name(path, sizeof path, "rt.h5");
+    snprintf(partial, sizeof partial, "%s.partial", path);
+    write_all(TD_WRITER_HDF5, path, d, 1);
+    assert_false(exists(partial));
+    f = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
+    assert_true(f >= 0);
+
+    dims[0] = ROWS;
+    t = h5_read(f, "/time", H5T_NATIVE_DOUBLE, sizeof(double), 1, dims);
+    for (r = 0; r < ROWS; r++)
+        assert_bits(t[r], d->t[r]);
+    dims[1] = NODES;
+    dims[2] = 2;
+    xy = h5_read(f, "/nodes/displacement", H5T_NATIVE_DOUBLE, sizeof(double), 3, dims);
+    for (r = 0; r < ROWS; r++)
+        for (i = 0; i < 2 * NODES; i++)
+            assert_bits(xy[r * 2 * NODES + i], d->xy[r][i]);
+    dims[1] = AMBS;
+    amb = h5_read(f, "/ambs/force", H5T_NATIVE_DOUBLE, sizeof(double), 3, dims);
+    for (r = 0; r < ROWS; r++)
+        for (i = 0; i < 2 * AMBS; i++)
+            assert_bits(amb[r * 2 * AMBS + i], d->amb[r][i]);
+    dims[1] = RETS;
+    for (e = 0; e < 8; e++) {
+        char name[64];
+        double *v;
+        snprintf(name, sizeof name, "/retainers/%s", fields[e]);
+        v = h5_read(f, name, H5T_NATIVE_DOUBLE, sizeof(double), 2, dims);
+        for (r = 0; r < ROWS; r++)
+            for (i = 0; i < RETS; i++) {
+                const td_retainer_state *st = &d->ret[r][i];
+                const double want[8] = {st->x,
+                                        st->y,
+                                        st->radius,
+                                        st->radial_velocity,
+                                        st->whirl_angle,
+                                        st->normal_force,
+                                        st->friction_force,
+                                        st->sliding_velocity};
+                assert_bits(v[r * RETS + i], want[e]);
+            }
+        free(v);
+    }
+    contact = h5_read(f, "/retainers/contact_state", H5T_NATIVE_INT8, 1, 2, dims);
+    for (r = 0; r < ROWS; r++)
+        for (i = 0; i < RETS; i++)
+            assert_int_equal(contact[r * RETS + i], d->ret[r][i].in_contact);
+
+    /* node numbers, units */
+    g = H5Dopen2(f, "/nodes/displacement", H5P_DEFAULT);
+    assert_int_equal(h5_attr_count(g, "nodes"), NODES);
+    nodes = calloc(NODES, sizeof *nodes);
+    h5_attr_read(g, "nodes", H5T_NATIVE_INT, nodes);
+    for (i = 0; i < NODES; i++)
+        assert_int_equal(nodes[i], node_list[i]);
+    H5Dclose(g);
+    h5_check_units(f, "/time", "s");
+    h5_check_units(f, "/nodes/displacement", "m");
+    h5_check_units(f, "/retainers/normal_force", "N");
+    h5_check_units(f, "/retainers/radial_velocity", "m/s");
+    h5_check_units(f, "/retainers/whirl_angle", "rad");
+    h5_check_units(f, "/ambs/force", "N");
+
+    /* events: the compound table, kind as an enum; sample = row written just before */
+    mt = event_mem_type();
+    dims[0] = EVENTS;
+    ev = h5_read(f, "/events", mt, sizeof(ev_row), 1, dims);
+    for (e = 0; e < EVENTS; e++) {
+        assert_bits(ev[e].time, d->ev[e].time);
+        assert_int_equal(ev[e].kind, (int)d->ev[e].kind);
+        assert_int_equal(ev[e].retainer, d->ev[e].retainer);
+        assert_int_equal(ev[e].change, d->ev[e].change);
+        assert_int_equal(ev[e].sample, 5 * e + 3);
+        assert_bits(ev[e].vr_b, d->ev[e].radial_velocity_before);
+        assert_bits(ev[e].vr_a, d->ev[e].radial_velocity_after);
+        assert_bits(ev[e].vt_b, d->ev[e].tangential_velocity_before);
+        assert_bits(ev[e].vt_a, d->ev[e].tangential_velocity_after);
+        assert_bits(ev[e].impulse, d->ev[e].impulse);
+        assert_bits(ev[e].normal_force, d->ev[e].normal_force);
+    }
+    H5Tclose(mt);
+    g = H5Dopen2(f, "/events", H5P_DEFAULT);
+    s = h5_attr_string(g, "kind_names");
+    assert_non_null(strstr(s, "0=contact_onset"));
+    assert_non_null(strstr(s, "5=penalty_exit"));
+    free(s);
+    H5Dclose(g);
+
+    /* root attributes */
+    s = h5_attr_string(f, "case_text");
+    assert_string_equal(s, case_text);
+    free(s);
+    s = h5_attr_string(f, "note");
+    assert_string_equal(s, "replaced value");
+    free(s);
+    s = h5_attr_string(f, "library_version");
+    assert_string_equal(s, td_version());
+    free(s);
+    assert_bits(h5_attr_double(f, "speed"), 90.000000000000014);
+    assert_int_equal(h5_attr_ll(f, "summary_contacts"), -42);
+    assert_int_equal(h5_attr_count(f, "retainer_clearance"), 2);
+    h5_attr_read(f, "retainer_clearance", H5T_NATIVE_DOUBLE, clearance);
+    assert_bits(clearance[0], 0.75e-3);
+    assert_bits(clearance[1], 0.7500000000000001e-3);
+    h5_attr_read(f, "retainer_nodes", H5T_NATIVE_LLONG, ret_nodes);
+    assert_int_equal(ret_nodes[0], 2);
+    assert_int_equal(ret_nodes[1], 10);
+    assert_int_equal(h5_attr_ll(f, "steps"), stats.steps);
+    assert_int_equal(h5_attr_ll(f, "residual_evals"), stats.residual_evals);
+    assert_int_equal(h5_attr_ll(f, "jacobian_evals"), stats.jacobian_evals);
+    assert_int_equal(h5_attr_ll(f, "events"), stats.events);
+    assert_int_equal(h5_attr_ll(f, "restarts"), stats.restarts);
+    assert_bits(h5_attr_double(f, "worst_drift"), stats.worst_drift);
+    assert_bits(h5_attr_double(f, "wall_time"), stats.wall_time);
+    assert_bits(h5_attr_double(f, "first_contact_time"), stats.first_contact_time);
+    assert_int_equal(h5_attr_ll(f, "complete"), 1);
+    assert_int_equal(H5Aexists(f, "incomplete_reason"), 0);
+    assert_int_equal(H5Fclose(f), 0);
+
+    free(t);
+    free(xy);
+    free(amb);
+    free(contact);
+    free(nodes);
+    free(ev);
+    free(d);
+    remove(path);
+}
+
+static void test_hdf5_incomplete(void **state)
+{
+    sample_set *d = make_samples();
+    char path[512];
+    hid_t f;
+    hsize_t dims[1] = {ROWS};
+    double *t;
+    char *s;
+    (void)state;
+    tmp_name(path, sizeof path, "inc.h5");
+    write_all(TD_WRITER_HDF5, path, d, 0);
+    f = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
+    assert_true(f >= 0);
+    assert_int_equal(h5_attr_ll(f, "complete"), 0);
+    s = h5_attr_string(f, "incomplete_reason");
+    assert_string_equal(s, "solver failed at t = 0.5 s\nsecond line");
+    free(s);
+    /* everything written so far is kept */
+    t = h5_read(f, "/time", H5T_NATIVE_DOUBLE, sizeof(double), 1, dims);
+    assert_bits(t[ROWS - 1], d->t[ROWS - 1]);
+    free(t);
+    H5Fclose(f);
+    free(d);
+    remove(path);
+}
+
+/* No nodes, retainers or AMBs: just the time, the groups exist with count 0. */
+static void test_hdf5_empty_layout(void **state)
+{
+    char path[512];
+    td_output_layout l = {0, NULL, 0, 0};
+    td_writer *w = NULL;
+    hid_t f, g, mt;
+    hsize_t dims[1] = {3};
+    double *t;
+    int i;
+    (void)state;
+    tmp_name(path, sizeof path, "empty.h5");
+    assert_int_equal(td_writer_open(TD_WRITER_HDF5, path, &l, &w, NULL), TD_OK);
+    for (i = 0; i < 3; i++)
+        assert_int_equal(td_writer_sample(w, 0.5 * i, NULL, NULL, NULL, NULL), TD_OK);
+    assert_int_equal(td_writer_close(&w, 1, NULL, NULL), TD_OK);
+    f = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
+    assert_true(f >= 0);
+    t = h5_read(f, "/time", H5T_NATIVE_DOUBLE, sizeof(double), 1, dims);
+    assert_bits(t[2], 1.0);
+    free(t);
+    g = H5Gopen2(f, "/retainers", H5P_DEFAULT);
+    assert_true(g >= 0);
+    assert_int_equal(h5_attr_ll(g, "count"), 0);
+    H5Gclose(g);
+    dims[0] = 0;
+    mt = event_mem_type();
+    t = h5_read(f, "/events", mt, sizeof(ev_row), 1, dims);
+    free(t);
+    H5Tclose(mt);
+    assert_int_equal(h5_attr_ll(f, "complete"), 1);
+    H5Fclose(f);
+    remove(path);
+}
+
+/* ---- CSV --------------------------------------------------------------------------------- */
+
+/* Read a whole file into a NUL-terminated buffer. */
+static char *slurp(const char *path)
+{
+    FILE *f = fopen(path, "rb");
+    long n;
+    char *s;
+    assert_non_null(f);
+    fseek(f, 0, SEEK_END);
+    n = ftell(f);
+    fseek(f, 0, SEEK_SET);
+    s = malloc((size_t)n + 1);
+    assert_non_null(s);
+    assert_int_equal(fread(s, 1, (size_t)n, f), (size_t)n);
+    s[n] = '\0';
+    fclose(f);
+    return s;
+}
+
+/* Next line of *p (without the newline, written into place); NULL at the end. */
+static char *next_line(char **p)
+{
+    char *line = *p, *nl;
+    if (!*line)
+        return NULL;
+    nl = strchr(line, '\n');
+    if (nl) {
+        *nl = '\0';
+        *p = nl + 1;
+    } else {
+        *p = line + strlen(line);
+    }
+    return line;
+}
+
+/* Split a CSV data line into doubles; returns the count. */
+static int parse_row(char *line, double *out, int max)
+{
+    int n = 0;
+    char *p = line, *end;
+    while (n < max) {
+        errno = 0;
+        out[n++] = strtod(p, &end);
+        assert_true(end != p);
+        assert_int_equal(errno == ERANGE && fabs(out[n - 1]) > 1.0, 0);
+        if (*end != ',')
+            break;
+        p = end + 1;
+    }
+    assert_int_equal(*end, '\0');
+    return n;
+}
+
+static void expected_header(char *buf, size_t n)
+{
+    static const char *cols[] = {"x", "y", "r", "vr", "theta", "N", "Ff", "vs", "contact"};
+    static const char *units[] = {"m", "m", "m", "m/s", "rad", "N", "N", "m/s", "-"};
+    size_t len = 0;
+    int i, k;
+    len += (size_t)snprintf(buf + len, n - len, "t [s]");
+    for (i = 0; i < NODES; i++)
+        len += (size_t)snprintf(buf + len, n - len, ",x_n%d [m],y_n%d [m]", node_list[i], node_list[i]);
+    for (i = 0; i < RETS; i++)
+        for (k = 0; k < 9; k++)
+            len += (size_t)snprintf(buf + len, n - len, ",%s_ret%d [%s]", cols[k], i, units[k]);
+    for (i = 0; i < AMBS; i++)
+        len += (size_t)snprintf(buf + len, n - len, ",Fx_amb%d [N],Fy_amb%d [N]", i, i);
+}
+
+/* Value `index` of the numeric attribute line "# NAME = v0 v1 ..." in a CSV text. */
+static double csv_attr_value(const char *text, const char *name, int index)
+{
+    char key[128];
+    const char *p;
+    char *end;
+    double v = 0.0;
+    int i;
+    snprintf(key, sizeof key, "\n# %s =", name);
+    p = strstr(text, key);
+    assert_non_null(p);
+    p += strlen(key);
+    for (i = 0; i <= index; i++) {
+        v = strtod(p, &end);
+        assert_true(end != p);
+        p = end;
+    }
+    return v;
+}
+
+#define CSV_COLS (1 + 2 * NODES + 9 * RETS + 2 * AMBS)
+
+static void check_csv_samples(const char *path, const sample_set *d, int complete)
+{
+    char *text = slurp(path), *p = text, *line, header[2048];
+    double v[CSV_COLS + 1];
+    int r = 0, i, flag_seen = 0, case_lines = 0;
+    expected_header(header, sizeof header);
+    line = next_line(&p);
+    assert_string_equal(line, header);
+    while ((line = next_line(&p)) != NULL && line[0] != '#') {
+        assert_true(r < ROWS);
+        assert_int_equal(parse_row(line, v, CSV_COLS + 1), CSV_COLS);
+        assert_bits(v[0], d->t[r]);
+        for (i = 0; i < 2 * NODES; i++)
+            assert_bits(v[1 + i], d->xy[r][i]);
+        for (i = 0; i < RETS; i++) {
+            const td_retainer_state *s = &d->ret[r][i];
+            const double *c = v + 1 + 2 * NODES + 9 * i;
+            assert_bits(c[0], s->x);
+            assert_bits(c[1], s->y);
+            assert_bits(c[2], s->radius);
+            assert_bits(c[3], s->radial_velocity);
+            assert_bits(c[4], s->whirl_angle);
+            assert_bits(c[5], s->normal_force);
+            assert_bits(c[6], s->friction_force);
+            assert_bits(c[7], s->sliding_velocity);
+            assert_bits(c[8], (double)s->in_contact);
+        }
+        for (i = 0; i < 2 * AMBS; i++)
+            assert_bits(v[1 + 2 * NODES + 9 * RETS + i], d->amb[r][i]);
+        r++;
+    }
+    assert_int_equal(r, ROWS);
+    /* trailer: only comments, the flag on the very last line */
+    for (; line; line = next_line(&p)) {
+        assert_int_equal(line[0], '#');
+        assert_false(flag_seen);
+        if (strncmp(line, "#| ", 3) == 0)
+            case_lines++;
+        if (strcmp(line, "# complete") == 0 || strncmp(line, "# incomplete: ", 14) == 0) {
+            flag_seen = 1;
+            if (complete)
+                assert_string_equal(line, "# complete");
+            else
+                assert_string_equal(line, "# incomplete: solver failed at t = 0.5 s second line");
+        }
+    }
+    assert_true(flag_seen);
+    assert_int_equal(case_lines, complete ? 3 : 5); /* case text, and the two-line reason */
+    free(text); /* next_line cut it into lines: read it again for whole-text searches */
+    text = slurp(path);
+    assert_non_null(strstr(text, "\n# case_text:\n#| # a case\n#| speed = 90.0;\n"));
+    assert_non_null(strstr(text, "\n# note = replaced value\n"));
+    assert_bits(csv_attr_value(text, "speed", 0), 90.000000000000014);
+    assert_non_null(strstr(text, "\n# summary_contacts = -42\n"));
+    assert_bits(csv_attr_value(text, "retainer_clearance", 0), 0.75e-3);
+    assert_bits(csv_attr_value(text, "retainer_clearance", 1), 0.7500000000000001e-3);
+    assert_non_null(strstr(text, "\n# steps = 123456789\n"));
+    assert_non_null(strstr(text, "\n# library_version = " TD_VERSION "\n"));
+    free(text);
+}
+
+static void check_csv_events(const char *path, const sample_set *d, int complete)
+{
+    char *text = slurp(path), *p = text, *line;
+    int e = 0;
+    line = next_line(&p);
+    assert_string_equal(line, "t [s],kind [-],kind_name,retainer [-],change [-],sample [-],vr_before [m/s],"
+                              "vr_after [m/s],vt_before [m/s],vt_after [m/s],impulse [N s],N [N]");
+    while ((line = next_line(&p)) != NULL && line[0] != '#') {
+        const td_event *ev = &d->ev[e];
+        char *f[12], *q = line;
+        int k;
+        for (k = 0; k < 12; k++) {
+            f[k] = q;
+            q = strchr(q, ',');
+            if (k < 11) {
+                assert_non_null(q);
+                *q++ = '\0';
+            }
+        }
+        assert_null(q);
+        assert_bits(strtod(f[0], NULL), ev->time);
+        assert_int_equal(atoi(f[1]), (int)ev->kind);
+        assert_string_equal(f[2], td_event_kind_name(ev->kind));
+        assert_int_equal(atoi(f[3]), ev->retainer);
+        assert_int_equal(atoi(f[4]), ev->change);
+        assert_int_equal(atol(f[5]), 5 * e + 3);
+        assert_bits(strtod(f[6], NULL), ev->radial_velocity_before);
+        assert_bits(strtod(f[7], NULL), ev->radial_velocity_after);
+        assert_bits(strtod(f[8], NULL), ev->tangential_velocity_before);
+        assert_bits(strtod(f[9], NULL), ev->tangential_velocity_after);
+        assert_bits(strtod(f[10], NULL), ev->impulse);
+        assert_bits(strtod(f[11], NULL), ev->normal_force);
+        e++;
+    }
+    assert_int_equal(e, EVENTS);
+    assert_non_null(line);
+    assert_string_equal(line, complete ? "# complete" : "# incomplete: solver failed at t = 0.5 s second line");
+    assert_null(next_line(&p));
+    free(text);
+}
+
+static void test_csv_round_trip(void **state)
+{
+    sample_set *d = make_samples();
+    char path[512], events[1100], partial[1200];
+    int complete;
+    (void)state;
+    for (complete = 1; complete >= 0; complete--) {
+        tmp_name(path, sizeof path, complete ? "rt.csv" : "inc.csv");
+        td_writer_events_path(path, events, sizeof events);
+        write_all(TD_WRITER_CSV, path, d, complete);
+        snprintf(partial, sizeof partial, "%s.partial", path);
+        assert_false(exists(partial));
+        snprintf(partial, sizeof partial, "%s.partial", events);
+        assert_false(exists(partial));
+        check_csv_samples(path, d, complete);
+        check_csv_events(events, d, complete);
+        remove(path);
+        remove(events);
+    }
+    free(d);
+}
+
+/* gnuplot (the intended reader) sees every row and the right values, columns named by header. */
+static void test_csv_gnuplot(void **state)
+{
+    char path[512], events[1100], cmd[4096], out[256];
+    td_output_layout l = full_layout();
+    td_writer *w = NULL;
+    td_retainer_state ret[RETS];
+    double xy[2 * NODES] = {0}, amb[2 * AMBS] = {0};
+    FILE *p;
+    long records = -1;
+    double max_n = 0.0;
+    int r;
+    (void)state;
+    if (system("gnuplot --version > /dev/null 2>&1") != 0)
+        skip();
+    tmp_name(path, sizeof path, "gp.csv");
+    memset(ret, 0, sizeof ret);
+    assert_int_equal(td_writer_open(TD_WRITER_CSV, path, &l, &w, NULL), TD_OK);
+    for (r = 0; r < 1000; r++) {
+        ret[0].normal_force = 1000.0 * sin(0.01 * r) * sin(0.01 * r) + 0.123456789012345;
+        assert_int_equal(td_writer_sample(w, r * 1e-4, xy, ret, amb, NULL), TD_OK);
+    }
+    assert_int_equal(td_writer_set_string(w, "case_text", case_text, NULL), TD_OK);
+    assert_int_equal(td_writer_close(&w, 1, NULL, NULL), TD_OK);
+    snprintf(cmd, sizeof cmd,
+             "gnuplot -e 'set datafile separator \",\"; stats \"%s\" using 1:\"N_ret0 [N]\" nooutput; "
+             "print sprintf(\"%%d %%.17g\", STATS_records, STATS_max_y)' 2>&1",
+             path);
+    p = popen(cmd, "r");
+    assert_non_null(p);
+    assert_non_null(fgets(out, sizeof out, p));
+    pclose(p);
+    assert_int_equal(sscanf(out, "%ld %lf", &records, &max_n), 2);
+    assert_int_equal(records, 1000);
+    {
+        double want = 0.0;
+        for (r = 0; r < 1000; r++) {
+            double v = 1000.0 * sin(0.01 * r) * sin(0.01 * r) + 0.123456789012345;
+            want = v > want ? v : want;
+        }
+        assert_bits(max_n, want);
+    }
+    td_writer_events_path(path, events, sizeof events);
+    remove(path);
+    remove(events);
+}
+
+/* ---- the completeness protocol ----------------------------------------------------------- */
+
+static void test_open_failure_leaves_nothing(void **state)
+{
+    td_output_layout l = full_layout();
+    td_writer *w = (td_writer *)&l; /* must be reset to NULL */
+    td_error err;
+    char path[512], partial[1100], dir[256];
+    int kind;
+    (void)state;
+    for (kind = 0; kind < 2; kind++) {
+        tmp_name(dir, sizeof dir, "no_such_dir");
+        snprintf(path, sizeof path, "%s/out.%s", dir, kind ? "csv" : "h5");
+        snprintf(partial, sizeof partial, "%s.partial", path);
+        w = (td_writer *)&l;
+        assert_int_equal(td_writer_open((td_writer_kind)kind, path, &l, &w, &err), TD_ERR_IO);
+        assert_null(w);
+        assert_non_null(strstr(err.message, "out."));
+        assert_false(exists(path));
+        assert_false(exists(partial));
+    }
+    /* invalid arguments */
+    tmp_name(path, sizeof path, "bad.h5");
+    l.node_count = -1;
+    assert_int_equal(td_writer_open(TD_WRITER_HDF5, path, &l, &w, &err), TD_ERR_INVALID);
+    l = full_layout();
+    l.nodes = NULL;
+    assert_int_equal(td_writer_open(TD_WRITER_HDF5, path, &l, &w, &err), TD_ERR_INVALID);
+    l = full_layout();
+    assert_int_equal(td_writer_open(TD_WRITER_HDF5, "", &l, &w, &err), TD_ERR_INVALID);
+    assert_int_equal(td_writer_open((td_writer_kind)7, path, &l, &w, &err), TD_ERR_INVALID);
+    assert_false(exists(path));
+}
+
+/* A stale complete file at PATH disappears as soon as a new writer opens on PATH. */
+static void test_stale_file_removed(void **state)
+{
+    td_output_layout l = full_layout();
+    td_writer *w = NULL;
+    char path[512], partial[1100];
+    FILE *f;
+    int kind;
+    (void)state;
+    for (kind = 0; kind < 2; kind++) {
+        tmp_name(path, sizeof path, kind ? "stale.csv" : "stale.h5");
+        snprintf(partial, sizeof partial, "%s.partial", path);
+        f = fopen(path, "w");
+        assert_non_null(f);
+        fputs("old result\n# complete\n", f);
+        fclose(f);
+        assert_int_equal(td_writer_open((td_writer_kind)kind, path, &l, &w, NULL), TD_OK);
+        assert_false(exists(path));
+        assert_true(exists(partial));
+        td_writer_discard(&w);
+        assert_null(w);
+        assert_false(exists(path));
+        assert_false(exists(partial));
+    }
+}
+
+/* A file whose writes fail (PATH.partial is /dev/full) never reaches PATH, complete or not. */
+static void test_failed_writes_leave_nothing(void **state)
+{
+    td_output_layout l = full_layout();
+    td_writer *w = NULL;
+    td_error err;
+    char path[512], partial[1100], events[1100], events_partial[1200];
+    double xy[2 * NODES] = {0}, amb[2 * AMBS] = {0};
+    td_retainer_state ret[RETS];
+    td_status st = TD_OK;
+    int r, which;
+    (void)state;
+    if (access("/dev/full", W_OK) != 0)
+        skip();
+    memset(ret, 0, sizeof ret);
+    for (which = 0; which < 2; which++) { /* 0: the samples file fails, 1: the events file fails */
+        tmp_name(path, sizeof path, "full.csv");
+        td_writer_events_path(path, events, sizeof events);
+        snprintf(partial, sizeof partial, "%s.partial", path);
+        snprintf(events_partial, sizeof events_partial, "%s.partial", events);
+        remove(partial);
+        remove(events_partial);
+        assert_int_equal(symlink("/dev/full", which ? events_partial : partial), 0);
+        st = td_writer_open(TD_WRITER_CSV, path, &l, &w, &err);
+        if (st == TD_OK) {
+            td_event ev;
+            memset(&ev, 0, sizeof ev);
+            for (r = 0; r < 5000 && st == TD_OK; r++)
+                st = td_writer_sample(w, r * 1e-4, xy, ret, amb, &err);
+            if (which == 1) {
+                assert_int_equal(st, TD_OK);                                /* the samples file is fine */
+                assert_int_equal(td_writer_event(w, &ev, -1, &err), TD_OK); /* buffered */
+            } else {
+                assert_int_equal(st, TD_ERR_IO);
+                assert_int_equal(td_writer_sample(w, 1.0, xy, ret, amb, &err), TD_ERR_STATE);
+            }
+            assert_int_equal(td_writer_close(&w, 1, NULL, &err), TD_ERR_IO);
+            assert_null(w);
+        }
+        assert_false(exists(path));
+        assert_false(exists(events));
+        remove(partial);
+        remove(events_partial);
+    }
+}
+
+static void test_attribute_names(void **state)
+{
+    td_output_layout l = {0, NULL, 0, 0};
+    td_writer *w = NULL;
+    td_error err;
+    char path[512], events[1100], long_name[100];
+    (void)state;
+    tmp_name(path, sizeof path, "names.csv");
+    assert_int_equal(td_writer_open(TD_WRITER_CSV, path, &l, &w, NULL), TD_OK);
+    assert_int_equal(td_writer_set_double(w, "complete", 1.0, &err), TD_ERR_INVALID);
+    assert_int_equal(td_writer_set_string(w, "incomplete_reason", "x", &err), TD_ERR_INVALID);
+    assert_int_equal(td_writer_set_double(w, "a b", 1.0, &err), TD_ERR_INVALID);
+    assert_int_equal(td_writer_set_double(w, "a=b", 1.0, &err), TD_ERR_INVALID);
+    assert_int_equal(td_writer_set_double(w, "", 1.0, &err), TD_ERR_INVALID);
+    memset(long_name, 'a', 64);
+    long_name[64] = '\0';
+    assert_int_equal(td_writer_set_double(w, long_name, 1.0, &err), TD_ERR_INVALID);
+    long_name[63] = '\0';
+    assert_int_equal(td_writer_set_double(w, long_name, 1.0, &err), TD_OK);
+    assert_int_equal(td_writer_set_doubles(w, "x", NULL, 1, &err), TD_ERR_INVALID);
+    assert_int_equal(td_writer_set_string(w, "ok.name-1", NULL, &err), TD_OK); /* NULL: "" */
+    assert_int_equal(td_writer_close(&w, 1, NULL, &err), TD_OK);
+    assert_int_equal(td_writer_close(&w, 1, NULL, &err), TD_OK); /* NULL handle: no-op */
+    td_writer_discard(&w);
+    td_writer_events_path(path, events, sizeof events);
+    remove(path);
+    remove(events);
+}
+
+static void test_events_path(void **state)
+{
+    char buf[64];
+    (void)state;
+    assert_int_equal(td_writer_events_path("dir/out.csv", buf, sizeof buf), 18);
+    assert_string_equal(buf, "dir/out.events.csv");
+    td_writer_events_path("out.dat", buf, sizeof buf);
+    assert_string_equal(buf, "out.dat.events.csv");
+    td_writer_events_path(".csv", buf, sizeof buf);
+    assert_string_equal(buf, ".events.csv");
+    assert_int_equal(td_writer_events_path("abc.csv", buf, 5), 14);
+    assert_string_equal(buf, "abc.");
+    assert_string_equal(td_event_kind_name(TD_EVENT_FRICTION_REVERSAL), "friction_reversal");
+    assert_string_equal(td_event_kind_name((td_event_kind)99), "unknown");
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_hdf5_round_trip),    cmocka_unit_test(test_hdf5_incomplete),
+        cmocka_unit_test(test_hdf5_empty_layout),  cmocka_unit_test(test_csv_round_trip),
+        cmocka_unit_test(test_csv_gnuplot),        cmocka_unit_test(test_open_failure_leaves_nothing),
+        cmocka_unit_test(test_stale_file_removed), cmocka_unit_test(test_failed_writes_leave_nothing),
+        cmocka_unit_test(test_attribute_names),    cmocka_unit_test(test_events_path),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}

@@ -1,0 +1,555 @@
+/*
+ * td_run on a small rotor that touches its retainer: the samples lie exactly on the uniform grid
+ * plus the event instants; the event table and the sampled states equal what a hand-written step
+ * loop on an identical simulation sees through td_sim_last_event / td_sim_retainer_state (bit
+ * for bit: the simulation is deterministic); the summary agrees with the event table; a
+ * cancelled run leaves an incomplete file; bad arguments leave no file.
+ */
+#include "td_test.h"
+
+#include "touchdown/output.h"
+#include "touchdown/run.h"
+#include "touchdown/touchdown.h"
+
+#include <float.h>
+#include <hdf5.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#define RATE 2000.0 /* Hz */
+#define T_END 0.3   /* s */
+#define OMEGA 200.0 /* rad/s */
+#define CLEARANCE 2.0e-5
+
+/*
+ * Jeffcott-like rotor (cases/jeffcott.cfg): 0.6 m steel shaft, d = 20 mm, six elements, a 4.91 kg
+ * disc at mid-span (node 3), stiff plain bearings at the ends, first critical speed about
+ * 250 rad/s; a soft PD AMB (no negative stiffness) at node 1 and a retainer with 20 um clearance
+ * at the disc. At 200 rad/s the unbalance orbit is 3.6 um with U = 1e-5 kg m; U steps to 2e-4 kg m
+ * (orbit ~70 um) at 0.02 s, so the disc hits the retainer, and back to 1e-5 at 0.1 s.
+ */
+static td_model *small_rotor(void)
+{
+    td_model *m = NULL;
+    td_shaft_element el = {0.1, 0.02, 0.0, {2.11e11, 8.1e10, 7810.0}};
+    td_disc disc = {3, 4.91, 0.0245, 0.0124};
+    td_bearing b0 = {0, 1e8, 1e8, 200.0, 200.0}, b6 = {6, 1e8, 1e8, 200.0, 200.0};
+    td_amb amb = {1, 1, 0.0, 1.0, 1e5, 20.0, 1e-4, 1e4, 0, 0.0};
+    td_retainer ret = {3, CLEARANCE, 0.01, 0.01 + CLEARANCE, 0.1, 0.0, 0.0};
+    td_unbalance u = {3, 1e-5, 0.0};
+    td_change up = {0.02, TD_CHANGE_UNBALANCE, 0, 2e-4, 0.0}, down = {0.1, TD_CHANGE_UNBALANCE, 0, 1e-5, 0.0};
+    td_error err;
+    int i;
+    assert_int_equal(td_model_create(&m, &err), TD_OK);
+    for (i = 0; i < 6; i++)
+        assert_int_equal(td_model_add_shaft_element(m, &el, &err), TD_OK);
+    assert_int_equal(td_model_add_disc(m, &disc, &err), TD_OK);
+    assert_int_equal(td_model_add_bearing(m, &b0, &err), TD_OK);
+    assert_int_equal(td_model_add_bearing(m, &b6, &err), TD_OK);
+    assert_int_equal(td_model_add_amb(m, &amb, &err), TD_OK);
+    assert_int_equal(td_model_add_retainer(m, &ret, &err), TD_OK);
+    assert_int_equal(td_model_add_unbalance(m, &u, &err), TD_OK);
+    assert_int_equal(td_model_add_change(m, &up, &err), TD_OK);
+    assert_int_equal(td_model_add_change(m, &down, &err), TD_OK);
+    assert_int_equal(td_model_set_speed(m, OMEGA, &err), TD_OK);
+    if (td_model_validate(m, &err) != TD_OK)
+        fail_msg("model: %s", err.message);
+    return m;
+}
+
+static td_sim *make_sim(const td_model *m)
+{
+    td_sim *sim = NULL;
+    td_error err;
+    td_sim_options opt;
+    td_sim_options_default(&opt);
+    if (td_sim_create(m, &opt, &sim, &err) != TD_OK)
+        fail_msg("td_sim_create: %s", err.message);
+    return sim;
+}
+
+static void out_paths(td_output_options *out, const char *stem)
+{
+    td_output_options_default(out);
+    snprintf(out->hdf5_path, sizeof out->hdf5_path, "%s/run_%ld_%s.h5", TD_BINARY_DIR, (long)getpid(), stem);
+    snprintf(out->csv_path, sizeof out->csv_path, "%s/run_%ld_%s.csv", TD_BINARY_DIR, (long)getpid(), stem);
+    out->sample_rate = RATE;
+    out->node_count = 2;
+    out->nodes[0] = 1;
+    out->nodes[1] = 3;
+}
+
+static void remove_outputs(const td_output_options *out)
+{
+    char ev[TD_OUTPUT_PATH_SIZE + 32];
+    td_writer_events_path(out->csv_path, ev, sizeof ev);
+    remove(out->hdf5_path);
+    remove(out->csv_path);
+    remove(ev);
+}
+
+static int exists(const char *path)
+{
+    struct stat sb;
+    return stat(path, &sb) == 0;
+}
+
+static int same_bits(double a, double b)
+{
+    return memcmp(&a, &b, sizeof a) == 0;
+}
+
+/* ---- what a hand-written loop sees ------------------------------------------------------- */
+
+typedef struct reference {
+    int rows;
+    double t[4096];
+    double r[4096]; /* retainer radial position */
+    double n[4096]; /* normal force */
+    int contact[4096];
+    double x3[4096]; /* node 3 x */
+    int on_grid[4096];
+    int events;
+    td_event ev[512];
+    int ev_row[512];
+} reference;
+
+static void ref_sample(reference *ref, const td_sim *sim, double t, int on_grid)
+{
+    td_retainer_state rs;
+    double q[28];
+    assert_true(ref->rows < 4096);
+    assert_int_equal(td_sim_dof_count(sim), 28);
+    assert_int_equal(td_sim_get_state(sim, q, NULL), TD_OK);
+    assert_int_equal(td_sim_retainer_state(sim, 0, &rs), TD_OK);
+    ref->t[ref->rows] = t;
+    ref->r[ref->rows] = rs.radius;
+    ref->n[ref->rows] = rs.normal_force;
+    ref->contact[ref->rows] = rs.in_contact;
+    ref->x3[ref->rows] = q[TD_DOF(3, TD_DOF_X)];
+    ref->on_grid[ref->rows] = on_grid;
+    ref->rows++;
+}
+
+/* The sampling rule of docs/output-format.md, written out independently of lib/io/run.c. */
+static void reference_run(const td_model *m, reference *ref)
+{
+    td_sim *sim = make_sim(m);
+    long k;
+    double last_event_t = -1.0;
+    int last_event_row = -1;
+    memset(ref, 0, sizeof *ref);
+    ref_sample(ref, sim, 0.0, 1);
+    for (k = 1;; k++) {
+        double target = (double)k / RATE;
+        int last = target >= T_END - 1e-6 / RATE;
+        if (last)
+            target = T_END;
+        while (target - td_sim_time(sim) > 4.0 * DBL_EPSILON * (target > 1.0 ? target : 1.0)) {
+            td_status st = td_sim_step(sim, target, NULL);
+            if (st == TD_OK)
+                break;
+            assert_int_equal(st, TD_EVENT);
+            assert_true(ref->events < 512);
+            assert_int_equal(td_sim_last_event(sim, &ref->ev[ref->events]), TD_OK);
+            /* one sample per event instant, shared by every event at that instant */
+            if (td_sim_time(sim) != last_event_t) {
+                ref_sample(ref, sim, td_sim_time(sim), 0);
+                last_event_t = td_sim_time(sim);
+                last_event_row = ref->rows - 1;
+            }
+            ref->ev_row[ref->events++] = last_event_row;
+        }
+        ref_sample(ref, sim, target, 1);
+        if (last)
+            break;
+    }
+    td_sim_free(&sim);
+}
+
+/* ---- reading the HDF5 result ------------------------------------------------------------- */
+
+static double *read_doubles(hid_t f, const char *name, hsize_t *rows, int cols_expected)
+{
+    hid_t d = H5Dopen2(f, name, H5P_DEFAULT), sp;
+    hsize_t dims[3] = {0, 1, 1};
+    int rank, i;
+    size_t total;
+    double *buf;
+    assert_true(d >= 0);
+    sp = H5Dget_space(d);
+    rank = H5Sget_simple_extent_ndims(sp);
+    H5Sget_simple_extent_dims(sp, dims, NULL);
+    total = 1;
+    for (i = 0; i < rank; i++)
+        total *= (size_t)dims[i];
+    assert_int_equal(total, (size_t)dims[0] * (size_t)cols_expected);
+    buf = malloc(total * sizeof *buf + 1);
+    assert_non_null(buf);
+    assert_true(H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, buf) >= 0);
+    H5Sclose(sp);
+    H5Dclose(d);
+    *rows = dims[0];
+    return buf;
+}
+
+static long long root_ll(hid_t f, const char *name)
+{
+    long long v = -99;
+    hid_t a = H5Aopen(f, name, H5P_DEFAULT);
+    assert_true(a >= 0);
+    assert_true(H5Aread(a, H5T_NATIVE_LLONG, &v) >= 0);
+    H5Aclose(a);
+    return v;
+}
+
+typedef struct ev_row {
+    double time;
+    int kind, retainer, change;
+    long long sample;
+    double vrb, vra, vtb, vta, impulse, normal_force;
+} ev_row;
+
+static ev_row *read_events(hid_t f, hsize_t *n)
+{
+    hid_t d = H5Dopen2(f, "/events", H5P_DEFAULT), sp, m = H5Tcreate(H5T_COMPOUND, sizeof(ev_row));
+    ev_row *rows;
+    H5Tinsert(m, "time", HOFFSET(ev_row, time), H5T_NATIVE_DOUBLE);
+    H5Tinsert(m, "kind", HOFFSET(ev_row, kind), H5T_NATIVE_INT); /* enum -> int converts */
+    H5Tinsert(m, "retainer", HOFFSET(ev_row, retainer), H5T_NATIVE_INT);
+    H5Tinsert(m, "change", HOFFSET(ev_row, change), H5T_NATIVE_INT);
+    H5Tinsert(m, "sample", HOFFSET(ev_row, sample), H5T_NATIVE_LLONG);
+    H5Tinsert(m, "radial_velocity_before", HOFFSET(ev_row, vrb), H5T_NATIVE_DOUBLE);
+    H5Tinsert(m, "radial_velocity_after", HOFFSET(ev_row, vra), H5T_NATIVE_DOUBLE);
+    H5Tinsert(m, "tangential_velocity_before", HOFFSET(ev_row, vtb), H5T_NATIVE_DOUBLE);
+    H5Tinsert(m, "tangential_velocity_after", HOFFSET(ev_row, vta), H5T_NATIVE_DOUBLE);
+    H5Tinsert(m, "impulse", HOFFSET(ev_row, impulse), H5T_NATIVE_DOUBLE);
+    H5Tinsert(m, "normal_force", HOFFSET(ev_row, normal_force), H5T_NATIVE_DOUBLE);
+    assert_true(d >= 0);
+    sp = H5Dget_space(d);
+    H5Sget_simple_extent_dims(sp, n, NULL);
+    rows = malloc((size_t)*n * sizeof *rows + 1);
+    assert_non_null(rows);
+    if (*n > 0)
+        assert_true(H5Dread(d, m, H5S_ALL, H5S_ALL, H5P_DEFAULT, rows) >= 0);
+    H5Tclose(m);
+    H5Sclose(sp);
+    H5Dclose(d);
+    return rows;
+}
+
+/* ---- tests ------------------------------------------------------------------------------- */
+
+static void test_run_matches_hand_loop(void **state)
+{
+    td_model *m = small_rotor();
+    td_sim *sim = make_sim(m);
+    td_output_options out;
+    td_run_summary s;
+    td_error err;
+    reference *ref = calloc(1, sizeof *ref);
+    hid_t f;
+    hsize_t rows, n_ev, i;
+    double *t, *r, *x, *nf;
+    ev_row *ev;
+    long grid = 0, onsets = 0;
+    double contact_time = 0.0, onset_t = -1.0, first_onset = -1.0, last_release = -1.0, window;
+    (void)state;
+    assert_non_null(ref);
+    out_paths(&out, "hand");
+    remove_outputs(&out);
+    if (td_run(sim, m, T_END, &out, NULL, "case text", &s, &err) != TD_OK)
+        fail_msg("td_run: %s", err.message);
+    assert_int_equal(s.status, TD_OK);
+    assert_int_equal(s.complete, 1);
+    td_sim_free(&sim);
+
+    reference_run(m, ref);
+    print_message("rows %d, events %d, contacts %ld, first contact %.10f s, peak %.6g N, "
+                  "contact fraction %.4f, wall %.3f s\n",
+                  ref->rows, ref->events, s.contacts, s.first_contact_time, s.peak_normal_force, s.contact_fraction,
+                  s.wall_time);
+    assert_true(ref->events >= 3); /* two schedule events and at least one contact onset */
+
+    f = H5Fopen(out.hdf5_path, H5F_ACC_RDONLY, H5P_DEFAULT);
+    assert_true(f >= 0);
+    assert_int_equal(root_ll(f, "complete"), 1);
+    t = read_doubles(f, "/time", &rows, 1);
+    assert_int_equal(rows, (hsize_t)ref->rows);
+    r = read_doubles(f, "/retainers/radial_position", &rows, 1);
+    nf = read_doubles(f, "/retainers/normal_force", &rows, 1);
+    x = read_doubles(f, "/nodes/displacement", &rows, 4);
+    for (i = 0; i < rows; i++) {
+        if (!same_bits(t[i], ref->t[i]) || !same_bits(r[i], ref->r[i]) || !same_bits(nf[i], ref->n[i]) ||
+            !same_bits(x[4 * i + 2], ref->x3[i]))
+            fail_msg("row %lu: t %.17g/%.17g r %.17g/%.17g N %.17g/%.17g", (unsigned long)i, t[i], ref->t[i], r[i],
+                     ref->r[i], nf[i], ref->n[i]);
+        if (i > 0)
+            assert_true(t[i] >= t[i - 1]);
+        if (ref->on_grid[i]) {
+            /* exactly on the grid: t = k / rate for the next k, or t_end */
+            assert_true(same_bits(t[i], (double)grid / RATE) || (grid == (long)(T_END * RATE) && t[i] == T_END));
+            grid++;
+        }
+    }
+    assert_int_equal(grid, (long)(T_END * RATE + 0.5) + 1);
+    assert_int_equal(s.grid_samples, grid);
+    assert_int_equal(s.samples, (long)rows);
+
+    ev = read_events(f, &n_ev);
+    assert_int_equal(n_ev, (hsize_t)ref->events);
+    assert_int_equal(s.events, ref->events);
+    for (i = 0; i < n_ev; i++) {
+        const td_event *e = &ref->ev[i];
+        assert_true(same_bits(ev[i].time, e->time));
+        assert_int_equal(ev[i].kind, (int)e->kind);
+        assert_int_equal(ev[i].retainer, e->retainer);
+        assert_int_equal(ev[i].change, e->change);
+        assert_true(same_bits(ev[i].vrb, e->radial_velocity_before));
+        assert_true(same_bits(ev[i].vra, e->radial_velocity_after));
+        assert_true(same_bits(ev[i].vtb, e->tangential_velocity_before));
+        assert_true(same_bits(ev[i].vta, e->tangential_velocity_after));
+        assert_true(same_bits(ev[i].impulse, e->impulse));
+        assert_true(same_bits(ev[i].normal_force, e->normal_force));
+        /* the sample taken at the event: same time, not a grid row */
+        assert_int_equal(ev[i].sample, ref->ev_row[i]);
+        assert_true(same_bits(t[ev[i].sample], ev[i].time));
+        assert_false(ref->on_grid[ev[i].sample]);
+        /* contact bookkeeping from the table alone (one retainer, plastic impacts) */
+        if (ev[i].kind == TD_EVENT_CONTACT_ONSET) {
+            onsets++;
+            if (first_onset < 0.0)
+                first_onset = ev[i].time;
+            if (ref->contact[ev[i].sample] && onset_t < 0.0)
+                onset_t = ev[i].time;
+        } else if (ev[i].kind == TD_EVENT_RELEASE && onset_t >= 0.0) {
+            contact_time += ev[i].time - onset_t;
+            onset_t = -1.0;
+            last_release = ev[i].time;
+        }
+    }
+    if (onset_t >= 0.0)
+        contact_time += T_END - onset_t;
+    assert_true(onsets >= 1);
+    assert_int_equal(s.contacts, onsets);
+    assert_true(same_bits(s.first_contact_time, first_onset));
+    assert_close(s.contact_time, contact_time, 1e-12, 1e-15);
+    assert_close(s.contact_fraction, contact_time / T_END, 1e-12, 1e-15);
+    assert_close(s.revolutions, OMEGA * T_END / (2.0 * TD_PI), 1e-14, 0.0);
+    assert_close(s.revolutions_after_contact, OMEGA * (T_END - first_onset) / (2.0 * TD_PI), 1e-14, 0.0);
+    assert_true(s.wall_time_per_revolution > 0.0);
+    /* free orbit: no contact in the last 5 revolutions (the unbalance drops at 0.1 s) */
+    window = TD_RUN_FREE_REVOLUTIONS * 2.0 * TD_PI / OMEGA;
+    assert_close(s.free_window, window, 1e-15, 0.0);
+    assert_true(onset_t < 0.0);
+    assert_true(same_bits(s.last_contact_time, last_release));
+    assert_int_equal(s.free_at_end, T_END - last_release >= window);
+    assert_int_equal(s.returned_to_free_orbit, T_END - last_release >= window);
+    print_message("last contact ended %.10f s, returned to free orbit %d\n", last_release, s.returned_to_free_orbit);
+    assert_true(s.peak_normal_force > 0.0);
+    assert_int_equal(root_ll(f, "summary_contacts"), onsets);
+    assert_int_equal(root_ll(f, "steps"), s.stats.steps);
+    H5Fclose(f);
+
+    free(t);
+    free(r);
+    free(nf);
+    free(x);
+    free(ev);
+    free(ref);
+    remove_outputs(&out);
+    td_model_free(&m);
+}
+
+/* Cancel (as a signal handler would) once t passes 0.05 s: incomplete files, what was computed kept. */
+typedef struct cancel_ctx {
+    volatile sig_atomic_t *flag;
+    double at;
+    int calls;
+} cancel_ctx;
+
+static int cancel_later(double t, double fraction, long contacts, void *user)
+{
+    cancel_ctx *c = user;
+    (void)contacts;
+    assert_true(fraction >= 0.0 && fraction <= 1.0);
+    c->calls++;
+    if (t >= c->at)
+        *c->flag = 1;
+    return 0;
+}
+
+static void test_run_cancel(void **state)
+{
+    td_model *m = small_rotor();
+    td_sim *sim = make_sim(m);
+    td_output_options out;
+    td_run_summary s;
+    td_error err;
+    volatile sig_atomic_t flag = 0;
+    cancel_ctx ctx;
+    td_run_hooks hooks;
+    hid_t f, a, type;
+    hsize_t rows;
+    double *t;
+    char reason[512] = "", *tail;
+    FILE *csv;
+    char line[512], last[512] = "";
+    (void)state;
+    out_paths(&out, "cancel");
+    ctx.flag = &flag;
+    ctx.at = 0.05;
+    ctx.calls = 0;
+    memset(&hooks, 0, sizeof hooks);
+    hooks.progress = cancel_later;
+    hooks.user = &ctx;
+    hooks.progress_interval = 0.01;
+    hooks.cancel = &flag;
+    assert_int_equal(td_run(sim, m, T_END, &out, &hooks, NULL, &s, &err), TD_ERR_INTERRUPTED);
+    assert_non_null(strstr(err.message, "interrupted"));
+    assert_int_equal(s.complete, 0);
+    assert_true(ctx.calls >= 5 && ctx.calls <= 8); /* every 0.01 s of simulated time up to 0.05 s */
+    assert_true(s.t_reached >= 0.05 && s.t_reached < 0.05 + 2.0 / RATE);
+    f = H5Fopen(out.hdf5_path, H5F_ACC_RDONLY, H5P_DEFAULT);
+    assert_true(f >= 0);
+    assert_int_equal(root_ll(f, "complete"), 0);
+    a = H5Aopen(f, "incomplete_reason", H5P_DEFAULT);
+    assert_true(a >= 0);
+    type = H5Aget_type(a);
+    assert_true(H5Tget_size(type) < sizeof reason);
+    assert_true(H5Aread(a, type, reason) >= 0);
+    H5Tclose(type);
+    H5Aclose(a);
+    assert_non_null(strstr(reason, "interrupted at t = 0.05"));
+    t = read_doubles(f, "/time", &rows, 1);
+    assert_int_equal(rows, (hsize_t)s.samples);
+    assert_true(same_bits(t[rows - 1], s.t_reached));
+    free(t);
+    H5Fclose(f);
+    csv = fopen(out.csv_path, "r");
+    assert_non_null(csv);
+    while (fgets(line, sizeof line, csv))
+        memcpy(last, line, sizeof line);
+    fclose(csv);
+    tail = strstr(last, "# incomplete: interrupted at t = ");
+    assert_non_null(tail);
+    td_sim_free(&sim);
+    remove_outputs(&out);
+    td_model_free(&m);
+}
+
+static void test_run_bad_arguments(void **state)
+{
+    td_model *m = small_rotor();
+    td_sim *sim = make_sim(m);
+    td_output_options out;
+    td_run_summary s;
+    td_error err;
+    (void)state;
+    out_paths(&out, "bad");
+    remove_outputs(&out);
+    assert_int_equal(td_run(sim, m, 0.0, &out, NULL, NULL, &s, &err), TD_ERR_INVALID);
+    out.nodes[1] = 7; /* the shaft has nodes 0..6 */
+    assert_int_equal(td_run(sim, m, 0.1, &out, NULL, NULL, &s, &err), TD_ERR_INVALID);
+    assert_non_null(strstr(err.message, "node 7"));
+    out.nodes[1] = 3;
+    out.sample_rate = 0.0;
+    assert_int_equal(td_run(sim, m, 0.1, &out, NULL, NULL, &s, &err), TD_ERR_INVALID);
+    assert_false(exists(out.hdf5_path));
+    assert_false(exists(out.csv_path));
+    assert_int_equal(td_sim_time(sim), 0.0); /* nothing was stepped */
+    /* no files at all: still a complete run with its summary (15 ms before the unbalance step:
+     * the grid 0..30, no event) */
+    out.sample_rate = RATE;
+    out.hdf5_path[0] = out.csv_path[0] = '\0';
+    assert_int_equal(td_run(sim, m, 0.015, &out, NULL, NULL, &s, &err), TD_OK);
+    assert_int_equal(s.complete, 1);
+    assert_int_equal(s.grid_samples, 31);
+    assert_int_equal(s.events, 0);
+    assert_int_equal(s.samples, 31);
+    assert_int_equal(s.contacts, 0);
+    assert_true(s.first_contact_time == -1.0);
+    assert_int_equal(s.free_at_end, -1); /* 0.015 s is shorter than 5 revolutions */
+    assert_int_equal(s.returned_to_free_orbit, -1);
+    assert_true(s.t_reached == 0.015);
+    td_sim_free(&sim);
+    td_model_free(&m);
+}
+
+/* ---- summary text ------------------------------------------------------------------------ */
+
+static td_run_summary made_up_summary(void)
+{
+    td_run_summary s;
+    memset(&s, 0, sizeof s);
+    s.status = TD_OK;
+    s.complete = 1;
+    s.t_end = s.t_reached = 2.0;
+    s.speed = 90.0;
+    s.samples = 20013;
+    s.grid_samples = 20001;
+    s.events = 12;
+    s.contacts = 5;
+    s.first_contact_time = 0.12345678912345678;
+    s.last_contact_time = 1.1000000001;
+    s.peak_normal_force = 1834.25;
+    s.contact_time = 0.5;
+    s.contact_fraction = 0.25;
+    s.free_window = 5 * 2.0 * TD_PI / 90.0;
+    s.free_at_end = 1;
+    s.returned_to_free_orbit = 1;
+    s.revolutions = 90.0 * 2.0 / (2.0 * TD_PI);
+    s.wall_time_per_revolution = -1.0;
+    s.realtime_factor = 0.5;
+    s.stats.steps = 4242;
+    s.stats.first_contact_time = -1.0;
+    return s;
+}
+
+static void test_summary_text(void **state)
+{
+    td_run_summary s = made_up_summary();
+    char buf[4096], small[16];
+    int n;
+    (void)state;
+    n = td_run_summary_format(buf, sizeof buf, &s);
+    assert_int_equal(n, (int)strlen(buf));
+    assert_non_null(strstr(buf, "0.1234567891 s")); /* 1e-10 s resolution */
+    assert_non_null(strstr(buf, "returned to free orbit      yes"));
+    assert_non_null(strstr(buf, "undefined")); /* wall time per revolution */
+    assert_int_equal(td_run_summary_format(small, sizeof small, &s), n);
+    assert_int_equal(strlen(small), sizeof small - 1);
+    assert_int_equal(td_run_summary_format(NULL, 0, &s), n);
+
+    n = td_run_summary_json(buf, sizeof buf, &s);
+    assert_int_equal(n, (int)strlen(buf));
+    assert_int_equal(buf[0], '{');
+    assert_int_equal(buf[n - 1], '}');
+    assert_non_null(strstr(buf, "\"first_contact_time\":0.12345678912345678,"));
+    assert_non_null(strstr(buf, "\"wall_time_per_revolution\":null,"));
+    assert_non_null(strstr(buf, "\"returned_to_free_orbit\":true,"));
+    assert_non_null(strstr(buf, "\"complete\":true,"));
+    assert_non_null(strstr(buf, "\"steps\":4242,"));
+    s.complete = 0;
+    s.status = TD_ERR_SOLVER;
+    snprintf(s.message, sizeof s.message, "bad \"step\"\n at t = 1");
+    td_run_summary_json(buf, sizeof buf, &s);
+    assert_non_null(strstr(buf, "\"message\":\"bad \\\"step\\\"\\u000a at t = 1\""));
+    td_run_summary_format(buf, sizeof buf, &s);
+    assert_non_null(strstr(buf, "INCOMPLETE (solver failure)"));
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_summary_text),
+        cmocka_unit_test(test_run_bad_arguments),
+        cmocka_unit_test(test_run_matches_hand_loop),
+        cmocka_unit_test(test_run_cancel),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}

@@ -1,0 +1,598 @@
+/* td_sim: the analytic Jacobian against finite differences of the residual in every mode, API
+ * errors, independence of two simulations, grazing without event storms, constraint drift. */
+#include "td_test.h"
+
+#include "sim/sim_internal.h"
+#include "touchdown/case.h"
+#include "touchdown/modal.h"
+#include "touchdown/touchdown.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* A small rotor: 4 elements of 0.25 m, a disc at node 2, a lagged AMB at node 1 and a lag-free one
+ * at node 3, retainers at both ends (c = 0.5 mm, mu = 0.1). */
+static td_model *small_rotor(void)
+{
+    td_model *m = NULL;
+    td_shaft_element el = {0.25, 0.05, 0.0, {2.11e11, 8.1e10, 7810.0}};
+    td_disc disc = {2, 10.0, 0.072, 0.036668};
+    td_amb amb0 = {1, 1, 1.0e6, 200.0, 1.0e4, 40.0, 1.0 / (2 * TD_PI * 100), 1700.0, 0, 1.2e-3};
+    td_amb amb1 = {3, 3, 1.0e6, 200.0, 1.0e4, 40.0, 0.0, 1700.0, 0, 1.2e-3};
+    td_retainer r0 = {0, 0.5e-3, 0.025, 0.0255, 0.1, 0.0, 0.0};
+    td_retainer r1 = {4, 0.5e-3, 0.025, 0.0255, 0.1, 5.0, 0.0};
+    td_unbalance u = {2, 1e-3, 0.3};
+    int i;
+    assert_int_equal(td_model_create(&m, NULL), TD_OK);
+    for (i = 0; i < 4; i++)
+        assert_int_equal(td_model_add_shaft_element(m, &el, NULL), TD_OK);
+    assert_int_equal(td_model_add_disc(m, &disc, NULL), TD_OK);
+    assert_int_equal(td_model_add_amb(m, &amb0, NULL), TD_OK);
+    assert_int_equal(td_model_add_amb(m, &amb1, NULL), TD_OK);
+    assert_int_equal(td_model_add_retainer(m, &r0, NULL), TD_OK);
+    assert_int_equal(td_model_add_retainer(m, &r1, NULL), TD_OK);
+    assert_int_equal(td_model_add_unbalance(m, &u, NULL), TD_OK);
+    assert_int_equal(td_model_set_speed(m, 120.0, NULL), TD_OK);
+    assert_int_equal(td_model_set_gravity(m, 0.0, -9.81, NULL), TD_OK);
+    return m;
+}
+
+static td_sim *small_sim(td_contact_model model, td_contact_damping damping, td_linear_solver ls)
+{
+    td_model *m = small_rotor();
+    td_sim_options o;
+    td_sim *s = NULL;
+    td_error err;
+    td_sim_options_default(&o);
+    o.start = TD_START_REST;
+    o.solver.max_order = 2;
+    o.solver.linear_solver = ls;
+    o.contact.model = model;
+    o.contact.stiffness = 2e9;
+    o.contact.exponent = model == TD_CONTACT_PENALTY && damping == TD_DAMPING_HUNT_CROSSLEY ? 1.5 : 1.0;
+    o.contact.damping = damping;
+    o.contact.damping_coefficient = damping == TD_DAMPING_HUNT_CROSSLEY ? 0.3 : 5e3;
+    if (td_sim_create(m, &o, &s, &err) != TD_OK)
+        fail_msg("td_sim_create: %s", err.message);
+    td_model_free(&m);
+    return s;
+}
+
+/* A state with every unknown nonzero, the retainer nodes at radius `rad` (m). */
+static void fill_state(const td_sim *s, double rad, double *y, double *yp)
+{
+    int i, k;
+    for (i = 0; i < s->neq; i++) {
+        double u = sin(1.7 * i + 0.3), w = cos(2.3 * i + 0.1);
+        y[i] = u;
+        yp[i] = w;
+        if (i < s->ov) { /* q */
+            y[i] *= 1e-4;
+            yp[i] *= 1e-2;
+        } else if (i < s->ow) { /* v */
+            y[i] *= 1e-2;
+            yp[i] *= 10.0;
+        } else if (i < s->ol) { /* w */
+            y[i] *= 300.0;
+            yp[i] *= 1e4;
+        } else if (i < s->ou) { /* lambda */
+            y[i] = 400.0 + 100.0 * u;
+            yp[i] = 0.0;
+        } else { /* eta */
+            y[i] *= 1e-5;
+            yp[i] = 0.0;
+        }
+    }
+    for (k = 0; k < s->nr; k++) {
+        double a = 0.7 + 2.0 * k;
+        y[s->oq + s->ret[k].dx] = rad * cos(a);
+        y[s->oq + s->ret[k].dy] = rad * sin(a);
+        y[s->ov + s->ret[k].dx] = -0.03 * sin(a) + 0.004 * cos(a); /* mostly tangential, some outward */
+        y[s->ov + s->ret[k].dy] = 0.03 * cos(a) + 0.004 * sin(a);
+    }
+}
+
+/* dF/dy + cj dF/dy' of td_sim_jacobian against central differences, entry by entry, relative to the
+ * largest entry of its row; every entry found by differences must lie in the fixed pattern. */
+static void check_jacobian(td_sim *s, double rad, const char *what)
+{
+    int n = s->neq, i, j;
+    double *y = calloc(n, sizeof(double)), *yp = calloc(n, sizeof(double)), *rp = calloc(n, sizeof(double));
+    double *rm = calloc(n, sizeof(double)), *fd = calloc((size_t)n * n, sizeof(double)),
+           *rowmax = calloc(n, sizeof(double));
+    double cj = 2.5e5, t = 0.0123;
+    assert_non_null(fd);
+    fill_state(s, rad, y, yp);
+    for (j = 0; j < n; j++) {
+        double h = 1e-6 * (fabs(y[j]) > 0.0 ? fabs(y[j]) : 1e-6), yj = y[j], ypj = yp[j];
+        y[j] = yj + h;
+        yp[j] = ypj + cj * h;
+        td_sim_residual(s, t, y, yp, rp);
+        y[j] = yj - h;
+        yp[j] = ypj - cj * h;
+        td_sim_residual(s, t, y, yp, rm);
+        y[j] = yj;
+        yp[j] = ypj;
+        for (i = 0; i < n; i++) {
+            fd[i + (size_t)j * n] = (rp[i] - rm[i]) / (2 * h);
+            if (fabs(fd[i + (size_t)j * n]) > rowmax[i])
+                rowmax[i] = fabs(fd[i + (size_t)j * n]);
+        }
+    }
+    td_sim_jacobian(s, t, cj, y);
+    for (j = 0; j < n; j++)
+        for (i = 0; i < n; i++) {
+            int p = td_sim_pattern_find(s, i, j);
+            double an = p >= 0 ? s->jdata[p] : 0.0, f = fd[i + (size_t)j * n];
+            if (!(fabs(an - f) <= 1e-6 * rowmax[i] + 1e-9)) {
+                fail_msg("%s: J(%d,%d) analytic %.10g, differences %.10g (row max %.3g, in pattern %d)", what, i, j, an,
+                         f, rowmax[i], p >= 0);
+            }
+        }
+    free(y), free(yp), free(rp), free(rm), free(fd), free(rowmax);
+}
+
+static void test_jacobian_free_and_amb_modes(void **state)
+{
+    td_sim *s = small_sim(TD_CONTACT_CONSTRAINT, TD_DAMPING_NONE, TD_LINSOL_KLU);
+    (void)state;
+    check_jacobian(s, 3e-4, "free, PD");
+    s->amb_mode[0] = TD_AMB_EXTERNAL;
+    s->amb_control[0] = 123.0;
+    s->amb_control[1] = -45.0;
+    s->amb_mode[1] = TD_AMB_OFF;
+    check_jacobian(s, 3e-4, "free, external/off AMBs");
+    td_sim_free(&s);
+}
+
+static void test_jacobian_constrained_with_friction(void **state)
+{
+    td_sim *s = small_sim(TD_CONTACT_CONSTRAINT, TD_DAMPING_NONE, TD_LINSOL_KLU);
+    (void)state;
+    s->ret[0].mode = s->ret[1].mode = TD_RMODE_CONTACT;
+    s->ret[0].slip = 1;
+    s->ret[1].slip = -1;
+    check_jacobian(s, 0.5e-3 * (1 + 1e-7), "two contacts with friction");
+    s->ret[1].mode = TD_RMODE_FREE;
+    check_jacobian(s, 0.5e-3, "one contact");
+    td_sim_free(&s);
+}
+
+static void test_jacobian_penalty_with_damping(void **state)
+{
+    td_contact_damping laws[3] = {TD_DAMPING_NONE, TD_DAMPING_HUNT_CROSSLEY, TD_DAMPING_KELVIN_VOIGT};
+    int l;
+    (void)state;
+    for (l = 0; l < 3; l++) {
+        td_sim *s = small_sim(TD_CONTACT_PENALTY, laws[l], TD_LINSOL_KLU);
+        char what[64];
+        s->ret[0].mode = s->ret[1].mode = TD_RMODE_PENETRATING;
+        s->ret[0].slip = -1;
+        s->ret[1].slip = 1;
+        snprintf(what, sizeof what, "penalty, damping law %d", l);
+        check_jacobian(s, 0.5e-3 + 2e-6, what);
+        td_sim_free(&s);
+    }
+}
+
+static void test_api_errors(void **state)
+{
+    td_model *m = small_rotor();
+    td_sim_options o;
+    td_sim *s = NULL;
+    td_error err;
+    td_event ev;
+    td_retainer_state rs;
+    double f[2];
+    (void)state;
+    td_sim_options_default(&o);
+    o.start = TD_START_REST;
+    assert_int_equal(td_sim_create(NULL, &o, &s, &err), TD_ERR_INVALID);
+    assert_int_equal(td_sim_create(m, &o, NULL, &err), TD_ERR_INVALID);
+    o.solver.rtol = 0.0;
+    assert_int_equal(td_sim_create(m, &o, &s, &err), TD_ERR_INVALID);
+    assert_null(s);
+    o.solver.rtol = 1e-6;
+    o.solver.max_order = 7;
+    assert_int_equal(td_sim_create(m, &o, &s, &err), TD_ERR_INVALID);
+    assert_non_null(strstr(err.message, "max_order"));
+    o.solver.max_order = 2;
+    o.contact.model = TD_CONTACT_PENALTY;
+    o.contact.exponent = 0.5;
+    assert_int_equal(td_sim_create(m, &o, &s, &err), TD_ERR_INVALID);
+    o.contact.exponent = 1.0;
+    o.contact.model = TD_CONTACT_CONSTRAINT;
+    assert_int_equal(td_sim_create(m, &o, &s, &err), TD_OK);
+    assert_string_equal(td_sim_errmsg(s), "");
+    assert_int_equal(td_sim_last_event(s, &ev), TD_ERR_STATE);
+    assert_int_equal(td_sim_step(s, -1.0, NULL), TD_ERR_INVALID);
+    assert_true(strlen(td_sim_errmsg(s)) > 0);
+    assert_int_equal(td_sim_step(s, NAN, NULL), TD_ERR_INVALID);
+    assert_int_equal(td_sim_retainer_state(s, 2, &rs), TD_ERR_INVALID);
+    assert_int_equal(td_sim_retainer_state(s, -1, &rs), TD_ERR_INVALID);
+    assert_int_equal(td_sim_amb_force(s, 2, f), TD_ERR_INVALID);
+    assert_int_equal(td_sim_set_unbalance(s, 1, 1e-3, 0.0), TD_ERR_INVALID);
+    assert_int_equal(td_sim_set_unbalance(s, 0, -1.0, 0.0), TD_ERR_INVALID);
+    assert_int_equal(td_sim_set_amb_mode(s, 5, TD_AMB_OFF), TD_ERR_INVALID);
+    assert_int_equal(td_sim_set_amb_control(s, 0, NAN, 0.0), TD_ERR_INVALID);
+    assert_int_equal(td_sim_set_speed(s, INFINITY), TD_ERR_INVALID);
+    assert_int_equal(td_sim_dof_count(s), 20);
+    assert_int_equal(td_sim_step(s, 0.0, NULL), TD_OK); /* tout == t: nothing to do */
+    assert_int_equal(td_sim_step(s, 1e-3, NULL), TD_OK);
+    assert_close(td_sim_time(s), 1e-3, 0.0, 0.0);
+    assert_int_equal(td_sim_get_state(s, NULL, NULL), TD_OK);
+    assert_int_equal(td_sim_stats_get(s, NULL), TD_ERR_INVALID);
+    assert_int_equal(td_sim_step(NULL, 1.0, NULL), TD_ERR_INVALID);
+    td_sim_free(&s);
+    assert_null(s);
+    td_sim_free(&s);
+    td_sim_free(NULL);
+    td_model_free(&m);
+    /* a start orbit outside the clearance (the steady orbit of U = 0.1 at 90 rad/s) is refused */
+    {
+        const char *ov[1] = {"unbalances[0].magnitude=0.1"};
+        td_case *c = NULL;
+        assert_int_equal(td_case_load(td_source_path("cases/paper-a.cfg"), ov, 1, &c, NULL), TD_OK);
+        o = *td_case_sim_options(c);
+        assert_int_equal(td_sim_create(td_case_model(c), &o, &s, &err), TD_ERR_INVALID);
+        assert_non_null(strstr(err.message, "outside the clearance"));
+        assert_null(s);
+        td_case_free(&c);
+    }
+}
+
+/* Load a case file of the source tree with overrides; fails the test on error. */
+static td_case *load_case(const char *name, const char **overrides, int n)
+{
+    td_case *c = NULL;
+    td_error err;
+    if (td_case_load(td_source_path(name), overrides, n, &c, &err) != TD_OK)
+        fail_msg("%s: %s", name, err.message);
+    return c;
+}
+
+/* The output grid point after t: k dt with k dt >= t + dt/2. */
+static double next_output(double t, double dt, double t_end)
+{
+    return fmin(t_end, (floor(t / dt + 0.5) + 1.0) * dt);
+}
+
+/* Step to t_end through every event; returns the number of events. */
+static long run_to(td_sim *s, double t_end, double dt)
+{
+    long events = 0;
+    double t = td_sim_time(s);
+    while (t < t_end) {
+        double tout = next_output(t, dt, t_end), tr;
+        td_status st;
+        st = td_sim_step(s, tout, &tr);
+        if (st == TD_EVENT) {
+            events++;
+            continue;
+        }
+        if (st != TD_OK)
+            fail_msg("td_sim_step: %s", td_sim_errmsg(s));
+        t = tr;
+    }
+    return events;
+}
+
+/* Two simulations stepped alternately give bit for bit what one gives alone (no shared state). */
+static void test_two_sims_independent(void **state)
+{
+    td_case *c = load_case("cases/paper-a.cfg", NULL, 0);
+    td_sim_options o = *td_case_sim_options(c);
+    td_sim *alone = NULL, *a = NULL, *b = NULL;
+    int n, i;
+    double *q0, *q1, *q2, t_end = 0.115, dt = 1e-4;
+    long ev_a = 0, ev_b = 0;
+    td_sim_stats st;
+    (void)state;
+    o.solver.max_order = 2;
+    assert_int_equal(td_sim_create(td_case_model(c), &o, &alone, NULL), TD_OK);
+    run_to(alone, t_end, dt);
+    assert_int_equal(td_sim_create(td_case_model(c), &o, &a, NULL), TD_OK);
+    assert_int_equal(td_sim_create(td_case_model(c), &o, &b, NULL), TD_OK);
+    while (td_sim_time(a) < t_end || td_sim_time(b) < t_end) {
+        td_sim *s[2] = {a, b};
+        for (i = 0; i < 2; i++) {
+            double t = td_sim_time(s[i]), tout = next_output(t, dt, t_end);
+            td_status r;
+            if (t >= t_end)
+                continue;
+            r = td_sim_step(s[i], tout, NULL);
+            assert_true(r == TD_OK || r == TD_EVENT);
+            if (r == TD_EVENT)
+                *(i ? &ev_b : &ev_a) += 1;
+        }
+    }
+    n = td_sim_dof_count(alone);
+    q0 = malloc(sizeof(double) * 2 * n);
+    q1 = malloc(sizeof(double) * 2 * n);
+    q2 = malloc(sizeof(double) * 2 * n);
+    td_sim_get_state(alone, q0, q0 + n);
+    td_sim_get_state(a, q1, q1 + n);
+    td_sim_get_state(b, q2, q2 + n);
+    assert_memory_equal(q0, q1, sizeof(double) * 2 * n);
+    assert_memory_equal(q0, q2, sizeof(double) * 2 * n);
+    td_sim_stats_get(alone, &st);
+    assert_true(st.contact_onsets > 0); /* the comparison went through contact */
+    assert_int_equal(ev_a, st.events);
+    assert_int_equal(ev_b, st.events);
+    free(q0), free(q1), free(q2);
+    td_sim_free(&alone), td_sim_free(&a), td_sim_free(&b);
+    td_case_free(&c);
+}
+
+/* Orbit radius at the NDE retainer node of the rig (case A) per unit unbalance. */
+static double orbit_radius_per_unbalance(const td_model *model)
+{
+    td_system *sys = NULL;
+    td_unbalance u = {1, 1.0, 0.0};
+    double *z, r;
+    int n;
+    assert_int_equal(td_system_create(model, &sys, NULL), TD_OK);
+    n = td_modal_state_count(sys);
+    z = malloc(sizeof(double) * n);
+    assert_int_equal(td_modal_start_state(sys, td_model_speed(model), &u, 1, 0, 0.0, z, NULL), TD_OK);
+    r = hypot(z[TD_DOF(2, TD_DOF_X)], z[TD_DOF(2, TD_DOF_Y)]);
+    free(z);
+    td_system_free(&sys);
+    return r;
+}
+
+/* The free orbit touches the clearance circle all the way round (zero radial velocity, zero
+ * contact force). The orbit is then decided by tolerance-level motion, and the rotor micro-bounces
+ * (plastic impacts at ~1e-6 m/s, forces of mN) at the rate of its own dynamics; what must not
+ * happen is a storm of events at one instant, a failure, or the node leaving the circle. */
+static void test_grazing_orbit(void **state)
+{
+    const char *ov[2] = {"schedule = ()", "unbalances = ( { node = 1; magnitude = 0.05; } )"};
+    td_case *c = load_case("cases/paper-a.cfg", ov, 2);
+    double scale[3] = {1.0, 1.0 - 1e-9, 1.0 + 1e-9};
+    int i;
+    (void)state;
+    for (i = 0; i < 3; i++) {
+        td_model *m = NULL;
+        td_sim_options o = *td_case_sim_options(c);
+        td_sim *s = NULL;
+        td_retainer ret;
+        td_retainer_state rs;
+        td_sim_stats st;
+        double U, t = 0.0, t_end = 0.3, dt = 1e-3, t_prev[4] = {-1, -1, -1, -1}, max_dev = 0.0;
+        long events = 0, crowded = 0;
+        assert_int_equal(td_model_clone(td_case_model(c), &m, NULL), TD_OK);
+        td_model_get_retainer(m, 0, &ret);
+        U = ret.clearance / orbit_radius_per_unbalance(m) * scale[i];
+        /* the grazing unbalance, set by a schedule entry at t0 (applied before the start orbit) */
+        {
+            td_change ch = {0.0, TD_CHANGE_UNBALANCE, 0, U, 0.0};
+            assert_int_equal(td_model_add_change(m, &ch, NULL), TD_OK);
+        }
+        o.solver.max_order = 2;
+        if (td_sim_create(m, &o, &s, NULL) != TD_OK)
+            fail_msg("create failed");
+        while (t < t_end) {
+            double tr;
+            td_status r = td_sim_step(s, next_output(t, dt, t_end), &tr);
+            td_sim_retainer_state(s, 0, &rs);
+            max_dev = fmax(max_dev, rs.radius - ret.clearance);
+            if (r == TD_EVENT) {
+                td_event ev;
+                td_sim_last_event(s, &ev);
+                /* four events within 1 us would be a storm */
+                if (t_prev[0] >= 0.0 && ev.time - t_prev[0] < 1e-6)
+                    crowded++;
+                memmove(t_prev, t_prev + 1, 3 * sizeof(double));
+                t_prev[3] = ev.time;
+                events++;
+                continue;
+            }
+            if (r != TD_OK)
+                fail_msg("grazing run failed: %s", td_sim_errmsg(s));
+            t = tr;
+        }
+        td_sim_stats_get(s, &st);
+        print_message("grazing, scale %.9f: %ld events, %ld steps, peak force %.3g N, max r - c %.3g m\n", scale[i],
+                      events, st.steps, st.peak_normal_force, max_dev);
+        assert_int_equal(crowded, 0);
+        assert_true(events < 2000);
+        assert_true(max_dev < 1e-8);
+        assert_true(st.peak_normal_force < 1.0); /* barely pressing */
+        td_sim_free(&s);
+        td_model_free(&m);
+    }
+    td_case_free(&c);
+}
+
+/* Constrained contact at the default tolerances: |r - c| < 1e-9 m at every step in contact. */
+static void test_constrained_drift(void **state)
+{
+    td_case *c = load_case("cases/paper-a.cfg", NULL, 0);
+    td_sim_options o = *td_case_sim_options(c);
+    td_sim *s = NULL;
+    td_sim_stats st;
+    (void)state;
+    o.solver.max_order = 2;
+    assert_int_equal(td_sim_create(td_case_model(c), &o, &s, NULL), TD_OK);
+    run_to(s, 0.25, 1e-4);
+    td_sim_stats_get(s, &st);
+    print_message("case A to 0.25 s: %ld onsets, %.4f s in contact, worst drift %.3g m, peak %.1f N\n",
+                  st.contact_onsets, st.time_in_contact, st.worst_drift, st.peak_normal_force);
+    assert_true(st.contact_onsets > 0 && st.time_in_contact > 0.05);
+    assert_true(st.worst_drift > 0.0 && st.worst_drift < 1e-9);
+    td_sim_free(&s);
+    td_case_free(&c);
+}
+
+/* KLU and the dense solver integrate the same DAE: the same free-flight state to the tolerance. */
+static void test_dense_matches_klu(void **state)
+{
+    td_sim *a = small_sim(TD_CONTACT_CONSTRAINT, TD_DAMPING_NONE, TD_LINSOL_KLU);
+    td_sim *b = small_sim(TD_CONTACT_CONSTRAINT, TD_DAMPING_NONE, TD_LINSOL_DENSE);
+    double qa[20], qb[20];
+    int i;
+    (void)state;
+    assert_int_equal(td_sim_step(a, 0.02, NULL), TD_OK);
+    assert_int_equal(td_sim_step(b, 0.02, NULL), TD_OK);
+    td_sim_get_state(a, qa, NULL);
+    td_sim_get_state(b, qb, NULL);
+    for (i = 0; i < 20; i++)
+        assert_close(qb[i], qa[i], 1e-4, 1e-9);
+    td_sim_free(&a);
+    td_sim_free(&b);
+}
+
+/* TD_AMB_EXTERNAL: a sampled controller that applies the lag-free PD law of AMB 1 (tau = 0) with a
+ * zero-order hold reproduces the built-in law to O(sample period). */
+static void test_external_amb_control(void **state)
+{
+    td_sim *a = small_sim(TD_CONTACT_CONSTRAINT, TD_DAMPING_NONE, TD_LINSOL_KLU);
+    td_sim *b = small_sim(TD_CONTACT_CONSTRAINT, TD_DAMPING_NONE, TD_LINSOL_KLU);
+    td_amb amb;
+    double qa[20], qb[20], va[20], vb[20], t = 0.0, dt = 2e-5, t_end = 0.05, fa[2], fb[2], scale = 0.0;
+    int i;
+    (void)state;
+    td_model_get_amb(a->model, 1, &amb);
+    assert_int_equal(td_sim_set_amb_mode(b, 1, TD_AMB_EXTERNAL), TD_OK);
+    while (t < t_end) {
+        /* sample: the control force -ki (kp x + kd v) at the sensor node, held for dt */
+        td_sim_get_state(b, qb, vb);
+        assert_int_equal(
+            td_sim_set_amb_control(b, 1, -amb.ki * (amb.kp * qb[4 * amb.node] + amb.kd * vb[4 * amb.node]),
+                                   -amb.ki * (amb.kp * qb[4 * amb.node + 1] + amb.kd * vb[4 * amb.node + 1])),
+            TD_OK);
+        t = next_output(t, dt, t_end);
+        assert_int_equal(td_sim_step(a, t, NULL), TD_OK);
+        assert_int_equal(td_sim_step(b, t, NULL), TD_OK);
+    }
+    td_sim_get_state(a, qa, va);
+    td_sim_get_state(b, qb, vb);
+    for (i = 0; i < 20; i++)
+        scale = fmax(scale, fabs(qa[i]));
+    for (i = 0; i < 20; i++)
+        assert_close(qb[i], qa[i], 0.0, 1e-2 * scale);
+    /* the held force is what the AMB applies (plus ks x) */
+    td_sim_amb_force(a, 1, fa);
+    td_sim_amb_force(b, 1, fb);
+    assert_close(fb[0], fa[0], 0.05, 0.0);
+    td_sim_free(&a);
+    td_sim_free(&b);
+}
+
+/* td_sim_set_unbalance at the schedule time gives the run the schedule gives (to the tolerance:
+ * the schedule lands a step on t1, the call restarts from IDA's interpolant there). */
+static void test_api_change_matches_schedule(void **state)
+{
+    const char *ov[1] = {"schedule=()"};
+    td_case *with = load_case("cases/paper-a.cfg", NULL, 0), *without = load_case("cases/paper-a.cfg", ov, 1);
+    td_sim_options o = *td_case_sim_options(with);
+    td_sim *a = NULL, *b = NULL;
+    td_change ch;
+    double qa[52], qb[52], scale = 0.0;
+    int i;
+    td_status r;
+    (void)state;
+    o.solver.max_order = 2;
+    o.solver.rtol = 1e-9;
+    o.solver.atol = 1e-13;
+    td_model_get_change(td_case_model(with), 0, &ch);
+    assert_int_equal(td_sim_create(td_case_model(with), &o, &a, NULL), TD_OK);
+    assert_int_equal(td_sim_create(td_case_model(without), &o, &b, NULL), TD_OK);
+    while ((r = td_sim_step(a, 0.104, NULL)) == TD_EVENT)
+        ;
+    assert_int_equal(r, TD_OK);
+    assert_int_equal(td_sim_step(b, ch.time, NULL), TD_OK);
+    assert_int_equal(td_sim_set_unbalance(b, 0, ch.magnitude, ch.phase), TD_OK);
+    assert_int_equal(td_sim_step(b, 0.104, NULL), TD_OK);
+    td_sim_get_state(a, qa, NULL);
+    td_sim_get_state(b, qb, NULL);
+    for (i = 0; i < 52; i++)
+        scale = fmax(scale, fabs(qa[i]));
+    for (i = 0; i < 52; i++)
+        assert_close(qb[i], qa[i], 0.0, 1e-6 * scale);
+    td_sim_free(&a), td_sim_free(&b);
+    td_case_free(&with), td_case_free(&without);
+}
+
+/* A speed change keeps the spin angle (and so the unbalance force) continuous and the state too. */
+static void test_speed_change_continuity(void **state)
+{
+    td_sim *s = small_sim(TD_CONTACT_CONSTRAINT, TD_DAMPING_NONE, TD_LINSOL_KLU);
+    double phi0, phi1, q0[20], q1[20];
+    int i;
+    (void)state;
+    assert_int_equal(td_sim_step(s, 0.0123, NULL), TD_OK);
+    phi0 = td_sim_spin_angle(s, s->t);
+    td_sim_get_state(s, q0, NULL);
+    assert_int_equal(td_sim_set_speed(s, 200.0), TD_OK);
+    phi1 = td_sim_spin_angle(s, s->t);
+    td_sim_get_state(s, q1, NULL);
+    assert_close(phi1, phi0, 1e-15, 0.0);
+    assert_close(phi0, 120.0 * 0.0123, 1e-12, 0.0);
+    for (i = 0; i < 20; i++)
+        assert_true(q1[i] == q0[i]);
+    assert_int_equal(td_sim_step(s, 0.0223, NULL), TD_OK);
+    assert_close(td_sim_spin_angle(s, s->t), phi0 + 200.0 * 0.01, 1e-12, 0.0);
+    td_sim_free(&s);
+}
+
+/* Friction reversal: a bore turning at R_s Omega / R_b leaves only the whirl term of eq. (16), so
+ * v_s changes sign with the whirl; the slip mode must follow it (friction = -sgn(v_s) mu N). */
+static void test_friction_reversal(void **state)
+{
+    const char *ov[1] = {"retainers[0].bore_speed=87.378640776699"}; /* 0.025 * 90 / 0.02575 */
+    td_case *c = load_case("cases/paper-a.cfg", ov, 1);
+    td_sim_options o = *td_case_sim_options(c);
+    td_sim *s = NULL;
+    double t = 0.0, t_end = 0.2, dt = 1e-4;
+    long reversals = 0, checked = 0;
+    (void)state;
+    o.solver.max_order = 2;
+    assert_int_equal(td_sim_create(td_case_model(c), &o, &s, NULL), TD_OK);
+    while (t < t_end) {
+        double tr;
+        td_retainer_state rs;
+        td_status r = td_sim_step(s, next_output(t, dt, t_end), &tr);
+        if (r == TD_EVENT) {
+            td_event ev;
+            td_sim_last_event(s, &ev);
+            reversals += ev.kind == TD_EVENT_FRICTION_REVERSAL;
+            continue;
+        }
+        if (r != TD_OK)
+            fail_msg("%s", td_sim_errmsg(s));
+        t = tr;
+        td_sim_retainer_state(s, 0, &rs);
+        if (rs.in_contact && fabs(rs.sliding_velocity) > 1e-6) {
+            assert_close(rs.friction_force, -(rs.sliding_velocity > 0 ? 0.1 : -0.1) * rs.normal_force, 1e-12, 1e-9);
+            checked++;
+        }
+    }
+    print_message("friction reversals: %ld, samples checked %ld\n", reversals, checked);
+    assert_true(reversals > 0);
+    assert_true(checked > 100);
+    td_sim_free(&s);
+    td_case_free(&c);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_jacobian_free_and_amb_modes),
+        cmocka_unit_test(test_jacobian_constrained_with_friction),
+        cmocka_unit_test(test_jacobian_penalty_with_damping),
+        cmocka_unit_test(test_api_errors),
+        cmocka_unit_test(test_dense_matches_klu),
+        cmocka_unit_test(test_two_sims_independent),
+        cmocka_unit_test(test_grazing_orbit),
+        cmocka_unit_test(test_constrained_drift),
+        cmocka_unit_test(test_external_amb_control),
+        cmocka_unit_test(test_api_change_matches_schedule),
+        cmocka_unit_test(test_speed_change_continuity),
+        cmocka_unit_test(test_friction_reversal),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}

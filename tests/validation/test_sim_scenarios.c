@@ -1,0 +1,333 @@
+/*
+ * Whole-run scenarios on the reference rig, each checked against a law that does not come from
+ * the simulation: two contacts at once (constraints hold, friction obeys eq. 17), a rotor drop
+ * that settles at the static equilibrium of weight, normal force and Coulomb friction, energy
+ * conservation of a frictionless undamped contact, and penalty contact bracketing.
+ */
+#include "td_test.h"
+
+#include "touchdown/case.h"
+#include "touchdown/touchdown.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static td_case *load_case(const char *name, const char **overrides, int n)
+{
+    td_case *c = NULL;
+    td_error err;
+    if (td_case_load(td_source_path(name), overrides, n, &c, &err) != TD_OK)
+        fail_msg("%s: %s", name, err.message);
+    return c;
+}
+
+static td_sim *make_sim(const td_case *c, double rtol, double atol)
+{
+    td_sim_options o = *td_case_sim_options(c);
+    td_sim *s = NULL;
+    td_error err;
+    o.solver.max_order = 2;
+    if (rtol > 0.0) {
+        o.solver.rtol = rtol;
+        o.solver.atol = atol;
+    }
+    if (td_sim_create(td_case_model(c), &o, &s, &err) != TD_OK)
+        fail_msg("td_sim_create: %s", err.message);
+    return s;
+}
+
+static double next_output(double t, double dt, double t_end)
+{
+    return fmin(t_end, (floor(t / dt + 0.5) + 1.0) * dt);
+}
+
+/* Unbalances at both end discs, 1 rad apart, stepped up at 0.1 s: both retainers in contact at
+ * once. At every sample with a contact the node is on the circle and the friction force is
+ * -sgn(v_s) mu N (eq. 17); the constraints hold to 1e-9 m at every step. */
+static void test_two_contacts(void **state)
+{
+    const char *ov[2] = {
+        "unbalances=({node=1;magnitude=0.02;},{node=11;magnitude=0.02;phase=1.0;})",
+        "schedule=({time=0.1;unbalance=0;magnitude=0.1;},{time=0.1;unbalance=1;magnitude=0.1;phase=1.0;})"};
+    td_case *c = load_case("cases/paper-a.cfg", ov, 2);
+    td_sim *s = make_sim(c, 0.0, 0.0);
+    td_retainer ret[2];
+    td_sim_stats st;
+    double t = 0.0, t_end = 0.3, dt = 1e-4;
+    long both = 0, in_contact = 0;
+    int k;
+    (void)state;
+    for (k = 0; k < 2; k++)
+        td_model_get_retainer(td_case_model(c), k, &ret[k]);
+    while (t < t_end) {
+        double tr;
+        td_status r = td_sim_step(s, next_output(t, dt, t_end), &tr);
+        int n_in = 0;
+        if (r != TD_OK && r != TD_EVENT)
+            fail_msg("%s", td_sim_errmsg(s));
+        for (k = 0; k < 2; k++) {
+            td_retainer_state rs;
+            td_sim_retainer_state(s, k, &rs);
+            if (!rs.in_contact) {
+                assert_true(rs.radius <= ret[k].clearance * (1 + 2e-6)); /* free: inside (disarmed band atol) */
+                continue;
+            }
+            n_in++;
+            in_contact++;
+            assert_close(rs.radius, ret[k].clearance, 0.0, 1e-8); /* interpolated states: tolerance level */
+            assert_true(rs.normal_force >= 0.0);
+            assert_close(rs.friction_force, -(rs.sliding_velocity > 0 ? 1.0 : -1.0) * ret[k].friction * rs.normal_force,
+                         1e-12, 1e-9);
+        }
+        if (n_in == 2)
+            both++;
+        if (r == TD_OK)
+            t = tr;
+    }
+    td_sim_stats_get(s, &st);
+    print_message("two contacts: %ld samples with both retainers in contact, %ld contact samples, %ld onsets, "
+                  "worst drift %.3g m, peak %.1f N\n",
+                  both, in_contact, st.contact_onsets, st.worst_drift, st.peak_normal_force);
+    assert_true(both >= 50);
+    assert_true(st.worst_drift < 1e-9);
+    td_sim_free(&s);
+    td_case_free(&c);
+}
+
+/* Rotor drop (both AMBs fail at 0.1 s, gravity on) with structural damping and no unbalance: the
+ * rotor must come to rest on both retainers where weight, normal force and sliding friction
+ * (v_s = R_s Omega > 0) balance: at the whirl angle -90 deg - atan(mu), with
+ * N = m g / (2 sqrt(1 + mu^2)) on each retainer (the rig is symmetric about its middle). */
+static void test_rotor_drop_settles(void **state)
+{
+    const char *ov[2] = {"unbalances[0].magnitude=0.0", "shaft.rayleigh={alpha=20.0; beta=1e-5;}"};
+    td_case *c = load_case("cases/rotor-drop.cfg", ov, 2);
+    td_sim *s = make_sim(c, 0.0, 0.0);
+    const td_model *m = td_case_model(c);
+    double t = 0.0, t_end = 2.5, dt = 1e-3, gx, gy, g, mass = td_model_total_mass(m);
+    td_retainer ret;
+    int k;
+    (void)state;
+    td_model_gravity(m, &gx, &gy);
+    g = hypot(gx, gy);
+    td_model_get_retainer(m, 0, &ret);
+    while (t < t_end) {
+        double tr;
+        td_status r = td_sim_step(s, next_output(t, dt, t_end), &tr);
+        if (r != TD_OK && r != TD_EVENT)
+            fail_msg("%s", td_sim_errmsg(s));
+        if (r == TD_OK)
+            t = tr;
+    }
+    for (k = 0; k < 2; k++) {
+        td_retainer_state rs;
+        double angle = -0.5 * TD_PI - atan(ret.friction),
+               n_exp = mass * g / (2.0 * sqrt(1.0 + ret.friction * ret.friction));
+        td_sim_retainer_state(s, k, &rs);
+        print_message("retainer %d at rest: angle %.4f deg (expected %.4f), N = %.3f N (expected %.3f)\n", k,
+                      rs.whirl_angle * 180 / TD_PI, angle * 180 / TD_PI, rs.normal_force, n_exp);
+        assert_true(rs.in_contact);
+        assert_close(rs.whirl_angle, angle, 0.0, 1e-3);
+        assert_close(rs.normal_force, n_exp, 2e-3, 0.0);
+        assert_close(rs.friction_force, -ret.friction * rs.normal_force, 1e-12, 0.0);
+        assert_true(fabs(rs.radial_velocity) < 1e-6);
+    }
+    td_sim_free(&s);
+    td_case_free(&c);
+}
+
+/* Mechanical energy 1/2 v'Mv + 1/2 q'Kq - f_g'q of the state, from the system matrices. */
+typedef struct energy_model {
+    int n;
+    double *M, *K, *fg;
+} energy_model;
+
+static energy_model energy_model_of(const td_model *model)
+{
+    energy_model e;
+    td_system *sys = NULL;
+    double gx, gy;
+    int i, j;
+    assert_int_equal(td_system_create(model, &sys, NULL), TD_OK);
+    e.n = td_system_dof_count(sys);
+    e.M = malloc(sizeof(double) * e.n * e.n);
+    e.K = malloc(sizeof(double) * e.n * e.n);
+    e.fg = calloc(e.n, sizeof(double));
+    assert_int_equal(td_system_dense(sys, TD_MATRIX_MASS, e.M, NULL), TD_OK);
+    assert_int_equal(td_system_dense(sys, TD_MATRIX_STIFFNESS, e.K, NULL), TD_OK);
+    td_model_gravity(model, &gx, &gy);
+    for (i = 0; i < e.n; i++) /* f_g = M a, a = g on every node's x, y */
+        for (j = 0; j < e.n; j++)
+            e.fg[i] += e.M[i + j * e.n] * (j % 4 == 0 ? gx : (j % 4 == 1 ? gy : 0.0));
+    td_system_free(&sys);
+    return e;
+}
+
+static double energy(const energy_model *e, td_sim *s)
+{
+    double *q = malloc(sizeof(double) * e->n), *v = malloc(sizeof(double) * e->n), E = 0.0;
+    int i, j;
+    td_sim_get_state(s, q, v);
+    for (i = 0; i < e->n; i++) {
+        for (j = 0; j < e->n; j++)
+            E += 0.5 * v[i] * e->M[i + j * e->n] * v[j] + 0.5 * q[i] * e->K[i + j * e->n] * q[j];
+        E -= e->fg[i] * q[i];
+    }
+    free(q), free(v);
+    return E;
+}
+
+/* Largest relative change of the energy inside any contact phase (between two events, with a
+ * retainer in contact), and the largest energy change across an onset (must not be a gain). */
+static void energy_run(const td_case *c, double rtol, double atol, double *worst_phase, double *worst_gain,
+                       long *onsets)
+{
+    energy_model em = energy_model_of(td_case_model(c));
+    td_sim *s = make_sim(c, rtol, atol);
+    double t = 0.0, t_end = 0.03, dt = 2e-6, e_lo = HUGE_VAL, e_hi = -HUGE_VAL, e_before = 0.0;
+    int in_contact = 0, k;
+    td_sim_stats st;
+    *worst_phase = 0.0;
+    *worst_gain = -HUGE_VAL;
+    while (t < t_end) {
+        double tr, E;
+        td_status r = td_sim_step(s, next_output(t, dt, t_end), &tr);
+        if (r != TD_OK && r != TD_EVENT)
+            fail_msg("%s", td_sim_errmsg(s));
+        E = energy(&em, s);
+        if (r == TD_EVENT) {
+            td_event ev;
+            td_sim_last_event(s, &ev);
+            if (in_contact && e_hi >= e_lo)
+                *worst_phase = fmax(*worst_phase, (e_hi - e_lo) / fabs(E));
+            if (ev.kind == TD_EVENT_CONTACT_ONSET && e_hi >= e_lo)
+                *worst_gain = fmax(*worst_gain, (E - e_before) / fabs(E));
+            e_lo = HUGE_VAL;
+            e_hi = -HUGE_VAL;
+            in_contact = 0;
+        } else {
+            e_lo = fmin(e_lo, E);
+            e_hi = fmax(e_hi, E);
+            e_before = E;
+            t = tr;
+            for (k = 0; k < 2; k++) {
+                td_retainer_state rs;
+                td_sim_retainer_state(s, k, &rs);
+                in_contact = in_contact || rs.in_contact;
+            }
+        }
+    }
+    td_sim_stats_get(s, &st);
+    *onsets = st.contact_onsets;
+    td_sim_free(&s);
+    free(em.M), free(em.K), free(em.fg);
+}
+
+/* A conservative rig (AMBs replaced by undamped springs, no unbalance, frictionless retainers,
+ * gravity on, start at rest): it falls onto both retainers and chatters. Between onset and
+ * release the constraint does no work (J v = 0, no friction), so the energy must be constant to
+ * the solver tolerance, converging as the tolerance is tightened (BDF2's numerical damping of
+ * the undamped high modes the impacts excite is what remains); every plastic impact loses energy.
+ * Measured: 4.2e-5 at rtol 1e-8, 8.5e-7 at rtol 1e-10. */
+static void test_energy_conservation(void **state)
+{
+    const char *ov[8] = {"ambs=()",
+                         "bearings=({node=3;kxx=1.0e5;},{node=9;kxx=1.0e5;})",
+                         "unbalances=()",
+                         "schedule=()",
+                         "gravity={enabled=true;}",
+                         "retainers[0].friction=0.0",
+                         "retainers[1].friction=0.0",
+                         "start=\"rest\""};
+    td_case *c = load_case("cases/paper-a.cfg", ov, 8);
+    double phase_loose, phase_tight, gain_loose, gain_tight;
+    long on_loose, on_tight;
+    (void)state;
+    energy_run(c, 1e-8, 1e-11, &phase_loose, &gain_loose, &on_loose);
+    energy_run(c, 1e-10, 1e-13, &phase_tight, &gain_tight, &on_tight);
+    print_message("energy drift inside contact phases: %.3g (rtol 1e-8), %.3g (rtol 1e-10); onsets %ld, %ld; "
+                  "largest relative change across an onset %.3g, %.3g\n",
+                  phase_loose, phase_tight, on_loose, on_tight, gain_loose, gain_tight);
+    assert_true(on_loose > 2 && on_tight > 2);
+    assert_true(phase_tight < 2e-6);
+    assert_true(phase_tight < 0.1 * phase_loose);
+    assert_true(gain_tight < 0.0 && gain_loose < 0.0); /* every impact loses energy */
+    td_case_free(&c);
+}
+
+/* Penalty contact (case C, Kc = 1.25e12 N/m): the free flight is the constraint model's, so the
+ * first penalty entry is the first constraint onset; enter and exit alternate per retainer; the
+ * reported normal force is Kc (r - c) inside and never negative. */
+static void test_penalty_contact(void **state)
+{
+    td_case *cc = load_case("cases/paper-c.cfg", NULL, 0), *ca = load_case("cases/paper-a.cfg", NULL, 0);
+    td_sim *sp = make_sim(cc, 1e-8, 1e-12), *sa = make_sim(ca, 1e-8, 1e-12);
+    td_contact_options co = td_case_sim_options(cc)->contact;
+    double t = 0.0, t_end = 0.115, dt = 1e-5, t_first_a = -1.0, max_pen = 0.0;
+    int inside[2] = {0, 0}, k;
+    td_retainer ret;
+    td_sim_stats st;
+    (void)state;
+    td_model_get_retainer(td_case_model(cc), 0, &ret);
+    while (t < t_end) {
+        double tr;
+        td_status r = td_sim_step(sp, next_output(t, dt, t_end), &tr);
+        if (r == TD_EVENT) {
+            td_event ev;
+            td_sim_last_event(sp, &ev);
+            if (ev.kind == TD_EVENT_PENALTY_ENTER) {
+                assert_int_equal(inside[ev.retainer], 0);
+                inside[ev.retainer] = 1;
+            } else if (ev.kind == TD_EVENT_PENALTY_EXIT) {
+                assert_int_equal(inside[ev.retainer], 1);
+                inside[ev.retainer] = 0;
+            }
+            continue;
+        }
+        if (r != TD_OK)
+            fail_msg("%s", td_sim_errmsg(sp));
+        t = tr;
+        for (k = 0; k < 2; k++) {
+            td_retainer_state rs;
+            td_sim_retainer_state(sp, k, &rs);
+            assert_true(rs.normal_force >= 0.0);
+            if (rs.in_contact) {
+                assert_close(rs.normal_force, fmax(0.0, co.stiffness * (rs.radius - ret.clearance)), 1e-9, 1e-6);
+                max_pen = fmax(max_pen, rs.radius - ret.clearance);
+            }
+        }
+    }
+    for (;;) {
+        td_status r = td_sim_step(sa, t_end, NULL);
+        td_event ev;
+        if (r != TD_EVENT)
+            break;
+        td_sim_last_event(sa, &ev);
+        if (ev.kind == TD_EVENT_CONTACT_ONSET) {
+            t_first_a = ev.time;
+            break;
+        }
+    }
+    td_sim_stats_get(sp, &st);
+    print_message("penalty: first entry %.12f s, constraint onset %.12f s; %ld entries, peak %.0f N, "
+                  "largest sampled penetration %.3g m\n",
+                  st.first_contact_time, t_first_a, st.contact_onsets, st.peak_normal_force, max_pen);
+    assert_true(st.contact_onsets > 0);
+    assert_close(st.first_contact_time, t_first_a, 0.0, 1e-9);
+    assert_true(st.peak_normal_force > 0.0);
+    td_sim_free(&sp), td_sim_free(&sa);
+    td_case_free(&cc), td_case_free(&ca);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_two_contacts),
+        cmocka_unit_test(test_rotor_drop_settles),
+        cmocka_unit_test(test_energy_conservation),
+        cmocka_unit_test(test_penalty_contact),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}

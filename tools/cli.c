@@ -1,0 +1,48 @@
+/* Helpers shared by the subcommands: overrides, case loading, error lines, exit codes. */
+#include "cli.h"
+
+#include <stdarg.h>
+
+int td_cli_add_set(td_cli_sets *sets, const char *kv)
+{
+    if (sets->count >= TD_CLI_MAX_SETS) {
+        td_cli_error("--set", "at most %d overrides", TD_CLI_MAX_SETS);
+        return TD_EXIT_USAGE;
+    }
+    sets->items[sets->count++] = kv;
+    return TD_EXIT_OK;
+}
+
+int td_cli_load_case(const char *path, const td_cli_sets *sets, td_case **out)
+{
+    td_error err;
+    td_status st;
+    td_error_clear(&err);
+    st = td_case_load(path, sets ? sets->items : NULL, sets ? sets->count : 0, out, &err);
+    if (st != TD_OK) {
+        fprintf(stderr, "touchdown: %s\n", err.message[0] ? err.message : td_strerror(st));
+        return TD_EXIT_USAGE;
+    }
+    return TD_EXIT_OK;
+}
+
+int td_cli_exit_code(td_status st)
+{
+    switch (st) {
+    case TD_OK:
+    case TD_EVENT: return TD_EXIT_OK;
+    case TD_ERR_PARSE:
+    case TD_ERR_INVALID: return TD_EXIT_USAGE;
+    default: return TD_EXIT_FAILED;
+    }
+}
+
+void td_cli_error(const char *cmd, const char *fmt, ...)
+{
+    va_list ap;
+    fprintf(stderr, "touchdown %s: ", cmd);
+    va_start(ap, fmt);
+    vfprintf(stderr, fmt, ap);
+    va_end(ap);
+    fputc('\n', stderr);
+}

@@ -1,0 +1,48 @@
+/* The touchdown command-line tool: shared declarations of its subcommands. No physics here. */
+#ifndef TD_TOOLS_CLI_H
+#define TD_TOOLS_CLI_H
+
+#include "touchdown/touchdown.h"
+#include "touchdown/case.h"
+
+#include <stdio.h>
+
+/* Exit codes (documented in --help and docs/cli.md). */
+enum {
+    TD_EXIT_OK = 0,      /* success */
+    TD_EXIT_FAILED = 1,  /* the simulation or analysis failed (solver, numerics, interrupted, output) */
+    TD_EXIT_USAGE = 2    /* bad input: usage, case file, overrides */
+};
+
+/* Largest number of --set overrides on one command line. */
+#define TD_CLI_MAX_SETS 64
+
+/* --set KEY=VALUE overrides collected from the command line. */
+typedef struct td_cli_sets {
+    const char *items[TD_CLI_MAX_SETS];
+    int count;
+} td_cli_sets;
+
+/* Add one --set argument; prints an error and returns TD_EXIT_USAGE when there are too many. */
+int td_cli_add_set(td_cli_sets *sets, const char *kv);
+
+/* Load a case with overrides; on failure print "touchdown: MESSAGE" and return TD_EXIT_USAGE. */
+int td_cli_load_case(const char *path, const td_cli_sets *sets, td_case **out);
+
+/* Map a library status to an exit code: input errors 2, everything else 1. */
+int td_cli_exit_code(td_status st);
+
+/* Print an error line "touchdown CMD: message" to stderr. */
+void td_cli_error(const char *cmd, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 2, 3)))
+#endif
+    ;
+
+int td_cmd_run(int argc, char **argv);
+int td_cmd_modal(int argc, char **argv);
+int td_cmd_info(int argc, char **argv);
+int td_cmd_plot(int argc, char **argv);
+int td_cmd_bench(int argc, char **argv);
+
+#endif

@@ -1,0 +1,148 @@
+/* touchdown info: what a case describes, and its first modes. */
+#include "cli.h"
+#include "modal_print.h"
+
+#include <getopt.h>
+#include <stdlib.h>
+
+static const char info_usage[] =
+    "usage: touchdown info [OPTIONS] CASE\n"
+    "\n"
+    "Print what CASE describes: shaft nodes and elements, masses, AMBs, plain bearings,\n"
+    "retainers, unbalances, the schedule, DOF and state counts, and the first modes of the\n"
+    "contact-free system at the case speed.\n"
+    "\n"
+    "options:\n"
+    "  -s, --set KEY=VALUE  override a case key (repeatable)\n"
+    "  -n, --modes N        number of modes to list (default 6)\n"
+    "  -h, --help           this help\n";
+
+static void print_parts(const td_model *m)
+{
+    int i;
+    double disc_mass = 0.0;
+    td_shaft_options so;
+    td_model_shaft_options(m, &so);
+    printf("shaft        %d elements, %d nodes, length %.6g m, %s, %s mass\n", td_model_shaft_element_count(m),
+           td_model_node_count(m), td_model_node_position(m, td_model_node_count(m) - 1),
+           so.beam == TD_BEAM_TIMOSHENKO ? "Timoshenko" : "Euler-Bernoulli",
+           so.mass == TD_MASS_LUMPED ? "lumped" : "consistent");
+    for (i = 0; i < td_model_disc_count(m); i++) {
+        td_disc d;
+        td_model_get_disc(m, i, &d);
+        disc_mass += d.mass;
+        if (d.Ip > 0.0 || d.Id > 0.0)
+            printf("disc         node %d: m %.6g kg, Ip %.6g kg m^2, Id %.6g kg m^2\n", d.node, d.mass, d.Ip, d.Id);
+        else
+            printf("point mass   node %d: %.6g kg\n", d.node, d.mass);
+    }
+    printf("mass         %.6f kg in all (shaft %.6f kg, discs and point masses %.6f kg)\n", td_model_total_mass(m),
+           td_model_total_mass(m) - disc_mass, disc_mass);
+    for (i = 0; i < td_model_amb_count(m); i++) {
+        td_amb a;
+        td_model_get_amb(m, i, &a);
+        printf("amb %-8d node %d (sensor %d): ks %.6g N/m, ki %.6g N/A, kp %.6g A/m, kd %.6g A s/m, tau %.6g s, "
+               "capacity %.6g N%s\n",
+               i, a.node, a.sensor_node, a.ks, a.ki, a.kp, a.kd, a.tau, a.force_capacity,
+               a.saturation ? " (saturating)" : "");
+    }
+    for (i = 0; i < td_model_bearing_count(m); i++) {
+        td_bearing b;
+        td_model_get_bearing(m, i, &b);
+        printf("bearing %-4d node %d: kxx %.6g kyy %.6g N/m, cxx %.6g cyy %.6g N s/m\n", i, b.node, b.kxx, b.kyy,
+               b.cxx, b.cyy);
+    }
+    for (i = 0; i < td_model_retainer_count(m); i++) {
+        td_retainer r;
+        td_model_get_retainer(m, i, &r);
+        printf("retainer %-3d node %d: clearance %.6g m, Rs %.6g m, Rb %.6g m, mu %.6g, bore speed %.6g rad/s, "
+               "restitution %.6g\n",
+               i, r.node, r.clearance, r.shaft_radius, r.bore_radius, r.friction, r.bore_speed, r.restitution);
+    }
+    for (i = 0; i < td_model_unbalance_count(m); i++) {
+        td_unbalance u;
+        td_model_get_unbalance(m, i, &u);
+        printf("unbalance %-2d node %d: %.6g kg m at %.6g rad\n", i, u.node, u.magnitude, u.phase);
+    }
+    for (i = 0; i < td_model_change_count(m); i++) {
+        td_change ch;
+        td_model_get_change(m, i, &ch);
+        if (ch.kind == TD_CHANGE_UNBALANCE)
+            printf("at t = %-7.6g unbalance %d becomes %.6g kg m at %.6g rad\n", ch.time, ch.index, ch.magnitude,
+                   ch.phase);
+        else
+            printf("at t = %-7.6g amb %d %s\n", ch.time, ch.index, ch.kind == TD_CHANGE_AMB_OFF ? "fails" : "restored");
+    }
+}
+
+static int print_modes(const td_model *m, int count)
+{
+    td_system *sys = NULL;
+    td_modal *modes = NULL;
+    td_error err;
+    double gx, gy;
+    if (td_system_create(m, &sys, &err) != TD_OK) {
+        fprintf(stderr, "touchdown info: %s\n", err.message);
+        return TD_EXIT_USAGE;
+    }
+    td_model_gravity(m, &gx, &gy);
+    printf("speed        %.9g rad/s (%.9g rpm)\n", td_model_speed(m), td_model_speed(m) * 30.0 / 3.14159265358979323846);
+    printf("gravity      %s\n", (gx != 0.0 || gy != 0.0) ? "on" : "off");
+    printf("DOFs         %d mechanical (4 per node), %d first-order states with the AMB lags\n",
+           td_system_dof_count(sys), td_modal_state_count(sys));
+    if (td_modal_solve(sys, td_model_speed(m), &modes, &err) != TD_OK) {
+        fprintf(stderr, "touchdown info: %s\n", err.message);
+        td_system_free(&sys);
+        return TD_EXIT_FAILED;
+    }
+    printf("stability    %s\n", td_stability_word(modes));
+    printf("first modes at the case speed:\n");
+    td_print_modes(stdout, modes, count, 10);
+    td_modal_free(&modes);
+    td_system_free(&sys);
+    return TD_EXIT_OK;
+}
+
+int td_cmd_info(int argc, char **argv)
+{
+    static const struct option longopts[] = {{"set", required_argument, NULL, 's'},
+                                             {"modes", required_argument, NULL, 'n'},
+                                             {"help", no_argument, NULL, 'h'},
+                                             {NULL, 0, NULL, 0}};
+    td_cli_sets sets = {{0}, 0};
+    td_case *c = NULL;
+    int opt, code, count = 6;
+    char *end;
+
+    optind = 1;
+    while ((opt = getopt_long(argc, argv, "s:n:h", longopts, NULL)) != -1) {
+        switch (opt) {
+        case 's':
+            if (td_cli_add_set(&sets, optarg))
+                return TD_EXIT_USAGE;
+            break;
+        case 'n':
+            count = (int)strtol(optarg, &end, 10);
+            if (*end || count < 1) {
+                td_cli_error("info", "--modes wants a positive whole number, not '%s'", optarg);
+                return TD_EXIT_USAGE;
+            }
+            break;
+        case 'h': fputs(info_usage, stdout); return TD_EXIT_OK;
+        default: fputs(info_usage, stderr); return TD_EXIT_USAGE;
+        }
+    }
+    if (optind != argc - 1) {
+        td_cli_error("info", "expected exactly one case file (see touchdown info --help)");
+        return TD_EXIT_USAGE;
+    }
+    if ((code = td_cli_load_case(argv[optind], &sets, &c)))
+        return code;
+    printf("case         %s (%s)\n", td_case_name(c), td_case_path(c));
+    if (td_case_description(c)[0])
+        printf("description  %s\n", td_case_description(c));
+    print_parts(td_case_model(c));
+    code = print_modes(td_case_model(c), count);
+    td_case_free(&c);
+    return code;
+}

@@ -1,0 +1,211 @@
+/* touchdown modal: modes, Campbell diagram, critical speeds and unbalance response of a case. */
+#include "cli.h"
+#include "modal_print.h"
+
+#include <getopt.h>
+#include <stdlib.h>
+#include <string.h>
+
+static const char modal_usage[] =
+    "usage: touchdown modal [OPTIONS] CASE\n"
+    "\n"
+    "Eigen-analysis of the contact-free first-order system (AMB force lags included):\n"
+    "damped natural frequencies (rad/s and Hz, 12 significant digits), damping ratios and\n"
+    "whirl directions at the case speed; the Campbell diagram over modal.speed_min..speed_max;\n"
+    "the critical speeds (forward and backward whirl crossing the 1x line); and the steady\n"
+    "unbalance response (orbits at the retainer and AMB nodes) at modal.response_speeds.\n"
+    "Writes everything, mode shapes included, to CSV and HDF5.\n"
+    "\n"
+    "options:\n"
+    "  -s, --set KEY=VALUE  override a case key (repeatable), e.g. --set modal.speed_max=500\n"
+    "  -w, --speed W        analyse at W rad/s instead of the case speed\n"
+    "  -o, --output PREFIX  write PREFIX.csv and PREFIX.h5 (default CASENAME-modal.*)\n"
+    "      --csv PATH       CSV path ('' for none)\n"
+    "      --hdf5 PATH      HDF5 path ('' for none)\n"
+    "  -q, --quiet          print nothing but errors\n"
+    "  -h, --help           this help\n"
+    "\n"
+    "exit codes: 0 success, 1 the analysis failed, 2 bad input or usage.\n";
+
+static void print_modes(const td_modal *modes, int count)
+{
+    printf("modes at %.12g rad/s (%s):\n", td_modal_speed(modes), td_stability_word(modes));
+    td_print_modes(stdout, modes, count, 12);
+    td_print_overdamped(stdout, modes);
+}
+
+static void print_critical(const td_critical_speed *cs, int n, const td_modal_options *opt)
+{
+    int i;
+    printf("critical speeds in %.6g..%.6g rad/s:\n", opt->speed_min, opt->speed_max);
+    if (n == 0)
+        printf("  none\n");
+    for (i = 0; i < n; i++)
+        printf("  %-9s %20.12g rad/s %20.12g Hz %12.2f rpm  zeta %.6g\n", td_whirl_name(cs[i].whirl), cs[i].speed,
+               cs[i].freq_hz, cs[i].speed * 30.0 / 3.14159265358979323846, cs[i].zeta);
+}
+
+static void print_orbits(const td_model *m, const td_harmonic *h)
+{
+    int i;
+    printf("unbalance response at %.12g rad/s (semi-axes of the steady orbit):\n", td_harmonic_speed(h));
+    for (i = 0; i < td_model_retainer_count(m); i++) {
+        td_retainer r;
+        td_orbit o;
+        td_model_get_retainer(m, i, &r);
+        if (td_harmonic_orbit(h, r.node, &o) == TD_OK)
+            printf("  retainer %d, node %d: major %.9g m, minor %.9g m (%.4g of the clearance)\n", i, r.node, o.major,
+                   o.minor, o.major / r.clearance);
+    }
+    for (i = 0; i < td_model_amb_count(m); i++) {
+        td_amb a;
+        td_orbit o;
+        td_model_get_amb(m, i, &a);
+        if (td_harmonic_orbit(h, a.node, &o) == TD_OK)
+            printf("  amb %d, node %d: major %.9g m, minor %.9g m\n", i, a.node, o.major, o.minor);
+    }
+}
+
+/* Unbalances of the model as defined at t = 0. */
+static td_unbalance *model_unbalances(const td_model *m, int *n)
+{
+    int i;
+    td_unbalance *u;
+    *n = td_model_unbalance_count(m);
+    u = calloc((size_t)(*n > 0 ? *n : 1), sizeof *u);
+    for (i = 0; u && i < *n; i++)
+        td_model_get_unbalance(m, i, &u[i]);
+    return u;
+}
+
+typedef struct modal_outputs {
+    char csv[TD_OUTPUT_PATH_SIZE];
+    char hdf5[TD_OUTPUT_PATH_SIZE];
+} modal_outputs;
+
+static int analyse(const td_case *c, double speed, const modal_outputs *paths, int quiet)
+{
+    const td_model *m = td_case_model(c);
+    const td_modal_options *opt = td_case_modal_options(c);
+    td_system *sys = NULL;
+    td_modal *modes = NULL;
+    td_campbell *camp = NULL;
+    td_critical_speed cs[64];
+    td_harmonic *h[64];
+    td_unbalance *u = NULL;
+    int n_cs = 0, n_h = 0, n_u = 0, i, code = TD_EXIT_FAILED;
+    td_modal_results res;
+    td_error err;
+    td_status st;
+
+    memset(h, 0, sizeof h);
+    td_error_clear(&err);
+    if ((st = td_system_create(m, &sys, &err)) != TD_OK)
+        goto done;
+    if ((st = td_modal_solve(sys, speed, &modes, &err)) != TD_OK)
+        goto done;
+    if ((st = td_campbell_compute(sys, opt, &camp, &err)) != TD_OK)
+        goto done;
+    if ((st = td_modal_critical_speeds(sys, opt, cs, 64, &n_cs, &err)) != TD_OK)
+        goto done;
+    if (!(u = model_unbalances(m, &n_u))) {
+        st = TD_ERR_NOMEM;
+        goto done;
+    }
+    for (i = 0; i < opt->response_speed_count && i < 64; i++, n_h++)
+        if ((st = td_harmonic_compute(sys, opt->response_speeds[i], u, n_u, &h[i], &err)) != TD_OK)
+            goto done;
+    if (!quiet) {
+        print_modes(modes, opt->mode_count);
+        print_critical(cs, n_cs, opt);
+        for (i = 0; i < n_h; i++)
+            print_orbits(m, h[i]);
+    }
+    res.modes = modes;
+    res.campbell = camp;
+    res.critical = cs;
+    res.n_critical = n_cs;
+    res.harmonics = (const td_harmonic *const *)h;
+    res.n_harmonics = n_h;
+    if (paths->csv[0] && (st = td_modal_write_csv(paths->csv, &res, &err)) != TD_OK)
+        goto done;
+    if (paths->hdf5[0] && (st = td_modal_write_hdf5(paths->hdf5, &res, &err)) != TD_OK)
+        goto done;
+    if (!quiet)
+        printf("wrote%s%s%s%s\n", paths->csv[0] ? " " : "", paths->csv, paths->hdf5[0] ? " " : "", paths->hdf5);
+    code = TD_EXIT_OK;
+done:
+    if (code != TD_EXIT_OK) {
+        fprintf(stderr, "touchdown modal: %s: %s\n", td_case_path(c), err.message[0] ? err.message : td_strerror(st));
+        code = td_cli_exit_code(st);
+    }
+    for (i = 0; i < 64; i++)
+        td_harmonic_free(&h[i]);
+    free(u);
+    td_campbell_free(&camp);
+    td_modal_free(&modes);
+    td_system_free(&sys);
+    return code;
+}
+
+int td_cmd_modal(int argc, char **argv)
+{
+    enum { OPT_CSV = 256, OPT_HDF5 };
+    static const struct option longopts[] = {
+        {"set", required_argument, NULL, 's'},   {"speed", required_argument, NULL, 'w'},
+        {"output", required_argument, NULL, 'o'}, {"csv", required_argument, NULL, OPT_CSV},
+        {"hdf5", required_argument, NULL, OPT_HDF5}, {"quiet", no_argument, NULL, 'q'},
+        {"help", no_argument, NULL, 'h'},         {NULL, 0, NULL, 0}};
+    td_cli_sets sets = {{0}, 0};
+    const char *prefix = NULL, *csv = NULL, *hdf5 = NULL, *speed_arg = NULL;
+    int opt, code, quiet = 0;
+    double speed;
+    char *end;
+    td_case *c = NULL;
+    modal_outputs paths;
+
+    optind = 1;
+    while ((opt = getopt_long(argc, argv, "s:w:o:qh", longopts, NULL)) != -1) {
+        switch (opt) {
+        case 's':
+            if (td_cli_add_set(&sets, optarg))
+                return TD_EXIT_USAGE;
+            break;
+        case 'w': speed_arg = optarg; break;
+        case 'o': prefix = optarg; break;
+        case OPT_CSV: csv = optarg; break;
+        case OPT_HDF5: hdf5 = optarg; break;
+        case 'q': quiet = 1; break;
+        case 'h': fputs(modal_usage, stdout); return TD_EXIT_OK;
+        default: fputs(modal_usage, stderr); return TD_EXIT_USAGE;
+        }
+    }
+    if (optind != argc - 1) {
+        td_cli_error("modal", "expected exactly one case file (see touchdown modal --help)");
+        return TD_EXIT_USAGE;
+    }
+    if ((code = td_cli_load_case(argv[optind], &sets, &c)))
+        return code;
+    speed = td_model_speed(td_case_model(c));
+    if (speed_arg) {
+        speed = strtod(speed_arg, &end);
+        if (*end || end == speed_arg) {
+            td_cli_error("modal", "--speed wants a number in rad/s, not '%s'", speed_arg);
+            td_case_free(&c);
+            return TD_EXIT_USAGE;
+        }
+    }
+    snprintf(paths.csv, sizeof paths.csv, "%s-modal.csv", prefix ? prefix : td_case_name(c));
+    snprintf(paths.hdf5, sizeof paths.hdf5, "%s-modal.h5", prefix ? prefix : td_case_name(c));
+    if (prefix) {
+        snprintf(paths.csv, sizeof paths.csv, "%s.csv", prefix);
+        snprintf(paths.hdf5, sizeof paths.hdf5, "%s.h5", prefix);
+    }
+    if (csv)
+        snprintf(paths.csv, sizeof paths.csv, "%s", csv);
+    if (hdf5)
+        snprintf(paths.hdf5, sizeof paths.hdf5, "%s", hdf5);
+    code = analyse(c, speed, &paths, quiet);
+    td_case_free(&c);
+    return code;
+}

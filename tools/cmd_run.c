@@ -1,0 +1,205 @@
+/* touchdown run: a case file to HDF5/CSV plus a summary. */
+#include "cli.h"
+#include "touchdown/run.h"
+
+#include <getopt.h>
+#include <signal.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+#include <unistd.h>
+
+static const char run_usage[] =
+    "usage: touchdown run [OPTIONS] CASE\n"
+    "\n"
+    "Simulate CASE from its start state to its end_time through retainer contact, write the\n"
+    "samples and the event table to HDF5 and/or CSV, and print a summary.\n"
+    "\n"
+    "options:\n"
+    "  -s, --set KEY=VALUE  override a case key, e.g. --set speed=190 --set contact.model=\"penalty\"\n"
+    "                       (repeatable; keys as in docs/case-format.md)\n"
+    "  -o, --output PREFIX  write PREFIX.h5 and PREFIX.csv (default: the case's output paths, else\n"
+    "                       CASENAME.h5 and CASENAME.csv in the current directory)\n"
+    "      --hdf5 PATH      HDF5 output path ('' for none)\n"
+    "      --csv PATH       CSV output path ('' for none); events go to PATH minus .csv plus .events.csv\n"
+    "  -q, --quiet          print nothing but errors\n"
+    "      --json           print the summary as one JSON object on stdout\n"
+    "      --no-progress    no progress line (it is shown only when stderr is a terminal)\n"
+    "  -h, --help           this help\n"
+    "\n"
+    "The summary gives the first contact time, the number of contacts, the peak normal force,\n"
+    "the fraction of time in contact, whether the rotor returned to a free orbit, the wall time\n"
+    "and the wall time per revolution after first contact (the paper's figure of merit).\n"
+    "Files are written under a temporary name and renamed when finished; an interrupted or\n"
+    "failed run keeps what it computed, marked incomplete.\n"
+    "\n"
+    "exit codes: 0 complete, 1 the simulation failed or was interrupted (SIGINT/SIGTERM),\n"
+    "2 bad input or usage.\n";
+
+static volatile sig_atomic_t run_cancel;
+
+static void on_signal(int sig)
+{
+    (void)sig;
+    run_cancel = 1;
+}
+
+static double wall_now(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+/* Progress line state: shown once a run has taken about a second, refreshed a few times a second. */
+typedef struct progress {
+    double started;
+    double last_shown;
+    int shown;
+} progress;
+
+static int show_progress(double t, double fraction, long contacts, void *user)
+{
+    progress *p = user;
+    double now = wall_now(), elapsed = now - p->started;
+    if (elapsed < 1.0 || now - p->last_shown < 0.25)
+        return 0;
+    p->last_shown = now;
+    p->shown = 1;
+    fprintf(stderr, "\r  t = %.4f s  %5.1f %%  contacts %ld  ETA %.0f s   ", t, 100.0 * fraction, contacts,
+            fraction > 0.0 ? elapsed * (1.0 - fraction) / fraction : 0.0);
+    fflush(stderr);
+    return 0;
+}
+
+static void set_path(char *dst, const char *src)
+{
+    snprintf(dst, TD_OUTPUT_PATH_SIZE, "%s", src);
+}
+
+/* Output paths: command line first, then the case, then CASENAME.h5/.csv. */
+static void choose_outputs(td_output_options *out, const td_case *c, const char *prefix, const char *hdf5,
+                           const char *csv)
+{
+    char buf[TD_OUTPUT_PATH_SIZE];
+    if (prefix) {
+        snprintf(buf, sizeof buf, "%s.h5", prefix);
+        set_path(out->hdf5_path, buf);
+        snprintf(buf, sizeof buf, "%s.csv", prefix);
+        set_path(out->csv_path, buf);
+    } else if (!out->hdf5_path[0] && !out->csv_path[0]) {
+        snprintf(buf, sizeof buf, "%s.h5", td_case_name(c));
+        set_path(out->hdf5_path, buf);
+        snprintf(buf, sizeof buf, "%s.csv", td_case_name(c));
+        set_path(out->csv_path, buf);
+    }
+    if (hdf5)
+        set_path(out->hdf5_path, hdf5);
+    if (csv)
+        set_path(out->csv_path, csv);
+}
+
+static void install_signals(void)
+{
+    struct sigaction sa;
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = on_signal;
+    sigemptyset(&sa.sa_mask);
+    sigaction(SIGINT, &sa, NULL);
+    sigaction(SIGTERM, &sa, NULL);
+}
+
+static void print_summary(const td_run_summary *s, int json)
+{
+    int n = json ? td_run_summary_json(NULL, 0, s) : td_run_summary_format(NULL, 0, s);
+    char *buf = malloc((size_t)n + 1);
+    if (!buf)
+        return;
+    if (json)
+        td_run_summary_json(buf, (size_t)n + 1, s);
+    else
+        td_run_summary_format(buf, (size_t)n + 1, s);
+    fputs(buf, stdout);
+    if (n > 0 && buf[n - 1] != '\n')
+        fputc('\n', stdout);
+    free(buf);
+}
+
+int td_cmd_run(int argc, char **argv)
+{
+    enum { OPT_HDF5 = 256, OPT_CSV, OPT_JSON, OPT_NO_PROGRESS };
+    static const struct option longopts[] = {
+        {"set", required_argument, NULL, 's'},        {"output", required_argument, NULL, 'o'},
+        {"hdf5", required_argument, NULL, OPT_HDF5},  {"csv", required_argument, NULL, OPT_CSV},
+        {"quiet", no_argument, NULL, 'q'},            {"json", no_argument, NULL, OPT_JSON},
+        {"no-progress", no_argument, NULL, OPT_NO_PROGRESS}, {"help", no_argument, NULL, 'h'},
+        {NULL, 0, NULL, 0}};
+    td_cli_sets sets = {{0}, 0};
+    const char *prefix = NULL, *hdf5 = NULL, *csv = NULL;
+    int quiet = 0, json = 0, want_progress = 1, opt, code;
+    td_case *c = NULL;
+    td_sim *sim = NULL;
+    td_output_options out;
+    td_run_hooks hooks;
+    td_run_summary summary;
+    progress prog = {0.0, 0.0, 0};
+    td_error err;
+    td_status st;
+
+    optind = 1;
+    while ((opt = getopt_long(argc, argv, "s:o:qh", longopts, NULL)) != -1) {
+        switch (opt) {
+        case 's':
+            if (td_cli_add_set(&sets, optarg))
+                return TD_EXIT_USAGE;
+            break;
+        case 'o': prefix = optarg; break;
+        case OPT_HDF5: hdf5 = optarg; break;
+        case OPT_CSV: csv = optarg; break;
+        case 'q': quiet = 1; break;
+        case OPT_JSON: json = 1; break;
+        case OPT_NO_PROGRESS: want_progress = 0; break;
+        case 'h': fputs(run_usage, stdout); return TD_EXIT_OK;
+        default: fputs(run_usage, stderr); return TD_EXIT_USAGE;
+        }
+    }
+    if (optind != argc - 1) {
+        td_cli_error("run", "expected exactly one case file (see touchdown run --help)");
+        return TD_EXIT_USAGE;
+    }
+    if ((code = td_cli_load_case(argv[optind], &sets, &c)))
+        return code;
+
+    td_error_clear(&err);
+    out = *td_case_output_options(c);
+    choose_outputs(&out, c, prefix, hdf5, csv);
+    st = td_sim_create(td_case_model(c), td_case_sim_options(c), &sim, &err);
+    if (st != TD_OK) {
+        fprintf(stderr, "touchdown: %s: %s\n", td_case_path(c), err.message[0] ? err.message : td_strerror(st));
+        td_case_free(&c);
+        return td_cli_exit_code(st);
+    }
+
+    memset(&hooks, 0, sizeof hooks);
+    prog.started = wall_now();
+    if (want_progress && !quiet && isatty(STDERR_FILENO)) {
+        hooks.progress = show_progress;
+        hooks.user = &prog;
+    }
+    run_cancel = 0;
+    hooks.cancel = &run_cancel;
+    install_signals();
+
+    memset(&summary, 0, sizeof summary);
+    st = td_run(sim, td_case_model(c), td_case_end_time(c), &out, &hooks, td_case_text(c), &summary, &err);
+    if (prog.shown)
+        fputs("\r\033[K", stderr);
+    if (st != TD_OK)
+        fprintf(stderr, "touchdown: %s: %s\n", td_case_path(c), err.message[0] ? err.message : td_strerror(st));
+    if (!quiet && summary.t_reached > summary.t_start)
+        print_summary(&summary, json);
+
+    td_sim_free(&sim);
+    td_case_free(&c);
+    return st == TD_OK ? TD_EXIT_OK : (st == TD_ERR_INVALID ? TD_EXIT_USAGE : TD_EXIT_FAILED);
+}

@@ -1,0 +1,59 @@
+/*
+ * touchdown - simulate flexible rotors on active magnetic bearings through retainer contact.
+ * This file only dispatches to the subcommands.
+ */
+#include "cli.h"
+
+#include <string.h>
+
+static const char usage[] =
+    "usage: touchdown COMMAND [OPTIONS] CASE|FILE\n"
+    "\n"
+    "Simulate a flexible rotor on active magnetic bearings (AMBs) through contact with its\n"
+    "retainer (backup) bearings, after Sahinkaya, Abulrub and Keogh.\n"
+    "\n"
+    "commands:\n"
+    "  run CASE        simulate a case file to HDF5/CSV and print a summary\n"
+    "  modal CASE      modes, Campbell diagram, critical speeds, unbalance response\n"
+    "  info CASE       what a case describes: nodes, masses, bearings, retainers, DOFs, first modes\n"
+    "  plot OUT.h5...  figures (PNG + gnuplot scripts) from output files\n"
+    "  bench           time the paper's cases with the constrained and penalty models\n"
+    "\n"
+    "options for every command:\n"
+    "  -h, --help      help for the command (touchdown COMMAND --help)\n"
+    "  --version       print the library version\n"
+    "\n"
+    "exit codes: 0 success, 1 the simulation or analysis failed, 2 bad input or usage.\n"
+    "Case files: docs/case-format.md. Output files: docs/output-format.md.\n";
+
+typedef int (*td_command_fn)(int argc, char **argv);
+
+static const struct {
+    const char *name;
+    td_command_fn fn;
+} commands[] = {
+    {"run", td_cmd_run}, {"modal", td_cmd_modal}, {"info", td_cmd_info},
+    {"plot", td_cmd_plot}, {"bench", td_cmd_bench},
+};
+
+int main(int argc, char **argv)
+{
+    size_t i;
+    if (argc < 2) {
+        fputs(usage, stderr);
+        return TD_EXIT_USAGE;
+    }
+    if (!strcmp(argv[1], "-h") || !strcmp(argv[1], "--help") || !strcmp(argv[1], "help")) {
+        fputs(usage, stdout);
+        return TD_EXIT_OK;
+    }
+    if (!strcmp(argv[1], "--version") || !strcmp(argv[1], "version")) {
+        printf("touchdown %s\n", td_version());
+        return TD_EXIT_OK;
+    }
+    for (i = 0; i < sizeof commands / sizeof commands[0]; i++)
+        if (!strcmp(argv[1], commands[i].name))
+            return commands[i].fn(argc - 1, argv + 1);
+    fprintf(stderr, "touchdown: unknown command '%s'\n\n%s", argv[1], usage);
+    return TD_EXIT_USAGE;
+}

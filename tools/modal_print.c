@@ -1,0 +1,73 @@
+/* Printing of modal results shared by `touchdown modal` and `touchdown info`. */
+#include "modal_print.h"
+
+#include <math.h>
+
+/* Pairs this close to critical damping are the AMB force lags split by gyroscopic coupling,
+ * not vibration modes: they are listed with the real (overdamped) roots. */
+#define TD_OVERDAMPED_ZETA 0.99
+/* A real part below this fraction of the spectral radius is round-off on an undamped mode. */
+#define TD_ROUNDOFF_REAL_PART 1e-9
+
+const char *td_whirl_name(td_whirl w)
+{
+    return w == TD_WHIRL_FORWARD ? "forward" : w == TD_WHIRL_BACKWARD ? "backward" : "mixed";
+}
+
+int td_print_modes(FILE *f, const td_modal *modes, int count, int digits)
+{
+    int i, shown = 0, n = td_modal_mode_count(modes), overdamped = 0;
+    fprintf(f, "  %-4s %*s %*s %12s  %s\n", "#", digits + 6, "omega_d [rad/s]", digits + 6, "f [Hz]", "zeta",
+            "whirl");
+    for (i = 0; i < n && shown < count; i++) {
+        td_mode m;
+        td_modal_get_mode(modes, i, &m);
+        if (m.zeta >= TD_OVERDAMPED_ZETA) {
+            overdamped++;
+            continue;
+        }
+        shown++;
+        fprintf(f, "  %-4d %*.*g %*.*g %12.6g  %s\n", shown, digits + 6, digits, m.omega_d, digits + 6, digits,
+                m.freq_hz, m.zeta, td_whirl_name(m.whirl));
+    }
+    return overdamped;
+}
+
+void td_print_overdamped(FILE *f, const td_modal *modes)
+{
+    int i, n = td_modal_mode_count(modes), any = 0;
+    for (i = 0; i < n; i++) {
+        td_mode m;
+        td_modal_get_mode(modes, i, &m);
+        if (m.zeta < TD_OVERDAMPED_ZETA)
+            continue;
+        if (!any++)
+            fprintf(f, "overdamped roots (AMB force lags) [1/s]:");
+        fprintf(f, " %.12g%+.6gi", m.sigma, m.omega_d);
+    }
+    for (i = 0; i < td_modal_real_count(modes); i++) {
+        if (!any++)
+            fprintf(f, "overdamped roots (AMB force lags) [1/s]:");
+        fprintf(f, " %.12g", td_modal_real_eigenvalue(modes, i));
+    }
+    if (any)
+        fputc('\n', f);
+}
+
+const char *td_stability_word(const td_modal *modes)
+{
+    int i;
+    double radius = 0.0, worst = td_modal_max_real_part(modes);
+    for (i = 0; i < td_modal_mode_count(modes); i++) {
+        td_mode m;
+        td_modal_get_mode(modes, i, &m);
+        radius = fmax(radius, m.omega_n);
+    }
+    for (i = 0; i < td_modal_real_count(modes); i++)
+        radius = fmax(radius, fabs(td_modal_real_eigenvalue(modes, i)));
+    if (worst < -TD_ROUNDOFF_REAL_PART * radius)
+        return "stable";
+    if (worst <= TD_ROUNDOFF_REAL_PART * radius)
+        return "marginally stable (undamped modes)";
+    return "UNSTABLE";
+}

@@ -1,0 +1,162 @@
+/*
+ * touchdown plot: declarations shared by the plot_*.c files (no physics here: the tool only reads
+ * result files, writes gnuplot data + scripts, and runs gnuplot).
+ *
+ *   plot_h5.c      reading datasets and attributes with the HDF5 C API
+ *   plot_file.c    a simulation or modal result file loaded into memory
+ *   plot_script.c  output directory, data files, script preamble, running gnuplot
+ *   plot_sim.c     figures of one simulation file (orbit, radial displacement + force, AMB forces)
+ *   plot_modal.c   figures of one modal file (Campbell diagram, mode shapes)
+ *   plot_compare.c overlays of several simulation files
+ */
+#ifndef TD_TOOLS_PLOT_H
+#define TD_TOOLS_PLOT_H
+
+#include <stddef.h>
+#include <stdio.h>
+
+#include <hdf5.h>
+
+/* Exit-code-like results of the plot helpers (see cli.h): 0 ok, 1 failed, 2 bad input. */
+enum { PLOT_OK = 0, PLOT_FAILED = 1, PLOT_BAD_INPUT = 2 };
+
+/* Most mode shapes in one figure (--modes). */
+#define PLOT_MAX_MODES 16
+
+/* Longest path the tool builds. */
+#define PLOT_PATH_SIZE 4096
+
+/* ---- plot_h5.c: HDF5 reading --------------------------------------------------------------- */
+
+/* A dataset read as doubles, row-major, dims[0] x dims[1] x dims[2] (missing dims are 1). */
+typedef struct plot_array {
+    double *v;
+    int rank;
+    size_t dims[3];
+    size_t n; /* product of dims */
+} plot_array;
+
+/* 1 if the link `path` (e.g. "retainers/x") exists under `loc`, else 0. */
+int plot_h5_exists(hid_t loc, const char *path);
+/* Read dataset `path` (rank 1..3, any numeric type) as doubles; 0 ok, -1 failure. */
+int plot_h5_read(hid_t loc, const char *path, plot_array *out);
+void plot_array_free(plot_array *a);
+/* Numeric attribute of `obj` as doubles (scalar: n = 1); caller frees *v. 0 ok, -1 absent/bad. */
+int plot_h5_attr_doubles(hid_t obj, const char *name, double **v, size_t *n);
+/* Scalar numeric attribute; 0 ok, -1 absent or bad (then *v is left alone). */
+int plot_h5_attr_double(hid_t obj, const char *name, double *v);
+/* String attribute (fixed or variable length, any character set), malloc'd; NULL if absent/bad. */
+char *plot_h5_attr_string(hid_t obj, const char *name);
+
+/* ---- plot_file.c: result files in memory --------------------------------------------------- */
+
+typedef enum plot_kind { PLOT_KIND_SIM, PLOT_KIND_MODAL } plot_kind;
+
+/* One event, reduced to what the figures use. */
+typedef struct plot_event {
+    double time;
+    int retainer;
+    char kind[32]; /* the file's enum name: contact_onset, release, schedule, ... */
+} plot_event;
+
+/* Time window (s) and the samples it keeps. */
+typedef struct plot_window {
+    double from, to; /* -HUGE_VAL / +HUGE_VAL when not given */
+} plot_window;
+
+/* A simulation file: samples inside the time window, SI units as in the file. */
+typedef struct plot_sim {
+    size_t n;          /* samples kept */
+    double *t;         /* n */
+    int nret, namb;
+    double *x, *y, *r, *fn, *contact; /* n x nret, row-major */
+    double *amb;       /* n x namb x 2 */
+    double *clearance; /* nret, NAN when the file has no retainer_clearance */
+    long *ret_nodes;   /* nret, -1 when unknown */
+    long *amb_nodes;   /* namb, -1 when unknown */
+    plot_event *ev;    /* events inside the window */
+    size_t nev;
+} plot_sim;
+
+/* A modal file. Arrays absent from the file are NULL with zero counts. */
+typedef struct plot_modal {
+    int ns, nb;           /* Campbell: speeds x branches */
+    double *speed;        /* ns, rad/s */
+    double *freq;         /* ns x nb, Hz (NAN: missing point) */
+    double *whirl;        /* ns x nb: 1 forward, -1 backward, 0 mixed */
+    int ncrit;
+    double *crit_speed, *crit_freq, *crit_whirl; /* ncrit */
+    int nm, nn;           /* modes x nodes of the mode shapes */
+    double *mode_freq, *mode_whirl, *mode_zeta; /* nm */
+    double *xr, *xi, *yr, *yi;                  /* nm x nn */
+    double *node_z;       /* nn axial positions (m) when the file has them, else NULL */
+    double mode_speed;    /* rad/s of the mode shapes, NAN when unknown */
+} plot_modal;
+
+typedef struct plot_file {
+    const char *path;  /* as given (borrowed from argv) */
+    char stem[256];    /* file name without directories and .h5/.hdf5: the legend label */
+    char title[512];   /* case description, else the stem; "(INCOMPLETE ...)" appended */
+    plot_kind kind;
+    int complete;      /* 1, 0, or -1 when the file has no flag */
+    plot_sim sim;
+    plot_modal modal;
+} plot_file;
+
+/* Load `path` (window applies to simulation files). On failure prints one line
+ * "touchdown plot: PATH: why" and returns PLOT_BAD_INPUT (or PLOT_FAILED when out of memory). */
+int plot_file_load(const char *path, const plot_window *win, plot_file *f);
+void plot_file_free(plot_file *f);
+
+/* ---- plot_script.c: output and gnuplot ----------------------------------------------------- */
+
+typedef struct plot_opts {
+    const char *dir;  /* output directory */
+    int retainer;     /* -1: all */
+    plot_window win;
+    int svg;          /* 0: png, 1: svg */
+    int run;          /* run gnuplot */
+    int quiet;
+    int modes;        /* mode shapes to draw */
+} plot_opts;
+
+/* The scripts written so far, run at the end. */
+#define PLOT_MAX_SCRIPTS 256
+typedef struct plot_job {
+    const plot_opts *opt;
+    int count;
+    char scripts[PLOT_MAX_SCRIPTS][256]; /* names relative to opt->dir */
+} plot_job;
+
+/* Create `dir` and its parents; PLOT_OK or PLOT_BAD_INPUT with a line printed. */
+int plot_make_dir(const char *dir);
+/* Open DIR/NAME for writing; NULL with a line printed on failure. */
+FILE *plot_open(const plot_opts *opt, const char *name);
+/* Close a file opened by plot_open; PLOT_OK or PLOT_FAILED with a line printed. */
+int plot_close(FILE *f, const plot_opts *opt, const char *name);
+/* Start the script NAME.gp for the figure NAME.png/.svg (width x height pixels): header comment
+ * `what`, the terminal (pngcairo when gnuplot has it, else png; or svg) and common style.
+ * Returns the open file (NULL with a line printed) and records the script in the job. */
+FILE *plot_script_begin(plot_job *job, const char *name, const char *what, const char *source, int width,
+                        int height);
+/* Print `s` as a gnuplot double-quoted string (a newline becomes \n: two-line titles). */
+void plot_gp_string(FILE *f, const char *s);
+/* Run gnuplot on every recorded script in opt->dir; PLOT_OK or PLOT_FAILED with a line printed. */
+int plot_run_all(const plot_job *job);
+/* Image file extension for the options: "png" or "svg". */
+const char *plot_ext(const plot_opts *opt);
+
+/* ---- figures -------------------------------------------------------------------------------- */
+
+/* Every figure of one simulation file; prefix ("" or "STEM-") starts every file name. */
+int plot_sim_figures(plot_job *job, const plot_file *f, const char *prefix);
+/* Every figure of one modal file. */
+int plot_modal_figures(plot_job *job, const plot_file *f, const char *prefix);
+/* Overlays of several simulation files (whose data files plot_sim_figures has written with the
+ * given prefixes). */
+int plot_compare_figures(plot_job *job, const plot_file *const *files, const char *const *prefixes, int count);
+
+/* Data file of retainer `r` of a simulation file (columns documented in its header). */
+void plot_retainer_data_name(char *buf, size_t n, const char *prefix, int r);
+
+#endif

@@ -1,0 +1,239 @@
+/* touchdown plot: output directory, data and script files, and running gnuplot on the scripts. */
+#include "plot.h"
+
+#include <errno.h>
+#include <fcntl.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/types.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+const char *plot_ext(const plot_opts *opt) { return opt->svg ? "svg" : "png"; }
+
+int plot_make_dir(const char *dir)
+{
+    char path[PLOT_PATH_SIZE];
+    struct stat st;
+    size_t i, len = strlen(dir);
+    if (len == 0 || len >= sizeof path) {
+        fprintf(stderr, "touchdown plot: bad output directory '%s'\n", dir);
+        return PLOT_BAD_INPUT;
+    }
+    memcpy(path, dir, len + 1);
+    /* mkdir -p: every prefix ending before a '/', then the whole path */
+    for (i = 1; i <= len; i++) {
+        if (path[i] != '/' && path[i] != '\0')
+            continue;
+        path[i] = '\0';
+        if (mkdir(path, 0777) != 0 && errno != EEXIST) {
+            fprintf(stderr, "touchdown plot: cannot create directory %s: %s\n", path, strerror(errno));
+            return PLOT_BAD_INPUT;
+        }
+        path[i] = i < len ? '/' : '\0';
+    }
+    if (stat(dir, &st) != 0 || !S_ISDIR(st.st_mode)) {
+        fprintf(stderr, "touchdown plot: %s exists and is not a directory\n", dir);
+        return PLOT_BAD_INPUT;
+    }
+    return PLOT_OK;
+}
+
+static void join(char *buf, size_t n, const char *dir, const char *name)
+{
+    snprintf(buf, n, "%s%s%s", dir, dir[strlen(dir) - 1] == '/' ? "" : "/", name);
+}
+
+FILE *plot_open(const plot_opts *opt, const char *name)
+{
+    char path[PLOT_PATH_SIZE];
+    FILE *f;
+    join(path, sizeof path, opt->dir, name);
+    f = fopen(path, "w");
+    if (!f)
+        fprintf(stderr, "touchdown plot: cannot write %s: %s\n", path, strerror(errno));
+    return f;
+}
+
+int plot_close(FILE *f, const plot_opts *opt, const char *name)
+{
+    int failed = ferror(f);
+    if (fclose(f) != 0 || failed) {
+        char path[PLOT_PATH_SIZE];
+        join(path, sizeof path, opt->dir, name);
+        fprintf(stderr, "touchdown plot: writing %s failed\n", path);
+        return PLOT_FAILED;
+    }
+    return PLOT_OK;
+}
+
+void plot_gp_string(FILE *f, const char *s)
+{
+    /* double quotes so that a newline can be written as \n (two-line titles) */
+    fputc('"', f);
+    for (; *s; s++) {
+        if (*s == '"' || *s == '\\')
+            fprintf(f, "\\%c", *s);
+        else if (*s == '\n')
+            fputs("\\n", f);
+        else if (*s == '\r' || *s == '\t')
+            fputc(' ', f);
+        else
+            fputc(*s, f);
+    }
+    fputc('"', f);
+}
+
+/* The terminal: the script itself picks pngcairo when this gnuplot has it, else libgd's png,
+ * so a copied script works with any gnuplot build. */
+static void terminal(FILE *f, const plot_opts *opt, const char *name, int width, int height)
+{
+    if (opt->svg) {
+        fprintf(f, "set terminal svg size %d,%d dynamic font 'Sans,12' linewidth 1.2 background rgb 'white'\n",
+                width, height);
+    } else {
+        fprintf(f, "if (strstrt(GPVAL_TERMINALS, 'pngcairo') > 0) {\n"
+                   "    set terminal pngcairo size %d,%d font 'Sans,11' linewidth 1.2 noenhanced\n"
+                   "} else {\n"
+                   "    set terminal png size %d,%d font 'Sans,10' linewidth 1.2 noenhanced\n"
+                   "}\n",
+                width, height, width, height);
+    }
+    fprintf(f, "set output '%s.%s'\n", name, plot_ext(opt));
+}
+
+FILE *plot_script_begin(plot_job *job, const char *name, const char *what, const char *source, int width,
+                        int height)
+{
+    char file[256];
+    FILE *f;
+    if (job->count >= PLOT_MAX_SCRIPTS) {
+        fprintf(stderr, "touchdown plot: more than %d figures; plot fewer files at once\n", PLOT_MAX_SCRIPTS);
+        return NULL;
+    }
+    snprintf(file, sizeof file, "%s.gp", name);
+    if (!(f = plot_open(job->opt, file)))
+        return NULL;
+    snprintf(job->scripts[job->count++], sizeof job->scripts[0], "%s", file);
+    fprintf(f, "# %s\n# from %s, written by 'touchdown plot'. Edit freely, then rerun in this directory:\n"
+               "#     gnuplot %s\n\n",
+            what, source, file);
+    terminal(f, job->opt, name, width, height);
+    fprintf(f, "set termoption noenhanced    # names and titles are printed as written\n"
+               "set encoding utf8\n"
+               "set grid lc rgb '#dddddd' lw 1\n"
+               "set border lw 1\n"
+               "set key noautotitle\n"
+               "set datafile missing 'NaN'\n\n");
+    return f;
+}
+
+/* The gnuplot program: $TOUCHDOWN_GNUPLOT if set, else "gnuplot" on PATH. */
+static const char *gnuplot_program(void)
+{
+    const char *g = getenv("TOUCHDOWN_GNUPLOT");
+    return g && *g ? g : "gnuplot";
+}
+
+/* 1 if `prog` can be executed (a path, or a name found on PATH). */
+static int find_program(const char *prog)
+{
+    const char *path = getenv("PATH"), *p;
+    char buf[PLOT_PATH_SIZE];
+    if (strchr(prog, '/'))
+        return access(prog, X_OK) == 0;
+    for (p = path ? path : "/usr/bin:/bin"; *p;) {
+        const char *colon = strchr(p, ':');
+        size_t len = colon ? (size_t)(colon - p) : strlen(p);
+        snprintf(buf, sizeof buf, "%.*s/%s", (int)len, len ? p : ".", prog);
+        if (access(buf, X_OK) == 0)
+            return 1;
+        p += len + (colon ? 1 : 0);
+    }
+    return 0;
+}
+
+/* Gnuplot's own error, for one line: the "FILE" line N: message line, else the last line. */
+static void log_message(const char *log, char *msg, size_t n)
+{
+    FILE *f = fopen(log, "r");
+    char line[512];
+    msg[0] = '\0';
+    if (!f)
+        return;
+    while (fgets(line, sizeof line, f)) {
+        line[strcspn(line, "\n")] = '\0';
+        if (!line[0])
+            continue;
+        if (line[0] == '"' && strstr(line, " line ")) {
+            snprintf(msg, n, "%s", line);
+            break;
+        }
+        snprintf(msg, n, "%s", line);
+    }
+    fclose(f);
+}
+
+/* Run gnuplot on one script inside opt->dir, its messages going to SCRIPT.log (removed when
+ * empty). Returns the child's exit status, or -1 if it could not be started. */
+static int run_one(const char *prog, const char *dir, const char *script, const char *log)
+{
+    pid_t pid = fork();
+    int status;
+    if (pid < 0)
+        return -1;
+    if (pid == 0) {
+        int fd;
+        if (chdir(dir) != 0)
+            _exit(126);
+        fd = open(log, O_WRONLY | O_CREAT | O_TRUNC, 0666);
+        if (fd >= 0) {
+            dup2(fd, STDOUT_FILENO);
+            dup2(fd, STDERR_FILENO);
+            close(fd);
+        }
+        execlp(prog, prog, script, (char *)NULL);
+        _exit(127);
+    }
+    while (waitpid(pid, &status, 0) < 0)
+        if (errno != EINTR)
+            return -1;
+    if (WIFEXITED(status))
+        return WEXITSTATUS(status);
+    return -1;
+}
+
+int plot_run_all(const plot_job *job)
+{
+    const plot_opts *opt = job->opt;
+    const char *prog = gnuplot_program();
+    int i;
+    if (!find_program(prog)) {
+        fprintf(stderr,
+                "touchdown plot: gnuplot not found ('%s'; install gnuplot-nox or set TOUCHDOWN_GNUPLOT); "
+                "the scripts and data are in %s\n",
+                prog, opt->dir);
+        return PLOT_FAILED;
+    }
+    for (i = 0; i < job->count; i++) {
+        char log[300], log_path[PLOT_PATH_SIZE], msg[600];
+        struct stat st;
+        int rc;
+        snprintf(log, sizeof log, "%.*s.log", (int)(strlen(job->scripts[i]) - 3), job->scripts[i]);
+        join(log_path, sizeof log_path, opt->dir, log);
+        rc = run_one(prog, opt->dir, job->scripts[i], log);
+        if (rc != 0) {
+            log_message(log_path, msg, sizeof msg);
+            fprintf(stderr, "touchdown plot: gnuplot failed on %s/%s: %s (see %s)\n", opt->dir, job->scripts[i],
+                    msg[0] ? msg : rc < 0 ? "could not be run" : "no message", log_path);
+            return PLOT_FAILED;
+        }
+        if (stat(log_path, &st) == 0 && st.st_size == 0)
+            remove(log_path);
+        if (!opt->quiet)
+            printf("wrote %s/%.*s.%s\n", opt->dir, (int)(strlen(job->scripts[i]) - 3), job->scripts[i],
+                   plot_ext(opt));
+    }
+    return PLOT_OK;
+}
