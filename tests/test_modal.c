@@ -351,6 +351,8 @@ static void test_writers_round_trip(void **state)
     r.n_critical = n < 16 ? n : 16;
     r.harmonics = (const td_harmonic *const *)h;
     r.n_harmonics = 2;
+    r.model = td_system_model(s);
+    r.case_text = "speed = 500.0;";
     assert_int_equal(td_modal_write_csv("test_modal_out.csv", &r, &err), TD_OK);
     assert_int_equal(td_modal_write_hdf5("test_modal_out.h5", &r, &err), TD_OK);
     assert_int_equal(td_modal_write_csv("/nonexistent-dir/x.csv", &r, &err), TD_ERR_IO);
@@ -405,6 +407,11 @@ static void test_writers_round_trip(void **state)
         assert_close(h5_read_scalar(file, "/campbell/omega_d", 3 * 4 + 1, units, sizeof units), p.omega_d, 0.0, 0.0);
         assert_close(h5_read_scalar(file, "/campbell/speed", 3, units, sizeof units), 1500.0, 0.0, 0.0);
     }
+    /* node positions for mode-shape plots: the model's own */
+    assert_close(h5_read_scalar(file, "/modes/node_z", 4, units, sizeof units),
+                 td_model_node_position(td_system_model(s), 4), 0.0, 0.0);
+    assert_string_equal(units, "m");
+    assert_true(H5Aexists(file, "case_text") > 0);
     H5Fclose(file);
     remove("test_modal_out.csv");
     remove("test_modal_out.h5");

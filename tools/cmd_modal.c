@@ -127,6 +127,8 @@ static int analyse(const td_case *c, double speed, const modal_outputs *paths, i
     res.n_critical = n_cs;
     res.harmonics = (const td_harmonic *const *)h;
     res.n_harmonics = n_h;
+    res.model = m;
+    res.case_text = td_case_text(c);
     if (paths->csv[0] && (st = td_modal_write_csv(paths->csv, &res, &err)) != TD_OK)
         goto done;
     if (paths->hdf5[0] && (st = td_modal_write_hdf5(paths->hdf5, &res, &err)) != TD_OK)

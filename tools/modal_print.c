@@ -3,9 +3,6 @@
 
 #include <math.h>
 
-/* Pairs this close to critical damping are the AMB force lags split by gyroscopic coupling,
- * not vibration modes: they are listed with the real (overdamped) roots. */
-#define TD_OVERDAMPED_ZETA 0.99
 /* A real part below this fraction of the spectral radius is round-off on an undamped mode. */
 #define TD_ROUNDOFF_REAL_PART 1e-9
 
@@ -22,7 +19,7 @@ int td_print_modes(FILE *f, const td_modal *modes, int count, int digits)
     for (i = 0; i < n && shown < count; i++) {
         td_mode m;
         td_modal_get_mode(modes, i, &m);
-        if (m.zeta >= TD_OVERDAMPED_ZETA) {
+        if (!td_mode_is_vibration(&m)) {
             overdamped++;
             continue;
         }
@@ -39,7 +36,7 @@ void td_print_overdamped(FILE *f, const td_modal *modes)
     for (i = 0; i < n; i++) {
         td_mode m;
         td_modal_get_mode(modes, i, &m);
-        if (m.zeta < TD_OVERDAMPED_ZETA)
+        if (td_mode_is_vibration(&m))
             continue;
         if (!any++)
             fprintf(f, "overdamped roots (AMB force lags) [1/s]:");

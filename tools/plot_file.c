@@ -1,6 +1,7 @@
 /* touchdown plot: a simulation or modal result file (docs/output-format.md, lib/io/modal_writer.c)
  * loaded into memory, simulation samples cut to the time window. */
 #include "plot.h"
+#include "touchdown/modal.h"
 
 #include <errno.h>
 #include <math.h>
@@ -345,6 +346,29 @@ static double *node_positions(hid_t file, size_t nn)
     return z ? z : read_vector(file, "node_z", nn);
 }
 
+/* Keep only vibration modes: the overdamped AMB-lag pairs (see touchdown/modal.h) have no
+ * meaningful shape along the rotor. */
+static void drop_overdamped(plot_modal *m)
+{
+    int i, k, kept = 0;
+    for (i = 0; i < m->nm; i++) {
+        td_mode md;
+        md.zeta = m->mode_zeta ? m->mode_zeta[i] : 0.0;
+        if (!td_mode_is_vibration(&md))
+            continue;
+        for (k = 0; k < m->nn; k++) {
+            size_t to = (size_t)kept * (size_t)m->nn + (size_t)k, from = (size_t)i * (size_t)m->nn + (size_t)k;
+            m->xr[to] = m->xr[from], m->xi[to] = m->xi[from], m->yr[to] = m->yr[from], m->yi[to] = m->yi[from];
+        }
+        m->mode_freq[kept] = m->mode_freq[i];
+        m->mode_whirl[kept] = m->mode_whirl[i];
+        if (m->mode_zeta)
+            m->mode_zeta[kept] = m->mode_zeta[i];
+        kept++;
+    }
+    m->nm = kept;
+}
+
 static int load_shapes(hid_t file, plot_modal *m)
 {
     plot_array xr;
@@ -370,7 +394,10 @@ static int load_shapes(hid_t file, plot_modal *m)
         plot_h5_attr_double(g, "speed", &m->mode_speed);
         H5Gclose(g);
     }
-    return m->xi && m->yr && m->yi && m->mode_freq && m->mode_whirl ? 0 : -1;
+    if (!(m->xi && m->yr && m->yi && m->mode_freq && m->mode_whirl))
+        return -1;
+    drop_overdamped(m);
+    return 0;
 }
 
 static int load_modal(hid_t file, plot_file *f)

@@ -58,6 +58,17 @@ typedef struct td_mode {
     td_whirl whirl;
 } td_mode;
 
+/**
+ * Complex pairs at least this damped are not vibration modes: on an AMB rotor they are the force
+ * lags of the two axes of a bearing, split into a pair by gyroscopic coupling (zeta ~ 1,
+ * omega_d ~ 0.1-1 rad/s). The Campbell diagram, the critical speeds and the tool's mode tables
+ * leave them out; td_modal_get_mode still reports them.
+ */
+#define TD_MODAL_OVERDAMPED_ZETA 0.99
+
+/** 1 if `m` is a vibration mode (zeta < TD_MODAL_OVERDAMPED_ZETA), 0 for an overdamped pair. */
+TD_API int td_mode_is_vibration(const td_mode *m);
+
 /* ---------------------------------------------------------------------------------------- */
 /* State-space form                                                                          */
 
@@ -220,6 +231,8 @@ typedef struct td_modal_results {
     int n_critical;
     const td_harmonic *const *harmonics;
     int n_harmonics;
+    const td_model *model; /**< optional: node positions (/modes/node_z) and bearing nodes for plots */
+    const char *case_text; /**< optional: the case file text, written as the case_text attribute */
 } td_modal_results;
 
 /**

@@ -341,6 +341,38 @@ static int h5_harmonics(hid_t file, const td_harmonic *const *h, int n)
     return ok;
 }
 
+/* Where the nodes and bearings are: node axial positions for mode-shape plots, the retainer and
+ * AMB nodes to mark on them. */
+static int h5_layout(hid_t file, const td_model *model)
+{
+    int nn = td_model_node_count(model), nr = td_model_retainer_count(model), na = td_model_amb_count(model);
+    int i, ok;
+    double *z = malloc((size_t)(nn ? nn : 1) * sizeof *z);
+    int *nodes = malloc((size_t)(nr + na ? nr + na : 1) * sizeof *nodes);
+    hid_t g = H5Gopen2(file, "modes", H5P_DEFAULT);
+    ok = z && nodes && g >= 0;
+    for (i = 0; ok && i < nn; i++)
+        z[i] = td_model_node_position(model, i);
+    for (i = 0; ok && i < nr; i++) {
+        td_retainer r;
+        td_model_get_retainer(model, i, &r);
+        nodes[i] = r.node;
+    }
+    for (i = 0; ok && i < na; i++) {
+        td_amb a;
+        td_model_get_amb(model, i, &a);
+        nodes[nr + i] = a.node;
+    }
+    ok = ok && h5_dataset(g, "node_z", H5T_NATIVE_DOUBLE, z, (hsize_t)nn, 0, "m");
+    ok = ok && (nr == 0 || h5_dataset(g, "retainer_nodes", H5T_NATIVE_INT, nodes, (hsize_t)nr, 0, "node"));
+    ok = ok && (na == 0 || h5_dataset(g, "amb_nodes", H5T_NATIVE_INT, nodes + nr, (hsize_t)na, 0, "node"));
+    if (g >= 0)
+        H5Gclose(g);
+    free(z);
+    free(nodes);
+    return ok;
+}
+
 /* Create the file and write every part; 0 on any failure. */
 static int h5_write_all(const char *path, const td_modal_results *r)
 {
@@ -351,6 +383,8 @@ static int h5_write_all(const char *path, const td_modal_results *r)
     ok = ok && (!r->campbell || h5_campbell(file, r->campbell));
     ok = ok && (!r->critical || h5_critical(file, r->critical, r->n_critical));
     ok = ok && (r->n_harmonics == 0 || h5_harmonics(file, r->harmonics, r->n_harmonics));
+    ok = ok && (!r->model || !r->modes || h5_layout(file, r->model));
+    ok = ok && (!r->case_text || h5_attr_string(file, "case_text", r->case_text));
     if (file >= 0 && H5Fclose(file) < 0)
         ok = 0;
     return ok;

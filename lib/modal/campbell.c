@@ -53,11 +53,30 @@ void td_campbell_free(td_campbell **c)
     *c = NULL;
 }
 
+int td_mode_is_vibration(const td_mode *m)
+{
+    return m && m->zeta < TD_MODAL_OVERDAMPED_ZETA;
+}
+
+/* Branch j at one speed is the j-th lowest vibration mode there (overdamped pairs skipped);
+ * missing branches are NAN. */
+static void fill_branches(const td_modal *m, td_mode *row, int nbranches)
+{
+    int i, j = 0;
+    for (i = 0; i < m->n_modes && j < nbranches; i++)
+        if (td_mode_is_vibration(&m->modes[i]))
+            row[j++] = m->modes[i];
+    for (; j < nbranches; j++) {
+        row[j].sigma = row[j].omega_d = row[j].freq_hz = row[j].omega_n = row[j].zeta = row[j].whirl_index = NAN;
+        row[j].whirl = TD_WHIRL_MIXED;
+    }
+}
+
 td_status td_campbell_compute(const td_system *sys, const td_modal_options *opt, td_campbell **out, td_error *err)
 {
     td_campbell *c;
     td_status st;
-    int k, j;
+    int k;
     if (!out)
         return td_error_set(err, TD_ERR_INVALID, "td_campbell_compute: NULL output pointer");
     *out = NULL;
@@ -83,13 +102,7 @@ td_status td_campbell_compute(const td_system *sys, const td_modal_options *opt,
             td_campbell_free(&c);
             return st;
         }
-        for (j = 0; j < c->nbranches; j++) {
-            td_mode *p = &c->points[(size_t)k * (size_t)c->nbranches + (size_t)j];
-            if (td_modal_get_mode(m, j, p) != TD_OK) {
-                p->sigma = p->omega_d = p->freq_hz = p->omega_n = p->zeta = p->whirl_index = NAN;
-                p->whirl = TD_WHIRL_MIXED;
-            }
-        }
+        fill_branches(m, c->points + (size_t)k * (size_t)c->nbranches, c->nbranches);
         td_modal_free(&m);
     }
     *out = c;
@@ -143,7 +156,7 @@ static td_status whirl_modes(const td_system *sys, double omega, td_whirl which,
         return td_error_set(err, TD_ERR_NOMEM, "modal: out of memory");
     }
     for (i = 0; i < m->n_modes; i++)
-        if (m->modes[i].whirl == which)
+        if (m->modes[i].whirl == which && td_mode_is_vibration(&m->modes[i]))
             out->modes[out->count++] = m->modes[i];
     td_modal_free(&m);
     return TD_OK;
