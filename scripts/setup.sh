@@ -9,7 +9,8 @@ build=${1:-$here/build}
 shift || true
 
 packages=(gcc make cmake pkg-config libsundials-dev libsuitesparse-dev libgsl-dev libhdf5-dev
-          libcmocka-dev libconfig-dev gnuplot-nox)
+          libcmocka-dev libconfig-dev gnuplot-nox
+          hdf5-tools python3)  # test-only: h5dump reads HDF5 flags, python3 checks bench JSON
 
 missing=()
 for p in "${packages[@]}"; do

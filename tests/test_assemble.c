@@ -1,4 +1,5 @@
 /* td_system assembly (lib/model/assemble.c) and the AMB axis law (lib/model/amb.c). */
+#include "td_rig.h"
 #include "td_test.h"
 
 #include "model/elements.h"
@@ -18,31 +19,11 @@
 
 static const td_material steel = {2.11e11, 8.1e10, 7810.0};
 
-/* The reference rig of reference-rig.md, built in code. */
+/* The reference rig of reference-rig.md, built in code (tests/support/td_rig.c): speed 0, lagged
+ * AMBs, both retainers. */
 static td_model *reference_rig(void)
 {
-    static const int disc_nodes[4] = {1, 5, 7, 11};
-    td_model *m = NULL;
-    td_shaft_element el = {2.0 / 12.0, 0.05, 0.0, {2.11e11, 8.1e10, 7810.0}};
-    td_amb amb = {3, 3, 1.0e6, 200.0, 1.0e4, 40.0, 1.0 / (2.0 * TD_PI * 100.0), 1700.0, 0, 1.2e-3};
-    td_retainer r = {2, 0.75e-3, 0.025, 0.025 + 0.75e-3, 0.1, 0.0, 0.0};
-    int i;
-    assert_int_equal(td_model_create(&m, NULL), TD_OK);
-    for (i = 0; i < 12; i++)
-        assert_int_equal(td_model_add_shaft_element(m, &el, NULL), TD_OK);
-    for (i = 0; i < 4; i++) {
-        td_disc d = {disc_nodes[i], 10.0, 0.072, 0.036668};
-        assert_int_equal(td_model_add_disc(m, &d, NULL), TD_OK);
-    }
-    assert_int_equal(td_model_add_point_mass(m, 3, 14.6, NULL), TD_OK);
-    assert_int_equal(td_model_add_point_mass(m, 9, 14.6, NULL), TD_OK);
-    assert_int_equal(td_model_add_amb(m, &amb, NULL), TD_OK);
-    amb.node = amb.sensor_node = 9;
-    assert_int_equal(td_model_add_amb(m, &amb, NULL), TD_OK);
-    assert_int_equal(td_model_add_retainer(m, &r, NULL), TD_OK);
-    r.node = 10;
-    assert_int_equal(td_model_add_retainer(m, &r, NULL), TD_OK);
-    return m;
+    return td_test_rig_create(0.0, TD_RIG_TAU, TD_RIG_WITH_RETAINERS);
 }
 
 static double *dense(const td_system *s, td_matrix_kind which)

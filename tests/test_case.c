@@ -17,6 +17,7 @@
 #include <string.h>
 #include <sys/stat.h>
 #include <sys/types.h>
+#include <time.h>
 #include <unistd.h>
 
 /* ---- helpers ------------------------------------------------------------------------------ */
@@ -660,6 +661,17 @@ static void test_overrides(void **state)
     td_case_free(&c);
 }
 
+/* A message is one line of printable text: no newline, no ESC or other control character. */
+static void assert_printable(const char *message)
+{
+    const unsigned char *p;
+    for (p = (const unsigned char *)message; *p; p++)
+        if (*p < 0x20 || *p == 0x7f) {
+            print_error("message \"%s\" holds the control character 0x%02x\n", message, *p);
+            fail();
+        }
+}
+
 typedef struct bad_override {
     const char *ov;
     const char *expect; /* in the message, after "FILE: --set 'OV': " */
@@ -698,6 +710,11 @@ static void test_bad_overrides(void **state)
         {"discs[0].mass=0", "discs[0].mass: must be > 0"},
         {"shaft.elements=12.5", "shaft.elements: expected an integer"},
         {"1bad=3", "'1bad' is not a valid key name"},
+        /* fuzz finding K3: control characters are quoted escaped, the message stays one line */
+        {"speed\n=1", "--set 'speed\\n=1': expected KEY=VALUE on one line"},
+        {"speed=\x1b[31m", "speed: expected a number, got the string \"\\x1b[31m\""},
+        {"spe\x1b" "ed=1", "'spe\\x1bed' is not a valid key name"},
+        {"speed=\"a\tb", "cannot parse the value '\"a\\tb'"},
         {"end_time=\"2\"", "end_time: expected a number, got the string \"2\""},
         {"gravity.direction=[0.0, 0.0]", "gravity.direction: must not be the zero vector"},
         {"discs[0]=3", "must have the type of the entry it replaces"},
@@ -720,7 +737,7 @@ static void test_bad_overrides(void **state)
         assert_null(c);
         snprintf(prefix, sizeof prefix, "paper-a.cfg: --set '");
         assert_contains(err.message, prefix);
-        assert_null(strchr(err.message, '\n'));
+        assert_printable(err.message);
     }
 }
 
@@ -755,7 +772,11 @@ static const bad_file bad_files[] = {
     {"end-time-zero.cfg", 4, "end_time", NULL},
     {"gravity-enabled-string.cfg", 5, "gravity.enabled", NULL},
     {"gravity-zero-direction.cfg", 6, "gravity.direction", NULL},
+    {"include-comment-at-eof.cfg", 3, NULL, "fragments/comment-at-eof.cfg"},
+    {"include-fan.cfg", 8, NULL, "fragments/fan-1.cfg"},
     {"include-missing.cfg", 3, NULL, NULL},
+    {"include-name-unclosed.cfg", 4, NULL, NULL},
+    {"include-self.cfg", 3, NULL, NULL},
     {"junk-bytes.cfg", 1, NULL, NULL},
     {"material-missing-E.cfg", 7, "shaft.material.E", NULL},
     {"material-string-density.cfg", 8, "shaft.material.density", NULL},
@@ -793,6 +814,7 @@ static const bad_file bad_files[] = {
     {"speed-inf.cfg", 3, "speed", NULL},
     {"speed-negative.cfg", 3, "speed", NULL},
     {"speed-string.cfg", 3, "speed", NULL},
+    {"start-control-chars.cfg", 5, "start", NULL},
     {"start-unknown.cfg", 4, "start", NULL},
     {"syntax-error.cfg", 4, NULL, NULL},
     {"syntax-mixed-array.cfg", 4, NULL, NULL},
@@ -827,7 +849,7 @@ static void check_bad_file(const bad_file *b)
         print_error("%s: message \"%s\" lacks \"%s\"\n", b->file, err.message, where);
         fail();
     }
-    assert_null(strchr(err.message, '\n'));
+    assert_printable(err.message);
     assert_true(strlen(err.message) > strlen(where) + 5); /* says what is wrong, too */
 }
 
@@ -935,6 +957,99 @@ static void test_bad_includes(void **state)
     unlink(fifo);
 }
 
+static double now_seconds(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+/* Fuzz finding K2: a file that includes itself 8 times, or includes that fan out 8 x 8 x 8, used
+ * to be expanded 8^10 times (minutes, gigabytes). The bounds of case.h stop them at once; the
+ * byte bound stops a few large files included again and again. */
+static void test_include_bounds(void **state)
+{
+    static const struct {
+        const char *file, *expect;
+    } bombs[] = {
+        {"tests/data/bad/include-self.cfg", "include-self.cfg:3: @include nested more than 8 deep"},
+        {"tests/data/bad/include-fan.cfg", "fragments/fan-1.cfg:8: more than 64 @include files"},
+    };
+    const char *big = scratch("big-part.cfg"), *main_file = scratch("big-main.cfg");
+    td_case *c = NULL;
+    td_error err;
+    size_t k;
+    double t0, dt;
+    FILE *f;
+    long bytes = 0;
+    (void)state;
+    for (k = 0; k < sizeof bombs / sizeof bombs[0]; k++) {
+        t0 = now_seconds();
+        assert_int_equal(td_case_load(td_source_path(bombs[k].file), NULL, 0, &c, &err), TD_ERR_PARSE);
+        dt = now_seconds() - t0;
+        assert_null(c);
+        assert_contains(err.message, bombs[k].expect);
+        if (dt > 1.0) {
+            print_error("%s: rejected after %.3f s, expected well under 1 s\n", bombs[k].file, dt);
+            fail();
+        }
+    }
+    /* 3 inclusions of a file of 12 MiB of comments: each under TD_CASE_MAX_FILE_SIZE, together
+     * over TD_CASE_MAX_TOTAL_SIZE (32 MiB); the third inclusion (line 3) is refused */
+    f = fopen(big, "w");
+    assert_non_null(f);
+    while (bytes < 12L * 1024L * 1024L) {
+        fputs("# padding padding padding padding padding padding padding padding padding padding pad\n", f);
+        bytes += 88;
+    }
+    fclose(f);
+    assert_true(bytes < TD_CASE_MAX_FILE_SIZE && 3 * bytes > TD_CASE_MAX_TOTAL_SIZE &&
+                2 * bytes < TD_CASE_MAX_TOTAL_SIZE);
+    write_file(main_file, "@include \"big-part.cfg\"\n@include \"big-part.cfg\"\n@include \"big-part.cfg\"\n");
+    t0 = now_seconds();
+    assert_int_equal(td_case_load(main_file, NULL, 0, &c, &err), TD_ERR_PARSE);
+    dt = now_seconds() - t0;
+    assert_null(c);
+    assert_contains(err.message, "big-main.cfg:3: the case and its @include files exceed 33554432 bytes");
+    assert_true(dt < 1.0);
+    unlink(big);
+}
+
+/* Fuzz finding K4: libconfig 1.5 rejects a last-line comment without a final newline ("syntax
+ * error"); the reader appends the newline to the main file, so these load. */
+static void test_comment_at_eof(void **state)
+{
+    static const char *const endings[] = {"# a comment", "// a comment", "end_time = 0.1; # a comment",
+                                          "end_time = 0.1; // a comment", "end_time = 0.1;"};
+    const char *main_file = scratch("comment-at-eof.cfg");
+    char text[512];
+    td_case *c = load_ok("tests/data/case/comment-at-eof.cfg", NULL, 0);
+    size_t k;
+    (void)state;
+    assert_close(td_model_speed(td_case_model(c)), 100.0, 0.0, 0.0);
+    assert_close(td_case_end_time(c), 0.1, 0.0, 0.0);
+    assert_int_equal(td_model_node_count(td_case_model(c)), 13);
+    td_case_free(&c);
+    for (k = 0; k < sizeof endings / sizeof endings[0]; k++) {
+        td_error err;
+        snprintf(text, sizeof text,
+                 "shaft = { length = 2.0; elements = 4; outer_diameter = 0.05;\n"
+                 "  material = { E = 2.11e11; G = 8.1e10; density = 7810.0; }; };\n"
+                 "speed = 100.0;\n%s%s",
+                 k < 2 ? "end_time = 0.1;\n" : "", endings[k]); /* no final newline */
+        write_file(main_file, text);
+        if (td_case_load(main_file, NULL, 0, &c, &err) != TD_OK) {
+            print_error("ending \"%s\": %s\n", endings[k], err.message);
+            fail();
+        }
+        assert_close(td_case_end_time(c), 0.1, 0.0, 0.0);
+        /* the case text ends with the comment and one newline */
+        assert_int_equal(td_case_text(c)[strlen(td_case_text(c)) - 1], '\n');
+        assert_contains(td_case_text(c), endings[k]);
+        td_case_free(&c);
+    }
+}
+
 static void test_api_misuse(void **state)
 {
     td_case *c = NULL;
@@ -944,6 +1059,10 @@ static void test_api_misuse(void **state)
     assert_int_equal(td_case_load(td_source_path("cases/paper-a.cfg"), NULL, 0, NULL, &err), TD_ERR_INVALID);
     assert_int_equal(td_case_load(NULL, NULL, 0, &c, &err), TD_ERR_INVALID);
     assert_null(c);
+    /* an empty path says so (it used to read ": cannot read the case file") */
+    assert_int_equal(td_case_load("", NULL, 0, &c, &err), TD_ERR_IO);
+    assert_null(c);
+    assert_int_equal(strncmp(err.message, "case file path is empty", 23), 0);
     assert_int_equal(td_case_load(td_source_path("cases/paper-a.cfg"), NULL, 1, &c, &err), TD_ERR_INVALID);
     assert_int_equal(td_case_load(td_source_path("cases/paper-a.cfg"), ov, -1, &c, &err), TD_ERR_INVALID);
     assert_int_equal(td_case_load(td_source_path("cases/paper-a.cfg"), NULL, 0, &c, NULL), TD_OK); /* err optional */
@@ -970,6 +1089,8 @@ int main(void)
         cmocka_unit_test(test_bad_files),
         cmocka_unit_test(test_unreadable_paths),
         cmocka_unit_test(test_bad_includes),
+        cmocka_unit_test(test_include_bounds),
+        cmocka_unit_test(test_comment_at_eof),
         cmocka_unit_test(test_api_misuse),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -135,6 +135,37 @@ static void test_sliding_velocity_and_friction(void **state)
     assert_close(td_contact_friction_force(0.1, -1, 700.0), 70.0, 1e-15, 0.0);
 }
 
+/* The slip-regularised law: phi = sgn(v_s) outside the band, linear inside, continuous at its
+ * edges; and the gradient of eq. (16) against central differences. */
+static void test_slip_factor_and_gradient(void **state)
+{
+    td_retainer ret = {2, 0.75e-3, 0.025, 0.02575, 0.1, 3.0, 0.0};
+    double vreg = TD_CONTACT_SLIP_BAND, d, g[4], z[4] = {3.1e-4, -6.2e-4, 0.021, 0.013};
+    int i;
+    (void)state;
+    assert_close(td_contact_slip_factor(2.0, vreg, &d), 1.0, 0.0, 0.0);
+    assert_close(d, 0.0, 0.0, 0.0);
+    assert_close(td_contact_slip_factor(-2.0, vreg, &d), -1.0, 0.0, 0.0);
+    assert_close(td_contact_slip_factor(0.25 * vreg, vreg, &d), 0.25, 1e-15, 0.0);
+    assert_close(d, 1.0 / vreg, 1e-15, 0.0);
+    assert_close(td_contact_slip_factor(0.0, vreg, NULL), 0.0, 0.0, 0.0);
+    assert_close(td_contact_slip_factor(vreg * (1.0 - 1e-12), vreg, NULL), 1.0, 0.0, 1e-11);
+    assert_close(td_contact_slip_factor(-vreg * (1.0 - 1e-12), vreg, NULL), -1.0, 0.0, 1e-11);
+    assert_close(td_contact_friction_force(0.1, 0.25, 700.0), -17.5, 1e-15, 0.0);
+    td_contact_sliding_velocity_gradient(&ret, z[0], z[1], z[2], z[3], g);
+    for (i = 0; i < 4; i++) {
+        double zp[4], zm[4], h = 1e-6 * fabs(z[i]), fd;
+        memcpy(zp, z, sizeof zp);
+        memcpy(zm, z, sizeof zm);
+        zp[i] += h;
+        zm[i] -= h;
+        fd = (td_contact_sliding_velocity(&ret, 90.0, zp[0], zp[1], zp[2], zp[3]) -
+              td_contact_sliding_velocity(&ret, 90.0, zm[0], zm[1], zm[2], zm[3])) /
+             (2.0 * h);
+        assert_close(g[i], fd, 1e-7, 0.0);
+    }
+}
+
 /* Impact on a lumped (diagonal) mass: the node's radial velocity becomes -e v_r, the tangential
  * one is kept, nothing else moves. */
 static void test_impact_lumped(void **state)
@@ -267,6 +298,7 @@ int main(void)
         cmocka_unit_test(test_penalty_derivatives),
         cmocka_unit_test(test_constraint_geometry),
         cmocka_unit_test(test_sliding_velocity_and_friction),
+        cmocka_unit_test(test_slip_factor_and_gradient),
         cmocka_unit_test(test_impact_lumped),
         cmocka_unit_test(test_impact_consistent_two_constraints),
         cmocka_unit_test(test_dense_solve_singular),

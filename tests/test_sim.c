@@ -160,6 +160,49 @@ static void test_jacobian_constrained_with_friction(void **state)
     td_sim_free(&s);
 }
 
+/* Turn each retainer's bore so that its sliding velocity at the test state of fill_state (radius
+ * rad) lies inside the slip band, at `frac[k]` v_reg. */
+static void put_in_slip_band(td_sim *s, double rad, const double *frac)
+{
+    double *y = calloc(s->neq, sizeof(double)), *yp = calloc(s->neq, sizeof(double));
+    int k;
+    assert_non_null(y);
+    assert_non_null(yp);
+    fill_state(s, rad, y, yp);
+    for (k = 0; k < s->nr; k++) {
+        td_retainer *r = &s->ret[k].r;
+        double vs0;
+        r->bore_speed = 0.0;
+        vs0 = td_sim_sliding_velocity(s, k, y);
+        r->bore_speed = (vs0 - frac[k] * TD_CONTACT_SLIP_BAND) / r->bore_radius;
+        assert_close(td_sim_sliding_velocity(s, k, y), frac[k] * TD_CONTACT_SLIP_BAND, 1e-6, 0.0);
+    }
+    free(y), free(yp);
+}
+
+/* Inside the slip-regularised band the friction mu lambda v_s / v_reg depends on q and v too. */
+static void test_jacobian_slip_band(void **state)
+{
+    const double frac[2] = {0.3, -0.6};
+    td_contact_damping laws[2] = {TD_DAMPING_NONE, TD_DAMPING_HUNT_CROSSLEY};
+    int l;
+    td_sim *s = small_sim(TD_CONTACT_CONSTRAINT, TD_DAMPING_NONE, TD_LINSOL_KLU);
+    (void)state;
+    s->ret[0].mode = s->ret[1].mode = TD_RMODE_CONTACT;
+    s->ret[0].slip = s->ret[1].slip = 0;
+    put_in_slip_band(s, 0.5e-3 * (1 + 1e-7), frac);
+    check_jacobian(s, 0.5e-3 * (1 + 1e-7), "two contacts in the slip band");
+    td_sim_free(&s);
+    for (l = 0; l < 2; l++) {
+        s = small_sim(TD_CONTACT_PENALTY, laws[l], TD_LINSOL_KLU);
+        s->ret[0].mode = s->ret[1].mode = TD_RMODE_PENETRATING;
+        s->ret[0].slip = s->ret[1].slip = 0;
+        put_in_slip_band(s, 0.5e-3 + 2e-6, frac);
+        check_jacobian(s, 0.5e-3 + 2e-6, "penalty contacts in the slip band");
+        td_sim_free(&s);
+    }
+}
+
 static void test_jacobian_penalty_with_damping(void **state)
 {
     td_contact_damping laws[3] = {TD_DAMPING_NONE, TD_DAMPING_HUNT_CROSSLEY, TD_DAMPING_KELVIN_VOIGT};
@@ -566,7 +609,7 @@ static void test_friction_reversal(void **state)
             fail_msg("%s", td_sim_errmsg(s));
         t = tr;
         td_sim_retainer_state(s, 0, &rs);
-        if (rs.in_contact && fabs(rs.sliding_velocity) > 1e-6) {
+        if (rs.in_contact && fabs(rs.sliding_velocity) >= TD_CONTACT_SLIP_BAND) { /* outside the band: Coulomb */
             assert_close(rs.friction_force, -(rs.sliding_velocity > 0 ? 0.1 : -0.1) * rs.normal_force, 1e-12, 1e-9);
             checked++;
         }
@@ -578,12 +621,117 @@ static void test_friction_reversal(void **state)
     td_case_free(&c);
 }
 
+/* An interrupt flag set before the step stops td_sim_step before its first internal step
+ * (solver.max_step = 1e-12 s would otherwise need 1e8 steps to tout): TD_ERR_INTERRUPTED, the time
+ * unchanged, the state readable and equal to the one before; cleared, stepping goes on. */
+static void test_interrupt_inside_step(void **state)
+{
+    const char *ov[1] = {"solver.max_step=1e-12"};
+    td_case *c = load_case("cases/paper-a.cfg", ov, 1);
+    td_sim *s = NULL;
+    volatile sig_atomic_t flag = 0;
+    double t0, tr = -1.0, *q0, *q1;
+    int n;
+    (void)state;
+    assert_int_equal(td_sim_create(td_case_model(c), td_case_sim_options(c), &s, NULL), TD_OK);
+    n = td_sim_dof_count(s);
+    q0 = calloc((size_t)n, sizeof(double));
+    q1 = calloc((size_t)n, sizeof(double));
+    assert_non_null(q0);
+    assert_non_null(q1);
+    assert_int_equal(td_sim_set_interrupt(NULL, &flag), TD_ERR_INVALID);
+    assert_int_equal(td_sim_set_interrupt(s, &flag), TD_OK);
+    flag = 1; /* set from the start */
+    assert_int_equal(td_sim_step(s, 1e-4, &tr), TD_ERR_INTERRUPTED);
+    assert_true(tr == 0.0 && td_sim_time(s) == 0.0);
+    flag = 0;
+    /* a few steps, so that IDA has a history to keep */
+    assert_int_equal(td_sim_step(s, 1e-10, &tr), TD_OK);
+    t0 = td_sim_time(s);
+    assert_int_equal(td_sim_get_state(s, q0, NULL), TD_OK);
+    flag = 1;
+    assert_int_equal(td_sim_step(s, 1e-4, &tr), TD_ERR_INTERRUPTED);
+    assert_true(tr == t0);
+    assert_non_null(strstr(td_sim_errmsg(s), "interrupted"));
+    assert_int_equal(td_sim_get_state(s, q1, NULL), TD_OK);
+    assert_memory_equal(q0, q1, sizeof(double) * (size_t)n);
+    flag = 0;
+    assert_int_equal(td_sim_step(s, 2e-10, &tr), TD_OK);
+    assert_true(tr == 2e-10);
+    assert_int_equal(td_sim_set_interrupt(s, NULL), TD_OK);
+    free(q0), free(q1);
+    td_sim_free(&s);
+    td_case_free(&c);
+}
+
+/* Penalty contact never lets the rotor through (case C, Kc = 1.25e12 N/m, 0.105 .. 0.7 s of bouncing
+ * and grazing): at every sample a retainer that is not in contact has its node inside the clearance
+ * (to the Newton tolerance the mode switch works to, atol / 10, plus the displacement tolerance for
+ * interpolated samples), a penetrating one reports F_n = Kc (r - c), and enter and exit events
+ * alternate. The mode used to follow IDA's roots alone: a grazing node whose gap crossed zero several
+ * times in one step could be left free while outside, and flew 1.7 mm through the retainer. */
+static void test_penalty_never_passes_through(void **state)
+{
+    td_case *c = load_case("cases/paper-c.cfg", NULL, 0);
+    td_sim_options o = *td_case_sim_options(c);
+    td_sim *s = NULL;
+    td_retainer ret[2];
+    double t = 0.0, t_end = 0.7, dt = 1e-5, worst_free = -1.0;
+    long enters = 0, samples_inside = 0;
+    int inside[2] = {0, 0}, k;
+    (void)state;
+    assert_int_equal(td_sim_create(td_case_model(c), &o, &s, NULL), TD_OK);
+    for (k = 0; k < 2; k++)
+        td_model_get_retainer(td_case_model(c), k, &ret[k]);
+    while (t < t_end) {
+        double tr;
+        td_status r = td_sim_step(s, next_output(t, dt, t_end), &tr);
+        if (r == TD_EVENT) {
+            td_event ev;
+            td_sim_last_event(s, &ev);
+            if (ev.kind == TD_EVENT_PENALTY_ENTER) {
+                assert_int_equal(inside[ev.retainer], 0);
+                inside[ev.retainer] = 1;
+                enters++;
+            } else if (ev.kind == TD_EVENT_PENALTY_EXIT) {
+                assert_int_equal(inside[ev.retainer], 1);
+                inside[ev.retainer] = 0;
+            }
+            continue;
+        }
+        if (r != TD_OK)
+            fail_msg("%s", td_sim_errmsg(s));
+        t = tr;
+        for (k = 0; k < 2; k++) {
+            td_retainer_state rs;
+            double excess;
+            td_sim_retainer_state(s, k, &rs);
+            excess = rs.radius - ret[k].clearance;
+            if (!rs.in_contact) {
+                worst_free = fmax(worst_free, excess);
+                assert_true(excess <= 1.1e-9);
+            } else {
+                samples_inside++;
+                assert_close(rs.normal_force, fmax(0.0, td_case_sim_options(c)->contact.stiffness * excess), 1e-9,
+                             1e-6);
+            }
+        }
+    }
+    print_message("case C to %.2f s: %ld penalty entries, %ld samples inside, largest r - c of a free retainer "
+                  "%.3g m\n",
+                  t_end, enters, samples_inside, worst_free);
+    assert_true(enters > 100);
+    td_sim_free(&s);
+    td_case_free(&c);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_jacobian_free_and_amb_modes),
         cmocka_unit_test(test_jacobian_constrained_with_friction),
         cmocka_unit_test(test_jacobian_penalty_with_damping),
+        cmocka_unit_test(test_jacobian_slip_band),
         cmocka_unit_test(test_api_errors),
         cmocka_unit_test(test_dense_matches_klu),
         cmocka_unit_test(test_two_sims_independent),
@@ -593,6 +741,8 @@ int main(void)
         cmocka_unit_test(test_api_change_matches_schedule),
         cmocka_unit_test(test_speed_change_continuity),
         cmocka_unit_test(test_friction_reversal),
+        cmocka_unit_test(test_penalty_never_passes_through),
+        cmocka_unit_test(test_interrupt_inside_step),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

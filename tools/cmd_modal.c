@@ -45,24 +45,41 @@ static void print_critical(const td_critical_speed *cs, int n, const td_modal_op
                cs[i].freq_hz, cs[i].speed * 30.0 / 3.14159265358979323846, cs[i].zeta);
 }
 
+/* One orbit line, if `node` is in the response. */
+static void print_orbit(const td_harmonic *h, const char *what, int node, double clearance)
+{
+    td_orbit o;
+    if (td_harmonic_orbit(h, node, &o) != TD_OK)
+        return;
+    printf("  %s, node %d: major %.9g m, minor %.9g m", what, node, o.major, o.minor);
+    if (clearance > 0.0)
+        printf(" (%.4g of the clearance)", o.major / clearance);
+    putchar('\n');
+}
+
+/* Steady orbits where they matter: retainers, AMBs, and the unbalanced nodes. */
 static void print_orbits(const td_model *m, const td_harmonic *h)
 {
     int i;
+    char what[32];
     printf("unbalance response at %.12g rad/s (semi-axes of the steady orbit):\n", td_harmonic_speed(h));
     for (i = 0; i < td_model_retainer_count(m); i++) {
         td_retainer r;
-        td_orbit o;
         td_model_get_retainer(m, i, &r);
-        if (td_harmonic_orbit(h, r.node, &o) == TD_OK)
-            printf("  retainer %d, node %d: major %.9g m, minor %.9g m (%.4g of the clearance)\n", i, r.node, o.major,
-                   o.minor, o.major / r.clearance);
+        snprintf(what, sizeof what, "retainer %d", i);
+        print_orbit(h, what, r.node, r.clearance);
     }
     for (i = 0; i < td_model_amb_count(m); i++) {
         td_amb a;
-        td_orbit o;
         td_model_get_amb(m, i, &a);
-        if (td_harmonic_orbit(h, a.node, &o) == TD_OK)
-            printf("  amb %d, node %d: major %.9g m, minor %.9g m\n", i, a.node, o.major, o.minor);
+        snprintf(what, sizeof what, "amb %d", i);
+        print_orbit(h, what, a.node, 0.0);
+    }
+    for (i = 0; i < td_model_unbalance_count(m); i++) {
+        td_unbalance u;
+        td_model_get_unbalance(m, i, &u);
+        snprintf(what, sizeof what, "unbalance %d", i);
+        print_orbit(h, what, u.node, 0.0);
     }
 }
 
@@ -133,7 +150,7 @@ static int analyse(const td_case *c, double speed, const modal_outputs *paths, i
         goto done;
     if (paths->hdf5[0] && (st = td_modal_write_hdf5(paths->hdf5, &res, &err)) != TD_OK)
         goto done;
-    if (!quiet)
+    if (!quiet && (paths->csv[0] || paths->hdf5[0]))
         printf("wrote%s%s%s%s\n", paths->csv[0] ? " " : "", paths->csv, paths->hdf5[0] ? " " : "", paths->hdf5);
     code = TD_EXIT_OK;
 done:

@@ -52,8 +52,13 @@ int main(int argc, char **argv)
         return TD_EXIT_OK;
     }
     for (i = 0; i < sizeof commands / sizeof commands[0]; i++)
-        if (!strcmp(argv[1], commands[i].name))
+        if (!strcmp(argv[1], commands[i].name)) {
+            /* getopt prefixes its messages with argv[0]: make that "touchdown CMD" */
+            char name[64];
+            snprintf(name, sizeof name, "touchdown %s", commands[i].name);
+            argv[1] = name;
             return commands[i].fn(argc - 1, argv + 1);
+        }
     fprintf(stderr, "touchdown: unknown command '%s'\n\n%s", argv[1], usage);
     return TD_EXIT_USAGE;
 }

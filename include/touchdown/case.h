@@ -32,6 +32,14 @@ typedef struct td_case td_case;
 #define TD_CASE_MAX_ELEMENTS 10000
 /** Largest case file (or included file) read, bytes. */
 #define TD_CASE_MAX_FILE_SIZE (16L * 1024L * 1024L)
+/** Deepest @include nesting: a file included by the case file is at depth 1 (libconfig's own
+ *  limit, 10, is never reached). */
+#define TD_CASE_MAX_INCLUDE_DEPTH 8
+/** Most @include files expanded for one case, counting each inclusion (a file included twice
+ *  counts twice); bounds a file that includes itself several times. */
+#define TD_CASE_MAX_INCLUDES 64
+/** Most bytes read for one case: the case file and every inclusion together. */
+#define TD_CASE_MAX_TOTAL_SIZE (32L * 1024L * 1024L)
 /** Largest number of output samples (sample_rate x end_time) a case may ask for. */
 #define TD_CASE_MAX_SAMPLES 1e8
 

@@ -37,7 +37,9 @@ typedef struct td_run_hooks {
     double progress_interval;      /**< simulated s between progress calls (0: after every sample);
                                         a last call is made at the end of a complete run */
     volatile sig_atomic_t *cancel; /**< NULL, or a flag (e.g. set by a signal handler) checked before
-                                        every td_sim_step; nonzero stops the run (TD_ERR_INTERRUPTED) */
+                                        every integrator step (td_run hands it to td_sim_set_interrupt
+                                        for the run, replacing any flag set there, and clears it
+                                        after); nonzero stops the run (TD_ERR_INTERRUPTED) */
 } td_run_hooks;
 
 /** What a run did. Times in s, forces in N; -1 marks "none"/"undefined" where stated. */

@@ -15,6 +15,8 @@
 #include "touchdown/model.h"
 #include "touchdown/options.h"
 
+#include <signal.h>
+
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -25,7 +27,8 @@ typedef struct td_sim td_sim;
 typedef enum td_event_kind {
     TD_EVENT_CONTACT_ONSET = 0,     /**< rotor reached the clearance circle moving outward (impact) */
     TD_EVENT_RELEASE = 1,           /**< normal force reached zero: the rotor leaves the retainer */
-    TD_EVENT_FRICTION_REVERSAL = 2, /**< sliding velocity (eq. 16) through zero */
+    TD_EVENT_FRICTION_REVERSAL = 2, /**< sliding velocity (eq. 16) changed sign: it crossed the whole
+                                         slip band |v_s| < 1e-4 m/s of the friction law (docs/theory.md) */
     TD_EVENT_SCHEDULE = 3,          /**< a timed change of the model (unbalance step, AMB failure) */
     TD_EVENT_PENALTY_ENTER = 4,     /**< penalty model: penetration delta became positive */
     TD_EVENT_PENALTY_EXIT = 5       /**< penalty model: penetration delta returned to zero */
@@ -34,27 +37,27 @@ typedef enum td_event_kind {
 /** One event, as recorded in the event table. Velocities are of the retainer node. */
 typedef struct td_event {
     td_event_kind kind;
-    double time;                     /**< s */
-    int retainer;                    /**< retainer index, -1 for schedule events */
-    int change;                      /**< schedule index for TD_EVENT_SCHEDULE, else -1 */
-    double radial_velocity_before;   /**< m/s, positive outward */
+    double time;                   /**< s */
+    int retainer;                  /**< retainer index, -1 for schedule events */
+    int change;                    /**< schedule index for TD_EVENT_SCHEDULE, else -1 */
+    double radial_velocity_before; /**< m/s, positive outward */
     double radial_velocity_after;
     double tangential_velocity_before; /**< m/s, positive along the whirl direction */
     double tangential_velocity_after;
-    double impulse;                  /**< N s, normal impulse of the impact map (onset only) */
-    double normal_force;             /**< N, right after the event */
+    double impulse;      /**< N s, normal impulse of the impact map (onset only) */
+    double normal_force; /**< N, right after the event */
 } td_event;
 
 /** Contact state of one retainer at the current time. */
 typedef struct td_retainer_state {
-    double x, y;           /**< node displacement, m */
-    double radius;         /**< radial position r = sqrt(x^2 + y^2), m */
-    double radial_velocity;/**< m/s */
-    double whirl_angle;    /**< atan2(y, x), rad */
-    double normal_force;   /**< N >= 0 while in contact */
-    double friction_force; /**< N, tangential, positive along the whirl direction */
+    double x, y;             /**< node displacement, m */
+    double radius;           /**< radial position r = sqrt(x^2 + y^2), m */
+    double radial_velocity;  /**< m/s */
+    double whirl_angle;      /**< atan2(y, x), rad */
+    double normal_force;     /**< N >= 0 while in contact */
+    double friction_force;   /**< N, tangential, positive along the whirl direction */
     double sliding_velocity; /**< eq. 16, m/s */
-    int in_contact;        /**< 1 while the contact is active */
+    int in_contact;          /**< 1 while the contact is active */
 } td_retainer_state;
 
 /** How an AMB is driven. */
@@ -73,15 +76,15 @@ typedef struct td_sim_stats {
     long nonlinear_iters;
     long error_test_fails;
     long nonlinear_fails;
-    long restarts;          /**< re-initialisations after events */
-    long events;            /**< events of any kind */
+    long restarts; /**< re-initialisations after events */
+    long events;   /**< events of any kind */
     long contact_onsets;
     long releases;
-    double worst_drift;     /**< max |r - c| while in constrained contact, m */
-    double peak_normal_force; /**< N */
-    double time_in_contact; /**< s, summed over retainers */
+    double worst_drift;        /**< max |r - c| while in constrained contact, m */
+    double peak_normal_force;  /**< N */
+    double time_in_contact;    /**< s, summed over retainers */
     double first_contact_time; /**< s, -1 if none */
-    double wall_time;       /**< s spent inside td_sim_step */
+    double wall_time;          /**< s spent inside td_sim_step */
 } td_sim_stats;
 
 /** Create a simulation of `model` (copied) with `options` (copied; NULL: defaults).
@@ -96,6 +99,11 @@ TD_API const char *td_sim_errmsg(const td_sim *sim);
  *  stopped at an event (read it with td_sim_last_event; call again to go on), or a negative
  *  status on failure (the state stays at the last good time). *t_reached may be NULL. */
 TD_API td_status td_sim_step(td_sim *sim, double tout, double *t_reached);
+/** Borrow `flag` (NULL: clear) as an interrupt request: td_sim_step reads it before every
+ *  internal integrator step and, when it is nonzero, returns TD_ERR_INTERRUPTED at once with the
+ *  state at the last good step (td_sim_time, td_sim_get_state etc. read it; stepping may go on
+ *  once the flag is cleared). The flag must outlive the sim or be cleared first. */
+TD_API td_status td_sim_set_interrupt(td_sim *sim, volatile sig_atomic_t *flag);
 /** Current time, s. */
 TD_API double td_sim_time(const td_sim *sim);
 /** The event that stopped the last td_sim_step with TD_EVENT. */

@@ -108,10 +108,37 @@ double td_contact_sliding_velocity(const td_retainer *ret, double omega, double 
            ret->bore_radius * ret->bore_speed;
 }
 
-/* eq. (17): magnitude mu N, opposing the sliding velocity. */
-double td_contact_friction_force(double mu, int sign, double normal_force)
+void td_contact_sliding_velocity_gradient(const td_retainer *ret, double x, double y, double vx, double vy,
+                                          double g[4])
 {
-    return -(double)sign * mu * normal_force;
+    double r2 = x * x + y * y, a = ret->bore_radius - ret->shaft_radius, w;
+    if (!(r2 > 0.0)) {
+        g[0] = g[1] = g[2] = g[3] = 0.0;
+        return;
+    }
+    w = (x * vy - y * vx) / r2; /* whirl rate */
+    g[0] = a * (vy - 2.0 * x * w) / r2;
+    g[1] = a * (-vx - 2.0 * y * w) / r2;
+    g[2] = a * (-y / r2);
+    g[3] = a * (x / r2);
+}
+
+double td_contact_slip_factor(double vs, double vreg, double *dphi)
+{
+    if (vs >= vreg || vs <= -vreg) {
+        if (dphi)
+            *dphi = 0.0;
+        return vs > 0.0 ? 1.0 : -1.0;
+    }
+    if (dphi)
+        *dphi = 1.0 / vreg;
+    return vs / vreg;
+}
+
+/* eq. (17), regularised: magnitude phi mu N, opposing the sliding velocity. */
+double td_contact_friction_force(double mu, double phi, double normal_force)
+{
+    return -phi * mu * normal_force;
 }
 
 int td_contact_dense_solve(int m, double *A, double *b)

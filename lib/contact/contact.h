@@ -67,9 +67,22 @@ double td_contact_penalty_force(const td_penalty_law *law, double delta, double 
  * rate dtheta/dt = (x vy - y vx)/r^2 (0 at r == 0). */
 double td_contact_sliding_velocity(const td_retainer *ret, double omega, double x, double y, double vx, double vy);
 
-/* Friction force on the rotor along the whirl tangent t: -sign mu N (eq. 17; sign = sgn(v_s),
- * a discrete mode, +1 or -1). */
-double td_contact_friction_force(double mu, int sign, double normal_force);
+/* Partial derivatives of v_s (eq. 16) by (x, y, vx, vy) into g[4] (0 at r == 0). */
+void td_contact_sliding_velocity_gradient(const td_retainer *ret, double x, double y, double vx, double vy,
+                                          double g[4]);
+
+/* Half-width v_reg of the slip-regularised band of Coulomb's law, m/s (docs/theory.md, friction):
+ * a micro-slip (creep) speed, small against the sliding speeds of a touchdown (metres per second;
+ * 2 m/s in cases A and B) and large against the integrator's velocity noise. */
+#define TD_CONTACT_SLIP_BAND 1e-4
+
+/* Slip factor phi of the regularised eq. (17): sgn(v_s) for |v_s| >= vreg, v_s / vreg inside the
+ * band. *dphi (may be NULL) receives d phi / d v_s (1/vreg inside the band, 0 outside). */
+double td_contact_slip_factor(double vs, double vreg, double *dphi);
+
+/* Friction force on the rotor along the whirl tangent t: -phi mu N (eq. 17 regularised; phi the
+ * slip factor, +-1 when sliding). */
+double td_contact_friction_force(double mu, double phi, double normal_force);
 
 /* ---- impact map ------------------------------------------------------------------------- */
 

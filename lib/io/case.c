@@ -40,7 +40,8 @@ static td_status set_dir(td_case_reader *r)
     const char *slash = strrchr(r->path, '/');
     r->has_dir = slash != NULL;
     r->dir = slash ? dup_string(r->path, slash == r->path ? 1 : (size_t)(slash - r->path)) : dup_string(".", 1);
-    return r->dir ? TD_OK : td_error_set(r->err, TD_ERR_NOMEM, "%s: out of memory", r->path);
+    r->dir_shown = r->dir ? td_cr_printable_dup(r->dir) : NULL;
+    return r->dir_shown ? TD_OK : td_error_set(r->err, TD_ERR_NOMEM, "%s: out of memory", r->path_shown);
 }
 
 static td_status syntax_error(td_case_reader *r)
@@ -50,7 +51,7 @@ static td_status syntax_error(td_case_reader *r)
     td_cr_file_shown(r, config_error_file(&r->cfg), shown, sizeof shown);
     if (strcmp(text, "cannot open include file") == 0)
         return td_error_set(r->err, TD_ERR_PARSE, "%s:%d: %s (@include paths are relative to %s)", shown,
-                            config_error_line(&r->cfg), text, r->dir);
+                            config_error_line(&r->cfg), text, r->dir_shown);
     return td_error_set(r->err, TD_ERR_PARSE, "%s:%d: %s", shown, config_error_line(&r->cfg), text);
 }
 
@@ -121,7 +122,7 @@ static td_status finish_text(td_case_reader *r, td_cr_buf *buf, const char *cons
     if (!buf->data)
         td_cr_buf_append(buf, "", 0);
     if (buf->failed)
-        return td_error_set(r->err, TD_ERR_NOMEM, "%s: out of memory", r->path);
+        return td_error_set(r->err, TD_ERR_NOMEM, "%s: out of memory", r->path_shown);
     r->c->text = buf->data;
     buf->data = NULL;
     return TD_OK;
@@ -137,7 +138,7 @@ static td_status read_case(td_case_reader *r)
     if (st == TD_OK)
         st = td_cr_string(r, root, "description", "", &desc);
     if (st == TD_OK && !(r->c->description = dup_string(desc, strlen(desc))))
-        st = td_error_set(r->err, TD_ERR_NOMEM, "%s: out of memory", r->path);
+        st = td_error_set(r->err, TD_ERR_NOMEM, "%s: out of memory", r->path_shown);
     if (st == TD_OK)
         st = td_cr_read_shaft(r, root);
     if (st == TD_OK)
@@ -146,8 +147,26 @@ static td_status read_case(td_case_reader *r)
         st = td_cr_read_options(r, root);
     /* everything td_model_validate checks was checked above with locations; this is a backstop */
     if (st == TD_OK && td_model_validate(r->c->model, &merr) != TD_OK)
-        st = td_error_set(r->err, TD_ERR_PARSE, "%s: %s", r->path, merr.message);
+        st = td_error_set(r->err, TD_ERR_PARSE, "%s: %s", r->path_shown, merr.message);
     return st;
+}
+
+/* libconfig 1.5 rejects a last line that is a comment without a final newline ("syntax error":
+ * its comment pattern needs the newline), so the text it parses always ends with one. Line
+ * numbers do not change. */
+static td_status end_with_newline(td_case_reader *r, char **text)
+{
+    size_t n = strlen(*text);
+    char *p;
+    if (n == 0 || (*text)[n - 1] == '\n')
+        return TD_OK;
+    p = realloc(*text, n + 2);
+    if (!p)
+        return td_error_set(r->err, TD_ERR_NOMEM, "%s: out of memory", r->path_shown);
+    p[n] = '\n';
+    p[n + 1] = '\0';
+    *text = p;
+    return TD_OK;
 }
 
 static td_status load(td_case_reader *r, const char *const *overrides, int n_overrides)
@@ -157,9 +176,13 @@ static td_status load(td_case_reader *r, const char *const *overrides, int n_ove
     int i;
     td_status st = set_dir(r);
     if (st == TD_OK)
-        st = td_cr_read_file(r->path, r->path, &main_text, r->err);
-    if (st == TD_OK)
+        st = td_cr_read_file(r->path_shown, r->path, &main_text, r->err);
+    if (st == TD_OK) {
+        r->bytes = strlen(main_text);
         st = td_cr_expand(r, main_text, NULL, 0, &text);
+    }
+    if (st == TD_OK)
+        st = end_with_newline(r, &main_text);
     if (st != TD_OK) {
         free(main_text);
         free(text.data);
@@ -174,7 +197,7 @@ static td_status load(td_case_reader *r, const char *const *overrides, int n_ove
     if (st == TD_OK)
         st = check_wraps(r);
     if (st == TD_OK && config_setting_length(config_root_setting(&r->cfg)) == 0)
-        st = td_error_set(r->err, TD_ERR_PARSE, "%s:1: the case file is empty (no settings)", r->path);
+        st = td_error_set(r->err, TD_ERR_PARSE, "%s:1: the case file is empty (no settings)", r->path_shown);
     for (i = 0; st == TD_OK && i < n_overrides; i++)
         st = td_cr_apply_override(r, overrides[i]);
     if (st == TD_OK)
@@ -196,17 +219,24 @@ td_status td_case_load(const char *path, const char *const *overrides, int n_ove
     *out = NULL;
     if (!path || n_overrides < 0 || (n_overrides > 0 && !overrides))
         return td_error_set(err, TD_ERR_INVALID, "td_case_load: NULL path, or bad override array");
+    if (!path[0])
+        return td_error_set(err, TD_ERR_IO, "case file path is empty: cannot read the case file");
     memset(&r, 0, sizeof r);
     r.path = path;
     r.err = err;
-    r.c = case_new(path);
-    if (!r.c)
-        return td_error_set(err, TD_ERR_NOMEM, "%s: out of memory", path);
+    r.path_shown = td_cr_printable_dup(path);
+    r.c = r.path_shown ? case_new(path) : NULL;
+    if (!r.c) {
+        free(r.path_shown);
+        return td_error_set(err, TD_ERR_NOMEM, "case file: out of memory");
+    }
     st = load(&r, overrides, n_overrides);
     for (i = 0; i < r.wrap_count; i++)
         free(r.wraps[i].file);
     free(r.wraps);
     free(r.dir);
+    free(r.dir_shown);
+    free(r.path_shown);
     if (st != TD_OK) {
         td_case_free(&r.c);
         return st;

@@ -41,7 +41,9 @@ typedef struct td_cr_buf {
 typedef struct td_case_reader {
     config_t cfg;
     const char *path; /* the case file as given */
+    char *path_shown; /* the path as quoted in messages (td_cr_printable) */
     char *dir;        /* include directory: the case file's directory, "." when none */
+    char *dir_shown;  /* the include directory as quoted in messages */
     int has_dir;      /* path names a directory: included files are shown as dir/name */
     td_error *err;
     td_case *c;
@@ -49,6 +51,8 @@ typedef struct td_case_reader {
     const config_setting_t *ambs; /* the "ambs" list (entry i is AMB i), or NULL */
     td_cr_wrap_site *wraps;
     int wrap_count, wrap_cap;
+    int includes; /* @include files expanded so far (limit TD_CASE_MAX_INCLUDES) */
+    size_t bytes; /* bytes read so far, main file and includes (limit TD_CASE_MAX_TOTAL_SIZE) */
 } td_case_reader;
 
 /* Range a real value must lie in. */
@@ -73,6 +77,13 @@ td_status td_cr_expand(td_case_reader *r, const char *text, const char *file, in
 int td_cr_value_wraps(const char *text, char *literal, size_t n);
 
 /* ---- locations and getters (case_value.c) ------------------------------------------------ */
+/* User text (a string value, an override, a file name) made fit to quote in a one-line message:
+ * control characters become \n, \t, \r or \xHH (so no raw ESC reaches a terminal), and text
+ * longer than the buffer is cut with "...". Writes at most n bytes (n >= 8) to buf; returns buf.
+ * Every message that quotes user text passes it through here. */
+const char *td_cr_printable(const char *s, char *buf, size_t n);
+/* td_cr_printable into a new string (caller frees); NULL when out of memory. */
+char *td_cr_printable_dup(const char *s);
 /* How a file libconfig recorded (NULL: main) is shown in messages. */
 void td_cr_file_shown(const td_case_reader *r, const char *file, char *buf, size_t n);
 /* Full key of a setting, e.g. "retainers[1].clearance"; "" for the root. */

@@ -23,7 +23,16 @@ typedef struct step {
 
 static td_status bad(td_case_reader *r, const char *ov, const char *what)
 {
-    return td_error_set(r->err, TD_ERR_PARSE, "%s: --set '%s': %s", r->path, ov, what);
+    char shown[TD_ERROR_MESSAGE_SIZE];
+    return td_error_set(r->err, TD_ERR_PARSE, "%s: --set '%s': %s", r->path_shown,
+                        td_cr_printable(ov, shown, sizeof shown), what);
+}
+
+static td_status out_of_memory(td_case_reader *r, const char *ov)
+{
+    char shown[TD_ERROR_MESSAGE_SIZE];
+    return td_error_set(r->err, TD_ERR_NOMEM, "%s: --set '%s': out of memory", r->path_shown,
+                        td_cr_printable(ov, shown, sizeof shown));
 }
 
 /* Split "a.b[2].c" (or libconfig's "a.b.[2].c") into steps; returns the count, -1 if malformed. */
@@ -116,7 +125,7 @@ static td_status replace_element(td_case_reader *r, const char *ov, config_setti
     else
         return bad(r, ov, "cannot replace a whole nested list or array entry; set the enclosing key instead");
     if (!ok)
-        return td_error_set(r->err, TD_ERR_NOMEM, "%s: --set '%s': out of memory", r->path, ov);
+        return out_of_memory(r, ov);
     config_setting_set_hook(el, (void *)ov);
     return TD_OK;
 }
@@ -125,20 +134,22 @@ static td_status replace_element(td_case_reader *r, const char *ov, config_setti
 static td_status walk(td_case_reader *r, const char *ov, const step *steps, int n, config_setting_t **out)
 {
     config_setting_t *cur = config_root_setting(&r->cfg);
-    char msg[TD_ERROR_MESSAGE_SIZE];
+    char msg[TD_ERROR_MESSAGE_SIZE], shown[200];
     int i;
     for (i = 0; i < n; i++) {
         config_setting_t *next;
         if (steps[i].name[0]) {
             if (!config_setting_is_group(cur)) {
-                snprintf(msg, sizeof msg, "cannot set '%.200s': its parent is not a group", steps[i].name);
+                snprintf(msg, sizeof msg, "cannot set '%s': its parent is not a group",
+                         td_cr_printable(steps[i].name, shown, sizeof shown));
                 return bad(r, ov, msg);
             }
             next = config_setting_get_member(cur, steps[i].name);
             if (!next) {
                 next = config_setting_add(cur, steps[i].name, CONFIG_TYPE_GROUP);
                 if (!next) {
-                    snprintf(msg, sizeof msg, "'%.200s' is not a valid key name", steps[i].name);
+                    snprintf(msg, sizeof msg, "'%s' is not a valid key name",
+                             td_cr_printable(steps[i].name, shown, sizeof shown));
                     return bad(r, ov, msg);
                 }
                 config_setting_set_hook(next, (void *)ov);
@@ -164,7 +175,7 @@ static td_status graft(td_case_reader *r, const char *ov, const step *steps, int
 {
     config_setting_t *parent = NULL, *dst;
     const step *last = &steps[n - 1];
-    char msg[TD_ERROR_MESSAGE_SIZE];
+    char msg[TD_ERROR_MESSAGE_SIZE], shown[200];
     td_status st = walk(r, ov, steps, n - 1, &parent);
     if (st != TD_OK)
         return st;
@@ -179,7 +190,8 @@ static td_status graft(td_case_reader *r, const char *ov, const step *steps, int
         return replace_element(r, ov, parent, last->index, val);
     }
     if (!config_setting_is_group(parent)) {
-        snprintf(msg, sizeof msg, "cannot set '%.200s': its parent is not a group", last->name);
+        snprintf(msg, sizeof msg, "cannot set '%s': its parent is not a group",
+                 td_cr_printable(last->name, shown, sizeof shown));
         return bad(r, ov, msg);
     }
     if (config_setting_get_member(parent, last->name))
@@ -188,10 +200,10 @@ static td_status graft(td_case_reader *r, const char *ov, const step *steps, int
     if (!dst) {
         /* copy_setting fails on a bad name, or on memory; a valid name can only mean memory */
         if (!config_setting_get_member(parent, last->name)) {
-            snprintf(msg, sizeof msg, "'%.200s' is not a valid key name", last->name);
+            snprintf(msg, sizeof msg, "'%s' is not a valid key name", td_cr_printable(last->name, shown, sizeof shown));
             return bad(r, ov, msg);
         }
-        return td_error_set(r->err, TD_ERR_NOMEM, "%s: --set '%s': out of memory", r->path, ov);
+        return out_of_memory(r, ov);
     }
     config_setting_set_hook(dst, (void *)ov);
     return TD_OK;
@@ -200,7 +212,7 @@ static td_status graft(td_case_reader *r, const char *ov, const step *steps, int
 /* Parse VALUE as a libconfig value into vc (a single setting "v"), or as a bare string. */
 static td_status parse_value(td_case_reader *r, const char *ov, const char *value, config_t *vc)
 {
-    char *src, literal[40], msg[TD_ERROR_MESSAGE_SIZE];
+    char *src, literal[40], msg[TD_ERROR_MESSAGE_SIZE], shown[200];
     config_setting_t *s;
     size_t n = strlen(value);
     int ok;
@@ -210,14 +222,14 @@ static td_status parse_value(td_case_reader *r, const char *ov, const char *valu
     }
     src = malloc(n + 8);
     if (!src)
-        return td_error_set(r->err, TD_ERR_NOMEM, "%s: out of memory", r->path);
+        return td_error_set(r->err, TD_ERR_NOMEM, "%s: out of memory", r->path_shown);
     sprintf(src, "v = %s;", value);
     ok = config_read_string(vc, src);
     free(src);
     if (ok && config_setting_length(config_root_setting(vc)) == 1 && config_lookup(vc, "v"))
         return TD_OK;
     if (ok || strchr("\"[({", value[0])) {
-        snprintf(msg, sizeof msg, "cannot parse the value '%.200s' (%s)", value,
+        snprintf(msg, sizeof msg, "cannot parse the value '%s' (%s)", td_cr_printable(value, shown, sizeof shown),
                  ok ? "more than one value" : config_error_text(vc));
         return bad(r, ov, msg);
     }
@@ -226,7 +238,7 @@ static td_status parse_value(td_case_reader *r, const char *ov, const char *valu
     config_init(vc);
     s = config_setting_add(config_root_setting(vc), "v", CONFIG_TYPE_STRING);
     if (!s || !config_setting_set_string(s, value))
-        return td_error_set(r->err, TD_ERR_NOMEM, "%s: out of memory", r->path);
+        return td_error_set(r->err, TD_ERR_NOMEM, "%s: out of memory", r->path_shown);
     return TD_OK;
 }
 
@@ -241,7 +253,7 @@ td_status td_cr_apply_override(td_case_reader *r, const char *ov)
     td_status st;
 
     if (!ov)
-        return td_error_set(r->err, TD_ERR_INVALID, "%s: override string is NULL", r->path);
+        return td_error_set(r->err, TD_ERR_INVALID, "%s: override string is NULL", r->path_shown);
     eq = strchr(ov, '=');
     if (!eq || strchr(ov, '\n'))
         return bad(r, ov, "expected KEY=VALUE on one line (e.g. --set speed=190)");

@@ -34,7 +34,7 @@ static td_status read_lengths(td_case_reader *r, const config_setting_t *shaft, 
             return td_cr_fail(r, nodes, NULL, "give either 'nodes' or 'length' + 'elements', not both");
         z = malloc((TD_CASE_MAX_ELEMENTS + 1) * sizeof *z);
         if (!z)
-            return td_error_set(r->err, TD_ERR_NOMEM, "%s: out of memory", r->path);
+            return td_error_set(r->err, TD_ERR_NOMEM, "%s: out of memory", r->path_shown);
         st = td_cr_reals(r, shaft, "nodes", TD_CASE_MAX_ELEMENTS + 1, TD_CR_FINITE, z, &n);
         if (st == TD_OK && n < 2)
             st = td_cr_fail(r, nodes, NULL, "needs at least 2 node positions (got %d)", n);
@@ -59,7 +59,7 @@ static td_status read_lengths(td_case_reader *r, const config_setting_t *shaft, 
         return st;
     z = malloc((size_t)n * sizeof *z);
     if (!z)
-        return td_error_set(r->err, TD_ERR_NOMEM, "%s: out of memory", r->path);
+        return td_error_set(r->err, TD_ERR_NOMEM, "%s: out of memory", r->path_shown);
     for (i = 0; i < n; i++)
         z[i] = length / n;
     *lengths = z;
@@ -224,7 +224,7 @@ td_status td_cr_read_shaft(td_case_reader *r, const config_setting_t *root)
     els = calloc((size_t)count, sizeof *els);
     owner = malloc((size_t)count * sizeof *owner);
     if (!els || !owner) {
-        st = td_error_set(r->err, TD_ERR_NOMEM, "%s: out of memory", r->path);
+        st = td_error_set(r->err, TD_ERR_NOMEM, "%s: out of memory", r->path_shown);
         goto done;
     }
     for (i = 0; i < count; i++)

@@ -17,9 +17,6 @@
 #include <string.h>
 #include <sys/stat.h>
 
-/* libconfig 1.5's include nesting limit. */
-#define TD_CR_MAX_INCLUDE_DEPTH 10
-
 void td_cr_buf_append(td_cr_buf *b, const char *s, size_t n)
 {
     if (b->failed)
@@ -119,7 +116,7 @@ static td_status add_wrap(td_case_reader *r, const char *file, int line, const c
         int cap = r->wrap_cap ? 2 * r->wrap_cap : 4;
         td_cr_wrap_site *p = realloc(r->wraps, (size_t)cap * sizeof *p);
         if (!p)
-            return td_error_set(r->err, TD_ERR_NOMEM, "%s: out of memory", r->path);
+            return td_error_set(r->err, TD_ERR_NOMEM, "%s: out of memory", r->path_shown);
         r->wraps = p;
         r->wrap_cap = cap;
     }
@@ -128,7 +125,7 @@ static td_status add_wrap(td_case_reader *r, const char *file, int line, const c
     if (file) {
         s->file = malloc(strlen(file) + 1);
         if (!s->file)
-            return td_error_set(r->err, TD_ERR_NOMEM, "%s: out of memory", r->path);
+            return td_error_set(r->err, TD_ERR_NOMEM, "%s: out of memory", r->path_shown);
         strcpy(s->file, file);
     }
     s->line = line;
@@ -174,8 +171,10 @@ static size_t number_length(const char *s)
     return n;
 }
 
-/* The include name of an "@include "name"" line, as libconfig 1.5 recognises it (at the start of a
- * line, after blanks); copies it into name and returns 1. */
+/* An "@include" line as libconfig 1.5 recognises it (at the start of a line, after blanks, then
+ * blanks and a '"'): returns 1 and copies the name into `name`, 0 when the line is no include,
+ * -1 when the name is not closed by a '"' on the same line (libconfig would take the name up to a
+ * '"' on a later line), holds a backslash (an escape libconfig reads differently) or does not fit. */
 static int include_line(const char *line, char *name, size_t n)
 {
     const char *p = line, *q;
@@ -190,56 +189,76 @@ static int include_line(const char *line, char *name, size_t n)
         p++;
     if (*p != '"')
         return 0;
-    q = strchr(p + 1, '"');
-    if (!q || (size_t)(q - p - 1) >= n)
-        return 0;
+    for (q = p + 1; *q && *q != '"' && *q != '\n' && *q != '\\'; q++)
+        ;
+    if (*q != '"' || (size_t)(q - p - 1) >= n)
+        return -1;
     memcpy(name, p + 1, (size_t)(q - p - 1));
     name[q - p - 1] = '\0';
     return 1;
 }
 
+/* Refuse an @include that would pass the bounds of case.h: nesting depth, number of included
+ * files, and bytes read. Without them a file that includes itself k times is expanded k^10 times
+ * (libconfig's own nesting limit) before anything is reported. */
+static td_status include_bounds(td_case_reader *r, const char *file, int line_no, int depth)
+{
+    char including[4096];
+    td_cr_file_shown(r, file, including, sizeof including);
+    if (depth >= TD_CASE_MAX_INCLUDE_DEPTH)
+        return td_error_set(r->err, TD_ERR_PARSE,
+                            "%s:%d: @include nested more than %d deep (does a file include itself?)", including,
+                            line_no, TD_CASE_MAX_INCLUDE_DEPTH);
+    if (r->includes >= TD_CASE_MAX_INCLUDES)
+        return td_error_set(r->err, TD_ERR_PARSE, "%s:%d: more than %d @include files in one case", including, line_no,
+                            TD_CASE_MAX_INCLUDES);
+    return TD_OK;
+}
+
 /* Expand one @include (on line `line_no` of `file`): append the included file's text between
  * marker comments. An include that cannot be read is reported here, before libconfig would open
  * it: libconfig 1.5 would block on a FIFO and misreport a directory. */
-static td_status expand_include(td_case_reader *r, const char *file, int line_no, const char *line, size_t line_len,
-                                const char *name, int depth, td_cr_buf *out)
+static td_status expand_include(td_case_reader *r, const char *file, int line_no, const char *name, int depth,
+                                td_cr_buf *out)
 {
-    char path[4096], shown[4096], including[4096];
+    char path[4096], shown[4096], including[4096], quoted[256];
     char *text = NULL;
     td_error ierr;
-    td_status st;
-    if (depth >= TD_CR_MAX_INCLUDE_DEPTH) {
-        /* libconfig reports "include file nesting too deep" at this line */
-        td_cr_buf_append(out, line, line_len);
-        return TD_OK;
-    }
-    if (name[0] == '/') {
-        td_cr_file_shown(r, file, including, sizeof including);
+    td_status st = include_bounds(r, file, line_no, depth);
+    if (st != TD_OK)
+        return st;
+    td_cr_file_shown(r, file, including, sizeof including);
+    td_cr_printable(name, quoted, sizeof quoted);
+    if (name[0] == '/')
         return td_error_set(r->err, TD_ERR_PARSE,
                             "%s:%d: cannot open include file \"%.200s\" (absolute @include paths are not supported: "
                             "libconfig 1.5 reads them relative to %.200s)",
-                            including, line_no, name, r->dir);
-    }
+                            including, line_no, quoted, r->dir_shown);
     snprintf(path, sizeof path, "%s/%s", r->dir, name);
     td_cr_file_shown(r, name, shown, sizeof shown);
     st = td_cr_read_file(shown, path, &text, &ierr);
-    if (st == TD_ERR_IO) {
-        td_cr_file_shown(r, file, including, sizeof including);
+    if (st == TD_ERR_IO)
         return td_error_set(
             r->err, TD_ERR_PARSE,
             "%s:%d: cannot open include file \"%.200s\" (%.200s; @include paths are relative to %.200s)", including,
-            line_no, name, ierr.message, r->dir);
-    }
+            line_no, quoted, ierr.message, r->dir_shown);
     if (st != TD_OK) {
         if (r->err)
             *r->err = ierr;
         return st;
     }
-    td_cr_buf_printf(out, "# >>> @include \"%s\" (%s)\n", name, shown);
+    r->includes++;
+    r->bytes += strlen(text);
+    if (r->bytes > (size_t)TD_CASE_MAX_TOTAL_SIZE) {
+        free(text);
+        return td_error_set(r->err, TD_ERR_PARSE, "%s:%d: the case and its @include files exceed %ld bytes in all",
+                            including, line_no, (long)TD_CASE_MAX_TOTAL_SIZE);
+    }
+    td_cr_buf_printf(out, "# >>> @include \"%s\" (%s)\n", quoted, shown);
     st = td_cr_expand(r, text, name, depth + 1, out);
     if (out->len > 0 && out->data[out->len - 1] != '\n')
         td_cr_buf_append(out, "\n", 1);
-    td_cr_buf_printf(out, "# <<< end of \"%s\"\n", name);
+    td_cr_buf_printf(out, "# <<< end of \"%s\"\n", quoted);
     free(text);
     return st;
 }
@@ -255,10 +274,18 @@ td_status td_cr_expand(td_case_reader *r, const char *text, const char *file, in
     td_status st;
 
     while (*p) {
-        if (p == line_start && state == SCAN_CODE && include_line(p, name, sizeof name)) {
+        int inc = p == line_start && state == SCAN_CODE ? include_line(p, name, sizeof name) : 0;
+        if (inc < 0) {
+            td_cr_file_shown(r, file, shown, sizeof shown);
+            return td_error_set(r->err, TD_ERR_PARSE,
+                                "%s:%d: @include: the file name must be closed by '\"' on the same line, without "
+                                "backslashes, and be shorter than %d bytes",
+                                shown, line, (int)sizeof name);
+        }
+        if (inc) {
             const char *end = strchr(p, '\n');
             size_t n = end ? (size_t)(end - p + 1) : strlen(p);
-            st = expand_include(r, file, line, p, n, name, depth, out);
+            st = expand_include(r, file, line, name, depth, out);
             if (st != TD_OK)
                 return st;
             p += n;
@@ -331,8 +358,17 @@ td_status td_cr_expand(td_case_reader *r, const char *text, const char *file, in
                             "%s:%d: unterminated /* comment (libconfig would silently ignore the rest of the file)",
                             shown, comment_line);
     }
+    if (state == SCAN_LINE_COMMENT && file) {
+        /* libconfig 1.5 reads an included file itself and rejects a last-line comment without a
+         * final newline as "syntax error"; the main file gets the newline appended (case.c) */
+        td_cr_file_shown(r, file, shown, sizeof shown);
+        return td_error_set(r->err, TD_ERR_PARSE,
+                            "%s:%d: an included file must end with a newline after its last comment (libconfig 1.5 "
+                            "cannot read it otherwise)",
+                            shown, line);
+    }
     if (out->failed)
-        return td_error_set(r->err, TD_ERR_NOMEM, "%s: out of memory", r->path);
+        return td_error_set(r->err, TD_ERR_NOMEM, "%s: out of memory", r->path_shown);
     return TD_OK;
 }
 

@@ -9,16 +9,76 @@
 #include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
+
+/* Bytes needed to show ch: 1, 2 for \n \t \r, 4 for \xHH. */
+static size_t shown_width(unsigned char ch)
+{
+    if (ch == '\n' || ch == '\t' || ch == '\r')
+        return 2;
+    return ch < 0x20 || ch == 0x7f ? 4 : 1;
+}
+
+static void show_char(unsigned char ch, char *out)
+{
+    static const char hex[] = "0123456789abcdef";
+    if (shown_width(ch) == 1) {
+        out[0] = (char)ch;
+    } else if (shown_width(ch) == 2) {
+        out[0] = '\\';
+        out[1] = ch == '\n' ? 'n' : ch == '\t' ? 't' : 'r';
+    } else {
+        out[0] = '\\';
+        out[1] = 'x';
+        out[2] = hex[ch >> 4];
+        out[3] = hex[ch & 15];
+    }
+}
+
+const char *td_cr_printable(const char *s, char *buf, size_t n)
+{
+    size_t len = 0;
+    const unsigned char *p = (const unsigned char *)s;
+    for (; *p; p++) {
+        size_t w = shown_width(*p);
+        if (len + w + 1 > n) {
+            /* cut: make room for "..." and the NUL */
+            while (len > 0 && len + 4 > n)
+                len--;
+            if (len + 4 <= n) {
+                memcpy(buf + len, "...", 3);
+                len += 3;
+            }
+            break;
+        }
+        show_char(*p, buf + len);
+        len += w;
+    }
+    buf[len] = '\0';
+    return buf;
+}
+
+char *td_cr_printable_dup(const char *s)
+{
+    size_t n = 1;
+    const unsigned char *p;
+    char *buf;
+    for (p = (const unsigned char *)s; *p; p++)
+        n += shown_width(*p);
+    buf = malloc(n);
+    return buf ? (char *)td_cr_printable(s, buf, n) : NULL;
+}
 
 void td_cr_file_shown(const td_case_reader *r, const char *file, char *buf, size_t n)
 {
+    char name[1024];
     if (!file)
-        snprintf(buf, n, "%s", r->path);
+        snprintf(buf, n, "%s", r->path_shown);
     else if (r->has_dir)
-        snprintf(buf, n, "%s/%s", r->dir, file);
+        snprintf(buf, n, "%s/%s", r->dir_shown, td_cr_printable(file, name, sizeof name));
     else
-        snprintf(buf, n, "%s", file);
+        snprintf(buf, n, "%s", td_cr_printable(file, name, sizeof name));
 }
 
 void td_cr_key(const config_setting_t *s, char *buf, size_t n)
@@ -50,7 +110,7 @@ void td_cr_where(const td_case_reader *r, const config_setting_t *s, char *buf, 
     const char *ov = override_of(s);
     char shown[1024];
     if (ov) {
-        snprintf(buf, n, "%s: --set '%s'", r->path, ov);
+        snprintf(buf, n, "%s: --set '%s'", r->path_shown, td_cr_printable(ov, shown, sizeof shown));
         return;
     }
     td_cr_file_shown(r, s ? config_setting_source_file(s) : NULL, shown, sizeof shown);
@@ -79,7 +139,7 @@ td_status td_cr_fail(td_case_reader *r, const config_setting_t *s, const char *s
 td_status td_cr_model_fail(td_case_reader *r, const config_setting_t *s, td_status st, const td_error *merr)
 {
     if (st == TD_ERR_NOMEM)
-        return td_error_set(r->err, TD_ERR_NOMEM, "%s: %s", r->path, merr->message);
+        return td_error_set(r->err, TD_ERR_NOMEM, "%s: %s", r->path_shown, merr->message);
     return td_cr_fail(r, s, NULL, "%s", merr->message);
 }
 
@@ -181,10 +241,13 @@ static td_status not_a_number(td_case_reader *r, const config_setting_t *s, cons
     if (config_setting_type(s) == CONFIG_TYPE_STRING) {
         const char *v = config_setting_get_string(s);
         const char *p = v + (v[0] == '-' || v[0] == '+');
+        char shown[64];
+        td_cr_printable(v, shown, sizeof shown);
         if (strncmp(p, "nan", 3) == 0 || strncmp(p, "NaN", 3) == 0 || strncmp(p, "NAN", 3) == 0 ||
             strncmp(p, "inf", 3) == 0 || strncmp(p, "Inf", 3) == 0 || strncmp(p, "INF", 3) == 0)
-            return td_cr_fail(r, s, NULL, "expected %s, got \"%s\" (NaN and infinities are not accepted)", expected, v);
-        return td_cr_fail(r, s, NULL, "expected %s, got the string \"%.60s\"", expected, v);
+            return td_cr_fail(r, s, NULL, "expected %s, got \"%s\" (NaN and infinities are not accepted)", expected,
+                              shown);
+        return td_cr_fail(r, s, NULL, "expected %s, got the string \"%s\"", expected, shown);
     }
     return td_cr_fail(r, s, NULL, "expected %s, got %s", expected, type_name(config_setting_type(s)));
 }
@@ -316,7 +379,7 @@ td_status td_cr_enum(td_case_reader *r, const config_setting_t *g, const char *k
                      int def, int *out)
 {
     const char *v;
-    char list[256];
+    char list[256], shown[64];
     size_t len = 0;
     int i;
     td_status st = td_cr_string(r, g, key, NULL, &v);
@@ -336,7 +399,8 @@ td_status td_cr_enum(td_case_reader *r, const config_setting_t *g, const char *k
         snprintf(list + len, sizeof list - len, "%s\"%s\"", i ? ", " : "", names[i]);
         len = strlen(list);
     }
-    return td_cr_fail(r, config_setting_get_member(g, key), NULL, "must be one of %s (got \"%.60s\")", list, v);
+    return td_cr_fail(r, config_setting_get_member(g, key), NULL, "must be one of %s (got \"%s\")", list,
+                      td_cr_printable(v, shown, sizeof shown));
 }
 
 td_status td_cr_group(td_case_reader *r, const config_setting_t *g, const char *key, const char *what,

@@ -184,6 +184,13 @@ static td_status loop(run_state *r, td_error *err)
                     return st;
                 continue;
             }
+            if (st == TD_ERR_INTERRUPTED) { /* the cancel flag, seen inside the step */
+                /* the sim stopped at its last good step: record the state there (off the grid),
+                 * unless it has not moved since the last sample */
+                if (reached > now && (st = take_sample(r, reached, 0, err)) != TD_OK)
+                    return st;
+                return td_error_set(err, TD_ERR_INTERRUPTED, "interrupted at t = %.10f s", reached);
+            }
             if (st != TD_OK)
                 return td_error_set(err, st, "simulation failed at t = %.10f s on the way to %.10f s: %s",
                                     td_sim_time(r->sim), target, td_sim_errmsg(r->sim));
@@ -337,7 +344,10 @@ td_status td_run(td_sim *sim, const td_model *model, double t_end, const td_outp
         return st;
     }
     td_error_clear(&loop_err);
+    /* the cancel flag is also read inside td_sim_step, before every integrator step */
+    td_sim_set_interrupt(sim, hooks ? hooks->cancel : NULL);
     st = loop(&r, &loop_err);
+    td_sim_set_interrupt(sim, NULL);
     summary_finish(&r, wall_start);
     summary->status = st;
     td_error_clear(&close_err);

@@ -15,7 +15,6 @@
 
 #include <ida/ida_ls.h>
 #include <sunlinsol/sunlinsol_dense.h>
-#include <sunlinsol/sunlinsol_klu.h>
 #include <sunmatrix/sunmatrix_dense.h>
 #include <sunmatrix/sunmatrix_sparse.h>
 #include <sunnonlinsol/sunnonlinsol_newton.h>
@@ -387,7 +386,7 @@ static td_status start_state(td_sim *s, td_error *err)
             continue;
         if (s->opt.contact.model == TD_CONTACT_PENALTY) {
             r->mode = TD_RMODE_PENETRATING;
-            r->slip = td_sim_sliding_velocity(s, k, y) < 0.0 ? -1 : 1;
+            td_sim_init_slip(s, k, y);
         } else if (rad - c <= TD_START_TOUCH_TOLERANCE * c) {
             touching[k] = 1; /* grazing start: into contact as at an onset, if it presses */
         } else {
@@ -409,6 +408,7 @@ static td_status setup_ida(td_sim *s, td_error *err)
     s->y = N_VNew_Serial(s->neq, s->ctx);
     if (!s->y)
         return td_error_set(err, TD_ERR_NOMEM, "out of memory creating the state vectors");
+    td_sim_nvector_optimize(s->y); /* before any clone: the clones copy its operations */
     s->yp = N_VClone(s->y);
     s->id = N_VClone(s->y);
     s->atol = N_VClone(s->y);
@@ -454,7 +454,7 @@ static td_status attach_ida(td_sim *s, td_error *err)
     }
     if (s->opt.solver.linear_solver == TD_LINSOL_KLU) {
         s->A = SUNSparseMatrix(s->neq, s->neq, s->nnz, CSC_MAT, s->ctx);
-        s->LS = s->A ? SUNLinSol_KLU(s->y, s->A, s->ctx) : NULL;
+        s->LS = s->A ? td_sim_klu_create(s) : NULL;
     } else {
         s->A = SUNDenseMatrix(s->neq, s->neq, s->ctx);
         s->LS = s->A ? SUNLinSol_Dense(s->y, s->A, s->ctx) : NULL;
@@ -529,6 +529,8 @@ td_status td_sim_create(const td_model *model, const td_sim_options *options, td
     if (st == TD_OK)
         st = td_sim_pattern_build(s, err);
     if (st == TD_OK)
+        st = td_sim_structural_build(s, err);
+    if (st == TD_OK)
         st = setup_ida(s, err);
     if (st == TD_OK) {
         set_tolerances(s);
@@ -580,6 +582,11 @@ void td_sim_free(td_sim **sim)
     free(s->map_C);
     free(s->map_G);
     free(s->map_K);
+    free(s->st_rowptr);
+    free(s->st_col);
+    free(s->st_M);
+    free(s->st_K);
+    free(s->st_D);
     free(s->unb);
     free(s->amb_mode);
     free(s->amb_control);
@@ -691,11 +698,19 @@ static td_status restart_after_change(td_sim *s)
     return st;
 }
 
-/* Handle a root (IDAGetRootInfo in s->rootsfound) or the stop time at s->t. */
+/* What stopped the integration at s->t_pending (s->pending). */
+enum { TD_PENDING_NONE = 0, TD_PENDING_ROOT = 1, TD_PENDING_TSTOP = 2, TD_PENDING_RESYNC = 3 };
+
+/* Handle a root (IDAGetRootInfo in s->rootsfound), a penalty mode out of step with the state
+ * (TD_PENDING_RESYNC: no root), or the stop time at s->t. */
 static td_status handle_stop(td_sim *s, int kind)
 {
     td_status st;
-    if (kind == IDA_ROOT_RETURN) {
+    if (kind == TD_PENDING_RESYNC) {
+        memset(s->rootsfound, 0, sizeof(int) * (size_t)s->nroots);
+        kind = TD_PENDING_ROOT;
+    }
+    if (kind == TD_PENDING_ROOT) {
         int restart = 0;
         st = td_sim_handle_roots(s, &restart);
         if (st == TD_OK && restart)
@@ -715,8 +730,8 @@ static td_status advance(td_sim *s, double tout)
         int flag;
         td_status st;
         if (s->pending) {
-            /* a root or the stop time that IDA found beyond the last output time */
-            int kind = s->pending == 1 ? IDA_ROOT_RETURN : IDA_TSTOP_RETURN;
+            /* a root, the stop time or a penalty resync beyond the last output time */
+            int kind = s->pending;
             if (s->t_pending > tout) {
                 st = interpolate(s, tout);
                 monitor(s, tout);
@@ -742,6 +757,11 @@ static td_status advance(td_sim *s, double tout)
             s->t = tout;
             return TD_OK;
         }
+        if (s->interrupt && *s->interrupt) {
+            /* y, yp hold the state at s->t here (a step's end or a restart), IDA's history intact */
+            snprintf(s->errmsg, sizeof s->errmsg, "t = %.9g s: interrupted", s->t);
+            return TD_ERR_INTERRUPTED;
+        }
         flag = IDASolve(s->ida, tout, &tret, s->y, s->yp, IDA_ONE_STEP);
         if (flag < 0)
             return solver_failure(s, flag);
@@ -750,7 +770,13 @@ static td_status advance(td_sim *s, double tout)
         if (flag == IDA_ROOT_RETURN || flag == IDA_TSTOP_RETURN) {
             if (flag == IDA_ROOT_RETURN)
                 IDAGetRootInfo(s->ida, s->rootsfound);
-            s->pending = flag == IDA_ROOT_RETURN ? 1 : 2;
+            s->pending = flag == IDA_ROOT_RETURN ? TD_PENDING_ROOT : TD_PENDING_TSTOP;
+            s->t_pending = tret;
+            continue;
+        }
+        if (td_sim_penalty_out_of_step(s, N_VGetArrayPointer(s->y))) {
+            /* IDA missed a crossing (sim_modes.c): switch the mode at this step's end */
+            s->pending = TD_PENDING_RESYNC;
             s->t_pending = tret;
             continue;
         }
@@ -785,6 +811,14 @@ td_status td_sim_step(td_sim *sim, double tout, double *t_reached)
     if (t_reached)
         *t_reached = sim->t;
     return st;
+}
+
+td_status td_sim_set_interrupt(td_sim *sim, volatile sig_atomic_t *flag)
+{
+    if (!sim)
+        return TD_ERR_INVALID;
+    sim->interrupt = flag;
+    return TD_OK;
 }
 
 double td_sim_time(const td_sim *sim)
@@ -840,7 +874,8 @@ td_status td_sim_retainer_state(const td_sim *sim, int retainer, td_retainer_sta
     out->whirl_angle = atan2(out->y, out->x);
     out->normal_force = td_sim_normal_force(sim, retainer, y);
     out->in_contact = r->mode != TD_RMODE_FREE;
-    out->friction_force = out->in_contact ? td_contact_friction_force(r->r.friction, r->slip, out->normal_force) : 0.0;
+    out->friction_force = out->in_contact ? td_contact_friction_force(r->r.friction, td_sim_slip_factor(sim, retainer, y, NULL),
+                                                                  out->normal_force) : 0.0;
     out->sliding_velocity = td_sim_sliding_velocity(sim, retainer, y);
     return TD_OK;
 }
@@ -916,6 +951,7 @@ td_status td_sim_set_speed(td_sim *sim, double omega)
     sim->spin_ref = td_sim_spin_angle(sim, sim->t);
     sim->t_spin_ref = sim->t;
     sim->omega = omega;
+    td_sim_structural_speed(sim);
     if (sim->opt.solver.max_step <= 0.0) {
         sim->hmax = default_max_step(sim);
     }

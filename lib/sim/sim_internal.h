@@ -16,8 +16,9 @@
  *   eta      J_k v = (x vx + y vy)/c           in contact, eta_k = 0 otherwise      (eq. 13a scaled)
  *
  * with f = f_unbalance + f_gravity + f_amb - (C + Omega G) v - K q - f_penalty, and
- * B_k = J_k^T + s_k mu_k t_k (the normal direction plus the Coulomb friction of eq. 17 with the
- * slip sign s_k, a discrete mode): friction is proportional to the same, implicit, lambda_k.
+ * B_k = J_k^T + phi_k mu_k t_k (the normal direction plus the Coulomb friction of eq. 17 with the
+ * slip factor phi_k = phi(v_s) of the slip-regularised law, contact.h td_contact_slip_factor):
+ * friction is proportional to the same, implicit, lambda_k.
  */
 #ifndef TD_SIM_INTERNAL_H
 #define TD_SIM_INTERNAL_H
@@ -49,7 +50,10 @@ typedef struct td_sim_retainer {
     td_rmode mode;
     int armed; /* constraint model, free: onset root at gap = 0 (1) or at gap = -eps (0, after a
                 * release or a rejected/bouncing onset; re-armed when the gap exceeds +eps) */
-    int slip;  /* sgn(v_s) of eq. (17), +1 or -1 */
+    int slip;  /* slip mode of eq. (17): +1 or -1 sliding (|v_s| >= v_reg), 0 inside the
+                * slip-regularised band |v_s| < v_reg (contact.h TD_CONTACT_SLIP_BAND). Only the
+                * roots depend on it: the friction force is phi(v_s) of the state in every mode */
+    int band_from; /* slip = 0: the sliding sign before the band (a reversal if it leaves the other way) */
 } td_sim_retainer;
 
 /* Linear coefficients of one AMB axis law (probed from model/amb.c, exact for the linear law). */
@@ -100,6 +104,12 @@ struct td_sim {
     double *jdata;
     int *map_M, *map_C, *map_G, *map_K; /* position of each stored entry of the system matrices */
 
+    /* M, K and D = C + Omega G on the union of their patterns, row-compressed (CSR): the residual
+     * forms M v' + D v + K q row by row in one pass (sim_residual.c); D follows the speed */
+    int st_nnz;
+    int *st_rowptr, *st_col;
+    double *st_M, *st_K, *st_D;
+
     /* SUNDIALS */
     SUNContext ctx;
     void *ida;
@@ -119,7 +129,7 @@ struct td_sim {
     double t;         /* current time: y, yp hold the state here */
     double t_ida;     /* IDA's internal time (>= t after an interpolated output) */
     double t_acc;     /* contact time accumulated up to here */
-    int pending;      /* a root (1) or the stop time (2) found by IDA beyond the last output time */
+    int pending;      /* what stopped IDA beyond the last output time (sim.c TD_PENDING_*), 0: nothing */
     double t_pending; /* where */
 
     /* events */
@@ -139,6 +149,8 @@ struct td_sim {
     td_contact_row *rows;
     int *act;               /* nr: indices of constraints in a small system */
     double *ysave, *ypsave; /* last good state */
+
+    volatile sig_atomic_t *interrupt; /* borrowed (td_sim_set_interrupt), NULL: none */
 
     char errmsg[TD_ERROR_MESSAGE_SIZE];
     char warnmsg[TD_ERROR_MESSAGE_SIZE];
@@ -161,8 +173,24 @@ double td_sim_amb_axis_force(const td_sim *s, int k, const double *y);
 double td_sim_normal_force(const td_sim *s, int k, const double *y);
 /* Sliding velocity eq. (16) of retainer k at state y. */
 double td_sim_sliding_velocity(const td_sim *s, int k, const double *y);
+/* Slip factor phi(v_s) of retainer k at state y (contact.h); *dphi = d phi / d v_s (may be NULL). */
+double td_sim_slip_factor(const td_sim *s, int k, const double *y, double *dphi);
+/* Set retainer k's slip mode (and band_from) from its sliding velocity at y, entering contact. */
+void td_sim_init_slip(td_sim *s, int k, const double *y);
 /* Spin angle phi(t). */
 double td_sim_spin_angle(const td_sim *s, double t);
+
+/* ---- sim_nvector.c: compiled vector operations ----------------------------------------- */
+
+/* Replace the operations of serial vector v (and of every later clone of it) by the library's
+ * compiled loops; see sim_nvector.c for why. */
+void td_sim_nvector_optimize(N_Vector v);
+
+/* ---- sim_linsol.c: KLU inside IDA ------------------------------------------------------- */
+
+/* A SUNLinearSolver factorising s->jdata on s->colptr/s->rowind with KLU: one symbolic analysis
+ * per run, a pivoting factorisation after every restart, refactorisations in between. */
+SUNLinearSolver td_sim_klu_create(const td_sim *s);
 
 /* ---- sim_pattern.c: the Jacobian's sparsity pattern -------------------------------------- */
 
@@ -170,6 +198,10 @@ double td_sim_spin_angle(const td_sim *s, double t);
 td_status td_sim_pattern_build(td_sim *s, td_error *err);
 /* Position of (row, col) in the pattern, -1 if absent. */
 int td_sim_pattern_find(const td_sim *s, int row, int col);
+/* Build the row-compressed M, K, D of the structural operator (s->st_*), D at s->omega. */
+td_status td_sim_structural_build(td_sim *s, td_error *err);
+/* Recompute D = C + Omega G after a change of s->omega. */
+void td_sim_structural_speed(td_sim *s);
 
 /* ---- sim_modes.c: mode switching, consistent restarts, events ---------------------------- */
 
@@ -180,11 +212,15 @@ void td_sim_mass_solve(const td_sim *s, double *b);
  * negative (or <= 0 for those flagged in just_entered) are released and the solve repeated; each
  * release is queued as an event unless just entered (then the onset event records it). */
 td_status td_sim_make_consistent(td_sim *s, const int *just_entered);
+/* Penalty model: 1 if some retainer's mode disagrees with the state y beyond the noise band
+ * (sim_modes.c), i.e. IDA missed a crossing of its root. */
+int td_sim_penalty_out_of_step(const td_sim *s, const double *y);
 /* Start of a run with the retainers flagged in `touching` on (or a hair outside) their circles:
  * projection and impact as at an onset, then td_sim_make_consistent. */
 td_status td_sim_start_contacts(td_sim *s, const int *touching);
-/* Handle the roots found at s->t (IDAGetRootInfo in s->rootsfound). *restart is set when the
- * integrator must be re-initialised. */
+/* Handle the roots found at s->t (IDAGetRootInfo in s->rootsfound; all zero: only bring the
+ * penalty modes in step with the state). *restart is set when the integrator must be
+ * re-initialised. */
 td_status td_sim_handle_roots(td_sim *s, int *restart);
 /* Apply every schedule change due at s->t, queueing TD_EVENT_SCHEDULE events. */
 td_status td_sim_apply_due_changes(td_sim *s);

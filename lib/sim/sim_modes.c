@@ -108,7 +108,7 @@ static void contact_column(const td_sim *s, int k, const double *y, double *col)
 {
     const td_sim_retainer *r = &s->ret[k];
     double x = y[s->oq + r->dx], yy = y[s->oq + r->dy], c = r->r.clearance, rad = hypot(x, yy);
-    double sm = r->slip * r->r.friction;
+    double sm = td_sim_slip_factor(s, k, y, NULL) * r->r.friction;
     memset(col, 0, sizeof(double) * (size_t)s->n);
     col[r->dx] = x / c - sm * yy / rad;
     col[r->dy] = yy / c + sm * x / rad;
@@ -286,7 +286,7 @@ static int impacts(td_sim *s, const int *onset, int *entered)
             r->armed = 0; /* bounced: free until the gap has opened */
         } else {
             r->mode = TD_RMODE_CONTACT;
-            r->slip = sign_or(td_sim_sliding_velocity(s, k, y), 1);
+            td_sim_init_slip(s, k, y);
             entered[k] = 1;
         }
     }
@@ -309,6 +309,65 @@ static int impacts(td_sim *s, const int *onset, int *entered)
     return queued;
 }
 
+/*
+ * Penalty model: the mode of retainer k follows its state. The penalty force itself is a function
+ * of the state (sim_residual.c: it acts whenever delta = r - c > 0, whatever the mode), so the mode
+ * only places the roots (the enter root waits for the gap to fall through zero, the exit root for
+ * it to rise) and records the events. Outside a band |delta| <= penalty_band the state decides;
+ * inside it, where a restart's Newton correction can move delta either way, `in_band` does (the
+ * flip a root asks for, or the current mode). Without the state check a mode could disagree with
+ * the state for good: a grazing node's gap crosses zero several times within a step, IDA reports
+ * one crossing, and a free retainer whose node is already outside never sees its enter root again
+ * (case C lost a contact that way and its node flew 1.7 mm past the clearance, force-free).
+ */
+static double penalty_band(const td_sim *s)
+{
+    return s->constraint_tol;
+}
+
+static td_rmode penalty_mode_wanted(const td_sim *s, int k, const double *y, td_rmode in_band)
+{
+    const td_sim_retainer *r = &s->ret[k];
+    double delta = hypot(y[s->oq + r->dx], y[s->oq + r->dy]) - r->r.clearance;
+    if (delta > penalty_band(s))
+        return TD_RMODE_PENETRATING;
+    if (delta < -penalty_band(s))
+        return TD_RMODE_FREE;
+    return in_band;
+}
+
+int td_sim_penalty_out_of_step(const td_sim *s, const double *y)
+{
+    int k;
+    if (s->opt.contact.model != TD_CONTACT_PENALTY)
+        return 0;
+    for (k = 0; k < s->nr; k++)
+        if (penalty_mode_wanted(s, k, y, s->ret[k].mode) != s->ret[k].mode)
+            return 1;
+    return 0;
+}
+
+/* Penalty model: put retainer k in mode `want`, queueing the enter or exit event. Returns 1 if
+ * the mode changed. */
+static int penalty_switch(td_sim *s, int k, const double *y, td_rmode want)
+{
+    td_sim_retainer *r = &s->ret[k];
+    td_event ev;
+    if (want == r->mode)
+        return 0;
+    r->mode = want;
+    if (want == TD_RMODE_PENETRATING) {
+        td_sim_init_slip(s, k, y);
+        ev = event_of(s, TD_EVENT_PENALTY_ENTER, k);
+    } else {
+        r->armed = 1;
+        ev = event_of(s, TD_EVENT_PENALTY_EXIT, k);
+    }
+    td_sim_event_velocities(s, k, y, 0, &ev);
+    td_sim_queue_event(s, &ev);
+    return 1;
+}
+
 td_status td_sim_handle_roots(td_sim *s, int *restart)
 {
     double *y = N_VGetArrayPointer(s->y);
@@ -324,16 +383,9 @@ td_status td_sim_handle_roots(td_sim *s, int *restart)
             td_event ev;
             switch (r->mode) {
             case TD_RMODE_FREE:
-                if (s->opt.contact.model == TD_CONTACT_CONSTRAINT) {
+                if (s->opt.contact.model == TD_CONTACT_CONSTRAINT)
                     onset[k] = any_onset = 1;
-                } else {
-                    r->mode = TD_RMODE_PENETRATING;
-                    r->slip = sign_or(td_sim_sliding_velocity(s, k, y), 1);
-                    ev = event_of(s, TD_EVENT_PENALTY_ENTER, k);
-                    td_sim_event_velocities(s, k, y, 0, &ev);
-                    td_sim_queue_event(s, &ev);
-                    *restart = 1;
-                }
+                /* penalty: entered below, if the state says so */
                 break;
             case TD_RMODE_CONTACT:
                 r->mode = TD_RMODE_FREE;
@@ -344,25 +396,32 @@ td_status td_sim_handle_roots(td_sim *s, int *restart)
                 td_sim_queue_event(s, &ev);
                 *restart = 1;
                 break;
-            case TD_RMODE_PENETRATING:
-                r->mode = TD_RMODE_FREE;
-                r->armed = 1;
-                ev = event_of(s, TD_EVENT_PENALTY_EXIT, k);
-                td_sim_event_velocities(s, k, y, 0, &ev);
-                td_sim_queue_event(s, &ev);
-                *restart = 1;
-                break;
+            case TD_RMODE_PENETRATING: break; /* left below, if the state says so */
             }
         } else if (f[TD_ROOT_SLIP] != 0 && r->mode != TD_RMODE_FREE) {
-            td_event ev = event_of(s, TD_EVENT_FRICTION_REVERSAL, k);
-            /* just past the crossing: the new sign is that of v_s now (flip if exactly 0) */
-            r->slip = sign_or(td_sim_sliding_velocity(s, k, y), -r->slip);
-            td_sim_event_velocities(s, k, y, 0, &ev);
-            td_sim_queue_event(s, &ev);
+            /* |v_s| reached v_reg: the friction law has a kink there (docs/theory.md), restart */
+            if (r->slip != 0) { /* into the band: no event */
+                r->band_from = r->slip;
+                r->slip = 0;
+            } else { /* out of the band: a reversal if on the other side */
+                r->slip = sign_or(td_sim_sliding_velocity(s, k, y), -r->band_from);
+                if (r->slip != r->band_from) {
+                    td_event ev = event_of(s, TD_EVENT_FRICTION_REVERSAL, k);
+                    td_sim_event_velocities(s, k, y, 0, &ev);
+                    td_sim_queue_event(s, &ev);
+                }
+            }
             *restart = 1;
         }
         if (f[TD_ROOT_REARM] != 0 && r->mode == TD_RMODE_FREE && !r->armed)
             r->armed = 1; /* internal: only the root function changes (IDA re-evaluates it at tlo) */
+        if (s->opt.contact.model == TD_CONTACT_PENALTY) {
+            /* a root asks for the flip; the state decides outside the noise band */
+            td_rmode flip = r->mode == TD_RMODE_FREE ? TD_RMODE_PENETRATING : TD_RMODE_FREE;
+            td_rmode in_band = f[TD_ROOT_CONTACT] != 0 ? flip : r->mode;
+            if (penalty_switch(s, k, y, penalty_mode_wanted(s, k, y, in_band)))
+                *restart = 1;
+        }
     }
     if (any_onset) {
         if (impacts(s, onset, entered) < 0) {

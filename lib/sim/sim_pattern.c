@@ -8,6 +8,7 @@
 #include "util/error_internal.h"
 
 #include <stdlib.h>
+#include <string.h>
 
 /* Entry (row, col) into the triplet matrix T. */
 static int put(cs_di *T, int row, int col)
@@ -121,5 +122,84 @@ td_status td_sim_pattern_build(td_sim *s, td_error *err)
     s->map_K = map_matrix(s, s->sys->K, s->ov, s->oq);
     if (!s->map_M || !s->map_C || !s->map_G || !s->map_K)
         return td_error_set(err, TD_ERR_NOMEM, "out of memory building the Jacobian pattern");
+    return TD_OK;
+}
+
+/* ---- the structural operator M v' + (C + Omega G) v + K q, row-compressed ------------------- */
+
+/* Position of column col in row `row` of the structural pattern (always present). */
+static int st_find(const td_sim *s, int row, int col)
+{
+    int lo = s->st_rowptr[row], hi = s->st_rowptr[row + 1] - 1;
+    while (lo <= hi) {
+        int mid = (lo + hi) / 2, c = s->st_col[mid];
+        if (c == col)
+            return mid;
+        if (c < col)
+            lo = mid + 1;
+        else
+            hi = mid - 1;
+    }
+    return -1;
+}
+
+/* vals[pos(i, j)] += scale * A(i, j) for every stored entry of A. */
+static void st_add(const td_sim *s, const cs_di *A, double scale, double *vals)
+{
+    int j, p;
+    for (j = 0; j < A->n; j++)
+        for (p = A->p[j]; p < A->p[j + 1]; p++) {
+            int pos = st_find(s, A->i[p], j);
+            if (pos >= 0)
+                vals[pos] += scale * A->x[p];
+        }
+}
+
+void td_sim_structural_speed(td_sim *s)
+{
+    if (!s->st_D)
+        return;
+    memset(s->st_D, 0, sizeof(double) * (size_t)(s->st_nnz > 0 ? s->st_nnz : 1));
+    st_add(s, s->sys->C, 1.0, s->st_D);
+    if (s->omega != 0.0)
+        st_add(s, s->sys->G, s->omega, s->st_D);
+}
+
+td_status td_sim_structural_build(td_sim *s, td_error *err)
+{
+    const td_system *sys = s->sys;
+    cs_di *T = cs_di_spalloc(s->n, s->n, 1, 1, 1), *C = NULL, *R = NULL;
+    int ok = T != NULL, i;
+    /* the union pattern, transposed: the CSC of U^T is the CSR of U, with sorted columns */
+    ok = ok && put_matrix(T, sys->M, 0, 0) && put_matrix(T, sys->K, 0, 0) && put_matrix(T, sys->C, 0, 0) &&
+         put_matrix(T, sys->G, 0, 0);
+    for (i = 0; i < s->n && ok; i++) /* every row present, even an empty one */
+        ok = put(T, i, i);
+    ok = ok && (C = cs_di_compress(T)) != NULL && cs_di_dupl(C) && (R = cs_di_transpose(C, 0)) != NULL;
+    cs_di_spfree(T);
+    cs_di_spfree(C);
+    if (!ok) {
+        cs_di_spfree(R);
+        return td_error_set(err, TD_ERR_NOMEM, "out of memory building the structural operator");
+    }
+    /* cs_di_transpose sorts the row indices of each column of the result */
+    s->st_nnz = R->p[R->n];
+    s->st_rowptr = malloc(sizeof(int) * (size_t)(s->n + 1));
+    s->st_col = malloc(sizeof(int) * (size_t)(s->st_nnz > 0 ? s->st_nnz : 1));
+    s->st_M = calloc((size_t)(s->st_nnz > 0 ? s->st_nnz : 1), sizeof(double));
+    s->st_K = calloc((size_t)(s->st_nnz > 0 ? s->st_nnz : 1), sizeof(double));
+    s->st_D = calloc((size_t)(s->st_nnz > 0 ? s->st_nnz : 1), sizeof(double));
+    if (s->st_rowptr && s->st_col) {
+        for (i = 0; i <= s->n; i++)
+            s->st_rowptr[i] = R->p[i];
+        for (i = 0; i < s->st_nnz; i++)
+            s->st_col[i] = R->i[i];
+    }
+    cs_di_spfree(R);
+    if (!s->st_rowptr || !s->st_col || !s->st_M || !s->st_K || !s->st_D)
+        return td_error_set(err, TD_ERR_NOMEM, "out of memory building the structural operator");
+    st_add(s, sys->M, 1.0, s->st_M);
+    st_add(s, sys->K, 1.0, s->st_K);
+    td_sim_structural_speed(s);
     return TD_OK;
 }

@@ -51,14 +51,21 @@ static double penalty_force(const td_sim *s, int k, const double *y, double *fd,
                                     fr);
 }
 
+/* Penalty model: the force acts whenever the node penetrates, whatever the retainer's mode: the
+ * mode only places the enter/exit roots and records the events (sim_modes.c), so a crossing that
+ * root finding misses (a grazing node) cannot let the rotor pass through the retainer. The force
+ * is continuous where it switches on (zero at delta = 0; a Kelvin-Voigt damper's jump is met by
+ * the enter event's restart). */
+static int penalty_model(const td_sim *s)
+{
+    return s->opt.contact.model == TD_CONTACT_PENALTY;
+}
+
 double td_sim_normal_force(const td_sim *s, int k, const double *y)
 {
-    switch (s->ret[k].mode) {
-    case TD_RMODE_CONTACT: return y[s->ol + k];
-    case TD_RMODE_PENETRATING: return penalty_force(s, k, y, NULL, NULL);
-    case TD_RMODE_FREE:
-    default: return 0.0;
-    }
+    if (s->ret[k].mode == TD_RMODE_CONTACT)
+        return y[s->ol + k];
+    return penalty_model(s) ? penalty_force(s, k, y, NULL, NULL) : 0.0;
 }
 
 double td_sim_sliding_velocity(const td_sim *s, int k, const double *y)
@@ -68,71 +75,111 @@ double td_sim_sliding_velocity(const td_sim *s, int k, const double *y)
     return td_contact_sliding_velocity(&s->ret[k].r, s->omega, x, yy, vx, vy);
 }
 
-/* out += scale * A x for a CSC matrix. */
-static void spmv_add(const cs_di *A, const double *x, double scale, double *out)
+double td_sim_slip_factor(const td_sim *s, int k, const double *y, double *dphi)
 {
-    int j, p;
-    for (j = 0; j < A->n; j++) {
-        double xj = scale * x[j];
-        if (xj == 0.0)
-            continue;
-        for (p = A->p[j]; p < A->p[j + 1]; p++)
-            out[A->i[p]] += A->x[p] * xj;
+    return td_contact_slip_factor(td_sim_sliding_velocity(s, k, y), TD_CONTACT_SLIP_BAND, dphi);
+}
+
+void td_sim_init_slip(td_sim *s, int k, const double *y)
+{
+    td_sim_retainer *r = &s->ret[k];
+    double vs = td_sim_sliding_velocity(s, k, y);
+    int sg = vs < 0.0 ? -1 : 1;
+    r->band_from = sg;
+    r->slip = fabs(vs) < TD_CONTACT_SLIP_BAND ? 0 : sg;
+}
+
+/* d v_s / d(x, y, vx, vy) of retainer k at y. */
+static void sliding_gradient(const td_sim *s, int k, const double *y, double g[4])
+{
+    double x, yy, vx, vy;
+    node_state(s, k, y, &x, &yy, &vx, &vy);
+    td_contact_sliding_velocity_gradient(&s->ret[k].r, x, yy, vx, vy, g);
+}
+
+/* out = M vp + D v + K q (D = C + Omega G), row by row over the union pattern; vp == NULL
+ * leaves out M vp. One pass over the indices instead of one per matrix. */
+static void structural(const td_sim *s, const double *q, const double *v, const double *vp, double *out)
+{
+    const int *rp = s->st_rowptr, *col = s->st_col;
+    const double *Mx = s->st_M, *Kx = s->st_K, *Dx = s->st_D;
+    int i, p;
+    if (vp) {
+        for (i = 0; i < s->n; i++) {
+            double acc = 0.0;
+            for (p = rp[i]; p < rp[i + 1]; p++) {
+                int j = col[p];
+                acc += Mx[p] * vp[j] + Dx[p] * v[j] + Kx[p] * q[j];
+            }
+            out[i] = acc;
+        }
+    } else {
+        for (i = 0; i < s->n; i++) {
+            double acc = 0.0;
+            for (p = rp[i]; p < rp[i + 1]; p++) {
+                int j = col[p];
+                acc += Dx[p] * v[j] + Kx[p] * q[j];
+            }
+            out[i] = acc;
+        }
     }
 }
 
-void td_sim_forces(const td_sim *s, double t, const double *y, double *f)
+/* f += sign * the applied forces: gravity, unbalance, AMBs and penalty contacts (everything of
+ * f but the structural -(C + Omega G) v - K q). */
+static void applied_forces(const td_sim *s, double t, const double *y, double sign, double *f)
 {
     const td_system *sys = s->sys;
-    const double *q = y + s->oq, *v = y + s->ov;
     double w2 = s->omega * s->omega, phi = td_sim_spin_angle(s, t);
     int i, k;
-
     for (i = 0; i < s->n; i++)
-        f[i] = sys->gravity_load[i];
-    spmv_add(sys->C, v, -1.0, f);
-    if (s->omega != 0.0)
-        spmv_add(sys->G, v, -s->omega, f);
-    spmv_add(sys->K, q, -1.0, f);
+        f[i] += sign * sys->gravity_load[i];
     /* unbalance: U Omega^2 (cos, sin)(phi + phase) at its node (touchdown/model.h) */
     for (i = 0; i < s->nu; i++) {
         const td_unbalance *u = &s->unb[i];
-        double a = u->magnitude * w2;
+        double a = sign * u->magnitude * w2;
         f[TD_DOF(u->node, TD_DOF_X)] += a * cos(phi + u->phase);
         f[TD_DOF(u->node, TD_DOF_Y)] += a * sin(phi + u->phase);
     }
     for (k = 0; k < sys->n_amb_axes; k++)
-        f[sys->amb_axes[k].actuator_dof] += td_sim_amb_axis_force(s, k, y);
-    /* penalty contacts: force -F_n (n + s mu t) on the rotor (eqs. 4, 17) */
-    for (k = 0; k < s->nr; k++) {
+        f[sys->amb_axes[k].actuator_dof] += sign * td_sim_amb_axis_force(s, k, y);
+    /* penalty contacts: force -F_n (n + s mu t) on the rotor (eqs. 4, 17), F_n > 0 only when penetrating */
+    for (k = 0; k < s->nr && penalty_model(s); k++) {
         const td_sim_retainer *r = &s->ret[k];
         double x, yy, vx, vy, rad, fn, sm;
-        if (r->mode != TD_RMODE_PENETRATING)
+        fn = sign * penalty_force(s, k, y, NULL, NULL);
+        if (fn == 0.0)
             continue;
         node_state(s, k, y, &x, &yy, &vx, &vy);
         rad = hypot(x, yy);
-        fn = penalty_force(s, k, y, NULL, NULL);
-        sm = r->slip * r->r.friction;
+        sm = td_sim_slip_factor(s, k, y, NULL) * r->r.friction;
         f[r->dx] -= fn * (x - sm * yy) / rad;
         f[r->dy] -= fn * (yy + sm * x) / rad;
     }
 }
 
+void td_sim_forces(const td_sim *s, double t, const double *y, double *f)
+{
+    int i;
+    structural(s, y + s->oq, y + s->ov, NULL, f);
+    for (i = 0; i < s->n; i++)
+        f[i] = -f[i];
+    applied_forces(s, t, y, 1.0, f);
+}
+
 void td_sim_residual(const td_sim *s, double t, const double *y, const double *yp, double *res)
 {
     const td_system *sys = s->sys;
-    const double *v = y + s->ov, *vp = yp + s->ov;
+    const double *v = y + s->ov;
     double *rq = res + s->oq, *rv = res + s->ov;
     int i, k;
 
     /* q rows: q' - v (+ J^T eta below) */
     for (i = 0; i < s->n; i++)
         rq[i] = yp[s->oq + i] - v[i];
-    /* v rows: M v' - f */
-    td_sim_forces(s, t, y, rv);
-    for (i = 0; i < s->n; i++)
-        rv[i] = -rv[i];
-    spmv_add(sys->M, vp, 1.0, rv);
+    /* v rows: M v' - f = M v' + (C + Omega G) v + K q - applied forces */
+    structural(s, y + s->oq, v, yp + s->ov, rv);
+    applied_forces(s, t, y, -1.0, rv);
     /* w rows: the AMB force lag */
     for (k = 0; k < sys->n_amb_axes; k++) {
         const td_amb_axis *a = &sys->amb_axes[k];
@@ -147,7 +194,7 @@ void td_sim_residual(const td_sim *s, double t, const double *y, const double *y
         const td_sim_retainer *r = &s->ret[k];
         double lam = y[s->ol + k], eta = y[s->ou + k];
         if (r->mode == TD_RMODE_CONTACT) {
-            double x, yy, vx, vy, c = r->r.clearance, rad, sm = r->slip * r->r.friction;
+            double x, yy, vx, vy, c = r->r.clearance, rad, sm = td_sim_slip_factor(s, k, y, NULL) * r->r.friction;
             node_state(s, k, y, &x, &yy, &vx, &vy);
             rad = hypot(x, yy);
             /* eq. (6): + J^T lambda, and the friction of eq. (17) with N = lambda */
@@ -217,13 +264,14 @@ static void jacobian_amb(td_sim *s, const double *y)
 static void jacobian_contact(td_sim *s, int k, const double *y)
 {
     const td_sim_retainer *r = &s->ret[k];
-    double x, yy, vx, vy, c = r->r.clearance, rad, r3, sm = r->slip * r->r.friction;
+    double x, yy, vx, vy, c = r->r.clearance, rad, r3, dphi, sm, gv[4];
     double lam = y[s->ol + k], eta = y[s->ou + k];
     int qx = s->oq + r->dx, qy = s->oq + r->dy, vxr = s->ov + r->dx, vyr = s->ov + r->dy;
     int lk = s->ol + k, uk = s->ou + k;
     node_state(s, k, y, &x, &yy, &vx, &vy);
     rad = hypot(x, yy);
     r3 = rad * rad * rad;
+    sm = td_sim_slip_factor(s, k, y, &dphi) * r->r.friction;
     /* lambda (x/c - sm y/r, y/c + sm x/r) */
     jadd(s, vxr, qx, lam * (1.0 / c + sm * x * yy / r3));
     jadd(s, vxr, qy, lam * (-sm * x * x / r3));
@@ -231,6 +279,15 @@ static void jacobian_contact(td_sim *s, int k, const double *y)
     jadd(s, vyr, qy, lam * (1.0 / c - sm * x * yy / r3));
     jadd(s, vxr, lk, x / c - sm * yy / rad);
     jadd(s, vyr, lk, yy / c + sm * x / rad);
+    if (dphi != 0.0) { /* inside the slip band: sm = mu v_s / v_reg depends on q and v */
+        int cols[4] = {qx, qy, vxr, vyr}, i;
+        double a = lam * r->r.friction * dphi;
+        sliding_gradient(s, k, y, gv);
+        for (i = 0; i < 4; i++) {
+            jadd(s, vxr, cols[i], -a * gv[i] * yy / rad);
+            jadd(s, vyr, cols[i], a * gv[i] * x / rad);
+        }
+    }
     /* q rows: eta (x, y)/c */
     jadd(s, qx, qx, eta / c);
     jadd(s, qy, qy, eta / c);
@@ -249,13 +306,16 @@ static void jacobian_contact(td_sim *s, int k, const double *y)
 static void jacobian_penalty(td_sim *s, int k, const double *y)
 {
     const td_sim_retainer *r = &s->ret[k];
-    double x, yy, vx, vy, rad, r3, sm = r->slip * r->r.friction, fd, fr, fn, rate;
+    double x, yy, vx, vy, rad, r3, sm, dphi, gv[4], fd, fr, fn, rate;
     double d_x, d_y, rt_x, rt_y, rt_vx, rt_vy, f_x, f_y, u1, u2, u1x, u1y, u2x, u2y;
     int qx = s->oq + r->dx, qy = s->oq + r->dy, vxr = s->ov + r->dx, vyr = s->ov + r->dy;
+    fn = penalty_force(s, k, y, &fd, &fr);
+    if (fn == 0.0 && fd == 0.0 && fr == 0.0)
+        return; /* not penetrating */
     node_state(s, k, y, &x, &yy, &vx, &vy);
     rad = hypot(x, yy);
     r3 = rad * rad * rad;
-    fn = penalty_force(s, k, y, &fd, &fr);
+    sm = td_sim_slip_factor(s, k, y, &dphi) * r->r.friction;
     rate = (x * vx + yy * vy) / rad;
     d_x = x / rad;
     d_y = yy / rad;
@@ -279,6 +339,15 @@ static void jacobian_penalty(td_sim *s, int k, const double *y)
     jadd(s, vxr, vyr, u1 * fr * rt_vy);
     jadd(s, vyr, vxr, u2 * fr * rt_vx);
     jadd(s, vyr, vyr, u2 * fr * rt_vy);
+    if (dphi != 0.0) { /* inside the slip band: sm = mu v_s / v_reg depends on q and v */
+        int cols[4] = {qx, qy, vxr, vyr}, i;
+        double a = fn * r->r.friction * dphi;
+        sliding_gradient(s, k, y, gv);
+        for (i = 0; i < 4; i++) {
+            jadd(s, vxr, cols[i], -a * gv[i] * yy / rad);
+            jadd(s, vyr, cols[i], a * gv[i] * x / rad);
+        }
+    }
 }
 
 void td_sim_jacobian(td_sim *s, double t, double cj, const double *y)
@@ -303,8 +372,8 @@ void td_sim_jacobian(td_sim *s, double t, double cj, const double *y)
             jacobian_contact(s, k, y);
             continue;
         }
-        if (s->ret[k].mode == TD_RMODE_PENETRATING)
-            jacobian_penalty(s, k, y);
+        if (penalty_model(s))
+            jacobian_penalty(s, k, y); /* zero where the node does not penetrate */
         /* free and penalty contacts: the multiplier rows are lambda = eta = 0 */
         jadd(s, s->ol + k, s->ol + k, 1.0);
         jadd(s, s->ou + k, s->ou + k, 1.0);
@@ -318,7 +387,10 @@ void td_sim_jacobian(td_sim *s, double t, double cj, const double *y)
  *           free, penalty model:               gap, decreasing                      -> penalty enter
  *           contact:                           lambda, decreasing                   -> release
  *           penetrating:                       gap, increasing                      -> penalty exit
- *   slot 1  contact or penetrating with mu > 0: v_s (eq. 16), either way           -> friction reversal
+ *   slot 1  contact or penetrating with mu > 0, sliding (slip = +-1):
+ *                                              slip v_s - v_reg, decreasing         -> into the slip band
+ *           ... inside the band (slip = 0):    (v_reg^2 - v_s^2)/(2 v_reg), decr.   -> out of the band
+ *                                              (a friction reversal if on the other side)
  *   slot 2  free, disarmed:                    gap - eps, increasing                -> re-arm (internal)
  * Unused slots hold the constant 1, which never has a root.
  */
@@ -346,8 +418,10 @@ void td_sim_roots(const td_sim *s, double t, const double *y, double *g)
         case TD_RMODE_CONTACT: gk[TD_ROOT_CONTACT] = y[s->ol + k]; break;
         case TD_RMODE_PENETRATING: gk[TD_ROOT_CONTACT] = gap; break;
         }
-        if (r->mode != TD_RMODE_FREE && r->r.friction > 0.0)
-            gk[TD_ROOT_SLIP] = td_sim_sliding_velocity(s, k, y);
+        if (r->mode != TD_RMODE_FREE && r->r.friction > 0.0) {
+            double vs = td_sim_sliding_velocity(s, k, y), vreg = TD_CONTACT_SLIP_BAND;
+            gk[TD_ROOT_SLIP] = r->slip != 0 ? r->slip * vs - vreg : (vreg * vreg - vs * vs) / (2.0 * vreg);
+        }
     }
 }
 
@@ -357,7 +431,7 @@ void td_sim_root_directions(const td_sim *s, int *dir)
     for (k = 0; k < s->nr; k++) {
         int *dk = dir + TD_ROOTS_PER_RETAINER * k;
         dk[TD_ROOT_CONTACT] = s->ret[k].mode == TD_RMODE_PENETRATING ? 1 : -1;
-        dk[TD_ROOT_SLIP] = 0;
+        dk[TD_ROOT_SLIP] = -1;
         dk[TD_ROOT_REARM] = 1;
     }
 }

@@ -11,7 +11,10 @@
 #   3. a solver failure (solver.atol = 1e-300, accepted by the case reader; IDA fails at the
 #      first impact): exit 1, the message, incomplete files;
 #   4. SIGKILL (cannot be caught): only .partial files remain, nothing at a final path;
-#   5. an output path that cannot be created: exit 1, one error line, no file left.
+#   5. an output path that cannot be created: exit 1, one error line, no file left;
+#   6. SIGINT while the solver is slow inside one step (solver.max_step = 1e-12 s, accepted by the
+#      case reader: 1e8 steps to the first 0.1 ms sample): the run must still stop within 10 s
+#      with exit 1 and incomplete files.
 # HDF5 attributes are read with h5dump (Debian package hdf5-tools); without it those checks are
 # skipped and said so. Args: $1 = the touchdown binary, $2 = the source directory.
 set -u
@@ -229,6 +232,22 @@ check "uncreatable output: exit 1 (got $rc)" test "$rc" = 1
 check "uncreatable output: one error line naming the path: $(cat "$work/n.err")" \
     test "$(wc -l <"$work/n.err")" = 1 -a -n "$(grep -F "missing-dir/x.h5" "$work/n.err")"
 check "uncreatable output: no file left ($(ls -A "$d" | tr '\n' ' '))" test -z "$(ls -A "$d")"
+
+# ---- 6. an interrupt while the solver crawls ---------------------------------------------------
+d=$work/crawl
+mkdir -p "$d"
+(cd "$d" && exec "$tool" run --set solver.max_step=1e-12 "$case_a" >"$work/c.out" 2>"$work/c.err") &
+pid=$!
+pids+=("$pid")
+sleep 1
+kill -INT "$pid"
+if wait_exit "$pid" 10; then
+    check "SIGINT with max_step = 1e-12: exit 1 (got $rc: $(head -c 200 "$work/c.err"))" test "$rc" = 1
+    check "SIGINT with max_step = 1e-12: the files are at their final paths, incomplete" \
+        test "$(last_line "$d/paper-a.csv" | cut -c1-14)" = "# incomplete: "
+else
+    fail "SIGINT with max_step = 1e-12: still running 10 s after the signal (killed)"
+fi
 
 echo "$((checks - fails)) passed, $fails failed"
 [ "$fails" = 0 ]

@@ -9,6 +9,7 @@
  * Both codes form A = [0 I; -M^-1 K, -M^-1 (C + Omega G)] and solve a dense eigenproblem, so the
  * only differences are element matrices (same Euler-Bernoulli formulas) and round-off: 1e-6 relative.
  */
+#include "td_rig.h"
 #include "td_test.h"
 
 #include "model/system_internal.h"
@@ -24,32 +25,14 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define RIG_TAU (1.0 / (2.0 * TD_PI * 100.0))
+#define RIG_TAU TD_RIG_TAU
 
-/* The reference rig; tau = AMB force lag (0: lag-free). */
+/* The reference rig (tests/support/td_rig.c) without retainers; tau = AMB force lag (0: lag-free). */
 static td_system *rig_system(double tau)
 {
-    td_model *m = NULL;
+    td_model *m = td_test_rig_create(0.0, tau, TD_RIG_NO_RETAINERS);
     td_system *s = NULL;
-    td_shaft_element el = {1.0 / 6.0, 0.05, 0.0, {2.11e11, 8.1e10, 7810.0}};
-    const double md = 10.0, Ip = 0.072, Id = 0.036668; /* the rig table's (and cases/rig.cfg's) values */
-    static const int disc_nodes[4] = {1, 5, 7, 11};
-    int i;
     td_error err;
-    assert_int_equal(td_model_create(&m, NULL), TD_OK);
-    for (i = 0; i < 12; i++)
-        assert_int_equal(td_model_add_shaft_element(m, &el, NULL), TD_OK);
-    for (i = 0; i < 4; i++) {
-        td_disc d = {disc_nodes[i], md, Ip, Id};
-        assert_int_equal(td_model_add_disc(m, &d, NULL), TD_OK);
-    }
-    assert_int_equal(td_model_add_point_mass(m, 3, 14.6, NULL), TD_OK);
-    assert_int_equal(td_model_add_point_mass(m, 9, 14.6, NULL), TD_OK);
-    for (i = 0; i < 2; i++) {
-        int node = i == 0 ? 3 : 9;
-        td_amb a = {node, node, 1.0e6, 200.0, 1.0e4, 40.0, tau, 1700.0, 0, 1.2e-3};
-        assert_int_equal(td_model_add_amb(m, &a, NULL), TD_OK);
-    }
     if (td_system_create(m, &s, &err) != TD_OK)
         fail_msg("rig: %s", err.message);
     td_model_free(&m);
