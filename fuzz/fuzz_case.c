@@ -138,8 +138,8 @@ static void check_case(const td_case *c)
     const td_model *m = td_case_model(c);
     const char *text = td_case_text(c), *name = td_case_name(c), *desc = td_case_description(c);
     double t_end = td_case_end_time(c);
-    if (!m || !text || !name || !desc || !td_case_path(c) || !td_case_sim_options(c) ||
-        !td_case_output_options(c) || !td_case_modal_options(c))
+    if (!m || !text || !name || !desc || !td_case_path(c) || !td_case_sim_options(c) || !td_case_output_options(c) ||
+        !td_case_modal_options(c))
         contract_failed("an accessor returned NULL on a loaded case", "");
     if (strlen(text) == (size_t)-1 || strlen(name) == (size_t)-1 || strlen(desc) == (size_t)-1)
         abort(); /* touches every byte (ASan checks them) */

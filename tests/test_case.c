@@ -713,7 +713,9 @@ static void test_bad_overrides(void **state)
         /* fuzz finding K3: control characters are quoted escaped, the message stays one line */
         {"speed\n=1", "--set 'speed\\n=1': expected KEY=VALUE on one line"},
         {"speed=\x1b[31m", "speed: expected a number, got the string \"\\x1b[31m\""},
-        {"spe\x1b" "ed=1", "'spe\\x1bed' is not a valid key name"},
+        {"spe\x1b"
+         "ed=1",
+         "'spe\\x1bed' is not a valid key name"},
         {"speed=\"a\tb", "cannot parse the value '\"a\\tb'"},
         {"end_time=\"2\"", "end_time: expected a number, got the string \"2\""},
         {"gravity.direction=[0.0, 0.0]", "gravity.direction: must not be the zero vector"},

@@ -26,14 +26,14 @@
 
 #include "touchdown/output.h"
 
-#define OMEGA 90.0          /* rad/s */
-#define CLEARANCE 0.75e-3   /* m */
-#define RATE 2000.0         /* Hz */
-#define T_END 0.6           /* s */
-#define STEP_UP 0.1         /* s */
-#define STEP_DOWN 0.35      /* s */
-#define K_CONTACT 4.0e6     /* N/m, force per metre of free radius beyond the clearance */
-#define K_AMB 1.0e6         /* N/m */
+#define OMEGA 90.0        /* rad/s */
+#define CLEARANCE 0.75e-3 /* m */
+#define RATE 2000.0       /* Hz */
+#define T_END 0.6         /* s */
+#define STEP_UP 0.1       /* s */
+#define STEP_DOWN 0.35    /* s */
+#define K_CONTACT 4.0e6   /* N/m, force per metre of free radius beyond the clearance */
+#define K_AMB 1.0e6       /* N/m */
 
 static const char *fixture_path(const char *name)
 {
@@ -64,9 +64,9 @@ static double free_radius(double t)
 typedef struct variant {
     const char *name;
     const char *model;
-    double force_scale;  /* penalty: smaller forces */
-    double penetration;  /* m per N beyond the clearance (1 / Kc), 0: rigid */
-    double t_stop;       /* last sample time */
+    double force_scale; /* penalty: smaller forces */
+    double penetration; /* m per N beyond the clearance (1 / Kc), 0: rigid */
+    double t_stop;      /* last sample time */
     int complete;
 } variant;
 
@@ -196,8 +196,7 @@ static void check_layout(const char *path, long samples)
     assert_true(a >= 0 && H5Aread(a, H5T_NATIVE_INT, &complete) >= 0);
     H5Aclose(a);
     assert_int_equal(complete, 1);
-    assert_true(H5Aexists(f, "case_text") > 0 && H5Aexists(f, "retainer_nodes") > 0 &&
-                H5Aexists(f, "amb_nodes") > 0);
+    assert_true(H5Aexists(f, "case_text") > 0 && H5Aexists(f, "retainer_nodes") > 0 && H5Aexists(f, "amb_nodes") > 0);
     /* the event kind is an enum whose names the plot tool matches */
     d = H5Dopen2(f, "/events", H5P_DEFAULT);
     assert_true(d >= 0);

@@ -2,16 +2,16 @@
 #ifndef TD_TOOLS_CLI_H
 #define TD_TOOLS_CLI_H
 
-#include "touchdown/touchdown.h"
 #include "touchdown/case.h"
+#include "touchdown/touchdown.h"
 
 #include <stdio.h>
 
 /* Exit codes (documented in --help and docs/cli.md). */
 enum {
-    TD_EXIT_OK = 0,      /* success */
-    TD_EXIT_FAILED = 1,  /* the simulation or analysis failed (solver, numerics, interrupted, output) */
-    TD_EXIT_USAGE = 2    /* bad input: usage, case file, overrides */
+    TD_EXIT_OK = 0,     /* success */
+    TD_EXIT_FAILED = 1, /* the simulation or analysis failed (solver, numerics, interrupted, output) */
+    TD_EXIT_USAGE = 2   /* bad input: usage, case file, overrides */
 };
 
 /* Largest number of --set overrides on one command line. */

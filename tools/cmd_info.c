@@ -49,8 +49,8 @@ static void print_parts(const td_model *m)
     for (i = 0; i < td_model_bearing_count(m); i++) {
         td_bearing b;
         td_model_get_bearing(m, i, &b);
-        printf("bearing %-4d node %d: kxx %.6g kyy %.6g N/m, cxx %.6g cyy %.6g N s/m\n", i, b.node, b.kxx, b.kyy,
-               b.cxx, b.cyy);
+        printf("bearing %-4d node %d: kxx %.6g kyy %.6g N/m, cxx %.6g cyy %.6g N s/m\n", i, b.node, b.kxx, b.kyy, b.cxx,
+               b.cyy);
     }
     for (i = 0; i < td_model_retainer_count(m); i++) {
         td_retainer r;
@@ -86,7 +86,8 @@ static int print_modes(const td_model *m, int count)
         return TD_EXIT_USAGE;
     }
     td_model_gravity(m, &gx, &gy);
-    printf("speed        %.9g rad/s (%.9g rpm)\n", td_model_speed(m), td_model_speed(m) * 30.0 / 3.14159265358979323846);
+    printf("speed        %.9g rad/s (%.9g rpm)\n", td_model_speed(m),
+           td_model_speed(m) * 30.0 / 3.14159265358979323846);
     printf("gravity      %s\n", (gx != 0.0 || gy != 0.0) ? "on" : "off");
     printf("DOFs         %d mechanical (4 per node), %d first-order states with the AMB lags\n",
            td_system_dof_count(sys), td_modal_state_count(sys));

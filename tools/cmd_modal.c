@@ -170,11 +170,14 @@ done:
 int td_cmd_modal(int argc, char **argv)
 {
     enum { OPT_CSV = 256, OPT_HDF5 };
-    static const struct option longopts[] = {
-        {"set", required_argument, NULL, 's'},   {"speed", required_argument, NULL, 'w'},
-        {"output", required_argument, NULL, 'o'}, {"csv", required_argument, NULL, OPT_CSV},
-        {"hdf5", required_argument, NULL, OPT_HDF5}, {"quiet", no_argument, NULL, 'q'},
-        {"help", no_argument, NULL, 'h'},         {NULL, 0, NULL, 0}};
+    static const struct option longopts[] = {{"set", required_argument, NULL, 's'},
+                                             {"speed", required_argument, NULL, 'w'},
+                                             {"output", required_argument, NULL, 'o'},
+                                             {"csv", required_argument, NULL, OPT_CSV},
+                                             {"hdf5", required_argument, NULL, OPT_HDF5},
+                                             {"quiet", no_argument, NULL, 'q'},
+                                             {"help", no_argument, NULL, 'h'},
+                                             {NULL, 0, NULL, 0}};
     td_cli_sets sets = {{0}, 0};
     const char *prefix = NULL, *csv = NULL, *hdf5 = NULL, *speed_arg = NULL;
     int opt, code, quiet = 0;

@@ -80,12 +80,16 @@ static int parse_count(const char *s, int lo, int hi, int *out)
 static int parse(int argc, char **argv, plot_opts *opt)
 {
     enum { OPT_RETAINER = 256, OPT_FROM, OPT_TO, OPT_FORMAT, OPT_NO_RUN, OPT_MODES };
-    static const struct option longopts[] = {
-        {"dir", required_argument, NULL, 'd'},         {"retainer", required_argument, NULL, OPT_RETAINER},
-        {"from", required_argument, NULL, OPT_FROM},   {"to", required_argument, NULL, OPT_TO},
-        {"format", required_argument, NULL, OPT_FORMAT}, {"no-run", no_argument, NULL, OPT_NO_RUN},
-        {"modes", required_argument, NULL, OPT_MODES}, {"quiet", no_argument, NULL, 'q'},
-        {"help", no_argument, NULL, 'h'},              {NULL, 0, NULL, 0}};
+    static const struct option longopts[] = {{"dir", required_argument, NULL, 'd'},
+                                             {"retainer", required_argument, NULL, OPT_RETAINER},
+                                             {"from", required_argument, NULL, OPT_FROM},
+                                             {"to", required_argument, NULL, OPT_TO},
+                                             {"format", required_argument, NULL, OPT_FORMAT},
+                                             {"no-run", no_argument, NULL, OPT_NO_RUN},
+                                             {"modes", required_argument, NULL, OPT_MODES},
+                                             {"quiet", no_argument, NULL, 'q'},
+                                             {"help", no_argument, NULL, 'h'},
+                                             {NULL, 0, NULL, 0}};
     int c;
     optind = 1;
     opterr = 0; /* our own one-line messages */

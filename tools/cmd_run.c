@@ -128,12 +128,15 @@ static void print_summary(const td_run_summary *s, int json)
 int td_cmd_run(int argc, char **argv)
 {
     enum { OPT_HDF5 = 256, OPT_CSV, OPT_JSON, OPT_NO_PROGRESS };
-    static const struct option longopts[] = {
-        {"set", required_argument, NULL, 's'},        {"output", required_argument, NULL, 'o'},
-        {"hdf5", required_argument, NULL, OPT_HDF5},  {"csv", required_argument, NULL, OPT_CSV},
-        {"quiet", no_argument, NULL, 'q'},            {"json", no_argument, NULL, OPT_JSON},
-        {"no-progress", no_argument, NULL, OPT_NO_PROGRESS}, {"help", no_argument, NULL, 'h'},
-        {NULL, 0, NULL, 0}};
+    static const struct option longopts[] = {{"set", required_argument, NULL, 's'},
+                                             {"output", required_argument, NULL, 'o'},
+                                             {"hdf5", required_argument, NULL, OPT_HDF5},
+                                             {"csv", required_argument, NULL, OPT_CSV},
+                                             {"quiet", no_argument, NULL, 'q'},
+                                             {"json", no_argument, NULL, OPT_JSON},
+                                             {"no-progress", no_argument, NULL, OPT_NO_PROGRESS},
+                                             {"help", no_argument, NULL, 'h'},
+                                             {NULL, 0, NULL, 0}};
     td_cli_sets sets = {{0}, 0};
     const char *prefix = NULL, *hdf5 = NULL, *csv = NULL;
     int quiet = 0, json = 0, want_progress = 1, opt, code;

@@ -32,8 +32,7 @@ static const struct {
     const char *name;
     td_command_fn fn;
 } commands[] = {
-    {"run", td_cmd_run}, {"modal", td_cmd_modal}, {"info", td_cmd_info},
-    {"plot", td_cmd_plot}, {"bench", td_cmd_bench},
+    {"run", td_cmd_run}, {"modal", td_cmd_modal}, {"info", td_cmd_info}, {"plot", td_cmd_plot}, {"bench", td_cmd_bench},
 };
 
 int main(int argc, char **argv)

@@ -14,8 +14,7 @@ const char *td_whirl_name(td_whirl w)
 int td_print_modes(FILE *f, const td_modal *modes, int count, int digits)
 {
     int i, shown = 0, n = td_modal_mode_count(modes), overdamped = 0;
-    fprintf(f, "  %-4s %*s %*s %12s  %s\n", "#", digits + 6, "omega_d [rad/s]", digits + 6, "f [Hz]", "zeta",
-            "whirl");
+    fprintf(f, "  %-4s %*s %*s %12s  %s\n", "#", digits + 6, "omega_d [rad/s]", digits + 6, "f [Hz]", "zeta", "whirl");
     for (i = 0; i < n && shown < count; i++) {
         td_mode m;
         td_modal_get_mode(modes, i, &m);

@@ -66,39 +66,39 @@ typedef struct plot_window {
 
 /* A simulation file: samples inside the time window, SI units as in the file. */
 typedef struct plot_sim {
-    size_t n;          /* samples kept */
-    double *t;         /* n */
+    size_t n;  /* samples kept */
+    double *t; /* n */
     int nret, namb;
     double *x, *y, *r, *fn, *contact; /* n x nret, row-major */
-    double *amb;       /* n x namb x 2 */
-    double *clearance; /* nret, NAN when the file has no retainer_clearance */
-    long *ret_nodes;   /* nret, -1 when unknown */
-    long *amb_nodes;   /* namb, -1 when unknown */
-    plot_event *ev;    /* events inside the window */
+    double *amb;                      /* n x namb x 2 */
+    double *clearance;                /* nret, NAN when the file has no retainer_clearance */
+    long *ret_nodes;                  /* nret, -1 when unknown */
+    long *amb_nodes;                  /* namb, -1 when unknown */
+    plot_event *ev;                   /* events inside the window */
     size_t nev;
 } plot_sim;
 
 /* A modal file. Arrays absent from the file are NULL with zero counts. */
 typedef struct plot_modal {
-    int ns, nb;           /* Campbell: speeds x branches */
-    double *speed;        /* ns, rad/s */
-    double *freq;         /* ns x nb, Hz (NAN: missing point) */
-    double *whirl;        /* ns x nb: 1 forward, -1 backward, 0 mixed */
+    int ns, nb;    /* Campbell: speeds x branches */
+    double *speed; /* ns, rad/s */
+    double *freq;  /* ns x nb, Hz (NAN: missing point) */
+    double *whirl; /* ns x nb: 1 forward, -1 backward, 0 mixed */
     int ncrit;
     double *crit_speed, *crit_freq, *crit_whirl; /* ncrit */
-    int nm, nn;           /* modes x nodes of the mode shapes */
-    double *mode_freq, *mode_whirl, *mode_zeta; /* nm */
-    double *xr, *xi, *yr, *yi;                  /* nm x nn */
-    double *node_z;       /* nn axial positions (m) when the file has them, else NULL */
-    double mode_speed;    /* rad/s of the mode shapes, NAN when unknown */
+    int nm, nn;                                  /* modes x nodes of the mode shapes */
+    double *mode_freq, *mode_whirl, *mode_zeta;  /* nm */
+    double *xr, *xi, *yr, *yi;                   /* nm x nn */
+    double *node_z;                              /* nn axial positions (m) when the file has them, else NULL */
+    double mode_speed;                           /* rad/s of the mode shapes, NAN when unknown */
 } plot_modal;
 
 typedef struct plot_file {
-    const char *path;  /* as given (borrowed from argv) */
-    char stem[256];    /* file name without directories and .h5/.hdf5: the legend label */
-    char title[512];   /* case description, else the stem; "(INCOMPLETE ...)" appended */
+    const char *path; /* as given (borrowed from argv) */
+    char stem[256];   /* file name without directories and .h5/.hdf5: the legend label */
+    char title[512];  /* case description, else the stem; "(INCOMPLETE ...)" appended */
     plot_kind kind;
-    int complete;      /* 1, 0, or -1 when the file has no flag */
+    int complete; /* 1, 0, or -1 when the file has no flag */
     plot_sim sim;
     plot_modal modal;
 } plot_file;
@@ -111,13 +111,13 @@ void plot_file_free(plot_file *f);
 /* ---- plot_script.c: output and gnuplot ----------------------------------------------------- */
 
 typedef struct plot_opts {
-    const char *dir;  /* output directory */
-    int retainer;     /* -1: all */
+    const char *dir; /* output directory */
+    int retainer;    /* -1: all */
     plot_window win;
-    int svg;          /* 0: png, 1: svg */
-    int run;          /* run gnuplot */
+    int svg; /* 0: png, 1: svg */
+    int run; /* run gnuplot */
     int quiet;
-    int modes;        /* mode shapes to draw */
+    int modes; /* mode shapes to draw */
 } plot_opts;
 
 /* The scripts written so far, run at the end. */
@@ -137,8 +137,7 @@ int plot_close(FILE *f, const plot_opts *opt, const char *name);
 /* Start the script NAME.gp for the figure NAME.png/.svg (width x height pixels): header comment
  * `what`, the terminal (pngcairo when gnuplot has it, else png; or svg) and common style.
  * Returns the open file (NULL with a line printed) and records the script in the job. */
-FILE *plot_script_begin(plot_job *job, const char *name, const char *what, const char *source, int width,
-                        int height);
+FILE *plot_script_begin(plot_job *job, const char *name, const char *what, const char *source, int width, int height);
 /* Print `s` as a gnuplot double-quoted string (a newline becomes \n: two-line titles). */
 void plot_gp_string(FILE *f, const char *s);
 /* Run gnuplot on every recorded script in opt->dir; PLOT_OK or PLOT_FAILED with a line printed. */

@@ -9,8 +9,8 @@
 #include <math.h>
 #include <string.h>
 
-static const char *palette[8] = {"#1f77b4", "#d62728", "#2ca02c", "#ff7f0e", "#9467bd", "#8c564b", "#e377c2",
-                                 "#17becf"};
+static const char *palette[8] = {"#1f77b4", "#d62728", "#2ca02c", "#ff7f0e",
+                                 "#9467bd", "#8c564b", "#e377c2", "#17becf"};
 
 static double column_max(const plot_sim *s, const double *m, int r)
 {
@@ -45,8 +45,7 @@ static void panel(FILE *out, const plot_file *const *files, const char *const *p
     }
 }
 
-static int compare_figure(plot_job *job, const plot_file *const *files, const char *const *prefixes, int count,
-                          int r)
+static int compare_figure(plot_job *job, const plot_file *const *files, const char *const *prefixes, int count, int r)
 {
     char name[64], what[200], title[800];
     double t0 = HUGE_VAL, t1 = -HUGE_VAL, rmax = 0.0, fmax_n = 0.0, c = NAN;

@@ -229,8 +229,8 @@ static int count_columns(hid_t file, const char *path, size_t n, int *count)
 
 static int load_sim(hid_t file, plot_file *f, const plot_window *win)
 {
-    static const char *fields[5] = {"retainers/x", "retainers/y", "retainers/radial_position",
-                                    "retainers/normal_force", "retainers/contact_state"};
+    static const char *fields[5] = {"retainers/x", "retainers/y", "retainers/radial_position", "retainers/normal_force",
+                                    "retainers/contact_state"};
     plot_sim *s = &f->sim;
     plot_array t, a[5], amb;
     double **dst[5];
@@ -439,7 +439,8 @@ int plot_file_load(const char *path, const plot_window *win, plot_file *f)
     fclose(probe);
     is_h5 = H5Fis_hdf5(path);
     if (is_h5 <= 0)
-        return bad(path, "not an HDF5 file (touchdown plot reads the .h5 files of 'touchdown run' and 'touchdown modal')",
+        return bad(path,
+                   "not an HDF5 file (touchdown plot reads the .h5 files of 'touchdown run' and 'touchdown modal')",
                    PLOT_BAD_INPUT);
     if ((file = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT)) < 0)
         return bad(path, "cannot open the HDF5 file", PLOT_BAD_INPUT);

@@ -16,7 +16,10 @@
 #define COLOR_BACKWARD "#d62728"
 #define COLOR_MIXED "#7f7f7f"
 
-static const char *whirl_word(double w) { return w > 0.5 ? "forward" : w < -0.5 ? "backward" : "mixed"; }
+static const char *whirl_word(double w)
+{
+    return w > 0.5 ? "forward" : w < -0.5 ? "backward" : "mixed";
+}
 
 /* ---- Campbell diagram ---------------------------------------------------------------------- */
 
@@ -37,10 +40,11 @@ static int write_campbell(const plot_job *job, const plot_file *f, const char *p
     snprintf(name, sizeof name, "%scampbell.dat", prefix);
     if (!(out = plot_open(job->opt, name)))
         return PLOT_FAILED;
-    fprintf(out, "# Campbell diagram from %s: one block per branch (j-th lowest damped frequency), cut\n"
-                 "# by blank lines where the whirl changes or the frequency jumps (another mode)\n"
-                 "# columns: 1 speed [rad/s], 2 damped natural frequency [Hz], 3 whirl (1 forward, -1 backward, "
-                 "0 mixed)\n",
+    fprintf(out,
+            "# Campbell diagram from %s: one block per branch (j-th lowest damped frequency), cut\n"
+            "# by blank lines where the whirl changes or the frequency jumps (another mode)\n"
+            "# columns: 1 speed [rad/s], 2 damped natural frequency [Hz], 3 whirl (1 forward, -1 backward, "
+            "0 mixed)\n",
             f->path);
     for (j = 0; j < m->nb; j++) {
         fprintf(out, "\n# branch %d\n", j);
@@ -65,8 +69,9 @@ static int write_critical(const plot_job *job, const plot_file *f, const char *p
     snprintf(name, sizeof name, "%scritical.dat", prefix);
     if (!(out = plot_open(job->opt, name)))
         return PLOT_FAILED;
-    fprintf(out, "# critical speeds from %s\n# columns: 1 speed [rad/s], 2 frequency [Hz], 3 whirl (1 forward, "
-                 "-1 backward)\n",
+    fprintf(out,
+            "# critical speeds from %s\n# columns: 1 speed [rad/s], 2 frequency [Hz], 3 whirl (1 forward, "
+            "-1 backward)\n",
             f->path);
     for (i = 0; i < m->ncrit; i++)
         fprintf(out, "%.12g %.12g %g\n", m->crit_speed[i], m->crit_freq[i], m->crit_whirl[i]);
@@ -74,8 +79,7 @@ static int write_critical(const plot_job *job, const plot_file *f, const char *p
 }
 
 /* One whirl class of the Campbell points as a plot element. */
-static void campbell_points(FILE *out, const char *data, const char *test, int pt, const char *color,
-                            const char *title)
+static void campbell_points(FILE *out, const char *data, const char *test, int pt, const char *color, const char *title)
 {
     fprintf(out, ", \\\n     ");
     plot_gp_string(out, data);
@@ -119,11 +123,12 @@ static int campbell_figure(plot_job *job, const plot_file *f, const char *prefix
     plot_gp_string(out, title);
     fputc('\n', out);
     critical_list(out, m);
-    fprintf(out, "set xlabel 'rotor speed [rad/s]'\nset ylabel 'damped natural frequency [Hz]'\n"
-                 "set xrange [%.12g:%.12g]\nset yrange [0:*]\n"
-                 "set lmargin at screen 0.08\nset rmargin at screen 0.72\n"
-                 "set key at screen 0.74, screen 0.9 left top vertical Left reverse samplen 2\nset samples 400\n"
-                 "plot ",
+    fprintf(out,
+            "set xlabel 'rotor speed [rad/s]'\nset ylabel 'damped natural frequency [Hz]'\n"
+            "set xrange [%.12g:%.12g]\nset yrange [0:*]\n"
+            "set lmargin at screen 0.08\nset rmargin at screen 0.72\n"
+            "set key at screen 0.74, screen 0.9 left top vertical Left reverse samplen 2\nset samples 400\n"
+            "plot ",
             smin, smax > smin ? smax : smin + 1.0);
     plot_gp_string(out, data);
     fprintf(out, " using 1:2 with lines lw 1 lc rgb '#c0c0c0' title 'branch', \\\n"
@@ -202,8 +207,9 @@ static int write_shapes(const plot_job *job, const plot_file *f, const char *pre
         free(shape);
         return PLOT_FAILED;
     }
-    fprintf(out, "# mode shapes from %s, normalised: largest entry 1 (phase turned to make it real)\n"
-                 "# columns: 1 %s, then one column per mode (mode 1 in column 2)\n",
+    fprintf(out,
+            "# mode shapes from %s, normalised: largest entry 1 (phase turned to make it real)\n"
+            "# columns: 1 %s, then one column per mode (mode 1 in column 2)\n",
             f->path, m->node_z ? "axial position z [m]" : "node number");
     for (k = 0; k < m->nn; k++) {
         fprintf(out, "%.9g", m->node_z ? m->node_z[k] : (double)k);
@@ -235,9 +241,10 @@ static int shapes_figure(plot_job *job, const plot_file *f, const char *prefix, 
     snprintf(title, sizeof title, "Lateral mode shapes%s (the first %d modes)\n%s", speed, nm, f->title);
     fprintf(out, "set title ");
     plot_gp_string(out, title);
-    fprintf(out, "\nset xlabel '%s'\nset ylabel 'normalised displacement (largest = 1)'\n"
-                 "set yrange [-1.1:1.1]\nset key outside right top vertical\n"
-                 "set xzeroaxis lt 1 lw 1 lc rgb '#888888'\nplot ",
+    fprintf(out,
+            "\nset xlabel '%s'\nset ylabel 'normalised displacement (largest = 1)'\n"
+            "set yrange [-1.1:1.1]\nset key outside right top vertical\n"
+            "set xzeroaxis lt 1 lw 1 lc rgb '#888888'\nplot ",
             m->node_z ? "axial position z [m]" : "node number (the file has no node positions)");
     for (i = 0; i < nm; i++) {
         char label[160];

@@ -10,7 +10,10 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-const char *plot_ext(const plot_opts *opt) { return opt->svg ? "svg" : "png"; }
+const char *plot_ext(const plot_opts *opt)
+{
+    return opt->svg ? "svg" : "png";
+}
 
 int plot_make_dir(const char *dir)
 {
@@ -90,21 +93,21 @@ void plot_gp_string(FILE *f, const char *s)
 static void terminal(FILE *f, const plot_opts *opt, const char *name, int width, int height)
 {
     if (opt->svg) {
-        fprintf(f, "set terminal svg size %d,%d dynamic font 'Sans,12' linewidth 1.2 background rgb 'white'\n",
-                width, height);
+        fprintf(f, "set terminal svg size %d,%d dynamic font 'Sans,12' linewidth 1.2 background rgb 'white'\n", width,
+                height);
     } else {
-        fprintf(f, "if (strstrt(GPVAL_TERMINALS, 'pngcairo') > 0) {\n"
-                   "    set terminal pngcairo size %d,%d font 'Sans,11' linewidth 1.2 noenhanced\n"
-                   "} else {\n"
-                   "    set terminal png size %d,%d font 'Sans,10' linewidth 1.2 noenhanced\n"
-                   "}\n",
+        fprintf(f,
+                "if (strstrt(GPVAL_TERMINALS, 'pngcairo') > 0) {\n"
+                "    set terminal pngcairo size %d,%d font 'Sans,11' linewidth 1.2 noenhanced\n"
+                "} else {\n"
+                "    set terminal png size %d,%d font 'Sans,10' linewidth 1.2 noenhanced\n"
+                "}\n",
                 width, height, width, height);
     }
     fprintf(f, "set output '%s.%s'\n", name, plot_ext(opt));
 }
 
-FILE *plot_script_begin(plot_job *job, const char *name, const char *what, const char *source, int width,
-                        int height)
+FILE *plot_script_begin(plot_job *job, const char *name, const char *what, const char *source, int width, int height)
 {
     char file[256];
     FILE *f;
@@ -116,8 +119,9 @@ FILE *plot_script_begin(plot_job *job, const char *name, const char *what, const
     if (!(f = plot_open(job->opt, file)))
         return NULL;
     snprintf(job->scripts[job->count++], sizeof job->scripts[0], "%s", file);
-    fprintf(f, "# %s\n# from %s, written by 'touchdown plot'. Edit freely, then rerun in this directory:\n"
-               "#     gnuplot %s\n\n",
+    fprintf(f,
+            "# %s\n# from %s, written by 'touchdown plot'. Edit freely, then rerun in this directory:\n"
+            "#     gnuplot %s\n\n",
             what, source, file);
     terminal(f, job->opt, name, width, height);
     fprintf(f, "set termoption noenhanced    # names and titles are printed as written\n"
@@ -226,14 +230,16 @@ int plot_run_all(const plot_job *job)
         if (rc != 0) {
             log_message(log_path, msg, sizeof msg);
             fprintf(stderr, "touchdown plot: gnuplot failed on %s/%s: %s (see %s)\n", opt->dir, job->scripts[i],
-                    msg[0] ? msg : rc < 0 ? "could not be run" : "no message", log_path);
+                    msg[0]   ? msg
+                    : rc < 0 ? "could not be run"
+                             : "no message",
+                    log_path);
             return PLOT_FAILED;
         }
         if (stat(log_path, &st) == 0 && st.st_size == 0)
             remove(log_path);
         if (!opt->quiet)
-            printf("wrote %s/%.*s.%s\n", opt->dir, (int)(strlen(job->scripts[i]) - 3), job->scripts[i],
-                   plot_ext(opt));
+            printf("wrote %s/%.*s.%s\n", opt->dir, (int)(strlen(job->scripts[i]) - 3), job->scripts[i], plot_ext(opt));
     }
     return PLOT_OK;
 }

@@ -29,7 +29,10 @@ void plot_retainer_data_name(char *buf, size_t n, const char *prefix, int r)
     snprintf(buf, n, "%sretainer%d.dat", prefix, r);
 }
 
-static double at(const double *m, const plot_sim *s, size_t i, int r) { return m[i * (size_t)s->nret + (size_t)r]; }
+static double at(const double *m, const plot_sim *s, size_t i, int r)
+{
+    return m[i * (size_t)s->nret + (size_t)r];
+}
 
 static double max_of(const double *m, const plot_sim *s, int r)
 {
@@ -139,8 +142,9 @@ static int write_contacts(const plot_job *job, const plot_sim *s, const char *pr
         return -1;
     }
     count = contact_intervals(s, r, iv);
-    fprintf(out, "# contact intervals of retainer %d\n# columns: 1 start [s], 2 end [s], 3-4 drawn extent (an "
-                 "isolated contact widened to %.3g %% of the time axis)\n",
+    fprintf(out,
+            "# contact intervals of retainer %d\n# columns: 1 start [s], 2 end [s], 3-4 drawn extent (an "
+            "isolated contact widened to %.3g %% of the time axis)\n",
             r, 100.0 * MIN_SHADE_FRACTION);
     for (i = 0; i < count; i++) {
         double on = iv[2 * i], off = iv[2 * i + 1], a = on, b = off;
@@ -191,8 +195,8 @@ static int schedule_markers(FILE *out, const plot_sim *s)
         if (strcmp(s->ev[i].kind, "schedule") || s->ev[i].time == last)
             continue;
         last = s->ev[i].time;
-        fprintf(out, "set arrow %d from %.12g, graph 0 to %.12g, graph 1 nohead dt 2 lw 1 lc rgb '%s' front\n",
-                ++n, last, last, COLOR_MARKER);
+        fprintf(out, "set arrow %d from %.12g, graph 0 to %.12g, graph 1 nohead dt 2 lw 1 lc rgb '%s' front\n", ++n,
+                last, last, COLOR_MARKER);
     }
     return n;
 }
@@ -201,8 +205,7 @@ static int schedule_markers(FILE *out, const plot_sim *s)
  * other panels get key entries through NaN curves in the top one). */
 static void key_above(FILE *out, double panels_top)
 {
-    fprintf(out, "set key at screen 0.535, %.4g center bottom horizontal samplen 3 width 1\n",
-            panels_top + 0.01);
+    fprintf(out, "set key at screen 0.535, %.4g center bottom horizontal samplen 3 width 1\n", panels_top + 0.01);
 }
 
 /* Key entry for the schedule markers (a curve that draws nothing). */
@@ -249,17 +252,19 @@ static int orbit_figure(plot_job *job, const plot_file *f, const char *prefix, i
     if (!(half > 0.0))
         half = 1.0;
     title2(out, "set title", what, f->title);
-    fprintf(out, "\nset size ratio -1              # equal scales on x and y\n"
-                 "L = %.6g                     # half-width of the axes, mm\n"
-                 "set xrange [-L:L]\nset yrange [-L:L]\n"
-                 "set xlabel 'x [mm]'\nset ylabel 'y [mm]'\n"
-                 "set key outside below center horizontal\n",
+    fprintf(out,
+            "\nset size ratio -1              # equal scales on x and y\n"
+            "L = %.6g                     # half-width of the axes, mm\n"
+            "set xrange [-L:L]\nset yrange [-L:L]\n"
+            "set xlabel 'x [mm]'\nset ylabel 'y [mm]'\n"
+            "set key outside below center horizontal\n",
             half);
     if (isfinite(c))
-        fprintf(out, "c = %.9g                     # radial clearance of the retainer, mm\n"
-                     "set samples 721\n"
-                     "plot sample [a=0:2*pi] '+' using (c*cos(a)):(c*sin(a)) with lines lw 2 lc rgb '%s' "
-                     "title sprintf('clearance %%.3g mm', c), \\\n     ",
+        fprintf(out,
+                "c = %.9g                     # radial clearance of the retainer, mm\n"
+                "set samples 721\n"
+                "plot sample [a=0:2*pi] '+' using (c*cos(a)):(c*sin(a)) with lines lw 2 lc rgb '%s' "
+                "title sprintf('clearance %%.3g mm', c), \\\n     ",
                 c, COLOR_CLEARANCE);
     else
         fprintf(out, "plot ");
@@ -279,8 +284,9 @@ static int orbit_figure(plot_job *job, const plot_file *f, const char *prefix, i
 static void shade(FILE *out, const char *contacts, const char *top, int with_title)
 {
     plot_gp_string(out, contacts);
-    fprintf(out, " using (($3+$4)/2):(%s/2):3:4:(0):(%s) with boxxyerror fs solid 0.55 noborder lc rgb '%s' %s, \\\n"
-                 "     ",
+    fprintf(out,
+            " using (($3+$4)/2):(%s/2):3:4:(0):(%s) with boxxyerror fs solid 0.55 noborder lc rgb '%s' %s, \\\n"
+            "     ",
             top, top, COLOR_SHADE, with_title ? "title 'in contact'" : "notitle");
 }
 
@@ -300,8 +306,9 @@ static int radial_force_figure(plot_job *job, const plot_file *f, const char *pr
         return PLOT_FAILED;
     rmax = 1.1 * fmax(isfinite(c) ? c : 0.0, 1e3 * max_of(s->r, s, r));
     fmax_n = 1.1 * max_of(s->fn, s, r);
-    fprintf(out, "RMAX = %.6g    # top of the displacement axis, mm\n"
-                 "FMAX = %.6g    # top of the force axis, N\n",
+    fprintf(out,
+            "RMAX = %.6g    # top of the displacement axis, mm\n"
+            "FMAX = %.6g    # top of the force axis, N\n",
             rmax > 0.0 ? rmax : 1.0, fmax_n > 0.0 ? fmax_n : 1.0);
     if (isfinite(c))
         fprintf(out, "c = %.9g       # radial clearance, mm\n", c);

@@ -15,16 +15,16 @@ extern "C" {
  * (the convention of ida.h, where IDA_ROOT_RETURN = 2).
  */
 typedef enum td_status {
-    TD_OK = 0,                  /**< success */
-    TD_EVENT = 1,               /**< td_sim_step stopped at an event before the output time */
-    TD_ERR_NOMEM = -1,          /**< an allocation failed */
-    TD_ERR_INVALID = -2,        /**< an argument or model value is invalid */
-    TD_ERR_PARSE = -3,          /**< a case file is malformed */
-    TD_ERR_IO = -4,             /**< a file could not be read or written */
-    TD_ERR_SOLVER = -5,         /**< the DAE solver failed */
-    TD_ERR_NUMERIC = -6,        /**< a linear-algebra or eigenvalue computation failed */
-    TD_ERR_STATE = -7,          /**< the call is not allowed in the object's current state */
-    TD_ERR_INTERRUPTED = -8     /**< stopped on request (e.g. a signal) */
+    TD_OK = 0,              /**< success */
+    TD_EVENT = 1,           /**< td_sim_step stopped at an event before the output time */
+    TD_ERR_NOMEM = -1,      /**< an allocation failed */
+    TD_ERR_INVALID = -2,    /**< an argument or model value is invalid */
+    TD_ERR_PARSE = -3,      /**< a case file is malformed */
+    TD_ERR_IO = -4,         /**< a file could not be read or written */
+    TD_ERR_SOLVER = -5,     /**< the DAE solver failed */
+    TD_ERR_NUMERIC = -6,    /**< a linear-algebra or eigenvalue computation failed */
+    TD_ERR_STATE = -7,      /**< the call is not allowed in the object's current state */
+    TD_ERR_INTERRUPTED = -8 /**< stopped on request (e.g. a signal) */
 } td_status;
 
 /** Longest message an error record holds, terminating NUL included. */

@@ -41,11 +41,11 @@ typedef enum td_linear_solver {
 } td_linear_solver;
 
 typedef struct td_solver_options {
-    double rtol;           /**< relative tolerance */
-    double atol;           /**< absolute tolerance on displacements, m; other states are scaled from it */
-    double max_step;       /**< largest step, s; 0: chosen from the whirl period */
-    double initial_step;   /**< first step and restart step after an event, s; 0: chosen by IDA */
-    int max_order;         /**< BDF order limit, 1..5 */
+    double rtol;         /**< relative tolerance */
+    double atol;         /**< absolute tolerance on displacements, m; other states are scaled from it */
+    double max_step;     /**< largest step, s; 0: chosen from the whirl period */
+    double initial_step; /**< first step and restart step after an event, s; 0: chosen by IDA */
+    int max_order;       /**< BDF order limit, 1..5 */
     td_linear_solver linear_solver;
 } td_solver_options;
 
@@ -59,7 +59,7 @@ typedef struct td_sim_options {
     td_contact_options contact;
     td_solver_options solver;
     td_start start;
-    double t0;          /**< start time, s */
+    double t0; /**< start time, s */
 } td_sim_options;
 
 /** Largest number of nodes an output can select. */
@@ -76,12 +76,12 @@ typedef struct td_output_options {
 } td_output_options;
 
 typedef struct td_modal_options {
-    double speed_min;  /**< Campbell diagram speed range, rad/s */
+    double speed_min; /**< Campbell diagram speed range, rad/s */
     double speed_max;
-    int speed_steps;   /**< number of speeds, >= 2 */
-    int mode_count;    /**< modes reported (lowest damped natural frequencies), > 0 */
-    int response_speed_count;  /**< harmonic unbalance response speeds */
-    double response_speeds[64];/**< rad/s */
+    int speed_steps;            /**< number of speeds, >= 2 */
+    int mode_count;             /**< modes reported (lowest damped natural frequencies), > 0 */
+    int response_speed_count;   /**< harmonic unbalance response speeds */
+    double response_speeds[64]; /**< rad/s */
 } td_modal_options;
 
 TD_API void td_contact_options_default(td_contact_options *o);

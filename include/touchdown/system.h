@@ -25,10 +25,10 @@ typedef struct td_system td_system;
 
 /** Which assembled matrix. */
 typedef enum td_matrix_kind {
-    TD_MATRIX_MASS = 0,       /**< M, kg (and kg m^2 on rotations) */
-    TD_MATRIX_STIFFNESS = 1,  /**< K: shaft and plain bearings, AMBs excluded */
-    TD_MATRIX_DAMPING = 2,    /**< C: Rayleigh and plain bearings */
-    TD_MATRIX_GYROSCOPIC = 3  /**< G per unit speed (skew-symmetric) */
+    TD_MATRIX_MASS = 0,      /**< M, kg (and kg m^2 on rotations) */
+    TD_MATRIX_STIFFNESS = 1, /**< K: shaft and plain bearings, AMBs excluded */
+    TD_MATRIX_DAMPING = 2,   /**< C: Rayleigh and plain bearings */
+    TD_MATRIX_GYROSCOPIC = 3 /**< G per unit speed (skew-symmetric) */
 } td_matrix_kind;
 
 /** Assemble the model (copied: the system does not borrow it). Validates the model first. */

@@ -108,8 +108,7 @@ double td_contact_sliding_velocity(const td_retainer *ret, double omega, double 
            ret->bore_radius * ret->bore_speed;
 }
 
-void td_contact_sliding_velocity_gradient(const td_retainer *ret, double x, double y, double vx, double vy,
-                                          double g[4])
+void td_contact_sliding_velocity_gradient(const td_retainer *ret, double x, double y, double vx, double vy, double g[4])
 {
     double r2 = x * x + y * y, a = ret->bore_radius - ret->shaft_radius, w;
     if (!(r2 > 0.0)) {

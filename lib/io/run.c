@@ -438,7 +438,10 @@ int td_run_summary_format(char *buf, size_t n, const td_run_summary *s)
     tb_printf(&b, "returned to free orbit      %s\n", tri(s->returned_to_free_orbit));
     tb_printf(&b, "solver steps                %ld (residuals %ld, Jacobians %ld, restarts %ld)\n", s->stats.steps,
               s->stats.residual_evals, s->stats.jacobian_evals, s->stats.restarts);
-    tb_printf(&b, "worst constraint drift      %.3e m\n", s->stats.worst_drift);
+    if (s->stats.worst_drift > 0.0 || s->contacts == 0)
+        tb_printf(&b, "worst constraint drift      %.3e m\n", s->stats.worst_drift);
+    else /* contacts, none of them constrained: a penalty model has no constraint to drift from */
+        tb_printf(&b, "worst constraint drift      none (no constrained contact)\n");
     tb_printf(&b, "wall time                   %.3f s (solver %.3f s), real-time factor %.4g\n", s->wall_time,
               s->solver_wall_time, s->realtime_factor);
     if (s->wall_time_per_revolution >= 0.0)

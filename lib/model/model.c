@@ -13,8 +13,7 @@
 #include "util/numeric.h"
 
 /* Append one item of `size` bytes to a part array; grows geometrically. */
-static td_status part_append(void **items, int *count, int *capacity, size_t size, const void *item,
-                             td_error *err)
+static td_status part_append(void **items, int *count, int *capacity, size_t size, const void *item, td_error *err)
 {
     if (*count == *capacity) {
         int cap = *capacity ? 2 * *capacity : 8;
@@ -29,11 +28,17 @@ static td_status part_append(void **items, int *count, int *capacity, size_t siz
     return TD_OK;
 }
 
-#define APPEND(arr, item, err) \
+#define APPEND(arr, item, err)                                                                                         \
     part_append((void **)&(arr).items, &(arr).count, &(arr).capacity, sizeof *(arr).items, (item), (err))
 
-static int finite_positive(double v) { return isfinite(v) && v > 0.0; }
-static int finite_nonnegative(double v) { return isfinite(v) && v >= 0.0; }
+static int finite_positive(double v)
+{
+    return isfinite(v) && v > 0.0;
+}
+static int finite_nonnegative(double v)
+{
+    return isfinite(v) && v >= 0.0;
+}
 
 td_status td_model_create(td_model **out, td_error *err)
 {
@@ -81,10 +86,10 @@ static void *dup_items(const void *items, int count, size_t size, int *ok)
     return p;
 }
 
-#define CLONE(dst, src, ok)                                                           \
-    do {                                                                              \
-        (dst).items = dup_items((src).items, (src).count, sizeof *(src).items, &(ok)); \
-        (dst).count = (dst).capacity = (src).count;                                   \
+#define CLONE(dst, src, ok)                                                                                            \
+    do {                                                                                                               \
+        (dst).items = dup_items((src).items, (src).count, sizeof *(src).items, &(ok));                                 \
+        (dst).count = (dst).capacity = (src).count;                                                                    \
     } while (0)
 
 td_status td_model_clone(const td_model *model, td_model **out, td_error *err)
@@ -140,8 +145,7 @@ td_status td_model_add_shaft_element(td_model *m, const td_shaft_element *el, td
     if (!finite_nonnegative(el->inner_diameter) || el->inner_diameter >= el->outer_diameter)
         return td_error_set(err, TD_ERR_INVALID,
                             "shaft element: inner diameter must be >= 0 and smaller than the outer diameter");
-    if (!finite_positive(el->material.E) || !finite_positive(el->material.G) ||
-        !finite_positive(el->material.density))
+    if (!finite_positive(el->material.E) || !finite_positive(el->material.G) || !finite_positive(el->material.density))
         return td_error_set(err, TD_ERR_INVALID, "shaft element: E, G and density must be finite and > 0");
     return APPEND(m->elements, el, err);
 }
@@ -283,8 +287,8 @@ static td_status check_node(const td_model *m, const char *part, int i, int node
 {
     int nodes = td_model_node_count(m);
     if (node < 0 || node >= nodes)
-        return td_error_set(err, TD_ERR_INVALID, "%s %d: node %d is out of range (the shaft has nodes 0..%d)", part,
-                            i, node, nodes - 1);
+        return td_error_set(err, TD_ERR_INVALID, "%s %d: node %d is out of range (the shaft has nodes 0..%d)", part, i,
+                            node, nodes - 1);
     return TD_OK;
 }
 
@@ -304,8 +308,8 @@ td_status td_model_validate(const td_model *m, td_error *err)
             return TD_ERR_INVALID;
         for (j = 0; j < i; j++)
             if (m->ambs.items[j].node == m->ambs.items[i].node)
-                return td_error_set(err, TD_ERR_INVALID, "amb %d: node %d already has amb %d", i,
-                                    m->ambs.items[i].node, j);
+                return td_error_set(err, TD_ERR_INVALID, "amb %d: node %d already has amb %d", i, m->ambs.items[i].node,
+                                    j);
     }
     for (i = 0; i < m->bearings.count; i++)
         if (check_node(m, "bearing", i, m->bearings.items[i].node, err))
@@ -316,8 +320,7 @@ td_status td_model_validate(const td_model *m, td_error *err)
             return TD_ERR_INVALID;
         for (j = 0; j < i; j++)
             if (m->retainers.items[j].node == r->node)
-                return td_error_set(err, TD_ERR_INVALID, "retainer %d: node %d already has retainer %d", i, r->node,
-                                    j);
+                return td_error_set(err, TD_ERR_INVALID, "retainer %d: node %d already has retainer %d", i, r->node, j);
         for (j = 0; j < m->ambs.count; j++)
             if (m->ambs.items[j].air_gap > 0.0 && r->clearance >= m->ambs.items[j].air_gap)
                 return td_error_set(err, TD_ERR_INVALID,
@@ -337,16 +340,46 @@ td_status td_model_validate(const td_model *m, td_error *err)
     return TD_OK;
 }
 
-int td_model_node_count(const td_model *m) { return m && m->elements.count ? m->elements.count + 1 : 0; }
-int td_model_dof_count(const td_model *m) { return 4 * td_model_node_count(m); }
-int td_model_shaft_element_count(const td_model *m) { return m ? m->elements.count : 0; }
-int td_model_disc_count(const td_model *m) { return m ? m->discs.count : 0; }
-int td_model_amb_count(const td_model *m) { return m ? m->ambs.count : 0; }
-int td_model_bearing_count(const td_model *m) { return m ? m->bearings.count : 0; }
-int td_model_retainer_count(const td_model *m) { return m ? m->retainers.count : 0; }
-int td_model_unbalance_count(const td_model *m) { return m ? m->unbalances.count : 0; }
-int td_model_change_count(const td_model *m) { return m ? m->changes.count : 0; }
-double td_model_speed(const td_model *m) { return m ? m->speed : 0.0; }
+int td_model_node_count(const td_model *m)
+{
+    return m && m->elements.count ? m->elements.count + 1 : 0;
+}
+int td_model_dof_count(const td_model *m)
+{
+    return 4 * td_model_node_count(m);
+}
+int td_model_shaft_element_count(const td_model *m)
+{
+    return m ? m->elements.count : 0;
+}
+int td_model_disc_count(const td_model *m)
+{
+    return m ? m->discs.count : 0;
+}
+int td_model_amb_count(const td_model *m)
+{
+    return m ? m->ambs.count : 0;
+}
+int td_model_bearing_count(const td_model *m)
+{
+    return m ? m->bearings.count : 0;
+}
+int td_model_retainer_count(const td_model *m)
+{
+    return m ? m->retainers.count : 0;
+}
+int td_model_unbalance_count(const td_model *m)
+{
+    return m ? m->unbalances.count : 0;
+}
+int td_model_change_count(const td_model *m)
+{
+    return m ? m->changes.count : 0;
+}
+double td_model_speed(const td_model *m)
+{
+    return m ? m->speed : 0.0;
+}
 
 void td_model_gravity(const td_model *m, double *gx, double *gy)
 {
@@ -389,13 +422,13 @@ double td_model_total_mass(const td_model *m)
     return total;
 }
 
-#define GETTER(fn, type, arr)                                                           \
-    td_status fn(const td_model *m, int i, type *out)                                   \
-    {                                                                                   \
-        if (!m || !out || i < 0 || i >= m->arr.count)                                   \
-            return TD_ERR_INVALID;                                                      \
-        *out = m->arr.items[i];                                                         \
-        return TD_OK;                                                                   \
+#define GETTER(fn, type, arr)                                                                                          \
+    td_status fn(const td_model *m, int i, type *out)                                                                  \
+    {                                                                                                                  \
+        if (!m || !out || i < 0 || i >= m->arr.count)                                                                  \
+            return TD_ERR_INVALID;                                                                                     \
+        *out = m->arr.items[i];                                                                                        \
+        return TD_OK;                                                                                                  \
     }
 
 GETTER(td_model_get_shaft_element, td_shaft_element, elements)

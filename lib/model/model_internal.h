@@ -5,11 +5,11 @@
 #include "touchdown/model.h"
 
 /* A growable array of one part type. */
-#define TD_PART_ARRAY(type) \
-    struct {                \
-        type *items;        \
-        int count;          \
-        int capacity;       \
+#define TD_PART_ARRAY(type)                                                                                            \
+    struct {                                                                                                           \
+        type *items;                                                                                                   \
+        int count;                                                                                                     \
+        int capacity;                                                                                                  \
     }
 
 struct td_model {

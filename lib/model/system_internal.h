@@ -18,7 +18,7 @@ typedef struct td_amb_axis {
     int sensor_dof;   /* global DOF the controller reads */
     double ks, ki, kp, kd, tau, capacity;
     int saturation;
-    int state;        /* index of its filter state Fc among the filter states, or -1 when tau == 0 */
+    int state; /* index of its filter state Fc among the filter states, or -1 when tau == 0 */
 } td_amb_axis;
 
 struct td_system {
@@ -29,10 +29,10 @@ struct td_system {
     cs_di *K;
     cs_di *C;
     cs_di *G;
-    int n_amb_axes;        /* 2 * number of AMBs */
+    int n_amb_axes; /* 2 * number of AMBs */
     td_amb_axis *amb_axes;
-    int n_filter_states;   /* number of AMB axes with tau > 0 */
-    double *gravity_load;  /* M g, length ndof: the weight as nodal forces */
+    int n_filter_states;  /* number of AMB axes with tau > 0 */
+    double *gravity_load; /* M g, length ndof: the weight as nodal forces */
 };
 
 /* --- The AMB axis law (reference-rig.md), one place for modal analysis and simulation. --- */

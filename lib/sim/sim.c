@@ -874,8 +874,10 @@ td_status td_sim_retainer_state(const td_sim *sim, int retainer, td_retainer_sta
     out->whirl_angle = atan2(out->y, out->x);
     out->normal_force = td_sim_normal_force(sim, retainer, y);
     out->in_contact = r->mode != TD_RMODE_FREE;
-    out->friction_force = out->in_contact ? td_contact_friction_force(r->r.friction, td_sim_slip_factor(sim, retainer, y, NULL),
-                                                                  out->normal_force) : 0.0;
+    out->friction_force =
+        out->in_contact
+            ? td_contact_friction_force(r->r.friction, td_sim_slip_factor(sim, retainer, y, NULL), out->normal_force)
+            : 0.0;
     out->sliding_velocity = td_sim_sliding_velocity(sim, retainer, y);
     return TD_OK;
 }

@@ -48,11 +48,11 @@ typedef struct td_sim_retainer {
     td_retainer r; /* the model's data */
     int dx, dy;    /* global DOFs x, y of its node */
     td_rmode mode;
-    int armed; /* constraint model, free: onset root at gap = 0 (1) or at gap = -eps (0, after a
-                * release or a rejected/bouncing onset; re-armed when the gap exceeds +eps) */
-    int slip;  /* slip mode of eq. (17): +1 or -1 sliding (|v_s| >= v_reg), 0 inside the
-                * slip-regularised band |v_s| < v_reg (contact.h TD_CONTACT_SLIP_BAND). Only the
-                * roots depend on it: the friction force is phi(v_s) of the state in every mode */
+    int armed;     /* constraint model, free: onset root at gap = 0 (1) or at gap = -eps (0, after a
+                    * release or a rejected/bouncing onset; re-armed when the gap exceeds +eps) */
+    int slip;      /* slip mode of eq. (17): +1 or -1 sliding (|v_s| >= v_reg), 0 inside the
+                    * slip-regularised band |v_s| < v_reg (contact.h TD_CONTACT_SLIP_BAND). Only the
+                    * roots depend on it: the friction force is phi(v_s) of the state in every mode */
     int band_from; /* slip = 0: the sliding sign before the band (a reversal if it leaves the other way) */
 } td_sim_retainer;
 

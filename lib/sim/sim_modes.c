@@ -224,12 +224,64 @@ td_status td_sim_make_consistent(td_sim *s, const int *just_entered)
 }
 
 /*
+ * Outward normal acceleration of retainer k's node in free flight at the state y: the second
+ * derivative of g = (r^2 - c^2)/(2c) with no contact force, g'' = J M^-1 f + (x'^2 + y'^2)/c
+ * (the right-hand side of eq. 13b as the KKT solve forms it; the second term is the centripetal
+ * part). Positive: the rotor is pressed onto the retainer. `a` (length n) is overwritten.
+ * Forces of the other active contacts are left out: this only sizes the rebound threshold below.
+ */
+static double free_normal_acceleration(td_sim *s, int k, const double *y, double *a)
+{
+    const td_sim_retainer *r = &s->ret[k];
+    td_contact_row row;
+    td_sim_forces(s, s->t, y, a);
+    td_sim_mass_solve(s, a);
+    contact_row(s, k, y, &row);
+    return row.j[0] * a[row.dof[0]] + row.j[1] * a[row.dof[1]] +
+           td_contact_constraint_dterm(y[s->ov + r->dx], y[s->ov + r->dy], r->r.clearance);
+}
+
+/*
+ * Restitution of an impact at retainer k with inward radial speed vr (> 0): the retainer's e, or
+ * 0 (plastic) if the rebound would be too small to be resolved.
+ *
+ * Why (problem S4, a pressed rotor bouncing for ever): after a bounce the onset root is disarmed
+ * until the gap exceeds rearm_eps; a rebound e vr that, against the outward acceleration a_n,
+ * rises less than that (apex height (e vr)^2 / (2 a_n)) is only caught when the node has sunk
+ * rearm_eps INTO the retainer, and project_onto_circle then pushes it back by rearm_eps against
+ * the preload, adding about m a_n rearm_eps of strain energy per bounce. That gain balances the
+ * (1 - e^2) kinetic loss at a rebound speed ~ sqrt(2 a_n rearm_eps), so the rebounds never
+ * decayed (median 5e-3 / 1.5e-3 / 4.6e-4 m/s at atol 1e-8 / 1e-9 / 1e-10). A bouncing ball on
+ * a pressed wall is a Zeno sequence: speeds e^j v0, total time 2 e v0 / (a_n (1 - e)), finite,
+ * after which it rests in contact. Ending the sequence once the next apex would be below
+ * 4 rearm_eps, i.e. e vr < 2 sqrt(2 a_n rearm_eps), is that physics truncated at the event
+ * resolution: every bounce that is still resolved re-arms at the gap and is caught at gap = 0
+ * (no penetration, no energy injected), and the kinetic energy discarded at the last one,
+ * (1/2) m (e vr)^2 < 4 m a_n rearm_eps, is of the order of the work of the displacement tolerance.
+ * The factor 2 (not 1) leaves margin for a_n changing along the flight (the unbalance force turns,
+ * the AMB force follows the node). Re-arming at gap = 0 instead would let the rounding-level gap
+ * of a just-projected node trigger onsets at once (the reason for the hysteresis), and projecting
+ * the whole rotor with M^-1 J^T would still leave the late detection. Rebounds slower than
+ * rebound_min are plastic whatever a_n (a scale-based floor for a_n <= 0: pulled away, the node
+ * leaves and re-arms by itself). e = 0 never reaches here, so plastic runs are unchanged.
+ */
+static double impact_restitution(td_sim *s, int k, const double *y, double vr)
+{
+    double e = s->ret[k].r.restitution, an, vmin;
+    if (!(e > 0.0) || vr < s->rebound_min)
+        return 0.0;
+    an = free_normal_acceleration(s, k, y, s->wn[1]);
+    vmin = an > 0.0 ? 2.0 * sqrt(2.0 * an * s->rearm_eps) : 0.0;
+    return e * vr < vmin ? 0.0 : e;
+}
+
+/*
  * Impacts at the retainers flagged in `onset` (constraint model): project each node onto its
  * circle, apply the impact map with every contact already active (e = 0 keeps them on the circle)
- * and the new ones (their restitution, or 0 below the minimum rebound speed), queue the onset
- * events. New contacts with e = 0 become CONTACT (tentatively: the KKT solve may still reject
- * them); bouncing ones stay free, disarmed until the gap opens again. entered[k] flags the former.
- * Returns the number of onset events queued.
+ * and the new ones (their restitution, or 0 when the rebound would be too small to resolve:
+ * impact_restitution), queue the onset events. New contacts with e = 0 become CONTACT (tentatively: the KKT solve may
+ * still reject them); bouncing ones stay free, disarmed until the gap opens again. entered[k] flags the former. Returns
+ * the number of onset events queued.
  */
 static int impacts(td_sim *s, const int *onset, int *entered)
 {
@@ -251,7 +303,7 @@ static int impacts(td_sim *s, const int *onset, int *entered)
             vr = td_contact_radial_velocity(y[s->oq + r->dx], y[s->oq + r->dy], v[r->dx], v[r->dy]);
             if (!(vr > 0.0)) /* touching while already moving inward: no impact, stay free */
                 continue;
-            e[m] = (r->r.restitution > 0.0 && vr >= s->rebound_min) ? r->r.restitution : 0.0;
+            e[m] = impact_restitution(s, k, y, vr);
             s->act[m++] = k;
         }
     }

@@ -1,3 +1,6 @@
 #include "touchdown/version.h"
 
-const char *td_version(void) { return TD_VERSION; }
+const char *td_version(void)
+{
+    return TD_VERSION;
+}

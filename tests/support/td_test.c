@@ -3,8 +3,8 @@
 #include <math.h>
 #include <stdio.h>
 
-void td_assert_close_impl(double actual, double expected, double rtol, double atol, const char *expr,
-                          const char *file, int line)
+void td_assert_close_impl(double actual, double expected, double rtol, double atol, const char *expr, const char *file,
+                          int line)
 {
     double tol = atol + rtol * fabs(expected);
     if (!(fabs(actual - expected) <= tol)) {

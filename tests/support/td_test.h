@@ -12,9 +12,9 @@
 #define TD_PI 3.14159265358979323846
 
 /* Fails the test unless |actual - expected| <= atol + rtol |expected|; prints both with 17 digits. */
-void td_assert_close_impl(double actual, double expected, double rtol, double atol, const char *expr,
-                          const char *file, int line);
-#define assert_close(actual, expected, rtol, atol) \
+void td_assert_close_impl(double actual, double expected, double rtol, double atol, const char *expr, const char *file,
+                          int line);
+#define assert_close(actual, expected, rtol, atol)                                                                     \
     td_assert_close_impl((actual), (expected), (rtol), (atol), #actual, __FILE__, __LINE__)
 
 /* Relative difference |a - b| / max(|b|, tiny). */
