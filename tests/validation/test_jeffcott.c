@@ -12,7 +12,7 @@
  * Error budget: the shaft mass (2e-8 of m) lowers the frequency by about 7e-9 relative (measured:
  * 7.3e-5 per kg/m^3 of density); round-off grows with the span of the spectrum (the nearly massless
  * shaft DOFs reach 1.6e8 rad/s), measured about 70 eps omega_max/omega_min ~ 1e-8. Asserted: 5e-8 on
- * the frequency, and the brief's 1e-6 on the critical speed. With no gyroscopic coupling the forward
+ * the frequency, and the required 1e-6 on the critical speed. With no gyroscopic coupling the forward
  * and backward whirls are degenerate; the modal code splits the pair into pure circular whirls.
  */
 #include "td_test.h"
