@@ -396,6 +396,16 @@ static int tb_done(text_buf *b)
     return (int)b->len;
 }
 
+/* An empty text in `buf` (n bytes, may be 0 to measure). */
+static void tb_init(text_buf *b, char *buf, size_t n)
+{
+    b->buf = buf;
+    b->n = n;
+    b->len = 0;
+    if (n > 0)
+        buf[0] = '\0';
+}
+
 static const char *tri(int v)
 {
     return v > 0 ? "yes" : v == 0 ? "no" : "undetermined";
@@ -404,11 +414,7 @@ static const char *tri(int v)
 int td_run_summary_format(char *buf, size_t n, const td_run_summary *s)
 {
     text_buf b;
-    b.buf = buf;
-    b.n = n;
-    b.len = 0;
-    if (n > 0)
-        buf[0] = '\0';
+    tb_init(&b, buf, n);
     if (!s)
         return 0;
     if (s->complete)
@@ -480,11 +486,7 @@ static void json_string(text_buf *b, const char *key, const char *v)
 int td_run_summary_json(char *buf, size_t n, const td_run_summary *s)
 {
     text_buf b;
-    b.buf = buf;
-    b.n = n;
-    b.len = 0;
-    if (n > 0)
-        buf[0] = '\0';
+    tb_init(&b, buf, n);
     if (!s)
         return 0;
     tb_printf(&b, "{\"library_version\":\"%s\",", td_version());
