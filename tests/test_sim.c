@@ -286,29 +286,13 @@ static void test_api_errors(void **state)
     }
 }
 
-/* Load a case file of the source tree with overrides; fails the test on error. */
-static td_case *load_case(const char *name, const char **overrides, int n)
-{
-    td_case *c = NULL;
-    td_error err;
-    if (td_case_load(td_source_path(name), overrides, n, &c, &err) != TD_OK)
-        fail_msg("%s: %s", name, err.message);
-    return c;
-}
-
-/* The output grid point after t: k dt with k dt >= t + dt/2. */
-static double next_output(double t, double dt, double t_end)
-{
-    return fmin(t_end, (floor(t / dt + 0.5) + 1.0) * dt);
-}
-
 /* Step to t_end through every event; returns the number of events. */
 static long run_to(td_sim *s, double t_end, double dt)
 {
     long events = 0;
     double t = td_sim_time(s);
     while (t < t_end) {
-        double tout = next_output(t, dt, t_end), tr;
+        double tout = td_test_next_output(t, dt, t_end), tr;
         td_status st;
         st = td_sim_step(s, tout, &tr);
         if (st == TD_EVENT) {
@@ -325,7 +309,7 @@ static long run_to(td_sim *s, double t_end, double dt)
 /* Two simulations stepped alternately give bit for bit what one gives alone (no shared state). */
 static void test_two_sims_independent(void **state)
 {
-    td_case *c = load_case("cases/paper-a.cfg", NULL, 0);
+    td_case *c = td_test_load_case("cases/paper-a.cfg", NULL, 0);
     td_sim_options o = *td_case_sim_options(c);
     td_sim *alone = NULL, *a = NULL, *b = NULL;
     int n, i;
@@ -341,7 +325,7 @@ static void test_two_sims_independent(void **state)
     while (td_sim_time(a) < t_end || td_sim_time(b) < t_end) {
         td_sim *s[2] = {a, b};
         for (i = 0; i < 2; i++) {
-            double t = td_sim_time(s[i]), tout = next_output(t, dt, t_end);
+            double t = td_sim_time(s[i]), tout = td_test_next_output(t, dt, t_end);
             td_status r;
             if (t >= t_end)
                 continue;
@@ -393,7 +377,7 @@ static double orbit_radius_per_unbalance(const td_model *model)
 static void test_grazing_orbit(void **state)
 {
     const char *ov[2] = {"schedule = ()", "unbalances = ( { node = 1; magnitude = 0.05; } )"};
-    td_case *c = load_case("cases/paper-a.cfg", ov, 2);
+    td_case *c = td_test_load_case("cases/paper-a.cfg", ov, 2);
     double scale[3] = {1.0, 1.0 - 1e-9, 1.0 + 1e-9};
     int i;
     (void)state;
@@ -419,7 +403,7 @@ static void test_grazing_orbit(void **state)
             fail_msg("create failed");
         while (t < t_end) {
             double tr;
-            td_status r = td_sim_step(s, next_output(t, dt, t_end), &tr);
+            td_status r = td_sim_step(s, td_test_next_output(t, dt, t_end), &tr);
             td_sim_retainer_state(s, 0, &rs);
             max_dev = fmax(max_dev, rs.radius - ret.clearance);
             if (r == TD_EVENT) {
@@ -453,7 +437,7 @@ static void test_grazing_orbit(void **state)
 /* Constrained contact at the default tolerances: |r - c| < 1e-9 m at every step in contact. */
 static void test_constrained_drift(void **state)
 {
-    td_case *c = load_case("cases/paper-a.cfg", NULL, 0);
+    td_case *c = td_test_load_case("cases/paper-a.cfg", NULL, 0);
     td_sim_options o = *td_case_sim_options(c);
     td_sim *s = NULL;
     td_sim_stats st;
@@ -507,7 +491,7 @@ static void test_external_amb_control(void **state)
             td_sim_set_amb_control(b, 1, -amb.ki * (amb.kp * qb[4 * amb.node] + amb.kd * vb[4 * amb.node]),
                                    -amb.ki * (amb.kp * qb[4 * amb.node + 1] + amb.kd * vb[4 * amb.node + 1])),
             TD_OK);
-        t = next_output(t, dt, t_end);
+        t = td_test_next_output(t, dt, t_end);
         assert_int_equal(td_sim_step(a, t, NULL), TD_OK);
         assert_int_equal(td_sim_step(b, t, NULL), TD_OK);
     }
@@ -530,7 +514,8 @@ static void test_external_amb_control(void **state)
 static void test_api_change_matches_schedule(void **state)
 {
     const char *ov[1] = {"schedule=()"};
-    td_case *with = load_case("cases/paper-a.cfg", NULL, 0), *without = load_case("cases/paper-a.cfg", ov, 1);
+    td_case *with = td_test_load_case("cases/paper-a.cfg", NULL, 0),
+            *without = td_test_load_case("cases/paper-a.cfg", ov, 1);
     td_sim_options o = *td_case_sim_options(with);
     td_sim *a = NULL, *b = NULL;
     td_change ch;
@@ -587,7 +572,7 @@ static void test_speed_change_continuity(void **state)
 static void test_friction_reversal(void **state)
 {
     const char *ov[1] = {"retainers[0].bore_speed=87.378640776699"}; /* 0.025 * 90 / 0.02575 */
-    td_case *c = load_case("cases/paper-a.cfg", ov, 1);
+    td_case *c = td_test_load_case("cases/paper-a.cfg", ov, 1);
     td_sim_options o = *td_case_sim_options(c);
     td_sim *s = NULL;
     double t = 0.0, t_end = 0.2, dt = 1e-4;
@@ -598,7 +583,7 @@ static void test_friction_reversal(void **state)
     while (t < t_end) {
         double tr;
         td_retainer_state rs;
-        td_status r = td_sim_step(s, next_output(t, dt, t_end), &tr);
+        td_status r = td_sim_step(s, td_test_next_output(t, dt, t_end), &tr);
         if (r == TD_EVENT) {
             td_event ev;
             td_sim_last_event(s, &ev);
@@ -627,7 +612,7 @@ static void test_friction_reversal(void **state)
 static void test_interrupt_inside_step(void **state)
 {
     const char *ov[1] = {"solver.max_step=1e-12"};
-    td_case *c = load_case("cases/paper-a.cfg", ov, 1);
+    td_case *c = td_test_load_case("cases/paper-a.cfg", ov, 1);
     td_sim *s = NULL;
     volatile sig_atomic_t flag = 0;
     double t0, tr = -1.0, *q0, *q1;
@@ -672,7 +657,7 @@ static void test_interrupt_inside_step(void **state)
  * times in one step could be left free while outside, and flew 1.7 mm through the retainer. */
 static void test_penalty_never_passes_through(void **state)
 {
-    td_case *c = load_case("cases/paper-c.cfg", NULL, 0);
+    td_case *c = td_test_load_case("cases/paper-c.cfg", NULL, 0);
     td_sim_options o = *td_case_sim_options(c);
     td_sim *s = NULL;
     td_retainer ret[2];
@@ -685,7 +670,7 @@ static void test_penalty_never_passes_through(void **state)
         td_model_get_retainer(td_case_model(c), k, &ret[k]);
     while (t < t_end) {
         double tr;
-        td_status r = td_sim_step(s, next_output(t, dt, t_end), &tr);
+        td_status r = td_sim_step(s, td_test_next_output(t, dt, t_end), &tr);
         if (r == TD_EVENT) {
             td_event ev;
             td_sim_last_event(s, &ev);

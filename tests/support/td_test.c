@@ -1,5 +1,7 @@
 #include "td_test.h"
 
+#include "touchdown/case.h"
+
 #include <math.h>
 #include <stdio.h>
 
@@ -27,4 +29,18 @@ const char *td_source_path(const char *relative)
     slot = (slot + 1) % 8;
     snprintf(buf[slot], sizeof buf[slot], "%s/%s", TD_SOURCE_DIR, relative);
     return buf[slot];
+}
+
+td_case *td_test_load_case(const char *relative, const char **overrides, int n)
+{
+    td_case *c = NULL;
+    td_error err;
+    if (td_case_load(td_source_path(relative), overrides, n, &c, &err) != TD_OK)
+        fail_msg("%s: %s", relative, err.message);
+    return c;
+}
+
+double td_test_next_output(double t, double dt, double t_end)
+{
+    return fmin(t_end, (floor(t / dt + 0.5) + 1.0) * dt);
 }

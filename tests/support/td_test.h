@@ -20,6 +20,14 @@ void td_assert_close_impl(double actual, double expected, double rtol, double at
 /* Relative difference |a - b| / max(|b|, tiny). */
 double td_rel_diff(double a, double b);
 
+struct td_case;
+
+/* Load a case file of the source tree (relative path) with overrides; fails the test on error. */
+struct td_case *td_test_load_case(const char *relative, const char **overrides, int n);
+
+/* The output grid point after t: k dt with k dt >= t + dt/2, capped at t_end. */
+double td_test_next_output(double t, double dt, double t_end);
+
 /* Path of a file in the source tree (tests/..., cases/...), in a static buffer per call slot. */
 const char *td_source_path(const char *relative);
 

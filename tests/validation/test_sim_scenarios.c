@@ -14,15 +14,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-static td_case *load_case(const char *name, const char **overrides, int n)
-{
-    td_case *c = NULL;
-    td_error err;
-    if (td_case_load(td_source_path(name), overrides, n, &c, &err) != TD_OK)
-        fail_msg("%s: %s", name, err.message);
-    return c;
-}
-
 static td_sim *make_sim(const td_case *c, double rtol, double atol)
 {
     td_sim_options o = *td_case_sim_options(c);
@@ -38,11 +29,6 @@ static td_sim *make_sim(const td_case *c, double rtol, double atol)
     return s;
 }
 
-static double next_output(double t, double dt, double t_end)
-{
-    return fmin(t_end, (floor(t / dt + 0.5) + 1.0) * dt);
-}
-
 /* Unbalances at both end discs, 1 rad apart, stepped up at 0.1 s: both retainers in contact at
  * once. At every sample with a contact the node is on the circle and the friction force is
  * -sgn(v_s) mu N (eq. 17); the constraints hold to 1e-9 m at every step. */
@@ -51,7 +37,7 @@ static void test_two_contacts(void **state)
     const char *ov[2] = {
         "unbalances=({node=1;magnitude=0.02;},{node=11;magnitude=0.02;phase=1.0;})",
         "schedule=({time=0.1;unbalance=0;magnitude=0.1;},{time=0.1;unbalance=1;magnitude=0.1;phase=1.0;})"};
-    td_case *c = load_case("cases/paper-a.cfg", ov, 2);
+    td_case *c = td_test_load_case("cases/paper-a.cfg", ov, 2);
     td_sim *s = make_sim(c, 0.0, 0.0);
     td_retainer ret[2];
     td_sim_stats st;
@@ -63,7 +49,7 @@ static void test_two_contacts(void **state)
         td_model_get_retainer(td_case_model(c), k, &ret[k]);
     while (t < t_end) {
         double tr;
-        td_status r = td_sim_step(s, next_output(t, dt, t_end), &tr);
+        td_status r = td_sim_step(s, td_test_next_output(t, dt, t_end), &tr);
         int n_in = 0;
         if (r != TD_OK && r != TD_EVENT)
             fail_msg("%s", td_sim_errmsg(s));
@@ -103,7 +89,7 @@ static void test_two_contacts(void **state)
 static void test_rotor_drop_settles(void **state)
 {
     const char *ov[2] = {"unbalances[0].magnitude=0.0", "shaft.rayleigh={alpha=20.0; beta=1e-5;}"};
-    td_case *c = load_case("cases/rotor-drop.cfg", ov, 2);
+    td_case *c = td_test_load_case("cases/rotor-drop.cfg", ov, 2);
     td_sim *s = make_sim(c, 0.0, 0.0);
     const td_model *m = td_case_model(c);
     double t = 0.0, t_end = 2.5, dt = 1e-3, gx, gy, g, mass = td_model_total_mass(m);
@@ -115,7 +101,7 @@ static void test_rotor_drop_settles(void **state)
     td_model_get_retainer(m, 0, &ret);
     while (t < t_end) {
         double tr;
-        td_status r = td_sim_step(s, next_output(t, dt, t_end), &tr);
+        td_status r = td_sim_step(s, td_test_next_output(t, dt, t_end), &tr);
         if (r != TD_OK && r != TD_EVENT)
             fail_msg("%s", td_sim_errmsg(s));
         if (r == TD_OK)
@@ -193,7 +179,7 @@ static void energy_run(const td_case *c, double rtol, double atol, double *worst
     *worst_gain = -HUGE_VAL;
     while (t < t_end) {
         double tr, E;
-        td_status r = td_sim_step(s, next_output(t, dt, t_end), &tr);
+        td_status r = td_sim_step(s, td_test_next_output(t, dt, t_end), &tr);
         if (r != TD_OK && r != TD_EVENT)
             fail_msg("%s", td_sim_errmsg(s));
         E = energy(&em, s);
@@ -241,7 +227,7 @@ static void test_energy_conservation(void **state)
                          "retainers[0].friction=0.0",
                          "retainers[1].friction=0.0",
                          "start=\"rest\""};
-    td_case *c = load_case("cases/paper-a.cfg", ov, 8);
+    td_case *c = td_test_load_case("cases/paper-a.cfg", ov, 8);
     double phase_loose, phase_tight, gain_loose, gain_tight;
     long on_loose, on_tight;
     (void)state;
@@ -278,7 +264,7 @@ static void test_rotor_drop_bouncing_settles(void **state)
 {
     const char *ov[4] = {"unbalances[0].magnitude=0.0", "shaft.rayleigh={alpha=20.0; beta=1e-5;}",
                          "retainers[0].restitution=0.5", "retainers[1].restitution=0.5"};
-    td_case *c = load_case("cases/rotor-drop.cfg", ov, 4);
+    td_case *c = td_test_load_case("cases/rotor-drop.cfg", ov, 4);
     td_sim *s = make_sim(c, 0.0, 0.0);
     const td_model *m = td_case_model(c);
     energy_model em = energy_model_of(m);
@@ -292,7 +278,7 @@ static void test_rotor_drop_bouncing_settles(void **state)
     vmin = 2.0 * sqrt(2.0 * hypot(gx, gy) * atol);
     while (t < t_end) {
         double tr, E;
-        td_status r = td_sim_step(s, next_output(t, dt, t_end), &tr);
+        td_status r = td_sim_step(s, td_test_next_output(t, dt, t_end), &tr);
         if (r != TD_OK && r != TD_EVENT)
             fail_msg("%s", td_sim_errmsg(s));
         E = energy(&em, s);
@@ -352,7 +338,8 @@ static void test_rotor_drop_bouncing_settles(void **state)
  * reported normal force is Kc (r - c) inside and never negative. */
 static void test_penalty_contact(void **state)
 {
-    td_case *cc = load_case("cases/paper-c.cfg", NULL, 0), *ca = load_case("cases/paper-a.cfg", NULL, 0);
+    td_case *cc = td_test_load_case("cases/paper-c.cfg", NULL, 0),
+            *ca = td_test_load_case("cases/paper-a.cfg", NULL, 0);
     td_sim *sp = make_sim(cc, 1e-8, 1e-12), *sa = make_sim(ca, 1e-8, 1e-12);
     td_contact_options co = td_case_sim_options(cc)->contact;
     double t = 0.0, t_end = 0.115, dt = 1e-5, t_first_a = -1.0, max_pen = 0.0;
@@ -363,7 +350,7 @@ static void test_penalty_contact(void **state)
     td_model_get_retainer(td_case_model(cc), 0, &ret);
     while (t < t_end) {
         double tr;
-        td_status r = td_sim_step(sp, next_output(t, dt, t_end), &tr);
+        td_status r = td_sim_step(sp, td_test_next_output(t, dt, t_end), &tr);
         if (r == TD_EVENT) {
             td_event ev;
             td_sim_last_event(sp, &ev);
