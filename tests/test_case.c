@@ -492,21 +492,23 @@ static void test_other_forms_and_defaults(void **state)
     td_bearing b;
     double gx, gy;
     (void)state;
-    assert_int_equal(td_model_node_count(m), 4);
-    td_model_get_shaft_element(m, 0, &el);
-    assert_close(el.length, 0.1, 1e-15, 0.0);
-    assert_close(el.inner_diameter, 0.0, 0.0, 0.0);
+    /* 3 elements from the node positions, each split in two */
+    assert_int_equal(td_model_node_count(m), 7);
     td_model_get_shaft_element(m, 1, &el);
-    assert_close(el.length, 0.15, 1e-14, 0.0);
+    assert_close(el.length, 0.05, 1e-15, 0.0);
+    assert_close(el.inner_diameter, 0.0, 0.0, 0.0);
     td_model_get_shaft_element(m, 2, &el);
-    assert_close(el.length, 0.2, 1e-14, 0.0);
-    assert_close(td_model_node_position(m, 3), 0.45, 1e-14, 0.0);
+    assert_close(el.length, 0.075, 1e-14, 0.0);
+    td_model_get_shaft_element(m, 5, &el);
+    assert_close(el.length, 0.1, 1e-14, 0.0);
+    assert_close(td_model_node_position(m, 6), 0.45, 1e-14, 0.0);
     td_model_shaft_options(m, &so);
     assert_int_equal(so.beam, TD_BEAM_EULER_BERNOULLI);
     assert_int_equal(so.mass, TD_MASS_CONSISTENT);
     assert_int_equal(td_model_disc_count(m), 0);
     assert_int_equal(td_model_amb_count(m), 0);
     td_model_get_bearing(m, 1, &b);
+    assert_int_equal(b.node, 6); /* node 3 as written */
     assert_close(b.kyy, 1e6, 0.0, 0.0);
     assert_close(b.cxx + b.cyy, 0.0, 0.0, 0.0);
     td_model_gravity(m, &gx, &gy); /* a gravity group is on by default, along -y */
@@ -602,6 +604,38 @@ static void test_docs_match_reader(void **state)
     free(doc);
     free(a);
     free(b);
+}
+
+/* shaft.refine: node numbers in the case are those of the shaft as written; every part and output
+ * node keeps its axial position on the refined shaft (the model itself: test_model.c). */
+static void test_refine(void **state)
+{
+    static const char *const ov[] = {"shaft.refine=4", "output.nodes=[2, 10, 12]"};
+    td_case *coarse = load_ok("cases/paper-a.cfg", ov + 1, 1);
+    td_case *fine = load_ok("cases/paper-a.cfg", ov, 2);
+    const td_model *mc = td_case_model(coarse), *mf = td_case_model(fine);
+    const td_output_options *oc = td_case_output_options(coarse), *of = td_case_output_options(fine);
+    td_retainer rc, rf;
+    td_amb ac, af;
+    int i;
+    (void)state;
+    assert_int_equal(td_model_node_count(mf), 49);
+    assert_close(td_model_total_mass(mf), td_model_total_mass(mc), 1e-14, 0.0);
+    for (i = 0; i < 2; i++) {
+        td_model_get_retainer(mc, i, &rc);
+        td_model_get_retainer(mf, i, &rf);
+        assert_int_equal(rf.node, 4 * rc.node);
+        assert_close(td_model_node_position(mf, rf.node), td_model_node_position(mc, rc.node), 1e-14, 0.0);
+        td_model_get_amb(mc, i, &ac);
+        td_model_get_amb(mf, i, &af);
+        assert_close(td_model_node_position(mf, af.sensor_node), td_model_node_position(mc, ac.sensor_node), 1e-14,
+                     0.0);
+    }
+    assert_int_equal(of->node_count, 3);
+    for (i = 0; i < 3; i++)
+        assert_close(td_model_node_position(mf, of->nodes[i]), td_model_node_position(mc, oc->nodes[i]), 1e-14, 0.0);
+    td_case_free(&coarse);
+    td_case_free(&fine);
 }
 
 /* ---- overrides ---------------------------------------------------------------------------- */
@@ -805,6 +839,8 @@ static const bad_file bad_files[] = {
     {"shaft-length-and-nodes.cfg", 6, "shaft.nodes", NULL},
     {"shaft-negative-diameter.cfg", 6, "shaft.outer_diameter", NULL},
     {"shaft-nodes-decreasing.cfg", 5, "shaft.nodes[2]", NULL},
+    {"shaft-refine-too-fine.cfg", 8, "shaft.refine", NULL},
+    {"shaft-refine-zero.cfg", 8, "shaft.refine", NULL},
     {"shaft-not-group.cfg", 3, "shaft", NULL},
     {"shaft-section-out-of-range.cfg", 10, "shaft.sections[0].to", NULL},
     {"shaft-section-overlap.cfg", 10, "shaft.sections[1]", NULL},
@@ -1086,6 +1122,7 @@ int main(void)
         cmocka_unit_test(test_all_keys),
         cmocka_unit_test(test_other_forms_and_defaults),
         cmocka_unit_test(test_docs_match_reader),
+        cmocka_unit_test(test_refine),
         cmocka_unit_test(test_overrides),
         cmocka_unit_test(test_bad_overrides),
         cmocka_unit_test(test_bad_files),

@@ -1,9 +1,11 @@
 /* td_model: parts are validated as added, cross-references by td_model_validate. */
+#include "td_rig.h"
 #include "td_test.h"
 
 #include "touchdown/touchdown.h"
 
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 static td_model *uniform_shaft(int elements)
@@ -93,13 +95,141 @@ static void test_schedule_sorted_and_clone(void **state)
     td_model_free(&c);
 }
 
+/* Axial position of every part of the rig is the same before and after refinement. */
+static void check_parts_in_place(const td_model *coarse, const td_model *fine)
+{
+    int i;
+    for (i = 0; i < td_model_disc_count(coarse); i++) {
+        td_disc a, b;
+        td_model_get_disc(coarse, i, &a);
+        td_model_get_disc(fine, i, &b);
+        assert_close(td_model_node_position(fine, b.node), td_model_node_position(coarse, a.node), 1e-14, 1e-15);
+        assert_true(a.mass == b.mass && a.Ip == b.Ip && a.Id == b.Id);
+    }
+    for (i = 0; i < td_model_amb_count(coarse); i++) {
+        td_amb a, b;
+        td_model_get_amb(coarse, i, &a);
+        td_model_get_amb(fine, i, &b);
+        assert_close(td_model_node_position(fine, b.node), td_model_node_position(coarse, a.node), 1e-14, 1e-15);
+        assert_close(td_model_node_position(fine, b.sensor_node), td_model_node_position(coarse, a.sensor_node), 1e-14,
+                     1e-15);
+        assert_true(a.kp == b.kp && a.kd == b.kd && a.tau == b.tau);
+    }
+    for (i = 0; i < td_model_retainer_count(coarse); i++) {
+        td_retainer a, b;
+        td_model_get_retainer(coarse, i, &a);
+        td_model_get_retainer(fine, i, &b);
+        assert_close(td_model_node_position(fine, b.node), td_model_node_position(coarse, a.node), 1e-14, 1e-15);
+        assert_true(a.clearance == b.clearance);
+    }
+    for (i = 0; i < td_model_unbalance_count(coarse); i++) {
+        td_unbalance a, b;
+        td_model_get_unbalance(coarse, i, &a);
+        td_model_get_unbalance(fine, i, &b);
+        assert_close(td_model_node_position(fine, b.node), td_model_node_position(coarse, a.node), 1e-14, 1e-15);
+    }
+}
+
+static void test_refine_keeps_the_machine(void **state)
+{
+    td_model *rig = NULL, *fine = NULL;
+    td_unbalance u = {1, 0.02, 0.3};
+    td_change c = {0.1, TD_CHANGE_UNBALANCE, 0, 0.10, 0.0};
+    td_change got;
+    td_error err;
+    (void)state;
+    assert_int_equal(td_model_create(&rig, NULL), TD_OK);
+    td_test_build_rig(rig, 90.0, TD_RIG_TAU, TD_RIG_WITH_RETAINERS);
+    assert_int_equal(td_model_add_unbalance(rig, &u, NULL), TD_OK);
+    assert_int_equal(td_model_add_change(rig, &c, NULL), TD_OK);
+
+    assert_int_equal(td_model_refine(rig, 4, &fine, &err), TD_OK);
+    assert_int_equal(td_model_shaft_element_count(fine), 48);
+    assert_int_equal(td_model_node_count(fine), 49);
+    assert_int_equal(td_model_dof_count(fine), 196);
+    assert_close(td_model_node_position(fine, 48), 2.0, 1e-14, 0.0);
+    /* mass is conserved: the same shaft cut into more pieces, the same parts */
+    assert_close(td_model_total_mass(fine), td_model_total_mass(rig), 1e-14, 0.0);
+    check_parts_in_place(rig, fine);
+    assert_int_equal(td_model_get_change(fine, 0, &got), TD_OK);
+    assert_true(got.time == c.time && got.magnitude == c.magnitude);
+    assert_close(td_model_speed(fine), 90.0, 0.0, 0.0);
+    assert_int_equal(td_model_validate(fine, &err), TD_OK);
+    td_model_free(&fine);
+
+    assert_int_equal(td_model_refine(rig, 1, &fine, &err), TD_OK); /* a plain copy */
+    assert_int_equal(td_model_node_count(fine), 13);
+    check_parts_in_place(rig, fine);
+    td_model_free(&fine);
+
+    assert_int_equal(td_model_refine(rig, 0, &fine, &err), TD_ERR_INVALID);
+    assert_non_null(strstr(err.message, "factor 0"));
+    assert_null(fine);
+    assert_int_equal(td_model_refine(rig, 1 << 28, &fine, &err), TD_ERR_INVALID);
+    assert_null(fine);
+    assert_int_equal(td_model_add_point_mass(rig, 13, 1.0, NULL), TD_OK); /* off the shaft */
+    assert_int_equal(td_model_refine(rig, 2, &fine, &err), TD_ERR_INVALID);
+    assert_non_null(strstr(err.message, "out of range"));
+    assert_null(fine);
+    td_model_free(&rig);
+}
+
+/* Second method: refining a coarse stepped shaft gives the matrices of the fine shaft built directly. */
+static void test_refine_is_the_fine_mesh(void **state)
+{
+    const td_material steel = {2.11e11, 8.1e10, 7810.0};
+    td_shaft_element thick = {0.3, 0.08, 0.02, steel}, thin = {0.2, 0.05, 0.0, steel};
+    td_disc disc = {1, 10.0, 0.072, 0.036668};
+    td_model *coarse = NULL, *refined = NULL, *direct = NULL;
+    td_system *sr = NULL, *sd = NULL;
+    td_matrix_kind kinds[] = {TD_MATRIX_MASS, TD_MATRIX_STIFFNESS, TD_MATRIX_GYROSCOPIC};
+    double *a, *b;
+    int i, k, n;
+    (void)state;
+    assert_int_equal(td_model_create(&coarse, NULL), TD_OK);
+    assert_int_equal(td_model_create(&direct, NULL), TD_OK);
+    assert_int_equal(td_model_add_shaft_element(coarse, &thick, NULL), TD_OK);
+    assert_int_equal(td_model_add_shaft_element(coarse, &thin, NULL), TD_OK);
+    assert_int_equal(td_model_add_disc(coarse, &disc, NULL), TD_OK);
+    thick.length /= 3;
+    thin.length /= 3;
+    for (i = 0; i < 3; i++)
+        assert_int_equal(td_model_add_shaft_element(direct, &thick, NULL), TD_OK);
+    for (i = 0; i < 3; i++)
+        assert_int_equal(td_model_add_shaft_element(direct, &thin, NULL), TD_OK);
+    disc.node = 3;
+    assert_int_equal(td_model_add_disc(direct, &disc, NULL), TD_OK);
+
+    assert_int_equal(td_model_refine(coarse, 3, &refined, NULL), TD_OK);
+    assert_int_equal(td_system_create(refined, &sr, NULL), TD_OK);
+    assert_int_equal(td_system_create(direct, &sd, NULL), TD_OK);
+    n = td_system_dof_count(sd);
+    assert_int_equal(td_system_dof_count(sr), n);
+    a = malloc(sizeof *a * (size_t)(n * n));
+    b = malloc(sizeof *b * (size_t)(n * n));
+    assert_non_null(a);
+    assert_non_null(b);
+    for (k = 0; k < 3; k++) {
+        assert_int_equal(td_system_dense(sr, kinds[k], a, NULL), TD_OK);
+        assert_int_equal(td_system_dense(sd, kinds[k], b, NULL), TD_OK);
+        for (i = 0; i < n * n; i++)
+            assert_close(a[i], b[i], 1e-14, 1e-14 * fabs(b[0]));
+    }
+    free(a);
+    free(b);
+    td_system_free(&sr);
+    td_system_free(&sd);
+    td_model_free(&coarse);
+    td_model_free(&refined);
+    td_model_free(&direct);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_counts_and_mass),
-        cmocka_unit_test(test_rejects_bad_parts),
-        cmocka_unit_test(test_validate_cross_references),
-        cmocka_unit_test(test_schedule_sorted_and_clone),
+        cmocka_unit_test(test_counts_and_mass),           cmocka_unit_test(test_rejects_bad_parts),
+        cmocka_unit_test(test_validate_cross_references), cmocka_unit_test(test_schedule_sorted_and_clone),
+        cmocka_unit_test(test_refine_keeps_the_machine),  cmocka_unit_test(test_refine_is_the_fine_mesh),
     };
     return cmocka_run_group_tests_name("model", tests, NULL, NULL);
 }

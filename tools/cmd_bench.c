@@ -542,74 +542,6 @@ static int bench_paper(const bench_options *bo, const char *dir)
 #define SCALING_T_FREE 0.10 /* end of the free-flight window (the first contact is at 0.1054 s) */
 #define SCALING_T_CONTACT 0.15
 
-/* Case A's machine with every shaft element split into k equal ones: node i becomes node k i, so
- * discs, AMBs, retainers and the unbalance keep their axial positions. */
-static td_status refine(const td_model *m, int k, td_model **out, td_error *err)
-{
-    td_model *r = NULL;
-    td_shaft_options so;
-    double gx, gy;
-    int i, j;
-    td_status st = td_model_create(&r, err);
-    td_model_shaft_options(m, &so);
-    if (st == TD_OK)
-        st = td_model_set_shaft_options(r, &so, err);
-    for (i = 0; i < td_model_shaft_element_count(m) && st == TD_OK; i++) {
-        td_shaft_element el;
-        td_model_get_shaft_element(m, i, &el);
-        el.length /= k;
-        for (j = 0; j < k && st == TD_OK; j++)
-            st = td_model_add_shaft_element(r, &el, err);
-    }
-    for (i = 0; i < td_model_disc_count(m) && st == TD_OK; i++) {
-        td_disc d;
-        td_model_get_disc(m, i, &d);
-        d.node *= k;
-        st = td_model_add_disc(r, &d, err);
-    }
-    for (i = 0; i < td_model_amb_count(m) && st == TD_OK; i++) {
-        td_amb a;
-        td_model_get_amb(m, i, &a);
-        a.node *= k;
-        a.sensor_node *= k;
-        st = td_model_add_amb(r, &a, err);
-    }
-    for (i = 0; i < td_model_bearing_count(m) && st == TD_OK; i++) {
-        td_bearing b;
-        td_model_get_bearing(m, i, &b);
-        b.node *= k;
-        st = td_model_add_bearing(r, &b, err);
-    }
-    for (i = 0; i < td_model_retainer_count(m) && st == TD_OK; i++) {
-        td_retainer rt;
-        td_model_get_retainer(m, i, &rt);
-        rt.node *= k;
-        st = td_model_add_retainer(r, &rt, err);
-    }
-    for (i = 0; i < td_model_unbalance_count(m) && st == TD_OK; i++) {
-        td_unbalance u;
-        td_model_get_unbalance(m, i, &u);
-        u.node *= k;
-        st = td_model_add_unbalance(r, &u, err);
-    }
-    for (i = 0; i < td_model_change_count(m) && st == TD_OK; i++) {
-        td_change c;
-        td_model_get_change(m, i, &c);
-        st = td_model_add_change(r, &c, err);
-    }
-    td_model_gravity(m, &gx, &gy);
-    if (st == TD_OK)
-        st = td_model_set_speed(r, td_model_speed(m), err);
-    if (st == TD_OK)
-        st = td_model_set_gravity(r, gx, gy, err);
-    if (st != TD_OK) {
-        td_model_free(&r);
-        return st;
-    }
-    *out = r;
-    return TD_OK;
-}
-
 typedef struct scaling_row {
     int nodes, dofs;
     bench_run free_klu[MAX_REPEATS], free_dense[MAX_REPEATS], contact_klu[MAX_REPEATS];
@@ -714,7 +646,7 @@ static int bench_scaling(const bench_options *bo, const char *dir)
         td_model *m = NULL;
         td_error err;
         td_sim_options o = *td_case_sim_options(c), od;
-        if (refine(td_case_model(c), ks[i], &m, &err) != TD_OK) {
+        if (td_model_refine(td_case_model(c), ks[i], &m, &err) != TD_OK) {
             td_cli_error("bench", "refining the rig: %s", err.message);
             td_case_free(&c);
             return TD_EXIT_FAILED;

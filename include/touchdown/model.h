@@ -128,6 +128,13 @@ TD_API td_status td_model_create(td_model **out, td_error *err);
 TD_API void td_model_free(td_model **model);
 /** Deep copy. */
 TD_API td_status td_model_clone(const td_model *model, td_model **out, td_error *err);
+/**
+ * A copy of `model` with every shaft element split into `factor` equal elements (factor >= 1), for
+ * mesh-convergence checks. Node i becomes node factor * i, so every part (discs, point masses,
+ * AMBs and their sensors, bearings, retainers, unbalances) keeps its axial position; schedule,
+ * speed, gravity and shaft options are copied unchanged.
+ */
+TD_API td_status td_model_refine(const td_model *model, int factor, td_model **out, td_error *err);
 
 TD_API td_status td_model_set_shaft_options(td_model *m, const td_shaft_options *opt, td_error *err);
 TD_API td_status td_model_add_shaft_element(td_model *m, const td_shaft_element *el, td_error *err);

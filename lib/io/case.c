@@ -128,6 +128,24 @@ static td_status finish_text(td_case_reader *r, td_cr_buf *buf, const char *cons
     return TD_OK;
 }
 
+/* shaft.refine: the model replaced by its refinement, the output nodes renumbered with it (every
+ * node number in the case is one of the shaft as written, node i now being node refine * i). */
+static td_status apply_refine(td_case_reader *r)
+{
+    td_model *fine = NULL;
+    td_error merr;
+    int i;
+    if (r->refine == 1)
+        return TD_OK;
+    if (td_model_refine(r->c->model, r->refine, &fine, &merr) != TD_OK)
+        return td_error_set(r->err, merr.code, "%s: shaft.refine: %s", r->path_shown, merr.message);
+    td_model_free(&r->c->model);
+    r->c->model = fine;
+    for (i = 0; i < r->c->output.node_count; i++)
+        r->c->output.nodes[i] *= r->refine;
+    return TD_OK;
+}
+
 /* Every section, in dependency order: the shaft fixes the nodes, AMBs come before retainers. */
 static td_status read_case(td_case_reader *r)
 {
@@ -148,6 +166,8 @@ static td_status read_case(td_case_reader *r)
     /* everything td_model_validate checks was checked above with locations; this is a backstop */
     if (st == TD_OK && td_model_validate(r->c->model, &merr) != TD_OK)
         st = td_error_set(r->err, TD_ERR_PARSE, "%s: %s", r->path_shown, merr.message);
+    if (st == TD_OK)
+        st = apply_refine(r);
     return st;
 }
 
@@ -224,6 +244,7 @@ td_status td_case_load(const char *path, const char *const *overrides, int n_ove
     memset(&r, 0, sizeof r);
     r.path = path;
     r.err = err;
+    r.refine = 1;
     r.path_shown = td_cr_printable_dup(path);
     r.c = r.path_shown ? case_new(path) : NULL;
     if (!r.c) {

@@ -47,7 +47,8 @@ typedef struct td_case_reader {
     int has_dir;      /* path names a directory: included files are shown as dir/name */
     td_error *err;
     td_case *c;
-    int nodes;                    /* shaft node count, once the shaft is read */
+    int nodes;                    /* shaft node count as written in the case, once the shaft is read */
+    int refine;                   /* shaft.refine: every element split this many times after reading */
     const config_setting_t *ambs; /* the "ambs" list (entry i is AMB i), or NULL */
     td_cr_wrap_site *wraps;
     int wrap_count, wrap_cap;

@@ -180,7 +180,7 @@ static td_status read_output(td_case_reader *r, const config_setting_t *root, do
 static td_status read_modal(td_case_reader *r, const config_setting_t *root, td_modal_options *o)
 {
     const config_setting_t *g;
-    int dofs = 4 * r->nodes;
+    int dofs = 4 * ((r->nodes - 1) * r->refine + 1); /* of the refined shaft (case.c) */
     td_status st = td_cr_group(r, root, "modal", NULL, &g);
     if (st != TD_OK || !g)
         return st;

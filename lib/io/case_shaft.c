@@ -11,7 +11,7 @@
 
 static const char *const shaft_keys[] = {"length",         "elements", "nodes",    "outer_diameter",
                                          "inner_diameter", "material", "sections", "beam",
-                                         "mass",           "rayleigh", NULL};
+                                         "mass",           "rayleigh", "refine",   NULL};
 static const char *const material_keys[] = {"E", "G", "density", NULL};
 static const char *const section_keys[] = {"element",        "from",     "to", "outer_diameter",
                                            "inner_diameter", "material", NULL};
@@ -206,6 +206,18 @@ static td_status read_elements(td_case_reader *r, const config_setting_t *shaft,
     return st;
 }
 
+/* refine: the element count multiplier applied once the whole case is read (case.c); node
+ * numbers in the case stay those of the elements as written. */
+static td_status read_refine(td_case_reader *r, const config_setting_t *shaft, int count)
+{
+    td_status st = td_cr_int(r, shaft, "refine", NULL, 1, 1, TD_CASE_MAX_ELEMENTS, &r->refine);
+    if (st == TD_OK && count > TD_CASE_MAX_ELEMENTS / r->refine)
+        st = td_cr_fail(r, config_setting_get_member(shaft, "refine"), NULL,
+                        "%d elements split %d times make %ld (at most %d)", count, r->refine, (long)count * r->refine,
+                        TD_CASE_MAX_ELEMENTS);
+    return st;
+}
+
 td_status td_cr_read_shaft(td_case_reader *r, const config_setting_t *root)
 {
     const config_setting_t *shaft;
@@ -219,8 +231,12 @@ td_status td_cr_read_shaft(td_case_reader *r, const config_setting_t *root)
         st = td_cr_check_keys(r, shaft, shaft_keys);
     if (st == TD_OK)
         st = read_lengths(r, shaft, &lengths, &count);
-    if (st != TD_OK)
+    if (st == TD_OK)
+        st = read_refine(r, shaft, count);
+    if (st != TD_OK) {
+        free(lengths);
         return st;
+    }
     els = calloc((size_t)count, sizeof *els);
     owner = malloc((size_t)count * sizeof *owner);
     if (!els || !owner) {

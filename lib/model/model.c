@@ -6,6 +6,7 @@
 #include "model/model_internal.h"
 #include "util/error_internal.h"
 
+#include <limits.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -116,6 +117,65 @@ td_status td_model_clone(const td_model *model, td_model **out, td_error *err)
         td_model_free(&m);
         return td_error_set(err, TD_ERR_NOMEM, "out of memory cloning a model");
     }
+    *out = m;
+    return TD_OK;
+}
+
+#define REFINE_MAX_ELEMENTS (INT_MAX / 8)
+
+/* Split every element of m's shaft into `factor` equal ones, in place. */
+static td_status split_elements(td_model *m, int factor, td_error *err)
+{
+    int count = m->elements.count, i, j;
+    td_shaft_element *els = malloc((size_t)count * (size_t)factor * sizeof *els);
+    if (!els)
+        return td_error_set(err, TD_ERR_NOMEM, "out of memory refining a model");
+    for (i = 0; i < count; i++)
+        for (j = 0; j < factor; j++) {
+            els[i * factor + j] = m->elements.items[i];
+            els[i * factor + j].length = m->elements.items[i].length / factor;
+        }
+    free(m->elements.items);
+    m->elements.items = els;
+    m->elements.count = m->elements.capacity = count * factor;
+    return TD_OK;
+}
+
+td_status td_model_refine(const td_model *model, int factor, td_model **out, td_error *err)
+{
+    td_model *m = NULL;
+    td_status st;
+    int i;
+    if (!model || !out)
+        return td_error_set(err, TD_ERR_INVALID, "td_model_refine: NULL argument");
+    if (factor < 1)
+        return td_error_set(err, TD_ERR_INVALID, "refine: factor %d must be >= 1", factor);
+    /* DOF counts (4 per node) and the node renumbering below must stay within int */
+    if (model->elements.count > REFINE_MAX_ELEMENTS / factor)
+        return td_error_set(err, TD_ERR_INVALID, "refine: %d elements split %d times exceed %d elements",
+                            model->elements.count, factor, REFINE_MAX_ELEMENTS);
+    st = td_model_validate(model, err); /* every node number is on the shaft */
+    if (st == TD_OK)
+        st = td_model_clone(model, &m, err);
+    if (st == TD_OK)
+        st = split_elements(m, factor, err);
+    if (st != TD_OK) {
+        td_model_free(&m);
+        return st;
+    }
+    /* node i of the coarse shaft sits at the same z as node factor * i of the fine one */
+    for (i = 0; i < m->discs.count; i++)
+        m->discs.items[i].node *= factor;
+    for (i = 0; i < m->ambs.count; i++) {
+        m->ambs.items[i].node *= factor;
+        m->ambs.items[i].sensor_node *= factor;
+    }
+    for (i = 0; i < m->bearings.count; i++)
+        m->bearings.items[i].node *= factor;
+    for (i = 0; i < m->retainers.count; i++)
+        m->retainers.items[i].node *= factor;
+    for (i = 0; i < m->unbalances.count; i++)
+        m->unbalances.items[i].node *= factor;
     *out = m;
     return TD_OK;
 }
