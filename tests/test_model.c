@@ -95,38 +95,39 @@ static void test_schedule_sorted_and_clone(void **state)
     td_model_free(&c);
 }
 
-/* Axial position of every part of the rig is the same before and after refinement. */
+/* Node nc of `coarse` and node nf of `fine` are at the same axial position. */
+static void assert_same_z(const td_model *coarse, int nc, const td_model *fine, int nf)
+{
+    assert_close(td_model_node_position(fine, nf), td_model_node_position(coarse, nc), 1e-14, 1e-15);
+}
+
+/* Every part of the machine is where it was before refinement, and unchanged otherwise. */
 static void check_parts_in_place(const td_model *coarse, const td_model *fine)
 {
+    td_disc dc, df;
+    td_amb ac, af;
+    td_retainer rc, rf;
+    td_unbalance uc, uf;
     int i;
-    for (i = 0; i < td_model_disc_count(coarse); i++) {
-        td_disc a, b;
-        td_model_get_disc(coarse, i, &a);
-        td_model_get_disc(fine, i, &b);
-        assert_close(td_model_node_position(fine, b.node), td_model_node_position(coarse, a.node), 1e-14, 1e-15);
-        assert_true(a.mass == b.mass && a.Ip == b.Ip && a.Id == b.Id);
+    for (i = 0; td_model_get_disc(coarse, i, &dc) == TD_OK; i++) {
+        assert_int_equal(td_model_get_disc(fine, i, &df), TD_OK);
+        assert_same_z(coarse, dc.node, fine, df.node);
+        assert_true(dc.mass == df.mass && dc.Ip == df.Ip && dc.Id == df.Id);
     }
-    for (i = 0; i < td_model_amb_count(coarse); i++) {
-        td_amb a, b;
-        td_model_get_amb(coarse, i, &a);
-        td_model_get_amb(fine, i, &b);
-        assert_close(td_model_node_position(fine, b.node), td_model_node_position(coarse, a.node), 1e-14, 1e-15);
-        assert_close(td_model_node_position(fine, b.sensor_node), td_model_node_position(coarse, a.sensor_node), 1e-14,
-                     1e-15);
-        assert_true(a.kp == b.kp && a.kd == b.kd && a.tau == b.tau);
+    for (i = 0; td_model_get_amb(coarse, i, &ac) == TD_OK; i++) {
+        assert_int_equal(td_model_get_amb(fine, i, &af), TD_OK);
+        assert_same_z(coarse, ac.node, fine, af.node);
+        assert_same_z(coarse, ac.sensor_node, fine, af.sensor_node);
+        assert_true(ac.kp == af.kp && ac.kd == af.kd && ac.tau == af.tau);
     }
-    for (i = 0; i < td_model_retainer_count(coarse); i++) {
-        td_retainer a, b;
-        td_model_get_retainer(coarse, i, &a);
-        td_model_get_retainer(fine, i, &b);
-        assert_close(td_model_node_position(fine, b.node), td_model_node_position(coarse, a.node), 1e-14, 1e-15);
-        assert_true(a.clearance == b.clearance);
+    for (i = 0; td_model_get_retainer(coarse, i, &rc) == TD_OK; i++) {
+        assert_int_equal(td_model_get_retainer(fine, i, &rf), TD_OK);
+        assert_same_z(coarse, rc.node, fine, rf.node);
+        assert_true(rc.clearance == rf.clearance);
     }
-    for (i = 0; i < td_model_unbalance_count(coarse); i++) {
-        td_unbalance a, b;
-        td_model_get_unbalance(coarse, i, &a);
-        td_model_get_unbalance(fine, i, &b);
-        assert_close(td_model_node_position(fine, b.node), td_model_node_position(coarse, a.node), 1e-14, 1e-15);
+    for (i = 0; td_model_get_unbalance(coarse, i, &uc) == TD_OK; i++) {
+        assert_int_equal(td_model_get_unbalance(fine, i, &uf), TD_OK);
+        assert_same_z(coarse, uc.node, fine, uf.node);
     }
 }
 
