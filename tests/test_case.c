@@ -54,23 +54,6 @@ static void write_file(const char *path, const char *text)
     fclose(f);
 }
 
-static char *read_all(const char *path)
-{
-    FILE *f = fopen(path, "rb");
-    long n;
-    char *buf;
-    assert_non_null(f);
-    fseek(f, 0, SEEK_END);
-    n = ftell(f);
-    fseek(f, 0, SEEK_SET);
-    buf = malloc((size_t)n + 1);
-    assert_non_null(buf);
-    assert_int_equal(fread(buf, 1, (size_t)n, f), (size_t)n);
-    buf[n] = '\0';
-    fclose(f);
-    return buf;
-}
-
 static void assert_contains(const char *haystack, const char *needle)
 {
     if (!strstr(haystack, needle)) {
@@ -550,9 +533,9 @@ static void test_docs_match_reader(void **state)
                                          "solver.",
                                          "output.",
                                          "modal."};
-    char *doc = read_all(td_source_path("docs/case-format.md"));
-    char *a = read_all(td_source_path("tests/data/case/all-keys.cfg"));
-    char *b = read_all(td_source_path("tests/data/case/all-keys-nodes.cfg"));
+    char *doc = td_test_read_file(td_source_path("docs/case-format.md"));
+    char *a = td_test_read_file(td_source_path("tests/data/case/all-keys.cfg"));
+    char *b = td_test_read_file(td_source_path("tests/data/case/all-keys-nodes.cfg"));
     const char *p = doc;
     int documented = 0;
     size_t g;

@@ -542,24 +542,6 @@ static void test_hdf5_empty_layout(void **state)
 
 /* ---- CSV --------------------------------------------------------------------------------- */
 
-/* Read a whole file into a NUL-terminated buffer. */
-static char *slurp(const char *path)
-{
-    FILE *f = fopen(path, "rb");
-    long n;
-    char *s;
-    assert_non_null(f);
-    fseek(f, 0, SEEK_END);
-    n = ftell(f);
-    fseek(f, 0, SEEK_SET);
-    s = malloc((size_t)n + 1);
-    assert_non_null(s);
-    assert_int_equal(fread(s, 1, (size_t)n, f), (size_t)n);
-    s[n] = '\0';
-    fclose(f);
-    return s;
-}
-
 /* Next line of *p (without the newline, written into place); NULL at the end. */
 static char *next_line(char **p)
 {
@@ -634,7 +616,7 @@ static double csv_attr_value(const char *text, const char *name, int index)
 
 static void check_csv_samples(const char *path, const sample_set *d, int complete)
 {
-    char *text = slurp(path), *p = text, *line, header[2048];
+    char *text = td_test_read_file(path), *p = text, *line, header[2048];
     double v[CSV_COLS + 1];
     int r = 0, i, flag_seen = 0, case_lines = 0;
     expected_header(header, sizeof header);
@@ -681,7 +663,7 @@ static void check_csv_samples(const char *path, const sample_set *d, int complet
     assert_true(flag_seen);
     assert_int_equal(case_lines, complete ? 3 : 5); /* case text, and the two-line reason */
     free(text); /* next_line cut it into lines: read it again for whole-text searches */
-    text = slurp(path);
+    text = td_test_read_file(path);
     assert_non_null(strstr(text, "\n# case_text:\n#| # a case\n#| speed = 90.0;\n"));
     assert_non_null(strstr(text, "\n# note = replaced value\n"));
     assert_bits(csv_attr_value(text, "speed", 0), 90.000000000000014);
@@ -695,7 +677,7 @@ static void check_csv_samples(const char *path, const sample_set *d, int complet
 
 static void check_csv_events(const char *path, const sample_set *d, int complete)
 {
-    char *text = slurp(path), *p = text, *line;
+    char *text = td_test_read_file(path), *p = text, *line;
     int e = 0;
     line = next_line(&p);
     assert_string_equal(line, "t [s],kind [-],kind_name,retainer [-],change [-],sample [-],vr_before [m/s],"

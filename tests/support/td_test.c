@@ -4,6 +4,7 @@
 
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 
 void td_assert_close_impl(double actual, double expected, double rtol, double atol, const char *expr, const char *file,
                           int line)
@@ -43,4 +44,21 @@ td_case *td_test_load_case(const char *relative, const char **overrides, int n)
 double td_test_next_output(double t, double dt, double t_end)
 {
     return fmin(t_end, (floor(t / dt + 0.5) + 1.0) * dt);
+}
+
+char *td_test_read_file(const char *path)
+{
+    FILE *f = fopen(path, "rb");
+    long n;
+    char *buf;
+    assert_non_null(f);
+    fseek(f, 0, SEEK_END);
+    n = ftell(f);
+    fseek(f, 0, SEEK_SET);
+    buf = malloc((size_t)n + 1);
+    assert_non_null(buf);
+    assert_int_equal(fread(buf, 1, (size_t)n, f), (size_t)n);
+    buf[n] = '\0';
+    fclose(f);
+    return buf;
 }

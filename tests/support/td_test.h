@@ -28,6 +28,9 @@ struct td_case *td_test_load_case(const char *relative, const char **overrides, 
 /* The output grid point after t: k dt with k dt >= t + dt/2, capped at t_end. */
 double td_test_next_output(double t, double dt, double t_end);
 
+/* A whole file as a NUL-terminated buffer (caller frees); fails the test if it cannot be read. */
+char *td_test_read_file(const char *path);
+
 /* Path of a file in the source tree (tests/..., cases/...), in a static buffer per call slot. */
 const char *td_source_path(const char *relative);
 
