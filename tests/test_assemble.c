@@ -35,15 +35,6 @@ static double *dense(const td_system *s, td_matrix_kind which)
     return a;
 }
 
-static double max_abs(const double *a, int n)
-{
-    double m = 0.0;
-    int i;
-    for (i = 0; i < n; i++)
-        m = fmax(m, fabs(a[i]));
-    return m;
-}
-
 /* u^T A v, A column-major n x n */
 static double quad(const double *A, const double *u, const double *v, int n)
 {
@@ -111,9 +102,9 @@ static void test_rig_symmetry_and_pattern(void **state)
         assert_true(M[i + i * n] > 0.0);
         assert_true(G[i + i * n] == 0.0);
         for (j = 0; j < n; j++) {
-            assert_close(M[i + j * n], M[j + i * n], 0.0, 1e-15 * max_abs(M, n * n));
-            assert_close(K[i + j * n], K[j + i * n], 0.0, 1e-15 * max_abs(K, n * n));
-            assert_close(G[i + j * n], -G[j + i * n], 0.0, 1e-15 * max_abs(G, n * n));
+            assert_close(M[i + j * n], M[j + i * n], 0.0, 1e-15 * td_test_max_abs(M, n * n));
+            assert_close(K[i + j * n], K[j + i * n], 0.0, 1e-15 * td_test_max_abs(K, n * n));
+            assert_close(G[i + j * n], -G[j + i * n], 0.0, 1e-15 * td_test_max_abs(G, n * n));
             assert_true(C[i + j * n] == 0.0); /* no structural damping, no plain bearings on the rig */
         }
     }
@@ -194,9 +185,9 @@ static void test_rig_dense_against_direct_assembly(void **state)
         Gd[(b + 3) + (b + 2) * n] -= disc.Ip;
     }
     for (i = 0; i < n * n; i++) {
-        assert_close(M[i], Md[i], 1e-14, 1e-15 * max_abs(Md, n * n));
-        assert_close(K[i], Kd[i], 1e-14, 1e-15 * max_abs(Kd, n * n));
-        assert_close(G[i], Gd[i], 1e-14, 1e-15 * max_abs(Gd, n * n));
+        assert_close(M[i], Md[i], 1e-14, 1e-15 * td_test_max_abs(Md, n * n));
+        assert_close(K[i], Kd[i], 1e-14, 1e-15 * td_test_max_abs(Kd, n * n));
+        assert_close(G[i], Gd[i], 1e-14, 1e-15 * td_test_max_abs(Gd, n * n));
     }
     /* a few spot values straight from the contract */
     /* G(theta5, phi5): the disc's Ip plus rho J 4 L / 30 from each of the two adjacent elements */
@@ -362,13 +353,13 @@ static void test_damping_and_bearings(void **state)
         Ce[0] += 300.0;
         Ce[1 + n] += 400.0;
         for (i = 0; i < n * n; i++)
-            assert_close(C[i], Ce[i], 1e-13, 1e-15 * max_abs(Ce, n * n));
+            assert_close(C[i], Ce[i], 1e-13, 1e-15 * td_test_max_abs(Ce, n * n));
         free(Ce);
     }
     /* K: the shaft plus the bearing only */
     for (i = 0; i < n * n; i++) {
         double extra = i == 0 ? 1e7 : i == 1 + n ? 2e7 : 0.0;
-        assert_close(K[i], K0[i] + extra, 1e-15, 1e-15 * max_abs(K0, n * n));
+        assert_close(K[i], K0[i] + extra, 1e-15, 1e-15 * td_test_max_abs(K0, n * n));
     }
     assert_true(M[TD_DOF(1, TD_DOF_X) * (n + 1)] > 5.0);
     free(M);

@@ -26,16 +26,6 @@ static td_shaft_element element(double L, double d, double di)
     return el;
 }
 
-/* max |a| over n entries */
-static double max_abs(const double *a, int n)
-{
-    double m = 0.0;
-    int i;
-    for (i = 0; i < n; i++)
-        m = fmax(m, fabs(a[i]));
-    return m;
-}
-
 /* u^T A v for an n x n row-major (or symmetric column-major) matrix */
 static double quad(const double *A, const double *u, const double *v, int n)
 {
@@ -95,7 +85,7 @@ static int count_zero_eigenvalues(const double *A, int n, double tol)
 static void check_symmetry(const double *M, const double *K, const double *G)
 {
     int i, j;
-    double mm = max_abs(M, 64), mk = max_abs(K, 64), mg = max_abs(G, 64);
+    double mm = td_test_max_abs(M, 64), mk = td_test_max_abs(K, 64), mg = td_test_max_abs(G, 64);
     for (i = 0; i < 8; i++)
         for (j = 0; j < 8; j++) {
             assert_close(E8(M, i, j), E8(M, j, i), 0.0, 1e-15 * mm);
@@ -189,7 +179,7 @@ static void test_rigid_body_single_element(void **state)
                 for (j = 0; j < 8; j++)
                     Ku[i] += E8(K, i, j) * u[8 * r + j];
             }
-            assert_true(max_abs(Ku, 8) <= 1e-12 * max_abs(K, 64));
+            assert_true(td_test_max_abs(Ku, 8) <= 1e-12 * td_test_max_abs(K, 64));
         }
         assert_int_equal(count_zero_eigenvalues(K, 8, 1e-12), 4);
         /* translation: the element mass; tilt about the centre: rho A L^3 / 12 + rho I L */
@@ -201,7 +191,7 @@ static void test_rigid_body_single_element(void **state)
         assert_close(quad(M, &u[0], &u[16], 8), 0.0, 0.0, 1e-14 * rho * A * L * L);
         /* gyroscopic: unit theta-tilt against unit phi-tilt gives the polar inertia rho J L = 2 rho I L */
         assert_close(quad(G, &u[24], &u[16], 8), -2.0 * rho * I * L, 1e-13, 0.0); /* theta = -1 */
-        assert_close(quad(G, &u[0], &u[8], 8), 0.0, 0.0, 1e-14 * max_abs(G, 64));
+        assert_close(quad(G, &u[0], &u[8], 8), 0.0, 0.0, 1e-14 * td_test_max_abs(G, 64));
     }
     /* lumped: half the mass at each end, so the tilt inertia about the centre is rho A L (L/2)^2 */
     td_shaft_element_matrices(&el, TD_BEAM_EULER_BERNOULLI, TD_MASS_LUMPED, M, K, G);
@@ -254,7 +244,7 @@ static void test_rigid_body_free_shaft(void **state)
                 double Ku = 0.0;
                 for (j = 0; j < n; j++)
                     Ku += K[i + j * n] * u[r * n + j];
-                assert_close(Ku, 0.0, 0.0, 1e-11 * max_abs(K, n * n));
+                assert_close(Ku, 0.0, 0.0, 1e-11 * td_test_max_abs(K, n * n));
             }
         assert_int_equal(count_zero_eigenvalues(K, n, 1e-12), 4);
         assert_close(quad(M, &u[0], &u[0], n), total, 1e-14, 0.0);
@@ -282,9 +272,9 @@ static void test_timoshenko_limit(void **state)
     td_shaft_element_matrices(&el, TD_BEAM_TIMOSHENKO, TD_MASS_CONSISTENT, Mt, Kt, Gt);
     td_shaft_element_matrices(&el, TD_BEAM_EULER_BERNOULLI, TD_MASS_CONSISTENT, Me, Ke, Ge);
     for (i = 0; i < 64; i++) {
-        assert_close(Mt[i], Me[i], 20.0 * phi, 1e-15 * max_abs(Me, 64));
-        assert_close(Kt[i], Ke[i], 20.0 * phi, 1e-15 * max_abs(Ke, 64));
-        assert_close(Gt[i], Ge[i], 20.0 * phi, 1e-15 * max_abs(Ge, 64));
+        assert_close(Mt[i], Me[i], 20.0 * phi, 1e-15 * td_test_max_abs(Me, 64));
+        assert_close(Kt[i], Ke[i], 20.0 * phi, 1e-15 * td_test_max_abs(Ke, 64));
+        assert_close(Gt[i], Ge[i], 20.0 * phi, 1e-15 * td_test_max_abs(Ge, 64));
     }
 }
 

@@ -62,3 +62,12 @@ char *td_test_read_file(const char *path)
     fclose(f);
     return buf;
 }
+
+double td_test_max_abs(const double *a, int n)
+{
+    double m = 0.0;
+    int i;
+    for (i = 0; i < n; i++)
+        m = fmax(m, fabs(a[i]));
+    return m;
+}

@@ -20,6 +20,9 @@ void td_assert_close_impl(double actual, double expected, double rtol, double at
 /* Relative difference |a - b| / max(|b|, tiny). */
 double td_rel_diff(double a, double b);
 
+/* max |a[i]| over n entries (0 for n = 0). */
+double td_test_max_abs(const double *a, int n);
+
 struct td_case;
 
 /* Load a case file of the source tree (relative path) with overrides; fails the test on error. */
