@@ -122,6 +122,17 @@ static td_status read_amb_lag(td_case_reader *r, const config_setting_t *g, doub
     return st;
 }
 
+/* Entry g of `list` (the list named `key`) is on `node`, where its entry j already put `part`:
+ * one part of this kind per node. */
+static td_status fail_node_taken(td_case_reader *r, const config_setting_t *g, const config_setting_t *list, int j,
+                                 int node, const char *part, const char *key)
+{
+    char where[1200];
+    td_cr_where(r, config_setting_get_elem(list, (unsigned)j), where, sizeof where);
+    return td_cr_fail(r, config_setting_get_member(g, "node"), NULL, "node %d already has %s (%s[%d], %s)", node, part,
+                      key, j, where);
+}
+
 static td_status read_amb(td_case_reader *r, const config_setting_t *list, int index)
 {
     const config_setting_t *g;
@@ -156,12 +167,8 @@ static td_status read_amb(td_case_reader *r, const config_setting_t *list, int i
         return st;
     for (j = 0; j < index; j++) {
         td_model_get_amb(r->c->model, j, &other);
-        if (other.node == a.node) {
-            char where[1200];
-            td_cr_where(r, config_setting_get_elem(list, (unsigned)j), where, sizeof where);
-            return td_cr_fail(r, config_setting_get_member(g, "node"), NULL,
-                              "node %d already has an AMB (ambs[%d], %s)", a.node, j, where);
-        }
+        if (other.node == a.node)
+            return fail_node_taken(r, g, list, j, a.node, "an AMB", "ambs");
     }
     st = td_model_add_amb(r->c->model, &a, &merr);
     return st == TD_OK ? TD_OK : td_cr_model_fail(r, g, st, &merr);
@@ -238,12 +245,8 @@ static td_status read_retainer(td_case_reader *r, const config_setting_t *list, 
                           ret.shaft_radius + ret.clearance, ret.bore_radius);
     for (j = 0; j < index; j++) {
         td_model_get_retainer(r->c->model, j, &other);
-        if (other.node == ret.node) {
-            char where[1200];
-            td_cr_where(r, config_setting_get_elem(list, (unsigned)j), where, sizeof where);
-            return td_cr_fail(r, config_setting_get_member(g, "node"), NULL,
-                              "node %d already has a retainer (retainers[%d], %s)", ret.node, j, where);
-        }
+        if (other.node == ret.node)
+            return fail_node_taken(r, g, list, j, ret.node, "a retainer", "retainers");
     }
     st = check_against_ambs(r, g, &ret);
     if (st != TD_OK)
