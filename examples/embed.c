@@ -12,7 +12,7 @@
 #define NODES 13
 #define SAMPLE_RATE 10000.0 /* controller sampling, Hz */
 
-/* The rig of reference-rig.md: 12 steel beam elements over 2 m, four discs, two AMB journals. */
+/* The rig of docs/reference-rig.md: 12 steel beam elements over 2 m, four discs, two AMB journals. */
 static int build_rotor(td_model *m, td_error *err)
 {
     const td_shaft_element el = {2.0 / 12, 0.05, 0.0, {2.11e11, 8.1e10, 7810.0}};
@@ -24,8 +24,10 @@ static int build_rotor(td_model *m, td_error *err)
         if (td_model_add_shaft_element(m, &el, err))
             return -1;
     for (i = 0; i < 4; i++) {
-        td_disc d = {disc_nodes[i], 10.0, 0.072, 0.036668};
-        if (td_model_add_disc(m, &d, err))
+        /* a solid steel disc of 10 kg and radius 0.12 m: the library computes Ip and Id */
+        const td_disc_geometry g = {disc_nodes[i], 0.12, 0.0, 7810.0, 0.0, 10.0};
+        td_disc d;
+        if (td_disc_from_geometry(&g, &d, err) || td_model_add_disc(m, &d, err))
             return -1;
     }
     for (i = 0; i < 2; i++) {

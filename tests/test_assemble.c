@@ -19,7 +19,7 @@
 
 static const td_material steel = {2.11e11, 8.1e10, 7810.0};
 
-/* The reference rig of reference-rig.md, built in code (tests/support/td_rig.c): speed 0, lagged
+/* The reference rig of docs/reference-rig.md, built in code (tests/support/td_rig.c): speed 0, lagged
  * AMBs, both retainers. */
 static td_model *reference_rig(void)
 {
@@ -73,7 +73,7 @@ static void test_rig_mass(void **state)
     assert_close(mx, shaft + 40.0 + 29.2, 1e-14, 0.0);
     assert_close(my, shaft + 40.0 + 29.2, 1e-14, 0.0);
     assert_close(mx, td_model_total_mass(m), 1e-14, 0.0);
-    /* ... and reference-rig.md's 99.87 kg is that number rounded to 10 g */
+    /* ... and docs/reference-rig.md's 99.87 kg is that number rounded to 10 g */
     assert_close(mx, 99.87, 0.0, 0.005);
     free(ux);
     free(uy);

@@ -1,6 +1,6 @@
 /*
  * The case-file reader (td_case_load): every documented key lands where it should, the paper
- * cases carry the reference rig's numbers (reference-rig.md), overrides work and bad ones fail,
+ * cases carry the reference rig's numbers (docs/reference-rig.md), overrides work and bad ones fail,
  * and every broken file under tests/data/bad/ fails with FILE:LINE: KEY in its message.
  */
 #include "td_test.h"
@@ -64,7 +64,7 @@ static void assert_contains(const char *haystack, const char *needle)
 
 /* ---- the reference rig and the paper cases ------------------------------------------------ */
 
-/* Closed-form rig mass (reference-rig.md): shaft rho pi r^2 L + four 10 kg discs + two 14.6 kg
+/* Closed-form rig mass (docs/reference-rig.md): shaft rho pi r^2 L + four 10 kg discs + two 14.6 kg
  * AMB journals. */
 static double rig_mass(void)
 {
@@ -107,8 +107,8 @@ static void check_rig(const td_model *m)
         assert_int_equal(d.node, disc_nodes[i]);
         assert_close(d.mass, 10.0, 0.0, 0.0);
         assert_close(d.Ip, 10.0 * 0.12 * 0.12 / 2.0, 1e-15, 0.0);
-        /* Id = m (3R^2 + t^2)/12 with t = m / (rho pi R^2); the table rounds to 0.036668 */
-        assert_close(d.Id, 10.0 * (3 * 0.0144 + pow(10.0 / (7810.0 * TD_PI * 0.0144), 2)) / 12.0, 2e-5, 0.0);
+        /* Id = m (3R^2 + t^2)/12 with t = m / (rho pi R^2), exactly (not the rounded 0.036668) */
+        assert_close(d.Id, 10.0 * (3 * 0.0144 + pow(10.0 / (7810.0 * TD_PI * 0.0144), 2)) / 12.0, 1e-15, 0.0);
     }
     for (i = 4; i < 6; i++) {
         assert_int_equal(td_model_get_disc(m, i, &d), TD_OK);
@@ -782,6 +782,8 @@ static const bad_file bad_files[] = {
     {"contact-zero-stiffness.cfg", 6, "contact.stiffness", NULL},
     {"disc-bore-too-big.cfg", 5, "discs[0].bore_radius", NULL},
     {"disc-mixed-forms.cfg", 5, "discs[0].radius", NULL},
+    {"disc-thickness-and-mass.cfg", 6, "discs[0].mass", NULL},
+    {"disc-geometry-no-thickness.cfg", 5, "discs[0].thickness", NULL},
     {"disc-negative-node.cfg", 5, "discs[0].node", NULL},
     {"disc-node-out-of-range.cfg", 6, "discs[1].node", NULL},
     {"disc-zero-mass.cfg", 5, "discs[0].mass", NULL},

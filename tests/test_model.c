@@ -175,6 +175,49 @@ static void test_refine_keeps_the_machine(void **state)
     td_model_free(&rig);
 }
 
+/* td_disc_from_geometry against the closed forms evaluated in 40-digit decimal arithmetic
+ * (Python's decimal module): the rig's solid disc given by its mass (docs/reference-rig.md,
+ * thickness m/(rho pi R^2) = 0.028303269151354270837 m) and a bored disc given by its thickness. */
+static void test_disc_from_geometry(void **state)
+{
+    td_disc_geometry rig = {5, 0.12, 0.0, 7810.0, 0.0, 10.0};
+    td_disc_geometry bored = {2, 0.1, 0.02, 7800.0, 0.02, 0.0};
+    td_disc d;
+    td_error err;
+    (void)state;
+    assert_int_equal(td_disc_from_geometry(&rig, &d, &err), TD_OK);
+    assert_int_equal(d.node, 5);
+    assert_close(d.mass, 10.0, 0.0, 0.0);
+    assert_close(d.Ip, 0.072, 1e-15, 0.0);
+    assert_close(d.Id, 0.036667562537211668589, 1e-15, 0.0); /* not the rounded 0.036668 */
+    assert_int_equal(td_disc_from_geometry(&bored, &d, &err), TD_OK);
+    assert_int_equal(d.node, 2);
+    assert_close(d.mass, 4.7048491580160743539, 1e-15, 0.0);
+    assert_close(d.Ip, 0.024465215621683586640, 1e-15, 0.0);
+    assert_close(d.Id, 0.012389436116108995799, 1e-15, 0.0);
+    /* the same disc given by the mass it has: the same inertias */
+    bored.mass = 4.7048491580160743539;
+    bored.thickness = 0.0;
+    assert_int_equal(td_disc_from_geometry(&bored, &d, &err), TD_OK);
+    assert_close(d.Id, 0.012389436116108995799, 1e-14, 0.0);
+    /* both or neither of thickness and mass; bore not inside; bad numbers */
+    bored.thickness = 0.02;
+    assert_int_equal(td_disc_from_geometry(&bored, &d, &err), TD_ERR_INVALID);
+    assert_non_null(strstr(err.message, "not both"));
+    bored.thickness = bored.mass = 0.0;
+    assert_int_equal(td_disc_from_geometry(&bored, &d, &err), TD_ERR_INVALID);
+    rig.inner_radius = 0.12;
+    assert_int_equal(td_disc_from_geometry(&rig, &d, &err), TD_ERR_INVALID);
+    assert_non_null(strstr(err.message, "inner radius"));
+    rig.inner_radius = 0.0;
+    rig.density = NAN;
+    assert_int_equal(td_disc_from_geometry(&rig, &d, &err), TD_ERR_INVALID);
+    rig.density = 7810.0;
+    rig.mass = -1.0;
+    assert_int_equal(td_disc_from_geometry(&rig, &d, &err), TD_ERR_INVALID);
+    assert_int_equal(td_disc_from_geometry(NULL, &d, &err), TD_ERR_INVALID);
+}
+
 /* Second method: refining a coarse stepped shaft gives the matrices of the fine shaft built directly. */
 static void test_refine_is_the_fine_mesh(void **state)
 {
@@ -231,6 +274,7 @@ int main(void)
         cmocka_unit_test(test_counts_and_mass),           cmocka_unit_test(test_rejects_bad_parts),
         cmocka_unit_test(test_validate_cross_references), cmocka_unit_test(test_schedule_sorted_and_clone),
         cmocka_unit_test(test_refine_keeps_the_machine),  cmocka_unit_test(test_refine_is_the_fine_mesh),
+        cmocka_unit_test(test_disc_from_geometry),
     };
     return cmocka_run_group_tests_name("model", tests, NULL, NULL);
 }

@@ -124,8 +124,10 @@ FILE *plot_script_begin(plot_job *job, const char *name, const char *what, const
             "#     gnuplot %s\n\n",
             what, source, file);
     terminal(f, job->opt, name, width, height);
+    /* No 'set encoding': the png, pngcairo and svg terminals take the UTF-8 of titles and names
+     * as it is, while 'set encoding utf8' makes gnuplot warn in the C/POSIX locale ("iconv failed
+     * to convert degree sign"). */
     fprintf(f, "set termoption noenhanced    # names and titles are printed as written\n"
-               "set encoding utf8\n"
                "set grid lc rgb '#dddddd' lw 1\n"
                "set border lw 1\n"
                "set key noautotitle\n"

@@ -62,7 +62,22 @@ typedef struct td_disc {
 } td_disc;
 
 /**
- * An active magnetic bearing, each lateral axis controlled on its own (reference-rig.md):
+ * A rigid disc by its geometry: a uniform circular cylinder of outer radius R, axial thickness t
+ * and an optional central bore of radius r (the shaft through the bore is modelled separately).
+ * Give either the thickness or the mass and leave the other 0: a disc of given mass has the
+ * thickness t = m / (rho pi (R^2 - r^2)).
+ */
+typedef struct td_disc_geometry {
+    int node;
+    double outer_radius; /**< R, m, > 0 */
+    double inner_radius; /**< r, m, 0 <= r < R (0: solid) */
+    double density;      /**< rho, kg/m^3, > 0 */
+    double thickness;    /**< t, m: > 0, or 0 when `mass` is given */
+    double mass;         /**< m, kg: > 0 when `thickness` is 0, else 0 */
+} td_disc_geometry;
+
+/**
+ * An active magnetic bearing, each lateral axis controlled on its own (docs/reference-rig.md):
  *   force on the rotor        F  = ks x + Fc                      (x at `node`)
  *   current-controlled force  tau dFc/dt = -Fc - ki (kp xs + kd dxs/dt)   (xs at `sensor_node`)
  * ks > 0 is the negative-stiffness term of the magnet. With saturation on, F is clipped to
@@ -139,6 +154,13 @@ TD_API td_status td_model_refine(const td_model *model, int factor, td_model **o
 TD_API td_status td_model_set_shaft_options(td_model *m, const td_shaft_options *opt, td_error *err);
 TD_API td_status td_model_add_shaft_element(td_model *m, const td_shaft_element *el, td_error *err);
 TD_API td_status td_model_add_disc(td_model *m, const td_disc *disc, td_error *err);
+/**
+ * The disc (node, mass, Ip, Id) of a uniform cylinder given by its geometry:
+ *   m = rho pi (R^2 - r^2) t,  Ip = m (R^2 + r^2) / 2,  Id = m (3 (R^2 + r^2) + t^2) / 12,
+ * Id about a diameter through the centre of mass. TD_ERR_INVALID for a value out of range or
+ * when both or neither of thickness and mass are given.
+ */
+TD_API td_status td_disc_from_geometry(const td_disc_geometry *g, td_disc *out, td_error *err);
 /** A point mass: a disc without rotary inertia. */
 TD_API td_status td_model_add_point_mass(td_model *m, int node, double mass, td_error *err);
 TD_API td_status td_model_add_amb(td_model *m, const td_amb *amb, td_error *err);

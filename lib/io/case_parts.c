@@ -33,33 +33,41 @@ static const config_setting_t *first_of(const config_setting_t *g, const char *c
     return NULL;
 }
 
-/* A solid (or bored) cylindrical disc: m = rho pi (R^2 - r^2) t, Ip = m (R^2 + r^2) / 2,
- * Id = m (3 (R^2 + r^2) + t^2) / 12 (about a diameter through the centre of mass). */
+/* A disc given by its geometry: radius, density, optional bore_radius, and thickness or mass
+ * (the thickness of a disc of that mass); td_disc_from_geometry computes mass and inertias. */
 static td_status read_disc_geometry(td_case_reader *r, const config_setting_t *g, td_disc *d)
 {
-    double R, t, rho, bore;
-    td_status st = td_cr_real(r, g, "radius", "outer radius, m", 0.0, TD_CR_POSITIVE, &R);
+    const config_setting_t *t = config_setting_get_member(g, "thickness");
+    const config_setting_t *m = config_setting_get_member(g, "mass");
+    td_disc_geometry geo;
+    td_error merr;
+    td_status st;
+    memset(&geo, 0, sizeof geo);
+    geo.node = d->node;
+    if (t && m)
+        return td_cr_fail(r, m, NULL, "give either thickness or mass with radius + density, not both");
+    st = td_cr_real(r, g, "radius", "outer radius, m", 0.0, TD_CR_POSITIVE, &geo.outer_radius);
     if (st == TD_OK)
-        st = td_cr_real(r, g, "thickness", "axial thickness, m", 0.0, TD_CR_POSITIVE, &t);
+        st = td_cr_real(r, g, "density", "density, kg/m^3", 0.0, TD_CR_POSITIVE, &geo.density);
     if (st == TD_OK)
-        st = td_cr_real(r, g, "density", "density, kg/m^3", 0.0, TD_CR_POSITIVE, &rho);
-    if (st == TD_OK)
-        st = td_cr_real(r, g, "bore_radius", NULL, 0.0, TD_CR_NONNEGATIVE, &bore);
+        st = td_cr_real(r, g, "bore_radius", NULL, 0.0, TD_CR_NONNEGATIVE, &geo.inner_radius);
+    if (st == TD_OK && m)
+        st = td_cr_value_real(r, m, TD_CR_POSITIVE, &geo.mass);
+    else if (st == TD_OK)
+        st = td_cr_real(r, g, "thickness", "axial thickness, m; or the mass, kg", 0.0, TD_CR_POSITIVE, &geo.thickness);
     if (st != TD_OK)
         return st;
-    if (bore >= R)
+    if (geo.inner_radius >= geo.outer_radius)
         return td_cr_fail(r, config_setting_get_member(g, "bore_radius"), NULL,
-                          "must be smaller than the radius %g m (got %g m)", R, bore);
-    d->mass = rho * TD_PI * (R * R - bore * bore) * t;
-    d->Ip = d->mass * (R * R + bore * bore) / 2.0;
-    d->Id = d->mass * (3.0 * (R * R + bore * bore) + t * t) / 12.0;
-    return TD_OK;
+                          "must be smaller than the radius %g m (got %g m)", geo.outer_radius, geo.inner_radius);
+    st = td_disc_from_geometry(&geo, d, &merr);
+    return st == TD_OK ? TD_OK : td_cr_model_fail(r, g, st, &merr);
 }
 
 static td_status read_disc(td_case_reader *r, const config_setting_t *g)
 {
     static const char *const geometric[] = {"radius", "thickness", "density", "bore_radius", NULL};
-    static const char *const inertial[] = {"mass", "Ip", "Id", NULL};
+    static const char *const inertial[] = {"Ip", "Id", NULL};
     const config_setting_t *geo;
     td_disc d;
     td_error merr;
@@ -70,11 +78,13 @@ static td_status read_disc(td_case_reader *r, const config_setting_t *g)
         return st;
     geo = first_of(g, geometric);
     if (geo && first_of(g, inertial))
-        return td_cr_fail(r, geo, NULL, "give either mass + Ip + Id or radius + thickness + density, not both");
+        return td_cr_fail(
+            r, geo, NULL,
+            "give either mass + Ip + Id or the geometry (radius + density + thickness or mass), not both");
     if (geo) {
         st = read_disc_geometry(r, g, &d);
     } else {
-        st = td_cr_real(r, g, "mass", "disc mass, kg; or give radius + thickness + density", 0.0, TD_CR_POSITIVE,
+        st = td_cr_real(r, g, "mass", "disc mass, kg; or give radius + density + thickness", 0.0, TD_CR_POSITIVE,
                         &d.mass);
         if (st == TD_OK)
             st = td_cr_real(r, g, "Ip", "polar moment of inertia, kg m^2", 0.0, TD_CR_NONNEGATIVE, &d.Ip);

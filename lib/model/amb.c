@@ -1,5 +1,5 @@
 /*
- * The AMB axis law of reference-rig.md ("AMBs" row), one lateral axis at a time:
+ * The AMB axis law of docs/reference-rig.md ("AMBs" row), one lateral axis at a time:
  *   F = ks x + Fc,   tau dFc/dt = -Fc - ki (kp xs + kd dxs/dt),   F clipped to +-capacity (saturation).
  * The paper linearises the bearing ("linearised magnetic bearing characteristics", with eq. 1);
  * the lag and the clipping are this project's reconstruction.

@@ -223,6 +223,34 @@ td_status td_model_add_disc(td_model *m, const td_disc *disc, td_error *err)
     return APPEND(m->discs, disc, err);
 }
 
+/* The moments of inertia of a homogeneous hollow circular cylinder (mass m, radii r < R, length
+ * t): about its axis m (R^2 + r^2)/2, about a diameter through its centre of mass
+ * m (3 (R^2 + r^2) + t^2)/12 (the standard entries of any table of homogeneous solids; with r = 0
+ * the disc row of docs/reference-rig.md). The one place the case reader and embedders get them. */
+td_status td_disc_from_geometry(const td_disc_geometry *g, td_disc *out, td_error *err)
+{
+    double R2, r2, area, t;
+    if (!g || !out)
+        return td_error_set(err, TD_ERR_INVALID, "disc geometry: NULL argument");
+    if (!finite_positive(g->outer_radius) || !finite_positive(g->density))
+        return td_error_set(err, TD_ERR_INVALID, "disc geometry: outer radius and density must be finite and > 0");
+    if (!finite_nonnegative(g->inner_radius) || g->inner_radius >= g->outer_radius)
+        return td_error_set(err, TD_ERR_INVALID,
+                            "disc geometry: inner radius must be >= 0 and smaller than the outer radius");
+    if (!finite_nonnegative(g->thickness) || !finite_nonnegative(g->mass) || (g->thickness > 0.0) == (g->mass > 0.0))
+        return td_error_set(err, TD_ERR_INVALID,
+                            "disc geometry: give either the thickness or the mass (> 0), not both");
+    R2 = g->outer_radius * g->outer_radius;
+    r2 = g->inner_radius * g->inner_radius;
+    area = TD_PI * (R2 - r2);
+    out->node = g->node;
+    out->mass = g->thickness > 0.0 ? g->density * area * g->thickness : g->mass;
+    t = g->thickness > 0.0 ? g->thickness : g->mass / (g->density * area);
+    out->Ip = out->mass * (R2 + r2) / 2.0;
+    out->Id = out->mass * (3.0 * (R2 + r2) + t * t) / 12.0;
+    return TD_OK;
+}
+
 td_status td_model_add_point_mass(td_model *m, int node, double mass, td_error *err)
 {
     td_disc d;

@@ -35,7 +35,7 @@ struct td_system {
     double *gravity_load; /* M g, length ndof: the weight as nodal forces */
 };
 
-/* --- The AMB axis law (reference-rig.md), one place for modal analysis and simulation. --- */
+/* --- The AMB axis law (docs/reference-rig.md), one place for modal analysis and simulation. --- */
 
 /* Lag-free control force -ki (kp xs + kd vs): the current-controlled force when tau == 0,
  * and the target the lagged force Fc relaxes to otherwise. */

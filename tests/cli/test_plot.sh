@@ -3,10 +3,14 @@
 # Args: $1 = the touchdown binary, $2 = the source directory. Runs in the build's tests directory,
 # where test_plot_fixture (tests/test_plot_fixture.c) writes synthetic result files through the
 # public td_writer API. When 'touchdown run' works, a short real run is plotted too.
+# gnuplot runs in the C locale (that of a bare system or a CI job), where an encoding it cannot
+# convert makes it warn; every warning fails the test: touchdown plot keeps gnuplot's messages in
+# DIR/NAME.log only when there are any, so no .log file may be left (no_gnuplot_messages).
 set -u
 tool=$1
 src=$2
 fails=0
+export LC_ALL=C
 work=$(mktemp -d "${PWD}/plot-test.XXXXXX")
 trap 'rm -rf "$work"' EXIT
 
@@ -26,6 +30,18 @@ expect_pngs() { # DIR NAME...
         if [ ! -s "$dir/$name.gp" ]; then fail "$dir/$name.gp is missing"; ok=0; fi
     done
     [ $ok = 1 ] && pass "$dir: $* (PNG + script)"
+    no_gnuplot_messages "$dir"
+}
+
+# gnuplot printed nothing (no warning) for any figure of DIR: no NAME.log left there.
+no_gnuplot_messages() { # DIR
+    local logs
+    logs=$(find "$1" -name '*.log' -size +0 2>/dev/null)
+    if [ -n "$logs" ]; then
+        fail "$1: gnuplot printed messages (LC_ALL=$LC_ALL): $(cat $logs | head -n 3 | tr '\n' ' ')"
+    else
+        pass "$1: gnuplot printed no message (LC_ALL=$LC_ALL)"
+    fi
 }
 
 # Exit status CODE and exactly one line on stderr.
@@ -84,8 +100,16 @@ if "$tool" plot plot-fixture-constraint.h5 >out.txt 2>err.txt; then
     # the kept scripts rerun on their own
     if command -v gnuplot >/dev/null; then
         rm -f "$d/orbit-r0.png"
-        (cd "$d" && gnuplot orbit-r0.gp) && is_png "$d/orbit-r0.png" && pass "gnuplot orbit-r0.gp reruns" ||
+        (cd "$d" && gnuplot orbit-r0.gp) 2>rerun.err && is_png "$d/orbit-r0.png" && pass "gnuplot orbit-r0.gp reruns" ||
             fail "rerunning orbit-r0.gp"
+        [ ! -s rerun.err ] && pass "the rerun prints nothing" || fail "the rerun printed: $(head -n 3 rerun.err)"
+        # and in a UTF-8 locale, when the system has one
+        if locale -a 2>/dev/null | grep -qix 'C.utf-\?8'; then
+            rm -f "$d/orbit-r0.png"
+            (cd "$d" && LC_ALL=C.UTF-8 gnuplot orbit-r0.gp) 2>rerun.err && is_png "$d/orbit-r0.png" &&
+                [ ! -s rerun.err ] && pass "the rerun prints nothing in C.UTF-8 either" ||
+                fail "rerun in C.UTF-8: $(head -n 3 rerun.err)"
+        fi
     fi
 else
     fail "plot of one simulation file: $(cat err.txt)"

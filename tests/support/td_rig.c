@@ -16,8 +16,10 @@ void td_test_build_rig(td_model *m, double speed, double amb_tau, int retainers)
         if (td_model_add_shaft_element(m, &el, &err) != TD_OK)
             fail_msg("rig shaft: %s", err.message);
     for (i = 0; i < 4; i++) {
-        td_disc d = {disc_nodes[i], 10.0, 0.072, 0.036668}; /* the rig table's (and cases/rig.cfg's) values */
-        if (td_model_add_disc(m, &d, &err) != TD_OK)
+        /* the rig table's solid steel disc, as cases/rig.cfg gives it: m, R, rho */
+        const td_disc_geometry g = {disc_nodes[i], 0.12, 0.0, 7810.0, 0.0, 10.0};
+        td_disc d;
+        if (td_disc_from_geometry(&g, &d, &err) != TD_OK || td_model_add_disc(m, &d, &err) != TD_OK)
             fail_msg("rig disc: %s", err.message);
     }
     for (i = 0; i < 2; i++) {

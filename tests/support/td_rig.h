@@ -1,10 +1,11 @@
 /*
- * The reference rig of /work/shared/reference-rig.md built in code, for tests that need the machine
+ * The reference rig of docs/reference-rig.md built in code, for tests that need the machine
  * without going through the case reader (cases/rig.cfg describes the same machine; the test
  * tests/validation/test_rig_modal.c checks that both give the same eigenvalues).
  *
  * Shaft: 12 equal Euler-Bernoulli steel elements, 2 m, 50 mm diameter, nodes 0 (NDE) to 12 (DE),
- * consistent mass, no structural damping. Discs (10 kg, Ip 0.072, Id 0.036668 kg m^2) at nodes
+ * consistent mass, no structural damping. Solid steel discs (10 kg, radius 0.12 m, so
+ * t = m/(rho pi R^2), Ip = m R^2/2 = 0.072 and Id = m (3 R^2 + t^2)/12 = 0.0366676 kg m^2) at nodes
  * 1, 5, 7, 11; 14.6 kg journals at nodes 3 and 9; AMBs at nodes 3 and 9 (collocated, ks 1e6 N/m,
  * ki 200 N/A, kp 1e4 A/m, kd 40 A s/m, capacity 1700 N, no saturation, air gap 1.2 mm);
  * optionally the retainers at nodes 2 and 10 (c 0.75 mm, R_s 25 mm, mu 0.1, Omega_b 0, e 0).

@@ -1,14 +1,14 @@
 /*
  * First contact of case A against the exact solution of the linear contact-free system.
  *
- * Case A (reference-rig.md): the rig at 90 rad/s on the steady orbit for U = 0.02 kg m; at
+ * Case A (docs/reference-rig.md): the rig at 90 rad/s on the steady orbit for U = 0.02 kg m; at
  * t1 = 0.1 s the unbalance steps to 0.10 kg m and the NDE retainer node (node 2) reaches the
  * clearance circle a few milliseconds later. Until then the system is linear, so
  *
  *   z(t) = z_p2(t) + exp(A (t - t1)) (z_p1(t1) - z_p2(t1)),   z_pk(t) = Re(Z_k e^{i Omega t}),
  *
  * with A the dense first-order matrix built HERE from td_system_dense's M, K, C, G and the AMB
- * law of reference-rig.md (F = ks x + Fc, tau Fc' = -Fc - ki (kp x + kd x')), independently of
+ * law of docs/reference-rig.md (F = ks x + Fc, tau Fc' = -Fc - ki (kp x + kd x')), independently of
  * lib/sim and lib/modal, and (i Omega - A) Z_k = [0; M^-1 F_k; 0] solved by complex LU (GSL). The
  * exponential is GSL's scaling-and-squaring Taylor expm. The contact time is bracketed on a 10 us
  * grid and bisected on r(t) = c to 1e-14 s; the impact velocity is the node's radial velocity

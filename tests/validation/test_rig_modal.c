@@ -1,5 +1,5 @@
 /*
- * Modal analysis of the reference rig (/work/shared/reference-rig.md) against ross-rotordynamics,
+ * Modal analysis of the reference rig (docs/reference-rig.md) against ross-rotordynamics,
  * and the AMB force lag against the closed-form characteristic cubic of one axis.
  *
  * Lag-free rig: Euler-Bernoulli shaft (shear off), consistent mass with rotary inertia, gyroscopics;

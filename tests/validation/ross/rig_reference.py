@@ -1,9 +1,11 @@
 #!/usr/bin/env python3
 """Reference damped natural frequencies of the reference rig from ross-rotordynamics.
 
-The rig of /work/shared/reference-rig.md (docs: reference-rig.md) with
+The rig of docs/reference-rig.md with
   * Euler-Bernoulli shaft elements (shear_effects=False), rotary inertia and gyroscopics on;
-  * the four 10 kg discs as ross DiskElements (m, Id = 0.036668, Ip = 0.072: the table's values);
+  * the four solid steel discs (m = 10 kg, R = 0.12 m) as ross DiskElements with the inertias of
+    their geometry, computed here: t = m/(rho pi R^2), Ip = m R^2/2 = 0.072 kg m^2,
+    Id = m (3 R^2 + t^2)/12 = 0.0366675625 kg m^2 (not the rounded 0.036668);
   * the 14.6 kg AMB journals as DiskElements without inertia (Id = Ip = 0): ross's PointMass
     adds its own extra nodes and is meant for bearing supports, not for shaft nodes;
   * each AMB replaced by its lag-free equivalent (tau = 0):
@@ -41,12 +43,15 @@ import ross as rs
 SPEEDS = (0.0, 90.0, 190.0)  # rad/s: at rest and the paper's cases A and B
 N_MODES = 16
 
-# --- rig data (reference-rig.md) ---
+# --- rig data (docs/reference-rig.md) ---
 E, G_SHEAR, RHO = 2.11e11, 8.1e10, 7810.0
 N_ELEMENTS, SHAFT_LENGTH, SHAFT_DIAMETER = 12, 2.0, 0.05
-# Disc inertias as the rig table and cases/rig.cfg state them (Ip = m R^2/2 with R = 0.12 m;
-# Id = m (3 R^2 + t^2)/12, t = m/(rho pi R^2), rounded in the table to 0.036668).
-DISC_NODES, DISC_MASS, DISC_IP, DISC_ID = (1, 5, 7, 11), 10.0, 0.072, 0.036668
+# Solid steel discs given, as in cases/rig.cfg, by mass, outer radius and density; the inertias of
+# a uniform cylinder computed here independently of the C library.
+DISC_NODES, DISC_MASS, DISC_RADIUS = (1, 5, 7, 11), 10.0, 0.12
+DISC_THICKNESS = DISC_MASS / (RHO * np.pi * DISC_RADIUS**2)
+DISC_IP = DISC_MASS * DISC_RADIUS**2 / 2.0
+DISC_ID = DISC_MASS * (3.0 * DISC_RADIUS**2 + DISC_THICKNESS**2) / 12.0
 JOURNAL_NODES, JOURNAL_MASS = (3, 9), 14.6
 KS, KI, KP, KD = 1.0e6, 200.0, 1.0e4, 40.0
 K_EQ, C_EQ = KI * KP - KS, KI * KD
@@ -112,8 +117,9 @@ def main():
                 "(numpy %s, scipy %s), written by tests/validation/ross/rig_reference.py\n"
                 % (rs.__version__, np.__version__, scipy.__version__))
         f.write("# Euler-Bernoulli (shear off), rotary inertia and gyroscopics on; AMBs as lag-free "
-                "bearings k = %.17g N/m, c = %.17g N s/m at nodes 3 and 9; journals 14.6 kg without inertia\n"
-                % (K_EQ, C_EQ))
+                "bearings k = %.17g N/m, c = %.17g N s/m at nodes 3 and 9; journals 14.6 kg without inertia; "
+                "discs m = %.17g kg, Ip = %.17g, Id = %.17g kg m^2\n"
+                % (K_EQ, C_EQ, DISC_MASS, DISC_IP, DISC_ID))
         f.write("# lateral modes only (ross's axial/torsional modes removed), omega_d > 0, ascending\n")
         f.write("speed_rad_s,mode,sigma_1_s,omega_d_rad_s,zeta,whirl\n")
         f.write("\n".join(rows) + "\n")
