@@ -200,10 +200,6 @@ static int h5_index(hid_t g, const char *name, int n, const char *units)
     return ok;
 }
 
-/* The datasets of h5_mode_table (NULL-ended). */
-static const char *const mode_table_names[] = {"sigma", "omega_d",     "freq_hz", "omega_n",
-                                               "zeta",  "whirl_index", "whirl",   NULL};
-
 /* The mode-shape datasets: rows modes, columns nodes (NULL-ended). */
 static const char *const shape_names[] = {"shape_x_re", "shape_x_im", "shape_y_re", "shape_y_im", NULL};
 
@@ -226,6 +222,18 @@ static const struct {
     const char *name, *units;
 } mode_fields[6] = {{"sigma", "1/s"},     {"omega_d", "rad/s"}, {"freq_hz", "Hz"},
                     {"omega_n", "rad/s"}, {"zeta", "1"},        {"whirl_index", "1"}};
+
+/* Attach g/scale to axis `axis` of every dataset h5_mode_table writes. */
+static int h5_mode_table_axis(hid_t g, const char *scale, unsigned axis)
+{
+    const char *names[8];
+    int f;
+    for (f = 0; f < 6; f++)
+        names[f] = mode_fields[f].name;
+    names[6] = "whirl";
+    names[7] = NULL;
+    return h5_axis(g, scale, names, axis);
+}
 
 /* Write the td_mode fields of `modes` (count rows x cols, cols 0: 1-D) plus an int "whirl" dataset. */
 static int h5_mode_table(hid_t g, const td_mode *modes, hsize_t rows, hsize_t cols)
@@ -275,7 +283,7 @@ static int h5_modes(hid_t file, const td_modal *m)
         ok = h5_dataset(g, shape_names[i], H5T_NATIVE_DOUBLE, part, (hsize_t)nm, (hsize_t)nn,
                         "1 (normalised: largest |X| or |Y| = 1); rows: modes, columns: nodes");
     }
-    ok = ok && h5_index(g, "mode", nm, "mode number") && h5_axis(g, "mode", mode_table_names, 0) &&
+    ok = ok && h5_index(g, "mode", nm, "mode number") && h5_mode_table_axis(g, "mode", 0) &&
          h5_axis(g, "mode", shape_names, 0);
     if (g >= 0)
         H5Gclose(g);
@@ -302,7 +310,7 @@ static int h5_campbell(hid_t file, const td_campbell *c)
     ok = ok && h5_mode_table(g, pts, (hsize_t)ns, (hsize_t)nb);
     ok = ok && h5_attr_string(g, "layout", "rows: speeds, columns: branches (j-th lowest omega_d)");
     ok = ok && h5_index(g, "branch", nb, "branch number (j-th lowest omega_d)");
-    ok = ok && h5_axis(g, "speed", mode_table_names, 0) && h5_axis(g, "branch", mode_table_names, 1);
+    ok = ok && h5_mode_table_axis(g, "speed", 0) && h5_mode_table_axis(g, "branch", 1);
     if (g >= 0)
         H5Gclose(g);
     free(pts);
