@@ -35,7 +35,8 @@ typedef enum td_writer_kind {
     TD_WRITER_CSV = 1   /**< PATH (samples) and a sibling events file (see td_writer_events_path) */
 } td_writer_kind;
 
-/** What one sample holds, and how the file stores it. */
+/** What one sample holds, and how the file stores it. Set every field (a struct filled field by
+ *  field must set compression too: 0 for the uncompressed files of earlier versions). */
 typedef struct td_output_layout {
     int node_count;     /**< nodes whose x, y displacements are written, >= 0 */
     const int *nodes;   /**< node numbers, node_count of them (copied by td_writer_open) */
