@@ -39,7 +39,7 @@ run_a() { # PREFIX ARGS...
 run_a bad-cli --compress 12
 rc=$?
 check "--compress 12: exit 2, names the option ($(head -c 200 "$work/bad-cli.err"))" \
-    test "$rc" = 2 -a -n "$(grep -- '--compress' "$work/bad-cli.err")"
+    test "$rc" = 2 -a -n "$(grep -- '--compress: expected a deflate level 0..9' "$work/bad-cli.err")"
 run_a bad-key --set output.compression=10
 rc=$?
 check "output.compression = 10: exit 2, one line naming the key ($(head -c 200 "$work/bad-key.err"))" \
