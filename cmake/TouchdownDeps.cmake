@@ -41,8 +41,11 @@ get_filename_component(TD_SUITESPARSE_PARENT ${KLU_INCLUDE_DIR} DIRECTORY)
 find_package(GSL QUIET)
 td_require(GSL_FOUND "GSL (GNU Scientific Library)" libgsl-dev)
 
-find_package(HDF5 QUIET COMPONENTS C)
-td_require(HDF5_FOUND "HDF5 C library" libhdf5-dev)
+# HL: the dimension-scale API (H5DS) that names the time, node and retainer axes for netCDF readers.
+find_package(HDF5 QUIET COMPONENTS C HL)
+td_require(HDF5_FOUND "HDF5 C and high-level libraries" libhdf5-dev)
+set(TD_HDF5_LIBS ${HDF5_C_HL_LIBRARIES} ${HDF5_HL_LIBRARIES} ${HDF5_C_LIBRARIES})
+list(REMOVE_DUPLICATES TD_HDF5_LIBS)
 
 find_path(LIBCONFIG_INCLUDE_DIR libconfig.h)
 find_library(LIBCONFIG_LIBRARY config)
@@ -61,4 +64,4 @@ target_include_directories(td_deps INTERFACE
   ${HDF5_C_INCLUDE_DIRS} ${HDF5_INCLUDE_DIRS} ${LIBCONFIG_INCLUDE_DIR})
 target_compile_definitions(td_deps INTERFACE ${HDF5_C_DEFINITIONS} ${HDF5_DEFINITIONS})
 target_link_libraries(td_deps INTERFACE ${TD_SUNDIALS_LIBS} ${KLU_LIBRARY} ${CXSPARSE_LIBRARY}
-  ${GSL_LIBRARIES} ${HDF5_C_LIBRARIES} ${LIBCONFIG_LIBRARY} m)
+  ${GSL_LIBRARIES} ${TD_HDF5_LIBS} ${LIBCONFIG_LIBRARY} m)

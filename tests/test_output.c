@@ -11,6 +11,7 @@
 #include <errno.h>
 #include <float.h>
 #include <hdf5.h>
+#include <hdf5_hl.h>
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -112,6 +113,7 @@ static td_output_layout full_layout(void)
     l.nodes = node_list;
     l.retainer_count = RETS;
     l.amb_count = AMBS;
+    l.compression = 0;
     return l;
 }
 
@@ -138,8 +140,9 @@ static td_sim_stats some_stats(void)
     return s;
 }
 
-/* Writes the whole sample set (events after samples 5*i), attributes, and closes. */
-static void write_all(td_writer_kind kind, const char *path, const sample_set *d, int complete)
+/* Writes the whole sample set (events after samples 5*i), attributes, and closes; HDF5 datasets
+ * deflated at `level`. */
+static void write_all_level(td_writer_kind kind, const char *path, const sample_set *d, int complete, int level)
 {
     td_output_layout l = full_layout();
     td_writer *w = NULL;
@@ -149,6 +152,7 @@ static void write_all(td_writer_kind kind, const char *path, const sample_set *d
     const long ret_nodes[2] = {2, 10};
     int r, e = 0;
     struct stat sb;
+    l.compression = level;
     assert_int_equal(td_writer_open(kind, path, &l, &w, &err), TD_OK);
     for (r = 0; r < ROWS; r++) {
         assert_int_equal(td_writer_sample(w, d->t[r], d->xy[r], d->ret[r], d->amb[r], &err), TD_OK);
@@ -175,6 +179,11 @@ static void write_all(td_writer_kind kind, const char *path, const sample_set *d
     assert_int_equal(td_writer_close(&w, complete, complete ? NULL : "solver failed at t = 0.5 s\nsecond line", &err),
                      TD_OK);
     assert_null(w);
+}
+
+static void write_all(td_writer_kind kind, const char *path, const sample_set *d, int complete)
+{
+    write_all_level(kind, path, d, complete, 0);
 }
 
 static void tmp_name(char *buf, size_t n, const char *name)
@@ -204,21 +213,21 @@ static int bits_equal(double a, double b)
 
 /* ---- HDF5 reading helpers ---------------------------------------------------------------- */
 
+/* A text attribute: variable-length UTF-8 (what h5py reads as str), returned as a malloc'd copy. */
 static char *h5_attr_string(hid_t obj, const char *name)
 {
-    hid_t a = H5Aopen(obj, name, H5P_DEFAULT), t, mt;
-    size_t size;
-    char *s;
+    hid_t a = H5Aopen(obj, name, H5P_DEFAULT), t;
+    char *v = NULL, *s;
     assert_true(a >= 0);
     t = H5Aget_type(a);
     assert_int_equal(H5Tget_class(t), H5T_STRING);
-    size = H5Tget_size(t);
-    mt = H5Tcopy(t); /* same character set (UTF-8) */
-    H5Tset_size(mt, size + 1);
-    s = calloc(size + 2, 1);
+    assert_true(H5Tis_variable_str(t) > 0);
+    assert_int_equal(H5Tget_cset(t), H5T_CSET_UTF8);
+    assert_true(H5Aread(a, t, &v) >= 0);
+    assert_non_null(v);
+    s = strdup(v);
     assert_non_null(s);
-    assert_true(H5Aread(a, mt, s) >= 0);
-    H5Tclose(mt);
+    H5free_memory(v);
     H5Tclose(t);
     H5Aclose(a);
     return s;
@@ -509,7 +518,7 @@ static void test_hdf5_incomplete(void **state)
 static void test_hdf5_empty_layout(void **state)
 {
     char path[512];
-    td_output_layout l = {0, NULL, 0, 0};
+    td_output_layout l = {0, NULL, 0, 0, 0};
     td_writer *w = NULL;
     hid_t f, g, mt;
     hsize_t dims[1] = {3};
@@ -893,7 +902,7 @@ static void test_failed_writes_leave_nothing(void **state)
 
 static void test_attribute_names(void **state)
 {
-    td_output_layout l = {0, NULL, 0, 0};
+    td_output_layout l = {0, NULL, 0, 0, 0};
     td_writer *w = NULL;
     td_error err;
     char path[512], events[1100], long_name[100];
@@ -936,14 +945,186 @@ static void test_events_path(void **state)
     assert_string_equal(td_event_kind_name((td_event_kind)99), "unknown");
 }
 
+/* ---- dimension scales, compression --------------------------------------------------------- */
+
+/* The sample datasets, in the order of the writer. */
+static const char *const sample_sets[] = {"/time",
+                                          "/nodes/displacement",
+                                          "/retainers/x",
+                                          "/retainers/y",
+                                          "/retainers/radial_position",
+                                          "/retainers/radial_velocity",
+                                          "/retainers/whirl_angle",
+                                          "/retainers/normal_force",
+                                          "/retainers/friction_force",
+                                          "/retainers/sliding_velocity",
+                                          "/retainers/contact_state",
+                                          "/ambs/force"};
+#define SAMPLE_SETS ((int)(sizeof sample_sets / sizeof sample_sets[0]))
+
+/* Is `scale_path` attached to axis `axis` of `dset_path`, and is it a scale named after itself? */
+static int scale_attached(hid_t f, const char *dset_path, const char *scale_path, unsigned axis)
+{
+    hid_t d = H5Dopen2(f, dset_path, H5P_DEFAULT), sc = H5Dopen2(f, scale_path, H5P_DEFAULT);
+    char name[64] = "";
+    const char *base = strrchr(scale_path, '/') + 1;
+    int ok;
+    assert_true(d >= 0 && sc >= 0);
+    ok = H5DSis_scale(sc) > 0 && H5DSget_scale_name(sc, name, sizeof name) > 0 && strcmp(name, base) == 0 &&
+         H5DSis_attached(d, sc, axis) > 0;
+    H5Dclose(sc);
+    H5Dclose(d);
+    return ok;
+}
+
+static void test_hdf5_dimension_scales(void **state)
+{
+    sample_set *d = make_samples();
+    char path[512];
+    hsize_t dims[1];
+    int *nodes, *rets, i;
+    long long *rows;
+    hid_t f;
+    (void)state;
+    tmp_name(path, sizeof path, "scales.h5");
+    write_all(TD_WRITER_HDF5, path, d, 1);
+    f = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
+    assert_true(f >= 0);
+    /* one time axis on every sample dataset */
+    for (i = 1; i < SAMPLE_SETS; i++)
+        if (!scale_attached(f, sample_sets[i], "/time", 0))
+            fail_msg("%s: /time is not the scale of its first axis", sample_sets[i]);
+    assert_true(scale_attached(f, "/nodes/displacement", "/nodes/node", 1));
+    assert_true(scale_attached(f, "/nodes/displacement", "/component", 2));
+    assert_true(scale_attached(f, "/ambs/force", "/ambs/amb", 1));
+    assert_true(scale_attached(f, "/ambs/force", "/component", 2));
+    for (i = 2; i + 1 < SAMPLE_SETS; i++)
+        assert_true(scale_attached(f, sample_sets[i], "/retainers/retainer", 1));
+    assert_true(scale_attached(f, "/events", "/event", 0));
+    /* the scales hold the coordinates: node numbers, retainer and event indices */
+    dims[0] = NODES;
+    nodes = h5_read(f, "/nodes/node", H5T_NATIVE_INT, sizeof(int), 1, dims);
+    assert_memory_equal(nodes, node_list, sizeof node_list);
+    dims[0] = RETS;
+    rets = h5_read(f, "/retainers/retainer", H5T_NATIVE_INT, sizeof(int), 1, dims);
+    for (i = 0; i < RETS; i++)
+        assert_int_equal(rets[i], i);
+    dims[0] = EVENTS;
+    rows = h5_read(f, "/event", H5T_NATIVE_LLONG, sizeof(long long), 1, dims);
+    for (i = 0; i < EVENTS; i++)
+        assert_int_equal(rows[i], i);
+    h5_check_units(f, "/component", "1");
+    H5Fclose(f);
+    free(nodes);
+    free(rets);
+    free(rows);
+    free(d);
+    remove(path);
+}
+
+/* The raw bytes of a whole dataset in its file type (compound, int8 or double alike). */
+static unsigned char *h5_raw(hid_t f, const char *name, size_t *size)
+{
+    hid_t d = H5Dopen2(f, name, H5P_DEFAULT), t, sp;
+    unsigned char *buf;
+    assert_true(d >= 0);
+    t = H5Dget_type(d);
+    sp = H5Dget_space(d);
+    *size = H5Tget_size(t) * (size_t)H5Sget_simple_extent_npoints(sp);
+    buf = malloc(*size + 1);
+    assert_non_null(buf);
+    assert_true(*size == 0 || H5Dread(d, t, H5S_ALL, H5S_ALL, H5P_DEFAULT, buf) >= 0);
+    H5Sclose(sp);
+    H5Tclose(t);
+    H5Dclose(d);
+    return buf;
+}
+
+/* Shuffle then deflate at `level` on dataset `name`. */
+static void check_filters(hid_t f, const char *name, int level)
+{
+    hid_t d = H5Dopen2(f, name, H5P_DEFAULT), dcpl = H5Dget_create_plist(d);
+    unsigned flags, cd[4];
+    size_t ncd = 4;
+    assert_int_equal(H5Pget_nfilters(dcpl), 2);
+    assert_int_equal(H5Pget_filter2(dcpl, 0, &flags, &ncd, cd, 0, NULL, NULL), H5Z_FILTER_SHUFFLE);
+    ncd = 4;
+    assert_int_equal(H5Pget_filter2(dcpl, 1, &flags, &ncd, cd, 0, NULL, NULL), H5Z_FILTER_DEFLATE);
+    assert_true(ncd >= 1);
+    assert_int_equal(cd[0], level);
+    H5Pclose(dcpl);
+    H5Dclose(d);
+}
+
+static void test_hdf5_compression_lossless(void **state)
+{
+    static const char *const others[] = {"/events", "/event", "/nodes/node", "/retainers/retainer"};
+    sample_set *d = make_samples();
+    char plain[512], packed[512];
+    hid_t a, b;
+    int i;
+    (void)state;
+    tmp_name(plain, sizeof plain, "plain.h5");
+    tmp_name(packed, sizeof packed, "packed.h5");
+    write_all_level(TD_WRITER_HDF5, plain, d, 1, 0);
+    write_all_level(TD_WRITER_HDF5, packed, d, 1, 9);
+    a = H5Fopen(plain, H5F_ACC_RDONLY, H5P_DEFAULT);
+    b = H5Fopen(packed, H5F_ACC_RDONLY, H5P_DEFAULT);
+    assert_true(a >= 0 && b >= 0);
+    for (i = 0; i < SAMPLE_SETS + 4; i++) {
+        const char *name = i < SAMPLE_SETS ? sample_sets[i] : others[i - SAMPLE_SETS];
+        size_t na, nb;
+        unsigned char *ra = h5_raw(a, name, &na), *rb = h5_raw(b, name, &nb);
+        assert_true(na > 0);
+        assert_int_equal(na, nb);
+        if (memcmp(ra, rb, na) != 0)
+            fail_msg("%s differs between deflate 0 and 9", name);
+        if (i < SAMPLE_SETS || i == SAMPLE_SETS)
+            check_filters(b, name, 9);
+        free(ra);
+        free(rb);
+    }
+    H5Fclose(a);
+    H5Fclose(b);
+    free(d);
+    remove(plain);
+    remove(packed);
+}
+
+static void test_bad_compression_rejected(void **state)
+{
+    td_output_layout l = full_layout();
+    td_writer *w = NULL;
+    td_error err;
+    char path[512], partial[600];
+    (void)state;
+    tmp_name(path, sizeof path, "badlevel.h5");
+    snprintf(partial, sizeof partial, "%s.partial", path);
+    l.compression = 10;
+    assert_int_equal(td_writer_open(TD_WRITER_HDF5, path, &l, &w, &err), TD_ERR_INVALID);
+    assert_non_null(strstr(err.message, "compression 10"));
+    assert_null(w);
+    assert_false(exists(path) || exists(partial));
+    l.compression = -1;
+    assert_int_equal(td_writer_open(TD_WRITER_HDF5, path, &l, &w, &err), TD_ERR_INVALID);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_hdf5_round_trip),    cmocka_unit_test(test_hdf5_incomplete),
-        cmocka_unit_test(test_hdf5_empty_layout),  cmocka_unit_test(test_csv_round_trip),
-        cmocka_unit_test(test_csv_gnuplot),        cmocka_unit_test(test_open_failure_leaves_nothing),
-        cmocka_unit_test(test_stale_file_removed), cmocka_unit_test(test_failed_writes_leave_nothing),
-        cmocka_unit_test(test_attribute_names),    cmocka_unit_test(test_events_path),
+        cmocka_unit_test(test_hdf5_round_trip),
+        cmocka_unit_test(test_hdf5_incomplete),
+        cmocka_unit_test(test_hdf5_empty_layout),
+        cmocka_unit_test(test_csv_round_trip),
+        cmocka_unit_test(test_csv_gnuplot),
+        cmocka_unit_test(test_open_failure_leaves_nothing),
+        cmocka_unit_test(test_stale_file_removed),
+        cmocka_unit_test(test_failed_writes_leave_nothing),
+        cmocka_unit_test(test_attribute_names),
+        cmocka_unit_test(test_events_path),
+        cmocka_unit_test(test_hdf5_dimension_scales),
+        cmocka_unit_test(test_hdf5_compression_lossless),
+        cmocka_unit_test(test_bad_compression_rejected),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -115,6 +115,7 @@ static void write_variant(const variant *v)
     layout.nodes = NULL;
     layout.retainer_count = 2;
     layout.amb_count = 2;
+    layout.compression = 0;
     assert_int_equal(td_writer_open(TD_WRITER_HDF5, fixture_path(v->name), &layout, &w, NULL), TD_OK);
     for (k = 0; k <= n; k++) {
         double t = (double)k / RATE, amb[4];

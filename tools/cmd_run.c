@@ -22,6 +22,8 @@ static const char run_usage[] =
     "                       CASENAME.h5 and CASENAME.csv in the current directory)\n"
     "      --hdf5 PATH      HDF5 output path ('' for none)\n"
     "      --csv PATH       CSV output path ('' for none); events go to PATH minus .csv plus .events.csv\n"
+    "      --compress N     HDF5 deflate level 0 (none) .. 9, with shuffle; lossless (default: the case's\n"
+    "                       output.compression, else 0)\n"
     "  -q, --quiet          print nothing but errors\n"
     "      --json           print the summary as one JSON object on stdout\n"
     "      --no-progress    no progress line (it is shown only when stderr is a terminal)\n"
@@ -99,6 +101,17 @@ static void choose_outputs(td_output_options *out, const td_case *c, const char 
         set_path(out->csv_path, csv);
 }
 
+/* --compress N: one digit 0..9 (a deflate level). */
+static int parse_level(const char *text, int *level)
+{
+    if (text[0] < '0' || text[0] > '9' || text[1] != '\0') {
+        td_cli_error("run", "--compress: expected a deflate level 0..9, got '%s'", text);
+        return 1;
+    }
+    *level = text[0] - '0';
+    return 0;
+}
+
 static void install_signals(void)
 {
     struct sigaction sa;
@@ -127,11 +140,12 @@ static void print_summary(const td_run_summary *s, int json)
 
 int td_cmd_run(int argc, char **argv)
 {
-    enum { OPT_HDF5 = 256, OPT_CSV, OPT_JSON, OPT_NO_PROGRESS };
+    enum { OPT_HDF5 = 256, OPT_CSV, OPT_JSON, OPT_NO_PROGRESS, OPT_COMPRESS };
     static const struct option longopts[] = {{"set", required_argument, NULL, 's'},
                                              {"output", required_argument, NULL, 'o'},
                                              {"hdf5", required_argument, NULL, OPT_HDF5},
                                              {"csv", required_argument, NULL, OPT_CSV},
+                                             {"compress", required_argument, NULL, OPT_COMPRESS},
                                              {"quiet", no_argument, NULL, 'q'},
                                              {"json", no_argument, NULL, OPT_JSON},
                                              {"no-progress", no_argument, NULL, OPT_NO_PROGRESS},
@@ -139,7 +153,7 @@ int td_cmd_run(int argc, char **argv)
                                              {NULL, 0, NULL, 0}};
     td_cli_sets sets = {{0}, 0};
     const char *prefix = NULL, *hdf5 = NULL, *csv = NULL;
-    int quiet = 0, json = 0, want_progress = 1, opt, code;
+    int quiet = 0, json = 0, want_progress = 1, opt, code, compress = -1;
     td_case *c = NULL;
     td_sim *sim = NULL;
     td_output_options out;
@@ -159,6 +173,10 @@ int td_cmd_run(int argc, char **argv)
         case 'o': prefix = optarg; break;
         case OPT_HDF5: hdf5 = optarg; break;
         case OPT_CSV: csv = optarg; break;
+        case OPT_COMPRESS:
+            if (parse_level(optarg, &compress))
+                return TD_EXIT_USAGE;
+            break;
         case 'q': quiet = 1; break;
         case OPT_JSON: json = 1; break;
         case OPT_NO_PROGRESS: want_progress = 0; break;
@@ -176,6 +194,8 @@ int td_cmd_run(int argc, char **argv)
     td_error_clear(&err);
     out = *td_case_output_options(c);
     choose_outputs(&out, c, prefix, hdf5, csv);
+    if (compress >= 0)
+        out.compression = compress;
     st = td_sim_create(td_case_model(c), td_case_sim_options(c), &sim, &err);
     if (st != TD_OK) {
         fprintf(stderr, "touchdown: %s: %s\n", td_case_path(c), err.message[0] ? err.message : td_strerror(st));

@@ -73,6 +73,7 @@ typedef struct td_output_options {
     double sample_rate;                  /**< samples per second on a uniform grid (events added), Hz */
     int node_count;                      /**< number of nodes whose displacements are written; 0: all */
     int nodes[TD_OUTPUT_MAX_NODES];
+    int compression; /**< HDF5 deflate level with shuffle, 0 (none) .. 9 */
 } td_output_options;
 
 typedef struct td_modal_options {

@@ -35,17 +35,20 @@ typedef enum td_writer_kind {
     TD_WRITER_CSV = 1   /**< PATH (samples) and a sibling events file (see td_writer_events_path) */
 } td_writer_kind;
 
-/** What one sample holds. */
+/** What one sample holds, and how the file stores it. Set every field (a struct filled field by
+ *  field must set compression too: 0 for the uncompressed files of earlier versions). */
 typedef struct td_output_layout {
     int node_count;     /**< nodes whose x, y displacements are written, >= 0 */
     const int *nodes;   /**< node numbers, node_count of them (copied by td_writer_open) */
     int retainer_count; /**< retainers, >= 0 */
     int amb_count;      /**< AMBs, >= 0 */
+    int compression;    /**< HDF5 only: deflate level 0 (none) .. 9, with the shuffle filter; CSV ignores it */
 } td_output_layout;
 
 /**
  * Create a writer on PATH.partial. `layout` is copied. On failure nothing is left on disk and
- * *out is NULL. Errors: TD_ERR_INVALID (NULL/empty path, bad layout, path too long),
+ * *out is NULL. Errors: TD_ERR_INVALID (NULL/empty path, bad layout, compression outside 0..9,
+ * path too long),
  * TD_ERR_IO (the file cannot be created), TD_ERR_NOMEM.
  */
 TD_API td_status td_writer_open(td_writer_kind kind, const char *path, const td_output_layout *layout, td_writer **out,

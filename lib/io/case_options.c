@@ -15,7 +15,7 @@ static const char *const gravity_keys[] = {"enabled", "g", "direction", NULL};
 static const char *const contact_keys[] = {"model", "stiffness", "exponent", "damping", "damping_coefficient", NULL};
 static const char *const solver_keys[] = {"rtol",      "atol",          "max_step", "initial_step",
                                           "max_order", "linear_solver", NULL};
-static const char *const output_keys[] = {"hdf5", "csv", "sample_rate", "nodes", NULL};
+static const char *const output_keys[] = {"hdf5", "csv", "sample_rate", "nodes", "compression", NULL};
 static const char *const modal_keys[] = {"speed_min", "speed_max", "speed_steps", "modes", "response_speeds", NULL};
 
 static const char *const start_names[] = {"orbit", "rest"};
@@ -160,6 +160,8 @@ static td_status read_output(td_case_reader *r, const config_setting_t *root, do
     if (st == TD_OK && o->sample_rate * end_time > TD_CASE_MAX_SAMPLES)
         st = fail_at(r, g, "sample_rate", "%g Hz over end_time %g s makes %.3g samples (at most %.0e)", o->sample_rate,
                      end_time, o->sample_rate * end_time, TD_CASE_MAX_SAMPLES);
+    if (st == TD_OK)
+        st = td_cr_int(r, g, "compression", NULL, o->compression, 0, 9, &o->compression);
     if (st == TD_OK)
         st = td_cr_ints(r, g, "nodes", TD_OUTPUT_MAX_NODES, -2147483647L, 2147483647L, o->nodes, &o->node_count);
     if (st != TD_OK)

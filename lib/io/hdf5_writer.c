@@ -6,6 +6,10 @@
  * contact-rich run has thousands, and extending a dataset per event cost about 0.2 ms each).
  * The file uses the HDF5 1.8 format (readable by every HDF5 >= 1.8) so that a long case text
  * fits in a root attribute (the 1.6 format caps attributes at 64 KiB).
+ * Shared axes are HDF5 dimension scales (/time, /component, /nodes/node, /retainers/retainer,
+ * /ambs/amb, /event) attached to every dataset that has them, so netCDF-4 readers (xarray with
+ * h5netcdf or netCDF4) see named dimensions instead of anonymous ones. Strings are variable-length
+ * UTF-8, which h5py and netCDF read as text (h5py returns fixed-length strings as bytes).
  * Every HDF5 call runs inside H5E_BEGIN_TRY/H5E_END_TRY: the library never prints, and the
  * automatic error printing of the calling program is restored afterwards.
  */
@@ -13,6 +17,7 @@
 #include "util/error_internal.h"
 
 #include <hdf5.h>
+#include <hdf5_hl.h> /* H5DS: dimension scales */
 #include <stddef.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -54,6 +59,8 @@ typedef struct h5_event_row {
 typedef struct h5_impl {
     hid_t file;
     hid_t event_dset, event_mtype, event_ftype, kind_type;
+    hid_t event_index; /* /event: the dimension scale of /events (row numbers) */
+    hid_t component;   /* /component ("x", "y"), -1 when no dataset has that axis */
     h5_series series[H5_MAX_SERIES];
     int series_count;
     int idx_time, idx_disp, idx_ret, idx_amb; /* first series of each part, -1 if absent */
@@ -107,18 +114,29 @@ static td_status h5_fail(td_error *err, const td_writer *w, const char *what)
 
 /* ---- small attribute helpers ------------------------------------------------------------- */
 
+/* Variable-length UTF-8 text: h5py reads it as str (fixed-length strings come back as bytes),
+ * netCDF as NC_STRING, h5dump as text. */
+static hid_t text_type(void)
+{
+    hid_t type = H5Tcopy(H5T_C_S1);
+    if (type >= 0 && (H5Tset_size(type, H5T_VARIABLE) < 0 || H5Tset_cset(type, H5T_CSET_UTF8) < 0 ||
+                      H5Tset_strpad(type, H5T_STR_NULLTERM) < 0)) {
+        H5Tclose(type);
+        return -1;
+    }
+    return type;
+}
+
 static herr_t attr_string(hid_t obj, const char *name, const char *value)
 {
-    size_t len = strlen(value);
-    hid_t type = H5Tcopy(H5T_C_S1), space = H5Screate(H5S_SCALAR), attr = -1;
+    hid_t type = text_type(), space = H5Screate(H5S_SCALAR), attr = -1;
     herr_t rc = -1;
-    if (type >= 0 && space >= 0 && H5Tset_size(type, len + 1) >= 0 && H5Tset_strpad(type, H5T_STR_NULLTERM) >= 0 &&
-        H5Tset_cset(type, H5T_CSET_UTF8) >= 0) {
+    if (type >= 0 && space >= 0) {
         if (H5Aexists(obj, name) > 0)
             H5Adelete(obj, name);
         attr = H5Acreate2(obj, name, type, space, H5P_DEFAULT, H5P_DEFAULT);
         if (attr >= 0)
-            rc = H5Awrite(attr, type, value);
+            rc = H5Awrite(attr, type, &value);
     }
     if (attr >= 0 && H5Aclose(attr) < 0)
         rc = -1;
@@ -158,6 +176,66 @@ static herr_t attr_int(hid_t obj, const char *name, int value)
 
 /* ---- creation ---------------------------------------------------------------------------- */
 
+/* Chunked creation properties; with level > 0 shuffle then deflate (lossless: shuffle groups the
+ * bytes of equal significance, which deflate then compresses far better for doubles). */
+static hid_t chunked_dcpl(int rank, const hsize_t *chunk, int level)
+{
+    hid_t dcpl = H5Pcreate(H5P_DATASET_CREATE);
+    if (dcpl >= 0 && (H5Pset_chunk(dcpl, rank, chunk) < 0 ||
+                      (level > 0 && (H5Pset_shuffle(dcpl) < 0 || H5Pset_deflate(dcpl, (unsigned)level) < 0)))) {
+        H5Pclose(dcpl);
+        return -1;
+    }
+    return dcpl;
+}
+
+/* A fixed 1-D dimension scale `name` under `loc` holding `values` (int32 or text). */
+static hid_t make_scale(hid_t loc, const char *name, hid_t file_type, hid_t mem_type, const void *values, hsize_t n,
+                        const char *units)
+{
+    hsize_t dims[1];
+    hid_t space, dset = -1;
+    dims[0] = n;
+    space = H5Screate_simple(1, dims, NULL);
+    if (space >= 0)
+        dset = H5Dcreate2(loc, name, file_type, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    if (space >= 0)
+        H5Sclose(space);
+    if (dset >= 0 && (H5Dwrite(dset, mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, values) < 0 ||
+                      H5DSset_scale(dset, name) < 0 || attr_string(dset, "units", units) < 0)) {
+        H5Dclose(dset);
+        return -1;
+    }
+    return dset;
+}
+
+/* Scale of the int32 indices 0..n-1 (retainers, AMBs). */
+static hid_t make_index_scale(hid_t loc, const char *name, int n, const char *units)
+{
+    int *v = malloc((size_t)(n > 0 ? n : 1) * sizeof *v);
+    hid_t dset;
+    int i;
+    if (!v)
+        return -1;
+    for (i = 0; i < n; i++)
+        v[i] = i;
+    dset = make_scale(loc, name, H5T_STD_I32LE, H5T_NATIVE_INT, v, (hsize_t)n, units);
+    free(v);
+    return dset;
+}
+
+/* /component = {"x", "y"}: the last axis of /nodes/displacement and /ambs/force. */
+static hid_t make_component_scale(hid_t file)
+{
+    static const char *const xy[2] = {"x", "y"};
+    hid_t type = text_type(), dset = -1;
+    if (type >= 0)
+        dset = make_scale(file, "component", type, type, xy, 2, "1");
+    if (type >= 0)
+        H5Tclose(type);
+    return dset;
+}
+
 /* Create one extendible sample dataset under `loc`. */
 static td_status add_series(td_writer *w, h5_impl *h, hid_t loc, const char *name, const char *units, int rank,
                             const hsize_t *row_dims, int is_int8, td_error *err)
@@ -184,8 +262,8 @@ static td_status add_series(td_writer *w, h5_impl *h, hid_t loc, const char *nam
     for (i = 1; i < rank; i++)
         dims[i] = maxdims[i] = chunk[i] = row_dims[i - 1];
     space = H5Screate_simple(rank, dims, maxdims);
-    dcpl = H5Pcreate(H5P_DATASET_CREATE);
-    if (space >= 0 && dcpl >= 0 && H5Pset_chunk(dcpl, rank, chunk) >= 0)
+    dcpl = chunked_dcpl(rank, chunk, w->compression);
+    if (space >= 0 && dcpl >= 0)
         dset = H5Dcreate2(loc, name, is_int8 ? H5T_STD_I8LE : H5T_IEEE_F64LE, space, H5P_DEFAULT, dcpl, H5P_DEFAULT);
     if (dcpl >= 0)
         H5Pclose(dcpl);
@@ -196,7 +274,32 @@ static td_status add_series(td_writer *w, h5_impl *h, hid_t loc, const char *nam
     s->dset = dset;
     if (attr_string(dset, "units", units) < 0)
         return h5_fail(err, w, "cannot write a units attribute");
+    /* /time is the first series: it names the sample axis of every later one */
+    if (h->series_count - 1 == h->idx_time ? H5DSset_scale(dset, "time") < 0
+                                           : H5DSattach_scale(dset, h->series[h->idx_time].dset, 0) < 0)
+        return h5_fail(err, w, "cannot attach the time axis");
     return TD_OK;
+}
+
+/* Attach the scale `scale` to axis `axis` of every series from `first` to the last created. */
+static td_status attach_axis(td_writer *w, h5_impl *h, int first, hid_t scale, unsigned axis, td_error *err)
+{
+    int i;
+    if (scale < 0)
+        return h5_fail(err, w, "cannot create a dimension scale");
+    for (i = first; i < h->series_count; i++)
+        if (H5DSattach_scale(h->series[i].dset, scale, axis) < 0)
+            return h5_fail(err, w, "cannot attach a dimension scale");
+    return TD_OK;
+}
+
+/* attach_axis for a scale of this group only, closed afterwards. */
+static td_status attach_own_axis(td_writer *w, h5_impl *h, int first, hid_t scale, unsigned axis, td_error *err)
+{
+    td_status st = attach_axis(w, h, first, scale, axis, err);
+    if (scale >= 0)
+        H5Dclose(scale);
+    return st;
 }
 
 static hid_t make_group(hid_t file, const char *name, int count)
@@ -225,6 +328,13 @@ static td_status create_nodes(td_writer *w, h5_impl *h, td_error *err)
                                          w->node_count, 1) < 0 ||
                             attr_string(h->series[h->idx_disp].dset, "components", "x,y") < 0))
             st = h5_fail(err, w, "cannot write the node attributes");
+        if (st == TD_OK)
+            st = attach_own_axis(
+                w, h, h->idx_disp,
+                make_scale(g, "node", H5T_STD_I32LE, H5T_NATIVE_INT, w->nodes, (hsize_t)w->node_count, "node number"),
+                1, err);
+        if (st == TD_OK)
+            st = attach_axis(w, h, h->idx_disp, h->component, 2, err);
     }
     H5Gclose(g);
     return st;
@@ -245,6 +355,9 @@ static td_status create_retainers(td_writer *w, h5_impl *h, td_error *err)
             st = add_series(w, h, g, ret_fields[i].name, ret_fields[i].units, 2, row, 0, err);
         if (st == TD_OK)
             st = add_series(w, h, g, "contact_state", "1", 2, row, 1, err);
+        if (st == TD_OK)
+            st = attach_own_axis(w, h, h->idx_ret, make_index_scale(g, "retainer", w->retainer_count, "retainer index"),
+                                 1, err);
     }
     H5Gclose(g);
     return st;
@@ -264,6 +377,10 @@ static td_status create_ambs(td_writer *w, h5_impl *h, td_error *err)
         st = add_series(w, h, g, "force", "N", 3, row, 0, err);
         if (st == TD_OK && attr_string(h->series[h->idx_amb].dset, "components", "x,y") < 0)
             st = h5_fail(err, w, "cannot write the AMB attributes");
+        if (st == TD_OK)
+            st = attach_own_axis(w, h, h->idx_amb, make_index_scale(g, "amb", w->amb_count, "AMB index"), 1, err);
+        if (st == TD_OK)
+            st = attach_axis(w, h, h->idx_amb, h->component, 2, err);
     }
     H5Gclose(g);
     return st;
@@ -308,18 +425,22 @@ static td_status create_events(td_writer *w, h5_impl *h, td_error *err)
     }
     if (ok) {
         space = H5Screate_simple(1, dims, maxdims);
-        dcpl = H5Pcreate(H5P_DATASET_CREATE);
-        ok = space >= 0 && dcpl >= 0 && H5Pset_chunk(dcpl, 1, chunk) >= 0;
+        dcpl = chunked_dcpl(1, chunk, w->compression);
+        ok = space >= 0 && dcpl >= 0;
     }
     if (ok)
         h->event_dset = H5Dcreate2(h->file, "events", h->event_ftype, space, H5P_DEFAULT, dcpl, H5P_DEFAULT);
+    if (ok && h->event_dset >= 0)
+        h->event_index = H5Dcreate2(h->file, "event", H5T_STD_I64LE, space, H5P_DEFAULT, dcpl, H5P_DEFAULT);
     if (dcpl >= 0)
         H5Pclose(dcpl);
     if (space >= 0)
         H5Sclose(space);
-    if (!ok || h->event_dset < 0)
+    if (!ok || h->event_dset < 0 || h->event_index < 0 || H5DSset_scale(h->event_index, "event") < 0 ||
+        H5DSattach_scale(h->event_dset, h->event_index, 0) < 0)
         return h5_fail(err, w, "cannot create /events");
-    if (attr_string(h->event_dset, "kind_names", names) < 0 ||
+    if (attr_string(h->event_index, "units", "1 (row number of /events)") < 0 ||
+        attr_string(h->event_dset, "kind_names", names) < 0 ||
         attr_string(h->event_dset, "units",
                     "time: s; radial_velocity_*, tangential_velocity_*: m/s; impulse: N s; normal_force: N") < 0)
         return h5_fail(err, w, "cannot write the /events attributes");
@@ -353,8 +474,11 @@ static td_status open_impl(td_writer *w, h5_impl *h, td_error *err)
     if (h->file < 0)
         return h5_fail(err, w, "cannot create the file");
     h->idx_time = h->series_count;
-    if ((st = add_series(w, h, h->file, "time", "s", 1, NULL, 0, err)) != TD_OK ||
-        (st = create_nodes(w, h, err)) != TD_OK || (st = create_retainers(w, h, err)) != TD_OK ||
+    if ((st = add_series(w, h, h->file, "time", "s", 1, NULL, 0, err)) != TD_OK)
+        return st;
+    if ((w->node_count > 0 || w->amb_count > 0) && (h->component = make_component_scale(h->file)) < 0)
+        return h5_fail(err, w, "cannot create /component");
+    if ((st = create_nodes(w, h, err)) != TD_OK || (st = create_retainers(w, h, err)) != TD_OK ||
         (st = create_ambs(w, h, err)) != TD_OK || (st = create_events(w, h, err)) != TD_OK)
         return st;
     if (attr_string(h->file, "units", "SI (touchdown/dofs.h); each dataset has a units attribute") < 0)
@@ -368,7 +492,7 @@ static td_status h5_open(td_writer *w, td_error *err)
     td_status st;
     if (!h)
         return td_error_set(err, TD_ERR_NOMEM, "out of memory opening %s", w->path);
-    h->file = h->event_dset = h->event_mtype = h->event_ftype = h->kind_type = -1;
+    h->file = h->event_dset = h->event_mtype = h->event_ftype = h->kind_type = h->event_index = h->component = -1;
     h->idx_time = h->idx_disp = h->idx_ret = h->idx_amb = -1;
     h->chunk_rows = choose_chunk_rows(w);
     w->impl = h;
@@ -472,6 +596,18 @@ static td_status h5_sample(td_writer *w, double t, const double *node_xy, const 
 
 /* ---- events ------------------------------------------------------------------------------ */
 
+/* The row numbers of the buffered events into /event (same extent and selection as /events). */
+static herr_t write_event_index(h5_impl *h, const hsize_t *dims, hid_t fspace, hid_t mspace)
+{
+    int64_t rows[H5_EVENT_CHUNK];
+    size_t i;
+    for (i = 0; i < h->events_buffered; i++)
+        rows[i] = (int64_t)(h->event_rows + i);
+    if (H5Dset_extent(h->event_index, dims) < 0)
+        return -1;
+    return H5Dwrite(h->event_index, H5T_NATIVE_INT64, mspace, fspace, H5P_DEFAULT, rows);
+}
+
 /* Append the buffered events to /events. */
 static td_status flush_events(td_writer *w, h5_impl *h, td_error *err)
 {
@@ -487,6 +623,8 @@ static td_status flush_events(td_writer *w, h5_impl *h, td_error *err)
         H5Sselect_hyperslab(fspace, H5S_SELECT_SET, start, NULL, count, NULL) >= 0 &&
         (mspace = H5Screate_simple(1, count, NULL)) >= 0)
         rc = H5Dwrite(h->event_dset, h->event_mtype, mspace, fspace, H5P_DEFAULT, h->event_buf);
+    if (rc >= 0)
+        rc = write_event_index(h, dims, fspace, mspace);
     if (mspace >= 0)
         H5Sclose(mspace);
     if (fspace >= 0)
@@ -577,13 +715,17 @@ static herr_t close_handles(h5_impl *h)
     h->event_buf = NULL;
     if (h->event_dset >= 0)
         H5Dclose(h->event_dset);
+    if (h->event_index >= 0)
+        H5Dclose(h->event_index);
+    if (h->component >= 0)
+        H5Dclose(h->component);
     if (h->event_ftype >= 0)
         H5Tclose(h->event_ftype);
     if (h->event_mtype >= 0)
         H5Tclose(h->event_mtype);
     if (h->kind_type >= 0)
         H5Tclose(h->kind_type);
-    h->event_dset = h->event_ftype = h->event_mtype = h->kind_type = -1;
+    h->event_dset = h->event_ftype = h->event_mtype = h->kind_type = h->event_index = h->component = -1;
     if (h->file >= 0)
         rc = H5Fclose(h->file);
     h->file = -1;

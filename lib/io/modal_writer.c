@@ -1,12 +1,15 @@
 /*
  * Writers of modal results (touchdown/modal.h): one CSV file with sections, or one HDF5 file with
  * a group per part and a "units" attribute on every dataset. Numbers carry 12 significant digits
- * in CSV ("%.12g") and full double precision in HDF5.
+ * in CSV ("%.12g") and full double precision in HDF5. HDF5 axes are dimension scales (the Campbell
+ * speeds, branch and mode numbers, node positions) so netCDF readers see named dimensions; strings
+ * are variable-length UTF-8, which h5py reads as str.
  */
 #include "touchdown/modal.h"
 #include "util/error_internal.h"
 
 #include <hdf5.h>
+#include <hdf5_hl.h> /* H5DS: dimension scales */
 
 #include <errno.h>
 #include <math.h>
@@ -116,14 +119,14 @@ td_status td_modal_write_csv(const char *path, const td_modal_results *r, td_err
 
 /* ---- HDF5 -------------------------------------------------------------------------------- */
 
-/* Attach a string attribute. */
+/* Attach a string attribute (variable-length UTF-8). */
 static int h5_attr_string(hid_t obj, const char *name, const char *value)
 {
     hid_t type = H5Tcopy(H5T_C_S1), space = H5Screate(H5S_SCALAR), attr = -1;
-    int ok = type >= 0 && space >= 0 && H5Tset_size(type, strlen(value) + 1) >= 0;
+    int ok = type >= 0 && space >= 0 && H5Tset_size(type, H5T_VARIABLE) >= 0 && H5Tset_cset(type, H5T_CSET_UTF8) >= 0;
     if (ok)
         attr = H5Acreate2(obj, name, type, space, H5P_DEFAULT, H5P_DEFAULT);
-    ok = ok && attr >= 0 && H5Awrite(attr, type, value) >= 0;
+    ok = ok && attr >= 0 && H5Awrite(attr, type, &value) >= 0;
     if (attr >= 0)
         H5Aclose(attr);
     if (space >= 0)
@@ -170,6 +173,36 @@ static int h5_dataset(hid_t group, const char *name, hid_t memtype, const void *
     return ok;
 }
 
+/* Make g/scale a dimension scale and attach it to axis `axis` of each g/NAME in `names` (NULL-ended). */
+static int h5_axis(hid_t g, const char *scale, const char *const *names, unsigned axis)
+{
+    hid_t s = H5Dopen2(g, scale, H5P_DEFAULT);
+    int ok = s >= 0 && (H5DSis_scale(s) > 0 || H5DSset_scale(s, scale) >= 0), i;
+    for (i = 0; ok && names && names[i]; i++) {
+        hid_t d = H5Dopen2(g, names[i], H5P_DEFAULT);
+        ok = d >= 0 && H5DSattach_scale(d, s, axis) >= 0;
+        if (d >= 0)
+            H5Dclose(d);
+    }
+    if (s >= 0)
+        H5Dclose(s);
+    return ok;
+}
+
+/* An int dataset 0..n-1 named `name`: the axis of a table whose rows have no other coordinate. */
+static int h5_index(hid_t g, const char *name, int n, const char *units)
+{
+    int *v = malloc((size_t)(n ? n : 1) * sizeof *v), i, ok;
+    for (i = 0; v && i < n; i++)
+        v[i] = i;
+    ok = v && h5_dataset(g, name, H5T_NATIVE_INT, v, (hsize_t)n, 0, units);
+    free(v);
+    return ok;
+}
+
+/* The mode-shape datasets: rows modes, columns nodes (NULL-ended). */
+static const char *const shape_names[] = {"shape_x_re", "shape_x_im", "shape_y_re", "shape_y_im", NULL};
+
 /* Columns of a td_mode array, gathered one field at a time. */
 enum mode_field { F_SIGMA, F_OMEGA_D, F_FREQ, F_OMEGA_N, F_ZETA, F_WHIRL_INDEX };
 
@@ -189,6 +222,18 @@ static const struct {
     const char *name, *units;
 } mode_fields[6] = {{"sigma", "1/s"},     {"omega_d", "rad/s"}, {"freq_hz", "Hz"},
                     {"omega_n", "rad/s"}, {"zeta", "1"},        {"whirl_index", "1"}};
+
+/* Attach g/scale to axis `axis` of every dataset h5_mode_table writes. */
+static int h5_mode_table_axis(hid_t g, const char *scale, unsigned axis)
+{
+    const char *names[8];
+    int f;
+    for (f = 0; f < 6; f++)
+        names[f] = mode_fields[f].name;
+    names[6] = "whirl";
+    names[7] = NULL;
+    return h5_axis(g, scale, names, axis);
+}
 
 /* Write the td_mode fields of `modes` (count rows x cols, cols 0: 1-D) plus an int "whirl" dataset. */
 static int h5_mode_table(hid_t g, const td_mode *modes, hsize_t rows, hsize_t cols)
@@ -218,7 +263,6 @@ static int h5_modes(hid_t file, const td_modal *m)
     double *sh = malloc(4u * (size_t)(nm ? nm : 1) * (size_t)(nn ? nn : 1) * sizeof *sh);
     double *part = malloc((size_t)(nm ? nm : 1) * (size_t)(nn ? nn : 1) * sizeof *part);
     hid_t g = H5Gcreate2(file, "modes", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
-    static const char *names[4] = {"shape_x_re", "shape_x_im", "shape_y_re", "shape_y_im"};
     ok = modes && real && sh && part && g >= 0;
     for (i = 0; ok && i < nm; i++) {
         td_modal_get_mode(m, i, &modes[i]);
@@ -230,14 +274,17 @@ static int h5_modes(hid_t file, const td_modal *m)
     ok = ok && h5_attr_double(g, "speed", td_modal_speed(m)) && h5_attr_string(g, "speed_units", "rad/s");
     ok = ok && h5_mode_table(g, modes, (hsize_t)nm, 0);
     ok = ok && h5_dataset(g, "real_eigenvalues", H5T_NATIVE_DOUBLE, real, (hsize_t)nr, 0, "1/s");
+    ok = ok && h5_axis(g, "real_eigenvalues", NULL, 0); /* its own axis */
     for (i = 0; ok && i < 4; i++) {
         int k, j;
         for (k = 0; k < nm; k++)
             for (j = 0; j < nn; j++)
                 part[(size_t)k * (size_t)nn + (size_t)j] = sh[(size_t)(4 * k + i) * (size_t)nn + (size_t)j];
-        ok = h5_dataset(g, names[i], H5T_NATIVE_DOUBLE, part, (hsize_t)nm, (hsize_t)nn,
+        ok = h5_dataset(g, shape_names[i], H5T_NATIVE_DOUBLE, part, (hsize_t)nm, (hsize_t)nn,
                         "1 (normalised: largest |X| or |Y| = 1); rows: modes, columns: nodes");
     }
+    ok = ok && h5_index(g, "mode", nm, "mode number") && h5_mode_table_axis(g, "mode", 0) &&
+         h5_axis(g, "mode", shape_names, 0);
     if (g >= 0)
         H5Gclose(g);
     free(modes);
@@ -262,6 +309,8 @@ static int h5_campbell(hid_t file, const td_campbell *c)
     ok = ok && h5_dataset(g, "speed", H5T_NATIVE_DOUBLE, sp, (hsize_t)ns, 0, "rad/s");
     ok = ok && h5_mode_table(g, pts, (hsize_t)ns, (hsize_t)nb);
     ok = ok && h5_attr_string(g, "layout", "rows: speeds, columns: branches (j-th lowest omega_d)");
+    ok = ok && h5_index(g, "branch", nb, "branch number (j-th lowest omega_d)");
+    ok = ok && h5_mode_table_axis(g, "speed", 0) && h5_mode_table_axis(g, "branch", 1);
     if (g >= 0)
         H5Gclose(g);
     free(pts);
@@ -271,6 +320,7 @@ static int h5_campbell(hid_t file, const td_campbell *c)
 
 static int h5_critical(hid_t file, const td_critical_speed *cs, int n)
 {
+    static const char *const critical_names[] = {"freq_hz", "zeta", "sigma", "whirl", "branch", NULL};
     double *d = malloc((size_t)(n ? n : 1) * 4u * sizeof *d);
     int *w = malloc((size_t)(n ? n : 1) * 2u * sizeof *w), i, ok;
     hid_t g = H5Gcreate2(file, "critical_speeds", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
@@ -289,6 +339,7 @@ static int h5_critical(hid_t file, const td_critical_speed *cs, int n)
     ok = ok && h5_dataset(g, "sigma", H5T_NATIVE_DOUBLE, d + 3 * n, (hsize_t)n, 0, "1/s");
     ok = ok && h5_dataset(g, "whirl", H5T_NATIVE_INT, w, (hsize_t)n, 0, "1: forward, -1: backward");
     ok = ok && h5_dataset(g, "branch", H5T_NATIVE_INT, w + n, (hsize_t)n, 0, "index among modes of that whirl");
+    ok = ok && h5_axis(g, "speed", critical_names, 0);
     if (g >= 0)
         H5Gclose(g);
     free(d);
@@ -302,6 +353,9 @@ static int h5_harmonic_one(hid_t parent, int index, const td_harmonic *h)
         const char *name, *units;
     } cols[8] = {{"x_amp", "m"},   {"x_phase", "rad"}, {"y_amp", "m"}, {"y_phase", "rad"},
                  {"forward", "m"}, {"backward", "m"},  {"major", "m"}, {"minor", "m"}};
+    static const char *const orbit_names[] = {"x_amp",    "x_phase", "y_amp", "y_phase", "forward",
+                                              "backward", "major",   "minor", NULL};
+    static const char *const state_names[] = {"state_re", "state_im", NULL};
     int nn = td_harmonic_node_count(h), ns = td_harmonic_state_count(h), k, c, ok;
     double *d = malloc((size_t)(nn > ns ? nn : ns) * 2u * sizeof *d);
     char name[32];
@@ -324,6 +378,8 @@ static int h5_harmonic_one(hid_t parent, int index, const td_harmonic *h)
         td_harmonic_state(h, k, &d[k], &d[ns + k]);
     ok = ok && h5_dataset(g, "state_re", H5T_NATIVE_DOUBLE, d, (hsize_t)ns, 0, "SI per state: m, m/s, N");
     ok = ok && h5_dataset(g, "state_im", H5T_NATIVE_DOUBLE, d + ns, (hsize_t)ns, 0, "SI per state: m, m/s, N");
+    ok = ok && h5_index(g, "node", nn, "node number") && h5_axis(g, "node", orbit_names, 0);
+    ok = ok && h5_index(g, "state", ns, "state index") && h5_axis(g, "state", state_names, 0);
     if (g >= 0)
         H5Gclose(g);
     free(d);
@@ -366,6 +422,9 @@ static int h5_layout(hid_t file, const td_model *model)
     ok = ok && h5_dataset(g, "node_z", H5T_NATIVE_DOUBLE, z, (hsize_t)nn, 0, "m");
     ok = ok && (nr == 0 || h5_dataset(g, "retainer_nodes", H5T_NATIVE_INT, nodes, (hsize_t)nr, 0, "node"));
     ok = ok && (na == 0 || h5_dataset(g, "amb_nodes", H5T_NATIVE_INT, nodes + nr, (hsize_t)na, 0, "node"));
+    /* node_z is the column axis of the mode shapes; the bearing lists are their own axes */
+    ok = ok && h5_axis(g, "node_z", shape_names, 1);
+    ok = ok && (nr == 0 || h5_axis(g, "retainer_nodes", NULL, 0)) && (na == 0 || h5_axis(g, "amb_nodes", NULL, 0));
     if (g >= 0)
         H5Gclose(g);
     free(z);

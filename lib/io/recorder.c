@@ -136,6 +136,7 @@ static td_status open_writers(td_recorder *r, const td_output_options *out, td_e
     layout.nodes = r->nodes;
     layout.retainer_count = r->retainer_count;
     layout.amb_count = r->amb_count;
+    layout.compression = out->compression;
     if (out->hdf5_path[0])
         st = td_writer_open(TD_WRITER_HDF5, out->hdf5_path, &layout, &r->writers[r->writer_count++], err);
     if (st == TD_OK && out->csv_path[0])

@@ -60,6 +60,9 @@ static td_status check_layout(const td_output_layout *layout, td_error *err)
         return td_error_set(err, TD_ERR_INVALID, "td_writer_open: NULL layout");
     if (layout->node_count < 0 || layout->retainer_count < 0 || layout->amb_count < 0)
         return td_error_set(err, TD_ERR_INVALID, "td_writer_open: negative count in the output layout");
+    if (layout->compression < 0 || layout->compression > 9)
+        return td_error_set(err, TD_ERR_INVALID, "td_writer_open: compression %d is not a deflate level 0..9",
+                            layout->compression);
     if (layout->node_count > 0 && !layout->nodes)
         return td_error_set(err, TD_ERR_INVALID, "td_writer_open: %d nodes but no node list", layout->node_count);
     for (i = 0; i < layout->node_count; i++)
@@ -155,6 +158,7 @@ td_status td_writer_open(td_writer_kind kind, const char *path, const td_output_
     w->node_count = layout->node_count;
     w->retainer_count = layout->retainer_count;
     w->amb_count = layout->amb_count;
+    w->compression = layout->compression;
     if (layout->node_count > 0) {
         w->nodes = malloc((size_t)layout->node_count * sizeof *w->nodes);
         if (w->nodes)

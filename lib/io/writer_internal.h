@@ -34,7 +34,8 @@ struct td_writer {
     char *events_path; /**< CSV only: the events file (td_writer_events_path), else NULL */
     char *events_tmp;  /**< CSV only: events_path + ".partial" */
     int node_count, retainer_count, amb_count;
-    int *nodes; /**< node_count numbers (NULL if 0) */
+    int compression; /**< HDF5 deflate level, 0..9 */
+    int *nodes;      /**< node_count numbers (NULL if 0) */
     td_attr *attrs;
     int attr_count, attr_capacity;
     long samples, events;
