@@ -7,6 +7,8 @@
 
 #include "touchdown/case.h"
 #include "touchdown/model.h"
+#include "touchdown/run.h"
+#include "touchdown/sim.h"
 
 #include <dirent.h>
 #include <errno.h>
@@ -788,6 +790,7 @@ static const bad_file bad_files[] = {
     {"discs-not-list.cfg", 4, "discs", NULL},
     {"duplicate-key.cfg", 4, NULL, NULL},
     {"empty.cfg", 1, NULL, NULL},
+    {"end-time-unbounded.cfg", 4, "end_time", NULL},
     {"end-time-zero.cfg", 4, "end_time", NULL},
     {"gravity-enabled-string.cfg", 5, "gravity.enabled", NULL},
     {"gravity-zero-direction.cfg", 6, "gravity.direction", NULL},
@@ -829,12 +832,14 @@ static const bad_file bad_files[] = {
     {"shaft-section-overlap.cfg", 10, "shaft.sections[1]", NULL},
     {"shaft-zero-length.cfg", 4, "shaft.length", NULL},
     {"solver-atol-negative.cfg", 6, "solver.atol", NULL},
+    {"solver-max-step-tiny.cfg", 5, "solver.max_step", NULL},
     {"solver-max-order.cfg", 5, "solver.max_order", NULL},
     {"solver-rtol-zero.cfg", 5, "solver.rtol", NULL},
     {"solver-unknown-linsol.cfg", 5, "solver.linear_solver", NULL},
     {"speed-inf.cfg", 3, "speed", NULL},
     {"speed-negative.cfg", 3, "speed", NULL},
     {"speed-string.cfg", 3, "speed", NULL},
+    {"speed-unbounded.cfg", 3, "speed", NULL},
     {"start-control-chars.cfg", 5, "start", NULL},
     {"start-unknown.cfg", 4, "start", NULL},
     {"syntax-error.cfg", 4, NULL, NULL},
@@ -1036,6 +1041,37 @@ static void test_include_bounds(void **state)
     unlink(big);
 }
 
+/* td_run bounds a run given through the API as the case reader bounds a case (touchdown/limits.h):
+ * each bound broken alone is refused before a step is taken, leaving the simulation at t = 0. */
+static void test_run_limits_api(void **state)
+{
+    td_case *c = load_ok("cases/jeffcott.cfg", NULL, 0);
+    td_sim_options so = *td_case_sim_options(c);
+    td_output_options out = *td_case_output_options(c);
+    td_sim *sim = NULL;
+    td_error err;
+    (void)state;
+    out.csv_path[0] = '\0';
+    out.hdf5_path[0] = '\0';
+    assert_int_equal(td_sim_create(td_case_model(c), &so, &sim, &err), TD_OK);
+    /* 5000 Hz x 1e12 s = 5e15 samples */
+    assert_int_equal(td_run(sim, td_case_model(c), 1e12, &out, NULL, NULL, NULL, &err), TD_ERR_INVALID);
+    assert_contains(err.message, "output samples (at most 1e+08)");
+    /* 200 rad/s x 1e5 s / 2 pi = 3.2e6 revolutions (1e5 samples at 1 Hz) */
+    out.sample_rate = 1.0;
+    assert_int_equal(td_run(sim, td_case_model(c), 1e5, &out, NULL, NULL, NULL, &err), TD_ERR_INVALID);
+    assert_contains(err.message, "shaft revolutions (at most 1e+06)");
+    assert_close(td_sim_time(sim), 0.0, 0.0, 0.0);
+    td_sim_free(&sim);
+    so.solver.max_step = 1e-300;
+    assert_int_equal(td_sim_create(td_case_model(c), &so, &sim, &err), TD_OK);
+    assert_int_equal(td_run(sim, td_case_model(c), 0.1, &out, NULL, NULL, NULL, &err), TD_ERR_INVALID);
+    assert_contains(err.message, "solver steps (at most 1e+08)");
+    assert_close(td_sim_time(sim), 0.0, 0.0, 0.0);
+    td_sim_free(&sim);
+    td_case_free(&c);
+}
+
 /* Fuzz finding K4: libconfig 1.5 rejects a last-line comment without a final newline ("syntax
  * error"); the reader appends the newline to the main file, so these load. */
 static void test_comment_at_eof(void **state)
@@ -1112,6 +1148,7 @@ int main(void)
         cmocka_unit_test(test_unreadable_paths),
         cmocka_unit_test(test_bad_includes),
         cmocka_unit_test(test_include_bounds),
+        cmocka_unit_test(test_run_limits_api),
         cmocka_unit_test(test_comment_at_eof),
         cmocka_unit_test(test_api_misuse),
     };

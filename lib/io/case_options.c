@@ -5,6 +5,7 @@
  */
 #include "io/case_internal.h"
 #include "util/error_internal.h"
+#include "util/limits.h"
 
 #include <math.h>
 #include <stdarg.h>
@@ -143,7 +144,7 @@ static td_status read_path(td_case_reader *r, const config_setting_t *g, const c
     return TD_OK;
 }
 
-static td_status read_output(td_case_reader *r, const config_setting_t *root, double end_time, td_output_options *o)
+static td_status read_output(td_case_reader *r, const config_setting_t *root, td_output_options *o)
 {
     const config_setting_t *g, *list;
     int i, j;
@@ -157,9 +158,6 @@ static td_status read_output(td_case_reader *r, const config_setting_t *root, do
         st = read_path(r, g, "csv", o->csv_path);
     if (st == TD_OK)
         st = td_cr_real(r, g, "sample_rate", NULL, o->sample_rate, TD_CR_POSITIVE, &o->sample_rate);
-    if (st == TD_OK && o->sample_rate * end_time > TD_CASE_MAX_SAMPLES)
-        st = fail_at(r, g, "sample_rate", "%g Hz over end_time %g s makes %.3g samples (at most %.0e)", o->sample_rate,
-                     end_time, o->sample_rate * end_time, TD_CASE_MAX_SAMPLES);
     if (st == TD_OK)
         st = td_cr_ints(r, g, "nodes", TD_OUTPUT_MAX_NODES, -2147483647L, 2147483647L, o->nodes, &o->node_count);
     if (st != TD_OK)
@@ -202,6 +200,32 @@ static td_status read_modal(td_case_reader *r, const config_setting_t *root, td_
     return st;
 }
 
+/* Member `key` of the root group `group` (of the root itself when NULL), or NULL. */
+static const config_setting_t *member(const config_setting_t *root, const char *group, const char *key)
+{
+    const config_setting_t *g = group ? config_setting_get_member(root, group) : root;
+    return g && config_setting_is_group(g) ? config_setting_get_member(g, key) : NULL;
+}
+
+/* The bounds of touchdown/limits.h on the work of the run (checked whether or not the case writes
+ * output: the samples are taken anyway). The message names the key that scales the work: end_time
+ * when an override set it (--set end_time=1e12), otherwise the rate or speed it multiplies. */
+static td_status check_run_limits(td_case_reader *r, const config_setting_t *root, double speed)
+{
+    const td_case *c = r->c;
+    const config_setting_t *end = config_setting_get_member(root, "end_time"), *s = NULL;
+    char why[256];
+    switch (td_run_limit_check(c->end_time, speed, c->output.sample_rate, c->sim.solver.max_step, why, sizeof why)) {
+    case TD_LIMIT_NONE: return TD_OK;
+    case TD_LIMIT_SAMPLES: s = member(root, "output", "sample_rate"); break;
+    case TD_LIMIT_STEPS: s = member(root, "solver", "max_step"); break;
+    case TD_LIMIT_REVOLUTIONS: s = member(root, NULL, "speed"); break;
+    }
+    if (!s || config_setting_get_hook(end))
+        s = end;
+    return td_cr_fail(r, s, NULL, "%s", why);
+}
+
 td_status td_cr_read_options(td_case_reader *r, const config_setting_t *root)
 {
     td_case *c = r->c;
@@ -223,7 +247,9 @@ td_status td_cr_read_options(td_case_reader *r, const config_setting_t *root)
     if (st == TD_OK)
         st = read_solver(r, root, &c->sim.solver);
     if (st == TD_OK)
-        st = read_output(r, root, c->end_time, &c->output);
+        st = read_output(r, root, &c->output);
+    if (st == TD_OK)
+        st = check_run_limits(r, root, speed);
     if (st == TD_OK)
         st = read_modal(r, root, &c->modal);
     return st;

@@ -130,6 +130,26 @@ if [ "$n_files" -lt 40 ] || [ "$n_files" != "$n_table" ]; then
     fail "$n_files files under tests/data/bad/, $n_table in the table of tests/test_case.c"
 fi
 
+# ---- exact messages: the whole stderr line of these files ("|" separates the file from what
+# follows its path); each is in the table above as well ---------------------------------------
+while IFS='|' read -r file rest; do
+    [ -z "$file" ] && continue
+    for cmd in run info; do
+        checks=$((checks + 1))
+        run_tool "$cmd" "$bad_dir/$file"
+        if [ "$rc" = 2 ] && [ "$err" = "touchdown: $bad_dir/$file$rest" ]; then
+            pass "$cmd $file -> exact message"
+        else
+            fail "$cmd $file: exit $rc, stderr '$err', expected 'touchdown: $bad_dir/$file$rest'"
+        fi
+        scratch_empty >/dev/null || fail "$cmd $file: created files"
+    done
+done <<'EOF'
+end-time-unbounded.cfg|:4: end_time: 10000 Hz over 1e+12 s makes 1e+16 output samples (at most 1e+08)
+solver-max-step-tiny.cfg|:5: solver.max_step: max_step 1e-300 s over 0.1 s forces 1e+299 solver steps (at most 1e+08)
+speed-unbounded.cfg|:3: speed: 1e+20 rad/s over 0.1 s makes 1.59e+18 shaft revolutions (at most 1e+06)
+EOF
+
 # ---- paths that are not readable case files -----------------------------------------------
 mkdir -p "$work/in"
 : >"$work/in/empty.cfg"
@@ -188,6 +208,9 @@ contact.model=hertz|contact.model:
 solver.rtol=0|solver.rtol: 
 shaft.elements=0|shaft.elements: 
 end_time=0|end_time: 
+end_time=1e12|end_time: 10000 Hz over 1e+12 s makes 1e+16 output samples (at most 1e+08)
+solver.max_step=1e-300|solver.max_step: max_step 1e-300 s over 2 s forces 2e+300 solver steps
+speed=1e20|speed: 1e+20 rad/s over 2 s makes 3.18e+19 shaft revolutions
 speed|KEY=VALUE
 =1|KEY=VALUE
 speed="abc|speed
