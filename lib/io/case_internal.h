@@ -38,6 +38,18 @@ typedef struct td_cr_buf {
     int failed;
 } td_cr_buf;
 
+/* The shape of the case text, counted by td_cr_expand before libconfig sees it: libconfig 1.5
+ * compares every new key with each earlier key of its group (quadratic in the keys of a group) and
+ * does not check its allocations (a crash when memory runs out), so what it is handed is bounded
+ * up front by TD_CASE_MAX_GROUP_KEYS, TD_CASE_MAX_SETTINGS and TD_CASE_MAX_NESTING. */
+typedef struct td_cr_shape {
+    int depth;                         /* brackets open */
+    char open[TD_CASE_MAX_NESTING];    /* '{', '(' or '[' of each open bracket */
+    int keys[TD_CASE_MAX_NESTING + 1]; /* keys so far of the group at each depth (0: the root) */
+    long settings;                     /* settings libconfig will create: keys and list/array entries */
+    unsigned long long name_compares;  /* key comparisons libconfig 1.5 will make finding duplicates */
+} td_cr_shape;
+
 typedef struct td_case_reader {
     config_t cfg;
     const char *path; /* the case file as given */
@@ -54,6 +66,7 @@ typedef struct td_case_reader {
     int wrap_count, wrap_cap;
     int includes; /* @include files expanded so far (limit TD_CASE_MAX_INCLUDES) */
     size_t bytes; /* bytes read so far, main file and includes (limit TD_CASE_MAX_TOTAL_SIZE) */
+    td_cr_shape shape;
 } td_case_reader;
 
 /* Range a real value must lie in. */

@@ -15,6 +15,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 #include <sys/stat.h>
 
 void td_cr_buf_append(td_cr_buf *b, const char *s, size_t n)
@@ -215,6 +216,12 @@ static td_status include_bounds(td_case_reader *r, const char *file, int line_no
     return TD_OK;
 }
 
+static td_status too_many_bytes(td_case_reader *r, const char *including, int line_no)
+{
+    return td_error_set(r->err, TD_ERR_PARSE, "%s:%d: the case and its @include files exceed %ld bytes in all",
+                        including, line_no, (long)TD_CASE_MAX_TOTAL_SIZE);
+}
+
 /* Expand one @include (on line `line_no` of `file`): append the included file's text between
  * marker comments. An include that cannot be read is reported here, before libconfig would open
  * it: libconfig 1.5 would block on a FIFO and misreport a directory. */
@@ -223,6 +230,7 @@ static td_status expand_include(td_case_reader *r, const char *file, int line_no
 {
     char path[4096], shown[4096], including[4096], quoted[256];
     char *text = NULL;
+    struct stat sb;
     td_error ierr;
     td_status st = include_bounds(r, file, line_no, depth);
     if (st != TD_OK)
@@ -236,6 +244,9 @@ static td_status expand_include(td_case_reader *r, const char *file, int line_no
                             including, line_no, quoted, r->dir_shown);
     snprintf(path, sizeof path, "%s/%s", r->dir, name);
     td_cr_file_shown(r, name, shown, sizeof shown);
+    if (stat(path, &sb) == 0 && S_ISREG(sb.st_mode) &&
+        (unsigned long long)sb.st_size > (unsigned long long)TD_CASE_MAX_TOTAL_SIZE - r->bytes)
+        return too_many_bytes(r, including, line_no); /* refused before reading a byte of it */
     st = td_cr_read_file(shown, path, &text, &ierr);
     if (st == TD_ERR_IO)
         return td_error_set(
@@ -249,10 +260,9 @@ static td_status expand_include(td_case_reader *r, const char *file, int line_no
     }
     r->includes++;
     r->bytes += strlen(text);
-    if (r->bytes > (size_t)TD_CASE_MAX_TOTAL_SIZE) {
+    if (r->bytes > (size_t)TD_CASE_MAX_TOTAL_SIZE) { /* it grew after stat */
         free(text);
-        return td_error_set(r->err, TD_ERR_PARSE, "%s:%d: the case and its @include files exceed %ld bytes in all",
-                            including, line_no, (long)TD_CASE_MAX_TOTAL_SIZE);
+        return too_many_bytes(r, including, line_no);
     }
     td_cr_buf_printf(out, "# >>> @include \"%s\" (%s)\n", quoted, shown);
     st = td_cr_expand(r, text, name, depth + 1, out);
@@ -264,6 +274,84 @@ static td_status expand_include(td_case_reader *r, const char *file, int line_no
 }
 
 typedef enum scan_state { SCAN_CODE, SCAN_LINE_COMMENT, SCAN_BLOCK_COMMENT, SCAN_STRING } scan_state;
+
+/* libconfig's boolean literals (case-insensitive), the only names that are values, not keys. */
+static int boolean_word(const char *p, size_t n)
+{
+    return (n == 4 && strncasecmp(p, "true", 4) == 0) || (n == 5 && strncasecmp(p, "false", 5) == 0);
+}
+
+/* Count one more setting; refuse past TD_CASE_MAX_SETTINGS. */
+static td_status count_setting(td_case_reader *r, const char *file, int line)
+{
+    char shown[4096];
+    if (++r->shape.settings <= TD_CASE_MAX_SETTINGS)
+        return TD_OK;
+    td_cr_file_shown(r, file, shown, sizeof shown);
+    return td_error_set(r->err, TD_ERR_PARSE,
+                        "%s:%d: more than %d settings and list or array entries in one case (the limit of "
+                        "docs/case-format.md)",
+                        shown, line, TD_CASE_MAX_SETTINGS);
+}
+
+/* In a group (or the root), where names are keys; else in a list or array, where each value is
+ * an entry. */
+static int in_group(const td_cr_shape *sh)
+{
+    return sh->depth == 0 || sh->open[sh->depth - 1] == '{';
+}
+
+/* A key `name` (n bytes) of the innermost group: libconfig compares it with each earlier key. */
+static td_status count_key(td_case_reader *r, const char *file, int line, const char *name, size_t n)
+{
+    td_cr_shape *sh = &r->shape;
+    char shown[4096], key[64];
+    if (sh->keys[sh->depth] >= TD_CASE_MAX_GROUP_KEYS) {
+        td_cr_file_shown(r, file, shown, sizeof shown);
+        snprintf(key, sizeof key, "%.*s", (int)(n < 40 ? n : 40), name);
+        return td_error_set(r->err, TD_ERR_PARSE, "%s:%d: %s: more than %d keys in one group", shown, line, key,
+                            TD_CASE_MAX_GROUP_KEYS);
+    }
+    sh->name_compares += (unsigned long long)sh->keys[sh->depth];
+    sh->keys[sh->depth]++;
+    return count_setting(r, file, line);
+}
+
+/* An opening bracket: an entry when inside a list or array, and one level deeper. */
+static td_status open_bracket(td_case_reader *r, const char *file, int line, char ch)
+{
+    td_cr_shape *sh = &r->shape;
+    char shown[4096];
+    td_status st = in_group(sh) ? TD_OK : count_setting(r, file, line);
+    if (st != TD_OK)
+        return st;
+    if (sh->depth >= TD_CASE_MAX_NESTING) {
+        td_cr_file_shown(r, file, shown, sizeof shown);
+        return td_error_set(r->err, TD_ERR_PARSE, "%s:%d: groups, lists and arrays nested more than %d deep", shown,
+                            line, TD_CASE_MAX_NESTING);
+    }
+    sh->open[sh->depth++] = ch;
+    sh->keys[sh->depth] = 0;
+    return TD_OK;
+}
+
+/* Account for the code token at p (n bytes) in the shape of the case. */
+static td_status shape_token(td_case_reader *r, const char *file, int line, const char *p, size_t n)
+{
+    td_cr_shape *sh = &r->shape;
+    if (*p == '{' || *p == '(' || *p == '[')
+        return open_bracket(r, file, line, *p);
+    if (*p == '}' || *p == ')' || *p == ']') {
+        if (sh->depth > 0) /* an unbalanced one is libconfig's syntax error */
+            sh->depth--;
+        return TD_OK;
+    }
+    if (in_group(sh))
+        return (isalpha((unsigned char)*p) || *p == '_' || *p == '*') && !boolean_word(p, n)
+                   ? count_key(r, file, line, p, n)
+                   : TD_OK;
+    return count_setting(r, file, line);
+}
 
 td_status td_cr_expand(td_case_reader *r, const char *text, const char *file, int depth, td_cr_buf *out)
 {
@@ -329,11 +417,15 @@ td_status td_cr_expand(td_case_reader *r, const char *text, const char *file, in
                 p++;
             } else if (*p == '"') {
                 state = SCAN_STRING;
+                if ((st = shape_token(r, file, line, p, 1)) != TD_OK)
+                    return st;
             } else if (isalpha((unsigned char)*p) || *p == '_' || *p == '*') {
                 /* a name or true/false: skip it whole so digits inside it are not numbers */
                 size_t n = 1;
                 while (isalnum((unsigned char)p[n]) || p[n] == '_' || p[n] == '*' || p[n] == '-')
                     n++;
+                if ((st = shape_token(r, file, line, p, n)) != TD_OK)
+                    return st;
                 td_cr_buf_append(out, p, n - 1);
                 p += n - 1;
             } else if (isdigit((unsigned char)*p) || (*p == '.' && isdigit((unsigned char)p[1]))) {
@@ -344,8 +436,12 @@ td_status td_cr_expand(td_case_reader *r, const char *text, const char *file, in
                     if (st != TD_OK)
                         return st;
                 }
+                if ((st = shape_token(r, file, line, p, n)) != TD_OK)
+                    return st;
                 td_cr_buf_append(out, p, n - 1);
                 p += n - 1;
+            } else if (strchr("{}()[]", *p) && (st = shape_token(r, file, line, p, 1)) != TD_OK) {
+                return st;
             }
             break;
         }

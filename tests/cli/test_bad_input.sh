@@ -187,6 +187,30 @@ else
     echo "skip: unreadable file (running as root without a usable setpriv)"
 fi
 
+# ---- out of memory while reading: a 12 MiB case with a 6-million-entry array used to crash
+# libconfig (SIGSEGV, nothing printed) under a memory limit; the entries are counted before it
+# parses, and what it will allocate is asked for first. Skipped where the tool cannot start
+# under the limit at all (sanitizer builds reserve terabytes of address space).
+awk 'BEGIN { printf "speed = 1.0;\nend_time = 1.0;\nx = ["; for (i = 0; i < 6000000; i++) printf "1,"; print "1];" }' \
+    >"$work/in/array-6m.cfg"
+awk 'BEGIN { printf "speed = 1.0;\nend_time = 1.0;\nx = ["; for (i = 0; i < 199000; i++) printf "1,"; print "1];" }' \
+    >"$work/in/array-199k.cfg"
+if (ulimit -v 40000 && "$tool" --version >/dev/null 2>&1); then
+    for limit in 200000 60000; do
+        runner=(bash -c "ulimit -v $limit && exec \"\$@\"" limit)
+        expect_bad "info on a 6-million-entry array (ulimit -v $limit)" \
+            "$work/in/array-6m.cfg:3: more than 200000 settings and list or array entries in one case" -- \
+            info "$work/in/array-6m.cfg"
+        runner=()
+    done
+    runner=(bash -c 'ulimit -v 40000 && exec "$@"' limit)
+    expect_bad "info on a 199000-entry array (ulimit -v 40000)" \
+        "$work/in/array-199k.cfg: out of memory: parsing 199004 settings needs about" -- info "$work/in/array-199k.cfg"
+    runner=()
+else
+    echo "skip: the tool cannot start under ulimit -v 40000"
+fi
+
 # ---- bad --set overrides: one line naming the case, the override and the key --------------
 case_a=$src/cases/paper-a.cfg
 while IFS='|' read -r set needle; do
