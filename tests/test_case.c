@@ -801,6 +801,7 @@ static const bad_file bad_files[] = {
     {"include-name-unclosed.cfg", 4, NULL, NULL},
     {"include-self.cfg", 3, NULL, NULL},
     {"junk-bytes.cfg", 1, NULL, NULL},
+    {"line-endings-cr.cfg", 5, NULL, NULL},
     {"material-missing-E.cfg", 7, "shaft.material.E", NULL},
     {"material-string-density.cfg", 8, "shaft.material.density", NULL},
     {"missing-end-time.cfg", 1, "end_time", NULL},
@@ -1092,6 +1093,17 @@ static void test_many_keys(void **state)
     unlink(path);
 }
 
+/* CRLF line endings read as LF ones (the bare-CR file is in the bad_files table). */
+static void test_crlf(void **state)
+{
+    td_case *c = load_ok("tests/data/case/line-endings-crlf.cfg", NULL, 0);
+    (void)state;
+    assert_close(td_model_speed(td_case_model(c)), 123.0, 0.0, 0.0);
+    assert_close(td_case_end_time(c), 0.25, 0.0, 0.0);
+    assert_close(td_case_output_options(c)->sample_rate, 2000.0, 0.0, 0.0);
+    td_case_free(&c);
+}
+
 /* td_run bounds a run given through the API as the case reader bounds a case (touchdown/limits.h):
  * each bound broken alone is refused before a step is taken, leaving the simulation at t = 0. */
 static void test_run_limits_api(void **state)
@@ -1201,6 +1213,7 @@ int main(void)
         cmocka_unit_test(test_include_bounds),
         cmocka_unit_test(test_run_limits_api),
         cmocka_unit_test(test_many_keys),
+        cmocka_unit_test(test_crlf),
         cmocka_unit_test(test_comment_at_eof),
         cmocka_unit_test(test_api_misuse),
     };

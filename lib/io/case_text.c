@@ -102,6 +102,15 @@ td_status td_cr_read_file(const char *shown, const char *path, char **text, td_e
             return td_error_set(err, TD_ERR_PARSE, "%s:%d: binary data (byte 0x%02x): a case file is text", shown, line,
                                 ch);
         }
+        if (ch == '\r' && buf[i + 1] != '\n') {
+            /* libconfig ends a line (and a # comment) only at '\n': after a bare CR the settings
+             * on the next "line" would be part of a comment, silently dropped */
+            free(buf);
+            return td_error_set(err, TD_ERR_PARSE,
+                                "%s:%d: carriage return without a line feed (CR-only line endings are not "
+                                "supported; save the file with LF or CRLF line endings)",
+                                shown, line);
+        }
         if (ch == '\n')
             line++;
     }

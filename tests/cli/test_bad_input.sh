@@ -147,6 +147,7 @@ while IFS='|' read -r file rest; do
 done <<'EOF'
 end-time-unbounded.cfg|:4: end_time: 10000 Hz over 1e+12 s makes 1e+16 output samples (at most 1e+08)
 solver-max-step-tiny.cfg|:5: solver.max_step: max_step 1e-300 s over 0.1 s forces 1e+299 solver steps (at most 1e+08)
+line-endings-cr.cfg|:5: carriage return without a line feed (CR-only line endings are not supported; save the file with LF or CRLF line endings)
 speed-unbounded.cfg|:3: speed: 1e+20 rad/s over 0.1 s makes 1.59e+18 shaft revolutions (at most 1e+06)
 EOF
 
