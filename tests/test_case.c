@@ -773,6 +773,7 @@ typedef struct bad_file {
 } bad_file;
 
 static const bad_file bad_files[] = {
+    {"amb-bandwidth-tiny.cfg", 5, "ambs[0].bandwidth", NULL},
     {"amb-duplicate-node.cfg", 6, "ambs[1].node", NULL},
     {"amb-missing-ki.cfg", 5, "ambs[0].ki", NULL},
     {"amb-saturation-int.cfg", 6, "ambs[0].saturation", NULL},
@@ -784,6 +785,7 @@ static const bad_file bad_files[] = {
     {"contact-exponent-below-one.cfg", 6, "contact.exponent", NULL},
     {"contact-zero-stiffness.cfg", 6, "contact.stiffness", NULL},
     {"disc-bore-too-big.cfg", 5, "discs[0].bore_radius", NULL},
+    {"disc-inertia-overflow.cfg", 5, "discs[0].radius", NULL},
     {"disc-mixed-forms.cfg", 5, "discs[0].radius", NULL},
     {"disc-negative-node.cfg", 5, "discs[0].node", NULL},
     {"disc-node-out-of-range.cfg", 6, "discs[1].node", NULL},
@@ -840,6 +842,7 @@ static const bad_file bad_files[] = {
     {"solver-unknown-linsol.cfg", 5, "solver.linear_solver", NULL},
     {"speed-inf.cfg", 3, "speed", NULL},
     {"speed-negative.cfg", 3, "speed", NULL},
+    {"speed-overflow-orbit.cfg", 3, "speed", NULL},
     {"speed-string.cfg", 3, "speed", NULL},
     {"speed-unbounded.cfg", 3, "speed", NULL},
     {"start-control-chars.cfg", 5, "start", NULL},
@@ -848,7 +851,9 @@ static const bad_file bad_files[] = {
     {"syntax-mixed-array.cfg", 4, NULL, NULL},
     {"syntax-nan.cfg", 3, NULL, NULL},
     {"syntax-unclosed-group.cfg", 6, NULL, NULL},
+    {"unbalance-force-overflow.cfg", 6, "unbalances[0].magnitude", NULL},
     {"unbalance-negative.cfg", 5, "unbalances[0].magnitude", NULL},
+    {"unbalance-wrap-same-line.cfg", 5, "unbalances[0].magnitude", NULL},
     {"unknown-nested-key.cfg", 5, "retainers[0].clearence", NULL},
     {"unknown-top-key.cfg", 4, "strat", NULL},
     {"unterminated-comment.cfg", 4, NULL, NULL},
@@ -1104,6 +1109,20 @@ static void test_crlf(void **state)
     td_case_free(&c);
 }
 
+/* gravity.direction = [1.7e308, 1.7e308] is a direction like any other: its norm overflowed and
+ * 0 / inf turned gravity off. */
+static void test_gravity_direction_huge(void **state)
+{
+    static const char *const ov[] = {"gravity.direction=[1.7e308, 1.7e308]", "gravity.enabled=true"};
+    td_case *c = load_ok("cases/paper-a.cfg", ov, 2);
+    double gx, gy;
+    (void)state;
+    td_model_gravity(td_case_model(c), &gx, &gy);
+    assert_close(gx, 9.81 / sqrt(2.0), 1e-15, 0.0);
+    assert_close(gy, 9.81 / sqrt(2.0), 1e-15, 0.0);
+    td_case_free(&c);
+}
+
 /* td_run bounds a run given through the API as the case reader bounds a case (touchdown/limits.h):
  * each bound broken alone is refused before a step is taken, leaving the simulation at t = 0. */
 static void test_run_limits_api(void **state)
@@ -1214,6 +1233,7 @@ int main(void)
         cmocka_unit_test(test_run_limits_api),
         cmocka_unit_test(test_many_keys),
         cmocka_unit_test(test_crlf),
+        cmocka_unit_test(test_gravity_direction_huge),
         cmocka_unit_test(test_comment_at_eof),
         cmocka_unit_test(test_api_misuse),
     };

@@ -18,6 +18,10 @@
  *  solver step is 1/20 of a revolution, so this also bounds the default step count (2e7). */
 #define TD_MAX_REVOLUTIONS 1e6
 
+/** Largest unbalance force U Omega^2 at the case speed, N (of every unbalance and schedule
+ *  entry). Real machines stay below 1e7 N; far larger forces only overflow the start orbit. */
+#define TD_MAX_UNBALANCE_FORCE 1e12
+
 /** Most settings and values one case may hand to the parser (every key, every list or array
  *  entry, counted over the case file and its @include files). */
 #define TD_CASE_MAX_SETTINGS 200000

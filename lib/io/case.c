@@ -55,18 +55,28 @@ static td_status syntax_error(td_case_reader *r)
     return td_error_set(r->err, TD_ERR_PARSE, "%s:%d: %s", shown, config_error_line(&r->cfg), text);
 }
 
-/* The first integer setting at file:line under s (file NULL: the main file). */
-static const config_setting_t *find_int_at(const config_setting_t *s, const char *file, int line)
+static int is_number(const config_setting_t *s)
+{
+    int t = config_setting_type(s);
+    return t == CONFIG_TYPE_INT || t == CONFIG_TYPE_INT64 || t == CONFIG_TYPE_FLOAT;
+}
+
+static int same_file(const config_setting_t *s, const char *file)
+{
+    const char *f = config_setting_source_file(s);
+    return (!f && !file) || (f && file && strcmp(f, file) == 0);
+}
+
+/* The number setting written as the (*ordinal)-th number (from 0) on file:line, searched under s in
+ * the order of the text; *ordinal counts down the numbers of that line passed on the way. */
+static const config_setting_t *find_number_at(const config_setting_t *s, const char *file, int line, int *ordinal)
 {
     int i;
-    if (config_setting_type(s) == CONFIG_TYPE_INT && (int)config_setting_source_line(s) == line) {
-        const char *f = config_setting_source_file(s);
-        if ((!f && !file) || (f && file && strcmp(f, file) == 0))
-            return s;
-    }
+    if (is_number(s) && (int)config_setting_source_line(s) == line && same_file(s, file) && (*ordinal)-- == 0)
+        return s;
     if (config_setting_is_aggregate(s))
         for (i = 0; i < config_setting_length(s); i++) {
-            const config_setting_t *hit = find_int_at(config_setting_get_elem(s, (unsigned)i), file, line);
+            const config_setting_t *hit = find_number_at(config_setting_get_elem(s, (unsigned)i), file, line, ordinal);
             if (hit)
                 return hit;
         }
@@ -79,11 +89,13 @@ static td_status check_wraps(td_case_reader *r)
     const td_cr_wrap_site *w;
     const config_setting_t *s;
     char shown[1024];
+    int ordinal;
     if (r->wrap_count == 0)
         return TD_OK;
     w = &r->wraps[0];
-    s = find_int_at(config_root_setting(&r->cfg), w->file, w->line);
-    if (s)
+    ordinal = w->ordinal;
+    s = find_number_at(config_root_setting(&r->cfg), w->file, w->line, &ordinal);
+    if (s && config_setting_type(s) == CONFIG_TYPE_INT)
         return td_cr_fail(r, s, NULL, "integer %s is out of range (at most 2147483647; libconfig would read %d)",
                           w->literal, config_setting_get_int(s));
     td_cr_file_shown(r, w->file, shown, sizeof shown);

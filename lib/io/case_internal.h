@@ -28,6 +28,7 @@ struct td_case {
 typedef struct td_cr_wrap_site {
     char *file; /* file name as libconfig records it (the @include string); NULL: main file */
     int line;
+    int ordinal; /* numbers before it on its line: picks its setting among several on one line */
     char literal[40];
 } td_cr_wrap_site;
 
@@ -110,6 +111,9 @@ td_status td_cr_fail(td_case_reader *r, const config_setting_t *s, const char *s
     __attribute__((format(printf, 4, 5)))
 #endif
     ;
+/* A quantity derived from setting s (`what`, e.g. "the time constant tau = 1 / (2 pi bandwidth)"):
+ * fail naming s when it overflowed to infinity or is NaN. */
+td_status td_cr_derived(td_case_reader *r, const config_setting_t *s, double value, const char *what);
 /* Re-word an error of a td_model_* call with the location of the setting it came from. */
 td_status td_cr_model_fail(td_case_reader *r, const config_setting_t *s, td_status st, const td_error *merr);
 /* Reject members of group g whose names are not in the NULL-terminated `allowed`. */

@@ -45,7 +45,7 @@ static td_status fail_at(td_case_reader *r, const config_setting_t *g, const cha
 static td_status read_gravity(td_case_reader *r, const config_setting_t *root)
 {
     const config_setting_t *grav;
-    double g = 9.81, dir[2] = {0.0, -1.0}, norm;
+    double g = 9.81, dir[2] = {0.0, -1.0}, norm, scale;
     int enabled = 0, n = 2;
     td_error merr;
     td_status st = td_cr_group(r, root, "gravity", NULL, &grav);
@@ -61,12 +61,15 @@ static td_status read_gravity(td_case_reader *r, const config_setting_t *root)
         st = td_cr_reals(r, grav, "direction", 2, TD_CR_FINITE, dir, &n);
         if (st == TD_OK && n != 2)
             return td_cr_fail(r, d, NULL, "expected two components [gx, gy], got %d", n);
-        norm = hypot(dir[0], dir[1]);
-        if (st == TD_OK && !(norm > 0.0))
+        /* scaled by the larger component first: hypot(1.7e308, 1.7e308) overflows, and the
+         * direction 0/inf would have turned gravity off */
+        scale = fabs(dir[0]) > fabs(dir[1]) ? fabs(dir[0]) : fabs(dir[1]);
+        if (st == TD_OK && !(scale > 0.0))
             return td_cr_fail(r, d, NULL, "must not be the zero vector");
         if (st == TD_OK) {
-            dir[0] /= norm;
-            dir[1] /= norm;
+            norm = hypot(dir[0] / scale, dir[1] / scale);
+            dir[0] = dir[0] / scale / norm;
+            dir[1] = dir[1] / scale / norm;
         }
     }
     if (st != TD_OK)
@@ -226,6 +229,26 @@ static td_status check_run_limits(td_case_reader *r, const config_setting_t *roo
     return td_cr_fail(r, s, NULL, "%s", why);
 }
 
+/* The unbalance force U Omega^2 of every entry of the list `key` with a magnitude, at the case
+ * speed, within TD_MAX_UNBALANCE_FORCE (the lists were read and checked by case_parts.c). */
+static td_status check_unbalance_forces(td_case_reader *r, const config_setting_t *root, const char *key, double speed)
+{
+    const config_setting_t *list = config_setting_get_member(root, key), *s;
+    double u, force;
+    int i;
+    for (i = 0; list && i < config_setting_length(list); i++) {
+        s = config_setting_get_member(config_setting_get_elem(list, (unsigned)i), "magnitude");
+        if (!s || td_cr_value_real(r, s, TD_CR_NONNEGATIVE, &u) != TD_OK)
+            continue;
+        force = u * speed * speed;
+        if (!(force <= TD_MAX_UNBALANCE_FORCE))
+            return td_cr_fail(r, s, NULL,
+                              "the unbalance force U Omega^2 = %g kg m x (%g rad/s)^2 = %.3g N exceeds %.0e N", u,
+                              speed, force, TD_MAX_UNBALANCE_FORCE);
+    }
+    return TD_OK;
+}
+
 td_status td_cr_read_options(td_case_reader *r, const config_setting_t *root)
 {
     td_case *c = r->c;
@@ -250,6 +273,10 @@ td_status td_cr_read_options(td_case_reader *r, const config_setting_t *root)
         st = read_output(r, root, &c->output);
     if (st == TD_OK)
         st = check_run_limits(r, root, speed);
+    if (st == TD_OK)
+        st = check_unbalance_forces(r, root, "unbalances", speed);
+    if (st == TD_OK)
+        st = check_unbalance_forces(r, root, "schedule", speed);
     if (st == TD_OK)
         st = read_modal(r, root, &c->modal);
     return st;

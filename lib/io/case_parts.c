@@ -53,7 +53,9 @@ static td_status read_disc_geometry(td_case_reader *r, const config_setting_t *g
     d->mass = rho * TD_PI * (R * R - bore * bore) * t;
     d->Ip = d->mass * (R * R + bore * bore) / 2.0;
     d->Id = d->mass * (3.0 * (R * R + bore * bore) + t * t) / 12.0;
-    return TD_OK;
+    /* R and t are the factors that are squared; the largest inertia overflows first */
+    return td_cr_derived(r, config_setting_get_member(g, "radius"), d->Id > d->Ip ? d->Id : d->Ip,
+                         "the disc inertia from radius, thickness and density");
 }
 
 static td_status read_disc(td_case_reader *r, const config_setting_t *g)
@@ -119,7 +121,7 @@ static td_status read_amb_lag(td_case_reader *r, const config_setting_t *g, doub
     st = td_cr_value_real(r, bw, TD_CR_POSITIVE, &hz);
     if (st == TD_OK)
         *tau = 1.0 / (2.0 * TD_PI * hz);
-    return st;
+    return st == TD_OK ? td_cr_derived(r, bw, *tau, "the time constant tau = 1 / (2 pi bandwidth)") : st;
 }
 
 /* Entry g of `list` (the list named `key`) is on `node`, where its entry j already put `part`:

@@ -119,7 +119,7 @@ td_status td_cr_read_file(const char *shown, const char *path, char **text, td_e
 }
 
 /* Record an integer literal libconfig would wrap. */
-static td_status add_wrap(td_case_reader *r, const char *file, int line, const char *lit, size_t n)
+static td_status add_wrap(td_case_reader *r, const char *file, int line, int ordinal, const char *lit, size_t n)
 {
     td_cr_wrap_site *s;
     if (r->wrap_count == r->wrap_cap) {
@@ -139,6 +139,7 @@ static td_status add_wrap(td_case_reader *r, const char *file, int line, const c
         strcpy(s->file, file);
     }
     s->line = line;
+    s->ordinal = ordinal;
     if (n >= sizeof s->literal)
         n = sizeof s->literal - 1;
     memcpy(s->literal, lit, n);
@@ -366,7 +367,7 @@ td_status td_cr_expand(td_case_reader *r, const char *text, const char *file, in
 {
     const char *p = text, *line_start = text;
     scan_state state = SCAN_CODE;
-    int line = 1, comment_line = 0;
+    int line = 1, comment_line = 0, numbers_on_line = 0;
     char shown[4096], name[1024];
     td_status st;
 
@@ -395,6 +396,7 @@ td_status td_cr_expand(td_case_reader *r, const char *text, const char *file, in
             p++;
             line_start = p;
             line++;
+            numbers_on_line = 0;
             if (state == SCAN_LINE_COMMENT)
                 state = SCAN_CODE;
             continue;
@@ -441,10 +443,11 @@ td_status td_cr_expand(td_case_reader *r, const char *text, const char *file, in
                 size_t n = number_length(p);
                 int negative = p > text && p[-1] == '-';
                 if (token_wraps(p, n, negative)) {
-                    st = add_wrap(r, file, line, p, n);
+                    st = add_wrap(r, file, line, numbers_on_line, p, n);
                     if (st != TD_OK)
                         return st;
                 }
+                numbers_on_line++;
                 if ((st = shape_token(r, file, line, p, n)) != TD_OK)
                     return st;
                 td_cr_buf_append(out, p, n - 1);

@@ -136,6 +136,13 @@ td_status td_cr_fail(td_case_reader *r, const config_setting_t *s, const char *s
     return td_error_set(r->err, TD_ERR_PARSE, "%s: %s", where, msg);
 }
 
+td_status td_cr_derived(td_case_reader *r, const config_setting_t *s, double value, const char *what)
+{
+    if (isfinite(value))
+        return TD_OK;
+    return td_cr_fail(r, s, NULL, "%s overflows (to %g)", what, value);
+}
+
 td_status td_cr_model_fail(td_case_reader *r, const config_setting_t *s, td_status st, const td_error *merr)
 {
     if (st == TD_ERR_NOMEM)
