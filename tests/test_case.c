@@ -1123,6 +1123,50 @@ static void test_gravity_direction_huge(void **state)
     td_case_free(&c);
 }
 
+/* The message record holds 512 bytes: a long override or path echoed in front of the reason used
+ * to push the reason out. The echo is shortened now, never the reason. */
+static void test_long_messages(void **state)
+{
+    static const char expect[] = "long.cfg:1: description: expected a string \"...\", got an integer";
+    char ov[700], dir[1024], path[1200];
+    const char *ovs[1] = {ov};
+    td_case *c = NULL;
+    td_error err;
+    size_t n;
+    (void)state;
+    memset(ov, 0, sizeof ov);
+    memcpy(ov, "speed=\"", 7);
+    memset(ov + 7, 'a', 600);
+    ov[607] = '"';
+    assert_int_equal(td_case_load(td_source_path("cases/paper-a.cfg"), ovs, 1, &c, &err), TD_ERR_PARSE);
+    n = strlen(err.message);
+    assert_true(n < TD_ERROR_MESSAGE_SIZE);
+    assert_contains(err.message, "paper-a.cfg: --set 'speed=\"aaa");
+    assert_contains(err.message, "\"': speed: expected a number, got the string \"aaa");
+    assert_string_equal(err.message + n - 6, "aa...\""); /* the reason's own quote, cut at 64 */
+    /* a path of 460 characters: the message still ends with the key and the reason */
+    snprintf(dir, sizeof dir, "%s", scratch(""));
+    n = strlen(dir);
+    memset(dir + n, 'd', 200);
+    dir[n + 200] = '\0';
+    mkdir(dir, 0755);
+    strcat(dir, "/");
+    n = strlen(dir);
+    memset(dir + n, 'e', 200);
+    dir[n + 200] = '\0';
+    mkdir(dir, 0755);
+    snprintf(path, sizeof path, "%s/long.cfg", dir);
+    write_file(path, "description = 5;\n");
+    assert_int_equal(td_case_load(path, NULL, 0, &c, &err), TD_ERR_PARSE);
+    n = strlen(err.message);
+    assert_true(n > strlen(expect));
+    assert_string_equal(err.message + n - strlen(expect), expect);
+    unlink(path);
+    rmdir(dir);
+    dir[strlen(dir) - 201] = '\0';
+    rmdir(dir);
+}
+
 /* td_run bounds a run given through the API as the case reader bounds a case (touchdown/limits.h):
  * each bound broken alone is refused before a step is taken, leaving the simulation at t = 0. */
 static void test_run_limits_api(void **state)
@@ -1233,6 +1277,7 @@ int main(void)
         cmocka_unit_test(test_run_limits_api),
         cmocka_unit_test(test_many_keys),
         cmocka_unit_test(test_crlf),
+        cmocka_unit_test(test_long_messages),
         cmocka_unit_test(test_gravity_direction_huge),
         cmocka_unit_test(test_comment_at_eof),
         cmocka_unit_test(test_api_misuse),

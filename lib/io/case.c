@@ -41,18 +41,19 @@ static td_status set_dir(td_case_reader *r)
     r->has_dir = slash != NULL;
     r->dir = slash ? dup_string(r->path, slash == r->path ? 1 : (size_t)(slash - r->path)) : dup_string(".", 1);
     r->dir_shown = r->dir ? td_cr_printable_dup(r->dir) : NULL;
-    return r->dir_shown ? TD_OK : td_error_set(r->err, TD_ERR_NOMEM, "%s: out of memory", r->path_shown);
+    return r->dir_shown ? TD_OK : td_cr_fail_file(r->err, TD_ERR_NOMEM, r->path_shown, 0, "out of memory");
 }
 
 static td_status syntax_error(td_case_reader *r)
 {
     char shown[1024];
     const char *text = config_error_text(&r->cfg) ? config_error_text(&r->cfg) : "parse error";
+    int line = config_error_line(&r->cfg);
     td_cr_file_shown(r, config_error_file(&r->cfg), shown, sizeof shown);
     if (strcmp(text, "cannot open include file") == 0)
-        return td_error_set(r->err, TD_ERR_PARSE, "%s:%d: %s (@include paths are relative to %s)", shown,
-                            config_error_line(&r->cfg), text, r->dir_shown);
-    return td_error_set(r->err, TD_ERR_PARSE, "%s:%d: %s", shown, config_error_line(&r->cfg), text);
+        return td_cr_fail_file(r->err, TD_ERR_PARSE, shown, line, "%s (@include paths are relative to %s)", text,
+                               r->dir_shown);
+    return td_cr_fail_file(r->err, TD_ERR_PARSE, shown, line, "%s", text);
 }
 
 static int is_number(const config_setting_t *s)
@@ -99,8 +100,8 @@ static td_status check_wraps(td_case_reader *r)
         return td_cr_fail(r, s, NULL, "integer %s is out of range (at most 2147483647; libconfig would read %d)",
                           w->literal, config_setting_get_int(s));
     td_cr_file_shown(r, w->file, shown, sizeof shown);
-    return td_error_set(r->err, TD_ERR_PARSE, "%s:%d: integer %s is out of range (at most 2147483647)", shown, w->line,
-                        w->literal);
+    return td_cr_fail_file(r->err, TD_ERR_PARSE, shown, w->line, "integer %s is out of range (at most 2147483647)",
+                           w->literal);
 }
 
 static td_case *case_new(const char *path)
@@ -134,7 +135,7 @@ static td_status finish_text(td_case_reader *r, td_cr_buf *buf, const char *cons
     if (!buf->data)
         td_cr_buf_append(buf, "", 0);
     if (buf->failed)
-        return td_error_set(r->err, TD_ERR_NOMEM, "%s: out of memory", r->path_shown);
+        return td_cr_fail_file(r->err, TD_ERR_NOMEM, r->path_shown, 0, "out of memory");
     r->c->text = buf->data;
     buf->data = NULL;
     return TD_OK;
@@ -150,7 +151,7 @@ static td_status apply_refine(td_case_reader *r)
     if (r->refine == 1)
         return TD_OK;
     if (td_model_refine(r->c->model, r->refine, &fine, &merr) != TD_OK)
-        return td_error_set(r->err, merr.code, "%s: shaft.refine: %s", r->path_shown, merr.message);
+        return td_cr_fail_file(r->err, merr.code, r->path_shown, 0, "shaft.refine: %s", merr.message);
     td_model_free(&r->c->model);
     r->c->model = fine;
     for (i = 0; i < r->c->output.node_count; i++)
@@ -168,7 +169,7 @@ static td_status read_case(td_case_reader *r)
     if (st == TD_OK)
         st = td_cr_string(r, root, "description", "", &desc);
     if (st == TD_OK && !(r->c->description = dup_string(desc, strlen(desc))))
-        st = td_error_set(r->err, TD_ERR_NOMEM, "%s: out of memory", r->path_shown);
+        st = td_cr_fail_file(r->err, TD_ERR_NOMEM, r->path_shown, 0, "out of memory");
     if (st == TD_OK)
         st = td_cr_read_shaft(r, root);
     if (st == TD_OK)
@@ -177,7 +178,7 @@ static td_status read_case(td_case_reader *r)
         st = td_cr_read_options(r, root);
     /* everything td_model_validate checks was checked above with locations; this is a backstop */
     if (st == TD_OK && td_model_validate(r->c->model, &merr) != TD_OK)
-        st = td_error_set(r->err, TD_ERR_PARSE, "%s: %s", r->path_shown, merr.message);
+        st = td_cr_fail_file(r->err, TD_ERR_PARSE, r->path_shown, 0, "%s", merr.message);
     if (st == TD_OK)
         st = apply_refine(r);
     return st;
@@ -194,7 +195,7 @@ static td_status end_with_newline(td_case_reader *r, char **text)
         return TD_OK;
     p = realloc(*text, n + 2);
     if (!p)
-        return td_error_set(r->err, TD_ERR_NOMEM, "%s: out of memory", r->path_shown);
+        return td_cr_fail_file(r->err, TD_ERR_NOMEM, r->path_shown, 0, "out of memory");
     p[n] = '\n';
     p[n + 1] = '\0';
     *text = p;
@@ -213,8 +214,9 @@ static td_status probe_memory(td_case_reader *r, size_t text_bytes)
     size_t need = (size_t)r->shape.settings * TD_CR_SETTING_BYTES + 2 * text_bytes;
     void *p = malloc(need);
     if (!p)
-        return td_error_set(r->err, TD_ERR_NOMEM, "%s: out of memory: parsing %ld settings needs about %lu bytes",
-                            r->path_shown, r->shape.settings, (unsigned long)need);
+        return td_cr_fail_file(r->err, TD_ERR_NOMEM, r->path_shown, 0,
+                               "out of memory: parsing %ld settings needs about %lu bytes", r->shape.settings,
+                               (unsigned long)need);
     free(p);
     return TD_OK;
 }
@@ -254,7 +256,7 @@ static td_status load(td_case_reader *r, const char *const *overrides, int n_ove
     if (st == TD_OK)
         st = check_wraps(r);
     if (st == TD_OK && config_setting_length(config_root_setting(&r->cfg)) == 0)
-        st = td_error_set(r->err, TD_ERR_PARSE, "%s:1: the case file is empty (no settings)", r->path_shown);
+        st = td_cr_fail_file(r->err, TD_ERR_PARSE, r->path_shown, 1, "the case file is empty (no settings)");
     for (i = 0; st == TD_OK && i < n_overrides; i++)
         st = td_cr_apply_override(r, overrides[i]);
     if (st == TD_OK)

@@ -111,6 +111,13 @@ td_status td_cr_fail(td_case_reader *r, const config_setting_t *s, const char *s
     __attribute__((format(printf, 4, 5)))
 #endif
     ;
+/* Fail with "SHOWN:LINE: message" ("SHOWN: message" when line is 0), SHOWN (a file as shown in
+ * messages) cut in its middle if needed so that the message survives; returns code. */
+td_status td_cr_fail_file(td_error *err, td_status code, const char *shown, int line, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 5, 6)))
+#endif
+    ;
 /* A quantity derived from setting s (`what`, e.g. "the time constant tau = 1 / (2 pi bandwidth)"):
  * fail naming s when it overflowed to infinity or is NaN. */
 td_status td_cr_derived(td_case_reader *r, const config_setting_t *s, double value, const char *what);

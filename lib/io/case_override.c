@@ -21,18 +21,22 @@ typedef struct step {
     int index;
 } step;
 
+/* "CASE: --set 'OV': what", the echoed override shortened when the whole would not fit. */
+static td_status fail_override(td_case_reader *r, td_status code, const char *ov, const char *what)
+{
+    char shown[2048], where[4096];
+    snprintf(where, sizeof where, "%s: --set '%s'", r->path_shown, td_cr_printable(ov, shown, sizeof shown));
+    return td_error_set_reason(r->err, code, where, what);
+}
+
 static td_status bad(td_case_reader *r, const char *ov, const char *what)
 {
-    char shown[TD_ERROR_MESSAGE_SIZE];
-    return td_error_set(r->err, TD_ERR_PARSE, "%s: --set '%s': %s", r->path_shown,
-                        td_cr_printable(ov, shown, sizeof shown), what);
+    return fail_override(r, TD_ERR_PARSE, ov, what);
 }
 
 static td_status out_of_memory(td_case_reader *r, const char *ov)
 {
-    char shown[TD_ERROR_MESSAGE_SIZE];
-    return td_error_set(r->err, TD_ERR_NOMEM, "%s: --set '%s': out of memory", r->path_shown,
-                        td_cr_printable(ov, shown, sizeof shown));
+    return fail_override(r, TD_ERR_NOMEM, ov, "out of memory");
 }
 
 /* Split "a.b[2].c" (or libconfig's "a.b.[2].c") into steps; returns the count, -1 if malformed. */

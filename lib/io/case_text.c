@@ -69,21 +69,21 @@ td_status td_cr_read_file(const char *shown, const char *path, char **text, td_e
 
     *text = NULL;
     if (stat(path, &st) != 0)
-        return td_error_set(err, TD_ERR_IO, "%s: cannot read the case file: %s", shown, strerror(errno));
+        return td_cr_fail_file(err, TD_ERR_IO, shown, 0, "cannot read the case file: %s", strerror(errno));
     if (S_ISDIR(st.st_mode))
-        return td_error_set(err, TD_ERR_IO, "%s: cannot read the case file: it is a directory", shown);
+        return td_cr_fail_file(err, TD_ERR_IO, shown, 0, "cannot read the case file: it is a directory");
     if (!S_ISREG(st.st_mode)) /* FIFOs and devices could block or never end */
-        return td_error_set(err, TD_ERR_IO, "%s: cannot read the case file: not a regular file", shown);
+        return td_cr_fail_file(err, TD_ERR_IO, shown, 0, "cannot read the case file: not a regular file");
     if ((long long)st.st_size > (long long)TD_CASE_MAX_FILE_SIZE)
-        return td_error_set(err, TD_ERR_IO, "%s: the case file is too large (%lld bytes, limit %ld)", shown,
-                            (long long)st.st_size, (long)TD_CASE_MAX_FILE_SIZE);
+        return td_cr_fail_file(err, TD_ERR_IO, shown, 0, "the case file is too large (%lld bytes, limit %ld)",
+                               (long long)st.st_size, (long)TD_CASE_MAX_FILE_SIZE);
     f = fopen(path, "rb");
     if (!f)
-        return td_error_set(err, TD_ERR_IO, "%s: cannot read the case file: %s", shown, strerror(errno));
+        return td_cr_fail_file(err, TD_ERR_IO, shown, 0, "cannot read the case file: %s", strerror(errno));
     buf = malloc((size_t)st.st_size + 1);
     if (!buf) {
         fclose(f);
-        return td_error_set(err, TD_ERR_NOMEM, "%s: out of memory reading the case file", shown);
+        return td_cr_fail_file(err, TD_ERR_NOMEM, shown, 0, "out of memory reading the case file");
     }
     /* read at most the size stat() saw; a file growing meanwhile is cut there */
     n = fread(buf, 1, (size_t)st.st_size, f);
@@ -91,7 +91,7 @@ td_status td_cr_read_file(const char *shown, const char *path, char **text, td_e
         int e = errno;
         fclose(f);
         free(buf);
-        return td_error_set(err, TD_ERR_IO, "%s: cannot read the case file: %s", shown, strerror(e));
+        return td_cr_fail_file(err, TD_ERR_IO, shown, 0, "cannot read the case file: %s", strerror(e));
     }
     fclose(f);
     buf[n] = '\0';
@@ -99,17 +99,16 @@ td_status td_cr_read_file(const char *shown, const char *path, char **text, td_e
         unsigned char ch = (unsigned char)buf[i];
         if (binary_byte(ch)) {
             free(buf);
-            return td_error_set(err, TD_ERR_PARSE, "%s:%d: binary data (byte 0x%02x): a case file is text", shown, line,
-                                ch);
+            return td_cr_fail_file(err, TD_ERR_PARSE, shown, line, "binary data (byte 0x%02x): a case file is text",
+                                   ch);
         }
         if (ch == '\r' && buf[i + 1] != '\n') {
             /* libconfig ends a line (and a # comment) only at '\n': after a bare CR the settings
              * on the next "line" would be part of a comment, silently dropped */
             free(buf);
-            return td_error_set(err, TD_ERR_PARSE,
-                                "%s:%d: carriage return without a line feed (CR-only line endings are not "
-                                "supported; save the file with LF or CRLF line endings)",
-                                shown, line);
+            return td_cr_fail_file(err, TD_ERR_PARSE, shown, line,
+                                   "carriage return without a line feed (CR-only line endings are not "
+                                   "supported; save the file with LF or CRLF line endings)");
         }
         if (ch == '\n')
             line++;
@@ -126,7 +125,7 @@ static td_status add_wrap(td_case_reader *r, const char *file, int line, int ord
         int cap = r->wrap_cap ? 2 * r->wrap_cap : 4;
         td_cr_wrap_site *p = realloc(r->wraps, (size_t)cap * sizeof *p);
         if (!p)
-            return td_error_set(r->err, TD_ERR_NOMEM, "%s: out of memory", r->path_shown);
+            return td_cr_fail_file(r->err, TD_ERR_NOMEM, r->path_shown, 0, "out of memory");
         r->wraps = p;
         r->wrap_cap = cap;
     }
@@ -135,7 +134,7 @@ static td_status add_wrap(td_case_reader *r, const char *file, int line, int ord
     if (file) {
         s->file = malloc(strlen(file) + 1);
         if (!s->file)
-            return td_error_set(r->err, TD_ERR_NOMEM, "%s: out of memory", r->path_shown);
+            return td_cr_fail_file(r->err, TD_ERR_NOMEM, r->path_shown, 0, "out of memory");
         strcpy(s->file, file);
     }
     s->line = line;
@@ -217,19 +216,19 @@ static td_status include_bounds(td_case_reader *r, const char *file, int line_no
     char including[4096];
     td_cr_file_shown(r, file, including, sizeof including);
     if (depth >= TD_CASE_MAX_INCLUDE_DEPTH)
-        return td_error_set(r->err, TD_ERR_PARSE,
-                            "%s:%d: @include nested more than %d deep (does a file include itself?)", including,
-                            line_no, TD_CASE_MAX_INCLUDE_DEPTH);
+        return td_cr_fail_file(r->err, TD_ERR_PARSE, including, line_no,
+                               "@include nested more than %d deep (does a file include itself?)",
+                               TD_CASE_MAX_INCLUDE_DEPTH);
     if (r->includes >= TD_CASE_MAX_INCLUDES)
-        return td_error_set(r->err, TD_ERR_PARSE, "%s:%d: more than %d @include files in one case", including, line_no,
-                            TD_CASE_MAX_INCLUDES);
+        return td_cr_fail_file(r->err, TD_ERR_PARSE, including, line_no, "more than %d @include files in one case",
+                               TD_CASE_MAX_INCLUDES);
     return TD_OK;
 }
 
 static td_status too_many_bytes(td_case_reader *r, const char *including, int line_no)
 {
-    return td_error_set(r->err, TD_ERR_PARSE, "%s:%d: the case and its @include files exceed %ld bytes in all",
-                        including, line_no, (long)TD_CASE_MAX_TOTAL_SIZE);
+    return td_cr_fail_file(r->err, TD_ERR_PARSE, including, line_no,
+                           "the case and its @include files exceed %ld bytes in all", (long)TD_CASE_MAX_TOTAL_SIZE);
 }
 
 /* Expand one @include (on line `line_no` of `file`): append the included file's text between
@@ -248,10 +247,10 @@ static td_status expand_include(td_case_reader *r, const char *file, int line_no
     td_cr_file_shown(r, file, including, sizeof including);
     td_cr_printable(name, quoted, sizeof quoted);
     if (name[0] == '/')
-        return td_error_set(r->err, TD_ERR_PARSE,
-                            "%s:%d: cannot open include file \"%.200s\" (absolute @include paths are not supported: "
-                            "libconfig 1.5 reads them relative to %.200s)",
-                            including, line_no, quoted, r->dir_shown);
+        return td_cr_fail_file(r->err, TD_ERR_PARSE, including, line_no,
+                               "cannot open include file \"%.200s\" (absolute @include paths are not supported: "
+                               "libconfig 1.5 reads them relative to %.200s)",
+                               quoted, r->dir_shown);
     snprintf(path, sizeof path, "%s/%s", r->dir, name);
     td_cr_file_shown(r, name, shown, sizeof shown);
     if (stat(path, &sb) == 0 && S_ISREG(sb.st_mode) &&
@@ -259,10 +258,9 @@ static td_status expand_include(td_case_reader *r, const char *file, int line_no
         return too_many_bytes(r, including, line_no); /* refused before reading a byte of it */
     st = td_cr_read_file(shown, path, &text, &ierr);
     if (st == TD_ERR_IO)
-        return td_error_set(
-            r->err, TD_ERR_PARSE,
-            "%s:%d: cannot open include file \"%.200s\" (%.200s; @include paths are relative to %.200s)", including,
-            line_no, quoted, ierr.message, r->dir_shown);
+        return td_cr_fail_file(r->err, TD_ERR_PARSE, including, line_no,
+                               "cannot open include file \"%.200s\" (%.200s; @include paths are relative to %.200s)",
+                               quoted, ierr.message, r->dir_shown);
     if (st != TD_OK) {
         if (r->err)
             *r->err = ierr;
@@ -298,10 +296,10 @@ static td_status count_setting(td_case_reader *r, const char *file, int line)
     if (++r->shape.settings <= TD_CASE_MAX_SETTINGS)
         return TD_OK;
     td_cr_file_shown(r, file, shown, sizeof shown);
-    return td_error_set(r->err, TD_ERR_PARSE,
-                        "%s:%d: more than %d settings and list or array entries in one case (the limit of "
-                        "docs/case-format.md)",
-                        shown, line, TD_CASE_MAX_SETTINGS);
+    return td_cr_fail_file(r->err, TD_ERR_PARSE, shown, line,
+                           "more than %d settings and list or array entries in one case (the limit of "
+                           "docs/case-format.md)",
+                           TD_CASE_MAX_SETTINGS);
 }
 
 /* In a group (or the root), where names are keys; else in a list or array, where each value is
@@ -319,8 +317,8 @@ static td_status count_key(td_case_reader *r, const char *file, int line, const 
     if (sh->keys[sh->depth] >= TD_CASE_MAX_GROUP_KEYS) {
         td_cr_file_shown(r, file, shown, sizeof shown);
         snprintf(key, sizeof key, "%.*s", (int)(n < 40 ? n : 40), name);
-        return td_error_set(r->err, TD_ERR_PARSE, "%s:%d: %s: more than %d keys in one group", shown, line, key,
-                            TD_CASE_MAX_GROUP_KEYS);
+        return td_cr_fail_file(r->err, TD_ERR_PARSE, shown, line, "%s: more than %d keys in one group", key,
+                               TD_CASE_MAX_GROUP_KEYS);
     }
     sh->name_compares += (unsigned long long)sh->keys[sh->depth];
     sh->keys[sh->depth]++;
@@ -337,8 +335,8 @@ static td_status open_bracket(td_case_reader *r, const char *file, int line, cha
         return st;
     if (sh->depth >= TD_CASE_MAX_NESTING) {
         td_cr_file_shown(r, file, shown, sizeof shown);
-        return td_error_set(r->err, TD_ERR_PARSE, "%s:%d: groups, lists and arrays nested more than %d deep", shown,
-                            line, TD_CASE_MAX_NESTING);
+        return td_cr_fail_file(r->err, TD_ERR_PARSE, shown, line, "groups, lists and arrays nested more than %d deep",
+                               TD_CASE_MAX_NESTING);
     }
     sh->open[sh->depth++] = ch;
     sh->keys[sh->depth] = 0;
@@ -375,10 +373,10 @@ td_status td_cr_expand(td_case_reader *r, const char *text, const char *file, in
         int inc = p == line_start && state == SCAN_CODE ? include_line(p, name, sizeof name) : 0;
         if (inc < 0) {
             td_cr_file_shown(r, file, shown, sizeof shown);
-            return td_error_set(r->err, TD_ERR_PARSE,
-                                "%s:%d: @include: the file name must be closed by '\"' on the same line, without "
-                                "backslashes, and be shorter than %d bytes",
-                                shown, line, (int)sizeof name);
+            return td_cr_fail_file(r->err, TD_ERR_PARSE, shown, line,
+                                   "@include: the file name must be closed by '\"' on the same line, without "
+                                   "backslashes, and be shorter than %d bytes",
+                                   (int)sizeof name);
         }
         if (inc) {
             const char *end = strchr(p, '\n');
@@ -462,21 +460,19 @@ td_status td_cr_expand(td_case_reader *r, const char *text, const char *file, in
     }
     if (state == SCAN_BLOCK_COMMENT) {
         td_cr_file_shown(r, file, shown, sizeof shown);
-        return td_error_set(r->err, TD_ERR_PARSE,
-                            "%s:%d: unterminated /* comment (libconfig would silently ignore the rest of the file)",
-                            shown, comment_line);
+        return td_cr_fail_file(r->err, TD_ERR_PARSE, shown, comment_line,
+                               "unterminated /* comment (libconfig would silently ignore the rest of the file)");
     }
     if (state == SCAN_LINE_COMMENT && file) {
         /* libconfig 1.5 reads an included file itself and rejects a last-line comment without a
          * final newline as "syntax error"; the main file gets the newline appended (case.c) */
         td_cr_file_shown(r, file, shown, sizeof shown);
-        return td_error_set(r->err, TD_ERR_PARSE,
-                            "%s:%d: an included file must end with a newline after its last comment (libconfig 1.5 "
-                            "cannot read it otherwise)",
-                            shown, line);
+        return td_cr_fail_file(r->err, TD_ERR_PARSE, shown, line,
+                               "an included file must end with a newline after its last comment (libconfig 1.5 "
+                               "cannot read it otherwise)");
     }
     if (out->failed)
-        return td_error_set(r->err, TD_ERR_NOMEM, "%s: out of memory", r->path_shown);
+        return td_cr_fail_file(r->err, TD_ERR_NOMEM, r->path_shown, 0, "out of memory");
     return TD_OK;
 }
 
