@@ -1098,6 +1098,35 @@ static void test_many_keys(void **state)
     unlink(path);
 }
 
+/* Overrides add to the same bounds: a value with more entries than TD_CASE_MAX_SETTINGS is
+ * refused before libconfig parses it, and no group grows past TD_CASE_MAX_GROUP_KEYS. */
+static void test_override_bounds(void **state)
+{
+    char *big = malloc(2 * (TD_CASE_MAX_SETTINGS + 1) + 16), names[70][16];
+    const char *ovs[70];
+    td_case *c = NULL;
+    td_error err;
+    int i;
+    (void)state;
+    assert_non_null(big);
+    strcpy(big, "x=[1");
+    for (i = 0; i < TD_CASE_MAX_SETTINGS; i++)
+        memcpy(big + 4 + 2 * i, ",1", 2);
+    strcpy(big + 4 + 2 * TD_CASE_MAX_SETTINGS, "]");
+    ovs[0] = big;
+    assert_int_equal(td_case_load(td_source_path("cases/paper-a.cfg"), ovs, 1, &c, &err), TD_ERR_PARSE);
+    assert_contains(err.message, "paper-a.cfg: --set 'x=[1,1,1");
+    assert_contains(err.message, "': more than 200000 settings and list or array entries in one case");
+    free(big);
+    for (i = 0; i < 70; i++) {
+        snprintf(names[i], sizeof names[i], "x%d=1", i);
+        ovs[i] = names[i];
+    }
+    assert_int_equal(td_case_load(td_source_path("cases/paper-a.cfg"), ovs, 70, &c, &err), TD_ERR_PARSE);
+    assert_contains(err.message, "the group would hold more than 64 keys");
+    assert_null(c);
+}
+
 /* CRLF line endings read as LF ones (the bare-CR file is in the bad_files table). */
 static void test_crlf(void **state)
 {
@@ -1276,6 +1305,7 @@ int main(void)
         cmocka_unit_test(test_include_bounds),
         cmocka_unit_test(test_run_limits_api),
         cmocka_unit_test(test_many_keys),
+        cmocka_unit_test(test_override_bounds),
         cmocka_unit_test(test_crlf),
         cmocka_unit_test(test_long_messages),
         cmocka_unit_test(test_gravity_direction_huge),
