@@ -61,7 +61,8 @@ typedef struct td_case td_case;
  *
  * Returns TD_OK; TD_ERR_IO if the file (or the path) cannot be read as a regular file;
  * TD_ERR_PARSE for a syntax error, an unknown, missing, mistyped or invalid key, a bad
- * override, or a case past the bounds of touchdown/limits.h; TD_ERR_NOMEM; TD_ERR_INVALID for NULL path/out or n_overrides < 0.
+ * override, or a case past the bounds of touchdown/limits.h; TD_ERR_NOMEM; TD_ERR_INVALID for
+ * NULL path/out or n_overrides < 0.
  */
 TD_API td_status td_case_load(const char *path, const char *const *overrides, int n_overrides, td_case **out,
                               td_error *err);
