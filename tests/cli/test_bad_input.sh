@@ -149,6 +149,8 @@ end-time-unbounded.cfg|:4: end_time: 10000 Hz over 1e+12 s makes 1e+16 output sa
 solver-max-step-tiny.cfg|:5: solver.max_step: max_step 1e-300 s over 0.1 s forces 1e+299 solver steps (at most 1e+08)
 amb-bandwidth-tiny.cfg|:5: ambs[0].bandwidth: the time constant tau = 1 / (2 pi bandwidth) overflows (to inf)
 disc-inertia-overflow.cfg|:5: discs[0].radius: the disc inertia from radius, thickness and density overflows (to inf)
+shaft-diameter-overflow.cfg|:7: shaft.outer_diameter: the second moment of area pi (D^4 - d^4) / 64 overflows (to inf)
+shaft-nodes-too-close.cfg|:4: shaft.nodes: an element stiffness E I / L^3 from the element length L overflows (to inf)
 speed-overflow-orbit.cfg|:3: speed: 1e+300 rad/s over 0.1 s makes 1.59e+298 shaft revolutions (at most 1e+06)
 unbalance-force-overflow.cfg|:6: unbalances[0].magnitude: the unbalance force U Omega^2 = 1e+300 kg m x (100 rad/s)^2 = 1e+304 N exceeds 1e+12 N
 unbalance-wrap-same-line.cfg|:5: unbalances[0].magnitude: integer 4294967296 is out of range (at most 2147483647; libconfig would read 0)
