@@ -608,11 +608,12 @@ static void test_friction_reversal(void **state)
 
 /* An interrupt flag set before the step stops td_sim_step before its first internal step
  * (solver.max_step = 1e-12 s would otherwise need 1e8 steps to tout): TD_ERR_INTERRUPTED, the time
- * unchanged, the state readable and equal to the one before; cleared, stepping goes on. */
+ * unchanged, the state readable and equal to the one before; cleared, stepping goes on. The case
+ * ends at 5e-5 s, as the step bound of touchdown/limits.h (end_time / max_step <= 1e8) needs. */
 static void test_interrupt_inside_step(void **state)
 {
-    const char *ov[1] = {"solver.max_step=1e-12"};
-    td_case *c = td_test_load_case("cases/paper-a.cfg", ov, 1);
+    const char *ov[2] = {"solver.max_step=1e-12", "end_time=5e-5"};
+    td_case *c = td_test_load_case("cases/paper-a.cfg", ov, 2);
     td_sim *s = NULL;
     volatile sig_atomic_t flag = 0;
     double t0, tr = -1.0, *q0, *q1;

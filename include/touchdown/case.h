@@ -19,6 +19,7 @@
 
 #include "touchdown/error.h"
 #include "touchdown/export.h"
+#include "touchdown/limits.h"
 #include "touchdown/model.h"
 #include "touchdown/options.h"
 
@@ -40,8 +41,9 @@ typedef struct td_case td_case;
 #define TD_CASE_MAX_INCLUDES 64
 /** Most bytes read for one case: the case file and every inclusion together. */
 #define TD_CASE_MAX_TOTAL_SIZE (32L * 1024L * 1024L)
-/** Largest number of output samples (sample_rate x end_time) a case may ask for. */
-#define TD_CASE_MAX_SAMPLES 1e8
+/** Largest number of output samples (sample_rate x end_time) a case may ask for; the bounds on
+ *  every run are in touchdown/limits.h. */
+#define TD_CASE_MAX_SAMPLES TD_MAX_SAMPLES
 
 /**
  * Read and validate a case file.
@@ -58,8 +60,9 @@ typedef struct td_case td_case;
  * err          may be NULL.
  *
  * Returns TD_OK; TD_ERR_IO if the file (or the path) cannot be read as a regular file;
- * TD_ERR_PARSE for a syntax error, an unknown, missing, mistyped or invalid key, or a bad
- * override; TD_ERR_NOMEM; TD_ERR_INVALID for NULL path/out or n_overrides < 0.
+ * TD_ERR_PARSE for a syntax error, an unknown, missing, mistyped or invalid key, a bad
+ * override, or a case past the bounds of touchdown/limits.h; TD_ERR_NOMEM; TD_ERR_INVALID for
+ * NULL path/out or n_overrides < 0.
  */
 TD_API td_status td_case_load(const char *path, const char *const *overrides, int n_overrides, td_case **out,
                               td_error *err);

@@ -93,7 +93,8 @@ typedef struct td_run_summary {
  * write failure (TD_ERR_IO) the files are kept at their paths with everything written so far,
  * marked incomplete, and the status is returned with `err` saying what happened and when.
  * Invalid arguments (TD_ERR_INVALID) or a file that cannot be created (TD_ERR_IO) return before
- * any step, leaving no file behind.
+ * any step, leaving no file behind; a run past the bounds of touchdown/limits.h (samples, steps
+ * forced by max_step, revolutions) is an invalid argument.
  */
 TD_API td_status td_run(td_sim *sim, const td_model *model, double t_end, const td_output_options *out,
                         const td_run_hooks *hooks, const char *case_text, td_run_summary *summary, td_error *err);

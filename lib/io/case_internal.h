@@ -28,6 +28,7 @@ struct td_case {
 typedef struct td_cr_wrap_site {
     char *file; /* file name as libconfig records it (the @include string); NULL: main file */
     int line;
+    int ordinal; /* numbers before it on its line: picks its setting among several on one line */
     char literal[40];
 } td_cr_wrap_site;
 
@@ -37,6 +38,18 @@ typedef struct td_cr_buf {
     size_t len, cap;
     int failed;
 } td_cr_buf;
+
+/* The shape of the case text, counted by td_cr_expand before libconfig sees it: libconfig 1.5
+ * compares every new key with each earlier key of its group (quadratic in the keys of a group) and
+ * does not check its allocations (a crash when memory runs out), so what it is handed is bounded
+ * up front by TD_CASE_MAX_GROUP_KEYS, TD_CASE_MAX_SETTINGS and TD_CASE_MAX_NESTING. */
+typedef struct td_cr_shape {
+    int depth;                         /* brackets open */
+    char open[TD_CASE_MAX_NESTING];    /* '{', '(' or '[' of each open bracket */
+    int keys[TD_CASE_MAX_NESTING + 1]; /* keys so far of the group at each depth (0: the root) */
+    long settings;                     /* settings libconfig will create: keys and list/array entries */
+    unsigned long long name_compares;  /* key comparisons libconfig 1.5 will make finding duplicates */
+} td_cr_shape;
 
 typedef struct td_case_reader {
     config_t cfg;
@@ -54,6 +67,7 @@ typedef struct td_case_reader {
     int wrap_count, wrap_cap;
     int includes; /* @include files expanded so far (limit TD_CASE_MAX_INCLUDES) */
     size_t bytes; /* bytes read so far, main file and includes (limit TD_CASE_MAX_TOTAL_SIZE) */
+    td_cr_shape shape;
 } td_case_reader;
 
 /* Range a real value must lie in. */
@@ -97,6 +111,16 @@ td_status td_cr_fail(td_case_reader *r, const config_setting_t *s, const char *s
     __attribute__((format(printf, 4, 5)))
 #endif
     ;
+/* Fail with "SHOWN:LINE: message" ("SHOWN: message" when line is 0), SHOWN (a file as shown in
+ * messages) cut in its middle if needed so that the message survives; returns code. */
+td_status td_cr_fail_file(td_error *err, td_status code, const char *shown, int line, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 5, 6)))
+#endif
+    ;
+/* A quantity derived from setting s (`what`, e.g. "the time constant tau = 1 / (2 pi bandwidth)"):
+ * fail naming s when it overflowed to infinity or is NaN. */
+td_status td_cr_derived(td_case_reader *r, const config_setting_t *s, double value, const char *what);
 /* Re-word an error of a td_model_* call with the location of the setting it came from. */
 td_status td_cr_model_fail(td_case_reader *r, const config_setting_t *s, td_status st, const td_error *merr);
 /* Reject members of group g whose names are not in the NULL-terminated `allowed`. */

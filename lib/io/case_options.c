@@ -5,6 +5,7 @@
  */
 #include "io/case_internal.h"
 #include "util/error_internal.h"
+#include "util/limits.h"
 
 #include <math.h>
 #include <stdarg.h>
@@ -44,7 +45,7 @@ static td_status fail_at(td_case_reader *r, const config_setting_t *g, const cha
 static td_status read_gravity(td_case_reader *r, const config_setting_t *root)
 {
     const config_setting_t *grav;
-    double g = 9.81, dir[2] = {0.0, -1.0}, norm;
+    double g = 9.81, dir[2] = {0.0, -1.0}, norm, scale;
     int enabled = 0, n = 2;
     td_error merr;
     td_status st = td_cr_group(r, root, "gravity", NULL, &grav);
@@ -60,12 +61,15 @@ static td_status read_gravity(td_case_reader *r, const config_setting_t *root)
         st = td_cr_reals(r, grav, "direction", 2, TD_CR_FINITE, dir, &n);
         if (st == TD_OK && n != 2)
             return td_cr_fail(r, d, NULL, "expected two components [gx, gy], got %d", n);
-        norm = hypot(dir[0], dir[1]);
-        if (st == TD_OK && !(norm > 0.0))
+        /* scaled by the larger component first: hypot(1.7e308, 1.7e308) overflows, and the
+         * direction 0/inf would have turned gravity off */
+        scale = fabs(dir[0]) > fabs(dir[1]) ? fabs(dir[0]) : fabs(dir[1]);
+        if (st == TD_OK && !(scale > 0.0))
             return td_cr_fail(r, d, NULL, "must not be the zero vector");
         if (st == TD_OK) {
-            dir[0] /= norm;
-            dir[1] /= norm;
+            norm = hypot(dir[0] / scale, dir[1] / scale);
+            dir[0] = dir[0] / scale / norm;
+            dir[1] = dir[1] / scale / norm;
         }
     }
     if (st != TD_OK)
@@ -143,7 +147,7 @@ static td_status read_path(td_case_reader *r, const config_setting_t *g, const c
     return TD_OK;
 }
 
-static td_status read_output(td_case_reader *r, const config_setting_t *root, double end_time, td_output_options *o)
+static td_status read_output(td_case_reader *r, const config_setting_t *root, td_output_options *o)
 {
     const config_setting_t *g, *list;
     int i, j;
@@ -157,9 +161,6 @@ static td_status read_output(td_case_reader *r, const config_setting_t *root, do
         st = read_path(r, g, "csv", o->csv_path);
     if (st == TD_OK)
         st = td_cr_real(r, g, "sample_rate", NULL, o->sample_rate, TD_CR_POSITIVE, &o->sample_rate);
-    if (st == TD_OK && o->sample_rate * end_time > TD_CASE_MAX_SAMPLES)
-        st = fail_at(r, g, "sample_rate", "%g Hz over end_time %g s makes %.3g samples (at most %.0e)", o->sample_rate,
-                     end_time, o->sample_rate * end_time, TD_CASE_MAX_SAMPLES);
     if (st == TD_OK)
         st = td_cr_int(r, g, "compression", NULL, o->compression, 0, 9, &o->compression);
     if (st == TD_OK)
@@ -204,6 +205,52 @@ static td_status read_modal(td_case_reader *r, const config_setting_t *root, td_
     return st;
 }
 
+/* Member `key` of the root group `group` (of the root itself when NULL), or NULL. */
+static const config_setting_t *member(const config_setting_t *root, const char *group, const char *key)
+{
+    const config_setting_t *g = group ? config_setting_get_member(root, group) : root;
+    return g && config_setting_is_group(g) ? config_setting_get_member(g, key) : NULL;
+}
+
+/* The bounds of touchdown/limits.h on the work of the run (checked whether or not the case writes
+ * output: the samples are taken anyway). The message names the key that scales the work: end_time
+ * when an override set it (--set end_time=1e12), otherwise the rate or speed it multiplies. */
+static td_status check_run_limits(td_case_reader *r, const config_setting_t *root, double speed)
+{
+    const td_case *c = r->c;
+    const config_setting_t *end = config_setting_get_member(root, "end_time"), *s = NULL;
+    char why[256];
+    switch (td_run_limit_check(c->end_time, speed, c->output.sample_rate, c->sim.solver.max_step, why, sizeof why)) {
+    case TD_LIMIT_NONE: return TD_OK;
+    case TD_LIMIT_SAMPLES: s = member(root, "output", "sample_rate"); break;
+    case TD_LIMIT_STEPS: s = member(root, "solver", "max_step"); break;
+    case TD_LIMIT_REVOLUTIONS: s = member(root, NULL, "speed"); break;
+    }
+    if (!s || config_setting_get_hook(end))
+        s = end;
+    return td_cr_fail(r, s, NULL, "%s", why);
+}
+
+/* The unbalance force U Omega^2 of every entry of the list `key` with a magnitude, at the case
+ * speed, within TD_MAX_UNBALANCE_FORCE (the lists were read and checked by case_parts.c). */
+static td_status check_unbalance_forces(td_case_reader *r, const config_setting_t *root, const char *key, double speed)
+{
+    const config_setting_t *list = config_setting_get_member(root, key), *s;
+    double u, force;
+    int i;
+    for (i = 0; list && i < config_setting_length(list); i++) {
+        s = config_setting_get_member(config_setting_get_elem(list, (unsigned)i), "magnitude");
+        if (!s || td_cr_value_real(r, s, TD_CR_NONNEGATIVE, &u) != TD_OK)
+            continue;
+        force = u * speed * speed;
+        if (!(force <= TD_MAX_UNBALANCE_FORCE))
+            return td_cr_fail(r, s, NULL,
+                              "the unbalance force U Omega^2 = %g kg m x (%g rad/s)^2 = %.3g N exceeds %.0e N", u,
+                              speed, force, TD_MAX_UNBALANCE_FORCE);
+    }
+    return TD_OK;
+}
+
 td_status td_cr_read_options(td_case_reader *r, const config_setting_t *root)
 {
     td_case *c = r->c;
@@ -225,7 +272,13 @@ td_status td_cr_read_options(td_case_reader *r, const config_setting_t *root)
     if (st == TD_OK)
         st = read_solver(r, root, &c->sim.solver);
     if (st == TD_OK)
-        st = read_output(r, root, c->end_time, &c->output);
+        st = read_output(r, root, &c->output);
+    if (st == TD_OK)
+        st = check_run_limits(r, root, speed);
+    if (st == TD_OK)
+        st = check_unbalance_forces(r, root, "unbalances", speed);
+    if (st == TD_OK)
+        st = check_unbalance_forces(r, root, "schedule", speed);
     if (st == TD_OK)
         st = read_modal(r, root, &c->modal);
     return st;

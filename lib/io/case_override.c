@@ -11,6 +11,9 @@
 #include <stdlib.h>
 #include <string.h>
 
+#define TD_CR_STR_(x) #x
+#define TD_CR_STR(x) TD_CR_STR_(x)
+
 /* Longest key accepted in an override. */
 #define TD_CR_MAX_KEY 256
 /* Most path steps (names and [index]) in a key. */
@@ -21,18 +24,22 @@ typedef struct step {
     int index;
 } step;
 
+/* "CASE: --set 'OV': what", the echoed override shortened when the whole would not fit. */
+static td_status fail_override(td_case_reader *r, td_status code, const char *ov, const char *what)
+{
+    char shown[2048], where[4096];
+    snprintf(where, sizeof where, "%s: --set '%s'", r->path_shown, td_cr_printable(ov, shown, sizeof shown));
+    return td_error_set_reason(r->err, code, where, what);
+}
+
 static td_status bad(td_case_reader *r, const char *ov, const char *what)
 {
-    char shown[TD_ERROR_MESSAGE_SIZE];
-    return td_error_set(r->err, TD_ERR_PARSE, "%s: --set '%s': %s", r->path_shown,
-                        td_cr_printable(ov, shown, sizeof shown), what);
+    return fail_override(r, TD_ERR_PARSE, ov, what);
 }
 
 static td_status out_of_memory(td_case_reader *r, const char *ov)
 {
-    char shown[TD_ERROR_MESSAGE_SIZE];
-    return td_error_set(r->err, TD_ERR_NOMEM, "%s: --set '%s': out of memory", r->path_shown,
-                        td_cr_printable(ov, shown, sizeof shown));
+    return fail_override(r, TD_ERR_NOMEM, ov, "out of memory");
 }
 
 /* Split "a.b[2].c" (or libconfig's "a.b.[2].c") into steps; returns the count, -1 if malformed. */
@@ -146,6 +153,8 @@ static td_status walk(td_case_reader *r, const char *ov, const step *steps, int 
             }
             next = config_setting_get_member(cur, steps[i].name);
             if (!next) {
+                if (config_setting_length(cur) >= TD_CASE_MAX_GROUP_KEYS)
+                    return bad(r, ov, "the group would hold more than " TD_CR_STR(TD_CASE_MAX_GROUP_KEYS) " keys");
                 next = config_setting_add(cur, steps[i].name, CONFIG_TYPE_GROUP);
                 if (!next) {
                     snprintf(msg, sizeof msg, "'%s' is not a valid key name",
@@ -196,6 +205,9 @@ static td_status graft(td_case_reader *r, const char *ov, const step *steps, int
     }
     if (config_setting_get_member(parent, last->name))
         config_setting_remove(parent, last->name);
+    else if (config_setting_length(parent) >= TD_CASE_MAX_GROUP_KEYS)
+        /* libconfig searches a group linearly: a bounded group keeps overrides linear too */
+        return bad(r, ov, "the group would hold more than " TD_CR_STR(TD_CASE_MAX_GROUP_KEYS) " keys");
     dst = copy_setting(parent, last->name, val);
     if (!dst) {
         /* copy_setting fails on a bad name, or on memory; a valid name can only mean memory */
@@ -207,6 +219,29 @@ static td_status graft(td_case_reader *r, const char *ov, const step *steps, int
     }
     config_setting_set_hook(dst, (void *)ov);
     return TD_OK;
+}
+
+/* Count the settings of the override's text "v = VALUE;" against the bounds of the case (they
+ * add to those of the file) before libconfig parses it; a bound passed is reported as the
+ * override's error. */
+static td_status count_value(td_case_reader *r, const char *ov, const char *src)
+{
+    td_cr_buf scratch = {NULL, 0, 0, 0};
+    td_error scan_err, *saved = r->err;
+    const char *reason;
+    int root_keys = r->shape.keys[0];
+    td_status st;
+    r->err = &scan_err;
+    r->shape.depth = 0;
+    st = td_cr_expand(r, src, NULL, TD_CASE_MAX_INCLUDE_DEPTH, &scratch);
+    r->shape.keys[0] = root_keys; /* "v" is no key of the case; graft bounds the group it goes to */
+    r->err = saved;
+    free(scratch.data);
+    if (st == TD_OK)
+        return TD_OK;
+    /* the scan names the case file, line 1: keep what follows "FILE:1: " */
+    reason = strstr(scan_err.message, ":1: ");
+    return bad(r, ov, reason ? reason + 4 : scan_err.message);
 }
 
 /* Parse VALUE as a libconfig value into vc (a single setting "v"), or as a bare string. */
@@ -224,6 +259,10 @@ static td_status parse_value(td_case_reader *r, const char *ov, const char *valu
     if (!src)
         return td_error_set(r->err, TD_ERR_NOMEM, "%s: out of memory", r->path_shown);
     sprintf(src, "v = %s;", value);
+    if (count_value(r, ov, src) != TD_OK) {
+        free(src);
+        return TD_ERR_PARSE;
+    }
     ok = config_read_string(vc, src);
     free(src);
     if (ok && config_setting_length(config_root_setting(vc)) == 1 && config_lookup(vc, "v"))

@@ -61,7 +61,11 @@ static td_status read_disc_geometry(td_case_reader *r, const config_setting_t *g
         return td_cr_fail(r, config_setting_get_member(g, "bore_radius"), NULL,
                           "must be smaller than the radius %g m (got %g m)", geo.outer_radius, geo.inner_radius);
     st = td_disc_from_geometry(&geo, d, &merr);
-    return st == TD_OK ? TD_OK : td_cr_model_fail(r, g, st, &merr);
+    if (st != TD_OK)
+        return td_cr_model_fail(r, g, st, &merr);
+    /* the radius is the factor squared twice over; the largest inertia overflows first */
+    return td_cr_derived(r, config_setting_get_member(g, "radius"), d->Id > d->Ip ? d->Id : d->Ip,
+                         "the disc inertia from radius, thickness (or mass) and density");
 }
 
 static td_status read_disc(td_case_reader *r, const config_setting_t *g)
@@ -129,7 +133,7 @@ static td_status read_amb_lag(td_case_reader *r, const config_setting_t *g, doub
     st = td_cr_value_real(r, bw, TD_CR_POSITIVE, &hz);
     if (st == TD_OK)
         *tau = 1.0 / (2.0 * TD_PI * hz);
-    return st;
+    return st == TD_OK ? td_cr_derived(r, bw, *tau, "the time constant tau = 1 / (2 pi bandwidth)") : st;
 }
 
 /* Entry g of `list` (the list named `key`) is on `node`, where its entry j already put `part`:

@@ -5,6 +5,7 @@
  */
 #include "io/case_internal.h"
 #include "util/error_internal.h"
+#include "util/numeric.h"
 
 #include <stdlib.h>
 #include <string.h>
@@ -140,6 +141,50 @@ static td_status read_section(td_case_reader *r, const config_setting_t *sec, in
     return st;
 }
 
+/* The setting that gave element i its `key` (a member of the material group when `material`):
+ * that of its section (owner >= 0) when the section sets it, else the shaft's, else the shaft. */
+static const config_setting_t *element_source(const config_setting_t *shaft, int owner, const char *key, int material)
+{
+    const config_setting_t *g, *s = NULL;
+    if (owner >= 0) {
+        g = config_setting_get_elem(config_setting_get_member(shaft, "sections"), (unsigned)owner);
+        g = material ? config_setting_get_member(g, "material") : g;
+        s = g ? config_setting_get_member(g, key) : NULL;
+    }
+    if (!s) {
+        g = material ? config_setting_get_member(shaft, "material") : shaft;
+        s = g ? config_setting_get_member(g, key) : NULL;
+    }
+    return s ? s : shaft;
+}
+
+/* The scales of the beam element's matrices must be finite: area and second moment from the
+ * diameters, E I and G A from the material, E I / L^3, G A / L, rho A L and rho I / L with the
+ * length (the shaft's length or node positions). Each is blamed on the key it grows with. */
+static td_status check_element(td_case_reader *r, const config_setting_t *shaft, int owner, const td_shaft_element *e)
+{
+    const td_material *m = &e->material;
+    double d2 = e->outer_diameter * e->outer_diameter, i2 = e->inner_diameter * e->inner_diameter, L = e->length;
+    double A = TD_PI / 4.0 * (d2 - i2), I = TD_PI / 64.0 * (d2 * d2 - i2 * i2);
+    const config_setting_t *len = config_setting_get_member(shaft, "nodes");
+    td_status st;
+    if (!len)
+        len = config_setting_get_member(shaft, "length");
+    st = td_cr_derived(r, element_source(shaft, owner, "outer_diameter", 0), I,
+                       "the second moment of area pi (D^4 - d^4) / 64");
+    if (st == TD_OK)
+        st = td_cr_derived(r, element_source(shaft, owner, "E", 1), m->E * I, "the bending stiffness E I");
+    if (st == TD_OK)
+        st = td_cr_derived(r, element_source(shaft, owner, "G", 1), m->G * A, "the shear stiffness G A");
+    if (st == TD_OK)
+        st = td_cr_derived(r, element_source(shaft, owner, "density", 1), m->density * I,
+                           "the rotary inertia per length rho I");
+    if (st == TD_OK)
+        st = td_cr_derived(r, len ? len : shaft, m->E * I / (L * L * L) + m->G * A / L + m->density * I / L,
+                           "an element stiffness E I / L^3 from the element length L");
+    return st;
+}
+
 /* beam, mass, rayleigh { alpha; beta; } */
 static td_status read_shaft_options(td_case_reader *r, const config_setting_t *shaft)
 {
@@ -247,6 +292,9 @@ td_status td_cr_read_shaft(td_case_reader *r, const config_setting_t *root)
         els[i].length = lengths[i];
     st = read_elements(r, shaft, els, count, owner);
     for (i = 0; st == TD_OK && i < count; i++) {
+        st = check_element(r, shaft, owner[i], &els[i]);
+        if (st != TD_OK)
+            break;
         st = td_model_add_shaft_element(r->c->model, &els[i], &merr);
         if (st != TD_OK) {
             const config_setting_t *sections = config_setting_get_member(shaft, "sections");

@@ -15,6 +15,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 #include <sys/stat.h>
 
 void td_cr_buf_append(td_cr_buf *b, const char *s, size_t n)
@@ -68,21 +69,21 @@ td_status td_cr_read_file(const char *shown, const char *path, char **text, td_e
 
     *text = NULL;
     if (stat(path, &st) != 0)
-        return td_error_set(err, TD_ERR_IO, "%s: cannot read the case file: %s", shown, strerror(errno));
+        return td_cr_fail_file(err, TD_ERR_IO, shown, 0, "cannot read the case file: %s", strerror(errno));
     if (S_ISDIR(st.st_mode))
-        return td_error_set(err, TD_ERR_IO, "%s: cannot read the case file: it is a directory", shown);
+        return td_cr_fail_file(err, TD_ERR_IO, shown, 0, "cannot read the case file: it is a directory");
     if (!S_ISREG(st.st_mode)) /* FIFOs and devices could block or never end */
-        return td_error_set(err, TD_ERR_IO, "%s: cannot read the case file: not a regular file", shown);
+        return td_cr_fail_file(err, TD_ERR_IO, shown, 0, "cannot read the case file: not a regular file");
     if ((long long)st.st_size > (long long)TD_CASE_MAX_FILE_SIZE)
-        return td_error_set(err, TD_ERR_IO, "%s: the case file is too large (%lld bytes, limit %ld)", shown,
-                            (long long)st.st_size, (long)TD_CASE_MAX_FILE_SIZE);
+        return td_cr_fail_file(err, TD_ERR_IO, shown, 0, "the case file is too large (%lld bytes, limit %ld)",
+                               (long long)st.st_size, (long)TD_CASE_MAX_FILE_SIZE);
     f = fopen(path, "rb");
     if (!f)
-        return td_error_set(err, TD_ERR_IO, "%s: cannot read the case file: %s", shown, strerror(errno));
+        return td_cr_fail_file(err, TD_ERR_IO, shown, 0, "cannot read the case file: %s", strerror(errno));
     buf = malloc((size_t)st.st_size + 1);
     if (!buf) {
         fclose(f);
-        return td_error_set(err, TD_ERR_NOMEM, "%s: out of memory reading the case file", shown);
+        return td_cr_fail_file(err, TD_ERR_NOMEM, shown, 0, "out of memory reading the case file");
     }
     /* read at most the size stat() saw; a file growing meanwhile is cut there */
     n = fread(buf, 1, (size_t)st.st_size, f);
@@ -90,7 +91,7 @@ td_status td_cr_read_file(const char *shown, const char *path, char **text, td_e
         int e = errno;
         fclose(f);
         free(buf);
-        return td_error_set(err, TD_ERR_IO, "%s: cannot read the case file: %s", shown, strerror(e));
+        return td_cr_fail_file(err, TD_ERR_IO, shown, 0, "cannot read the case file: %s", strerror(e));
     }
     fclose(f);
     buf[n] = '\0';
@@ -98,8 +99,16 @@ td_status td_cr_read_file(const char *shown, const char *path, char **text, td_e
         unsigned char ch = (unsigned char)buf[i];
         if (binary_byte(ch)) {
             free(buf);
-            return td_error_set(err, TD_ERR_PARSE, "%s:%d: binary data (byte 0x%02x): a case file is text", shown, line,
-                                ch);
+            return td_cr_fail_file(err, TD_ERR_PARSE, shown, line, "binary data (byte 0x%02x): a case file is text",
+                                   ch);
+        }
+        if (ch == '\r' && buf[i + 1] != '\n') {
+            /* libconfig ends a line (and a # comment) only at '\n': after a bare CR the settings
+             * on the next "line" would be part of a comment, silently dropped */
+            free(buf);
+            return td_cr_fail_file(err, TD_ERR_PARSE, shown, line,
+                                   "carriage return without a line feed (CR-only line endings are not "
+                                   "supported; save the file with LF or CRLF line endings)");
         }
         if (ch == '\n')
             line++;
@@ -109,14 +118,14 @@ td_status td_cr_read_file(const char *shown, const char *path, char **text, td_e
 }
 
 /* Record an integer literal libconfig would wrap. */
-static td_status add_wrap(td_case_reader *r, const char *file, int line, const char *lit, size_t n)
+static td_status add_wrap(td_case_reader *r, const char *file, int line, int ordinal, const char *lit, size_t n)
 {
     td_cr_wrap_site *s;
     if (r->wrap_count == r->wrap_cap) {
         int cap = r->wrap_cap ? 2 * r->wrap_cap : 4;
         td_cr_wrap_site *p = realloc(r->wraps, (size_t)cap * sizeof *p);
         if (!p)
-            return td_error_set(r->err, TD_ERR_NOMEM, "%s: out of memory", r->path_shown);
+            return td_cr_fail_file(r->err, TD_ERR_NOMEM, r->path_shown, 0, "out of memory");
         r->wraps = p;
         r->wrap_cap = cap;
     }
@@ -125,10 +134,11 @@ static td_status add_wrap(td_case_reader *r, const char *file, int line, const c
     if (file) {
         s->file = malloc(strlen(file) + 1);
         if (!s->file)
-            return td_error_set(r->err, TD_ERR_NOMEM, "%s: out of memory", r->path_shown);
+            return td_cr_fail_file(r->err, TD_ERR_NOMEM, r->path_shown, 0, "out of memory");
         strcpy(s->file, file);
     }
     s->line = line;
+    s->ordinal = ordinal;
     if (n >= sizeof s->literal)
         n = sizeof s->literal - 1;
     memcpy(s->literal, lit, n);
@@ -206,13 +216,19 @@ static td_status include_bounds(td_case_reader *r, const char *file, int line_no
     char including[4096];
     td_cr_file_shown(r, file, including, sizeof including);
     if (depth >= TD_CASE_MAX_INCLUDE_DEPTH)
-        return td_error_set(r->err, TD_ERR_PARSE,
-                            "%s:%d: @include nested more than %d deep (does a file include itself?)", including,
-                            line_no, TD_CASE_MAX_INCLUDE_DEPTH);
+        return td_cr_fail_file(r->err, TD_ERR_PARSE, including, line_no,
+                               "@include nested more than %d deep (does a file include itself?)",
+                               TD_CASE_MAX_INCLUDE_DEPTH);
     if (r->includes >= TD_CASE_MAX_INCLUDES)
-        return td_error_set(r->err, TD_ERR_PARSE, "%s:%d: more than %d @include files in one case", including, line_no,
-                            TD_CASE_MAX_INCLUDES);
+        return td_cr_fail_file(r->err, TD_ERR_PARSE, including, line_no, "more than %d @include files in one case",
+                               TD_CASE_MAX_INCLUDES);
     return TD_OK;
+}
+
+static td_status too_many_bytes(td_case_reader *r, const char *including, int line_no)
+{
+    return td_cr_fail_file(r->err, TD_ERR_PARSE, including, line_no,
+                           "the case and its @include files exceed %ld bytes in all", (long)TD_CASE_MAX_TOTAL_SIZE);
 }
 
 /* Expand one @include (on line `line_no` of `file`): append the included file's text between
@@ -223,6 +239,7 @@ static td_status expand_include(td_case_reader *r, const char *file, int line_no
 {
     char path[4096], shown[4096], including[4096], quoted[256];
     char *text = NULL;
+    struct stat sb;
     td_error ierr;
     td_status st = include_bounds(r, file, line_no, depth);
     if (st != TD_OK)
@@ -230,18 +247,20 @@ static td_status expand_include(td_case_reader *r, const char *file, int line_no
     td_cr_file_shown(r, file, including, sizeof including);
     td_cr_printable(name, quoted, sizeof quoted);
     if (name[0] == '/')
-        return td_error_set(r->err, TD_ERR_PARSE,
-                            "%s:%d: cannot open include file \"%.200s\" (absolute @include paths are not supported: "
-                            "libconfig 1.5 reads them relative to %.200s)",
-                            including, line_no, quoted, r->dir_shown);
+        return td_cr_fail_file(r->err, TD_ERR_PARSE, including, line_no,
+                               "cannot open include file \"%.200s\" (absolute @include paths are not supported: "
+                               "libconfig 1.5 reads them relative to %.200s)",
+                               quoted, r->dir_shown);
     snprintf(path, sizeof path, "%s/%s", r->dir, name);
     td_cr_file_shown(r, name, shown, sizeof shown);
+    if (stat(path, &sb) == 0 && S_ISREG(sb.st_mode) &&
+        (unsigned long long)sb.st_size > (unsigned long long)TD_CASE_MAX_TOTAL_SIZE - r->bytes)
+        return too_many_bytes(r, including, line_no); /* refused before reading a byte of it */
     st = td_cr_read_file(shown, path, &text, &ierr);
     if (st == TD_ERR_IO)
-        return td_error_set(
-            r->err, TD_ERR_PARSE,
-            "%s:%d: cannot open include file \"%.200s\" (%.200s; @include paths are relative to %.200s)", including,
-            line_no, quoted, ierr.message, r->dir_shown);
+        return td_cr_fail_file(r->err, TD_ERR_PARSE, including, line_no,
+                               "cannot open include file \"%.200s\" (%.200s; @include paths are relative to %.200s)",
+                               quoted, ierr.message, r->dir_shown);
     if (st != TD_OK) {
         if (r->err)
             *r->err = ierr;
@@ -249,10 +268,9 @@ static td_status expand_include(td_case_reader *r, const char *file, int line_no
     }
     r->includes++;
     r->bytes += strlen(text);
-    if (r->bytes > (size_t)TD_CASE_MAX_TOTAL_SIZE) {
+    if (r->bytes > (size_t)TD_CASE_MAX_TOTAL_SIZE) { /* it grew after stat */
         free(text);
-        return td_error_set(r->err, TD_ERR_PARSE, "%s:%d: the case and its @include files exceed %ld bytes in all",
-                            including, line_no, (long)TD_CASE_MAX_TOTAL_SIZE);
+        return too_many_bytes(r, including, line_no);
     }
     td_cr_buf_printf(out, "# >>> @include \"%s\" (%s)\n", quoted, shown);
     st = td_cr_expand(r, text, name, depth + 1, out);
@@ -265,11 +283,89 @@ static td_status expand_include(td_case_reader *r, const char *file, int line_no
 
 typedef enum scan_state { SCAN_CODE, SCAN_LINE_COMMENT, SCAN_BLOCK_COMMENT, SCAN_STRING } scan_state;
 
+/* libconfig's boolean literals (case-insensitive), the only names that are values, not keys. */
+static int boolean_word(const char *p, size_t n)
+{
+    return (n == 4 && strncasecmp(p, "true", 4) == 0) || (n == 5 && strncasecmp(p, "false", 5) == 0);
+}
+
+/* Count one more setting; refuse past TD_CASE_MAX_SETTINGS. */
+static td_status count_setting(td_case_reader *r, const char *file, int line)
+{
+    char shown[4096];
+    if (++r->shape.settings <= TD_CASE_MAX_SETTINGS)
+        return TD_OK;
+    td_cr_file_shown(r, file, shown, sizeof shown);
+    return td_cr_fail_file(r->err, TD_ERR_PARSE, shown, line,
+                           "more than %d settings and list or array entries in one case (the limit of "
+                           "docs/case-format.md)",
+                           TD_CASE_MAX_SETTINGS);
+}
+
+/* In a group (or the root), where names are keys; else in a list or array, where each value is
+ * an entry. */
+static int in_group(const td_cr_shape *sh)
+{
+    return sh->depth == 0 || sh->open[sh->depth - 1] == '{';
+}
+
+/* A key `name` (n bytes) of the innermost group: libconfig compares it with each earlier key. */
+static td_status count_key(td_case_reader *r, const char *file, int line, const char *name, size_t n)
+{
+    td_cr_shape *sh = &r->shape;
+    char shown[4096], key[64];
+    if (sh->keys[sh->depth] >= TD_CASE_MAX_GROUP_KEYS) {
+        td_cr_file_shown(r, file, shown, sizeof shown);
+        snprintf(key, sizeof key, "%.*s", (int)(n < 40 ? n : 40), name);
+        return td_cr_fail_file(r->err, TD_ERR_PARSE, shown, line, "%s: more than %d keys in one group", key,
+                               TD_CASE_MAX_GROUP_KEYS);
+    }
+    sh->name_compares += (unsigned long long)sh->keys[sh->depth];
+    sh->keys[sh->depth]++;
+    return count_setting(r, file, line);
+}
+
+/* An opening bracket: an entry when inside a list or array, and one level deeper. */
+static td_status open_bracket(td_case_reader *r, const char *file, int line, char ch)
+{
+    td_cr_shape *sh = &r->shape;
+    char shown[4096];
+    td_status st = in_group(sh) ? TD_OK : count_setting(r, file, line);
+    if (st != TD_OK)
+        return st;
+    if (sh->depth >= TD_CASE_MAX_NESTING) {
+        td_cr_file_shown(r, file, shown, sizeof shown);
+        return td_cr_fail_file(r->err, TD_ERR_PARSE, shown, line, "groups, lists and arrays nested more than %d deep",
+                               TD_CASE_MAX_NESTING);
+    }
+    sh->open[sh->depth++] = ch;
+    sh->keys[sh->depth] = 0;
+    return TD_OK;
+}
+
+/* Account for the code token at p (n bytes) in the shape of the case. */
+static td_status shape_token(td_case_reader *r, const char *file, int line, const char *p, size_t n)
+{
+    td_cr_shape *sh = &r->shape;
+    if (*p == '{' || *p == '(' || *p == '[')
+        return open_bracket(r, file, line, *p);
+    if (*p == '}' || *p == ')' || *p == ']') {
+        if (sh->depth > 0) /* an unbalanced one is libconfig's syntax error */
+            sh->depth--;
+        return TD_OK;
+    }
+    if (in_group(sh))
+        return (isalpha((unsigned char)*p) || *p == '_' || *p == '*') && !boolean_word(p, n)
+                   ? count_key(r, file, line, p, n)
+                   : TD_OK;
+    return count_setting(r, file, line);
+}
+
 td_status td_cr_expand(td_case_reader *r, const char *text, const char *file, int depth, td_cr_buf *out)
 {
     const char *p = text, *line_start = text;
     scan_state state = SCAN_CODE;
-    int line = 1, comment_line = 0;
+    int line = 1, comment_line = 0, numbers_on_line = 0;
     char shown[4096], name[1024];
     td_status st;
 
@@ -277,10 +373,10 @@ td_status td_cr_expand(td_case_reader *r, const char *text, const char *file, in
         int inc = p == line_start && state == SCAN_CODE ? include_line(p, name, sizeof name) : 0;
         if (inc < 0) {
             td_cr_file_shown(r, file, shown, sizeof shown);
-            return td_error_set(r->err, TD_ERR_PARSE,
-                                "%s:%d: @include: the file name must be closed by '\"' on the same line, without "
-                                "backslashes, and be shorter than %d bytes",
-                                shown, line, (int)sizeof name);
+            return td_cr_fail_file(r->err, TD_ERR_PARSE, shown, line,
+                                   "@include: the file name must be closed by '\"' on the same line, without "
+                                   "backslashes, and be shorter than %d bytes",
+                                   (int)sizeof name);
         }
         if (inc) {
             const char *end = strchr(p, '\n');
@@ -298,6 +394,7 @@ td_status td_cr_expand(td_case_reader *r, const char *text, const char *file, in
             p++;
             line_start = p;
             line++;
+            numbers_on_line = 0;
             if (state == SCAN_LINE_COMMENT)
                 state = SCAN_CODE;
             continue;
@@ -329,23 +426,32 @@ td_status td_cr_expand(td_case_reader *r, const char *text, const char *file, in
                 p++;
             } else if (*p == '"') {
                 state = SCAN_STRING;
+                if ((st = shape_token(r, file, line, p, 1)) != TD_OK)
+                    return st;
             } else if (isalpha((unsigned char)*p) || *p == '_' || *p == '*') {
                 /* a name or true/false: skip it whole so digits inside it are not numbers */
                 size_t n = 1;
                 while (isalnum((unsigned char)p[n]) || p[n] == '_' || p[n] == '*' || p[n] == '-')
                     n++;
+                if ((st = shape_token(r, file, line, p, n)) != TD_OK)
+                    return st;
                 td_cr_buf_append(out, p, n - 1);
                 p += n - 1;
             } else if (isdigit((unsigned char)*p) || (*p == '.' && isdigit((unsigned char)p[1]))) {
                 size_t n = number_length(p);
                 int negative = p > text && p[-1] == '-';
                 if (token_wraps(p, n, negative)) {
-                    st = add_wrap(r, file, line, p, n);
+                    st = add_wrap(r, file, line, numbers_on_line, p, n);
                     if (st != TD_OK)
                         return st;
                 }
+                numbers_on_line++;
+                if ((st = shape_token(r, file, line, p, n)) != TD_OK)
+                    return st;
                 td_cr_buf_append(out, p, n - 1);
                 p += n - 1;
+            } else if (strchr("{}()[]", *p) && (st = shape_token(r, file, line, p, 1)) != TD_OK) {
+                return st;
             }
             break;
         }
@@ -354,21 +460,19 @@ td_status td_cr_expand(td_case_reader *r, const char *text, const char *file, in
     }
     if (state == SCAN_BLOCK_COMMENT) {
         td_cr_file_shown(r, file, shown, sizeof shown);
-        return td_error_set(r->err, TD_ERR_PARSE,
-                            "%s:%d: unterminated /* comment (libconfig would silently ignore the rest of the file)",
-                            shown, comment_line);
+        return td_cr_fail_file(r->err, TD_ERR_PARSE, shown, comment_line,
+                               "unterminated /* comment (libconfig would silently ignore the rest of the file)");
     }
     if (state == SCAN_LINE_COMMENT && file) {
         /* libconfig 1.5 reads an included file itself and rejects a last-line comment without a
          * final newline as "syntax error"; the main file gets the newline appended (case.c) */
         td_cr_file_shown(r, file, shown, sizeof shown);
-        return td_error_set(r->err, TD_ERR_PARSE,
-                            "%s:%d: an included file must end with a newline after its last comment (libconfig 1.5 "
-                            "cannot read it otherwise)",
-                            shown, line);
+        return td_cr_fail_file(r->err, TD_ERR_PARSE, shown, line,
+                               "an included file must end with a newline after its last comment (libconfig 1.5 "
+                               "cannot read it otherwise)");
     }
     if (out->failed)
-        return td_error_set(r->err, TD_ERR_NOMEM, "%s: out of memory", r->path_shown);
+        return td_cr_fail_file(r->err, TD_ERR_NOMEM, r->path_shown, 0, "out of memory");
     return TD_OK;
 }
 

@@ -120,7 +120,7 @@ void td_cr_where(const td_case_reader *r, const config_setting_t *s, char *buf, 
 
 td_status td_cr_fail(td_case_reader *r, const config_setting_t *s, const char *sub, const char *fmt, ...)
 {
-    char where[1200], key[512], msg[TD_ERROR_MESSAGE_SIZE];
+    char where[2048], key[512], msg[TD_ERROR_MESSAGE_SIZE];
     size_t len;
     va_list ap;
     td_cr_where(r, s, where, sizeof where);
@@ -131,9 +131,33 @@ td_status td_cr_fail(td_case_reader *r, const config_setting_t *s, const char *s
     va_start(ap, fmt);
     vsnprintf(msg, sizeof msg, fmt, ap);
     va_end(ap);
-    if (key[0])
-        return td_error_set(r->err, TD_ERR_PARSE, "%s: %s: %s", where, key, msg);
-    return td_error_set(r->err, TD_ERR_PARSE, "%s: %s", where, msg);
+    if (key[0]) {
+        len = strlen(where);
+        snprintf(where + len, sizeof where - len, ": %s", key);
+    }
+    /* a long override or path is cut in its middle; the reason stays whole */
+    return td_error_set_reason(r->err, TD_ERR_PARSE, where, msg);
+}
+
+td_status td_cr_fail_file(td_error *err, td_status code, const char *shown, int line, const char *fmt, ...)
+{
+    char where[8192], msg[TD_ERROR_MESSAGE_SIZE];
+    va_list ap;
+    if (line > 0)
+        snprintf(where, sizeof where, "%s:%d", shown, line);
+    else
+        snprintf(where, sizeof where, "%s", shown);
+    va_start(ap, fmt);
+    vsnprintf(msg, sizeof msg, fmt, ap);
+    va_end(ap);
+    return td_error_set_reason(err, code, where, msg);
+}
+
+td_status td_cr_derived(td_case_reader *r, const config_setting_t *s, double value, const char *what)
+{
+    if (isfinite(value))
+        return TD_OK;
+    return td_cr_fail(r, s, NULL, "%s overflows (to %g)", what, value);
 }
 
 td_status td_cr_model_fail(td_case_reader *r, const config_setting_t *s, td_status st, const td_error *merr)

@@ -13,8 +13,10 @@
 #include <time.h>
 
 #include "io/recorder.h"
+#include "sim/sim_internal.h"
 #include "touchdown/version.h"
 #include "util/error_internal.h"
+#include "util/limits.h"
 #include "util/numeric.h"
 
 /* Loop state besides the summary. */
@@ -304,6 +306,7 @@ static td_status write_summary(td_recorder *rec, const td_run_summary *s, const 
 static td_status check_args(const td_sim *sim, const td_model *model, double t_end, const td_output_options *out,
                             td_error *err)
 {
+    char why[256];
     double t0;
     if (!sim || !model || !out)
         return td_error_set(err, TD_ERR_INVALID, "td_run: NULL simulation, model or output options");
@@ -314,6 +317,10 @@ static td_status check_args(const td_sim *sim, const td_model *model, double t_e
     if (!isfinite(t_end) || !(t_end > t0))
         return td_error_set(err, TD_ERR_INVALID, "td_run: t_end = %.10f s is not after the current time %.10f s", t_end,
                             t0);
+    /* the bounds of touchdown/limits.h, also checked (with the key) by the case reader */
+    if (td_run_limit_check(t_end - t0, td_model_speed(model), out->sample_rate, sim->opt.solver.max_step, why,
+                           sizeof why) != TD_LIMIT_NONE)
+        return td_error_set(err, TD_ERR_INVALID, "td_run: %s", why);
     return TD_OK;
 }
 

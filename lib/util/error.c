@@ -41,3 +41,43 @@ td_status td_error_set(td_error *err, td_status code, const char *fmt, ...)
     }
     return code;
 }
+
+/* Append at most `max` bytes of s to buf (length *len); a longer s loses its middle to "...". */
+static void append_cut(char *buf, size_t *len, const char *s, size_t max)
+{
+    size_t n = strlen(s), head;
+    if (n <= max) {
+        memcpy(buf + *len, s, n);
+        *len += n;
+        return;
+    }
+    if (max < 3) {
+        return;
+    }
+    head = (max - 3) / 2;
+    memcpy(buf + *len, s, head);
+    memcpy(buf + *len + head, "...", 3);
+    memcpy(buf + *len + head + 3, s + n - (max - 3 - head), max - 3 - head);
+    *len += max;
+}
+
+td_status td_error_set_reason(td_error *err, td_status code, const char *context, const char *reason)
+{
+    const size_t room = TD_ERROR_MESSAGE_SIZE - 1;
+    size_t len = 0, rlen, clen;
+    if (!err)
+        return code;
+    rlen = strlen(reason);
+    if (rlen > room * 3 / 4)
+        rlen = room * 3 / 4;
+    clen = context[0] ? room - rlen - 2 : 0;
+    if (context[0]) {
+        append_cut(err->message, &len, context, clen);
+        memcpy(err->message + len, ": ", 2);
+        len += 2;
+    }
+    append_cut(err->message, &len, reason, room - len);
+    err->message[len] = '\0';
+    err->code = code;
+    return code;
+}

@@ -8,9 +8,21 @@
 #define TD_PRINTF(f, a) __attribute__((format(printf, f, a)))
 #else
 #define TD_PRINTF(f, a)
+/** Fill `err` with "CONTEXT: REASON" (REASON alone when CONTEXT is empty). When the two do not fit
+ *  in TD_ERROR_MESSAGE_SIZE, CONTEXT (where: a file, an echoed override, a key) is cut in its
+ *  middle with "...", keeping its start and end, so that the reason always survives; REASON is
+ *  cut only beyond 3/4 of the record. Returns `code`. */
+td_status td_error_set_reason(td_error *err, td_status code, const char *context, const char *reason);
+
 #endif
 
 /** Fill `err` (may be NULL) with `code` and a printf-style message; returns `code`. */
 td_status td_error_set(td_error *err, td_status code, const char *fmt, ...) TD_PRINTF(3, 4);
+
+/** Fill `err` with "CONTEXT: REASON" (REASON alone when CONTEXT is empty). When the two do not fit
+ *  in TD_ERROR_MESSAGE_SIZE, CONTEXT (where: a file, an echoed override, a key) is cut in its
+ *  middle with "...", keeping its start and end, so that the reason always survives; REASON is
+ *  cut only beyond 3/4 of the record. Returns `code`. */
+td_status td_error_set_reason(td_error *err, td_status code, const char *context, const char *reason);
 
 #endif

@@ -130,6 +130,34 @@ if [ "$n_files" -lt 40 ] || [ "$n_files" != "$n_table" ]; then
     fail "$n_files files under tests/data/bad/, $n_table in the table of tests/test_case.c"
 fi
 
+# ---- exact messages: the whole stderr line of these files ("|" separates the file from what
+# follows its path); each is in the table above as well ---------------------------------------
+while IFS='|' read -r file rest; do
+    [ -z "$file" ] && continue
+    for cmd in run info; do
+        checks=$((checks + 1))
+        run_tool "$cmd" "$bad_dir/$file"
+        if [ "$rc" = 2 ] && [ "$err" = "touchdown: $bad_dir/$file$rest" ]; then
+            pass "$cmd $file -> exact message"
+        else
+            fail "$cmd $file: exit $rc, stderr '$err', expected 'touchdown: $bad_dir/$file$rest'"
+        fi
+        scratch_empty >/dev/null || fail "$cmd $file: created files"
+    done
+done <<'EOF'
+end-time-unbounded.cfg|:4: end_time: 10000 Hz over 1e+12 s makes 1e+16 output samples (at most 1e+08)
+solver-max-step-tiny.cfg|:5: solver.max_step: max_step 1e-300 s over 0.1 s forces 1e+299 solver steps (at most 1e+08)
+amb-bandwidth-tiny.cfg|:5: ambs[0].bandwidth: the time constant tau = 1 / (2 pi bandwidth) overflows (to inf)
+disc-inertia-overflow.cfg|:5: discs[0].radius: the disc inertia from radius, thickness (or mass) and density overflows (to inf)
+shaft-diameter-overflow.cfg|:7: shaft.outer_diameter: the second moment of area pi (D^4 - d^4) / 64 overflows (to inf)
+shaft-nodes-too-close.cfg|:4: shaft.nodes: an element stiffness E I / L^3 from the element length L overflows (to inf)
+speed-overflow-orbit.cfg|:3: speed: 1e+300 rad/s over 0.1 s makes 1.59e+298 shaft revolutions (at most 1e+06)
+unbalance-force-overflow.cfg|:6: unbalances[0].magnitude: the unbalance force U Omega^2 = 1e+300 kg m x (100 rad/s)^2 = 1e+304 N exceeds 1e+12 N
+unbalance-wrap-same-line.cfg|:5: unbalances[0].magnitude: integer 4294967296 is out of range (at most 2147483647; libconfig would read 0)
+line-endings-cr.cfg|:5: carriage return without a line feed (CR-only line endings are not supported; save the file with LF or CRLF line endings)
+speed-unbounded.cfg|:3: speed: 1e+20 rad/s over 0.1 s makes 1.59e+18 shaft revolutions (at most 1e+06)
+EOF
+
 # ---- paths that are not readable case files -----------------------------------------------
 mkdir -p "$work/in"
 : >"$work/in/empty.cfg"
@@ -167,6 +195,30 @@ else
     echo "skip: unreadable file (running as root without a usable setpriv)"
 fi
 
+# ---- out of memory while reading: a 12 MiB case with a 6-million-entry array used to crash
+# libconfig (SIGSEGV, nothing printed) under a memory limit; the entries are counted before it
+# parses, and what it will allocate is asked for first. Skipped where the tool cannot start
+# under the limit at all (sanitizer builds reserve terabytes of address space).
+awk 'BEGIN { printf "speed = 1.0;\nend_time = 1.0;\nx = ["; for (i = 0; i < 6000000; i++) printf "1,"; print "1];" }' \
+    >"$work/in/array-6m.cfg"
+awk 'BEGIN { printf "speed = 1.0;\nend_time = 1.0;\nx = ["; for (i = 0; i < 199000; i++) printf "1,"; print "1];" }' \
+    >"$work/in/array-199k.cfg"
+if (ulimit -v 40000 && "$tool" --version >/dev/null 2>&1); then
+    for limit in 200000 60000; do
+        runner=(bash -c "ulimit -v $limit && exec \"\$@\"" limit)
+        expect_bad "info on a 6-million-entry array (ulimit -v $limit)" \
+            "$work/in/array-6m.cfg:3: more than 200000 settings and list or array entries in one case" -- \
+            info "$work/in/array-6m.cfg"
+        runner=()
+    done
+    runner=(bash -c 'ulimit -v 40000 && exec "$@"' limit)
+    expect_bad "info on a 199000-entry array (ulimit -v 40000)" \
+        "$work/in/array-199k.cfg: out of memory: parsing 199004 settings needs about" -- info "$work/in/array-199k.cfg"
+    runner=()
+else
+    echo "skip: the tool cannot start under ulimit -v 40000"
+fi
+
 # ---- bad --set overrides: one line naming the case, the override and the key --------------
 case_a=$src/cases/paper-a.cfg
 while IFS='|' read -r set needle; do
@@ -188,6 +240,9 @@ contact.model=hertz|contact.model:
 solver.rtol=0|solver.rtol: 
 shaft.elements=0|shaft.elements: 
 end_time=0|end_time: 
+end_time=1e12|end_time: 10000 Hz over 1e+12 s makes 1e+16 output samples (at most 1e+08)
+solver.max_step=1e-300|solver.max_step: max_step 1e-300 s over 2 s forces 2e+300 solver steps
+speed=1e20|speed: 1e+20 rad/s over 2 s makes 3.18e+19 shaft revolutions
 speed|KEY=VALUE
 =1|KEY=VALUE
 speed="abc|speed

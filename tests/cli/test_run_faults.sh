@@ -12,9 +12,9 @@
 #      first impact): exit 1, the message, incomplete files;
 #   4. SIGKILL (cannot be caught): only .partial files remain, nothing at a final path;
 #   5. an output path that cannot be created: exit 1, one error line, no file left;
-#   6. SIGINT while the solver is slow inside one step (solver.max_step = 1e-12 s, accepted by the
-#      case reader: 1e8 steps to the first 0.1 ms sample): the run must still stop within 10 s
-#      with exit 1 and incomplete files.
+#   6. SIGINT while the solver is slow inside one step (solver.max_step = 1e-12 s over end_time =
+#      5e-5 s, 5e7 steps, within the step bound of touchdown/limits.h): the run must still stop
+#      within 10 s with exit 1 and incomplete files.
 # HDF5 attributes are read with h5dump (Debian package hdf5-tools); without it those checks are
 # skipped and said so. Args: $1 = the touchdown binary, $2 = the source directory.
 set -u
@@ -236,7 +236,8 @@ check "uncreatable output: no file left ($(ls -A "$d" | tr '\n' ' '))" test -z "
 # ---- 6. an interrupt while the solver crawls ---------------------------------------------------
 d=$work/crawl
 mkdir -p "$d"
-(cd "$d" && exec "$tool" run --set solver.max_step=1e-12 "$case_a" >"$work/c.out" 2>"$work/c.err") &
+(cd "$d" && exec "$tool" run --set solver.max_step=1e-12 --set end_time=5e-5 "$case_a" >"$work/c.out" \
+    2>"$work/c.err") &
 pid=$!
 pids+=("$pid")
 sleep 1

@@ -1,0 +1,30 @@
+/* The run-work bounds (touchdown/limits.h). The products are formed in double and compared
+ * with the bound, so an overflow to infinity is caught as "too many" as well. */
+#include "util/limits.h"
+#include "util/numeric.h"
+
+#include <math.h>
+#include <stdio.h>
+
+td_run_limit td_run_limit_check(double duration, double speed, double sample_rate, double max_step, char *why, size_t n)
+{
+    double samples = sample_rate * duration;
+    double steps = max_step > 0.0 ? duration / max_step : 0.0;
+    double revolutions = fabs(speed) * duration / (2.0 * TD_PI);
+    if (!(samples <= TD_MAX_SAMPLES)) {
+        snprintf(why, n, "%g Hz over %g s makes %.3g output samples (at most %.0e)", sample_rate, duration, samples,
+                 TD_MAX_SAMPLES);
+        return TD_LIMIT_SAMPLES;
+    }
+    if (!(steps <= TD_MAX_STEPS)) {
+        snprintf(why, n, "max_step %g s over %g s forces %.3g solver steps (at most %.0e)", max_step, duration, steps,
+                 TD_MAX_STEPS);
+        return TD_LIMIT_STEPS;
+    }
+    if (!(revolutions <= TD_MAX_REVOLUTIONS)) {
+        snprintf(why, n, "%g rad/s over %g s makes %.3g shaft revolutions (at most %.0e)", speed, duration, revolutions,
+                 TD_MAX_REVOLUTIONS);
+        return TD_LIMIT_REVOLUTIONS;
+    }
+    return TD_LIMIT_NONE;
+}
