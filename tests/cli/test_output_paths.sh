@@ -25,10 +25,13 @@ absolute_paths() {
     grep -oE "(^|[][[:space:]\"'(=:,])/[A-Za-z0-9._~+-]+(/[A-Za-z0-9._~+-]*)*" | sed -E "s#^[^/]##" | sort -u
 }
 
-# FILE-LIST: every absolute path in the text from the files lies inside $src.
-check_text() { # WHAT TEXTFILE
-    local what=$1 text=$2 outside
-    outside=$(absolute_paths <"$text" | awk -v src="$src" 'index($0, src "/") != 1 && $0 != src')
+# Every absolute path in the text lies inside $src. An HDF5 file's own object names (/time,
+# /events: dimension-scale references and axis descriptions name them) are not file paths: the
+# optional NAMES file lists them, one a line, and they are passed over.
+check_text() { # WHAT TEXTFILE [NAMES]
+    local what=$1 text=$2 names=${3:-/dev/null} outside
+    outside=$(absolute_paths <"$text" | awk -v src="$src" 'index($0, src "/") != 1 && $0 != src' |
+        grep -vxF -f "$names")
     if [ -n "$outside" ]; then
         fail "$what: absolute path(s) outside the checkout: $(echo "$outside" | head -n 5 | tr '\n' ' ')"
     else
@@ -56,8 +59,9 @@ check_outputs() { # NAME PREFIX CSV-HAS-CASE-TEXT (1: a run's CSV, whose footer 
     fi
     if [ "$have_h5dump" = 1 ]; then
         if (cd "$(dirname "$prefix")" && h5dump -A "$(basename "$prefix").h5") >"$prefix.h5-text" 2>&1 &&
-            grep -q case_text "$prefix.h5-text"; then
-            check_text "$name: $(basename "$prefix").h5 attributes" "$prefix.h5-text"
+            grep -q case_text "$prefix.h5-text" &&
+            h5ls -r "$prefix.h5" | awk '{ print $1 }' | grep '^/' >"$prefix.h5-names"; then
+            check_text "$name: $(basename "$prefix").h5 attributes" "$prefix.h5-text" "$prefix.h5-names"
         else
             fail "$name: no HDF5 file with a case_text attribute at $prefix.h5"
         fi
