@@ -2,6 +2,10 @@
 # Installs whatever touchdown needs that is missing (Debian 12 packages), then configures and builds.
 # Idempotent: a second run installs nothing and rebuilds only what changed.
 #   scripts/setup.sh [BUILD_DIR] [extra cmake arguments...]
+# Every script that builds goes through here with the same configuration: RelWithDebInfo and
+# warnings as errors (-DTD_WERROR=ON, the project's rule). So build/ keeps one configuration
+# whichever script configured it last (scripts/quickstart.sh, then scripts/test.sh, rebuilds
+# nothing). Extra arguments come after these and win (-DTD_WERROR=OFF to turn it off).
 set -euo pipefail
 
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
@@ -31,5 +35,5 @@ if ((${#missing[@]})); then
     $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
 fi
 
-cmake -S "$here" -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo "$@" >/dev/null
+cmake -S "$here" -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DTD_WERROR=ON "$@" >/dev/null
 cmake --build "$build" --parallel "$(nproc)"

@@ -1,11 +1,12 @@
 #!/usr/bin/env bash
-# Install what is missing, build warnings-as-errors, check the installed package builds the
-# embedding example, and run the whole test suite; then, as a second pass, the same suite built
-# with AddressSanitizer + UndefinedBehaviorSanitizer in its own build directory
-# (scripts/sanitize.sh). TD_SANITIZE_PASS=0 skips the second pass.
+# Install what is missing, build (scripts/setup.sh: warnings as errors, the configuration
+# scripts/quickstart.sh uses too), check the installed package builds the embedding example, and
+# run the whole test suite; then, as a second pass, the same suite built with AddressSanitizer +
+# UndefinedBehaviorSanitizer in its own build directory (scripts/sanitize.sh).
+# TD_SANITIZE_PASS=0 skips the second pass.
 set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
-"$here/scripts/setup.sh" "$here/build" -DTD_WERROR=ON
+"$here/scripts/setup.sh" "$here/build"
 
 # the embedding example, built against the installed package (find_package and pkg-config)
 "$here/scripts/check-install.sh" "$here/build"

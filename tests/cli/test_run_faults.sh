@@ -4,7 +4,8 @@
 #      stale result at PATH is removed, and a file at a final path is always complete; a finished
 #      run leaves its three files at their final paths, complete (HDF5 complete = 1, CSV and event
 #      CSV end with "# complete"), and no .partial;
-#   2. SIGINT and SIGTERM, sent about 1 s into cases/paper-a.cfg: exit 1, an error line with the
+#   2. SIGINT and SIGTERM, sent about 1 s into cases/paper-a.cfg (end_time raised to 100 s so that
+#      the run is still going on however fast the machine): exit 1, an error line with the
 #      reason and the simulated time, the files at their final paths with complete = 0, the
 #      incomplete_reason and the CSV's "# incomplete: ..." line giving the same time, t_reached
 #      in the HDF5 file equal to that time, no .partial left;
@@ -14,7 +15,8 @@
 #   5. an output path that cannot be created: exit 1, one error line, no file left;
 #   6. SIGINT while the solver is slow inside one step (solver.max_step = 1e-12 s over end_time =
 #      5e-5 s, 5e7 steps, within the step bound of touchdown/limits.h): the run must still stop
-#      within 10 s with exit 1 and incomplete files.
+#      (the 10 s limit catches a hang only: it stops 0.12 s after the signal under ASan on a
+#      loaded machine) with exit 1 and incomplete files.
 # HDF5 attributes are read with h5dump (Debian package hdf5-tools); without it those checks are
 # skipped and said so. Args: $1 = the touchdown binary, $2 = the source directory.
 set -u
@@ -159,7 +161,7 @@ check_final "$d" complete
 for sig in INT TERM; do
     d=$work/sig$sig
     mkdir -p "$d"
-    (cd "$d" && exec "$tool" run "$case_a" >"$work/s.out" 2>"$work/s.err") &
+    (cd "$d" && exec "$tool" run --set end_time=100 "$case_a" >"$work/s.out" 2>"$work/s.err") &
     pid=$!
     pids+=("$pid")
     if ! wait_for_data "$d"; then
@@ -178,8 +180,8 @@ for sig in INT TERM; do
     msg_time=$(printf '%s\n' "$err" | sed -nE 's/.*interrupted at t = ([0-9.eE+-]+) s.*/\1/p')
     check "SIG$sig: the message gives the reason and the simulated time: $err" test -n "$msg_time"
     check "SIG$sig: the message names the case" grep -qF "$case_a" "$work/s.err"
-    check "SIG$sig: stopped inside the run (0 < t = $msg_time < 2)" \
-        awk -v t="$msg_time" 'BEGIN { exit !(t > 0 && t < 2) }'
+    check "SIG$sig: stopped inside the run (0 < t = $msg_time < 100)" \
+        awk -v t="$msg_time" 'BEGIN { exit !(t > 0 && t < 100) }'
     check "SIG$sig: the summary on stdout says INCOMPLETE" grep -q "INCOMPLETE (interrupted)" "$work/s.out"
     check_final "$d" incomplete interrupted
     check "SIG$sig: the CSV's reason gives the same time ($reason_time)" same_time "$reason_time" "$msg_time"
@@ -208,7 +210,7 @@ fi
 # ---- 4. SIGKILL: nothing can be finished, so nothing may appear at a final path ------------
 d=$work/kill
 mkdir -p "$d"
-(cd "$d" && exec "$tool" run -q "$case_a" >/dev/null 2>&1) &
+(cd "$d" && exec "$tool" run -q --set end_time=100 "$case_a" >/dev/null 2>&1) &
 pid=$!
 pids+=("$pid")
 if wait_for_data "$d"; then
