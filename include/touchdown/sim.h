@@ -91,8 +91,9 @@ typedef struct td_sim_stats {
 
 /** Create a simulation of `model` (copied) with `options` (copied; NULL: defaults).
  *  Sets the start state (steady orbit or rest, touchdown/options.h td_start) at options->t0.
- *  An orbit start (TD_START_ORBIT) of an unstable contact-free system, or one outside a
- *  clearance with constraint contact, fails with TD_ERR_INVALID. */
+ *  An orbit start (TD_START_ORBIT) of a contact-free system found unstable (checked up to
+ *  TD_SIM_STABILITY_MAX_STATES states), or one outside a clearance with constraint contact, fails
+ *  with TD_ERR_INVALID; TD_START_AUTO starts those at rest instead (td_sim_start_info_get). */
 TD_API td_status td_sim_create(const td_model *model, const td_sim_options *options, td_sim **out, td_error *err);
 /** td_sim_create that also reads `cancel` (may be NULL) between the stages of its set-up (system
  *  build, stability check, start-state solve): nonzero stops it with TD_ERR_INTERRUPTED. */
