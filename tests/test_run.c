@@ -619,12 +619,9 @@ static void test_summary_failed_before_start(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_summary_text),
-        cmocka_unit_test(test_run_bad_arguments),
-        cmocka_unit_test(test_run_matches_hand_loop),
-        cmocka_unit_test(test_run_cancel),
-        cmocka_unit_test(test_summary_unstable_run),
-        cmocka_unit_test(test_summary_failed_before_start),
+        cmocka_unit_test(test_summary_text),          cmocka_unit_test(test_run_bad_arguments),
+        cmocka_unit_test(test_run_matches_hand_loop), cmocka_unit_test(test_run_cancel),
+        cmocka_unit_test(test_summary_unstable_run),  cmocka_unit_test(test_summary_failed_before_start),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
