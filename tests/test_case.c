@@ -187,7 +187,7 @@ static void test_paper_cases(void **state)
         assert_string_equal(td_case_path(c), td_source_path(p->file));
         assert_close(td_model_speed(m), p->speed, 0.0, 0.0);
         assert_close(td_case_end_time(c), 2.0, 0.0, 0.0);
-        assert_int_equal(so->start, TD_START_ORBIT);
+        assert_int_equal(so->start, TD_START_AUTO);
         assert_int_equal(so->contact.model, p->contact);
         if (p->contact == TD_CONTACT_PENALTY) {
             assert_close(so->contact.stiffness, p->kc, 0.0, 0.0);

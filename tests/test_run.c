@@ -258,6 +258,8 @@ static void test_run_matches_hand_loop(void **state)
     ev_row *ev;
     long grid = 0, onsets = 0;
     double contact_time = 0.0, onset_t = -1.0, first_onset = -1.0, last_release = -1.0, window;
+    double sampled_peak = 0.0, sampled_peak_t = -1.0;
+    int peak_in_contact = 0;
     (void)state;
     assert_non_null(ref);
     out_paths(&out, "hand");
@@ -327,6 +329,7 @@ static void test_run_matches_hand_loop(void **state)
             if (ref->contact[ev[i].sample] && onset_t < 0.0)
                 onset_t = ev[i].time;
         } else if (ev[i].kind == TD_EVENT_RELEASE && onset_t >= 0.0) {
+            peak_in_contact |= s.peak_time >= onset_t && s.peak_time <= ev[i].time;
             contact_time += ev[i].time - onset_t;
             onset_t = -1.0;
             last_release = ev[i].time;
@@ -351,6 +354,25 @@ static void test_run_matches_hand_loop(void **state)
     assert_int_equal(s.returned_to_free_orbit, T_END - last_release >= window);
     print_message("last contact ended %.10f s, returned to free orbit %d\n", last_release, s.returned_to_free_orbit);
     assert_true(s.peak_normal_force > 0.0);
+    /* the peak: at least the largest sampled force, at its first sample if it is that one, and
+     * anyway inside a contact interval of the event table, at the one retainer */
+    for (i = 0; i < rows; i++)
+        if (nf[i] > sampled_peak) {
+            sampled_peak = nf[i];
+            sampled_peak_t = t[i];
+        }
+    assert_true(s.peak_normal_force >= sampled_peak);
+    if (s.peak_normal_force == sampled_peak)
+        assert_true(same_bits(s.peak_time, sampled_peak_t));
+    assert_true(peak_in_contact);
+    assert_int_equal(s.peak_retainer, 0);
+    print_message("peak %.6g N at %.10f s (largest sample %.6g N at %.10f s)\n", s.peak_normal_force, s.peak_time,
+                  sampled_peak, sampled_peak_t);
+    /* every file written is named */
+    assert_string_equal(s.hdf5_path, out.hdf5_path);
+    assert_string_equal(s.csv_path, out.csv_path);
+    assert_non_null(strstr(s.events_path, ".events.csv"));
+    assert_true(exists(s.events_path));
     assert_int_equal(root_ll(f, "summary_contacts"), onsets);
     assert_int_equal(root_ll(f, "steps"), s.stats.steps);
     H5Fclose(f);
@@ -475,8 +497,8 @@ static void test_run_bad_arguments(void **state)
     assert_int_equal(s.samples, 31);
     assert_int_equal(s.contacts, 0);
     assert_true(s.first_contact_time == -1.0);
-    assert_int_equal(s.free_at_end, -1); /* 0.015 s is shorter than 5 revolutions */
-    assert_int_equal(s.returned_to_free_orbit, -1);
+    assert_int_equal(s.free_at_end, -1);                               /* 0.015 s is shorter than 5 revolutions */
+    assert_int_equal(s.returned_to_free_orbit, TD_RUN_NOT_APPLICABLE); /* no contact to return from */
     assert_true(s.t_reached == 0.015);
     td_sim_free(&sim);
     td_model_free(&m);
@@ -522,7 +544,7 @@ static void test_summary_text(void **state)
     assert_int_equal(n, (int)strlen(buf));
     assert_non_null(strstr(buf, "0.1234567891 s")); /* 1e-10 s resolution */
     assert_non_null(strstr(buf, "returned to free orbit      yes"));
-    assert_non_null(strstr(buf, "undefined")); /* wall time per revolution */
+    assert_non_null(strstr(buf, "wall time per revolution    n/a"));
     assert_int_equal(td_run_summary_format(small, sizeof small, &s), n);
     assert_int_equal(strlen(small), sizeof small - 1);
     assert_int_equal(td_run_summary_format(NULL, 0, &s), n);
@@ -545,13 +567,63 @@ static void test_summary_text(void **state)
     assert_non_null(strstr(buf, "INCOMPLETE (solver failure)"));
 }
 
+/* The AMB Jeffcott rotor past its Routh-Hurwitz limit kp = kd / tau (tests/data/case/amb-jeffcott.cfg),
+ * started at rest: the summary says unstable in text and JSON; nothing touched, so "returned to
+ * free orbit" and the peak do not apply (null). */
+static void test_summary_unstable_run(void **state)
+{
+    const char *ov[3] = {"ambs[0].kp=1.01e4", "ambs[1].kp=1.01e4", "start=\"rest\""};
+    td_case *c = td_test_load_case("tests/data/case/amb-jeffcott.cfg", ov, 3);
+    td_output_options out = *td_case_output_options(c);
+    td_sim *sim = NULL;
+    td_run_summary s;
+    td_error err;
+    char buf[8192];
+    (void)state;
+    out.hdf5_path[0] = out.csv_path[0] = '\0';
+    assert_int_equal(td_sim_create(td_case_model(c), td_case_sim_options(c), &sim, &err), TD_OK);
+    assert_int_equal(td_run(sim, td_case_model(c), 0.005, &out, NULL, NULL, &s, &err), TD_OK);
+    assert_int_equal(s.start.stability, TD_STABILITY_UNSTABLE);
+    assert_true(s.start.max_real_part > 0.0);
+    td_run_summary_format(buf, sizeof buf, &s);
+    assert_non_null(strstr(buf, "contact-free system         unstable"));
+    assert_non_null(strstr(buf, "start                       rest\n"));
+    assert_non_null(strstr(buf, "returned to free orbit      n/a"));
+    assert_non_null(strstr(buf, "files                       none"));
+    td_run_summary_json(buf, sizeof buf, &s);
+    assert_non_null(strstr(buf, "\"stability\":\"unstable\","));
+    assert_non_null(strstr(buf, "\"start\":\"rest\","));
+    assert_non_null(strstr(buf, "\"returned_to_free_orbit\":null,"));
+    assert_non_null(strstr(buf, "\"peak_time\":null,\"peak_retainer\":null,"));
+    assert_non_null(strstr(buf, "\"hdf5_path\":null,\"csv_path\":null,\"events_path\":null,"));
+    td_sim_free(&sim);
+    td_case_free(&c);
+}
+
+/* A run that fails before it starts still has a summary: status, message, time reached. */
+static void test_summary_failed_before_start(void **state)
+{
+    td_run_summary s;
+    char buf[8192];
+    (void)state;
+    td_run_summary_failed(&s, 0.0, 2.0, 90.0, TD_START_ORBIT, TD_ERR_INVALID, "the orbit is \"outside\"");
+    assert_int_equal(s.complete, 0);
+    td_run_summary_json(buf, sizeof buf, &s);
+    assert_non_null(strstr(buf, "\"complete\":false,\"status\":\"invalid argument\","));
+    assert_non_null(strstr(buf, "\"message\":\"the orbit is \\\"outside\\\"\","));
+    assert_non_null(strstr(buf, "\"t_reached\":0,"));
+    assert_non_null(strstr(buf, "\"start_requested\":\"orbit\",\"start\":null,"));
+    td_run_summary_format(buf, sizeof buf, &s);
+    assert_non_null(strstr(buf, "INCOMPLETE (invalid argument): the orbit is \"outside\""));
+    assert_non_null(strstr(buf, "start                       n/a"));
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_summary_text),
-        cmocka_unit_test(test_run_bad_arguments),
-        cmocka_unit_test(test_run_matches_hand_loop),
-        cmocka_unit_test(test_run_cancel),
+        cmocka_unit_test(test_summary_text),          cmocka_unit_test(test_run_bad_arguments),
+        cmocka_unit_test(test_run_matches_hand_loop), cmocka_unit_test(test_run_cancel),
+        cmocka_unit_test(test_summary_unstable_run),  cmocka_unit_test(test_summary_failed_before_start),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -275,9 +275,9 @@ static void test_api_errors(void **state)
     td_model_free(&m);
     /* a start orbit outside the clearance (the steady orbit of U = 0.1 at 90 rad/s) is refused */
     {
-        const char *ov[1] = {"unbalances[0].magnitude=0.1"};
+        const char *ov[2] = {"unbalances[0].magnitude=0.1", "start=\"orbit\""};
         td_case *c = NULL;
-        assert_int_equal(td_case_load(td_source_path("cases/paper-a.cfg"), ov, 1, &c, NULL), TD_OK);
+        assert_int_equal(td_case_load(td_source_path("cases/paper-a.cfg"), ov, 2, &c, NULL), TD_OK);
         o = *td_case_sim_options(c);
         assert_int_equal(td_sim_create(td_case_model(c), &o, &s, &err), TD_ERR_INVALID);
         assert_non_null(strstr(err.message, "outside the clearance"));
@@ -711,6 +711,140 @@ static void test_penalty_never_passes_through(void **state)
     td_case_free(&c);
 }
 
+/* ---- start state: stability and the "auto" start ----------------------------------------- */
+
+#define JEFFCOTT_CASE "tests/data/case/amb-jeffcott.cfg"
+
+/* Create the AMB Jeffcott case with kp on both AMBs and `start`; returns the td_sim_create status. */
+static td_status jeffcott_sim(double kp, const char *start, td_sim **s, td_error *err)
+{
+    char k0[64], k1[64], st[64];
+    const char *ov[3] = {k0, k1, st};
+    td_case *c;
+    td_status status;
+    snprintf(k0, sizeof k0, "ambs[0].kp=%.17g", kp);
+    snprintf(k1, sizeof k1, "ambs[1].kp=%.17g", kp);
+    snprintf(st, sizeof st, "start=\"%s\"", start);
+    c = td_test_load_case(JEFFCOTT_CASE, ov, 3);
+    status = td_sim_create(td_case_model(c), td_case_sim_options(c), s, err);
+    td_case_free(&c);
+    return status;
+}
+
+/* The stability the simulation finds at start-up against Routh-Hurwitz for a mass on a PD AMB
+ * with force lag (tests/data/case/amb-jeffcott.cfg): stable iff ks / ki < kp < kd / tau. */
+static void test_start_stability_routh_hurwitz(void **state)
+{
+    const double ks = 1e5, ki = 100.0, kd = 10.0, tau = 1e-3;
+    const struct {
+        double kp;
+        int unstable;
+    } cases[] = {{0.9 * ks / ki, 1}, {1.1 * ks / ki, 0}, {0.99 * kd / tau, 0}, {1.01 * kd / tau, 1}};
+    size_t i;
+    (void)state;
+    for (i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        td_sim *s = NULL;
+        td_sim_start_info si;
+        td_error err;
+        assert_int_equal(jeffcott_sim(cases[i].kp, "rest", &s, &err), TD_OK);
+        assert_int_equal(td_sim_start_info_get(s, &si), TD_OK);
+        print_message("kp = %.6g A/m: rightmost real part %.6g 1/s, %s\n", cases[i].kp, si.max_real_part,
+                      si.stability == TD_STABILITY_UNSTABLE ? "unstable" : "stable");
+        assert_int_equal(si.stability, cases[i].unstable ? TD_STABILITY_UNSTABLE : TD_STABILITY_STABLE);
+        assert_int_equal(si.used, TD_START_REST);
+        td_sim_free(&s);
+    }
+}
+
+/* start = "orbit" refuses an unstable system and names the way out; "auto" starts it at rest. */
+static void test_start_orbit_of_unstable_system(void **state)
+{
+    td_sim *s = NULL;
+    td_sim_start_info si;
+    td_error err;
+    (void)state;
+    assert_int_equal(jeffcott_sim(1.01e4, "orbit", &s, &err), TD_ERR_INVALID);
+    assert_null(s);
+    assert_non_null(strstr(err.message, "unstable"));
+    assert_non_null(strstr(err.message, "start = \"rest\""));
+    assert_int_equal(jeffcott_sim(1.01e4, "auto", &s, &err), TD_OK);
+    assert_int_equal(td_sim_start_info_get(s, &si), TD_OK);
+    assert_int_equal(si.requested, TD_START_AUTO);
+    assert_int_equal(si.used, TD_START_REST);
+    assert_non_null(strstr(si.reason, "unstable"));
+    td_sim_free(&s);
+    /* a stable one starts on its orbit with either value */
+    assert_int_equal(jeffcott_sim(5e3, "auto", &s, &err), TD_OK);
+    assert_int_equal(td_sim_start_info_get(s, &si), TD_OK);
+    assert_int_equal(si.used, TD_START_ORBIT);
+    assert_string_equal(si.reason, "");
+    td_sim_free(&s);
+}
+
+/* Create paper case A with `start` and extra overrides; the state at t0 into q, v. */
+static td_status paper_a_start(const char *start, const char *extra, td_sim_start_info *si, double *q, double *v)
+{
+    char st[64];
+    const char *ov[2] = {st, extra};
+    td_case *c;
+    td_sim *s = NULL;
+    td_error err;
+    td_status status;
+    snprintf(st, sizeof st, "start=\"%s\"", start);
+    c = td_test_load_case("cases/paper-a.cfg", ov, extra ? 2 : 1);
+    status = td_sim_create(td_case_model(c), td_case_sim_options(c), &s, &err);
+    if (status == TD_OK) {
+        td_sim_start_info_get(s, si);
+        td_sim_get_state(s, q, v);
+    }
+    td_sim_free(&s);
+    td_case_free(&c);
+    return status;
+}
+
+/* "auto" is the orbit, bit for bit, where the orbit is usable (the paper cases), and rest where
+ * the orbit lies outside a clearance (190 rad/s), saying why; "orbit" stays strict there. */
+static void test_start_auto(void **state)
+{
+    enum { NDOF = 4 * 13 };
+    double qa[NDOF], va[NDOF], qo[NDOF], vo[NDOF];
+    td_sim_start_info si;
+    int i;
+    (void)state;
+    assert_int_equal(paper_a_start("auto", NULL, &si, qa, va), TD_OK);
+    assert_int_equal(si.used, TD_START_ORBIT);
+    assert_int_equal(si.stability, TD_STABILITY_STABLE);
+    assert_int_equal(paper_a_start("orbit", NULL, &si, qo, vo), TD_OK);
+    assert_true(td_test_max_abs(qo, NDOF) > 1e-5); /* a real orbit, not rest */
+    for (i = 0; i < NDOF; i++) {
+        assert_true(qa[i] == qo[i]);
+        assert_true(va[i] == vo[i]);
+    }
+    assert_int_equal(paper_a_start("auto", "speed=190", &si, qa, va), TD_OK);
+    assert_int_equal(si.used, TD_START_REST);
+    assert_non_null(strstr(si.reason, "outside the clearance of retainer"));
+    assert_true(td_test_max_abs(qa, NDOF) == 0.0 && td_test_max_abs(va, NDOF) == 0.0);
+    assert_int_equal(paper_a_start("orbit", "speed=190", &si, qo, vo), TD_ERR_INVALID);
+}
+
+/* A cancel flag already set stops the set-up: interrupted, no simulation. */
+static void test_create_cancelled(void **state)
+{
+    volatile sig_atomic_t flag = 1;
+    td_case *c = td_test_load_case("cases/paper-a.cfg", NULL, 0);
+    td_sim *s = NULL;
+    td_error err;
+    (void)state;
+    assert_int_equal(td_sim_create_cancellable(td_case_model(c), td_case_sim_options(c), &flag, &s, &err),
+                     TD_ERR_INTERRUPTED);
+    assert_null(s);
+    assert_non_null(strstr(err.message, "interrupted"));
+    flag = 0;
+    assert_int_equal(td_sim_create_cancellable(td_case_model(c), td_case_sim_options(c), &flag, &s, &err), TD_OK);
+    td_sim_free(&s);
+    td_case_free(&c);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -729,6 +863,10 @@ int main(void)
         cmocka_unit_test(test_friction_reversal),
         cmocka_unit_test(test_penalty_never_passes_through),
         cmocka_unit_test(test_interrupt_inside_step),
+        cmocka_unit_test(test_start_stability_routh_hurwitz),
+        cmocka_unit_test(test_start_orbit_of_unstable_system),
+        cmocka_unit_test(test_start_auto),
+        cmocka_unit_test(test_create_cancelled),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

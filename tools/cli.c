@@ -2,6 +2,30 @@
 #include "cli.h"
 
 #include <stdarg.h>
+#include <string.h>
+
+/* Set by on_signal; a signal handler can reach nothing else. */
+static volatile sig_atomic_t cli_signalled;
+
+static void on_signal(int sig)
+{
+    (void)sig;
+    cli_signalled = 1;
+}
+
+volatile sig_atomic_t *td_cli_catch_signals(void)
+{
+    static const int sigs[] = {SIGINT, SIGTERM, SIGHUP};
+    struct sigaction sa;
+    size_t i;
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = on_signal;
+    sigemptyset(&sa.sa_mask);
+    cli_signalled = 0;
+    for (i = 0; i < sizeof sigs / sizeof sigs[0]; i++)
+        sigaction(sigs[i], &sa, NULL);
+    return &cli_signalled;
+}
 
 int td_cli_add_set(td_cli_sets *sets, const char *kv)
 {

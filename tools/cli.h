@@ -5,6 +5,7 @@
 #include "touchdown/case.h"
 #include "touchdown/touchdown.h"
 
+#include <signal.h>
 #include <stdio.h>
 
 /* Exit codes (documented in --help and docs/cli.md). */
@@ -28,6 +29,10 @@ int td_cli_add_set(td_cli_sets *sets, const char *kv);
 
 /* Load a case with overrides; on failure print "touchdown: MESSAGE" and return TD_EXIT_USAGE. */
 int td_cli_load_case(const char *path, const td_cli_sets *sets, td_case **out);
+
+/* Catch SIGINT, SIGTERM and SIGHUP (a closed terminal, a dropped ssh) from now on: each sets the
+ * returned flag (cleared here), which the command reads to stop and keep what it has written. */
+volatile sig_atomic_t *td_cli_catch_signals(void);
 
 /* Map a library status to an exit code: input errors 2, everything else 1. */
 int td_cli_exit_code(td_status st);

@@ -50,7 +50,8 @@ static const char bench_usage[] =
     "  -o, --output FILE    also write the JSON object to FILE\n"
     "  -h, --help           this help\n"
     "\n"
-    "exit codes: 0 every run complete, 1 a run failed, 2 bad usage or missing case files.\n";
+    "exit codes: 0 every run complete, 1 a run failed or was interrupted (SIGINT/SIGTERM/SIGHUP: no\n"
+    "JSON file is written), 2 bad usage or missing case files.\n";
 
 /* The benchmark's cases: key, file, contact model, the constrained case a penalty one is compared with. */
 typedef struct bench_case {
@@ -87,6 +88,7 @@ typedef struct bench_options {
     const char *dir;
     const char *output; /* also write the JSON here */
     td_cli_sets sets;
+    volatile sig_atomic_t *cancel; /* set by SIGINT, SIGTERM, SIGHUP */
 } bench_options;
 
 /* ---- small utilities --------------------------------------------------------------------- */
@@ -198,10 +200,11 @@ static int find_case_dir(const char *dir, char *out, size_t n)
 /* ---- one run ----------------------------------------------------------------------------- */
 
 /* Run `model` with `opt` from opt->t0 to t_end through td_run, no files. */
-static int run_model(const td_model *model, const td_sim_options *opt, const td_output_options *case_out, double t_end,
-                     bench_run *r, char *msg, size_t nmsg)
+static int run_model(volatile sig_atomic_t *cancel, const td_model *model, const td_sim_options *opt,
+                     const td_output_options *case_out, double t_end, bench_run *r, char *msg, size_t nmsg)
 {
     td_output_options out = *case_out;
+    td_run_hooks hooks;
     td_sim *sim = NULL;
     td_error err;
     td_status st;
@@ -209,13 +212,15 @@ static int run_model(const td_model *model, const td_sim_options *opt, const td_
     memset(r, 0, sizeof *r);
     out.hdf5_path[0] = out.csv_path[0] = '\0';
     td_error_clear(&err);
-    st = td_sim_create(model, opt, &sim, &err);
+    memset(&hooks, 0, sizeof hooks);
+    hooks.cancel = cancel;
+    st = td_sim_create_cancellable(model, opt, cancel, &sim, &err);
     if (st != TD_OK) {
         snprintf(msg, nmsg, "%s", err.message[0] ? err.message : td_strerror(st));
         return 0;
     }
     c0 = cpu_now();
-    st = td_run(sim, model, t_end, &out, NULL, NULL, &r->sum, &err);
+    st = td_run(sim, model, t_end, &out, &hooks, NULL, &r->sum, &err);
     r->cpu = cpu_now() - c0;
     td_sim_free(&sim);
     if (st != TD_OK) {
@@ -242,7 +247,7 @@ static int run_case(const bench_options *bo, const char *dir, int ci, bench_run 
         o.t0 = QUICK_T0;
         t_end = QUICK_T1;
     }
-    ok = run_model(td_case_model(c), &o, td_case_output_options(c), t_end, r, msg, sizeof msg);
+    ok = run_model(bo->cancel, td_case_model(c), &o, td_case_output_options(c), t_end, r, msg, sizeof msg);
     if (!ok)
         td_cli_error("bench", "case %s (%s): %s", bench_cases[ci].key, path, msg);
     td_case_free(&c);
@@ -667,12 +672,12 @@ static int bench_scaling(const bench_options *bo, const char *dir)
             fprintf(stderr, "bench: %d nodes, repeat %d/%d ...\n", rows[i].nodes, r + 1, bo->repeats);
             /* free flight, KLU and dense alternating; then through the first contact, KLU */
             if (r % 2 == 0)
-                ok = run_model(m, &o, out, SCALING_T_FREE, &rows[i].free_klu[r], msg, sizeof msg) &&
-                     run_model(m, &od, out, SCALING_T_FREE, &rows[i].free_dense[r], msg, sizeof msg);
+                ok = run_model(bo->cancel, m, &o, out, SCALING_T_FREE, &rows[i].free_klu[r], msg, sizeof msg) &&
+                     run_model(bo->cancel, m, &od, out, SCALING_T_FREE, &rows[i].free_dense[r], msg, sizeof msg);
             else
-                ok = run_model(m, &od, out, SCALING_T_FREE, &rows[i].free_dense[r], msg, sizeof msg) &&
-                     run_model(m, &o, out, SCALING_T_FREE, &rows[i].free_klu[r], msg, sizeof msg);
-            ok = ok && run_model(m, &o, out, SCALING_T_CONTACT, &rows[i].contact_klu[r], msg, sizeof msg);
+                ok = run_model(bo->cancel, m, &od, out, SCALING_T_FREE, &rows[i].free_dense[r], msg, sizeof msg) &&
+                     run_model(bo->cancel, m, &o, out, SCALING_T_FREE, &rows[i].free_klu[r], msg, sizeof msg);
+            ok = ok && run_model(bo->cancel, m, &o, out, SCALING_T_CONTACT, &rows[i].contact_klu[r], msg, sizeof msg);
             if (!ok)
                 td_cli_error("bench", "%d nodes: %s", rows[i].nodes, msg);
         }
@@ -770,5 +775,6 @@ int td_cmd_bench(int argc, char **argv)
                      bo.dir ? bo.dir : "./cases or beside the tool");
         return TD_EXIT_USAGE;
     }
+    bo.cancel = td_cli_catch_signals(); /* a signal ends the current run as interrupted: exit 1, no file */
     return bo.scaling ? bench_scaling(&bo, dir) : bench_paper(&bo, dir);
 }

@@ -25,7 +25,8 @@ static const char modal_usage[] =
     "  -q, --quiet          print nothing but errors\n"
     "  -h, --help           this help\n"
     "\n"
-    "exit codes: 0 success, 1 the analysis failed, 2 bad input or usage.\n";
+    "exit codes: 0 success, 1 the analysis failed or was interrupted (SIGINT/SIGTERM/SIGHUP, checked\n"
+    "between its stages), 2 bad input or usage.\n";
 
 static void print_modes(const td_modal *modes, int count)
 {
@@ -100,8 +101,20 @@ typedef struct modal_outputs {
     char hdf5[TD_OUTPUT_PATH_SIZE];
 } modal_outputs;
 
+/* A stage boundary: TD_ERR_INTERRUPTED once a signal came (td_cli_catch_signals). */
+static td_status stage(td_status st, volatile sig_atomic_t *cancel, td_error *err)
+{
+    if (st == TD_OK && *cancel) {
+        err->code = TD_ERR_INTERRUPTED;
+        snprintf(err->message, sizeof err->message, "interrupted by a signal before every file was written");
+        return TD_ERR_INTERRUPTED;
+    }
+    return st;
+}
+
 static int analyse(const td_case *c, double speed, const modal_outputs *paths, int quiet)
 {
+    volatile sig_atomic_t *cancel = td_cli_catch_signals();
     const td_model *m = td_case_model(c);
     const td_modal_options *opt = td_case_modal_options(c);
     td_system *sys = NULL;
@@ -117,20 +130,20 @@ static int analyse(const td_case *c, double speed, const modal_outputs *paths, i
 
     memset(h, 0, sizeof h);
     td_error_clear(&err);
-    if ((st = td_system_create(m, &sys, &err)) != TD_OK)
+    if ((st = stage(td_system_create(m, &sys, &err), cancel, &err)) != TD_OK)
         goto done;
-    if ((st = td_modal_solve(sys, speed, &modes, &err)) != TD_OK)
+    if ((st = stage(td_modal_solve(sys, speed, &modes, &err), cancel, &err)) != TD_OK)
         goto done;
-    if ((st = td_campbell_compute(sys, opt, &camp, &err)) != TD_OK)
+    if ((st = stage(td_campbell_compute(sys, opt, &camp, &err), cancel, &err)) != TD_OK)
         goto done;
-    if ((st = td_modal_critical_speeds(sys, opt, cs, 64, &n_cs, &err)) != TD_OK)
+    if ((st = stage(td_modal_critical_speeds(sys, opt, cs, 64, &n_cs, &err), cancel, &err)) != TD_OK)
         goto done;
     if (!(u = model_unbalances(m, &n_u))) {
         st = TD_ERR_NOMEM;
         goto done;
     }
     for (i = 0; i < opt->response_speed_count && i < 64; i++, n_h++)
-        if ((st = td_harmonic_compute(sys, opt->response_speeds[i], u, n_u, &h[i], &err)) != TD_OK)
+        if ((st = stage(td_harmonic_compute(sys, opt->response_speeds[i], u, n_u, &h[i], &err), cancel, &err)) != TD_OK)
             goto done;
     if (!quiet) {
         print_modes(modes, opt->mode_count);
@@ -146,7 +159,9 @@ static int analyse(const td_case *c, double speed, const modal_outputs *paths, i
     res.n_harmonics = n_h;
     res.model = m;
     res.case_text = td_case_text(c);
-    if (paths->csv[0] && (st = td_modal_write_csv(paths->csv, &res, &err)) != TD_OK)
+    if ((st = stage(TD_OK, cancel, &err)) != TD_OK)
+        goto done;
+    if (paths->csv[0] && (st = stage(td_modal_write_csv(paths->csv, &res, &err), cancel, &err)) != TD_OK)
         goto done;
     if (paths->hdf5[0] && (st = td_modal_write_hdf5(paths->hdf5, &res, &err)) != TD_OK)
         goto done;

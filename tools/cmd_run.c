@@ -24,27 +24,22 @@ static const char run_usage[] =
     "      --csv PATH       CSV output path ('' for none); events go to PATH minus .csv plus .events.csv\n"
     "      --compress N     HDF5 deflate level 0 (none) .. 9, with shuffle; lossless (default: the case's\n"
     "                       output.compression, else 0)\n"
-    "  -q, --quiet          print nothing but errors\n"
-    "      --json           print the summary as one JSON object on stdout\n"
+    "    "  -q, --quiet          print no text summary (errors still go to stderr, --json still prints)\n"
+    "      --json           print the summary as one JSON object on stdout, also of a failed run\n"
     "      --no-progress    no progress line (it is shown only when stderr is a terminal)\n"
     "  -h, --help           this help\n"
     "\n"
-    "The summary gives the first contact time, the number of contacts, the peak normal force,\n"
-    "the fraction of time in contact, whether the rotor returned to a free orbit, the wall time\n"
-    "and the wall time per revolution after first contact (the paper's figure of merit).\n"
+    "The summary gives the start state used (start = \"auto\": the steady orbit, or rest when the\n"
+    "orbit is unstable or outside a clearance, and why), whether the contact-free system is\n"
+    "stable, the first contact time, the number of contacts, the peak normal force (when, which\n"
+    "retainer), the fraction of time in contact, whether the rotor returned to a free orbit\n"
+    "(n/a without contact), the wall time and the wall time per revolution after first contact\n"
+    "(the paper's figure of merit), and the files written.\n"
     "Files are written under a temporary name and renamed when finished; an interrupted or\n"
     "failed run keeps what it computed, marked incomplete.\n"
     "\n"
-    "exit codes: 0 complete, 1 the simulation failed or was interrupted (SIGINT/SIGTERM),\n"
-    "2 bad input or usage.\n";
-
-static volatile sig_atomic_t run_cancel;
-
-static void on_signal(int sig)
-{
-    (void)sig;
-    run_cancel = 1;
-}
+    "exit codes: 0 complete, 1 the simulation failed or was interrupted (SIGINT/SIGTERM/SIGHUP, also\n"
+    "during the set-up), 2 bad input or usage (an unusable start state included).\n";
 
 static double wall_now(void)
 {
@@ -112,16 +107,6 @@ static int parse_level(const char *text, int *level)
     return 0;
 }
 
-static void install_signals(void)
-{
-    struct sigaction sa;
-    memset(&sa, 0, sizeof sa);
-    sa.sa_handler = on_signal;
-    sigemptyset(&sa.sa_mask);
-    sigaction(SIGINT, &sa, NULL);
-    sigaction(SIGTERM, &sa, NULL);
-}
-
 static void print_summary(const td_run_summary *s, int json)
 {
     int n = json ? td_run_summary_json(NULL, 0, s) : td_run_summary_format(NULL, 0, s);
@@ -162,6 +147,7 @@ int td_cmd_run(int argc, char **argv)
     progress prog = {0.0, 0.0, 0};
     td_error err;
     td_status st;
+    volatile sig_atomic_t *cancel;
 
     optind = 1;
     while ((opt = getopt_long(argc, argv, "s:o:qh", longopts, NULL)) != -1) {
@@ -196,9 +182,15 @@ int td_cmd_run(int argc, char **argv)
     choose_outputs(&out, c, prefix, hdf5, csv);
     if (compress >= 0)
         out.compression = compress;
-    st = td_sim_create(td_case_model(c), td_case_sim_options(c), &sim, &err);
+    /* before the set-up: its dense start solve may be long, and a signal must not kill it */
+    cancel = td_cli_catch_signals();
+    st = td_sim_create_cancellable(td_case_model(c), td_case_sim_options(c), cancel, &sim, &err);
     if (st != TD_OK) {
         fprintf(stderr, "touchdown: %s: %s\n", td_case_path(c), err.message[0] ? err.message : td_strerror(st));
+        td_run_summary_failed(&summary, td_case_sim_options(c)->t0, td_case_end_time(c),
+                              td_model_speed(td_case_model(c)), td_case_sim_options(c)->start, st, err.message);
+        if (json)
+            print_summary(&summary, 1);
         td_case_free(&c);
         return td_cli_exit_code(st);
     }
@@ -209,17 +201,15 @@ int td_cmd_run(int argc, char **argv)
         hooks.progress = show_progress;
         hooks.user = &prog;
     }
-    run_cancel = 0;
-    hooks.cancel = &run_cancel;
-    install_signals();
+    hooks.cancel = cancel;
 
-    memset(&summary, 0, sizeof summary);
     st = td_run(sim, td_case_model(c), td_case_end_time(c), &out, &hooks, td_case_text(c), &summary, &err);
     if (prog.shown)
         fputs("\r\033[K", stderr);
     if (st != TD_OK)
         fprintf(stderr, "touchdown: %s: %s\n", td_case_path(c), err.message[0] ? err.message : td_strerror(st));
-    if (!quiet && summary.t_reached > summary.t_start)
+    /* JSON whenever asked (scripts read it, also of a failed run); -q silences only the text */
+    if (json || (!quiet && summary.t_reached > summary.t_start))
         print_summary(&summary, json);
 
     td_sim_free(&sim);

@@ -3,9 +3,6 @@
 
 #include <math.h>
 
-/* A real part below this fraction of the spectral radius is round-off on an undamped mode. */
-#define TD_ROUNDOFF_REAL_PART 1e-9
-
 const char *td_whirl_name(td_whirl w)
 {
     return w == TD_WHIRL_FORWARD ? "forward" : w == TD_WHIRL_BACKWARD ? "backward" : "mixed";
@@ -52,18 +49,10 @@ void td_print_overdamped(FILE *f, const td_modal *modes)
 
 const char *td_stability_word(const td_modal *modes)
 {
-    int i;
-    double radius = 0.0, worst = td_modal_max_real_part(modes);
-    for (i = 0; i < td_modal_mode_count(modes); i++) {
-        td_mode m;
-        td_modal_get_mode(modes, i, &m);
-        radius = fmax(radius, m.omega_n);
-    }
-    for (i = 0; i < td_modal_real_count(modes); i++)
-        radius = fmax(radius, fabs(td_modal_real_eigenvalue(modes, i)));
-    if (worst < -TD_ROUNDOFF_REAL_PART * radius)
+    double worst = td_modal_max_real_part(modes), radius = td_modal_spectral_radius(modes);
+    if (td_modal_is_unstable(modes))
+        return "UNSTABLE";
+    if (worst < -TD_MODAL_ROUNDOFF_REAL_PART * radius)
         return "stable";
-    if (worst <= TD_ROUNDOFF_REAL_PART * radius)
-        return "marginally stable (undamped modes)";
-    return "UNSTABLE";
+    return "marginally stable (undamped modes)";
 }

@@ -116,6 +116,13 @@ TD_API int td_modal_node_count(const td_modal *m);
 TD_API td_status td_modal_mode_shape(const td_modal *m, int i, double *x_re, double *x_im, double *y_re, double *y_im);
 /** Largest real part over all eigenvalues, 1/s: < 0 means the contact-free system is stable. */
 TD_API double td_modal_max_real_part(const td_modal *m);
+/** Largest |s| over all eigenvalues, 1/s (the spectral radius). */
+TD_API double td_modal_spectral_radius(const td_modal *m);
+/** Real parts within this fraction of the spectral radius are round-off of zero (undamped modes of
+ *  an undamped shaft come out at +-1e-12..1e-9 of it). */
+#define TD_MODAL_ROUNDOFF_REAL_PART 1e-9
+/** 1 if some eigenvalue grows: max real part > TD_MODAL_ROUNDOFF_REAL_PART * spectral radius. */
+TD_API int td_modal_is_unstable(const td_modal *m);
 
 /* ---------------------------------------------------------------------------------------- */
 /* Campbell diagram                                                                          */

@@ -52,7 +52,9 @@ typedef struct td_solver_options {
 /** State at t = 0. */
 typedef enum td_start {
     TD_START_ORBIT = 0, /**< steady harmonic orbit of the contact-free linear system (plus static sag) */
-    TD_START_REST = 1   /**< centred, at rest, AMB filter states zero */
+    TD_START_REST = 1,  /**< centred, at rest, AMB filter states zero */
+    TD_START_AUTO = 2   /**< the orbit when the contact-free system is stable (checked) and the orbit lies
+                             inside every clearance, else rest (td_sim_start_info says which and why) */
 } td_start;
 
 typedef struct td_sim_options {

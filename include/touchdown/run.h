@@ -26,6 +26,9 @@ extern "C" {
 /** "Returned to a free orbit" means: no retainer in contact during the last this many revolutions. */
 #define TD_RUN_FREE_REVOLUTIONS 5
 
+/** returned_to_free_orbit of a run without contact: the statement does not apply (JSON null, "n/a"). */
+#define TD_RUN_NOT_APPLICABLE (-2)
+
 /** Progress callback: simulated time t (s), fraction of the run done (0..1), contact onsets so
  *  far, the user pointer. Return 0 to go on, nonzero to stop the run (incomplete, TD_ERR_INTERRUPTED). */
 typedef int (*td_progress_fn)(double t, double fraction, long contacts, void *user);
@@ -58,13 +61,16 @@ typedef struct td_run_summary {
     double first_contact_time;           /**< -1 if no contact */
     double last_contact_time;            /**< time the last contact ended (t_reached if still in contact), -1 if none */
     double peak_normal_force;            /**< largest normal force: solver statistics, samples and events */
+    double peak_time;                    /**< when peak_normal_force occurred, s (-1 if no contact force) */
+    int peak_retainer;                   /**< retainer of peak_normal_force (-1 if no contact force) */
     double contact_time;                 /**< time with at least one retainer in contact */
     double contact_fraction;             /**< contact_time / (t_reached - t_start) */
     double free_window;                  /**< TD_RUN_FREE_REVOLUTIONS revolutions, s (-1 if speed <= 0) */
     int free_at_end;                     /**< 1: no contact during the last free_window of the run; 0: contact
                                               in it; -1: undetermined (speed <= 0 or run shorter than the window) */
-    int returned_to_free_orbit;          /**< 1: contacts > 0 and free_at_end == 1; 0: contacts == 0 or
-                                              free_at_end == 0; -1: undetermined */
+    int returned_to_free_orbit;          /**< 1: contacts > 0 and free_at_end == 1; 0: contacts > 0 and
+                                              free_at_end == 0; TD_RUN_NOT_APPLICABLE: no contact;
+                                              -1: undetermined */
     double revolutions;                  /**< speed (t_reached - t_start) / (2 pi) */
     double revolutions_after_contact;    /**< speed (t_reached - first_contact_time) / (2 pi), 0 if no contact */
     double wall_time;                    /**< wall-clock time of the whole td_run (solver + output), s */
@@ -74,6 +80,12 @@ typedef struct td_run_summary {
     double realtime_factor;              /**< simulated seconds per wall-clock second of the whole run (> 1:
                                               faster than real time); -1 if undefined */
     td_sim_stats stats;                  /**< the simulation's statistics at the end (steps, events, worst_drift...) */
+    td_sim_start_info start;             /**< start state used and the stability of the contact-free system */
+    int start_known;                     /**< 0: failed before a simulation existed, `start` is n/a but for
+                                              start.requested */
+    char hdf5_path[TD_OUTPUT_PATH_SIZE]; /**< files written (complete or marked incomplete), "" for none */
+    char csv_path[TD_OUTPUT_PATH_SIZE];  /**< samples CSV */
+    char events_path[TD_OUTPUT_PATH_SIZE]; /**< events CSV next to csv_path */
 } td_run_summary;
 
 /**
@@ -86,7 +98,7 @@ typedef struct td_run_summary {
  *            both paths empty: no files, the summary is still filled.
  * hooks:     progress callback and cancel flag, or NULL.
  * case_text: written as the case_text attribute (NULL: "").
- * summary:   filled in every case once the run has started (may be NULL).
+ * summary:   filled in every case, also when td_run fails before its first step (may be NULL).
  *
  * Returns TD_OK when t_end was reached and every file closed complete. On a solver failure
  * (TD_ERR_SOLVER or the sim's status), a cancel or a progress stop (TD_ERR_INTERRUPTED) or a
@@ -98,6 +110,11 @@ typedef struct td_run_summary {
  */
 TD_API td_status td_run(td_sim *sim, const td_model *model, double t_end, const td_output_options *out,
                         const td_run_hooks *hooks, const char *case_text, td_run_summary *summary, td_error *err);
+
+/** Fill `s` for a run that failed before td_run could start it (no simulation: e.g. td_sim_create
+ *  failed): status `st`, `message`, the start option `requested`, nothing simulated, no files. */
+TD_API void td_run_summary_failed(td_run_summary *s, double t_start, double t_end, double speed, td_start requested,
+                                  td_status st, const char *message);
 
 /** Human-readable multi-line summary (times with 10 decimals). Returns the length needed, like
  *  snprintf; buf is always NUL-terminated when n > 0. */

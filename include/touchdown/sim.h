@@ -82,14 +82,46 @@ typedef struct td_sim_stats {
     long releases;
     double worst_drift;        /**< max |r - c| while in constrained contact, m */
     double peak_normal_force;  /**< N */
+    double peak_time;          /**< s, time of peak_normal_force (-1 if no contact) */
+    int peak_retainer;         /**< retainer of peak_normal_force (-1 if no contact) */
     double time_in_contact;    /**< s, summed over retainers */
     double first_contact_time; /**< s, -1 if none */
     double wall_time;          /**< s spent inside td_sim_step */
 } td_sim_stats;
 
 /** Create a simulation of `model` (copied) with `options` (copied; NULL: defaults).
- *  Sets the start state (steady orbit or rest) at options->t0. */
+ *  Sets the start state (steady orbit or rest, touchdown/options.h td_start) at options->t0.
+ *  An orbit start (TD_START_ORBIT) of a contact-free system found unstable (checked up to
+ *  TD_SIM_STABILITY_MAX_STATES states), or one outside a clearance with constraint contact, fails
+ *  with TD_ERR_INVALID; TD_START_AUTO starts those at rest instead (td_sim_start_info_get). */
 TD_API td_status td_sim_create(const td_model *model, const td_sim_options *options, td_sim **out, td_error *err);
+/** td_sim_create that also reads `cancel` (may be NULL) between the stages of its set-up (system
+ *  build, stability check, start-state solve): nonzero stops it with TD_ERR_INTERRUPTED. */
+TD_API td_status td_sim_create_cancellable(const td_model *model, const td_sim_options *options,
+                                           volatile sig_atomic_t *cancel, td_sim **out, td_error *err);
+
+/** Largest first-order state count (touchdown/modal.h) whose stability td_sim_create checks; a
+ *  bigger model is not checked (its dense eigen-solve costs ~ seconds to minutes). */
+#define TD_SIM_STABILITY_MAX_STATES 400
+
+/** Stability of the contact-free closed loop (AMB filter states included) at the start speed. */
+typedef enum td_stability {
+    TD_STABILITY_UNCHECKED = -1, /**< more than TD_SIM_STABILITY_MAX_STATES states: not checked */
+    TD_STABILITY_STABLE = 0,     /**< every eigenvalue decays or is undamped (marginal) */
+    TD_STABILITY_UNSTABLE = 1    /**< some eigenvalue grows (real part above round-off) */
+} td_stability;
+
+/** How the start state was chosen. */
+typedef struct td_sim_start_info {
+    td_start requested;     /**< the option */
+    td_start used;          /**< TD_START_ORBIT or TD_START_REST */
+    td_stability stability; /**< of the contact-free system at the start speed */
+    double max_real_part;   /**< rightmost eigenvalue's real part, 1/s (NAN when unchecked) */
+    char reason[256];       /**< why TD_START_AUTO fell back to rest ("" otherwise) */
+} td_sim_start_info;
+
+/** Copy the start-state choice into *out. TD_ERR_INVALID on NULL arguments. */
+TD_API td_status td_sim_start_info_get(const td_sim *sim, td_sim_start_info *out);
 /** Free and set *sim to NULL; accepts NULL. */
 TD_API void td_sim_free(td_sim **sim);
 /** Message of the last failure of this simulation ("" if none). Owned by the sim. */

@@ -19,7 +19,7 @@ static const char *const solver_keys[] = {"rtol",      "atol",          "max_ste
 static const char *const output_keys[] = {"hdf5", "csv", "sample_rate", "nodes", "compression", NULL};
 static const char *const modal_keys[] = {"speed_min", "speed_max", "speed_steps", "modes", "response_speeds", NULL};
 
-static const char *const start_names[] = {"orbit", "rest"};
+static const char *const start_names[] = {"orbit", "rest", "auto"}; /* td_start order */
 static const char *const contact_names[] = {"constraint", "penalty"};
 static const char *const damping_names[] = {"none", "hunt-crossley", "kelvin-voigt"};
 static const char *const linsol_names[] = {"klu", "dense"};
@@ -265,7 +265,7 @@ td_status td_cr_read_options(td_case_reader *r, const config_setting_t *root)
     if (st == TD_OK)
         st = td_cr_real(r, root, "end_time", "end time of the run, s", 0.0, TD_CR_POSITIVE, &c->end_time);
     if (st == TD_OK)
-        st = td_cr_enum(r, root, "start", start_names, 2, start, &start);
+        st = td_cr_enum(r, root, "start", start_names, 3, start, &start);
     c->sim.start = (td_start)start;
     if (st == TD_OK)
         st = read_contact(r, root, &c->sim.contact);

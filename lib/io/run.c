@@ -14,6 +14,7 @@
 
 #include "io/recorder.h"
 #include "sim/sim_internal.h"
+#include "touchdown/output.h"
 #include "touchdown/version.h"
 #include "util/error_internal.h"
 #include "util/limits.h"
@@ -64,12 +65,22 @@ static int any_in_contact(const td_recorder *rec)
     return 0;
 }
 
-static void peak_from_retainers(run_state *r)
+/* A normal force `f` of retainer `k` at time `t`: the peak keeps its first instant. */
+static void note_peak(td_run_summary *s, double f, double t, int k)
+{
+    if (f > s->peak_normal_force) {
+        s->peak_normal_force = f;
+        s->peak_time = t;
+        s->peak_retainer = k;
+    }
+}
+
+static void peak_from_retainers(run_state *r, double t)
 {
     const td_retainer_state *ret = td_recorder_retainers(r->rec);
     int i, n = td_recorder_retainer_count(r->rec);
     for (i = 0; i < n; i++)
-        r->s->peak_normal_force = max2(r->s->peak_normal_force, ret[i].normal_force);
+        note_peak(r->s, ret[i].normal_force, t, i);
 }
 
 /* Contact can only begin or end at an event, so the state read at t0 and after each event holds
@@ -99,7 +110,7 @@ static td_status take_sample(run_state *r, double t, int on_grid, td_error *err)
     r->s->samples++;
     if (on_grid)
         r->s->grid_samples++;
-    peak_from_retainers(r);
+    peak_from_retainers(r, t);
     return TD_OK;
 }
 
@@ -131,7 +142,7 @@ static td_status handle_event(run_state *r, td_error *err)
             r->solver_wall_at_contact = r->s->solver_wall_time;
         }
     }
-    r->s->peak_normal_force = max2(r->s->peak_normal_force, ev.normal_force);
+    note_peak(r->s, ev.normal_force, ev.time, ev.retainer);
     contact_advance(r, t, any_in_contact(r->rec));
     return td_recorder_event(r->rec, &ev, r->event_sample_row, err);
 }
@@ -219,11 +230,39 @@ static void summary_init(td_run_summary *s, double t0, double t_end, double spee
     s->speed = speed;
     s->first_contact_time = -1.0;
     s->last_contact_time = -1.0;
+    s->peak_time = -1.0;
+    s->peak_retainer = -1;
     s->free_window = -1.0;
     s->free_at_end = -1;
     s->returned_to_free_orbit = -1;
     s->wall_time_per_revolution = -1.0;
     s->realtime_factor = -1.0;
+    s->stats.first_contact_time = -1.0;
+    s->stats.peak_time = -1.0;
+    s->stats.peak_retainer = -1;
+    s->start.requested = s->start.used = TD_START_REST;
+    s->start.stability = TD_STABILITY_UNCHECKED;
+    s->start.max_real_part = NAN;
+}
+
+void td_run_summary_failed(td_run_summary *s, double t_start, double t_end, double speed, td_start requested,
+                           td_status st, const char *message)
+{
+    if (!s)
+        return;
+    summary_init(s, t_start, t_end, speed);
+    s->start.requested = requested;
+    s->status = st;
+    snprintf(s->message, sizeof s->message, "%s", message ? message : td_strerror(st));
+}
+
+/* The files td_run writes: those of `out`, the events CSV beside the samples CSV. */
+static void summary_paths(td_run_summary *s, const td_output_options *out)
+{
+    snprintf(s->hdf5_path, sizeof s->hdf5_path, "%s", out->hdf5_path);
+    snprintf(s->csv_path, sizeof s->csv_path, "%s", out->csv_path);
+    if (out->csv_path[0])
+        td_writer_events_path(out->csv_path, s->events_path, sizeof s->events_path);
 }
 
 /* Everything derived once the loop has stopped. */
@@ -236,7 +275,7 @@ static void summary_finish(run_state *r, double wall_start)
     if (r->in_contact)
         s->last_contact_time = s->t_reached;
     td_sim_stats_get(r->sim, &s->stats);
-    s->peak_normal_force = max2(s->peak_normal_force, s->stats.peak_normal_force);
+    note_peak(s, s->stats.peak_normal_force, s->stats.peak_time, s->stats.peak_retainer);
     span = s->t_reached - s->t_start;
     s->contact_fraction = span > 0.0 ? s->contact_time / span : 0.0;
     s->revolutions = s->speed * span / (2.0 * TD_PI);
@@ -252,10 +291,12 @@ static void summary_finish(run_state *r, double wall_start)
         else if (span >= s->free_window)
             s->free_at_end = 1;
     }
-    if (s->free_at_end < 0)
+    if (s->contacts == 0)
+        s->returned_to_free_orbit = TD_RUN_NOT_APPLICABLE;
+    else if (s->free_at_end < 0)
         s->returned_to_free_orbit = -1;
     else
-        s->returned_to_free_orbit = s->contacts > 0 && s->free_at_end == 1;
+        s->returned_to_free_orbit = s->free_at_end == 1;
     s->wall_time = wall_clock() - wall_start;
     if (s->wall_time > 0.0)
         s->realtime_factor = span / s->wall_time;
@@ -334,9 +375,15 @@ td_status td_run(td_sim *sim, const td_model *model, double t_end, const td_outp
     td_status st, cst;
     if (!summary)
         summary = &local_summary;
-    if ((st = check_args(sim, model, t_end, out, err)) != TD_OK)
+    if ((st = check_args(sim, model, t_end, out, err)) != TD_OK) {
+        td_run_summary_failed(summary, sim ? td_sim_time(sim) : 0.0, t_end, model ? td_model_speed(model) : 0.0,
+                              TD_START_REST, st, err ? err->message : NULL);
+        if (sim)
+            summary->start_known = td_sim_start_info_get(sim, &summary->start) == TD_OK;
         return st;
+    }
     summary_init(summary, td_sim_time(sim), t_end, td_model_speed(model));
+    summary->start_known = td_sim_start_info_get(sim, &summary->start) == TD_OK;
     memset(&r, 0, sizeof r);
     r.sim = sim;
     r.hooks = hooks;
@@ -350,6 +397,7 @@ td_status td_run(td_sim *sim, const td_model *model, double t_end, const td_outp
         snprintf(summary->message, sizeof summary->message, "%s", err ? err->message : td_strerror(st));
         return st;
     }
+    summary_paths(summary, out);
     td_error_clear(&loop_err);
     /* the cancel flag is also read inside td_sim_step, before every integrator step */
     td_sim_set_interrupt(sim, hooks ? hooks->cancel : NULL);
@@ -415,7 +463,49 @@ static void tb_init(text_buf *b, char *buf, size_t n)
 
 static const char *tri(int v)
 {
-    return v > 0 ? "yes" : v == 0 ? "no" : "undetermined";
+    return v > 0 ? "yes" : v == 0 ? "no" : v == TD_RUN_NOT_APPLICABLE ? "n/a (no contact)" : "undetermined";
+}
+
+static const char *start_name(td_start st)
+{
+    return st == TD_START_ORBIT ? "orbit" : st == TD_START_REST ? "rest" : "auto";
+}
+
+static const char *stability_name(td_stability st)
+{
+    return st == TD_STABILITY_STABLE ? "stable" : st == TD_STABILITY_UNSTABLE ? "unstable" : "unchecked";
+}
+
+static void format_start(text_buf *b, const td_run_summary *s)
+{
+    const td_sim_start_info *si = &s->start;
+    if (!s->start_known) {
+        tb_printf(b, "start                       n/a (start = \"%s\", no simulation was set up)\n",
+                  start_name(si->requested));
+        return;
+    }
+    tb_printf(b, "start                       %s", start_name(si->used));
+    if (si->requested == TD_START_AUTO)
+        tb_printf(b, " (start = \"auto\"%s%s)", si->reason[0] ? ": " : "", si->reason);
+    tb_printf(b, "\n");
+    if (si->stability == TD_STABILITY_UNCHECKED)
+        tb_printf(b, "contact-free system         stability not checked (more than %d states, or no eigen-solution)\n",
+                  TD_SIM_STABILITY_MAX_STATES);
+    else
+        tb_printf(b, "contact-free system         %s at %.6g rad/s (rightmost eigenvalue real part %.6g 1/s)\n",
+                  stability_name(si->stability), s->speed, si->max_real_part);
+}
+
+static void format_files(text_buf *b, const td_run_summary *s)
+{
+    const char *p[3];
+    int i, n = 0;
+    p[0] = s->hdf5_path, p[1] = s->csv_path, p[2] = s->events_path;
+    tb_printf(b, "files                      ");
+    for (i = 0; i < 3; i++)
+        if (p[i][0])
+            tb_printf(b, "%s %s", n++ ? "," : "", p[i]);
+    tb_printf(b, "%s%s\n", n ? "" : " none", n && !s->complete ? " (marked incomplete)" : "");
 }
 
 int td_run_summary_format(char *buf, size_t n, const td_run_summary *s)
@@ -430,6 +520,7 @@ int td_run_summary_format(char *buf, size_t n, const td_run_summary *s)
         tb_printf(&b, "status                      INCOMPLETE (%s): %s\n", td_strerror(s->status), s->message);
     tb_printf(&b, "simulated                   %.10f s to %.10f s (requested %.10f s)\n", s->t_start, s->t_reached,
               s->t_end);
+    format_start(&b, s);
     tb_printf(&b, "speed                       %.6g rad/s, %.4f revolutions\n", s->speed, s->revolutions);
     tb_printf(&b, "samples                     %ld (%ld on the grid, %ld at events)\n", s->samples, s->grid_samples,
               s->samples - s->grid_samples);
@@ -442,7 +533,11 @@ int td_run_summary_format(char *buf, size_t n, const td_run_summary *s)
     }
     tb_printf(&b, "time in contact             %.10f s (%.4f %% of the run)\n", s->contact_time,
               100.0 * s->contact_fraction);
-    tb_printf(&b, "peak normal force           %.6g N\n", s->peak_normal_force);
+    if (s->peak_retainer >= 0)
+        tb_printf(&b, "peak normal force           %.6g N at %.10f s, retainer %d\n", s->peak_normal_force,
+                  s->peak_time, s->peak_retainer);
+    else
+        tb_printf(&b, "peak normal force           none (no contact force)\n");
     if (s->free_window > 0.0)
         tb_printf(&b, "free at end                 %s (no contact in the last %d revolutions = %.10f s)\n",
                   tri(s->free_at_end), TD_RUN_FREE_REVOLUTIONS, s->free_window);
@@ -461,7 +556,8 @@ int td_run_summary_format(char *buf, size_t n, const td_run_summary *s)
         tb_printf(&b, "wall time per revolution    %.6g s after first contact (%.4f revolutions)\n",
                   s->wall_time_per_revolution, s->revolutions_after_contact);
     else
-        tb_printf(&b, "wall time per revolution    undefined (no contact or no revolution after it)\n");
+        tb_printf(&b, "wall time per revolution    n/a (no contact or no revolution after it)\n");
+    format_files(&b, s);
     return tb_done(&b);
 }
 
@@ -474,9 +570,13 @@ static void json_real(text_buf *b, const char *key, double v, int negative_is_nu
         tb_printf(b, "\"%s\":%.17g%s", key, v, comma ? "," : "");
 }
 
-/* A JSON string with the escapes RFC 8259 requires. */
-static void json_string(text_buf *b, const char *key, const char *v)
+/* A JSON string with the escapes RFC 8259 requires; "" as null when empty_is_null. */
+static void json_text(text_buf *b, const char *key, const char *v, int empty_is_null)
 {
+    if (empty_is_null && !v[0]) {
+        tb_printf(b, "\"%s\":null,", key);
+        return;
+    }
     tb_printf(b, "\"%s\":\"", key);
     for (; *v; v++) {
         unsigned char c = (unsigned char)*v;
@@ -488,6 +588,32 @@ static void json_string(text_buf *b, const char *key, const char *v)
             tb_printf(b, "%c", c);
     }
     tb_printf(b, "\",");
+}
+
+static void json_string(text_buf *b, const char *key, const char *v)
+{
+    json_text(b, key, v, 0);
+}
+
+static void json_start(text_buf *b, const td_run_summary *s)
+{
+    const td_sim_start_info *si = &s->start;
+    json_string(b, "start_requested", start_name(si->requested));
+    if (!s->start_known) {
+        tb_printf(b, "\"start\":null,\"start_reason\":null,\"stability\":null,\"max_real_part\":null,");
+        return;
+    }
+    json_string(b, "start", start_name(si->used));
+    json_text(b, "start_reason", si->reason, 1);
+    json_string(b, "stability", stability_name(si->stability));
+    json_real(b, "max_real_part", si->stability == TD_STABILITY_UNCHECKED ? NAN : si->max_real_part, 0, 1);
+}
+
+static void json_files(text_buf *b, const td_run_summary *s)
+{
+    json_text(b, "hdf5_path", s->hdf5_path, 1);
+    json_text(b, "csv_path", s->csv_path, 1);
+    json_text(b, "events_path", s->events_path, 1);
 }
 
 int td_run_summary_json(char *buf, size_t n, const td_run_summary *s)
@@ -504,11 +630,18 @@ int td_run_summary_json(char *buf, size_t n, const td_run_summary *s)
     json_real(&b, "t_end", s->t_end, 0, 1);
     json_real(&b, "t_reached", s->t_reached, 0, 1);
     json_real(&b, "speed", s->speed, 0, 1);
+    json_start(&b, s);
+    json_files(&b, s);
     tb_printf(&b, "\"samples\":%ld,\"grid_samples\":%ld,\"events\":%ld,\"contacts\":%ld,", s->samples, s->grid_samples,
               s->events, s->contacts);
     json_real(&b, "first_contact_time", s->first_contact_time, 1, 1);
     json_real(&b, "last_contact_time", s->last_contact_time, 1, 1);
     json_real(&b, "peak_normal_force", s->peak_normal_force, 0, 1);
+    json_real(&b, "peak_time", s->peak_time, 1, 1);
+    if (s->peak_retainer >= 0)
+        tb_printf(&b, "\"peak_retainer\":%d,", s->peak_retainer);
+    else
+        tb_printf(&b, "\"peak_retainer\":null,");
     json_real(&b, "contact_time", s->contact_time, 0, 1);
     json_real(&b, "contact_fraction", s->contact_fraction, 0, 1);
     json_real(&b, "free_window", s->free_window, 1, 1);

@@ -325,6 +325,20 @@ double td_modal_max_real_part(const td_modal *m)
 {
     return m ? m->max_real : NAN;
 }
+double td_modal_spectral_radius(const td_modal *m)
+{
+    double radius = 0.0;
+    int i;
+    for (i = 0; m && i < m->n_modes; i++)
+        radius = fmax(radius, m->modes[i].omega_n);
+    for (i = 0; m && i < m->n_real; i++)
+        radius = fmax(radius, fabs(m->real[i]));
+    return radius;
+}
+int td_modal_is_unstable(const td_modal *m)
+{
+    return m && m->max_real > TD_MODAL_ROUNDOFF_REAL_PART * td_modal_spectral_radius(m);
+}
 
 td_status td_modal_get_mode(const td_modal *m, int i, td_mode *out)
 {

@@ -137,7 +137,7 @@ static td_status check_options(const td_sim_options *o, td_error *err)
         if (!(co->damping_coefficient >= 0.0) || !isfinite(co->damping_coefficient))
             return td_error_set(err, TD_ERR_INVALID, "contact damping coefficient must be >= 0");
     }
-    if (o->start != TD_START_ORBIT && o->start != TD_START_REST)
+    if (o->start != TD_START_ORBIT && o->start != TD_START_REST && o->start != TD_START_AUTO)
         return td_error_set(err, TD_ERR_INVALID, "unknown start state %d", (int)o->start);
     if (!isfinite(o->t0))
         return td_error_set(err, TD_ERR_INVALID, "t0 must be finite");
@@ -363,21 +363,83 @@ static td_status factor_mass(td_sim *s, td_error *err)
 /* A start orbit at most this far outside a clearance circle (relative) counts as touching it. */
 #define TD_START_TOUCH_TOLERANCE 1e-6
 
+/* Stability of the contact-free closed loop at the start speed, from the eigenvalues of its
+ * first-order form (lib/modal, AMB filter states included). A model too big for a quick dense
+ * eigen-solve, or one the solver fails on, stays unchecked: the check informs, it never blocks. */
+static void check_stability(td_sim *s)
+{
+    td_modal *m = NULL;
+    s->start.stability = TD_STABILITY_UNCHECKED;
+    s->start.max_real_part = NAN;
+    if (td_modal_state_count(s->sys) > TD_SIM_STABILITY_MAX_STATES ||
+        td_modal_solve(s->sys, s->omega, &m, NULL) != TD_OK)
+        return;
+    s->start.max_real_part = td_modal_max_real_part(m);
+    s->start.stability = td_modal_is_unstable(m) ? TD_STABILITY_UNSTABLE : TD_STABILITY_STABLE;
+    td_modal_free(&m);
+}
+
+/* First retainer whose start radius exceeds its clearance by more than the grazing tolerance
+ * (its radius in *rad), -1 if none. */
+static int first_outside(const td_sim *s, const double *y, double *rad)
+{
+    int k;
+    for (k = 0; k < s->nr; k++) {
+        const td_sim_retainer *r = &s->ret[k];
+        *rad = hypot(y[s->oq + r->dx], y[s->oq + r->dy]);
+        if (*rad - r->r.clearance > TD_START_TOUCH_TOLERANCE * r->r.clearance)
+            return k;
+    }
+    return -1;
+}
+
+/* The steady orbit into y. An unstable system has none that the motion would stay on: "orbit"
+ * refuses it, "auto" stays at rest; "auto" also stays at rest when the orbit is not contact-free.
+ * s->start.used says which start y holds. */
+static td_status orbit_start(td_sim *s, double *y, td_error *err)
+{
+    int strict = s->opt.start == TD_START_ORBIT, k;
+    double gx, gy, rad = 0.0;
+    td_status st;
+    if (s->start.stability == TD_STABILITY_UNSTABLE) {
+        if (strict)
+            return td_error_set(err, TD_ERR_INVALID,
+                                "start = \"orbit\": the contact-free system is unstable at %.6g rad/s (rightmost "
+                                "eigenvalue real part %.6g 1/s), so it has no steady orbit; use start = \"rest\"",
+                                s->omega, s->start.max_real_part);
+        snprintf(s->start.reason, sizeof s->start.reason,
+                 "the contact-free system is unstable (rightmost eigenvalue real part %.6g 1/s)",
+                 s->start.max_real_part);
+        return TD_OK;
+    }
+    td_model_gravity(s->model, &gx, &gy);
+    st = td_modal_start_state(s->sys, s->omega, s->unb, s->nu, gx != 0.0 || gy != 0.0, s->t, y + s->oq, err);
+    if (st != TD_OK)
+        return st;
+    s->start.used = TD_START_ORBIT;
+    if (strict || (k = first_outside(s, y, &rad)) < 0)
+        return TD_OK;
+    snprintf(s->start.reason, sizeof s->start.reason,
+             "the steady orbit lies outside the clearance of retainer %d (r = %.6g m > c = %.6g m)", k, rad,
+             s->ret[k].r.clearance);
+    N_VConst(0.0, s->y);
+    s->start.used = TD_START_REST;
+    return TD_OK;
+}
+
 static td_status start_state(td_sim *s, td_error *err)
 {
     double *y = N_VGetArrayPointer(s->y);
     int *touching = s->act + 3 * s->nr; /* past the three lists sim_modes.c uses */
-    double gx, gy;
     int k;
     td_status st;
     N_VConst(0.0, s->y);
     N_VConst(0.0, s->yp);
-    if (s->opt.start == TD_START_ORBIT) {
-        td_model_gravity(s->model, &gx, &gy);
-        st = td_modal_start_state(s->sys, s->omega, s->unb, s->nu, gx != 0.0 || gy != 0.0, s->t, y + s->oq, err);
-        if (st != TD_OK)
-            return st;
-    }
+    s->start.requested = s->opt.start;
+    s->start.used = TD_START_REST;
+    s->start.reason[0] = '\0';
+    if (s->opt.start != TD_START_REST && (st = orbit_start(s, y, err)) != TD_OK)
+        return st;
     for (k = 0; k < s->nr; k++) {
         td_sim_retainer *r = &s->ret[k];
         double rad = hypot(y[s->oq + r->dx], y[s->oq + r->dy]), c = r->r.clearance;
@@ -392,7 +454,8 @@ static td_status start_state(td_sim *s, td_error *err)
         } else {
             return td_error_set(err, TD_ERR_INVALID,
                                 "the start state is outside the clearance of retainer %d (r = %.9g m > c = %.9g m): "
-                                "the free orbit is not contact-free; start at rest or reduce the unbalance",
+                                "the free orbit is not contact-free; use start = \"auto\" or \"rest\", or reduce "
+                                "the unbalance",
                                 k, rad, c);
         }
     }
@@ -479,7 +542,26 @@ static td_status attach_ida(td_sim *s, td_error *err)
     return TD_OK;
 }
 
+static int cancelled(volatile sig_atomic_t *cancel)
+{
+    return cancel && *cancel;
+}
+
+/* TD_OK, or TD_ERR_INTERRUPTED once `cancel` is set: read between the stages of the set-up. */
+static td_status setup_stage(td_status st, volatile sig_atomic_t *cancel, td_error *err)
+{
+    if (st == TD_OK && cancelled(cancel))
+        return td_error_set(err, TD_ERR_INTERRUPTED, "interrupted while setting up the simulation");
+    return st;
+}
+
 td_status td_sim_create(const td_model *model, const td_sim_options *options, td_sim **out, td_error *err)
+{
+    return td_sim_create_cancellable(model, options, NULL, out, err);
+}
+
+td_status td_sim_create_cancellable(const td_model *model, const td_sim_options *options, volatile sig_atomic_t *cancel,
+                                    td_sim **out, td_error *err)
 {
     td_sim *s;
     td_status st;
@@ -495,7 +577,7 @@ td_status td_sim_create(const td_model *model, const td_sim_options *options, td
         td_sim_options_default(&s->opt);
     st = check_options(&s->opt, err);
     if (st == TD_OK)
-        st = td_system_create(model, &s->sys, err);
+        st = setup_stage(td_system_create(model, &s->sys, err), cancel, err);
     if (st == TD_OK) {
         s->model = td_system_model(s->sys);
         s->n = s->sys->ndof;
@@ -509,6 +591,8 @@ td_status td_sim_create(const td_model *model, const td_sim_options *options, td
         s->neq = s->ou + s->nr;
         s->t = s->t_ida = s->t_acc = s->opt.t0;
         s->stats.first_contact_time = -1.0;
+        s->stats.peak_time = -1.0;
+        s->stats.peak_retainer = -1;
         s->law.stiffness = s->opt.contact.stiffness;
         s->law.exponent = s->opt.contact.exponent;
         s->law.damping = s->opt.contact.damping;
@@ -531,11 +615,14 @@ td_status td_sim_create(const td_model *model, const td_sim_options *options, td
     if (st == TD_OK)
         st = td_sim_structural_build(s, err);
     if (st == TD_OK)
-        st = setup_ida(s, err);
+        st = setup_stage(setup_ida(s, err), cancel, err);
     if (st == TD_OK) {
         set_tolerances(s);
-        st = start_state(s, err);
+        check_stability(s);
+        st = setup_stage(TD_OK, cancel, err);
     }
+    if (st == TD_OK)
+        st = setup_stage(start_state(s, err), cancel, err);
     if (st == TD_OK)
         st = attach_ida(s, err);
     if (st != TD_OK) {
@@ -642,8 +729,11 @@ static void monitor_at(td_sim *s, double t, int at_step)
                 s->stats.worst_drift = drift;
         }
         fn = td_sim_normal_force(s, k, y);
-        if (fn > s->stats.peak_normal_force)
+        if (fn > s->stats.peak_normal_force) {
             s->stats.peak_normal_force = fn;
+            s->stats.peak_time = t;
+            s->stats.peak_retainer = k;
+        }
     }
     if (t > s->t_acc)
         s->t_acc = t;
@@ -811,6 +901,14 @@ td_status td_sim_step(td_sim *sim, double tout, double *t_reached)
     if (t_reached)
         *t_reached = sim->t;
     return st;
+}
+
+td_status td_sim_start_info_get(const td_sim *sim, td_sim_start_info *out)
+{
+    if (!sim || !out)
+        return TD_ERR_INVALID;
+    *out = sim->start;
+    return TD_OK;
 }
 
 td_status td_sim_set_interrupt(td_sim *sim, volatile sig_atomic_t *flag)

@@ -151,6 +151,7 @@ struct td_sim {
     double *ysave, *ypsave; /* last good state */
 
     volatile sig_atomic_t *interrupt; /* borrowed (td_sim_set_interrupt), NULL: none */
+    td_sim_start_info start;          /* how the start state was chosen (start_state in sim.c) */
 
     char errmsg[TD_ERROR_MESSAGE_SIZE];
     char warnmsg[TD_ERROR_MESSAGE_SIZE];
