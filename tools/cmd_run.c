@@ -24,7 +24,7 @@ static const char run_usage[] =
     "      --csv PATH       CSV output path ('' for none); events go to PATH minus .csv plus .events.csv\n"
     "      --compress N     HDF5 deflate level 0 (none) .. 9, with shuffle; lossless (default: the case's\n"
     "                       output.compression, else 0)\n"
-    "    "  -q, --quiet          print no text summary (errors still go to stderr, --json still prints)\n"
+    "  -q, --quiet          print no text summary (errors still go to stderr, --json still prints)\n"
     "      --json           print the summary as one JSON object on stdout, also of a failed run\n"
     "      --no-progress    no progress line (it is shown only when stderr is a terminal)\n"
     "  -h, --help           this help\n"
