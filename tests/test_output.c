@@ -6,6 +6,7 @@
  */
 #include "td_test.h"
 
+#include "touchdown/modal.h"
 #include "touchdown/output.h"
 #include "touchdown/version.h"
 
@@ -869,23 +870,15 @@ static void test_stale_file_removed(void **state)
     }
 }
 
-/* In a child process with a file size limit of `limit` bytes (SIGXFSZ ignored: writes fail with
- * EFBIG, as on a full disk), write `rows` samples and `events` events and close as complete.
- * The child exits through exit(), so the HDF5 library's exit handler runs too. Returns the
- * child's wait status; its exit code is 0 only if every failure was reported as TD_ERR_IO. */
-static int write_limited(td_writer_kind kind, const char *path, long limit, int rows, int events)
+/* Run job(arg) in a child process with a file size limit of `limit` bytes (SIGXFSZ ignored:
+ * writes fail with EFBIG, as on a full disk); the child exits through exit() with job's return
+ * value, so the HDF5 library's exit handler runs too. Returns the child's wait status. */
+static int run_limited(int (*job)(const void *), const void *arg, long limit)
 {
     pid_t pid = fork();
     int status = -1;
     if (pid == 0) {
         struct rlimit rl;
-        td_output_layout l = full_layout();
-        td_writer *w = NULL;
-        td_retainer_state ret[RETS];
-        double xy[2 * NODES] = {0}, amb[2 * AMBS] = {0};
-        td_event ev;
-        td_status st;
-        int r, failed = 0;
         rl.rlim_cur = rl.rlim_max = (rlim_t)limit;
         signal(SIGXFSZ, SIG_IGN);
         signal(SIGSEGV, SIG_DFL); /* not cmocka's handler: the parent must see a crash */
@@ -893,51 +886,131 @@ static int write_limited(td_writer_kind kind, const char *path, long limit, int 
         signal(SIGBUS, SIG_DFL);
         if (setrlimit(RLIMIT_FSIZE, &rl) != 0)
             exit(10);
-        memset(ret, 0, sizeof ret);
-        memset(&ev, 0, sizeof ev);
-        if (td_writer_open(kind, path, &l, &w, NULL) != TD_OK)
-            exit(11);
-        for (r = 0; r < rows; r++)
-            if ((st = td_writer_sample(w, r * 1e-4, xy, ret, amb, NULL)) != TD_OK)
-                failed |= st != TD_ERR_IO && st != TD_ERR_STATE;
-        for (r = 0; r < events; r++)
-            if ((st = td_writer_event(w, &ev, -1, NULL)) != TD_OK)
-                failed |= st != TD_ERR_IO && st != TD_ERR_STATE;
-        if (td_writer_close(&w, 1, NULL, NULL) != TD_ERR_IO || w != NULL)
-            exit(12);
-        exit(failed ? 13 : 0);
+        exit(job(arg));
     }
     if (pid > 0)
         waitpid(pid, &status, 0);
     return status;
 }
 
+/* Fails the test unless the child exited normally with code 0. */
+static void assert_child_ok(int status, int which)
+{
+    if (!WIFEXITED(status))
+        fail_msg("case %d: the child died with signal %d", which, WIFSIGNALED(status) ? WTERMSIG(status) : -1);
+    assert_int_equal(WEXITSTATUS(status), 0);
+}
+
+typedef struct limited_write {
+    td_writer_kind kind;
+    const char *path;
+    int rows, events;
+} limited_write;
+
+/* Write the samples and events, close as complete; 0 only if every failure was TD_ERR_IO. */
+static int write_job(const void *arg)
+{
+    const limited_write *job = arg;
+    td_output_layout l = full_layout();
+    td_writer *w = NULL;
+    td_retainer_state ret[RETS];
+    double xy[2 * NODES] = {0}, amb[2 * AMBS] = {0};
+    td_event ev;
+    td_status st;
+    int r, failed = 0;
+    memset(ret, 0, sizeof ret);
+    memset(&ev, 0, sizeof ev);
+    if (td_writer_open(job->kind, job->path, &l, &w, NULL) != TD_OK)
+        return 11;
+    for (r = 0; r < job->rows; r++)
+        if ((st = td_writer_sample(w, r * 1e-4, xy, ret, amb, NULL)) != TD_OK)
+            failed |= st != TD_ERR_IO && st != TD_ERR_STATE;
+    for (r = 0; r < job->events; r++)
+        if ((st = td_writer_event(w, &ev, -1, NULL)) != TD_OK)
+            failed |= st != TD_ERR_IO && st != TD_ERR_STATE;
+    if (td_writer_close(&w, 1, NULL, NULL) != TD_ERR_IO || w != NULL)
+        return 12;
+    return failed ? 13 : 0;
+}
+
 /* A full disk (the file size limit) while writing: TD_ERR_IO, no crash (also not in HDF5's exit
  * handler after a failed close), nothing at PATH and no temporary file left. */
 static void test_failed_writes_leave_nothing(void **state)
 {
-    static const struct {
-        td_writer_kind kind;
-        int rows, events;
-    } cases[] = {{TD_WRITER_CSV, 20000, 0},     /* the samples file fills up */
-                 {TD_WRITER_CSV, 10, 20000},    /* the events file fills up */
-                 {TD_WRITER_HDF5, 200000, 0},   /* the samples datasets fill up */
-                 {TD_WRITER_HDF5, 10, 100000}}; /* the events dataset fills up */
+    limited_write cases[] = {{TD_WRITER_CSV, NULL, 20000, 0},     /* the samples file fills up */
+                             {TD_WRITER_CSV, NULL, 10, 20000},    /* the events file fills up */
+                             {TD_WRITER_HDF5, NULL, 200000, 0},   /* the samples datasets fill up */
+                             {TD_WRITER_HDF5, NULL, 10, 100000}}; /* the events dataset fills up */
     char path[512], events[1100];
     size_t i;
-    int status;
     (void)state;
     for (i = 0; i < sizeof cases / sizeof cases[0]; i++) {
         tmp_name(path, sizeof path, cases[i].kind == TD_WRITER_CSV ? "full.csv" : "full.h5");
         td_writer_events_path(path, events, sizeof events);
-        status = write_limited(cases[i].kind, path, 64 * 1024, cases[i].rows, cases[i].events);
-        if (!WIFEXITED(status))
-            fail_msg("case %d: the writer died with signal %d", (int)i, WIFSIGNALED(status) ? WTERMSIG(status) : -1);
-        assert_int_equal(WEXITSTATUS(status), 0);
+        cases[i].path = path;
+        assert_child_ok(run_limited(write_job, &cases[i], 64 * 1024), (int)i);
         assert_false(exists(path));
         assert_false(exists(events));
         assert_int_equal(partials_of(path), 0);
         assert_int_equal(partials_of(events), 0);
+    }
+}
+
+/* Modal results big enough to pass a 16 KiB limit in CSV (rows) and HDF5 (case text). */
+typedef struct modal_job {
+    const char *path;
+    int hdf5;
+} modal_job;
+
+static int modal_job_run(const void *arg)
+{
+    const modal_job *job = arg;
+    enum { N = 2000 };
+    static td_critical_speed cs[N];
+    static char text[32 * 1024]; /* under the 64 KiB attribute limit of the default HDF5 format */
+    td_modal_results r;
+    td_status st;
+    int i;
+    for (i = 0; i < N; i++) {
+        cs[i].speed = 100.0 + i;
+        cs[i].freq_hz = cs[i].speed / (2.0 * 3.14159265358979);
+        cs[i].zeta = 0.01;
+    }
+    memset(text, 'x', sizeof text - 1);
+    memset(&r, 0, sizeof r);
+    r.critical = cs;
+    r.n_critical = N;
+    r.case_text = text;
+    st = job->hdf5 ? td_modal_write_hdf5(job->path, &r, NULL) : td_modal_write_csv(job->path, &r, NULL);
+    return st == TD_ERR_IO ? 0 : 20 + (int)st;
+}
+
+/* The modal writers write a temporary file and rename it: a write that fails on a full disk
+ * leaves the earlier file at PATH untouched and no temporary file. Without the limit the new
+ * file replaces the old one. */
+static void test_modal_writers_rename(void **state)
+{
+    modal_job job;
+    char path[512];
+    char *text;
+    FILE *f;
+    (void)state;
+    for (job.hdf5 = 0; job.hdf5 < 2; job.hdf5++) {
+        tmp_name(path, sizeof path, job.hdf5 ? "modal.h5" : "modal.csv");
+        job.path = path;
+        f = fopen(path, "w");
+        assert_non_null(f);
+        fputs("old\n", f);
+        fclose(f);
+        assert_child_ok(run_limited(modal_job_run, &job, 16 * 1024), job.hdf5);
+        text = td_test_read_file(path);
+        assert_string_equal(text, "old\n");
+        free(text);
+        assert_int_equal(partials_of(path), 0);
+        assert_int_equal(modal_job_run(&job), 20 + TD_OK); /* no limit in this process */
+        assert_true(exists(path));
+        assert_int_equal(partials_of(path), 0);
+        remove(path);
     }
 }
 
@@ -989,11 +1062,12 @@ static void test_events_path(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_hdf5_round_trip),    cmocka_unit_test(test_hdf5_incomplete),
-        cmocka_unit_test(test_hdf5_empty_layout),  cmocka_unit_test(test_csv_round_trip),
-        cmocka_unit_test(test_csv_gnuplot),        cmocka_unit_test(test_open_failure_leaves_nothing),
-        cmocka_unit_test(test_stale_file_removed), cmocka_unit_test(test_failed_writes_leave_nothing),
-        cmocka_unit_test(test_attribute_names),    cmocka_unit_test(test_events_path),
+        cmocka_unit_test(test_hdf5_round_trip),      cmocka_unit_test(test_hdf5_incomplete),
+        cmocka_unit_test(test_hdf5_empty_layout),    cmocka_unit_test(test_csv_round_trip),
+        cmocka_unit_test(test_csv_gnuplot),          cmocka_unit_test(test_open_failure_leaves_nothing),
+        cmocka_unit_test(test_stale_file_removed),   cmocka_unit_test(test_failed_writes_leave_nothing),
+        cmocka_unit_test(test_modal_writers_rename), cmocka_unit_test(test_attribute_names),
+        cmocka_unit_test(test_events_path),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
