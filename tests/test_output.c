@@ -6,6 +6,7 @@
  */
 #include "td_test.h"
 
+#include "touchdown/case.h"
 #include "touchdown/modal.h"
 #include "touchdown/output.h"
 #include "touchdown/version.h"
@@ -1014,6 +1015,83 @@ static void test_modal_writers_rename(void **state)
     }
 }
 
+/* Write `text` to `path`; fails the test on error. */
+static void put_file(const char *path, const char *text)
+{
+    FILE *f = fopen(path, "w");
+    assert_non_null(f);
+    fputs(text, f);
+    assert_int_equal(fclose(f), 0);
+}
+
+/* td_output_check_paths against independently built collisions: the same file by name, by hard
+ * link, through the events file; an input recorded by td_case_load (td_case_files: the case
+ * and its @include file); reserved names; non-regular outputs; missing directories. */
+static void test_output_path_checks(void **state)
+{
+    char dir[512], main_cfg[600], part[600], link_path[600], csv[600];
+    const char *inputs[2];
+    const char *const *files;
+    td_output_options o;
+    td_case *c = NULL;
+    td_error err;
+    char *jeffcott;
+    int n = 0;
+    (void)state;
+    tmp_name(dir, sizeof dir, "paths");
+    assert_int_equal(mkdir(dir, 0755), 0);
+    snprintf(main_cfg, sizeof main_cfg, "%s/main.cfg", dir);
+    snprintf(part, sizeof part, "%s/part.cfg", dir);
+    jeffcott = td_test_read_file(td_source_path("cases/jeffcott.cfg"));
+    put_file(part, jeffcott);
+    free(jeffcott);
+    put_file(main_cfg, "@include \"part.cfg\"\n");
+    assert_int_equal(td_case_load(main_cfg, NULL, 0, &c, &err), TD_OK);
+    files = td_case_files(c, &n);
+    assert_int_equal(n, 2);
+    assert_string_equal(files[0], main_cfg);
+    assert_non_null(strstr(files[1], "part.cfg"));
+
+    td_output_options_default(&o);
+    snprintf(o.hdf5_path, sizeof o.hdf5_path, "%s/r.h5", dir);
+    snprintf(o.csv_path, sizeof o.csv_path, "%s/r.csv", dir);
+    assert_int_equal(td_output_check_paths(&o, files, n, &err), TD_OK);
+    /* the same name, the events file, a reserved name */
+    snprintf(o.hdf5_path, sizeof o.hdf5_path, "%s/./r.csv", dir);
+    assert_int_equal(td_output_check_paths(&o, files, n, &err), TD_ERR_INVALID);
+    snprintf(o.hdf5_path, sizeof o.hdf5_path, "%s/r.events.csv", dir);
+    assert_int_equal(td_output_check_paths(&o, files, n, &err), TD_ERR_INVALID);
+    snprintf(o.hdf5_path, sizeof o.hdf5_path, "%s/r.csv.ab12CD.partial", dir);
+    assert_int_equal(td_output_check_paths(&o, files, n, &err), TD_ERR_INVALID);
+    /* the @include file, also through a hard link; the case file through "dir/../dir" */
+    snprintf(o.hdf5_path, sizeof o.hdf5_path, "%s", part);
+    assert_int_equal(td_output_check_paths(&o, files, n, &err), TD_ERR_INVALID);
+    assert_non_null(strstr(err.message, "@include"));
+    snprintf(link_path, sizeof link_path, "%s/link.h5", dir);
+    assert_int_equal(link(part, link_path), 0);
+    snprintf(o.hdf5_path, sizeof o.hdf5_path, "%s", link_path);
+    assert_int_equal(td_output_check_paths(&o, files, n, &err), TD_ERR_INVALID);
+    snprintf(csv, sizeof csv, "%s/../%s/main.cfg", dir, strrchr(dir, '/') + 1);
+    o.hdf5_path[0] = '\0';
+    snprintf(o.csv_path, sizeof o.csv_path, "%s", csv);
+    assert_int_equal(td_output_check_paths(&o, files, n, &err), TD_ERR_INVALID);
+    inputs[0] = main_cfg;
+    assert_int_equal(td_output_check_paths(&o, inputs, 0, &err), TD_OK); /* no inputs given */
+    /* not a regular file, no such directory */
+    snprintf(o.csv_path, sizeof o.csv_path, "/dev/null");
+    assert_int_equal(td_output_check_paths(&o, files, n, &err), TD_ERR_INVALID);
+    snprintf(o.csv_path, sizeof o.csv_path, "%s", dir);
+    assert_int_equal(td_output_check_paths(&o, files, n, &err), TD_ERR_INVALID);
+    snprintf(o.csv_path, sizeof o.csv_path, "%s/missing/r.csv", dir);
+    assert_int_equal(td_output_check_paths(&o, files, n, &err), TD_ERR_INVALID);
+    assert_non_null(strstr(err.message, "does not exist"));
+    td_case_free(&c);
+    remove(link_path);
+    remove(part);
+    remove(main_cfg);
+    assert_int_equal(rmdir(dir), 0);
+}
+
 static void test_attribute_names(void **state)
 {
     td_output_layout l = {0, NULL, 0, 0};
@@ -1066,8 +1144,8 @@ int main(void)
         cmocka_unit_test(test_hdf5_empty_layout),    cmocka_unit_test(test_csv_round_trip),
         cmocka_unit_test(test_csv_gnuplot),          cmocka_unit_test(test_open_failure_leaves_nothing),
         cmocka_unit_test(test_stale_file_removed),   cmocka_unit_test(test_failed_writes_leave_nothing),
-        cmocka_unit_test(test_modal_writers_rename), cmocka_unit_test(test_attribute_names),
-        cmocka_unit_test(test_events_path),
+        cmocka_unit_test(test_modal_writers_rename), cmocka_unit_test(test_output_path_checks),
+        cmocka_unit_test(test_attribute_names),      cmocka_unit_test(test_events_path),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

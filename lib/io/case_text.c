@@ -234,7 +234,10 @@ static td_status expand_include(td_case_reader *r, const char *file, int line_no
                             "%s:%d: cannot open include file \"%.200s\" (absolute @include paths are not supported: "
                             "libconfig 1.5 reads them relative to %.200s)",
                             including, line_no, quoted, r->dir_shown);
-    snprintf(path, sizeof path, "%s/%s", r->dir, name);
+    if (snprintf(path, sizeof path, "%s/%s", r->dir, name) >= (int)sizeof path)
+        return td_error_set(r->err, TD_ERR_PARSE,
+                            "%s:%d: include file \"%.200s\": the path is longer than %d characters", including, line_no,
+                            quoted, (int)sizeof path - 1);
     td_cr_file_shown(r, name, shown, sizeof shown);
     st = td_cr_read_file(shown, path, &text, &ierr);
     if (st == TD_ERR_IO)
@@ -248,6 +251,10 @@ static td_status expand_include(td_case_reader *r, const char *file, int line_no
         return st;
     }
     r->includes++;
+    if (td_cr_record_file(r->c, path) != TD_OK) {
+        free(text);
+        return td_error_set(r->err, TD_ERR_NOMEM, "%s:%d: out of memory", including, line_no);
+    }
     r->bytes += strlen(text);
     if (r->bytes > (size_t)TD_CASE_MAX_TOTAL_SIZE) {
         free(text);

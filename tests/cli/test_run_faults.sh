@@ -21,7 +21,12 @@
 #      fails (it does not skip) when the limit cannot be put in force;
 #   8. two runs writing the same output paths at once (HDF5 file locking off): each file at a
 #      final path holds the rows of the one run its case text names (its last time is that run's
-#      end_time), never a mixture.
+#      end_time), never a mixture;
+#   9. output paths refused before the run with exit 2, one error line, no file written and the
+#      inputs unchanged: two outputs that are one file (also through the events file, a hard link
+#      or a symbolic link), an output that is the case file or an @include file, an output named
+#      *.partial, an output that is a device node or a directory, an output directory that does
+#      not exist or is not writable, a path longer than 1023 characters.
 # HDF5 attributes are read with h5dump (Debian package hdf5-tools); without it those checks are
 # skipped and said so. Args: $1 = the touchdown binary, $2 = the source directory.
 set -u
@@ -242,7 +247,7 @@ mkdir -p "$d"
 (cd "$d" && "$tool" run --set end_time=0.01 --hdf5 "$d/missing-dir/x.h5" --csv "$d/x.csv" "$case_a" \
     >"$work/n.out" 2>"$work/n.err")
 rc=$?
-check "uncreatable output: exit 1 (got $rc)" test "$rc" = 1
+check "uncreatable output: exit 2, refused before the run (got $rc)" test "$rc" = 2
 check "uncreatable output: one error line naming the path: $(cat "$work/n.err")" \
     test "$(wc -l <"$work/n.err")" = 1 -a -n "$(grep -F "missing-dir/x.h5" "$work/n.err")"
 check "uncreatable output: no file left ($(ls -A "$d" | tr '\n' ' '))" test -z "$(ls -A "$d")"
@@ -346,6 +351,52 @@ if [ "$have_h5dump" = 1 ]; then
     check "concurrent runs: r.h5's last time ($h5_last) is its own run's end_time ($h5_end)" \
         same_time "$h5_last" "$h5_end"
 fi
+
+# ---- 9. output paths refused before the run -------------------------------------------------
+d=$work/refuse
+mkdir -p "$d/inc" "$d/ro"
+cp "$src/cases/jeffcott.cfg" "$d/CASE.cfg"
+cp "$src/cases/jeffcott.cfg" "$d/inc/part.cfg"
+printf '# a comment\n' >"$d/inc/more.events.csv"
+printf '@include "part.cfg"\n@include "more.events.csv"\n' >"$d/inc/main.cfg"
+ln "$d/CASE.cfg" "$d/hard.cfg"
+ln -s CASE.cfg "$d/soft.cfg"
+cp -r "$d" "$work/refuse.orig"
+long=$(printf 'a%.0s' $(seq 1 1030))
+# refused DESCRIPTION ARGS...: `touchdown run ARGS` in $d exits 2 with one error line, and the
+# directory is exactly as before (no output, no temporary file, the inputs unchanged).
+refused() {
+    local what=$1
+    shift
+    (cd "$d" && "$tool" run -q --set end_time=0.01 "$@" >"$work/r.out" 2>"$work/r.err")
+    rc=$?
+    check "$what: exit 2 (got $rc: $(head -c 200 "$work/r.err"))" test "$rc" = 2
+    check "$what: one error line" test "$(wc -l <"$work/r.err")" = 1
+    check "$what: nothing written, inputs unchanged" diff -r "$work/refuse.orig" "$d"
+}
+refused "--hdf5 X --csv X" --hdf5 X --csv X CASE.cfg
+refused "--hdf5 r.events.csv --csv r.csv" --hdf5 r.events.csv --csv r.csv CASE.cfg
+refused "--hdf5 r.h5 --csv r.h5" --hdf5 r.h5 --csv ./r.h5 CASE.cfg
+refused "--csv r.h5.partial" --csv r.h5.partial CASE.cfg
+refused "--hdf5 CASE.cfg CASE.cfg" --hdf5 CASE.cfg CASE.cfg
+refused "--csv ../refuse/CASE.cfg CASE.cfg" --hdf5 '' --csv ../refuse/CASE.cfg CASE.cfg
+refused "output is a hard link to the case file" --hdf5 hard.cfg --csv '' CASE.cfg
+refused "output is a symbolic link to the case file" --hdf5 soft.cfg --csv '' CASE.cfg
+refused "output is an @include file" --hdf5 inc/part.cfg --csv '' inc/main.cfg
+refused "events output is an @include file" --hdf5 '' --csv inc/more.csv inc/main.cfg
+refused "output is a device node (/dev/null)" --hdf5 /dev/null --csv '' CASE.cfg
+refused "output is a directory" --hdf5 inc --csv '' CASE.cfg
+refused "output directory does not exist" --hdf5 no-such-dir/x.h5 --csv '' CASE.cfg
+refused "-o with a 1030-character prefix" -o "$long" CASE.cfg
+refused "--csv with a 1030-character path" --hdf5 '' --csv "$long.csv" CASE.cfg
+chmod 555 "$d/ro"
+if touch "$d/ro/probe" 2>/dev/null; then
+    rm -f "$d/ro/probe"
+    echo "skip: an unwritable output directory (this user writes into mode 555 directories)"
+else
+    refused "output directory not writable" --hdf5 ro/x.h5 --csv '' CASE.cfg
+fi
+chmod 755 "$d/ro"
 
 echo "$((checks - fails)) passed, $fails failed"
 [ "$fails" = 0 ]
