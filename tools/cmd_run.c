@@ -79,19 +79,10 @@ static int show_progress(double t, double fraction, long contacts, void *user)
     return 0;
 }
 
-/* dst = stem + ext (ext may be ""); a path too long for td_output_options is an error (exit 2),
- * never cut short. Returns 0 or an exit code. */
+/* dst = stem + ext; a path too long for td_output_options is an error (exit 2), never cut short. */
 static int set_path(char *dst, const char *stem, const char *ext, const char *from)
 {
-    size_t n = strlen(stem), e = strlen(ext);
-    if (n + e >= TD_OUTPUT_PATH_SIZE) {
-        td_cli_error("run", "%s: the output path '%.40s...%s' is %lu characters long, at most %d are supported", from,
-                     stem, ext, (unsigned long)(n + e), TD_OUTPUT_PATH_SIZE - 1);
-        return TD_EXIT_USAGE;
-    }
-    memcpy(dst, stem, n);
-    memcpy(dst + n, ext, e + 1);
-    return 0;
+    return td_cli_path(dst, TD_OUTPUT_PATH_SIZE, stem, ext, "run", from);
 }
 
 /* Output paths: command line first, then the case, then CASENAME.h5/.csv. Returns 0 or an exit code. */

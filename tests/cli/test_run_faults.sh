@@ -26,7 +26,8 @@
 #      inputs unchanged: two outputs that are one file (also through the events file, a hard link
 #      or a symbolic link), an output that is the case file or an @include file, an output named
 #      *.partial, an output that is a device node or a directory, an output directory that does
-#      not exist or is not writable, a path longer than 1023 characters.
+#      not exist or is not writable, a path longer than 1023 characters (also for modal and
+#      bench).
 # HDF5 attributes are read with h5dump (Debian package hdf5-tools); without it those checks are
 # skipped and said so. Args: $1 = the touchdown binary, $2 = the source directory.
 set -u
@@ -389,6 +390,15 @@ refused "output is a directory" --hdf5 inc --csv '' CASE.cfg
 refused "output directory does not exist" --hdf5 no-such-dir/x.h5 --csv '' CASE.cfg
 refused "-o with a 1030-character prefix" -o "$long" CASE.cfg
 refused "--csv with a 1030-character path" --hdf5 '' --csv "$long.csv" CASE.cfg
+for sub in "modal -q -o $long" "modal -q --csv $long.csv" "bench --quick --dir $long"; do
+    (cd "$d" && "$tool" $sub CASE.cfg >"$work/r.out" 2>"$work/r.err")
+    rc=$?
+    [ "${sub#bench}" != "$sub" ] && (cd "$d" && "$tool" $sub >"$work/r.out" 2>"$work/r.err")
+    [ "${sub#bench}" != "$sub" ] && rc=$?
+    check "touchdown ${sub%% *} with a 1030-character path: exit 2, one line (got $rc: $(head -c 120 "$work/r.err"))" \
+        test "$rc" = 2 -a "$(wc -l <"$work/r.err")" = 1
+    check "touchdown ${sub%% *} with a 1030-character path: nothing written" diff -r "$work/refuse.orig" "$d"
+done
 chmod 555 "$d/ro"
 if touch "$d/ro/probe" 2>/dev/null; then
     rm -f "$d/ro/probe"
