@@ -97,12 +97,13 @@ TD_API long td_writer_event_count(const td_writer *w);
  * Writes the buffered samples, the attributes, library_version, then the completeness flag:
  * complete = 1 only if `complete` is nonzero and every earlier write succeeded; else complete = 0
  * with `reason` (NULL: "unspecified") as incomplete_reason. Then flushes to disk and renames
- * PATH.partial to PATH. Returns TD_OK when the file is at PATH with its flag (even if the flag is
- * 0), TD_ERR_IO when it could not be finished: then PATH.partial is removed and no file is at PATH.
+ * the temporary file to PATH. Returns TD_OK when the file is at PATH with its flag (even if the flag
+ * is 0), TD_ERR_IO when it could not be finished: then the temporary file is removed and no file
+ * is at PATH.
  */
 TD_API td_status td_writer_close(td_writer **w, int complete, const char *reason, td_error *err);
 
-/** Abandon a writer: remove PATH.partial, leave nothing at PATH, free. Accepts NULL. */
+/** Abandon a writer: remove its temporary file(s), leave nothing at PATH, free. Accepts NULL. */
 TD_API void td_writer_discard(td_writer **w);
 
 /**

@@ -18,7 +18,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-static const char reserved_suffix[] = ".partial";
+static const char reserved_suffix[] = TD_IO_TEMP_SUFFIX;
 
 /* Where a path points: the file itself when it exists, else its directory and base name. */
 typedef struct path_id {

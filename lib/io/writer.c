@@ -16,7 +16,7 @@
 
 #include "touchdown/version.h"
 
-static const char partial_suffix[] = ".partial";
+static const char partial_suffix[] = TD_IO_TEMP_SUFFIX;
 /* Characters of the unique part of a temporary name, and names tried before giving up. */
 #define TEMP_TAG_LEN 6
 #define TEMP_ATTEMPTS 100

@@ -9,6 +9,9 @@
 
 #include "touchdown/output.h"
 
+/** Ending of every temporary file name (PATH.XXXXXX.partial); outputs may not end with it. */
+#define TD_IO_TEMP_SUFFIX ".partial"
+
 /** Longest attribute name, NUL included. */
 #define TD_ATTR_NAME_SIZE 64
 
