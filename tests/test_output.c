@@ -1,23 +1,30 @@
 /*
  * td_writer: synthetic samples and events written to HDF5 and CSV are read back independently
  * (HDF5 C API, a CSV parser with strtod) and compared bit for bit; the completeness protocol
- * (PATH.partial, flag last, rename) is checked for complete, incomplete and failed files.
+ * (PATH.XXXXXX.partial, flag last, rename) is checked for complete, incomplete and failed files,
+ * and with the file size limit (RLIMIT_FSIZE) standing in for a full disk.
  */
 #include "td_test.h"
 
+#include "touchdown/case.h"
+#include "touchdown/modal.h"
 #include "touchdown/output.h"
 #include "touchdown/version.h"
 
+#include <dirent.h>
 #include <errno.h>
 #include <float.h>
 #include <hdf5.h>
 #include <hdf5_hl.h>
 #include <math.h>
+#include <signal.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/resource.h>
 #include <sys/stat.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #define NODES 3
@@ -191,6 +198,30 @@ static void tmp_name(char *buf, size_t n, const char *name)
     snprintf(buf, n, "%s/output_%ld_%s", TD_BINARY_DIR, (long)getpid(), name);
 }
 
+/* Temporary files of the output `path`: entries named BASENAME.*.partial in its directory. */
+static int partials_of(const char *path)
+{
+    const char *slash = strrchr(path, '/');
+    const char *base = slash ? slash + 1 : path;
+    char dir[1024];
+    size_t blen = strlen(base);
+    struct dirent *e;
+    DIR *d;
+    int count = 0;
+    snprintf(dir, sizeof dir, "%.*s", slash ? (int)(slash - path) : 1, slash ? path : ".");
+    d = opendir(dir);
+    if (!d)
+        return 0;
+    while ((e = readdir(d)) != NULL) {
+        size_t n = strlen(e->d_name);
+        if (n >= blen + 8 && strncmp(e->d_name, base, blen) == 0 && e->d_name[blen] == '.' &&
+            strcmp(e->d_name + n - 8, ".partial") == 0)
+            count++;
+    }
+    closedir(d);
+    return count;
+}
+
 static int exists(const char *path)
 {
     struct stat sb;
@@ -339,7 +370,7 @@ static hid_t event_mem_type(void)
 static void test_hdf5_round_trip(void **state)
 {
     sample_set *d = make_samples();
-    char path[512], partial[1100];
+    char path[512];
     hid_t f, g, mt;
     hsize_t dims[3];
     double *t, *xy, *amb;
@@ -360,9 +391,8 @@ static void test_hdf5_round_trip(void **state)
                                    "sliding_velocity"};
     (void)state;
     tmp_name(path, sizeof path, "rt.h5");
-    snprintf(partial, sizeof partial, "%s.partial", path);
     write_all(TD_WRITER_HDF5, path, d, 1);
-    assert_false(exists(partial));
+    assert_int_equal(partials_of(path), 0);
     f = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
     assert_true(f >= 0);
 
@@ -728,17 +758,15 @@ static void check_csv_events(const char *path, const sample_set *d, int complete
 static void test_csv_round_trip(void **state)
 {
     sample_set *d = make_samples();
-    char path[512], events[1100], partial[1200];
+    char path[512], events[1100];
     int complete;
     (void)state;
     for (complete = 1; complete >= 0; complete--) {
         tmp_name(path, sizeof path, complete ? "rt.csv" : "inc.csv");
         td_writer_events_path(path, events, sizeof events);
         write_all(TD_WRITER_CSV, path, d, complete);
-        snprintf(partial, sizeof partial, "%s.partial", path);
-        assert_false(exists(partial));
-        snprintf(partial, sizeof partial, "%s.partial", events);
-        assert_false(exists(partial));
+        assert_int_equal(partials_of(path), 0);
+        assert_int_equal(partials_of(events), 0);
         check_csv_samples(path, d, complete);
         check_csv_events(events, d, complete);
         remove(path);
@@ -801,19 +829,18 @@ static void test_open_failure_leaves_nothing(void **state)
     td_output_layout l = full_layout();
     td_writer *w = (td_writer *)&l; /* must be reset to NULL */
     td_error err;
-    char path[512], partial[1100], dir[256];
+    char path[512], dir[256];
     int kind;
     (void)state;
     for (kind = 0; kind < 2; kind++) {
         tmp_name(dir, sizeof dir, "no_such_dir");
         snprintf(path, sizeof path, "%s/out.%s", dir, kind ? "csv" : "h5");
-        snprintf(partial, sizeof partial, "%s.partial", path);
         w = (td_writer *)&l;
         assert_int_equal(td_writer_open((td_writer_kind)kind, path, &l, &w, &err), TD_ERR_IO);
         assert_null(w);
         assert_non_null(strstr(err.message, "out."));
         assert_false(exists(path));
-        assert_false(exists(partial));
+        assert_false(exists(dir));
     }
     /* invalid arguments */
     tmp_name(path, sizeof path, "bad.h5");
@@ -833,71 +860,245 @@ static void test_stale_file_removed(void **state)
 {
     td_output_layout l = full_layout();
     td_writer *w = NULL;
-    char path[512], partial[1100];
+    char path[512];
     FILE *f;
     int kind;
     (void)state;
     for (kind = 0; kind < 2; kind++) {
         tmp_name(path, sizeof path, kind ? "stale.csv" : "stale.h5");
-        snprintf(partial, sizeof partial, "%s.partial", path);
         f = fopen(path, "w");
         assert_non_null(f);
         fputs("old result\n# complete\n", f);
         fclose(f);
         assert_int_equal(td_writer_open((td_writer_kind)kind, path, &l, &w, NULL), TD_OK);
         assert_false(exists(path));
-        assert_true(exists(partial));
+        assert_int_equal(partials_of(path), 1);
         td_writer_discard(&w);
         assert_null(w);
         assert_false(exists(path));
-        assert_false(exists(partial));
+        assert_int_equal(partials_of(path), 0);
     }
 }
 
-/* A file whose writes fail (PATH.partial is /dev/full) never reaches PATH, complete or not. */
-static void test_failed_writes_leave_nothing(void **state)
+/* Run job(arg) in a child process with a file size limit of `limit` bytes (SIGXFSZ ignored:
+ * writes fail with EFBIG, as on a full disk); the child exits through exit() with job's return
+ * value, so the HDF5 library's exit handler runs too. Returns the child's wait status. */
+static int run_limited(int (*job)(const void *), const void *arg, long limit)
 {
+    pid_t pid = fork();
+    int status = -1;
+    if (pid == 0) {
+        struct rlimit rl;
+        rl.rlim_cur = rl.rlim_max = (rlim_t)limit;
+        signal(SIGXFSZ, SIG_IGN);
+        signal(SIGSEGV, SIG_DFL); /* not cmocka's handler: the parent must see a crash */
+        signal(SIGABRT, SIG_DFL);
+        signal(SIGBUS, SIG_DFL);
+        if (setrlimit(RLIMIT_FSIZE, &rl) != 0)
+            exit(10);
+        exit(job(arg));
+    }
+    if (pid > 0)
+        waitpid(pid, &status, 0);
+    return status;
+}
+
+/* Fails the test unless the child exited normally with code 0. */
+static void assert_child_ok(int status, int which)
+{
+    if (!WIFEXITED(status))
+        fail_msg("case %d: the child died with signal %d", which, WIFSIGNALED(status) ? WTERMSIG(status) : -1);
+    assert_int_equal(WEXITSTATUS(status), 0);
+}
+
+typedef struct limited_write {
+    td_writer_kind kind;
+    const char *path;
+    int rows, events;
+} limited_write;
+
+/* Write the samples and events, close as complete; 0 only if every failure was TD_ERR_IO. */
+static int write_job(const void *arg)
+{
+    const limited_write *job = arg;
     td_output_layout l = full_layout();
     td_writer *w = NULL;
-    td_error err;
-    char path[512], partial[1100], events[1100], events_partial[1200];
-    double xy[2 * NODES] = {0}, amb[2 * AMBS] = {0};
     td_retainer_state ret[RETS];
-    td_status st = TD_OK;
-    int r, which;
-    (void)state;
-    if (access("/dev/full", W_OK) != 0)
-        skip();
+    double xy[2 * NODES] = {0}, amb[2 * AMBS] = {0};
+    td_event ev;
+    td_status st;
+    int r, failed = 0;
     memset(ret, 0, sizeof ret);
-    for (which = 0; which < 2; which++) { /* 0: the samples file fails, 1: the events file fails */
-        tmp_name(path, sizeof path, "full.csv");
+    memset(&ev, 0, sizeof ev);
+    if (td_writer_open(job->kind, job->path, &l, &w, NULL) != TD_OK)
+        return 11;
+    for (r = 0; r < job->rows; r++)
+        if ((st = td_writer_sample(w, r * 1e-4, xy, ret, amb, NULL)) != TD_OK)
+            failed |= st != TD_ERR_IO && st != TD_ERR_STATE;
+    for (r = 0; r < job->events; r++)
+        if ((st = td_writer_event(w, &ev, -1, NULL)) != TD_OK)
+            failed |= st != TD_ERR_IO && st != TD_ERR_STATE;
+    if (td_writer_close(&w, 1, NULL, NULL) != TD_ERR_IO || w != NULL)
+        return 12;
+    return failed ? 13 : 0;
+}
+
+/* A full disk (the file size limit) while writing: TD_ERR_IO, no crash (also not in HDF5's exit
+ * handler after a failed close), nothing at PATH and no temporary file left. */
+static void test_failed_writes_leave_nothing(void **state)
+{
+    limited_write cases[] = {{TD_WRITER_CSV, NULL, 20000, 0},     /* the samples file fills up */
+                             {TD_WRITER_CSV, NULL, 10, 20000},    /* the events file fills up */
+                             {TD_WRITER_HDF5, NULL, 200000, 0},   /* the samples datasets fill up */
+                             {TD_WRITER_HDF5, NULL, 10, 100000}}; /* the events dataset fills up */
+    char path[512], events[1100];
+    size_t i;
+    (void)state;
+    for (i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        tmp_name(path, sizeof path, cases[i].kind == TD_WRITER_CSV ? "full.csv" : "full.h5");
         td_writer_events_path(path, events, sizeof events);
-        snprintf(partial, sizeof partial, "%s.partial", path);
-        snprintf(events_partial, sizeof events_partial, "%s.partial", events);
-        remove(partial);
-        remove(events_partial);
-        assert_int_equal(symlink("/dev/full", which ? events_partial : partial), 0);
-        st = td_writer_open(TD_WRITER_CSV, path, &l, &w, &err);
-        if (st == TD_OK) {
-            td_event ev;
-            memset(&ev, 0, sizeof ev);
-            for (r = 0; r < 5000 && st == TD_OK; r++)
-                st = td_writer_sample(w, r * 1e-4, xy, ret, amb, &err);
-            if (which == 1) {
-                assert_int_equal(st, TD_OK);                                /* the samples file is fine */
-                assert_int_equal(td_writer_event(w, &ev, -1, &err), TD_OK); /* buffered */
-            } else {
-                assert_int_equal(st, TD_ERR_IO);
-                assert_int_equal(td_writer_sample(w, 1.0, xy, ret, amb, &err), TD_ERR_STATE);
-            }
-            assert_int_equal(td_writer_close(&w, 1, NULL, &err), TD_ERR_IO);
-            assert_null(w);
-        }
+        cases[i].path = path;
+        assert_child_ok(run_limited(write_job, &cases[i], 64 * 1024), (int)i);
         assert_false(exists(path));
         assert_false(exists(events));
-        remove(partial);
-        remove(events_partial);
+        assert_int_equal(partials_of(path), 0);
+        assert_int_equal(partials_of(events), 0);
     }
+}
+
+/* Modal results big enough to pass a 16 KiB limit in CSV (rows) and HDF5 (case text). */
+typedef struct modal_job {
+    const char *path;
+    int hdf5;
+} modal_job;
+
+static int modal_job_run(const void *arg)
+{
+    const modal_job *job = arg;
+    enum { N = 2000 };
+    static td_critical_speed cs[N];
+    static char text[32 * 1024]; /* under the 64 KiB attribute limit of the default HDF5 format */
+    td_modal_results r;
+    td_status st;
+    int i;
+    for (i = 0; i < N; i++) {
+        cs[i].speed = 100.0 + i;
+        cs[i].freq_hz = cs[i].speed / (2.0 * 3.14159265358979);
+        cs[i].zeta = 0.01;
+    }
+    memset(text, 'x', sizeof text - 1);
+    memset(&r, 0, sizeof r);
+    r.critical = cs;
+    r.n_critical = N;
+    r.case_text = text;
+    st = job->hdf5 ? td_modal_write_hdf5(job->path, &r, NULL) : td_modal_write_csv(job->path, &r, NULL);
+    return st == TD_ERR_IO ? 0 : 20 + (int)st;
+}
+
+/* The modal writers write a temporary file and rename it: a write that fails on a full disk
+ * leaves the earlier file at PATH untouched and no temporary file. Without the limit the new
+ * file replaces the old one. */
+static void test_modal_writers_rename(void **state)
+{
+    modal_job job;
+    char path[512];
+    char *text;
+    FILE *f;
+    (void)state;
+    for (job.hdf5 = 0; job.hdf5 < 2; job.hdf5++) {
+        tmp_name(path, sizeof path, job.hdf5 ? "modal.h5" : "modal.csv");
+        job.path = path;
+        f = fopen(path, "w");
+        assert_non_null(f);
+        fputs("old\n", f);
+        fclose(f);
+        assert_child_ok(run_limited(modal_job_run, &job, 16 * 1024), job.hdf5);
+        text = td_test_read_file(path);
+        assert_string_equal(text, "old\n");
+        free(text);
+        assert_int_equal(partials_of(path), 0);
+        assert_int_equal(modal_job_run(&job), 20 + TD_OK); /* no limit in this process */
+        assert_true(exists(path));
+        assert_int_equal(partials_of(path), 0);
+        remove(path);
+    }
+}
+
+/* Write `text` to `path`; fails the test on error. */
+static void put_file(const char *path, const char *text)
+{
+    FILE *f = fopen(path, "w");
+    assert_non_null(f);
+    fputs(text, f);
+    assert_int_equal(fclose(f), 0);
+}
+
+/* td_output_check_paths against independently built collisions: the same file by name, by hard
+ * link, through the events file; an input recorded by td_case_load (td_case_files: the case
+ * and its @include file); reserved names; non-regular outputs; missing directories. */
+static void test_output_path_checks(void **state)
+{
+    char dir[512], main_cfg[600], part[600], link_path[600], csv[600];
+    const char *inputs[2];
+    const char *const *files;
+    td_output_options o;
+    td_case *c = NULL;
+    td_error err;
+    char *jeffcott;
+    int n = 0;
+    (void)state;
+    tmp_name(dir, sizeof dir, "paths");
+    assert_int_equal(mkdir(dir, 0755), 0);
+    snprintf(main_cfg, sizeof main_cfg, "%s/main.cfg", dir);
+    snprintf(part, sizeof part, "%s/part.cfg", dir);
+    jeffcott = td_test_read_file(td_source_path("cases/jeffcott.cfg"));
+    put_file(part, jeffcott);
+    free(jeffcott);
+    put_file(main_cfg, "@include \"part.cfg\"\n");
+    assert_int_equal(td_case_load(main_cfg, NULL, 0, &c, &err), TD_OK);
+    files = td_case_files(c, &n);
+    assert_int_equal(n, 2);
+    assert_string_equal(files[0], main_cfg);
+    assert_non_null(strstr(files[1], "part.cfg"));
+
+    td_output_options_default(&o);
+    snprintf(o.hdf5_path, sizeof o.hdf5_path, "%s/r.h5", dir);
+    snprintf(o.csv_path, sizeof o.csv_path, "%s/r.csv", dir);
+    assert_int_equal(td_output_check_paths(&o, files, n, &err), TD_OK);
+    /* the same name, the events file, a reserved name */
+    snprintf(o.hdf5_path, sizeof o.hdf5_path, "%s/./r.csv", dir);
+    assert_int_equal(td_output_check_paths(&o, files, n, &err), TD_ERR_INVALID);
+    snprintf(o.hdf5_path, sizeof o.hdf5_path, "%s/r.events.csv", dir);
+    assert_int_equal(td_output_check_paths(&o, files, n, &err), TD_ERR_INVALID);
+    snprintf(o.hdf5_path, sizeof o.hdf5_path, "%s/r.csv.ab12CD.partial", dir);
+    assert_int_equal(td_output_check_paths(&o, files, n, &err), TD_ERR_INVALID);
+    /* the @include file, also through a hard link; the case file through "dir/../dir" */
+    snprintf(o.hdf5_path, sizeof o.hdf5_path, "%s", part);
+    assert_int_equal(td_output_check_paths(&o, files, n, &err), TD_ERR_INVALID);
+    assert_non_null(strstr(err.message, "@include"));
+    snprintf(link_path, sizeof link_path, "%s/link.h5", dir);
+    assert_int_equal(link(part, link_path), 0);
+    snprintf(o.hdf5_path, sizeof o.hdf5_path, "%s", link_path);
+    assert_int_equal(td_output_check_paths(&o, files, n, &err), TD_ERR_INVALID);
+    snprintf(csv, sizeof csv, "%s/../%s/main.cfg", dir, strrchr(dir, '/') + 1);
+    o.hdf5_path[0] = '\0';
+    snprintf(o.csv_path, sizeof o.csv_path, "%s", csv);
+    assert_int_equal(td_output_check_paths(&o, files, n, &err), TD_ERR_INVALID);
+    inputs[0] = main_cfg;
+    assert_int_equal(td_output_check_paths(&o, inputs, 0, &err), TD_OK); /* no inputs given */
+    /* not a regular file, no such directory */
+    snprintf(o.csv_path, sizeof o.csv_path, "/dev/null");
+    assert_int_equal(td_output_check_paths(&o, files, n, &err), TD_ERR_INVALID);
+    snprintf(o.csv_path, sizeof o.csv_path, "%s", dir);
+    assert_int_equal(td_output_check_paths(&o, files, n, &err), TD_ERR_INVALID);
+    snprintf(o.csv_path, sizeof o.csv_path, "%s/missing/r.csv", dir);
+    assert_int_equal(td_output_check_paths(&o, files, n, &err), TD_ERR_INVALID);
+    assert_non_null(strstr(err.message, "does not exist"));
+    td_case_free(&c);
+    remove(link_path);
+    remove(part);
+    remove(main_cfg);
+    assert_int_equal(rmdir(dir), 0);
 }
 
 static void test_attribute_names(void **state)
@@ -1120,6 +1321,8 @@ int main(void)
         cmocka_unit_test(test_open_failure_leaves_nothing),
         cmocka_unit_test(test_stale_file_removed),
         cmocka_unit_test(test_failed_writes_leave_nothing),
+        cmocka_unit_test(test_modal_writers_rename),
+        cmocka_unit_test(test_output_path_checks),
         cmocka_unit_test(test_attribute_names),
         cmocka_unit_test(test_events_path),
         cmocka_unit_test(test_hdf5_dimension_scales),

@@ -61,6 +61,19 @@ int td_cli_exit_code(td_status st)
     }
 }
 
+int td_cli_path(char *dst, size_t n, const char *stem, const char *ext, const char *cmd, const char *from)
+{
+    size_t a = strlen(stem), b = strlen(ext);
+    if (a + b >= n) {
+        td_cli_error(cmd, "%s: the path '%.40s...%s' is %lu characters long, at most %lu are supported", from, stem,
+                     ext, (unsigned long)(a + b), (unsigned long)(n - 1));
+        return TD_EXIT_USAGE;
+    }
+    memcpy(dst, stem, a);
+    memcpy(dst + a, ext, b + 1);
+    return 0;
+}
+
 void td_cli_error(const char *cmd, const char *fmt, ...)
 {
     va_list ap;

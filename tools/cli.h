@@ -37,6 +37,10 @@ volatile sig_atomic_t *td_cli_catch_signals(void);
 /* Map a library status to an exit code: input errors 2, everything else 1. */
 int td_cli_exit_code(td_status st);
 
+/* dst (n bytes) = stem + ext; a path that does not fit is an error line naming `from` (the
+ * option or file it came from) and TD_EXIT_USAGE, never a shortened path. Returns 0 when it fits. */
+int td_cli_path(char *dst, size_t n, const char *stem, const char *ext, const char *cmd, const char *from);
+
 /* Print an error line "touchdown CMD: message" to stderr. */
 void td_cli_error(const char *cmd, const char *fmt, ...)
 #if defined(__GNUC__)

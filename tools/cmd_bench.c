@@ -167,7 +167,8 @@ static double load_average(void)
 #endif
 
 /* The directory holding paper-a.cfg: dir if given, ./cases, or cases/ beside the tool
- * (build tree: BUILD/touchdown -> BUILD/../cases; install: PREFIX/bin -> PREFIX/share/touchdown/cases). */
+ * (build tree: BUILD/touchdown -> BUILD/../cases; install: PREFIX/bin -> PREFIX/share/touchdown/cases).
+ * 1 found, 0 not found, -1 --dir too long (said on stderr). */
 static int find_case_dir(const char *dir, char *out, size_t n)
 {
     char probe[TD_OUTPUT_PATH_SIZE + 32], exe[TD_OUTPUT_PATH_SIZE];
@@ -175,11 +176,12 @@ static int find_case_dir(const char *dir, char *out, size_t n)
     ssize_t len;
     int i;
     if (dir) {
-        snprintf(out, n, "%s", dir);
-        snprintf(probe, sizeof probe, "%.900s/paper-a.cfg", dir);
+        if (td_cli_path(out, n, dir, "", "bench", "--dir") ||
+            td_cli_path(probe, sizeof probe, dir, "/paper-a.cfg", "bench", "--dir"))
+            return -1;
         return file_exists(probe);
     }
-    snprintf(out, n, "cases");
+    snprintf(out, n, "cases"); /* fits: n is TD_OUTPUT_PATH_SIZE */
     if (file_exists("cases/paper-a.cfg"))
         return 1;
     len = readlink("/proc/self/exe", exe, sizeof exe - 1);
@@ -189,8 +191,10 @@ static int find_case_dir(const char *dir, char *out, size_t n)
     if (strrchr(exe, '/'))
         *strrchr(exe, '/') = '\0';
     for (i = 0; i < 3; i++) {
-        snprintf(out, n, "%.900s/%s", exe, tries[i]);
-        snprintf(probe, sizeof probe, "%.900s/paper-a.cfg", out);
+        /* a candidate too long for the buffers cannot be used: skipped, never shortened */
+        if (snprintf(out, n, "%s/%s", exe, tries[i]) >= (int)n ||
+            snprintf(probe, sizeof probe, "%s/paper-a.cfg", out) >= (int)sizeof probe)
+            continue;
         if (file_exists(probe))
             return 1;
     }
@@ -238,8 +242,9 @@ static int run_case(const bench_options *bo, const char *dir, int ci, bench_run 
     td_sim_options o;
     double t_end;
     int ok;
-    snprintf(path, sizeof path, "%s/%s", dir, bench_cases[ci].file);
-    if (td_cli_load_case(path, &bo->sets, &c))
+    if (td_cli_path(path, sizeof path, dir, "/", "bench", "--dir") ||
+        td_cli_path(path + strlen(path), sizeof path - strlen(path), bench_cases[ci].file, "", "bench", "--dir") ||
+        td_cli_load_case(path, &bo->sets, &c))
         return 0;
     o = *td_case_sim_options(c);
     t_end = td_case_end_time(c);
@@ -649,8 +654,9 @@ static int bench_scaling(const bench_options *bo, const char *dir)
     scaling_results sr;
     int i, r, ok = 1;
     machine_info(&mc);
-    snprintf(path, sizeof path, "%s/%s", dir, bench_cases[0].file);
-    if (td_cli_load_case(path, &bo->sets, &c))
+    if (td_cli_path(path, sizeof path, dir, "/", "bench", "--dir") ||
+        td_cli_path(path + strlen(path), sizeof path - strlen(path), bench_cases[0].file, "", "bench", "--dir") ||
+        td_cli_load_case(path, &bo->sets, &c))
         return TD_EXIT_USAGE;
     for (i = 0; i < N_SIZES && ok; i++) {
         const td_output_options *out = td_case_output_options(c);
@@ -705,7 +711,10 @@ static int parse_cases(const char *list, int *sel)
     int i;
     for (i = 0; i < N_CASES; i++)
         sel[i] = 0;
-    snprintf(buf, sizeof buf, "%s", list);
+    if (snprintf(buf, sizeof buf, "%s", list) >= (int)sizeof buf) {
+        td_cli_error("bench", "--cases: the list is longer than %d characters", (int)sizeof buf - 1);
+        return 0;
+    }
     for (tok = strtok_r(buf, ",", &save); tok; tok = strtok_r(NULL, ",", &save)) {
         int ci = case_index(tok);
         if (ci < 0) {
@@ -770,7 +779,9 @@ int td_cmd_bench(int argc, char **argv)
         for (i = 0; i < N_CASES; i++)
             bo.selected[i] = 1;
     }
-    if (!find_case_dir(bo.dir, dir, sizeof dir)) {
+    if ((i = find_case_dir(bo.dir, dir, sizeof dir)) < 0)
+        return TD_EXIT_USAGE;
+    if (!i) {
         td_cli_error("bench", "cannot find paper-a.cfg in %s (give the cases directory with --dir)",
                      bo.dir ? bo.dir : "./cases or beside the tool");
         return TD_EXIT_USAGE;

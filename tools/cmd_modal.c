@@ -112,6 +112,20 @@ static td_status stage(td_status st, volatile sig_atomic_t *cancel, td_error *er
     return st;
 }
 
+/* Output paths: --csv/--hdf5, else PREFIX.csv/.h5, else CASENAME-modal.csv/.h5. A path too long
+ * is an error (td_cli_path), never cut short. Returns 0 or an exit code. */
+static int choose_paths(modal_outputs *paths, const td_case *c, const char *prefix, const char *csv, const char *hdf5)
+{
+    const char *stem = prefix ? prefix : td_case_name(c);
+    const char *from = prefix ? "--output" : td_case_path(c);
+    int code = csv ? td_cli_path(paths->csv, sizeof paths->csv, csv, "", "modal", "--csv")
+                   : td_cli_path(paths->csv, sizeof paths->csv, stem, prefix ? ".csv" : "-modal.csv", "modal", from);
+    if (!code)
+        code = hdf5 ? td_cli_path(paths->hdf5, sizeof paths->hdf5, hdf5, "", "modal", "--hdf5")
+                    : td_cli_path(paths->hdf5, sizeof paths->hdf5, stem, prefix ? ".h5" : "-modal.h5", "modal", from);
+    return code;
+}
+
 static int analyse(const td_case *c, double speed, const modal_outputs *paths, int quiet)
 {
     volatile sig_atomic_t *cancel = td_cli_catch_signals();
@@ -232,17 +246,9 @@ int td_cmd_modal(int argc, char **argv)
             return TD_EXIT_USAGE;
         }
     }
-    snprintf(paths.csv, sizeof paths.csv, "%s-modal.csv", prefix ? prefix : td_case_name(c));
-    snprintf(paths.hdf5, sizeof paths.hdf5, "%s-modal.h5", prefix ? prefix : td_case_name(c));
-    if (prefix) {
-        snprintf(paths.csv, sizeof paths.csv, "%s.csv", prefix);
-        snprintf(paths.hdf5, sizeof paths.hdf5, "%s.h5", prefix);
-    }
-    if (csv)
-        snprintf(paths.csv, sizeof paths.csv, "%s", csv);
-    if (hdf5)
-        snprintf(paths.hdf5, sizeof paths.hdf5, "%s", hdf5);
-    code = analyse(c, speed, &paths, quiet);
+    code = choose_paths(&paths, c, prefix, csv, hdf5);
+    if (!code)
+        code = analyse(c, speed, &paths, quiet);
     td_case_free(&c);
     return code;
 }

@@ -209,10 +209,11 @@ int td_cmd_plot(int argc, char **argv)
             goto done;
     if ((code = check_retainer(&opt, files, count)) != TD_EXIT_OK)
         goto done;
-    if (opt.dir)
-        snprintf(dir, sizeof dir, "%s", opt.dir);
-    else
-        snprintf(dir, sizeof dir, "%s-plots", files[0].stem);
+    if (td_cli_path(dir, sizeof dir, opt.dir ? opt.dir : files[0].stem, opt.dir ? "" : "-plots", "plot",
+                    opt.dir ? "--dir" : argv[optind])) {
+        code = TD_EXIT_USAGE;
+        goto done;
+    }
     for (i = (int)strlen(dir) - 1; i > 0 && dir[i] == '/'; i--)
         dir[i] = '\0';
     opt.dir = dir;

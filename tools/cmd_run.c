@@ -22,6 +22,7 @@ static const char run_usage[] =
     "                       CASENAME.h5 and CASENAME.csv in the current directory)\n"
     "      --hdf5 PATH      HDF5 output path ('' for none)\n"
     "      --csv PATH       CSV output path ('' for none); events go to PATH minus .csv plus .events.csv\n"
+    "                       (paths: at most 1023 characters)\n"
     "      --compress N     HDF5 deflate level 0 (none) .. 9, with shuffle; lossless (default: the case's\n"
     "                       output.compression, else 0)\n"
     "  -q, --quiet          print no text summary (errors still go to stderr, --json still prints)\n"
@@ -35,8 +36,14 @@ static const char run_usage[] =
     "retainer), the fraction of time in contact, whether the rotor returned to a free orbit\n"
     "(n/a without contact), the wall time and the wall time per revolution after first contact\n"
     "(the paper's figure of merit), and the files written.\n"
-    "Files are written under a temporary name and renamed when finished; an interrupted or\n"
-    "failed run keeps what it computed, marked incomplete.\n"
+    "Files are written under a temporary name, PATH.XXXXXX.partial (XXXXXX: six letters or\n"
+    "digits, unique to the run), and renamed to PATH when finished; an interrupted or failed run\n"
+    "keeps what it computed, marked incomplete, and a run that cannot write (full disk) leaves\n"
+    "no file at PATH. Two runs on the same PATH never mix: the last to finish leaves its file.\n"
+    "Refused before the run (exit 2): two outputs (HDF5, CSV, events file) that are the same\n"
+    "file, an output that is the case file or one of its @include files, an output named\n"
+    "*.partial, an output that exists and is not a regular file, an output directory that does\n"
+    "not exist or is not writable.\n"
     "\n"
     "exit codes: 0 complete, 1 the simulation failed or was interrupted (SIGINT/SIGTERM/SIGHUP, also\n"
     "during the set-up), 2 bad input or usage (an unusable start state included).\n";
@@ -69,31 +76,45 @@ static int show_progress(double t, double fraction, long contacts, void *user)
     return 0;
 }
 
-static void set_path(char *dst, const char *src)
+/* dst = stem + ext; a path too long for td_output_options is an error (exit 2), never cut short. */
+static int set_path(char *dst, const char *stem, const char *ext, const char *from)
 {
-    snprintf(dst, TD_OUTPUT_PATH_SIZE, "%s", src);
+    return td_cli_path(dst, TD_OUTPUT_PATH_SIZE, stem, ext, "run", from);
 }
 
-/* Output paths: command line first, then the case, then CASENAME.h5/.csv. */
-static void choose_outputs(td_output_options *out, const td_case *c, const char *prefix, const char *hdf5,
-                           const char *csv)
+/* Output paths: command line first, then the case, then CASENAME.h5/.csv. Returns 0 or an exit code. */
+static int choose_outputs(td_output_options *out, const td_case *c, const char *prefix, const char *hdf5,
+                          const char *csv)
 {
-    char buf[TD_OUTPUT_PATH_SIZE];
+    int code = 0;
     if (prefix) {
-        snprintf(buf, sizeof buf, "%s.h5", prefix);
-        set_path(out->hdf5_path, buf);
-        snprintf(buf, sizeof buf, "%s.csv", prefix);
-        set_path(out->csv_path, buf);
+        if (!(code = set_path(out->hdf5_path, prefix, ".h5", "--output")))
+            code = set_path(out->csv_path, prefix, ".csv", "--output");
     } else if (!out->hdf5_path[0] && !out->csv_path[0]) {
-        snprintf(buf, sizeof buf, "%s.h5", td_case_name(c));
-        set_path(out->hdf5_path, buf);
-        snprintf(buf, sizeof buf, "%s.csv", td_case_name(c));
-        set_path(out->csv_path, buf);
+        if (!(code = set_path(out->hdf5_path, td_case_name(c), ".h5", td_case_path(c))))
+            code = set_path(out->csv_path, td_case_name(c), ".csv", td_case_path(c));
     }
-    if (hdf5)
-        set_path(out->hdf5_path, hdf5);
-    if (csv)
-        set_path(out->csv_path, csv);
+    if (!code && hdf5)
+        code = set_path(out->hdf5_path, hdf5, "", "--hdf5");
+    if (!code && csv)
+        code = set_path(out->csv_path, csv, "", "--csv");
+    return code;
+}
+
+/* Refuse, before the run, outputs that collide with each other or with the case's files, or that
+ * cannot be written (td_output_check_paths). Returns 0 or an exit code. */
+static int check_outputs(const td_output_options *out, const td_case *c)
+{
+    int n = 0;
+    const char *const *files = td_case_files(c, &n);
+    td_error err;
+    td_status st;
+    td_error_clear(&err);
+    st = td_output_check_paths(out, files, n, &err);
+    if (st == TD_OK)
+        return 0;
+    fprintf(stderr, "touchdown: %s\n", err.message[0] ? err.message : td_strerror(st));
+    return td_cli_exit_code(st);
 }
 
 /* --compress N: one digit 0..9 (a deflate level). */
@@ -179,7 +200,10 @@ int td_cmd_run(int argc, char **argv)
 
     td_error_clear(&err);
     out = *td_case_output_options(c);
-    choose_outputs(&out, c, prefix, hdf5, csv);
+    if ((code = choose_outputs(&out, c, prefix, hdf5, csv)) || (code = check_outputs(&out, c))) {
+        td_case_free(&c);
+        return code;
+    }
     if (compress >= 0)
         out.compression = compress;
     /* before the set-up: its dense start solve may be long, and a signal must not kill it */

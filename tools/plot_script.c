@@ -43,16 +43,21 @@ int plot_make_dir(const char *dir)
     return PLOT_OK;
 }
 
-static void join(char *buf, size_t n, const char *dir, const char *name)
+/* buf = dir/name; 0, or -1 (said on stderr) when it does not fit: a path is never shortened. */
+static int join(char *buf, size_t n, const char *dir, const char *name)
 {
-    snprintf(buf, n, "%s%s%s", dir, dir[strlen(dir) - 1] == '/' ? "" : "/", name);
+    if (snprintf(buf, n, "%s%s%s", dir, dir[strlen(dir) - 1] == '/' ? "" : "/", name) < (int)n)
+        return 0;
+    fprintf(stderr, "touchdown plot: %s/%s: the path is longer than %lu characters\n", dir, name, (unsigned long)n - 1);
+    return -1;
 }
 
 FILE *plot_open(const plot_opts *opt, const char *name)
 {
     char path[PLOT_PATH_SIZE];
     FILE *f;
-    join(path, sizeof path, opt->dir, name);
+    if (join(path, sizeof path, opt->dir, name))
+        return NULL;
     f = fopen(path, "w");
     if (!f)
         fprintf(stderr, "touchdown plot: cannot write %s: %s\n", path, strerror(errno));
@@ -115,7 +120,11 @@ FILE *plot_script_begin(plot_job *job, const char *name, const char *what, const
         fprintf(stderr, "touchdown plot: more than %d figures; plot fewer files at once\n", PLOT_MAX_SCRIPTS);
         return NULL;
     }
-    snprintf(file, sizeof file, "%s.gp", name);
+    if (snprintf(file, sizeof file, "%s.gp", name) >= (int)sizeof file) {
+        fprintf(stderr, "touchdown plot: figure file name %s.gp is longer than %d characters\n", name,
+                (int)sizeof file - 1);
+        return NULL;
+    }
     if (!(f = plot_open(job->opt, file)))
         return NULL;
     snprintf(job->scripts[job->count++], sizeof job->scripts[0], "%s", file);
@@ -152,8 +161,9 @@ static int find_program(const char *prog)
     for (p = path ? path : "/usr/bin:/bin"; *p;) {
         const char *colon = strchr(p, ':');
         size_t len = colon ? (size_t)(colon - p) : strlen(p);
-        snprintf(buf, sizeof buf, "%.*s/%s", (int)len, len ? p : ".", prog);
-        if (access(buf, X_OK) == 0)
+        /* a PATH entry too long for the buffer cannot be tried: skipped, never shortened */
+        if (snprintf(buf, sizeof buf, "%.*s/%s", (int)len, len ? p : ".", prog) < (int)sizeof buf &&
+            access(buf, X_OK) == 0)
             return 1;
         p += len + (colon ? 1 : 0);
     }
@@ -226,8 +236,10 @@ int plot_run_all(const plot_job *job)
         char log[300], log_path[PLOT_PATH_SIZE], msg[600];
         struct stat st;
         int rc;
+        /* fits: scripts[i] is shorter than log, and dir/script fitted in plot_open */
         snprintf(log, sizeof log, "%.*s.log", (int)(strlen(job->scripts[i]) - 3), job->scripts[i]);
-        join(log_path, sizeof log_path, opt->dir, log);
+        if (join(log_path, sizeof log_path, opt->dir, log))
+            return PLOT_FAILED;
         rc = run_one(prog, opt->dir, job->scripts[i], log);
         if (rc != 0) {
             log_message(log_path, msg, sizeof msg);

@@ -90,6 +90,12 @@ TD_API const char *td_case_text(const td_case *c);
 TD_API const char *td_case_path(const td_case *c);
 /** The file's base name without a ".cfg" extension, e.g. "paper-a" (borrowed). */
 TD_API const char *td_case_name(const td_case *c);
+/**
+ * The files read for the case (borrowed): the case file as given first, then every @include file
+ * in the order read, as opened (the include directory joined with the name). *count (if not
+ * NULL) receives their number. Lets a caller keep its outputs from overwriting its inputs.
+ */
+TD_API const char *const *td_case_files(const td_case *c, int *count);
 /** The optional "description" string of the case; "" when absent (borrowed). */
 TD_API const char *td_case_description(const td_case *c);
 

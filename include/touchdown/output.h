@@ -6,13 +6,16 @@
  * named attributes (case text, solver statistics, summary numbers). docs/output-format.md lists
  * every dataset, column, unit and attribute. Units and signs: touchdown/dofs.h.
  *
- * Completeness rule: everything is written to PATH.partial (same directory) and renamed to PATH
- * only by td_writer_close, after the attributes and, last of all, the completeness flag
- * ("complete" attribute 1/0 in HDF5; final line "# complete" or "# incomplete: REASON" in CSV)
- * have been written and flushed to disk. A file at PATH therefore always carries a flag, and
- * says "complete" only if the writer was closed as complete with every write successful.
- * td_writer_open removes a stale file at PATH once the new PATH.partial has been created, so an
- * old result is never mistaken for the new one; a failed open leaves nothing behind.
+ * Completeness rule: everything is written to a temporary file PATH.XXXXXX.partial (same
+ * directory; XXXXXX six letters or digits, the file created with O_CREAT|O_EXCL so that it is
+ * never another writer's) and renamed to PATH only by td_writer_close, after the attributes and,
+ * last of all, the completeness flag ("complete" attribute 1/0 in HDF5; final line "# complete"
+ * or "# incomplete: REASON" in CSV) have been written and flushed to disk. A file at PATH
+ * therefore always carries a flag, and says "complete" only if the writer was closed as complete
+ * with every write successful. Two writers on one PATH each rename only their own file: the last
+ * to close wins, whole. td_writer_open removes a stale file at PATH once the new temporary file
+ * has been created, so an old result is never mistaken for the new one; a failed open leaves
+ * nothing behind.
  */
 #ifndef TOUCHDOWN_OUTPUT_H
 #define TOUCHDOWN_OUTPUT_H
@@ -21,6 +24,7 @@
 
 #include "touchdown/error.h"
 #include "touchdown/export.h"
+#include "touchdown/options.h"
 #include "touchdown/sim.h"
 
 #ifdef __cplusplus
@@ -46,9 +50,9 @@ typedef struct td_output_layout {
 } td_output_layout;
 
 /**
- * Create a writer on PATH.partial. `layout` is copied. On failure nothing is left on disk and
- * *out is NULL. Errors: TD_ERR_INVALID (NULL/empty path, bad layout, compression outside 0..9,
- * path too long),
+ * Create a writer on a new PATH.XXXXXX.partial. `layout` is copied. On failure nothing is left on
+ * disk and *out is NULL. Errors: TD_ERR_INVALID (NULL/empty path, bad layout, compression outside
+ * 0..9, path too long),
  * TD_ERR_IO (the file cannot be created), TD_ERR_NOMEM.
  */
 TD_API td_status td_writer_open(td_writer_kind kind, const char *path, const td_output_layout *layout, td_writer **out,
@@ -96,12 +100,13 @@ TD_API long td_writer_event_count(const td_writer *w);
  * Writes the buffered samples, the attributes, library_version, then the completeness flag:
  * complete = 1 only if `complete` is nonzero and every earlier write succeeded; else complete = 0
  * with `reason` (NULL: "unspecified") as incomplete_reason. Then flushes to disk and renames
- * PATH.partial to PATH. Returns TD_OK when the file is at PATH with its flag (even if the flag is
- * 0), TD_ERR_IO when it could not be finished: then PATH.partial is removed and no file is at PATH.
+ * the temporary file to PATH. Returns TD_OK when the file is at PATH with its flag (even if the flag
+ * is 0), TD_ERR_IO when it could not be finished: then the temporary file is removed and no file
+ * is at PATH.
  */
 TD_API td_status td_writer_close(td_writer **w, int complete, const char *reason, td_error *err);
 
-/** Abandon a writer: remove PATH.partial, leave nothing at PATH, free. Accepts NULL. */
+/** Abandon a writer: remove its temporary file(s), leave nothing at PATH, free. Accepts NULL. */
 TD_API void td_writer_discard(td_writer **w);
 
 /**
@@ -110,6 +115,21 @@ TD_API void td_writer_discard(td_writer **w);
  * (like snprintf); the result is truncated but NUL-terminated when n is too small.
  */
 TD_API int td_writer_events_path(const char *csv_path, char *buf, size_t n);
+
+/**
+ * Check the output paths of `out` before a run, so that nothing is computed that cannot be
+ * written and no input is overwritten. TD_ERR_INVALID, naming the path, when:
+ *  - two of the outputs (HDF5, CSV, the CSV events file) are the same file;
+ *  - an output is one of the `n_inputs` paths `inputs` (the case file first, then its @include
+ *    files: td_case_files);
+ *  - an output's name ends in ".partial" (reserved for temporary files);
+ *  - an output exists and is not a regular file, or names a directory;
+ *  - an output's directory does not exist or is not writable.
+ * Same file: equal device and inode when both exist; when neither exists, the same base name in
+ * the same directory (compared by device and inode). Empty paths are skipped. TD_ERR_NOMEM.
+ */
+TD_API td_status td_output_check_paths(const td_output_options *out, const char *const *inputs, int n_inputs,
+                                       td_error *err);
 
 /** Lower-case name of an event kind ("contact_onset", "release", ...); "unknown" otherwise. */
 TD_API const char *td_event_kind_name(td_event_kind kind);

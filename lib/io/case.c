@@ -104,6 +104,18 @@ static td_status check_wraps(td_case_reader *r)
                            w->literal);
 }
 
+td_status td_cr_record_file(td_case *c, const char *path)
+{
+    char **files = realloc(c->files, (size_t)(c->file_count + 1) * sizeof *files);
+    if (!files)
+        return TD_ERR_NOMEM;
+    c->files = files;
+    if (!(files[c->file_count] = dup_string(path, strlen(path))))
+        return TD_ERR_NOMEM;
+    c->file_count++;
+    return TD_OK;
+}
+
 static td_case *case_new(const char *path)
 {
     td_case *c = calloc(1, sizeof *c);
@@ -114,7 +126,7 @@ static td_case *case_new(const char *path)
     td_modal_options_default(&c->modal);
     c->path = dup_string(path, strlen(path));
     c->name = base_name(path);
-    if (!c->path || !c->name || td_model_create(&c->model, NULL) != TD_OK)
+    if (!c->path || !c->name || td_cr_record_file(c, path) != TD_OK || td_model_create(&c->model, NULL) != TD_OK)
         td_case_free(&c);
     return c;
 }
@@ -315,6 +327,9 @@ void td_case_free(td_case **c)
     free((*c)->path);
     free((*c)->name);
     free((*c)->description);
+    while ((*c)->file_count > 0)
+        free((*c)->files[--(*c)->file_count]);
+    free((*c)->files);
     free(*c);
     *c = NULL;
 }
@@ -350,6 +365,12 @@ const char *td_case_path(const td_case *c)
 const char *td_case_name(const td_case *c)
 {
     return c ? c->name : NULL;
+}
+const char *const *td_case_files(const td_case *c, int *count)
+{
+    if (count)
+        *count = c ? c->file_count : 0;
+    return c ? (const char *const *)c->files : NULL;
 }
 const char *td_case_description(const td_case *c)
 {

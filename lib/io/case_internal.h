@@ -21,6 +21,8 @@ struct td_case {
     char *path;        /* as given */
     char *name;        /* base name without .cfg */
     char *description; /* "" when absent */
+    char **files;      /* the case file and every @include file read, as opened (td_case_files) */
+    int file_count;
 };
 
 /* A decimal or hex integer literal that libconfig 1.5 silently wraps to 32 bits (it has no
@@ -85,6 +87,8 @@ void td_cr_buf_printf(td_cr_buf *b, const char *fmt, ...);
 /* Read a regular file of at most TD_CASE_MAX_FILE_SIZE bytes, rejecting binary data.
  * `shown` names the file in messages. TD_ERR_IO if unreadable, TD_ERR_PARSE if binary. */
 td_status td_cr_read_file(const char *shown, const char *path, char **text, td_error *err);
+/* Add `path` to the case's list of files read (td_case_files); TD_ERR_NOMEM on failure. */
+td_status td_cr_record_file(td_case *c, const char *path);
 /* Append `text` (the file libconfig calls `file`, NULL for the main file) to `out` with every
  * @include expanded in place, and record integer literals libconfig would wrap. */
 td_status td_cr_expand(td_case_reader *r, const char *text, const char *file, int depth, td_cr_buf *out);

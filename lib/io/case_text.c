@@ -251,7 +251,10 @@ static td_status expand_include(td_case_reader *r, const char *file, int line_no
                                "cannot open include file \"%.200s\" (absolute @include paths are not supported: "
                                "libconfig 1.5 reads them relative to %.200s)",
                                quoted, r->dir_shown);
-    snprintf(path, sizeof path, "%s/%s", r->dir, name);
+    if (snprintf(path, sizeof path, "%s/%s", r->dir, name) >= (int)sizeof path)
+        return td_cr_fail_file(r->err, TD_ERR_PARSE, including, line_no,
+                               "include file \"%.200s\": the path is longer than %d characters", quoted,
+                               (int)sizeof path - 1);
     td_cr_file_shown(r, name, shown, sizeof shown);
     if (stat(path, &sb) == 0 && S_ISREG(sb.st_mode) &&
         (unsigned long long)sb.st_size > (unsigned long long)TD_CASE_MAX_TOTAL_SIZE - r->bytes)
@@ -267,6 +270,10 @@ static td_status expand_include(td_case_reader *r, const char *file, int line_no
         return st;
     }
     r->includes++;
+    if (td_cr_record_file(r->c, path) != TD_OK) {
+        free(text);
+        return td_error_set(r->err, TD_ERR_NOMEM, "%s:%d: out of memory", including, line_no);
+    }
     r->bytes += strlen(text);
     if (r->bytes > (size_t)TD_CASE_MAX_TOTAL_SIZE) { /* it grew after stat */
         free(text);

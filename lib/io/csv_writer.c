@@ -65,6 +65,15 @@ static int write_event_header(FILE *f)
 
 static void csv_destroy(td_writer *w);
 
+/* A stream on the created temporary file; the writer's descriptor is taken over. */
+static FILE *adopt(int *fd)
+{
+    FILE *f = fdopen(*fd, "w");
+    if (f)
+        *fd = -1;
+    return f;
+}
+
 static td_status csv_open(td_writer *w, td_error *err)
 {
     csv_impl *c = calloc(1, sizeof *c);
@@ -73,22 +82,14 @@ static td_status csv_open(td_writer *w, td_error *err)
         return td_error_set(err, TD_ERR_NOMEM, "out of memory opening %s", w->path);
     w->impl = c;
     errno = 0;
-    c->samples = fopen(w->tmp_path, "w");
-    if (!c->samples) {
-        st = io_fail(err, w->tmp_path, "cannot create");
-        csv_destroy(w);
-        return st;
-    }
-    c->events = fopen(w->events_tmp, "w");
-    if (!c->events)
-        st = io_fail(err, w->events_tmp, "cannot create");
+    if (!(c->samples = adopt(&w->tmp_fd)))
+        st = io_fail(err, w->tmp_path, "cannot open");
+    else if (!(c->events = adopt(&w->events_fd)))
+        st = io_fail(err, w->events_tmp, "cannot open");
     else if (write_sample_header(c->samples, w) || write_event_header(c->events))
         st = io_fail(err, w->tmp_path, "cannot write the header");
-    if (st != TD_OK) {
+    if (st != TD_OK)
         csv_destroy(w);
-        remove(w->tmp_path);
-        remove(w->events_tmp);
-    }
     return st;
 }
 

@@ -13,9 +13,11 @@
  * Every HDF5 call runs inside H5E_BEGIN_TRY/H5E_END_TRY: the library never prints, and the
  * automatic error printing of the calling program is restored afterwards.
  */
+#include "io/h5_vfd.h"
 #include "io/writer_internal.h"
 #include "util/error_internal.h"
 
+#include <errno.h>
 #include <hdf5.h>
 #include <hdf5_hl.h> /* H5DS: dimension scales */
 #include <stddef.h>
@@ -23,6 +25,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 /* Largest number of sample datasets: time, displacement, 9 retainer fields, AMB force. */
 #define H5_MAX_SERIES 12
@@ -69,6 +72,8 @@ typedef struct h5_impl {
     hsize_t event_rows;      /* events in the file */
     h5_event_row *event_buf; /* H5_EVENT_CHUNK buffered events */
     size_t events_buffered;
+    hid_t driver; /* h5_vfd.h registration, -1 if none */
+    int io_errno; /* first I/O error seen by the driver, 0 if none */
 } h5_impl;
 
 /* Retainer fields in the order of the /retainers datasets. */
@@ -101,15 +106,28 @@ static herr_t keep_innermost(unsigned n, const H5E_error2_t *e, void *data)
     return 0;
 }
 
-/* Fill err with `what` and HDF5's own innermost message. */
+/* Fill err with `what` and the cause: the driver's I/O error, else HDF5's innermost message. */
 static td_status h5_fail(td_error *err, const td_writer *w, const char *what)
 {
+    const h5_impl *h = w->impl;
     h5_msg m;
     m.text[0] = '\0';
     H5Ewalk2(H5E_DEFAULT, H5E_WALK_UPWARD, keep_innermost, &m);
     H5Eclear2(H5E_DEFAULT);
+    if (h && h->io_errno)
+        return td_error_set(err, TD_ERR_IO, "%s: %s: %s", w->tmp_path, what, strerror(h->io_errno));
     return td_error_set(err, TD_ERR_IO, "%s: %s%s%s", w->tmp_path, what, m.text[0] ? " (HDF5 " : "",
                         m.text[0] ? m.text : "");
+}
+
+/* The driver hides I/O errors from HDF5 (h5_vfd.h): after each HDF5 operation that succeeded,
+ * a write the driver could not do still fails the file. */
+static td_status io_checked(td_status st, const td_writer *w, const char *what, td_error *err)
+{
+    const h5_impl *h = w->impl;
+    if (st == TD_OK && h && h->io_errno)
+        return h5_fail(err, w, what);
+    return st;
 }
 
 /* ---- small attribute helpers ------------------------------------------------------------- */
@@ -464,11 +482,15 @@ static td_status open_impl(td_writer *w, h5_impl *h, td_error *err)
 {
     hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
     td_status st;
-    if (fapl < 0 || H5Pset_libver_bounds(fapl, H5F_LIBVER_V18, H5F_LIBVER_LATEST) < 0) {
+    if (fapl < 0 || H5Pset_libver_bounds(fapl, H5F_LIBVER_V18, H5F_LIBVER_LATEST) < 0 ||
+        (h->driver = td_h5_vfd_use(fapl, &h->io_errno)) < 0) {
         if (fapl >= 0)
             H5Pclose(fapl);
         return h5_fail(err, w, "cannot set up file access");
     }
+    /* The writer created tmp_path exclusively; HDF5 opens it by name, so the descriptor goes. */
+    close(w->tmp_fd);
+    w->tmp_fd = -1;
     h->file = H5Fcreate(w->tmp_path, H5F_ACC_TRUNC, H5P_DEFAULT, fapl);
     H5Pclose(fapl);
     if (h->file < 0)
@@ -492,7 +514,8 @@ static td_status h5_open(td_writer *w, td_error *err)
     td_status st;
     if (!h)
         return td_error_set(err, TD_ERR_NOMEM, "out of memory opening %s", w->path);
-    h->file = h->event_dset = h->event_mtype = h->event_ftype = h->kind_type = h->event_index = h->component = -1;
+    h->file = h->event_dset = h->event_mtype = h->event_ftype = h->kind_type = h->event_index = h->component =
+        h->driver = -1;
     h->idx_time = h->idx_disp = h->idx_ret = h->idx_amb = -1;
     h->chunk_rows = choose_chunk_rows(w);
     w->impl = h;
@@ -504,15 +527,11 @@ static td_status h5_open(td_writer *w, td_error *err)
     }
     H5E_BEGIN_TRY
     {
-        st = open_impl(w, h, err);
+        st = io_checked(open_impl(w, h, err), w, "cannot write the file", err);
     }
     H5E_END_TRY;
-    if (st != TD_OK) {
-        int created = h->file >= 0;
+    if (st != TD_OK)
         h5_destroy(w);
-        if (created)
-            remove(w->tmp_path);
-    }
     return st;
 }
 
@@ -587,7 +606,7 @@ static td_status h5_sample(td_writer *w, double t, const double *node_xy, const 
     if (h->buffered == h->chunk_rows) {
         H5E_BEGIN_TRY
         {
-            st = flush_rows(w, h, err);
+            st = io_checked(flush_rows(w, h, err), w, "cannot write samples", err);
         }
         H5E_END_TRY;
     }
@@ -656,7 +675,7 @@ static td_status h5_event(td_writer *w, const td_event *ev, long sample, td_erro
     if (h->events_buffered == H5_EVENT_CHUNK) {
         H5E_BEGIN_TRY
         {
-            st = flush_events(w, h, err);
+            st = io_checked(flush_events(w, h, err), w, "cannot write events", err);
         }
         H5E_END_TRY;
     }
@@ -729,6 +748,8 @@ static herr_t close_handles(h5_impl *h)
     if (h->file >= 0)
         rc = H5Fclose(h->file);
     h->file = -1;
+    td_h5_vfd_release(h->driver);
+    h->driver = -1;
     return rc;
 }
 
@@ -738,9 +759,10 @@ static td_status h5_finish(td_writer *w, int complete, const char *reason, td_er
     td_status st;
     H5E_BEGIN_TRY
     {
-        st = finish_impl(w, h, complete, reason, err);
+        st = io_checked(finish_impl(w, h, complete, reason, err), w, "cannot finish the file", err);
         if (close_handles(h) < 0 && st == TD_OK)
             st = h5_fail(err, w, "cannot close the file");
+        st = io_checked(st, w, "cannot close the file", err);
     }
     H5E_END_TRY;
     free(h);

@@ -4,7 +4,11 @@
  * in CSV ("%.12g") and full double precision in HDF5. HDF5 axes are dimension scales (the Campbell
  * speeds, branch and mode numbers, node positions) so netCDF readers see named dimensions; strings
  * are variable-length UTF-8, which h5py reads as str.
+ * Like the simulation writers, both write PATH.XXXXXX.partial (td_io_create_temp) and rename it
+ * to PATH only once every byte is on disk, so a file at PATH is always whole.
  */
+#include "io/h5_vfd.h"
+#include "io/writer_internal.h"
 #include "touchdown/modal.h"
 #include "util/error_internal.h"
 
@@ -16,6 +20,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 static const char *whirl_name(td_whirl w)
 {
@@ -88,17 +93,10 @@ static void csv_harmonic(FILE *f, const td_harmonic *const *h, int n)
     fprintf(f, "\n");
 }
 
-td_status td_modal_write_csv(const char *path, const td_modal_results *r, td_error *err)
+/* Every section into the open temporary file `f`, which is closed; nonzero on any failure. */
+static int csv_write_all(FILE *f, const td_modal_results *r)
 {
-    FILE *f;
-    if (!path || !r)
-        return td_error_set(err, TD_ERR_INVALID, "td_modal_write_csv: NULL argument");
-    if (r->n_critical < 0 || (r->n_critical > 0 && !r->critical) || r->n_harmonics < 0 ||
-        (r->n_harmonics > 0 && !r->harmonics))
-        return td_error_set(err, TD_ERR_INVALID, "td_modal_write_csv: bad result counts");
-    f = fopen(path, "w");
-    if (!f)
-        return td_error_set(err, TD_ERR_IO, "%s: cannot open for writing: %s", path, strerror(errno));
+    int rc;
     fprintf(f, "# touchdown modal results\n\n");
     if (r->modes)
         csv_modes(f, r->modes);
@@ -108,13 +106,42 @@ td_status td_modal_write_csv(const char *path, const td_modal_results *r, td_err
         csv_critical(f, r->critical, r->n_critical);
     if (r->n_harmonics > 0)
         csv_harmonic(f, r->harmonics, r->n_harmonics);
-    if (ferror(f)) {
-        fclose(f);
-        return td_error_set(err, TD_ERR_IO, "%s: write failed", path);
-    }
-    if (fclose(f) != 0)
-        return td_error_set(err, TD_ERR_IO, "%s: close failed: %s", path, strerror(errno));
+    rc = fflush(f) != 0 || ferror(f);
+    return fclose(f) != 0 || rc;
+}
+
+static td_status check_results(const td_modal_results *r, const char *what, td_error *err)
+{
+    if (r->n_critical < 0 || (r->n_critical > 0 && !r->critical) || r->n_harmonics < 0 ||
+        (r->n_harmonics > 0 && !r->harmonics))
+        return td_error_set(err, TD_ERR_INVALID, "%s: bad result counts", what);
     return TD_OK;
+}
+
+td_status td_modal_write_csv(const char *path, const td_modal_results *r, td_error *err)
+{
+    char *tmp = NULL;
+    FILE *f;
+    int fd, failed;
+    td_status st;
+    if (!path || !r)
+        return td_error_set(err, TD_ERR_INVALID, "td_modal_write_csv: NULL argument");
+    if ((st = check_results(r, "td_modal_write_csv", err)) != TD_OK ||
+        (st = td_io_create_temp(path, &tmp, &fd, err)) != TD_OK)
+        return st;
+    f = fdopen(fd, "w");
+    if (!f)
+        close(fd);
+    errno = 0;
+    failed = !f || csv_write_all(f, r);
+    if (failed)
+        st = td_error_set(err, TD_ERR_IO, "%s: write failed: %s", tmp, errno ? strerror(errno) : "I/O error");
+    else
+        st = td_io_commit_temp(tmp, path, err);
+    if (failed)
+        remove(tmp);
+    free(tmp);
+    return st;
 }
 
 /* ---- HDF5 -------------------------------------------------------------------------------- */
@@ -432,11 +459,16 @@ static int h5_layout(hid_t file, const td_model *model)
     return ok;
 }
 
-/* Create the file and write every part; 0 on any failure. */
-static int h5_write_all(const char *path, const td_modal_results *r)
+/* Open the created temporary file `path` with the writers' driver (h5_vfd.h: an I/O error goes
+ * to *io_errno, never into a failed close) and write every part; 0 on any failure. */
+static int h5_write_all(const char *path, const td_modal_results *r, int *io_errno)
 {
-    hid_t file = H5Fcreate(path, H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+    hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
+    hid_t driver = fapl >= 0 ? td_h5_vfd_use(fapl, io_errno) : -1;
+    hid_t file = driver >= 0 ? H5Fcreate(path, H5F_ACC_TRUNC, H5P_DEFAULT, fapl) : -1;
     int ok = file >= 0;
+    if (fapl >= 0)
+        H5Pclose(fapl);
     ok = ok && h5_attr_string(file, "producer", "touchdown modal analysis");
     ok = ok && (!r->modes || h5_modes(file, r->modes));
     ok = ok && (!r->campbell || h5_campbell(file, r->campbell));
@@ -446,24 +478,34 @@ static int h5_write_all(const char *path, const td_modal_results *r)
     ok = ok && (!r->case_text || h5_attr_string(file, "case_text", r->case_text));
     if (file >= 0 && H5Fclose(file) < 0)
         ok = 0;
-    return ok;
+    td_h5_vfd_release(driver);
+    return ok && *io_errno == 0;
 }
 
 td_status td_modal_write_hdf5(const char *path, const td_modal_results *r, td_error *err)
 {
-    int ok = 0;
+    char *tmp = NULL;
+    int ok = 0, fd, io_errno = 0;
+    td_status st;
     if (!path || !r)
         return td_error_set(err, TD_ERR_INVALID, "td_modal_write_hdf5: NULL argument");
-    if (r->n_critical < 0 || (r->n_critical > 0 && !r->critical) || r->n_harmonics < 0 ||
-        (r->n_harmonics > 0 && !r->harmonics))
-        return td_error_set(err, TD_ERR_INVALID, "td_modal_write_hdf5: bad result counts");
+    if ((st = check_results(r, "td_modal_write_hdf5", err)) != TD_OK ||
+        (st = td_io_create_temp(path, &tmp, &fd, err)) != TD_OK)
+        return st;
+    close(fd); /* HDF5 opens the file by name */
     /* HDF5 would print its error stack; the try block silences it only for this call */
     H5E_BEGIN_TRY
     {
-        ok = h5_write_all(path, r);
+        ok = h5_write_all(tmp, r, &io_errno);
     }
     H5E_END_TRY;
-    if (!ok)
-        return td_error_set(err, TD_ERR_IO, "%s: writing the HDF5 file failed", path);
-    return TD_OK;
+    if (!ok) {
+        st = td_error_set(err, TD_ERR_IO, "%s: writing the HDF5 file failed%s%s", tmp, io_errno ? ": " : "",
+                          io_errno ? strerror(io_errno) : "");
+        remove(tmp);
+    } else {
+        st = td_io_commit_temp(tmp, path, err);
+    }
+    free(tmp);
+    return st;
 }

@@ -1,20 +1,25 @@
 /*
  * The format-independent half of td_writer: argument checks, the attribute list and the
- * PATH.partial -> PATH protocol that keeps an unfinished file from ever looking finished.
+ * PATH.XXXXXX.partial -> PATH protocol that keeps an unfinished file from ever looking finished.
  */
 #include "io/writer_internal.h"
 #include "util/error_internal.h"
 
 #include <errno.h>
 #include <fcntl.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 #include <unistd.h>
 
 #include "touchdown/version.h"
 
-static const char partial_suffix[] = ".partial";
+static const char partial_suffix[] = TD_IO_TEMP_SUFFIX;
+/* Characters of the unique part of a temporary name, and names tried before giving up. */
+#define TEMP_TAG_LEN 6
+#define TEMP_ATTEMPTS 100
 
 const char *td_event_kind_name(td_event_kind kind)
 {
@@ -37,6 +42,73 @@ int td_writer_events_path(const char *csv_path, char *buf, size_t n)
     if (len >= ext_len && strcmp(csv_path + len - ext_len, ext) == 0)
         len -= ext_len;
     return snprintf(buf, n, "%.*s.events.csv", (int)len, csv_path ? csv_path : "");
+}
+
+/* SplitMix64 finaliser: spreads a few changing bits over all 64. */
+static uint64_t mix64(uint64_t x)
+{
+    x ^= x >> 30;
+    x *= 0xbf58476d1ce4e5b9u;
+    x ^= x >> 27;
+    x *= 0x94d049bb133111ebu;
+    return x ^ (x >> 31);
+}
+
+/* A name tag that differs between processes, calls and attempts. It need not be unpredictable:
+ * O_EXCL makes the file ours, the tag only keeps retries rare. */
+static void temp_tag(char tag[TEMP_TAG_LEN + 1], const void *salt, unsigned attempt)
+{
+    static const char alphabet[] = "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789";
+    struct timespec ts;
+    uint64_t x;
+    int i;
+    clock_gettime(CLOCK_REALTIME, &ts);
+    x = mix64((uint64_t)getpid()) ^ mix64((uint64_t)ts.tv_sec * 1000000000u + (uint64_t)ts.tv_nsec) ^
+        mix64((uint64_t)(uintptr_t)salt + attempt);
+    for (i = 0; i < TEMP_TAG_LEN; i++) {
+        tag[i] = alphabet[x % (sizeof alphabet - 1)];
+        x /= sizeof alphabet - 1;
+    }
+    tag[TEMP_TAG_LEN] = '\0';
+}
+
+td_status td_io_create_temp(const char *path, char **tmp_out, int *fd_out, td_error *err)
+{
+    size_t len = strlen(path);
+    char *tmp = malloc(len + 1 + TEMP_TAG_LEN + sizeof partial_suffix);
+    char tag[TEMP_TAG_LEN + 1];
+    unsigned attempt;
+    int fd = -1, e = EEXIST;
+    *tmp_out = NULL;
+    *fd_out = -1;
+    if (!tmp)
+        return td_error_set(err, TD_ERR_NOMEM, "out of memory opening %s", path);
+    for (attempt = 0; attempt < TEMP_ATTEMPTS && fd < 0 && e == EEXIST; attempt++) {
+        temp_tag(tag, tmp, attempt);
+        memcpy(tmp, path, len);
+        tmp[len] = '.';
+        memcpy(tmp + len + 1, tag, TEMP_TAG_LEN);
+        memcpy(tmp + len + 1 + TEMP_TAG_LEN, partial_suffix, sizeof partial_suffix);
+        fd = open(tmp, O_WRONLY | O_CREAT | O_EXCL, 0666);
+        e = fd < 0 ? errno : 0;
+    }
+    if (fd < 0) {
+        free(tmp);
+        return td_error_set(err, TD_ERR_IO, "%s: cannot create its temporary file: %s", path, strerror(e));
+    }
+    *tmp_out = tmp;
+    *fd_out = fd;
+    return TD_OK;
+}
+
+td_status td_io_commit_temp(const char *tmp, const char *path, td_error *err)
+{
+    td_status st = td_io_fsync_path(tmp, err);
+    if (st == TD_OK && rename(tmp, path) != 0)
+        st = td_error_set(err, TD_ERR_IO, "%s: cannot rename to %s: %s", tmp, path, strerror(errno));
+    if (st != TD_OK)
+        remove(tmp);
+    return st;
 }
 
 td_status td_io_fsync_path(const char *path, td_error *err)
@@ -94,6 +166,10 @@ static void writer_free(td_writer *w)
     free(w->tmp_path);
     free(w->events_path);
     free(w->events_tmp);
+    if (w->tmp_fd >= 0)
+        close(w->tmp_fd);
+    if (w->events_fd >= 0)
+        close(w->events_fd);
     free(w);
 }
 
@@ -110,16 +186,28 @@ static char *string_copy(const char *s, const char *suffix)
     return p;
 }
 
-/* CSV: the events file's final and temporary names. */
-static td_status events_paths(td_writer *w)
+/* CSV: the events file's final name. */
+static td_status events_path(td_writer *w)
 {
     int n = td_writer_events_path(w->path, NULL, 0);
     w->events_path = malloc((size_t)n + 1);
     if (!w->events_path)
         return TD_ERR_NOMEM;
     td_writer_events_path(w->path, w->events_path, (size_t)n + 1);
-    w->events_tmp = string_copy(w->events_path, partial_suffix);
-    return w->events_tmp ? TD_OK : TD_ERR_NOMEM;
+    return TD_OK;
+}
+
+/* Create the temporary file(s) under fresh unique names; on failure none is left. */
+static td_status create_temps(td_writer *w, td_error *err)
+{
+    td_status st = td_io_create_temp(w->path, &w->tmp_path, &w->tmp_fd, err);
+    if (st == TD_OK && w->events_path &&
+        (st = td_io_create_temp(w->events_path, &w->events_tmp, &w->events_fd, err)) != TD_OK) {
+        remove(w->tmp_path);
+        free(w->tmp_path);
+        w->tmp_path = NULL;
+    }
+    return st;
 }
 
 /* Remove a stale result at `path` (absent is fine): a file at PATH must belong to this run. */
@@ -148,10 +236,10 @@ td_status td_writer_open(td_writer_kind kind, const char *path, const td_output_
     if (!w)
         return td_error_set(err, TD_ERR_NOMEM, "out of memory opening %s", path);
     w->kind = kind;
+    w->tmp_fd = w->events_fd = -1;
     w->ops = kind == TD_WRITER_HDF5 ? &td_hdf5_writer_ops : &td_csv_writer_ops;
     w->path = string_copy(path, NULL);
-    w->tmp_path = string_copy(path, partial_suffix);
-    if (kind == TD_WRITER_CSV && (st = events_paths(w)) != TD_OK) {
+    if (!w->path || (kind == TD_WRITER_CSV && (st = events_path(w)) != TD_OK)) {
         writer_free(w);
         return td_error_set(err, st, "out of memory opening %s", path);
     }
@@ -164,12 +252,16 @@ td_status td_writer_open(td_writer_kind kind, const char *path, const td_output_
         if (w->nodes)
             memcpy(w->nodes, layout->nodes, (size_t)layout->node_count * sizeof *w->nodes);
     }
-    if (!w->path || !w->tmp_path || (layout->node_count > 0 && !w->nodes)) {
+    if (layout->node_count > 0 && !w->nodes) {
         writer_free(w);
         return td_error_set(err, TD_ERR_NOMEM, "out of memory opening %s", path);
     }
+    if ((st = create_temps(w, err)) != TD_OK) {
+        writer_free(w);
+        return st;
+    }
     if ((st = w->ops->open(w, err)) != TD_OK) {
-        writer_free(w); /* the back end removed whatever it had created */
+        td_writer_discard(&w);
         return st;
     }
     if ((st = remove_stale(w->path, err)) != TD_OK ||
@@ -402,7 +494,8 @@ void td_writer_discard(td_writer **wp)
         return;
     w = *wp;
     w->ops->destroy(w);
-    remove(w->tmp_path);
+    if (w->tmp_path)
+        remove(w->tmp_path);
     if (w->events_tmp)
         remove(w->events_tmp);
     writer_free(w);

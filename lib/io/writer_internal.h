@@ -2,12 +2,15 @@
  * The td_writer record shared by the format back ends (hdf5_writer.c, csv_writer.c).
  *
  * writer.c owns what both formats share: argument checks, the layout copy, the attribute list,
- * the PATH.partial -> PATH protocol. A back end implements four operations on its own state.
+ * the PATH.XXXXXX.partial -> PATH protocol. A back end implements four operations on its own state.
  */
 #ifndef TD_IO_WRITER_INTERNAL_H
 #define TD_IO_WRITER_INTERNAL_H
 
 #include "touchdown/output.h"
+
+/** Ending of every temporary file name (PATH.XXXXXX.partial); outputs may not end with it. */
+#define TD_IO_TEMP_SUFFIX ".partial"
 
 /** Longest attribute name, NUL included. */
 #define TD_ATTR_NAME_SIZE 64
@@ -30,9 +33,11 @@ typedef struct td_writer_ops td_writer_ops;
 struct td_writer {
     td_writer_kind kind;
     char *path;        /**< final path of the main file */
-    char *tmp_path;    /**< path + ".partial" */
+    char *tmp_path;    /**< path + ".XXXXXX.partial", created by td_io_create_temp */
     char *events_path; /**< CSV only: the events file (td_writer_events_path), else NULL */
-    char *events_tmp;  /**< CSV only: events_path + ".partial" */
+    char *events_tmp;  /**< CSV only: events_path + ".XXXXXX.partial" */
+    int tmp_fd;        /**< the new empty tmp_path, open until the back end takes it over (-1) */
+    int events_fd;     /**< likewise for events_tmp */
     int node_count, retainer_count, amb_count;
     int compression; /**< HDF5 deflate level, 0..9 */
     int *nodes;      /**< node_count numbers (NULL if 0) */
@@ -47,7 +52,9 @@ struct td_writer {
 
 /** Back-end operations. Each returns a status and fills err; finish and destroy release impl. */
 struct td_writer_ops {
-    td_status (*open)(td_writer *w, td_error *err); /* create w->tmp_path */
+    /* Open the created, empty w->tmp_path (and w->events_tmp); an fd taken over is set to -1.
+     * On failure release impl; the caller removes the files. */
+    td_status (*open)(td_writer *w, td_error *err);
     td_status (*sample)(td_writer *w, double t, const double *node_xy, const td_retainer_state *ret,
                         const double *amb_f, td_error *err);
     td_status (*event)(td_writer *w, const td_event *ev, long sample, td_error *err);
@@ -61,6 +68,16 @@ struct td_writer_ops {
 
 extern const td_writer_ops td_hdf5_writer_ops;
 extern const td_writer_ops td_csv_writer_ops;
+
+/**
+ * Create a new empty file PATH.XXXXXX.partial (XXXXXX: letters and digits) with O_CREAT|O_EXCL,
+ * so it never is another run's file; *tmp (malloc'ed name) and *fd (open for writing) are set.
+ * The same directory as PATH keeps the final rename atomic.
+ */
+td_status td_io_create_temp(const char *path, char **tmp, int *fd, td_error *err);
+
+/** Flush a closed temporary file to disk and rename it to `path`; on failure remove it. */
+td_status td_io_commit_temp(const char *tmp, const char *path, td_error *err);
 
 /** Flush a closed file's data to disk (fsync); TD_ERR_IO on failure. */
 td_status td_io_fsync_path(const char *path, td_error *err);

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Faults during `touchdown run`, and the completeness rule of docs/output-format.md:
-#   1. while a run goes on only PATH.partial exists (the directory is listed while it runs), a
+#   1. while a run goes on only PATH.XXXXXX.partial exists (the directory is listed while it runs), a
 #      stale result at PATH is removed, and a file at a final path is always complete; a finished
 #      run leaves its three files at their final paths, complete (HDF5 complete = 1, CSV and event
 #      CSV end with "# complete"), and no .partial;
@@ -12,11 +12,24 @@
 #   3. a solver failure (solver.atol = 1e-300, accepted by the case reader; IDA fails at the
 #      first impact): exit 1, the message, incomplete files;
 #   4. SIGKILL (cannot be caught): only .partial files remain, nothing at a final path;
-#   5. an output path that cannot be created: exit 1, one error line, no file left;
+#   5. an output path that cannot be created: exit 2 (bad input, refused before the run), one error line, no file left;
 #   6. SIGINT while the solver is slow inside one step (solver.max_step = 1e-12 s over end_time =
 #      5e-5 s, 5e7 steps, within the step bound of touchdown/limits.h): the run must still stop
 #      (the 10 s limit catches a hang only: it stops 0.12 s after the signal under ASan on a
-#      loaded machine) with exit 1 and incomplete files.
+#      loaded machine) with exit 1 and incomplete files;
+#   7. a full disk, simulated by the file size limit (ulimit -f, SIGXFSZ ignored, so writes fail
+#      with EFBIG): exit 1 (no crash in HDF5's exit handler), one error line naming the cause, no
+#      temporary file left and nothing at a final path that does not say incomplete; the test
+#      fails (it does not skip) when the limit cannot be put in force;
+#   8. two runs writing the same output paths at once (HDF5 file locking off): each file at a
+#      final path holds the rows of the one run its case text names (its last time is that run's
+#      end_time), never a mixture;
+#   9. output paths refused before the run with exit 2, one error line, no file written and the
+#      inputs unchanged: two outputs that are one file (also through the events file, a hard link
+#      or a symbolic link), an output that is the case file or an @include file, an output named
+#      *.partial, an output that is a device node or a directory, an output directory that does
+#      not exist or is not writable, a path longer than 1023 characters (also for modal and
+#      bench).
 # HDF5 attributes are read with h5dump (Debian package hdf5-tools); without it those checks are
 # skipped and said so. Args: $1 = the touchdown binary, $2 = the source directory.
 set -u
@@ -52,11 +65,18 @@ h5attr() {
 last_line() { tail -n 1 "$1" 2>/dev/null; }
 same_time() { awk -v a="$1" -v b="$2" 'BEGIN { d = a - b; if (d < 0) d = -d; exit !(a != "" && b != "" && d <= 1e-9) }'; }
 
-# wait_for_data DIR: wait (at most 60 s) until DIR/paper-a.csv.partial holds data.
+# partial_of FILE: the temporary file(s) of the output FILE (FILE.XXXXXX.partial), one a line.
+partial_of() {
+    local p
+    for p in "$1".*.partial; do [ -e "$p" ] && echo "$p"; done
+    return 0
+}
+# wait_for_data DIR: wait (at most 60 s) until DIR's temporary paper-a.csv holds data.
 wait_for_data() {
-    local i
+    local i p
     for ((i = 0; i < 1200; i++)); do
-        [ -s "$1/paper-a.csv.partial" ] && return 0
+        p=$(partial_of "$1/paper-a.csv")
+        [ -n "$p" ] && [ -s "$p" ] && return 0
         sleep 0.05
     done
     return 1
@@ -86,7 +106,7 @@ check_final() {
     reason_time=""
     for f in paper-a.h5 paper-a.csv paper-a.events.csv; do
         check "$want: $f at its final path" test -s "$d/$f"
-        check "$want: no $f.partial left" test ! -e "$d/$f.partial"
+        check "$want: no temporary $f left" test -z "$(partial_of "$d/$f")"
     done
     for f in paper-a.csv paper-a.events.csv; do
         last=$(last_line "$d/$f")
@@ -134,7 +154,7 @@ bad_final=""
 while kill -0 "$pid" 2>/dev/null; do
     polls=$((polls + 1))
     have_partial=0
-    [ -e "$d/paper-a.csv.partial" ] && have_partial=1
+    [ -n "$(partial_of "$d/paper-a.csv")" ] && have_partial=1
     for f in paper-a.csv paper-a.events.csv; do
         if [ -e "$d/$f" ] && [ "$(cat "$d/$f" 2>/dev/null | head -c 5)" != "stale" ] &&
             [ "$(last_line "$d/$f")" != "# complete" ] && [ -e "$d/$f" ]; then
@@ -217,7 +237,7 @@ if wait_for_data "$d"; then
     sleep 0.3
     kill -9 "$pid"
     wait "$pid" 2>/dev/null
-    check "SIGKILL: .partial files remain" test -e "$d/paper-a.csv.partial" -a -e "$d/paper-a.h5.partial"
+    check "SIGKILL: temporary files remain" test -n "$(partial_of "$d/paper-a.csv")" -a -n "$(partial_of "$d/paper-a.h5")"
     check "SIGKILL: nothing at the final paths ($(ls "$d" | tr '\n' ' '))" \
         test ! -e "$d/paper-a.csv" -a ! -e "$d/paper-a.h5" -a ! -e "$d/paper-a.events.csv"
 else
@@ -230,7 +250,7 @@ mkdir -p "$d"
 (cd "$d" && "$tool" run --set end_time=0.01 --hdf5 "$d/missing-dir/x.h5" --csv "$d/x.csv" "$case_a" \
     >"$work/n.out" 2>"$work/n.err")
 rc=$?
-check "uncreatable output: exit 1 (got $rc)" test "$rc" = 1
+check "uncreatable output: exit 2, refused before the run (got $rc)" test "$rc" = 2
 check "uncreatable output: one error line naming the path: $(cat "$work/n.err")" \
     test "$(wc -l <"$work/n.err")" = 1 -a -n "$(grep -F "missing-dir/x.h5" "$work/n.err")"
 check "uncreatable output: no file left ($(ls -A "$d" | tr '\n' ' '))" test -z "$(ls -A "$d")"
@@ -251,6 +271,143 @@ if wait_exit "$pid" 10; then
 else
     fail "SIGINT with max_step = 1e-12: still running 10 s after the signal (killed)"
 fi
+
+# ---- 7. a full disk: the file size limit --------------------------------------------------
+# limited_run NAME ARGS...: `touchdown run -q CASE_A ARGS` under a 256 KiB file size limit.
+# Exit 97/98 (not the tool's codes) say the limit could not be put in force.
+limited_run() {
+    local name=$1
+    shift
+    (
+        trap '' XFSZ
+        ulimit -f 256 || exit 98
+        head -c 400000 /dev/zero >"$d/probe" 2>/dev/null
+        [ "$(wc -c <"$d/probe")" -le 262144 ] || exit 97
+        rm -f "$d/probe"
+        exec "$tool" run -q "$case_a" "$@"
+    ) >"$work/$name.out" 2>"$work/$name.err"
+    rc=$?
+}
+for outs in h5 csv both; do
+    d=$work/full-$outs
+    mkdir -p "$d"
+    case $outs in
+    h5) limited_run "full-$outs" --csv '' --hdf5 "$d/paper-a.h5" ;;
+    csv) limited_run "full-$outs" --hdf5 '' --csv "$d/paper-a.csv" ;;
+    both) limited_run "full-$outs" -o "$d/paper-a" ;;
+    esac
+    if [ "$rc" = 97 ] || [ "$rc" = 98 ]; then
+        fail "full disk ($outs): the file size limit could not be set up (exit $rc)"
+        continue
+    fi
+    check "full disk ($outs): exit 1 (got $rc: $(head -c 300 "$work/full-$outs.err"))" test "$rc" = 1
+    check "full disk ($outs): one error line naming the cause" \
+        test "$(wc -l <"$work/full-$outs.err")" = 1 -a -n "$(grep -F "File too large" "$work/full-$outs.err")"
+    for f in paper-a.h5 paper-a.csv paper-a.events.csv; do
+        check "full disk ($outs): no temporary $f left" test -z "$(partial_of "$d/$f")"
+        [ -e "$d/$f" ] || continue
+        case $f in
+        *.csv) check "full disk ($outs): $f at its final path is marked incomplete" \
+            test "$(last_line "$d/$f" | cut -c1-14)" = "# incomplete: " ;;
+        *) [ "$have_h5dump" = 1 ] && check "full disk ($outs): $f at its final path has complete = 0" \
+            test "$(h5attr "$d/$f" complete)" = 0 ;;
+        esac
+    done
+done
+
+# ---- 8. two runs on the same output paths at once -------------------------------------------
+d=$work/twins
+mkdir -p "$d"
+twin_pids=()
+for end in 0.3 0.29; do
+    (cd "$d" && HDF5_USE_FILE_LOCKING=FALSE exec "$tool" run -q --set end_time=$end "$case_a" -o "$d/r" \
+        >"$work/twin$end.out" 2>"$work/twin$end.err") &
+    twin_pids+=($!)
+    pids+=($!)
+done
+# The runs must overlap for the check to mean anything: two temporary CSV files at once.
+overlap=0
+while kill -0 "${twin_pids[0]}" 2>/dev/null || kill -0 "${twin_pids[1]}" 2>/dev/null; do
+    [ "$(partial_of "$d/r.csv" | wc -l)" -ge 2 ] && overlap=1
+    sleep 0.02
+done
+for i in 0 1; do
+    wait "${twin_pids[$i]}"
+    rc=$?
+    check "concurrent run $i: exit 0 (got $rc: $(cat "$work"/twin*.err | head -c 300))" test "$rc" = 0
+done
+check "concurrent runs overlapped (two temporary files of r.csv seen at once)" test "$overlap" = 1
+for f in r.csv r.events.csv r.h5; do
+    check "concurrent runs: no temporary $f left" test -z "$(partial_of "$d/$f")"
+done
+csv_end=$(sed -nE 's/^#\| # --set end_time=([0-9.]+)$/\1/p' "$d/r.csv")
+csv_last=$(grep -v '^#' "$d/r.csv" | tail -n 1 | cut -d, -f1)
+check "concurrent runs: r.csv ends '# complete'" test "$(last_line "$d/r.csv")" = "# complete"
+check "concurrent runs: r.csv's last row (t = $csv_last) is its own run's end_time ($csv_end)" \
+    same_time "$csv_last" "$csv_end"
+check "concurrent runs: r.csv's rows are in time order" \
+    awk -F, '!/^#/ && NR > 1 { if ($1 + 0 < last) exit 1; last = $1 + 0 }' "$d/r.csv"
+if [ "$have_h5dump" = 1 ]; then
+    h5_end=$(h5dump -a /case_text "$d/r.h5" 2>/dev/null | grep -oE -- '--set end_time=[0-9.]+' | cut -d= -f2)
+    h5dump -d /time -y -w 0 -o "$work/twin-time.txt" "$d/r.h5" >/dev/null 2>&1
+    h5_last=$(tr ', ' '\n\n' <"$work/twin-time.txt" | grep . | tail -n 1)
+    check "concurrent runs: r.h5 complete = 1" test "$(h5attr "$d/r.h5" complete)" = 1
+    check "concurrent runs: r.h5's last time ($h5_last) is its own run's end_time ($h5_end)" \
+        same_time "$h5_last" "$h5_end"
+fi
+
+# ---- 9. output paths refused before the run -------------------------------------------------
+d=$work/refuse
+mkdir -p "$d/inc" "$d/ro"
+cp "$src/cases/jeffcott.cfg" "$d/CASE.cfg"
+cp "$src/cases/jeffcott.cfg" "$d/inc/part.cfg"
+printf '# a comment\n' >"$d/inc/more.events.csv"
+printf '@include "part.cfg"\n@include "more.events.csv"\n' >"$d/inc/main.cfg"
+ln "$d/CASE.cfg" "$d/hard.cfg"
+ln -s CASE.cfg "$d/soft.cfg"
+cp -r "$d" "$work/refuse.orig"
+long=$(printf 'a%.0s' $(seq 1 1030))
+# refused DESCRIPTION ARGS...: `touchdown run ARGS` in $d exits 2 with one error line, and the
+# directory is exactly as before (no output, no temporary file, the inputs unchanged).
+refused() {
+    local what=$1
+    shift
+    (cd "$d" && "$tool" run -q --set end_time=0.01 "$@" >"$work/r.out" 2>"$work/r.err")
+    rc=$?
+    check "$what: exit 2 (got $rc: $(head -c 200 "$work/r.err"))" test "$rc" = 2
+    check "$what: one error line" test "$(wc -l <"$work/r.err")" = 1
+    check "$what: nothing written, inputs unchanged" diff -r "$work/refuse.orig" "$d"
+}
+refused "--hdf5 X --csv X" --hdf5 X --csv X CASE.cfg
+refused "--hdf5 r.events.csv --csv r.csv" --hdf5 r.events.csv --csv r.csv CASE.cfg
+refused "--hdf5 r.h5 --csv r.h5" --hdf5 r.h5 --csv ./r.h5 CASE.cfg
+refused "--csv r.h5.partial" --csv r.h5.partial CASE.cfg
+refused "--hdf5 CASE.cfg CASE.cfg" --hdf5 CASE.cfg CASE.cfg
+refused "--csv ../refuse/CASE.cfg CASE.cfg" --hdf5 '' --csv ../refuse/CASE.cfg CASE.cfg
+refused "output is a hard link to the case file" --hdf5 hard.cfg --csv '' CASE.cfg
+refused "output is a symbolic link to the case file" --hdf5 soft.cfg --csv '' CASE.cfg
+refused "output is an @include file" --hdf5 inc/part.cfg --csv '' inc/main.cfg
+refused "events output is an @include file" --hdf5 '' --csv inc/more.csv inc/main.cfg
+refused "output is a device node (/dev/null)" --hdf5 /dev/null --csv '' CASE.cfg
+refused "output is a directory" --hdf5 inc --csv '' CASE.cfg
+refused "output directory does not exist" --hdf5 no-such-dir/x.h5 --csv '' CASE.cfg
+refused "-o with a 1030-character prefix" -o "$long" CASE.cfg
+refused "--csv with a 1030-character path" --hdf5 '' --csv "$long.csv" CASE.cfg
+for sub in "modal -q -o $long CASE.cfg" "modal -q --csv $long.csv CASE.cfg" "bench --quick --dir $long"; do
+    (cd "$d" && "$tool" $sub >"$work/r.out" 2>"$work/r.err")
+    rc=$?
+    check "touchdown ${sub%% *} with a 1030-character path: exit 2, one line (got $rc: $(head -c 120 "$work/r.err"))" \
+        test "$rc" = 2 -a "$(wc -l <"$work/r.err")" = 1
+    check "touchdown ${sub%% *} with a 1030-character path: nothing written" diff -r "$work/refuse.orig" "$d"
+done
+chmod 555 "$d/ro"
+if touch "$d/ro/probe" 2>/dev/null; then
+    rm -f "$d/ro/probe"
+    echo "skip: an unwritable output directory (this user writes into mode 555 directories)"
+else
+    refused "output directory not writable" --hdf5 ro/x.h5 --csv '' CASE.cfg
+fi
+chmod 755 "$d/ro"
 
 echo "$((checks - fails)) passed, $fails failed"
 [ "$fails" = 0 ]
