@@ -119,7 +119,7 @@ static int analyse(const td_case *c, double speed, const modal_outputs *paths, i
     td_error_clear(&err);
     if ((st = td_system_create(m, &sys, &err)) != TD_OK)
         goto done;
-    if ((st = td_modal_solve(sys, speed, &modes, &err)) != TD_OK)
+    if ((st = td_modal_solve_lowest(sys, speed, opt->mode_count, &modes, &err)) != TD_OK)
         goto done;
     if ((st = td_campbell_compute(sys, opt, &camp, &err)) != TD_OK)
         goto done;
