@@ -33,9 +33,11 @@
 
 /* Systems beyond this many states are never handed to the dense solver (memory n^2, time n^3). */
 #define TD_MODAL_DENSE_FALLBACK_MAX 4000
+/* Damping ratio up to which the partial solution is complete below its bound (file comment). */
+#define TD_PARTIAL_ZETA_COVER 0.9
 /* Iterations with one block size before the block is doubled. */
-#define TD_SUBSPACE_MAX_ITER 60
-/* A Ritz pair counts as converged when |OP x - nu x| <= this * |nu| |x|. */
+#define TD_SUBSPACE_MAX_ITER 40
+/* A Ritz pair counts as converged when |OP x - nu x| <= this * |nu_max| |x| (nu_max: the largest Ritz value). */
 #define TD_SUBSPACE_TOL 1e-10
 /* Shift used when F itself is singular (a free rotor's rigid-body roots s = 0), rad/s. */
 #define TD_FREE_BODY_SHIFT (-1.0)
@@ -313,14 +315,15 @@ static td_status try_collect(const td_system *sys, double omega, const pencil *p
     int k = 0, j, vib = 0;
     td_status st = TD_OK;
     *out = NULL;
-    while (k < r->p && r->refs[k].resid <= TD_SUBSPACE_TOL)
+    while (k < r->p &&
+           r->refs[k].resid * gsl_complex_abs(r->refs[k].nu) <= TD_SUBSPACE_TOL * gsl_complex_abs(r->refs[0].nu))
         k++;
     if (k < r->p && k > 0 && GSL_IMAG(r->refs[k - 1].nu) != 0.0 &&
         gsl_complex_abs(gsl_complex_sub(r->refs[k - 1].nu, gsl_complex_conjugate(r->refs[k].nu))) == 0.0)
         k--; /* a pair split by the cut: leave both out */
     for (j = 0; j < k; j++)
         rho = fmax(rho, gsl_complex_abs(gsl_complex_sub_real(root_of(pc, r->refs[j].nu), pc->sigma)));
-    bound = (rho - fabs(pc->sigma)) * sqrt(1.0 - TD_MODAL_OVERDAMPED_ZETA * TD_MODAL_OVERDAMPED_ZETA);
+    bound = (rho - fabs(pc->sigma)) * sqrt(1.0 - TD_PARTIAL_ZETA_COVER * TD_PARTIAL_ZETA_COVER);
     for (j = 0; j < k; j++) {
         gsl_complex s = root_of(pc, r->refs[j].nu);
         double zeta = -GSL_REAL(s) / gsl_complex_abs(s);
