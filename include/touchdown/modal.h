@@ -144,6 +144,12 @@ TD_API int td_modal_computed_count(const td_modal *m);
 typedef struct td_campbell td_campbell;
 
 /**
+ * Case files may ask for at most this many speed_steps x mechanical DOFs: every grid speed costs an
+ * eigen-solve for the Campbell diagram and one for the critical speeds (docs/performance.md).
+ */
+#define TD_MODAL_MAX_GRID_WORK 200000L
+
+/**
  * Oscillatory modes over opt->speed_steps speeds evenly spaced from opt->speed_min to
  * opt->speed_max (inclusive), the lowest opt->mode_count at each speed. Branch j at a speed is
  * the j-th lowest damped frequency there (branches are tracked by sorting), each point labelled
