@@ -118,6 +118,15 @@ static int analyse(const td_case *c, double speed, const modal_outputs *paths, i
 
     memset(h, 0, sizeof h);
     td_error_clear(&err);
+    if ((long)opt->speed_steps * 4 * td_model_node_count(m) > TD_MODAL_MAX_GRID_WORK) {
+        /* the case reader checks the key where it is written; this catches the default on a large model */
+        fprintf(stderr,
+                "touchdown modal: %s: modal.speed_steps: the default %d speeds are too many for %d DOFs "
+                "(speed_steps x DOFs at most %ld): set modal.speed_steps to at most %ld\n",
+                td_case_path(c), opt->speed_steps, 4 * td_model_node_count(m), (long)TD_MODAL_MAX_GRID_WORK,
+                (long)TD_MODAL_MAX_GRID_WORK / (4 * td_model_node_count(m)));
+        return TD_EXIT_USAGE;
+    }
     if ((st = td_system_create(m, &sys, &err)) != TD_OK)
         goto done;
     if ((st = td_modal_solve_lowest(sys, speed, opt->mode_count, &modes, &err)) != TD_OK)
