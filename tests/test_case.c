@@ -813,6 +813,7 @@ static const bad_file bad_files[] = {
     {"missing-shaft.cfg", 1, "shaft", NULL},
     {"missing-speed.cfg", 1, "speed", NULL},
     {"modal-speed-range.cfg", 6, "modal.speed_max", NULL},
+    {"modal-grid-work.cfg", 5, "modal.speed_steps", NULL},
     {"output-node-out-of-range.cfg", 6, "output.nodes[1]", NULL},
     {"output-sample-absurd.cfg", 5, "output.sample_rate", NULL},
     {"point-mass-negative.cfg", 5, "point_masses[0].mass", NULL},

@@ -4,6 +4,7 @@
  */
 #include "td_test.h"
 
+#include "modal/modal_internal.h"
 #include "model/system_internal.h"
 #include "touchdown/modal.h"
 #include "touchdown/touchdown.h"
@@ -35,6 +36,119 @@ static td_system *overhung(void)
         fail_msg("%s", err.message);
     td_model_free(&m);
     return s;
+}
+
+/* The same overhung rotor on n elements (n even): bearings at node 0 and node n/2, the disc at the tip. */
+static td_system *overhung_fine(int n)
+{
+    td_model *m = NULL;
+    td_system *s = NULL;
+    td_shaft_element el = {0.8 / n, 0.04, 0.0, {2.11e11, 8.1e10, 7810.0}};
+    td_bearing b0 = {0, 2e7, 2e7, 400.0, 400.0}, b2 = {0, 2e7, 2e7, 400.0, 400.0};
+    td_disc d = {0, 8.0, 0.064, 0.033};
+    td_error err;
+    int i;
+    b2.node = n / 2;
+    d.node = n;
+    assert_int_equal(td_model_create(&m, NULL), TD_OK);
+    for (i = 0; i < n; i++)
+        assert_int_equal(td_model_add_shaft_element(m, &el, NULL), TD_OK);
+    assert_int_equal(td_model_add_disc(m, &d, NULL), TD_OK);
+    assert_int_equal(td_model_add_bearing(m, &b0, NULL), TD_OK);
+    assert_int_equal(td_model_add_bearing(m, &b2, NULL), TD_OK);
+    if (td_system_create(m, &s, &err) != TD_OK)
+        fail_msg("%s", err.message);
+    td_model_free(&m);
+    return s;
+}
+
+/* Largest difference of the phase-free parts of two mode shapes (|X_k|, |Y_k| and conj(X_k) Y_k): a
+ * circular whirl has |X| = |Y| at its largest node, so which of them is made real is a tie. */
+static double shape_gap(const td_modal *a, int ia, const td_modal *b, int ib)
+{
+    int nn = td_modal_node_count(a), k;
+    double *sa = calloc(8 * (size_t)nn, sizeof *sa), *sb = sa + 4 * nn, gap = 0.0;
+    assert_non_null(sa);
+    assert_int_equal(td_modal_mode_shape(a, ia, sa, sa + nn, sa + 2 * nn, sa + 3 * nn), TD_OK);
+    assert_int_equal(td_modal_mode_shape(b, ib, sb, sb + nn, sb + 2 * nn, sb + 3 * nn), TD_OK);
+    for (k = 0; k < nn; k++) {
+        const double *u = sa, *v = sb;
+        gap = fmax(gap, fabs(hypot(u[k], u[nn + k]) - hypot(v[k], v[nn + k])));
+        gap = fmax(gap, fabs(hypot(u[2 * nn + k], u[3 * nn + k]) - hypot(v[2 * nn + k], v[3 * nn + k])));
+        gap = fmax(gap, fabs((u[k] * u[2 * nn + k] + u[nn + k] * u[3 * nn + k]) -
+                             (v[k] * v[2 * nn + k] + v[nn + k] * v[3 * nn + k])));
+        gap = fmax(gap, fabs((u[k] * u[3 * nn + k] - u[nn + k] * u[2 * nn + k]) -
+                             (v[k] * v[3 * nn + k] - v[nn + k] * v[2 * nn + k])));
+    }
+    free(sa);
+    return gap;
+}
+
+/* The partial (subspace iteration) solution against the full dense one, an independent method, on a
+ * model small enough for both: every mode the partial one lists below its completeness bound is the
+ * dense solve's mode of the same rank, eigenvalue, whirl and shape. Speed 0 has degenerate pairs. */
+static void test_partial_equals_dense(void **state)
+{
+    static const double speeds[2] = {0.0, 300.0};
+    td_system *s = overhung_fine(16);
+    td_error err;
+    int k;
+    (void)state;
+    for (k = 0; k < 2; k++) {
+        td_modal *full = NULL, *part = NULL;
+        int i, listed = 0;
+        assert_int_equal(td_modal_solve(s, speeds[k], &full, &err), TD_OK);
+        if (td_modal_lowest(s, speeds[k], 6, 0.0, 1, &part, &err) != TD_OK)
+            fail_msg("%s", err.message);
+        assert_true(td_modal_computed_count(part) < td_modal_state_count(s));
+        assert_true(isinf(td_modal_complete_below(full)));
+        for (i = 0; i < td_modal_mode_count(part); i++) {
+            td_mode a, b;
+            assert_int_equal(td_modal_get_mode(part, i, &a), TD_OK);
+            assert_int_equal(td_modal_get_mode(full, i, &b), TD_OK);
+            assert_true(a.omega_d < td_modal_complete_below(part));
+            assert_true(fabs(a.omega_d - b.omega_d) <= 1e-8 * b.omega_d);
+            assert_true(fabs(a.sigma - b.sigma) <= 1e-8 * b.omega_n);
+            assert_int_equal(a.whirl, b.whirl);
+            assert_true(shape_gap(part, i, full, i) < 1e-6);
+            listed += td_mode_is_vibration(&a);
+        }
+        assert_true(listed >= 6);
+        td_modal_free(&part);
+        td_modal_free(&full);
+    }
+    td_system_free(&s);
+}
+
+/* A model whose dense solve would take minutes (3,208 states): the lowest six modes come from a
+ * few dozen roots, and the 1x-crossing search stays on the partial solver. */
+static void test_large_model_bounded(void **state)
+{
+    td_system *s = overhung_fine(400);
+    td_modal *m = NULL;
+    td_modal_options opt;
+    td_critical_speed cs[8];
+    td_error err;
+    int i, vib = 0, n_cs = 0;
+    (void)state;
+    assert_int_equal(td_modal_state_count(s), 3208);
+    if (td_modal_solve_lowest(s, 100.0, 6, &m, &err) != TD_OK)
+        fail_msg("%s", err.message);
+    assert_true(td_modal_computed_count(m) <= 200);
+    for (i = 0; i < td_modal_mode_count(m); i++) {
+        td_mode md;
+        td_modal_get_mode(m, i, &md);
+        assert_true(md.omega_d < td_modal_complete_below(m));
+        vib += td_mode_is_vibration(&md);
+    }
+    assert_true(vib >= 6);
+    td_modal_free(&m);
+    td_modal_options_default(&opt);
+    opt.speed_steps = 3;
+    opt.mode_count = 4;
+    if (td_modal_critical_speeds(s, &opt, cs, 8, &n_cs, &err) != TD_OK)
+        fail_msg("%s", err.message);
+    td_system_free(&s);
 }
 
 static void test_arguments(void **state)
@@ -434,6 +548,8 @@ int main(void)
         cmocka_unit_test(test_campbell_labels),
         cmocka_unit_test(test_critical_speed_vs_scan),
         cmocka_unit_test(test_writers_round_trip),
+        cmocka_unit_test(test_partial_equals_dense),
+        cmocka_unit_test(test_large_model_bounded),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -10,7 +10,8 @@ static const char info_usage[] =
     "\n"
     "Print what CASE describes: shaft nodes and elements, masses, AMBs, plain bearings,\n"
     "retainers, unbalances, the schedule, DOF and state counts, and the first modes of the\n"
-    "contact-free system at the case speed.\n"
+    "contact-free system at the case speed. Large models get only the lowest modes (shift-invert\n"
+    "Arnoldi); their stability line then covers the roots computed, not all of them.\n"
     "\n"
     "options:\n"
     "  -s, --set KEY=VALUE  override a case key (repeatable)\n"
@@ -91,12 +92,16 @@ static int print_modes(const td_model *m, int count)
     printf("gravity      %s\n", (gx != 0.0 || gy != 0.0) ? "on" : "off");
     printf("DOFs         %d mechanical (4 per node), %d first-order states with the AMB lags\n",
            td_system_dof_count(sys), td_modal_state_count(sys));
-    if (td_modal_solve(sys, td_model_speed(m), &modes, &err) != TD_OK) {
+    if (td_modal_solve_lowest(sys, td_model_speed(m), count, &modes, &err) != TD_OK) {
         fprintf(stderr, "touchdown info: %s\n", err.message);
         td_system_free(&sys);
         return TD_EXIT_FAILED;
     }
-    printf("stability    %s\n", td_stability_word(modes));
+    if (td_modal_computed_count(modes) < td_modal_state_count(sys))
+        printf("stability    %s among the %d roots nearest 0 (of %d; a large model's roots are not all computed)\n",
+               td_stability_word(modes), td_modal_computed_count(modes), td_modal_state_count(sys));
+    else
+        printf("stability    %s\n", td_stability_word(modes));
     printf("first modes at the case speed:\n");
     td_print_modes(stdout, modes, count, 10);
     td_modal_free(&modes);

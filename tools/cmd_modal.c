@@ -14,7 +14,8 @@ static const char modal_usage[] =
     "whirl directions at the case speed; the Campbell diagram over modal.speed_min..speed_max;\n"
     "the critical speeds (forward and backward whirl crossing the 1x line); and the steady\n"
     "unbalance response (orbits at the retainer and AMB nodes) at modal.response_speeds.\n"
-    "Writes everything, mode shapes included, to CSV and HDF5.\n"
+    "Writes everything, mode shapes included, to CSV and HDF5. Large models (over 240 states) get\n"
+    "their lowest modes only (docs/case-format.md); speed_steps x DOFs is limited to 200000.\n"
     "\n"
     "options:\n"
     "  -s, --set KEY=VALUE  override a case key (repeatable), e.g. --set modal.speed_max=500\n"
@@ -144,9 +145,18 @@ static int analyse(const td_case *c, double speed, const modal_outputs *paths, i
 
     memset(h, 0, sizeof h);
     td_error_clear(&err);
+    if ((long)opt->speed_steps * td_model_dof_count(m) > TD_MODAL_MAX_GRID_WORK) {
+        /* the case reader checks the key where it is written; this catches the default on a large model */
+        fprintf(stderr,
+                "touchdown modal: %s: modal.speed_steps: the default %d speeds are too many for %d DOFs "
+                "(speed_steps x DOFs at most %ld): set modal.speed_steps to at most %ld\n",
+                td_case_path(c), opt->speed_steps, td_model_dof_count(m), (long)TD_MODAL_MAX_GRID_WORK,
+                (long)TD_MODAL_MAX_GRID_WORK / (td_model_dof_count(m)));
+        return TD_EXIT_USAGE;
+    }
     if ((st = stage(td_system_create(m, &sys, &err), cancel, &err)) != TD_OK)
         goto done;
-    if ((st = stage(td_modal_solve(sys, speed, &modes, &err), cancel, &err)) != TD_OK)
+    if ((st = stage(td_modal_solve_lowest(sys, speed, opt->mode_count, &modes, &err), cancel, &err)) != TD_OK)
         goto done;
     if ((st = stage(td_campbell_compute(sys, opt, &camp, &err), cancel, &err)) != TD_OK)
         goto done;

@@ -114,7 +114,11 @@ TD_API int td_modal_node_count(const td_modal *m);
  * Normalised so that the largest |X_k| or |Y_k| is 1 and that component is real and positive.
  */
 TD_API td_status td_modal_mode_shape(const td_modal *m, int i, double *x_re, double *x_im, double *y_re, double *y_im);
-/** Largest real part over all eigenvalues, 1/s: < 0 means the contact-free system is stable. */
+/**
+ * Largest real part over the eigenvalues the analysis holds, 1/s. For td_modal_solve (all of
+ * them): < 0 means the contact-free system is stable. For td_modal_solve_lowest on a large
+ * system it covers only the roots computed (td_modal_computed_count).
+ */
 TD_API double td_modal_max_real_part(const td_modal *m);
 /** Largest |s| over all eigenvalues, 1/s (the spectral radius). */
 TD_API double td_modal_spectral_radius(const td_modal *m);
@@ -124,10 +128,33 @@ TD_API double td_modal_spectral_radius(const td_modal *m);
 /** 1 if some eigenvalue grows: max real part > TD_MODAL_ROUNDOFF_REAL_PART * spectral radius. */
 TD_API int td_modal_is_unstable(const td_modal *m);
 
+/**
+ * The lowest modes only: at least the `count` lowest-frequency vibration modes
+ * (td_mode_is_vibration) at speed `omega`, for tables, Campbell diagrams and critical speeds of
+ * large models. Systems of at most a few hundred states get the full dense td_modal_solve (the
+ * same results). Larger ones are solved by shift-invert Arnoldi (ARPACK) on the sparse
+ * first-order system, which costs O(states) per iteration instead of O(states^3): the result
+ * then holds every vibration mode with omega_d below td_modal_complete_below (sorted as in
+ * td_modal_solve, shapes and whirl alike) and the real roots and overdamped pairs that were
+ * computed on the way; roots further from 0 are absent. Fails with TD_ERR_INVALID when `count`
+ * is so large that only a dense solve could give it and the system is too large for one.
+ */
+TD_API td_status td_modal_solve_lowest(const td_system *sys, double omega, int count, td_modal **out, td_error *err);
+/** Damped frequency below which every vibration mode is listed, rad/s (INFINITY after a full solve). */
+TD_API double td_modal_complete_below(const td_modal *m);
+/** Number of eigenvalues the solver computed: the state count for a full solve, fewer for a partial one. */
+TD_API int td_modal_computed_count(const td_modal *m);
+
 /* ---------------------------------------------------------------------------------------- */
 /* Campbell diagram                                                                          */
 
 typedef struct td_campbell td_campbell;
+
+/**
+ * Case files may ask for at most this many speed_steps x mechanical DOFs: every grid speed costs an
+ * eigen-solve for the Campbell diagram and one for the critical speeds (docs/performance.md).
+ */
+#define TD_MODAL_MAX_GRID_WORK 200000L
 
 /**
  * Oscillatory modes over opt->speed_steps speeds evenly spaced from opt->speed_min to

@@ -4,6 +4,7 @@
  * reader never restates them.
  */
 #include "io/case_internal.h"
+#include "touchdown/modal.h"
 #include "util/error_internal.h"
 #include "util/limits.h"
 
@@ -197,6 +198,11 @@ static td_status read_modal(td_case_reader *r, const config_setting_t *root, td_
                      "speed_max (%g rad/s) must be larger than speed_min (%g rad/s)", o->speed_max, o->speed_min);
     if (st == TD_OK)
         st = td_cr_int(r, g, "speed_steps", NULL, o->speed_steps, 2, 100000, &o->speed_steps);
+    if (st == TD_OK && td_cr_has(g, "speed_steps") && (long)o->speed_steps * dofs > TD_MODAL_MAX_GRID_WORK)
+        st = fail_at(r, g, "speed_steps",
+                     "%d speeds on a model of %d DOFs is too much work: speed_steps x DOFs must "
+                     "stay below %ld (here at most %ld speeds; see docs/performance.md)",
+                     o->speed_steps, dofs, (long)TD_MODAL_MAX_GRID_WORK, (long)TD_MODAL_MAX_GRID_WORK / dofs);
     if (st == TD_OK)
         st = td_cr_int(r, g, "modes", NULL, o->mode_count < dofs ? o->mode_count : dofs, 1, dofs, &o->mode_count);
     if (st == TD_OK)

@@ -97,7 +97,7 @@ td_status td_campbell_compute(const td_system *sys, const td_modal_options *opt,
     for (k = 0; k < c->nspeeds; k++) {
         td_modal *m = NULL;
         c->speeds[k] = grid_speed(opt, k);
-        st = td_modal_solve(sys, c->speeds[k], &m, err);
+        st = td_modal_solve_lowest(sys, c->speeds[k], c->nbranches, &m, err);
         if (st != TD_OK) {
             td_campbell_free(&c);
             return st;
@@ -141,49 +141,69 @@ typedef struct whirl_list {
     td_mode *modes;
 } whirl_list;
 
-static td_status whirl_modes(const td_system *sys, double omega, td_whirl which, whirl_list *out, td_error *err)
+/* What the crossing search solves: the system, and the damped frequency up to which every vibration
+ * mode is needed (the top of the speed range: a branch crossing the 1x line there lies below it). */
+typedef struct crossing_problem {
+    const td_system *sys;
+    double wmax;
+} crossing_problem;
+
+/* The forward (lists[0]) and backward (lists[1]) vibration modes at one speed, from one eigen-solve. */
+static td_status whirl_modes(const crossing_problem *cp, double omega, whirl_list lists[2], td_error *err)
 {
+    static const td_whirl senses[2] = {TD_WHIRL_FORWARD, TD_WHIRL_BACKWARD};
     td_modal *m = NULL;
-    td_status st = td_modal_solve(sys, omega, &m, err);
-    int i;
-    out->count = 0;
-    out->modes = NULL;
+    td_status st = td_modal_lowest(cp->sys, omega, 1, cp->wmax, 0, &m, err);
+    int i, s;
+    for (s = 0; s < 2; s++) {
+        lists[s].count = 0;
+        lists[s].modes = NULL;
+    }
     if (st != TD_OK)
         return st;
-    out->modes = malloc((size_t)(m->n_modes > 0 ? m->n_modes : 1) * sizeof *out->modes);
-    if (!out->modes) {
-        td_modal_free(&m);
-        return td_error_set(err, TD_ERR_NOMEM, "modal: out of memory");
+    for (s = 0; s < 2 && st == TD_OK; s++) {
+        lists[s].modes = malloc((size_t)(m->n_modes > 0 ? m->n_modes : 1) * sizeof *lists[s].modes);
+        if (!lists[s].modes)
+            st = td_error_set(err, TD_ERR_NOMEM, "modal: out of memory");
+        for (i = 0; st == TD_OK && i < m->n_modes; i++)
+            if (m->modes[i].whirl == senses[s] && td_mode_is_vibration(&m->modes[i]) &&
+                m->modes[i].omega_d < m->complete_below)
+                lists[s].modes[lists[s].count++] = m->modes[i];
     }
-    for (i = 0; i < m->n_modes; i++)
-        if (m->modes[i].whirl == which && td_mode_is_vibration(&m->modes[i]))
-            out->modes[out->count++] = m->modes[i];
     td_modal_free(&m);
-    return TD_OK;
+    return st;
+}
+
+static void whirl_lists_free(whirl_list lists[2])
+{
+    free(lists[0].modes);
+    free(lists[1].modes);
+    lists[0].modes = lists[1].modes = NULL;
 }
 
 /* g(Omega) = omega_d - Omega of branch `branch` of whirl `which`; *ok = 0 if the branch is absent. */
-static td_status branch_gap(const td_system *sys, double omega, td_whirl which, int branch, double *g, td_mode *mode,
-                            int *ok, td_error *err)
+static td_status branch_gap(const crossing_problem *cp, double omega, td_whirl which, int branch, double *g,
+                            td_mode *mode, int *ok, td_error *err)
 {
-    whirl_list l;
-    td_status st = whirl_modes(sys, omega, which, &l, err);
+    whirl_list l[2];
+    const whirl_list *w = &l[which == TD_WHIRL_FORWARD ? 0 : 1];
+    td_status st = whirl_modes(cp, omega, l, err);
     if (st != TD_OK)
         return st;
-    *ok = branch < l.count;
+    *ok = branch < w->count;
     if (*ok) {
-        *g = l.modes[branch].omega_d - omega;
+        *g = w->modes[branch].omega_d - omega;
         if (mode)
-            *mode = l.modes[branch];
+            *mode = w->modes[branch];
     }
-    free(l.modes);
+    whirl_lists_free(l);
     return TD_OK;
 }
 
 /* Refine a bracketed crossing [a, b] (ga, gb of opposite signs) by the Illinois method. *found = 0
  * when the branch vanished inside or the limit is a jump between branches, not a crossing. */
-static td_status refine(const td_system *sys, td_whirl which, int branch, double a, double ga, double b, double gb,
-                        td_critical_speed *cs, int *found, td_error *err)
+static td_status refine(const crossing_problem *cp, td_whirl which, int branch, double a, double ga, double b,
+                        double gb, td_critical_speed *cs, int *found, td_error *err)
 {
     int side = 0, iter, ok;
     double x = a, gx = ga;
@@ -194,7 +214,7 @@ static td_status refine(const td_system *sys, td_whirl which, int branch, double
         x = (a * gb - b * ga) / (gb - ga);
         if (!(x > a && x < b))
             x = 0.5 * (a + b);
-        st = branch_gap(sys, x, which, branch, &gx, &mode, &ok, err);
+        st = branch_gap(cp, x, which, branch, &gx, &mode, &ok, err);
         if (st != TD_OK)
             return st;
         if (!ok)
@@ -257,7 +277,7 @@ static int cmp_speed(const void *a, const void *b)
 }
 
 /* Scan one grid interval [s0, s1] (whirl lists l0, l1 there) for branch crossings. */
-static td_status scan_interval(const td_system *sys, td_whirl which, double s0, const whirl_list *l0, double s1,
+static td_status scan_interval(const crossing_problem *cp, td_whirl which, double s0, const whirl_list *l0, double s1,
                                const whirl_list *l1, cs_list *res, td_error *err)
 {
     int j, n = l0->count < l1->count ? l0->count : l1->count;
@@ -268,7 +288,7 @@ static td_status scan_interval(const td_system *sys, td_whirl which, double s0, 
         td_status st;
         if (g0 == 0.0 || g1 == 0.0 || (g0 > 0.0) == (g1 > 0.0))
             continue;
-        st = refine(sys, which, j, s0, g0, s1, g1, &cs, &found, err);
+        st = refine(cp, which, j, s0, g0, s1, g1, &cs, &found, err);
         if (st != TD_OK)
             return st;
         if (found && (st = cs_push(res, &cs, err)) != TD_OK)
@@ -292,27 +312,29 @@ td_status td_modal_critical_speeds(const td_system *sys, const td_modal_options 
     cs_list res = {NULL, 0, 0};
     td_status st;
     int s, k, i;
+    crossing_problem cp;
+    whirl_list prev[2] = {{0, NULL}, {0, NULL}}, cur[2];
+    double sprev = 0.0;
     if (!count || capacity < 0 || (capacity > 0 && !out))
         return td_error_set(err, TD_ERR_INVALID, "td_modal_critical_speeds: bad output arguments");
     *count = 0;
     st = check_options(opt, err);
     if (st != TD_OK)
         return st;
-    for (s = 0; s < 2 && st == TD_OK; s++) {
-        whirl_list prev = {0, NULL}, cur = {0, NULL};
-        double sprev = 0.0;
-        for (k = 0; k < opt->speed_steps && st == TD_OK; k++) {
-            double sp = grid_speed(opt, k);
-            st = whirl_modes(sys, sp, senses[s], &cur, err);
-            if (st == TD_OK && k > 0)
-                st = scan_interval(sys, senses[s], sprev, &prev, sp, &cur, &res, err);
-            free(prev.modes);
-            prev = cur;
-            cur.modes = NULL;
-            sprev = sp;
-        }
-        free(prev.modes);
+    cp.sys = sys;
+    cp.wmax = opt->speed_max;
+    /* one eigen-solve per grid speed serves both whirl senses */
+    for (k = 0; k < opt->speed_steps && st == TD_OK; k++) {
+        double sp = grid_speed(opt, k);
+        st = whirl_modes(&cp, sp, cur, err);
+        for (s = 0; s < 2 && st == TD_OK && k > 0; s++)
+            st = scan_interval(&cp, senses[s], sprev, &prev[s], sp, &cur[s], &res, err);
+        whirl_lists_free(prev);
+        prev[0] = cur[0];
+        prev[1] = cur[1];
+        sprev = sp;
     }
+    whirl_lists_free(prev);
     if (st != TD_OK) {
         free(res.items);
         return st;

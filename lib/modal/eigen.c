@@ -208,9 +208,8 @@ static td_modal *modal_alloc(int nnodes, int nmodes, int nreal)
     return m;
 }
 
-/* Sort and store the eigenvalues/vectors into a new td_modal. */
-static td_status collect(const gsl_vector_complex *eval, gsl_matrix_complex *evec, int nnodes, double omega,
-                         td_modal **out, td_error *err)
+td_status td_modal_collect(const gsl_vector_complex *eval, gsl_matrix_complex *evec, int nnodes, double omega,
+                           td_modal **out, td_error *err)
 {
     size_t n = eval->size, i;
     eig_ref *osc = malloc(n * sizeof *osc);
@@ -239,6 +238,8 @@ static td_status collect(const gsl_vector_complex *eval, gsl_matrix_complex *eve
     }
     m->omega = omega;
     m->max_real = maxre;
+    m->n_computed = (int)n;
+    m->complete_below = HUGE_VAL;
     qsort(osc, (size_t)nosc, sizeof *osc, cmp_oscillatory);
     resolve_degenerate(evec, osc, nosc, nnodes);
     for (k = 0; k < nosc; k++) {
@@ -285,7 +286,7 @@ td_status td_modal_solve(const td_system *sys, double omega, td_modal **out, td_
         if (gsl_eigen_nonsymmv(ss.A, eval, evec, w) != GSL_SUCCESS)
             st = td_error_set(err, TD_ERR_NUMERIC, "modal: the eigen-solver did not converge at %g rad/s", omega);
         else
-            st = collect(eval, evec, sys->nnodes, omega, out, err);
+            st = td_modal_collect(eval, evec, sys->nnodes, omega, out, err);
     }
     gsl_eigen_nonsymmv_free(w);
     gsl_matrix_complex_free(evec);

@@ -21,6 +21,25 @@ typedef struct td_state_space {
     gsl_matrix *L; /* Cholesky factor of M (ndof x ndof) */
 } td_state_space;
 
+/* Where assembled entries go: a dense matrix (dense != NULL) or a CXSparse triplet; entry (i, j)
+ * lands in row row0 + i. ok drops to 0 when the triplet could not grow. */
+typedef struct td_entry_sink {
+    gsl_matrix *dense;
+    cs_di *triplet;
+    int row0;
+    int ok;
+} td_entry_sink;
+
+void td_entry_add(td_entry_sink *k, int i, int j, double v);
+/* k(i, col0 + j) += scale * S(i, j) */
+void td_entry_add_matrix(td_entry_sink *k, const cs_di *S, int col0, double scale);
+
+/* Right-hand blocks R = [-K_eff | -C_eff | B_w] (ndof rows, 2 ndof + nfilter columns) of
+ * M v' = R z, as state_space.c describes them. */
+void td_state_space_rhs_blocks(const td_system *sys, double omega, td_entry_sink *R);
+/* Filter rows w' = rate_x xs + rate_v vs + rate_w w (rows 2 ndof + state of the state vector). */
+void td_state_space_filter_rows(const td_system *sys, td_entry_sink *A);
+
 /* Build the state space of `sys` at speed `omega`; on failure *ss is left empty (freed). */
 td_status td_state_space_build(const td_system *sys, double omega, td_state_space *ss, td_error *err);
 void td_state_space_free(td_state_space *ss);
@@ -43,7 +62,24 @@ struct td_modal {
     int n_real;
     double *real; /* real eigenvalues, descending */
     double max_real;
+    int n_computed;        /* eigenvalues the solver computed (the state count for a full solve) */
+    double complete_below; /* every vibration mode with omega_d below this is listed (INFINITY: all) */
 };
+
+/* Sort and store eigenvalues and their eigenvectors (columns of evec, state rows) into a new
+ * td_modal (a full one: n_computed = eval->size, complete_below = INFINITY). */
+td_status td_modal_collect(const gsl_vector_complex *eval, gsl_matrix_complex *evec, int nnodes, double omega,
+                           td_modal **out, td_error *err);
+
+/* Systems with at most this many states are always solved in full by the dense solver (the same
+ * results as td_modal_solve); larger ones by shift-invert Arnoldi (lib/modal/partial.c). */
+#define TD_MODAL_DENSE_MAX_STATES 240
+
+/* The partial analysis of td_modal_solve_lowest with a second demand: every vibration mode with
+ * omega_d <= wmax is listed (wmax <= 0: no such demand). force_sparse = 1 takes the Arnoldi path
+ * whatever the size (tests compare it with the dense solve). */
+td_status td_modal_lowest(const td_system *sys, double omega, int count, double wmax, int force_sparse, td_modal **out,
+                          td_error *err);
 
 /* Switch GSL's abort-on-error handler off (idempotent; see touchdown/modal.h). */
 void td_modal_gsl_quiet(void);

@@ -30,13 +30,21 @@ int td_modal_state_count(const td_system *sys)
     return sys ? 2 * sys->ndof + sys->n_filter_states : 0;
 }
 
-/* dense(i, j) += scale * S(i, j) */
-static void add_sparse(gsl_matrix *D, const cs_di *S, double scale)
+void td_entry_add(td_entry_sink *k, int i, int j, double v)
+{
+    if (k->dense)
+        *gsl_matrix_ptr(k->dense, (size_t)(k->row0 + i), (size_t)j) += v;
+    else if (v != 0.0 && !cs_di_entry(k->triplet, k->row0 + i, j, v))
+        k->ok = 0;
+}
+
+/* sink(i, col0 + j) += scale * S(i, j) */
+void td_entry_add_matrix(td_entry_sink *k, const cs_di *S, int col0, double scale)
 {
     int j, p;
     for (j = 0; j < S->n; j++)
         for (p = S->p[j]; p < S->p[j + 1]; p++)
-            *gsl_matrix_ptr(D, (size_t)S->i[p], (size_t)j) += scale * S->x[p];
+            td_entry_add(k, S->i[p], col0 + j, scale * S->x[p]);
 }
 
 /* Linear coefficients of one AMB axis, from the law functions of system_internal.h. */
@@ -62,48 +70,42 @@ static amb_coeffs amb_axis_coeffs(const td_amb_axis *a)
     return c;
 }
 
-/* Right-hand blocks [K_eff | C_eff | B_w] (ndof x (2 ndof + nfilter)) of M v' = -K_eff q - C_eff v + B_w w,
- * stored with the signs of the state equation: R = [-K_eff | -C_eff | B_w]. */
-static void fill_rhs_blocks(const td_system *sys, double omega, gsl_matrix *R)
+void td_state_space_rhs_blocks(const td_system *sys, double omega, td_entry_sink *R)
 {
     int nd = sys->ndof, k;
-    gsl_matrix_view Kb = gsl_matrix_submatrix(R, 0, 0, (size_t)nd, (size_t)nd);
-    gsl_matrix_view Cb = gsl_matrix_submatrix(R, 0, (size_t)nd, (size_t)nd, (size_t)nd);
-    gsl_matrix_set_zero(R);
-    add_sparse(&Kb.matrix, sys->K, -1.0);
-    add_sparse(&Cb.matrix, sys->C, -1.0);
-    add_sparse(&Cb.matrix, sys->G, -omega);
+    td_entry_add_matrix(R, sys->K, 0, -1.0);
+    td_entry_add_matrix(R, sys->C, nd, -1.0);
+    td_entry_add_matrix(R, sys->G, nd, -omega);
     for (k = 0; k < sys->n_amb_axes; k++) {
         const td_amb_axis *a = &sys->amb_axes[k];
         amb_coeffs c = amb_axis_coeffs(a);
-        size_t act = (size_t)a->actuator_dof, sen = (size_t)a->sensor_dof;
+        int act = a->actuator_dof, sen = a->sensor_dof;
         /* F = ks x + Fc on the right-hand side: +ks x */
-        *gsl_matrix_ptr(R, act, act) += c.dfdx;
+        td_entry_add(R, act, act, c.dfdx);
         if (a->state < 0) {
             /* lag-free: Fc = command(xs, vs) exactly */
-            *gsl_matrix_ptr(R, act, sen) += c.dfdfc * c.cmd_x;
-            *gsl_matrix_ptr(R, act, (size_t)nd + sen) += c.dfdfc * c.cmd_v;
+            td_entry_add(R, act, sen, c.dfdfc * c.cmd_x);
+            td_entry_add(R, act, nd + sen, c.dfdfc * c.cmd_v);
         } else {
-            *gsl_matrix_ptr(R, act, (size_t)(2 * nd + a->state)) += c.dfdfc;
+            td_entry_add(R, act, 2 * nd + a->state, c.dfdfc);
         }
     }
 }
 
-/* Filter rows w' = rate_x xs + rate_v vs + rate_w w. */
-static void fill_filter_rows(const td_system *sys, gsl_matrix *A)
+void td_state_space_filter_rows(const td_system *sys, td_entry_sink *A)
 {
     int nd = sys->ndof, k;
     for (k = 0; k < sys->n_amb_axes; k++) {
         const td_amb_axis *a = &sys->amb_axes[k];
         amb_coeffs c;
-        size_t row;
+        int row;
         if (a->state < 0)
             continue;
         c = amb_axis_coeffs(a);
-        row = (size_t)(2 * nd + a->state);
-        *gsl_matrix_ptr(A, row, (size_t)a->sensor_dof) += c.rate_x;
-        *gsl_matrix_ptr(A, row, (size_t)(nd + a->sensor_dof)) += c.rate_v;
-        *gsl_matrix_ptr(A, row, row) += c.rate_w;
+        row = 2 * nd + a->state;
+        td_entry_add(A, row, a->sensor_dof, c.rate_x);
+        td_entry_add(A, row, nd + a->sensor_dof, c.rate_v);
+        td_entry_add(A, row, row, c.rate_w);
     }
 }
 
@@ -119,8 +121,10 @@ void td_state_space_free(td_state_space *ss)
 /* L = Cholesky factor of the dense M. */
 static td_status factor_mass(const td_system *sys, gsl_matrix *L, td_error *err)
 {
+    td_entry_sink k = {NULL, NULL, 0, 1};
+    k.dense = L;
     gsl_matrix_set_zero(L);
-    add_sparse(L, sys->M, 1.0);
+    td_entry_add_matrix(&k, sys->M, 0, 1.0);
     if (gsl_linalg_cholesky_decomp1(L) != GSL_SUCCESS)
         return td_error_set(err, TD_ERR_NUMERIC,
                             "modal: the mass matrix is not positive definite (a DOF without mass or inertia?)");
@@ -154,8 +158,12 @@ td_status td_state_space_build(const td_system *sys, double omega, td_state_spac
     st = factor_mass(sys, ss->L, err);
     if (st == TD_OK) {
         size_t i;
+        td_entry_sink rk = {NULL, NULL, 0, 1}, ak = {NULL, NULL, 0, 1};
+        rk.dense = R;
+        ak.dense = ss->A;
         /* v rows: M^-1 [-K_eff | -C_eff | B_w] */
-        fill_rhs_blocks(sys, omega, R);
+        gsl_matrix_set_zero(R);
+        td_state_space_rhs_blocks(sys, omega, &rk);
         if (gsl_linalg_cholesky_svx_mat(ss->L, R) != GSL_SUCCESS)
             st = td_error_set(err, TD_ERR_NUMERIC, "modal: solving with the mass matrix failed");
         else {
@@ -163,7 +171,7 @@ td_status td_state_space_build(const td_system *sys, double omega, td_state_spac
             gsl_matrix_memcpy(&vrows.matrix, R);
             for (i = 0; i < nd; i++) /* q' = v */
                 gsl_matrix_set(ss->A, i, nd + i, 1.0);
-            fill_filter_rows(sys, ss->A);
+            td_state_space_filter_rows(sys, &ak);
         }
     }
     gsl_matrix_free(R);
