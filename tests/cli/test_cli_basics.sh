@@ -6,28 +6,12 @@
 set -u
 tool=$1
 src=$2
-fails=0
-checks=0
 work=$(mktemp -d "${PWD}/cli-basics.XXXXXX")
 trap 'rm -rf "$work"' EXIT
 case_a=$src/cases/paper-a.cfg
 
-fail() { echo "FAIL: $*"; fails=$((fails + 1)); checks=$((checks + 1)); }
-pass() { echo "ok:   $*"; checks=$((checks + 1)); }
-check() { # DESCRIPTION COMMAND...
-    local what=$1
-    shift
-    if "$@"; then pass "$what"; else fail "$what"; fi
-}
+. "$(dirname "${BASH_SOURCE[0]}")/common.sh" # fail, pass, check, t, jf
 
-# t DIR ARGS...: run the tool in DIR (created empty); rc, and DIR/.out, DIR/.err.
-t() {
-    local d=$1
-    shift
-    mkdir -p "$d"
-    (cd "$d" && "$tool" "$@" >"$d/.out" 2>"$d/.err" </dev/null)
-    rc=$?
-}
 files_in() { (cd "$1" && ls | tr '\n' ' ' | sed 's/ $//'); }
 json_field() { sed -nE "s/.*\"$2\":(\"[^\"]*\"|[^,}]*).*/\\1/p" "$1" | head -n 1; }
 

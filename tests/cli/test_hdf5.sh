@@ -14,19 +14,11 @@
 set -u
 tool=$1
 src=$2
-fails=0
-checks=0
 work=$(mktemp -d "${PWD}/cli-hdf5.XXXXXX")
 trap 'rm -rf "$work"' EXIT
 case_a=$src/cases/paper-a.cfg
 
-fail() { echo "FAIL: $*"; fails=$((fails + 1)); checks=$((checks + 1)); }
-pass() { echo "ok:   $*"; checks=$((checks + 1)); }
-check() { # DESCRIPTION COMMAND...
-    local what=$1
-    shift
-    if "$@"; then pass "$what"; else fail "$what"; fi
-}
+. "$(dirname "${BASH_SOURCE[0]}")/common.sh" # fail, pass, check, t, jf
 
 # A short run of case A with a few contacts (events), HDF5 only.
 run_a() { # PREFIX ARGS...

@@ -13,19 +13,11 @@
 set -u
 tool=$1
 src=$2
-fails=0
-checks=0
 work=$(mktemp -d "${PWD}/paper-cases.XXXXXX")
 trap 'rm -rf "$work"' EXIT
 clearance=7.5e-4 # m, every retainer of cases/rig.cfg
 
-fail() { echo "FAIL: $*"; fails=$((fails + 1)); checks=$((checks + 1)); }
-pass() { echo "ok:   $*"; checks=$((checks + 1)); }
-check() { # DESCRIPTION COMMAND...
-    local what=$1
-    shift
-    if "$@"; then pass "$what"; else fail "$what"; fi
-}
+. "$(dirname "${BASH_SOURCE[0]}")/common.sh" # fail, pass, check, t, jf
 json_field() { sed -nE "s/.*\"$2\":(\"[^\"]*\"|[^,}]*).*/\\1/p" "$1" | head -n 1; }
 # summary_field FILE LABEL: the text after a label of the human summary
 summary_field() { sed -nE "s/^$2 +//p" "$1" | head -n 1; }

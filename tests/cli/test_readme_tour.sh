@@ -24,18 +24,10 @@ set -u
 tool=$1
 src=$2
 build=$(cd "$(dirname "$tool")" && pwd)
-fails=0
-checks=0
 work=$(mktemp -d "${PWD}/readme-tour.XXXXXX")
 trap 'rm -rf "$work"' EXIT
 
-fail() { echo "FAIL: $*"; fails=$((fails + 1)); checks=$((checks + 1)); }
-pass() { echo "ok:   $*"; checks=$((checks + 1)); }
-check() { # DESCRIPTION COMMAND...
-    local what=$1
-    shift
-    if "$@"; then pass "$what"; else fail "$what"; fi
-}
+. "$(dirname "${BASH_SOURCE[0]}")/common.sh" # fail, pass, check, t, jf
 
 # The tour's commands: the code lines (4-space indent) between its heading and the next heading.
 tour_commands() {

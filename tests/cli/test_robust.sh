@@ -32,8 +32,6 @@
 set -u
 tool=$1
 src=$2
-fails=0
-checks=0
 dir=$src/tests/data/robust
 work=$(mktemp -d "${PWD}/robust.XXXXXX")
 trap 'rm -rf "$work"' EXIT
@@ -41,15 +39,7 @@ hang=600      # s: a hang, not a speed requirement (see above)
 h_floor=1e-7  # s: the smallest mean solver step of a sane run (see above)
 ev_floor=1e-5 # s: the smallest mean time between events of a sane run (see above)
 
-fail() { echo "FAIL: $*"; fails=$((fails + 1)); checks=$((checks + 1)); }
-pass() { echo "ok:   $*"; checks=$((checks + 1)); }
-check() { # DESCRIPTION COMMAND...
-    local what=$1
-    shift
-    if "$@"; then pass "$what"; else fail "$what"; fi
-}
-# First top-level occurrence of "KEY":VALUE in a one-line JSON object (strings keep quotes).
-jf() { grep -oE "\"$2\":(\"[^\"]*\"|[^,}]*)" "$1" | head -n 1 | sed -E "s/^\"$2\"://"; }
+. "$(dirname "${BASH_SOURCE[0]}")/common.sh" # fail, pass, check, t, jf
 # awk truth test on numbers: awk_true 'a <= b' a=1 b=2
 awk_true() {
     local expr=$1

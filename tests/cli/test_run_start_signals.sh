@@ -8,29 +8,11 @@
 set -u
 tool=$1
 src=$2
-fails=0
-checks=0
 work=$(mktemp -d "${PWD}/run-start.XXXXXX")
 trap 'rm -rf "$work"' EXIT
 case_a=$src/cases/paper-a.cfg
 
-fail() { echo "FAIL: $*"; fails=$((fails + 1)); checks=$((checks + 1)); }
-pass() { echo "ok:   $*"; checks=$((checks + 1)); }
-check() { # DESCRIPTION COMMAND...
-    local what=$1
-    shift
-    if "$@"; then pass "$what"; else fail "$what"; fi
-}
-# t DIR ARGS...: run the tool in DIR (created empty); rc, and DIR/.out, DIR/.err.
-t() {
-    local d=$1
-    shift
-    mkdir -p "$d"
-    (cd "$d" && "$tool" "$@" >"$d/.out" 2>"$d/.err" </dev/null)
-    rc=$?
-}
-# First top-level "KEY":VALUE of a one-line JSON object (strings keep their quotes).
-jf() { grep -oE "\"$2\":(\"[^\"]*\"|[^,}]*)" "$1" | head -n 1 | sed -E "s/^\"$2\"://"; }
+. "$(dirname "${BASH_SOURCE[0]}")/common.sh" # fail, pass, check, t, jf
 has() { grep -qF -- "$2" "$1"; }
 # bg DIR SIGNAL DELAY ARGS...: start the tool in DIR, send SIGNAL after DELAY s; rc as t.
 bg() {

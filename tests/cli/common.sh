@@ -1,0 +1,24 @@
+# Helpers shared by the CLI test scripts (sourced, not run): each script counts its checks and
+# failures, prints "ok:" or "FAIL:" lines, and exits non-zero if any check failed.
+fails=0
+checks=0
+
+fail() { echo "FAIL: $*"; fails=$((fails + 1)); checks=$((checks + 1)); }
+pass() { echo "ok:   $*"; checks=$((checks + 1)); }
+check() { # DESCRIPTION COMMAND...
+    local what=$1
+    shift
+    if "$@"; then pass "$what"; else fail "$what"; fi
+}
+
+# t DIR ARGS...: run the tool ($tool) in DIR (created if missing); rc, and DIR/.out, DIR/.err.
+t() {
+    local d=$1
+    shift
+    mkdir -p "$d"
+    (cd "$d" && "$tool" "$@" >"$d/.out" 2>"$d/.err" </dev/null)
+    rc=$?
+}
+
+# First top-level "KEY":VALUE of a one-line JSON object (strings keep their quotes).
+jf() { grep -oE "\"$2\":(\"[^\"]*\"|[^,}]*)" "$1" | head -n 1 | sed -E "s/^\"$2\"://"; }
