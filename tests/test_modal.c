@@ -62,6 +62,40 @@ static td_system *overhung_fine(int n)
     return s;
 }
 
+/* td_modal_stability (eigenvalues only) against td_modal_solve (eigenvalues and vectors), a second
+ * solver path, on the AMB Jeffcott rotor of tests/data/case/amb-jeffcott.cfg: the same rightmost
+ * real part and verdict, and the verdict Routh-Hurwitz gives (stable iff ks/ki < kp < kd/tau,
+ * 1e3 < kp < 1e4 there) on either side of both bounds. */
+static void test_stability_matches_full_solve(void **state)
+{
+    static const struct {
+        const char *kp0, *kp1;
+        int unstable;
+    } cases[] = {{"ambs[0].kp=900", "ambs[1].kp=900", 1},
+                 {"ambs[0].kp=1100", "ambs[1].kp=1100", 0},
+                 {"ambs[0].kp=9900", "ambs[1].kp=9900", 0},
+                 {"ambs[0].kp=10100", "ambs[1].kp=10100", 1}};
+    size_t i;
+    (void)state;
+    for (i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        const char *ov[2] = {cases[i].kp0, cases[i].kp1};
+        td_case *c = td_test_load_case("tests/data/case/amb-jeffcott.cfg", ov, 2);
+        td_system *s = NULL;
+        td_modal *m = NULL;
+        double max_real = 0.0;
+        int unstable = -1;
+        assert_int_equal(td_system_create(td_case_model(c), &s, NULL), TD_OK);
+        assert_int_equal(td_modal_stability(s, td_model_speed(td_case_model(c)), &max_real, &unstable, NULL), TD_OK);
+        assert_int_equal(td_modal_solve(s, td_model_speed(td_case_model(c)), &m, NULL), TD_OK);
+        assert_true(fabs(max_real - td_modal_max_real_part(m)) <= 1e-10 * td_modal_spectral_radius(m));
+        assert_int_equal(unstable, td_modal_is_unstable(m));
+        assert_int_equal(unstable, cases[i].unstable);
+        td_modal_free(&m);
+        td_system_free(&s);
+        td_case_free(&c);
+    }
+}
+
 /* Largest difference of the phase-free parts of two mode shapes (|X_k|, |Y_k| and conj(X_k) Y_k): a
  * circular whirl has |X| = |Y| at its largest node, so which of them is made real is a tie. */
 static double shape_gap(const td_modal *a, int ia, const td_modal *b, int ib)
@@ -549,6 +583,7 @@ int main(void)
         cmocka_unit_test(test_critical_speed_vs_scan),
         cmocka_unit_test(test_writers_round_trip),
         cmocka_unit_test(test_partial_equals_dense),
+        cmocka_unit_test(test_stability_matches_full_solve),
         cmocka_unit_test(test_large_model_bounded),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

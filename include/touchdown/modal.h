@@ -127,13 +127,22 @@ TD_API double td_modal_spectral_radius(const td_modal *m);
 #define TD_MODAL_ROUNDOFF_REAL_PART 1e-9
 /** 1 if some eigenvalue grows: max real part > TD_MODAL_ROUNDOFF_REAL_PART * spectral radius. */
 TD_API int td_modal_is_unstable(const td_modal *m);
+/**
+ * Stability of the contact-free system at speed `omega` from its eigenvalues alone (no
+ * eigenvectors: several times cheaper than td_modal_solve, still a dense O(states^3) solve).
+ * *max_real_part: the largest real part, 1/s; *unstable: as td_modal_is_unstable would say for
+ * td_modal_solve's result. Either pointer may be NULL. Errors: TD_ERR_NOMEM, TD_ERR_NUMERIC.
+ */
+TD_API td_status td_modal_stability(const td_system *sys, double omega, double *max_real_part, int *unstable,
+                                    td_error *err);
 
 /**
  * The lowest modes only: at least the `count` lowest-frequency vibration modes
  * (td_mode_is_vibration) at speed `omega`, for tables, Campbell diagrams and critical speeds of
  * large models. Systems of at most a few hundred states get the full dense td_modal_solve (the
- * same results). Larger ones are solved by shift-invert Arnoldi (ARPACK) on the sparse
- * first-order system, which costs O(states) per iteration instead of O(states^3): the result
+ * same results). Larger ones are solved by shift-invert block subspace iteration on the sparse
+ * first-order system (one KLU factorisation; the small projected problem on GSL), which costs
+ * O(states) per iteration instead of O(states^3): the result
  * then holds every vibration mode with omega_d below td_modal_complete_below (sorted as in
  * td_modal_solve, shapes and whirl alike) and the real roots and overdamped pairs that were
  * computed on the way; roots further from 0 are absent. Fails with TD_ERR_INVALID when `count`

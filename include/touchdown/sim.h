@@ -102,7 +102,7 @@ TD_API td_status td_sim_create_cancellable(const td_model *model, const td_sim_o
 
 /** Largest first-order state count (touchdown/modal.h) whose stability td_sim_create checks; a
  *  bigger model is not checked (its dense eigen-solve costs ~ seconds to minutes). */
-#define TD_SIM_STABILITY_MAX_STATES 400
+#define TD_SIM_STABILITY_MAX_STATES 800
 
 /** Stability of the contact-free closed loop (AMB filter states included) at the start speed. */
 typedef enum td_stability {

@@ -295,6 +295,49 @@ td_status td_modal_solve(const td_system *sys, double omega, td_modal **out, td_
     return st;
 }
 
+/* Largest real part and spectral radius of the eigenvalues in eval. */
+static void rightmost(const gsl_vector_complex *eval, double *max_real, double *radius)
+{
+    size_t i;
+    *max_real = -INFINITY;
+    *radius = 0.0;
+    for (i = 0; i < eval->size; i++) {
+        gsl_complex z = gsl_vector_complex_get(eval, i);
+        *max_real = fmax(*max_real, GSL_REAL(z));
+        *radius = fmax(*radius, gsl_complex_abs(z));
+    }
+}
+
+td_status td_modal_stability(const td_system *sys, double omega, double *max_real_part, int *unstable, td_error *err)
+{
+    td_state_space ss;
+    gsl_vector_complex *eval = NULL;
+    gsl_eigen_nonsymm_workspace *w = NULL;
+    double max_real = NAN, radius = 0.0;
+    td_status st = td_state_space_build(sys, omega, &ss, err);
+    if (st != TD_OK)
+        return st;
+    eval = gsl_vector_complex_alloc((size_t)ss.n);
+    w = gsl_eigen_nonsymm_alloc((size_t)ss.n);
+    if (!eval || !w)
+        st = td_error_set(err, TD_ERR_NOMEM, "modal: out of memory for the eigen-solver (%d states)", ss.n);
+    else {
+        gsl_eigen_nonsymm_params(0, 1, w); /* eigenvalues only, balanced as in td_modal_solve */
+        if (gsl_eigen_nonsymm(ss.A, eval, w) != GSL_SUCCESS)
+            st = td_error_set(err, TD_ERR_NUMERIC, "modal: the eigen-solver did not converge at %g rad/s", omega);
+        else
+            rightmost(eval, &max_real, &radius);
+    }
+    gsl_eigen_nonsymm_free(w);
+    gsl_vector_complex_free(eval);
+    td_state_space_free(&ss);
+    if (st == TD_OK && max_real_part)
+        *max_real_part = max_real;
+    if (st == TD_OK && unstable)
+        *unstable = max_real > TD_MODAL_ROUNDOFF_REAL_PART * radius;
+    return st;
+}
+
 void td_modal_free(td_modal **m)
 {
     if (!m || !*m)

@@ -368,15 +368,13 @@ static td_status factor_mass(td_sim *s, td_error *err)
  * eigen-solve, or one the solver fails on, stays unchecked: the check informs, it never blocks. */
 static void check_stability(td_sim *s)
 {
-    td_modal *m = NULL;
+    int unstable = 0;
     s->start.stability = TD_STABILITY_UNCHECKED;
     s->start.max_real_part = NAN;
     if (td_modal_state_count(s->sys) > TD_SIM_STABILITY_MAX_STATES ||
-        td_modal_solve(s->sys, s->omega, &m, NULL) != TD_OK)
+        td_modal_stability(s->sys, s->omega, &s->start.max_real_part, &unstable, NULL) != TD_OK)
         return;
-    s->start.max_real_part = td_modal_max_real_part(m);
-    s->start.stability = td_modal_is_unstable(m) ? TD_STABILITY_UNSTABLE : TD_STABILITY_STABLE;
-    td_modal_free(&m);
+    s->start.stability = unstable ? TD_STABILITY_UNSTABLE : TD_STABILITY_STABLE;
 }
 
 /* First retainer whose start radius exceeds its clearance by more than the grazing tolerance
