@@ -1,5 +1,5 @@
 /*
- * libFuzzer target for the case-file reader, td_case_load (lib/io/case*.c, on libconfig 1.5).
+ * libFuzzer target for the case-file reader, td_case_load (lib/case/case*.c, on libconfig 1.5).
  *
  * One fuzz input holds up to three parts separated by a line "@@@":
  *     MAIN TEXT \n@@@\n INCLUDED TEXT \n@@@\n OVERRIDES

@@ -5,7 +5,7 @@
  */
 #include "td_test.h"
 
-#include "io/case_internal.h"
+#include "case/case_internal.h"
 #include "touchdown/case.h"
 #include "touchdown/model.h"
 #include "touchdown/run.h"

@@ -135,7 +135,7 @@ static void ref_sample(reference *ref, const td_sim *sim, double t, int on_grid)
     ref->rows++;
 }
 
-/* The sampling rule of docs/output-format.md, written out independently of lib/io/run.c. */
+/* The sampling rule of docs/output-format.md, written out independently of lib/run/run.c. */
 static void reference_run(const td_model *m, reference *ref)
 {
     td_sim *sim = make_sim(m);

@@ -12,7 +12,7 @@
 #include <string.h>
 #include <time.h>
 
-#include "io/recorder.h"
+#include "run/recorder.h"
 #include "sim/sim_internal.h"
 #include "touchdown/output.h"
 #include "touchdown/version.h"

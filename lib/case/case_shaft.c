@@ -3,7 +3,7 @@
  * diameters and material with sections for stepped and hollow shafts, beam theory, mass form
  * and Rayleigh damping. Element i joins nodes i and i + 1 (touchdown/model.h).
  */
-#include "io/case_internal.h"
+#include "case/case_internal.h"
 #include "util/error_internal.h"
 #include "util/numeric.h"
 

@@ -3,7 +3,7 @@
  * "FILE:LINE: KEY: what is wrong" ("FILE: --set 'K=V': KEY: ..." for overridden values).
  * libconfig 1.5 tells integers (1) from floats (1.0); every real-valued key accepts both.
  */
-#include "io/case_internal.h"
+#include "case/case_internal.h"
 #include "util/error_internal.h"
 
 #include <math.h>

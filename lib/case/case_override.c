@@ -4,7 +4,7 @@
  * the checks the file does. Every grafted setting carries the override string as its libconfig
  * hook, which is how error messages name the override instead of a file line.
  */
-#include "io/case_internal.h"
+#include "case/case_internal.h"
 #include "util/error_internal.h"
 
 #include <stdio.h>

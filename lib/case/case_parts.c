@@ -4,7 +4,7 @@
  * td_model_validate would make (nodes in range, one AMB / retainer per node, retainer tighter
  * than every AMB air gap, schedule indices) are made here first so that they name the setting.
  */
-#include "io/case_internal.h"
+#include "case/case_internal.h"
 #include "util/error_internal.h"
 
 #include <math.h>

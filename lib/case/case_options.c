@@ -3,7 +3,7 @@
  * output and modal. Defaults come from td_*_options_default (lib/util/options.c), so the case
  * reader never restates them.
  */
-#include "io/case_internal.h"
+#include "case/case_internal.h"
 #include "touchdown/modal.h"
 #include "util/error_internal.h"
 #include "util/limits.h"

@@ -3,7 +3,7 @@
  * file's directory), apply the --set overrides, then read every section into a td_model and the
  * option structs. Each step stops at the first error with a "FILE:LINE: KEY: what" message.
  */
-#include "io/case_internal.h"
+#include "case/case_internal.h"
 #include "util/error_internal.h"
 
 #include <stdlib.h>

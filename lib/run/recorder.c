@@ -1,5 +1,5 @@
 /* The bridge between a td_sim and the writers (recorder.h). */
-#include "io/recorder.h"
+#include "run/recorder.h"
 #include "util/error_internal.h"
 
 #include <math.h>

@@ -6,7 +6,7 @@
  *   - an unterminated block comment silently drops the rest of the file.
  * The scan only tokenises comments, strings and numbers; all parsing stays with libconfig.
  */
-#include "io/case_internal.h"
+#include "case/case_internal.h"
 #include "util/error_internal.h"
 
 #include <ctype.h>
