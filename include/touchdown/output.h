@@ -25,7 +25,7 @@
 #include "touchdown/error.h"
 #include "touchdown/export.h"
 #include "touchdown/options.h"
-#include "touchdown/sim.h"
+#include "touchdown/records.h"
 
 #ifdef __cplusplus
 extern "C" {

@@ -14,6 +14,7 @@
 #include "touchdown/export.h"
 #include "touchdown/model.h"
 #include "touchdown/options.h"
+#include "touchdown/records.h"
 
 #include <signal.h>
 
@@ -23,71 +24,12 @@ extern "C" {
 
 typedef struct td_sim td_sim;
 
-/** What stopped a step early. */
-typedef enum td_event_kind {
-    TD_EVENT_CONTACT_ONSET = 0,     /**< rotor reached the clearance circle moving outward (impact) */
-    TD_EVENT_RELEASE = 1,           /**< normal force reached zero: the rotor leaves the retainer */
-    TD_EVENT_FRICTION_REVERSAL = 2, /**< sliding velocity (eq. 16) changed sign: it crossed the whole
-                                         slip band |v_s| < 1e-4 m/s of the friction law (docs/theory.md) */
-    TD_EVENT_SCHEDULE = 3,          /**< a timed change of the model (unbalance step, AMB failure) */
-    TD_EVENT_PENALTY_ENTER = 4,     /**< penalty model: penetration delta became positive */
-    TD_EVENT_PENALTY_EXIT = 5       /**< penalty model: penetration delta returned to zero */
-} td_event_kind;
-
-/** One event, as recorded in the event table. Velocities are of the retainer node. */
-typedef struct td_event {
-    td_event_kind kind;
-    double time;                   /**< s */
-    int retainer;                  /**< retainer index, -1 for schedule events */
-    int change;                    /**< schedule index for TD_EVENT_SCHEDULE, else -1 */
-    double radial_velocity_before; /**< m/s, positive outward */
-    double radial_velocity_after;
-    double tangential_velocity_before; /**< m/s, positive along the whirl direction */
-    double tangential_velocity_after;
-    double impulse;      /**< N s, normal impulse of the impact map (onset only) */
-    double normal_force; /**< N, right after the event */
-} td_event;
-
-/** Contact state of one retainer at the current time. */
-typedef struct td_retainer_state {
-    double x, y;             /**< node displacement, m */
-    double radius;           /**< radial position r = sqrt(x^2 + y^2), m */
-    double radial_velocity;  /**< m/s */
-    double whirl_angle;      /**< atan2(y, x), rad */
-    double normal_force;     /**< N >= 0 while in contact */
-    double friction_force;   /**< N, tangential, positive along the whirl direction */
-    double sliding_velocity; /**< eq. 16, m/s */
-    int in_contact;          /**< 1 while the contact is active */
-} td_retainer_state;
-
 /** How an AMB is driven. */
 typedef enum td_amb_mode {
     TD_AMB_PD = 0,       /**< built-in PD current control with force lag (the default) */
     TD_AMB_EXTERNAL = 1, /**< control force held at the value set by td_sim_set_amb_control (zero-order hold) */
     TD_AMB_OFF = 2       /**< failed: no force at all */
 } td_amb_mode;
-
-/** Running totals across every restart of the integrator. */
-typedef struct td_sim_stats {
-    long steps;
-    long residual_evals;
-    long jacobian_evals;
-    long linear_setups;
-    long nonlinear_iters;
-    long error_test_fails;
-    long nonlinear_fails;
-    long restarts; /**< re-initialisations after events */
-    long events;   /**< events of any kind */
-    long contact_onsets;
-    long releases;
-    double worst_drift;        /**< max |r - c| while in constrained contact, m */
-    double peak_normal_force;  /**< N */
-    double peak_time;          /**< s, time of peak_normal_force (-1 if no contact) */
-    int peak_retainer;         /**< retainer of peak_normal_force (-1 if no contact) */
-    double time_in_contact;    /**< s, summed over retainers */
-    double first_contact_time; /**< s, -1 if none */
-    double wall_time;          /**< s spent inside td_sim_step */
-} td_sim_stats;
 
 /** Create a simulation of `model` (copied) with `options` (copied; NULL: defaults).
  *  Sets the start state (steady orbit or rest, touchdown/options.h td_start) at options->t0.

@@ -11,6 +11,7 @@
 #include "touchdown/model.h"
 #include "touchdown/options.h"
 #include "touchdown/output.h"
+#include "touchdown/records.h"
 #include "touchdown/run.h"
 #include "touchdown/sim.h"
 #include "touchdown/system.h"
