@@ -4,6 +4,7 @@
  * reader never restates them.
  */
 #include "case/case_internal.h"
+#include "touchdown/dofs.h"
 #include "touchdown/modal.h"
 #include "util/error_internal.h"
 #include "util/limits.h"
@@ -184,7 +185,7 @@ static td_status read_output(td_case_reader *r, const config_setting_t *root, td
 static td_status read_modal(td_case_reader *r, const config_setting_t *root, td_modal_options *o)
 {
     const config_setting_t *g;
-    int dofs = 4 * ((r->nodes - 1) * r->refine + 1); /* of the refined shaft (case.c) */
+    int dofs = TD_DOFS_PER_NODE * ((r->nodes - 1) * r->refine + 1); /* of the refined shaft (case.c) */
     td_status st = td_cr_group(r, root, "modal", NULL, &g);
     if (st != TD_OK || !g)
         return st;

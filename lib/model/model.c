@@ -4,6 +4,7 @@
  * because parts may be added before the shaft is complete.
  */
 #include "model/model_internal.h"
+#include "touchdown/dofs.h"
 #include "util/error_internal.h"
 
 #include <limits.h>
@@ -434,7 +435,7 @@ int td_model_node_count(const td_model *m)
 }
 int td_model_dof_count(const td_model *m)
 {
-    return 4 * td_model_node_count(m);
+    return TD_DOFS_PER_NODE * td_model_node_count(m);
 }
 int td_model_shaft_element_count(const td_model *m)
 {
