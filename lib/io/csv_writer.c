@@ -19,11 +19,6 @@ typedef struct csv_impl {
     FILE *events;
 } csv_impl;
 
-static td_status io_fail(td_error *err, const char *path, const char *what)
-{
-    return td_error_set(err, TD_ERR_IO, "%s: %s: %s", path, what, errno ? strerror(errno) : "write error");
-}
-
 /* The shortest of %.15g, %.16g, %.17g that reads back to the same double: grid times print as
  * 0.0002, not 0.00020000000000000001. Used for times and attributes; the bulk data use %.17g. */
 static const char *exact_text(double v, char *buf, size_t n)
@@ -83,11 +78,11 @@ static td_status csv_open(td_writer *w, td_error *err)
     w->impl = c;
     errno = 0;
     if (!(c->samples = adopt(&w->tmp_fd)))
-        st = io_fail(err, w->tmp_path, "cannot open");
+        st = td_io_fail(err, w->tmp_path, "cannot open");
     else if (!(c->events = adopt(&w->events_fd)))
-        st = io_fail(err, w->events_tmp, "cannot open");
+        st = td_io_fail(err, w->events_tmp, "cannot open");
     else if (write_sample_header(c->samples, w) || write_event_header(c->events))
-        st = io_fail(err, w->tmp_path, "cannot write the header");
+        st = td_io_fail(err, w->tmp_path, "cannot write the header");
     if (st != TD_OK)
         csv_destroy(w);
     return st;
@@ -114,7 +109,7 @@ static td_status csv_sample(td_writer *w, double t, const double *node_xy, const
     for (i = 0; i < 2 * w->amb_count; i++)
         rc |= fprintf(f, ",%.17g", amb_f[i]) < 0;
     rc |= fputc('\n', f) == EOF;
-    return rc ? io_fail(err, w->tmp_path, "cannot write a sample") : TD_OK;
+    return rc ? td_io_fail(err, w->tmp_path, "cannot write a sample") : TD_OK;
 }
 
 static td_status csv_event(td_writer *w, const td_event *ev, long sample, td_error *err)
@@ -126,7 +121,7 @@ static td_status csv_event(td_writer *w, const td_event *ev, long sample, td_err
                 (int)ev->kind, td_event_kind_name(ev->kind), ev->retainer, ev->change, sample,
                 ev->radial_velocity_before, ev->radial_velocity_after, ev->tangential_velocity_before,
                 ev->tangential_velocity_after, ev->impulse, ev->normal_force) < 0)
-        return io_fail(err, w->events_tmp, "cannot write an event");
+        return td_io_fail(err, w->events_tmp, "cannot write an event");
     return TD_OK;
 }
 
@@ -180,19 +175,6 @@ static int write_flag(FILE *f, int complete, const char *reason)
     return rc;
 }
 
-/* Flush and close one file; nonzero if anything failed (including earlier buffered writes). */
-static int close_file(FILE **f)
-{
-    int rc = 0;
-    if (*f) {
-        rc |= fflush(*f) != 0;
-        rc |= ferror(*f) != 0;
-        rc |= fclose(*f) != 0;
-        *f = NULL;
-    }
-    return rc;
-}
-
 static td_status csv_finish(td_writer *w, int complete, const char *reason, td_error *err)
 {
     csv_impl *c = w->impl;
@@ -205,12 +187,12 @@ static td_status csv_finish(td_writer *w, int complete, const char *reason, td_e
         rc |= write_string_attr(c->samples, "incomplete_reason", reason);
     /* Events file first, samples file last: its flag line is the authority. */
     rc |= write_flag(c->events, complete, reason);
-    if (close_file(&c->events))
-        st = io_fail(err, w->events_tmp, "cannot finish");
+    if (td_io_close_stream(&c->events))
+        st = td_io_fail(err, w->events_tmp, "cannot finish");
     rc |= write_flag(c->samples, complete, reason);
-    rc |= close_file(&c->samples);
+    rc |= td_io_close_stream(&c->samples);
     if (rc && st == TD_OK)
-        st = io_fail(err, w->tmp_path, "cannot finish");
+        st = td_io_fail(err, w->tmp_path, "cannot finish");
     free(c);
     w->impl = NULL;
     return st;
@@ -221,8 +203,8 @@ static void csv_destroy(td_writer *w)
     csv_impl *c = w->impl;
     if (!c)
         return;
-    close_file(&c->samples);
-    close_file(&c->events);
+    td_io_close_stream(&c->samples);
+    td_io_close_stream(&c->events);
     free(c);
     w->impl = NULL;
 }

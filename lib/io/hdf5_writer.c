@@ -13,6 +13,7 @@
  * Every HDF5 call runs inside H5E_BEGIN_TRY/H5E_END_TRY: the library never prints, and the
  * automatic error printing of the calling program is restored afterwards.
  */
+#include "io/h5_util.h"
 #include "io/h5_vfd.h"
 #include "io/writer_internal.h"
 #include "util/error_internal.h"
@@ -93,31 +94,11 @@ static const struct {
 
 /* ---- errors ------------------------------------------------------------------------------ */
 
-typedef struct h5_msg {
-    char text[256];
-} h5_msg;
-
-/* H5Ewalk callback: keep the innermost entry (the first one walking upward). */
-static herr_t keep_innermost(unsigned n, const H5E_error2_t *e, void *data)
-{
-    h5_msg *m = data;
-    if (n == 0)
-        snprintf(m->text, sizeof m->text, "%s: %s", e->func_name ? e->func_name : "?", e->desc ? e->desc : "?");
-    return 0;
-}
-
 /* Fill err with `what` and the cause: the driver's I/O error, else HDF5's innermost message. */
 static td_status h5_fail(td_error *err, const td_writer *w, const char *what)
 {
     const h5_impl *h = w->impl;
-    h5_msg m;
-    m.text[0] = '\0';
-    H5Ewalk2(H5E_DEFAULT, H5E_WALK_UPWARD, keep_innermost, &m);
-    H5Eclear2(H5E_DEFAULT);
-    if (h && h->io_errno)
-        return td_error_set(err, TD_ERR_IO, "%s: %s: %s", w->tmp_path, what, strerror(h->io_errno));
-    return td_error_set(err, TD_ERR_IO, "%s: %s%s%s", w->tmp_path, what, m.text[0] ? " (HDF5 " : "",
-                        m.text[0] ? m.text : "");
+    return td_h5_fail(err, w->tmp_path, h ? h->io_errno : 0, what);
 }
 
 /* The driver hides I/O errors from HDF5 (h5_vfd.h): after each HDF5 operation that succeeded,
@@ -128,68 +109,6 @@ static td_status io_checked(td_status st, const td_writer *w, const char *what, 
     if (st == TD_OK && h && h->io_errno)
         return h5_fail(err, w, what);
     return st;
-}
-
-/* ---- small attribute helpers ------------------------------------------------------------- */
-
-/* Variable-length UTF-8 text: h5py reads it as str (fixed-length strings come back as bytes),
- * netCDF as NC_STRING, h5dump as text. */
-static hid_t text_type(void)
-{
-    hid_t type = H5Tcopy(H5T_C_S1);
-    if (type >= 0 && (H5Tset_size(type, H5T_VARIABLE) < 0 || H5Tset_cset(type, H5T_CSET_UTF8) < 0 ||
-                      H5Tset_strpad(type, H5T_STR_NULLTERM) < 0)) {
-        H5Tclose(type);
-        return -1;
-    }
-    return type;
-}
-
-static herr_t attr_string(hid_t obj, const char *name, const char *value)
-{
-    hid_t type = text_type(), space = H5Screate(H5S_SCALAR), attr = -1;
-    herr_t rc = -1;
-    if (type >= 0 && space >= 0) {
-        if (H5Aexists(obj, name) > 0)
-            H5Adelete(obj, name);
-        attr = H5Acreate2(obj, name, type, space, H5P_DEFAULT, H5P_DEFAULT);
-        if (attr >= 0)
-            rc = H5Awrite(attr, type, &value);
-    }
-    if (attr >= 0 && H5Aclose(attr) < 0)
-        rc = -1;
-    if (space >= 0)
-        H5Sclose(space);
-    if (type >= 0)
-        H5Tclose(type);
-    return rc;
-}
-
-/* Numeric attribute: scalar when !is_array, else 1-D of n values. */
-static herr_t attr_numeric(hid_t obj, const char *name, hid_t file_type, hid_t mem_type, const void *values, int n,
-                           int is_array)
-{
-    hsize_t dims[1];
-    hid_t space, attr = -1;
-    herr_t rc = -1;
-    dims[0] = (hsize_t)n;
-    space = is_array ? H5Screate_simple(1, dims, NULL) : H5Screate(H5S_SCALAR);
-    if (space < 0)
-        return -1;
-    if (H5Aexists(obj, name) > 0)
-        H5Adelete(obj, name);
-    attr = H5Acreate2(obj, name, file_type, space, H5P_DEFAULT, H5P_DEFAULT);
-    if (attr >= 0)
-        rc = H5Awrite(attr, mem_type, values);
-    if (attr >= 0 && H5Aclose(attr) < 0)
-        rc = -1;
-    H5Sclose(space);
-    return rc;
-}
-
-static herr_t attr_int(hid_t obj, const char *name, int value)
-{
-    return attr_numeric(obj, name, H5T_STD_I32LE, H5T_NATIVE_INT, &value, 1, 0);
 }
 
 /* ---- creation ---------------------------------------------------------------------------- */
@@ -211,16 +130,8 @@ static hid_t chunked_dcpl(int rank, const hsize_t *chunk, int level)
 static hid_t make_scale(hid_t loc, const char *name, hid_t file_type, hid_t mem_type, const void *values, hsize_t n,
                         const char *units)
 {
-    hsize_t dims[1];
-    hid_t space, dset = -1;
-    dims[0] = n;
-    space = H5Screate_simple(1, dims, NULL);
-    if (space >= 0)
-        dset = H5Dcreate2(loc, name, file_type, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
-    if (space >= 0)
-        H5Sclose(space);
-    if (dset >= 0 && (H5Dwrite(dset, mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, values) < 0 ||
-                      H5DSset_scale(dset, name) < 0 || attr_string(dset, "units", units) < 0)) {
+    hid_t dset = td_h5_fixed_dataset(loc, name, file_type, mem_type, values, 1, &n);
+    if (dset >= 0 && (H5DSset_scale(dset, name) < 0 || td_h5_attr_string(dset, "units", units) < 0)) {
         H5Dclose(dset);
         return -1;
     }
@@ -246,7 +157,7 @@ static hid_t make_index_scale(hid_t loc, const char *name, int n, const char *un
 static hid_t make_component_scale(hid_t file)
 {
     static const char *const xy[2] = {"x", "y"};
-    hid_t type = text_type(), dset = -1;
+    hid_t type = td_h5_text_type(), dset = -1;
     if (type >= 0)
         dset = make_scale(file, "component", type, type, xy, 2, "1");
     if (type >= 0)
@@ -290,7 +201,7 @@ static td_status add_series(td_writer *w, h5_impl *h, hid_t loc, const char *nam
     if (dset < 0)
         return h5_fail(err, w, "cannot create a sample dataset");
     s->dset = dset;
-    if (attr_string(dset, "units", units) < 0)
+    if (td_h5_attr_string(dset, "units", units) < 0)
         return h5_fail(err, w, "cannot write a units attribute");
     /* /time is the first series: it names the sample axis of every later one */
     if (h->series_count - 1 == h->idx_time ? H5DSset_scale(dset, "time") < 0
@@ -323,7 +234,7 @@ static td_status attach_own_axis(td_writer *w, h5_impl *h, int first, hid_t scal
 static hid_t make_group(hid_t file, const char *name, int count)
 {
     hid_t g = H5Gcreate2(file, name, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
-    if (g >= 0 && attr_int(g, "count", count) < 0) {
+    if (g >= 0 && td_h5_attr_int(g, "count", count) < 0) {
         H5Gclose(g);
         return -1;
     }
@@ -342,9 +253,9 @@ static td_status create_nodes(td_writer *w, h5_impl *h, td_error *err)
         row[1] = 2;
         h->idx_disp = h->series_count;
         st = add_series(w, h, g, "displacement", "m", 3, row, 0, err);
-        if (st == TD_OK && (attr_numeric(h->series[h->idx_disp].dset, "nodes", H5T_STD_I32LE, H5T_NATIVE_INT, w->nodes,
-                                         w->node_count, 1) < 0 ||
-                            attr_string(h->series[h->idx_disp].dset, "components", "x,y") < 0))
+        if (st == TD_OK && (td_h5_attr_numeric(h->series[h->idx_disp].dset, "nodes", H5T_STD_I32LE, H5T_NATIVE_INT,
+                                               w->nodes, w->node_count, 1) < 0 ||
+                            td_h5_attr_string(h->series[h->idx_disp].dset, "components", "x,y") < 0))
             st = h5_fail(err, w, "cannot write the node attributes");
         if (st == TD_OK)
             st = attach_own_axis(
@@ -393,7 +304,7 @@ static td_status create_ambs(td_writer *w, h5_impl *h, td_error *err)
         row[1] = 2;
         h->idx_amb = h->series_count;
         st = add_series(w, h, g, "force", "N", 3, row, 0, err);
-        if (st == TD_OK && attr_string(h->series[h->idx_amb].dset, "components", "x,y") < 0)
+        if (st == TD_OK && td_h5_attr_string(h->series[h->idx_amb].dset, "components", "x,y") < 0)
             st = h5_fail(err, w, "cannot write the AMB attributes");
         if (st == TD_OK)
             st = attach_own_axis(w, h, h->idx_amb, make_index_scale(g, "amb", w->amb_count, "AMB index"), 1, err);
@@ -457,10 +368,10 @@ static td_status create_events(td_writer *w, h5_impl *h, td_error *err)
     if (!ok || h->event_dset < 0 || h->event_index < 0 || H5DSset_scale(h->event_index, "event") < 0 ||
         H5DSattach_scale(h->event_dset, h->event_index, 0) < 0)
         return h5_fail(err, w, "cannot create /events");
-    if (attr_string(h->event_index, "units", "1 (row number of /events)") < 0 ||
-        attr_string(h->event_dset, "kind_names", names) < 0 ||
-        attr_string(h->event_dset, "units",
-                    "time: s; radial_velocity_*, tangential_velocity_*: m/s; impulse: N s; normal_force: N") < 0)
+    if (td_h5_attr_string(h->event_index, "units", "1 (row number of /events)") < 0 ||
+        td_h5_attr_string(h->event_dset, "kind_names", names) < 0 ||
+        td_h5_attr_string(h->event_dset, "units",
+                          "time: s; radial_velocity_*, tangential_velocity_*: m/s; impulse: N s; normal_force: N") < 0)
         return h5_fail(err, w, "cannot write the /events attributes");
     return TD_OK;
 }
@@ -480,21 +391,13 @@ static void h5_destroy(td_writer *w);
 
 static td_status open_impl(td_writer *w, h5_impl *h, td_error *err)
 {
-    hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
     td_status st;
-    if (fapl < 0 || H5Pset_libver_bounds(fapl, H5F_LIBVER_V18, H5F_LIBVER_LATEST) < 0 ||
-        (h->driver = td_h5_vfd_use(fapl, &h->io_errno)) < 0) {
-        if (fapl >= 0)
-            H5Pclose(fapl);
-        return h5_fail(err, w, "cannot set up file access");
-    }
     /* The writer created tmp_path exclusively; HDF5 opens it by name, so the descriptor goes. */
     close(w->tmp_fd);
     w->tmp_fd = -1;
-    h->file = H5Fcreate(w->tmp_path, H5F_ACC_TRUNC, H5P_DEFAULT, fapl);
-    H5Pclose(fapl);
+    h->file = td_h5_create_file(w->tmp_path, 1, &h->io_errno, &h->driver);
     if (h->file < 0)
-        return h5_fail(err, w, "cannot create the file");
+        return h5_fail(err, w, h->driver < 0 ? "cannot set up file access" : "cannot create the file");
     h->idx_time = h->series_count;
     if ((st = add_series(w, h, h->file, "time", "s", 1, NULL, 0, err)) != TD_OK)
         return st;
@@ -503,7 +406,7 @@ static td_status open_impl(td_writer *w, h5_impl *h, td_error *err)
     if ((st = create_nodes(w, h, err)) != TD_OK || (st = create_retainers(w, h, err)) != TD_OK ||
         (st = create_ambs(w, h, err)) != TD_OK || (st = create_events(w, h, err)) != TD_OK)
         return st;
-    if (attr_string(h->file, "units", "SI (touchdown/dofs.h); each dataset has a units attribute") < 0)
+    if (td_h5_attr_string(h->file, "units", "SI (touchdown/dofs.h); each dataset has a units attribute") < 0)
         return h5_fail(err, w, "cannot write the units attribute");
     return TD_OK;
 }
@@ -687,11 +590,11 @@ static td_status h5_event(td_writer *w, const td_event *ev, long sample, td_erro
 static herr_t write_attr(hid_t file, const td_attr *a)
 {
     switch (a->type) {
-    case TD_ATTR_STRING: return attr_string(file, a->name, a->text);
+    case TD_ATTR_STRING: return td_h5_attr_string(file, a->name, a->text);
     case TD_ATTR_DOUBLE:
-        return attr_numeric(file, a->name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, a->doubles, a->count, a->is_array);
+        return td_h5_attr_numeric(file, a->name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, a->doubles, a->count, a->is_array);
     case TD_ATTR_LONG:
-        return attr_numeric(file, a->name, H5T_STD_I64LE, H5T_NATIVE_LONG, a->longs, a->count, a->is_array);
+        return td_h5_attr_numeric(file, a->name, H5T_STD_I64LE, H5T_NATIVE_LONG, a->longs, a->count, a->is_array);
     }
     return -1;
 }
@@ -707,10 +610,10 @@ static td_status finish_impl(td_writer *w, h5_impl *h, int complete, const char 
     for (i = 0; i < w->attr_count; i++)
         if (write_attr(h->file, &w->attrs[i]) < 0)
             return h5_fail(err, w, "cannot write a root attribute");
-    if (!complete && attr_string(h->file, "incomplete_reason", reason) < 0)
+    if (!complete && td_h5_attr_string(h->file, "incomplete_reason", reason) < 0)
         return h5_fail(err, w, "cannot write incomplete_reason");
     /* The flag last: a file that stops before this line has no flag at all. */
-    if (attr_int(h->file, "complete", complete ? 1 : 0) < 0)
+    if (td_h5_attr_int(h->file, "complete", complete ? 1 : 0) < 0)
         return h5_fail(err, w, "cannot write the completeness flag");
     if (H5Fflush(h->file, H5F_SCOPE_GLOBAL) < 0)
         return h5_fail(err, w, "cannot flush the file");

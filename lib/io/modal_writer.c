@@ -7,6 +7,7 @@
  * Like the simulation writers, both write PATH.XXXXXX.partial (td_io_create_temp) and rename it
  * to PATH only once every byte is on disk, so a file at PATH is always whole.
  */
+#include "io/h5_util.h"
 #include "io/h5_vfd.h"
 #include "io/writer_internal.h"
 #include "touchdown/modal.h"
@@ -93,10 +94,9 @@ static void csv_harmonic(FILE *f, const td_harmonic *const *h, int n)
     fprintf(f, "\n");
 }
 
-/* Every section into the open temporary file `f`, which is closed; nonzero on any failure. */
-static int csv_write_all(FILE *f, const td_modal_results *r)
+/* Every section into `f`; a failed write shows in the stream's error flag. */
+static void csv_write_all(FILE *f, const td_modal_results *r)
 {
-    int rc;
     fprintf(f, "# touchdown modal results\n\n");
     if (r->modes)
         csv_modes(f, r->modes);
@@ -106,8 +106,6 @@ static int csv_write_all(FILE *f, const td_modal_results *r)
         csv_critical(f, r->critical, r->n_critical);
     if (r->n_harmonics > 0)
         csv_harmonic(f, r->harmonics, r->n_harmonics);
-    rc = fflush(f) != 0 || ferror(f);
-    return fclose(f) != 0 || rc;
 }
 
 static td_status check_results(const td_modal_results *r, const char *what, td_error *err)
@@ -122,23 +120,25 @@ td_status td_modal_write_csv(const char *path, const td_modal_results *r, td_err
 {
     char *tmp = NULL;
     FILE *f;
-    int fd, failed;
+    int fd;
     td_status st;
     if (!path || !r)
         return td_error_set(err, TD_ERR_INVALID, "td_modal_write_csv: NULL argument");
     if ((st = check_results(r, "td_modal_write_csv", err)) != TD_OK ||
         (st = td_io_create_temp(path, &tmp, &fd, err)) != TD_OK)
         return st;
-    f = fdopen(fd, "w");
-    if (!f)
-        close(fd);
     errno = 0;
-    failed = !f || csv_write_all(f, r);
-    if (failed)
-        st = td_error_set(err, TD_ERR_IO, "%s: write failed: %s", tmp, errno ? strerror(errno) : "I/O error");
-    else
+    if (!(f = fdopen(fd, "w"))) {
+        st = td_io_fail(err, tmp, "cannot open");
+        close(fd);
+    } else {
+        csv_write_all(f, r);
+        if (td_io_close_stream(&f))
+            st = td_io_fail(err, tmp, "cannot write");
+    }
+    if (st == TD_OK)
         st = td_io_commit_temp(tmp, path, err);
-    if (failed)
+    else
         remove(tmp);
     free(tmp);
     return st;
@@ -146,85 +146,15 @@ td_status td_modal_write_csv(const char *path, const td_modal_results *r, td_err
 
 /* ---- HDF5 -------------------------------------------------------------------------------- */
 
-/* Attach a string attribute (variable-length UTF-8). */
-static int h5_attr_string(hid_t obj, const char *name, const char *value)
-{
-    hid_t type = H5Tcopy(H5T_C_S1), space = H5Screate(H5S_SCALAR), attr = -1;
-    int ok = type >= 0 && space >= 0 && H5Tset_size(type, H5T_VARIABLE) >= 0 && H5Tset_cset(type, H5T_CSET_UTF8) >= 0;
-    if (ok)
-        attr = H5Acreate2(obj, name, type, space, H5P_DEFAULT, H5P_DEFAULT);
-    ok = ok && attr >= 0 && H5Awrite(attr, type, &value) >= 0;
-    if (attr >= 0)
-        H5Aclose(attr);
-    if (space >= 0)
-        H5Sclose(space);
-    if (type >= 0)
-        H5Tclose(type);
-    return ok;
-}
-
-static int h5_attr_double(hid_t obj, const char *name, double value)
-{
-    hid_t space = H5Screate(H5S_SCALAR), attr = -1;
-    int ok = space >= 0;
-    if (ok)
-        attr = H5Acreate2(obj, name, H5T_NATIVE_DOUBLE, space, H5P_DEFAULT, H5P_DEFAULT);
-    ok = ok && attr >= 0 && H5Awrite(attr, H5T_NATIVE_DOUBLE, &value) >= 0;
-    if (attr >= 0)
-        H5Aclose(attr);
-    if (space >= 0)
-        H5Sclose(space);
-    return ok;
-}
-
 /* A 1-D (cols == 0) or 2-D dataset of doubles or ints with a "units" attribute. */
 static int h5_dataset(hid_t group, const char *name, hid_t memtype, const void *data, hsize_t rows, hsize_t cols,
                       const char *units)
 {
     hsize_t dims[2];
-    hid_t space, set = -1;
-    int ok;
     dims[0] = rows;
     dims[1] = cols;
-    space = H5Screate_simple(cols ? 2 : 1, dims, NULL);
-    ok = space >= 0;
-    if (ok)
-        set = H5Dcreate2(group, name, memtype == H5T_NATIVE_INT ? H5T_STD_I32LE : H5T_IEEE_F64LE, space, H5P_DEFAULT,
-                         H5P_DEFAULT, H5P_DEFAULT);
-    ok = ok && set >= 0 && (rows == 0 || H5Dwrite(set, memtype, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) >= 0);
-    ok = ok && h5_attr_string(set, "units", units);
-    if (set >= 0)
-        H5Dclose(set);
-    if (space >= 0)
-        H5Sclose(space);
-    return ok;
-}
-
-/* Make g/scale a dimension scale and attach it to axis `axis` of each g/NAME in `names` (NULL-ended). */
-static int h5_axis(hid_t g, const char *scale, const char *const *names, unsigned axis)
-{
-    hid_t s = H5Dopen2(g, scale, H5P_DEFAULT);
-    int ok = s >= 0 && (H5DSis_scale(s) > 0 || H5DSset_scale(s, scale) >= 0), i;
-    for (i = 0; ok && names && names[i]; i++) {
-        hid_t d = H5Dopen2(g, names[i], H5P_DEFAULT);
-        ok = d >= 0 && H5DSattach_scale(d, s, axis) >= 0;
-        if (d >= 0)
-            H5Dclose(d);
-    }
-    if (s >= 0)
-        H5Dclose(s);
-    return ok;
-}
-
-/* An int dataset 0..n-1 named `name`: the axis of a table whose rows have no other coordinate. */
-static int h5_index(hid_t g, const char *name, int n, const char *units)
-{
-    int *v = malloc((size_t)(n ? n : 1) * sizeof *v), i, ok;
-    for (i = 0; v && i < n; i++)
-        v[i] = i;
-    ok = v && h5_dataset(g, name, H5T_NATIVE_INT, v, (hsize_t)n, 0, units);
-    free(v);
-    return ok;
+    return td_h5_dataset(group, name, memtype == H5T_NATIVE_INT ? H5T_STD_I32LE : H5T_IEEE_F64LE, memtype, data,
+                         cols ? 2 : 1, dims, units);
 }
 
 /* The mode-shape datasets: rows modes, columns nodes (NULL-ended). */
@@ -259,7 +189,7 @@ static int h5_mode_table_axis(hid_t g, const char *scale, unsigned axis)
         names[f] = mode_fields[f].name;
     names[6] = "whirl";
     names[7] = NULL;
-    return h5_axis(g, scale, names, axis);
+    return td_h5_attach(g, scale, names, axis);
 }
 
 /* Write the td_mode fields of `modes` (count rows x cols, cols 0: 1-D) plus an int "whirl" dataset. */
@@ -298,10 +228,11 @@ static int h5_modes(hid_t file, const td_modal *m)
     }
     for (i = 0; ok && i < nr; i++)
         real[i] = td_modal_real_eigenvalue(m, i);
-    ok = ok && h5_attr_double(g, "speed", td_modal_speed(m)) && h5_attr_string(g, "speed_units", "rad/s");
+    ok = ok && td_h5_attr_double(g, "speed", td_modal_speed(m)) >= 0 &&
+         td_h5_attr_string(g, "speed_units", "rad/s") >= 0;
     ok = ok && h5_mode_table(g, modes, (hsize_t)nm, 0);
     ok = ok && h5_dataset(g, "real_eigenvalues", H5T_NATIVE_DOUBLE, real, (hsize_t)nr, 0, "1/s");
-    ok = ok && h5_axis(g, "real_eigenvalues", NULL, 0); /* its own axis */
+    ok = ok && td_h5_attach(g, "real_eigenvalues", NULL, 0); /* its own axis */
     for (i = 0; ok && i < 4; i++) {
         int k, j;
         for (k = 0; k < nm; k++)
@@ -310,8 +241,8 @@ static int h5_modes(hid_t file, const td_modal *m)
         ok = h5_dataset(g, shape_names[i], H5T_NATIVE_DOUBLE, part, (hsize_t)nm, (hsize_t)nn,
                         "1 (normalised: largest |X| or |Y| = 1); rows: modes, columns: nodes");
     }
-    ok = ok && h5_index(g, "mode", nm, "mode number") && h5_mode_table_axis(g, "mode", 0) &&
-         h5_axis(g, "mode", shape_names, 0);
+    ok = ok && td_h5_index(g, "mode", nm, "mode number") && h5_mode_table_axis(g, "mode", 0) &&
+         td_h5_attach(g, "mode", shape_names, 0);
     if (g >= 0)
         H5Gclose(g);
     free(modes);
@@ -335,8 +266,8 @@ static int h5_campbell(hid_t file, const td_campbell *c)
     }
     ok = ok && h5_dataset(g, "speed", H5T_NATIVE_DOUBLE, sp, (hsize_t)ns, 0, "rad/s");
     ok = ok && h5_mode_table(g, pts, (hsize_t)ns, (hsize_t)nb);
-    ok = ok && h5_attr_string(g, "layout", "rows: speeds, columns: branches (j-th lowest omega_d)");
-    ok = ok && h5_index(g, "branch", nb, "branch number (j-th lowest omega_d)");
+    ok = ok && td_h5_attr_string(g, "layout", "rows: speeds, columns: branches (j-th lowest omega_d)") >= 0;
+    ok = ok && td_h5_index(g, "branch", nb, "branch number (j-th lowest omega_d)");
     ok = ok && h5_mode_table_axis(g, "speed", 0) && h5_mode_table_axis(g, "branch", 1);
     if (g >= 0)
         H5Gclose(g);
@@ -366,7 +297,7 @@ static int h5_critical(hid_t file, const td_critical_speed *cs, int n)
     ok = ok && h5_dataset(g, "sigma", H5T_NATIVE_DOUBLE, d + 3 * n, (hsize_t)n, 0, "1/s");
     ok = ok && h5_dataset(g, "whirl", H5T_NATIVE_INT, w, (hsize_t)n, 0, "1: forward, -1: backward");
     ok = ok && h5_dataset(g, "branch", H5T_NATIVE_INT, w + n, (hsize_t)n, 0, "index among modes of that whirl");
-    ok = ok && h5_axis(g, "speed", critical_names, 0);
+    ok = ok && td_h5_attach(g, "speed", critical_names, 0);
     if (g >= 0)
         H5Gclose(g);
     free(d);
@@ -389,7 +320,8 @@ static int h5_harmonic_one(hid_t parent, int index, const td_harmonic *h)
     hid_t g;
     snprintf(name, sizeof name, "%d", index);
     g = H5Gcreate2(parent, name, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
-    ok = d && g >= 0 && h5_attr_double(g, "speed", td_harmonic_speed(h)) && h5_attr_string(g, "speed_units", "rad/s");
+    ok = d && g >= 0 && td_h5_attr_double(g, "speed", td_harmonic_speed(h)) >= 0 &&
+         td_h5_attr_string(g, "speed_units", "rad/s") >= 0;
     for (c = 0; ok && c < 8; c++) {
         for (k = 0; k < nn; k++) {
             td_orbit o;
@@ -405,8 +337,8 @@ static int h5_harmonic_one(hid_t parent, int index, const td_harmonic *h)
         td_harmonic_state(h, k, &d[k], &d[ns + k]);
     ok = ok && h5_dataset(g, "state_re", H5T_NATIVE_DOUBLE, d, (hsize_t)ns, 0, "SI per state: m, m/s, N");
     ok = ok && h5_dataset(g, "state_im", H5T_NATIVE_DOUBLE, d + ns, (hsize_t)ns, 0, "SI per state: m, m/s, N");
-    ok = ok && h5_index(g, "node", nn, "node number") && h5_axis(g, "node", orbit_names, 0);
-    ok = ok && h5_index(g, "state", ns, "state index") && h5_axis(g, "state", state_names, 0);
+    ok = ok && td_h5_index(g, "node", nn, "node number") && td_h5_attach(g, "node", orbit_names, 0);
+    ok = ok && td_h5_index(g, "state", ns, "state index") && td_h5_attach(g, "state", state_names, 0);
     if (g >= 0)
         H5Gclose(g);
     free(d);
@@ -450,8 +382,9 @@ static int h5_layout(hid_t file, const td_model *model)
     ok = ok && (nr == 0 || h5_dataset(g, "retainer_nodes", H5T_NATIVE_INT, nodes, (hsize_t)nr, 0, "node"));
     ok = ok && (na == 0 || h5_dataset(g, "amb_nodes", H5T_NATIVE_INT, nodes + nr, (hsize_t)na, 0, "node"));
     /* node_z is the column axis of the mode shapes; the bearing lists are their own axes */
-    ok = ok && h5_axis(g, "node_z", shape_names, 1);
-    ok = ok && (nr == 0 || h5_axis(g, "retainer_nodes", NULL, 0)) && (na == 0 || h5_axis(g, "amb_nodes", NULL, 0));
+    ok = ok && td_h5_attach(g, "node_z", shape_names, 1);
+    ok = ok && (nr == 0 || td_h5_attach(g, "retainer_nodes", NULL, 0)) &&
+         (na == 0 || td_h5_attach(g, "amb_nodes", NULL, 0));
     if (g >= 0)
         H5Gclose(g);
     free(z);
@@ -459,33 +392,53 @@ static int h5_layout(hid_t file, const td_model *model)
     return ok;
 }
 
-/* Open the created temporary file `path` with the writers' driver (h5_vfd.h: an I/O error goes
- * to *io_errno, never into a failed close) and write every part; 0 on any failure. */
-static int h5_write_all(const char *path, const td_modal_results *r, int *io_errno)
+/* Every part into the open file; the first part that fails, NULL when every call succeeded. */
+static const char *h5_parts(hid_t file, const td_modal_results *r)
 {
-    hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
-    hid_t driver = fapl >= 0 ? td_h5_vfd_use(fapl, io_errno) : -1;
-    hid_t file = driver >= 0 ? H5Fcreate(path, H5F_ACC_TRUNC, H5P_DEFAULT, fapl) : -1;
-    int ok = file >= 0;
-    if (fapl >= 0)
-        H5Pclose(fapl);
-    ok = ok && h5_attr_string(file, "producer", "touchdown modal analysis");
-    ok = ok && (!r->modes || h5_modes(file, r->modes));
-    ok = ok && (!r->campbell || h5_campbell(file, r->campbell));
-    ok = ok && (!r->critical || h5_critical(file, r->critical, r->n_critical));
-    ok = ok && (r->n_harmonics == 0 || h5_harmonics(file, r->harmonics, r->n_harmonics));
-    ok = ok && (!r->model || !r->modes || h5_layout(file, r->model));
-    ok = ok && (!r->case_text || h5_attr_string(file, "case_text", r->case_text));
-    if (file >= 0 && H5Fclose(file) < 0)
-        ok = 0;
+    if (td_h5_attr_string(file, "producer", "touchdown modal analysis") < 0)
+        return "the producer attribute";
+    if (r->modes && !h5_modes(file, r->modes))
+        return "/modes";
+    if (r->campbell && !h5_campbell(file, r->campbell))
+        return "/campbell";
+    if (r->critical && !h5_critical(file, r->critical, r->n_critical))
+        return "/critical_speeds";
+    if (r->n_harmonics > 0 && !h5_harmonics(file, r->harmonics, r->n_harmonics))
+        return "/harmonic";
+    if (r->model && r->modes && !h5_layout(file, r->model))
+        return "the node layout in /modes";
+    if (r->case_text && td_h5_attr_string(file, "case_text", r->case_text) < 0)
+        return "the case_text attribute";
+    return NULL;
+}
+
+/* Create the temporary file `tmp` on the writers' driver (h5_vfd.h: an I/O error goes to
+ * io_errno, never into a failed close), write every part and close it; the first failure, with
+ * its cause, goes to err. */
+static td_status h5_write_all(const char *tmp, const td_modal_results *r, td_error *err)
+{
+    int io_errno = 0;
+    hid_t driver;
+    hid_t file = td_h5_create_file(tmp, 0, &io_errno, &driver);
+    const char *part = file >= 0 ? h5_parts(file, r) : NULL;
+    char what[64];
+    td_status st = TD_OK;
+    if (file < 0)
+        st = td_h5_fail(err, tmp, io_errno, "cannot create the HDF5 file");
+    else if (part || io_errno) {
+        snprintf(what, sizeof what, "cannot write %s", part ? part : "the HDF5 file");
+        st = td_h5_fail(err, tmp, io_errno, what);
+    }
+    if (file >= 0 && (H5Fclose(file) < 0 || io_errno) && st == TD_OK)
+        st = td_h5_fail(err, tmp, io_errno, "cannot close the HDF5 file");
     td_h5_vfd_release(driver);
-    return ok && *io_errno == 0;
+    return st;
 }
 
 td_status td_modal_write_hdf5(const char *path, const td_modal_results *r, td_error *err)
 {
     char *tmp = NULL;
-    int ok = 0, fd, io_errno = 0;
+    int fd;
     td_status st;
     if (!path || !r)
         return td_error_set(err, TD_ERR_INVALID, "td_modal_write_hdf5: NULL argument");
@@ -496,16 +449,13 @@ td_status td_modal_write_hdf5(const char *path, const td_modal_results *r, td_er
     /* HDF5 would print its error stack; the try block silences it only for this call */
     H5E_BEGIN_TRY
     {
-        ok = h5_write_all(tmp, r, &io_errno);
+        st = h5_write_all(tmp, r, err);
     }
     H5E_END_TRY;
-    if (!ok) {
-        st = td_error_set(err, TD_ERR_IO, "%s: writing the HDF5 file failed%s%s", tmp, io_errno ? ": " : "",
-                          io_errno ? strerror(io_errno) : "");
-        remove(tmp);
-    } else {
+    if (st == TD_OK)
         st = td_io_commit_temp(tmp, path, err);
-    }
+    else
+        remove(tmp);
     free(tmp);
     return st;
 }

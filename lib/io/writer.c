@@ -123,6 +123,23 @@ td_status td_io_fsync_path(const char *path, td_error *err)
     return TD_OK;
 }
 
+td_status td_io_fail(td_error *err, const char *path, const char *what)
+{
+    return td_error_set(err, TD_ERR_IO, "%s: %s: %s", path, what, errno ? strerror(errno) : "write error");
+}
+
+int td_io_close_stream(FILE **f)
+{
+    int rc = 0;
+    if (*f) {
+        rc |= fflush(*f) != 0;
+        rc |= ferror(*f) != 0;
+        rc |= fclose(*f) != 0;
+        *f = NULL;
+    }
+    return rc;
+}
+
 /* ---- open / free ------------------------------------------------------------------------- */
 
 static td_status check_layout(const td_output_layout *layout, td_error *err)

@@ -9,6 +9,8 @@
 
 #include "touchdown/output.h"
 
+#include <stdio.h>
+
 /** Ending of every temporary file name (PATH.XXXXXX.partial); outputs may not end with it. */
 #define TD_IO_TEMP_SUFFIX ".partial"
 
@@ -81,5 +83,12 @@ td_status td_io_commit_temp(const char *tmp, const char *path, td_error *err);
 
 /** Flush a closed file's data to disk (fsync); TD_ERR_IO on failure. */
 td_status td_io_fsync_path(const char *path, td_error *err);
+
+/** TD_ERR_IO "PATH: WHAT: CAUSE", the cause strerror(errno) ("write error" when errno is 0). */
+td_status td_io_fail(td_error *err, const char *path, const char *what);
+
+/** Flush, check and close a stream (*f set to NULL; NULL accepted); nonzero if anything failed,
+ *  an earlier buffered write included. */
+int td_io_close_stream(FILE **f);
 
 #endif

@@ -1,0 +1,168 @@
+/*
+ * HDF5 helpers shared by the writers (h5_util.h).
+ */
+#include "io/h5_util.h"
+#include "io/h5_vfd.h"
+#include "util/error_internal.h"
+
+#include <hdf5_hl.h> /* H5DS: dimension scales */
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+hid_t td_h5_create_file(const char *path, int v18, int *io_errno, hid_t *driver)
+{
+    hid_t fapl = H5Pcreate(H5P_FILE_ACCESS), file = -1;
+    *driver = -1;
+    if (fapl < 0)
+        return -1;
+    if (!v18 || H5Pset_libver_bounds(fapl, H5F_LIBVER_V18, H5F_LIBVER_LATEST) >= 0)
+        *driver = td_h5_vfd_use(fapl, io_errno);
+    if (*driver >= 0)
+        file = H5Fcreate(path, H5F_ACC_TRUNC, H5P_DEFAULT, fapl);
+    H5Pclose(fapl);
+    return file;
+}
+
+hid_t td_h5_text_type(void)
+{
+    hid_t type = H5Tcopy(H5T_C_S1);
+    if (type >= 0 && (H5Tset_size(type, H5T_VARIABLE) < 0 || H5Tset_cset(type, H5T_CSET_UTF8) < 0 ||
+                      H5Tset_strpad(type, H5T_STR_NULLTERM) < 0)) {
+        H5Tclose(type);
+        return -1;
+    }
+    return type;
+}
+
+herr_t td_h5_attr_string(hid_t obj, const char *name, const char *value)
+{
+    hid_t type = td_h5_text_type(), space = H5Screate(H5S_SCALAR), attr = -1;
+    herr_t rc = -1;
+    if (type >= 0 && space >= 0) {
+        if (H5Aexists(obj, name) > 0)
+            H5Adelete(obj, name);
+        attr = H5Acreate2(obj, name, type, space, H5P_DEFAULT, H5P_DEFAULT);
+        if (attr >= 0)
+            rc = H5Awrite(attr, type, &value);
+    }
+    if (attr >= 0 && H5Aclose(attr) < 0)
+        rc = -1;
+    if (space >= 0)
+        H5Sclose(space);
+    if (type >= 0)
+        H5Tclose(type);
+    return rc;
+}
+
+herr_t td_h5_attr_numeric(hid_t obj, const char *name, hid_t file_type, hid_t mem_type, const void *values, int n,
+                          int is_array)
+{
+    hsize_t dims[1];
+    hid_t space, attr = -1;
+    herr_t rc = -1;
+    dims[0] = (hsize_t)n;
+    space = is_array ? H5Screate_simple(1, dims, NULL) : H5Screate(H5S_SCALAR);
+    if (space < 0)
+        return -1;
+    if (H5Aexists(obj, name) > 0)
+        H5Adelete(obj, name);
+    attr = H5Acreate2(obj, name, file_type, space, H5P_DEFAULT, H5P_DEFAULT);
+    if (attr >= 0)
+        rc = H5Awrite(attr, mem_type, values);
+    if (attr >= 0 && H5Aclose(attr) < 0)
+        rc = -1;
+    H5Sclose(space);
+    return rc;
+}
+
+herr_t td_h5_attr_int(hid_t obj, const char *name, int value)
+{
+    return td_h5_attr_numeric(obj, name, H5T_STD_I32LE, H5T_NATIVE_INT, &value, 1, 0);
+}
+
+herr_t td_h5_attr_double(hid_t obj, const char *name, double value)
+{
+    return td_h5_attr_numeric(obj, name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, &value, 1, 0);
+}
+
+hid_t td_h5_fixed_dataset(hid_t loc, const char *name, hid_t file_type, hid_t mem_type, const void *data, int rank,
+                          const hsize_t *dims)
+{
+    hid_t space = H5Screate_simple(rank, dims, NULL), dset = -1;
+    hsize_t n = 1;
+    int i;
+    for (i = 0; i < rank; i++)
+        n *= dims[i];
+    if (space >= 0)
+        dset = H5Dcreate2(loc, name, file_type, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    if (space >= 0)
+        H5Sclose(space);
+    if (dset >= 0 && n > 0 && H5Dwrite(dset, mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) < 0) {
+        H5Dclose(dset);
+        return -1;
+    }
+    return dset;
+}
+
+int td_h5_dataset(hid_t loc, const char *name, hid_t file_type, hid_t mem_type, const void *data, int rank,
+                  const hsize_t *dims, const char *units)
+{
+    hid_t dset = td_h5_fixed_dataset(loc, name, file_type, mem_type, data, rank, dims);
+    int ok = dset >= 0 && td_h5_attr_string(dset, "units", units) >= 0;
+    if (dset >= 0 && H5Dclose(dset) < 0)
+        ok = 0;
+    return ok;
+}
+
+int td_h5_index(hid_t loc, const char *name, int n, const char *units)
+{
+    int *v = malloc((size_t)(n > 0 ? n : 1) * sizeof *v), i, ok;
+    hsize_t dims[1];
+    dims[0] = (hsize_t)(n > 0 ? n : 0);
+    for (i = 0; v && i < n; i++)
+        v[i] = i;
+    ok = v && td_h5_dataset(loc, name, H5T_STD_I32LE, H5T_NATIVE_INT, v, 1, dims, units);
+    free(v);
+    return ok;
+}
+
+int td_h5_attach(hid_t loc, const char *scale, const char *const *names, unsigned axis)
+{
+    hid_t s = H5Dopen2(loc, scale, H5P_DEFAULT);
+    int ok = s >= 0 && (H5DSis_scale(s) > 0 || H5DSset_scale(s, scale) >= 0), i;
+    for (i = 0; ok && names && names[i]; i++) {
+        hid_t d = H5Dopen2(loc, names[i], H5P_DEFAULT);
+        ok = d >= 0 && H5DSattach_scale(d, s, axis) >= 0;
+        if (d >= 0)
+            H5Dclose(d);
+    }
+    if (s >= 0)
+        H5Dclose(s);
+    return ok;
+}
+
+typedef struct h5_msg {
+    char text[256];
+} h5_msg;
+
+/* H5Ewalk callback: keep the innermost entry (the first one walking upward). */
+static herr_t keep_innermost(unsigned n, const H5E_error2_t *e, void *data)
+{
+    h5_msg *m = data;
+    if (n == 0)
+        snprintf(m->text, sizeof m->text, "%s: %s", e->func_name ? e->func_name : "?", e->desc ? e->desc : "?");
+    return 0;
+}
+
+td_status td_h5_fail(td_error *err, const char *path, int io_errno, const char *what)
+{
+    h5_msg m;
+    m.text[0] = '\0';
+    H5Ewalk2(H5E_DEFAULT, H5E_WALK_UPWARD, keep_innermost, &m);
+    H5Eclear2(H5E_DEFAULT);
+    if (io_errno)
+        return td_error_set(err, TD_ERR_IO, "%s: %s: %s", path, what, strerror(io_errno));
+    return td_error_set(err, TD_ERR_IO, "%s: %s%s%s%s", path, what, m.text[0] ? " (HDF5 " : "", m.text,
+                        m.text[0] ? ")" : "");
+}

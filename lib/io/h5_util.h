@@ -1,0 +1,67 @@
+/*
+ * HDF5 helpers shared by the simulation writer (hdf5_writer.c) and the modal writer
+ * (modal_writer.c): one way to create a file on the writers' driver, to write attributes and
+ * fixed datasets, to attach dimension scales, and to turn a failure into a td_error.
+ *
+ * Conventions: text is variable-length UTF-8 (h5py reads it as str, fixed-length strings come
+ * back as bytes; netCDF reads NC_STRING); every dataset carries a "units" text attribute; axes
+ * are HDF5 dimension scales so netCDF-4 readers see named dimensions. Callers run these inside
+ * H5E_BEGIN_TRY/H5E_END_TRY so that the library never prints.
+ */
+#ifndef TD_IO_H5_UTIL_H
+#define TD_IO_H5_UTIL_H
+
+#include "touchdown/error.h"
+
+#include <hdf5.h>
+
+/**
+ * Create (truncate) the file `path` with the writers' driver (h5_vfd.h: an I/O error goes to
+ * *io_errno, never into a failed close), in the HDF5 1.8 format when `v18` is nonzero, else in
+ * the library's default (earliest) format. *driver is set for td_h5_vfd_release after the close
+ * (-1 on failure). Returns the file or -1.
+ */
+hid_t td_h5_create_file(const char *path, int v18, int *io_errno, hid_t *driver);
+
+/** The variable-length UTF-8 string type (close it with H5Tclose), -1 on failure. */
+hid_t td_h5_text_type(void);
+
+/** Scalar text attribute `name` on `obj`, replacing one of that name. */
+herr_t td_h5_attr_string(hid_t obj, const char *name, const char *value);
+
+/** Numeric attribute: scalar when !is_array, else 1-D of n values; replaces one of that name. */
+herr_t td_h5_attr_numeric(hid_t obj, const char *name, hid_t file_type, hid_t mem_type, const void *values, int n,
+                          int is_array);
+
+/** Scalar int32 and float64 attributes. */
+herr_t td_h5_attr_int(hid_t obj, const char *name, int value);
+herr_t td_h5_attr_double(hid_t obj, const char *name, double value);
+
+/**
+ * A fixed (contiguous) dataset `name` under `loc` of shape dims[0..rank-1], written from `data`
+ * (not read when it has no elements). Returns the open dataset, -1 on failure.
+ */
+hid_t td_h5_fixed_dataset(hid_t loc, const char *name, hid_t file_type, hid_t mem_type, const void *data, int rank,
+                          const hsize_t *dims);
+
+/** td_h5_fixed_dataset plus its "units" attribute, closed; 0 on failure. */
+int td_h5_dataset(hid_t loc, const char *name, hid_t file_type, hid_t mem_type, const void *data, int rank,
+                  const hsize_t *dims, const char *units);
+
+/** A 1-D int32 dataset 0..n-1 with its "units" attribute, closed (the axis of rows that have no
+ *  other coordinate); 0 on failure. */
+int td_h5_index(hid_t loc, const char *name, int n, const char *units);
+
+/**
+ * Make loc/scale a dimension scale (named after itself) and attach it to axis `axis` of every
+ * loc/NAME in `names` (NULL-ended; NULL: none, the scale is its own axis); 0 on failure.
+ */
+int td_h5_attach(hid_t loc, const char *scale, const char *const *names, unsigned axis);
+
+/**
+ * Fill err with TD_ERR_IO, "PATH: WHAT: CAUSE": the cause is the driver's I/O error when
+ * io_errno != 0, else HDF5's innermost error message (the error stack is cleared).
+ */
+td_status td_h5_fail(td_error *err, const char *path, int io_errno, const char *what);
+
+#endif
