@@ -7,6 +7,7 @@
 #include "modal/modal_internal.h"
 #include "model/system_internal.h"
 #include "touchdown/modal.h"
+#include "touchdown/modal_output.h"
 #include "touchdown/touchdown.h"
 
 #include <hdf5.h>

@@ -8,6 +8,7 @@
 
 #include "touchdown/case.h"
 #include "touchdown/modal.h"
+#include "touchdown/modal_output.h"
 #include "touchdown/output.h"
 #include "touchdown/version.h"
 

@@ -259,37 +259,6 @@ TD_API td_status td_harmonic_orbit(const td_harmonic *h, int node, td_orbit *out
 TD_API td_status td_modal_start_state(const td_system *sys, double omega, const td_unbalance *u, int n_u,
                                       int with_gravity, double t, double *z, td_error *err);
 
-/* ---------------------------------------------------------------------------------------- */
-/* Writers (lib/io/modal_writer.c)                                                           */
-
-/**
- * Results to write; any pointer may be NULL (that part is skipped). `modes` is written with all
- * its oscillatory modes, its real eigenvalues and mode shapes; `harmonics` is an array of
- * n_harmonics responses.
- */
-typedef struct td_modal_results {
-    const td_modal *modes;
-    const td_campbell *campbell;
-    const td_critical_speed *critical;
-    int n_critical;
-    const td_harmonic *const *harmonics;
-    int n_harmonics;
-    const td_model *model; /**< optional: node positions (/modes/node_z) and bearing nodes for plots */
-    const char *case_text; /**< optional: the case file text, written as the case_text attribute */
-} td_modal_results;
-
-/**
- * CSV: one file with sections, each a '# section: NAME' line, then a header line of column
- * names with units, then rows; numbers as "%.12g". Sections: modes, real_eigenvalues,
- * mode_shapes, campbell, critical_speeds, harmonic.
- */
-TD_API td_status td_modal_write_csv(const char *path, const td_modal_results *r, td_error *err);
-/**
- * HDF5: groups /modes, /campbell, /critical_speeds, /harmonic/<k> with one-dimensional (or 2-D for
- * Campbell and mode shapes) double datasets, each with a "units" string attribute.
- */
-TD_API td_status td_modal_write_hdf5(const char *path, const td_modal_results *r, td_error *err);
-
 #ifdef __cplusplus
 }
 #endif

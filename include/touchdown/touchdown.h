@@ -8,6 +8,7 @@
 #include "touchdown/dofs.h"
 #include "touchdown/error.h"
 #include "touchdown/modal.h"
+#include "touchdown/modal_output.h"
 #include "touchdown/model.h"
 #include "touchdown/options.h"
 #include "touchdown/output.h"

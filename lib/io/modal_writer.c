@@ -1,5 +1,5 @@
 /*
- * Writers of modal results (touchdown/modal.h): one CSV file with sections, or one HDF5 file with
+ * Writers of modal results (touchdown/modal_output.h): one CSV file with sections, or one HDF5 file with
  * a group per part and a "units" attribute on every dataset. Numbers carry 12 significant digits
  * in CSV ("%.12g") and full double precision in HDF5. HDF5 axes are dimension scales (the Campbell
  * speeds, branch and mode numbers, node positions) so netCDF readers see named dimensions; strings
@@ -10,7 +10,7 @@
 #include "io/h5_util.h"
 #include "io/h5_vfd.h"
 #include "io/writer_internal.h"
-#include "touchdown/modal.h"
+#include "touchdown/modal_output.h"
 #include "util/error_internal.h"
 
 #include <hdf5.h>

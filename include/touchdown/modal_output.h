@@ -1,0 +1,58 @@
+/*
+ * touchdown/modal_output.h - result files of a modal analysis (touchdown/modal.h): one CSV file
+ * with sections, or one HDF5 file with a group per part. docs/output-format.md lists the layout.
+ *
+ * Completeness rule (the one of touchdown/output.h): each writer writes a temporary file
+ * PATH.XXXXXX.partial in the same directory (created with O_CREAT|O_EXCL, so never another
+ * writer's file), checks every write, flushes it to disk and renames it to PATH only when every
+ * part is written. On failure the temporary file is removed and the error names it and the
+ * cause; an earlier file at PATH is left untouched. A file at PATH is therefore always whole,
+ * and needs no completeness flag: a modal analysis either finishes or writes nothing.
+ */
+#ifndef TOUCHDOWN_MODAL_OUTPUT_H
+#define TOUCHDOWN_MODAL_OUTPUT_H
+
+#include "touchdown/error.h"
+#include "touchdown/export.h"
+#include "touchdown/modal.h"
+#include "touchdown/model.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/**
+ * Results to write; any pointer may be NULL (that part is skipped). `modes` is written with all
+ * its oscillatory modes, its real eigenvalues and mode shapes; `harmonics` is an array of
+ * n_harmonics responses.
+ */
+typedef struct td_modal_results {
+    const td_modal *modes;
+    const td_campbell *campbell;
+    const td_critical_speed *critical;
+    int n_critical;
+    const td_harmonic *const *harmonics;
+    int n_harmonics;
+    const td_model *model; /**< optional: node positions (/modes/node_z) and bearing nodes for plots */
+    const char *case_text; /**< optional: the case file text, written as the case_text attribute */
+} td_modal_results;
+
+/**
+ * CSV: one file with sections, each a '# section: NAME' line, then a header line of column
+ * names with units, then rows; numbers as "%.12g". Sections: modes, real_eigenvalues,
+ * mode_shapes, campbell, critical_speeds, harmonic. Errors: TD_ERR_INVALID (NULL argument, bad
+ * counts), TD_ERR_IO (the file cannot be created, written or renamed), TD_ERR_NOMEM.
+ */
+TD_API td_status td_modal_write_csv(const char *path, const td_modal_results *r, td_error *err);
+/**
+ * HDF5: groups /modes, /campbell, /critical_speeds, /harmonic/<k> with one-dimensional (or 2-D for
+ * Campbell and mode shapes) double datasets, each with a "units" string attribute. Errors as
+ * td_modal_write_csv.
+ */
+TD_API td_status td_modal_write_hdf5(const char *path, const td_modal_results *r, td_error *err);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* TOUCHDOWN_MODAL_OUTPUT_H */
