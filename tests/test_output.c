@@ -967,12 +967,23 @@ static void test_failed_writes_leave_nothing(void **state)
     }
 }
 
+/* Write `text` to `path`; fails the test on error. */
+static void put_file(const char *path, const char *text)
+{
+    FILE *f = fopen(path, "w");
+    assert_non_null(f);
+    fputs(text, f);
+    assert_int_equal(fclose(f), 0);
+}
+
 /* Modal results big enough to pass a 16 KiB limit in CSV (rows) and HDF5 (case text). */
 typedef struct modal_job {
     const char *path;
     int hdf5;
 } modal_job;
 
+/* 0 when the write fails with TD_ERR_IO and a message naming the path and the cause (the file
+ * size limit: EFBIG), 20 + status otherwise (20: it succeeded), 30 for a vaguer message. */
 static int modal_job_run(const void *arg)
 {
     const modal_job *job = arg;
@@ -980,6 +991,7 @@ static int modal_job_run(const void *arg)
     static td_critical_speed cs[N];
     static char text[32 * 1024]; /* under the 64 KiB attribute limit of the default HDF5 format */
     td_modal_results r;
+    td_error err;
     td_status st;
     int i;
     for (i = 0; i < N; i++) {
@@ -992,46 +1004,44 @@ static int modal_job_run(const void *arg)
     r.critical = cs;
     r.n_critical = N;
     r.case_text = text;
-    st = job->hdf5 ? td_modal_write_hdf5(job->path, &r, NULL) : td_modal_write_csv(job->path, &r, NULL);
-    return st == TD_ERR_IO ? 0 : 20 + (int)st;
+    td_error_clear(&err);
+    st = job->hdf5 ? td_modal_write_hdf5(job->path, &r, &err) : td_modal_write_csv(job->path, &r, &err);
+    if (st != TD_ERR_IO)
+        return 20 + (int)st;
+    return strstr(err.message, job->path) && strstr(err.message, strerror(EFBIG)) ? 0 : 30;
 }
 
 /* The modal writers write a temporary file and rename it: a write that fails on a full disk
- * leaves the earlier file at PATH untouched and no temporary file. Without the limit the new
- * file replaces the old one. */
+ * (the file size limit) reports the path and the cause, leaves no temporary file, and leaves
+ * at PATH what was there before: nothing, or the earlier file untouched. Without the limit the
+ * new file replaces the old one. */
 static void test_modal_writers_rename(void **state)
 {
     modal_job job;
     char path[512];
     char *text;
-    FILE *f;
+    int old;
     (void)state;
-    for (job.hdf5 = 0; job.hdf5 < 2; job.hdf5++) {
-        tmp_name(path, sizeof path, job.hdf5 ? "modal.h5" : "modal.csv");
-        job.path = path;
-        f = fopen(path, "w");
-        assert_non_null(f);
-        fputs("old\n", f);
-        fclose(f);
-        assert_child_ok(run_limited(modal_job_run, &job, 16 * 1024), job.hdf5);
-        text = td_test_read_file(path);
-        assert_string_equal(text, "old\n");
-        free(text);
-        assert_int_equal(partials_of(path), 0);
-        assert_int_equal(modal_job_run(&job), 20 + TD_OK); /* no limit in this process */
-        assert_true(exists(path));
-        assert_int_equal(partials_of(path), 0);
-        remove(path);
-    }
-}
-
-/* Write `text` to `path`; fails the test on error. */
-static void put_file(const char *path, const char *text)
-{
-    FILE *f = fopen(path, "w");
-    assert_non_null(f);
-    fputs(text, f);
-    assert_int_equal(fclose(f), 0);
+    for (job.hdf5 = 0; job.hdf5 < 2; job.hdf5++)
+        for (old = 0; old < 2; old++) {
+            tmp_name(path, sizeof path, job.hdf5 ? "modal.h5" : "modal.csv");
+            job.path = path;
+            if (old)
+                put_file(path, "old\n");
+            assert_child_ok(run_limited(modal_job_run, &job, 16 * 1024), 2 * job.hdf5 + old);
+            if (old) {
+                text = td_test_read_file(path);
+                assert_string_equal(text, "old\n");
+                free(text);
+            } else {
+                assert_false(exists(path));
+            }
+            assert_int_equal(partials_of(path), 0);
+            assert_int_equal(modal_job_run(&job), 20 + TD_OK); /* no limit in this process */
+            assert_true(exists(path));
+            assert_int_equal(partials_of(path), 0);
+            remove(path);
+        }
 }
 
 /* td_output_check_paths against independently built collisions: the same file by name, by hard
@@ -1099,6 +1109,43 @@ static void test_output_path_checks(void **state)
     remove(link_path);
     remove(part);
     remove(main_cfg);
+    assert_int_equal(rmdir(dir), 0);
+}
+
+/* td_modal_check_paths: the rules of td_output_check_paths for the two modal outputs, which
+ * have no events file (r.events.csv is a free name next to r.csv). */
+static void test_modal_path_checks(void **state)
+{
+    char dir[512], cfg[600], csv[600], h5[600], other[600];
+    const char *inputs[1];
+    td_error err;
+    (void)state;
+    tmp_name(dir, sizeof dir, "modal_paths");
+    assert_int_equal(mkdir(dir, 0755), 0);
+    snprintf(cfg, sizeof cfg, "%s/case.cfg", dir);
+    snprintf(csv, sizeof csv, "%s/r.csv", dir);
+    snprintf(h5, sizeof h5, "%s/r.h5", dir);
+    put_file(cfg, "speed = 1.0;\n");
+    inputs[0] = cfg;
+    assert_int_equal(td_modal_check_paths(csv, h5, inputs, 1, &err), TD_OK);
+    assert_int_equal(td_modal_check_paths("", NULL, inputs, 1, &err), TD_OK); /* no outputs */
+    snprintf(other, sizeof other, "%s/r.events.csv", dir);
+    assert_int_equal(td_modal_check_paths(csv, other, inputs, 1, &err), TD_OK);
+    /* the same file twice, the case file, a reserved name */
+    snprintf(other, sizeof other, "%s/./r.csv", dir);
+    assert_int_equal(td_modal_check_paths(csv, other, inputs, 1, &err), TD_ERR_INVALID);
+    assert_non_null(strstr(err.message, "same file"));
+    assert_int_equal(td_modal_check_paths(cfg, h5, inputs, 1, &err), TD_ERR_INVALID);
+    assert_non_null(strstr(err.message, "case file"));
+    assert_int_equal(td_modal_check_paths(csv, "r.h5.ab12CD.partial", inputs, 1, &err), TD_ERR_INVALID);
+    /* not a regular file, no such directory */
+    assert_int_equal(td_modal_check_paths("/dev/null", h5, inputs, 1, &err), TD_ERR_INVALID);
+    assert_int_equal(td_modal_check_paths(csv, dir, inputs, 1, &err), TD_ERR_INVALID);
+    snprintf(other, sizeof other, "%s/missing/r.h5", dir);
+    assert_int_equal(td_modal_check_paths(csv, other, inputs, 1, &err), TD_ERR_INVALID);
+    assert_non_null(strstr(err.message, "does not exist"));
+    assert_int_equal(td_modal_check_paths(csv, h5, NULL, 1, &err), TD_ERR_INVALID);
+    remove(cfg);
     assert_int_equal(rmdir(dir), 0);
 }
 
@@ -1323,6 +1370,7 @@ int main(void)
         cmocka_unit_test(test_stale_file_removed),
         cmocka_unit_test(test_failed_writes_leave_nothing),
         cmocka_unit_test(test_modal_writers_rename),
+        cmocka_unit_test(test_modal_path_checks),
         cmocka_unit_test(test_output_path_checks),
         cmocka_unit_test(test_attribute_names),
         cmocka_unit_test(test_events_path),

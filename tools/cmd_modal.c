@@ -26,6 +26,11 @@ static const char modal_usage[] =
     "  -q, --quiet          print nothing but errors\n"
     "  -h, --help           this help\n"
     "\n"
+    "Refused before the analysis (exit 2): CSV and HDF5 outputs that are the same file, an output\n"
+    "that is the case file or one of its @include files, an output named *.partial, an output\n"
+    "that exists and is not a regular file, an output directory that does not exist or is not\n"
+    "writable.\n"
+    "\n"
     "exit codes: 0 success, 1 the analysis failed or was interrupted (SIGINT/SIGTERM/SIGHUP, checked\n"
     "between its stages), 2 bad input or usage.\n";
 
@@ -125,6 +130,22 @@ static int choose_paths(modal_outputs *paths, const td_case *c, const char *pref
         code = hdf5 ? td_cli_path(paths->hdf5, sizeof paths->hdf5, hdf5, "", "modal", "--hdf5")
                     : td_cli_path(paths->hdf5, sizeof paths->hdf5, stem, prefix ? ".h5" : "-modal.h5", "modal", from);
     return code;
+}
+
+/* Refuse, before the analysis, outputs that collide with each other or with the case's files, or
+ * that cannot be written (td_modal_check_paths). Returns 0 or an exit code. */
+static int check_outputs(const modal_outputs *paths, const td_case *c)
+{
+    int n = 0;
+    const char *const *files = td_case_files(c, &n);
+    td_error err;
+    td_status st;
+    td_error_clear(&err);
+    st = td_modal_check_paths(paths->csv, paths->hdf5, files, n, &err);
+    if (st == TD_OK)
+        return 0;
+    fprintf(stderr, "touchdown modal: %s\n", err.message[0] ? err.message : td_strerror(st));
+    return td_cli_exit_code(st);
 }
 
 static int analyse(const td_case *c, double speed, const modal_outputs *paths, int quiet)
@@ -257,6 +278,8 @@ int td_cmd_modal(int argc, char **argv)
         }
     }
     code = choose_paths(&paths, c, prefix, csv, hdf5);
+    if (!code)
+        code = check_outputs(&paths, c);
     if (!code)
         code = analyse(c, speed, &paths, quiet);
     td_case_free(&c);

@@ -51,6 +51,17 @@ TD_API td_status td_modal_write_csv(const char *path, const td_modal_results *r,
  */
 TD_API td_status td_modal_write_hdf5(const char *path, const td_modal_results *r, td_error *err);
 
+/**
+ * Check the output paths of a modal analysis before it runs, with the rules of
+ * td_output_check_paths (touchdown/output.h): TD_ERR_INVALID, naming the path, when the CSV and
+ * HDF5 outputs are the same file, when an output is one of the `n_inputs` paths `inputs` (the
+ * case file and its @include files: td_case_files), ends in ".partial", exists and is not a
+ * regular file, or lies in a directory that does not exist or is not writable. Empty or NULL
+ * paths are skipped. TD_ERR_NOMEM.
+ */
+TD_API td_status td_modal_check_paths(const char *csv_path, const char *hdf5_path, const char *const *inputs,
+                                      int n_inputs, td_error *err);
+
 #ifdef __cplusplus
 }
 #endif

@@ -1,7 +1,8 @@
 /*
- * td_output_check_paths: the output files of a run checked against each other and against the
- * inputs before anything is computed, so a run can never overwrite its own case file, write two
- * results into one file, or find out only at the end that it cannot write its results.
+ * td_output_check_paths and td_modal_check_paths: the output files of a run or a modal analysis
+ * checked against each other and against the inputs before anything is computed, so neither can
+ * overwrite its own case file, write two results into one file, or find out only at the end that
+ * it cannot write its results.
  *
  * Two paths name the same file when both exist and have the same device and inode (hard links,
  * symbolic links, "a/../b" all resolve), or when neither exists and they have the same base name
@@ -9,6 +10,7 @@
  * sees through links). Every output's directory must exist, so it always has an identity.
  */
 #include "io/writer_internal.h"
+#include "touchdown/modal_output.h"
 #include "touchdown/options.h"
 #include "util/error_internal.h"
 
@@ -122,39 +124,70 @@ static td_status check_pairs(const path_id *ids, int n_out, int n, td_error *err
     return TD_OK;
 }
 
-td_status td_output_check_paths(const td_output_options *out, const char *const *inputs, int n_inputs, td_error *err)
+/* Identify the n_out outputs `outs` (named `whats`) and the inputs, then refuse collisions. */
+static td_status check_all(const char *const *outs, const char *const *whats, int n_out, const char *const *inputs,
+                           int n_inputs, td_error *err)
 {
-    path_id *ids;
-    char *events = NULL;
-    int n_out = 0, i;
+    path_id *ids = malloc((size_t)(n_out + n_inputs > 0 ? n_out + n_inputs : 1) * sizeof *ids);
     td_status st = TD_OK;
-    if (!out || n_inputs < 0 || (n_inputs > 0 && !inputs))
-        return td_error_set(err, TD_ERR_INVALID, "td_output_check_paths: NULL argument");
-    if (!memchr(out->hdf5_path, '\0', sizeof out->hdf5_path) || !memchr(out->csv_path, '\0', sizeof out->csv_path))
-        return td_error_set(err, TD_ERR_INVALID, "td_output_check_paths: output path not NUL-terminated");
-    ids = malloc((size_t)(3 + n_inputs) * sizeof *ids);
-    if (out->csv_path[0]) {
-        int len = td_writer_events_path(out->csv_path, NULL, 0);
-        events = malloc((size_t)len + 1);
-        if (events)
-            td_writer_events_path(out->csv_path, events, (size_t)len + 1);
-    }
-    if (!ids || (out->csv_path[0] && !events)) {
-        free(ids);
-        free(events);
+    int i;
+    if (!ids)
         return td_error_set(err, TD_ERR_NOMEM, "out of memory checking the output paths");
-    }
-    if (out->hdf5_path[0])
-        st = identify(out->hdf5_path, "HDF5 output", 1, &ids[n_out++], err);
-    if (st == TD_OK && out->csv_path[0])
-        st = identify(out->csv_path, "CSV output", 1, &ids[n_out++], err);
-    if (st == TD_OK && events)
-        st = identify(events, "CSV events output", 1, &ids[n_out++], err);
+    for (i = 0; st == TD_OK && i < n_out; i++)
+        st = identify(outs[i], whats[i], 1, &ids[i], err);
     for (i = 0; st == TD_OK && i < n_inputs; i++)
         st = identify(inputs[i], i == 0 ? "case file" : "@include file", 0, &ids[n_out + i], err);
     if (st == TD_OK)
         st = check_pairs(ids, n_out, n_out + n_inputs, err);
     free(ids);
+    return st;
+}
+
+td_status td_output_check_paths(const td_output_options *out, const char *const *inputs, int n_inputs, td_error *err)
+{
+    const char *outs[3], *whats[3];
+    char *events = NULL;
+    int n_out = 0;
+    td_status st;
+    if (!out || n_inputs < 0 || (n_inputs > 0 && !inputs))
+        return td_error_set(err, TD_ERR_INVALID, "td_output_check_paths: NULL argument");
+    if (!memchr(out->hdf5_path, '\0', sizeof out->hdf5_path) || !memchr(out->csv_path, '\0', sizeof out->csv_path))
+        return td_error_set(err, TD_ERR_INVALID, "td_output_check_paths: output path not NUL-terminated");
+    if (out->csv_path[0]) {
+        int len = td_writer_events_path(out->csv_path, NULL, 0);
+        if (!(events = malloc((size_t)len + 1)))
+            return td_error_set(err, TD_ERR_NOMEM, "out of memory checking the output paths");
+        td_writer_events_path(out->csv_path, events, (size_t)len + 1);
+    }
+    if (out->hdf5_path[0]) {
+        outs[n_out] = out->hdf5_path;
+        whats[n_out++] = "HDF5 output";
+    }
+    if (events) {
+        outs[n_out] = out->csv_path;
+        whats[n_out++] = "CSV output";
+        outs[n_out] = events;
+        whats[n_out++] = "CSV events output";
+    }
+    st = check_all(outs, whats, n_out, inputs, n_inputs, err);
     free(events);
     return st;
+}
+
+td_status td_modal_check_paths(const char *csv_path, const char *hdf5_path, const char *const *inputs, int n_inputs,
+                               td_error *err)
+{
+    const char *outs[2], *whats[2];
+    int n_out = 0;
+    if (n_inputs < 0 || (n_inputs > 0 && !inputs))
+        return td_error_set(err, TD_ERR_INVALID, "td_modal_check_paths: NULL argument");
+    if (hdf5_path && hdf5_path[0]) {
+        outs[n_out] = hdf5_path;
+        whats[n_out++] = "HDF5 output";
+    }
+    if (csv_path && csv_path[0]) {
+        outs[n_out] = csv_path;
+        whats[n_out++] = "CSV output";
+    }
+    return check_all(outs, whats, n_out, inputs, n_inputs, err);
 }
