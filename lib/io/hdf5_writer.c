@@ -18,7 +18,6 @@
 #include "io/writer_internal.h"
 #include "util/error_internal.h"
 
-#include <errno.h>
 #include <hdf5.h>
 #include <hdf5_hl.h> /* H5DS: dimension scales */
 #include <stddef.h>

@@ -1,11 +1,13 @@
 /*
- * Writers of modal results (touchdown/modal_output.h): one CSV file with sections, or one HDF5 file with
- * a group per part and a "units" attribute on every dataset. Numbers carry 12 significant digits
- * in CSV ("%.12g") and full double precision in HDF5. HDF5 axes are dimension scales (the Campbell
- * speeds, branch and mode numbers, node positions) so netCDF readers see named dimensions; strings
- * are variable-length UTF-8, which h5py reads as str.
+ * Writers of modal results (touchdown/modal_output.h): one CSV file with sections, or one HDF5
+ * file with a group per part and a "units" attribute on every dataset. Numbers carry 12
+ * significant digits in CSV ("%.12g") and full double precision in HDF5. HDF5 axes are dimension
+ * scales (the Campbell speeds, branch and mode numbers, node positions) so netCDF readers see
+ * named dimensions; strings are variable-length UTF-8, which h5py reads as str. The HDF5
+ * conventions and helpers are the simulation writer's (h5_util.h).
  * Like the simulation writers, both write PATH.XXXXXX.partial (td_io_create_temp) and rename it
- * to PATH only once every byte is on disk, so a file at PATH is always whole.
+ * to PATH only once every byte is on disk, so a file at PATH is always whole; the file goes
+ * through the writers' HDF5 driver (h5_vfd.h) so that no I/O error is lost.
  */
 #include "io/h5_util.h"
 #include "io/h5_vfd.h"
@@ -14,13 +16,10 @@
 #include "util/error_internal.h"
 
 #include <hdf5.h>
-#include <hdf5_hl.h> /* H5DS: dimension scales */
 
 #include <errno.h>
-#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
-#include <string.h>
 #include <unistd.h>
 
 static const char *whirl_name(td_whirl w)
