@@ -357,7 +357,7 @@ td_status td_cr_node(td_case_reader *r, const config_setting_t *g, const char *k
 {
     const config_setting_t *s = config_setting_get_member(g, key);
     td_status st;
-    int v;
+    int v = 0; /* set by td_cr_value_int on TD_OK; initialised for gcc -O3's flow analysis */
     if (!s) {
         if (what)
             return td_cr_missing(r, g, key, what);
@@ -402,7 +402,7 @@ td_status td_cr_string(td_case_reader *r, const config_setting_t *g, const char 
 td_status td_cr_enum(td_case_reader *r, const config_setting_t *g, const char *key, const char *const *names, int n,
                      int def, int *out)
 {
-    const char *v;
+    const char *v = NULL; /* set by td_cr_string on TD_OK; initialised for gcc -O3's flow analysis */
     char list[256], shown[64];
     size_t len = 0;
     int i;
