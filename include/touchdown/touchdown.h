@@ -7,6 +7,7 @@
 #include "touchdown/case.h"
 #include "touchdown/dofs.h"
 #include "touchdown/error.h"
+#include "touchdown/json.h"
 #include "touchdown/modal.h"
 #include "touchdown/model.h"
 #include "touchdown/options.h"
