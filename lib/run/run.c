@@ -9,12 +9,12 @@
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
-#include <time.h>
 
 #include "run/recorder.h"
 #include "run/summary.h"
 #include "sim/sim_internal.h"
 #include "touchdown/output.h"
+#include "util/clock.h"
 #include "util/error_internal.h"
 #include "util/limits.h"
 #include "util/numeric.h"
@@ -33,13 +33,6 @@ typedef struct run_state {
     double event_sample_time; /* its time */
     double solver_wall_at_contact;
 } run_state;
-
-static double wall_clock(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
 
 static double max2(double a, double b)
 {
@@ -188,9 +181,9 @@ static td_status loop(run_state *r, td_error *err)
         /* After an event exactly at the grid time the state is already there: no step (IDA
          * rejects an output time that is not ahead of the current one). */
         if (target - now > 4.0 * DBL_EPSILON * max2(fabs(target), 1.0)) {
-            double w0 = wall_clock(), reached = now;
+            double w0 = td_wall_clock(), reached = now;
             st = td_sim_step(r->sim, target, &reached);
-            r->s->solver_wall_time += wall_clock() - w0;
+            r->s->solver_wall_time += td_wall_clock() - w0;
             if (st == TD_EVENT) {
                 if ((st = handle_event(r, err)) != TD_OK)
                     return st;
@@ -260,7 +253,7 @@ static void summary_finish(run_state *r, double wall_start)
         s->returned_to_free_orbit = -1;
     else
         s->returned_to_free_orbit = s->free_at_end == 1;
-    s->wall_time = wall_clock() - wall_start;
+    s->wall_time = td_wall_clock() - wall_start;
     if (s->wall_time > 0.0)
         s->realtime_factor = span / s->wall_time;
 }
@@ -334,7 +327,7 @@ td_status td_run(td_sim *sim, const td_model *model, double t_end, const td_outp
     td_run_summary local_summary;
     run_state r;
     td_error loop_err, close_err;
-    double wall_start = wall_clock();
+    double wall_start = td_wall_clock();
     td_status st, cst;
     if (!summary)
         summary = &local_summary;
@@ -381,7 +374,7 @@ td_status td_run(td_sim *sim, const td_model *model, double t_end, const td_outp
     summary->status = st;
     summary->complete = st == TD_OK;
     snprintf(summary->message, sizeof summary->message, "%s", st == TD_OK ? "" : loop_err.message);
-    summary->wall_time = wall_clock() - wall_start;
+    summary->wall_time = td_wall_clock() - wall_start;
     if (st != TD_OK)
         return td_error_set(err, st, "%s", loop_err.message);
     return TD_OK;

@@ -4,6 +4,7 @@
  */
 #include "sim/sim_internal.h"
 #include "touchdown/modal.h"
+#include "util/clock.h"
 #include "util/error_internal.h"
 #include "util/numeric.h"
 
@@ -11,7 +12,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 #include <ida/ida_ls.h>
 #include <sunlinsol/sunlinsol_dense.h>
@@ -700,13 +700,6 @@ const char *td_sim_errmsg(const td_sim *sim)
 
 /* ---- stepping ---------------------------------------------------------------------------- */
 
-static double wall_clock(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
 /* Statistics at the state in s->y (time t): contact time, peak normal force, and, at integrator
  * steps only (at_step; interpolated states carry the interpolation error), the drift. */
 static void monitor_at(td_sim *s, double t, int at_step)
@@ -893,9 +886,9 @@ td_status td_sim_step(td_sim *sim, double tout, double *t_reached)
                  sim->t);
         return TD_ERR_INVALID;
     }
-    w0 = wall_clock();
+    w0 = td_wall_clock();
     st = tout > sim->t ? advance(sim, tout) : TD_OK;
-    sim->stats.wall_time += wall_clock() - w0;
+    sim->stats.wall_time += td_wall_clock() - w0;
     if (t_reached)
         *t_reached = sim->t;
     return st;
