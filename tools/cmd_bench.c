@@ -224,7 +224,7 @@ static int run_model(volatile sig_atomic_t *cancel, const td_model *model, const
         return 0;
     }
     c0 = cpu_now();
-    st = td_run(sim, model, t_end, &out, &hooks, NULL, &r->sum, &err);
+    st = td_run(sim, t_end, &out, &hooks, NULL, &r->sum, &err);
     r->cpu = cpu_now() - c0;
     td_sim_free(&sim);
     if (st != TD_OK) {

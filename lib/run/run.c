@@ -12,7 +12,6 @@
 
 #include "run/recorder.h"
 #include "run/summary.h"
-#include "sim/sim_internal.h"
 #include "touchdown/output.h"
 #include "util/clock.h"
 #include "util/error_internal.h"
@@ -300,30 +299,29 @@ static td_status write_summary(td_recorder *rec, const td_run_summary *s, const 
     return st;
 }
 
-static td_status check_args(const td_sim *sim, const td_model *model, double t_end, const td_output_options *out,
-                            td_error *err)
+static td_status check_args(const td_sim *sim, double t_end, const td_output_options *out, td_error *err)
 {
     char why[256];
+    td_sim_options opt;
     double t0;
-    if (!sim || !model || !out)
-        return td_error_set(err, TD_ERR_INVALID, "td_run: NULL simulation, model or output options");
-    if (td_model_dof_count(model) != td_sim_dof_count(sim))
-        return td_error_set(err, TD_ERR_INVALID, "td_run: the model has %d DOFs but the simulation %d",
-                            td_model_dof_count(model), td_sim_dof_count(sim));
+    if (!sim || !out)
+        return td_error_set(err, TD_ERR_INVALID, "td_run: NULL simulation or output options");
     t0 = td_sim_time(sim);
     if (!isfinite(t_end) || !(t_end > t0))
         return td_error_set(err, TD_ERR_INVALID, "td_run: t_end = %.10f s is not after the current time %.10f s", t_end,
                             t0);
+    td_sim_options_get(sim, &opt);
     /* the bounds of touchdown/limits.h, also checked (with the key) by the case reader */
-    if (td_run_limit_check(t_end - t0, td_model_speed(model), out->sample_rate, sim->opt.solver.max_step, why,
+    if (td_run_limit_check(t_end - t0, td_model_speed(td_sim_model(sim)), out->sample_rate, opt.solver.max_step, why,
                            sizeof why) != TD_LIMIT_NONE)
         return td_error_set(err, TD_ERR_INVALID, "td_run: %s", why);
     return TD_OK;
 }
 
-td_status td_run(td_sim *sim, const td_model *model, double t_end, const td_output_options *out,
-                 const td_run_hooks *hooks, const char *case_text, td_run_summary *summary, td_error *err)
+td_status td_run(td_sim *sim, double t_end, const td_output_options *out, const td_run_hooks *hooks,
+                 const char *case_text, td_run_summary *summary, td_error *err)
 {
+    const td_model *model = td_sim_model(sim);
     td_run_summary local_summary;
     run_state r;
     td_error loop_err, close_err;
@@ -331,7 +329,7 @@ td_status td_run(td_sim *sim, const td_model *model, double t_end, const td_outp
     td_status st, cst;
     if (!summary)
         summary = &local_summary;
-    if ((st = check_args(sim, model, t_end, out, err)) != TD_OK) {
+    if ((st = check_args(sim, t_end, out, err)) != TD_OK) {
         td_run_summary_failed(summary, sim ? td_sim_time(sim) : 0.0, t_end, model ? td_model_speed(model) : 0.0,
                               TD_START_REST, st, err ? err->message : NULL);
         if (sim)

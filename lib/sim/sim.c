@@ -1075,3 +1075,16 @@ td_status td_sim_set_amb_control(td_sim *sim, int amb, double fx, double fy)
     /* the held force jumps: restart only when it acts now */
     return sim->amb_mode[amb] == TD_AMB_EXTERNAL ? restart_after_change(sim) : TD_OK;
 }
+
+const td_model *td_sim_model(const td_sim *sim)
+{
+    return sim ? sim->model : NULL;
+}
+
+td_status td_sim_options_get(const td_sim *sim, td_sim_options *out)
+{
+    if (!sim || !out)
+        return TD_ERR_INVALID;
+    *out = sim->opt;
+    return TD_OK;
+}
