@@ -12,11 +12,11 @@
 
 #include "run/recorder.h"
 #include "run/summary.h"
+#include "touchdown/dofs.h"
 #include "touchdown/output.h"
 #include "util/clock.h"
 #include "util/error_internal.h"
 #include "util/limits.h"
-#include "util/numeric.h"
 
 /* Loop state besides the summary. */
 typedef struct run_state {

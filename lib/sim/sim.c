@@ -3,10 +3,10 @@
  * The DAE itself is in sim_residual.c, mode switching in sim_modes.c.
  */
 #include "sim/sim_internal.h"
+#include "touchdown/dofs.h"
 #include "touchdown/modal.h"
 #include "util/clock.h"
 #include "util/error_internal.h"
-#include "util/numeric.h"
 
 #include <math.h>
 #include <stdio.h>
