@@ -1050,7 +1050,7 @@ static void test_include_bounds(void **state)
 static unsigned long long name_compares(const char *text, td_status *st, td_error *err)
 {
     td_case_reader r;
-    td_text out = TD_TEXT_INIT;
+    td_text out = {NULL, 0, 0, 0, 0};
     memset(&r, 0, sizeof r);
     r.path_shown = (char *)"generated.cfg";
     r.err = err;

@@ -236,7 +236,7 @@ static td_status probe_memory(td_case_reader *r, size_t text_bytes)
 static td_status load(td_case_reader *r, const char *const *overrides, int n_overrides)
 {
     char *main_text = NULL;
-    td_text text = TD_TEXT_INIT;
+    td_text text = {NULL, 0, 0, 0, 0};
     int i;
     td_status st = set_dir(r);
     if (st == TD_OK)

@@ -102,12 +102,3 @@ int td_json_string(char *buf, size_t n, const char *s)
     td_text_json_string(&t, s ? s : "");
     return (int)t.len;
 }
-
-void td_text_free(td_text *t)
-{
-    if (!t->fixed)
-        free(t->data);
-    t->data = NULL;
-    t->len = t->cap = 0;
-    t->failed = 0;
-}
