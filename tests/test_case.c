@@ -1050,7 +1050,7 @@ static void test_include_bounds(void **state)
 static unsigned long long name_compares(const char *text, td_status *st, td_error *err)
 {
     td_case_reader r;
-    td_cr_buf out = {NULL, 0, 0, 0};
+    td_text out = {NULL, 0, 0, 0, 0};
     memset(&r, 0, sizeof r);
     r.path_shown = (char *)"generated.cfg";
     r.err = err;
@@ -1216,17 +1216,17 @@ static void test_run_limits_api(void **state)
     out.hdf5_path[0] = '\0';
     assert_int_equal(td_sim_create(td_case_model(c), &so, &sim, &err), TD_OK);
     /* 5000 Hz x 1e12 s = 5e15 samples */
-    assert_int_equal(td_run(sim, td_case_model(c), 1e12, &out, NULL, NULL, NULL, &err), TD_ERR_INVALID);
+    assert_int_equal(td_run(sim, 1e12, &out, NULL, NULL, NULL, &err), TD_ERR_INVALID);
     assert_contains(err.message, "output samples (at most 1e+08)");
     /* 200 rad/s x 1e5 s / 2 pi = 3.2e6 revolutions (1e5 samples at 1 Hz) */
     out.sample_rate = 1.0;
-    assert_int_equal(td_run(sim, td_case_model(c), 1e5, &out, NULL, NULL, NULL, &err), TD_ERR_INVALID);
+    assert_int_equal(td_run(sim, 1e5, &out, NULL, NULL, NULL, &err), TD_ERR_INVALID);
     assert_contains(err.message, "shaft revolutions (at most 1e+06)");
     assert_close(td_sim_time(sim), 0.0, 0.0, 0.0);
     td_sim_free(&sim);
     so.solver.max_step = 1e-300;
     assert_int_equal(td_sim_create(td_case_model(c), &so, &sim, &err), TD_OK);
-    assert_int_equal(td_run(sim, td_case_model(c), 0.1, &out, NULL, NULL, NULL, &err), TD_ERR_INVALID);
+    assert_int_equal(td_run(sim, 0.1, &out, NULL, NULL, NULL, &err), TD_ERR_INVALID);
     assert_contains(err.message, "solver steps (at most 1e+08)");
     assert_close(td_sim_time(sim), 0.0, 0.0, 0.0);
     td_sim_free(&sim);

@@ -264,7 +264,7 @@ static void test_run_matches_hand_loop(void **state)
     assert_non_null(ref);
     out_paths(&out, "hand");
     remove_outputs(&out);
-    if (td_run(sim, m, T_END, &out, NULL, "case text", &s, &err) != TD_OK)
+    if (td_run(sim, T_END, &out, NULL, "case text", &s, &err) != TD_OK)
         fail_msg("td_run: %s", err.message);
     assert_int_equal(s.status, TD_OK);
     assert_int_equal(s.complete, 1);
@@ -431,7 +431,7 @@ static void test_run_cancel(void **state)
     hooks.user = &ctx;
     hooks.progress_interval = 0.01;
     hooks.cancel = &flag;
-    assert_int_equal(td_run(sim, m, T_END, &out, &hooks, NULL, &s, &err), TD_ERR_INTERRUPTED);
+    assert_int_equal(td_run(sim, T_END, &out, &hooks, NULL, &s, &err), TD_ERR_INTERRUPTED);
     assert_non_null(strstr(err.message, "interrupted"));
     assert_int_equal(s.complete, 0);
     assert_true(ctx.calls >= 5 && ctx.calls <= 8); /* every 0.01 s of simulated time up to 0.05 s */
@@ -476,13 +476,13 @@ static void test_run_bad_arguments(void **state)
     (void)state;
     out_paths(&out, "bad");
     remove_outputs(&out);
-    assert_int_equal(td_run(sim, m, 0.0, &out, NULL, NULL, &s, &err), TD_ERR_INVALID);
+    assert_int_equal(td_run(sim, 0.0, &out, NULL, NULL, &s, &err), TD_ERR_INVALID);
     out.nodes[1] = 7; /* the shaft has nodes 0..6 */
-    assert_int_equal(td_run(sim, m, 0.1, &out, NULL, NULL, &s, &err), TD_ERR_INVALID);
+    assert_int_equal(td_run(sim, 0.1, &out, NULL, NULL, &s, &err), TD_ERR_INVALID);
     assert_non_null(strstr(err.message, "node 7"));
     out.nodes[1] = 3;
     out.sample_rate = 0.0;
-    assert_int_equal(td_run(sim, m, 0.1, &out, NULL, NULL, &s, &err), TD_ERR_INVALID);
+    assert_int_equal(td_run(sim, 0.1, &out, NULL, NULL, &s, &err), TD_ERR_INVALID);
     assert_false(exists(out.hdf5_path));
     assert_false(exists(out.csv_path));
     assert_int_equal(td_sim_time(sim), 0.0); /* nothing was stepped */
@@ -490,7 +490,7 @@ static void test_run_bad_arguments(void **state)
      * the grid 0..30, no event) */
     out.sample_rate = RATE;
     out.hdf5_path[0] = out.csv_path[0] = '\0';
-    assert_int_equal(td_run(sim, m, 0.015, &out, NULL, NULL, &s, &err), TD_OK);
+    assert_int_equal(td_run(sim, 0.015, &out, NULL, NULL, &s, &err), TD_OK);
     assert_int_equal(s.complete, 1);
     assert_int_equal(s.grid_samples, 31);
     assert_int_equal(s.events, 0);
@@ -582,7 +582,7 @@ static void test_summary_unstable_run(void **state)
     (void)state;
     out.hdf5_path[0] = out.csv_path[0] = '\0';
     assert_int_equal(td_sim_create(td_case_model(c), td_case_sim_options(c), &sim, &err), TD_OK);
-    assert_int_equal(td_run(sim, td_case_model(c), 0.005, &out, NULL, NULL, &s, &err), TD_OK);
+    assert_int_equal(td_run(sim, 0.005, &out, NULL, NULL, &s, &err), TD_OK);
     assert_int_equal(s.start.stability, TD_STABILITY_UNSTABLE);
     assert_true(s.start.max_real_part > 0.0);
     td_run_summary_format(buf, sizeof buf, &s);
@@ -618,12 +618,53 @@ static void test_summary_failed_before_start(void **state)
     assert_non_null(strstr(buf, "start                       n/a"));
 }
 
+/* What td_run reads from the sim: its own copy of the model and the options it was created with. */
+static void test_sim_accessors(void **state)
+{
+    td_model *m = small_rotor();
+    td_sim *sim = NULL;
+    td_sim_options opt, got;
+    td_error err;
+    (void)state;
+    td_sim_options_default(&opt);
+    opt.solver.max_step = 1.25e-4;
+    if (td_sim_create(m, &opt, &sim, &err) != TD_OK)
+        fail_msg("td_sim_create: %s", err.message);
+    assert_non_null(td_sim_model(sim));
+    assert_true(td_sim_model(sim) != m); /* a copy: m may be freed */
+    assert_int_equal(td_model_dof_count(td_sim_model(sim)), td_model_dof_count(m));
+    assert_true(td_model_speed(td_sim_model(sim)) == td_model_speed(m));
+    assert_int_equal(td_sim_options_get(sim, &got), TD_OK);
+    assert_true(got.solver.max_step == 1.25e-4);
+    assert_true(got.solver.rtol == opt.solver.rtol);
+    assert_null(td_sim_model(NULL));
+    assert_int_equal(td_sim_options_get(NULL, &got), TD_ERR_INVALID);
+    assert_int_equal(td_sim_options_get(sim, NULL), TD_ERR_INVALID);
+    td_sim_free(&sim);
+    td_model_free(&m);
+}
+
+/* The JSON string escape of touchdown/json.h: RFC 8259's mandatory escapes, snprintf's contract. */
+static void test_json_string(void **state)
+{
+    char buf[64];
+    (void)state;
+    assert_int_equal(td_json_string(buf, sizeof buf, "a\"b\\c\n\001d/\xc3\xa9"), 25);
+    assert_string_equal(buf, "\"a\\\"b\\\\c\\u000a\\u0001d/\xc3\xa9\"");
+    assert_int_equal(td_json_string(NULL, 0, "a\"b"), 6);
+    assert_int_equal(td_json_string(buf, 4, "a\"b"), 6);
+    assert_string_equal(buf, "\"a\\");
+    assert_int_equal(td_json_string(buf, sizeof buf, NULL), 2);
+    assert_string_equal(buf, "\"\"");
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_summary_text),          cmocka_unit_test(test_run_bad_arguments),
         cmocka_unit_test(test_run_matches_hand_loop), cmocka_unit_test(test_run_cancel),
         cmocka_unit_test(test_summary_unstable_run),  cmocka_unit_test(test_summary_failed_before_start),
+        cmocka_unit_test(test_sim_accessors),         cmocka_unit_test(test_json_string),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

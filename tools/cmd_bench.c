@@ -9,6 +9,7 @@
  * Method and results: docs/performance.md.
  */
 #include "cli.h"
+#include "touchdown/json.h"
 #include "touchdown/run.h"
 
 #include <getopt.h>
@@ -224,7 +225,7 @@ static int run_model(volatile sig_atomic_t *cancel, const td_model *model, const
         return 0;
     }
     c0 = cpu_now();
-    st = td_run(sim, model, t_end, &out, &hooks, NULL, &r->sum, &err);
+    st = td_run(sim, t_end, &out, &hooks, NULL, &r->sum, &err);
     r->cpu = cpu_now() - c0;
     td_sim_free(&sim);
     if (st != TD_OK) {
@@ -306,10 +307,27 @@ static double first_contact_error(int ci, const td_run_summary *s)
     return s->first_contact_time - CASE_A_FIRST_CONTACT;
 }
 
+/* `s` as a JSON string, escaped by the library (touchdown/json.h); "" if it cannot be held. */
+static void json_string(FILE *f, const char *s)
+{
+    char small[512], *big;
+    int n = td_json_string(small, sizeof small, s);
+    if (n < (int)sizeof small) {
+        fputs(small, f);
+        return;
+    }
+    big = malloc((size_t)n + 1);
+    if (big)
+        td_json_string(big, (size_t)n + 1, s);
+    fputs(big ? big : "\"\"", f);
+    free(big);
+}
+
 static void print_machine_json(FILE *f, int nproc, const char *cpu, double l0, double l1)
 {
-    fprintf(f, "\"machine\":{\"nproc\":%d,\"cpu\":\"%s\",\"loadavg_start\":%.2f,\"loadavg_end\":%.2f}", nproc, cpu, l0,
-            l1);
+    fprintf(f, "\"machine\":{\"nproc\":%d,\"cpu\":", nproc);
+    json_string(f, cpu);
+    fprintf(f, ",\"loadavg_start\":%.2f,\"loadavg_end\":%.2f}", l0, l1);
 }
 
 static void json_number(FILE *f, const char *name, double v, int comma)
@@ -323,8 +341,13 @@ static void json_number(FILE *f, const char *name, double v, int comma)
 static void print_run_json(FILE *f, int ci, int rep, const bench_run *r)
 {
     const td_run_summary *s = &r->sum;
-    fprintf(f, "{\"case\":\"%s\",\"file\":\"%s\",\"model\":\"%s\",\"repeat\":%d,", bench_cases[ci].key,
-            bench_cases[ci].file, bench_cases[ci].model, rep);
+    fprintf(f, "{\"case\":");
+    json_string(f, bench_cases[ci].key);
+    fprintf(f, ",\"file\":");
+    json_string(f, bench_cases[ci].file);
+    fprintf(f, ",\"model\":");
+    json_string(f, bench_cases[ci].model);
+    fprintf(f, ",\"repeat\":%d,", rep);
     json_number(f, "t_start", s->t_start, 1);
     json_number(f, "t_end", s->t_reached, 1);
     json_number(f, "wall_time", s->wall_time, 1);
@@ -405,8 +428,10 @@ static void paper_json(FILE *f, const bench_options *bo, const machine *mc, benc
     fprintf(f, "{");
     print_machine_json(f, mc->nproc, mc->cpu, mc->load0, mc->load1);
     fprintf(f, ",\"quick\":%s,\"repeats\":%d,\"sets\":[", bo->quick ? "true" : "false", bo->repeats);
-    for (i = 0; i < bo->sets.count; i++)
-        fprintf(f, "%s\"%s\"", i ? "," : "", bo->sets.items[i]);
+    for (i = 0; i < bo->sets.count; i++) {
+        fprintf(f, "%s", i ? "," : "");
+        json_string(f, bo->sets.items[i]);
+    }
     fprintf(f, "],\"runs\":[");
     for (ci = 0; ci < N_CASES; ci++)
         for (r = 0; r < bo->repeats && bo->selected[ci]; r++) {
@@ -419,7 +444,9 @@ static void paper_json(FILE *f, const bench_options *bo, const machine *mc, benc
     for (ci = 0; ci < N_CASES; ci++) {
         if (!bo->selected[ci])
             continue;
-        fprintf(f, "%s{\"case\":\"%s\",", first ? "" : ",", bench_cases[ci].key);
+        fprintf(f, "%s{\"case\":", first ? "" : ",");
+        json_string(f, bench_cases[ci].key);
+        fprintf(f, ",");
         json_number(f, "wall_time", cs[ci].wall, 1);
         json_number(f, "cpu_time", cs[ci].cpu, 1);
         json_number(f, "wall_time_per_revolution", cs[ci].rev >= 0.0 ? cs[ci].rev : NAN, 1);

@@ -87,8 +87,7 @@ static int print_modes(const td_model *m, int count)
         return TD_EXIT_USAGE;
     }
     td_model_gravity(m, &gx, &gy);
-    printf("speed        %.9g rad/s (%.9g rpm)\n", td_model_speed(m),
-           td_model_speed(m) * 30.0 / 3.14159265358979323846);
+    printf("speed        %.9g rad/s (%.9g rpm)\n", td_model_speed(m), TD_RPM_FROM_RAD_S(td_model_speed(m)));
     printf("gravity      %s\n", (gx != 0.0 || gy != 0.0) ? "on" : "off");
     printf("DOFs         %d mechanical (4 per node), %d first-order states with the AMB lags\n",
            td_system_dof_count(sys), td_modal_state_count(sys));

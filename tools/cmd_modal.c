@@ -49,7 +49,7 @@ static void print_critical(const td_critical_speed *cs, int n, const td_modal_op
         printf("  none\n");
     for (i = 0; i < n; i++)
         printf("  %-9s %20.12g rad/s %20.12g Hz %12.2f rpm  zeta %.6g\n", td_whirl_name(cs[i].whirl), cs[i].speed,
-               cs[i].freq_hz, cs[i].speed * 30.0 / 3.14159265358979323846, cs[i].zeta);
+               cs[i].freq_hz, TD_RPM_FROM_RAD_S(cs[i].speed), cs[i].zeta);
 }
 
 /* One orbit line, if `node` is in the response. */

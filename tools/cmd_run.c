@@ -227,7 +227,7 @@ int td_cmd_run(int argc, char **argv)
     }
     hooks.cancel = cancel;
 
-    st = td_run(sim, td_case_model(c), td_case_end_time(c), &out, &hooks, td_case_text(c), &summary, &err);
+    st = td_run(sim, td_case_end_time(c), &out, &hooks, td_case_text(c), &summary, &err);
     if (prog.shown)
         fputs("\r\033[K", stderr);
     if (st != TD_OK)

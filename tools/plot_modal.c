@@ -6,7 +6,7 @@
  * with the data files PREFIXcampbell.dat, PREFIXcritical.dat and PREFIXmode-shapes.dat.
  */
 #include "plot.h"
-#include "util/numeric.h"
+#include "touchdown/dofs.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -98,7 +98,7 @@ static void critical_list(FILE *out, const plot_modal *m)
     len = (size_t)snprintf(text, sizeof text, "critical speeds:");
     for (i = 0; i < m->ncrit && len < sizeof text - 80; i++)
         len += (size_t)snprintf(text + len, sizeof text - len, "\n%8.1f rad/s = %6.0f rpm, %s", m->crit_speed[i],
-                                m->crit_speed[i] * 30.0 / TD_PI, whirl_word(m->crit_whirl[i]));
+                                TD_RPM_FROM_RAD_S(m->crit_speed[i]), whirl_word(m->crit_whirl[i]));
     fprintf(out, "set label 1 ");
     plot_gp_string(out, text);
     fprintf(out, " at screen 0.745, screen 0.6 left front font ',10'\n");

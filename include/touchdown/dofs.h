@@ -4,8 +4,8 @@
  * Every other file refers here rather than restating these facts.
  *
  * Units: SI throughout. Lengths m, masses kg, inertias kg m^2, forces N, moments N m, angles rad,
- * speeds rad/s, time s, stiffness N/m, damping N s/m, unbalance kg m, AMB gains ki N/A, kp A/m,
- * kd A s/m, currents A.
+ * speeds rad/s (rpm only for display: TD_RPM_FROM_RAD_S), time s, stiffness N/m, damping N s/m, unbalance kg m, AMB
+ * gains ki N/A, kp A/m, kd A s/m, currents A.
  *
  * Axes: the shaft axis is z, running from node 0 (the non-driven end, NDE) to the last node
  * (the driven end, DE). x and y are fixed (non-rotating) lateral axes with x, y, z right-handed.
@@ -52,6 +52,14 @@ enum td_dof_offset {
 
 /** Global index of DOF `offset` (a td_dof_offset) at node `node`. */
 #define TD_DOF(node, offset) (TD_DOFS_PER_NODE * (node) + (offset))
+
+/** pi: angles are in rad, speeds in rad/s. */
+#define TD_PI 3.14159265358979323846
+
+/** A speed in rad/s as rpm (revolutions per minute: one revolution is 2 pi rad, a minute 60 s),
+ *  and back; only for display, the library takes and gives rad/s. */
+#define TD_RPM_FROM_RAD_S(w) ((w)*30.0 / TD_PI)
+#define TD_RAD_S_FROM_RPM(n) ((n)*TD_PI / 30.0)
 
 #ifdef __cplusplus
 }

@@ -91,9 +91,10 @@ typedef struct td_run_summary {
 /**
  * Run `sim` from its current time t0 to `t_end` (> t0).
  *
- * model:     the model `sim` was created from (borrowed, read only): node, retainer and AMB
- *            counts for the output layout, node numbers and clearances written as attributes,
- *            the speed used to count revolutions. Its DOF count must match the simulation's.
+ * The model is the simulation's own (td_sim_model): its node, retainer and AMB counts give the
+ * output layout, its node numbers and clearances are written as attributes, and its speed counts
+ * the revolutions.
+ *
  * out:       files and sampling (sample_rate > 0; nodes in range; node_count 0: every node);
  *            both paths empty: no files, the summary is still filled.
  * hooks:     progress callback and cancel flag, or NULL.
@@ -108,8 +109,8 @@ typedef struct td_run_summary {
  * any step, leaving no file behind; a run past the bounds of touchdown/limits.h (samples, steps
  * forced by max_step, revolutions) is an invalid argument.
  */
-TD_API td_status td_run(td_sim *sim, const td_model *model, double t_end, const td_output_options *out,
-                        const td_run_hooks *hooks, const char *case_text, td_run_summary *summary, td_error *err);
+TD_API td_status td_run(td_sim *sim, double t_end, const td_output_options *out, const td_run_hooks *hooks,
+                        const char *case_text, td_run_summary *summary, td_error *err);
 
 /** Fill `s` for a run that failed before td_run could start it (no simulation: e.g. td_sim_create
  *  failed): status `st`, `message`, the start option `requested`, nothing simulated, no files. */

@@ -100,6 +100,13 @@ TD_API td_status td_sim_set_amb_mode(td_sim *sim, int amb, td_amb_mode mode);
  *  the total force is ks x + f (clipped when the AMB saturates), N. */
 TD_API td_status td_sim_set_amb_control(td_sim *sim, int amb, double fx, double fy);
 
+/** The simulation's own copy of the model it was created from (borrowed, valid until td_sim_free;
+ *  later td_sim_set_* changes are not in it); NULL for a NULL sim. */
+TD_API const td_model *td_sim_model(const td_sim *sim);
+/** Copy the options the simulation was created with (defaults filled in for NULL) into *out.
+ *  TD_ERR_INVALID on NULL arguments. */
+TD_API td_status td_sim_options_get(const td_sim *sim, td_sim_options *out);
+
 #ifdef __cplusplus
 }
 #endif

@@ -132,20 +132,20 @@ static td_case *case_new(const char *path)
 }
 
 /* Finish the case text: a final newline, then the overrides as comment lines; hands it to the case. */
-static td_status finish_text(td_case_reader *r, td_cr_buf *buf, const char *const *ov, int n)
+static td_status finish_text(td_case_reader *r, td_text *buf, const char *const *ov, int n)
 {
     int i;
     if (buf->len > 0 && buf->data[buf->len - 1] != '\n')
-        td_cr_buf_append(buf, "\n", 1);
+        td_text_append(buf, "\n", 1);
     if (n > 0)
-        td_cr_buf_printf(buf, "# >>> overrides (--set), applied after parsing\n");
+        td_text_printf(buf, "# >>> overrides (--set), applied after parsing\n");
     for (i = 0; i < n; i++) {
-        td_cr_buf_append(buf, "# --set ", 8);
-        td_cr_buf_append(buf, ov[i], strlen(ov[i])); /* one line: checked by td_cr_apply_override */
-        td_cr_buf_append(buf, "\n", 1);
+        td_text_append(buf, "# --set ", 8);
+        td_text_append(buf, ov[i], strlen(ov[i])); /* one line: checked by td_cr_apply_override */
+        td_text_append(buf, "\n", 1);
     }
     if (!buf->data)
-        td_cr_buf_append(buf, "", 0);
+        td_text_append(buf, "", 0);
     if (buf->failed)
         return td_cr_fail_file(r->err, TD_ERR_NOMEM, r->path_shown, 0, "out of memory");
     r->c->text = buf->data;
@@ -236,7 +236,7 @@ static td_status probe_memory(td_case_reader *r, size_t text_bytes)
 static td_status load(td_case_reader *r, const char *const *overrides, int n_overrides)
 {
     char *main_text = NULL;
-    td_cr_buf text = {NULL, 0, 0, 0};
+    td_text text = {NULL, 0, 0, 0, 0};
     int i;
     td_status st = set_dir(r);
     if (st == TD_OK)

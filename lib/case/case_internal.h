@@ -10,6 +10,7 @@
 #include <stddef.h>
 
 #include "touchdown/case.h"
+#include "util/text.h"
 
 struct td_case {
     td_model *model;
@@ -33,13 +34,6 @@ typedef struct td_cr_wrap_site {
     int ordinal; /* numbers before it on its line: picks its setting among several on one line */
     char literal[40];
 } td_cr_wrap_site;
-
-/* A growable NUL-terminated text buffer; `failed` is set once an allocation fails. */
-typedef struct td_cr_buf {
-    char *data;
-    size_t len, cap;
-    int failed;
-} td_cr_buf;
 
 /* The shape of the case text, counted by td_cr_expand before libconfig sees it: libconfig 1.5
  * compares every new key with each earlier key of its group (quadratic in the keys of a group) and
@@ -82,8 +76,6 @@ typedef enum td_cr_range {
 } td_cr_range;
 
 /* ---- text (case_text.c) ---------------------------------------------------------------- */
-void td_cr_buf_append(td_cr_buf *b, const char *s, size_t n);
-void td_cr_buf_printf(td_cr_buf *b, const char *fmt, ...);
 /* Read a regular file of at most TD_CASE_MAX_FILE_SIZE bytes, rejecting binary data.
  * `shown` names the file in messages. TD_ERR_IO if unreadable, TD_ERR_PARSE if binary. */
 td_status td_cr_read_file(const char *shown, const char *path, char **text, td_error *err);
@@ -91,7 +83,7 @@ td_status td_cr_read_file(const char *shown, const char *path, char **text, td_e
 td_status td_cr_record_file(td_case *c, const char *path);
 /* Append `text` (the file libconfig calls `file`, NULL for the main file) to `out` with every
  * @include expanded in place, and record integer literals libconfig would wrap. */
-td_status td_cr_expand(td_case_reader *r, const char *text, const char *file, int depth, td_cr_buf *out);
+td_status td_cr_expand(td_case_reader *r, const char *text, const char *file, int depth, td_text *out);
 /* Scan one value string (an override) for literals libconfig would wrap; returns 1 if found. */
 int td_cr_value_wraps(const char *text, char *literal, size_t n);
 

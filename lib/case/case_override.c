@@ -226,7 +226,7 @@ static td_status graft(td_case_reader *r, const char *ov, const step *steps, int
  * override's error. */
 static td_status count_value(td_case_reader *r, const char *ov, const char *src)
 {
-    td_cr_buf scratch = {NULL, 0, 0, 0};
+    td_text scratch = {NULL, 0, 0, 0, 0};
     td_error scan_err, *saved = r->err;
     const char *reason;
     int root_keys = r->shape.keys[0];

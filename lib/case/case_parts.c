@@ -10,7 +10,7 @@
 #include <math.h>
 #include <string.h>
 
-#include "util/numeric.h"
+#include "touchdown/dofs.h"
 
 static const char *const disc_keys[] = {"node",      "mass",    "Ip",          "Id", "radius",
                                         "thickness", "density", "bore_radius", NULL};

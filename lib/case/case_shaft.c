@@ -4,8 +4,8 @@
  * and Rayleigh damping. Element i joins nodes i and i + 1 (touchdown/model.h).
  */
 #include "case/case_internal.h"
+#include "touchdown/dofs.h"
 #include "util/error_internal.h"
-#include "util/numeric.h"
 
 #include <stdlib.h>
 #include <string.h>

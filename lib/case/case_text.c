@@ -11,47 +11,11 @@
 
 #include <ctype.h>
 #include <errno.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
 #include <sys/stat.h>
-
-void td_cr_buf_append(td_cr_buf *b, const char *s, size_t n)
-{
-    if (b->failed)
-        return;
-    if (b->len + n + 1 > b->cap) {
-        size_t cap = b->cap ? b->cap : 1024;
-        char *p;
-        while (cap < b->len + n + 1)
-            cap *= 2;
-        p = realloc(b->data, cap);
-        if (!p) {
-            b->failed = 1;
-            return;
-        }
-        b->data = p;
-        b->cap = cap;
-    }
-    memcpy(b->data + b->len, s, n);
-    b->len += n;
-    b->data[b->len] = '\0';
-}
-
-void td_cr_buf_printf(td_cr_buf *b, const char *fmt, ...)
-{
-    char tmp[2048];
-    va_list ap;
-    int n;
-    va_start(ap, fmt);
-    n = vsnprintf(tmp, sizeof tmp, fmt, ap);
-    va_end(ap);
-    if (n < 0)
-        return;
-    td_cr_buf_append(b, tmp, (size_t)n < sizeof tmp ? (size_t)n : sizeof tmp - 1);
-}
 
 /* A control character that does not belong in a text file (NUL, BEL, ESC, ...). */
 static int binary_byte(unsigned char ch)
@@ -235,7 +199,7 @@ static td_status too_many_bytes(td_case_reader *r, const char *including, int li
  * marker comments. An include that cannot be read is reported here, before libconfig would open
  * it: libconfig 1.5 would block on a FIFO and misreport a directory. */
 static td_status expand_include(td_case_reader *r, const char *file, int line_no, const char *name, int depth,
-                                td_cr_buf *out)
+                                td_text *out)
 {
     char path[4096], shown[4096], including[4096], quoted[256];
     char *text = NULL;
@@ -279,11 +243,11 @@ static td_status expand_include(td_case_reader *r, const char *file, int line_no
         free(text);
         return too_many_bytes(r, including, line_no);
     }
-    td_cr_buf_printf(out, "# >>> @include \"%s\" (%s)\n", quoted, shown);
+    td_text_printf(out, "# >>> @include \"%s\" (%s)\n", quoted, shown);
     st = td_cr_expand(r, text, name, depth + 1, out);
     if (out->len > 0 && out->data[out->len - 1] != '\n')
-        td_cr_buf_append(out, "\n", 1);
-    td_cr_buf_printf(out, "# <<< end of \"%s\"\n", quoted);
+        td_text_append(out, "\n", 1);
+    td_text_printf(out, "# <<< end of \"%s\"\n", quoted);
     free(text);
     return st;
 }
@@ -368,7 +332,7 @@ static td_status shape_token(td_case_reader *r, const char *file, int line, cons
     return count_setting(r, file, line);
 }
 
-td_status td_cr_expand(td_case_reader *r, const char *text, const char *file, int depth, td_cr_buf *out)
+td_status td_cr_expand(td_case_reader *r, const char *text, const char *file, int depth, td_text *out)
 {
     const char *p = text, *line_start = text;
     scan_state state = SCAN_CODE;
@@ -397,7 +361,7 @@ td_status td_cr_expand(td_case_reader *r, const char *text, const char *file, in
             continue;
         }
         if (*p == '\n') {
-            td_cr_buf_append(out, p, 1);
+            td_text_append(out, p, 1);
             p++;
             line_start = p;
             line++;
@@ -410,14 +374,14 @@ td_status td_cr_expand(td_case_reader *r, const char *text, const char *file, in
         case SCAN_LINE_COMMENT: break;
         case SCAN_BLOCK_COMMENT:
             if (p[0] == '*' && p[1] == '/') {
-                td_cr_buf_append(out, p, 1);
+                td_text_append(out, p, 1);
                 p++;
                 state = SCAN_CODE;
             }
             break;
         case SCAN_STRING:
             if (p[0] == '\\' && p[1] != '\0' && p[1] != '\n') {
-                td_cr_buf_append(out, p, 1);
+                td_text_append(out, p, 1);
                 p++;
             } else if (*p == '"') {
                 state = SCAN_CODE;
@@ -429,7 +393,7 @@ td_status td_cr_expand(td_case_reader *r, const char *text, const char *file, in
             } else if (p[0] == '/' && p[1] == '*') {
                 state = SCAN_BLOCK_COMMENT;
                 comment_line = line;
-                td_cr_buf_append(out, p, 1);
+                td_text_append(out, p, 1);
                 p++;
             } else if (*p == '"') {
                 state = SCAN_STRING;
@@ -442,7 +406,7 @@ td_status td_cr_expand(td_case_reader *r, const char *text, const char *file, in
                     n++;
                 if ((st = shape_token(r, file, line, p, n)) != TD_OK)
                     return st;
-                td_cr_buf_append(out, p, n - 1);
+                td_text_append(out, p, n - 1);
                 p += n - 1;
             } else if (isdigit((unsigned char)*p) || (*p == '.' && isdigit((unsigned char)p[1]))) {
                 size_t n = number_length(p);
@@ -455,14 +419,14 @@ td_status td_cr_expand(td_case_reader *r, const char *text, const char *file, in
                 numbers_on_line++;
                 if ((st = shape_token(r, file, line, p, n)) != TD_OK)
                     return st;
-                td_cr_buf_append(out, p, n - 1);
+                td_text_append(out, p, n - 1);
                 p += n - 1;
             } else if (strchr("{}()[]", *p) && (st = shape_token(r, file, line, p, 1)) != TD_OK) {
                 return st;
             }
             break;
         }
-        td_cr_buf_append(out, p, 1);
+        td_text_append(out, p, 1);
         p++;
     }
     if (state == SCAN_BLOCK_COMMENT) {

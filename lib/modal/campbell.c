@@ -4,8 +4,8 @@
  * Illinois variant of regula falsi on fresh eigen-solves).
  */
 #include "modal/modal_internal.h"
+#include "touchdown/dofs.h"
 #include "util/error_internal.h"
-#include "util/numeric.h"
 
 #include <math.h>
 #include <stdlib.h>

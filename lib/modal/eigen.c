@@ -5,8 +5,8 @@
  * apart; each mode gets its normalised shape and its whirl sense (touchdown/modal.h).
  */
 #include "modal/modal_internal.h"
+#include "touchdown/dofs.h"
 #include "util/error_internal.h"
-#include "util/numeric.h"
 
 #include <gsl/gsl_complex_math.h>
 #include <gsl/gsl_eigen.h>

@@ -16,7 +16,6 @@
 #include <string.h>
 
 #include "touchdown/dofs.h"
-#include "util/numeric.h"
 
 /* Where the standard plane coordinates [w1, w1', w2, w2'] sit in the 8-DOF element, and the sign
  * that turns a standard slope into the element's rotation. */

@@ -12,8 +12,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "util/numeric.h"
-
 /* Append one item of `size` bytes to a part array; grows geometrically. */
 static td_status part_append(void **items, int *count, int *capacity, size_t size, const void *item, td_error *err)
 {

@@ -3,15 +3,15 @@
  * The DAE itself is in sim_residual.c, mode switching in sim_modes.c.
  */
 #include "sim/sim_internal.h"
+#include "touchdown/dofs.h"
 #include "touchdown/modal.h"
+#include "util/clock.h"
 #include "util/error_internal.h"
-#include "util/numeric.h"
 
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 #include <ida/ida_ls.h>
 #include <sunlinsol/sunlinsol_dense.h>
@@ -700,13 +700,6 @@ const char *td_sim_errmsg(const td_sim *sim)
 
 /* ---- stepping ---------------------------------------------------------------------------- */
 
-static double wall_clock(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
 /* Statistics at the state in s->y (time t): contact time, peak normal force, and, at integrator
  * steps only (at_step; interpolated states carry the interpolation error), the drift. */
 static void monitor_at(td_sim *s, double t, int at_step)
@@ -893,9 +886,9 @@ td_status td_sim_step(td_sim *sim, double tout, double *t_reached)
                  sim->t);
         return TD_ERR_INVALID;
     }
-    w0 = wall_clock();
+    w0 = td_wall_clock();
     st = tout > sim->t ? advance(sim, tout) : TD_OK;
-    sim->stats.wall_time += wall_clock() - w0;
+    sim->stats.wall_time += td_wall_clock() - w0;
     if (t_reached)
         *t_reached = sim->t;
     return st;
@@ -1081,4 +1074,17 @@ td_status td_sim_set_amb_control(td_sim *sim, int amb, double fx, double fy)
     sim->amb_control[2 * amb + 1] = fy;
     /* the held force jumps: restart only when it acts now */
     return sim->amb_mode[amb] == TD_AMB_EXTERNAL ? restart_after_change(sim) : TD_OK;
+}
+
+const td_model *td_sim_model(const td_sim *sim)
+{
+    return sim ? sim->model : NULL;
+}
+
+td_status td_sim_options_get(const td_sim *sim, td_sim_options *out)
+{
+    if (!sim || !out)
+        return TD_ERR_INVALID;
+    *out = sim->opt;
+    return TD_OK;
 }

@@ -1,7 +1,7 @@
 /* The run-work bounds (touchdown/limits.h). The products are formed in double and compared
  * with the bound, so an overflow to infinity is caught as "too many" as well. */
 #include "util/limits.h"
-#include "util/numeric.h"
+#include "touchdown/dofs.h"
 
 #include <math.h>
 #include <stdio.h>

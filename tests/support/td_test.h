@@ -9,7 +9,7 @@
 
 #include <cmocka.h>
 
-#define TD_PI 3.14159265358979323846
+#include "touchdown/dofs.h" /* TD_PI */
 
 /* Fails the test unless |actual - expected| <= atol + rtol |expected|; prints both with 17 digits. */
 void td_assert_close_impl(double actual, double expected, double rtol, double atol, const char *expr, const char *file,

@@ -1,0 +1,251 @@
+/*
+ * The run summary: its initial state, and its text and JSON forms (touchdown/run.h).
+ */
+#include "run/summary.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "touchdown/version.h"
+#include "util/text.h"
+
+void td_run_summary_init(td_run_summary *s, double t0, double t_end, double speed)
+{
+    memset(s, 0, sizeof *s);
+    s->status = TD_OK;
+    s->t_start = t0;
+    s->t_end = t_end;
+    s->t_reached = t0;
+    s->speed = speed;
+    s->first_contact_time = -1.0;
+    s->last_contact_time = -1.0;
+    s->peak_time = -1.0;
+    s->peak_retainer = -1;
+    s->free_window = -1.0;
+    s->free_at_end = -1;
+    s->returned_to_free_orbit = -1;
+    s->wall_time_per_revolution = -1.0;
+    s->realtime_factor = -1.0;
+    s->stats.first_contact_time = -1.0;
+    s->stats.peak_time = -1.0;
+    s->stats.peak_retainer = -1;
+    s->start.requested = s->start.used = TD_START_REST;
+    s->start.stability = TD_STABILITY_UNCHECKED;
+    s->start.max_real_part = NAN;
+}
+
+void td_run_summary_failed(td_run_summary *s, double t_start, double t_end, double speed, td_start requested,
+                           td_status st, const char *message)
+{
+    if (!s)
+        return;
+    td_run_summary_init(s, t_start, t_end, speed);
+    s->start.requested = requested;
+    s->status = st;
+    snprintf(s->message, sizeof s->message, "%s", message ? message : td_strerror(st));
+}
+
+static const char *tri(int v)
+{
+    return v > 0 ? "yes" : v == 0 ? "no" : v == TD_RUN_NOT_APPLICABLE ? "n/a (no contact)" : "undetermined";
+}
+
+static const char *start_name(td_start st)
+{
+    return st == TD_START_ORBIT ? "orbit" : st == TD_START_REST ? "rest" : "auto";
+}
+
+static const char *stability_name(td_stability st)
+{
+    return st == TD_STABILITY_STABLE ? "stable" : st == TD_STABILITY_UNSTABLE ? "unstable" : "unchecked";
+}
+
+static void format_start(td_text *b, const td_run_summary *s)
+{
+    const td_sim_start_info *si = &s->start;
+    if (!s->start_known) {
+        td_text_printf(b, "start                       n/a (start = \"%s\", no simulation was set up)\n",
+                       start_name(si->requested));
+        return;
+    }
+    td_text_printf(b, "start                       %s", start_name(si->used));
+    if (si->requested == TD_START_AUTO)
+        td_text_printf(b, " (start = \"auto\"%s%s)", si->reason[0] ? ": " : "", si->reason);
+    td_text_printf(b, "\n");
+    if (si->stability == TD_STABILITY_UNCHECKED)
+        td_text_printf(
+            b, "contact-free system         stability not checked (more than %d states, or no eigen-solution)\n",
+            TD_SIM_STABILITY_MAX_STATES);
+    else
+        td_text_printf(b, "contact-free system         %s at %.6g rad/s (rightmost eigenvalue real part %.6g 1/s)\n",
+                       stability_name(si->stability), s->speed, si->max_real_part);
+}
+
+static void format_files(td_text *b, const td_run_summary *s)
+{
+    const char *p[3];
+    int i, n = 0;
+    p[0] = s->hdf5_path, p[1] = s->csv_path, p[2] = s->events_path;
+    td_text_printf(b, "files                      ");
+    for (i = 0; i < 3; i++)
+        if (p[i][0])
+            td_text_printf(b, "%s %s", n++ ? "," : "", p[i]);
+    td_text_printf(b, "%s%s\n", n ? "" : " none", n && !s->complete ? " (marked incomplete)" : "");
+}
+
+int td_run_summary_format(char *buf, size_t n, const td_run_summary *s)
+{
+    td_text b;
+    td_text_fixed(&b, buf, n);
+    if (!s)
+        return 0;
+    if (s->complete)
+        td_text_printf(&b, "status                      complete\n");
+    else
+        td_text_printf(&b, "status                      INCOMPLETE (%s): %s\n", td_strerror(s->status), s->message);
+    td_text_printf(&b, "simulated                   %.10f s to %.10f s (requested %.10f s)\n", s->t_start, s->t_reached,
+                   s->t_end);
+    format_start(&b, s);
+    td_text_printf(&b, "speed                       %.6g rad/s, %.4f revolutions\n", s->speed, s->revolutions);
+    td_text_printf(&b, "samples                     %ld (%ld on the grid, %ld at events)\n", s->samples,
+                   s->grid_samples, s->samples - s->grid_samples);
+    td_text_printf(&b, "events                      %ld, contact onsets %ld\n", s->events, s->contacts);
+    if (s->first_contact_time >= 0.0) {
+        td_text_printf(&b, "first contact               %.10f s\n", s->first_contact_time);
+        td_text_printf(&b, "last contact ended          %.10f s\n", s->last_contact_time);
+    } else {
+        td_text_printf(&b, "first contact               none\n");
+    }
+    td_text_printf(&b, "time in contact             %.10f s (%.4f %% of the run)\n", s->contact_time,
+                   100.0 * s->contact_fraction);
+    if (s->peak_retainer >= 0)
+        td_text_printf(&b, "peak normal force           %.6g N at %.10f s, retainer %d\n", s->peak_normal_force,
+                       s->peak_time, s->peak_retainer);
+    else
+        td_text_printf(&b, "peak normal force           none (no contact force)\n");
+    if (s->free_window > 0.0)
+        td_text_printf(&b, "free at end                 %s (no contact in the last %d revolutions = %.10f s)\n",
+                       tri(s->free_at_end), TD_RUN_FREE_REVOLUTIONS, s->free_window);
+    else
+        td_text_printf(&b, "free at end                 %s\n", tri(s->free_at_end));
+    td_text_printf(&b, "returned to free orbit      %s\n", tri(s->returned_to_free_orbit));
+    td_text_printf(&b, "solver steps                %ld (residuals %ld, Jacobians %ld, restarts %ld)\n", s->stats.steps,
+                   s->stats.residual_evals, s->stats.jacobian_evals, s->stats.restarts);
+    if (s->stats.worst_drift > 0.0 || s->contacts == 0)
+        td_text_printf(&b, "worst constraint drift      %.3e m\n", s->stats.worst_drift);
+    else /* contacts, none of them constrained: a penalty model has no constraint to drift from */
+        td_text_printf(&b, "worst constraint drift      none (no constrained contact)\n");
+    td_text_printf(&b, "wall time                   %.3f s (solver %.3f s), real-time factor %.4g\n", s->wall_time,
+                   s->solver_wall_time, s->realtime_factor);
+    if (s->wall_time_per_revolution >= 0.0)
+        td_text_printf(&b, "wall time per revolution    %.6g s after first contact (%.4f revolutions)\n",
+                       s->wall_time_per_revolution, s->revolutions_after_contact);
+    else
+        td_text_printf(&b, "wall time per revolution    n/a (no contact or no revolution after it)\n");
+    format_files(&b, s);
+    return (int)b.len;
+}
+
+/* A JSON number, or null for a "none" sentinel or a non-finite value. */
+static void json_real(td_text *b, const char *key, double v, int negative_is_null, int comma)
+{
+    if (!isfinite(v) || (negative_is_null && v < 0.0))
+        td_text_printf(b, "\"%s\":null%s", key, comma ? "," : "");
+    else
+        td_text_printf(b, "\"%s\":%.17g%s", key, v, comma ? "," : "");
+}
+
+/* "key":"value", with the escapes of td_text_json_string; "" as null when empty_is_null. */
+static void json_text(td_text *b, const char *key, const char *v, int empty_is_null)
+{
+    if (empty_is_null && !v[0]) {
+        td_text_printf(b, "\"%s\":null,", key);
+        return;
+    }
+    td_text_printf(b, "\"%s\":", key);
+    td_text_json_string(b, v);
+    td_text_printf(b, ",");
+}
+
+static void json_string(td_text *b, const char *key, const char *v)
+{
+    json_text(b, key, v, 0);
+}
+
+static void json_start(td_text *b, const td_run_summary *s)
+{
+    const td_sim_start_info *si = &s->start;
+    json_string(b, "start_requested", start_name(si->requested));
+    if (!s->start_known) {
+        td_text_printf(b, "\"start\":null,\"start_reason\":null,\"stability\":null,\"max_real_part\":null,");
+        return;
+    }
+    json_string(b, "start", start_name(si->used));
+    json_text(b, "start_reason", si->reason, 1);
+    json_string(b, "stability", stability_name(si->stability));
+    json_real(b, "max_real_part", si->stability == TD_STABILITY_UNCHECKED ? NAN : si->max_real_part, 0, 1);
+}
+
+static void json_files(td_text *b, const td_run_summary *s)
+{
+    json_text(b, "hdf5_path", s->hdf5_path, 1);
+    json_text(b, "csv_path", s->csv_path, 1);
+    json_text(b, "events_path", s->events_path, 1);
+}
+
+int td_run_summary_json(char *buf, size_t n, const td_run_summary *s)
+{
+    td_text b;
+    td_text_fixed(&b, buf, n);
+    if (!s)
+        return 0;
+    td_text_printf(&b, "{\"library_version\":\"%s\",", td_version());
+    td_text_printf(&b, "\"complete\":%s,", s->complete ? "true" : "false");
+    json_string(&b, "status", td_strerror(s->status));
+    json_string(&b, "message", s->message);
+    json_real(&b, "t_start", s->t_start, 0, 1);
+    json_real(&b, "t_end", s->t_end, 0, 1);
+    json_real(&b, "t_reached", s->t_reached, 0, 1);
+    json_real(&b, "speed", s->speed, 0, 1);
+    json_start(&b, s);
+    json_files(&b, s);
+    td_text_printf(&b, "\"samples\":%ld,\"grid_samples\":%ld,\"events\":%ld,\"contacts\":%ld,", s->samples,
+                   s->grid_samples, s->events, s->contacts);
+    json_real(&b, "first_contact_time", s->first_contact_time, 1, 1);
+    json_real(&b, "last_contact_time", s->last_contact_time, 1, 1);
+    json_real(&b, "peak_normal_force", s->peak_normal_force, 0, 1);
+    json_real(&b, "peak_time", s->peak_time, 1, 1);
+    if (s->peak_retainer >= 0)
+        td_text_printf(&b, "\"peak_retainer\":%d,", s->peak_retainer);
+    else
+        td_text_printf(&b, "\"peak_retainer\":null,");
+    json_real(&b, "contact_time", s->contact_time, 0, 1);
+    json_real(&b, "contact_fraction", s->contact_fraction, 0, 1);
+    json_real(&b, "free_window", s->free_window, 1, 1);
+    td_text_printf(&b, "\"free_at_end\":%s,", s->free_at_end < 0 ? "null" : s->free_at_end ? "true" : "false");
+    td_text_printf(&b, "\"returned_to_free_orbit\":%s,",
+                   s->returned_to_free_orbit < 0 ? "null"
+                   : s->returned_to_free_orbit   ? "true"
+                                                 : "false");
+    json_real(&b, "revolutions", s->revolutions, 0, 1);
+    json_real(&b, "revolutions_after_contact", s->revolutions_after_contact, 0, 1);
+    json_real(&b, "wall_time", s->wall_time, 0, 1);
+    json_real(&b, "solver_wall_time", s->solver_wall_time, 0, 1);
+    json_real(&b, "wall_time_per_revolution", s->wall_time_per_revolution, 1, 1);
+    json_real(&b, "realtime_factor", s->realtime_factor, 1, 1);
+    td_text_printf(&b,
+                   "\"stats\":{\"steps\":%ld,\"residual_evals\":%ld,\"jacobian_evals\":%ld,\"linear_setups\":%ld,"
+                   "\"nonlinear_iters\":%ld,\"error_test_fails\":%ld,\"nonlinear_fails\":%ld,\"restarts\":%ld,"
+                   "\"events\":%ld,\"contact_onsets\":%ld,\"releases\":%ld,",
+                   s->stats.steps, s->stats.residual_evals, s->stats.jacobian_evals, s->stats.linear_setups,
+                   s->stats.nonlinear_iters, s->stats.error_test_fails, s->stats.nonlinear_fails, s->stats.restarts,
+                   s->stats.events, s->stats.contact_onsets, s->stats.releases);
+    json_real(&b, "worst_drift", s->stats.worst_drift, 0, 1);
+    json_real(&b, "peak_normal_force", s->stats.peak_normal_force, 0, 1);
+    json_real(&b, "time_in_contact", s->stats.time_in_contact, 0, 1);
+    json_real(&b, "first_contact_time", s->stats.first_contact_time, 1, 1);
+    json_real(&b, "wall_time", s->stats.wall_time, 0, 0);
+    td_text_printf(&b, "}}");
+    return (int)b.len;
+}

@@ -1,0 +1,11 @@
+/* The run summary's initial state, shared by td_run and td_run_summary_failed (lib/run/summary.c). */
+#ifndef TD_RUN_SUMMARY_H
+#define TD_RUN_SUMMARY_H
+
+#include "touchdown/run.h"
+
+/** `s` before a run from t0 towards t_end at `speed`: nothing simulated, every "none" sentinel set,
+ *  status TD_OK, the start requested and used TD_START_REST. */
+void td_run_summary_init(td_run_summary *s, double t0, double t_end, double speed);
+
+#endif
