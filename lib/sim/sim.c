@@ -1,6 +1,7 @@
 /*
  * td_sim: creation, the IDA set-up, the step loop and the public accessors (touchdown/sim.h).
- * The DAE itself is in sim_residual.c, mode switching in sim_modes.c.
+ * The DAE itself is in sim_residual.c, mode switching in sim_modes.c, the per-retainer queries and
+ * mode bookkeeping in retainer.c.
  */
 #include "sim/sim_internal.h"
 #include "touchdown/modal.h"
@@ -144,9 +145,33 @@ static td_status check_options(const td_sim_options *o, td_error *err)
     return TD_OK;
 }
 
+/* The work space of sim_internal.h; 0 if out of memory. */
+static int alloc_work(td_sim *s, size_t nr)
+{
+    size_t n = (size_t)s->n;
+    s->mass_x = calloc(n, sizeof(double));
+    s->minv_f = calloc(n, sizeof(double));
+    s->power_x = calloc(n, sizeof(double));
+    s->power_mx = calloc(n, sizeof(double));
+    s->schur = calloc(nr * nr, sizeof(double));
+    s->schur_rhs = calloc(nr, sizeof(double));
+    s->restitution = calloc(nr, sizeof(double));
+    s->impulse = calloc(nr, sizeof(double));
+    s->impact_work = calloc(nr * (nr + 1), sizeof(double));
+    s->minv_cols = calloc(n * nr, sizeof(double));
+    s->rows = calloc(nr, sizeof *s->rows);
+    s->active = calloc(nr, sizeof(int));
+    s->onset = calloc(nr, sizeof(int));
+    s->entered = calloc(nr, sizeof(int));
+    s->touching = calloc(nr, sizeof(int));
+    return s->mass_x && s->minv_f && s->power_x && s->power_mx && s->schur && s->schur_rhs && s->restitution &&
+           s->impulse && s->impact_work && s->minv_cols && s->rows && s->active && s->onset && s->entered &&
+           s->touching;
+}
+
 static td_status alloc_arrays(td_sim *s, td_error *err)
 {
-    int na = td_model_amb_count(s->model), i, ok = 1;
+    int na = td_model_amb_count(s->model), ok;
     size_t nr = (size_t)(s->nr > 0 ? s->nr : 1);
     s->nu = td_model_unbalance_count(s->model);
     s->unb = calloc((size_t)(s->nu > 0 ? s->nu : 1), sizeof *s->unb);
@@ -156,18 +181,13 @@ static td_status alloc_arrays(td_sim *s, td_error *err)
     s->amb_coef = calloc((size_t)(s->sys->n_amb_axes + 1), sizeof *s->amb_coef);
     s->q_cap = 4 * s->nr + td_model_change_count(s->model) + 4;
     s->queue = calloc((size_t)s->q_cap, sizeof *s->queue);
-    for (i = 0; i < 4; i++)
-        ok = ok && (s->wn[i] = calloc((size_t)s->n, sizeof(double))) != NULL;
-    s->wm = calloc(nr * (nr + 1) + 2 * nr, sizeof(double));
-    s->wmn = calloc((size_t)s->n * nr, sizeof(double));
-    s->rows = calloc(nr, sizeof *s->rows);
-    s->act = calloc(4 * nr, sizeof(int));
+    ok = alloc_work(s, nr);
     s->rootdir = calloc(TD_ROOTS_PER_RETAINER * nr, sizeof(int));
     s->rootsfound = calloc(TD_ROOTS_PER_RETAINER * nr, sizeof(int));
     s->ysave = calloc((size_t)s->neq, sizeof(double));
     s->ypsave = calloc((size_t)s->neq, sizeof(double));
-    if (!ok || !s->unb || !s->amb_mode || !s->amb_control || !s->ret || !s->amb_coef || !s->queue || !s->wm ||
-        !s->wmn || !s->rows || !s->act || !s->rootdir || !s->rootsfound || !s->ysave || !s->ypsave)
+    if (!ok || !s->unb || !s->amb_mode || !s->amb_control || !s->ret || !s->amb_coef || !s->queue || !s->rootdir ||
+        !s->rootsfound || !s->ysave || !s->ypsave)
         return td_error_set(err, TD_ERR_NOMEM, "out of memory creating a simulation");
     return TD_OK;
 }
@@ -181,15 +201,8 @@ static void init_machine(td_sim *s)
         td_model_get_unbalance(s->model, i, &s->unb[i]);
     for (i = 0; i < na; i++)
         s->amb_mode[i] = TD_AMB_PD;
-    for (i = 0; i < s->nr; i++) {
-        td_sim_retainer *r = &s->ret[i];
-        td_model_get_retainer(s->model, i, &r->r);
-        r->dx = TD_DOF(r->r.node, TD_DOF_X);
-        r->dy = TD_DOF(r->r.node, TD_DOF_Y);
-        r->mode = TD_RMODE_FREE;
-        r->armed = 1;
-        r->slip = 1;
-    }
+    for (i = 0; i < s->nr; i++)
+        td_sim_retainer_init(&s->ret[i], s->model, i);
     /* the AMB laws are linear (model/amb.c): unit probes give their coefficients exactly */
     for (i = 0; i < s->sys->n_amb_axes; i++) {
         const td_amb_axis *a = &s->sys->amb_axes[i];
@@ -209,7 +222,7 @@ static void init_machine(td_sim *s)
  * the Rayleigh quotient (an estimate from below, good to a few per cent: it only sets a tolerance). */
 static double highest_frequency(const td_sim *s)
 {
-    double *x = s->wn[0], *kx = s->wn[1], lam = 0.0;
+    double *x = s->power_x, *kx = s->minv_f, *mx = s->power_mx, lam = 0.0;
     int i, it;
     for (i = 0; i < s->n; i++)
         x[i] = (i % 2 ? 1.0 : -1.0) * (1.0 + 0.1 * (i % 7));
@@ -220,10 +233,10 @@ static double highest_frequency(const td_sim *s)
         for (i = 0; i < s->n; i++)
             num += x[i] * kx[i];
         td_sim_mass_solve(s, kx); /* kx = M^-1 K x */
-        memset(s->wn[2], 0, sizeof(double) * (size_t)s->n);
-        cs_di_gaxpy(s->sys->M, x, s->wn[2]);
+        memset(mx, 0, sizeof(double) * (size_t)s->n);
+        cs_di_gaxpy(s->sys->M, x, mx);
         for (i = 0; i < s->n; i++)
-            den += x[i] * s->wn[2][i];
+            den += x[i] * mx[i];
         if (den > 0.0)
             lam = num / den;
         for (i = 0; i < s->n; i++)
@@ -428,7 +441,7 @@ static td_status orbit_start(td_sim *s, double *y, td_error *err)
 static td_status start_state(td_sim *s, td_error *err)
 {
     double *y = N_VGetArrayPointer(s->y);
-    int *touching = s->act + 3 * s->nr; /* past the three lists sim_modes.c uses */
+    int *touching = s->touching;
     int k;
     td_status st;
     N_VConst(0.0, s->y);
@@ -633,10 +646,28 @@ td_status td_sim_create_cancellable(const td_model *model, const td_sim_options 
     return TD_OK;
 }
 
+static void free_work(td_sim *s)
+{
+    free(s->mass_x);
+    free(s->minv_f);
+    free(s->power_x);
+    free(s->power_mx);
+    free(s->schur);
+    free(s->schur_rhs);
+    free(s->restitution);
+    free(s->impulse);
+    free(s->impact_work);
+    free(s->minv_cols);
+    free(s->rows);
+    free(s->active);
+    free(s->onset);
+    free(s->entered);
+    free(s->touching);
+}
+
 void td_sim_free(td_sim **sim)
 {
     td_sim *s;
-    int i;
     if (!sim || !*sim)
         return;
     s = *sim;
@@ -678,12 +709,7 @@ void td_sim_free(td_sim **sim)
     free(s->ret);
     free(s->amb_coef);
     free(s->queue);
-    for (i = 0; i < 4; i++)
-        free(s->wn[i]);
-    free(s->wm);
-    free(s->wmn);
-    free(s->rows);
-    free(s->act);
+    free_work(s);
     free(s->rootdir);
     free(s->rootsfound);
     free(s->ysave);
@@ -863,7 +889,7 @@ static td_status advance(td_sim *s, double tout)
             continue;
         }
         if (td_sim_penalty_out_of_step(s, N_VGetArrayPointer(s->y))) {
-            /* IDA missed a crossing (sim_modes.c): switch the mode at this step's end */
+            /* IDA missed a crossing (retainer.c): switch the mode at this step's end */
             s->pending = TD_PENDING_RESYNC;
             s->t_pending = tret;
             continue;
