@@ -903,12 +903,24 @@ static td_status advance(td_sim *s, double tout)
     }
 }
 
-td_status td_sim_step(td_sim *sim, double tout, double *t_reached)
+/* A failure of a public call: the message the sim keeps (s->errmsg, td_sim_errmsg) into *err. */
+static td_status failed(const td_sim *s, td_status st, td_error *err)
+{
+    return td_error_set(err, st, "%s", s->errmsg);
+}
+
+/* A public call's outcome: failures reported through *err, TD_OK and TD_EVENT as they are. */
+static td_status reported(const td_sim *s, td_status st, td_error *err)
+{
+    return st < 0 ? failed(s, st, err) : st;
+}
+
+td_status td_sim_step(td_sim *sim, double tout, double *t_reached, td_error *err)
 {
     td_status st;
     double w0;
     if (!sim)
-        return TD_ERR_INVALID;
+        return td_error_set(err, TD_ERR_INVALID, "td_sim_step: NULL simulation");
     if (pop_event(sim)) {
         if (t_reached)
             *t_reached = sim->t;
@@ -917,14 +929,14 @@ td_status td_sim_step(td_sim *sim, double tout, double *t_reached)
     if (!isfinite(tout) || tout < sim->t) {
         snprintf(sim->errmsg, sizeof sim->errmsg, "td_sim_step: tout = %.17g is before the current time %.17g", tout,
                  sim->t);
-        return TD_ERR_INVALID;
+        return failed(sim, TD_ERR_INVALID, err);
     }
     w0 = wall_clock();
     st = tout > sim->t ? advance(sim, tout) : TD_OK;
     sim->stats.wall_time += wall_clock() - w0;
     if (t_reached)
         *t_reached = sim->t;
-    return st;
+    return reported(sim, st, err);
 }
 
 td_status td_sim_start_info_get(const td_sim *sim, td_sim_start_info *out)
@@ -1050,26 +1062,26 @@ td_status td_sim_stats_get(const td_sim *sim, td_sim_stats *out)
 
 /* ---- changes between steps --------------------------------------------------------------- */
 
-td_status td_sim_set_unbalance(td_sim *sim, int unbalance, double magnitude, double phase)
+td_status td_sim_set_unbalance(td_sim *sim, int unbalance, double magnitude, double phase, td_error *err)
 {
     if (!sim)
-        return TD_ERR_INVALID;
+        return td_error_set(err, TD_ERR_INVALID, "%s: NULL simulation", __func__);
     if (unbalance < 0 || unbalance >= sim->nu || !(magnitude >= 0.0) || !isfinite(magnitude) || !isfinite(phase)) {
         snprintf(sim->errmsg, sizeof sim->errmsg, "td_sim_set_unbalance: invalid unbalance %d or value", unbalance);
-        return TD_ERR_INVALID;
+        return failed(sim, TD_ERR_INVALID, err);
     }
     sim->unb[unbalance].magnitude = magnitude;
     sim->unb[unbalance].phase = phase;
-    return restart_after_change(sim);
+    return reported(sim, restart_after_change(sim), err);
 }
 
-td_status td_sim_set_speed(td_sim *sim, double omega)
+td_status td_sim_set_speed(td_sim *sim, double omega, td_error *err)
 {
     if (!sim)
-        return TD_ERR_INVALID;
+        return td_error_set(err, TD_ERR_INVALID, "%s: NULL simulation", __func__);
     if (!isfinite(omega)) {
         snprintf(sim->errmsg, sizeof sim->errmsg, "td_sim_set_speed: speed must be finite");
-        return TD_ERR_INVALID;
+        return failed(sim, TD_ERR_INVALID, err);
     }
     /* keep the spin angle continuous: the unbalance force turns on from where it is */
     sim->spin_ref = td_sim_spin_angle(sim, sim->t);
@@ -1079,32 +1091,32 @@ td_status td_sim_set_speed(td_sim *sim, double omega)
     if (sim->opt.solver.max_step <= 0.0) {
         sim->hmax = default_max_step(sim);
     }
-    return restart_after_change(sim);
+    return reported(sim, restart_after_change(sim), err);
 }
 
-td_status td_sim_set_amb_mode(td_sim *sim, int amb, td_amb_mode mode)
+td_status td_sim_set_amb_mode(td_sim *sim, int amb, td_amb_mode mode, td_error *err)
 {
     if (!sim)
-        return TD_ERR_INVALID;
+        return td_error_set(err, TD_ERR_INVALID, "%s: NULL simulation", __func__);
     if (amb < 0 || amb >= td_model_amb_count(sim->model) ||
         (mode != TD_AMB_PD && mode != TD_AMB_EXTERNAL && mode != TD_AMB_OFF)) {
         snprintf(sim->errmsg, sizeof sim->errmsg, "td_sim_set_amb_mode: invalid AMB %d or mode %d", amb, (int)mode);
-        return TD_ERR_INVALID;
+        return failed(sim, TD_ERR_INVALID, err);
     }
     sim->amb_mode[amb] = mode;
-    return restart_after_change(sim);
+    return reported(sim, restart_after_change(sim), err);
 }
 
-td_status td_sim_set_amb_control(td_sim *sim, int amb, double fx, double fy)
+td_status td_sim_set_amb_control(td_sim *sim, int amb, double fx, double fy, td_error *err)
 {
     if (!sim)
-        return TD_ERR_INVALID;
+        return td_error_set(err, TD_ERR_INVALID, "%s: NULL simulation", __func__);
     if (amb < 0 || amb >= td_model_amb_count(sim->model) || !isfinite(fx) || !isfinite(fy)) {
         snprintf(sim->errmsg, sizeof sim->errmsg, "td_sim_set_amb_control: invalid AMB %d or force", amb);
-        return TD_ERR_INVALID;
+        return failed(sim, TD_ERR_INVALID, err);
     }
     sim->amb_control[2 * amb] = fx;
     sim->amb_control[2 * amb + 1] = fy;
     /* the held force jumps: restart only when it acts now */
-    return sim->amb_mode[amb] == TD_AMB_EXTERNAL ? restart_after_change(sim) : TD_OK;
+    return sim->amb_mode[amb] == TD_AMB_EXTERNAL ? reported(sim, restart_after_change(sim), err) : TD_OK;
 }
