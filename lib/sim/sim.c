@@ -566,6 +566,30 @@ static td_status setup_stage(td_status st, volatile sig_atomic_t *cancel, td_err
     return st;
 }
 
+/* Sizes and block offsets of the unknowns (sim_internal.h), the start time, the statistics'
+ * "none yet" markers and the penalty law of the options. */
+static void init_layout(td_sim *s)
+{
+    s->model = td_system_model(s->sys);
+    s->n = s->sys->ndof;
+    s->nw = s->sys->n_filter_states;
+    s->nr = td_model_retainer_count(s->model);
+    s->oq = 0;
+    s->ov = s->n;
+    s->ow = 2 * s->n;
+    s->ol = s->ow + s->nw;
+    s->ou = s->ol + s->nr;
+    s->neq = s->ou + s->nr;
+    s->t = s->t_ida = s->t_acc = s->opt.t0;
+    s->stats.first_contact_time = -1.0;
+    s->stats.peak_time = -1.0;
+    s->stats.peak_retainer = -1;
+    s->law.stiffness = s->opt.contact.stiffness;
+    s->law.exponent = s->opt.contact.exponent;
+    s->law.damping = s->opt.contact.damping;
+    s->law.coefficient = s->opt.contact.damping_coefficient;
+}
+
 td_status td_sim_create(const td_model *model, const td_sim_options *options, td_sim **out, td_error *err)
 {
     return td_sim_create_cancellable(model, options, NULL, out, err);
@@ -590,24 +614,7 @@ td_status td_sim_create_cancellable(const td_model *model, const td_sim_options 
     if (st == TD_OK)
         st = setup_stage(td_system_create(model, &s->sys, err), cancel, err);
     if (st == TD_OK) {
-        s->model = td_system_model(s->sys);
-        s->n = s->sys->ndof;
-        s->nw = s->sys->n_filter_states;
-        s->nr = td_model_retainer_count(s->model);
-        s->oq = 0;
-        s->ov = s->n;
-        s->ow = 2 * s->n;
-        s->ol = s->ow + s->nw;
-        s->ou = s->ol + s->nr;
-        s->neq = s->ou + s->nr;
-        s->t = s->t_ida = s->t_acc = s->opt.t0;
-        s->stats.first_contact_time = -1.0;
-        s->stats.peak_time = -1.0;
-        s->stats.peak_retainer = -1;
-        s->law.stiffness = s->opt.contact.stiffness;
-        s->law.exponent = s->opt.contact.exponent;
-        s->law.damping = s->opt.contact.damping;
-        s->law.coefficient = s->opt.contact.damping_coefficient;
+        init_layout(s);
         st = alloc_arrays(s, err);
     }
     if (st == TD_OK) {
@@ -837,6 +844,40 @@ static td_status handle_stop(td_sim *s, int kind)
     return st;
 }
 
+/* The stop pending beyond the last output time (a root, the stop time or a penalty resync): past
+ * tout, only interpolate to tout; otherwise handle it. Returns 1 when advance returns *st (tout
+ * reached, an event to report or a failure), 0 to go on integrating. */
+static int pending_stop(td_sim *s, double tout, td_status *st)
+{
+    int kind = s->pending;
+    if (s->t_pending > tout) {
+        *st = interpolate(s, tout);
+        monitor(s, tout);
+        return 1;
+    }
+    s->pending = 0;
+    *st = interpolate(s, s->t_pending);
+    monitor(s, s->t);
+    if (*st == TD_OK)
+        *st = handle_stop(s, kind);
+    if (*st != TD_OK)
+        return 1;
+    if (pop_event(s)) {
+        *st = TD_EVENT;
+        return 1;
+    }
+    return 0;
+}
+
+/* An integrator step to tret accepted: statistics, and the state kept as the last good one. */
+static void accept_step(td_sim *s, double tret)
+{
+    s->t = tret;
+    monitor_at(s, tret, 1);
+    memcpy(s->ysave, N_VGetArrayPointer(s->y), sizeof(double) * (size_t)s->neq);
+    memcpy(s->ypsave, N_VGetArrayPointer(s->yp), sizeof(double) * (size_t)s->neq);
+}
+
 static td_status advance(td_sim *s, double tout)
 {
     for (;;) {
@@ -844,22 +885,8 @@ static td_status advance(td_sim *s, double tout)
         int flag;
         td_status st;
         if (s->pending) {
-            /* a root, the stop time or a penalty resync beyond the last output time */
-            int kind = s->pending;
-            if (s->t_pending > tout) {
-                st = interpolate(s, tout);
-                monitor(s, tout);
+            if (pending_stop(s, tout, &st))
                 return st;
-            }
-            s->pending = 0;
-            st = interpolate(s, s->t_pending);
-            monitor(s, s->t);
-            if (st == TD_OK)
-                st = handle_stop(s, kind);
-            if (st != TD_OK)
-                return st;
-            if (pop_event(s))
-                return TD_EVENT;
             continue;
         }
         if (s->t_ida >= tout) {
@@ -894,10 +921,7 @@ static td_status advance(td_sim *s, double tout)
             s->t_pending = tret;
             continue;
         }
-        s->t = tret;
-        monitor_at(s, tret, 1);
-        memcpy(s->ysave, N_VGetArrayPointer(s->y), sizeof(double) * (size_t)s->neq);
-        memcpy(s->ypsave, N_VGetArrayPointer(s->yp), sizeof(double) * (size_t)s->neq);
+        accept_step(s, tret);
         if (tret >= tout)
             return tret > tout ? interpolate(s, tout) : TD_OK;
     }

@@ -241,24 +241,14 @@ static double impact_restitution(td_sim *s, int k, const double *y, double vr)
     return e * vr < vmin ? 0.0 : e;
 }
 
-/*
- * Impacts at the retainers flagged in `onset` (constraint model): project each node onto its
- * circle, apply the impact map with every contact already active (e = 0 keeps them on the circle)
- * and the new ones (their restitution, or 0 when the rebound would be too small to resolve:
- * impact_restitution), queue the onset events. New contacts with e = 0 become CONTACT (tentatively: the KKT solve may
- * still reject them); bouncing ones stay free, disarmed until the gap opens again. entered[k] flags the former. Returns
- * the number of onset events queued.
- */
-static int impacts(td_sim *s, const int *onset, int *entered)
+/* The contacts of an impact at the retainers flagged in `onset`, into s->active with their
+ * restitution in s->restitution: every active contact (e = 0 keeps it on the circle) and each
+ * onset moving outward (impact_restitution). Returns their number. */
+static int impact_contacts(td_sim *s, const int *onset, const double *y)
 {
-    double *y = N_VGetArrayPointer(s->y), *v = y + s->ov;
-    double *e = s->restitution, *P = s->impulse;
-    int m = 0, k, i, queued = 0, first_event = s->q_len;
-    for (k = 0; k < s->nr; k++) {
-        entered[k] = 0;
-        if (onset[k])
-            td_sim_project_onto_circle(s, k, y);
-    }
+    const double *v = y + s->ov;
+    double *e = s->restitution;
+    int m = 0, k;
     for (k = 0; k < s->nr; k++) {
         const td_sim_retainer *r = &s->ret[k];
         double vr;
@@ -273,6 +263,13 @@ static int impacts(td_sim *s, const int *onset, int *entered)
             s->active[m++] = k;
         }
     }
+    return m;
+}
+
+/* Rows J_k (s->rows) and columns M^-1 J_k^T (s->minv_cols) of the first m contacts in s->active. */
+static void impact_columns(td_sim *s, int m, const double *y)
+{
+    int i;
     for (i = 0; i < m; i++) {
         double *col = s->minv_cols + (size_t)i * s->n;
         td_sim_contact_row(s, s->active[i], y, &s->rows[i]);
@@ -281,6 +278,13 @@ static int impacts(td_sim *s, const int *onset, int *entered)
         col[s->rows[i].dof[1]] = s->rows[i].j[1];
         td_sim_mass_solve(s, col);
     }
+}
+
+/* Queue the onset event of every new contact among the first m in s->active, with the
+ * velocities before the impact. Returns how many. */
+static int queue_onsets(td_sim *s, const int *onset, int m, const double *y)
+{
+    int i, k, queued = 0;
     for (i = 0; i < m; i++) {
         k = s->active[i];
         if (!onset[k] || s->ret[k].mode == TD_RMODE_CONTACT)
@@ -292,15 +296,21 @@ static int impacts(td_sim *s, const int *onset, int *entered)
             queued++;
         }
     }
-    if (m > 0 && td_contact_impact_map(s->n, m, s->rows, s->minv_cols, e, v, P, s->impact_work) != 0)
-        return -1;
+    return queued;
+}
+
+/* After the impact map: new contacts with e = 0 become CONTACT (tentatively: the KKT solve may
+ * still reject them), flagged in entered; bouncing ones stay free, disarmed until the gap opens. */
+static void enter_contacts(td_sim *s, const int *onset, int m, const double *y, int *entered)
+{
+    int i, k;
     for (i = 0; i < m; i++) {
         td_sim_retainer *r;
         k = s->active[i];
         r = &s->ret[k];
         if (!onset[k] || r->mode == TD_RMODE_CONTACT)
             continue;
-        if (e[i] > 0.0) {
+        if (s->restitution[i] > 0.0) {
             r->armed = 0; /* bounced: free until the gap has opened */
         } else {
             r->mode = TD_RMODE_CONTACT;
@@ -308,18 +318,48 @@ static int impacts(td_sim *s, const int *onset, int *entered)
             entered[k] = 1;
         }
     }
-    /* complete the queued onset events (in queue order = retainer order) */
+}
+
+/* Complete the onset events queued from first_event on (in queue order = retainer order) with
+ * the velocities after the impact and its impulse. */
+static void complete_onsets(td_sim *s, const int *onset, int m, int first_event, const double *y)
+{
+    int i, k, q;
     for (i = 0; i < m; i++) {
-        int q;
         k = s->active[i];
         if (!onset[k])
             continue;
         for (q = first_event; q < s->q_len; q++)
             if (s->queue[q].retainer == k && s->queue[q].kind == TD_EVENT_CONTACT_ONSET) {
                 td_sim_event_velocities(s, k, y, 1, &s->queue[q]);
-                s->queue[q].impulse = P[i];
+                s->queue[q].impulse = s->impulse[i];
             }
     }
+}
+
+/*
+ * Impacts at the retainers flagged in `onset` (constraint model): project each node onto its
+ * circle, apply the impact map with every contact already active and the new ones
+ * (impact_contacts), queue the onset events. entered[k] flags the retainers that came into
+ * contact. Returns the number of onset events queued, -1 if the impact map is singular.
+ */
+static int impacts(td_sim *s, const int *onset, int *entered)
+{
+    double *y = N_VGetArrayPointer(s->y);
+    int m, k, queued, first_event = s->q_len;
+    for (k = 0; k < s->nr; k++) {
+        entered[k] = 0;
+        if (onset[k])
+            td_sim_project_onto_circle(s, k, y);
+    }
+    m = impact_contacts(s, onset, y);
+    impact_columns(s, m, y);
+    queued = queue_onsets(s, onset, m, y);
+    if (m > 0 && td_contact_impact_map(s->n, m, s->rows, s->minv_cols, s->restitution, y + s->ov, s->impulse,
+                                       s->impact_work) != 0)
+        return -1;
+    enter_contacts(s, onset, m, y, entered);
+    complete_onsets(s, onset, m, first_event, y);
     /* onsets with no outward velocity: disarm, nothing happened */
     for (k = 0; k < s->nr; k++)
         if (onset[k] && s->ret[k].mode == TD_RMODE_FREE)
