@@ -2,7 +2,8 @@
  * One retainer bearing as the sim sees it: its contact mode, the slip bookkeeping of its friction
  * law, and the queries of its node's state (normal force, sliding velocity, slip factor, contact
  * row and column). The DAE (sim_residual.c) and the mode switching (sim_modes.c) ask these; the
- * retainer's own data is the model's, read once when the sim is created.
+ * retainer's own data is the model's, read once when the sim is created. A retainer with states
+ * of its own (a compliant ring, a race that spins up) would keep them, and their queries, here.
  */
 #ifndef TD_SIM_RETAINER_H
 #define TD_SIM_RETAINER_H

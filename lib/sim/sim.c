@@ -152,6 +152,7 @@ static int alloc_work(td_sim *s, size_t nr)
     s->mass_x = calloc(n, sizeof(double));
     s->minv_f = calloc(n, sizeof(double));
     s->power_x = calloc(n, sizeof(double));
+    s->power_kx = calloc(n, sizeof(double));
     s->power_mx = calloc(n, sizeof(double));
     s->schur = calloc(nr * nr, sizeof(double));
     s->schur_rhs = calloc(nr, sizeof(double));
@@ -164,9 +165,9 @@ static int alloc_work(td_sim *s, size_t nr)
     s->onset = calloc(nr, sizeof(int));
     s->entered = calloc(nr, sizeof(int));
     s->touching = calloc(nr, sizeof(int));
-    return s->mass_x && s->minv_f && s->power_x && s->power_mx && s->schur && s->schur_rhs && s->restitution &&
-           s->impulse && s->impact_work && s->minv_cols && s->rows && s->active && s->onset && s->entered &&
-           s->touching;
+    return s->mass_x && s->minv_f && s->power_x && s->power_kx && s->power_mx && s->schur && s->schur_rhs &&
+           s->restitution && s->impulse && s->impact_work && s->minv_cols && s->rows && s->active && s->onset &&
+           s->entered && s->touching;
 }
 
 static td_status alloc_arrays(td_sim *s, td_error *err)
@@ -222,7 +223,7 @@ static void init_machine(td_sim *s)
  * the Rayleigh quotient (an estimate from below, good to a few per cent: it only sets a tolerance). */
 static double highest_frequency(const td_sim *s)
 {
-    double *x = s->power_x, *kx = s->minv_f, *mx = s->power_mx, lam = 0.0;
+    double *x = s->power_x, *kx = s->power_kx, *mx = s->power_mx, lam = 0.0;
     int i, it;
     for (i = 0; i < s->n; i++)
         x[i] = (i % 2 ? 1.0 : -1.0) * (1.0 + 0.1 * (i % 7));
@@ -658,6 +659,7 @@ static void free_work(td_sim *s)
     free(s->mass_x);
     free(s->minv_f);
     free(s->power_x);
+    free(s->power_kx);
     free(s->power_mx);
     free(s->schur);
     free(s->schur_rhs);

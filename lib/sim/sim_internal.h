@@ -123,8 +123,9 @@ struct td_sim {
 
     /* work space, each array with one job (n: DOFs, nr: retainers) */
     double *mass_x;         /* n: td_sim_mass_solve's permuted solution */
-    double *minv_f;         /* n: M^-1 f (kkt_solve, free_normal_acceleration), M^-1 K x (highest_frequency) */
+    double *minv_f;         /* n: M^-1 f (kkt_solve, free_normal_acceleration) */
     double *power_x;        /* n: highest_frequency's iterate x */
+    double *power_kx;       /* n: highest_frequency's M^-1 K x */
     double *power_mx;       /* n: highest_frequency's M x */
     double *schur;          /* nr * nr: kkt_solve's J M^-1 B of the active contacts */
     double *schur_rhs;      /* nr: its right-hand side, then lambda */
