@@ -93,7 +93,7 @@ int main(void)
     if (td_sim_create(m, &opt, &sim, &err))
         goto fail;
     for (a = 0; a < 2; a++)
-        td_sim_set_amb_mode(sim, a, TD_AMB_EXTERNAL);
+        td_sim_set_amb_mode(sim, a, TD_AMB_EXTERNAL, NULL);
 
     for (k = 1; k * dt <= t_end + 1e-12; k++) {
         double t_next = k * dt;
@@ -102,8 +102,8 @@ int main(void)
         td_sim_get_state(sim, q, NULL);
         for (a = 0; a < 2; a++)
             td_sim_set_amb_control(sim, a, pd_control(&axes[a][0], q[TD_DOF(amb_nodes[a], TD_DOF_X)], dt),
-                                   pd_control(&axes[a][1], q[TD_DOF(amb_nodes[a], TD_DOF_Y)], dt));
-        while ((st = td_sim_step(sim, t_next, NULL)) == TD_EVENT) {
+                                   pd_control(&axes[a][1], q[TD_DOF(amb_nodes[a], TD_DOF_Y)], dt), NULL);
+        while ((st = td_sim_step(sim, t_next, NULL, &err)) == TD_EVENT) {
             td_event ev;
             td_sim_last_event(sim, &ev);
             if (ev.kind == TD_EVENT_CONTACT_ONSET)
@@ -115,7 +115,7 @@ int main(void)
                            ev.radial_velocity_after, ev.impulse);
         }
         if (st != TD_OK) {
-            fprintf(stderr, "embed: step failed at t = %.9f s: %s\n", td_sim_time(sim), td_sim_errmsg(sim));
+            fprintf(stderr, "embed: step failed at t = %.9f s: %s\n", td_sim_time(sim), err.message);
             goto done;
         }
     }

@@ -150,7 +150,7 @@ static void reference_run(const td_model *m, reference *ref)
         if (last)
             target = T_END;
         while (target - td_sim_time(sim) > 4.0 * DBL_EPSILON * (target > 1.0 ? target : 1.0)) {
-            td_status st = td_sim_step(sim, target, NULL);
+            td_status st = td_sim_step(sim, target, NULL, NULL);
             if (st == TD_OK)
                 break;
             assert_int_equal(st, TD_EVENT);

@@ -250,24 +250,33 @@ static void test_api_errors(void **state)
     assert_int_equal(td_sim_create(m, &o, &s, &err), TD_OK);
     assert_string_equal(td_sim_errmsg(s), "");
     assert_int_equal(td_sim_last_event(s, &ev), TD_ERR_STATE);
-    assert_int_equal(td_sim_step(s, -1.0, NULL), TD_ERR_INVALID);
-    assert_true(strlen(td_sim_errmsg(s)) > 0);
-    assert_int_equal(td_sim_step(s, NAN, NULL), TD_ERR_INVALID);
+    assert_int_equal(td_sim_step(s, -1.0, NULL, &err), TD_ERR_INVALID);
+    assert_int_equal(err.code, TD_ERR_INVALID);
+    assert_non_null(strstr(err.message, "before the current time"));
+    assert_string_equal(td_sim_errmsg(s), err.message);
+    assert_int_equal(td_sim_step(s, NAN, NULL, NULL), TD_ERR_INVALID);
     assert_int_equal(td_sim_retainer_state(s, 2, &rs), TD_ERR_INVALID);
     assert_int_equal(td_sim_retainer_state(s, -1, &rs), TD_ERR_INVALID);
     assert_int_equal(td_sim_amb_force(s, 2, f), TD_ERR_INVALID);
-    assert_int_equal(td_sim_set_unbalance(s, 1, 1e-3, 0.0), TD_ERR_INVALID);
-    assert_int_equal(td_sim_set_unbalance(s, 0, -1.0, 0.0), TD_ERR_INVALID);
-    assert_int_equal(td_sim_set_amb_mode(s, 5, TD_AMB_OFF), TD_ERR_INVALID);
-    assert_int_equal(td_sim_set_amb_control(s, 0, NAN, 0.0), TD_ERR_INVALID);
-    assert_int_equal(td_sim_set_speed(s, INFINITY), TD_ERR_INVALID);
+    assert_int_equal(td_sim_set_unbalance(s, 1, 1e-3, 0.0, &err), TD_ERR_INVALID);
+    assert_non_null(strstr(err.message, "td_sim_set_unbalance"));
+    assert_int_equal(td_sim_set_unbalance(s, 0, -1.0, 0.0, NULL), TD_ERR_INVALID);
+    assert_int_equal(td_sim_set_amb_mode(s, 5, TD_AMB_OFF, &err), TD_ERR_INVALID);
+    assert_non_null(strstr(err.message, "td_sim_set_amb_mode"));
+    assert_int_equal(td_sim_set_amb_control(s, 0, NAN, 0.0, &err), TD_ERR_INVALID);
+    assert_non_null(strstr(err.message, "td_sim_set_amb_control"));
+    assert_int_equal(td_sim_set_speed(s, INFINITY, &err), TD_ERR_INVALID);
+    assert_non_null(strstr(err.message, "td_sim_set_speed"));
     assert_int_equal(td_sim_dof_count(s), 20);
-    assert_int_equal(td_sim_step(s, 0.0, NULL), TD_OK); /* tout == t: nothing to do */
-    assert_int_equal(td_sim_step(s, 1e-3, NULL), TD_OK);
+    assert_int_equal(td_sim_step(s, 0.0, NULL, &err), TD_OK); /* tout == t: nothing to do */
+    assert_int_equal(td_sim_step(s, 1e-3, NULL, &err), TD_OK);
     assert_close(td_sim_time(s), 1e-3, 0.0, 0.0);
     assert_int_equal(td_sim_get_state(s, NULL, NULL), TD_OK);
     assert_int_equal(td_sim_stats_get(s, NULL), TD_ERR_INVALID);
-    assert_int_equal(td_sim_step(NULL, 1.0, NULL), TD_ERR_INVALID);
+    assert_int_equal(td_sim_step(NULL, 1.0, NULL, &err), TD_ERR_INVALID);
+    assert_non_null(strstr(err.message, "NULL"));
+    assert_int_equal(td_sim_set_speed(NULL, 1.0, &err), TD_ERR_INVALID);
+    assert_non_null(strstr(err.message, "td_sim_set_speed"));
     td_sim_free(&s);
     assert_null(s);
     td_sim_free(&s);
@@ -289,18 +298,19 @@ static void test_api_errors(void **state)
 /* Step to t_end through every event; returns the number of events. */
 static long run_to(td_sim *s, double t_end, double dt)
 {
+    td_error err;
     long events = 0;
     double t = td_sim_time(s);
     while (t < t_end) {
         double tout = td_test_next_output(t, dt, t_end), tr;
         td_status st;
-        st = td_sim_step(s, tout, &tr);
+        st = td_sim_step(s, tout, &tr, &err);
         if (st == TD_EVENT) {
             events++;
             continue;
         }
         if (st != TD_OK)
-            fail_msg("td_sim_step: %s", td_sim_errmsg(s));
+            fail_msg("td_sim_step: %s", err.message);
         t = tr;
     }
     return events;
@@ -309,6 +319,7 @@ static long run_to(td_sim *s, double t_end, double dt)
 /* Two simulations stepped alternately give bit for bit what one gives alone (no shared state). */
 static void test_two_sims_independent(void **state)
 {
+    td_error err;
     td_case *c = td_test_load_case("cases/paper-a.cfg", NULL, 0);
     td_sim_options o = *td_case_sim_options(c);
     td_sim *alone = NULL, *a = NULL, *b = NULL;
@@ -329,7 +340,7 @@ static void test_two_sims_independent(void **state)
             td_status r;
             if (t >= t_end)
                 continue;
-            r = td_sim_step(s[i], tout, NULL);
+            r = td_sim_step(s[i], tout, NULL, &err);
             assert_true(r == TD_OK || r == TD_EVENT);
             if (r == TD_EVENT)
                 *(i ? &ev_b : &ev_a) += 1;
@@ -376,6 +387,7 @@ static double orbit_radius_per_unbalance(const td_model *model)
  * happen is a storm of events at one instant, a failure, or the node leaving the circle. */
 static void test_grazing_orbit(void **state)
 {
+    td_error err;
     const char *ov[2] = {"schedule = ()", "unbalances = ( { node = 1; magnitude = 0.05; } )"};
     td_case *c = td_test_load_case("cases/paper-a.cfg", ov, 2);
     double scale[3] = {1.0, 1.0 - 1e-9, 1.0 + 1e-9};
@@ -403,7 +415,7 @@ static void test_grazing_orbit(void **state)
             fail_msg("create failed");
         while (t < t_end) {
             double tr;
-            td_status r = td_sim_step(s, td_test_next_output(t, dt, t_end), &tr);
+            td_status r = td_sim_step(s, td_test_next_output(t, dt, t_end), &tr, &err);
             td_sim_retainer_state(s, 0, &rs);
             max_dev = fmax(max_dev, rs.radius - ret.clearance);
             if (r == TD_EVENT) {
@@ -418,7 +430,7 @@ static void test_grazing_orbit(void **state)
                 continue;
             }
             if (r != TD_OK)
-                fail_msg("grazing run failed: %s", td_sim_errmsg(s));
+                fail_msg("grazing run failed: %s", err.message);
             t = tr;
         }
         td_sim_stats_get(s, &st);
@@ -457,13 +469,14 @@ static void test_constrained_drift(void **state)
 /* KLU and the dense solver integrate the same DAE: the same free-flight state to the tolerance. */
 static void test_dense_matches_klu(void **state)
 {
+    td_error err;
     td_sim *a = small_sim(TD_CONTACT_CONSTRAINT, TD_DAMPING_NONE, TD_LINSOL_KLU);
     td_sim *b = small_sim(TD_CONTACT_CONSTRAINT, TD_DAMPING_NONE, TD_LINSOL_DENSE);
     double qa[20], qb[20];
     int i;
     (void)state;
-    assert_int_equal(td_sim_step(a, 0.02, NULL), TD_OK);
-    assert_int_equal(td_sim_step(b, 0.02, NULL), TD_OK);
+    assert_int_equal(td_sim_step(a, 0.02, NULL, &err), TD_OK);
+    assert_int_equal(td_sim_step(b, 0.02, NULL, &err), TD_OK);
     td_sim_get_state(a, qa, NULL);
     td_sim_get_state(b, qb, NULL);
     for (i = 0; i < 20; i++)
@@ -476,6 +489,7 @@ static void test_dense_matches_klu(void **state)
  * zero-order hold reproduces the built-in law to O(sample period). */
 static void test_external_amb_control(void **state)
 {
+    td_error err;
     td_sim *a = small_sim(TD_CONTACT_CONSTRAINT, TD_DAMPING_NONE, TD_LINSOL_KLU);
     td_sim *b = small_sim(TD_CONTACT_CONSTRAINT, TD_DAMPING_NONE, TD_LINSOL_KLU);
     td_amb amb;
@@ -483,17 +497,17 @@ static void test_external_amb_control(void **state)
     int i;
     (void)state;
     td_model_get_amb(a->model, 1, &amb);
-    assert_int_equal(td_sim_set_amb_mode(b, 1, TD_AMB_EXTERNAL), TD_OK);
+    assert_int_equal(td_sim_set_amb_mode(b, 1, TD_AMB_EXTERNAL, &err), TD_OK);
     while (t < t_end) {
         /* sample: the control force -ki (kp x + kd v) at the sensor node, held for dt */
         td_sim_get_state(b, qb, vb);
         assert_int_equal(
             td_sim_set_amb_control(b, 1, -amb.ki * (amb.kp * qb[4 * amb.node] + amb.kd * vb[4 * amb.node]),
-                                   -amb.ki * (amb.kp * qb[4 * amb.node + 1] + amb.kd * vb[4 * amb.node + 1])),
+                                   -amb.ki * (amb.kp * qb[4 * amb.node + 1] + amb.kd * vb[4 * amb.node + 1]), &err),
             TD_OK);
         t = td_test_next_output(t, dt, t_end);
-        assert_int_equal(td_sim_step(a, t, NULL), TD_OK);
-        assert_int_equal(td_sim_step(b, t, NULL), TD_OK);
+        assert_int_equal(td_sim_step(a, t, NULL, &err), TD_OK);
+        assert_int_equal(td_sim_step(b, t, NULL, &err), TD_OK);
     }
     td_sim_get_state(a, qa, va);
     td_sim_get_state(b, qb, vb);
@@ -513,6 +527,7 @@ static void test_external_amb_control(void **state)
  * the schedule lands a step on t1, the call restarts from IDA's interpolant there). */
 static void test_api_change_matches_schedule(void **state)
 {
+    td_error err;
     const char *ov[1] = {"schedule=()"};
     td_case *with = td_test_load_case("cases/paper-a.cfg", NULL, 0),
             *without = td_test_load_case("cases/paper-a.cfg", ov, 1);
@@ -529,12 +544,12 @@ static void test_api_change_matches_schedule(void **state)
     td_model_get_change(td_case_model(with), 0, &ch);
     assert_int_equal(td_sim_create(td_case_model(with), &o, &a, NULL), TD_OK);
     assert_int_equal(td_sim_create(td_case_model(without), &o, &b, NULL), TD_OK);
-    while ((r = td_sim_step(a, 0.104, NULL)) == TD_EVENT)
+    while ((r = td_sim_step(a, 0.104, NULL, &err)) == TD_EVENT)
         ;
     assert_int_equal(r, TD_OK);
-    assert_int_equal(td_sim_step(b, ch.time, NULL), TD_OK);
-    assert_int_equal(td_sim_set_unbalance(b, 0, ch.magnitude, ch.phase), TD_OK);
-    assert_int_equal(td_sim_step(b, 0.104, NULL), TD_OK);
+    assert_int_equal(td_sim_step(b, ch.time, NULL, &err), TD_OK);
+    assert_int_equal(td_sim_set_unbalance(b, 0, ch.magnitude, ch.phase, &err), TD_OK);
+    assert_int_equal(td_sim_step(b, 0.104, NULL, &err), TD_OK);
     td_sim_get_state(a, qa, NULL);
     td_sim_get_state(b, qb, NULL);
     for (i = 0; i < 52; i++)
@@ -548,21 +563,22 @@ static void test_api_change_matches_schedule(void **state)
 /* A speed change keeps the spin angle (and so the unbalance force) continuous and the state too. */
 static void test_speed_change_continuity(void **state)
 {
+    td_error err;
     td_sim *s = small_sim(TD_CONTACT_CONSTRAINT, TD_DAMPING_NONE, TD_LINSOL_KLU);
     double phi0, phi1, q0[20], q1[20];
     int i;
     (void)state;
-    assert_int_equal(td_sim_step(s, 0.0123, NULL), TD_OK);
+    assert_int_equal(td_sim_step(s, 0.0123, NULL, &err), TD_OK);
     phi0 = td_sim_spin_angle(s, s->t);
     td_sim_get_state(s, q0, NULL);
-    assert_int_equal(td_sim_set_speed(s, 200.0), TD_OK);
+    assert_int_equal(td_sim_set_speed(s, 200.0, &err), TD_OK);
     phi1 = td_sim_spin_angle(s, s->t);
     td_sim_get_state(s, q1, NULL);
     assert_close(phi1, phi0, 1e-15, 0.0);
     assert_close(phi0, 120.0 * 0.0123, 1e-12, 0.0);
     for (i = 0; i < 20; i++)
         assert_true(q1[i] == q0[i]);
-    assert_int_equal(td_sim_step(s, 0.0223, NULL), TD_OK);
+    assert_int_equal(td_sim_step(s, 0.0223, NULL, &err), TD_OK);
     assert_close(td_sim_spin_angle(s, s->t), phi0 + 200.0 * 0.01, 1e-12, 0.0);
     td_sim_free(&s);
 }
@@ -571,6 +587,7 @@ static void test_speed_change_continuity(void **state)
  * v_s changes sign with the whirl; the slip mode must follow it (friction = -sgn(v_s) mu N). */
 static void test_friction_reversal(void **state)
 {
+    td_error err;
     const char *ov[1] = {"retainers[0].bore_speed=87.378640776699"}; /* 0.025 * 90 / 0.02575 */
     td_case *c = td_test_load_case("cases/paper-a.cfg", ov, 1);
     td_sim_options o = *td_case_sim_options(c);
@@ -583,7 +600,7 @@ static void test_friction_reversal(void **state)
     while (t < t_end) {
         double tr;
         td_retainer_state rs;
-        td_status r = td_sim_step(s, td_test_next_output(t, dt, t_end), &tr);
+        td_status r = td_sim_step(s, td_test_next_output(t, dt, t_end), &tr, &err);
         if (r == TD_EVENT) {
             td_event ev;
             td_sim_last_event(s, &ev);
@@ -591,7 +608,7 @@ static void test_friction_reversal(void **state)
             continue;
         }
         if (r != TD_OK)
-            fail_msg("%s", td_sim_errmsg(s));
+            fail_msg("%s", err.message);
         t = tr;
         td_sim_retainer_state(s, 0, &rs);
         if (rs.in_contact && fabs(rs.sliding_velocity) >= TD_CONTACT_SLIP_BAND) { /* outside the band: Coulomb */
@@ -612,6 +629,7 @@ static void test_friction_reversal(void **state)
  * ends at 5e-5 s, as the step bound of touchdown/limits.h (end_time / max_step <= 1e8) needs. */
 static void test_interrupt_inside_step(void **state)
 {
+    td_error err;
     const char *ov[2] = {"solver.max_step=1e-12", "end_time=5e-5"};
     td_case *c = td_test_load_case("cases/paper-a.cfg", ov, 2);
     td_sim *s = NULL;
@@ -628,21 +646,21 @@ static void test_interrupt_inside_step(void **state)
     assert_int_equal(td_sim_set_interrupt(NULL, &flag), TD_ERR_INVALID);
     assert_int_equal(td_sim_set_interrupt(s, &flag), TD_OK);
     flag = 1; /* set from the start */
-    assert_int_equal(td_sim_step(s, 1e-4, &tr), TD_ERR_INTERRUPTED);
+    assert_int_equal(td_sim_step(s, 1e-4, &tr, &err), TD_ERR_INTERRUPTED);
     assert_true(tr == 0.0 && td_sim_time(s) == 0.0);
     flag = 0;
     /* a few steps, so that IDA has a history to keep */
-    assert_int_equal(td_sim_step(s, 1e-10, &tr), TD_OK);
+    assert_int_equal(td_sim_step(s, 1e-10, &tr, &err), TD_OK);
     t0 = td_sim_time(s);
     assert_int_equal(td_sim_get_state(s, q0, NULL), TD_OK);
     flag = 1;
-    assert_int_equal(td_sim_step(s, 1e-4, &tr), TD_ERR_INTERRUPTED);
+    assert_int_equal(td_sim_step(s, 1e-4, &tr, &err), TD_ERR_INTERRUPTED);
     assert_true(tr == t0);
-    assert_non_null(strstr(td_sim_errmsg(s), "interrupted"));
+    assert_non_null(strstr(err.message, "interrupted"));
     assert_int_equal(td_sim_get_state(s, q1, NULL), TD_OK);
     assert_memory_equal(q0, q1, sizeof(double) * (size_t)n);
     flag = 0;
-    assert_int_equal(td_sim_step(s, 2e-10, &tr), TD_OK);
+    assert_int_equal(td_sim_step(s, 2e-10, &tr, &err), TD_OK);
     assert_true(tr == 2e-10);
     assert_int_equal(td_sim_set_interrupt(s, NULL), TD_OK);
     free(q0), free(q1);
@@ -658,6 +676,7 @@ static void test_interrupt_inside_step(void **state)
  * times in one step could be left free while outside, and flew 1.7 mm through the retainer. */
 static void test_penalty_never_passes_through(void **state)
 {
+    td_error err;
     td_case *c = td_test_load_case("cases/paper-c.cfg", NULL, 0);
     td_sim_options o = *td_case_sim_options(c);
     td_sim *s = NULL;
@@ -671,7 +690,7 @@ static void test_penalty_never_passes_through(void **state)
         td_model_get_retainer(td_case_model(c), k, &ret[k]);
     while (t < t_end) {
         double tr;
-        td_status r = td_sim_step(s, td_test_next_output(t, dt, t_end), &tr);
+        td_status r = td_sim_step(s, td_test_next_output(t, dt, t_end), &tr, &err);
         if (r == TD_EVENT) {
             td_event ev;
             td_sim_last_event(s, &ev);
@@ -686,7 +705,7 @@ static void test_penalty_never_passes_through(void **state)
             continue;
         }
         if (r != TD_OK)
-            fail_msg("%s", td_sim_errmsg(s));
+            fail_msg("%s", err.message);
         t = tr;
         for (k = 0; k < 2; k++) {
             td_retainer_state rs;

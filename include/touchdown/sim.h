@@ -66,13 +66,15 @@ typedef struct td_sim_start_info {
 TD_API td_status td_sim_start_info_get(const td_sim *sim, td_sim_start_info *out);
 /** Free and set *sim to NULL; accepts NULL. */
 TD_API void td_sim_free(td_sim **sim);
-/** Message of the last failure of this simulation ("" if none). Owned by the sim. */
+/** Message of the last failure of this simulation ("" if none), the one the failing call also put
+ *  in its td_error. Owned by the sim. */
 TD_API const char *td_sim_errmsg(const td_sim *sim);
 
 /** Advance towards `tout` (> current time). Returns TD_OK having reached tout, TD_EVENT having
  *  stopped at an event (read it with td_sim_last_event; call again to go on), or a negative
- *  status on failure (the state stays at the last good time). *t_reached may be NULL. */
-TD_API td_status td_sim_step(td_sim *sim, double tout, double *t_reached);
+ *  status on failure, described in *err (the state stays at the last good time). *t_reached may
+ *  be NULL. */
+TD_API td_status td_sim_step(td_sim *sim, double tout, double *t_reached, td_error *err);
 /** Borrow `flag` (NULL: clear) as an interrupt request: td_sim_step reads it before every
  *  internal integrator step and, when it is nonzero, returns TD_ERR_INTERRUPTED at once with the
  *  state at the last good step (td_sim_time, td_sim_get_state etc. read it; stepping may go on
@@ -92,13 +94,14 @@ TD_API td_status td_sim_retainer_state(const td_sim *sim, int retainer, td_retai
 TD_API td_status td_sim_amb_force(const td_sim *sim, int amb, double f[2]);
 TD_API td_status td_sim_stats_get(const td_sim *sim, td_sim_stats *out);
 
-/* Changes between steps; each takes effect from the current time (the integrator restarts). */
-TD_API td_status td_sim_set_unbalance(td_sim *sim, int unbalance, double magnitude, double phase);
-TD_API td_status td_sim_set_speed(td_sim *sim, double omega);
-TD_API td_status td_sim_set_amb_mode(td_sim *sim, int amb, td_amb_mode mode);
+/* Changes between steps; each takes effect from the current time (the integrator restarts).
+ * Invalid arguments give TD_ERR_INVALID, a failed restart its status; *err says which. */
+TD_API td_status td_sim_set_unbalance(td_sim *sim, int unbalance, double magnitude, double phase, td_error *err);
+TD_API td_status td_sim_set_speed(td_sim *sim, double omega, td_error *err);
+TD_API td_status td_sim_set_amb_mode(td_sim *sim, int amb, td_amb_mode mode, td_error *err);
 /** Control force (ki times current) of AMB `amb` for TD_AMB_EXTERNAL, held until the next call:
  *  the total force is ks x + f (clipped when the AMB saturates), N. */
-TD_API td_status td_sim_set_amb_control(td_sim *sim, int amb, double fx, double fy);
+TD_API td_status td_sim_set_amb_control(td_sim *sim, int amb, double fx, double fy, td_error *err);
 
 /** The simulation's own copy of the model it was created from (borrowed, valid until td_sim_free;
  *  later td_sim_set_* changes are not in it); NULL for a NULL sim. */

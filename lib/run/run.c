@@ -181,7 +181,8 @@ static td_status loop(run_state *r, td_error *err)
          * rejects an output time that is not ahead of the current one). */
         if (target - now > 4.0 * DBL_EPSILON * max2(fabs(target), 1.0)) {
             double w0 = td_wall_clock(), reached = now;
-            st = td_sim_step(r->sim, target, &reached);
+            td_error step_err;
+            st = td_sim_step(r->sim, target, &reached, &step_err);
             r->s->solver_wall_time += td_wall_clock() - w0;
             if (st == TD_EVENT) {
                 if ((st = handle_event(r, err)) != TD_OK)
@@ -197,7 +198,7 @@ static td_status loop(run_state *r, td_error *err)
             }
             if (st != TD_OK)
                 return td_error_set(err, st, "simulation failed at t = %.10f s on the way to %.10f s: %s",
-                                    td_sim_time(r->sim), target, td_sim_errmsg(r->sim));
+                                    td_sim_time(r->sim), target, step_err.message);
         }
         if ((st = take_sample(r, target, 1, err)) != TD_OK)
             return st;

@@ -1,6 +1,7 @@
 /*
  * td_sim: creation, the IDA set-up, the step loop and the public accessors (touchdown/sim.h).
- * The DAE itself is in sim_residual.c, mode switching in sim_modes.c.
+ * The DAE itself is in sim_residual.c, mode switching in sim_modes.c, the per-retainer queries and
+ * mode bookkeeping in retainer.c.
  */
 #include "sim/sim_internal.h"
 #include "touchdown/dofs.h"
@@ -144,9 +145,34 @@ static td_status check_options(const td_sim_options *o, td_error *err)
     return TD_OK;
 }
 
+/* The work space of sim_internal.h; 0 if out of memory. */
+static int alloc_work(td_sim *s, size_t nr)
+{
+    size_t n = (size_t)s->n;
+    s->mass_x = calloc(n, sizeof(double));
+    s->minv_f = calloc(n, sizeof(double));
+    s->power_x = calloc(n, sizeof(double));
+    s->power_kx = calloc(n, sizeof(double));
+    s->power_mx = calloc(n, sizeof(double));
+    s->schur = calloc(nr * nr, sizeof(double));
+    s->schur_rhs = calloc(nr, sizeof(double));
+    s->restitution = calloc(nr, sizeof(double));
+    s->impulse = calloc(nr, sizeof(double));
+    s->impact_work = calloc(nr * (nr + 1), sizeof(double));
+    s->minv_cols = calloc(n * nr, sizeof(double));
+    s->rows = calloc(nr, sizeof *s->rows);
+    s->active = calloc(nr, sizeof(int));
+    s->onset = calloc(nr, sizeof(int));
+    s->entered = calloc(nr, sizeof(int));
+    s->touching = calloc(nr, sizeof(int));
+    return s->mass_x && s->minv_f && s->power_x && s->power_kx && s->power_mx && s->schur && s->schur_rhs &&
+           s->restitution && s->impulse && s->impact_work && s->minv_cols && s->rows && s->active && s->onset &&
+           s->entered && s->touching;
+}
+
 static td_status alloc_arrays(td_sim *s, td_error *err)
 {
-    int na = td_model_amb_count(s->model), i, ok = 1;
+    int na = td_model_amb_count(s->model), ok;
     size_t nr = (size_t)(s->nr > 0 ? s->nr : 1);
     s->nu = td_model_unbalance_count(s->model);
     s->unb = calloc((size_t)(s->nu > 0 ? s->nu : 1), sizeof *s->unb);
@@ -156,18 +182,13 @@ static td_status alloc_arrays(td_sim *s, td_error *err)
     s->amb_coef = calloc((size_t)(s->sys->n_amb_axes + 1), sizeof *s->amb_coef);
     s->q_cap = 4 * s->nr + td_model_change_count(s->model) + 4;
     s->queue = calloc((size_t)s->q_cap, sizeof *s->queue);
-    for (i = 0; i < 4; i++)
-        ok = ok && (s->wn[i] = calloc((size_t)s->n, sizeof(double))) != NULL;
-    s->wm = calloc(nr * (nr + 1) + 2 * nr, sizeof(double));
-    s->wmn = calloc((size_t)s->n * nr, sizeof(double));
-    s->rows = calloc(nr, sizeof *s->rows);
-    s->act = calloc(4 * nr, sizeof(int));
+    ok = alloc_work(s, nr);
     s->rootdir = calloc(TD_ROOTS_PER_RETAINER * nr, sizeof(int));
     s->rootsfound = calloc(TD_ROOTS_PER_RETAINER * nr, sizeof(int));
     s->ysave = calloc((size_t)s->neq, sizeof(double));
     s->ypsave = calloc((size_t)s->neq, sizeof(double));
-    if (!ok || !s->unb || !s->amb_mode || !s->amb_control || !s->ret || !s->amb_coef || !s->queue || !s->wm ||
-        !s->wmn || !s->rows || !s->act || !s->rootdir || !s->rootsfound || !s->ysave || !s->ypsave)
+    if (!ok || !s->unb || !s->amb_mode || !s->amb_control || !s->ret || !s->amb_coef || !s->queue || !s->rootdir ||
+        !s->rootsfound || !s->ysave || !s->ypsave)
         return td_error_set(err, TD_ERR_NOMEM, "out of memory creating a simulation");
     return TD_OK;
 }
@@ -181,15 +202,8 @@ static void init_machine(td_sim *s)
         td_model_get_unbalance(s->model, i, &s->unb[i]);
     for (i = 0; i < na; i++)
         s->amb_mode[i] = TD_AMB_PD;
-    for (i = 0; i < s->nr; i++) {
-        td_sim_retainer *r = &s->ret[i];
-        td_model_get_retainer(s->model, i, &r->r);
-        r->dx = TD_DOF(r->r.node, TD_DOF_X);
-        r->dy = TD_DOF(r->r.node, TD_DOF_Y);
-        r->mode = TD_RMODE_FREE;
-        r->armed = 1;
-        r->slip = 1;
-    }
+    for (i = 0; i < s->nr; i++)
+        td_sim_retainer_init(&s->ret[i], s->model, i);
     /* the AMB laws are linear (model/amb.c): unit probes give their coefficients exactly */
     for (i = 0; i < s->sys->n_amb_axes; i++) {
         const td_amb_axis *a = &s->sys->amb_axes[i];
@@ -209,7 +223,7 @@ static void init_machine(td_sim *s)
  * the Rayleigh quotient (an estimate from below, good to a few per cent: it only sets a tolerance). */
 static double highest_frequency(const td_sim *s)
 {
-    double *x = s->wn[0], *kx = s->wn[1], lam = 0.0;
+    double *x = s->power_x, *kx = s->power_kx, *mx = s->power_mx, lam = 0.0;
     int i, it;
     for (i = 0; i < s->n; i++)
         x[i] = (i % 2 ? 1.0 : -1.0) * (1.0 + 0.1 * (i % 7));
@@ -220,10 +234,10 @@ static double highest_frequency(const td_sim *s)
         for (i = 0; i < s->n; i++)
             num += x[i] * kx[i];
         td_sim_mass_solve(s, kx); /* kx = M^-1 K x */
-        memset(s->wn[2], 0, sizeof(double) * (size_t)s->n);
-        cs_di_gaxpy(s->sys->M, x, s->wn[2]);
+        memset(mx, 0, sizeof(double) * (size_t)s->n);
+        cs_di_gaxpy(s->sys->M, x, mx);
         for (i = 0; i < s->n; i++)
-            den += x[i] * s->wn[2][i];
+            den += x[i] * mx[i];
         if (den > 0.0)
             lam = num / den;
         for (i = 0; i < s->n; i++)
@@ -428,7 +442,7 @@ static td_status orbit_start(td_sim *s, double *y, td_error *err)
 static td_status start_state(td_sim *s, td_error *err)
 {
     double *y = N_VGetArrayPointer(s->y);
-    int *touching = s->act + 3 * s->nr; /* past the three lists sim_modes.c uses */
+    int *touching = s->touching;
     int k;
     td_status st;
     N_VConst(0.0, s->y);
@@ -553,6 +567,30 @@ static td_status setup_stage(td_status st, volatile sig_atomic_t *cancel, td_err
     return st;
 }
 
+/* Sizes and block offsets of the unknowns (sim_internal.h), the start time, the statistics'
+ * "none yet" markers and the penalty law of the options. */
+static void init_layout(td_sim *s)
+{
+    s->model = td_system_model(s->sys);
+    s->n = s->sys->ndof;
+    s->nw = s->sys->n_filter_states;
+    s->nr = td_model_retainer_count(s->model);
+    s->oq = 0;
+    s->ov = s->n;
+    s->ow = 2 * s->n;
+    s->ol = s->ow + s->nw;
+    s->ou = s->ol + s->nr;
+    s->neq = s->ou + s->nr;
+    s->t = s->t_ida = s->t_acc = s->opt.t0;
+    s->stats.first_contact_time = -1.0;
+    s->stats.peak_time = -1.0;
+    s->stats.peak_retainer = -1;
+    s->law.stiffness = s->opt.contact.stiffness;
+    s->law.exponent = s->opt.contact.exponent;
+    s->law.damping = s->opt.contact.damping;
+    s->law.coefficient = s->opt.contact.damping_coefficient;
+}
+
 td_status td_sim_create(const td_model *model, const td_sim_options *options, td_sim **out, td_error *err)
 {
     return td_sim_create_cancellable(model, options, NULL, out, err);
@@ -577,24 +615,7 @@ td_status td_sim_create_cancellable(const td_model *model, const td_sim_options 
     if (st == TD_OK)
         st = setup_stage(td_system_create(model, &s->sys, err), cancel, err);
     if (st == TD_OK) {
-        s->model = td_system_model(s->sys);
-        s->n = s->sys->ndof;
-        s->nw = s->sys->n_filter_states;
-        s->nr = td_model_retainer_count(s->model);
-        s->oq = 0;
-        s->ov = s->n;
-        s->ow = 2 * s->n;
-        s->ol = s->ow + s->nw;
-        s->ou = s->ol + s->nr;
-        s->neq = s->ou + s->nr;
-        s->t = s->t_ida = s->t_acc = s->opt.t0;
-        s->stats.first_contact_time = -1.0;
-        s->stats.peak_time = -1.0;
-        s->stats.peak_retainer = -1;
-        s->law.stiffness = s->opt.contact.stiffness;
-        s->law.exponent = s->opt.contact.exponent;
-        s->law.damping = s->opt.contact.damping;
-        s->law.coefficient = s->opt.contact.damping_coefficient;
+        init_layout(s);
         st = alloc_arrays(s, err);
     }
     if (st == TD_OK) {
@@ -633,10 +654,29 @@ td_status td_sim_create_cancellable(const td_model *model, const td_sim_options 
     return TD_OK;
 }
 
+static void free_work(td_sim *s)
+{
+    free(s->mass_x);
+    free(s->minv_f);
+    free(s->power_x);
+    free(s->power_kx);
+    free(s->power_mx);
+    free(s->schur);
+    free(s->schur_rhs);
+    free(s->restitution);
+    free(s->impulse);
+    free(s->impact_work);
+    free(s->minv_cols);
+    free(s->rows);
+    free(s->active);
+    free(s->onset);
+    free(s->entered);
+    free(s->touching);
+}
+
 void td_sim_free(td_sim **sim)
 {
     td_sim *s;
-    int i;
     if (!sim || !*sim)
         return;
     s = *sim;
@@ -678,12 +718,7 @@ void td_sim_free(td_sim **sim)
     free(s->ret);
     free(s->amb_coef);
     free(s->queue);
-    for (i = 0; i < 4; i++)
-        free(s->wn[i]);
-    free(s->wm);
-    free(s->wmn);
-    free(s->rows);
-    free(s->act);
+    free_work(s);
     free(s->rootdir);
     free(s->rootsfound);
     free(s->ysave);
@@ -804,6 +839,40 @@ static td_status handle_stop(td_sim *s, int kind)
     return st;
 }
 
+/* The stop pending beyond the last output time (a root, the stop time or a penalty resync): past
+ * tout, only interpolate to tout; otherwise handle it. Returns 1 when advance returns *st (tout
+ * reached, an event to report or a failure), 0 to go on integrating. */
+static int pending_stop(td_sim *s, double tout, td_status *st)
+{
+    int kind = s->pending;
+    if (s->t_pending > tout) {
+        *st = interpolate(s, tout);
+        monitor(s, tout);
+        return 1;
+    }
+    s->pending = 0;
+    *st = interpolate(s, s->t_pending);
+    monitor(s, s->t);
+    if (*st == TD_OK)
+        *st = handle_stop(s, kind);
+    if (*st != TD_OK)
+        return 1;
+    if (pop_event(s)) {
+        *st = TD_EVENT;
+        return 1;
+    }
+    return 0;
+}
+
+/* An integrator step to tret accepted: statistics, and the state kept as the last good one. */
+static void accept_step(td_sim *s, double tret)
+{
+    s->t = tret;
+    monitor_at(s, tret, 1);
+    memcpy(s->ysave, N_VGetArrayPointer(s->y), sizeof(double) * (size_t)s->neq);
+    memcpy(s->ypsave, N_VGetArrayPointer(s->yp), sizeof(double) * (size_t)s->neq);
+}
+
 static td_status advance(td_sim *s, double tout)
 {
     for (;;) {
@@ -811,22 +880,8 @@ static td_status advance(td_sim *s, double tout)
         int flag;
         td_status st;
         if (s->pending) {
-            /* a root, the stop time or a penalty resync beyond the last output time */
-            int kind = s->pending;
-            if (s->t_pending > tout) {
-                st = interpolate(s, tout);
-                monitor(s, tout);
+            if (pending_stop(s, tout, &st))
                 return st;
-            }
-            s->pending = 0;
-            st = interpolate(s, s->t_pending);
-            monitor(s, s->t);
-            if (st == TD_OK)
-                st = handle_stop(s, kind);
-            if (st != TD_OK)
-                return st;
-            if (pop_event(s))
-                return TD_EVENT;
             continue;
         }
         if (s->t_ida >= tout) {
@@ -856,26 +911,35 @@ static td_status advance(td_sim *s, double tout)
             continue;
         }
         if (td_sim_penalty_out_of_step(s, N_VGetArrayPointer(s->y))) {
-            /* IDA missed a crossing (sim_modes.c): switch the mode at this step's end */
+            /* IDA missed a crossing (retainer.c): switch the mode at this step's end */
             s->pending = TD_PENDING_RESYNC;
             s->t_pending = tret;
             continue;
         }
-        s->t = tret;
-        monitor_at(s, tret, 1);
-        memcpy(s->ysave, N_VGetArrayPointer(s->y), sizeof(double) * (size_t)s->neq);
-        memcpy(s->ypsave, N_VGetArrayPointer(s->yp), sizeof(double) * (size_t)s->neq);
+        accept_step(s, tret);
         if (tret >= tout)
             return tret > tout ? interpolate(s, tout) : TD_OK;
     }
 }
 
-td_status td_sim_step(td_sim *sim, double tout, double *t_reached)
+/* A failure of a public call: the message the sim keeps (s->errmsg, td_sim_errmsg) into *err. */
+static td_status failed(const td_sim *s, td_status st, td_error *err)
+{
+    return td_error_set(err, st, "%s", s->errmsg);
+}
+
+/* A public call's outcome: failures reported through *err, TD_OK and TD_EVENT as they are. */
+static td_status reported(const td_sim *s, td_status st, td_error *err)
+{
+    return st < 0 ? failed(s, st, err) : st;
+}
+
+td_status td_sim_step(td_sim *sim, double tout, double *t_reached, td_error *err)
 {
     td_status st;
     double w0;
     if (!sim)
-        return TD_ERR_INVALID;
+        return td_error_set(err, TD_ERR_INVALID, "td_sim_step: NULL simulation");
     if (pop_event(sim)) {
         if (t_reached)
             *t_reached = sim->t;
@@ -884,14 +948,14 @@ td_status td_sim_step(td_sim *sim, double tout, double *t_reached)
     if (!isfinite(tout) || tout < sim->t) {
         snprintf(sim->errmsg, sizeof sim->errmsg, "td_sim_step: tout = %.17g is before the current time %.17g", tout,
                  sim->t);
-        return TD_ERR_INVALID;
+        return failed(sim, TD_ERR_INVALID, err);
     }
     w0 = td_wall_clock();
     st = tout > sim->t ? advance(sim, tout) : TD_OK;
     sim->stats.wall_time += td_wall_clock() - w0;
     if (t_reached)
         *t_reached = sim->t;
-    return st;
+    return reported(sim, st, err);
 }
 
 td_status td_sim_start_info_get(const td_sim *sim, td_sim_start_info *out)
@@ -1017,26 +1081,26 @@ td_status td_sim_stats_get(const td_sim *sim, td_sim_stats *out)
 
 /* ---- changes between steps --------------------------------------------------------------- */
 
-td_status td_sim_set_unbalance(td_sim *sim, int unbalance, double magnitude, double phase)
+td_status td_sim_set_unbalance(td_sim *sim, int unbalance, double magnitude, double phase, td_error *err)
 {
     if (!sim)
-        return TD_ERR_INVALID;
+        return td_error_set(err, TD_ERR_INVALID, "%s: NULL simulation", __func__);
     if (unbalance < 0 || unbalance >= sim->nu || !(magnitude >= 0.0) || !isfinite(magnitude) || !isfinite(phase)) {
         snprintf(sim->errmsg, sizeof sim->errmsg, "td_sim_set_unbalance: invalid unbalance %d or value", unbalance);
-        return TD_ERR_INVALID;
+        return failed(sim, TD_ERR_INVALID, err);
     }
     sim->unb[unbalance].magnitude = magnitude;
     sim->unb[unbalance].phase = phase;
-    return restart_after_change(sim);
+    return reported(sim, restart_after_change(sim), err);
 }
 
-td_status td_sim_set_speed(td_sim *sim, double omega)
+td_status td_sim_set_speed(td_sim *sim, double omega, td_error *err)
 {
     if (!sim)
-        return TD_ERR_INVALID;
+        return td_error_set(err, TD_ERR_INVALID, "%s: NULL simulation", __func__);
     if (!isfinite(omega)) {
         snprintf(sim->errmsg, sizeof sim->errmsg, "td_sim_set_speed: speed must be finite");
-        return TD_ERR_INVALID;
+        return failed(sim, TD_ERR_INVALID, err);
     }
     /* keep the spin angle continuous: the unbalance force turns on from where it is */
     sim->spin_ref = td_sim_spin_angle(sim, sim->t);
@@ -1046,34 +1110,34 @@ td_status td_sim_set_speed(td_sim *sim, double omega)
     if (sim->opt.solver.max_step <= 0.0) {
         sim->hmax = default_max_step(sim);
     }
-    return restart_after_change(sim);
+    return reported(sim, restart_after_change(sim), err);
 }
 
-td_status td_sim_set_amb_mode(td_sim *sim, int amb, td_amb_mode mode)
+td_status td_sim_set_amb_mode(td_sim *sim, int amb, td_amb_mode mode, td_error *err)
 {
     if (!sim)
-        return TD_ERR_INVALID;
+        return td_error_set(err, TD_ERR_INVALID, "%s: NULL simulation", __func__);
     if (amb < 0 || amb >= td_model_amb_count(sim->model) ||
         (mode != TD_AMB_PD && mode != TD_AMB_EXTERNAL && mode != TD_AMB_OFF)) {
         snprintf(sim->errmsg, sizeof sim->errmsg, "td_sim_set_amb_mode: invalid AMB %d or mode %d", amb, (int)mode);
-        return TD_ERR_INVALID;
+        return failed(sim, TD_ERR_INVALID, err);
     }
     sim->amb_mode[amb] = mode;
-    return restart_after_change(sim);
+    return reported(sim, restart_after_change(sim), err);
 }
 
-td_status td_sim_set_amb_control(td_sim *sim, int amb, double fx, double fy)
+td_status td_sim_set_amb_control(td_sim *sim, int amb, double fx, double fy, td_error *err)
 {
     if (!sim)
-        return TD_ERR_INVALID;
+        return td_error_set(err, TD_ERR_INVALID, "%s: NULL simulation", __func__);
     if (amb < 0 || amb >= td_model_amb_count(sim->model) || !isfinite(fx) || !isfinite(fy)) {
         snprintf(sim->errmsg, sizeof sim->errmsg, "td_sim_set_amb_control: invalid AMB %d or force", amb);
-        return TD_ERR_INVALID;
+        return failed(sim, TD_ERR_INVALID, err);
     }
     sim->amb_control[2 * amb] = fx;
     sim->amb_control[2 * amb + 1] = fy;
     /* the held force jumps: restart only when it acts now */
-    return sim->amb_mode[amb] == TD_AMB_EXTERNAL ? restart_after_change(sim) : TD_OK;
+    return sim->amb_mode[amb] == TD_AMB_EXTERNAL ? reported(sim, restart_after_change(sim), err) : TD_OK;
 }
 
 const td_model *td_sim_model(const td_sim *sim)

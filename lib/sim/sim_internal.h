@@ -25,6 +25,7 @@
 
 #include "contact/contact.h"
 #include "model/system_internal.h"
+#include "sim/retainer.h"
 #include "sim/sundials_compat.h"
 #include "touchdown/sim.h"
 
@@ -33,28 +34,6 @@
 #include <sundials/sundials_linearsolver.h>
 #include <sundials/sundials_matrix.h>
 #include <sundials/sundials_nonlinearsolver.h>
-
-/* Contact mode of one retainer. */
-typedef enum td_rmode {
-    TD_RMODE_FREE = 0,       /* no contact: lambda = eta = 0 */
-    TD_RMODE_CONTACT = 1,    /* constrained contact: g = 0, J v = 0, lambda >= 0 */
-    TD_RMODE_PENETRATING = 2 /* penalty contact: delta = r - c > 0, force F_n(delta, rate) */
-} td_rmode;
-
-/* Root functions, three per retainer (their meaning depends on the mode, see sim_residual.c). */
-enum { TD_ROOT_CONTACT = 0, TD_ROOT_SLIP = 1, TD_ROOT_REARM = 2, TD_ROOTS_PER_RETAINER = 3 };
-
-typedef struct td_sim_retainer {
-    td_retainer r; /* the model's data */
-    int dx, dy;    /* global DOFs x, y of its node */
-    td_rmode mode;
-    int armed;     /* constraint model, free: onset root at gap = 0 (1) or at gap = -eps (0, after a
-                    * release or a rejected/bouncing onset; re-armed when the gap exceeds +eps) */
-    int slip;      /* slip mode of eq. (17): +1 or -1 sliding (|v_s| >= v_reg), 0 inside the
-                    * slip-regularised band |v_s| < v_reg (contact.h TD_CONTACT_SLIP_BAND). Only the
-                    * roots depend on it: the friction force is phi(v_s) of the state in every mode */
-    int band_from; /* slip = 0: the sliding sign before the band (a reversal if it leaves the other way) */
-} td_sim_retainer;
 
 /* Linear coefficients of one AMB axis law (probed from model/amb.c, exact for the linear law). */
 typedef struct td_sim_amb_coef {
@@ -142,12 +121,22 @@ struct td_sim {
     td_sim_stats stats;   /* event totals, drift, forces, times (counters filled on demand) */
     td_sim_counters base; /* IDA counters of finished integrator runs */
 
-    /* work space */
-    double *wn[4]; /* four vectors of length n */
-    double *wm;    /* nr * (nr + 1) + 2 nr */
-    double *wmn;   /* n * nr: M^-1 B_k or M^-1 J_k^T columns */
-    td_contact_row *rows;
-    int *act;               /* nr: indices of constraints in a small system */
+    /* work space, each array with one job (n: DOFs, nr: retainers) */
+    double *mass_x;         /* n: td_sim_mass_solve's permuted solution */
+    double *minv_f;         /* n: M^-1 f (kkt_solve, free_normal_acceleration) */
+    double *power_x;        /* n: highest_frequency's iterate x */
+    double *power_kx;       /* n: highest_frequency's M^-1 K x */
+    double *power_mx;       /* n: highest_frequency's M x */
+    double *schur;          /* nr * nr: kkt_solve's J M^-1 B of the active contacts */
+    double *schur_rhs;      /* nr: its right-hand side, then lambda */
+    double *restitution;    /* nr: impacts, the restitution of each contact in the impact map */
+    double *impulse;        /* nr: impacts, the impulse of each contact */
+    double *impact_work;    /* nr * (nr + 1): td_contact_impact_map's work space */
+    double *minv_cols;      /* n * nr: M^-1 B_k or M^-1 J_k^T columns of the active contacts */
+    td_contact_row *rows;   /* nr: contact rows J_k of the active contacts */
+    int *active;            /* nr: indices of the retainers in the small system (kkt_solve, impacts) */
+    int *onset, *entered;   /* nr each: onset roots and contacts entered at an instant (sim_modes.c) */
+    int *touching;          /* nr: retainers touching their circles at the start (start_state) */
     double *ysave, *ypsave; /* last good state */
 
     volatile sig_atomic_t *interrupt; /* borrowed (td_sim_set_interrupt), NULL: none */
@@ -170,14 +159,6 @@ void td_sim_roots(const td_sim *s, double t, const double *y, double *g);
 void td_sim_root_directions(const td_sim *s, int *dir);
 /* Force of AMB axis k at state y (N), with the mode of its AMB. */
 double td_sim_amb_axis_force(const td_sim *s, int k, const double *y);
-/* Normal force of retainer k at state y: lambda (contact), F_n (penetrating) or 0. */
-double td_sim_normal_force(const td_sim *s, int k, const double *y);
-/* Sliding velocity eq. (16) of retainer k at state y. */
-double td_sim_sliding_velocity(const td_sim *s, int k, const double *y);
-/* Slip factor phi(v_s) of retainer k at state y (contact.h); *dphi = d phi / d v_s (may be NULL). */
-double td_sim_slip_factor(const td_sim *s, int k, const double *y, double *dphi);
-/* Set retainer k's slip mode (and band_from) from its sliding velocity at y, entering contact. */
-void td_sim_init_slip(td_sim *s, int k, const double *y);
 /* Spin angle phi(t). */
 double td_sim_spin_angle(const td_sim *s, double t);
 
@@ -214,7 +195,7 @@ void td_sim_mass_solve(const td_sim *s, double *b);
  * release is queued as an event unless just entered (then the onset event records it). */
 td_status td_sim_make_consistent(td_sim *s, const int *just_entered);
 /* Penalty model: 1 if some retainer's mode disagrees with the state y beyond the noise band
- * (sim_modes.c), i.e. IDA missed a crossing of its root. */
+ * (retainer.c td_sim_penalty_mode_wanted), i.e. IDA missed a crossing of its root. */
 int td_sim_penalty_out_of_step(const td_sim *s, const double *y);
 /* Start of a run with the retainers flagged in `touching` on (or a hair outside) their circles:
  * projection and impact as at an onset, then td_sim_make_consistent. */

@@ -38,7 +38,7 @@
 
 void td_sim_mass_solve(const td_sim *s, double *b)
 {
-    double *x = s->wn[3];
+    double *x = s->mass_x;
     cs_di_ipvec(s->Mn->pinv, b, x, s->n);
     cs_di_lsolve(s->Mn->L, x);
     cs_di_usolve(s->Mn->U, x);
@@ -88,41 +88,12 @@ static td_event event_of(const td_sim *s, td_event_kind kind, int k)
     return ev;
 }
 
-/* +1 or -1: the sign of v, or `otherwise` at v == 0. */
-static int sign_or(double v, int otherwise)
+/* Queue an event of retainer k at s->t with its node velocities at y. */
+static void queue_retainer_event(td_sim *s, td_event_kind kind, int k, const double *y)
 {
-    return v > 0.0 ? 1 : (v < 0.0 ? -1 : otherwise);
-}
-
-/* Contact row of retainer k at the state y (J_k = (x, y)/c on its node). */
-static void contact_row(const td_sim *s, int k, const double *y, td_contact_row *row)
-{
-    const td_sim_retainer *r = &s->ret[k];
-    row->dof[0] = r->dx;
-    row->dof[1] = r->dy;
-    td_contact_constraint_jacobian(y[s->oq + r->dx], y[s->oq + r->dy], r->r.clearance, row->j);
-}
-
-/* Column B_k = J_k^T + s mu t_k (normal force plus its friction) of retainer k, length n. */
-static void contact_column(const td_sim *s, int k, const double *y, double *col)
-{
-    const td_sim_retainer *r = &s->ret[k];
-    double x = y[s->oq + r->dx], yy = y[s->oq + r->dy], c = r->r.clearance, rad = hypot(x, yy);
-    double sm = td_sim_slip_factor(s, k, y, NULL) * r->r.friction;
-    memset(col, 0, sizeof(double) * (size_t)s->n);
-    col[r->dx] = x / c - sm * yy / rad;
-    col[r->dy] = yy / c + sm * x / rad;
-}
-
-/* Project retainer k's node radially onto its clearance circle (x, y scaled). */
-static void project_onto_circle(td_sim *s, int k, double *y)
-{
-    const td_sim_retainer *r = &s->ret[k];
-    double x = y[s->oq + r->dx], yy = y[s->oq + r->dy], rad = hypot(x, yy);
-    if (rad > 0.0) {
-        y[s->oq + r->dx] = x * (r->r.clearance / rad);
-        y[s->oq + r->dy] = yy * (r->r.clearance / rad);
-    }
+    td_event ev = event_of(s, kind, k);
+    td_sim_event_velocities(s, k, y, 0, &ev);
+    td_sim_queue_event(s, &ev);
 }
 
 /* One KKT solve with the current contact set: [M, B; J, 0][v'; lambda] = [f; -D] by the Schur
@@ -130,25 +101,24 @@ static void project_onto_circle(td_sim *s, int k, double *y)
  * Fills yp's v block and y's lambda entries. Returns the number of contacts, or -1 if singular. */
 static int kkt_solve(td_sim *s, double *y, double *yp)
 {
-    double *a = s->wn[1], *S = s->wm, *rhs, *vp = yp + s->ov;
+    double *a = s->minv_f, *S = s->schur, *rhs = s->schur_rhs, *vp = yp + s->ov;
     int m = 0, i, j, k;
     td_sim_forces(s, s->t, y, a);
     td_sim_mass_solve(s, a);
     for (k = 0; k < s->nr; k++)
         if (s->ret[k].mode == TD_RMODE_CONTACT)
-            s->act[m++] = k;
-    rhs = S + m * m;
+            s->active[m++] = k;
     for (i = 0; i < m; i++) {
-        double *z = s->wmn + (size_t)i * s->n;
-        contact_column(s, s->act[i], y, z);
+        double *z = s->minv_cols + (size_t)i * s->n;
+        td_sim_contact_column(s, s->active[i], y, z);
         td_sim_mass_solve(s, z);
-        contact_row(s, s->act[i], y, &s->rows[i]);
+        td_sim_contact_row(s, s->active[i], y, &s->rows[i]);
     }
     for (i = 0; i < m; i++) {
         const td_contact_row *row = &s->rows[i];
-        const td_sim_retainer *r = &s->ret[s->act[i]];
+        const td_sim_retainer *r = &s->ret[s->active[i]];
         for (j = 0; j < m; j++) {
-            const double *z = s->wmn + (size_t)j * s->n;
+            const double *z = s->minv_cols + (size_t)j * s->n;
             S[i + j * m] = row->j[0] * z[row->dof[0]] + row->j[1] * z[row->dof[1]];
         }
         /* eq. (13b): J v' = -D */
@@ -160,10 +130,10 @@ static int kkt_solve(td_sim *s, double *y, double *yp)
     for (i = 0; i < s->n; i++)
         vp[i] = a[i];
     for (j = 0; j < m; j++) {
-        const double *z = s->wmn + (size_t)j * s->n;
+        const double *z = s->minv_cols + (size_t)j * s->n;
         for (i = 0; i < s->n; i++)
             vp[i] -= z[i] * rhs[j];
-        y[s->ol + s->act[j]] = rhs[j];
+        y[s->ol + s->active[j]] = rhs[j];
     }
     return m;
 }
@@ -178,7 +148,7 @@ td_status td_sim_make_consistent(td_sim *s, const int *just_entered)
         if (s->ret[k].mode != TD_RMODE_CONTACT)
             y[s->ol + k] = 0.0;
         else
-            project_onto_circle(s, k, y); /* removes the (tolerance-level) drift at every restart */
+            td_sim_project_onto_circle(s, k, y); /* removes the (tolerance-level) drift at every restart */
     }
     for (pass = 0; pass <= s->nr; pass++) {
         int worst = -1;
@@ -202,14 +172,9 @@ td_status td_sim_make_consistent(td_sim *s, const int *just_entered)
         }
         if (worst < 0)
             break;
-        s->ret[worst].mode = TD_RMODE_FREE;
-        s->ret[worst].armed = 0;
-        y[s->ol + worst] = 0.0;
-        if (!(just_entered && just_entered[worst])) {
-            td_event ev = event_of(s, TD_EVENT_RELEASE, worst);
-            td_sim_event_velocities(s, worst, y, 0, &ev);
-            td_sim_queue_event(s, &ev);
-        }
+        td_sim_release(s, worst, y);
+        if (!(just_entered && just_entered[worst]))
+            queue_retainer_event(s, TD_EVENT_RELEASE, worst, y);
     }
     /* q' = v, w' = the filter rate */
     for (i = 0; i < s->n; i++)
@@ -236,7 +201,7 @@ static double free_normal_acceleration(td_sim *s, int k, const double *y, double
     td_contact_row row;
     td_sim_forces(s, s->t, y, a);
     td_sim_mass_solve(s, a);
-    contact_row(s, k, y, &row);
+    td_sim_contact_row(s, k, y, &row);
     return row.j[0] * a[row.dof[0]] + row.j[1] * a[row.dof[1]] +
            td_contact_constraint_dterm(y[s->ov + r->dx], y[s->ov + r->dy], r->r.clearance);
 }
@@ -245,10 +210,11 @@ static double free_normal_acceleration(td_sim *s, int k, const double *y, double
  * Restitution of an impact at retainer k with inward radial speed vr (> 0): the retainer's e, or
  * 0 (plastic) if the rebound would be too small to be resolved.
  *
- * Why (problem S4, a pressed rotor bouncing for ever): after a bounce the onset root is disarmed
- * until the gap exceeds rearm_eps; a rebound e vr that, against the outward acceleration a_n,
- * rises less than that (apex height (e vr)^2 / (2 a_n)) is only caught when the node has sunk
- * rearm_eps INTO the retainer, and project_onto_circle then pushes it back by rearm_eps against
+ * Why: without this a rotor pressed onto a retainer (by gravity, the unbalance or the AMBs) would
+ * bounce for ever. After a bounce the onset root is disarmed until the gap exceeds rearm_eps; a
+ * rebound e vr that, against the outward acceleration a_n, rises less than that (apex height
+ * (e vr)^2 / (2 a_n)) is only caught when the node has sunk rearm_eps INTO the retainer, and
+ * td_sim_project_onto_circle then pushes it back by rearm_eps against
  * the preload, adding about m a_n rearm_eps of strain energy per bounce. That gain balances the
  * (1 - e^2) kinetic loss at a rebound speed ~ sqrt(2 a_n rearm_eps), so the rebounds never
  * decayed (median 5e-3 / 1.5e-3 / 4.6e-4 m/s at atol 1e-8 / 1e-9 / 1e-10). A bouncing ball on
@@ -270,53 +236,57 @@ static double impact_restitution(td_sim *s, int k, const double *y, double vr)
     double e = s->ret[k].r.restitution, an, vmin;
     if (!(e > 0.0) || vr < s->rebound_min)
         return 0.0;
-    an = free_normal_acceleration(s, k, y, s->wn[1]);
+    an = free_normal_acceleration(s, k, y, s->minv_f);
     vmin = an > 0.0 ? 2.0 * sqrt(2.0 * an * s->rearm_eps) : 0.0;
     return e * vr < vmin ? 0.0 : e;
 }
 
-/*
- * Impacts at the retainers flagged in `onset` (constraint model): project each node onto its
- * circle, apply the impact map with every contact already active (e = 0 keeps them on the circle)
- * and the new ones (their restitution, or 0 when the rebound would be too small to resolve:
- * impact_restitution), queue the onset events. New contacts with e = 0 become CONTACT (tentatively: the KKT solve may
- * still reject them); bouncing ones stay free, disarmed until the gap opens again. entered[k] flags the former. Returns
- * the number of onset events queued.
- */
-static int impacts(td_sim *s, const int *onset, int *entered)
+/* The contacts of an impact at the retainers flagged in `onset`, into s->active with their
+ * restitution in s->restitution: every active contact (e = 0 keeps it on the circle) and each
+ * onset moving outward (impact_restitution). Returns their number. */
+static int impact_contacts(td_sim *s, const int *onset, const double *y)
 {
-    double *y = N_VGetArrayPointer(s->y), *v = y + s->ov;
-    double *e = s->wm, *P = s->wm + s->nr, *work = s->wm + 2 * s->nr;
-    int m = 0, k, i, queued = 0, first_event = s->q_len;
-    for (k = 0; k < s->nr; k++) {
-        entered[k] = 0;
-        if (onset[k])
-            project_onto_circle(s, k, y);
-    }
+    const double *v = y + s->ov;
+    double *e = s->restitution;
+    int m = 0, k;
     for (k = 0; k < s->nr; k++) {
         const td_sim_retainer *r = &s->ret[k];
         double vr;
         if (r->mode == TD_RMODE_CONTACT) {
             e[m] = 0.0;
-            s->act[m++] = k;
+            s->active[m++] = k;
         } else if (onset[k]) {
             vr = td_contact_radial_velocity(y[s->oq + r->dx], y[s->oq + r->dy], v[r->dx], v[r->dy]);
             if (!(vr > 0.0)) /* touching while already moving inward: no impact, stay free */
                 continue;
             e[m] = impact_restitution(s, k, y, vr);
-            s->act[m++] = k;
+            s->active[m++] = k;
         }
     }
+    return m;
+}
+
+/* Rows J_k (s->rows) and columns M^-1 J_k^T (s->minv_cols) of the first m contacts in s->active. */
+static void impact_columns(td_sim *s, int m, const double *y)
+{
+    int i;
     for (i = 0; i < m; i++) {
-        double *col = s->wmn + (size_t)i * s->n;
-        contact_row(s, s->act[i], y, &s->rows[i]);
+        double *col = s->minv_cols + (size_t)i * s->n;
+        td_sim_contact_row(s, s->active[i], y, &s->rows[i]);
         memset(col, 0, sizeof(double) * (size_t)s->n);
         col[s->rows[i].dof[0]] = s->rows[i].j[0];
         col[s->rows[i].dof[1]] = s->rows[i].j[1];
         td_sim_mass_solve(s, col);
     }
+}
+
+/* Queue the onset event of every new contact among the first m in s->active, with the
+ * velocities before the impact. Returns how many. */
+static int queue_onsets(td_sim *s, const int *onset, int m, const double *y)
+{
+    int i, k, queued = 0;
     for (i = 0; i < m; i++) {
-        k = s->act[i];
+        k = s->active[i];
         if (!onset[k] || s->ret[k].mode == TD_RMODE_CONTACT)
             continue;
         {
@@ -326,15 +296,21 @@ static int impacts(td_sim *s, const int *onset, int *entered)
             queued++;
         }
     }
-    if (m > 0 && td_contact_impact_map(s->n, m, s->rows, s->wmn, e, v, P, work) != 0)
-        return -1;
+    return queued;
+}
+
+/* After the impact map: new contacts with e = 0 become CONTACT (tentatively: the KKT solve may
+ * still reject them), flagged in entered; bouncing ones stay free, disarmed until the gap opens. */
+static void enter_contacts(td_sim *s, const int *onset, int m, const double *y, int *entered)
+{
+    int i, k;
     for (i = 0; i < m; i++) {
         td_sim_retainer *r;
-        k = s->act[i];
+        k = s->active[i];
         r = &s->ret[k];
         if (!onset[k] || r->mode == TD_RMODE_CONTACT)
             continue;
-        if (e[i] > 0.0) {
+        if (s->restitution[i] > 0.0) {
             r->armed = 0; /* bounced: free until the gap has opened */
         } else {
             r->mode = TD_RMODE_CONTACT;
@@ -342,50 +318,53 @@ static int impacts(td_sim *s, const int *onset, int *entered)
             entered[k] = 1;
         }
     }
-    /* complete the queued onset events (in queue order = retainer order) */
+}
+
+/* Complete the onset events queued from first_event on (in queue order = retainer order) with
+ * the velocities after the impact and its impulse. */
+static void complete_onsets(td_sim *s, const int *onset, int m, int first_event, const double *y)
+{
+    int i, k, q;
     for (i = 0; i < m; i++) {
-        int q;
-        k = s->act[i];
+        k = s->active[i];
         if (!onset[k])
             continue;
         for (q = first_event; q < s->q_len; q++)
             if (s->queue[q].retainer == k && s->queue[q].kind == TD_EVENT_CONTACT_ONSET) {
                 td_sim_event_velocities(s, k, y, 1, &s->queue[q]);
-                s->queue[q].impulse = P[i];
+                s->queue[q].impulse = s->impulse[i];
             }
     }
+}
+
+/*
+ * Impacts at the retainers flagged in `onset` (constraint model): project each node onto its
+ * circle, apply the impact map with every contact already active and the new ones
+ * (impact_contacts), queue the onset events. entered[k] flags the retainers that came into
+ * contact. Returns the number of onset events queued, -1 if the impact map is singular.
+ */
+static int impacts(td_sim *s, const int *onset, int *entered)
+{
+    double *y = N_VGetArrayPointer(s->y);
+    int m, k, queued, first_event = s->q_len;
+    for (k = 0; k < s->nr; k++) {
+        entered[k] = 0;
+        if (onset[k])
+            td_sim_project_onto_circle(s, k, y);
+    }
+    m = impact_contacts(s, onset, y);
+    impact_columns(s, m, y);
+    queued = queue_onsets(s, onset, m, y);
+    if (m > 0 && td_contact_impact_map(s->n, m, s->rows, s->minv_cols, s->restitution, y + s->ov, s->impulse,
+                                       s->impact_work) != 0)
+        return -1;
+    enter_contacts(s, onset, m, y, entered);
+    complete_onsets(s, onset, m, first_event, y);
     /* onsets with no outward velocity: disarm, nothing happened */
     for (k = 0; k < s->nr; k++)
         if (onset[k] && s->ret[k].mode == TD_RMODE_FREE)
             s->ret[k].armed = 0;
     return queued;
-}
-
-/*
- * Penalty model: the mode of retainer k follows its state. The penalty force itself is a function
- * of the state (sim_residual.c: it acts whenever delta = r - c > 0, whatever the mode), so the mode
- * only places the roots (the enter root waits for the gap to fall through zero, the exit root for
- * it to rise) and records the events. Outside a band |delta| <= penalty_band the state decides;
- * inside it, where a restart's Newton correction can move delta either way, `in_band` does (the
- * flip a root asks for, or the current mode). Without the state check a mode could disagree with
- * the state for good: a grazing node's gap crosses zero several times within a step, IDA reports
- * one crossing, and a free retainer whose node is already outside never sees its enter root again
- * (case C lost a contact that way and its node flew 1.7 mm past the clearance, force-free).
- */
-static double penalty_band(const td_sim *s)
-{
-    return s->constraint_tol;
-}
-
-static td_rmode penalty_mode_wanted(const td_sim *s, int k, const double *y, td_rmode in_band)
-{
-    const td_sim_retainer *r = &s->ret[k];
-    double delta = hypot(y[s->oq + r->dx], y[s->oq + r->dy]) - r->r.clearance;
-    if (delta > penalty_band(s))
-        return TD_RMODE_PENETRATING;
-    if (delta < -penalty_band(s))
-        return TD_RMODE_FREE;
-    return in_band;
 }
 
 int td_sim_penalty_out_of_step(const td_sim *s, const double *y)
@@ -394,7 +373,7 @@ int td_sim_penalty_out_of_step(const td_sim *s, const double *y)
     if (s->opt.contact.model != TD_CONTACT_PENALTY)
         return 0;
     for (k = 0; k < s->nr; k++)
-        if (penalty_mode_wanted(s, k, y, s->ret[k].mode) != s->ret[k].mode)
+        if (td_sim_penalty_mode_wanted(s, k, y, s->ret[k].mode) != s->ret[k].mode)
             return 1;
     return 0;
 }
@@ -404,90 +383,110 @@ int td_sim_penalty_out_of_step(const td_sim *s, const double *y)
 static int penalty_switch(td_sim *s, int k, const double *y, td_rmode want)
 {
     td_sim_retainer *r = &s->ret[k];
-    td_event ev;
     if (want == r->mode)
         return 0;
     r->mode = want;
     if (want == TD_RMODE_PENETRATING) {
         td_sim_init_slip(s, k, y);
-        ev = event_of(s, TD_EVENT_PENALTY_ENTER, k);
+        queue_retainer_event(s, TD_EVENT_PENALTY_ENTER, k, y);
     } else {
         r->armed = 1;
-        ev = event_of(s, TD_EVENT_PENALTY_EXIT, k);
+        queue_retainer_event(s, TD_EVENT_PENALTY_EXIT, k, y);
     }
-    td_sim_event_velocities(s, k, y, 0, &ev);
-    td_sim_queue_event(s, &ev);
     return 1;
+}
+
+/* Retainer k's slip root (|v_s| reached v_reg): the friction law has a kink there
+ * (docs/theory.md), so the integrator restarts; leaving the band on the other side is a
+ * friction reversal. */
+static void slip_root(td_sim *s, int k, const double *y)
+{
+    if (td_sim_slip_root(s, k, y))
+        queue_retainer_event(s, TD_EVENT_FRICTION_REVERSAL, k, y);
+}
+
+/* Constraint model: the roots `f` of retainer k. An onset root only flags the retainer in *onset
+ * (the impacts come after every retainer's roots); a release root frees it at once. Returns 1 if
+ * the integrator must restart. */
+static int constraint_roots(td_sim *s, int k, double *y, const int *f, int *onset)
+{
+    td_sim_retainer *r = &s->ret[k];
+    int restart = 0;
+    if (f[TD_ROOT_CONTACT] != 0) {
+        if (r->mode == TD_RMODE_FREE) {
+            *onset = 1;
+        } else if (r->mode == TD_RMODE_CONTACT) {
+            td_sim_release(s, k, y);
+            queue_retainer_event(s, TD_EVENT_RELEASE, k, y);
+            restart = 1;
+        }
+    } else if (f[TD_ROOT_SLIP] != 0 && r->mode != TD_RMODE_FREE) {
+        slip_root(s, k, y);
+        restart = 1;
+    }
+    if (f[TD_ROOT_REARM] != 0 && r->mode == TD_RMODE_FREE && !r->armed)
+        r->armed = 1; /* internal: only the root function changes (IDA re-evaluates it at tlo) */
+    return restart;
+}
+
+/* Penalty model: the roots `f` of retainer k (all zero: only bring its mode in step with the
+ * state). A contact root asks for the flip of the mode; the state decides outside the noise band
+ * (retainer.c td_sim_penalty_mode_wanted). Returns 1 if the integrator must restart. */
+static int penalty_roots(td_sim *s, int k, const double *y, const int *f)
+{
+    td_sim_retainer *r = &s->ret[k];
+    int restart = 0;
+    td_rmode flip, in_band;
+    if (f[TD_ROOT_CONTACT] == 0 && f[TD_ROOT_SLIP] != 0 && r->mode != TD_RMODE_FREE) {
+        slip_root(s, k, y);
+        restart = 1;
+    }
+    flip = r->mode == TD_RMODE_FREE ? TD_RMODE_PENETRATING : TD_RMODE_FREE;
+    in_band = f[TD_ROOT_CONTACT] != 0 ? flip : r->mode;
+    if (penalty_switch(s, k, y, td_sim_penalty_mode_wanted(s, k, y, in_band)))
+        restart = 1;
+    return restart;
+}
+
+/* Impacts at the retainers flagged in s->onset (any: some are), or none; s->entered says which
+ * retainers came into contact. */
+static td_status onset_impacts(td_sim *s, int any)
+{
+    int k;
+    if (!any) {
+        for (k = 0; k < s->nr; k++)
+            s->entered[k] = 0;
+        return TD_OK;
+    }
+    if (impacts(s, s->onset, s->entered) < 0) {
+        snprintf(s->errmsg, sizeof s->errmsg, "t = %.9g s: impact map singular", s->t);
+        return TD_ERR_NUMERIC;
+    }
+    return TD_OK;
 }
 
 td_status td_sim_handle_roots(td_sim *s, int *restart)
 {
     double *y = N_VGetArrayPointer(s->y);
-    int *onset = s->act + s->nr, *entered = s->act + 2 * s->nr;
     int k, any_onset = 0, first_event = s->q_len;
     td_status st;
     *restart = 0;
     for (k = 0; k < s->nr; k++) {
-        td_sim_retainer *r = &s->ret[k];
         const int *f = s->rootsfound + TD_ROOTS_PER_RETAINER * k;
-        onset[k] = 0;
-        if (f[TD_ROOT_CONTACT] != 0) {
-            td_event ev;
-            switch (r->mode) {
-            case TD_RMODE_FREE:
-                if (s->opt.contact.model == TD_CONTACT_CONSTRAINT)
-                    onset[k] = any_onset = 1;
-                /* penalty: entered below, if the state says so */
-                break;
-            case TD_RMODE_CONTACT:
-                r->mode = TD_RMODE_FREE;
-                r->armed = 0; /* left at r = c: no onset until the gap has opened (grazing guard) */
-                y[s->ol + k] = 0.0;
-                ev = event_of(s, TD_EVENT_RELEASE, k);
-                td_sim_event_velocities(s, k, y, 0, &ev);
-                td_sim_queue_event(s, &ev);
-                *restart = 1;
-                break;
-            case TD_RMODE_PENETRATING: break; /* left below, if the state says so */
-            }
-        } else if (f[TD_ROOT_SLIP] != 0 && r->mode != TD_RMODE_FREE) {
-            /* |v_s| reached v_reg: the friction law has a kink there (docs/theory.md), restart */
-            if (r->slip != 0) { /* into the band: no event */
-                r->band_from = r->slip;
-                r->slip = 0;
-            } else { /* out of the band: a reversal if on the other side */
-                r->slip = sign_or(td_sim_sliding_velocity(s, k, y), -r->band_from);
-                if (r->slip != r->band_from) {
-                    td_event ev = event_of(s, TD_EVENT_FRICTION_REVERSAL, k);
-                    td_sim_event_velocities(s, k, y, 0, &ev);
-                    td_sim_queue_event(s, &ev);
-                }
-            }
+        s->onset[k] = 0;
+        if (s->opt.contact.model == TD_CONTACT_PENALTY ? penalty_roots(s, k, y, f)
+                                                       : constraint_roots(s, k, y, f, &s->onset[k]))
             *restart = 1;
-        }
-        if (f[TD_ROOT_REARM] != 0 && r->mode == TD_RMODE_FREE && !r->armed)
-            r->armed = 1; /* internal: only the root function changes (IDA re-evaluates it at tlo) */
-        if (s->opt.contact.model == TD_CONTACT_PENALTY) {
-            /* a root asks for the flip; the state decides outside the noise band */
-            td_rmode flip = r->mode == TD_RMODE_FREE ? TD_RMODE_PENETRATING : TD_RMODE_FREE;
-            td_rmode in_band = f[TD_ROOT_CONTACT] != 0 ? flip : r->mode;
-            if (penalty_switch(s, k, y, penalty_mode_wanted(s, k, y, in_band)))
-                *restart = 1;
-        }
+        any_onset = any_onset || s->onset[k];
     }
-    if (any_onset) {
-        if (impacts(s, onset, entered) < 0) {
-            snprintf(s->errmsg, sizeof s->errmsg, "t = %.9g s: impact map singular", s->t);
-            return TD_ERR_NUMERIC;
-        }
+    st = onset_impacts(s, any_onset);
+    if (st != TD_OK)
+        return st;
+    if (any_onset)
         *restart = 1;
-    } else {
-        for (k = 0; k < s->nr; k++)
-            entered[k] = 0;
-    }
     if (!*restart)
         return TD_OK;
-    st = td_sim_make_consistent(s, entered);
+    st = td_sim_make_consistent(s, s->entered);
     if (st != TD_OK)
         return st;
     /* record the normal force right after each event of this instant */
@@ -499,19 +498,14 @@ td_status td_sim_handle_roots(td_sim *s, int *restart)
 
 td_status td_sim_start_contacts(td_sim *s, const int *touching)
 {
-    int *onset = s->act + s->nr, *entered = s->act + 2 * s->nr, k, any = 0;
+    int k, any = 0;
+    td_status st;
     for (k = 0; k < s->nr; k++) {
-        onset[k] = touching[k];
-        any = any || onset[k];
+        s->onset[k] = touching[k];
+        any = any || s->onset[k];
     }
-    if (any && impacts(s, onset, entered) < 0) {
-        snprintf(s->errmsg, sizeof s->errmsg, "t = %.9g s: impact map singular", s->t);
-        return TD_ERR_NUMERIC;
-    }
-    if (!any)
-        for (k = 0; k < s->nr; k++)
-            entered[k] = 0;
-    return td_sim_make_consistent(s, entered);
+    st = onset_impacts(s, any);
+    return st == TD_OK ? td_sim_make_consistent(s, s->entered) : st;
 }
 
 /* Apply schedule entry c (the model's TD_CHANGE_*). */

@@ -31,72 +31,6 @@ double td_sim_amb_axis_force(const td_sim *s, int k, const double *y)
     return td_amb_axis_force(a, enabled, y[s->oq + a->actuator_dof], amb_axis_fc(s, k, y), NULL, NULL);
 }
 
-/* Node coordinates of retainer k. */
-static void node_state(const td_sim *s, int k, const double *y, double *x, double *yy, double *vx, double *vy)
-{
-    const td_sim_retainer *r = &s->ret[k];
-    *x = y[s->oq + r->dx];
-    *yy = y[s->oq + r->dy];
-    *vx = y[s->ov + r->dx];
-    *vy = y[s->ov + r->dy];
-}
-
-/* Penalty normal force of retainer k and its partials by delta and its rate. */
-static double penalty_force(const td_sim *s, int k, const double *y, double *fd, double *fr)
-{
-    double x, yy, vx, vy, r;
-    node_state(s, k, y, &x, &yy, &vx, &vy);
-    r = hypot(x, yy);
-    return td_contact_penalty_force(&s->law, r - s->ret[k].r.clearance, td_contact_radial_velocity(x, yy, vx, vy), fd,
-                                    fr);
-}
-
-/* Penalty model: the force acts whenever the node penetrates, whatever the retainer's mode: the
- * mode only places the enter/exit roots and records the events (sim_modes.c), so a crossing that
- * root finding misses (a grazing node) cannot let the rotor pass through the retainer. The force
- * is continuous where it switches on (zero at delta = 0; a Kelvin-Voigt damper's jump is met by
- * the enter event's restart). */
-static int penalty_model(const td_sim *s)
-{
-    return s->opt.contact.model == TD_CONTACT_PENALTY;
-}
-
-double td_sim_normal_force(const td_sim *s, int k, const double *y)
-{
-    if (s->ret[k].mode == TD_RMODE_CONTACT)
-        return y[s->ol + k];
-    return penalty_model(s) ? penalty_force(s, k, y, NULL, NULL) : 0.0;
-}
-
-double td_sim_sliding_velocity(const td_sim *s, int k, const double *y)
-{
-    double x, yy, vx, vy;
-    node_state(s, k, y, &x, &yy, &vx, &vy);
-    return td_contact_sliding_velocity(&s->ret[k].r, s->omega, x, yy, vx, vy);
-}
-
-double td_sim_slip_factor(const td_sim *s, int k, const double *y, double *dphi)
-{
-    return td_contact_slip_factor(td_sim_sliding_velocity(s, k, y), TD_CONTACT_SLIP_BAND, dphi);
-}
-
-void td_sim_init_slip(td_sim *s, int k, const double *y)
-{
-    td_sim_retainer *r = &s->ret[k];
-    double vs = td_sim_sliding_velocity(s, k, y);
-    int sg = vs < 0.0 ? -1 : 1;
-    r->band_from = sg;
-    r->slip = fabs(vs) < TD_CONTACT_SLIP_BAND ? 0 : sg;
-}
-
-/* d v_s / d(x, y, vx, vy) of retainer k at y. */
-static void sliding_gradient(const td_sim *s, int k, const double *y, double g[4])
-{
-    double x, yy, vx, vy;
-    node_state(s, k, y, &x, &yy, &vx, &vy);
-    td_contact_sliding_velocity_gradient(&s->ret[k].r, x, yy, vx, vy, g);
-}
-
 /* out = M vp + D v + K q (D = C + Omega G), row by row over the union pattern; vp == NULL
  * leaves out M vp. One pass over the indices instead of one per matrix. */
 static void structural(const td_sim *s, const double *q, const double *v, const double *vp, double *out)
@@ -144,13 +78,13 @@ static void applied_forces(const td_sim *s, double t, const double *y, double si
     for (k = 0; k < sys->n_amb_axes; k++)
         f[sys->amb_axes[k].actuator_dof] += sign * td_sim_amb_axis_force(s, k, y);
     /* penalty contacts: force -F_n (n + s mu t) on the rotor (eqs. 4, 17), F_n > 0 only when penetrating */
-    for (k = 0; k < s->nr && penalty_model(s); k++) {
+    for (k = 0; k < s->nr && td_sim_penalty_model(s); k++) {
         const td_sim_retainer *r = &s->ret[k];
         double x, yy, vx, vy, rad, fn, sm;
-        fn = sign * penalty_force(s, k, y, NULL, NULL);
+        fn = sign * td_sim_penalty_force(s, k, y, NULL, NULL);
         if (fn == 0.0)
             continue;
-        node_state(s, k, y, &x, &yy, &vx, &vy);
+        td_sim_node_state(s, k, y, &x, &yy, &vx, &vy);
         rad = hypot(x, yy);
         sm = td_sim_slip_factor(s, k, y, NULL) * r->r.friction;
         f[r->dx] -= fn * (x - sm * yy) / rad;
@@ -195,7 +129,7 @@ void td_sim_residual(const td_sim *s, double t, const double *y, const double *y
         double lam = y[s->ol + k], eta = y[s->ou + k];
         if (r->mode == TD_RMODE_CONTACT) {
             double x, yy, vx, vy, c = r->r.clearance, rad, sm = td_sim_slip_factor(s, k, y, NULL) * r->r.friction;
-            node_state(s, k, y, &x, &yy, &vx, &vy);
+            td_sim_node_state(s, k, y, &x, &yy, &vx, &vy);
             rad = hypot(x, yy);
             /* eq. (6): + J^T lambda, and the friction of eq. (17) with N = lambda */
             rv[r->dx] += lam * (x / c - sm * yy / rad);
@@ -268,7 +202,7 @@ static void jacobian_contact(td_sim *s, int k, const double *y)
     double lam = y[s->ol + k], eta = y[s->ou + k];
     int qx = s->oq + r->dx, qy = s->oq + r->dy, vxr = s->ov + r->dx, vyr = s->ov + r->dy;
     int lk = s->ol + k, uk = s->ou + k;
-    node_state(s, k, y, &x, &yy, &vx, &vy);
+    td_sim_node_state(s, k, y, &x, &yy, &vx, &vy);
     rad = hypot(x, yy);
     r3 = rad * rad * rad;
     sm = td_sim_slip_factor(s, k, y, &dphi) * r->r.friction;
@@ -282,7 +216,7 @@ static void jacobian_contact(td_sim *s, int k, const double *y)
     if (dphi != 0.0) { /* inside the slip band: sm = mu v_s / v_reg depends on q and v */
         int cols[4] = {qx, qy, vxr, vyr}, i;
         double a = lam * r->r.friction * dphi;
-        sliding_gradient(s, k, y, gv);
+        td_sim_sliding_gradient(s, k, y, gv);
         for (i = 0; i < 4; i++) {
             jadd(s, vxr, cols[i], -a * gv[i] * yy / rad);
             jadd(s, vyr, cols[i], a * gv[i] * x / rad);
@@ -309,10 +243,10 @@ static void jacobian_penalty(td_sim *s, int k, const double *y)
     double x, yy, vx, vy, rad, r3, sm, dphi, gv[4], fd, fr, fn, rate;
     double d_x, d_y, rt_x, rt_y, rt_vx, rt_vy, f_x, f_y, u1, u2, u1x, u1y, u2x, u2y;
     int qx = s->oq + r->dx, qy = s->oq + r->dy, vxr = s->ov + r->dx, vyr = s->ov + r->dy;
-    fn = penalty_force(s, k, y, &fd, &fr);
+    fn = td_sim_penalty_force(s, k, y, &fd, &fr);
     if (fn == 0.0 && fd == 0.0 && fr == 0.0)
         return; /* not penetrating */
-    node_state(s, k, y, &x, &yy, &vx, &vy);
+    td_sim_node_state(s, k, y, &x, &yy, &vx, &vy);
     rad = hypot(x, yy);
     r3 = rad * rad * rad;
     sm = td_sim_slip_factor(s, k, y, &dphi) * r->r.friction;
@@ -342,7 +276,7 @@ static void jacobian_penalty(td_sim *s, int k, const double *y)
     if (dphi != 0.0) { /* inside the slip band: sm = mu v_s / v_reg depends on q and v */
         int cols[4] = {qx, qy, vxr, vyr}, i;
         double a = fn * r->r.friction * dphi;
-        sliding_gradient(s, k, y, gv);
+        td_sim_sliding_gradient(s, k, y, gv);
         for (i = 0; i < 4; i++) {
             jadd(s, vxr, cols[i], -a * gv[i] * yy / rad);
             jadd(s, vyr, cols[i], a * gv[i] * x / rad);
@@ -372,7 +306,7 @@ void td_sim_jacobian(td_sim *s, double t, double cj, const double *y)
             jacobian_contact(s, k, y);
             continue;
         }
-        if (penalty_model(s))
+        if (td_sim_penalty_model(s))
             jacobian_penalty(s, k, y); /* zero where the node does not penetrate */
         /* free and penalty contacts: the multiplier rows are lambda = eta = 0 */
         jadd(s, s->ol + k, s->ol + k, 1.0);

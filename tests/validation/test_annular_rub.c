@@ -100,7 +100,7 @@ static rub_result run_rub(const rub_params *p, double rtol, double atol, int max
     assert_int_equal(td_sim_dof_count(s), 8);
     while (t < t_end) {
         double tout = t < t_end - 0.5 ? t_end - 0.5 : t_end, tr;
-        td_status r = td_sim_step(s, tout, &tr);
+        td_status r = td_sim_step(s, tout, &tr, &err);
         if (r == TD_EVENT) {
             td_event ev;
             td_sim_last_event(s, &ev);
@@ -109,7 +109,7 @@ static rub_result run_rub(const rub_params *p, double rtol, double atol, int max
             continue;
         }
         if (r != TD_OK)
-            fail_msg("Jeffcott rub: %s", td_sim_errmsg(s));
+            fail_msg("Jeffcott rub: %s", err.message);
         t = tr;
         td_sim_retainer_state(s, 0, &rs);
         if (t < t_end)

@@ -244,14 +244,14 @@ static td_event sim_first_contact(const td_case *c, double rtol, double atol, td
     if (td_sim_create(td_case_model(c), &o, &s, &err) != TD_OK)
         fail_msg("td_sim_create: %s", err.message);
     for (;;) {
-        td_status r = td_sim_step(s, 0.2, NULL);
+        td_status r = td_sim_step(s, 0.2, NULL, &err);
         if (r == TD_EVENT) {
             td_sim_last_event(s, &ev);
             if (ev.kind == TD_EVENT_CONTACT_ONSET)
                 break;
             continue;
         }
-        fail_msg("no contact before 0.2 s (%s)", td_sim_errmsg(s));
+        fail_msg("no contact before 0.2 s (%s)", err.message);
     }
     td_sim_stats_get(s, st);
     td_sim_free(&s);

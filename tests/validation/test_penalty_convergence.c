@@ -90,8 +90,8 @@ static first_contact measure(const char *contact, double t_mark)
         fail_msg("td_sim_create: %s", err.message);
     for (;;) { /* to the first contact */
         td_event ev;
-        if (td_sim_step(s, 0.2, NULL) != TD_EVENT)
-            fail_msg("no contact before 0.2 s: %s", td_sim_errmsg(s));
+        if (td_sim_step(s, 0.2, NULL, &err) != TD_EVENT)
+            fail_msg("no contact before 0.2 s: %s", err.message);
         td_sim_last_event(s, &ev);
         if (ev.kind == TD_EVENT_CONTACT_ONSET || ev.kind == TD_EVENT_PENALTY_ENTER) {
             assert_int_equal(ev.retainer, 0);
@@ -120,9 +120,9 @@ static first_contact measure(const char *contact, double t_mark)
             tout = t_mark;
             aim_mark = 1;
         }
-        r = td_sim_step(s, tout, NULL);
+        r = td_sim_step(s, tout, NULL, &err);
         if (r != TD_OK && r != TD_EVENT)
-            fail_msg("%s", td_sim_errmsg(s));
+            fail_msg("%s", err.message);
         tn = td_sim_time(s);
         td_sim_retainer_state(s, 0, &rs);
         F = rs.normal_force;

@@ -34,6 +34,7 @@ static td_sim *make_sim(const td_case *c, double rtol, double atol)
  * -sgn(v_s) mu N (eq. 17); the constraints hold to 1e-9 m at every step. */
 static void test_two_contacts(void **state)
 {
+    td_error err;
     const char *ov[2] = {
         "unbalances=({node=1;magnitude=0.02;},{node=11;magnitude=0.02;phase=1.0;})",
         "schedule=({time=0.1;unbalance=0;magnitude=0.1;},{time=0.1;unbalance=1;magnitude=0.1;phase=1.0;})"};
@@ -49,10 +50,10 @@ static void test_two_contacts(void **state)
         td_model_get_retainer(td_case_model(c), k, &ret[k]);
     while (t < t_end) {
         double tr;
-        td_status r = td_sim_step(s, td_test_next_output(t, dt, t_end), &tr);
+        td_status r = td_sim_step(s, td_test_next_output(t, dt, t_end), &tr, &err);
         int n_in = 0;
         if (r != TD_OK && r != TD_EVENT)
-            fail_msg("%s", td_sim_errmsg(s));
+            fail_msg("%s", err.message);
         for (k = 0; k < 2; k++) {
             td_retainer_state rs;
             td_sim_retainer_state(s, k, &rs);
@@ -88,6 +89,7 @@ static void test_two_contacts(void **state)
  * N = m g / (2 sqrt(1 + mu^2)) on each retainer (the rig is symmetric about its middle). */
 static void test_rotor_drop_settles(void **state)
 {
+    td_error err;
     const char *ov[2] = {"unbalances[0].magnitude=0.0", "shaft.rayleigh={alpha=20.0; beta=1e-5;}"};
     td_case *c = td_test_load_case("cases/rotor-drop.cfg", ov, 2);
     td_sim *s = make_sim(c, 0.0, 0.0);
@@ -101,9 +103,9 @@ static void test_rotor_drop_settles(void **state)
     td_model_get_retainer(m, 0, &ret);
     while (t < t_end) {
         double tr;
-        td_status r = td_sim_step(s, td_test_next_output(t, dt, t_end), &tr);
+        td_status r = td_sim_step(s, td_test_next_output(t, dt, t_end), &tr, &err);
         if (r != TD_OK && r != TD_EVENT)
-            fail_msg("%s", td_sim_errmsg(s));
+            fail_msg("%s", err.message);
         if (r == TD_OK)
             t = tr;
     }
@@ -170,6 +172,7 @@ static double energy(const energy_model *e, td_sim *s)
 static void energy_run(const td_case *c, double rtol, double atol, double *worst_phase, double *worst_gain,
                        long *onsets)
 {
+    td_error err;
     energy_model em = energy_model_of(td_case_model(c));
     td_sim *s = make_sim(c, rtol, atol);
     double t = 0.0, t_end = 0.03, dt = 2e-6, e_lo = HUGE_VAL, e_hi = -HUGE_VAL, e_before = 0.0;
@@ -179,9 +182,9 @@ static void energy_run(const td_case *c, double rtol, double atol, double *worst
     *worst_gain = -HUGE_VAL;
     while (t < t_end) {
         double tr, E;
-        td_status r = td_sim_step(s, td_test_next_output(t, dt, t_end), &tr);
+        td_status r = td_sim_step(s, td_test_next_output(t, dt, t_end), &tr, &err);
         if (r != TD_OK && r != TD_EVENT)
-            fail_msg("%s", td_sim_errmsg(s));
+            fail_msg("%s", err.message);
         E = energy(&em, s);
         if (r == TD_EVENT) {
             td_event ev;
@@ -262,6 +265,7 @@ static void test_energy_conservation(void **state)
  */
 static void test_rotor_drop_bouncing_settles(void **state)
 {
+    td_error err;
     const char *ov[4] = {"unbalances[0].magnitude=0.0", "shaft.rayleigh={alpha=20.0; beta=1e-5;}",
                          "retainers[0].restitution=0.5", "retainers[1].restitution=0.5"};
     td_case *c = td_test_load_case("cases/rotor-drop.cfg", ov, 4);
@@ -278,9 +282,9 @@ static void test_rotor_drop_bouncing_settles(void **state)
     vmin = 2.0 * sqrt(2.0 * hypot(gx, gy) * atol);
     while (t < t_end) {
         double tr, E;
-        td_status r = td_sim_step(s, td_test_next_output(t, dt, t_end), &tr);
+        td_status r = td_sim_step(s, td_test_next_output(t, dt, t_end), &tr, &err);
         if (r != TD_OK && r != TD_EVENT)
-            fail_msg("%s", td_sim_errmsg(s));
+            fail_msg("%s", err.message);
         E = energy(&em, s);
         if (r == TD_EVENT) {
             td_event ev;
@@ -338,6 +342,7 @@ static void test_rotor_drop_bouncing_settles(void **state)
  * reported normal force is Kc (r - c) inside and never negative. */
 static void test_penalty_contact(void **state)
 {
+    td_error err;
     td_case *cc = td_test_load_case("cases/paper-c.cfg", NULL, 0),
             *ca = td_test_load_case("cases/paper-a.cfg", NULL, 0);
     td_sim *sp = make_sim(cc, 1e-8, 1e-12), *sa = make_sim(ca, 1e-8, 1e-12);
@@ -350,7 +355,7 @@ static void test_penalty_contact(void **state)
     td_model_get_retainer(td_case_model(cc), 0, &ret);
     while (t < t_end) {
         double tr;
-        td_status r = td_sim_step(sp, td_test_next_output(t, dt, t_end), &tr);
+        td_status r = td_sim_step(sp, td_test_next_output(t, dt, t_end), &tr, &err);
         if (r == TD_EVENT) {
             td_event ev;
             td_sim_last_event(sp, &ev);
@@ -364,7 +369,7 @@ static void test_penalty_contact(void **state)
             continue;
         }
         if (r != TD_OK)
-            fail_msg("%s", td_sim_errmsg(sp));
+            fail_msg("%s", err.message);
         t = tr;
         for (k = 0; k < 2; k++) {
             td_retainer_state rs;
@@ -377,7 +382,7 @@ static void test_penalty_contact(void **state)
         }
     }
     for (;;) {
-        td_status r = td_sim_step(sa, t_end, NULL);
+        td_status r = td_sim_step(sa, t_end, NULL, &err);
         td_event ev;
         if (r != TD_EVENT)
             break;

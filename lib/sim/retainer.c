@@ -1,0 +1,162 @@
+/*
+ * The retainers of a sim (retainer.h): per-retainer queries of the state and the bookkeeping of
+ * their contact and slip modes.
+ */
+#include "sim/sim_internal.h"
+
+#include <math.h>
+#include <string.h>
+
+void td_sim_retainer_init(td_sim_retainer *r, const td_model *model, int k)
+{
+    td_model_get_retainer(model, k, &r->r);
+    r->dx = TD_DOF(r->r.node, TD_DOF_X);
+    r->dy = TD_DOF(r->r.node, TD_DOF_Y);
+    r->mode = TD_RMODE_FREE;
+    r->armed = 1;
+    r->slip = 1;
+}
+
+void td_sim_node_state(const td_sim *s, int k, const double *y, double *x, double *yy, double *vx, double *vy)
+{
+    const td_sim_retainer *r = &s->ret[k];
+    *x = y[s->oq + r->dx];
+    *yy = y[s->oq + r->dy];
+    *vx = y[s->ov + r->dx];
+    *vy = y[s->ov + r->dy];
+}
+
+/* Penalty model: the force acts whenever the node penetrates, whatever the retainer's mode: the
+ * mode only places the enter/exit roots and records the events (td_sim_penalty_mode_wanted), so a crossing that
+ * root finding misses (a grazing node) cannot let the rotor pass through the retainer. The force
+ * is continuous where it switches on (zero at delta = 0; a Kelvin-Voigt damper's jump is met by
+ * the enter event's restart). */
+int td_sim_penalty_model(const td_sim *s)
+{
+    return s->opt.contact.model == TD_CONTACT_PENALTY;
+}
+
+double td_sim_penalty_force(const td_sim *s, int k, const double *y, double *fd, double *fr)
+{
+    double x, yy, vx, vy, r;
+    td_sim_node_state(s, k, y, &x, &yy, &vx, &vy);
+    r = hypot(x, yy);
+    return td_contact_penalty_force(&s->law, r - s->ret[k].r.clearance, td_contact_radial_velocity(x, yy, vx, vy), fd,
+                                    fr);
+}
+
+double td_sim_normal_force(const td_sim *s, int k, const double *y)
+{
+    if (s->ret[k].mode == TD_RMODE_CONTACT)
+        return y[s->ol + k];
+    return td_sim_penalty_model(s) ? td_sim_penalty_force(s, k, y, NULL, NULL) : 0.0;
+}
+
+double td_sim_sliding_velocity(const td_sim *s, int k, const double *y)
+{
+    double x, yy, vx, vy;
+    td_sim_node_state(s, k, y, &x, &yy, &vx, &vy);
+    return td_contact_sliding_velocity(&s->ret[k].r, s->omega, x, yy, vx, vy);
+}
+
+void td_sim_sliding_gradient(const td_sim *s, int k, const double *y, double g[4])
+{
+    double x, yy, vx, vy;
+    td_sim_node_state(s, k, y, &x, &yy, &vx, &vy);
+    td_contact_sliding_velocity_gradient(&s->ret[k].r, x, yy, vx, vy, g);
+}
+
+double td_sim_slip_factor(const td_sim *s, int k, const double *y, double *dphi)
+{
+    return td_contact_slip_factor(td_sim_sliding_velocity(s, k, y), TD_CONTACT_SLIP_BAND, dphi);
+}
+
+void td_sim_contact_row(const td_sim *s, int k, const double *y, td_contact_row *row)
+{
+    const td_sim_retainer *r = &s->ret[k];
+    row->dof[0] = r->dx;
+    row->dof[1] = r->dy;
+    td_contact_constraint_jacobian(y[s->oq + r->dx], y[s->oq + r->dy], r->r.clearance, row->j);
+}
+
+void td_sim_contact_column(const td_sim *s, int k, const double *y, double *col)
+{
+    const td_sim_retainer *r = &s->ret[k];
+    double x = y[s->oq + r->dx], yy = y[s->oq + r->dy], c = r->r.clearance, rad = hypot(x, yy);
+    double sm = td_sim_slip_factor(s, k, y, NULL) * r->r.friction;
+    memset(col, 0, sizeof(double) * (size_t)s->n);
+    col[r->dx] = x / c - sm * yy / rad;
+    col[r->dy] = yy / c + sm * x / rad;
+}
+
+void td_sim_project_onto_circle(const td_sim *s, int k, double *y)
+{
+    const td_sim_retainer *r = &s->ret[k];
+    double x = y[s->oq + r->dx], yy = y[s->oq + r->dy], rad = hypot(x, yy);
+    if (rad > 0.0) {
+        y[s->oq + r->dx] = x * (r->r.clearance / rad);
+        y[s->oq + r->dy] = yy * (r->r.clearance / rad);
+    }
+}
+
+void td_sim_init_slip(td_sim *s, int k, const double *y)
+{
+    td_sim_retainer *r = &s->ret[k];
+    double vs = td_sim_sliding_velocity(s, k, y);
+    int sg = vs < 0.0 ? -1 : 1;
+    r->band_from = sg;
+    r->slip = fabs(vs) < TD_CONTACT_SLIP_BAND ? 0 : sg;
+}
+
+/* +1 or -1: the sign of v, or `otherwise` at v == 0. */
+static int sign_or(double v, int otherwise)
+{
+    return v > 0.0 ? 1 : (v < 0.0 ? -1 : otherwise);
+}
+
+int td_sim_slip_root(td_sim *s, int k, const double *y)
+{
+    td_sim_retainer *r = &s->ret[k];
+    if (r->slip != 0) { /* into the band: no event */
+        r->band_from = r->slip;
+        r->slip = 0;
+        return 0;
+    }
+    /* out of the band: a reversal if on the other side */
+    r->slip = sign_or(td_sim_sliding_velocity(s, k, y), -r->band_from);
+    return r->slip != r->band_from;
+}
+
+void td_sim_release(td_sim *s, int k, double *y)
+{
+    s->ret[k].mode = TD_RMODE_FREE;
+    s->ret[k].armed = 0; /* left at r = c: no onset until the gap has opened (grazing guard) */
+    y[s->ol + k] = 0.0;
+}
+
+/*
+ * Penalty model: the mode of retainer k follows its state. The penalty force itself is a function
+ * of the state (it acts whenever delta = r - c > 0, whatever the mode), so the mode only places
+ * the roots (the enter root waits for the gap to fall through zero, the exit root for it to rise)
+ * and records the events. Outside a band |delta| <= penalty_band the state decides; inside it,
+ * where a restart's Newton correction can move delta either way, `in_band` does (the flip a root
+ * asks for, or the current mode). Without the state check a mode could disagree with the state
+ * for good: a grazing node's gap crosses zero several times within a step, IDA reports one
+ * crossing, and a free retainer whose node is already outside never sees its enter root again
+ * (case C lost a contact that way and its node flew 1.7 mm past the clearance, force-free).
+ */
+static double penalty_band(const td_sim *s)
+{
+    return s->constraint_tol;
+}
+
+td_rmode td_sim_penalty_mode_wanted(const td_sim *s, int k, const double *y, td_rmode in_band)
+{
+    const td_sim_retainer *r = &s->ret[k];
+    double delta = hypot(y[s->oq + r->dx], y[s->oq + r->dy]) - r->r.clearance;
+    if (delta > penalty_band(s))
+        return TD_RMODE_PENETRATING;
+    if (delta < -penalty_band(s))
+        return TD_RMODE_FREE;
+    return in_band;
+}

@@ -1,0 +1,72 @@
+/*
+ * One retainer bearing as the sim sees it: its contact mode, the slip bookkeeping of its friction
+ * law, and the queries of its node's state (normal force, sliding velocity, slip factor, contact
+ * row and column). The DAE (sim_residual.c) and the mode switching (sim_modes.c) ask these; the
+ * retainer's own data is the model's, read once when the sim is created. A retainer with states
+ * of its own (a compliant ring, a race that spins up) would keep them, and their queries, here.
+ */
+#ifndef TD_SIM_RETAINER_H
+#define TD_SIM_RETAINER_H
+
+#include "contact/contact.h"
+#include "touchdown/model.h"
+#include "touchdown/sim.h"
+
+/* Contact mode of one retainer. */
+typedef enum td_rmode {
+    TD_RMODE_FREE = 0,       /* no contact: lambda = eta = 0 */
+    TD_RMODE_CONTACT = 1,    /* constrained contact: g = 0, J v = 0, lambda >= 0 */
+    TD_RMODE_PENETRATING = 2 /* penalty contact: delta = r - c > 0, force F_n(delta, rate) */
+} td_rmode;
+
+/* Root functions, three per retainer (their meaning depends on the mode, see sim_residual.c). */
+enum { TD_ROOT_CONTACT = 0, TD_ROOT_SLIP = 1, TD_ROOT_REARM = 2, TD_ROOTS_PER_RETAINER = 3 };
+
+typedef struct td_sim_retainer {
+    td_retainer r; /* the model's data: the sim's one copy, read at creation (td_sim_retainer_init) */
+    int dx, dy;    /* global DOFs x, y of its node */
+    td_rmode mode;
+    int armed;     /* constraint model, free: onset root at gap = 0 (1) or at gap = -eps (0, after a
+                    * release or a rejected/bouncing onset; re-armed when the gap exceeds +eps) */
+    int slip;      /* slip mode of eq. (17): +1 or -1 sliding (|v_s| >= v_reg), 0 inside the
+                    * slip-regularised band |v_s| < v_reg (contact.h TD_CONTACT_SLIP_BAND). Only the
+                    * roots depend on it: the friction force is phi(v_s) of the state in every mode */
+    int band_from; /* slip = 0: the sliding sign before the band (a reversal if it leaves the other way) */
+} td_sim_retainer;
+
+/* Retainer k of `model`, free and armed, sliding forwards. */
+void td_sim_retainer_init(td_sim_retainer *r, const td_model *model, int k);
+
+/* Node coordinates x, y and velocities vx, vy of retainer k at state y. */
+void td_sim_node_state(const td_sim *s, int k, const double *y, double *x, double *yy, double *vx, double *vy);
+/* 1 for the penalty contact model (the force acts whenever the node penetrates, whatever the mode). */
+int td_sim_penalty_model(const td_sim *s);
+/* Penalty normal force of retainer k at y and its partials by delta and its rate (either may be NULL). */
+double td_sim_penalty_force(const td_sim *s, int k, const double *y, double *fd, double *fr);
+/* Normal force of retainer k at state y: lambda (contact), F_n (penetrating) or 0. */
+double td_sim_normal_force(const td_sim *s, int k, const double *y);
+/* Sliding velocity eq. (16) of retainer k at state y. */
+double td_sim_sliding_velocity(const td_sim *s, int k, const double *y);
+/* d v_s / d(x, y, vx, vy) of retainer k at y. */
+void td_sim_sliding_gradient(const td_sim *s, int k, const double *y, double g[4]);
+/* Slip factor phi(v_s) of retainer k at state y (contact.h); *dphi = d phi / d v_s (may be NULL). */
+double td_sim_slip_factor(const td_sim *s, int k, const double *y, double *dphi);
+
+/* Contact row of retainer k at the state y (J_k = (x, y)/c on its node). */
+void td_sim_contact_row(const td_sim *s, int k, const double *y, td_contact_row *row);
+/* Column B_k = J_k^T + s mu t_k (normal force plus its friction) of retainer k, length n. */
+void td_sim_contact_column(const td_sim *s, int k, const double *y, double *col);
+/* Project retainer k's node radially onto its clearance circle (x, y scaled). */
+void td_sim_project_onto_circle(const td_sim *s, int k, double *y);
+
+/* Set retainer k's slip mode (and band_from) from its sliding velocity at y, entering contact. */
+void td_sim_init_slip(td_sim *s, int k, const double *y);
+/* Retainer k's slip root fired (|v_s| reached v_reg): into the band, or out of it with the slip
+ * mode of the state. Returns 1 if it left the band on the other side (a friction reversal). */
+int td_sim_slip_root(td_sim *s, int k, const double *y);
+/* Constraint model: retainer k leaves contact (free, disarmed until the gap opens, lambda = 0). */
+void td_sim_release(td_sim *s, int k, double *y);
+/* Penalty model: the mode retainer k's state y asks for; `in_band` inside the noise band. */
+td_rmode td_sim_penalty_mode_wanted(const td_sim *s, int k, const double *y, td_rmode in_band);
+
+#endif
