@@ -75,6 +75,7 @@ static int compare_figure(plot_job *job, const plot_file *const *files, const ch
         snprintf(what, sizeof what, "Radial displacement and normal contact force at retainer %d", r);
     if (!(out = plot_script_begin(job, name, what, "several files", 1000, 760)))
         return PLOT_FAILED;
+    fprintf(out, "\n%s\n", plot_tpl_common);
     fprintf(out, "# files:\n");
     for (i = 0; i < count; i++)
         fprintf(out, "#   %s: %s\n", files[i]->stem, files[i]->title);

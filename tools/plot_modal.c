@@ -118,6 +118,7 @@ static int campbell_figure(plot_job *job, const plot_file *f, const char *prefix
         has_mixed |= isfinite(m->freq[k]) && fabs(m->whirl[k]) < 0.5;
     if (!(out = plot_script_begin(job, name, "Campbell diagram", f->path, 1000, 720)))
         return PLOT_FAILED;
+    fprintf(out, "\n%s\n", plot_tpl_common);
     snprintf(title, sizeof title, "Campbell diagram\n%s", f->title);
     fprintf(out, "set title ");
     plot_gp_string(out, title);
@@ -234,6 +235,7 @@ static int shapes_figure(plot_job *job, const plot_file *f, const char *prefix, 
     snprintf(data, sizeof data, "%smode-shapes.dat", prefix);
     if (!(out = plot_script_begin(job, name, "Mode shapes", f->path, 1000, 650)))
         return PLOT_FAILED;
+    fprintf(out, "\n%s\n", plot_tpl_common);
     if (isfinite(m->mode_speed))
         snprintf(speed, sizeof speed, " at %.6g rad/s", m->mode_speed);
     else

@@ -209,7 +209,9 @@ expect_error 2 "no file" -d x
 # ---- gnuplot missing or failing: exit 1, one line -----------------------------------------
 TOUCHDOWN_GNUPLOT=/nonexistent/gnuplot expect_error 1 "gnuplot missing" -d nognuplot plot-fixture-constraint.h5
 [ -s nognuplot/orbit-r0.gp ] && pass "scripts kept when gnuplot is missing" || fail "no scripts without gnuplot"
-TOUCHDOWN_GNUPLOT=false expect_error 1 "gnuplot failing" -d badgnuplot plot-fixture-constraint.h5
+printf '#!/bin/sh\nexit 1\n' >failing-gnuplot # a gnuplot that fails silently
+chmod +x failing-gnuplot
+TOUCHDOWN_GNUPLOT="$work/failing-gnuplot" expect_error 1 "gnuplot failing" -d badgnuplot plot-fixture-constraint.h5
 # gnuplot's own error line is the message
 printf '#!/bin/sh\necho "         plot foo" >&2\necho "\\"$1\\" line 7: undefined variable: foo" >&2\nexit 1\n' >fake-gnuplot
 chmod +x fake-gnuplot
