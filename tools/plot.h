@@ -154,7 +154,7 @@ const char *plot_ext(const plot_opts *opt);
 /* ---- the templates tools/gp/NAME.gp, built into the binary (cmake/EmbedText.cmake) ---------- */
 
 extern const char plot_tpl_common[], plot_tpl_markers[], plot_tpl_orbit[], plot_tpl_radial_force[],
-    plot_tpl_amb_forces[];
+    plot_tpl_amb_forces[], plot_tpl_palette[], plot_tpl_compare[], plot_tpl_campbell[], plot_tpl_mode_shapes[];
 
 /* ---- figures -------------------------------------------------------------------------------- */
 

@@ -149,7 +149,9 @@ fi
 # ---- several files: overlays with the file names as legend --------------------------------
 if "$tool" plot -q -d cmp plot-fixture-constraint.h5 plot-fixture-penalty.h5 2>err.txt; then
     expect_pngs cmp compare-r0 compare-r1 plot-fixture-constraint-orbit-r0 plot-fixture-penalty-radial-force-r0
-    grep -q 'title "plot-fixture-constraint"' cmp/compare-r0.gp && grep -q 'title "plot-fixture-penalty"' cmp/compare-r0.gp &&
+    # the legend labels are the array label[] that the template's plot command takes its titles from
+    grep -q 'label\[1\] = "plot-fixture-constraint"' cmp/compare-r0.gp &&
+        grep -q 'label\[2\] = "plot-fixture-penalty"' cmp/compare-r0.gp && grep -q 'title label\[i\]' cmp/compare-r0.gp &&
         pass "overlay legend from the file names" || fail "overlay legend"
 else
     fail "plot of two files: $(cat err.txt)"
