@@ -8,6 +8,8 @@
  *   plot_sim.c     figures of one simulation file (orbit, radial displacement + force, AMB forces)
  *   plot_modal.c   figures of one modal file (Campbell diagram, mode shapes)
  *   plot_compare.c overlays of several simulation files
+ * The gnuplot text is in the templates tools/gp/NAME.gp (docs/plotting.md): the figure files write
+ * the data and the variables a template reads, then the template itself.
  */
 #ifndef TD_TOOLS_PLOT_H
 #define TD_TOOLS_PLOT_H
