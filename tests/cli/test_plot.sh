@@ -169,6 +169,21 @@ else
     fail "touchdown modal failed, cannot test the modal figures: $(head -n 2 err.txt)"
 fi
 
+# ---- every kind of kept script reruns on its own, silently ---------------------------------
+# (each is a template from tools/gp/ with its variables in front: nothing else is needed)
+if command -v gnuplot >/dev/null && [ -d modal-plots ]; then
+    rerun_ok=1
+    for gp in plot-fixture-constraint-plots/*.gp cmp/*.gp modal-plots/*.gp; do
+        png=${gp%.gp}.png
+        rm -f "$png"
+        if ! (cd "$(dirname "$gp")" && gnuplot "$(basename "$gp")") 2>rerun.err || ! is_png "$png" || [ -s rerun.err ]; then
+            fail "rerunning $gp: $(head -n 3 rerun.err)"
+            rerun_ok=0
+        fi
+    done
+    [ $rerun_ok = 1 ] && pass "every script (simulation, compare, modal) reruns on its own"
+fi
+
 # ---- a real run, when the simulation works ------------------------------------------------
 # (case A to 0.2 s: the unbalance step at 0.1 s and the first contacts; an incomplete file is
 # plotted too, it is still a result file)
