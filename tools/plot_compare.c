@@ -9,9 +9,6 @@
 #include <math.h>
 #include <string.h>
 
-static const char *palette[8] = {"#1f77b4", "#d62728", "#2ca02c", "#ff7f0e",
-                                 "#9467bd", "#8c564b", "#e377c2", "#17becf"};
-
 static double column_max(const plot_sim *s, const double *m, int r)
 {
     double v = 0.0;
@@ -22,26 +19,22 @@ static double column_max(const plot_sim *s, const double *m, int r)
     return v;
 }
 
-/* One panel: column `col` of every file that has retainer r. */
-static void panel(FILE *out, const plot_file *const *files, const char *const *prefixes, int count, int r, int col,
-                  int with_titles)
+/* data, label and slot: the arrays of the files that have retainer r (slot: palette entry). */
+static void file_arrays(FILE *out, const plot_file *const *files, const char *const *prefixes, int count, int r,
+                        int have)
 {
-    int i, first = 1;
-    for (i = 0; i < count; i++) {
+    int i, k;
+    fprintf(out, "array data[%d]\narray label[%d]\narray slot[%d]\n", have, have, have);
+    for (i = 0, k = 0; i < count; i++) {
         char data[300];
         if (files[i]->sim.nret <= r)
             continue;
         plot_retainer_data_name(data, sizeof data, prefixes[i], r);
-        fprintf(out, first ? "plot " : ", \\\n     ");
-        first = 0;
+        fprintf(out, "data[%d] = ", ++k);
         plot_gp_string(out, data);
-        fprintf(out, " using 1:%d with lines lw 1.2 lc rgb '%s' ", col, palette[i % 8]);
-        if (with_titles) {
-            fprintf(out, "title ");
-            plot_gp_string(out, files[i]->stem);
-        } else {
-            fprintf(out, "notitle");
-        }
+        fprintf(out, "; label[%d] = ", k);
+        plot_gp_string(out, files[i]->stem);
+        fprintf(out, "; slot[%d] = %d\n", k, i % 8 + 1);
     }
 }
 
@@ -78,31 +71,24 @@ static int compare_figure(plot_job *job, const plot_file *const *files, const ch
     fprintf(out, "# files:\n");
     for (i = 0; i < count; i++)
         fprintf(out, "#   %s: %s\n", files[i]->stem, files[i]->title);
-    rmax = 1.1 * fmax(isfinite(c) ? c : 0.0, rmax);
-    fmax_n *= 1.1;
-    fprintf(out, "\nRMAX = %.6g    # top of the displacement axis, mm\nFMAX = %.6g    # top of the force axis, N\n",
-            rmax > 0.0 ? rmax : 1.0, fmax_n > 0.0 ? fmax_n : 1.0);
-    fprintf(out, "set xrange [%.12g:%.12g]\n", t0, t1 > t0 ? t1 : t0 + 1.0);
     snprintf(title, sizeof title, "%s\n%s", what, files[0]->title);
     for (i = 1; i < count; i++)
         if (strcmp(files[i]->title, files[0]->title)) {
             snprintf(title, sizeof title, "%s\ncomparison of %d runs", what, have);
             break;
         }
-    fprintf(out, "set multiplot layout 2,1 margins 0.1,0.97,0.08,0.865 spacing 0,0.025 title ");
-    plot_gp_string(out, title);
-    fprintf(out, "\n\n# top: radial displacement\nset format x ''\nunset xlabel\n"
-                 "set ylabel 'radial displacement [mm]'\nset yrange [0:RMAX]\n"
-                 "set key at screen 0.535, 0.875 center bottom horizontal samplen 3 width 1\n");
-    panel(out, files, prefixes, count, r, 4, 1);
+    plot_var_string(out, "fig_title", title);
+    file_arrays(out, files, prefixes, count, r, have);
+    rmax = 1.1 * fmax(isfinite(c) ? c : 0.0, rmax);
+    fmax_n *= 1.1;
     if (isfinite(c))
-        fprintf(out, ", \\\n     %.9g with lines dt 3 lw 2 lc rgb '#333333' title 'clearance'", c);
-    fprintf(out, "\n\n# bottom: normal contact force\nset format x '%%g'\nset xlabel 'time [s]'\n"
-                 "set ylabel 'normal contact force [N]'\nset yrange [0:FMAX]\n"
-                 "unset key\n");
-    panel(out, files, prefixes, count, r, 5, 0);
-    fprintf(out, "\n\nunset multiplot\n");
-    return plot_close(out, job->opt, name);
+        fprintf(out, "c = %.9g       # radial clearance, mm\n", c);
+    else
+        fprintf(out, "c = NaN    # the files give no clearance\n");
+    fprintf(out, "RMAX = %.6g    # top of the displacement axis, mm\nFMAX = %.6g    # top of the force axis, N\n",
+            rmax > 0.0 ? rmax : 1.0, fmax_n > 0.0 ? fmax_n : 1.0);
+    fprintf(out, "t0 = %.12g\nt1 = %.12g    # time axis, s\n", t0, t1 > t0 ? t1 : t0 + 1.0);
+    return plot_script_end(out, job, name, plot_tpl_palette, plot_tpl_compare);
 }
 
 int plot_compare_figures(plot_job *job, const plot_file *const *files, const char *const *prefixes, int count)

@@ -78,36 +78,27 @@ static int write_critical(const plot_job *job, const plot_file *f, const char *p
     return plot_close(out, job->opt, name);
 }
 
-/* One whirl class of the Campbell points as a plot element. */
-static void campbell_points(FILE *out, const char *data, const char *test, int pt, const char *color, const char *title)
-{
-    fprintf(out, ", \\\n     ");
-    plot_gp_string(out, data);
-    fprintf(out, " using 1:(%s ? $2 : NaN) with points pt %d ps 0.7 lc rgb '%s' title '%s'", test, pt, color, title);
-}
-
-/* The critical speeds as a text list right of the plot, under the key (labels at the points
- * would overlap where forward and backward crossings lie close together). */
+/* critical_text: the critical speeds as a text list (empty when there are none). */
 static void critical_list(FILE *out, const plot_modal *m)
 {
     char text[2048];
     size_t len;
     int i;
-    if (m->ncrit == 0)
+    if (m->ncrit == 0) {
+        fprintf(out, "critical_text = \"\"\n");
         return;
+    }
     len = (size_t)snprintf(text, sizeof text, "critical speeds:");
     for (i = 0; i < m->ncrit && len < sizeof text - 80; i++)
         len += (size_t)snprintf(text + len, sizeof text - len, "\n%8.1f rad/s = %6.0f rpm, %s", m->crit_speed[i],
                                 TD_RPM_FROM_RAD_S(m->crit_speed[i]), whirl_word(m->crit_whirl[i]));
-    fprintf(out, "set label 1 ");
-    plot_gp_string(out, text);
-    fprintf(out, " at screen 0.745, screen 0.6 left front font ',10'\n");
+    plot_var_string(out, "critical_text", text);
 }
 
 static int campbell_figure(plot_job *job, const plot_file *f, const char *prefix)
 {
     const plot_modal *m = &f->modal;
-    char name[300], data[300], crit[300], title[700];
+    char name[300], data[300], crit[300];
     double smin = m->speed[0], smax = m->speed[m->ns - 1];
     int has_mixed = 0, k;
     FILE *out;
@@ -118,32 +109,13 @@ static int campbell_figure(plot_job *job, const plot_file *f, const char *prefix
         has_mixed |= isfinite(m->freq[k]) && fabs(m->whirl[k]) < 0.5;
     if (!(out = plot_script_begin(job, name, "Campbell diagram", f->path, 1000, 720)))
         return PLOT_FAILED;
-    snprintf(title, sizeof title, "Campbell diagram\n%s", f->title);
-    fprintf(out, "set title ");
-    plot_gp_string(out, title);
-    fputc('\n', out);
+    plot_var_string(out, "case_title", f->title);
+    plot_var_string(out, "data", data);
+    plot_var_string(out, "crit", crit);
     critical_list(out, m);
-    fprintf(out,
-            "set xlabel 'rotor speed [rad/s]'\nset ylabel 'damped natural frequency [Hz]'\n"
-            "set xrange [%.12g:%.12g]\nset yrange [0:*]\n"
-            "set lmargin at screen 0.08\nset rmargin at screen 0.72\n"
-            "set key at screen 0.74, screen 0.9 left top vertical Left reverse samplen 2\nset samples 400\n"
-            "plot ",
-            smin, smax > smin ? smax : smin + 1.0);
-    plot_gp_string(out, data);
-    fprintf(out, " using 1:2 with lines lw 1 lc rgb '#c0c0c0' title 'branch', \\\n"
-                 "     x/(2*pi) with lines dt 2 lw 2 lc rgb 'black' title '1x (synchronous)'");
-    campbell_points(out, data, "$3 > 0.5", 7, COLOR_FORWARD, "forward whirl");
-    campbell_points(out, data, "$3 < -0.5", 5, COLOR_BACKWARD, "backward whirl");
-    if (has_mixed)
-        campbell_points(out, data, "abs($3) <= 0.5", 9, COLOR_MIXED, "mixed / planar");
-    if (m->ncrit > 0) {
-        fprintf(out, ", \\\n     ");
-        plot_gp_string(out, crit);
-        fprintf(out, " using 1:2 with points pt 6 ps 2.2 lw 2 lc rgb 'black' title 'critical speed'");
-    }
-    fputc('\n', out);
-    return plot_close(out, job->opt, name);
+    fprintf(out, "smin = %.12g\nsmax = %.12g    # speed axis, rad/s\n", smin, smax > smin ? smax : smin + 1.0);
+    fprintf(out, "has_mixed = %d    # 1: some points neither forward nor backward whirl\n", has_mixed);
+    return plot_script_end(out, job, name, NULL, plot_tpl_campbell);
 }
 
 /* ---- mode shapes --------------------------------------------------------------------------- */
@@ -224,8 +196,6 @@ static int write_shapes(const plot_job *job, const plot_file *f, const char *pre
 
 static int shapes_figure(plot_job *job, const plot_file *f, const char *prefix, const char *comps)
 {
-    static const char *colors[8] = {"#1f77b4", "#d62728", "#2ca02c", "#ff7f0e",
-                                    "#9467bd", "#8c564b", "#e377c2", "#17becf"};
     const plot_modal *m = &f->modal;
     int nm = mode_count(job, m), i;
     char name[300], data[300], title[700], speed[64];
@@ -239,13 +209,11 @@ static int shapes_figure(plot_job *job, const plot_file *f, const char *prefix, 
     else
         speed[0] = '\0';
     snprintf(title, sizeof title, "Lateral mode shapes%s (the first %d modes)\n%s", speed, nm, f->title);
-    fprintf(out, "set title ");
-    plot_gp_string(out, title);
-    fprintf(out,
-            "\nset xlabel '%s'\nset ylabel 'normalised displacement (largest = 1)'\n"
-            "set yrange [-1.1:1.1]\nset key outside right top vertical\n"
-            "set xzeroaxis lt 1 lw 1 lc rgb '#888888'\nplot ",
-            m->node_z ? "axial position z [m]" : "node number (the file has no node positions)");
+    plot_var_string(out, "fig_title", title);
+    plot_var_string(out, "data", data);
+    plot_var_string(out, "x_label",
+                    m->node_z ? "axial position z [m]" : "node number (the file has no node positions)");
+    fprintf(out, "array label[%d]    # one per mode\n", nm);
     for (i = 0; i < nm; i++) {
         char label[160];
         if (m->mode_zeta)
@@ -254,16 +222,11 @@ static int shapes_figure(plot_job *job, const plot_file *f, const char *prefix, 
         else
             snprintf(label, sizeof label, "%d: %.4g Hz, %s%s", i + 1, m->mode_freq[i], whirl_word(m->mode_whirl[i]),
                      comps[i] == 'y' ? " (y)" : "");
-        if (i > 0)
-            fprintf(out, ", \\\n     ");
-        plot_gp_string(out, data);
-        /* odd modes dashed: forward/backward pairs share a shape and would hide each other */
-        fprintf(out, " using 1:%d with linespoints lw 2 pt %d ps 0.8 dt %d lc rgb '%s' title ", i + 2, 7 + 2 * (i % 3),
-                i % 2 ? 2 : 1, colors[i % 8]);
+        fprintf(out, "label[%d] = ", i + 1);
         plot_gp_string(out, label);
+        fputc('\n', out);
     }
-    fputc('\n', out);
-    return plot_close(out, job->opt, name);
+    return plot_script_end(out, job, name, plot_tpl_palette, plot_tpl_mode_shapes);
 }
 
 int plot_modal_figures(plot_job *job, const plot_file *f, const char *prefix)

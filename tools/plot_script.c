@@ -93,23 +93,11 @@ void plot_gp_string(FILE *f, const char *s)
     fputc('"', f);
 }
 
-/* The terminal: the script itself picks pngcairo when this gnuplot has it, else libgd's png,
- * so a copied script works with any gnuplot build. */
-static void terminal(FILE *f, const plot_opts *opt, const char *name, int width, int height)
+void plot_var_string(FILE *f, const char *name, const char *value)
 {
-    if (opt->svg) {
-        fprintf(f, "set terminal svg size %d,%d dynamic font 'Sans,12' linewidth 1.2 background rgb 'white'\n", width,
-                height);
-    } else {
-        fprintf(f,
-                "if (strstrt(GPVAL_TERMINALS, 'pngcairo') > 0) {\n"
-                "    set terminal pngcairo size %d,%d font 'Sans,11' linewidth 1.2 noenhanced\n"
-                "} else {\n"
-                "    set terminal png size %d,%d font 'Sans,10' linewidth 1.2 noenhanced\n"
-                "}\n",
-                width, height, width, height);
-    }
-    fprintf(f, "set output '%s.%s'\n", name, plot_ext(opt));
+    fprintf(f, "%s = ", name);
+    plot_gp_string(f, value);
+    fputc('\n', f);
 }
 
 FILE *plot_script_begin(plot_job *job, const char *name, const char *what, const char *source, int width, int height)
@@ -132,16 +120,21 @@ FILE *plot_script_begin(plot_job *job, const char *name, const char *what, const
             "# %s\n# from %s, written by 'touchdown plot'. Edit freely, then rerun in this directory:\n"
             "#     gnuplot %s\n\n",
             what, source, file);
-    terminal(f, job->opt, name, width, height);
-    /* No 'set encoding': the png, pngcairo and svg terminals take the UTF-8 of titles and names
-     * as it is, while 'set encoding utf8' makes gnuplot warn in the C/POSIX locale ("iconv failed
-     * to convert degree sign"). */
-    fprintf(f, "set termoption noenhanced    # names and titles are printed as written\n"
-               "set grid lc rgb '#dddddd' lw 1\n"
-               "set border lw 1\n"
-               "set key noautotitle\n"
-               "set datafile missing 'NaN'\n\n");
+    plot_var_string(f, "figure", name);
+    fprintf(f, "format = '%s'    # png or svg\nwidth = %d\nheight = %d    # pixels\n", plot_ext(job->opt), width,
+            height);
     return f;
+}
+
+int plot_script_end(FILE *f, const plot_job *job, const char *name, const char *pre, const char *body)
+{
+    char file[256];
+    fputc('\n', f);
+    fputs(plot_tpl_common, f);
+    fputs(pre ? pre : "", f);
+    fputs(body, f);
+    snprintf(file, sizeof file, "%s.gp", name);
+    return plot_close(f, job->opt, file);
 }
 
 /* The gnuplot program: $TOUCHDOWN_GNUPLOT if set, else "gnuplot" on PATH. */

@@ -17,13 +17,6 @@
  * brief impact (microseconds) still shows at the figure's resolution (see write_contacts). */
 #define MIN_SHADE_FRACTION 1.5e-3
 
-/* Colours shared by the figures (from matplotlib's tab10 palette). */
-#define COLOR_ORBIT "#1f77b4"
-#define COLOR_CONTACT "#d62728"
-#define COLOR_SHADE "#f6b7a9"
-#define COLOR_CLEARANCE "#333333"
-#define COLOR_MARKER "#888888"
-
 void plot_retainer_data_name(char *buf, size_t n, const char *prefix, int r)
 {
     snprintf(buf, n, "%sretainer%d.dat", prefix, r);
@@ -183,47 +176,25 @@ static int write_amb_data(const plot_job *job, const plot_file *f, const char *p
     return plot_close(out, job->opt, name);
 }
 
-/* ---- script pieces ------------------------------------------------------------------------- */
+/* ---- figures: variables for the templates tools/gp/NAME.gp ------------------------------- */
 
-/* Dashed vertical lines at the scheduled changes (e.g. the unbalance steps); returns how many. */
-static int schedule_markers(FILE *out, const plot_sim *s)
+/* markers = "T1 T2 ...": the scheduled changes (e.g. the unbalance steps), drawn dashed. */
+static void schedule_markers(FILE *out, const plot_sim *s)
 {
     double last = NAN;
     size_t i;
     int n = 0;
+    fprintf(out, "markers = \"");
     for (i = 0; i < s->nev && n < MAX_MARKERS; i++) {
         if (strcmp(s->ev[i].kind, "schedule") || s->ev[i].time == last)
             continue;
         last = s->ev[i].time;
-        fprintf(out, "set arrow %d from %.12g, graph 0 to %.12g, graph 1 nohead dt 2 lw 1 lc rgb '%s' front\n", ++n,
-                last, last, COLOR_MARKER);
+        fprintf(out, n++ ? " %.12g" : "%.12g", last);
     }
-    return n;
+    fprintf(out, "\"    # times of the scheduled changes, s\n");
 }
 
-/* Multiplot figures: one key for every panel, in one row above the top panel (curves of the
- * other panels get key entries through NaN curves in the top one). */
-static void key_above(FILE *out, double panels_top)
-{
-    fprintf(out, "set key at screen 0.535, %.4g center bottom horizontal samplen 3 width 1\n", panels_top + 0.01);
-}
-
-/* Key entry for the schedule markers (a curve that draws nothing). */
-static void marker_key(FILE *out, int markers)
-{
-    if (markers > 0)
-        fprintf(out, ", \\\n     NaN with lines dt 2 lw 1 lc rgb '%s' title 'scheduled change'", COLOR_MARKER);
-}
-
-static void title2(FILE *out, const char *command, const char *line1, const char *line2)
-{
-    char buf[1100];
-    snprintf(buf, sizeof buf, "%s\n%s", line1, line2);
-    fprintf(out, "%s ", command);
-    plot_gp_string(out, buf);
-}
-
-/* The time axis: the samples' span (a single sample gets a small span around it). */
+/* t0, t1: the samples' span (a single sample gets a small span around it). */
 static void time_range(FILE *out, const plot_sim *s)
 {
     double t0 = s->t[0], t1 = s->t[s->n - 1];
@@ -231,10 +202,20 @@ static void time_range(FILE *out, const plot_sim *s)
         t0 -= 1e-3;
         t1 += 1e-3;
     }
-    fprintf(out, "set xrange [%.12g:%.12g]\n", t0, t1);
+    fprintf(out, "t0 = %.12g\nt1 = %.12g    # time axis, s\n", t0, t1);
 }
 
-/* ---- figures ------------------------------------------------------------------------------- */
+/* what, case_title, data and the clearance c (NaN when the file has none) of retainer r. */
+static void retainer_vars(FILE *out, const plot_file *f, const char *what, const char *data, double c)
+{
+    plot_var_string(out, "what", what);
+    plot_var_string(out, "case_title", f->title);
+    plot_var_string(out, "data", data);
+    if (isfinite(c))
+        fprintf(out, "c = %.9g       # radial clearance of the retainer, mm\n", c);
+    else
+        fprintf(out, "c = NaN    # the file gives no clearance\n");
+}
 
 static int orbit_figure(plot_job *job, const plot_file *f, const char *prefix, int r)
 {
@@ -249,45 +230,10 @@ static int orbit_figure(plot_job *job, const plot_file *f, const char *prefix, i
     if (!(out = plot_script_begin(job, name, what, f->path, 760, 820)))
         return PLOT_FAILED;
     half = 1.12 * fmax(isfinite(c) ? c : 0.0, 1e3 * max_of(s->r, s, r));
-    if (!(half > 0.0))
-        half = 1.0;
-    title2(out, "set title", what, f->title);
-    fprintf(out,
-            "\nset size ratio -1              # equal scales on x and y\n"
-            "L = %.6g                     # half-width of the axes, mm\n"
-            "set xrange [-L:L]\nset yrange [-L:L]\n"
-            "set xlabel 'x [mm]'\nset ylabel 'y [mm]'\n"
-            "set key outside below center horizontal\n",
-            half);
-    if (isfinite(c))
-        fprintf(out,
-                "c = %.9g                     # radial clearance of the retainer, mm\n"
-                "set samples 721\n"
-                "plot sample [a=0:2*pi] '+' using (c*cos(a)):(c*sin(a)) with lines lw 2 lc rgb '%s' "
-                "title sprintf('clearance %%.3g mm', c), \\\n     ",
-                c, COLOR_CLEARANCE);
-    else
-        fprintf(out, "plot ");
-    plot_gp_string(out, data);
-    fprintf(out, " using 2:3 with lines lw 0.8 lc rgb '%s' title 'orbit'", COLOR_ORBIT);
-    if (max_of(s->contact, s, r) > 0.0) {
-        fprintf(out, ", \\\n     ");
-        plot_gp_string(out, data);
-        fprintf(out, " using ($6 > 0 ? $2 : NaN):3 with points pt 7 ps 0.5 lc rgb '%s' title 'in contact'",
-                COLOR_CONTACT);
-    }
-    fputc('\n', out);
-    return plot_close(out, job->opt, name);
-}
-
-/* The shaded contact intervals as a plot element (boxes from 0 to `top` in y). */
-static void shade(FILE *out, const char *contacts, const char *top, int with_title)
-{
-    plot_gp_string(out, contacts);
-    fprintf(out,
-            " using (($3+$4)/2):(%s/2):3:4:(0):(%s) with boxxyerror fs solid 0.55 noborder lc rgb '%s' %s, \\\n"
-            "     ",
-            top, top, COLOR_SHADE, with_title ? "title 'in contact'" : "notitle");
+    retainer_vars(out, f, what, data, c);
+    fprintf(out, "L = %.6g                     # half-width of the axes, mm\n", half > 0.0 ? half : 1.0);
+    fprintf(out, "in_contact = %d    # 1: some samples in contact (drawn red)\n", max_of(s->contact, s, r) > 0.0);
+    return plot_script_end(out, job, name, NULL, plot_tpl_orbit);
 }
 
 static int radial_force_figure(plot_job *job, const plot_file *f, const char *prefix, int r, int intervals)
@@ -295,7 +241,6 @@ static int radial_force_figure(plot_job *job, const plot_file *f, const char *pr
     const plot_sim *s = &f->sim;
     char name[300], data[300], contacts[300], what[200], ret[64];
     double c = 1e3 * s->clearance[r], rmax, fmax_n;
-    int markers;
     FILE *out;
     snprintf(name, sizeof name, "%sradial-force-r%d", prefix, r);
     plot_retainer_data_name(data, sizeof data, prefix, r);
@@ -306,78 +251,40 @@ static int radial_force_figure(plot_job *job, const plot_file *f, const char *pr
         return PLOT_FAILED;
     rmax = 1.1 * fmax(isfinite(c) ? c : 0.0, 1e3 * max_of(s->r, s, r));
     fmax_n = 1.1 * max_of(s->fn, s, r);
+    retainer_vars(out, f, what, data, c);
+    plot_var_string(out, "contacts", contacts);
+    fprintf(out, "intervals = %d    # contact intervals in it\n", intervals);
     fprintf(out,
             "RMAX = %.6g    # top of the displacement axis, mm\n"
             "FMAX = %.6g    # top of the force axis, N\n",
             rmax > 0.0 ? rmax : 1.0, fmax_n > 0.0 ? fmax_n : 1.0);
-    if (isfinite(c))
-        fprintf(out, "c = %.9g       # radial clearance, mm\n", c);
     time_range(out, s);
-    markers = schedule_markers(out, s);
-    title2(out, "set multiplot layout 2,1 margins 0.1,0.97,0.08,0.865 spacing 0,0.025 title", what, f->title);
-    fprintf(out, "\n\n# top: radial displacement\n"
-                 "set format x ''\nunset xlabel\nset ylabel 'radial displacement [mm]'\nset yrange [0:RMAX]\n");
-    key_above(out, 0.865);
-    fprintf(out, "plot ");
-    if (intervals > 0)
-        shade(out, contacts, "RMAX", 1);
-    plot_gp_string(out, data);
-    fprintf(out, " using 1:4 with lines lw 1 lc rgb '%s' title 'radial displacement'", COLOR_ORBIT);
-    if (isfinite(c))
-        fprintf(out, ", \\\n     c with lines dt 3 lw 2 lc rgb '%s' title 'clearance'", COLOR_CLEARANCE);
-    fprintf(out, ", \\\n     NaN with lines lw 1 lc rgb '%s' title 'normal force'", COLOR_CONTACT);
-    marker_key(out, markers);
-    fprintf(out, "\n\n# bottom: normal contact force\n"
-                 "set format x '%%g'\nset xlabel 'time [s]'\nset ylabel 'normal contact force [N]'\n"
-                 "set yrange [0:FMAX]\nunset key\nplot ");
-    if (intervals > 0)
-        shade(out, contacts, "FMAX", 0);
-    plot_gp_string(out, data);
-    fprintf(out, " using 1:5 with lines lw 1 lc rgb '%s' notitle\n\nunset multiplot\n", COLOR_CONTACT);
-    return plot_close(out, job->opt, name);
+    schedule_markers(out, s);
+    return plot_script_end(out, job, name, plot_tpl_markers, plot_tpl_radial_force);
 }
 
 static int amb_figure(plot_job *job, const plot_file *f, const char *prefix)
 {
     const plot_sim *s = &f->sim;
     char name[300], data[300];
-    int height = 160 + 250 * s->namb;
-    double bottom = 60.0 / height, top = 1.0 - 100.0 / height; /* fixed pixel margins */
-    int a, markers;
+    int a;
     FILE *out;
     snprintf(name, sizeof name, "%samb-forces", prefix);
     snprintf(data, sizeof data, "%sambs.dat", prefix);
-    if (!(out = plot_script_begin(job, name, "AMB forces on the rotor", f->path, 1000, height)))
+    if (!(out = plot_script_begin(job, name, "AMB forces on the rotor", f->path, 1000, 160 + 250 * s->namb)))
         return PLOT_FAILED;
-    time_range(out, s);
-    markers = schedule_markers(out, s);
-    fprintf(out, "set multiplot layout %d,1 margins 0.1,0.97,%.3g,%.3g spacing 0,0.04 title ", s->namb, bottom, top);
-    {
-        char buf[700];
-        snprintf(buf, sizeof buf, "AMB forces on the rotor\n%s", f->title);
-        plot_gp_string(out, buf);
-    }
-    fputc('\n', out);
-    key_above(out, top);
-    for (a = 0; a < s->namb; a++) {
-        int last = a == s->namb - 1;
-        fprintf(out, "\n# AMB %d\n", a);
+    plot_var_string(out, "case_title", f->title);
+    plot_var_string(out, "data", data);
+    fprintf(out, "amb_names = \"");
+    for (a = 0; a < s->namb; a++)
         if (s->amb_nodes[a] >= 0)
-            fprintf(out, "set ylabel 'AMB %d (node %ld) force [N]'\n", a, s->amb_nodes[a]);
+            fprintf(out, "%s'AMB %d (node %ld)'", a ? " " : "", a, s->amb_nodes[a]);
         else
-            fprintf(out, "set ylabel 'AMB %d force [N]'\n", a);
-        fprintf(out, last ? "set format x '%%g'\nset xlabel 'time [s]'\n" : "set format x ''\nunset xlabel\n");
-        fprintf(out, "plot ");
-        plot_gp_string(out, data);
-        fprintf(out, " using 1:%d with lines lw 1 lc rgb '%s' title 'Fx', \\\n     ", 2 + 2 * a, COLOR_ORBIT);
-        plot_gp_string(out, data);
-        fprintf(out, " using 1:%d with lines lw 1 lc rgb '%s' title 'Fy'", 3 + 2 * a, "#ff7f0e");
-        if (a == 0)
-            marker_key(out, markers);
-        fprintf(out, a == 0 ? "\nunset key\n" : "\n");
-    }
-    fprintf(out, "\nunset multiplot\n");
-    return plot_close(out, job->opt, name);
+            fprintf(out, "%s'AMB %d'", a ? " " : "", a);
+    fprintf(out, "\"    # one panel each\n");
+    time_range(out, s);
+    schedule_markers(out, s);
+    return plot_script_end(out, job, name, plot_tpl_markers, plot_tpl_amb_forces);
 }
 
 int plot_sim_figures(plot_job *job, const plot_file *f, const char *prefix)

@@ -149,7 +149,9 @@ fi
 # ---- several files: overlays with the file names as legend --------------------------------
 if "$tool" plot -q -d cmp plot-fixture-constraint.h5 plot-fixture-penalty.h5 2>err.txt; then
     expect_pngs cmp compare-r0 compare-r1 plot-fixture-constraint-orbit-r0 plot-fixture-penalty-radial-force-r0
-    grep -q 'title "plot-fixture-constraint"' cmp/compare-r0.gp && grep -q 'title "plot-fixture-penalty"' cmp/compare-r0.gp &&
+    # the legend labels are the array label[] that the template's plot command takes its titles from
+    grep -q 'label\[1\] = "plot-fixture-constraint"' cmp/compare-r0.gp &&
+        grep -q 'label\[2\] = "plot-fixture-penalty"' cmp/compare-r0.gp && grep -q 'title label\[i\]' cmp/compare-r0.gp &&
         pass "overlay legend from the file names" || fail "overlay legend"
 else
     fail "plot of two files: $(cat err.txt)"
@@ -165,6 +167,21 @@ if "$tool" modal -q -o modal "$src/cases/paper-a.cfg" >/dev/null 2>err.txt; then
     fi
 else
     fail "touchdown modal failed, cannot test the modal figures: $(head -n 2 err.txt)"
+fi
+
+# ---- every kind of kept script reruns on its own, silently ---------------------------------
+# (each is a template from tools/gp/ with its variables in front: nothing else is needed)
+if command -v gnuplot >/dev/null && [ -d modal-plots ]; then
+    rerun_ok=1
+    for gp in plot-fixture-constraint-plots/*.gp cmp/*.gp modal-plots/*.gp; do
+        png=${gp%.gp}.png
+        rm -f "$png"
+        if ! (cd "$(dirname "$gp")" && gnuplot "$(basename "$gp")") 2>rerun.err || ! is_png "$png" || [ -s rerun.err ]; then
+            fail "rerunning $gp: $(head -n 3 rerun.err)"
+            rerun_ok=0
+        fi
+    done
+    [ $rerun_ok = 1 ] && pass "every script (simulation, compare, modal) reruns on its own"
 fi
 
 # ---- a real run, when the simulation works ------------------------------------------------
@@ -209,7 +226,9 @@ expect_error 2 "no file" -d x
 # ---- gnuplot missing or failing: exit 1, one line -----------------------------------------
 TOUCHDOWN_GNUPLOT=/nonexistent/gnuplot expect_error 1 "gnuplot missing" -d nognuplot plot-fixture-constraint.h5
 [ -s nognuplot/orbit-r0.gp ] && pass "scripts kept when gnuplot is missing" || fail "no scripts without gnuplot"
-TOUCHDOWN_GNUPLOT=false expect_error 1 "gnuplot failing" -d badgnuplot plot-fixture-constraint.h5
+printf '#!/bin/sh\nexit 1\n' >failing-gnuplot # a gnuplot that fails silently
+chmod +x failing-gnuplot
+TOUCHDOWN_GNUPLOT="$work/failing-gnuplot" expect_error 1 "gnuplot failing" -d badgnuplot plot-fixture-constraint.h5
 # gnuplot's own error line is the message
 printf '#!/bin/sh\necho "         plot foo" >&2\necho "\\"$1\\" line 7: undefined variable: foo" >&2\nexit 1\n' >fake-gnuplot
 chmod +x fake-gnuplot
