@@ -14,7 +14,8 @@ shift || true
 
 packages=(gcc make cmake pkg-config libsundials-dev libsuitesparse-dev libgsl-dev libhdf5-dev
           libcmocka-dev libconfig-dev gnuplot-nox
-          hdf5-tools python3)  # test-only: h5dump reads HDF5 flags, python3 checks bench JSON
+          hdf5-tools python3 clang-format)  # test-only: h5dump reads HDF5 flags, python3 checks
+                                            # bench JSON, clang-format checks the layout
 
 missing=()
 for p in "${packages[@]}"; do

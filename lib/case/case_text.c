@@ -332,119 +332,208 @@ static td_status shape_token(td_case_reader *r, const char *file, int line, cons
     return count_setting(r, file, line);
 }
 
-td_status td_cr_expand(td_case_reader *r, const char *text, const char *file, int depth, td_text *out)
-{
-    const char *p = text, *line_start = text;
-    scan_state state = SCAN_CODE;
-    int line = 1, comment_line = 0, numbers_on_line = 0;
-    char shown[4096], name[1024];
-    td_status st;
+/* The scan of one file's text by td_cr_expand: where it is, and what it is inside. */
+typedef struct text_scan {
+    td_case_reader *r;
+    const char *text; /* the whole text (to see the sign before a number) */
+    const char *file; /* as libconfig calls it; NULL for the main file */
+    int depth;        /* @include nesting of this file */
+    td_text *out;
+    const char *p;          /* the next byte */
+    const char *line_start; /* where the current line starts */
+    scan_state state;
+    int line;
+    int comment_line;    /* where the open block comment started */
+    int numbers_on_line; /* number tokens so far on this line (td_cr_wrap_site.ordinal) */
+} text_scan;
 
-    while (*p) {
-        int inc = p == line_start && state == SCAN_CODE ? include_line(p, name, sizeof name) : 0;
-        if (inc < 0) {
-            td_cr_file_shown(r, file, shown, sizeof shown);
-            return td_cr_fail_file(r->err, TD_ERR_PARSE, shown, line,
-                                   "@include: the file name must be closed by '\"' on the same line, without "
-                                   "backslashes, and be shorter than %d bytes",
-                                   (int)sizeof name);
-        }
-        if (inc) {
-            const char *end = strchr(p, '\n');
-            size_t n = end ? (size_t)(end - p + 1) : strlen(p);
-            st = expand_include(r, file, line, name, depth, out);
-            if (st != TD_OK)
-                return st;
-            p += n;
-            line_start = p;
-            line++;
-            continue;
-        }
-        if (*p == '\n') {
-            td_text_append(out, p, 1);
-            p++;
-            line_start = p;
-            line++;
-            numbers_on_line = 0;
-            if (state == SCAN_LINE_COMMENT)
-                state = SCAN_CODE;
-            continue;
-        }
-        switch (state) {
-        case SCAN_LINE_COMMENT: break;
-        case SCAN_BLOCK_COMMENT:
-            if (p[0] == '*' && p[1] == '/') {
-                td_text_append(out, p, 1);
-                p++;
-                state = SCAN_CODE;
-            }
-            break;
-        case SCAN_STRING:
-            if (p[0] == '\\' && p[1] != '\0' && p[1] != '\n') {
-                td_text_append(out, p, 1);
-                p++;
-            } else if (*p == '"') {
-                state = SCAN_CODE;
-            }
-            break;
-        case SCAN_CODE:
-            if (*p == '#' || (p[0] == '/' && p[1] == '/')) {
-                state = SCAN_LINE_COMMENT;
-            } else if (p[0] == '/' && p[1] == '*') {
-                state = SCAN_BLOCK_COMMENT;
-                comment_line = line;
-                td_text_append(out, p, 1);
-                p++;
-            } else if (*p == '"') {
-                state = SCAN_STRING;
-                if ((st = shape_token(r, file, line, p, 1)) != TD_OK)
-                    return st;
-            } else if (isalpha((unsigned char)*p) || *p == '_' || *p == '*') {
-                /* a name or true/false: skip it whole so digits inside it are not numbers */
-                size_t n = 1;
-                while (isalnum((unsigned char)p[n]) || p[n] == '_' || p[n] == '*' || p[n] == '-')
-                    n++;
-                if ((st = shape_token(r, file, line, p, n)) != TD_OK)
-                    return st;
-                td_text_append(out, p, n - 1);
-                p += n - 1;
-            } else if (isdigit((unsigned char)*p) || (*p == '.' && isdigit((unsigned char)p[1]))) {
-                size_t n = number_length(p);
-                int negative = p > text && p[-1] == '-';
-                if (token_wraps(p, n, negative)) {
-                    st = add_wrap(r, file, line, numbers_on_line, p, n);
-                    if (st != TD_OK)
-                        return st;
-                }
-                numbers_on_line++;
-                if ((st = shape_token(r, file, line, p, n)) != TD_OK)
-                    return st;
-                td_text_append(out, p, n - 1);
-                p += n - 1;
-            } else if (strchr("{}()[]", *p) && (st = shape_token(r, file, line, p, 1)) != TD_OK) {
-                return st;
-            }
-            break;
-        }
-        td_text_append(out, p, 1);
-        p++;
+/* Copy n bytes to the output and step past them. */
+static void scan_copy(text_scan *s, size_t n)
+{
+    td_text_append(s->out, s->p, n);
+    s->p += n;
+}
+
+/* Fail at the current line of the file being scanned. */
+static td_status scan_fail(const text_scan *s, int line, const char *message)
+{
+    char shown[4096];
+    td_cr_file_shown(s->r, s->file, shown, sizeof shown);
+    return td_cr_fail_file(s->r->err, TD_ERR_PARSE, shown, line, "%s", message);
+}
+
+/* At the start of a line of code: expand an @include line in place of the line (*done = 1), or
+ * leave a line that is no include to the scan (*done = 0). */
+static td_status scan_include(text_scan *s, int *done)
+{
+    char name[1024], shown[4096];
+    const char *end;
+    td_status st;
+    int inc = include_line(s->p, name, sizeof name);
+    *done = inc != 0;
+    if (inc < 0) {
+        td_cr_file_shown(s->r, s->file, shown, sizeof shown);
+        return td_cr_fail_file(s->r->err, TD_ERR_PARSE, shown, s->line,
+                               "@include: the file name must be closed by '\"' on the same line, without "
+                               "backslashes, and be shorter than %d bytes",
+                               (int)sizeof name);
     }
-    if (state == SCAN_BLOCK_COMMENT) {
-        td_cr_file_shown(r, file, shown, sizeof shown);
-        return td_cr_fail_file(r->err, TD_ERR_PARSE, shown, comment_line,
-                               "unterminated /* comment (libconfig would silently ignore the rest of the file)");
+    if (!inc)
+        return TD_OK;
+    end = strchr(s->p, '\n');
+    st = expand_include(s->r, s->file, s->line, name, s->depth, s->out);
+    if (st != TD_OK)
+        return st;
+    s->p += end ? (size_t)(end - s->p + 1) : strlen(s->p);
+    s->line_start = s->p;
+    s->line++;
+    return TD_OK;
+}
+
+/* A line feed: ends a # or // comment. */
+static void scan_newline(text_scan *s)
+{
+    scan_copy(s, 1);
+    s->line_start = s->p;
+    s->line++;
+    s->numbers_on_line = 0;
+    if (s->state == SCAN_LINE_COMMENT)
+        s->state = SCAN_CODE;
+}
+
+/* Inside a block comment: bytes to copy, 2 for the closing star-slash. */
+static size_t block_comment_bytes(text_scan *s)
+{
+    if (s->p[0] == '*' && s->p[1] == '/') {
+        s->state = SCAN_CODE;
+        return 2;
     }
-    if (state == SCAN_LINE_COMMENT && file) {
+    return 1;
+}
+
+/* Inside a string: bytes to copy, 2 for an escape (so an escaped '"' does not end it). */
+static size_t string_bytes(text_scan *s)
+{
+    if (s->p[0] == '\\' && s->p[1] != '\0' && s->p[1] != '\n')
+        return 2;
+    if (*s->p == '"')
+        s->state = SCAN_CODE;
+    return 1;
+}
+
+/* A name or true/false, skipped whole so that digits inside it are not numbers; *n: its length. */
+static td_status name_token(text_scan *s, size_t *n)
+{
+    const char *p = s->p;
+    size_t len = 1;
+    while (isalnum((unsigned char)p[len]) || p[len] == '_' || p[len] == '*' || p[len] == '-')
+        len++;
+    *n = len;
+    return shape_token(s->r, s->file, s->line, p, len);
+}
+
+/* A number: recorded when libconfig would wrap it; *n: its length. */
+static td_status number_token(text_scan *s, size_t *n)
+{
+    const char *p = s->p;
+    size_t len = number_length(p);
+    int negative = p > s->text && p[-1] == '-';
+    td_status st;
+    if (token_wraps(p, len, negative)) {
+        st = add_wrap(s->r, s->file, s->line, s->numbers_on_line, p, len);
+        if (st != TD_OK)
+            return st;
+    }
+    s->numbers_on_line++;
+    *n = len;
+    return shape_token(s->r, s->file, s->line, p, len);
+}
+
+/* In code: the token that starts here (a comment or string opening, a name, a number, a bracket,
+ * any other byte); *n: the bytes to copy. */
+static td_status code_token(text_scan *s, size_t *n)
+{
+    const char *p = s->p;
+    *n = 1;
+    if (*p == '#' || (p[0] == '/' && p[1] == '/')) {
+        s->state = SCAN_LINE_COMMENT;
+    } else if (p[0] == '/' && p[1] == '*') {
+        s->state = SCAN_BLOCK_COMMENT;
+        s->comment_line = s->line;
+        *n = 2;
+    } else if (*p == '"') {
+        s->state = SCAN_STRING;
+        return shape_token(s->r, s->file, s->line, p, 1);
+    } else if (isalpha((unsigned char)*p) || *p == '_' || *p == '*') {
+        return name_token(s, n);
+    } else if (isdigit((unsigned char)*p) || (*p == '.' && isdigit((unsigned char)p[1]))) {
+        return number_token(s, n);
+    } else if (strchr("{}()[]", *p)) {
+        return shape_token(s->r, s->file, s->line, p, 1);
+    }
+    return TD_OK;
+}
+
+/* One step of the scan: an @include line, a line feed, or the next byte or token in its state. */
+static td_status scan_step(text_scan *s)
+{
+    size_t n = 1;
+    int done = 0;
+    td_status st = TD_OK;
+    if (s->p == s->line_start && s->state == SCAN_CODE) {
+        st = scan_include(s, &done);
+        if (st != TD_OK || done)
+            return st;
+    }
+    if (*s->p == '\n') {
+        scan_newline(s);
+        return TD_OK;
+    }
+    switch (s->state) {
+    case SCAN_LINE_COMMENT: break;
+    case SCAN_BLOCK_COMMENT: n = block_comment_bytes(s); break;
+    case SCAN_STRING: n = string_bytes(s); break;
+    case SCAN_CODE: st = code_token(s, &n); break;
+    }
+    if (st == TD_OK)
+        scan_copy(s, n);
+    return st;
+}
+
+/* At the end of the text: what libconfig would get wrong there, and a failed allocation. */
+static td_status scan_end(const text_scan *s)
+{
+    if (s->state == SCAN_BLOCK_COMMENT)
+        return scan_fail(s, s->comment_line,
+                         "unterminated /* comment (libconfig would silently ignore the rest of the file)");
+    if (s->state == SCAN_LINE_COMMENT && s->file)
         /* libconfig 1.5 reads an included file itself and rejects a last-line comment without a
          * final newline as "syntax error"; the main file gets the newline appended (case.c) */
-        td_cr_file_shown(r, file, shown, sizeof shown);
-        return td_cr_fail_file(r->err, TD_ERR_PARSE, shown, line,
-                               "an included file must end with a newline after its last comment (libconfig 1.5 "
-                               "cannot read it otherwise)");
-    }
-    if (out->failed)
-        return td_cr_fail_file(r->err, TD_ERR_NOMEM, r->path_shown, 0, "out of memory");
+        return scan_fail(s, s->line,
+                         "an included file must end with a newline after its last comment (libconfig 1.5 "
+                         "cannot read it otherwise)");
+    if (s->out->failed)
+        return td_cr_fail_file(s->r->err, TD_ERR_NOMEM, s->r->path_shown, 0, "out of memory");
     return TD_OK;
+}
+
+td_status td_cr_expand(td_case_reader *r, const char *text, const char *file, int depth, td_text *out)
+{
+    text_scan s;
+    td_status st = TD_OK;
+    s.r = r;
+    s.text = text;
+    s.file = file;
+    s.depth = depth;
+    s.out = out;
+    s.p = s.line_start = text;
+    s.state = SCAN_CODE;
+    s.line = 1;
+    s.comment_line = 0;
+    s.numbers_on_line = 0;
+    while (*s.p && st == TD_OK)
+        st = scan_step(&s);
+    return st == TD_OK ? scan_end(&s) : st;
 }
 
 int td_cr_value_wraps(const char *text, char *literal, size_t n)

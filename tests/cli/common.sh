@@ -1,5 +1,5 @@
 # Helpers shared by the CLI test scripts (sourced, not run): each script counts its checks and
-# failures, prints "ok:" or "FAIL:" lines, and exits non-zero if any check failed.
+# failures, prints "ok:" or "FAIL:" lines (one per check), and ends with finish.
 fails=0
 checks=0
 
@@ -9,6 +9,13 @@ check() { # DESCRIPTION COMMAND...
     local what=$1
     shift
     if "$@"; then pass "$what"; else fail "$what"; fi
+}
+
+# The end of a script: the counts, then exit 0 if every check passed, else 1.
+finish() {
+    echo "$((checks - fails)) passed, $fails failed"
+    if [ "$fails" = 0 ]; then exit 0; fi
+    exit 1
 }
 
 # t DIR ARGS...: run the tool ($tool) in DIR (created if missing); rc, and DIR/.out, DIR/.err.

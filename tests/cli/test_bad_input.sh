@@ -15,15 +15,12 @@
 set -u
 tool=$1
 src=$2
-fails=0
-checks=0
 work=$(mktemp -d "${PWD}/bad-input.XXXXXX")
 trap 'chmod -R u+rwx "$work" 2>/dev/null; rm -rf "$work"' EXIT
 scratch=$work/cwd
 mkdir -p "$scratch"
 
-fail() { echo "FAIL: $*"; fails=$((fails + 1)); }
-pass() { echo "ok:   $*"; }
+. "$(dirname "${BASH_SOURCE[0]}")/common.sh" # fail, pass, check, t, jf, finish
 
 # Run the tool in the empty scratch directory: sets rc, err (stderr text), out (stdout text).
 # ${runner[@]} (normally empty) is put in front of the tool, e.g. to drop privileges.
@@ -48,41 +45,44 @@ scratch_empty() {
 }
 
 # expect_bad WHAT NEEDLE... -- ARGS: exit 2, one stderr line containing every NEEDLE, empty
-# stdout, no file created.
+# stdout, no file created. One check: a FAIL line lists every way the command fell short.
 expect_bad() {
-    local what=$1 needles=() n lines left ok=1
+    local what=$1 needles=() n lines left problems=() joined
     shift
     while [ "$1" != "--" ]; do needles+=("$1"); shift; done
     shift
-    checks=$((checks + 1))
     run_tool "$@"
     lines=$(wc -l <"$work/err")
     if [ "$rc" != 2 ]; then
-        fail "$what: exit $rc, expected 2 (stderr: $(head -c 300 "$work/err"))"; ok=0
+        problems+=("exit $rc, expected 2 (stderr: $(head -c 300 "$work/err"))")
     fi
     if [ "$lines" != 1 ]; then
-        fail "$what: $lines lines on stderr, expected 1: $(head -n 3 "$work/err")"; ok=0
+        problems+=("$lines lines on stderr, expected 1: $(head -n 3 "$work/err")")
     fi
     if [ -n "$out" ]; then
-        fail "$what: stdout not empty: $(head -c 200 "$work/out")"; ok=0
+        problems+=("stdout not empty: $(head -c 200 "$work/out")")
     fi
     for n in "${needles[@]}"; do
         case "$err" in
         *"$n"*) ;;
-        *) fail "$what: stderr lacks '$n': $err"; ok=0 ;;
+        *) problems+=("stderr lacks '$n': $err") ;;
         esac
     done
     if ! left=$(scratch_empty); then
-        fail "$what: created files: $left"; ok=0
+        problems+=("created files: $left")
     fi
-    [ $ok = 1 ] && pass "$what -> 2: $err"
+    if [ ${#problems[@]} = 0 ]; then
+        pass "$what -> 2: $err"
+    else
+        joined=$(printf '%s; ' "${problems[@]}")
+        fail "$what: ${joined%; }"
+    fi
 }
 
 # expect_usage WHAT ARGS: exit 2 and no file created (the usage text may take several lines).
 expect_usage() {
     local what=$1 left
     shift
-    checks=$((checks + 1))
     run_tool "$@"
     if [ "$rc" != 2 ]; then
         fail "$what: exit $rc, expected 2 ($(head -n 2 "$work/err"))"
@@ -103,9 +103,7 @@ table=$(sed -n '/^static const bad_file bad_files\[\] = {/,/^};/p' "$src/tests/t
     sed -nE 's/^[[:space:]]*\{"([^"]+)", ([0-9]+), (NULL|"[^"]*"), (NULL|"[^"]*")\},.*/\1 \2 \3 \4/p' |
     tr -d '"')
 n_table=$(printf '%s\n' "$table" | grep -c .)
-if [ "$n_table" -lt 40 ]; then
-    fail "read only $n_table entries from the bad_files table of tests/test_case.c"
-fi
+check "read $n_table entries (at least 40) from the bad_files table of tests/test_case.c" test "$n_table" -ge 40
 
 n_files=0
 for path in "$bad_dir"/*.cfg; do
@@ -126,23 +124,21 @@ for path in "$bad_dir"/*.cfg; do
         expect_bad "$cmd $file" "touchdown" "$name" "$where" -- "$cmd" "$path"
     done
 done
-if [ "$n_files" -lt 40 ] || [ "$n_files" != "$n_table" ]; then
-    fail "$n_files files under tests/data/bad/, $n_table in the table of tests/test_case.c"
-fi
+check "$n_files files (at least 40) under tests/data/bad/, as many as the table of tests/test_case.c ($n_table)" \
+    test "$n_files" -ge 40 -a "$n_files" = "$n_table"
 
 # ---- exact messages: the whole stderr line of these files ("|" separates the file from what
 # follows its path); each is in the table above as well ---------------------------------------
 while IFS='|' read -r file rest; do
     [ -z "$file" ] && continue
     for cmd in run info; do
-        checks=$((checks + 1))
         run_tool "$cmd" "$bad_dir/$file"
-        if [ "$rc" = 2 ] && [ "$err" = "touchdown: $bad_dir/$file$rest" ]; then
+        if created=$(scratch_empty); then created=""; else created="; created files: $created"; fi
+        if [ "$rc" = 2 ] && [ "$err" = "touchdown: $bad_dir/$file$rest" ] && [ -z "$created" ]; then
             pass "$cmd $file -> exact message"
         else
-            fail "$cmd $file: exit $rc, stderr '$err', expected 'touchdown: $bad_dir/$file$rest'"
+            fail "$cmd $file: exit $rc, stderr '$err', expected 'touchdown: $bad_dir/$file$rest'$created"
         fi
-        scratch_empty >/dev/null || fail "$cmd $file: created files"
     done
 done <<'EOF'
 end-time-unbounded.cfg|:4: end_time: 10000 Hz over 1e+12 s makes 1e+16 output samples (at most 1e+08)
@@ -262,8 +258,6 @@ expect_usage "info --modes 0" info --modes 0 "$case_a"
 expect_usage "info --modes x" info --modes x "$case_a"
 
 after=$(ls -la --time-style=+%s "$bad_dir" | md5sum)
-checks=$((checks + 1))
-if [ "$before" != "$after" ]; then fail "tests/data/bad/ changed while the tool read it"; else pass "tests/data/bad/ unchanged"; fi
+check "tests/data/bad/ unchanged while the tool read it" test "$before" = "$after"
 
-echo "$((checks - fails)) passed, $fails failed"
-[ "$fails" = 0 ]
+finish

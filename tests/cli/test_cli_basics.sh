@@ -10,10 +10,9 @@ work=$(mktemp -d "${PWD}/cli-basics.XXXXXX")
 trap 'rm -rf "$work"' EXIT
 case_a=$src/cases/paper-a.cfg
 
-. "$(dirname "${BASH_SOURCE[0]}")/common.sh" # fail, pass, check, t, jf
+. "$(dirname "${BASH_SOURCE[0]}")/common.sh" # fail, pass, check, t, jf, finish
 
 files_in() { (cd "$1" && ls | tr '\n' ' ' | sed 's/ $//'); }
-json_field() { sed -nE "s/.*\"$2\":(\"[^\"]*\"|[^,}]*).*/\\1/p" "$1" | head -n 1; }
 
 # ---- help and version ----------------------------------------------------------------------
 for h in --help -h help; do
@@ -73,12 +72,12 @@ t "$d" run --json --hdf5 '' --csv '' --set end_time=0.0123 --set speed=95 "$case
 check "run --json: exit 0, one line holding one JSON object" \
     test "$rc" = 0 -a "$(wc -l <"$d/.out")" = 1 -a -n "$(grep -E '^\{.*\}$' "$d/.out")"
 check "run --json: complete true, status success" \
-    test "$(json_field "$d/.out" complete)" = true -a "$(json_field "$d/.out" status)" = '"success"'
-check "run --set end_time=0.0123: t_reached $(json_field "$d/.out" t_reached)" \
-    awk -v t="$(json_field "$d/.out" t_reached)" 'BEGIN { exit !(t == 0.0123) }'
-check "run --set speed=95: speed $(json_field "$d/.out" speed)" test "$(json_field "$d/.out" speed)" = 95
-check "run --json: library_version is the tool's ($(json_field "$d/.out" library_version))" \
-    test "touchdown $(json_field "$d/.out" library_version | tr -d '"')" = "$(cat "$work/version/.out")"
+    test "$(jf "$d/.out" complete)" = true -a "$(jf "$d/.out" status)" = '"success"'
+check "run --set end_time=0.0123: t_reached $(jf "$d/.out" t_reached)" \
+    awk -v t="$(jf "$d/.out" t_reached)" 'BEGIN { exit !(t == 0.0123) }'
+check "run --set speed=95: speed $(jf "$d/.out" speed)" test "$(jf "$d/.out" speed)" = 95
+check "run --json: library_version is the tool's ($(jf "$d/.out" library_version))" \
+    test "touchdown $(jf "$d/.out" library_version | tr -d '"')" = "$(cat "$work/version/.out")"
 
 # ---- info on every shipped case; the rig alone is not a case --------------------------------
 for c in "$src"/cases/*.cfg; do
@@ -104,5 +103,4 @@ check "modal jeffcott: exit 0, writes jeffcott-modal.csv and .h5 ($(files_in "$d
     test "$rc" = 0 -a "$(files_in "$d")" = "jeffcott-modal.csv jeffcott-modal.h5"
 check "modal jeffcott: lists critical speeds" grep -q "critical speeds" "$d/.out"
 
-echo "$((checks - fails)) passed, $fails failed"
-[ "$fails" = 0 ]
+finish

@@ -12,12 +12,10 @@
 set -u
 tool=$1
 src=$(cd "$2" && pwd -P)
-fails=0
 work=$(mktemp -d "${PWD}/output-paths.XXXXXX")
 trap 'rm -rf "$work"' EXIT
 
-fail() { echo "FAIL: $*"; fails=$((fails + 1)); }
-pass() { echo "ok:   $*"; }
+. "$(dirname "${BASH_SOURCE[0]}")/common.sh" # fail, pass, check, t, jf, finish
 
 # Absolute paths in the text on stdin: a '/' at the start or after a blank, quote, bracket, '=',
 # ':' or ',', followed by a name ('m/s', '0.02/0.10', '1/(2 pi)' and '// comment' are not paths).
@@ -93,8 +91,4 @@ else
     fail "touchdown modal failed: $(head -n 2 "$work/modal.log")"
 fi
 
-if [ $fails -ne 0 ]; then
-    echo "$fails check(s) failed"
-    exit 1
-fi
-echo "all output path checks passed"
+finish

@@ -17,7 +17,7 @@ work=$(mktemp -d "${PWD}/paper-cases.XXXXXX")
 trap 'rm -rf "$work"' EXIT
 clearance=7.5e-4 # m, every retainer of cases/rig.cfg
 
-. "$(dirname "${BASH_SOURCE[0]}")/common.sh" # fail, pass, check, t, jf
+. "$(dirname "${BASH_SOURCE[0]}")/common.sh" # fail, pass, check, t, jf, finish
 json_field() { sed -nE "s/.*\"$2\":(\"[^\"]*\"|[^,}]*).*/\\1/p" "$1" | head -n 1; }
 # summary_field FILE LABEL: the text after a label of the human summary
 summary_field() { sed -nE "s/^$2 +//p" "$1" | head -n 1; }
@@ -86,5 +86,4 @@ done
 
 echo
 printf '%s' "$table"
-echo "$checks checks, $fails failed"
-[ "$fails" = 0 ]
+finish

@@ -35,8 +35,6 @@
 set -u
 tool=$1
 src=$2
-fails=0
-checks=0
 case_a=$src/cases/paper-a.cfg
 work=$(mktemp -d "${PWD}/run-faults.XXXXXX")
 pids=()
@@ -47,13 +45,7 @@ cleanup() {
 }
 trap cleanup EXIT
 
-fail() { echo "FAIL: $*"; fails=$((fails + 1)); checks=$((checks + 1)); }
-pass() { echo "ok:   $*"; checks=$((checks + 1)); }
-check() { # DESCRIPTION COMMAND...: pass if the command succeeds
-    local what=$1
-    shift
-    if "$@"; then pass "$what"; else fail "$what"; fi
-}
+. "$(dirname "${BASH_SOURCE[0]}")/common.sh" # fail, pass, check, t, jf, finish
 
 have_h5dump=0
 if command -v h5dump >/dev/null; then have_h5dump=1; else echo "skip: h5dump not found (apt-get install hdf5-tools): HDF5 attributes not checked"; fi
@@ -409,5 +401,4 @@ else
 fi
 chmod 755 "$d/ro"
 
-echo "$((checks - fails)) passed, $fails failed"
-[ "$fails" = 0 ]
+finish

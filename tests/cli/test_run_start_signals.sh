@@ -12,7 +12,7 @@ work=$(mktemp -d "${PWD}/run-start.XXXXXX")
 trap 'rm -rf "$work"' EXIT
 case_a=$src/cases/paper-a.cfg
 
-. "$(dirname "${BASH_SOURCE[0]}")/common.sh" # fail, pass, check, t, jf
+. "$(dirname "${BASH_SOURCE[0]}")/common.sh" # fail, pass, check, t, jf, finish
 has() { grep -qF -- "$2" "$1"; }
 # bg DIR SIGNAL DELAY ARGS...: start the tool in DIR, send SIGNAL after DELAY s; rc as t.
 bg() {
@@ -84,5 +84,4 @@ bg "$work/bhup" HUP 1.5 bench --quick --repeats 99 --dir "$src/cases" -o b.json
 check "bench, SIGHUP: exit 1 (got $rc), 'interrupted' on stderr, no JSON file" \
     test "$rc" = 1 -a -n "$(grep -i interrupted "$work/bhup/.err")" -a ! -e "$work/bhup/b.json"
 
-echo "$checks checks, $fails failed"
-[ "$fails" = 0 ]
+finish
