@@ -1,8 +1,9 @@
 /*
  * The machine's parts: discs, point masses, AMBs, plain bearings, retainers, unbalances and the
- * schedule of timed changes. Each list entry becomes one td_model_add_* call; the cross-checks
- * td_model_validate would make (nodes in range, one AMB / retainer per node, retainer tighter
- * than every AMB air gap, schedule indices) are made here first so that they name the setting.
+ * schedule of timed changes. Each list entry becomes one td_model_add_* call. The model's rules
+ * (bore = shaft radius + clearance, nodes on the shaft, one AMB / retainer per node, retainers
+ * tighter than the air gaps, schedule indices) are checked by the model alone: its errors name
+ * part, index and field, which case_site.c turns back into the setting.
  */
 #include "case/case_internal.h"
 #include "util/error_internal.h"
@@ -136,26 +137,11 @@ static td_status read_amb_lag(td_case_reader *r, const config_setting_t *g, doub
     return st == TD_OK ? td_cr_derived(r, bw, *tau, "the time constant tau = 1 / (2 pi bandwidth)") : st;
 }
 
-/* Entry g of `list` (the list named `key`) is on `node`, where its entry j already put `part`:
- * one part of this kind per node. */
-static td_status fail_node_taken(td_case_reader *r, const config_setting_t *g, const config_setting_t *list, int j,
-                                 int node, const char *part, const char *key)
+static td_status read_amb(td_case_reader *r, const config_setting_t *g)
 {
-    char where[1200];
-    td_cr_where(r, config_setting_get_elem(list, (unsigned)j), where, sizeof where);
-    return td_cr_fail(r, config_setting_get_member(g, "node"), NULL, "node %d already has %s (%s[%d], %s)", node, part,
-                      key, j, where);
-}
-
-static td_status read_amb(td_case_reader *r, const config_setting_t *list, int index)
-{
-    const config_setting_t *g;
-    td_amb a, other;
+    td_amb a;
     td_error merr;
-    int j;
-    td_status st = td_cr_entry(r, list, index, &g);
-    if (st == TD_OK)
-        st = td_cr_check_keys(r, g, amb_keys);
+    td_status st = td_cr_check_keys(r, g, amb_keys);
     if (st == TD_OK)
         st = td_cr_node(r, g, "node", "actuator node", 0, &a.node);
     if (st == TD_OK)
@@ -179,11 +165,6 @@ static td_status read_amb(td_case_reader *r, const config_setting_t *list, int i
         st = td_cr_real(r, g, "air_gap", NULL, 0.0, TD_CR_POSITIVE, &a.air_gap);
     if (st != TD_OK)
         return st;
-    for (j = 0; j < index; j++) {
-        td_model_get_amb(r->c->model, j, &other);
-        if (other.node == a.node)
-            return fail_node_taken(r, g, list, j, a.node, "an AMB", "ambs");
-    }
     st = td_model_add_amb(r->c->model, &a, &merr);
     return st == TD_OK ? TD_OK : td_cr_model_fail(r, g, st, &merr);
 }
@@ -209,33 +190,11 @@ static td_status read_bearing(td_case_reader *r, const config_setting_t *g)
     return st == TD_OK ? TD_OK : td_cr_model_fail(r, g, st, &merr);
 }
 
-/* A retainer must be tighter than every AMB air gap (or the rotor would hit the stator first). */
-static td_status check_against_ambs(td_case_reader *r, const config_setting_t *g, const td_retainer *ret)
+static td_status read_retainer(td_case_reader *r, const config_setting_t *g)
 {
-    int j;
-    td_amb a;
-    for (j = 0; j < td_model_amb_count(r->c->model); j++) {
-        td_model_get_amb(r->c->model, j, &a);
-        if (a.air_gap > 0.0 && ret->clearance >= a.air_gap) {
-            char where[1200];
-            td_cr_where(r, config_setting_get_elem(r->ambs, (unsigned)j), where, sizeof where);
-            return td_cr_fail(r, config_setting_get_member(g, "clearance"), NULL,
-                              "clearance %g m is not smaller than the air gap %g m of ambs[%d] (%s)", ret->clearance,
-                              a.air_gap, j, where);
-        }
-    }
-    return TD_OK;
-}
-
-static td_status read_retainer(td_case_reader *r, const config_setting_t *list, int index)
-{
-    const config_setting_t *g, *bore;
-    td_retainer ret, other;
+    td_retainer ret;
     td_error merr;
-    int j;
-    td_status st = td_cr_entry(r, list, index, &g);
-    if (st == TD_OK)
-        st = td_cr_check_keys(r, g, retainer_keys);
+    td_status st = td_cr_check_keys(r, g, retainer_keys);
     if (st == TD_OK)
         st = td_cr_node(r, g, "node", "retainer node", 0, &ret.node);
     if (st == TD_OK)
@@ -251,18 +210,6 @@ static td_status read_retainer(td_case_reader *r, const config_setting_t *list, 
         st = td_cr_real(r, g, "bore_speed", NULL, 0.0, TD_CR_FINITE, &ret.bore_speed);
     if (st == TD_OK)
         st = td_cr_real(r, g, "restitution", NULL, 0.0, TD_CR_FRACTION, &ret.restitution);
-    if (st != TD_OK)
-        return st;
-    bore = config_setting_get_member(g, "bore_radius");
-    if (bore && fabs(ret.bore_radius - ret.shaft_radius - ret.clearance) > 1e-9 * ret.bore_radius)
-        return td_cr_fail(r, bore, NULL, "must equal shaft_radius + clearance = %.9g m (got %.9g m)",
-                          ret.shaft_radius + ret.clearance, ret.bore_radius);
-    for (j = 0; j < index; j++) {
-        td_model_get_retainer(r->c->model, j, &other);
-        if (other.node == ret.node)
-            return fail_node_taken(r, g, list, j, ret.node, "a retainer", "retainers");
-    }
-    st = check_against_ambs(r, g, &ret);
     if (st != TD_OK)
         return st;
     st = td_model_add_retainer(r->c->model, &ret, &merr);
@@ -284,18 +231,6 @@ static td_status read_unbalance(td_case_reader *r, const config_setting_t *g)
         return st;
     st = td_model_add_unbalance(r->c->model, &u, &merr);
     return st == TD_OK ? TD_OK : td_cr_model_fail(r, g, st, &merr);
-}
-
-/* The index of a schedule entry: an unbalance or AMB that exists. */
-static td_status read_change_index(td_case_reader *r, const config_setting_t *s, const char *what, int count,
-                                   int *index)
-{
-    td_status st = td_cr_value_int(r, s, -2147483647L, 2147483647L, index);
-    if (st != TD_OK)
-        return st;
-    if (*index < 0 || *index >= count)
-        return td_cr_fail(r, s, NULL, "%s %d does not exist (%d defined, indices start at 0)", what, *index, count);
-    return TD_OK;
 }
 
 /* One entry of "schedule": { time; unbalance; magnitude; phase; } or { time; amb_off; } or { time; amb_on; } */
@@ -327,15 +262,17 @@ static td_status read_change(td_case_reader *r, const config_setting_t *g)
     c.magnitude = 0.0;
     c.phase = 0.0;
     if (c.kind == TD_CHANGE_UNBALANCE) {
-        st = read_change_index(r, kind, "unbalance", td_model_unbalance_count(r->c->model), &c.index);
+        /* an unbalance or AMB that exists: the model's rule (td_model_validate) */
+        st = td_cr_value_int(r, kind, -2147483647L, 2147483647L, &c.index);
         if (st != TD_OK)
             return st;
+        u.phase = 0.0; /* unbalance c.index may not exist; td_model_validate says so */
         td_model_get_unbalance(r->c->model, c.index, &u);
         st = td_cr_real(r, g, "magnitude", "new unbalance U, kg m", 0.0, TD_CR_NONNEGATIVE, &c.magnitude);
         if (st == TD_OK)
             st = td_cr_real(r, g, "phase", NULL, u.phase, TD_CR_FINITE, &c.phase);
     } else {
-        st = read_change_index(r, kind, "AMB", td_model_amb_count(r->c->model), &c.index);
+        st = td_cr_value_int(r, kind, -2147483647L, 2147483647L, &c.index);
         if (st == TD_OK && (extra = first_of(g, unbalance_only)) != NULL)
             st = td_cr_fail(r, extra, NULL, "only an unbalance change takes a magnitude or phase");
     }
@@ -360,24 +297,19 @@ static td_status read_each(td_case_reader *r, const config_setting_t *root, cons
     return st;
 }
 
+/* Entry i of every list is part i of its kind (discs then point masses are the model's discs):
+ * case_site.c relies on this order to find the setting a model error names. */
 td_status td_cr_read_parts(td_case_reader *r, const config_setting_t *root)
 {
-    const config_setting_t *list = NULL;
-    int i;
     td_status st = read_each(r, root, "discs", read_disc);
     if (st == TD_OK)
         st = read_each(r, root, "point_masses", read_point_mass);
     if (st == TD_OK)
-        st = td_cr_list(r, root, "ambs", &list);
-    r->ambs = list;
-    for (i = 0; st == TD_OK && list && i < config_setting_length(list); i++)
-        st = read_amb(r, list, i);
+        st = read_each(r, root, "ambs", read_amb);
     if (st == TD_OK)
         st = read_each(r, root, "bearings", read_bearing);
     if (st == TD_OK)
-        st = td_cr_list(r, root, "retainers", &list);
-    for (i = 0; st == TD_OK && list && i < config_setting_length(list); i++)
-        st = read_retainer(r, list, i);
+        st = read_each(r, root, "retainers", read_retainer);
     if (st == TD_OK)
         st = read_each(r, root, "unbalances", read_unbalance);
     if (st == TD_OK)
