@@ -285,6 +285,8 @@ static void test_disc_from_geometry(void **state)
     rig.inner_radius = 0.12;
     assert_int_equal(td_disc_from_geometry(&rig, &d, &err), TD_ERR_INVALID);
     assert_non_null(strstr(err.message, "inner radius"));
+    assert_string_equal(err.site.field, "inner_radius"); /* a disc in no model: index -1 */
+    assert_int_equal(err.site.index, -1);
     rig.inner_radius = 0.0;
     rig.density = NAN;
     assert_int_equal(td_disc_from_geometry(&rig, &d, &err), TD_ERR_INVALID);

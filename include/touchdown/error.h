@@ -35,11 +35,12 @@ typedef enum td_status {
  * strings: the part as td_model_add_* names it ("element", "disc", "amb", "bearing", "retainer",
  * "unbalance", "change") and the member of its struct ("clearance", "bore_radius",
  * "material.E", ...). `index` numbers the part as td_model_get_* does; a td_model_add_* call
- * that fails gives the index the part would have had (the number of such parts before it).
+ * that fails gives the index the part would have had (the number of such parts before it);
+ * td_disc_from_geometry, whose disc is in no model yet, gives -1 and the message "disc: FIELD: ...".
  */
 typedef struct td_error_site {
     const char *part;  /**< NULL: the error is not about one part */
-    int index;         /**< index of the part, in the numbering of td_model_get_* */
+    int index;         /**< index of the part, in the numbering of td_model_get_*; -1: in no model */
     const char *field; /**< NULL: the part as a whole */
 } td_error_site;
 

@@ -1,9 +1,11 @@
 /*
  * The machine's parts: discs, point masses, AMBs, plain bearings, retainers, unbalances and the
  * schedule of timed changes. Each list entry becomes one td_model_add_* call. The model's rules
- * (bore = shaft radius + clearance, nodes on the shaft, one AMB / retainer per node, retainers
- * tighter than the air gaps, schedule indices) are checked by the model alone: its errors name
- * part, index and field, which case_site.c turns back into the setting.
+ * (value ranges, bore = shaft radius + clearance, nodes on the shaft, one AMB / retainer per
+ * node, retainers tighter than the air gaps, schedule indices) are checked by the model alone:
+ * its errors name part, index and field, which case_site.c turns back into the setting. The
+ * reader checks what is about the file: types, missing and unknown keys, the forms a part may
+ * take, units (bandwidth to tau) and the AMB gains' signs, which the model leaves free.
  */
 #include "case/case_internal.h"
 #include "util/error_internal.h"
@@ -45,22 +47,18 @@ static td_status read_disc_geometry(td_case_reader *r, const config_setting_t *g
     td_status st;
     memset(&geo, 0, sizeof geo);
     geo.node = d->node;
-    if (t && m)
-        return td_cr_fail(r, m, NULL, "give either thickness or mass with radius + density, not both");
-    st = td_cr_real(r, g, "radius", "outer radius, m", 0.0, TD_CR_POSITIVE, &geo.outer_radius);
+    st = td_cr_real(r, g, "radius", "outer radius, m", 0.0, TD_CR_FINITE, &geo.outer_radius);
     if (st == TD_OK)
-        st = td_cr_real(r, g, "density", "density, kg/m^3", 0.0, TD_CR_POSITIVE, &geo.density);
+        st = td_cr_real(r, g, "density", "density, kg/m^3", 0.0, TD_CR_FINITE, &geo.density);
     if (st == TD_OK)
-        st = td_cr_real(r, g, "bore_radius", NULL, 0.0, TD_CR_NONNEGATIVE, &geo.inner_radius);
+        st = td_cr_real(r, g, "bore_radius", NULL, 0.0, TD_CR_FINITE, &geo.inner_radius);
+    /* 0 stands for "not given" in td_disc_geometry: a value written in the file must be > 0 */
     if (st == TD_OK && m)
         st = td_cr_value_real(r, m, TD_CR_POSITIVE, &geo.mass);
-    else if (st == TD_OK)
+    if (st == TD_OK && (t || !m))
         st = td_cr_real(r, g, "thickness", "axial thickness, m; or the mass, kg", 0.0, TD_CR_POSITIVE, &geo.thickness);
     if (st != TD_OK)
         return st;
-    if (geo.inner_radius >= geo.outer_radius)
-        return td_cr_fail(r, config_setting_get_member(g, "bore_radius"), NULL,
-                          "must be smaller than the radius %g m (got %g m)", geo.outer_radius, geo.inner_radius);
     st = td_disc_from_geometry(&geo, d, &merr);
     if (st != TD_OK)
         return td_cr_model_fail(r, g, st, &merr);
@@ -89,12 +87,12 @@ static td_status read_disc(td_case_reader *r, const config_setting_t *g)
     if (geo) {
         st = read_disc_geometry(r, g, &d);
     } else {
-        st = td_cr_real(r, g, "mass", "disc mass, kg; or give radius + density + thickness", 0.0, TD_CR_POSITIVE,
-                        &d.mass);
+        st =
+            td_cr_real(r, g, "mass", "disc mass, kg; or give radius + density + thickness", 0.0, TD_CR_FINITE, &d.mass);
         if (st == TD_OK)
-            st = td_cr_real(r, g, "Ip", "polar moment of inertia, kg m^2", 0.0, TD_CR_NONNEGATIVE, &d.Ip);
+            st = td_cr_real(r, g, "Ip", "polar moment of inertia, kg m^2", 0.0, TD_CR_FINITE, &d.Ip);
         if (st == TD_OK)
-            st = td_cr_real(r, g, "Id", "diametral moment of inertia, kg m^2", 0.0, TD_CR_NONNEGATIVE, &d.Id);
+            st = td_cr_real(r, g, "Id", "diametral moment of inertia, kg m^2", 0.0, TD_CR_FINITE, &d.Id);
     }
     if (st != TD_OK)
         return st;
@@ -111,7 +109,7 @@ static td_status read_point_mass(td_case_reader *r, const config_setting_t *g)
     if (st == TD_OK)
         st = td_cr_node(r, g, "node", "node the mass sits on", 0, &node);
     if (st == TD_OK)
-        st = td_cr_real(r, g, "mass", "mass, kg", 0.0, TD_CR_POSITIVE, &mass);
+        st = td_cr_real(r, g, "mass", "mass, kg", 0.0, TD_CR_FINITE, &mass);
     if (st != TD_OK)
         return st;
     st = td_model_add_point_mass(r->c->model, node, mass, &merr);
@@ -128,7 +126,7 @@ static td_status read_amb_lag(td_case_reader *r, const config_setting_t *g, doub
     if (t && bw)
         return td_cr_fail(r, bw, NULL, "give either tau or bandwidth, not both");
     if (t)
-        return td_cr_value_real(r, t, TD_CR_NONNEGATIVE, tau);
+        return td_cr_value_real(r, t, TD_CR_FINITE, tau);
     if (!bw)
         return td_cr_missing(r, g, "bandwidth", "force bandwidth, Hz; or give the time constant tau, s");
     st = td_cr_value_real(r, bw, TD_CR_POSITIVE, &hz);
@@ -157,7 +155,7 @@ static td_status read_amb(td_case_reader *r, const config_setting_t *g)
     if (st == TD_OK)
         st = read_amb_lag(r, g, &a.tau);
     if (st == TD_OK)
-        st = td_cr_real(r, g, "force_capacity", "force capacity per axis, N", 0.0, TD_CR_POSITIVE, &a.force_capacity);
+        st = td_cr_real(r, g, "force_capacity", "force capacity per axis, N", 0.0, TD_CR_FINITE, &a.force_capacity);
     if (st == TD_OK)
         st = td_cr_bool(r, g, "saturation", 0, &a.saturation);
     a.air_gap = 0.0; /* absent: unknown, no retainer check */
@@ -177,13 +175,13 @@ static td_status read_bearing(td_case_reader *r, const config_setting_t *g)
     if (st == TD_OK)
         st = td_cr_node(r, g, "node", "bearing node", 0, &b.node);
     if (st == TD_OK)
-        st = td_cr_real(r, g, "kxx", "stiffness along x, N/m", 0.0, TD_CR_NONNEGATIVE, &b.kxx);
+        st = td_cr_real(r, g, "kxx", "stiffness along x, N/m", 0.0, TD_CR_FINITE, &b.kxx);
     if (st == TD_OK)
-        st = td_cr_real(r, g, "kyy", NULL, b.kxx, TD_CR_NONNEGATIVE, &b.kyy);
+        st = td_cr_real(r, g, "kyy", NULL, b.kxx, TD_CR_FINITE, &b.kyy);
     if (st == TD_OK)
-        st = td_cr_real(r, g, "cxx", NULL, 0.0, TD_CR_NONNEGATIVE, &b.cxx);
+        st = td_cr_real(r, g, "cxx", NULL, 0.0, TD_CR_FINITE, &b.cxx);
     if (st == TD_OK)
-        st = td_cr_real(r, g, "cyy", NULL, b.cxx, TD_CR_NONNEGATIVE, &b.cyy);
+        st = td_cr_real(r, g, "cyy", NULL, b.cxx, TD_CR_FINITE, &b.cyy);
     if (st != TD_OK)
         return st;
     st = td_model_add_bearing(r->c->model, &b, &merr);
@@ -198,18 +196,17 @@ static td_status read_retainer(td_case_reader *r, const config_setting_t *g)
     if (st == TD_OK)
         st = td_cr_node(r, g, "node", "retainer node", 0, &ret.node);
     if (st == TD_OK)
-        st = td_cr_real(r, g, "clearance", "radial clearance, m", 0.0, TD_CR_POSITIVE, &ret.clearance);
+        st = td_cr_real(r, g, "clearance", "radial clearance, m", 0.0, TD_CR_FINITE, &ret.clearance);
     if (st == TD_OK)
-        st =
-            td_cr_real(r, g, "shaft_radius", "shaft radius at the retainer, m", 0.0, TD_CR_POSITIVE, &ret.shaft_radius);
+        st = td_cr_real(r, g, "shaft_radius", "shaft radius at the retainer, m", 0.0, TD_CR_FINITE, &ret.shaft_radius);
     if (st == TD_OK)
-        st = td_cr_real(r, g, "bore_radius", NULL, ret.shaft_radius + ret.clearance, TD_CR_POSITIVE, &ret.bore_radius);
+        st = td_cr_real(r, g, "bore_radius", NULL, ret.shaft_radius + ret.clearance, TD_CR_FINITE, &ret.bore_radius);
     if (st == TD_OK)
-        st = td_cr_real(r, g, "friction", "Coulomb friction coefficient", 0.0, TD_CR_NONNEGATIVE, &ret.friction);
+        st = td_cr_real(r, g, "friction", "Coulomb friction coefficient", 0.0, TD_CR_FINITE, &ret.friction);
     if (st == TD_OK)
         st = td_cr_real(r, g, "bore_speed", NULL, 0.0, TD_CR_FINITE, &ret.bore_speed);
     if (st == TD_OK)
-        st = td_cr_real(r, g, "restitution", NULL, 0.0, TD_CR_FRACTION, &ret.restitution);
+        st = td_cr_real(r, g, "restitution", NULL, 0.0, TD_CR_FINITE, &ret.restitution);
     if (st != TD_OK)
         return st;
     st = td_model_add_retainer(r->c->model, &ret, &merr);
@@ -224,7 +221,7 @@ static td_status read_unbalance(td_case_reader *r, const config_setting_t *g)
     if (st == TD_OK)
         st = td_cr_node(r, g, "node", "unbalance node", 0, &u.node);
     if (st == TD_OK)
-        st = td_cr_real(r, g, "magnitude", "unbalance U, kg m", 0.0, TD_CR_NONNEGATIVE, &u.magnitude);
+        st = td_cr_real(r, g, "magnitude", "unbalance U, kg m", 0.0, TD_CR_FINITE, &u.magnitude);
     if (st == TD_OK)
         st = td_cr_real(r, g, "phase", NULL, 0.0, TD_CR_FINITE, &u.phase);
     if (st != TD_OK)
@@ -245,7 +242,7 @@ static td_status read_change(td_case_reader *r, const config_setting_t *g)
     int k;
     td_status st = td_cr_check_keys(r, g, change_keys);
     if (st == TD_OK)
-        st = td_cr_real(r, g, "time", "time of the change, s", 0.0, TD_CR_NONNEGATIVE, &c.time);
+        st = td_cr_real(r, g, "time", "time of the change, s", 0.0, TD_CR_FINITE, &c.time);
     if (st != TD_OK)
         return st;
     for (k = 0, kind = NULL; kinds[k]; k++) {
@@ -268,7 +265,7 @@ static td_status read_change(td_case_reader *r, const config_setting_t *g)
             return st;
         u.phase = 0.0; /* unbalance c.index may not exist; td_model_validate says so */
         td_model_get_unbalance(r->c->model, c.index, &u);
-        st = td_cr_real(r, g, "magnitude", "new unbalance U, kg m", 0.0, TD_CR_NONNEGATIVE, &c.magnitude);
+        st = td_cr_real(r, g, "magnitude", "new unbalance U, kg m", 0.0, TD_CR_FINITE, &c.magnitude);
         if (st == TD_OK)
             st = td_cr_real(r, g, "phase", NULL, u.phase, TD_CR_FINITE, &c.phase);
     } else {

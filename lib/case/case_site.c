@@ -26,6 +26,10 @@ static const config_setting_t *field_setting(const config_setting_t *g, const td
             s = config_setting_get_member(g, change_kinds[k]);
     else if (strcmp(site->part, "amb") == 0 && strcmp(site->field, "tau") == 0 && !td_cr_has(g, "tau"))
         s = config_setting_get_member(g, "bandwidth"); /* tau = 1 / (2 pi bandwidth) */
+    else if (strcmp(site->part, "disc") == 0 && strcmp(site->field, "outer_radius") == 0)
+        s = config_setting_get_member(g, "radius"); /* td_disc_geometry */
+    else if (strcmp(site->part, "disc") == 0 && strcmp(site->field, "inner_radius") == 0)
+        s = config_setting_get_member(g, "bore_radius");
     else
         s = config_setting_lookup((config_setting_t *)g, site->field); /* "material.E" is a path */
     return s ? s : g;

@@ -51,7 +51,7 @@ static const td_error_site no_site = {NULL, 0, NULL};
 /* TD_OK when ok; else fail naming the field and the rule its value breaks. */
 static td_status need(int ok, td_error *err, const char *part, int index, const char *field, const char *rule, double v)
 {
-    return ok ? TD_OK : FAIL_AT(err, part, index, field, "must be %s (got %g)", rule, v);
+    return ok ? TD_OK : FAIL_AT(err, part, index, field, "must %s (got %g)", rule, v);
 }
 
 /* A node number of a part being added: at least 0 (the upper bound waits for td_model_validate). */
@@ -60,8 +60,8 @@ static td_status need_node(td_error *err, const char *part, int index, const cha
     return node >= 0 ? TD_OK : FAIL_AT(err, part, index, field, "must be >= 0 (got %d)", node);
 }
 
-#define POS "finite and > 0"
-#define NONNEG "finite and >= 0"
+#define POS "be > 0"
+#define NONNEG "be >= 0"
 
 td_status td_model_create(td_model **out, td_error *err)
 {
@@ -259,14 +259,21 @@ td_status td_disc_from_geometry(const td_disc_geometry *g, td_disc *out, td_erro
     double R2, r2, area, t;
     if (!g || !out)
         return td_error_set(err, TD_ERR_INVALID, "disc geometry: NULL argument");
-    if (!finite_positive(g->outer_radius) || !finite_positive(g->density))
-        return td_error_set(err, TD_ERR_INVALID, "disc geometry: outer radius and density must be finite and > 0");
+    /* index -1: a disc not in a model */
+    if (need(finite_positive(g->outer_radius), err, "disc", -1, "outer_radius", POS, g->outer_radius) ||
+        need(finite_positive(g->density), err, "disc", -1, "density", POS, g->density))
+        return TD_ERR_INVALID;
     if (!finite_nonnegative(g->inner_radius) || g->inner_radius >= g->outer_radius)
-        return td_error_set(err, TD_ERR_INVALID,
-                            "disc geometry: inner radius must be >= 0 and smaller than the outer radius");
-    if (!finite_nonnegative(g->thickness) || !finite_nonnegative(g->mass) || (g->thickness > 0.0) == (g->mass > 0.0))
-        return td_error_set(err, TD_ERR_INVALID,
-                            "disc geometry: give either the thickness or the mass (> 0), not both");
+        return FAIL_AT(err, "disc", -1, "inner_radius",
+                       "the inner radius %g m must be >= 0 and smaller than the outer radius %g m", g->inner_radius,
+                       g->outer_radius);
+    if (need(finite_nonnegative(g->thickness), err, "disc", -1, "thickness", NONNEG, g->thickness) ||
+        need(finite_nonnegative(g->mass), err, "disc", -1, "mass", NONNEG, g->mass))
+        return TD_ERR_INVALID;
+    if (g->thickness > 0.0 && g->mass > 0.0)
+        return FAIL_AT(err, "disc", -1, "mass", "give either the thickness or the mass, not both");
+    if (g->thickness == 0.0 && g->mass == 0.0)
+        return FAIL_AT(err, "disc", -1, "thickness", "give either the thickness or the mass (> 0)");
     R2 = g->outer_radius * g->outer_radius;
     r2 = g->inner_radius * g->inner_radius;
     area = TD_PI * (R2 - r2);
@@ -295,10 +302,10 @@ td_status td_model_add_amb(td_model *m, const td_amb *amb, td_error *err)
         return td_error_set(err, TD_ERR_INVALID, "amb: NULL argument");
     i = m->ambs.count;
     if (need_node(err, "amb", i, "node", amb->node) || need_node(err, "amb", i, "sensor_node", amb->sensor_node) ||
-        need(isfinite(amb->ks), err, "amb", i, "ks", "finite", amb->ks) ||
-        need(isfinite(amb->ki), err, "amb", i, "ki", "finite", amb->ki) ||
-        need(isfinite(amb->kp), err, "amb", i, "kp", "finite", amb->kp) ||
-        need(isfinite(amb->kd), err, "amb", i, "kd", "finite", amb->kd) ||
+        need(isfinite(amb->ks), err, "amb", i, "ks", "be finite", amb->ks) ||
+        need(isfinite(amb->ki), err, "amb", i, "ki", "be finite", amb->ki) ||
+        need(isfinite(amb->kp), err, "amb", i, "kp", "be finite", amb->kp) ||
+        need(isfinite(amb->kd), err, "amb", i, "kd", "be finite", amb->kd) ||
         need(finite_nonnegative(amb->tau), err, "amb", i, "tau", NONNEG, amb->tau) ||
         need(finite_positive(amb->force_capacity), err, "amb", i, "force_capacity", POS, amb->force_capacity) ||
         need(finite_nonnegative(amb->air_gap), err, "amb", i, "air_gap", NONNEG, amb->air_gap))
@@ -338,9 +345,9 @@ td_status td_model_add_retainer(td_model *m, const td_retainer *r, td_error *err
                        "the bore radius must equal shaft_radius + clearance = %.9g m (got %.9g m)",
                        r->shaft_radius + r->clearance, r->bore_radius);
     if (need(finite_nonnegative(r->friction), err, "retainer", i, "friction", NONNEG, r->friction) ||
-        need(isfinite(r->bore_speed), err, "retainer", i, "bore_speed", "finite", r->bore_speed) ||
+        need(isfinite(r->bore_speed), err, "retainer", i, "bore_speed", "be finite", r->bore_speed) ||
         need(isfinite(r->restitution) && r->restitution >= 0.0 && r->restitution <= 1.0, err, "retainer", i,
-             "restitution", "in [0, 1]", r->restitution))
+             "restitution", "lie in [0, 1]", r->restitution))
         return TD_ERR_INVALID;
     return APPEND(m->retainers, r, err);
 }
@@ -353,7 +360,7 @@ td_status td_model_add_unbalance(td_model *m, const td_unbalance *u, td_error *e
     i = m->unbalances.count;
     if (need_node(err, "unbalance", i, "node", u->node) ||
         need(finite_nonnegative(u->magnitude), err, "unbalance", i, "magnitude", NONNEG, u->magnitude) ||
-        need(isfinite(u->phase), err, "unbalance", i, "phase", "finite", u->phase))
+        need(isfinite(u->phase), err, "unbalance", i, "phase", "be finite", u->phase))
         return TD_ERR_INVALID;
     return APPEND(m->unbalances, u, err);
 }
@@ -373,7 +380,7 @@ td_status td_model_add_change(td_model *m, const td_change *c, td_error *err)
         return TD_ERR_INVALID;
     if (c->kind == TD_CHANGE_UNBALANCE &&
         (need(finite_nonnegative(c->magnitude), err, "change", i, "magnitude", NONNEG, c->magnitude) ||
-         need(isfinite(c->phase), err, "change", i, "phase", "finite", c->phase)))
+         need(isfinite(c->phase), err, "change", i, "phase", "be finite", c->phase)))
         return TD_ERR_INVALID;
     st = APPEND(m->changes, c, err);
     if (st != TD_OK)

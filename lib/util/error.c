@@ -58,13 +58,17 @@ td_status td_error_set_site(td_error *err, td_status code, const td_error_site *
 {
     if (err) {
         va_list ap;
+        char part[64];
         int n;
         err->code = code;
         err->site = *site;
         err->other = *other;
-        n = site->field
-                ? snprintf(err->message, sizeof err->message, "%s %d: %s: ", site->part, site->index, site->field)
-                : snprintf(err->message, sizeof err->message, "%s %d: ", site->part, site->index);
+        if (site->index >= 0)
+            snprintf(part, sizeof part, "%s %d", site->part, site->index);
+        else
+            snprintf(part, sizeof part, "%s", site->part); /* not in a model */
+        n = site->field ? snprintf(err->message, sizeof err->message, "%s: %s: ", part, site->field)
+                        : snprintf(err->message, sizeof err->message, "%s: ", part);
         err->reason = n > 0 && n < (int)sizeof err->message ? n : 0;
         va_start(ap, fmt);
         vsnprintf(err->message + err->reason, sizeof err->message - (size_t)err->reason, fmt, ap);
