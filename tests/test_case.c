@@ -764,6 +764,51 @@ static void test_bad_overrides(void **state)
     }
 }
 
+/* The model's rules are checked by the model alone; its error names part, index and field, and
+ * the reader reports the setting they came from: "FILE:LINE: KEY: reason", and for a cross check
+ * where the other part is. */
+static void expect_located(const char *relative, const char *const *ov, int n, const char *where, const char *tail)
+{
+    td_case *c = NULL;
+    td_error err;
+    size_t len;
+    assert_int_equal(td_case_load(td_source_path(relative), ov, n, &c, &err), TD_ERR_PARSE);
+    assert_null(c);
+    assert_contains(err.message, where);
+    len = strlen(err.message);
+    if (len < strlen(tail) || strcmp(err.message + len - strlen(tail), tail) != 0) {
+        print_error("message \"%s\" does not end with \"%s\"\n", err.message, tail);
+        fail();
+    }
+}
+
+static void test_model_rules_located(void **state)
+{
+    static const char *const late_bad[] = {"schedule[1].time=0.05", "schedule[1].unbalance=4"};
+    static const char *const mass_node[] = {"point_masses[1].node=40"};
+    (void)state;
+    expect_located("tests/data/bad/retainer-bore-mismatch.cfg", NULL, 0,
+                   "retainer-bore-mismatch.cfg:6: retainers[0].bore_radius: ",
+                   ": the bore radius must equal shaft_radius + clearance = 0.02575 m (got 0.026 m)");
+    expect_located("tests/data/bad/retainer-clearance-ge-airgap.cfg", NULL, 0,
+                   "retainer-clearance-ge-airgap.cfg:8: retainers[0].clearance: clearance 0.0012 m is not smaller "
+                   "than the air gap 0.0012 m of amb 0; see ambs[0].air_gap at ",
+                   "retainer-clearance-ge-airgap.cfg:5");
+    expect_located("tests/data/bad/retainer-duplicate-node.cfg", NULL, 0,
+                   "retainer-duplicate-node.cfg:6: retainers[1].node: node 2 already has a retainer (retainer 0); "
+                   "see retainers[0].node at ",
+                   "retainer-duplicate-node.cfg:5");
+    expect_located("tests/data/bad/amb-duplicate-node.cfg", NULL, 0,
+                   "amb-duplicate-node.cfg:6: ambs[1].node: node 3 already has an AMB (amb 0); see ambs[0].node at ",
+                   "amb-duplicate-node.cfg:5");
+    /* the model keeps its changes in time order: change 0 is the schedule's second entry */
+    expect_located("cases/paper-a.cfg", late_bad, 2, "--set 'schedule[1].unbalance=4': schedule[1].unbalance: ",
+                   "unbalance 4 does not exist (1 defined, indices start at 0; the change at t = 0.05 s)");
+    /* the model's discs are the discs, then the point masses */
+    expect_located("cases/paper-a.cfg", mass_node, 1, "--set 'point_masses[1].node=40': point_masses[1].node: ",
+                   "node 40 is out of range (the shaft has nodes 0..12)");
+}
+
 /* ---- broken files ------------------------------------------------------------------------- */
 
 typedef struct bad_file {
@@ -1306,6 +1351,7 @@ int main(void)
         cmocka_unit_test(test_overrides),
         cmocka_unit_test(test_bad_overrides),
         cmocka_unit_test(test_bad_files),
+        cmocka_unit_test(test_model_rules_located),
         cmocka_unit_test(test_unreadable_paths),
         cmocka_unit_test(test_bad_includes),
         cmocka_unit_test(test_include_bounds),

@@ -73,6 +73,82 @@ static void test_validate_cross_references(void **state)
     td_model_free(&m);
 }
 
+/* The model's errors name the part, its index and the field at fault (and, for a cross check,
+ * the part compared against); the message is "PART INDEX: FIELD: REASON", REASON at `reason`. */
+static void assert_site(const td_error_site *site, const char *part, int index, const char *field)
+{
+    assert_non_null(site->part);
+    assert_string_equal(site->part, part);
+    assert_int_equal(site->index, index);
+    if (field) {
+        assert_non_null(site->field);
+        assert_string_equal(site->field, field);
+    } else {
+        assert_null(site->field);
+    }
+}
+
+static void test_errors_name_part_index_field(void **state)
+{
+    td_model *m = uniform_shaft(2), *fine = NULL;
+    td_error err;
+    td_amb amb = {1, 1, 1e6, 200, 1e4, 40, 1.0 / (2 * TD_PI * 100), 1700, 0, 0.5e-3};
+    td_retainer r = {0, 0.25e-3, 0.025, 0.02525, 0.1, 0.0, 0.0};
+    td_change c = {0.5, TD_CHANGE_AMB_OFF, 3, 0.0, 0.0};
+    td_change early = {0.1, TD_CHANGE_AMB_OFF, 0, 0.0, 0.0};
+    (void)state;
+    /* a value check of td_model_add_*: the index the part would have had */
+    assert_int_equal(td_model_add_retainer(m, &r, NULL), TD_OK);
+    r.bore_radius = 0.03;
+    assert_int_equal(td_model_add_retainer(m, &r, &err), TD_ERR_INVALID);
+    assert_site(&err.site, "retainer", 1, "bore_radius");
+    assert_null(err.other.part);
+    assert_true(strncmp(err.message, "retainer 1: bore_radius: ", 25) == 0);
+    assert_int_equal(err.reason, 25);
+    assert_non_null(strstr(err.message + err.reason, "shaft_radius + clearance"));
+    assert_int_equal(td_model_add_shaft_element(m, &(td_shaft_element){0.1, 0.05, 0.0, {-1.0, 8.1e10, 7810.0}}, &err),
+                     TD_ERR_INVALID);
+    assert_site(&err.site, "element", 2, "material.E");
+
+    /* cross checks of td_model_validate: the part at fault and the one it was compared with */
+    r.bore_radius = 0.02525; /* a second retainer on node 0 */
+    assert_int_equal(td_model_add_retainer(m, &r, NULL), TD_OK);
+    assert_int_equal(td_model_validate(m, &err), TD_ERR_INVALID);
+    assert_site(&err.site, "retainer", 1, "node");
+    assert_site(&err.other, "retainer", 0, "node");
+    assert_string_equal(err.message + err.reason, "node 0 already has a retainer (retainer 0)");
+    td_model_free(&m);
+
+    m = uniform_shaft(2);
+    amb.air_gap = 0.2e-3;
+    assert_int_equal(td_model_add_amb(m, &amb, NULL), TD_OK);
+    assert_int_equal(td_model_add_retainer(m, &r, NULL), TD_OK);
+    assert_int_equal(td_model_validate(m, &err), TD_ERR_INVALID);
+    assert_site(&err.site, "retainer", 0, "clearance");
+    assert_site(&err.other, "amb", 0, "air_gap");
+    assert_true(strncmp(err.message, "retainer 0: clearance: ", 23) == 0);
+
+    /* a change is numbered as td_model_get_change numbers it: in time order */
+    amb.air_gap = 0.0;
+    td_model_free(&m);
+    m = uniform_shaft(2);
+    assert_int_equal(td_model_add_amb(m, &amb, NULL), TD_OK);
+    assert_int_equal(td_model_add_change(m, &c, NULL), TD_OK);
+    assert_int_equal(td_model_add_change(m, &early, NULL), TD_OK);
+    assert_int_equal(td_model_validate(m, &err), TD_ERR_INVALID);
+    assert_site(&err.site, "change", 1, "index");
+    assert_non_null(strstr(err.message, "AMB 3 does not exist"));
+
+    /* an error about no part leaves the sites empty */
+    assert_int_equal(td_model_refine(m, 0, &fine, &err), TD_ERR_INVALID);
+    assert_null(err.site.part);
+    assert_null(err.other.part);
+    assert_int_equal(err.reason, 0);
+    td_error_clear(&err);
+    assert_null(err.site.part);
+    td_model_free(&m);
+}
+
 static void test_schedule_sorted_and_clone(void **state)
 {
     td_model *m = uniform_shaft(2), *c = NULL;
@@ -209,6 +285,8 @@ static void test_disc_from_geometry(void **state)
     rig.inner_radius = 0.12;
     assert_int_equal(td_disc_from_geometry(&rig, &d, &err), TD_ERR_INVALID);
     assert_non_null(strstr(err.message, "inner radius"));
+    assert_string_equal(err.site.field, "inner_radius"); /* a disc in no model: index -1 */
+    assert_int_equal(err.site.index, -1);
     rig.inner_radius = 0.0;
     rig.density = NAN;
     assert_int_equal(td_disc_from_geometry(&rig, &d, &err), TD_ERR_INVALID);
@@ -274,7 +352,7 @@ int main(void)
         cmocka_unit_test(test_counts_and_mass),           cmocka_unit_test(test_rejects_bad_parts),
         cmocka_unit_test(test_validate_cross_references), cmocka_unit_test(test_schedule_sorted_and_clone),
         cmocka_unit_test(test_refine_keeps_the_machine),  cmocka_unit_test(test_refine_is_the_fine_mesh),
-        cmocka_unit_test(test_disc_from_geometry),
+        cmocka_unit_test(test_disc_from_geometry),        cmocka_unit_test(test_errors_name_part_index_field),
     };
     return cmocka_run_group_tests_name("model", tests, NULL, NULL);
 }

@@ -31,13 +31,37 @@ typedef enum td_status {
 #define TD_ERROR_MESSAGE_SIZE 512
 
 /**
+ * A place in a model: a part, its index and one of its fields. `part` and `field` are static
+ * strings: the part as td_model_add_* names it ("element", "disc", "amb", "bearing", "retainer",
+ * "unbalance", "change") and the member of its struct ("clearance", "bore_radius",
+ * "material.E", ...). `index` numbers the part as td_model_get_* does; a td_model_add_* call
+ * that fails gives the index the part would have had (the number of such parts before it);
+ * td_disc_from_geometry, whose disc is in no model yet, gives -1 and the message "disc: FIELD: ...".
+ */
+typedef struct td_error_site {
+    const char *part;  /**< NULL: the error is not about one part */
+    int index;         /**< index of the part, in the numbering of td_model_get_*; -1: in no model */
+    const char *field; /**< NULL: the part as a whole */
+} td_error_site;
+
+/**
  * Error record: the status and a one-line message saying what went wrong and where
  * (for case files: "FILE:LINE: KEY: what is wrong"). Owned by the caller; a NULL
  * td_error pointer is accepted everywhere and means "not interested".
+ *
+ * The model's checks (td_model_add_*, td_model_validate) also say where the fault is: `site`
+ * names the part, index and field at fault, and the message reads "PART INDEX: FIELD: REASON"
+ * ("PART INDEX: REASON" without a field), REASON starting at message + reason. A cross check
+ * names the part it compared against in `other` (the AMB whose air gap a retainer's clearance
+ * exceeds, the retainer already on a node). Every other error leaves both parts NULL and
+ * reason 0.
  */
 typedef struct td_error {
     td_status code;
     char message[TD_ERROR_MESSAGE_SIZE];
+    td_error_site site;  /**< the part, index and field at fault; part NULL when none */
+    td_error_site other; /**< the part a cross check compared against; part NULL when none */
+    int reason;          /**< offset in message of the reason, past "PART INDEX: FIELD: " */
 } td_error;
 
 /** Static, never-NULL description of a status code. */

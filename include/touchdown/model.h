@@ -173,7 +173,12 @@ TD_API td_status td_model_set_speed(td_model *m, double omega, td_error *err);
 /** Gravity acceleration vector in the x-y plane, m/s^2 (e.g. 0, -9.81); both 0: off. */
 TD_API td_status td_model_set_gravity(td_model *m, double gx, double gy, td_error *err);
 
-/** Check cross-references (nodes in range, retainer tighter than its AMB air gap, ...). */
+/**
+ * Check cross-references (nodes in range, one AMB and one retainer per node, retainers tighter
+ * than every AMB air gap, schedule indices). Like every td_model_add_* check, a failure names the
+ * part, index and field at fault in err->site, and the part compared against in err->other
+ * (touchdown/error.h).
+ */
 TD_API td_status td_model_validate(const td_model *m, td_error *err);
 
 /* Read access. Getters return counts; td_model_get_* copy item i into *out (TD_ERR_INVALID if out of range). */

@@ -188,9 +188,10 @@ static td_status read_case(td_case_reader *r)
         st = td_cr_read_parts(r, root);
     if (st == TD_OK)
         st = td_cr_read_options(r, root);
-    /* everything td_model_validate checks was checked above with locations; this is a backstop */
+    /* the model's cross checks (nodes on the shaft, one AMB and one retainer per node, retainers
+     * tighter than the air gaps, schedule indices), reported at the settings they name */
     if (st == TD_OK && td_model_validate(r->c->model, &merr) != TD_OK)
-        st = td_cr_fail_file(r->err, TD_ERR_PARSE, r->path_shown, 0, "%s", merr.message);
+        st = td_cr_validate_fail(r, &merr);
     if (st == TD_OK)
         st = apply_refine(r);
     return st;

@@ -56,9 +56,8 @@ typedef struct td_case_reader {
     int has_dir;      /* path names a directory: included files are shown as dir/name */
     td_error *err;
     td_case *c;
-    int nodes;                    /* shaft node count as written in the case, once the shaft is read */
-    int refine;                   /* shaft.refine: every element split this many times after reading */
-    const config_setting_t *ambs; /* the "ambs" list (entry i is AMB i), or NULL */
+    int nodes;  /* shaft node count as written in the case, once the shaft is read */
+    int refine; /* shaft.refine: every element split this many times after reading */
     td_cr_wrap_site *wraps;
     int wrap_count, wrap_cap;
     int includes; /* @include files expanded so far (limit TD_CASE_MAX_INCLUDES) */
@@ -117,8 +116,6 @@ td_status td_cr_fail_file(td_error *err, td_status code, const char *shown, int 
 /* A quantity derived from setting s (`what`, e.g. "the time constant tau = 1 / (2 pi bandwidth)"):
  * fail naming s when it overflowed to infinity or is NaN. */
 td_status td_cr_derived(td_case_reader *r, const config_setting_t *s, double value, const char *what);
-/* Re-word an error of a td_model_* call with the location of the setting it came from. */
-td_status td_cr_model_fail(td_case_reader *r, const config_setting_t *s, td_status st, const td_error *merr);
 /* Reject members of group g whose names are not in the NULL-terminated `allowed`. */
 td_status td_cr_check_keys(td_case_reader *r, const config_setting_t *g, const char *const *allowed);
 /* 1 if group g has member `key`. */
@@ -133,6 +130,7 @@ td_status td_cr_real(td_case_reader *r, const config_setting_t *g, const char *k
                      td_cr_range range, double *out);
 td_status td_cr_int(td_case_reader *r, const config_setting_t *g, const char *key, const char *what, int def, long lo,
                     long hi, int *out);
+/* A part's node number: an int; the model checks that the shaft has it. */
 td_status td_cr_node(td_case_reader *r, const config_setting_t *g, const char *key, const char *what, int def,
                      int *out);
 td_status td_cr_bool(td_case_reader *r, const config_setting_t *g, const char *key, int def, int *out);
@@ -152,6 +150,15 @@ td_status td_cr_reals(td_case_reader *r, const config_setting_t *g, const char *
                       double *out, int *n);
 td_status td_cr_ints(td_case_reader *r, const config_setting_t *g, const char *key, int max, long lo, long hi, int *out,
                      int *n);
+
+/* ---- model errors located (case_site.c) --------------------------------------------------- */
+/* Re-word an error of a td_model_* call made for entry (or group) g with the location of the
+ * setting it came from: the member of g named by the error's field (touchdown/error.h), else g. */
+td_status td_cr_model_fail(td_case_reader *r, const config_setting_t *g, td_status st, const td_error *merr);
+/* Re-word an error of td_model_validate on the model read from the case: the part, index and
+ * field it names become the setting they were read from, a part it compared against is named
+ * with its location; "FILE: message" when it names no part of the case. */
+td_status td_cr_validate_fail(td_case_reader *r, const td_error *merr);
 
 /* ---- overrides (case_override.c) --------------------------------------------------------- */
 /* Apply one "KEY=VALUE" string to the parsed configuration. */

@@ -1,8 +1,11 @@
 /*
  * The machine's parts: discs, point masses, AMBs, plain bearings, retainers, unbalances and the
- * schedule of timed changes. Each list entry becomes one td_model_add_* call; the cross-checks
- * td_model_validate would make (nodes in range, one AMB / retainer per node, retainer tighter
- * than every AMB air gap, schedule indices) are made here first so that they name the setting.
+ * schedule of timed changes. Each list entry becomes one td_model_add_* call. The model's rules
+ * (value ranges, bore = shaft radius + clearance, nodes on the shaft, one AMB / retainer per
+ * node, retainers tighter than the air gaps, schedule indices) are checked by the model alone:
+ * its errors name part, index and field, which case_site.c turns back into the setting. The
+ * reader checks what is about the file: types, missing and unknown keys, the forms a part may
+ * take, units (bandwidth to tau) and the AMB gains' signs, which the model leaves free.
  */
 #include "case/case_internal.h"
 #include "util/error_internal.h"
@@ -44,22 +47,18 @@ static td_status read_disc_geometry(td_case_reader *r, const config_setting_t *g
     td_status st;
     memset(&geo, 0, sizeof geo);
     geo.node = d->node;
-    if (t && m)
-        return td_cr_fail(r, m, NULL, "give either thickness or mass with radius + density, not both");
-    st = td_cr_real(r, g, "radius", "outer radius, m", 0.0, TD_CR_POSITIVE, &geo.outer_radius);
+    st = td_cr_real(r, g, "radius", "outer radius, m", 0.0, TD_CR_FINITE, &geo.outer_radius);
     if (st == TD_OK)
-        st = td_cr_real(r, g, "density", "density, kg/m^3", 0.0, TD_CR_POSITIVE, &geo.density);
+        st = td_cr_real(r, g, "density", "density, kg/m^3", 0.0, TD_CR_FINITE, &geo.density);
     if (st == TD_OK)
-        st = td_cr_real(r, g, "bore_radius", NULL, 0.0, TD_CR_NONNEGATIVE, &geo.inner_radius);
+        st = td_cr_real(r, g, "bore_radius", NULL, 0.0, TD_CR_FINITE, &geo.inner_radius);
+    /* 0 stands for "not given" in td_disc_geometry: a value written in the file must be > 0 */
     if (st == TD_OK && m)
         st = td_cr_value_real(r, m, TD_CR_POSITIVE, &geo.mass);
-    else if (st == TD_OK)
+    if (st == TD_OK && (t || !m))
         st = td_cr_real(r, g, "thickness", "axial thickness, m; or the mass, kg", 0.0, TD_CR_POSITIVE, &geo.thickness);
     if (st != TD_OK)
         return st;
-    if (geo.inner_radius >= geo.outer_radius)
-        return td_cr_fail(r, config_setting_get_member(g, "bore_radius"), NULL,
-                          "must be smaller than the radius %g m (got %g m)", geo.outer_radius, geo.inner_radius);
     st = td_disc_from_geometry(&geo, d, &merr);
     if (st != TD_OK)
         return td_cr_model_fail(r, g, st, &merr);
@@ -88,12 +87,12 @@ static td_status read_disc(td_case_reader *r, const config_setting_t *g)
     if (geo) {
         st = read_disc_geometry(r, g, &d);
     } else {
-        st = td_cr_real(r, g, "mass", "disc mass, kg; or give radius + density + thickness", 0.0, TD_CR_POSITIVE,
-                        &d.mass);
+        st =
+            td_cr_real(r, g, "mass", "disc mass, kg; or give radius + density + thickness", 0.0, TD_CR_FINITE, &d.mass);
         if (st == TD_OK)
-            st = td_cr_real(r, g, "Ip", "polar moment of inertia, kg m^2", 0.0, TD_CR_NONNEGATIVE, &d.Ip);
+            st = td_cr_real(r, g, "Ip", "polar moment of inertia, kg m^2", 0.0, TD_CR_FINITE, &d.Ip);
         if (st == TD_OK)
-            st = td_cr_real(r, g, "Id", "diametral moment of inertia, kg m^2", 0.0, TD_CR_NONNEGATIVE, &d.Id);
+            st = td_cr_real(r, g, "Id", "diametral moment of inertia, kg m^2", 0.0, TD_CR_FINITE, &d.Id);
     }
     if (st != TD_OK)
         return st;
@@ -110,7 +109,7 @@ static td_status read_point_mass(td_case_reader *r, const config_setting_t *g)
     if (st == TD_OK)
         st = td_cr_node(r, g, "node", "node the mass sits on", 0, &node);
     if (st == TD_OK)
-        st = td_cr_real(r, g, "mass", "mass, kg", 0.0, TD_CR_POSITIVE, &mass);
+        st = td_cr_real(r, g, "mass", "mass, kg", 0.0, TD_CR_FINITE, &mass);
     if (st != TD_OK)
         return st;
     st = td_model_add_point_mass(r->c->model, node, mass, &merr);
@@ -127,7 +126,7 @@ static td_status read_amb_lag(td_case_reader *r, const config_setting_t *g, doub
     if (t && bw)
         return td_cr_fail(r, bw, NULL, "give either tau or bandwidth, not both");
     if (t)
-        return td_cr_value_real(r, t, TD_CR_NONNEGATIVE, tau);
+        return td_cr_value_real(r, t, TD_CR_FINITE, tau);
     if (!bw)
         return td_cr_missing(r, g, "bandwidth", "force bandwidth, Hz; or give the time constant tau, s");
     st = td_cr_value_real(r, bw, TD_CR_POSITIVE, &hz);
@@ -136,26 +135,11 @@ static td_status read_amb_lag(td_case_reader *r, const config_setting_t *g, doub
     return st == TD_OK ? td_cr_derived(r, bw, *tau, "the time constant tau = 1 / (2 pi bandwidth)") : st;
 }
 
-/* Entry g of `list` (the list named `key`) is on `node`, where its entry j already put `part`:
- * one part of this kind per node. */
-static td_status fail_node_taken(td_case_reader *r, const config_setting_t *g, const config_setting_t *list, int j,
-                                 int node, const char *part, const char *key)
+static td_status read_amb(td_case_reader *r, const config_setting_t *g)
 {
-    char where[1200];
-    td_cr_where(r, config_setting_get_elem(list, (unsigned)j), where, sizeof where);
-    return td_cr_fail(r, config_setting_get_member(g, "node"), NULL, "node %d already has %s (%s[%d], %s)", node, part,
-                      key, j, where);
-}
-
-static td_status read_amb(td_case_reader *r, const config_setting_t *list, int index)
-{
-    const config_setting_t *g;
-    td_amb a, other;
+    td_amb a;
     td_error merr;
-    int j;
-    td_status st = td_cr_entry(r, list, index, &g);
-    if (st == TD_OK)
-        st = td_cr_check_keys(r, g, amb_keys);
+    td_status st = td_cr_check_keys(r, g, amb_keys);
     if (st == TD_OK)
         st = td_cr_node(r, g, "node", "actuator node", 0, &a.node);
     if (st == TD_OK)
@@ -171,7 +155,7 @@ static td_status read_amb(td_case_reader *r, const config_setting_t *list, int i
     if (st == TD_OK)
         st = read_amb_lag(r, g, &a.tau);
     if (st == TD_OK)
-        st = td_cr_real(r, g, "force_capacity", "force capacity per axis, N", 0.0, TD_CR_POSITIVE, &a.force_capacity);
+        st = td_cr_real(r, g, "force_capacity", "force capacity per axis, N", 0.0, TD_CR_FINITE, &a.force_capacity);
     if (st == TD_OK)
         st = td_cr_bool(r, g, "saturation", 0, &a.saturation);
     a.air_gap = 0.0; /* absent: unknown, no retainer check */
@@ -179,11 +163,6 @@ static td_status read_amb(td_case_reader *r, const config_setting_t *list, int i
         st = td_cr_real(r, g, "air_gap", NULL, 0.0, TD_CR_POSITIVE, &a.air_gap);
     if (st != TD_OK)
         return st;
-    for (j = 0; j < index; j++) {
-        td_model_get_amb(r->c->model, j, &other);
-        if (other.node == a.node)
-            return fail_node_taken(r, g, list, j, a.node, "an AMB", "ambs");
-    }
     st = td_model_add_amb(r->c->model, &a, &merr);
     return st == TD_OK ? TD_OK : td_cr_model_fail(r, g, st, &merr);
 }
@@ -196,73 +175,38 @@ static td_status read_bearing(td_case_reader *r, const config_setting_t *g)
     if (st == TD_OK)
         st = td_cr_node(r, g, "node", "bearing node", 0, &b.node);
     if (st == TD_OK)
-        st = td_cr_real(r, g, "kxx", "stiffness along x, N/m", 0.0, TD_CR_NONNEGATIVE, &b.kxx);
+        st = td_cr_real(r, g, "kxx", "stiffness along x, N/m", 0.0, TD_CR_FINITE, &b.kxx);
     if (st == TD_OK)
-        st = td_cr_real(r, g, "kyy", NULL, b.kxx, TD_CR_NONNEGATIVE, &b.kyy);
+        st = td_cr_real(r, g, "kyy", NULL, b.kxx, TD_CR_FINITE, &b.kyy);
     if (st == TD_OK)
-        st = td_cr_real(r, g, "cxx", NULL, 0.0, TD_CR_NONNEGATIVE, &b.cxx);
+        st = td_cr_real(r, g, "cxx", NULL, 0.0, TD_CR_FINITE, &b.cxx);
     if (st == TD_OK)
-        st = td_cr_real(r, g, "cyy", NULL, b.cxx, TD_CR_NONNEGATIVE, &b.cyy);
+        st = td_cr_real(r, g, "cyy", NULL, b.cxx, TD_CR_FINITE, &b.cyy);
     if (st != TD_OK)
         return st;
     st = td_model_add_bearing(r->c->model, &b, &merr);
     return st == TD_OK ? TD_OK : td_cr_model_fail(r, g, st, &merr);
 }
 
-/* A retainer must be tighter than every AMB air gap (or the rotor would hit the stator first). */
-static td_status check_against_ambs(td_case_reader *r, const config_setting_t *g, const td_retainer *ret)
+static td_status read_retainer(td_case_reader *r, const config_setting_t *g)
 {
-    int j;
-    td_amb a;
-    for (j = 0; j < td_model_amb_count(r->c->model); j++) {
-        td_model_get_amb(r->c->model, j, &a);
-        if (a.air_gap > 0.0 && ret->clearance >= a.air_gap) {
-            char where[1200];
-            td_cr_where(r, config_setting_get_elem(r->ambs, (unsigned)j), where, sizeof where);
-            return td_cr_fail(r, config_setting_get_member(g, "clearance"), NULL,
-                              "clearance %g m is not smaller than the air gap %g m of ambs[%d] (%s)", ret->clearance,
-                              a.air_gap, j, where);
-        }
-    }
-    return TD_OK;
-}
-
-static td_status read_retainer(td_case_reader *r, const config_setting_t *list, int index)
-{
-    const config_setting_t *g, *bore;
-    td_retainer ret, other;
+    td_retainer ret;
     td_error merr;
-    int j;
-    td_status st = td_cr_entry(r, list, index, &g);
-    if (st == TD_OK)
-        st = td_cr_check_keys(r, g, retainer_keys);
+    td_status st = td_cr_check_keys(r, g, retainer_keys);
     if (st == TD_OK)
         st = td_cr_node(r, g, "node", "retainer node", 0, &ret.node);
     if (st == TD_OK)
-        st = td_cr_real(r, g, "clearance", "radial clearance, m", 0.0, TD_CR_POSITIVE, &ret.clearance);
+        st = td_cr_real(r, g, "clearance", "radial clearance, m", 0.0, TD_CR_FINITE, &ret.clearance);
     if (st == TD_OK)
-        st =
-            td_cr_real(r, g, "shaft_radius", "shaft radius at the retainer, m", 0.0, TD_CR_POSITIVE, &ret.shaft_radius);
+        st = td_cr_real(r, g, "shaft_radius", "shaft radius at the retainer, m", 0.0, TD_CR_FINITE, &ret.shaft_radius);
     if (st == TD_OK)
-        st = td_cr_real(r, g, "bore_radius", NULL, ret.shaft_radius + ret.clearance, TD_CR_POSITIVE, &ret.bore_radius);
+        st = td_cr_real(r, g, "bore_radius", NULL, ret.shaft_radius + ret.clearance, TD_CR_FINITE, &ret.bore_radius);
     if (st == TD_OK)
-        st = td_cr_real(r, g, "friction", "Coulomb friction coefficient", 0.0, TD_CR_NONNEGATIVE, &ret.friction);
+        st = td_cr_real(r, g, "friction", "Coulomb friction coefficient", 0.0, TD_CR_FINITE, &ret.friction);
     if (st == TD_OK)
         st = td_cr_real(r, g, "bore_speed", NULL, 0.0, TD_CR_FINITE, &ret.bore_speed);
     if (st == TD_OK)
-        st = td_cr_real(r, g, "restitution", NULL, 0.0, TD_CR_FRACTION, &ret.restitution);
-    if (st != TD_OK)
-        return st;
-    bore = config_setting_get_member(g, "bore_radius");
-    if (bore && fabs(ret.bore_radius - ret.shaft_radius - ret.clearance) > 1e-9 * ret.bore_radius)
-        return td_cr_fail(r, bore, NULL, "must equal shaft_radius + clearance = %.9g m (got %.9g m)",
-                          ret.shaft_radius + ret.clearance, ret.bore_radius);
-    for (j = 0; j < index; j++) {
-        td_model_get_retainer(r->c->model, j, &other);
-        if (other.node == ret.node)
-            return fail_node_taken(r, g, list, j, ret.node, "a retainer", "retainers");
-    }
-    st = check_against_ambs(r, g, &ret);
+        st = td_cr_real(r, g, "restitution", NULL, 0.0, TD_CR_FINITE, &ret.restitution);
     if (st != TD_OK)
         return st;
     st = td_model_add_retainer(r->c->model, &ret, &merr);
@@ -277,25 +221,13 @@ static td_status read_unbalance(td_case_reader *r, const config_setting_t *g)
     if (st == TD_OK)
         st = td_cr_node(r, g, "node", "unbalance node", 0, &u.node);
     if (st == TD_OK)
-        st = td_cr_real(r, g, "magnitude", "unbalance U, kg m", 0.0, TD_CR_NONNEGATIVE, &u.magnitude);
+        st = td_cr_real(r, g, "magnitude", "unbalance U, kg m", 0.0, TD_CR_FINITE, &u.magnitude);
     if (st == TD_OK)
         st = td_cr_real(r, g, "phase", NULL, 0.0, TD_CR_FINITE, &u.phase);
     if (st != TD_OK)
         return st;
     st = td_model_add_unbalance(r->c->model, &u, &merr);
     return st == TD_OK ? TD_OK : td_cr_model_fail(r, g, st, &merr);
-}
-
-/* The index of a schedule entry: an unbalance or AMB that exists. */
-static td_status read_change_index(td_case_reader *r, const config_setting_t *s, const char *what, int count,
-                                   int *index)
-{
-    td_status st = td_cr_value_int(r, s, -2147483647L, 2147483647L, index);
-    if (st != TD_OK)
-        return st;
-    if (*index < 0 || *index >= count)
-        return td_cr_fail(r, s, NULL, "%s %d does not exist (%d defined, indices start at 0)", what, *index, count);
-    return TD_OK;
 }
 
 /* One entry of "schedule": { time; unbalance; magnitude; phase; } or { time; amb_off; } or { time; amb_on; } */
@@ -310,7 +242,7 @@ static td_status read_change(td_case_reader *r, const config_setting_t *g)
     int k;
     td_status st = td_cr_check_keys(r, g, change_keys);
     if (st == TD_OK)
-        st = td_cr_real(r, g, "time", "time of the change, s", 0.0, TD_CR_NONNEGATIVE, &c.time);
+        st = td_cr_real(r, g, "time", "time of the change, s", 0.0, TD_CR_FINITE, &c.time);
     if (st != TD_OK)
         return st;
     for (k = 0, kind = NULL; kinds[k]; k++) {
@@ -327,15 +259,17 @@ static td_status read_change(td_case_reader *r, const config_setting_t *g)
     c.magnitude = 0.0;
     c.phase = 0.0;
     if (c.kind == TD_CHANGE_UNBALANCE) {
-        st = read_change_index(r, kind, "unbalance", td_model_unbalance_count(r->c->model), &c.index);
+        /* an unbalance or AMB that exists: the model's rule (td_model_validate) */
+        st = td_cr_value_int(r, kind, -2147483647L, 2147483647L, &c.index);
         if (st != TD_OK)
             return st;
+        u.phase = 0.0; /* unbalance c.index may not exist; td_model_validate says so */
         td_model_get_unbalance(r->c->model, c.index, &u);
-        st = td_cr_real(r, g, "magnitude", "new unbalance U, kg m", 0.0, TD_CR_NONNEGATIVE, &c.magnitude);
+        st = td_cr_real(r, g, "magnitude", "new unbalance U, kg m", 0.0, TD_CR_FINITE, &c.magnitude);
         if (st == TD_OK)
             st = td_cr_real(r, g, "phase", NULL, u.phase, TD_CR_FINITE, &c.phase);
     } else {
-        st = read_change_index(r, kind, "AMB", td_model_amb_count(r->c->model), &c.index);
+        st = td_cr_value_int(r, kind, -2147483647L, 2147483647L, &c.index);
         if (st == TD_OK && (extra = first_of(g, unbalance_only)) != NULL)
             st = td_cr_fail(r, extra, NULL, "only an unbalance change takes a magnitude or phase");
     }
@@ -360,24 +294,19 @@ static td_status read_each(td_case_reader *r, const config_setting_t *root, cons
     return st;
 }
 
+/* Entry i of every list is part i of its kind (discs then point masses are the model's discs):
+ * case_site.c relies on this order to find the setting a model error names. */
 td_status td_cr_read_parts(td_case_reader *r, const config_setting_t *root)
 {
-    const config_setting_t *list = NULL;
-    int i;
     td_status st = read_each(r, root, "discs", read_disc);
     if (st == TD_OK)
         st = read_each(r, root, "point_masses", read_point_mass);
     if (st == TD_OK)
-        st = td_cr_list(r, root, "ambs", &list);
-    r->ambs = list;
-    for (i = 0; st == TD_OK && list && i < config_setting_length(list); i++)
-        st = read_amb(r, list, i);
+        st = read_each(r, root, "ambs", read_amb);
     if (st == TD_OK)
         st = read_each(r, root, "bearings", read_bearing);
     if (st == TD_OK)
-        st = td_cr_list(r, root, "retainers", &list);
-    for (i = 0; st == TD_OK && list && i < config_setting_length(list); i++)
-        st = read_retainer(r, list, i);
+        st = read_each(r, root, "retainers", read_retainer);
     if (st == TD_OK)
         st = read_each(r, root, "unbalances", read_unbalance);
     if (st == TD_OK)

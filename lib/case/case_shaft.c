@@ -81,20 +81,6 @@ static td_status read_material(td_case_reader *r, const config_setting_t *g, int
     return st;
 }
 
-/* Inner diameter below outer: blame whichever of the two the group `g` sets (g itself otherwise). */
-static td_status check_diameters(td_case_reader *r, const config_setting_t *g, const td_shaft_element *e, int index)
-{
-    const config_setting_t *s;
-    if (e->inner_diameter < e->outer_diameter)
-        return TD_OK;
-    s = config_setting_get_member(g, "inner_diameter");
-    if (!s)
-        s = config_setting_get_member(g, "outer_diameter");
-    return td_cr_fail(r, s ? s : g, NULL,
-                      "element %d: inner diameter %g m must be smaller than the outer diameter %g m", index,
-                      e->inner_diameter, e->outer_diameter);
-}
-
 /* One entry of "sections": element range [from, to], then diameter and material overrides. */
 static td_status read_section(td_case_reader *r, const config_setting_t *sec, int count, int *owner, int index,
                               td_shaft_element *els)
@@ -128,8 +114,6 @@ static td_status read_section(td_case_reader *r, const config_setting_t *sec, in
         st = td_cr_group(r, sec, "material", NULL, &mat);
     if (st == TD_OK && mat)
         st = read_material(r, mat, 1, &proto.material);
-    if (st == TD_OK)
-        st = check_diameters(r, sec, &proto, from);
     for (i = from; st == TD_OK && i <= to; i++) {
         if (owner[i] >= 0)
             return td_cr_fail(r, sec, NULL, "element %d is already in sections[%d]; sections must not overlap", i,
@@ -156,6 +140,15 @@ static const config_setting_t *element_source(const config_setting_t *shaft, int
         s = g ? config_setting_get_member(g, key) : NULL;
     }
     return s ? s : shaft;
+}
+
+/* The setting that gave an element the field a model error names ("inner_diameter",
+ * "material.E", ...): element_source of that key. */
+static const config_setting_t *element_field(const config_setting_t *shaft, int owner, const td_error *merr)
+{
+    const char *field = merr->site.field ? merr->site.field : "";
+    int material = strncmp(field, "material.", 9) == 0;
+    return element_source(shaft, owner, material ? field + 9 : field, material);
 }
 
 /* The scales of the beam element's matrices must be finite: area and second moment from the
@@ -229,8 +222,6 @@ static td_status read_elements(td_case_reader *r, const config_setting_t *shaft,
     if (st == TD_OK)
         st = td_cr_real(r, shaft, "inner_diameter", NULL, 0.0, TD_CR_NONNEGATIVE, &proto.inner_diameter);
     if (st == TD_OK)
-        st = check_diameters(r, shaft, &proto, 0);
-    if (st == TD_OK)
         st = td_cr_group(r, shaft, "material", "material { E; G; density; } of the shaft", &mat);
     if (st == TD_OK)
         st = read_material(r, mat, 0, &proto.material);
@@ -296,11 +287,8 @@ td_status td_cr_read_shaft(td_case_reader *r, const config_setting_t *root)
         if (st != TD_OK)
             break;
         st = td_model_add_shaft_element(r->c->model, &els[i], &merr);
-        if (st != TD_OK) {
-            const config_setting_t *sections = config_setting_get_member(shaft, "sections");
-            const config_setting_t *s = owner[i] >= 0 ? config_setting_get_elem(sections, (unsigned)owner[i]) : shaft;
-            st = td_cr_model_fail(r, s, st, &merr);
-        }
+        if (st != TD_OK)
+            st = td_cr_model_fail(r, element_field(shaft, owner[i], &merr), st, &merr);
     }
     if (st == TD_OK)
         st = read_shaft_options(r, shaft);

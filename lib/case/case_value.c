@@ -160,13 +160,6 @@ td_status td_cr_derived(td_case_reader *r, const config_setting_t *s, double val
     return td_cr_fail(r, s, NULL, "%s overflows (to %g)", what, value);
 }
 
-td_status td_cr_model_fail(td_case_reader *r, const config_setting_t *s, td_status st, const td_error *merr)
-{
-    if (st == TD_ERR_NOMEM)
-        return td_error_set(r->err, TD_ERR_NOMEM, "%s: %s", r->path_shown, merr->message);
-    return td_cr_fail(r, s, NULL, "%s", merr->message);
-}
-
 static const char *type_name(int type)
 {
     switch (type) {
@@ -355,22 +348,8 @@ td_status td_cr_int(td_case_reader *r, const config_setting_t *g, const char *ke
 
 td_status td_cr_node(td_case_reader *r, const config_setting_t *g, const char *key, const char *what, int def, int *out)
 {
-    const config_setting_t *s = config_setting_get_member(g, key);
-    td_status st;
-    int v = 0; /* set by td_cr_value_int on TD_OK; initialised for gcc -O3's flow analysis */
-    if (!s) {
-        if (what)
-            return td_cr_missing(r, g, key, what);
-        *out = def;
-        return TD_OK;
-    }
-    st = td_cr_value_int(r, s, -2147483647L, 2147483647L, &v);
-    if (st != TD_OK)
-        return st;
-    if (v < 0 || v >= r->nodes)
-        return td_cr_fail(r, s, NULL, "node %d is out of range (the shaft has nodes 0..%d)", v, r->nodes - 1);
-    *out = v;
-    return TD_OK;
+    /* any int: whether the shaft has that node is the model's rule (td_model_add_*, td_model_validate) */
+    return td_cr_int(r, g, key, what, def, -2147483647L, 2147483647L, out);
 }
 
 td_status td_cr_bool(td_case_reader *r, const config_setting_t *g, const char *key, int def, int *out)

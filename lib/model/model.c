@@ -40,6 +40,27 @@ static int finite_nonnegative(double v)
     return isfinite(v) && v >= 0.0;
 }
 
+static const td_error_site no_site = {NULL, 0, NULL};
+
+/* Fail naming the part, its index and the field at fault ("PART INDEX: FIELD: ..."). */
+#define FAIL_AT(err, part, index, field, ...)                                                                          \
+    td_error_set_site((err), TD_ERR_INVALID, &(td_error_site){(part), (index), (field)}, &no_site, __VA_ARGS__)
+
+/* TD_OK when ok; else fail naming the field and the rule its value breaks. */
+static td_status need(int ok, td_error *err, const char *part, int index, const char *field, const char *rule, double v)
+{
+    return ok ? TD_OK : FAIL_AT(err, part, index, field, "must %s (got %g)", rule, v);
+}
+
+/* A node number of a part being added: at least 0 (the upper bound waits for td_model_validate). */
+static td_status need_node(td_error *err, const char *part, int index, const char *field, int node)
+{
+    return node >= 0 ? TD_OK : FAIL_AT(err, part, index, field, "must be >= 0 (got %d)", node);
+}
+
+#define POS "be > 0"
+#define NONNEG "be >= 0"
+
 td_status td_model_create(td_model **out, td_error *err)
 {
     td_model *m;
@@ -195,30 +216,35 @@ td_status td_model_set_shaft_options(td_model *m, const td_shaft_options *opt, t
 
 td_status td_model_add_shaft_element(td_model *m, const td_shaft_element *el, td_error *err)
 {
+    int i;
     if (!m || !el)
         return td_error_set(err, TD_ERR_INVALID, "shaft element: NULL argument");
-    if (!finite_positive(el->length))
-        return td_error_set(err, TD_ERR_INVALID, "shaft element: length must be finite and > 0");
-    if (!finite_positive(el->outer_diameter))
-        return td_error_set(err, TD_ERR_INVALID, "shaft element: outer diameter must be finite and > 0");
+    i = m->elements.count;
+    if (need(finite_positive(el->length), err, "element", i, "length", POS, el->length) ||
+        need(finite_positive(el->outer_diameter), err, "element", i, "outer_diameter", POS, el->outer_diameter))
+        return TD_ERR_INVALID;
     if (!finite_nonnegative(el->inner_diameter) || el->inner_diameter >= el->outer_diameter)
-        return td_error_set(err, TD_ERR_INVALID,
-                            "shaft element: inner diameter must be >= 0 and smaller than the outer diameter");
-    if (!finite_positive(el->material.E) || !finite_positive(el->material.G) || !finite_positive(el->material.density))
-        return td_error_set(err, TD_ERR_INVALID, "shaft element: E, G and density must be finite and > 0");
+        return FAIL_AT(err, "element", i, "inner_diameter",
+                       "the inner diameter %g m must be >= 0 and smaller than the outer diameter %g m",
+                       el->inner_diameter, el->outer_diameter);
+    if (need(finite_positive(el->material.E), err, "element", i, "material.E", POS, el->material.E) ||
+        need(finite_positive(el->material.G), err, "element", i, "material.G", POS, el->material.G) ||
+        need(finite_positive(el->material.density), err, "element", i, "material.density", POS, el->material.density))
+        return TD_ERR_INVALID;
     return APPEND(m->elements, el, err);
 }
 
 td_status td_model_add_disc(td_model *m, const td_disc *disc, td_error *err)
 {
+    int i;
     if (!m || !disc)
         return td_error_set(err, TD_ERR_INVALID, "disc: NULL argument");
-    if (disc->node < 0)
-        return td_error_set(err, TD_ERR_INVALID, "disc: node must be >= 0");
-    if (!finite_positive(disc->mass))
-        return td_error_set(err, TD_ERR_INVALID, "disc: mass must be finite and > 0");
-    if (!finite_nonnegative(disc->Ip) || !finite_nonnegative(disc->Id))
-        return td_error_set(err, TD_ERR_INVALID, "disc: Ip and Id must be finite and >= 0");
+    i = m->discs.count;
+    if (need_node(err, "disc", i, "node", disc->node) ||
+        need(finite_positive(disc->mass), err, "disc", i, "mass", POS, disc->mass) ||
+        need(finite_nonnegative(disc->Ip), err, "disc", i, "Ip", NONNEG, disc->Ip) ||
+        need(finite_nonnegative(disc->Id), err, "disc", i, "Id", NONNEG, disc->Id))
+        return TD_ERR_INVALID;
     return APPEND(m->discs, disc, err);
 }
 
@@ -231,14 +257,21 @@ td_status td_disc_from_geometry(const td_disc_geometry *g, td_disc *out, td_erro
     double R2, r2, area, t;
     if (!g || !out)
         return td_error_set(err, TD_ERR_INVALID, "disc geometry: NULL argument");
-    if (!finite_positive(g->outer_radius) || !finite_positive(g->density))
-        return td_error_set(err, TD_ERR_INVALID, "disc geometry: outer radius and density must be finite and > 0");
+    /* index -1: a disc not in a model */
+    if (need(finite_positive(g->outer_radius), err, "disc", -1, "outer_radius", POS, g->outer_radius) ||
+        need(finite_positive(g->density), err, "disc", -1, "density", POS, g->density))
+        return TD_ERR_INVALID;
     if (!finite_nonnegative(g->inner_radius) || g->inner_radius >= g->outer_radius)
-        return td_error_set(err, TD_ERR_INVALID,
-                            "disc geometry: inner radius must be >= 0 and smaller than the outer radius");
-    if (!finite_nonnegative(g->thickness) || !finite_nonnegative(g->mass) || (g->thickness > 0.0) == (g->mass > 0.0))
-        return td_error_set(err, TD_ERR_INVALID,
-                            "disc geometry: give either the thickness or the mass (> 0), not both");
+        return FAIL_AT(err, "disc", -1, "inner_radius",
+                       "the inner radius %g m must be >= 0 and smaller than the outer radius %g m", g->inner_radius,
+                       g->outer_radius);
+    if (need(finite_nonnegative(g->thickness), err, "disc", -1, "thickness", NONNEG, g->thickness) ||
+        need(finite_nonnegative(g->mass), err, "disc", -1, "mass", NONNEG, g->mass))
+        return TD_ERR_INVALID;
+    if (g->thickness > 0.0 && g->mass > 0.0)
+        return FAIL_AT(err, "disc", -1, "mass", "give either the thickness or the mass, not both");
+    if (g->thickness == 0.0 && g->mass == 0.0)
+        return FAIL_AT(err, "disc", -1, "thickness", "give either the thickness or the mass (> 0)");
     R2 = g->outer_radius * g->outer_radius;
     r2 = g->inner_radius * g->inner_radius;
     area = TD_PI * (R2 - r2);
@@ -262,64 +295,71 @@ td_status td_model_add_point_mass(td_model *m, int node, double mass, td_error *
 
 td_status td_model_add_amb(td_model *m, const td_amb *amb, td_error *err)
 {
+    int i;
     if (!m || !amb)
         return td_error_set(err, TD_ERR_INVALID, "amb: NULL argument");
-    if (amb->node < 0 || amb->sensor_node < 0)
-        return td_error_set(err, TD_ERR_INVALID, "amb: node and sensor node must be >= 0");
-    if (!isfinite(amb->ks) || !isfinite(amb->ki) || !isfinite(amb->kp) || !isfinite(amb->kd))
-        return td_error_set(err, TD_ERR_INVALID, "amb: ks, ki, kp and kd must be finite");
-    if (!finite_nonnegative(amb->tau))
-        return td_error_set(err, TD_ERR_INVALID, "amb: filter time constant must be finite and >= 0");
-    if (!finite_positive(amb->force_capacity))
-        return td_error_set(err, TD_ERR_INVALID, "amb: force capacity must be finite and > 0");
-    if (!finite_nonnegative(amb->air_gap))
-        return td_error_set(err, TD_ERR_INVALID, "amb: air gap must be finite and >= 0");
+    i = m->ambs.count;
+    if (need_node(err, "amb", i, "node", amb->node) || need_node(err, "amb", i, "sensor_node", amb->sensor_node) ||
+        need(isfinite(amb->ks), err, "amb", i, "ks", "be finite", amb->ks) ||
+        need(isfinite(amb->ki), err, "amb", i, "ki", "be finite", amb->ki) ||
+        need(isfinite(amb->kp), err, "amb", i, "kp", "be finite", amb->kp) ||
+        need(isfinite(amb->kd), err, "amb", i, "kd", "be finite", amb->kd) ||
+        need(finite_nonnegative(amb->tau), err, "amb", i, "tau", NONNEG, amb->tau) ||
+        need(finite_positive(amb->force_capacity), err, "amb", i, "force_capacity", POS, amb->force_capacity) ||
+        need(finite_nonnegative(amb->air_gap), err, "amb", i, "air_gap", NONNEG, amb->air_gap))
+        return TD_ERR_INVALID;
     return APPEND(m->ambs, amb, err);
 }
 
 td_status td_model_add_bearing(td_model *m, const td_bearing *b, td_error *err)
 {
+    int i;
     if (!m || !b)
         return td_error_set(err, TD_ERR_INVALID, "bearing: NULL argument");
-    if (b->node < 0)
-        return td_error_set(err, TD_ERR_INVALID, "bearing: node must be >= 0");
-    if (!finite_nonnegative(b->kxx) || !finite_nonnegative(b->kyy) || !finite_nonnegative(b->cxx) ||
-        !finite_nonnegative(b->cyy))
-        return td_error_set(err, TD_ERR_INVALID, "bearing: stiffness and damping must be finite and >= 0");
+    i = m->bearings.count;
+    if (need_node(err, "bearing", i, "node", b->node) ||
+        need(finite_nonnegative(b->kxx), err, "bearing", i, "kxx", NONNEG, b->kxx) ||
+        need(finite_nonnegative(b->kyy), err, "bearing", i, "kyy", NONNEG, b->kyy) ||
+        need(finite_nonnegative(b->cxx), err, "bearing", i, "cxx", NONNEG, b->cxx) ||
+        need(finite_nonnegative(b->cyy), err, "bearing", i, "cyy", NONNEG, b->cyy))
+        return TD_ERR_INVALID;
     return APPEND(m->bearings, b, err);
 }
 
 td_status td_model_add_retainer(td_model *m, const td_retainer *r, td_error *err)
 {
+    int i;
     if (!m || !r)
         return td_error_set(err, TD_ERR_INVALID, "retainer: NULL argument");
-    if (r->node < 0)
-        return td_error_set(err, TD_ERR_INVALID, "retainer: node must be >= 0");
-    if (!finite_positive(r->clearance))
-        return td_error_set(err, TD_ERR_INVALID, "retainer: clearance must be finite and > 0");
-    if (!finite_positive(r->shaft_radius) || !finite_positive(r->bore_radius))
-        return td_error_set(err, TD_ERR_INVALID, "retainer: shaft and bore radii must be finite and > 0");
+    i = m->retainers.count;
+    if (need_node(err, "retainer", i, "node", r->node) ||
+        need(finite_positive(r->clearance), err, "retainer", i, "clearance", POS, r->clearance) ||
+        need(finite_positive(r->shaft_radius), err, "retainer", i, "shaft_radius", POS, r->shaft_radius) ||
+        need(finite_positive(r->bore_radius), err, "retainer", i, "bore_radius", POS, r->bore_radius))
+        return TD_ERR_INVALID;
+    /* c = R_b - R_s: the clearance is the gap between the two radii */
     if (fabs(r->bore_radius - r->shaft_radius - r->clearance) > 1e-9 * r->bore_radius)
-        return td_error_set(err, TD_ERR_INVALID,
-                            "retainer: bore radius (%g m) must equal shaft radius (%g m) plus clearance (%g m)",
-                            r->bore_radius, r->shaft_radius, r->clearance);
-    if (!finite_nonnegative(r->friction))
-        return td_error_set(err, TD_ERR_INVALID, "retainer: friction coefficient must be finite and >= 0");
-    if (!isfinite(r->bore_speed))
-        return td_error_set(err, TD_ERR_INVALID, "retainer: bore speed must be finite");
-    if (!isfinite(r->restitution) || r->restitution < 0.0 || r->restitution > 1.0)
-        return td_error_set(err, TD_ERR_INVALID, "retainer: restitution must lie in [0, 1]");
+        return FAIL_AT(err, "retainer", i, "bore_radius",
+                       "the bore radius must equal shaft_radius + clearance = %.9g m (got %.9g m)",
+                       r->shaft_radius + r->clearance, r->bore_radius);
+    if (need(finite_nonnegative(r->friction), err, "retainer", i, "friction", NONNEG, r->friction) ||
+        need(isfinite(r->bore_speed), err, "retainer", i, "bore_speed", "be finite", r->bore_speed) ||
+        need(isfinite(r->restitution) && r->restitution >= 0.0 && r->restitution <= 1.0, err, "retainer", i,
+             "restitution", "lie in [0, 1]", r->restitution))
+        return TD_ERR_INVALID;
     return APPEND(m->retainers, r, err);
 }
 
 td_status td_model_add_unbalance(td_model *m, const td_unbalance *u, td_error *err)
 {
+    int i;
     if (!m || !u)
         return td_error_set(err, TD_ERR_INVALID, "unbalance: NULL argument");
-    if (u->node < 0)
-        return td_error_set(err, TD_ERR_INVALID, "unbalance: node must be >= 0");
-    if (!finite_nonnegative(u->magnitude) || !isfinite(u->phase))
-        return td_error_set(err, TD_ERR_INVALID, "unbalance: magnitude must be finite and >= 0, phase finite");
+    i = m->unbalances.count;
+    if (need_node(err, "unbalance", i, "node", u->node) ||
+        need(finite_nonnegative(u->magnitude), err, "unbalance", i, "magnitude", NONNEG, u->magnitude) ||
+        need(isfinite(u->phase), err, "unbalance", i, "phase", "be finite", u->phase))
+        return TD_ERR_INVALID;
     return APPEND(m->unbalances, u, err);
 }
 
@@ -329,14 +369,17 @@ td_status td_model_add_change(td_model *m, const td_change *c, td_error *err)
     int i;
     if (!m || !c)
         return td_error_set(err, TD_ERR_INVALID, "change: NULL argument");
-    if (!finite_nonnegative(c->time))
-        return td_error_set(err, TD_ERR_INVALID, "change: time must be finite and >= 0");
+    i = m->changes.count;
+    if (need(finite_nonnegative(c->time), err, "change", i, "time", NONNEG, c->time))
+        return TD_ERR_INVALID;
     if (c->kind != TD_CHANGE_UNBALANCE && c->kind != TD_CHANGE_AMB_OFF && c->kind != TD_CHANGE_AMB_ON)
-        return td_error_set(err, TD_ERR_INVALID, "change: unknown kind %d", (int)c->kind);
-    if (c->index < 0)
-        return td_error_set(err, TD_ERR_INVALID, "change: index must be >= 0");
-    if (c->kind == TD_CHANGE_UNBALANCE && (!finite_nonnegative(c->magnitude) || !isfinite(c->phase)))
-        return td_error_set(err, TD_ERR_INVALID, "change: unbalance magnitude must be finite and >= 0");
+        return FAIL_AT(err, "change", i, "kind", "unknown kind %d", (int)c->kind);
+    if (need_node(err, "change", i, "index", c->index))
+        return TD_ERR_INVALID;
+    if (c->kind == TD_CHANGE_UNBALANCE &&
+        (need(finite_nonnegative(c->magnitude), err, "change", i, "magnitude", NONNEG, c->magnitude) ||
+         need(isfinite(c->phase), err, "change", i, "phase", "be finite", c->phase)))
+        return TD_ERR_INVALID;
     st = APPEND(m->changes, c, err);
     if (st != TD_OK)
         return st;
@@ -370,12 +413,47 @@ td_status td_model_set_gravity(td_model *m, double gx, double gy, td_error *err)
     return TD_OK;
 }
 
-static td_status check_node(const td_model *m, const char *part, int i, int node, td_error *err)
+static td_status check_node(const td_model *m, const char *part, int i, const char *field, int node, td_error *err)
 {
     int nodes = td_model_node_count(m);
     if (node < 0 || node >= nodes)
-        return td_error_set(err, TD_ERR_INVALID, "%s %d: node %d is out of range (the shaft has nodes 0..%d)", part, i,
-                            node, nodes - 1);
+        return FAIL_AT(err, part, i, field, "node %d is out of range (the shaft has nodes 0..%d)", node, nodes - 1);
+    return TD_OK;
+}
+
+/* Part i of kind `part` sits on `node`, where part j of that kind already is: one per node. */
+static td_status fail_node_taken(td_error *err, const char *part, const char *a_part, int i, int j, int node)
+{
+    return td_error_set_site(err, TD_ERR_INVALID, &(td_error_site){part, i, "node"}, &(td_error_site){part, j, "node"},
+                             "node %d already has %s (%s %d)", node, a_part, part, j);
+}
+
+/* A retainer must be tighter than every AMB air gap (or the rotor would hit the stator first). */
+static td_status check_air_gaps(const td_model *m, int i, td_error *err)
+{
+    const td_retainer *r = &m->retainers.items[i];
+    int j;
+    for (j = 0; j < m->ambs.count; j++)
+        if (m->ambs.items[j].air_gap > 0.0 && r->clearance >= m->ambs.items[j].air_gap)
+            return td_error_set_site(err, TD_ERR_INVALID, &(td_error_site){"retainer", i, "clearance"},
+                                     &(td_error_site){"amb", j, "air_gap"},
+                                     "clearance %g m is not smaller than the air gap %g m of amb %d", r->clearance,
+                                     m->ambs.items[j].air_gap, j);
+    return TD_OK;
+}
+
+/* Every change names an unbalance or AMB that exists. */
+static td_status check_changes(const td_model *m, td_error *err)
+{
+    int i;
+    for (i = 0; i < m->changes.count; i++) {
+        const td_change *c = &m->changes.items[i];
+        int limit = c->kind == TD_CHANGE_UNBALANCE ? m->unbalances.count : m->ambs.count;
+        if (c->index >= limit)
+            return FAIL_AT(err, "change", i, "index",
+                           "%s %d does not exist (%d defined, indices start at 0; the change at t = %g s)",
+                           c->kind == TD_CHANGE_UNBALANCE ? "unbalance" : "AMB", c->index, limit, c->time);
+    }
     return TD_OK;
 }
 
@@ -387,44 +465,33 @@ td_status td_model_validate(const td_model *m, td_error *err)
     if (m->elements.count < 1)
         return td_error_set(err, TD_ERR_INVALID, "the shaft has no elements");
     for (i = 0; i < m->discs.count; i++)
-        if (check_node(m, "disc", i, m->discs.items[i].node, err))
+        if (check_node(m, "disc", i, "node", m->discs.items[i].node, err))
             return TD_ERR_INVALID;
     for (i = 0; i < m->ambs.count; i++) {
-        if (check_node(m, "amb", i, m->ambs.items[i].node, err) ||
-            check_node(m, "amb", i, m->ambs.items[i].sensor_node, err))
+        if (check_node(m, "amb", i, "node", m->ambs.items[i].node, err) ||
+            check_node(m, "amb", i, "sensor_node", m->ambs.items[i].sensor_node, err))
             return TD_ERR_INVALID;
         for (j = 0; j < i; j++)
             if (m->ambs.items[j].node == m->ambs.items[i].node)
-                return td_error_set(err, TD_ERR_INVALID, "amb %d: node %d already has amb %d", i, m->ambs.items[i].node,
-                                    j);
+                return fail_node_taken(err, "amb", "an AMB", i, j, m->ambs.items[i].node);
     }
     for (i = 0; i < m->bearings.count; i++)
-        if (check_node(m, "bearing", i, m->bearings.items[i].node, err))
+        if (check_node(m, "bearing", i, "node", m->bearings.items[i].node, err))
             return TD_ERR_INVALID;
     for (i = 0; i < m->retainers.count; i++) {
         const td_retainer *r = &m->retainers.items[i];
-        if (check_node(m, "retainer", i, r->node, err))
+        if (check_node(m, "retainer", i, "node", r->node, err))
             return TD_ERR_INVALID;
         for (j = 0; j < i; j++)
             if (m->retainers.items[j].node == r->node)
-                return td_error_set(err, TD_ERR_INVALID, "retainer %d: node %d already has retainer %d", i, r->node, j);
-        for (j = 0; j < m->ambs.count; j++)
-            if (m->ambs.items[j].air_gap > 0.0 && r->clearance >= m->ambs.items[j].air_gap)
-                return td_error_set(err, TD_ERR_INVALID,
-                                    "retainer %d: clearance %g m is not smaller than the air gap %g m of amb %d", i,
-                                    r->clearance, m->ambs.items[j].air_gap, j);
+                return fail_node_taken(err, "retainer", "a retainer", i, j, r->node);
+        if (check_air_gaps(m, i, err))
+            return TD_ERR_INVALID;
     }
     for (i = 0; i < m->unbalances.count; i++)
-        if (check_node(m, "unbalance", i, m->unbalances.items[i].node, err))
+        if (check_node(m, "unbalance", i, "node", m->unbalances.items[i].node, err))
             return TD_ERR_INVALID;
-    for (i = 0; i < m->changes.count; i++) {
-        const td_change *c = &m->changes.items[i];
-        int limit = c->kind == TD_CHANGE_UNBALANCE ? m->unbalances.count : m->ambs.count;
-        if (c->index >= limit)
-            return td_error_set(err, TD_ERR_INVALID, "change %d at t = %g s: %s index %d is out of range (%d defined)",
-                                i, c->time, c->kind == TD_CHANGE_UNBALANCE ? "unbalance" : "amb", c->index, limit);
-    }
-    return TD_OK;
+    return check_changes(m, err);
 }
 
 int td_model_node_count(const td_model *m)

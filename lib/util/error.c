@@ -22,11 +22,21 @@ const char *td_strerror(td_status code)
     return "unknown status";
 }
 
+/* No part, no field: the site of every error that is not about a model part. */
+static void clear_sites(td_error *err)
+{
+    static const td_error_site none = {NULL, 0, NULL};
+    err->site = none;
+    err->other = none;
+    err->reason = 0;
+}
+
 void td_error_clear(td_error *err)
 {
     if (err) {
         err->code = TD_OK;
         err->message[0] = '\0';
+        clear_sites(err);
     }
 }
 
@@ -35,8 +45,33 @@ td_status td_error_set(td_error *err, td_status code, const char *fmt, ...)
     if (err) {
         va_list ap;
         err->code = code;
+        clear_sites(err);
         va_start(ap, fmt);
         vsnprintf(err->message, sizeof err->message, fmt, ap);
+        va_end(ap);
+    }
+    return code;
+}
+
+td_status td_error_set_site(td_error *err, td_status code, const td_error_site *site, const td_error_site *other,
+                            const char *fmt, ...)
+{
+    if (err) {
+        va_list ap;
+        char part[64];
+        int n;
+        err->code = code;
+        err->site = *site;
+        err->other = *other;
+        if (site->index >= 0)
+            snprintf(part, sizeof part, "%s %d", site->part, site->index);
+        else
+            snprintf(part, sizeof part, "%s", site->part); /* not in a model */
+        n = site->field ? snprintf(err->message, sizeof err->message, "%s: %s: ", part, site->field)
+                        : snprintf(err->message, sizeof err->message, "%s: ", part);
+        err->reason = n > 0 && n < (int)sizeof err->message ? n : 0;
+        va_start(ap, fmt);
+        vsnprintf(err->message + err->reason, sizeof err->message - (size_t)err->reason, fmt, ap);
         va_end(ap);
     }
     return code;
@@ -79,5 +114,6 @@ td_status td_error_set_reason(td_error *err, td_status code, const char *context
     append_cut(err->message, &len, reason, room - len);
     err->message[len] = '\0';
     err->code = code;
+    clear_sites(err);
     return code;
 }
