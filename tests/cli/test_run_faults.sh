@@ -385,6 +385,22 @@ refused "output is a directory" --hdf5 inc --csv '' CASE.cfg
 refused "output directory does not exist" --hdf5 no-such-dir/x.h5 --csv '' CASE.cfg
 refused "-o with a 1030-character prefix" -o "$long" CASE.cfg
 refused "--csv with a 1030-character path" --hdf5 '' --csv "$long.csv" CASE.cfg
+# the same rules for the modal outputs, refused before the analysis
+refused_modal() {
+    local what="modal: $1"
+    shift
+    (cd "$d" && "$tool" modal -q "$@" >"$work/r.out" 2>"$work/r.err")
+    rc=$?
+    check "$what: exit 2, one error line (got $rc: $(head -c 200 "$work/r.err"))" \
+        test "$rc" = 2 -a "$(wc -l <"$work/r.err")" = 1
+    check "$what: nothing written, inputs unchanged" diff -r "$work/refuse.orig" "$d"
+}
+refused_modal "--hdf5 X --csv X" --hdf5 X --csv X CASE.cfg
+refused_modal "--csv CASE.cfg CASE.cfg" --hdf5 '' --csv CASE.cfg CASE.cfg
+refused_modal "output is a symbolic link to the case file" --hdf5 soft.cfg --csv '' CASE.cfg
+refused_modal "output is an @include file" --hdf5 inc/part.cfg --csv '' inc/main.cfg
+refused_modal "--csv m.h5.partial" --hdf5 '' --csv m.h5.partial CASE.cfg
+refused_modal "output directory does not exist" --hdf5 no-such-dir/x.h5 --csv '' CASE.cfg
 for sub in "modal -q -o $long CASE.cfg" "modal -q --csv $long.csv CASE.cfg" "bench --quick --dir $long"; do
     (cd "$d" && "$tool" $sub >"$work/r.out" 2>"$work/r.err")
     rc=$?
