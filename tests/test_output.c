@@ -996,7 +996,7 @@ static int modal_job_run(const void *arg)
     int i;
     for (i = 0; i < N; i++) {
         cs[i].speed = 100.0 + i;
-        cs[i].freq_hz = cs[i].speed / (2.0 * 3.14159265358979);
+        cs[i].freq_hz = cs[i].speed / (2.0 * TD_PI);
         cs[i].zeta = 0.01;
     }
     memset(text, 'x', sizeof text - 1);

@@ -268,7 +268,9 @@ static void test_api_errors(void **state)
     assert_int_equal(td_sim_set_speed(s, INFINITY, &err), TD_ERR_INVALID);
     assert_non_null(strstr(err.message, "td_sim_set_speed"));
     assert_int_equal(td_sim_dof_count(s), 20);
+    assert_string_equal(td_sim_errmsg(s), err.message);       /* the last failure's own message */
     assert_int_equal(td_sim_step(s, 0.0, NULL, &err), TD_OK); /* tout == t: nothing to do */
+    assert_string_equal(td_sim_errmsg(s), "");                /* a call that succeeds leaves no leftover */
     assert_int_equal(td_sim_step(s, 1e-3, NULL, &err), TD_OK);
     assert_close(td_sim_time(s), 1e-3, 0.0, 0.0);
     assert_int_equal(td_sim_get_state(s, NULL, NULL), TD_OK);

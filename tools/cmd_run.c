@@ -48,6 +48,7 @@ static const char run_usage[] =
     "exit codes: 0 complete, 1 the simulation failed or was interrupted (SIGINT/SIGTERM/SIGHUP, also\n"
     "during the set-up), 2 bad input or usage (an unusable start state included).\n";
 
+/* The tool's own clock for the progress line (the library's td_wall_clock is internal). */
 static double wall_now(void)
 {
     struct timespec ts;

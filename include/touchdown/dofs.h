@@ -59,7 +59,6 @@ enum td_dof_offset {
 /** A speed in rad/s as rpm (revolutions per minute: one revolution is 2 pi rad, a minute 60 s),
  *  and back; only for display, the library takes and gives rad/s. */
 #define TD_RPM_FROM_RAD_S(w) ((w)*30.0 / TD_PI)
-#define TD_RAD_S_FROM_RPM(n) ((n)*TD_PI / 30.0)
 
 #ifdef __cplusplus
 }

@@ -177,7 +177,7 @@ TD_API td_status td_model_set_gravity(td_model *m, double gx, double gy, td_erro
  * Check cross-references (nodes in range, one AMB and one retainer per node, retainers tighter
  * than every AMB air gap, schedule indices). Like every td_model_add_* check, a failure names the
  * part, index and field at fault in err->site, and the part compared against in err->other
- * (touchdown/error.h).
+ * (touchdown/error.h); a model with no shaft element at all names no part.
  */
 TD_API td_status td_model_validate(const td_model *m, td_error *err);
 

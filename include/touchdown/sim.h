@@ -66,8 +66,9 @@ typedef struct td_sim_start_info {
 TD_API td_status td_sim_start_info_get(const td_sim *sim, td_sim_start_info *out);
 /** Free and set *sim to NULL; accepts NULL. */
 TD_API void td_sim_free(td_sim **sim);
-/** Message of the last failure of this simulation ("" if none), the one the failing call also put
- *  in its td_error. Owned by the sim. */
+/** Message of the last failure of this simulation, the one the failing call also put in its
+ *  td_error. td_sim_step and the td_sim_set_* calls clear it when they begin, so it is "" after
+ *  one of them succeeds and never a leftover of an earlier failure. Owned by the sim. */
 TD_API const char *td_sim_errmsg(const td_sim *sim);
 
 /** Advance towards `tout` (> current time). Returns TD_OK having reached tout, TD_EVENT having

@@ -783,8 +783,10 @@ static int pop_event(td_sim *s)
 /* y, yp at time t inside IDA's last step. */
 static td_status interpolate(td_sim *s, double t)
 {
-    if (IDAGetDky(s->ida, t, 0, s->y) != IDA_SUCCESS || IDAGetDky(s->ida, t, 1, s->yp) != IDA_SUCCESS)
+    if (IDAGetDky(s->ida, t, 0, s->y) != IDA_SUCCESS || IDAGetDky(s->ida, t, 1, s->yp) != IDA_SUCCESS) {
+        snprintf(s->errmsg, sizeof s->errmsg, "t = %.9g s: IDA could not interpolate its last step (IDAGetDky)", t);
         return TD_ERR_SOLVER;
+    }
     s->t = t;
     return TD_OK;
 }
@@ -922,10 +924,17 @@ static td_status advance(td_sim *s, double tout)
     }
 }
 
+/* A public call that can fail begins with no message: whatever it reports is its own, never the
+ * leftover of an earlier failure (an interrupt, say, that the caller recovered from). */
+static void begin_call(td_sim *s)
+{
+    s->errmsg[0] = '\0';
+}
+
 /* A failure of a public call: the message the sim keeps (s->errmsg, td_sim_errmsg) into *err. */
 static td_status failed(const td_sim *s, td_status st, td_error *err)
 {
-    return td_error_set(err, st, "%s", s->errmsg);
+    return td_error_set(err, st, "%s", s->errmsg[0] ? s->errmsg : td_strerror(st));
 }
 
 /* A public call's outcome: failures reported through *err, TD_OK and TD_EVENT as they are. */
@@ -940,6 +949,7 @@ td_status td_sim_step(td_sim *sim, double tout, double *t_reached, td_error *err
     double w0;
     if (!sim)
         return td_error_set(err, TD_ERR_INVALID, "td_sim_step: NULL simulation");
+    begin_call(sim);
     if (pop_event(sim)) {
         if (t_reached)
             *t_reached = sim->t;
@@ -1085,6 +1095,7 @@ td_status td_sim_set_unbalance(td_sim *sim, int unbalance, double magnitude, dou
 {
     if (!sim)
         return td_error_set(err, TD_ERR_INVALID, "%s: NULL simulation", __func__);
+    begin_call(sim);
     if (unbalance < 0 || unbalance >= sim->nu || !(magnitude >= 0.0) || !isfinite(magnitude) || !isfinite(phase)) {
         snprintf(sim->errmsg, sizeof sim->errmsg, "td_sim_set_unbalance: invalid unbalance %d or value", unbalance);
         return failed(sim, TD_ERR_INVALID, err);
@@ -1098,6 +1109,7 @@ td_status td_sim_set_speed(td_sim *sim, double omega, td_error *err)
 {
     if (!sim)
         return td_error_set(err, TD_ERR_INVALID, "%s: NULL simulation", __func__);
+    begin_call(sim);
     if (!isfinite(omega)) {
         snprintf(sim->errmsg, sizeof sim->errmsg, "td_sim_set_speed: speed must be finite");
         return failed(sim, TD_ERR_INVALID, err);
@@ -1117,6 +1129,7 @@ td_status td_sim_set_amb_mode(td_sim *sim, int amb, td_amb_mode mode, td_error *
 {
     if (!sim)
         return td_error_set(err, TD_ERR_INVALID, "%s: NULL simulation", __func__);
+    begin_call(sim);
     if (amb < 0 || amb >= td_model_amb_count(sim->model) ||
         (mode != TD_AMB_PD && mode != TD_AMB_EXTERNAL && mode != TD_AMB_OFF)) {
         snprintf(sim->errmsg, sizeof sim->errmsg, "td_sim_set_amb_mode: invalid AMB %d or mode %d", amb, (int)mode);
@@ -1130,6 +1143,7 @@ td_status td_sim_set_amb_control(td_sim *sim, int amb, double fx, double fy, td_
 {
     if (!sim)
         return td_error_set(err, TD_ERR_INVALID, "%s: NULL simulation", __func__);
+    begin_call(sim);
     if (amb < 0 || amb >= td_model_amb_count(sim->model) || !isfinite(fx) || !isfinite(fy)) {
         snprintf(sim->errmsg, sizeof sim->errmsg, "td_sim_set_amb_control: invalid AMB %d or force", amb);
         return failed(sim, TD_ERR_INVALID, err);

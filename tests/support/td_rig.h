@@ -14,10 +14,11 @@
 #ifndef TD_RIG_H
 #define TD_RIG_H
 
+#include "touchdown/dofs.h"
 #include "touchdown/model.h"
 
 /* The rig's AMB force lag, 1/(2 pi 100 Hz), s. */
-#define TD_RIG_TAU (1.0 / (2.0 * 3.14159265358979323846 * 100.0))
+#define TD_RIG_TAU (1.0 / (2.0 * TD_PI * 100.0))
 /* Retainer clearance, m. */
 #define TD_RIG_CLEARANCE 0.75e-3
 

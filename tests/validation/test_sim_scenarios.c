@@ -249,7 +249,7 @@ static void test_energy_conservation(void **state)
 /*
  * Rotor drop with partly elastic retainers (restitution e = 0.5, structural damping, no
  * unbalance): like a ball dropped on the floor the rotor must bounce a finite number of times and
- * come to rest in persistent contact (problem S4: it used to bounce for ever at a rebound speed
+ * come to rest in persistent contact (a pressed rotor used to bounce for ever at a rebound speed
  * ~ sqrt(atol), 4e5 onsets in 1 s, never in contact).
  * Bound on the onsets of one bouncing sequence (the onsets at a retainer between two releases):
  * the speeds are v0 e^j, and the simulation ends the sequence with a plastic impact once the
