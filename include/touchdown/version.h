@@ -11,11 +11,11 @@ extern "C" {
 #endif
 
 #define TD_VERSION_MAJOR 0
-#define TD_VERSION_MINOR 1
+#define TD_VERSION_MINOR 2
 #define TD_VERSION_PATCH 0
-#define TD_VERSION "0.1.0"
+#define TD_VERSION "0.2.0"
 
-/** The library's version string, e.g. "0.1.0"; compare with TD_VERSION to detect a mismatch. */
+/** The library's version string, e.g. "0.2.0"; compare with TD_VERSION to detect a mismatch. */
 TD_API const char *td_version(void);
 
 #ifdef __cplusplus
