@@ -492,6 +492,10 @@ static void test_other_forms_and_defaults(void **state)
     td_model_shaft_options(m, &so);
     assert_int_equal(so.beam, TD_BEAM_EULER_BERNOULLI);
     assert_int_equal(so.mass, TD_MASS_CONSISTENT);
+    /* damping ratio 0.02 at 50 and 500 Hz: the Rayleigh fit through w1 = 100 pi, w2 = 1000 pi */
+    assert_close(so.rayleigh_alpha, 2.0 * 0.02 * (100.0 * TD_PI) * (1000.0 * TD_PI) / (1100.0 * TD_PI), 1e-14, 0.0);
+    assert_close(so.rayleigh_beta, 2.0 * 0.02 / (1100.0 * TD_PI), 1e-14, 0.0);
+    assert_close(so.rayleigh_alpha / (2.0 * 100.0 * TD_PI) + so.rayleigh_beta * 100.0 * TD_PI / 2.0, 0.02, 1e-14, 0.0);
     assert_int_equal(td_model_disc_count(m), 0);
     assert_int_equal(td_model_amb_count(m), 0);
     td_model_get_bearing(m, 1, &b);
@@ -525,6 +529,7 @@ static void test_docs_match_reader(void **state)
                                          "shaft.material.",
                                          "shaft.sections[0].",
                                          "shaft.rayleigh.",
+                                         "shaft.damping.",
                                          "discs[0].",
                                          "point_masses[0].",
                                          "ambs[0].",
@@ -871,6 +876,11 @@ static const bad_file bad_files[] = {
     {"schedule-negative-time.cfg", 8, "schedule[0].time", NULL},
     {"schedule-two-kinds.cfg", 10, "schedule[0].amb_off", NULL},
     {"shaft-bad-beam.cfg", 8, "shaft.beam", NULL},
+    {"shaft-damping-and-rayleigh.cfg", 9, "shaft.damping", NULL},
+    {"shaft-damping-frequencies-decreasing.cfg", 8, "shaft.damping.frequencies[1]", NULL},
+    {"shaft-damping-frequency-zero.cfg", 8, "shaft.damping.frequencies[0]", NULL},
+    {"shaft-damping-ratio-negative.cfg", 8, "shaft.damping.ratio", NULL},
+    {"shaft-damping-ratio-one.cfg", 8, "shaft.damping.ratio", NULL},
     {"shaft-diameter-overflow.cfg", 7, "shaft.outer_diameter", NULL},
     {"shaft-elements-absurd.cfg", 5, "shaft.elements", NULL},
     {"shaft-elements-float.cfg", 5, "shaft.elements", NULL},

@@ -48,6 +48,87 @@ static td_system *overhung(void)
     return overhung_fine(4);
 }
 
+/* A free-free steel beam of 1 m on 10 elements, shaft damping from `ratio` at f1, f2 (Hz; none when
+ * ratio < 0). Free-free, C = alpha M + beta K is proportional, so every bending mode keeps its
+ * undamped frequency w and has the damping ratio alpha / (2 w) + beta w / 2 exactly. */
+static td_system *free_beam(double ratio, double f1, double f2, td_shaft_options *opt)
+{
+    td_model *m = NULL;
+    td_system *s = NULL;
+    td_shaft_element el = {0.1, 0.05, 0.0, {2.11e11, 8.1e10, 7810.0}};
+    double f[2] = {f1, f2};
+    td_error err;
+    int i;
+    memset(opt, 0, sizeof *opt);
+    if (ratio >= 0.0)
+        assert_int_equal(td_rayleigh_from_ratio(ratio, f, 2, &opt->rayleigh_alpha, &opt->rayleigh_beta, NULL), TD_OK);
+    assert_int_equal(td_model_create(&m, NULL), TD_OK);
+    assert_int_equal(td_model_set_shaft_options(m, opt, NULL), TD_OK);
+    for (i = 0; i < 10; i++)
+        assert_int_equal(td_model_add_shaft_element(m, &el, NULL), TD_OK);
+    if (td_system_create(m, &s, &err) != TD_OK)
+        fail_msg("%s", err.message);
+    td_model_free(&m);
+    return s;
+}
+
+/* The lowest two distinct bending frequencies (rad/s, above 1 rad/s: not the rigid-body pairs). */
+static void lowest_two(const td_modal *md, double *w1, double *w2)
+{
+    td_mode mode;
+    int i;
+    *w1 = *w2 = INFINITY;
+    for (i = 0; i < td_modal_mode_count(md); i++) {
+        assert_int_equal(td_modal_get_mode(md, i, &mode), TD_OK);
+        if (mode.omega_n < 1.0)
+            continue;
+        if (mode.omega_n < *w1 * (1.0 - 1e-6)) {
+            *w2 = *w1;
+            *w1 = mode.omega_n;
+        } else if (mode.omega_n > *w1 * (1.0 + 1e-6) && mode.omega_n < *w2)
+            *w2 = mode.omega_n;
+    }
+}
+
+/* td_rayleigh_from_ratio through the eigen-analysis: zeta at the two modes it was fitted to, and
+ * zeta(w) = alpha / (2 w) + beta w / 2 at every other bending mode. */
+static void test_rayleigh_from_ratio_modes(void **state)
+{
+    td_shaft_options opt;
+    td_system *s = free_beam(-1.0, 0.0, 0.0, &opt);
+    td_modal *md = NULL;
+    td_mode mode;
+    double w1, w2, zeta = 0.01, expect;
+    int i, at1 = 0, at2 = 0, others = 0;
+    (void)state;
+    assert_int_equal(td_modal_solve(s, 0.0, &md, NULL), TD_OK);
+    lowest_two(md, &w1, &w2);
+    td_modal_free(&md);
+    td_system_free(&s);
+    s = free_beam(zeta, w1 / (2.0 * TD_PI), w2 / (2.0 * TD_PI), &opt);
+    assert_int_equal(td_modal_solve(s, 0.0, &md, NULL), TD_OK);
+    for (i = 0; i < td_modal_mode_count(md); i++) {
+        assert_int_equal(td_modal_get_mode(md, i, &mode), TD_OK);
+        if (mode.omega_n < 1.0 || mode.zeta >= TD_MODAL_OVERDAMPED_ZETA)
+            continue;
+        expect = opt.rayleigh_alpha / (2.0 * mode.omega_n) + opt.rayleigh_beta * mode.omega_n / 2.0;
+        if (fabs(mode.omega_n / w1 - 1.0) < 1e-6 || fabs(mode.omega_n / w2 - 1.0) < 1e-6) {
+            assert_close(mode.zeta, zeta, 1e-6 * zeta, 0.0);
+            at1 += fabs(mode.omega_n / w1 - 1.0) < 1e-6;
+            at2 += fabs(mode.omega_n / w2 - 1.0) < 1e-6;
+        } else {
+            assert_close(mode.zeta, expect, 1e-6 * expect, 0.0);
+            assert_true(mode.omega_n < w2 || mode.zeta > zeta); /* more damping above the fit */
+            others++;
+        }
+    }
+    assert_int_equal(at1, 2); /* x and y planes */
+    assert_int_equal(at2, 2);
+    assert_true(others >= 4);
+    td_modal_free(&md);
+    td_system_free(&s);
+}
+
 /* td_modal_stability (eigenvalues only) against td_modal_solve (eigenvalues and vectors), a second
  * solver path, on the AMB Jeffcott rotor of tests/data/case/amb-jeffcott.cfg: the same rightmost
  * real part and verdict, and the verdict Routh-Hurwitz gives (stable iff ks/ki < kp < kd/tau,
@@ -569,6 +650,7 @@ int main(void)
         cmocka_unit_test(test_critical_speed_vs_scan),
         cmocka_unit_test(test_writers_round_trip),
         cmocka_unit_test(test_partial_equals_dense),
+        cmocka_unit_test(test_rayleigh_from_ratio_modes),
         cmocka_unit_test(test_stability_matches_full_solve),
         cmocka_unit_test(test_large_model_bounded),
     };

@@ -28,6 +28,9 @@ static void print_parts(const td_model *m)
            td_model_node_count(m), td_model_node_position(m, td_model_node_count(m) - 1),
            so.beam == TD_BEAM_TIMOSHENKO ? "Timoshenko" : "Euler-Bernoulli",
            so.mass == TD_MASS_LUMPED ? "lumped" : "consistent");
+    if (so.rayleigh_alpha > 0.0 || so.rayleigh_beta > 0.0)
+        printf("damping      shaft Rayleigh alpha %.6g 1/s, beta %.6g s: zeta(w) = alpha / (2 w) + beta w / 2\n",
+               so.rayleigh_alpha, so.rayleigh_beta);
     for (i = 0; i < td_model_disc_count(m); i++) {
         td_disc d;
         td_model_get_disc(m, i, &d);

@@ -53,6 +53,18 @@ typedef struct td_shaft_options {
     double rayleigh_beta;  /**< C += beta K_shaft, s */
 } td_shaft_options;
 
+/**
+ * Rayleigh damping coefficients from a damping ratio `ratio` (0 <= ratio < 1) given at one or two
+ * frequencies (Hz, > 0, increasing): with w = 2 pi f, two frequencies give the fit
+ * alpha = 2 zeta w1 w2 / (w1 + w2), beta = 2 zeta / (w1 + w2); one gives stiffness-proportional
+ * damping alpha = 0, beta = 2 zeta / w1. The modal damping ratio is then
+ * zeta(w) = alpha / (2 w) + beta w / 2: exactly `ratio` at the given frequencies, more above the
+ * highest (and, with two, below the lowest), less between them. A fault names site part "damping",
+ * field "ratio" or "frequencies.[i]".
+ */
+TD_API td_status td_rayleigh_from_ratio(double ratio, const double *frequencies, int count, double *alpha, double *beta,
+                                        td_error *err);
+
 /** A rigid disc (or, with Ip = Id = 0, a point mass) attached to a node. */
 typedef struct td_disc {
     int node;

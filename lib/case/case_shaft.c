@@ -10,13 +10,14 @@
 #include <stdlib.h>
 #include <string.h>
 
-static const char *const shaft_keys[] = {"length",         "elements", "nodes",    "outer_diameter",
-                                         "inner_diameter", "material", "sections", "beam",
-                                         "mass",           "rayleigh", "refine",   NULL};
+static const char *const shaft_keys[] = {"length",   "elements", "nodes", "outer_diameter", "inner_diameter",
+                                         "material", "sections", "beam",  "mass",           "rayleigh",
+                                         "refine",   "damping",  NULL};
 static const char *const material_keys[] = {"E", "G", "density", NULL};
 static const char *const section_keys[] = {"element",        "from",     "to", "outer_diameter",
                                            "inner_diameter", "material", NULL};
 static const char *const rayleigh_keys[] = {"alpha", "beta", NULL};
+static const char *const damping_keys[] = {"ratio", "frequencies", NULL};
 static const char *const beam_names[] = {"euler-bernoulli", "timoshenko"};
 static const char *const mass_names[] = {"consistent", "lumped"};
 
@@ -178,7 +179,32 @@ static td_status check_element(td_case_reader *r, const config_setting_t *shaft,
     return st;
 }
 
-/* beam, mass, rayleigh { alpha; beta; } */
+/* damping { ratio; frequencies = [f1, f2]; } -> Rayleigh alpha, beta (td_rayleigh_from_ratio checks them) */
+static td_status read_damping(td_case_reader *r, const config_setting_t *shaft, td_shaft_options *o)
+{
+    const config_setting_t *g;
+    double ratio = 0.0, f[2];
+    td_error merr;
+    int n = 0;
+    td_status st = td_cr_group(r, shaft, "damping", NULL, &g);
+    if (st != TD_OK || !g)
+        return st;
+    st = td_cr_check_keys(r, g, damping_keys);
+    if (st == TD_OK && td_cr_has(shaft, "rayleigh"))
+        return td_cr_fail(r, g, NULL, "give either 'rayleigh' or 'damping', not both");
+    if (st == TD_OK)
+        st = td_cr_real(r, g, "ratio", "damping ratio zeta, e.g. 0.01", 0.0, TD_CR_FINITE, &ratio);
+    if (st == TD_OK && !td_cr_has(g, "frequencies"))
+        return td_cr_fail(r, g, NULL, "missing 'frequencies' (1 or 2 frequencies, Hz, where zeta holds)");
+    if (st == TD_OK)
+        st = td_cr_reals(r, g, "frequencies", 2, TD_CR_FINITE, f, &n);
+    if (st != TD_OK)
+        return st;
+    st = td_rayleigh_from_ratio(ratio, f, n, &o->rayleigh_alpha, &o->rayleigh_beta, &merr);
+    return st == TD_OK ? TD_OK : td_cr_model_fail(r, g, st, &merr);
+}
+
+/* beam, mass, rayleigh { alpha; beta; } or damping { ratio; frequencies; } */
 static td_status read_shaft_options(td_case_reader *r, const config_setting_t *shaft)
 {
     const config_setting_t *ray;
@@ -199,6 +225,8 @@ static td_status read_shaft_options(td_case_reader *r, const config_setting_t *s
         if (st == TD_OK)
             st = td_cr_real(r, ray, "beta", NULL, 0.0, TD_CR_NONNEGATIVE, &o.rayleigh_beta);
     }
+    if (st == TD_OK)
+        st = read_damping(r, shaft, &o);
     if (st != TD_OK)
         return st;
     o.beam = (td_beam_theory)beam;

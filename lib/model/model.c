@@ -214,6 +214,33 @@ td_status td_model_set_shaft_options(td_model *m, const td_shaft_options *opt, t
     return TD_OK;
 }
 
+td_status td_rayleigh_from_ratio(double ratio, const double *frequencies, int count, double *alpha, double *beta,
+                                 td_error *err)
+{
+    double w1, w2;
+    int i;
+    if (!frequencies || !alpha || !beta)
+        return td_error_set(err, TD_ERR_INVALID, "damping: NULL argument");
+    if (!(ratio >= 0.0 && ratio < 1.0))
+        return FAIL_AT(err, "damping", 0, "ratio", "must be >= 0 and < 1 (got %g)", ratio);
+    if (count != 1 && count != 2)
+        return FAIL_AT(err, "damping", 0, "frequencies", "needs 1 or 2 frequencies, Hz (got %d)", count);
+    for (i = 0; i < count; i++) {
+        static const char *const at[] = {"frequencies.[0]", "frequencies.[1]"};
+        if (!finite_positive(frequencies[i]))
+            return FAIL_AT(err, "damping", 0, at[i], "must be > 0 Hz (got %g)", frequencies[i]);
+        if (i > 0 && !(frequencies[i] > frequencies[i - 1]))
+            return FAIL_AT(err, "damping", 0, at[i], "must be above the first frequency %g Hz (got %g)",
+                           frequencies[i - 1], frequencies[i]);
+    }
+    /* zeta(w) = alpha / (2 w) + beta w / 2 equal to ratio at w1 and w2 */
+    w1 = 2.0 * TD_PI * frequencies[0];
+    w2 = count == 2 ? 2.0 * TD_PI * frequencies[1] : 0.0;
+    *alpha = count == 2 ? 2.0 * ratio * w1 * w2 / (w1 + w2) : 0.0;
+    *beta = 2.0 * ratio / (w1 + w2);
+    return TD_OK;
+}
+
 td_status td_model_add_shaft_element(td_model *m, const td_shaft_element *el, td_error *err)
 {
     int i;
