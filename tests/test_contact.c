@@ -123,7 +123,13 @@ static void test_constraint_geometry(void **state)
 /* eq. (16) on a circular whirl at rate w: v = R_s Omega + (R_b - R_s) w - R_b Omega_b; eq. (17) sign. */
 static void test_sliding_velocity_and_friction(void **state)
 {
-    td_retainer ret = {2, 0.75e-3, 0.025, 0.02575, 0.1, 3.0, 0.0};
+    td_retainer ret = {.node = 2,
+                       .clearance = 0.75e-3,
+                       .shaft_radius = 0.025,
+                       .bore_radius = 0.02575,
+                       .friction = 0.1,
+                       .bore_speed = 3.0,
+                       .restitution = 0.0};
     double w = -40.0, c = ret.clearance, a = 0.4;
     double x = c * cos(a), y = c * sin(a), vx = -w * y, vy = w * x;
     (void)state;
@@ -139,7 +145,13 @@ static void test_sliding_velocity_and_friction(void **state)
  * edges; and the gradient of eq. (16) against central differences. */
 static void test_slip_factor_and_gradient(void **state)
 {
-    td_retainer ret = {2, 0.75e-3, 0.025, 0.02575, 0.1, 3.0, 0.0};
+    td_retainer ret = {.node = 2,
+                       .clearance = 0.75e-3,
+                       .shaft_radius = 0.025,
+                       .bore_radius = 0.02575,
+                       .friction = 0.1,
+                       .bore_speed = 3.0,
+                       .restitution = 0.0};
     double vreg = TD_CONTACT_SLIP_BAND, d, g[4], z[4] = {3.1e-4, -6.2e-4, 0.021, 0.013};
     int i;
     (void)state;

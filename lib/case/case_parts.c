@@ -190,7 +190,7 @@ static td_status read_bearing(td_case_reader *r, const config_setting_t *g)
 
 static td_status read_retainer(td_case_reader *r, const config_setting_t *g)
 {
-    td_retainer ret;
+    td_retainer ret = {0};
     td_error merr;
     td_status st = td_cr_check_keys(r, g, retainer_keys);
     if (st == TD_OK)

@@ -49,7 +49,13 @@ static td_model *jeffcott_rub(const rub_params *p)
     td_shaft_element el = {0.2, 0.05, 0.0, {2.11e11 * ghost, 8.1e10 * ghost, 7810.0 * ghost}};
     td_disc d0 = {0, p->m, 0.0, 0.01}, d1 = {1, p->m, 0.0, 0.01};
     td_bearing b0 = {0, p->k, p->k, p->cd, p->cd}, b1 = {1, p->k, p->k, p->cd, p->cd};
-    td_retainer r = {0, p->c, 0.025, 0.025 + p->c, p->mu, 0.0, 0.0};
+    td_retainer r = {.node = 0,
+                     .clearance = p->c,
+                     .shaft_radius = 0.025,
+                     .bore_radius = 0.025 + p->c,
+                     .friction = p->mu,
+                     .bore_speed = 0.0,
+                     .restitution = 0.0};
     td_unbalance u = {0, p->U, 0.0};
     assert_int_equal(td_model_create(&m, NULL), TD_OK);
     if (td_model_add_shaft_element(m, &el, &err) || td_model_add_disc(m, &d0, &err) ||
