@@ -39,13 +39,15 @@ typedef struct td_event {
 /** Contact state of one retainer at the current time. */
 typedef struct td_retainer_state {
     double x, y;             /**< node displacement, m */
-    double radius;           /**< radial position r = sqrt(x^2 + y^2), m */
-    double radial_velocity;  /**< m/s */
-    double whirl_angle;      /**< atan2(y, x), rad */
+    double radius;           /**< radial position r of the node relative to the race centre, m (the gap is c - r) */
+    double radial_velocity;  /**< dr/dt, m/s */
+    double whirl_angle;      /**< angle of the node around the race centre, atan2, rad */
     double normal_force;     /**< N >= 0 while in contact */
     double friction_force;   /**< N, tangential, positive along the whirl direction */
     double sliding_velocity; /**< eq. 16, m/s */
     int in_contact;          /**< 1 while the contact is active */
+    double race_x, race_y;   /**< race centre displacement on its mount, m (0 without a mount) */
+    double race_speed;       /**< race speed Omega_b, rad/s (bore_speed when it is fixed) */
 } td_retainer_state;
 
 /** Running totals across every restart of the integrator. */

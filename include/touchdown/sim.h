@@ -86,7 +86,8 @@ TD_API double td_sim_time(const td_sim *sim);
 /** The event that stopped the last td_sim_step with TD_EVENT. */
 TD_API td_status td_sim_last_event(const td_sim *sim, td_event *ev);
 
-/** Number of mechanical DOFs. */
+/** Number of the rotor's mechanical DOFs (touchdown/dofs.h; the races' states are read with
+ *  td_sim_retainer_state). */
 TD_API int td_sim_dof_count(const td_sim *sim);
 /** Copy displacements q and velocities v (each td_sim_dof_count long; either may be NULL). */
 TD_API td_status td_sim_get_state(const td_sim *sim, double *q, double *v);

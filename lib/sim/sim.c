@@ -95,6 +95,10 @@ static int conv_test_cb(SUNNonlinearSolver nls, N_Vector ycor, N_Vector del, sun
             continue;
         x = pred[s->oq + r->dx] + cor[s->oq + r->dx];
         y = pred[s->oq + r->dy] + cor[s->oq + r->dy];
+        if (r->rx >= 0) {
+            x -= pred[s->oq + r->rx] + cor[s->oq + r->rx];
+            y -= pred[s->oq + r->ry] + cor[s->oq + r->ry];
+        }
         if (fabs(td_contact_constraint(x, y, r->r.clearance)) > s->constraint_tol)
             return SUN_NLS_CONTINUE;
     }
@@ -178,7 +182,6 @@ static td_status alloc_arrays(td_sim *s, td_error *err)
     s->unb = calloc((size_t)(s->nu > 0 ? s->nu : 1), sizeof *s->unb);
     s->amb_mode = calloc((size_t)(na > 0 ? na : 1), sizeof *s->amb_mode);
     s->amb_control = calloc((size_t)(2 * na + 2), sizeof(double));
-    s->ret = calloc(nr, sizeof *s->ret);
     s->amb_coef = calloc((size_t)(s->sys->n_amb_axes + 1), sizeof *s->amb_coef);
     s->q_cap = 4 * s->nr + td_model_change_count(s->model) + 4;
     s->queue = calloc((size_t)s->q_cap, sizeof *s->queue);
@@ -187,7 +190,7 @@ static td_status alloc_arrays(td_sim *s, td_error *err)
     s->rootsfound = calloc(TD_ROOTS_PER_RETAINER * nr, sizeof(int));
     s->ysave = calloc((size_t)s->neq, sizeof(double));
     s->ypsave = calloc((size_t)s->neq, sizeof(double));
-    if (!ok || !s->unb || !s->amb_mode || !s->amb_control || !s->ret || !s->amb_coef || !s->queue || !s->rootdir ||
+    if (!ok || !s->unb || !s->amb_mode || !s->amb_control || !s->amb_coef || !s->queue || !s->rootdir ||
         !s->rootsfound || !s->ysave || !s->ypsave)
         return td_error_set(err, TD_ERR_NOMEM, "out of memory creating a simulation");
     return TD_OK;
@@ -202,8 +205,6 @@ static void init_machine(td_sim *s)
         td_model_get_unbalance(s->model, i, &s->unb[i]);
     for (i = 0; i < na; i++)
         s->amb_mode[i] = TD_AMB_PD;
-    for (i = 0; i < s->nr; i++)
-        td_sim_retainer_init(&s->ret[i], s->model, i);
     /* the AMB laws are linear (model/amb.c): unit probes give their coefficients exactly */
     for (i = 0; i < s->sys->n_amb_axes; i++) {
         const td_amb_axis *a = &s->sys->amb_axes[i];
@@ -230,12 +231,12 @@ static double highest_frequency(const td_sim *s)
     for (it = 0; it < 60; it++) {
         double num = 0.0, den = 0.0, norm = 0.0;
         memset(kx, 0, sizeof(double) * (size_t)s->n);
-        cs_di_gaxpy(s->sys->K, x, kx);
+        cs_di_gaxpy(s->K, x, kx);
         for (i = 0; i < s->n; i++)
             num += x[i] * kx[i];
         td_sim_mass_solve(s, kx); /* kx = M^-1 K x */
         memset(mx, 0, sizeof(double) * (size_t)s->n);
-        cs_di_gaxpy(s->sys->M, x, mx);
+        cs_di_gaxpy(s->M, x, mx);
         for (i = 0; i < s->n; i++)
             den += x[i] * mx[i];
         if (den > 0.0)
@@ -324,12 +325,32 @@ static double default_max_step(const td_sim *s)
  *           eta are algebraic and excluded from the error test, but the Newton convergence test
  *           still weighs them.
  */
+/* The races' DOFs: the centre as a displacement; the angle as the arc atol / R_b at the race
+ * surface (nothing depends on the angle itself); speeds as the rotor's, times freq_max. */
+static void race_tolerances(td_sim *s, double *at, double *id)
+{
+    double atol = s->opt.solver.atol;
+    int k, i;
+    for (k = 0; k < s->nr; k++) {
+        const td_sim_retainer *r = &s->ret[k];
+        int dofs[3] = {r->rx, r->ry, r->rs};
+        for (i = 0; i < 3; i++) {
+            double scale = i == 2 ? 1.0 / r->r.bore_radius : 1.0;
+            if (dofs[i] < 0)
+                continue;
+            at[s->oq + dofs[i]] = atol * scale;
+            at[s->ov + dofs[i]] = atol * scale * s->freq_max;
+            id[s->oq + dofs[i]] = id[s->ov + dofs[i]] = 1.0;
+        }
+    }
+}
+
 static void set_tolerances(td_sim *s)
 {
     double *at = N_VGetArrayPointer(s->atol), *id = N_VGetArrayPointer(s->id), atol = s->opt.solver.atol;
     int i;
     int ne = td_model_shaft_element_count(s->model);
-    for (i = 0; i < s->n; i++) {
+    for (i = 0; i < s->sys->ndof; i++) {
         int node = i / TD_DOFS_PER_NODE, off = i % TD_DOFS_PER_NODE;
         double scale = 1.0;
         if (off == TD_DOF_THETA || off == TD_DOF_PHI) {
@@ -356,6 +377,7 @@ static void set_tolerances(td_sim *s)
             id[s->ow + a->state] = 1.0;
         }
     }
+    race_tolerances(s, at, id);
     for (i = 0; i < s->nr; i++) {
         at[s->ol + i] = atol * s->stiff_scale;
         at[s->ou + i] = atol * s->freq_scale;
@@ -365,10 +387,10 @@ static void set_tolerances(td_sim *s)
 
 static td_status factor_mass(td_sim *s, td_error *err)
 {
-    s->Ms = cs_di_sqr(1, s->sys->M, 0);
+    s->Ms = cs_di_sqr(1, s->M, 0);
     if (!s->Ms)
         return td_error_set(err, TD_ERR_NOMEM, "out of memory factorising the mass matrix");
-    s->Mn = cs_di_lu(s->sys->M, s->Ms, 1.0);
+    s->Mn = cs_di_lu(s->M, s->Ms, 1.0);
     if (!s->Mn)
         return td_error_set(err, TD_ERR_NUMERIC, "the mass matrix is singular");
     return TD_OK;
@@ -398,7 +420,9 @@ static int first_outside(const td_sim *s, const double *y, double *rad)
     int k;
     for (k = 0; k < s->nr; k++) {
         const td_sim_retainer *r = &s->ret[k];
-        *rad = hypot(y[s->oq + r->dx], y[s->oq + r->dy]);
+        double x, yy, vx, vy;
+        td_sim_node_state(s, k, y, &x, &yy, &vx, &vy);
+        *rad = hypot(x, yy);
         if (*rad - r->r.clearance > TD_START_TOUCH_TOLERANCE * r->r.clearance)
             return k;
     }
@@ -452,13 +476,16 @@ static td_status start_state(td_sim *s, td_error *err)
     s->start.reason[0] = '\0';
     if (s->opt.start != TD_START_REST && (st = orbit_start(s, y, err)) != TD_OK)
         return st;
+    td_sim_races_start(s, y);
     for (k = 0; k < s->nr; k++) {
         td_sim_retainer *r = &s->ret[k];
-        double rad = hypot(y[s->oq + r->dx], y[s->oq + r->dy]), c = r->r.clearance;
+        double x, yy, vx, vy, rad, c = r->r.clearance;
+        td_sim_node_state(s, k, y, &x, &yy, &vx, &vy);
+        rad = hypot(x, yy);
         touching[k] = 0;
         if (rad <= c)
             continue;
-        if (s->opt.contact.model == TD_CONTACT_PENALTY) {
+        if (td_sim_penalty_model(s, k)) {
             r->mode = TD_RMODE_PENETRATING;
             td_sim_init_slip(s, k, y);
         } else if (rad - c <= TD_START_TOUCH_TOLERANCE * c) {
@@ -567,14 +594,11 @@ static td_status setup_stage(td_status st, volatile sig_atomic_t *cancel, td_err
     return st;
 }
 
-/* Sizes and block offsets of the unknowns (sim_internal.h), the start time, the statistics'
- * "none yet" markers and the penalty law of the options. */
+/* Block offsets of the unknowns (sim_internal.h), the start time and the statistics' "none yet"
+ * markers. */
 static void init_layout(td_sim *s)
 {
-    s->model = td_system_model(s->sys);
-    s->n = s->sys->ndof;
     s->nw = s->sys->n_filter_states;
-    s->nr = td_model_retainer_count(s->model);
     s->oq = 0;
     s->ov = s->n;
     s->ow = 2 * s->n;
@@ -585,10 +609,22 @@ static void init_layout(td_sim *s)
     s->stats.first_contact_time = -1.0;
     s->stats.peak_time = -1.0;
     s->stats.peak_retainer = -1;
-    s->law.stiffness = s->opt.contact.stiffness;
-    s->law.exponent = s->opt.contact.exponent;
-    s->law.damping = s->opt.contact.damping;
-    s->law.coefficient = s->opt.contact.damping_coefficient;
+}
+
+/* The retainers, free, with their contact laws, and the DOFs of their races after the rotor's
+ * (s->n: all DOFs). */
+static td_status init_retainers(td_sim *s, td_error *err)
+{
+    int k;
+    s->model = td_system_model(s->sys);
+    s->nr = td_model_retainer_count(s->model);
+    s->ret = calloc((size_t)(s->nr > 0 ? s->nr : 1), sizeof *s->ret);
+    if (!s->ret)
+        return td_error_set(err, TD_ERR_NOMEM, "out of memory creating a simulation");
+    for (k = 0; k < s->nr; k++)
+        td_sim_retainer_init(&s->ret[k], s->model, k, &s->opt.contact);
+    td_sim_races_layout(s);
+    return td_sim_races_matrices(s, err);
 }
 
 td_status td_sim_create(const td_model *model, const td_sim_options *options, td_sim **out, td_error *err)
@@ -614,6 +650,8 @@ td_status td_sim_create_cancellable(const td_model *model, const td_sim_options 
     st = check_options(&s->opt, err);
     if (st == TD_OK)
         st = setup_stage(td_system_create(model, &s->sys, err), cancel, err);
+    if (st == TD_OK)
+        st = init_retainers(s, err);
     if (st == TD_OK) {
         init_layout(s);
         st = alloc_arrays(s, err);
@@ -723,6 +761,7 @@ void td_sim_free(td_sim **sim)
     free(s->rootsfound);
     free(s->ysave);
     free(s->ypsave);
+    td_sim_races_free(s);
     td_system_free(&s->sys);
     free(s);
     *sim = NULL;
@@ -750,7 +789,9 @@ static void monitor_at(td_sim *s, double t, int at_step)
         if (dt > 0.0)
             s->stats.time_in_contact += dt;
         if (r->mode == TD_RMODE_CONTACT && at_step) {
-            double drift = fabs(hypot(y[s->oq + r->dx], y[s->oq + r->dy]) - r->r.clearance);
+            double x, yy, vx, vy, drift;
+            td_sim_node_state(s, k, y, &x, &yy, &vx, &vy);
+            drift = fabs(hypot(x, yy) - r->r.clearance);
             if (drift > s->stats.worst_drift)
                 s->stats.worst_drift = drift;
         }
@@ -1003,7 +1044,7 @@ td_status td_sim_last_event(const td_sim *sim, td_event *ev)
 
 int td_sim_dof_count(const td_sim *sim)
 {
-    return sim ? sim->n : 0;
+    return sim ? sim->sys->ndof : 0;
 }
 
 td_status td_sim_get_state(const td_sim *sim, double *q, double *v)
@@ -1013,9 +1054,9 @@ td_status td_sim_get_state(const td_sim *sim, double *q, double *v)
         return TD_ERR_INVALID;
     y = N_VGetArrayPointer(sim->y);
     if (q)
-        memcpy(q, y + sim->oq, sizeof(double) * (size_t)sim->n);
+        memcpy(q, y + sim->oq, sizeof(double) * (size_t)sim->sys->ndof);
     if (v)
-        memcpy(v, y + sim->ov, sizeof(double) * (size_t)sim->n);
+        memcpy(v, y + sim->ov, sizeof(double) * (size_t)sim->sys->ndof);
     return TD_OK;
 }
 
@@ -1023,18 +1064,20 @@ td_status td_sim_retainer_state(const td_sim *sim, int retainer, td_retainer_sta
 {
     const double *y;
     const td_sim_retainer *r;
-    double vx, vy;
+    double rx, ry, vx, vy;
     if (!sim || !out || retainer < 0 || retainer >= sim->nr)
         return TD_ERR_INVALID;
     y = N_VGetArrayPointer(sim->y);
     r = &sim->ret[retainer];
     out->x = y[sim->oq + r->dx];
     out->y = y[sim->oq + r->dy];
-    vx = y[sim->ov + r->dx];
-    vy = y[sim->ov + r->dy];
-    out->radius = hypot(out->x, out->y);
-    out->radial_velocity = td_contact_radial_velocity(out->x, out->y, vx, vy);
-    out->whirl_angle = atan2(out->y, out->x);
+    out->race_x = r->rx >= 0 ? y[sim->oq + r->rx] : 0.0;
+    out->race_y = r->rx >= 0 ? y[sim->oq + r->ry] : 0.0;
+    out->race_speed = td_sim_race_speed(sim, retainer, y);
+    td_sim_node_state(sim, retainer, y, &rx, &ry, &vx, &vy);
+    out->radius = hypot(rx, ry);
+    out->radial_velocity = td_contact_radial_velocity(rx, ry, vx, vy);
+    out->whirl_angle = atan2(ry, rx);
     out->normal_force = td_sim_normal_force(sim, retainer, y);
     out->in_contact = r->mode != TD_RMODE_FREE;
     out->friction_force =

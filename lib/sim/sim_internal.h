@@ -5,6 +5,10 @@
  *
  *   y = [ q (n) | v (n) | w (nw AMB filter states) | lambda (nr) | eta (nr) ]
  *
+ * where q and v hold the rotor's DOFs (touchdown/dofs.h) and after them the races' (race.c: per
+ * retainer with a race, the x, y of its centre when mounted, then its angle when it can spin; v
+ * holds the race speed Omega_b there). M, K, C, G below are the matrices of all n DOFs.
+ *
  * lambda_k is the normal force of retainer k (N) and eta_k the GGL multiplier of its position
  * constraint (the "mu" of the stabilised index-2 form; called eta here so that mu stays the
  * friction coefficient). Residual rows, F(t, y, y') = 0:
@@ -50,9 +54,8 @@ struct td_sim {
     td_system *sys;        /* owned */
     const td_model *model; /* the system's copy */
     td_sim_options opt;
-    td_penalty_law law;
 
-    int n, nw, nr, neq;     /* DOFs, filter states, retainers, equations */
+    int n, nw, nr, neq;     /* DOFs (rotor and races), filter states, retainers, equations */
     int oq, ov, ow, ol, ou; /* block offsets in y */
 
     /* the machine as it is now (changed by the schedule and the td_sim_set_* calls) */
@@ -72,6 +75,10 @@ struct td_sim {
     double stiff_scale; /* N/m, forces ~ stiff_scale * displacements */
     double rearm_eps;   /* m, hysteresis of the onset root (constraint model) */
     double rebound_min; /* m/s, radial speed below which an impact with e > 0 becomes plastic */
+
+    /* the structural matrices of all n DOFs (race.c): the system's own without races */
+    cs_di *M, *K, *C, *G;
+    int own_matrices; /* 1: M, K, C, G extended with races, owned */
 
     /* mass matrix factorisation (LU, CXSparse), for consistent accelerations and the impact map */
     cs_dis *Ms;
@@ -161,6 +168,18 @@ void td_sim_root_directions(const td_sim *s, int *dir);
 double td_sim_amb_axis_force(const td_sim *s, int k, const double *y);
 /* Spin angle phi(t). */
 double td_sim_spin_angle(const td_sim *s, double t);
+
+/* ---- race.c: the races' DOFs and matrices ----------------------------------------------- */
+
+/* Assign the race DOFs after the rotor's and set s->n. */
+void td_sim_races_layout(td_sim *s);
+/* s->M, s->K, s->C, s->G over all n DOFs. */
+td_status td_sim_races_matrices(td_sim *s, td_error *err);
+void td_sim_races_free(td_sim *s);
+/* f += sign * the races' weight (length n). */
+void td_sim_races_gravity(const td_sim *s, double *f, double sign);
+/* The races' start state into y: centres resting on their mounts, speeds at bore_speed. */
+void td_sim_races_start(const td_sim *s, double *y);
 
 /* ---- sim_nvector.c: compiled vector operations ----------------------------------------- */
 

@@ -65,9 +65,10 @@ void td_sim_queue_event(td_sim *s, const td_event *ev)
 
 void td_sim_event_velocities(const td_sim *s, int k, const double *y, int after, td_event *ev)
 {
-    const td_sim_retainer *r = &s->ret[k];
-    double x = y[s->oq + r->dx], yy = y[s->oq + r->dy], vx = y[s->ov + r->dx], vy = y[s->ov + r->dy];
-    double vr = td_contact_radial_velocity(x, yy, vx, vy), vt = td_contact_tangential_velocity(x, yy, vx, vy);
+    double x, yy, vx, vy, vr, vt;
+    td_sim_node_state(s, k, y, &x, &yy, &vx, &vy);
+    vr = td_contact_radial_velocity(x, yy, vx, vy);
+    vt = td_contact_tangential_velocity(x, yy, vx, vy);
     if (after) {
         ev->radial_velocity_after = vr;
         ev->tangential_velocity_after = vt;
@@ -96,6 +97,14 @@ static void queue_retainer_event(td_sim *s, td_event_kind kind, int k, const dou
     td_sim_queue_event(s, &ev);
 }
 
+/* The D term of eq. (13b) of retainer k at y, from the node's velocity relative to the race. */
+static double contact_dterm(const td_sim *s, int k, const double *y)
+{
+    double x, yy, vx, vy;
+    td_sim_node_state(s, k, y, &x, &yy, &vx, &vy);
+    return td_contact_constraint_dterm(vx, vy, s->ret[k].r.clearance);
+}
+
 /* One KKT solve with the current contact set: [M, B; J, 0][v'; lambda] = [f; -D] by the Schur
  * complement (J M^-1 B) lambda = J M^-1 f + D (m x m, m = contacts), v' = M^-1 (f - B lambda).
  * Fills yp's v block and y's lambda entries. Returns the number of contacts, or -1 if singular. */
@@ -116,14 +125,10 @@ static int kkt_solve(td_sim *s, double *y, double *yp)
     }
     for (i = 0; i < m; i++) {
         const td_contact_row *row = &s->rows[i];
-        const td_sim_retainer *r = &s->ret[s->active[i]];
-        for (j = 0; j < m; j++) {
-            const double *z = s->minv_cols + (size_t)j * s->n;
-            S[i + j * m] = row->j[0] * z[row->dof[0]] + row->j[1] * z[row->dof[1]];
-        }
+        for (j = 0; j < m; j++)
+            S[i + j * m] = td_contact_row_dot(row, s->minv_cols + (size_t)j * s->n);
         /* eq. (13b): J v' = -D */
-        rhs[i] = row->j[0] * a[row->dof[0]] + row->j[1] * a[row->dof[1]] +
-                 td_contact_constraint_dterm(y[s->ov + r->dx], y[s->ov + r->dy], r->r.clearance);
+        rhs[i] = td_contact_row_dot(row, a) + contact_dterm(s, s->active[i], y);
     }
     if (m > 0 && td_contact_dense_solve(m, S, rhs) != 0)
         return -1;
@@ -197,13 +202,11 @@ td_status td_sim_make_consistent(td_sim *s, const int *just_entered)
  */
 static double free_normal_acceleration(td_sim *s, int k, const double *y, double *a)
 {
-    const td_sim_retainer *r = &s->ret[k];
     td_contact_row row;
     td_sim_forces(s, s->t, y, a);
     td_sim_mass_solve(s, a);
     td_sim_contact_row(s, k, y, &row);
-    return row.j[0] * a[row.dof[0]] + row.j[1] * a[row.dof[1]] +
-           td_contact_constraint_dterm(y[s->ov + r->dx], y[s->ov + r->dy], r->r.clearance);
+    return td_contact_row_dot(&row, a) + contact_dterm(s, k, y);
 }
 
 /*
@@ -246,17 +249,17 @@ static double impact_restitution(td_sim *s, int k, const double *y, double vr)
  * onset moving outward (impact_restitution). Returns their number. */
 static int impact_contacts(td_sim *s, const int *onset, const double *y)
 {
-    const double *v = y + s->ov;
     double *e = s->restitution;
     int m = 0, k;
     for (k = 0; k < s->nr; k++) {
         const td_sim_retainer *r = &s->ret[k];
-        double vr;
+        double x, yy, vx, vy, vr;
         if (r->mode == TD_RMODE_CONTACT) {
             e[m] = 0.0;
             s->active[m++] = k;
         } else if (onset[k]) {
-            vr = td_contact_radial_velocity(y[s->oq + r->dx], y[s->oq + r->dy], v[r->dx], v[r->dy]);
+            td_sim_node_state(s, k, y, &x, &yy, &vx, &vy);
+            vr = td_contact_radial_velocity(x, yy, vx, vy);
             if (!(vr > 0.0)) /* touching while already moving inward: no impact, stay free */
                 continue;
             e[m] = impact_restitution(s, k, y, vr);
@@ -274,8 +277,7 @@ static void impact_columns(td_sim *s, int m, const double *y)
         double *col = s->minv_cols + (size_t)i * s->n;
         td_sim_contact_row(s, s->active[i], y, &s->rows[i]);
         memset(col, 0, sizeof(double) * (size_t)s->n);
-        col[s->rows[i].dof[0]] = s->rows[i].j[0];
-        col[s->rows[i].dof[1]] = s->rows[i].j[1];
+        td_contact_row_scatter(&s->rows[i], col);
         td_sim_mass_solve(s, col);
     }
 }
@@ -370,10 +372,8 @@ static int impacts(td_sim *s, const int *onset, int *entered)
 int td_sim_penalty_out_of_step(const td_sim *s, const double *y)
 {
     int k;
-    if (s->opt.contact.model != TD_CONTACT_PENALTY)
-        return 0;
     for (k = 0; k < s->nr; k++)
-        if (td_sim_penalty_mode_wanted(s, k, y, s->ret[k].mode) != s->ret[k].mode)
+        if (td_sim_penalty_model(s, k) && td_sim_penalty_mode_wanted(s, k, y, s->ret[k].mode) != s->ret[k].mode)
             return 1;
     return 0;
 }
@@ -474,8 +474,7 @@ td_status td_sim_handle_roots(td_sim *s, int *restart)
     for (k = 0; k < s->nr; k++) {
         const int *f = s->rootsfound + TD_ROOTS_PER_RETAINER * k;
         s->onset[k] = 0;
-        if (s->opt.contact.model == TD_CONTACT_PENALTY ? penalty_roots(s, k, y, f)
-                                                       : constraint_roots(s, k, y, f, &s->onset[k]))
+        if (td_sim_penalty_model(s, k) ? penalty_roots(s, k, y, f) : constraint_roots(s, k, y, f, &s->onset[k]))
             *restart = 1;
         any_onset = any_onset || s->onset[k];
     }
