@@ -1,0 +1,148 @@
+/*
+ * A retainer race as a body: spin-up under a constant normal load against its closed form.
+ *
+ * A rotor node of large mass (1000 kg) is pressed onto its retainer by a constant force F (an AMB
+ * held at a control force, no gravity). It lands with the shaft at rest and settles; at t_s the
+ * shaft is brought to speed W at once (td_sim_set_speed). The race, free to turn with polar
+ * inertia J against a constant drag torque T0, is driven by the friction mu N at its bore R_b
+ * (eq. 16, 17): while the shaft slides (v_s > 0),
+ *
+ *     J dOmega_b/dt = mu N R_b - T0,   Omega_b(t) = (mu N R_b - T0) (t - t_s) / J,
+ *
+ * with N = F. Once the race surface catches up with the shaft's
+ * (v_s = 0, Omega_b = W R_s / R_b less the tiny whirl term) it rolls, the friction torque settles
+ * at the drag it needs (T0 < mu N R_b), and rolling holds: |v_s| stays inside the slip band.
+ * The friction force also pushes the rotor along the circle: N exceeds F by the centripetal force
+ * of that motion, M (mu F t / M)^2 / c, a relative 3e-5 by the time the race rolls (1.9 ms).
+ *
+ * The same with the contact as a constraint (N = lambda) and as a compliant damped contact.
+ */
+#include "td_test.h"
+
+#include "touchdown/touchdown.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#define RACE_F 100.0  /* N, pressing force */
+#define RACE_MU 0.2   /* friction */
+#define RACE_J 1e-5   /* kg m^2 */
+#define RACE_T0 1e-3  /* N m */
+#define RACE_W 100.0  /* rad/s */
+#define RACE_RS 0.025 /* m */
+#define RACE_C 0.5e-3 /* m */
+#define RACE_M 1000.0 /* kg */
+
+static td_model *pressed_rotor(double contact_stiffness)
+{
+    const double ghost = 1e-12; /* a massless, stiffness-free shaft: node 0 is a point mass */
+    td_model *m = NULL;
+    td_error err;
+    td_shaft_element el = {0.2, 0.05, 0.0, {2.11e11 * ghost, 8.1e10 * ghost, 7810.0 * ghost}};
+    td_disc d0 = {0, RACE_M, 0.0, 0.01}, d1 = {1, RACE_M, 0.0, 0.01};
+    td_bearing b1 = {1, 1e6, 1e6, 1e3, 1e3};
+    td_amb press = {0, 0, 0.0, 1.0, 0.0, 0.0, 0.0, 1e4, 0, 0.0};
+    td_retainer r = {.node = 0,
+                     .clearance = RACE_C,
+                     .shaft_radius = RACE_RS,
+                     .bore_radius = RACE_RS + RACE_C,
+                     .friction = RACE_MU,
+                     .race = {.inertia = RACE_J, .drag_torque = RACE_T0}};
+    if (contact_stiffness > 0.0) {
+        r.contact.stiffness = contact_stiffness;
+        r.contact.exponent = 1.0;
+        r.contact.damping = TD_DAMPING_KELVIN_VOIGT;
+        r.contact.damping_coefficient = 2.0 * sqrt(contact_stiffness * RACE_M); /* critically damped */
+    }
+    assert_int_equal(td_model_create(&m, NULL), TD_OK);
+    if (td_model_add_shaft_element(m, &el, &err) || td_model_add_disc(m, &d0, &err) ||
+        td_model_add_disc(m, &d1, &err) || td_model_add_bearing(m, &b1, &err) || td_model_add_amb(m, &press, &err) ||
+        td_model_add_retainer(m, &r, &err) || td_model_validate(m, &err))
+        fail_msg("pressed rotor: %s", err.message);
+    return m;
+}
+
+static void check_spin_up(double contact_stiffness)
+{
+    td_model *m = pressed_rotor(contact_stiffness);
+    td_sim_options o;
+    td_sim *s = NULL;
+    td_error err;
+    td_retainer_state rs;
+    td_sim_stats st;
+    double t = 0.0, t_c = 0.2, rate = (RACE_MU * RACE_F * (RACE_RS + RACE_C) - RACE_T0) / RACE_J;
+    double creep, rolling = RACE_W * RACE_RS / (RACE_RS + RACE_C), worst_slide = 0.0, worst_roll = 0.0, worst_vs = 0.0;
+    int i;
+    td_sim_options_default(&o);
+    o.start = TD_START_REST;
+    o.solver.rtol = 1e-8;
+    o.solver.atol = 1e-10;
+    if (td_sim_create(m, &o, &s, &err) != TD_OK || td_sim_set_amb_mode(s, 0, TD_AMB_EXTERNAL, &err) != TD_OK ||
+        td_sim_set_amb_control(s, 0, 0.0, -RACE_F, &err) != TD_OK)
+        fail_msg("sim: %s", err.message);
+    for (i = 1; i <= 1000; i++) { /* every ms, and every 50 us over the spin-up */
+        double tr, tout = i <= 200 ? 1e-3 * i : i <= 600 ? 0.2 + 5e-5 * (i - 200) : 0.22 + 1e-3 * (i - 600);
+        td_status r;
+        while ((r = td_sim_step(s, tout, &tr, &err)) == TD_EVENT)
+            ;
+        if (r != TD_OK)
+            fail_msg("spin-up: %s", err.message);
+        t = tr;
+        td_sim_retainer_state(s, 0, &rs);
+        if (t < t_c) {
+            continue;
+        } else if (i == 200) { /* landed and settled, shaft and race at rest: spin the shaft up */
+            assert_true(rs.in_contact && fabs(rs.normal_force - RACE_F) < 1e-3 * RACE_F && rs.race_speed == 0.0);
+            if (td_sim_set_speed(s, RACE_W, &err) != TD_OK)
+                fail_msg("set speed: %s", err.message);
+            continue;
+        }
+        if (rs.sliding_velocity > 0.1) { /* sliding */
+            double expect = rate * (t - t_c), e = fabs(rs.race_speed - expect) / expect;
+            worst_slide = fmax(worst_slide, e);
+        } else if (t > t_c + rolling / rate + 0.02) { /* rolling */
+            worst_roll = fmax(worst_roll, fabs(rs.race_speed - rolling) / rolling);
+            worst_vs = fmax(worst_vs, fabs(rs.sliding_velocity));
+        }
+    }
+    td_sim_stats_get(s, &st);
+    printf("contact %s: first contact %.6f s, spin-up worst relative error %.3g, rolling speed error %.3g, "
+           "|v_s| <= %.3g m/s while rolling (t = %.3f s)\n",
+           contact_stiffness > 0.0 ? "compliant" : "constraint", st.first_contact_time, worst_slide, worst_roll,
+           worst_vs, t);
+    assert_true(st.first_contact_time > 0.0 && st.first_contact_time < t_c);
+    /* the slope is the closed form from the first sample on */
+    assert_true(worst_slide > 0.0 && worst_slide < 5e-5);
+    assert_true(worst_roll < 1e-4);
+    /* rolling held: inside the slip band, creeping at the speed whose friction carries the drag,
+     * v_reg T0 / (R_b mu N) */
+    creep = 1e-4 * RACE_T0 / ((RACE_RS + RACE_C) * RACE_MU * RACE_F);
+    printf("final v_s %.6g m/s, creep closed form %.6g m/s\n", rs.sliding_velocity, creep);
+    /* the creep, 2e-7 m/s, is near the velocity tolerance (1e-10 m times the fastest frequency): 20 % */
+    assert_true(worst_vs < 1e-4 && fabs(rs.sliding_velocity - creep) < 0.2 * creep);
+    assert_true(t > t_c + rolling / rate + 0.1);
+    td_sim_free(&s);
+    td_model_free(&m);
+}
+
+static void test_spin_up_constraint(void **state)
+{
+    (void)state;
+    check_spin_up(0.0);
+}
+
+static void test_spin_up_compliant(void **state)
+{
+    (void)state;
+    check_spin_up(1e8);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_spin_up_constraint),
+        cmocka_unit_test(test_spin_up_compliant),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
