@@ -155,6 +155,9 @@ typedef struct td_retainer {
     double bore_speed;           /**< Omega_b, rotation speed of the bore (rolling-element race), rad/s:
                                   *   fixed, or the start value of a race with inertia */
     double restitution;          /**< e in [0, 1]: radial velocity after impact = -e times before */
+    int stick;                   /**< nonzero: Coulomb friction with sticking: rolling without slip
+                                  *   (v_s = 0) is a state, held while the friction force it needs stays
+                                  *   within mu N; 0: the paper's sliding law (eq. 17), slip band */
     td_race race;                /**< the race as a body (all zero: fixed rigid bore, the paper's model) */
     td_retainer_contact contact; /**< its own compliant contact law (all zero: the run's) */
 } td_retainer;

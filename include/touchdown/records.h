@@ -19,7 +19,10 @@ typedef enum td_event_kind {
                                          slip band |v_s| < 1e-4 m/s of the friction law (docs/theory.md) */
     TD_EVENT_SCHEDULE = 3,          /**< a timed change of the model (unbalance step, AMB failure) */
     TD_EVENT_PENALTY_ENTER = 4,     /**< penalty model: penetration delta became positive */
-    TD_EVENT_PENALTY_EXIT = 5       /**< penalty model: penetration delta returned to zero */
+    TD_EVENT_PENALTY_EXIT = 5,      /**< penalty model: penetration delta returned to zero */
+    TD_EVENT_ROLL_START = 6,        /**< stick retainer: v_s reached 0 and the friction force that rolling
+                                         without slip needs is within mu N: it rolls */
+    TD_EVENT_ROLL_END = 7           /**< stick retainer: rolling needs more than mu N (or an impact): it slips */
 } td_event_kind;
 
 /** One event, as recorded in the event table. Velocities are of the retainer node. */
@@ -48,6 +51,7 @@ typedef struct td_retainer_state {
     int in_contact;          /**< 1 while the contact is active */
     double race_x, race_y;   /**< race centre displacement on its mount, m (0 without a mount) */
     double race_speed;       /**< race speed Omega_b, rad/s (bore_speed when it is fixed) */
+    int rolling;             /**< 1 while rolling without slip (stick retainers, model.h) */
 } td_retainer_state;
 
 /** Running totals across every restart of the integrator. */

@@ -88,13 +88,13 @@ double td_contact_friction_force(double mu, double phi, double normal_force);
 
 /* ---- impact map ------------------------------------------------------------------------- */
 
-/* One constraint row J_k: two entries on the x, y DOFs of a node (count 2), and the opposite two on
- * the x, y DOFs of the race centre when the race moves on a mount (count 4): g depends on the
- * node's position relative to the race. */
+/* One sparse constraint row: two entries on the x, y DOFs of a node (count 2), the opposite two on
+ * the x, y DOFs of the race centre when the race moves on a mount (count 4: the contact sees the
+ * node relative to the race), and one on the race speed (count up to 5: the rolling constraint). */
 typedef struct td_contact_row {
     int count;
-    int dof[4];
-    double j[4];
+    int dof[5];
+    double j[5];
 } td_contact_row;
 
 /* J_k x. */

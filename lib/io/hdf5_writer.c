@@ -318,7 +318,8 @@ static td_status create_ambs(td_writer *w, h5_impl *h, td_error *err)
 static td_status create_events(td_writer *w, h5_impl *h, td_error *err)
 {
     static const td_event_kind kinds[] = {TD_EVENT_CONTACT_ONSET, TD_EVENT_RELEASE,       TD_EVENT_FRICTION_REVERSAL,
-                                          TD_EVENT_SCHEDULE,      TD_EVENT_PENALTY_ENTER, TD_EVENT_PENALTY_EXIT};
+                                          TD_EVENT_SCHEDULE,      TD_EVENT_PENALTY_ENTER, TD_EVENT_PENALTY_EXIT,
+                                          TD_EVENT_ROLL_START,    TD_EVENT_ROLL_END};
     hsize_t dims[1] = {0}, maxdims[1] = {H5S_UNLIMITED}, chunk[1] = {H5_EVENT_CHUNK};
     hid_t m, space = -1, dcpl = -1;
     size_t i;

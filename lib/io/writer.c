@@ -30,6 +30,8 @@ const char *td_event_kind_name(td_event_kind kind)
     case TD_EVENT_SCHEDULE: return "schedule";
     case TD_EVENT_PENALTY_ENTER: return "penalty_enter";
     case TD_EVENT_PENALTY_EXIT: return "penalty_exit";
+    case TD_EVENT_ROLL_START: return "roll_start";
+    case TD_EVENT_ROLL_END: return "roll_end";
     }
     return "unknown";
 }

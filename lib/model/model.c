@@ -419,7 +419,8 @@ td_status td_model_add_retainer(td_model *m, const td_retainer *r, td_error *err
         need(isfinite(r->bore_speed), err, "retainer", i, "bore_speed", "be finite", r->bore_speed) ||
         need(isfinite(r->restitution) && r->restitution >= 0.0 && r->restitution <= 1.0, err, "retainer", i,
              "restitution", "lie in [0, 1]", r->restitution) ||
-        check_race(&r->race, i, err) || check_retainer_contact(&r->contact, i, err))
+        race_needs(r->stick ? 1.0 : 0.0, r->friction, i, "stick", "friction", err) || check_race(&r->race, i, err) ||
+        check_retainer_contact(&r->contact, i, err))
         return TD_ERR_INVALID;
     return APPEND(m->retainers, r, err);
 }

@@ -12,7 +12,8 @@ void td_sim_retainer_init(td_sim_retainer *r, const td_model *model, int k, cons
     td_model_get_retainer(model, k, &r->r);
     r->dx = TD_DOF(r->r.node, TD_DOF_X);
     r->dy = TD_DOF(r->r.node, TD_DOF_Y);
-    r->rx = r->ry = r->rs = -1;
+    r->rx = r->ry = r->rs = r->fi = -1;
+    r->rolling = 0;
     r->mode = TD_RMODE_FREE;
     r->armed = 1;
     r->slip = 1;
@@ -94,7 +95,62 @@ void td_sim_sliding_gradient(const td_sim *s, int k, const double *y, double g[4
 
 double td_sim_slip_factor(const td_sim *s, int k, const double *y, double *dphi)
 {
+    const td_sim_retainer *r = &s->ret[k];
+    if (r->r.stick) { /* rolling: F_t carries the friction; sliding: full mu N in its direction */
+        if (dphi)
+            *dphi = 0.0;
+        return r->rolling ? 0.0 : (double)r->slip;
+    }
     return td_contact_slip_factor(td_sim_sliding_velocity(s, k, y), TD_CONTACT_SLIP_BAND, dphi);
+}
+
+double td_sim_friction_force(const td_sim *s, int k, const double *y)
+{
+    const td_sim_retainer *r = &s->ret[k];
+    if (r->rolling)
+        return y[s->of + r->fi];
+    return td_sim_slip_factor(s, k, y, NULL) * r->r.friction * td_sim_normal_force(s, k, y);
+}
+
+void td_sim_roll_row(const td_sim *s, int k, const double *y, td_contact_row *row, double *h)
+{
+    const td_sim_retainer *r = &s->ret[k];
+    double x, yy, vx, vy, g[4];
+    td_sim_node_state(s, k, y, &x, &yy, &vx, &vy);
+    td_sim_sliding_gradient(s, k, y, g);
+    *h = g[0] * vx + g[1] * vy;
+    row->count = 2;
+    row->dof[0] = r->dx;
+    row->dof[1] = r->dy;
+    row->j[0] = g[2];
+    row->j[1] = g[3];
+    if (r->rx >= 0) {
+        row->dof[row->count] = r->rx;
+        row->j[row->count++] = -g[2];
+        row->dof[row->count] = r->ry;
+        row->j[row->count++] = -g[3];
+    }
+    if (r->rs >= 0) { /* eq. (16): d v_s / d Omega_b = -R_b */
+        row->dof[row->count] = r->rs;
+        row->j[row->count++] = -r->r.bore_radius;
+    }
+}
+
+void td_sim_roll_column(const td_sim *s, int k, const double *y, double *col)
+{
+    const td_sim_retainer *r = &s->ret[k];
+    double x, yy, vx, vy, n[2], t[2];
+    td_sim_node_state(s, k, y, &x, &yy, &vx, &vy);
+    td_contact_frame(x, yy, n, t);
+    memset(col, 0, sizeof(double) * (size_t)s->n);
+    col[r->dx] = t[0];
+    col[r->dy] = t[1];
+    if (r->rx >= 0) {
+        col[r->rx] = -t[0];
+        col[r->ry] = -t[1];
+    }
+    if (r->rs >= 0)
+        col[r->rs] = -r->r.bore_radius;
 }
 
 double td_sim_race_drag(const td_sim *s, int k, const double *y, double *dT)
@@ -172,7 +228,37 @@ void td_sim_init_slip(td_sim *s, int k, const double *y)
     double vs = td_sim_sliding_velocity(s, k, y);
     int sg = vs < 0.0 ? -1 : 1;
     r->band_from = sg;
-    r->slip = fabs(vs) < TD_CONTACT_SLIP_BAND ? 0 : sg;
+    r->slip = fabs(vs) < TD_CONTACT_SLIP_BAND && !r->r.stick ? 0 : sg;
+    r->rolling = 0;
+    if (r->r.stick && fabs(vs) < TD_CONTACT_SLIP_BAND) { /* no slip to speak of: try rolling */
+        r->rolling = 1;
+        s->roll_tried[k] = 1;
+    }
+}
+
+void td_sim_project_rolling(const td_sim *s, int k, double *y)
+{
+    const td_sim_retainer *r = &s->ret[k];
+    double vs = td_sim_sliding_velocity(s, k, y), x, yy, vx, vy, rad, n[2], t[2], dv;
+    if (r->rs >= 0) { /* the race turns by what its surface lags: v_s = 0 */
+        y[s->ov + r->rs] += vs / r->r.bore_radius;
+        return;
+    }
+    /* a fixed bore: the node's whirl rate moves, v_s = ... + (R_b - R_s) dtheta/dt (eq. 16) */
+    td_sim_node_state(s, k, y, &x, &yy, &vx, &vy);
+    rad = td_contact_frame(x, yy, n, t);
+    dv = -vs * rad / (r->r.bore_radius - r->r.shaft_radius);
+    y[s->ov + r->dx] += dv * t[0];
+    y[s->ov + r->dy] += dv * t[1];
+}
+
+void td_sim_unroll(td_sim *s, int k, double *y, int slip)
+{
+    td_sim_retainer *r = &s->ret[k];
+    r->rolling = 0;
+    r->slip = slip;
+    if (r->fi >= 0)
+        y[s->of + r->fi] = 0.0;
 }
 
 /* +1 or -1: the sign of v, or `otherwise` at v == 0. */
@@ -196,6 +282,7 @@ int td_sim_slip_root(td_sim *s, int k, const double *y)
 
 void td_sim_release(td_sim *s, int k, double *y)
 {
+    td_sim_unroll(s, k, y, s->ret[k].slip);
     s->ret[k].mode = TD_RMODE_FREE;
     s->ret[k].armed = 0; /* left at r = c: no onset until the gap has opened (grazing guard) */
     y[s->ol + k] = 0.0;

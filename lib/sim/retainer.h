@@ -33,12 +33,17 @@ typedef struct td_sim_retainer {
     int rs;             /* DOF of the race: angle in q, speed Omega_b in v; -1: Omega_b fixed at bore_speed */
     int compliant;      /* 1: contact through a force law (the run's penalty model or the retainer's own) */
     td_penalty_law law; /* that force law */
+    int fi;             /* stick retainers (r.stick): index of its friction multiplier F_t in the y block
+                         * at s->of; -1 for the others */
+    int rolling;        /* stick retainers in contact: 1 while rolling without slip (v_s = 0 held by F_t) */
     td_rmode mode;
     int armed;     /* constraint model, free: onset root at gap = 0 (1) or at gap = -eps (0, after a
                     * release or a rejected/bouncing onset; re-armed when the gap exceeds +eps) */
     int slip;      /* slip mode of eq. (17): +1 or -1 sliding (|v_s| >= v_reg), 0 inside the
                     * slip-regularised band |v_s| < v_reg (contact.h TD_CONTACT_SLIP_BAND). Only the
-                    * roots depend on it: the friction force is phi(v_s) of the state in every mode */
+                    * roots depend on it: the friction force is phi(v_s) of the state in every mode.
+                    * Stick retainers have no band: slip is the sliding direction, +1 or -1, and the
+                    * friction force mu N slip until v_s reaches 0 (then rolling, or a reversal) */
     int band_from; /* slip = 0: the sliding sign before the band (a reversal if it leaves the other way) */
 } td_sim_retainer;
 
@@ -61,8 +66,17 @@ double td_sim_normal_force(const td_sim *s, int k, const double *y);
 double td_sim_sliding_velocity(const td_sim *s, int k, const double *y);
 /* d v_s / d(x, y, vx, vy) of retainer k at y (relative coordinates); d v_s / d Omega_b = -R_b. */
 void td_sim_sliding_gradient(const td_sim *s, int k, const double *y, double g[4]);
-/* Slip factor phi(v_s) of retainer k at state y (contact.h); *dphi = d phi / d v_s (may be NULL). */
+/* Slip factor phi of retainer k at state y: phi(v_s) of contact.h, the sliding direction of a stick
+ * retainer, 0 while it rolls (its friction is then F_t); *dphi = d phi / d v_s (may be NULL). */
 double td_sim_slip_factor(const td_sim *s, int k, const double *y, double *dphi);
+/* Friction force of retainer k at y on the race along the whirl tangent t, N (the rotor feels the
+ * opposite): phi mu N sliding, the multiplier F_t rolling. */
+double td_sim_friction_force(const td_sim *s, int k, const double *y);
+/* Rolling constraint of retainer k (d v_s / dv as a row over the node, race and race speed) and
+ * its velocity term h = (d v_s / dq) v, so that d v_s / dt = row v' + h (the speed held). */
+void td_sim_roll_row(const td_sim *s, int k, const double *y, td_contact_row *row, double *h);
+/* Column of F_t in the v rows (length n): t on the node, -t on the race, -R_b on the race speed. */
+void td_sim_roll_column(const td_sim *s, int k, const double *y, double *col);
 
 /* Contact row of retainer k at the state y (J_k = (x, y)/c on its node, minus that on its race). */
 void td_sim_contact_row(const td_sim *s, int k, const double *y, td_contact_row *row);
@@ -76,11 +90,18 @@ void td_sim_project_onto_circle(const td_sim *s, int k, double *y);
  * *dT = dT / d Omega_b (may be NULL). The viscous part is a damper on the race speed (race.c). */
 double td_sim_race_drag(const td_sim *s, int k, const double *y, double *dT);
 
-/* Set retainer k's slip mode (and band_from) from its sliding velocity at y, entering contact. */
+/* Set retainer k's slip mode (and band_from) from its sliding velocity at y, entering contact; a
+ * stick retainer with no slip to speak of tries rolling (s->roll_tried). */
 void td_sim_init_slip(td_sim *s, int k, const double *y);
 /* Retainer k's slip root fired (|v_s| reached v_reg): into the band, or out of it with the slip
- * mode of the state. Returns 1 if it left the band on the other side (a friction reversal). */
+ * mode of the state. Returns 1 if it left the band on the other side (a friction reversal).
+ * Not for stick retainers (sim_modes.c switches them between sliding and rolling). */
 int td_sim_slip_root(td_sim *s, int k, const double *y);
+/* Rolling retainer k: v_s = 0 at y (restarts remove the root location's residual slip): the race
+ * speed adjusted, or for a fixed bore the node's tangential velocity. */
+void td_sim_project_rolling(const td_sim *s, int k, double *y);
+/* Retainer k stops rolling: sliding in direction `slip`, F_t = 0. */
+void td_sim_unroll(td_sim *s, int k, double *y, int slip);
 /* Constraint model: retainer k leaves contact (free, disarmed until the gap opens, lambda = 0). */
 void td_sim_release(td_sim *s, int k, double *y);
 /* Penalty model: the mode retainer k's state y asks for; `in_band` inside the noise band. */

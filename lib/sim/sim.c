@@ -152,26 +152,28 @@ static td_status check_options(const td_sim_options *o, td_error *err)
 /* The work space of sim_internal.h; 0 if out of memory. */
 static int alloc_work(td_sim *s, size_t nr)
 {
-    size_t n = (size_t)s->n;
+    size_t n = (size_t)s->n, nc = nr + (size_t)s->ns; /* KKT multipliers: lambda and F_t */
     s->mass_x = calloc(n, sizeof(double));
     s->minv_f = calloc(n, sizeof(double));
     s->power_x = calloc(n, sizeof(double));
     s->power_kx = calloc(n, sizeof(double));
     s->power_mx = calloc(n, sizeof(double));
-    s->schur = calloc(nr * nr, sizeof(double));
-    s->schur_rhs = calloc(nr, sizeof(double));
+    s->schur = calloc(nc * nc, sizeof(double));
+    s->schur_rhs = calloc(nc, sizeof(double));
     s->restitution = calloc(nr, sizeof(double));
     s->impulse = calloc(nr, sizeof(double));
     s->impact_work = calloc(nr * (nr + 1), sizeof(double));
-    s->minv_cols = calloc(n * nr, sizeof(double));
-    s->rows = calloc(nr, sizeof *s->rows);
-    s->active = calloc(nr, sizeof(int));
+    s->minv_cols = calloc(n * nc, sizeof(double));
+    s->rows = calloc(nc, sizeof *s->rows);
+    s->active = calloc(nc, sizeof(int));
+    s->active_roll = calloc(nc, sizeof(int));
     s->onset = calloc(nr, sizeof(int));
     s->entered = calloc(nr, sizeof(int));
+    s->roll_tried = calloc(nr, sizeof(int));
     s->touching = calloc(nr, sizeof(int));
     return s->mass_x && s->minv_f && s->power_x && s->power_kx && s->power_mx && s->schur && s->schur_rhs &&
-           s->restitution && s->impulse && s->impact_work && s->minv_cols && s->rows && s->active && s->onset &&
-           s->entered && s->touching;
+           s->restitution && s->impulse && s->impact_work && s->minv_cols && s->rows && s->active && s->active_roll &&
+           s->onset && s->roll_tried && s->entered && s->touching;
 }
 
 static td_status alloc_arrays(td_sim *s, td_error *err)
@@ -378,6 +380,10 @@ static void set_tolerances(td_sim *s)
         }
     }
     race_tolerances(s, at, id);
+    for (i = 0; i < s->ns; i++) { /* F_t: a force, algebraic like lambda */
+        at[s->of + i] = atol * s->stiff_scale;
+        id[s->of + i] = 0.0;
+    }
     for (i = 0; i < s->nr; i++) {
         at[s->ol + i] = atol * s->stiff_scale;
         at[s->ou + i] = atol * s->freq_scale;
@@ -604,7 +610,8 @@ static void init_layout(td_sim *s)
     s->ow = 2 * s->n;
     s->ol = s->ow + s->nw;
     s->ou = s->ol + s->nr;
-    s->neq = s->ou + s->nr;
+    s->of = s->ou + s->nr;
+    s->neq = s->of + s->ns;
     s->t = s->t_ida = s->t_acc = s->opt.t0;
     s->stats.first_contact_time = -1.0;
     s->stats.peak_time = -1.0;
@@ -621,8 +628,11 @@ static td_status init_retainers(td_sim *s, td_error *err)
     s->ret = calloc((size_t)(s->nr > 0 ? s->nr : 1), sizeof *s->ret);
     if (!s->ret)
         return td_error_set(err, TD_ERR_NOMEM, "out of memory creating a simulation");
-    for (k = 0; k < s->nr; k++)
+    for (k = 0; k < s->nr; k++) {
         td_sim_retainer_init(&s->ret[k], s->model, k, &s->opt.contact);
+        if (s->ret[k].r.stick)
+            s->ret[k].fi = s->ns++;
+    }
     td_sim_races_layout(s);
     return td_sim_races_matrices(s, err);
 }
@@ -707,8 +717,10 @@ static void free_work(td_sim *s)
     free(s->minv_cols);
     free(s->rows);
     free(s->active);
+    free(s->active_roll);
     free(s->onset);
     free(s->entered);
+    free(s->roll_tried);
     free(s->touching);
 }
 
@@ -953,7 +965,7 @@ static td_status advance(td_sim *s, double tout)
             s->t_pending = tret;
             continue;
         }
-        if (td_sim_penalty_out_of_step(s, N_VGetArrayPointer(s->y))) {
+        if (td_sim_modes_out_of_step(s, N_VGetArrayPointer(s->y))) {
             /* IDA missed a crossing (retainer.c): switch the mode at this step's end */
             s->pending = TD_PENDING_RESYNC;
             s->t_pending = tret;
@@ -1080,10 +1092,13 @@ td_status td_sim_retainer_state(const td_sim *sim, int retainer, td_retainer_sta
     out->whirl_angle = atan2(ry, rx);
     out->normal_force = td_sim_normal_force(sim, retainer, y);
     out->in_contact = r->mode != TD_RMODE_FREE;
+    out->rolling = r->rolling;
     out->friction_force =
         out->in_contact
             ? td_contact_friction_force(r->r.friction, td_sim_slip_factor(sim, retainer, y, NULL), out->normal_force)
             : 0.0;
+    if (r->rolling) /* F_t acts on the race along t, the opposite on the rotor */
+        out->friction_force = -y[sim->of + r->fi];
     out->sliding_velocity = td_sim_sliding_velocity(sim, retainer, y);
     return TD_OK;
 }

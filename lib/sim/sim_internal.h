@@ -3,7 +3,7 @@
  *
  * Unknowns, one fixed layout for the whole run (offsets oq, ov, ow, ol, ou):
  *
- *   y = [ q (n) | v (n) | w (nw AMB filter states) | lambda (nr) | eta (nr) ]
+ *   y = [ q (n) | v (n) | w (nw AMB filter states) | lambda (nr) | eta (nr) | F_t (ns) ]
  *
  * where q and v hold the rotor's DOFs (touchdown/dofs.h) and after them the races' (race.c: per
  * retainer with a race, the x, y of its centre when mounted, then its angle when it can spin; v
@@ -18,6 +18,7 @@
  *   w rows   w' - (command(xs, vs) - w) / tau                             (AMB force lag)
  *   lambda   g_k(q) = (x^2 + y^2 - c^2)/(2c)   in contact, lambda_k = 0 otherwise   (eq. 5 scaled)
  *   eta      J_k v = (x vx + y vy)/c           in contact, eta_k = 0 otherwise      (eq. 13a scaled)
+ *   F_t      v_s = 0 (eq. 16)                  rolling, F_t = 0 otherwise   (stick retainers only)
  *
  * with f = f_unbalance + f_gravity + f_amb - (C + Omega G) v - K q - f_penalty, and
  * B_k = J_k^T + phi_k mu_k t_k (the normal direction plus the Coulomb friction of eq. 17 with the
@@ -55,8 +56,8 @@ struct td_sim {
     const td_model *model; /* the system's copy */
     td_sim_options opt;
 
-    int n, nw, nr, neq;     /* DOFs (rotor and races), filter states, retainers, equations */
-    int oq, ov, ow, ol, ou; /* block offsets in y */
+    int n, nw, nr, ns, neq;     /* DOFs (rotor and races), filter states, retainers, stick retainers, equations */
+    int oq, ov, ow, ol, ou, of; /* block offsets in y */
 
     /* the machine as it is now (changed by the schedule and the td_sim_set_* calls) */
     double omega;
@@ -134,15 +135,17 @@ struct td_sim {
     double *power_x;        /* n: highest_frequency's iterate x */
     double *power_kx;       /* n: highest_frequency's M^-1 K x */
     double *power_mx;       /* n: highest_frequency's M x */
-    double *schur;          /* nr * nr: kkt_solve's J M^-1 B of the active contacts */
-    double *schur_rhs;      /* nr: its right-hand side, then lambda */
+    double *schur;          /* (nr + ns)^2: kkt_solve's J M^-1 B of the active contacts and rolls */
+    double *schur_rhs;      /* nr + ns: its right-hand side, then lambda and F_t */
     double *restitution;    /* nr: impacts, the restitution of each contact in the impact map */
     double *impulse;        /* nr: impacts, the impulse of each contact */
     double *impact_work;    /* nr * (nr + 1): td_contact_impact_map's work space */
-    double *minv_cols;      /* n * nr: M^-1 B_k or M^-1 J_k^T columns of the active contacts */
-    td_contact_row *rows;   /* nr: contact rows J_k of the active contacts */
-    int *active;            /* nr: indices of the retainers in the small system (kkt_solve, impacts) */
+    double *minv_cols;      /* n * (nr + ns): M^-1 B_k or M^-1 J_k^T columns of the active contacts */
+    td_contact_row *rows;   /* nr + ns: contact rows J_k of the active contacts */
+    int *active;            /* nr + ns: indices of the retainers in the small system (kkt_solve, impacts) */
+    int *active_roll;       /* nr + ns: 1 where that multiplier is a rolling F_t, 0 a normal force */
     int *onset, *entered;   /* nr each: onset roots and contacts entered at an instant (sim_modes.c) */
+    int *roll_tried;        /* nr: stick retainers set rolling at a slip root, not yet confirmed */
     int *touching;          /* nr: retainers touching their circles at the start (start_state) */
     double *ysave, *ypsave; /* last good state */
 
@@ -213,9 +216,10 @@ void td_sim_mass_solve(const td_sim *s, double *b);
  * negative (or <= 0 for those flagged in just_entered) are released and the solve repeated; each
  * release is queued as an event unless just entered (then the onset event records it). */
 td_status td_sim_make_consistent(td_sim *s, const int *just_entered);
-/* Penalty model: 1 if some retainer's mode disagrees with the state y beyond the noise band
- * (retainer.c td_sim_penalty_mode_wanted), i.e. IDA missed a crossing of its root. */
-int td_sim_penalty_out_of_step(const td_sim *s, const double *y);
+/* 1 if some retainer's mode disagrees with the state y, i.e. IDA missed a crossing of its root:
+ * a penalty contact's mode beyond the noise band (retainer.c td_sim_penalty_mode_wanted), or a
+ * stick retainer sliding against its slip direction beyond the slip band (stick_out_of_step). */
+int td_sim_modes_out_of_step(const td_sim *s, const double *y);
 /* Start of a run with the retainers flagged in `touching` on (or a hair outside) their circles:
  * projection and impact as at an onset, then td_sim_make_consistent. */
 td_status td_sim_start_contacts(td_sim *s, const int *touching);

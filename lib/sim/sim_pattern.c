@@ -32,8 +32,9 @@ static int put_matrix(cs_di *T, const cs_di *A, int roff, int coff)
     return 1;
 }
 
-/* Retainer k with a race: every coupling among its contact DOFs (node x, y, race x, y, race
- * speed) in q and v, and between them and its multipliers. A superset of what a mode writes. */
+/* Retainer k with a race or a rolling state: every coupling among its contact DOFs (node x, y,
+ * race x, y, race speed) in q and v, and between them and its multipliers (lambda, eta, F_t). A
+ * superset of what a mode writes. */
 static int put_race(const td_sim *s, cs_di *T, int k)
 {
     const td_sim_retainer *r = &s->ret[k];
@@ -52,6 +53,10 @@ static int put_race(const td_sim *s, cs_di *T, int k)
              put(T, s->ou + k, vi);
         for (j = 0; j < nd && ok; j++)
             ok = put(T, vi, s->oq + dofs[j]) && put(T, vi, s->ov + dofs[j]) && put(T, qi, s->oq + dofs[j]);
+        if (ok && r->fi >= 0) { /* F_t: its column in the v rows, its row v_s over q and v */
+            int fk = s->of + r->fi;
+            ok = put(T, vi, fk) && put(T, fk, qi) && put(T, fk, vi) && put(T, fk, fk);
+        }
     }
     return ok;
 }
@@ -80,7 +85,7 @@ static int put_all(const td_sim *s, cs_di *T)
         ok = put_block(T, vx, vy, qx, qy) && put_block(T, vx, vy, vx, vy) && put(T, vx, lk) && put(T, vy, lk) &&
              put(T, qx, uk) && put(T, qy, uk) && put(T, lk, lk) && put(T, lk, qx) && put(T, lk, qy) && put(T, uk, uk) &&
              put(T, uk, qx) && put(T, uk, qy) && put(T, uk, vx) && put(T, uk, vy);
-        if (ok && (r->rx >= 0 || r->rs >= 0))
+        if (ok && (r->rx >= 0 || r->rs >= 0 || r->fi >= 0))
             ok = put_race(s, T, k);
     }
     return ok;

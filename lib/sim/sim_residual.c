@@ -148,6 +148,30 @@ static void constraint_rows(const td_sim *s, int k, const double *y, double *rq,
     res[s->ou + k] = (x * vx + yy * vy) / c;          /* eq. (13a) / (-2c) */
 }
 
+/* Rows of stick retainer k: rolling, the friction force F_t on the race along t (the rotor node
+ * feels -F_t t, the race's centre +F_t t and its speed the torque R_b F_t) and the rolling
+ * constraint v_s = 0 (eq. 16) in F_t's row; otherwise F_t = 0. */
+static void roll_rows(const td_sim *s, int k, const double *y, double *rv, double *res)
+{
+    const td_sim_retainer *r = &s->ret[k];
+    double ft = y[s->of + r->fi], x, yy, vx, vy, n[2], t[2];
+    if (!r->rolling) {
+        res[s->of + r->fi] = ft;
+        return;
+    }
+    td_sim_node_state(s, k, y, &x, &yy, &vx, &vy);
+    td_contact_frame(x, yy, n, t);
+    rv[r->dx] += ft * t[0];
+    rv[r->dy] += ft * t[1];
+    if (r->rx >= 0) {
+        rv[r->rx] -= ft * t[0];
+        rv[r->ry] -= ft * t[1];
+    }
+    if (r->rs >= 0)
+        rv[r->rs] -= r->r.bore_radius * ft;
+    res[s->of + r->fi] = td_sim_sliding_velocity(s, k, y);
+}
+
 void td_sim_residual(const td_sim *s, double t, const double *y, const double *yp, double *res)
 {
     const td_system *sys = s->sys;
@@ -178,6 +202,8 @@ void td_sim_residual(const td_sim *s, double t, const double *y, const double *y
             res[s->ol + k] = y[s->ol + k];
             res[s->ou + k] = y[s->ou + k];
         }
+        if (s->ret[k].fi >= 0)
+            roll_rows(s, k, y, rv, res);
     }
 }
 
@@ -375,6 +401,36 @@ static void jacobian_penalty(td_sim *s, int k, const double *y)
         jacobian_slip_band(s, k, y, fn, dphi);
 }
 
+/* Stick retainer k: rolling, d/dy of the F_t terms and of the rolling row v_s; otherwise F_t's
+ * row is F_t itself. d t / d(x, y) for t = (-y, x)/r: ((x y, -x^2), (y^2, -x y)) / r^3. */
+static void jacobian_roll(td_sim *s, int k, const double *y)
+{
+    const td_sim_retainer *r = &s->ret[k];
+    double ft, x, yy, vx, vy, rad, r3, n[2], t[2], gv[4];
+    int fk = s->of + r->fi, oq = s->oq, ov = s->ov, i;
+    if (!r->rolling) {
+        jadd(s, fk, fk, 1.0);
+        return;
+    }
+    ft = y[fk];
+    td_sim_node_state(s, k, y, &x, &yy, &vx, &vy);
+    rad = td_contact_frame(x, yy, n, t);
+    r3 = rad * rad * rad;
+    jadd_rel(s, r, ov, 0, oq, 0, ft * x * yy / r3);
+    jadd_rel(s, r, ov, 0, oq, 1, -ft * x * x / r3);
+    jadd_rel(s, r, ov, 1, oq, 0, ft * yy * yy / r3);
+    jadd_rel(s, r, ov, 1, oq, 1, -ft * x * yy / r3);
+    jadd_node(s, r, ov, 0, fk, t[0]);
+    jadd_node(s, r, ov, 1, fk, t[1]);
+    if (r->rs >= 0) {
+        jadd(s, ov + r->rs, fk, -r->r.bore_radius);
+        jadd(s, fk, ov + r->rs, -r->r.bore_radius); /* eq. (16): d v_s / d Omega_b */
+    }
+    td_sim_sliding_gradient(s, k, y, gv);
+    for (i = 0; i < 4; i++)
+        jadd_row_rel(s, r, fk, i < 2 ? oq : ov, i % 2, gv[i]);
+}
+
 /* The constant drag torque of retainer k's race, regularised near standstill. */
 static void jacobian_drag(td_sim *s, int k, const double *y)
 {
@@ -403,6 +459,8 @@ void td_sim_jacobian(td_sim *s, double t, double cj, const double *y)
     for (k = 0; k < s->nr; k++) {
         if (s->ret[k].rs >= 0)
             jacobian_drag(s, k, y);
+        if (s->ret[k].fi >= 0)
+            jacobian_roll(s, k, y);
         if (s->ret[k].mode == TD_RMODE_CONTACT) {
             jacobian_contact(s, k, y);
             continue;
@@ -413,6 +471,19 @@ void td_sim_jacobian(td_sim *s, double t, double cj, const double *y)
         jadd(s, s->ol + k, s->ol + k, 1.0);
         jadd(s, s->ou + k, s->ou + k, 1.0);
     }
+}
+
+/* Slot 1 of retainer k in contact with friction (see below). */
+static double slip_root_function(const td_sim *s, int k, const double *y)
+{
+    const td_sim_retainer *r = &s->ret[k];
+    double vs, vreg = TD_CONTACT_SLIP_BAND;
+    if (r->rolling)
+        return r->r.friction * td_sim_normal_force(s, k, y) - fabs(y[s->of + r->fi]);
+    vs = td_sim_sliding_velocity(s, k, y);
+    if (r->r.stick)
+        return r->slip * vs;
+    return r->slip != 0 ? r->slip * vs - vreg : (vreg * vreg - vs * vs) / (2.0 * vreg);
 }
 
 /*
@@ -426,6 +497,8 @@ void td_sim_jacobian(td_sim *s, double t, double cj, const double *y)
  *                                              slip v_s - v_reg, decreasing         -> into the slip band
  *           ... inside the band (slip = 0):    (v_reg^2 - v_s^2)/(2 v_reg), decr.   -> out of the band
  *                                              (a friction reversal if on the other side)
+ *           stick retainers, sliding:          slip v_s, decreasing                 -> try rolling
+ *           stick retainers, rolling:          mu N - |F_t|, decreasing             -> slip
  *   slot 2  free, disarmed:                    gap - eps, increasing                -> re-arm (internal)
  * Unused slots hold the constant 1, which never has a root.
  */
@@ -454,10 +527,8 @@ void td_sim_roots(const td_sim *s, double t, const double *y, double *g)
         case TD_RMODE_CONTACT: gk[TD_ROOT_CONTACT] = y[s->ol + k]; break;
         case TD_RMODE_PENETRATING: gk[TD_ROOT_CONTACT] = gap; break;
         }
-        if (r->mode != TD_RMODE_FREE && r->r.friction > 0.0) {
-            double vs = td_sim_sliding_velocity(s, k, y), vreg = TD_CONTACT_SLIP_BAND;
-            gk[TD_ROOT_SLIP] = r->slip != 0 ? r->slip * vs - vreg : (vreg * vreg - vs * vs) / (2.0 * vreg);
-        }
+        if (r->mode != TD_RMODE_FREE && r->r.friction > 0.0)
+            gk[TD_ROOT_SLIP] = slip_root_function(s, k, y);
     }
 }
 

@@ -34,7 +34,7 @@
 #define RACE_C 0.5e-3 /* m */
 #define RACE_M 1000.0 /* kg */
 
-static td_model *pressed_rotor(double contact_stiffness)
+static td_model *pressed_rotor(double contact_stiffness, int stick)
 {
     const double ghost = 1e-12; /* a massless, stiffness-free shaft: node 0 is a point mass */
     td_model *m = NULL;
@@ -48,6 +48,7 @@ static td_model *pressed_rotor(double contact_stiffness)
                      .shaft_radius = RACE_RS,
                      .bore_radius = RACE_RS + RACE_C,
                      .friction = RACE_MU,
+                     .stick = stick,
                      .race = {.inertia = RACE_J, .drag_torque = RACE_T0}};
     if (contact_stiffness > 0.0) {
         r.contact.stiffness = contact_stiffness;
@@ -63,15 +64,16 @@ static td_model *pressed_rotor(double contact_stiffness)
     return m;
 }
 
-static void check_spin_up(double contact_stiffness)
+static void check_spin_up(double contact_stiffness, int stick)
 {
-    td_model *m = pressed_rotor(contact_stiffness);
+    td_model *m = pressed_rotor(contact_stiffness, stick);
     td_sim_options o;
     td_sim *s = NULL;
     td_error err;
     td_retainer_state rs;
     td_sim_stats st;
     double t = 0.0, t_c = 0.2, rate = (RACE_MU * RACE_F * (RACE_RS + RACE_C) - RACE_T0) / RACE_J;
+    long rolls[2] = {0, 0};
     double creep, rolling = RACE_W * RACE_RS / (RACE_RS + RACE_C), worst_slide = 0.0, worst_roll = 0.0, worst_vs = 0.0;
     int i;
     td_sim_options_default(&o);
@@ -84,8 +86,12 @@ static void check_spin_up(double contact_stiffness)
     for (i = 1; i <= 1000; i++) { /* every ms, and every 50 us over the spin-up */
         double tr, tout = i <= 200 ? 1e-3 * i : i <= 600 ? 0.2 + 5e-5 * (i - 200) : 0.22 + 1e-3 * (i - 600);
         td_status r;
-        while ((r = td_sim_step(s, tout, &tr, &err)) == TD_EVENT)
-            ;
+        while ((r = td_sim_step(s, tout, &tr, &err)) == TD_EVENT) {
+            td_event ev;
+            td_sim_last_event(s, &ev);
+            rolls[0] += ev.kind == TD_EVENT_ROLL_START;
+            rolls[1] += ev.kind == TD_EVENT_ROLL_END;
+        }
         if (r != TD_OK)
             fail_msg("spin-up: %s", err.message);
         t = tr;
@@ -93,7 +99,8 @@ static void check_spin_up(double contact_stiffness)
         if (t < t_c) {
             continue;
         } else if (i == 200) { /* landed and settled, shaft and race at rest: spin the shaft up */
-            assert_true(rs.in_contact && fabs(rs.normal_force - RACE_F) < 1e-3 * RACE_F && rs.race_speed == 0.0);
+            assert_true(rs.in_contact && fabs(rs.normal_force - RACE_F) < 1e-3 * RACE_F && fabs(rs.race_speed) < 1e-6);
+            rolls[0] = rolls[1] = 0; /* from here on */
             if (td_sim_set_speed(s, RACE_W, &err) != TD_OK)
                 fail_msg("set speed: %s", err.message);
             continue;
@@ -115,12 +122,22 @@ static void check_spin_up(double contact_stiffness)
     /* the slope is the closed form from the first sample on */
     assert_true(worst_slide > 0.0 && worst_slide < 5e-5);
     assert_true(worst_roll < 1e-4);
-    /* rolling held: inside the slip band, creeping at the speed whose friction carries the drag,
-     * v_reg T0 / (R_b mu N) */
-    creep = 1e-4 * RACE_T0 / ((RACE_RS + RACE_C) * RACE_MU * RACE_F);
-    printf("final v_s %.6g m/s, creep closed form %.6g m/s\n", rs.sliding_velocity, creep);
-    /* the creep, 2e-7 m/s, is near the velocity tolerance (1e-10 m times the fastest frequency): 20 % */
-    assert_true(worst_vs < 1e-4 && fabs(rs.sliding_velocity - creep) < 0.2 * creep);
+    if (stick) {
+        /* rolling is a state: v_s = 0 held to the solver's tolerance, the friction force exactly the
+         * drag's T0 / R_b, one roll start and no slip */
+        double need = RACE_T0 / (RACE_RS + RACE_C);
+        printf("rolling: v_s %.3g m/s, friction %.9g N (drag needs %.9g N), roll starts %ld, roll ends %ld\n",
+               rs.sliding_velocity, -rs.friction_force, need, rolls[0], rolls[1]);
+        assert_true(rs.rolling && worst_vs < 1e-8 && fabs(-rs.friction_force - need) < 1e-3 * need);
+        assert_true(rolls[0] == 1 && rolls[1] == 1); /* the speed step ends the landing's roll */
+    } else {
+        /* rolling held: inside the slip band, creeping at the speed whose friction carries the
+         * drag, v_reg T0 / (R_b mu N) */
+        creep = 1e-4 * RACE_T0 / ((RACE_RS + RACE_C) * RACE_MU * RACE_F);
+        printf("final v_s %.6g m/s, creep closed form %.6g m/s\n", rs.sliding_velocity, creep);
+        /* the creep, 2e-7 m/s, is near the velocity tolerance (1e-10 m times the fastest frequency) */
+        assert_true(!rs.rolling && worst_vs < 1e-4 && fabs(rs.sliding_velocity - creep) < 0.2 * creep);
+    }
     assert_true(t > t_c + rolling / rate + 0.1);
     td_sim_free(&s);
     td_model_free(&m);
@@ -129,13 +146,25 @@ static void check_spin_up(double contact_stiffness)
 static void test_spin_up_constraint(void **state)
 {
     (void)state;
-    check_spin_up(0.0);
+    check_spin_up(0.0, 0);
+}
+
+static void test_spin_up_constraint_stick(void **state)
+{
+    (void)state;
+    check_spin_up(0.0, 1);
+}
+
+static void test_spin_up_compliant_stick(void **state)
+{
+    (void)state;
+    check_spin_up(1e8, 1);
 }
 
 static void test_spin_up_compliant(void **state)
 {
     (void)state;
-    check_spin_up(1e8);
+    check_spin_up(1e8, 0);
 }
 
 int main(void)
@@ -143,6 +172,8 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_spin_up_constraint),
         cmocka_unit_test(test_spin_up_compliant),
+        cmocka_unit_test(test_spin_up_constraint_stick),
+        cmocka_unit_test(test_spin_up_compliant_stick),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
