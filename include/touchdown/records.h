@@ -54,6 +54,31 @@ typedef struct td_retainer_state {
     int rolling;             /**< 1 while rolling without slip (stick retainers, model.h) */
 } td_retainer_state;
 
+/**
+ * What one retainer has received so far: the quantities that converge as the mesh and the
+ * tolerances are refined (docs/validation.md), unlike the instantaneous peak of a rigid contact.
+ * Time integrals are trapezoidal over the integrator's steps (not the output samples); the
+ * impacts of the constraint model add their impulses.
+ */
+typedef struct td_retainer_totals {
+    double impulse;            /**< N s: integral of the normal force plus the impacts' impulses */
+    double impact_impulse;     /**< N s: the impacts' share (constraint model impact map) */
+    double contact_time;       /**< s in contact */
+    double rolling_time;       /**< s rolling without slip (stick retainers) */
+    double normal_force_sq;    /**< N^2 s: integral of N^2 (rms normal force = sqrt(this / contact_time)) */
+    double friction_work;      /**< J: integral of F_t v_s, the heat of sliding into the retainer (>= 0) */
+    double whirl_angle;        /**< rad: whirl angle swept while in contact (mean whirl rate = this / contact_time) */
+    double peak_housing_force; /**< N: largest force into the housing (the mount force k_m r + c_m r' on a
+                                    mount, the contact force |N n + F_t t| on a fixed bore) */
+    double peak_normal_force;  /**< N */
+    long contacts;             /**< contact intervals that swept at least TD_TOUCH_AND_GO_ANGLE of whirl
+                                    (the one still open counts) */
+    long touch_and_go;         /**< impacts that left again within less: bounces, rebounds, grazes */
+} td_retainer_totals;
+
+/** A contact that sweeps less whirl angle than this (rad) before it ends is a touch-and-go impact. */
+#define TD_TOUCH_AND_GO_ANGLE 1.0
+
 /** Running totals across every restart of the integrator. */
 typedef struct td_sim_stats {
     long steps;

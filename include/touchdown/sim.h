@@ -95,6 +95,10 @@ TD_API td_status td_sim_retainer_state(const td_sim *sim, int retainer, td_retai
 /** Total force of AMB `amb` on the rotor, f[0] along x, f[1] along y, N. */
 TD_API td_status td_sim_amb_force(const td_sim *sim, int amb, double f[2]);
 TD_API td_status td_sim_stats_get(const td_sim *sim, td_sim_stats *out);
+/** Totals of retainer `retainer` up to the current time (touchdown/records.h td_retainer_totals). */
+TD_API td_status td_sim_retainer_totals(const td_sim *sim, int retainer, td_retainer_totals *out);
+/** The rotor speed now, rad/s (the model's, or the last td_sim_set_speed). */
+TD_API double td_sim_speed(const td_sim *sim);
 
 /* Changes between steps; each takes effect from the current time (the integrator restarts).
  * Invalid arguments give TD_ERR_INVALID, a failed restart its status; *err says which. */

@@ -171,9 +171,10 @@ static int alloc_work(td_sim *s, size_t nr)
     s->entered = calloc(nr, sizeof(int));
     s->roll_tried = calloc(nr, sizeof(int));
     s->touching = calloc(nr, sizeof(int));
+    s->totals = calloc(nr, sizeof *s->totals);
     return s->mass_x && s->minv_f && s->power_x && s->power_kx && s->power_mx && s->schur && s->schur_rhs &&
            s->restitution && s->impulse && s->impact_work && s->minv_cols && s->rows && s->active && s->active_roll &&
-           s->onset && s->roll_tried && s->entered && s->touching;
+           s->onset && s->roll_tried && s->totals && s->entered && s->touching;
 }
 
 static td_status alloc_arrays(td_sim *s, td_error *err)
@@ -327,8 +328,9 @@ static double default_max_step(const td_sim *s)
  *           eta are algebraic and excluded from the error test, but the Newton convergence test
  *           still weighs them.
  */
-/* The races' DOFs: the centre as a displacement; the angle as the arc atol / R_b at the race
- * surface (nothing depends on the angle itself); speeds as the rotor's, times freq_max. */
+/* The races' DOFs: the centre as a displacement, its velocity at the mount's own frequency
+ * sqrt(k_m / m_r) (the race rings on its mount, not in the shaft's modes); the angle as the arc
+ * atol / R_b at the race surface, and the speed as race.c td_sim_race_speed_atol says. */
 static void race_tolerances(td_sim *s, double *at, double *id)
 {
     double atol = s->opt.solver.atol;
@@ -341,7 +343,8 @@ static void race_tolerances(td_sim *s, double *at, double *id)
             if (dofs[i] < 0)
                 continue;
             at[s->oq + dofs[i]] = atol * scale;
-            at[s->ov + dofs[i]] = atol * scale * s->freq_max;
+            at[s->ov + dofs[i]] = i == 2 ? td_sim_race_speed_atol(s, k)
+                                         : atol * fmax(s->freq_scale, sqrt(r->r.race.mount_stiffness / r->r.race.mass));
             id[s->oq + dofs[i]] = id[s->ov + dofs[i]] = 1.0;
         }
     }
@@ -435,6 +438,23 @@ static int first_outside(const td_sim *s, const double *y, double *rad)
     return -1;
 }
 
+/* The rotor's state [q (ndof) | v (ndof) | w] at the start of y, as the modal analysis writes it,
+ * moved to its places when races add DOFs after the rotor's (y = [q (n) | v (n) | w ...]). */
+static void spread_rotor_state(const td_sim *s, double *y)
+{
+    int nd = s->sys->ndof, i;
+    if (s->n == nd)
+        return;
+    for (i = s->nw - 1; i >= 0; i--) /* back to front: the blocks only move up */
+        y[s->ow + i] = y[2 * nd + i];
+    for (i = nd - 1; i >= 0; i--)
+        y[s->ov + i] = y[nd + i];
+    for (i = nd; i < s->ov; i++) /* the races' q, and the gap the rotor's v left */
+        y[s->oq + i] = 0.0;
+    for (i = s->ov + nd; i < s->ow; i++)
+        y[i] = 0.0;
+}
+
 /* The steady orbit into y. An unstable system has none that the motion would stay on: "orbit"
  * refuses it, "auto" stays at rest; "auto" also stays at rest when the orbit is not contact-free.
  * s->start.used says which start y holds. */
@@ -458,6 +478,7 @@ static td_status orbit_start(td_sim *s, double *y, td_error *err)
     st = td_modal_start_state(s->sys, s->omega, s->unb, s->nu, gx != 0.0 || gy != 0.0, s->t, y + s->oq, err);
     if (st != TD_OK)
         return st;
+    spread_rotor_state(s, y);
     s->start.used = TD_START_ORBIT;
     if (strict || (k = first_outside(s, y, &rad)) < 0)
         return TD_OK;
@@ -696,6 +717,7 @@ td_status td_sim_create_cancellable(const td_model *model, const td_sim_options 
         td_sim_free(&s);
         return st;
     }
+    td_sim_totals_point(s, s->t, 1);
     s->q_len = s->q_pos = 0; /* contacts at the start are a state, not events */
     s->stats.events = s->stats.releases = s->stats.contact_onsets = 0;
     *out = s;
@@ -721,6 +743,7 @@ static void free_work(td_sim *s)
     free(s->onset);
     free(s->entered);
     free(s->roll_tried);
+    free(s->totals);
     free(s->touching);
 }
 
@@ -860,12 +883,17 @@ static td_status solver_failure(td_sim *s, int flag)
     return TD_ERR_SOLVER;
 }
 
-/* Restart after a change made between steps or at a schedule time. */
+/* Restart after a change made between steps or at a schedule time; the retainers' totals open
+ * their next segment there. */
 static td_status restart_after_change(td_sim *s)
 {
-    td_status st = td_sim_make_consistent(s, NULL);
+    td_status st;
+    td_sim_totals_rewind(s); /* a change at an output inside the last step: the totals end here */
+    st = td_sim_make_consistent(s, NULL);
     if (st == TD_OK)
         st = td_sim_restart(s);
+    if (st == TD_OK)
+        td_sim_totals_point(s, s->t, 1);
     return st;
 }
 
@@ -886,6 +914,8 @@ static td_status handle_stop(td_sim *s, int kind)
         st = td_sim_handle_roots(s, &restart);
         if (st == TD_OK && restart)
             st = td_sim_restart(s);
+        if (st == TD_OK && restart)
+            td_sim_totals_point(s, s->t, 1);
         return st;
     }
     st = td_sim_apply_due_changes(s);
@@ -909,6 +939,8 @@ static int pending_stop(td_sim *s, double tout, td_status *st)
     *st = interpolate(s, s->t_pending);
     monitor(s, s->t);
     if (*st == TD_OK)
+        td_sim_totals_point(s, s->t, 0); /* the segment up to the stop */
+    if (*st == TD_OK)
         *st = handle_stop(s, kind);
     if (*st != TD_OK)
         return 1;
@@ -924,6 +956,7 @@ static void accept_step(td_sim *s, double tret)
 {
     s->t = tret;
     monitor_at(s, tret, 1);
+    td_sim_totals_point(s, tret, 0);
     memcpy(s->ysave, N_VGetArrayPointer(s->y), sizeof(double) * (size_t)s->neq);
     memcpy(s->ypsave, N_VGetArrayPointer(s->yp), sizeof(double) * (size_t)s->neq);
 }
@@ -1035,6 +1068,11 @@ td_status td_sim_set_interrupt(td_sim *sim, volatile sig_atomic_t *flag)
         return TD_ERR_INVALID;
     sim->interrupt = flag;
     return TD_OK;
+}
+
+double td_sim_speed(const td_sim *sim)
+{
+    return sim ? sim->omega : 0.0;
 }
 
 double td_sim_time(const td_sim *sim)

@@ -51,6 +51,17 @@ typedef struct td_sim_counters {
     long steps, res, jac, setups, nli, etf, ncf;
 } td_sim_counters;
 
+/* One retainer's running totals (totals.c): the public record, the integrands at the last point
+ * and the contact interval's bookkeeping. */
+typedef struct td_sim_totals {
+    td_retainer_totals t;
+    struct {
+        double n, n2, power, whirl_rate;
+    } prev;
+    int in_contact;        /* in contact at the last point */
+    double whirl_at_onset; /* t.whirl_angle when the open interval began */
+} td_sim_totals;
+
 struct td_sim {
     td_system *sys;        /* owned */
     const td_model *model; /* the system's copy */
@@ -125,6 +136,10 @@ struct td_sim {
     td_event last;
     int have_last;
 
+    /* the retainers' totals (totals.c), nr of them, and the time of their last point */
+    td_sim_totals *totals;
+    double totals_t;
+
     /* statistics */
     td_sim_stats stats;   /* event totals, drift, forces, times (counters filled on demand) */
     td_sim_counters base; /* IDA counters of finished integrator runs */
@@ -172,6 +187,17 @@ double td_sim_amb_axis_force(const td_sim *s, int k, const double *y);
 /* Spin angle phi(t). */
 double td_sim_spin_angle(const td_sim *s, double t);
 
+/* ---- totals.c: the retainers' running totals --------------------------------------------- */
+
+/* A point of the totals at time t with the state in s->y: closes the segment since the last point
+ * (restart 0: an accepted step or a stop), or opens one after a restart (restart 1). */
+void td_sim_totals_point(td_sim *s, double t, int restart);
+/* Before a restart at s->t inside the integrator's last step (a change between steps): the totals
+ * taken back to s->t. */
+void td_sim_totals_rewind(td_sim *s);
+/* An impact of retainer k with `impulse` (N s); `bounced`: it left at once (touch-and-go). */
+void td_sim_totals_impact(td_sim *s, int k, double impulse, int bounced);
+
 /* ---- race.c: the races' DOFs and matrices ----------------------------------------------- */
 
 /* Assign the race DOFs after the rotor's and set s->n. */
@@ -181,6 +207,10 @@ td_status td_sim_races_matrices(td_sim *s, td_error *err);
 void td_sim_races_free(td_sim *s);
 /* f += sign * the races' weight (length n). */
 void td_sim_races_gravity(const td_sim *s, double *f, double sign);
+/* Absolute tolerance of retainer k's race speed now (it depends on whether the race rolls). */
+double td_sim_race_speed_atol(const td_sim *s, int k);
+/* Set the race speeds' tolerances in s->atol for the current modes; 1 if one changed. */
+int td_sim_races_retolerance(td_sim *s);
 /* The races' start state into y: centres resting on their mounts, speeds at bore_speed. */
 void td_sim_races_start(const td_sim *s, double *y);
 

@@ -275,6 +275,8 @@ td_status td_sim_make_consistent(td_sim *s, const int *just_entered)
             td_sim_release(s, worst, y);
             if (!(just_entered && just_entered[worst]))
                 queue_retainer_event(s, TD_EVENT_RELEASE, worst, y);
+            else /* touched and left at once */
+                td_sim_totals_impact(s, worst, 0.0, 1);
         } else if ((worst = worst_slip(s, y)) >= 0) {
             slip_from_roll(s, worst, y);
         } else {
@@ -479,6 +481,10 @@ static int impacts(td_sim *s, const int *onset, int *entered)
     if (m > 0 && td_contact_impact_map(s->n, m, s->rows, s->minv_cols, s->restitution, y + s->ov, s->impulse,
                                        s->impact_work) != 0)
         return -1;
+    for (k = 0; k < m; k++) /* every contact of the impact took its impulse; e > 0 onsets bounced */
+        td_sim_totals_impact(s, s->active[k], s->impulse[k],
+                             onset[s->active[k]] && s->ret[s->active[k]].mode != TD_RMODE_CONTACT &&
+                                 s->restitution[k] > 0.0);
     enter_contacts(s, onset, m, y, entered);
     for (k = 0; k < s->nr; k++) /* stick retainers slide the way the impact left them */
         if (s->ret[k].r.stick && s->ret[k].mode == TD_RMODE_CONTACT && !entered[k])
@@ -763,6 +769,8 @@ td_status td_sim_restart(td_sim *s)
     int flag;
     save_counters(s);
     flag = IDAReInit(s->ida, s->t, s->y, s->yp);
+    if (flag == IDA_SUCCESS && td_sim_races_retolerance(s)) /* a race came into or out of contact */
+        flag = IDASVtolerances(s->ida, s->opt.solver.rtol, s->atol);
     if (flag == IDA_SUCCESS) {
         td_sim_root_directions(s, s->rootdir);
         if (s->nroots > 0)
