@@ -33,7 +33,7 @@ static td_status fail_override(td_case_reader *r, td_status code, const char *ov
     if (r->ov_entry) {
         td_cr_where(r, r->ov_entry, at, sizeof at);
         td_cr_key(r->ov_entry, key, sizeof key);
-        snprintf(where, sizeof where, "%s: %s '%s'", at, key, shown);
+        snprintf(where, sizeof where, "%s: %s: '%s'", at, key, shown);
     } else {
         snprintf(where, sizeof where, "%s: --set '%s'", r->path_shown, shown);
     }

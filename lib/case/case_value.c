@@ -113,7 +113,7 @@ void td_cr_where(const td_case_reader *r, const config_setting_t *s, char *buf, 
     if (entry) { /* grafted by the case's own overrides list: where that entry is */
         td_cr_where(r, entry, at, sizeof at);
         td_cr_key(entry, key, sizeof key);
-        snprintf(buf, n, "%s: %s '%s'", at, key, td_cr_printable(ov, shown, sizeof shown));
+        snprintf(buf, n, "%s: %s: '%s'", at, key, td_cr_printable(ov, shown, sizeof shown));
         return;
     }
     if (ov) {

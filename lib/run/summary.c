@@ -249,7 +249,8 @@ static void json_files(td_text *b, const td_run_summary *s)
     json_text(b, "events_path", s->events_path, 1);
 }
 
-/* "retainers":[{...},...], the first TD_RUN_SUMMARY_RETAINERS. */
+/* "retainers":[{...},...], the first TD_RUN_SUMMARY_RETAINERS: last in the object, so that the run's
+ * own keys (contacts, peak_normal_force) come before the retainers' keys of the same names. */
 static void json_retainers(td_text *b, const td_run_summary *s)
 {
     int k, n = s->retainer_count < TD_RUN_SUMMARY_RETAINERS ? s->retainer_count : TD_RUN_SUMMARY_RETAINERS;
@@ -272,7 +273,7 @@ static void json_retainers(td_text *b, const td_run_summary *s)
         json_real(b, "peak_normal_force", r->totals.peak_normal_force, 0, 0);
         td_text_printf(b, "}");
     }
-    td_text_printf(b, "],");
+    td_text_printf(b, "]");
 }
 
 /* The answers that converge, first (docs/validation.md). */
@@ -282,7 +283,6 @@ static void json_answers(td_text *b, const td_run_summary *s)
     json_real(b, "total_impulse", s->total_impulse, 0, 1);
     json_real(b, "friction_work", s->friction_work, 0, 1);
     json_real(b, "final_speed", s->final_speed, 0, 1);
-    json_retainers(b, s);
 }
 
 int td_run_summary_json(char *buf, size_t n, const td_run_summary *s)
@@ -339,6 +339,8 @@ int td_run_summary_json(char *buf, size_t n, const td_run_summary *s)
     json_real(&b, "time_in_contact", s->stats.time_in_contact, 0, 1);
     json_real(&b, "first_contact_time", s->stats.first_contact_time, 1, 1);
     json_real(&b, "wall_time", s->stats.wall_time, 0, 0);
-    td_text_printf(&b, "}}");
+    td_text_printf(&b, "},");
+    json_retainers(&b, s);
+    td_text_printf(&b, "}");
     return (int)b.len;
 }
