@@ -76,6 +76,23 @@ typedef struct td_retainer_totals {
     long touch_and_go;         /**< impacts that left again within less: bounces, rebounds, grazes */
 } td_retainer_totals;
 
+/**
+ * The machine's energy account so far (docs/theory.md, "Energy"): what it holds now, what came in
+ * and what was lost. residual is 0 up to the integration error (trapezoidal over the steps).
+ */
+typedef struct td_energy {
+    double kinetic;       /**< J now: 1/2 v^T M v, rotor and races */
+    double elastic;       /**< J now: 1/2 q^T K q (shaft, AMB negative stiffness excluded, mounts) + contact springs */
+    double initial;       /**< J: kinetic + elastic at the start */
+    double external_work; /**< J: work of gravity, the unbalances and the AMBs */
+    double drive_work;    /**< J: the drive holding the rotor's speed against friction, F_t R_s Omega */
+    double damping_loss;  /**< J: dissipated by C (shaft material damping, mounts, the races' viscous drag) */
+    double contact_loss;  /**< J: dissipated in the contacts (friction heat, contact dampers) */
+    double drag_loss;     /**< J: the races' constant drag */
+    double impact_loss;   /**< J: kinetic energy the impacts took (restitution < 1) */
+    double residual;      /**< J: kinetic + elastic - initial - external - drive + the losses */
+} td_energy;
+
 /** A contact that sweeps less whirl angle than this (rad) before it ends is a touch-and-go impact. */
 #define TD_TOUCH_AND_GO_ANGLE 1.0
 

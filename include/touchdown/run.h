@@ -81,6 +81,8 @@ typedef struct td_run_summary {
     double final_speed;        /**< rad/s: rotor speed at the end */
     int retainer_count;        /**< retainers in the model; the first TD_RUN_SUMMARY_RETAINERS in `retainers` */
     td_run_retainer retainers[TD_RUN_SUMMARY_RETAINERS];
+    int energy_kept;                     /**< 1: the case kept the energy account (td_sim_options.energy) */
+    td_energy energy;                    /**< it, at the end (all 0 when not kept) */
     int peak_converges;                  /**< 0: some retainer is a rigid constraint, whose instantaneous peak normal
                                               force does not converge with the mesh (only its impulse does) */
     double peak_normal_force;            /**< largest normal force: solver statistics, samples and events */

@@ -97,6 +97,8 @@ TD_API td_status td_sim_amb_force(const td_sim *sim, int amb, double f[2]);
 TD_API td_status td_sim_stats_get(const td_sim *sim, td_sim_stats *out);
 /** Totals of retainer `retainer` up to the current time (touchdown/records.h td_retainer_totals). */
 TD_API td_status td_sim_retainer_totals(const td_sim *sim, int retainer, td_retainer_totals *out);
+/** The energy account so far (touchdown/records.h td_energy). */
+TD_API td_status td_sim_energy(const td_sim *sim, td_energy *out);
 /** The rotor speed now, rad/s (the model's, or the last td_sim_set_speed). */
 TD_API double td_sim_speed(const td_sim *sim);
 

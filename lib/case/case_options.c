@@ -275,6 +275,8 @@ td_status td_cr_read_options(td_case_reader *r, const config_setting_t *root)
         st = td_cr_enum(r, root, "start", start_names, 3, start, &start);
     c->sim.start = (td_start)start;
     if (st == TD_OK)
+        st = td_cr_bool(r, root, "energy", 0, &c->sim.energy);
+    if (st == TD_OK)
         st = read_contact(r, root, &c->sim.contact);
     if (st == TD_OK)
         st = read_solver(r, root, &c->sim.solver);

@@ -237,6 +237,7 @@ static void summary_totals(run_state *r)
     int k;
     td_sim_options_get(r->sim, &o);
     s->final_speed = td_sim_speed(r->sim);
+    s->energy_kept = td_sim_energy(r->sim, &s->energy) == TD_OK;
     s->retainer_count = td_model_retainer_count(m);
     for (k = 0; k < s->retainer_count; k++) {
         td_retainer_totals t;
@@ -316,6 +317,11 @@ static td_status write_summary(td_recorder *rec, const td_run_summary *s, const 
                  {"summary_total_impulse", s->total_impulse},
                  {"summary_friction_work", s->friction_work},
                  {"summary_final_speed", s->final_speed},
+                 {"summary_energy_residual", s->energy_kept ? s->energy.residual : NAN},
+                 {"summary_energy_external_work", s->energy_kept ? s->energy.external_work : NAN},
+                 {"summary_energy_drive_work", s->energy_kept ? s->energy.drive_work : NAN},
+                 {"summary_energy_damping_loss", s->energy_kept ? s->energy.damping_loss : NAN},
+                 {"summary_energy_contact_loss", s->energy_kept ? s->energy.contact_loss : NAN},
                  {"summary_contact_time", s->contact_time},
                  {"summary_contact_fraction", s->contact_fraction},
                  {"summary_free_window", s->free_window},

@@ -124,6 +124,18 @@ static void format_files(td_text *b, const td_run_summary *s)
     td_text_printf(b, "%s%s\n", n ? "" : " none", n && !s->complete ? " (marked incomplete)" : "");
 }
 
+/* The energy account: held now and at the start, put in, lost, and the balance's residual. */
+static void format_energy(td_text *b, const td_energy *e)
+{
+    td_text_printf(b,
+                   "energy                      held %.6g J (%.6g J at the start); in: external %.6g J, drive %.6g J\n",
+                   e->kinetic + e->elastic, e->initial, e->external_work, e->drive_work);
+    td_text_printf(b,
+                   "energy lost                 damping %.6g J, contact %.6g J, drag %.6g J, impacts %.6g J; "
+                   "residual %.3g J\n",
+                   e->damping_loss, e->contact_loss, e->drag_loss, e->impact_loss, e->residual);
+}
+
 /* The answers that converge, first: housing force, impulse, friction work, speeds, each retainer. */
 static void format_answers(td_text *b, const td_run_summary *s)
 {
@@ -136,6 +148,8 @@ static void format_answers(td_text *b, const td_run_summary *s)
     td_text_printf(b, "total impulse               %.6g N s\n", s->total_impulse);
     td_text_printf(b, "friction work               %.6g J\n", s->friction_work);
     td_text_printf(b, "final speed                 %.6g rad/s\n", s->final_speed);
+    if (s->energy_kept)
+        format_energy(b, &s->energy);
     for (k = 0; k < n; k++) {
         const td_run_retainer *r = &s->retainers[k];
         td_text_printf(b, "retainer %-2d                 %s", k, r->whirl);
@@ -283,6 +297,22 @@ static void json_answers(td_text *b, const td_run_summary *s)
     json_real(b, "total_impulse", s->total_impulse, 0, 1);
     json_real(b, "friction_work", s->friction_work, 0, 1);
     json_real(b, "final_speed", s->final_speed, 0, 1);
+    if (!s->energy_kept) {
+        td_text_printf(b, "\"energy\":null,");
+        return;
+    }
+    td_text_printf(b, "\"energy\":{");
+    json_real(b, "kinetic", s->energy.kinetic, 0, 1);
+    json_real(b, "elastic", s->energy.elastic, 0, 1);
+    json_real(b, "initial", s->energy.initial, 0, 1);
+    json_real(b, "external_work", s->energy.external_work, 0, 1);
+    json_real(b, "drive_work", s->energy.drive_work, 0, 1);
+    json_real(b, "damping_loss", s->energy.damping_loss, 0, 1);
+    json_real(b, "contact_loss", s->energy.contact_loss, 0, 1);
+    json_real(b, "drag_loss", s->energy.drag_loss, 0, 1);
+    json_real(b, "impact_loss", s->energy.impact_loss, 0, 1);
+    json_real(b, "residual", s->energy.residual, 0, 0);
+    td_text_printf(b, "},");
 }
 
 int td_run_summary_json(char *buf, size_t n, const td_run_summary *s)

@@ -172,9 +172,10 @@ static int alloc_work(td_sim *s, size_t nr)
     s->roll_tried = calloc(nr, sizeof(int));
     s->touching = calloc(nr, sizeof(int));
     s->totals = calloc(nr, sizeof *s->totals);
+    s->energy_f = calloc(n, sizeof(double));
     return s->mass_x && s->minv_f && s->power_x && s->power_kx && s->power_mx && s->schur && s->schur_rhs &&
            s->restitution && s->impulse && s->impact_work && s->minv_cols && s->rows && s->active && s->active_roll &&
-           s->onset && s->roll_tried && s->totals && s->entered && s->touching;
+           s->onset && s->roll_tried && s->totals && s->energy_f && s->entered && s->touching;
 }
 
 static td_status alloc_arrays(td_sim *s, td_error *err)
@@ -744,6 +745,7 @@ static void free_work(td_sim *s)
     free(s->entered);
     free(s->roll_tried);
     free(s->totals);
+    free(s->energy_f);
     free(s->touching);
 }
 

@@ -139,6 +139,10 @@ struct td_sim {
     /* the retainers' totals (totals.c), nr of them, and the time of their last point */
     td_sim_totals *totals;
     double totals_t;
+    td_energy energy;      /* the energy account (totals.c) */
+    double energy_prev[5]; /* its powers at the last point: external, drive, damping, contact, drag */
+    double *energy_f;      /* n: the external forces at a point */
+    int energy_started;    /* the initial energy is set */
 
     /* statistics */
     td_sim_stats stats;   /* event totals, drift, forces, times (counters filled on demand) */
@@ -173,6 +177,9 @@ struct td_sim {
 
 /* ---- sim_residual.c: the DAE ------------------------------------------------------------- */
 
+/* f += sign * the external forces: gravity, unbalance and AMBs (what does work on the machine from
+ * outside; applied_forces adds the contacts and the races' drag to them). */
+void td_sim_external_forces(const td_sim *s, double t, const double *y, double sign, double *f);
 /* Generalised force f(t, q, v, w) of the header comment (everything but inertia and constraints). */
 void td_sim_forces(const td_sim *s, double t, const double *y, double *f);
 /* F(t, y, y'). */
@@ -195,6 +202,13 @@ void td_sim_totals_point(td_sim *s, double t, int restart);
 /* Before a restart at s->t inside the integrator's last step (a change between steps): the totals
  * taken back to s->t. */
 void td_sim_totals_rewind(td_sim *s);
+/* The energy account's point at time t (energy.c), with the segment length dt since the last one
+ * (0 at a restart): called by td_sim_totals_point. */
+void td_sim_energy_point(td_sim *s, double t, int restart, double dt);
+/* An impact changed the kinetic energy from `before` to `after`, J. */
+void td_sim_energy_impact(td_sim *s, double before, double after);
+/* Kinetic energy 1/2 v^T M v of the state y, J. */
+double td_sim_kinetic_energy(const td_sim *s, const double *y);
 /* An impact of retainer k with `impulse` (N s); `bounced`: it left at once (touch-and-go). */
 void td_sim_totals_impact(td_sim *s, int k, double impulse, int bounced);
 

@@ -467,7 +467,7 @@ static void stop_rolling(td_sim *s, double *y)
  */
 static int impacts(td_sim *s, const int *onset, int *entered)
 {
-    double *y = N_VGetArrayPointer(s->y);
+    double *y = N_VGetArrayPointer(s->y), before;
     int m, k, queued, first_event = s->q_len;
     for (k = 0; k < s->nr; k++) {
         entered[k] = 0;
@@ -478,9 +478,12 @@ static int impacts(td_sim *s, const int *onset, int *entered)
     m = impact_contacts(s, onset, y);
     impact_columns(s, m, y);
     queued = queue_onsets(s, onset, m, y);
+    before = s->opt.energy ? td_sim_kinetic_energy(s, y) : 0.0;
     if (m > 0 && td_contact_impact_map(s->n, m, s->rows, s->minv_cols, s->restitution, y + s->ov, s->impulse,
                                        s->impact_work) != 0)
         return -1;
+    if (s->opt.energy)
+        td_sim_energy_impact(s, before, td_sim_kinetic_energy(s, y));
     for (k = 0; k < m; k++) /* every contact of the impact took its impulse; e > 0 onsets bounced */
         td_sim_totals_impact(s, s->active[k], s->impulse[k],
                              onset[s->active[k]] && s->ret[s->active[k]].mode != TD_RMODE_CONTACT &&

@@ -86,7 +86,7 @@ static void penalty_forces(const td_sim *s, int k, const double *y, double sign,
 
 /* f += sign * the applied forces: gravity, unbalance, AMBs, penalty contacts and the races'
  * constant drag (everything of f but the structural -(C + Omega G) v - K q). */
-static void applied_forces(const td_sim *s, double t, const double *y, double sign, double *f)
+void td_sim_external_forces(const td_sim *s, double t, const double *y, double sign, double *f)
 {
     const td_system *sys = s->sys;
     double w2 = s->omega * s->omega, phi = td_sim_spin_angle(s, t);
@@ -103,6 +103,12 @@ static void applied_forces(const td_sim *s, double t, const double *y, double si
     }
     for (k = 0; k < sys->n_amb_axes; k++)
         f[sys->amb_axes[k].actuator_dof] += sign * td_sim_amb_axis_force(s, k, y);
+}
+
+static void applied_forces(const td_sim *s, double t, const double *y, double sign, double *f)
+{
+    int k;
+    td_sim_external_forces(s, t, y, sign, f);
     for (k = 0; k < s->nr; k++) {
         if (td_sim_penalty_model(s, k))
             penalty_forces(s, k, y, sign, f);

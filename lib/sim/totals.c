@@ -101,6 +101,8 @@ void td_sim_totals_point(td_sim *s, double t, int restart)
         if (restart || dt > 0.0)
             track_interval(s, k);
     }
+    if (s->opt.energy)
+        td_sim_energy_point(s, t, restart, dt);
     if (t > s->totals_t || restart)
         s->totals_t = t;
 }

@@ -167,13 +167,57 @@ static void test_spin_up_compliant(void **state)
     check_spin_up(1e8, 0);
 }
 
+/*
+ * Energy over a rub with the races free to spin (cases/rub-damped.cfg to 0.4 s: the first impacts,
+ * spin-up, rolling and the steady rub): the change of the energy held (rotor and races, kinetic and
+ * elastic, contact springs) equals the work put in (unbalance, AMBs, the drive holding the speed
+ * against friction) less what the shaft's damping, the mounts, the contacts (friction heat,
+ * dampers) and the drag took. The residual is the trapezoid rule's error over the steps: it must be
+ * small against the largest term and fall as the tolerances tighten.
+ */
+static double energy_residual(const char *rtol, const char *atol, double *largest)
+{
+    const char *ovs[4] = {"energy = true", "end_time = 0.4", rtol, atol};
+    td_case *c = NULL;
+    td_sim *s = NULL;
+    td_error err;
+    td_energy e;
+    double tr;
+    td_status st;
+    if (td_case_load(td_source_path("cases/rub-damped.cfg"), ovs, 4, &c, &err) != TD_OK ||
+        td_sim_create(td_case_model(c), td_case_sim_options(c), &s, &err) != TD_OK)
+        fail_msg("rub-damped: %s", err.message);
+    while ((st = td_sim_step(s, td_case_end_time(c), &tr, &err)) == TD_EVENT)
+        ;
+    if (st != TD_OK)
+        fail_msg("rub-damped: %s", err.message);
+    assert_int_equal(td_sim_energy(s, &e), TD_OK);
+    *largest = fmax(fmax(e.external_work, e.drive_work), fmax(e.damping_loss, fmax(e.contact_loss, e.drag_loss)));
+    printf("%s %s: held %.6g J (start %.6g), external %.6g, drive %.6g; damping %.6g, contact %.6g, drag %.6g, "
+           "impacts %.6g; residual %.3g J = %.2e of the largest term\n",
+           rtol, atol, e.kinetic + e.elastic, e.initial, e.external_work, e.drive_work, e.damping_loss, e.contact_loss,
+           e.drag_loss, e.impact_loss, e.residual, fabs(e.residual) / *largest);
+    assert_true(e.contact_loss > 0.0 && e.drag_loss > 0.0 && e.drive_work > 0.0 && e.damping_loss > 0.0);
+    td_sim_free(&s);
+    td_case_free(&c);
+    return fabs(e.residual);
+}
+
+static void test_energy_balance(void **state)
+{
+    double big1, big2, r1 = energy_residual("solver.rtol = 1e-6", "solver.atol = 1e-9", &big1);
+    double r2 = energy_residual("solver.rtol = 1e-8", "solver.atol = 1e-11", &big2);
+    (void)state;
+    assert_true(r1 < 1e-3 * big1);
+    assert_true(r2 < 1e-4 * big2 && r2 < 0.2 * r1); /* closes with the tolerance */
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_spin_up_constraint),
-        cmocka_unit_test(test_spin_up_compliant),
-        cmocka_unit_test(test_spin_up_constraint_stick),
-        cmocka_unit_test(test_spin_up_compliant_stick),
+        cmocka_unit_test(test_spin_up_constraint),       cmocka_unit_test(test_spin_up_compliant),
+        cmocka_unit_test(test_spin_up_constraint_stick), cmocka_unit_test(test_spin_up_compliant_stick),
+        cmocka_unit_test(test_energy_balance),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
