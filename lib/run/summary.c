@@ -4,6 +4,7 @@
 #include "run/summary.h"
 
 #include <math.h>
+#include <stddef.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -263,31 +264,53 @@ static void json_files(td_text *b, const td_run_summary *s)
     json_text(b, "events_path", s->events_path, 1);
 }
 
-/* "retainers":[{...},...], the first TD_RUN_SUMMARY_RETAINERS: last in the object, so that the run's
- * own keys (contacts, peak_normal_force) come before the retainers' keys of the same names. */
-static void json_retainers(td_text *b, const td_run_summary *s)
+/* One array of a per-retainer number over the first TD_RUN_SUMMARY_RETAINERS retainers. */
+static void json_retainer_array(td_text *b, const td_run_summary *s, const char *key, size_t offset, int is_long)
 {
     int k, n = s->retainer_count < TD_RUN_SUMMARY_RETAINERS ? s->retainer_count : TD_RUN_SUMMARY_RETAINERS;
-    td_text_printf(b, "\"retainers\":[");
+    td_text_printf(b, ",\"retainer_%s\":[", key);
     for (k = 0; k < n; k++) {
-        const td_run_retainer *r = &s->retainers[k];
-        td_text_printf(b, "%s{", k ? "," : "");
-        json_string(b, "whirl", r->whirl);
-        json_real(b, "whirl_frequency", r->whirl_frequency, 0, 1);
-        json_real(b, "peak_housing_force", r->totals.peak_housing_force, 0, 1);
-        json_real(b, "impulse", r->totals.impulse, 0, 1);
-        json_real(b, "impact_impulse", r->totals.impact_impulse, 0, 1);
-        json_real(b, "friction_work", r->totals.friction_work, 0, 1);
-        json_real(b, "contact_time", r->totals.contact_time, 0, 1);
-        json_real(b, "rolling_time", r->totals.rolling_time, 0, 1);
-        json_real(b, "mean_normal_force", r->mean_normal, 0, 1);
-        json_real(b, "rms_normal_force", r->rms_normal, 0, 1);
-        json_real(b, "race_speed", r->race_speed, 0, 1);
-        td_text_printf(b, "\"contacts\":%ld,\"touch_and_go\":%ld,", r->totals.contacts, r->totals.touch_and_go);
-        json_real(b, "peak_normal_force", r->totals.peak_normal_force, 0, 0);
-        td_text_printf(b, "}");
+        const char *base = (const char *)&s->retainers[k] + offset;
+        if (is_long)
+            td_text_printf(b, "%s%ld", k ? "," : "", *(const long *)base);
+        else
+            td_text_printf(b, "%s%.17g", k ? "," : "", *(const double *)base);
     }
     td_text_printf(b, "]");
+}
+
+/* The retainers' answers as arrays "retainer_KEY":[...] over the first TD_RUN_SUMMARY_RETAINERS,
+ * last in the object: key names of their own, so that a reader looking for the run's "contacts"
+ * or "peak_normal_force" finds only the run's. */
+static void json_retainers(td_text *b, const td_run_summary *s)
+{
+    static const struct {
+        const char *key;
+        size_t offset;
+        int is_long;
+    } fields[] = {{"whirl_frequency", offsetof(td_run_retainer, whirl_frequency), 0},
+                  {"peak_housing_force", offsetof(td_run_retainer, totals.peak_housing_force), 0},
+                  {"impulse", offsetof(td_run_retainer, totals.impulse), 0},
+                  {"impact_impulse", offsetof(td_run_retainer, totals.impact_impulse), 0},
+                  {"friction_work", offsetof(td_run_retainer, totals.friction_work), 0},
+                  {"contact_time", offsetof(td_run_retainer, totals.contact_time), 0},
+                  {"rolling_time", offsetof(td_run_retainer, totals.rolling_time), 0},
+                  {"mean_normal_force", offsetof(td_run_retainer, mean_normal), 0},
+                  {"rms_normal_force", offsetof(td_run_retainer, rms_normal), 0},
+                  {"peak_normal_force", offsetof(td_run_retainer, totals.peak_normal_force), 0},
+                  {"race_speed", offsetof(td_run_retainer, race_speed), 0},
+                  {"contacts", offsetof(td_run_retainer, totals.contacts), 1},
+                  {"touch_and_go", offsetof(td_run_retainer, totals.touch_and_go), 1}};
+    int k, n = s->retainer_count < TD_RUN_SUMMARY_RETAINERS ? s->retainer_count : TD_RUN_SUMMARY_RETAINERS;
+    size_t i;
+    td_text_printf(b, "\"retainer_whirl\":[");
+    for (k = 0; k < n; k++) {
+        td_text_printf(b, "%s", k ? "," : "");
+        td_text_json_string(b, s->retainers[k].whirl);
+    }
+    td_text_printf(b, "]");
+    for (i = 0; i < sizeof fields / sizeof fields[0]; i++)
+        json_retainer_array(b, s, fields[i].key, fields[i].offset, fields[i].is_long);
 }
 
 /* The answers that converge, first (docs/validation.md). */
