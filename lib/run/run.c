@@ -300,6 +300,24 @@ static void summary_finish(run_state *r, double wall_start)
         s->realtime_factor = span / s->wall_time;
 }
 
+/* The energy account, when the run kept it, as attributes of every file. */
+static td_status write_energy(td_recorder *rec, const td_energy *e, td_error *err)
+{
+    const struct {
+        const char *name;
+        double value;
+    } reals[] = {{"summary_energy_kinetic", e->kinetic},           {"summary_energy_elastic", e->elastic},
+                 {"summary_energy_initial", e->initial},           {"summary_energy_external_work", e->external_work},
+                 {"summary_energy_drive_work", e->drive_work},     {"summary_energy_damping_loss", e->damping_loss},
+                 {"summary_energy_contact_loss", e->contact_loss}, {"summary_energy_drag_loss", e->drag_loss},
+                 {"summary_energy_impact_loss", e->impact_loss},   {"summary_energy_residual", e->residual}};
+    size_t i;
+    td_status st = TD_OK;
+    for (i = 0; st == TD_OK && i < sizeof reals / sizeof reals[0]; i++)
+        st = td_recorder_set_double(rec, reals[i].name, reals[i].value, err);
+    return st;
+}
+
 /* The summary and run parameters as attributes of every file. */
 static td_status write_summary(td_recorder *rec, const td_run_summary *s, const char *case_text, td_error *err)
 {
@@ -317,11 +335,7 @@ static td_status write_summary(td_recorder *rec, const td_run_summary *s, const 
                  {"summary_total_impulse", s->total_impulse},
                  {"summary_friction_work", s->friction_work},
                  {"summary_final_speed", s->final_speed},
-                 {"summary_energy_residual", s->energy_kept ? s->energy.residual : NAN},
-                 {"summary_energy_external_work", s->energy_kept ? s->energy.external_work : NAN},
-                 {"summary_energy_drive_work", s->energy_kept ? s->energy.drive_work : NAN},
-                 {"summary_energy_damping_loss", s->energy_kept ? s->energy.damping_loss : NAN},
-                 {"summary_energy_contact_loss", s->energy_kept ? s->energy.contact_loss : NAN},
+
                  {"summary_contact_time", s->contact_time},
                  {"summary_contact_fraction", s->contact_fraction},
                  {"summary_free_window", s->free_window},
@@ -351,6 +365,8 @@ static td_status write_summary(td_recorder *rec, const td_run_summary *s, const 
         st = td_recorder_set_double(rec, reals[i].name, reals[i].value, err);
     for (i = 0; st == TD_OK && i < sizeof counts / sizeof counts[0]; i++)
         st = td_recorder_set_long(rec, counts[i].name, counts[i].value, err);
+    if (st == TD_OK && s->energy_kept)
+        st = write_energy(rec, &s->energy, err);
     return st;
 }
 
