@@ -33,7 +33,13 @@ static int build_rotor(td_model *m, td_error *err)
     for (i = 0; i < 2; i++) {
         /* our own controller replaces the built-in PD, so only ks (the magnet) matters here */
         td_amb a = {amb_nodes[i], amb_nodes[i], 1.0e6, 200.0, 1.0e4, 40.0, 1.0 / (2 * TD_PI * 100), 1700, 0, 1.2e-3};
-        td_retainer r = {retainer_nodes[i], 0.75e-3, 0.025, 0.02575, 0.1, 0.0, 0.0};
+        td_retainer r = {.node = retainer_nodes[i],
+                         .clearance = 0.75e-3,
+                         .shaft_radius = 0.025,
+                         .bore_radius = 0.02575,
+                         .friction = 0.1,
+                         .bore_speed = 0.0,
+                         .restitution = 0.0};
         if (td_model_add_point_mass(m, amb_nodes[i], 14.6, err) || td_model_add_amb(m, &a, err) ||
             td_model_add_retainer(m, &r, err))
             return -1;

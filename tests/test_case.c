@@ -384,11 +384,25 @@ static void check_all_keys_model(const td_model *m)
     assert_close(r.friction, 0.15, 0.0, 0.0);
     assert_close(r.bore_speed, 10.0, 0.0, 0.0);
     assert_close(r.restitution, 0.3, 0.0, 0.0);
+    assert_int_equal(r.stick, 1);
+    assert_close(r.race.inertia, 1.0e-4, 0.0, 0.0);
+    assert_close(r.race.drag_torque, 0.01, 0.0, 0.0);
+    assert_close(r.race.drag_viscous, 1.0e-6, 0.0, 0.0);
+    assert_close(r.race.mass, 0.3, 0.0, 0.0);
+    assert_close(r.race.mount_stiffness, 1.0e8, 0.0, 0.0);
+    assert_close(r.race.mount_damping, 500.0, 0.0, 0.0);
+    assert_close(r.contact.stiffness, 1.0e9, 0.0, 0.0);
+    assert_close(r.contact.exponent, 1.5, 0.0, 0.0);
+    assert_int_equal(r.contact.damping, TD_DAMPING_KELVIN_VOIGT);
+    assert_close(r.contact.damping_coefficient, 1000.0, 0.0, 0.0);
     td_model_get_retainer(m, 1, &r);
     assert_int_equal(r.node, 5);
     assert_close(r.bore_radius, 0.0204, 1e-15, 0.0); /* default shaft_radius + clearance */
     assert_close(r.bore_speed, 0.0, 0.0, 0.0);
     assert_close(r.restitution, 0.0, 0.0, 0.0);
+    assert_int_equal(r.stick, 0); /* the paper's retainer: no race, mount, own contact or stick */
+    assert_false(td_retainer_has_race(&r));
+    assert_close(r.contact.stiffness, 0.0, 0.0, 0.0);
 
     assert_int_equal(td_model_unbalance_count(m), 2);
     td_model_get_unbalance(m, 0, &u);
@@ -535,6 +549,9 @@ static void test_docs_match_reader(void **state)
                                          "ambs[0].",
                                          "bearings[0].",
                                          "retainers[0].",
+                                         "retainers[0].race.",
+                                         "retainers[0].mount.",
+                                         "retainers[0].contact.",
                                          "unbalances[0].",
                                          "schedule[0].",
                                          "gravity.",
@@ -870,6 +887,16 @@ static const bad_file bad_files[] = {
     {"retainer-bore-mismatch.cfg", 6, "retainers[0].bore_radius", NULL},
     {"retainer-clearance-ge-airgap.cfg", 8, "retainers[0].clearance", NULL},
     {"retainer-duplicate-node.cfg", 6, "retainers[1].node", NULL},
+    {"race-negative-inertia.cfg", 6, "retainers[0].race.inertia", NULL},
+    {"race-drag-without-inertia.cfg", 6, "retainers[0].race.drag_torque", NULL},
+    {"race-mass-without-mount.cfg", 6, "retainers[0].race.mass", NULL},
+    {"race-mount-without-mass.cfg", 6, "retainers[0].mount.stiffness", NULL},
+    {"race-unknown-key.cfg", 6, "retainers[0].race.intertia", NULL},
+    {"race-string-inertia.cfg", 6, "retainers[0].race.inertia", NULL},
+    {"retainer-contact-bad-damping.cfg", 6, "retainers[0].contact.damping", NULL},
+    {"retainer-contact-exponent.cfg", 6, "retainers[0].contact.exponent", NULL},
+    {"retainer-stick-no-friction.cfg", 6, "retainers[0].stick", NULL},
+    {"override-bad-index.cfg", 5, "overrides[0]", NULL},
     {"retainer-restitution.cfg", 6, "retainers[0].restitution", NULL},
     {"retainer-zero-clearance.cfg", 5, "retainers[0].clearance", NULL},
     {"schedule-bad-index.cfg", 6, "schedule[0].unbalance", NULL},

@@ -123,11 +123,17 @@ static void test_constraint_geometry(void **state)
 /* eq. (16) on a circular whirl at rate w: v = R_s Omega + (R_b - R_s) w - R_b Omega_b; eq. (17) sign. */
 static void test_sliding_velocity_and_friction(void **state)
 {
-    td_retainer ret = {2, 0.75e-3, 0.025, 0.02575, 0.1, 3.0, 0.0};
+    td_retainer ret = {.node = 2,
+                       .clearance = 0.75e-3,
+                       .shaft_radius = 0.025,
+                       .bore_radius = 0.02575,
+                       .friction = 0.1,
+                       .bore_speed = 3.0,
+                       .restitution = 0.0};
     double w = -40.0, c = ret.clearance, a = 0.4;
     double x = c * cos(a), y = c * sin(a), vx = -w * y, vy = w * x;
     (void)state;
-    assert_close(td_contact_sliding_velocity(&ret, 90.0, x, y, vx, vy), 0.025 * 90.0 + 0.75e-3 * w - 0.02575 * 3.0,
+    assert_close(td_contact_sliding_velocity(&ret, 90.0, 3.0, x, y, vx, vy), 0.025 * 90.0 + 0.75e-3 * w - 0.02575 * 3.0,
                  1e-14, 1e-15);
     assert_close(td_contact_tangential_velocity(x, y, vx, vy), w * c, 1e-14, 0.0);
     assert_close(td_contact_radial_velocity(x, y, vx, vy), 0.0, 0.0, 1e-16);
@@ -139,7 +145,13 @@ static void test_sliding_velocity_and_friction(void **state)
  * edges; and the gradient of eq. (16) against central differences. */
 static void test_slip_factor_and_gradient(void **state)
 {
-    td_retainer ret = {2, 0.75e-3, 0.025, 0.02575, 0.1, 3.0, 0.0};
+    td_retainer ret = {.node = 2,
+                       .clearance = 0.75e-3,
+                       .shaft_radius = 0.025,
+                       .bore_radius = 0.02575,
+                       .friction = 0.1,
+                       .bore_speed = 3.0,
+                       .restitution = 0.0};
     double vreg = TD_CONTACT_SLIP_BAND, d, g[4], z[4] = {3.1e-4, -6.2e-4, 0.021, 0.013};
     int i;
     (void)state;
@@ -159,8 +171,8 @@ static void test_slip_factor_and_gradient(void **state)
         memcpy(zm, z, sizeof zm);
         zp[i] += h;
         zm[i] -= h;
-        fd = (td_contact_sliding_velocity(&ret, 90.0, zp[0], zp[1], zp[2], zp[3]) -
-              td_contact_sliding_velocity(&ret, 90.0, zm[0], zm[1], zm[2], zm[3])) /
+        fd = (td_contact_sliding_velocity(&ret, 90.0, 3.0, zp[0], zp[1], zp[2], zp[3]) -
+              td_contact_sliding_velocity(&ret, 90.0, 3.0, zm[0], zm[1], zm[2], zm[3])) /
              (2.0 * h);
         assert_close(g[i], fd, 1e-7, 0.0);
     }
@@ -179,6 +191,7 @@ static void test_impact_lumped(void **state)
     for (e = 0.0; e <= 1.0; e += 0.5) {
         double vr0, vt0;
         memcpy(v0, v, sizeof v);
+        row.count = 2;
         row.dof[0] = 0;
         row.dof[1] = 1;
         td_contact_constraint_jacobian(x, y, c, row.j);
@@ -236,6 +249,7 @@ static void test_impact_consistent_two_constraints(void **state)
         seed = seed * 1103515245u + 12345u;
         v[i] = ((seed >> 8) & 0xffff) / 65536.0 - 0.5;
     }
+    rows[0].count = rows[1].count = 2;
     rows[0].dof[0] = 0, rows[0].dof[1] = 1;
     rows[1].dof[0] = 4, rows[1].dof[1] = 5;
     td_contact_constraint_jacobian(c * cos(0.3), c * sin(0.3), c, rows[0].j);

@@ -40,7 +40,13 @@ static void test_rejects_bad_parts(void **state)
     td_model *m = uniform_shaft(2);
     td_error err;
     td_shaft_element bad = {0.1, 0.05, 0.06, {2.11e11, 8.1e10, 7810.0}};
-    td_retainer r = {1, 0.75e-3, 0.025, 0.02575, 0.1, 0.0, 0.0};
+    td_retainer r = {.node = 1,
+                     .clearance = 0.75e-3,
+                     .shaft_radius = 0.025,
+                     .bore_radius = 0.02575,
+                     .friction = 0.1,
+                     .bore_speed = 0.0,
+                     .restitution = 0.0};
     (void)state;
     assert_int_equal(td_model_add_shaft_element(m, &bad, &err), TD_ERR_INVALID);
     assert_non_null(strstr(err.message, "inner diameter"));
@@ -57,7 +63,13 @@ static void test_validate_cross_references(void **state)
     td_model *m = uniform_shaft(2);
     td_error err;
     td_amb amb = {1, 1, 1e6, 200, 1e4, 40, 1.0 / (2 * TD_PI * 100), 1700, 0, 0.5e-3};
-    td_retainer r = {0, 0.75e-3, 0.025, 0.02575, 0.1, 0.0, 0.0};
+    td_retainer r = {.node = 0,
+                     .clearance = 0.75e-3,
+                     .shaft_radius = 0.025,
+                     .bore_radius = 0.02575,
+                     .friction = 0.1,
+                     .bore_speed = 0.0,
+                     .restitution = 0.0};
     (void)state;
     assert_int_equal(td_model_validate(m, &err), TD_OK);
     assert_int_equal(td_model_add_point_mass(m, 3, 1.0, NULL), TD_OK);
@@ -93,7 +105,13 @@ static void test_errors_name_part_index_field(void **state)
     td_model *m = uniform_shaft(2), *fine = NULL;
     td_error err;
     td_amb amb = {1, 1, 1e6, 200, 1e4, 40, 1.0 / (2 * TD_PI * 100), 1700, 0, 0.5e-3};
-    td_retainer r = {0, 0.25e-3, 0.025, 0.02525, 0.1, 0.0, 0.0};
+    td_retainer r = {.node = 0,
+                     .clearance = 0.25e-3,
+                     .shaft_radius = 0.025,
+                     .bore_radius = 0.02525,
+                     .friction = 0.1,
+                     .bore_speed = 0.0,
+                     .restitution = 0.0};
     td_change c = {0.5, TD_CHANGE_AMB_OFF, 3, 0.0, 0.0};
     td_change early = {0.1, TD_CHANGE_AMB_OFF, 0, 0.0, 0.0};
     (void)state;

@@ -116,7 +116,7 @@ static const char case_text[] = "# a case\nspeed = 90.0;\nname = \"A \\\"quoted\
 
 static td_output_layout full_layout(void)
 {
-    td_output_layout l;
+    td_output_layout l = {0};
     l.node_count = NODES;
     l.nodes = node_list;
     l.retainer_count = RETS;
@@ -349,7 +349,7 @@ static hid_t event_mem_type(void)
 {
     hid_t kind = H5Tenum_create(H5T_NATIVE_INT), m = H5Tcreate(H5T_COMPOUND, sizeof(ev_row));
     int v;
-    for (v = 0; v < 6; v++)
+    for (v = 0; v <= (int)TD_EVENT_ROLL_END; v++)
         H5Tenum_insert(kind, td_event_kind_name((td_event_kind)v), &v);
     H5Tinsert(m, "time", HOFFSET(ev_row, time), H5T_NATIVE_DOUBLE);
     H5Tinsert(m, "kind", HOFFSET(ev_row, kind), kind);
@@ -549,7 +549,7 @@ static void test_hdf5_incomplete(void **state)
 static void test_hdf5_empty_layout(void **state)
 {
     char path[512];
-    td_output_layout l = {0, NULL, 0, 0, 0};
+    td_output_layout l = {0};
     td_writer *w = NULL;
     hid_t f, g, mt;
     hsize_t dims[1] = {3};
@@ -1151,7 +1151,7 @@ static void test_modal_path_checks(void **state)
 
 static void test_attribute_names(void **state)
 {
-    td_output_layout l = {0, NULL, 0, 0, 0};
+    td_output_layout l = {0};
     td_writer *w = NULL;
     td_error err;
     char path[512], events[1100], long_name[100];

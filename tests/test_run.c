@@ -39,7 +39,13 @@ static td_model *small_rotor(void)
     td_disc disc = {3, 4.91, 0.0245, 0.0124};
     td_bearing b0 = {0, 1e8, 1e8, 200.0, 200.0}, b6 = {6, 1e8, 1e8, 200.0, 200.0};
     td_amb amb = {1, 1, 0.0, 1.0, 1e5, 20.0, 1e-4, 1e4, 0, 0.0};
-    td_retainer ret = {3, CLEARANCE, 0.01, 0.01 + CLEARANCE, 0.1, 0.0, 0.0};
+    td_retainer ret = {.node = 3,
+                       .clearance = CLEARANCE,
+                       .shaft_radius = 0.01,
+                       .bore_radius = 0.01 + CLEARANCE,
+                       .friction = 0.1,
+                       .bore_speed = 0.0,
+                       .restitution = 0.0};
     td_unbalance u = {3, 1e-5, 0.0};
     td_change up = {0.02, TD_CHANGE_UNBALANCE, 0, 2e-4, 0.0}, down = {0.1, TD_CHANGE_UNBALANCE, 0, 1e-5, 0.0};
     td_error err;

@@ -21,8 +21,20 @@ static td_model *small_rotor(void)
     td_disc disc = {2, 10.0, 0.072, 0.036668};
     td_amb amb0 = {1, 1, 1.0e6, 200.0, 1.0e4, 40.0, 1.0 / (2 * TD_PI * 100), 1700.0, 0, 1.2e-3};
     td_amb amb1 = {3, 3, 1.0e6, 200.0, 1.0e4, 40.0, 0.0, 1700.0, 0, 1.2e-3};
-    td_retainer r0 = {0, 0.5e-3, 0.025, 0.0255, 0.1, 0.0, 0.0};
-    td_retainer r1 = {4, 0.5e-3, 0.025, 0.0255, 0.1, 5.0, 0.0};
+    td_retainer r0 = {.node = 0,
+                      .clearance = 0.5e-3,
+                      .shaft_radius = 0.025,
+                      .bore_radius = 0.0255,
+                      .friction = 0.1,
+                      .bore_speed = 0.0,
+                      .restitution = 0.0};
+    td_retainer r1 = {.node = 4,
+                      .clearance = 0.5e-3,
+                      .shaft_radius = 0.025,
+                      .bore_radius = 0.0255,
+                      .friction = 0.1,
+                      .bore_speed = 5.0,
+                      .restitution = 0.0};
     td_unbalance u = {2, 1e-3, 0.3};
     int i;
     assert_int_equal(td_model_create(&m, NULL), TD_OK);

@@ -18,6 +18,27 @@ static const char info_usage[] =
     "  -n, --modes N        number of modes to list (default 6)\n"
     "  -h, --help           this help\n";
 
+/* The race, mount, own contact law and stick state of a retainer, when it has them. */
+static void print_race(const td_retainer *r)
+{
+    const td_race *b = &r->race;
+    if (r->stick)
+        printf("             stick: rolling without slip is a state\n");
+    if (b->inertia > 0.0)
+        printf("             race: inertia %.6g kg m^2, drag %.6g N m + %.6g N m s/rad\n", b->inertia, b->drag_torque,
+               b->drag_viscous);
+    if (b->mount_stiffness > 0.0)
+        printf("             mount: race mass %.6g kg, stiffness %.6g N/m, damping %.6g N s/m\n", b->mass,
+               b->mount_stiffness, b->mount_damping);
+    if (r->contact.stiffness > 0.0)
+        printf("             contact: stiffness %.6g N/m^%.6g, damping %s %.6g\n", r->contact.stiffness,
+               r->contact.exponent,
+               r->contact.damping == TD_DAMPING_KELVIN_VOIGT    ? "kelvin-voigt"
+               : r->contact.damping == TD_DAMPING_HUNT_CROSSLEY ? "hunt-crossley"
+                                                                : "none",
+               r->contact.damping_coefficient);
+}
+
 static void print_parts(const td_model *m)
 {
     int i;
@@ -62,6 +83,7 @@ static void print_parts(const td_model *m)
         printf("retainer %-3d node %d: clearance %.6g m, Rs %.6g m, Rb %.6g m, mu %.6g, bore speed %.6g rad/s, "
                "restitution %.6g\n",
                i, r.node, r.clearance, r.shaft_radius, r.bore_radius, r.friction, r.bore_speed, r.restitution);
+        print_race(&r);
     }
     for (i = 0; i < td_model_unbalance_count(m); i++) {
         td_unbalance u;

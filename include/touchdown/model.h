@@ -11,6 +11,7 @@
 
 #include "touchdown/error.h"
 #include "touchdown/export.h"
+#include "touchdown/options.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -115,16 +116,54 @@ typedef struct td_bearing {
     double cxx, cyy; /**< N s/m */
 } td_bearing;
 
+/**
+ * The inner race of a retainer ball bearing as a body (docs/theory.md, "Retainer bearings as bodies").
+ * All zero is the paper's retainer: a rigid bore fixed in the housing, turning at bore_speed.
+ *  - inertia > 0: the race speed Omega_b is a state, starting at bore_speed, driven by the friction
+ *    torque R_b mu N phi(v_s) at the contact and braked by the bearing's drag
+ *    T = drag_torque sgn(Omega_b) + drag_viscous Omega_b;
+ *  - mount_stiffness > 0: the race centre moves on an isotropic mount (stiffness, damping) to the
+ *    housing, with the race mass (> 0) in translation.
+ */
+typedef struct td_race {
+    double inertia;         /**< polar moment of inertia J of the rotating parts, kg m^2, >= 0 */
+    double drag_torque;     /**< constant drag torque, N m, >= 0 (needs inertia > 0) */
+    double drag_viscous;    /**< viscous drag, N m s/rad, >= 0 (needs inertia > 0) */
+    double mass;            /**< mass moving on the mount, kg: > 0 with a mount, 0 without */
+    double mount_stiffness; /**< radial stiffness of the mount, N/m, >= 0 (0: rigid mount) */
+    double mount_damping;   /**< radial damping of the mount, N s/m, >= 0 (needs a mount) */
+} td_race;
+
+/**
+ * A retainer's own compliant contact law between shaft and race (eq. 4 and its generalisations,
+ * touchdown/options.h). stiffness 0: the run's contact model (td_contact_options) applies.
+ */
+typedef struct td_retainer_contact {
+    double stiffness;           /**< Kc, N/m^exponent, >= 0 (0: the run's contact model) */
+    double exponent;            /**< p >= 1: 1 linear, 1.5 Hertzian (0 is taken as 1) */
+    td_contact_damping damping; /**< damping law (touchdown/options.h) */
+    double damping_coefficient; /**< s/m (Hunt-Crossley) or N s/m (Kelvin-Voigt), >= 0 */
+} td_retainer_contact;
+
 /** A retainer (backup, touchdown) bearing around the shaft at a node. */
 typedef struct td_retainer {
     int node;
-    double clearance;    /**< radial clearance c = bore_radius - shaft_radius, m, > 0 */
-    double shaft_radius; /**< R_s, m */
-    double bore_radius;  /**< R_b, m */
-    double friction;     /**< Coulomb coefficient mu, >= 0 */
-    double bore_speed;   /**< Omega_b, rotation speed of the bore (rolling-element race), rad/s */
-    double restitution;  /**< e in [0, 1]: radial velocity after impact = -e times before */
+    double clearance;            /**< radial clearance c = bore_radius - shaft_radius, m, > 0 */
+    double shaft_radius;         /**< R_s, m */
+    double bore_radius;          /**< R_b, m */
+    double friction;             /**< Coulomb coefficient mu, >= 0 */
+    double bore_speed;           /**< Omega_b, rotation speed of the bore (rolling-element race), rad/s:
+                                  *   fixed, or the start value of a race with inertia */
+    double restitution;          /**< e in [0, 1]: radial velocity after impact = -e times before */
+    int stick;                   /**< nonzero: Coulomb friction with sticking: rolling without slip
+                                  *   (v_s = 0) is a state, held while the friction force it needs stays
+                                  *   within mu N; 0: the paper's sliding law (eq. 17), slip band */
+    td_race race;                /**< the race as a body (all zero: fixed rigid bore, the paper's model) */
+    td_retainer_contact contact; /**< its own compliant contact law (all zero: the run's) */
 } td_retainer;
+
+/** 1 if retainer r has states of its own: a spinning race (inertia > 0) or a mount. */
+TD_API int td_retainer_has_race(const td_retainer *r);
 
 /** An unbalance: F_x = U Omega^2 cos(Omega t + phase), F_y = U Omega^2 sin(Omega t + phase). */
 typedef struct td_unbalance {

@@ -61,7 +61,9 @@ typedef struct td_sim_options {
     td_contact_options contact;
     td_solver_options solver;
     td_start start;
-    double t0; /**< start time, s */
+    double t0;  /**< start time, s */
+    int energy; /**< nonzero: keep the energy account (td_sim_energy; about 30 % more time on the
+                     undamped rig); 0: td_sim_energy reports TD_ERR_INVALID */
 } td_sim_options;
 
 /** Largest number of nodes an output can select. */

@@ -47,6 +47,8 @@ typedef struct td_output_layout {
     int retainer_count; /**< retainers, >= 0 */
     int amb_count;      /**< AMBs, >= 0 */
     int compression;    /**< HDF5 only: deflate level 0 (none) .. 9, with the shuffle filter; CSV ignores it */
+    int race_fields;    /**< nonzero: also each retainer's race centre x, y, race speed and rolling flag
+                         *   (models with race bodies or stick retainers, touchdown/model.h) */
 } td_output_layout;
 
 /**

@@ -19,7 +19,10 @@ typedef enum td_event_kind {
                                          slip band |v_s| < 1e-4 m/s of the friction law (docs/theory.md) */
     TD_EVENT_SCHEDULE = 3,          /**< a timed change of the model (unbalance step, AMB failure) */
     TD_EVENT_PENALTY_ENTER = 4,     /**< penalty model: penetration delta became positive */
-    TD_EVENT_PENALTY_EXIT = 5       /**< penalty model: penetration delta returned to zero */
+    TD_EVENT_PENALTY_EXIT = 5,      /**< penalty model: penetration delta returned to zero */
+    TD_EVENT_ROLL_START = 6,        /**< stick retainer: v_s reached 0 and the friction force that rolling
+                                         without slip needs is within mu N: it rolls */
+    TD_EVENT_ROLL_END = 7           /**< stick retainer: rolling needs more than mu N (or an impact): it slips */
 } td_event_kind;
 
 /** One event, as recorded in the event table. Velocities are of the retainer node. */
@@ -39,14 +42,59 @@ typedef struct td_event {
 /** Contact state of one retainer at the current time. */
 typedef struct td_retainer_state {
     double x, y;             /**< node displacement, m */
-    double radius;           /**< radial position r = sqrt(x^2 + y^2), m */
-    double radial_velocity;  /**< m/s */
-    double whirl_angle;      /**< atan2(y, x), rad */
+    double radius;           /**< radial position r of the node relative to the race centre, m (the gap is c - r) */
+    double radial_velocity;  /**< dr/dt, m/s */
+    double whirl_angle;      /**< angle of the node around the race centre, atan2, rad */
     double normal_force;     /**< N >= 0 while in contact */
     double friction_force;   /**< N, tangential, positive along the whirl direction */
     double sliding_velocity; /**< eq. 16, m/s */
     int in_contact;          /**< 1 while the contact is active */
+    double race_x, race_y;   /**< race centre displacement on its mount, m (0 without a mount) */
+    double race_speed;       /**< race speed Omega_b, rad/s (bore_speed when it is fixed) */
+    int rolling;             /**< 1 while rolling without slip (stick retainers, model.h) */
 } td_retainer_state;
+
+/**
+ * What one retainer has received so far: the quantities that converge as the mesh and the
+ * tolerances are refined (docs/validation.md), unlike the instantaneous peak of a rigid contact.
+ * Time integrals are trapezoidal over the integrator's steps (not the output samples); the
+ * impacts of the constraint model add their impulses.
+ */
+typedef struct td_retainer_totals {
+    double impulse;            /**< N s: integral of the normal force plus the impacts' impulses */
+    double impact_impulse;     /**< N s: the impacts' share (constraint model impact map) */
+    double contact_time;       /**< s in contact */
+    double rolling_time;       /**< s rolling without slip (stick retainers) */
+    double normal_force_sq;    /**< N^2 s: integral of N^2 (rms normal force = sqrt(this / contact_time)) */
+    double friction_work;      /**< J: integral of F_t v_s, the heat of sliding into the retainer (>= 0) */
+    double whirl_angle;        /**< rad: whirl angle swept while in contact (mean whirl rate = this / contact_time) */
+    double peak_housing_force; /**< N: largest force into the housing (the mount force k_m r + c_m r' on a
+                                    mount, the contact force |N n + F_t t| on a fixed bore) */
+    double peak_normal_force;  /**< N */
+    long contacts;             /**< contact intervals that swept at least TD_TOUCH_AND_GO_ANGLE of whirl
+                                    (the one still open counts) */
+    long touch_and_go;         /**< impacts that left again within less: bounces, rebounds, grazes */
+} td_retainer_totals;
+
+/**
+ * The machine's energy account so far (docs/theory.md, "Energy"): what it holds now, what came in
+ * and what was lost. residual is 0 up to the integration error (trapezoidal over the steps).
+ */
+typedef struct td_energy {
+    double kinetic;       /**< J now: 1/2 v^T M v, rotor and races */
+    double elastic;       /**< J now: 1/2 q^T K q (shaft, AMB negative stiffness excluded, mounts) + contact springs */
+    double initial;       /**< J: kinetic + elastic at the start */
+    double external_work; /**< J: work of gravity, the unbalances and the AMBs */
+    double drive_work;    /**< J: the drive holding the rotor's speed against friction, F_t R_s Omega */
+    double damping_loss;  /**< J: dissipated by C (shaft material damping, mounts, the races' viscous drag) */
+    double contact_loss;  /**< J: dissipated in the contacts (friction heat, contact dampers) */
+    double drag_loss;     /**< J: the races' constant drag */
+    double impact_loss;   /**< J: kinetic energy the impacts took (restitution < 1) */
+    double residual;      /**< J: kinetic + elastic - initial - external - drive + the losses */
+} td_energy;
+
+/** A contact that sweeps less whirl angle than this (rad) before it ends is a touch-and-go impact. */
+#define TD_TOUCH_AND_GO_ANGLE 1.0
 
 /** Running totals across every restart of the integrator. */
 typedef struct td_sim_stats {

@@ -46,6 +46,19 @@ typedef struct td_run_hooks {
 } td_run_hooks;
 
 /** What a run did. Times in s, forces in N; -1 marks "none"/"undefined" where stated. */
+/** Retainers whose totals td_run_summary carries itself (the output files carry every retainer's). */
+#define TD_RUN_SUMMARY_RETAINERS 8
+
+/** One retainer at the end of a run: its totals and what its whirl was (td_run_whirl_classify). */
+typedef struct td_run_retainer {
+    td_retainer_totals totals;
+    double race_speed;      /**< rad/s at the end */
+    double mean_normal;     /**< N: impulse / contact time while in contact (0 without contact) */
+    double rms_normal;      /**< N: sqrt(integral of N^2 / contact time) */
+    double whirl_frequency; /**< Hz: mean whirl rate while in contact / 2 pi, signed like the spin (< 0 backward) */
+    char whirl[40];         /**< "none", "touch-and-go", or "forward|backward rolling|sliding[, bouncing]" */
+} td_run_retainer;
+
 typedef struct td_run_summary {
     td_status status;                    /**< what td_run returned */
     int complete;                        /**< 1 if the run reached t_end and every file was finished complete */
@@ -60,6 +73,18 @@ typedef struct td_run_summary {
     long contacts;                       /**< contact onsets: TD_EVENT_CONTACT_ONSET + TD_EVENT_PENALTY_ENTER */
     double first_contact_time;           /**< -1 if no contact */
     double last_contact_time;            /**< time the last contact ended (t_reached if still in contact), -1 if none */
+    /* the answers that converge with the mesh and the tolerances (docs/validation.md) */
+    double peak_housing_force; /**< N: largest force into the housing, over retainers and time */
+    int peak_housing_retainer; /**< its retainer (-1 if none) */
+    double total_impulse;      /**< N s: the normal force's impulse, summed over retainers */
+    double friction_work;      /**< J: heat of sliding, summed over retainers */
+    double final_speed;        /**< rad/s: rotor speed at the end */
+    int retainer_count;        /**< retainers in the model; the first TD_RUN_SUMMARY_RETAINERS in `retainers` */
+    td_run_retainer retainers[TD_RUN_SUMMARY_RETAINERS];
+    int energy_kept;                     /**< 1: the case kept the energy account (td_sim_options.energy) */
+    td_energy energy;                    /**< it, at the end (all 0 when not kept) */
+    int peak_converges;                  /**< 0: some retainer is a rigid constraint, whose instantaneous peak normal
+                                              force does not converge with the mesh (only its impulse does) */
     double peak_normal_force;            /**< largest normal force: solver statistics, samples and events */
     double peak_time;                    /**< when peak_normal_force occurred, s (-1 if no contact force) */
     int peak_retainer;                   /**< retainer of peak_normal_force (-1 if no contact force) */

@@ -86,7 +86,8 @@ TD_API double td_sim_time(const td_sim *sim);
 /** The event that stopped the last td_sim_step with TD_EVENT. */
 TD_API td_status td_sim_last_event(const td_sim *sim, td_event *ev);
 
-/** Number of mechanical DOFs. */
+/** Number of the rotor's mechanical DOFs (touchdown/dofs.h; the races' states are read with
+ *  td_sim_retainer_state). */
 TD_API int td_sim_dof_count(const td_sim *sim);
 /** Copy displacements q and velocities v (each td_sim_dof_count long; either may be NULL). */
 TD_API td_status td_sim_get_state(const td_sim *sim, double *q, double *v);
@@ -94,6 +95,12 @@ TD_API td_status td_sim_retainer_state(const td_sim *sim, int retainer, td_retai
 /** Total force of AMB `amb` on the rotor, f[0] along x, f[1] along y, N. */
 TD_API td_status td_sim_amb_force(const td_sim *sim, int amb, double f[2]);
 TD_API td_status td_sim_stats_get(const td_sim *sim, td_sim_stats *out);
+/** Totals of retainer `retainer` up to the current time (touchdown/records.h td_retainer_totals). */
+TD_API td_status td_sim_retainer_totals(const td_sim *sim, int retainer, td_retainer_totals *out);
+/** The energy account so far (touchdown/records.h td_energy). */
+TD_API td_status td_sim_energy(const td_sim *sim, td_energy *out);
+/** The rotor speed now, rad/s (the model's, or the last td_sim_set_speed). */
+TD_API double td_sim_speed(const td_sim *sim);
 
 /* Changes between steps; each takes effect from the current time (the integrator restarts).
  * Invalid arguments give TD_ERR_INVALID, a failed restart its status; *err says which. */

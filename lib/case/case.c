@@ -9,9 +9,10 @@
 #include <stdlib.h>
 #include <string.h>
 
-static const char *const top_keys[] = {"description",  "speed",   "end_time", "start",     "shaft",      "discs",
-                                       "point_masses", "ambs",    "bearings", "retainers", "unbalances", "schedule",
-                                       "gravity",      "contact", "solver",   "output",    "modal",      NULL};
+static const char *const top_keys[] = {"description", "speed",        "end_time",  "start",    "shaft",
+                                       "discs",       "point_masses", "ambs",      "bearings", "retainers",
+                                       "unbalances",  "schedule",     "gravity",   "contact",  "solver",
+                                       "output",      "modal",        "overrides", "energy",   NULL};
 
 static char *dup_string(const char *s, size_t n)
 {
@@ -270,6 +271,8 @@ static td_status load(td_case_reader *r, const char *const *overrides, int n_ove
         st = check_wraps(r);
     if (st == TD_OK && config_setting_length(config_root_setting(&r->cfg)) == 0)
         st = td_cr_fail_file(r->err, TD_ERR_PARSE, r->path_shown, 1, "the case file is empty (no settings)");
+    if (st == TD_OK)
+        st = td_cr_apply_file_overrides(r);
     for (i = 0; st == TD_OK && i < n_overrides; i++)
         st = td_cr_apply_override(r, overrides[i]);
     if (st == TD_OK)

@@ -63,6 +63,9 @@ typedef struct td_case_reader {
     int includes; /* @include files expanded so far (limit TD_CASE_MAX_INCLUDES) */
     size_t bytes; /* bytes read so far, main file and includes (limit TD_CASE_MAX_TOTAL_SIZE) */
     td_cr_shape shape;
+    const config_setting_t *overrides; /* the case's own "overrides" list, or NULL: its strings are the
+                                        * hooks of what they graft (td_cr_where names the entry) */
+    const config_setting_t *ov_entry;  /* the entry being applied, NULL for a --set */
 } td_case_reader;
 
 /* Range a real value must lie in. */
@@ -163,8 +166,16 @@ td_status td_cr_validate_fail(td_case_reader *r, const td_error *merr);
 /* ---- overrides (case_override.c) --------------------------------------------------------- */
 /* Apply one "KEY=VALUE" string to the parsed configuration. */
 td_status td_cr_apply_override(td_case_reader *r, const char *ov);
+/* The case's own list `overrides = ( "KEY=VALUE", ... )`, applied in order before the --set ones. */
+td_status td_cr_apply_file_overrides(td_case_reader *r);
+/* The entry of the case's "overrides" list whose string is `ov`, or NULL (a --set). */
+const config_setting_t *td_cr_file_override(const td_case_reader *r, const char *ov);
 
 /* ---- section readers (case_shaft.c, case_parts.c, case_options.c) ------------------------- */
+/* The names of td_contact_damping, in its order (the run's and the retainers' contact groups). */
+#define TD_CR_DAMPING_NAMES 3
+extern const char *const td_cr_damping_names[TD_CR_DAMPING_NAMES];
+
 td_status td_cr_read_shaft(td_case_reader *r, const config_setting_t *root);
 td_status td_cr_read_parts(td_case_reader *r, const config_setting_t *root);
 td_status td_cr_read_options(td_case_reader *r, const config_setting_t *root);

@@ -23,7 +23,7 @@ static const char *const modal_keys[] = {"speed_min", "speed_max", "speed_steps"
 
 static const char *const start_names[] = {"orbit", "rest", "auto"}; /* td_start order */
 static const char *const contact_names[] = {"constraint", "penalty"};
-static const char *const damping_names[] = {"none", "hunt-crossley", "kelvin-voigt"};
+const char *const td_cr_damping_names[TD_CR_DAMPING_NAMES] = {"none", "hunt-crossley", "kelvin-voigt"};
 static const char *const linsol_names[] = {"klu", "dense"};
 
 /* Fail at member `key` of g when it is there (its line), else at g naming the key. */
@@ -100,7 +100,7 @@ static td_status read_contact(td_case_reader *r, const config_setting_t *root, t
         /* p < 1 gives an infinite contact stiffness dF/ddelta at first touch */
         st = td_cr_fail(r, e, NULL, "must be >= 1 (got %g)", o->exponent);
     if (st == TD_OK)
-        st = td_cr_enum(r, g, "damping", damping_names, 3, damping, &damping);
+        st = td_cr_enum(r, g, "damping", td_cr_damping_names, TD_CR_DAMPING_NAMES, damping, &damping);
     if (st == TD_OK)
         st = td_cr_real(r, g, "damping_coefficient", NULL, o->damping_coefficient, TD_CR_NONNEGATIVE,
                         &o->damping_coefficient);
@@ -274,6 +274,8 @@ td_status td_cr_read_options(td_case_reader *r, const config_setting_t *root)
     if (st == TD_OK)
         st = td_cr_enum(r, root, "start", start_names, 3, start, &start);
     c->sim.start = (td_start)start;
+    if (st == TD_OK)
+        st = td_cr_bool(r, root, "energy", 0, &c->sim.energy);
     if (st == TD_OK)
         st = read_contact(r, root, &c->sim.contact);
     if (st == TD_OK)

@@ -24,12 +24,53 @@ typedef struct step {
     int index;
 } step;
 
-/* "CASE: --set 'OV': what", the echoed override shortened when the whole would not fit. */
+/* "CASE: --set 'OV': what" or, for an entry of the case's overrides list, "FILE:LINE: overrides[i]
+ * 'OV': what", the echoed override shortened when the whole would not fit. */
 static td_status fail_override(td_case_reader *r, td_status code, const char *ov, const char *what)
 {
-    char shown[2048], where[4096];
-    snprintf(where, sizeof where, "%s: --set '%s'", r->path_shown, td_cr_printable(ov, shown, sizeof shown));
+    char shown[2048], where[4096], at[1024], key[512];
+    td_cr_printable(ov, shown, sizeof shown);
+    if (r->ov_entry) {
+        td_cr_where(r, r->ov_entry, at, sizeof at);
+        td_cr_key(r->ov_entry, key, sizeof key);
+        snprintf(where, sizeof where, "%s: %s: '%s'", at, key, shown);
+    } else {
+        snprintf(where, sizeof where, "%s: --set '%s'", r->path_shown, shown);
+    }
     return td_error_set_reason(r->err, code, where, what);
+}
+
+const config_setting_t *td_cr_file_override(const td_case_reader *r, const char *ov)
+{
+    int i, n = r->overrides ? config_setting_length(r->overrides) : 0;
+    for (i = 0; i < n; i++) {
+        const config_setting_t *e = config_setting_get_elem(r->overrides, (unsigned)i);
+        if (config_setting_get_string(e) == ov)
+            return e;
+    }
+    return NULL;
+}
+
+td_status td_cr_apply_file_overrides(td_case_reader *r)
+{
+    const config_setting_t *list = config_setting_get_member(config_root_setting(&r->cfg), "overrides");
+    td_status st = TD_OK;
+    int i, n;
+    if (!list)
+        return TD_OK;
+    if (!config_setting_is_list(list) && !config_setting_is_array(list))
+        return td_cr_fail(r, list, NULL, "expected a list of \"KEY=VALUE\" strings");
+    r->overrides = list;
+    n = config_setting_length(list);
+    for (i = 0; st == TD_OK && i < n; i++) {
+        const config_setting_t *e = config_setting_get_elem(list, (unsigned)i);
+        if (config_setting_type(e) != CONFIG_TYPE_STRING)
+            return td_cr_fail(r, e, NULL, "expected a \"KEY=VALUE\" string");
+        r->ov_entry = e;
+        st = td_cr_apply_override(r, config_setting_get_string(e));
+    }
+    r->ov_entry = NULL;
+    return st;
 }
 
 static td_status bad(td_case_reader *r, const char *ov, const char *what)

@@ -22,7 +22,11 @@ static const char *const amb_keys[] = {"node",      "sensor_node",    "ks",     
                                        "bandwidth", "force_capacity", "saturation", "air_gap", NULL};
 static const char *const bearing_keys[] = {"node", "kxx", "kyy", "cxx", "cyy", NULL};
 static const char *const retainer_keys[] = {"node",     "clearance",  "shaft_radius", "bore_radius",
-                                            "friction", "bore_speed", "restitution",  NULL};
+                                            "friction", "bore_speed", "restitution",  "stick",
+                                            "race",     "mount",      "contact",      NULL};
+static const char *const race_keys[] = {"inertia", "drag_torque", "drag_viscous", "mass", NULL};
+static const char *const mount_keys[] = {"stiffness", "damping", NULL};
+static const char *const retainer_contact_keys[] = {"stiffness", "exponent", "damping", "damping_coefficient", NULL};
 static const char *const unbalance_keys[] = {"node", "magnitude", "phase", NULL};
 static const char *const change_keys[] = {"time", "unbalance", "magnitude", "phase", "amb_off", "amb_on", NULL};
 
@@ -188,9 +192,60 @@ static td_status read_bearing(td_case_reader *r, const config_setting_t *g)
     return st == TD_OK ? TD_OK : td_cr_model_fail(r, g, st, &merr);
 }
 
+/* A retainer's race { inertia; drag_torque; drag_viscous; mass; } and mount { stiffness; damping; }
+ * (model.h td_race: the model checks how they go together). */
+static td_status read_race(td_case_reader *r, const config_setting_t *g, td_race *b)
+{
+    const config_setting_t *race, *mount;
+    td_status st = td_cr_group(r, g, "race", NULL, &race);
+    if (st == TD_OK && race) {
+        st = td_cr_check_keys(r, race, race_keys);
+        if (st == TD_OK)
+            st = td_cr_real(r, race, "inertia", NULL, 0.0, TD_CR_FINITE, &b->inertia);
+        if (st == TD_OK)
+            st = td_cr_real(r, race, "drag_torque", NULL, 0.0, TD_CR_FINITE, &b->drag_torque);
+        if (st == TD_OK)
+            st = td_cr_real(r, race, "drag_viscous", NULL, 0.0, TD_CR_FINITE, &b->drag_viscous);
+        if (st == TD_OK)
+            st = td_cr_real(r, race, "mass", NULL, 0.0, TD_CR_FINITE, &b->mass);
+    }
+    if (st == TD_OK)
+        st = td_cr_group(r, g, "mount", NULL, &mount);
+    if (st == TD_OK && mount) {
+        st = td_cr_check_keys(r, mount, mount_keys);
+        if (st == TD_OK)
+            st = td_cr_real(r, mount, "stiffness", "mount stiffness, N/m", 0.0, TD_CR_FINITE, &b->mount_stiffness);
+        if (st == TD_OK)
+            st = td_cr_real(r, mount, "damping", NULL, 0.0, TD_CR_FINITE, &b->mount_damping);
+    }
+    return st;
+}
+
+/* A retainer's own contact law { stiffness; exponent; damping; damping_coefficient; } (model.h
+ * td_retainer_contact), with the damping names of the run's contact group. */
+static td_status read_retainer_contact(td_case_reader *r, const config_setting_t *g, td_retainer_contact *c)
+{
+    const config_setting_t *cg;
+    int damping = 0;
+    td_status st = td_cr_group(r, g, "contact", NULL, &cg);
+    if (st != TD_OK || !cg)
+        return st;
+    st = td_cr_check_keys(r, cg, retainer_contact_keys);
+    if (st == TD_OK)
+        st = td_cr_real(r, cg, "stiffness", "contact stiffness, N/m^exponent", 0.0, TD_CR_FINITE, &c->stiffness);
+    if (st == TD_OK)
+        st = td_cr_real(r, cg, "exponent", NULL, 1.0, TD_CR_FINITE, &c->exponent);
+    if (st == TD_OK)
+        st = td_cr_enum(r, cg, "damping", td_cr_damping_names, TD_CR_DAMPING_NAMES, 0, &damping);
+    if (st == TD_OK)
+        st = td_cr_real(r, cg, "damping_coefficient", NULL, 0.0, TD_CR_FINITE, &c->damping_coefficient);
+    c->damping = (td_contact_damping)damping;
+    return st;
+}
+
 static td_status read_retainer(td_case_reader *r, const config_setting_t *g)
 {
-    td_retainer ret;
+    td_retainer ret = {0};
     td_error merr;
     td_status st = td_cr_check_keys(r, g, retainer_keys);
     if (st == TD_OK)
@@ -207,6 +262,12 @@ static td_status read_retainer(td_case_reader *r, const config_setting_t *g)
         st = td_cr_real(r, g, "bore_speed", NULL, 0.0, TD_CR_FINITE, &ret.bore_speed);
     if (st == TD_OK)
         st = td_cr_real(r, g, "restitution", NULL, 0.0, TD_CR_FINITE, &ret.restitution);
+    if (st == TD_OK)
+        st = td_cr_bool(r, g, "stick", 0, &ret.stick);
+    if (st == TD_OK)
+        st = read_race(r, g, &ret.race);
+    if (st == TD_OK)
+        st = read_retainer_contact(r, g, &ret.contact);
     if (st != TD_OK)
         return st;
     st = td_model_add_retainer(r->c->model, &ret, &merr);

@@ -108,7 +108,14 @@ static const char *override_of(const config_setting_t *s)
 void td_cr_where(const td_case_reader *r, const config_setting_t *s, char *buf, size_t n)
 {
     const char *ov = override_of(s);
-    char shown[1024];
+    const config_setting_t *entry = ov ? td_cr_file_override(r, ov) : NULL;
+    char shown[1024], at[1024], key[256];
+    if (entry) { /* grafted by the case's own overrides list: where that entry is */
+        td_cr_where(r, entry, at, sizeof at);
+        td_cr_key(entry, key, sizeof key);
+        snprintf(buf, n, "%s: %s: '%s'", at, key, td_cr_printable(ov, shown, sizeof shown));
+        return;
+    }
     if (ov) {
         snprintf(buf, n, "%s: --set '%s'", r->path_shown, td_cr_printable(ov, shown, sizeof shown));
         return;

@@ -100,12 +100,13 @@ double td_contact_penalty_force(const td_penalty_law *law, double delta, double 
 }
 
 /* eq. (16) with dtheta/dt from theta = atan2(y, x) (eq. 12). */
-double td_contact_sliding_velocity(const td_retainer *ret, double omega, double x, double y, double vx, double vy)
+double td_contact_sliding_velocity(const td_retainer *ret, double omega, double race_speed, double x, double y,
+                                   double vx, double vy)
 {
     double r2 = x * x + y * y;
     double whirl_rate = r2 > 0.0 ? (x * vy - y * vx) / r2 : 0.0;
     return ret->shaft_radius * omega + (ret->bore_radius - ret->shaft_radius) * whirl_rate -
-           ret->bore_radius * ret->bore_speed;
+           ret->bore_radius * race_speed;
 }
 
 void td_contact_sliding_velocity_gradient(const td_retainer *ret, double x, double y, double vx, double vy, double g[4])
@@ -182,10 +183,20 @@ int td_contact_dense_solve(int m, double *A, double *b)
     return 0;
 }
 
-/* J_k x for a sparse constraint row. */
-static double row_dot(const td_contact_row *row, const double *x)
+double td_contact_row_dot(const td_contact_row *row, const double *x)
 {
-    return row->j[0] * x[row->dof[0]] + row->j[1] * x[row->dof[1]];
+    double acc = row->j[0] * x[row->dof[0]] + row->j[1] * x[row->dof[1]];
+    int i;
+    for (i = 2; i < row->count; i++)
+        acc += row->j[i] * x[row->dof[i]];
+    return acc;
+}
+
+void td_contact_row_scatter(const td_contact_row *row, double *x)
+{
+    int i;
+    for (i = 0; i < row->count; i++)
+        x[row->dof[i]] += row->j[i];
 }
 
 int td_contact_impact_map(int n, int m, const td_contact_row *rows, const double *minv_jt, const double *restitution,
@@ -195,8 +206,8 @@ int td_contact_impact_map(int n, int m, const td_contact_row *rows, const double
     int i, k;
     for (i = 0; i < m; i++) {
         for (k = 0; k < m; k++)
-            W[i + k * m] = row_dot(&rows[i], minv_jt + (size_t)k * n);
-        P[i] = (1.0 + restitution[i]) * row_dot(&rows[i], v);
+            W[i + k * m] = td_contact_row_dot(&rows[i], minv_jt + (size_t)k * n);
+        P[i] = (1.0 + restitution[i]) * td_contact_row_dot(&rows[i], v);
     }
     if (td_contact_dense_solve(m, W, P) != 0)
         return -1;

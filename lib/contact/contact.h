@@ -63,9 +63,11 @@ double td_contact_penalty_force(const td_penalty_law *law, double delta, double 
 
 /* ---- friction (eqs. 16, 17) -------------------------------------------------------------- */
 
-/* Sliding velocity eq. (16): v = R_s Omega + (R_b - R_s) dtheta/dt - R_b Omega_b with the whirl
- * rate dtheta/dt = (x vy - y vx)/r^2 (0 at r == 0). */
-double td_contact_sliding_velocity(const td_retainer *ret, double omega, double x, double y, double vx, double vy);
+/* Sliding velocity eq. (16): v = R_s Omega + (R_b - R_s) dtheta/dt - R_b Omega_b with the race
+ * speed Omega_b = race_speed and the whirl rate dtheta/dt = (x vy - y vx)/r^2 (0 at r == 0); x, y,
+ * vx, vy are the node's position and velocity relative to the race centre. d v / d Omega_b = -R_b. */
+double td_contact_sliding_velocity(const td_retainer *ret, double omega, double race_speed, double x, double y,
+                                   double vx, double vy);
 
 /* Partial derivatives of v_s (eq. 16) by (x, y, vx, vy) into g[4] (0 at r == 0). */
 void td_contact_sliding_velocity_gradient(const td_retainer *ret, double x, double y, double vx, double vy,
@@ -86,11 +88,19 @@ double td_contact_friction_force(double mu, double phi, double normal_force);
 
 /* ---- impact map ------------------------------------------------------------------------- */
 
-/* One constraint row J_k: two entries on the x, y DOFs of a node. */
+/* One sparse constraint row: two entries on the x, y DOFs of a node (count 2), the opposite two on
+ * the x, y DOFs of the race centre when the race moves on a mount (count 4: the contact sees the
+ * node relative to the race), and one on the race speed (count up to 5: the rolling constraint). */
 typedef struct td_contact_row {
-    int dof[2];
-    double j[2];
+    int count;
+    int dof[5];
+    double j[5];
 } td_contact_row;
+
+/* J_k x. */
+double td_contact_row_dot(const td_contact_row *row, const double *x);
+/* x += J_k^T. */
+void td_contact_row_scatter(const td_contact_row *row, double *x);
 
 /* Generalised Newton impact law for m simultaneous constraints on an n-DOF system:
  *

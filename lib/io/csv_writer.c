@@ -42,9 +42,14 @@ static int write_sample_header(FILE *f, const td_writer *w)
     int i, k, rc = fputs("t [s]", f) < 0;
     for (i = 0; i < w->node_count; i++)
         rc |= fprintf(f, ",x_n%d [m],y_n%d [m]", w->nodes[i], w->nodes[i]) < 0;
-    for (i = 0; i < w->retainer_count; i++)
+    static const char *race_cols[] = {"xr", "yr", "wr", "rolling"};
+    static const char *race_units[] = {"m", "m", "rad/s", "-"};
+    for (i = 0; i < w->retainer_count; i++) {
         for (k = 0; k < 9; k++)
             rc |= fprintf(f, ",%s_ret%d [%s]", ret_cols[k], i, ret_units[k]) < 0;
+        for (k = 0; k < 4 && w->race_fields; k++)
+            rc |= fprintf(f, ",%s_ret%d [%s]", race_cols[k], i, race_units[k]) < 0;
+    }
     for (i = 0; i < w->amb_count; i++)
         rc |= fprintf(f, ",Fx_amb%d [N],Fy_amb%d [N]", i, i) < 0;
     rc |= fputc('\n', f) == EOF;
@@ -105,6 +110,8 @@ static td_status csv_sample(td_writer *w, double t, const double *node_xy, const
         rc |=
             fprintf(f, ",%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%d", s->x, s->y, s->radius, s->radial_velocity,
                     s->whirl_angle, s->normal_force, s->friction_force, s->sliding_velocity, s->in_contact ? 1 : 0) < 0;
+        if (w->race_fields)
+            rc |= fprintf(f, ",%.17g,%.17g,%.17g,%d", s->race_x, s->race_y, s->race_speed, s->rolling ? 1 : 0) < 0;
     }
     for (i = 0; i < 2 * w->amb_count; i++)
         rc |= fprintf(f, ",%.17g", amb_f[i]) < 0;

@@ -27,8 +27,8 @@
 #include <string.h>
 #include <unistd.h>
 
-/* Largest number of sample datasets: time, displacement, 9 retainer fields, AMB force. */
-#define H5_MAX_SERIES 12
+/* Largest number of sample datasets: time, displacement, 13 retainer fields, AMB force. */
+#define H5_MAX_SERIES 16
 /* Chunk of the sample datasets: at most this many rows and about this many bytes. */
 #define H5_CHUNK_ROWS 1024
 #define H5_CHUNK_BYTES (512 * 1024)
@@ -88,8 +88,14 @@ static const struct {
                   {"whirl_angle", "rad", offsetof(td_retainer_state, whirl_angle)},
                   {"normal_force", "N", offsetof(td_retainer_state, normal_force)},
                   {"friction_force", "N", offsetof(td_retainer_state, friction_force)},
-                  {"sliding_velocity", "m/s", offsetof(td_retainer_state, sliding_velocity)}};
-#define RET_FIELD_COUNT ((int)(sizeof ret_fields / sizeof ret_fields[0]))
+                  {"sliding_velocity", "m/s", offsetof(td_retainer_state, sliding_velocity)},
+                  /* with race fields (td_output_layout.race_fields) */
+                  {"race_x", "m", offsetof(td_retainer_state, race_x)},
+                  {"race_y", "m", offsetof(td_retainer_state, race_y)},
+                  {"race_speed", "rad/s", offsetof(td_retainer_state, race_speed)}};
+#define RET_FIELD_ALL ((int)(sizeof ret_fields / sizeof ret_fields[0]))
+/* The double fields written: the first 8, or all with the race fields. */
+#define RET_FIELD_COUNT(w) ((w)->race_fields ? RET_FIELD_ALL : RET_FIELD_ALL - 3)
 
 /* ---- errors ------------------------------------------------------------------------------ */
 
@@ -279,10 +285,12 @@ static td_status create_retainers(td_writer *w, h5_impl *h, td_error *err)
     if (w->retainer_count > 0) {
         row[0] = (hsize_t)w->retainer_count;
         h->idx_ret = h->series_count;
-        for (i = 0; i < RET_FIELD_COUNT && st == TD_OK; i++)
+        for (i = 0; i < RET_FIELD_COUNT(w) && st == TD_OK; i++)
             st = add_series(w, h, g, ret_fields[i].name, ret_fields[i].units, 2, row, 0, err);
         if (st == TD_OK)
             st = add_series(w, h, g, "contact_state", "1", 2, row, 1, err);
+        if (st == TD_OK && w->race_fields)
+            st = add_series(w, h, g, "rolling", "1", 2, row, 1, err);
         if (st == TD_OK)
             st = attach_own_axis(w, h, h->idx_ret, make_index_scale(g, "retainer", w->retainer_count, "retainer index"),
                                  1, err);
@@ -318,7 +326,8 @@ static td_status create_ambs(td_writer *w, h5_impl *h, td_error *err)
 static td_status create_events(td_writer *w, h5_impl *h, td_error *err)
 {
     static const td_event_kind kinds[] = {TD_EVENT_CONTACT_ONSET, TD_EVENT_RELEASE,       TD_EVENT_FRICTION_REVERSAL,
-                                          TD_EVENT_SCHEDULE,      TD_EVENT_PENALTY_ENTER, TD_EVENT_PENALTY_EXIT};
+                                          TD_EVENT_SCHEDULE,      TD_EVENT_PENALTY_ENTER, TD_EVENT_PENALTY_EXIT,
+                                          TD_EVENT_ROLL_START,    TD_EVENT_ROLL_END};
     hsize_t dims[1] = {0}, maxdims[1] = {H5S_UNLIMITED}, chunk[1] = {H5_EVENT_CHUNK};
     hid_t m, space = -1, dcpl = -1;
     size_t i;
@@ -484,14 +493,18 @@ static void buffer_row(const td_writer *w, h5_impl *h, double t, const double *n
         memcpy((double *)h->series[h->idx_disp].buf + r * 2 * (size_t)w->node_count, node_xy,
                2 * (size_t)w->node_count * sizeof(double));
     if (h->idx_ret >= 0) {
-        for (f = 0; f < RET_FIELD_COUNT; f++) {
+        int nf = RET_FIELD_COUNT(w);
+        for (f = 0; f < nf; f++) {
             double *row = (double *)h->series[h->idx_ret + f].buf + r * (size_t)w->retainer_count;
             for (i = 0; i < w->retainer_count; i++)
                 memcpy(&row[i], (const char *)&ret[i] + ret_fields[f].offset, sizeof(double));
         }
-        for (i = 0; i < w->retainer_count; i++)
-            ((int8_t *)h->series[h->idx_ret + RET_FIELD_COUNT].buf)[r * (size_t)w->retainer_count + (size_t)i] =
-                (int8_t)(ret[i].in_contact ? 1 : 0);
+        for (i = 0; i < w->retainer_count; i++) {
+            size_t at = r * (size_t)w->retainer_count + (size_t)i;
+            ((int8_t *)h->series[h->idx_ret + nf].buf)[at] = (int8_t)(ret[i].in_contact ? 1 : 0);
+            if (w->race_fields)
+                ((int8_t *)h->series[h->idx_ret + nf + 1].buf)[at] = (int8_t)(ret[i].rolling ? 1 : 0);
+        }
     }
     if (h->idx_amb >= 0)
         memcpy((double *)h->series[h->idx_amb].buf + r * 2 * (size_t)w->amb_count, amb_f,

@@ -30,6 +30,8 @@ const char *td_event_kind_name(td_event_kind kind)
     case TD_EVENT_SCHEDULE: return "schedule";
     case TD_EVENT_PENALTY_ENTER: return "penalty_enter";
     case TD_EVENT_PENALTY_EXIT: return "penalty_exit";
+    case TD_EVENT_ROLL_START: return "roll_start";
+    case TD_EVENT_ROLL_END: return "roll_end";
     }
     return "unknown";
 }
@@ -262,6 +264,7 @@ td_status td_writer_open(td_writer_kind kind, const char *path, const td_output_
     }
     w->node_count = layout->node_count;
     w->retainer_count = layout->retainer_count;
+    w->race_fields = layout->race_fields != 0;
     w->amb_count = layout->amb_count;
     w->compression = layout->compression;
     if (layout->node_count > 0) {

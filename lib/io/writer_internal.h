@@ -41,6 +41,7 @@ struct td_writer {
     int tmp_fd;        /**< the new empty tmp_path, open until the back end takes it over (-1) */
     int events_fd;     /**< likewise for events_tmp */
     int node_count, retainer_count, amb_count;
+    int race_fields; /**< nonzero: the race columns / datasets too (td_output_layout) */
     int compression; /**< HDF5 deflate level, 0..9 */
     int *nodes;      /**< node_count numbers (NULL if 0) */
     td_attr *attrs;

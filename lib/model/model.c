@@ -353,6 +353,52 @@ td_status td_model_add_bearing(td_model *m, const td_bearing *b, td_error *err)
     return APPEND(m->bearings, b, err);
 }
 
+/* A part of the race that needs another: `value` > 0 only if `base` > 0. */
+static td_status race_needs(double value, double base, int i, const char *field, const char *needed, td_error *err)
+{
+    if (value > 0.0 && !(base > 0.0))
+        return FAIL_AT(err, "retainer", i, field, "needs %s > 0 (got %g with %s = %g)", needed, value, needed, base);
+    return TD_OK;
+}
+
+/* The race as a body (model.h td_race): values >= 0, drag only on a race that can spin, mass and
+ * damping only with a mount, and a mount only with a mass (the race would have no dynamics). */
+static td_status check_race(const td_race *b, int i, td_error *err)
+{
+    if (need(finite_nonnegative(b->inertia), err, "retainer", i, "race.inertia", NONNEG, b->inertia) ||
+        need(finite_nonnegative(b->drag_torque), err, "retainer", i, "race.drag_torque", NONNEG, b->drag_torque) ||
+        need(finite_nonnegative(b->drag_viscous), err, "retainer", i, "race.drag_viscous", NONNEG, b->drag_viscous) ||
+        need(finite_nonnegative(b->mass), err, "retainer", i, "race.mass", NONNEG, b->mass) ||
+        need(finite_nonnegative(b->mount_stiffness), err, "retainer", i, "mount.stiffness", NONNEG,
+             b->mount_stiffness) ||
+        need(finite_nonnegative(b->mount_damping), err, "retainer", i, "mount.damping", NONNEG, b->mount_damping) ||
+        race_needs(b->drag_torque, b->inertia, i, "race.drag_torque", "race.inertia", err) ||
+        race_needs(b->drag_viscous, b->inertia, i, "race.drag_viscous", "race.inertia", err) ||
+        race_needs(b->mass, b->mount_stiffness, i, "race.mass", "mount.stiffness", err) ||
+        race_needs(b->mount_damping, b->mount_stiffness, i, "mount.damping", "mount.stiffness", err) ||
+        race_needs(b->mount_stiffness, b->mass, i, "mount.stiffness", "race.mass", err))
+        return TD_ERR_INVALID;
+    return TD_OK;
+}
+
+/* A retainer's own contact law (model.h td_retainer_contact): all zero, or a stiffness > 0 with
+ * the ranges of the run's penalty law (touchdown/options.h). */
+static td_status check_retainer_contact(const td_retainer_contact *c, int i, td_error *err)
+{
+    if (need(finite_nonnegative(c->stiffness), err, "retainer", i, "contact.stiffness", NONNEG, c->stiffness) ||
+        need(isfinite(c->exponent) && (c->exponent == 0.0 || c->exponent >= 1.0), err, "retainer", i,
+             "contact.exponent", "be >= 1", c->exponent) ||
+        need(c->damping == TD_DAMPING_NONE || c->damping == TD_DAMPING_HUNT_CROSSLEY ||
+                 c->damping == TD_DAMPING_KELVIN_VOIGT,
+             err, "retainer", i, "contact.damping", "be none, hunt-crossley or kelvin-voigt", (double)c->damping) ||
+        need(finite_nonnegative(c->damping_coefficient), err, "retainer", i, "contact.damping_coefficient", NONNEG,
+             c->damping_coefficient) ||
+        race_needs(c->damping_coefficient, c->stiffness, i, "contact.damping_coefficient", "contact.stiffness", err) ||
+        race_needs(c->exponent, c->stiffness, i, "contact.exponent", "contact.stiffness", err))
+        return TD_ERR_INVALID;
+    return TD_OK;
+}
+
 td_status td_model_add_retainer(td_model *m, const td_retainer *r, td_error *err)
 {
     int i;
@@ -372,9 +418,16 @@ td_status td_model_add_retainer(td_model *m, const td_retainer *r, td_error *err
     if (need(finite_nonnegative(r->friction), err, "retainer", i, "friction", NONNEG, r->friction) ||
         need(isfinite(r->bore_speed), err, "retainer", i, "bore_speed", "be finite", r->bore_speed) ||
         need(isfinite(r->restitution) && r->restitution >= 0.0 && r->restitution <= 1.0, err, "retainer", i,
-             "restitution", "lie in [0, 1]", r->restitution))
+             "restitution", "lie in [0, 1]", r->restitution) ||
+        race_needs(r->stick ? 1.0 : 0.0, r->friction, i, "stick", "friction", err) || check_race(&r->race, i, err) ||
+        check_retainer_contact(&r->contact, i, err))
         return TD_ERR_INVALID;
     return APPEND(m->retainers, r, err);
+}
+
+int td_retainer_has_race(const td_retainer *r)
+{
+    return r && (r->race.inertia > 0.0 || r->race.mount_stiffness > 0.0);
 }
 
 td_status td_model_add_unbalance(td_model *m, const td_unbalance *u, td_error *err)

@@ -17,6 +17,7 @@ struct td_recorder {
     int node_count; /* nodes written */
     int *nodes;
     int retainer_count, amb_count;
+    int race_fields; /* the writers' race columns (td_output_layout) */
     double *q;       /* dof_count */
     double *node_xy; /* 2 node_count */
     td_retainer_state *ret;
@@ -128,6 +129,18 @@ static td_status write_model_attributes(td_recorder *r, const td_model *model, c
     return st;
 }
 
+/* 1 if some retainer has states of its own to write: a race body or a rolling state. */
+static int has_race_states(const td_model *model)
+{
+    int i;
+    for (i = 0; i < td_model_retainer_count(model); i++) {
+        td_retainer ret;
+        if (td_model_get_retainer(model, i, &ret) == TD_OK && (td_retainer_has_race(&ret) || ret.stick))
+            return 1;
+    }
+    return 0;
+}
+
 static td_status open_writers(td_recorder *r, const td_output_options *out, td_error *err)
 {
     td_output_layout layout;
@@ -136,6 +149,7 @@ static td_status open_writers(td_recorder *r, const td_output_options *out, td_e
     layout.nodes = r->nodes;
     layout.retainer_count = r->retainer_count;
     layout.amb_count = r->amb_count;
+    layout.race_fields = r->race_fields;
     layout.compression = out->compression;
     if (out->hdf5_path[0])
         st = td_writer_open(TD_WRITER_HDF5, out->hdf5_path, &layout, &r->writers[r->writer_count++], err);
@@ -163,6 +177,7 @@ td_status td_recorder_create(const td_model *model, const td_output_options *out
     r->dof_count = td_model_dof_count(model);
     r->retainer_count = td_model_retainer_count(model);
     r->amb_count = td_model_amb_count(model);
+    r->race_fields = has_race_states(model);
     if ((st = choose_nodes(r, model, out, err)) != TD_OK || (st = allocate_scratch(r, err)) != TD_OK ||
         (st = open_writers(r, out, err)) != TD_OK || (st = write_model_attributes(r, model, out, err)) != TD_OK) {
         td_recorder_discard(&r);

@@ -221,6 +221,47 @@ static void summary_paths(td_run_summary *s, const td_output_options *out)
         td_writer_events_path(out->csv_path, s->events_path, sizeof s->events_path);
 }
 
+/* 1 if retainer `ret` meets the rotor as a rigid constraint (the run's constraint model and no
+ * compliant law of its own): its instantaneous peak force does not converge with the mesh. */
+static int rigid_constraint(const td_retainer *ret, const td_sim_options *o)
+{
+    return o->contact.model == TD_CONTACT_CONSTRAINT && !(ret->contact.stiffness > 0.0);
+}
+
+/* The answers that converge: every retainer's totals, their sums and peaks, the speeds. */
+static void summary_totals(run_state *r)
+{
+    td_run_summary *s = r->s;
+    const td_model *m = td_sim_model(r->sim);
+    td_sim_options o;
+    int k;
+    td_sim_options_get(r->sim, &o);
+    s->final_speed = td_sim_speed(r->sim);
+    s->energy_kept = td_sim_energy(r->sim, &s->energy) == TD_OK;
+    s->retainer_count = td_model_retainer_count(m);
+    for (k = 0; k < s->retainer_count; k++) {
+        td_retainer_totals t;
+        td_retainer ret;
+        td_retainer_state st;
+        td_sim_retainer_totals(r->sim, k, &t);
+        td_model_get_retainer(m, k, &ret);
+        s->total_impulse += t.impulse;
+        s->friction_work += t.friction_work;
+        if (t.peak_housing_force > 0.0 && t.peak_housing_force > s->peak_housing_force) {
+            s->peak_housing_force = t.peak_housing_force;
+            s->peak_housing_retainer = k;
+        }
+        if (rigid_constraint(&ret, &o) && t.impulse > 0.0)
+            s->peak_converges = 0;
+        if (k < TD_RUN_SUMMARY_RETAINERS) {
+            s->retainers[k].totals = t;
+            s->retainers[k].race_speed = td_sim_retainer_state(r->sim, k, &st) == TD_OK ? st.race_speed : 0.0;
+            td_run_retainer_classify(&s->retainers[k], s->final_speed,
+                                     s->first_contact_time >= 0.0 ? s->last_contact_time - s->first_contact_time : 0.0);
+        }
+    }
+}
+
 /* Everything derived once the loop has stopped. */
 static void summary_finish(run_state *r, double wall_start)
 {
@@ -247,6 +288,7 @@ static void summary_finish(run_state *r, double wall_start)
         else if (span >= s->free_window)
             s->free_at_end = 1;
     }
+    summary_totals(r);
     if (s->contacts == 0)
         s->returned_to_free_orbit = TD_RUN_NOT_APPLICABLE;
     else if (s->free_at_end < 0)
@@ -256,6 +298,24 @@ static void summary_finish(run_state *r, double wall_start)
     s->wall_time = td_wall_clock() - wall_start;
     if (s->wall_time > 0.0)
         s->realtime_factor = span / s->wall_time;
+}
+
+/* The energy account, when the run kept it, as attributes of every file. */
+static td_status write_energy(td_recorder *rec, const td_energy *e, td_error *err)
+{
+    const struct {
+        const char *name;
+        double value;
+    } reals[] = {{"summary_energy_kinetic", e->kinetic},           {"summary_energy_elastic", e->elastic},
+                 {"summary_energy_initial", e->initial},           {"summary_energy_external_work", e->external_work},
+                 {"summary_energy_drive_work", e->drive_work},     {"summary_energy_damping_loss", e->damping_loss},
+                 {"summary_energy_contact_loss", e->contact_loss}, {"summary_energy_drag_loss", e->drag_loss},
+                 {"summary_energy_impact_loss", e->impact_loss},   {"summary_energy_residual", e->residual}};
+    size_t i;
+    td_status st = TD_OK;
+    for (i = 0; st == TD_OK && i < sizeof reals / sizeof reals[0]; i++)
+        st = td_recorder_set_double(rec, reals[i].name, reals[i].value, err);
+    return st;
 }
 
 /* The summary and run parameters as attributes of every file. */
@@ -271,6 +331,11 @@ static td_status write_summary(td_recorder *rec, const td_run_summary *s, const 
                  {"summary_first_contact_time", s->first_contact_time},
                  {"summary_last_contact_time", s->last_contact_time},
                  {"summary_peak_normal_force", s->peak_normal_force},
+                 {"summary_peak_housing_force", s->peak_housing_force},
+                 {"summary_total_impulse", s->total_impulse},
+                 {"summary_friction_work", s->friction_work},
+                 {"summary_final_speed", s->final_speed},
+
                  {"summary_contact_time", s->contact_time},
                  {"summary_contact_fraction", s->contact_fraction},
                  {"summary_free_window", s->free_window},
@@ -283,10 +348,13 @@ static td_status write_summary(td_recorder *rec, const td_run_summary *s, const 
     const struct {
         const char *name;
         long value;
-    } counts[] = {
-        {"summary_samples", s->samples},         {"summary_grid_samples", s->grid_samples},
-        {"summary_events", s->events},           {"summary_contacts", s->contacts},
-        {"summary_free_at_end", s->free_at_end}, {"summary_returned_to_free_orbit", s->returned_to_free_orbit}};
+    } counts[] = {{"summary_samples", s->samples},
+                  {"summary_grid_samples", s->grid_samples},
+                  {"summary_events", s->events},
+                  {"summary_contacts", s->contacts},
+                  {"summary_free_at_end", s->free_at_end},
+                  {"summary_returned_to_free_orbit", s->returned_to_free_orbit},
+                  {"summary_peak_normal_force_converges", s->peak_converges}};
     size_t i;
     td_status st = td_recorder_set_string(rec, "case_text", case_text ? case_text : "", err);
     if (st == TD_OK)
@@ -297,6 +365,8 @@ static td_status write_summary(td_recorder *rec, const td_run_summary *s, const 
         st = td_recorder_set_double(rec, reals[i].name, reals[i].value, err);
     for (i = 0; st == TD_OK && i < sizeof counts / sizeof counts[0]; i++)
         st = td_recorder_set_long(rec, counts[i].name, counts[i].value, err);
+    if (st == TD_OK && s->energy_kept)
+        st = write_energy(rec, &s->energy, err);
     return st;
 }
 

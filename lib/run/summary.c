@@ -4,9 +4,11 @@
 #include "run/summary.h"
 
 #include <math.h>
+#include <stddef.h>
 #include <stdio.h>
 #include <string.h>
 
+#include "touchdown/dofs.h"
 #include "touchdown/version.h"
 #include "util/text.h"
 
@@ -22,6 +24,8 @@ void td_run_summary_init(td_run_summary *s, double t0, double t_end, double spee
     s->last_contact_time = -1.0;
     s->peak_time = -1.0;
     s->peak_retainer = -1;
+    s->peak_housing_retainer = -1;
+    s->peak_converges = 1;
     s->free_window = -1.0;
     s->free_at_end = -1;
     s->returned_to_free_orbit = -1;
@@ -33,6 +37,33 @@ void td_run_summary_init(td_run_summary *s, double t0, double t_end, double spee
     s->start.requested = s->start.used = TD_START_REST;
     s->start.stability = TD_STABILITY_UNCHECKED;
     s->start.max_real_part = NAN;
+}
+
+/*
+ * What a retainer's whirl was, over its contact time: no contact; touch-and-go impacts only (every
+ * contact left within TD_TOUCH_AND_GO_ANGLE of whirl); or its direction (the mean whirl rate against
+ * the spin: forward or backward), rolling (more than half the contact time without slip) or sliding,
+ * and bouncing when it was in contact for less than half of `span`, the time from the run's first
+ * contact to the end of its last.
+ */
+void td_run_retainer_classify(td_run_retainer *out, double speed, double span)
+{
+    const td_retainer_totals *t = &out->totals;
+    double rate;
+    out->mean_normal = out->rms_normal = out->whirl_frequency = 0.0;
+    if (t->contacts == 0) {
+        snprintf(out->whirl, sizeof out->whirl, "%s", t->touch_and_go > 0 ? "touch-and-go" : "none");
+        return;
+    }
+    if (t->contact_time > 0.0) {
+        out->mean_normal = t->impulse / t->contact_time;
+        out->rms_normal = sqrt(t->normal_force_sq / t->contact_time);
+    }
+    rate = t->contact_time > 0.0 ? t->whirl_angle / t->contact_time : 0.0;
+    out->whirl_frequency = (speed < 0.0 ? -rate : rate) / (2.0 * TD_PI);
+    snprintf(out->whirl, sizeof out->whirl, "%s %s%s", out->whirl_frequency < 0.0 ? "backward" : "forward",
+             t->rolling_time > 0.5 * t->contact_time ? "rolling" : "sliding",
+             t->contact_time < 0.5 * span ? ", bouncing" : "");
 }
 
 void td_run_summary_failed(td_run_summary *s, double t_start, double t_end, double speed, td_start requested,
@@ -94,6 +125,43 @@ static void format_files(td_text *b, const td_run_summary *s)
     td_text_printf(b, "%s%s\n", n ? "" : " none", n && !s->complete ? " (marked incomplete)" : "");
 }
 
+/* The energy account: held now and at the start, put in, lost, and the balance's residual. */
+static void format_energy(td_text *b, const td_energy *e)
+{
+    td_text_printf(b,
+                   "energy                      held %.6g J (%.6g J at the start); in: external %.6g J, drive %.6g J\n",
+                   e->kinetic + e->elastic, e->initial, e->external_work, e->drive_work);
+    td_text_printf(b,
+                   "energy lost                 damping %.6g J, contact %.6g J, drag %.6g J, impacts %.6g J; "
+                   "residual %.3g J\n",
+                   e->damping_loss, e->contact_loss, e->drag_loss, e->impact_loss, e->residual);
+}
+
+/* The answers that converge, first: housing force, impulse, friction work, speeds, each retainer. */
+static void format_answers(td_text *b, const td_run_summary *s)
+{
+    int k, n = s->retainer_count < TD_RUN_SUMMARY_RETAINERS ? s->retainer_count : TD_RUN_SUMMARY_RETAINERS;
+    if (s->peak_housing_retainer >= 0)
+        td_text_printf(b, "peak housing force          %.6g N, retainer %d\n", s->peak_housing_force,
+                       s->peak_housing_retainer);
+    else
+        td_text_printf(b, "peak housing force          none (no contact force)\n");
+    td_text_printf(b, "total impulse               %.6g N s\n", s->total_impulse);
+    td_text_printf(b, "friction work               %.6g J\n", s->friction_work);
+    td_text_printf(b, "final speed                 %.6g rad/s\n", s->final_speed);
+    if (s->energy_kept)
+        format_energy(b, &s->energy);
+    for (k = 0; k < n; k++) {
+        const td_run_retainer *r = &s->retainers[k];
+        td_text_printf(b, "retainer %-2d                 %s", k, r->whirl);
+        if (r->totals.contacts > 0)
+            td_text_printf(b, " at %.4g Hz; N mean %.6g N, rms %.6g N over %.6g s", r->whirl_frequency, r->mean_normal,
+                           r->rms_normal, r->totals.contact_time);
+        td_text_printf(b, "; contacts %ld, touch-and-go %ld; race %.6g rad/s\n", r->totals.contacts,
+                       r->totals.touch_and_go, r->race_speed);
+    }
+}
+
 int td_run_summary_format(char *buf, size_t n, const td_run_summary *s)
 {
     td_text b;
@@ -106,6 +174,7 @@ int td_run_summary_format(char *buf, size_t n, const td_run_summary *s)
         td_text_printf(&b, "status                      INCOMPLETE (%s): %s\n", td_strerror(s->status), s->message);
     td_text_printf(&b, "simulated                   %.10f s to %.10f s (requested %.10f s)\n", s->t_start, s->t_reached,
                    s->t_end);
+    format_answers(&b, s);
     format_start(&b, s);
     td_text_printf(&b, "speed                       %.6g rad/s, %.4f revolutions\n", s->speed, s->revolutions);
     td_text_printf(&b, "samples                     %ld (%ld on the grid, %ld at events)\n", s->samples,
@@ -120,8 +189,9 @@ int td_run_summary_format(char *buf, size_t n, const td_run_summary *s)
     td_text_printf(&b, "time in contact             %.10f s (%.4f %% of the run)\n", s->contact_time,
                    100.0 * s->contact_fraction);
     if (s->peak_retainer >= 0)
-        td_text_printf(&b, "peak normal force           %.6g N at %.10f s, retainer %d\n", s->peak_normal_force,
-                       s->peak_time, s->peak_retainer);
+        td_text_printf(&b, "peak normal force           %.6g N at %.10f s, retainer %d%s\n", s->peak_normal_force,
+                       s->peak_time, s->peak_retainer,
+                       s->peak_converges ? "" : " (rigid constraint: an instantaneous peak that does not converge)");
     else
         td_text_printf(&b, "peak normal force           none (no contact force)\n");
     if (s->free_window > 0.0)
@@ -194,6 +264,80 @@ static void json_files(td_text *b, const td_run_summary *s)
     json_text(b, "events_path", s->events_path, 1);
 }
 
+/* One array of a per-retainer number over the first TD_RUN_SUMMARY_RETAINERS retainers. */
+static void json_retainer_array(td_text *b, const td_run_summary *s, const char *key, size_t offset, int is_long)
+{
+    int k, n = s->retainer_count < TD_RUN_SUMMARY_RETAINERS ? s->retainer_count : TD_RUN_SUMMARY_RETAINERS;
+    td_text_printf(b, ",\"retainer_%s\":[", key);
+    for (k = 0; k < n; k++) {
+        const char *base = (const char *)&s->retainers[k] + offset;
+        if (is_long)
+            td_text_printf(b, "%s%ld", k ? "," : "", *(const long *)base);
+        else
+            td_text_printf(b, "%s%.17g", k ? "," : "", *(const double *)base);
+    }
+    td_text_printf(b, "]");
+}
+
+/* The retainers' answers as arrays "retainer_KEY":[...] over the first TD_RUN_SUMMARY_RETAINERS,
+ * last in the object: key names of their own, so that a reader looking for the run's "contacts"
+ * or "peak_normal_force" finds only the run's. */
+static void json_retainers(td_text *b, const td_run_summary *s)
+{
+    static const struct {
+        const char *key;
+        size_t offset;
+        int is_long;
+    } fields[] = {{"whirl_frequency", offsetof(td_run_retainer, whirl_frequency), 0},
+                  {"peak_housing_force", offsetof(td_run_retainer, totals.peak_housing_force), 0},
+                  {"impulse", offsetof(td_run_retainer, totals.impulse), 0},
+                  {"impact_impulse", offsetof(td_run_retainer, totals.impact_impulse), 0},
+                  {"friction_work", offsetof(td_run_retainer, totals.friction_work), 0},
+                  {"contact_time", offsetof(td_run_retainer, totals.contact_time), 0},
+                  {"rolling_time", offsetof(td_run_retainer, totals.rolling_time), 0},
+                  {"mean_normal_force", offsetof(td_run_retainer, mean_normal), 0},
+                  {"rms_normal_force", offsetof(td_run_retainer, rms_normal), 0},
+                  {"peak_normal_force", offsetof(td_run_retainer, totals.peak_normal_force), 0},
+                  {"race_speed", offsetof(td_run_retainer, race_speed), 0},
+                  {"contacts", offsetof(td_run_retainer, totals.contacts), 1},
+                  {"touch_and_go", offsetof(td_run_retainer, totals.touch_and_go), 1}};
+    int k, n = s->retainer_count < TD_RUN_SUMMARY_RETAINERS ? s->retainer_count : TD_RUN_SUMMARY_RETAINERS;
+    size_t i;
+    td_text_printf(b, "\"retainer_whirl\":[");
+    for (k = 0; k < n; k++) {
+        td_text_printf(b, "%s", k ? "," : "");
+        td_text_json_string(b, s->retainers[k].whirl);
+    }
+    td_text_printf(b, "]");
+    for (i = 0; i < sizeof fields / sizeof fields[0]; i++)
+        json_retainer_array(b, s, fields[i].key, fields[i].offset, fields[i].is_long);
+}
+
+/* The answers that converge, first (docs/validation.md). */
+static void json_answers(td_text *b, const td_run_summary *s)
+{
+    json_real(b, "peak_housing_force", s->peak_housing_force, 0, 1);
+    json_real(b, "total_impulse", s->total_impulse, 0, 1);
+    json_real(b, "friction_work", s->friction_work, 0, 1);
+    json_real(b, "final_speed", s->final_speed, 0, 1);
+    if (!s->energy_kept) {
+        td_text_printf(b, "\"energy\":null,");
+        return;
+    }
+    td_text_printf(b, "\"energy\":{");
+    json_real(b, "kinetic", s->energy.kinetic, 0, 1);
+    json_real(b, "elastic", s->energy.elastic, 0, 1);
+    json_real(b, "initial", s->energy.initial, 0, 1);
+    json_real(b, "external_work", s->energy.external_work, 0, 1);
+    json_real(b, "drive_work", s->energy.drive_work, 0, 1);
+    json_real(b, "damping_loss", s->energy.damping_loss, 0, 1);
+    json_real(b, "contact_loss", s->energy.contact_loss, 0, 1);
+    json_real(b, "drag_loss", s->energy.drag_loss, 0, 1);
+    json_real(b, "impact_loss", s->energy.impact_loss, 0, 1);
+    json_real(b, "residual", s->energy.residual, 0, 0);
+    td_text_printf(b, "},");
+}
+
 int td_run_summary_json(char *buf, size_t n, const td_run_summary *s)
 {
     td_text b;
@@ -204,6 +348,7 @@ int td_run_summary_json(char *buf, size_t n, const td_run_summary *s)
     td_text_printf(&b, "\"complete\":%s,", s->complete ? "true" : "false");
     json_string(&b, "status", td_strerror(s->status));
     json_string(&b, "message", s->message);
+    json_answers(&b, s);
     json_real(&b, "t_start", s->t_start, 0, 1);
     json_real(&b, "t_end", s->t_end, 0, 1);
     json_real(&b, "t_reached", s->t_reached, 0, 1);
@@ -215,6 +360,7 @@ int td_run_summary_json(char *buf, size_t n, const td_run_summary *s)
     json_real(&b, "first_contact_time", s->first_contact_time, 1, 1);
     json_real(&b, "last_contact_time", s->last_contact_time, 1, 1);
     json_real(&b, "peak_normal_force", s->peak_normal_force, 0, 1);
+    td_text_printf(&b, "\"peak_normal_force_converges\":%s,", s->peak_converges ? "true" : "false");
     json_real(&b, "peak_time", s->peak_time, 1, 1);
     if (s->peak_retainer >= 0)
         td_text_printf(&b, "\"peak_retainer\":%d,", s->peak_retainer);
@@ -246,6 +392,8 @@ int td_run_summary_json(char *buf, size_t n, const td_run_summary *s)
     json_real(&b, "time_in_contact", s->stats.time_in_contact, 0, 1);
     json_real(&b, "first_contact_time", s->stats.first_contact_time, 1, 1);
     json_real(&b, "wall_time", s->stats.wall_time, 0, 0);
-    td_text_printf(&b, "}}");
+    td_text_printf(&b, "},");
+    json_retainers(&b, s);
+    td_text_printf(&b, "}");
     return (int)b.len;
 }

@@ -8,4 +8,9 @@
  *  status TD_OK, the start requested and used TD_START_REST. */
 void td_run_summary_init(td_run_summary *s, double t0, double t_end, double speed);
 
+/** The whirl of a retainer over its contact time, from its totals at the end (`speed` the rotor's,
+ *  `span` the time from the run's first contact to the end of its last): into out->whirl,
+ *  out->whirl_frequency, out->mean_normal and out->rms_normal. */
+void td_run_retainer_classify(td_run_retainer *out, double speed, double span);
+
 #endif

@@ -95,6 +95,10 @@ static int conv_test_cb(SUNNonlinearSolver nls, N_Vector ycor, N_Vector del, sun
             continue;
         x = pred[s->oq + r->dx] + cor[s->oq + r->dx];
         y = pred[s->oq + r->dy] + cor[s->oq + r->dy];
+        if (r->rx >= 0) {
+            x -= pred[s->oq + r->rx] + cor[s->oq + r->rx];
+            y -= pred[s->oq + r->ry] + cor[s->oq + r->ry];
+        }
         if (fabs(td_contact_constraint(x, y, r->r.clearance)) > s->constraint_tol)
             return SUN_NLS_CONTINUE;
     }
@@ -148,26 +152,30 @@ static td_status check_options(const td_sim_options *o, td_error *err)
 /* The work space of sim_internal.h; 0 if out of memory. */
 static int alloc_work(td_sim *s, size_t nr)
 {
-    size_t n = (size_t)s->n;
+    size_t n = (size_t)s->n, nc = nr + (size_t)s->ns; /* KKT multipliers: lambda and F_t */
     s->mass_x = calloc(n, sizeof(double));
     s->minv_f = calloc(n, sizeof(double));
     s->power_x = calloc(n, sizeof(double));
     s->power_kx = calloc(n, sizeof(double));
     s->power_mx = calloc(n, sizeof(double));
-    s->schur = calloc(nr * nr, sizeof(double));
-    s->schur_rhs = calloc(nr, sizeof(double));
+    s->schur = calloc(nc * nc, sizeof(double));
+    s->schur_rhs = calloc(nc, sizeof(double));
     s->restitution = calloc(nr, sizeof(double));
     s->impulse = calloc(nr, sizeof(double));
     s->impact_work = calloc(nr * (nr + 1), sizeof(double));
-    s->minv_cols = calloc(n * nr, sizeof(double));
-    s->rows = calloc(nr, sizeof *s->rows);
-    s->active = calloc(nr, sizeof(int));
+    s->minv_cols = calloc(n * nc, sizeof(double));
+    s->rows = calloc(nc, sizeof *s->rows);
+    s->active = calloc(nc, sizeof(int));
+    s->active_roll = calloc(nc, sizeof(int));
     s->onset = calloc(nr, sizeof(int));
     s->entered = calloc(nr, sizeof(int));
+    s->roll_tried = calloc(nr, sizeof(int));
     s->touching = calloc(nr, sizeof(int));
+    s->totals = calloc(nr, sizeof *s->totals);
+    s->energy_f = calloc(n, sizeof(double));
     return s->mass_x && s->minv_f && s->power_x && s->power_kx && s->power_mx && s->schur && s->schur_rhs &&
-           s->restitution && s->impulse && s->impact_work && s->minv_cols && s->rows && s->active && s->onset &&
-           s->entered && s->touching;
+           s->restitution && s->impulse && s->impact_work && s->minv_cols && s->rows && s->active && s->active_roll &&
+           s->onset && s->roll_tried && s->totals && s->energy_f && s->entered && s->touching;
 }
 
 static td_status alloc_arrays(td_sim *s, td_error *err)
@@ -178,7 +186,6 @@ static td_status alloc_arrays(td_sim *s, td_error *err)
     s->unb = calloc((size_t)(s->nu > 0 ? s->nu : 1), sizeof *s->unb);
     s->amb_mode = calloc((size_t)(na > 0 ? na : 1), sizeof *s->amb_mode);
     s->amb_control = calloc((size_t)(2 * na + 2), sizeof(double));
-    s->ret = calloc(nr, sizeof *s->ret);
     s->amb_coef = calloc((size_t)(s->sys->n_amb_axes + 1), sizeof *s->amb_coef);
     s->q_cap = 4 * s->nr + td_model_change_count(s->model) + 4;
     s->queue = calloc((size_t)s->q_cap, sizeof *s->queue);
@@ -187,7 +194,7 @@ static td_status alloc_arrays(td_sim *s, td_error *err)
     s->rootsfound = calloc(TD_ROOTS_PER_RETAINER * nr, sizeof(int));
     s->ysave = calloc((size_t)s->neq, sizeof(double));
     s->ypsave = calloc((size_t)s->neq, sizeof(double));
-    if (!ok || !s->unb || !s->amb_mode || !s->amb_control || !s->ret || !s->amb_coef || !s->queue || !s->rootdir ||
+    if (!ok || !s->unb || !s->amb_mode || !s->amb_control || !s->amb_coef || !s->queue || !s->rootdir ||
         !s->rootsfound || !s->ysave || !s->ypsave)
         return td_error_set(err, TD_ERR_NOMEM, "out of memory creating a simulation");
     return TD_OK;
@@ -202,8 +209,6 @@ static void init_machine(td_sim *s)
         td_model_get_unbalance(s->model, i, &s->unb[i]);
     for (i = 0; i < na; i++)
         s->amb_mode[i] = TD_AMB_PD;
-    for (i = 0; i < s->nr; i++)
-        td_sim_retainer_init(&s->ret[i], s->model, i);
     /* the AMB laws are linear (model/amb.c): unit probes give their coefficients exactly */
     for (i = 0; i < s->sys->n_amb_axes; i++) {
         const td_amb_axis *a = &s->sys->amb_axes[i];
@@ -230,12 +235,12 @@ static double highest_frequency(const td_sim *s)
     for (it = 0; it < 60; it++) {
         double num = 0.0, den = 0.0, norm = 0.0;
         memset(kx, 0, sizeof(double) * (size_t)s->n);
-        cs_di_gaxpy(s->sys->K, x, kx);
+        cs_di_gaxpy(s->K, x, kx);
         for (i = 0; i < s->n; i++)
             num += x[i] * kx[i];
         td_sim_mass_solve(s, kx); /* kx = M^-1 K x */
         memset(mx, 0, sizeof(double) * (size_t)s->n);
-        cs_di_gaxpy(s->sys->M, x, mx);
+        cs_di_gaxpy(s->M, x, mx);
         for (i = 0; i < s->n; i++)
             den += x[i] * mx[i];
         if (den > 0.0)
@@ -324,12 +329,34 @@ static double default_max_step(const td_sim *s)
  *           eta are algebraic and excluded from the error test, but the Newton convergence test
  *           still weighs them.
  */
+/* The races' DOFs: the centre as a displacement, its velocity at the mount's own frequency
+ * sqrt(k_m / m_r) (the race rings on its mount, not in the shaft's modes); the angle as the arc
+ * atol / R_b at the race surface, and the speed as race.c td_sim_race_speed_atol says. */
+static void race_tolerances(td_sim *s, double *at, double *id)
+{
+    double atol = s->opt.solver.atol;
+    int k, i;
+    for (k = 0; k < s->nr; k++) {
+        const td_sim_retainer *r = &s->ret[k];
+        int dofs[3] = {r->rx, r->ry, r->rs};
+        for (i = 0; i < 3; i++) {
+            double scale = i == 2 ? 1.0 / r->r.bore_radius : 1.0;
+            if (dofs[i] < 0)
+                continue;
+            at[s->oq + dofs[i]] = atol * scale;
+            at[s->ov + dofs[i]] = i == 2 ? td_sim_race_speed_atol(s, k)
+                                         : atol * fmax(s->freq_scale, sqrt(r->r.race.mount_stiffness / r->r.race.mass));
+            id[s->oq + dofs[i]] = id[s->ov + dofs[i]] = 1.0;
+        }
+    }
+}
+
 static void set_tolerances(td_sim *s)
 {
     double *at = N_VGetArrayPointer(s->atol), *id = N_VGetArrayPointer(s->id), atol = s->opt.solver.atol;
     int i;
     int ne = td_model_shaft_element_count(s->model);
-    for (i = 0; i < s->n; i++) {
+    for (i = 0; i < s->sys->ndof; i++) {
         int node = i / TD_DOFS_PER_NODE, off = i % TD_DOFS_PER_NODE;
         double scale = 1.0;
         if (off == TD_DOF_THETA || off == TD_DOF_PHI) {
@@ -356,6 +383,11 @@ static void set_tolerances(td_sim *s)
             id[s->ow + a->state] = 1.0;
         }
     }
+    race_tolerances(s, at, id);
+    for (i = 0; i < s->ns; i++) { /* F_t: a force, algebraic like lambda */
+        at[s->of + i] = atol * s->stiff_scale;
+        id[s->of + i] = 0.0;
+    }
     for (i = 0; i < s->nr; i++) {
         at[s->ol + i] = atol * s->stiff_scale;
         at[s->ou + i] = atol * s->freq_scale;
@@ -365,10 +397,10 @@ static void set_tolerances(td_sim *s)
 
 static td_status factor_mass(td_sim *s, td_error *err)
 {
-    s->Ms = cs_di_sqr(1, s->sys->M, 0);
+    s->Ms = cs_di_sqr(1, s->M, 0);
     if (!s->Ms)
         return td_error_set(err, TD_ERR_NOMEM, "out of memory factorising the mass matrix");
-    s->Mn = cs_di_lu(s->sys->M, s->Ms, 1.0);
+    s->Mn = cs_di_lu(s->M, s->Ms, 1.0);
     if (!s->Mn)
         return td_error_set(err, TD_ERR_NUMERIC, "the mass matrix is singular");
     return TD_OK;
@@ -398,11 +430,30 @@ static int first_outside(const td_sim *s, const double *y, double *rad)
     int k;
     for (k = 0; k < s->nr; k++) {
         const td_sim_retainer *r = &s->ret[k];
-        *rad = hypot(y[s->oq + r->dx], y[s->oq + r->dy]);
+        double x, yy, vx, vy;
+        td_sim_node_state(s, k, y, &x, &yy, &vx, &vy);
+        *rad = hypot(x, yy);
         if (*rad - r->r.clearance > TD_START_TOUCH_TOLERANCE * r->r.clearance)
             return k;
     }
     return -1;
+}
+
+/* The rotor's state [q (ndof) | v (ndof) | w] at the start of y, as the modal analysis writes it,
+ * moved to its places when races add DOFs after the rotor's (y = [q (n) | v (n) | w ...]). */
+static void spread_rotor_state(const td_sim *s, double *y)
+{
+    int nd = s->sys->ndof, i;
+    if (s->n == nd)
+        return;
+    for (i = s->nw - 1; i >= 0; i--) /* back to front: the blocks only move up */
+        y[s->ow + i] = y[2 * nd + i];
+    for (i = nd - 1; i >= 0; i--)
+        y[s->ov + i] = y[nd + i];
+    for (i = nd; i < s->ov; i++) /* the races' q, and the gap the rotor's v left */
+        y[s->oq + i] = 0.0;
+    for (i = s->ov + nd; i < s->ow; i++)
+        y[i] = 0.0;
 }
 
 /* The steady orbit into y. An unstable system has none that the motion would stay on: "orbit"
@@ -428,6 +479,7 @@ static td_status orbit_start(td_sim *s, double *y, td_error *err)
     st = td_modal_start_state(s->sys, s->omega, s->unb, s->nu, gx != 0.0 || gy != 0.0, s->t, y + s->oq, err);
     if (st != TD_OK)
         return st;
+    spread_rotor_state(s, y);
     s->start.used = TD_START_ORBIT;
     if (strict || (k = first_outside(s, y, &rad)) < 0)
         return TD_OK;
@@ -452,13 +504,16 @@ static td_status start_state(td_sim *s, td_error *err)
     s->start.reason[0] = '\0';
     if (s->opt.start != TD_START_REST && (st = orbit_start(s, y, err)) != TD_OK)
         return st;
+    td_sim_races_start(s, y);
     for (k = 0; k < s->nr; k++) {
         td_sim_retainer *r = &s->ret[k];
-        double rad = hypot(y[s->oq + r->dx], y[s->oq + r->dy]), c = r->r.clearance;
+        double x, yy, vx, vy, rad, c = r->r.clearance;
+        td_sim_node_state(s, k, y, &x, &yy, &vx, &vy);
+        rad = hypot(x, yy);
         touching[k] = 0;
         if (rad <= c)
             continue;
-        if (s->opt.contact.model == TD_CONTACT_PENALTY) {
+        if (td_sim_penalty_model(s, k)) {
             r->mode = TD_RMODE_PENETRATING;
             td_sim_init_slip(s, k, y);
         } else if (rad - c <= TD_START_TOUCH_TOLERANCE * c) {
@@ -567,28 +622,41 @@ static td_status setup_stage(td_status st, volatile sig_atomic_t *cancel, td_err
     return st;
 }
 
-/* Sizes and block offsets of the unknowns (sim_internal.h), the start time, the statistics'
- * "none yet" markers and the penalty law of the options. */
+/* Block offsets of the unknowns (sim_internal.h), the start time and the statistics' "none yet"
+ * markers. */
 static void init_layout(td_sim *s)
 {
-    s->model = td_system_model(s->sys);
-    s->n = s->sys->ndof;
     s->nw = s->sys->n_filter_states;
-    s->nr = td_model_retainer_count(s->model);
     s->oq = 0;
     s->ov = s->n;
     s->ow = 2 * s->n;
     s->ol = s->ow + s->nw;
     s->ou = s->ol + s->nr;
-    s->neq = s->ou + s->nr;
+    s->of = s->ou + s->nr;
+    s->neq = s->of + s->ns;
     s->t = s->t_ida = s->t_acc = s->opt.t0;
     s->stats.first_contact_time = -1.0;
     s->stats.peak_time = -1.0;
     s->stats.peak_retainer = -1;
-    s->law.stiffness = s->opt.contact.stiffness;
-    s->law.exponent = s->opt.contact.exponent;
-    s->law.damping = s->opt.contact.damping;
-    s->law.coefficient = s->opt.contact.damping_coefficient;
+}
+
+/* The retainers, free, with their contact laws, and the DOFs of their races after the rotor's
+ * (s->n: all DOFs). */
+static td_status init_retainers(td_sim *s, td_error *err)
+{
+    int k;
+    s->model = td_system_model(s->sys);
+    s->nr = td_model_retainer_count(s->model);
+    s->ret = calloc((size_t)(s->nr > 0 ? s->nr : 1), sizeof *s->ret);
+    if (!s->ret)
+        return td_error_set(err, TD_ERR_NOMEM, "out of memory creating a simulation");
+    for (k = 0; k < s->nr; k++) {
+        td_sim_retainer_init(&s->ret[k], s->model, k, &s->opt.contact);
+        if (s->ret[k].r.stick)
+            s->ret[k].fi = s->ns++;
+    }
+    td_sim_races_layout(s);
+    return td_sim_races_matrices(s, err);
 }
 
 td_status td_sim_create(const td_model *model, const td_sim_options *options, td_sim **out, td_error *err)
@@ -614,6 +682,8 @@ td_status td_sim_create_cancellable(const td_model *model, const td_sim_options 
     st = check_options(&s->opt, err);
     if (st == TD_OK)
         st = setup_stage(td_system_create(model, &s->sys, err), cancel, err);
+    if (st == TD_OK)
+        st = init_retainers(s, err);
     if (st == TD_OK) {
         init_layout(s);
         st = alloc_arrays(s, err);
@@ -648,6 +718,7 @@ td_status td_sim_create_cancellable(const td_model *model, const td_sim_options 
         td_sim_free(&s);
         return st;
     }
+    td_sim_totals_point(s, s->t, 1);
     s->q_len = s->q_pos = 0; /* contacts at the start are a state, not events */
     s->stats.events = s->stats.releases = s->stats.contact_onsets = 0;
     *out = s;
@@ -669,8 +740,12 @@ static void free_work(td_sim *s)
     free(s->minv_cols);
     free(s->rows);
     free(s->active);
+    free(s->active_roll);
     free(s->onset);
     free(s->entered);
+    free(s->roll_tried);
+    free(s->totals);
+    free(s->energy_f);
     free(s->touching);
 }
 
@@ -723,6 +798,7 @@ void td_sim_free(td_sim **sim)
     free(s->rootsfound);
     free(s->ysave);
     free(s->ypsave);
+    td_sim_races_free(s);
     td_system_free(&s->sys);
     free(s);
     *sim = NULL;
@@ -750,7 +826,9 @@ static void monitor_at(td_sim *s, double t, int at_step)
         if (dt > 0.0)
             s->stats.time_in_contact += dt;
         if (r->mode == TD_RMODE_CONTACT && at_step) {
-            double drift = fabs(hypot(y[s->oq + r->dx], y[s->oq + r->dy]) - r->r.clearance);
+            double x, yy, vx, vy, drift;
+            td_sim_node_state(s, k, y, &x, &yy, &vx, &vy);
+            drift = fabs(hypot(x, yy) - r->r.clearance);
             if (drift > s->stats.worst_drift)
                 s->stats.worst_drift = drift;
         }
@@ -807,12 +885,17 @@ static td_status solver_failure(td_sim *s, int flag)
     return TD_ERR_SOLVER;
 }
 
-/* Restart after a change made between steps or at a schedule time. */
+/* Restart after a change made between steps or at a schedule time; the retainers' totals open
+ * their next segment there. */
 static td_status restart_after_change(td_sim *s)
 {
-    td_status st = td_sim_make_consistent(s, NULL);
+    td_status st;
+    td_sim_totals_rewind(s); /* a change at an output inside the last step: the totals end here */
+    st = td_sim_make_consistent(s, NULL);
     if (st == TD_OK)
         st = td_sim_restart(s);
+    if (st == TD_OK)
+        td_sim_totals_point(s, s->t, 1);
     return st;
 }
 
@@ -833,6 +916,8 @@ static td_status handle_stop(td_sim *s, int kind)
         st = td_sim_handle_roots(s, &restart);
         if (st == TD_OK && restart)
             st = td_sim_restart(s);
+        if (st == TD_OK && restart)
+            td_sim_totals_point(s, s->t, 1);
         return st;
     }
     st = td_sim_apply_due_changes(s);
@@ -856,6 +941,8 @@ static int pending_stop(td_sim *s, double tout, td_status *st)
     *st = interpolate(s, s->t_pending);
     monitor(s, s->t);
     if (*st == TD_OK)
+        td_sim_totals_point(s, s->t, 0); /* the segment up to the stop */
+    if (*st == TD_OK)
         *st = handle_stop(s, kind);
     if (*st != TD_OK)
         return 1;
@@ -871,6 +958,7 @@ static void accept_step(td_sim *s, double tret)
 {
     s->t = tret;
     monitor_at(s, tret, 1);
+    td_sim_totals_point(s, tret, 0);
     memcpy(s->ysave, N_VGetArrayPointer(s->y), sizeof(double) * (size_t)s->neq);
     memcpy(s->ypsave, N_VGetArrayPointer(s->yp), sizeof(double) * (size_t)s->neq);
 }
@@ -912,7 +1000,7 @@ static td_status advance(td_sim *s, double tout)
             s->t_pending = tret;
             continue;
         }
-        if (td_sim_penalty_out_of_step(s, N_VGetArrayPointer(s->y))) {
+        if (td_sim_modes_out_of_step(s, N_VGetArrayPointer(s->y))) {
             /* IDA missed a crossing (retainer.c): switch the mode at this step's end */
             s->pending = TD_PENDING_RESYNC;
             s->t_pending = tret;
@@ -984,6 +1072,11 @@ td_status td_sim_set_interrupt(td_sim *sim, volatile sig_atomic_t *flag)
     return TD_OK;
 }
 
+double td_sim_speed(const td_sim *sim)
+{
+    return sim ? sim->omega : 0.0;
+}
+
 double td_sim_time(const td_sim *sim)
 {
     return sim ? sim->t : NAN;
@@ -1003,7 +1096,7 @@ td_status td_sim_last_event(const td_sim *sim, td_event *ev)
 
 int td_sim_dof_count(const td_sim *sim)
 {
-    return sim ? sim->n : 0;
+    return sim ? sim->sys->ndof : 0;
 }
 
 td_status td_sim_get_state(const td_sim *sim, double *q, double *v)
@@ -1013,9 +1106,9 @@ td_status td_sim_get_state(const td_sim *sim, double *q, double *v)
         return TD_ERR_INVALID;
     y = N_VGetArrayPointer(sim->y);
     if (q)
-        memcpy(q, y + sim->oq, sizeof(double) * (size_t)sim->n);
+        memcpy(q, y + sim->oq, sizeof(double) * (size_t)sim->sys->ndof);
     if (v)
-        memcpy(v, y + sim->ov, sizeof(double) * (size_t)sim->n);
+        memcpy(v, y + sim->ov, sizeof(double) * (size_t)sim->sys->ndof);
     return TD_OK;
 }
 
@@ -1023,24 +1116,29 @@ td_status td_sim_retainer_state(const td_sim *sim, int retainer, td_retainer_sta
 {
     const double *y;
     const td_sim_retainer *r;
-    double vx, vy;
+    double rx, ry, vx, vy;
     if (!sim || !out || retainer < 0 || retainer >= sim->nr)
         return TD_ERR_INVALID;
     y = N_VGetArrayPointer(sim->y);
     r = &sim->ret[retainer];
     out->x = y[sim->oq + r->dx];
     out->y = y[sim->oq + r->dy];
-    vx = y[sim->ov + r->dx];
-    vy = y[sim->ov + r->dy];
-    out->radius = hypot(out->x, out->y);
-    out->radial_velocity = td_contact_radial_velocity(out->x, out->y, vx, vy);
-    out->whirl_angle = atan2(out->y, out->x);
+    out->race_x = r->rx >= 0 ? y[sim->oq + r->rx] : 0.0;
+    out->race_y = r->rx >= 0 ? y[sim->oq + r->ry] : 0.0;
+    out->race_speed = td_sim_race_speed(sim, retainer, y);
+    td_sim_node_state(sim, retainer, y, &rx, &ry, &vx, &vy);
+    out->radius = hypot(rx, ry);
+    out->radial_velocity = td_contact_radial_velocity(rx, ry, vx, vy);
+    out->whirl_angle = atan2(ry, rx);
     out->normal_force = td_sim_normal_force(sim, retainer, y);
     out->in_contact = r->mode != TD_RMODE_FREE;
+    out->rolling = r->rolling;
     out->friction_force =
         out->in_contact
             ? td_contact_friction_force(r->r.friction, td_sim_slip_factor(sim, retainer, y, NULL), out->normal_force)
             : 0.0;
+    if (r->rolling) /* F_t acts on the race along t, the opposite on the rotor */
+        out->friction_force = -y[sim->of + r->fi];
     out->sliding_velocity = td_sim_sliding_velocity(sim, retainer, y);
     return TD_OK;
 }

@@ -3,7 +3,11 @@
  *
  * Unknowns, one fixed layout for the whole run (offsets oq, ov, ow, ol, ou):
  *
- *   y = [ q (n) | v (n) | w (nw AMB filter states) | lambda (nr) | eta (nr) ]
+ *   y = [ q (n) | v (n) | w (nw AMB filter states) | lambda (nr) | eta (nr) | F_t (ns) ]
+ *
+ * where q and v hold the rotor's DOFs (touchdown/dofs.h) and after them the races' (race.c: per
+ * retainer with a race, the x, y of its centre when mounted, then its angle when it can spin; v
+ * holds the race speed Omega_b there). M, K, C, G below are the matrices of all n DOFs.
  *
  * lambda_k is the normal force of retainer k (N) and eta_k the GGL multiplier of its position
  * constraint (the "mu" of the stabilised index-2 form; called eta here so that mu stays the
@@ -14,6 +18,7 @@
  *   w rows   w' - (command(xs, vs) - w) / tau                             (AMB force lag)
  *   lambda   g_k(q) = (x^2 + y^2 - c^2)/(2c)   in contact, lambda_k = 0 otherwise   (eq. 5 scaled)
  *   eta      J_k v = (x vx + y vy)/c           in contact, eta_k = 0 otherwise      (eq. 13a scaled)
+ *   F_t      v_s = 0 (eq. 16)                  rolling, F_t = 0 otherwise   (stick retainers only)
  *
  * with f = f_unbalance + f_gravity + f_amb - (C + Omega G) v - K q - f_penalty, and
  * B_k = J_k^T + phi_k mu_k t_k (the normal direction plus the Coulomb friction of eq. 17 with the
@@ -46,14 +51,24 @@ typedef struct td_sim_counters {
     long steps, res, jac, setups, nli, etf, ncf;
 } td_sim_counters;
 
+/* One retainer's running totals (totals.c): the public record, the integrands at the last point
+ * and the contact interval's bookkeeping. */
+typedef struct td_sim_totals {
+    td_retainer_totals t;
+    struct {
+        double n, n2, power, whirl_rate;
+    } prev;
+    int in_contact;        /* in contact at the last point */
+    double whirl_at_onset; /* t.whirl_angle when the open interval began */
+} td_sim_totals;
+
 struct td_sim {
     td_system *sys;        /* owned */
     const td_model *model; /* the system's copy */
     td_sim_options opt;
-    td_penalty_law law;
 
-    int n, nw, nr, neq;     /* DOFs, filter states, retainers, equations */
-    int oq, ov, ow, ol, ou; /* block offsets in y */
+    int n, nw, nr, ns, neq;     /* DOFs (rotor and races), filter states, retainers, stick retainers, equations */
+    int oq, ov, ow, ol, ou, of; /* block offsets in y */
 
     /* the machine as it is now (changed by the schedule and the td_sim_set_* calls) */
     double omega;
@@ -72,6 +87,10 @@ struct td_sim {
     double stiff_scale; /* N/m, forces ~ stiff_scale * displacements */
     double rearm_eps;   /* m, hysteresis of the onset root (constraint model) */
     double rebound_min; /* m/s, radial speed below which an impact with e > 0 becomes plastic */
+
+    /* the structural matrices of all n DOFs (race.c): the system's own without races */
+    cs_di *M, *K, *C, *G;
+    int own_matrices; /* 1: M, K, C, G extended with races, owned */
 
     /* mass matrix factorisation (LU, CXSparse), for consistent accelerations and the impact map */
     cs_dis *Ms;
@@ -117,6 +136,14 @@ struct td_sim {
     td_event last;
     int have_last;
 
+    /* the retainers' totals (totals.c), nr of them, and the time of their last point */
+    td_sim_totals *totals;
+    double totals_t;
+    td_energy energy;      /* the energy account (totals.c) */
+    double energy_prev[5]; /* its powers at the last point: external, drive, damping, contact, drag */
+    double *energy_f;      /* n: the external forces at a point */
+    int energy_started;    /* the initial energy is set */
+
     /* statistics */
     td_sim_stats stats;   /* event totals, drift, forces, times (counters filled on demand) */
     td_sim_counters base; /* IDA counters of finished integrator runs */
@@ -127,15 +154,17 @@ struct td_sim {
     double *power_x;        /* n: highest_frequency's iterate x */
     double *power_kx;       /* n: highest_frequency's M^-1 K x */
     double *power_mx;       /* n: highest_frequency's M x */
-    double *schur;          /* nr * nr: kkt_solve's J M^-1 B of the active contacts */
-    double *schur_rhs;      /* nr: its right-hand side, then lambda */
+    double *schur;          /* (nr + ns)^2: kkt_solve's J M^-1 B of the active contacts and rolls */
+    double *schur_rhs;      /* nr + ns: its right-hand side, then lambda and F_t */
     double *restitution;    /* nr: impacts, the restitution of each contact in the impact map */
     double *impulse;        /* nr: impacts, the impulse of each contact */
     double *impact_work;    /* nr * (nr + 1): td_contact_impact_map's work space */
-    double *minv_cols;      /* n * nr: M^-1 B_k or M^-1 J_k^T columns of the active contacts */
-    td_contact_row *rows;   /* nr: contact rows J_k of the active contacts */
-    int *active;            /* nr: indices of the retainers in the small system (kkt_solve, impacts) */
+    double *minv_cols;      /* n * (nr + ns): M^-1 B_k or M^-1 J_k^T columns of the active contacts */
+    td_contact_row *rows;   /* nr + ns: contact rows J_k of the active contacts */
+    int *active;            /* nr + ns: indices of the retainers in the small system (kkt_solve, impacts) */
+    int *active_roll;       /* nr + ns: 1 where that multiplier is a rolling F_t, 0 a normal force */
     int *onset, *entered;   /* nr each: onset roots and contacts entered at an instant (sim_modes.c) */
+    int *roll_tried;        /* nr: stick retainers set rolling at a slip root, not yet confirmed */
     int *touching;          /* nr: retainers touching their circles at the start (start_state) */
     double *ysave, *ypsave; /* last good state */
 
@@ -148,6 +177,9 @@ struct td_sim {
 
 /* ---- sim_residual.c: the DAE ------------------------------------------------------------- */
 
+/* f += sign * the external forces: gravity, unbalance and AMBs (what does work on the machine from
+ * outside; applied_forces adds the contacts and the races' drag to them). */
+void td_sim_external_forces(const td_sim *s, double t, const double *y, double sign, double *f);
 /* Generalised force f(t, q, v, w) of the header comment (everything but inertia and constraints). */
 void td_sim_forces(const td_sim *s, double t, const double *y, double *f);
 /* F(t, y, y'). */
@@ -161,6 +193,40 @@ void td_sim_root_directions(const td_sim *s, int *dir);
 double td_sim_amb_axis_force(const td_sim *s, int k, const double *y);
 /* Spin angle phi(t). */
 double td_sim_spin_angle(const td_sim *s, double t);
+
+/* ---- totals.c: the retainers' running totals --------------------------------------------- */
+
+/* A point of the totals at time t with the state in s->y: closes the segment since the last point
+ * (restart 0: an accepted step or a stop), or opens one after a restart (restart 1). */
+void td_sim_totals_point(td_sim *s, double t, int restart);
+/* Before a restart at s->t inside the integrator's last step (a change between steps): the totals
+ * taken back to s->t. */
+void td_sim_totals_rewind(td_sim *s);
+/* The energy account's point at time t (energy.c), with the segment length dt since the last one
+ * (0 at a restart): called by td_sim_totals_point. */
+void td_sim_energy_point(td_sim *s, double t, int restart, double dt);
+/* An impact changed the kinetic energy from `before` to `after`, J. */
+void td_sim_energy_impact(td_sim *s, double before, double after);
+/* Kinetic energy 1/2 v^T M v of the state y, J. */
+double td_sim_kinetic_energy(const td_sim *s, const double *y);
+/* An impact of retainer k with `impulse` (N s); `bounced`: it left at once (touch-and-go). */
+void td_sim_totals_impact(td_sim *s, int k, double impulse, int bounced);
+
+/* ---- race.c: the races' DOFs and matrices ----------------------------------------------- */
+
+/* Assign the race DOFs after the rotor's and set s->n. */
+void td_sim_races_layout(td_sim *s);
+/* s->M, s->K, s->C, s->G over all n DOFs. */
+td_status td_sim_races_matrices(td_sim *s, td_error *err);
+void td_sim_races_free(td_sim *s);
+/* f += sign * the races' weight (length n). */
+void td_sim_races_gravity(const td_sim *s, double *f, double sign);
+/* Absolute tolerance of retainer k's race speed now (it depends on whether the race rolls). */
+double td_sim_race_speed_atol(const td_sim *s, int k);
+/* Set the race speeds' tolerances in s->atol for the current modes; 1 if one changed. */
+int td_sim_races_retolerance(td_sim *s);
+/* The races' start state into y: centres resting on their mounts, speeds at bore_speed. */
+void td_sim_races_start(const td_sim *s, double *y);
 
 /* ---- sim_nvector.c: compiled vector operations ----------------------------------------- */
 
@@ -194,9 +260,10 @@ void td_sim_mass_solve(const td_sim *s, double *b);
  * negative (or <= 0 for those flagged in just_entered) are released and the solve repeated; each
  * release is queued as an event unless just entered (then the onset event records it). */
 td_status td_sim_make_consistent(td_sim *s, const int *just_entered);
-/* Penalty model: 1 if some retainer's mode disagrees with the state y beyond the noise band
- * (retainer.c td_sim_penalty_mode_wanted), i.e. IDA missed a crossing of its root. */
-int td_sim_penalty_out_of_step(const td_sim *s, const double *y);
+/* 1 if some retainer's mode disagrees with the state y, i.e. IDA missed a crossing of its root:
+ * a penalty contact's mode beyond the noise band (retainer.c td_sim_penalty_mode_wanted), or a
+ * stick retainer sliding against its slip direction beyond the slip band (stick_out_of_step). */
+int td_sim_modes_out_of_step(const td_sim *s, const double *y);
 /* Start of a run with the retainers flagged in `touching` on (or a hair outside) their circles:
  * projection and impact as at an onset, then td_sim_make_consistent. */
 td_status td_sim_start_contacts(td_sim *s, const int *touching);

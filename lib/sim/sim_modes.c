@@ -65,9 +65,10 @@ void td_sim_queue_event(td_sim *s, const td_event *ev)
 
 void td_sim_event_velocities(const td_sim *s, int k, const double *y, int after, td_event *ev)
 {
-    const td_sim_retainer *r = &s->ret[k];
-    double x = y[s->oq + r->dx], yy = y[s->oq + r->dy], vx = y[s->ov + r->dx], vy = y[s->ov + r->dy];
-    double vr = td_contact_radial_velocity(x, yy, vx, vy), vt = td_contact_tangential_velocity(x, yy, vx, vy);
+    double x, yy, vx, vy, vr, vt;
+    td_sim_node_state(s, k, y, &x, &yy, &vx, &vy);
+    vr = td_contact_radial_velocity(x, yy, vx, vy);
+    vt = td_contact_tangential_velocity(x, yy, vx, vy);
     if (after) {
         ev->radial_velocity_after = vr;
         ev->tangential_velocity_after = vt;
@@ -96,34 +97,60 @@ static void queue_retainer_event(td_sim *s, td_event_kind kind, int k, const dou
     td_sim_queue_event(s, &ev);
 }
 
-/* One KKT solve with the current contact set: [M, B; J, 0][v'; lambda] = [f; -D] by the Schur
- * complement (J M^-1 B) lambda = J M^-1 f + D (m x m, m = contacts), v' = M^-1 (f - B lambda).
- * Fills yp's v block and y's lambda entries. Returns the number of contacts, or -1 if singular. */
+/* The D term of eq. (13b) of retainer k at y, from the node's velocity relative to the race. */
+static double contact_dterm(const td_sim *s, int k, const double *y)
+{
+    double x, yy, vx, vy;
+    td_sim_node_state(s, k, y, &x, &yy, &vx, &vy);
+    return td_contact_constraint_dterm(vx, vy, s->ret[k].r.clearance);
+}
+
+/* The multipliers of the KKT solve at the current modes into s->active / s->active_roll: the
+ * normal force of every constrained contact, then the friction force F_t of every rolling
+ * retainer. For each, its row (s->rows), M^-1 times its column (s->minv_cols) and the velocity
+ * term of its acceleration-level constraint (rhs): D of eq. (13b), or h of d v_s / dt. */
+static int kkt_multipliers(td_sim *s, const double *y, double *rhs)
+{
+    int m = 0, k;
+    for (k = 0; k < s->nr; k++)
+        if (s->ret[k].mode == TD_RMODE_CONTACT) {
+            double *z = s->minv_cols + (size_t)m * s->n;
+            td_sim_contact_column(s, k, y, z);
+            td_sim_mass_solve(s, z);
+            td_sim_contact_row(s, k, y, &s->rows[m]);
+            rhs[m] = contact_dterm(s, k, y);
+            s->active_roll[m] = 0;
+            s->active[m++] = k;
+        }
+    for (k = 0; k < s->nr; k++)
+        if (s->ret[k].rolling) {
+            double *z = s->minv_cols + (size_t)m * s->n;
+            td_sim_roll_column(s, k, y, z);
+            td_sim_mass_solve(s, z);
+            td_sim_roll_row(s, k, y, &s->rows[m], &rhs[m]);
+            s->active_roll[m] = 1;
+            s->active[m++] = k;
+        }
+    return m;
+}
+
+/* One KKT solve with the current modes: [M, B; R, 0][v'; x] = [f; -d] by the Schur complement
+ * (R M^-1 B) x = R M^-1 f + d (m x m), v' = M^-1 (f - B x), where the multipliers x are the normal
+ * forces of the constrained contacts (rows J_k, d = D, eq. 13b) and the friction forces F_t of the
+ * rolling retainers (rows d v_s / dv, d = h: the rolling speed held). Fills yp's v block and y's
+ * multiplier entries. Returns the number of multipliers, or -1 if singular. */
 static int kkt_solve(td_sim *s, double *y, double *yp)
 {
     double *a = s->minv_f, *S = s->schur, *rhs = s->schur_rhs, *vp = yp + s->ov;
-    int m = 0, i, j, k;
+    int m, i, j;
     td_sim_forces(s, s->t, y, a);
     td_sim_mass_solve(s, a);
-    for (k = 0; k < s->nr; k++)
-        if (s->ret[k].mode == TD_RMODE_CONTACT)
-            s->active[m++] = k;
-    for (i = 0; i < m; i++) {
-        double *z = s->minv_cols + (size_t)i * s->n;
-        td_sim_contact_column(s, s->active[i], y, z);
-        td_sim_mass_solve(s, z);
-        td_sim_contact_row(s, s->active[i], y, &s->rows[i]);
-    }
+    m = kkt_multipliers(s, y, rhs);
     for (i = 0; i < m; i++) {
         const td_contact_row *row = &s->rows[i];
-        const td_sim_retainer *r = &s->ret[s->active[i]];
-        for (j = 0; j < m; j++) {
-            const double *z = s->minv_cols + (size_t)j * s->n;
-            S[i + j * m] = row->j[0] * z[row->dof[0]] + row->j[1] * z[row->dof[1]];
-        }
-        /* eq. (13b): J v' = -D */
-        rhs[i] = row->j[0] * a[row->dof[0]] + row->j[1] * a[row->dof[1]] +
-                 td_contact_constraint_dterm(y[s->ov + r->dx], y[s->ov + r->dy], r->r.clearance);
+        for (j = 0; j < m; j++)
+            S[i + j * m] = td_contact_row_dot(row, s->minv_cols + (size_t)j * s->n);
+        rhs[i] = td_contact_row_dot(row, a) + rhs[i];
     }
     if (m > 0 && td_contact_dense_solve(m, S, rhs) != 0)
         return -1;
@@ -131,51 +158,137 @@ static int kkt_solve(td_sim *s, double *y, double *yp)
         vp[i] = a[i];
     for (j = 0; j < m; j++) {
         const double *z = s->minv_cols + (size_t)j * s->n;
+        const td_sim_retainer *r = &s->ret[s->active[j]];
         for (i = 0; i < s->n; i++)
             vp[i] -= z[i] * rhs[j];
-        y[s->ol + s->active[j]] = rhs[j];
+        y[s->active_roll[j] ? s->of + r->fi : s->ol + s->active[j]] = rhs[j];
     }
     return m;
+}
+
+/* Rolling retainer k at a restart: the residual slip of the root's location is removed; a slip
+ * beyond the band (the speed or the state changed under it: a step) ends rolling. */
+static void keep_rolling(td_sim *s, int k, double *y)
+{
+    double vs = td_sim_sliding_velocity(s, k, y);
+    if (fabs(vs) <= TD_CONTACT_SLIP_BAND) {
+        td_sim_project_rolling(s, k, y);
+        return;
+    }
+    td_sim_unroll(s, k, y, vs > 0.0 ? 1 : -1);
+    if (!s->roll_tried[k])
+        queue_retainer_event(s, TD_EVENT_ROLL_END, k, y);
+    s->roll_tried[k] = 0;
+}
+
+/* Multipliers of the modes at restart: eta = 0, lambda of free retainers 0 (nodes in contact
+ * projected onto their circles: removes the tolerance-level drift at every restart), F_t of the
+ * retainers not rolling 0, and the multipliers' rates 0. */
+static void reset_multipliers(td_sim *s, double *y, double *yp)
+{
+    int k;
+    for (k = 0; k < s->nr; k++) {
+        const td_sim_retainer *r = &s->ret[k];
+        y[s->ou + k] = 0.0;
+        yp[s->ol + k] = yp[s->ou + k] = 0.0;
+        if (r->mode != TD_RMODE_CONTACT)
+            y[s->ol + k] = 0.0;
+        else
+            td_sim_project_onto_circle(s, k, y);
+        if (r->fi >= 0) {
+            yp[s->of + r->fi] = 0.0;
+            if (r->rolling)
+                keep_rolling(s, k, y);
+            if (!r->rolling)
+                y[s->of + r->fi] = 0.0;
+        }
+    }
+}
+
+/* The contact that most needs a pulling force (eq. 10 and the text after it: it is released), or
+ * -1; one just entered must press (lambda > 0). */
+static int worst_pull(const td_sim *s, const double *y, const int *just_entered)
+{
+    double worst_lam = 0.0;
+    int worst = -1, k;
+    for (k = 0; k < s->nr; k++) {
+        double lam = y[s->ol + k];
+        int reject;
+        if (s->ret[k].mode != TD_RMODE_CONTACT)
+            continue;
+        reject = (just_entered && just_entered[k]) ? !(lam > 0.0) : lam < 0.0;
+        if (reject && (worst < 0 || lam < worst_lam)) {
+            worst = k;
+            worst_lam = lam;
+        }
+    }
+    return worst;
+}
+
+/* The rolling retainer whose friction force F_t exceeds mu N the most (it slips), or -1. */
+static int worst_slip(const td_sim *s, const double *y)
+{
+    double worst_excess = 0.0;
+    int worst = -1, k;
+    for (k = 0; k < s->nr; k++) {
+        const td_sim_retainer *r = &s->ret[k];
+        double excess;
+        if (!r->rolling)
+            continue;
+        excess = fabs(y[s->of + r->fi]) - r->r.friction * td_sim_normal_force(s, k, y);
+        if (excess > worst_excess) {
+            worst = k;
+            worst_excess = excess;
+        }
+    }
+    return worst;
+}
+
+/* Retainer k rolled and slips now, in the direction of the force it needed (+: the shaft drags
+ * the race forward, v_s > 0): a rolling end, or, for a roll only tried at this instant
+ * (s->roll_tried), a friction reversal if it slips the other way. */
+static void slip_from_roll(td_sim *s, int k, double *y)
+{
+    td_sim_retainer *r = &s->ret[k];
+    int was = r->slip, slip = y[s->of + r->fi] > 0.0 ? 1 : -1;
+    td_sim_unroll(s, k, y, slip);
+    if (!s->roll_tried[k])
+        queue_retainer_event(s, TD_EVENT_ROLL_END, k, y);
+    else if (slip != was)
+        queue_retainer_event(s, TD_EVENT_FRICTION_REVERSAL, k, y);
+    s->roll_tried[k] = 0;
 }
 
 td_status td_sim_make_consistent(td_sim *s, const int *just_entered)
 {
     double *y = N_VGetArrayPointer(s->y), *yp = N_VGetArrayPointer(s->yp);
     int i, k, pass;
-    for (k = 0; k < s->nr; k++) {
-        y[s->ou + k] = 0.0;
-        yp[s->ol + k] = yp[s->ou + k] = 0.0;
-        if (s->ret[k].mode != TD_RMODE_CONTACT)
-            y[s->ol + k] = 0.0;
-        else
-            td_sim_project_onto_circle(s, k, y); /* removes the (tolerance-level) drift at every restart */
-    }
-    for (pass = 0; pass <= s->nr; pass++) {
-        int worst = -1;
-        double worst_lam = 0.0;
+    reset_multipliers(s, y, yp);
+    for (pass = 0; pass <= s->nr + s->ns; pass++) {
+        int worst;
         if (kkt_solve(s, y, yp) < 0) {
             snprintf(s->errmsg, sizeof s->errmsg,
                      "t = %.9g s: the contact constraints are singular (J M^-1 J^T not invertible)", s->t);
             return TD_ERR_NUMERIC;
         }
-        /* a contact that would need a pulling force is released (eq. 10 and the text after it) */
-        for (k = 0; k < s->nr; k++) {
-            double lam = y[s->ol + k];
-            int reject;
-            if (s->ret[k].mode != TD_RMODE_CONTACT)
-                continue;
-            reject = (just_entered && just_entered[k]) ? !(lam > 0.0) : lam < 0.0;
-            if (reject && (worst < 0 || lam < worst_lam)) {
-                worst = k;
-                worst_lam = lam;
-            }
-        }
-        if (worst < 0)
+        if ((worst = worst_pull(s, y, just_entered)) >= 0) {
+            td_sim_release(s, worst, y);
+            if (!(just_entered && just_entered[worst]))
+                queue_retainer_event(s, TD_EVENT_RELEASE, worst, y);
+            else /* touched and left at once */
+                td_sim_totals_impact(s, worst, 0.0, 1);
+        } else if ((worst = worst_slip(s, y)) >= 0) {
+            slip_from_roll(s, worst, y);
+        } else {
             break;
-        td_sim_release(s, worst, y);
-        if (!(just_entered && just_entered[worst]))
-            queue_retainer_event(s, TD_EVENT_RELEASE, worst, y);
+        }
     }
+    for (k = 0; k < s->nr; k++) /* tried rolls that held */
+        if (s->roll_tried[k]) {
+            s->roll_tried[k] = 0;
+            if (s->ret[k].rolling)
+                queue_retainer_event(s, TD_EVENT_ROLL_START, k, y);
+        }
     /* q' = v, w' = the filter rate */
     for (i = 0; i < s->n; i++)
         yp[s->oq + i] = y[s->ov + i];
@@ -197,13 +310,11 @@ td_status td_sim_make_consistent(td_sim *s, const int *just_entered)
  */
 static double free_normal_acceleration(td_sim *s, int k, const double *y, double *a)
 {
-    const td_sim_retainer *r = &s->ret[k];
     td_contact_row row;
     td_sim_forces(s, s->t, y, a);
     td_sim_mass_solve(s, a);
     td_sim_contact_row(s, k, y, &row);
-    return row.j[0] * a[row.dof[0]] + row.j[1] * a[row.dof[1]] +
-           td_contact_constraint_dterm(y[s->ov + r->dx], y[s->ov + r->dy], r->r.clearance);
+    return td_contact_row_dot(&row, a) + contact_dterm(s, k, y);
 }
 
 /*
@@ -246,17 +357,17 @@ static double impact_restitution(td_sim *s, int k, const double *y, double vr)
  * onset moving outward (impact_restitution). Returns their number. */
 static int impact_contacts(td_sim *s, const int *onset, const double *y)
 {
-    const double *v = y + s->ov;
     double *e = s->restitution;
     int m = 0, k;
     for (k = 0; k < s->nr; k++) {
         const td_sim_retainer *r = &s->ret[k];
-        double vr;
+        double x, yy, vx, vy, vr;
         if (r->mode == TD_RMODE_CONTACT) {
             e[m] = 0.0;
             s->active[m++] = k;
         } else if (onset[k]) {
-            vr = td_contact_radial_velocity(y[s->oq + r->dx], y[s->oq + r->dy], v[r->dx], v[r->dy]);
+            td_sim_node_state(s, k, y, &x, &yy, &vx, &vy);
+            vr = td_contact_radial_velocity(x, yy, vx, vy);
             if (!(vr > 0.0)) /* touching while already moving inward: no impact, stay free */
                 continue;
             e[m] = impact_restitution(s, k, y, vr);
@@ -274,8 +385,7 @@ static void impact_columns(td_sim *s, int m, const double *y)
         double *col = s->minv_cols + (size_t)i * s->n;
         td_sim_contact_row(s, s->active[i], y, &s->rows[i]);
         memset(col, 0, sizeof(double) * (size_t)s->n);
-        col[s->rows[i].dof[0]] = s->rows[i].j[0];
-        col[s->rows[i].dof[1]] = s->rows[i].j[1];
+        td_contact_row_scatter(&s->rows[i], col);
         td_sim_mass_solve(s, col);
     }
 }
@@ -337,6 +447,18 @@ static void complete_onsets(td_sim *s, const int *onset, int m, int first_event,
     }
 }
 
+/* An impact jolts every contact: rolling retainers slip (the impact map is frictionless, so their
+ * v_s is no longer held) and try rolling again when v_s next reaches 0. */
+static void stop_rolling(td_sim *s, double *y)
+{
+    int k;
+    for (k = 0; k < s->nr; k++)
+        if (s->ret[k].rolling) {
+            td_sim_unroll(s, k, y, s->ret[k].slip);
+            queue_retainer_event(s, TD_EVENT_ROLL_END, k, y);
+        }
+}
+
 /*
  * Impacts at the retainers flagged in `onset` (constraint model): project each node onto its
  * circle, apply the impact map with every contact already active and the new ones
@@ -345,20 +467,31 @@ static void complete_onsets(td_sim *s, const int *onset, int m, int first_event,
  */
 static int impacts(td_sim *s, const int *onset, int *entered)
 {
-    double *y = N_VGetArrayPointer(s->y);
+    double *y = N_VGetArrayPointer(s->y), before;
     int m, k, queued, first_event = s->q_len;
     for (k = 0; k < s->nr; k++) {
         entered[k] = 0;
         if (onset[k])
             td_sim_project_onto_circle(s, k, y);
     }
+    stop_rolling(s, y);
     m = impact_contacts(s, onset, y);
     impact_columns(s, m, y);
     queued = queue_onsets(s, onset, m, y);
+    before = s->opt.energy ? td_sim_kinetic_energy(s, y) : 0.0;
     if (m > 0 && td_contact_impact_map(s->n, m, s->rows, s->minv_cols, s->restitution, y + s->ov, s->impulse,
                                        s->impact_work) != 0)
         return -1;
+    if (s->opt.energy)
+        td_sim_energy_impact(s, before, td_sim_kinetic_energy(s, y));
+    for (k = 0; k < m; k++) /* every contact of the impact took its impulse; e > 0 onsets bounced */
+        td_sim_totals_impact(s, s->active[k], s->impulse[k],
+                             onset[s->active[k]] && s->ret[s->active[k]].mode != TD_RMODE_CONTACT &&
+                                 s->restitution[k] > 0.0);
     enter_contacts(s, onset, m, y, entered);
+    for (k = 0; k < s->nr; k++) /* stick retainers slide the way the impact left them */
+        if (s->ret[k].r.stick && s->ret[k].mode == TD_RMODE_CONTACT && !entered[k])
+            td_sim_init_slip(s, k, y);
     complete_onsets(s, onset, m, first_event, y);
     /* onsets with no outward velocity: disarm, nothing happened */
     for (k = 0; k < s->nr; k++)
@@ -367,20 +500,28 @@ static int impacts(td_sim *s, const int *onset, int *entered)
     return queued;
 }
 
-int td_sim_penalty_out_of_step(const td_sim *s, const double *y)
+/* A stick retainer sliding against its slip direction: its v_s = 0 root was never crossed (it left
+ * a restart at v_s = 0 the other way, e.g. when rolling ended with F_t ~ 0 as N vanished). */
+static int stick_out_of_step(const td_sim *s, int k, const double *y)
+{
+    const td_sim_retainer *r = &s->ret[k];
+    return r->r.stick && r->mode != TD_RMODE_FREE && !r->rolling &&
+           r->slip * td_sim_sliding_velocity(s, k, y) < -TD_CONTACT_SLIP_BAND;
+}
+
+int td_sim_modes_out_of_step(const td_sim *s, const double *y)
 {
     int k;
-    if (s->opt.contact.model != TD_CONTACT_PENALTY)
-        return 0;
     for (k = 0; k < s->nr; k++)
-        if (td_sim_penalty_mode_wanted(s, k, y, s->ret[k].mode) != s->ret[k].mode)
+        if ((td_sim_penalty_model(s, k) && td_sim_penalty_mode_wanted(s, k, y, s->ret[k].mode) != s->ret[k].mode) ||
+            stick_out_of_step(s, k, y))
             return 1;
     return 0;
 }
 
 /* Penalty model: put retainer k in mode `want`, queueing the enter or exit event. Returns 1 if
  * the mode changed. */
-static int penalty_switch(td_sim *s, int k, const double *y, td_rmode want)
+static int penalty_switch(td_sim *s, int k, double *y, td_rmode want)
 {
     td_sim_retainer *r = &s->ret[k];
     if (want == r->mode)
@@ -391,6 +532,7 @@ static int penalty_switch(td_sim *s, int k, const double *y, td_rmode want)
         queue_retainer_event(s, TD_EVENT_PENALTY_ENTER, k, y);
     } else {
         r->armed = 1;
+        td_sim_unroll(s, k, y, r->slip);
         queue_retainer_event(s, TD_EVENT_PENALTY_EXIT, k, y);
     }
     return 1;
@@ -398,11 +540,22 @@ static int penalty_switch(td_sim *s, int k, const double *y, td_rmode want)
 
 /* Retainer k's slip root (|v_s| reached v_reg): the friction law has a kink there
  * (docs/theory.md), so the integrator restarts; leaving the band on the other side is a
- * friction reversal. */
-static void slip_root(td_sim *s, int k, const double *y)
+ * friction reversal. A stick retainer's root is v_s = 0 while sliding (it tries rolling: the
+ * consistent restart keeps it if the friction force rolling needs is within mu N, else it slips
+ * on, the way that force points) or |F_t| = mu N while rolling (it slips). */
+static void slip_root(td_sim *s, int k, double *y)
 {
-    if (td_sim_slip_root(s, k, y))
-        queue_retainer_event(s, TD_EVENT_FRICTION_REVERSAL, k, y);
+    td_sim_retainer *r = &s->ret[k];
+    if (!r->r.stick) {
+        if (td_sim_slip_root(s, k, y))
+            queue_retainer_event(s, TD_EVENT_FRICTION_REVERSAL, k, y);
+    } else if (r->rolling) {
+        td_sim_unroll(s, k, y, y[s->of + r->fi] > 0.0 ? 1 : -1);
+        queue_retainer_event(s, TD_EVENT_ROLL_END, k, y);
+    } else {
+        r->rolling = 1;
+        s->roll_tried[k] = 1;
+    }
 }
 
 /* Constraint model: the roots `f` of retainer k. An onset root only flags the retainer in *onset
@@ -432,7 +585,7 @@ static int constraint_roots(td_sim *s, int k, double *y, const int *f, int *onse
 /* Penalty model: the roots `f` of retainer k (all zero: only bring its mode in step with the
  * state). A contact root asks for the flip of the mode; the state decides outside the noise band
  * (retainer.c td_sim_penalty_mode_wanted). Returns 1 if the integrator must restart. */
-static int penalty_roots(td_sim *s, int k, const double *y, const int *f)
+static int penalty_roots(td_sim *s, int k, double *y, const int *f)
 {
     td_sim_retainer *r = &s->ret[k];
     int restart = 0;
@@ -474,9 +627,12 @@ td_status td_sim_handle_roots(td_sim *s, int *restart)
     for (k = 0; k < s->nr; k++) {
         const int *f = s->rootsfound + TD_ROOTS_PER_RETAINER * k;
         s->onset[k] = 0;
-        if (s->opt.contact.model == TD_CONTACT_PENALTY ? penalty_roots(s, k, y, f)
-                                                       : constraint_roots(s, k, y, f, &s->onset[k]))
+        if (td_sim_penalty_model(s, k) ? penalty_roots(s, k, y, f) : constraint_roots(s, k, y, f, &s->onset[k]))
             *restart = 1;
+        if (stick_out_of_step(s, k, y)) { /* the missed crossing: the restart rolls or slips the right way */
+            slip_root(s, k, y);
+            *restart = 1;
+        }
         any_onset = any_onset || s->onset[k];
     }
     st = onset_impacts(s, any_onset);
@@ -616,6 +772,8 @@ td_status td_sim_restart(td_sim *s)
     int flag;
     save_counters(s);
     flag = IDAReInit(s->ida, s->t, s->y, s->yp);
+    if (flag == IDA_SUCCESS && td_sim_races_retolerance(s)) /* a race came into or out of contact */
+        flag = IDASVtolerances(s->ida, s->opt.solver.rtol, s->atol);
     if (flag == IDA_SUCCESS) {
         td_sim_root_directions(s, s->rootdir);
         if (s->nroots > 0)

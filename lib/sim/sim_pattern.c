@@ -32,14 +32,43 @@ static int put_matrix(cs_di *T, const cs_di *A, int roff, int coff)
     return 1;
 }
 
+/* Retainer k with a race or a rolling state: every coupling among its contact DOFs (node x, y,
+ * race x, y, race speed) in q and v, and between them and its multipliers (lambda, eta, F_t). A
+ * superset of what a mode writes. */
+static int put_race(const td_sim *s, cs_di *T, int k)
+{
+    const td_sim_retainer *r = &s->ret[k];
+    int dofs[5], nd = 0, i, j, ok = 1;
+    dofs[nd++] = r->dx;
+    dofs[nd++] = r->dy;
+    if (r->rx >= 0) {
+        dofs[nd++] = r->rx;
+        dofs[nd++] = r->ry;
+    }
+    if (r->rs >= 0)
+        dofs[nd++] = r->rs;
+    for (i = 0; i < nd && ok; i++) {
+        int vi = s->ov + dofs[i], qi = s->oq + dofs[i];
+        ok = put(T, vi, s->ol + k) && put(T, qi, s->ou + k) && put(T, s->ol + k, qi) && put(T, s->ou + k, qi) &&
+             put(T, s->ou + k, vi);
+        for (j = 0; j < nd && ok; j++)
+            ok = put(T, vi, s->oq + dofs[j]) && put(T, vi, s->ov + dofs[j]) && put(T, qi, s->oq + dofs[j]);
+        if (ok && r->fi >= 0) { /* F_t: its column in the v rows, its row v_s over q and v */
+            int fk = s->of + r->fi;
+            ok = put(T, vi, fk) && put(T, fk, qi) && put(T, fk, vi) && put(T, fk, fk);
+        }
+    }
+    return ok;
+}
+
 static int put_all(const td_sim *s, cs_di *T)
 {
     const td_system *sys = s->sys;
     int i, k, ok = 1;
     for (i = 0; i < s->n && ok; i++)
         ok = put(T, s->oq + i, s->oq + i) && put(T, s->oq + i, s->ov + i);
-    ok = ok && put_matrix(T, sys->M, s->ov, s->ov) && put_matrix(T, sys->C, s->ov, s->ov) &&
-         put_matrix(T, sys->G, s->ov, s->ov) && put_matrix(T, sys->K, s->ov, s->oq);
+    ok = ok && put_matrix(T, s->M, s->ov, s->ov) && put_matrix(T, s->C, s->ov, s->ov) &&
+         put_matrix(T, s->G, s->ov, s->ov) && put_matrix(T, s->K, s->ov, s->oq);
     for (k = 0; k < sys->n_amb_axes && ok; k++) {
         const td_amb_axis *a = &sys->amb_axes[k];
         int act = a->actuator_dof, sen = a->sensor_dof;
@@ -56,6 +85,8 @@ static int put_all(const td_sim *s, cs_di *T)
         ok = put_block(T, vx, vy, qx, qy) && put_block(T, vx, vy, vx, vy) && put(T, vx, lk) && put(T, vy, lk) &&
              put(T, qx, uk) && put(T, qy, uk) && put(T, lk, lk) && put(T, lk, qx) && put(T, lk, qy) && put(T, uk, uk) &&
              put(T, uk, qx) && put(T, uk, qy) && put(T, uk, vx) && put(T, uk, vy);
+        if (ok && (r->rx >= 0 || r->rs >= 0 || r->fi >= 0))
+            ok = put_race(s, T, k);
     }
     return ok;
 }
@@ -116,10 +147,10 @@ td_status td_sim_pattern_build(td_sim *s, td_error *err)
     cs_di_spfree(S);
     if (!s->colptr || !s->rowind || !s->jdata)
         return td_error_set(err, TD_ERR_NOMEM, "out of memory building the Jacobian pattern");
-    s->map_M = map_matrix(s, s->sys->M, s->ov, s->ov);
-    s->map_C = map_matrix(s, s->sys->C, s->ov, s->ov);
-    s->map_G = map_matrix(s, s->sys->G, s->ov, s->ov);
-    s->map_K = map_matrix(s, s->sys->K, s->ov, s->oq);
+    s->map_M = map_matrix(s, s->M, s->ov, s->ov);
+    s->map_C = map_matrix(s, s->C, s->ov, s->ov);
+    s->map_G = map_matrix(s, s->G, s->ov, s->ov);
+    s->map_K = map_matrix(s, s->K, s->ov, s->oq);
     if (!s->map_M || !s->map_C || !s->map_G || !s->map_K)
         return td_error_set(err, TD_ERR_NOMEM, "out of memory building the Jacobian pattern");
     return TD_OK;
@@ -160,19 +191,18 @@ void td_sim_structural_speed(td_sim *s)
     if (!s->st_D)
         return;
     memset(s->st_D, 0, sizeof(double) * (size_t)(s->st_nnz > 0 ? s->st_nnz : 1));
-    st_add(s, s->sys->C, 1.0, s->st_D);
+    st_add(s, s->C, 1.0, s->st_D);
     if (s->omega != 0.0)
-        st_add(s, s->sys->G, s->omega, s->st_D);
+        st_add(s, s->G, s->omega, s->st_D);
 }
 
 td_status td_sim_structural_build(td_sim *s, td_error *err)
 {
-    const td_system *sys = s->sys;
     cs_di *T = cs_di_spalloc(s->n, s->n, 1, 1, 1), *C = NULL, *R = NULL;
     int ok = T != NULL, i;
     /* the union pattern, transposed: the CSC of U^T is the CSR of U, with sorted columns */
-    ok = ok && put_matrix(T, sys->M, 0, 0) && put_matrix(T, sys->K, 0, 0) && put_matrix(T, sys->C, 0, 0) &&
-         put_matrix(T, sys->G, 0, 0);
+    ok = ok && put_matrix(T, s->M, 0, 0) && put_matrix(T, s->K, 0, 0) && put_matrix(T, s->C, 0, 0) &&
+         put_matrix(T, s->G, 0, 0);
     for (i = 0; i < s->n && ok; i++) /* every row present, even an empty one */
         ok = put(T, i, i);
     ok = ok && (C = cs_di_compress(T)) != NULL && cs_di_dupl(C) && (R = cs_di_transpose(C, 0)) != NULL;
@@ -198,8 +228,8 @@ td_status td_sim_structural_build(td_sim *s, td_error *err)
     cs_di_spfree(R);
     if (!s->st_rowptr || !s->st_col || !s->st_M || !s->st_K || !s->st_D)
         return td_error_set(err, TD_ERR_NOMEM, "out of memory building the structural operator");
-    st_add(s, sys->M, 1.0, s->st_M);
-    st_add(s, sys->K, 1.0, s->st_K);
+    st_add(s, s->M, 1.0, s->st_M);
+    st_add(s, s->K, 1.0, s->st_K);
     td_sim_structural_speed(s);
     return TD_OK;
 }

@@ -59,15 +59,41 @@ static void structural(const td_sim *s, const double *q, const double *v, const 
     }
 }
 
-/* f += sign * the applied forces: gravity, unbalance, AMBs and penalty contacts (everything of
- * f but the structural -(C + Omega G) v - K q). */
-static void applied_forces(const td_sim *s, double t, const double *y, double sign, double *f)
+/* f += sign * the force of retainer k's penalty contact: -F_n (n + s mu t) on the rotor (eqs. 4,
+ * 17), F_n > 0 only when penetrating; the opposite on a mounted race, and the friction torque
+ * R_b s mu F_n on a race that spins. */
+static void penalty_forces(const td_sim *s, int k, const double *y, double sign, double *f)
+{
+    const td_sim_retainer *r = &s->ret[k];
+    double x, yy, vx, vy, rad, fn, sm, fx, fy;
+    fn = sign * td_sim_penalty_force(s, k, y, NULL, NULL);
+    if (fn == 0.0)
+        return;
+    td_sim_node_state(s, k, y, &x, &yy, &vx, &vy);
+    rad = hypot(x, yy);
+    sm = td_sim_slip_factor(s, k, y, NULL) * r->r.friction;
+    fx = fn * (x - sm * yy) / rad;
+    fy = fn * (yy + sm * x) / rad;
+    f[r->dx] -= fx;
+    f[r->dy] -= fy;
+    if (r->rx >= 0) {
+        f[r->rx] += fx;
+        f[r->ry] += fy;
+    }
+    if (r->rs >= 0)
+        f[r->rs] += r->r.bore_radius * sm * fn;
+}
+
+/* f += sign * the applied forces: gravity, unbalance, AMBs, penalty contacts and the races'
+ * constant drag (everything of f but the structural -(C + Omega G) v - K q). */
+void td_sim_external_forces(const td_sim *s, double t, const double *y, double sign, double *f)
 {
     const td_system *sys = s->sys;
     double w2 = s->omega * s->omega, phi = td_sim_spin_angle(s, t);
     int i, k;
-    for (i = 0; i < s->n; i++)
+    for (i = 0; i < sys->ndof; i++)
         f[i] += sign * sys->gravity_load[i];
+    td_sim_races_gravity(s, f, sign);
     /* unbalance: U Omega^2 (cos, sin)(phi + phase) at its node (touchdown/model.h) */
     for (i = 0; i < s->nu; i++) {
         const td_unbalance *u = &s->unb[i];
@@ -77,18 +103,17 @@ static void applied_forces(const td_sim *s, double t, const double *y, double si
     }
     for (k = 0; k < sys->n_amb_axes; k++)
         f[sys->amb_axes[k].actuator_dof] += sign * td_sim_amb_axis_force(s, k, y);
-    /* penalty contacts: force -F_n (n + s mu t) on the rotor (eqs. 4, 17), F_n > 0 only when penetrating */
-    for (k = 0; k < s->nr && td_sim_penalty_model(s); k++) {
-        const td_sim_retainer *r = &s->ret[k];
-        double x, yy, vx, vy, rad, fn, sm;
-        fn = sign * td_sim_penalty_force(s, k, y, NULL, NULL);
-        if (fn == 0.0)
-            continue;
-        td_sim_node_state(s, k, y, &x, &yy, &vx, &vy);
-        rad = hypot(x, yy);
-        sm = td_sim_slip_factor(s, k, y, NULL) * r->r.friction;
-        f[r->dx] -= fn * (x - sm * yy) / rad;
-        f[r->dy] -= fn * (yy + sm * x) / rad;
+}
+
+static void applied_forces(const td_sim *s, double t, const double *y, double sign, double *f)
+{
+    int k;
+    td_sim_external_forces(s, t, y, sign, f);
+    for (k = 0; k < s->nr; k++) {
+        if (td_sim_penalty_model(s, k))
+            penalty_forces(s, k, y, sign, f);
+        if (s->ret[k].rs >= 0)
+            f[s->ret[k].rs] -= sign * td_sim_race_drag(s, k, y, NULL);
     }
 }
 
@@ -99,6 +124,58 @@ void td_sim_forces(const td_sim *s, double t, const double *y, double *f)
     for (i = 0; i < s->n; i++)
         f[i] = -f[i];
     applied_forces(s, t, y, 1.0, f);
+}
+
+/* Rows of retainer k in constrained contact: + B_k lambda in the v rows (eq. 6 with the friction
+ * of eq. 17, N = lambda; the race's opposite share and torque), - J^T eta in the q rows (GGL), and
+ * the constraint and its rate (eqs. 5 and 13a, divided by -2c) in its multiplier rows. */
+static void constraint_rows(const td_sim *s, int k, const double *y, double *rq, double *rv, double *res)
+{
+    const td_sim_retainer *r = &s->ret[k];
+    double lam = y[s->ol + k], eta = y[s->ou + k];
+    double x, yy, vx, vy, c = r->r.clearance, rad, sm = td_sim_slip_factor(s, k, y, NULL) * r->r.friction, bx, by;
+    td_sim_node_state(s, k, y, &x, &yy, &vx, &vy);
+    rad = hypot(x, yy);
+    bx = lam * (x / c - sm * yy / rad);
+    by = lam * (yy / c + sm * x / rad);
+    rv[r->dx] += bx;
+    rv[r->dy] += by;
+    rq[r->dx] += eta * x / c;
+    rq[r->dy] += eta * yy / c;
+    if (r->rx >= 0) {
+        rv[r->rx] -= bx;
+        rv[r->ry] -= by;
+        rq[r->rx] -= eta * x / c;
+        rq[r->ry] -= eta * yy / c;
+    }
+    if (r->rs >= 0)
+        rv[r->rs] -= r->r.bore_radius * sm * lam;
+    res[s->ol + k] = td_contact_constraint(x, yy, c); /* eq. (5) / (-2c) */
+    res[s->ou + k] = (x * vx + yy * vy) / c;          /* eq. (13a) / (-2c) */
+}
+
+/* Rows of stick retainer k: rolling, the friction force F_t on the race along t (the rotor node
+ * feels -F_t t, the race's centre +F_t t and its speed the torque R_b F_t) and the rolling
+ * constraint v_s = 0 (eq. 16) in F_t's row; otherwise F_t = 0. */
+static void roll_rows(const td_sim *s, int k, const double *y, double *rv, double *res)
+{
+    const td_sim_retainer *r = &s->ret[k];
+    double ft = y[s->of + r->fi], x, yy, vx, vy, n[2], t[2];
+    if (!r->rolling) {
+        res[s->of + r->fi] = ft;
+        return;
+    }
+    td_sim_node_state(s, k, y, &x, &yy, &vx, &vy);
+    td_contact_frame(x, yy, n, t);
+    rv[r->dx] += ft * t[0];
+    rv[r->dy] += ft * t[1];
+    if (r->rx >= 0) {
+        rv[r->rx] -= ft * t[0];
+        rv[r->ry] -= ft * t[1];
+    }
+    if (r->rs >= 0)
+        rv[r->rs] -= r->r.bore_radius * ft;
+    res[s->of + r->fi] = td_sim_sliding_velocity(s, k, y);
 }
 
 void td_sim_residual(const td_sim *s, double t, const double *y, const double *yp, double *res)
@@ -125,24 +202,14 @@ void td_sim_residual(const td_sim *s, double t, const double *y, const double *y
     }
     /* retainer rows */
     for (k = 0; k < s->nr; k++) {
-        const td_sim_retainer *r = &s->ret[k];
-        double lam = y[s->ol + k], eta = y[s->ou + k];
-        if (r->mode == TD_RMODE_CONTACT) {
-            double x, yy, vx, vy, c = r->r.clearance, rad, sm = td_sim_slip_factor(s, k, y, NULL) * r->r.friction;
-            td_sim_node_state(s, k, y, &x, &yy, &vx, &vy);
-            rad = hypot(x, yy);
-            /* eq. (6): + J^T lambda, and the friction of eq. (17) with N = lambda */
-            rv[r->dx] += lam * (x / c - sm * yy / rad);
-            rv[r->dy] += lam * (yy / c + sm * x / rad);
-            /* GGL: q' = v - J^T eta */
-            rq[r->dx] += eta * x / c;
-            rq[r->dy] += eta * yy / c;
-            res[s->ol + k] = td_contact_constraint(x, yy, c); /* eq. (5) / (-2c) */
-            res[s->ou + k] = (x * vx + yy * vy) / c;          /* eq. (13a) / (-2c) */
+        if (s->ret[k].mode == TD_RMODE_CONTACT) {
+            constraint_rows(s, k, y, rq, rv, res);
         } else {
-            res[s->ol + k] = lam;
-            res[s->ou + k] = eta;
+            res[s->ol + k] = y[s->ol + k];
+            res[s->ou + k] = y[s->ou + k];
         }
+        if (s->ret[k].fi >= 0)
+            roll_rows(s, k, y, rv, res);
     }
 }
 
@@ -194,55 +261,111 @@ static void jacobian_amb(td_sim *s, const double *y)
     }
 }
 
+/*
+ * The contact's entries come in pairs: a term of the node's row a (0: x, 1: y) that depends on the
+ * relative coordinate b (node minus race centre) at level lvl (s->oq or s->ov) also enters, with
+ * the opposite sign, through the race centre's column b, and the race's row carries the opposite of
+ * the node's term (the race feels the opposite force, the GGL correction the opposite share).
+ * Without a mount these are the node's entries alone.
+ */
+static void jadd_rel(td_sim *s, const td_sim_retainer *r, int rlvl, int a, int lvl, int b, double value)
+{
+    int nrow = rlvl + (a ? r->dy : r->dx), ncol = lvl + (b ? r->dy : r->dx);
+    jadd(s, nrow, ncol, value);
+    if (r->rx >= 0) {
+        int rrow = rlvl + (a ? r->ry : r->rx), rcol = lvl + (b ? r->ry : r->rx);
+        jadd(s, nrow, rcol, -value);
+        jadd(s, rrow, ncol, -value);
+        jadd(s, rrow, rcol, value);
+    }
+}
+
+/* A term of the node's row a that depends on an absolute column (a multiplier, the race speed). */
+static void jadd_node(td_sim *s, const td_sim_retainer *r, int rlvl, int a, int col, double value)
+{
+    jadd(s, rlvl + (a ? r->dy : r->dx), col, value);
+    if (r->rx >= 0)
+        jadd(s, rlvl + (a ? r->ry : r->rx), col, -value);
+}
+
+/* A term of row `row` (a multiplier's or the race speed's) that depends on relative coordinate b. */
+static void jadd_row_rel(td_sim *s, const td_sim_retainer *r, int row, int lvl, int b, double value)
+{
+    jadd(s, row, lvl + (b ? r->dy : r->dx), value);
+    if (r->rx >= 0)
+        jadd(s, row, lvl + (b ? r->ry : r->rx), -value);
+}
+
+/* Inside the slip band the friction of a contact with normal force fn depends on v_s, i.e. on the
+ * relative coordinates (gradient gv) and on the race speed (d v_s / d Omega_b = -R_b): the terms
+ * -phi mu fn (y, -x)/r of the node's rows and -R_b phi mu fn of the race speed's row. */
+static void jacobian_slip_band(td_sim *s, int k, const double *y, double fn, double dphi)
+{
+    const td_sim_retainer *r = &s->ret[k];
+    double x, yy, vx, vy, rad, gv[4], a = fn * r->r.friction * dphi, Rb = r->r.bore_radius;
+    int i;
+    td_sim_node_state(s, k, y, &x, &yy, &vx, &vy);
+    rad = hypot(x, yy);
+    td_sim_sliding_gradient(s, k, y, gv);
+    for (i = 0; i < 4; i++) {
+        int lvl = i < 2 ? s->oq : s->ov, b = i % 2;
+        jadd_rel(s, r, s->ov, 0, lvl, b, -a * gv[i] * yy / rad);
+        jadd_rel(s, r, s->ov, 1, lvl, b, a * gv[i] * x / rad);
+        if (r->rs >= 0)
+            jadd_row_rel(s, r, s->ov + r->rs, lvl, b, -Rb * a * gv[i]);
+    }
+    if (r->rs >= 0) {
+        int ws = s->ov + r->rs;
+        jadd_node(s, r, s->ov, 0, ws, -a * (-Rb) * yy / rad);
+        jadd_node(s, r, s->ov, 1, ws, a * (-Rb) * x / rad);
+        jadd(s, ws, ws, -Rb * a * (-Rb));
+    }
+}
+
 /* Constrained contact k: d/dq of lambda (J^T + s mu t) and the GGL and constraint rows. */
 static void jacobian_contact(td_sim *s, int k, const double *y)
 {
     const td_sim_retainer *r = &s->ret[k];
-    double x, yy, vx, vy, c = r->r.clearance, rad, r3, dphi, sm, gv[4];
+    double x, yy, vx, vy, c = r->r.clearance, rad, r3, dphi, sm;
     double lam = y[s->ol + k], eta = y[s->ou + k];
-    int qx = s->oq + r->dx, qy = s->oq + r->dy, vxr = s->ov + r->dx, vyr = s->ov + r->dy;
-    int lk = s->ol + k, uk = s->ou + k;
+    int lk = s->ol + k, uk = s->ou + k, oq = s->oq, ov = s->ov;
     td_sim_node_state(s, k, y, &x, &yy, &vx, &vy);
     rad = hypot(x, yy);
     r3 = rad * rad * rad;
     sm = td_sim_slip_factor(s, k, y, &dphi) * r->r.friction;
     /* lambda (x/c - sm y/r, y/c + sm x/r) */
-    jadd(s, vxr, qx, lam * (1.0 / c + sm * x * yy / r3));
-    jadd(s, vxr, qy, lam * (-sm * x * x / r3));
-    jadd(s, vyr, qx, lam * (sm * yy * yy / r3));
-    jadd(s, vyr, qy, lam * (1.0 / c - sm * x * yy / r3));
-    jadd(s, vxr, lk, x / c - sm * yy / rad);
-    jadd(s, vyr, lk, yy / c + sm * x / rad);
-    if (dphi != 0.0) { /* inside the slip band: sm = mu v_s / v_reg depends on q and v */
-        int cols[4] = {qx, qy, vxr, vyr}, i;
-        double a = lam * r->r.friction * dphi;
-        td_sim_sliding_gradient(s, k, y, gv);
-        for (i = 0; i < 4; i++) {
-            jadd(s, vxr, cols[i], -a * gv[i] * yy / rad);
-            jadd(s, vyr, cols[i], a * gv[i] * x / rad);
-        }
-    }
+    jadd_rel(s, r, ov, 0, oq, 0, lam * (1.0 / c + sm * x * yy / r3));
+    jadd_rel(s, r, ov, 0, oq, 1, lam * (-sm * x * x / r3));
+    jadd_rel(s, r, ov, 1, oq, 0, lam * (sm * yy * yy / r3));
+    jadd_rel(s, r, ov, 1, oq, 1, lam * (1.0 / c - sm * x * yy / r3));
+    jadd_node(s, r, ov, 0, lk, x / c - sm * yy / rad);
+    jadd_node(s, r, ov, 1, lk, yy / c + sm * x / rad);
+    if (r->rs >= 0) /* the friction torque -R_b sm lambda */
+        jadd(s, ov + r->rs, lk, -r->r.bore_radius * sm);
+    if (dphi != 0.0) /* inside the slip band: sm = mu v_s / v_reg depends on q, v and Omega_b */
+        jacobian_slip_band(s, k, y, lam, dphi);
     /* q rows: eta (x, y)/c */
-    jadd(s, qx, qx, eta / c);
-    jadd(s, qy, qy, eta / c);
-    jadd(s, qx, uk, x / c);
-    jadd(s, qy, uk, yy / c);
+    jadd_rel(s, r, oq, 0, oq, 0, eta / c);
+    jadd_rel(s, r, oq, 1, oq, 1, eta / c);
+    jadd_node(s, r, oq, 0, uk, x / c);
+    jadd_node(s, r, oq, 1, uk, yy / c);
     /* g row and J v row */
-    jadd(s, lk, qx, x / c);
-    jadd(s, lk, qy, yy / c);
-    jadd(s, uk, qx, vx / c);
-    jadd(s, uk, qy, vy / c);
-    jadd(s, uk, vxr, x / c);
-    jadd(s, uk, vyr, yy / c);
+    jadd_row_rel(s, r, lk, oq, 0, x / c);
+    jadd_row_rel(s, r, lk, oq, 1, yy / c);
+    jadd_row_rel(s, r, uk, oq, 0, vx / c);
+    jadd_row_rel(s, r, uk, oq, 1, vy / c);
+    jadd_row_rel(s, r, uk, ov, 0, x / c);
+    jadd_row_rel(s, r, uk, ov, 1, yy / c);
 }
 
-/* Penalty contact k: d/dq and d/dv of F_n(delta, rate) u, u = (x - sm y, y + sm x)/r. */
+/* Penalty contact k: d/dq and d/dv of F_n(delta, rate) u, u = (x - sm y, y + sm x)/r, and of the
+ * friction torque R_b sm F_n on a race that spins. */
 static void jacobian_penalty(td_sim *s, int k, const double *y)
 {
     const td_sim_retainer *r = &s->ret[k];
-    double x, yy, vx, vy, rad, r3, sm, dphi, gv[4], fd, fr, fn, rate;
+    double x, yy, vx, vy, rad, r3, sm, dphi, fd, fr, fn, rate;
     double d_x, d_y, rt_x, rt_y, rt_vx, rt_vy, f_x, f_y, u1, u2, u1x, u1y, u2x, u2y;
-    int qx = s->oq + r->dx, qy = s->oq + r->dy, vxr = s->ov + r->dx, vyr = s->ov + r->dy;
+    int oq = s->oq, ov = s->ov;
     fn = td_sim_penalty_force(s, k, y, &fd, &fr);
     if (fn == 0.0 && fd == 0.0 && fr == 0.0)
         return; /* not penetrating */
@@ -265,28 +388,66 @@ static void jacobian_penalty(td_sim *s, int k, const double *y)
     u1y = -sm / rad - (x - sm * yy) * yy / r3;
     u2x = sm / rad - (yy + sm * x) * x / r3;
     u2y = 1.0 / rad - (yy + sm * x) * yy / r3;
-    jadd(s, vxr, qx, u1 * f_x + fn * u1x);
-    jadd(s, vxr, qy, u1 * f_y + fn * u1y);
-    jadd(s, vyr, qx, u2 * f_x + fn * u2x);
-    jadd(s, vyr, qy, u2 * f_y + fn * u2y);
-    jadd(s, vxr, vxr, u1 * fr * rt_vx);
-    jadd(s, vxr, vyr, u1 * fr * rt_vy);
-    jadd(s, vyr, vxr, u2 * fr * rt_vx);
-    jadd(s, vyr, vyr, u2 * fr * rt_vy);
-    if (dphi != 0.0) { /* inside the slip band: sm = mu v_s / v_reg depends on q and v */
-        int cols[4] = {qx, qy, vxr, vyr}, i;
-        double a = fn * r->r.friction * dphi;
-        td_sim_sliding_gradient(s, k, y, gv);
-        for (i = 0; i < 4; i++) {
-            jadd(s, vxr, cols[i], -a * gv[i] * yy / rad);
-            jadd(s, vyr, cols[i], a * gv[i] * x / rad);
-        }
+    jadd_rel(s, r, ov, 0, oq, 0, u1 * f_x + fn * u1x);
+    jadd_rel(s, r, ov, 0, oq, 1, u1 * f_y + fn * u1y);
+    jadd_rel(s, r, ov, 1, oq, 0, u2 * f_x + fn * u2x);
+    jadd_rel(s, r, ov, 1, oq, 1, u2 * f_y + fn * u2y);
+    jadd_rel(s, r, ov, 0, ov, 0, u1 * fr * rt_vx);
+    jadd_rel(s, r, ov, 0, ov, 1, u1 * fr * rt_vy);
+    jadd_rel(s, r, ov, 1, ov, 0, u2 * fr * rt_vx);
+    jadd_rel(s, r, ov, 1, ov, 1, u2 * fr * rt_vy);
+    if (r->rs >= 0) { /* the torque row -R_b sm F_n */
+        double m = -r->r.bore_radius * sm;
+        jadd_row_rel(s, r, ov + r->rs, oq, 0, m * f_x);
+        jadd_row_rel(s, r, ov + r->rs, oq, 1, m * f_y);
+        jadd_row_rel(s, r, ov + r->rs, ov, 0, m * fr * rt_vx);
+        jadd_row_rel(s, r, ov + r->rs, ov, 1, m * fr * rt_vy);
     }
+    if (dphi != 0.0) /* inside the slip band: sm = mu v_s / v_reg depends on q, v and Omega_b */
+        jacobian_slip_band(s, k, y, fn, dphi);
+}
+
+/* Stick retainer k: rolling, d/dy of the F_t terms and of the rolling row v_s; otherwise F_t's
+ * row is F_t itself. d t / d(x, y) for t = (-y, x)/r: ((x y, -x^2), (y^2, -x y)) / r^3. */
+static void jacobian_roll(td_sim *s, int k, const double *y)
+{
+    const td_sim_retainer *r = &s->ret[k];
+    double ft, x, yy, vx, vy, rad, r3, n[2], t[2], gv[4];
+    int fk = s->of + r->fi, oq = s->oq, ov = s->ov, i;
+    if (!r->rolling) {
+        jadd(s, fk, fk, 1.0);
+        return;
+    }
+    ft = y[fk];
+    td_sim_node_state(s, k, y, &x, &yy, &vx, &vy);
+    rad = td_contact_frame(x, yy, n, t);
+    r3 = rad * rad * rad;
+    jadd_rel(s, r, ov, 0, oq, 0, ft * x * yy / r3);
+    jadd_rel(s, r, ov, 0, oq, 1, -ft * x * x / r3);
+    jadd_rel(s, r, ov, 1, oq, 0, ft * yy * yy / r3);
+    jadd_rel(s, r, ov, 1, oq, 1, -ft * x * yy / r3);
+    jadd_node(s, r, ov, 0, fk, t[0]);
+    jadd_node(s, r, ov, 1, fk, t[1]);
+    if (r->rs >= 0) {
+        jadd(s, ov + r->rs, fk, -r->r.bore_radius);
+        jadd(s, fk, ov + r->rs, -r->r.bore_radius); /* eq. (16): d v_s / d Omega_b */
+    }
+    td_sim_sliding_gradient(s, k, y, gv);
+    for (i = 0; i < 4; i++)
+        jadd_row_rel(s, r, fk, i < 2 ? oq : ov, i % 2, gv[i]);
+}
+
+/* The constant drag torque of retainer k's race, regularised near standstill. */
+static void jacobian_drag(td_sim *s, int k, const double *y)
+{
+    double dT;
+    td_sim_race_drag(s, k, y, &dT);
+    if (dT != 0.0)
+        jadd(s, s->ov + s->ret[k].rs, s->ov + s->ret[k].rs, dT);
 }
 
 void td_sim_jacobian(td_sim *s, double t, double cj, const double *y)
 {
-    const td_system *sys = s->sys;
     int i, k;
     (void)t;
     memset(s->jdata, 0, sizeof(double) * (size_t)s->nnz);
@@ -296,22 +457,39 @@ void td_sim_jacobian(td_sim *s, double t, double cj, const double *y)
     }
     for (i = 0; i < s->nw; i++)
         jadd(s, s->ow + i, s->ow + i, cj);
-    jadd_matrix(s, sys->M, s->map_M, cj);
-    jadd_matrix(s, sys->C, s->map_C, 1.0);
-    jadd_matrix(s, sys->G, s->map_G, s->omega);
-    jadd_matrix(s, sys->K, s->map_K, 1.0);
+    jadd_matrix(s, s->M, s->map_M, cj);
+    jadd_matrix(s, s->C, s->map_C, 1.0);
+    jadd_matrix(s, s->G, s->map_G, s->omega);
+    jadd_matrix(s, s->K, s->map_K, 1.0);
     jacobian_amb(s, y);
     for (k = 0; k < s->nr; k++) {
+        if (s->ret[k].rs >= 0)
+            jacobian_drag(s, k, y);
+        if (s->ret[k].fi >= 0)
+            jacobian_roll(s, k, y);
         if (s->ret[k].mode == TD_RMODE_CONTACT) {
             jacobian_contact(s, k, y);
             continue;
         }
-        if (td_sim_penalty_model(s))
+        if (td_sim_penalty_model(s, k))
             jacobian_penalty(s, k, y); /* zero where the node does not penetrate */
         /* free and penalty contacts: the multiplier rows are lambda = eta = 0 */
         jadd(s, s->ol + k, s->ol + k, 1.0);
         jadd(s, s->ou + k, s->ou + k, 1.0);
     }
+}
+
+/* Slot 1 of retainer k in contact with friction (see below). */
+static double slip_root_function(const td_sim *s, int k, const double *y)
+{
+    const td_sim_retainer *r = &s->ret[k];
+    double vs, vreg = TD_CONTACT_SLIP_BAND;
+    if (r->rolling)
+        return r->r.friction * td_sim_normal_force(s, k, y) - fabs(y[s->of + r->fi]);
+    vs = td_sim_sliding_velocity(s, k, y);
+    if (r->r.stick)
+        return r->slip * vs;
+    return r->slip != 0 ? r->slip * vs - vreg : (vreg * vreg - vs * vs) / (2.0 * vreg);
 }
 
 /*
@@ -325,6 +503,8 @@ void td_sim_jacobian(td_sim *s, double t, double cj, const double *y)
  *                                              slip v_s - v_reg, decreasing         -> into the slip band
  *           ... inside the band (slip = 0):    (v_reg^2 - v_s^2)/(2 v_reg), decr.   -> out of the band
  *                                              (a friction reversal if on the other side)
+ *           stick retainers, sliding:          slip v_s, decreasing                 -> try rolling
+ *           stick retainers, rolling:          mu N - |F_t|, decreasing             -> slip
  *   slot 2  free, disarmed:                    gap - eps, increasing                -> re-arm (internal)
  * Unused slots hold the constant 1, which never has a root.
  */
@@ -335,8 +515,9 @@ void td_sim_roots(const td_sim *s, double t, const double *y, double *g)
     for (k = 0; k < s->nr; k++) {
         const td_sim_retainer *r = &s->ret[k];
         double *gk = g + TD_ROOTS_PER_RETAINER * k;
-        double x = y[s->oq + r->dx], yy = y[s->oq + r->dy];
-        double gap = -td_contact_constraint(x, yy, r->r.clearance);
+        double x, yy, vx, vy, gap;
+        td_sim_node_state(s, k, y, &x, &yy, &vx, &vy);
+        gap = -td_contact_constraint(x, yy, r->r.clearance);
         gk[TD_ROOT_CONTACT] = 1.0;
         gk[TD_ROOT_SLIP] = 1.0;
         gk[TD_ROOT_REARM] = 1.0;
@@ -352,10 +533,8 @@ void td_sim_roots(const td_sim *s, double t, const double *y, double *g)
         case TD_RMODE_CONTACT: gk[TD_ROOT_CONTACT] = y[s->ol + k]; break;
         case TD_RMODE_PENETRATING: gk[TD_ROOT_CONTACT] = gap; break;
         }
-        if (r->mode != TD_RMODE_FREE && r->r.friction > 0.0) {
-            double vs = td_sim_sliding_velocity(s, k, y), vreg = TD_CONTACT_SLIP_BAND;
-            gk[TD_ROOT_SLIP] = r->slip != 0 ? r->slip * vs - vreg : (vreg * vreg - vs * vs) / (2.0 * vreg);
-        }
+        if (r->mode != TD_RMODE_FREE && r->r.friction > 0.0)
+            gk[TD_ROOT_SLIP] = slip_root_function(s, k, y);
     }
 }
 

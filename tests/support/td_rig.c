@@ -29,7 +29,13 @@ void td_test_build_rig(td_model *m, double speed, double amb_tau, int retainers)
     }
     if (retainers == TD_RIG_WITH_RETAINERS)
         for (i = 0; i < 2; i++) {
-            td_retainer r = {retainer_nodes[i], TD_RIG_CLEARANCE, 0.025, 0.025 + TD_RIG_CLEARANCE, 0.1, 0.0, 0.0};
+            td_retainer r = {.node = retainer_nodes[i],
+                             .clearance = TD_RIG_CLEARANCE,
+                             .shaft_radius = 0.025,
+                             .bore_radius = 0.025 + TD_RIG_CLEARANCE,
+                             .friction = 0.1,
+                             .bore_speed = 0.0,
+                             .restitution = 0.0};
             if (td_model_add_retainer(m, &r, &err) != TD_OK)
                 fail_msg("rig retainer: %s", err.message);
         }

@@ -1,0 +1,125 @@
+/*
+ * The machine's energy account (touchdown/records.h td_energy), kept at the same points as the
+ * retainers' totals (totals.c): what the rotor and the races hold, and the powers that fill and
+ * drain them, integrated by the trapezoid rule over the integrator's steps.
+ *
+ *     d/dt (1/2 v^T M v + 1/2 q^T K q + E_c) = P_ext + P_drive - v^T C v - P_contact - P_drag
+ *
+ * The gyroscopic forces do no work (v^T G v = 0). E_c is the contact springs' energy
+ * Kc delta^(p+1)/(p+1). The friction force F_t on the race along t has the rotor's surface, moving
+ * at R_s Omega with the spin the model holds fixed, push against it: the drive that holds the
+ * speed does the work F_t R_s Omega, and the contact dissipates what its damper and the sliding
+ * take, P_contact = (N - N_el) ddelta/dt + F_t (R_s Omega + r dtheta/dt - R_b Omega_b), the second
+ * term the friction heat F_t v_s of eq. (16). An impact takes the kinetic energy the impact map
+ * removes.
+ */
+#include "sim/sim_internal.h"
+
+#include <math.h>
+#include <string.h>
+
+/* x^T A y over the structural operator's row-compressed values `vals` (s->st_*). */
+static double quadratic(const td_sim *s, const double *vals, const double *x, const double *y)
+{
+    double sum = 0.0;
+    int i, p;
+    for (i = 0; i < s->n; i++) {
+        double row = 0.0;
+        for (p = s->st_rowptr[i]; p < s->st_rowptr[i + 1]; p++)
+            row += vals[p] * y[s->st_col[p]];
+        sum += x[i] * row;
+    }
+    return sum;
+}
+
+double td_sim_kinetic_energy(const td_sim *s, const double *y)
+{
+    return 0.5 * quadratic(s, s->st_M, y + s->ov, y + s->ov);
+}
+
+/* Elastic energy of retainer k's contact spring and the power its contact dissipates, at y. */
+static double contact_spring(const td_sim *s, int k, const double *y, double *loss)
+{
+    const td_sim_retainer *r = &s->ret[k];
+    double x, yy, vx, vy, rad, delta, rate, n, n_el = 0.0, e = 0.0, ft, vt;
+    *loss = 0.0;
+    if (r->mode == TD_RMODE_FREE && !r->compliant)
+        return 0.0;
+    td_sim_node_state(s, k, y, &x, &yy, &vx, &vy);
+    rad = hypot(x, yy);
+    delta = rad - r->r.clearance;
+    rate = td_contact_radial_velocity(x, yy, vx, vy);
+    n = td_sim_normal_force(s, k, y);
+    if (r->compliant && delta > 0.0) {
+        double p = r->law.exponent;
+        n_el = r->law.stiffness * pow(delta, p);
+        e = n_el * delta / (p + 1.0);
+    }
+    if (r->mode == TD_RMODE_FREE)
+        return e; /* a spring that holds energy only while the node is inside: no force yet */
+    ft = td_sim_friction_force(s, k, y);
+    vt = td_contact_tangential_velocity(x, yy, vx, vy);
+    *loss =
+        (n - n_el) * rate + ft * (r->r.shaft_radius * s->omega + vt - r->r.bore_radius * td_sim_race_speed(s, k, y));
+    return e;
+}
+
+/* The powers at y (external, drive, damping, contact, drag) into pw; returns the energy held. */
+static double powers(td_sim *s, double t, const double *y, double pw[5])
+{
+    const double *q = y + s->oq, *v = y + s->ov;
+    double held = td_sim_kinetic_energy(s, y) + 0.5 * quadratic(s, s->st_K, q, q);
+    int i, k;
+    memset(s->energy_f, 0, sizeof(double) * (size_t)s->n);
+    td_sim_external_forces(s, t, y, 1.0, s->energy_f);
+    memset(pw, 0, 5 * sizeof *pw);
+    for (i = 0; i < s->n; i++)
+        pw[0] += s->energy_f[i] * v[i];
+    pw[2] = quadratic(s, s->st_D, v, v);
+    for (k = 0; k < s->nr; k++) {
+        double loss;
+        held += contact_spring(s, k, y, &loss);
+        pw[3] += loss;
+        if (s->ret[k].mode != TD_RMODE_FREE)
+            pw[1] += td_sim_friction_force(s, k, y) * s->ret[k].r.shaft_radius * s->omega;
+        if (s->ret[k].rs >= 0)
+            pw[4] += td_sim_race_drag(s, k, y, NULL) * v[s->ret[k].rs];
+    }
+    return held;
+}
+
+void td_sim_energy_point(td_sim *s, double t, int restart, double dt)
+{
+    const double *y = N_VGetArrayPointer(s->y);
+    double pw[5], held = powers(s, t, y, pw), *prev = s->energy_prev;
+    td_energy *e = &s->energy;
+    if (dt > 0.0) {
+        e->external_work += 0.5 * dt * (prev[0] + pw[0]);
+        e->drive_work += 0.5 * dt * (prev[1] + pw[1]);
+        e->damping_loss += 0.5 * dt * (prev[2] + pw[2]);
+        e->contact_loss += 0.5 * dt * (prev[3] + pw[3]);
+        e->drag_loss += 0.5 * dt * (prev[4] + pw[4]);
+    }
+    if (restart && !s->energy_started) {
+        e->initial = held;
+        s->energy_started = 1;
+    }
+    memcpy(prev, pw, sizeof pw);
+    e->kinetic = td_sim_kinetic_energy(s, y);
+    e->elastic = held - e->kinetic;
+}
+
+void td_sim_energy_impact(td_sim *s, double before, double after)
+{
+    s->energy.impact_loss += before - after;
+}
+
+td_status td_sim_energy(const td_sim *sim, td_energy *out)
+{
+    if (!sim || !out || !sim->opt.energy)
+        return TD_ERR_INVALID;
+    *out = sim->energy;
+    out->residual = out->kinetic + out->elastic - out->initial - out->external_work - out->drive_work +
+                    out->damping_loss + out->contact_loss + out->drag_loss + out->impact_loss;
+    return TD_OK;
+}

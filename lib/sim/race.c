@@ -1,0 +1,172 @@
+/*
+ * The retainers' races as bodies (model.h td_race): their DOFs, appended after the rotor's, and
+ * their share of the structural matrices, gravity and start state.
+ *
+ * A race on a mount has two DOFs, the x and y of its centre, with its mass, the mount's stiffness
+ * and damping to the housing; a race with inertia has one more, its angle (q) and speed Omega_b
+ * (v), with the polar inertia J and the viscous drag as a damper. None of them couples to the rotor
+ * except through the contact forces (sim_residual.c), so they are blocks on the diagonal:
+ *
+ *     M = diag(M_rotor, m_r, m_r, J, ...),  K = diag(K_rotor, k_m, k_m, 0, ...),
+ *     C = diag(C_rotor, c_m, c_m, c_drag, ...),  G = diag(G_rotor, 0, ...).
+ *
+ * Without races the rotor's matrices are used as they are (the paper's cases).
+ */
+#include "sim/sim_internal.h"
+#include "util/error_internal.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+void td_sim_races_layout(td_sim *s)
+{
+    int k, n = s->sys->ndof;
+    for (k = 0; k < s->nr; k++) {
+        td_sim_retainer *r = &s->ret[k];
+        if (r->r.race.mount_stiffness > 0.0) {
+            r->rx = n++;
+            r->ry = n++;
+        }
+        if (r->r.race.inertia > 0.0)
+            r->rs = n++;
+    }
+    s->n = n;
+}
+
+/* Diagonal values of the race DOFs for matrix `which` (M, K, C): 0 where none. */
+static void race_diagonal(const td_sim *s, char which, double *d)
+{
+    int k;
+    for (k = 0; k < s->nr; k++) {
+        const td_sim_retainer *r = &s->ret[k];
+        const td_race *b = &r->r.race;
+        if (r->rx >= 0) {
+            double v = which == 'M'   ? b->mass
+                       : which == 'K' ? b->mount_stiffness
+                       : which == 'C' ? b->mount_damping
+                                      : 0.0;
+            d[r->rx] = d[r->ry] = v;
+        }
+        if (r->rs >= 0)
+            d[r->rs] = which == 'M' ? b->inertia : which == 'C' ? b->drag_viscous : 0.0;
+    }
+}
+
+/* A, n_rotor x n_rotor, extended to s->n x s->n with the race diagonal of `which`. NULL: no memory. */
+static cs_di *extend(const td_sim *s, const cs_di *A, char which, double *diag)
+{
+    int n0 = A->n, nz0 = A->p[n0], j, nz;
+    cs_di *E;
+    memset(diag, 0, sizeof(double) * (size_t)s->n);
+    race_diagonal(s, which, diag);
+    E = cs_di_spalloc(s->n, s->n, nz0 + (s->n - n0), 1, 0);
+    if (!E)
+        return NULL;
+    memcpy(E->p, A->p, sizeof(int) * (size_t)(n0 + 1));
+    memcpy(E->i, A->i, sizeof(int) * (size_t)nz0);
+    memcpy(E->x, A->x, sizeof(double) * (size_t)nz0);
+    nz = nz0;
+    for (j = n0; j < s->n; j++) {
+        if (diag[j] != 0.0) {
+            E->i[nz] = j;
+            E->x[nz++] = diag[j];
+        }
+        E->p[j + 1] = nz;
+    }
+    return E;
+}
+
+td_status td_sim_races_matrices(td_sim *s, td_error *err)
+{
+    const td_system *sys = s->sys;
+    double *diag;
+    if (s->n == sys->ndof) { /* no races: the rotor's own matrices */
+        s->M = sys->M, s->K = sys->K, s->C = sys->C, s->G = sys->G;
+        return TD_OK;
+    }
+    diag = malloc(sizeof(double) * (size_t)s->n);
+    s->own_matrices = 1;
+    if (diag) {
+        s->M = extend(s, sys->M, 'M', diag);
+        s->K = extend(s, sys->K, 'K', diag);
+        s->C = extend(s, sys->C, 'C', diag);
+        s->G = extend(s, sys->G, 'G', diag);
+    }
+    free(diag);
+    if (!s->M || !s->K || !s->C || !s->G)
+        return td_error_set(err, TD_ERR_NOMEM, "out of memory assembling the retainer races");
+    return TD_OK;
+}
+
+void td_sim_races_free(td_sim *s)
+{
+    if (s->own_matrices) {
+        cs_di_spfree(s->M);
+        cs_di_spfree(s->K);
+        cs_di_spfree(s->C);
+        cs_di_spfree(s->G);
+    }
+    s->M = s->K = s->C = s->G = NULL;
+    s->own_matrices = 0;
+}
+
+void td_sim_races_gravity(const td_sim *s, double *f, double sign)
+{
+    double gx, gy;
+    int k;
+    td_model_gravity(s->model, &gx, &gy);
+    for (k = 0; k < s->nr; k++) {
+        const td_sim_retainer *r = &s->ret[k];
+        if (r->rx < 0)
+            continue;
+        f[r->rx] += sign * r->r.race.mass * gx;
+        f[r->ry] += sign * r->r.race.mass * gy;
+    }
+}
+
+/*
+ * The race speed's absolute tolerance, rad/s. In contact the race is coupled to the node: v_s ties
+ * its surface speed R_b Omega_b to the node's tangential velocity, which is controlled to
+ * atol freq_max, so the race speed gets that, divided by R_b (a tighter one made the error test fail
+ * on the node's noise carried into it). Free, the race has no fast modes and nothing else: the slow
+ * scale atol freq_scale / R_b resolves its coast-down to rest under the drag (at freq_max it
+ * wandered by 0.05 rad/s about rest).
+ */
+double td_sim_race_speed_atol(const td_sim *s, int k)
+{
+    const td_sim_retainer *r = &s->ret[k];
+    return s->opt.solver.atol * (r->mode != TD_RMODE_FREE ? s->freq_max : s->freq_scale) / r->r.bore_radius;
+}
+
+int td_sim_races_retolerance(td_sim *s)
+{
+    double *at = N_VGetArrayPointer(s->atol);
+    int k, changed = 0;
+    for (k = 0; k < s->nr; k++) {
+        int i = s->ov + s->ret[k].rs;
+        double want;
+        if (s->ret[k].rs < 0)
+            continue;
+        want = td_sim_race_speed_atol(s, k);
+        changed = changed || at[i] != want;
+        at[i] = want;
+    }
+    return changed;
+}
+
+void td_sim_races_start(const td_sim *s, double *y)
+{
+    double gx, gy;
+    int k;
+    td_model_gravity(s->model, &gx, &gy);
+    for (k = 0; k < s->nr; k++) {
+        const td_sim_retainer *r = &s->ret[k];
+        const td_race *b = &r->r.race;
+        if (r->rx >= 0) { /* resting on its mount under its weight */
+            y[s->oq + r->rx] = b->mass * gx / b->mount_stiffness;
+            y[s->oq + r->ry] = b->mass * gy / b->mount_stiffness;
+        }
+        if (r->rs >= 0)
+            y[s->ov + r->rs] = r->r.bore_speed;
+    }
+}

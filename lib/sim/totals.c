@@ -1,0 +1,166 @@
+/*
+ * The retainers' running totals (touchdown/records.h td_retainer_totals): time integrals over the
+ * integrator's steps, peaks, and the contact intervals told apart from touch-and-go impacts.
+ *
+ * Points come in order: every accepted step and every stop (a root, a schedule time) closes a
+ * segment with the trapezoid rule from the previous point; the state right after a restart opens
+ * the next one without advancing time (a mode switch, an impact or a change jumps lambda, F_t or
+ * the velocities there). Between two points the modes are fixed (they change at restarts only),
+ * so time in contact and rolling is the segment's length in the mode at its end.
+ */
+#include "sim/sim_internal.h"
+
+#include <math.h>
+#include <string.h>
+
+/* The integrands of retainer k at y. */
+typedef struct integrands {
+    double n, n2, power, whirl_rate;
+} integrands;
+
+static integrands integrands_at(const td_sim *s, int k, const double *y)
+{
+    integrands v = {0.0, 0.0, 0.0, 0.0};
+    double x, yy, vx, vy, r2;
+    if (s->ret[k].mode == TD_RMODE_FREE)
+        return v;
+    v.n = td_sim_normal_force(s, k, y);
+    v.n2 = v.n * v.n;
+    v.power = td_sim_friction_force(s, k, y) * td_sim_sliding_velocity(s, k, y);
+    td_sim_node_state(s, k, y, &x, &yy, &vx, &vy);
+    r2 = x * x + yy * yy;
+    v.whirl_rate = r2 > 0.0 ? (x * vy - yy * vx) / r2 : 0.0;
+    return v;
+}
+
+/* Force retainer k passes to the housing at y: the mount's spring and damper on a mount, else the
+ * contact force itself, normal and friction. */
+static double housing_force(const td_sim *s, int k, const double *y)
+{
+    const td_sim_retainer *r = &s->ret[k];
+    double n, f;
+    if (r->rx >= 0) {
+        double fx = r->r.race.mount_stiffness * y[s->oq + r->rx] + r->r.race.mount_damping * y[s->ov + r->rx];
+        double fy = r->r.race.mount_stiffness * y[s->oq + r->ry] + r->r.race.mount_damping * y[s->ov + r->ry];
+        return hypot(fx, fy);
+    }
+    if (r->mode == TD_RMODE_FREE && !(r->compliant && td_sim_penalty_force(s, k, y, NULL, NULL) > 0.0))
+        return 0.0;
+    n = td_sim_normal_force(s, k, y);
+    f = td_sim_friction_force(s, k, y);
+    return hypot(n, f);
+}
+
+/* Retainer k's contact interval ends: a contact if it swept TD_TOUCH_AND_GO_ANGLE, else an impact. */
+static void interval_ends(td_sim *s, int k)
+{
+    td_sim_totals *tk = &s->totals[k];
+    if (fabs(tk->t.whirl_angle - tk->whirl_at_onset) >= TD_TOUCH_AND_GO_ANGLE)
+        tk->t.contacts++;
+    else
+        tk->t.touch_and_go++;
+}
+
+/* Open and close contact intervals as retainer k's mode says at this point. */
+static void track_interval(td_sim *s, int k)
+{
+    td_sim_totals *tk = &s->totals[k];
+    int in = s->ret[k].mode != TD_RMODE_FREE;
+    if (in && !tk->in_contact)
+        tk->whirl_at_onset = tk->t.whirl_angle;
+    else if (!in && tk->in_contact)
+        interval_ends(s, k);
+    tk->in_contact = in;
+}
+
+void td_sim_totals_point(td_sim *s, double t, int restart)
+{
+    const double *y = N_VGetArrayPointer(s->y);
+    double dt = restart ? 0.0 : t - s->totals_t;
+    int k;
+    for (k = 0; k < s->nr; k++) {
+        td_sim_totals *tk = &s->totals[k];
+        integrands now = integrands_at(s, k, y);
+        double hf = housing_force(s, k, y);
+        if (dt > 0.0) {
+            tk->t.impulse += 0.5 * dt * (tk->prev.n + now.n);
+            tk->t.normal_force_sq += 0.5 * dt * (tk->prev.n2 + now.n2);
+            tk->t.friction_work += 0.5 * dt * (tk->prev.power + now.power);
+            tk->t.whirl_angle += 0.5 * dt * (tk->prev.whirl_rate + now.whirl_rate);
+            if (s->ret[k].mode != TD_RMODE_FREE)
+                tk->t.contact_time += dt;
+            if (s->ret[k].rolling)
+                tk->t.rolling_time += dt;
+        }
+        tk->t.peak_housing_force = fmax(tk->t.peak_housing_force, hf);
+        tk->t.peak_normal_force = fmax(tk->t.peak_normal_force, now.n);
+        tk->prev.n = now.n;
+        tk->prev.n2 = now.n2;
+        tk->prev.power = now.power;
+        tk->prev.whirl_rate = now.whirl_rate;
+        if (restart || dt > 0.0)
+            track_interval(s, k);
+    }
+    if (s->opt.energy)
+        td_sim_energy_point(s, t, restart, dt);
+    if (t > s->totals_t || restart)
+        s->totals_t = t;
+}
+
+void td_sim_totals_impact(td_sim *s, int k, double impulse, int bounced)
+{
+    s->totals[k].t.impulse += impulse;
+    s->totals[k].t.impact_impulse += impulse;
+    if (bounced) /* a rebound: in and out at one instant */
+        s->totals[k].t.touch_and_go++;
+}
+
+/* The totals of retainer k at s->t when the last point lies beyond it (an output inside the
+ * integrator's last step): the trapezoid from s->t to that point taken back. */
+static void back_to_now(const td_sim *s, int k, td_retainer_totals *t)
+{
+    const td_sim_totals *tk = &s->totals[k];
+    double dt = s->totals_t - s->t;
+    integrands now;
+    if (!(dt > 0.0))
+        return;
+    now = integrands_at(s, k, N_VGetArrayPointer(s->y));
+    t->impulse -= 0.5 * dt * (tk->prev.n + now.n);
+    t->normal_force_sq -= 0.5 * dt * (tk->prev.n2 + now.n2);
+    t->friction_work -= 0.5 * dt * (tk->prev.power + now.power);
+    t->whirl_angle -= 0.5 * dt * (tk->prev.whirl_rate + now.whirl_rate);
+    if (s->ret[k].mode != TD_RMODE_FREE)
+        t->contact_time -= dt;
+    if (s->ret[k].rolling)
+        t->rolling_time -= dt;
+}
+
+void td_sim_totals_rewind(td_sim *s)
+{
+    int k;
+    if (!(s->totals_t > s->t))
+        return;
+    for (k = 0; k < s->nr; k++) {
+        td_sim_totals *tk = &s->totals[k];
+        integrands now = integrands_at(s, k, N_VGetArrayPointer(s->y));
+        back_to_now(s, k, &tk->t);
+        tk->prev.n = now.n;
+        tk->prev.n2 = now.n2;
+        tk->prev.power = now.power;
+        tk->prev.whirl_rate = now.whirl_rate;
+    }
+    s->totals_t = s->t;
+}
+
+td_status td_sim_retainer_totals(const td_sim *sim, int retainer, td_retainer_totals *out)
+{
+    const td_sim_totals *tk;
+    if (!sim || !out || retainer < 0 || retainer >= sim->nr)
+        return TD_ERR_INVALID;
+    tk = &sim->totals[retainer];
+    *out = tk->t;
+    back_to_now(sim, retainer, out);
+    if (tk->in_contact) /* the interval still open counts as a contact */
+        out->contacts++;
+    return TD_OK;
+}
