@@ -65,19 +65,6 @@ static double pd_control(pd_axis *s, double x, double dt)
     return -ki * (kp * x + kd * rate);
 }
 
-static const char *kind_name(td_event_kind k)
-{
-    switch (k) {
-    case TD_EVENT_CONTACT_ONSET: return "contact onset";
-    case TD_EVENT_RELEASE: return "release";
-    case TD_EVENT_FRICTION_REVERSAL: return "friction reversal";
-    case TD_EVENT_SCHEDULE: return "schedule";
-    case TD_EVENT_PENALTY_ENTER: return "penalty enter";
-    case TD_EVENT_PENALTY_EXIT: return "penalty exit";
-    }
-    return "?";
-}
-
 int main(void)
 {
     td_model *m = NULL;
@@ -116,7 +103,7 @@ int main(void)
             if (ev.kind == TD_EVENT_CONTACT_ONSET || ev.kind == TD_EVENT_RELEASE)
                 if (onsets <= 10)
                     printf("t = %.9f s  retainer %d  %-17s  radial velocity %+.6f -> %+.6f m/s  impulse %.4g N s\n",
-                           ev.time, ev.retainer, kind_name(ev.kind), ev.radial_velocity_before,
+                           ev.time, ev.retainer, td_event_kind_name(ev.kind), ev.radial_velocity_before,
                            ev.radial_velocity_after, ev.impulse);
         }
         if (st != TD_OK) {

@@ -168,6 +168,128 @@ static void test_spin_up_compliant(void **state)
 }
 
 /*
+ * Dry whip: a Jeffcott rotor (point mass m on an isotropic spring k and damper c_d, spinning at W)
+ * pressed against a fixed bore (the paper's rigid retainer, no race) with a stick retainer. At
+ * contact v_s = R_s W > 0: the friction on the rotor points against the whirl and drives it
+ * backwards until the surfaces stop slipping, v_s = R_s W + c dtheta/dt = 0 (eq. 16, R_b - R_s = c):
+ *
+ *     dtheta/dt = -R_s W / c,  N = m c w^2 - k c (radial balance),  |F_t| = c_d c |w| (tangential),
+ *
+ * held while |F_t| <= mu N. The rotor is first pushed outwards by a follower force (an AMB held at a
+ * control force along the node's radius, renewed every 20 us) until it rolls; then the push is
+ * removed and the dry whip must sustain itself.
+ */
+#define WHIP_M 10.0
+#define WHIP_K 1e6
+#define WHIP_CD 200.0
+#define WHIP_W 10.0
+#define WHIP_MU 0.3
+
+static td_model *whip_rotor(double contact_stiffness)
+{
+    const double ghost = 1e-12;
+    td_model *m = NULL;
+    td_error err;
+    td_shaft_element el = {0.2, 0.05, 0.0, {2.11e11 * ghost, 8.1e10 * ghost, 7810.0 * ghost}};
+    td_disc d0 = {0, WHIP_M, 0.0, 0.01}, d1 = {1, WHIP_M, 0.0, 0.01};
+    td_bearing b0 = {0, WHIP_K, WHIP_K, WHIP_CD, WHIP_CD}, b1 = {1, WHIP_K, WHIP_K, WHIP_CD, WHIP_CD};
+    td_amb push = {0, 0, 0.0, 1.0, 0.0, 0.0, 0.0, 1e5, 0, 0.0};
+    td_retainer r = {.node = 0,
+                     .clearance = RACE_C,
+                     .shaft_radius = RACE_RS,
+                     .bore_radius = RACE_RS + RACE_C,
+                     .friction = WHIP_MU,
+                     .stick = 1};
+    if (contact_stiffness > 0.0) {
+        r.contact.stiffness = contact_stiffness;
+        r.contact.exponent = 1.0;
+        r.contact.damping = TD_DAMPING_KELVIN_VOIGT;
+        r.contact.damping_coefficient = 0.3 * 2.0 * sqrt(contact_stiffness * WHIP_M);
+    }
+    assert_int_equal(td_model_create(&m, NULL), TD_OK);
+    if (td_model_add_shaft_element(m, &el, &err) || td_model_add_disc(m, &d0, &err) ||
+        td_model_add_disc(m, &d1, &err) || td_model_add_bearing(m, &b0, &err) || td_model_add_bearing(m, &b1, &err) ||
+        td_model_add_amb(m, &push, &err) || td_model_add_retainer(m, &r, &err) || td_model_set_speed(m, WHIP_W, &err) ||
+        td_model_validate(m, &err))
+        fail_msg("whip rotor: %s", err.message);
+    return m;
+}
+
+static void check_dry_whip(double contact_stiffness)
+{
+    td_model *m = whip_rotor(contact_stiffness);
+    td_sim_options o;
+    td_sim *s = NULL;
+    td_error err;
+    td_retainer_state rs;
+    double t = 0.0, rolled_at = -1.0, c, w, n_closed, ft_closed, worst_vs = 0.0;
+    long roll_ends_after = 0;
+    int i;
+    td_sim_options_default(&o);
+    o.start = TD_START_REST;
+    o.solver.rtol = 1e-9;
+    o.solver.atol = 1e-12;
+    if (td_sim_create(m, &o, &s, &err) != TD_OK || td_sim_set_amb_mode(s, 0, TD_AMB_EXTERNAL, &err) != TD_OK)
+        fail_msg("sim: %s", err.message);
+    for (i = 1; i <= 30000 && t < 0.3; i++) {
+        double tr;
+        td_status st;
+        td_sim_retainer_state(s, 0, &rs);
+        if (rolled_at < 0.0) { /* push outwards along the node's radius */
+            double r = rs.radius > 0.0 ? rs.radius : 1.0, fx = rs.radius > 0.0 ? rs.x / r : 0.0;
+            double fy = rs.radius > 0.0 ? rs.y / r : -1.0;
+            if (td_sim_set_amb_control(s, 0, 1000.0 * fx, 1000.0 * fy, &err) != TD_OK)
+                fail_msg("push: %s", err.message);
+        }
+        while ((st = td_sim_step(s, t + (rolled_at < 0.0 ? 2e-5 : 1e-3), &tr, &err)) == TD_EVENT) {
+            td_event ev;
+            td_sim_last_event(s, &ev);
+            if (ev.kind == TD_EVENT_ROLL_START && rolled_at < 0.0) {
+                rolled_at = ev.time;
+                if (td_sim_set_amb_control(s, 0, 0.0, 0.0, &err) != TD_OK) /* the push ends */
+                    fail_msg("release: %s", err.message);
+            } else if (ev.kind == TD_EVENT_ROLL_END && rolled_at >= 0.0) {
+                roll_ends_after++;
+            }
+        }
+        if (st != TD_OK)
+            fail_msg("dry whip: %s", err.message);
+        t = tr;
+        if (rolled_at >= 0.0 && t > rolled_at + 0.1) {
+            td_sim_retainer_state(s, 0, &rs);
+            worst_vs = fmax(worst_vs, fabs(rs.sliding_velocity));
+        }
+    }
+    td_sim_retainer_state(s, 0, &rs);
+    c = rs.radius;
+    w = -RACE_RS * WHIP_W / RACE_C; /* eq. (16) with v_s = 0 */
+    n_closed = WHIP_M * c * w * w - WHIP_K * c;
+    ft_closed = WHIP_CD * c * fabs(w);
+    printf("dry whip (%s): rolls from %.6f s; at %.3f s N %.6f N (closed form %.6f), |F_t| %.6f N (%.6f), "
+           "|v_s| <= %.3g m/s, roll ends after %ld\n",
+           contact_stiffness > 0.0 ? "compliant" : "constraint", rolled_at, t, rs.normal_force, n_closed,
+           fabs(rs.friction_force), ft_closed, worst_vs, roll_ends_after);
+    assert_true(rolled_at > 0.0 && rs.rolling && roll_ends_after == 0);
+    assert_true(fabs(rs.normal_force - n_closed) < 1e-4 * n_closed);
+    assert_true(fabs(fabs(rs.friction_force) - ft_closed) < 1e-4 * ft_closed);
+    assert_true(worst_vs < 1e-6);
+    td_sim_free(&s);
+    td_model_free(&m);
+}
+
+static void test_dry_whip_constraint(void **state)
+{
+    (void)state;
+    check_dry_whip(0.0);
+}
+
+static void test_dry_whip_compliant(void **state)
+{
+    (void)state;
+    check_dry_whip(1e10);
+}
+
+/*
  * Energy over a rub with the races free to spin (cases/rub-damped.cfg to 0.4 s: the first impacts,
  * spin-up, rolling and the steady rub): the change of the energy held (rotor and races, kinetic and
  * elastic, contact springs) equals the work put in (unbalance, AMBs, the drive holding the speed
@@ -217,7 +339,8 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_spin_up_constraint),       cmocka_unit_test(test_spin_up_compliant),
         cmocka_unit_test(test_spin_up_constraint_stick), cmocka_unit_test(test_spin_up_compliant_stick),
-        cmocka_unit_test(test_energy_balance),
+        cmocka_unit_test(test_energy_balance),           cmocka_unit_test(test_dry_whip_constraint),
+        cmocka_unit_test(test_dry_whip_compliant),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
