@@ -321,7 +321,7 @@ static void test_damping_and_bearings(void **state)
     td_model *m = NULL;
     td_system *s = NULL, *s0 = NULL;
     td_shaft_element el = {0.2, 0.04, 0.01, {2.11e11, 8.1e10, 7810.0}};
-    td_shaft_options opt = {TD_BEAM_TIMOSHENKO, TD_MASS_CONSISTENT, 3.0, 2e-5};
+    td_shaft_options opt = {TD_BEAM_TIMOSHENKO, TD_MASS_CONSISTENT, 3.0, 2e-5, TD_SHEAR_HUTCHINSON, 0.0};
     td_bearing b = {0, 1e7, 2e7, 300.0, 400.0};
     td_amb amb = {2, 2, 1.0e6, 200.0, 1.0e4, 40.0, 0.0, 1700.0, 0, 0.0};
     double *M, *K, *C, *K0, Me[64], Ke[64];

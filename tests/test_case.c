@@ -320,6 +320,7 @@ static void check_all_keys_model(const td_model *m)
     check_element(m, 5, 0.04, 0.01, 2.0e11, 7.7e10, 7800.0);
     td_model_shaft_options(m, &so);
     assert_int_equal(so.beam, TD_BEAM_TIMOSHENKO);
+    assert_int_equal(so.shear, TD_SHEAR_COWPER);
     assert_int_equal(so.mass, TD_MASS_LUMPED);
     assert_close(so.rayleigh_alpha, 0.5, 0.0, 0.0);
     assert_close(so.rayleigh_beta, 1.0e-5, 0.0, 0.0);
@@ -887,6 +888,8 @@ static const bad_file bad_files[] = {
     {"retainer-bore-mismatch.cfg", 6, "retainers[0].bore_radius", NULL},
     {"retainer-clearance-ge-airgap.cfg", 8, "retainers[0].clearance", NULL},
     {"retainer-duplicate-node.cfg", 6, "retainers[1].node", NULL},
+    {"shaft-shear-above-one.cfg", 5, "shaft.shear_coefficient", NULL},
+    {"shaft-shear-unknown.cfg", 5, "shaft.shear_coefficient", NULL},
     {"race-negative-inertia.cfg", 6, "retainers[0].race.inertia", NULL},
     {"race-drag-without-inertia.cfg", 6, "retainers[0].race.drag_torque", NULL},
     {"race-mass-without-mount.cfg", 6, "retainers[0].race.mass", NULL},

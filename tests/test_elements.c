@@ -213,7 +213,7 @@ static void test_rigid_body_free_shaft(void **state)
     for (b = 0; b < 2; b++) {
         td_model *m = NULL;
         td_system *s = NULL;
-        td_shaft_options opt = {(td_beam_theory)b, TD_MASS_CONSISTENT, 0.0, 0.0};
+        td_shaft_options opt = {(td_beam_theory)b, TD_MASS_CONSISTENT, 0.0, 0.0, TD_SHEAR_HUTCHINSON, 0.0};
         double z[6], *K, *M, *u, total = 0.0;
         int i, j, r, n;
         assert_int_equal(td_model_create(&m, NULL), TD_OK);
@@ -266,9 +266,9 @@ static void test_timoshenko_limit(void **state)
     double Mt[64], Kt[64], Gt[64], Me[64], Ke[64], Ge[64], phi;
     int i;
     (void)state;
-    phi = td_shaft_shear_parameter(&el, TD_BEAM_TIMOSHENKO);
+    phi = td_shaft_shear_parameter(&el, TD_BEAM_TIMOSHENKO, td_shaft_shear_coefficient(&el, TD_SHEAR_HUTCHINSON, 0.0));
     assert_true(phi > 0.0 && phi < 1e-11);
-    assert_true(td_shaft_shear_parameter(&el, TD_BEAM_EULER_BERNOULLI) == 0.0);
+    assert_true(td_shaft_shear_parameter(&el, TD_BEAM_EULER_BERNOULLI, 1.0) == 0.0);
     td_shaft_element_matrices(&el, TD_BEAM_TIMOSHENKO, TD_MASS_CONSISTENT, Mt, Kt, Gt);
     td_shaft_element_matrices(&el, TD_BEAM_EULER_BERNOULLI, TD_MASS_CONSISTENT, Me, Ke, Ge);
     for (i = 0; i < 64; i++) {
@@ -289,9 +289,11 @@ static void test_timoshenko_cantilever_flexibility(void **state)
     (void)state;
     td_shaft_section(&el, &A, &I);
     EI = steel.E * I;
-    kGA = td_shaft_shear_coefficient(&el) * steel.G * A;
+    kGA = td_shaft_shear_coefficient(&el, TD_SHEAR_HUTCHINSON, 0.0) * steel.G * A;
     td_shaft_element_matrices(&el, TD_BEAM_TIMOSHENKO, TD_MASS_CONSISTENT, M, K, NULL);
-    assert_true(td_shaft_shear_parameter(&el, TD_BEAM_TIMOSHENKO) > 0.3); /* a real shear effect */
+    assert_true(
+        td_shaft_shear_parameter(&el, TD_BEAM_TIMOSHENKO, td_shaft_shear_coefficient(&el, TD_SHEAR_HUTCHINSON, 0.0)) >
+        0.3); /* a real shear effect */
     /* node 1 clamped: the x-z block of node 2 inverted is the tip flexibility */
     k11 = E8(K, X2, X2);
     k12 = E8(K, X2, P2);
@@ -314,9 +316,31 @@ static void test_shear_coefficient(void **state)
     double nu = steel.E / (2.0 * steel.G) - 1.0;
     (void)state;
     assert_close(td_shaft_poisson(&solid), nu, 1e-15, 0.0);
-    assert_close(td_shaft_shear_coefficient(&solid), 6.0 * (1.0 + nu) * (1.0 + nu) / (7.0 + 12.0 * nu + 4.0 * nu * nu),
-                 1e-15, 0.0);
-    assert_close(td_shaft_shear_coefficient(&tube), (1.0 + nu) / (2.0 + nu), 1e-6, 0.0);
+    assert_close(td_shaft_shear_coefficient(&solid, TD_SHEAR_HUTCHINSON, 0.0),
+                 6.0 * (1.0 + nu) * (1.0 + nu) / (7.0 + 12.0 * nu + 4.0 * nu * nu), 1e-15, 0.0);
+    assert_close(td_shaft_shear_coefficient(&tube, TD_SHEAR_HUTCHINSON, 0.0), (1.0 + nu) / (2.0 + nu), 1e-6, 0.0);
+}
+
+/* Cowper (1966) at nu = 0.3, his table's values: solid circle 6 (1 + nu) / (7 + 6 nu) = 0.8864, thin
+ * tube 2 (1 + nu) / (4 + 3 nu) = 0.5306; a given kappa is used as it is; a smaller kappa makes the
+ * Timoshenko element softer in shear (its translational stiffness drops). */
+static void test_shear_coefficient_choice(void **state)
+{
+    td_shaft_element solid = element(0.1, 0.05, 0.0), tube = element(0.1, 0.05, 0.05 * (1.0 - 1e-7));
+    double Kc[64], Kh[64], kc, kh;
+    (void)state;
+    solid.material.G = tube.material.G = solid.material.E / 2.6; /* nu = 0.3 */
+    assert_close(td_shaft_shear_coefficient(&solid, TD_SHEAR_COWPER, 0.0), 6.0 * 1.3 / (7.0 + 1.8), 1e-15, 0.0);
+    assert_close(td_shaft_shear_coefficient(&solid, TD_SHEAR_COWPER, 0.0), 0.8864, 1e-4, 0.0);
+    assert_close(td_shaft_shear_coefficient(&tube, TD_SHEAR_COWPER, 0.0), 2.0 * 1.3 / (4.0 + 0.9), 1e-6, 0.0);
+    assert_close(td_shaft_shear_coefficient(&tube, TD_SHEAR_COWPER, 0.0), 0.5306, 1e-4, 0.0);
+    assert_close(td_shaft_shear_coefficient(&solid, TD_SHEAR_GIVEN, 0.75), 0.75, 0.0, 0.0);
+    kc = td_shaft_shear_coefficient(&solid, TD_SHEAR_COWPER, 0.0);
+    kh = td_shaft_shear_coefficient(&solid, TD_SHEAR_HUTCHINSON, 0.0);
+    assert_true(kc < kh);
+    td_shaft_element_matrices_kappa(&solid, TD_BEAM_TIMOSHENKO, kc, TD_MASS_CONSISTENT, NULL, Kc, NULL);
+    td_shaft_element_matrices_kappa(&solid, TD_BEAM_TIMOSHENKO, kh, TD_MASS_CONSISTENT, NULL, Kh, NULL);
+    assert_true(Kc[0] < Kh[0]);
 }
 
 int main(void)
@@ -330,6 +354,7 @@ int main(void)
         cmocka_unit_test(test_timoshenko_limit),
         cmocka_unit_test(test_timoshenko_cantilever_flexibility),
         cmocka_unit_test(test_shear_coefficient),
+        cmocka_unit_test(test_shear_coefficient_choice),
     };
     /* clang-format on */
     gsl_set_error_handler_off();

@@ -49,6 +49,11 @@ static void print_parts(const td_model *m)
            td_model_node_count(m), td_model_node_position(m, td_model_node_count(m) - 1),
            so.beam == TD_BEAM_TIMOSHENKO ? "Timoshenko" : "Euler-Bernoulli",
            so.mass == TD_MASS_LUMPED ? "lumped" : "consistent");
+    if (so.beam == TD_BEAM_TIMOSHENKO && so.shear == TD_SHEAR_GIVEN)
+        printf("shear        coefficient kappa %.6g (given)\n", so.shear_value);
+    else if (so.beam == TD_BEAM_TIMOSHENKO)
+        printf("shear        coefficient kappa of %s for the hollow circle\n",
+               so.shear == TD_SHEAR_COWPER ? "Cowper (1966)" : "Hutchinson (2001)");
     if (so.rayleigh_alpha > 0.0 || so.rayleigh_beta > 0.0)
         printf("damping      shaft Rayleigh alpha %.6g 1/s, beta %.6g s: zeta(w) = alpha / (2 w) + beta w / 2\n",
                so.rayleigh_alpha, so.rayleigh_beta);

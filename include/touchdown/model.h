@@ -47,11 +47,20 @@ typedef struct td_shaft_element {
 } td_shaft_element;
 
 /** Options that apply to the whole shaft. */
+/** Shear coefficient kappa of the Timoshenko elements' hollow circular sections. */
+typedef enum td_shear_form {
+    TD_SHEAR_HUTCHINSON = 0, /**< Hutchinson (2001), J. Appl. Mech. 68: the default */
+    TD_SHEAR_COWPER = 1,     /**< Cowper (1966), J. Appl. Mech. 33, as in Friswell et al. (2010) and ROSS */
+    TD_SHEAR_GIVEN = 2       /**< shear_value for every element */
+} td_shear_form;
+
 typedef struct td_shaft_options {
     td_beam_theory beam;
     td_mass_form mass;
     double rayleigh_alpha; /**< C += alpha M_shaft, 1/s */
     double rayleigh_beta;  /**< C += beta K_shaft, s */
+    td_shear_form shear;   /**< Timoshenko shear coefficient (all zero: Hutchinson) */
+    double shear_value;    /**< kappa for TD_SHEAR_GIVEN, in (0, 1]; 0 otherwise */
 } td_shaft_options;
 
 /**

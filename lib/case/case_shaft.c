@@ -10,9 +10,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-static const char *const shaft_keys[] = {"length",   "elements", "nodes", "outer_diameter", "inner_diameter",
-                                         "material", "sections", "beam",  "mass",           "rayleigh",
-                                         "refine",   "damping",  NULL};
+static const char *const shaft_keys[] = {
+    "length", "elements", "nodes",    "outer_diameter", "inner_diameter", "material",          "sections",
+    "beam",   "mass",     "rayleigh", "refine",         "damping",        "shear_coefficient", NULL};
 static const char *const material_keys[] = {"E", "G", "density", NULL};
 static const char *const section_keys[] = {"element",        "from",     "to", "outer_diameter",
                                            "inner_diameter", "material", NULL};
@@ -20,6 +20,7 @@ static const char *const rayleigh_keys[] = {"alpha", "beta", NULL};
 static const char *const damping_keys[] = {"ratio", "frequencies", NULL};
 static const char *const beam_names[] = {"euler-bernoulli", "timoshenko"};
 static const char *const mass_names[] = {"consistent", "lumped"};
+static const char *const shear_names[] = {"hutchinson", "cowper"};
 
 /* Element lengths from "length" + "elements" or from the node positions "nodes";
  * *lengths is allocated (caller frees). */
@@ -204,6 +205,22 @@ static td_status read_damping(td_case_reader *r, const config_setting_t *shaft, 
     return st == TD_OK ? TD_OK : td_cr_model_fail(r, g, st, &merr);
 }
 
+/* shear_coefficient: "hutchinson" (default), "cowper", or a number (model.h td_shear_form; the
+ * model checks the number's range). */
+static td_status read_shear(td_case_reader *r, const config_setting_t *shaft, td_shaft_options *o)
+{
+    const config_setting_t *s = config_setting_get_member(shaft, "shear_coefficient");
+    int form = TD_SHEAR_HUTCHINSON;
+    td_status st;
+    if (!s || config_setting_type(s) == CONFIG_TYPE_STRING) {
+        st = td_cr_enum(r, shaft, "shear_coefficient", shear_names, 2, TD_SHEAR_HUTCHINSON, &form);
+        o->shear = (td_shear_form)form;
+        return st;
+    }
+    o->shear = TD_SHEAR_GIVEN;
+    return td_cr_value_real(r, s, TD_CR_FINITE, &o->shear_value);
+}
+
 /* beam, mass, rayleigh { alpha; beta; } or damping { ratio; frequencies; } */
 static td_status read_shaft_options(td_case_reader *r, const config_setting_t *shaft)
 {
@@ -227,6 +244,8 @@ static td_status read_shaft_options(td_case_reader *r, const config_setting_t *s
     }
     if (st == TD_OK)
         st = read_damping(r, shaft, &o);
+    if (st == TD_OK)
+        st = read_shear(r, shaft, &o);
     if (st != TD_OK)
         return st;
     o.beam = (td_beam_theory)beam;

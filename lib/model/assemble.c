@@ -55,7 +55,10 @@ static int add_shaft(const td_model *m, triplets *t)
     double Me[64], Ke[64], Ge[64];
     int i;
     for (i = 0; i < m->elements.count; i++) {
-        td_shaft_element_matrices(&m->elements.items[i], m->shaft.beam, m->shaft.mass, Me, Ke, Ge);
+        const td_shaft_element *el = &m->elements.items[i];
+        td_shaft_element_matrices_kappa(el, m->shaft.beam,
+                                        td_shaft_shear_coefficient(el, m->shaft.shear, m->shaft.shear_value),
+                                        m->shaft.mass, Me, Ke, Ge);
         if (!add_element_matrix(t->M, i, Me, 1.0) || !add_element_matrix(t->K, i, Ke, 1.0) ||
             !add_element_matrix(t->G, i, Ge, 1.0) || !add_element_matrix(t->C, i, Me, m->shaft.rayleigh_alpha) ||
             !add_element_matrix(t->C, i, Ke, m->shaft.rayleigh_beta))

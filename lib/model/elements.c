@@ -39,22 +39,26 @@ double td_shaft_poisson(const td_shaft_element *el)
     return el->material.E / (2.0 * el->material.G) - 1.0;
 }
 
-double td_shaft_shear_coefficient(const td_shaft_element *el)
+double td_shaft_shear_coefficient(const td_shaft_element *el, td_shear_form form, double value)
 {
     double nu = td_shaft_poisson(el);
     double m = el->inner_diameter / el->outer_diameter;
     double m2 = m * m, s = (1.0 + m2) * (1.0 + m2);
+    if (form == TD_SHEAR_GIVEN)
+        return value;
+    if (form == TD_SHEAR_COWPER)
+        return 6.0 * (1.0 + nu) * s / ((7.0 + 6.0 * nu) * s + (20.0 + 12.0 * nu) * m2);
     return 6.0 * (1.0 + nu) * (1.0 + nu) * s /
            ((7.0 + 12.0 * nu + 4.0 * nu * nu) * s + 4.0 * m2 * (5.0 + 6.0 * nu + 2.0 * nu * nu));
 }
 
-double td_shaft_shear_parameter(const td_shaft_element *el, td_beam_theory beam)
+double td_shaft_shear_parameter(const td_shaft_element *el, td_beam_theory beam, double kappa)
 {
     double A, I, L = el->length;
     if (beam != TD_BEAM_TIMOSHENKO)
         return 0.0;
     td_shaft_section(el, &A, &I);
-    return 12.0 * el->material.E * I / (td_shaft_shear_coefficient(el) * el->material.G * A * L * L);
+    return 12.0 * el->material.E * I / (kappa * el->material.G * A * L * L);
 }
 
 /* Bending stiffness of one plane, standard coordinates (Friswell eq. 5.74 with shear). */
@@ -152,8 +156,15 @@ static void lumped_mass_and_gyroscopic(double rhoAL, double rhoIL, double Me[64]
 void td_shaft_element_matrices(const td_shaft_element *el, td_beam_theory beam, td_mass_form mass, double Me[64],
                                double Ke[64], double Ge[64])
 {
+    td_shaft_element_matrices_kappa(el, beam, td_shaft_shear_coefficient(el, TD_SHEAR_HUTCHINSON, 0.0), mass, Me, Ke,
+                                    Ge);
+}
+
+void td_shaft_element_matrices_kappa(const td_shaft_element *el, td_beam_theory beam, double kappa, td_mass_form mass,
+                                     double Me[64], double Ke[64], double Ge[64])
+{
     double A, I, L = el->length, rho = el->material.density;
-    double phi = td_shaft_shear_parameter(el, beam);
+    double phi = td_shaft_shear_parameter(el, beam, kappa);
     double p[4][4];
     td_shaft_section(el, &A, &I);
     if (Me)

@@ -27,14 +27,19 @@ void td_shaft_section(const td_shaft_element *el, double *area, double *inertia)
 /* Poisson's ratio nu = E / (2 G) - 1 of the element's material. */
 double td_shaft_poisson(const td_shaft_element *el);
 
-/* Timoshenko shear coefficient kappa of the hollow circular section, Hutchinson (2001),
- * "Shear coefficients for Timoshenko beam theory", J. Appl. Mech. 68, 87-92:
- *   kappa = 6 (1 + nu)^2 (1 + m^2)^2 / ((7 + 12 nu + 4 nu^2)(1 + m^2)^2 + 4 m^2 (5 + 6 nu + 2 nu^2)),
- * m = inner / outer diameter (solid: 6 (1 + nu)^2 / (7 + 12 nu + 4 nu^2)). */
-double td_shaft_shear_coefficient(const td_shaft_element *el);
+/* Timoshenko shear coefficient kappa of the hollow circular section, m = inner / outer diameter:
+ *   Hutchinson (2001), "Shear coefficients for Timoshenko beam theory", J. Appl. Mech. 68, 87-92:
+ *     kappa = 6 (1 + nu)^2 (1 + m^2)^2 / ((7 + 12 nu + 4 nu^2)(1 + m^2)^2 + 4 m^2 (5 + 6 nu + 2 nu^2))
+ *     (solid: 6 (1 + nu)^2 / (7 + 12 nu + 4 nu^2));
+ *   Cowper (1966), "The shear coefficient in Timoshenko's beam theory", J. Appl. Mech. 33, 335-340,
+ *   as in Friswell et al. (2010) and ROSS:
+ *     kappa = 6 (1 + nu) (1 + m^2)^2 / ((7 + 6 nu)(1 + m^2)^2 + (20 + 12 nu) m^2)
+ *     (solid: 6 (1 + nu) / (7 + 6 nu));
+ *   TD_SHEAR_GIVEN: `value`. */
+double td_shaft_shear_coefficient(const td_shaft_element *el, td_shear_form form, double value);
 
 /* Shear parameter Phi = 12 E I / (kappa G A L^2) for TD_BEAM_TIMOSHENKO, 0 for Euler-Bernoulli. */
-double td_shaft_shear_parameter(const td_shaft_element *el, td_beam_theory beam);
+double td_shaft_shear_parameter(const td_shaft_element *el, td_beam_theory beam, double kappa);
 
 /* The three matrices of one shaft element (any of the outputs may be NULL):
  *   Me  mass: translational + rotary inertia (consistent), or lumped (see elements.c)
@@ -43,5 +48,8 @@ double td_shaft_shear_parameter(const td_shaft_element *el, td_beam_theory beam)
  * The element is assumed valid (td_model_add_shaft_element checked it). */
 void td_shaft_element_matrices(const td_shaft_element *el, td_beam_theory beam, td_mass_form mass, double Me[64],
                                double Ke[64], double Ge[64]);
+/* The same with a shear coefficient of the caller's choice (td_shaft_element_matrices: Hutchinson). */
+void td_shaft_element_matrices_kappa(const td_shaft_element *el, td_beam_theory beam, double kappa, td_mass_form mass,
+                                     double Me[64], double Ke[64], double Ge[64]);
 
 #endif

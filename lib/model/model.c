@@ -210,6 +210,10 @@ td_status td_model_set_shaft_options(td_model *m, const td_shaft_options *opt, t
         return td_error_set(err, TD_ERR_INVALID, "shaft options: unknown mass form %d", (int)opt->mass);
     if (!finite_nonnegative(opt->rayleigh_alpha) || !finite_nonnegative(opt->rayleigh_beta))
         return td_error_set(err, TD_ERR_INVALID, "shaft options: Rayleigh alpha and beta must be finite and >= 0");
+    if (opt->shear != TD_SHEAR_HUTCHINSON && opt->shear != TD_SHEAR_COWPER && opt->shear != TD_SHEAR_GIVEN)
+        return td_error_set(err, TD_ERR_INVALID, "shaft options: unknown shear coefficient form %d", (int)opt->shear);
+    if (opt->shear == TD_SHEAR_GIVEN && !(opt->shear_value > 0.0 && opt->shear_value <= 1.0))
+        return FAIL_AT(err, "shaft", 0, "shear_coefficient", "must be > 0 and <= 1 (got %g)", opt->shear_value);
     m->shaft = *opt;
     return TD_OK;
 }

@@ -34,7 +34,7 @@ static void fe_frequencies(int n, double L, double d, td_beam_theory beam, td_ma
     td_model *m = NULL;
     td_system *s = NULL;
     td_shaft_element el;
-    td_shaft_options opt = {beam, mass, 0.0, 0.0};
+    td_shaft_options opt = {beam, mass, 0.0, 0.0, TD_SHEAR_HUTCHINSON, 0.0};
     double *K, *M;
     int ndof, i, j, k, nkeep = 0, *keep, skip;
     gsl_matrix *a, *b;
@@ -296,7 +296,7 @@ static void test_timoshenko_pinned_pinned(void **state)
     td_shaft_element el = {0.1, 0.05, 0.0, {2.11e11, 8.1e10, 7810.0}};
     int j, r;
     (void)state;
-    kappa = td_shaft_shear_coefficient(&el);
+    kappa = td_shaft_shear_coefficient(&el, TD_SHEAR_HUTCHINSON, 0.0);
     printf("\nTimoshenko: Hutchinson shear coefficient kappa = %.6f (nu = %.6f)\n", kappa, td_shaft_poisson(&el));
     for (r = 0; r < 2; r++) {
         double L = slenderness[r] * d;
