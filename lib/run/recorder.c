@@ -271,6 +271,16 @@ td_status td_recorder_set_long(td_recorder *r, const char *name, long value, td_
     FOR_EACH_WRITER(r, td_writer_set_long(w_, name, value, err));
 }
 
+td_status td_recorder_set_doubles(td_recorder *r, const char *name, const double *values, int n, td_error *err)
+{
+    FOR_EACH_WRITER(r, td_writer_set_doubles(w_, name, values, n, err));
+}
+
+td_status td_recorder_set_longs(td_recorder *r, const char *name, const long *values, int n, td_error *err)
+{
+    FOR_EACH_WRITER(r, td_writer_set_longs(w_, name, values, n, err));
+}
+
 td_status td_recorder_set_stats(td_recorder *r, const td_sim_stats *stats, td_error *err)
 {
     FOR_EACH_WRITER(r, td_writer_set_stats(w_, stats, err));

@@ -7,7 +7,9 @@
 
 #include <float.h>
 #include <math.h>
+#include <stddef.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "run/recorder.h"
@@ -318,6 +320,46 @@ static td_status write_energy(td_recorder *rec, const td_energy *e, td_error *er
     return st;
 }
 
+/* Every retainer's totals (touchdown/records.h td_retainer_totals) as arrays over the retainers. */
+static td_status write_retainer_totals(td_recorder *rec, const td_sim *sim, td_error *err)
+{
+    static const struct {
+        const char *name;
+        size_t offset;
+    } reals[] = {{"retainer_impulse", offsetof(td_retainer_totals, impulse)},
+                 {"retainer_impact_impulse", offsetof(td_retainer_totals, impact_impulse)},
+                 {"retainer_friction_work", offsetof(td_retainer_totals, friction_work)},
+                 {"retainer_peak_housing_force", offsetof(td_retainer_totals, peak_housing_force)},
+                 {"retainer_peak_normal_force", offsetof(td_retainer_totals, peak_normal_force)},
+                 {"retainer_contact_time", offsetof(td_retainer_totals, contact_time)},
+                 {"retainer_rolling_time", offsetof(td_retainer_totals, rolling_time)}};
+    int n = td_model_retainer_count(td_sim_model(sim)), k;
+    size_t i;
+    td_retainer_totals *t = calloc((size_t)(n > 0 ? n : 1), sizeof *t);
+    double *v = calloc((size_t)(n > 0 ? n : 1), sizeof *v);
+    long *c = calloc((size_t)(n > 0 ? n : 1), sizeof *c), *g = calloc((size_t)(n > 0 ? n : 1), sizeof *g);
+    td_status st = t && v && c && g ? TD_OK : td_error_set(err, TD_ERR_NOMEM, "out of memory writing the summary");
+    for (k = 0; st == TD_OK && k < n; k++) {
+        td_sim_retainer_totals(sim, k, &t[k]);
+        c[k] = t[k].contacts;
+        g[k] = t[k].touch_and_go;
+    }
+    for (i = 0; st == TD_OK && n > 0 && i < sizeof reals / sizeof reals[0]; i++) {
+        for (k = 0; k < n; k++)
+            v[k] = *(const double *)((const char *)&t[k] + reals[i].offset);
+        st = td_recorder_set_doubles(rec, reals[i].name, v, n, err);
+    }
+    if (st == TD_OK && n > 0)
+        st = td_recorder_set_longs(rec, "retainer_contacts", c, n, err);
+    if (st == TD_OK && n > 0)
+        st = td_recorder_set_longs(rec, "retainer_touch_and_go", g, n, err);
+    free(t);
+    free(v);
+    free(c);
+    free(g);
+    return st;
+}
+
 /* The summary and run parameters as attributes of every file. */
 static td_status write_summary(td_recorder *rec, const td_run_summary *s, const char *case_text, td_error *err)
 {
@@ -432,6 +474,8 @@ td_status td_run(td_sim *sim, double t_end, const td_output_options *out, const 
     summary->status = st;
     td_error_clear(&close_err);
     cst = write_summary(r.rec, summary, case_text, &close_err);
+    if (cst == TD_OK)
+        cst = write_retainer_totals(r.rec, sim, &close_err);
     if (cst == TD_OK)
         cst = td_recorder_close(&r.rec, st == TD_OK, loop_err.message, &close_err);
     else

@@ -57,6 +57,9 @@ assert f["retainers/race_speed"].attrs["units"] in (b"rad/s", "rad/s")
 assert roll.max() == 1 and w.max() > 80.0                # spun up to rolling, about the spin speed
 n = f["retainers/normal_force"][:, 0]
 assert np.hypot(xr, yr).max() * 1e8 < 1.05 * n.max()     # mount force <= contact force (in series)
+imp = f.attrs["retainer_impulse"]
+assert len(imp) == 2 and abs(imp.sum() - f.attrs["summary_total_impulse"]) <= 1e-9 * imp.sum()
+assert f.attrs["retainer_contacts"][0] >= 1 and f.attrs["retainer_rolling_time"][0] > 0
 kinds = set(f["events"]["kind"])
 assert {6, 7} <= {int(k) for k in kinds}, kinds          # roll_start, roll_end
 PY
