@@ -363,6 +363,7 @@ static void check_all_keys_model(const td_model *m)
     assert_close(a.tau, 1.0 / (2.0 * TD_PI * 200.0), 1e-15, 0.0); /* from the bandwidth */
     assert_int_equal(a.saturation, 0);
     assert_close(a.air_gap, 0.0, 0.0, 0.0);
+    assert_close(a.kint, 1.0e5, 0.0, 0.0);
 
     assert_int_equal(td_model_bearing_count(m), 2);
     td_model_get_bearing(m, 0, &b);
@@ -846,6 +847,7 @@ static const bad_file bad_files[] = {
     {"amb-duplicate-node.cfg", 6, "ambs[1].node", NULL},
     {"amb-missing-ki.cfg", 5, "ambs[0].ki", NULL},
     {"amb-saturation-int.cfg", 6, "ambs[0].saturation", NULL},
+    {"amb-kint-negative.cfg", 6, "ambs[0].kint", NULL},
     {"amb-tau-and-bandwidth.cfg", 6, "ambs[0].bandwidth", NULL},
     {"amb-zero-capacity.cfg", 6, "ambs[0].force_capacity", NULL},
     {"binary.cfg", 2, NULL, NULL},

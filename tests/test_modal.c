@@ -12,6 +12,7 @@
 
 #include <hdf5.h>
 
+#include <complex.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -640,6 +641,82 @@ static void test_writers_round_trip(void **state)
     td_system_free(&s);
 }
 
+/* PID AMBs (integral action, docs/theory.md "AMB control that levitates") against the closed form:
+ * the rotor of tests/data/case/amb-jeffcott.cfg with lumped mass moves in pure translation with
+ * m = half its mass on each identical AMB, per axis m x'' = ks x + Fc, tau Fc' = -Fc - ki (kp x +
+ * kd x' + kint e), e' = x, so its characteristic polynomial is the quartic
+ *   P(s) = m tau s^4 + m s^3 + (ki kd - ks tau) s^2 + (ki kp - ks) s + ki kint.
+ * Exactly eight eigenvalues of the modal analysis (the four roots, in x and in y) are roots of P to
+ * rounding, and the four distinct ones have Vieta's sum -1/tau and product ki kint / (m tau). */
+static void test_pid_translation_quartic(void **state)
+{
+    static const double kints[2] = {1.0e5, 3.0e5}; /* A/(m s): settling and near the stability limit */
+    const double ks = 1.0e5, ki = 100.0, kp = 5.0e3, kd = 10.0, tau = 1.0e-3;
+    const double m = 0.5 * 7810.0 * TD_PI / 4.0 * 0.1 * 0.1 * 0.2; /* kg: half the 0.2 m x 0.1 m shaft */
+    int c;
+    (void)state;
+    for (c = 0; c < 2; c++) {
+        char k0[64], k1[64];
+        const char *ov[3] = {"shaft.mass=\"lumped\"", k0, k1};
+        double a[5], sum_re = 0.0, sum_im = 0.0;
+        double complex roots[8], prod = 1.0;
+        td_case *cs;
+        td_system *sys = NULL;
+        td_modal *md = NULL;
+        int i, found = 0;
+        snprintf(k0, sizeof k0, "ambs[0].kint=%.17g", kints[c]);
+        snprintf(k1, sizeof k1, "ambs[1].kint=%.17g", kints[c]);
+        cs = td_test_load_case("tests/data/case/amb-jeffcott.cfg", ov, 3);
+        a[4] = m * tau;
+        a[3] = m;
+        a[2] = ki * kd - ks * tau;
+        a[1] = ki * kp - ks;
+        a[0] = ki * kints[c];
+        assert_int_equal(td_system_create(td_case_model(cs), &sys, NULL), TD_OK);
+        assert_int_equal(td_modal_solve(sys, td_model_speed(td_case_model(cs)), &md, NULL), TD_OK);
+        for (i = 0; i < td_modal_mode_count(md) + td_modal_real_count(md); i++) {
+            double complex lam[2];
+            int nl = 1, j;
+            if (i < td_modal_mode_count(md)) {
+                td_mode mode;
+                assert_int_equal(td_modal_get_mode(md, i, &mode), TD_OK);
+                lam[0] = mode.sigma + I * mode.omega_d;
+                lam[1] = conj(lam[0]);
+                nl = 2;
+            } else {
+                lam[0] = td_modal_real_eigenvalue(md, i - td_modal_mode_count(md));
+            }
+            for (j = 0; j < nl; j++) {
+                double complex p = 0.0, s = lam[j];
+                double scale = 0.0;
+                int d;
+                for (d = 4; d >= 0; d--) {
+                    p = p * s + a[d];
+                    scale += fabs(a[d]) * pow(cabs(s), d);
+                }
+                if (cabs(p) <= 1e-10 * scale) {
+                    assert_true(found < 8);
+                    roots[found++] = s;
+                }
+            }
+        }
+        assert_int_equal(found, 8); /* 4 roots x 2 planes */
+        for (i = 0; i < 8; i++) {
+            sum_re += creal(roots[i]);
+            sum_im += cimag(roots[i]);
+            prod *= roots[i];
+        }
+        /* each root twice: sum = 2 (-a3 / a4), product = (a0 / a4)^2 */
+        assert_close(sum_re, -2.0 / tau, 1e-9, 0.0);
+        assert_close(sum_im, 0.0, 0.0, 1e-9 / tau);
+        assert_close(creal(prod), pow(a[0] / a[4], 2.0), 1e-8, 0.0);
+        assert_close(cimag(prod), 0.0, 0.0, 1e-8 * pow(a[0] / a[4], 2.0));
+        td_modal_free(&md);
+        td_system_free(&sys);
+        td_case_free(&cs);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -652,6 +729,7 @@ int main(void)
         cmocka_unit_test(test_partial_equals_dense),
         cmocka_unit_test(test_rayleigh_from_ratio_modes),
         cmocka_unit_test(test_stability_matches_full_solve),
+        cmocka_unit_test(test_pid_translation_quartic),
         cmocka_unit_test(test_large_model_bounded),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

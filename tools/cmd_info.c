@@ -71,10 +71,11 @@ static void print_parts(const td_model *m)
     for (i = 0; i < td_model_amb_count(m); i++) {
         td_amb a;
         td_model_get_amb(m, i, &a);
-        printf("amb %-8d node %d (sensor %d): ks %.6g N/m, ki %.6g N/A, kp %.6g A/m, kd %.6g A s/m, tau %.6g s, "
-               "capacity %.6g N%s\n",
-               i, a.node, a.sensor_node, a.ks, a.ki, a.kp, a.kd, a.tau, a.force_capacity,
-               a.saturation ? " (saturating)" : "");
+        printf("amb %-8d node %d (sensor %d): ks %.6g N/m, ki %.6g N/A, kp %.6g A/m, kd %.6g A s/m, ", i, a.node,
+               a.sensor_node, a.ks, a.ki, a.kp, a.kd);
+        if (a.kint > 0.0)
+            printf("kint %.6g A/(m s), ", a.kint);
+        printf("tau %.6g s, capacity %.6g N%s\n", a.tau, a.force_capacity, a.saturation ? " (saturating)" : "");
     }
     for (i = 0; i < td_model_bearing_count(m); i++) {
         td_bearing b;

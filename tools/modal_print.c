@@ -35,12 +35,12 @@ void td_print_overdamped(FILE *f, const td_modal *modes)
         if (td_mode_is_vibration(&m))
             continue;
         if (!any++)
-            fprintf(f, "overdamped roots (AMB force lags) [1/s]:");
+            fprintf(f, "overdamped roots (AMB force lags, integrators) [1/s]:");
         fprintf(f, " %.12g%+.6gi", m.sigma, m.omega_d);
     }
     for (i = 0; i < td_modal_real_count(modes); i++) {
         if (!any++)
-            fprintf(f, "overdamped roots (AMB force lags) [1/s]:");
+            fprintf(f, "overdamped roots (AMB force lags, integrators) [1/s]:");
         fprintf(f, " %.12g", td_modal_real_eigenvalue(modes, i));
     }
     if (any)

@@ -5,7 +5,7 @@
  * Every function here works on the first-order form of the linear, contact-free system at a
  * rotor speed Omega, with the state vector
  *
- *   z = [q (ndof); v = q' (ndof); w (n_filter_states)]
+ *   z = [q (ndof); v = q' (ndof); w (n_controller_states)]
  *
  * where q follows touchdown/dofs.h and w holds the lagged AMB control forces Fc, N, one per AMB
  * axis with tau > 0, in the order of the system's AMB axis table (filter-state index). AMB axes
@@ -252,7 +252,7 @@ TD_API td_status td_harmonic_orbit(const td_harmonic *h, int node, td_orbit *out
  * Z the harmonic response to the unbalances u[0..n_u-1] at speed omega (as td_harmonic_compute),
  * z_s the static deflection under the system's gravity load (A z_s = -[0; M^-1 f_g; 0], which has
  * v = 0 and the AMB filter states at their steady values) when `with_gravity` is nonzero, else 0.
- * z has td_modal_state_count(sys) entries in the layout [q (ndof), v (ndof), w (n_filter_states)]
+ * z has td_modal_state_count(sys) entries in the layout [q (ndof), v (ndof), w (n_controller_states)]
  * (w = the lagged AMB forces Fc, by filter-state index). omega == 0 or n_u == 0 give the static
  * state only. On failure z is left unspecified.
  */

@@ -99,11 +99,15 @@ typedef struct td_disc_geometry {
 } td_disc_geometry;
 
 /**
- * An active magnetic bearing, each lateral axis controlled on its own (docs/reference-rig.md):
+ * An active magnetic bearing, each lateral axis controlled on its own (docs/reference-rig.md,
+ * docs/theory.md "AMB control"):
  *   force on the rotor        F  = ks x + Fc                      (x at `node`)
- *   current-controlled force  tau dFc/dt = -Fc - ki (kp xs + kd dxs/dt)   (xs at `sensor_node`)
+ *   current-controlled force  tau dFc/dt = -Fc - ki (kp xs + kd dxs/dt + kint e)   (xs at `sensor_node`)
+ *   integral of the sensor    de/dt = xs                           (only when kint > 0: PID)
  * ks > 0 is the negative-stiffness term of the magnet. With saturation on, F is clipped to
- * +-force_capacity.
+ * +-force_capacity and the integrator stops while the clip holds and xs would drive it deeper
+ * (anti-windup by clamping); while the AMB is off (or driven externally) the integrator holds its
+ * value, so a restored AMB resumes with the bias it had.
  */
 typedef struct td_amb {
     int node;              /**< actuator node */
@@ -116,6 +120,8 @@ typedef struct td_amb {
     double force_capacity; /**< N, > 0 */
     int saturation;        /**< nonzero: clip the total axis force at +-force_capacity */
     double air_gap;        /**< radial air gap, m (0: unknown); a retainer must be tighter */
+    double kint;           /**< integral gain, A/(m s), >= 0 (0: PD, no integrator state); last, so that
+                            *   positional initialisers written for 0.3 keep their meaning */
 } td_amb;
 
 /** A plain linear bearing (spring and damper per axis) for non-AMB supports. */

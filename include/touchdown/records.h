@@ -116,6 +116,10 @@ typedef struct td_sim_stats {
     double time_in_contact;    /**< s, summed over retainers */
     double first_contact_time; /**< s, -1 if none */
     double wall_time;          /**< s spent inside td_sim_step */
+    double peak_amb_force;     /**< N: largest |force| of one AMB axis while the AMB works (steps and outputs) */
+    double peak_amb_load;      /**< largest |force| / force_capacity of one AMB axis (1: at its capacity) */
+    double peak_amb_time;      /**< s, time of peak_amb_load (-1 if no AMB force) */
+    int peak_amb;              /**< AMB of peak_amb_load (-1 if no AMB force) */
 } td_sim_stats;
 
 #ifdef __cplusplus

@@ -18,8 +18,9 @@
 static const char *const disc_keys[] = {"node",      "mass",    "Ip",          "Id", "radius",
                                         "thickness", "density", "bore_radius", NULL};
 static const char *const point_mass_keys[] = {"node", "mass", NULL};
-static const char *const amb_keys[] = {"node",      "sensor_node",    "ks",         "ki",      "kp", "kd", "tau",
-                                       "bandwidth", "force_capacity", "saturation", "air_gap", NULL};
+static const char *const amb_keys[] = {"node",       "sensor_node", "ks",  "ki",        "kp",
+                                       "kd",         "kint",        "tau", "bandwidth", "force_capacity",
+                                       "saturation", "air_gap",     NULL};
 static const char *const bearing_keys[] = {"node", "kxx", "kyy", "cxx", "cyy", NULL};
 static const char *const retainer_keys[] = {"node",     "clearance",  "shaft_radius", "bore_radius",
                                             "friction", "bore_speed", "restitution",  "stick",
@@ -156,6 +157,8 @@ static td_status read_amb(td_case_reader *r, const config_setting_t *g)
         st = td_cr_real(r, g, "kp", "proportional gain, A/m", 0.0, TD_CR_NONNEGATIVE, &a.kp);
     if (st == TD_OK)
         st = td_cr_real(r, g, "kd", "derivative gain, A s/m", 0.0, TD_CR_NONNEGATIVE, &a.kd);
+    if (st == TD_OK)
+        st = td_cr_real(r, g, "kint", NULL, 0.0, TD_CR_NONNEGATIVE, &a.kint);
     if (st == TD_OK)
         st = read_amb_lag(r, g, &a.tau);
     if (st == TD_OK)

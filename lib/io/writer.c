@@ -483,7 +483,8 @@ td_status td_writer_set_stats(td_writer *w, const td_sim_stats *s, td_error *err
                   {"restarts", s ? s->restarts : 0},
                   {"events", s ? s->events : 0},
                   {"contact_onsets", s ? s->contact_onsets : 0},
-                  {"releases", s ? s->releases : 0}};
+                  {"releases", s ? s->releases : 0},
+                  {"peak_amb", s ? s->peak_amb : 0}};
     const struct {
         const char *name;
         double value;
@@ -491,7 +492,10 @@ td_status td_writer_set_stats(td_writer *w, const td_sim_stats *s, td_error *err
                  {"peak_normal_force", s ? s->peak_normal_force : 0.0},
                  {"time_in_contact", s ? s->time_in_contact : 0.0},
                  {"first_contact_time", s ? s->first_contact_time : 0.0},
-                 {"wall_time", s ? s->wall_time : 0.0}};
+                 {"wall_time", s ? s->wall_time : 0.0},
+                 {"peak_amb_force", s ? s->peak_amb_force : 0.0},
+                 {"peak_amb_load", s ? s->peak_amb_load : 0.0},
+                 {"peak_amb_time", s ? s->peak_amb_time : 0.0}};
     size_t i;
     td_status st;
     if (!s)

@@ -3,11 +3,13 @@
  *
  *   q' = v
  *   M v' = -K_eff q - C_eff v + B_w w
- *   w'   = (command(xs, vs) - w) / tau          (one per AMB axis with tau > 0)
+ *   w'   = (command(xs, vs, e) - w) / tau       (one per AMB axis with tau > 0)
+ *   e'   = xs                                   (one per AMB axis with kint > 0: PID)
  *
  * K_eff = K - ks at (actuator, actuator) for every AMB axis; C_eff = C + Omega G. An axis with
- * tau == 0 has no filter state: its force ks x + command(xs, vs) is exactly a spring-damper,
- * -ki kp at (actuator, sensor) moved to K_eff and -ki kd to C_eff. The AMB coefficients come from
+ * tau == 0 has no filter state: its force ks x + command(xs, vs, e) is exactly a spring-damper,
+ * -ki kp at (actuator, sensor) moved to K_eff and -ki kd to C_eff, plus -ki kint on e. The
+ * integrator runs unclamped here: the analysis is of the linear, unsaturated loop. The AMB coefficients come from
  * the axis law in model/amb.c (evaluated at unit inputs, which is exact for a linear law), so the
  * AMB physics lives in one place.
  */
@@ -27,7 +29,7 @@ void td_modal_gsl_quiet(void)
 
 int td_modal_state_count(const td_system *sys)
 {
-    return sys ? 2 * sys->ndof + sys->n_filter_states : 0;
+    return sys ? 2 * sys->ndof + sys->n_controller_states : 0;
 }
 
 void td_entry_add(td_entry_sink *k, int i, int j, double v)
@@ -49,23 +51,26 @@ void td_entry_add_matrix(td_entry_sink *k, const cs_di *S, int col0, double scal
 
 /* Linear coefficients of one AMB axis, from the law functions of system_internal.h. */
 typedef struct amb_coeffs {
-    double dfdx;                   /* d(force)/dx at the actuator: ks (unsaturated, enabled) */
-    double dfdfc;                  /* d(force)/d(Fc): 1 */
-    double cmd_x;                  /* d(command)/d(xs) = -ki kp */
-    double cmd_v;                  /* d(command)/d(vs) = -ki kd */
-    double rate_x, rate_v, rate_w; /* d(dFc/dt)/d(xs, vs, Fc), tau > 0 only */
+    double dfdx;                           /* d(force)/dx at the actuator: ks (unsaturated, enabled) */
+    double dfdfc;                          /* d(force)/d(Fc): 1 */
+    double cmd_x;                          /* d(command)/d(xs) = -ki kp */
+    double cmd_v;                          /* d(command)/d(vs) = -ki kd */
+    double cmd_e;                          /* d(command)/d(e) = -ki kint */
+    double rate_x, rate_v, rate_e, rate_w; /* d(dFc/dt)/d(xs, vs, e, Fc), tau > 0 only */
 } amb_coeffs;
 
 static amb_coeffs amb_axis_coeffs(const td_amb_axis *a)
 {
     amb_coeffs c = {0};
     (void)td_amb_axis_force(a, 1, 0.0, 0.0, &c.dfdx, &c.dfdfc);
-    c.cmd_x = td_amb_axis_command(a, 1.0, 0.0);
-    c.cmd_v = td_amb_axis_command(a, 0.0, 1.0);
+    c.cmd_x = td_amb_axis_command(a, 1.0, 0.0, 0.0);
+    c.cmd_v = td_amb_axis_command(a, 0.0, 1.0, 0.0);
+    c.cmd_e = td_amb_axis_command(a, 0.0, 0.0, 1.0);
     if (a->state >= 0) {
-        c.rate_x = td_amb_axis_filter_rate(a, 1.0, 0.0, 0.0);
-        c.rate_v = td_amb_axis_filter_rate(a, 0.0, 1.0, 0.0);
-        c.rate_w = td_amb_axis_filter_rate(a, 0.0, 0.0, 1.0);
+        c.rate_x = td_amb_axis_filter_rate(a, 1.0, 0.0, 0.0, 0.0);
+        c.rate_v = td_amb_axis_filter_rate(a, 0.0, 1.0, 0.0, 0.0);
+        c.rate_e = td_amb_axis_filter_rate(a, 0.0, 0.0, 1.0, 0.0);
+        c.rate_w = td_amb_axis_filter_rate(a, 0.0, 0.0, 0.0, 1.0);
     }
     return c;
 }
@@ -83,9 +88,11 @@ void td_state_space_rhs_blocks(const td_system *sys, double omega, td_entry_sink
         /* F = ks x + Fc on the right-hand side: +ks x */
         td_entry_add(R, act, act, c.dfdx);
         if (a->state < 0) {
-            /* lag-free: Fc = command(xs, vs) exactly */
+            /* lag-free: Fc = command(xs, vs, e) exactly */
             td_entry_add(R, act, sen, c.dfdfc * c.cmd_x);
             td_entry_add(R, act, nd + sen, c.dfdfc * c.cmd_v);
+            if (a->integral >= 0)
+                td_entry_add(R, act, 2 * nd + a->integral, c.dfdfc * c.cmd_e);
         } else {
             td_entry_add(R, act, 2 * nd + a->state, c.dfdfc);
         }
@@ -97,15 +104,17 @@ void td_state_space_filter_rows(const td_system *sys, td_entry_sink *A)
     int nd = sys->ndof, k;
     for (k = 0; k < sys->n_amb_axes; k++) {
         const td_amb_axis *a = &sys->amb_axes[k];
-        amb_coeffs c;
-        int row;
-        if (a->state < 0)
-            continue;
-        c = amb_axis_coeffs(a);
-        row = 2 * nd + a->state;
-        td_entry_add(A, row, a->sensor_dof, c.rate_x);
-        td_entry_add(A, row, nd + a->sensor_dof, c.rate_v);
-        td_entry_add(A, row, row, c.rate_w);
+        amb_coeffs c = amb_axis_coeffs(a);
+        if (a->state >= 0) {
+            int row = 2 * nd + a->state;
+            td_entry_add(A, row, a->sensor_dof, c.rate_x);
+            td_entry_add(A, row, nd + a->sensor_dof, c.rate_v);
+            td_entry_add(A, row, row, c.rate_w);
+            if (a->integral >= 0)
+                td_entry_add(A, row, 2 * nd + a->integral, c.rate_e);
+        }
+        if (a->integral >= 0) /* e' = xs */
+            td_entry_add(A, 2 * nd + a->integral, a->sensor_dof, 1.0);
     }
 }
 
@@ -142,7 +151,7 @@ td_status td_state_space_build(const td_system *sys, double omega, td_state_spac
         return td_error_set(err, TD_ERR_INVALID, "modal: speed must be finite");
     td_modal_gsl_quiet();
     ss->ndof = sys->ndof;
-    ss->nfilter = sys->n_filter_states;
+    ss->nfilter = sys->n_controller_states;
     ss->n = td_modal_state_count(sys);
     ss->omega = omega;
     nd = (size_t)ss->ndof;

@@ -138,13 +138,15 @@ static td_status assemble_matrices(td_system *s, td_error *err)
     return ok ? TD_OK : td_error_set(err, TD_ERR_NOMEM, "out of memory assembling the system matrices");
 }
 
-/* The AMB axis table: axis 2 i is x of AMB i, 2 i + 1 its y; filter states numbered over axes with tau > 0. */
+/* The AMB axis table: axis 2 i is x of AMB i, 2 i + 1 its y. Controller states: first the lag
+ * states of the axes with tau > 0, in axis order, then the integrators of those with kint > 0 (a
+ * PD model keeps the numbering it always had). */
 static td_status build_amb_axes(td_system *s, td_error *err)
 {
     const td_model *m = s->model;
     int i, k;
     s->n_amb_axes = 2 * m->ambs.count;
-    s->n_filter_states = 0;
+    s->n_controller_states = 0;
     if (s->n_amb_axes == 0)
         return TD_OK;
     s->amb_axes = calloc((size_t)s->n_amb_axes, sizeof *s->amb_axes);
@@ -163,11 +165,16 @@ static td_status build_amb_axes(td_system *s, td_error *err)
             a->ki = b->ki;
             a->kp = b->kp;
             a->kd = b->kd;
+            a->kint = b->kint;
             a->tau = b->tau;
             a->capacity = b->force_capacity;
             a->saturation = b->saturation;
-            a->state = b->tau > 0.0 ? s->n_filter_states++ : -1;
+            a->state = b->tau > 0.0 ? s->n_controller_states++ : -1;
         }
+    }
+    for (k = 0; k < s->n_amb_axes; k++) {
+        td_amb_axis *a = &s->amb_axes[k];
+        a->integral = a->kint > 0.0 ? s->n_controller_states++ : -1;
     }
     return TD_OK;
 }

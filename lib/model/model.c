@@ -335,6 +335,7 @@ td_status td_model_add_amb(td_model *m, const td_amb *amb, td_error *err)
         need(isfinite(amb->ki), err, "amb", i, "ki", "be finite", amb->ki) ||
         need(isfinite(amb->kp), err, "amb", i, "kp", "be finite", amb->kp) ||
         need(isfinite(amb->kd), err, "amb", i, "kd", "be finite", amb->kd) ||
+        need(finite_nonnegative(amb->kint), err, "amb", i, "kint", NONNEG, amb->kint) ||
         need(finite_nonnegative(amb->tau), err, "amb", i, "tau", NONNEG, amb->tau) ||
         need(finite_positive(amb->force_capacity), err, "amb", i, "force_capacity", POS, amb->force_capacity) ||
         need(finite_nonnegative(amb->air_gap), err, "amb", i, "air_gap", NONNEG, amb->air_gap))

@@ -18,7 +18,9 @@ typedef struct td_amb_axis {
     int sensor_dof;   /* global DOF the controller reads */
     double ks, ki, kp, kd, tau, capacity;
     int saturation;
-    int state; /* index of its filter state Fc among the filter states, or -1 when tau == 0 */
+    int state;    /* index of its lag state Fc among the controller states, or -1 when tau == 0 */
+    int integral; /* index of its integrator state e among the controller states, or -1 when kint == 0 */
+    double kint;  /* integral gain, A/(m s) */
 } td_amb_axis;
 
 struct td_system {
@@ -31,18 +33,25 @@ struct td_system {
     cs_di *G;
     int n_amb_axes; /* 2 * number of AMBs */
     td_amb_axis *amb_axes;
-    int n_filter_states;  /* number of AMB axes with tau > 0 */
-    double *gravity_load; /* M g, length ndof: the weight as nodal forces */
+    int n_controller_states; /* AMB controller states: a lag state Fc per axis with tau > 0, then an
+                              * integrator state e per axis with kint > 0 */
+    double *gravity_load;    /* M g, length ndof: the weight as nodal forces */
 };
 
 /* --- The AMB axis law (docs/reference-rig.md), one place for modal analysis and simulation. --- */
 
-/* Lag-free control force -ki (kp xs + kd vs): the current-controlled force when tau == 0,
- * and the target the lagged force Fc relaxes to otherwise. */
-double td_amb_axis_command(const td_amb_axis *a, double xs, double vs);
+/* Lag-free control force -ki (kp xs + kd vs + kint e): the current-controlled force when
+ * tau == 0, and the target the lagged force Fc relaxes to otherwise (e: the integrator state, 0
+ * without one). */
+double td_amb_axis_command(const td_amb_axis *a, double xs, double vs, double e);
 
 /* Filter rate dFc/dt = (command - Fc) / tau, for tau > 0. */
-double td_amb_axis_filter_rate(const td_amb_axis *a, double xs, double vs, double fc);
+double td_amb_axis_filter_rate(const td_amb_axis *a, double xs, double vs, double e, double fc);
+
+/* Integrator rate de/dt: xs while the controller runs (`running`: the AMB on and under its own
+ * control), 0 while it is off, and 0 while the force `f` (td_amb_axis_force) is clipped and
+ * integrating xs would push it deeper into the clip (anti-windup by clamping). */
+double td_amb_axis_integral_rate(const td_amb_axis *a, int running, double xs, double f);
 
 /* Total force on the rotor ks x + fc, clipped to +-capacity when saturation is on and
  * `enabled`; 0 when not enabled (failed AMB). *dfdx and *dfdfc (may be NULL) receive the

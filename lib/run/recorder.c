@@ -82,7 +82,7 @@ static td_status allocate_scratch(td_recorder *r, td_error *err)
 
 /* Retainer nodes and clearances, AMB nodes: what a plot of the orbit needs besides the samples. */
 static td_status model_tables(const td_recorder *r, const td_model *model, long *ret_nodes, double *clearance,
-                              long *amb_nodes, td_error *err)
+                              long *amb_nodes, double *amb_capacity, td_error *err)
 {
     int i;
     for (i = 0; i < r->retainer_count; i++) {
@@ -97,6 +97,7 @@ static td_status model_tables(const td_recorder *r, const td_model *model, long 
         if (td_model_get_amb(model, i, &amb) != TD_OK)
             return td_error_set(err, TD_ERR_INVALID, "output: cannot read AMB %d of the model", i);
         amb_nodes[i] = amb.node;
+        amb_capacity[i] = amb.force_capacity;
     }
     return TD_OK;
 }
@@ -107,12 +108,13 @@ static td_status write_model_attributes(td_recorder *r, const td_model *model, c
     long *ret_nodes = malloc((size_t)(r->retainer_count + 1) * sizeof *ret_nodes);
     double *clearance = malloc((size_t)(r->retainer_count + 1) * sizeof *clearance);
     long *amb_nodes = malloc((size_t)(r->amb_count + 1) * sizeof *amb_nodes);
+    double *amb_capacity = malloc((size_t)(r->amb_count + 1) * sizeof *amb_capacity);
     td_status st = TD_OK;
     int w;
-    if (!ret_nodes || !clearance || !amb_nodes)
+    if (!ret_nodes || !clearance || !amb_nodes || !amb_capacity)
         st = td_error_set(err, TD_ERR_NOMEM, "out of memory for the output attributes");
     if (st == TD_OK)
-        st = model_tables(r, model, ret_nodes, clearance, amb_nodes, err);
+        st = model_tables(r, model, ret_nodes, clearance, amb_nodes, amb_capacity, err);
     for (w = 0; w < r->writer_count && st == TD_OK; w++) {
         td_writer *wr = r->writers[w];
         st = td_writer_set_double(wr, "sample_rate", out->sample_rate, err);
@@ -122,10 +124,13 @@ static td_status write_model_attributes(td_recorder *r, const td_model *model, c
             st = td_writer_set_doubles(wr, "retainer_clearance", clearance, r->retainer_count, err);
         if (st == TD_OK && r->amb_count > 0)
             st = td_writer_set_longs(wr, "amb_nodes", amb_nodes, r->amb_count, err);
+        if (st == TD_OK && r->amb_count > 0)
+            st = td_writer_set_doubles(wr, "amb_capacity", amb_capacity, r->amb_count, err);
     }
     free(ret_nodes);
     free(clearance);
     free(amb_nodes);
+    free(amb_capacity);
     return st;
 }
 

@@ -149,6 +149,12 @@ static void format_answers(td_text *b, const td_run_summary *s)
     td_text_printf(b, "total impulse               %.6g N s\n", s->total_impulse);
     td_text_printf(b, "friction work               %.6g J\n", s->friction_work);
     td_text_printf(b, "final speed                 %.6g rad/s\n", s->final_speed);
+    if (s->stats.peak_amb >= 0)
+        td_text_printf(b, "peak AMB force              %.6g N, AMB %d, %.4g %% of its capacity, at %.10f s\n",
+                       s->stats.peak_amb_force, s->stats.peak_amb, 100.0 * s->stats.peak_amb_load,
+                       s->stats.peak_amb_time);
+    else
+        td_text_printf(b, "peak AMB force              none (no working AMB)\n");
     if (s->energy_kept)
         format_energy(b, &s->energy);
     for (k = 0; k < n; k++) {
@@ -320,6 +326,12 @@ static void json_answers(td_text *b, const td_run_summary *s)
     json_real(b, "total_impulse", s->total_impulse, 0, 1);
     json_real(b, "friction_work", s->friction_work, 0, 1);
     json_real(b, "final_speed", s->final_speed, 0, 1);
+    json_real(b, "peak_amb_force", s->stats.peak_amb >= 0 ? s->stats.peak_amb_force : -1.0, 1, 1);
+    json_real(b, "peak_amb_load", s->stats.peak_amb >= 0 ? s->stats.peak_amb_load : -1.0, 1, 1);
+    if (s->stats.peak_amb >= 0)
+        td_text_printf(b, "\"peak_amb\":%d,", s->stats.peak_amb);
+    else
+        td_text_printf(b, "\"peak_amb\":null,");
     if (!s->energy_kept) {
         td_text_printf(b, "\"energy\":null,");
         return;

@@ -213,13 +213,15 @@ static void init_machine(td_sim *s)
     for (i = 0; i < s->sys->n_amb_axes; i++) {
         const td_amb_axis *a = &s->sys->amb_axes[i];
         td_sim_amb_coef *c = &s->amb_coef[i];
-        c->cmd_x = td_amb_axis_command(a, 1.0, 0.0) - td_amb_axis_command(a, 0.0, 0.0);
-        c->cmd_v = td_amb_axis_command(a, 0.0, 1.0) - td_amb_axis_command(a, 0.0, 0.0);
+        c->cmd_x = td_amb_axis_command(a, 1.0, 0.0, 0.0) - td_amb_axis_command(a, 0.0, 0.0, 0.0);
+        c->cmd_v = td_amb_axis_command(a, 0.0, 1.0, 0.0) - td_amb_axis_command(a, 0.0, 0.0, 0.0);
+        c->cmd_e = td_amb_axis_command(a, 0.0, 0.0, 1.0) - td_amb_axis_command(a, 0.0, 0.0, 0.0);
         if (a->state >= 0) {
-            double r0 = td_amb_axis_filter_rate(a, 0.0, 0.0, 0.0);
-            c->rate_x = td_amb_axis_filter_rate(a, 1.0, 0.0, 0.0) - r0;
-            c->rate_v = td_amb_axis_filter_rate(a, 0.0, 1.0, 0.0) - r0;
-            c->rate_w = td_amb_axis_filter_rate(a, 0.0, 0.0, 1.0) - r0;
+            double r0 = td_amb_axis_filter_rate(a, 0.0, 0.0, 0.0, 0.0);
+            c->rate_x = td_amb_axis_filter_rate(a, 1.0, 0.0, 0.0, 0.0) - r0;
+            c->rate_v = td_amb_axis_filter_rate(a, 0.0, 1.0, 0.0, 0.0) - r0;
+            c->rate_e = td_amb_axis_filter_rate(a, 0.0, 0.0, 1.0, 0.0) - r0;
+            c->rate_w = td_amb_axis_filter_rate(a, 0.0, 0.0, 0.0, 1.0) - r0;
         }
     }
 }
@@ -381,6 +383,13 @@ static void set_tolerances(td_sim *s)
         if (a->state >= 0) {
             at[s->ow + a->state] = atol * (kc > 1.0 ? kc : 1.0);
             id[s->ow + a->state] = 1.0;
+        }
+        if (a->integral >= 0) {
+            /* e (m s) moves the force by ki kint e as xs does by ki kp xs: an error of e worth the
+             * displacement tolerance in force, or the displacement tolerance over a bearing period */
+            double ke = fabs(s->amb_coef[i].cmd_e);
+            at[s->ow + a->integral] = kc > 0.0 ? atol * kc / ke : atol / s->freq_scale;
+            id[s->ow + a->integral] = 1.0;
         }
     }
     race_tolerances(s, at, id);
@@ -626,7 +635,7 @@ static td_status setup_stage(td_status st, volatile sig_atomic_t *cancel, td_err
  * markers. */
 static void init_layout(td_sim *s)
 {
-    s->nw = s->sys->n_filter_states;
+    s->nw = s->sys->n_controller_states;
     s->oq = 0;
     s->ov = s->n;
     s->ow = 2 * s->n;
@@ -638,6 +647,8 @@ static void init_layout(td_sim *s)
     s->stats.first_contact_time = -1.0;
     s->stats.peak_time = -1.0;
     s->stats.peak_retainer = -1;
+    s->stats.peak_amb_time = -1.0;
+    s->stats.peak_amb = -1;
 }
 
 /* The retainers, free, with their contact laws, and the DOFs of their races after the rotor's
@@ -811,8 +822,24 @@ const char *td_sim_errmsg(const td_sim *sim)
 
 /* ---- stepping ---------------------------------------------------------------------------- */
 
-/* Statistics at the state in s->y (time t): contact time, peak normal force, and, at integrator
- * steps only (at_step; interpolated states carry the interpolation error), the drift. */
+/* The AMBs' peak load at the state y (time t): the axis force against its capacity. */
+static void monitor_ambs(td_sim *s, double t, const double *y)
+{
+    int k;
+    for (k = 0; k < s->sys->n_amb_axes; k++) {
+        const td_amb_axis *a = &s->sys->amb_axes[k];
+        double f = fabs(td_sim_amb_axis_force(s, k, y));
+        if (s->amb_mode[a->amb] != TD_AMB_OFF && f / a->capacity > s->stats.peak_amb_load) {
+            s->stats.peak_amb_load = f / a->capacity;
+            s->stats.peak_amb_force = f;
+            s->stats.peak_amb_time = t;
+            s->stats.peak_amb = a->amb;
+        }
+    }
+}
+
+/* Statistics at the state in s->y (time t): contact time, peak normal force, AMB load, and, at
+ * integrator steps only (at_step; interpolated states carry the interpolation error), the drift. */
 static void monitor_at(td_sim *s, double t, int at_step)
 {
     const double *y = N_VGetArrayPointer(s->y);
@@ -839,6 +866,7 @@ static void monitor_at(td_sim *s, double t, int at_step)
             s->stats.peak_retainer = k;
         }
     }
+    monitor_ambs(s, t, y);
     if (t > s->t_acc)
         s->t_acc = t;
 }

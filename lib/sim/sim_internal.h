@@ -15,7 +15,8 @@
  *
  *   q rows   q' - v + sum_k J_k^T eta_k                                   (GGL, eq. 6 stabilised)
  *   v rows   M v' - f(t, q, v, w) + sum_k B_k lambda_k                    (eq. 6)
- *   w rows   w' - (command(xs, vs) - w) / tau                             (AMB force lag)
+ *   w rows   w' - (command(xs, vs, e) - w) / tau                          (AMB force lag)
+ *            e' - xs                                                      (AMB integrator, PID)
  *   lambda   g_k(q) = (x^2 + y^2 - c^2)/(2c)   in contact, lambda_k = 0 otherwise   (eq. 5 scaled)
  *   eta      J_k v = (x vx + y vy)/c           in contact, eta_k = 0 otherwise      (eq. 13a scaled)
  *   F_t      v_s = 0 (eq. 16)                  rolling, F_t = 0 otherwise   (stick retainers only)
@@ -42,8 +43,8 @@
 
 /* Linear coefficients of one AMB axis law (probed from model/amb.c, exact for the linear law). */
 typedef struct td_sim_amb_coef {
-    double cmd_x, cmd_v;           /* d(command)/d(xs), d(command)/d(vs) */
-    double rate_x, rate_v, rate_w; /* d(dFc/dt)/d(xs, vs, Fc), tau > 0 only */
+    double cmd_x, cmd_v, cmd_e;            /* d(command)/d(xs, vs, e) */
+    double rate_x, rate_v, rate_e, rate_w; /* d(dFc/dt)/d(xs, vs, e, Fc), tau > 0 only */
 } td_sim_amb_coef;
 
 /* Running totals of the IDA counters, which IDAReInit resets. */
@@ -191,6 +192,8 @@ void td_sim_roots(const td_sim *s, double t, const double *y, double *g);
 void td_sim_root_directions(const td_sim *s, int *dir);
 /* Force of AMB axis k at state y (N), with the mode of its AMB. */
 double td_sim_amb_axis_force(const td_sim *s, int k, const double *y);
+/* Rate of AMB axis k's integrator state at y (model/amb.c td_amb_axis_integral_rate); 0 without one. */
+double td_sim_amb_axis_integral_rate(const td_sim *s, int k, const double *y);
 /* Spin angle phi(t). */
 double td_sim_spin_angle(const td_sim *s, double t);
 

@@ -289,14 +289,17 @@ td_status td_sim_make_consistent(td_sim *s, const int *just_entered)
             if (s->ret[k].rolling)
                 queue_retainer_event(s, TD_EVENT_ROLL_START, k, y);
         }
-    /* q' = v, w' = the filter rate */
+    /* q' = v, w' = the filter and integrator rates */
     for (i = 0; i < s->n; i++)
         yp[s->oq + i] = y[s->ov + i];
     for (k = 0; k < s->sys->n_amb_axes; k++) {
         const td_amb_axis *a = &s->sys->amb_axes[k];
+        double e = a->integral >= 0 ? y[s->ow + a->integral] : 0.0;
         if (a->state >= 0)
             yp[s->ow + a->state] =
-                td_amb_axis_filter_rate(a, y[s->oq + a->sensor_dof], y[s->ov + a->sensor_dof], y[s->ow + a->state]);
+                td_amb_axis_filter_rate(a, y[s->oq + a->sensor_dof], y[s->ov + a->sensor_dof], e, y[s->ow + a->state]);
+        if (a->integral >= 0)
+            yp[s->ow + a->integral] = td_sim_amb_axis_integral_rate(s, k, y);
     }
     return TD_OK;
 }

@@ -77,6 +77,10 @@ static int put_all(const td_sim *s, cs_di *T)
             int w = s->ow + a->state;
             ok = put(T, s->ov + act, w) && put(T, w, w) && put(T, w, s->oq + sen) && put(T, w, s->ov + sen);
         }
+        if (ok && a->integral >= 0) {
+            int e = s->ow + a->integral, w = a->state >= 0 ? s->ow + a->state : s->ov + act;
+            ok = put(T, w, e) && put(T, e, e) && put(T, e, s->oq + sen);
+        }
     }
     for (k = 0; k < s->nr && ok; k++) {
         const td_sim_retainer *r = &s->ret[k];

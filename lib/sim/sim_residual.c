@@ -12,6 +12,18 @@ double td_sim_spin_angle(const td_sim *s, double t)
     return s->spin_ref + s->omega * (t - s->t_spin_ref);
 }
 
+/* The integrator state e of an AMB axis (0 for a PD axis). */
+static double amb_axis_integral(const td_sim *s, const td_amb_axis *a, const double *y)
+{
+    return a->integral >= 0 ? y[s->ow + a->integral] : 0.0;
+}
+
+/* The controller's command -ki (kp xs + kd vs + kint e) of an AMB axis at y. */
+static double amb_axis_command(const td_sim *s, const td_amb_axis *a, const double *y)
+{
+    return td_amb_axis_command(a, y[s->oq + a->sensor_dof], y[s->ov + a->sensor_dof], amb_axis_integral(s, a, y));
+}
+
 /* Control force Fc of AMB axis k that enters F = ks x + Fc: the lagged state (tau > 0), the
  * lag-free command (tau == 0) or the caller's held value (TD_AMB_EXTERNAL). */
 static double amb_axis_fc(const td_sim *s, int k, const double *y)
@@ -21,7 +33,7 @@ static double amb_axis_fc(const td_sim *s, int k, const double *y)
         return s->amb_control[2 * a->amb + a->axis];
     if (a->state >= 0)
         return y[s->ow + a->state];
-    return td_amb_axis_command(a, y[s->oq + a->sensor_dof], y[s->ov + a->sensor_dof]);
+    return amb_axis_command(s, a, y);
 }
 
 double td_sim_amb_axis_force(const td_sim *s, int k, const double *y)
@@ -29,6 +41,15 @@ double td_sim_amb_axis_force(const td_sim *s, int k, const double *y)
     const td_amb_axis *a = &s->sys->amb_axes[k];
     int enabled = s->amb_mode[a->amb] != TD_AMB_OFF;
     return td_amb_axis_force(a, enabled, y[s->oq + a->actuator_dof], amb_axis_fc(s, k, y), NULL, NULL);
+}
+
+double td_sim_amb_axis_integral_rate(const td_sim *s, int k, const double *y)
+{
+    const td_amb_axis *a = &s->sys->amb_axes[k];
+    if (a->integral < 0)
+        return 0.0;
+    return td_amb_axis_integral_rate(a, s->amb_mode[a->amb] == TD_AMB_PD, y[s->oq + a->sensor_dof],
+                                     td_sim_amb_axis_force(s, k, y));
 }
 
 /* out = M vp + D v + K q (D = C + Omega G), row by row over the union pattern; vp == NULL
@@ -191,14 +212,15 @@ void td_sim_residual(const td_sim *s, double t, const double *y, const double *y
     /* v rows: M v' - f = M v' + (C + Omega G) v + K q - applied forces */
     structural(s, y + s->oq, v, yp + s->ov, rv);
     applied_forces(s, t, y, -1.0, rv);
-    /* w rows: the AMB force lag */
+    /* w rows: the AMB force lag and integrator */
     for (k = 0; k < sys->n_amb_axes; k++) {
         const td_amb_axis *a = &sys->amb_axes[k];
-        if (a->state < 0)
-            continue;
-        res[s->ow + a->state] =
-            yp[s->ow + a->state] -
-            td_amb_axis_filter_rate(a, y[s->oq + a->sensor_dof], y[s->ov + a->sensor_dof], y[s->ow + a->state]);
+        if (a->state >= 0)
+            res[s->ow + a->state] =
+                yp[s->ow + a->state] - td_amb_axis_filter_rate(a, y[s->oq + a->sensor_dof], y[s->ov + a->sensor_dof],
+                                                               amb_axis_integral(s, a, y), y[s->ow + a->state]);
+        if (a->integral >= 0)
+            res[s->ow + a->integral] = yp[s->ow + a->integral] - td_sim_amb_axis_integral_rate(s, k, y);
     }
     /* retainer rows */
     for (k = 0; k < s->nr; k++) {
@@ -250,6 +272,8 @@ static void jacobian_amb(td_sim *s, const double *y)
             } else {
                 jadd(s, s->ov + act, s->oq + sen, -dfdfc * co->cmd_x);
                 jadd(s, s->ov + act, s->ov + sen, -dfdfc * co->cmd_v);
+                if (a->integral >= 0)
+                    jadd(s, s->ov + act, s->ow + a->integral, -dfdfc * co->cmd_e);
             }
         }
         if (a->state >= 0) {
@@ -257,7 +281,12 @@ static void jacobian_amb(td_sim *s, const double *y)
             jadd(s, row, s->oq + sen, -co->rate_x);
             jadd(s, row, s->ov + sen, -co->rate_v);
             jadd(s, row, row, -co->rate_w);
+            if (a->integral >= 0)
+                jadd(s, row, s->ow + a->integral, -co->rate_e);
         }
+        /* e' = xs while integrating; the clamp's switch is left to the error test, as the clip's */
+        if (a->integral >= 0 && td_sim_amb_axis_integral_rate(s, k, y) != 0.0)
+            jadd(s, s->ow + a->integral, s->oq + sen, -1.0);
     }
 }
 
