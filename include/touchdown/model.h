@@ -203,6 +203,30 @@ typedef struct td_change {
     double phase;     /**< TD_CHANGE_UNBALANCE: new phase, rad */
 } td_change;
 
+/**
+ * A point of a prescribed speed ramp (docs/theory.md, "Speed transients"): the rotor speed is
+ * `speed` at `time`, linear between points, the model's speed before the first point and the last
+ * point's speed after it.
+ */
+typedef struct td_speed_point {
+    double time;  /**< s, >= 0, increasing from point to point */
+    double speed; /**< rad/s, >= 0 */
+} td_speed_point;
+
+/**
+ * The rotor's spin as a degree of freedom (docs/theory.md, "Speed transients"). free = 0: the speed
+ * is prescribed (constant, or a ramp of td_speed_point). free != 0: the speed is a state starting at
+ * the model's speed, J dOmega/dt = drive_torque - drag_torque sgn(Omega) - drag_viscous Omega minus
+ * the friction torques R_s F_t of the retainers.
+ */
+typedef struct td_spin {
+    int free;            /**< nonzero: the speed is free (a coast-down, a drop) */
+    double inertia;      /**< J, kg m^2, >= 0 (0: the rotor's polar inertia, td_model_polar_inertia) */
+    double drive_torque; /**< N m along the spin (a motor; 0 once it has tripped) */
+    double drag_torque;  /**< N m >= 0, opposing the spin (seals, windage, motor losses) */
+    double drag_viscous; /**< N m s/rad >= 0 */
+} td_spin;
+
 /** Create an empty model (speed 0, gravity off, Euler-Bernoulli, consistent mass). */
 TD_API td_status td_model_create(td_model **out, td_error *err);
 /** Free a model and set *model to NULL. Accepts NULL and *model == NULL. */
@@ -236,6 +260,10 @@ TD_API td_status td_model_add_unbalance(td_model *m, const td_unbalance *u, td_e
 TD_API td_status td_model_add_change(td_model *m, const td_change *c, td_error *err);
 /** Rotor speed Omega, rad/s (constant between changes). */
 TD_API td_status td_model_set_speed(td_model *m, double omega, td_error *err);
+/** Append a point of the speed ramp (time after the previous point's). */
+TD_API td_status td_model_add_speed_point(td_model *m, const td_speed_point *p, td_error *err);
+/** Set the spin (all zero: prescribed speed, the default). */
+TD_API td_status td_model_set_spin(td_model *m, const td_spin *spin, td_error *err);
 /** Gravity acceleration vector in the x-y plane, m/s^2 (e.g. 0, -9.81); both 0: off. */
 TD_API td_status td_model_set_gravity(td_model *m, double gx, double gy, td_error *err);
 
@@ -258,6 +286,18 @@ TD_API int td_model_retainer_count(const td_model *m);
 TD_API int td_model_unbalance_count(const td_model *m);
 TD_API int td_model_change_count(const td_model *m);
 TD_API double td_model_speed(const td_model *m);
+TD_API int td_model_speed_point_count(const td_model *m);
+TD_API td_status td_model_get_speed_point(const td_model *m, int i, td_speed_point *out);
+TD_API void td_model_spin(const td_model *m, td_spin *out);
+/** 1 if the speed changes by itself during a run: a ramp, or a free spin. */
+TD_API int td_model_speed_varies(const td_model *m);
+/**
+ * The prescribed speed at time t (rad/s): the model's speed, or the ramp's; *rate receives
+ * dOmega/dt and *angle the spin angle, the integral of Omega from time 0 (either may be NULL).
+ */
+TD_API double td_model_speed_at(const td_model *m, double t, double *rate, double *angle);
+/** Polar moment of inertia of the rotor about its axis, kg m^2: shaft elements and discs. */
+TD_API double td_model_polar_inertia(const td_model *m);
 TD_API void td_model_gravity(const td_model *m, double *gx, double *gy);
 TD_API void td_model_shaft_options(const td_model *m, td_shaft_options *out);
 /** Axial position of a node, m (node 0 at z = 0). */

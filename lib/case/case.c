@@ -9,10 +9,10 @@
 #include <stdlib.h>
 #include <string.h>
 
-static const char *const top_keys[] = {"description", "speed",        "end_time",  "start",    "shaft",
-                                       "discs",       "point_masses", "ambs",      "bearings", "retainers",
-                                       "unbalances",  "schedule",     "gravity",   "contact",  "solver",
-                                       "output",      "modal",        "overrides", "energy",   NULL};
+static const char *const top_keys[] = {"description",  "speed",      "end_time", "start",     "shaft",      "discs",
+                                       "point_masses", "ambs",       "bearings", "retainers", "unbalances", "schedule",
+                                       "gravity",      "contact",    "solver",   "output",    "modal",      "overrides",
+                                       "energy",       "speed_ramp", "spin",     NULL};
 
 static char *dup_string(const char *s, size_t n)
 {

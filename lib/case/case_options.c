@@ -258,6 +258,18 @@ static td_status check_unbalance_forces(td_case_reader *r, const config_setting_
     return TD_OK;
 }
 
+/* The largest of `speed` and the speeds of the model's ramp. */
+static double highest_speed(const td_model *m, double speed)
+{
+    int i;
+    for (i = 0; i < td_model_speed_point_count(m); i++) {
+        td_speed_point p;
+        td_model_get_speed_point(m, i, &p);
+        speed = p.speed > speed ? p.speed : speed;
+    }
+    return speed;
+}
+
 td_status td_cr_read_options(td_case_reader *r, const config_setting_t *root)
 {
     td_case *c = r->c;
@@ -282,6 +294,8 @@ td_status td_cr_read_options(td_case_reader *r, const config_setting_t *root)
         st = read_solver(r, root, &c->sim.solver);
     if (st == TD_OK)
         st = read_output(r, root, &c->output);
+    if (st == TD_OK) /* the bounds hold at the highest speed the ramp reaches (a free spin starts at its top) */
+        speed = highest_speed(c->model, speed);
     if (st == TD_OK)
         st = check_run_limits(r, root, speed);
     if (st == TD_OK)

@@ -29,6 +29,8 @@ static const char *const race_keys[] = {"inertia", "drag_torque", "drag_viscous"
 static const char *const mount_keys[] = {"stiffness", "damping", NULL};
 static const char *const retainer_contact_keys[] = {"stiffness", "exponent", "damping", "damping_coefficient", NULL};
 static const char *const unbalance_keys[] = {"node", "magnitude", "phase", NULL};
+static const char *const speed_point_keys[] = {"time", "speed", NULL};
+static const char *const spin_keys[] = {"free", "inertia", "drive_torque", "drag_torque", "drag_viscous", NULL};
 static const char *const change_keys[] = {"time", "unbalance", "magnitude", "phase", "amb_off", "amb_on", NULL};
 
 /* The first member of g among the NULL-terminated keys, or NULL. */
@@ -358,6 +360,48 @@ static td_status read_each(td_case_reader *r, const config_setting_t *root, cons
     return st;
 }
 
+/* One entry of "speed_ramp": { time; speed; } */
+static td_status read_speed_point(td_case_reader *r, const config_setting_t *g)
+{
+    td_speed_point p;
+    td_error merr;
+    td_status st = td_cr_check_keys(r, g, speed_point_keys);
+    if (st == TD_OK)
+        st = td_cr_real(r, g, "time", "time of the point, s", 0.0, TD_CR_FINITE, &p.time);
+    if (st == TD_OK)
+        st = td_cr_real(r, g, "speed", "rotor speed at that time, rad/s", 0.0, TD_CR_FINITE, &p.speed);
+    if (st != TD_OK)
+        return st;
+    st = td_model_add_speed_point(r->c->model, &p, &merr);
+    return st == TD_OK ? TD_OK : td_cr_model_fail(r, g, st, &merr);
+}
+
+/* The group "spin": { free; inertia; drive_torque; drag_torque; drag_viscous; } */
+static td_status read_spin(td_case_reader *r, const config_setting_t *root)
+{
+    const config_setting_t *g;
+    td_spin sp;
+    td_error merr;
+    td_status st = td_cr_group(r, root, "spin", NULL, &g);
+    if (st != TD_OK || !g)
+        return st;
+    st = td_cr_check_keys(r, g, spin_keys);
+    if (st == TD_OK)
+        st = td_cr_bool(r, g, "free", 0, &sp.free);
+    if (st == TD_OK)
+        st = td_cr_real(r, g, "inertia", NULL, 0.0, TD_CR_FINITE, &sp.inertia);
+    if (st == TD_OK)
+        st = td_cr_real(r, g, "drive_torque", NULL, 0.0, TD_CR_FINITE, &sp.drive_torque);
+    if (st == TD_OK)
+        st = td_cr_real(r, g, "drag_torque", NULL, 0.0, TD_CR_FINITE, &sp.drag_torque);
+    if (st == TD_OK)
+        st = td_cr_real(r, g, "drag_viscous", NULL, 0.0, TD_CR_FINITE, &sp.drag_viscous);
+    if (st != TD_OK)
+        return st;
+    st = td_model_set_spin(r->c->model, &sp, &merr);
+    return st == TD_OK ? TD_OK : td_cr_model_fail(r, g, st, &merr);
+}
+
 /* Entry i of every list is part i of its kind (discs then point masses are the model's discs):
  * case_site.c relies on this order to find the setting a model error names. */
 td_status td_cr_read_parts(td_case_reader *r, const config_setting_t *root)
@@ -375,5 +419,9 @@ td_status td_cr_read_parts(td_case_reader *r, const config_setting_t *root)
         st = read_each(r, root, "unbalances", read_unbalance);
     if (st == TD_OK)
         st = read_each(r, root, "schedule", read_change);
+    if (st == TD_OK)
+        st = read_each(r, root, "speed_ramp", read_speed_point);
+    if (st == TD_OK)
+        st = read_spin(r, root);
     return st;
 }

@@ -76,8 +76,11 @@ static const config_setting_t *schedule_entry(const config_setting_t *root, int 
  * other list is one kind of part in order; NULL for the shaft's elements (sections) and unknowns. */
 static const config_setting_t *part_entry(const config_setting_t *root, const td_error_site *site)
 {
-    static const char *const parts[][2] = {
-        {"amb", "ambs"}, {"bearing", "bearings"}, {"retainer", "retainers"}, {"unbalance", "unbalances"}};
+    static const char *const parts[][2] = {{"amb", "ambs"},
+                                           {"bearing", "bearings"},
+                                           {"retainer", "retainers"},
+                                           {"unbalance", "unbalances"},
+                                           {"speed_ramp", "speed_ramp"}};
     const config_setting_t *discs = config_setting_get_member(root, "discs");
     size_t k;
     if (strcmp(site->part, "disc") == 0) {
@@ -86,6 +89,8 @@ static const config_setting_t *part_entry(const config_setting_t *root, const td
     }
     if (strcmp(site->part, "change") == 0)
         return schedule_entry(root, site->index);
+    if (strcmp(site->part, "spin") == 0)
+        return config_setting_get_member(root, "spin");
     for (k = 0; k < sizeof parts / sizeof parts[0]; k++)
         if (strcmp(site->part, parts[k][0]) == 0)
             return entry(root, parts[k][1], site->index);

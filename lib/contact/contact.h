@@ -93,8 +93,8 @@ double td_contact_friction_force(double mu, double phi, double normal_force);
  * node relative to the race), and one on the race speed (count up to 5: the rolling constraint). */
 typedef struct td_contact_row {
     int count;
-    int dof[5];
-    double j[5];
+    int dof[6]; /* node x, y; race centre x, y; race speed; rotor speed */
+    double j[6];
 } td_contact_row;
 
 /* J_k x. */

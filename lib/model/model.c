@@ -88,6 +88,7 @@ void td_model_free(td_model **model)
     free(m->retainers.items);
     free(m->unbalances.items);
     free(m->changes.items);
+    free(m->speed_points.items);
     free(m);
     *model = NULL;
 }
@@ -133,6 +134,8 @@ td_status td_model_clone(const td_model *model, td_model **out, td_error *err)
     CLONE(m->retainers, model->retainers, ok);
     CLONE(m->unbalances, model->unbalances, ok);
     CLONE(m->changes, model->changes, ok);
+    CLONE(m->speed_points, model->speed_points, ok);
+    m->spin = model->spin;
     if (!ok) {
         td_model_free(&m);
         return td_error_set(err, TD_ERR_NOMEM, "out of memory cloning a model");
@@ -487,6 +490,36 @@ td_status td_model_set_speed(td_model *m, double omega, td_error *err)
     return TD_OK;
 }
 
+td_status td_model_add_speed_point(td_model *m, const td_speed_point *p, td_error *err)
+{
+    int i;
+    if (!m || !p)
+        return td_error_set(err, TD_ERR_INVALID, "speed ramp: NULL argument");
+    i = m->speed_points.count;
+    if (need(finite_nonnegative(p->time), err, "speed_ramp", i, "time", NONNEG, p->time) ||
+        need(finite_nonnegative(p->speed), err, "speed_ramp", i, "speed", NONNEG, p->speed))
+        return TD_ERR_INVALID;
+    if (i > 0 && !(p->time > m->speed_points.items[i - 1].time))
+        return FAIL_AT(err, "speed_ramp", i, "time", "must come after the previous point's %g s, not %g s",
+                       m->speed_points.items[i - 1].time, p->time);
+    return APPEND(m->speed_points, p, err);
+}
+
+td_status td_model_set_spin(td_model *m, const td_spin *sp, td_error *err)
+{
+    if (!m || !sp)
+        return td_error_set(err, TD_ERR_INVALID, "spin: NULL argument");
+    if (need(finite_nonnegative(sp->inertia), err, "spin", 0, "inertia", NONNEG, sp->inertia) ||
+        need(isfinite(sp->drive_torque), err, "spin", 0, "drive_torque", "be finite", sp->drive_torque) ||
+        need(finite_nonnegative(sp->drag_torque), err, "spin", 0, "drag_torque", NONNEG, sp->drag_torque) ||
+        need(finite_nonnegative(sp->drag_viscous), err, "spin", 0, "drag_viscous", NONNEG, sp->drag_viscous))
+        return TD_ERR_INVALID;
+    if (!sp->free && (sp->drive_torque != 0.0 || sp->drag_torque > 0.0 || sp->drag_viscous > 0.0))
+        return FAIL_AT(err, "spin", 0, "free", "torques act only on a free spin (free = true)");
+    m->spin = *sp;
+    return TD_OK;
+}
+
 td_status td_model_set_gravity(td_model *m, double gx, double gy, td_error *err)
 {
     if (!m)
@@ -576,6 +609,11 @@ td_status td_model_validate(const td_model *m, td_error *err)
     for (i = 0; i < m->unbalances.count; i++)
         if (check_node(m, "unbalance", i, "node", m->unbalances.items[i].node, err))
             return TD_ERR_INVALID;
+    if (m->spin.free && m->speed_points.count > 0)
+        return FAIL_AT(err, "spin", 0, "free",
+                       "a free spin has no prescribed ramp (speed_ramp): give one or the other");
+    if (td_model_speed_varies(m) && !(td_model_polar_inertia(m) > 0.0 || m->spin.inertia > 0.0))
+        return FAIL_AT(err, "spin", 0, "inertia", "a varying speed needs a polar inertia: the rotor has none");
     return check_changes(m, err);
 }
 
@@ -645,6 +683,66 @@ double td_model_node_position(const td_model *m, int node)
     return z;
 }
 
+int td_model_speed_point_count(const td_model *m)
+{
+    return m ? m->speed_points.count : 0;
+}
+
+void td_model_spin(const td_model *m, td_spin *out)
+{
+    if (m && out)
+        *out = m->spin;
+}
+
+int td_model_speed_varies(const td_model *m)
+{
+    return m && (m->spin.free || m->speed_points.count > 0);
+}
+
+double td_model_speed_at(const td_model *m, double t, double *rate, double *angle)
+{
+    /* walk the piecewise-linear profile, integrating the angle segment by segment (trapezoids
+     * are exact for linear speeds); at a point itself the slope is the next segment's */
+    double w = m ? m->speed : 0.0, t_prev = 0.0, phi = 0.0, slope = 0.0;
+    int i, n = m ? m->speed_points.count : 0;
+    for (i = 0; i < n; i++) {
+        const td_speed_point *p = &m->speed_points.items[i];
+        double seg = i > 0 ? (p->speed - w) / (p->time - t_prev) : 0.0;
+        if (t < p->time) {
+            slope = seg;
+            break;
+        }
+        phi += i > 0 ? (p->time - t_prev) * 0.5 * (w + p->speed) : (p->time - t_prev) * w;
+        w = p->speed;
+        t_prev = p->time;
+    }
+    /* from the last point passed (or time 0) to t: speed w + slope (t - t_prev) */
+    phi += (t - t_prev) * (w + 0.5 * slope * (t - t_prev));
+    w += slope * (t - t_prev);
+    if (rate)
+        *rate = slope;
+    if (angle)
+        *angle = phi;
+    return w;
+}
+
+double td_model_polar_inertia(const td_model *m)
+{
+    double total = 0.0;
+    int i;
+    if (!m)
+        return 0.0;
+    for (i = 0; i < m->elements.count; i++) {
+        const td_shaft_element *e = &m->elements.items[i];
+        double ro = 0.5 * e->outer_diameter, ri = 0.5 * e->inner_diameter;
+        /* hollow cylinder: rho pi L (ro^4 - ri^4) / 2 */
+        total += e->material.density * TD_PI * e->length * (ro * ro * ro * ro - ri * ri * ri * ri) / 2.0;
+    }
+    for (i = 0; i < m->discs.count; i++)
+        total += m->discs.items[i].Ip;
+    return total;
+}
+
 double td_model_total_mass(const td_model *m)
 {
     double total = 0.0;
@@ -671,6 +769,7 @@ double td_model_total_mass(const td_model *m)
     }
 
 GETTER(td_model_get_shaft_element, td_shaft_element, elements)
+GETTER(td_model_get_speed_point, td_speed_point, speed_points)
 GETTER(td_model_get_disc, td_disc, discs)
 GETTER(td_model_get_amb, td_amb, ambs)
 GETTER(td_model_get_bearing, td_bearing, bearings)

@@ -20,9 +20,11 @@ struct td_model {
     TD_PART_ARRAY(td_bearing) bearings;
     TD_PART_ARRAY(td_retainer) retainers;
     TD_PART_ARRAY(td_unbalance) unbalances;
-    TD_PART_ARRAY(td_change) changes; /* kept sorted by time (stable) */
-    double speed;                     /* rad/s */
-    double gravity[2];                /* m/s^2 */
+    TD_PART_ARRAY(td_change) changes;           /* kept sorted by time (stable) */
+    double speed;                               /* rad/s */
+    TD_PART_ARRAY(td_speed_point) speed_points; /* the ramp, increasing times */
+    td_spin spin;
+    double gravity[2]; /* m/s^2 */
 };
 
 #endif

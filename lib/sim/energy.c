@@ -59,8 +59,8 @@ static double contact_spring(const td_sim *s, int k, const double *y, double *lo
         return e; /* a spring that holds energy only while the node is inside: no force yet */
     ft = td_sim_friction_force(s, k, y);
     vt = td_contact_tangential_velocity(x, yy, vx, vy);
-    *loss =
-        (n - n_el) * rate + ft * (r->r.shaft_radius * s->omega + vt - r->r.bore_radius * td_sim_race_speed(s, k, y));
+    *loss = (n - n_el) * rate +
+            ft * (r->r.shaft_radius * td_sim_rotor_speed(s, y) + vt - r->r.bore_radius * td_sim_race_speed(s, k, y));
     return e;
 }
 
@@ -80,8 +80,8 @@ static double powers(td_sim *s, double t, const double *y, double pw[5])
         double loss;
         held += contact_spring(s, k, y, &loss);
         pw[3] += loss;
-        if (s->ret[k].mode != TD_RMODE_FREE)
-            pw[1] += td_sim_friction_force(s, k, y) * s->ret[k].r.shaft_radius * s->omega;
+        if (s->ret[k].mode != TD_RMODE_FREE && !s->spin_free) /* the drive holds the speed against it */
+            pw[1] += td_sim_friction_force(s, k, y) * s->ret[k].r.shaft_radius * td_sim_rotor_speed(s, y);
         if (s->ret[k].rs >= 0)
             pw[4] += td_sim_race_drag(s, k, y, NULL) * v[s->ret[k].rs];
     }

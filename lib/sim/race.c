@@ -10,7 +10,9 @@
  *     M = diag(M_rotor, m_r, m_r, J, ...),  K = diag(K_rotor, k_m, k_m, 0, ...),
  *     C = diag(C_rotor, c_m, c_m, c_drag, ...),  G = diag(G_rotor, 0, ...).
  *
- * Without races the rotor's matrices are used as they are (the paper's cases).
+ * The rotor's spin DOF, when the speed varies (spin.c), is one more block on that diagonal (its
+ * polar inertia in M, a free spin's viscous drag in C). Without either the rotor's matrices are used
+ * as they are (the paper's cases).
  */
 #include "sim/sim_internal.h"
 #include "util/error_internal.h"
@@ -31,6 +33,7 @@ void td_sim_races_layout(td_sim *s)
             r->rs = n++;
     }
     s->n = n;
+    td_sim_spin_layout(s);
 }
 
 /* Diagonal values of the race DOFs for matrix `which` (M, K, C): 0 where none. */
@@ -50,6 +53,7 @@ static void race_diagonal(const td_sim *s, char which, double *d)
         if (r->rs >= 0)
             d[r->rs] = which == 'M' ? b->inertia : which == 'C' ? b->drag_viscous : 0.0;
     }
+    td_sim_spin_diagonal(s, which, d);
 }
 
 /* A, n_rotor x n_rotor, extended to s->n x s->n with the race diagonal of `which`. NULL: no memory. */
@@ -169,4 +173,5 @@ void td_sim_races_start(const td_sim *s, double *y)
         if (r->rs >= 0)
             y[s->ov + r->rs] = r->r.bore_speed;
     }
+    td_sim_spin_start(s, y);
 }

@@ -99,7 +99,8 @@ double td_sim_sliding_velocity(const td_sim *s, int k, const double *y)
 {
     double x, yy, vx, vy;
     td_sim_node_state(s, k, y, &x, &yy, &vx, &vy);
-    return td_contact_sliding_velocity(&s->ret[k].r, s->omega, td_sim_race_speed(s, k, y), x, yy, vx, vy);
+    return td_contact_sliding_velocity(&s->ret[k].r, td_sim_rotor_speed(s, y), td_sim_race_speed(s, k, y), x, yy, vx,
+                                       vy);
 }
 
 void td_sim_sliding_gradient(const td_sim *s, int k, const double *y, double g[4])
@@ -150,6 +151,10 @@ void td_sim_roll_row(const td_sim *s, int k, const double *y, td_contact_row *ro
         row->dof[row->count] = r->rs;
         row->j[row->count++] = -r->r.bore_radius;
     }
+    if (s->spin >= 0) { /* eq. (16): d v_s / d Omega = R_s */
+        row->dof[row->count] = s->spin;
+        row->j[row->count++] = r->r.shaft_radius;
+    }
 }
 
 void td_sim_roll_column(const td_sim *s, int k, const double *y, double *col)
@@ -167,6 +172,8 @@ void td_sim_roll_column(const td_sim *s, int k, const double *y, double *col)
     }
     if (r->rs >= 0)
         col[r->rs] = -r->r.bore_radius;
+    if (s->spin_free) /* F_t brakes a free spin: torque -R_s F_t */
+        col[s->spin] = r->r.shaft_radius;
 }
 
 double td_sim_race_drag(const td_sim *s, int k, const double *y, double *dT)
@@ -219,6 +226,8 @@ void td_sim_contact_column(const td_sim *s, int k, const double *y, double *col)
     }
     if (r->rs >= 0) /* the friction force s mu lambda turns the race: torque R_b s mu lambda */
         col[r->rs] = -r->r.bore_radius * sm;
+    if (s->spin_free) /* and brakes a free rotor: torque -R_s s mu lambda */
+        col[s->spin] = r->r.shaft_radius * sm;
 }
 
 void td_sim_project_onto_circle(const td_sim *s, int k, double *y)

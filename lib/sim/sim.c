@@ -204,7 +204,7 @@ static td_status alloc_arrays(td_sim *s, td_error *err)
 static void init_machine(td_sim *s)
 {
     int i, na = td_model_amb_count(s->model);
-    s->omega = td_model_speed(s->model);
+    s->omega = td_model_speed_at(s->model, s->t, NULL, NULL);
     for (i = 0; i < s->nu; i++)
         td_model_get_unbalance(s->model, i, &s->unb[i]);
     for (i = 0; i < na; i++)
@@ -353,6 +353,22 @@ static void race_tolerances(td_sim *s, double *at, double *id)
     }
 }
 
+/* The spin DOF (spin.c): an angle error turns the unbalance force and the orbit with it, so it
+ * gets the displacement tolerance over the tightest clearance (the scale of the orbits that
+ * matter); the speed that over the bearing period. */
+static void spin_tolerances(const td_sim *s, double *at, double *id)
+{
+    double c = 1e-3;
+    int k;
+    if (s->spin < 0)
+        return;
+    for (k = 0; k < s->nr; k++)
+        c = fmin(c, s->ret[k].r.clearance);
+    at[s->oq + s->spin] = s->opt.solver.atol / c;
+    at[s->ov + s->spin] = s->opt.solver.atol / c * s->freq_scale;
+    id[s->oq + s->spin] = id[s->ov + s->spin] = s->spin_free ? 1.0 : 0.0; /* a ramp's are algebraic */
+}
+
 static void set_tolerances(td_sim *s)
 {
     double *at = N_VGetArrayPointer(s->atol), *id = N_VGetArrayPointer(s->id), atol = s->opt.solver.atol;
@@ -393,6 +409,7 @@ static void set_tolerances(td_sim *s)
         }
     }
     race_tolerances(s, at, id);
+    spin_tolerances(s, at, id);
     for (i = 0; i < s->ns; i++) { /* F_t: a force, algebraic like lambda */
         at[s->of + i] = atol * s->stiff_scale;
         id[s->of + i] = 0.0;
@@ -465,6 +482,17 @@ static void spread_rotor_state(const td_sim *s, double *y)
         y[i] = 0.0;
 }
 
+/* The time whose phase omega t the steady orbit takes: the start time, or with a ramp the time at
+ * which a constant speed would have turned the spin angle the ramp has turned. */
+static double orbit_phase_time(const td_sim *s)
+{
+    double angle;
+    if (s->spin < 0 || !(s->omega > 0.0))
+        return s->t;
+    td_model_speed_at(s->model, s->t, NULL, &angle);
+    return angle / s->omega;
+}
+
 /* The steady orbit into y. An unstable system has none that the motion would stay on: "orbit"
  * refuses it, "auto" stays at rest; "auto" also stays at rest when the orbit is not contact-free.
  * s->start.used says which start y holds. */
@@ -485,7 +513,8 @@ static td_status orbit_start(td_sim *s, double *y, td_error *err)
         return TD_OK;
     }
     td_model_gravity(s->model, &gx, &gy);
-    st = td_modal_start_state(s->sys, s->omega, s->unb, s->nu, gx != 0.0 || gy != 0.0, s->t, y + s->oq, err);
+    st = td_modal_start_state(s->sys, s->omega, s->unb, s->nu, gx != 0.0 || gy != 0.0, orbit_phase_time(s), y + s->oq,
+                              err);
     if (st != TD_OK)
         return st;
     spread_rotor_state(s, y);
@@ -1002,6 +1031,10 @@ static td_status advance(td_sim *s, double tout)
                 return st;
             continue;
         }
+        if (s->t_ida == s->t && tout == s->t) { /* restarted right here (a stop at tout): nothing to interpolate */
+            monitor(s, tout);
+            return TD_OK;
+        }
         if (s->t_ida >= tout) {
             st = interpolate(s, tout);
             monitor(s, tout);
@@ -1102,7 +1135,7 @@ td_status td_sim_set_interrupt(td_sim *sim, volatile sig_atomic_t *flag)
 
 double td_sim_speed(const td_sim *sim)
 {
-    return sim ? sim->omega : 0.0;
+    return sim ? td_sim_rotor_speed(sim, N_VGetArrayPointer(sim->y)) : 0.0;
 }
 
 double td_sim_time(const td_sim *sim)
@@ -1238,6 +1271,11 @@ td_status td_sim_set_speed(td_sim *sim, double omega, td_error *err)
     begin_call(sim);
     if (!isfinite(omega)) {
         snprintf(sim->errmsg, sizeof sim->errmsg, "td_sim_set_speed: speed must be finite");
+        return failed(sim, TD_ERR_INVALID, err);
+    }
+    if (sim->spin >= 0) {
+        snprintf(sim->errmsg, sizeof sim->errmsg, "td_sim_set_speed: the model's speed is %s, not set by the caller",
+                 sim->spin_free ? "free (spin.free)" : "a ramp (speed_ramp)");
         return failed(sim, TD_ERR_INVALID, err);
     }
     /* keep the spin angle continuous: the unbalance force turns on from where it is */

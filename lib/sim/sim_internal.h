@@ -7,7 +7,8 @@
  *
  * where q and v hold the rotor's DOFs (touchdown/dofs.h) and after them the races' (race.c: per
  * retainer with a race, the x, y of its centre when mounted, then its angle when it can spin; v
- * holds the race speed Omega_b there). M, K, C, G below are the matrices of all n DOFs.
+ * holds the race speed Omega_b there), and last, when the speed varies, the rotor's spin (spin.c:
+ * its angle phi in q, its speed Omega in v). M, K, C, G below are the matrices of all n DOFs.
  *
  * lambda_k is the normal force of retainer k (N) and eta_k the GGL multiplier of its position
  * constraint (the "mu" of the stabilised index-2 form; called eta here so that mu stays the
@@ -72,7 +73,10 @@ struct td_sim {
     int oq, ov, ow, ol, ou, of; /* block offsets in y */
 
     /* the machine as it is now (changed by the schedule and the td_sim_set_* calls) */
-    double omega;
+    double omega; /* rad/s: the speed, or with a spin DOF the speed D = C + omega G was built at */
+    int spin;     /* the spin DOF (spin.c), -1: the speed is omega, prescribed */
+    int spin_free;
+    double spin_inertia;         /* J, kg m^2 */
     double spin_ref, t_spin_ref; /* spin angle phi(t) = spin_ref + omega (t - t_spin_ref) */
     int nu;
     td_unbalance *unb;
@@ -230,6 +234,28 @@ double td_sim_race_speed_atol(const td_sim *s, int k);
 int td_sim_races_retolerance(td_sim *s);
 /* The races' start state into y: centres resting on their mounts, speeds at bore_speed. */
 void td_sim_races_start(const td_sim *s, double *y);
+
+/* ---- spin.c: the rotor's spin as a DOF when the speed varies ----------------------------- */
+
+/* rad/s: the free spin's constant drag is regularised over this band around standstill */
+#define TD_SIM_SPIN_BAND 1e-2
+
+/* Assign the spin DOF (after the races') when the model's speed varies; s->spin = -1 otherwise. */
+void td_sim_spin_layout(td_sim *s);
+/* The spin's diagonal entry of matrix `which` ('M': J, 'C': the free spin's viscous drag). */
+void td_sim_spin_diagonal(const td_sim *s, char which, double *d);
+/* Rotor speed Omega (rad/s) and spin angle phi (rad) at (t, y). */
+double td_sim_rotor_speed(const td_sim *s, const double *y);
+double td_sim_rotor_angle(const td_sim *s, double t, const double *y);
+/* dOmega/dt at (t, y): the ramp's slope, or a free spin's torque balance over J. */
+double td_sim_rotor_rate(const td_sim *s, double t, const double *y);
+/* The torque applied on the spin DOF's row (ramp: J alpha; free: drive minus Coulomb drag), with
+ * its slope in Omega (may be NULL); 0 without a spin DOF. */
+double td_sim_spin_torque(const td_sim *s, double t, const double *y, double *dT);
+/* The spin's start state into y: angle and speed at s->t. */
+void td_sim_spin_start(const td_sim *s, double *y);
+/* The spin angle taken modulo 2 pi (at restarts). */
+void td_sim_spin_wrap(const td_sim *s, double *y);
 
 /* ---- sim_nvector.c: compiled vector operations ----------------------------------------- */
 

@@ -725,6 +725,28 @@ void td_sim_apply_past_changes(td_sim *s)
     }
 }
 
+/* Where the integrator must stop next: the next schedule change, or the next point of a speed
+ * ramp (the speed's slope jumps there, and with it the unbalance's alpha term); infinity if none. */
+static double next_stop(const td_sim *s)
+{
+    double stop = INFINITY;
+    int i;
+    if (s->next_change < td_model_change_count(s->model)) {
+        td_change c;
+        td_model_get_change(s->model, s->next_change, &c);
+        stop = c.time;
+    }
+    for (i = 0; i < td_model_speed_point_count(s->model); i++) {
+        td_speed_point p;
+        td_model_get_speed_point(s->model, i, &p);
+        if (p.time > s->t + due_tolerance(s->t)) {
+            stop = fmin(stop, p.time);
+            break;
+        }
+    }
+    return stop;
+}
+
 static void save_counters(td_sim *s)
 {
     long v;
@@ -774,6 +796,7 @@ td_status td_sim_restart(td_sim *s)
 {
     int flag;
     save_counters(s);
+    td_sim_spin_wrap(s, N_VGetArrayPointer(s->y));
     flag = IDAReInit(s->ida, s->t, s->y, s->yp);
     if (flag == IDA_SUCCESS && td_sim_races_retolerance(s)) /* a race came into or out of contact */
         flag = IDASVtolerances(s->ida, s->opt.solver.rtol, s->atol);
@@ -786,11 +809,8 @@ td_status td_sim_restart(td_sim *s)
         flag = IDASetInitStep(s->ida, restart_step(s));
     if (flag == IDA_SUCCESS)
         flag = IDASetMaxStep(s->ida, s->hmax);
-    if (flag == IDA_SUCCESS && s->next_change < td_model_change_count(s->model)) {
-        td_change c;
-        td_model_get_change(s->model, s->next_change, &c);
-        flag = IDASetStopTime(s->ida, c.time);
-    }
+    if (flag == IDA_SUCCESS && isfinite(next_stop(s)))
+        flag = IDASetStopTime(s->ida, next_stop(s));
     if (flag != IDA_SUCCESS) {
         if (!s->errmsg[0])
             snprintf(s->errmsg, sizeof s->errmsg, "t = %.9g s: IDA re-initialisation failed (%d)", s->t, flag);

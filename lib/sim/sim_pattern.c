@@ -38,7 +38,7 @@ static int put_matrix(cs_di *T, const cs_di *A, int roff, int coff)
 static int put_race(const td_sim *s, cs_di *T, int k)
 {
     const td_sim_retainer *r = &s->ret[k];
-    int dofs[5], nd = 0, i, j, ok = 1;
+    int dofs[6], nd = 0, i, j, ok = 1;
     dofs[nd++] = r->dx;
     dofs[nd++] = r->dy;
     if (r->rx >= 0) {
@@ -47,6 +47,8 @@ static int put_race(const td_sim *s, cs_di *T, int k)
     }
     if (r->rs >= 0)
         dofs[nd++] = r->rs;
+    if (s->spin >= 0)
+        dofs[nd++] = s->spin;
     for (i = 0; i < nd && ok; i++) {
         int vi = s->ov + dofs[i], qi = s->oq + dofs[i];
         ok = put(T, vi, s->ol + k) && put(T, qi, s->ou + k) && put(T, s->ol + k, qi) && put(T, s->ou + k, qi) &&
@@ -57,6 +59,23 @@ static int put_race(const td_sim *s, cs_di *T, int k)
             int fk = s->of + r->fi;
             ok = put(T, vi, fk) && put(T, fk, qi) && put(T, fk, vi) && put(T, fk, fk);
         }
+    }
+    return ok;
+}
+
+/* The spin DOF's columns (spin.c): every row G reaches (Omega G v) and the unbalances' rows. */
+static int put_spin(const td_sim *s, cs_di *T)
+{
+    int j, p, i, ok = 1;
+    if (s->spin < 0)
+        return 1;
+    for (j = 0; j < s->G->n && ok; j++)
+        for (p = s->G->p[j]; p < s->G->p[j + 1] && ok; p++)
+            ok = put(T, s->ov + s->G->i[p], s->ov + s->spin);
+    for (i = 0; i < s->nu && ok; i++) {
+        int x = s->ov + TD_DOF(s->unb[i].node, TD_DOF_X), y = s->ov + TD_DOF(s->unb[i].node, TD_DOF_Y);
+        ok = put(T, x, s->oq + s->spin) && put(T, y, s->oq + s->spin) && put(T, x, s->ov + s->spin) &&
+             put(T, y, s->ov + s->spin);
     }
     return ok;
 }
@@ -89,10 +108,10 @@ static int put_all(const td_sim *s, cs_di *T)
         ok = put_block(T, vx, vy, qx, qy) && put_block(T, vx, vy, vx, vy) && put(T, vx, lk) && put(T, vy, lk) &&
              put(T, qx, uk) && put(T, qy, uk) && put(T, lk, lk) && put(T, lk, qx) && put(T, lk, qy) && put(T, uk, uk) &&
              put(T, uk, qx) && put(T, uk, qy) && put(T, uk, vx) && put(T, uk, vy);
-        if (ok && (r->rx >= 0 || r->rs >= 0 || r->fi >= 0))
+        if (ok && (r->rx >= 0 || r->rs >= 0 || r->fi >= 0 || s->spin >= 0))
             ok = put_race(s, T, k);
     }
-    return ok;
+    return ok && put_spin(s, T);
 }
 
 int td_sim_pattern_find(const td_sim *s, int row, int col)

@@ -80,6 +80,21 @@ static void structural(const td_sim *s, const double *q, const double *v, const 
     }
 }
 
+/* out += (Omega - omega) G v: with a spin DOF the structural operator was built at s->omega and
+ * the gyroscopic term follows the speed Omega of the state (spin.c). */
+static void gyroscopic_follow(const td_sim *s, const double *y, double *out)
+{
+    const cs_di *G = s->G;
+    const double *v = y + s->ov;
+    double dw;
+    int j, p;
+    if (s->spin < 0 || (dw = td_sim_rotor_speed(s, y) - s->omega) == 0.0)
+        return;
+    for (j = 0; j < G->n; j++)
+        for (p = G->p[j]; p < G->p[j + 1]; p++)
+            out[G->i[p]] += dw * G->x[p] * v[j];
+}
+
 /* f += sign * the force of retainer k's penalty contact: -F_n (n + s mu t) on the rotor (eqs. 4,
  * 17), F_n > 0 only when penetrating; the opposite on a mounted race, and the friction torque
  * R_b s mu F_n on a race that spins. */
@@ -103,6 +118,8 @@ static void penalty_forces(const td_sim *s, int k, const double *y, double sign,
     }
     if (r->rs >= 0)
         f[r->rs] += r->r.bore_radius * sm * fn;
+    if (s->spin_free)
+        f[s->spin] -= r->r.shaft_radius * sm * fn;
 }
 
 /* f += sign * the applied forces: gravity, unbalance, AMBs, penalty contacts and the races'
@@ -110,18 +127,27 @@ static void penalty_forces(const td_sim *s, int k, const double *y, double sign,
 void td_sim_external_forces(const td_sim *s, double t, const double *y, double sign, double *f)
 {
     const td_system *sys = s->sys;
-    double w2 = s->omega * s->omega, phi = td_sim_spin_angle(s, t);
+    double w = td_sim_rotor_speed(s, y), w2 = w * w, phi = td_sim_rotor_angle(s, t, y);
+    double alpha = td_sim_rotor_rate(s, t, y);
     int i, k;
     for (i = 0; i < sys->ndof; i++)
         f[i] += sign * sys->gravity_load[i];
     td_sim_races_gravity(s, f, sign);
-    /* unbalance: U Omega^2 (cos, sin)(phi + phase) at its node (touchdown/model.h) */
+    /* unbalance: U Omega^2 (cos, sin)(phi + phase) at its node (touchdown/model.h), and while the
+     * speed changes U alpha (sin, -cos)(phi + phase) (spin.c) */
     for (i = 0; i < s->nu; i++) {
         const td_unbalance *u = &s->unb[i];
         double a = sign * u->magnitude * w2;
         f[TD_DOF(u->node, TD_DOF_X)] += a * cos(phi + u->phase);
         f[TD_DOF(u->node, TD_DOF_Y)] += a * sin(phi + u->phase);
+        if (alpha != 0.0) {
+            double b = sign * u->magnitude * alpha;
+            f[TD_DOF(u->node, TD_DOF_X)] += b * sin(phi + u->phase);
+            f[TD_DOF(u->node, TD_DOF_Y)] -= b * cos(phi + u->phase);
+        }
     }
+    if (s->spin >= 0)
+        f[s->spin] += sign * td_sim_spin_torque(s, t, y, NULL);
     for (k = 0; k < sys->n_amb_axes; k++)
         f[sys->amb_axes[k].actuator_dof] += sign * td_sim_amb_axis_force(s, k, y);
 }
@@ -142,6 +168,7 @@ void td_sim_forces(const td_sim *s, double t, const double *y, double *f)
 {
     int i;
     structural(s, y + s->oq, y + s->ov, NULL, f);
+    gyroscopic_follow(s, y, f);
     for (i = 0; i < s->n; i++)
         f[i] = -f[i];
     applied_forces(s, t, y, 1.0, f);
@@ -171,6 +198,8 @@ static void constraint_rows(const td_sim *s, int k, const double *y, double *rq,
     }
     if (r->rs >= 0)
         rv[r->rs] -= r->r.bore_radius * sm * lam;
+    if (s->spin_free)
+        rv[s->spin] += r->r.shaft_radius * sm * lam;
     res[s->ol + k] = td_contact_constraint(x, yy, c); /* eq. (5) / (-2c) */
     res[s->ou + k] = (x * vx + yy * vy) / c;          /* eq. (13a) / (-2c) */
 }
@@ -196,6 +225,8 @@ static void roll_rows(const td_sim *s, int k, const double *y, double *rv, doubl
     }
     if (r->rs >= 0)
         rv[r->rs] -= r->r.bore_radius * ft;
+    if (s->spin_free)
+        rv[s->spin] += r->r.shaft_radius * ft;
     res[s->of + r->fi] = td_sim_sliding_velocity(s, k, y);
 }
 
@@ -211,6 +242,7 @@ void td_sim_residual(const td_sim *s, double t, const double *y, const double *y
         rq[i] = yp[s->oq + i] - v[i];
     /* v rows: M v' - f = M v' + (C + Omega G) v + K q - applied forces */
     structural(s, y + s->oq, v, yp + s->ov, rv);
+    gyroscopic_follow(s, y, rv);
     applied_forces(s, t, y, -1.0, rv);
     /* w rows: the AMB force lag and integrator */
     for (k = 0; k < sys->n_amb_axes; k++) {
@@ -232,6 +264,11 @@ void td_sim_residual(const td_sim *s, double t, const double *y, const double *y
         }
         if (s->ret[k].fi >= 0)
             roll_rows(s, k, y, rv, res);
+    }
+    if (s->spin >= 0 && !s->spin_free) { /* a ramp: angle and speed are the prescribed ones, exactly */
+        double angle, w = td_model_speed_at(s->model, t, NULL, &angle);
+        rq[s->spin] = y[s->oq + s->spin] - angle;
+        rv[s->spin] = y[s->ov + s->spin] - w;
     }
 }
 
@@ -325,6 +362,29 @@ static void jadd_row_rel(td_sim *s, const td_sim_retainer *r, int row, int lvl, 
         jadd(s, row, lvl + (b ? r->ry : r->rx), -value);
 }
 
+/* The rotor speed's share of the slip band (spin.c): v_s depends on Omega (d v_s / d Omega = R_s),
+ * and a free spin's row carries the friction torque R_s phi mu fn, which depends on v_s. */
+static void jacobian_slip_band_spin(td_sim *s, int k, const double *y, double a)
+{
+    const td_sim_retainer *r = &s->ret[k];
+    double x, yy, vx, vy, rad, gv[4], Rs = r->r.shaft_radius, Rb = r->r.bore_radius;
+    int wz = s->ov + s->spin, i;
+    td_sim_node_state(s, k, y, &x, &yy, &vx, &vy);
+    rad = hypot(x, yy);
+    jadd_node(s, r, s->ov, 0, wz, -a * Rs * yy / rad);
+    jadd_node(s, r, s->ov, 1, wz, a * Rs * x / rad);
+    if (r->rs >= 0)
+        jadd(s, s->ov + r->rs, wz, -Rb * a * Rs);
+    if (!s->spin_free)
+        return;
+    td_sim_sliding_gradient(s, k, y, gv);
+    for (i = 0; i < 4; i++)
+        jadd_row_rel(s, r, wz, i < 2 ? s->oq : s->ov, i % 2, Rs * a * gv[i]);
+    if (r->rs >= 0)
+        jadd(s, wz, s->ov + r->rs, Rs * a * (-Rb));
+    jadd(s, wz, wz, Rs * a * Rs);
+}
+
 /* Inside the slip band the friction of a contact with normal force fn depends on v_s, i.e. on the
  * relative coordinates (gradient gv) and on the race speed (d v_s / d Omega_b = -R_b): the terms
  * -phi mu fn (y, -x)/r of the node's rows and -R_b phi mu fn of the race speed's row. */
@@ -349,6 +409,8 @@ static void jacobian_slip_band(td_sim *s, int k, const double *y, double fn, dou
         jadd_node(s, r, s->ov, 1, ws, a * (-Rb) * x / rad);
         jadd(s, ws, ws, -Rb * a * (-Rb));
     }
+    if (s->spin >= 0)
+        jacobian_slip_band_spin(s, k, y, a);
 }
 
 /* Constrained contact k: d/dq of lambda (J^T + s mu t) and the GGL and constraint rows. */
@@ -371,6 +433,8 @@ static void jacobian_contact(td_sim *s, int k, const double *y)
     jadd_node(s, r, ov, 1, lk, yy / c + sm * x / rad);
     if (r->rs >= 0) /* the friction torque -R_b sm lambda */
         jadd(s, ov + r->rs, lk, -r->r.bore_radius * sm);
+    if (s->spin_free) /* and R_s sm lambda on a free spin */
+        jadd(s, ov + s->spin, lk, r->r.shaft_radius * sm);
     if (dphi != 0.0) /* inside the slip band: sm = mu v_s / v_reg depends on q, v and Omega_b */
         jacobian_slip_band(s, k, y, lam, dphi);
     /* q rows: eta (x, y)/c */
@@ -385,6 +449,16 @@ static void jacobian_contact(td_sim *s, int k, const double *y)
     jadd_row_rel(s, r, uk, oq, 1, vy / c);
     jadd_row_rel(s, r, uk, ov, 0, x / c);
     jadd_row_rel(s, r, uk, ov, 1, yy / c);
+}
+
+/* A torque row m F_n of a penalty contact: d F_n / d(x, y) = (f_x, f_y), d F_n / d(vx, vy) = (g_x, g_y). */
+static void jacobian_penalty_torque(td_sim *s, const td_sim_retainer *r, int row, double m, double f_x, double f_y,
+                                    double g_x, double g_y)
+{
+    jadd_row_rel(s, r, row, s->oq, 0, m * f_x);
+    jadd_row_rel(s, r, row, s->oq, 1, m * f_y);
+    jadd_row_rel(s, r, row, s->ov, 0, m * g_x);
+    jadd_row_rel(s, r, row, s->ov, 1, m * g_y);
 }
 
 /* Penalty contact k: d/dq and d/dv of F_n(delta, rate) u, u = (x - sm y, y + sm x)/r, and of the
@@ -425,13 +499,10 @@ static void jacobian_penalty(td_sim *s, int k, const double *y)
     jadd_rel(s, r, ov, 0, ov, 1, u1 * fr * rt_vy);
     jadd_rel(s, r, ov, 1, ov, 0, u2 * fr * rt_vx);
     jadd_rel(s, r, ov, 1, ov, 1, u2 * fr * rt_vy);
-    if (r->rs >= 0) { /* the torque row -R_b sm F_n */
-        double m = -r->r.bore_radius * sm;
-        jadd_row_rel(s, r, ov + r->rs, oq, 0, m * f_x);
-        jadd_row_rel(s, r, ov + r->rs, oq, 1, m * f_y);
-        jadd_row_rel(s, r, ov + r->rs, ov, 0, m * fr * rt_vx);
-        jadd_row_rel(s, r, ov + r->rs, ov, 1, m * fr * rt_vy);
-    }
+    if (r->rs >= 0) /* the torque row -R_b sm F_n */
+        jacobian_penalty_torque(s, r, ov + r->rs, -r->r.bore_radius * sm, f_x, f_y, fr * rt_vx, fr * rt_vy);
+    if (s->spin_free) /* and R_s sm F_n on a free spin */
+        jacobian_penalty_torque(s, r, ov + s->spin, r->r.shaft_radius * sm, f_x, f_y, fr * rt_vx, fr * rt_vy);
     if (dphi != 0.0) /* inside the slip band: sm = mu v_s / v_reg depends on q, v and Omega_b */
         jacobian_slip_band(s, k, y, fn, dphi);
 }
@@ -461,6 +532,11 @@ static void jacobian_roll(td_sim *s, int k, const double *y)
         jadd(s, ov + r->rs, fk, -r->r.bore_radius);
         jadd(s, fk, ov + r->rs, -r->r.bore_radius); /* eq. (16): d v_s / d Omega_b */
     }
+    if (s->spin >= 0) {
+        jadd(s, fk, ov + s->spin, r->r.shaft_radius); /* eq. (16): d v_s / d Omega */
+        if (s->spin_free)
+            jadd(s, ov + s->spin, fk, r->r.shaft_radius);
+    }
     td_sim_sliding_gradient(s, k, y, gv);
     for (i = 0; i < 4; i++)
         jadd_row_rel(s, r, fk, i < 2 ? oq : ov, i % 2, gv[i]);
@@ -475,10 +551,44 @@ static void jacobian_drag(td_sim *s, int k, const double *y)
         jadd(s, s->ov + s->ret[k].rs, s->ov + s->ret[k].rs, dT);
 }
 
+/* The spin DOF's columns (spin.c): d(Omega G v)/d Omega = G v, the unbalance's d/d(phi, Omega),
+ * and the free spin's drag. */
+static void jacobian_spin(td_sim *s, double t, const double *y)
+{
+    const cs_di *G = s->G;
+    const double *v = y + s->ov;
+    double w = td_sim_rotor_speed(s, y), phi = td_sim_rotor_angle(s, t, y), alpha = td_sim_rotor_rate(s, t, y), dT;
+    int qz = s->oq + s->spin, wz = s->ov + s->spin, i, j, p;
+    for (j = 0; j < G->n; j++)
+        for (p = G->p[j]; p < G->p[j + 1]; p++)
+            jadd(s, s->ov + G->i[p], wz, G->x[p] * v[j]);
+    for (i = 0; i < s->nu; i++) { /* v rows carry -f */
+        const td_unbalance *u = &s->unb[i];
+        double c = cos(phi + u->phase), sn = sin(phi + u->phase), U = u->magnitude;
+        int x = s->ov + TD_DOF(u->node, TD_DOF_X), yrow = s->ov + TD_DOF(u->node, TD_DOF_Y);
+        jadd(s, x, qz, -U * (-w * w * sn + alpha * c));
+        jadd(s, yrow, qz, -U * (w * w * c + alpha * sn));
+        jadd(s, x, wz, -2.0 * U * w * c);
+        jadd(s, yrow, wz, -2.0 * U * w * sn);
+    }
+    td_sim_spin_torque(s, t, y, &dT); /* the row carries -torque */
+    if (dT != 0.0)
+        jadd(s, wz, wz, -dT);
+}
+
+/* A ramp's spin rows are angle - phi(t) and speed - Omega(t) (td_sim_residual): the identity in
+ * place of the differential rows' entries (nothing else writes into them for a ramp). */
+static void jacobian_ramp_rows(td_sim *s)
+{
+    int qz = s->oq + s->spin, wz = s->ov + s->spin;
+    s->jdata[td_sim_pattern_find(s, qz, qz)] = 1.0;
+    s->jdata[td_sim_pattern_find(s, qz, wz)] = 0.0;
+    s->jdata[td_sim_pattern_find(s, wz, wz)] = 1.0;
+}
+
 void td_sim_jacobian(td_sim *s, double t, double cj, const double *y)
 {
     int i, k;
-    (void)t;
     memset(s->jdata, 0, sizeof(double) * (size_t)s->nnz);
     for (i = 0; i < s->n; i++) {
         jadd(s, s->oq + i, s->oq + i, cj);
@@ -488,7 +598,9 @@ void td_sim_jacobian(td_sim *s, double t, double cj, const double *y)
         jadd(s, s->ow + i, s->ow + i, cj);
     jadd_matrix(s, s->M, s->map_M, cj);
     jadd_matrix(s, s->C, s->map_C, 1.0);
-    jadd_matrix(s, s->G, s->map_G, s->omega);
+    jadd_matrix(s, s->G, s->map_G, td_sim_rotor_speed(s, y));
+    if (s->spin >= 0)
+        jacobian_spin(s, t, y);
     jadd_matrix(s, s->K, s->map_K, 1.0);
     jacobian_amb(s, y);
     for (k = 0; k < s->nr; k++) {
@@ -506,6 +618,8 @@ void td_sim_jacobian(td_sim *s, double t, double cj, const double *y)
         jadd(s, s->ol + k, s->ol + k, 1.0);
         jadd(s, s->ou + k, s->ou + k, 1.0);
     }
+    if (s->spin >= 0 && !s->spin_free)
+        jacobian_ramp_rows(s);
 }
 
 /* Slot 1 of retainer k in contact with friction (see below). */

@@ -1,0 +1,113 @@
+/*
+ * The rotor's spin as a degree of freedom (model.h td_spin and td_speed_point; docs/theory.md,
+ * "Speed transients"), appended after the races' DOFs when the speed varies: its angle phi in q,
+ * its speed Omega in v, the rotor's polar inertia J on M's diagonal.
+ *
+ *   a ramp:       J Omega' = J alpha(t)      the drive holds the prescribed speed whatever the
+ *                                            friction torques; phi' = Omega as every q row
+ *   a free spin:  J Omega' = T_drive - T_drag sgn(Omega) - c_drag Omega - sum_k R_s F_t,k
+ *
+ * c_drag sits in C (so it is a damping loss of the energy account), the friction torques come in
+ * through the contact columns (retainer.c, sim_residual.c). The unbalance turns with phi:
+ * U (Omega^2 cos + alpha sin, Omega^2 sin - alpha cos)(phi + phase), alpha = Omega' (its reaction
+ * on the spin, U times the node's acceleration, is left out: below 1e-4 of the friction torques
+ * on the rig). The gyroscopic matrix follows Omega: D = C + Omega G.
+ */
+#include "sim/sim_internal.h"
+
+#include <math.h>
+
+void td_sim_spin_layout(td_sim *s)
+{
+    td_spin sp;
+    s->spin = -1;
+    s->spin_free = 0;
+    s->spin_inertia = 0.0;
+    if (!td_model_speed_varies(s->model))
+        return;
+    td_model_spin(s->model, &sp);
+    s->spin = s->n++;
+    s->spin_free = sp.free != 0;
+    s->spin_inertia = sp.inertia > 0.0 ? sp.inertia : td_model_polar_inertia(s->model);
+}
+
+void td_sim_spin_diagonal(const td_sim *s, char which, double *d)
+{
+    td_spin sp;
+    if (s->spin < 0)
+        return;
+    td_model_spin(s->model, &sp);
+    d[s->spin] = which == 'M' ? s->spin_inertia : which == 'C' && s->spin_free ? sp.drag_viscous : 0.0;
+}
+
+double td_sim_rotor_speed(const td_sim *s, const double *y)
+{
+    return s->spin >= 0 ? y[s->ov + s->spin] : s->omega;
+}
+
+double td_sim_rotor_angle(const td_sim *s, double t, const double *y)
+{
+    return s->spin >= 0 ? y[s->oq + s->spin] : s->spin_ref + s->omega * (t - s->t_spin_ref);
+}
+
+/* The constant and regularised Coulomb drag of a free spin, and its slope in Omega. */
+static double coulomb_drag(const td_spin *sp, double omega, double *dT)
+{
+    double dphi = 0.0, phi = td_contact_slip_factor(omega, TD_SIM_SPIN_BAND, &dphi);
+    if (dT)
+        *dT = sp->drag_torque * dphi;
+    return sp->drag_torque * phi;
+}
+
+double td_sim_spin_torque(const td_sim *s, double t, const double *y, double *dT)
+{
+    td_spin sp;
+    double rate, drag, slope;
+    if (dT)
+        *dT = 0.0;
+    if (s->spin < 0)
+        return 0.0;
+    if (!s->spin_free) {
+        td_model_speed_at(s->model, t, &rate, NULL);
+        return s->spin_inertia * rate;
+    }
+    td_model_spin(s->model, &sp);
+    drag = coulomb_drag(&sp, y[s->ov + s->spin], &slope);
+    if (dT)
+        *dT = -slope;
+    return sp.drive_torque - drag;
+}
+
+double td_sim_rotor_rate(const td_sim *s, double t, const double *y)
+{
+    td_spin sp;
+    double torque;
+    int k;
+    if (s->spin < 0)
+        return 0.0;
+    torque = td_sim_spin_torque(s, t, y, NULL);
+    if (!s->spin_free)
+        return torque / s->spin_inertia;
+    td_model_spin(s->model, &sp);
+    torque -= sp.drag_viscous * y[s->ov + s->spin];
+    for (k = 0; k < s->nr; k++) /* zero for a free retainer: no normal force */
+        torque -= s->ret[k].r.shaft_radius * td_sim_friction_force(s, k, y);
+    return torque / s->spin_inertia;
+}
+
+void td_sim_spin_start(const td_sim *s, double *y)
+{
+    double angle;
+    if (s->spin < 0)
+        return;
+    y[s->ov + s->spin] = td_model_speed_at(s->model, s->t, NULL, &angle);
+    y[s->oq + s->spin] = angle;
+}
+
+void td_sim_spin_wrap(const td_sim *s, double *y)
+{
+    /* keep a free spin's angle small, so that its relative tolerance stays an absolute one (a
+     * ramp's is the prescribed angle itself) */
+    if (s->spin_free)
+        y[s->oq + s->spin] = fmod(y[s->oq + s->spin], 2.0 * TD_PI);
+}

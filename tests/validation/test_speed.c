@@ -1,0 +1,124 @@
+/*
+ * Speed transients (docs/theory.md, "Speed transients") against closed forms:
+ *  - a free-free rigid rotor spun up from rest by a ramp: its mass centre stays put, so the
+ *    journal centre runs round it, x = (U/m)(1 - cos phi), y = -(U/m) sin phi, which holds only
+ *    with the unbalance's angular-acceleration term U alpha (sin, -cos)(phi + phase);
+ *  - a free spin braked by a constant torque: Omega linear in time with the rotor's polar inertia
+ *    rho pi L R^4 / 2; by a viscous drag: Omega exponential.
+ */
+#include "td_test.h"
+
+#include "touchdown/touchdown.h"
+
+#include <math.h>
+
+#define LENGTH 0.2     /* m */
+#define DIAMETER 0.1   /* m */
+#define DENSITY 7810.0 /* kg/m^3 */
+
+/* A one-element steel cylinder, lumped mass, no supports: a rigid body in translation when the
+ * nodes are loaded equally. */
+static td_model *free_rotor(double speed)
+{
+    td_model *m = NULL;
+    td_shaft_element el = {LENGTH, DIAMETER, 0.0, {2.11e11, 8.1e10, DENSITY}};
+    td_shaft_options so = {TD_BEAM_EULER_BERNOULLI, TD_MASS_LUMPED, 0.0, 0.0, TD_SHEAR_HUTCHINSON, 0.0};
+    assert_int_equal(td_model_create(&m, NULL), TD_OK);
+    assert_int_equal(td_model_set_shaft_options(m, &so, NULL), TD_OK);
+    assert_int_equal(td_model_add_shaft_element(m, &el, NULL), TD_OK);
+    assert_int_equal(td_model_set_speed(m, speed, NULL), TD_OK);
+    return m;
+}
+
+static td_sim *start(const td_model *m)
+{
+    td_sim_options o;
+    td_sim *sim = NULL;
+    td_error err;
+    td_sim_options_default(&o);
+    o.start = TD_START_REST;
+    o.solver.rtol = 1e-9;
+    o.solver.atol = 1e-13;
+    o.solver.atol = 1e-13;
+    if (td_model_validate(m, &err) != TD_OK || td_sim_create(m, &o, &sim, &err) != TD_OK)
+        fail_msg("%s", err.message);
+    return sim;
+}
+
+static void step_to(td_sim *sim, double t_end)
+{
+    double t = td_sim_time(sim);
+    td_error err;
+    while (t < t_end)
+        if (td_sim_step(sim, t_end, &t, &err) != TD_OK)
+            fail_msg("step: %s", err.message);
+}
+
+static void test_spin_up_keeps_mass_centre(void **state)
+{
+    const double U = 1e-3, alpha = 800.0; /* kg m, rad/s^2: 0 to 400 rad/s in 0.5 s */
+    const double mass = DENSITY * TD_PI / 4.0 * DIAMETER * DIAMETER * LENGTH;
+    const double times[4] = {0.1, 0.25, 0.4, 0.5};
+    td_model *m = free_rotor(0.0);
+    td_unbalance u0 = {0, 0.5 * U, 0.0}, u1 = {1, 0.5 * U, 0.0};
+    td_speed_point p0 = {0.0, 0.0}, p1 = {0.5, 0.5 * alpha};
+    td_sim *sim;
+    double worst = 0.0, q[8], v[8];
+    int i, node;
+    (void)state;
+    assert_int_equal(td_model_add_unbalance(m, &u0, NULL), TD_OK);
+    assert_int_equal(td_model_add_unbalance(m, &u1, NULL), TD_OK);
+    assert_int_equal(td_model_add_speed_point(m, &p0, NULL), TD_OK);
+    assert_int_equal(td_model_add_speed_point(m, &p1, NULL), TD_OK);
+    sim = start(m);
+    for (i = 0; i < 4; i++) {
+        double phi = 0.5 * alpha * times[i] * times[i];
+        step_to(sim, times[i]);
+        assert_int_equal(td_sim_get_state(sim, q, v), TD_OK);
+        assert_close(td_sim_speed(sim), alpha * times[i], 1e-14, 0.0);
+        for (node = 0; node < 2; node++) {
+            worst = fmax(worst, fabs(q[TD_DOF(node, TD_DOF_X)] - U / mass * (1.0 - cos(phi))));
+            worst = fmax(worst, fabs(q[TD_DOF(node, TD_DOF_Y)] + U / mass * sin(phi)));
+        }
+    }
+    print_message("spin-up from rest: journal centre against the closed form within %.3g m (U/m = %.3g m)\n", worst,
+                  U / mass);
+    /* measured 6.6e-9 m, 8e-5 of U/m, and 3.4e-9 m at rtol 1e-11: a residue that does not follow
+     * the tolerance (docs/validation.md, open); without the alpha term the error is of order U/m */
+    assert_true(worst <= 2e-4 * U / mass);
+    td_sim_free(&sim);
+    td_model_free(&m);
+}
+
+static void test_coast_down(void **state)
+{
+    const double w0 = 300.0, T0 = 2.0, c = 0.01; /* rad/s, N m, N m s/rad */
+    const double R = 0.5 * DIAMETER, J = DENSITY * TD_PI * LENGTH * R * R * R * R / 2.0;
+    int viscous;
+    (void)state;
+    for (viscous = 0; viscous < 2; viscous++) {
+        td_model *m = free_rotor(w0);
+        td_spin sp = {1, 0.0, 0.0, viscous ? 0.0 : T0, viscous ? c : 0.0};
+        td_sim *sim;
+        double expect;
+        assert_int_equal(td_model_set_spin(m, &sp, NULL), TD_OK);
+        assert_close(td_model_polar_inertia(m), J, 1e-14, 0.0);
+        sim = start(m);
+        step_to(sim, 1.0);
+        expect = viscous ? w0 * exp(-c / J) : w0 - T0 / J;
+        print_message("coast-down (%s): Omega(1 s) = %.12g rad/s, closed form %.12g rad/s\n",
+                      viscous ? "viscous" : "constant torque", td_sim_speed(sim), expect);
+        assert_close(td_sim_speed(sim), expect, 1e-8, 0.0);
+        td_sim_free(&sim);
+        td_model_free(&m);
+    }
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_spin_up_keeps_mass_centre),
+        cmocka_unit_test(test_coast_down),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
