@@ -163,7 +163,7 @@ static void write_all_level(td_writer_kind kind, const char *path, const sample_
     l.compression = level;
     assert_int_equal(td_writer_open(kind, path, &l, &w, &err), TD_OK);
     for (r = 0; r < ROWS; r++) {
-        assert_int_equal(td_writer_sample(w, d->t[r], d->xy[r], d->ret[r], d->amb[r], &err), TD_OK);
+        assert_int_equal(td_writer_sample(w, d->t[r], 0.0, d->xy[r], d->ret[r], d->amb[r], &err), TD_OK);
         if (e < EVENTS && r == 5 * e + 3)
             assert_int_equal(td_writer_event(w, &d->ev[e++], td_writer_sample_count(w) - 1, &err), TD_OK);
         /* While writing, nothing is at the final path. */
@@ -559,7 +559,7 @@ static void test_hdf5_empty_layout(void **state)
     tmp_name(path, sizeof path, "empty.h5");
     assert_int_equal(td_writer_open(TD_WRITER_HDF5, path, &l, &w, NULL), TD_OK);
     for (i = 0; i < 3; i++)
-        assert_int_equal(td_writer_sample(w, 0.5 * i, NULL, NULL, NULL, NULL), TD_OK);
+        assert_int_equal(td_writer_sample(w, 0.5 * i, 0.0, NULL, NULL, NULL, NULL), TD_OK);
     assert_int_equal(td_writer_close(&w, 1, NULL, NULL), TD_OK);
     f = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
     assert_true(f >= 0);
@@ -796,7 +796,7 @@ static void test_csv_gnuplot(void **state)
     assert_int_equal(td_writer_open(TD_WRITER_CSV, path, &l, &w, NULL), TD_OK);
     for (r = 0; r < 1000; r++) {
         ret[0].normal_force = 1000.0 * sin(0.01 * r) * sin(0.01 * r) + 0.123456789012345;
-        assert_int_equal(td_writer_sample(w, r * 1e-4, xy, ret, amb, NULL), TD_OK);
+        assert_int_equal(td_writer_sample(w, r * 1e-4, 0.0, xy, ret, amb, NULL), TD_OK);
     }
     assert_int_equal(td_writer_set_string(w, "case_text", case_text, NULL), TD_OK);
     assert_int_equal(td_writer_close(&w, 1, NULL, NULL), TD_OK);
@@ -934,7 +934,7 @@ static int write_job(const void *arg)
     if (td_writer_open(job->kind, job->path, &l, &w, NULL) != TD_OK)
         return 11;
     for (r = 0; r < job->rows; r++)
-        if ((st = td_writer_sample(w, r * 1e-4, xy, ret, amb, NULL)) != TD_OK)
+        if ((st = td_writer_sample(w, r * 1e-4, 0.0, xy, ret, amb, NULL)) != TD_OK)
             failed |= st != TD_ERR_IO && st != TD_ERR_STATE;
     for (r = 0; r < job->events; r++)
         if ((st = td_writer_event(w, &ev, -1, NULL)) != TD_OK)

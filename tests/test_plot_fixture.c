@@ -124,7 +124,7 @@ static void write_variant(const variant *v)
         retainer_at(t, 0.4, v, &ret[1]);
         amb[0] = -K_AMB * 1.2 * ret[0].x, amb[1] = -K_AMB * 1.2 * ret[0].y;
         amb[2] = -K_AMB * 0.8 * ret[1].x, amb[3] = -K_AMB * 0.8 * ret[1].y;
-        assert_int_equal(td_writer_sample(w, t, NULL, ret, amb, NULL), TD_OK);
+        assert_int_equal(td_writer_sample(w, t, 0.0, NULL, ret, amb, NULL), TD_OK);
         if (!up_done && t >= STEP_UP) {
             write_event(w, TD_EVENT_SCHEDULE, STEP_UP, -1, 0.0);
             up_done = 1;

@@ -664,6 +664,48 @@ static void test_json_string(void **state)
     assert_string_equal(buf, "\"\"");
 }
 
+/* td_run_summary_ending on hand-made totals over a stretch of 1 s at 100 rad/s (15.9 Hz spin):
+ * the whirl rate is the whirl angle swept over the contact time, signed like the spin. */
+static void test_summary_ending(void **state)
+{
+    static const struct {
+        double contact, rolling, angle, speed; /* over the stretch: s, s, rad; final speed rad/s */
+        long contacts;
+        const char *want;
+        double f;
+    } cases[] = {
+        {0.0, 0.0, 0.0, 100.0, 0, "free (no contact)", 0.0},
+        {0.0, 0.0, 0.0, 100.0, 3, "recovered", 0.0},
+        {1.0, 0.9, 0.2, 100.0, 3, "rolling on the retainers", 0.2 / (2.0 * TD_PI)},
+        {1.0, 0.1, -0.2, 100.0, 3, "sliding on the retainers", -0.2 / (2.0 * TD_PI)},
+        {1.0, 0.9, -60.0, 100.0, 3, "backward whirl at -9.549 Hz, rolling", -60.0 / (2.0 * TD_PI)},
+        {0.4, 0.0, 24.0, 100.0, 3, "forward rub at 9.549 Hz, sliding, bouncing", 60.0 / (2.0 * TD_PI)},
+        {1.0, 0.9, -60.0, 0.5, 3, "at rest", 0.0},
+    };
+    size_t i;
+    (void)state;
+    for (i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        td_run_summary s;
+        td_retainer_totals before[2], after[2];
+        memset(before, 0, sizeof before);
+        memset(after, 0, sizeof after);
+        memset(&s, 0, sizeof s);
+        s.contacts = cases[i].contacts;
+        s.ending_window = 1.0;
+        before[1].contact_time = 5.0; /* retainer 1 carries the stretch */
+        before[1].whirl_angle = 7.0;
+        before[1].rolling_time = 2.0;
+        after[1] = before[1];
+        after[1].contact_time += cases[i].contact;
+        after[1].rolling_time += cases[i].rolling;
+        after[1].whirl_angle += cases[i].angle;
+        after[0].contact_time = 0.1 * cases[i].contact; /* retainer 0 less */
+        td_run_summary_ending(&s, before, after, 2, 100.0, cases[i].speed);
+        assert_string_equal(s.ending, cases[i].want);
+        assert_close(s.ending_whirl_frequency, cases[i].f, 1e-12, 0.0);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -671,6 +713,7 @@ int main(void)
         cmocka_unit_test(test_run_matches_hand_loop), cmocka_unit_test(test_run_cancel),
         cmocka_unit_test(test_summary_unstable_run),  cmocka_unit_test(test_summary_failed_before_start),
         cmocka_unit_test(test_sim_accessors),         cmocka_unit_test(test_json_string),
+        cmocka_unit_test(test_summary_ending),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -49,6 +49,7 @@ typedef struct td_output_layout {
     int compression;    /**< HDF5 only: deflate level 0 (none) .. 9, with the shuffle filter; CSV ignores it */
     int race_fields;    /**< nonzero: also each retainer's race centre x, y, race speed and rolling flag
                          *   (models with race bodies or stick retainers, touchdown/model.h) */
+    int speed_field;    /**< nonzero: also the rotor speed (models whose speed varies: a ramp or a free spin) */
 } td_output_layout;
 
 /**
@@ -61,14 +62,15 @@ TD_API td_status td_writer_open(td_writer_kind kind, const char *path, const td_
                                 td_error *err);
 
 /**
- * Append one sample at time `t` (s). `node_xy`: 2 node_count values x0, y0, x1, y1, ... (m);
+ * Append one sample at time `t` (s) with the rotor speed `speed` (rad/s; written when the layout
+ * has speed_field). `node_xy`: 2 node_count values x0, y0, x1, y1, ... (m);
  * `ret`: retainer_count states; `amb_f`: 2 amb_count values Fx0, Fy0, ... (N). Arrays may be
  * NULL only when their count is 0. Samples need not be strictly increasing in time (an event
  * that falls on a grid time gives two samples at that time). After a failed write the writer
  * only accepts td_writer_close (which then marks the file incomplete).
  */
-TD_API td_status td_writer_sample(td_writer *w, double t, const double *node_xy, const td_retainer_state *ret,
-                                  const double *amb_f, td_error *err);
+TD_API td_status td_writer_sample(td_writer *w, double t, double speed, const double *node_xy,
+                                  const td_retainer_state *ret, const double *amb_f, td_error *err);
 
 /**
  * Append one event. `sample` is the row (from 0) of the sample that shows the state right after

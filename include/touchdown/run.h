@@ -81,6 +81,14 @@ typedef struct td_run_summary {
     double final_speed;        /**< rad/s: rotor speed at the end */
     int retainer_count;        /**< retainers in the model; the first TD_RUN_SUMMARY_RETAINERS in `retainers` */
     td_run_retainer retainers[TD_RUN_SUMMARY_RETAINERS];
+    char ending[96];                     /**< how the run ended, over its last stretch (td_run_summary_ending):
+                                              "free (no contact)", "recovered", "at rest", "rolling on the
+                                              retainers", "sliding on the retainers", "backward whirl at F Hz",
+                                              "forward rub at F Hz" (", rolling|sliding", ", bouncing"), or
+                                              "undetermined" */
+    double ending_whirl_frequency;       /**< Hz: mean whirl rate over that stretch of the retainer most in
+                                              contact, signed like the spin (< 0 backward); 0 without contact */
+    double ending_window;                /**< s: that stretch, the last max(5 revolutions, 10 % of the run) */
     int energy_kept;                     /**< 1: the case kept the energy account (td_sim_options.energy) */
     td_energy energy;                    /**< it, at the end (all 0 when not kept) */
     int peak_converges;                  /**< 0: some retainer is a rigid constraint, whose instantaneous peak normal
@@ -141,6 +149,16 @@ TD_API td_status td_run(td_sim *sim, double t_end, const td_output_options *out,
  *  failed): status `st`, `message`, the start option `requested`, nothing simulated, no files. */
 TD_API void td_run_summary_failed(td_run_summary *s, double t_start, double t_end, double speed, td_start requested,
                                   td_status st, const char *message);
+
+/**
+ * How a run ended, from the retainers' totals at the start of its last stretch (`before`, taken at
+ * t_end - window) and at the end (`after`), n retainers, and the final rotor speed `speed`
+ * against the start speed `speed0`: fills s->ending and s->ending_whirl_frequency. A rotor whose
+ * whirl rate stays below 5 % of its spin sits on its retainers (rolling or sliding there); faster,
+ * it whirls backward or rubs forward; in contact less than half the stretch, it also bounces.
+ */
+TD_API void td_run_summary_ending(td_run_summary *s, const td_retainer_totals *before, const td_retainer_totals *after,
+                                  int n, double speed0, double speed);
 
 /** Human-readable multi-line summary (times with 10 decimals). Returns the length needed, like
  *  snprintf; buf is always NUL-terminated when n > 0. */

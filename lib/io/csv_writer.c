@@ -39,7 +39,7 @@ static int write_sample_header(FILE *f, const td_writer *w)
 {
     static const char *ret_cols[] = {"x", "y", "r", "vr", "theta", "N", "Ff", "vs", "contact"};
     static const char *ret_units[] = {"m", "m", "m", "m/s", "rad", "N", "N", "m/s", "-"};
-    int i, k, rc = fputs("t [s]", f) < 0;
+    int i, k, rc = fputs(w->speed_field ? "t [s],speed [rad/s]" : "t [s]", f) < 0;
     for (i = 0; i < w->node_count; i++)
         rc |= fprintf(f, ",x_n%d [m],y_n%d [m]", w->nodes[i], w->nodes[i]) < 0;
     static const char *race_cols[] = {"xr", "yr", "wr", "rolling"};
@@ -95,7 +95,7 @@ static td_status csv_open(td_writer *w, td_error *err)
 
 /* ---- rows -------------------------------------------------------------------------------- */
 
-static td_status csv_sample(td_writer *w, double t, const double *node_xy, const td_retainer_state *ret,
+static td_status csv_sample(td_writer *w, double t, double speed, const double *node_xy, const td_retainer_state *ret,
                             const double *amb_f, td_error *err)
 {
     FILE *f = ((csv_impl *)w->impl)->samples;
@@ -103,6 +103,8 @@ static td_status csv_sample(td_writer *w, double t, const double *node_xy, const
     int i, rc;
     errno = 0;
     rc = fputs(exact_text(t, tbuf, sizeof tbuf), f) < 0;
+    if (w->speed_field)
+        rc |= fprintf(f, ",%.17g", speed) < 0;
     for (i = 0; i < 2 * w->node_count; i++)
         rc |= fprintf(f, ",%.17g", node_xy[i]) < 0;
     for (i = 0; i < w->retainer_count; i++) {

@@ -27,8 +27,8 @@
 #include <string.h>
 #include <unistd.h>
 
-/* Largest number of sample datasets: time, displacement, 13 retainer fields, AMB force. */
-#define H5_MAX_SERIES 16
+/* Largest number of sample datasets: time, speed, displacement, 13 retainer fields, AMB force (17), with room. */
+#define H5_MAX_SERIES 24
 /* Chunk of the sample datasets: at most this many rows and about this many bytes. */
 #define H5_CHUNK_ROWS 1024
 #define H5_CHUNK_BYTES (512 * 1024)
@@ -66,7 +66,7 @@ typedef struct h5_impl {
     hid_t component;   /* /component ("x", "y"), -1 when no dataset has that axis */
     h5_series series[H5_MAX_SERIES];
     int series_count;
-    int idx_time, idx_disp, idx_ret, idx_amb; /* first series of each part, -1 if absent */
+    int idx_time, idx_speed, idx_disp, idx_ret, idx_amb; /* first series of each part, -1 if absent */
     size_t chunk_rows, buffered;
     hsize_t flushed;
     hsize_t event_rows;      /* events in the file */
@@ -178,6 +178,8 @@ static td_status add_series(td_writer *w, h5_impl *h, hid_t loc, const char *nam
     hsize_t dims[3], maxdims[3], chunk[3];
     hid_t space, dcpl, dset = -1;
     int i;
+    if (h->series_count >= H5_MAX_SERIES) /* a layout this file format was not sized for: a bug */
+        return td_error_set(err, TD_ERR_INVALID, "%s: too many sample datasets (%d)", w->tmp_path, H5_MAX_SERIES);
     s->rank = rank;
     s->row_len = 1;
     for (i = 0; i + 1 < rank; i++) {
@@ -409,6 +411,11 @@ static td_status open_impl(td_writer *w, h5_impl *h, td_error *err)
     h->idx_time = h->series_count;
     if ((st = add_series(w, h, h->file, "time", "s", 1, NULL, 0, err)) != TD_OK)
         return st;
+    if (w->speed_field) {
+        h->idx_speed = h->series_count;
+        if ((st = add_series(w, h, h->file, "speed", "rad/s", 1, NULL, 0, err)) != TD_OK)
+            return st;
+    }
     if ((w->node_count > 0 || w->amb_count > 0) && (h->component = make_component_scale(h->file)) < 0)
         return h5_fail(err, w, "cannot create /component");
     if ((st = create_nodes(w, h, err)) != TD_OK || (st = create_retainers(w, h, err)) != TD_OK ||
@@ -427,7 +434,7 @@ static td_status h5_open(td_writer *w, td_error *err)
         return td_error_set(err, TD_ERR_NOMEM, "out of memory opening %s", w->path);
     h->file = h->event_dset = h->event_mtype = h->event_ftype = h->kind_type = h->event_index = h->component =
         h->driver = -1;
-    h->idx_time = h->idx_disp = h->idx_ret = h->idx_amb = -1;
+    h->idx_time = h->idx_speed = h->idx_disp = h->idx_ret = h->idx_amb = -1;
     h->chunk_rows = choose_chunk_rows(w);
     w->impl = h;
     h->event_buf = malloc(H5_EVENT_CHUNK * sizeof *h->event_buf);
@@ -483,12 +490,14 @@ static td_status flush_rows(td_writer *w, h5_impl *h, td_error *err)
     return TD_OK;
 }
 
-static void buffer_row(const td_writer *w, h5_impl *h, double t, const double *node_xy, const td_retainer_state *ret,
-                       const double *amb_f)
+static void buffer_row(const td_writer *w, h5_impl *h, double t, double speed, const double *node_xy,
+                       const td_retainer_state *ret, const double *amb_f)
 {
     size_t r = h->buffered;
     int i, f;
     ((double *)h->series[h->idx_time].buf)[r] = t;
+    if (h->idx_speed >= 0)
+        ((double *)h->series[h->idx_speed].buf)[r] = speed;
     if (h->idx_disp >= 0)
         memcpy((double *)h->series[h->idx_disp].buf + r * 2 * (size_t)w->node_count, node_xy,
                2 * (size_t)w->node_count * sizeof(double));
@@ -512,12 +521,12 @@ static void buffer_row(const td_writer *w, h5_impl *h, double t, const double *n
     h->buffered++;
 }
 
-static td_status h5_sample(td_writer *w, double t, const double *node_xy, const td_retainer_state *ret,
+static td_status h5_sample(td_writer *w, double t, double speed, const double *node_xy, const td_retainer_state *ret,
                            const double *amb_f, td_error *err)
 {
     h5_impl *h = w->impl;
     td_status st = TD_OK;
-    buffer_row(w, h, t, node_xy, ret, amb_f);
+    buffer_row(w, h, t, speed, node_xy, ret, amb_f);
     if (h->buffered == h->chunk_rows) {
         H5E_BEGIN_TRY
         {

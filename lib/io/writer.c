@@ -265,6 +265,7 @@ td_status td_writer_open(td_writer_kind kind, const char *path, const td_output_
     w->node_count = layout->node_count;
     w->retainer_count = layout->retainer_count;
     w->race_fields = layout->race_fields != 0;
+    w->speed_field = layout->speed_field != 0;
     w->amb_count = layout->amb_count;
     w->compression = layout->compression;
     if (layout->node_count > 0) {
@@ -312,7 +313,7 @@ static td_status mark_failed(td_writer *w, td_status st, const td_error *local, 
     return td_error_set(err, st, "%s", local->message);
 }
 
-td_status td_writer_sample(td_writer *w, double t, const double *node_xy, const td_retainer_state *ret,
+td_status td_writer_sample(td_writer *w, double t, double speed, const double *node_xy, const td_retainer_state *ret,
                            const double *amb_f, td_error *err)
 {
     td_status st = usable(w, "td_writer_sample", err);
@@ -322,7 +323,7 @@ td_status td_writer_sample(td_writer *w, double t, const double *node_xy, const 
     if ((w->node_count > 0 && !node_xy) || (w->retainer_count > 0 && !ret) || (w->amb_count > 0 && !amb_f))
         return td_error_set(err, TD_ERR_INVALID, "td_writer_sample: NULL array for a non-empty part of the layout");
     td_error_clear(&local);
-    st = w->ops->sample(w, t, node_xy, ret, amb_f, &local);
+    st = w->ops->sample(w, t, speed, node_xy, ret, amb_f, &local);
     if (st != TD_OK)
         return mark_failed(w, st, &local, err);
     w->samples++;

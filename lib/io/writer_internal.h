@@ -42,6 +42,7 @@ struct td_writer {
     int events_fd;     /**< likewise for events_tmp */
     int node_count, retainer_count, amb_count;
     int race_fields; /**< nonzero: the race columns / datasets too (td_output_layout) */
+    int speed_field; /**< nonzero: the rotor speed column / dataset too (td_output_layout) */
     int compression; /**< HDF5 deflate level, 0..9 */
     int *nodes;      /**< node_count numbers (NULL if 0) */
     td_attr *attrs;
@@ -58,7 +59,7 @@ struct td_writer_ops {
     /* Open the created, empty w->tmp_path (and w->events_tmp); an fd taken over is set to -1.
      * On failure release impl; the caller removes the files. */
     td_status (*open)(td_writer *w, td_error *err);
-    td_status (*sample)(td_writer *w, double t, const double *node_xy, const td_retainer_state *ret,
+    td_status (*sample)(td_writer *w, double t, double speed, const double *node_xy, const td_retainer_state *ret,
                         const double *amb_f, td_error *err);
     td_status (*event)(td_writer *w, const td_event *ev, long sample, td_error *err);
     /* Write the buffered data, every attribute, then complete/incomplete_reason last, flush and

@@ -18,6 +18,7 @@ struct td_recorder {
     int *nodes;
     int retainer_count, amb_count;
     int race_fields; /* the writers' race columns (td_output_layout) */
+    int speed_field; /* the writers' rotor speed column (td_output_layout) */
     double *q;       /* dof_count */
     double *node_xy; /* 2 node_count */
     td_retainer_state *ret;
@@ -155,6 +156,7 @@ static td_status open_writers(td_recorder *r, const td_output_options *out, td_e
     layout.retainer_count = r->retainer_count;
     layout.amb_count = r->amb_count;
     layout.race_fields = r->race_fields;
+    layout.speed_field = r->speed_field;
     layout.compression = out->compression;
     if (out->hdf5_path[0])
         st = td_writer_open(TD_WRITER_HDF5, out->hdf5_path, &layout, &r->writers[r->writer_count++], err);
@@ -183,6 +185,7 @@ td_status td_recorder_create(const td_model *model, const td_output_options *out
     r->retainer_count = td_model_retainer_count(model);
     r->amb_count = td_model_amb_count(model);
     r->race_fields = has_race_states(model);
+    r->speed_field = td_model_speed_varies(model);
     if ((st = choose_nodes(r, model, out, err)) != TD_OK || (st = allocate_scratch(r, err)) != TD_OK ||
         (st = open_writers(r, out, err)) != TD_OK || (st = write_model_attributes(r, model, out, err)) != TD_OK) {
         td_recorder_discard(&r);
@@ -224,7 +227,7 @@ td_status td_recorder_sample(td_recorder *r, const td_sim *sim, double t, td_err
     if ((st = read_state(r, sim, err)) != TD_OK)
         return st;
     for (i = 0; i < r->writer_count; i++)
-        if ((st = td_writer_sample(r->writers[i], t, r->node_xy, r->ret, r->amb_f, err)) != TD_OK)
+        if ((st = td_writer_sample(r->writers[i], t, td_sim_speed(sim), r->node_xy, r->ret, r->amb_f, err)) != TD_OK)
             return st;
     return TD_OK;
 }

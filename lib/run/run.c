@@ -33,6 +33,10 @@ typedef struct run_state {
     long event_sample_row;    /* row of the last event sample, -1 before the first */
     double event_sample_time; /* its time */
     double solver_wall_at_contact;
+    /* the retainers' totals where the ending's stretch begins (td_run_summary_ending) */
+    double t_window;
+    int window_taken;
+    td_retainer_totals window[TD_RUN_SUMMARY_RETAINERS];
 } run_state;
 
 static double max2(double a, double b)
@@ -95,11 +99,33 @@ static void contact_advance(run_state *r, double t, int now_in_contact)
 
 /* ---- one sample, one event --------------------------------------------------------------- */
 
+/* The start of the stretch the ending is judged over: the last max(5 revolutions at the start
+ * speed, a tenth of the run), at most the whole run. */
+static double ending_window(const td_run_summary *s)
+{
+    double span = s->t_end - s->t_start, w = 0.1 * span;
+    if (s->speed > 0.0)
+        w = max2(w, TD_RUN_FREE_REVOLUTIONS * 2.0 * TD_PI / s->speed);
+    return w < span ? w : span;
+}
+
+/* The retainers' totals as the ending's stretch begins. */
+static void window_snapshot(run_state *r, double t)
+{
+    int k, n = td_model_retainer_count(td_sim_model(r->sim));
+    if (r->window_taken || t < r->t_window)
+        return;
+    for (k = 0; k < n && k < TD_RUN_SUMMARY_RETAINERS; k++)
+        td_sim_retainer_totals(r->sim, k, &r->window[k]);
+    r->window_taken = 1;
+}
+
 static td_status take_sample(run_state *r, double t, int on_grid, td_error *err)
 {
     td_status st = td_recorder_sample(r->rec, r->sim, t, err);
     if (st != TD_OK)
         return st;
+    window_snapshot(r, t);
     r->s->samples++;
     if (on_grid)
         r->s->grid_samples++;
@@ -264,6 +290,21 @@ static void summary_totals(run_state *r)
     }
 }
 
+/* How the run ended: judged over the last stretch when the run got through it. */
+static void summary_ending(run_state *r)
+{
+    td_run_summary *s = r->s;
+    td_retainer_totals after[TD_RUN_SUMMARY_RETAINERS];
+    int k, n = s->retainer_count < TD_RUN_SUMMARY_RETAINERS ? s->retainer_count : TD_RUN_SUMMARY_RETAINERS;
+    if (!r->window_taken || s->t_reached < s->t_end) {
+        snprintf(s->ending, sizeof s->ending, "undetermined");
+        return;
+    }
+    for (k = 0; k < n; k++)
+        after[k] = s->retainers[k].totals;
+    td_run_summary_ending(s, r->window, after, n, s->speed, s->final_speed);
+}
+
 /* Everything derived once the loop has stopped. */
 static void summary_finish(run_state *r, double wall_start)
 {
@@ -291,6 +332,7 @@ static void summary_finish(run_state *r, double wall_start)
             s->free_at_end = 1;
     }
     summary_totals(r);
+    summary_ending(r);
     if (s->contacts == 0)
         s->returned_to_free_orbit = TD_RUN_NOT_APPLICABLE;
     else if (s->free_at_end < 0)
@@ -377,6 +419,8 @@ static td_status write_summary(td_recorder *rec, const td_run_summary *s, const 
                  {"summary_total_impulse", s->total_impulse},
                  {"summary_friction_work", s->friction_work},
                  {"summary_final_speed", s->final_speed},
+                 {"summary_ending_whirl_frequency", s->ending_whirl_frequency},
+                 {"summary_ending_window", s->ending_window},
 
                  {"summary_contact_time", s->contact_time},
                  {"summary_contact_fraction", s->contact_fraction},
@@ -401,6 +445,8 @@ static td_status write_summary(td_recorder *rec, const td_run_summary *s, const 
     td_status st = td_recorder_set_string(rec, "case_text", case_text ? case_text : "", err);
     if (st == TD_OK)
         st = td_recorder_set_string(rec, "status", td_strerror(s->status), err);
+    if (st == TD_OK)
+        st = td_recorder_set_string(rec, "summary_ending", s->ending[0] ? s->ending : "undetermined", err);
     if (st == TD_OK)
         st = td_recorder_set_stats(rec, &s->stats, err);
     for (i = 0; st == TD_OK && i < sizeof reals / sizeof reals[0]; i++)
@@ -459,6 +505,8 @@ td_status td_run(td_sim *sim, double t_end, const td_output_options *out, const 
     r.mark = summary->t_start;
     r.next_progress = summary->t_start;
     r.event_sample_row = -1;
+    summary->ending_window = ending_window(summary);
+    r.t_window = summary->t_end - summary->ending_window;
     if ((st = td_recorder_create(model, out, &r.rec, err)) != TD_OK) {
         summary->status = st;
         snprintf(summary->message, sizeof summary->message, "%s", err ? err->message : td_strerror(st));

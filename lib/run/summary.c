@@ -66,6 +66,54 @@ void td_run_retainer_classify(td_run_retainer *out, double speed, double span)
              t->contact_time < 0.5 * span ? ", bouncing" : "");
 }
 
+/* The retainer in contact longest over the stretch, -1 if none. */
+static int busiest(const td_retainer_totals *before, const td_retainer_totals *after, int n)
+{
+    int k, best = -1;
+    double most = 0.0;
+    for (k = 0; k < n; k++) {
+        double dt = after[k].contact_time - before[k].contact_time;
+        if (dt > most) {
+            most = dt;
+            best = k;
+        }
+    }
+    return best;
+}
+
+void td_run_summary_ending(td_run_summary *s, const td_retainer_totals *before, const td_retainer_totals *after, int n,
+                           double speed0, double speed)
+{
+    const double w = s->ending_window;
+    int k = busiest(before, after, n);
+    double dt, rate, f, spin_f = fabs(speed) / (2.0 * TD_PI);
+    const char *how, *bounce;
+    s->ending_whirl_frequency = 0.0;
+    if (!(w > 0.0)) {
+        snprintf(s->ending, sizeof s->ending, "undetermined");
+        return;
+    }
+    if (k < 0) {
+        snprintf(s->ending, sizeof s->ending, "%s", s->contacts > 0 ? "recovered" : "free (no contact)");
+        return;
+    }
+    if (fabs(speed) < 0.01 * fabs(speed0) || fabs(speed) < 1.0) {
+        snprintf(s->ending, sizeof s->ending, "at rest");
+        return;
+    }
+    dt = after[k].contact_time - before[k].contact_time;
+    rate = (after[k].whirl_angle - before[k].whirl_angle) / dt;
+    f = (speed < 0.0 ? -rate : rate) / (2.0 * TD_PI);
+    s->ending_whirl_frequency = f;
+    how = after[k].rolling_time - before[k].rolling_time > 0.5 * dt ? "rolling" : "sliding";
+    bounce = dt < 0.5 * w ? ", bouncing" : "";
+    if (fabs(f) < 0.05 * spin_f)
+        snprintf(s->ending, sizeof s->ending, "%s on the retainers%s", how, bounce);
+    else
+        snprintf(s->ending, sizeof s->ending, "%s at %.4g Hz, %s%s", f < 0.0 ? "backward whirl" : "forward rub", f, how,
+                 bounce);
+}
+
 void td_run_summary_failed(td_run_summary *s, double t_start, double t_end, double speed, td_start requested,
                            td_status st, const char *message)
 {
@@ -149,6 +197,8 @@ static void format_answers(td_text *b, const td_run_summary *s)
     td_text_printf(b, "total impulse               %.6g N s\n", s->total_impulse);
     td_text_printf(b, "friction work               %.6g J\n", s->friction_work);
     td_text_printf(b, "final speed                 %.6g rad/s\n", s->final_speed);
+    td_text_printf(b, "ending                      %s (last %.6g s)\n", s->ending[0] ? s->ending : "undetermined",
+                   s->ending_window);
     if (s->stats.peak_amb >= 0)
         td_text_printf(b, "peak AMB force              %.6g N, AMB %d, %.4g %% of its capacity, at %.10f s\n",
                        s->stats.peak_amb_force, s->stats.peak_amb, 100.0 * s->stats.peak_amb_load,
@@ -326,6 +376,9 @@ static void json_answers(td_text *b, const td_run_summary *s)
     json_real(b, "total_impulse", s->total_impulse, 0, 1);
     json_real(b, "friction_work", s->friction_work, 0, 1);
     json_real(b, "final_speed", s->final_speed, 0, 1);
+    json_string(b, "ending", s->ending[0] ? s->ending : "undetermined");
+    json_real(b, "ending_whirl_frequency", s->ending_whirl_frequency, 0, 1);
+    json_real(b, "ending_window", s->ending_window, 0, 1);
     json_real(b, "peak_amb_force", s->stats.peak_amb >= 0 ? s->stats.peak_amb_force : -1.0, 1, 1);
     json_real(b, "peak_amb_load", s->stats.peak_amb >= 0 ? s->stats.peak_amb_load : -1.0, 1, 1);
     if (s->stats.peak_amb >= 0)

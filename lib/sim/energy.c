@@ -85,6 +85,8 @@ static double powers(td_sim *s, double t, const double *y, double pw[5])
         if (s->ret[k].rs >= 0)
             pw[4] += td_sim_race_drag(s, k, y, NULL) * v[s->ret[k].rs];
     }
+    if (s->spin_free)
+        pw[4] += td_sim_spin_drag(s, y, NULL) * v[s->spin];
     return held;
 }
 

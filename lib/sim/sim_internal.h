@@ -249,9 +249,12 @@ double td_sim_rotor_speed(const td_sim *s, const double *y);
 double td_sim_rotor_angle(const td_sim *s, double t, const double *y);
 /* dOmega/dt at (t, y): the ramp's slope, or a free spin's torque balance over J. */
 double td_sim_rotor_rate(const td_sim *s, double t, const double *y);
-/* The torque applied on the spin DOF's row (ramp: J alpha; free: drive minus Coulomb drag), with
- * its slope in Omega (may be NULL); 0 without a spin DOF. */
-double td_sim_spin_torque(const td_sim *s, double t, const double *y, double *dT);
+/* The torque that drives the spin DOF from outside (ramp: J alpha, what the drive must give;
+ * free: the drive torque); 0 without a spin DOF. */
+double td_sim_spin_torque(const td_sim *s, double t);
+/* A free spin's constant drag torque, regularised over TD_SIM_SPIN_BAND at standstill, with its
+ * slope in Omega (may be NULL); 0 otherwise. */
+double td_sim_spin_drag(const td_sim *s, const double *y, double *dT);
 /* The spin's start state into y: angle and speed at s->t. */
 void td_sim_spin_start(const td_sim *s, double *y);
 /* The spin angle taken modulo 2 pi (at restarts). */

@@ -147,7 +147,7 @@ void td_sim_external_forces(const td_sim *s, double t, const double *y, double s
         }
     }
     if (s->spin >= 0)
-        f[s->spin] += sign * td_sim_spin_torque(s, t, y, NULL);
+        f[s->spin] += sign * td_sim_spin_torque(s, t);
     for (k = 0; k < sys->n_amb_axes; k++)
         f[sys->amb_axes[k].actuator_dof] += sign * td_sim_amb_axis_force(s, k, y);
 }
@@ -162,6 +162,8 @@ static void applied_forces(const td_sim *s, double t, const double *y, double si
         if (s->ret[k].rs >= 0)
             f[s->ret[k].rs] -= sign * td_sim_race_drag(s, k, y, NULL);
     }
+    if (s->spin_free)
+        f[s->spin] -= sign * td_sim_spin_drag(s, y, NULL);
 }
 
 void td_sim_forces(const td_sim *s, double t, const double *y, double *f)
@@ -571,9 +573,9 @@ static void jacobian_spin(td_sim *s, double t, const double *y)
         jadd(s, x, wz, -2.0 * U * w * c);
         jadd(s, yrow, wz, -2.0 * U * w * sn);
     }
-    td_sim_spin_torque(s, t, y, &dT); /* the row carries -torque */
+    td_sim_spin_drag(s, y, &dT); /* the row carries + drag */
     if (dT != 0.0)
-        jadd(s, wz, wz, -dT);
+        jadd(s, wz, wz, dT);
 }
 
 /* A ramp's spin rows are angle - phi(t) and speed - Omega(t) (td_sim_residual): the identity in

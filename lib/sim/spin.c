@@ -50,21 +50,25 @@ double td_sim_rotor_angle(const td_sim *s, double t, const double *y)
     return s->spin >= 0 ? y[s->oq + s->spin] : s->spin_ref + s->omega * (t - s->t_spin_ref);
 }
 
-/* The constant and regularised Coulomb drag of a free spin, and its slope in Omega. */
-static double coulomb_drag(const td_spin *sp, double omega, double *dT)
-{
-    double dphi = 0.0, phi = td_contact_slip_factor(omega, TD_SIM_SPIN_BAND, &dphi);
-    if (dT)
-        *dT = sp->drag_torque * dphi;
-    return sp->drag_torque * phi;
-}
-
-double td_sim_spin_torque(const td_sim *s, double t, const double *y, double *dT)
+double td_sim_spin_drag(const td_sim *s, const double *y, double *dT)
 {
     td_spin sp;
-    double rate, drag, slope;
+    double dphi = 0.0, phi;
     if (dT)
         *dT = 0.0;
+    if (!s->spin_free)
+        return 0.0;
+    td_model_spin(s->model, &sp);
+    phi = td_contact_slip_factor(y[s->ov + s->spin], TD_SIM_SPIN_BAND, &dphi);
+    if (dT)
+        *dT = sp.drag_torque * dphi;
+    return sp.drag_torque * phi;
+}
+
+double td_sim_spin_torque(const td_sim *s, double t)
+{
+    td_spin sp;
+    double rate;
     if (s->spin < 0)
         return 0.0;
     if (!s->spin_free) {
@@ -72,10 +76,7 @@ double td_sim_spin_torque(const td_sim *s, double t, const double *y, double *dT
         return s->spin_inertia * rate;
     }
     td_model_spin(s->model, &sp);
-    drag = coulomb_drag(&sp, y[s->ov + s->spin], &slope);
-    if (dT)
-        *dT = -slope;
-    return sp.drive_torque - drag;
+    return sp.drive_torque;
 }
 
 double td_sim_rotor_rate(const td_sim *s, double t, const double *y)
@@ -85,11 +86,11 @@ double td_sim_rotor_rate(const td_sim *s, double t, const double *y)
     int k;
     if (s->spin < 0)
         return 0.0;
-    torque = td_sim_spin_torque(s, t, y, NULL);
+    torque = td_sim_spin_torque(s, t);
     if (!s->spin_free)
         return torque / s->spin_inertia;
     td_model_spin(s->model, &sp);
-    torque -= sp.drag_viscous * y[s->ov + s->spin];
+    torque -= td_sim_spin_drag(s, y, NULL) + sp.drag_viscous * y[s->ov + s->spin];
     for (k = 0; k < s->nr; k++) /* zero for a free retainer: no normal force */
         torque -= s->ret[k].r.shaft_radius * td_sim_friction_force(s, k, y);
     return torque / s->spin_inertia;

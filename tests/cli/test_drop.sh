@@ -1,0 +1,72 @@
+#!/usr/bin/env bash
+# cases/drop.cfg through the tool, end to end: the rig levitated by PID AMBs under gravity, both
+# AMBs fail at 0.05 s, the rotor falls onto its ball-bearing retainers and coasts down on a free
+# spin. Physics checked, not only presence: centred before the failure (integral action), the
+# spin follows the drag's closed form before the failure and slows on the retainers, the races
+# spin up from rest, the energy balance
+# closes with the spin's kinetic energy and drag in it, the summary says how the drop ended, and
+# the files carry the rotor speed per sample.
+# Args: $1 = the touchdown binary, $2 = the source directory. Runs in the build's tests directory.
+set -u
+tool=$1
+src=$2
+work=$(mktemp -d "${PWD}/drop.XXXXXX")
+trap 'rm -rf "$work"' EXIT
+
+. "$(dirname "${BASH_SOURCE[0]}")/common.sh" # fail, pass, check, t, jf, finish
+
+t "$work/run" run --json -o "$work/run/drop" --set end_time=0.4 --set energy=true "$src/cases/drop.cfg"
+check "drop to 0.4 s: exit 0" test "$rc" = 0
+out=$work/run/.out
+check "the summary: slowed, an ending, the AMB load, the energy balance" python3 - "$out" <<'PY'
+import json, sys
+d = json.load(open(sys.argv[1]))
+assert d["complete"] is True
+assert 180.0 < d["final_speed"] < 190.0, d["final_speed"]     # friction and drag slow the free spin
+assert d["ending"] not in ("undetermined", "free (no contact)", "recovered"), d["ending"]
+assert 0.0 < d["peak_amb_load"] < 1.0                         # levitated within capacity
+assert d["first_contact_time"] > 0.05                          # falls after the failure
+e = d["energy"]
+held = e["kinetic"] + e["elastic"]
+lost = e["damping_loss"] + e["contact_loss"] + e["drag_loss"] + e["impact_loss"]
+assert abs(e["residual"]) < 1e-5 * held and abs(e["residual"]) < 1e-2 * lost, e
+print("ok", d["final_speed"], d["ending"], d["peak_amb_load"], e["residual"] / held, e["residual"] / lost)
+PY
+py=""
+for cand in ${TD_PYTHON:-} python3 /usr/bin/python3; do
+    if command -v "$cand" >/dev/null && "$cand" -c 'import h5py, numpy' 2>/dev/null; then
+        py=$cand
+        break
+    fi
+done
+if [ -z "$py" ]; then
+    echo "skip: no python3 with h5py (scripts/setup.sh installs python3-h5py): HDF5 speed dataset not checked"
+else
+check "the HDF5 file: speed per sample, centred before the failure, races spun up" "$py" - "$work/run/drop.h5" <<'PY'
+import sys
+import h5py, numpy as np
+f = h5py.File(sys.argv[1], "r")
+t, w = f["time"][:], f["speed"][:]
+assert f["speed"].attrs["units"] in (b"rad/s", "rad/s")
+# before the failure only the drag brakes the spin: J w' = -T - c w, J the rotor's polar inertia
+# (shaft rho pi L R^4 / 2, four discs of 0.072 kg m^2), T = 0.1 N m, c = 1e-4 N m s/rad
+J, T, c = 7810.0 * np.pi * 2.0 * 0.025 ** 4 / 2.0 + 4 * 0.072, 0.1, 1e-4
+before = t < 0.05
+exact = (190.0 + T / c) * np.exp(-c * t[before] / J) - T / c
+drop, want = w[0] - w[before][-1], 190.0 - exact[-1]            # about 0.02 rad/s
+assert w[0] == 190.0 and abs(drop - want) < 0.01 * want, (drop, want)
+assert w[-1] < w[before][-1] - 0.1                             # the retainers' friction brakes it
+nodes = list(f["nodes/node"][:])
+d = f["nodes/displacement"][:]
+amb = [nodes.index(3), nodes.index(9)]
+# PID: the orbit at the AMBs turns round the centre: its mean over the last whole revolution
+# before the failure (167 samples at 5 kHz, 190 rad/s) is within a sample's share of the orbit
+rev = (t >= 0.05 - 2.0 * np.pi / 190.0) & before
+mean = np.abs(d[rev][:, amb, :].mean(axis=0)).max()
+radius = np.hypot(d[rev][:, amb, 0], d[rev][:, amb, 1]).max()
+assert mean < 0.02 * radius, (mean, radius)
+assert f["retainers/race_speed"][:, 0].max() > 50.0            # the races spun up from rest
+print("ok", mean, w[-1], f["retainers/race_speed"][-1, :])
+PY
+fi
+finish
