@@ -50,6 +50,8 @@ typedef struct td_output_layout {
     int race_fields;    /**< nonzero: also each retainer's race centre x, y, race speed and rolling flag
                          *   (models with race bodies or stick retainers, touchdown/model.h) */
     int speed_field;    /**< nonzero: also the rotor speed (models whose speed varies: a ramp or a free spin) */
+    int whirl_field;    /**< nonzero: also each retainer's whirl rate (models with race fields or a varying
+                         *   speed: the paper's cases keep the layout they always had) */
 } td_output_layout;
 
 /**

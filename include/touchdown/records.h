@@ -52,6 +52,7 @@ typedef struct td_retainer_state {
     double race_x, race_y;   /**< race centre displacement on its mount, m (0 without a mount) */
     double race_speed;       /**< race speed Omega_b, rad/s (bore_speed when it is fixed) */
     int rolling;             /**< 1 while rolling without slip (stick retainers, model.h) */
+    double whirl_rate;       /**< d(whirl_angle)/dt, rad/s: > 0 forward (with the spin), < 0 backward */
 } td_retainer_state;
 
 /**

@@ -49,6 +49,8 @@ static int write_sample_header(FILE *f, const td_writer *w)
             rc |= fprintf(f, ",%s_ret%d [%s]", ret_cols[k], i, ret_units[k]) < 0;
         for (k = 0; k < 4 && w->race_fields; k++)
             rc |= fprintf(f, ",%s_ret%d [%s]", race_cols[k], i, race_units[k]) < 0;
+        if (w->whirl_field)
+            rc |= fprintf(f, ",dtheta_ret%d [rad/s]", i) < 0;
     }
     for (i = 0; i < w->amb_count; i++)
         rc |= fprintf(f, ",Fx_amb%d [N],Fy_amb%d [N]", i, i) < 0;
@@ -114,6 +116,8 @@ static td_status csv_sample(td_writer *w, double t, double speed, const double *
                     s->whirl_angle, s->normal_force, s->friction_force, s->sliding_velocity, s->in_contact ? 1 : 0) < 0;
         if (w->race_fields)
             rc |= fprintf(f, ",%.17g,%.17g,%.17g,%d", s->race_x, s->race_y, s->race_speed, s->rolling ? 1 : 0) < 0;
+        if (w->whirl_field)
+            rc |= fprintf(f, ",%.17g", s->whirl_rate) < 0;
     }
     for (i = 0; i < 2 * w->amb_count; i++)
         rc |= fprintf(f, ",%.17g", amb_f[i]) < 0;

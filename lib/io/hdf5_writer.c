@@ -66,7 +66,7 @@ typedef struct h5_impl {
     hid_t component;   /* /component ("x", "y"), -1 when no dataset has that axis */
     h5_series series[H5_MAX_SERIES];
     int series_count;
-    int idx_time, idx_speed, idx_disp, idx_ret, idx_amb; /* first series of each part, -1 if absent */
+    int idx_time, idx_speed, idx_disp, idx_ret, idx_whirl, idx_amb; /* first series of each part, -1 if absent */
     size_t chunk_rows, buffered;
     hsize_t flushed;
     hsize_t event_rows;      /* events in the file */
@@ -293,6 +293,10 @@ static td_status create_retainers(td_writer *w, h5_impl *h, td_error *err)
             st = add_series(w, h, g, "contact_state", "1", 2, row, 1, err);
         if (st == TD_OK && w->race_fields)
             st = add_series(w, h, g, "rolling", "1", 2, row, 1, err);
+        if (st == TD_OK && w->whirl_field) {
+            h->idx_whirl = h->series_count;
+            st = add_series(w, h, g, "whirl_rate", "rad/s", 2, row, 0, err);
+        }
         if (st == TD_OK)
             st = attach_own_axis(w, h, h->idx_ret, make_index_scale(g, "retainer", w->retainer_count, "retainer index"),
                                  1, err);
@@ -434,7 +438,7 @@ static td_status h5_open(td_writer *w, td_error *err)
         return td_error_set(err, TD_ERR_NOMEM, "out of memory opening %s", w->path);
     h->file = h->event_dset = h->event_mtype = h->event_ftype = h->kind_type = h->event_index = h->component =
         h->driver = -1;
-    h->idx_time = h->idx_speed = h->idx_disp = h->idx_ret = h->idx_amb = -1;
+    h->idx_time = h->idx_speed = h->idx_disp = h->idx_ret = h->idx_whirl = h->idx_amb = -1;
     h->chunk_rows = choose_chunk_rows(w);
     w->impl = h;
     h->event_buf = malloc(H5_EVENT_CHUNK * sizeof *h->event_buf);
@@ -513,6 +517,8 @@ static void buffer_row(const td_writer *w, h5_impl *h, double t, double speed, c
             ((int8_t *)h->series[h->idx_ret + nf].buf)[at] = (int8_t)(ret[i].in_contact ? 1 : 0);
             if (w->race_fields)
                 ((int8_t *)h->series[h->idx_ret + nf + 1].buf)[at] = (int8_t)(ret[i].rolling ? 1 : 0);
+            if (h->idx_whirl >= 0)
+                ((double *)h->series[h->idx_whirl].buf)[at] = ret[i].whirl_rate;
         }
     }
     if (h->idx_amb >= 0)

@@ -43,6 +43,7 @@ struct td_writer {
     int node_count, retainer_count, amb_count;
     int race_fields; /**< nonzero: the race columns / datasets too (td_output_layout) */
     int speed_field; /**< nonzero: the rotor speed column / dataset too (td_output_layout) */
+    int whirl_field; /**< nonzero: the retainers' whirl rate columns / dataset too (td_output_layout) */
     int compression; /**< HDF5 deflate level, 0..9 */
     int *nodes;      /**< node_count numbers (NULL if 0) */
     td_attr *attrs;

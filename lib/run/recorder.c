@@ -157,6 +157,7 @@ static td_status open_writers(td_recorder *r, const td_output_options *out, td_e
     layout.amb_count = r->amb_count;
     layout.race_fields = r->race_fields;
     layout.speed_field = r->speed_field;
+    layout.whirl_field = r->race_fields || r->speed_field;
     layout.compression = out->compression;
     if (out->hdf5_path[0])
         st = td_writer_open(TD_WRITER_HDF5, out->hdf5_path, &layout, &r->writers[r->writer_count++], err);

@@ -1191,6 +1191,7 @@ td_status td_sim_retainer_state(const td_sim *sim, int retainer, td_retainer_sta
     out->radius = hypot(rx, ry);
     out->radial_velocity = td_contact_radial_velocity(rx, ry, vx, vy);
     out->whirl_angle = atan2(ry, rx);
+    out->whirl_rate = out->radius > 0.0 ? (rx * vy - ry * vx) / (out->radius * out->radius) : 0.0;
     out->normal_force = td_sim_normal_force(sim, retainer, y);
     out->in_contact = r->mode != TD_RMODE_FREE;
     out->rolling = r->rolling;

@@ -66,7 +66,16 @@ mean = np.abs(d[rev][:, amb, :].mean(axis=0)).max()
 radius = np.hypot(d[rev][:, amb, 0], d[rev][:, amb, 1]).max()
 assert mean < 0.02 * radius, (mean, radius)
 assert f["retainers/race_speed"][:, 0].max() > 50.0            # the races spun up from rest
-print("ok", mean, w[-1], f["retainers/race_speed"][-1, :])
+# the whirl rate per sample integrates to the whirl angle swept (unwrapped) over the run: the
+# node's orbit keeps clear of the centre (the angle is defined), on the steady orbit and after
+th = np.unwrap(f["retainers/whirl_angle"][:, 0])
+wr = f["retainers/whirl_rate"][:, 0]
+r = np.hypot(f["retainers/x"][:, 0], f["retainers/y"][:, 0])
+i0 = 0
+assert r.min() > 5e-5, r.min()
+swept, integral = th[-1] - th[i0], np.trapz(wr[i0:], t[i0:])
+assert abs(swept) > 1.0 and abs(integral - swept) < 0.01 * abs(swept), (swept, integral)
+print("ok", mean, w[-1], f["retainers/race_speed"][-1, :], swept, integral)
 PY
 fi
 finish
