@@ -13,7 +13,7 @@ src=$2
 work=$(mktemp -d "${PWD}/drop.XXXXXX")
 trap 'rm -rf "$work"' EXIT
 
-. "$(dirname "${BASH_SOURCE[0]}")/common.sh" # fail, pass, check, t, jf, finish
+. "$(dirname "${BASH_SOURCE[0]}")/common.sh" # fail, pass, check, t, jf, h5py_python, finish
 
 t "$work/run" run --json -o "$work/run/drop" --set end_time=0.4 --set energy=true "$src/cases/drop.cfg"
 check "drop to 0.4 s: exit 0" test "$rc" = 0
@@ -32,13 +32,7 @@ lost = e["damping_loss"] + e["contact_loss"] + e["drag_loss"] + e["impact_loss"]
 assert abs(e["residual"]) < 1e-5 * held and abs(e["residual"]) < 1e-2 * lost, e
 print("ok", d["final_speed"], d["ending"], d["peak_amb_load"], e["residual"] / held, e["residual"] / lost)
 PY
-py=""
-for cand in ${TD_PYTHON:-} python3 /usr/bin/python3; do
-    if command -v "$cand" >/dev/null && "$cand" -c 'import h5py, numpy' 2>/dev/null; then
-        py=$cand
-        break
-    fi
-done
+py=$(h5py_python)
 if [ -z "$py" ]; then
     echo "skip: no python3 with h5py (scripts/setup.sh installs python3-h5py): HDF5 speed dataset not checked"
 else
