@@ -726,18 +726,23 @@ double td_model_speed_at(const td_model *m, double t, double *rate, double *angl
     return w;
 }
 
+/* A hollow cylindrical element's mass rho pi L (ro^2 - ri^2) (polar = 0) or polar moment of
+ * inertia rho pi L (ro^4 - ri^4) / 2 (polar = 1). */
+static double element_inertia(const td_shaft_element *e, int polar)
+{
+    double ro = 0.5 * e->outer_diameter, ri = 0.5 * e->inner_diameter, ro2 = ro * ro, ri2 = ri * ri;
+    double mass = e->material.density * TD_PI * e->length * (ro2 - ri2);
+    return polar ? 0.5 * mass * (ro2 + ri2) : mass;
+}
+
 double td_model_polar_inertia(const td_model *m)
 {
     double total = 0.0;
     int i;
     if (!m)
         return 0.0;
-    for (i = 0; i < m->elements.count; i++) {
-        const td_shaft_element *e = &m->elements.items[i];
-        double ro = 0.5 * e->outer_diameter, ri = 0.5 * e->inner_diameter;
-        /* hollow cylinder: rho pi L (ro^4 - ri^4) / 2 */
-        total += e->material.density * TD_PI * e->length * (ro * ro * ro * ro - ri * ri * ri * ri) / 2.0;
-    }
+    for (i = 0; i < m->elements.count; i++)
+        total += element_inertia(&m->elements.items[i], 1);
     for (i = 0; i < m->discs.count; i++)
         total += m->discs.items[i].Ip;
     return total;
@@ -749,11 +754,8 @@ double td_model_total_mass(const td_model *m)
     int i;
     if (!m)
         return 0.0;
-    for (i = 0; i < m->elements.count; i++) {
-        const td_shaft_element *e = &m->elements.items[i];
-        double area = TD_PI / 4.0 * (e->outer_diameter * e->outer_diameter - e->inner_diameter * e->inner_diameter);
-        total += e->material.density * area * e->length;
-    }
+    for (i = 0; i < m->elements.count; i++)
+        total += element_inertia(&m->elements.items[i], 0);
     for (i = 0; i < m->discs.count; i++)
         total += m->discs.items[i].mass;
     return total;

@@ -75,6 +75,7 @@ static double powers(td_sim *s, double t, const double *y, double pw[5])
     memset(pw, 0, 5 * sizeof *pw);
     for (i = 0; i < s->n; i++)
         pw[0] += s->energy_f[i] * v[i];
+    pw[0] += td_sim_unbalance_spin_coupling(s, t, y, N_VGetArrayPointer(s->yp), NULL);
     pw[2] = quadratic(s, s->st_D, v, v);
     for (k = 0; k < s->nr; k++) {
         double loss;

@@ -196,6 +196,10 @@ void td_sim_roots(const td_sim *s, double t, const double *y, double *g);
 void td_sim_root_directions(const td_sim *s, int *dir);
 /* Force of AMB axis k at state y (N), with the mode of its AMB. */
 double td_sim_amb_axis_force(const td_sim *s, int k, const double *y);
+/* A free spin's inertial coupling with the unbalances (spin.c): rv -= the forces that the
+ * residual's explicit alpha missed and the unbalances' drag on the spin (rv may be NULL); returns
+ * their power at y, J/s. 0 unless the spin is free. */
+double td_sim_unbalance_spin_coupling(const td_sim *s, double t, const double *y, const double *yp, double *rv);
 /* Rate of AMB axis k's integrator state at y (model/amb.c td_amb_axis_integral_rate); 0 without one. */
 double td_sim_amb_axis_integral_rate(const td_sim *s, int k, const double *y);
 /* Spin angle phi(t). */

@@ -232,6 +232,29 @@ static void roll_rows(const td_sim *s, int k, const double *y, double *rv, doubl
     res[s->of + r->fi] = td_sim_sliding_velocity(s, k, y);
 }
 
+double td_sim_unbalance_spin_coupling(const td_sim *s, double t, const double *y, const double *yp, double *rv)
+{
+    double phi, dw, power = 0.0;
+    int i;
+    if (!s->spin_free)
+        return 0.0;
+    phi = td_sim_rotor_angle(s, t, y);
+    dw = yp[s->ov + s->spin] - td_sim_rotor_rate(s, t, y); /* the forces took alpha from the torques */
+    for (i = 0; i < s->nu; i++) {
+        const td_unbalance *u = &s->unb[i];
+        double c = cos(phi + u->phase), sn = sin(phi + u->phase), U = u->magnitude;
+        int x = TD_DOF(u->node, TD_DOF_X), yy = TD_DOF(u->node, TD_DOF_Y);
+        double fx = U * sn * dw, fy = -U * c * dw, torque = -U * (c * yp[s->ov + yy] - sn * yp[s->ov + x]);
+        if (rv) {
+            rv[x] -= fx;
+            rv[yy] -= fy;
+            rv[s->spin] -= torque;
+        }
+        power += fx * y[s->ov + x] + fy * y[s->ov + yy] + torque * y[s->ov + s->spin];
+    }
+    return power;
+}
+
 void td_sim_residual(const td_sim *s, double t, const double *y, const double *yp, double *res)
 {
     const td_system *sys = s->sys;
@@ -246,6 +269,7 @@ void td_sim_residual(const td_sim *s, double t, const double *y, const double *y
     structural(s, y + s->oq, v, yp + s->ov, rv);
     gyroscopic_follow(s, y, rv);
     applied_forces(s, t, y, -1.0, rv);
+    td_sim_unbalance_spin_coupling(s, t, y, yp, rv);
     /* w rows: the AMB force lag and integrator */
     for (k = 0; k < sys->n_amb_axes; k++) {
         const td_amb_axis *a = &sys->amb_axes[k];
@@ -578,6 +602,23 @@ static void jacobian_spin(td_sim *s, double t, const double *y)
         jadd(s, wz, wz, dT);
 }
 
+/* A free spin's inertial coupling with the unbalances' nodes (td_sim_unbalance_spin_coupling):
+ * the mass entries (-U sin, U cos)(phi + phase), both ways, times cj. */
+static void jacobian_unbalance_spin(td_sim *s, double t, double cj, const double *y)
+{
+    double phi = td_sim_rotor_angle(s, t, y);
+    int wz = s->ov + s->spin, i;
+    for (i = 0; i < s->nu; i++) {
+        const td_unbalance *u = &s->unb[i];
+        double mx = -u->magnitude * sin(phi + u->phase), my = u->magnitude * cos(phi + u->phase);
+        int x = s->ov + TD_DOF(u->node, TD_DOF_X), yrow = s->ov + TD_DOF(u->node, TD_DOF_Y);
+        jadd(s, x, wz, cj * mx);
+        jadd(s, yrow, wz, cj * my);
+        jadd(s, wz, x, cj * mx);
+        jadd(s, wz, yrow, cj * my);
+    }
+}
+
 /* A ramp's spin rows are angle - phi(t) and speed - Omega(t) (td_sim_residual): the identity in
  * place of the differential rows' entries (nothing else writes into them for a ramp). */
 static void jacobian_ramp_rows(td_sim *s)
@@ -603,6 +644,8 @@ void td_sim_jacobian(td_sim *s, double t, double cj, const double *y)
     jadd_matrix(s, s->G, s->map_G, td_sim_rotor_speed(s, y));
     if (s->spin >= 0)
         jacobian_spin(s, t, y);
+    if (s->spin_free)
+        jacobian_unbalance_spin(s, t, cj, y);
     jadd_matrix(s, s->K, s->map_K, 1.0);
     jacobian_amb(s, y);
     for (k = 0; k < s->nr; k++) {

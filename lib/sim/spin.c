@@ -3,15 +3,19 @@
  * "Speed transients"), appended after the races' DOFs when the speed varies: its angle phi in q,
  * its speed Omega in v, the rotor's polar inertia J on M's diagonal.
  *
- *   a ramp:       J Omega' = J alpha(t)      the drive holds the prescribed speed whatever the
- *                                            friction torques; phi' = Omega as every q row
+ *   a ramp:       phi = phi(t), Omega = Omega(t), exactly (algebraic rows): the drive holds the
+ *                 prescribed speed whatever the friction torques
  *   a free spin:  J Omega' = T_drive - T_drag sgn(Omega) - c_drag Omega - sum_k R_s F_t,k
+ *                            - sum_u U (y_u'' cos - x_u'' sin)(phi + phase_u)
  *
  * c_drag sits in C (so it is a damping loss of the energy account), the friction torques come in
  * through the contact columns (retainer.c, sim_residual.c). The unbalance turns with phi:
- * U (Omega^2 cos + alpha sin, Omega^2 sin - alpha cos)(phi + phase), alpha = Omega' (its reaction
- * on the spin, U times the node's acceleration, is left out: below 1e-4 of the friction torques
- * on the rig). The gyroscopic matrix follows Omega: D = C + Omega G.
+ * U (Omega^2 cos + alpha sin, Omega^2 sin - alpha cos)(phi + phase), alpha = Omega'; on a free
+ * spin the alpha term and the last torque above (the unbalance mass dragged round by the node's
+ * acceleration) are the two halves of one inertial coupling, the Lagrangian's mass entries
+ * (-U sin, U cos) between the node and the spin (sim_residual.c unbalance_spin_coupling): the
+ * spin pays for the energy the unbalance feeds the whirl. The gyroscopic matrix follows Omega:
+ * D = C + Omega G.
  */
 #include "sim/sim_internal.h"
 

@@ -29,3 +29,15 @@ t() {
 
 # First top-level "KEY":VALUE of a one-line JSON object (strings keep their quotes).
 jf() { grep -oE "\"$2\":(\"[^\"]*\"|[^,}]*)" "$1" | head -n 1 | sed -E "s/^\"$2\"://"; }
+
+# h5py_python: print a python3 that imports h5py and numpy (TD_PYTHON, the first python3 on the
+# PATH, or the system's, which scripts/setup.sh gives python3-h5py); print nothing if none does.
+h5py_python() {
+    local cand
+    for cand in ${TD_PYTHON:-} python3 /usr/bin/python3; do
+        if command -v "$cand" >/dev/null && "$cand" -c 'import h5py, numpy' 2>/dev/null; then
+            echo "$cand"
+            return
+        fi
+    done
+}

@@ -13,7 +13,7 @@ src=$2
 work=$(mktemp -d "${PWD}/rub-damped.XXXXXX")
 trap 'rm -rf "$work"' EXIT
 
-. "$(dirname "${BASH_SOURCE[0]}")/common.sh" # fail, pass, check, t, jf, finish
+. "$(dirname "${BASH_SOURCE[0]}")/common.sh" # fail, pass, check, t, jf, h5py_python, finish
 
 t "$work/run" run --json -o "$work/run/rub" --set end_time=0.6 --set energy=true "$src/cases/rub-damped.cfg"
 check "rub-damped to 0.6 s: exit 0" test "$rc" = 0
@@ -35,14 +35,7 @@ big = max(e["external_work"], e["drive_work"], e["damping_loss"], e["contact_los
 assert abs(e["residual"]) < 1e-3 * big, e
 print("ok", d["peak_housing_force"], d["total_impulse"], d["friction_work"], w, e["residual"] / big)
 PY
-# a python3 with h5py: the one given, the first on the PATH, or the system's (python3-h5py)
-py=""
-for cand in ${TD_PYTHON:-} python3 /usr/bin/python3; do
-    if command -v "$cand" >/dev/null && "$cand" -c 'import h5py, numpy' 2>/dev/null; then
-        py=$cand
-        break
-    fi
-done
+py=$(h5py_python)
 if [ -z "$py" ]; then
     echo "skip: no python3 with h5py (scripts/setup.sh installs python3-h5py): HDF5 race datasets not checked"
 else
