@@ -107,6 +107,28 @@ static void print_parts(const td_model *m)
     }
 }
 
+/* The speed: constant, a ramp's points, or a free spin with its torques; and the polar inertia. */
+static void print_speed(const td_model *m)
+{
+    td_spin sp;
+    int i, n = td_model_speed_point_count(m);
+    td_model_spin(m, &sp);
+    printf("speed        %.9g rad/s (%.9g rpm)%s\n", td_model_speed(m), TD_RPM_FROM_RAD_S(td_model_speed(m)),
+           n > 0     ? ", then the ramp"
+           : sp.free ? " at the start, free"
+                     : "");
+    for (i = 0; i < n; i++) {
+        td_speed_point p;
+        td_model_get_speed_point(m, i, &p);
+        printf("  ramp       at t = %.9g s: %.9g rad/s\n", p.time, p.speed);
+    }
+    printf("polar        J = %.6g kg m^2 (shaft and discs)%s\n", td_model_polar_inertia(m),
+           sp.free && sp.inertia > 0.0 ? "; the spin uses spin.inertia" : "");
+    if (sp.free)
+        printf("spin         free: drive %.6g N m, drag %.6g N m + %.6g N m s/rad%s\n", sp.drive_torque, sp.drag_torque,
+               sp.drag_viscous, sp.inertia > 0.0 ? "" : ", J as above");
+}
+
 static int print_modes(const td_model *m, int count)
 {
     td_system *sys = NULL;
@@ -118,7 +140,7 @@ static int print_modes(const td_model *m, int count)
         return TD_EXIT_USAGE;
     }
     td_model_gravity(m, &gx, &gy);
-    printf("speed        %.9g rad/s (%.9g rpm)\n", td_model_speed(m), TD_RPM_FROM_RAD_S(td_model_speed(m)));
+    print_speed(m);
     printf("gravity      %s\n", (gx != 0.0 || gy != 0.0) ? "on" : "off");
     printf("DOFs         %d mechanical (4 per node), %d first-order states with the AMB lags\n",
            td_system_dof_count(sys), td_modal_state_count(sys));
