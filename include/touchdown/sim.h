@@ -99,7 +99,7 @@ TD_API td_status td_sim_stats_get(const td_sim *sim, td_sim_stats *out);
 TD_API td_status td_sim_retainer_totals(const td_sim *sim, int retainer, td_retainer_totals *out);
 /** The energy account so far (touchdown/records.h td_energy). */
 TD_API td_status td_sim_energy(const td_sim *sim, td_energy *out);
-/** The rotor speed now, rad/s (the model's, or the last td_sim_set_speed). */
+/** The rotor speed now, rad/s: the model's or the last td_sim_set_speed, the ramp's, or the free spin's state. */
 TD_API double td_sim_speed(const td_sim *sim);
 
 /* Changes between steps; each takes effect from the current time (the integrator restarts).

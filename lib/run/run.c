@@ -446,7 +446,7 @@ static td_status write_summary(td_recorder *rec, const td_run_summary *s, const 
     if (st == TD_OK)
         st = td_recorder_set_string(rec, "status", td_strerror(s->status), err);
     if (st == TD_OK)
-        st = td_recorder_set_string(rec, "summary_ending", s->ending[0] ? s->ending : "undetermined", err);
+        st = td_recorder_set_string(rec, "summary_ending", s->ending, err);
     if (st == TD_OK)
         st = td_recorder_set_stats(rec, &s->stats, err);
     for (i = 0; st == TD_OK && i < sizeof reals / sizeof reals[0]; i++)

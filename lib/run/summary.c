@@ -28,6 +28,7 @@ void td_run_summary_init(td_run_summary *s, double t0, double t_end, double spee
     s->peak_converges = 1;
     s->free_window = -1.0;
     s->free_at_end = -1;
+    snprintf(s->ending, sizeof s->ending, "undetermined");
     s->returned_to_free_orbit = -1;
     s->wall_time_per_revolution = -1.0;
     s->realtime_factor = -1.0;
@@ -197,8 +198,7 @@ static void format_answers(td_text *b, const td_run_summary *s)
     td_text_printf(b, "total impulse               %.6g N s\n", s->total_impulse);
     td_text_printf(b, "friction work               %.6g J\n", s->friction_work);
     td_text_printf(b, "final speed                 %.6g rad/s\n", s->final_speed);
-    td_text_printf(b, "ending                      %s (last %.6g s)\n", s->ending[0] ? s->ending : "undetermined",
-                   s->ending_window);
+    td_text_printf(b, "ending                      %s (last %.6g s)\n", s->ending, s->ending_window);
     if (s->stats.peak_amb >= 0)
         td_text_printf(b, "peak AMB force              %.6g N, AMB %d, %.4g %% of its capacity, at %.10f s\n",
                        s->stats.peak_amb_force, s->stats.peak_amb, 100.0 * s->stats.peak_amb_load,
@@ -376,7 +376,7 @@ static void json_answers(td_text *b, const td_run_summary *s)
     json_real(b, "total_impulse", s->total_impulse, 0, 1);
     json_real(b, "friction_work", s->friction_work, 0, 1);
     json_real(b, "final_speed", s->final_speed, 0, 1);
-    json_string(b, "ending", s->ending[0] ? s->ending : "undetermined");
+    json_string(b, "ending", s->ending);
     json_real(b, "ending_whirl_frequency", s->ending_whirl_frequency, 0, 1);
     json_real(b, "ending_window", s->ending_window, 0, 1);
     json_real(b, "peak_amb_force", s->stats.peak_amb >= 0 ? s->stats.peak_amb_force : -1.0, 1, 1);

@@ -794,6 +794,7 @@ static double restart_step(const td_sim *s)
 
 td_status td_sim_restart(td_sim *s)
 {
+    double stop = next_stop(s);
     int flag;
     save_counters(s);
     td_sim_spin_wrap(s, N_VGetArrayPointer(s->y));
@@ -809,8 +810,8 @@ td_status td_sim_restart(td_sim *s)
         flag = IDASetInitStep(s->ida, restart_step(s));
     if (flag == IDA_SUCCESS)
         flag = IDASetMaxStep(s->ida, s->hmax);
-    if (flag == IDA_SUCCESS && isfinite(next_stop(s)))
-        flag = IDASetStopTime(s->ida, next_stop(s));
+    if (flag == IDA_SUCCESS && isfinite(stop))
+        flag = IDASetStopTime(s->ida, stop);
     if (flag != IDA_SUCCESS) {
         if (!s->errmsg[0])
             snprintf(s->errmsg, sizeof s->errmsg, "t = %.9g s: IDA re-initialisation failed (%d)", s->t, flag);

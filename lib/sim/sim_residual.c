@@ -128,7 +128,7 @@ void td_sim_external_forces(const td_sim *s, double t, const double *y, double s
 {
     const td_system *sys = s->sys;
     double w = td_sim_rotor_speed(s, y), w2 = w * w, phi = td_sim_rotor_angle(s, t, y);
-    double alpha = td_sim_rotor_rate(s, t, y);
+    double alpha = s->nu > 0 ? td_sim_rotor_rate(s, t, y) : 0.0; /* a free spin's sums the torques */
     int i, k;
     for (i = 0; i < sys->ndof; i++)
         f[i] += sign * sys->gravity_load[i];
@@ -236,7 +236,7 @@ double td_sim_unbalance_spin_coupling(const td_sim *s, double t, const double *y
 {
     double phi, dw, power = 0.0;
     int i;
-    if (!s->spin_free)
+    if (!s->spin_free || s->nu == 0)
         return 0.0;
     phi = td_sim_rotor_angle(s, t, y);
     dw = yp[s->ov + s->spin] - td_sim_rotor_rate(s, t, y); /* the forces took alpha from the torques */
