@@ -465,6 +465,7 @@ static void test_all_keys(void **state)
     assert_close(so->solver.initial_step, 1e-6, 0.0, 0.0);
     assert_int_equal(so->solver.max_order, 3);
     assert_int_equal(so->solver.linear_solver, TD_LINSOL_DENSE);
+    assert_int_equal(so->solver.free_flight, 0);
     assert_string_equal(oo->hdf5_path, "out/all.h5");
     assert_string_equal(oo->csv_path, "out/all.csv");
     assert_close(oo->sample_rate, 2000.0, 0.0, 0.0);

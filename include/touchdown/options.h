@@ -47,6 +47,8 @@ typedef struct td_solver_options {
     double initial_step; /**< first step and restart step after an event, s; 0: chosen by IDA */
     int max_order;       /**< BDF order limit, 1..5 */
     td_linear_solver linear_solver;
+    int free_flight; /**< nonzero: carry free flight in closed form where the machine is linear and
+                          time-invariant (sim.h); 0: integrate it with IDA too */
 } td_solver_options;
 
 /** State at t = 0. */

@@ -121,6 +121,8 @@ typedef struct td_sim_stats {
     double peak_amb_load;      /**< largest |force| / force_capacity of one AMB axis (1: at its capacity) */
     double peak_amb_time;      /**< s, time of peak_amb_load (-1 if no AMB force) */
     int peak_amb;              /**< AMB of peak_amb_load (-1 if no AMB force) */
+    long flight_steps;         /**< steps of the closed-form free flight (root bounds evaluated) */
+    double flight_time;        /**< s simulated in closed-form free flight */
 } td_sim_stats;
 
 #ifdef __cplusplus

@@ -16,8 +16,8 @@
 
 static const char *const gravity_keys[] = {"enabled", "g", "direction", NULL};
 static const char *const contact_keys[] = {"model", "stiffness", "exponent", "damping", "damping_coefficient", NULL};
-static const char *const solver_keys[] = {"rtol",      "atol",          "max_step", "initial_step",
-                                          "max_order", "linear_solver", NULL};
+static const char *const solver_keys[] = {"rtol",      "atol",          "max_step",    "initial_step",
+                                          "max_order", "linear_solver", "free_flight", NULL};
 static const char *const output_keys[] = {"hdf5", "csv", "sample_rate", "nodes", "compression", NULL};
 static const char *const modal_keys[] = {"speed_min", "speed_max", "speed_steps", "modes", "response_speeds", NULL};
 
@@ -132,6 +132,8 @@ static td_status read_solver(td_case_reader *r, const config_setting_t *root, td
     if (st == TD_OK)
         st = td_cr_enum(r, g, "linear_solver", linsol_names, 2, linsol, &linsol);
     o->linear_solver = (td_linear_solver)linsol;
+    if (st == TD_OK)
+        st = td_cr_bool(r, g, "free_flight", o->free_flight, &o->free_flight);
     return st;
 }
 

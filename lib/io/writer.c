@@ -486,7 +486,8 @@ td_status td_writer_set_stats(td_writer *w, const td_sim_stats *s, td_error *err
                   {"events", s ? s->events : 0},
                   {"contact_onsets", s ? s->contact_onsets : 0},
                   {"releases", s ? s->releases : 0},
-                  {"peak_amb", s ? s->peak_amb : 0}};
+                  {"peak_amb", s ? s->peak_amb : 0},
+                  {"flight_steps", s ? s->flight_steps : 0}};
     const struct {
         const char *name;
         double value;
@@ -497,7 +498,8 @@ td_status td_writer_set_stats(td_writer *w, const td_sim_stats *s, td_error *err
                  {"wall_time", s ? s->wall_time : 0.0},
                  {"peak_amb_force", s ? s->peak_amb_force : 0.0},
                  {"peak_amb_load", s ? s->peak_amb_load : 0.0},
-                 {"peak_amb_time", s ? s->peak_amb_time : 0.0}};
+                 {"peak_amb_time", s ? s->peak_amb_time : 0.0},
+                 {"flight_time", s ? s->flight_time : 0.0}};
     size_t i;
     td_status st;
     if (!s)

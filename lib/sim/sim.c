@@ -839,6 +839,7 @@ void td_sim_free(td_sim **sim)
     free(s->ysave);
     free(s->ypsave);
     td_sim_races_free(s);
+    td_sim_flight_free(s);
     td_system_free(&s->sys);
     free(s);
     *sim = NULL;
@@ -1010,14 +1011,41 @@ static int pending_stop(td_sim *s, double tout, td_status *st)
     return 0;
 }
 
-/* An integrator step to tret accepted: statistics, and the state kept as the last good one. */
-static void accept_step(td_sim *s, double tret)
+/* The state at tret accepted (an integrator step's end, at_step, or the flight's): statistics,
+ * and the state kept as the last good one. */
+static void accept_point(td_sim *s, double tret, int at_step)
 {
     s->t = tret;
-    monitor_at(s, tret, 1);
+    monitor_at(s, tret, at_step);
     td_sim_totals_point(s, tret, 0);
     memcpy(s->ysave, N_VGetArrayPointer(s->y), sizeof(double) * (size_t)s->neq);
     memcpy(s->ypsave, N_VGetArrayPointer(s->yp), sizeof(double) * (size_t)s->neq);
+}
+
+/* Free flight in closed form (flight.c) from s->t toward tout, up to the next stop. Returns 0 if
+ * the flight cannot carry the machine now (IDA integrates), 1 when advance returns *st (tout
+ * reached, an event to report or a failure), 2 to go on. */
+static int fly(td_sim *s, double tout, td_status *st)
+{
+    double stop = td_sim_next_stop(s);
+    int root = 0;
+    if (!td_sim_flight_advance(s, tout, stop, &root))
+        return 0;
+    s->ida_stale = 1; /* IDA's history is of the state before the flight */
+    s->t_ida = s->t;
+    accept_point(s, s->t, 0);
+    *st = TD_OK;
+    if (root || s->t >= stop) {
+        *st = handle_stop(s, root ? TD_PENDING_ROOT : TD_PENDING_TSTOP);
+        if (*st != TD_OK)
+            return 1;
+        if (pop_event(s)) {
+            *st = TD_EVENT;
+            return 1;
+        }
+        return 2;
+    }
+    return s->t >= tout ? 1 : 2;
 }
 
 static td_status advance(td_sim *s, double tout)
@@ -1045,9 +1073,19 @@ static td_status advance(td_sim *s, double tout)
             return TD_OK;
         }
         if (s->interrupt && *s->interrupt) {
-            /* y, yp hold the state at s->t here (a step's end or a restart), IDA's history intact */
+            /* y, yp hold the state at s->t here (a step's end, a restart or the flight's end) */
             snprintf(s->errmsg, sizeof s->errmsg, "t = %.9g s: interrupted", s->t);
             return TD_ERR_INTERRUPTED;
+        }
+        switch (fly(s, tout, &st)) {
+        case 1: return st;
+        case 2: continue;
+        default: break;
+        }
+        if (s->ida_stale) {
+            td_sim_flight_rates(s);
+            if ((st = td_sim_restart(s)) != TD_OK)
+                return st;
         }
         flag = IDASolve(s->ida, tout, &tret, s->y, s->yp, IDA_ONE_STEP);
         if (flag < 0)
@@ -1067,7 +1105,8 @@ static td_status advance(td_sim *s, double tout)
             s->t_pending = tret;
             continue;
         }
-        accept_step(s, tret);
+        accept_point(s, tret, 1);
+        td_sim_flight_forget(s);
         if (tret >= tout)
             return tret > tout ? interpolate(s, tout) : TD_OK;
     }

@@ -64,6 +64,9 @@ typedef struct td_sim_totals {
     double whirl_at_onset; /* t.whirl_angle when the open interval began */
 } td_sim_totals;
 
+/* The closed-form free flight's decomposition, forcing and anchor (flight.c). */
+typedef struct td_sim_flight td_sim_flight;
+
 struct td_sim {
     td_system *sys;        /* owned */
     const td_model *model; /* the system's copy */
@@ -172,6 +175,9 @@ struct td_sim {
     int *roll_tried;        /* nr: stick retainers set rolling at a slip root, not yet confirmed */
     int *touching;          /* nr: retainers touching their circles at the start (start_state) */
     double *ysave, *ypsave; /* last good state */
+
+    td_sim_flight *flight; /* flight.c, allocated at the first flight; NULL: none yet */
+    int ida_stale;         /* the flight moved the state: IDA restarts before its next step */
 
     volatile sig_atomic_t *interrupt; /* borrowed (td_sim_set_interrupt), NULL: none */
     td_sim_start_info start;          /* how the start state was chosen (start_state in sim.c) */
@@ -314,9 +320,29 @@ void td_sim_apply_past_changes(td_sim *s);
 /* Re-initialise IDA at s->t from s->y, s->yp (counters saved, root directions, restart step,
  * stop time, KLU refactorisation). */
 td_status td_sim_restart(td_sim *s);
+/* Where the integrator must stop next: the next schedule change or speed-ramp point; INFINITY if none. */
+double td_sim_next_stop(const td_sim *s);
 /* Append an event to the queue (and the statistics). */
 void td_sim_queue_event(td_sim *s, const td_event *ev);
 /* Fill the velocity fields of an event from the node velocity of retainer k. */
 void td_sim_event_velocities(const td_sim *s, int k, const double *y, int after, td_event *ev);
+
+/* ---- flight.c: free flight in closed form ------------------------------------------------ */
+
+/* 1 if the machine may fly in closed form now: free flight on (td_solver_options), no energy
+ * account, a prescribed constant speed, no races, no AMB saturation, every retainer free and
+ * rigid (constraint contact), nothing pending. The decomposition may still refuse it (td_sim_flight_advance). */
+int td_sim_flight_eligible(const td_sim *s);
+/* Carry the state from s->t in closed form to t_out or the stop t_stop, whichever comes first,
+ * or to a root before them (*root = 1, s->rootsfound as IDAGetRootInfo would set it), or less far
+ * at an interrupt; y holds the state at the new s->t (y': td_sim_flight_rates). Returns 0 (nothing
+ * moved) when the flight cannot carry the machine: the integrator does. */
+int td_sim_flight_advance(td_sim *s, double t_out, double t_stop, int *root);
+/* The state was moved by something else (an integrator step, a restart): the next flight starts
+ * from s->y afresh. */
+void td_sim_flight_forget(td_sim *s);
+/* y' at s->t from the flight that carried the state there (its outputs write y only). */
+void td_sim_flight_rates(td_sim *s);
+void td_sim_flight_free(td_sim *s);
 
 #endif

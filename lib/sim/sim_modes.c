@@ -30,6 +30,7 @@
 #include "sim/sim_internal.h"
 #include "util/error_internal.h"
 
+#include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -727,7 +728,7 @@ void td_sim_apply_past_changes(td_sim *s)
 
 /* Where the integrator must stop next: the next schedule change, or the next point of a speed
  * ramp (the speed's slope jumps there, and with it the unbalance's alpha term); infinity if none. */
-static double next_stop(const td_sim *s)
+double td_sim_next_stop(const td_sim *s)
 {
     double stop = INFINITY;
     int i;
@@ -794,7 +795,7 @@ static double restart_step(const td_sim *s)
 
 td_status td_sim_restart(td_sim *s)
 {
-    double stop = next_stop(s);
+    double stop = td_sim_next_stop(s);
     int flag;
     save_counters(s);
     td_sim_spin_wrap(s, N_VGetArrayPointer(s->y));
@@ -810,14 +811,16 @@ td_status td_sim_restart(td_sim *s)
         flag = IDASetInitStep(s->ida, restart_step(s));
     if (flag == IDA_SUCCESS)
         flag = IDASetMaxStep(s->ida, s->hmax);
-    if (flag == IDA_SUCCESS && isfinite(stop))
-        flag = IDASetStopTime(s->ida, stop);
+    if (flag == IDA_SUCCESS) /* none: a stop that the flight passed over must not stay set */
+        flag = IDASetStopTime(s->ida, isfinite(stop) ? stop : DBL_MAX);
     if (flag != IDA_SUCCESS) {
         if (!s->errmsg[0])
             snprintf(s->errmsg, sizeof s->errmsg, "t = %.9g s: IDA re-initialisation failed (%d)", s->t, flag);
         return TD_ERR_SOLVER;
     }
     s->t_ida = s->t;
+    s->ida_stale = 0;
+    td_sim_flight_forget(s);
     s->pending = 0; /* whatever IDA had found beyond s->t belongs to the discarded integration */
     s->stats.restarts++;
     return TD_OK;

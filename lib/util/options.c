@@ -20,6 +20,7 @@ void td_solver_options_default(td_solver_options *o)
     o->atol = 1e-9;
     o->max_step = 0.0;
     o->initial_step = 0.0;
+    o->free_flight = 1;
     o->max_order = 2; /* BDF2 is the highest A-stable order: the undamped shaft modes need it (docs/theory.md) */
     o->linear_solver = TD_LINSOL_KLU;
 }

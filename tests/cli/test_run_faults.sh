@@ -14,7 +14,8 @@
 #   4. SIGKILL (cannot be caught): only .partial files remain, nothing at a final path;
 #   5. an output path that cannot be created: exit 2 (bad input, refused before the run), one error line, no file left;
 #   6. SIGINT while the solver is slow inside one step (solver.max_step = 1e-12 s over end_time =
-#      5e-5 s, 5e7 steps, within the step bound of touchdown/limits.h): the run must still stop
+#      5e-5 s, 5e7 steps, within the step bound of touchdown/limits.h; free flight off, which would
+#      carry the contact-free run in closed form, without steps): the run must still stop
 #      (the 10 s limit catches a hang only: it stops 0.12 s after the signal under ASan on a
 #      loaded machine) with exit 1 and incomplete files;
 #   7. a full disk, simulated by the file size limit (ulimit -f, SIGXFSZ ignored, so writes fail
@@ -250,7 +251,7 @@ check "uncreatable output: no file left ($(ls -A "$d" | tr '\n' ' '))" test -z "
 # ---- 6. an interrupt while the solver crawls ---------------------------------------------------
 d=$work/crawl
 mkdir -p "$d"
-(cd "$d" && exec "$tool" run --set solver.max_step=1e-12 --set end_time=5e-5 "$case_a" >"$work/c.out" \
+(cd "$d" && exec "$tool" run --set solver.max_step=1e-12 --set solver.free_flight=false --set end_time=5e-5 "$case_a" >"$work/c.out" \
     2>"$work/c.err") &
 pid=$!
 pids+=("$pid")

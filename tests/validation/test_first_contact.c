@@ -15,8 +15,9 @@
  * there. The exponential is taken of the balanced matrix D^-1 A D (gsl_linalg_balance_matrix):
  * unbalanced, the stiff A (entries ~ omega_max^2 ~ 1e10) cost expm ~1e-9 s in the contact time.
  * The reference is reproducible to 1e-13 s and 4e-11 relative across grids of 2 to 100 us.
- * The simulation (tight tolerances) must agree to 1e-8 s and 1e-6 relative; at the default
- * tolerances it is printed only (measured: 7.8e-7 s and 6e-3 relative).
+ * The simulation's free flight in closed form (lib/sim/flight.c, default tolerances) must agree to
+ * 1e-9 s and 1e-8 relative; IDA alone at tight tolerances to 1e-8 s and 1e-6 relative; IDA at the
+ * default tolerances is printed only (measured: 7.8e-7 s and 6e-3 relative).
  */
 #include "td_test.h"
 
@@ -230,8 +231,9 @@ static void exact_first_contact(exact *ex, double U1, double U2, double *t_conta
     gsl_vector_free(xk), gsl_vector_free(tmp), gsl_vector_free(z);
 }
 
-/* Run the simulation to its first contact onset; returns the event. */
-static td_event sim_first_contact(const td_case *c, double rtol, double atol, td_sim_stats *st)
+/* Run the simulation to its first contact onset (free flight in closed form or integrated);
+ * returns the event. */
+static td_event sim_first_contact(const td_case *c, double rtol, double atol, int free_flight, td_sim_stats *st)
 {
     td_sim_options o = *td_case_sim_options(c);
     td_sim *s = NULL;
@@ -241,6 +243,7 @@ static td_event sim_first_contact(const td_case *c, double rtol, double atol, td
     o.solver.rtol = rtol;
     o.solver.atol = atol;
     o.solver.max_order = 2;
+    o.solver.free_flight = free_flight;
     if (td_sim_create(td_case_model(c), &o, &s, &err) != TD_OK)
         fail_msg("td_sim_create: %s", err.message);
     for (;;) {
@@ -286,12 +289,20 @@ static void test_case_a_first_contact(void **state)
     exact_first_contact(&ex, u.magnitude, ch.magnitude, &t_exact, &v_exact);
     print_message("exact first contact t = %.15f s, radial velocity %.12g m/s\n", t_exact, v_exact);
 
-    ev = sim_first_contact(c, 1e-6, 1e-9, &st);
+    ev = sim_first_contact(c, 1e-6, 1e-9, 1, &st);
+    print_message("free flight in closed form, defaults: t = %.15f s (error %.3g s), v_r = %.12g (rel. error %.3g), "
+                  "%ld flight steps, %ld IDA steps\n",
+                  ev.time, ev.time - t_exact, ev.radial_velocity_before,
+                  td_rel_diff(ev.radial_velocity_before, v_exact), st.flight_steps, st.steps);
+    assert_close(ev.time, t_exact, 0.0, 1e-9);
+    assert_close(ev.radial_velocity_before, v_exact, 1e-8, 0.0);
+    assert_close(st.flight_time, t_exact, 0.0, 1e-9); /* the whole way in closed form */
+    ev = sim_first_contact(c, 1e-6, 1e-9, 0, &st);
     print_message(
-        "defaults (rtol 1e-6, atol 1e-9): t = %.15f s (error %.3g s), v_r = %.12g (rel. error %.3g), %ld steps\n",
+        "IDA, defaults (rtol 1e-6, atol 1e-9): t = %.15f s (error %.3g s), v_r = %.12g (rel. error %.3g), %ld steps\n",
         ev.time, ev.time - t_exact, ev.radial_velocity_before, td_rel_diff(ev.radial_velocity_before, v_exact),
         st.steps);
-    ev = sim_first_contact(c, 1e-12, 1e-16, &st);
+    ev = sim_first_contact(c, 1e-12, 1e-16, 0, &st);
     print_message(
         "tight (rtol 1e-12, atol 1e-16): t = %.15f s (error %.3g s), v_r = %.12g (rel. error %.3g), %ld steps\n",
         ev.time, ev.time - t_exact, ev.radial_velocity_before, td_rel_diff(ev.radial_velocity_before, v_exact),
