@@ -94,6 +94,8 @@ struct td_sim_flight {
     double *y, *yp, *res, *rate, *rate0;
     double *b[4];
     double *amb_a, *amb_b, *amb_b2; /* per AMB axis: forces at a step's ends, |F''| bound */
+    double *amb_p, *amb_b2p;        /* per AMB axis: forces at and bounds of a pending part */
+    double amb_pending;             /* the last step's AMB peak is known up to here (INFINITY: all) */
     double complex *work;           /* 2 nz */
 };
 
@@ -758,8 +760,8 @@ static void amb_peak_search(td_sim *s, td_sim_flight *f, int k, double ta, doubl
 }
 
 /* The AMBs' forces at the last propagate (time t) into fa, their bounds |F''| into b2; the peak
- * load updated. */
-static void amb_forces(td_sim *s, td_sim_flight *f, double t, double *fa, double *b2)
+ * load updated if `record` (t is not beyond the output time). */
+static void amb_forces(td_sim *s, td_sim_flight *f, double t, double *fa, double *b2, int record)
 {
     int k;
     for (k = 0; k < s->sys->n_amb_axes; k++) {
@@ -767,26 +769,60 @@ static void amb_forces(td_sim *s, td_sim_flight *f, double t, double *fa, double
         fa[k] = v.v;
         if (b2)
             b2[k] = v.b2;
-        if (s->amb_mode[s->sys->amb_axes[k].amb] != TD_AMB_OFF)
+        if (record && s->amb_mode[s->sys->amb_axes[k].amb] != TD_AMB_OFF)
             record_amb_load(s, k, v.v, t);
     }
 }
 
-/* The AMBs' peak load inside the step [t, t + h], forces fa at t and fb at t + h, |F''| <= b2
- * from t on. Returns 1 if it propagated elsewhere. */
-static int amb_peaks(td_sim *s, td_sim_flight *f, double t, double h, const double *fa, const double *fb,
-                     const double *b2)
+/* The AMBs' peak load inside [t, t + h], forces fa at t and fb at t + h, |F''| <= b2 from t on.
+ * Leaves f->e anywhere. */
+static void amb_peaks(td_sim *s, td_sim_flight *f, double t, double h, const double *fa, const double *fb,
+                      const double *b2)
 {
-    int k, moved = 0;
+    int k;
     for (k = 0; k < s->sys->n_amb_axes; k++) {
         const td_amb_axis *a = &s->sys->amb_axes[k];
         double peak = s->stats.peak_amb_load * a->capacity * (1.0 + FLIGHT_PEAK_RTOL);
         if (s->amb_mode[a->amb] == TD_AMB_OFF || fmax(fabs(fa[k]), fabs(fb[k])) + 0.125 * b2[k] * h * h <= peak)
             continue;
         amb_peak_search(s, f, k, t, h, fa[k], fb[k], b2[k], 0);
-        moved = 1;
     }
-    return moved;
+}
+
+/* The AMBs' peak over [a, b], part of a step whose |F''| bounds are b2 (forces at a: fa, or
+ * evaluated if NULL). Leaves f->e anywhere. */
+static void amb_span(td_sim *s, td_sim_flight *f, double a, double b, const double *fa, const double *b2)
+{
+    if (!(b > a))
+        return;
+    if (!fa) {
+        propagate(f, a);
+        amb_forces(s, f, a, f->amb_p, NULL, 1);
+        fa = f->amb_p;
+    }
+    propagate(f, b);
+    amb_forces(s, f, b, f->amb_b, NULL, 1);
+    amb_peaks(s, f, a, b - a, fa, f->amb_b, b2);
+}
+
+/* A step [t, tn] ran past the output time t_out: the AMBs' peak up to t_out now, the rest
+ * (pending from t_out, with the step's bounds) when the next call's output time is known, so that
+ * no peak is recorded beyond the time reached. */
+static void amb_past_output(td_sim *s, td_sim_flight *f, double t, double t_out)
+{
+    amb_span(s, f, t, t_out, f->amb_a, f->amb_b2);
+    f->amb_pending = fmax(t, t_out);
+    memcpy(f->amb_b2p, f->amb_b2, sizeof(double) * (size_t)s->sys->n_amb_axes);
+}
+
+/* The pending part of the last step (amb_past_output) up to this call's output time. */
+static void amb_pending_part(td_sim *s, td_sim_flight *f, double t_out)
+{
+    double end = fmin(f->t_step, t_out);
+    if (!(f->amb_pending < f->t_step))
+        return;
+    amb_span(s, f, f->amb_pending, end, NULL, f->amb_b2p);
+    f->amb_pending = end < f->t_step ? end : INFINITY;
 }
 
 /* ---- life cycle ----------------------------------------------------------------------------- */
@@ -836,6 +872,8 @@ void td_sim_flight_free(td_sim *s)
     free(f->amb_a);
     free(f->amb_b);
     free(f->amb_b2);
+    free(f->amb_p);
+    free(f->amb_b2p);
     free(f);
     s->flight = NULL;
 }
@@ -891,7 +929,9 @@ static int flight_alloc(td_sim *s)
     f->amb_a = calloc(na, sizeof(double));
     f->amb_b = calloc(na, sizeof(double));
     f->amb_b2 = calloc(na, sizeof(double));
-    ok = ok && f->amb_a && f->amb_b && f->amb_b2;
+    f->amb_p = calloc(na, sizeof(double));
+    f->amb_b2p = calloc(na, sizeof(double));
+    ok = ok && f->amb_a && f->amb_b && f->amb_b2 && f->amb_p && f->amb_b2p;
     ok = ok && f->machine_key && f->forcing_key && f->key_work && f->lam && f->V && f->Vinv && f->grow && f->keep &&
          f->order && f->weight && f->work && f->p0 && f->pp && f->pm && f->d && f->e && f->ae && f->y && f->yp &&
          f->res && f->rate && f->rate0 && f->obs;
@@ -978,9 +1018,11 @@ int td_sim_flight_advance(td_sim *s, double t_out, double t_stop, int *root)
         if (!clear_of_roots(s, f))
             return 0;
         f->t_step = s->t;
+        f->amb_pending = INFINITY;
         propagate(f, f->t_step);
-        amb_forces(s, f, f->t_step, f->amb_a, f->amb_b2);
+        amb_forces(s, f, f->t_step, f->amb_a, f->amb_b2, 1);
     }
+    amb_pending_part(s, f, t_out);
     t = f->t_step;
     while (t < t_end) {
         double h, tn;
@@ -1006,11 +1048,15 @@ int td_sim_flight_advance(td_sim *s, double t_out, double t_stop, int *root)
         }
         h = fmin(h, FLIGHT_MAX_STEP);
         tn = t + h < t_stop - FLIGHT_ROOT_TOL ? t + h : t_stop; /* no sliver of a step before the stop */
-        propagate(f, tn);
-        amb_forces(s, f, tn, f->amb_b, NULL);
-        if (amb_peaks(s, f, t, tn - t, f->amb_a, f->amb_b, f->amb_b2))
+        if (tn <= t_out) {
             propagate(f, tn);
-        amb_forces(s, f, tn, f->amb_a, f->amb_b2);
+            amb_forces(s, f, tn, f->amb_b, NULL, 1);
+            amb_peaks(s, f, t, tn - t, f->amb_a, f->amb_b, f->amb_b2);
+        } else {
+            amb_past_output(s, f, t, t_out);
+        }
+        propagate(f, tn);
+        amb_forces(s, f, tn, f->amb_a, f->amb_b2, tn <= t_out);
         t = tn;
     }
     f->t_step = t;
