@@ -330,6 +330,54 @@ static long run_to(td_sim *s, double t_end, double dt)
     return events;
 }
 
+/* Event times of s stepped to t_end on an output grid dt into times (at most n); returns the count. */
+static int event_times(td_sim *s, double t_end, double dt, double *times, int n)
+{
+    td_error err;
+    int count = 0;
+    double t = td_sim_time(s);
+    while (t < t_end) {
+        double tr;
+        td_status st = td_sim_step(s, td_test_next_output(t, dt, t_end), &tr, &err);
+        if (st == TD_EVENT) {
+            td_event ev;
+            td_sim_last_event(s, &ev);
+            if (count < n)
+                times[count++] = ev.time;
+            continue;
+        }
+        if (st != TD_OK)
+            fail_msg("td_sim_step: %s", err.message);
+        t = tr;
+    }
+    return count;
+}
+
+/* The free flight's steps run on past the outputs, which only evaluate the closed form: the events
+ * (found by the flight's steps and by IDA's, which do not stop at outputs either) are the same bits
+ * on output grids of 0.1 ms and 0.37 ms. */
+static void test_flight_independent_of_outputs(void **state)
+{
+    td_case *c = td_test_load_case("cases/paper-a.cfg", NULL, 0);
+    td_sim_options o = *td_case_sim_options(c);
+    td_sim *a = NULL, *b = NULL;
+    double ta[64], tb[64];
+    int na, nb;
+    td_sim_stats st;
+    (void)state;
+    assert_int_equal(td_sim_create(td_case_model(c), &o, &a, NULL), TD_OK);
+    assert_int_equal(td_sim_create(td_case_model(c), &o, &b, NULL), TD_OK);
+    na = event_times(a, 0.11, 1e-4, ta, 64);
+    nb = event_times(b, 0.11, 3.7e-4, tb, 64);
+    td_sim_stats_get(a, &st);
+    print_message("%d events to 0.11 s, %.4f s in closed form\n", na, st.flight_time);
+    assert_true(na > 5 && st.flight_time > 0.1);
+    assert_int_equal(na, nb);
+    assert_memory_equal(ta, tb, sizeof(double) * (size_t)na);
+    td_sim_free(&a), td_sim_free(&b);
+    td_case_free(&c);
+}
+
 /* Two simulations stepped alternately give bit for bit what one gives alone (no shared state). */
 static void test_two_sims_independent(void **state)
 {
@@ -893,6 +941,7 @@ int main(void)
         cmocka_unit_test(test_dense_matches_klu),
         cmocka_unit_test(test_two_sims_independent),
         cmocka_unit_test(test_grazing_orbit),
+        cmocka_unit_test(test_flight_independent_of_outputs),
         cmocka_unit_test(test_constrained_drift),
         cmocka_unit_test(test_external_amb_control),
         cmocka_unit_test(test_api_change_matches_schedule),

@@ -72,6 +72,7 @@ struct td_sim_flight {
     double complex *lam, *V, *Vinv; /* V, V^-1 row-major nz x nz */
     double *grow;                   /* nz: e^{max(0, Re lambda) FLIGHT_MAX_STEP} */
     int *keep, nkeep;               /* the modes summed: one of each conjugate pair (z is real) */
+    int *order;                     /* nkeep: the kept modes by |lambda|, slowest first */
     double *weight;                 /* nz: 2 for a kept mode with a conjugate partner, else 1 */
     /* the forcing: valid for forcing_key */
     int forcing_ok;
@@ -93,6 +94,8 @@ struct td_sim_flight {
     double *y, *yp, *res, *rate, *rate0;
     double *b[4];
     double *amb_a, *amb_b, *amb_b2; /* per AMB axis: forces at a step's ends, |F''| bound */
+    double *amb_p, *amb_b2p;        /* per AMB axis: forces at and bounds of a pending part */
+    double amb_pending;             /* the last step's AMB peak is known up to here (INFINITY: all) */
     double complex *work;           /* 2 nz */
 };
 
@@ -269,6 +272,12 @@ static void pair_modes(td_sim_flight *f)
         f->weight[j] = paired ? 2.0 : 1.0;
         if (paired)
             f->weight[++j] = 0.0;
+    }
+    for (i = 0; i < f->nkeep; i++) { /* insertion sort by |lambda|: once per machine */
+        int m = f->keep[i], p = i;
+        for (; p > 0 && cabs(f->lam[f->order[p - 1]]) > cabs(f->lam[m]); p--)
+            f->order[p] = f->order[p - 1];
+        f->order[p] = m;
     }
 }
 
@@ -595,6 +604,70 @@ static int crosses(td_sim_flight *f, int k, double t, double R2, double sign, do
     return sign * (R2 - (x.v * x.v + y.v * y.v)) < 0.0;
 }
 
+/* The node inside radius R until F(tau) = R - m - a tau^2 / 2 - |p + v tau| reaches zero (F is
+ * concave: one crossing, found by bisection to a 2^-30 of the longest step); 0 if F(0) <= 0. */
+static double inside_until(double R, double m, double a, const double p[2], const double v[2])
+{
+    double lo = 0.0, hi = FLIGHT_MAX_STEP;
+    int i;
+#define INSIDE(tau) (R - m - 0.5 * a * (tau) * (tau)-hypot(p[0] + v[0] * (tau), p[1] + v[1] * (tau)))
+    if (INSIDE(0.0) <= 0.0)
+        return 0.0;
+    if (INSIDE(hi) > 0.0)
+        return hi;
+    for (i = 0; i < 30; i++) {
+        double mid = 0.5 * (lo + hi);
+        if (INSIDE(mid) > 0.0)
+            lo = mid;
+        else
+            hi = mid;
+    }
+#undef INSIDE
+    return lo;
+}
+
+/* splits of the modal sum tried by split_step */
+#define FLIGHT_SPLITS 8
+
+/*
+ * A safe step inside radius R for retainer k's node (at the last propagate, time t) from the modal
+ * sum split by frequency: the modes above the split bounded by their amplitudes m (they ring, but
+ * never further out than that), the slower ones and the forcing by a Taylor expansion with their
+ * acceleration bound a: |p(t + tau)| <= |p_s + p_s' tau| + a tau^2 / 2 + m. Near the clearance the
+ * ringing 11-13 kHz modes make the acceleration bound of the whole sum (retainer_roots) large and
+ * its step short; each split is a bound, the best is taken.
+ */
+static double split_step(const td_sim_flight *f, int k, double t, double R)
+{
+    const flight_obs *o[2] = {&f->obs[2 * k], &f->obs[2 * k + 1]};
+    double complex ep = harmonic_phase(f, t);
+    double p[2], v[2], a[2], m[2] = {0.0, 0.0}, best = 0.0, w = f->omega;
+    int c, i = 0, stride = f->nkeep / FLIGHT_SPLITS + 1;
+    for (c = 0; c < 2; c++) { /* start: the forcing slow, every mode fast */
+        p[c] = creal(o[c]->h0 + o[c]->hp * ep + o[c]->hm * conj(ep));
+        v[c] = creal(I * w * (o[c]->hp * ep - o[c]->hm * conj(ep)));
+        a[c] = w * w * (cabs(o[c]->hp) + cabs(o[c]->hm));
+        for (i = 0; i < f->nkeep; i++)
+            m[c] += o[c]->m0[f->keep[i]] * f->ae[f->keep[i]];
+    }
+    for (i = 0; i <= f->nkeep; i++) {
+        int j;
+        if (i % stride == 0 || i == f->nkeep)
+            best = fmax(best, inside_until(R, hypot(fmax(m[0], 0.0), fmax(m[1], 0.0)), hypot(a[0], a[1]), p, v));
+        if (i == f->nkeep)
+            break;
+        j = f->order[i]; /* mode j joins the slow side */
+        for (c = 0; c < 2; c++) {
+            double complex ce = o[c]->c[j] * f->e[j];
+            p[c] += creal(ce);
+            v[c] += creal(ce * f->lam[j]);
+            a[c] += o[c]->m2[j] * f->ae[j];
+            m[c] -= o[c]->m0[j] * f->ae[j];
+        }
+    }
+    return best;
+}
+
 /* Retainer k's root functions at the last propagate (time t): the safe step to each (contact,
  * rearm: INFINITY where there is none) and whether each is converged on its root. */
 static void retainer_roots(const td_sim *s, td_sim_flight *f, int k, double t, double tau[2], int hit[2])
@@ -609,6 +682,10 @@ static void retainer_roots(const td_sim *s, td_sim_flight *f, int k, double t, d
     double rearm2 = c * c - 2.0 * c * s->rearm_eps;
     tau[0] = safe_step(contact2 - r2, -dr2, bound);
     hit[0] = tau[0] < FLIGHT_ROOT_TOL && dr2 > 0.0 && crosses(f, k, t, contact2, 1.0, (contact2 - r2) / dr2);
+    if (!hit[0]) {
+        propagate(f, t); /* crosses() may have moved it */
+        tau[0] = fmax(tau[0], split_step(f, k, t, sqrt(contact2)));
+    }
     tau[1] = INFINITY;
     hit[1] = 0;
     if (!r->armed) {
@@ -683,8 +760,8 @@ static void amb_peak_search(td_sim *s, td_sim_flight *f, int k, double ta, doubl
 }
 
 /* The AMBs' forces at the last propagate (time t) into fa, their bounds |F''| into b2; the peak
- * load updated. */
-static void amb_forces(td_sim *s, td_sim_flight *f, double t, double *fa, double *b2)
+ * load updated if `record` (t is not beyond the output time). */
+static void amb_forces(td_sim *s, td_sim_flight *f, double t, double *fa, double *b2, int record)
 {
     int k;
     for (k = 0; k < s->sys->n_amb_axes; k++) {
@@ -692,26 +769,60 @@ static void amb_forces(td_sim *s, td_sim_flight *f, double t, double *fa, double
         fa[k] = v.v;
         if (b2)
             b2[k] = v.b2;
-        if (s->amb_mode[s->sys->amb_axes[k].amb] != TD_AMB_OFF)
+        if (record && s->amb_mode[s->sys->amb_axes[k].amb] != TD_AMB_OFF)
             record_amb_load(s, k, v.v, t);
     }
 }
 
-/* The AMBs' peak load inside the step [t, t + h], forces fa at t and fb at t + h, |F''| <= b2
- * from t on. Returns 1 if it propagated elsewhere. */
-static int amb_peaks(td_sim *s, td_sim_flight *f, double t, double h, const double *fa, const double *fb,
-                     const double *b2)
+/* The AMBs' peak load inside [t, t + h], forces fa at t and fb at t + h, |F''| <= b2 from t on.
+ * Leaves f->e anywhere. */
+static void amb_peaks(td_sim *s, td_sim_flight *f, double t, double h, const double *fa, const double *fb,
+                      const double *b2)
 {
-    int k, moved = 0;
+    int k;
     for (k = 0; k < s->sys->n_amb_axes; k++) {
         const td_amb_axis *a = &s->sys->amb_axes[k];
         double peak = s->stats.peak_amb_load * a->capacity * (1.0 + FLIGHT_PEAK_RTOL);
         if (s->amb_mode[a->amb] == TD_AMB_OFF || fmax(fabs(fa[k]), fabs(fb[k])) + 0.125 * b2[k] * h * h <= peak)
             continue;
         amb_peak_search(s, f, k, t, h, fa[k], fb[k], b2[k], 0);
-        moved = 1;
     }
-    return moved;
+}
+
+/* The AMBs' peak over [a, b], part of a step whose |F''| bounds are b2 (forces at a: fa, or
+ * evaluated if NULL). Leaves f->e anywhere. */
+static void amb_span(td_sim *s, td_sim_flight *f, double a, double b, const double *fa, const double *b2)
+{
+    if (!(b > a))
+        return;
+    if (!fa) {
+        propagate(f, a);
+        amb_forces(s, f, a, f->amb_p, NULL, 1);
+        fa = f->amb_p;
+    }
+    propagate(f, b);
+    amb_forces(s, f, b, f->amb_b, NULL, 1);
+    amb_peaks(s, f, a, b - a, fa, f->amb_b, b2);
+}
+
+/* A step [t, tn] ran past the output time t_out: the AMBs' peak up to t_out now, the rest
+ * (pending from t_out, with the step's bounds) when the next call's output time is known, so that
+ * no peak is recorded beyond the time reached. */
+static void amb_past_output(td_sim *s, td_sim_flight *f, double t, double t_out)
+{
+    amb_span(s, f, t, t_out, f->amb_a, f->amb_b2);
+    f->amb_pending = fmax(t, t_out);
+    memcpy(f->amb_b2p, f->amb_b2, sizeof(double) * (size_t)s->sys->n_amb_axes);
+}
+
+/* The pending part of the last step (amb_past_output) up to this call's output time. */
+static void amb_pending_part(td_sim *s, td_sim_flight *f, double t_out)
+{
+    double end = fmin(f->t_step, t_out);
+    if (!(f->amb_pending < f->t_step))
+        return;
+    amb_span(s, f, f->amb_pending, end, NULL, f->amb_b2p);
+    f->amb_pending = end < f->t_step ? end : INFINITY;
 }
 
 /* ---- life cycle ----------------------------------------------------------------------------- */
@@ -742,6 +853,7 @@ void td_sim_flight_free(td_sim *s)
     free(f->Vinv);
     free(f->grow);
     free(f->keep);
+    free(f->order);
     free(f->weight);
     free(f->work);
     free(f->p0);
@@ -760,6 +872,8 @@ void td_sim_flight_free(td_sim *s)
     free(f->amb_a);
     free(f->amb_b);
     free(f->amb_b2);
+    free(f->amb_p);
+    free(f->amb_b2p);
     free(f);
     s->flight = NULL;
 }
@@ -794,6 +908,7 @@ static int flight_alloc(td_sim *s)
     f->Vinv = calloc(nz * nz, sizeof *f->Vinv);
     f->grow = calloc(nz, sizeof *f->grow);
     f->keep = calloc(nz, sizeof *f->keep);
+    f->order = calloc(nz, sizeof *f->order);
     f->weight = calloc(nz, sizeof *f->weight);
     f->work = calloc(2 * nz, sizeof *f->work);
     f->p0 = calloc(nz, sizeof *f->p0);
@@ -814,10 +929,12 @@ static int flight_alloc(td_sim *s)
     f->amb_a = calloc(na, sizeof(double));
     f->amb_b = calloc(na, sizeof(double));
     f->amb_b2 = calloc(na, sizeof(double));
-    ok = ok && f->amb_a && f->amb_b && f->amb_b2;
+    f->amb_p = calloc(na, sizeof(double));
+    f->amb_b2p = calloc(na, sizeof(double));
+    ok = ok && f->amb_a && f->amb_b && f->amb_b2 && f->amb_p && f->amb_b2p;
     ok = ok && f->machine_key && f->forcing_key && f->key_work && f->lam && f->V && f->Vinv && f->grow && f->keep &&
-         f->weight && f->work && f->p0 && f->pp && f->pm && f->d && f->e && f->ae && f->y && f->yp && f->res &&
-         f->rate && f->rate0 && f->obs;
+         f->order && f->weight && f->work && f->p0 && f->pp && f->pm && f->d && f->e && f->ae && f->y && f->yp &&
+         f->res && f->rate && f->rate0 && f->obs;
     for (i = 0; ok && i < f->nobs; i++)
         ok = alloc_obs(&f->obs[i], nz);
     f->nkey_m = f->nkey_f = -1;
@@ -901,9 +1018,11 @@ int td_sim_flight_advance(td_sim *s, double t_out, double t_stop, int *root)
         if (!clear_of_roots(s, f))
             return 0;
         f->t_step = s->t;
+        f->amb_pending = INFINITY;
         propagate(f, f->t_step);
-        amb_forces(s, f, f->t_step, f->amb_a, f->amb_b2);
+        amb_forces(s, f, f->t_step, f->amb_a, f->amb_b2, 1);
     }
+    amb_pending_part(s, f, t_out);
     t = f->t_step;
     while (t < t_end) {
         double h, tn;
@@ -929,11 +1048,15 @@ int td_sim_flight_advance(td_sim *s, double t_out, double t_stop, int *root)
         }
         h = fmin(h, FLIGHT_MAX_STEP);
         tn = t + h < t_stop - FLIGHT_ROOT_TOL ? t + h : t_stop; /* no sliver of a step before the stop */
-        propagate(f, tn);
-        amb_forces(s, f, tn, f->amb_b, NULL);
-        if (amb_peaks(s, f, t, tn - t, f->amb_a, f->amb_b, f->amb_b2))
+        if (tn <= t_out) {
             propagate(f, tn);
-        amb_forces(s, f, tn, f->amb_a, f->amb_b2);
+            amb_forces(s, f, tn, f->amb_b, NULL, 1);
+            amb_peaks(s, f, t, tn - t, f->amb_a, f->amb_b, f->amb_b2);
+        } else {
+            amb_past_output(s, f, t, t_out);
+        }
+        propagate(f, tn);
+        amb_forces(s, f, tn, f->amb_a, f->amb_b2, tn <= t_out);
         t = tn;
     }
     f->t_step = t;
