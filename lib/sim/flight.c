@@ -404,7 +404,7 @@ static void set_obs_row(td_sim_flight *f, flight_obs *o, const double *a, double
 /* The rows of the observations: retainer nodes' x, y; AMB axis forces (probed, linear). */
 static void build_observations(const td_sim *s, td_sim_flight *f)
 {
-    double *a = f->rate, *z = f->rate0;
+    double *a = f->rate;
     int i, k, nz = f->nz;
     for (k = 0; k < s->nr; k++) {
         memset(a, 0, sizeof(double) * (size_t)nz);
@@ -416,7 +416,6 @@ static void build_observations(const td_sim *s, td_sim_flight *f)
     }
     for (k = 0; k < s->sys->n_amb_axes; k++) {
         double f0;
-        memset(z, 0, sizeof(double) * (size_t)nz);
         memset(f->y, 0, sizeof(double) * (size_t)s->neq);
         f0 = td_sim_amb_axis_force(s, k, f->y);
         for (i = 0; i < nz; i++) {
@@ -694,12 +693,12 @@ static void retainer_roots(const td_sim *s, td_sim_flight *f, int k, double t, d
     }
 }
 
-/* The step from t (propagated) that cannot pass a root, at most `limit`; the roots reached (to
- * FLIGHT_ROOT_TOL) flagged in s->rootsfound (*root: any). */
-static double next_step(td_sim *s, td_sim_flight *f, double t, double limit, int *root)
+/* The step from t that cannot pass a root; the roots reached (to FLIGHT_ROOT_TOL) flagged in
+ * s->rootsfound (*root: any). */
+static double next_step(td_sim *s, td_sim_flight *f, double t, int *root)
 {
     int k, i;
-    double step = limit;
+    double step = INFINITY;
     *root = 0;
     memset(s->rootsfound, 0, sizeof(int) * (size_t)s->nroots);
     for (k = 0; k < s->nr; k++) {
@@ -997,7 +996,7 @@ static int clear_of_roots(td_sim *s, td_sim_flight *f)
 {
     int root;
     propagate(f, s->t);
-    return next_step(s, f, s->t, INFINITY, &root) > 0.0 && !root;
+    return next_step(s, f, s->t, &root) > 0.0 && !root;
 }
 
 /*
@@ -1031,7 +1030,7 @@ int td_sim_flight_advance(td_sim *s, double t_out, double t_stop, int *root)
             break;
         }
         propagate(f, t);
-        h = next_step(s, f, t, INFINITY, root);
+        h = next_step(s, f, t, root);
         steps++;
         if (*root && t <= f->t_root) { /* the same root again: its event changed nothing the flight sees */
             *root = 0;
