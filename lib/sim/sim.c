@@ -9,6 +9,7 @@
 #include "util/clock.h"
 #include "util/error_internal.h"
 
+#include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -64,14 +65,49 @@ static int root_cb(sunrealtype t, N_Vector y, N_Vector yp, sunrealtype *g, void 
 }
 
 /*
+ * The contact multipliers lambda and mu are index-2 unknowns: a step's Newton iteration can fix
+ * them only to cj times the rounding of the constraint rows. mu moves q by mu / cj, so the rounding
+ * of g (eps c, the clearance) leaves mu uncertain by ~ cj eps c; lambda moves the node's velocity
+ * by lambda / (m cj), so the rounding of J v (eps c freq_scale) leaves it uncertain by
+ * ~ cj eps c stiff_scale / freq_scale (m = stiff_scale / freq_scale^2). Below that floor a Newton
+ * correction is noise: weighed against a tighter tolerance, a short step never converges, IDA
+ * shortens it, cj grows and the floor with it (at rtol 1e-12, atol 1e-15 case B's steps fell to
+ * 1e-18 s and stayed there). Each multiplier's correction is therefore weighed against its
+ * tolerance or MULTIPLIER_FLOOR times that floor, whichever is larger; at the default tolerances
+ * the floor is orders of magnitude below the tolerance and the test is IDA's own.
+ */
+#define MULTIPLIER_FLOOR 64.0
+
+static N_Vector floored_multipliers(td_sim *s, N_Vector del, N_Vector ewt, double cj)
+{
+    const double *w = N_VGetArrayPointer(ewt);
+    double *d = NULL;
+    int k;
+    for (k = 0; k < s->nr; k++) {
+        double mu_floor = MULTIPLIER_FLOOR * DBL_EPSILON * s->ret[k].r.clearance * cj;
+        double lambda_floor = mu_floor * s->stiff_scale / s->freq_scale;
+        double fl = 1.0 / (lambda_floor * w[s->ol + k]), fu = 1.0 / (mu_floor * w[s->ou + k]);
+        if (fl >= 1.0 && fu >= 1.0)
+            continue;
+        if (!d) {
+            N_VScale(1.0, del, s->newton_del);
+            d = N_VGetArrayPointer(s->newton_del);
+        }
+        d[s->ol + k] *= fmin(fl, 1.0);
+        d[s->ou + k] *= fmin(fu, 1.0);
+    }
+    return d ? s->newton_del : del;
+}
+
+/*
  * Newton convergence test: IDA's own test (a weighted RMS norm of the last correction over all
- * unknowns, with the convergence rate of earlier steps), and then every active contact
- * constraint |g| <= constraint_tol at the iterate. Why the second test: the RMS over ~100
- * unknowns lets a single component sit at a few times its weight, and IDA accepts a single
- * modified-Newton iteration when earlier steps converged fast. On case A that let the constraint
- * residual and the GGL multiplier eta grow in a two-step oscillation (eta ~ g/h alternating in
- * sign, |r - c| up to 5e-9 m) until a convergence failure reset it. Demanding the constraint
- * itself at acceptance costs an extra iteration now and then and keeps |r - c| below the
+ * unknowns, with the convergence rate of earlier steps; the multipliers floored as above), and then
+ * every active contact constraint |g| <= constraint_tol at the iterate. Why the second test: the
+ * RMS over ~100 unknowns lets a single component sit at a few times its weight, and IDA accepts a
+ * single modified-Newton iteration when earlier steps converged fast. On case A that let the
+ * constraint residual and the GGL multiplier eta grow in a two-step oscillation (eta ~ g/h
+ * alternating in sign, |r - c| up to 5e-9 m) until a convergence failure reset it. Demanding the
+ * constraint itself at acceptance costs an extra iteration now and then and keeps |r - c| below the
  * tolerance at every step.
  */
 static int conv_test_cb(SUNNonlinearSolver nls, N_Vector ycor, N_Vector del, sunrealtype tol, N_Vector ewt, void *data)
@@ -81,10 +117,11 @@ static int conv_test_cb(SUNNonlinearSolver nls, N_Vector ycor, N_Vector del, sun
     N_Vector ypred, yppred, yyn, ypn, res;
     void *user;
     const double *cor, *pred;
-    int k, flag = s->ida_ctest(nls, ycor, del, tol, ewt, s->ida_ctest_data);
-    if (flag != SUN_NLS_SUCCESS)
-        return flag;
+    int k, flag;
     if (IDAGetNonlinearSystemData(s->ida, &tcur, &ypred, &yppred, &yyn, &ypn, &res, &cj, &user) != IDA_SUCCESS)
+        return s->ida_ctest(nls, ycor, del, tol, ewt, s->ida_ctest_data);
+    flag = s->ida_ctest(nls, ycor, floored_multipliers(s, del, ewt, cj), tol, ewt, s->ida_ctest_data);
+    if (flag != SUN_NLS_SUCCESS)
         return flag;
     cor = N_VGetArrayPointer(ycor);
     pred = N_VGetArrayPointer(ypred);
@@ -580,8 +617,9 @@ static td_status setup_ida(td_sim *s, td_error *err)
     s->yp = N_VClone(s->y);
     s->id = N_VClone(s->y);
     s->atol = N_VClone(s->y);
+    s->newton_del = N_VClone(s->y);
     s->ida = IDACreate(s->ctx);
-    if (!s->yp || !s->id || !s->atol || !s->ida)
+    if (!s->yp || !s->id || !s->atol || !s->newton_del || !s->ida)
         return td_error_set(err, TD_ERR_NOMEM, "out of memory creating the integrator");
     s->sink.fn = message_sink;
     s->sink.data = s;
@@ -811,6 +849,8 @@ void td_sim_free(td_sim **sim)
         N_VDestroy(s->id);
     if (s->atol)
         N_VDestroy(s->atol);
+    if (s->newton_del)
+        N_VDestroy(s->newton_del);
     if (s->ctx)
         SUNContext_Free(&s->ctx);
     cs_di_sfree(s->Ms);
@@ -941,6 +981,31 @@ static td_status solver_failure(td_sim *s, int flag)
     }
     snprintf(s->errmsg, sizeof s->errmsg, "t = %.9g s: IDA failed (flag %d): %.400s", s->t, flag, msg);
     return TD_ERR_SOLVER;
+}
+
+/*
+ * A run whose steps no longer move time is stalled: fail with a message instead of hanging. A
+ * step below STALL_STEP rounding units of max(t, 1 s) (2.2e-13 s up to t = 1 s) advances t by
+ * nothing measurable; after an impact IDA starts short but doubles its step, so STALL_COUNT such
+ * steps in a row (2.2e-9 s in all) never occur in a run that progresses.
+ */
+#define STALL_STEP 1e3
+#define STALL_COUNT 10000L
+
+static int stalled(td_sim *s, double t)
+{
+    double h;
+    if (IDAGetLastStep(s->ida, &h) != IDA_SUCCESS || h >= STALL_STEP * DBL_EPSILON * fmax(fabs(t), 1.0)) {
+        s->tiny_steps = 0;
+        return 0;
+    }
+    if (++s->tiny_steps < STALL_COUNT)
+        return 0;
+    snprintf(s->errmsg, sizeof s->errmsg,
+             "t = %.9g s: the integrator stalled (%ld steps in a row of %.2g s or less); loosen solver.rtol or "
+             "solver.atol",
+             t, s->tiny_steps, h);
+    return 1;
 }
 
 /* Restart after a change made between steps or at a schedule time; the retainers' totals open
@@ -1092,6 +1157,10 @@ static td_status advance(td_sim *s, double tout)
             return solver_failure(s, flag);
         if (IDAGetCurrentTime(s->ida, &tn) == IDA_SUCCESS && tn > s->t_ida)
             s->t_ida = tn;
+        if (stalled(s, tret)) {
+            accept_point(s, tret, 1); /* the run ends at the stalled step, its state in place */
+            return TD_ERR_SOLVER;
+        }
         if (flag == IDA_ROOT_RETURN || flag == IDA_TSTOP_RETURN) {
             if (flag == IDA_ROOT_RETURN)
                 IDAGetRootInfo(s->ida, s->rootsfound);

@@ -120,6 +120,7 @@ struct td_sim {
     SUNContext ctx;
     void *ida;
     N_Vector y, yp, id, atol;
+    N_Vector newton_del; /* the Newton correction, its multipliers weighed against their rounding floor (sim.c) */
     SUNMatrix A;
     SUNLinearSolver LS;
     SUNNonlinearSolver NLS;
@@ -177,6 +178,7 @@ struct td_sim {
     double *ysave, *ypsave; /* last good state */
 
     td_sim_flight *flight; /* flight.c, allocated at the first flight; NULL: none yet */
+    long tiny_steps;       /* consecutive IDA steps too short to move t (sim.c, stalled) */
     int ida_stale;         /* the flight moved the state: IDA restarts before its next step */
 
     volatile sig_atomic_t *interrupt; /* borrowed (td_sim_set_interrupt), NULL: none */
