@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Accuracy of a case's contact sequence against a converged reference: runs CASE once at the
 # reference settings (default: rtol 1e-11, atol 1e-14 m, BDF order <= 5) and once per setting given,
-# and prints for each the CPU time, the contact onsets, and the largest error of the first N
-# contact intervals' starts and ends against the reference (N = 10 unless -n).
+# and prints for each the CPU time, the contact intervals, and the largest error of the first N
+# contact intervals' starts, ends and peak normal forces against the reference (N = 10 unless -n).
 #
 #   bench/intervals.sh [-b TOUCHDOWN] [-n N] [-r "KEY=VALUE ..."] CASE "KEY=VALUE ..." ...
 #
@@ -49,7 +49,8 @@ import csv, os, sys
 d, runs, n, ref_sets = sys.argv[1], int(sys.argv[2]), int(sys.argv[3]), sys.argv[4]
 
 def intervals(name):
-    """(start, end) of each contact interval, in the order the events file lists them."""
+    """[start, end, peak normal force] of each contact interval, in the order the events file
+    lists them (the peak is on the release's row)."""
     out, open_at = [], {}
     with open(os.path.join(d, name + ".events.csv")) as f:
         rows = [r for r in csv.reader(f) if r and not r[0].startswith("#")][1:]
@@ -57,9 +58,9 @@ def intervals(name):
         t, kind, ret = float(r[0]), r[2], r[3]
         if kind == "contact_onset" and ret not in open_at:
             open_at[ret] = len(out)
-            out.append([t, None])
+            out.append([t, None, None])
         elif kind == "release" and ret in open_at:
-            out[open_at.pop(ret)][1] = t
+            out[open_at.pop(ret)][1:] = [t, float(r[12])]
     return out
 
 def cpu(name):
@@ -67,12 +68,15 @@ def cpu(name):
 
 ref = intervals("ref")
 print("reference (%s): %d intervals, %.2f s CPU" % (ref_sets, len(ref), cpu("ref")))
-print("%-58s %8s %10s %12s %12s" % ("setting", "CPU s", "intervals", "start err s", "end err s"))
+print("%-58s %8s %10s %12s %12s %12s" % ("setting", "CPU s", "intervals", "start err s", "end err s",
+                                         "peak err"))
 for i in range(runs):
     run = intervals("s%d" % i)
     m = min(n, len(ref), len(run))
     ds = max((abs(a[0] - b[0]) for a, b in zip(ref[:m], run[:m])), default=float("nan"))
-    de = max((abs(a[1] - b[1]) for a, b in zip(ref[:m], run[:m]) if a[1] and b[1]), default=float("nan"))
+    closed = [(a, b) for a, b in zip(ref[:m], run[:m]) if a[1] and b[1]]
+    de = max((abs(a[1] - b[1]) for a, b in closed), default=float("nan"))
+    dp = max((abs(a[2] - b[2]) / a[2] for a, b in closed if a[2] > 0), default=float("nan"))
     sets = open(os.path.join(d, "s%d.sets" % i)).read().strip() or "(the case's own)"
-    print("%-58s %8.2f %10d %12.2e %12.2e" % (sets, cpu("s%d" % i), len(run), ds, de))
+    print("%-58s %8.2f %10d %12.2e %12.2e %12.2e" % (sets, cpu("s%d" % i), len(run), ds, de, dp))
 PY

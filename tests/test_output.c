@@ -108,6 +108,7 @@ static sample_set *make_samples(void)
         e->tangential_velocity_after = any_double(&seed);
         e->impulse = any_double(&seed);
         e->normal_force = any_double(&seed);
+        e->peak_normal_force = any_double(&seed);
     }
     return d;
 }
@@ -342,7 +343,7 @@ typedef struct ev_row {
     int retainer;
     int change;
     long long sample;
-    double vr_b, vr_a, vt_b, vt_a, impulse, normal_force;
+    double vr_b, vr_a, vt_b, vt_a, impulse, normal_force, peak_normal_force;
 } ev_row;
 
 static hid_t event_mem_type(void)
@@ -362,6 +363,7 @@ static hid_t event_mem_type(void)
     H5Tinsert(m, "tangential_velocity_after", HOFFSET(ev_row, vt_a), H5T_NATIVE_DOUBLE);
     H5Tinsert(m, "impulse", HOFFSET(ev_row, impulse), H5T_NATIVE_DOUBLE);
     H5Tinsert(m, "normal_force", HOFFSET(ev_row, normal_force), H5T_NATIVE_DOUBLE);
+    H5Tinsert(m, "peak_normal_force", HOFFSET(ev_row, peak_normal_force), H5T_NATIVE_DOUBLE);
     H5Tclose(kind);
     return m;
 }
@@ -469,6 +471,7 @@ static void test_hdf5_round_trip(void **state)
         assert_bits(ev[e].vt_a, d->ev[e].tangential_velocity_after);
         assert_bits(ev[e].impulse, d->ev[e].impulse);
         assert_bits(ev[e].normal_force, d->ev[e].normal_force);
+        assert_bits(ev[e].peak_normal_force, d->ev[e].peak_normal_force);
     }
     H5Tclose(mt);
     g = H5Dopen2(f, "/events", H5P_DEFAULT);
@@ -721,15 +724,15 @@ static void check_csv_events(const char *path, const sample_set *d, int complete
     int e = 0;
     line = next_line(&p);
     assert_string_equal(line, "t [s],kind [-],kind_name,retainer [-],change [-],sample [-],vr_before [m/s],"
-                              "vr_after [m/s],vt_before [m/s],vt_after [m/s],impulse [N s],N [N]");
+                              "vr_after [m/s],vt_before [m/s],vt_after [m/s],impulse [N s],N [N],peak_N [N]");
     while ((line = next_line(&p)) != NULL && line[0] != '#') {
         const td_event *ev = &d->ev[e];
-        char *f[12], *q = line;
+        char *f[13], *q = line;
         int k;
-        for (k = 0; k < 12; k++) {
+        for (k = 0; k < 13; k++) {
             f[k] = q;
             q = strchr(q, ',');
-            if (k < 11) {
+            if (k < 12) {
                 assert_non_null(q);
                 *q++ = '\0';
             }
@@ -747,6 +750,7 @@ static void check_csv_events(const char *path, const sample_set *d, int complete
         assert_bits(strtod(f[9], NULL), ev->tangential_velocity_after);
         assert_bits(strtod(f[10], NULL), ev->impulse);
         assert_bits(strtod(f[11], NULL), ev->normal_force);
+        assert_bits(strtod(f[12], NULL), ev->peak_normal_force);
         e++;
     }
     assert_int_equal(e, EVENTS);

@@ -35,8 +35,13 @@ typedef struct td_event {
     double radial_velocity_after;
     double tangential_velocity_before; /**< m/s, positive along the whirl direction */
     double tangential_velocity_after;
-    double impulse;      /**< N s, normal impulse of the impact map (onset only) */
-    double normal_force; /**< N, right after the event */
+    double impulse;           /**< N s, normal impulse of the impact map (onset only) */
+    double normal_force;      /**< N, right after the event */
+    double peak_normal_force; /**< N, the largest normal force of the contact interval this event ends
+                                   (release, penalty exit; 0 for other events), taken at the integrator's
+                                   steps and the output samples. Under the rigid constraint it is the
+                                   instantaneous peak, which does not converge with the mesh
+                                   (docs/theory.md) */
 } td_event;
 
 /** Contact state of one retainer at the current time. */

@@ -61,7 +61,7 @@ static int write_sample_header(FILE *f, const td_writer *w)
 static int write_event_header(FILE *f)
 {
     return fputs("t [s],kind [-],kind_name,retainer [-],change [-],sample [-],vr_before [m/s],vr_after [m/s],"
-                 "vt_before [m/s],vt_after [m/s],impulse [N s],N [N]\n",
+                 "vt_before [m/s],vt_after [m/s],impulse [N s],N [N],peak_N [N]\n",
                  f) < 0;
 }
 
@@ -130,10 +130,11 @@ static td_status csv_event(td_writer *w, const td_event *ev, long sample, td_err
     FILE *f = ((csv_impl *)w->impl)->events;
     char tbuf[32];
     errno = 0;
-    if (fprintf(f, "%s,%d,%s,%d,%d,%ld,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n", exact_text(ev->time, tbuf, sizeof tbuf),
-                (int)ev->kind, td_event_kind_name(ev->kind), ev->retainer, ev->change, sample,
-                ev->radial_velocity_before, ev->radial_velocity_after, ev->tangential_velocity_before,
-                ev->tangential_velocity_after, ev->impulse, ev->normal_force) < 0)
+    if (fprintf(f, "%s,%d,%s,%d,%d,%ld,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n",
+                exact_text(ev->time, tbuf, sizeof tbuf), (int)ev->kind, td_event_kind_name(ev->kind), ev->retainer,
+                ev->change, sample, ev->radial_velocity_before, ev->radial_velocity_after,
+                ev->tangential_velocity_before, ev->tangential_velocity_after, ev->impulse, ev->normal_force,
+                ev->peak_normal_force) < 0)
         return td_io_fail(err, w->events_tmp, "cannot write an event");
     return TD_OK;
 }

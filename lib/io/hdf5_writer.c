@@ -57,6 +57,7 @@ typedef struct h5_event_row {
     double tangential_velocity_after;
     double impulse;
     double normal_force;
+    double peak_normal_force;
 } h5_event_row;
 
 typedef struct h5_impl {
@@ -361,7 +362,8 @@ static td_status create_events(td_writer *w, h5_impl *h, td_error *err)
         H5Tinsert(m, "tangential_velocity_after", HOFFSET(h5_event_row, tangential_velocity_after),
                   H5T_NATIVE_DOUBLE) >= 0 &&
         H5Tinsert(m, "impulse", HOFFSET(h5_event_row, impulse), H5T_NATIVE_DOUBLE) >= 0 &&
-        H5Tinsert(m, "normal_force", HOFFSET(h5_event_row, normal_force), H5T_NATIVE_DOUBLE) >= 0;
+        H5Tinsert(m, "normal_force", HOFFSET(h5_event_row, normal_force), H5T_NATIVE_DOUBLE) >= 0 &&
+        H5Tinsert(m, "peak_normal_force", HOFFSET(h5_event_row, peak_normal_force), H5T_NATIVE_DOUBLE) >= 0;
     if (ok) {
         h->event_ftype = H5Tcopy(m);
         ok = h->event_ftype >= 0 && H5Tpack(h->event_ftype) >= 0;
@@ -385,7 +387,8 @@ static td_status create_events(td_writer *w, h5_impl *h, td_error *err)
     if (td_h5_attr_string(h->event_index, "units", "1 (row number of /events)") < 0 ||
         td_h5_attr_string(h->event_dset, "kind_names", names) < 0 ||
         td_h5_attr_string(h->event_dset, "units",
-                          "time: s; radial_velocity_*, tangential_velocity_*: m/s; impulse: N s; normal_force: N") < 0)
+                          "time: s; radial_velocity_*, tangential_velocity_*: m/s; impulse: N s; normal_force, "
+                          "peak_normal_force: N") < 0)
         return h5_fail(err, w, "cannot write the /events attributes");
     return TD_OK;
 }
@@ -602,6 +605,7 @@ static td_status h5_event(td_writer *w, const td_event *ev, long sample, td_erro
     row->tangential_velocity_after = ev->tangential_velocity_after;
     row->impulse = ev->impulse;
     row->normal_force = ev->normal_force;
+    row->peak_normal_force = ev->peak_normal_force;
     if (h->events_buffered == H5_EVENT_CHUNK) {
         H5E_BEGIN_TRY
         {

@@ -930,6 +930,7 @@ static void monitor_at(td_sim *s, double t, int at_step)
                 s->stats.worst_drift = drift;
         }
         fn = td_sim_normal_force(s, k, y);
+        s->totals[k].interval_peak = fmax(s->totals[k].interval_peak, fn);
         if (fn > s->stats.peak_normal_force) {
             s->stats.peak_normal_force = fn;
             s->stats.peak_time = t;
@@ -1176,8 +1177,13 @@ static td_status advance(td_sim *s, double tout)
         }
         accept_point(s, tret, 1);
         td_sim_flight_forget(s);
-        if (tret >= tout)
-            return tret > tout ? interpolate(s, tout) : TD_OK;
+        if (tret > tout) { /* an output inside this step: its sample counts too */
+            st = interpolate(s, tout);
+            monitor(s, tout);
+            return st;
+        }
+        if (tret == tout)
+            return TD_OK;
     }
 }
 

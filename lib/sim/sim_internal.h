@@ -62,6 +62,8 @@ typedef struct td_sim_totals {
     } prev;
     int in_contact;        /* in contact at the last point */
     double whirl_at_onset; /* t.whirl_angle when the open interval began */
+    double interval_peak;  /* N, the largest normal force of the open (or the last) contact interval
+                              at the accepted points (sim.c, monitor_at) */
 } td_sim_totals;
 
 /* The closed-form free flight's decomposition, forcing and anchor (flight.c). */

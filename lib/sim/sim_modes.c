@@ -46,10 +46,17 @@ void td_sim_mass_solve(const td_sim *s, double *b)
     cs_di_ipvec(s->Ms->q, x, b, s->n);
 }
 
+/* Queue an event and count it. A contact onset opens the retainer's interval peak; an event that
+ * ends a contact interval carries it. */
 void td_sim_queue_event(td_sim *s, const td_event *ev)
 {
+    td_event e = *ev;
+    if ((e.kind == TD_EVENT_CONTACT_ONSET || e.kind == TD_EVENT_PENALTY_ENTER) && e.retainer >= 0)
+        s->totals[e.retainer].interval_peak = 0.0;
+    if ((e.kind == TD_EVENT_RELEASE || e.kind == TD_EVENT_PENALTY_EXIT) && e.retainer >= 0)
+        e.peak_normal_force = s->totals[e.retainer].interval_peak;
     if (s->q_len < s->q_cap)
-        s->queue[s->q_len++] = *ev;
+        s->queue[s->q_len++] = e;
     s->stats.events++;
     switch (ev->kind) {
     case TD_EVENT_CONTACT_ONSET:
@@ -649,10 +656,14 @@ td_status td_sim_handle_roots(td_sim *s, int *restart)
     st = td_sim_make_consistent(s, s->entered);
     if (st != TD_OK)
         return st;
-    /* record the normal force right after each event of this instant */
+    /* record the normal force right after each event of this instant (the impact's: the first of
+     * its interval's peak candidates) */
     for (k = first_event; k < s->q_len; k++)
-        if (s->queue[k].retainer >= 0)
+        if (s->queue[k].retainer >= 0) {
+            td_sim_totals *tk = &s->totals[s->queue[k].retainer];
             s->queue[k].normal_force = td_sim_normal_force(s, s->queue[k].retainer, y);
+            tk->interval_peak = fmax(tk->interval_peak, s->queue[k].normal_force);
+        }
     return TD_OK;
 }
 

@@ -46,7 +46,39 @@ static td_sim *make_sim_integrated(const td_case *c, double rtol, double atol)
 
 /* Unbalances at both end discs, 1 rad apart, stepped up at 0.1 s: both retainers in contact at
  * once. At every sample with a contact the node is on the circle and the friction force is
- * -sgn(v_s) mu N (eq. 17); the constraints hold to 1e-9 m at every step. */
+ * -sgn(v_s) mu N (eq. 17); the constraints hold to 1e-9 m at every step. Every release carries
+ * its interval's peak normal force: at least every force sampled here since the onset, at most
+ * the run's peak, and the largest of them is the run's peak. */
+/* At an event: the peak a release carries against the normal forces sampled since its onset
+ * (sampled_peak, reset here at an onset; the largest release peak is kept in release_peak).
+ * Returns 1 for a release. */
+static int check_interval_peak(const td_sim *s, double *sampled_peak, double *release_peak)
+{
+    td_event ev;
+    assert_int_equal(td_sim_last_event(s, &ev), TD_OK);
+    if (ev.kind == TD_EVENT_CONTACT_ONSET)
+        sampled_peak[ev.retainer] = 0.0;
+    if (ev.kind != TD_EVENT_RELEASE) {
+        assert_true(ev.peak_normal_force == 0.0);
+        return 0;
+    }
+    assert_true(ev.peak_normal_force >= sampled_peak[ev.retainer]);
+    assert_true(ev.peak_normal_force > 0.0);
+    release_peak[ev.retainer] = fmax(release_peak[ev.retainer], ev.peak_normal_force);
+    return 1;
+}
+
+/* 1 if a retainer is in contact now (its interval has not ended in a release). */
+static int in_contact_at_end(const td_sim *s)
+{
+    td_retainer_state rs;
+    int k;
+    for (k = 0; k < 2; k++)
+        if (td_sim_retainer_state(s, k, &rs) == TD_OK && rs.in_contact)
+            return 1;
+    return 0;
+}
+
 static void test_two_contacts(void **state)
 {
     td_error err;
@@ -57,8 +89,8 @@ static void test_two_contacts(void **state)
     td_sim *s = make_sim(c, 0.0, 0.0);
     td_retainer ret[2];
     td_sim_stats st;
-    double t = 0.0, t_end = 0.3, dt = 1e-4;
-    long both = 0, in_contact = 0;
+    double t = 0.0, t_end = 0.3, dt = 1e-4, sampled_peak[2] = {0.0, 0.0}, release_peak[2] = {0.0, 0.0};
+    long both = 0, in_contact = 0, releases = 0;
     int k;
     (void)state;
     for (k = 0; k < 2; k++)
@@ -69,6 +101,8 @@ static void test_two_contacts(void **state)
         int n_in = 0;
         if (r != TD_OK && r != TD_EVENT)
             fail_msg("%s", err.message);
+        if (r == TD_EVENT)
+            releases += check_interval_peak(s, sampled_peak, release_peak);
         for (k = 0; k < 2; k++) {
             td_retainer_state rs;
             td_sim_retainer_state(s, k, &rs);
@@ -78,6 +112,7 @@ static void test_two_contacts(void **state)
             }
             n_in++;
             in_contact++;
+            sampled_peak[k] = fmax(sampled_peak[k], rs.normal_force);
             assert_close(rs.radius, ret[k].clearance, 0.0, 1e-8); /* interpolated states: tolerance level */
             assert_true(rs.normal_force >= 0.0);
             assert_close(rs.friction_force, -(rs.sliding_velocity > 0 ? 1.0 : -1.0) * ret[k].friction * rs.normal_force,
@@ -89,6 +124,12 @@ static void test_two_contacts(void **state)
             t = tr;
     }
     td_sim_stats_get(s, &st);
+    print_message("%ld releases, largest interval peaks %.3f and %.3f N, run's peak %.3f N\n", releases,
+                  release_peak[0], release_peak[1], st.peak_normal_force);
+    assert_true(releases >= 20);
+    for (k = 0; k < 2; k++)
+        assert_true(release_peak[k] <= st.peak_normal_force);
+    assert_true(fmax(release_peak[0], release_peak[1]) == st.peak_normal_force || in_contact_at_end(s));
     print_message("two contacts: %ld samples with both retainers in contact, %ld contact samples, %ld onsets, "
                   "worst drift %.3g m, peak %.1f N\n",
                   both, in_contact, st.contact_onsets, st.worst_drift, st.peak_normal_force);
