@@ -7,6 +7,7 @@
 #include "touchdown/modal.h"
 #include "touchdown/touchdown.h"
 
+#include <complex.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -375,6 +376,46 @@ static void test_flight_independent_of_outputs(void **state)
     assert_int_equal(na, nb);
     assert_memory_equal(ta, tb, sizeof(double) * (size_t)na);
     td_sim_free(&a), td_sim_free(&b);
+    td_case_free(&c);
+}
+
+/* A linear rotor without retainers (cases/jeffcott.cfg, started on its steady unbalance orbit)
+ * is carried by the closed-form flight from start to end, with no integrator step, and stays on
+ * that orbit: the disc node at t is Re(X e^{i W t}) with X = x(0) - i x'(0) / W from the start
+ * state (the start's harmonic solve, a method independent of the flight's eigen-decomposition). */
+static void test_flight_carries_linear_rotor(void **state)
+{
+    td_case *c = td_test_load_case("cases/jeffcott.cfg", NULL, 0);
+    td_sim *s = NULL;
+    td_sim_stats st;
+    int n, k, disc = 3 * TD_DOFS_PER_NODE;
+    double *q, *v, W, worst = 0.0, amp;
+    double complex X, Y;
+    (void)state;
+    assert_int_equal(td_sim_create(td_case_model(c), td_case_sim_options(c), &s, NULL), TD_OK);
+    n = td_sim_dof_count(s);
+    q = malloc(sizeof(double) * (size_t)n);
+    v = malloc(sizeof(double) * (size_t)n);
+    W = td_sim_speed(s);
+    assert_int_equal(td_sim_get_state(s, q, v), TD_OK);
+    X = q[disc + TD_DOF_X] - I * v[disc + TD_DOF_X] / W;
+    Y = q[disc + TD_DOF_Y] - I * v[disc + TD_DOF_Y] / W;
+    amp = cabs(X);
+    for (k = 1; k <= 200; k++) {
+        double t = 1e-3 * k, tr;
+        assert_int_equal(td_sim_step(s, t, &tr, NULL), TD_OK);
+        assert_int_equal(td_sim_get_state(s, q, NULL), TD_OK);
+        worst = fmax(worst, fabs(q[disc + TD_DOF_X] - creal(X * cexp(I * W * t))));
+        worst = fmax(worst, fabs(q[disc + TD_DOF_Y] - creal(Y * cexp(I * W * t))));
+    }
+    td_sim_stats_get(s, &st);
+    print_message("Jeffcott orbit %.3e m: worst deviation over 0.2 s %.2e m, %ld steps, %ld flight steps\n", amp, worst,
+                  st.steps, st.flight_steps);
+    assert_int_equal(st.steps, 0);
+    assert_close(st.flight_time, 0.2, 1e-12, 0.0);
+    assert_true(worst < 1e-9 * amp);
+    free(q), free(v);
+    td_sim_free(&s);
     td_case_free(&c);
 }
 
@@ -942,6 +983,7 @@ int main(void)
         cmocka_unit_test(test_two_sims_independent),
         cmocka_unit_test(test_grazing_orbit),
         cmocka_unit_test(test_flight_independent_of_outputs),
+        cmocka_unit_test(test_flight_carries_linear_rotor),
         cmocka_unit_test(test_constrained_drift),
         cmocka_unit_test(test_external_amb_control),
         cmocka_unit_test(test_api_change_matches_schedule),

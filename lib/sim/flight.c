@@ -335,23 +335,32 @@ static void to_modal(const td_sim_flight *f, const double complex *x, double com
     }
 }
 
+/* The block of first-order state i: 0 the displacements q, 1 the velocities v, 2 the AMB states w. */
+static int forcing_block(const td_sim *s, int i)
+{
+    return i < s->n ? 0 : i < 2 * s->n ? 1 : 2;
+}
+
 /* b(t) at tf, tf + T/4, tf + T/2 (T = 2 pi / W) gives b0, bc, bs; tf + T/8 checks that b is
  * that harmonic. Returns 0 if it is not. */
 static int probe_forcing(const td_sim *s, td_sim_flight *f)
 {
     double *z = f->rate0, w = f->omega, q = w != 0.0 ? M_PI / w : 0.0;
     double complex *bp = f->e, *bm = f->d; /* work until the anchor */
+    double scale[3] = {0.0, 0.0, 0.0};
     int i, nz = f->nz, ok = 1;
     memset(z, 0, sizeof(double) * (size_t)nz);
     rates(s, f, f->tf, z, f->b[0]);
     rates(s, f, f->tf + 0.5 * q, z, f->b[1]);
     rates(s, f, f->tf + q, z, f->b[2]);
     rates(s, f, f->tf + 0.25 * q, z, f->b[3]);
+    for (i = 0; i < nz; i++) /* each block's size: the rounding of the mass solve is relative to it */
+        scale[forcing_block(s, i)] = fmax(scale[forcing_block(s, i)], fabs(f->b[0][i]) + fabs(f->b[1][i]));
     for (i = 0; i < nz; i++) {
         double b0 = w != 0.0 ? 0.5 * (f->b[0][i] + f->b[2][i]) : f->b[0][i];
         double bc = f->b[0][i] - b0, bs = w != 0.0 ? f->b[1][i] - b0 : 0.0;
-        double check = b0 + M_SQRT1_2 * (bc + bs), scale = fabs(b0) + fabs(bc) + fabs(bs);
-        if (fabs(check - f->b[3][i]) > 1e-10 * scale + 1e-300)
+        double check = b0 + M_SQRT1_2 * (bc + bs);
+        if (fabs(check - f->b[3][i]) > 1e-10 * scale[forcing_block(s, i)] + 1e-300)
             ok = 0;
         f->b[0][i] = b0;
         bp[i] = 0.5 * (bc - I * bs);
