@@ -1040,8 +1040,10 @@ static td_status handle_stop(td_sim *s, int kind)
         st = td_sim_handle_roots(s, &restart);
         if (st == TD_OK && restart)
             st = td_sim_restart(s);
-        if (st == TD_OK && restart)
+        if (st == TD_OK && restart) {
+            monitor(s, s->t); /* the state after the event: an impact's normal force counts in the peaks */
             td_sim_totals_point(s, s->t, 1);
+        }
         return st;
     }
     st = td_sim_apply_due_changes(s);

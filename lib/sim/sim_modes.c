@@ -656,14 +656,10 @@ td_status td_sim_handle_roots(td_sim *s, int *restart)
     st = td_sim_make_consistent(s, s->entered);
     if (st != TD_OK)
         return st;
-    /* record the normal force right after each event of this instant (the impact's: the first of
-     * its interval's peak candidates) */
+    /* record the normal force right after each event of this instant */
     for (k = first_event; k < s->q_len; k++)
-        if (s->queue[k].retainer >= 0) {
-            td_sim_totals *tk = &s->totals[s->queue[k].retainer];
+        if (s->queue[k].retainer >= 0)
             s->queue[k].normal_force = td_sim_normal_force(s, s->queue[k].retainer, y);
-            tk->interval_peak = fmax(tk->interval_peak, s->queue[k].normal_force);
-        }
     return TD_OK;
 }
 
