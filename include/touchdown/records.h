@@ -39,9 +39,8 @@ typedef struct td_event {
     double normal_force;      /**< N, right after the event */
     double peak_normal_force; /**< N, the largest normal force of the contact interval this event ends
                                    (release, penalty exit; 0 for other events), taken at the integrator's
-                                   steps, the output samples and right after the impact. Under the rigid constraint it is the
-                                   instantaneous peak, which does not converge with the mesh
-                                   (docs/theory.md) */
+                                   steps, the output samples and right after the impact. Under the rigid constraint it
+                                 is the instantaneous peak, which does not converge with the mesh (docs/theory.md) */
 } td_event;
 
 /** Contact state of one retainer at the current time. */
