@@ -612,6 +612,16 @@ static int crosses(td_sim_flight *f, int k, double t, double R2, double sign, do
     return sign * (R2 - (x.v * x.v + y.v * y.v)) < 0.0;
 }
 
+/* 1 if a root function g, falling at the rate `closing` (g' = -closing) with |g''| <= bound, is
+ * below zero FLIGHT_ROOT_TOL from now whatever its curvature: g - closing tau + bound tau^2 / 2 < 0
+ * at tau = FLIGHT_ROOT_TOL. (Also when g is already at or below zero, a rounding error past the
+ * root, and moving on.) */
+static int surely_crossed(double g, double closing, double bound)
+{
+    double tau = FLIGHT_ROOT_TOL;
+    return g - closing * tau + 0.5 * bound * tau * tau < 0.0;
+}
+
 /* The node inside radius R until F(tau) = R - m - a tau^2 / 2 - |p + v tau| reaches zero (F is
  * concave: one crossing, found by bisection to a 2^-30 of the longest step); 0 if F(0) <= 0. */
 static double inside_until(double R, double m, double a, const double p[2], const double v[2])
@@ -677,7 +687,13 @@ static double split_step(const td_sim_flight *f, int k, double t, double R)
 }
 
 /* Retainer k's root functions at the last propagate (time t): the safe step to each (contact,
- * rearm: INFINITY where there is none) and whether each is converged on its root. */
+ * rearm: INFINITY where there is none) and whether each is converged on its root: within
+ * FLIGHT_ROOT_TOL of it and crossing it: surely by the bound on its curvature, else as evaluated
+ * FLIGHT_ROOT_TOL ahead (a graze that turns back before its root is no contact). The bound matters
+ * for a slow approach: the safe steps creep up to the root and may stop a rounding error short of
+ * it or beyond it, where the evaluation ahead is itself at the rounding level; missed there, the
+ * flight hands over to IDA with the root behind IDA's restart, and the node passes through the
+ * retainer unseen. */
 static void retainer_roots(const td_sim *s, td_sim_flight *f, int k, double t, double tau[2], int hit[2])
 {
     const td_sim_retainer *r = &s->ret[k];
@@ -689,7 +705,8 @@ static void retainer_roots(const td_sim *s, td_sim_flight *f, int k, double t, d
     double contact2 = c * c + (r->armed ? 0.0 : 2.0 * c * s->rearm_eps);
     double rearm2 = c * c - 2.0 * c * s->rearm_eps;
     tau[0] = safe_step(contact2 - r2, -dr2, bound);
-    hit[0] = tau[0] < FLIGHT_ROOT_TOL && dr2 > 0.0 && crosses(f, k, t, contact2, 1.0, (contact2 - r2) / dr2);
+    hit[0] = tau[0] < FLIGHT_ROOT_TOL && dr2 > 0.0 &&
+             (surely_crossed(contact2 - r2, dr2, bound) || crosses(f, k, t, contact2, 1.0, (contact2 - r2) / dr2));
     if (!hit[0]) {
         propagate(f, t); /* crosses() may have moved it */
         tau[0] = fmax(tau[0], split_step(f, k, t, sqrt(contact2)));
@@ -698,7 +715,8 @@ static void retainer_roots(const td_sim *s, td_sim_flight *f, int k, double t, d
     hit[1] = 0;
     if (!r->armed) {
         tau[1] = safe_step(r2 - rearm2, dr2, bound);
-        hit[1] = tau[1] < FLIGHT_ROOT_TOL && dr2 < 0.0 && crosses(f, k, t, rearm2, -1.0, (r2 - rearm2) / -dr2);
+        hit[1] = tau[1] < FLIGHT_ROOT_TOL && dr2 < 0.0 &&
+                 (surely_crossed(r2 - rearm2, -dr2, bound) || crosses(f, k, t, rearm2, -1.0, (r2 - rearm2) / -dr2));
     }
 }
 

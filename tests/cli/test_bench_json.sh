@@ -13,7 +13,7 @@ trap 'rm -rf "$work"' EXIT
 . "$(dirname "${BASH_SOURCE[0]}")/common.sh" # fail, pass, check, t, jf
 
 dir="$work/q\"b\\s"$'\t'"c"
-mkdir -p "$dir" && cp "$src"/cases/*.cfg "$dir"/
+mkdir -p "$dir" && cp -R "$src"/cases/. "$dir"/ # with cases/include
 set_arg='output.csv="x\"y\\z'$'\t''w.csv"'
 t "$work/run" bench --quick --json --cases A --dir "$dir" --set "$set_arg"
 check "bench --json with a quote, a backslash and a tab in --dir and --set: exit 0" test "$rc" = 0

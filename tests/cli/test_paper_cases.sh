@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# The paper's cases through the tool, each run once at the default tolerances:
+# The paper's cases through the tool, each run once as shipped (their solver settings: rtol 1e-9,
+# BDF order <= 5, cases/include/paper-solver.cfg):
 #   touchdown run cases/paper-{a,b,c,d-kc1.25e12,d-kc1.25e10}.cfg
 # Each must complete (exit 0, "complete") and summarise its run; A and B (constrained contact)
 # must hold the rotor on the clearance circle, worst |r - c| < 1e-9 m (the summary's worst
