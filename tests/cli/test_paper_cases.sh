@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The paper's cases through the tool, each run once as shipped (their solver settings: rtol 1e-9,
-# BDF order <= 5, cases/include/paper-solver.cfg):
+# BDF order <= 5, cases/include/paper-solver.cfg; the penalty cases to 0.5 s, below):
 #   touchdown run cases/paper-{a,b,c,d-kc1.25e12,d-kc1.25e10}.cfg
 # Each must complete (exit 0, "complete") and summarise its run; A and B (constrained contact)
 # must hold the rotor on the clearance circle, worst |r - c| < 1e-9 m (the summary's worst
@@ -41,6 +41,11 @@ for name in paper-a paper-b paper-c paper-d-kc1.25e12 paper-d-kc1.25e10; do
     [ "$name" = paper-b ] && json=0 # one case through the human-readable summary
     args=(run --hdf5 '' --csv "$d/out.csv" --set 'output.nodes=[2,10]')
     ((json)) && args+=(--json)
+    # The penalty cases end at 0.5 s (first contact at 0.105 s, then some 600 onsets): their 2 s
+    # cost 70 s of the plain build's time and 8 minutes under ASan on a loaded machine, and what
+    # this test checks of them (completion, the clearance on every sample) is not a matter of
+    # length. Their full runs are measured by `touchdown bench` (docs/performance.md).
+    case $name in paper-c | paper-d-*) args+=(--set end_time=0.5) ;; esac
     start=$(date +%s.%N)
     (cd "$d" && "$tool" "${args[@]}" "$src/cases/$name.cfg" >"$d/.out" 2>"$d/.err" </dev/null)
     rc=$?
