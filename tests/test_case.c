@@ -453,6 +453,7 @@ static void test_all_keys(void **state)
     assert_string_equal(td_case_description(c), "every key");
     assert_string_equal(td_case_name(c), "all-keys");
     assert_close(td_case_end_time(c), 0.25, 0.0, 0.0);
+    assert_close(td_model_reduction(td_case_model(c)), 2500.0, 0.0, 0.0);
     assert_int_equal(so->start, TD_START_REST);
     assert_int_equal(so->contact.model, TD_CONTACT_PENALTY);
     assert_close(so->contact.stiffness, 2.0e9, 0.0, 0.0);
@@ -558,6 +559,7 @@ static void test_docs_match_reader(void **state)
                                          "unbalances[0].",
                                          "schedule[0].",
                                          "gravity.",
+                                         "reduction.",
                                          "contact.",
                                          "solver.",
                                          "output.",

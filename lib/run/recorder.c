@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "touchdown/dofs.h"
+#include "touchdown/system.h"
 
 #define REC_MAX_WRITERS 2
 
@@ -19,7 +20,8 @@ struct td_recorder {
     int retainer_count, amb_count;
     int race_fields; /* the writers' race columns (td_output_layout) */
     int speed_field; /* the writers' rotor speed column (td_output_layout) */
-    double *q;       /* dof_count */
+    double *q;       /* dof_count: the nodes' displacements (touchdown/dofs.h) */
+    double *q_gen;   /* dof_count: the generalized coordinates (touchdown/system.h), never more */
     double *node_xy; /* 2 node_count */
     td_retainer_state *ret;
     double *amb_f; /* 2 amb_count */
@@ -31,6 +33,7 @@ static void recorder_free(td_recorder *r)
         return;
     free(r->nodes);
     free(r->q);
+    free(r->q_gen);
     free(r->node_xy);
     free(r->ret);
     free(r->amb_f);
@@ -73,10 +76,11 @@ static td_status choose_nodes(td_recorder *r, const td_model *model, const td_ou
 static td_status allocate_scratch(td_recorder *r, td_error *err)
 {
     r->q = malloc((size_t)(r->dof_count > 0 ? r->dof_count : 1) * sizeof *r->q);
+    r->q_gen = malloc((size_t)(r->dof_count > 0 ? r->dof_count : 1) * sizeof *r->q_gen);
     r->node_xy = malloc((size_t)(2 * r->node_count + 1) * sizeof *r->node_xy);
     r->ret = calloc((size_t)r->retainer_count + 1, sizeof *r->ret);
     r->amb_f = malloc((size_t)(2 * r->amb_count + 1) * sizeof *r->amb_f);
-    if (!r->q || !r->node_xy || !r->ret || !r->amb_f)
+    if (!r->q || !r->q_gen || !r->node_xy || !r->ret || !r->amb_f)
         return td_error_set(err, TD_ERR_NOMEM, "out of memory for the output buffers");
     return TD_OK;
 }
@@ -199,8 +203,10 @@ td_status td_recorder_create(const td_model *model, const td_output_options *out
 /* Read nodes, retainers and AMBs from the simulation into the scratch buffers. */
 static td_status read_state(td_recorder *r, const td_sim *sim, td_error *err)
 {
-    td_status st = td_sim_get_state(sim, r->q, NULL);
+    td_status st = td_sim_get_state(sim, r->q_gen, NULL);
     int i;
+    if (st == TD_OK) /* interior nodes of a reduced rotor through q_phys = T q */
+        st = td_system_expand(td_sim_system(sim), r->q_gen, r->q, NULL);
     if (st != TD_OK)
         return td_error_set(err, st, "reading the state at t = %.17g s: %s", td_sim_time(sim), td_sim_errmsg(sim));
     for (i = 0; i < r->node_count; i++) {
@@ -222,9 +228,9 @@ td_status td_recorder_sample(td_recorder *r, const td_sim *sim, double t, td_err
     int i;
     if (!r || !sim)
         return td_error_set(err, TD_ERR_INVALID, "td_recorder_sample: NULL argument");
-    if (td_sim_dof_count(sim) != r->dof_count)
+    if (td_system_physical_dof_count(td_sim_system(sim)) != r->dof_count)
         return td_error_set(err, TD_ERR_INVALID, "the simulation has %d DOFs, the output layout %d",
-                            td_sim_dof_count(sim), r->dof_count);
+                            td_system_physical_dof_count(td_sim_system(sim)), r->dof_count);
     if ((st = read_state(r, sim, err)) != TD_OK)
         return st;
     for (i = 0; i < r->writer_count; i++)
