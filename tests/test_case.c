@@ -767,6 +767,8 @@ static void test_bad_overrides(void **state)
         {"speed=\"a\tb", "cannot parse the value '\"a\\tb'"},
         {"end_time=\"2\"", "end_time: expected a number, got the string \"2\""},
         {"gravity.direction=[0.0, 0.0]", "gravity.direction: must not be the zero vector"},
+        {"reduction.cutoff=-5.0", "reduction.cutoff: must be > 0"},
+        {"reduction.cutoff=\"high\"", "reduction.cutoff: expected a number"},
         {"discs[0]=3", "must have the type of the entry it replaces"},
     };
     size_t k;
@@ -876,6 +878,8 @@ static const bad_file bad_files[] = {
     {"end-time-zero.cfg", 4, "end_time", NULL},
     {"gravity-enabled-string.cfg", 5, "gravity.enabled", NULL},
     {"gravity-zero-direction.cfg", 6, "gravity.direction", NULL},
+    {"reduction-cutoff-zero.cfg", 5, "reduction.cutoff", NULL},
+    {"reduction-missing-cutoff.cfg", 4, "reduction.cutoff", NULL},
     {"include-comment-at-eof.cfg", 3, NULL, "fragments/comment-at-eof.cfg"},
     {"include-fan.cfg", 8, NULL, "fragments/fan-1.cfg"},
     {"include-missing.cfg", 3, NULL, NULL},
