@@ -267,9 +267,12 @@ static void test_model_setter(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_coordinate_map),         cmocka_unit_test(test_all_modes_exact),
-        cmocka_unit_test(test_error_bound_and_convergence), cmocka_unit_test(test_unbalance_response),
-        cmocka_unit_test(test_rub_contact_statistics), cmocka_unit_test(test_model_setter),
+        cmocka_unit_test(test_coordinate_map),
+        cmocka_unit_test(test_all_modes_exact),
+        cmocka_unit_test(test_error_bound_and_convergence),
+        cmocka_unit_test(test_unbalance_response),
+        cmocka_unit_test(test_rub_contact_statistics),
+        cmocka_unit_test(test_model_setter),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -21,7 +21,6 @@ void td_print_reduction(FILE *f, const td_system *sys);
  * vibration modes below the cut-off at `speed`, and the unbalance response at the retainer and
  * AMB (sensor) nodes at each of the response speeds. Returns 0, or 1 when the comparison failed
  * (said on stderr). */
-int td_print_reduction_error(FILE *f, const td_system *red, double speed, const double *response_speeds,
-                             int n_speeds);
+int td_print_reduction_error(FILE *f, const td_system *red, double speed, const double *response_speeds, int n_speeds);
 
 #endif

@@ -107,8 +107,7 @@ static td_system *full_system(const td_model *m, td_error *err)
     return sys;
 }
 
-int td_print_reduction_error(FILE *f, const td_system *red, double speed, const double *response_speeds,
-                             int n_speeds)
+int td_print_reduction_error(FILE *f, const td_system *red, double speed, const double *response_speeds, int n_speeds)
 {
     const td_model *m = td_system_model(red);
     double cutoff = td_model_reduction(m), wf = 0.0, wr = 0.0;
@@ -145,7 +144,7 @@ void td_print_reduction(FILE *f, const td_system *sys)
     int nq = td_system_dof_count(sys), nm = td_system_mode_count(sys);
     if (!td_system_is_reduced(sys))
         return;
-    fprintf(f, "reduction    Craig-Bampton below %.9g Hz: %d boundary DOFs + %d fixed-interface modes", 
+    fprintf(f, "reduction    Craig-Bampton below %.9g Hz: %d boundary DOFs + %d fixed-interface modes",
             td_model_reduction(td_system_model(sys)), nq - nm, nm);
     if (nm > 0)
         fprintf(f, " (%.6g..%.6g Hz)", td_system_mode_frequency(sys, 0), td_system_mode_frequency(sys, nm - 1));
