@@ -422,7 +422,7 @@ int td_system_coordinate_node(const td_system *s, int i, int *offset)
 double td_system_coordinate_amplitude(const td_system *s, int i)
 {
     int k = i - (s->ndof - s->n_modes);
-    return s->q_node && k >= 0 ? s->mode_amp[k] : 1.0;
+    return s->q_node && k >= 0 && s->mode_amp[k] > 0.0 ? s->mode_amp[k] : 1.0;
 }
 
 int td_system_is_reduced(const td_system *sys)
