@@ -12,12 +12,14 @@
  *
  *   q_phys = T q,   T = [I 0; Psi Phi],   q = [q_b; eta]
  *
- * and M_r = T^T M T, likewise K, C, G, and loads f_r = T^T f. The shaft's x-z and y-z planes are
- * uncoupled in M, K and C, so the fixed-interface modes are solved plane by plane: each mode lies in
- * one plane, and the reduced M, K, C keep the planes uncoupled exactly (their cross entries are exact
- * zeros and are not stored), while G couples them as before. The reduced matrices are small and
- * dense; they are stored in the compressed-column form of the full ones so every consumer works on
- * either. The AMBs act at boundary DOFs and stay outside K (system_internal.h).
+ * and M_r = T^T M T, likewise K, C, G, and loads f_r = T^T f. With the boundary held, every stretch
+ * of interior nodes between boundary nodes is a substructure of its own, and the shaft's x-z and y-z
+ * planes are uncoupled in M, K and C: K_ii and M_ii are block-diagonal over (stretch, plane), and
+ * Psi and the modes are computed block by block (the cost grows with the longest stretch, not the
+ * shaft). Each mode lies in one plane of one stretch, the reduced M, K, C keep the planes uncoupled
+ * exactly (their cross entries are exact zeros and are not stored), while G couples them as before. The reduced
+ * matrices are small and dense; they are stored in the compressed-column form of the full ones so every consumer works
+ * on either. The AMBs act at boundary DOFs and stay outside K (system_internal.h).
  */
 #include "model/model_internal.h"
 #include "model/system_internal.h"
@@ -39,21 +41,31 @@ typedef struct partition {
     int *i; /* ni physical indices of the interior DOFs, node by node */
 } partition;
 
-/* A kept fixed-interface mode: its frequency, plane (0: x-z, 1: y-z) and column in the plane's
- * eigenvector matrix. */
+/* One interior substructure: a stretch of consecutive interior nodes in one plane. With the
+ * boundary held, stretches are uncoupled (a boundary node between two of them is fixed in all four
+ * DOFs) and so are the planes (M, K of the shaft do not couple x-z with y-z): K_ii and M_ii are
+ * block-diagonal over the groups, and each is solved on its own. */
+typedef struct group {
+    int plane;     /* 0: x-z (x, phi), 1: y-z (y, theta) */
+    int n;         /* its DOFs */
+    int *rows;     /* their positions in the interior list */
+    gsl_matrix *V; /* n x n fixed-interface modes, mass-normalised */
+} group;
+
+/* A kept fixed-interface mode: its frequency, plane, group and column in the group's V. */
 typedef struct kept_mode {
     double hz;
-    int plane, col;
+    int plane, group, col;
 } kept_mode;
 
 /* The working set of one reduction. */
 typedef struct reduction {
     partition p;
-    gsl_matrix *M, *K; /* physical, dense */
-    gsl_matrix *Psi;   /* ni x nb */
-    gsl_matrix *V[2];  /* per plane: eigenvectors over that plane's interior DOFs (mass-normalised) */
-    int *plane_rows[2];
-    int plane_n[2];
+    const cs_di *M, *K; /* physical (the system's) */
+    int *pos;           /* nphys: position of a physical DOF in the current group, -1 elsewhere */
+    gsl_matrix *Psi;    /* ni x nb */
+    group *g;
+    int ng;
     kept_mode *kept;
     int nk;
     gsl_matrix *T; /* nphys x (nb + nk) */
@@ -102,61 +114,69 @@ static td_status build_partition(const td_system *s, partition *p, td_error *err
     return TD_OK;
 }
 
-/* A dense copy of a compressed-column matrix. */
-static gsl_matrix *dense_of(const cs_di *A)
+static int in_x_plane(int phys)
 {
-    gsl_matrix *D = gsl_matrix_calloc((size_t)A->m, (size_t)A->n);
-    int j, p;
-    if (!D)
-        return NULL;
-    for (j = 0; j < A->n; j++)
-        for (p = A->p[j]; p < A->p[j + 1]; p++)
-            *gsl_matrix_ptr(D, (size_t)A->i[p], (size_t)j) += A->x[p];
-    return D;
+    int off = phys % TD_DOFS_PER_NODE;
+    return off == TD_DOF_X || off == TD_DOF_PHI;
 }
 
-/* out = A(rows, cols) */
-static gsl_matrix *submatrix(const gsl_matrix *A, const int *rows, int nr, const int *cols, int nc)
+/* Split the interior into groups: stretches of consecutive interior nodes (a boundary node ends
+ * one), each in two planes. The groups' row lists are filled in interior order. */
+static td_status build_groups(reduction *r, td_error *err)
 {
-    gsl_matrix *S = gsl_matrix_alloc((size_t)(nr > 0 ? nr : 1), (size_t)(nc > 0 ? nc : 1));
-    int r, c;
+    int k, seg = -1, prev = -2;
+    r->g = calloc((size_t)(2 * r->p.ni + 1), sizeof *r->g);
+    if (!r->g)
+        return td_error_set(err, TD_ERR_NOMEM, "reduction: out of memory for the interior substructures");
+    for (k = 0; k < r->p.ni; k++) {
+        int node = r->p.i[k] / TD_DOFS_PER_NODE;
+        group *gr;
+        if (node != prev && node != prev + 1)
+            seg++;
+        prev = node;
+        gr = &r->g[2 * seg + !in_x_plane(r->p.i[k])];
+        if (!gr->rows && !(gr->rows = malloc((size_t)r->p.ni * sizeof *gr->rows)))
+            return td_error_set(err, TD_ERR_NOMEM, "reduction: out of memory for the interior substructures");
+        gr->plane = !in_x_plane(r->p.i[k]);
+        gr->rows[gr->n++] = k;
+    }
+    r->ng = 2 * (seg + 1);
+    return TD_OK;
+}
+
+/* Dense A(rows of group gr, cols): cols are physical indices (NULL: the group's own DOFs, nc = n).
+ * Reads the sparse columns, mapping rows through r->pos. NULL on out-of-memory. */
+static gsl_matrix *group_block(const reduction *r, const group *gr, const cs_di *A, const int *cols, int nc)
+{
+    gsl_matrix *S = gsl_matrix_calloc((size_t)gr->n, (size_t)(nc > 0 ? nc : 1));
+    int c, p;
     if (!S)
         return NULL;
-    for (r = 0; r < nr; r++)
-        for (c = 0; c < nc; c++)
-            gsl_matrix_set(S, (size_t)r, (size_t)c, gsl_matrix_get(A, (size_t)rows[r], (size_t)cols[c]));
+    for (c = 0; c < nc; c++) {
+        int j = cols ? cols[c] : r->p.i[gr->rows[c]];
+        for (p = A->p[j]; p < A->p[j + 1]; p++)
+            if (r->pos[A->i[p]] >= 0)
+                *gsl_matrix_ptr(S, (size_t)r->pos[A->i[p]], (size_t)c) += A->x[p];
+    }
     return S;
 }
 
-/* Psi = -K_ii^-1 K_ib by Cholesky: K_ii is positive definite when every interior stretch of shaft
- * ends at a boundary node, which holds it. */
-static td_status constraint_modes(reduction *r, td_error *err)
+/* Psi rows of a group: -K_gg^-1 K_gb by Cholesky. K_gg is positive definite: every stretch of
+ * shaft ends at a boundary node, which holds it. Kgg is factored in place. */
+static td_status group_constraint_modes(reduction *r, const group *gr, gsl_matrix *Kgg, td_error *err)
 {
-    gsl_matrix *Kii = submatrix(r->K, r->p.i, r->p.ni, r->p.i, r->p.ni);
+    gsl_matrix *Kgb = group_block(r, gr, r->K, r->p.b, r->p.nb);
     td_status st = TD_OK;
-    r->Psi = submatrix(r->K, r->p.i, r->p.ni, r->p.b, r->p.nb);
-    if (!Kii || !r->Psi)
-        st = td_error_set(err, TD_ERR_NOMEM, "reduction: out of memory for the constraint modes");
-    else if (gsl_linalg_cholesky_decomp1(Kii) != GSL_SUCCESS || gsl_linalg_cholesky_svx_mat(Kii, r->Psi) != GSL_SUCCESS)
+    int k, j;
+    if (!Kgb)
+        return td_error_set(err, TD_ERR_NOMEM, "reduction: out of memory for the constraint modes");
+    if (gsl_linalg_cholesky_decomp1(Kgg) != GSL_SUCCESS || gsl_linalg_cholesky_svx_mat(Kgg, Kgb) != GSL_SUCCESS)
         st = td_error_set(err, TD_ERR_NUMERIC, "reduction: the interior stiffness K_ii is not positive definite");
-    else
-        gsl_matrix_scale(r->Psi, -1.0);
-    gsl_matrix_free(Kii);
+    for (k = 0; st == TD_OK && k < gr->n; k++)
+        for (j = 0; j < r->p.nb; j++)
+            gsl_matrix_set(r->Psi, (size_t)gr->rows[k], (size_t)j, -gsl_matrix_get(Kgb, (size_t)k, (size_t)j));
+    gsl_matrix_free(Kgb);
     return st;
-}
-
-/* Rows (positions in the interior list) of the interior DOFs of one plane: x-z holds x and phi,
- * y-z holds y and theta (touchdown/dofs.h). */
-static int plane_rows(const partition *p, int plane, int *rows)
-{
-    int k, n = 0;
-    for (k = 0; k < p->ni; k++) {
-        int off = p->i[k] % TD_DOFS_PER_NODE;
-        int in_x = off == TD_DOF_X || off == TD_DOF_PHI;
-        if (in_x == (plane == 0))
-            rows[n++] = k;
-    }
-    return n;
 }
 
 /* Scale the columns of V to unit modal mass v^T M v = 1 (GSL returns unit-norm vectors). */
@@ -172,52 +192,63 @@ static void mass_normalise(gsl_matrix *V, const gsl_matrix *M, gsl_vector *work)
     }
 }
 
-/* Solve K_pp phi = w^2 M_pp phi on one plane's interior DOFs; kept modes appended to r->kept. */
-static td_status plane_modes(reduction *r, int plane, double cutoff, td_error *err)
+/* K_gg phi = w^2 M_gg phi on one group (Kgg, Mgg destroyed); kept modes appended to r->kept. */
+static td_status group_modes(reduction *r, int gi, gsl_matrix *Kgg, gsl_matrix *Mgg, double cutoff, td_error *err)
 {
-    int n = r->plane_n[plane], k, *rows = r->plane_rows[plane], *phys = malloc((size_t)(n > 0 ? n : 1) * sizeof *phys);
-    gsl_matrix *Kp = NULL, *Mp = NULL, *Mc = NULL;
-    gsl_vector *eval = NULL, *work = NULL;
-    gsl_eigen_gensymmv_workspace *w = NULL;
+    group *gr = &r->g[gi];
+    gsl_matrix *Mc = gsl_matrix_alloc((size_t)gr->n, (size_t)gr->n);
+    gsl_vector *eval = gsl_vector_alloc((size_t)gr->n), *work = gsl_vector_alloc((size_t)gr->n);
+    gsl_eigen_gensymmv_workspace *w = gsl_eigen_gensymmv_alloc((size_t)gr->n);
     td_status st = TD_OK;
-    if (n == 0) {
-        free(phys);
-        return TD_OK;
-    }
-    for (k = 0; phys && k < n; k++)
-        phys[k] = r->p.i[rows[k]];
-    if (phys) {
-        Kp = submatrix(r->K, phys, n, phys, n);
-        Mp = submatrix(r->M, phys, n, phys, n);
-        Mc = submatrix(r->M, phys, n, phys, n);
-    }
-    eval = gsl_vector_alloc((size_t)n);
-    work = gsl_vector_alloc((size_t)n);
-    r->V[plane] = gsl_matrix_alloc((size_t)n, (size_t)n);
-    w = gsl_eigen_gensymmv_alloc((size_t)n);
-    if (!phys || !Kp || !Mp || !Mc || !eval || !work || !r->V[plane] || !w)
+    int k;
+    gr->V = gsl_matrix_alloc((size_t)gr->n, (size_t)gr->n);
+    if (!Mc || !eval || !work || !w || !gr->V)
         st = td_error_set(err, TD_ERR_NOMEM, "reduction: out of memory for the fixed-interface modes");
-    else if (gsl_eigen_gensymmv(Kp, Mp, eval, r->V[plane], w) != GSL_SUCCESS)
+    else if (gsl_matrix_memcpy(Mc, Mgg) != GSL_SUCCESS || gsl_eigen_gensymmv(Kgg, Mgg, eval, gr->V, w) != GSL_SUCCESS)
         st = td_error_set(err, TD_ERR_NUMERIC, "reduction: the fixed-interface eigenproblem failed");
     if (st == TD_OK) {
-        mass_normalise(r->V[plane], Mc, work);
-        for (k = 0; k < n; k++) {
+        mass_normalise(gr->V, Mc, work);
+        for (k = 0; k < gr->n; k++) {
             double hz = sqrt(fmax(gsl_vector_get(eval, (size_t)k), 0.0)) / (2.0 * TD_PI);
             if (hz < cutoff)
-                r->kept[r->nk++] = (kept_mode){hz, plane, k};
+                r->kept[r->nk++] = (kept_mode){hz, gr->plane, gi, k};
         }
     }
     gsl_eigen_gensymmv_free(w);
     gsl_vector_free(work);
     gsl_vector_free(eval);
     gsl_matrix_free(Mc);
-    gsl_matrix_free(Mp);
-    gsl_matrix_free(Kp);
-    free(phys);
     return st;
 }
 
-/* Ascending frequency; the x-z plane first in a tie (an isotropic shaft's pairs), then by column. */
+/* Constraint-mode rows and fixed-interface modes of group gi. */
+static td_status group_substructure(reduction *r, int gi, double cutoff, td_error *err)
+{
+    group *gr = &r->g[gi];
+    gsl_matrix *K1, *K2, *Mg;
+    td_status st;
+    int k;
+    for (k = 0; k < gr->n; k++)
+        r->pos[r->p.i[gr->rows[k]]] = k;
+    K1 = group_block(r, gr, r->K, NULL, gr->n);
+    K2 = group_block(r, gr, r->K, NULL, gr->n);
+    Mg = group_block(r, gr, r->M, NULL, gr->n);
+    if (!K1 || !K2 || !Mg)
+        st = td_error_set(err, TD_ERR_NOMEM, "reduction: out of memory for an interior substructure");
+    else
+        st = group_constraint_modes(r, gr, K1, err);
+    if (st == TD_OK)
+        st = group_modes(r, gi, K2, Mg, cutoff, err);
+    for (k = 0; k < gr->n; k++)
+        r->pos[r->p.i[gr->rows[k]]] = -1;
+    gsl_matrix_free(K1);
+    gsl_matrix_free(K2);
+    gsl_matrix_free(Mg);
+    return st;
+}
+
+/* Ascending frequency; the x-z plane first in a tie (an isotropic shaft's pairs), then by group
+ * and column. */
 static int cmp_kept(const void *a, const void *b)
 {
     const kept_mode *x = a, *y = b;
@@ -225,23 +256,26 @@ static int cmp_kept(const void *a, const void *b)
         return x->hz < y->hz ? -1 : 1;
     if (x->plane != y->plane)
         return x->plane - y->plane;
+    if (x->group != y->group)
+        return x->group - y->group;
     return x->col - y->col;
 }
 
-static td_status fixed_interface_modes(reduction *r, double cutoff, td_error *err)
+/* Psi and the kept fixed-interface modes, group by group. */
+static td_status substructures(reduction *r, int nphys, double cutoff, td_error *err)
 {
-    int plane;
-    td_status st = TD_OK;
+    int k;
+    td_status st = build_groups(r, err);
+    r->pos = malloc((size_t)nphys * sizeof *r->pos);
     r->kept = malloc((size_t)(r->p.ni > 0 ? r->p.ni : 1) * sizeof *r->kept);
-    if (!r->kept)
-        return td_error_set(err, TD_ERR_NOMEM, "reduction: out of memory for the fixed-interface modes");
-    for (plane = 0; plane < 2 && st == TD_OK; plane++) {
-        r->plane_rows[plane] = malloc((size_t)(r->p.ni > 0 ? r->p.ni : 1) * sizeof *r->plane_rows[plane]);
-        if (!r->plane_rows[plane])
-            return td_error_set(err, TD_ERR_NOMEM, "reduction: out of memory for the fixed-interface modes");
-        r->plane_n[plane] = plane_rows(&r->p, plane, r->plane_rows[plane]);
-        st = plane_modes(r, plane, cutoff, err);
-    }
+    r->Psi = gsl_matrix_calloc((size_t)(r->p.ni > 0 ? r->p.ni : 1), (size_t)r->p.nb);
+    if (st == TD_OK && (!r->pos || !r->kept || !r->Psi))
+        st = td_error_set(err, TD_ERR_NOMEM, "reduction: out of memory for the interior substructures");
+    for (k = 0; st == TD_OK && k < nphys; k++)
+        r->pos[k] = -1;
+    for (k = 0; st == TD_OK && k < r->ng; k++)
+        if (r->g[k].n > 0)
+            st = group_substructure(r, k, cutoff, err);
     if (st == TD_OK)
         qsort(r->kept, (size_t)r->nk, sizeof *r->kept, cmp_kept);
     return st;
@@ -261,45 +295,63 @@ static td_status build_transform(reduction *r, int nphys, td_error *err)
             gsl_matrix_set(r->T, (size_t)r->p.i[k], (size_t)j, gsl_matrix_get(r->Psi, (size_t)k, (size_t)j));
     for (j = 0; j < r->nk; j++) {
         const kept_mode *km = &r->kept[j];
-        for (k = 0; k < r->plane_n[km->plane]; k++) {
-            int row = r->p.i[r->plane_rows[km->plane][k]];
-            gsl_matrix_set(r->T, (size_t)row, (size_t)(r->p.nb + j),
-                           gsl_matrix_get(r->V[km->plane], (size_t)k, (size_t)km->col));
-        }
+        const group *gr = &r->g[km->group];
+        for (k = 0; k < gr->n; k++)
+            gsl_matrix_set(r->T, (size_t)r->p.i[gr->rows[k]], (size_t)(r->p.nb + j),
+                           gsl_matrix_get(gr->V, (size_t)k, (size_t)km->col));
     }
     return TD_OK;
 }
 
-/* T^T A T, made exactly symmetric (sign +1: M, K, C) or skew-symmetric (sign -1: G), as compressed
- * columns without its exact zeros. NULL on out-of-memory. */
-static cs_di *project(const gsl_matrix *T, const cs_di *A, double sign)
+/* W = A T for a sparse A (rows of T contiguous: W row i += A(i, c) T row c). */
+static void sparse_times(const cs_di *A, const gsl_matrix *T, gsl_matrix *W)
 {
-    size_t nq = T->size2, i, j;
-    gsl_matrix *D = dense_of(A), *W = gsl_matrix_alloc(T->size1, nq), *R = gsl_matrix_alloc(nq, nq);
-    cs_di *out = NULL, *C = NULL;
-    if (D && W && R) {
-        gsl_blas_dgemm(CblasNoTrans, CblasNoTrans, 1.0, D, T, 0.0, W);
-        gsl_blas_dgemm(CblasTrans, CblasNoTrans, 1.0, T, W, 0.0, R);
-        C = cs_di_spalloc((int)nq, (int)nq, (int)(nq * nq), 1, 0);
-    }
-    if (C) {
-        int nz = 0;
-        for (j = 0; j < nq; j++) {
-            C->p[j] = nz;
-            for (i = 0; i < nq; i++) {
-                double v = 0.5 * (gsl_matrix_get(R, i, j) + sign * gsl_matrix_get(R, j, i));
-                if (v != 0.0) {
-                    C->i[nz] = (int)i;
-                    C->x[nz++] = v;
-                }
+    int c, p;
+    gsl_matrix_set_zero(W);
+    for (c = 0; c < A->n; c++)
+        for (p = A->p[c]; p < A->p[c + 1]; p++) {
+            gsl_vector_const_view tc = gsl_matrix_const_row(T, (size_t)c);
+            gsl_vector_view wi = gsl_matrix_row(W, (size_t)A->i[p]);
+            gsl_blas_daxpy(A->x[p], &tc.vector, &wi.vector);
+        }
+}
+
+/* The dense R as compressed columns without its exact zeros, made exactly symmetric (sign +1) or
+ * skew-symmetric (sign -1) against rounding. NULL on out-of-memory. */
+static cs_di *compress_dense(const gsl_matrix *R, double sign)
+{
+    size_t nq = R->size1, i, j;
+    cs_di *C = cs_di_spalloc((int)nq, (int)nq, (int)(nq * nq), 1, 0);
+    int nz = 0;
+    if (!C)
+        return NULL;
+    for (j = 0; j < nq; j++) {
+        C->p[j] = nz;
+        for (i = 0; i < nq; i++) {
+            double v = 0.5 * (gsl_matrix_get(R, i, j) + sign * gsl_matrix_get(R, j, i));
+            if (v != 0.0) {
+                C->i[nz] = (int)i;
+                C->x[nz++] = v;
             }
         }
-        C->p[nq] = nz;
-        out = C;
+    }
+    C->p[nq] = nz;
+    return C;
+}
+
+/* T^T A T (sign +1: M, K, C; -1: G), compressed. NULL on out-of-memory. */
+static cs_di *project(const gsl_matrix *T, const cs_di *A, double sign)
+{
+    size_t nq = T->size2;
+    gsl_matrix *W = gsl_matrix_alloc(T->size1, nq), *R = gsl_matrix_alloc(nq, nq);
+    cs_di *out = NULL;
+    if (W && R) {
+        sparse_times(A, T, W);
+        gsl_blas_dgemm(CblasTrans, CblasNoTrans, 1.0, T, W, 0.0, R);
+        out = compress_dense(R, sign);
     }
     gsl_matrix_free(R);
     gsl_matrix_free(W);
-    gsl_matrix_free(D);
     return out;
 }
 
@@ -358,15 +410,16 @@ static td_status record(td_system *s, const reduction *r, td_error *err)
 
 static void reduction_free(reduction *r)
 {
+    int k;
     free(r->p.b);
     free(r->p.i);
-    gsl_matrix_free(r->M);
-    gsl_matrix_free(r->K);
+    free(r->pos);
     gsl_matrix_free(r->Psi);
-    gsl_matrix_free(r->V[0]);
-    gsl_matrix_free(r->V[1]);
-    free(r->plane_rows[0]);
-    free(r->plane_rows[1]);
+    for (k = 0; r->g && k < 2 * r->p.ni + 1; k++) {
+        free(r->g[k].rows);
+        gsl_matrix_free(r->g[k].V);
+    }
+    free(r->g);
     free(r->kept);
     gsl_matrix_free(r->T);
 }
@@ -377,17 +430,11 @@ td_status td_system_reduce(td_system *s, td_error *err)
     td_status st;
     memset(&r, 0, sizeof r);
     gsl_set_error_handler_off();
+    r.M = s->M;
+    r.K = s->K;
     st = build_partition(s, &r.p, err);
-    if (st == TD_OK) {
-        r.M = dense_of(s->M);
-        r.K = dense_of(s->K);
-        if (!r.M || !r.K)
-            st = td_error_set(err, TD_ERR_NOMEM, "reduction: out of memory for the dense matrices");
-    }
     if (st == TD_OK)
-        st = constraint_modes(&r, err);
-    if (st == TD_OK)
-        st = fixed_interface_modes(&r, s->model->reduction_cutoff, err);
+        st = substructures(&r, s->nphys, s->model->reduction_cutoff, err);
     if (st == TD_OK)
         st = build_transform(&r, s->nphys, err);
     if (st == TD_OK)
