@@ -61,6 +61,10 @@ TD_API int td_system_node_dof(const td_system *sys, int node, int offset);
 /** Physical displacements q_phys = T q (td_system_physical_dof_count long, dofs.h order) from the
  *  generalized q (td_system_dof_count long); both borrowed. A plain copy for the full model. */
 TD_API td_status td_system_expand(const td_system *sys, const double *q, double *q_phys, td_error *err);
+/** One physical displacement, DOF `offset` of `node`, from the generalized q: q[TD_DOF(node, offset)]
+ *  for the full model, row TD_DOF(node, offset) of T times q for a reduced one (td_system_expand of
+ *  one DOF, for samplers that need a few nodes); NAN when node or offset is out of range. */
+TD_API double td_system_node_displacement(const td_system *sys, const double *q, int node, int offset);
 /** The model the system was assembled from (owned by the system). */
 TD_API const td_model *td_system_model(const td_system *sys);
 /** Copy one matrix (in the generalized coordinates) into a dense column-major ndof x ndof array `out` (entry (i, j) at

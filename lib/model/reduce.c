@@ -14,12 +14,13 @@
  *
  * and M_r = T^T M T, likewise K, C, G, and loads f_r = T^T f. With the boundary held, every stretch
  * of interior nodes between boundary nodes is a substructure of its own, and the shaft's x-z and y-z
- * planes are uncoupled in M, K and C: K_ii and M_ii are block-diagonal over (stretch, plane), and
- * Psi and the modes are computed block by block (the cost grows with the longest stretch, not the
- * shaft). Each mode lies in one plane of one stretch, the reduced M, K, C keep the planes uncoupled
- * exactly (their cross entries are exact zeros and are not stored), while G couples them as before. The reduced
- * matrices are small and dense; they are stored in the compressed-column form of the full ones so every consumer works
- * on either. The AMBs act at boundary DOFs and stay outside K (system_internal.h).
+ * planes are uncoupled in M, K and C: K_ii and M_ii are block-diagonal over (stretch, plane)
+ * (checked, not assumed), and Psi and the modes are computed block by block (the cost grows with the
+ * longest stretch, not the shaft). Each mode lies in one plane of one stretch, the reduced M, K, C
+ * keep the planes uncoupled exactly (their cross entries are exact zeros and are not stored), while
+ * G couples them as before. The reduced matrices are small and dense; they are stored in the
+ * compressed-column form of the full ones so every consumer works on either. The AMBs act at
+ * boundary DOFs and stay outside K (system_internal.h).
  */
 #include "model/model_internal.h"
 #include "model/system_internal.h"
@@ -63,6 +64,7 @@ typedef struct reduction {
     partition p;
     const cs_di *M, *K; /* physical (the system's) */
     int *pos;           /* nphys: position of a physical DOF in the current group, -1 elsewhere */
+    int *gid;           /* nphys: group of an interior DOF, -1 for a boundary one */
     gsl_matrix *Psi;    /* ni x nb */
     group *g;
     int ng;
@@ -126,8 +128,10 @@ static td_status build_groups(reduction *r, td_error *err)
 {
     int k, seg = -1, prev = -2;
     r->g = calloc((size_t)(2 * r->p.ni + 1), sizeof *r->g);
-    if (!r->g)
+    if (!r->g || !r->gid)
         return td_error_set(err, TD_ERR_NOMEM, "reduction: out of memory for the interior substructures");
+    for (k = 0; k < r->p.nb; k++)
+        r->gid[r->p.b[k]] = -1;
     for (k = 0; k < r->p.ni; k++) {
         int node = r->p.i[k] / TD_DOFS_PER_NODE;
         group *gr;
@@ -139,9 +143,23 @@ static td_status build_groups(reduction *r, td_error *err)
             return td_error_set(err, TD_ERR_NOMEM, "reduction: out of memory for the interior substructures");
         gr->plane = !in_x_plane(r->p.i[k]);
         gr->rows[gr->n++] = k;
+        r->gid[r->p.i[k]] = (int)(gr - r->g);
     }
     r->ng = 2 * (seg + 1);
     return TD_OK;
+}
+
+/* 1 if A couples two groups (an interior entry between them): the blocks would not be the whole
+ * K_ii or M_ii. The shaft elements never do (elements.c: the planes apart, nodes coupled only to
+ * their neighbours); this keeps an element that did from being reduced wrongly. */
+static int couples_groups(const reduction *r, const cs_di *A)
+{
+    int j, p;
+    for (j = 0; j < A->n; j++)
+        for (p = A->p[j]; r->gid[j] >= 0 && p < A->p[j + 1]; p++)
+            if (r->gid[A->i[p]] >= 0 && r->gid[A->i[p]] != r->gid[j] && A->x[p] != 0.0)
+                return 1;
+    return 0;
 }
 
 /* Dense A(rows of group gr, cols): cols are physical indices (NULL: the group's own DOFs, nc = n).
@@ -265,7 +283,13 @@ static int cmp_kept(const void *a, const void *b)
 static td_status substructures(reduction *r, int nphys, double cutoff, td_error *err)
 {
     int k;
-    td_status st = build_groups(r, err);
+    td_status st;
+    r->gid = malloc((size_t)nphys * sizeof *r->gid);
+    st = build_groups(r, err);
+    if (st == TD_OK && (couples_groups(r, r->K) || couples_groups(r, r->M)))
+        st = td_error_set(err, TD_ERR_INVALID,
+                          "reduction: the shaft couples its x-z and y-z planes or "
+                          "non-neighbouring nodes: no Craig-Bampton reduction for it");
     r->pos = malloc((size_t)nphys * sizeof *r->pos);
     r->kept = malloc((size_t)(r->p.ni > 0 ? r->p.ni : 1) * sizeof *r->kept);
     r->Psi = gsl_matrix_calloc((size_t)(r->p.ni > 0 ? r->p.ni : 1), (size_t)r->p.nb);
@@ -414,6 +438,7 @@ static void reduction_free(reduction *r)
     free(r->p.b);
     free(r->p.i);
     free(r->pos);
+    free(r->gid);
     gsl_matrix_free(r->Psi);
     for (k = 0; r->g && k < 2 * r->p.ni + 1; k++) {
         free(r->g[k].rows);
@@ -529,4 +554,18 @@ void td_system_project_load(const td_system *s, const double *f_phys, double *f_
             sum += s->T[i + (size_t)j * (size_t)s->nphys] * f_phys[i];
         f_q[j] = sum;
     }
+}
+
+double td_system_node_displacement(const td_system *sys, const double *q, int node, int offset)
+{
+    int row, j;
+    double sum = 0.0;
+    if (!sys || !q || node < 0 || node >= sys->nnodes || offset < 0 || offset >= TD_DOFS_PER_NODE)
+        return NAN;
+    row = TD_DOF(node, offset);
+    if (!sys->T)
+        return q[row];
+    for (j = 0; j < sys->ndof; j++)
+        sum += sys->T[row + (size_t)j * (size_t)sys->nphys] * q[j];
+    return sum;
 }

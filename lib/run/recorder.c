@@ -20,8 +20,7 @@ struct td_recorder {
     int retainer_count, amb_count;
     int race_fields; /* the writers' race columns (td_output_layout) */
     int speed_field; /* the writers' rotor speed column (td_output_layout) */
-    double *q;       /* dof_count: the nodes' displacements (touchdown/dofs.h) */
-    double *q_gen;   /* dof_count: the generalized coordinates (touchdown/system.h), never more */
+    double *q;       /* dof_count: the generalized coordinates (touchdown/system.h), never more */
     double *node_xy; /* 2 node_count */
     td_retainer_state *ret;
     double *amb_f; /* 2 amb_count */
@@ -33,7 +32,6 @@ static void recorder_free(td_recorder *r)
         return;
     free(r->nodes);
     free(r->q);
-    free(r->q_gen);
     free(r->node_xy);
     free(r->ret);
     free(r->amb_f);
@@ -76,11 +74,10 @@ static td_status choose_nodes(td_recorder *r, const td_model *model, const td_ou
 static td_status allocate_scratch(td_recorder *r, td_error *err)
 {
     r->q = malloc((size_t)(r->dof_count > 0 ? r->dof_count : 1) * sizeof *r->q);
-    r->q_gen = malloc((size_t)(r->dof_count > 0 ? r->dof_count : 1) * sizeof *r->q_gen);
     r->node_xy = malloc((size_t)(2 * r->node_count + 1) * sizeof *r->node_xy);
     r->ret = calloc((size_t)r->retainer_count + 1, sizeof *r->ret);
     r->amb_f = malloc((size_t)(2 * r->amb_count + 1) * sizeof *r->amb_f);
-    if (!r->q || !r->q_gen || !r->node_xy || !r->ret || !r->amb_f)
+    if (!r->q || !r->node_xy || !r->ret || !r->amb_f)
         return td_error_set(err, TD_ERR_NOMEM, "out of memory for the output buffers");
     return TD_OK;
 }
@@ -203,15 +200,14 @@ td_status td_recorder_create(const td_model *model, const td_output_options *out
 /* Read nodes, retainers and AMBs from the simulation into the scratch buffers. */
 static td_status read_state(td_recorder *r, const td_sim *sim, td_error *err)
 {
-    td_status st = td_sim_get_state(sim, r->q_gen, NULL);
+    td_status st = td_sim_get_state(sim, r->q, NULL);
+    const td_system *sys = td_sim_system(sim);
     int i;
-    if (st == TD_OK) /* interior nodes of a reduced rotor through q_phys = T q */
-        st = td_system_expand(td_sim_system(sim), r->q_gen, r->q, NULL);
     if (st != TD_OK)
         return td_error_set(err, st, "reading the state at t = %.17g s: %s", td_sim_time(sim), td_sim_errmsg(sim));
-    for (i = 0; i < r->node_count; i++) {
-        r->node_xy[2 * i] = r->q[TD_DOF(r->nodes[i], TD_DOF_X)];
-        r->node_xy[2 * i + 1] = r->q[TD_DOF(r->nodes[i], TD_DOF_Y)];
+    for (i = 0; i < r->node_count; i++) { /* interior nodes of a reduced rotor through q_phys = T q */
+        r->node_xy[2 * i] = td_system_node_displacement(sys, r->q, r->nodes[i], TD_DOF_X);
+        r->node_xy[2 * i + 1] = td_system_node_displacement(sys, r->q, r->nodes[i], TD_DOF_Y);
     }
     for (i = 0; i < r->retainer_count; i++)
         if ((st = td_sim_retainer_state(sim, i, &r->ret[i])) != TD_OK)
