@@ -120,10 +120,20 @@ static void test_coordinate_map(void **state)
     assert_true(fabs(qp[TD_DOF(4, TD_DOF_X)]) > 0.1);
     assert_true(qp[TD_DOF(4, TD_DOF_Y)] == 0.0); /* the planes stay apart */
     assert_true(qp[TD_DOF(0, TD_DOF_X)] == 0.0);
+    /* one node's displacement is the same row of T q */
+    for (i = 0; i < td_system_dof_count(red); i++)
+        q[i] = 1e-4 * (i + 1) * (i % 3 - 1);
+    assert_int_equal(td_system_expand(red, q, qp, NULL), TD_OK);
+    for (i = 0; i < 13; i++) {
+        assert_close(td_system_node_displacement(red, q, i, TD_DOF_X), qp[TD_DOF(i, TD_DOF_X)], 1e-14, 1e-20);
+        assert_close(td_system_node_displacement(red, q, i, TD_DOF_PHI), qp[TD_DOF(i, TD_DOF_PHI)], 1e-14, 1e-20);
+    }
+    assert_true(isnan(td_system_node_displacement(red, q, 13, TD_DOF_X)));
     for (i = 0; i < 52; i++)
         q[i] = 1e-3 * (i + 1);
     assert_int_equal(td_system_expand(full, q, qp, NULL), TD_OK);
     assert_memory_equal(q, qp, 52 * sizeof *q);
+    assert_true(td_system_node_displacement(full, q, 7, TD_DOF_Y) == q[TD_DOF(7, TD_DOF_Y)]);
     td_system_free(&full);
     td_system_free(&red);
 }
@@ -247,6 +257,26 @@ static void test_rub_contact_statistics(void **state)
     assert_int_equal(red.peak_housing_retainer, full.peak_housing_retainer);
 }
 
+/* A bare shaft has no node to reduce onto: refused, naming the cut-off. */
+static void test_no_boundary(void **state)
+{
+    td_model *m = NULL;
+    td_system *s = NULL;
+    td_error err;
+    td_shaft_element el = {0.1, 0.05, 0.0, {2.1e11, 8.1e10, 7800.0}};
+    int i;
+    (void)state;
+    assert_int_equal(td_model_create(&m, &err), TD_OK);
+    for (i = 0; i < 4; i++)
+        assert_int_equal(td_model_add_shaft_element(m, &el, &err), TD_OK);
+    assert_int_equal(td_model_set_reduction(m, 1000.0, &err), TD_OK);
+    assert_int_equal(td_system_create(m, &s, &err), TD_ERR_INVALID);
+    assert_null(s);
+    assert_non_null(strstr(err.message, "no boundary node"));
+    assert_string_equal(err.site.field, "cutoff");
+    td_model_free(&m);
+}
+
 /* The model's setter checks its value; the cut-off travels with clones and refinements. */
 static void test_model_setter(void **state)
 {
@@ -273,6 +303,7 @@ int main(void)
         cmocka_unit_test(test_unbalance_response),
         cmocka_unit_test(test_rub_contact_statistics),
         cmocka_unit_test(test_model_setter),
+        cmocka_unit_test(test_no_boundary),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

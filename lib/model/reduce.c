@@ -111,8 +111,9 @@ static td_status build_partition(const td_system *s, partition *p, td_error *err
         }
     free(flag);
     if (p->nb == 0)
-        return td_error_set_site(err, TD_ERR_INVALID, &(td_error_site){"reduction", 0, "cutoff"}, NULL,
-                                 "reduction: the rotor has no boundary node (no part on the shaft) to reduce onto");
+        return td_error_set_site(err, TD_ERR_INVALID, &(td_error_site){"reduction", 0, "cutoff"},
+                                 &(td_error_site){NULL, -1, NULL},
+                                 "the rotor has no boundary node (no part on the shaft) to reduce onto");
     return TD_OK;
 }
 
