@@ -93,9 +93,12 @@ int main(void)
         td_status st;
         /* sample the sensors, compute, hold the control force until the next sample */
         td_sim_get_state(sim, q, NULL);
-        for (a = 0; a < 2; a++)
-            td_sim_set_amb_control(sim, a, pd_control(&axes[a][0], q[TD_DOF(amb_nodes[a], TD_DOF_X)], dt),
-                                   pd_control(&axes[a][1], q[TD_DOF(amb_nodes[a], TD_DOF_Y)], dt), NULL);
+        for (a = 0; a < 2; a++) { /* the sensors' DOFs in q (a reduced rotor keeps them physical) */
+            int ix = td_system_node_dof(td_sim_system(sim), amb_nodes[a], TD_DOF_X);
+            int iy = td_system_node_dof(td_sim_system(sim), amb_nodes[a], TD_DOF_Y);
+            td_sim_set_amb_control(sim, a, pd_control(&axes[a][0], q[ix], dt), pd_control(&axes[a][1], q[iy], dt),
+                                   NULL);
+        }
         while ((st = td_sim_step(sim, t_next, NULL, &err)) == TD_EVENT) {
             td_event ev;
             td_sim_last_event(sim, &ev);

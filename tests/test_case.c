@@ -453,6 +453,7 @@ static void test_all_keys(void **state)
     assert_string_equal(td_case_description(c), "every key");
     assert_string_equal(td_case_name(c), "all-keys");
     assert_close(td_case_end_time(c), 0.25, 0.0, 0.0);
+    assert_close(td_model_reduction(td_case_model(c)), 2500.0, 0.0, 0.0);
     assert_int_equal(so->start, TD_START_REST);
     assert_int_equal(so->contact.model, TD_CONTACT_PENALTY);
     assert_close(so->contact.stiffness, 2.0e9, 0.0, 0.0);
@@ -558,6 +559,7 @@ static void test_docs_match_reader(void **state)
                                          "unbalances[0].",
                                          "schedule[0].",
                                          "gravity.",
+                                         "reduction.",
                                          "contact.",
                                          "solver.",
                                          "output.",
@@ -765,6 +767,8 @@ static void test_bad_overrides(void **state)
         {"speed=\"a\tb", "cannot parse the value '\"a\\tb'"},
         {"end_time=\"2\"", "end_time: expected a number, got the string \"2\""},
         {"gravity.direction=[0.0, 0.0]", "gravity.direction: must not be the zero vector"},
+        {"reduction.cutoff=-5.0", "reduction.cutoff: must be > 0"},
+        {"reduction.cutoff=\"high\"", "reduction.cutoff: expected a number"},
         {"discs[0]=3", "must have the type of the entry it replaces"},
     };
     size_t k;
@@ -874,6 +878,8 @@ static const bad_file bad_files[] = {
     {"end-time-zero.cfg", 4, "end_time", NULL},
     {"gravity-enabled-string.cfg", 5, "gravity.enabled", NULL},
     {"gravity-zero-direction.cfg", 6, "gravity.direction", NULL},
+    {"reduction-cutoff-zero.cfg", 5, "reduction.cutoff", NULL},
+    {"reduction-missing-cutoff.cfg", 4, "reduction.cutoff", NULL},
     {"include-comment-at-eof.cfg", 3, NULL, "fragments/comment-at-eof.cfg"},
     {"include-fan.cfg", 8, NULL, "fragments/fan-1.cfg"},
     {"include-missing.cfg", 3, NULL, NULL},

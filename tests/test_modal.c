@@ -338,6 +338,7 @@ static void test_singular_mass(void **state)
     (void)state;
     s->nnodes = 1;
     s->ndof = 4;
+    s->nphys = 4; /* full model: q is physical */
     for (k = 0; k < 4; k++) {
         T[k] = cs_di_spalloc(4, 4, 4, 1, 1);
         for (i = 0; i < 4; i++)

@@ -130,7 +130,7 @@ static void print_speed(const td_model *m)
                sp.drag_viscous, sp.inertia > 0.0 ? "" : ", J as above");
 }
 
-static int print_modes(const td_model *m, int count)
+static int print_modes(const td_model *m, const td_modal_options *opt, int count)
 {
     td_system *sys = NULL;
     td_modal *modes = NULL;
@@ -143,8 +143,9 @@ static int print_modes(const td_model *m, int count)
     td_model_gravity(m, &gx, &gy);
     print_speed(m);
     printf("gravity      %s\n", (gx != 0.0 || gy != 0.0) ? "on" : "off");
-    printf("DOFs         %d mechanical (4 per node), %d first-order states with the AMB lags\n",
-           td_system_dof_count(sys), td_modal_state_count(sys));
+    printf("DOFs         %d mechanical (%s), %d first-order states with the AMB lags\n", td_system_dof_count(sys),
+           td_system_is_reduced(sys) ? "reduced" : "4 per node", td_modal_state_count(sys));
+    td_print_reduction(stdout, sys);
     if (td_modal_solve_lowest(sys, td_model_speed(m), count, &modes, &err) != TD_OK) {
         fprintf(stderr, "touchdown info: %s\n", err.message);
         td_system_free(&sys);
@@ -157,6 +158,8 @@ static int print_modes(const td_model *m, int count)
         printf("stability    %s\n", td_stability_word(modes));
     printf("first modes at the case speed:\n");
     td_print_modes(stdout, modes, count, 10);
+    if (td_system_is_reduced(sys))
+        td_print_reduction_error(stdout, sys, td_model_speed(m), opt->response_speeds, opt->response_speed_count);
     td_modal_free(&modes);
     td_system_free(&sys);
     return TD_EXIT_OK;
@@ -201,7 +204,7 @@ int td_cmd_info(int argc, char **argv)
     if (td_case_description(c)[0])
         printf("description  %s\n", td_case_description(c));
     print_parts(td_case_model(c));
-    code = print_modes(td_case_model(c), count);
+    code = print_modes(td_case_model(c), td_case_modal_options(c), count);
     td_case_free(&c);
     return code;
 }

@@ -195,6 +195,10 @@ static int analyse(const td_case *c, double speed, const modal_outputs *paths, i
         print_critical(cs, n_cs, opt);
         for (i = 0; i < n_h; i++)
             print_orbits(m, h[i]);
+        if (td_system_is_reduced(sys)) {
+            td_print_reduction(stdout, sys);
+            td_print_reduction_error(stdout, sys, speed, opt->response_speeds, n_h);
+        }
     }
     res.modes = modes;
     res.campbell = camp;

@@ -3,6 +3,7 @@
 #define TD_TOOLS_MODAL_PRINT_H
 
 #include "touchdown/modal.h"
+#include "touchdown/system.h"
 
 #include <stdio.h>
 
@@ -14,5 +15,13 @@ int td_print_modes(FILE *f, const td_modal *modes, int count, int digits);
 void td_print_overdamped(FILE *f, const td_modal *modes);
 /* "stable", "marginally stable (undamped modes)" or "UNSTABLE", judged against round-off. */
 const char *td_stability_word(const td_modal *modes);
+/* One line on a reduced system (its boundary DOFs and kept modes); nothing for a full one. */
+void td_print_reduction(FILE *f, const td_system *sys);
+/* The reduced system's error against the full model of the same machine: the frequencies of the
+ * vibration modes below the cut-off at `speed`, and the unbalance response at the retainer and
+ * AMB (sensor) nodes at each of the response speeds (none: at `speed`). Said and skipped when the
+ * full model is too large for a quick dense solve. Returns 0, or 1 when the comparison failed
+ * (said on stderr). */
+int td_print_reduction_error(FILE *f, const td_system *red, double speed, const double *response_speeds, int n_speeds);
 
 #endif

@@ -266,6 +266,15 @@ TD_API td_status td_model_add_speed_point(td_model *m, const td_speed_point *p, 
 TD_API td_status td_model_set_spin(td_model *m, const td_spin *spin, td_error *err);
 /** Gravity acceleration vector in the x-y plane, m/s^2 (e.g. 0, -9.81); both 0: off. */
 TD_API td_status td_model_set_gravity(td_model *m, double gx, double gy, td_error *err);
+/**
+ * Ask for a Craig-Bampton reduction of the assembled rotor (docs/theory.md, "Reduced rotor"):
+ * every node carrying a part keeps its four DOFs, the other nodes are replaced by the
+ * fixed-interface modes below `cutoff` Hz. cutoff >= 0 and finite; 0 (the default): the full model.
+ * A fault names site part "reduction", field "cutoff".
+ */
+TD_API td_status td_model_set_reduction(td_model *m, double cutoff, td_error *err);
+/** The reduction cut-off frequency, Hz (0: the full model). */
+TD_API double td_model_reduction(const td_model *m);
 
 /**
  * Check cross-references (nodes in range, one AMB and one retainer per node, retainers tighter

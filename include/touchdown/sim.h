@@ -15,6 +15,7 @@
 #include "touchdown/model.h"
 #include "touchdown/options.h"
 #include "touchdown/records.h"
+#include "touchdown/system.h"
 
 #include <signal.h>
 
@@ -86,11 +87,15 @@ TD_API double td_sim_time(const td_sim *sim);
 /** The event that stopped the last td_sim_step with TD_EVENT. */
 TD_API td_status td_sim_last_event(const td_sim *sim, td_event *ev);
 
-/** Number of the rotor's mechanical DOFs (touchdown/dofs.h; the races' states are read with
- *  td_sim_retainer_state). */
+/** Number of the rotor's generalized coordinates (touchdown/system.h: 4 per node for the full
+ *  model; the races' states are read with td_sim_retainer_state). */
 TD_API int td_sim_dof_count(const td_sim *sim);
-/** Copy displacements q and velocities v (each td_sim_dof_count long; either may be NULL). */
+/** Copy displacements q and velocities v (each td_sim_dof_count long; either may be NULL), in the
+ *  generalized coordinates of td_sim_system (td_system_expand gives the nodes' displacements). */
 TD_API td_status td_sim_get_state(const td_sim *sim, double *q, double *v);
+/** The assembled system the simulation integrates (borrowed, valid until td_sim_free); NULL for a
+ *  NULL sim. */
+TD_API const td_system *td_sim_system(const td_sim *sim);
 TD_API td_status td_sim_retainer_state(const td_sim *sim, int retainer, td_retainer_state *out);
 /** Total force of AMB `amb` on the rotor, f[0] along x, f[1] along y, N. */
 TD_API td_status td_sim_amb_force(const td_sim *sim, int amb, double f[2]);

@@ -12,7 +12,7 @@
 static const char *const top_keys[] = {"description",  "speed",      "end_time", "start",     "shaft",      "discs",
                                        "point_masses", "ambs",       "bearings", "retainers", "unbalances", "schedule",
                                        "gravity",      "contact",    "solver",   "output",    "modal",      "overrides",
-                                       "energy",       "speed_ramp", "spin",     NULL};
+                                       "energy",       "speed_ramp", "spin",     "reduction", NULL};
 
 static char *dup_string(const char *s, size_t n)
 {

@@ -82,6 +82,27 @@ static td_status read_gravity(td_case_reader *r, const config_setting_t *root)
     return st == TD_OK ? TD_OK : td_cr_model_fail(r, grav, st, &merr);
 }
 
+/* reduction { cutoff; }: a Craig-Bampton reduced rotor keeping the fixed-interface modes below
+ * cutoff Hz (docs/theory.md, "Reduced rotor"); absent: the full model. */
+static td_status read_reduction(td_case_reader *r, const config_setting_t *root)
+{
+    static const char *const keys[] = {"cutoff", NULL};
+    const config_setting_t *g;
+    double cutoff = 0.0;
+    td_error merr;
+    td_status st = td_cr_group(r, root, "reduction", NULL, &g);
+    if (st != TD_OK || !g)
+        return st;
+    st = td_cr_check_keys(r, g, keys);
+    if (st == TD_OK)
+        st = td_cr_real(r, g, "cutoff", "cut-off frequency of the fixed-interface modes, Hz", 0.0, TD_CR_POSITIVE,
+                        &cutoff);
+    if (st != TD_OK)
+        return st;
+    st = td_model_set_reduction(r->c->model, cutoff, &merr);
+    return st == TD_OK ? TD_OK : td_cr_model_fail(r, g, st, &merr);
+}
+
 static td_status read_contact(td_case_reader *r, const config_setting_t *root, td_contact_options *o)
 {
     const config_setting_t *g, *e;
@@ -283,6 +304,8 @@ td_status td_cr_read_options(td_case_reader *r, const config_setting_t *root)
         st = td_cr_model_fail(r, config_setting_get_member(root, "speed"), st, &merr);
     if (st == TD_OK)
         st = read_gravity(r, root);
+    if (st == TD_OK)
+        st = read_reduction(r, root);
     if (st == TD_OK)
         st = td_cr_real(r, root, "end_time", "end time of the run, s", 0.0, TD_CR_POSITIVE, &c->end_time);
     if (st == TD_OK)

@@ -208,6 +208,41 @@ static td_modal *modal_alloc(int nnodes, int nmodes, int nreal)
     return m;
 }
 
+/* The eigenvector columns with their q rows expanded to the nodes' DOFs, q_phys = T q (a reduced
+ * rotor, touchdown/system.h): 4 nnodes rows, every column of evec. NULL on out-of-memory. */
+static gsl_matrix_complex *expand_vectors(const td_system *sys, const gsl_matrix_complex *evec)
+{
+    size_t np = (size_t)sys->nphys, nq = (size_t)sys->ndof, i, j, c;
+    gsl_matrix_complex *X = gsl_matrix_complex_calloc(np, evec->size2);
+    if (!X)
+        return NULL;
+    for (c = 0; c < evec->size2; c++)
+        for (j = 0; j < nq; j++) {
+            gsl_complex v = gsl_matrix_complex_get(evec, j, c);
+            for (i = 0; i < np; i++) {
+                double t = sys->T[i + j * np];
+                gsl_complex *x = gsl_matrix_complex_ptr(X, i, c);
+                GSL_SET_COMPLEX(x, GSL_REAL(*x) + t * GSL_REAL(v), GSL_IMAG(*x) + t * GSL_IMAG(v));
+            }
+        }
+    return X;
+}
+
+td_status td_modal_collect_system(const gsl_vector_complex *eval, gsl_matrix_complex *evec, const td_system *sys,
+                                  double omega, td_modal **out, td_error *err)
+{
+    gsl_matrix_complex *X;
+    td_status st;
+    if (!td_system_is_reduced(sys))
+        return td_modal_collect(eval, evec, sys->nnodes, omega, out, err);
+    X = expand_vectors(sys, evec);
+    if (!X)
+        return td_error_set(err, TD_ERR_NOMEM, "modal: out of memory expanding the mode shapes");
+    st = td_modal_collect(eval, X, sys->nnodes, omega, out, err);
+    gsl_matrix_complex_free(X);
+    return st;
+}
+
 td_status td_modal_collect(const gsl_vector_complex *eval, gsl_matrix_complex *evec, int nnodes, double omega,
                            td_modal **out, td_error *err)
 {
@@ -286,7 +321,7 @@ td_status td_modal_solve(const td_system *sys, double omega, td_modal **out, td_
         if (gsl_eigen_nonsymmv(ss.A, eval, evec, w) != GSL_SUCCESS)
             st = td_error_set(err, TD_ERR_NUMERIC, "modal: the eigen-solver did not converge at %g rad/s", omega);
         else
-            st = td_modal_collect(eval, evec, sys->nnodes, omega, out, err);
+            st = td_modal_collect_system(eval, evec, sys, omega, out, err);
     }
     gsl_eigen_nonsymmv_free(w);
     gsl_matrix_complex_free(evec);

@@ -18,9 +18,11 @@
 struct td_harmonic {
     double omega;
     int nnodes;
-    int n;      /* states */
-    double *re; /* n */
-    double *im; /* n */
+    int n;        /* states */
+    double *re;   /* n */
+    double *im;   /* n */
+    double *q_re; /* 4 nnodes: the nodes' displacements, expanded from q (td_system_expand) */
+    double *q_im;
 };
 
 void td_harmonic_free(td_harmonic **h)
@@ -29,6 +31,8 @@ void td_harmonic_free(td_harmonic **h)
         return;
     free((*h)->re);
     free((*h)->im);
+    free((*h)->q_re);
+    free((*h)->q_im);
     free(*h);
     *h = NULL;
 }
@@ -124,8 +128,10 @@ td_status td_harmonic_compute(const td_system *sys, double omega, const td_unbal
     if (h) {
         h->re = malloc((size_t)ss.n * sizeof *h->re);
         h->im = malloc((size_t)ss.n * sizeof *h->im);
+        h->q_re = malloc((size_t)sys->nphys * sizeof *h->q_re);
+        h->q_im = malloc((size_t)sys->nphys * sizeof *h->q_im);
     }
-    if (!h || !h->re || !h->im) {
+    if (!h || !h->re || !h->im || !h->q_re || !h->q_im) {
         td_harmonic_free(&h);
         td_state_space_free(&ss);
         return td_error_set(err, TD_ERR_NOMEM, "modal: out of memory for the harmonic response");
@@ -135,6 +141,10 @@ td_status td_harmonic_compute(const td_system *sys, double omega, const td_unbal
     h->n = ss.n;
     st = unbalance_response(sys, &ss, u, n_u, h->re, h->im, err);
     td_state_space_free(&ss);
+    if (st == TD_OK) /* the displacement rows of the state, q first */
+        st = td_system_expand(sys, h->re, h->q_re, err);
+    if (st == TD_OK)
+        st = td_system_expand(sys, h->im, h->q_im, err);
     if (st != TD_OK) {
         td_harmonic_free(&h);
         return st;
@@ -174,10 +184,10 @@ td_status td_harmonic_orbit(const td_harmonic *h, int node, td_orbit *o)
         return TD_ERR_INVALID;
     ix = TD_DOF(node, TD_DOF_X);
     iy = TD_DOF(node, TD_DOF_Y);
-    o->x_re = h->re[ix];
-    o->x_im = h->im[ix];
-    o->y_re = h->re[iy];
-    o->y_im = h->im[iy];
+    o->x_re = h->q_re[ix];
+    o->x_im = h->q_im[ix];
+    o->y_re = h->q_re[iy];
+    o->y_im = h->q_im[iy];
     o->x_amp = hypot(o->x_re, o->x_im);
     o->y_amp = hypot(o->y_re, o->y_im);
     o->x_phase = atan2(o->x_im, o->x_re);

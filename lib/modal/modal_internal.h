@@ -71,6 +71,11 @@ struct td_modal {
 td_status td_modal_collect(const gsl_vector_complex *eval, gsl_matrix_complex *evec, int nnodes, double omega,
                            td_modal **out, td_error *err);
 
+/* td_modal_collect for the eigenvectors of `sys`: a reduced system's are expanded to the nodes
+ * first (q_phys = T q), so the shapes cover every node. */
+td_status td_modal_collect_system(const gsl_vector_complex *eval, gsl_matrix_complex *evec, const td_system *sys,
+                                  double omega, td_modal **out, td_error *err);
+
 /* Systems with at most this many states are always solved in full by the dense solver (the same
  * results as td_modal_solve); larger ones by shift-invert Arnoldi (lib/modal/partial.c). */
 #define TD_MODAL_DENSE_MAX_STATES 240

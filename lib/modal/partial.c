@@ -348,7 +348,7 @@ static td_status try_collect(const td_system *sys, double omega, const pencil *p
     if (st == TD_OK) {
         gsl_vector_complex_view ev = gsl_vector_complex_subvector(eval, 0, m);
         gsl_matrix_complex_view vv = gsl_matrix_complex_submatrix(evec, 0, 0, n, m);
-        st = td_modal_collect(&ev.vector, &vv.matrix, sys->nnodes, omega, out, err);
+        st = td_modal_collect_system(&ev.vector, &vv.matrix, sys, omega, out, err);
     }
     if (st == TD_OK) {
         (*out)->n_computed = k;

@@ -203,12 +203,10 @@ td_status td_state_space_load(const td_state_space *ss, const double *f, double 
     return TD_OK;
 }
 
-td_status td_unbalance_forces(const td_system *sys, double omega, const td_unbalance *u, int n_u, double *fre,
-                              double *fim, td_error *err)
+static td_status physical_unbalance_forces(const td_system *sys, double omega, const td_unbalance *u, int n_u,
+                                           double *fre, double *fim, td_error *err)
 {
     int i;
-    for (i = 0; i < sys->ndof; i++)
-        fre[i] = fim[i] = 0.0;
     if (n_u < 0 || (n_u > 0 && !u))
         return td_error_set(err, TD_ERR_INVALID, "modal: bad unbalance list");
     for (i = 0; i < n_u; i++) {
@@ -228,6 +226,21 @@ td_status td_unbalance_forces(const td_system *sys, double omega, const td_unbal
         fim[y] -= a * c;
     }
     return TD_OK;
+}
+
+/* The forces on the physical DOFs (nphys each), then projected on q (T^T f, reduce.c). */
+td_status td_unbalance_forces(const td_system *sys, double omega, const td_unbalance *u, int n_u, double *fre,
+                              double *fim, td_error *err)
+{
+    double *phys = calloc(2u * (size_t)sys->nphys, sizeof *phys);
+    td_status st;
+    if (!phys)
+        return td_error_set(err, TD_ERR_NOMEM, "modal: out of memory for the unbalance forces");
+    st = physical_unbalance_forces(sys, omega, u, n_u, phys, phys + sys->nphys, err);
+    td_system_project_load(sys, phys, fre);
+    td_system_project_load(sys, phys + sys->nphys, fim);
+    free(phys);
+    return st;
 }
 
 td_status td_modal_state_matrix(const td_system *sys, double omega, double *A, td_error *err)

@@ -159,8 +159,9 @@ static td_status build_amb_axes(td_system *s, td_error *err)
             int offset = k == 0 ? TD_DOF_X : TD_DOF_Y;
             a->amb = i;
             a->axis = k;
-            a->actuator_dof = TD_DOF(b->node, offset);
-            a->sensor_dof = TD_DOF(b->sensor_node, offset);
+            /* both nodes are boundary nodes of a reduced rotor (reduce.c): physical in q */
+            a->actuator_dof = td_system_node_dof(s, b->node, offset);
+            a->sensor_dof = td_system_node_dof(s, b->sensor_node, offset);
             a->ks = b->ks;
             a->ki = b->ki;
             a->kp = b->kp;
@@ -185,8 +186,8 @@ static td_status build_gravity_load(td_system *s, td_error *err)
 {
     double *a;
     int i;
-    s->gravity_load = calloc((size_t)s->ndof, sizeof *s->gravity_load);
-    a = calloc((size_t)s->ndof, sizeof *a);
+    s->gravity_load = calloc((size_t)s->nphys, sizeof *s->gravity_load);
+    a = calloc((size_t)s->nphys, sizeof *a);
     if (!s->gravity_load || !a) {
         free(a);
         return td_error_set(err, TD_ERR_NOMEM, "out of memory building the gravity load");
@@ -216,13 +217,15 @@ td_status td_system_create(const td_model *model, td_system **out, td_error *err
     st = td_model_clone(model, &s->model, err);
     if (st == TD_OK) {
         s->nnodes = td_model_node_count(s->model);
-        s->ndof = TD_DOFS_PER_NODE * s->nnodes;
+        s->nphys = s->ndof = TD_DOFS_PER_NODE * s->nnodes;
         st = assemble_matrices(s, err);
     }
     if (st == TD_OK)
-        st = build_amb_axes(s, err);
-    if (st == TD_OK)
         st = build_gravity_load(s, err);
+    if (st == TD_OK && s->model->reduction_cutoff > 0.0)
+        st = td_system_reduce(s, err);
+    if (st == TD_OK)
+        st = build_amb_axes(s, err);
     if (st != TD_OK) {
         td_system_free(&s);
         return st;
@@ -244,6 +247,7 @@ void td_system_free(td_system **sys)
     cs_di_spfree(s->G);
     free(s->amb_axes);
     free(s->gravity_load);
+    td_system_reduction_free(s);
     free(s);
     *sys = NULL;
 }

@@ -127,6 +127,7 @@ td_status td_model_clone(const td_model *model, td_model **out, td_error *err)
     m->speed = model->speed;
     m->gravity[0] = model->gravity[0];
     m->gravity[1] = model->gravity[1];
+    m->reduction_cutoff = model->reduction_cutoff;
     CLONE(m->elements, model->elements, ok);
     CLONE(m->discs, model->discs, ok);
     CLONE(m->ambs, model->ambs, ok);
@@ -529,6 +530,21 @@ td_status td_model_set_gravity(td_model *m, double gx, double gy, td_error *err)
     m->gravity[0] = gx;
     m->gravity[1] = gy;
     return TD_OK;
+}
+
+td_status td_model_set_reduction(td_model *m, double cutoff, td_error *err)
+{
+    if (!m)
+        return td_error_set(err, TD_ERR_INVALID, "reduction: NULL model");
+    if (!(isfinite(cutoff) && cutoff >= 0.0))
+        return FAIL_AT(err, "reduction", 0, "cutoff", "must be a finite frequency >= 0 Hz (got %g)", cutoff);
+    m->reduction_cutoff = cutoff;
+    return TD_OK;
+}
+
+double td_model_reduction(const td_model *m)
+{
+    return m ? m->reduction_cutoff : 0.0;
 }
 
 static td_status check_node(const td_model *m, const char *part, int i, const char *field, int node, td_error *err)

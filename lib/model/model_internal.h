@@ -24,7 +24,8 @@ struct td_model {
     double speed;                               /* rad/s */
     TD_PART_ARRAY(td_speed_point) speed_points; /* the ramp, increasing times */
     td_spin spin;
-    double gravity[2]; /* m/s^2 */
+    double gravity[2];       /* m/s^2 */
+    double reduction_cutoff; /* Hz: Craig-Bampton reduction of the system (lib/model/reduce.c); 0: full model */
 };
 
 #endif

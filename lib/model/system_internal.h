@@ -26,7 +26,15 @@ typedef struct td_amb_axis {
 struct td_system {
     td_model *model; /* owned copy */
     int nnodes;
-    int ndof;
+    int ndof;  /* generalized coordinates q (touchdown/system.h) */
+    int nphys; /* physical DOFs, 4 nnodes */
+    /* the Craig-Bampton reduction (reduce.c); all NULL / 0 for the full model */
+    int *phys_to_q;    /* nphys: index in q of each physical DOF, -1 for an interior node's */
+    int *q_node;       /* ndof: node of coordinate i, -1 for a fixed-interface modal coordinate */
+    double *T;         /* nphys x ndof, column-major: q_phys = T q */
+    int n_modes;       /* fixed-interface modes kept: coordinates ndof - n_modes .. ndof - 1 */
+    double *mode_freq; /* n_modes, Hz */
+    double *mode_amp;  /* n_modes: largest nodal x or y of the mass-normalised mode, m per unit coordinate */
     cs_di *M;
     cs_di *K;
     cs_di *C;
@@ -37,6 +45,20 @@ struct td_system {
                               * integrator state e per axis with kint > 0 */
     double *gravity_load;    /* M g, length ndof: the weight as nodal forces */
 };
+
+/* Replace M, K, C, G and the gravity load (all physical on entry) by their Craig-Bampton reduction
+ * at the model's cut-off and fill the reduction fields (reduce.c). */
+td_status td_system_reduce(td_system *s, td_error *err);
+/* Free the reduction fields. */
+void td_system_reduction_free(td_system *s);
+/* Generalized load f_q = T^T f_phys (ndof long) of a physical load f_phys (nphys long); a copy for
+ * the full model. */
+void td_system_project_load(const td_system *s, const double *f_phys, double *f_q);
+/* Node of coordinate i of q and its offset in *offset; -1 for a fixed-interface modal coordinate. */
+int td_system_coordinate_node(const td_system *s, int i, int *offset);
+/* Displacement scale of coordinate i: 1 for a physical DOF, the mode's largest nodal amplitude
+ * (m per unit coordinate) for a modal one. */
+double td_system_coordinate_amplitude(const td_system *s, int i);
 
 /* --- The AMB axis law (docs/reference-rig.md), one place for modal analysis and simulation. --- */
 

@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "touchdown/dofs.h"
+#include "touchdown/system.h"
 
 #define REC_MAX_WRITERS 2
 
@@ -19,7 +20,7 @@ struct td_recorder {
     int retainer_count, amb_count;
     int race_fields; /* the writers' race columns (td_output_layout) */
     int speed_field; /* the writers' rotor speed column (td_output_layout) */
-    double *q;       /* dof_count */
+    double *q;       /* dof_count: the generalized coordinates (touchdown/system.h), never more */
     double *node_xy; /* 2 node_count */
     td_retainer_state *ret;
     double *amb_f; /* 2 amb_count */
@@ -200,12 +201,13 @@ td_status td_recorder_create(const td_model *model, const td_output_options *out
 static td_status read_state(td_recorder *r, const td_sim *sim, td_error *err)
 {
     td_status st = td_sim_get_state(sim, r->q, NULL);
+    const td_system *sys = td_sim_system(sim);
     int i;
     if (st != TD_OK)
         return td_error_set(err, st, "reading the state at t = %.17g s: %s", td_sim_time(sim), td_sim_errmsg(sim));
-    for (i = 0; i < r->node_count; i++) {
-        r->node_xy[2 * i] = r->q[TD_DOF(r->nodes[i], TD_DOF_X)];
-        r->node_xy[2 * i + 1] = r->q[TD_DOF(r->nodes[i], TD_DOF_Y)];
+    for (i = 0; i < r->node_count; i++) { /* interior nodes of a reduced rotor through q_phys = T q */
+        r->node_xy[2 * i] = td_system_node_displacement(sys, r->q, r->nodes[i], TD_DOF_X);
+        r->node_xy[2 * i + 1] = td_system_node_displacement(sys, r->q, r->nodes[i], TD_DOF_Y);
     }
     for (i = 0; i < r->retainer_count; i++)
         if ((st = td_sim_retainer_state(sim, i, &r->ret[i])) != TD_OK)
@@ -222,9 +224,9 @@ td_status td_recorder_sample(td_recorder *r, const td_sim *sim, double t, td_err
     int i;
     if (!r || !sim)
         return td_error_set(err, TD_ERR_INVALID, "td_recorder_sample: NULL argument");
-    if (td_sim_dof_count(sim) != r->dof_count)
+    if (td_system_physical_dof_count(td_sim_system(sim)) != r->dof_count)
         return td_error_set(err, TD_ERR_INVALID, "the simulation has %d DOFs, the output layout %d",
-                            td_sim_dof_count(sim), r->dof_count);
+                            td_system_physical_dof_count(td_sim_system(sim)), r->dof_count);
     if ((st = read_state(r, sim, err)) != TD_OK)
         return st;
     for (i = 0; i < r->writer_count; i++)

@@ -7,11 +7,12 @@
 #include <math.h>
 #include <string.h>
 
-void td_sim_retainer_init(td_sim_retainer *r, const td_model *model, int k, const td_contact_options *run)
+void td_sim_retainer_init(td_sim_retainer *r, const td_system *sys, int k, const td_contact_options *run)
 {
-    td_model_get_retainer(model, k, &r->r);
-    r->dx = TD_DOF(r->r.node, TD_DOF_X);
-    r->dy = TD_DOF(r->r.node, TD_DOF_Y);
+    td_model_get_retainer(td_system_model(sys), k, &r->r);
+    /* a retainer's node is a boundary node of a reduced rotor (reduce.c): physical in q */
+    r->dx = td_system_node_dof(sys, r->r.node, TD_DOF_X);
+    r->dy = td_system_node_dof(sys, r->r.node, TD_DOF_Y);
     r->rx = r->ry = r->rs = r->fi = -1;
     r->rolling = 0;
     r->mode = TD_RMODE_FREE;

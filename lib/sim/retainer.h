@@ -15,6 +15,7 @@
 #include "contact/contact.h"
 #include "touchdown/model.h"
 #include "touchdown/sim.h"
+#include "touchdown/system.h"
 
 /* Contact mode of one retainer. */
 typedef enum td_rmode {
@@ -49,7 +50,7 @@ typedef struct td_sim_retainer {
 
 /* Retainer k of `model`, free and armed, sliding forwards, its contact law from the run's options;
  * its race DOFs unassigned (-1: td_sim_races_layout assigns them). */
-void td_sim_retainer_init(td_sim_retainer *r, const td_model *model, int k, const td_contact_options *run);
+void td_sim_retainer_init(td_sim_retainer *r, const td_system *sys, int k, const td_contact_options *run);
 
 /* Position x, y and velocity vx, vy of retainer k's node relative to its race centre at state y. */
 void td_sim_node_state(const td_sim *s, int k, const double *y, double *x, double *yy, double *vx, double *vy);

@@ -412,8 +412,10 @@ static void set_tolerances(td_sim *s)
     int i;
     int ne = td_model_shaft_element_count(s->model);
     for (i = 0; i < s->sys->ndof; i++) {
-        int node = i / TD_DOFS_PER_NODE, off = i % TD_DOFS_PER_NODE;
-        double scale = 1.0;
+        int off, node = td_system_coordinate_node(s->sys, i, &off);
+        /* a fixed-interface modal coordinate of a reduced rotor moves the nodes by up to its mode's
+         * largest amplitude per unit: its tolerance is the displacement tolerance over that */
+        double scale = node < 0 ? 1.0 / td_system_coordinate_amplitude(s->sys, i) : 1.0;
         if (off == TD_DOF_THETA || off == TD_DOF_PHI) {
             /* a slope error e moves the interpolated deflection by about e L_e */
             double len = 0.0;
@@ -729,7 +731,7 @@ static td_status init_retainers(td_sim *s, td_error *err)
     if (!s->ret)
         return td_error_set(err, TD_ERR_NOMEM, "out of memory creating a simulation");
     for (k = 0; k < s->nr; k++) {
-        td_sim_retainer_init(&s->ret[k], s->model, k, &s->opt.contact);
+        td_sim_retainer_init(&s->ret[k], s->sys, k, &s->opt.contact);
         if (s->ret[k].r.stick)
             s->ret[k].fi = s->ns++;
     }
@@ -1433,6 +1435,11 @@ td_status td_sim_set_amb_control(td_sim *sim, int amb, double fx, double fy, td_
     sim->amb_control[2 * amb + 1] = fy;
     /* the held force jumps: restart only when it acts now */
     return sim->amb_mode[amb] == TD_AMB_EXTERNAL ? reported(sim, restart_after_change(sim), err) : TD_OK;
+}
+
+const td_system *td_sim_system(const td_sim *sim)
+{
+    return sim ? sim->sys : NULL;
 }
 
 const td_model *td_sim_model(const td_sim *sim)

@@ -73,7 +73,8 @@ static int put_spin(const td_sim *s, cs_di *T)
         for (p = s->G->p[j]; p < s->G->p[j + 1] && ok; p++)
             ok = put(T, s->ov + s->G->i[p], s->ov + s->spin);
     for (i = 0; i < s->nu && ok; i++) {
-        int x = s->ov + TD_DOF(s->unb[i].node, TD_DOF_X), y = s->ov + TD_DOF(s->unb[i].node, TD_DOF_Y);
+        int x = s->ov + td_system_node_dof(s->sys, s->unb[i].node, TD_DOF_X),
+            y = s->ov + td_system_node_dof(s->sys, s->unb[i].node, TD_DOF_Y);
         ok = put(T, x, s->oq + s->spin) && put(T, y, s->oq + s->spin) && put(T, x, s->ov + s->spin) &&
              put(T, y, s->ov + s->spin) && put(T, s->ov + s->spin, x) && put(T, s->ov + s->spin, y);
     }

@@ -138,12 +138,12 @@ void td_sim_external_forces(const td_sim *s, double t, const double *y, double s
     for (i = 0; i < s->nu; i++) {
         const td_unbalance *u = &s->unb[i];
         double a = sign * u->magnitude * w2;
-        f[TD_DOF(u->node, TD_DOF_X)] += a * cos(phi + u->phase);
-        f[TD_DOF(u->node, TD_DOF_Y)] += a * sin(phi + u->phase);
+        f[td_system_node_dof(s->sys, u->node, TD_DOF_X)] += a * cos(phi + u->phase);
+        f[td_system_node_dof(s->sys, u->node, TD_DOF_Y)] += a * sin(phi + u->phase);
         if (alpha != 0.0) {
             double b = sign * u->magnitude * alpha;
-            f[TD_DOF(u->node, TD_DOF_X)] += b * sin(phi + u->phase);
-            f[TD_DOF(u->node, TD_DOF_Y)] -= b * cos(phi + u->phase);
+            f[td_system_node_dof(s->sys, u->node, TD_DOF_X)] += b * sin(phi + u->phase);
+            f[td_system_node_dof(s->sys, u->node, TD_DOF_Y)] -= b * cos(phi + u->phase);
         }
     }
     if (s->spin >= 0)
@@ -243,7 +243,7 @@ double td_sim_unbalance_spin_coupling(const td_sim *s, double t, const double *y
     for (i = 0; i < s->nu; i++) {
         const td_unbalance *u = &s->unb[i];
         double c = cos(phi + u->phase), sn = sin(phi + u->phase), U = u->magnitude;
-        int x = TD_DOF(u->node, TD_DOF_X), yy = TD_DOF(u->node, TD_DOF_Y);
+        int x = td_system_node_dof(s->sys, u->node, TD_DOF_X), yy = td_system_node_dof(s->sys, u->node, TD_DOF_Y);
         double fx = U * sn * dw, fy = -U * c * dw, torque = -U * (c * yp[s->ov + yy] - sn * yp[s->ov + x]);
         if (rv) {
             rv[x] -= fx;
@@ -591,7 +591,8 @@ static void jacobian_spin(td_sim *s, double t, const double *y)
     for (i = 0; i < s->nu; i++) { /* v rows carry -f */
         const td_unbalance *u = &s->unb[i];
         double c = cos(phi + u->phase), sn = sin(phi + u->phase), U = u->magnitude;
-        int x = s->ov + TD_DOF(u->node, TD_DOF_X), yrow = s->ov + TD_DOF(u->node, TD_DOF_Y);
+        int x = s->ov + td_system_node_dof(s->sys, u->node, TD_DOF_X),
+            yrow = s->ov + td_system_node_dof(s->sys, u->node, TD_DOF_Y);
         jadd(s, x, qz, -U * (-w * w * sn + alpha * c));
         jadd(s, yrow, qz, -U * (w * w * c + alpha * sn));
         jadd(s, x, wz, -2.0 * U * w * c);
@@ -611,7 +612,8 @@ static void jacobian_unbalance_spin(td_sim *s, double t, double cj, const double
     for (i = 0; i < s->nu; i++) {
         const td_unbalance *u = &s->unb[i];
         double mx = -u->magnitude * sin(phi + u->phase), my = u->magnitude * cos(phi + u->phase);
-        int x = s->ov + TD_DOF(u->node, TD_DOF_X), yrow = s->ov + TD_DOF(u->node, TD_DOF_Y);
+        int x = s->ov + td_system_node_dof(s->sys, u->node, TD_DOF_X),
+            yrow = s->ov + td_system_node_dof(s->sys, u->node, TD_DOF_Y);
         jadd(s, x, wz, cj * mx);
         jadd(s, yrow, wz, cj * my);
         jadd(s, wz, x, cj * mx);

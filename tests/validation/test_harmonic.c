@@ -35,6 +35,7 @@ static td_system *one_node(const double m[4], const double k[4], const double c[
     assert_non_null(s);
     s->nnodes = 1;
     s->ndof = 4;
+    s->nphys = 4; /* full model: q is physical */
     for (a = 0; a < 4; a++)
         T[a] = cs_di_spalloc(4, 4, 8, 1, 1);
     for (i = 0; i < 4; i++) {

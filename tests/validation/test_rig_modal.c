@@ -138,6 +138,7 @@ static td_system *rigid_mass_amb(double m, const td_amb_axis *proto)
     assert_non_null(s);
     s->nnodes = 1;
     s->ndof = 4;
+    s->nphys = 4; /* full model: q is physical */
     for (k = 0; k < 4; k++)
         T[k] = cs_di_spalloc(4, 4, 8, 1, 1);
     for (i = 0; i < 4; i++) {
