@@ -111,7 +111,7 @@ int td_sim_flight_eligible(const td_sim *s)
             return 0;
     for (k = 0; k < s->nr; k++) {
         const td_sim_retainer *r = &s->ret[k];
-        if (r->compliant || r->rx >= 0 || r->rs >= 0 || r->mode != TD_RMODE_FREE || r->rolling)
+        if ((r->compliant && !r->armed) || r->rx >= 0 || r->rs >= 0 || r->mode != TD_RMODE_FREE || r->rolling)
             return 0;
     }
     return 1;

@@ -38,8 +38,10 @@ typedef struct td_sim_retainer {
                          * at s->of; -1 for the others */
     int rolling;        /* stick retainers in contact: 1 while rolling without slip (v_s = 0 held by F_t) */
     td_rmode mode;
-    int armed;     /* constraint model, free: onset root at gap = 0 (1) or at gap = -eps (0, after a
-                    * release or a rejected/bouncing onset; re-armed when the gap exceeds +eps) */
+    int armed;     /* free, constraint model: onset root at gap = 0 (1) or at gap = -eps (0, after a
+                    * release or a rejected/bouncing onset); penalty model: 0 after an exit, the onset
+                    * root stays at gap = 0 but the free flight waits (flight.c). Both re-armed when
+                    * the gap exceeds +eps. */
     int slip;      /* slip mode of eq. (17): +1 or -1 sliding (|v_s| >= v_reg), 0 inside the
                     * slip-regularised band |v_s| < v_reg (contact.h TD_CONTACT_SLIP_BAND). Only the
                     * roots depend on it: the friction force is phi(v_s) of the state in every mode.

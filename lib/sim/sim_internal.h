@@ -334,8 +334,9 @@ void td_sim_event_velocities(const td_sim *s, int k, const double *y, int after,
 /* ---- flight.c: free flight in closed form ------------------------------------------------ */
 
 /* 1 if the machine may fly in closed form now: free flight on (td_solver_options), no energy
- * account, a prescribed constant speed, no races, no AMB saturation, every retainer free and
- * rigid (constraint contact), nothing pending. The decomposition may still refuse it (td_sim_flight_advance). */
+ * account, a prescribed constant speed, no races, no AMB saturation, every retainer free (one
+ * with a force law only once its gap has opened by eps after its last exit), nothing pending. The decomposition may
+ * still refuse it (td_sim_flight_advance). */
 int td_sim_flight_eligible(const td_sim *s);
 /* Carry the state from s->t in closed form to t_out or the stop t_stop, whichever comes first,
  * or to a root before them (*root = 1, s->rootsfound as IDAGetRootInfo would set it), or less far

@@ -542,7 +542,7 @@ static int penalty_switch(td_sim *s, int k, double *y, td_rmode want)
         td_sim_init_slip(s, k, y);
         queue_retainer_event(s, TD_EVENT_PENALTY_ENTER, k, y);
     } else {
-        r->armed = 1;
+        r->armed = 0; /* left at gap = 0: the flight waits until the gap has opened (grazing guard) */
         td_sim_unroll(s, k, y, r->slip);
         queue_retainer_event(s, TD_EVENT_PENALTY_EXIT, k, y);
     }
@@ -609,6 +609,8 @@ static int penalty_roots(td_sim *s, int k, double *y, const int *f)
     in_band = f[TD_ROOT_CONTACT] != 0 ? flip : r->mode;
     if (penalty_switch(s, k, y, td_sim_penalty_mode_wanted(s, k, y, in_band)))
         restart = 1;
+    if (f[TD_ROOT_REARM] != 0 && r->mode == TD_RMODE_FREE && !r->armed)
+        r->armed = 1; /* internal, as in constraint_roots */
     return restart;
 }
 

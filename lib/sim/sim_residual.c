@@ -695,7 +695,7 @@ static double slip_root_function(const td_sim *s, int k, const double *y)
  *                                              (a friction reversal if on the other side)
  *           stick retainers, sliding:          slip v_s, decreasing                 -> try rolling
  *           stick retainers, rolling:          mu N - |F_t|, decreasing             -> slip
- *   slot 2  free, disarmed:                    gap - eps, increasing                -> re-arm (internal)
+ *   slot 2  free, disarmed (either model):     gap - eps, increasing                -> re-arm (internal)
  * Unused slots hold the constant 1, which never has a root.
  */
 void td_sim_roots(const td_sim *s, double t, const double *y, double *g)
@@ -713,12 +713,9 @@ void td_sim_roots(const td_sim *s, double t, const double *y, double *g)
         gk[TD_ROOT_REARM] = 1.0;
         switch (r->mode) {
         case TD_RMODE_FREE:
-            if (r->armed) {
-                gk[TD_ROOT_CONTACT] = gap;
-            } else {
-                gk[TD_ROOT_CONTACT] = gap + s->rearm_eps;
+            gk[TD_ROOT_CONTACT] = r->armed || r->compliant ? gap : gap + s->rearm_eps;
+            if (!r->armed)
                 gk[TD_ROOT_REARM] = gap - s->rearm_eps;
-            }
             break;
         case TD_RMODE_CONTACT: gk[TD_ROOT_CONTACT] = y[s->ol + k]; break;
         case TD_RMODE_PENETRATING: gk[TD_ROOT_CONTACT] = gap; break;
