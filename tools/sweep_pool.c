@@ -94,15 +94,17 @@ static int write_all(int fd, const void *buf, size_t n)
 }
 
 /* The worker process: run the point, send the row, exit without the parent's stdio buffers. */
-static void worker_main(const sweep_job *job, long point, int fd)
+static void worker_main(const sweep_job *job, long point, int fd, const sigset_t *old_mask)
 {
     td_sweep_row row;
     double t0 = wall_now();
     /* Ctrl-C reaches the whole process group: the parent alone decides, and stops workers with
-     * SIGTERM, which ends them at once */
+     * SIGTERM, which ends them at once (held back until the handlers are reset: a SIGTERM
+     * between fork and here would otherwise reach the parent's handler and be lost) */
     signal(SIGINT, SIG_IGN);
     signal(SIGHUP, SIG_IGN);
     signal(SIGTERM, SIG_DFL);
+    sigprocmask(SIG_SETMASK, old_mask, NULL);
     run_point(job, point, &row);
     row.wall_time = wall_now() - t0;
     _exit(write_all(fd, &row, sizeof row) ? 3 : 0);
@@ -112,14 +114,19 @@ static void worker_main(const sweep_job *job, long point, int fd)
 static int worker_start(worker *w, const sweep_job *job, long point)
 {
     int fds[2];
+    sigset_t stop, old_mask;
     if (pipe(fds))
         return -1;
     fflush(NULL); /* a child must not print what the parent has buffered */
+    sigemptyset(&stop);
+    sigaddset(&stop, SIGTERM);
+    sigprocmask(SIG_BLOCK, &stop, &old_mask);
     w->pid = fork();
     if (w->pid == 0) {
         close(fds[0]);
-        worker_main(job, point, fds[1]);
+        worker_main(job, point, fds[1], &old_mask);
     }
+    sigprocmask(SIG_SETMASK, &old_mask, NULL);
     close(fds[1]);
     if (w->pid < 0) {
         close(fds[0]);
