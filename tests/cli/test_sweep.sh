@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # `touchdown sweep`: the table does not depend on -j (wall time aside); each row is what an
-# independent `touchdown run` of the same point says; a failing point is a row and the others
+# independent `touchdown run` of the same point says; a failing point, or one whose worker is
+# killed, is a row and the others
 # run; bad --vary specs, keys and values are one line and exit 2 before anything runs; SIGINT
 # half way leaves the table marked incomplete (or nothing), never a table that looks finished.
 # Args: $1 = the touchdown binary, $2 = the source directory. Runs in the build's tests directory.
@@ -77,6 +78,26 @@ t "$work/json" sweep -j 2 --json --set end_time=0.03 --set start=orbit --vary sp
 check "sweep --json: one object with the counts and files" \
     test "$(jf "$work/json/.out" done)" = 2 -a "$(jf "$work/json/.out" failed)" = 1 \
     -a "$(jf "$work/json/.out" csv_path)" = '"f.csv"' -a "$(jf "$work/json/.out" hdf5_path)" = '"f.h5"'
+
+# ---- (c) a worker that dies (SIGKILL) is a failed row, the others run ----------------------------
+if command -v pgrep >/dev/null; then
+    mkdir -p "$work/kill"
+    (cd "$work/kill" && exec "$tool" sweep -j 2 --set end_time=1.0 --vary speed=90,120 -o k "$case_r" \
+        >"$work/kill/.out" 2>"$work/kill/.err" </dev/null) &
+    pid=$!
+    kid=""
+    for _ in $(seq 1 100); do # the first worker, as soon as it exists (at most 5 s)
+        kid=$(pgrep -P "$pid" | head -n 1)
+        [ -n "$kid" ] && break
+        sleep 0.05
+    done
+    [ -n "$kid" ] && kill -s KILL "$kid"
+    wait "$pid"
+    rc=$?
+    check "sweep with a killed worker: exit 1, one 'worker died' row naming the signal, the other ran (rc $rc)" \
+        test "$rc" = 1 -a "$(grep -c ',worker died,the worker was killed by signal 9' "$work/kill/k.csv")" = 1 \
+        -a "$(grep -c ',success,,' "$work/kill/k.csv")" = 1 -a "$(tail -n 1 "$work/kill/k.csv")" = "# complete"
+fi
 
 # ---- (d) bad input: one line, exit 2, nothing written -----------------------------------------
 for args in "speed=1:2:0" "speed" "speed=1:2" "speed=1,,2" "=1,2" "nokey=1,2" "speed=abc" "speed=60,abc"; do
