@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
 # `touchdown sweep`: the table does not depend on -j (wall time aside); each row is what an
 # independent `touchdown run` of the same point says; a failing point, or one whose worker is
-# killed, is a row and the others
-# run; bad --vary specs, keys and values are one line and exit 2 before anything runs; SIGINT
-# half way leaves the table marked incomplete (or nothing), never a table that looks finished.
+# killed, is a row and the others run; bad --vary specs, keys and values are one line and exit 2
+# before anything runs; SIGINT half way leaves the table marked incomplete (or nothing), never a
+# table that looks finished.
 # Args: $1 = the touchdown binary, $2 = the source directory. Runs in the build's tests directory.
 set -u
 tool=$1
