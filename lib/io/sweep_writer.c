@@ -190,7 +190,7 @@ td_status td_sweep_write_csv(const char *path, const td_sweep_table *t, td_error
 
 /* ---- HDF5 -------------------------------------------------------------------------------- */
 
-/* One text column: a variable-length UTF-8 dataset `name` from the strings at text(i). */
+/* One text column: a variable-length UTF-8 dataset `name` of the n strings in `text`. */
 static int h5_text_column(hid_t loc, const char *name, const char **text, hsize_t n)
 {
     hid_t type = td_h5_text_type();

@@ -73,7 +73,7 @@ static void print_exact(char *buf, size_t n, double x)
     }
 }
 
-/* START:STOP:N into a->values; 0 if `body` is not of that form (also N < 1: reported apart). */
+/* START:STOP:N into a->values; TD_ERR_PARSE naming the spec when `body` is not of that form. */
 static td_status parse_range(sweep_axis *a, const char *body, const char *spec, td_error *err)
 {
     char start_s[TD_SWEEP_VALUE_SIZE], stop_s[TD_SWEEP_VALUE_SIZE], *end;
