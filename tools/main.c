@@ -17,6 +17,7 @@ static const char usage[] =
     "  modal CASE      modes, Campbell diagram, critical speeds, unbalance response\n"
     "  info CASE       what a case describes: nodes, masses, bearings, retainers, DOFs, first modes\n"
     "  plot OUT.h5...  figures (PNG + gnuplot scripts) from output files\n"
+    "  sweep CASE      run a case over a grid of key values in parallel: one summary row per point\n"
     "  bench           time the paper's cases with the constrained and penalty models\n"
     "\n"
     "options for every command:\n"
@@ -32,7 +33,8 @@ static const struct {
     const char *name;
     td_command_fn fn;
 } commands[] = {
-    {"run", td_cmd_run}, {"modal", td_cmd_modal}, {"info", td_cmd_info}, {"plot", td_cmd_plot}, {"bench", td_cmd_bench},
+    {"run", td_cmd_run},   {"modal", td_cmd_modal}, {"info", td_cmd_info},
+    {"plot", td_cmd_plot}, {"bench", td_cmd_bench}, {"sweep", td_cmd_sweep},
 };
 
 int main(int argc, char **argv)

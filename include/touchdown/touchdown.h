@@ -16,6 +16,7 @@
 #include "touchdown/records.h"
 #include "touchdown/run.h"
 #include "touchdown/sim.h"
+#include "touchdown/sweep.h"
 #include "touchdown/system.h"
 #include "touchdown/version.h"
 

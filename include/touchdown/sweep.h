@@ -1,0 +1,131 @@
+/*
+ * touchdown/sweep.h - parameter sweeps: a grid of points over case keys, one summary row per
+ * point, and the table of rows written to CSV and HDF5 (docs/output-format.md, "Sweep table").
+ *
+ * A point is the case loaded with the caller's fixed overrides followed by one "KEY=VALUE"
+ * override per swept key (td_sweep_grid_override), so any key that td_case_load accepts can be
+ * swept and is checked exactly as `--set` is. Running the points (in worker processes, threads or
+ * one after another) is the caller's business: the library builds the grid, turns a run summary
+ * into a row, and writes the table.
+ */
+#ifndef TOUCHDOWN_SWEEP_H
+#define TOUCHDOWN_SWEEP_H
+
+#include <stddef.h>
+
+#include "touchdown/error.h"
+#include "touchdown/export.h"
+#include "touchdown/run.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/** Most points in one sweep (the product of the axes' counts); bounds the table's memory
+ *  (about 1 kB a row) before anything runs. */
+#define TD_SWEEP_MAX_POINTS 100000L
+/** Most swept keys. */
+#define TD_SWEEP_MAX_AXES 8
+/** Longest value text of one point on one axis, NUL included. */
+#define TD_SWEEP_VALUE_SIZE 128
+/** Longest swept key, NUL included. */
+#define TD_SWEEP_KEY_SIZE 128
+
+typedef struct td_sweep_grid td_sweep_grid;
+
+/** A new grid without axes (one point: the case itself). Caller frees with td_sweep_grid_free.
+ *  Returns TD_OK, TD_ERR_NOMEM or TD_ERR_INVALID (NULL out). */
+TD_API td_status td_sweep_grid_create(td_sweep_grid **out, td_error *err);
+
+/** Free a grid and set *g to NULL. Accepts NULL and *g == NULL. */
+TD_API void td_sweep_grid_free(td_sweep_grid **g);
+
+/**
+ * Add an axis from `spec` (copied): "KEY=START:STOP:N", N >= 1 points from START to STOP evenly
+ * spaced, both included (N = 1: START alone); or "KEY=V1,V2,..." a list of values as --set takes
+ * them (numbers, true/false, "quoted strings", bare strings; commas inside quotes or brackets do
+ * not split). The first axis added varies slowest. Returns TD_OK, or TD_ERR_PARSE with one line
+ * naming the spec (bad syntax, N < 1, an empty value, a key given twice, more than
+ * TD_SWEEP_MAX_AXES axes or TD_SWEEP_MAX_POINTS points in all); the grid is unchanged on failure.
+ * The key itself is checked only when a point's case is loaded.
+ */
+TD_API td_status td_sweep_grid_vary(td_sweep_grid *g, const char *spec, td_error *err);
+
+/** Number of points (1 for a grid without axes). */
+TD_API long td_sweep_grid_points(const td_sweep_grid *g);
+/** Number of axes. */
+TD_API int td_sweep_grid_axes(const td_sweep_grid *g);
+/** The swept key of `axis` (borrowed). */
+TD_API const char *td_sweep_grid_key(const td_sweep_grid *g, int axis);
+/** The spec `axis` was made from, as given (borrowed). */
+TD_API const char *td_sweep_grid_spec(const td_sweep_grid *g, int axis);
+/** 1 if every value of `axis` is a number (the table then stores it as a double). */
+TD_API int td_sweep_grid_numeric(const td_sweep_grid *g, int axis);
+/** The value text of `axis` at `point` (0 <= point < td_sweep_grid_points), borrowed. Range
+ *  values are printed with the fewest digits (15-17) that read back to the same double. */
+TD_API const char *td_sweep_grid_value(const td_sweep_grid *g, long point, int axis);
+/** "KEY=VALUE" of `axis` at `point` into buf (n bytes, always NUL-terminated when n > 0);
+ *  returns the length needed, like snprintf. */
+TD_API int td_sweep_grid_override(const td_sweep_grid *g, long point, int axis, char *buf, size_t n);
+
+/** What became of a point. */
+typedef enum td_sweep_state {
+    TD_SWEEP_NOT_RUN = 0, /**< never run, or stopped by an interrupt of the sweep */
+    TD_SWEEP_DONE = 1,    /**< the run reached its end */
+    TD_SWEEP_FAILED = 2   /**< the run failed (its status and message say why) or its worker died */
+} td_sweep_state;
+
+/** One row of the table: what a point's run summary leads with. Numbers are NaN (contacts,
+ *  returned_to_free_orbit: -1) when the point has no summary (not run, worker died). */
+typedef struct td_sweep_row {
+    int state;                           /**< td_sweep_state */
+    char status[32];                     /**< td_strerror of the run's status, "not run", "worker died" */
+    char message[TD_ERROR_MESSAGE_SIZE]; /**< why the point failed ("" if it did not) */
+    double peak_housing_force;           /**< N */
+    double total_impulse;                /**< N s */
+    double friction_work;                /**< J */
+    double contact_time;                 /**< s */
+    long contacts;                       /**< contact onsets */
+    double first_contact_time;           /**< s, -1 if none */
+    char ending[96];                     /**< td_run_summary.ending */
+    double ending_whirl_frequency;       /**< Hz, signed like the spin (< 0 backward) */
+    int returned_to_free_orbit;          /**< 1, 0, TD_RUN_NOT_APPLICABLE (no contact), -1 undetermined */
+    double final_speed;                  /**< rad/s */
+    double peak_amb_load;                /**< largest AMB axis force / capacity, -1 without a working AMB */
+    double t_reached;                    /**< s, the last time reached */
+    double wall_time;                    /**< s, wall-clock time of the point (set by the caller) */
+} td_sweep_row;
+
+/** The row of a point whose run ended with summary `s` (state DONE if s->status is TD_OK, else
+ *  FAILED with its message); wall_time is s->wall_time. */
+TD_API void td_sweep_row_from_summary(td_sweep_row *row, const td_run_summary *s);
+
+/** A row without a summary: `state`, `status` and `message` (NULL: "") copied, numbers unknown. */
+TD_API void td_sweep_row_unknown(td_sweep_row *row, td_sweep_state state, const char *status, const char *message);
+
+/** A sweep's table: every point's row, in point order (all borrowed). */
+typedef struct td_sweep_table {
+    const td_sweep_grid *grid;
+    const td_sweep_row *rows; /**< td_sweep_grid_points(grid) rows */
+    const char *case_text;    /**< the case as read with the fixed overrides (td_case_text) */
+    const char *const *sets;  /**< the fixed overrides, n_sets of them (may be NULL when 0) */
+    int n_sets;
+    int complete;       /**< 1: every point was run (each DONE or FAILED) */
+    const char *reason; /**< why not complete (NULL or "" when complete) */
+} td_sweep_table;
+
+/**
+ * Write the table to `path` (CSV: a header naming every column with its unit, one line per
+ * point, then "# name = value" attribute lines and last "# complete" or "# incomplete: REASON";
+ * HDF5: one dataset per column over the dimension `point`, attributes, `complete` written last).
+ * Both write PATH.XXXXXX.partial and rename it to PATH once it is on disk. Returns TD_OK,
+ * TD_ERR_INVALID (NULL argument), TD_ERR_IO (nothing is left at PATH).
+ */
+TD_API td_status td_sweep_write_csv(const char *path, const td_sweep_table *t, td_error *err);
+TD_API td_status td_sweep_write_hdf5(const char *path, const td_sweep_table *t, td_error *err);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* TOUCHDOWN_SWEEP_H */

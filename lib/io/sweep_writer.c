@@ -1,0 +1,329 @@
+/*
+ * Writers of a sweep's table (touchdown/sweep.h): one CSV file, or one HDF5 file with a dataset
+ * per column over the dimension `point`. Like the simulation and modal writers, both write
+ * PATH.XXXXXX.partial (td_io_create_temp) and rename it to PATH once it is on disk, and the
+ * completeness flag is the last thing written, so a table never looks finished when it is not.
+ * Numbers are printed with 17 significant digits in CSV (they read back to the same double).
+ */
+#include "io/h5_util.h"
+#include "io/h5_vfd.h"
+#include "io/writer_internal.h"
+#include "touchdown/sweep.h"
+#include "touchdown/version.h"
+#include "util/error_internal.h"
+
+#include <hdf5.h>
+
+#include <errno.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+/* The quantity columns after the swept values, in order; wall time stays last so that tables of
+ * the same sweep compare equal once it is cut. */
+typedef enum col_kind { COL_TEXT, COL_DOUBLE, COL_LONG, COL_INT } col_kind;
+
+typedef struct sweep_column {
+    const char *name, *units;
+    col_kind kind;
+    size_t offset;
+} sweep_column;
+
+static const sweep_column columns[] = {
+    {"status", "", COL_TEXT, offsetof(td_sweep_row, status)},
+    {"message", "", COL_TEXT, offsetof(td_sweep_row, message)},
+    {"peak_housing_force", "N", COL_DOUBLE, offsetof(td_sweep_row, peak_housing_force)},
+    {"total_impulse", "N s", COL_DOUBLE, offsetof(td_sweep_row, total_impulse)},
+    {"friction_work", "J", COL_DOUBLE, offsetof(td_sweep_row, friction_work)},
+    {"contact_time", "s", COL_DOUBLE, offsetof(td_sweep_row, contact_time)},
+    {"contacts", "-", COL_LONG, offsetof(td_sweep_row, contacts)},
+    {"first_contact_time", "s", COL_DOUBLE, offsetof(td_sweep_row, first_contact_time)},
+    {"ending", "", COL_TEXT, offsetof(td_sweep_row, ending)},
+    {"ending_whirl_frequency", "Hz", COL_DOUBLE, offsetof(td_sweep_row, ending_whirl_frequency)},
+    {"returned_to_free_orbit", "-", COL_INT, offsetof(td_sweep_row, returned_to_free_orbit)},
+    {"final_speed", "rad/s", COL_DOUBLE, offsetof(td_sweep_row, final_speed)},
+    {"peak_amb_load", "1", COL_DOUBLE, offsetof(td_sweep_row, peak_amb_load)},
+    {"t_reached", "s", COL_DOUBLE, offsetof(td_sweep_row, t_reached)},
+    {"wall_time", "s", COL_DOUBLE, offsetof(td_sweep_row, wall_time)},
+};
+#define N_COLUMNS ((int)(sizeof columns / sizeof columns[0]))
+
+static const char *col_text(const td_sweep_row *r, int c)
+{
+    return (const char *)r + columns[c].offset;
+}
+
+static double col_double(const td_sweep_row *r, int c)
+{
+    const char *p = (const char *)r + columns[c].offset;
+    if (columns[c].kind == COL_LONG)
+        return (double)*(const long *)(const void *)p;
+    if (columns[c].kind == COL_INT)
+        return (double)*(const int *)(const void *)p;
+    return *(const double *)(const void *)p;
+}
+
+static td_status check_table(const td_sweep_table *t, const char *path, const char *fn, td_error *err)
+{
+    if (!path || !t || !t->grid || !t->rows || (t->n_sets > 0 && !t->sets))
+        return td_error_set(err, TD_ERR_INVALID, "%s: NULL argument", fn);
+    return TD_OK;
+}
+
+/* ---- CSV --------------------------------------------------------------------------------- */
+
+/* A text field, quoted (quotes doubled) when it holds a comma, a quote or a line break. */
+static void csv_text(FILE *f, const char *s)
+{
+    if (!strpbrk(s, ",\"\n\r")) {
+        fputs(s, f);
+        return;
+    }
+    fputc('"', f);
+    for (; *s; s++) {
+        if (*s == '"')
+            fputc('"', f);
+        fputc(*s == '\n' || *s == '\r' ? ' ' : *s, f);
+    }
+    fputc('"', f);
+}
+
+static void csv_header(FILE *f, const td_sweep_grid *g)
+{
+    int a, c;
+    fputs("point [-]", f);
+    for (a = 0; a < td_sweep_grid_axes(g); a++) {
+        fputc(',', f);
+        csv_text(f, td_sweep_grid_key(g, a));
+    }
+    for (c = 0; c < N_COLUMNS; c++)
+        fprintf(f, columns[c].units[0] ? ",%s [%s]" : ",%s", columns[c].name, columns[c].units);
+    fputc('\n', f);
+}
+
+static void csv_row(FILE *f, const td_sweep_grid *g, long point, const td_sweep_row *r)
+{
+    int a, c;
+    fprintf(f, "%ld", point);
+    for (a = 0; a < td_sweep_grid_axes(g); a++) {
+        fputc(',', f);
+        csv_text(f, td_sweep_grid_value(g, point, a));
+    }
+    for (c = 0; c < N_COLUMNS; c++) {
+        fputc(',', f);
+        if (columns[c].kind == COL_TEXT)
+            csv_text(f, col_text(r, c));
+        else if (columns[c].kind == COL_DOUBLE)
+            fprintf(f, "%.17g", col_double(r, c));
+        else
+            fprintf(f, "%.0f", col_double(r, c));
+    }
+    fputc('\n', f);
+}
+
+/* Multi-line text as "# name:" and one "#| line" per line, like the simulation CSV. */
+static void csv_comment_text(FILE *f, const char *name, const char *text)
+{
+    size_t len = strlen(text);
+    fprintf(f, "# %s:\n#| ", name);
+    for (; *text; text++) {
+        fputc(*text, f);
+        if (*text == '\n' && text[1])
+            fputs("#| ", f);
+    }
+    if (len == 0 || text[-1] != '\n')
+        fputc('\n', f);
+}
+
+static void csv_attributes(FILE *f, const td_sweep_table *t)
+{
+    int a, i;
+    fprintf(f, "# library_version = %s\n# points = %ld\n", td_version(), td_sweep_grid_points(t->grid));
+    for (a = 0; a < td_sweep_grid_axes(t->grid); a++)
+        fprintf(f, "# vary = %s\n", td_sweep_grid_spec(t->grid, a));
+    for (i = 0; i < t->n_sets; i++)
+        fprintf(f, "# set = %s\n", t->sets[i]);
+    if (t->case_text && t->case_text[0])
+        csv_comment_text(f, "case_text", t->case_text);
+    if (t->complete)
+        fputs("# complete\n", f);
+    else
+        fprintf(f, "# incomplete: %s\n", t->reason && t->reason[0] ? t->reason : "not every point was run");
+}
+
+static void csv_write_all(FILE *f, const td_sweep_table *t)
+{
+    long p, n = td_sweep_grid_points(t->grid);
+    csv_header(f, t->grid);
+    for (p = 0; p < n; p++)
+        csv_row(f, t->grid, p, &t->rows[p]);
+    csv_attributes(f, t);
+}
+
+td_status td_sweep_write_csv(const char *path, const td_sweep_table *t, td_error *err)
+{
+    char *tmp = NULL;
+    FILE *f;
+    int fd;
+    td_status st;
+    if ((st = check_table(t, path, "td_sweep_write_csv", err)) != TD_OK ||
+        (st = td_io_create_temp(path, &tmp, &fd, err)) != TD_OK)
+        return st;
+    errno = 0;
+    if (!(f = fdopen(fd, "w"))) {
+        st = td_io_fail(err, tmp, "cannot open");
+        close(fd);
+    } else {
+        csv_write_all(f, t);
+        if (td_io_close_stream(&f))
+            st = td_io_fail(err, tmp, "cannot write");
+    }
+    if (st == TD_OK)
+        st = td_io_commit_temp(tmp, path, err);
+    else
+        remove(tmp);
+    free(tmp);
+    return st;
+}
+
+/* ---- HDF5 -------------------------------------------------------------------------------- */
+
+/* One text column: a variable-length UTF-8 dataset `name` of the n strings in `text`. */
+static int h5_text_column(hid_t loc, const char *name, const char **text, hsize_t n)
+{
+    hid_t type = td_h5_text_type();
+    int ok = type >= 0 && td_h5_dataset(loc, name, type, type, text, 1, &n, "");
+    if (type >= 0)
+        H5Tclose(type);
+    return ok;
+}
+
+static int h5_quantity(hid_t file, const td_sweep_table *t, int c, hsize_t n, const char **text, double *num)
+{
+    hsize_t p;
+    for (p = 0; p < n; p++) {
+        if (columns[c].kind == COL_TEXT)
+            text[p] = col_text(&t->rows[p], c);
+        else
+            num[p] = col_double(&t->rows[p], c);
+    }
+    if (columns[c].kind == COL_TEXT)
+        return h5_text_column(file, columns[c].name, text, n);
+    /* counts and flags are small whole numbers: a double holds them exactly and keeps one type */
+    return td_h5_dataset(file, columns[c].name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, num, 1, &n, columns[c].units);
+}
+
+/* /vary/KEY: a swept key's values, doubles when all are numbers, else their text. */
+static int h5_axis(hid_t group, const td_sweep_grid *g, int a, hsize_t n, const char **text, double *num)
+{
+    hsize_t p;
+    for (p = 0; p < n; p++) {
+        text[p] = td_sweep_grid_value(g, (long)p, a);
+        num[p] = strtod(text[p], NULL);
+    }
+    if (td_sweep_grid_numeric(g, a))
+        return td_h5_dataset(group, td_sweep_grid_key(g, a), H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, num, 1, &n, "");
+    return h5_text_column(group, td_sweep_grid_key(g, a), text, n);
+}
+
+static int h5_axes(hid_t file, const td_sweep_table *t, hsize_t n, const char **text, double *num)
+{
+    hid_t group = H5Gcreate2(file, "vary", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    int a, ok = group >= 0;
+    for (a = 0; ok && a < td_sweep_grid_axes(t->grid); a++)
+        ok = h5_axis(group, t->grid, a, n, text, num);
+    if (group >= 0)
+        H5Gclose(group);
+    return ok;
+}
+
+/* Every column's dataset along the scale /point. */
+static int h5_columns(hid_t file, const td_sweep_table *t)
+{
+    hsize_t n = (hsize_t)td_sweep_grid_points(t->grid);
+    const char **text = malloc((size_t)n * sizeof *text);
+    double *num = malloc((size_t)n * sizeof *num);
+    const char *names[N_COLUMNS + TD_SWEEP_MAX_AXES + 1];
+    char vary_names[TD_SWEEP_MAX_AXES][TD_SWEEP_KEY_SIZE + 8];
+    int c, a, ok = text && num && td_h5_index(file, "point", (int)n, "") && h5_axes(file, t, n, text, num);
+    for (c = 0; ok && c < N_COLUMNS; c++) {
+        ok = h5_quantity(file, t, c, n, text, num);
+        names[c] = columns[c].name;
+    }
+    for (a = 0; a < td_sweep_grid_axes(t->grid); a++) {
+        snprintf(vary_names[a], sizeof vary_names[a], "vary/%s", td_sweep_grid_key(t->grid, a));
+        names[N_COLUMNS + a] = vary_names[a];
+    }
+    names[N_COLUMNS + td_sweep_grid_axes(t->grid)] = NULL;
+    ok = ok && td_h5_attach(file, "point", names, 0);
+    free(text);
+    free(num);
+    return ok;
+}
+
+/* The sweep's description; then, last, the completeness flag. */
+static int h5_attributes(hid_t file, const td_sweep_table *t)
+{
+    char *vary = NULL, *sets = NULL;
+    size_t nv = 1, ns = 1;
+    int a, i, ok;
+    for (a = 0; a < td_sweep_grid_axes(t->grid); a++)
+        nv += strlen(td_sweep_grid_spec(t->grid, a)) + 1;
+    for (i = 0; i < t->n_sets; i++)
+        ns += strlen(t->sets[i]) + 1;
+    ok = (vary = calloc(nv, 1)) != NULL && (sets = calloc(ns, 1)) != NULL;
+    for (a = 0; ok && a < td_sweep_grid_axes(t->grid); a++) /* one spec a line */
+        strcat(strcat(vary, td_sweep_grid_spec(t->grid, a)), "\n");
+    for (i = 0; ok && i < t->n_sets; i++)
+        strcat(strcat(sets, t->sets[i]), "\n");
+    ok = ok && td_h5_attr_string(file, "vary", vary) >= 0 && td_h5_attr_string(file, "set", sets) >= 0 &&
+         td_h5_attr_string(file, "case_text", t->case_text ? t->case_text : "") >= 0 &&
+         td_h5_attr_string(file, "library_version", td_version()) >= 0;
+    if (ok && !t->complete)
+        ok = td_h5_attr_string(file, "incomplete_reason",
+                               t->reason && t->reason[0] ? t->reason : "not every point was run") >= 0;
+    ok = ok && td_h5_attr_int(file, "complete", t->complete ? 1 : 0) >= 0;
+    free(vary);
+    free(sets);
+    return ok;
+}
+
+static td_status h5_write_all(const char *tmp, const td_sweep_table *t, td_error *err)
+{
+    int io_errno = 0;
+    hid_t driver;
+    hid_t file = td_h5_create_file(tmp, 1, &io_errno, &driver);
+    td_status st = TD_OK;
+    if (file < 0)
+        st = td_h5_fail(err, tmp, io_errno, "cannot create the HDF5 file");
+    else if (!h5_columns(file, t) || !h5_attributes(file, t) || io_errno)
+        st = td_h5_fail(err, tmp, io_errno, "cannot write the sweep table");
+    if (file >= 0 && (H5Fclose(file) < 0 || io_errno) && st == TD_OK)
+        st = td_h5_fail(err, tmp, io_errno, "cannot close the HDF5 file");
+    td_h5_vfd_release(driver);
+    return st;
+}
+
+td_status td_sweep_write_hdf5(const char *path, const td_sweep_table *t, td_error *err)
+{
+    char *tmp = NULL;
+    int fd;
+    td_status st;
+    if ((st = check_table(t, path, "td_sweep_write_hdf5", err)) != TD_OK ||
+        (st = td_io_create_temp(path, &tmp, &fd, err)) != TD_OK)
+        return st;
+    close(fd); /* HDF5 opens the file by name */
+    H5E_BEGIN_TRY
+    {
+        st = h5_write_all(tmp, t, err);
+    }
+    H5E_END_TRY;
+    if (st == TD_OK)
+        st = td_io_commit_temp(tmp, path, err);
+    else
+        remove(tmp);
+    free(tmp);
+    return st;
+}

@@ -1,0 +1,41 @@
+/* A sweep's summary row (touchdown/sweep.h): the quantities a run summary leads with. */
+#include "touchdown/sweep.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+void td_sweep_row_from_summary(td_sweep_row *row, const td_run_summary *s)
+{
+    memset(row, 0, sizeof *row);
+    row->state = s->status == TD_OK ? TD_SWEEP_DONE : TD_SWEEP_FAILED;
+    snprintf(row->status, sizeof row->status, "%s", td_strerror(s->status));
+    snprintf(row->message, sizeof row->message, "%s", s->status == TD_OK ? "" : s->message);
+    row->peak_housing_force = s->peak_housing_force;
+    row->total_impulse = s->total_impulse;
+    row->friction_work = s->friction_work;
+    row->contact_time = s->contact_time;
+    row->contacts = s->contacts;
+    row->first_contact_time = s->first_contact_time;
+    snprintf(row->ending, sizeof row->ending, "%s", s->ending);
+    row->ending_whirl_frequency = s->ending_whirl_frequency;
+    row->returned_to_free_orbit = s->returned_to_free_orbit;
+    row->final_speed = s->final_speed;
+    /* as in the run's JSON: no load without a working AMB */
+    row->peak_amb_load = s->stats.peak_amb >= 0 ? s->stats.peak_amb_load : -1.0;
+    row->t_reached = s->t_reached;
+    row->wall_time = s->wall_time;
+}
+
+void td_sweep_row_unknown(td_sweep_row *row, td_sweep_state state, const char *status, const char *message)
+{
+    memset(row, 0, sizeof *row);
+    row->state = (int)state;
+    snprintf(row->status, sizeof row->status, "%s", status ? status : "");
+    snprintf(row->message, sizeof row->message, "%s", message ? message : "");
+    row->peak_housing_force = row->total_impulse = row->friction_work = row->contact_time = NAN;
+    row->first_contact_time = row->ending_whirl_frequency = row->final_speed = row->peak_amb_load = NAN;
+    row->t_reached = row->wall_time = NAN;
+    row->contacts = -1;
+    row->returned_to_free_orbit = -1;
+}

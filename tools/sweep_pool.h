@@ -1,0 +1,30 @@
+/* touchdown sweep: the worker processes that run a sweep's points (tools/sweep_pool.c). */
+#ifndef TD_TOOLS_SWEEP_POOL_H
+#define TD_TOOLS_SWEEP_POOL_H
+
+#include "cli.h"
+#include "touchdown/sweep.h"
+
+/* Most worker processes (-j). */
+#define TD_SWEEP_POOL_MAX 256
+
+/* What every point shares: the case file, the fixed overrides and the grid (all borrowed). */
+typedef struct sweep_job {
+    const char *case_path;
+    const td_cli_sets *sets;
+    const td_sweep_grid *grid;
+} sweep_job;
+
+/* The overrides of `point`: the fixed ones, then one "KEY=VALUE" per swept key, into items
+ * (pointers into store, which holds TD_SWEEP_MAX_AXES strings). Returns their number. */
+int sweep_point_overrides(const sweep_job *job, long point, const char **items,
+                          char store[][TD_SWEEP_KEY_SIZE + TD_SWEEP_VALUE_SIZE]);
+
+/* Run every point in up to `jobs` worker processes, one point per process, each point handed to
+ * the next free worker, and put each point's row at rows[point] (rows: every point's, set to
+ * "not run" beforehand). Stops early when *cancel becomes nonzero: running workers are killed and
+ * their points stay "not run". Failed points are reported on stderr as they end. Returns the
+ * number of points left not run. */
+long sweep_pool_run(const sweep_job *job, int jobs, td_sweep_row *rows, volatile sig_atomic_t *cancel);
+
+#endif
