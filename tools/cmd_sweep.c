@@ -41,6 +41,11 @@ static const char sweep_usage[] =
     "stop the workers and keep the table, its unfinished points marked \"not run\" and the files\n"
     "marked incomplete. Columns and units: docs/output-format.md, \"Sweep table\".\n"
     "\n"
+    "Resume: each point's row goes to PREFIX.journal as the point ends; the same command run again\n"
+    "after an interruption (Ctrl-C, a kill, a lost machine) runs only the points the journal lacks.\n"
+    "The journal is removed once a finished table is written; one of another sweep (another case,\n"
+    "--set, --vary or version) is refused.\n"
+    "\n"
     "exit codes: 0 every point ran to its end, 1 some point failed, the sweep was interrupted or\n"
     "the table could not be written, 2 bad input or usage (any point's case included).\n";
 
@@ -134,8 +139,9 @@ static int check_points(const sweep_job *job)
     return 0;
 }
 
-/* PREFIX.csv and PREFIX.h5, refused before the sweep by the rules of touchdown run. */
-static int choose_outputs(td_output_options *out, const sweep_options *o, const td_case *c)
+/* PREFIX.csv and PREFIX.h5, refused before the sweep by the rules of touchdown run, and the
+ * journal PREFIX.journal (journal: TD_OUTPUT_PATH_SIZE bytes). */
+static int choose_outputs(td_output_options *out, char *journal, const sweep_options *o, const td_case *c)
 {
     char stem[TD_OUTPUT_PATH_SIZE];
     const char *const *files;
@@ -150,6 +156,8 @@ static int choose_outputs(td_output_options *out, const sweep_options *o, const 
         code = td_cli_path(out->csv_path, sizeof out->csv_path, stem, ".csv", "sweep", "--output");
     if (!code)
         code = td_cli_path(out->hdf5_path, sizeof out->hdf5_path, stem, ".h5", "sweep", "--output");
+    if (!code)
+        code = td_cli_path(journal, TD_OUTPUT_PATH_SIZE, stem, ".journal", "sweep", "--output");
     if (code)
         return code;
     files = td_case_files(c, &n);
@@ -163,12 +171,12 @@ static int choose_outputs(td_output_options *out, const sweep_options *o, const 
 
 /* Counts of the rows by state. */
 typedef struct sweep_counts {
-    long points, done, failed, not_run;
+    long points, done, failed, not_run, resumed;
 } sweep_counts;
 
 static sweep_counts count_rows(const td_sweep_row *rows, long n)
 {
-    sweep_counts k = {n, 0, 0, 0};
+    sweep_counts k = {n, 0, 0, 0, 0};
     long p;
     for (p = 0; p < n; p++) {
         k.done += rows[p].state == TD_SWEEP_DONE;
@@ -212,22 +220,25 @@ static void print_result(const sweep_options *o, const sweep_counts *k, const td
 {
     if (o->json) {
         printf("{\"library_version\":\"%s\",\"points\":%ld,\"done\":%ld,\"failed\":%ld,\"not_run\":%ld,"
-               "\"complete\":%s,\"jobs\":%d,\"wall_time\":%.17g",
-               td_version(), k->points, k->done, k->failed, k->not_run, k->not_run ? "false" : "true", jobs, wall);
+               "\"resumed\":%ld,\"complete\":%s,\"jobs\":%d,\"wall_time\":%.17g",
+               td_version(), k->points, k->done, k->failed, k->not_run, k->resumed, k->not_run ? "false" : "true", jobs,
+               wall);
         print_json_path("csv_path", out->csv_path);
         print_json_path("hdf5_path", out->hdf5_path);
         printf("}\n");
     } else if (!o->quiet)
-        printf("sweep: %ld points: %ld ran to the end, %ld failed, %ld not run; %d workers, wall time %.2f s\n"
+        printf("sweep: %ld points: %ld ran to the end, %ld failed, %ld not run (%ld resumed from the journal); "
+               "%d workers, wall time %.2f s\n"
                "table: %s, %s%s\n",
-               k->points, k->done, k->failed, k->not_run, jobs, wall, out->csv_path, out->hdf5_path,
+               k->points, k->done, k->failed, k->not_run, k->resumed, jobs, wall, out->csv_path, out->hdf5_path,
                k->not_run ? " (incomplete)" : "");
 }
 
-/* Run the points, write the table, report. */
-static int run_sweep(const sweep_options *o, const td_case *base, const sweep_job *job, const td_output_options *out)
+/* Run the points (those the journal holds already excepted), write the table, report. */
+static int run_sweep(const sweep_options *o, const td_case *base, sweep_job *job, const td_output_options *out,
+                     const char *journal)
 {
-    long n = td_sweep_grid_points(o->grid), p;
+    long n = td_sweep_grid_points(o->grid), p, resumed = 0;
     td_sweep_row *rows = malloc((size_t)n * sizeof *rows);
     td_sweep_table t;
     sweep_counts k;
@@ -240,8 +251,14 @@ static int run_sweep(const sweep_options *o, const td_case *base, const sweep_jo
     }
     for (p = 0; p < n; p++)
         td_sweep_row_unknown(&rows[p], TD_SWEEP_NOT_RUN, "not run", "");
+    code = sweep_journal_open(journal, sweep_fingerprint(base, o->grid), n, rows, &resumed, &job->journal);
+    if (code) {
+        free(rows);
+        return code;
+    }
     sweep_pool_run(job, jobs, rows, td_cli_catch_signals());
     k = count_rows(rows, n);
+    k.resumed = resumed;
     snprintf(reason, sizeof reason, "interrupted: %ld of %ld points not run", k.not_run, n);
     memset(&t, 0, sizeof t);
     t.grid = o->grid;
@@ -252,6 +269,7 @@ static int run_sweep(const sweep_options *o, const td_case *base, const sweep_jo
     t.complete = k.not_run == 0;
     t.reason = k.not_run ? reason : NULL;
     code = write_table(out, &t);
+    sweep_journal_close(&job->journal, !code && !k.not_run); /* kept until a finished table is written */
     if (k.not_run)
         td_cli_error("sweep", "%s", reason);
     print_result(o, &k, out, wall_now() - t0, jobs);
@@ -271,6 +289,7 @@ int td_cmd_sweep(int argc, char **argv)
     sweep_job job;
     td_output_options out;
     td_case *base = NULL;
+    char journal[TD_OUTPUT_PATH_SIZE];
     int code;
     memset(&o, 0, sizeof o);
     o.jobs = default_jobs();
@@ -284,12 +303,13 @@ int td_cmd_sweep(int argc, char **argv)
     job.case_path = o.case_path;
     job.sets = &o.sets;
     job.grid = o.grid;
+    job.journal = NULL;
     if (!code)
-        code = choose_outputs(&out, &o, base);
+        code = choose_outputs(&out, journal, &o, base);
     if (!code)
         code = check_points(&job);
     if (!code)
-        code = run_sweep(&o, base, &job, &out);
+        code = run_sweep(&o, base, &job, &out, journal);
     td_case_free(&base);
     td_sweep_grid_free(&o.grid);
     return code < 0 ? TD_EXIT_OK : code;

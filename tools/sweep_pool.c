@@ -163,9 +163,10 @@ static void worker_finish(worker *w, const sweep_job *job, td_sweep_row *rows)
     char why[96];
     close(w->fd);
     w->pid = 0;
-    if (WIFEXITED(status) && WEXITSTATUS(status) == 0 && w->got == sizeof w->row)
+    if (WIFEXITED(status) && WEXITSTATUS(status) == 0 && w->got == sizeof w->row) {
         rows[w->point] = w->row;
-    else {
+        sweep_journal_record(job->journal, w->point, &w->row); /* a dead worker is not: a resume retries it */
+    } else {
         if (WIFSIGNALED(status))
             snprintf(why, sizeof why, "the worker was killed by signal %d (%s)", WTERMSIG(status),
                      strsignal(WTERMSIG(status)));
@@ -237,6 +238,10 @@ static int pool_fill(worker *ws, int n, const sweep_job *job, td_sweep_row *rows
     for (i = 0; i < n && *next < points; i++) {
         if (ws[i].pid > 0)
             continue;
+        while (*next < points && rows[*next].state != TD_SWEEP_NOT_RUN) /* resumed from the journal */
+            (*next)++;
+        if (*next == points)
+            break;
         if (worker_start(&ws[i], job, *next)) {
             td_sweep_row_unknown(&rows[*next], TD_SWEEP_FAILED, "worker died", "cannot start a worker process");
             report_failure(job, *next, &rows[*next]);

@@ -3,7 +3,8 @@
 # independent `touchdown run` of the same point says; a failing point, or one whose worker is
 # killed, is a row and the others run; bad --vary specs, keys and values are one line and exit 2
 # before anything runs; SIGINT half way leaves the table marked incomplete (or nothing), never a
-# table that looks finished.
+# table that looks finished; a sweep killed half way (SIGKILL) and run again resumes from its
+# journal and writes the table of an uninterrupted run, and a journal of another sweep is refused.
 # Args: $1 = the touchdown binary, $2 = the source directory. Runs in the build's tests directory.
 set -u
 tool=$1
@@ -136,5 +137,38 @@ if [ -e "$work/int/i.h5" ] && command -v h5dump >/dev/null; then
     check "sweep interrupted: the HDF5 table is flagged incomplete" \
         test -n "$(h5dump -a /complete "$work/int/i.h5" | grep -E '^ *\(0\): 0$')"
 fi
+
+# ---- (f) resume after SIGKILL ----------------------------------------------------------------
+# 40 points of 0.3 s; the uninterrupted table first, then the same sweep killed once its journal
+# holds rows, then run again.
+rgrid=(--set end_time=0.3 --vary speed=60:150:20 --vary 'schedule[0].magnitude=0.05,0.2')
+t "$work/res" sweep -q -j 2 "${rgrid[@]}" -o u "$case_r"
+check "resume: the uninterrupted sweep, exit 0, no journal left ($(ls "$work/res"))" \
+    test "$rc" = 0 -a ! -e "$work/res/u.journal"
+(cd "$work/res" && exec "$tool" sweep -q -j 2 "${rgrid[@]}" -o r "$case_r" >/dev/null 2>&1 </dev/null) &
+pid=$!
+for _ in $(seq 1 400); do # at most 20 s for a first row in the journal (header 32 bytes)
+    [ "$(stat -c %s "$work/res/r.journal" 2>/dev/null || echo 0)" -gt 32 ] && break
+    sleep 0.05
+done
+kill -s KILL "$pid" 2>/dev/null
+wait "$pid" 2>/dev/null
+jsize=$(stat -c %s "$work/res/r.journal" 2>/dev/null || echo 0)
+check "resume: the killed sweep left its journal ($jsize bytes) and no table" \
+    test "$jsize" -gt 32 -a ! -e "$work/res/r.csv"
+(cd "$work/res" && "$tool" sweep --json -j 2 "${rgrid[@]}" -o r "$case_r" >"$work/res/r2.json" 2>"$work/res/r2.err")
+rc=$?
+resumed=$(jf "$work/res/r2.json" resumed)
+check "resume: the second run, exit 0, $resumed points from the journal, 40 done (rc $rc, $(head -c 200 "$work/res/r2.err"))" \
+    test "$rc" = 0 -a "${resumed:-0}" -ge 1 -a "${resumed:-40}" -lt 40 -a "$(jf "$work/res/r2.json" done)" = 40
+check "resume: each journal record is one resumed point (($jsize - 32) bytes in $resumed equal records)" \
+    test "${resumed:-0}" -ge 1 -a $(((jsize - 32) % ${resumed:-1})) = 0
+check "resume: the table equals the uninterrupted one apart from wall time" \
+    cmp -s <(no_wall "$work/res/u.csv") <(no_wall "$work/res/r.csv")
+check "resume: no journal left after the finished table" test ! -e "$work/res/r.journal"
+printf 'not a journal of this sweep, but longer than a header.\n' >"$work/res/x.journal"
+t "$work/res/x" sweep -q -j 1 "${rgrid[@]}" -o ../x "$case_r"
+check "resume: a journal of another sweep is refused, exit 2, one line ($(head -c 200 "$work/res/x/.err"))" \
+    test "$rc" = 2 -a "$(wc -l <"$work/res/x/.err")" = 1 -a -n "$(grep 'journal of another sweep' "$work/res/x/.err")"
 
 finish
