@@ -115,32 +115,19 @@ static td_status check_results(const td_modal_results *r, const char *what, td_e
     return TD_OK;
 }
 
+static void csv_write_results(FILE *f, const void *r)
+{
+    csv_write_all(f, r);
+}
+
 td_status td_modal_write_csv(const char *path, const td_modal_results *r, td_error *err)
 {
-    char *tmp = NULL;
-    FILE *f;
-    int fd;
     td_status st;
     if (!path || !r)
         return td_error_set(err, TD_ERR_INVALID, "td_modal_write_csv: NULL argument");
-    if ((st = check_results(r, "td_modal_write_csv", err)) != TD_OK ||
-        (st = td_io_create_temp(path, &tmp, &fd, err)) != TD_OK)
+    if ((st = check_results(r, "td_modal_write_csv", err)) != TD_OK)
         return st;
-    errno = 0;
-    if (!(f = fdopen(fd, "w"))) {
-        st = td_io_fail(err, tmp, "cannot open");
-        close(fd);
-    } else {
-        csv_write_all(f, r);
-        if (td_io_close_stream(&f))
-            st = td_io_fail(err, tmp, "cannot write");
-    }
-    if (st == TD_OK)
-        st = td_io_commit_temp(tmp, path, err);
-    else
-        remove(tmp);
-    free(tmp);
-    return st;
+    return td_io_write_text_file(path, csv_write_results, r, err);
 }
 
 /* ---- HDF5 -------------------------------------------------------------------------------- */
@@ -434,27 +421,24 @@ static td_status h5_write_all(const char *tmp, const td_modal_results *r, td_err
     return st;
 }
 
-td_status td_modal_write_hdf5(const char *path, const td_modal_results *r, td_error *err)
+static td_status h5_write_results(const char *tmp, const void *r, td_error *err)
 {
-    char *tmp = NULL;
-    int fd;
     td_status st;
-    if (!path || !r)
-        return td_error_set(err, TD_ERR_INVALID, "td_modal_write_hdf5: NULL argument");
-    if ((st = check_results(r, "td_modal_write_hdf5", err)) != TD_OK ||
-        (st = td_io_create_temp(path, &tmp, &fd, err)) != TD_OK)
-        return st;
-    close(fd); /* HDF5 opens the file by name */
     /* HDF5 would print its error stack; the try block silences it only for this call */
     H5E_BEGIN_TRY
     {
         st = h5_write_all(tmp, r, err);
     }
     H5E_END_TRY;
-    if (st == TD_OK)
-        st = td_io_commit_temp(tmp, path, err);
-    else
-        remove(tmp);
-    free(tmp);
     return st;
+}
+
+td_status td_modal_write_hdf5(const char *path, const td_modal_results *r, td_error *err)
+{
+    td_status st;
+    if (!path || !r)
+        return td_error_set(err, TD_ERR_INVALID, "td_modal_write_hdf5: NULL argument");
+    if ((st = check_results(r, "td_modal_write_hdf5", err)) != TD_OK)
+        return st;
+    return td_io_write_named_file(path, h5_write_results, r, err);
 }

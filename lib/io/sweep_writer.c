@@ -162,30 +162,15 @@ static void csv_write_all(FILE *f, const td_sweep_table *t)
     csv_attributes(f, t);
 }
 
+static void csv_write_table(FILE *f, const void *t)
+{
+    csv_write_all(f, t);
+}
+
 td_status td_sweep_write_csv(const char *path, const td_sweep_table *t, td_error *err)
 {
-    char *tmp = NULL;
-    FILE *f;
-    int fd;
-    td_status st;
-    if ((st = check_table(t, path, "td_sweep_write_csv", err)) != TD_OK ||
-        (st = td_io_create_temp(path, &tmp, &fd, err)) != TD_OK)
-        return st;
-    errno = 0;
-    if (!(f = fdopen(fd, "w"))) {
-        st = td_io_fail(err, tmp, "cannot open");
-        close(fd);
-    } else {
-        csv_write_all(f, t);
-        if (td_io_close_stream(&f))
-            st = td_io_fail(err, tmp, "cannot write");
-    }
-    if (st == TD_OK)
-        st = td_io_commit_temp(tmp, path, err);
-    else
-        remove(tmp);
-    free(tmp);
-    return st;
+    td_status st = check_table(t, path, "td_sweep_write_csv", err);
+    return st != TD_OK ? st : td_io_write_text_file(path, csv_write_table, t, err);
 }
 
 /* ---- HDF5 -------------------------------------------------------------------------------- */
@@ -306,24 +291,19 @@ static td_status h5_write_all(const char *tmp, const td_sweep_table *t, td_error
     return st;
 }
 
-td_status td_sweep_write_hdf5(const char *path, const td_sweep_table *t, td_error *err)
+static td_status h5_write_table(const char *tmp, const void *t, td_error *err)
 {
-    char *tmp = NULL;
-    int fd;
     td_status st;
-    if ((st = check_table(t, path, "td_sweep_write_hdf5", err)) != TD_OK ||
-        (st = td_io_create_temp(path, &tmp, &fd, err)) != TD_OK)
-        return st;
-    close(fd); /* HDF5 opens the file by name */
-    H5E_BEGIN_TRY
+    H5E_BEGIN_TRY /* HDF5 would print its error stack; silenced for this call only */
     {
         st = h5_write_all(tmp, t, err);
     }
     H5E_END_TRY;
-    if (st == TD_OK)
-        st = td_io_commit_temp(tmp, path, err);
-    else
-        remove(tmp);
-    free(tmp);
     return st;
+}
+
+td_status td_sweep_write_hdf5(const char *path, const td_sweep_table *t, td_error *err)
+{
+    td_status st = check_table(t, path, "td_sweep_write_hdf5", err);
+    return st != TD_OK ? st : td_io_write_named_file(path, h5_write_table, t, err);
 }

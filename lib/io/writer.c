@@ -113,6 +113,51 @@ td_status td_io_commit_temp(const char *tmp, const char *path, td_error *err)
     return st;
 }
 
+/* The end of a whole-file write: tmp renamed to path if st is TD_OK, else removed; tmp freed. */
+static td_status finish_temp(td_status st, char *tmp, const char *path, td_error *err)
+{
+    if (st == TD_OK)
+        st = td_io_commit_temp(tmp, path, err);
+    else
+        remove(tmp);
+    free(tmp);
+    return st;
+}
+
+td_status td_io_write_text_file(const char *path, void (*write_all)(FILE *f, const void *ctx), const void *ctx,
+                                td_error *err)
+{
+    char *tmp = NULL;
+    FILE *f;
+    int fd;
+    td_status st = td_io_create_temp(path, &tmp, &fd, err);
+    if (st != TD_OK)
+        return st;
+    errno = 0;
+    if (!(f = fdopen(fd, "w"))) {
+        st = td_io_fail(err, tmp, "cannot open");
+        close(fd);
+    } else {
+        write_all(f, ctx);
+        if (td_io_close_stream(&f))
+            st = td_io_fail(err, tmp, "cannot write");
+    }
+    return finish_temp(st, tmp, path, err);
+}
+
+td_status td_io_write_named_file(const char *path,
+                                 td_status (*write_all)(const char *tmp, const void *ctx, td_error *err),
+                                 const void *ctx, td_error *err)
+{
+    char *tmp = NULL;
+    int fd;
+    td_status st = td_io_create_temp(path, &tmp, &fd, err);
+    if (st != TD_OK)
+        return st;
+    close(fd); /* the writer opens the file by name (HDF5) */
+    return finish_temp(write_all(tmp, ctx, err), tmp, path, err);
+}
+
 td_status td_io_fsync_path(const char *path, td_error *err)
 {
     int fd = open(path, O_RDONLY);

@@ -84,6 +84,17 @@ td_status td_io_create_temp(const char *path, char **tmp, int *fd, td_error *err
 /** Flush a closed temporary file to disk and rename it to `path`; on failure remove it. */
 td_status td_io_commit_temp(const char *tmp, const char *path, td_error *err);
 
+/** A whole text file at `path` by the completeness rule: written by write_all(f, ctx) under
+ *  PATH.XXXXXX.partial, flushed and renamed to path, removed on any failure. */
+td_status td_io_write_text_file(const char *path, void (*write_all)(FILE *f, const void *ctx), const void *ctx,
+                                td_error *err);
+
+/** The same for a writer that opens the file by name (HDF5): write_all(tmp, ctx, err) writes the
+ *  temporary file tmp. */
+td_status td_io_write_named_file(const char *path,
+                                 td_status (*write_all)(const char *tmp, const void *ctx, td_error *err),
+                                 const void *ctx, td_error *err);
+
 /** Flush a closed file's data to disk (fsync); TD_ERR_IO on failure. */
 td_status td_io_fsync_path(const char *path, td_error *err);
 
