@@ -237,12 +237,15 @@ static void print_result(const sweep_options *o, const sweep_counts *k, const td
         print_json_path("csv_path", out->csv_path);
         print_json_path("hdf5_path", out->hdf5_path);
         printf("}\n");
-    } else if (!o->quiet)
+    } else if (!o->quiet) {
         printf("sweep: %ld points: %ld ran to the end, %ld failed, %ld not run (%ld resumed from the journal); "
-               "%d workers%s, wall time %.2f s\n"
-               "table: %s, %s%s\n",
-               k->points, k->done, k->failed, k->not_run, k->resumed, l->jobs, l->ranks > 1 ? " a rank" : "", l->wall,
-               out->csv_path, out->hdf5_path, k->not_run ? " (incomplete)" : "");
+               "%d workers",
+               k->points, k->done, k->failed, k->not_run, k->resumed, l->ranks * l->jobs);
+        if (l->ranks > 1)
+            printf(" (%d ranks x %d)", l->ranks, l->jobs);
+        printf(", wall time %.2f s\ntable: %s, %s%s\n", l->wall, out->csv_path, out->hdf5_path,
+               k->not_run ? " (incomplete)" : "");
+    }
 }
 
 /* Under MPI the rows come from the parts every rank wrote (read over the rows rank 0 holds

@@ -54,9 +54,9 @@ void sweep_book_progress(sweep_book *b, int final)
     sweep_status s;
     s.points = b->points;
     s.done = b->resumed + b->ran;
-    s.running = b->handed - b->ran;
+    s.running = final ? 0 : b->handed - b->ran; /* at the end the running ones were stopped */
     s.failed = b->failed;
-    s.eta = final ? 0.0 : eta(b);
+    s.eta = !final ? eta(b) : s.done == s.points ? 0.0 : -1.0;
     sweep_progress_show(&b->progress, &s, sweep_now(), final);
 }
 
