@@ -190,7 +190,7 @@ static int choose_outputs(td_output_options *out, char *journal, const sweep_opt
  * the writing of the table took. */
 typedef struct sweep_counts {
     long points, done, failed, not_run, resumed, ran;
-    double merge_time;
+    double check_time, merge_time;
 } sweep_counts;
 
 static sweep_counts count_rows(const td_sweep_row *rows, long n)
@@ -248,9 +248,9 @@ static void print_result(const sweep_options *o, const sweep_counts *k, const td
     if (o->json) {
         printf("{\"library_version\":\"%s\",\"points\":%ld,\"done\":%ld,\"failed\":%ld,\"not_run\":%ld,"
                "\"resumed\":%ld,\"ran\":%ld,\"complete\":%s,\"ranks\":%d,\"jobs\":%d,\"wall_time\":%.17g,"
-               "\"merge_time\":%.17g",
+               "\"check_time\":%.17g,\"merge_time\":%.17g",
                td_version(), k->points, k->done, k->failed, k->not_run, k->resumed, k->ran,
-               k->not_run ? "false" : "true", l->ranks, l->jobs, l->wall, k->merge_time);
+               k->not_run ? "false" : "true", l->ranks, l->jobs, l->wall, k->check_time, k->merge_time);
         print_json_path("csv_path", out->csv_path);
         print_json_path("hdf5_path", out->hdf5_path);
         printf("}\n");
@@ -303,10 +303,10 @@ static int finish_table(const sweep_options *o, const td_case *base, const td_ou
 /* Where rank 0 (or the one process) records its own rows: the journal, or its part under MPI. */
 static int open_own_journal(const sweep_world *w, const sweep_go *go, long n, sweep_journal **j)
 {
-    char part[TD_OUTPUT_PATH_SIZE + 16];
+    char part[SWEEP_PART_PATH_SIZE];
     if (w->size == 0)
         return sweep_journal_open(go->journal, go->fp, n, j);
-    sweep_part_path(part, sizeof part, go->journal, w->rank);
+    sweep_part_path(part, go->journal, w->rank);
     return sweep_journal_open(part, go->fp, n, j);
 }
 
@@ -335,6 +335,7 @@ static int run_sweep(const sweep_options *o, const td_case *base, sweep_book *b,
     k = count_rows(b->rows, b->points);
     k.resumed = b->resumed;
     k.ran = b->ran;
+    k.check_time = b->check_time;
     code = finish_table(o, base, out, b->rows, &k, go->journal);
     k.merge_time = sweep_now() - t1;
     l.wall = sweep_now() - t0;
@@ -405,8 +406,10 @@ static int sweep_lead(int argc, char **argv, const sweep_world *w)
         td_cli_error("sweep", "out of memory");
         go.code = TD_EXIT_FAILED;
     } else {
+        double t0 = sweep_now();
         job.grid = o.grid;
         go.code = prepare(argc, argv, &o, &job, &base, &out, &b, &go);
+        b.check_time = sweep_now() - t0;
     }
     sweep_mpi_go(w, &go);
     if (!go.code)
@@ -444,9 +447,10 @@ static int sweep_follow(int argc, char **argv, const sweep_world *w)
     sweep_job job;
     sweep_go go;
     sweep_journal *part = NULL;
-    char path[TD_OUTPUT_PATH_SIZE + 16];
-    int err = silence(STDERR_FILENO), code;
-    silence(STDOUT_FILENO); /* for good: only rank 0 prints results */
+    char path[SWEEP_PART_PATH_SIZE];
+    int err = silence(STDERR_FILENO), out = silence(STDOUT_FILENO), code;
+    if (out >= 0)
+        close(out); /* stdout stays silent: only rank 0 prints results */
     init_options(&o, w, &job);
     code = td_sweep_grid_create(&o.grid, NULL) != TD_OK ? TD_EXIT_FAILED : parse_options(argc, argv, &o);
     job.grid = o.grid;
@@ -454,7 +458,7 @@ static int sweep_follow(int argc, char **argv, const sweep_world *w)
     sweep_mpi_go(w, &go);
     unsilence(STDERR_FILENO, err);
     if (!go.code) {
-        sweep_part_path(path, sizeof path, go.journal, w->rank);
+        sweep_part_path(path, go.journal, w->rank);
         if (code || sweep_journal_open(path, go.fp, td_sweep_grid_points(o.grid), &part))
             o.jobs = 0; /* cannot run points: say done at once, rank 0 and the others run them */
         go.code = sweep_mpi_follow(w, &job, o.jobs, &part, td_cli_catch_signals());

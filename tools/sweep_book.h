@@ -16,6 +16,7 @@ typedef struct sweep_book {
     long handed, ran, failed; /* points handed out, rows that arrived, failed rows, in this run */
     long resumed;             /* rows found in the journal and parts before the run */
     double wall_sum;          /* the arrived rows' wall times */
+    double check_time;        /* s, checking every point's case, the outputs and the journal */
     int workers;              /* worker processes of every rank, for the ETA */
     sweep_journal *journal;   /* where this process records its own points' rows (NULL: nowhere) */
     sweep_progress progress;

@@ -47,8 +47,8 @@ typedef struct journal_record {
 
 struct sweep_journal {
     FILE *f;
-    char path[TD_OUTPUT_PATH_SIZE + 16]; /* a part's: the journal's and ".rank-K" */
-    int failed;                          /* a write failed: the journal was given up */
+    char path[SWEEP_PART_PATH_SIZE];
+    int failed; /* a write failed: the journal was given up */
 };
 
 /* FNV-1a, 64 bits, over a string and its terminating zero (so that "ab","c" differs from "a","bc"). */
@@ -165,7 +165,7 @@ static int is_part_name(const char *name, const char *base)
  * first nonzero return, which it returns. */
 static int each_part(const char *journal, int (*fn)(const char *path, void *arg), void *arg)
 {
-    char dir[TD_OUTPUT_PATH_SIZE], path[2 * TD_OUTPUT_PATH_SIZE];
+    char dir[TD_OUTPUT_PATH_SIZE], path[TD_OUTPUT_PATH_SIZE + 256]; /* the directory and a file name */
     const char *slash = strrchr(journal, '/'), *base = slash ? slash + 1 : journal;
     struct dirent *e;
     DIR *d;
@@ -220,9 +220,9 @@ void sweep_store_remove(const char *journal)
     each_part(journal, remove_part, NULL);
 }
 
-int sweep_part_path(char *dst, size_t n, const char *journal, int rank)
+void sweep_part_path(char *dst, const char *journal, int rank)
 {
-    return snprintf(dst, n, "%s%s%d", journal, PART_TAG, rank) >= (int)n ? -1 : 0;
+    snprintf(dst, SWEEP_PART_PATH_SIZE, "%s%s%d", journal, PART_TAG, rank);
 }
 
 /* A fresh journal at path; 0 or TD_EXIT_FAILED after an error line. */

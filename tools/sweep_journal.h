@@ -3,6 +3,7 @@
 #define TD_TOOLS_SWEEP_JOURNAL_H
 
 #include "touchdown/case.h"
+#include "touchdown/output.h"
 #include "touchdown/sweep.h"
 
 #include <stddef.h>
@@ -22,8 +23,12 @@ int sweep_store_read(const char *journal, uint64_t fp, long points, td_sweep_row
 /* Remove the journal and its parts (once a finished table is written). */
 void sweep_store_remove(const char *journal);
 
-/* dst (n bytes) = the part of `rank`; -1 if it does not fit. */
-int sweep_part_path(char *dst, size_t n, const char *journal, int rank);
+/* Room for the path of a part: the journal's, ".rank-" and a rank. */
+#define SWEEP_PART_PATH_SIZE (TD_OUTPUT_PATH_SIZE + 24)
+
+/* dst (SWEEP_PART_PATH_SIZE bytes) = the part of `rank` of the journal at `journal` (shorter than
+ * TD_OUTPUT_PATH_SIZE). */
+void sweep_part_path(char *dst, const char *journal, int rank);
 
 /* Open the journal (or part) at `path` of the sweep with fingerprint `fp` to append rows: created
  * when missing, else its torn last record is cut off. One of another sweep is refused. Returns 0,
