@@ -23,7 +23,7 @@ static const char usage[] =
     "\n"
     "options for every command:\n"
     "  -h, --help      help for the command (touchdown COMMAND --help)\n"
-    "  --version       print the library version\n"
+    "  --version       print the library version and whether touchdown sweep has MPI\n"
     "\n"
     "exit codes: 0 success, 1 the simulation or analysis failed, 2 bad input or usage.\n"
     "Case files: docs/case-format.md. Output files: docs/output-format.md.\n";

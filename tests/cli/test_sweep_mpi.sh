@@ -2,9 +2,10 @@
 # `touchdown sweep` under MPI: `mpirun -np 2` writes the table of `-j 1` and `-j 2` (wall time
 # aside, CSV and HDF5); an MPI sweep interrupted half way (SIGINT to mpirun) keeps its rows in the
 # ranks' parts, and run again resumes them, computes each other point once and writes the table of
-# the uninterrupted sweep; a part of another sweep is refused; bad input is one line and exit 2 on
-# every rank; the progress line (forced with --progress into a log) counts to the end, with and
-# without MPI, and rewrites itself with '\r' on a terminal.
+# the uninterrupted sweep, and so does a run without MPI from the same parts; a part of another
+# sweep is refused; bad input is one line and exit 2 on every rank; the progress line (forced with
+# --progress into a log) counts to the end, with and without MPI, and rewrites itself with '\r' on
+# a terminal.
 # Skips (77) when the tool is built without MPI or mpirun is missing.
 # Args: $1 = the touchdown binary, $2 = the source directory. Runs in the build's tests directory.
 set -u
@@ -37,7 +38,7 @@ m() {
 
 # ---- (a) one table whatever runs it --------------------------------------------------------------
 grid=(--set end_time=0.2 --vary speed=60:150:4 --vary 'schedule[0].magnitude=0.05,0.1,0.2')
-t "$work/j1" sweep -q -j 1 "${grid[@]}" -o s "$case_r"
+t "$work/j1" sweep --progress -q -j 1 "${grid[@]}" -o s "$case_r"
 rc1=$rc
 t "$work/j2" sweep -j 2 "${grid[@]}" -o s "$case_r"
 rc2=$rc
@@ -86,6 +87,13 @@ if [ -e "$work/res/r.csv" ]; then
     check "resume: the interrupted MPI sweep's table is marked incomplete" \
         test -n "$(tail -n 1 "$work/res/r.csv" | grep '^# incomplete: interrupted')"
 fi
+# the same parts under another prefix (a part's header does not name it): resumed without MPI
+for f in "$work"/res/r.journal.rank-*; do cp "$f" "$work/res/n${f#"$work/res/r"}"; done
+t "$work/res/n" sweep --json -j 2 "${rgrid[@]}" -o ../n "$case_r"
+check "resume without MPI from the parts of an MPI sweep: exit 0, resumed $(jf "$work/res/n/.out" resumed) + ran $(jf "$work/res/n/.out" ran) = 30, the uninterrupted table" \
+    test "$rc" = 0 -a "$(($(jf "$work/res/n/.out" resumed) + $(jf "$work/res/n/.out" ran)))" = 30 \
+    -a "$(jf "$work/res/n/.out" resumed)" -ge 1 -a -z "$(ls "$work/res" | grep '^n.journal')" \
+    && cmp -s <(no_wall "$work/res/u.csv") <(no_wall "$work/res/n.csv")
 m "$work/res" sweep --json "${rgrid[@]}" -o r "$case_r"
 o=$work/res/.out
 resumed=$(jf "$o" resumed)
@@ -108,15 +116,15 @@ check "resume: a part of another sweep is refused without MPI, exit 2" \
 
 # ---- (d) the progress line ------------------------------------------------------------------------
 line_re='^sweep: [0-9]+/12 points, [0-9]+ running, [0-9]+ failed, ETA ([0-9]+[hms]([0-9]{2}[ms])?|--)$'
-t "$work/prog" sweep --progress -q -j 2 "${grid[@]}" -o p "$case_r"
-check "sweep --progress into a log: whole lines in the format, the last with the final counts ($(tail -n 1 "$work/prog/.err"))" \
-    test "$rc" = 0 -a -s "$work/prog/.err" -a -z "$(grep -vE "$line_re" "$work/prog/.err")" \
-    -a "$(tail -n 1 "$work/prog/.err")" = "sweep: 12/12 points, 0 running, 0 failed, ETA 0s"
+check "sweep --progress -q into a log: whole lines in the format, the last with the final counts ($(tail -n 1 "$work/j1/.err"))" \
+    test "$rc1" = 0 -a -s "$work/j1/.err" -a -z "$(grep -vE "$line_re" "$work/j1/.err")" \
+    -a "$(tail -n 1 "$work/j1/.err")" = "sweep: 12/12 points, 0 running, 0 failed, ETA 0s"
 check "mpirun -np 2 sweep --progress: rank 0's line counts every rank's points ($(grep -E "$line_re" "$work/mpi/.err" | tail -n 1))" \
     test "$(grep -cE "$line_re" "$work/mpi/.err")" -ge 1 \
     -a "$(grep -E "$line_re" "$work/mpi/.err" | tail -n 1)" = "sweep: 12/12 points, 0 running, 0 failed, ETA 0s"
 if command -v python3 >/dev/null; then
     # on a terminal (a pty for stderr alone): the line rewritten after '\r', ended by one newline
+    mkdir -p "$work/prog"
     (cd "$work/prog" && python3 -c '
 import os, pty, subprocess, sys
 m, s = pty.openpty()
