@@ -188,12 +188,29 @@ static int check_point_files(const sweep_options *o, const td_case *c)
     return 0;
 }
 
+/* "FILE:LINE: sweep.vary[i]: " when `message` is about the value of a key swept by the case
+ * file's group, so that the error leads to the line that asked for it; else "". */
+static const char *file_origin(const td_sweep_grid *g, const char *message, char *origin, size_t n)
+{
+    char probe[TD_SWEEP_KEY_SIZE + 16];
+    int k;
+    for (k = 0; k < td_sweep_grid_keys(g); k++) {
+        snprintf(probe, sizeof probe, "--set '%s=", td_sweep_grid_key(g, k));
+        if (strstr(message, probe) && strcmp(td_sweep_grid_origin(g, k), "command line") != 0) {
+            snprintf(origin, n, "%s: ", td_sweep_grid_origin(g, k));
+            return origin;
+        }
+    }
+    return "";
+}
+
 /* Load every point's case once before anything runs, so that a bad key or value is found at
  * once and not after hours of other points. Returns 0 or TD_EXIT_USAGE (with the error line). */
 static int check_points(const sweep_job *job)
 {
     const char *items[TD_CLI_MAX_SETS + TD_SWEEP_MAX_KEYS];
     char store[TD_SWEEP_MAX_KEYS][TD_SWEEP_KEY_SIZE + TD_SWEEP_VALUE_SIZE];
+    char origin[TD_ERROR_MESSAGE_SIZE];
     long p, n = td_sweep_grid_points(job->grid);
     td_case *c = NULL;
     td_error err;
@@ -201,7 +218,8 @@ static int check_points(const sweep_job *job)
         int k = sweep_point_overrides(job, p, items, store);
         td_error_clear(&err);
         if (td_case_load(job->case_path, items, k, &c, &err) != TD_OK) {
-            fprintf(stderr, "touchdown: %s\n", err.message);
+            fprintf(stderr, "touchdown: %s%s\n", file_origin(job->grid, err.message, origin, sizeof origin),
+                    err.message);
             return TD_EXIT_USAGE;
         }
         td_case_free(&c);

@@ -119,6 +119,9 @@ bad_run "$work/b7" "sweep.vary[0].points: the number of points" --set 'sweep.var
 cp "$src/cases/rub-damped.cfg" "$src/cases/rig.cfg" "$work/"
 printf '@include "rub-damped.cfg"\nsweep = {\n  vary = ( { key = "speed"; values = [ 80.0, 90.0 ];\n    with = ( { key = "end_time"; values = [ 0.1 ]; } ); } );\n};\n' >"$work/bad.cfg"
 bad_run "$work/b8" "bad.cfg:4: sweep.vary[0].with[0].values: end_time has 1 values but speed" "$work/bad.cfg"
+printf '@include "rub-damped.cfg"\nsweep = {\n  vary = ( { key = "speedo"; values = [ 80.0, 90.0 ]; } );\n};\n' >"$work/bad2.cfg"
+bad_run "$work/b10" "bad2.cfg:3: sweep.vary[0]: " "$work/bad2.cfg"
+check "... and the unknown key" has "$work/b10/.err" "speedo: unknown key"
 t "$work/b9" run -q --set end_time=0.001 "$work/bad.cfg"
 check "touchdown run of a case with a bad sweep group: exit 2 naming it" \
     test "$rc" = 2 -a -n "$(grep -F 'bad.cfg:4: sweep.vary[0].with[0].values' "$work/b9/.err")"
