@@ -400,6 +400,52 @@ static void test_hdf5_table(void **state)
     td_sweep_grid_free(&g);
 }
 
+static int read_int_attribute(hid_t f, const char *object, const char *name)
+{
+    int v = -1;
+    hid_t a = H5Aopen_by_name(f, object, name, H5P_DEFAULT, H5P_DEFAULT);
+    assert_true(a >= 0);
+    assert_true(H5Aread(a, H5T_NATIVE_INT, &v) >= 0);
+    H5Aclose(a);
+    return v;
+}
+
+/* A zipped key is a column of its own: CSV "# with" under its axis's "# vary", HDF5 /vary/KEY
+ * with the axis it shares. */
+static void test_zipped_table(void **state)
+{
+    td_sweep_grid *g = NULL;
+    td_sweep_row rows[3];
+    td_sweep_table t = {NULL, NULL, "", NULL, 0, 1, NULL};
+    td_error err;
+    char *text;
+    hid_t f;
+    (void)state;
+    assert_int_equal(td_sweep_grid_create(&g, NULL), TD_OK);
+    assert_int_equal(td_sweep_grid_vary(g, "speed=1:3:3", &err), TD_OK);
+    assert_int_equal(td_sweep_grid_with(g, "contact.model=penalty,constraint,penalty", &err), TD_OK);
+    three_rows(rows);
+    t.grid = g;
+    t.rows = rows;
+    assert_int_equal(td_sweep_write_csv("sweep-zip.csv", &t, NULL), TD_OK);
+    text = td_test_read_file("sweep-zip.csv");
+    assert_non_null(strstr(text, "point [-],speed,contact.model,status,"));
+    assert_non_null(strstr(text, "\n1,2,constraint,solver failure,"));
+    assert_non_null(strstr(text, "# vary = speed=1:3:3\n# with = contact.model=penalty,constraint,penalty\n"
+                                 "# from = command line\n"));
+    free(text);
+    remove("sweep-zip.csv");
+    assert_int_equal(td_sweep_write_hdf5("sweep-zip.h5", &t, NULL), TD_OK);
+    f = H5Fopen("sweep-zip.h5", H5F_ACC_RDONLY, H5P_DEFAULT);
+    assert_true(f >= 0);
+    assert_true(read_double(f, "vary/speed", 1) == 2.0);
+    assert_int_equal(read_int_attribute(f, "vary/speed", "axis"), 0);
+    assert_int_equal(read_int_attribute(f, "vary/contact.model", "axis"), 0);
+    H5Fclose(f);
+    remove("sweep-zip.h5");
+    td_sweep_grid_free(&g);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -415,6 +461,7 @@ int main(void)
         cmocka_unit_test(test_key_limit),
         cmocka_unit_test(test_case_group),
         cmocka_unit_test(test_case_group_errors),
+        cmocka_unit_test(test_zipped_table),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
