@@ -135,7 +135,7 @@ int sweep_journal_open(const char *path, uint64_t fp, long points, td_sweep_row 
     if (j->f && fread(&have, sizeof have, 1, j->f) == 1) {
         if (memcmp(&have, &want, sizeof have) != 0) {
             td_cli_error("sweep",
-                         "%s is the journal of another sweep (its case, --set, --vary or touchdown version "
+                         "%s is the journal of another sweep (its case, --set, grid or touchdown version "
                          "differ): remove it to start afresh, or write to another --output",
                          path);
             code = TD_EXIT_USAGE;
