@@ -23,11 +23,13 @@ case_file=${CASE:-cases/rub-damped.cfg}
 prefix=${PREFIX:-out/rub-map}
 mkdir -p "$(dirname "$prefix")"
 
-# 100 speeds x 100 unbalance steps = 10,000 points of 0.5 s each; --progress prints a line every
-# 5 s into the job's log (the ETA is there); --json the counts at the end.
+# 100 speeds x 100 unbalance steps = 10,000 points, each the case to its own end (2 s simulated,
+# about half a second of a core; docs/performance.md, "Sweeps", predicts some 45 s on 4 x 32
+# cores); --progress prints a line every 5 s into the job's log (the ETA is there); --json the
+# counts, check_time and merge_time at the end.
 # srun starts the ranks (PMIx or PMI2, whichever the cluster's Slurm offers); with a cluster whose
 # Open MPI is not built against Slurm's PMI, replace `srun --mpi=pmix` by
 # `mpirun --map-by ppr:1:node:pe=$SLURM_CPUS_PER_TASK`.
 srun --mpi=pmix "$touchdown" sweep -j "$SLURM_CPUS_PER_TASK" --progress --json \
-    --set end_time=0.5 --vary speed=60:150:100 --vary 'schedule[0].magnitude=0.02:0.2:100' \
+    --vary speed=60:150:100 --vary 'schedule[0].magnitude=0.02:0.2:100' \
     -o "$prefix" "$case_file"

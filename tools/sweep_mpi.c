@@ -80,23 +80,36 @@ void sweep_mpi_describe(char *buf, size_t n)
     snprintf(buf, n, "built with MPI (%s)", lib);
 }
 
-void sweep_mpi_go(const sweep_world *w, sweep_go *go)
-{
-    if (w->size > 0)
-        MPI_Bcast(go, (int)sizeof *go, MPI_BYTE, 0, MPI_COMM_WORLD);
-}
-
-static void send_int(int64_t v, int to, int tag)
-{
-    MPI_Send(&v, 1, MPI_INT64_T, to, tag, MPI_COMM_WORLD);
-}
-
 static void pause_ms(long ms)
 {
     struct timespec ts;
     ts.tv_sec = 0;
     ts.tv_nsec = ms * 1000000L;
     nanosleep(&ts, NULL);
+}
+
+/* Wait for r to complete, asleep between tests: a blocking MPI call spins a core in most MPI
+ * libraries, and a rank waiting for rank 0's check or merge would take that core from rank 0 or
+ * from the workers on its node. */
+static void wait_asleep(MPI_Request *r, MPI_Status *st)
+{
+    int done = 0;
+    while (MPI_Test(r, &done, st) == MPI_SUCCESS && !done)
+        pause_ms(2);
+}
+
+void sweep_mpi_go(const sweep_world *w, sweep_go *go)
+{
+    MPI_Request r;
+    if (w->size == 0)
+        return;
+    MPI_Ibcast(go, (int)sizeof *go, MPI_BYTE, 0, MPI_COMM_WORLD, &r);
+    wait_asleep(&r, MPI_STATUS_IGNORE);
+}
+
+static void send_int(int64_t v, int to, int tag)
+{
+    MPI_Send(&v, 1, MPI_INT64_T, to, tag, MPI_COMM_WORLD);
 }
 
 /* ---- rank 0 --------------------------------------------------------------------------------- */
@@ -316,11 +329,13 @@ static int follow_service(void *ctx)
 /* The exit code from rank 0, past any STOP it sent before it knew this rank was done. */
 static int wait_code(void)
 {
+    MPI_Request r;
     MPI_Status st;
     int64_t v = TD_EXIT_FAILED;
-    do
-        MPI_Recv(&v, 1, MPI_INT64_T, 0, MPI_ANY_TAG, MPI_COMM_WORLD, &st);
-    while (st.MPI_TAG != TAG_CODE);
+    do {
+        MPI_Irecv(&v, 1, MPI_INT64_T, 0, MPI_ANY_TAG, MPI_COMM_WORLD, &r);
+        wait_asleep(&r, &st);
+    } while (st.MPI_TAG != TAG_CODE);
     return (int)v;
 }
 
@@ -341,7 +356,7 @@ int sweep_mpi_follow(const sweep_world *w, const sweep_job *job, int jobs, sweep
     if (jobs > 0)
         sweep_pool_serve(job, jobs, &feed, cancel);
     if (f.asking) /* rank 0 answers every question until every rank is done */
-        MPI_Wait(&f.req, MPI_STATUS_IGNORE);
+        wait_asleep(&f.req, MPI_STATUS_IGNORE);
     sweep_journal_close(part);
     send_int(0, 0, TAG_DONE);
     return wait_code();
