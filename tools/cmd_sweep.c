@@ -476,7 +476,10 @@ static int prepare(int argc, char **argv, sweep_options *o, sweep_job *job, td_c
     for (p = 0; p < b->points; p++)
         td_sweep_row_unknown(&b->rows[p], TD_SWEEP_NOT_RUN, "not run", "");
     go->fp = sweep_fingerprint(*base, o->grid);
-    return sweep_store_read(go->journal, go->fp, b->points, b->rows, &b->resumed);
+    code = sweep_store_read(go->journal, go->fp, b->points, b->rows, &b->resumed);
+    for (p = 0; p < b->points; p++) /* the progress line counts the resumed failures too */
+        b->failed += b->rows[p].state == TD_SWEEP_FAILED;
+    return code;
 }
 
 static void init_options(sweep_options *o, const sweep_world *w, sweep_job *job)

@@ -13,7 +13,7 @@ typedef struct sweep_book {
     const sweep_job *job;
     td_sweep_row *rows;       /* one per point, "not run" until its row arrives */
     long points, next;        /* the next point to hand out: the first not run from here */
-    long handed, ran, failed; /* points handed out, rows that arrived, failed rows, in this run */
+    long handed, ran, failed; /* points handed out and rows that arrived in this run; failed rows */
     long resumed;             /* rows found in the journal and parts before the run */
     double wall_sum;          /* the arrived rows' wall times */
     double check_time;        /* s, checking every point's case, the outputs and the journal */
