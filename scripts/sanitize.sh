@@ -12,7 +12,10 @@ here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 build=${1:-$here/build-sanitize}
 shift || true
 
-"$here/scripts/setup.sh" "$build" -DTD_SANITIZE=ON
+# MPI off: Open MPI allocates and keeps memory of its own at MPI_Init that it never frees (by
+# design, until exit), which LeakSanitizer reports as thousands of leaks outside touchdown; the MPI
+# sweep test then skips, and the sweep's pool, journal and parts are checked without MPI.
+"$here/scripts/setup.sh" "$build" -DTD_SANITIZE=ON -DTD_MPI=OFF
 
 export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:detect_stack_use_after_return=1:strict_string_checks=1:check_initialization_order=1:abort_on_error=0}
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}

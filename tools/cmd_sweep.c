@@ -1,13 +1,13 @@
 /* touchdown sweep: run a case over a grid of key values in parallel, one summary row per point. */
 #include "cli.h"
-#include "sweep_pool.h"
+#include "sweep_mpi.h"
 #include "touchdown/json.h"
 #include "touchdown/sweep.h"
 
+#include <fcntl.h>
 #include <getopt.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 #include <unistd.h>
 
 static const char sweep_usage[] =
@@ -32,10 +32,15 @@ static const char sweep_usage[] =
     "      --point-files DIR  also keep each point's full result, DIR/point-NNNNNN.h5 (NNNNNN the\n"
     "                       point's index, as in the table), the file touchdown run writes\n"
     "      --point-csv      with --point-files, also DIR/point-NNNNNN.csv (and its events file)\n"
-    "  -j, --jobs N         worker processes, 1..256 (default: the number of online CPUs)\n"
+    "  -j, --jobs N         worker processes, 1..256 (default: the number of online CPUs; under\n"
+    "                       MPI: workers per rank, default 1)\n"
     "  -o, --output PREFIX  write PREFIX.csv and PREFIX.h5 (default: CASENAME-sweep)\n"
     "  -q, --quiet          print no text summary (errors still go to stderr)\n"
     "      --json           print the sweep's counts and files as one JSON object on stdout\n"
+    "      --progress       print the progress line even with -q, --json or stderr not a terminal\n"
+    "                       (then a whole line every 5 s and the last one)\n"
+    "      --no-progress    never print it (default: on when stderr is a terminal, without -q\n"
+    "                       and --json: one line rewritten at most 4 times a second)\n"
     "  -h, --help           this help\n"
     "\n"
     "The case file's own `sweep` group (docs/case-format.md) adds its axes after those of the\n"
@@ -57,6 +62,21 @@ static const char sweep_usage[] =
     "after an interruption (Ctrl-C, a kill, a lost machine) runs only the points the journal lacks.\n"
     "The journal is removed once a finished table is written; one of another sweep (another case,\n"
     "--set, --vary, --with or version) is refused.\n"
+    "\n";
+
+/* The rest of the usage (one string would be longer than C99 promises to compile). */
+static const char sweep_usage_more[] =
+    "Progress: \"sweep: DONE/POINTS points, R running, F failed, ETA T\" on stderr, DONE counting the\n"
+    "resumed points, T from the mean wall time of the points so far over every worker.\n"
+    "\n"
+    "MPI (if built in, see touchdown --version): mpirun -np N touchdown sweep ... runs the sweep\n"
+    "over N ranks, each with -j workers (one rank per node and -j its cores). Rank 0 checks the\n"
+    "points, hands them out one at a time to every rank's free workers (its own included), prints\n"
+    "the progress, the failures and the summary, and writes the table. Each rank records its rows in\n"
+    "PREFIX.journal.rank-K; rank 0 merges them into the table at the end and removes them with the\n"
+    "journal. A resume, with any number of ranks or without MPI, reads the journal and every part.\n"
+    "MPI is used only when an MPI launcher started the tool (OMPI_COMM_WORLD_SIZE, PMIX_RANK, or\n"
+    "PMI_RANK and PMI_SIZE in the environment).\n"
     "\n"
     "exit codes: 0 every point ran to its end, 1 some point failed, the sweep was interrupted or\n"
     "the table could not be written, 2 bad input or usage (any point's case included).\n";
@@ -67,14 +87,13 @@ typedef struct sweep_options {
     const char *prefix;
     const char *case_path;
     const char *point_dir;
-    int jobs, json, quiet, point_csv;
+    int jobs, json, quiet, point_csv, progress; /* progress: 1 --progress, 0 --no-progress, -1 neither */
 } sweep_options;
 
-static double wall_now(void)
+static void print_usage(FILE *f)
 {
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+    fputs(sweep_usage, f);
+    fputs(sweep_usage_more, f);
 }
 
 static int parse_jobs(const char *text, int *jobs)
@@ -103,7 +122,7 @@ static int add_key(td_sweep_grid *g, const char *spec, int with)
 /* Options into o; returns 0, or an exit code (-1: --help was printed, exit 0). */
 static int parse_options(int argc, char **argv, sweep_options *o)
 {
-    enum { OPT_JSON = 256, OPT_POINT_FILES, OPT_POINT_CSV };
+    enum { OPT_JSON = 256, OPT_POINT_FILES, OPT_POINT_CSV, OPT_PROGRESS, OPT_NO_PROGRESS };
     static const struct option longopts[] = {{"vary", required_argument, NULL, 'v'},
                                              {"with", required_argument, NULL, 'w'},
                                              {"set", required_argument, NULL, 's'},
@@ -113,6 +132,8 @@ static int parse_options(int argc, char **argv, sweep_options *o)
                                              {"point-csv", no_argument, NULL, OPT_POINT_CSV},
                                              {"quiet", no_argument, NULL, 'q'},
                                              {"json", no_argument, NULL, OPT_JSON},
+                                             {"progress", no_argument, NULL, OPT_PROGRESS},
+                                             {"no-progress", no_argument, NULL, OPT_NO_PROGRESS},
                                              {"help", no_argument, NULL, 'h'},
                                              {NULL, 0, NULL, 0}};
     int opt, code = 0;
@@ -128,8 +149,10 @@ static int parse_options(int argc, char **argv, sweep_options *o)
         case 'o': o->prefix = optarg; break;
         case 'q': o->quiet = 1; break;
         case OPT_JSON: o->json = 1; break;
-        case 'h': fputs(sweep_usage, stdout); return -1;
-        default: fputs(sweep_usage, stderr); return TD_EXIT_USAGE;
+        case OPT_PROGRESS: o->progress = 1; break;
+        case OPT_NO_PROGRESS: o->progress = 0; break;
+        case 'h': print_usage(stdout); return -1;
+        default: print_usage(stderr); return TD_EXIT_USAGE;
         }
     }
     if (!code && optind != argc - 1) {
@@ -257,15 +280,19 @@ static int choose_outputs(td_output_options *out, char *journal, const sweep_opt
     return 0;
 }
 
-/* Counts of the rows by state. */
+/* Counts of the rows by state, what this run computed, and the seconds the merge of the parts and
+ * the writing of the table took. */
 typedef struct sweep_counts {
-    long points, done, failed, not_run, resumed;
+    long points, done, failed, not_run, resumed, ran;
+    double check_time, merge_time;
 } sweep_counts;
 
 static sweep_counts count_rows(const td_sweep_row *rows, long n)
 {
-    sweep_counts k = {n, 0, 0, 0, 0};
+    sweep_counts k;
     long p;
+    memset(&k, 0, sizeof k);
+    k.points = n;
     for (p = 0; p < n; p++) {
         k.done += rows[p].state == TD_SWEEP_DONE;
         k.failed += rows[p].state == TD_SWEEP_FAILED;
@@ -303,66 +330,113 @@ static void print_json_path(const char *name, const char *path)
     free(buf);
 }
 
-static void print_result(const sweep_options *o, const sweep_counts *k, const td_output_options *out, double wall,
-                         int jobs)
+/* How the sweep ran: its ranks (1 without MPI), the workers of each, the wall time. */
+typedef struct sweep_layout {
+    int ranks, jobs;
+    double wall;
+} sweep_layout;
+
+static void print_result(const sweep_options *o, const sweep_counts *k, const td_output_options *out,
+                         const sweep_layout *l)
 {
     if (o->json) {
         printf("{\"library_version\":\"%s\",\"points\":%ld,\"done\":%ld,\"failed\":%ld,\"not_run\":%ld,"
-               "\"resumed\":%ld,\"complete\":%s,\"jobs\":%d,\"wall_time\":%.17g",
-               td_version(), k->points, k->done, k->failed, k->not_run, k->resumed, k->not_run ? "false" : "true", jobs,
-               wall);
+               "\"resumed\":%ld,\"ran\":%ld,\"complete\":%s,\"ranks\":%d,\"jobs\":%d,\"wall_time\":%.17g,"
+               "\"check_time\":%.17g,\"merge_time\":%.17g",
+               td_version(), k->points, k->done, k->failed, k->not_run, k->resumed, k->ran,
+               k->not_run ? "false" : "true", l->ranks, l->jobs, l->wall, k->check_time, k->merge_time);
         print_json_path("csv_path", out->csv_path);
         print_json_path("hdf5_path", out->hdf5_path);
         printf("}\n");
-    } else if (!o->quiet)
+    } else if (!o->quiet) {
         printf("sweep: %ld points: %ld ran to the end, %ld failed, %ld not run (%ld resumed from the journal); "
-               "%d workers, wall time %.2f s\n"
-               "table: %s, %s%s\n",
-               k->points, k->done, k->failed, k->not_run, k->resumed, jobs, wall, out->csv_path, out->hdf5_path,
+               "%d workers",
+               k->points, k->done, k->failed, k->not_run, k->resumed, l->ranks * l->jobs);
+        if (l->ranks > 1)
+            printf(" (%d ranks x %d)", l->ranks, l->jobs);
+        printf(", wall time %.2f s\ntable: %s, %s%s\n", l->wall, out->csv_path, out->hdf5_path,
                k->not_run ? " (incomplete)" : "");
+    }
 }
 
-/* Run the points (those the journal holds already excepted), write the table, report. */
-static int run_sweep(const sweep_options *o, const td_case *base, sweep_job *job, const td_output_options *out,
-                     const char *journal)
+/* Under MPI the rows come from the parts every rank wrote (read over the rows rank 0 holds
+ * already: those it was sent, its own, the resumed ones). */
+static void merge_parts(const sweep_world *w, const sweep_go *go, long n, td_sweep_row *rows)
 {
-    long n = td_sweep_grid_points(o->grid), p, resumed = 0;
-    td_sweep_row *rows = malloc((size_t)n * sizeof *rows);
+    long found;
+    if (w->size > 0 && sweep_store_read(go->journal, go->fp, n, rows, &found))
+        td_cli_error("sweep", "the parts could not be merged: the table holds the rows sent to rank 0");
+}
+
+/* The table of rows[], written; the journal and parts removed once a finished one is. Returns
+ * 0 or TD_EXIT_FAILED, and the counts in *k. */
+static int finish_table(const sweep_options *o, const td_case *base, const td_output_options *out,
+                        const td_sweep_row *rows, sweep_counts *k, const char *journal)
+{
+    long n = td_sweep_grid_points(o->grid);
     td_sweep_table t;
-    sweep_counts k;
-    double t0 = wall_now();
-    int jobs = o->jobs > n ? (int)n : o->jobs, code;
     char reason[128];
-    if (!rows) {
-        td_cli_error("sweep", "out of memory for %ld rows", n);
-        return TD_EXIT_FAILED;
-    }
-    for (p = 0; p < n; p++)
-        td_sweep_row_unknown(&rows[p], TD_SWEEP_NOT_RUN, "not run", "");
-    code = sweep_journal_open(journal, sweep_fingerprint(base, o->grid), n, rows, &resumed, &job->journal);
-    if (code) {
-        free(rows);
-        return code;
-    }
-    sweep_pool_run(job, jobs, rows, td_cli_catch_signals());
-    k = count_rows(rows, n);
-    k.resumed = resumed;
-    snprintf(reason, sizeof reason, "interrupted: %ld of %ld points not run", k.not_run, n);
+    int code;
+    snprintf(reason, sizeof reason, "interrupted: %ld of %ld points not run", k->not_run, n);
     memset(&t, 0, sizeof t);
     t.grid = o->grid;
     t.rows = rows;
     t.case_text = td_case_text(base);
     t.sets = o->sets.items;
     t.n_sets = o->sets.count;
-    t.complete = k.not_run == 0;
-    t.reason = k.not_run ? reason : NULL;
+    t.complete = k->not_run == 0;
+    t.reason = k->not_run ? reason : NULL;
     code = write_table(out, &t);
-    sweep_journal_close(&job->journal, !code && !k.not_run); /* kept until a finished table is written */
-    if (k.not_run)
+    if (!code && !k->not_run)
+        sweep_store_remove(journal); /* kept until a finished table is written */
+    if (k->not_run)
         td_cli_error("sweep", "%s", reason);
-    print_result(o, &k, out, wall_now() - t0, jobs);
-    free(rows);
-    return code ? code : (k.failed || k.not_run ? TD_EXIT_FAILED : TD_EXIT_OK);
+    return code;
+}
+
+/* Where rank 0 (or the one process) records its own rows: the journal, or its part under MPI. */
+static int open_own_journal(const sweep_world *w, const sweep_go *go, long n, sweep_journal **j)
+{
+    char part[SWEEP_PART_PATH_SIZE];
+    if (w->size == 0)
+        return sweep_journal_open(go->journal, go->fp, n, j);
+    sweep_part_path(part, go->journal, w->rank);
+    return sweep_journal_open(part, go->fp, n, j);
+}
+
+/* Run the points not resumed (over every rank under MPI), merge, write the table, report. */
+static int run_sweep(const sweep_options *o, const td_case *base, sweep_book *b, const td_output_options *out,
+                     const sweep_world *w, const sweep_go *go)
+{
+    sweep_layout l;
+    sweep_counts k;
+    double t0 = sweep_now(), t1;
+    int code, lost;
+    l.ranks = w->size > 0 ? w->size : 1;
+    l.jobs = o->jobs > b->points ? (int)b->points : o->jobs;
+    b->workers = l.ranks * l.jobs;
+    b->progress.mode = sweep_progress_choose(o->progress, o->quiet || o->json);
+    code = open_own_journal(w, go, b->points, &b->journal);
+    if (code && w->size == 0)
+        return code;
+    /* under MPI the other ranks wait for points: rank 0 serves them all the same, without workers */
+    lost = sweep_mpi_lead(w, b, code ? 0 : l.jobs, td_cli_catch_signals());
+    code = 0;
+    sweep_journal_close(&b->journal);
+    sweep_book_progress(b, 1);
+    t1 = sweep_now();
+    merge_parts(w, go, b->points, b->rows);
+    k = count_rows(b->rows, b->points);
+    k.resumed = b->resumed;
+    k.ran = b->ran;
+    k.check_time = b->check_time;
+    code = finish_table(o, base, out, b->rows, &k, go->journal);
+    k.merge_time = sweep_now() - t1;
+    l.wall = sweep_now() - t0;
+    print_result(o, &k, out, &l);
+    code = code ? code : (k.failed || k.not_run ? TD_EXIT_FAILED : TD_EXIT_OK);
+    sweep_mpi_tell(w, code, lost);
+    return code;
 }
 
 static int default_jobs(void)
@@ -371,40 +445,163 @@ static int default_jobs(void)
     return n < 1 ? 1 : (n > TD_SWEEP_POOL_MAX ? TD_SWEEP_POOL_MAX : (int)n);
 }
 
-int td_cmd_sweep(int argc, char **argv)
+/* Rank 0's checks before anything runs: the options, every point's case, the outputs, the
+ * journal and parts (read into rows, which are allocated here). */
+static int prepare(int argc, char **argv, sweep_options *o, sweep_job *job, td_case **base, td_output_options *out,
+                   sweep_book *b, sweep_go *go)
+{
+    long p;
+    int code = parse_options(argc, argv, o);
+    job->case_path = o->case_path;
+    job->point_dir = o->point_dir;
+    job->point_csv = o->point_csv;
+    if (!code)
+        code = td_cli_load_case(o->case_path, &o->sets, base);
+    if (!code)
+        code = add_case_axes(o->grid, *base);
+    if (!code)
+        code = choose_outputs(out, go->journal, o, *base);
+    if (!code)
+        code = check_point_files(o, *base);
+    if (!code)
+        code = check_points(job);
+    if (code)
+        return code;
+    b->points = td_sweep_grid_points(o->grid);
+    b->rows = malloc((size_t)b->points * sizeof *b->rows);
+    if (!b->rows) {
+        td_cli_error("sweep", "out of memory for %ld rows", b->points);
+        return TD_EXIT_FAILED;
+    }
+    for (p = 0; p < b->points; p++)
+        td_sweep_row_unknown(&b->rows[p], TD_SWEEP_NOT_RUN, "not run", "");
+    go->fp = sweep_fingerprint(*base, o->grid);
+    code = sweep_store_read(go->journal, go->fp, b->points, b->rows, &b->resumed);
+    for (p = 0; p < b->points; p++) /* the progress line counts the resumed failures too */
+        b->failed += b->rows[p].state == TD_SWEEP_FAILED;
+    return code;
+}
+
+static void init_options(sweep_options *o, const sweep_world *w, sweep_job *job)
+{
+    memset(o, 0, sizeof *o);
+    o->jobs = w->size > 0 ? 1 : default_jobs(); /* under MPI: workers per rank */
+    o->progress = -1;
+    job->case_path = NULL;
+    job->sets = &o->sets;
+    job->grid = NULL;
+    job->point_dir = NULL;
+    job->point_csv = 0;
+}
+
+/* The one process of a sweep, or rank 0 of an MPI run. */
+static int sweep_lead(int argc, char **argv, const sweep_world *w)
 {
     sweep_options o;
     sweep_job job;
+    sweep_book b;
+    sweep_go go;
     td_output_options out;
     td_case *base = NULL;
-    char journal[TD_OUTPUT_PATH_SIZE];
-    int code;
-    memset(&o, 0, sizeof o);
-    o.jobs = default_jobs();
+    init_options(&o, w, &job);
+    memset(&b, 0, sizeof b);
+    memset(&go, 0, sizeof go);
+    b.job = &job;
     if (td_sweep_grid_create(&o.grid, NULL) != TD_OK) {
         td_cli_error("sweep", "out of memory");
-        return TD_EXIT_FAILED;
+        go.code = TD_EXIT_FAILED;
+    } else {
+        double t0 = sweep_now();
+        job.grid = o.grid;
+        go.code = prepare(argc, argv, &o, &job, &base, &out, &b, &go);
+        b.check_time = sweep_now() - t0;
     }
-    code = parse_options(argc, argv, &o);
-    if (!code)
-        code = td_cli_load_case(o.case_path, &o.sets, &base);
-    if (!code)
-        code = add_case_axes(o.grid, base);
-    job.case_path = o.case_path;
-    job.sets = &o.sets;
-    job.grid = o.grid;
-    job.journal = NULL;
-    job.point_dir = o.point_dir;
-    job.point_csv = o.point_csv;
-    if (!code)
-        code = choose_outputs(&out, journal, &o, base);
-    if (!code)
-        code = check_point_files(&o, base);
-    if (!code)
-        code = check_points(&job);
-    if (!code)
-        code = run_sweep(&o, base, &job, &out, journal);
+    sweep_mpi_go(w, &go);
+    if (!go.code)
+        go.code = run_sweep(&o, base, &b, &out, w, &go);
+    free(b.rows);
     td_case_free(&base);
     td_sweep_grid_free(&o.grid);
-    return code < 0 ? TD_EXIT_OK : code;
+    return go.code < 0 ? TD_EXIT_OK : go.code;
+}
+
+/* Point fd at /dev/null; returns a copy of what it was (-1 if none could be made). */
+static int silence(int fd)
+{
+    int saved = dup(fd), null = open("/dev/null", O_WRONLY);
+    if (null >= 0) {
+        dup2(null, fd);
+        close(null);
+    }
+    return saved;
+}
+
+static void unsilence(int fd, int saved)
+{
+    if (saved >= 0) {
+        dup2(saved, fd);
+        close(saved);
+    }
+}
+
+/* A rank > 0's own copy of the sweep: the options and the grid, the case file's axes included,
+ * and its fingerprint (0 if it could not be made). Returns 0 or an exit code (its message silent). */
+static int follow_setup(int argc, char **argv, sweep_options *o, sweep_job *job, uint64_t *fp)
+{
+    td_case *base = NULL;
+    int code = td_sweep_grid_create(&o->grid, NULL) != TD_OK ? TD_EXIT_FAILED : parse_options(argc, argv, o);
+    if (!code)
+        code = td_cli_load_case(o->case_path, &o->sets, &base);
+    if (!code)
+        code = add_case_axes(o->grid, base);
+    *fp = code ? 0 : sweep_fingerprint(base, o->grid);
+    td_case_free(&base);
+    job->grid = o->grid;
+    job->case_path = o->case_path;
+    job->point_dir = o->point_dir;
+    job->point_csv = o->point_csv;
+    return code;
+}
+
+/* A rank > 0 of an MPI run: the same options, silent (rank 0 reports for the whole sweep), then
+ * the points rank 0 hands out, recorded in this rank's part. A rank whose sweep is not rank 0's
+ * (a case file that differs on its node) runs none: rank 0 and the others run them. */
+static int sweep_follow(int argc, char **argv, const sweep_world *w)
+{
+    sweep_options o;
+    sweep_job job;
+    sweep_go go;
+    sweep_journal *part = NULL;
+    char path[SWEEP_PART_PATH_SIZE];
+    uint64_t fp;
+    int err = silence(STDERR_FILENO), out = silence(STDOUT_FILENO), code;
+    if (out >= 0)
+        close(out); /* stdout stays silent: only rank 0 prints results */
+    init_options(&o, w, &job);
+    code = follow_setup(argc, argv, &o, &job, &fp);
+    sweep_mpi_go(w, &go);
+    unsilence(STDERR_FILENO, err);
+    if (!go.code) {
+        if (!code && fp != go.fp) {
+            td_cli_error("sweep", "rank %d: the case or the grid differs from rank 0's: this rank runs no point",
+                         w->rank);
+            code = TD_EXIT_USAGE;
+        }
+        sweep_part_path(path, go.journal, w->rank);
+        if (code || sweep_journal_open(path, go.fp, td_sweep_grid_points(o.grid), &part))
+            o.jobs = 0;
+        go.code = sweep_mpi_follow(w, &job, o.jobs, &part, td_cli_catch_signals());
+    }
+    td_sweep_grid_free(&o.grid);
+    return go.code < 0 ? TD_EXIT_OK : go.code;
+}
+
+int td_cmd_sweep(int argc, char **argv)
+{
+    sweep_world w;
+    int code = sweep_mpi_init(&w);
+    if (code)
+        return code;
+    code = w.rank > 0 ? sweep_follow(argc, argv, &w) : sweep_lead(argc, argv, &w);
+    return sweep_mpi_finalize(&w, code);
 }

@@ -3,6 +3,7 @@
  * This file only dispatches to the subcommands.
  */
 #include "cli.h"
+#include "sweep_mpi.h"
 
 #include <string.h>
 
@@ -22,7 +23,7 @@ static const char usage[] =
     "\n"
     "options for every command:\n"
     "  -h, --help      help for the command (touchdown COMMAND --help)\n"
-    "  --version       print the library version\n"
+    "  --version       print the library version and whether touchdown sweep has MPI\n"
     "\n"
     "exit codes: 0 success, 1 the simulation or analysis failed, 2 bad input or usage.\n"
     "Case files: docs/case-format.md. Output files: docs/output-format.md.\n";
@@ -49,7 +50,9 @@ int main(int argc, char **argv)
         return TD_EXIT_OK;
     }
     if (!strcmp(argv[1], "--version") || !strcmp(argv[1], "version")) {
-        printf("touchdown %s\n", td_version());
+        char mpi[160];
+        sweep_mpi_describe(mpi, sizeof mpi);
+        printf("touchdown %s\n%s (for touchdown sweep)\n", td_version(), mpi);
         return TD_EXIT_OK;
     }
     for (i = 0; i < sizeof commands / sizeof commands[0]; i++)

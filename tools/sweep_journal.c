@@ -10,6 +10,10 @@
  *
  * Layout: a header (magic, fingerprint, row size, points) and then records (point, row). A record
  * torn by a kill is cut off on resume.
+ *
+ * Under MPI each rank appends to a part of its own, PREFIX.journal.rank-K, in the same layout, so
+ * that no rank waits for another to record a row; rank 0 merges the parts into the table at the
+ * end. A resume, with any number of ranks or none, reads the journal and every part of the sweep.
  */
 #include "sweep_journal.h"
 
@@ -17,6 +21,7 @@
 #include "touchdown/output.h"
 #include "touchdown/version.h"
 
+#include <dirent.h>
 #include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -25,6 +30,8 @@
 #include <unistd.h>
 
 #define JOURNAL_MAGIC "TDSWJ01"
+/* PREFIX.journal.rank-K: the part of rank K of a sweep run under MPI */
+#define PART_TAG ".rank-"
 
 typedef struct journal_header {
     char magic[8];
@@ -40,7 +47,7 @@ typedef struct journal_record {
 
 struct sweep_journal {
     FILE *f;
-    char path[TD_OUTPUT_PATH_SIZE];
+    char path[SWEEP_PART_PATH_SIZE];
     int failed; /* a write failed: the journal was given up */
 };
 
@@ -85,25 +92,140 @@ static journal_header header_of(uint64_t fp, long points)
     return hd;
 }
 
-/* Read the records of an open journal into rows[]; returns the number of rows read and leaves the
- * file positioned after the last whole record (a torn one is cut off there). */
-static long read_records(FILE *f, long points, td_sweep_row *rows)
+/* Read the records of an open journal into rows[] (NULL: only count them); returns the number of
+ * rows that were "not run" before and sets *end to the offset after the last whole record (a torn
+ * one, cut by a kill, ends the reading there). */
+static long read_records(FILE *f, long points, td_sweep_row *rows, off_t *end)
 {
     journal_record rec;
     long got = 0;
-    off_t end = (off_t)sizeof(journal_header);
+    *end = (off_t)sizeof(journal_header);
     while (fread(&rec, sizeof rec, 1, f) == 1) {
         if (rec.point < 0 || rec.point >= points)
             break; /* not a record of this sweep: keep what came before */
-        if (rows[rec.point].state == TD_SWEEP_NOT_RUN)
+        if (!rows || rows[rec.point].state == TD_SWEEP_NOT_RUN)
             got++;
-        rows[rec.point] = rec.row;
-        end += (off_t)sizeof rec;
+        if (rows)
+            rows[rec.point] = rec.row;
+        *end += (off_t)sizeof rec;
     }
-    /* the position set before the stream turns from reading to writing, the torn tail cut */
-    if (fseeko(f, end, SEEK_SET) == 0 && ftruncate(fileno(f), end) != 0)
-        clearerr(f); /* not cut: the next record overwrites it all the same */
     return got;
+}
+
+/* 1 if f starts with the header `want`, 0 if it has no whole header (cut before it was written:
+ * as good as none), -1 if it is the header of another sweep. */
+static int header_matches(FILE *f, const journal_header *want)
+{
+    journal_header have;
+    if (fread(&have, sizeof have, 1, f) != 1)
+        return 0;
+    return memcmp(&have, want, sizeof have) == 0 ? 1 : -1;
+}
+
+static int refuse_foreign(const char *path)
+{
+    td_cli_error("sweep",
+                 "%s is the journal of another sweep (its case, --set, grid or touchdown version "
+                 "differ): remove it to start afresh, or write to another --output",
+                 path);
+    return TD_EXIT_USAGE;
+}
+
+/* The rows of one journal or part at path into rows[], *found counting the new ones; a missing
+ * file is none. Returns 0 or TD_EXIT_USAGE (another sweep's, after an error line). */
+static int read_file(const char *path, uint64_t fp, long points, td_sweep_row *rows, long *found)
+{
+    journal_header want = header_of(fp, points);
+    FILE *f = fopen(path, "rb");
+    off_t end;
+    int m;
+    if (!f)
+        return 0;
+    m = header_matches(f, &want);
+    if (m > 0)
+        *found += read_records(f, points, rows, &end);
+    fclose(f);
+    return m < 0 ? refuse_foreign(path) : 0;
+}
+
+/* 1 if `name` is the file name of a part of the journal whose file name is `base`: base, ".rank-",
+ * then digits alone. */
+static int is_part_name(const char *name, const char *base)
+{
+    size_t n = strlen(base);
+    const char *d;
+    if (strncmp(name, base, n) || strncmp(name + n, PART_TAG, strlen(PART_TAG)))
+        return 0;
+    d = name + n + strlen(PART_TAG);
+    if (!*d)
+        return 0;
+    while (*d >= '0' && *d <= '9')
+        d++;
+    return *d == '\0';
+}
+
+/* Call fn(path, ...) for every part of the journal at `journal` in its directory; stops at the
+ * first nonzero return, which it returns. */
+static int each_part(const char *journal, int (*fn)(const char *path, void *arg), void *arg)
+{
+    char dir[TD_OUTPUT_PATH_SIZE], path[TD_OUTPUT_PATH_SIZE + 256]; /* the directory and a file name */
+    const char *slash = strrchr(journal, '/'), *base = slash ? slash + 1 : journal;
+    struct dirent *e;
+    DIR *d;
+    int code = 0;
+    snprintf(dir, sizeof dir, "%.*s", slash ? (int)(slash - journal + 1) : 1, slash ? journal : ".");
+    if (!(d = opendir(dir)))
+        return 0;
+    while (!code && (e = readdir(d)))
+        if (is_part_name(e->d_name, base)) {
+            snprintf(path, sizeof path, "%s%s", slash ? dir : "", e->d_name);
+            code = fn(path, arg);
+        }
+    closedir(d);
+    return code;
+}
+
+typedef struct read_args {
+    uint64_t fp;
+    long points, *found;
+    td_sweep_row *rows;
+} read_args;
+
+static int read_part(const char *path, void *arg)
+{
+    read_args *a = arg;
+    return read_file(path, a->fp, a->points, a->rows, a->found);
+}
+
+int sweep_store_read(const char *journal, uint64_t fp, long points, td_sweep_row *rows, long *found)
+{
+    read_args a;
+    int code;
+    *found = 0;
+    a.fp = fp;
+    a.points = points;
+    a.rows = rows;
+    a.found = found;
+    code = read_file(journal, fp, points, rows, found);
+    return code ? code : each_part(journal, read_part, &a);
+}
+
+static int remove_part(const char *path, void *arg)
+{
+    (void)arg;
+    remove(path);
+    return 0;
+}
+
+void sweep_store_remove(const char *journal)
+{
+    remove(journal);
+    each_part(journal, remove_part, NULL);
+}
+
+void sweep_part_path(char *dst, const char *journal, int rank)
+{
+    snprintf(dst, SWEEP_PART_PATH_SIZE, "%s%s%d", journal, PART_TAG, rank);
 }
 
 /* A fresh journal at path; 0 or TD_EXIT_FAILED after an error line. */
@@ -118,34 +240,40 @@ static int journal_create(sweep_journal *j, uint64_t fp, long points)
     return 0;
 }
 
-int sweep_journal_open(const char *path, uint64_t fp, long points, td_sweep_row *rows, long *resumed,
-                       sweep_journal **out)
+/* The journal j->path of this sweep, opened to append after its last whole record (a torn one is
+ * cut off), or created when missing or cut before its header was whole. */
+static int journal_reopen(sweep_journal *j, uint64_t fp, long points)
+{
+    journal_header want = header_of(fp, points);
+    off_t end;
+    int m;
+    j->f = fopen(j->path, "r+b");
+    m = j->f ? header_matches(j->f, &want) : 0;
+    if (m < 0)
+        return refuse_foreign(j->path);
+    if (m == 0) {
+        if (j->f)
+            fclose(j->f);
+        return journal_create(j, fp, points);
+    }
+    read_records(j->f, points, NULL, &end);
+    /* the position set before the stream turns from reading to writing, the torn tail cut */
+    if (fseeko(j->f, end, SEEK_SET) == 0 && ftruncate(fileno(j->f), end) != 0)
+        clearerr(j->f); /* not cut: the next record overwrites it all the same */
+    return 0;
+}
+
+int sweep_journal_open(const char *path, uint64_t fp, long points, sweep_journal **out)
 {
     sweep_journal *j = calloc(1, sizeof *j);
-    journal_header want = header_of(fp, points), have;
-    int code = 0;
-    *resumed = 0;
+    int code;
     *out = NULL;
     if (!j) {
         td_cli_error("sweep", "out of memory");
         return TD_EXIT_FAILED;
     }
     snprintf(j->path, sizeof j->path, "%s", path);
-    j->f = fopen(path, "r+b");
-    if (j->f && fread(&have, sizeof have, 1, j->f) == 1) {
-        if (memcmp(&have, &want, sizeof have) != 0) {
-            td_cli_error("sweep",
-                         "%s is the journal of another sweep (its case, --set, grid or touchdown version "
-                         "differ): remove it to start afresh, or write to another --output",
-                         path);
-            code = TD_EXIT_USAGE;
-        } else
-            *resumed = read_records(j->f, points, rows);
-    } else { /* none, or cut before its header was whole: start one */
-        if (j->f)
-            fclose(j->f);
-        code = journal_create(j, fp, points);
-    }
+    code = journal_reopen(j, fp, points);
     if (code) {
         if (j->f)
             fclose(j->f);
@@ -174,14 +302,12 @@ void sweep_journal_record(sweep_journal *j, long point, const td_sweep_row *row)
     }
 }
 
-void sweep_journal_close(sweep_journal **j, int finished)
+void sweep_journal_close(sweep_journal **j)
 {
     if (!j || !*j)
         return;
     if ((*j)->f)
         fclose((*j)->f);
-    if (finished)
-        remove((*j)->path);
     free(*j);
     *j = NULL;
 }

@@ -3,8 +3,10 @@
 #define TD_TOOLS_SWEEP_JOURNAL_H
 
 #include "touchdown/case.h"
+#include "touchdown/output.h"
 #include "touchdown/sweep.h"
 
+#include <stddef.h>
 #include <stdint.h>
 
 typedef struct sweep_journal sweep_journal;
@@ -13,18 +15,31 @@ typedef struct sweep_journal sweep_journal;
  * values, the row layout and the library version. A journal is resumed only by the same sweep. */
 uint64_t sweep_fingerprint(const td_case *base, const td_sweep_grid *grid);
 
-/* Open the journal at `path` for a sweep of `points` points with fingerprint `fp`. If a journal of
- * the same sweep is there, the rows it holds are put into rows[] and counted in *resumed; a journal
- * of another sweep is refused. Returns 0, or TD_EXIT_USAGE / TD_EXIT_FAILED after an error line. */
-int sweep_journal_open(const char *path, uint64_t fp, long points, td_sweep_row *rows, long *resumed,
-                       sweep_journal **out);
+/* The rows held by the journal at `journal` and by its parts (journal.rank-K, written by the ranks
+ * of an MPI run) into rows[] (missing files are none), *found counting the rows that were "not
+ * run" before. A journal or part of another sweep is refused: TD_EXIT_USAGE after an error line. */
+int sweep_store_read(const char *journal, uint64_t fp, long points, td_sweep_row *rows, long *found);
+
+/* Remove the journal and its parts (once a finished table is written). */
+void sweep_store_remove(const char *journal);
+
+/* Room for the path of a part: the journal's, ".rank-" and a rank. */
+#define SWEEP_PART_PATH_SIZE (TD_OUTPUT_PATH_SIZE + 24)
+
+/* dst (SWEEP_PART_PATH_SIZE bytes) = the part of `rank` of the journal at `journal` (shorter than
+ * TD_OUTPUT_PATH_SIZE). */
+void sweep_part_path(char *dst, const char *journal, int rank);
+
+/* Open the journal (or part) at `path` of the sweep with fingerprint `fp` to append rows: created
+ * when missing, else its torn last record is cut off. One of another sweep is refused. Returns 0,
+ * or TD_EXIT_USAGE / TD_EXIT_FAILED after an error line. */
+int sweep_journal_open(const char *path, uint64_t fp, long points, sweep_journal **out);
 
 /* Record the row of `point` (a row the point's own run produced). A write that fails (disk full)
  * is reported once and ends the journal: the sweep goes on, a resume recomputes what is missing. */
 void sweep_journal_record(sweep_journal *j, long point, const td_sweep_row *row);
 
-/* Close the journal and set *j to NULL (accepts NULL); remove its file when `finished` (every
- * point is in the table written). */
-void sweep_journal_close(sweep_journal **j, int finished);
+/* Close the journal and set *j to NULL (accepts NULL). */
+void sweep_journal_close(sweep_journal **j);
 
 #endif

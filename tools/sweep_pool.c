@@ -151,7 +151,7 @@ static int reap(pid_t pid)
     return status;
 }
 
-static void report_failure(const sweep_job *job, long point, const td_sweep_row *row)
+void sweep_report_failure(const sweep_job *job, long point, const td_sweep_row *row)
 {
     int a;
     fprintf(stderr, "touchdown sweep: point %ld (", point);
@@ -161,27 +161,39 @@ static void report_failure(const sweep_job *job, long point, const td_sweep_row 
     fprintf(stderr, "): %s: %s\n", row->status, row->message[0] ? row->message : "no message");
 }
 
-/* The worker's pipe is closed (EOF): collect its process and record its point's row. */
-static void worker_finish(worker *w, const sweep_job *job, td_sweep_row *rows)
+/* The pool: its workers, how many run, whether the feed has ended, what it feeds from. */
+typedef struct pool {
+    worker ws[TD_SWEEP_POOL_MAX];
+    int n, running, ended;
+    const sweep_job *job;
+    const sweep_feed *feed;
+    volatile sig_atomic_t *cancel;
+} pool;
+
+/* The worker's pipe is closed (EOF): collect its process and hand its point's row to the feed. A
+ * worker killed by the signal that stops the sweep (mpirun sends SIGTERM to the whole job) leaves
+ * its point without a row, as one the pool kills does. */
+static void worker_finish(pool *pl, worker *w)
 {
     int status = reap(w->pid);
     char why[96];
+    td_sweep_row row;
     close(w->fd);
     w->pid = 0;
     if (WIFEXITED(status) && WEXITSTATUS(status) == 0 && w->got == sizeof w->row) {
-        rows[w->point] = w->row;
-        sweep_journal_record(job->journal, w->point, &w->row); /* a dead worker is not: a resume retries it */
-    } else {
-        if (WIFSIGNALED(status))
-            snprintf(why, sizeof why, "the worker was killed by signal %d (%s)", WTERMSIG(status),
-                     strsignal(WTERMSIG(status)));
-        else
-            snprintf(why, sizeof why, "the worker ended with status %d before sending its result",
-                     WIFEXITED(status) ? WEXITSTATUS(status) : -1);
-        td_sweep_row_unknown(&rows[w->point], TD_SWEEP_FAILED, "worker died", why);
+        pl->feed->finished(pl->feed->ctx, w->point, &w->row, 1);
+        return;
     }
-    if (rows[w->point].state == TD_SWEEP_FAILED)
-        report_failure(job, w->point, &rows[w->point]);
+    if (*pl->cancel)
+        return;
+    if (WIFSIGNALED(status))
+        snprintf(why, sizeof why, "the worker was killed by signal %d (%s)", WTERMSIG(status),
+                 strsignal(WTERMSIG(status)));
+    else
+        snprintf(why, sizeof why, "the worker ended with status %d before sending its result",
+                 WIFEXITED(status) ? WEXITSTATUS(status) : -1);
+    td_sweep_row_unknown(&row, TD_SWEEP_FAILED, "worker died", why);
+    pl->feed->finished(pl->feed->ctx, w->point, &row, 0);
 }
 
 /* Read what the worker has sent; 1 once its pipe is closed. */
@@ -202,76 +214,87 @@ static int worker_read(worker *w)
     return 0;
 }
 
-/* Wait (at most a quarter of a second, so that a signal is seen soon) for workers to send or
- * end, and finish those that ended. Returns the number finished. */
-static int pool_wait(worker *ws, int n, const sweep_job *job, td_sweep_row *rows)
+/* Wait (at most the feed's wait_ms, so that a signal or a request is seen soon) for workers to
+ * send or end, and finish those that ended. */
+static void pool_wait(pool *pl)
 {
     struct pollfd pfd[TD_SWEEP_POOL_MAX];
-    int i, done = 0;
-    for (i = 0; i < n; i++) {
-        pfd[i].fd = ws[i].pid > 0 ? ws[i].fd : -1;
+    int i;
+    for (i = 0; i < pl->n; i++) {
+        pfd[i].fd = pl->ws[i].pid > 0 ? pl->ws[i].fd : -1;
         pfd[i].events = POLLIN;
         pfd[i].revents = 0;
     }
-    if (poll(pfd, (nfds_t)n, 250) <= 0)
-        return 0;
-    for (i = 0; i < n; i++)
-        if (ws[i].pid > 0 && pfd[i].revents && worker_read(&ws[i])) {
-            worker_finish(&ws[i], job, rows);
-            done++;
+    if (poll(pfd, (nfds_t)pl->n, pl->feed->wait_ms) <= 0)
+        return;
+    for (i = 0; i < pl->n; i++)
+        if (pl->ws[i].pid > 0 && pfd[i].revents && worker_read(&pl->ws[i])) {
+            worker_finish(pl, &pl->ws[i]);
+            pl->running--;
         }
-    return done;
 }
 
-/* Stop every running worker; their points stay "not run". */
-static void pool_kill(worker *ws, int n)
+/* Stop every running worker; their points get no row. */
+static void pool_kill(pool *pl)
 {
     int i;
-    for (i = 0; i < n; i++)
-        if (ws[i].pid > 0) {
-            kill(ws[i].pid, SIGTERM);
-            reap(ws[i].pid);
-            close(ws[i].fd);
-            ws[i].pid = 0;
+    for (i = 0; i < pl->n; i++)
+        if (pl->ws[i].pid > 0) {
+            kill(pl->ws[i].pid, SIGTERM);
+            reap(pl->ws[i].pid);
+            close(pl->ws[i].fd);
+            pl->ws[i].pid = 0;
         }
+    pl->running = 0;
 }
 
-/* Give the next point to every free worker; a point whose worker cannot start is failed. */
-static int pool_fill(worker *ws, int n, const sweep_job *job, td_sweep_row *rows, long *next, long points)
+/* Give the feed's next point to every free worker; a point whose worker cannot start is failed. */
+static void pool_fill(pool *pl)
 {
-    int i, started = 0;
-    for (i = 0; i < n && *next < points; i++) {
-        if (ws[i].pid > 0)
+    td_sweep_row row;
+    long p;
+    int i;
+    for (i = 0; i < pl->n && !pl->ended; i++) {
+        if (pl->ws[i].pid > 0)
             continue;
-        while (*next < points && rows[*next].state != TD_SWEEP_NOT_RUN) /* resumed from the journal */
-            (*next)++;
-        if (*next == points)
+        p = pl->feed->next(pl->feed->ctx);
+        if (p == SWEEP_FEED_WAIT)
             break;
-        if (worker_start(&ws[i], job, *next)) {
-            td_sweep_row_unknown(&rows[*next], TD_SWEEP_FAILED, "worker died", "cannot start a worker process");
-            report_failure(job, *next, &rows[*next]);
-            ws[i].pid = 0;
+        if (p == SWEEP_FEED_END) {
+            pl->ended = 1;
+            break;
+        }
+        if (worker_start(&pl->ws[i], pl->job, p)) {
+            pl->ws[i].pid = 0;
+            td_sweep_row_unknown(&row, TD_SWEEP_FAILED, "worker died", "cannot start a worker process");
+            pl->feed->finished(pl->feed->ctx, p, &row, 0);
         } else
-            started++;
-        (*next)++;
+            pl->running++;
     }
-    return started;
 }
 
-long sweep_pool_run(const sweep_job *job, int jobs, td_sweep_row *rows, volatile sig_atomic_t *cancel)
+void sweep_pool_serve(const sweep_job *job, int jobs, const sweep_feed *feed, volatile sig_atomic_t *cancel)
 {
-    worker ws[TD_SWEEP_POOL_MAX];
-    long next = 0, points = td_sweep_grid_points(job->grid), not_run = 0, p;
-    int running = 0;
-    memset(ws, 0, sizeof ws);
-    if (jobs > TD_SWEEP_POOL_MAX)
-        jobs = TD_SWEEP_POOL_MAX;
-    while (!*cancel && (next < points || running > 0)) {
-        running += pool_fill(ws, jobs, job, rows, &next, points);
-        running -= pool_wait(ws, jobs, job, rows);
+    pool *pl;
+    if (jobs < 1)
+        return;
+    pl = calloc(1, sizeof *pl); /* 256 workers with their rows: too much for the stack */
+    if (!pl) {
+        td_cli_error("sweep", "out of memory for the worker pool");
+        return;
     }
-    pool_kill(ws, jobs);
-    for (p = 0; p < points; p++)
-        not_run += rows[p].state == TD_SWEEP_NOT_RUN;
-    return not_run;
+    pl->n = jobs > TD_SWEEP_POOL_MAX ? TD_SWEEP_POOL_MAX : jobs;
+    pl->job = job;
+    pl->feed = feed;
+    pl->cancel = cancel;
+    while (!*cancel) {
+        pool_fill(pl);
+        if (pl->ended && pl->running == 0)
+            break;
+        pool_wait(pl);
+        if (feed->service && feed->service(feed->ctx))
+            break;
+    }
+    pool_kill(pl);
+    free(pl);
 }

@@ -26,6 +26,8 @@ check "touchdown (no arguments): exit 2, usage on stderr" \
 t "$work/version" --version
 check "touchdown --version: exit 0, 'touchdown X.Y.Z' ($(cat "$work/version/.out"))" \
     test "$rc" = 0 -a -n "$(grep -E '^touchdown [0-9]+\.[0-9]+\.[0-9]+' "$work/version/.out")"
+check "touchdown --version: the second line says whether MPI is built in ($(sed -n 2p "$work/version/.out"))" \
+    test -n "$(sed -n 2p "$work/version/.out" | grep -E '^built (with|without) MPI')"
 for cmd in run info modal plot; do
     t "$work/help-$cmd" "$cmd" --help
     check "touchdown $cmd --help: exit 0, its usage on stdout" \
@@ -77,7 +79,7 @@ check "run --set end_time=0.0123: t_reached $(jf "$d/.out" t_reached)" \
     awk -v t="$(jf "$d/.out" t_reached)" 'BEGIN { exit !(t == 0.0123) }'
 check "run --set speed=95: speed $(jf "$d/.out" speed)" test "$(jf "$d/.out" speed)" = 95
 check "run --json: library_version is the tool's ($(jf "$d/.out" library_version))" \
-    test "touchdown $(jf "$d/.out" library_version | tr -d '"')" = "$(cat "$work/version/.out")"
+    test "touchdown $(jf "$d/.out" library_version | tr -d '"')" = "$(head -n 1 "$work/version/.out")"
 
 # ---- info on every shipped case; the rig alone is not a case --------------------------------
 for c in "$src"/cases/*.cfg; do
