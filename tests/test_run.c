@@ -67,6 +67,33 @@ static td_model *small_rotor(void)
     return m;
 }
 
+/* small_rotor without the unbalance steps: a free linear rotor in its steady unbalance orbit. */
+static td_model *steady_rotor(void)
+{
+    td_model *m = NULL;
+    td_shaft_element el = {0.1, 0.02, 0.0, {2.11e11, 8.1e10, 7810.0}};
+    td_disc disc = {3, 4.91, 0.0245, 0.0124};
+    td_bearing b0 = {0, 1e8, 1e8, 200.0, 200.0}, b6 = {6, 1e8, 1e8, 200.0, 200.0};
+    td_amb amb = {1, 1, 0.0, 1.0, 1e5, 20.0, 1e-4, 1e4, 0, 0.0, 0.0};
+    td_retainer ret = {.node = 3, .clearance = CLEARANCE, .shaft_radius = 0.01, .bore_radius = 0.01 + CLEARANCE};
+    td_unbalance u = {3, 1e-5, 0.7};
+    td_error err;
+    int i;
+    assert_int_equal(td_model_create(&m, &err), TD_OK);
+    for (i = 0; i < 6; i++)
+        assert_int_equal(td_model_add_shaft_element(m, &el, &err), TD_OK);
+    assert_int_equal(td_model_add_disc(m, &disc, &err), TD_OK);
+    assert_int_equal(td_model_add_bearing(m, &b0, &err), TD_OK);
+    assert_int_equal(td_model_add_bearing(m, &b6, &err), TD_OK);
+    assert_int_equal(td_model_add_amb(m, &amb, &err), TD_OK);
+    assert_int_equal(td_model_add_retainer(m, &ret, &err), TD_OK);
+    assert_int_equal(td_model_add_unbalance(m, &u, &err), TD_OK);
+    assert_int_equal(td_model_set_speed(m, OMEGA, &err), TD_OK);
+    if (td_model_validate(m, &err) != TD_OK)
+        fail_msg("model: %s", err.message);
+    return m;
+}
+
 static td_sim *make_sim(const td_model *m)
 {
     td_sim *sim = NULL;
@@ -666,6 +693,122 @@ static void test_json_string(void **state)
 
 /* td_run_summary_ending on hand-made totals over a stretch of 1 s at 100 rad/s (15.9 Hz spin):
  * the whirl rate is the whirl angle swept over the contact time, signed like the spin. */
+/* The steady orbit of steady_rotor, started on it, over T_END with the section from a third of the
+ * run on; free_flight: the closed-form flight carries it, else IDA. */
+static void steady_section(int free_flight, td_run_summary *s)
+{
+    td_model *m = steady_rotor();
+    td_sim *sim = NULL;
+    td_sim_options opt;
+    td_output_options out;
+    td_error err;
+    td_sim_options_default(&opt);
+    opt.start = TD_START_ORBIT;
+    opt.solver.free_flight = free_flight;
+    if (!free_flight) { /* tight enough that IDA's own error stays far below the check's 1e-5 */
+        opt.solver.rtol = 1e-10;
+        opt.solver.atol = 1e-15;
+    }
+    if (td_sim_create(m, &opt, &sim, &err) != TD_OK)
+        fail_msg("td_sim_create: %s", err.message);
+    td_output_options_default(&out);
+    out.sample_rate = RATE;
+    out.section_after = 1.0 / 3.0;
+    if (td_run(sim, T_END, &out, NULL, NULL, s, &err) != TD_OK)
+        fail_msg("td_run: %s", err.message);
+    td_sim_free(&sim);
+    td_model_free(&m);
+}
+
+/* The harmonic response's position of node 3 where the spin angle is a multiple of 2 pi: the
+ * unbalance force turns with e^{i omega t}, so there the orbit is at (Re X, Re Y). */
+static double harmonic_section_radius(void)
+{
+    td_model *m = steady_rotor();
+    td_system *sys = NULL;
+    td_harmonic *h = NULL;
+    td_unbalance u;
+    td_orbit o;
+    td_error err;
+    double r;
+    assert_int_equal(td_system_create(m, &sys, &err), TD_OK);
+    td_model_get_unbalance(m, 0, &u);
+    assert_int_equal(td_harmonic_compute(sys, OMEGA, &u, 1, &h, &err), TD_OK);
+    assert_int_equal(td_harmonic_orbit(h, 3, &o), TD_OK);
+    r = hypot(o.x_re, o.y_re);
+    td_harmonic_free(&h);
+    td_system_free(&sys);
+    td_model_free(&m);
+    return r;
+}
+
+/* A free linear rotor in its steady unbalance orbit: every once-per-revolution sample is the
+ * harmonic response's radius at phase 0 (closed form, touchdown/modal.h), from the flight's
+ * closed form and from IDA's interpolant alike; one crossing a revolution after the transient. */
+static void test_section_steady_orbit(void **state)
+{
+    td_run_summary *s = calloc(2, sizeof *s);
+    double expect = harmonic_section_radius(), period = 2.0 * TD_PI / OMEGA;
+    int pass, i;
+    (void)state;
+    assert_non_null(s);
+    steady_section(1, &s[0]);
+    steady_section(0, &s[1]);
+    assert_true(s[0].stats.flight_time > 0.5 * T_END); /* the flight carried it */
+    assert_true(s[1].stats.flight_time == 0.0);
+    for (pass = 0; pass < 2; pass++) {
+        const td_run_summary *p = &s[pass];
+        /* crossings at t = 2 pi k / omega in [T_END / 3, T_END] */
+        long expect_count = (long)floor(T_END / period) - (long)ceil(T_END / 3.0 / period) + 1;
+        assert_int_equal(p->section_count, expect_count);
+        assert_int_equal(p->section_kept,
+                         expect_count < TD_RUN_SECTION_SAMPLES ? expect_count : TD_RUN_SECTION_SAMPLES);
+        assert_int_equal(p->section_retainer, 0);
+        assert_close(p->section_start, T_END / 3.0, 1e-15, 0.0);
+        for (i = 0; i < p->section_kept; i++) {
+            double k = p->section_time[i] / period;
+            assert_close(k, floor(k + 0.5), 1e-9, 0.0);
+            /* flight: the closed form; IDA: its interpolant at tight tolerances */
+            assert_close(p->section_radius[i], expect, pass == 0 ? 1e-9 : 1e-5, 0.0);
+        }
+    }
+    free(s);
+}
+
+/* Taking the section moves nothing: the contact run of small_rotor gives the same answers, bit for
+ * bit, with the section over the whole run and without one. */
+static void test_section_changes_nothing(void **state)
+{
+    td_run_summary *s = calloc(2, sizeof *s);
+    int pass, k;
+    (void)state;
+    assert_non_null(s);
+    for (pass = 0; pass < 2; pass++) {
+        td_model *m = small_rotor();
+        td_sim *sim = make_sim(m);
+        td_output_options out;
+        td_error err;
+        td_output_options_default(&out);
+        out.sample_rate = RATE;
+        out.section_after = pass == 0 ? 0.0 : 1.0;
+        if (td_run(sim, T_END, &out, NULL, NULL, &s[pass], &err) != TD_OK)
+            fail_msg("td_run: %s", err.message);
+        td_sim_free(&sim);
+        td_model_free(&m);
+    }
+    assert_true(s[0].contacts > 0 && s[0].section_count > 0 && s[1].section_count == 0);
+    assert_true(same_bits(s[0].peak_housing_force, s[1].peak_housing_force));
+    assert_true(same_bits(s[0].total_impulse, s[1].total_impulse));
+    assert_true(same_bits(s[0].friction_work, s[1].friction_work));
+    assert_true(same_bits(s[0].peak_normal_force, s[1].peak_normal_force));
+    assert_true(same_bits(s[0].stats.time_in_contact, s[1].stats.time_in_contact));
+    assert_int_equal(s[0].stats.steps, s[1].stats.steps);
+    assert_int_equal(s[0].events, s[1].events);
+    for (k = 0; k < s[0].retainer_count; k++)
+        assert_memory_equal(&s[0].retainers[k].totals, &s[1].retainers[k].totals, sizeof s[0].retainers[k].totals);
+    free(s);
+}
+
 static void test_summary_ending(void **state)
 {
     static const struct {
@@ -709,11 +852,17 @@ static void test_summary_ending(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_summary_text),          cmocka_unit_test(test_run_bad_arguments),
-        cmocka_unit_test(test_run_matches_hand_loop), cmocka_unit_test(test_run_cancel),
-        cmocka_unit_test(test_summary_unstable_run),  cmocka_unit_test(test_summary_failed_before_start),
-        cmocka_unit_test(test_sim_accessors),         cmocka_unit_test(test_json_string),
+        cmocka_unit_test(test_summary_text),
+        cmocka_unit_test(test_run_bad_arguments),
+        cmocka_unit_test(test_run_matches_hand_loop),
+        cmocka_unit_test(test_run_cancel),
+        cmocka_unit_test(test_summary_unstable_run),
+        cmocka_unit_test(test_summary_failed_before_start),
+        cmocka_unit_test(test_sim_accessors),
+        cmocka_unit_test(test_json_string),
         cmocka_unit_test(test_summary_ending),
+        cmocka_unit_test(test_section_steady_orbit),
+        cmocka_unit_test(test_section_changes_nothing),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
