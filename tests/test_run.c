@@ -816,14 +816,17 @@ static void test_summary_ending(void **state)
         long contacts;
         const char *want;
         double f;
+        td_regime regime; /* td_run_summary_regime: the same stretch, the same thresholds */
     } cases[] = {
-        {0.0, 0.0, 0.0, 100.0, 0, "free (no contact)", 0.0},
-        {0.0, 0.0, 0.0, 100.0, 3, "recovered", 0.0},
-        {1.0, 0.9, 0.2, 100.0, 3, "rolling on the retainers", 0.2 / (2.0 * TD_PI)},
-        {1.0, 0.1, -0.2, 100.0, 3, "sliding on the retainers", -0.2 / (2.0 * TD_PI)},
-        {1.0, 0.9, -60.0, 100.0, 3, "backward whirl at -9.549 Hz, rolling", -60.0 / (2.0 * TD_PI)},
-        {0.4, 0.0, 24.0, 100.0, 3, "forward rub at 9.549 Hz, sliding, bouncing", 60.0 / (2.0 * TD_PI)},
-        {1.0, 0.9, -60.0, 0.5, 3, "at rest", 0.0},
+        {0.0, 0.0, 0.0, 100.0, 0, "free (no contact)", 0.0, TD_REGIME_FREE},
+        {0.0, 0.0, 0.0, 100.0, 3, "recovered", 0.0, TD_REGIME_FREE},
+        {1.0, 0.9, 0.2, 100.0, 3, "rolling on the retainers", 0.2 / (2.0 * TD_PI), TD_REGIME_RUB},
+        {1.0, 0.1, -0.2, 100.0, 3, "sliding on the retainers", -0.2 / (2.0 * TD_PI), TD_REGIME_RUB},
+        {1.0, 0.9, -60.0, 100.0, 3, "backward whirl at -9.549 Hz, rolling", -60.0 / (2.0 * TD_PI),
+         TD_REGIME_BACKWARD_WHIRL},
+        {0.4, 0.0, 24.0, 100.0, 3, "forward rub at 9.549 Hz, sliding, bouncing", 60.0 / (2.0 * TD_PI),
+         TD_REGIME_BOUNCE},
+        {1.0, 0.9, -60.0, 0.5, 3, "at rest", 0.0, TD_REGIME_RUB},
     };
     size_t i;
     (void)state;
@@ -846,7 +849,13 @@ static void test_summary_ending(void **state)
         td_run_summary_ending(&s, before, after, 2, 100.0, cases[i].speed);
         assert_string_equal(s.ending, cases[i].want);
         assert_close(s.ending_whirl_frequency, cases[i].f, 1e-12, 0.0);
+        s.status = TD_OK;
+        assert_int_equal(td_run_summary_regime(&s), cases[i].regime);
+        s.status = TD_ERR_SOLVER;
+        assert_int_equal(td_run_summary_regime(&s), TD_REGIME_FAILED);
     }
+    assert_string_equal(td_regime_name(TD_REGIME_BACKWARD_WHIRL), "backward whirl");
+    assert_string_equal(td_regime_name(TD_REGIME_FAILED), "failed");
 }
 
 int main(void)
