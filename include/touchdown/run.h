@@ -151,6 +151,7 @@ typedef struct td_run_summary {
     long section_count;                            /**< crossings taken (also those no longer kept) */
     int section_kept;                              /**< the last this many are kept, <= TD_RUN_SECTION_SAMPLES */
     int section_retainer;                          /**< retainer sampled, -1: the model has none */
+    double section_clearance;                      /**< m, its radial clearance (NaN without one) */
     double section_time[TD_RUN_SECTION_SAMPLES];   /**< s, oldest first */
     double section_radius[TD_RUN_SECTION_SAMPLES]; /**< m, sqrt(x^2 + y^2) of the node relative to its retainer */
 } td_run_summary;

@@ -100,6 +100,7 @@ typedef struct td_sweep_row {
     int section_kept;                    /**< radii kept in section_radius (td_run_summary.section_kept) */
     double section_radius_min;           /**< m, the smallest and largest kept radius (NaN: none) */
     double section_radius_max;
+    double section_clearance;                      /**< m, the sampled retainer's radial clearance (NaN: none) */
     double section_radius[TD_RUN_SECTION_SAMPLES]; /**< m, the last section radii, oldest first (NaN
                                                         beyond section_kept) */
 } td_sweep_row;

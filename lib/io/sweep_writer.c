@@ -47,6 +47,7 @@ static const sweep_column columns[] = {
     {"section_count", "-", COL_LONG, offsetof(td_sweep_row, section_count)},
     {"section_radius_min", "m", COL_DOUBLE, offsetof(td_sweep_row, section_radius_min)},
     {"section_radius_max", "m", COL_DOUBLE, offsetof(td_sweep_row, section_radius_max)},
+    {"section_clearance", "m", COL_DOUBLE, offsetof(td_sweep_row, section_clearance)},
     {"final_speed", "rad/s", COL_DOUBLE, offsetof(td_sweep_row, final_speed)},
     {"peak_amb_load", "1", COL_DOUBLE, offsetof(td_sweep_row, peak_amb_load)},
     {"t_reached", "s", COL_DOUBLE, offsetof(td_sweep_row, t_reached)},

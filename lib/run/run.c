@@ -262,8 +262,11 @@ static int rigid_constraint(const td_retainer *ret, const td_sim_options *o)
 static void summary_section(run_state *r)
 {
     td_run_summary *s = r->s;
+    td_retainer ret;
     s->section_count = td_sim_section_count(r->sim);
     s->section_retainer = s->retainer_count > 0 ? (s->peak_housing_retainer >= 0 ? s->peak_housing_retainer : 0) : -1;
+    if (s->section_retainer >= 0 && td_model_get_retainer(td_sim_model(r->sim), s->section_retainer, &ret) == TD_OK)
+        s->section_clearance = ret.clearance;
     s->section_kept =
         td_sim_section_read(r->sim, s->section_retainer, s->section_time, s->section_radius, TD_RUN_SECTION_SAMPLES);
 }
@@ -423,6 +426,8 @@ static td_status write_section(td_recorder *rec, const td_run_summary *s, td_err
         st = td_recorder_set_long(rec, "section_count", s->section_count, err);
     if (st == TD_OK)
         st = td_recorder_set_long(rec, "section_retainer", s->section_retainer, err);
+    if (st == TD_OK)
+        st = td_recorder_set_double(rec, "section_clearance", s->section_clearance, err);
     if (st == TD_OK && s->section_kept > 0)
         st = td_recorder_set_doubles(rec, "section_time", s->section_time, s->section_kept, err);
     if (st == TD_OK && s->section_kept > 0)

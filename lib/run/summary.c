@@ -34,6 +34,7 @@ void td_run_summary_init(td_run_summary *s, double t0, double t_end, double spee
     s->realtime_factor = -1.0;
     s->section_start = -1.0;
     s->section_retainer = -1;
+    s->section_clearance = NAN;
     s->stats.first_contact_time = -1.0;
     s->stats.peak_time = -1.0;
     s->stats.peak_retainer = -1;

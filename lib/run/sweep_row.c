@@ -11,6 +11,7 @@ static void row_section(td_sweep_row *row, const td_run_summary *s)
     int i;
     row->section_count = s->section_count;
     row->section_kept = s->section_kept;
+    row->section_clearance = s->section_clearance;
     row->section_radius_min = row->section_radius_max = NAN;
     for (i = 0; i < TD_RUN_SECTION_SAMPLES; i++) {
         row->section_radius[i] = i < s->section_kept ? s->section_radius[i] : NAN;
@@ -61,7 +62,7 @@ void td_sweep_row_unknown(td_sweep_row *row, td_sweep_state state, const char *s
     row->returned_to_free_orbit = -1;
     snprintf(row->regime, sizeof row->regime, "%s", td_regime_name(TD_REGIME_FAILED));
     row->section_count = -1;
-    row->section_radius_min = row->section_radius_max = NAN;
+    row->section_radius_min = row->section_radius_max = row->section_clearance = NAN;
     for (i = 0; i < TD_RUN_SECTION_SAMPLES; i++)
         row->section_radius[i] = NAN;
 }
