@@ -266,17 +266,21 @@ static int quantity_figure(plot_job *job, const plot_file *f, const char *prefix
 
 /* ---- regime map ----------------------------------------------------------------------------- */
 
-/* Half the gap from `at` to the nearest other value of v (n of them): a tile's half width. */
-static double half_width(const double *v, size_t n, double at)
+/* A tile's edges around `at`: halfway to the next value of v (n of them) on either side, so that
+ * tiles of unevenly spaced values meet; the gap of the other side where there is no neighbour. */
+static void tile_edges(const double *v, size_t n, double at, double *lo, double *hi)
 {
-    double gap = HUGE_VAL;
+    double below = -HUGE_VAL, above = HUGE_VAL, w;
     size_t i;
-    for (i = 0; i < n; i++)
-        if (isfinite(v[i]) && v[i] != at && fabs(v[i] - at) < gap)
-            gap = fabs(v[i] - at);
-    if (isfinite(gap))
-        return 0.5 * gap;
-    return at != 0.0 ? 0.05 * fabs(at) : 0.5; /* a single value: a narrow tile */
+    for (i = 0; i < n; i++) {
+        if (isfinite(v[i]) && v[i] < at && v[i] > below)
+            below = v[i];
+        if (isfinite(v[i]) && v[i] > at && v[i] < above)
+            above = v[i];
+    }
+    w = at != 0.0 ? 0.05 * fabs(at) : 0.5; /* a single value: a narrow tile */
+    *lo = isfinite(below) ? 0.5 * (at + below) : isfinite(above) ? at - 0.5 * (above - at) : at - w;
+    *hi = isfinite(above) ? 0.5 * (at + above) : isfinite(below) ? at + 0.5 * (at - below) : at + w;
 }
 
 static int write_regimes(const plot_job *job, const plot_file *f, const char *name, int x, int y, int *present)
@@ -288,15 +292,17 @@ static int write_regimes(const plot_job *job, const plot_file *f, const char *na
         return PLOT_FAILED;
     fprintf(out,
             "# regime of every point of %s (td_run_summary_regime, docs/output-format.md)\n"
-            "# columns: 1 %s, 2 %s, 3 half width, 4 half height, 5 regime (0 failed, 1 free, 2 rub, 3 bounce,\n"
-            "# 4 backward whirl), 6 point\n",
+            "# columns: 1 %s, 2 %s, 3-4 the tile's left and right edges, 5-6 its bottom and top edges (halfway\n"
+            "# to the neighbouring values), 7 regime (0 failed, 1 free, 2 rub, 3 bounce, 4 backward whirl), 8 point\n",
             f->path, s->key[x], y >= 0 ? s->key[y] : "(none: 0)");
     for (p = 0; p < s->n; p++) {
         int r = s->regime[p] >= 0 ? s->regime[p] : TD_REGIME_FAILED;
-        double yv = y >= 0 ? s->value[y][p] : 0.0;
+        double yv = y >= 0 ? s->value[y][p] : 0.0, x0, x1, y0 = -0.5, y1 = 0.5;
         present[r] = 1;
-        fprintf(out, "%.12g %.12g %.12g %.12g %d %lu\n", s->value[x][p], yv,
-                half_width(s->value[x], s->n, s->value[x][p]), y >= 0 ? half_width(s->value[y], s->n, yv) : 0.5, r,
+        tile_edges(s->value[x], s->n, s->value[x][p], &x0, &x1);
+        if (y >= 0)
+            tile_edges(s->value[y], s->n, yv, &y0, &y1);
+        fprintf(out, "%.12g %.12g %.12g %.12g %.12g %.12g %d %lu\n", s->value[x][p], yv, x0, x1, y0, y1, r,
                 (unsigned long)p);
     }
     return plot_close(out, job->opt, name);

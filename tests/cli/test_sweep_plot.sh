@@ -51,7 +51,7 @@ while IFS= read -r line; do
     rmax=${f[$((c_max - 1))]}
     awk -v s="$speed" -v q="$phf" -v p="$p" 'function near(a, b) { return a == b || (a - b) ^ 2 <= 1e-22 * b ^ 2 }
         !/^#/ && NF == 3 && $1 + 0 == s + 0 && near($2, q) && $3 == p { found = 1 } END { exit !found }' "$d/sweep-peak_housing_force.dat" || bad="$bad point $p: peak_housing_force"
-    code=$(awk -v p="$p" '!/^#/ && $6 == p { print $5 }' "$d/regime-map.dat")
+    code=$(awk -v p="$p" '!/^#/ && $8 == p { print $7 }' "$d/regime-map.dat")
     [ -n "$code" ] && [ "${regimes[$code]}" = "$reg" ] || bad="$bad point $p: regime $reg, map code '$code'"
     # the section: min(count, 64) radii of the point, in mm, from section_radius_min to _max
     kept=$((cnt < 64 ? cnt : 64))

@@ -10,4 +10,4 @@ set yrange [0:*]
 set offsets graph 0.03, graph 0.03, 0, 0
 set key outside right top vertical Left reverse samplen 2
 CLEARANCE = has_clearance ? ", clear using 1:2 with lines dt 2 lw 2 lc rgb 'black' title 'clearance'" : ""
-plot for [i=1:ngroups] data index (i-1) using 1:2 with points pt 7 ps 0.6 title titles[i] @CLEARANCE
+plot for [i=1:ngroups] data index (i-1) using 1:2 with points pt 7 ps 0.8 title titles[i] @CLEARANCE
