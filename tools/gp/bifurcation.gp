@@ -7,6 +7,7 @@ set title "Bifurcation diagram: once-per-revolution radius at the retainer\n".ca
 set xlabel xlabel
 set ylabel 'radius at the retainer, once per revolution [mm]'
 set yrange [0:*]
+set autoscale xfix
 set offsets graph 0.03, graph 0.03, 0, 0
 set key outside right top vertical Left reverse samplen 2
 CLEARANCE = has_clearance ? ", clear using 1:2 with lines dt 2 lw 2 lc rgb 'black' title 'clearance'" : ""
