@@ -11,7 +11,7 @@ export LC_ALL=C
 work=$(mktemp -d "${PWD}/sweep-plot.XXXXXX")
 trap 'rm -rf "$work"' EXIT
 
-. "$(dirname "${BASH_SOURCE[0]}")/common.sh" # fail, pass, check, t, finish
+. "$(dirname "${BASH_SOURCE[0]}")/common.sh" # fail, pass, check, t, jf, finish
 
 # The data files print 12 significant digits: numbers are compared to 1e-11 relative.
 # Column number of NAME (header text before " [") in the CSV table.
@@ -29,6 +29,18 @@ c_cnt=$(col "$csv" section_count)
 c_min=$(col "$csv" section_radius_min)
 c_max=$(col "$csv" section_radius_max)
 check "sweep table: regime and section columns" test -n "$c_reg" -a -n "$c_cnt" -a -n "$c_min" -a -n "$c_max"
+
+# the section and the regime of a point are those of an independent `touchdown run` of it
+t "$work/r" run --json -q --csv '' --hdf5 '' --set end_time=0.3 --set speed=120 --set 'schedule[0].magnitude=0.2' \
+    "$src/cases/rub-damped.cfg"
+line=$(grep '^3,120,0.2,' "$csv" | sed -E 's/"[^"]*"/x/g')
+IFS=, read -r -a f <<<"$line"
+radii=$(grep -oE '"section_radius":\[[^]]*\]' "$work/r/.out" | sed -E 's/.*\[//; s/\]//' | tr ',' '\n')
+check "sweep row 3: section count, range and regime of 'touchdown run --json' of the point" \
+    test "$(jf "$work/r/.out" section_count)" = "${f[$((c_cnt - 1))]}" -a \
+    "$(jf "$work/r/.out" regime)" = "\"${f[$((c_reg - 1))]}\"" -a \
+    "$(sort -g <<<"$radii" | head -n 1)" = "${f[$((c_min - 1))]}" -a \
+    "$(sort -g <<<"$radii" | tail -n 1)" = "${f[$((c_max - 1))]}"
 
 # ---- --no-run: the data files against the table -----------------------------------------------
 t "$work/s" plot --no-run -d p s.h5
