@@ -775,6 +775,45 @@ static void test_section_steady_orbit(void **state)
     free(s);
 }
 
+/* A speed ramp down from 200 to 100 rad/s (a run-down): the spin angle is a state, and every
+ * crossing found on IDA's interpolant of it is where the prescribed angle, the closed-form integral
+ * of the ramp (td_model_speed_at), is the next multiple of 2 pi. */
+static void test_section_speed_ramp(void **state)
+{
+    td_model *m = steady_rotor();
+    td_speed_point p0 = {0.0, OMEGA}, p1 = {T_END, 0.5 * OMEGA};
+    td_sim *sim;
+    td_output_options out;
+    td_run_summary *s = calloc(1, sizeof *s);
+    td_error err;
+    double total;
+    int i;
+    (void)state;
+    assert_non_null(s);
+    assert_int_equal(td_model_add_speed_point(m, &p0, &err), TD_OK);
+    assert_int_equal(td_model_add_speed_point(m, &p1, &err), TD_OK);
+    assert_int_equal(td_model_validate(m, &err), TD_OK);
+    sim = make_sim(m);
+    td_output_options_default(&out);
+    out.sample_rate = RATE;
+    out.section_after = 0.0;
+    if (td_run(sim, T_END, &out, NULL, NULL, s, &err) != TD_OK)
+        fail_msg("td_run: %s", err.message);
+    td_model_speed_at(m, T_END, NULL, &total);
+    /* crossings 2 pi k, k = 1 .. floor(total / 2 pi), all kept */
+    assert_int_equal(s->section_count, (long)floor(total / (2.0 * TD_PI)));
+    assert_int_equal(s->section_kept, s->section_count);
+    for (i = 0; i < s->section_kept; i++) {
+        double angle;
+        td_model_speed_at(m, s->section_time[i], NULL, &angle);
+        assert_close(angle, 2.0 * TD_PI * (i + 1), 1e-9, 0.0);
+        assert_true(s->section_radius[i] > 0.0 && s->section_radius[i] < CLEARANCE);
+    }
+    td_sim_free(&sim);
+    td_model_free(&m);
+    free(s);
+}
+
 /* Taking the section moves nothing: the contact run of small_rotor gives the same answers, bit for
  * bit, with the section over the whole run and without one. */
 static void test_section_changes_nothing(void **state)
@@ -872,6 +911,7 @@ int main(void)
         cmocka_unit_test(test_summary_ending),
         cmocka_unit_test(test_section_steady_orbit),
         cmocka_unit_test(test_section_changes_nothing),
+        cmocka_unit_test(test_section_speed_ramp),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
