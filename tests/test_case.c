@@ -564,7 +564,8 @@ static void test_docs_match_reader(void **state)
                                          "contact.",
                                          "solver.",
                                          "output.",
-                                         "modal."};
+                                         "modal.",
+                                         "sweep."};
     char *doc = td_test_read_file(td_source_path("docs/case-format.md"));
     char *a = td_test_read_file(td_source_path("tests/data/case/all-keys.cfg"));
     char *b = td_test_read_file(td_source_path("tests/data/case/all-keys-nodes.cfg"));

@@ -1,10 +1,13 @@
 /*
- * td_sweep: the grid of points (ranges with exact ends, lists with quoted commas, the first axis
- * slowest, the bounds and the errors) and the table writers (the CSV read back; the HDF5 columns
- * and the completeness flag read back with the HDF5 C API).
+ * td_sweep: the grid of points (ranges with exact ends, log ranges against their closed form,
+ * lists with quoted commas, zipped keys, the first axis slowest, the bounds and the errors), the
+ * case file's `sweep` group (its specs, its errors at the setting, the command line replacing an
+ * axis) and the table writers (the CSV read back; the HDF5 columns and the completeness flag read
+ * back with the HDF5 C API).
  */
 #include "td_test.h"
 
+#include "touchdown/case.h"
 #include "touchdown/sweep.h"
 
 #include <hdf5.h>
@@ -12,6 +15,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 static td_sweep_grid *grid_of(const char *const *specs, int n)
@@ -87,6 +91,221 @@ static void test_bad_specs(void **state)
     td_sweep_grid_free(&g); /* NULL accepted */
 }
 
+/* 1e-3 to 10 in 9 points: 10^(i/2 - 3), a constant ratio sqrt(10), both ends exact. */
+static void test_log_range(void **state)
+{
+    const char *specs[] = {"x=1e-3:10:9:log"};
+    td_sweep_grid *g = grid_of(specs, 1);
+    double v[9];
+    long p;
+    (void)state;
+    assert_int_equal(td_sweep_grid_points(g), 9);
+    assert_true(td_sweep_grid_numeric(g, 0));
+    assert_string_equal(td_sweep_grid_value(g, 0, 0), "0.001");
+    assert_string_equal(td_sweep_grid_value(g, 8, 0), "10");
+    for (p = 0; p < 9; p++) {
+        v[p] = strtod(td_sweep_grid_value(g, p, 0), NULL);
+        assert_close(v[p], pow(10.0, 0.5 * (double)p - 3.0), 1e-14, 0.0);
+    }
+    for (p = 1; p < 9; p++)
+        assert_close(v[p] / v[p - 1], sqrt(10.0), 1e-14, 0.0);
+    td_sweep_grid_free(&g);
+}
+
+/* ":linear" is the default spacing; a log range of one point is its start; descending works. */
+static void test_log_range_forms(void **state)
+{
+    const char *specs[] = {"a=1:3:3:linear", "b=7:7e6:1:log", "c=100:1:3:log"};
+    td_sweep_grid *g = grid_of(specs, 3);
+    (void)state;
+    assert_int_equal(td_sweep_grid_points(g), 9);
+    assert_string_equal(td_sweep_grid_value(g, 3, 0), "2");
+    assert_string_equal(td_sweep_grid_value(g, 0, 1), "7");
+    assert_string_equal(td_sweep_grid_value(g, 1, 2), "10");
+    assert_string_equal(td_sweep_grid_value(g, 2, 2), "1");
+    td_sweep_grid_free(&g);
+}
+
+static void test_bad_log_ranges(void **state)
+{
+    static const char *const bad[] = {"x=0:1:3:log", "x=1:-2:3:log", "x=1:2:3:lg", "x=1:2:3:log:4", "x=1:2:3:"};
+    td_sweep_grid *g = NULL;
+    td_error err;
+    size_t i;
+    (void)state;
+    assert_int_equal(td_sweep_grid_create(&g, NULL), TD_OK);
+    for (i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+        assert_int_equal(td_sweep_grid_vary(g, bad[i], &err), TD_ERR_PARSE);
+        assert_non_null(strstr(err.message, bad[i]));
+    }
+    assert_int_equal(td_sweep_grid_vary(g, bad[0], &err), TD_ERR_PARSE);
+    assert_non_null(strstr(err.message, "both ends > 0"));
+    assert_int_equal(td_sweep_grid_keys(g), 0);
+    td_sweep_grid_free(&g);
+}
+
+/* a and b zipped (3 values each) times c (2): 6 points, b following a value for value. */
+static void test_zip(void **state)
+{
+    td_sweep_grid *g = NULL;
+    td_error err;
+    long p;
+    (void)state;
+    assert_int_equal(td_sweep_grid_create(&g, NULL), TD_OK);
+    assert_int_equal(td_sweep_grid_with(g, "b=1,2", &err), TD_ERR_PARSE); /* nothing to join */
+    assert_int_equal(td_sweep_grid_vary(g, "a=1:3:3", &err), TD_OK);
+    assert_int_equal(td_sweep_grid_with(g, "b=10,20,30", &err), TD_OK);
+    assert_int_equal(td_sweep_grid_with(g, "d=1,2", &err), TD_ERR_PARSE);
+    assert_non_null(strstr(err.message, "--with 'd=1,2': d has 2 values but a, whose axis it joins, has 3"));
+    assert_int_equal(td_sweep_grid_with(g, "a=1,2,3", &err), TD_ERR_PARSE); /* swept twice */
+    assert_int_equal(td_sweep_grid_vary(g, "c=x,y", &err), TD_OK);
+    assert_int_equal(td_sweep_grid_points(g), 6);
+    assert_int_equal(td_sweep_grid_axes(g), 2);
+    assert_int_equal(td_sweep_grid_keys(g), 3);
+    assert_int_equal(td_sweep_grid_axis(g, 1), 0);
+    assert_int_equal(td_sweep_grid_axis(g, 2), 1);
+    assert_string_equal(td_sweep_grid_origin(g, 1), "command line");
+    for (p = 0; p < 6; p++) {
+        assert_true(strtod(td_sweep_grid_value(g, p, 1), NULL) == 10.0 * strtod(td_sweep_grid_value(g, p, 0), NULL));
+        assert_string_equal(td_sweep_grid_value(g, p, 2), p % 2 ? "y" : "x");
+    }
+    td_sweep_grid_free(&g);
+}
+
+/* At most TD_SWEEP_MAX_KEYS keys in all, zipped ones included. */
+static void test_key_limit(void **state)
+{
+    td_sweep_grid *g = NULL;
+    td_error err;
+    char spec[32];
+    int i;
+    (void)state;
+    assert_int_equal(td_sweep_grid_create(&g, NULL), TD_OK);
+    assert_int_equal(td_sweep_grid_vary(g, "k0=1,2", &err), TD_OK);
+    for (i = 1; i < TD_SWEEP_MAX_KEYS; i++) {
+        snprintf(spec, sizeof spec, "k%d=1,2", i);
+        assert_int_equal(td_sweep_grid_with(g, spec, &err), TD_OK);
+    }
+    assert_int_equal(td_sweep_grid_with(g, "last=1,2", &err), TD_ERR_PARSE);
+    assert_non_null(strstr(err.message, "at most 16 swept keys"));
+    assert_int_equal(td_sweep_grid_points(g), 2);
+    td_sweep_grid_free(&g);
+}
+
+static td_case *load_case(const char *path, const char *const *ov, int n, td_error *err)
+{
+    td_case *c = NULL;
+    td_status st = td_case_load(path, ov, n, &c, err);
+    if (st != TD_OK) {
+        print_error("%s\n", err->message);
+        fail();
+    }
+    return c;
+}
+
+/* tests/data/case/all-keys.cfg: speed (log, 3) x magnitude with phase zipped (2). */
+static void test_case_group(void **state)
+{
+    td_case *c;
+    td_sweep_grid *g = NULL;
+    td_error err;
+    const char *where;
+    int with;
+    (void)state;
+    c = load_case(td_source_path("tests/data/case/all-keys.cfg"), NULL, 0, &err);
+    assert_int_equal(td_case_sweep_specs(c), 3);
+    assert_string_equal(td_case_sweep_spec(c, 0, &with, &where), "speed=10:100:3:log");
+    assert_int_equal(with, 0);
+    assert_non_null(strstr(where, "all-keys.cfg:"));
+    assert_non_null(strstr(where, ": sweep.vary[0]"));
+    assert_string_equal(td_case_sweep_spec(c, 1, &with, NULL), "unbalances[0].magnitude=0.001,0.002");
+    assert_string_equal(td_case_sweep_spec(c, 2, &with, &where), "unbalances[0].phase=0,1");
+    assert_int_equal(with, 1);
+    assert_non_null(strstr(where, ": sweep.vary[1].with[0]"));
+    assert_int_equal(td_sweep_grid_create(&g, NULL), TD_OK);
+    assert_int_equal(td_sweep_grid_from_case(g, c, &err), TD_OK);
+    assert_int_equal(td_sweep_grid_points(g), 6);
+    assert_close(strtod(td_sweep_grid_value(g, 2, 0), NULL), pow(10.0, 1.5), 1e-15, 0.0);
+    assert_string_equal(td_sweep_grid_value(g, 5, 2), "1");
+    assert_non_null(strstr(td_sweep_grid_origin(g, 2), ": sweep.vary[1]"));
+    td_sweep_grid_free(&g);
+    /* the command line sweeps the phase: the file's whole magnitude-and-phase axis goes */
+    assert_int_equal(td_sweep_grid_create(&g, NULL), TD_OK);
+    assert_int_equal(td_sweep_grid_vary(g, "unbalances[0].phase=0.5", &err), TD_OK);
+    assert_int_equal(td_sweep_grid_from_case(g, c, &err), TD_OK);
+    assert_int_equal(td_sweep_grid_keys(g), 2);
+    assert_string_equal(td_sweep_grid_key(g, 1), "speed");
+    assert_int_equal(td_sweep_grid_points(g), 3);
+    td_sweep_grid_free(&g);
+    td_case_free(&c);
+}
+
+/* all-keys.cfg's text with its sweep group replaced by `group` at line *line. */
+static const char *case_with_group(const char *group, int *line)
+{
+    static char path[1024];
+    td_case *c;
+    td_error err;
+    const char *text, *cut;
+    const char *p;
+    FILE *f;
+    c = load_case(td_source_path("tests/data/case/all-keys.cfg"), NULL, 0, &err);
+    text = td_case_text(c);
+    cut = strstr(text, "\nsweep = {");
+    assert_non_null(cut);
+    *line = 2;
+    for (p = text; p < cut; p++)
+        *line += *p == '\n';
+    mkdir(TD_BINARY_DIR "/tests", 0755);
+    snprintf(path, sizeof path, "%s/tests/sweep-group.cfg", TD_BINARY_DIR);
+    assert_non_null(f = fopen(path, "w"));
+    fprintf(f, "%.*s\n%s\n", (int)(cut - text), text, group);
+    fclose(f);
+    td_case_free(&c);
+    return path;
+}
+
+/* A bad group is one error at FILE:LINE and the setting at fault, from any td_case_load. */
+static void test_case_group_errors(void **state)
+{
+    static const struct {
+        const char *group, *key, *why;
+    } bad[] = {
+        {"sweep = { vary = ( { key = \"speed\"; from = 1.0; to = 2.0; points = 0; } ); };", "sweep.vary[0].points",
+         "whole number from 1 to 100000"},
+        {"sweep = { vary = ( { key = \"speed\"; from = 0.0; to = 2.0; points = 3; spacing = \"log\"; } ); };",
+         "sweep.vary[0].from", "both ends > 0"},
+        {"sweep = { vary = ( { key = \"speed\"; from = 1.0; to = 2.0; points = 3; spacing = \"cubic\"; } ); };",
+         "sweep.vary[0].spacing", "linear or log"},
+        {"sweep = { vary = ( { key = \"speed\"; values = [1.0, 2.0];\n with = ( { key = \"end_time\"; values = [1.0]; "
+         "} ); } ); };",
+         "sweep.vary[0].with[0].values", "end_time has 1 values but speed"},
+        {"sweep = { vary = ( { key = \"speed\"; values = [1.0]; }, { key = \"speed\"; values = [2.0]; } ); };",
+         "sweep.vary[1].key", "speed is swept twice"},
+        {"sweep = { vary = ( { key = \"speed\"; values = [1.0]; points = 2; } ); };", "sweep.vary[0]",
+         "either values or a range"},
+        {"sweep = { vary = ( { key = \"speed\"; from = 1.0; points = 2; } ); };", "sweep.vary[0]", "to"},
+        {"sweep = { vary = ( { values = [1.0]; } ); };", "sweep.vary[0]", "key"},
+        {"sweep = { vary = ( { key = \"speed\"; values = [1.0]; step = 2; } ); };", "sweep.vary[0].step", "unknown"},
+        {"sweep = { vary = ( { key = \"speed\"; values = [ ]; } ); };", "sweep.vary[0].values", "no values"},
+    };
+    char want[1100];
+    size_t i;
+    int line;
+    (void)state;
+    for (i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+        const char *path = case_with_group(bad[i].group, &line);
+        td_case *c = NULL;
+        td_error err;
+        assert_int_equal(td_case_load(path, NULL, 0, &c, &err), TD_ERR_PARSE);
+        snprintf(want, sizeof want, "%s:%d: %s", path, line + (strstr(bad[i].key, "with") != NULL), bad[i].key);
+        if (!strstr(err.message, want) || !strstr(err.message, bad[i].why)) {
+            print_error("case %zu: expected \"%s\" and \"%s\" in \"%s\"\n", i, want, bad[i].why, err.message);
+            fail();
+        }
+    }
+}
+
 /* Three rows: one done, one failed, one not run. */
 static void three_rows(td_sweep_row rows[3])
 {
@@ -126,7 +345,8 @@ static void test_csv_table(void **state)
     assert_non_null(strstr(text, ",\"forward rub at 9 Hz, rolling\","));
     assert_non_null(strstr(text, "\n1,2,solver failure,\"failed at t = 0.2, \"\"badly\"\"\","));
     assert_non_null(strstr(text, "\n2,3,not run,,nan,"));
-    assert_non_null(strstr(text, "# vary = speed=1,2,3\n# set = end_time=0.2\n# case_text:\n#| speed = 1.0;\n"));
+    assert_non_null(strstr(
+        text, "# vary = speed=1,2,3\n# from = command line\n# set = end_time=0.2\n# case_text:\n#| speed = 1.0;\n"));
     assert_non_null(strstr(text, "# incomplete: interrupted: 1 of 3 points not run\n"));
     assert_int_equal(text[strlen(text) - 1], '\n');
     free(text);
@@ -180,12 +400,68 @@ static void test_hdf5_table(void **state)
     td_sweep_grid_free(&g);
 }
 
+static int read_int_attribute(hid_t f, const char *object, const char *name)
+{
+    int v = -1;
+    hid_t a = H5Aopen_by_name(f, object, name, H5P_DEFAULT, H5P_DEFAULT);
+    assert_true(a >= 0);
+    assert_true(H5Aread(a, H5T_NATIVE_INT, &v) >= 0);
+    H5Aclose(a);
+    return v;
+}
+
+/* A zipped key is a column of its own: CSV "# with" under its axis's "# vary", HDF5 /vary/KEY
+ * with the axis it shares. */
+static void test_zipped_table(void **state)
+{
+    td_sweep_grid *g = NULL;
+    td_sweep_row rows[3];
+    td_sweep_table t = {NULL, NULL, "", NULL, 0, 1, NULL};
+    td_error err;
+    char *text;
+    hid_t f;
+    (void)state;
+    assert_int_equal(td_sweep_grid_create(&g, NULL), TD_OK);
+    assert_int_equal(td_sweep_grid_vary(g, "speed=1:3:3", &err), TD_OK);
+    assert_int_equal(td_sweep_grid_with(g, "contact.model=penalty,constraint,penalty", &err), TD_OK);
+    three_rows(rows);
+    t.grid = g;
+    t.rows = rows;
+    assert_int_equal(td_sweep_write_csv("sweep-zip.csv", &t, NULL), TD_OK);
+    text = td_test_read_file("sweep-zip.csv");
+    assert_non_null(strstr(text, "point [-],speed,contact.model,status,"));
+    assert_non_null(strstr(text, "\n1,2,constraint,solver failure,"));
+    assert_non_null(strstr(text, "# vary = speed=1:3:3\n# with = contact.model=penalty,constraint,penalty\n"
+                                 "# from = command line\n"));
+    free(text);
+    remove("sweep-zip.csv");
+    assert_int_equal(td_sweep_write_hdf5("sweep-zip.h5", &t, NULL), TD_OK);
+    f = H5Fopen("sweep-zip.h5", H5F_ACC_RDONLY, H5P_DEFAULT);
+    assert_true(f >= 0);
+    assert_true(read_double(f, "vary/speed", 1) == 2.0);
+    assert_int_equal(read_int_attribute(f, "vary/speed", "axis"), 0);
+    assert_int_equal(read_int_attribute(f, "vary/contact.model", "axis"), 0);
+    H5Fclose(f);
+    remove("sweep-zip.h5");
+    td_sweep_grid_free(&g);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_range_ends_exact), cmocka_unit_test(test_grid_order_and_lists),
-        cmocka_unit_test(test_bad_specs),        cmocka_unit_test(test_csv_table),
+        cmocka_unit_test(test_range_ends_exact),
+        cmocka_unit_test(test_grid_order_and_lists),
+        cmocka_unit_test(test_bad_specs),
+        cmocka_unit_test(test_csv_table),
         cmocka_unit_test(test_hdf5_table),
+        cmocka_unit_test(test_log_range),
+        cmocka_unit_test(test_log_range_forms),
+        cmocka_unit_test(test_bad_log_ranges),
+        cmocka_unit_test(test_zip),
+        cmocka_unit_test(test_key_limit),
+        cmocka_unit_test(test_case_group),
+        cmocka_unit_test(test_case_group_errors),
+        cmocka_unit_test(test_zipped_table),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -52,7 +52,7 @@ static const char plot_usage[] =
     "      --quantity NAME  sweep tables: the column plotted against the x key (default\n"
     "                     peak_housing_force; any numeric column: total_impulse, contacts, ...)\n"
     "      --x KEY        sweep tables: the swept key on the x axis\n"
-    "      --y KEY        sweep tables: the regime map's y key (default: the first other numeric key)\n"
+    "      --y KEY        sweep tables: the regime map's y key (default: the first numeric key on another axis)\n"
     "      --no-run       write the data and scripts only, do not run gnuplot\n"
     "  -q, --quiet        print nothing but errors (default: one 'wrote' line per figure)\n"
     "  -h, --help         this help\n"

@@ -21,30 +21,42 @@ static const char sweep_usage[] =
     "\n"
     "options:\n"
     "  -v, --vary KEY=START:STOP:N  sweep KEY over N >= 1 evenly spaced values, both ends included\n"
+    "      --vary KEY=START:STOP:N:log  N values in geometric progression, START and STOP > 0\n"
     "      --vary KEY=V1,V2,...     sweep KEY over a list of values as --set takes them (numbers,\n"
-    "                       true/false, \"quoted strings\"); several --vary make a full grid, the\n"
-    "                       first key varying slowest (at most 8 keys, 100000 points in all)\n"
+    "                       true/false, \"quoted strings\"); each --vary is an axis of a full\n"
+    "                       grid, the first varying slowest (at most 8 axes, 100000 points)\n"
+    "  -w, --with KEY=SPEC  zip KEY (a range or list as for --vary) onto the axis of the --vary\n"
+    "                       before it: its i-th value goes with that axis's i-th, so it needs as\n"
+    "                       many values (at most 16 swept keys in all)\n"
     "  -s, --set KEY=VALUE  override a case key at every point (repeatable, as for touchdown run)\n"
+    "      --point-files DIR  also keep each point's full result, DIR/point-NNNNNN.h5 (NNNNNN the\n"
+    "                       point's index, as in the table), the file touchdown run writes\n"
+    "      --point-csv      with --point-files, also DIR/point-NNNNNN.csv (and its events file)\n"
     "  -j, --jobs N         worker processes, 1..256 (default: the number of online CPUs)\n"
     "  -o, --output PREFIX  write PREFIX.csv and PREFIX.h5 (default: CASENAME-sweep)\n"
     "  -q, --quiet          print no text summary (errors still go to stderr)\n"
     "      --json           print the sweep's counts and files as one JSON object on stdout\n"
     "  -h, --help           this help\n"
     "\n"
+    "The case file's own `sweep` group (docs/case-format.md) adds its axes after those of the\n"
+    "command line; a file axis with a key that --vary or --with also sweeps is left out whole (the\n"
+    "command line replaces it). The table records where each axis came from.\n"
+    "\n"
     "Each point is CASE loaded with every --set, then KEY=VALUE for each swept key, so any key\n"
     "that --set accepts can be swept. Every point's case is loaded and checked before anything\n"
     "runs: a bad key or value is one error line naming it (exit 2). Each point runs in its own\n"
-    "process, as touchdown run does but without output files; a point that fails (solver, an\n"
-    "impossible start state) or whose worker dies is a row with its status and message, and the\n"
-    "sweep goes on. Rows are in point order whatever -j is. The table files are written at the\n"
-    "end under temporary names and renamed, like those of touchdown run; SIGINT/SIGTERM/SIGHUP\n"
-    "stop the workers and keep the table, its unfinished points marked \"not run\" and the files\n"
-    "marked incomplete. Columns and units: docs/output-format.md, \"Sweep table\".\n"
+    "process, as touchdown run does but without output files (unless --point-files); a point that\n"
+    "fails (solver, an impossible start state) or whose worker dies is a row with its status and\n"
+    "message, and the sweep goes on. Rows are in point order whatever -j is. The table files are\n"
+    "written at the end under temporary names and renamed, like those of touchdown run;\n"
+    "SIGINT/SIGTERM/SIGHUP stop the workers and keep the table, its unfinished points marked\n"
+    "\"not run\" and the files marked incomplete. Columns and units: docs/output-format.md,\n"
+    "\"Sweep table\".\n"
     "\n"
     "Resume: each point's row goes to PREFIX.journal as the point ends; the same command run again\n"
     "after an interruption (Ctrl-C, a kill, a lost machine) runs only the points the journal lacks.\n"
     "The journal is removed once a finished table is written; one of another sweep (another case,\n"
-    "--set, --vary or version) is refused.\n"
+    "--set, --vary, --with or version) is refused.\n"
     "\n"
     "exit codes: 0 every point ran to its end, 1 some point failed, the sweep was interrupted or\n"
     "the table could not be written, 2 bad input or usage (any point's case included).\n";
@@ -54,7 +66,8 @@ typedef struct sweep_options {
     td_sweep_grid *grid;
     const char *prefix;
     const char *case_path;
-    int jobs, json, quiet;
+    const char *point_dir;
+    int jobs, json, quiet, point_csv;
 } sweep_options;
 
 static double wall_now(void)
@@ -76,11 +89,12 @@ static int parse_jobs(const char *text, int *jobs)
     return 0;
 }
 
-static int add_vary(td_sweep_grid *g, const char *spec)
+/* --vary (with = 0) or --with (with = 1): one more axis or key of the grid. */
+static int add_key(td_sweep_grid *g, const char *spec, int with)
 {
     td_error err;
     td_error_clear(&err);
-    if (td_sweep_grid_vary(g, spec, &err) == TD_OK)
+    if ((with ? td_sweep_grid_with(g, spec, &err) : td_sweep_grid_vary(g, spec, &err)) == TD_OK)
         return 0;
     td_cli_error("sweep", "%s", err.message);
     return TD_EXIT_USAGE;
@@ -89,17 +103,26 @@ static int add_vary(td_sweep_grid *g, const char *spec)
 /* Options into o; returns 0, or an exit code (-1: --help was printed, exit 0). */
 static int parse_options(int argc, char **argv, sweep_options *o)
 {
-    enum { OPT_JSON = 256 };
-    static const struct option longopts[] = {
-        {"vary", required_argument, NULL, 'v'}, {"set", required_argument, NULL, 's'},
-        {"jobs", required_argument, NULL, 'j'}, {"output", required_argument, NULL, 'o'},
-        {"quiet", no_argument, NULL, 'q'},      {"json", no_argument, NULL, OPT_JSON},
-        {"help", no_argument, NULL, 'h'},       {NULL, 0, NULL, 0}};
+    enum { OPT_JSON = 256, OPT_POINT_FILES, OPT_POINT_CSV };
+    static const struct option longopts[] = {{"vary", required_argument, NULL, 'v'},
+                                             {"with", required_argument, NULL, 'w'},
+                                             {"set", required_argument, NULL, 's'},
+                                             {"jobs", required_argument, NULL, 'j'},
+                                             {"output", required_argument, NULL, 'o'},
+                                             {"point-files", required_argument, NULL, OPT_POINT_FILES},
+                                             {"point-csv", no_argument, NULL, OPT_POINT_CSV},
+                                             {"quiet", no_argument, NULL, 'q'},
+                                             {"json", no_argument, NULL, OPT_JSON},
+                                             {"help", no_argument, NULL, 'h'},
+                                             {NULL, 0, NULL, 0}};
     int opt, code = 0;
     optind = 1;
-    while (!code && (opt = getopt_long(argc, argv, "v:s:j:o:qh", longopts, NULL)) != -1) {
+    while (!code && (opt = getopt_long(argc, argv, "v:w:s:j:o:qh", longopts, NULL)) != -1) {
         switch (opt) {
-        case 'v': code = add_vary(o->grid, optarg); break;
+        case 'v': code = add_key(o->grid, optarg, 0); break;
+        case 'w': code = add_key(o->grid, optarg, 1); break;
+        case OPT_POINT_FILES: o->point_dir = optarg; break;
+        case OPT_POINT_CSV: o->point_csv = 1; break;
         case 's': code = td_cli_add_set(&o->sets, optarg); break;
         case 'j': code = parse_jobs(optarg, &o->jobs); break;
         case 'o': o->prefix = optarg; break;
@@ -113,17 +136,81 @@ static int parse_options(int argc, char **argv, sweep_options *o)
         td_cli_error("sweep", "expected exactly one case file (see touchdown sweep --help)");
         code = TD_EXIT_USAGE;
     }
+    if (!code && o->point_csv && !o->point_dir) {
+        td_cli_error("sweep", "--point-csv needs --point-files DIR");
+        code = TD_EXIT_USAGE;
+    }
     if (!code)
         o->case_path = argv[optind];
     return code;
+}
+
+/* The case file's sweep group after the command line's axes (td_sweep_grid_from_case). */
+static int add_case_axes(td_sweep_grid *g, const td_case *base)
+{
+    td_error err;
+    td_error_clear(&err);
+    if (td_sweep_grid_from_case(g, base, &err) == TD_OK)
+        return 0;
+    fprintf(stderr, "touchdown: %s\n", err.message);
+    return TD_EXIT_USAGE;
+}
+
+/* The points' result files, checked by the rules of touchdown run before anything runs: the last
+ * point's names (every name is as long) fit, and its files overwrite no input, the directory
+ * exists and is writable. */
+static int check_point_files(const sweep_options *o, const td_case *c)
+{
+    td_output_options out;
+    const char *const *files;
+    long last = td_sweep_grid_points(o->grid) - 1;
+    int n = 0;
+    td_error err;
+    if (!o->point_dir)
+        return 0;
+    memset(&out, 0, sizeof out);
+    if (snprintf(out.hdf5_path, sizeof out.hdf5_path, SWEEP_POINT_FILE, o->point_dir, last, ".h5") >=
+            (int)sizeof out.hdf5_path ||
+        snprintf(out.csv_path, sizeof out.csv_path, SWEEP_POINT_FILE, o->point_dir, last, ".csv") >=
+            (int)sizeof out.csv_path) {
+        td_cli_error("sweep", "--point-files: the directory name is too long (at most %d bytes a file name)",
+                     TD_OUTPUT_PATH_SIZE - 1);
+        return TD_EXIT_USAGE;
+    }
+    if (!o->point_csv)
+        out.csv_path[0] = '\0';
+    files = td_case_files(c, &n);
+    td_error_clear(&err);
+    if (td_output_check_paths(&out, files, n, &err) != TD_OK) {
+        td_cli_error("sweep", "--point-files %s: %s", o->point_dir, err.message);
+        return TD_EXIT_USAGE;
+    }
+    return 0;
+}
+
+/* "FILE:LINE: sweep.vary[i]: " when `message` is about the value of a key swept by the case
+ * file's group, so that the error leads to the line that asked for it; else "". */
+static const char *file_origin(const td_sweep_grid *g, const char *message, char *origin, size_t n)
+{
+    char probe[TD_SWEEP_KEY_SIZE + 16];
+    int k;
+    for (k = 0; k < td_sweep_grid_keys(g); k++) {
+        snprintf(probe, sizeof probe, "--set '%s=", td_sweep_grid_key(g, k));
+        if (strstr(message, probe) && strcmp(td_sweep_grid_origin(g, k), "command line") != 0) {
+            snprintf(origin, n, "%s: ", td_sweep_grid_origin(g, k));
+            return origin;
+        }
+    }
+    return "";
 }
 
 /* Load every point's case once before anything runs, so that a bad key or value is found at
  * once and not after hours of other points. Returns 0 or TD_EXIT_USAGE (with the error line). */
 static int check_points(const sweep_job *job)
 {
-    const char *items[TD_CLI_MAX_SETS + TD_SWEEP_MAX_AXES];
-    char store[TD_SWEEP_MAX_AXES][TD_SWEEP_KEY_SIZE + TD_SWEEP_VALUE_SIZE];
+    const char *items[TD_CLI_MAX_SETS + TD_SWEEP_MAX_KEYS];
+    char store[TD_SWEEP_MAX_KEYS][TD_SWEEP_KEY_SIZE + TD_SWEEP_VALUE_SIZE];
+    char origin[TD_ERROR_MESSAGE_SIZE];
     long p, n = td_sweep_grid_points(job->grid);
     td_case *c = NULL;
     td_error err;
@@ -131,7 +218,8 @@ static int check_points(const sweep_job *job)
         int k = sweep_point_overrides(job, p, items, store);
         td_error_clear(&err);
         if (td_case_load(job->case_path, items, k, &c, &err) != TD_OK) {
-            fprintf(stderr, "touchdown: %s\n", err.message);
+            fprintf(stderr, "touchdown: %s%s\n", file_origin(job->grid, err.message, origin, sizeof origin),
+                    err.message);
             return TD_EXIT_USAGE;
         }
         td_case_free(&c);
@@ -300,12 +388,18 @@ int td_cmd_sweep(int argc, char **argv)
     code = parse_options(argc, argv, &o);
     if (!code)
         code = td_cli_load_case(o.case_path, &o.sets, &base);
+    if (!code)
+        code = add_case_axes(o.grid, base);
     job.case_path = o.case_path;
     job.sets = &o.sets;
     job.grid = o.grid;
     job.journal = NULL;
+    job.point_dir = o.point_dir;
+    job.point_csv = o.point_csv;
     if (!code)
         code = choose_outputs(&out, journal, &o, base);
+    if (!code)
+        code = check_point_files(&o, base);
     if (!code)
         code = check_points(&job);
     if (!code)

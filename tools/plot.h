@@ -58,8 +58,8 @@ void plot_strings_free(char **s, size_t n);
 
 typedef enum plot_kind { PLOT_KIND_SIM, PLOT_KIND_MODAL, PLOT_KIND_SWEEP } plot_kind;
 
-/* Most swept keys a sweep table's figures use (touchdown/sweep.h TD_SWEEP_MAX_AXES). */
-#define PLOT_SWEEP_MAX_KEYS 8
+/* Most swept keys a sweep table's figures use (touchdown/sweep.h TD_SWEEP_MAX_KEYS). */
+#define PLOT_SWEEP_MAX_KEYS 16
 
 /* A sweep table (touchdown sweep): its swept keys and what the figures read of each point. */
 typedef struct plot_sweep {
@@ -67,6 +67,7 @@ typedef struct plot_sweep {
     int nkeys;
     char key[PLOT_SWEEP_MAX_KEYS][128];
     int numeric[PLOT_SWEEP_MAX_KEYS];   /* 1: the key's values are numbers */
+    int axis[PLOT_SWEEP_MAX_KEYS];      /* the grid axis of the key (zipped keys share one) */
     double *value[PLOT_SWEEP_MAX_KEYS]; /* n each (numeric keys), else NULL */
     char **text[PLOT_SWEEP_MAX_KEYS];   /* n each: the values as text */
     int *regime;                        /* n: td_regime, -1 when the table has no regime column */

@@ -43,14 +43,15 @@ static int by_group_then_x(const void *a, const void *b)
     return p->point < q->point ? -1 : p->point > q->point;
 }
 
-/* "KEY=VALUE, ..." of point p over every key but x, into buf. */
+/* "KEY=VALUE, ..." of point p over every key but x and the keys zipped with it (which move with
+ * x along a line), into buf. */
 static void group_label(const plot_sweep *s, int x, size_t p, char *buf, size_t n)
 {
     size_t len = 0;
     int k;
     buf[0] = '\0';
     for (k = 0; k < s->nkeys && len < n; k++)
-        if (k != x)
+        if (s->axis[k] != s->axis[x])
             len += (size_t)snprintf(buf + len, n - len, "%s%s=%s", len ? ", " : "", s->key[k], s->text[k][p]);
 }
 
@@ -150,15 +151,15 @@ static int pick_y(const plot_opts *opt, const plot_file *f, int x)
     int k;
     if (opt->ykey) {
         k = key_index(s, opt->ykey);
-        if (k < 0 || !s->numeric[k] || k == x) {
-            fprintf(stderr, "touchdown plot: %s: --y '%s' is not a numeric swept key of the table other than x\n",
+        if (k < 0 || !s->numeric[k] || s->axis[k] == s->axis[x]) {
+            fprintf(stderr, "touchdown plot: %s: --y '%s' is not a numeric swept key of the table off the x axis\n",
                     f->path, opt->ykey);
             return -2;
         }
         return k;
     }
     for (k = 0; k < s->nkeys; k++)
-        if (k != x && s->numeric[k])
+        if (s->axis[k] != s->axis[x] && s->numeric[k])
             return k;
     return -1;
 }

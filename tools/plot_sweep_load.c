@@ -42,6 +42,20 @@ static void read_keys(hid_t file, plot_sweep *s)
     free(vary);
 }
 
+/* The `axis` attribute of /vary/KEY (keys zipped onto one axis share it); k, an axis of its own,
+ * for a table without it. */
+static int read_axis(hid_t file, const char *path, int k)
+{
+    hid_t d = H5Dopen2(file, path, H5P_DEFAULT);
+    double axis = k;
+    if (d >= 0) {
+        if (plot_h5_attr_double(d, "axis", &axis) != 0)
+            axis = k;
+        H5Dclose(d);
+    }
+    return (int)axis;
+}
+
 /* Key k's values: doubles when the dataset is numeric (and their text), else the text itself. */
 static int read_key(hid_t file, plot_sweep *s, int k)
 {
@@ -49,6 +63,7 @@ static int read_key(hid_t file, plot_sweep *s, int k)
     plot_array a;
     size_t i, n = 0;
     snprintf(path, sizeof path, "vary/%s", s->key[k]);
+    s->axis[k] = read_axis(file, path, k);
     if (plot_h5_read_strings(file, path, &s->text[k], &n) == 0)
         return n == s->n ? 0 : -1;
     if (plot_h5_read(file, path, &a) != 0 || a.n != s->n) {

@@ -56,17 +56,20 @@ static uint64_t fnv_string(uint64_t h, const char *s)
 
 uint64_t sweep_fingerprint(const td_case *base, const td_sweep_grid *grid)
 {
-    char layout[64];
+    char layout[64], axis[16];
     uint64_t h = 14695981039346656037u;
     long p, n = td_sweep_grid_points(grid);
-    int a, axes = td_sweep_grid_axes(grid);
-    snprintf(layout, sizeof layout, "%s %lu %ld %d", td_version(), (unsigned long)sizeof(journal_record), n, axes);
+    int k, keys = td_sweep_grid_keys(grid);
+    snprintf(layout, sizeof layout, "%s %lu %ld %d %d", td_version(), (unsigned long)sizeof(journal_record), n,
+             td_sweep_grid_axes(grid), keys);
     h = fnv_string(h, layout);
     h = fnv_string(h, td_case_text(base)); /* the case with its --set overrides */
-    for (a = 0; a < axes; a++) {
-        h = fnv_string(h, td_sweep_grid_key(grid, a));
+    for (k = 0; k < keys; k++) {           /* every key with its axis: a zip is not a grid */
+        snprintf(axis, sizeof axis, "%d", td_sweep_grid_axis(grid, k));
+        h = fnv_string(h, axis);
+        h = fnv_string(h, td_sweep_grid_key(grid, k));
         for (p = 0; p < n; p++)
-            h = fnv_string(h, td_sweep_grid_value(grid, p, a));
+            h = fnv_string(h, td_sweep_grid_value(grid, p, k));
     }
     return h;
 }
@@ -132,7 +135,7 @@ int sweep_journal_open(const char *path, uint64_t fp, long points, td_sweep_row 
     if (j->f && fread(&have, sizeof have, 1, j->f) == 1) {
         if (memcmp(&have, &want, sizeof have) != 0) {
             td_cli_error("sweep",
-                         "%s is the journal of another sweep (its case, --set, --vary or touchdown version "
+                         "%s is the journal of another sweep (its case, --set, grid or touchdown version "
                          "differ): remove it to start afresh, or write to another --output",
                          path);
             code = TD_EXIT_USAGE;

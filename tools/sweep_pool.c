@@ -41,18 +41,19 @@ int sweep_point_overrides(const sweep_job *job, long point, const char **items,
     for (i = 0; i < job->sets->count; i++)
         items[n++] = job->sets->items[i];
     /* after the fixed overrides: a swept key also given with --set takes the swept value */
-    for (i = 0; i < td_sweep_grid_axes(job->grid); i++) {
+    for (i = 0; i < td_sweep_grid_keys(job->grid); i++) {
         td_sweep_grid_override(job->grid, point, i, store[i], sizeof store[i]);
         items[n++] = store[i];
     }
     return n;
 }
 
-/* The whole run of one point, as `touchdown run` does it minus the files. */
+/* The whole run of one point, as `touchdown run` does it, its files written only when the sweep
+ * keeps them (DIR/point-NNNNNN.h5 and .csv, their lengths checked before the sweep). */
 static void run_point(const sweep_job *job, long point, td_sweep_row *row)
 {
-    const char *items[TD_CLI_MAX_SETS + TD_SWEEP_MAX_AXES];
-    char store[TD_SWEEP_MAX_AXES][TD_SWEEP_KEY_SIZE + TD_SWEEP_VALUE_SIZE];
+    const char *items[TD_CLI_MAX_SETS + TD_SWEEP_MAX_KEYS];
+    char store[TD_SWEEP_MAX_KEYS][TD_SWEEP_KEY_SIZE + TD_SWEEP_VALUE_SIZE];
     int n = sweep_point_overrides(job, point, items, store);
     td_case *c = NULL;
     td_sim *sim = NULL;
@@ -67,12 +68,16 @@ static void run_point(const sweep_job *job, long point, td_sweep_row *row)
     }
     out = *td_case_output_options(c);
     out.hdf5_path[0] = out.csv_path[0] = '\0';
+    if (job->point_dir)
+        snprintf(out.hdf5_path, sizeof out.hdf5_path, SWEEP_POINT_FILE, job->point_dir, point, ".h5");
+    if (job->point_dir && job->point_csv)
+        snprintf(out.csv_path, sizeof out.csv_path, SWEEP_POINT_FILE, job->point_dir, point, ".csv");
     st = td_sim_create(td_case_model(c), td_case_sim_options(c), &sim, &err);
     if (st != TD_OK)
         td_run_summary_failed(&s, td_case_sim_options(c)->t0, td_case_end_time(c), td_model_speed(td_case_model(c)),
                               td_case_sim_options(c)->start, st, err.message);
-    else
-        td_run(sim, td_case_end_time(c), &out, NULL, NULL, &s, &err);
+    else /* the case text goes into the point's files, as touchdown run stores it */
+        td_run(sim, td_case_end_time(c), &out, NULL, td_case_text(c), &s, &err);
     td_sweep_row_from_summary(row, &s);
     td_sim_free(&sim);
     td_case_free(&c);
@@ -150,7 +155,7 @@ static void report_failure(const sweep_job *job, long point, const td_sweep_row 
 {
     int a;
     fprintf(stderr, "touchdown sweep: point %ld (", point);
-    for (a = 0; a < td_sweep_grid_axes(job->grid); a++)
+    for (a = 0; a < td_sweep_grid_keys(job->grid); a++)
         fprintf(stderr, "%s%s=%s", a ? " " : "", td_sweep_grid_key(job->grid, a),
                 td_sweep_grid_value(job->grid, point, a));
     fprintf(stderr, "): %s: %s\n", row->status, row->message[0] ? row->message : "no message");

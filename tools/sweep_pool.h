@@ -9,17 +9,23 @@
 /* Most worker processes (-j). */
 #define TD_SWEEP_POOL_MAX 256
 
-/* What every point shares: the case file, the fixed overrides and the grid (all borrowed), and the
- * journal that records each row as it arrives (NULL: none). */
+/* What every point shares: the case file, the fixed overrides and the grid (all borrowed), the
+ * journal that records each row as it arrives (NULL: none), and the directory of the points' own
+ * result files (NULL: none; else DIR/point-NNNNNN.h5, and .csv when point_csv). */
 typedef struct sweep_job {
     const char *case_path;
     const td_cli_sets *sets;
     const td_sweep_grid *grid;
     sweep_journal *journal;
+    const char *point_dir;
+    int point_csv;
 } sweep_job;
 
+/* The name of point `point`'s result file with extension `ext` (".h5", ".csv") in `dir`. */
+#define SWEEP_POINT_FILE "%s/point-%06ld%s"
+
 /* The overrides of `point`: the fixed ones, then one "KEY=VALUE" per swept key, into items
- * (pointers into store, which holds TD_SWEEP_MAX_AXES strings). Returns their number. */
+ * (pointers into store, which holds TD_SWEEP_MAX_KEYS strings). Returns their number. */
 int sweep_point_overrides(const sweep_job *job, long point, const char **items,
                           char store[][TD_SWEEP_KEY_SIZE + TD_SWEEP_VALUE_SIZE]);
 

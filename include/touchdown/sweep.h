@@ -13,6 +13,7 @@
 
 #include <stddef.h>
 
+#include "touchdown/case.h"
 #include "touchdown/error.h"
 #include "touchdown/export.h"
 #include "touchdown/run.h"
@@ -24,8 +25,10 @@ extern "C" {
 /** Most points in one sweep (the product of the axes' counts); bounds the table's memory
  *  (about 1.5 kB a row) before anything runs. */
 #define TD_SWEEP_MAX_POINTS 100000L
-/** Most swept keys. */
+/** Most axes (the factors of the full grid). */
 #define TD_SWEEP_MAX_AXES 8
+/** Most swept keys in all, zipped keys included. */
+#define TD_SWEEP_MAX_KEYS 16
 /** Longest value text of one point on one axis, NUL included. */
 #define TD_SWEEP_VALUE_SIZE 128
 /** Longest swept key, NUL included. */
@@ -41,32 +44,62 @@ TD_API td_status td_sweep_grid_create(td_sweep_grid **out, td_error *err);
 TD_API void td_sweep_grid_free(td_sweep_grid **g);
 
 /**
- * Add an axis from `spec` (copied): "KEY=START:STOP:N", N >= 1 points from START to STOP evenly
- * spaced, both included (N = 1: START alone); or "KEY=V1,V2,..." a list of values as --set takes
- * them (numbers, true/false, "quoted strings", bare strings; commas inside quotes or brackets do
- * not split). The first axis added varies slowest. Returns TD_OK, or TD_ERR_PARSE with one line
- * naming the spec (bad syntax, N < 1, an empty value, a key given twice, more than
- * TD_SWEEP_MAX_AXES axes or TD_SWEEP_MAX_POINTS points in all); the grid is unchanged on failure.
- * The key itself is checked only when a point's case is loaded.
+ * Add an axis from `spec` (copied):
+ *   "KEY=START:STOP:N"         N >= 1 points from START to STOP evenly spaced, both included
+ *                              (N = 1: START alone); "KEY=START:STOP:N:linear" is the same;
+ *   "KEY=START:STOP:N:log"     N points in geometric progression (a constant ratio), START and
+ *                              STOP > 0, both included exactly;
+ *   "KEY=V1,V2,..."            a list of values as --set takes them (numbers, true/false,
+ *                              "quoted strings", bare strings; commas inside quotes or brackets
+ *                              do not split).
+ * The first axis added varies slowest. Returns TD_OK, or TD_ERR_PARSE with one line
+ * "--vary 'SPEC': why" (bad syntax, N < 1, a log end <= 0, an empty value, a key given twice,
+ * more than TD_SWEEP_MAX_AXES axes, TD_SWEEP_MAX_KEYS keys or TD_SWEEP_MAX_POINTS points in all);
+ * the grid is unchanged on failure. The key itself is checked only when a point's case is loaded.
  */
 TD_API td_status td_sweep_grid_vary(td_sweep_grid *g, const char *spec, td_error *err);
+
+/**
+ * Add key `spec` (the forms of td_sweep_grid_vary) to the last axis added: zipped, it moves with
+ * that axis's keys, its i-th value going with theirs, so it must have as many values. Errors as
+ * td_sweep_grid_vary, "--with 'SPEC': why"; a count that differs names both keys, and a grid
+ * without axes has nothing to join.
+ */
+TD_API td_status td_sweep_grid_with(td_sweep_grid *g, const char *spec, td_error *err);
+
+/**
+ * Add the axes of the case's `sweep` group (td_case_sweep_spec) after g's own: each axis of the
+ * case that has a key g already sweeps is left out whole (the caller's axes replace the file's).
+ * The case's specs were checked when it was loaded; what is left to fail is a limit on axes,
+ * keys or points reached with g's own, an error "FILE:LINE: sweep.vary[i]: why". Each axis added
+ * has that "FILE:LINE: sweep.vary[i]" as its origin (td_sweep_grid_origin).
+ */
+TD_API td_status td_sweep_grid_from_case(td_sweep_grid *g, const td_case *c, td_error *err);
 
 /** Number of points (1 for a grid without axes). */
 TD_API long td_sweep_grid_points(const td_sweep_grid *g);
 /** Number of axes. */
 TD_API int td_sweep_grid_axes(const td_sweep_grid *g);
-/** The swept key of `axis` (borrowed). */
-TD_API const char *td_sweep_grid_key(const td_sweep_grid *g, int axis);
-/** The spec `axis` was made from, as given (borrowed). */
-TD_API const char *td_sweep_grid_spec(const td_sweep_grid *g, int axis);
-/** 1 if every value of `axis` is a number (the table then stores it as a double). */
-TD_API int td_sweep_grid_numeric(const td_sweep_grid *g, int axis);
-/** The value text of `axis` at `point` (0 <= point < td_sweep_grid_points), borrowed. Range
+/** Number of swept keys (at least the number of axes; more with zipped keys). Keys are numbered
+ *  0 .. td_sweep_grid_keys - 1 in the order added; the functions below take such a number `k`. */
+TD_API int td_sweep_grid_keys(const td_sweep_grid *g);
+/** The swept key `k` (borrowed). */
+TD_API const char *td_sweep_grid_key(const td_sweep_grid *g, int k);
+/** The spec key `k` was made from, as given (borrowed). */
+TD_API const char *td_sweep_grid_spec(const td_sweep_grid *g, int k);
+/** The axis of key `k` (keys on one axis are zipped). */
+TD_API int td_sweep_grid_axis(const td_sweep_grid *g, int k);
+/** Where the axis of key `k` came from (borrowed): "command line" for td_sweep_grid_vary, the
+ *  case file's "FILE:LINE: sweep.vary[i]" for td_sweep_grid_from_case. */
+TD_API const char *td_sweep_grid_origin(const td_sweep_grid *g, int k);
+/** 1 if every value of key `k` is a number (the table then stores it as a double). */
+TD_API int td_sweep_grid_numeric(const td_sweep_grid *g, int k);
+/** The value text of key `k` at `point` (0 <= point < td_sweep_grid_points), borrowed. Range
  *  values are printed with the fewest digits (15-17) that read back to the same double. */
-TD_API const char *td_sweep_grid_value(const td_sweep_grid *g, long point, int axis);
-/** "KEY=VALUE" of `axis` at `point` into buf (n bytes, always NUL-terminated when n > 0);
+TD_API const char *td_sweep_grid_value(const td_sweep_grid *g, long point, int k);
+/** "KEY=VALUE" of key `k` at `point` into buf (n bytes, always NUL-terminated when n > 0);
  *  returns the length needed, like snprintf. */
-TD_API int td_sweep_grid_override(const td_sweep_grid *g, long point, int axis, char *buf, size_t n);
+TD_API int td_sweep_grid_override(const td_sweep_grid *g, long point, int k, char *buf, size_t n);
 
 /** What became of a point. */
 typedef enum td_sweep_state {

@@ -12,7 +12,7 @@
 static const char *const top_keys[] = {"description",  "speed",      "end_time", "start",     "shaft",      "discs",
                                        "point_masses", "ambs",       "bearings", "retainers", "unbalances", "schedule",
                                        "gravity",      "contact",    "solver",   "output",    "modal",      "overrides",
-                                       "energy",       "speed_ramp", "spin",     "reduction", NULL};
+                                       "energy",       "speed_ramp", "spin",     "reduction", "sweep",      NULL};
 
 static char *dup_string(const char *s, size_t n)
 {
@@ -189,6 +189,8 @@ static td_status read_case(td_case_reader *r)
         st = td_cr_read_parts(r, root);
     if (st == TD_OK)
         st = td_cr_read_options(r, root);
+    if (st == TD_OK)
+        st = td_cr_read_sweep(r, root);
     /* the model's cross checks (nodes on the shaft, one AMB and one retainer per node, retainers
      * tighter than the air gaps, schedule indices), reported at the settings they name */
     if (st == TD_OK && td_model_validate(r->c->model, &merr) != TD_OK)
@@ -334,6 +336,7 @@ void td_case_free(td_case **c)
     while ((*c)->file_count > 0)
         free((*c)->files[--(*c)->file_count]);
     free((*c)->files);
+    td_cr_free_sweep(*c);
     free(*c);
     *c = NULL;
 }
@@ -379,4 +382,16 @@ const char *const *td_case_files(const td_case *c, int *count)
 const char *td_case_description(const td_case *c)
 {
     return c && c->description ? c->description : "";
+}
+int td_case_sweep_specs(const td_case *c)
+{
+    return c ? c->sweep_count : 0;
+}
+const char *td_case_sweep_spec(const td_case *c, int i, int *with, const char **where)
+{
+    if (with)
+        *with = c->sweep[i].with;
+    if (where)
+        *where = c->sweep[i].where;
+    return c->sweep[i].spec;
 }

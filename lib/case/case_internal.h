@@ -24,7 +24,16 @@ struct td_case {
     char *description; /* "" when absent */
     char **files;      /* the case file and every @include file read, as opened (td_case_files) */
     int file_count;
+    struct td_cr_sweep_spec *sweep; /* the `sweep` group as specs (td_case_sweep_spec) */
+    int sweep_count;
 };
+
+/* One swept key of the case's `sweep` group, as touchdown/sweep.h takes it. */
+typedef struct td_cr_sweep_spec {
+    char *spec;  /* "KEY=START:STOP:N[:SPACING]" or "KEY=V1,V2,..." */
+    char *where; /* "FILE:LINE: sweep.vary[i]" (or "...with[j]") */
+    int with;    /* 1: zipped onto the axis of the spec before */
+} td_cr_sweep_spec;
 
 /* A decimal or hex integer literal that libconfig 1.5 silently wraps to 32 bits (it has no
  * overflow check); found by td_cr_scan_text, reported against the setting on that line. */
@@ -179,5 +188,9 @@ extern const char *const td_cr_damping_names[TD_CR_DAMPING_NAMES];
 td_status td_cr_read_shaft(td_case_reader *r, const config_setting_t *root);
 td_status td_cr_read_parts(td_case_reader *r, const config_setting_t *root);
 td_status td_cr_read_options(td_case_reader *r, const config_setting_t *root);
+/* The optional `sweep` group (case_sweep.c), checked by the rules of the sweep grid. */
+td_status td_cr_read_sweep(td_case_reader *r, const config_setting_t *root);
+/* Free the case's sweep specs. */
+void td_cr_free_sweep(td_case *c);
 
 #endif

@@ -99,7 +99,7 @@ static void csv_header(FILE *f, const td_sweep_grid *g)
 {
     int a, c;
     fputs("point [-]", f);
-    for (a = 0; a < td_sweep_grid_axes(g); a++) {
+    for (a = 0; a < td_sweep_grid_keys(g); a++) {
         fputc(',', f);
         csv_text(f, td_sweep_grid_key(g, a));
     }
@@ -112,7 +112,7 @@ static void csv_row(FILE *f, const td_sweep_grid *g, long point, const td_sweep_
 {
     int a, c;
     fprintf(f, "%ld", point);
-    for (a = 0; a < td_sweep_grid_axes(g); a++) {
+    for (a = 0; a < td_sweep_grid_keys(g); a++) {
         fputc(',', f);
         csv_text(f, td_sweep_grid_value(g, point, a));
     }
@@ -142,12 +142,24 @@ static void csv_comment_text(FILE *f, const char *name, const char *text)
         fputc('\n', f);
 }
 
+/* Per axis: "# vary = SPEC" of its first key, "# with = SPEC" of each key zipped with it, then
+ * "# from = ORIGIN" (command line, or the case file's FILE:LINE: sweep.vary[i]). */
+static void csv_axes(FILE *f, const td_sweep_grid *g)
+{
+    int k, n = td_sweep_grid_keys(g);
+    for (k = 0; k < n; k++) {
+        int first = k == 0 || td_sweep_grid_axis(g, k - 1) != td_sweep_grid_axis(g, k);
+        fprintf(f, "# %s = %s\n", first ? "vary" : "with", td_sweep_grid_spec(g, k));
+        if (k == n - 1 || td_sweep_grid_axis(g, k + 1) != td_sweep_grid_axis(g, k))
+            fprintf(f, "# from = %s\n", td_sweep_grid_origin(g, k));
+    }
+}
+
 static void csv_attributes(FILE *f, const td_sweep_table *t)
 {
-    int a, i;
+    int i;
     fprintf(f, "# library_version = %s\n# points = %ld\n", td_version(), td_sweep_grid_points(t->grid));
-    for (a = 0; a < td_sweep_grid_axes(t->grid); a++)
-        fprintf(f, "# vary = %s\n", td_sweep_grid_spec(t->grid, a));
+    csv_axes(f, t->grid);
     for (i = 0; i < t->n_sets; i++)
         fprintf(f, "# set = %s\n", t->sets[i]);
     if (t->case_text && t->case_text[0])
@@ -205,24 +217,40 @@ static int h5_quantity(hid_t file, const td_sweep_table *t, int c, hsize_t n, co
     return td_h5_dataset(file, columns[c].name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, num, 1, &n, columns[c].units);
 }
 
+/* The attributes of /vary/KEY: its spec, its axis (keys of one axis are zipped) and where the
+ * axis came from. */
+static int h5_key_attributes(hid_t group, const td_sweep_grid *g, int k)
+{
+    hid_t d = H5Dopen2(group, td_sweep_grid_key(g, k), H5P_DEFAULT);
+    int ok = d >= 0 && td_h5_attr_string(d, "spec", td_sweep_grid_spec(g, k)) >= 0 &&
+             td_h5_attr_int(d, "axis", td_sweep_grid_axis(g, k)) >= 0 &&
+             td_h5_attr_string(d, "origin", td_sweep_grid_origin(g, k)) >= 0;
+    if (d >= 0)
+        H5Dclose(d);
+    return ok;
+}
+
 /* /vary/KEY: a swept key's values, doubles when all are numbers, else their text. */
-static int h5_axis(hid_t group, const td_sweep_grid *g, int a, hsize_t n, const char **text, double *num)
+static int h5_axis(hid_t group, const td_sweep_grid *g, int k, hsize_t n, const char **text, double *num)
 {
     hsize_t p;
+    int ok;
     for (p = 0; p < n; p++) {
-        text[p] = td_sweep_grid_value(g, (long)p, a);
+        text[p] = td_sweep_grid_value(g, (long)p, k);
         num[p] = strtod(text[p], NULL);
     }
-    if (td_sweep_grid_numeric(g, a))
-        return td_h5_dataset(group, td_sweep_grid_key(g, a), H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, num, 1, &n, "");
-    return h5_text_column(group, td_sweep_grid_key(g, a), text, n);
+    if (td_sweep_grid_numeric(g, k))
+        ok = td_h5_dataset(group, td_sweep_grid_key(g, k), H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, num, 1, &n, "");
+    else
+        ok = h5_text_column(group, td_sweep_grid_key(g, k), text, n);
+    return ok && h5_key_attributes(group, g, k);
 }
 
 static int h5_axes(hid_t file, const td_sweep_table *t, hsize_t n, const char **text, double *num)
 {
     hid_t group = H5Gcreate2(file, "vary", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
     int a, ok = group >= 0;
-    for (a = 0; ok && a < td_sweep_grid_axes(t->grid); a++)
+    for (a = 0; ok && a < td_sweep_grid_keys(t->grid); a++)
         ok = h5_axis(group, t->grid, a, n, text, num);
     if (group >= 0)
         H5Gclose(group);
@@ -250,19 +278,19 @@ static int h5_columns(hid_t file, const td_sweep_table *t)
     hsize_t n = (hsize_t)td_sweep_grid_points(t->grid);
     const char **text = malloc((size_t)n * sizeof *text);
     double *num = malloc((size_t)n * sizeof *num);
-    const char *names[N_COLUMNS + TD_SWEEP_MAX_AXES + 2];
-    char vary_names[TD_SWEEP_MAX_AXES][TD_SWEEP_KEY_SIZE + 8];
+    const char *names[N_COLUMNS + TD_SWEEP_MAX_KEYS + 2];
+    char vary_names[TD_SWEEP_MAX_KEYS][TD_SWEEP_KEY_SIZE + 8];
     int c, a, ok = text && num && td_h5_index(file, "point", (int)n, "") && h5_axes(file, t, n, text, num);
     for (c = 0; ok && c < N_COLUMNS; c++) {
         ok = h5_quantity(file, t, c, n, text, num);
         names[c] = columns[c].name;
     }
-    for (a = 0; a < td_sweep_grid_axes(t->grid); a++) {
+    for (a = 0; a < td_sweep_grid_keys(t->grid); a++) {
         snprintf(vary_names[a], sizeof vary_names[a], "vary/%s", td_sweep_grid_key(t->grid, a));
         names[N_COLUMNS + a] = vary_names[a];
     }
-    names[N_COLUMNS + td_sweep_grid_axes(t->grid)] = "section_radius";
-    names[N_COLUMNS + td_sweep_grid_axes(t->grid) + 1] = NULL;
+    names[N_COLUMNS + td_sweep_grid_keys(t->grid)] = "section_radius";
+    names[N_COLUMNS + td_sweep_grid_keys(t->grid) + 1] = NULL;
     ok = ok && h5_section(file, t, n) && td_h5_attach(file, "point", names, 0);
     free(text);
     free(num);
@@ -275,12 +303,12 @@ static int h5_attributes(hid_t file, const td_sweep_table *t)
     char *vary = NULL, *sets = NULL;
     size_t nv = 1, ns = 1;
     int a, i, ok;
-    for (a = 0; a < td_sweep_grid_axes(t->grid); a++)
+    for (a = 0; a < td_sweep_grid_keys(t->grid); a++)
         nv += strlen(td_sweep_grid_spec(t->grid, a)) + 1;
     for (i = 0; i < t->n_sets; i++)
         ns += strlen(t->sets[i]) + 1;
     ok = (vary = calloc(nv, 1)) != NULL && (sets = calloc(ns, 1)) != NULL;
-    for (a = 0; ok && a < td_sweep_grid_axes(t->grid); a++) /* one spec a line */
+    for (a = 0; ok && a < td_sweep_grid_keys(t->grid); a++) /* one spec a line, zipped keys too */
         strcat(strcat(vary, td_sweep_grid_spec(t->grid, a)), "\n");
     for (i = 0; ok && i < t->n_sets; i++)
         strcat(strcat(sets, t->sets[i]), "\n");

@@ -1,30 +1,59 @@
 /*
- * The grid of a sweep (touchdown/sweep.h): axes parsed from "KEY=START:STOP:N" or
- * "KEY=V1,V2,..." specs, each holding its values as the text of a --set override, so that a
- * point is nothing but the case loaded with one more override per axis.
+ * The grid of a sweep (touchdown/sweep.h): axes parsed from "KEY=START:STOP:N[:SPACING]" or
+ * "KEY=V1,V2,..." specs, each key holding its values as the text of a --set override, so that a
+ * point is nothing but the case loaded with one more override per swept key. An axis has one key,
+ * or several zipped keys with as many values each that move together.
  */
-#include "touchdown/sweep.h"
+#include "run/sweep_internal.h"
+#include "touchdown/case.h"
 #include "util/error_internal.h"
 
 #include <math.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 typedef char td_sweep_value[TD_SWEEP_VALUE_SIZE];
 
-typedef struct sweep_axis {
+typedef struct sweep_key {
     char key[TD_SWEEP_KEY_SIZE];
     char *spec;
+    int axis;
     int numeric;
     long count;
-    td_sweep_value *values;
+    td_sweep_value *values; /* NULL in a dry grid */
+} sweep_key;
+
+typedef struct sweep_axis {
+    long count;
+    char *origin;
 } sweep_axis;
 
 struct td_sweep_grid {
-    int axes;
+    int dry;
+    int axes, keys;
     sweep_axis axis[TD_SWEEP_MAX_AXES];
+    sweep_key key[TD_SWEEP_MAX_KEYS];
 };
+
+/* Where a failed rule leaves its part and reason. */
+typedef struct add_error {
+    td_sweep_part part;
+    char *reason;
+    size_t n;
+} add_error;
+
+static td_status reject(add_error *e, td_sweep_part part, const char *fmt, ...) TD_PRINTF(3, 4);
+static td_status reject(add_error *e, td_sweep_part part, const char *fmt, ...)
+{
+    va_list ap;
+    e->part = part;
+    va_start(ap, fmt);
+    vsnprintf(e->reason, e->n, fmt, ap);
+    va_end(ap);
+    return TD_ERR_PARSE;
+}
 
 td_status td_sweep_grid_create(td_sweep_grid **out, td_error *err)
 {
@@ -34,11 +63,19 @@ td_status td_sweep_grid_create(td_sweep_grid **out, td_error *err)
     return *out ? TD_OK : td_error_set(err, TD_ERR_NOMEM, "td_sweep_grid_create: out of memory");
 }
 
-static void axis_release(sweep_axis *a)
+td_status td_sweep_grid_create_dry(td_sweep_grid **out, td_error *err)
 {
-    free(a->spec);
-    free(a->values);
-    memset(a, 0, sizeof *a);
+    td_status st = td_sweep_grid_create(out, err);
+    if (st == TD_OK)
+        (*out)->dry = 1;
+    return st;
+}
+
+static void key_release(sweep_key *k)
+{
+    free(k->spec);
+    free(k->values);
+    memset(k, 0, sizeof *k);
 }
 
 void td_sweep_grid_free(td_sweep_grid **g)
@@ -46,8 +83,10 @@ void td_sweep_grid_free(td_sweep_grid **g)
     int i;
     if (!g || !*g)
         return;
+    for (i = 0; i < (*g)->keys; i++)
+        key_release(&(*g)->key[i]);
     for (i = 0; i < (*g)->axes; i++)
-        axis_release(&(*g)->axis[i]);
+        free((*g)->axis[i].origin);
     free(*g);
     *g = NULL;
 }
@@ -63,7 +102,7 @@ static int parse_number(const char *s, double *v)
 }
 
 /* x with the fewest significant digits (15, 16, 17) that read back to x: short, and exact. */
-static void print_exact(char *buf, size_t n, double x)
+void td_sweep_print_number(char *buf, size_t n, double x)
 {
     int digits;
     for (digits = 15; digits <= 17; digits++) {
@@ -73,33 +112,77 @@ static void print_exact(char *buf, size_t n, double x)
     }
 }
 
-/* START:STOP:N into a->values; TD_ERR_PARSE naming the spec when `body` is not of that form. */
-static td_status parse_range(sweep_axis *a, const char *body, const char *spec, td_error *err)
+/* Point i of n from start to stop, both ends exact: evenly spaced, or geometric (log). */
+static double range_value(double start, double stop, long n, long i, int log_spacing)
 {
-    char start_s[TD_SWEEP_VALUE_SIZE], stop_s[TD_SWEEP_VALUE_SIZE], *end;
-    const char *c1 = strchr(body, ':'), *c2 = c1 ? strchr(c1 + 1, ':') : NULL;
-    double start, stop;
-    long n, i;
-    if (!c2 || strchr(c2 + 1, ':') || (size_t)(c1 - body) >= sizeof start_s || (size_t)(c2 - c1) > sizeof stop_s)
-        return td_error_set(err, TD_ERR_PARSE, "--vary '%s': expected KEY=START:STOP:N or KEY=V1,V2,...", spec);
-    memcpy(start_s, body, (size_t)(c1 - body));
-    start_s[c1 - body] = '\0';
-    memcpy(stop_s, c1 + 1, (size_t)(c2 - c1 - 1));
-    stop_s[c2 - c1 - 1] = '\0';
-    if (!parse_number(start_s, &start) || !parse_number(stop_s, &stop))
-        return td_error_set(err, TD_ERR_PARSE, "--vary '%s': START and STOP must be numbers", spec);
-    n = strtol(c2 + 1, &end, 10);
-    if (end == c2 + 1 || *end || n < 1 || n > TD_SWEEP_MAX_POINTS)
-        return td_error_set(err, TD_ERR_PARSE, "--vary '%s': N must be a whole number from 1 to %ld", spec,
-                            TD_SWEEP_MAX_POINTS);
-    if (!(a->values = malloc((size_t)n * sizeof *a->values)))
-        return td_error_set(err, TD_ERR_NOMEM, "--vary '%s': out of memory", spec);
-    for (i = 0; i < n; i++) /* the last point is STOP itself, not START plus rounded steps */
-        print_exact(a->values[i], TD_SWEEP_VALUE_SIZE,
-                    i == n - 1 && n > 1 ? stop : start + (stop - start) * (double)i / (double)(n > 1 ? n - 1 : 1));
-    a->count = n;
-    a->numeric = 1;
+    double t;
+    if (i == 0 || n == 1)
+        return start;
+    if (i == n - 1) /* STOP itself, not START plus rounded steps */
+        return stop;
+    t = (double)i / (double)(n - 1);
+    return log_spacing ? start * pow(stop / start, t) : start + (stop - start) * t;
+}
+
+/* body split at its colons into f[]; the number of fields, or -1 past `max` or a field too long. */
+static int split_fields(const char *body, td_sweep_value *f, int max)
+{
+    int nf = 0;
+    for (;;) {
+        const char *c = strchr(body, ':');
+        size_t len = c ? (size_t)(c - body) : strlen(body);
+        if (nf == max || len >= TD_SWEEP_VALUE_SIZE)
+            return -1;
+        memcpy(f[nf], body, len);
+        f[nf++][len] = '\0';
+        if (!c)
+            return nf;
+        body = c + 1;
+    }
+}
+
+/* The spacing field of a range: 0 linear, 1 log, -1 neither. */
+static int parse_spacing(const char *s)
+{
+    return !strcmp(s, "linear") ? 0 : (!strcmp(s, "log") ? 1 : -1);
+}
+
+static td_status fill_range(sweep_key *k, double start, double stop, long n, int log_spacing, add_error *e)
+{
+    long i;
+    if (!(k->values = malloc((size_t)n * sizeof *k->values)))
+        return reject(e, TD_SWEEP_PART_SPEC, "out of memory");
+    for (i = 0; i < n; i++)
+        td_sweep_print_number(k->values[i], TD_SWEEP_VALUE_SIZE, range_value(start, stop, n, i, log_spacing));
     return TD_OK;
+}
+
+/* START:STOP:N[:SPACING] into k (its values unless the grid is dry). */
+static td_status parse_range(sweep_key *k, const char *body, int dry, add_error *e)
+{
+    td_sweep_value f[4];
+    double start, stop;
+    char *end;
+    long n;
+    int nf = split_fields(body, f, 4), log_spacing = 0;
+    if (nf < 3)
+        return reject(e, TD_SWEEP_PART_SPEC, "expected KEY=START:STOP:N[:linear|log] or KEY=V1,V2,...");
+    if (!parse_number(f[0], &start))
+        return reject(e, TD_SWEEP_PART_START, "the range's first value '%s' is not a number", f[0]);
+    if (!parse_number(f[1], &stop))
+        return reject(e, TD_SWEEP_PART_STOP, "the range's last value '%s' is not a number", f[1]);
+    n = strtol(f[2], &end, 10);
+    if (end == f[2] || *end || n < 1 || n > TD_SWEEP_MAX_POINTS)
+        return reject(e, TD_SWEEP_PART_N, "the number of points must be a whole number from 1 to %ld, got '%s'",
+                      TD_SWEEP_MAX_POINTS, f[2]);
+    if (nf == 4 && (log_spacing = parse_spacing(f[3])) < 0)
+        return reject(e, TD_SWEEP_PART_SPACING, "the spacing must be linear or log, got '%s'", f[3]);
+    if (log_spacing && !(start > 0.0 && stop > 0.0))
+        return reject(e, start > 0.0 ? TD_SWEEP_PART_STOP : TD_SWEEP_PART_START,
+                      "a log range needs both ends > 0 (got %s and %s)", f[0], f[1]);
+    k->count = n;
+    k->numeric = 1;
+    return dry ? TD_OK : fill_range(k, start, stop, n, log_spacing, e);
 }
 
 /* End of the list item starting at s: the next comma outside quotes and brackets, or the end. */
@@ -135,47 +218,57 @@ static long count_items(const char *body)
     return n;
 }
 
-/* V1,V2,... into a->values. */
-static td_status parse_list(sweep_axis *a, const char *body, const char *spec, td_error *err)
+/* V1,V2,... into k: every value checked, kept unless the grid is dry. */
+static td_status parse_list(sweep_key *k, const char *body, int dry, add_error *e)
 {
     long n = count_items(body), i;
     const char *s = body;
     double v;
     if (n > TD_SWEEP_MAX_POINTS)
-        return td_error_set(err, TD_ERR_PARSE, "--vary '%s': more than %ld values", spec, TD_SWEEP_MAX_POINTS);
-    if (!(a->values = malloc((size_t)n * sizeof *a->values)))
-        return td_error_set(err, TD_ERR_NOMEM, "--vary '%s': out of memory", spec);
-    a->numeric = 1;
+        return reject(e, TD_SWEEP_PART_VALUES, "more than %ld values", TD_SWEEP_MAX_POINTS);
+    if (!dry && !(k->values = malloc((size_t)n * sizeof *k->values)))
+        return reject(e, TD_SWEEP_PART_SPEC, "out of memory");
+    k->numeric = 1;
     for (i = 0; i < n; i++) {
-        const char *e = item_end(s);
-        size_t len = (size_t)(e - s);
+        const char *end = item_end(s);
+        size_t len = (size_t)(end - s);
+        char value[TD_SWEEP_VALUE_SIZE];
         if (len == 0 || len >= TD_SWEEP_VALUE_SIZE)
-            return td_error_set(err, TD_ERR_PARSE, "--vary '%s': value %ld is %s", spec, i + 1,
-                                len ? "too long" : "empty");
-        memcpy(a->values[i], s, len);
-        a->values[i][len] = '\0';
-        a->numeric = a->numeric && parse_number(a->values[i], &v);
-        s = e + 1;
+            return reject(e, TD_SWEEP_PART_VALUES, "value %ld is %s", i + 1,
+                          len ? "too long (at most 127 characters)" : "empty");
+        memcpy(value, s, len);
+        value[len] = '\0';
+        if (!dry)
+            memcpy(k->values[i], value, len + 1);
+        k->numeric = k->numeric && parse_number(value, &v);
+        s = end + 1;
     }
-    a->count = n;
+    k->count = n;
     return TD_OK;
 }
 
-/* The key before '=' into a->key, checked for size and against the grid's other keys. */
-static td_status parse_key(const td_sweep_grid *g, sweep_axis *a, const char *spec, const char **body, td_error *err)
+static int key_index(const td_sweep_grid *g, const char *key)
+{
+    int i;
+    for (i = 0; i < g->keys; i++)
+        if (!strcmp(g->key[i].key, key))
+            return i;
+    return -1;
+}
+
+/* The key before '=' into k->key, checked for size and against the grid's other keys. */
+static td_status parse_key(const td_sweep_grid *g, sweep_key *k, const char *spec, const char **body, add_error *e)
 {
     const char *eq = strchr(spec, '=');
     size_t len = eq ? (size_t)(eq - spec) : 0;
-    int i;
     if (!eq || len == 0 || !eq[1])
-        return td_error_set(err, TD_ERR_PARSE, "--vary '%s': expected KEY=START:STOP:N or KEY=V1,V2,...", spec);
-    if (len >= sizeof a->key)
-        return td_error_set(err, TD_ERR_PARSE, "--vary '%s': the key is too long", spec);
-    memcpy(a->key, spec, len);
-    a->key[len] = '\0';
-    for (i = 0; i < g->axes; i++)
-        if (!strcmp(g->axis[i].key, a->key))
-            return td_error_set(err, TD_ERR_PARSE, "--vary '%s': %s is swept twice", spec, a->key);
+        return reject(e, TD_SWEEP_PART_SPEC, "expected KEY=START:STOP:N[:linear|log] or KEY=V1,V2,...");
+    if (len >= sizeof k->key)
+        return reject(e, TD_SWEEP_PART_KEY, "the key is too long (at most %d characters)", TD_SWEEP_KEY_SIZE - 1);
+    memcpy(k->key, spec, len);
+    k->key[len] = '\0';
+    if (key_index(g, k->key) >= 0)
+        return reject(e, TD_SWEEP_PART_KEY, "%s is swept twice", k->key);
     *body = eq + 1;
     return TD_OK;
 }
@@ -187,29 +280,157 @@ static int looks_like_range(const char *body)
     return *item_end(body) == '\0' && strchr(body, ':') && !strchr(body, '"');
 }
 
-td_status td_sweep_grid_vary(td_sweep_grid *g, const char *spec, td_error *err)
+/* Room for one more key, and for a new axis unless it is zipped onto the last one. */
+static td_status check_room(const td_sweep_grid *g, int with, add_error *e)
 {
-    sweep_axis a;
+    if (g->keys >= TD_SWEEP_MAX_KEYS)
+        return reject(e, TD_SWEEP_PART_SPEC, "at most %d swept keys", TD_SWEEP_MAX_KEYS);
+    if (with && g->axes == 0)
+        return reject(e, TD_SWEEP_PART_SPEC, "no axis to join (--with follows a --vary)");
+    if (!with && g->axes >= TD_SWEEP_MAX_AXES)
+        return reject(e, TD_SWEEP_PART_SPEC, "at most %d axes", TD_SWEEP_MAX_AXES);
+    return TD_OK;
+}
+
+/* A zipped key has as many values as the axis it joins; a new axis keeps the grid bounded. */
+static td_status check_count(const td_sweep_grid *g, const sweep_key *k, int with, add_error *e)
+{
+    long points = td_sweep_grid_points(g);
+    const sweep_key *first;
+    if (with) {
+        first = &g->key[g->keys - 1];
+        while (first > g->key && first[-1].axis == first->axis)
+            first--;
+        if (k->count != first->count)
+            return reject(e, TD_SWEEP_PART_COUNT, "%s has %ld values but %s, whose axis it joins, has %ld", k->key,
+                          k->count, first->key, first->count);
+        return TD_OK;
+    }
+    if (points * k->count > TD_SWEEP_MAX_POINTS)
+        return reject(e, TD_SWEEP_PART_SPEC, "the sweep would have %ld points, at most %ld", points * k->count,
+                      TD_SWEEP_MAX_POINTS);
+    return TD_OK;
+}
+
+/* k (with a copy of its spec) joins the grid: on a new axis of origin `origin`, or the last. */
+static td_status keep(td_sweep_grid *g, sweep_key *k, const char *spec, int with, const char *origin, add_error *e)
+{
+    char *origin_copy = NULL;
+    if (!(k->spec = malloc(strlen(spec) + 1)) || (!with && !(origin_copy = malloc(strlen(origin ? origin : "") + 1))))
+        return reject(e, TD_SWEEP_PART_SPEC, "out of memory");
+    strcpy(k->spec, spec);
+    if (!with) {
+        strcpy(origin_copy, origin ? origin : "");
+        g->axis[g->axes].count = k->count;
+        g->axis[g->axes++].origin = origin_copy;
+    }
+    k->axis = g->axes - 1;
+    g->key[g->keys++] = *k;
+    return TD_OK;
+}
+
+td_status td_sweep_grid_add(td_sweep_grid *g, const char *spec, int with, const char *origin, td_sweep_part *part,
+                            char *reason, size_t n)
+{
+    add_error e;
+    sweep_key k;
     const char *body = NULL;
     td_status st;
+    e.part = TD_SWEEP_PART_SPEC;
+    e.reason = reason;
+    e.n = n;
+    memset(&k, 0, sizeof k);
+    st = check_room(g, with, &e);
+    if (st == TD_OK)
+        st = parse_key(g, &k, spec, &body, &e);
+    if (st == TD_OK)
+        st = looks_like_range(body) ? parse_range(&k, body, g->dry, &e) : parse_list(&k, body, g->dry, &e);
+    if (st == TD_OK)
+        st = check_count(g, &k, with, &e);
+    if (st == TD_OK)
+        st = keep(g, &k, spec, with, origin, &e);
+    if (st != TD_OK)
+        key_release(&k);
+    *part = e.part;
+    return st;
+}
+
+/* --vary and --with: the rules of td_sweep_grid_add, the error naming the option and its spec. */
+static td_status add_option(td_sweep_grid *g, const char *spec, int with, td_error *err)
+{
+    char reason[TD_ERROR_MESSAGE_SIZE], *context;
+    td_sweep_part part;
+    td_status st;
     if (!g || !spec)
-        return td_error_set(err, TD_ERR_INVALID, "td_sweep_grid_vary: NULL argument");
-    if (g->axes >= TD_SWEEP_MAX_AXES)
-        return td_error_set(err, TD_ERR_PARSE, "--vary '%s': at most %d swept keys", spec, TD_SWEEP_MAX_AXES);
-    memset(&a, 0, sizeof a);
-    if ((st = parse_key(g, &a, spec, &body, err)) == TD_OK)
-        st = looks_like_range(body) ? parse_range(&a, body, spec, err) : parse_list(&a, body, spec, err);
-    if (st == TD_OK && td_sweep_grid_points(g) * a.count > TD_SWEEP_MAX_POINTS)
-        st = td_error_set(err, TD_ERR_PARSE, "--vary '%s': the sweep would have %ld points, at most %ld", spec,
-                          td_sweep_grid_points(g) * a.count, TD_SWEEP_MAX_POINTS);
-    if (st == TD_OK && !(a.spec = malloc(strlen(spec) + 1)))
-        st = td_error_set(err, TD_ERR_NOMEM, "--vary '%s': out of memory", spec);
-    if (st != TD_OK) {
-        axis_release(&a);
-        return st;
+        return td_error_set(err, TD_ERR_INVALID, "td_sweep_grid_%s: NULL argument", with ? "with" : "vary");
+    st = td_sweep_grid_add(g, spec, with, "command line", &part, reason, sizeof reason);
+    if (st == TD_OK)
+        return TD_OK;
+    if (!(context = malloc(strlen(spec) + 16)))
+        return td_error_set(err, TD_ERR_NOMEM, "%s: out of memory", with ? "--with" : "--vary");
+    sprintf(context, "%s '%s'", with ? "--with" : "--vary", spec); /* a long spec is cut, the reason kept */
+    st = td_error_set_reason(err, st, context, reason);
+    free(context);
+    return st;
+}
+
+td_status td_sweep_grid_vary(td_sweep_grid *g, const char *spec, td_error *err)
+{
+    return add_option(g, spec, 0, err);
+}
+
+td_status td_sweep_grid_with(td_sweep_grid *g, const char *spec, td_error *err)
+{
+    return add_option(g, spec, 1, err);
+}
+
+/* 1 if `spec` sweeps one of the first `own` keys of g. */
+static int spec_is_swept(const td_sweep_grid *g, int own, const char *spec)
+{
+    int i;
+    for (i = 0; i < own; i++) {
+        size_t len = strlen(g->key[i].key);
+        if (!strncmp(spec, g->key[i].key, len) && spec[len] == '=')
+            return 1;
     }
-    strcpy(a.spec, spec);
-    g->axis[g->axes++] = a;
+    return 0;
+}
+
+/* The case's specs [first, *end) of one axis; 1 if the grid's own keys (the first `own`) sweep
+ * any of them, which then replaces the whole axis. */
+static int case_axis(const td_sweep_grid *g, int own, const td_case *c, int first, int *end)
+{
+    int i, with = 0, n = td_case_sweep_specs(c), taken = 0;
+    for (i = first; i < n; i++) {
+        const char *spec = td_case_sweep_spec(c, i, &with, NULL);
+        if (i > first && !with)
+            break;
+        taken = taken || spec_is_swept(g, own, spec);
+    }
+    *end = i;
+    return taken;
+}
+
+td_status td_sweep_grid_from_case(td_sweep_grid *g, const td_case *c, td_error *err)
+{
+    char reason[TD_ERROR_MESSAGE_SIZE];
+    int i, j, end, own, with;
+    td_sweep_part part;
+    const char *where, *spec, *origin = NULL;
+    if (!g || !c)
+        return td_error_set(err, TD_ERR_INVALID, "td_sweep_grid_from_case: NULL argument");
+    own = g->keys;
+    for (i = 0; i < td_case_sweep_specs(c); i = end) {
+        if (case_axis(g, own, c, i, &end))
+            continue;
+        for (j = i; j < end; j++) {
+            spec = td_case_sweep_spec(c, j, &with, &where);
+            if (j == i)
+                origin = where;
+            if (td_sweep_grid_add(g, spec, j > i, origin, &part, reason, sizeof reason) != TD_OK)
+                return td_error_set_reason(err, TD_ERR_PARSE, where, reason);
+        }
+    }
     return TD_OK;
 }
 
@@ -227,33 +448,48 @@ int td_sweep_grid_axes(const td_sweep_grid *g)
     return g ? g->axes : 0;
 }
 
-const char *td_sweep_grid_key(const td_sweep_grid *g, int axis)
+int td_sweep_grid_keys(const td_sweep_grid *g)
 {
-    return g->axis[axis].key;
+    return g ? g->keys : 0;
 }
 
-const char *td_sweep_grid_spec(const td_sweep_grid *g, int axis)
+const char *td_sweep_grid_key(const td_sweep_grid *g, int k)
 {
-    return g->axis[axis].spec;
+    return g->key[k].key;
 }
 
-int td_sweep_grid_numeric(const td_sweep_grid *g, int axis)
+const char *td_sweep_grid_spec(const td_sweep_grid *g, int k)
 {
-    return g->axis[axis].numeric;
+    return g->key[k].spec;
 }
 
-/* The first axis varies slowest: the index on `axis` is the point divided by the product of the
- * later axes' counts. */
-const char *td_sweep_grid_value(const td_sweep_grid *g, long point, int axis)
+int td_sweep_grid_numeric(const td_sweep_grid *g, int k)
+{
+    return g->key[k].numeric;
+}
+
+int td_sweep_grid_axis(const td_sweep_grid *g, int k)
+{
+    return g->key[k].axis;
+}
+
+const char *td_sweep_grid_origin(const td_sweep_grid *g, int k)
+{
+    return g->axis[g->key[k].axis].origin;
+}
+
+/* The first axis varies slowest: the index on an axis is the point divided by the product of the
+ * later axes' counts; the keys of one axis share it. */
+const char *td_sweep_grid_value(const td_sweep_grid *g, long point, int k)
 {
     long stride = 1;
-    int i;
+    int i, axis = g->key[k].axis;
     for (i = axis + 1; i < g->axes; i++)
         stride *= g->axis[i].count;
-    return g->axis[axis].values[(point / stride) % g->axis[axis].count];
+    return g->key[k].values[(point / stride) % g->axis[axis].count];
 }
 
-int td_sweep_grid_override(const td_sweep_grid *g, long point, int axis, char *buf, size_t n)
+int td_sweep_grid_override(const td_sweep_grid *g, long point, int k, char *buf, size_t n)
 {
-    return snprintf(buf, n, "%s=%s", g->axis[axis].key, td_sweep_grid_value(g, point, axis));
+    return snprintf(buf, n, "%s=%s", g->key[k].key, td_sweep_grid_value(g, point, k));
 }
