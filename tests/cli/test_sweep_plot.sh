@@ -81,8 +81,17 @@ check "plot --quantity contacts --x 'schedule[0].magnitude': exit 0, lines per s
     test "$rc" = 0 -a -s "$work/s/q/sweep-contacts.dat" -a \
     -n "$(grep -F '# speed=120' "$work/s/q/sweep-contacts.dat")"
 
+# a key zipped onto the speed axis (--with) moves along the lines: one line per value of the
+# key on the other axis, and that key is the regime map's y
+t "$work/z" sweep -j 2 --set end_time=0.1 --vary speed=60,120 --with 'schedule[0].magnitude=0.05,0.2' \
+    --vary 'unbalances[0].phase=0,1' -o z "$src/cases/rub-damped.cfg"
+t "$work/z" plot --no-run -d p z.h5
+check "plot of a zipped sweep: lines by the other axis only, its key the map's y (got $rc: $(cat "$work/z/.err"))" \
+    test "$rc" = 0 -a "$(grep -c '^# unbalances\[0\].phase=' "$work/z/p/sweep-peak_housing_force.dat")" = 2 -a \
+    -n "$(grep -F '2 unbalances[0].phase' "$work/z/p/regime-map.dat")"
+
 # ---- bad options: one line, exit 2 --------------------------------------------------------------
-for args in "--quantity nosuch" "--x nosuch" "--x speed --y speed" "--quantity ending"; do
+for args in "--quantity nosuch" "--x nosuch" "--x speed --y speed" "--quantity ending" "--x status"; do
     t "$work/s" plot --no-run -d bad $args s.h5
     check "plot $args: exit 2, one line ($(cat "$work/s/.err"))" \
         test "$rc" = 2 -a "$(wc -l <"$work/s/.err")" = 1
