@@ -7,6 +7,7 @@
  */
 #include "td_test.h"
 
+#include "touchdown/dofs.h"
 #include "touchdown/output.h"
 #include "touchdown/run.h"
 #include "touchdown/touchdown.h"
@@ -814,6 +815,51 @@ static void test_section_speed_ramp(void **state)
     free(s);
 }
 
+/* The state td_sim_step gives at time t (events on the way passed), node 3's radius there. */
+static double radius_stepped_to(td_sim *sim, double t, double *q)
+{
+    td_status st;
+    while ((st = td_sim_step(sim, t, NULL, NULL)) == TD_EVENT)
+        ;
+    assert_int_equal(st, TD_OK);
+    assert_int_equal(td_sim_get_state(sim, q, NULL), TD_OK);
+    return hypot(q[TD_DOF(3, TD_DOF_X)], q[TD_DOF(3, TD_DOF_Y)]);
+}
+
+/* Through contact and the free flights between (small_rotor, from rest): each section sample is
+ * the state at its crossing time as a second simulation, stepped to exactly that time through the
+ * public API, has it (to rounding): the crossing's own instant, not an output sample near it. */
+static void test_section_matches_stepping(void **state)
+{
+    td_model *m = small_rotor();
+    td_sim *sim = make_sim(m), *again = make_sim(m);
+    td_output_options out;
+    td_run_summary *s = calloc(1, sizeof *s);
+    double *q = calloc((size_t)td_sim_dof_count(again), sizeof *q), period = 2.0 * TD_PI / OMEGA;
+    td_error err;
+    int i;
+    (void)state;
+    assert_true(s && q);
+    td_output_options_default(&out);
+    out.sample_rate = RATE;
+    out.section_after = 0.0;
+    if (td_run(sim, T_END, &out, NULL, NULL, s, &err) != TD_OK)
+        fail_msg("td_run: %s", err.message);
+    assert_true(s->contacts > 0);
+    assert_int_equal(s->section_count, (long)floor(T_END / period));
+    assert_int_equal(s->section_kept, s->section_count);
+    for (i = 0; i < s->section_kept; i++) {
+        /* the crossings themselves: t = 2 pi k / omega, off the 2 kHz output grid */
+        assert_close(s->section_time[i], period * (i + 1), 1e-14, 0.0);
+        assert_close(s->section_radius[i], radius_stepped_to(again, s->section_time[i], q), 1e-12, 0.0);
+    }
+    td_sim_free(&again);
+    td_sim_free(&sim);
+    td_model_free(&m);
+    free(q);
+    free(s);
+}
+
 /* Taking the section moves nothing: the contact run of small_rotor gives the same answers, bit for
  * bit, with the section over the whole run and without one. */
 static void test_section_changes_nothing(void **state)
@@ -912,6 +958,7 @@ int main(void)
         cmocka_unit_test(test_section_steady_orbit),
         cmocka_unit_test(test_section_changes_nothing),
         cmocka_unit_test(test_section_speed_ramp),
+        cmocka_unit_test(test_section_matches_stepping),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
