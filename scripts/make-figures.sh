@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Regenerates the figures in docs/figures/ from the paper's cases (the README and docs show them).
+# Regenerates the figures in docs/figures/ from the paper's cases and the worked sweep study
+# (docs/sweep-study.md); the README and docs show them.
 #   scripts/make-figures.sh [BUILD_DIR]
 set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
@@ -11,6 +12,10 @@ for c in a b c; do
     "$tool" run -q --csv '' -o "paper-$c" "$here/cases/paper-$c.cfg"
 done
 "$tool" modal -q --csv '' -o paper-a-modal "$here/cases/paper-a.cfg"
+# the worked study: docs/sweep-study.md gives these commands and what they take
+"$tool" sweep -j 1 --vary speed=50:250:41 --vary 'unbalances[0].magnitude=0.005,0.01,0.015,0.02,0.05,0.1' -o study \
+    "$here/cases/study-a.cfg" >/dev/null
+"$tool" plot -q -d study study.h5
 "$tool" plot -q -d a --retainer 0 paper-a.h5
 "$tool" plot -q -d b --retainer 0 paper-b.h5
 "$tool" plot -q -d ac --retainer 0 paper-a.h5 paper-c.h5
@@ -24,4 +29,7 @@ cp b/radial-force-r0.png "$out/paper-b-radial-force-r0.png"
 cp ac/compare-r0.png "$out/paper-a-vs-c-compare-r0.png"
 cp m/campbell.png "$out/paper-a-campbell.png"
 cp m/mode-shapes.png "$out/paper-a-mode-shapes.png"
+cp study/regime-map.png "$out/study-a-regime-map.png"
+cp study/bifurcation.png "$out/study-a-bifurcation.png"
+cp study/sweep-peak_housing_force.png "$out/study-a-peak-housing-force.png"
 echo "make-figures: wrote $(ls "$out" | wc -l) figures to $out"

@@ -471,6 +471,7 @@ static void test_all_keys(void **state)
     assert_string_equal(oo->csv_path, "out/all.csv");
     assert_close(oo->sample_rate, 2000.0, 0.0, 0.0);
     assert_int_equal(oo->compression, 5);
+    assert_true(oo->section_after == 0.25);
     assert_int_equal(oo->node_count, 2);
     assert_int_equal(oo->nodes[0], 1);
     assert_int_equal(oo->nodes[1], 5);

@@ -7,6 +7,7 @@
  */
 #include "td_test.h"
 
+#include "touchdown/dofs.h"
 #include "touchdown/output.h"
 #include "touchdown/run.h"
 #include "touchdown/touchdown.h"
@@ -61,6 +62,33 @@ static td_model *small_rotor(void)
     assert_int_equal(td_model_add_unbalance(m, &u, &err), TD_OK);
     assert_int_equal(td_model_add_change(m, &up, &err), TD_OK);
     assert_int_equal(td_model_add_change(m, &down, &err), TD_OK);
+    assert_int_equal(td_model_set_speed(m, OMEGA, &err), TD_OK);
+    if (td_model_validate(m, &err) != TD_OK)
+        fail_msg("model: %s", err.message);
+    return m;
+}
+
+/* small_rotor without the unbalance steps: a free linear rotor in its steady unbalance orbit. */
+static td_model *steady_rotor(void)
+{
+    td_model *m = NULL;
+    td_shaft_element el = {0.1, 0.02, 0.0, {2.11e11, 8.1e10, 7810.0}};
+    td_disc disc = {3, 4.91, 0.0245, 0.0124};
+    td_bearing b0 = {0, 1e8, 1e8, 200.0, 200.0}, b6 = {6, 1e8, 1e8, 200.0, 200.0};
+    td_amb amb = {1, 1, 0.0, 1.0, 1e5, 20.0, 1e-4, 1e4, 0, 0.0, 0.0};
+    td_retainer ret = {.node = 3, .clearance = CLEARANCE, .shaft_radius = 0.01, .bore_radius = 0.01 + CLEARANCE};
+    td_unbalance u = {3, 1e-5, 0.7};
+    td_error err;
+    int i;
+    assert_int_equal(td_model_create(&m, &err), TD_OK);
+    for (i = 0; i < 6; i++)
+        assert_int_equal(td_model_add_shaft_element(m, &el, &err), TD_OK);
+    assert_int_equal(td_model_add_disc(m, &disc, &err), TD_OK);
+    assert_int_equal(td_model_add_bearing(m, &b0, &err), TD_OK);
+    assert_int_equal(td_model_add_bearing(m, &b6, &err), TD_OK);
+    assert_int_equal(td_model_add_amb(m, &amb, &err), TD_OK);
+    assert_int_equal(td_model_add_retainer(m, &ret, &err), TD_OK);
+    assert_int_equal(td_model_add_unbalance(m, &u, &err), TD_OK);
     assert_int_equal(td_model_set_speed(m, OMEGA, &err), TD_OK);
     if (td_model_validate(m, &err) != TD_OK)
         fail_msg("model: %s", err.message);
@@ -666,6 +694,206 @@ static void test_json_string(void **state)
 
 /* td_run_summary_ending on hand-made totals over a stretch of 1 s at 100 rad/s (15.9 Hz spin):
  * the whirl rate is the whirl angle swept over the contact time, signed like the spin. */
+/* The steady orbit of steady_rotor, started on it, over T_END with the section from a third of the
+ * run on; free_flight: the closed-form flight carries it, else IDA. */
+static void steady_section(int free_flight, td_run_summary *s)
+{
+    td_model *m = steady_rotor();
+    td_sim *sim = NULL;
+    td_sim_options opt;
+    td_output_options out;
+    td_error err;
+    td_sim_options_default(&opt);
+    opt.start = TD_START_ORBIT;
+    opt.solver.free_flight = free_flight;
+    if (!free_flight) { /* tight enough that IDA's own error stays far below the check's 1e-5 */
+        opt.solver.rtol = 1e-10;
+        opt.solver.atol = 1e-15;
+    }
+    if (td_sim_create(m, &opt, &sim, &err) != TD_OK)
+        fail_msg("td_sim_create: %s", err.message);
+    td_output_options_default(&out);
+    out.sample_rate = RATE;
+    out.section_after = 1.0 / 3.0;
+    if (td_run(sim, T_END, &out, NULL, NULL, s, &err) != TD_OK)
+        fail_msg("td_run: %s", err.message);
+    td_sim_free(&sim);
+    td_model_free(&m);
+}
+
+/* The harmonic response's position of node 3 where the spin angle is a multiple of 2 pi: the
+ * unbalance force turns with e^{i omega t}, so there the orbit is at (Re X, Re Y). */
+static double harmonic_section_radius(void)
+{
+    td_model *m = steady_rotor();
+    td_system *sys = NULL;
+    td_harmonic *h = NULL;
+    td_unbalance u;
+    td_orbit o;
+    td_error err;
+    double r;
+    assert_int_equal(td_system_create(m, &sys, &err), TD_OK);
+    td_model_get_unbalance(m, 0, &u);
+    assert_int_equal(td_harmonic_compute(sys, OMEGA, &u, 1, &h, &err), TD_OK);
+    assert_int_equal(td_harmonic_orbit(h, 3, &o), TD_OK);
+    r = hypot(o.x_re, o.y_re);
+    td_harmonic_free(&h);
+    td_system_free(&sys);
+    td_model_free(&m);
+    return r;
+}
+
+/* A free linear rotor in its steady unbalance orbit: every once-per-revolution sample is the
+ * harmonic response's radius at phase 0 (closed form, touchdown/modal.h), from the flight's
+ * closed form and from IDA's interpolant alike; one crossing a revolution after the transient. */
+static void test_section_steady_orbit(void **state)
+{
+    td_run_summary *s = calloc(2, sizeof *s);
+    double expect = harmonic_section_radius(), period = 2.0 * TD_PI / OMEGA;
+    int pass, i;
+    (void)state;
+    assert_non_null(s);
+    steady_section(1, &s[0]);
+    steady_section(0, &s[1]);
+    assert_true(s[0].stats.flight_time > 0.5 * T_END); /* the flight carried it */
+    assert_true(s[1].stats.flight_time == 0.0);
+    for (pass = 0; pass < 2; pass++) {
+        const td_run_summary *p = &s[pass];
+        /* crossings at t = 2 pi k / omega in [T_END / 3, T_END] */
+        long expect_count = (long)floor(T_END / period) - (long)ceil(T_END / 3.0 / period) + 1;
+        assert_int_equal(p->section_count, expect_count);
+        assert_int_equal(p->section_kept,
+                         expect_count < TD_RUN_SECTION_SAMPLES ? expect_count : TD_RUN_SECTION_SAMPLES);
+        assert_int_equal(p->section_retainer, 0);
+        assert_close(p->section_start, T_END / 3.0, 1e-15, 0.0);
+        for (i = 0; i < p->section_kept; i++) {
+            double k = p->section_time[i] / period;
+            assert_close(k, floor(k + 0.5), 1e-9, 0.0);
+            /* flight: the closed form; IDA: its interpolant at tight tolerances */
+            assert_close(p->section_radius[i], expect, pass == 0 ? 1e-9 : 1e-5, 0.0);
+        }
+    }
+    free(s);
+}
+
+/* A speed ramp down from 200 to 100 rad/s (a run-down): the spin angle is a state, and every
+ * crossing found on IDA's interpolant of it is where the prescribed angle, the closed-form integral
+ * of the ramp (td_model_speed_at), is the next multiple of 2 pi. */
+static void test_section_speed_ramp(void **state)
+{
+    td_model *m = steady_rotor();
+    td_speed_point p0 = {0.0, OMEGA}, p1 = {T_END, 0.5 * OMEGA};
+    td_sim *sim;
+    td_output_options out;
+    td_run_summary *s = calloc(1, sizeof *s);
+    td_error err;
+    double total;
+    int i;
+    (void)state;
+    assert_non_null(s);
+    assert_int_equal(td_model_add_speed_point(m, &p0, &err), TD_OK);
+    assert_int_equal(td_model_add_speed_point(m, &p1, &err), TD_OK);
+    assert_int_equal(td_model_validate(m, &err), TD_OK);
+    sim = make_sim(m);
+    td_output_options_default(&out);
+    out.sample_rate = RATE;
+    out.section_after = 0.0;
+    if (td_run(sim, T_END, &out, NULL, NULL, s, &err) != TD_OK)
+        fail_msg("td_run: %s", err.message);
+    td_model_speed_at(m, T_END, NULL, &total);
+    /* crossings 2 pi k, k = 1 .. floor(total / 2 pi), all kept */
+    assert_int_equal(s->section_count, (long)floor(total / (2.0 * TD_PI)));
+    assert_int_equal(s->section_kept, s->section_count);
+    for (i = 0; i < s->section_kept; i++) {
+        double angle;
+        td_model_speed_at(m, s->section_time[i], NULL, &angle);
+        assert_close(angle, 2.0 * TD_PI * (i + 1), 1e-9, 0.0);
+        assert_true(s->section_radius[i] > 0.0 && s->section_radius[i] < CLEARANCE);
+    }
+    td_sim_free(&sim);
+    td_model_free(&m);
+    free(s);
+}
+
+/* The state td_sim_step gives at time t (events on the way passed), node 3's radius there. */
+static double radius_stepped_to(td_sim *sim, double t, double *q)
+{
+    td_status st;
+    while ((st = td_sim_step(sim, t, NULL, NULL)) == TD_EVENT)
+        ;
+    assert_int_equal(st, TD_OK);
+    assert_int_equal(td_sim_get_state(sim, q, NULL), TD_OK);
+    return hypot(q[TD_DOF(3, TD_DOF_X)], q[TD_DOF(3, TD_DOF_Y)]);
+}
+
+/* Through contact and the free flights between (small_rotor, from rest): each section sample is
+ * the state at its crossing time as a second simulation, stepped to exactly that time through the
+ * public API, has it (to rounding): the crossing's own instant, not an output sample near it. */
+static void test_section_matches_stepping(void **state)
+{
+    td_model *m = small_rotor();
+    td_sim *sim = make_sim(m), *again = make_sim(m);
+    td_output_options out;
+    td_run_summary *s = calloc(1, sizeof *s);
+    double *q = calloc((size_t)td_sim_dof_count(again), sizeof *q), period = 2.0 * TD_PI / OMEGA;
+    td_error err;
+    int i;
+    (void)state;
+    assert_true(s && q);
+    td_output_options_default(&out);
+    out.sample_rate = RATE;
+    out.section_after = 0.0;
+    if (td_run(sim, T_END, &out, NULL, NULL, s, &err) != TD_OK)
+        fail_msg("td_run: %s", err.message);
+    assert_true(s->contacts > 0);
+    assert_int_equal(s->section_count, (long)floor(T_END / period));
+    assert_int_equal(s->section_kept, s->section_count);
+    for (i = 0; i < s->section_kept; i++) {
+        /* the crossings themselves: t = 2 pi k / omega, off the 2 kHz output grid */
+        assert_close(s->section_time[i], period * (i + 1), 1e-14, 0.0);
+        assert_close(s->section_radius[i], radius_stepped_to(again, s->section_time[i], q), 1e-12, 0.0);
+    }
+    td_sim_free(&again);
+    td_sim_free(&sim);
+    td_model_free(&m);
+    free(q);
+    free(s);
+}
+
+/* Taking the section moves nothing: the contact run of small_rotor gives the same answers, bit for
+ * bit, with the section over the whole run and without one. */
+static void test_section_changes_nothing(void **state)
+{
+    td_run_summary *s = calloc(2, sizeof *s);
+    int pass, k;
+    (void)state;
+    assert_non_null(s);
+    for (pass = 0; pass < 2; pass++) {
+        td_model *m = small_rotor();
+        td_sim *sim = make_sim(m);
+        td_output_options out;
+        td_error err;
+        td_output_options_default(&out);
+        out.sample_rate = RATE;
+        out.section_after = pass == 0 ? 0.0 : 1.0;
+        if (td_run(sim, T_END, &out, NULL, NULL, &s[pass], &err) != TD_OK)
+            fail_msg("td_run: %s", err.message);
+        td_sim_free(&sim);
+        td_model_free(&m);
+    }
+    assert_true(s[0].contacts > 0 && s[0].section_count > 0 && s[1].section_count == 0);
+    assert_true(same_bits(s[0].peak_housing_force, s[1].peak_housing_force));
+    assert_true(same_bits(s[0].total_impulse, s[1].total_impulse));
+    assert_true(same_bits(s[0].friction_work, s[1].friction_work));
+    assert_true(same_bits(s[0].peak_normal_force, s[1].peak_normal_force));
+    assert_true(same_bits(s[0].stats.time_in_contact, s[1].stats.time_in_contact));
+    assert_int_equal(s[0].stats.steps, s[1].stats.steps);
+    assert_int_equal(s[0].events, s[1].events);
+    for (k = 0; k < s[0].retainer_count; k++)
+        assert_memory_equal(&s[0].retainers[k].totals, &s[1].retainers[k].totals, sizeof s[0].retainers[k].totals);
+    free(s);
+}
+
 static void test_summary_ending(void **state)
 {
     static const struct {
@@ -673,14 +901,17 @@ static void test_summary_ending(void **state)
         long contacts;
         const char *want;
         double f;
+        td_regime regime; /* td_run_summary_regime: the same stretch, the same thresholds */
     } cases[] = {
-        {0.0, 0.0, 0.0, 100.0, 0, "free (no contact)", 0.0},
-        {0.0, 0.0, 0.0, 100.0, 3, "recovered", 0.0},
-        {1.0, 0.9, 0.2, 100.0, 3, "rolling on the retainers", 0.2 / (2.0 * TD_PI)},
-        {1.0, 0.1, -0.2, 100.0, 3, "sliding on the retainers", -0.2 / (2.0 * TD_PI)},
-        {1.0, 0.9, -60.0, 100.0, 3, "backward whirl at -9.549 Hz, rolling", -60.0 / (2.0 * TD_PI)},
-        {0.4, 0.0, 24.0, 100.0, 3, "forward rub at 9.549 Hz, sliding, bouncing", 60.0 / (2.0 * TD_PI)},
-        {1.0, 0.9, -60.0, 0.5, 3, "at rest", 0.0},
+        {0.0, 0.0, 0.0, 100.0, 0, "free (no contact)", 0.0, TD_REGIME_FREE},
+        {0.0, 0.0, 0.0, 100.0, 3, "recovered", 0.0, TD_REGIME_FREE},
+        {1.0, 0.9, 0.2, 100.0, 3, "rolling on the retainers", 0.2 / (2.0 * TD_PI), TD_REGIME_RUB},
+        {1.0, 0.1, -0.2, 100.0, 3, "sliding on the retainers", -0.2 / (2.0 * TD_PI), TD_REGIME_RUB},
+        {1.0, 0.9, -60.0, 100.0, 3, "backward whirl at -9.549 Hz, rolling", -60.0 / (2.0 * TD_PI),
+         TD_REGIME_BACKWARD_WHIRL},
+        {0.4, 0.0, 24.0, 100.0, 3, "forward rub at 9.549 Hz, sliding, bouncing", 60.0 / (2.0 * TD_PI),
+         TD_REGIME_BOUNCE},
+        {1.0, 0.9, -60.0, 0.5, 3, "at rest", 0.0, TD_REGIME_RUB},
     };
     size_t i;
     (void)state;
@@ -703,17 +934,31 @@ static void test_summary_ending(void **state)
         td_run_summary_ending(&s, before, after, 2, 100.0, cases[i].speed);
         assert_string_equal(s.ending, cases[i].want);
         assert_close(s.ending_whirl_frequency, cases[i].f, 1e-12, 0.0);
+        s.status = TD_OK;
+        assert_int_equal(td_run_summary_regime(&s), cases[i].regime);
+        s.status = TD_ERR_SOLVER;
+        assert_int_equal(td_run_summary_regime(&s), TD_REGIME_FAILED);
     }
+    assert_string_equal(td_regime_name(TD_REGIME_BACKWARD_WHIRL), "backward whirl");
+    assert_string_equal(td_regime_name(TD_REGIME_FAILED), "failed");
 }
 
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_summary_text),          cmocka_unit_test(test_run_bad_arguments),
-        cmocka_unit_test(test_run_matches_hand_loop), cmocka_unit_test(test_run_cancel),
-        cmocka_unit_test(test_summary_unstable_run),  cmocka_unit_test(test_summary_failed_before_start),
-        cmocka_unit_test(test_sim_accessors),         cmocka_unit_test(test_json_string),
+        cmocka_unit_test(test_summary_text),
+        cmocka_unit_test(test_run_bad_arguments),
+        cmocka_unit_test(test_run_matches_hand_loop),
+        cmocka_unit_test(test_run_cancel),
+        cmocka_unit_test(test_summary_unstable_run),
+        cmocka_unit_test(test_summary_failed_before_start),
+        cmocka_unit_test(test_sim_accessors),
+        cmocka_unit_test(test_json_string),
         cmocka_unit_test(test_summary_ending),
+        cmocka_unit_test(test_section_steady_orbit),
+        cmocka_unit_test(test_section_changes_nothing),
+        cmocka_unit_test(test_section_speed_ramp),
+        cmocka_unit_test(test_section_matches_stepping),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

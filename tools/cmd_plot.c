@@ -28,6 +28,14 @@ static const char plot_usage[] =
     "  campbell          damped natural frequencies (Hz) against speed (rad/s), forward and\n"
     "                    backward whirl apart, the 1x line, the critical speeds circled\n"
     "  mode-shapes       the first modes' lateral shapes along the rotor, normalised to 1\n"
+    "A sweep table (touchdown sweep, its .h5) gives:\n"
+    "  sweep-QUANTITY    a summary quantity (--quantity, default peak_housing_force) against the x\n"
+    "                    key, one line per value of the other swept keys\n"
+    "  regime-map        each point's regime (free, rub, bounce, backward whirl, failed: the\n"
+    "                    table's regime column) as a coloured tile over the x and y keys\n"
+    "  bifurcation       the bifurcation diagram: every point's once-per-revolution radius at\n"
+    "                    the retainer (after the transient) against the x key, clearance dashed\n"
+    "The x key is --x, else speed when swept, else the first swept key with numeric values.\n"
     "Several simulation files also give compare-rN: radial displacement and normal force at\n"
     "retainer N of every file overlaid, the legend from the file names. With several files\n"
     "every name is prefixed with the file's name (out.h5 -> out-orbit-r0.png).\n"
@@ -41,6 +49,10 @@ static const char plot_usage[] =
     "      --to T         end of the time window, s (default: the last sample)\n"
     "      --format F     png (default; pngcairo when gnuplot has it, else png) or svg\n"
     "      --modes N      mode shapes to draw (default 6, at most 16)\n"
+    "      --quantity NAME  sweep tables: the column plotted against the x key (default\n"
+    "                     peak_housing_force; any numeric column: total_impulse, contacts, ...)\n"
+    "      --x KEY        sweep tables: the swept key on the x axis\n"
+    "      --y KEY        sweep tables: the regime map's y key (default: the first numeric key on another axis)\n"
     "      --no-run       write the data and scripts only, do not run gnuplot\n"
     "  -q, --quiet        print nothing but errors (default: one 'wrote' line per figure)\n"
     "  -h, --help         this help\n"
@@ -49,7 +61,8 @@ static const char plot_usage[] =
     "When gnuplot fails its messages are kept in DIR/NAME.log.\n"
     "\n"
     "exit codes: 0 success; 1 gnuplot missing or failed, or a file could not be written;\n"
-    "2 bad input or usage (missing or unreadable file, not a touchdown result file, bad option).\n";
+    "2 bad input or usage (missing or unreadable file, not a touchdown result file, bad option,\n"
+    "a --quantity, --x or --y the sweep table does not have).\n";
 
 static int usage_error(const char *fmt, const char *arg)
 {
@@ -79,7 +92,7 @@ static int parse_count(const char *s, int lo, int hi, int *out)
 /* Parse the options into `opt`; returns -1 to go on, else the exit code. */
 static int parse(int argc, char **argv, plot_opts *opt)
 {
-    enum { OPT_RETAINER = 256, OPT_FROM, OPT_TO, OPT_FORMAT, OPT_NO_RUN, OPT_MODES };
+    enum { OPT_RETAINER = 256, OPT_FROM, OPT_TO, OPT_FORMAT, OPT_NO_RUN, OPT_MODES, OPT_QUANTITY, OPT_X, OPT_Y };
     static const struct option longopts[] = {{"dir", required_argument, NULL, 'd'},
                                              {"retainer", required_argument, NULL, OPT_RETAINER},
                                              {"from", required_argument, NULL, OPT_FROM},
@@ -87,6 +100,9 @@ static int parse(int argc, char **argv, plot_opts *opt)
                                              {"format", required_argument, NULL, OPT_FORMAT},
                                              {"no-run", no_argument, NULL, OPT_NO_RUN},
                                              {"modes", required_argument, NULL, OPT_MODES},
+                                             {"quantity", required_argument, NULL, OPT_QUANTITY},
+                                             {"x", required_argument, NULL, OPT_X},
+                                             {"y", required_argument, NULL, OPT_Y},
                                              {"quiet", no_argument, NULL, 'q'},
                                              {"help", no_argument, NULL, 'h'},
                                              {NULL, 0, NULL, 0}};
@@ -118,6 +134,9 @@ static int parse(int argc, char **argv, plot_opts *opt)
             if (!parse_count(optarg, 1, PLOT_MAX_MODES, &opt->modes))
                 return usage_error("--modes wants a number from 1 to 16, not '%s'", optarg);
             break;
+        case OPT_QUANTITY: opt->quantity = optarg; break;
+        case OPT_X: opt->xkey = optarg; break;
+        case OPT_Y: opt->ykey = optarg; break;
         case 'q': opt->quiet = 1; break;
         case 'h': fputs(plot_usage, stdout); return TD_EXIT_OK;
         case ':': return usage_error("option '%s' needs a value", argv[optind - 1]);
@@ -179,6 +198,8 @@ static int make_figures(plot_job *job, const plot_file *files, int count)
             rc = plot_sim_figures(job, &files[i], prefix[i]);
             sims[nsim] = &files[i];
             sim_prefix[nsim++] = prefix[i];
+        } else if (files[i].kind == PLOT_KIND_SWEEP) {
+            rc = plot_sweep_figures(job, &files[i], prefix[i]);
         } else {
             rc = plot_modal_figures(job, &files[i], prefix[i]);
         }

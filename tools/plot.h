@@ -49,10 +49,32 @@ int plot_h5_attr_doubles(hid_t obj, const char *name, double **v, size_t *n);
 int plot_h5_attr_double(hid_t obj, const char *name, double *v);
 /* String attribute (fixed or variable length, any character set), malloc'd; NULL if absent/bad. */
 char *plot_h5_attr_string(hid_t obj, const char *name);
+/* Rank-1 dataset of variable-length strings: *n malloc'd strings (free with plot_strings_free);
+ * 0 ok, -1 absent or bad. */
+int plot_h5_read_strings(hid_t loc, const char *path, char ***out, size_t *n);
+void plot_strings_free(char **s, size_t n);
 
 /* ---- plot_file.c: result files in memory --------------------------------------------------- */
 
-typedef enum plot_kind { PLOT_KIND_SIM, PLOT_KIND_MODAL } plot_kind;
+typedef enum plot_kind { PLOT_KIND_SIM, PLOT_KIND_MODAL, PLOT_KIND_SWEEP } plot_kind;
+
+/* Most swept keys a sweep table's figures use (touchdown/sweep.h TD_SWEEP_MAX_KEYS). */
+#define PLOT_SWEEP_MAX_KEYS 16
+
+/* A sweep table (touchdown sweep): its swept keys and what the figures read of each point. */
+typedef struct plot_sweep {
+    size_t n; /* points */
+    int nkeys;
+    char key[PLOT_SWEEP_MAX_KEYS][128];
+    int numeric[PLOT_SWEEP_MAX_KEYS];   /* 1: the key's values are numbers */
+    int axis[PLOT_SWEEP_MAX_KEYS];      /* the grid axis of the key (zipped keys share one) */
+    double *value[PLOT_SWEEP_MAX_KEYS]; /* n each (numeric keys), else NULL */
+    char **text[PLOT_SWEEP_MAX_KEYS];   /* n each: the values as text */
+    int *regime;                        /* n: td_regime, -1 when the table has no regime column */
+    size_t m;                           /* section radii per point (0: the table has none) */
+    double *section;                    /* n x m, m, NaN-padded */
+    double *clearance;                  /* n, m (NaN: unknown) */
+} plot_sweep;
 
 /* One event, reduced to what the figures use. */
 typedef struct plot_event {
@@ -103,6 +125,7 @@ typedef struct plot_file {
     int complete; /* 1, 0, or -1 when the file has no flag */
     plot_sim sim;
     plot_modal modal;
+    plot_sweep sweep;
 } plot_file;
 
 /* Load `path` (window applies to simulation files). On failure prints one line
@@ -120,6 +143,10 @@ typedef struct plot_opts {
     int run; /* run gnuplot */
     int quiet;
     int modes; /* mode shapes to draw */
+    /* sweep tables */
+    const char *quantity; /* column plotted against the x key (NULL: peak_housing_force) */
+    const char *xkey;     /* swept key on the x axis (NULL: speed when swept, else the first numeric one) */
+    const char *ykey;     /* the regime map's y key (NULL: the first other numeric one) */
 } plot_opts;
 
 /* The scripts written so far, run at the end. */
@@ -156,7 +183,16 @@ const char *plot_ext(const plot_opts *opt);
 /* ---- the templates tools/gp/NAME.gp, built into the binary (cmake/EmbedText.cmake) ---------- */
 
 extern const char plot_tpl_common[], plot_tpl_markers[], plot_tpl_orbit[], plot_tpl_radial_force[],
-    plot_tpl_amb_forces[], plot_tpl_palette[], plot_tpl_compare[], plot_tpl_campbell[], plot_tpl_mode_shapes[];
+    plot_tpl_amb_forces[], plot_tpl_palette[], plot_tpl_compare[], plot_tpl_campbell[], plot_tpl_mode_shapes[],
+    plot_tpl_sweep_quantity[], plot_tpl_regime_map[], plot_tpl_bifurcation[];
+
+/* ---- plot_sweep_load.c: sweep tables --------------------------------------------------------- */
+
+/* 1 if the open file is a sweep table (/point and /vary). */
+int plot_sweep_is_table(hid_t file);
+/* Load the table's keys, regimes and section; PLOT_OK, else a line printed and PLOT_BAD_INPUT. */
+int plot_sweep_load(hid_t file, plot_file *f);
+void plot_sweep_free(plot_sweep *s);
 
 /* ---- figures -------------------------------------------------------------------------------- */
 
@@ -164,6 +200,9 @@ extern const char plot_tpl_common[], plot_tpl_markers[], plot_tpl_orbit[], plot_
 int plot_sim_figures(plot_job *job, const plot_file *f, const char *prefix);
 /* Every figure of one modal file. */
 int plot_modal_figures(plot_job *job, const plot_file *f, const char *prefix);
+/* The figures of one sweep table: the quantity against the x key, the regime map, the bifurcation
+ * diagram (plot_sweep.c). PLOT_BAD_INPUT with a line printed for an option the table cannot take. */
+int plot_sweep_figures(plot_job *job, const plot_file *f, const char *prefix);
 /* Overlays of several simulation files (whose data files plot_sim_figures has written with the
  * given prefixes). */
 int plot_compare_figures(plot_job *job, const plot_file *const *files, const char *const *prefixes, int count);

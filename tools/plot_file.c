@@ -75,11 +75,11 @@ static void make_title(plot_file *f, hid_t file)
     if (!(text && case_description(text, desc, sizeof desc)))
         snprintf(desc, sizeof desc, "%s", f->stem);
     free(text);
-    if (f->kind == PLOT_KIND_SIM && f->complete == 0) {
+    if (f->kind != PLOT_KIND_MODAL && f->complete == 0) {
         reason = plot_h5_attr_string(file, "incomplete_reason");
         snprintf(f->title, sizeof f->title, "%s  [INCOMPLETE: %.150s]", desc, reason ? reason : "no reason given");
         free(reason);
-    } else if (f->kind == PLOT_KIND_SIM && f->complete < 0) {
+    } else if (f->kind != PLOT_KIND_MODAL && f->complete < 0) {
         snprintf(f->title, sizeof f->title, "%s  [no completeness flag]", desc);
     } else {
         snprintf(f->title, sizeof f->title, "%s", desc);
@@ -444,7 +444,11 @@ int plot_file_load(const char *path, const plot_window *win, plot_file *f)
                    PLOT_BAD_INPUT);
     if ((file = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT)) < 0)
         return bad(path, "cannot open the HDF5 file", PLOT_BAD_INPUT);
-    if (plot_h5_exists(file, "time") && plot_h5_exists(file, "retainers")) {
+    if (plot_sweep_is_table(file)) {
+        f->kind = PLOT_KIND_SWEEP;
+        f->complete = plot_h5_attr_double(file, "complete", &flag) == 0 ? flag != 0.0 : -1;
+        rc = plot_sweep_load(file, f);
+    } else if (plot_h5_exists(file, "time") && plot_h5_exists(file, "retainers")) {
         f->kind = PLOT_KIND_SIM;
         f->complete = plot_h5_attr_double(file, "complete", &flag) == 0 ? flag != 0.0 : -1;
         rc = load_sim(file, f, win);
@@ -453,8 +457,10 @@ int plot_file_load(const char *path, const plot_window *win, plot_file *f)
         f->complete = 1;
         rc = load_modal(file, f);
     } else {
-        rc = bad(path, "not a touchdown result file (neither /time and /retainers nor /campbell or /modes)",
-                 PLOT_BAD_INPUT);
+        rc =
+            bad(path,
+                "not a touchdown result file (neither /time and /retainers, /campbell or /modes, nor /point and /vary)",
+                PLOT_BAD_INPUT);
     }
     if (rc == PLOT_OK)
         make_title(f, file);
@@ -473,6 +479,7 @@ void plot_file_free(plot_file *f)
     free(m->speed), free(m->freq), free(m->whirl), free(m->crit_speed), free(m->crit_freq), free(m->crit_whirl);
     free(m->mode_freq), free(m->mode_whirl), free(m->mode_zeta), free(m->xr), free(m->xi), free(m->yr), free(m->yi);
     free(m->node_z);
+    plot_sweep_free(&f->sweep);
     memset(s, 0, sizeof *s);
     memset(m, 0, sizeof *m);
 }

@@ -141,3 +141,51 @@ char *plot_h5_attr_string(hid_t obj, const char *name)
     H5Aclose(a);
     return s;
 }
+
+/* A rank-1 dataset of variable-length strings, read with its own type (UTF-8 stays UTF-8). */
+int plot_h5_read_strings(hid_t loc, const char *path, char ***out, size_t *n)
+{
+    hid_t d = H5Dopen2(loc, path, H5P_DEFAULT), type = -1, space = -1;
+    char **raw = NULL, **copy = NULL;
+    hssize_t count = -1;
+    size_t i;
+    int ok = 0;
+    *out = NULL;
+    *n = 0;
+    if (d < 0)
+        return -1;
+    type = H5Dget_type(d);
+    space = H5Dget_space(d);
+    if (type >= 0 && space >= 0 && H5Tget_class(type) == H5T_STRING && H5Tis_variable_str(type) > 0)
+        count = H5Sget_simple_extent_npoints(space);
+    if (count >= 0 && (raw = calloc((size_t)count + 1, sizeof *raw)) &&
+        (copy = calloc((size_t)count + 1, sizeof *copy)))
+        ok = H5Dread(d, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, raw) >= 0;
+    for (i = 0; ok && i < (size_t)count; i++) {
+        const char *s = raw[i] ? raw[i] : "";
+        ok = (copy[i] = malloc(strlen(s) + 1)) != NULL;
+        if (ok)
+            strcpy(copy[i], s);
+    }
+    for (i = 0; raw && count > 0 && i < (size_t)count; i++)
+        H5free_memory(raw[i]);
+    free(raw);
+    if (ok) {
+        *out = copy;
+        *n = (size_t)count;
+    } else {
+        plot_strings_free(copy, count > 0 ? (size_t)count : 0);
+    }
+    H5Sclose(space);
+    H5Tclose(type);
+    H5Dclose(d);
+    return ok ? 0 : -1;
+}
+
+void plot_strings_free(char **s, size_t n)
+{
+    size_t i;
+    for (i = 0; s && i < n; i++)
+        free(s[i]);
+    free(s);
+}

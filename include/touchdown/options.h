@@ -79,7 +79,10 @@ typedef struct td_output_options {
     double sample_rate;                  /**< samples per second on a uniform grid (events added), Hz */
     int node_count;                      /**< number of nodes whose displacements are written; 0: all */
     int nodes[TD_OUTPUT_MAX_NODES];
-    int compression; /**< HDF5 deflate level with shuffle, 0 (none) .. 9 */
+    int compression;      /**< HDF5 deflate level with shuffle, 0 (none) .. 9 */
+    double section_after; /**< the once-per-revolution section (td_run_summary) is taken after this
+                               fraction of the run, 0 .. 1 (the transient before it is left out);
+                               default 0.5: the last half */
 } td_output_options;
 
 typedef struct td_modal_options {

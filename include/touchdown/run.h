@@ -29,6 +29,9 @@ extern "C" {
 /** returned_to_free_orbit of a run without contact: the statement does not apply (JSON null, "n/a"). */
 #define TD_RUN_NOT_APPLICABLE (-2)
 
+/** Crossings of the once-per-revolution section a summary keeps: the last this many. */
+#define TD_RUN_SECTION_SAMPLES 64
+
 /** Progress callback: simulated time t (s), fraction of the run done (0..1), contact onsets so
  *  far, the user pointer. Return 0 to go on, nonzero to stop the run (incomplete, TD_ERR_INTERRUPTED). */
 typedef int (*td_progress_fn)(double t, double fraction, long contacts, void *user);
@@ -46,6 +49,24 @@ typedef struct td_run_hooks {
 } td_run_hooks;
 
 /** What a run did. Times in s, forces in N; -1 marks "none"/"undefined" where stated. */
+/**
+ * The regime a run settled in, over the stretch its ending is judged on (td_run_summary_ending),
+ * one rule for the sweep table's `regime` column and the regime map: FREE no retainer in contact
+ * over the stretch (never touched, or recovered); BACKWARD_WHIRL in contact there with a whirl
+ * rate at least 5 % of the spin, backward; BOUNCE in contact less than half the stretch, not
+ * whirling backward; RUB in contact at least half the stretch (a forward rub, rolling or sliding
+ * on the retainers, or at rest on them); FAILED the run did not reach its end.
+ */
+typedef enum td_regime {
+    TD_REGIME_FAILED = 0,
+    TD_REGIME_FREE = 1,
+    TD_REGIME_RUB = 2,
+    TD_REGIME_BOUNCE = 3,
+    TD_REGIME_BACKWARD_WHIRL = 4
+} td_regime;
+/** Number of td_regime values. */
+#define TD_REGIME_COUNT 5
+
 /** Retainers whose totals td_run_summary carries itself (the output files carry every retainer's). */
 #define TD_RUN_SUMMARY_RETAINERS 8
 
@@ -89,6 +110,8 @@ typedef struct td_run_summary {
     double ending_whirl_frequency;       /**< Hz: mean whirl rate over that stretch of the retainer most in
                                               contact, signed like the spin (< 0 backward); 0 without contact */
     double ending_window;                /**< s: that stretch, the last max(5 revolutions, 10 % of the run) */
+    int regime;                          /**< td_regime of that stretch, set with `ending` (read it with
+                                              td_run_summary_regime, which also says FAILED for a failed run) */
     int energy_kept;                     /**< 1: the case kept the energy account (td_sim_options.energy) */
     td_energy energy;                    /**< it, at the end (all 0 when not kept) */
     int peak_converges;                  /**< 0: some retainer is a rigid constraint, whose instantaneous peak normal
@@ -119,6 +142,18 @@ typedef struct td_run_summary {
     char hdf5_path[TD_OUTPUT_PATH_SIZE]; /**< files written (complete or marked incomplete), "" for none */
     char csv_path[TD_OUTPUT_PATH_SIZE];  /**< samples CSV */
     char events_path[TD_OUTPUT_PATH_SIZE]; /**< events CSV next to csv_path */
+    /* the once-per-revolution (stroboscopic, Poincare) section: the radial displacement of one
+       retainer's node each time the spin angle passes a multiple of 2 pi, at the exact crossing
+       time (IDA's interpolant or the closed-form flight, as the output samples), after the
+       transient (td_output_options.section_after). The retainer: the one with the largest peak
+       housing force (peak_housing_retainer), retainer 0 without contact. */
+    double section_start;                          /**< s: crossings from this time on are taken */
+    long section_count;                            /**< crossings taken (also those no longer kept) */
+    int section_kept;                              /**< the last this many are kept, <= TD_RUN_SECTION_SAMPLES */
+    int section_retainer;                          /**< retainer sampled, -1: the model has none */
+    double section_clearance;                      /**< m, its radial clearance (NaN without one) */
+    double section_time[TD_RUN_SECTION_SAMPLES];   /**< s, oldest first */
+    double section_radius[TD_RUN_SECTION_SAMPLES]; /**< m, sqrt(x^2 + y^2) of the node relative to its retainer */
 } td_run_summary;
 
 /**
@@ -159,6 +194,12 @@ TD_API void td_run_summary_failed(td_run_summary *s, double t_start, double t_en
  */
 TD_API void td_run_summary_ending(td_run_summary *s, const td_retainer_totals *before, const td_retainer_totals *after,
                                   int n, double speed0, double speed);
+
+/** The run's td_regime: TD_REGIME_FAILED unless it reached its end (status TD_OK), else the
+ *  regime td_run_summary_ending found. */
+TD_API td_regime td_run_summary_regime(const td_run_summary *s);
+/** "free", "rub", "bounce", "backward whirl", "failed" (anything else). */
+TD_API const char *td_regime_name(td_regime r);
 
 /** Human-readable multi-line summary (times with 10 decimals). Returns the length needed, like
  *  snprintf; buf is always NUL-terminated when n > 0. */

@@ -23,7 +23,7 @@ extern "C" {
 #endif
 
 /** Most points in one sweep (the product of the axes' counts); bounds the table's memory
- *  (about 1 kB a row) before anything runs. */
+ *  (about 1.5 kB a row) before anything runs. */
 #define TD_SWEEP_MAX_POINTS 100000L
 /** Most axes (the factors of the full grid). */
 #define TD_SWEEP_MAX_AXES 8
@@ -127,6 +127,15 @@ typedef struct td_sweep_row {
     double peak_amb_load;                /**< largest AMB axis force / capacity, -1 without a working AMB */
     double t_reached;                    /**< s, the last time reached */
     double wall_time;                    /**< s, wall-clock time of the point (set by the caller) */
+    char regime[16];                     /**< td_regime_name(td_run_summary_regime): "free", "rub",
+                                              "bounce", "backward whirl", "failed" (also without a summary) */
+    long section_count;                  /**< crossings of the once-per-revolution section (-1: no summary) */
+    int section_kept;                    /**< radii kept in section_radius (td_run_summary.section_kept) */
+    double section_radius_min;           /**< m, the smallest and largest kept radius (NaN: none) */
+    double section_radius_max;
+    double section_clearance;                      /**< m, the sampled retainer's radial clearance (NaN: none) */
+    double section_radius[TD_RUN_SECTION_SAMPLES]; /**< m, the last section radii, oldest first (NaN
+                                                        beyond section_kept) */
 } td_sweep_row;
 
 /** The row of a point whose run ended with summary `s` (state DONE if s->status is TD_OK, else

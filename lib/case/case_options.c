@@ -18,7 +18,7 @@ static const char *const gravity_keys[] = {"enabled", "g", "direction", NULL};
 static const char *const contact_keys[] = {"model", "stiffness", "exponent", "damping", "damping_coefficient", NULL};
 static const char *const solver_keys[] = {"rtol",      "atol",          "max_step",    "initial_step",
                                           "max_order", "linear_solver", "free_flight", NULL};
-static const char *const output_keys[] = {"hdf5", "csv", "sample_rate", "nodes", "compression", NULL};
+static const char *const output_keys[] = {"hdf5", "csv", "sample_rate", "nodes", "compression", "section_after", NULL};
 static const char *const modal_keys[] = {"speed_min", "speed_max", "speed_steps", "modes", "response_speeds", NULL};
 
 static const char *const start_names[] = {"orbit", "rest", "auto"}; /* td_start order */
@@ -188,6 +188,8 @@ static td_status read_output(td_case_reader *r, const config_setting_t *root, td
         st = td_cr_real(r, g, "sample_rate", NULL, o->sample_rate, TD_CR_POSITIVE, &o->sample_rate);
     if (st == TD_OK)
         st = td_cr_int(r, g, "compression", NULL, o->compression, 0, 9, &o->compression);
+    if (st == TD_OK)
+        st = td_cr_real(r, g, "section_after", NULL, o->section_after, TD_CR_FRACTION, &o->section_after);
     if (st == TD_OK)
         st = td_cr_ints(r, g, "nodes", TD_OUTPUT_MAX_NODES, -2147483647L, 2147483647L, o->nodes, &o->node_count);
     if (st != TD_OK)

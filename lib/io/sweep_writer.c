@@ -41,8 +41,13 @@ static const sweep_column columns[] = {
     {"contacts", "-", COL_LONG, offsetof(td_sweep_row, contacts)},
     {"first_contact_time", "s", COL_DOUBLE, offsetof(td_sweep_row, first_contact_time)},
     {"ending", "", COL_TEXT, offsetof(td_sweep_row, ending)},
+    {"regime", "", COL_TEXT, offsetof(td_sweep_row, regime)},
     {"ending_whirl_frequency", "Hz", COL_DOUBLE, offsetof(td_sweep_row, ending_whirl_frequency)},
     {"returned_to_free_orbit", "-", COL_INT, offsetof(td_sweep_row, returned_to_free_orbit)},
+    {"section_count", "-", COL_LONG, offsetof(td_sweep_row, section_count)},
+    {"section_radius_min", "m", COL_DOUBLE, offsetof(td_sweep_row, section_radius_min)},
+    {"section_radius_max", "m", COL_DOUBLE, offsetof(td_sweep_row, section_radius_max)},
+    {"section_clearance", "m", COL_DOUBLE, offsetof(td_sweep_row, section_clearance)},
     {"final_speed", "rad/s", COL_DOUBLE, offsetof(td_sweep_row, final_speed)},
     {"peak_amb_load", "1", COL_DOUBLE, offsetof(td_sweep_row, peak_amb_load)},
     {"t_reached", "s", COL_DOUBLE, offsetof(td_sweep_row, t_reached)},
@@ -252,13 +257,28 @@ static int h5_axes(hid_t file, const td_sweep_table *t, hsize_t n, const char **
     return ok;
 }
 
+/* section_radius: point x TD_RUN_SECTION_SAMPLES, each row's last section radii, NaN-padded. */
+static int h5_section(hid_t file, const td_sweep_table *t, hsize_t n)
+{
+    hsize_t dims[2], p;
+    double *v = malloc((size_t)(n > 0 ? n : 1) * TD_RUN_SECTION_SAMPLES * sizeof *v);
+    int ok;
+    dims[0] = n;
+    dims[1] = TD_RUN_SECTION_SAMPLES;
+    for (p = 0; v && p < n; p++)
+        memcpy(v + p * TD_RUN_SECTION_SAMPLES, t->rows[p].section_radius, sizeof t->rows[p].section_radius);
+    ok = v && td_h5_dataset(file, "section_radius", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, v, 2, dims, "m");
+    free(v);
+    return ok;
+}
+
 /* Every column's dataset along the scale /point. */
 static int h5_columns(hid_t file, const td_sweep_table *t)
 {
     hsize_t n = (hsize_t)td_sweep_grid_points(t->grid);
     const char **text = malloc((size_t)n * sizeof *text);
     double *num = malloc((size_t)n * sizeof *num);
-    const char *names[N_COLUMNS + TD_SWEEP_MAX_KEYS + 1];
+    const char *names[N_COLUMNS + TD_SWEEP_MAX_KEYS + 2];
     char vary_names[TD_SWEEP_MAX_KEYS][TD_SWEEP_KEY_SIZE + 8];
     int c, a, ok = text && num && td_h5_index(file, "point", (int)n, "") && h5_axes(file, t, n, text, num);
     for (c = 0; ok && c < N_COLUMNS; c++) {
@@ -269,8 +289,9 @@ static int h5_columns(hid_t file, const td_sweep_table *t)
         snprintf(vary_names[a], sizeof vary_names[a], "vary/%s", td_sweep_grid_key(t->grid, a));
         names[N_COLUMNS + a] = vary_names[a];
     }
-    names[N_COLUMNS + td_sweep_grid_keys(t->grid)] = NULL;
-    ok = ok && td_h5_attach(file, "point", names, 0);
+    names[N_COLUMNS + td_sweep_grid_keys(t->grid)] = "section_radius";
+    names[N_COLUMNS + td_sweep_grid_keys(t->grid) + 1] = NULL;
+    ok = ok && h5_section(file, t, n) && td_h5_attach(file, "point", names, 0);
     free(text);
     free(num);
     return ok;

@@ -14,6 +14,7 @@
 
 #include "run/recorder.h"
 #include "run/summary.h"
+#include "sim/section.h"
 #include "touchdown/dofs.h"
 #include "touchdown/output.h"
 #include "util/clock.h"
@@ -256,6 +257,20 @@ static int rigid_constraint(const td_retainer *ret, const td_sim_options *o)
     return o->contact.model == TD_CONTACT_CONSTRAINT && !(ret->contact.stiffness > 0.0);
 }
 
+/* The section's crossings of the retainer with the largest peak housing force (retainer 0 without
+ * contact), the last TD_RUN_SECTION_SAMPLES of them. */
+static void summary_section(run_state *r)
+{
+    td_run_summary *s = r->s;
+    td_retainer ret;
+    s->section_count = td_sim_section_count(r->sim);
+    s->section_retainer = s->retainer_count > 0 ? (s->peak_housing_retainer >= 0 ? s->peak_housing_retainer : 0) : -1;
+    if (s->section_retainer >= 0 && td_model_get_retainer(td_sim_model(r->sim), s->section_retainer, &ret) == TD_OK)
+        s->section_clearance = ret.clearance;
+    s->section_kept =
+        td_sim_section_read(r->sim, s->section_retainer, s->section_time, s->section_radius, TD_RUN_SECTION_SAMPLES);
+}
+
 /* The answers that converge: every retainer's totals, their sums and peaks, the speeds. */
 static void summary_totals(run_state *r)
 {
@@ -332,6 +347,7 @@ static void summary_finish(run_state *r, double wall_start)
             s->free_at_end = 1;
     }
     summary_totals(r);
+    summary_section(r);
     summary_ending(r);
     if (s->contacts == 0)
         s->returned_to_free_orbit = TD_RUN_NOT_APPLICABLE;
@@ -402,6 +418,23 @@ static td_status write_retainer_totals(td_recorder *rec, const td_sim *sim, td_e
     return st;
 }
 
+/* The once-per-revolution section as attributes of every file (docs/output-format.md). */
+static td_status write_section(td_recorder *rec, const td_run_summary *s, td_error *err)
+{
+    td_status st = td_recorder_set_double(rec, "section_start", s->section_start, err);
+    if (st == TD_OK)
+        st = td_recorder_set_long(rec, "section_count", s->section_count, err);
+    if (st == TD_OK)
+        st = td_recorder_set_long(rec, "section_retainer", s->section_retainer, err);
+    if (st == TD_OK)
+        st = td_recorder_set_double(rec, "section_clearance", s->section_clearance, err);
+    if (st == TD_OK && s->section_kept > 0)
+        st = td_recorder_set_doubles(rec, "section_time", s->section_time, s->section_kept, err);
+    if (st == TD_OK && s->section_kept > 0)
+        st = td_recorder_set_doubles(rec, "section_radius", s->section_radius, s->section_kept, err);
+    return st;
+}
+
 /* The summary and run parameters as attributes of every file. */
 static td_status write_summary(td_recorder *rec, const td_run_summary *s, const char *case_text, td_error *err)
 {
@@ -455,6 +488,8 @@ static td_status write_summary(td_recorder *rec, const td_run_summary *s, const 
         st = td_recorder_set_long(rec, counts[i].name, counts[i].value, err);
     if (st == TD_OK && s->energy_kept)
         st = write_energy(rec, &s->energy, err);
+    if (st == TD_OK)
+        st = write_section(rec, s, err);
     return st;
 }
 
@@ -469,6 +504,9 @@ static td_status check_args(const td_sim *sim, double t_end, const td_output_opt
     if (!isfinite(t_end) || !(t_end > t0))
         return td_error_set(err, TD_ERR_INVALID, "td_run: t_end = %.10f s is not after the current time %.10f s", t_end,
                             t0);
+    if (!(out->section_after >= 0.0 && out->section_after <= 1.0))
+        return td_error_set(err, TD_ERR_INVALID, "td_run: section_after = %g is not a fraction of the run in [0, 1]",
+                            out->section_after);
     td_sim_options_get(sim, &opt);
     /* the bounds of touchdown/limits.h, also checked (with the key) by the case reader */
     if (td_run_limit_check(t_end - t0, td_model_speed(td_sim_model(sim)), out->sample_rate, opt.solver.max_step, why,
@@ -507,7 +545,10 @@ td_status td_run(td_sim *sim, double t_end, const td_output_options *out, const 
     r.event_sample_row = -1;
     summary->ending_window = ending_window(summary);
     r.t_window = summary->t_end - summary->ending_window;
-    if ((st = td_recorder_create(model, out, &r.rec, err)) != TD_OK) {
+    summary->section_start = summary->t_start + out->section_after * (summary->t_end - summary->t_start);
+    if ((st = td_sim_section_begin(sim, summary->section_start, TD_RUN_SECTION_SAMPLES, err)) != TD_OK ||
+        (st = td_recorder_create(model, out, &r.rec, err)) != TD_OK) {
+        td_sim_section_end(sim);
         summary->status = st;
         snprintf(summary->message, sizeof summary->message, "%s", err ? err->message : td_strerror(st));
         return st;
@@ -519,6 +560,7 @@ td_status td_run(td_sim *sim, double t_end, const td_output_options *out, const 
     st = loop(&r, &loop_err);
     td_sim_set_interrupt(sim, NULL);
     summary_finish(&r, wall_start);
+    td_sim_section_end(sim);
     summary->status = st;
     td_error_clear(&close_err);
     cst = write_summary(r.rec, summary, case_text, &close_err);

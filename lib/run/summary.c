@@ -32,6 +32,9 @@ void td_run_summary_init(td_run_summary *s, double t0, double t_end, double spee
     s->returned_to_free_orbit = -1;
     s->wall_time_per_revolution = -1.0;
     s->realtime_factor = -1.0;
+    s->section_start = -1.0;
+    s->section_retainer = -1;
+    s->section_clearance = NAN;
     s->stats.first_contact_time = -1.0;
     s->stats.peak_time = -1.0;
     s->stats.peak_retainer = -1;
@@ -90,16 +93,19 @@ void td_run_summary_ending(td_run_summary *s, const td_retainer_totals *before, 
     double dt, rate, f, spin_f = fabs(speed) / (2.0 * TD_PI);
     const char *how, *bounce;
     s->ending_whirl_frequency = 0.0;
+    s->regime = TD_REGIME_FAILED;
     if (!(w > 0.0)) {
         snprintf(s->ending, sizeof s->ending, "undetermined");
         return;
     }
     if (k < 0) {
         snprintf(s->ending, sizeof s->ending, "%s", s->contacts > 0 ? "recovered" : "free (no contact)");
+        s->regime = TD_REGIME_FREE;
         return;
     }
     if (fabs(speed) < 0.01 * fabs(speed0) || fabs(speed) < 1.0) {
         snprintf(s->ending, sizeof s->ending, "at rest");
+        s->regime = TD_REGIME_RUB;
         return;
     }
     dt = after[k].contact_time - before[k].contact_time;
@@ -108,11 +114,28 @@ void td_run_summary_ending(td_run_summary *s, const td_retainer_totals *before, 
     s->ending_whirl_frequency = f;
     how = after[k].rolling_time - before[k].rolling_time > 0.5 * dt ? "rolling" : "sliding";
     bounce = dt < 0.5 * w ? ", bouncing" : "";
+    s->regime = f <= -0.05 * spin_f ? TD_REGIME_BACKWARD_WHIRL : bounce[0] ? TD_REGIME_BOUNCE : TD_REGIME_RUB;
     if (fabs(f) < 0.05 * spin_f)
         snprintf(s->ending, sizeof s->ending, "%s on the retainers%s", how, bounce);
     else
         snprintf(s->ending, sizeof s->ending, "%s at %.4g Hz, %s%s", f < 0.0 ? "backward whirl" : "forward rub", f, how,
                  bounce);
+}
+
+td_regime td_run_summary_regime(const td_run_summary *s)
+{
+    return !s || s->status != TD_OK ? TD_REGIME_FAILED : (td_regime)s->regime;
+}
+
+const char *td_regime_name(td_regime r)
+{
+    switch (r) {
+    case TD_REGIME_FREE: return "free";
+    case TD_REGIME_RUB: return "rub";
+    case TD_REGIME_BOUNCE: return "bounce";
+    case TD_REGIME_BACKWARD_WHIRL: return "backward whirl";
+    default: return "failed";
+    }
 }
 
 void td_run_summary_failed(td_run_summary *s, double t_start, double t_end, double speed, td_start requested,
@@ -124,6 +147,24 @@ void td_run_summary_failed(td_run_summary *s, double t_start, double t_end, doub
     s->start.requested = requested;
     s->status = st;
     snprintf(s->message, sizeof s->message, "%s", message ? message : td_strerror(st));
+}
+
+static double section_min(const td_run_summary *s)
+{
+    double m = INFINITY;
+    int i;
+    for (i = 0; i < s->section_kept; i++)
+        m = fmin(m, s->section_radius[i]);
+    return m;
+}
+
+static double section_max(const td_run_summary *s)
+{
+    double m = -INFINITY;
+    int i;
+    for (i = 0; i < s->section_kept; i++)
+        m = fmax(m, s->section_radius[i]);
+    return m;
 }
 
 static const char *tri(int v)
@@ -198,7 +239,8 @@ static void format_answers(td_text *b, const td_run_summary *s)
     td_text_printf(b, "total impulse               %.6g N s\n", s->total_impulse);
     td_text_printf(b, "friction work               %.6g J\n", s->friction_work);
     td_text_printf(b, "final speed                 %.6g rad/s\n", s->final_speed);
-    td_text_printf(b, "ending                      %s (last %.6g s)\n", s->ending, s->ending_window);
+    td_text_printf(b, "ending                      %s (last %.6g s), regime %s\n", s->ending, s->ending_window,
+                   td_regime_name(td_run_summary_regime(s)));
     if (s->stats.peak_amb >= 0)
         td_text_printf(b, "peak AMB force              %.6g N, AMB %d, %.4g %% of its capacity, at %.10f s\n",
                        s->stats.peak_amb_force, s->stats.peak_amb, 100.0 * s->stats.peak_amb_load,
@@ -258,6 +300,12 @@ int td_run_summary_format(char *buf, size_t n, const td_run_summary *s)
     td_text_printf(&b, "returned to free orbit      %s\n", tri(s->returned_to_free_orbit));
     td_text_printf(&b, "solver steps                %ld (residuals %ld, Jacobians %ld, restarts %ld)\n", s->stats.steps,
                    s->stats.residual_evals, s->stats.jacobian_evals, s->stats.restarts);
+    if (s->section_kept > 0)
+        td_text_printf(&b,
+                       "once-per-revolution section %ld crossings after %.6g s, node radius %.6g to %.6g m (retainer "
+                       "%d, last %d)\n",
+                       s->section_count, s->section_start, section_min(s), section_max(s), s->section_retainer,
+                       s->section_kept);
     td_text_printf(&b, "free flight in closed form  %.6g s of %.6g s (%ld steps to the next root)\n",
                    s->stats.flight_time, s->t_reached - s->t_start, s->stats.flight_steps);
     if (s->stats.worst_drift > 0.0 || s->contacts == 0)
@@ -371,6 +419,21 @@ static void json_retainers(td_text *b, const td_run_summary *s)
         json_retainer_array(b, s, fields[i].key, fields[i].offset, fields[i].is_long);
 }
 
+/* The once-per-revolution section: where it starts, the crossings taken and the radii kept. */
+static void json_section(td_text *b, const td_run_summary *s)
+{
+    int i;
+    json_real(b, "section_start", s->section_start, 1, 1);
+    td_text_printf(b, "\"section_count\":%ld,", s->section_count);
+    if (s->section_retainer >= 0)
+        td_text_printf(b, "\"section_retainer\":%d,\"section_radius\":[", s->section_retainer);
+    else
+        td_text_printf(b, "\"section_retainer\":null,\"section_radius\":[");
+    for (i = 0; i < s->section_kept; i++)
+        td_text_printf(b, "%s%.17g", i ? "," : "", s->section_radius[i]);
+    td_text_printf(b, "],");
+}
+
 /* The answers that converge, first (docs/validation.md). */
 static void json_answers(td_text *b, const td_run_summary *s)
 {
@@ -381,6 +444,7 @@ static void json_answers(td_text *b, const td_run_summary *s)
     json_string(b, "ending", s->ending);
     json_real(b, "ending_whirl_frequency", s->ending_whirl_frequency, 0, 1);
     json_real(b, "ending_window", s->ending_window, 0, 1);
+    json_string(b, "regime", td_regime_name(td_run_summary_regime(s)));
     json_real(b, "peak_amb_force", s->stats.peak_amb >= 0 ? s->stats.peak_amb_force : -1.0, 1, 1);
     json_real(b, "peak_amb_load", s->stats.peak_amb >= 0 ? s->stats.peak_amb_load : -1.0, 1, 1);
     if (s->stats.peak_amb >= 0)
@@ -461,6 +525,7 @@ int td_run_summary_json(char *buf, size_t n, const td_run_summary *s)
     json_real(&b, "first_contact_time", s->stats.first_contact_time, 1, 1);
     json_real(&b, "wall_time", s->stats.wall_time, 0, 0);
     td_text_printf(&b, "},");
+    json_section(&b, s);
     json_retainers(&b, s);
     td_text_printf(&b, "}");
     return (int)b.len;

@@ -5,6 +5,25 @@
 #include <stdio.h>
 #include <string.h>
 
+/* The section's radii, NaN-padded to TD_RUN_SECTION_SAMPLES, and their range. */
+static void row_section(td_sweep_row *row, const td_run_summary *s)
+{
+    int i;
+    row->section_count = s->section_count;
+    row->section_kept = s->section_kept;
+    row->section_clearance = s->section_clearance;
+    row->section_radius_min = row->section_radius_max = NAN;
+    for (i = 0; i < TD_RUN_SECTION_SAMPLES; i++) {
+        row->section_radius[i] = i < s->section_kept ? s->section_radius[i] : NAN;
+        if (i < s->section_kept) {
+            row->section_radius_min =
+                i == 0 ? s->section_radius[i] : fmin(row->section_radius_min, s->section_radius[i]);
+            row->section_radius_max =
+                i == 0 ? s->section_radius[i] : fmax(row->section_radius_max, s->section_radius[i]);
+        }
+    }
+}
+
 void td_sweep_row_from_summary(td_sweep_row *row, const td_run_summary *s)
 {
     memset(row, 0, sizeof *row);
@@ -25,10 +44,13 @@ void td_sweep_row_from_summary(td_sweep_row *row, const td_run_summary *s)
     row->peak_amb_load = s->stats.peak_amb >= 0 ? s->stats.peak_amb_load : -1.0;
     row->t_reached = s->t_reached;
     row->wall_time = s->wall_time;
+    snprintf(row->regime, sizeof row->regime, "%s", td_regime_name(td_run_summary_regime(s)));
+    row_section(row, s);
 }
 
 void td_sweep_row_unknown(td_sweep_row *row, td_sweep_state state, const char *status, const char *message)
 {
+    int i;
     memset(row, 0, sizeof *row);
     row->state = (int)state;
     snprintf(row->status, sizeof row->status, "%s", status ? status : "");
@@ -38,4 +60,9 @@ void td_sweep_row_unknown(td_sweep_row *row, td_sweep_state state, const char *s
     row->t_reached = row->wall_time = NAN;
     row->contacts = -1;
     row->returned_to_free_orbit = -1;
+    snprintf(row->regime, sizeof row->regime, "%s", td_regime_name(TD_REGIME_FAILED));
+    row->section_count = -1;
+    row->section_radius_min = row->section_radius_max = row->section_clearance = NAN;
+    for (i = 0; i < TD_RUN_SECTION_SAMPLES; i++)
+        row->section_radius[i] = NAN;
 }

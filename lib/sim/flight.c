@@ -578,6 +578,34 @@ static void materialise(td_sim *s, td_sim_flight *f, double t, int rate)
         yp[i] = 0.0;
 }
 
+/* The displacements z at t into y[0..nz) from the anchored flight, leaving the flight's own cache
+ * (e, t_e) untouched: the modal coordinates go to the caller's `work` (2 neq doubles). */
+int td_sim_flight_peek(const td_sim *s, double t, double *y, double *work)
+{
+    const td_sim_flight *f = s->flight;
+    double complex *e = (double complex *)(void *)work;
+    double complex ep, em;
+    int i, k;
+    if (!f || !f->anchored)
+        return 0;
+    ep = harmonic_phase(f, t);
+    em = conj(ep);
+    for (i = 0; i < f->nkeep; i++) {
+        int j = f->keep[i];
+        double dt = t - f->ta, m = exp(creal(f->lam[j]) * dt);
+        double complex h = f->d[j] * (m * (cos(cimag(f->lam[j]) * dt) + I * sin(cimag(f->lam[j]) * dt)));
+        e[i] = f->weight[j] * (h + f->p0[j] + f->pp[j] * ep + f->pm[j] * em);
+    }
+    for (i = 0; i < f->nz; i++) {
+        const double complex *row = f->V + (size_t)i * (size_t)f->nz;
+        double z = 0.0;
+        for (k = 0; k < f->nkeep; k++)
+            z += creal(row[f->keep[k]]) * creal(e[k]) - cimag(row[f->keep[k]]) * cimag(e[k]);
+        y[i] = z;
+    }
+    return 1;
+}
+
 void td_sim_flight_rates(td_sim *s)
 {
     if (s->flight && s->flight->anchored)

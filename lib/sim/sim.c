@@ -882,6 +882,7 @@ void td_sim_free(td_sim **sim)
     free(s->ypsave);
     td_sim_races_free(s);
     td_sim_flight_free(s);
+    td_sim_section_free(s);
     td_system_free(&s->sys);
     free(s);
     *sim = NULL;
@@ -1066,6 +1067,7 @@ static int pending_stop(td_sim *s, double tout, td_status *st)
         return 1;
     }
     s->pending = 0;
+    td_sim_section_ida(s, s->t_pending); /* the crossings before the stop, from the step that found it */
     *st = interpolate(s, s->t_pending);
     monitor(s, s->t);
     if (*st == TD_OK)
@@ -1103,6 +1105,7 @@ static int fly(td_sim *s, double tout, td_status *st)
         return 0;
     s->ida_stale = 1; /* IDA's history is of the state before the flight */
     s->t_ida = s->t;
+    td_sim_section_flight(s, s->t);
     accept_point(s, s->t, 0);
     *st = TD_OK;
     if (root || s->t >= stop) {
@@ -1180,6 +1183,7 @@ static td_status advance(td_sim *s, double tout)
             continue;
         }
         accept_point(s, tret, 1);
+        td_sim_section_ida(s, tret);
         td_sim_flight_forget(s);
         if (tret > tout) { /* an output inside this step: its sample counts too */
             st = interpolate(s, tout);

@@ -179,9 +179,10 @@ struct td_sim {
     int *touching;          /* nr: retainers touching their circles at the start (start_state) */
     double *ysave, *ypsave; /* last good state */
 
-    td_sim_flight *flight; /* flight.c, allocated at the first flight; NULL: none yet */
-    long tiny_steps;       /* consecutive IDA steps too short to move t (sim.c, stalled) */
-    int ida_stale;         /* the flight moved the state: IDA restarts before its next step */
+    td_sim_flight *flight;          /* flight.c, allocated at the first flight; NULL: none yet */
+    struct td_sim_section *section; /* section.c, NULL: no section taken */
+    long tiny_steps;                /* consecutive IDA steps too short to move t (sim.c, stalled) */
+    int ida_stale;                  /* the flight moved the state: IDA restarts before its next step */
 
     volatile sig_atomic_t *interrupt; /* borrowed (td_sim_set_interrupt), NULL: none */
     td_sim_start_info start;          /* how the start state was chosen (start_state in sim.c) */
@@ -349,5 +350,18 @@ void td_sim_flight_forget(td_sim *s);
 /* y' at s->t from the flight that carried the state there (its outputs write y only). */
 void td_sim_flight_rates(td_sim *s);
 void td_sim_flight_free(td_sim *s);
+/* The displacements z at t (any time since the anchor) into y[0..nz) without moving anything:
+ * outputs between steps (section.c). work: 2 neq doubles. Returns 0 when no flight is anchored. */
+int td_sim_flight_peek(const td_sim *s, double t, double *y, double *work);
+
+/* ---- section.c: the once-per-revolution section (section.h) ------------------------------- */
+
+/* The crossings of the spin angle through multiples of 2 pi in (the last covered time, t] from
+ * IDA's interpolant (after an accepted step or at a stop inside one) or from the flight. */
+void td_sim_section_ida(td_sim *s, double t);
+void td_sim_section_flight(td_sim *s, double t);
+/* A restart at s->t: samples taken beyond it belonged to a state that has since been changed. */
+void td_sim_section_rewind(td_sim *s);
+void td_sim_section_free(td_sim *s);
 
 #endif

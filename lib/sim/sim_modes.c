@@ -807,6 +807,7 @@ td_status td_sim_restart(td_sim *s)
     double stop = td_sim_next_stop(s);
     int flag;
     save_counters(s);
+    td_sim_section_rewind(s);
     td_sim_spin_wrap(s, N_VGetArrayPointer(s->y));
     flag = IDAReInit(s->ida, s->t, s->y, s->yp);
     if (flag == IDA_SUCCESS && td_sim_races_retolerance(s)) /* a race came into or out of contact */

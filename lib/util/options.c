@@ -39,6 +39,7 @@ void td_output_options_default(td_output_options *o)
     memset(o, 0, sizeof *o);
     o->sample_rate = 10000.0;
     o->node_count = 0;
+    o->section_after = 0.5;
 }
 
 void td_modal_options_default(td_modal_options *o)

@@ -1,0 +1,11 @@
+
+# ---- a summary quantity against a swept key ------------------------------------------------------
+# data columns: 1 the swept key, 2 the quantity, 3 the point; one block (gnuplot index) per value of
+# the other swept keys, titled by titles[i]
+set title ylabel." against ".xlabel."\n".case_title
+set xlabel xlabel
+set ylabel ylabel
+set key outside right top vertical Left reverse samplen 2
+set autoscale xfix
+set offsets graph 0.03, graph 0.03, graph 0.05, graph 0.05
+plot for [i=1:ngroups] data index (i-1) using 1:2 with linespoints lw 2 pt 7 ps 0.9 title titles[i]

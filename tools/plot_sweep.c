@@ -1,0 +1,476 @@
+/*
+ * touchdown plot: figures of one sweep table (touchdown sweep):
+ *   PREFIXsweep-QUANTITY  a summary quantity (--quantity, default peak_housing_force) against the
+ *                         x key (--x), one line per value of the other swept keys
+ *   PREFIXregime-map      each point's regime (td_run_summary_regime: free, rub, bounce, backward
+ *                         whirl, failed) as a coloured tile over the x key and the y key (--y)
+ *   PREFIXbifurcation     the once-per-revolution section radii of every point against the x key,
+ *                         the clearance dashed: the classic bifurcation diagram
+ * with the data files of the same names (.dat).
+ */
+#include "plot.h"
+
+#include "touchdown/run.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* The regimes' colours, by td_regime: failed, free, rub, bounce, backward whirl. */
+static const char *const regime_color[TD_REGIME_COUNT] = {"#7f7f7f", "#2ca02c", "#ff7f0e", "#1f77b4", "#d62728"};
+
+/* Points grouped by the values of the keys other than x, each group in x order. */
+typedef struct sweep_order {
+    size_t *index; /* n: the points, group by group, each by increasing x */
+    size_t *start; /* ngroups + 1: group g is index[start[g] .. start[g + 1]) */
+    char **label;  /* ngroups: "KEY=VALUE, ..." of the other keys ("" without them) */
+    int *group;    /* n: the group of each point */
+    size_t ngroups;
+} sweep_order;
+
+typedef struct order_item {
+    size_t group, point;
+    double x;
+} order_item;
+
+static int by_group_then_x(const void *a, const void *b)
+{
+    const order_item *p = a, *q = b;
+    if (p->group != q->group)
+        return p->group < q->group ? -1 : 1;
+    if (p->x != q->x)
+        return p->x < q->x ? -1 : 1;
+    return p->point < q->point ? -1 : p->point > q->point;
+}
+
+/* "KEY=VALUE, ..." of point p over every key but x and the keys zipped with it (which move with
+ * x along a line), into buf. */
+static void group_label(const plot_sweep *s, int x, size_t p, char *buf, size_t n)
+{
+    size_t len = 0;
+    int k;
+    buf[0] = '\0';
+    for (k = 0; k < s->nkeys && len < n; k++)
+        if (s->axis[k] != s->axis[x])
+            len += (size_t)snprintf(buf + len, n - len, "%s%s=%s", len ? ", " : "", s->key[k], s->text[k][p]);
+}
+
+static void order_free(sweep_order *o)
+{
+    plot_strings_free(o->label, o->ngroups);
+    free(o->index);
+    free(o->start);
+    free(o->group);
+    memset(o, 0, sizeof *o);
+}
+
+/* The group of every point: the first point with the same label founds it. */
+static int assign_groups(const plot_sweep *s, int x, sweep_order *o)
+{
+    char buf[1024];
+    size_t p, g;
+    for (p = 0; p < s->n; p++) {
+        group_label(s, x, p, buf, sizeof buf);
+        for (g = 0; g < o->ngroups && strcmp(o->label[g], buf); g++)
+            ;
+        if (g == o->ngroups) {
+            if (!(o->label[g] = malloc(strlen(buf) + 1)))
+                return -1;
+            strcpy(o->label[g], buf);
+            o->ngroups++;
+        }
+        o->group[p] = (int)g;
+    }
+    return 0;
+}
+
+static int order_points(const plot_sweep *s, int x, sweep_order *o)
+{
+    order_item *it = malloc((s->n + 1) * sizeof *it);
+    size_t p, g;
+    memset(o, 0, sizeof *o);
+    o->index = malloc((s->n + 1) * sizeof *o->index);
+    o->start = calloc(s->n + 2, sizeof *o->start);
+    o->label = calloc(s->n + 1, sizeof *o->label);
+    o->group = malloc((s->n + 1) * sizeof *o->group);
+    if (!it || !o->index || !o->start || !o->label || !o->group || assign_groups(s, x, o) != 0) {
+        free(it);
+        order_free(o);
+        return -1;
+    }
+    for (p = 0; p < s->n; p++) {
+        it[p].group = (size_t)o->group[p];
+        it[p].point = p;
+        it[p].x = s->value[x][p];
+    }
+    qsort(it, s->n, sizeof *it, by_group_then_x);
+    for (p = 0; p < s->n; p++) {
+        o->index[p] = it[p].point;
+        o->start[it[p].group + 1]++;
+    }
+    for (g = 0; g < o->ngroups; g++)
+        o->start[g + 1] += o->start[g];
+    free(it);
+    return 0;
+}
+
+/* ---- keys and columns ----------------------------------------------------------------------- */
+
+static int key_index(const plot_sweep *s, const char *name)
+{
+    int k;
+    for (k = 0; k < s->nkeys; k++)
+        if (!strcmp(s->key[k], name))
+            return k;
+    return -1;
+}
+
+/* The x key: --x, else "speed" when swept, else the first numeric key; -1 with a line printed. */
+static int pick_x(const plot_opts *opt, const plot_file *f)
+{
+    const plot_sweep *s = &f->sweep;
+    int k = opt->xkey ? key_index(s, opt->xkey) : key_index(s, "speed");
+    if (opt->xkey && (k < 0 || !s->numeric[k])) {
+        fprintf(stderr, "touchdown plot: %s: --x '%s' is not a numeric swept key of the table\n", f->path, opt->xkey);
+        return -1;
+    }
+    for (k = k >= 0 && s->numeric[k] ? k : 0; k < s->nkeys && !s->numeric[k]; k++)
+        ;
+    if (k >= s->nkeys) {
+        fprintf(stderr, "touchdown plot: %s: no swept key has numeric values to plot against\n", f->path);
+        return -1;
+    }
+    return k;
+}
+
+/* The regime map's y key: --y, else the first other numeric key; -1: none (one row of tiles),
+ * -2 with a line printed for a bad --y. */
+static int pick_y(const plot_opts *opt, const plot_file *f, int x)
+{
+    const plot_sweep *s = &f->sweep;
+    int k;
+    if (opt->ykey) {
+        k = key_index(s, opt->ykey);
+        if (k < 0 || !s->numeric[k] || s->axis[k] == s->axis[x]) {
+            fprintf(stderr, "touchdown plot: %s: --y '%s' is not a numeric swept key of the table off the x axis\n",
+                    f->path, opt->ykey);
+            return -2;
+        }
+        return k;
+    }
+    for (k = 0; k < s->nkeys; k++)
+        if (s->axis[k] != s->axis[x] && s->numeric[k])
+            return k;
+    return -1;
+}
+
+/* The numeric column `name` of the table and its units; -1 with a line printed. */
+static int read_quantity(const plot_file *f, const char *name, plot_array *q, char *units, size_t n)
+{
+    hid_t file = H5Fopen(f->path, H5F_ACC_RDONLY, H5P_DEFAULT), d;
+    char *u = NULL;
+    int ok = file >= 0 && strcmp(name, "point") && strchr(name, '/') == NULL && plot_h5_read(file, name, q) == 0 &&
+             q->rank == 1 && q->n == f->sweep.n;
+    if (ok && (d = H5Dopen2(file, name, H5P_DEFAULT)) >= 0) {
+        u = plot_h5_attr_string(d, "units");
+        H5Dclose(d);
+    }
+    snprintf(units, n, "%s", u ? u : "");
+    free(u);
+    if (file >= 0)
+        H5Fclose(file);
+    if (!ok) {
+        plot_array_free(q);
+        fprintf(stderr, "touchdown plot: %s: --quantity '%s' is not a numeric column of the sweep table\n", f->path,
+                name);
+        return -1;
+    }
+    return 0;
+}
+
+/* titles[i] = the groups' labels, as a gnuplot array. */
+static void title_array(FILE *out, const sweep_order *o, const size_t *keep, size_t nkeep)
+{
+    size_t i;
+    fprintf(out, "ngroups = %lu\narray titles[%lu]\n", (unsigned long)nkeep, (unsigned long)(nkeep ? nkeep : 1));
+    for (i = 0; i < nkeep; i++) {
+        fprintf(out, "titles[%lu] = ", (unsigned long)(i + 1));
+        plot_gp_string(out, o->label[keep[i]]);
+        fputc('\n', out);
+    }
+}
+
+/* ---- quantity against the x key ------------------------------------------------------------- */
+
+static int write_quantity(const plot_job *job, const plot_file *f, const char *name, int x, const sweep_order *o,
+                          const plot_array *q, const char *qname, size_t *keep, size_t *nkeep)
+{
+    const plot_sweep *s = &f->sweep;
+    FILE *out = plot_open(job->opt, name);
+    size_t g, i;
+    if (!out)
+        return PLOT_FAILED;
+    fprintf(out, "# %s against %s from %s: one block per value of the other swept keys (gnuplot index)\n", qname,
+            s->key[x], f->path);
+    fprintf(out, "# columns: 1 %s, 2 %s, 3 point\n", s->key[x], qname);
+    *nkeep = 0;
+    for (g = 0; g < o->ngroups; g++) {
+        size_t shown = 0;
+        for (i = o->start[g]; i < o->start[g + 1]; i++)
+            shown += isfinite(q->v[o->index[i]]) != 0;
+        if (!shown) /* a line without a point would make gnuplot warn */
+            continue;
+        fprintf(out, "%s# %s\n", *nkeep ? "\n\n" : "", o->label[g]);
+        keep[(*nkeep)++] = g;
+        for (i = o->start[g]; i < o->start[g + 1]; i++)
+            if (isfinite(q->v[o->index[i]]))
+                fprintf(out, "%.12g %.12g %lu\n", s->value[x][o->index[i]], q->v[o->index[i]],
+                        (unsigned long)o->index[i]);
+    }
+    return plot_close(out, job->opt, name);
+}
+
+static int quantity_figure(plot_job *job, const plot_file *f, const char *prefix, int x, const sweep_order *o)
+{
+    const char *qname = job->opt->quantity ? job->opt->quantity : "peak_housing_force";
+    char name[300], data[320], units[64], label[256];
+    size_t *keep = malloc((o->ngroups + 1) * sizeof *keep), nkeep = 0;
+    plot_array q;
+    FILE *out;
+    int rc = PLOT_FAILED;
+    if (!keep)
+        return PLOT_FAILED;
+    if (read_quantity(f, qname, &q, units, sizeof units) != 0) {
+        free(keep);
+        return PLOT_BAD_INPUT;
+    }
+    snprintf(name, sizeof name, "%ssweep-%s", prefix, qname);
+    snprintf(data, sizeof data, "%s.dat", name);
+    snprintf(label, sizeof label, units[0] && strcmp(units, "-") ? "%s [%s]" : "%s", qname, units);
+    if (write_quantity(job, f, data, x, o, &q, qname, keep, &nkeep) == PLOT_OK && nkeep > 0 &&
+        (out = plot_script_begin(job, name, "summary quantity against a swept key", f->path, 1000, 680))) {
+        plot_var_string(out, "case_title", f->title);
+        plot_var_string(out, "data", data);
+        plot_var_string(out, "xlabel", f->sweep.key[x]);
+        plot_var_string(out, "ylabel", label);
+        title_array(out, o, keep, nkeep);
+        rc = plot_script_end(out, job, name, NULL, plot_tpl_sweep_quantity);
+    } else if (nkeep == 0) { /* every point failed, say: no figure, not an error */
+        if (!job->opt->quiet)
+            printf("no figure of %s: no point of %s has a value of it\n", qname, f->path);
+        rc = PLOT_OK;
+    }
+    plot_array_free(&q);
+    free(keep);
+    return rc;
+}
+
+/* ---- regime map ----------------------------------------------------------------------------- */
+
+/* A tile's edges around `at`: halfway to the next value of v (n of them) on either side, so that
+ * tiles of unevenly spaced values meet; the gap of the other side where there is no neighbour. */
+static void tile_edges(const double *v, size_t n, double at, double *lo, double *hi)
+{
+    double below = -HUGE_VAL, above = HUGE_VAL, w;
+    size_t i;
+    for (i = 0; i < n; i++) {
+        if (isfinite(v[i]) && v[i] < at && v[i] > below)
+            below = v[i];
+        if (isfinite(v[i]) && v[i] > at && v[i] < above)
+            above = v[i];
+    }
+    w = at != 0.0 ? 0.05 * fabs(at) : 0.5; /* a single value: a narrow tile */
+    *lo = isfinite(below) ? 0.5 * (at + below) : isfinite(above) ? at - 0.5 * (above - at) : at - w;
+    *hi = isfinite(above) ? 0.5 * (at + above) : isfinite(below) ? at + 0.5 * (at - below) : at + w;
+}
+
+static int write_regimes(const plot_job *job, const plot_file *f, const char *name, int x, int y, int *present)
+{
+    const plot_sweep *s = &f->sweep;
+    FILE *out = plot_open(job->opt, name);
+    size_t p;
+    if (!out)
+        return PLOT_FAILED;
+    fprintf(out,
+            "# regime of every point of %s (td_run_summary_regime, docs/output-format.md)\n"
+            "# columns: 1 %s, 2 %s, 3-4 the tile's left and right edges, 5-6 its bottom and top edges (halfway\n"
+            "# to the neighbouring values), 7 regime (0 failed, 1 free, 2 rub, 3 bounce, 4 backward whirl), 8 point\n",
+            f->path, s->key[x], y >= 0 ? s->key[y] : "(none: 0)");
+    for (p = 0; p < s->n; p++) {
+        int r = s->regime[p] >= 0 ? s->regime[p] : TD_REGIME_FAILED;
+        double yv = y >= 0 ? s->value[y][p] : 0.0, x0, x1, y0 = -0.5, y1 = 0.5;
+        present[r] = 1;
+        tile_edges(s->value[x], s->n, s->value[x][p], &x0, &x1);
+        if (y >= 0)
+            tile_edges(s->value[y], s->n, yv, &y0, &y1);
+        fprintf(out, "%.12g %.12g %.12g %.12g %.12g %.12g %d %lu\n", s->value[x][p], yv, x0, x1, y0, y1, r,
+                (unsigned long)p);
+    }
+    return plot_close(out, job->opt, name);
+}
+
+/* The regimes present, as gnuplot arrays of their codes, names and colours. */
+static void regime_arrays(FILE *out, const int *present)
+{
+    int r, n = 0, i = 0;
+    for (r = 0; r < TD_REGIME_COUNT; r++)
+        n += present[r];
+    fprintf(out, "nregimes = %d\narray codes[%d]\narray names[%d]\narray colors[%d]\n", n, n, n, n);
+    for (r = 0; r < TD_REGIME_COUNT; r++)
+        if (present[r]) {
+            i++;
+            fprintf(out, "codes[%d] = %d; names[%d] = \"%s\"; colors[%d] = \"%s\"\n", i, r, i,
+                    td_regime_name((td_regime)r), i, regime_color[r]);
+        }
+}
+
+static int regime_figure(plot_job *job, const plot_file *f, const char *prefix, int x, int y)
+{
+    char name[300], data[320];
+    int present[TD_REGIME_COUNT] = {0};
+    FILE *out;
+    snprintf(name, sizeof name, "%sregime-map", prefix);
+    snprintf(data, sizeof data, "%s.dat", name);
+    if (write_regimes(job, f, data, x, y, present) != PLOT_OK)
+        return PLOT_FAILED;
+    if (!(out = plot_script_begin(job, name, "regime map", f->path, 1000, 680)))
+        return PLOT_FAILED;
+    plot_var_string(out, "case_title", f->title);
+    plot_var_string(out, "data", data);
+    plot_var_string(out, "xlabel", f->sweep.key[x]);
+    plot_var_string(out, "ylabel", y >= 0 ? f->sweep.key[y] : "");
+    fprintf(out, "has_y = %d    # 0: one swept key, a single row of tiles\n", y >= 0);
+    regime_arrays(out, present);
+    return plot_script_end(out, job, name, NULL, plot_tpl_regime_map);
+}
+
+/* ---- bifurcation diagram -------------------------------------------------------------------- */
+
+/* Group g's section radii (mm) against x, one line per radius; the number written. */
+static size_t write_section_group(FILE *out, const plot_sweep *s, int x, const sweep_order *o, size_t g)
+{
+    size_t i, j, count = 0;
+    for (i = o->start[g]; i < o->start[g + 1]; i++) {
+        size_t p = o->index[i];
+        for (j = 0; j < s->m; j++) {
+            double r = s->section[p * s->m + j];
+            if (isfinite(r)) {
+                fprintf(out, "%.12g %.12g %lu\n", s->value[x][p], 1e3 * r, (unsigned long)p);
+                count++;
+            }
+        }
+    }
+    return count;
+}
+
+/* Section radii of group g that are numbers. */
+static size_t section_samples(const plot_sweep *s, const sweep_order *o, size_t g)
+{
+    size_t i, j, count = 0;
+    for (i = o->start[g]; i < o->start[g + 1]; i++)
+        for (j = 0; j < s->m; j++)
+            count += isfinite(s->section[o->index[i] * s->m + j]) != 0;
+    return count;
+}
+
+static int write_sections(const plot_job *job, const plot_file *f, const char *name, int x, const sweep_order *o,
+                          size_t *keep, size_t *nkeep)
+{
+    const plot_sweep *s = &f->sweep;
+    FILE *out = plot_open(job->opt, name);
+    size_t g;
+    if (!out)
+        return PLOT_FAILED;
+    fprintf(out,
+            "# once-per-revolution section of %s: the retainer node's radius each time the spin angle passes\n"
+            "# a multiple of 2 pi, after the transient; one block per value of the other swept keys\n"
+            "# columns: 1 %s, 2 radius [mm], 3 point\n",
+            f->path, s->key[x]);
+    *nkeep = 0;
+    for (g = 0; g < o->ngroups; g++) {
+        if (section_samples(s, o, g) == 0) /* an empty block would make gnuplot warn */
+            continue;
+        fprintf(out, "%s# %s\n", *nkeep ? "\n\n" : "", o->label[g]);
+        write_section_group(out, s, x, o, g);
+        keep[(*nkeep)++] = g;
+    }
+    return plot_close(out, job->opt, name);
+}
+
+/* The clearance (mm) at the points of group g, in x order; the number written. */
+static int write_clearance(const plot_job *job, const plot_file *f, const char *name, int x, const sweep_order *o,
+                           size_t g, size_t *count)
+{
+    const plot_sweep *s = &f->sweep;
+    FILE *out = plot_open(job->opt, name);
+    size_t i;
+    if (!out)
+        return PLOT_FAILED;
+    fprintf(out,
+            "# radial clearance of the sampled retainer at the points of '%s'\n# columns: 1 %s, 2 clearance [mm]\n",
+            o->label[g], s->key[x]);
+    *count = 0;
+    for (i = o->start[g]; i < o->start[g + 1]; i++)
+        if (isfinite(s->clearance[o->index[i]])) {
+            fprintf(out, "%.12g %.12g\n", s->value[x][o->index[i]], 1e3 * s->clearance[o->index[i]]);
+            (*count)++;
+        }
+    return plot_close(out, job->opt, name);
+}
+
+static int bifurcation_figure(plot_job *job, const plot_file *f, const char *prefix, int x, const sweep_order *o)
+{
+    char name[300], data[320], clear[320];
+    size_t *keep = malloc((o->ngroups + 1) * sizeof *keep), nkeep = 0, nclear = 0;
+    FILE *out = NULL;
+    int rc = keep ? PLOT_OK : PLOT_FAILED;
+    snprintf(name, sizeof name, "%sbifurcation", prefix);
+    snprintf(data, sizeof data, "%s.dat", name);
+    snprintf(clear, sizeof clear, "%sbifurcation-clearance.dat", prefix);
+    if (rc == PLOT_OK)
+        rc = write_sections(job, f, data, x, o, keep, &nkeep);
+    if (rc == PLOT_OK && nkeep == 0) { /* no point reached its section: no figure */
+        if (!job->opt->quiet)
+            printf("no bifurcation diagram: no point of %s has once-per-revolution section samples\n", f->path);
+        free(keep);
+        return PLOT_OK;
+    }
+    if (rc == PLOT_OK)
+        rc = write_clearance(job, f, clear, x, o, keep[0], &nclear);
+    if (rc == PLOT_OK && !(out = plot_script_begin(job, name, "bifurcation diagram", f->path, 1000, 680)))
+        rc = PLOT_FAILED;
+    if (out) {
+        plot_var_string(out, "case_title", f->title);
+        plot_var_string(out, "data", data);
+        plot_var_string(out, "clear", clear);
+        fprintf(out, "has_clearance = %d\n", nclear > 0);
+        plot_var_string(out, "xlabel", f->sweep.key[x]);
+        title_array(out, o, keep, nkeep);
+        rc = plot_script_end(out, job, name, NULL, plot_tpl_bifurcation);
+    }
+    free(keep);
+    return rc;
+}
+
+/* ---- entry ---------------------------------------------------------------------------------- */
+
+int plot_sweep_figures(plot_job *job, const plot_file *f, const char *prefix)
+{
+    sweep_order o;
+    int x = pick_x(job->opt, f), y, rc;
+    if (x < 0)
+        return PLOT_BAD_INPUT;
+    if ((y = pick_y(job->opt, f, x)) == -2)
+        return PLOT_BAD_INPUT;
+    if (order_points(&f->sweep, x, &o) != 0) {
+        fprintf(stderr, "touchdown plot: out of memory\n");
+        return PLOT_FAILED;
+    }
+    rc = quantity_figure(job, f, prefix, x, &o);
+    if (rc == PLOT_OK)
+        rc = regime_figure(job, f, prefix, x, y);
+    if (rc == PLOT_OK && f->sweep.m > 0)
+        rc = bifurcation_figure(job, f, prefix, x, &o);
+    order_free(&o);
+    return rc;
+}

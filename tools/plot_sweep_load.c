@@ -1,0 +1,170 @@
+/*
+ * touchdown plot: a sweep table (touchdown sweep, docs/output-format.md "Sweep table") in memory:
+ * the swept keys in the order of the table's `vary` attribute with their values from /vary/KEY,
+ * each point's regime from /regime, its once-per-revolution section radii from /section_radius
+ * (point x 64, NaN-padded) and the sampled retainer's clearance from /section_clearance.
+ */
+#include "plot.h"
+
+#include "touchdown/run.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static int bad(const char *path, const char *why)
+{
+    fprintf(stderr, "touchdown plot: %s: %s\n", path, why);
+    return PLOT_BAD_INPUT;
+}
+
+int plot_sweep_is_table(hid_t file)
+{
+    return plot_h5_exists(file, "point") && plot_h5_exists(file, "vary");
+}
+
+/* The swept keys, one spec "KEY=..." a line of the `vary` attribute, in the sweep's order. */
+static void read_keys(hid_t file, plot_sweep *s)
+{
+    char *vary = plot_h5_attr_string(file, "vary"), *line = vary;
+    while (line && *line && s->nkeys < PLOT_SWEEP_MAX_KEYS) {
+        char *next = strchr(line, '\n'), *eq;
+        if (next)
+            *next++ = '\0';
+        eq = strchr(line, '=');
+        if (eq && eq > line && (size_t)(eq - line) < sizeof s->key[0]) {
+            memcpy(s->key[s->nkeys], line, (size_t)(eq - line));
+            s->key[s->nkeys++][eq - line] = '\0';
+        }
+        line = next;
+    }
+    free(vary);
+}
+
+/* The `axis` attribute of /vary/KEY (keys zipped onto one axis share it); k, an axis of its own,
+ * for a table without it. */
+static int read_axis(hid_t file, const char *path, int k)
+{
+    hid_t d = H5Dopen2(file, path, H5P_DEFAULT);
+    double axis = k;
+    if (d >= 0) {
+        if (plot_h5_attr_double(d, "axis", &axis) != 0)
+            axis = k;
+        H5Dclose(d);
+    }
+    return (int)axis;
+}
+
+/* Key k's values: doubles when the dataset is numeric (and their text), else the text itself. */
+static int read_key(hid_t file, plot_sweep *s, int k)
+{
+    char path[160];
+    plot_array a;
+    size_t i, n = 0;
+    snprintf(path, sizeof path, "vary/%s", s->key[k]);
+    s->axis[k] = read_axis(file, path, k);
+    if (plot_h5_read_strings(file, path, &s->text[k], &n) == 0)
+        return n == s->n ? 0 : -1;
+    if (plot_h5_read(file, path, &a) != 0 || a.n != s->n) {
+        plot_array_free(&a);
+        return -1;
+    }
+    s->numeric[k] = 1;
+    s->value[k] = a.v;
+    if (!(s->text[k] = calloc(s->n + 1, sizeof *s->text[k])))
+        return -1;
+    for (i = 0; i < s->n; i++) {
+        char buf[64];
+        snprintf(buf, sizeof buf, "%.12g", a.v[i]);
+        if (!(s->text[k][i] = malloc(strlen(buf) + 1)))
+            return -1;
+        strcpy(s->text[k][i], buf);
+    }
+    return 0;
+}
+
+/* /regime as td_regime codes (-1: not a regime name, or no column). */
+static int read_regimes(hid_t file, plot_sweep *s)
+{
+    char **text = NULL;
+    size_t i, n = 0;
+    int r;
+    if (!(s->regime = malloc((s->n + 1) * sizeof *s->regime)))
+        return -1;
+    for (i = 0; i < s->n; i++)
+        s->regime[i] = -1;
+    if (!plot_h5_exists(file, "regime"))
+        return 0;
+    if (plot_h5_read_strings(file, "regime", &text, &n) != 0 || n != s->n)
+        return -1;
+    for (i = 0; i < n; i++)
+        for (r = 0; r < TD_REGIME_COUNT; r++)
+            if (!strcmp(text[i], td_regime_name((td_regime)r)))
+                s->regime[i] = r;
+    plot_strings_free(text, n);
+    return 0;
+}
+
+/* /section_radius (point x m) and /section_clearance, when the table has them. */
+static int read_section(hid_t file, plot_sweep *s)
+{
+    plot_array a;
+    size_t i;
+    if (!(s->clearance = malloc((s->n + 1) * sizeof *s->clearance)))
+        return -1;
+    for (i = 0; i < s->n; i++)
+        s->clearance[i] = NAN;
+    if (plot_h5_exists(file, "section_clearance")) {
+        if (plot_h5_read(file, "section_clearance", &a) != 0 || a.n != s->n)
+            return -1;
+        memcpy(s->clearance, a.v, s->n * sizeof *a.v);
+        plot_array_free(&a);
+    }
+    if (!plot_h5_exists(file, "section_radius"))
+        return 0;
+    if (plot_h5_read(file, "section_radius", &a) != 0 || a.rank != 2 || a.dims[0] != s->n) {
+        plot_array_free(&a);
+        return -1;
+    }
+    s->section = a.v;
+    s->m = a.dims[1];
+    return 0;
+}
+
+int plot_sweep_load(hid_t file, plot_file *f)
+{
+    plot_sweep *s = &f->sweep;
+    plot_array pt;
+    int k;
+    if (plot_h5_read(file, "point", &pt) != 0)
+        return bad(f->path, "unreadable /point dataset");
+    s->n = pt.n;
+    plot_array_free(&pt);
+    read_keys(file, s);
+    if (s->nkeys == 0)
+        return bad(f->path, "the sweep table names no swept key (attribute 'vary')");
+    for (k = 0; k < s->nkeys; k++)
+        if (read_key(file, s, k) != 0) {
+            fprintf(stderr, "touchdown plot: %s: unreadable swept key /vary/%s\n", f->path, s->key[k]);
+            return PLOT_BAD_INPUT;
+        }
+    if (read_regimes(file, s) != 0)
+        return bad(f->path, "unreadable /regime column");
+    if (read_section(file, s) != 0)
+        return bad(f->path, "unreadable /section_radius or /section_clearance");
+    return PLOT_OK;
+}
+
+void plot_sweep_free(plot_sweep *s)
+{
+    int k;
+    for (k = 0; k < PLOT_SWEEP_MAX_KEYS; k++) {
+        free(s->value[k]);
+        plot_strings_free(s->text[k], s->text[k] ? s->n : 0);
+    }
+    free(s->regime);
+    free(s->section);
+    free(s->clearance);
+    memset(s, 0, sizeof *s);
+}
