@@ -32,6 +32,8 @@ static const char sweep_usage[] =
     "      --point-files DIR  also keep each point's full result, DIR/point-NNNNNN.h5 (NNNNNN the\n"
     "                       point's index, as in the table), the file touchdown run writes\n"
     "      --point-csv      with --point-files, also DIR/point-NNNNNN.csv (and its events file)\n"
+    "      --point-timeout S  stop a point whose worker has run S seconds of wall time: its row\n"
+    "                       is failed with status \"timeout\" (default: no limit)\n"
     "  -j, --jobs N         worker processes, 1..256 (default: the number of online CPUs; under\n"
     "                       MPI: workers per rank, default 1)\n"
     "  -o, --output PREFIX  write PREFIX.csv and PREFIX.h5 (default: CASENAME-sweep)\n"
@@ -87,6 +89,7 @@ typedef struct sweep_options {
     const char *prefix;
     const char *case_path;
     const char *point_dir;
+    double point_timeout;
     int jobs, json, quiet, point_csv, progress; /* progress: 1 --progress, 0 --no-progress, -1 neither */
 } sweep_options;
 
@@ -108,6 +111,20 @@ static int parse_jobs(const char *text, int *jobs)
     return 0;
 }
 
+/* The longest a point may run: a finite number of seconds > 0, at most a year. */
+static int parse_timeout(const char *text, double *timeout)
+{
+    char *end;
+    double v = strtod(text, &end);
+    if (end == text || *end || !(v > 0.0) || v > TD_SWEEP_POOL_TIMEOUT_MAX) {
+        td_cli_error("sweep", "--point-timeout: expected seconds > 0 and at most %g, got '%s'",
+                     TD_SWEEP_POOL_TIMEOUT_MAX, text);
+        return TD_EXIT_USAGE;
+    }
+    *timeout = v;
+    return 0;
+}
+
 /* --vary (with = 0) or --with (with = 1): one more axis or key of the grid. */
 static int add_key(td_sweep_grid *g, const char *spec, int with)
 {
@@ -122,7 +139,7 @@ static int add_key(td_sweep_grid *g, const char *spec, int with)
 /* Options into o; returns 0, or an exit code (-1: --help was printed, exit 0). */
 static int parse_options(int argc, char **argv, sweep_options *o)
 {
-    enum { OPT_JSON = 256, OPT_POINT_FILES, OPT_POINT_CSV, OPT_PROGRESS, OPT_NO_PROGRESS };
+    enum { OPT_JSON = 256, OPT_POINT_FILES, OPT_POINT_CSV, OPT_PROGRESS, OPT_NO_PROGRESS, OPT_POINT_TIMEOUT };
     static const struct option longopts[] = {{"vary", required_argument, NULL, 'v'},
                                              {"with", required_argument, NULL, 'w'},
                                              {"set", required_argument, NULL, 's'},
@@ -130,6 +147,7 @@ static int parse_options(int argc, char **argv, sweep_options *o)
                                              {"output", required_argument, NULL, 'o'},
                                              {"point-files", required_argument, NULL, OPT_POINT_FILES},
                                              {"point-csv", no_argument, NULL, OPT_POINT_CSV},
+                                             {"point-timeout", required_argument, NULL, OPT_POINT_TIMEOUT},
                                              {"quiet", no_argument, NULL, 'q'},
                                              {"json", no_argument, NULL, OPT_JSON},
                                              {"progress", no_argument, NULL, OPT_PROGRESS},
@@ -144,6 +162,7 @@ static int parse_options(int argc, char **argv, sweep_options *o)
         case 'w': code = add_key(o->grid, optarg, 1); break;
         case OPT_POINT_FILES: o->point_dir = optarg; break;
         case OPT_POINT_CSV: o->point_csv = 1; break;
+        case OPT_POINT_TIMEOUT: code = parse_timeout(optarg, &o->point_timeout); break;
         case 's': code = td_cli_add_set(&o->sets, optarg); break;
         case 'j': code = parse_jobs(optarg, &o->jobs); break;
         case 'o': o->prefix = optarg; break;
@@ -211,20 +230,37 @@ static int check_point_files(const sweep_options *o, const td_case *c)
     return 0;
 }
 
-/* "FILE:LINE: sweep.vary[i]: " when `message` is about the value of a key swept by the case
- * file's group, so that the error leads to the line that asked for it; else "". */
-static const char *file_origin(const td_sweep_grid *g, const char *message, char *origin, size_t n)
+/* The option that made key k: "--vary", or "--with" for a key zipped onto an earlier key's axis. */
+static const char *key_option(const td_sweep_grid *g, int k)
 {
+    int j;
+    for (j = 0; j < k; j++)
+        if (td_sweep_grid_axis(g, j) == td_sweep_grid_axis(g, k))
+            return "--with";
+    return "--vary";
+}
+
+/* The error line of a point whose case did not load. The case reader names a swept value as the
+ * override it was given as ("--set 'KEY=VALUE'"); the line names it as the user wrote it: the
+ * case file's "FILE:LINE: sweep.vary[i]" first, or "--vary 'KEY=VALUE'" for the command line. */
+static void report_point_error(const td_sweep_grid *g, const char *message)
+{
+    static const char set[] = "--set '";
     char probe[TD_SWEEP_KEY_SIZE + 16];
+    const char *at;
     int k;
     for (k = 0; k < td_sweep_grid_keys(g); k++) {
-        snprintf(probe, sizeof probe, "--set '%s=", td_sweep_grid_key(g, k));
-        if (strstr(message, probe) && strcmp(td_sweep_grid_origin(g, k), "command line") != 0) {
-            snprintf(origin, n, "%s: ", td_sweep_grid_origin(g, k));
-            return origin;
-        }
+        snprintf(probe, sizeof probe, "%s%s=", set, td_sweep_grid_key(g, k));
+        if (!(at = strstr(message, probe)))
+            continue;
+        if (strcmp(td_sweep_grid_origin(g, k), "command line") != 0)
+            fprintf(stderr, "touchdown: %s: %s\n", td_sweep_grid_origin(g, k), message);
+        else
+            fprintf(stderr, "touchdown: %.*s%s '%s\n", (int)(at - message), message, key_option(g, k),
+                    at + strlen(set));
+        return;
     }
-    return "";
+    fprintf(stderr, "touchdown: %s\n", message);
 }
 
 /* Load every point's case once before anything runs, so that a bad key or value is found at
@@ -233,7 +269,6 @@ static int check_points(const sweep_job *job)
 {
     const char *items[TD_CLI_MAX_SETS + TD_SWEEP_MAX_KEYS];
     char store[TD_SWEEP_MAX_KEYS][TD_SWEEP_KEY_SIZE + TD_SWEEP_VALUE_SIZE];
-    char origin[TD_ERROR_MESSAGE_SIZE];
     long p, n = td_sweep_grid_points(job->grid);
     td_case *c = NULL;
     td_error err;
@@ -241,8 +276,7 @@ static int check_points(const sweep_job *job)
         int k = sweep_point_overrides(job, p, items, store);
         td_error_clear(&err);
         if (td_case_load(job->case_path, items, k, &c, &err) != TD_OK) {
-            fprintf(stderr, "touchdown: %s%s\n", file_origin(job->grid, err.message, origin, sizeof origin),
-                    err.message);
+            report_point_error(job->grid, err.message);
             return TD_EXIT_USAGE;
         }
         td_case_free(&c);
@@ -455,6 +489,7 @@ static int prepare(int argc, char **argv, sweep_options *o, sweep_job *job, td_c
     job->case_path = o->case_path;
     job->point_dir = o->point_dir;
     job->point_csv = o->point_csv;
+    job->point_timeout = o->point_timeout;
     if (!code)
         code = td_cli_load_case(o->case_path, &o->sets, base);
     if (!code)
@@ -492,6 +527,7 @@ static void init_options(sweep_options *o, const sweep_world *w, sweep_job *job)
     job->grid = NULL;
     job->point_dir = NULL;
     job->point_csv = 0;
+    job->point_timeout = 0.0;
 }
 
 /* The one process of a sweep, or rank 0 of an MPI run. */
@@ -560,6 +596,7 @@ static int follow_setup(int argc, char **argv, sweep_options *o, sweep_job *job,
     job->case_path = o->case_path;
     job->point_dir = o->point_dir;
     job->point_csv = o->point_csv;
+    job->point_timeout = o->point_timeout;
     return code;
 }
 

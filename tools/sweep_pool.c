@@ -23,6 +23,7 @@ typedef struct worker {
     pid_t pid;
     int fd;
     long point;
+    double started; /* wall clock, s */
     size_t got;
     td_sweep_row row;
 } worker;
@@ -139,6 +140,7 @@ static int worker_start(worker *w, const sweep_job *job, long point)
     }
     w->fd = fds[0];
     w->point = point;
+    w->started = wall_now();
     w->got = 0;
     return 0;
 }
@@ -234,6 +236,31 @@ static void pool_wait(pool *pl)
         }
 }
 
+/* Stop the workers that have run longer than the job's point_timeout. Their points fail with
+ * status "timeout", a result of the sweep's own settings like any failure, so it is journaled:
+ * a resume does not run them again (a finished sweep's journal is gone, a new one does). */
+static void pool_expire(pool *pl)
+{
+    double now = wall_now(), limit = pl->job->point_timeout;
+    td_sweep_row row;
+    char why[TD_ERROR_MESSAGE_SIZE];
+    int i;
+    for (i = 0; i < pl->n && limit > 0.0; i++) {
+        worker *w = &pl->ws[i];
+        if (w->pid <= 0 || now - w->started <= limit)
+            continue;
+        kill(w->pid, SIGKILL);
+        reap(w->pid);
+        close(w->fd);
+        w->pid = 0;
+        pl->running--;
+        snprintf(why, sizeof why, "stopped: ran longer than --point-timeout %g s of wall time", limit);
+        td_sweep_row_unknown(&row, TD_SWEEP_FAILED, "timeout", why);
+        row.wall_time = now - w->started;
+        pl->feed->finished(pl->feed->ctx, w->point, &row, 1);
+    }
+}
+
 /* Stop every running worker; their points get no row. */
 static void pool_kill(pool *pl)
 {
@@ -292,6 +319,7 @@ void sweep_pool_serve(const sweep_job *job, int jobs, const sweep_feed *feed, vo
         if (pl->ended && pl->running == 0)
             break;
         pool_wait(pl);
+        pool_expire(pl);
         if (feed->service && feed->service(feed->ctx))
             break;
     }

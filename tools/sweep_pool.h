@@ -7,16 +7,19 @@
 
 /* Most worker processes (-j). */
 #define TD_SWEEP_POOL_MAX 256
+/* Longest --point-timeout, s (a year). */
+#define TD_SWEEP_POOL_TIMEOUT_MAX 3.2e7
 
 /* What every point shares: the case file, the fixed overrides and the grid (all borrowed), and
  * the directory of the points' own result files (NULL: none; else DIR/point-NNNNNN.h5, and .csv
- * when point_csv). */
+ * when point_csv), and the wall time a point may take before its worker is stopped (0: no limit). */
 typedef struct sweep_job {
     const char *case_path;
     const td_cli_sets *sets;
     const td_sweep_grid *grid;
     const char *point_dir;
     int point_csv;
+    double point_timeout;
 } sweep_job;
 
 /* The name of point `point`'s result file with extension `ext` (".h5", ".csv") in `dir`. */

@@ -107,13 +107,22 @@ for args in "speed=1:2:0" "speed" "speed=1:2" "speed=1,,2" "=1,2" "nokey=1,2" "s
         test "$rc" = 2 -a "$(wc -l <"$work/bad/.err")" = 1 -a ! -e "$work/bad/b.csv" -a ! -e "$work/bad/b.h5"
 done
 check "sweep --vary 'speed=60,abc': the error names the bad point's key and value" \
-    has "$work/bad/.err" "--set 'speed=abc': speed: expected a number"
+    has "$work/bad/.err" "--vary 'speed=abc': speed: expected a number"
 t "$work/bad1" sweep --vary 'nokey=1,2' "$case_a"
 check "sweep --vary 'nokey=1,2': the error names the key" has "$work/bad1/.err" "nokey: unknown key"
 t "$work/bad2" sweep --vary speed=1:2:1000 --vary 'schedule[0].magnitude=0:1:1000' "$case_a"
 check "sweep past 100000 points: exit 2, one line" test "$rc" = 2 -a "$(wc -l <"$work/bad2/.err")" = 1
 t "$work/bad3" sweep -j 0 --vary speed=1,2 "$case_a"
 check "sweep -j 0: exit 2" test "$rc" = 2
+t "$work/bad4" sweep --point-timeout 0 --vary speed=1,2 "$case_a"
+check "sweep --point-timeout 0: exit 2, naming the option" test "$rc" = 2 -a -n "$(grep -F -- '--point-timeout' "$work/bad4/.err")"
+
+# a point far beyond its --point-timeout is stopped and recorded, the other runs: rub-damped
+# simulated for 500 s takes minutes of CPU, its 0.001 s well under a second even under ASan
+t "$work/tmo" sweep -j 2 --point-timeout 10 --vary end_time=0.001,500 -o t "$src/cases/rub-damped.cfg"
+check "sweep --point-timeout: exit 1, the long point stopped with status timeout, the short one done" \
+    test "$rc" = 1 -a "$(grep -c ',500,timeout,stopped: ran longer than --point-timeout 10 s' "$work/tmo/t.csv")" = 1 \
+    -a "$(grep -c '^0,0.001,success,' "$work/tmo/t.csv")" = 1 -a "$(tail -n 1 "$work/tmo/t.csv")" = "# complete"
 t "$work/help" sweep --help
 check "sweep --help: exit 0, the usage" test "$rc" = 0 -a -n "$(grep 'KEY=START:STOP:N' "$work/help/.out")"
 

@@ -112,6 +112,8 @@ bad_run "$work/b2" "the spacing must be linear or log" --vary speed=1:100:3:lin 
 bad_run "$work/b3" "unbalances[0].magnitude has 2 values but speed, whose axis it joins, has 3" \
     --vary speed=1,2,3 --with 'unbalances[0].magnitude=0.1,0.2' "$case_r"
 bad_run "$work/b4" "--with 'speed=1,2': no axis to join" --with speed=1,2 "$case_r"
+bad_run "$work/b4w" "--with 'retainers[0].friction=-1': retainers[0].friction: must be >= 0" \
+    --vary speed=80,90 --with 'retainers[0].friction=0.1,-1' "$case_r"
 bad_run "$work/b5" "--point-files" --vary speed=80,90 --point-files no/such/dir "$case_r"
 bad_run "$work/b6" "--point-csv needs --point-files" --vary speed=80,90 --point-csv "$case_r"
 bad_run "$work/b7" "sweep.vary[0].points: the number of points" --set 'sweep.vary[0].points=0' "$case_s"
