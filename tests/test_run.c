@@ -912,6 +912,14 @@ static void test_summary_ending(void **state)
         {0.4, 0.0, 24.0, 100.0, 3, "forward rub at 9.549 Hz, sliding, bouncing", 60.0 / (2.0 * TD_PI),
          TD_REGIME_BOUNCE},
         {1.0, 0.9, -60.0, 0.5, 3, "at rest", 0.0, TD_REGIME_RUB},
+        /* bouncing and creeping back 80 degrees while in contact: a bounce, not a whirl */
+        {0.1, 0.0, -1.4, 100.0, 3, "sliding on the retainers, bouncing", -14.0 / (2.0 * TD_PI), TD_REGIME_BOUNCE},
+        /* bouncing, but round the clearance one and a half times backward: a bouncing whirl */
+        {0.4, 0.0, -3.0 * TD_PI, 100.0, 3, "backward whirl at -3.75 Hz, sliding, bouncing", -3.75,
+         TD_REGIME_BACKWARD_WHIRL},
+        /* in contact all along, a slow backward whirl of under a turn is still a whirl */
+        {1.0, 0.9, -6.0, 100.0, 3, "backward whirl at -0.9549 Hz, rolling", -6.0 / (2.0 * TD_PI),
+         TD_REGIME_BACKWARD_WHIRL},
     };
     size_t i;
     (void)state;

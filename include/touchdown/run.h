@@ -53,7 +53,9 @@ typedef struct td_run_hooks {
  * The regime a run settled in, over the stretch its ending is judged on (td_run_summary_ending),
  * one rule for the sweep table's `regime` column and the regime map: FREE no retainer in contact
  * over the stretch (never touched, or recovered); BACKWARD_WHIRL in contact there with a whirl
- * rate at least 5 % of the spin, backward; BOUNCE in contact less than half the stretch, not
+ * rate at least 5 % of the spin, backward, and either in contact at least half the stretch or
+ * carried round the clearance at least once while in contact (a bounce that creeps back a
+ * fraction of a turn at each touch is no whirl); BOUNCE in contact less than half the stretch, not
  * whirling backward; RUB in contact at least half the stretch (a forward rub, rolling or sliding
  * on the retainers, or at rest on them); FAILED the run did not reach its end.
  */
@@ -190,7 +192,9 @@ TD_API void td_run_summary_failed(td_run_summary *s, double t_start, double t_en
  * t_end - window) and at the end (`after`), n retainers, and the final rotor speed `speed`
  * against the start speed `speed0`: fills s->ending and s->ending_whirl_frequency. A rotor whose
  * whirl rate stays below 5 % of its spin sits on its retainers (rolling or sliding there); faster,
- * it whirls backward or rubs forward; in contact less than half the stretch, it also bounces.
+ * it whirls backward or rubs forward; in contact less than half the stretch, it also bounces, and
+ * then whirls only if carried round the clearance at least once while in contact (else it sits on
+ * its retainers, bouncing). Also sets s->regime (td_regime).
  */
 TD_API void td_run_summary_ending(td_run_summary *s, const td_retainer_totals *before, const td_retainer_totals *after,
                                   int n, double speed0, double speed);

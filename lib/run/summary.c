@@ -90,8 +90,9 @@ void td_run_summary_ending(td_run_summary *s, const td_retainer_totals *before, 
 {
     const double w = s->ending_window;
     int k = busiest(before, after, n);
-    double dt, rate, f, spin_f = fabs(speed) / (2.0 * TD_PI);
+    double dt, turned, rate, f, spin_f = fabs(speed) / (2.0 * TD_PI);
     const char *how, *bounce;
+    int whirls;
     s->ending_whirl_frequency = 0.0;
     s->regime = TD_REGIME_FAILED;
     if (!(w > 0.0)) {
@@ -109,13 +110,17 @@ void td_run_summary_ending(td_run_summary *s, const td_retainer_totals *before, 
         return;
     }
     dt = after[k].contact_time - before[k].contact_time;
-    rate = (after[k].whirl_angle - before[k].whirl_angle) / dt;
+    turned = after[k].whirl_angle - before[k].whirl_angle;
+    rate = turned / dt;
     f = (speed < 0.0 ? -rate : rate) / (2.0 * TD_PI);
     s->ending_whirl_frequency = f;
     how = after[k].rolling_time - before[k].rolling_time > 0.5 * dt ? "rolling" : "sliding";
     bounce = dt < 0.5 * w ? ", bouncing" : "";
-    s->regime = f <= -0.05 * spin_f ? TD_REGIME_BACKWARD_WHIRL : bounce[0] ? TD_REGIME_BOUNCE : TD_REGIME_RUB;
-    if (fabs(f) < 0.05 * spin_f)
+    /* A whirl goes round: a rotor that bounces and creeps a fraction of a turn while it touches
+     * (each landing a little further back) is bouncing, however fast it creeps in contact. */
+    whirls = fabs(f) >= 0.05 * spin_f && (!bounce[0] || fabs(turned) >= 2.0 * TD_PI);
+    s->regime = whirls && f < 0.0 ? TD_REGIME_BACKWARD_WHIRL : bounce[0] ? TD_REGIME_BOUNCE : TD_REGIME_RUB;
+    if (!whirls)
         snprintf(s->ending, sizeof s->ending, "%s on the retainers%s", how, bounce);
     else
         snprintf(s->ending, sizeof s->ending, "%s at %.4g Hz, %s%s", f < 0.0 ? "backward whirl" : "forward rub", f, how,
