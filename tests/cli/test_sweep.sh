@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # `touchdown sweep`: the table does not depend on -j (wall time aside); each row is what an
 # independent `touchdown run` of the same point says; a failing point, or one whose worker is
-# killed, is a row and the others run; bad --vary specs, keys and values are one line and exit 2
+# killed or outlives --point-timeout, is a row and the others run; bad --vary specs, keys and values are one line and exit 2
 # before anything runs; SIGINT half way leaves the table marked incomplete (or nothing), never a
 # table that looks finished; a sweep killed half way (SIGKILL) and run again resumes from its
 # journal and writes the table of an uninterrupted run, and a journal of another sweep is refused.
@@ -119,9 +119,9 @@ check "sweep --point-timeout 0: exit 2, naming the option" test "$rc" = 2 -a -n 
 
 # a point far beyond its --point-timeout is stopped and recorded, the other runs: rub-damped
 # simulated for 500 s takes minutes of CPU, its 0.001 s well under a second even under ASan
-t "$work/tmo" sweep -j 2 --point-timeout 10 --vary end_time=0.001,500 -o t "$src/cases/rub-damped.cfg"
+t "$work/tmo" sweep -j 2 --point-timeout 6 --vary end_time=0.001,500 -o t "$src/cases/rub-damped.cfg"
 check "sweep --point-timeout: exit 1, the long point stopped with status timeout, the short one done" \
-    test "$rc" = 1 -a "$(grep -c ',500,timeout,stopped: ran longer than --point-timeout 10 s' "$work/tmo/t.csv")" = 1 \
+    test "$rc" = 1 -a "$(grep -c ',500,timeout,stopped: ran longer than --point-timeout 6 s' "$work/tmo/t.csv")" = 1 \
     -a "$(grep -c '^0,0.001,success,' "$work/tmo/t.csv")" = 1 -a "$(tail -n 1 "$work/tmo/t.csv")" = "# complete"
 t "$work/help" sweep --help
 check "sweep --help: exit 0, the usage" test "$rc" = 0 -a -n "$(grep 'KEY=START:STOP:N' "$work/help/.out")"
