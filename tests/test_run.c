@@ -31,15 +31,37 @@
  * disc at mid-span (node 3), stiff plain bearings at the ends, first critical speed about
  * 250 rad/s; a soft PD AMB (no negative stiffness) at node 1 and a retainer with 20 um clearance
  * at the disc. At 200 rad/s the unbalance orbit is 3.6 um with U = 1e-5 kg m; U steps to 2e-4 kg m
- * (orbit ~70 um) at 0.02 s, so the disc hits the retainer, and back to 1e-5 at 0.1 s.
+ * (orbit ~70 um) at 0.02 s (small_rotor), so the disc hits the retainer, and back to 1e-5 at 0.1 s.
+ * Here with retainer `ret`, unbalance `u` and n scheduled changes.
  */
-static td_model *small_rotor(void)
+static td_model *jeffcott_rotor(const td_retainer *ret, const td_unbalance *u, const td_change *changes, int n)
 {
     td_model *m = NULL;
     td_shaft_element el = {0.1, 0.02, 0.0, {2.11e11, 8.1e10, 7810.0}};
     td_disc disc = {3, 4.91, 0.0245, 0.0124};
     td_bearing b0 = {0, 1e8, 1e8, 200.0, 200.0}, b6 = {6, 1e8, 1e8, 200.0, 200.0};
     td_amb amb = {1, 1, 0.0, 1.0, 1e5, 20.0, 1e-4, 1e4, 0, 0.0, 0.0};
+    td_error err;
+    int i;
+    assert_int_equal(td_model_create(&m, &err), TD_OK);
+    for (i = 0; i < 6; i++)
+        assert_int_equal(td_model_add_shaft_element(m, &el, &err), TD_OK);
+    assert_int_equal(td_model_add_disc(m, &disc, &err), TD_OK);
+    assert_int_equal(td_model_add_bearing(m, &b0, &err), TD_OK);
+    assert_int_equal(td_model_add_bearing(m, &b6, &err), TD_OK);
+    assert_int_equal(td_model_add_amb(m, &amb, &err), TD_OK);
+    assert_int_equal(td_model_add_retainer(m, ret, &err), TD_OK);
+    assert_int_equal(td_model_add_unbalance(m, u, &err), TD_OK);
+    for (i = 0; i < n; i++)
+        assert_int_equal(td_model_add_change(m, &changes[i], &err), TD_OK);
+    assert_int_equal(td_model_set_speed(m, OMEGA, &err), TD_OK);
+    if (td_model_validate(m, &err) != TD_OK)
+        fail_msg("model: %s", err.message);
+    return m;
+}
+
+static td_model *small_rotor(void)
+{
     td_retainer ret = {.node = 3,
                        .clearance = CLEARANCE,
                        .shaft_radius = 0.01,
@@ -48,51 +70,16 @@ static td_model *small_rotor(void)
                        .bore_speed = 0.0,
                        .restitution = 0.0};
     td_unbalance u = {3, 1e-5, 0.0};
-    td_change up = {0.02, TD_CHANGE_UNBALANCE, 0, 2e-4, 0.0}, down = {0.1, TD_CHANGE_UNBALANCE, 0, 1e-5, 0.0};
-    td_error err;
-    int i;
-    assert_int_equal(td_model_create(&m, &err), TD_OK);
-    for (i = 0; i < 6; i++)
-        assert_int_equal(td_model_add_shaft_element(m, &el, &err), TD_OK);
-    assert_int_equal(td_model_add_disc(m, &disc, &err), TD_OK);
-    assert_int_equal(td_model_add_bearing(m, &b0, &err), TD_OK);
-    assert_int_equal(td_model_add_bearing(m, &b6, &err), TD_OK);
-    assert_int_equal(td_model_add_amb(m, &amb, &err), TD_OK);
-    assert_int_equal(td_model_add_retainer(m, &ret, &err), TD_OK);
-    assert_int_equal(td_model_add_unbalance(m, &u, &err), TD_OK);
-    assert_int_equal(td_model_add_change(m, &up, &err), TD_OK);
-    assert_int_equal(td_model_add_change(m, &down, &err), TD_OK);
-    assert_int_equal(td_model_set_speed(m, OMEGA, &err), TD_OK);
-    if (td_model_validate(m, &err) != TD_OK)
-        fail_msg("model: %s", err.message);
-    return m;
+    td_change steps[2] = {{0.02, TD_CHANGE_UNBALANCE, 0, 2e-4, 0.0}, {0.1, TD_CHANGE_UNBALANCE, 0, 1e-5, 0.0}};
+    return jeffcott_rotor(&ret, &u, steps, 2);
 }
 
 /* small_rotor without the unbalance steps: a free linear rotor in its steady unbalance orbit. */
 static td_model *steady_rotor(void)
 {
-    td_model *m = NULL;
-    td_shaft_element el = {0.1, 0.02, 0.0, {2.11e11, 8.1e10, 7810.0}};
-    td_disc disc = {3, 4.91, 0.0245, 0.0124};
-    td_bearing b0 = {0, 1e8, 1e8, 200.0, 200.0}, b6 = {6, 1e8, 1e8, 200.0, 200.0};
-    td_amb amb = {1, 1, 0.0, 1.0, 1e5, 20.0, 1e-4, 1e4, 0, 0.0, 0.0};
     td_retainer ret = {.node = 3, .clearance = CLEARANCE, .shaft_radius = 0.01, .bore_radius = 0.01 + CLEARANCE};
     td_unbalance u = {3, 1e-5, 0.7};
-    td_error err;
-    int i;
-    assert_int_equal(td_model_create(&m, &err), TD_OK);
-    for (i = 0; i < 6; i++)
-        assert_int_equal(td_model_add_shaft_element(m, &el, &err), TD_OK);
-    assert_int_equal(td_model_add_disc(m, &disc, &err), TD_OK);
-    assert_int_equal(td_model_add_bearing(m, &b0, &err), TD_OK);
-    assert_int_equal(td_model_add_bearing(m, &b6, &err), TD_OK);
-    assert_int_equal(td_model_add_amb(m, &amb, &err), TD_OK);
-    assert_int_equal(td_model_add_retainer(m, &ret, &err), TD_OK);
-    assert_int_equal(td_model_add_unbalance(m, &u, &err), TD_OK);
-    assert_int_equal(td_model_set_speed(m, OMEGA, &err), TD_OK);
-    if (td_model_validate(m, &err) != TD_OK)
-        fail_msg("model: %s", err.message);
-    return m;
+    return jeffcott_rotor(&ret, &u, NULL, 0);
 }
 
 static td_sim *make_sim(const td_model *m)

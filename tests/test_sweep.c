@@ -67,6 +67,17 @@ static void test_grid_order_and_lists(void **state)
     td_sweep_grid_free(&g);
 }
 
+/* Every spec of bad[] is refused with a parse error naming it, the grid unchanged. */
+static void refuse_all(td_sweep_grid *g, const char *const *bad, size_t n)
+{
+    td_error err;
+    size_t i;
+    for (i = 0; i < n; i++) {
+        assert_int_equal(td_sweep_grid_vary(g, bad[i], &err), TD_ERR_PARSE);
+        assert_non_null(strstr(err.message, bad[i]));
+    }
+}
+
 static void test_bad_specs(void **state)
 {
     static const char *const bad[] = {"speed",         "speed=",          "=1,2",          "speed=1:2",
@@ -74,13 +85,9 @@ static void test_bad_specs(void **state)
                                       "speed=1:2:1.5", "speed=1:2:100001"};
     td_sweep_grid *g = NULL;
     td_error err;
-    size_t i;
     (void)state;
     assert_int_equal(td_sweep_grid_create(&g, NULL), TD_OK);
-    for (i = 0; i < sizeof bad / sizeof bad[0]; i++) {
-        assert_int_equal(td_sweep_grid_vary(g, bad[i], &err), TD_ERR_PARSE);
-        assert_non_null(strstr(err.message, bad[i]));
-    }
+    refuse_all(g, bad, sizeof bad / sizeof bad[0]);
     assert_int_equal(td_sweep_grid_axes(g), 0);
     assert_int_equal(td_sweep_grid_vary(g, "speed=1:2:1000", &err), TD_OK);
     assert_int_equal(td_sweep_grid_vary(g, "speed=3", &err), TD_ERR_PARSE);          /* twice */
@@ -131,13 +138,9 @@ static void test_bad_log_ranges(void **state)
     static const char *const bad[] = {"x=0:1:3:log", "x=1:-2:3:log", "x=1:2:3:lg", "x=1:2:3:log:4", "x=1:2:3:"};
     td_sweep_grid *g = NULL;
     td_error err;
-    size_t i;
     (void)state;
     assert_int_equal(td_sweep_grid_create(&g, NULL), TD_OK);
-    for (i = 0; i < sizeof bad / sizeof bad[0]; i++) {
-        assert_int_equal(td_sweep_grid_vary(g, bad[i], &err), TD_ERR_PARSE);
-        assert_non_null(strstr(err.message, bad[i]));
-    }
+    refuse_all(g, bad, sizeof bad / sizeof bad[0]);
     assert_int_equal(td_sweep_grid_vary(g, bad[0], &err), TD_ERR_PARSE);
     assert_non_null(strstr(err.message, "both ends > 0"));
     assert_int_equal(td_sweep_grid_keys(g), 0);
