@@ -16,10 +16,11 @@ done
 "$tool" sweep -j 1 --vary speed=50:250:41 --vary 'unbalances[0].magnitude=0.005,0.01,0.015,0.02,0.05,0.1' -o study \
     "$here/cases/study-a.cfg" >/dev/null
 "$tool" plot -q -d study study.h5
+"$tool" plot -q -d study-log --log-y study.h5 # the regime map over the unbalances' decades
 # the second study, the drop: docs/sweep-study.md, "A second study: the drop"
 "$tool" sweep -j 2 -o study-drop "$here/cases/study-drop.cfg" >/dev/null
-"$tool" plot -q -d study-drop --x 'retainers[0].race.drag_torque' --y speed study-drop.h5
-"$tool" plot -q -d study-drop --x 'retainers[0].race.drag_torque' --quantity ending_whirl_frequency study-drop.h5
+"$tool" plot -q -d study-drop --log-x --x 'retainers[0].race.drag_torque' --y speed study-drop.h5
+"$tool" plot -q -d study-drop --log-x --x 'retainers[0].race.drag_torque' --quantity ending_whirl_frequency study-drop.h5
 "$tool" plot -q -d a --retainer 0 paper-a.h5
 "$tool" plot -q -d b --retainer 0 paper-b.h5
 "$tool" plot -q -d ac --retainer 0 paper-a.h5 paper-c.h5
@@ -33,7 +34,7 @@ cp b/radial-force-r0.png "$out/paper-b-radial-force-r0.png"
 cp ac/compare-r0.png "$out/paper-a-vs-c-compare-r0.png"
 cp m/campbell.png "$out/paper-a-campbell.png"
 cp m/mode-shapes.png "$out/paper-a-mode-shapes.png"
-cp study/regime-map.png "$out/study-a-regime-map.png"
+cp study-log/regime-map.png "$out/study-a-regime-map.png"
 cp study/bifurcation.png "$out/study-a-bifurcation.png"
 cp study/sweep-peak_housing_force.png "$out/study-a-peak-housing-force.png"
 cp study-drop/regime-map.png "$out/study-drop-regime-map.png"

@@ -53,6 +53,8 @@ static const char plot_usage[] =
     "                     peak_housing_force; any numeric column: total_impulse, contacts, ...)\n"
     "      --x KEY        sweep tables: the swept key on the x axis\n"
     "      --y KEY        sweep tables: the regime map's y key (default: the first numeric key on another axis)\n"
+    "      --log-x        sweep tables: a logarithmic x axis (the x key's values must be > 0)\n"
+    "      --log-y        sweep tables: a logarithmic y axis for the quantity and the regime map's y key\n"
     "      --no-run       write the data and scripts only, do not run gnuplot\n"
     "  -q, --quiet        print nothing but errors (default: one 'wrote' line per figure)\n"
     "  -h, --help         this help\n"
@@ -92,7 +94,19 @@ static int parse_count(const char *s, int lo, int hi, int *out)
 /* Parse the options into `opt`; returns -1 to go on, else the exit code. */
 static int parse(int argc, char **argv, plot_opts *opt)
 {
-    enum { OPT_RETAINER = 256, OPT_FROM, OPT_TO, OPT_FORMAT, OPT_NO_RUN, OPT_MODES, OPT_QUANTITY, OPT_X, OPT_Y };
+    enum {
+        OPT_RETAINER = 256,
+        OPT_FROM,
+        OPT_TO,
+        OPT_FORMAT,
+        OPT_NO_RUN,
+        OPT_MODES,
+        OPT_QUANTITY,
+        OPT_X,
+        OPT_Y,
+        OPT_LOG_X,
+        OPT_LOG_Y
+    };
     static const struct option longopts[] = {{"dir", required_argument, NULL, 'd'},
                                              {"retainer", required_argument, NULL, OPT_RETAINER},
                                              {"from", required_argument, NULL, OPT_FROM},
@@ -103,6 +117,8 @@ static int parse(int argc, char **argv, plot_opts *opt)
                                              {"quantity", required_argument, NULL, OPT_QUANTITY},
                                              {"x", required_argument, NULL, OPT_X},
                                              {"y", required_argument, NULL, OPT_Y},
+                                             {"log-x", no_argument, NULL, OPT_LOG_X},
+                                             {"log-y", no_argument, NULL, OPT_LOG_Y},
                                              {"quiet", no_argument, NULL, 'q'},
                                              {"help", no_argument, NULL, 'h'},
                                              {NULL, 0, NULL, 0}};
@@ -137,6 +153,8 @@ static int parse(int argc, char **argv, plot_opts *opt)
         case OPT_QUANTITY: opt->quantity = optarg; break;
         case OPT_X: opt->xkey = optarg; break;
         case OPT_Y: opt->ykey = optarg; break;
+        case OPT_LOG_X: opt->log_x = 1; break;
+        case OPT_LOG_Y: opt->log_y = 1; break;
         case 'q': opt->quiet = 1; break;
         case 'h': fputs(plot_usage, stdout); return TD_EXIT_OK;
         case ':': return usage_error("option '%s' needs a value", argv[optind - 1]);

@@ -147,6 +147,7 @@ typedef struct plot_opts {
     const char *quantity; /* column plotted against the x key (NULL: peak_housing_force) */
     const char *xkey;     /* swept key on the x axis (NULL: speed when swept, else the first numeric one) */
     const char *ykey;     /* the regime map's y key (NULL: the first other numeric one) */
+    int log_x, log_y;     /* logarithmic x axis (every sweep figure), y axis (the quantity, the map's y key) */
 } plot_opts;
 
 /* The scripts written so far, run at the end. */

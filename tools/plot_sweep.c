@@ -164,6 +164,12 @@ static int pick_y(const plot_opts *opt, const plot_file *f, int x)
     return -1;
 }
 
+/* The axes' scales for the figure's template: logx, and logy where the figure takes --log-y. */
+static void axis_scales(FILE *out, const plot_opts *opt, int takes_log_y)
+{
+    fprintf(out, "logx = %d\nlogy = %d\n", opt->log_x, takes_log_y && opt->log_y);
+}
+
 /* The numeric column `name` of the table and its units; -1 with a line printed. */
 static int read_quantity(const plot_file *f, const char *name, plot_array *q, char *units, size_t n)
 {
@@ -253,6 +259,7 @@ static int quantity_figure(plot_job *job, const plot_file *f, const char *prefix
         plot_var_string(out, "data", data);
         plot_var_string(out, "xlabel", f->sweep.key[x]);
         plot_var_string(out, "ylabel", label);
+        axis_scales(out, job->opt, 1);
         title_array(out, o, keep, nkeep);
         rc = plot_script_end(out, job, name, NULL, plot_tpl_sweep_quantity);
     } else if (nkeep == 0) { /* every point failed, say: no figure, not an error */
@@ -267,9 +274,17 @@ static int quantity_figure(plot_job *job, const plot_file *f, const char *prefix
 
 /* ---- regime map ----------------------------------------------------------------------------- */
 
+/* The point halfway between a and b along the axis: the mean, or on a log axis the geometric mean. */
+static double halfway(double a, double b, int log_axis)
+{
+    return log_axis ? sqrt(a * b) : 0.5 * (a + b);
+}
+
 /* A tile's edges around `at`: halfway to the next value of v (n of them) on either side, so that
- * tiles of unevenly spaced values meet; the gap of the other side where there is no neighbour. */
-static void tile_edges(const double *v, size_t n, double at, double *lo, double *hi)
+ * tiles of unevenly spaced values meet; the other side's half gap, mirrored, where there is no
+ * neighbour. On a log axis the values are > 0 (plot_sweep_figures checks) and halfway is along
+ * the log. */
+static void tile_edges(const double *v, size_t n, double at, int log_axis, double *lo, double *hi)
 {
     double below = -HUGE_VAL, above = HUGE_VAL, w;
     size_t i;
@@ -280,8 +295,12 @@ static void tile_edges(const double *v, size_t n, double at, double *lo, double 
             above = v[i];
     }
     w = at != 0.0 ? 0.05 * fabs(at) : 0.5; /* a single value: a narrow tile */
-    *lo = isfinite(below) ? 0.5 * (at + below) : isfinite(above) ? at - 0.5 * (above - at) : at - w;
-    *hi = isfinite(above) ? 0.5 * (at + above) : isfinite(below) ? at + 0.5 * (at - below) : at + w;
+    *lo = isfinite(below) ? halfway(at, below, log_axis) : at - w;
+    *hi = isfinite(above) ? halfway(at, above, log_axis) : at + w;
+    if (!isfinite(below) && isfinite(above)) /* the first value: as wide below as above */
+        *lo = log_axis ? at * at / *hi : 2.0 * at - *hi;
+    if (!isfinite(above) && isfinite(below)) /* the last */
+        *hi = log_axis ? at * at / *lo : 2.0 * at - *lo;
 }
 
 static int write_regimes(const plot_job *job, const plot_file *f, const char *name, int x, int y, int *present)
@@ -300,9 +319,9 @@ static int write_regimes(const plot_job *job, const plot_file *f, const char *na
         int r = s->regime[p] >= 0 ? s->regime[p] : TD_REGIME_FAILED;
         double yv = y >= 0 ? s->value[y][p] : 0.0, x0, x1, y0 = -0.5, y1 = 0.5;
         present[r] = 1;
-        tile_edges(s->value[x], s->n, s->value[x][p], &x0, &x1);
+        tile_edges(s->value[x], s->n, s->value[x][p], job->opt->log_x, &x0, &x1);
         if (y >= 0)
-            tile_edges(s->value[y], s->n, yv, &y0, &y1);
+            tile_edges(s->value[y], s->n, yv, job->opt->log_y, &y0, &y1);
         fprintf(out, "%.12g %.12g %.12g %.12g %.12g %.12g %d %lu\n", s->value[x][p], yv, x0, x1, y0, y1, r,
                 (unsigned long)p);
     }
@@ -340,6 +359,7 @@ static int regime_figure(plot_job *job, const plot_file *f, const char *prefix, 
     plot_var_string(out, "xlabel", f->sweep.key[x]);
     plot_var_string(out, "ylabel", y >= 0 ? f->sweep.key[y] : "");
     fprintf(out, "has_y = %d    # 0: one swept key, a single row of tiles\n", y >= 0);
+    axis_scales(out, job->opt, y >= 0);
     regime_arrays(out, present);
     return plot_script_end(out, job, name, NULL, plot_tpl_regime_map);
 }
@@ -445,11 +465,25 @@ static int bifurcation_figure(plot_job *job, const plot_file *f, const char *pre
         plot_var_string(out, "clear", clear);
         fprintf(out, "has_clearance = %d\n", nclear > 0);
         plot_var_string(out, "xlabel", f->sweep.key[x]);
+        axis_scales(out, job->opt, 0);
         title_array(out, o, keep, nkeep);
         rc = plot_script_end(out, job, name, NULL, plot_tpl_bifurcation);
     }
     free(keep);
     return rc;
+}
+
+/* 1 if every value of swept key k is > 0, as a log axis needs; else 0 with a line naming `option`. */
+static int all_positive(const plot_file *f, int k, const char *option)
+{
+    size_t p;
+    for (p = 0; p < f->sweep.n; p++)
+        if (!(f->sweep.value[k][p] > 0.0)) {
+            fprintf(stderr, "touchdown plot: %s: %s has the value %g at point %lu: a log axis needs values > 0\n",
+                    option, f->sweep.key[k], f->sweep.value[k][p], (unsigned long)p);
+            return 0;
+        }
+    return 1;
 }
 
 /* ---- entry ---------------------------------------------------------------------------------- */
@@ -461,6 +495,9 @@ int plot_sweep_figures(plot_job *job, const plot_file *f, const char *prefix)
     if (x < 0)
         return PLOT_BAD_INPUT;
     if ((y = pick_y(job->opt, f, x)) == -2)
+        return PLOT_BAD_INPUT;
+    if ((job->opt->log_x && !all_positive(f, x, "--log-x")) ||
+        (job->opt->log_y && y >= 0 && !all_positive(f, y, "--log-y")))
         return PLOT_BAD_INPUT;
     if (order_points(&f->sweep, x, &o) != 0) {
         fprintf(stderr, "touchdown plot: out of memory\n");

@@ -90,6 +90,18 @@ check "plot of a zipped sweep: lines by the other axis only, its key the map's y
     test "$rc" = 0 -a "$(grep -c '^# unbalances\[0\].phase=' "$work/z/p/sweep-peak_housing_force.dat")" = 2 -a \
     -n "$(grep -F '2 unbalances[0].phase' "$work/z/p/regime-map.dat")"
 
+# ---- log axes: tiles meet at the geometric means (60 and 120: sqrt(7200) = 84.8528137424) ------
+t "$work/s" plot --no-run -d lg --log-x --log-y s.h5
+check "plot --log-x --log-y: exit 0, tile edges halfway along the logs, log scales in the scripts (got $rc)" \
+    test "$rc" = 0 -a "$(awk '!/^#/ && $1 == 60 { print $4 }' "$work/s/lg/regime-map.dat" | sort -u)" = 84.8528137424 -a \
+    "$(awk '!/^#/ && $1 == 120 { print $3 }' "$work/s/lg/regime-map.dat" | sort -u)" = 84.8528137424 -a \
+    "$(awk '!/^#/ && $2 == 0.05 { print $6 }' "$work/s/lg/regime-map.dat" | sort -u)" = 0.1 -a \
+    -n "$(grep -x 'logx = 1' "$work/s/lg/bifurcation.gp")" -a -n "$(grep -x 'logy = 0' "$work/s/lg/bifurcation.gp")" -a \
+    -n "$(grep -x 'logy = 1' "$work/s/lg/regime-map.gp")"
+t "$work/z" plot --no-run -d lgz --log-x --x 'unbalances[0].phase' z.h5
+check "plot --log-x of a key with the value 0: exit 2, one line naming it ($(cat "$work/z/.err"))" \
+    test "$rc" = 2 -a "$(wc -l <"$work/z/.err")" = 1 -a -n "$(grep -F -- '--log-x: unbalances[0].phase' "$work/z/.err")"
+
 # ---- bad options: one line, exit 2 --------------------------------------------------------------
 for args in "--quantity nosuch" "--x nosuch" "--x speed --y speed" "--quantity ending" "--x status"; do
     t "$work/s" plot --no-run -d bad $args s.h5

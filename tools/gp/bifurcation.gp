@@ -4,6 +4,7 @@
 # transient, 3 the point; one block per value of the other swept keys, titled by titles[i];
 # clear: the radial clearance [mm]
 set title "Bifurcation diagram: once-per-revolution radius at the retainer\n".case_title
+if (logx) { set logscale x }
 set xlabel xlabel
 set ylabel 'radius at the retainer, once per revolution [mm]'
 set yrange [0:*]

@@ -4,6 +4,8 @@
 # its bottom and top edges, 7 regime code (0 failed, 1 free, 2 rub, 3 bounce, 4 backward whirl),
 # 8 point; codes/names/colors: the regimes present
 set title "Regime map\n".case_title
+if (logx) { set logscale x }
+if (logy) { set logscale y }
 set xlabel xlabel
 set ylabel ylabel
 if (!has_y) { unset ytics }

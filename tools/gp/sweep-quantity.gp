@@ -3,6 +3,8 @@
 # data columns: 1 the swept key, 2 the quantity, 3 the point; one block (gnuplot index) per value of
 # the other swept keys, titled by titles[i]
 set title ylabel." against ".xlabel."\n".case_title
+if (logx) { set logscale x }
+if (logy) { set logscale y }
 set xlabel xlabel
 set ylabel ylabel
 set key outside right top vertical Left reverse samplen 2
