@@ -170,6 +170,8 @@ rc=$?
 resumed=$(jf "$work/res/r2.json" resumed)
 check "resume: the second run, exit 0, $resumed points from the journal, 40 done (rc $rc, $(head -c 200 "$work/res/r2.err"))" \
     test "$rc" = 0 -a "${resumed:-0}" -ge 1 -a "${resumed:-40}" -lt 40 -a "$(jf "$work/res/r2.json" done)" = 40
+check "resume: no point computed twice: resumed $resumed + ran $(jf "$work/res/r2.json" ran) = 40" \
+    test $((${resumed:-0} + $(jf "$work/res/r2.json" ran))) = 40
 check "resume: each journal record is one resumed point (($jsize - 32) bytes in $resumed equal records)" \
     test "${resumed:-0}" -ge 1 -a $(((jsize - 32) % ${resumed:-1})) = 0
 check "resume: the table equals the uninterrupted one apart from wall time" \
