@@ -34,6 +34,10 @@ int td_cli_load_case(const char *path, const td_cli_sets *sets, td_case **out);
  * returned flag (cleared here), which the command reads to stop and keep what it has written. */
 volatile sig_atomic_t *td_cli_catch_signals(void);
 
+/* Seconds on the monotonic clock, for the tool's own wall times and progress lines (the library's
+ * clock is internal); only differences mean anything. */
+double td_cli_now(void);
+
 /* Map a library status to an exit code: input errors 2, everything else 1. */
 int td_cli_exit_code(td_status st);
 

@@ -6,7 +6,6 @@
 #include <signal.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 #include <unistd.h>
 
 static const char run_usage[] =
@@ -52,14 +51,6 @@ static const char run_usage[] =
     "exit codes: 0 complete, 1 the simulation failed or was interrupted (SIGINT/SIGTERM/SIGHUP, also\n"
     "during the set-up), 2 bad input or usage (an unusable start state included).\n";
 
-/* The tool's own clock for the progress line (the library's td_wall_clock is internal). */
-static double wall_now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
 /* Progress line state: shown once a run has taken about a second, refreshed a few times a second. */
 typedef struct progress {
     double started;
@@ -70,7 +61,7 @@ typedef struct progress {
 static int show_progress(double t, double fraction, long contacts, void *user)
 {
     progress *p = user;
-    double now = wall_now(), elapsed = now - p->started;
+    double now = td_cli_now(), elapsed = now - p->started;
     if (elapsed < 1.0 || now - p->last_shown < 0.25)
         return 0;
     p->last_shown = now;
@@ -225,7 +216,7 @@ int td_cmd_run(int argc, char **argv)
     }
 
     memset(&hooks, 0, sizeof hooks);
-    prog.started = wall_now();
+    prog.started = td_cli_now();
     if (want_progress && !quiet && isatty(STDERR_FILENO)) {
         hooks.progress = show_progress;
         hooks.user = &prog;

@@ -444,7 +444,7 @@ static int run_sweep(const sweep_options *o, const td_case *base, sweep_book *b,
 {
     sweep_layout l;
     sweep_counts k;
-    double t0 = sweep_now(), t1;
+    double t0 = td_cli_now(), t1;
     int code, lost;
     l.ranks = w->size > 0 ? w->size : 1;
     l.jobs = o->jobs > b->points ? (int)b->points : o->jobs;
@@ -458,15 +458,15 @@ static int run_sweep(const sweep_options *o, const td_case *base, sweep_book *b,
     code = 0;
     sweep_journal_close(&b->journal);
     sweep_book_progress(b, 1);
-    t1 = sweep_now();
+    t1 = td_cli_now();
     merge_parts(w, go, b->points, b->rows);
     k = count_rows(b->rows, b->points);
     k.resumed = b->resumed;
     k.ran = b->ran;
     k.check_time = b->check_time;
     code = finish_table(o, base, out, b->rows, &k, go->journal);
-    k.merge_time = sweep_now() - t1;
-    l.wall = sweep_now() - t0;
+    k.merge_time = td_cli_now() - t1;
+    l.wall = td_cli_now() - t0;
     print_result(o, &k, out, &l);
     code = code ? code : (k.failed || k.not_run ? TD_EXIT_FAILED : TD_EXIT_OK);
     sweep_mpi_tell(w, code, lost);
@@ -547,10 +547,10 @@ static int sweep_lead(int argc, char **argv, const sweep_world *w)
         td_cli_error("sweep", "out of memory");
         go.code = TD_EXIT_FAILED;
     } else {
-        double t0 = sweep_now();
+        double t0 = td_cli_now();
         job.grid = o.grid;
         go.code = prepare(argc, argv, &o, &job, &base, &out, &b, &go);
-        b.check_time = sweep_now() - t0;
+        b.check_time = td_cli_now() - t0;
     }
     sweep_mpi_go(w, &go);
     if (!go.code)

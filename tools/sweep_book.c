@@ -6,14 +6,6 @@
 #include "sweep_book.h"
 
 #include <stdio.h>
-#include <time.h>
-
-double sweep_now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
 
 long sweep_book_next(sweep_book *b)
 {
@@ -57,7 +49,7 @@ void sweep_book_progress(sweep_book *b, int final)
     s.running = final ? 0 : b->handed - b->ran; /* at the end the running ones were stopped */
     s.failed = b->failed;
     s.eta = !final ? eta(b) : s.done == s.points ? 0.0 : -1.0;
-    sweep_progress_show(&b->progress, &s, sweep_now(), final);
+    sweep_progress_show(&b->progress, &s, td_cli_now(), final);
 }
 
 static long local_next(void *ctx)

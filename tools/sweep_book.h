@@ -35,7 +35,4 @@ void sweep_book_progress(sweep_book *b, int final);
 /* The feed of a sweep without MPI: points from the book, rows recorded in the journal and kept. */
 sweep_feed sweep_book_feed(sweep_book *b);
 
-/* Monotonic seconds. */
-double sweep_now(void);
-
 #endif

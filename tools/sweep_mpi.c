@@ -207,11 +207,11 @@ static int lead_drain(lead *l)
     while (l->waiting > 0) {
         if (*l->cancel && !l->stopped) {
             tell_stop(l);
-            deadline = sweep_now() + STOP_GRACE_S;
+            deadline = td_cli_now() + STOP_GRACE_S;
         }
         serve(l);
         sweep_book_progress(l->b, 0);
-        if (l->stopped && sweep_now() > deadline)
+        if (l->stopped && td_cli_now() > deadline)
             return 1;
         pause_ms(5);
     }

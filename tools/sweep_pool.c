@@ -15,7 +15,6 @@
 #include <string.h>
 #include <sys/types.h>
 #include <sys/wait.h>
-#include <time.h>
 #include <unistd.h>
 
 /* A running worker: its process, the read end of its pipe, its point and the bytes of its row. */
@@ -27,13 +26,6 @@ typedef struct worker {
     size_t got;
     td_sweep_row row;
 } worker;
-
-static double wall_now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
 
 int sweep_point_overrides(const sweep_job *job, long point, const char **items,
                           char store[][TD_SWEEP_KEY_SIZE + TD_SWEEP_VALUE_SIZE])
@@ -103,7 +95,7 @@ static int write_all(int fd, const void *buf, size_t n)
 static void worker_main(const sweep_job *job, long point, int fd, const sigset_t *old_mask)
 {
     td_sweep_row row;
-    double t0 = wall_now();
+    double t0 = td_cli_now();
     /* Ctrl-C reaches the whole process group: the parent alone decides, and stops workers with
      * SIGTERM, which ends them at once (held back until the handlers are reset: a SIGTERM
      * between fork and here would otherwise reach the parent's handler and be lost) */
@@ -112,7 +104,7 @@ static void worker_main(const sweep_job *job, long point, int fd, const sigset_t
     signal(SIGTERM, SIG_DFL);
     sigprocmask(SIG_SETMASK, old_mask, NULL);
     run_point(job, point, &row);
-    row.wall_time = wall_now() - t0;
+    row.wall_time = td_cli_now() - t0;
     _exit(write_all(fd, &row, sizeof row) ? 3 : 0);
 }
 
@@ -140,7 +132,7 @@ static int worker_start(worker *w, const sweep_job *job, long point)
     }
     w->fd = fds[0];
     w->point = point;
-    w->started = wall_now();
+    w->started = td_cli_now();
     w->got = 0;
     return 0;
 }
@@ -241,7 +233,7 @@ static void pool_wait(pool *pl)
  * a resume does not run them again (a finished sweep's journal is gone, a new one does). */
 static void pool_expire(pool *pl)
 {
-    double now = wall_now(), limit = pl->job->point_timeout;
+    double now = td_cli_now(), limit = pl->job->point_timeout;
     td_sweep_row row;
     char why[TD_ERROR_MESSAGE_SIZE];
     int i;
