@@ -1,39 +1,98 @@
 #!/usr/bin/env bash
-# Installs the built project into a scratch prefix and builds examples/embed.c against the
-# INSTALLED package twice, with find_package(touchdown) and with pkg-config, then runs both.
-# This keeps the embedding path from rotting.   scripts/check-install.sh [BUILD_DIR]
+# Installs the built project into a scratch prefix, moves the prefix (an install must not depend on
+# where it was made), and then uses it as a user would, with no LD_LIBRARY_PATH:
+#   - the installed tool runs: --version, info and a short run of an installed case, and bench
+#     finds its cases;
+#   - the pkg-config file names no absolute library path;
+#   - examples/ (the installed copy in share/doc/touchdown) builds with find_package(touchdown),
+#     shared and static; examples/embed.c builds with pkg-config, shared (-Wl,-rpath, as the README
+#     says) and static (pkg-config --static); each program runs and all print the same result;
+#   - a program linked to the shared library with no run-time path fails to start, which is why the
+#     README's "Use from C" gives one;
+#   - the documentation is installed, and the README's links into docs/ and examples/ resolve in
+#     the installed copy.
+# Any failure stops it with exit 1.   scripts/check-install.sh [BUILD_DIR]
 set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 build=${1:-$here/build}
 scratch=$(mktemp -d)
 trap 'rm -rf "$scratch"' EXIT
+unset LD_LIBRARY_PATH
+fail() { echo "check-install: $*" >&2; exit 1; }
 
-cmake --install "$build" --prefix "$scratch/prefix" >/dev/null
-export LD_LIBRARY_PATH="$scratch/prefix/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
-
-echo "check-install: examples/embed.c with find_package(touchdown)"
-cmake -S "$here/examples" -B "$scratch/cmake" -DCMAKE_PREFIX_PATH="$scratch/prefix" >/dev/null
-cmake --build "$scratch/cmake" >/dev/null
-"$scratch/cmake/embed" | tail -n 1
-
-echo "check-install: examples/embed.c with pkg-config"
-PKG_CONFIG_PATH="$scratch/prefix/lib/pkgconfig" cc -std=c99 -Wall -Wextra -pedantic -Werror \
-    "$here/examples/embed.c" $(PKG_CONFIG_PATH="$scratch/prefix/lib/pkgconfig" pkg-config --cflags --libs touchdown) \
-    -o "$scratch/embed-pc"
-"$scratch/embed-pc" | tail -n 1
-"$scratch/prefix/bin/touchdown" --version
+cmake --install "$build" --prefix "$scratch/made" >/dev/null
+mv "$scratch/made" "$scratch/prefix"
+prefix=$scratch/prefix
+export PKG_CONFIG_PATH="$prefix/lib/pkgconfig"
+cases=$prefix/share/touchdown/cases
+doc=$prefix/share/doc/touchdown
 
 # The cases are installed with the tool, and the installed tool finds them on its own: run from a
-# directory without a cases/ folder, 'info' reads an installed case (with its @include of rig.cfg)
-# and 'bench' runs case A's short window from PREFIX/share/touchdown/cases.
-echo "check-install: the installed cases, and touchdown bench finding them"
-cases=$scratch/prefix/share/touchdown/cases
+# directory without a cases/ folder, 'info' reads an installed case (with its @include of rig.cfg),
+# 'run' runs a short window of it and 'bench' runs case A's short window from the installed cases.
+echo "check-install: the installed tool"
+"$prefix/bin/touchdown" --version
 for f in "$here"/cases/*.cfg; do
-    [ -f "$cases/$(basename "$f")" ] || { echo "check-install: $(basename "$f") not installed in $cases" >&2; exit 1; }
+    [ -f "$cases/$(basename "$f")" ] || fail "$(basename "$f") not installed in $cases"
 done
 mkdir "$scratch/elsewhere"
-(cd "$scratch/elsewhere" && "$scratch/prefix/bin/touchdown" info "$cases/paper-a.cfg" | head -n 1)
-(cd "$scratch/elsewhere" && "$scratch/prefix/bin/touchdown" bench --quick --cases A --repeats 1 --json >bench.json)
-grep -q '"case":"A"' "$scratch/elsewhere/bench.json" ||
-    { echo "check-install: the installed touchdown bench did not run case A" >&2; exit 1; }
-echo "check-install: the installed package builds and runs the example both ways, and bench finds its cases"
+cd "$scratch/elsewhere"
+"$prefix/bin/touchdown" info "$cases/paper-a.cfg" | head -n 1
+"$prefix/bin/touchdown" run -q --json -o short --set end_time=0.15 "$cases/paper-a.cfg" >run.json ||
+    fail "the installed touchdown did not run $cases/paper-a.cfg"
+[ -s short.h5 ] && [ -s short.csv ] || fail "the installed touchdown run wrote no short.h5/short.csv"
+grep -q '"status":"success"' run.json || fail "the installed touchdown run did not succeed: $(head -c 300 run.json)"
+"$prefix/bin/touchdown" bench --quick --cases A --repeats 1 --json >bench.json
+grep -q '"case":"A"' bench.json || fail "the installed touchdown bench did not run case A"
+
+echo "check-install: touchdown.pc: $(pkg-config --print-requires-private touchdown | tr '\n' ' ')"
+static_libs=$(pkg-config --static --libs touchdown)
+if grep -Eq '(^| )/[^ ]*\.(so|a)( |$)' <<<"$static_libs"; then
+    fail "pkg-config --static --libs touchdown lists library paths: $static_libs"
+fi
+
+# Each program prints its last line; all four must agree (one library, one example).
+echo "check-install: examples/ with find_package(touchdown), shared and static"
+cmake -S "$doc/examples" -B "$scratch/cmake" -DCMAKE_PREFIX_PATH="$prefix" >/dev/null
+cmake --build "$scratch/cmake" >/dev/null
+"$scratch/cmake/embed" | tail -n 1 >"$scratch/cmake-shared.txt"
+"$scratch/cmake/embed_static" | tail -n 1 >"$scratch/cmake-static.txt"
+
+echo "check-install: examples/embed.c with pkg-config, shared (-Wl,-rpath) and static (--static)"
+cc_flags=(-std=c99 -Wall -Wextra -pedantic -Werror)
+# shellcheck disable=SC2046  # pkg-config's output is a list of flags
+cc "${cc_flags[@]}" "$doc/examples/embed.c" $(pkg-config --cflags --libs touchdown) \
+    -Wl,-rpath,"$(pkg-config --variable=libdir touchdown)" -o "$scratch/embed-pc"
+# shellcheck disable=SC2046
+cc "${cc_flags[@]}" "$doc/examples/embed.c" \
+    $(pkg-config --static --cflags --libs touchdown | sed 's/-ltouchdown /-l:libtouchdown.a /') \
+    -o "$scratch/embed-pc-static"
+if readelf -d "$scratch/embed-pc-static" | grep -q 'libtouchdown\.so'; then
+    fail "the program built with pkg-config --static needs libtouchdown.so"
+fi
+"$scratch/embed-pc" | tail -n 1 >"$scratch/pc-shared.txt"
+"$scratch/embed-pc-static" | tail -n 1 >"$scratch/pc-static.txt"
+for r in cmake-static pc-shared pc-static; do
+    cmp -s "$scratch/cmake-shared.txt" "$scratch/$r.txt" ||
+        fail "$r printed '$(cat "$scratch/$r.txt")', find_package's shared build '$(cat "$scratch/cmake-shared.txt")'"
+done
+echo "check-install: all four print: $(cat "$scratch/cmake-shared.txt")"
+
+# shellcheck disable=SC2046
+cc "${cc_flags[@]}" "$doc/examples/embed.c" $(pkg-config --cflags --libs touchdown) -o "$scratch/embed-norpath"
+if "$scratch/embed-norpath" >/dev/null 2>"$scratch/norpath.err"; then
+    fail "a program linked to the shared library in $prefix started with no run-time path"
+fi
+grep -q 'libtouchdown\.so.*cannot open' "$scratch/norpath.err" ||
+    fail "without a run-time path: $(cat "$scratch/norpath.err")"
+echo "check-install: without a run-time path, as the README says: $(head -n 1 "$scratch/norpath.err")"
+
+echo "check-install: the documentation in share/doc/touchdown"
+for f in README.md "$here"/docs/*.md "$here"/docs/figures/*; do
+    rel=${f#"$here/"}
+    [ -f "$doc/$rel" ] || fail "$rel not installed in $doc"
+done
+for link in $(grep -oE '\]\((docs|examples)/[^)#]*' "$doc/README.md" | cut -c3-); do
+    [ -e "$doc/$link" ] || fail "the installed README links to $link, which is not installed"
+done
+echo "check-install: the installed tool, package, example and documentation work from a moved prefix"
