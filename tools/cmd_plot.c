@@ -232,6 +232,7 @@ int td_cmd_plot(int argc, char **argv)
     static plot_file files[PLOT_MAX_FILES];
     static plot_job job;
     char dir[PLOT_PATH_SIZE];
+    size_t created = 0; /* what plot_make_dir made, removed again if the call gives up */
     plot_opts opt;
     int code, count = 0, i;
     memset(&opt, 0, sizeof opt);
@@ -256,7 +257,7 @@ int td_cmd_plot(int argc, char **argv)
     for (i = (int)strlen(dir) - 1; i > 0 && dir[i] == '/'; i--)
         dir[i] = '\0';
     opt.dir = dir;
-    if ((code = plot_make_dir(dir)) != PLOT_OK)
+    if ((code = plot_make_dir(dir, &created)) != PLOT_OK)
         goto done;
     memset(&job, 0, sizeof job);
     job.opt = &opt;
@@ -269,6 +270,8 @@ int td_cmd_plot(int argc, char **argv)
         code = plot_run_all(&job);
     }
 done:
+    if (code != TD_EXIT_OK)
+        plot_remove_new_dirs(dir, created);
     for (i = 0; i < count; i++)
         plot_file_free(&files[i]);
     return code;

@@ -158,8 +158,12 @@ typedef struct plot_job {
     char scripts[PLOT_MAX_SCRIPTS][256]; /* names relative to opt->dir */
 } plot_job;
 
-/* Create `dir` and its parents; PLOT_OK or PLOT_BAD_INPUT with a line printed. */
-int plot_make_dir(const char *dir);
+/* Create `dir` and its parents; PLOT_OK or PLOT_BAD_INPUT with a line printed (and nothing left
+ * created). *created: the length of the shallowest prefix of `dir` this call created, 0 if none. */
+int plot_make_dir(const char *dir, size_t *created);
+/* Undo plot_make_dir when the call that made the directories gives up: remove `dir` and its
+ * parents down to that prefix, each only while it is empty. */
+void plot_remove_new_dirs(const char *dir, size_t created);
 /* Open DIR/NAME for writing; NULL with a line printed on failure. */
 FILE *plot_open(const plot_opts *opt, const char *name);
 /* Close a file opened by plot_open; PLOT_OK or PLOT_FAILED with a line printed. */
@@ -191,6 +195,12 @@ extern const char plot_tpl_common[], plot_tpl_markers[], plot_tpl_orbit[], plot_
 
 /* 1 if the open file is a sweep table (/point and /vary). */
 int plot_sweep_is_table(hid_t file);
+/* 1 if `name` is a column --quantity can plot: a numeric dataset at the table's root with one value
+ * per point (n), other than the index /point. */
+int plot_sweep_is_column(hid_t file, const char *name, size_t n);
+/* The table's columns that plot_sweep_is_column accepts, in name order, ", "-separated into buf
+ * (", ..." when they do not fit; "(none)" when there are none). */
+void plot_sweep_columns(hid_t file, size_t n, char *buf, size_t size);
 /* Load the table's keys, regimes and section; PLOT_OK, else a line printed and PLOT_BAD_INPUT. */
 int plot_sweep_load(hid_t file, plot_file *f);
 void plot_sweep_free(plot_sweep *s);

@@ -15,11 +15,31 @@ const char *plot_ext(const plot_opts *opt)
     return opt->svg ? "svg" : "png";
 }
 
-int plot_make_dir(const char *dir)
+void plot_remove_new_dirs(const char *dir, size_t created)
+{
+    char path[PLOT_PATH_SIZE];
+    size_t len;
+    if (!created || (len = strlen(dir)) >= sizeof path)
+        return;
+    memcpy(path, dir, len + 1);
+    for (;;) {
+        while (len > 1 && path[len - 1] == '/')
+            path[--len] = '\0';
+        /* rmdir removes only an empty directory: whatever holds a file stays, and so do its parents */
+        if (len < created || (rmdir(path) != 0 && errno != ENOENT))
+            return;
+        while (len > 0 && path[len - 1] != '/')
+            len--;
+        path[len] = '\0';
+    }
+}
+
+int plot_make_dir(const char *dir, size_t *created)
 {
     char path[PLOT_PATH_SIZE];
     struct stat st;
     size_t i, len = strlen(dir);
+    *created = 0;
     if (len == 0 || len >= sizeof path) {
         fprintf(stderr, "touchdown plot: bad output directory '%s'\n", dir);
         return PLOT_BAD_INPUT;
@@ -30,8 +50,13 @@ int plot_make_dir(const char *dir)
         if (path[i] != '/' && path[i] != '\0')
             continue;
         path[i] = '\0';
-        if (mkdir(path, 0777) != 0 && errno != EEXIST) {
+        if (mkdir(path, 0777) == 0) {
+            if (!*created)
+                *created = i;
+        } else if (errno != EEXIST) {
             fprintf(stderr, "touchdown plot: cannot create directory %s: %s\n", path, strerror(errno));
+            plot_remove_new_dirs(dir, *created);
+            *created = 0;
             return PLOT_BAD_INPUT;
         }
         path[i] = i < len ? '/' : '\0';

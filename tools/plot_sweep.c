@@ -170,25 +170,29 @@ static void axis_scales(FILE *out, const plot_opts *opt, int takes_log_y)
     fprintf(out, "logx = %d\nlogy = %d\n", opt->log_x, takes_log_y && opt->log_y);
 }
 
-/* The numeric column `name` of the table and its units; -1 with a line printed. */
+/* The numeric column `name` of the table and its units; -1 with a line printed that lists the
+ * columns it could plot. */
 static int read_quantity(const plot_file *f, const char *name, plot_array *q, char *units, size_t n)
 {
     hid_t file = H5Fopen(f->path, H5F_ACC_RDONLY, H5P_DEFAULT), d;
-    char *u = NULL;
-    int ok = file >= 0 && strcmp(name, "point") && strchr(name, '/') == NULL && plot_h5_read(file, name, q) == 0 &&
-             q->rank == 1 && q->n == f->sweep.n;
+    char *u = NULL, columns[1024] = "";
+    int ok;
+    memset(q, 0, sizeof *q); /* freed below whether or not it was read */
+    ok = file >= 0 && plot_sweep_is_column(file, name, f->sweep.n) && plot_h5_read(file, name, q) == 0;
     if (ok && (d = H5Dopen2(file, name, H5P_DEFAULT)) >= 0) {
         u = plot_h5_attr_string(d, "units");
         H5Dclose(d);
     }
     snprintf(units, n, "%s", u ? u : "");
     free(u);
+    if (!ok && file >= 0)
+        plot_sweep_columns(file, f->sweep.n, columns, sizeof columns);
     if (file >= 0)
         H5Fclose(file);
     if (!ok) {
         plot_array_free(q);
-        fprintf(stderr, "touchdown plot: %s: --quantity '%s' is not a numeric column of the sweep table\n", f->path,
-                name);
+        fprintf(stderr, "touchdown plot: %s: --quantity '%s' is not a numeric column of the sweep table (it has: %s)\n",
+                f->path, name, columns);
         return -1;
     }
     return 0;

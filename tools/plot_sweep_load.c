@@ -24,6 +24,62 @@ int plot_sweep_is_table(hid_t file)
     return plot_h5_exists(file, "point") && plot_h5_exists(file, "vary");
 }
 
+int plot_sweep_is_column(hid_t file, const char *name, size_t n)
+{
+    hid_t d, space = -1, type = -1;
+    int ok = 0;
+    /* a name with a '/' would reach into a group (/vary/KEY are the keys, not results); H5Lexists
+     * takes no empty name */
+    if (!*name || strchr(name, '/') || !strcmp(name, "point") || H5Lexists(file, name, H5P_DEFAULT) <= 0)
+        return 0;
+    if (H5Oexists_by_name(file, name, H5P_DEFAULT) <= 0 || (d = H5Dopen2(file, name, H5P_DEFAULT)) < 0)
+        return 0; /* a dangling link, a group */
+    space = H5Dget_space(d);
+    type = H5Dget_type(d);
+    if (space >= 0 && type >= 0 && (H5Tget_class(type) == H5T_FLOAT || H5Tget_class(type) == H5T_INTEGER) &&
+        H5Sget_simple_extent_ndims(space) == 1 && H5Sget_simple_extent_npoints(space) == (hssize_t)n)
+        ok = 1;
+    if (type >= 0)
+        H5Tclose(type);
+    if (space >= 0)
+        H5Sclose(space);
+    H5Dclose(d);
+    return ok;
+}
+
+typedef struct column_list {
+    size_t n, used, count;
+    char *buf, *end;
+} column_list;
+
+static herr_t add_column(hid_t file, const char *name, const H5L_info_t *info, void *data)
+{
+    column_list *l = data;
+    size_t len = strlen(name), room = (size_t)(l->end - l->buf) - l->used;
+    (void)info;
+    if (!plot_sweep_is_column(file, name, l->n))
+        return 0;
+    if (len + 3 >= room) /* keep room for ", ..." */
+        return 1;
+    l->used += (size_t)sprintf(l->buf + l->used, "%s%s", l->count++ ? ", " : "", name);
+    return 0;
+}
+
+void plot_sweep_columns(hid_t file, size_t n, char *buf, size_t size)
+{
+    column_list l;
+    hsize_t at = 0;
+    l.n = n;
+    l.used = l.count = 0;
+    l.buf = buf;
+    l.end = buf + size;
+    buf[0] = '\0';
+    if (H5Literate(file, H5_INDEX_NAME, H5_ITER_INC, &at, add_column, &l) > 0)
+        snprintf(buf + l.used, size - l.used, ", ...");
+    if (!l.count)
+        snprintf(buf, size, "(none)");
+}
+
 /* The swept keys, one spec "KEY=..." a line of the `vary` attribute, in the sweep's order. */
 static void read_keys(hid_t file, plot_sweep *s)
 {
