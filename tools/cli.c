@@ -75,6 +75,17 @@ int td_cli_path(char *dst, size_t n, const char *stem, const char *ext, const ch
     return 0;
 }
 
+int td_cli_prefix(const char *prefix, const char *cmd)
+{
+    const char *slash = strrchr(prefix, '/'), *name = slash ? slash + 1 : prefix;
+    if (*name && strcmp(name, ".") && strcmp(name, ".."))
+        return 0;
+    td_cli_error(
+        cmd, "--output '%s' names no file (it would write '%s.csv'): give the outputs a name, e.g. --output %s%sresult",
+        prefix, prefix, prefix, *name ? "/" : "");
+    return TD_EXIT_USAGE;
+}
+
 void td_cli_error(const char *cmd, const char *fmt, ...)
 {
     va_list ap;

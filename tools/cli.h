@@ -45,6 +45,11 @@ int td_cli_exit_code(td_status st);
  * option or file it came from) and TD_EXIT_USAGE, never a shortened path. Returns 0 when it fits. */
 int td_cli_path(char *dst, size_t n, const char *stem, const char *ext, const char *cmd, const char *from);
 
+/* 0 when PREFIX (of --output) ends in a file name, as PREFIX.csv and PREFIX.h5 need: else an error
+ * line and TD_EXIT_USAGE. An empty prefix, one ending in '/' or in '.' or '..' would name hidden
+ * files ('.csv', 'dir/.h5', '..csv') that nobody asked for. */
+int td_cli_prefix(const char *prefix, const char *cmd);
+
 /* Print an error line "touchdown CMD: message" to stderr. */
 void td_cli_error(const char *cmd, const char *fmt, ...)
 #if defined(__GNUC__)

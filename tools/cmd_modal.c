@@ -29,7 +29,7 @@ static const char modal_usage[] =
     "Refused before the analysis (exit 2): CSV and HDF5 outputs that are the same file, an output\n"
     "that is the case file or one of its @include files, an output named *.partial, an output\n"
     "that exists and is not a regular file, an output directory that does not exist or is not\n"
-    "writable.\n"
+    "writable, an --output PREFIX that names no file ('', 'dir/', '.').\n"
     "\n"
     "exit codes: 0 success, 1 the analysis failed or was interrupted (SIGINT/SIGTERM/SIGHUP, checked\n"
     "between its stages), 2 bad input or usage.\n";
@@ -124,8 +124,11 @@ static int choose_paths(modal_outputs *paths, const td_case *c, const char *pref
 {
     const char *stem = prefix ? prefix : td_case_name(c);
     const char *from = prefix ? "--output" : td_case_path(c);
-    int code = csv ? td_cli_path(paths->csv, sizeof paths->csv, csv, "", "modal", "--csv")
-                   : td_cli_path(paths->csv, sizeof paths->csv, stem, prefix ? ".csv" : "-modal.csv", "modal", from);
+    int code = prefix ? td_cli_prefix(prefix, "modal") : 0;
+    if (code)
+        return code;
+    code = csv ? td_cli_path(paths->csv, sizeof paths->csv, csv, "", "modal", "--csv")
+               : td_cli_path(paths->csv, sizeof paths->csv, stem, prefix ? ".csv" : "-modal.csv", "modal", from);
     if (!code)
         code = hdf5 ? td_cli_path(paths->hdf5, sizeof paths->hdf5, hdf5, "", "modal", "--hdf5")
                     : td_cli_path(paths->hdf5, sizeof paths->hdf5, stem, prefix ? ".h5" : "-modal.h5", "modal", from);

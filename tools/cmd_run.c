@@ -46,7 +46,7 @@ static const char run_usage[] =
     "Refused before the run (exit 2): two outputs (HDF5, CSV, events file) that are the same\n"
     "file, an output that is the case file or one of its @include files, an output named\n"
     "*.partial, an output that exists and is not a regular file, an output directory that does\n"
-    "not exist or is not writable.\n"
+    "not exist or is not writable, an --output PREFIX that names no file ('', 'dir/', '.').\n"
     "\n"
     "exit codes: 0 complete, 1 the simulation failed or was interrupted (SIGINT/SIGTERM/SIGHUP, also\n"
     "during the set-up), 2 bad input or usage (an unusable start state included).\n";
@@ -84,7 +84,7 @@ static int choose_outputs(td_output_options *out, const td_case *c, const char *
 {
     int code = 0;
     if (prefix) {
-        if (!(code = set_path(out->hdf5_path, prefix, ".h5", "--output")))
+        if (!(code = td_cli_prefix(prefix, "run")) && !(code = set_path(out->hdf5_path, prefix, ".h5", "--output")))
             code = set_path(out->csv_path, prefix, ".csv", "--output");
     } else if (!out->hdf5_path[0] && !out->csv_path[0]) {
         if (!(code = set_path(out->hdf5_path, td_case_name(c), ".h5", td_case_path(c))))

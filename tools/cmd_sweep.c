@@ -293,6 +293,8 @@ static int choose_outputs(td_output_options *out, char *journal, const sweep_opt
     int n = 0, code;
     td_error err;
     memset(out, 0, sizeof *out);
+    if (o->prefix && (code = td_cli_prefix(o->prefix, "sweep")) != 0)
+        return code;
     if (o->prefix)
         code = td_cli_path(stem, sizeof stem, o->prefix, "", "sweep", "--output");
     else
