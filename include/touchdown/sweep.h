@@ -53,7 +53,8 @@ TD_API void td_sweep_grid_free(td_sweep_grid **g);
  *                              "quoted strings", bare strings; commas inside quotes or brackets
  *                              do not split).
  * The first axis added varies slowest. Returns TD_OK, or TD_ERR_PARSE with one line
- * "--vary 'SPEC': why" (bad syntax, N < 1, a log end <= 0, an empty value, a key given twice,
+ * "--vary 'SPEC': why" (bad syntax, N < 1, a log end <= 0, a range with N > 2 whose STOP - START
+ * (linear) or STOP / START (log) a double cannot hold, an empty value, a key given twice,
  * more than TD_SWEEP_MAX_AXES axes, TD_SWEEP_MAX_KEYS keys or TD_SWEEP_MAX_POINTS points in all);
  * the grid is unchanged on failure. The key itself is checked only when a point's case is loaded.
  */

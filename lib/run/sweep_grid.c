@@ -180,6 +180,18 @@ static td_status parse_range(sweep_key *k, const char *body, int dry, add_error 
     if (log_spacing && !(start > 0.0 && stop > 0.0))
         return reject(e, start > 0.0 ? TD_SWEEP_PART_STOP : TD_SWEEP_PART_START,
                       "a log range needs both ends > 0 (got %s and %s)", f[0], f[1]);
+    /* range_value interpolates through STOP/START (log) or STOP-START (linear): when that is beyond a
+     * double, the inner points would be inf or 0, values nobody wrote */
+    if (n > 2 && log_spacing && !isnormal(stop / start))
+        return reject(e, TD_SWEEP_PART_STOP,
+                      "the log range from %s to %s has a ratio (%s/%s) beyond a double's range: split it or "
+                      "list the values",
+                      f[0], f[1], f[1], f[0]);
+    if (n > 2 && !log_spacing && !isfinite(stop - start))
+        return reject(e, TD_SWEEP_PART_STOP,
+                      "the range from %s to %s is wider than a double holds (%s - %s overflows): split it or "
+                      "list the values",
+                      f[0], f[1], f[1], f[0]);
     k->count = n;
     k->numeric = 1;
     return dry ? TD_OK : fill_range(k, start, stop, n, log_spacing, e);
