@@ -8,7 +8,8 @@ set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 "$here/scripts/setup.sh" "$here/build"
 
-# the embedding example, built against the installed package (find_package and pkg-config)
+# the install, from a moved prefix with no LD_LIBRARY_PATH: the installed tool runs a case, the
+# embedding example builds with find_package and pkg-config (shared and static) and runs, the docs
 "$here/scripts/check-install.sh" "$here/build"
 
 echo "test: pass 1 of 2: the suite ($here/build)"
