@@ -147,6 +147,37 @@ static void test_bad_log_ranges(void **state)
     td_sweep_grid_free(&g);
 }
 
+/* Ranges at the edge of a double: whose STOP/START (log) or STOP-START (linear) a double holds give
+ * finite points (the geometric mean of 1e-150 and 1e150 is 1, the midpoint of -8e307 and 8e307 is
+ * 0); beyond it they are refused naming the ends written, never with a point of inf or 0. */
+static void test_range_overflow(void **state)
+{
+    static const char *const bad[] = {"x=1e-300:1e300:3:log", "x=1e300:1e-300:3:log", "x=1e-320:1:4:log",
+                                      "x=-1e308:1e308:5", "x=1.7e308:-1.7e308:3:linear"};
+    const char *specs[] = {"a=1e-150:1e150:3:log", "b=-8e307:8e307:3", "c=1e-300:1e300:2:log"};
+    td_sweep_grid *g = grid_of(specs, 3);
+    td_error err;
+    long p;
+    size_t i;
+    (void)state;
+    assert_close(strtod(td_sweep_grid_value(g, 6, 0), NULL), 1.0, 1e-14, 0.0); /* a slowest: 6 points a value */
+    assert_close(strtod(td_sweep_grid_value(g, 2, 1), NULL), 0.0, 0.0, 1e293);
+    for (p = 0; p < td_sweep_grid_points(g); p++)
+        for (i = 0; i < 3; i++)
+            assert_true(isfinite(strtod(td_sweep_grid_value(g, p, (int)i), NULL)));
+    for (i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+        char ends[64];
+        const char *body = strchr(bad[i], '=') + 1, *colon = strchr(body, ':');
+        snprintf(ends, sizeof ends, "from %.*s to %.*s", (int)(colon - body), body, (int)strcspn(colon + 1, ":"),
+                 colon + 1);
+        assert_int_equal(td_sweep_grid_vary(g, bad[i], &err), TD_ERR_PARSE);
+        assert_non_null(strstr(err.message, ends));
+        assert_null(strstr(err.message, "inf"));
+    }
+    assert_int_equal(td_sweep_grid_keys(g), 3);
+    td_sweep_grid_free(&g);
+}
+
 /* a and b zipped (3 values each) times c (2): 6 points, b following a value for value. */
 static void test_zip(void **state)
 {
@@ -452,19 +483,13 @@ static void test_zipped_table(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_range_ends_exact),
-        cmocka_unit_test(test_grid_order_and_lists),
-        cmocka_unit_test(test_bad_specs),
-        cmocka_unit_test(test_csv_table),
-        cmocka_unit_test(test_hdf5_table),
-        cmocka_unit_test(test_log_range),
-        cmocka_unit_test(test_log_range_forms),
-        cmocka_unit_test(test_bad_log_ranges),
-        cmocka_unit_test(test_zip),
-        cmocka_unit_test(test_key_limit),
-        cmocka_unit_test(test_case_group),
-        cmocka_unit_test(test_case_group_errors),
-        cmocka_unit_test(test_zipped_table),
+        cmocka_unit_test(test_range_ends_exact),  cmocka_unit_test(test_grid_order_and_lists),
+        cmocka_unit_test(test_bad_specs),         cmocka_unit_test(test_csv_table),
+        cmocka_unit_test(test_hdf5_table),        cmocka_unit_test(test_log_range),
+        cmocka_unit_test(test_log_range_forms),   cmocka_unit_test(test_bad_log_ranges),
+        cmocka_unit_test(test_range_overflow),    cmocka_unit_test(test_zip),
+        cmocka_unit_test(test_key_limit),         cmocka_unit_test(test_case_group),
+        cmocka_unit_test(test_case_group_errors), cmocka_unit_test(test_zipped_table),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
