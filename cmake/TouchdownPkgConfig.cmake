@@ -5,6 +5,8 @@
 # one distribution then still reads right on another, and for an install into a moved prefix.
 # Sets TD_PC_REQUIRES_PRIVATE and TD_PC_LIBS_PRIVATE (space-separated) for cmake/touchdown.pc.in.
 
+find_package(PkgConfig QUIET)
+
 # td_pc_module(<out> <found library> <module>...): the first module whose libraries include the
 # one found, else "". Only such a module may stand for it: Debian's hdf5.pc, for one, may point at
 # the MPI build of HDF5 while the serial one was found.
