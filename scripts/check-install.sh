@@ -3,7 +3,8 @@
 # where it was made), and then uses it as a user would, with no LD_LIBRARY_PATH:
 #   - the installed tool runs: --version, info and a short run of an installed case, and bench
 #     finds its cases;
-#   - the pkg-config file names no absolute library path;
+#   - the pkg-config file names no absolute library path, and the CMake package no absolute path
+#     at all: it finds the dependencies again where it is used (a missing one is named);
 #   - examples/ (the installed copy in share/doc/touchdown) builds with find_package(touchdown),
 #     shared and static; examples/embed.c builds with pkg-config, shared (-Wl,-rpath, as the README
 #     says) and static (pkg-config --static); each program runs and all print the same result;
@@ -50,6 +51,21 @@ static_libs=$(pkg-config --static --libs touchdown)
 if grep -Eq '(^| )/[^ ]*\.(so|a)( |$)' <<<"$static_libs"; then
     fail "pkg-config --static --libs touchdown lists library paths: $static_libs"
 fi
+
+# The CMake package names its dependencies by imported targets that touchdownConfig.cmake finds
+# again (cmake/TouchdownDeps.cmake); no path of the machine that built it (Debian's
+# /usr/lib/x86_64-linux-gnu/hdf5/serial/libhdf5.so, say) may be in it, and its own files go by
+# ${_IMPORT_PREFIX}. A dependency hidden from find_package(touchdown) shows that it looks them up.
+echo "check-install: the CMake package names no absolute path and finds its dependencies again"
+if abs=$(grep -nE '(^|[";( ])/[A-Za-z]' "$prefix"/lib/cmake/touchdown/*.cmake); then
+    fail "the installed CMake package names absolute paths: $(cut -c1-300 <<<"$abs")"
+fi
+if cmake -S "$doc/examples" -B "$scratch/cmake-nogsl" -DCMAKE_PREFIX_PATH="$prefix" \
+    -DCMAKE_DISABLE_FIND_PACKAGE_GSL=ON >"$scratch/nogsl.log" 2>&1; then
+    fail "find_package(touchdown) was found with GSL hidden from it: it does not look it up"
+fi
+grep -q 'touchdown needs GSL' "$scratch/nogsl.log" ||
+    fail "find_package(touchdown) with GSL hidden: $(tail -n 5 "$scratch/nogsl.log")"
 
 # Each program prints its last line; all four must agree (one library, one example).
 echo "check-install: examples/ with find_package(touchdown), shared and static"
