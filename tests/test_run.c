@@ -228,6 +228,16 @@ static long long root_ll(hid_t f, const char *name)
     return v;
 }
 
+static double root_double(hid_t f, const char *name)
+{
+    double v = -99.0;
+    hid_t a = H5Aopen(f, name, H5P_DEFAULT);
+    assert_true(a >= 0);
+    assert_true(H5Aread(a, H5T_NATIVE_DOUBLE, &v) >= 0);
+    H5Aclose(a);
+    return v;
+}
+
 typedef struct ev_row {
     double time;
     int kind, retainer, change;
@@ -457,9 +467,18 @@ static void test_run_cancel(void **state)
     assert_int_equal(s.complete, 0);
     assert_true(ctx.calls >= 5 && ctx.calls <= 8); /* every 0.01 s of simulated time up to 0.05 s */
     assert_true(s.t_reached >= 0.05 && s.t_reached < 0.05 + 2.0 / RATE);
+    /* a run that did not reach its end has no answers (touchdown/dofs.h, "Undefined values"),
+     * though it counted its samples */
+    assert_true(td_is_undefined(s.peak_housing_force) && td_is_undefined(s.total_impulse));
+    assert_true(td_is_undefined(s.final_speed) && td_is_undefined(s.contact_time));
+    assert_true(td_is_undefined(s.retainers[0].totals.impulse));
+    assert_true(s.samples > 0);
     f = H5Fopen(out.hdf5_path, H5F_ACC_RDONLY, H5P_DEFAULT);
     assert_true(f >= 0);
     assert_int_equal(root_ll(f, "complete"), 0);
+    assert_true(td_is_undefined(root_double(f, "summary_peak_housing_force")));
+    assert_true(td_is_undefined(root_double(f, "summary_final_speed")));
+    assert_true(root_double(f, "t_reached") == s.t_reached);
     a = H5Aopen(f, "incomplete_reason", H5P_DEFAULT);
     assert_true(a >= 0);
     type = H5Aget_type(a);

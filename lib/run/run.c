@@ -471,17 +471,14 @@ static td_status write_summary(td_recorder *rec, const td_run_summary *s, const 
                  {"summary_wall_time", s->wall_time},
                  {"summary_solver_wall_time", s->solver_wall_time},
                  {"summary_wall_time_per_revolution", s->wall_time_per_revolution},
-                 {"summary_realtime_factor", s->realtime_factor},
-                 {"summary_free_at_end", flag_value(s->free_at_end)},
-                 {"summary_returned_to_free_orbit", flag_value(s->returned_to_free_orbit)}};
+                 {"summary_realtime_factor", s->realtime_factor}};
     const struct {
         const char *name;
         long value;
     } counts[] = {{"summary_samples", s->samples},
                   {"summary_grid_samples", s->grid_samples},
                   {"summary_events", s->events},
-                  {"summary_contacts", s->contacts},
-                  {"summary_peak_normal_force_converges", s->peak_converges}};
+                  {"summary_contacts", s->contacts}};
     size_t i;
     td_status st = td_recorder_set_string(rec, "case_text", case_text ? case_text : "", err);
     if (st == TD_OK)
@@ -494,6 +491,12 @@ static td_status write_summary(td_recorder *rec, const td_run_summary *s, const 
         st = td_recorder_set_double(rec, reals[i].name, reals[i].value, err);
     for (i = 0; st == TD_OK && i < sizeof counts / sizeof counts[0]; i++)
         st = td_recorder_set_long(rec, counts[i].name, counts[i].value, err);
+    if (st == TD_OK)
+        st = td_recorder_set_double(rec, "summary_free_at_end", flag_value(s->free_at_end), err);
+    if (st == TD_OK)
+        st = td_recorder_set_double(rec, "summary_returned_to_free_orbit", flag_value(s->returned_to_free_orbit), err);
+    if (st == TD_OK)
+        st = td_recorder_set_long(rec, "summary_peak_normal_force_converges", s->peak_converges, err);
     if (st == TD_OK && s->energy_kept)
         st = write_energy(rec, &s->energy, err);
     if (st == TD_OK)
