@@ -503,7 +503,7 @@ static void report_few_crossings(const plot_file *f)
     size_t p, few = 0, ran = 0;
     double fewest = HUGE_VAL;
     for (p = 0; p < s->n; p++) {
-        if (s->failed[p] || !isfinite(s->section_count[p]))
+        if (s->failed[p] || !(s->section_count[p] > 0.0)) /* no crossing: nothing drawn */
             continue;
         ran++;
         if (s->section_count[p] < TD_RUN_SECTION_MIN_CROSSINGS) {

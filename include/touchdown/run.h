@@ -70,6 +70,11 @@ typedef enum td_regime {
     TD_REGIME_BOUNCE = 3,
     TD_REGIME_BACKWARD_WHIRL = 4
 } td_regime;
+/** Most warnings one summary keeps (td_run_summary.warnings); a last one says how many more. */
+#define TD_RUN_MAX_WARNINGS 8
+/** Longest warning, NUL included. */
+#define TD_RUN_WARNING_SIZE 320
+
 /** Number of td_regime values. */
 #define TD_REGIME_COUNT 5
 
@@ -169,6 +174,13 @@ typedef struct td_run_summary {
     double section_clearance;                      /**< m, its radial clearance (NaN without one) */
     double section_time[TD_RUN_SECTION_SAMPLES];   /**< s, oldest first */
     double section_radius[TD_RUN_SECTION_SAMPLES]; /**< m, sqrt(x^2 + y^2) of the node relative to its retainer */
+    /* Why the result may be suspect, each a sentence without a prefix, in the order found
+       (docs/output-format.md, "Warnings"): an AMB past its force capacity with saturation off; a
+       schedule entry at or after the end time (it never happens); a retainer clearance larger
+       than the shaft radius there that no AMB air gap bounds; a section from fewer than
+       TD_RUN_SECTION_MIN_CROSSINGS crossings. td_run checks them once, at the end of the run. */
+    int warning_count;                                       /**< warnings kept, <= TD_RUN_MAX_WARNINGS */
+    char warnings[TD_RUN_MAX_WARNINGS][TD_RUN_WARNING_SIZE]; /**< each NUL-terminated */
 } td_run_summary;
 
 /**

@@ -52,6 +52,7 @@ static const sweep_column columns[] = {
     {"final_speed", "rad/s", COL_DOUBLE, offsetof(td_sweep_row, final_speed)},
     {"peak_amb_load", "1", COL_DOUBLE, offsetof(td_sweep_row, peak_amb_load)},
     {"t_reached", "s", COL_DOUBLE, offsetof(td_sweep_row, t_reached)},
+    {"warnings", "", COL_TEXT, offsetof(td_sweep_row, warnings)},
     {"wall_time", "s", COL_DOUBLE, offsetof(td_sweep_row, wall_time)},
 };
 #define N_COLUMNS ((int)(sizeof columns / sizeof columns[0]))

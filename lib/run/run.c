@@ -14,6 +14,7 @@
 
 #include "run/recorder.h"
 #include "run/summary.h"
+#include "run/warnings.h"
 #include "sim/section.h"
 #include "touchdown/dofs.h"
 #include "touchdown/output.h"
@@ -362,6 +363,18 @@ static void summary_finish(run_state *r, double wall_start)
         s->realtime_factor = span / s->wall_time;
 }
 
+/* The warnings, one a line, as the attribute `warnings` (absent when there is none). */
+static td_status write_warnings(td_recorder *rec, const td_run_summary *s, td_error *err)
+{
+    char text[TD_RUN_MAX_WARNINGS * TD_RUN_WARNING_SIZE];
+    size_t len = 0;
+    int i;
+    text[0] = '\0';
+    for (i = 0; i < s->warning_count; i++)
+        len += (size_t)snprintf(text + len, sizeof text - len, "%s\n", s->warnings[i]);
+    return td_recorder_set_string(rec, "warnings", text, err);
+}
+
 /* The energy account, when the run kept it, as attributes of every file. */
 static td_status write_energy(td_recorder *rec, const td_energy *e, td_error *err)
 {
@@ -497,6 +510,8 @@ static td_status write_summary(td_recorder *rec, const td_run_summary *s, const 
         st = td_recorder_set_double(rec, "summary_returned_to_free_orbit", flag_value(s->returned_to_free_orbit), err);
     if (st == TD_OK)
         st = td_recorder_set_long(rec, "summary_peak_normal_force_converges", s->peak_converges, err);
+    if (st == TD_OK && s->warning_count > 0)
+        st = write_warnings(rec, s, err);
     if (st == TD_OK && s->energy_kept)
         st = write_energy(rec, &s->energy, err);
     if (st == TD_OK)
@@ -573,6 +588,7 @@ td_status td_run(td_sim *sim, double t_end, const td_output_options *out, const 
     summary_finish(&r, wall_start);
     td_sim_section_end(sim);
     summary->status = st;
+    td_run_check_warnings(summary, model);
     if (st != TD_OK) /* no answers from a run that did not reach its end, in the files either */
         td_run_summary_undefine_answers(summary);
     td_error_clear(&close_err);

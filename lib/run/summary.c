@@ -510,6 +510,18 @@ static void json_section(td_text *b, const td_run_summary *s)
     td_text_printf(b, "],");
 }
 
+/* "warnings":[...], each a string ([] when there is none). */
+static void json_warnings(td_text *b, const td_run_summary *s)
+{
+    int i;
+    td_text_printf(b, "\"warnings\":[");
+    for (i = 0; i < s->warning_count; i++) {
+        td_text_printf(b, "%s", i ? "," : "");
+        td_text_json_string(b, s->warnings[i]);
+    }
+    td_text_printf(b, "],");
+}
+
 /* The answers that converge, first (docs/validation.md). */
 static void json_answers(td_text *b, const td_run_summary *s)
 {
@@ -602,6 +614,7 @@ int td_run_summary_json(char *buf, size_t n, const td_run_summary *s)
     json_real(&b, "wall_time", s->stats.wall_time, 0);
     td_text_printf(&b, "},");
     json_section(&b, s);
+    json_warnings(&b, s);
     json_retainers(&b, s);
     td_text_printf(&b, "}");
     return (int)b.len;

@@ -25,12 +25,23 @@ static void row_section(td_sweep_row *row, const td_run_summary *s)
     }
 }
 
+/* The run's warnings joined by "; " (cut to the row's field). */
+static void row_warnings(td_sweep_row *row, const td_run_summary *s)
+{
+    size_t len = 0;
+    int i;
+    row->warnings[0] = '\0';
+    for (i = 0; i < s->warning_count && len < sizeof row->warnings - 1; i++)
+        len += (size_t)snprintf(row->warnings + len, sizeof row->warnings - len, "%s%s", i ? "; " : "", s->warnings[i]);
+}
+
 void td_sweep_row_from_summary(td_sweep_row *row, const td_run_summary *s)
 {
     if (s->status != TD_OK) { /* a failed point has no answers: only how far it got and how long */
         td_sweep_row_unknown(row, TD_SWEEP_FAILED, td_strerror(s->status), s->message);
         row->t_reached = s->t_reached;
         row->wall_time = s->wall_time;
+        row_warnings(row, s);
         return;
     }
     memset(row, 0, sizeof *row);
@@ -52,6 +63,7 @@ void td_sweep_row_from_summary(td_sweep_row *row, const td_run_summary *s)
     row->wall_time = s->wall_time;
     snprintf(row->regime, sizeof row->regime, "%s", td_regime_name(td_run_summary_regime(s)));
     row_section(row, s);
+    row_warnings(row, s);
 }
 
 void td_sweep_row_unknown(td_sweep_row *row, td_sweep_state state, const char *status, const char *message)

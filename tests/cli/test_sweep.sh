@@ -56,7 +56,8 @@ fi
 bad=""
 while IFS= read -r line; do
     IFS=, read -r p speed mag status _ phf imp fw ct nc fct _ <<<"$line"
-    final=$(awk -F, '{ print $(NF - 3) }' <<<"$line")
+    # from the end (the warnings column may hold quoted commas): wall_time, warnings, t_reached, ..
+    final=$(sed -E 's/"[^"]*"/x/g' <<<"$line" | awk -F, '{ print $(NF - 4) }')
     t "$work/run$p" run --json -q --csv '' --hdf5 '' --set end_time=0.2 --set "speed=$speed" \
         --set "schedule[0].magnitude=$mag" "$case_r"
     o=$work/run$p/.out
