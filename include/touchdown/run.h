@@ -97,7 +97,8 @@ typedef struct td_run_retainer {
  *  and every answer of a run that did not reach its end (status != TD_OK: the forces, impulse,
  *  work, times in contact, final speed, energy and retainer totals, which sum up or pick the
  *  largest over the whole run or describe its end). What it did reach is kept: t_reached, the
- *  counts of samples, events and contacts, the first and last contact times, the statistics. */
+ *  counts of samples, events and contacts, the first and last contact times, the solver's
+ *  counts (its peaks, time in contact and AMB peak are answers: undefined). */
 typedef struct td_run_summary {
     td_status status;                    /**< what td_run returned */
     int complete;                        /**< 1 if the run reached t_end and every file was finished complete */

@@ -65,7 +65,7 @@ void td_run_summary_undefine_answers(td_run_summary *s)
     s->peak_housing_retainer = -1;
     s->ending_whirl_frequency = s->peak_normal_force = s->peak_time = TD_UNDEFINED;
     s->peak_retainer = -1;
-    s->contact_time = s->contact_fraction = s->revolutions_after_contact = TD_UNDEFINED;
+    s->contact_time = s->contact_fraction = TD_UNDEFINED;
     s->free_at_end = s->returned_to_free_orbit = -1; /* undetermined */
     s->stats.peak_normal_force = s->stats.peak_time = s->stats.time_in_contact = TD_UNDEFINED;
     s->stats.peak_amb_force = s->stats.peak_amb_load = s->stats.peak_amb_time = TD_UNDEFINED;
@@ -280,14 +280,17 @@ static void format_retainer(td_text *b, const td_run_summary *s, int k)
     const td_run_retainer *r = &s->retainers[k];
     double span = s->t_reached - s->t_start;
     td_text_printf(b, "retainer %-2d                 %s", k, r->whirl);
-    if (r->totals.contacts > 0)
+    if (r->totals.contacts > 0 && !td_is_undefined(r->whirl_frequency))
         td_text_printf(b, " at %.4g Hz; N mean %.6g N, rms %.6g N over %.6g s", r->whirl_frequency, r->mean_normal,
                        r->rms_normal, r->totals.contact_time);
     td_text_printf(b, "; sustained contacts %ld, brief contacts (touch-and-go) %ld", r->totals.contacts,
                    r->totals.touch_and_go);
     if (span > 0.0 && !td_is_undefined(r->totals.contact_time))
         td_text_printf(b, ", in contact %.3g %% of the run", 100.0 * r->totals.contact_time / span);
-    td_text_printf(b, "; race %.6g rad/s\n", r->race_speed);
+    if (td_is_undefined(r->race_speed))
+        td_text_printf(b, "; race n/a\n");
+    else
+        td_text_printf(b, "; race %.6g rad/s\n", r->race_speed);
 }
 
 /* One answer: its value and unit, or n/a for a run that did not reach its end. */
@@ -323,7 +326,9 @@ static void format_answers(td_text *b, const td_run_summary *s)
         td_text_printf(b, "peak AMB force              %s\n",
                        td_is_undefined(s->stats.peak_amb_load) ? "n/a (the run did not reach its end)"
                                                                : "none (no working AMB)");
-    if (s->energy_kept)
+    if (s->energy_kept && td_is_undefined(s->energy.residual))
+        td_text_printf(b, "energy                      n/a (the run did not reach its end)\n");
+    else if (s->energy_kept)
         format_energy(b, &s->energy);
     for (k = 0; k < n; k++)
         format_retainer(b, s, k);
