@@ -9,6 +9,7 @@
  * Method and results: docs/performance.md.
  */
 #include "cli.h"
+#include "touchdown/dofs.h"
 #include "touchdown/json.h"
 #include "touchdown/run.h"
 
@@ -108,15 +109,18 @@ static int cmp_double(const void *a, const void *b)
     return x < y ? -1 : (x > y ? 1 : 0);
 }
 
-/* Median of n values (copied; n >= 1). */
+/* Median of the defined values among n (copied); undefined when none is (touchdown/dofs.h). */
 static double median(const double *v, int n)
 {
     double tmp[MAX_REPEATS];
-    int i;
+    int i, k = 0;
     for (i = 0; i < n; i++)
-        tmp[i] = v[i];
-    qsort(tmp, (size_t)n, sizeof(double), cmp_double);
-    return n % 2 ? tmp[n / 2] : 0.5 * (tmp[n / 2 - 1] + tmp[n / 2]);
+        if (!td_is_undefined(v[i]))
+            tmp[k++] = v[i];
+    if (k == 0)
+        return TD_UNDEFINED;
+    qsort(tmp, (size_t)k, sizeof(double), cmp_double);
+    return k % 2 ? tmp[k / 2] : 0.5 * (tmp[k / 2 - 1] + tmp[k / 2]);
 }
 
 static int file_exists(const char *path)
@@ -299,12 +303,12 @@ static int case_index(const char *key)
     return -1;
 }
 
-/* First contact error against the exact value, for the rotor of case A (A and C); NAN otherwise. */
+/* First contact error against the exact value, for the rotor of case A (A and C); undefined otherwise. */
 static double first_contact_error(int ci, const td_run_summary *s)
 {
     const char *k = bench_cases[ci].key;
-    if ((strcmp(k, "A") && strcmp(k, "C")) || s->first_contact_time < 0.0)
-        return NAN;
+    if ((strcmp(k, "A") && strcmp(k, "C")) || td_is_undefined(s->first_contact_time))
+        return TD_UNDEFINED;
     return s->first_contact_time - CASE_A_FIRST_CONTACT;
 }
 
@@ -354,9 +358,8 @@ static void print_run_json(FILE *f, int ci, int rep, const bench_run *r)
     json_number(f, "wall_time", s->wall_time, 1);
     json_number(f, "solver_wall_time", s->solver_wall_time, 1);
     json_number(f, "cpu_time", r->cpu, 1);
-    json_number(f, "wall_time_per_revolution", s->wall_time_per_revolution >= 0.0 ? s->wall_time_per_revolution : NAN,
-                1);
-    json_number(f, "realtime_factor", s->realtime_factor >= 0.0 ? s->realtime_factor : NAN, 1);
+    json_number(f, "wall_time_per_revolution", s->wall_time_per_revolution, 1); /* null when undefined */
+    json_number(f, "realtime_factor", s->realtime_factor, 1);
     fprintf(f,
             "\"steps\":%ld,\"residual_evals\":%ld,\"jacobian_evals\":%ld,\"linear_setups\":%ld,"
             "\"linear_solves\":%ld,\"error_test_fails\":%ld,\"nonlinear_fails\":%ld,\"events\":%ld,"
@@ -364,7 +367,7 @@ static void print_run_json(FILE *f, int ci, int rep, const bench_run *r)
             s->stats.steps, s->stats.residual_evals, s->stats.jacobian_evals, s->stats.linear_setups,
             s->stats.nonlinear_iters, s->stats.error_test_fails, s->stats.nonlinear_fails, s->events, s->contacts);
     json_number(f, "worst_drift", s->stats.worst_drift, 1);
-    json_number(f, "first_contact_time", s->first_contact_time >= 0.0 ? s->first_contact_time : NAN, 1);
+    json_number(f, "first_contact_time", s->first_contact_time, 1);
     json_number(f, "first_contact_error", first_contact_error(ci, s), 1);
     json_number(f, "peak_normal_force", s->peak_normal_force, 1);
     json_number(f, "flight_time", s->stats.flight_time, 1);
@@ -453,8 +456,8 @@ static void paper_json(FILE *f, const bench_options *bo, const machine *mc, benc
         fprintf(f, ",");
         json_number(f, "wall_time", cs[ci].wall, 1);
         json_number(f, "cpu_time", cs[ci].cpu, 1);
-        json_number(f, "wall_time_per_revolution", cs[ci].rev >= 0.0 ? cs[ci].rev : NAN, 1);
-        json_number(f, "realtime_factor", cs[ci].rtf >= 0.0 ? cs[ci].rtf : NAN, 1);
+        json_number(f, "wall_time_per_revolution", cs[ci].rev, 1);
+        json_number(f, "realtime_factor", cs[ci].rtf, 1);
         fprintf(f, "\"deterministic\":%s}", cs[ci].deterministic ? "true" : "false");
         first = 0;
     }

@@ -32,13 +32,19 @@ static const char run_usage[] =
     "The summary leads with the answers that converge with the mesh: the peak force into the\n"
     "housing, the total impulse, the friction work, the final speed; then how the run ended (free,\n"
     "recovered, at rest, rolling or sliding on the retainers, backward whirl or forward rub at F Hz,\n"
-    "bouncing), the AMBs' peak force against their capacity and each retainer's whirl. It also gives\n"
+    "bouncing), the AMBs' peak force against their capacity and each retainer's whirl, its sustained\n"
+    "and brief (touch-and-go) contacts and its share of the run in contact. It also gives\n"
     "the start state used (start = \"auto\": the steady orbit, or rest when the\n"
     "orbit is unstable or outside a clearance, and why), whether the contact-free system is\n"
     "stable, the first contact time, the number of contacts, the peak normal force (when, which\n"
     "retainer), the fraction of time in contact, whether the rotor returned to a free orbit\n"
     "(n/a without contact), the wall time and the wall time per revolution after first contact\n"
-    "(the paper's figure of merit), and the files written.\n"
+    "(the paper's figure of merit), and the files written. A run that did not reach its end has\n"
+    "no answers (n/a in the text, null in the JSON, NaN in the files).\n"
+    "A result that may be suspect (an AMB past its force capacity with saturation off, a schedule\n"
+    "entry at or after the end time, a clearance larger than the shaft radius, a section of fewer\n"
+    "than 8 crossings) gives one line \"touchdown: CASE: warning: ...\" on stderr each, also with\n"
+    "-q, and the same text in the JSON (warnings) and the files (attribute warnings).\n"
     "Files are written under a temporary name, PATH.XXXXXX.partial (XXXXXX: six letters or\n"
     "digits, unique to the run), and renamed to PATH when finished; an interrupted or failed run\n"
     "keeps what it computed, marked incomplete, and a run that cannot write (full disk) leaves\n"
@@ -140,6 +146,14 @@ static void print_summary(const td_run_summary *s, int json)
     free(buf);
 }
 
+/* Each warning of the run, one line on stderr (also with -q: like the errors). */
+static void print_warnings(const char *path, const td_run_summary *s)
+{
+    int i;
+    for (i = 0; i < s->warning_count; i++)
+        fprintf(stderr, "touchdown: %s: warning: %s\n", path, s->warnings[i]);
+}
+
 int td_cmd_run(int argc, char **argv)
 {
     enum { OPT_HDF5 = 256, OPT_CSV, OPT_JSON, OPT_NO_PROGRESS, OPT_COMPRESS };
@@ -228,6 +242,7 @@ int td_cmd_run(int argc, char **argv)
         fputs("\r\033[K", stderr);
     if (st != TD_OK)
         fprintf(stderr, "touchdown: %s: %s\n", td_case_path(c), err.message[0] ? err.message : td_strerror(st));
+    print_warnings(td_case_path(c), &summary);
     /* JSON whenever asked (scripts read it, also of a failed run); -q silences only the text */
     if (json || (!quiet && summary.t_reached > summary.t_start))
         print_summary(&summary, json);

@@ -319,7 +319,7 @@ static int choose_outputs(td_output_options *out, char *journal, const sweep_opt
 /* Counts of the rows by state, what this run computed, and the seconds the merge of the parts and
  * the writing of the table took. */
 typedef struct sweep_counts {
-    long points, done, failed, not_run, resumed, ran;
+    long points, done, failed, not_run, resumed, ran, warned;
     double check_time, merge_time;
 } sweep_counts;
 
@@ -333,8 +333,28 @@ static sweep_counts count_rows(const td_sweep_row *rows, long n)
         k.done += rows[p].state == TD_SWEEP_DONE;
         k.failed += rows[p].state == TD_SWEEP_FAILED;
         k.not_run += rows[p].state == TD_SWEEP_NOT_RUN;
+        k.warned += rows[p].warnings[0] != '\0';
     }
     return k;
+}
+
+/* One line on stderr when points have warnings (the table's `warnings` column): how many, and the
+ * first point's. */
+static void report_warnings(const td_sweep_grid *g, const td_sweep_row *rows, const sweep_counts *k)
+{
+    long p;
+    int a;
+    if (!k->warned)
+        return;
+    for (p = 0; p < k->points && !rows[p].warnings[0]; p++)
+        ;
+    fprintf(stderr,
+            "touchdown sweep: warning: %ld of %ld points have warnings (the table's warnings column), first "
+            "point %ld (",
+            k->warned, k->points, p);
+    for (a = 0; a < td_sweep_grid_keys(g); a++)
+        fprintf(stderr, "%s%s=%s", a ? " " : "", td_sweep_grid_key(g, a), td_sweep_grid_value(g, p, a));
+    fprintf(stderr, "): %s\n", rows[p].warnings);
 }
 
 /* Both table files; returns 0, or TD_EXIT_FAILED after an error line. */
@@ -377,9 +397,9 @@ static void print_result(const sweep_options *o, const sweep_counts *k, const td
 {
     if (o->json) {
         printf("{\"library_version\":\"%s\",\"points\":%ld,\"done\":%ld,\"failed\":%ld,\"not_run\":%ld,"
-               "\"resumed\":%ld,\"ran\":%ld,\"complete\":%s,\"ranks\":%d,\"jobs\":%d,\"wall_time\":%.17g,"
-               "\"check_time\":%.17g,\"merge_time\":%.17g",
-               td_version(), k->points, k->done, k->failed, k->not_run, k->resumed, k->ran,
+               "\"resumed\":%ld,\"ran\":%ld,\"warned\":%ld,\"complete\":%s,\"ranks\":%d,\"jobs\":%d,"
+               "\"wall_time\":%.17g,\"check_time\":%.17g,\"merge_time\":%.17g",
+               td_version(), k->points, k->done, k->failed, k->not_run, k->resumed, k->ran, k->warned,
                k->not_run ? "false" : "true", l->ranks, l->jobs, l->wall, k->check_time, k->merge_time);
         print_json_path("csv_path", out->csv_path);
         print_json_path("hdf5_path", out->hdf5_path);
@@ -469,6 +489,7 @@ static int run_sweep(const sweep_options *o, const td_case *base, sweep_book *b,
     code = finish_table(o, base, out, b->rows, &k, go->journal);
     k.merge_time = td_cli_now() - t1;
     l.wall = td_cli_now() - t0;
+    report_warnings(o->grid, b->rows, &k);
     print_result(o, &k, out, &l);
     code = code ? code : (k.failed || k.not_run ? TD_EXIT_FAILED : TD_EXIT_OK);
     sweep_mpi_tell(w, code, lost);

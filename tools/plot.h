@@ -71,6 +71,9 @@ typedef struct plot_sweep {
     double *value[PLOT_SWEEP_MAX_KEYS]; /* n each (numeric keys), else NULL */
     char **text[PLOT_SWEEP_MAX_KEYS];   /* n each: the values as text */
     int *regime;                        /* n: td_regime, -1 when the table has no regime column */
+    int *failed;                        /* n: 1 if the point did not run to its end (status not "success") */
+    char **status;                      /* n: the points' status, NULL when the table has no status column */
+    double *section_count;              /* n: crossings of each point's section (NaN: unknown) */
     size_t m;                           /* section radii per point (0: the table has none) */
     double *section;                    /* n x m, m, NaN-padded */
     double *clearance;                  /* n, m (NaN: unknown) */

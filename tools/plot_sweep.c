@@ -212,8 +212,45 @@ static void title_array(FILE *out, const sweep_order *o, const size_t *keep, siz
 
 /* ---- quantity against the x key ------------------------------------------------------------- */
 
+/* 1 if point p has a value of the quantity to draw: it ran to its end and the value is defined. */
+static int drawn(const plot_sweep *s, const plot_array *q, size_t p)
+{
+    return !s->failed[p] && isfinite(q->v[p]);
+}
+
+/* Group g's line: its points in x order, a blank line (a gap in the line) where a point has no
+ * value, so that a line never bridges a failed or undefined point. */
+static void write_quantity_group(FILE *out, const plot_sweep *s, int x, const sweep_order *o, size_t g,
+                                 const plot_array *q)
+{
+    size_t i, p;
+    int gap = 0;
+    for (i = o->start[g]; i < o->start[g + 1]; i++) {
+        p = o->index[i];
+        if (!drawn(s, q, p)) {
+            gap = 1;
+            continue;
+        }
+        fprintf(out, "%s%.12g %.12g %lu\n", gap ? "\n" : "", s->value[x][p], q->v[p], (unsigned long)p);
+        gap = 0;
+    }
+}
+
+/* The last block: the x of every failed or not-run point, marked at the foot of the figure. */
+static size_t write_failed_marks(FILE *out, const plot_sweep *s, int x, int first)
+{
+    size_t p, n = 0;
+    for (p = 0; p < s->n; p++)
+        if (s->failed[p]) {
+            if (n++ == 0)
+                fprintf(out, "%s# failed or not run: columns 1 %s, 2 point\n", first ? "" : "\n\n", s->key[x]);
+            fprintf(out, "%.12g %lu\n", s->value[x][p], (unsigned long)p);
+        }
+    return n;
+}
+
 static int write_quantity(const plot_job *job, const plot_file *f, const char *name, int x, const sweep_order *o,
-                          const plot_array *q, const char *qname, size_t *keep, size_t *nkeep)
+                          const plot_array *q, const char *qname, size_t *keep, size_t *nkeep, size_t *nfailed)
 {
     const plot_sweep *s = &f->sweep;
     FILE *out = plot_open(job->opt, name);
@@ -222,29 +259,44 @@ static int write_quantity(const plot_job *job, const plot_file *f, const char *n
         return PLOT_FAILED;
     fprintf(out, "# %s against %s from %s: one block per value of the other swept keys (gnuplot index)\n", qname,
             s->key[x], f->path);
-    fprintf(out, "# columns: 1 %s, 2 %s, 3 point\n", s->key[x], qname);
+    fprintf(out, "# columns: 1 %s, 2 %s, 3 point; a blank line where a point has no value\n", s->key[x], qname);
     *nkeep = 0;
     for (g = 0; g < o->ngroups; g++) {
         size_t shown = 0;
         for (i = o->start[g]; i < o->start[g + 1]; i++)
-            shown += isfinite(q->v[o->index[i]]) != 0;
+            shown += drawn(s, q, o->index[i]) != 0;
         if (!shown) /* a line without a point would make gnuplot warn */
             continue;
         fprintf(out, "%s# %s\n", *nkeep ? "\n\n" : "", o->label[g]);
         keep[(*nkeep)++] = g;
-        for (i = o->start[g]; i < o->start[g + 1]; i++)
-            if (isfinite(q->v[o->index[i]]))
-                fprintf(out, "%.12g %.12g %lu\n", s->value[x][o->index[i]], q->v[o->index[i]],
-                        (unsigned long)o->index[i]);
+        write_quantity_group(out, s, x, o, g, q);
     }
+    *nfailed = *nkeep ? write_failed_marks(out, s, x, 0) : 0;
     return plot_close(out, job->opt, name);
+}
+
+/* One line on stderr for the points of the table that ran without a value of `qname` (e.g. no
+ * contact: no first-contact time); the failed ones are told once for every figure. */
+static void report_undefined(const plot_file *f, const plot_array *q, const char *qname)
+{
+    size_t p, ran = 0, none = 0;
+    for (p = 0; p < f->sweep.n; p++)
+        if (!f->sweep.failed[p]) {
+            ran++;
+            none += !isfinite(q->v[p]);
+        }
+    if (none)
+        fprintf(stderr,
+                "touchdown plot: %s: %s is undefined at %lu of the %lu points that ran (e.g. no contact): "
+                "left out\n",
+                f->path, qname, (unsigned long)none, (unsigned long)ran);
 }
 
 static int quantity_figure(plot_job *job, const plot_file *f, const char *prefix, int x, const sweep_order *o)
 {
     const char *qname = job->opt->quantity ? job->opt->quantity : "peak_housing_force";
     char name[300], data[320], units[64], label[256];
-    size_t *keep = malloc((o->ngroups + 1) * sizeof *keep), nkeep = 0;
+    size_t *keep = malloc((o->ngroups + 1) * sizeof *keep), nkeep = 0, nfailed = 0;
     plot_array q;
     FILE *out;
     int rc = PLOT_FAILED;
@@ -254,10 +306,11 @@ static int quantity_figure(plot_job *job, const plot_file *f, const char *prefix
         free(keep);
         return PLOT_BAD_INPUT;
     }
+    report_undefined(f, &q, qname);
     snprintf(name, sizeof name, "%ssweep-%s", prefix, qname);
     snprintf(data, sizeof data, "%s.dat", name);
     snprintf(label, sizeof label, units[0] && strcmp(units, "-") ? "%s [%s]" : "%s", qname, units);
-    if (write_quantity(job, f, data, x, o, &q, qname, keep, &nkeep) == PLOT_OK && nkeep > 0 &&
+    if (write_quantity(job, f, data, x, o, &q, qname, keep, &nkeep, &nfailed) == PLOT_OK && nkeep > 0 &&
         (out = plot_script_begin(job, name, "summary quantity against a swept key", f->path, 1000, 680))) {
         plot_var_string(out, "case_title", f->title);
         plot_var_string(out, "data", data);
@@ -265,6 +318,8 @@ static int quantity_figure(plot_job *job, const plot_file *f, const char *prefix
         plot_var_string(out, "ylabel", label);
         axis_scales(out, job->opt, 1);
         title_array(out, o, keep, nkeep);
+        fprintf(out, "nfailed = %lu    # failed or not-run points, marked at the foot (the last block)\n",
+                (unsigned long)nfailed);
         rc = plot_script_end(out, job, name, NULL, plot_tpl_sweep_quantity);
     } else if (nkeep == 0) { /* every point failed, say: no figure, not an error */
         if (!job->opt->quiet)
@@ -376,6 +431,8 @@ static size_t write_section_group(FILE *out, const plot_sweep *s, int x, const s
     size_t i, j, count = 0;
     for (i = o->start[g]; i < o->start[g + 1]; i++) {
         size_t p = o->index[i];
+        if (s->failed[p]) /* no answers, its section included */
+            continue;
         for (j = 0; j < s->m; j++) {
             double r = s->section[p * s->m + j];
             if (isfinite(r)) {
@@ -392,7 +449,7 @@ static size_t section_samples(const plot_sweep *s, const sweep_order *o, size_t 
 {
     size_t i, j, count = 0;
     for (i = o->start[g]; i < o->start[g + 1]; i++)
-        for (j = 0; j < s->m; j++)
+        for (j = 0; !s->failed[o->index[i]] && j < s->m; j++)
             count += isfinite(s->section[o->index[i] * s->m + j]) != 0;
     return count;
 }
@@ -442,6 +499,29 @@ static int write_clearance(const plot_job *job, const plot_file *f, const char *
     return plot_close(out, job->opt, name);
 }
 
+/* One line on stderr when points that ran crossed their section fewer than
+ * TD_RUN_SECTION_MIN_CROSSINGS times after the transient: their radii cannot tell their orbit. */
+static void report_few_crossings(const plot_file *f)
+{
+    const plot_sweep *s = &f->sweep;
+    size_t p, few = 0, ran = 0;
+    double fewest = HUGE_VAL;
+    for (p = 0; p < s->n; p++) {
+        if (s->failed[p] || !(s->section_count[p] > 0.0)) /* no crossing: nothing drawn */
+            continue;
+        ran++;
+        if (s->section_count[p] < TD_RUN_SECTION_MIN_CROSSINGS) {
+            few++;
+            fewest = fmin(fewest, s->section_count[p]);
+        }
+    }
+    if (few)
+        fprintf(stderr,
+                "touchdown plot: %s: bifurcation diagram: %lu of the %lu points that ran crossed the section fewer "
+                "than %d times after the transient (fewest %.0f): too few to tell their orbit\n",
+                f->path, (unsigned long)few, (unsigned long)ran, TD_RUN_SECTION_MIN_CROSSINGS, fewest);
+}
+
 static int bifurcation_figure(plot_job *job, const plot_file *f, const char *prefix, int x, const sweep_order *o)
 {
     char name[300], data[320], clear[320];
@@ -459,6 +539,8 @@ static int bifurcation_figure(plot_job *job, const plot_file *f, const char *pre
         free(keep);
         return PLOT_OK;
     }
+    if (rc == PLOT_OK)
+        report_few_crossings(f);
     if (rc == PLOT_OK)
         rc = write_clearance(job, f, clear, x, o, keep[0], &nclear);
     if (rc == PLOT_OK && !(out = plot_script_begin(job, name, "bifurcation diagram", f->path, 1000, 680)))
@@ -492,6 +574,36 @@ static int all_positive(const plot_file *f, int k, const char *option)
 
 /* ---- entry ---------------------------------------------------------------------------------- */
 
+/* One line on stderr when points failed or were not run: how many, by status (the first few). */
+static void report_failed(const plot_file *f)
+{
+    const plot_sweep *s = &f->sweep;
+    const char *seen[4];
+    size_t count[4], p, nfailed = 0;
+    int k, nseen = 0;
+    for (p = 0; p < s->n; p++) {
+        if (!s->failed[p])
+            continue;
+        nfailed++;
+        for (k = 0; k < nseen && strcmp(seen[k], s->status[p]); k++)
+            ;
+        if (k < nseen)
+            count[k]++;
+        else if (nseen < 4) {
+            seen[nseen] = s->status[p];
+            count[nseen++] = 1;
+        }
+    }
+    if (!nfailed)
+        return;
+    fprintf(stderr, "touchdown plot: %s: %lu of %lu points failed or not run (", f->path, (unsigned long)nfailed,
+            (unsigned long)s->n);
+    for (k = 0; k < nseen; k++)
+        fprintf(stderr, "%s%s %lu", k ? ", " : "", seen[k], (unsigned long)count[k]);
+    fprintf(stderr, "%s): left out of the lines, marked at the foot, 'failed' on the regime map\n",
+            nseen == 4 ? ", ..." : "");
+}
+
 int plot_sweep_figures(plot_job *job, const plot_file *f, const char *prefix)
 {
     sweep_order o;
@@ -507,6 +619,7 @@ int plot_sweep_figures(plot_job *job, const plot_file *f, const char *prefix)
         fprintf(stderr, "touchdown plot: out of memory\n");
         return PLOT_FAILED;
     }
+    report_failed(f);
     rc = quantity_figure(job, f, prefix, x, &o);
     if (rc == PLOT_OK)
         rc = regime_figure(job, f, prefix, x, y);

@@ -162,6 +162,34 @@ static int read_regimes(hid_t file, plot_sweep *s)
     return 0;
 }
 
+/* /status: a point is failed (no answers, touchdown/dofs.h "Undefined values") unless it ran to
+ * its end, "success"; a table without the column has every point run. And /section_count. */
+static int read_status(hid_t file, plot_sweep *s)
+{
+    size_t i, n = 0;
+    plot_array a;
+    if (!(s->failed = calloc(s->n + 1, sizeof *s->failed)) ||
+        !(s->section_count = malloc((s->n + 1) * sizeof *s->section_count)))
+        return -1;
+    for (i = 0; i < s->n; i++)
+        s->section_count[i] = NAN;
+    if (plot_h5_exists(file, "section_count")) {
+        if (plot_h5_read(file, "section_count", &a) != 0 || a.n != s->n) {
+            plot_array_free(&a);
+            return -1;
+        }
+        memcpy(s->section_count, a.v, s->n * sizeof *a.v);
+        plot_array_free(&a);
+    }
+    if (!plot_h5_exists(file, "status"))
+        return 0;
+    if (plot_h5_read_strings(file, "status", &s->status, &n) != 0 || n != s->n)
+        return -1;
+    for (i = 0; i < n; i++)
+        s->failed[i] = strcmp(s->status[i], td_strerror(TD_OK)) != 0;
+    return 0;
+}
+
 /* /section_radius (point x m) and /section_clearance, when the table has them. */
 static int read_section(hid_t file, plot_sweep *s)
 {
@@ -209,6 +237,8 @@ int plot_sweep_load(hid_t file, plot_file *f)
         return bad(f->path, "unreadable /regime column");
     if (read_section(file, s) != 0)
         return bad(f->path, "unreadable /section_radius or /section_clearance");
+    if (read_status(file, s) != 0)
+        return bad(f->path, "unreadable /status or /section_count column");
     return PLOT_OK;
 }
 
@@ -220,6 +250,9 @@ void plot_sweep_free(plot_sweep *s)
         plot_strings_free(s->text[k], s->text[k] ? s->n : 0);
     }
     free(s->regime);
+    free(s->failed);
+    free(s->section_count);
+    plot_strings_free(s->status, s->status ? s->n : 0);
     free(s->section);
     free(s->clearance);
     memset(s, 0, sizeof *s);

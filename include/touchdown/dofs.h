@@ -31,9 +31,22 @@
  * Forces: a force on the rotor is positive along +x / +y; a contact normal force N >= 0 pushes
  * the rotor towards the retainer centre; a friction force is tangential, positive along the
  * whirl direction t = (-sin(whirl angle), cos(whirl angle)).
+ *
+ * Undefined values: a quantity that has no value is TD_UNDEFINED (a quiet NaN) and nothing
+ * else, never 0 or a negative sentinel: the answers of a run that did not reach its end or of a
+ * sweep point that failed, timed out or was not run, a time or frequency of something that did
+ * not happen (no contact: no first-contact time; no whirl: no whirl frequency). Test it with
+ * td_is_undefined. The outputs carry it as null in JSON and NaN in HDF5 and CSV (written `nan`),
+ * always with a status beside it that says why (docs/output-format.md, "Undefined values").
+ * Counts and indices are whole numbers: a count is never undefined, an index that names nothing
+ * is -1 (JSON null).
  */
 #ifndef TOUCHDOWN_DOFS_H
 #define TOUCHDOWN_DOFS_H
+
+#include <math.h>
+
+#include "touchdown/export.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -59,6 +72,12 @@ enum td_dof_offset {
 /** A speed in rad/s as rpm (revolutions per minute: one revolution is 2 pi rad, a minute 60 s),
  *  and back; only for display, the library takes and gives rad/s. */
 #define TD_RPM_FROM_RAD_S(w) ((w)*30.0 / TD_PI)
+
+/** The value of a quantity that has none (see "Undefined values" above). */
+#define TD_UNDEFINED ((double)NAN)
+
+/** 1 if x is TD_UNDEFINED (any NaN), else 0. */
+TD_API int td_is_undefined(double x);
 
 #ifdef __cplusplus
 }

@@ -116,14 +116,14 @@ typedef struct td_sim_stats {
     long releases;
     double worst_drift;        /**< max |r - c| while in constrained contact, m */
     double peak_normal_force;  /**< N */
-    double peak_time;          /**< s, time of peak_normal_force (-1 if no contact) */
+    double peak_time;          /**< s, time of peak_normal_force (TD_UNDEFINED if no contact) */
     int peak_retainer;         /**< retainer of peak_normal_force (-1 if no contact) */
     double time_in_contact;    /**< s, summed over retainers */
-    double first_contact_time; /**< s, -1 if none */
+    double first_contact_time; /**< s, TD_UNDEFINED if none */
     double wall_time;          /**< s spent inside td_sim_step */
     double peak_amb_force;     /**< N: largest |force| of one AMB axis while the AMB works (steps and outputs) */
     double peak_amb_load;      /**< largest |force| / force_capacity of one AMB axis (1: at its capacity) */
-    double peak_amb_time;      /**< s, time of peak_amb_load (-1 if no AMB force) */
+    double peak_amb_time;      /**< s, time of peak_amb_load (TD_UNDEFINED if no AMB force) */
     int peak_amb;              /**< AMB of peak_amb_load (-1 if no AMB force) */
     long flight_steps;         /**< steps of the closed-form free flight (root bounds evaluated) */
     double flight_time;        /**< s simulated in closed-form free flight */

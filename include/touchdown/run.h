@@ -32,6 +32,11 @@ extern "C" {
 /** Crossings of the once-per-revolution section a summary keeps: the last this many. */
 #define TD_RUN_SECTION_SAMPLES 64
 
+/** Fewest crossings of the section that tell its orbit: a period-4 orbit (the longest a rub's
+ *  period doubling usually shows before chaos) repeats twice in 8. A section or a bifurcation
+ *  diagram from fewer is said to be suspect (a warning). */
+#define TD_RUN_SECTION_MIN_CROSSINGS 8
+
 /** Progress callback: simulated time t (s), fraction of the run done (0..1), contact onsets so
  *  far, the user pointer. Return 0 to go on, nonzero to stop the run (incomplete, TD_ERR_INTERRUPTED). */
 typedef int (*td_progress_fn)(double t, double fraction, long contacts, void *user);
@@ -48,7 +53,6 @@ typedef struct td_run_hooks {
                                         after); nonzero stops the run (TD_ERR_INTERRUPTED) */
 } td_run_hooks;
 
-/** What a run did. Times in s, forces in N; -1 marks "none"/"undefined" where stated. */
 /**
  * The regime a run settled in, over the stretch its ending is judged on (td_run_summary_ending),
  * one rule for the sweep table's `regime` column and the regime map: FREE no retainer in contact
@@ -66,6 +70,11 @@ typedef enum td_regime {
     TD_REGIME_BOUNCE = 3,
     TD_REGIME_BACKWARD_WHIRL = 4
 } td_regime;
+/** Most warnings one summary keeps (td_run_summary.warnings); a last one says how many more. */
+#define TD_RUN_MAX_WARNINGS 8
+/** Longest warning, NUL included. */
+#define TD_RUN_WARNING_SIZE 320
+
 /** Number of td_regime values. */
 #define TD_REGIME_COUNT 5
 
@@ -76,12 +85,20 @@ typedef enum td_regime {
 typedef struct td_run_retainer {
     td_retainer_totals totals;
     double race_speed;      /**< rad/s at the end */
-    double mean_normal;     /**< N: impulse / contact time while in contact (0 without contact) */
-    double rms_normal;      /**< N: sqrt(integral of N^2 / contact time) */
-    double whirl_frequency; /**< Hz: mean whirl rate while in contact / 2 pi, signed like the spin (< 0 backward) */
+    double mean_normal;     /**< N: impulse / contact time while in contact (TD_UNDEFINED without contact) */
+    double rms_normal;      /**< N: sqrt(integral of N^2 / contact time) (TD_UNDEFINED without contact) */
+    double whirl_frequency; /**< Hz: mean whirl rate while in contact / 2 pi, signed like the spin (< 0 backward);
+                                 TD_UNDEFINED without a sustained contact (no whirl) */
     char whirl[40];         /**< "none", "touch-and-go", or "forward|backward rolling|sliding[, bouncing]" */
 } td_run_retainer;
 
+/** What a run did. Times in s, forces in N. A quantity without a value is TD_UNDEFINED (NaN,
+ *  touchdown/dofs.h): one of something that did not happen (no contact: no first-contact time),
+ *  and every answer of a run that did not reach its end (status != TD_OK: the forces, impulse,
+ *  work, times in contact, final speed, energy and retainer totals, which sum up or pick the
+ *  largest over the whole run or describe its end). What it did reach is kept: t_reached, the
+ *  counts of samples, events and contacts, the first and last contact times, the solver's
+ *  counts (its peaks, time in contact and AMB peak are answers: undefined). */
 typedef struct td_run_summary {
     td_status status;                    /**< what td_run returned */
     int complete;                        /**< 1 if the run reached t_end and every file was finished complete */
@@ -94,8 +111,8 @@ typedef struct td_run_summary {
     long grid_samples;                   /**< of which on the uniform grid */
     long events;                         /**< events seen (td_sim_step returned TD_EVENT) */
     long contacts;                       /**< contact onsets: TD_EVENT_CONTACT_ONSET + TD_EVENT_PENALTY_ENTER */
-    double first_contact_time;           /**< -1 if no contact */
-    double last_contact_time;            /**< time the last contact ended (t_reached if still in contact), -1 if none */
+    double first_contact_time;           /**< TD_UNDEFINED if no contact */
+    double last_contact_time; /**< time the last contact ended (t_reached if still in contact), TD_UNDEFINED if none */
     /* the answers that converge with the mesh and the tolerances (docs/validation.md) */
     double peak_housing_force; /**< N: largest force into the housing, over retainers and time */
     int peak_housing_retainer; /**< its retainer (-1 if none) */
@@ -110,7 +127,8 @@ typedef struct td_run_summary {
                                               "forward rub at F Hz" (", rolling|sliding", ", bouncing"), or
                                               "undetermined" */
     double ending_whirl_frequency;       /**< Hz: mean whirl rate over that stretch of the retainer most in
-                                              contact, signed like the spin (< 0 backward); 0 without contact */
+                                              contact, signed like the spin (< 0 backward); TD_UNDEFINED
+                                              without whirl (no contact over it, or at rest) */
     double ending_window;                /**< s: that stretch, the last max(5 revolutions, 10 % of the run) */
     int regime;                          /**< td_regime of that stretch, set with `ending` (read it with
                                               td_run_summary_regime, which also says FAILED for a failed run) */
@@ -119,11 +137,11 @@ typedef struct td_run_summary {
     int peak_converges;                  /**< 0: some retainer is a rigid constraint, whose instantaneous peak normal
                                               force does not converge with the mesh (only its impulse does) */
     double peak_normal_force;            /**< largest normal force: solver statistics, samples and events */
-    double peak_time;                    /**< when peak_normal_force occurred, s (-1 if no contact force) */
+    double peak_time;                    /**< when peak_normal_force occurred, s (TD_UNDEFINED if no contact force) */
     int peak_retainer;                   /**< retainer of peak_normal_force (-1 if no contact force) */
     double contact_time;                 /**< time with at least one retainer in contact */
     double contact_fraction;             /**< contact_time / (t_reached - t_start) */
-    double free_window;                  /**< TD_RUN_FREE_REVOLUTIONS revolutions, s (-1 if speed <= 0) */
+    double free_window;                  /**< TD_RUN_FREE_REVOLUTIONS revolutions, s (TD_UNDEFINED if speed <= 0) */
     int free_at_end;                     /**< 1: no contact during the last free_window of the run; 0: contact
                                               in it; -1: undetermined (speed <= 0 or run shorter than the window) */
     int returned_to_free_orbit;          /**< 1: contacts > 0 and free_at_end == 1; 0: contacts > 0 and
@@ -134,9 +152,9 @@ typedef struct td_run_summary {
     double wall_time;                    /**< wall-clock time of the whole td_run (solver + output), s */
     double solver_wall_time;             /**< wall-clock time inside td_sim_step, s */
     double wall_time_per_revolution;     /**< the paper's figure of merit: solver wall time after the first
-                                              contact / revolutions after it; -1 if undefined */
+                                              contact / revolutions after it; TD_UNDEFINED without one */
     double realtime_factor;              /**< simulated seconds per wall-clock second of the whole run (> 1:
-                                              faster than real time); -1 if undefined */
+                                              faster than real time); TD_UNDEFINED if not measured */
     td_sim_stats stats;                  /**< the simulation's statistics at the end (steps, events, worst_drift...) */
     td_sim_start_info start;             /**< start state used and the stability of the contact-free system */
     int start_known;                     /**< 0: failed before a simulation existed, `start` is n/a but for
@@ -149,13 +167,21 @@ typedef struct td_run_summary {
        time (IDA's interpolant or the closed-form flight, as the output samples), after the
        transient (td_output_options.section_after). The retainer: the one with the largest peak
        housing force (peak_housing_retainer), retainer 0 without contact. */
-    double section_start;                          /**< s: crossings from this time on are taken */
+    double section_start;                          /**< s: crossings from this time on are taken
+                                                        (TD_UNDEFINED: the run failed before it began) */
     long section_count;                            /**< crossings taken (also those no longer kept) */
     int section_kept;                              /**< the last this many are kept, <= TD_RUN_SECTION_SAMPLES */
     int section_retainer;                          /**< retainer sampled, -1: the model has none */
     double section_clearance;                      /**< m, its radial clearance (NaN without one) */
     double section_time[TD_RUN_SECTION_SAMPLES];   /**< s, oldest first */
     double section_radius[TD_RUN_SECTION_SAMPLES]; /**< m, sqrt(x^2 + y^2) of the node relative to its retainer */
+    /* Why the result may be suspect, each a sentence without a prefix, in the order found
+       (docs/output-format.md, "Warnings"): an AMB past its force capacity with saturation off; a
+       schedule entry at or after the end time (it never happens); a retainer clearance larger
+       than the shaft radius there that no AMB air gap bounds; a section from fewer than
+       TD_RUN_SECTION_MIN_CROSSINGS crossings. td_run checks them once, at the end of the run. */
+    int warning_count;                                       /**< warnings kept, <= TD_RUN_MAX_WARNINGS */
+    char warnings[TD_RUN_MAX_WARNINGS][TD_RUN_WARNING_SIZE]; /**< each NUL-terminated */
 } td_run_summary;
 
 /**
@@ -208,7 +234,7 @@ TD_API const char *td_regime_name(td_regime r);
 /** Human-readable multi-line summary (times with 10 decimals). Returns the length needed, like
  *  snprintf; buf is always NUL-terminated when n > 0. */
 TD_API int td_run_summary_format(char *buf, size_t n, const td_run_summary *s);
-/** The summary as one JSON object (doubles with 17 significant digits, -1 sentinels as null).
+/** The summary as one JSON object (doubles with 17 significant digits, TD_UNDEFINED as null).
  *  Returns the length needed, like snprintf. */
 TD_API int td_run_summary_json(char *buf, size_t n, const td_run_summary *s);
 

@@ -109,30 +109,34 @@ typedef enum td_sweep_state {
     TD_SWEEP_FAILED = 2   /**< the run failed (its status and message say why) or its worker died */
 } td_sweep_state;
 
-/** One row of the table: what a point's run summary leads with. Numbers are NaN (contacts,
- *  returned_to_free_orbit: -1) when the point has no summary (not run, worker died). */
+/** One row of the table: what a point's run summary leads with. A point that did not run to its
+ *  end (failed, timed out, worker died, not run) has no answers: its numbers are TD_UNDEFINED
+ *  (touchdown/dofs.h) but t_reached and wall_time when its run says them, its counts and flags -1,
+ *  which the table writes as NaN (docs/output-format.md, "Undefined values"). */
 typedef struct td_sweep_row {
-    int state;                           /**< td_sweep_state */
-    char status[32];                     /**< td_strerror of the run's status, "not run", "worker died" */
-    char message[TD_ERROR_MESSAGE_SIZE]; /**< why the point failed ("" if it did not) */
-    double peak_housing_force;           /**< N */
-    double total_impulse;                /**< N s */
-    double friction_work;                /**< J */
-    double contact_time;                 /**< s */
-    long contacts;                       /**< contact onsets */
-    double first_contact_time;           /**< s, -1 if none */
-    char ending[96];                     /**< td_run_summary.ending */
-    double ending_whirl_frequency;       /**< Hz, signed like the spin (< 0 backward) */
-    int returned_to_free_orbit;          /**< 1, 0, TD_RUN_NOT_APPLICABLE (no contact), -1 undetermined */
-    double final_speed;                  /**< rad/s */
-    double peak_amb_load;                /**< largest AMB axis force / capacity, -1 without a working AMB */
-    double t_reached;                    /**< s, the last time reached */
-    double wall_time;                    /**< s, wall-clock time of the point (set by the caller) */
-    char regime[16];                     /**< td_regime_name(td_run_summary_regime): "free", "rub",
-                                              "bounce", "backward whirl", "failed" (also without a summary) */
-    long section_count;                  /**< crossings of the once-per-revolution section (-1: no summary) */
-    int section_kept;                    /**< radii kept in section_radius (td_run_summary.section_kept) */
-    double section_radius_min;           /**< m, the smallest and largest kept radius (NaN: none) */
+    int state;                            /**< td_sweep_state */
+    char status[32];                      /**< td_strerror of the run's status, "not run", "worker died" */
+    char message[TD_ERROR_MESSAGE_SIZE];  /**< why the point failed ("" if it did not) */
+    double peak_housing_force;            /**< N */
+    double total_impulse;                 /**< N s */
+    double friction_work;                 /**< J */
+    double contact_time;                  /**< s */
+    long contacts;                        /**< contact onsets (-1: unknown) */
+    double first_contact_time;            /**< s, TD_UNDEFINED if none */
+    char ending[96];                      /**< td_run_summary.ending */
+    double ending_whirl_frequency;        /**< Hz, signed like the spin (< 0 backward); TD_UNDEFINED: no whirl */
+    int returned_to_free_orbit;           /**< 1, 0, TD_RUN_NOT_APPLICABLE (no contact), -1 undetermined */
+    double final_speed;                   /**< rad/s */
+    double peak_amb_load;                 /**< largest AMB axis force / capacity, TD_UNDEFINED without a working AMB */
+    double t_reached;                     /**< s, the last time reached */
+    char warnings[TD_ERROR_MESSAGE_SIZE]; /**< the run's warnings (td_run_summary.warnings) joined by "; ",
+                                               cut to fit; "" for none */
+    double wall_time;                     /**< s, wall-clock time of the point (set by the caller) */
+    char regime[16];                      /**< td_regime_name(td_run_summary_regime): "free", "rub",
+                                               "bounce", "backward whirl", "failed" (also without a summary) */
+    long section_count;                   /**< crossings of the once-per-revolution section (-1: unknown) */
+    int section_kept;                     /**< radii kept in section_radius (td_run_summary.section_kept) */
+    double section_radius_min;            /**< m, the smallest and largest kept radius (NaN: none) */
     double section_radius_max;
     double section_clearance;                      /**< m, the sampled retainer's radial clearance (NaN: none) */
     double section_radius[TD_RUN_SECTION_SAMPLES]; /**< m, the last section radii, oldest first (NaN

@@ -7,6 +7,7 @@
  * the end, which gnuplot and pandas (comment='#') skip.
  */
 #include "io/writer_internal.h"
+#include "touchdown/dofs.h"
 #include "util/error_internal.h"
 
 #include <errno.h>
@@ -24,6 +25,10 @@ typedef struct csv_impl {
 static const char *exact_text(double v, char *buf, size_t n)
 {
     int digits;
+    if (td_is_undefined(v)) { /* "nan" whatever its sign bit (touchdown/dofs.h, "Undefined values") */
+        snprintf(buf, n, "nan");
+        return buf;
+    }
     for (digits = 15; digits < 17; digits++) {
         snprintf(buf, n, "%.*g", digits, v);
         if (strtod(buf, NULL) == v)

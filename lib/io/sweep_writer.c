@@ -8,6 +8,7 @@
 #include "io/h5_util.h"
 #include "io/h5_vfd.h"
 #include "io/writer_internal.h"
+#include "touchdown/dofs.h"
 #include "touchdown/sweep.h"
 #include "touchdown/version.h"
 #include "util/error_internal.h"
@@ -51,6 +52,7 @@ static const sweep_column columns[] = {
     {"final_speed", "rad/s", COL_DOUBLE, offsetof(td_sweep_row, final_speed)},
     {"peak_amb_load", "1", COL_DOUBLE, offsetof(td_sweep_row, peak_amb_load)},
     {"t_reached", "s", COL_DOUBLE, offsetof(td_sweep_row, t_reached)},
+    {"warnings", "", COL_TEXT, offsetof(td_sweep_row, warnings)},
     {"wall_time", "s", COL_DOUBLE, offsetof(td_sweep_row, wall_time)},
 };
 #define N_COLUMNS ((int)(sizeof columns / sizeof columns[0]))
@@ -60,13 +62,20 @@ static const char *col_text(const td_sweep_row *r, int c)
     return (const char *)r + columns[c].offset;
 }
 
+/* A column's value as the table holds it: a count that is unknown (-1) and a flag that is not 1
+ * or 0 (returned_to_free_orbit n/a or undetermined) are undefined, NaN like every other number
+ * without a value (touchdown/dofs.h, "Undefined values"). */
 static double col_double(const td_sweep_row *r, int c)
 {
     const char *p = (const char *)r + columns[c].offset;
-    if (columns[c].kind == COL_LONG)
-        return (double)*(const long *)(const void *)p;
-    if (columns[c].kind == COL_INT)
-        return (double)*(const int *)(const void *)p;
+    if (columns[c].kind == COL_LONG) {
+        long v = *(const long *)(const void *)p;
+        return v >= 0 ? (double)v : TD_UNDEFINED;
+    }
+    if (columns[c].kind == COL_INT) {
+        int v = *(const int *)(const void *)p;
+        return v == 0 || v == 1 ? (double)v : TD_UNDEFINED;
+    }
     return *(const double *)(const void *)p;
 }
 
@@ -120,6 +129,8 @@ static void csv_row(FILE *f, const td_sweep_grid *g, long point, const td_sweep_
         fputc(',', f);
         if (columns[c].kind == COL_TEXT)
             csv_text(f, col_text(r, c));
+        else if (td_is_undefined(col_double(r, c)))
+            fputs("nan", f); /* gnuplot, numpy and pandas read it as a missing value */
         else if (columns[c].kind == COL_DOUBLE)
             fprintf(f, "%.17g", col_double(r, c));
         else

@@ -14,6 +14,7 @@
 #include <time.h>
 #include <unistd.h>
 
+#include "touchdown/dofs.h"
 #include "touchdown/version.h"
 
 static const char partial_suffix[] = TD_IO_TEMP_SUFFIX;
@@ -541,9 +542,10 @@ td_status td_writer_set_stats(td_writer *w, const td_sim_stats *s, td_error *err
                  {"time_in_contact", s ? s->time_in_contact : 0.0},
                  {"first_contact_time", s ? s->first_contact_time : 0.0},
                  {"wall_time", s ? s->wall_time : 0.0},
-                 {"peak_amb_force", s ? s->peak_amb_force : 0.0},
-                 {"peak_amb_load", s ? s->peak_amb_load : 0.0},
-                 {"peak_amb_time", s ? s->peak_amb_time : 0.0},
+                 /* no working AMB: no peak AMB force (touchdown/dofs.h, "Undefined values") */
+                 {"peak_amb_force", s && s->peak_amb >= 0 ? s->peak_amb_force : TD_UNDEFINED},
+                 {"peak_amb_load", s && s->peak_amb >= 0 ? s->peak_amb_load : TD_UNDEFINED},
+                 {"peak_amb_time", s && s->peak_amb >= 0 ? s->peak_amb_time : TD_UNDEFINED},
                  {"flight_time", s ? s->flight_time : 0.0}};
     size_t i;
     td_status st;

@@ -14,6 +14,7 @@
 
 #include "run/recorder.h"
 #include "run/summary.h"
+#include "run/warnings.h"
 #include "sim/section.h"
 #include "touchdown/dofs.h"
 #include "touchdown/output.h"
@@ -90,7 +91,7 @@ static void contact_advance(run_state *r, double t, int now_in_contact)
         if (!now_in_contact)
             r->s->last_contact_time = t;
     }
-    if (now_in_contact && r->s->first_contact_time < 0.0) {
+    if (now_in_contact && td_is_undefined(r->s->first_contact_time)) {
         r->s->first_contact_time = t;
         r->solver_wall_at_contact = r->s->solver_wall_time;
     }
@@ -157,7 +158,7 @@ static td_status handle_event(run_state *r, td_error *err)
     r->s->events++;
     if (is_onset(ev.kind)) {
         r->s->contacts++;
-        if (r->s->first_contact_time < 0.0) {
+        if (td_is_undefined(r->s->first_contact_time)) {
             r->s->first_contact_time = ev.time;
             r->solver_wall_at_contact = r->s->solver_wall_time;
         }
@@ -299,8 +300,9 @@ static void summary_totals(run_state *r)
         if (k < TD_RUN_SUMMARY_RETAINERS) {
             s->retainers[k].totals = t;
             s->retainers[k].race_speed = td_sim_retainer_state(r->sim, k, &st) == TD_OK ? st.race_speed : 0.0;
-            td_run_retainer_classify(&s->retainers[k], s->final_speed,
-                                     s->first_contact_time >= 0.0 ? s->last_contact_time - s->first_contact_time : 0.0);
+            td_run_retainer_classify(
+                &s->retainers[k], s->final_speed,
+                !td_is_undefined(s->first_contact_time) ? s->last_contact_time - s->first_contact_time : 0.0);
         }
     }
 }
@@ -334,14 +336,15 @@ static void summary_finish(run_state *r, double wall_start)
     span = s->t_reached - s->t_start;
     s->contact_fraction = span > 0.0 ? s->contact_time / span : 0.0;
     s->revolutions = s->speed * span / (2.0 * TD_PI);
-    if (s->first_contact_time >= 0.0)
+    if (!td_is_undefined(s->first_contact_time))
         s->revolutions_after_contact = s->speed * (s->t_reached - s->first_contact_time) / (2.0 * TD_PI);
     if (s->revolutions_after_contact > 0.0)
         s->wall_time_per_revolution = (s->solver_wall_time - r->solver_wall_at_contact) / s->revolutions_after_contact;
     if (s->speed > 0.0) {
         rev_period = 2.0 * TD_PI / s->speed;
         s->free_window = TD_RUN_FREE_REVOLUTIONS * rev_period;
-        if (r->in_contact || (s->last_contact_time >= 0.0 && s->t_reached - s->last_contact_time < s->free_window))
+        if (r->in_contact ||
+            (!td_is_undefined(s->last_contact_time) && s->t_reached - s->last_contact_time < s->free_window))
             s->free_at_end = 0;
         else if (span >= s->free_window)
             s->free_at_end = 1;
@@ -358,6 +361,18 @@ static void summary_finish(run_state *r, double wall_start)
     s->wall_time = td_wall_clock() - wall_start;
     if (s->wall_time > 0.0)
         s->realtime_factor = span / s->wall_time;
+}
+
+/* The warnings, one a line, as the attribute `warnings` (absent when there is none). */
+static td_status write_warnings(td_recorder *rec, const td_run_summary *s, td_error *err)
+{
+    char text[TD_RUN_MAX_WARNINGS * TD_RUN_WARNING_SIZE];
+    size_t len = 0;
+    int i;
+    text[0] = '\0';
+    for (i = 0; i < s->warning_count; i++)
+        len += (size_t)snprintf(text + len, sizeof text - len, "%s\n", s->warnings[i]);
+    return td_recorder_set_string(rec, "warnings", text, err);
 }
 
 /* The energy account, when the run kept it, as attributes of every file. */
@@ -379,7 +394,7 @@ static td_status write_energy(td_recorder *rec, const td_energy *e, td_error *er
 }
 
 /* Every retainer's totals (touchdown/records.h td_retainer_totals) as arrays over the retainers. */
-static td_status write_retainer_totals(td_recorder *rec, const td_sim *sim, td_error *err)
+static td_status write_retainer_totals(td_recorder *rec, const td_sim *sim, int reached_end, td_error *err)
 {
     static const struct {
         const char *name;
@@ -403,8 +418,8 @@ static td_status write_retainer_totals(td_recorder *rec, const td_sim *sim, td_e
         g[k] = t[k].touch_and_go;
     }
     for (i = 0; st == TD_OK && n > 0 && i < sizeof reals / sizeof reals[0]; i++) {
-        for (k = 0; k < n; k++)
-            v[k] = *(const double *)((const char *)&t[k] + reals[i].offset);
+        for (k = 0; k < n; k++) /* totals of a run that did not reach its end are no answers */
+            v[k] = reached_end ? *(const double *)((const char *)&t[k] + reals[i].offset) : TD_UNDEFINED;
         st = td_recorder_set_doubles(rec, reals[i].name, v, n, err);
     }
     if (st == TD_OK && n > 0)
@@ -433,6 +448,12 @@ static td_status write_section(td_recorder *rec, const td_run_summary *s, td_err
     if (st == TD_OK && s->section_kept > 0)
         st = td_recorder_set_doubles(rec, "section_radius", s->section_radius, s->section_kept, err);
     return st;
+}
+
+/* A yes/no/undetermined flag as a file value: 1, 0, or TD_UNDEFINED (undetermined, n/a). */
+static double flag_value(int v)
+{
+    return v == 0 || v == 1 ? (double)v : TD_UNDEFINED;
 }
 
 /* The summary and run parameters as attributes of every file. */
@@ -470,10 +491,7 @@ static td_status write_summary(td_recorder *rec, const td_run_summary *s, const 
     } counts[] = {{"summary_samples", s->samples},
                   {"summary_grid_samples", s->grid_samples},
                   {"summary_events", s->events},
-                  {"summary_contacts", s->contacts},
-                  {"summary_free_at_end", s->free_at_end},
-                  {"summary_returned_to_free_orbit", s->returned_to_free_orbit},
-                  {"summary_peak_normal_force_converges", s->peak_converges}};
+                  {"summary_contacts", s->contacts}};
     size_t i;
     td_status st = td_recorder_set_string(rec, "case_text", case_text ? case_text : "", err);
     if (st == TD_OK)
@@ -486,6 +504,14 @@ static td_status write_summary(td_recorder *rec, const td_run_summary *s, const 
         st = td_recorder_set_double(rec, reals[i].name, reals[i].value, err);
     for (i = 0; st == TD_OK && i < sizeof counts / sizeof counts[0]; i++)
         st = td_recorder_set_long(rec, counts[i].name, counts[i].value, err);
+    if (st == TD_OK)
+        st = td_recorder_set_double(rec, "summary_free_at_end", flag_value(s->free_at_end), err);
+    if (st == TD_OK)
+        st = td_recorder_set_double(rec, "summary_returned_to_free_orbit", flag_value(s->returned_to_free_orbit), err);
+    if (st == TD_OK)
+        st = td_recorder_set_long(rec, "summary_peak_normal_force_converges", s->peak_converges, err);
+    if (st == TD_OK && s->warning_count > 0)
+        st = write_warnings(rec, s, err);
     if (st == TD_OK && s->energy_kept)
         st = write_energy(rec, &s->energy, err);
     if (st == TD_OK)
@@ -562,10 +588,13 @@ td_status td_run(td_sim *sim, double t_end, const td_output_options *out, const 
     summary_finish(&r, wall_start);
     td_sim_section_end(sim);
     summary->status = st;
+    td_run_check_warnings(summary, model);
+    if (st != TD_OK) /* no answers from a run that did not reach its end, in the files either */
+        td_run_summary_undefine_answers(summary);
     td_error_clear(&close_err);
     cst = write_summary(r.rec, summary, case_text, &close_err);
     if (cst == TD_OK)
-        cst = write_retainer_totals(r.rec, sim, &close_err);
+        cst = write_retainer_totals(r.rec, sim, st == TD_OK, &close_err);
     if (cst == TD_OK)
         cst = td_recorder_close(&r.rec, st == TD_OK, loop_err.message, &close_err);
     else
@@ -574,6 +603,8 @@ td_status td_run(td_sim *sim, double t_end, const td_output_options *out, const 
         st = cst;
         loop_err = close_err;
     }
+    if (st != TD_OK)
+        td_run_summary_undefine_answers(summary);
     summary->status = st;
     summary->complete = st == TD_OK;
     snprintf(summary->message, sizeof summary->message, "%s", st == TD_OK ? "" : loop_err.message);

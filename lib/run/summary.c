@@ -20,27 +20,66 @@ void td_run_summary_init(td_run_summary *s, double t0, double t_end, double spee
     s->t_end = t_end;
     s->t_reached = t0;
     s->speed = speed;
-    s->first_contact_time = -1.0;
-    s->last_contact_time = -1.0;
-    s->peak_time = -1.0;
+    s->first_contact_time = TD_UNDEFINED;
+    s->last_contact_time = TD_UNDEFINED;
+    s->peak_time = TD_UNDEFINED;
     s->peak_retainer = -1;
     s->peak_housing_retainer = -1;
     s->peak_converges = 1;
-    s->free_window = -1.0;
+    s->free_window = TD_UNDEFINED;
     s->free_at_end = -1;
     snprintf(s->ending, sizeof s->ending, "undetermined");
     s->returned_to_free_orbit = -1;
-    s->wall_time_per_revolution = -1.0;
-    s->realtime_factor = -1.0;
-    s->section_start = -1.0;
+    s->ending_whirl_frequency = TD_UNDEFINED;
+    s->wall_time_per_revolution = TD_UNDEFINED;
+    s->realtime_factor = TD_UNDEFINED;
+    s->section_start = TD_UNDEFINED;
     s->section_retainer = -1;
-    s->section_clearance = NAN;
-    s->stats.first_contact_time = -1.0;
-    s->stats.peak_time = -1.0;
+    s->section_clearance = TD_UNDEFINED;
+    s->stats.first_contact_time = TD_UNDEFINED;
+    s->stats.peak_time = TD_UNDEFINED;
     s->stats.peak_retainer = -1;
+    s->stats.peak_amb_time = TD_UNDEFINED;
+    s->stats.peak_amb = -1;
     s->start.requested = s->start.used = TD_START_REST;
     s->start.stability = TD_STABILITY_UNCHECKED;
-    s->start.max_real_part = NAN;
+    s->start.max_real_part = TD_UNDEFINED;
+}
+
+/* A retainer's answers: its totals' sums and peaks, and what they lead to. */
+static void retainer_undefine(td_run_retainer *r)
+{
+    td_retainer_totals *t = &r->totals;
+    t->impulse = t->impact_impulse = t->contact_time = t->rolling_time = t->normal_force_sq = TD_UNDEFINED;
+    t->friction_work = t->whirl_angle = t->peak_housing_force = t->peak_normal_force = TD_UNDEFINED;
+    r->race_speed = r->mean_normal = r->rms_normal = r->whirl_frequency = TD_UNDEFINED;
+    snprintf(r->whirl, sizeof r->whirl, "undetermined");
+}
+
+void td_run_summary_undefine_answers(td_run_summary *s)
+{
+    int k;
+    double *energy[10];
+    size_t i;
+    s->peak_housing_force = s->total_impulse = s->friction_work = s->final_speed = TD_UNDEFINED;
+    s->peak_housing_retainer = -1;
+    s->ending_whirl_frequency = s->peak_normal_force = s->peak_time = TD_UNDEFINED;
+    s->peak_retainer = -1;
+    s->contact_time = s->contact_fraction = TD_UNDEFINED;
+    s->free_at_end = s->returned_to_free_orbit = -1; /* undetermined */
+    s->stats.peak_normal_force = s->stats.peak_time = s->stats.time_in_contact = TD_UNDEFINED;
+    s->stats.peak_amb_force = s->stats.peak_amb_load = s->stats.peak_amb_time = TD_UNDEFINED;
+    s->stats.peak_amb = s->stats.peak_retainer = -1;
+    energy[0] = &s->energy.kinetic, energy[1] = &s->energy.elastic, energy[2] = &s->energy.initial;
+    energy[3] = &s->energy.external_work, energy[4] = &s->energy.drive_work, energy[5] = &s->energy.damping_loss;
+    energy[6] = &s->energy.contact_loss, energy[7] = &s->energy.drag_loss, energy[8] = &s->energy.impact_loss;
+    energy[9] = &s->energy.residual;
+    for (i = 0; i < sizeof energy / sizeof energy[0]; i++)
+        *energy[i] = TD_UNDEFINED;
+    for (k = 0; k < TD_RUN_SUMMARY_RETAINERS; k++)
+        retainer_undefine(&s->retainers[k]);
+    snprintf(s->ending, sizeof s->ending, "undetermined");
+    s->regime = TD_REGIME_FAILED;
 }
 
 /*
@@ -54,14 +93,14 @@ void td_run_retainer_classify(td_run_retainer *out, double speed, double span)
 {
     const td_retainer_totals *t = &out->totals;
     double rate;
-    out->mean_normal = out->rms_normal = out->whirl_frequency = 0.0;
-    if (t->contacts == 0) {
-        snprintf(out->whirl, sizeof out->whirl, "%s", t->touch_and_go > 0 ? "touch-and-go" : "none");
-        return;
-    }
+    out->mean_normal = out->rms_normal = out->whirl_frequency = TD_UNDEFINED;
     if (t->contact_time > 0.0) {
         out->mean_normal = t->impulse / t->contact_time;
         out->rms_normal = sqrt(t->normal_force_sq / t->contact_time);
+    }
+    if (t->contacts == 0) { /* no sustained contact: no whirl, so no whirl frequency */
+        snprintf(out->whirl, sizeof out->whirl, "%s", t->touch_and_go > 0 ? "touch-and-go" : "none");
+        return;
     }
     rate = t->contact_time > 0.0 ? t->whirl_angle / t->contact_time : 0.0;
     out->whirl_frequency = (speed < 0.0 ? -rate : rate) / (2.0 * TD_PI);
@@ -93,7 +132,7 @@ void td_run_summary_ending(td_run_summary *s, const td_retainer_totals *before, 
     double dt, turned, rate, f, spin_f = fabs(speed) / (2.0 * TD_PI);
     const char *how, *bounce;
     int whirls;
-    s->ending_whirl_frequency = 0.0;
+    s->ending_whirl_frequency = TD_UNDEFINED; /* no whirl: free, recovered or at rest */
     s->regime = TD_REGIME_FAILED;
     if (!(w > 0.0)) {
         snprintf(s->ending, sizeof s->ending, "undetermined");
@@ -152,6 +191,7 @@ void td_run_summary_failed(td_run_summary *s, double t_start, double t_end, doub
     s->start.requested = requested;
     s->status = st;
     snprintf(s->message, sizeof s->message, "%s", message ? message : td_strerror(st));
+    td_run_summary_undefine_answers(s);
 }
 
 static double section_min(const td_run_summary *s)
@@ -232,6 +272,36 @@ static void format_energy(td_text *b, const td_energy *e)
                    e->damping_loss, e->contact_loss, e->drag_loss, e->impact_loss, e->residual);
 }
 
+/* A retainer's line. Its counts say how it touched: a sustained contact (one that swept at least
+ * TD_TOUCH_AND_GO_ANGLE of whirl) or a brief one (touch-and-go), and the share of the run it was in
+ * contact, so that "0 sustained" never reads as "never touched". */
+static void format_retainer(td_text *b, const td_run_summary *s, int k)
+{
+    const td_run_retainer *r = &s->retainers[k];
+    double span = s->t_reached - s->t_start;
+    td_text_printf(b, "retainer %-2d                 %s", k, r->whirl);
+    if (r->totals.contacts > 0 && !td_is_undefined(r->whirl_frequency))
+        td_text_printf(b, " at %.4g Hz; N mean %.6g N, rms %.6g N over %.6g s", r->whirl_frequency, r->mean_normal,
+                       r->rms_normal, r->totals.contact_time);
+    td_text_printf(b, "; sustained contacts %ld, brief contacts (touch-and-go) %ld", r->totals.contacts,
+                   r->totals.touch_and_go);
+    if (span > 0.0 && !td_is_undefined(r->totals.contact_time))
+        td_text_printf(b, ", in contact %.3g %% of the run", 100.0 * r->totals.contact_time / span);
+    if (td_is_undefined(r->race_speed))
+        td_text_printf(b, "; race n/a\n");
+    else
+        td_text_printf(b, "; race %.6g rad/s\n", r->race_speed);
+}
+
+/* One answer: its value and unit, or n/a for a run that did not reach its end. */
+static void format_answer(td_text *b, const char *label, double v, const char *unit)
+{
+    if (td_is_undefined(v))
+        td_text_printf(b, "%-28sn/a (the run did not reach its end)\n", label);
+    else
+        td_text_printf(b, "%-28s%.6g %s\n", label, v, unit);
+}
+
 /* The answers that converge, first: housing force, impulse, friction work, speeds, each retainer. */
 static void format_answers(td_text *b, const td_run_summary *s)
 {
@@ -239,11 +309,13 @@ static void format_answers(td_text *b, const td_run_summary *s)
     if (s->peak_housing_retainer >= 0)
         td_text_printf(b, "peak housing force          %.6g N, retainer %d\n", s->peak_housing_force,
                        s->peak_housing_retainer);
+    else if (td_is_undefined(s->peak_housing_force))
+        format_answer(b, "peak housing force", s->peak_housing_force, "N");
     else
         td_text_printf(b, "peak housing force          none (no contact force)\n");
-    td_text_printf(b, "total impulse               %.6g N s\n", s->total_impulse);
-    td_text_printf(b, "friction work               %.6g J\n", s->friction_work);
-    td_text_printf(b, "final speed                 %.6g rad/s\n", s->final_speed);
+    format_answer(b, "total impulse", s->total_impulse, "N s");
+    format_answer(b, "friction work", s->friction_work, "J");
+    format_answer(b, "final speed", s->final_speed, "rad/s");
     td_text_printf(b, "ending                      %s (last %.6g s), regime %s\n", s->ending, s->ending_window,
                    td_regime_name(td_run_summary_regime(s)));
     if (s->stats.peak_amb >= 0)
@@ -251,18 +323,15 @@ static void format_answers(td_text *b, const td_run_summary *s)
                        s->stats.peak_amb_force, s->stats.peak_amb, 100.0 * s->stats.peak_amb_load,
                        s->stats.peak_amb_time);
     else
-        td_text_printf(b, "peak AMB force              none (no working AMB)\n");
-    if (s->energy_kept)
+        td_text_printf(b, "peak AMB force              %s\n",
+                       td_is_undefined(s->stats.peak_amb_load) ? "n/a (the run did not reach its end)"
+                                                               : "none (no working AMB)");
+    if (s->energy_kept && td_is_undefined(s->energy.residual))
+        td_text_printf(b, "energy                      n/a (the run did not reach its end)\n");
+    else if (s->energy_kept)
         format_energy(b, &s->energy);
-    for (k = 0; k < n; k++) {
-        const td_run_retainer *r = &s->retainers[k];
-        td_text_printf(b, "retainer %-2d                 %s", k, r->whirl);
-        if (r->totals.contacts > 0)
-            td_text_printf(b, " at %.4g Hz; N mean %.6g N, rms %.6g N over %.6g s", r->whirl_frequency, r->mean_normal,
-                           r->rms_normal, r->totals.contact_time);
-        td_text_printf(b, "; contacts %ld, touch-and-go %ld; race %.6g rad/s\n", r->totals.contacts,
-                       r->totals.touch_and_go, r->race_speed);
-    }
+    for (k = 0; k < n; k++)
+        format_retainer(b, s, k);
 }
 
 int td_run_summary_format(char *buf, size_t n, const td_run_summary *s)
@@ -283,20 +352,25 @@ int td_run_summary_format(char *buf, size_t n, const td_run_summary *s)
     td_text_printf(&b, "samples                     %ld (%ld on the grid, %ld at events)\n", s->samples,
                    s->grid_samples, s->samples - s->grid_samples);
     td_text_printf(&b, "events                      %ld, contact onsets %ld\n", s->events, s->contacts);
-    if (s->first_contact_time >= 0.0) {
+    if (!td_is_undefined(s->first_contact_time)) {
         td_text_printf(&b, "first contact               %.10f s\n", s->first_contact_time);
         td_text_printf(&b, "last contact ended          %.10f s\n", s->last_contact_time);
     } else {
         td_text_printf(&b, "first contact               none\n");
     }
-    td_text_printf(&b, "time in contact             %.10f s (%.4f %% of the run)\n", s->contact_time,
-                   100.0 * s->contact_fraction);
+    if (td_is_undefined(s->contact_time))
+        td_text_printf(&b, "time in contact             n/a (the run did not reach its end)\n");
+    else
+        td_text_printf(&b, "time in contact             %.10f s (%.4f %% of the run)\n", s->contact_time,
+                       100.0 * s->contact_fraction);
     if (s->peak_retainer >= 0)
         td_text_printf(&b, "peak normal force           %.6g N at %.10f s, retainer %d%s\n", s->peak_normal_force,
                        s->peak_time, s->peak_retainer,
                        s->peak_converges ? "" : " (rigid constraint: an instantaneous peak that does not converge)");
     else
-        td_text_printf(&b, "peak normal force           none (no contact force)\n");
+        td_text_printf(&b, "peak normal force           %s\n",
+                       td_is_undefined(s->peak_normal_force) ? "n/a (the run did not reach its end)"
+                                                             : "none (no contact force)");
     if (s->free_window > 0.0)
         td_text_printf(&b, "free at end                 %s (no contact in the last %d revolutions = %.10f s)\n",
                        tri(s->free_at_end), TD_RUN_FREE_REVOLUTIONS, s->free_window);
@@ -319,7 +393,7 @@ int td_run_summary_format(char *buf, size_t n, const td_run_summary *s)
         td_text_printf(&b, "worst constraint drift      none (no constrained contact)\n");
     td_text_printf(&b, "wall time                   %.3f s (solver %.3f s), real-time factor %.4g\n", s->wall_time,
                    s->solver_wall_time, s->realtime_factor);
-    if (s->wall_time_per_revolution >= 0.0)
+    if (!td_is_undefined(s->wall_time_per_revolution))
         td_text_printf(&b, "wall time per revolution    %.6g s after first contact (%.4f revolutions)\n",
                        s->wall_time_per_revolution, s->revolutions_after_contact);
     else
@@ -328,10 +402,10 @@ int td_run_summary_format(char *buf, size_t n, const td_run_summary *s)
     return (int)b.len;
 }
 
-/* A JSON number, or null for a "none" sentinel or a non-finite value. */
-static void json_real(td_text *b, const char *key, double v, int negative_is_null, int comma)
+/* A JSON number, or null for TD_UNDEFINED (and any other value JSON cannot hold). */
+static void json_real(td_text *b, const char *key, double v, int comma)
 {
-    if (!isfinite(v) || (negative_is_null && v < 0.0))
+    if (td_is_undefined(v) || !isfinite(v))
         td_text_printf(b, "\"%s\":null%s", key, comma ? "," : "");
     else
         td_text_printf(b, "\"%s\":%.17g%s", key, v, comma ? "," : "");
@@ -365,7 +439,7 @@ static void json_start(td_text *b, const td_run_summary *s)
     json_string(b, "start", start_name(si->used));
     json_text(b, "start_reason", si->reason, 1);
     json_string(b, "stability", stability_name(si->stability));
-    json_real(b, "max_real_part", si->stability == TD_STABILITY_UNCHECKED ? NAN : si->max_real_part, 0, 1);
+    json_real(b, "max_real_part", si->stability == TD_STABILITY_UNCHECKED ? TD_UNDEFINED : si->max_real_part, 1);
 }
 
 static void json_files(td_text *b, const td_run_summary *s)
@@ -384,6 +458,8 @@ static void json_retainer_array(td_text *b, const td_run_summary *s, const char 
         const char *base = (const char *)&s->retainers[k] + offset;
         if (is_long)
             td_text_printf(b, "%s%ld", k ? "," : "", *(const long *)base);
+        else if (td_is_undefined(*(const double *)base))
+            td_text_printf(b, "%snull", k ? "," : "");
         else
             td_text_printf(b, "%s%.17g", k ? "," : "", *(const double *)base);
     }
@@ -428,7 +504,7 @@ static void json_retainers(td_text *b, const td_run_summary *s)
 static void json_section(td_text *b, const td_run_summary *s)
 {
     int i;
-    json_real(b, "section_start", s->section_start, 1, 1);
+    json_real(b, "section_start", s->section_start, 1);
     td_text_printf(b, "\"section_count\":%ld,", s->section_count);
     if (s->section_retainer >= 0)
         td_text_printf(b, "\"section_retainer\":%d,\"section_radius\":[", s->section_retainer);
@@ -439,19 +515,31 @@ static void json_section(td_text *b, const td_run_summary *s)
     td_text_printf(b, "],");
 }
 
+/* "warnings":[...], each a string ([] when there is none). */
+static void json_warnings(td_text *b, const td_run_summary *s)
+{
+    int i;
+    td_text_printf(b, "\"warnings\":[");
+    for (i = 0; i < s->warning_count; i++) {
+        td_text_printf(b, "%s", i ? "," : "");
+        td_text_json_string(b, s->warnings[i]);
+    }
+    td_text_printf(b, "],");
+}
+
 /* The answers that converge, first (docs/validation.md). */
 static void json_answers(td_text *b, const td_run_summary *s)
 {
-    json_real(b, "peak_housing_force", s->peak_housing_force, 0, 1);
-    json_real(b, "total_impulse", s->total_impulse, 0, 1);
-    json_real(b, "friction_work", s->friction_work, 0, 1);
-    json_real(b, "final_speed", s->final_speed, 0, 1);
+    json_real(b, "peak_housing_force", s->peak_housing_force, 1);
+    json_real(b, "total_impulse", s->total_impulse, 1);
+    json_real(b, "friction_work", s->friction_work, 1);
+    json_real(b, "final_speed", s->final_speed, 1);
     json_string(b, "ending", s->ending);
-    json_real(b, "ending_whirl_frequency", s->ending_whirl_frequency, 0, 1);
-    json_real(b, "ending_window", s->ending_window, 0, 1);
+    json_real(b, "ending_whirl_frequency", s->ending_whirl_frequency, 1);
+    json_real(b, "ending_window", s->ending_window, 1);
     json_string(b, "regime", td_regime_name(td_run_summary_regime(s)));
-    json_real(b, "peak_amb_force", s->stats.peak_amb >= 0 ? s->stats.peak_amb_force : -1.0, 1, 1);
-    json_real(b, "peak_amb_load", s->stats.peak_amb >= 0 ? s->stats.peak_amb_load : -1.0, 1, 1);
+    json_real(b, "peak_amb_force", s->stats.peak_amb >= 0 ? s->stats.peak_amb_force : TD_UNDEFINED, 1);
+    json_real(b, "peak_amb_load", s->stats.peak_amb >= 0 ? s->stats.peak_amb_load : TD_UNDEFINED, 1);
     if (s->stats.peak_amb >= 0)
         td_text_printf(b, "\"peak_amb\":%d,", s->stats.peak_amb);
     else
@@ -461,16 +549,16 @@ static void json_answers(td_text *b, const td_run_summary *s)
         return;
     }
     td_text_printf(b, "\"energy\":{");
-    json_real(b, "kinetic", s->energy.kinetic, 0, 1);
-    json_real(b, "elastic", s->energy.elastic, 0, 1);
-    json_real(b, "initial", s->energy.initial, 0, 1);
-    json_real(b, "external_work", s->energy.external_work, 0, 1);
-    json_real(b, "drive_work", s->energy.drive_work, 0, 1);
-    json_real(b, "damping_loss", s->energy.damping_loss, 0, 1);
-    json_real(b, "contact_loss", s->energy.contact_loss, 0, 1);
-    json_real(b, "drag_loss", s->energy.drag_loss, 0, 1);
-    json_real(b, "impact_loss", s->energy.impact_loss, 0, 1);
-    json_real(b, "residual", s->energy.residual, 0, 0);
+    json_real(b, "kinetic", s->energy.kinetic, 1);
+    json_real(b, "elastic", s->energy.elastic, 1);
+    json_real(b, "initial", s->energy.initial, 1);
+    json_real(b, "external_work", s->energy.external_work, 1);
+    json_real(b, "drive_work", s->energy.drive_work, 1);
+    json_real(b, "damping_loss", s->energy.damping_loss, 1);
+    json_real(b, "contact_loss", s->energy.contact_loss, 1);
+    json_real(b, "drag_loss", s->energy.drag_loss, 1);
+    json_real(b, "impact_loss", s->energy.impact_loss, 1);
+    json_real(b, "residual", s->energy.residual, 0);
     td_text_printf(b, "},");
 }
 
@@ -485,37 +573,37 @@ int td_run_summary_json(char *buf, size_t n, const td_run_summary *s)
     json_string(&b, "status", td_strerror(s->status));
     json_string(&b, "message", s->message);
     json_answers(&b, s);
-    json_real(&b, "t_start", s->t_start, 0, 1);
-    json_real(&b, "t_end", s->t_end, 0, 1);
-    json_real(&b, "t_reached", s->t_reached, 0, 1);
-    json_real(&b, "speed", s->speed, 0, 1);
+    json_real(&b, "t_start", s->t_start, 1);
+    json_real(&b, "t_end", s->t_end, 1);
+    json_real(&b, "t_reached", s->t_reached, 1);
+    json_real(&b, "speed", s->speed, 1);
     json_start(&b, s);
     json_files(&b, s);
     td_text_printf(&b, "\"samples\":%ld,\"grid_samples\":%ld,\"events\":%ld,\"contacts\":%ld,", s->samples,
                    s->grid_samples, s->events, s->contacts);
-    json_real(&b, "first_contact_time", s->first_contact_time, 1, 1);
-    json_real(&b, "last_contact_time", s->last_contact_time, 1, 1);
-    json_real(&b, "peak_normal_force", s->peak_normal_force, 0, 1);
+    json_real(&b, "first_contact_time", s->first_contact_time, 1);
+    json_real(&b, "last_contact_time", s->last_contact_time, 1);
+    json_real(&b, "peak_normal_force", s->peak_normal_force, 1);
     td_text_printf(&b, "\"peak_normal_force_converges\":%s,", s->peak_converges ? "true" : "false");
-    json_real(&b, "peak_time", s->peak_time, 1, 1);
+    json_real(&b, "peak_time", s->peak_time, 1);
     if (s->peak_retainer >= 0)
         td_text_printf(&b, "\"peak_retainer\":%d,", s->peak_retainer);
     else
         td_text_printf(&b, "\"peak_retainer\":null,");
-    json_real(&b, "contact_time", s->contact_time, 0, 1);
-    json_real(&b, "contact_fraction", s->contact_fraction, 0, 1);
-    json_real(&b, "free_window", s->free_window, 1, 1);
+    json_real(&b, "contact_time", s->contact_time, 1);
+    json_real(&b, "contact_fraction", s->contact_fraction, 1);
+    json_real(&b, "free_window", s->free_window, 1);
     td_text_printf(&b, "\"free_at_end\":%s,", s->free_at_end < 0 ? "null" : s->free_at_end ? "true" : "false");
     td_text_printf(&b, "\"returned_to_free_orbit\":%s,",
                    s->returned_to_free_orbit < 0 ? "null"
                    : s->returned_to_free_orbit   ? "true"
                                                  : "false");
-    json_real(&b, "revolutions", s->revolutions, 0, 1);
-    json_real(&b, "revolutions_after_contact", s->revolutions_after_contact, 0, 1);
-    json_real(&b, "wall_time", s->wall_time, 0, 1);
-    json_real(&b, "solver_wall_time", s->solver_wall_time, 0, 1);
-    json_real(&b, "wall_time_per_revolution", s->wall_time_per_revolution, 1, 1);
-    json_real(&b, "realtime_factor", s->realtime_factor, 1, 1);
+    json_real(&b, "revolutions", s->revolutions, 1);
+    json_real(&b, "revolutions_after_contact", s->revolutions_after_contact, 1);
+    json_real(&b, "wall_time", s->wall_time, 1);
+    json_real(&b, "solver_wall_time", s->solver_wall_time, 1);
+    json_real(&b, "wall_time_per_revolution", s->wall_time_per_revolution, 1);
+    json_real(&b, "realtime_factor", s->realtime_factor, 1);
     td_text_printf(&b,
                    "\"stats\":{\"steps\":%ld,\"residual_evals\":%ld,\"jacobian_evals\":%ld,\"linear_setups\":%ld,"
                    "\"nonlinear_iters\":%ld,\"error_test_fails\":%ld,\"nonlinear_fails\":%ld,\"restarts\":%ld,"
@@ -523,14 +611,15 @@ int td_run_summary_json(char *buf, size_t n, const td_run_summary *s)
                    s->stats.steps, s->stats.residual_evals, s->stats.jacobian_evals, s->stats.linear_setups,
                    s->stats.nonlinear_iters, s->stats.error_test_fails, s->stats.nonlinear_fails, s->stats.restarts,
                    s->stats.events, s->stats.contact_onsets, s->stats.releases, s->stats.flight_steps);
-    json_real(&b, "flight_time", s->stats.flight_time, 0, 1);
-    json_real(&b, "worst_drift", s->stats.worst_drift, 0, 1);
-    json_real(&b, "peak_normal_force", s->stats.peak_normal_force, 0, 1);
-    json_real(&b, "time_in_contact", s->stats.time_in_contact, 0, 1);
-    json_real(&b, "first_contact_time", s->stats.first_contact_time, 1, 1);
-    json_real(&b, "wall_time", s->stats.wall_time, 0, 0);
+    json_real(&b, "flight_time", s->stats.flight_time, 1);
+    json_real(&b, "worst_drift", s->stats.worst_drift, 1);
+    json_real(&b, "peak_normal_force", s->stats.peak_normal_force, 1);
+    json_real(&b, "time_in_contact", s->stats.time_in_contact, 1);
+    json_real(&b, "first_contact_time", s->stats.first_contact_time, 1);
+    json_real(&b, "wall_time", s->stats.wall_time, 0);
     td_text_printf(&b, "},");
     json_section(&b, s);
+    json_warnings(&b, s);
     json_retainers(&b, s);
     td_text_printf(&b, "}");
     return (int)b.len;

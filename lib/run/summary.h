@@ -13,4 +13,8 @@ void td_run_summary_init(td_run_summary *s, double t0, double t_end, double spee
  *  out->whirl_frequency, out->mean_normal and out->rms_normal. */
 void td_run_retainer_classify(td_run_retainer *out, double speed, double span);
 
+/** A run that did not reach its end has no answers: every quantity that sums up or picks the
+ *  largest over the whole run, or describes its end, set TD_UNDEFINED (touchdown/run.h). */
+void td_run_summary_undefine_answers(td_run_summary *s);
+
 #endif

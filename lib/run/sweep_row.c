@@ -1,4 +1,5 @@
 /* A sweep's summary row (touchdown/sweep.h): the quantities a run summary leads with. */
+#include "touchdown/dofs.h"
 #include "touchdown/sweep.h"
 
 #include <math.h>
@@ -12,9 +13,9 @@ static void row_section(td_sweep_row *row, const td_run_summary *s)
     row->section_count = s->section_count;
     row->section_kept = s->section_kept;
     row->section_clearance = s->section_clearance;
-    row->section_radius_min = row->section_radius_max = NAN;
+    row->section_radius_min = row->section_radius_max = TD_UNDEFINED;
     for (i = 0; i < TD_RUN_SECTION_SAMPLES; i++) {
-        row->section_radius[i] = i < s->section_kept ? s->section_radius[i] : NAN;
+        row->section_radius[i] = i < s->section_kept ? s->section_radius[i] : TD_UNDEFINED;
         if (i < s->section_kept) {
             row->section_radius_min =
                 i == 0 ? s->section_radius[i] : fmin(row->section_radius_min, s->section_radius[i]);
@@ -24,12 +25,28 @@ static void row_section(td_sweep_row *row, const td_run_summary *s)
     }
 }
 
+/* The run's warnings joined by "; " (cut to the row's field). */
+static void row_warnings(td_sweep_row *row, const td_run_summary *s)
+{
+    size_t len = 0;
+    int i;
+    row->warnings[0] = '\0';
+    for (i = 0; i < s->warning_count && len < sizeof row->warnings - 1; i++)
+        len += (size_t)snprintf(row->warnings + len, sizeof row->warnings - len, "%s%s", i ? "; " : "", s->warnings[i]);
+}
+
 void td_sweep_row_from_summary(td_sweep_row *row, const td_run_summary *s)
 {
+    if (s->status != TD_OK) { /* a failed point has no answers: only how far it got and how long */
+        td_sweep_row_unknown(row, TD_SWEEP_FAILED, td_strerror(s->status), s->message);
+        row->t_reached = s->t_reached;
+        row->wall_time = s->wall_time;
+        row_warnings(row, s);
+        return;
+    }
     memset(row, 0, sizeof *row);
-    row->state = s->status == TD_OK ? TD_SWEEP_DONE : TD_SWEEP_FAILED;
+    row->state = TD_SWEEP_DONE;
     snprintf(row->status, sizeof row->status, "%s", td_strerror(s->status));
-    snprintf(row->message, sizeof row->message, "%s", s->status == TD_OK ? "" : s->message);
     row->peak_housing_force = s->peak_housing_force;
     row->total_impulse = s->total_impulse;
     row->friction_work = s->friction_work;
@@ -41,11 +58,12 @@ void td_sweep_row_from_summary(td_sweep_row *row, const td_run_summary *s)
     row->returned_to_free_orbit = s->returned_to_free_orbit;
     row->final_speed = s->final_speed;
     /* as in the run's JSON: no load without a working AMB */
-    row->peak_amb_load = s->stats.peak_amb >= 0 ? s->stats.peak_amb_load : -1.0;
+    row->peak_amb_load = s->stats.peak_amb >= 0 ? s->stats.peak_amb_load : TD_UNDEFINED;
     row->t_reached = s->t_reached;
     row->wall_time = s->wall_time;
     snprintf(row->regime, sizeof row->regime, "%s", td_regime_name(td_run_summary_regime(s)));
     row_section(row, s);
+    row_warnings(row, s);
 }
 
 void td_sweep_row_unknown(td_sweep_row *row, td_sweep_state state, const char *status, const char *message)
@@ -55,14 +73,14 @@ void td_sweep_row_unknown(td_sweep_row *row, td_sweep_state state, const char *s
     row->state = (int)state;
     snprintf(row->status, sizeof row->status, "%s", status ? status : "");
     snprintf(row->message, sizeof row->message, "%s", message ? message : "");
-    row->peak_housing_force = row->total_impulse = row->friction_work = row->contact_time = NAN;
-    row->first_contact_time = row->ending_whirl_frequency = row->final_speed = row->peak_amb_load = NAN;
-    row->t_reached = row->wall_time = NAN;
+    row->peak_housing_force = row->total_impulse = row->friction_work = row->contact_time = TD_UNDEFINED;
+    row->first_contact_time = row->ending_whirl_frequency = row->final_speed = row->peak_amb_load = TD_UNDEFINED;
+    row->t_reached = row->wall_time = TD_UNDEFINED;
     row->contacts = -1;
     row->returned_to_free_orbit = -1;
     snprintf(row->regime, sizeof row->regime, "%s", td_regime_name(TD_REGIME_FAILED));
     row->section_count = -1;
-    row->section_radius_min = row->section_radius_max = row->section_clearance = NAN;
+    row->section_radius_min = row->section_radius_max = row->section_clearance = TD_UNDEFINED;
     for (i = 0; i < TD_RUN_SECTION_SAMPLES; i++)
-        row->section_radius[i] = NAN;
+        row->section_radius[i] = TD_UNDEFINED;
 }

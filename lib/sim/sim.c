@@ -713,10 +713,10 @@ static void init_layout(td_sim *s)
     s->of = s->ou + s->nr;
     s->neq = s->of + s->ns;
     s->t = s->t_ida = s->t_acc = s->opt.t0;
-    s->stats.first_contact_time = -1.0;
-    s->stats.peak_time = -1.0;
+    s->stats.first_contact_time = TD_UNDEFINED;
+    s->stats.peak_time = TD_UNDEFINED;
     s->stats.peak_retainer = -1;
-    s->stats.peak_amb_time = -1.0;
+    s->stats.peak_amb_time = TD_UNDEFINED;
     s->stats.peak_amb = -1;
 }
 

@@ -62,7 +62,7 @@ void td_sim_queue_event(td_sim *s, const td_event *ev)
     case TD_EVENT_CONTACT_ONSET:
     case TD_EVENT_PENALTY_ENTER:
         s->stats.contact_onsets++;
-        if (s->stats.first_contact_time < 0.0)
+        if (td_is_undefined(s->stats.first_contact_time))
             s->stats.first_contact_time = ev->time;
         break;
     case TD_EVENT_RELEASE:

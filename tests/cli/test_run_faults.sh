@@ -164,7 +164,8 @@ done
 wait "$pid"
 rc=$?
 check "complete run: exit 0 (got $rc; $(head -c 200 "$work/l.err"))" test "$rc" = 0
-check "complete run: nothing on stderr" test ! -s "$work/l.err"
+# (but its warnings: case A's second unbalance step, at 1.1 s, never happens in 0.3 s)
+check "complete run: nothing on stderr but warnings" test -z "$(grep -v ': warning: ' "$work/l.err")"
 check "while running: $partial_only of $polls listings showed only .partial files (stale results removed)" \
     test "$partial_only" -ge 1 -a "$stale_gone" = 1
 check "while running: no incomplete file at a final path${bad_final:+ (saw$bad_final)}" test -z "$bad_final"
@@ -210,7 +211,8 @@ mkdir -p "$d"
 rc=$?
 err=$(cat "$work/f.err")
 check "solver failure: exit 1 (got $rc)" test "$rc" = 1
-check "solver failure: one error line (got $(wc -l <"$work/f.err"))" test "$(wc -l <"$work/f.err")" = 1
+check "solver failure: one error line besides the warnings (got $(grep -vc ': warning: ' "$work/f.err"))" \
+    test "$(grep -vc ': warning: ' "$work/f.err")" = 1
 check "solver failure: the message says what failed and when: $err" \
     grep -qE "fail.*t = [0-9]" "$work/f.err"
 check "solver failure: the summary on stdout says INCOMPLETE" grep -q "INCOMPLETE (solver failure)" "$work/f.out"

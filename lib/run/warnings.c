@@ -1,0 +1,89 @@
+/*
+ * The warnings of a run (touchdown/run.h td_run_summary.warnings): a result the library computed
+ * as asked but that the case probably did not mean. Each rule is checked here and only here.
+ */
+#include "run/warnings.h"
+
+#include <stdarg.h>
+#include <stdio.h>
+
+#include "touchdown/dofs.h"
+
+/* One more warning; past TD_RUN_MAX_WARNINGS the last slot counts the ones left out. */
+static void warn(td_run_summary *s, const char *fmt, ...)
+{
+    va_list ap;
+    if (s->warning_count >= TD_RUN_MAX_WARNINGS) {
+        snprintf(s->warnings[TD_RUN_MAX_WARNINGS - 1], TD_RUN_WARNING_SIZE, "more warnings than the %d a summary keeps",
+                 TD_RUN_MAX_WARNINGS);
+        return;
+    }
+    va_start(ap, fmt);
+    vsnprintf(s->warnings[s->warning_count++], TD_RUN_WARNING_SIZE, fmt, ap);
+    va_end(ap);
+}
+
+/* An AMB whose force went past its capacity with saturation off: a real amplifier cannot give it.
+ * A saturating AMB is clipped at its capacity (load <= 1), so a peak load above 1 is always that
+ * of an AMB without saturation. */
+static void check_amb_capacity(td_run_summary *s, const td_model *m)
+{
+    td_amb a;
+    int k = s->stats.peak_amb;
+    if (k < 0 || !(s->stats.peak_amb_load > 1.0) || td_model_get_amb(m, k, &a) != TD_OK || a.saturation)
+        return;
+    warn(s,
+         "AMB %d reached %.4g N, %.4g %% of its force capacity %.6g N, at t = %.6g s with saturation off: a real "
+         "amplifier clips at its capacity (ambs[%d].saturation = true models that)",
+         k, s->stats.peak_amb_force, 100.0 * s->stats.peak_amb_load, a.force_capacity, s->stats.peak_amb_time, k);
+}
+
+/* Schedule entries at or after the end time never happen. */
+static void check_schedule(td_run_summary *s, const td_model *m)
+{
+    int i, n = td_model_change_count(m);
+    td_change c;
+    for (i = 0; i < n; i++)
+        if (td_model_get_change(m, i, &c) == TD_OK && c.time >= s->t_end)
+            warn(s, "schedule[%d] at t = %.6g s is at or after the end time %.6g s: it never happens", i, c.time,
+                 s->t_end);
+}
+
+/* A clearance larger than the shaft radius at its retainer is out of all proportion (touchdown
+ * bearings leave a few tenths of a millimetre, about half the AMB air gap, round a shaft of tens
+ * of millimetres; a clearance of the radius's size is a slip of units). An AMB air gap, when the
+ * case states one, bounds every clearance already (td_model_validate). */
+static void check_clearances(td_run_summary *s, const td_model *m)
+{
+    int i, n = td_model_retainer_count(m);
+    td_retainer r;
+    td_amb a;
+    for (i = 0; i < td_model_amb_count(m); i++)
+        if (td_model_get_amb(m, i, &a) == TD_OK && a.air_gap > 0.0)
+            return;
+    for (i = 0; i < n; i++)
+        if (td_model_get_retainer(m, i, &r) == TD_OK && r.clearance > r.shaft_radius)
+            warn(s,
+                 "retainers[%d].clearance %.6g m is larger than the shaft radius there (%.6g m) and no AMB air gap "
+                 "bounds it: a clearance in mm instead of m?",
+                 i, r.clearance, r.shaft_radius);
+}
+
+/* A section from a few crossings cannot tell a period-n orbit from a spread. */
+static void check_section(td_run_summary *s)
+{
+    if (s->status != TD_OK || s->section_count <= 0 || s->section_count >= TD_RUN_SECTION_MIN_CROSSINGS)
+        return;
+    warn(s,
+         "the once-per-revolution section has only %ld crossings after the transient (from t = %.6g s; at least %d "
+         "tell an orbit): lengthen end_time or lower output.section_after",
+         s->section_count, s->section_start, TD_RUN_SECTION_MIN_CROSSINGS);
+}
+
+void td_run_check_warnings(td_run_summary *s, const td_model *m)
+{
+    check_amb_capacity(s, m);
+    check_schedule(s, m);
+    check_clearances(s, m);
+    check_section(s);
+}
