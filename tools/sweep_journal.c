@@ -32,6 +32,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <sys/types.h>
 #include <unistd.h>
 #include <zlib.h>
@@ -303,6 +304,51 @@ int sweep_store_read(const char *journal, uint64_t fp, long points, td_sweep_row
     a.found = found;
     code = read_file(journal, fp, points, rows, found);
     return code ? code : each_part(journal, read_part, &a);
+}
+
+/* The inputs of a sweep, for check_part. */
+typedef struct input_list {
+    const char *journal;
+    const char *const *paths;
+    int n;
+} input_list;
+
+/* The index of the input that `path` is (the same device and inode), or -1: none, or no file. */
+static int input_index(const char *path, const input_list *in)
+{
+    struct stat a, b;
+    int i;
+    if (stat(path, &a) != 0)
+        return -1;
+    for (i = 0; i < in->n; i++)
+        if (stat(in->paths[i], &b) == 0 && a.st_dev == b.st_dev && a.st_ino == b.st_ino)
+            return i;
+    return -1;
+}
+
+/* 0, or TD_EXIT_USAGE after an error line if the journal or part at path is an input. */
+static int check_part(const char *path, void *arg)
+{
+    const input_list *in = arg;
+    int i = input_index(path, in);
+    if (i < 0)
+        return 0;
+    td_cli_error("sweep",
+                 "%s: the sweep's journal%s is the same file as the %s (%s): an input is never overwritten; "
+                 "choose another -o prefix",
+                 path, strcmp(path, in->journal) ? " part" : "", i == 0 ? "case file" : "@include file", in->paths[i]);
+    return TD_EXIT_USAGE;
+}
+
+int sweep_store_check_inputs(const char *journal, const char *const *inputs, int n)
+{
+    input_list in;
+    int code;
+    in.journal = journal;
+    in.paths = inputs;
+    in.n = n;
+    code = check_part(journal, &in);
+    return code ? code : each_part(journal, check_part, &in);
 }
 
 static int remove_part(const char *path, void *arg)

@@ -22,6 +22,11 @@ uint64_t sweep_fingerprint(const td_case *base, const td_sweep_grid *grid);
  * damaged before its end is refused: TD_EXIT_USAGE after an error line. */
 int sweep_store_read(const char *journal, uint64_t fp, long points, td_sweep_row *rows, long *found);
 
+/* Refuse a journal at `journal`, or a part of it on disk, that is one of the n inputs (the case
+ * file first, then its @include files: td_case_files), compared by device and inode: the sweep
+ * would overwrite it, then remove it. Returns 0, or TD_EXIT_USAGE after an error line. */
+int sweep_store_check_inputs(const char *journal, const char *const *inputs, int n);
+
 /* Remove the journal and its parts (once a finished table is written). */
 void sweep_store_remove(const char *journal);
 

@@ -41,8 +41,31 @@ int sweep_point_overrides(const sweep_job *job, long point, const char **items,
     return n;
 }
 
+/* The name of point `point`'s result file with extension `ext` (".h5", ".csv") in `dir`. */
+#define SWEEP_POINT_FILE "%s/point-%06ld%s"
+
+/* dst (TD_OUTPUT_PATH_SIZE bytes) = the file of `point` with extension `ext`; -1 ("") if too long. */
+static int point_path(char *dst, const char *dir, long point, const char *ext)
+{
+    if (snprintf(dst, TD_OUTPUT_PATH_SIZE, SWEEP_POINT_FILE, dir, point, ext) < TD_OUTPUT_PATH_SIZE)
+        return 0;
+    dst[0] = '\0';
+    return -1;
+}
+
+int sweep_point_paths(const sweep_job *job, long point, td_output_options *out)
+{
+    int bad = 0;
+    out->hdf5_path[0] = out->csv_path[0] = '\0';
+    if (job->point_dir)
+        bad |= point_path(out->hdf5_path, job->point_dir, point, ".h5");
+    if (job->point_dir && job->point_csv)
+        bad |= point_path(out->csv_path, job->point_dir, point, ".csv");
+    return bad;
+}
+
 /* The whole run of one point, as `touchdown run` does it, its files written only when the sweep
- * keeps them (DIR/point-NNNNNN.h5 and .csv, their lengths checked before the sweep). */
+ * keeps them (DIR/point-NNNNNN.h5 and .csv, checked before the sweep). */
 static void run_point(const sweep_job *job, long point, td_sweep_row *row)
 {
     const char *items[TD_CLI_MAX_SETS + TD_SWEEP_MAX_KEYS];
@@ -60,11 +83,7 @@ static void run_point(const sweep_job *job, long point, td_sweep_row *row)
         return;
     }
     out = *td_case_output_options(c);
-    out.hdf5_path[0] = out.csv_path[0] = '\0';
-    if (job->point_dir)
-        snprintf(out.hdf5_path, sizeof out.hdf5_path, SWEEP_POINT_FILE, job->point_dir, point, ".h5");
-    if (job->point_dir && job->point_csv)
-        snprintf(out.csv_path, sizeof out.csv_path, SWEEP_POINT_FILE, job->point_dir, point, ".csv");
+    sweep_point_paths(job, point, &out); /* every point's checked before the sweep */
     st = td_sim_create(td_case_model(c), td_case_sim_options(c), &sim, &err);
     if (st != TD_OK)
         td_run_summary_failed(&s, td_case_sim_options(c)->t0, td_case_end_time(c), td_model_speed(td_case_model(c)),
