@@ -15,6 +15,11 @@
 #include <string.h>
 #include <sys/types.h>
 #include <sys/wait.h>
+#ifdef __linux__
+#include <sys/prctl.h>
+#else
+#include <sys/time.h>
+#endif
 #include <unistd.h>
 
 /* A running worker: its process, the read end of its pipe, its point and the bytes of its row. */
@@ -127,11 +132,49 @@ static void worker_main(const sweep_job *job, long point, int fd, const sigset_t
     _exit(write_all(fd, &row, sizeof row) ? 3 : 0);
 }
 
+#ifndef __linux__
+/* The sweep's process, for the parent watch of a worker (set in the worker before its handler). */
+static volatile pid_t watched_parent;
+
+static void on_parent_watch(int sig)
+{
+    (void)sig;
+    if (getppid() != watched_parent) /* reparented: the sweep is gone */
+        _exit(4);
+}
+#endif
+
+/* A worker dies with its sweep, even one killed by SIGKILL, which no handler sees: on Linux the
+ * kernel sends the worker SIGKILL when its parent dies (prctl PR_SET_PDEATHSIG, Linux-specific:
+ * it fires when the thread that forked exits, and the pool forks from the sweep's main thread).
+ * A parent that died before the request took effect left the worker reparented already, so its
+ * parent is checked once the request is made. Elsewhere the worker polls its parent once a second
+ * (an interval timer whose handler calls only getppid and _exit, both async-signal-safe). */
+static void die_with_parent(pid_t parent)
+{
+#ifdef __linux__
+    prctl(PR_SET_PDEATHSIG, SIGKILL);
+#else
+    struct sigaction sa;
+    struct itimerval every = {{1, 0}, {1, 0}};
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = on_parent_watch;
+    sa.sa_flags = SA_RESTART;
+    sigemptyset(&sa.sa_mask);
+    watched_parent = parent;
+    sigaction(SIGALRM, &sa, NULL);
+    setitimer(ITIMER_REAL, &every, NULL);
+#endif
+    if (getppid() != parent)
+        _exit(4);
+}
+
 /* Start a worker for `point` in w; 0 on success, -1 if no process or pipe could be made. */
 static int worker_start(worker *w, const sweep_job *job, long point)
 {
     int fds[2];
     sigset_t stop, old_mask;
+    pid_t parent = getpid();
     if (pipe(fds))
         return -1;
     fflush(NULL); /* a child must not print what the parent has buffered */
@@ -140,6 +183,7 @@ static int worker_start(worker *w, const sweep_job *job, long point)
     sigprocmask(SIG_BLOCK, &stop, &old_mask);
     w->pid = fork();
     if (w->pid == 0) {
+        die_with_parent(parent);
         close(fds[0]);
         worker_main(job, point, fds[1], &old_mask);
     }

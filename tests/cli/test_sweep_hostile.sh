@@ -3,7 +3,8 @@
 # its inputs, whatever the names. A case file or an @include named like (or hard-linked to) any
 # point's file under --point-files, like the journal or like a part of it, is refused before
 # anything runs: one line naming the file, exit 2, the input unchanged and still there, and the
-# advice is to choose another -o prefix, never to remove the file (it is the user's case).
+# advice is to choose another -o prefix, never to remove the file (it is the user's case). A sweep
+# killed by SIGKILL takes its workers with it.
 # Args: $1 = the touchdown binary, $2 = the source directory. Runs in the build's tests directory.
 set -u
 tool=$1
@@ -72,5 +73,39 @@ make_case "$work/tc" main.cfg s.csv
 t "$work/tc" sweep -j 1 --vary speed=60,90 -o s main.cfg
 refused "$work/tc" s.csv "an @include named like the table"
 check "an @include named like the table: the advice is another -o prefix" has "$work/tc/.err" "choose another -o prefix"
+
+# ---- (c) the workers die with their sweep ------------------------------------------------------
+# Two points of the rig simulated for 500 s (minutes of CPU each), -j 2: once both workers run,
+# the sweep is killed with SIGKILL, which no handler sees; its workers must end with it. Poll for
+# them at most 30 s (a hang catcher: without the fix they run for minutes).
+alive() { # PID: a process that is neither gone nor a zombie
+    local st
+    st=$(ps -o stat= -p "$1" 2>/dev/null) || return 1
+    [ -n "$st" ] && [ "${st#Z}" = "$st" ]
+}
+if command -v pgrep >/dev/null && command -v ps >/dev/null; then
+    make_case "$work/kill" main.cfg
+    (cd "$work/kill" && exec "$tool" sweep -j 2 --no-progress --vary end_time=500,501 -o k main.cfg \
+        >"$work/kill/.out" 2>"$work/kill/.err" </dev/null) &
+    pid=$!
+    kids=""
+    for _ in $(seq 1 600); do # both workers, as soon as they exist (at most 30 s)
+        kids=$(pgrep -P "$pid" | tr '\n' ' ')
+        [ "$(wc -w <<<"$kids")" = 2 ] && break
+        sleep 0.05
+    done
+    trap 'for k in $kids; do kill -s KILL "$k" 2>/dev/null; done; rm -rf "$work"' EXIT
+    kill -s KILL "$pid"
+    wait "$pid" 2>/dev/null
+    left=$kids
+    for _ in $(seq 1 300); do # at most 30 s
+        left=""
+        for k in $kids; do alive "$k" && left="$left $k"; done
+        [ -z "$left" ] && break
+        sleep 0.1
+    done
+    check "sweep killed by SIGKILL with 2 workers running (pids: $kids): no worker outlives it${left:+ (alive:$left)}" \
+        test "$(wc -w <<<"$kids")" = 2 -a -z "$left"
+fi
 
 finish
