@@ -14,6 +14,7 @@ shift || true
 
 packages=(gcc make cmake pkg-config libsundials-dev libsuitesparse-dev libgsl-dev libhdf5-dev
           libcmocka-dev libconfig-dev gnuplot-nox
+          zlib1g-dev                                 # the sweep journal's CRC-32 (the tool)
           openmpi-bin libopenmpi-dev                 # touchdown sweep across nodes (optional: TD_MPI)
           hdf5-tools python3 python3-h5py clang-format)  # test-only: h5dump reads HDF5 flags,
                                             # python3 (with h5py) checks JSON and HDF5 files,

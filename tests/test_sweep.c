@@ -98,6 +98,31 @@ static void test_bad_specs(void **state)
     td_sweep_grid_free(&g); /* NULL accepted */
 }
 
+/* A spec holding control characters (a pasted ESC, a CR, a newline inside quotes) is refused with
+ * one line that shows them escaped: the error is what the tool prints on a terminal. Found by the
+ * fuzz target fuzz/fuzz_vary.c. */
+static void test_bad_spec_control_chars(void **state)
+{
+    static const char *const bad[] = {"sp\x1b[2Jeed", "speed=1:2:3\r", "speed=1:2:3:lo\ng", "speed=1,\"a\nb\",,2",
+                                      "\x01=1,,2"};
+    td_sweep_grid *g = NULL;
+    td_error err;
+    size_t i;
+    const char *p;
+    (void)state;
+    assert_int_equal(td_sweep_grid_create(&g, NULL), TD_OK);
+    for (i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+        assert_int_equal(td_sweep_grid_vary(g, bad[i], &err), TD_ERR_PARSE);
+        for (p = err.message; *p; p++)
+            if ((unsigned char)*p < 0x20)
+                fail_msg("spec %zu: a control character 0x%02x in \"%s\"", i, (unsigned)(unsigned char)*p, err.message);
+        assert_int_equal(td_sweep_grid_with(g, bad[i], &err), TD_ERR_PARSE);
+    }
+    assert_int_equal(td_sweep_grid_vary(g, bad[0], &err), TD_ERR_PARSE);
+    assert_non_null(strstr(err.message, "--vary 'sp\\x1b[2Jeed'"));
+    td_sweep_grid_free(&g);
+}
+
 /* 1e-3 to 10 in 9 points: 10^(i/2 - 3), a constant ratio sqrt(10), both ends exact. */
 static void test_log_range(void **state)
 {
@@ -486,13 +511,21 @@ static void test_zipped_table(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_range_ends_exact),  cmocka_unit_test(test_grid_order_and_lists),
-        cmocka_unit_test(test_bad_specs),         cmocka_unit_test(test_csv_table),
-        cmocka_unit_test(test_hdf5_table),        cmocka_unit_test(test_log_range),
-        cmocka_unit_test(test_log_range_forms),   cmocka_unit_test(test_bad_log_ranges),
-        cmocka_unit_test(test_range_overflow),    cmocka_unit_test(test_zip),
-        cmocka_unit_test(test_key_limit),         cmocka_unit_test(test_case_group),
-        cmocka_unit_test(test_case_group_errors), cmocka_unit_test(test_zipped_table),
+        cmocka_unit_test(test_range_ends_exact),
+        cmocka_unit_test(test_grid_order_and_lists),
+        cmocka_unit_test(test_bad_specs),
+        cmocka_unit_test(test_csv_table),
+        cmocka_unit_test(test_hdf5_table),
+        cmocka_unit_test(test_log_range),
+        cmocka_unit_test(test_log_range_forms),
+        cmocka_unit_test(test_bad_log_ranges),
+        cmocka_unit_test(test_range_overflow),
+        cmocka_unit_test(test_zip),
+        cmocka_unit_test(test_key_limit),
+        cmocka_unit_test(test_case_group),
+        cmocka_unit_test(test_case_group_errors),
+        cmocka_unit_test(test_zipped_table),
+        cmocka_unit_test(test_bad_spec_control_chars), /* found by fuzz/fuzz_vary.c */
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -198,34 +198,32 @@ static int add_case_axes(td_sweep_grid *g, const td_case *base)
     return TD_EXIT_USAGE;
 }
 
-/* The points' result files, checked by the rules of touchdown run before anything runs: the last
- * point's names (every name is as long) fit, and its files overwrite no input, the directory
- * exists and is writable. */
-static int check_point_files(const sweep_options *o, const td_case *c)
+/* The points' result files, checked by the rules of touchdown run before anything runs, every
+ * point's: the names fit, no file of a point (.h5, .csv, .events.csv) is an input (the case file
+ * or an @include, compared by device and inode) or another of its files, is anything but a
+ * regular file, or lies in a directory that is missing or not writable. */
+static int check_point_files(const sweep_job *job, const td_case *c)
 {
     td_output_options out;
     const char *const *files;
-    long last = td_sweep_grid_points(o->grid) - 1;
-    int n = 0;
+    long p, n = td_sweep_grid_points(job->grid);
+    int k = 0;
     td_error err;
-    if (!o->point_dir)
+    if (!job->point_dir)
         return 0;
-    memset(&out, 0, sizeof out);
-    if (snprintf(out.hdf5_path, sizeof out.hdf5_path, SWEEP_POINT_FILE, o->point_dir, last, ".h5") >=
-            (int)sizeof out.hdf5_path ||
-        snprintf(out.csv_path, sizeof out.csv_path, SWEEP_POINT_FILE, o->point_dir, last, ".csv") >=
-            (int)sizeof out.csv_path) {
-        td_cli_error("sweep", "--point-files: the directory name is too long (at most %d bytes a file name)",
-                     TD_OUTPUT_PATH_SIZE - 1);
-        return TD_EXIT_USAGE;
-    }
-    if (!o->point_csv)
-        out.csv_path[0] = '\0';
-    files = td_case_files(c, &n);
-    td_error_clear(&err);
-    if (td_output_check_paths(&out, files, n, &err) != TD_OK) {
-        td_cli_error("sweep", "--point-files %s: %s", o->point_dir, err.message);
-        return TD_EXIT_USAGE;
+    files = td_case_files(c, &k);
+    for (p = 0; p < n; p++) {
+        memset(&out, 0, sizeof out);
+        if (sweep_point_paths(job, p, &out)) {
+            td_cli_error("sweep", "--point-files: the directory name is too long (at most %d bytes a file name)",
+                         TD_OUTPUT_PATH_SIZE - 1);
+            return TD_EXIT_USAGE;
+        }
+        td_error_clear(&err);
+        if (td_output_check_paths(&out, files, k, &err) != TD_OK) {
+            td_cli_error("sweep", "--point-files %s: %s", job->point_dir, err.message);
+            return TD_EXIT_USAGE;
+        }
     }
     return 0;
 }
@@ -285,7 +283,8 @@ static int check_points(const sweep_job *job)
 }
 
 /* PREFIX.csv and PREFIX.h5, refused before the sweep by the rules of touchdown run, and the
- * journal PREFIX.journal (journal: TD_OUTPUT_PATH_SIZE bytes). */
+ * journal PREFIX.journal (journal: TD_OUTPUT_PATH_SIZE bytes), refused with its parts when one
+ * is an input. */
 static int choose_outputs(td_output_options *out, char *journal, const sweep_options *o, const td_case *c)
 {
     char stem[TD_OUTPUT_PATH_SIZE];
@@ -310,10 +309,10 @@ static int choose_outputs(td_output_options *out, char *journal, const sweep_opt
     files = td_case_files(c, &n);
     td_error_clear(&err);
     if (td_output_check_paths(out, files, n, &err) != TD_OK) {
-        fprintf(stderr, "touchdown: %s\n", err.message);
+        td_cli_error("sweep", "%s; choose another -o prefix", err.message);
         return TD_EXIT_USAGE;
     }
-    return 0;
+    return sweep_store_check_inputs(journal, files, n); /* the journal and its parts on disk */
 }
 
 /* Counts of the rows by state, what this run computed, and the seconds the merge of the parts and
@@ -520,7 +519,7 @@ static int prepare(int argc, char **argv, sweep_options *o, sweep_job *job, td_c
     if (!code)
         code = choose_outputs(out, go->journal, o, *base);
     if (!code)
-        code = check_point_files(o, *base);
+        code = check_point_files(job, *base);
     if (!code)
         code = check_points(job);
     if (code)

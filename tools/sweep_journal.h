@@ -17,8 +17,15 @@ uint64_t sweep_fingerprint(const td_case *base, const td_sweep_grid *grid);
 
 /* The rows held by the journal at `journal` and by its parts (journal.rank-K, written by the ranks
  * of an MPI run) into rows[] (missing files are none), *found counting the rows that were "not
- * run" before. A journal or part of another sweep is refused: TD_EXIT_USAGE after an error line. */
+ * run" before. Only whole records are read (frame, CRC-32, point, state, text bounds); a torn tail
+ * is dropped with a notice line. A journal or part of another sweep or format, not a journal, or
+ * damaged before its end is refused: TD_EXIT_USAGE after an error line. */
 int sweep_store_read(const char *journal, uint64_t fp, long points, td_sweep_row *rows, long *found);
+
+/* Refuse a journal at `journal`, or a part of it on disk, that is one of the n inputs (the case
+ * file first, then its @include files: td_case_files), compared by device and inode: the sweep
+ * would overwrite it, then remove it. Returns 0, or TD_EXIT_USAGE after an error line. */
+int sweep_store_check_inputs(const char *journal, const char *const *inputs, int n);
 
 /* Remove the journal and its parts (once a finished table is written). */
 void sweep_store_remove(const char *journal);
@@ -31,7 +38,7 @@ void sweep_store_remove(const char *journal);
 void sweep_part_path(char *dst, const char *journal, int rank);
 
 /* Open the journal (or part) at `path` of the sweep with fingerprint `fp` to append rows: created
- * when missing, else its torn last record is cut off. One of another sweep is refused. Returns 0,
+ * when missing, else its torn tail is cut off. One of another sweep, or damaged, is refused. Returns 0,
  * or TD_EXIT_USAGE / TD_EXIT_FAILED after an error line. */
 int sweep_journal_open(const char *path, uint64_t fp, long points, sweep_journal **out);
 

@@ -15,6 +15,11 @@
 #include <string.h>
 #include <sys/types.h>
 #include <sys/wait.h>
+#ifdef __linux__
+#include <sys/prctl.h>
+#else
+#include <sys/time.h>
+#endif
 #include <unistd.h>
 
 /* A running worker: its process, the read end of its pipe, its point and the bytes of its row. */
@@ -41,8 +46,31 @@ int sweep_point_overrides(const sweep_job *job, long point, const char **items,
     return n;
 }
 
+/* The name of point `point`'s result file with extension `ext` (".h5", ".csv") in `dir`. */
+#define SWEEP_POINT_FILE "%s/point-%06ld%s"
+
+/* dst (TD_OUTPUT_PATH_SIZE bytes) = the file of `point` with extension `ext`; -1 ("") if too long. */
+static int point_path(char *dst, const char *dir, long point, const char *ext)
+{
+    if (snprintf(dst, TD_OUTPUT_PATH_SIZE, SWEEP_POINT_FILE, dir, point, ext) < TD_OUTPUT_PATH_SIZE)
+        return 0;
+    dst[0] = '\0';
+    return -1;
+}
+
+int sweep_point_paths(const sweep_job *job, long point, td_output_options *out)
+{
+    int bad = 0;
+    out->hdf5_path[0] = out->csv_path[0] = '\0';
+    if (job->point_dir)
+        bad |= point_path(out->hdf5_path, job->point_dir, point, ".h5");
+    if (job->point_dir && job->point_csv)
+        bad |= point_path(out->csv_path, job->point_dir, point, ".csv");
+    return bad;
+}
+
 /* The whole run of one point, as `touchdown run` does it, its files written only when the sweep
- * keeps them (DIR/point-NNNNNN.h5 and .csv, their lengths checked before the sweep). */
+ * keeps them (DIR/point-NNNNNN.h5 and .csv, checked before the sweep). */
 static void run_point(const sweep_job *job, long point, td_sweep_row *row)
 {
     const char *items[TD_CLI_MAX_SETS + TD_SWEEP_MAX_KEYS];
@@ -60,11 +88,7 @@ static void run_point(const sweep_job *job, long point, td_sweep_row *row)
         return;
     }
     out = *td_case_output_options(c);
-    out.hdf5_path[0] = out.csv_path[0] = '\0';
-    if (job->point_dir)
-        snprintf(out.hdf5_path, sizeof out.hdf5_path, SWEEP_POINT_FILE, job->point_dir, point, ".h5");
-    if (job->point_dir && job->point_csv)
-        snprintf(out.csv_path, sizeof out.csv_path, SWEEP_POINT_FILE, job->point_dir, point, ".csv");
+    sweep_point_paths(job, point, &out); /* every point's checked before the sweep */
     st = td_sim_create(td_case_model(c), td_case_sim_options(c), &sim, &err);
     if (st != TD_OK)
         td_run_summary_failed(&s, td_case_sim_options(c)->t0, td_case_end_time(c), td_model_speed(td_case_model(c)),
@@ -108,11 +132,49 @@ static void worker_main(const sweep_job *job, long point, int fd, const sigset_t
     _exit(write_all(fd, &row, sizeof row) ? 3 : 0);
 }
 
+#ifndef __linux__
+/* The sweep's process, for the parent watch of a worker (set in the worker before its handler). */
+static volatile pid_t watched_parent;
+
+static void on_parent_watch(int sig)
+{
+    (void)sig;
+    if (getppid() != watched_parent) /* reparented: the sweep is gone */
+        _exit(4);
+}
+#endif
+
+/* A worker dies with its sweep, even one killed by SIGKILL, which no handler sees: on Linux the
+ * kernel sends the worker SIGKILL when its parent dies (prctl PR_SET_PDEATHSIG, Linux-specific:
+ * it fires when the thread that forked exits, and the pool forks from the sweep's main thread).
+ * A parent that died before the request took effect left the worker reparented already, so its
+ * parent is checked once the request is made. Elsewhere the worker polls its parent once a second
+ * (an interval timer whose handler calls only getppid and _exit, both async-signal-safe). */
+static void die_with_parent(pid_t parent)
+{
+#ifdef __linux__
+    prctl(PR_SET_PDEATHSIG, SIGKILL);
+#else
+    struct sigaction sa;
+    struct itimerval every = {{1, 0}, {1, 0}};
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = on_parent_watch;
+    sa.sa_flags = SA_RESTART;
+    sigemptyset(&sa.sa_mask);
+    watched_parent = parent;
+    sigaction(SIGALRM, &sa, NULL);
+    setitimer(ITIMER_REAL, &every, NULL);
+#endif
+    if (getppid() != parent)
+        _exit(4);
+}
+
 /* Start a worker for `point` in w; 0 on success, -1 if no process or pipe could be made. */
 static int worker_start(worker *w, const sweep_job *job, long point)
 {
     int fds[2];
     sigset_t stop, old_mask;
+    pid_t parent = getpid();
     if (pipe(fds))
         return -1;
     fflush(NULL); /* a child must not print what the parent has buffered */
@@ -121,6 +183,7 @@ static int worker_start(worker *w, const sweep_job *job, long point)
     sigprocmask(SIG_BLOCK, &stop, &old_mask);
     w->pid = fork();
     if (w->pid == 0) {
+        die_with_parent(parent);
         close(fds[0]);
         worker_main(job, point, fds[1], &old_mask);
     }

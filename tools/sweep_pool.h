@@ -22,8 +22,10 @@ typedef struct sweep_job {
     double point_timeout;
 } sweep_job;
 
-/* The name of point `point`'s result file with extension `ext` (".h5", ".csv") in `dir`. */
-#define SWEEP_POINT_FILE "%s/point-%06ld%s"
+/* The result files of `point` kept by --point-files into out's paths: DIR/point-NNNNNN.h5, and
+ * DIR/point-NNNNNN.csv with --point-csv (its events file follows from it); "" for a file not kept.
+ * Returns 0, or -1 when a path does not fit (its path is then ""). */
+int sweep_point_paths(const sweep_job *job, long point, td_output_options *out);
 
 /* The overrides of `point`: the fixed ones, then one "KEY=VALUE" per swept key, into items
  * (pointers into store, which holds TD_SWEEP_MAX_KEYS strings). Returns their number. */

@@ -4,6 +4,7 @@
  * point is nothing but the case loaded with one more override per swept key. An axis has one key,
  * or several zipped keys with as many values each that move together.
  */
+#include "case/case_internal.h" /* td_cr_printable: user text in messages */
 #include "run/sweep_internal.h"
 #include "touchdown/case.h"
 #include "util/error_internal.h"
@@ -370,7 +371,7 @@ td_status td_sweep_grid_add(td_sweep_grid *g, const char *spec, int with, const 
 /* --vary and --with: the rules of td_sweep_grid_add, the error naming the option and its spec. */
 static td_status add_option(td_sweep_grid *g, const char *spec, int with, td_error *err)
 {
-    char reason[TD_ERROR_MESSAGE_SIZE], *context;
+    char reason[TD_ERROR_MESSAGE_SIZE], reason_shown[TD_ERROR_MESSAGE_SIZE], *context, *shown = NULL;
     td_sweep_part part;
     td_status st;
     if (!g || !spec)
@@ -378,11 +379,16 @@ static td_status add_option(td_sweep_grid *g, const char *spec, int with, td_err
     st = td_sweep_grid_add(g, spec, with, "command line", &part, reason, sizeof reason);
     if (st == TD_OK)
         return TD_OK;
-    if (!(context = malloc(strlen(spec) + 16)))
+    /* the spec and the parts of it the reason quotes are the user's text: control characters are
+     * shown escaped, as the case reader shows its user text, so the error stays one line */
+    if (!(shown = td_cr_printable_dup(spec)) || !(context = malloc(strlen(shown) + 16))) {
+        free(shown);
         return td_error_set(err, TD_ERR_NOMEM, "%s: out of memory", with ? "--with" : "--vary");
-    sprintf(context, "%s '%s'", with ? "--with" : "--vary", spec); /* a long spec is cut, the reason kept */
-    st = td_error_set_reason(err, st, context, reason);
+    }
+    sprintf(context, "%s '%s'", with ? "--with" : "--vary", shown); /* a long spec is cut, the reason kept */
+    st = td_error_set_reason(err, st, context, td_cr_printable(reason, reason_shown, sizeof reason_shown));
     free(context);
+    free(shown);
     return st;
 }
 

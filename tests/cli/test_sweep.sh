@@ -4,7 +4,9 @@
 # killed or outlives --point-timeout, is a row and the others run; bad --vary specs, keys and values are one line and exit 2
 # before anything runs; SIGINT half way leaves the table marked incomplete (or nothing), never a
 # table that looks finished; a sweep killed half way (SIGKILL) and run again resumes from its
-# journal and writes the table of an uninterrupted run, and a journal of another sweep is refused.
+# journal and writes the table of an uninterrupted run (a zero-filled tail of the journal, what a
+# crash leaves, is dropped with a notice), and a journal of another sweep or a file that is not a
+# journal is refused.
 # Args: $1 = the touchdown binary, $2 = the source directory. Runs in the build's tests directory.
 set -u
 tool=$1
@@ -169,8 +171,13 @@ wait "$pid" 2>/dev/null
 jsize=$(stat -c %s "$work/res/r.journal" 2>/dev/null || echo 0)
 check "resume: the killed sweep left its journal ($jsize bytes) and no table" \
     test "$jsize" -gt 32 -a ! -e "$work/res/r.csv"
+cp "$work/res/r.journal" "$work/res/other.journal" # a journal of this sweep, for (g) below
+# what a crash of the machine leaves after the last record: blocks of zeros (several records' worth)
+head -c 9000 /dev/zero >>"$work/res/r.journal"
 (cd "$work/res" && "$tool" sweep --json -j 2 "${rgrid[@]}" -o r "$case_r" >"$work/res/r2.json" 2>"$work/res/r2.err")
 rc=$?
+check "resume: the zero-filled tail is dropped with a one-line notice ($(head -c 200 "$work/res/r2.err"))" \
+    test "$(grep -c 'r.journal: a torn record at byte .* is dropped: its point runs again' "$work/res/r2.err")" = 1
 resumed=$(jf "$work/res/r2.json" resumed)
 check "resume: the second run, exit 0, $resumed points from the journal, 40 done (rc $rc, $(head -c 200 "$work/res/r2.err"))" \
     test "$rc" = 0 -a "${resumed:-0}" -ge 1 -a "${resumed:-40}" -lt 40 -a "$(jf "$work/res/r2.json" done)" = 40
@@ -181,9 +188,14 @@ check "resume: each journal record is one resumed point (($jsize - 32) bytes in 
 check "resume: the table equals the uninterrupted one apart from wall time" \
     cmp -s <(no_wall "$work/res/u.csv") <(no_wall "$work/res/r.csv")
 check "resume: no journal left after the finished table" test ! -e "$work/res/r.journal"
+# ---- (g) journals that are not this sweep's -----------------------------------------------------
+t "$work/res/o" sweep -q -j 1 --set end_time=0.29 --vary speed=60:150:20 --vary 'schedule[0].magnitude=0.05,0.2' \
+    -o ../other "$case_r"
+check "resume: a journal of another sweep is refused, exit 2, one line ($(head -c 200 "$work/res/o/.err"))" \
+    test "$rc" = 2 -a "$(wc -l <"$work/res/o/.err")" = 1 -a -n "$(grep 'journal of another sweep' "$work/res/o/.err")"
 printf 'not a journal of this sweep, but longer than a header.\n' >"$work/res/x.journal"
 t "$work/res/x" sweep -q -j 1 "${rgrid[@]}" -o ../x "$case_r"
-check "resume: a journal of another sweep is refused, exit 2, one line ($(head -c 200 "$work/res/x/.err"))" \
-    test "$rc" = 2 -a "$(wc -l <"$work/res/x/.err")" = 1 -a -n "$(grep 'journal of another sweep' "$work/res/x/.err")"
+check "resume: a file that is not a journal is refused, exit 2, one line ($(head -c 200 "$work/res/x/.err"))" \
+    test "$rc" = 2 -a "$(wc -l <"$work/res/x/.err")" = 1 -a -n "$(grep 'x.journal is not a sweep journal' "$work/res/x/.err")"
 
 finish

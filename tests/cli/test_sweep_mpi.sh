@@ -110,11 +110,11 @@ check "resume under MPI: no part left after the finished table ($(ls "$work/res"
     test -z "$(ls "$work/res" | grep journal)"
 printf 'not a journal of this sweep, but longer than a header.\n' >"$work/res/x.journal.rank-5"
 m "$work/res/x" sweep -q "${rgrid[@]}" -o ../x "$case_r"
-check "resume: a part of another sweep is refused under MPI, exit 2 ($(grep -c 'another sweep' "$work/res/x/.err") lines)" \
-    test "$rc" = 2 -a "$(grep -c 'journal of another sweep' "$work/res/x/.err")" = 1
+check "resume: a part that is not a journal is refused under MPI, exit 2 ($(grep -c 'not a sweep journal' "$work/res/x/.err") lines)" \
+    test "$rc" = 2 -a "$(grep -c 'not a sweep journal' "$work/res/x/.err")" = 1
 t "$work/res/y" sweep -q -j 1 "${rgrid[@]}" -o ../x "$case_r"
-check "resume: a part of another sweep is refused without MPI, exit 2" \
-    test "$rc" = 2 -a -n "$(grep 'x.journal.rank-5 is the journal of another sweep' "$work/res/y/.err")"
+check "resume: a part that is not a journal is refused without MPI, exit 2" \
+    test "$rc" = 2 -a -n "$(grep 'x.journal.rank-5 is not a sweep journal' "$work/res/y/.err")"
 
 # ---- (d) the progress line ------------------------------------------------------------------------
 line_re='^sweep: [0-9]+/12 points, [0-9]+ running, [0-9]+ failed, ETA ([0-9]+[hms]([0-9]{2}[ms])?|--)$'
