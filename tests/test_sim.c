@@ -666,6 +666,42 @@ static void test_api_change_matches_schedule(void **state)
     td_case_free(&with), td_case_free(&without);
 }
 
+/* Schedule entries written out of time order: each is applied at its own time, and its event names
+ * the entry as written (schedule[1] at 1 ms, then schedule[0] at 2 ms), not its rank in time. */
+static void test_schedule_events_name_entries_as_written(void **state)
+{
+    td_error err;
+    const char *ov[1] = {"schedule=({time=0.002; unbalance=0; magnitude=0.05;}, "
+                         "{time=0.001; unbalance=0; magnitude=0.03;})"};
+    td_case *c = td_test_load_case("cases/paper-a.cfg", ov, 1);
+    td_sim *s = NULL;
+    td_event ev;
+    td_change ch;
+    double want_t[2] = {0.001, 0.002};
+    int want_entry[2] = {1, 0}, n = 0;
+    td_status r;
+    (void)state;
+    assert_int_equal(td_model_get_change(td_case_model(c), 0, &ch), TD_OK);
+    assert_close(ch.time, 0.001, 0.0, 0.0);
+    assert_int_equal(td_model_change_entry(td_case_model(c), 0), 1);
+    assert_int_equal(td_model_change_entry(td_case_model(c), 1), 0);
+    assert_int_equal(td_model_change_entry(td_case_model(c), 2), -1);
+    assert_int_equal(td_sim_create(td_case_model(c), td_case_sim_options(c), &s, NULL), TD_OK);
+    while ((r = td_sim_step(s, 0.003, NULL, &err)) == TD_EVENT) {
+        assert_int_equal(td_sim_last_event(s, &ev), TD_OK);
+        if (ev.kind != TD_EVENT_SCHEDULE)
+            continue;
+        assert_true(n < 2);
+        assert_close(ev.time, want_t[n], 0.0, 1e-12);
+        assert_int_equal(ev.change, want_entry[n]);
+        n++;
+    }
+    assert_int_equal(r, TD_OK);
+    assert_int_equal(n, 2);
+    td_sim_free(&s);
+    td_case_free(&c);
+}
+
 /* A speed change keeps the spin angle (and so the unbalance force) continuous and the state too. */
 static void test_speed_change_continuity(void **state)
 {
@@ -990,6 +1026,7 @@ int main(void)
         cmocka_unit_test(test_constrained_drift),
         cmocka_unit_test(test_external_amb_control),
         cmocka_unit_test(test_api_change_matches_schedule),
+        cmocka_unit_test(test_schedule_events_name_entries_as_written),
         cmocka_unit_test(test_speed_change_continuity),
         cmocka_unit_test(test_friction_reversal),
         cmocka_unit_test(test_penalty_never_passes_through),

@@ -88,6 +88,7 @@ void td_model_free(td_model **model)
     free(m->retainers.items);
     free(m->unbalances.items);
     free(m->changes.items);
+    free(m->change_entries.items);
     free(m->speed_points.items);
     free(m);
     *model = NULL;
@@ -135,6 +136,7 @@ td_status td_model_clone(const td_model *model, td_model **out, td_error *err)
     CLONE(m->retainers, model->retainers, ok);
     CLONE(m->unbalances, model->unbalances, ok);
     CLONE(m->changes, model->changes, ok);
+    CLONE(m->change_entries, model->change_entries, ok);
     CLONE(m->speed_points, model->speed_points, ok);
     m->spin = model->spin;
     if (!ok) {
@@ -470,13 +472,19 @@ td_status td_model_add_change(td_model *m, const td_change *c, td_error *err)
          need(isfinite(c->phase), err, "change", i, "phase", "be finite", c->phase)))
         return TD_ERR_INVALID;
     st = APPEND(m->changes, c, err);
+    if (st == TD_OK && (st = APPEND(m->change_entries, &i, err)) != TD_OK)
+        m->changes.count--;
     if (st != TD_OK)
         return st;
-    /* keep the schedule sorted by time; equal times keep their order of addition */
+    /* keep the schedule sorted by time, equal times in their order of addition; each change keeps
+     * its number of addition (td_model_change_entry), the entry a caller or case file wrote */
     for (i = m->changes.count - 1; i > 0 && m->changes.items[i - 1].time > m->changes.items[i].time; i--) {
         td_change tmp = m->changes.items[i - 1];
+        int entry = m->change_entries.items[i - 1];
         m->changes.items[i - 1] = m->changes.items[i];
         m->changes.items[i] = tmp;
+        m->change_entries.items[i - 1] = m->change_entries.items[i];
+        m->change_entries.items[i] = entry;
     }
     return TD_OK;
 }
@@ -668,6 +676,10 @@ int td_model_unbalance_count(const td_model *m)
 int td_model_change_count(const td_model *m)
 {
     return m ? m->changes.count : 0;
+}
+int td_model_change_entry(const td_model *m, int i)
+{
+    return m && i >= 0 && i < m->change_entries.count ? m->change_entries.items[i] : -1;
 }
 double td_model_speed(const td_model *m)
 {
