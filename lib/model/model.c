@@ -214,8 +214,9 @@ td_status td_model_set_shaft_options(td_model *m, const td_shaft_options *opt, t
         return td_error_set(err, TD_ERR_INVALID, "shaft options: unknown beam theory %d", (int)opt->beam);
     if (opt->mass != TD_MASS_CONSISTENT && opt->mass != TD_MASS_LUMPED)
         return td_error_set(err, TD_ERR_INVALID, "shaft options: unknown mass form %d", (int)opt->mass);
-    if (!finite_nonnegative(opt->rayleigh_alpha) || !finite_nonnegative(opt->rayleigh_beta))
-        return td_error_set(err, TD_ERR_INVALID, "shaft options: Rayleigh alpha and beta must be finite and >= 0");
+    if (need(finite_nonnegative(opt->rayleigh_alpha), err, "shaft", 0, "rayleigh.alpha", NONNEG, opt->rayleigh_alpha) ||
+        need(finite_nonnegative(opt->rayleigh_beta), err, "shaft", 0, "rayleigh.beta", NONNEG, opt->rayleigh_beta))
+        return TD_ERR_INVALID;
     if (opt->shear != TD_SHEAR_HUTCHINSON && opt->shear != TD_SHEAR_COWPER && opt->shear != TD_SHEAR_GIVEN)
         return td_error_set(err, TD_ERR_INVALID, "shaft options: unknown shear coefficient form %d", (int)opt->shear);
     if (opt->shear == TD_SHEAR_GIVEN && !(opt->shear_value > 0.0 && opt->shear_value <= 1.0))
@@ -248,6 +249,11 @@ td_status td_rayleigh_from_ratio(double ratio, const double *frequencies, int co
     w2 = count == 2 ? 2.0 * TD_PI * frequencies[1] : 0.0;
     *alpha = count == 2 ? 2.0 * ratio * w1 * w2 / (w1 + w2) : 0.0;
     *beta = 2.0 * ratio / (w1 + w2);
+    if (!isfinite(*alpha) || !isfinite(*beta)) /* w1 w2 or w1 + w2 beyond the largest double */
+        return FAIL_AT(err, "damping", 0, "frequencies",
+                       "the Rayleigh coefficients alpha = 2 zeta w1 w2 / (w1 + w2) and beta = 2 zeta / (w1 + w2) "
+                       "overflow (w = 2 pi f, the largest f %g Hz)",
+                       frequencies[count - 1]);
     return TD_OK;
 }
 
@@ -261,9 +267,10 @@ td_status td_model_add_shaft_element(td_model *m, const td_shaft_element *el, td
         need(finite_positive(el->outer_diameter), err, "element", i, "outer_diameter", POS, el->outer_diameter))
         return TD_ERR_INVALID;
     if (!finite_nonnegative(el->inner_diameter) || el->inner_diameter >= el->outer_diameter)
-        return FAIL_AT(err, "element", i, "inner_diameter",
-                       "the inner diameter %g m must be >= 0 and smaller than the outer diameter %g m",
-                       el->inner_diameter, el->outer_diameter);
+        return td_error_set_site(err, TD_ERR_INVALID, &(td_error_site){"element", i, "inner_diameter"},
+                                 &(td_error_site){"element", i, "outer_diameter"},
+                                 "the inner diameter %g m must be >= 0 and smaller than the outer diameter %g m",
+                                 el->inner_diameter, el->outer_diameter);
     if (need(finite_positive(el->material.E), err, "element", i, "material.E", POS, el->material.E) ||
         need(finite_positive(el->material.G), err, "element", i, "material.G", POS, el->material.G) ||
         need(finite_positive(el->material.density), err, "element", i, "material.density", POS, el->material.density))

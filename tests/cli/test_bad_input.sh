@@ -132,6 +132,7 @@ check "$n_files files (at least 40) under tests/data/bad/, as many as the table 
 while IFS='|' read -r file rest; do
     [ -z "$file" ] && continue
     for cmd in run info; do
+        rest=${rest//BAD/$bad_dir} # BAD: the directory, where a message names a second place in the file
         run_tool "$cmd" "$bad_dir/$file"
         if created=$(scratch_empty); then created=""; else created="; created files: $created"; fi
         if [ "$rc" = 2 ] && [ "$err" = "touchdown: $bad_dir/$file$rest" ] && [ -z "$created" ]; then
@@ -152,6 +153,9 @@ unbalance-force-overflow.cfg|:6: unbalances[0].magnitude: the unbalance force U 
 unbalance-wrap-same-line.cfg|:5: unbalances[0].magnitude: integer 4294967296 is out of range (at most 2147483647; libconfig would read 0)
 line-endings-cr.cfg|:5: carriage return without a line feed (CR-only line endings are not supported; save the file with LF or CRLF line endings)
 speed-unbounded.cfg|:3: speed: 1e+20 rad/s over 0.1 s makes 1.59e+18 shaft revolutions (at most 1e+06)
+shaft-section-smaller-than-bore.cfg|:8: shaft.sections[0].outer_diameter: the section's outer diameter 0.02 m (element 1) must be larger than the inner diameter 0.03 m of shaft.inner_diameter at BAD/shaft-section-smaller-than-bore.cfg:7
+shaft-nodes-overflow.cfg|:4: shaft.nodes[1]: the element length from the node positions overflows (to inf)
+shaft-damping-overflow.cfg|:8: shaft.damping.frequencies: the Rayleigh coefficients alpha = 2 zeta w1 w2 / (w1 + w2) and beta = 2 zeta / (w1 + w2) overflow (w = 2 pi f, the largest f 1e+308 Hz)
 EOF
 
 # ---- paths that are not readable case files -----------------------------------------------
