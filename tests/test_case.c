@@ -538,6 +538,23 @@ static void test_other_forms_and_defaults(void **state)
     td_case_free(&c);
 }
 
+/* A retainer's own contact stiffness of 0 (documented: "0: the run's contact model") is accepted,
+ * with or without the other keys of its group at their defaults; an exponent not written is kept
+ * as 0 ("taken as 1", model.h), so the rule that a law needs a stiffness never meets a value the
+ * case does not hold. */
+static void test_retainer_contact_stiffness_zero(void **state)
+{
+    const char *ov[2] = {"retainers[0].contact = { stiffness = 0.0; }",
+                         "retainers[1].contact = { stiffness = 0.0; damping = \"none\"; }"};
+    td_case *c = load_ok("cases/paper-a.cfg", ov, 2);
+    td_retainer r;
+    (void)state;
+    assert_int_equal(td_model_get_retainer(td_case_model(c), 0, &r), TD_OK);
+    assert_close(r.contact.stiffness, 0.0, 0.0, 0.0);
+    assert_close(r.contact.exponent, 0.0, 0.0, 0.0);
+    td_case_free(&c);
+}
+
 /* Every key in the tables of docs/case-format.md is used by the all-keys files, and every key the
  * reader accepts is documented (the reader lists the valid keys of a group when it meets an
  * unknown one far from all of them). */
@@ -1403,6 +1420,7 @@ int main(void)
         cmocka_unit_test(test_other_examples),
         cmocka_unit_test(test_all_keys),
         cmocka_unit_test(test_other_forms_and_defaults),
+        cmocka_unit_test(test_retainer_contact_stiffness_zero),
         cmocka_unit_test(test_docs_match_reader),
         cmocka_unit_test(test_refine),
         cmocka_unit_test(test_overrides),
