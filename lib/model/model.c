@@ -500,8 +500,11 @@ td_status td_model_set_speed(td_model *m, double omega, td_error *err)
 {
     if (!m)
         return td_error_set(err, TD_ERR_INVALID, "speed: NULL model");
-    if (!isfinite(omega))
-        return td_error_set(err, TD_ERR_INVALID, "speed must be finite");
+    if (!TD_SPEED_VALID(omega))
+        return td_error_set(err, TD_ERR_INVALID,
+                            "speed must be finite and >= 0 rad/s (got %g; the spin is about +z, "
+                            "touchdown/dofs.h)",
+                            omega);
     m->speed = omega;
     return TD_OK;
 }

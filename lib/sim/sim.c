@@ -1392,8 +1392,9 @@ td_status td_sim_set_speed(td_sim *sim, double omega, td_error *err)
     if (!sim)
         return td_error_set(err, TD_ERR_INVALID, "%s: NULL simulation", __func__);
     begin_call(sim);
-    if (!isfinite(omega)) {
-        snprintf(sim->errmsg, sizeof sim->errmsg, "td_sim_set_speed: speed must be finite");
+    if (!TD_SPEED_VALID(omega)) {
+        snprintf(sim->errmsg, sizeof sim->errmsg,
+                 "td_sim_set_speed: speed must be finite and >= 0 rad/s (got %g; the spin is about +z)", omega);
         return failed(sim, TD_ERR_INVALID, err);
     }
     if (sim->spin >= 0) {

@@ -266,6 +266,11 @@ for cmd in run info modal; do
 done
 expect_usage "run --output without its argument" run "$case_a" --output
 expect_usage "info --modes 0" info --modes 0 "$case_a"
+# a speed the library does not take (touchdown/dofs.h: >= 0, the spin about +z), as in the case file
+for w in -5 -1e-9 nan inf; do
+    expect_bad "modal --speed $w" "touchdown modal: --speed wants a speed >= 0 in rad/s, not '$w'" -- \
+        modal --speed "$w" "$case_a"
+done
 expect_usage "info --modes x" info --modes x "$case_a"
 
 after=$(ls -la --time-style=+%s "$bad_dir" | md5sum)
