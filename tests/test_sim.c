@@ -702,6 +702,52 @@ static void test_schedule_events_name_entries_as_written(void **state)
     td_case_free(&c);
 }
 
+/* A rotor that nothing holds (the rig with its AMBs removed: free-free) is marginally stable: its
+ * rigid-body roots at 0 are defective, and the eigen-solver's rounding moves them by about
+ * sqrt(eps) times the spectral radius (td_modal_stability's tolerance allows for that), so start =
+ * "orbit" takes the steady unbalance orbit. Under gravity it has no static position: "orbit" is
+ * refused with a message, "auto" starts at rest and says why. */
+static void test_free_free_rotor_start(void **state)
+{
+    const char *ov[3] = {"ambs=()", "start=\"orbit\"", "gravity={enabled=true;}"};
+    td_case *c = td_test_load_case("cases/paper-a.cfg", ov, 2);
+    td_system *sys = NULL;
+    td_sim *s = NULL;
+    td_sim_start_info info;
+    td_error err;
+    double max_real = NAN, q[52];
+    int unstable = 1;
+    (void)state;
+    assert_int_equal(td_system_create(td_case_model(c), &sys, NULL), TD_OK);
+    assert_int_equal(td_modal_stability(sys, 90.0, &max_real, &unstable, NULL), TD_OK);
+    print_message("free-free rig at 90 rad/s: rightmost real part %.3g 1/s\n", max_real);
+    assert_int_equal(unstable, 0);
+    assert_int_equal(td_sim_create(td_case_model(c), td_case_sim_options(c), &s, &err), TD_OK);
+    assert_int_equal(td_sim_start_info_get(s, &info), TD_OK);
+    assert_int_equal(info.used, TD_START_ORBIT);
+    assert_int_equal(info.stability, TD_STABILITY_STABLE);
+    /* the steady orbit of a free rigid rotor: node 1 (the unbalance's) moves, not the rest state */
+    td_sim_get_state(s, q, NULL);
+    assert_true(hypot(q[TD_DOF(1, TD_DOF_X)], q[TD_DOF(1, TD_DOF_Y)]) > 1e-5);
+    td_sim_free(&s);
+    td_system_free(&sys);
+    td_case_free(&c);
+
+    c = td_test_load_case("cases/paper-a.cfg", ov, 3);
+    assert_int_equal(td_sim_create(td_case_model(c), td_case_sim_options(c), &s, &err), TD_ERR_INVALID);
+    assert_non_null(strstr(err.message, "start = \"orbit\""));
+    assert_non_null(strstr(err.message, "not held"));
+    td_case_free(&c);
+    ov[1] = "start=\"auto\"";
+    c = td_test_load_case("cases/paper-a.cfg", ov, 3);
+    assert_int_equal(td_sim_create(td_case_model(c), td_case_sim_options(c), &s, &err), TD_OK);
+    assert_int_equal(td_sim_start_info_get(s, &info), TD_OK);
+    assert_int_equal(info.used, TD_START_REST);
+    assert_non_null(strstr(info.reason, "not held"));
+    td_sim_free(&s);
+    td_case_free(&c);
+}
+
 /* A speed change keeps the spin angle (and so the unbalance force) continuous and the state too. */
 static void test_speed_change_continuity(void **state)
 {
@@ -1027,6 +1073,7 @@ int main(void)
         cmocka_unit_test(test_external_amb_control),
         cmocka_unit_test(test_api_change_matches_schedule),
         cmocka_unit_test(test_schedule_events_name_entries_as_written),
+        cmocka_unit_test(test_free_free_rotor_start),
         cmocka_unit_test(test_speed_change_continuity),
         cmocka_unit_test(test_friction_reversal),
         cmocka_unit_test(test_penalty_never_passes_through),

@@ -539,6 +539,7 @@ static td_status orbit_start(td_sim *s, double *y, td_error *err)
 {
     int strict = s->opt.start == TD_START_ORBIT, k;
     double gx, gy, rad = 0.0;
+    td_error merr;
     td_status st;
     if (s->start.stability == TD_STABILITY_UNSTABLE) {
         if (strict)
@@ -553,9 +554,19 @@ static td_status orbit_start(td_sim *s, double *y, td_error *err)
     }
     td_model_gravity(s->model, &gx, &gy);
     st = td_modal_start_state(s->sys, s->omega, s->unb, s->nu, gx != 0.0 || gy != 0.0, orbit_phase_time(s), y + s->oq,
-                              err);
+                              &merr);
+    if (st == TD_ERR_NUMERIC) { /* no steady state: nothing holds the rotor against gravity, a resonance */
+        N_VConst(0.0, s->y);
+        if (strict)
+            return td_error_set(err, TD_ERR_INVALID,
+                                "start = \"orbit\": %s, so there is no steady orbit; use "
+                                "start = \"rest\"",
+                                merr.message);
+        snprintf(s->start.reason, sizeof s->start.reason, "no steady orbit: %.200s", merr.message);
+        return TD_OK;
+    }
     if (st != TD_OK)
-        return st;
+        return td_error_set(err, st, "%s", merr.message);
     spread_rotor_state(s, y);
     s->start.used = TD_START_ORBIT;
     if (strict || (k = first_outside(s, y, &rad)) < 0)
