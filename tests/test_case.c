@@ -961,6 +961,8 @@ static const bad_file bad_files[] = {
     {"shaft-section-overlap.cfg", 10, "shaft.sections[1]", NULL},
     {"shaft-zero-length.cfg", 4, "shaft.length", NULL},
     {"solver-atol-negative.cfg", 6, "solver.atol", NULL},
+    {"solver-atol-above-clearance.cfg", 6, "solver.atol", NULL},
+    {"retainer-clearance-below-atol.cfg", 5, "retainers[0].clearance", NULL},
     {"solver-max-step-tiny.cfg", 5, "solver.max_step", NULL},
     {"solver-max-order.cfg", 5, "solver.max_order", NULL},
     {"solver-rtol-zero.cfg", 5, "solver.rtol", NULL},

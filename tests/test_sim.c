@@ -748,6 +748,41 @@ static void test_free_free_rotor_start(void **state)
     td_case_free(&c);
 }
 
+/* The run loop cannot go on for ever. An absolute tolerance far above the clearance (refused by
+ * the case reader and td_sim_create, so forced here on a running simulation: every tolerance scales
+ * with it) made the drop run's steps and stops stop moving time (2e-6 s in 35 s of steps) without
+ * ever failing; now the integration fails with a message once 10000 passes advance the time by
+ * less than 1e-6 s, keeping the state at the time reached. */
+static void test_no_progress_fails(void **state)
+{
+    const char *ov[1] = {"shaft.refine=1"};
+    td_case *c = td_test_load_case("cases/drop.cfg", ov, 1);
+    td_sim *s = NULL;
+    td_error err;
+    double t = 0.0, scale = 1e6 / td_case_sim_options(c)->solver.atol;
+    td_sim_options o = *td_case_sim_options(c);
+    td_status r;
+    (void)state;
+    o.solver.atol = 1e-3; /* above the 7.5e-7 m that 1e-3 of the 0.75 mm clearance allows */
+    assert_int_equal(td_sim_create(td_case_model(c), &o, &s, &err), TD_ERR_INVALID);
+    assert_non_null(strstr(err.message, "solver.atol: "));
+    assert_null(s);
+    assert_int_equal(td_sim_create(td_case_model(c), td_case_sim_options(c), &s, &err), TD_OK);
+    s->opt.solver.atol *= scale; /* what an atol of 1e6 m sets (sim.c, set_tolerances and the onset roots) */
+    s->constraint_tol *= scale;
+    s->rearm_eps *= scale;
+    N_VScale(scale, s->atol, s->atol);
+    while ((r = td_sim_step(s, 2.0, &t, &err)) == TD_EVENT)
+        ;
+    assert_int_equal(r, TD_ERR_SOLVER);
+    print_message("%s\n", err.message);
+    assert_non_null(strstr(err.message, "no progress"));
+    assert_true(t > 0.05 && t < 2.0);
+    assert_close(td_sim_time(s), t, 0.0, 0.0);
+    td_sim_free(&s);
+    td_case_free(&c);
+}
+
 /* A speed change keeps the spin angle (and so the unbalance force) continuous and the state too. */
 static void test_speed_change_continuity(void **state)
 {
@@ -1074,6 +1109,7 @@ int main(void)
         cmocka_unit_test(test_api_change_matches_schedule),
         cmocka_unit_test(test_schedule_events_name_entries_as_written),
         cmocka_unit_test(test_free_free_rotor_start),
+        cmocka_unit_test(test_no_progress_fails),
         cmocka_unit_test(test_speed_change_continuity),
         cmocka_unit_test(test_friction_reversal),
         cmocka_unit_test(test_penalty_never_passes_through),

@@ -154,6 +154,7 @@ unbalance-wrap-same-line.cfg|:5: unbalances[0].magnitude: integer 4294967296 is 
 line-endings-cr.cfg|:5: carriage return without a line feed (CR-only line endings are not supported; save the file with LF or CRLF line endings)
 speed-unbounded.cfg|:3: speed: 1e+20 rad/s over 0.1 s makes 1.59e+18 shaft revolutions (at most 1e+06)
 shaft-section-smaller-than-bore.cfg|:8: shaft.sections[0].outer_diameter: the section's outer diameter 0.02 m (element 1) must be larger than the inner diameter 0.03 m of shaft.inner_diameter at BAD/shaft-section-smaller-than-bore.cfg:7
+solver-atol-above-clearance.cfg|:6: solver.atol: the displacement tolerance 0.001 m must be at most 1e-03 of the smallest gap, the clearance 0.00075 m of retainer 0 (at most 7.5e-07 m): the contacts would not be resolved
 shaft-nodes-overflow.cfg|:4: shaft.nodes[1]: the element length from the node positions overflows (to inf)
 shaft-damping-overflow.cfg|:8: shaft.damping.frequencies: the Rayleigh coefficients alpha = 2 zeta w1 w2 / (w1 + w2) and beta = 2 zeta / (w1 + w2) overflow (w = 2 pi f, the largest f 1e+308 Hz)
 EOF
@@ -249,6 +250,7 @@ shaft.elements=0|shaft.elements:
 end_time=0|end_time: 
 end_time=1e12|end_time: 10000 Hz over 1e+12 s makes 1e+16 output samples (at most 1e+08)
 solver.max_step=1e-300|solver.max_step: max_step 1e-300 s over 2 s forces 2e+300 solver steps
+solver.atol=1e6|solver.atol: the displacement tolerance 1e+06 m must be at most 1e-03 of the smallest gap
 speed=1e20|speed: 1e+20 rad/s over 2 s makes 3.18e+19 shaft revolutions
 speed|KEY=VALUE
 =1|KEY=VALUE
