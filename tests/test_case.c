@@ -538,6 +538,23 @@ static void test_other_forms_and_defaults(void **state)
     td_case_free(&c);
 }
 
+/* A retainer's own contact stiffness of 0 (documented: "0: the run's contact model") is accepted,
+ * with or without the other keys of its group at their defaults; an exponent not written is kept
+ * as 0 ("taken as 1", model.h), so the rule that a law needs a stiffness never meets a value the
+ * case does not hold. */
+static void test_retainer_contact_stiffness_zero(void **state)
+{
+    const char *ov[2] = {"retainers[0].contact = { stiffness = 0.0; }",
+                         "retainers[1].contact = { stiffness = 0.0; damping = \"none\"; }"};
+    td_case *c = load_ok("cases/paper-a.cfg", ov, 2);
+    td_retainer r;
+    (void)state;
+    assert_int_equal(td_model_get_retainer(td_case_model(c), 0, &r), TD_OK);
+    assert_close(r.contact.stiffness, 0.0, 0.0, 0.0);
+    assert_close(r.contact.exponent, 0.0, 0.0, 0.0);
+    td_case_free(&c);
+}
+
 /* Every key in the tables of docs/case-format.md is used by the all-keys files, and every key the
  * reader accepts is documented (the reader lists the valid keys of a group when it meets an
  * unknown one far from all of them). */
@@ -936,11 +953,16 @@ static const bad_file bad_files[] = {
     {"shaft-refine-too-fine.cfg", 8, "shaft.refine", NULL},
     {"shaft-refine-zero.cfg", 8, "shaft.refine", NULL},
     {"shaft-nodes-too-close.cfg", 4, "shaft.nodes", NULL},
+    {"shaft-nodes-overflow.cfg", 4, "shaft.nodes[1]", NULL},
+    {"shaft-section-smaller-than-bore.cfg", 8, "shaft.sections[0].outer_diameter", NULL},
+    {"shaft-damping-overflow.cfg", 8, "shaft.damping.frequencies", NULL},
     {"shaft-not-group.cfg", 3, "shaft", NULL},
     {"shaft-section-out-of-range.cfg", 10, "shaft.sections[0].to", NULL},
     {"shaft-section-overlap.cfg", 10, "shaft.sections[1]", NULL},
     {"shaft-zero-length.cfg", 4, "shaft.length", NULL},
     {"solver-atol-negative.cfg", 6, "solver.atol", NULL},
+    {"solver-atol-above-clearance.cfg", 6, "solver.atol", NULL},
+    {"retainer-clearance-below-atol.cfg", 5, "retainers[0].clearance", NULL},
     {"solver-max-step-tiny.cfg", 5, "solver.max_step", NULL},
     {"solver-max-order.cfg", 5, "solver.max_order", NULL},
     {"solver-rtol-zero.cfg", 5, "solver.rtol", NULL},
@@ -1400,6 +1422,7 @@ int main(void)
         cmocka_unit_test(test_other_examples),
         cmocka_unit_test(test_all_keys),
         cmocka_unit_test(test_other_forms_and_defaults),
+        cmocka_unit_test(test_retainer_contact_stiffness_zero),
         cmocka_unit_test(test_docs_match_reader),
         cmocka_unit_test(test_refine),
         cmocka_unit_test(test_overrides),

@@ -364,13 +364,51 @@ static void test_refine_is_the_fine_mesh(void **state)
     td_model_free(&direct);
 }
 
+/* A negative speed is refused wherever the library takes a speed (touchdown/dofs.h: the spin is
+ * about +z, whirl directions are counted from it), as the case file refuses it. */
+static void test_negative_speed_refused(void **state)
+{
+    td_model *m = uniform_shaft(4);
+    td_system *sys = NULL;
+    td_modal *modes = NULL;
+    td_sim *sim = NULL;
+    td_sim_options o;
+    td_error err;
+    int unstable = 0;
+    (void)state;
+    assert_int_equal(td_model_set_speed(m, -10.0, &err), TD_ERR_INVALID);
+    assert_non_null(strstr(err.message, ">= 0"));
+    assert_int_equal(td_model_set_speed(m, NAN, NULL), TD_ERR_INVALID);
+    assert_int_equal(td_model_set_speed(m, 10.0, NULL), TD_OK);
+    assert_int_equal(td_system_create(m, &sys, NULL), TD_OK);
+    assert_int_equal(td_modal_solve(sys, -10.0, &modes, NULL), TD_ERR_INVALID);
+    assert_null(modes);
+    assert_int_equal(td_modal_solve_lowest(sys, -10.0, 2, &modes, NULL), TD_ERR_INVALID);
+    assert_null(modes);
+    assert_int_equal(td_modal_stability(sys, -10.0, NULL, &unstable, NULL), TD_ERR_INVALID);
+    td_sim_options_default(&o);
+    o.start = TD_START_REST;
+    assert_int_equal(td_sim_create(m, &o, &sim, NULL), TD_OK);
+    assert_int_equal(td_sim_set_speed(sim, -10.0, &err), TD_ERR_INVALID);
+    assert_non_null(strstr(err.message, ">= 0"));
+    assert_int_equal(td_sim_set_speed(sim, 20.0, NULL), TD_OK);
+    td_sim_free(&sim);
+    td_system_free(&sys);
+    td_model_free(&m);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_counts_and_mass),           cmocka_unit_test(test_rejects_bad_parts),
-        cmocka_unit_test(test_validate_cross_references), cmocka_unit_test(test_schedule_sorted_and_clone),
-        cmocka_unit_test(test_refine_keeps_the_machine),  cmocka_unit_test(test_refine_is_the_fine_mesh),
-        cmocka_unit_test(test_disc_from_geometry),        cmocka_unit_test(test_errors_name_part_index_field),
+        cmocka_unit_test(test_negative_speed_refused),
+        cmocka_unit_test(test_counts_and_mass),
+        cmocka_unit_test(test_rejects_bad_parts),
+        cmocka_unit_test(test_validate_cross_references),
+        cmocka_unit_test(test_schedule_sorted_and_clone),
+        cmocka_unit_test(test_refine_keeps_the_machine),
+        cmocka_unit_test(test_refine_is_the_fine_mesh),
+        cmocka_unit_test(test_disc_from_geometry),
+        cmocka_unit_test(test_errors_name_part_index_field),
     };
     return cmocka_run_group_tests_name("model", tests, NULL, NULL);
 }

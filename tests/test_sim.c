@@ -666,6 +666,123 @@ static void test_api_change_matches_schedule(void **state)
     td_case_free(&with), td_case_free(&without);
 }
 
+/* Schedule entries written out of time order: each is applied at its own time, and its event names
+ * the entry as written (schedule[1] at 1 ms, then schedule[0] at 2 ms), not its rank in time. */
+static void test_schedule_events_name_entries_as_written(void **state)
+{
+    td_error err;
+    const char *ov[1] = {"schedule=({time=0.002; unbalance=0; magnitude=0.05;}, "
+                         "{time=0.001; unbalance=0; magnitude=0.03;})"};
+    td_case *c = td_test_load_case("cases/paper-a.cfg", ov, 1);
+    td_sim *s = NULL;
+    td_event ev;
+    td_change ch;
+    double want_t[2] = {0.001, 0.002};
+    int want_entry[2] = {1, 0}, n = 0;
+    td_status r;
+    (void)state;
+    assert_int_equal(td_model_get_change(td_case_model(c), 0, &ch), TD_OK);
+    assert_close(ch.time, 0.001, 0.0, 0.0);
+    assert_int_equal(td_model_change_entry(td_case_model(c), 0), 1);
+    assert_int_equal(td_model_change_entry(td_case_model(c), 1), 0);
+    assert_int_equal(td_model_change_entry(td_case_model(c), 2), -1);
+    assert_int_equal(td_sim_create(td_case_model(c), td_case_sim_options(c), &s, NULL), TD_OK);
+    while ((r = td_sim_step(s, 0.003, NULL, &err)) == TD_EVENT) {
+        assert_int_equal(td_sim_last_event(s, &ev), TD_OK);
+        if (ev.kind != TD_EVENT_SCHEDULE)
+            continue;
+        assert_true(n < 2);
+        assert_close(ev.time, want_t[n], 0.0, 1e-12);
+        assert_int_equal(ev.change, want_entry[n]);
+        n++;
+    }
+    assert_int_equal(r, TD_OK);
+    assert_int_equal(n, 2);
+    td_sim_free(&s);
+    td_case_free(&c);
+}
+
+/* A rotor that nothing holds (the rig with its AMBs removed: free-free) is marginally stable: its
+ * rigid-body roots at 0 are defective, and the eigen-solver's rounding moves them by about
+ * sqrt(eps) times the spectral radius (td_modal_stability's tolerance allows for that), so start =
+ * "orbit" takes the steady unbalance orbit. Under gravity it has no static position: "orbit" is
+ * refused with a message, "auto" starts at rest and says why. */
+static void test_free_free_rotor_start(void **state)
+{
+    const char *ov[3] = {"ambs=()", "start=\"orbit\"", "gravity={enabled=true;}"};
+    td_case *c = td_test_load_case("cases/paper-a.cfg", ov, 2);
+    td_system *sys = NULL;
+    td_sim *s = NULL;
+    td_sim_start_info info;
+    td_error err;
+    double max_real = NAN, q[52];
+    int unstable = 1;
+    (void)state;
+    assert_int_equal(td_system_create(td_case_model(c), &sys, NULL), TD_OK);
+    assert_int_equal(td_modal_stability(sys, 90.0, &max_real, &unstable, NULL), TD_OK);
+    print_message("free-free rig at 90 rad/s: rightmost real part %.3g 1/s\n", max_real);
+    assert_int_equal(unstable, 0);
+    assert_int_equal(td_sim_create(td_case_model(c), td_case_sim_options(c), &s, &err), TD_OK);
+    assert_int_equal(td_sim_start_info_get(s, &info), TD_OK);
+    assert_int_equal(info.used, TD_START_ORBIT);
+    assert_int_equal(info.stability, TD_STABILITY_STABLE);
+    /* the steady orbit of a free rigid rotor: node 1 (the unbalance's) moves, not the rest state */
+    td_sim_get_state(s, q, NULL);
+    assert_true(hypot(q[TD_DOF(1, TD_DOF_X)], q[TD_DOF(1, TD_DOF_Y)]) > 1e-5);
+    td_sim_free(&s);
+    td_system_free(&sys);
+    td_case_free(&c);
+
+    c = td_test_load_case("cases/paper-a.cfg", ov, 3);
+    assert_int_equal(td_sim_create(td_case_model(c), td_case_sim_options(c), &s, &err), TD_ERR_INVALID);
+    assert_non_null(strstr(err.message, "start = \"orbit\""));
+    assert_non_null(strstr(err.message, "not held"));
+    td_case_free(&c);
+    ov[1] = "start=\"auto\"";
+    c = td_test_load_case("cases/paper-a.cfg", ov, 3);
+    assert_int_equal(td_sim_create(td_case_model(c), td_case_sim_options(c), &s, &err), TD_OK);
+    assert_int_equal(td_sim_start_info_get(s, &info), TD_OK);
+    assert_int_equal(info.used, TD_START_REST);
+    assert_non_null(strstr(info.reason, "not held"));
+    td_sim_free(&s);
+    td_case_free(&c);
+}
+
+/* The run loop cannot go on for ever. An absolute tolerance far above the clearance (refused by
+ * the case reader and td_sim_create, so forced here on a running simulation: every tolerance scales
+ * with it) made the drop run's steps and stops stop moving time (2e-6 s in 35 s of steps) without
+ * ever failing; now the integration fails with a message once 10000 passes advance the time by
+ * less than 1e-6 s, keeping the state at the time reached. */
+static void test_no_progress_fails(void **state)
+{
+    const char *ov[1] = {"shaft.refine=1"};
+    td_case *c = td_test_load_case("cases/drop.cfg", ov, 1);
+    td_sim *s = NULL;
+    td_error err;
+    double t = 0.0, scale = 1e6 / td_case_sim_options(c)->solver.atol;
+    td_sim_options o = *td_case_sim_options(c);
+    td_status r;
+    (void)state;
+    o.solver.atol = 1e-3; /* above the 7.5e-7 m that 1e-3 of the 0.75 mm clearance allows */
+    assert_int_equal(td_sim_create(td_case_model(c), &o, &s, &err), TD_ERR_INVALID);
+    assert_non_null(strstr(err.message, "solver.atol: "));
+    assert_null(s);
+    assert_int_equal(td_sim_create(td_case_model(c), td_case_sim_options(c), &s, &err), TD_OK);
+    s->opt.solver.atol *= scale; /* what an atol of 1e6 m sets (sim.c, set_tolerances and the onset roots) */
+    s->constraint_tol *= scale;
+    s->rearm_eps *= scale;
+    N_VScale(scale, s->atol, s->atol);
+    while ((r = td_sim_step(s, 2.0, &t, &err)) == TD_EVENT)
+        ;
+    assert_int_equal(r, TD_ERR_SOLVER);
+    print_message("%s\n", err.message);
+    assert_non_null(strstr(err.message, "no progress"));
+    assert_true(t > 0.05 && t < 2.0);
+    assert_close(td_sim_time(s), t, 0.0, 0.0);
+    td_sim_free(&s);
+    td_case_free(&c);
+}
+
 /* A speed change keeps the spin angle (and so the unbalance force) continuous and the state too. */
 static void test_speed_change_continuity(void **state)
 {
@@ -990,6 +1107,9 @@ int main(void)
         cmocka_unit_test(test_constrained_drift),
         cmocka_unit_test(test_external_amb_control),
         cmocka_unit_test(test_api_change_matches_schedule),
+        cmocka_unit_test(test_schedule_events_name_entries_as_written),
+        cmocka_unit_test(test_free_free_rotor_start),
+        cmocka_unit_test(test_no_progress_fails),
         cmocka_unit_test(test_speed_change_continuity),
         cmocka_unit_test(test_friction_reversal),
         cmocka_unit_test(test_penalty_never_passes_through),

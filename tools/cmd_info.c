@@ -33,7 +33,7 @@ static void print_race(const td_retainer *r)
                b->mount_stiffness, b->mount_damping);
     if (r->contact.stiffness > 0.0)
         printf("             contact: stiffness %.6g N/m^%.6g, damping %s %.6g\n", r->contact.stiffness,
-               r->contact.exponent,
+               r->contact.exponent > 0.0 ? r->contact.exponent : 1.0, /* 0: not given, taken as 1 */
                r->contact.damping == TD_DAMPING_KELVIN_VOIGT    ? "kelvin-voigt"
                : r->contact.damping == TD_DAMPING_HUNT_CROSSLEY ? "hunt-crossley"
                                                                 : "none",

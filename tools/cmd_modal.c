@@ -278,8 +278,12 @@ int td_cmd_modal(int argc, char **argv)
     speed = td_model_speed(td_case_model(c));
     if (speed_arg) {
         speed = strtod(speed_arg, &end);
-        if (*end || end == speed_arg) {
-            td_cli_error("modal", "--speed wants a number in rad/s, not '%s'", speed_arg);
+        if (*end || end == speed_arg || !TD_SPEED_VALID(speed)) {
+            /* the rule of every speed (touchdown/dofs.h): whirl directions are counted from a spin about +z */
+            td_cli_error("modal",
+                         "--speed wants a speed >= 0 in rad/s, not '%s' (the spin is about +z: a machine turning the "
+                         "other way is described from its other end)",
+                         speed_arg);
             td_case_free(&c);
             return TD_EXIT_USAGE;
         }

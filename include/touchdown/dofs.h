@@ -9,7 +9,11 @@
  *
  * Axes: the shaft axis is z, running from node 0 (the non-driven end, NDE) to the last node
  * (the driven end, DE). x and y are fixed (non-rotating) lateral axes with x, y, z right-handed.
- * The rotor spins about +z at speed Omega > 0 (forward spin: from x towards y).
+ * The rotor spins about +z at speed Omega >= 0 (forward spin: from x towards y). Every speed the
+ * library takes is one of these (TD_SPEED_VALID): the forward and backward whirl of the modal
+ * analysis, the rolling direction of a race and the sign of the friction work are all counted
+ * from this spin. A machine that turns the other way is the same machine seen from its other end:
+ * number its nodes from the driven end and its spin is about +z again.
  *
  * Degrees of freedom: four per node, interleaved node by node (this keeps the matrices banded):
  *
@@ -44,6 +48,7 @@
 #ifndef TOUCHDOWN_DOFS_H
 #define TOUCHDOWN_DOFS_H
 
+#include <float.h>
 #include <math.h>
 
 #include "touchdown/export.h"
@@ -65,6 +70,9 @@ enum td_dof_offset {
 
 /** Global index of DOF `offset` (a td_dof_offset) at node `node`. */
 #define TD_DOF(node, offset) (TD_DOFS_PER_NODE * (node) + (offset))
+
+/** 1 if w is a rotor speed the library takes: finite and >= 0 rad/s (the spin is about +z). */
+#define TD_SPEED_VALID(w) ((w) >= 0.0 && (w) <= DBL_MAX)
 
 /** pi: angles are in rad, speeds in rad/s. */
 #define TD_PI 3.14159265358979323846

@@ -18,6 +18,15 @@
  *  solver step is 1/20 of a revolution, so this also bounds the default step count (2e7). */
 #define TD_MAX_REVOLUTIONS 1e6
 
+/** Largest solver.atol as a fraction of the machine's smallest gap (a retainer's clearance or an
+ *  AMB's air gap). Displacements are controlled to atol, and everything the run reports happens in
+ *  the gap c - r: at 1e-3 the gap is resolved to 0.1 % of the clearance, as fine as the run resolves
+ *  impacts (slower ones are plastic: 1e-3 of c times the bearing frequency, lib/sim/sim.c). An atol
+ *  of the order of the clearance lets the integrator step across contacts unchecked: forces grow
+ *  without bound and the run stops progressing (the drop case at atol = 1e6 m advanced 2e-6 s in
+ *  35 s of steps). */
+#define TD_MAX_ATOL_FRACTION 1e-3
+
 /** Largest unbalance force U Omega^2 at the case speed, N (of every unbalance and schedule
  *  entry). Real machines stay below 1e7 N; far larger forces only overflow the start orbit. */
 #define TD_MAX_UNBALANCE_FORCE 1e12

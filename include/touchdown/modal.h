@@ -125,7 +125,19 @@ TD_API double td_modal_spectral_radius(const td_modal *m);
 /** Real parts within this fraction of the spectral radius are round-off of zero (undamped modes of
  *  an undamped shaft come out at +-1e-12..1e-9 of it). */
 #define TD_MODAL_ROUNDOFF_REAL_PART 1e-9
-/** 1 if some eigenvalue grows: max real part > TD_MODAL_ROUNDOFF_REAL_PART * spectral radius. */
+/** Real parts up to this fraction of the spectral radius are rounding of a marginal root, not
+ *  growth: 10 sqrt(DBL_EPSILON) = 1.5e-7. The eigen-solver (the QR algorithm) returns the exact
+ *  roots of A + E with |E| about eps |A|: a simple root moves by O(eps |A|), but a defective one of
+ *  multiplicity 2 moves by O(sqrt(eps) |A|), the roots of a 2 x 2 Jordan block perturbed by e
+ *  being +-sqrt(e) (Golub & Van Loan, Matrix Computations, 4th ed., 7.2 and 7.5).
+ *  A rotor without bearings (every AMB off, free-free) has such roots at 0, its rigid-body
+ *  motions x'' = 0: they come out at up to about sqrt(eps) times the spectral radius (3e-9 of it
+ *  on the rig without its AMBs), where the rounding of simple roots stays within
+ *  TD_MODAL_ROUNDOFF_REAL_PART. The factor 10 covers the constant of |E|; a true growth rate this
+ *  small (1.5e-7 of the fastest root, e-folding over millions of its periods) is no instability a
+ *  run could show. */
+#define TD_MODAL_MARGINAL_REAL_PART 1.4901161193847656e-07
+/** 1 if some eigenvalue grows: max real part > TD_MODAL_MARGINAL_REAL_PART * spectral radius. */
 TD_API int td_modal_is_unstable(const td_modal *m);
 /**
  * Stability of the contact-free system at speed `omega` from its eigenvalues alone (no

@@ -294,6 +294,10 @@ TD_API int td_model_bearing_count(const td_model *m);
 TD_API int td_model_retainer_count(const td_model *m);
 TD_API int td_model_unbalance_count(const td_model *m);
 TD_API int td_model_change_count(const td_model *m);
+/** The order of addition (from 0) of change i, i counted in time order as td_model_get_change
+ *  counts it: the schedule entry as written, which events report (td_event.change); -1 when i is
+ *  out of range. */
+TD_API int td_model_change_entry(const td_model *m, int i);
 TD_API double td_model_speed(const td_model *m);
 TD_API int td_model_speed_point_count(const td_model *m);
 TD_API td_status td_model_get_speed_point(const td_model *m, int i, td_speed_point *out);

@@ -30,7 +30,8 @@ typedef struct td_event {
     td_event_kind kind;
     double time;                   /**< s */
     int retainer;                  /**< retainer index, -1 for schedule events */
-    int change;                    /**< schedule index for TD_EVENT_SCHEDULE, else -1 */
+    int change;                    /**< TD_EVENT_SCHEDULE: the schedule entry as written (its order of
+                                        addition, td_model_change_entry), else -1 */
     double radial_velocity_before; /**< m/s, positive outward */
     double radial_velocity_after;
     double tangential_velocity_before; /**< m/s, positive along the whirl direction */

@@ -257,9 +257,29 @@ static td_status check_run_limits(td_case_reader *r, const config_setting_t *roo
     case TD_LIMIT_SAMPLES: s = member(root, "output", "sample_rate"); break;
     case TD_LIMIT_STEPS: s = member(root, "solver", "max_step"); break;
     case TD_LIMIT_REVOLUTIONS: s = member(root, NULL, "speed"); break;
+    case TD_LIMIT_ATOL: break; /* check_atol */
     }
     if (!s || config_setting_get_hook(end))
         s = end;
+    return td_cr_fail(r, s, NULL, "%s", why);
+}
+
+/* solver.atol against the machine's smallest gap (TD_MAX_ATOL_FRACTION), named at solver.atol when
+ * the case sets it, else at the clearance or air gap that bounds the default. */
+static td_status check_atol(td_case_reader *r, const config_setting_t *root)
+{
+    const config_setting_t *s = member(root, "solver", "atol"), *part;
+    char why[320];
+    int k, a;
+    if (td_atol_limit_check(r->c->model, r->c->sim.solver.atol, why, sizeof why) == TD_LIMIT_NONE)
+        return TD_OK;
+    if (!s) {
+        td_model_smallest_gap(r->c->model, &k, &a);
+        part = config_setting_get_member(root, k >= 0 ? "retainers" : "ambs");
+        part = part ? config_setting_get_elem(part, (unsigned)(k >= 0 ? k : a)) : NULL;
+        s = part ? config_setting_get_member(part, k >= 0 ? "clearance" : "air_gap") : NULL;
+        s = s ? s : part ? part : root;
+    }
     return td_cr_fail(r, s, NULL, "%s", why);
 }
 
@@ -325,6 +345,8 @@ td_status td_cr_read_options(td_case_reader *r, const config_setting_t *root)
         speed = highest_speed(c->model, speed);
     if (st == TD_OK)
         st = check_run_limits(r, root, speed);
+    if (st == TD_OK)
+        st = check_atol(r, root);
     if (st == TD_OK)
         st = check_unbalance_forces(r, root, "unbalances", speed);
     if (st == TD_OK)

@@ -238,8 +238,10 @@ static td_status read_retainer_contact(td_case_reader *r, const config_setting_t
     st = td_cr_check_keys(r, cg, retainer_contact_keys);
     if (st == TD_OK)
         st = td_cr_real(r, cg, "stiffness", "contact stiffness, N/m^exponent", 0.0, TD_CR_FINITE, &c->stiffness);
+    /* an exponent not written stays 0 (model.h: taken as 1), so the model's rule that a law needs a
+     * stiffness never blames a value the case does not hold */
     if (st == TD_OK)
-        st = td_cr_real(r, cg, "exponent", NULL, 1.0, TD_CR_FINITE, &c->exponent);
+        st = td_cr_real(r, cg, "exponent", NULL, 0.0, TD_CR_FINITE, &c->exponent);
     if (st == TD_OK)
         st = td_cr_enum(r, cg, "damping", td_cr_damping_names, TD_CR_DAMPING_NAMES, 0, &damping);
     if (st == TD_OK)

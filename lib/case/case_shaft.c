@@ -45,6 +45,9 @@ static td_status read_lengths(td_case_reader *r, const config_setting_t *shaft, 
             if (!(z[i] > z[i - 1]))
                 st = td_cr_fail(r, config_setting_get_elem(nodes, (unsigned)i), NULL,
                                 "node positions must increase strictly (%g m follows %g m)", z[i], z[i - 1]);
+            else
+                st = td_cr_derived(r, config_setting_get_elem(nodes, (unsigned)i), z[i] - z[i - 1],
+                                   "the element length from the node positions");
             z[i - 1] = z[i] - z[i - 1]; /* position -> length of element i - 1 */
         }
         if (st != TD_OK) {
@@ -144,13 +147,55 @@ static const config_setting_t *element_source(const config_setting_t *shaft, int
     return s ? s : shaft;
 }
 
-/* The setting that gave an element the field a model error names ("inner_diameter",
- * "material.E", ...): element_source of that key. */
-static const config_setting_t *element_field(const config_setting_t *shaft, int owner, const td_error *merr)
+/* The setting that gave an element the field a model error site names ("inner_diameter",
+ * "material.E", "length", ...): element_source of that key; for "length" the node position that
+ * ends element i (`nodes`) or the shaft's `length`. */
+static const config_setting_t *element_field(const config_setting_t *shaft, int owner, const td_error_site *site)
 {
-    const char *field = merr->site.field ? merr->site.field : "";
+    const char *field = site->field ? site->field : "";
+    const config_setting_t *nodes = config_setting_get_member(shaft, "nodes");
     int material = strncmp(field, "material.", 9) == 0;
+    if (strcmp(field, "length") == 0 && nodes && site->index + 1 < config_setting_length(nodes))
+        return config_setting_get_elem(nodes, (unsigned)(site->index + 1));
     return element_source(shaft, owner, material ? field + 9 : field, material);
+}
+
+/* 1 if setting s lies inside the shaft's `sections` list (a section's key or its material's). */
+static int in_section(const config_setting_t *shaft, const config_setting_t *s)
+{
+    const config_setting_t *sections = config_setting_get_member(shaft, "sections");
+    for (; s && sections; s = config_setting_parent(s))
+        if (s == sections)
+            return 1;
+    return 0;
+}
+
+/* A model error on element e (number i) read from the case, blamed on the setting that gave the
+ * element the field it names. When it compares two fields (the inner diameter against the outer
+ * one) and a section set one of them while the other is the shaft's, the section's value is the
+ * one written for this element: it is blamed, said to be the section's, and the other is named
+ * with its place. */
+static td_status element_fail(td_case_reader *r, const config_setting_t *shaft, int owner, int i,
+                              const td_shaft_element *e, td_status st, const td_error *merr)
+{
+    const config_setting_t *inner = element_field(shaft, owner, &merr->site), *outer;
+    char key[512], where[1200];
+    if (st == TD_ERR_NOMEM || !merr->other.field || strcmp(merr->other.field, "outer_diameter") != 0)
+        return td_cr_model_fail(r, inner, st, merr);
+    outer = element_field(shaft, owner, &merr->other);
+    if (in_section(shaft, inner) == in_section(shaft, outer))
+        return td_cr_model_fail(r, inner, st, merr);
+    td_cr_key(in_section(shaft, outer) ? inner : outer, key, sizeof key);
+    td_cr_where(r, in_section(shaft, outer) ? inner : outer, where, sizeof where);
+    if (in_section(shaft, outer))
+        return td_cr_fail(r, outer, NULL,
+                          "the section's outer diameter %g m (element %d) must be larger than the inner diameter "
+                          "%g m of %s at %s",
+                          e->outer_diameter, i, e->inner_diameter, key, where);
+    return td_cr_fail(r, inner, NULL,
+                      "the section's inner diameter %g m (element %d) must be >= 0 and smaller than the outer "
+                      "diameter %g m of %s at %s",
+                      e->inner_diameter, i, e->outer_diameter, key, where);
 }
 
 /* The scales of the beam element's matrices must be finite: area and second moment from the
@@ -335,7 +380,7 @@ td_status td_cr_read_shaft(td_case_reader *r, const config_setting_t *root)
             break;
         st = td_model_add_shaft_element(r->c->model, &els[i], &merr);
         if (st != TD_OK)
-            st = td_cr_model_fail(r, element_field(shaft, owner[i], &merr), st, &merr);
+            st = element_fail(r, shaft, owner[i], i, &els[i], st, &merr);
     }
     if (st == TD_OK)
         st = read_shaft_options(r, shaft);

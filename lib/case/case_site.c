@@ -42,39 +42,10 @@ static const config_setting_t *entry(const config_setting_t *root, const char *k
     return list && i >= 0 && i < config_setting_length(list) ? config_setting_get_elem(list, (unsigned)i) : NULL;
 }
 
-/* The time of schedule entry g, as read (td_cr_read_parts checked it). */
-static double change_time(const config_setting_t *g)
-{
-    const config_setting_t *t = config_setting_get_member(g, "time");
-    if (!t)
-        return 0.0;
-    return config_setting_type(t) == CONFIG_TYPE_FLOAT ? config_setting_get_float(t)
-                                                       : (double)config_setting_get_int64(t);
-}
-
-/* The schedule entry of model change i: td_model_add_change keeps the changes sorted by time,
- * equal times in their order of addition, so change i is the entry with i entries before it in
- * that order. */
-static const config_setting_t *schedule_entry(const config_setting_t *root, int i)
-{
-    const config_setting_t *list = config_setting_get_member(root, "schedule");
-    int n = list ? config_setting_length(list) : 0, k, j;
-    for (k = 0; k < n; k++) {
-        double tk = change_time(config_setting_get_elem(list, (unsigned)k));
-        int rank = 0;
-        for (j = 0; j < n; j++) {
-            double tj = change_time(config_setting_get_elem(list, (unsigned)j));
-            rank += tj < tk || (tj == tk && j < k);
-        }
-        if (rank == i)
-            return config_setting_get_elem(list, (unsigned)k);
-    }
-    return NULL;
-}
-
 /* The case entry a model part was read from: discs then point masses are the model's discs, each
  * other list is one kind of part in order; NULL for the shaft's elements (sections) and unknowns. */
-static const config_setting_t *part_entry(const config_setting_t *root, const td_error_site *site)
+static const config_setting_t *part_entry(const config_setting_t *root, const td_model *model,
+                                          const td_error_site *site)
 {
     static const char *const parts[][2] = {{"amb", "ambs"},
                                            {"bearing", "bearings"},
@@ -87,8 +58,8 @@ static const config_setting_t *part_entry(const config_setting_t *root, const td
         int nd = discs ? config_setting_length(discs) : 0;
         return site->index < nd ? entry(root, "discs", site->index) : entry(root, "point_masses", site->index - nd);
     }
-    if (strcmp(site->part, "change") == 0)
-        return schedule_entry(root, site->index);
+    if (strcmp(site->part, "change") == 0) /* numbered in time order; the entry is its order of addition */
+        return entry(root, "schedule", td_model_change_entry(model, site->index));
     if (strcmp(site->part, "spin") == 0)
         return config_setting_get_member(root, "spin");
     for (k = 0; k < sizeof parts / sizeof parts[0]; k++)
@@ -110,9 +81,9 @@ td_status td_cr_validate_fail(td_case_reader *r, const td_error *merr)
 {
     const config_setting_t *root = config_root_setting(&r->cfg), *g, *other;
     char key[512], where[1200];
-    if (!merr->site.part || !(g = part_entry(root, &merr->site)))
+    if (!merr->site.part || !(g = part_entry(root, r->c->model, &merr->site)))
         return td_cr_fail_file(r->err, TD_ERR_PARSE, r->path_shown, 0, "%s", merr->message);
-    if (!merr->other.part || !(other = part_entry(root, &merr->other)))
+    if (!merr->other.part || !(other = part_entry(root, r->c->model, &merr->other)))
         return td_cr_model_fail(r, g, TD_ERR_PARSE, merr);
     /* a cross check: say where the other part is, too */
     other = field_setting(other, &merr->other);

@@ -240,7 +240,9 @@ void td_h5_vfd_release(hid_t driver)
 hid_t td_h5_vfd_use(hid_t fapl, int *io_errno)
 {
     (void)io_errno;
-    return H5Pset_fapl_sec2(fapl) < 0 ? -1 : 0;
+    /* no HDF5 file lock: the writer holds its own lock on the file (writer.c, td_io_create_temp),
+     * which the sec2 driver's flock on a second descriptor would collide with */
+    return H5Pset_fapl_sec2(fapl) < 0 || H5Pset_file_locking(fapl, 0, 1) < 0 ? -1 : 0;
 }
 
 void td_h5_vfd_release(hid_t driver)

@@ -5,12 +5,15 @@
 #include "io/writer_internal.h"
 #include "util/error_internal.h"
 
+#include <dirent.h>
 #include <errno.h>
 #include <fcntl.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/file.h>
+#include <sys/stat.h>
 #include <time.h>
 #include <unistd.h>
 
@@ -75,7 +78,69 @@ static void temp_tag(char tag[TEMP_TAG_LEN + 1], const void *salt, unsigned atte
     tag[TEMP_TAG_LEN] = '\0';
 }
 
-td_status td_io_create_temp(const char *path, char **tmp_out, int *fd_out, td_error *err)
+/* 1 if `name` is a temporary name of the file `base` (base_len bytes): BASE.XXXXXX.partial. */
+static int is_temp_of(const char *name, const char *base, size_t base_len)
+{
+    size_t i;
+    if (strncmp(name, base, base_len) != 0 || name[base_len] != '.')
+        return 0;
+    for (i = 0; i < TEMP_TAG_LEN; i++) {
+        char c = name[base_len + 1 + i];
+        if (!((c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9')))
+            return 0;
+    }
+    return strcmp(name + base_len + 1 + TEMP_TAG_LEN, partial_suffix) == 0;
+}
+
+/* A temporary file younger than this (s), and still empty, may be one whose writer has created it
+ * and not yet locked it (the two calls of td_io_create_temp): it is left alone. */
+#define TEMP_UNLOCKED_AGE 2
+
+/* Remove the temporary file `name` if its writer is gone: nobody holds its lock (a live writer
+ * holds it until the file is renamed or removed, td_io_create_temp), and it is still the file
+ * opened (not replaced meanwhile). */
+static void remove_if_orphan(const char *name)
+{
+    struct stat a, b;
+    int fd = open(name, O_RDONLY | O_NONBLOCK | O_NOFOLLOW);
+    if (fd < 0)
+        return;
+    if (fstat(fd, &a) == 0 && S_ISREG(a.st_mode) && flock(fd, LOCK_EX | LOCK_NB) == 0 &&
+        !(a.st_size == 0 && time(NULL) - a.st_mtime < TEMP_UNLOCKED_AGE) && lstat(name, &b) == 0 &&
+        a.st_dev == b.st_dev && a.st_ino == b.st_ino)
+        unlink(name);
+    close(fd); /* and its lock */
+}
+
+/* The leftovers of earlier writers of `path` (PATH.XXXXXX.partial whose writer was killed: SIGKILL,
+ * power loss) are removed; a live writer's, locked, are not. Best effort: what cannot be read or
+ * removed stays, and the run goes on. */
+static void remove_leftovers(const char *path)
+{
+    const char *slash = strrchr(path, '/'), *base = slash ? slash + 1 : path;
+    size_t dir_len = slash ? (size_t)(slash - path) + 1 : 0, base_len = strlen(base);
+    char *dir = malloc(dir_len + 2), *name = NULL;
+    DIR *d;
+    struct dirent *e;
+    if (!dir)
+        return;
+    memcpy(dir, slash ? path : ".", slash ? dir_len : 1);
+    dir[slash ? dir_len : 1] = '\0';
+    d = opendir(dir);
+    while (d && (e = readdir(d)) != NULL) {
+        if (!is_temp_of(e->d_name, base, base_len) || !(name = malloc(dir_len + strlen(e->d_name) + 1)))
+            continue;
+        memcpy(name, path, dir_len);
+        strcpy(name + dir_len, e->d_name);
+        remove_if_orphan(name);
+        free(name);
+    }
+    if (d)
+        closedir(d);
+    free(dir);
+}
+
+td_status td_io_create_temp(const char *path, char **tmp_out, int *fd_out, int *lock_out, td_error *err)
 {
     size_t len = strlen(path);
     char *tmp = malloc(len + 1 + TEMP_TAG_LEN + sizeof partial_suffix);
@@ -83,9 +148,10 @@ td_status td_io_create_temp(const char *path, char **tmp_out, int *fd_out, td_er
     unsigned attempt;
     int fd = -1, e = EEXIST;
     *tmp_out = NULL;
-    *fd_out = -1;
+    *fd_out = *lock_out = -1;
     if (!tmp)
         return td_error_set(err, TD_ERR_NOMEM, "out of memory opening %s", path);
+    remove_leftovers(path);
     for (attempt = 0; attempt < TEMP_ATTEMPTS && fd < 0 && e == EEXIST; attempt++) {
         temp_tag(tag, tmp, attempt);
         memcpy(tmp, path, len);
@@ -98,6 +164,15 @@ td_status td_io_create_temp(const char *path, char **tmp_out, int *fd_out, td_er
     if (fd < 0) {
         free(tmp);
         return td_error_set(err, TD_ERR_IO, "%s: cannot create its temporary file: %s", path, strerror(e));
+    }
+    /* The lock says a writer is alive (remove_leftovers): held on a duplicate of the descriptor, so
+     * it outlives fd (closed by the writer before the rename) until the caller closes *lock_out. */
+    if (flock(fd, LOCK_EX | LOCK_NB) != 0 || (*lock_out = dup(fd)) < 0) {
+        e = errno;
+        close(fd);
+        remove(tmp);
+        free(tmp);
+        return td_error_set(err, TD_ERR_IO, "%s: cannot lock its temporary file: %s", path, strerror(e));
     }
     *tmp_out = tmp;
     *fd_out = fd;
@@ -114,14 +189,16 @@ td_status td_io_commit_temp(const char *tmp, const char *path, td_error *err)
     return st;
 }
 
-/* The end of a whole-file write: tmp renamed to path if st is TD_OK, else removed; tmp freed. */
-static td_status finish_temp(td_status st, char *tmp, const char *path, td_error *err)
+/* The end of a whole-file write: tmp renamed to path if st is TD_OK, else removed; tmp freed and
+ * its lock released (after: the name is gone by then). */
+static td_status finish_temp(td_status st, char *tmp, int lock, const char *path, td_error *err)
 {
     if (st == TD_OK)
         st = td_io_commit_temp(tmp, path, err);
     else
         remove(tmp);
     free(tmp);
+    close(lock);
     return st;
 }
 
@@ -130,8 +207,8 @@ td_status td_io_write_text_file(const char *path, void (*write_all)(FILE *f, con
 {
     char *tmp = NULL;
     FILE *f;
-    int fd;
-    td_status st = td_io_create_temp(path, &tmp, &fd, err);
+    int fd, lock;
+    td_status st = td_io_create_temp(path, &tmp, &fd, &lock, err);
     if (st != TD_OK)
         return st;
     errno = 0;
@@ -143,7 +220,7 @@ td_status td_io_write_text_file(const char *path, void (*write_all)(FILE *f, con
         if (td_io_close_stream(&f))
             st = td_io_fail(err, tmp, "cannot write");
     }
-    return finish_temp(st, tmp, path, err);
+    return finish_temp(st, tmp, lock, path, err);
 }
 
 td_status td_io_write_named_file(const char *path,
@@ -151,12 +228,12 @@ td_status td_io_write_named_file(const char *path,
                                  const void *ctx, td_error *err)
 {
     char *tmp = NULL;
-    int fd;
-    td_status st = td_io_create_temp(path, &tmp, &fd, err);
+    int fd, lock;
+    td_status st = td_io_create_temp(path, &tmp, &fd, &lock, err);
     if (st != TD_OK)
         return st;
     close(fd); /* the writer opens the file by name (HDF5) */
-    return finish_temp(write_all(tmp, ctx, err), tmp, path, err);
+    return finish_temp(write_all(tmp, ctx, err), tmp, lock, path, err);
 }
 
 td_status td_io_fsync_path(const char *path, td_error *err)
@@ -235,6 +312,10 @@ static void writer_free(td_writer *w)
         close(w->tmp_fd);
     if (w->events_fd >= 0)
         close(w->events_fd);
+    if (w->tmp_lock >= 0) /* last: the temporary files are renamed or removed by now */
+        close(w->tmp_lock);
+    if (w->events_lock >= 0)
+        close(w->events_lock);
     free(w);
 }
 
@@ -265,9 +346,9 @@ static td_status events_path(td_writer *w)
 /* Create the temporary file(s) under fresh unique names; on failure none is left. */
 static td_status create_temps(td_writer *w, td_error *err)
 {
-    td_status st = td_io_create_temp(w->path, &w->tmp_path, &w->tmp_fd, err);
+    td_status st = td_io_create_temp(w->path, &w->tmp_path, &w->tmp_fd, &w->tmp_lock, err);
     if (st == TD_OK && w->events_path &&
-        (st = td_io_create_temp(w->events_path, &w->events_tmp, &w->events_fd, err)) != TD_OK) {
+        (st = td_io_create_temp(w->events_path, &w->events_tmp, &w->events_fd, &w->events_lock, err)) != TD_OK) {
         remove(w->tmp_path);
         free(w->tmp_path);
         w->tmp_path = NULL;
@@ -301,7 +382,7 @@ td_status td_writer_open(td_writer_kind kind, const char *path, const td_output_
     if (!w)
         return td_error_set(err, TD_ERR_NOMEM, "out of memory opening %s", path);
     w->kind = kind;
-    w->tmp_fd = w->events_fd = -1;
+    w->tmp_fd = w->events_fd = w->tmp_lock = w->events_lock = -1;
     w->ops = kind == TD_WRITER_HDF5 ? &td_hdf5_writer_ops : &td_csv_writer_ops;
     w->path = string_copy(path, NULL);
     if (!w->path || (kind == TD_WRITER_CSV && (st = events_path(w)) != TD_OK)) {

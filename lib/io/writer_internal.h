@@ -40,6 +40,8 @@ struct td_writer {
     char *events_tmp;  /**< CSV only: events_path + ".XXXXXX.partial" */
     int tmp_fd;        /**< the new empty tmp_path, open until the back end takes it over (-1) */
     int events_fd;     /**< likewise for events_tmp */
+    int tmp_lock;      /**< holds tmp_path's lock (td_io_create_temp) until the writer is freed */
+    int events_lock;   /**< likewise for events_tmp */
     int node_count, retainer_count, amb_count;
     int race_fields; /**< nonzero: the race columns / datasets too (td_output_layout) */
     int speed_field; /**< nonzero: the rotor speed column / dataset too (td_output_layout) */
@@ -77,9 +79,12 @@ extern const td_writer_ops td_csv_writer_ops;
 /**
  * Create a new empty file PATH.XXXXXX.partial (XXXXXX: letters and digits) with O_CREAT|O_EXCL,
  * so it never is another run's file; *tmp (malloc'ed name) and *fd (open for writing) are set.
- * The same directory as PATH keeps the final rename atomic.
+ * The same directory as PATH keeps the final rename atomic. The file is locked (flock, exclusive)
+ * for as long as *lock stays open: close it only once the file is renamed or removed. First the
+ * leftovers of earlier writers of PATH are removed: temporary files nobody holds the lock of
+ * (their writer was killed), never a live writer's.
  */
-td_status td_io_create_temp(const char *path, char **tmp, int *fd, td_error *err);
+td_status td_io_create_temp(const char *path, char **tmp, int *fd, int *lock, td_error *err);
 
 /** Flush a closed temporary file to disk and rename it to `path`; on failure remove it. */
 td_status td_io_commit_temp(const char *tmp, const char *path, td_error *err);

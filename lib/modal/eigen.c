@@ -369,7 +369,7 @@ td_status td_modal_stability(const td_system *sys, double omega, double *max_rea
     if (st == TD_OK && max_real_part)
         *max_real_part = max_real;
     if (st == TD_OK && unstable)
-        *unstable = max_real > TD_MODAL_ROUNDOFF_REAL_PART * radius;
+        *unstable = max_real > TD_MODAL_MARGINAL_REAL_PART * radius;
     return st;
 }
 
@@ -416,7 +416,7 @@ double td_modal_spectral_radius(const td_modal *m)
 }
 int td_modal_is_unstable(const td_modal *m)
 {
-    return m && m->max_real > TD_MODAL_ROUNDOFF_REAL_PART * td_modal_spectral_radius(m);
+    return m && m->max_real > TD_MODAL_MARGINAL_REAL_PART * td_modal_spectral_radius(m);
 }
 
 td_status td_modal_get_mode(const td_modal *m, int i, td_mode *out)

@@ -12,6 +12,7 @@
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_linalg.h>
 
+#include <float.h>
 #include <math.h>
 #include <stdlib.h>
 
@@ -200,7 +201,50 @@ td_status td_harmonic_orbit(const td_harmonic *h, int node, td_orbit *o)
     return TD_OK;
 }
 
-/* Static state z_s with A z_s = -[0; M^-1 f_g; 0] (real LU). */
+/* The static problem A z = f has a solution worth having: the reciprocal condition number of A,
+ * rows then columns scaled to unit largest entry (LAPACK dgeequ's equilibration: A mixes rows of
+ * 1 with rows of K / M), estimated from its pivoted QR, is at least 100 n eps, i.e. the solve's
+ * relative error bound n eps / rcond stays below 1 %. A rotor that nothing holds (no bearing and
+ * no working AMB: a free rigid-body motion) makes A singular; its rounding leaves rcond at about
+ * eps (2e-19 on the rig without AMBs; 7e-9 for the drop case's rig at shaft.refine = 8), so the exact-zero
+ * determinant test alone let the LU return a sag of 1e8 m. 1: solvable, 0: singular, -1: no memory. */
+static int static_solvable(const gsl_matrix *A)
+{
+    size_t n = A->size1, i, j;
+    gsl_matrix *Q = gsl_matrix_alloc(n, n);
+    gsl_vector *tau = gsl_vector_alloc(n), *norm = gsl_vector_alloc(n), *work = gsl_vector_alloc(3 * n);
+    gsl_permutation *p = gsl_permutation_alloc(n);
+    double rcond = 0.0;
+    int sign, ok = -1;
+    if (Q && tau && norm && work && p) {
+        gsl_matrix_memcpy(Q, A);
+        for (i = 0; i < n; i++) { /* rows, then columns, to unit largest entry */
+            gsl_vector_view row = gsl_matrix_row(Q, i);
+            double big = gsl_vector_max(&row.vector) > -gsl_vector_min(&row.vector) ? gsl_vector_max(&row.vector)
+                                                                                    : -gsl_vector_min(&row.vector);
+            if (big > 0.0)
+                gsl_vector_scale(&row.vector, 1.0 / big);
+        }
+        for (j = 0; j < n; j++) {
+            gsl_vector_view col = gsl_matrix_column(Q, j);
+            double big = gsl_vector_max(&col.vector) > -gsl_vector_min(&col.vector) ? gsl_vector_max(&col.vector)
+                                                                                    : -gsl_vector_min(&col.vector);
+            if (big > 0.0)
+                gsl_vector_scale(&col.vector, 1.0 / big);
+        }
+        ok = gsl_linalg_QRPT_decomp(Q, tau, p, &sign, norm) == GSL_SUCCESS &&
+             gsl_linalg_QRPT_rcond(Q, &rcond, work) == GSL_SUCCESS && rcond >= 100.0 * (double)n * DBL_EPSILON;
+    }
+    gsl_permutation_free(p);
+    gsl_vector_free(work);
+    gsl_vector_free(norm);
+    gsl_vector_free(tau);
+    gsl_matrix_free(Q);
+    return ok;
+}
+
+/* Static state z_s with A z_s = -[0; M^-1 f_g; 0] (real LU), refused when A is singular to
+ * rounding (static_solvable). */
 static td_status static_state(const td_system *sys, const td_state_space *ss, double *zs, td_error *err)
 {
     size_t n = (size_t)ss->n, i;
@@ -208,13 +252,18 @@ static td_status static_state(const td_system *sys, const td_state_space *ss, do
     gsl_permutation *p = gsl_permutation_alloc(n);
     gsl_vector_view x = gsl_vector_view_array(zs, n);
     td_status st;
-    int sign;
+    int sign, held;
     if (!LU || !p) {
         gsl_matrix_free(LU);
         gsl_permutation_free(p);
         return td_error_set(err, TD_ERR_NOMEM, "modal: out of memory for the static solve");
     }
     st = td_state_space_load(ss, sys->gravity_load, zs, err);
+    if (st == TD_OK && (held = static_solvable(ss->A)) <= 0)
+        st = held < 0 ? td_error_set(err, TD_ERR_NOMEM, "modal: out of memory for the static solve")
+                      : td_error_set(err, TD_ERR_NUMERIC,
+                                     "modal: the static deflection under gravity is undefined (the rotor is not "
+                                     "held: no bearing or working AMB stops a rigid-body motion)");
     if (st == TD_OK) {
         for (i = 0; i < n; i++)
             zs[i] = -zs[i];

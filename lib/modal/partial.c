@@ -441,7 +441,7 @@ td_status td_modal_lowest(const td_system *sys, double omega, int count, double 
     if (!out)
         return td_error_set(err, TD_ERR_INVALID, "td_modal_solve_lowest: NULL output pointer");
     *out = NULL;
-    if (!sys || count < 1 || !isfinite(omega))
+    if (!sys || count < 1 || !TD_SPEED_VALID(omega))
         return td_error_set(err, TD_ERR_INVALID, "td_modal_solve_lowest: bad system, speed or mode count");
     n = td_modal_state_count(sys);
     if (!force_sparse && n <= TD_MODAL_DENSE_MAX_STATES)

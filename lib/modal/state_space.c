@@ -147,8 +147,8 @@ td_status td_state_space_build(const td_system *sys, double omega, td_state_spac
     td_status st;
     if (!sys || !ss)
         return td_error_set(err, TD_ERR_INVALID, "modal: NULL system");
-    if (!isfinite(omega))
-        return td_error_set(err, TD_ERR_INVALID, "modal: speed must be finite");
+    if (!TD_SPEED_VALID(omega))
+        return td_error_set(err, TD_ERR_INVALID, "modal: speed must be finite and >= 0 rad/s (got %g)", omega);
     td_modal_gsl_quiet();
     ss->ndof = sys->ndof;
     ss->nfilter = sys->n_controller_states;

@@ -88,6 +88,7 @@ void td_model_free(td_model **model)
     free(m->retainers.items);
     free(m->unbalances.items);
     free(m->changes.items);
+    free(m->change_entries.items);
     free(m->speed_points.items);
     free(m);
     *model = NULL;
@@ -135,6 +136,7 @@ td_status td_model_clone(const td_model *model, td_model **out, td_error *err)
     CLONE(m->retainers, model->retainers, ok);
     CLONE(m->unbalances, model->unbalances, ok);
     CLONE(m->changes, model->changes, ok);
+    CLONE(m->change_entries, model->change_entries, ok);
     CLONE(m->speed_points, model->speed_points, ok);
     m->spin = model->spin;
     if (!ok) {
@@ -212,8 +214,9 @@ td_status td_model_set_shaft_options(td_model *m, const td_shaft_options *opt, t
         return td_error_set(err, TD_ERR_INVALID, "shaft options: unknown beam theory %d", (int)opt->beam);
     if (opt->mass != TD_MASS_CONSISTENT && opt->mass != TD_MASS_LUMPED)
         return td_error_set(err, TD_ERR_INVALID, "shaft options: unknown mass form %d", (int)opt->mass);
-    if (!finite_nonnegative(opt->rayleigh_alpha) || !finite_nonnegative(opt->rayleigh_beta))
-        return td_error_set(err, TD_ERR_INVALID, "shaft options: Rayleigh alpha and beta must be finite and >= 0");
+    if (need(finite_nonnegative(opt->rayleigh_alpha), err, "shaft", 0, "rayleigh.alpha", NONNEG, opt->rayleigh_alpha) ||
+        need(finite_nonnegative(opt->rayleigh_beta), err, "shaft", 0, "rayleigh.beta", NONNEG, opt->rayleigh_beta))
+        return TD_ERR_INVALID;
     if (opt->shear != TD_SHEAR_HUTCHINSON && opt->shear != TD_SHEAR_COWPER && opt->shear != TD_SHEAR_GIVEN)
         return td_error_set(err, TD_ERR_INVALID, "shaft options: unknown shear coefficient form %d", (int)opt->shear);
     if (opt->shear == TD_SHEAR_GIVEN && !(opt->shear_value > 0.0 && opt->shear_value <= 1.0))
@@ -246,6 +249,11 @@ td_status td_rayleigh_from_ratio(double ratio, const double *frequencies, int co
     w2 = count == 2 ? 2.0 * TD_PI * frequencies[1] : 0.0;
     *alpha = count == 2 ? 2.0 * ratio * w1 * w2 / (w1 + w2) : 0.0;
     *beta = 2.0 * ratio / (w1 + w2);
+    if (!isfinite(*alpha) || !isfinite(*beta)) /* w1 w2 or w1 + w2 beyond the largest double */
+        return FAIL_AT(err, "damping", 0, "frequencies",
+                       "the Rayleigh coefficients alpha = 2 zeta w1 w2 / (w1 + w2) and beta = 2 zeta / (w1 + w2) "
+                       "overflow (w = 2 pi f, the largest f %g Hz)",
+                       frequencies[count - 1]);
     return TD_OK;
 }
 
@@ -259,9 +267,10 @@ td_status td_model_add_shaft_element(td_model *m, const td_shaft_element *el, td
         need(finite_positive(el->outer_diameter), err, "element", i, "outer_diameter", POS, el->outer_diameter))
         return TD_ERR_INVALID;
     if (!finite_nonnegative(el->inner_diameter) || el->inner_diameter >= el->outer_diameter)
-        return FAIL_AT(err, "element", i, "inner_diameter",
-                       "the inner diameter %g m must be >= 0 and smaller than the outer diameter %g m",
-                       el->inner_diameter, el->outer_diameter);
+        return td_error_set_site(err, TD_ERR_INVALID, &(td_error_site){"element", i, "inner_diameter"},
+                                 &(td_error_site){"element", i, "outer_diameter"},
+                                 "the inner diameter %g m must be >= 0 and smaller than the outer diameter %g m",
+                                 el->inner_diameter, el->outer_diameter);
     if (need(finite_positive(el->material.E), err, "element", i, "material.E", POS, el->material.E) ||
         need(finite_positive(el->material.G), err, "element", i, "material.G", POS, el->material.G) ||
         need(finite_positive(el->material.density), err, "element", i, "material.density", POS, el->material.density))
@@ -470,13 +479,19 @@ td_status td_model_add_change(td_model *m, const td_change *c, td_error *err)
          need(isfinite(c->phase), err, "change", i, "phase", "be finite", c->phase)))
         return TD_ERR_INVALID;
     st = APPEND(m->changes, c, err);
+    if (st == TD_OK && (st = APPEND(m->change_entries, &i, err)) != TD_OK)
+        m->changes.count--;
     if (st != TD_OK)
         return st;
-    /* keep the schedule sorted by time; equal times keep their order of addition */
+    /* keep the schedule sorted by time, equal times in their order of addition; each change keeps
+     * its number of addition (td_model_change_entry), the entry a caller or case file wrote */
     for (i = m->changes.count - 1; i > 0 && m->changes.items[i - 1].time > m->changes.items[i].time; i--) {
         td_change tmp = m->changes.items[i - 1];
+        int entry = m->change_entries.items[i - 1];
         m->changes.items[i - 1] = m->changes.items[i];
         m->changes.items[i] = tmp;
+        m->change_entries.items[i - 1] = m->change_entries.items[i];
+        m->change_entries.items[i] = entry;
     }
     return TD_OK;
 }
@@ -485,8 +500,11 @@ td_status td_model_set_speed(td_model *m, double omega, td_error *err)
 {
     if (!m)
         return td_error_set(err, TD_ERR_INVALID, "speed: NULL model");
-    if (!isfinite(omega))
-        return td_error_set(err, TD_ERR_INVALID, "speed must be finite");
+    if (!TD_SPEED_VALID(omega))
+        return td_error_set(err, TD_ERR_INVALID,
+                            "speed must be finite and >= 0 rad/s (got %g; the spin is about +z, "
+                            "touchdown/dofs.h)",
+                            omega);
     m->speed = omega;
     return TD_OK;
 }
@@ -668,6 +686,10 @@ int td_model_unbalance_count(const td_model *m)
 int td_model_change_count(const td_model *m)
 {
     return m ? m->changes.count : 0;
+}
+int td_model_change_entry(const td_model *m, int i)
+{
+    return m && i >= 0 && i < m->change_entries.count ? m->change_entries.items[i] : -1;
 }
 double td_model_speed(const td_model *m)
 {

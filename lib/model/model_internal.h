@@ -21,6 +21,7 @@ struct td_model {
     TD_PART_ARRAY(td_retainer) retainers;
     TD_PART_ARRAY(td_unbalance) unbalances;
     TD_PART_ARRAY(td_change) changes;           /* kept sorted by time (stable) */
+    TD_PART_ARRAY(int) change_entries;          /* change i was the change_entries.items[i]-th added */
     double speed;                               /* rad/s */
     TD_PART_ARRAY(td_speed_point) speed_points; /* the ramp, increasing times */
     td_spin spin;

@@ -8,6 +8,7 @@
 #include "touchdown/modal.h"
 #include "util/clock.h"
 #include "util/error_internal.h"
+#include "util/limits.h"
 
 #include <float.h>
 #include <math.h>
@@ -539,6 +540,7 @@ static td_status orbit_start(td_sim *s, double *y, td_error *err)
 {
     int strict = s->opt.start == TD_START_ORBIT, k;
     double gx, gy, rad = 0.0;
+    td_error merr;
     td_status st;
     if (s->start.stability == TD_STABILITY_UNSTABLE) {
         if (strict)
@@ -553,9 +555,19 @@ static td_status orbit_start(td_sim *s, double *y, td_error *err)
     }
     td_model_gravity(s->model, &gx, &gy);
     st = td_modal_start_state(s->sys, s->omega, s->unb, s->nu, gx != 0.0 || gy != 0.0, orbit_phase_time(s), y + s->oq,
-                              err);
+                              &merr);
+    if (st == TD_ERR_NUMERIC) { /* no steady state: nothing holds the rotor against gravity, a resonance */
+        N_VConst(0.0, s->y);
+        if (strict)
+            return td_error_set(err, TD_ERR_INVALID,
+                                "start = \"orbit\": %s, so there is no steady orbit; use "
+                                "start = \"rest\"",
+                                merr.message);
+        snprintf(s->start.reason, sizeof s->start.reason, "no steady orbit: %.200s", merr.message);
+        return TD_OK;
+    }
     if (st != TD_OK)
-        return st;
+        return td_error_set(err, st, "%s", merr.message);
     spread_rotor_state(s, y);
     s->start.used = TD_START_ORBIT;
     if (strict || (k = first_outside(s, y, &rad)) < 0)
@@ -713,6 +725,7 @@ static void init_layout(td_sim *s)
     s->of = s->ou + s->nr;
     s->neq = s->of + s->ns;
     s->t = s->t_ida = s->t_acc = s->opt.t0;
+    s->t_window = s->opt.t0;
     s->stats.first_contact_time = TD_UNDEFINED;
     s->stats.peak_time = TD_UNDEFINED;
     s->stats.peak_retainer = -1;
@@ -749,6 +762,7 @@ td_status td_sim_create_cancellable(const td_model *model, const td_sim_options 
 {
     td_sim *s;
     td_status st;
+    char why[320];
     if (!model || !out)
         return td_error_set(err, TD_ERR_INVALID, "td_sim_create: NULL argument");
     *out = NULL;
@@ -760,6 +774,8 @@ td_status td_sim_create_cancellable(const td_model *model, const td_sim_options 
     else
         td_sim_options_default(&s->opt);
     st = check_options(&s->opt, err);
+    if (st == TD_OK && td_atol_limit_check(model, s->opt.solver.atol, why, sizeof why) != TD_LIMIT_NONE)
+        st = td_error_set(err, TD_ERR_INVALID, "solver.atol: %s", why);
     if (st == TD_OK)
         st = setup_stage(td_system_create(model, &s->sys, err), cancel, err);
     if (st == TD_OK)
@@ -1012,6 +1028,35 @@ static int stalled(td_sim *s, double t)
     return 1;
 }
 
+/*
+ * A run whose work no longer moves time is stuck, whatever the cause (steps, restarts at events,
+ * flights cut short by stops), and fails with a message instead of going on for ever. Every
+ * PROGRESS_WINDOW passes of integration (an IDA step or a piece of free flight, each with the stops
+ * it meets) must advance t by PROGRESS_SPAN at least: a pace of 1e-10 s a pass would need 1e10
+ * passes per simulated second, 100 times TD_MAX_STEPS, the most steps any case may force. (An
+ * absolute tolerance far above the clearance once made a drop run advance 2e-6 s in 35 s of
+ * passes, 6e-8 s a window.) Passes that only interpolate to an output time do not count.
+ */
+#define PROGRESS_WINDOW 10000L
+#define PROGRESS_SPAN 1e-6
+
+static int no_progress(td_sim *s)
+{
+    if (++s->passes < PROGRESS_WINDOW)
+        return 0;
+    if (s->t - s->t_window >= PROGRESS_SPAN) {
+        s->passes = 0;
+        s->t_window = s->t;
+        return 0;
+    }
+    snprintf(s->errmsg, sizeof s->errmsg,
+             "t = %.9g s: no progress: %ld integrator steps and stops advanced the time by only %.3g s (a run "
+             "this slow would take over %.0e steps per simulated second); loosen solver.rtol or solver.atol, "
+             "or check the machine for forces that grow without bound",
+             s->t, s->passes, s->t - s->t_window, (double)PROGRESS_WINDOW / PROGRESS_SPAN);
+    return 1;
+}
+
 /* Restart after a change made between steps or at a schedule time; the retainers' totals open
  * their next segment there. */
 static td_status restart_after_change(td_sim *s)
@@ -1150,6 +1195,8 @@ static td_status advance(td_sim *s, double tout)
             snprintf(s->errmsg, sizeof s->errmsg, "t = %.9g s: interrupted", s->t);
             return TD_ERR_INTERRUPTED;
         }
+        if (no_progress(s))
+            return TD_ERR_SOLVER; /* y, yp hold the state at s->t, as for an interrupt */
         switch (fly(s, tout, &st)) {
         case 1: return st;
         case 2: continue;
@@ -1392,8 +1439,9 @@ td_status td_sim_set_speed(td_sim *sim, double omega, td_error *err)
     if (!sim)
         return td_error_set(err, TD_ERR_INVALID, "%s: NULL simulation", __func__);
     begin_call(sim);
-    if (!isfinite(omega)) {
-        snprintf(sim->errmsg, sizeof sim->errmsg, "td_sim_set_speed: speed must be finite");
+    if (!TD_SPEED_VALID(omega)) {
+        snprintf(sim->errmsg, sizeof sim->errmsg,
+                 "td_sim_set_speed: speed must be finite and >= 0 rad/s (got %g; the spin is about +z)", omega);
         return failed(sim, TD_ERR_INVALID, err);
     }
     if (sim->spin >= 0) {

@@ -182,6 +182,8 @@ struct td_sim {
     td_sim_flight *flight;          /* flight.c, allocated at the first flight; NULL: none yet */
     struct td_sim_section *section; /* section.c, NULL: no section taken */
     long tiny_steps;                /* consecutive IDA steps too short to move t (sim.c, stalled) */
+    long passes;                    /* integration passes (steps, flights) since t_window (sim.c, no_progress) */
+    double t_window;                /* the time when the current window of passes began */
     int ida_stale;                  /* the flight moved the state: IDA restarts before its next step */
 
     volatile sig_atomic_t *interrupt; /* borrowed (td_sim_set_interrupt), NULL: none */

@@ -715,7 +715,7 @@ td_status td_sim_apply_due_changes(td_sim *s)
             break;
         apply_change(s, &c);
         ev = event_of(s, TD_EVENT_SCHEDULE, -1);
-        ev.change = s->next_change;
+        ev.change = td_model_change_entry(s->model, s->next_change); /* as written, not in time order */
         td_sim_queue_event(s, &ev);
         s->next_change++;
     }

@@ -132,6 +132,7 @@ check "$n_files files (at least 40) under tests/data/bad/, as many as the table 
 while IFS='|' read -r file rest; do
     [ -z "$file" ] && continue
     for cmd in run info; do
+        rest=${rest//BAD/$bad_dir} # BAD: the directory, where a message names a second place in the file
         run_tool "$cmd" "$bad_dir/$file"
         if created=$(scratch_empty); then created=""; else created="; created files: $created"; fi
         if [ "$rc" = 2 ] && [ "$err" = "touchdown: $bad_dir/$file$rest" ] && [ -z "$created" ]; then
@@ -152,6 +153,10 @@ unbalance-force-overflow.cfg|:6: unbalances[0].magnitude: the unbalance force U 
 unbalance-wrap-same-line.cfg|:5: unbalances[0].magnitude: integer 4294967296 is out of range (at most 2147483647; libconfig would read 0)
 line-endings-cr.cfg|:5: carriage return without a line feed (CR-only line endings are not supported; save the file with LF or CRLF line endings)
 speed-unbounded.cfg|:3: speed: 1e+20 rad/s over 0.1 s makes 1.59e+18 shaft revolutions (at most 1e+06)
+shaft-section-smaller-than-bore.cfg|:8: shaft.sections[0].outer_diameter: the section's outer diameter 0.02 m (element 1) must be larger than the inner diameter 0.03 m of shaft.inner_diameter at BAD/shaft-section-smaller-than-bore.cfg:7
+solver-atol-above-clearance.cfg|:6: solver.atol: the displacement tolerance 0.001 m must be at most 1e-03 of the smallest gap, the clearance 0.00075 m of retainer 0 (at most 7.5e-07 m): the contacts would not be resolved
+shaft-nodes-overflow.cfg|:4: shaft.nodes[1]: the element length from the node positions overflows (to inf)
+shaft-damping-overflow.cfg|:8: shaft.damping.frequencies: the Rayleigh coefficients alpha = 2 zeta w1 w2 / (w1 + w2) and beta = 2 zeta / (w1 + w2) overflow (w = 2 pi f, the largest f 1e+308 Hz)
 EOF
 
 # ---- paths that are not readable case files -----------------------------------------------
@@ -245,6 +250,7 @@ shaft.elements=0|shaft.elements:
 end_time=0|end_time: 
 end_time=1e12|end_time: 10000 Hz over 1e+12 s makes 1e+16 output samples (at most 1e+08)
 solver.max_step=1e-300|solver.max_step: max_step 1e-300 s over 2 s forces 2e+300 solver steps
+solver.atol=1e6|solver.atol: the displacement tolerance 1e+06 m must be at most 1e-03 of the smallest gap
 speed=1e20|speed: 1e+20 rad/s over 2 s makes 3.18e+19 shaft revolutions
 speed|KEY=VALUE
 =1|KEY=VALUE
@@ -262,6 +268,11 @@ for cmd in run info modal; do
 done
 expect_usage "run --output without its argument" run "$case_a" --output
 expect_usage "info --modes 0" info --modes 0 "$case_a"
+# a speed the library does not take (touchdown/dofs.h: >= 0, the spin about +z), as in the case file
+for w in -5 -1e-9 nan inf; do
+    expect_bad "modal --speed $w" "touchdown modal: --speed wants a speed >= 0 in rad/s, not '$w'" -- \
+        modal --speed "$w" "$case_a"
+done
 expect_usage "info --modes x" info --modes x "$case_a"
 
 after=$(ls -la --time-style=+%s "$bad_dir" | md5sum)

@@ -222,6 +222,40 @@ if [ "$have_h5dump" = 1 ]; then
     check "solver failure: HDF5 status '$st'" test "$st" = "solver failure"
 fi
 
+# leftovers_check DIR: DIR holds the leftovers of a run killed with SIGKILL (its writer gone). A new
+# run on the same paths removes them when it opens its outputs, never a live run's temporary files
+# (each writer holds a lock on its own, lib/io/writer.c): a run started beside a live one writes
+# its own temporary files, finishes, and leaves the live run's alone.
+leftovers_check() {
+    local d=$1 dead live p i gone=0
+    dead=$(ls "$d" | grep '\.partial$' | tr '\n' ' ')
+    (cd "$d" && exec "$tool" run -q --set end_time=100 "$case_a" >/dev/null 2>&1) &
+    live_pid=$!
+    pids+=("$live_pid")
+    for ((i = 0; i < 1200 && gone == 0; i++)); do # until the live run's writer has swept the dead one's
+        gone=1
+        for p in $dead; do [ -e "$d/$p" ] && gone=0; done
+        sleep 0.05
+    done
+    check "SIGKILL leftovers ($dead) removed by the next run on the same paths" test "$gone" = 1
+    if ! wait_for_data "$d"; then
+        fail "leftovers: the live run wrote no data within 60 s"
+    fi
+    live=$(ls "$d" | grep '\.partial$' | tr '\n' ' ')
+    check "leftovers: the live run has its three temporary files ($live)" test "$(echo $live | wc -w)" = 3
+    (cd "$d" && "$tool" run -q --set end_time=0.01 "$case_a" >"$work/beside.out" 2>&1)
+    rc=$?
+    check "a run beside a live one on the same paths: exit 0 (got $rc: $(head -c 300 "$work/beside.out"))" test "$rc" = 0
+    check "a run beside a live one: its results at the final paths" \
+        test -s "$d/paper-a.csv" -a -s "$d/paper-a.h5" -a -s "$d/paper-a.events.csv"
+    for p in $live; do
+        check "a run beside a live one leaves the live run's $p" test -e "$d/$p"
+    done
+    check "the live run still runs" kill -0 "$live_pid"
+    kill -9 "$live_pid" 2>/dev/null
+    wait "$live_pid" 2>/dev/null
+}
+
 # ---- 4. SIGKILL: nothing can be finished, so nothing may appear at a final path ------------
 d=$work/kill
 mkdir -p "$d"
@@ -235,6 +269,7 @@ if wait_for_data "$d"; then
     check "SIGKILL: temporary files remain" test -n "$(partial_of "$d/paper-a.csv")" -a -n "$(partial_of "$d/paper-a.h5")"
     check "SIGKILL: nothing at the final paths ($(ls "$d" | tr '\n' ' '))" \
         test ! -e "$d/paper-a.csv" -a ! -e "$d/paper-a.h5" -a ! -e "$d/paper-a.events.csv"
+    leftovers_check "$d"
 else
     fail "SIGKILL: no data written within 60 s"
 fi
