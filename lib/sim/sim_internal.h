@@ -262,7 +262,8 @@ void td_sim_spin_diagonal(const td_sim *s, char which, double *d);
 /* Rotor speed Omega (rad/s) and spin angle phi (rad) at (t, y). */
 double td_sim_rotor_speed(const td_sim *s, const double *y);
 double td_sim_rotor_angle(const td_sim *s, double t, const double *y);
-/* dOmega/dt at (t, y): the ramp's slope, or a free spin's torque balance over J. */
+/* dOmega/dt at (t, y): the ramp's slope on the interval being integrated, (s->t, t] (at t = s->t
+ * the segment starting there), or a free spin's torque balance over J. */
 double td_sim_rotor_rate(const td_sim *s, double t, const double *y);
 /* The torque that drives the spin DOF from outside (ramp: J alpha, what the drive must give;
  * free: the drive torque); 0 without a spin DOF. */

@@ -69,16 +69,28 @@ double td_sim_spin_drag(const td_sim *s, const double *y, double *dT)
     return sp.drag_torque * phi;
 }
 
+/*
+ * A ramp's slope over the interval the integrator is covering, (s->t, t]: IDA stops at every ramp
+ * point (td_sim_next_stop), so that interval lies inside one segment, and a step that ends on a
+ * point belongs to the segment before it. The slope at the point itself (td_model_speed_at: the next
+ * segment's) would drive that whole step with the next segment's alpha, losing the U alpha h of the
+ * unbalance's impulse. At t = s->t (a restart: the consistent rates there) the segment is the one
+ * that starts there.
+ */
+static double ramp_rate(const td_sim *s, double t)
+{
+    double rate;
+    td_model_speed_at(s->model, t > s->t ? 0.5 * (s->t + t) : t, &rate, NULL);
+    return rate;
+}
+
 double td_sim_spin_torque(const td_sim *s, double t)
 {
     td_spin sp;
-    double rate;
     if (s->spin < 0)
         return 0.0;
-    if (!s->spin_free) {
-        td_model_speed_at(s->model, t, &rate, NULL);
-        return s->spin_inertia * rate;
-    }
+    if (!s->spin_free)
+        return s->spin_inertia * ramp_rate(s, t);
     td_model_spin(s->model, &sp);
     return sp.drive_torque;
 }
