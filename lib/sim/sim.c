@@ -968,6 +968,7 @@ static td_status interpolate(td_sim *s, double t)
         return TD_ERR_SOLVER;
     }
     s->t = t;
+    td_sim_spin_hold(s, t, N_VGetArrayPointer(s->y), N_VGetArrayPointer(s->yp));
     return TD_OK;
 }
 
@@ -1088,6 +1089,7 @@ static int pending_stop(td_sim *s, double tout, td_status *st)
 static void accept_point(td_sim *s, double tret, int at_step)
 {
     s->t = tret;
+    td_sim_spin_hold(s, tret, N_VGetArrayPointer(s->y), N_VGetArrayPointer(s->yp));
     monitor_at(s, tret, at_step);
     td_sim_totals_point(s, tret, 0);
     memcpy(s->ysave, N_VGetArrayPointer(s->y), sizeof(double) * (size_t)s->neq);

@@ -273,6 +273,9 @@ double td_sim_spin_torque(const td_sim *s, double t);
 double td_sim_spin_drag(const td_sim *s, const double *y, double *dT);
 /* The spin's start state into y: angle and speed at s->t. */
 void td_sim_spin_start(const td_sim *s, double *y);
+/* A ramp's spin angle and speed (and their rates into yp, which may be NULL) in y set to the
+ * prescribed profile's at t: what an accepted or interpolated state reports. Nothing otherwise. */
+void td_sim_spin_hold(const td_sim *s, double t, double *y, double *yp);
 /* The spin angle taken modulo 2 pi (at restarts). */
 void td_sim_spin_wrap(const td_sim *s, double *y);
 

@@ -121,6 +121,22 @@ void td_sim_spin_start(const td_sim *s, double *y)
     y[s->oq + s->spin] = angle;
 }
 
+void td_sim_spin_hold(const td_sim *s, double t, double *y, double *yp)
+{
+    /* IDA's interpolant and Newton iterate hold a ramp's algebraic rows only to the tolerance (up to
+     * 2e-4 of the speed early in a ramp at the default ones); the drive holds the profile exactly */
+    double angle, w;
+    if (s->spin < 0 || s->spin_free)
+        return;
+    w = td_model_speed_at(s->model, t, NULL, &angle);
+    y[s->oq + s->spin] = angle;
+    y[s->ov + s->spin] = w;
+    if (yp) {
+        yp[s->oq + s->spin] = w;
+        yp[s->ov + s->spin] = ramp_rate(s, t);
+    }
+}
+
 void td_sim_spin_wrap(const td_sim *s, double *y)
 {
     /* keep a free spin's angle small, so that its relative tolerance stays an absolute one (a

@@ -16,6 +16,7 @@
 #include "touchdown/system.h"
 #include "touchdown/touchdown.h"
 
+#include <float.h>
 #include <math.h>
 #include <stdlib.h>
 
@@ -168,6 +169,38 @@ static void test_ramp_point_keeps_momentum(void **state)
     }
 }
 
+/* The speed a run reports during a ramp (td_sim_speed: the samples' speed column, the final speed)
+ * is the prescribed profile's, to rounding, at the default tolerances: the rig held at 50 rad/s,
+ * then ramped at 10 rad/s^2 from t = 1 s as in cases/run-up.cfg, sampled every 5 ms. */
+static void test_ramp_speed_sampled_exactly(void **state)
+{
+    td_model *m = td_test_rig_create(50.0, TD_RIG_TAU, TD_RIG_NO_RETAINERS);
+    td_unbalance u = {1, 5e-3, 0.0};
+    td_speed_point p0 = {1.0, 50.0}, p1 = {21.0, 250.0};
+    td_sim_options o;
+    td_sim *sim = NULL;
+    td_error err;
+    double worst = 0.0;
+    int i;
+    (void)state;
+    assert_int_equal(td_model_add_unbalance(m, &u, NULL), TD_OK);
+    assert_int_equal(td_model_add_speed_point(m, &p0, NULL), TD_OK);
+    assert_int_equal(td_model_add_speed_point(m, &p1, NULL), TD_OK);
+    td_sim_options_default(&o);
+    o.start = TD_START_ORBIT;
+    if (td_sim_create(m, &o, &sim, &err) != TD_OK)
+        fail_msg("%s", err.message);
+    for (i = 1; i <= 300; i++) {
+        double t = 0.005 * i, w = t < 1.0 ? 50.0 : 50.0 + 10.0 * (t - 1.0);
+        step_to(sim, t);
+        worst = fmax(worst, fabs(td_sim_speed(sim) - w) / w);
+    }
+    print_message("ramp: sampled speed against the profile within %.3g of the speed\n", worst);
+    assert_true(worst <= 4.0 * DBL_EPSILON); /* the profile's own rounding */
+    td_sim_free(&sim);
+    td_model_free(&m);
+}
+
 static void test_coast_down(void **state)
 {
     const double w0 = 300.0, T0 = 2.0, c = 0.01; /* rad/s, N m, N m s/rad */
@@ -252,6 +285,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_spin_up_keeps_mass_centre),
         cmocka_unit_test(test_ramp_point_keeps_momentum),
+        cmocka_unit_test(test_ramp_speed_sampled_exactly),
         cmocka_unit_test(test_coast_down),
         cmocka_unit_test(test_slow_run_up),
     };
