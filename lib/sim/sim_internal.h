@@ -130,7 +130,8 @@ struct td_sim {
     void *ida_ctest_data;
     double constraint_tol; /* m: |g| of every contact at an accepted Newton iterate */
     td_sun_message_sink sink;
-    int nroots;
+    int nroots;      /* TD_ROOTS_PER_RETAINER per retainer, then n_sat_roots */
+    int n_sat_roots; /* 2 per AMB axis when any axis saturates (its clip's kinks), else 0 */
     int *rootdir, *rootsfound;
     double hmax;
 
@@ -202,7 +203,8 @@ void td_sim_forces(const td_sim *s, double t, const double *y, double *f);
 void td_sim_residual(const td_sim *s, double t, const double *y, const double *yp, double *res);
 /* dF/dy + cj dF/dy' into s->jdata (pattern s->colptr, s->rowind). */
 void td_sim_jacobian(td_sim *s, double t, double cj, const double *y);
-/* Root functions (TD_ROOTS_PER_RETAINER per retainer) and their directions for the current modes. */
+/* Root functions (TD_ROOTS_PER_RETAINER per retainer, then the AMB clips' kinks) and their
+ * directions for the current modes. */
 void td_sim_roots(const td_sim *s, double t, const double *y, double *g);
 void td_sim_root_directions(const td_sim *s, int *dir);
 /* Force of AMB axis k at state y (N), with the mode of its AMB. */
