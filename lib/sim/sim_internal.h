@@ -231,6 +231,9 @@ void td_sim_totals_rewind(td_sim *s);
 void td_sim_energy_point(td_sim *s, double t, int restart, double dt);
 /* An impact changed the kinetic energy from `before` to `after`, J. */
 void td_sim_energy_impact(td_sim *s, double before, double after);
+/* The energy account taken back from its last point to s->t (a change or an output inside the
+ * integrator's last step), as td_sim_totals_rewind does with the retainers' totals. */
+void td_sim_energy_rewind(td_sim *s);
 /* Kinetic energy 1/2 v^T M v of the state y, J. */
 double td_sim_kinetic_energy(const td_sim *s, const double *y);
 /* An impact of retainer k with `impulse` (N s); `bounced`: it left at once (touch-and-go). */
