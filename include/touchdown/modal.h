@@ -104,6 +104,16 @@ TD_API int td_modal_mode_count(const td_modal *m);
 TD_API td_status td_modal_get_mode(const td_modal *m, int i, td_mode *out);
 /** Number of real eigenvalues. */
 TD_API int td_modal_real_count(const td_modal *m);
+/**
+ * Eigenvalues within TD_MODAL_ROUNDOFF_ROOT of the largest |s| computed are rounding of zero (a
+ * rotor free to translate or tilt, with no bearing on it: the defective zero root comes out at
+ * about sqrt(eps) times the fastest mode's frequency, as a pair or two real roots): they are no
+ * mode and are neither among the modes nor the real eigenvalues. td_modal_rounding_count says how
+ * many were left out, td_modal_rounding_bound below which |s| (1/s).
+ */
+#define TD_MODAL_ROUNDOFF_ROOT 1e-6
+TD_API int td_modal_rounding_count(const td_modal *m);
+TD_API double td_modal_rounding_bound(const td_modal *m);
 /** Real eigenvalue i, 1/s (0: largest, i.e. least stable). NAN when out of range. */
 TD_API double td_modal_real_eigenvalue(const td_modal *m, int i);
 /** Number of nodes of the mode shapes. */

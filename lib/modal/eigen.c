@@ -248,16 +248,21 @@ td_status td_modal_collect(const gsl_vector_complex *eval, gsl_matrix_complex *e
 {
     size_t n = eval->size, i;
     eig_ref *osc = malloc(n * sizeof *osc);
-    int nosc = 0, nreal = 0, k;
-    double maxre = -HUGE_VAL;
+    int nosc = 0, nreal = 0, nround = 0, k;
+    double maxre = -HUGE_VAL, bound = 0.0;
     td_modal *m;
     if (!osc)
         return td_error_set(err, TD_ERR_NOMEM, "modal: out of memory sorting eigenvalues");
+    for (i = 0; i < n; i++)
+        bound = fmax(bound, gsl_complex_abs(gsl_vector_complex_get(eval, i)));
+    bound *= TD_MODAL_ROUNDOFF_ROOT;
     for (i = 0; i < n; i++) {
         gsl_complex s = gsl_vector_complex_get(eval, i);
-        if (GSL_REAL(s) > maxre)
+        if (GSL_REAL(s) > maxre) /* the stability judgement sees every root */
             maxre = GSL_REAL(s);
-        if (is_real(s))
+        if (gsl_complex_abs(s) <= bound)
+            nround++;
+        else if (is_real(s))
             nreal++;
         else if (GSL_IMAG(s) > 0.0) {
             osc[nosc].re = GSL_REAL(s);
@@ -273,6 +278,8 @@ td_status td_modal_collect(const gsl_vector_complex *eval, gsl_matrix_complex *e
     }
     m->omega = omega;
     m->max_real = maxre;
+    m->n_rounding = nround;
+    m->rounding_bound = bound;
     m->n_computed = (int)n;
     m->complete_below = HUGE_VAL;
     qsort(osc, (size_t)nosc, sizeof *osc, cmp_oscillatory);
@@ -289,7 +296,7 @@ td_status td_modal_collect(const gsl_vector_complex *eval, gsl_matrix_complex *e
     m->n_modes = nosc;
     for (i = 0; i < n; i++) {
         gsl_complex s = gsl_vector_complex_get(eval, i);
-        if (is_real(s))
+        if (is_real(s) && gsl_complex_abs(s) > bound)
             m->real[m->n_real++] = GSL_REAL(s);
     }
     qsort(m->real, (size_t)m->n_real, sizeof *m->real, cmp_desc);
@@ -395,6 +402,16 @@ int td_modal_mode_count(const td_modal *m)
 int td_modal_real_count(const td_modal *m)
 {
     return m ? m->n_real : 0;
+}
+
+int td_modal_rounding_count(const td_modal *m)
+{
+    return m ? m->n_rounding : 0;
+}
+
+double td_modal_rounding_bound(const td_modal *m)
+{
+    return m ? m->rounding_bound : 0.0;
 }
 int td_modal_node_count(const td_modal *m)
 {
