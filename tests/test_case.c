@@ -873,6 +873,8 @@ static const bad_file bad_files[] = {
     {"amb-saturation-int.cfg", 6, "ambs[0].saturation", NULL},
     {"amb-kint-negative.cfg", 6, "ambs[0].kint", NULL},
     {"speed-ramp-backwards.cfg", 5, "speed_ramp[1].time", NULL},
+    {"speed-ramp-step.cfg", 5, "speed_ramp[0].speed", NULL},
+    {"speed-ramp-too-fast.cfg", 6, "speed_ramp[1].speed", NULL},
     {"spin-free-and-ramp.cfg", 5, "spin.free", NULL},
     {"spin-torque-not-free.cfg", 4, "spin", NULL},
     {"amb-tau-and-bandwidth.cfg", 6, "ambs[0].bandwidth", NULL},
@@ -1039,6 +1041,20 @@ static void test_bad_files(void **state)
     }
     closedir(dir);
     assert_int_equal(seen, n);
+}
+
+/* The run's work is judged by the speed it reaches up to its end time: a ramp point far beyond it
+ * at a speed that would be too many revolutions over the whole ramp does not make the case bad. */
+static void test_ramp_judged_to_end_time(void **state)
+{
+    td_case *c = NULL;
+    td_error err;
+    (void)state;
+    if (td_case_load(td_source_path("tests/data/case/ramp-past-end.cfg"), NULL, 0, &c, &err) != TD_OK)
+        fail_msg("%s", err.message);
+    assert_close(td_model_speed_at(td_case_model(c), td_case_end_time(c), NULL, NULL), 1e7 + 100.0 * (1.0 - 1e-5),
+                 1e-12, 0.0);
+    td_case_free(&c);
 }
 
 /* Paths that cannot be read as a case file: TD_ERR_IO naming the path, never a hang. */
@@ -1428,6 +1444,7 @@ int main(void)
         cmocka_unit_test(test_overrides),
         cmocka_unit_test(test_bad_overrides),
         cmocka_unit_test(test_bad_files),
+        cmocka_unit_test(test_ramp_judged_to_end_time),
         cmocka_unit_test(test_model_rules_located),
         cmocka_unit_test(test_unreadable_paths),
         cmocka_unit_test(test_bad_includes),

@@ -24,6 +24,8 @@
 #include "touchdown/sim.h"
 #include "touchdown/system.h"
 
+#include <gsl/gsl_linalg.h>
+
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -294,6 +296,82 @@ static void test_model_setter(void **state)
     td_model_free(&m);
 }
 
+/* A uniform steel shaft, 1 m, 50 mm, 10 elements, on stiff plain bearings at its ends, under
+ * gravity along -y, reduced at `cutoff` Hz (0: the full model). Its only boundary nodes are the
+ * bearings': every other node is interior. */
+static td_system *sagging_shaft(double cutoff)
+{
+    td_model *m = NULL;
+    td_system *s = NULL;
+    td_shaft_element el = {0.1, 0.05, 0.0, {2.11e11, 8.1e10, 7810.0}};
+    td_bearing b0 = {0, 1e8, 1e8, 0.0, 0.0}, b1 = {10, 1e8, 1e8, 0.0, 0.0};
+    td_error err;
+    int i;
+    assert_int_equal(td_model_create(&m, NULL), TD_OK);
+    for (i = 0; i < 10; i++)
+        assert_int_equal(td_model_add_shaft_element(m, &el, NULL), TD_OK);
+    assert_int_equal(td_model_add_bearing(m, &b0, NULL), TD_OK);
+    assert_int_equal(td_model_add_bearing(m, &b1, NULL), TD_OK);
+    assert_int_equal(td_model_set_gravity(m, 0.0, -9.81, NULL), TD_OK);
+    assert_int_equal(td_model_set_reduction(m, cutoff, NULL), TD_OK);
+    if (td_system_create(m, &s, &err) != TD_OK)
+        fail_msg("%s", err.message);
+    td_model_free(&m);
+    return s;
+}
+
+/* The static deflection K q = M g of `s`, expanded to the nodes' y (11 values). */
+static void static_sag(const td_system *s, double *y)
+{
+    int n = td_system_dof_count(s), i, sign;
+    double *K = malloc((size_t)n * (size_t)n * sizeof *K), *q = malloc((size_t)n * sizeof *q);
+    double *qp = malloc((size_t)td_system_physical_dof_count(s) * sizeof *qp);
+    gsl_permutation *p = gsl_permutation_alloc((size_t)n);
+    assert_non_null(K), assert_non_null(q), assert_non_null(qp), assert_non_null(p);
+    assert_int_equal(td_system_dense(s, TD_MATRIX_STIFFNESS, K, NULL), TD_OK);
+    {
+        gsl_matrix_view A = gsl_matrix_view_array(K, (size_t)n, (size_t)n); /* symmetric: either order */
+        gsl_vector_const_view f = gsl_vector_const_view_array(s->gravity_load, (size_t)n);
+        gsl_vector_view x = gsl_vector_view_array(q, (size_t)n);
+        assert_int_equal(gsl_linalg_LU_decomp(&A.matrix, p, &sign), 0);
+        assert_int_equal(gsl_linalg_LU_solve(&A.matrix, p, &f.vector, &x.vector), 0);
+    }
+    assert_int_equal(td_system_expand(s, q, qp, NULL), TD_OK);
+    for (i = 0; i <= 10; i++)
+        y[i] = qp[TD_DOF(i, TD_DOF_Y)];
+    gsl_permutation_free(p);
+    free(qp), free(q), free(K);
+}
+
+/* The reduced rotor's statics are the full model's at every node, interior ones included: the
+ * shaft's own weight is a load on the interior that the constraint modes (no interior load) leave
+ * out, and the kept modes hold only part of. Without the gravity load's static correction the
+ * mid-span sag was 20 % short with no mode kept and 7e-4 of the peak at 2 kHz. */
+static void test_own_weight_sag(void **state)
+{
+    const double cutoffs[3] = {1.0, 300.0, 2000.0};
+    double full[11], red[11], peak = 0.0;
+    td_system *s = sagging_shaft(0.0);
+    int c, i;
+    (void)state;
+    static_sag(s, full);
+    td_system_free(&s);
+    for (i = 0; i <= 10; i++)
+        peak = fmax(peak, fabs(full[i]));
+    for (c = 0; c < 3; c++) {
+        double worst = 0.0;
+        s = sagging_shaft(cutoffs[c]);
+        static_sag(s, red);
+        for (i = 0; i <= 10; i++)
+            worst = fmax(worst, fabs(red[i] - full[i]));
+        print_message("own-weight sag reduced at %.0f Hz (%d modes + %d static corrections): off by %.3g of the peak "
+                      "%.4g m\n",
+                      cutoffs[c], td_system_mode_count(s), td_system_static_correction_count(s), worst / peak, peak);
+        assert_true(worst <= 1e-9 * peak);
+        td_system_free(&s);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -304,6 +382,7 @@ int main(void)
         cmocka_unit_test(test_rub_contact_statistics),
         cmocka_unit_test(test_model_setter),
         cmocka_unit_test(test_no_boundary),
+        cmocka_unit_test(test_own_weight_sag),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

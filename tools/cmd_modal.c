@@ -34,11 +34,11 @@ static const char modal_usage[] =
     "exit codes: 0 success, 1 the analysis failed or was interrupted (SIGINT/SIGTERM/SIGHUP, checked\n"
     "between its stages), 2 bad input or usage.\n";
 
-static void print_modes(const td_modal *modes, int count)
+static void print_modes(const td_modal *modes, int count, const td_model *model)
 {
     printf("modes at %.12g rad/s (%s):\n", td_modal_speed(modes), td_stability_word(modes));
     td_print_modes(stdout, modes, count, 12);
-    td_print_overdamped(stdout, modes);
+    td_print_overdamped(stdout, modes, model);
 }
 
 static void print_critical(const td_critical_speed *cs, int n, const td_modal_options *opt)
@@ -194,7 +194,7 @@ static int analyse(const td_case *c, double speed, const modal_outputs *paths, i
         if ((st = stage(td_harmonic_compute(sys, opt->response_speeds[i], u, n_u, &h[i], &err), cancel, &err)) != TD_OK)
             goto done;
     if (!quiet) {
-        print_modes(modes, opt->mode_count);
+        print_modes(modes, opt->mode_count, m);
         print_critical(cs, n_cs, opt);
         for (i = 0; i < n_h; i++)
             print_orbits(m, h[i]);

@@ -26,25 +26,46 @@ int td_print_modes(FILE *f, const td_modal *modes, int count, int digits)
     return overdamped;
 }
 
-void td_print_overdamped(FILE *f, const td_modal *modes)
+/* What can give the model overdamped roots, for their line's label: its AMBs' force lags and
+ * integrators, else (or also) its damping. */
+static void overdamped_sources(const td_model *model, char *out, size_t size)
+{
+    int i, lag = 0, integ = 0;
+    for (i = 0; i < td_model_amb_count(model); i++) {
+        td_amb a;
+        if (td_model_get_amb(model, i, &a) != TD_OK)
+            continue;
+        lag = lag || a.tau > 0.0;
+        integ = integ || a.kint > 0.0;
+    }
+    snprintf(out, size, "%s%s%s%s", lag ? "AMB force lags, " : "", integ ? "AMB integrators, " : "",
+             lag || integ ? "" : "no AMB lag or integrator: ", "damping");
+}
+
+void td_print_overdamped(FILE *f, const td_modal *modes, const td_model *model)
 {
     int i, n = td_modal_mode_count(modes), any = 0;
+    char label[96];
+    overdamped_sources(model, label, sizeof label);
     for (i = 0; i < n; i++) {
         td_mode m;
         td_modal_get_mode(modes, i, &m);
         if (td_mode_is_vibration(&m))
             continue;
         if (!any++)
-            fprintf(f, "overdamped roots (AMB force lags, integrators) [1/s]:");
+            fprintf(f, "overdamped roots (%s) [1/s]:", label);
         fprintf(f, " %.12g%+.6gi", m.sigma, m.omega_d);
     }
     for (i = 0; i < td_modal_real_count(modes); i++) {
         if (!any++)
-            fprintf(f, "overdamped roots (AMB force lags, integrators) [1/s]:");
+            fprintf(f, "overdamped roots (%s) [1/s]:", label);
         fprintf(f, " %.12g", td_modal_real_eigenvalue(modes, i));
     }
     if (any)
         fputc('\n', f);
+    if (td_modal_rounding_count(modes) > 0)
+        fprintf(f, "zero roots: %d at rounding level (|s| < %.3g 1/s; rigid-body motion no bearing holds), not modes\n",
+                td_modal_rounding_count(modes), td_modal_rounding_bound(modes));
 }
 
 const char *td_stability_word(const td_modal *modes)

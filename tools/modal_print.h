@@ -11,8 +11,9 @@ const char *td_whirl_name(td_whirl w);
 /* Table of the first `count` vibration modes with `digits` significant digits; returns how many
  * near-critically damped pairs (AMB lags) were left out. */
 int td_print_modes(FILE *f, const td_modal *modes, int count, int digits);
-/* The AMB-lag roots: near-critically damped pairs and real eigenvalues, one line. */
-void td_print_overdamped(FILE *f, const td_modal *modes);
+/* The overdamped roots (near-critically damped pairs and real eigenvalues), one line labelled by
+ * what in `model` gives them; then how many roots were rounding of zero, if any. */
+void td_print_overdamped(FILE *f, const td_modal *modes, const td_model *model);
 /* "stable", "marginally stable (undamped modes)" or "UNSTABLE", judged against round-off. */
 const char *td_stability_word(const td_modal *modes);
 /* One line on a reduced system (its boundary DOFs and kept modes); nothing for a full one. */

@@ -156,12 +156,14 @@ int td_print_reduction_error(FILE *f, const td_system *red, double speed, const 
 
 void td_print_reduction(FILE *f, const td_system *sys)
 {
-    int nq = td_system_dof_count(sys), nm = td_system_mode_count(sys);
+    int nq = td_system_dof_count(sys), nm = td_system_mode_count(sys), ns = td_system_static_correction_count(sys);
     if (!td_system_is_reduced(sys))
         return;
     fprintf(f, "reduction    Craig-Bampton below %.9g Hz: %d boundary DOFs + %d fixed-interface modes",
-            td_model_reduction(td_system_model(sys)), nq - nm, nm);
+            td_model_reduction(td_system_model(sys)), nq - nm - ns, nm);
     if (nm > 0)
         fprintf(f, " (%.6g..%.6g Hz)", td_system_mode_frequency(sys, 0), td_system_mode_frequency(sys, nm - 1));
+    if (ns > 0)
+        fprintf(f, " + %d static correction%s of the weight", ns, ns > 1 ? "s" : "");
     fprintf(f, " = %d of %d DOFs\n", nq, td_system_physical_dof_count(sys));
 }

@@ -104,6 +104,19 @@ TD_API int td_modal_mode_count(const td_modal *m);
 TD_API td_status td_modal_get_mode(const td_modal *m, int i, td_mode *out);
 /** Number of real eigenvalues. */
 TD_API int td_modal_real_count(const td_modal *m);
+/**
+ * Zero roots (td_modal_solve): a motion that no bearing or AMB holds (a free rotor's translation
+ * or tilt; the null space of the state matrix, found by its scaled singular values) has a zero root,
+ * double when undamped, which the eigen-solver returns at rounding level (about sqrt(eps) times the
+ * fastest mode's frequency, as a pair or two real roots). Up to two per such motion, the roots of
+ * least |s| within TD_MODAL_ROUNDOFF_ROOT of the spectral radius, are no modes: they are neither
+ * among the modes nor the real eigenvalues. td_modal_rounding_count says how many were left out
+ * (0 for a rotor held in every direction: then nothing is, however small), td_modal_rounding_bound
+ * the bound on their |s| (1/s).
+ */
+#define TD_MODAL_ROUNDOFF_ROOT 1e-6
+TD_API int td_modal_rounding_count(const td_modal *m);
+TD_API double td_modal_rounding_bound(const td_modal *m);
 /** Real eigenvalue i, 1/s (0: largest, i.e. least stable). NAN when out of range. */
 TD_API double td_modal_real_eigenvalue(const td_modal *m, int i);
 /** Number of nodes of the mode shapes. */

@@ -54,6 +54,13 @@ TD_API int td_system_is_reduced(const td_system *sys);
 TD_API int td_system_mode_count(const td_system *sys);
 /** Natural frequency (Hz) of fixed-interface mode i (0 <= i < td_system_mode_count), NAN otherwise. */
 TD_API double td_system_mode_frequency(const td_system *sys, int i);
+/**
+ * Static corrections of the gravity load in the reduction basis (docs/theory.md, "Reduced rotor"):
+ * one per stretch of interior nodes and plane that gravity loads, unless its kept modes already
+ * hold its deflection; they are the last generalized coordinates, after the fixed-interface modes.
+ * 0 for the full model or without gravity.
+ */
+TD_API int td_system_static_correction_count(const td_system *sys);
 /** Index in q of DOF `offset` (a td_dof_offset) of `node`: TD_DOF(node, offset) for the full model;
  *  -1 when the node is interior to a reduced rotor (then only td_system_expand gives it), or when
  *  node or offset is out of range. */

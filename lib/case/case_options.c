@@ -246,8 +246,10 @@ static const config_setting_t *member(const config_setting_t *root, const char *
 
 /* The bounds of touchdown/limits.h on the work of the run (checked whether or not the case writes
  * output: the samples are taken anyway). The message names the key that scales the work: end_time
- * when an override set it (--set end_time=1e12), otherwise the rate or speed it multiplies. */
-static td_status check_run_limits(td_case_reader *r, const config_setting_t *root, double speed)
+ * when an override set it (--set end_time=1e12), otherwise the rate or the speed it multiplies
+ * (`fastest`: `speed`, or the ramp point that reaches `speed` highest up to the end time). */
+static td_status check_run_limits(td_case_reader *r, const config_setting_t *root, double speed,
+                                  const config_setting_t *fastest)
 {
     const td_case *c = r->c;
     const config_setting_t *end = config_setting_get_member(root, "end_time"), *s = NULL;
@@ -256,7 +258,7 @@ static td_status check_run_limits(td_case_reader *r, const config_setting_t *roo
     case TD_LIMIT_NONE: return TD_OK;
     case TD_LIMIT_SAMPLES: s = member(root, "output", "sample_rate"); break;
     case TD_LIMIT_STEPS: s = member(root, "solver", "max_step"); break;
-    case TD_LIMIT_REVOLUTIONS: s = member(root, NULL, "speed"); break;
+    case TD_LIMIT_REVOLUTIONS: s = fastest; break;
     case TD_LIMIT_ATOL: break; /* check_atol */
     }
     if (!s || config_setting_get_hook(end))
@@ -303,16 +305,31 @@ static td_status check_unbalance_forces(td_case_reader *r, const config_setting_
     return TD_OK;
 }
 
-/* The largest of `speed` and the speeds of the model's ramp. */
-static double highest_speed(const td_model *m, double speed)
+/* The highest speed the run reaches up to end_time: `speed`, or on a ramp (piecewise linear) the
+ * largest of its value at 0 and at end_time and of its points before end_time; *where: the setting
+ * that gives it (`speed`, or the speed of that point or of the point that ends the segment holding
+ * end_time). A free spin starts at its top. */
+static double highest_speed(const td_case_reader *r, const config_setting_t *root, const config_setting_t **where)
 {
+    const td_model *m = r->c->model;
+    const config_setting_t *ramp = config_setting_get_member(root, "speed_ramp");
+    double top = td_model_speed_at(m, 0.0, NULL, NULL), end_time = r->c->end_time;
     int i;
+    *where = config_setting_get_member(root, "speed");
     for (i = 0; i < td_model_speed_point_count(m); i++) {
         td_speed_point p;
+        double w;
         td_model_get_speed_point(m, i, &p);
-        speed = p.speed > speed ? p.speed : speed;
+        w = p.time <= end_time ? p.speed : td_model_speed_at(m, end_time, NULL, NULL);
+        if (w > top) {
+            const config_setting_t *e = ramp ? config_setting_get_elem(ramp, (unsigned)i) : NULL;
+            top = w;
+            *where = e ? config_setting_get_member(e, "speed") : *where;
+        }
+        if (p.time > end_time)
+            break;
     }
-    return speed;
+    return top;
 }
 
 td_status td_cr_read_options(td_case_reader *r, const config_setting_t *root)
@@ -320,6 +337,7 @@ td_status td_cr_read_options(td_case_reader *r, const config_setting_t *root)
     td_case *c = r->c;
     double speed;
     int start = (int)c->sim.start;
+    const config_setting_t *fastest = NULL;
     td_error merr;
     td_status st = td_cr_real(r, root, "speed", "rotor speed Omega, rad/s", 0.0, TD_CR_NONNEGATIVE, &speed);
     if (st == TD_OK && (st = td_model_set_speed(c->model, speed, &merr)) != TD_OK)
@@ -341,10 +359,10 @@ td_status td_cr_read_options(td_case_reader *r, const config_setting_t *root)
         st = read_solver(r, root, &c->sim.solver);
     if (st == TD_OK)
         st = read_output(r, root, &c->output);
-    if (st == TD_OK) /* the bounds hold at the highest speed the ramp reaches (a free spin starts at its top) */
-        speed = highest_speed(c->model, speed);
+    if (st == TD_OK) /* the bounds hold at the highest speed the run reaches */
+        speed = highest_speed(r, root, &fastest);
     if (st == TD_OK)
-        st = check_run_limits(r, root, speed);
+        st = check_run_limits(r, root, speed, fastest);
     if (st == TD_OK)
         st = check_atol(r, root);
     if (st == TD_OK)

@@ -8,9 +8,11 @@
 #include "touchdown/dofs.h"
 #include "util/error_internal.h"
 
+#include <gsl/gsl_blas.h>
 #include <gsl/gsl_complex_math.h>
 #include <gsl/gsl_eigen.h>
 #include <gsl/gsl_errno.h>
+#include <gsl/gsl_linalg.h>
 
 #include <float.h>
 #include <math.h>
@@ -298,6 +300,89 @@ td_status td_modal_collect(const gsl_vector_complex *eval, gsl_matrix_complex *e
     return TD_OK;
 }
 
+/*
+ * Rigid-body freedom: the dimension of the null space of A (a zero root for each motion no bearing
+ * or AMB holds: A z = 0 means v = 0 and a static deflection q with its AMB states w, e that no force
+ * opposes). Its rows past q' = v (v', w', e') over its columns but v's, rows and columns scaled to
+ * unit largest entry (the stiffness spans many decades: a penalty clamp, a soft bearing), then the
+ * singular values: those below NULL_REL of the largest are the null space's. 0 when it cannot be
+ * had (memory). The scaled singular value of a held rotor's softest static mode is orders above it
+ * (about (1/elements)^4 for a shaft on stiff bearings), a free one's is rounding.
+ */
+#define NULL_REL 1e-11
+
+static int rigid_nullity(const td_state_space *ss)
+{
+    int nd = ss->ndof, nr = ss->n - nd, i, j, null = 0;
+    gsl_matrix *S = gsl_matrix_alloc((size_t)nr, (size_t)nr), *V = gsl_matrix_alloc((size_t)nr, (size_t)nr);
+    gsl_vector *sv = gsl_vector_alloc((size_t)nr), *work = gsl_vector_alloc((size_t)nr);
+    if (S && V && sv && work) {
+        for (i = 0; i < nr; i++) /* rows nd.. of A, columns q (0..nd-1) and w, e (2 nd..) */
+            for (j = 0; j < nr; j++)
+                gsl_matrix_set(S, (size_t)i, (size_t)j,
+                               gsl_matrix_get(ss->A, (size_t)(nd + i), (size_t)(j < nd ? j : j + nd)));
+        for (i = 0; i < nr; i++) {
+            gsl_vector_view r = gsl_matrix_row(S, (size_t)i);
+            double mx = fabs(gsl_vector_get(&r.vector, gsl_blas_idamax(&r.vector)));
+            if (mx > 0.0)
+                gsl_vector_scale(&r.vector, 1.0 / mx);
+        }
+        for (j = 0; j < nr; j++) {
+            gsl_vector_view c = gsl_matrix_column(S, (size_t)j);
+            double mx = fabs(gsl_vector_get(&c.vector, gsl_blas_idamax(&c.vector)));
+            if (mx > 0.0)
+                gsl_vector_scale(&c.vector, 1.0 / mx);
+        }
+        if (gsl_linalg_SV_decomp(S, V, sv, work) == GSL_SUCCESS)
+            for (i = 0; i < nr; i++)
+                null += gsl_vector_get(sv, (size_t)i) <= NULL_REL * gsl_vector_get(sv, 0);
+    }
+    gsl_matrix_free(S), gsl_matrix_free(V), gsl_vector_free(sv), gsl_vector_free(work);
+    return null;
+}
+
+/* Remove mode k (and its shape) or real root k from m. */
+static void remove_mode(td_modal *m, int k)
+{
+    size_t per = 4u * (size_t)m->nnodes;
+    memmove(m->modes + k, m->modes + k + 1, (size_t)(m->n_modes - k - 1) * sizeof *m->modes);
+    memmove(m->shapes + (size_t)k * per, m->shapes + (size_t)(k + 1) * per,
+            (size_t)(m->n_modes - k - 1) * per * sizeof *m->shapes);
+    m->n_modes--;
+}
+
+static void remove_real(td_modal *m, int k)
+{
+    memmove(m->real + k, m->real + k + 1, (size_t)(m->n_real - k - 1) * sizeof *m->real);
+    m->n_real--;
+}
+
+/* The `zeros` roots (a rigid-body motion gives one or two: a double zero, or one beside a
+ * gyroscopic nutation or a damping root) of least |s|, among those within TD_MODAL_ROUNDOFF_ROOT of
+ * the spectral radius, leave the modes and real roots: they are rounding of zero, no modes. A
+ * complex pair counts two. */
+static void drop_zero_roots(td_modal *m, int zeros)
+{
+    m->rounding_bound = TD_MODAL_ROUNDOFF_ROOT * td_modal_spectral_radius(m);
+    while (m->n_rounding < zeros) {
+        int i, best = -1, real = 0;
+        double least = m->rounding_bound;
+        for (i = 0; i < m->n_modes; i++)
+            if (m->modes[i].omega_n <= least)
+                least = m->modes[i].omega_n, best = i, real = 0;
+        for (i = 0; i < m->n_real; i++)
+            if (fabs(m->real[i]) <= least)
+                least = fabs(m->real[i]), best = i, real = 1;
+        if (best < 0)
+            return;
+        if (real)
+            remove_real(m, best);
+        else
+            remove_mode(m, best);
+        m->n_rounding += real ? 1 : 2;
+    }
+}
+
 td_status td_modal_solve(const td_system *sys, double omega, td_modal **out, td_error *err)
 {
     td_state_space ss;
@@ -305,12 +390,14 @@ td_status td_modal_solve(const td_system *sys, double omega, td_modal **out, td_
     gsl_matrix_complex *evec = NULL;
     gsl_eigen_nonsymmv_workspace *w = NULL;
     td_status st;
+    int zeros;
     if (!out)
         return td_error_set(err, TD_ERR_INVALID, "td_modal_solve: NULL output pointer");
     *out = NULL;
     st = td_state_space_build(sys, omega, &ss, err);
     if (st != TD_OK)
         return st;
+    zeros = 2 * rigid_nullity(&ss); /* before the eigen-solver overwrites A */
     eval = gsl_vector_complex_alloc((size_t)ss.n);
     evec = gsl_matrix_complex_alloc((size_t)ss.n, (size_t)ss.n);
     w = gsl_eigen_nonsymmv_alloc((size_t)ss.n);
@@ -322,6 +409,8 @@ td_status td_modal_solve(const td_system *sys, double omega, td_modal **out, td_
             st = td_error_set(err, TD_ERR_NUMERIC, "modal: the eigen-solver did not converge at %g rad/s", omega);
         else
             st = td_modal_collect_system(eval, evec, sys, omega, out, err);
+        if (st == TD_OK)
+            drop_zero_roots(*out, zeros);
     }
     gsl_eigen_nonsymmv_free(w);
     gsl_matrix_complex_free(evec);
@@ -395,6 +484,16 @@ int td_modal_mode_count(const td_modal *m)
 int td_modal_real_count(const td_modal *m)
 {
     return m ? m->n_real : 0;
+}
+
+int td_modal_rounding_count(const td_modal *m)
+{
+    return m ? m->n_rounding : 0;
+}
+
+double td_modal_rounding_bound(const td_modal *m)
+{
+    return m ? m->rounding_bound : 0.0;
 }
 int td_modal_node_count(const td_modal *m)
 {

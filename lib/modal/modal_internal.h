@@ -60,7 +60,9 @@ struct td_modal {
     td_mode *modes;
     double *shapes; /* per mode: 4 nnodes doubles, x_re[nnodes], x_im, y_re, y_im */
     int n_real;
-    double *real; /* real eigenvalues, descending */
+    double *real;          /* real eigenvalues, descending */
+    int n_rounding;        /* zero roots left out, rounding of zero (|s| <= rounding_bound) */
+    double rounding_bound; /* 1/s: TD_MODAL_ROUNDOFF_ROOT times the spectral radius */
     double max_real;
     int n_computed;        /* eigenvalues the solver computed (the state count for a full solve) */
     double complete_below; /* every vibration mode with omega_d below this is listed (INFINITY: all) */

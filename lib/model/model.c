@@ -648,6 +648,14 @@ td_status td_model_validate(const td_model *m, td_error *err)
                        "a free spin has no prescribed ramp (speed_ramp): give one or the other");
     if (td_model_speed_varies(m) && !(td_model_polar_inertia(m) > 0.0 || m->spin.inertia > 0.0))
         return FAIL_AT(err, "spin", 0, "inertia", "a varying speed needs a polar inertia: the rotor has none");
+    /* the speed is `speed` before the first point: a first point later than 0 at another speed would
+     * step it there, an infinite angular acceleration that no drive gives (and no energy account
+     * books) */
+    if (m->speed_points.count > 0 && m->speed_points.items[0].time > 0.0 && m->speed_points.items[0].speed != m->speed)
+        return FAIL_AT(err, "speed_ramp", 0, "speed",
+                       "the speed would step from `speed` %g rad/s to %g rad/s at the ramp's first point (%g s): "
+                       "start the ramp at `speed`, or add a point at time 0",
+                       m->speed, m->speed_points.items[0].speed, m->speed_points.items[0].time);
     return check_changes(m, err);
 }
 

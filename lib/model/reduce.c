@@ -18,7 +18,17 @@
  * (checked, not assumed), and Psi and the modes are computed block by block (the cost grows with the
  * longest stretch, not the shaft). Each mode lies in one plane of one stretch, the reduced M, K, C
  * keep the planes uncoupled exactly (their cross entries are exact zeros and are not stored), while
- * G couples them as before. The reduced matrices are small and dense; they are stored in the
+ * G couples them as before.
+ *
+ * Gravity is a load on the interior too, which the constraint modes (no interior load) and the kept
+ * modes reproduce only in part: its static deflection with the boundary held is
+ * K_ii^-1 f_i = sum over every fixed-interface mode of phi (phi^T f_i) / w^2. Each stretch and plane
+ * with a load gets the part the kept modes miss, u = K_gg^-1 f_g - sum_kept phi (phi^T f_g) / w^2
+ * (the static correction, or residual flexibility, of the load: M- and K-orthogonal to the kept
+ * modes), as one more column of T, mass-normalised, so that the reduced statics under gravity are
+ * the full model's exactly (Galerkin: the exact static solution lies in the basis).
+ *
+ * The reduced matrices are small and dense; they are stored in the
  * compressed-column form of the full ones so every consumer works on either. The AMBs act at
  * boundary DOFs and stay outside K (system_internal.h).
  */
@@ -51,9 +61,11 @@ typedef struct group {
     int n;         /* its DOFs */
     int *rows;     /* their positions in the interior list */
     gsl_matrix *V; /* n x n fixed-interface modes, mass-normalised */
+    gsl_vector *S; /* n: the gravity load's static correction, mass-normalised; NULL if none */
 } group;
 
-/* A kept fixed-interface mode: its frequency, plane, group and column in the group's V. */
+/* A kept fixed-interface mode: its frequency, plane, group and column in the group's V; col = -1:
+ * the group's static correction S (hz: its Rayleigh quotient, above every kept mode's). */
 typedef struct kept_mode {
     double hz;
     int plane, group, col;
@@ -63,6 +75,7 @@ typedef struct kept_mode {
 typedef struct reduction {
     partition p;
     const cs_di *M, *K; /* physical (the system's) */
+    const double *load; /* nphys: the gravity load M g (the system's), for the static corrections */
     int *pos;           /* nphys: position of a physical DOF in the current group, -1 elsewhere */
     int *gid;           /* nphys: group of an interior DOF, -1 for a boundary one */
     gsl_matrix *Psi;    /* ni x nb */
@@ -70,6 +83,7 @@ typedef struct reduction {
     int ng;
     kept_mode *kept;
     int nk;
+    int ns;        /* static corrections among the kept (the last ns) */
     gsl_matrix *T; /* nphys x (nb + nk) */
 } reduction;
 
@@ -240,11 +254,56 @@ static td_status group_modes(reduction *r, int gi, gsl_matrix *Kgg, gsl_matrix *
     return st;
 }
 
+/* The gravity load's static correction of group gi (docs/theory.md, "Reduced rotor"): with Kchol
+ * the Cholesky factor of K_gg and Mg its M_gg, u = K_gg^-1 f_g less the kept modes' share
+ * phi (phi^T f_g) / w^2, appended to r->kept unless the kept modes already hold the deflection (to
+ * rounding: the basis would be singular). */
+static td_status group_static_correction(reduction *r, int gi, const gsl_matrix *Kchol, const gsl_matrix *Mg,
+                                         td_error *err)
+{
+    group *gr = &r->g[gi];
+    gsl_vector *f = gsl_vector_calloc((size_t)gr->n), *u = gsl_vector_alloc((size_t)gr->n);
+    gsl_vector *w = gsl_vector_alloc((size_t)gr->n);
+    double full = 0.0, left = 0.0, mass = 0.0;
+    int k;
+    if (!f || !u || !w) {
+        gsl_vector_free(f), gsl_vector_free(u), gsl_vector_free(w);
+        return td_error_set(err, TD_ERR_NOMEM, "reduction: out of memory for a static correction");
+    }
+    for (k = 0; k < gr->n; k++)
+        gsl_vector_set(f, (size_t)k, r->load[r->p.i[gr->rows[k]]]);
+    if (gsl_blas_dnrm2(f) > 0.0 && gsl_linalg_cholesky_solve(Kchol, f, u) == GSL_SUCCESS) {
+        gsl_blas_ddot(f, u, &full); /* f^T K^-1 f: the static deflection's energy, doubled */
+        for (k = 0; k < r->nk; k++) {
+            gsl_vector_view phi;
+            double pf, w2;
+            if (r->kept[k].group != gi || r->kept[k].col < 0)
+                continue;
+            phi = gsl_matrix_column(gr->V, (size_t)r->kept[k].col);
+            w2 = pow(2.0 * TD_PI * r->kept[k].hz, 2);
+            gsl_blas_ddot(&phi.vector, f, &pf);
+            gsl_blas_daxpy(-pf / w2, &phi.vector, u);
+        }
+        gsl_blas_ddot(f, u, &left); /* u^T K u = f^T u: u is M-orthogonal to the kept modes */
+        gsl_blas_dgemv(CblasNoTrans, 1.0, Mg, u, 0.0, w);
+        gsl_blas_ddot(u, w, &mass);
+    }
+    if (left > 1e-12 * full && mass > 0.0) {
+        gsl_vector_scale(u, 1.0 / sqrt(mass));
+        gr->S = u;
+        u = NULL;
+        r->kept[r->nk++] = (kept_mode){sqrt(left / mass) / (2.0 * TD_PI), gr->plane, gi, -1};
+        r->ns++;
+    }
+    gsl_vector_free(f), gsl_vector_free(u), gsl_vector_free(w);
+    return TD_OK;
+}
+
 /* Constraint-mode rows and fixed-interface modes of group gi. */
 static td_status group_substructure(reduction *r, int gi, double cutoff, td_error *err)
 {
     group *gr = &r->g[gi];
-    gsl_matrix *K1, *K2, *Mg;
+    gsl_matrix *K1, *K2, *Mg, *M2;
     td_status st;
     int k;
     for (k = 0; k < gr->n; k++)
@@ -252,25 +311,31 @@ static td_status group_substructure(reduction *r, int gi, double cutoff, td_erro
     K1 = group_block(r, gr, r->K, NULL, gr->n);
     K2 = group_block(r, gr, r->K, NULL, gr->n);
     Mg = group_block(r, gr, r->M, NULL, gr->n);
-    if (!K1 || !K2 || !Mg)
+    M2 = group_block(r, gr, r->M, NULL, gr->n);
+    if (!K1 || !K2 || !Mg || !M2)
         st = td_error_set(err, TD_ERR_NOMEM, "reduction: out of memory for an interior substructure");
     else
         st = group_constraint_modes(r, gr, K1, err);
     if (st == TD_OK)
         st = group_modes(r, gi, K2, Mg, cutoff, err);
+    if (st == TD_OK)
+        st = group_static_correction(r, gi, K1, M2, err);
     for (k = 0; k < gr->n; k++)
         r->pos[r->p.i[gr->rows[k]]] = -1;
     gsl_matrix_free(K1);
     gsl_matrix_free(K2);
     gsl_matrix_free(Mg);
+    gsl_matrix_free(M2);
     return st;
 }
 
-/* Ascending frequency; the x-z plane first in a tie (an isotropic shaft's pairs), then by group
- * and column. */
+/* The fixed-interface modes by ascending frequency, then the static corrections; the x-z plane
+ * first in a tie (an isotropic shaft's pairs), then by group and column. */
 static int cmp_kept(const void *a, const void *b)
 {
     const kept_mode *x = a, *y = b;
+    if ((x->col < 0) != (y->col < 0))
+        return x->col < 0 ? 1 : -1;
     if (x->hz != y->hz)
         return x->hz < y->hz ? -1 : 1;
     if (x->plane != y->plane)
@@ -323,7 +388,8 @@ static td_status build_transform(reduction *r, int nphys, td_error *err)
         const group *gr = &r->g[km->group];
         for (k = 0; k < gr->n; k++)
             gsl_matrix_set(r->T, (size_t)r->p.i[gr->rows[k]], (size_t)(r->p.nb + j),
-                           gsl_matrix_get(gr->V, (size_t)k, (size_t)km->col));
+                           km->col < 0 ? gsl_vector_get(gr->S, (size_t)k)
+                                       : gsl_matrix_get(gr->V, (size_t)k, (size_t)km->col));
     }
     return TD_OK;
 }
@@ -421,6 +487,7 @@ static td_status record(td_system *s, const reduction *r, td_error *err)
         for (k = 0; k < s->nphys; k++)
             s->T[k + (size_t)j * (size_t)s->nphys] = gsl_matrix_get(r->T, (size_t)k, (size_t)j);
     s->n_modes = r->nk;
+    s->n_static = r->ns;
     for (j = 0; j < r->nk; j++) {
         s->mode_freq[j] = r->kept[j].hz;
         for (k = 0; k < s->nphys; k++) {
@@ -444,6 +511,7 @@ static void reduction_free(reduction *r)
     for (k = 0; r->g && k < 2 * r->p.ni + 1; k++) {
         free(r->g[k].rows);
         gsl_matrix_free(r->g[k].V);
+        gsl_vector_free(r->g[k].S);
     }
     free(r->g);
     free(r->kept);
@@ -458,6 +526,7 @@ td_status td_system_reduce(td_system *s, td_error *err)
     gsl_set_error_handler_off();
     r.M = s->M;
     r.K = s->K;
+    r.load = s->gravity_load;
     st = build_partition(s, &r.p, err);
     if (st == TD_OK)
         st = substructures(&r, s->nphys, s->model->reduction_cutoff, err);
@@ -481,6 +550,7 @@ void td_system_reduction_free(td_system *s)
     s->phys_to_q = s->q_node = NULL;
     s->T = s->mode_freq = s->mode_amp = NULL;
     s->n_modes = 0;
+    s->n_static = 0;
 }
 
 int td_system_coordinate_node(const td_system *s, int i, int *offset)
@@ -505,7 +575,12 @@ int td_system_is_reduced(const td_system *sys)
 
 int td_system_mode_count(const td_system *sys)
 {
-    return sys ? sys->n_modes : 0;
+    return sys ? sys->n_modes - sys->n_static : 0;
+}
+
+int td_system_static_correction_count(const td_system *sys)
+{
+    return sys ? sys->n_static : 0;
 }
 
 double td_system_mode_frequency(const td_system *sys, int i)

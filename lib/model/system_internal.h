@@ -29,11 +29,13 @@ struct td_system {
     int ndof;  /* generalized coordinates q (touchdown/system.h) */
     int nphys; /* physical DOFs, 4 nnodes */
     /* the Craig-Bampton reduction (reduce.c); all NULL / 0 for the full model */
-    int *phys_to_q;    /* nphys: index in q of each physical DOF, -1 for an interior node's */
-    int *q_node;       /* ndof: node of coordinate i, -1 for a fixed-interface modal coordinate */
-    double *T;         /* nphys x ndof, column-major: q_phys = T q */
-    int n_modes;       /* fixed-interface modes kept: coordinates ndof - n_modes .. ndof - 1 */
-    double *mode_freq; /* n_modes, Hz */
+    int *phys_to_q; /* nphys: index in q of each physical DOF, -1 for an interior node's */
+    int *q_node;    /* ndof: node of coordinate i, -1 for a fixed-interface modal coordinate */
+    double *T;      /* nphys x ndof, column-major: q_phys = T q */
+    int n_modes;    /* modal coordinates ndof - n_modes .. ndof - 1: the fixed-interface modes kept,
+                     * then n_static static corrections of the gravity load (reduce.c) */
+    int n_static;
+    double *mode_freq; /* n_modes, Hz (a static correction's: its Rayleigh quotient) */
     double *mode_amp;  /* n_modes: largest nodal x or y of the mass-normalised mode, m per unit coordinate */
     cs_di *M;
     cs_di *K;

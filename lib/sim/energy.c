@@ -117,11 +117,41 @@ void td_sim_energy_impact(td_sim *s, double before, double after)
     s->energy.impact_loss += before - after;
 }
 
+/* The account at s->t when the last point lies beyond it (an output, the end time, or a change
+ * inside the integrator's last step): the trapezoids from s->t to that point taken back, and what
+ * the machine holds read at s->t, as the retainers' totals do (totals.c). Returns the powers at s->t. */
+static void energy_back_to_now(td_sim *s, td_energy *e, double pw[5])
+{
+    const double *y = N_VGetArrayPointer(s->y), *prev = s->energy_prev;
+    double dt = s->totals_t - s->t, held = powers(s, s->t, y, pw);
+    if (dt > 0.0) {
+        e->external_work -= 0.5 * dt * (prev[0] + pw[0]);
+        e->drive_work -= 0.5 * dt * (prev[1] + pw[1]);
+        e->damping_loss -= 0.5 * dt * (prev[2] + pw[2]);
+        e->contact_loss -= 0.5 * dt * (prev[3] + pw[3]);
+        e->drag_loss -= 0.5 * dt * (prev[4] + pw[4]);
+    }
+    e->kinetic = td_sim_kinetic_energy(s, y);
+    e->elastic = held - e->kinetic;
+}
+
+void td_sim_energy_rewind(td_sim *s)
+{
+    double pw[5];
+    if (!s->opt.energy || !(s->totals_t > s->t))
+        return;
+    energy_back_to_now(s, &s->energy, pw);
+    memcpy(s->energy_prev, pw, sizeof pw);
+}
+
 td_status td_sim_energy(const td_sim *sim, td_energy *out)
 {
+    double pw[5];
     if (!sim || !out || !sim->opt.energy)
         return TD_ERR_INVALID;
     *out = sim->energy;
+    if (sim->totals_t > sim->t) /* powers() uses the sim's scratch force vector only */
+        energy_back_to_now((td_sim *)sim, out, pw);
     out->residual = out->kinetic + out->elastic - out->initial - out->external_work - out->drive_work +
                     out->damping_loss + out->contact_loss + out->drag_loss + out->impact_loss;
     return TD_OK;

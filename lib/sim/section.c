@@ -92,6 +92,7 @@ static int state_at(td_sim *s, source from, double t)
     if (IDAGetDky(s->ida, t, 0, c->dky) != IDA_SUCCESS)
         return 0;
     memcpy(c->y, N_VGetArrayPointer(c->dky), sizeof(double) * (size_t)s->neq);
+    td_sim_spin_hold(s, t, c->y, NULL);
     return 1;
 }
 

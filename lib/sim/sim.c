@@ -218,7 +218,7 @@ static int alloc_work(td_sim *s, size_t nr)
 
 static td_status alloc_arrays(td_sim *s, td_error *err)
 {
-    int na = td_model_amb_count(s->model), ok;
+    int na = td_model_amb_count(s->model), ok, i;
     size_t nr = (size_t)(s->nr > 0 ? s->nr : 1);
     s->nu = td_model_unbalance_count(s->model);
     s->unb = calloc((size_t)(s->nu > 0 ? s->nu : 1), sizeof *s->unb);
@@ -228,8 +228,13 @@ static td_status alloc_arrays(td_sim *s, td_error *err)
     s->q_cap = 4 * s->nr + td_model_change_count(s->model) + 4;
     s->queue = calloc((size_t)s->q_cap, sizeof *s->queue);
     ok = alloc_work(s, nr);
-    s->rootdir = calloc(TD_ROOTS_PER_RETAINER * nr, sizeof(int));
-    s->rootsfound = calloc(TD_ROOTS_PER_RETAINER * nr, sizeof(int));
+    s->n_sat_roots = 0;
+    for (i = 0; i < s->sys->n_amb_axes; i++)
+        if (s->sys->amb_axes[i].saturation)
+            s->n_sat_roots = 2 * s->sys->n_amb_axes;
+    s->nroots = TD_ROOTS_PER_RETAINER * s->nr + s->n_sat_roots;
+    s->rootdir = calloc(TD_ROOTS_PER_RETAINER * nr + (size_t)s->n_sat_roots, sizeof(int));
+    s->rootsfound = calloc(TD_ROOTS_PER_RETAINER * nr + (size_t)s->n_sat_roots, sizeof(int));
     s->ysave = calloc((size_t)s->neq, sizeof(double));
     s->ypsave = calloc((size_t)s->neq, sizeof(double));
     if (!ok || !s->unb || !s->amb_mode || !s->amb_control || !s->amb_coef || !s->queue || !s->rootdir ||
@@ -684,7 +689,6 @@ static td_status attach_ida(td_sim *s, td_error *err)
     flag = IDASetLinearSolver(s->ida, s->LS, s->A);
     if (flag == IDA_SUCCESS)
         flag = IDASetJacFn(s->ida, jac_cb);
-    s->nroots = TD_ROOTS_PER_RETAINER * s->nr;
     if (flag == IDA_SUCCESS && s->nroots > 0) {
         flag = IDARootInit(s->ida, s->nroots, root_cb);
         if (flag == IDA_SUCCESS)
@@ -984,6 +988,7 @@ static td_status interpolate(td_sim *s, double t)
         return TD_ERR_SOLVER;
     }
     s->t = t;
+    td_sim_spin_hold(s, t, N_VGetArrayPointer(s->y), N_VGetArrayPointer(s->yp));
     return TD_OK;
 }
 
@@ -1133,6 +1138,7 @@ static int pending_stop(td_sim *s, double tout, td_status *st)
 static void accept_point(td_sim *s, double tret, int at_step)
 {
     s->t = tret;
+    td_sim_spin_hold(s, tret, N_VGetArrayPointer(s->y), N_VGetArrayPointer(s->yp));
     monitor_at(s, tret, at_step);
     td_sim_totals_point(s, tret, 0);
     memcpy(s->ysave, N_VGetArrayPointer(s->y), sizeof(double) * (size_t)s->neq);

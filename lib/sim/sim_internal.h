@@ -130,7 +130,8 @@ struct td_sim {
     void *ida_ctest_data;
     double constraint_tol; /* m: |g| of every contact at an accepted Newton iterate */
     td_sun_message_sink sink;
-    int nroots;
+    int nroots;      /* TD_ROOTS_PER_RETAINER per retainer, then n_sat_roots */
+    int n_sat_roots; /* 2 per AMB axis when any axis saturates (its clip's kinks), else 0 */
     int *rootdir, *rootsfound;
     double hmax;
 
@@ -204,7 +205,8 @@ void td_sim_forces(const td_sim *s, double t, const double *y, double *f);
 void td_sim_residual(const td_sim *s, double t, const double *y, const double *yp, double *res);
 /* dF/dy + cj dF/dy' into s->jdata (pattern s->colptr, s->rowind). */
 void td_sim_jacobian(td_sim *s, double t, double cj, const double *y);
-/* Root functions (TD_ROOTS_PER_RETAINER per retainer) and their directions for the current modes. */
+/* Root functions (TD_ROOTS_PER_RETAINER per retainer, then the AMB clips' kinks) and their
+ * directions for the current modes. */
 void td_sim_roots(const td_sim *s, double t, const double *y, double *g);
 void td_sim_root_directions(const td_sim *s, int *dir);
 /* Force of AMB axis k at state y (N), with the mode of its AMB. */
@@ -231,6 +233,9 @@ void td_sim_totals_rewind(td_sim *s);
 void td_sim_energy_point(td_sim *s, double t, int restart, double dt);
 /* An impact changed the kinetic energy from `before` to `after`, J. */
 void td_sim_energy_impact(td_sim *s, double before, double after);
+/* The energy account taken back from its last point to s->t (a change or an output inside the
+ * integrator's last step), as td_sim_totals_rewind does with the retainers' totals. */
+void td_sim_energy_rewind(td_sim *s);
 /* Kinetic energy 1/2 v^T M v of the state y, J. */
 double td_sim_kinetic_energy(const td_sim *s, const double *y);
 /* An impact of retainer k with `impulse` (N s); `bounced`: it left at once (touch-and-go). */
@@ -264,7 +269,8 @@ void td_sim_spin_diagonal(const td_sim *s, char which, double *d);
 /* Rotor speed Omega (rad/s) and spin angle phi (rad) at (t, y). */
 double td_sim_rotor_speed(const td_sim *s, const double *y);
 double td_sim_rotor_angle(const td_sim *s, double t, const double *y);
-/* dOmega/dt at (t, y): the ramp's slope, or a free spin's torque balance over J. */
+/* dOmega/dt at (t, y): the ramp's slope on the interval being integrated, (s->t, t] (at t = s->t
+ * the segment starting there), or a free spin's torque balance over J. */
 double td_sim_rotor_rate(const td_sim *s, double t, const double *y);
 /* The torque that drives the spin DOF from outside (ramp: J alpha, what the drive must give;
  * free: the drive torque); 0 without a spin DOF. */
@@ -274,6 +280,9 @@ double td_sim_spin_torque(const td_sim *s, double t);
 double td_sim_spin_drag(const td_sim *s, const double *y, double *dT);
 /* The spin's start state into y: angle and speed at s->t. */
 void td_sim_spin_start(const td_sim *s, double *y);
+/* A ramp's spin angle and speed (and their rates into yp, which may be NULL) in y set to the
+ * prescribed profile's at t: what an accepted or interpolated state reports. Nothing otherwise. */
+void td_sim_spin_hold(const td_sim *s, double t, double *y, double *yp);
 /* The spin angle taken modulo 2 pi (at restarts). */
 void td_sim_spin_wrap(const td_sim *s, double *y);
 

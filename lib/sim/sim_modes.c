@@ -648,6 +648,9 @@ td_status td_sim_handle_roots(td_sim *s, int *restart)
         }
         any_onset = any_onset || s->onset[k];
     }
+    for (k = 0; k < s->n_sat_roots; k++) /* an AMB's clip: restart on its kink */
+        if (s->rootsfound[TD_ROOTS_PER_RETAINER * s->nr + k])
+            *restart = 1;
     st = onset_impacts(s, any_onset);
     if (st != TD_OK)
         return st;

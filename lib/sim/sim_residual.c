@@ -697,11 +697,29 @@ static double slip_root_function(const td_sim *s, int k, const double *y)
  *           stick retainers, rolling:          mu N - |F_t|, decreasing             -> slip
  *   slot 2  free, disarmed (either model):     gap - eps, increasing                -> re-arm (internal)
  * Unused slots hold the constant 1, which never has a root.
+ * Then, when an AMB saturates, two per AMB axis: ks x + Fc - capacity and ks x + Fc + capacity,
+ * either direction, the kinks of the clip (entering or leaving it; 1 while the AMB is off or the
+ * axis does not saturate). The force is continuous there but its slope jumps, and so does the
+ * integrator's rate (anti-windup): a step across the kink would carry the wrong law over part of
+ * itself, so the integrator restarts on it.
  */
+static void saturation_roots(const td_sim *s, const double *y, double *g)
+{
+    int k;
+    for (k = 0; k < s->sys->n_amb_axes && s->n_sat_roots > 0; k++) {
+        const td_amb_axis *a = &s->sys->amb_axes[k];
+        double f = a->ks * y[s->oq + a->actuator_dof] + amb_axis_fc(s, k, y);
+        int on = a->saturation && s->amb_mode[a->amb] != TD_AMB_OFF;
+        g[2 * k] = on ? f - a->capacity : 1.0;
+        g[2 * k + 1] = on ? f + a->capacity : 1.0;
+    }
+}
+
 void td_sim_roots(const td_sim *s, double t, const double *y, double *g)
 {
     int k;
     (void)t;
+    saturation_roots(s, y, g + TD_ROOTS_PER_RETAINER * s->nr);
     for (k = 0; k < s->nr; k++) {
         const td_sim_retainer *r = &s->ret[k];
         double *gk = g + TD_ROOTS_PER_RETAINER * k;
@@ -734,4 +752,6 @@ void td_sim_root_directions(const td_sim *s, int *dir)
         dk[TD_ROOT_SLIP] = -1;
         dk[TD_ROOT_REARM] = 1;
     }
+    for (k = 0; k < s->n_sat_roots; k++)
+        dir[TD_ROOTS_PER_RETAINER * s->nr + k] = 0;
 }

@@ -149,6 +149,7 @@ void td_sim_totals_rewind(td_sim *s)
         tk->prev.power = now.power;
         tk->prev.whirl_rate = now.whirl_rate;
     }
+    td_sim_energy_rewind(s);
     s->totals_t = s->t;
 }
 

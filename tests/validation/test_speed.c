@@ -16,6 +16,7 @@
 #include "touchdown/system.h"
 #include "touchdown/touchdown.h"
 
+#include <float.h>
 #include <math.h>
 #include <stdlib.h>
 
@@ -94,6 +95,148 @@ static void test_spin_up_keeps_mass_centre(void **state)
     /* measured 1.5e-11 m (6.6e-9 m at rtol 1e-9, atol 1e-13: it follows the tolerances); without
      * the alpha term the error is of order U/m */
     assert_true(worst <= 1e-6 * U / mass);
+    td_sim_free(&sim);
+    td_model_free(&m);
+}
+
+/* Worst deviation of the journal centre from the free-free closed form x = (U/m)(1 - cos phi),
+ * y = -(U/m) sin phi (the mass centre at rest) and of its velocity, over the samples `times`, of a
+ * rotor spun up by the ramp `p` (two points, then held) with the largest step `max_step`. */
+static void ramp_drift(double max_step, const td_speed_point p[2], const double *times, int n, double *dq, double *dv)
+{
+    const double U = 1e-3, mass = DENSITY * TD_PI / 4.0 * DIAMETER * DIAMETER * LENGTH;
+    td_model *m = free_rotor(0.0);
+    td_unbalance u0 = {0, 0.5 * U, 0.0}, u1 = {1, 0.5 * U, 0.0};
+    td_sim_options o;
+    td_sim *sim = NULL;
+    td_error err;
+    double q[8], v[8];
+    int i, node;
+    assert_int_equal(td_model_add_unbalance(m, &u0, NULL), TD_OK);
+    assert_int_equal(td_model_add_unbalance(m, &u1, NULL), TD_OK);
+    assert_int_equal(td_model_add_speed_point(m, &p[0], NULL), TD_OK);
+    assert_int_equal(td_model_add_speed_point(m, &p[1], NULL), TD_OK);
+    td_sim_options_default(&o);
+    o.start = TD_START_REST;
+    o.solver.rtol = 1e-6;
+    o.solver.atol = 1e-9;
+    o.solver.max_step = max_step;
+    if (td_model_validate(m, &err) != TD_OK || td_sim_create(m, &o, &sim, &err) != TD_OK)
+        fail_msg("%s", err.message);
+    *dq = *dv = 0.0;
+    for (i = 0; i < n; i++) {
+        double phi, w = td_model_speed_at(m, times[i], NULL, &phi);
+        step_to(sim, times[i]);
+        assert_int_equal(td_sim_get_state(sim, q, v), TD_OK);
+        for (node = 0; node < 2; node++) {
+            *dq = fmax(*dq, hypot(q[TD_DOF(node, TD_DOF_X)] - U / mass * (1.0 - cos(phi)),
+                                  q[TD_DOF(node, TD_DOF_Y)] + U / mass * sin(phi)) /
+                                (U / mass));
+            *dv = fmax(*dv, hypot(v[TD_DOF(node, TD_DOF_X)] - U / mass * w * sin(phi),
+                                  v[TD_DOF(node, TD_DOF_Y)] + U / mass * w * cos(phi)) /
+                                (U / mass * w));
+        }
+    }
+    td_sim_free(&sim);
+    td_model_free(&m);
+}
+
+/* The step that ends on a ramp point: its unbalance force must carry the segment's own U alpha.
+ * With the next segment's alpha (0 once the speed is held) over that step h, the rotor's momentum
+ * is short by U alpha h and the free-free rotor drifts off at U alpha h / m for ever after: the
+ * mass centre's closed form (the unbalance force integrated analytically) exposes it, and the error
+ * would scale with the step, not the tolerance. */
+static void test_ramp_point_keeps_momentum(void **state)
+{
+    const double T = 0.005; /* 0 to 400 rad/s in T (80000 rad/s^2, alpha/Omega = 200/s at T) */
+    const double times[6] = {0.6 * T, 0.9 * T, T, 1.1 * T, 1.2 * T, 1.4 * T};
+    const td_speed_point p[2] = {{0.0, 0.0}, {T, 400.0}};
+    const double steps[2] = {1e-6, 4e-6}; /* both bind: the tolerance alone would take longer steps */
+    double dq[2], dv[2];
+    int i;
+    (void)state;
+    for (i = 0; i < 2; i++) {
+        ramp_drift(steps[i], p, times, 6, &dq[i], &dv[i]);
+        print_message("held after a ramp, max step %.0e s: mass centre off by %.3g U/m, its velocity by %.3g U w/m\n",
+                      steps[i], dq[i], dv[i]);
+    }
+    /* measured 3e-7 and 4e-6 (position), 3e-7 and 4e-6 (velocity); with the next segment's alpha
+     * over the step that ends on the point the velocity was off by up to (alpha/Omega) h: 1e-4 and
+     * 4e-4, four times more at four times the step */
+    for (i = 0; i < 2; i++) {
+        assert_true(dq[i] < 2e-5);
+        assert_true(dv[i] < 2e-5);
+    }
+}
+
+/* The speed a run reports during a ramp (td_sim_speed: the samples' speed column, the final speed)
+ * is the prescribed profile's, to rounding, at the default tolerances: the rig held at 50 rad/s,
+ * then ramped at 10 rad/s^2 from t = 1 s as in cases/run-up.cfg, sampled every 5 ms. */
+static void test_ramp_speed_sampled_exactly(void **state)
+{
+    td_model *m = td_test_rig_create(50.0, TD_RIG_TAU, TD_RIG_NO_RETAINERS);
+    td_unbalance u = {1, 5e-3, 0.0};
+    td_speed_point p0 = {1.0, 50.0}, p1 = {21.0, 250.0};
+    td_sim_options o;
+    td_sim *sim = NULL;
+    td_error err;
+    double worst = 0.0;
+    int i;
+    (void)state;
+    assert_int_equal(td_model_add_unbalance(m, &u, NULL), TD_OK);
+    assert_int_equal(td_model_add_speed_point(m, &p0, NULL), TD_OK);
+    assert_int_equal(td_model_add_speed_point(m, &p1, NULL), TD_OK);
+    td_sim_options_default(&o);
+    o.start = TD_START_ORBIT;
+    if (td_sim_create(m, &o, &sim, &err) != TD_OK)
+        fail_msg("%s", err.message);
+    for (i = 1; i <= 300; i++) {
+        double t = 0.005 * i, w = t < 1.0 ? 50.0 : 50.0 + 10.0 * (t - 1.0);
+        step_to(sim, t);
+        worst = fmax(worst, fabs(td_sim_speed(sim) - w) / w);
+    }
+    print_message("ramp: sampled speed against the profile within %.3g of the speed\n", worst);
+    assert_true(worst <= 4.0 * DBL_EPSILON); /* the profile's own rounding */
+    td_sim_free(&sim);
+    td_model_free(&m);
+}
+
+/* The energy account is the machine's at the time reached, not at the integrator's last internal
+ * step beyond it: a free-free rotor stopped inside a spin-up ramp holds J Omega^2 / 2 in its spin
+ * and U^2 Omega^2 / (2 m) in its translation (the journal runs at U Omega / m round the still mass
+ * centre), Omega = alpha t, and the balance closes to the tolerance. */
+static void test_energy_at_time_reached(void **state)
+{
+    const double U = 1e-3, alpha = 800.0, t_end = 0.3, w = alpha * t_end;
+    const double mass = DENSITY * TD_PI / 4.0 * DIAMETER * DIAMETER * LENGTH;
+    td_model *m = free_rotor(0.0);
+    td_unbalance u0 = {0, 0.5 * U, 0.0}, u1 = {1, 0.5 * U, 0.0};
+    td_speed_point p0 = {0.0, 0.0}, p1 = {0.5, 0.5 * alpha};
+    td_sim_options o;
+    td_sim *sim = NULL;
+    td_error err;
+    td_energy e;
+    double expect;
+    (void)state;
+    assert_int_equal(td_model_add_unbalance(m, &u0, NULL), TD_OK);
+    assert_int_equal(td_model_add_unbalance(m, &u1, NULL), TD_OK);
+    assert_int_equal(td_model_add_speed_point(m, &p0, NULL), TD_OK);
+    assert_int_equal(td_model_add_speed_point(m, &p1, NULL), TD_OK);
+    td_sim_options_default(&o);
+    o.start = TD_START_REST;
+    o.solver.rtol = 1e-8;
+    o.solver.atol = 1e-12;
+    o.energy = 1;
+    if (td_model_validate(m, &err) != TD_OK || td_sim_create(m, &o, &sim, &err) != TD_OK)
+        fail_msg("%s", err.message);
+    step_to(sim, t_end);
+    assert_int_equal(td_sim_energy(sim, &e), TD_OK);
+    expect = 0.5 * td_model_polar_inertia(m) * w * w + 0.5 * U * U * w * w / mass;
+    print_message("energy at %.2f s: kinetic %.12g J (closed form %.12g J), residual %.3g J\n", t_end, e.kinetic,
+                  expect, e.residual);
+    /* measured 2e-10 relative; taken at the step beyond t_end it was off by 2 alpha h / Omega */
+    assert_close(e.kinetic, expect, 1e-8, 0.0);
+    assert_true(fabs(e.residual) <= 1e-6 * expect);
     td_sim_free(&sim);
     td_model_free(&m);
 }
@@ -181,6 +324,9 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_spin_up_keeps_mass_centre),
+        cmocka_unit_test(test_ramp_point_keeps_momentum),
+        cmocka_unit_test(test_ramp_speed_sampled_exactly),
+        cmocka_unit_test(test_energy_at_time_reached),
         cmocka_unit_test(test_coast_down),
         cmocka_unit_test(test_slow_run_up),
     };
