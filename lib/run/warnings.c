@@ -45,8 +45,8 @@ static void check_schedule(td_run_summary *s, const td_model *m)
     td_change c;
     for (i = 0; i < n; i++)
         if (td_model_get_change(m, i, &c) == TD_OK && c.time >= s->t_end)
-            warn(s, "schedule[%d] at t = %.6g s is at or after the end time %.6g s: it never happens", i, c.time,
-                 s->t_end);
+            warn(s, "schedule[%d] at t = %.6g s is at or after the end time %.6g s: it never happens",
+                 td_model_change_entry(m, i), c.time, s->t_end); /* the entry as written, not its rank in time */
 }
 
 /* A clearance larger than the shaft radius at its retainer is out of all proportion (touchdown

@@ -61,6 +61,11 @@ rule schedule-at "schedule[0] at t = 0.1 s is at or after the end time 0.1 s: it
     --set end_time=0.1 "$case_a"
 check "schedule-at: the later entry warned too" has "$work/schedule-at/.err" "schedule[1] at t = 1.1 s"
 quiet schedule-before "schedule[0]" --set end_time=0.1000001 "$case_a"
+# entries written out of time order are named as written, not by their rank in time
+rule schedule-order "schedule[0] at t = 1.1 s is at or after the end time 0.5 s" \
+    --set end_time=0.5 --set 'schedule[0].time=1.1' --set 'schedule[1].time=0.1' "$case_a"
+check "schedule-order: the entry at 0.1 s, schedule[1], is not warned" \
+    test -z "$(grep -F 'schedule[1]' "$work/schedule-order/.err")"
 
 # a clearance larger than the shaft radius (0.05 m), unless an AMB air gap bounds it
 rule clearance "retainers[1].clearance 0.08 m is larger than the shaft radius there (0.05 m)" \
