@@ -50,6 +50,18 @@ def summary(source, key):
     return res(source)["runs"][key]["summary"]
 
 
+def cpu(source, key):
+    """The CPU time of a recorded run (user + system, s)."""
+    return res(source)["runs"][key].get("cpu_time")
+
+
+def cpu_per_rev(source, key):
+    """CPU s per revolution after the first contact (the paper's figure of merit, in CPU time)."""
+    s = summary(source, key)
+    w, wr, c = num(s, "wall_time"), num(s, "wall_time_per_revolution"), cpu(source, key)
+    return None if not w or wr is None or c is None else wr * c / w
+
+
 def num(d, *keys):
     """A number from nested JSON, None where missing or null (a failed value)."""
     for k in keys:
@@ -64,8 +76,8 @@ def cite(*sources):
     parts = []
     for s in sources:
         st = res(s)
-        parts.append("[`docs/results/%s.json`](%sresults/%s.json) (%s, source %s, %s)" % (
-            s, "{DOCS}", s, st["tool_version"], st["revision"], st["date"][:10]))
+        parts.append("[`docs/results/%s.json`](%sresults/%s.json) (%s at %s, %s)" % (
+            s, "{DOCS}", s, st["tool_version"].replace("touchdown ", ""), st["revision"], st["date"][:10]))
     return "; ".join(parts)
 
 
@@ -84,7 +96,10 @@ def g(x, digits=3):
 
 def e(x, digits=2):
     """x in exponent form (1.0e-13), '-' for a missing value."""
-    return "-" if x is None else "%.*e" % (digits - 1, x)
+    if x is None:
+        return "-"
+    mantissa, exponent = ("%.*e" % (digits - 1, x)).split("e")
+    return "%se%d" % (mantissa, int(exponent))
 
 
 def n(x):
@@ -136,6 +151,12 @@ def bench_ratio(which, name, key="cpu_median"):
 
 def bench_machine(which):
     return res("bench")["bench"][which]["result"]["machine"]
+
+
+def bench_cpu_per_rev(which, case):
+    w, wr = bench_case(which, case, "wall_time"), bench_case(which, case, "wall_time_per_revolution")
+    c = bench_case(which, case, "cpu_time")
+    return None if not w or wr is None or c is None else wr * c / w
 
 
 def rtf_cpu(which, case):
@@ -196,17 +217,17 @@ def readme_glance():
     w, _, _ = rig_modal_test()
     rows = [
         ["constrained model, computing per revolution after first contact (case B, as shipped)",
-         "13.3 s", "%s s (wall, median of %d)" % (g(bench_case("shipped", "B", "wall_time_per_revolution"), 2),
-                                                 res("bench")["bench"]["shipped"]["result"]["repeats"])],
+         "13.3 s", "%s s (CPU, `touchdown bench`, median of %d)" % (
+             g(bench_cpu_per_rev("shipped", "B"), 2), res("bench")["bench"]["shipped"]["result"]["repeats"])],
         ["penalty Kc = 1.25e12 N/m against constrained, same case", "54 times slower", penalty],
         ["first contact of case A against the exact linear solution", "-",
          "%s s (closed-form flight, any tolerance); IDA alone: %s s (rtol 1e-12), %s s (defaults)" % (
-             e(abs(flight), 1), e(abs(tight), 1), e(abs(ida_def), 1))],
-        ["worst drift off the clearance circle in contact (cases A, B)", "-", "%s m" % e(max(drift), 1)],
-        ["rig eigenvalues against ross-rotordynamics", "-", "%s relative" % e(w, 1)],
+             e(abs(flight)), e(abs(tight)), e(abs(ida_def)))],
+        ["worst drift off the clearance circle in contact (cases A, B)", "-", "%s m" % e(max(drift))],
+        ["rig eigenvalues against ross-rotordynamics", "-", "%s relative" % e(w)],
         ["peak contact force, constrained, case A", "1.8 kN",
-         "%s kN, %s kN into the housing (a reconstructed rig; %s kN as the shaft mesh is refined: not mesh-converged, see validation.md)" % (
-             g(num(a, "peak_normal_force") / 1e3, 2), g(num(a, "peak_housing_force") / 1e3, 2),
+         "%s N, %s N into the housing (a reconstructed rig; %s kN as the shaft mesh is refined: not mesh-converged, see validation.md)" % (
+             n(num(a, "peak_normal_force")), n(num(a, "peak_housing_force")),
              span_range([x / 1e3 for x in mesh if x], lambda x: "%.0f" % x))],
         ["does the constrained model bound the penalty force from above?", "yes (claimed)",
          "no: a stiff penalty impact peaks at v0 sqrt(m_eff Kc), far above it"],
@@ -248,18 +269,18 @@ def perf_summary():
          "intervals (0.3 s, `bench/intervals.sh`) %s s and %s %s. At the library defaults %s s CPU, intervals %s s off" % (
              g(b_cpu, 3), g(rtf, 2), e(max(iv["shipped"][:2]), 2), e(iv["shipped"][2], 2),
              "in the peaks" if ok_iv else "in the peaks (not met)",
-             g(bench_case("defaults", "B", "cpu_time"), 3), e(max(iv["defaults"][:2]), 1)),
+             g(bench_case("defaults", "B", "cpu_time"), 3), e(max(iv["defaults"][:2]))),
          "**no**, about %.0fx short" % (10 / rtf) if rtf and rtf < 10 else "yes"],
         ["penalty (Kc = 1.25e12 N/m) within 5x the constrained model's time on the same case",
          "as shipped C/A %s, D/B %s, D10/B %s (CPU, same invocation); at the defaults %s, %s, %s (the paper: 54)" % (
              tuple(g(ratios_s[r], 2) for r in ratios_s) + tuple(g(ratios_d[r], 2) for r in ratios_d)),
          "yes" if all(x is not None and x <= 5 for x in ratios_s.values()) else "no"],
         ["worst constraint drift < 1e-9 m (cases A, B)",
-         "%s m as shipped, %s m at the defaults" % (e(max(drift_s), 1), e(max(drift_d), 1)),
+         "%s m as shipped, %s m at the defaults" % (e(max(drift_s)), e(max(drift_d))),
          "yes" if max(drift_s + drift_d) < 1e-9 else "no"],
         ["first contact of case A within 1e-7 s of the exact %.12f s" % exact,
          "%s s as shipped, %s s at the defaults (closed-form flight, [0.5.0](#050-free-flight-in-closed-form))" % (
-             e(fa - exact, 1), e(fa_d - exact, 1)),
+             e(fa - exact), e(fa_d - exact)),
          "yes" if max(abs(fa - exact), abs(fa_d - exact)) <= 1e-7 else "no"],
     ]
     return ("From %s.\n\n" % cite("bench", "runs", "references", "intervals", "validation")
@@ -285,7 +306,7 @@ def intervals_errors():
 
 def paper_row(s):
     return [n(num(s, "contacts")), g(num(s, "contact_time"), 3), f(num(s, "total_impulse"), 2),
-            f(num(s, "friction_work"), 2), n(num(s, "peak_housing_force")), f(num(s, "wall_time"), 1)]
+            f(num(s, "friction_work"), 2), n(num(s, "peak_housing_force"))]
 
 
 def perf_paper_settings():
@@ -295,18 +316,20 @@ def perf_paper_settings():
         r12, r11 = summary("references", case + "/ref12"), summary("references", case + "/ref11")
         d = summary("references", case + "/defaults")
         label = key + (" (penalty)" if key in ("C", "D", "D10") else "")
-        rows.append([label, "shipped (1e-9, <= 5)" if key == "A" else "shipped"] + paper_row(shipped))
+        c12, c11, cd = (cpu("references", case + r) for r in ["/ref12", "/ref11", "/defaults"])
+        rows.append([label, "shipped (1e-9, <= 5)" if key == "A" else "shipped"] + paper_row(shipped)
+                    + [f(cpu("runs", case), 1)])
         both = [" / ".join(p) for p in zip(paper_row(r12), paper_row(r11))]
-        rows.append(["", "1e-12 / 1e-11"] + both)
-        rows.append(["", "defaults (1e-6, <= 2)" if key == "A" else "defaults"] + paper_row(d))
+        rows.append(["", "1e-12 / 1e-11"] + both + ["%s / %s" % (f(c12, 1), f(c11, 1))])
+        rows.append(["", "defaults (1e-6, <= 2)" if key == "A" else "defaults"] + paper_row(d) + [f(cd, 1)])
     return ("Every paper case, 2 s, as shipped against two converged references (rtol 1e-12 / atol 1e-15 and\n"
             "rtol 1e-11 / 1e-14, both order <= 5) and against the library defaults (`touchdown run --json --hdf5\n"
             "'' --csv '' [--set solver.rtol=R --set solver.atol=A --set solver.max_order=O] cases/paper-X.cfg`,\n"
-            "one run each; wall s on the shared 2-core machine, load average %s and %s at the starts; %s):\n\n" % (
+            "one run each; CPU s of the run on the shared 2-core machine, load average %s and %s at the starts; %s):\n\n" % (
                 g(res("runs")["machine"]["loadavg_start"], 2), g(res("references")["machine"]["loadavg_start"], 2),
                 cite("runs", "references"))
             + table(["case", "run", "onsets", "time in contact s", "total impulse N s", "friction work J",
-                     "peak housing force N", "wall s"], rows))
+                     "peak housing force N", "CPU s"], rows))
 
 
 def perf_paper_findings():
@@ -333,7 +356,10 @@ def perf_paper_findings():
     for key, case in CASES[2:]:
         d = summary("references", case + "/defaults")
         ct = [num(summary("references", case + "/" + r), "contact_time") for r in ["ref12", "ref11"]]
-        pen.append("%s %s s against %s s" % (key, g(num(d, "contact_time"), 3), span_range(ct, lambda x: g(x, 2))))
+        factor = num(d, "contact_time") / max(ct)
+        pen.append("%s %s s against %s s%s" % (key, g(num(d, "contact_time"), 3), span_range(ct, lambda x: g(x, 2)),
+                                               " (%.0f times)" % factor if factor >= 2 else " (within %s)" % pct(
+                                                   rel(num(d, "contact_time"), max(ct)), 0)))
     dpk = [num(summary("references", "paper-d-kc1.25e12/" + r), "peak_housing_force") for r in ["ref12", "ref11"]]
     firsts = {}
     for key, case in CASES:
@@ -353,8 +379,9 @@ def perf_paper_findings():
         + "- **The onset count and the time in contact are not converged quantities** over 2 s of bouncing:\n"
         "  the two references differ by %s in onsets and %s in time in contact (the sequence depends\n"
         "  on rounding after a few dozen bounces). As shipped %d of the 5 cases fall inside that spread%s.\n"
-        "  At the defaults the penalty cases are wrong by far more than any spread (time in contact: %s):\n"
-        "  BDF2 damps the 56 kHz contact ringing, the rotor loses its rebound and rests on the retainer.\n" % (
+        "  At the defaults, time in contact of the penalty cases against the references: %s. Where it is\n"
+        "  many times too long, BDF2 has damped the contact ringing (56 kHz at Kc = 1.25e12 N/m), and the\n"
+        "  rotor lost its rebound and rested on the retainer.\n" % (
             span_range(on_sp, lambda x: "%.0f" % (100 * x), " %"), span_range(ct_sp, lambda x: "%.0f" % (100 * x), " %"),
             inside, (" (outside: " + "; ".join(outside) + ")") if outside else "", ", ".join(pen))
         + "- **The peak forces are not converged** (the constraint's is an instantaneous impulse-like peak,\n"
@@ -376,28 +403,28 @@ def perf_paper_findings():
 def perf_remains():
     full, red = summary("runs", "paper-b/0.5"), summary("runs", "paper-b/0.5/reduced")
     rub, rubr = summary("runs", "rub-damped"), summary("runs", "rub-damped/reduced")
+    rub_c, rubr_c = cpu("runs", "rub-damped"), cpu("runs", "rub-damped/reduced")
     return (
         "- The 10x real-time target for case B at accurate tolerances: not met. As shipped (rtol 1e-9, BDF\n"
         "  order <= 5) case B runs at %sx real time ([summary](#summary)); the cost is IDA in contact, held\n"
         "  to microsecond steps by the undamped rig's 11-13 kHz modes. The reduced rotor removes only part\n"
         "  of them: the local rotations of the AMB journals live on nodes that carry parts and stay\n"
-        "  physical. Case B to 0.5 s as shipped: %s s of wall time and %s steps full, %s s and %s steps\n"
+        "  physical. Case B to 0.5 s as shipped: %s s of CPU and %s steps full, %s s and %s steps\n"
         "  with a 2 kHz cut-off (total impulse %s against %s N s; onsets %s against %s, the micro-bounces\n"
         "  the dropped modes drove; `touchdown run --set end_time=0.5 [--set reduction.cutoff=2000]\n"
         "  cases/paper-b.cfg`, %s). What would reach it needs a decision on the model or the rig\n"
         "  ([above](#what-would-reach-10x-decisions-outside-this-code)).\n"
         "- `rub-damped` at 30x real time (full model) and 100x (reduced): %s; %sx and %sx\n"
-        "  (%s and %s s of wall time for 2 s, one run each). It is %s IDA steps and\n"
+        "  (%s and %s s of CPU for 2 s, one run each). It is %s IDA steps and\n"
         "  no free flight: the flight does not carry retainers with a race body or their own contact law\n"
         "  even while they are free, and half of the 2 s is free. Carrying those phases (the race on its\n"
         "  mount is linear; its spin-down under Coulomb drag is piecewise) is the next step for speed.\n" % (
             g(rtf_cpu("shipped", "B"), 2),
-            g(num(full, "wall_time"), 3), n(num(full, "stats", "steps")), g(num(red, "wall_time"), 3),
+            g(cpu("runs", "paper-b/0.5"), 3), n(num(full, "stats", "steps")), g(cpu("runs", "paper-b/0.5/reduced"), 3),
             n(num(red, "stats", "steps")), f(num(red, "total_impulse"), 2), f(num(full, "total_impulse"), 2),
             n(num(red, "contacts")), n(num(full, "contacts")), cite("runs"),
-            "met" if 2 / rub["wall_time"] >= 30 and 2 / rubr["wall_time"] >= 100 else "not met",
-            g(2 / num(rub, "wall_time"), 2), g(2 / num(rubr, "wall_time"), 2),
-            g(num(rub, "wall_time"), 2), g(num(rubr, "wall_time"), 2), n(num(rub, "stats", "steps"))))
+            "met" if 2 / rub_c >= 30 and 2 / rubr_c >= 100 else "not met",
+            g(2 / rub_c, 2), g(2 / rubr_c, 2), g(rub_c, 2), g(rubr_c, 2), n(num(rub, "stats", "steps"))))
 
 
 # --- docs/validation.md --------------------------------------------------------------------------
@@ -410,17 +437,18 @@ def val_paper_cases():
         rows.append([LABEL[case], f(num(s, "first_contact_time"), 8), n(num(s, "contacts")),
                      n(num(s, "peak_normal_force")), n(num(s, "peak_housing_force")),
                      pct(num(s, "contact_fraction"), 2 if key not in ("A", "B") else 1),
-                     "-" if free is None else ("yes" if free else "no"), f(num(s, "wall_time"), 2),
-                     f(num(s, "wall_time_per_revolution"), 3), e(drift, 1)])
+                     "-" if free is None else ("yes" if free else "no"), f(cpu("runs", case), 2),
+                     f(cpu_per_rev("runs", case), 3), e(drift)])
     d = [summary("references", c + "/defaults") for _, c in CASES]
     return (table(["case", "first contact, s", "contact onsets", "peak normal force, N", "peak housing force, N",
-                   "time in contact", "returned to free orbit", "wall time, s", "wall s / rev after 1st contact",
+                   "time in contact", "returned to free orbit", "CPU time, s", "CPU s / rev after 1st contact",
                    "worst drift, m"], rows)
             + "\n(Every case to its 2 s, one run each as shipped, `touchdown run --json --hdf5 '' --csv ''\n"
-            "cases/paper-X.cfg`, %s; the wall times on the shared 2-core machine.) At the library defaults\n"
-            "(rtol 1e-6, atol 1e-9 m, order <= 2) the same cases make %s onsets and spend %s in contact\n"
-            "(%s): the penalty cases' time in contact is many times the converged one.\n" % (
-                cite("runs"), " / ".join(n(num(x, "contacts")) for x in d),
+            "cases/paper-X.cfg`, %s; the CPU times on the shared 2-core machine, load average %s at the\n"
+            "start.) At the library defaults (rtol 1e-6, atol 1e-9 m, order <= 2) the same cases make\n"
+            "%s onsets and spend %s in contact (%s; the converged\n"
+            "references: [performance](performance.md#the-papers-cases-settings-that-converge)).\n" % (
+                cite("runs"), g(res("runs")["machine"]["loadavg_start"], 2), " / ".join(n(num(x, "contacts")) for x in d),
                 " / ".join(pct(num(x, "contact_fraction"), 1) for x in d), cite("references")))
 
 
@@ -437,18 +465,16 @@ def val_paper_vs_here():
          "%s (last contact ends at %s s)" % ("yes" if a.get("returned_to_free_orbit") else "no",
                                              f(num(a, "last_contact_time"), 2))],
         ["B: motion, peak force", "bouncing, up to 2.2 kN",
-         "%s, %s onsets, %s kN" % (b.get("ending") or "-", n(num(b, "contacts")),
-                                   g(num(b, "peak_normal_force") / 1e3, 3))],
+         "%s contact onsets, peak %s kN" % (n(num(b, "contacts")), g(num(b, "peak_normal_force") / 1e3, 3))],
         ["constrained model, s per revolution", "13.3", "%s (A), %s (B)" % (
-            g(bench_case("shipped", "A", "wall_time_per_revolution"), 2),
-            g(bench_case("shipped", "B", "wall_time_per_revolution"), 2))],
+            g(bench_cpu_per_rev("shipped", "A"), 2), g(bench_cpu_per_rev("shipped", "B"), 2))],
         ["penalty 1.25e12 (190 rad/s): s per revolution, peak", "716 s, 0.9 kN", "%s s, %s kN" % (
-            g(bench_case("shipped", "D", "wall_time_per_revolution"), 2), g(num(d, "peak_normal_force") / 1e3, 3))],
+            g(bench_cpu_per_rev("shipped", "D"), 2), g(num(d, "peak_normal_force") / 1e3, 3))],
         ["penalty 1.25e10 (190 rad/s): s per revolution, peak", "331 s, 85 N", "%s s, %s kN" % (
-            g(bench_case("shipped", "D10", "wall_time_per_revolution"), 2), g(num(d10, "peak_normal_force") / 1e3, 3))],
+            g(bench_cpu_per_rev("shipped", "D10"), 2), g(num(d10, "peak_normal_force") / 1e3, 3))],
     ]
     return (table(["", "paper (its own rig and computer, 2000s)", "here"], rows)
-            + "\n(s per revolution: wall time per revolution after the first contact, `touchdown bench -n 3`\n"
+            + "\n(s per revolution: CPU time per revolution after the first contact, `touchdown bench -n 3`\n"
             "median; %s.)\n" % cite("bench", "runs", "tolerances"))
 
 
@@ -458,16 +484,18 @@ def val_tolerances():
     for rtol in ["1e-6", "1e-7", "1e-8", "1e-9"]:
         if rtol == "1e-9":
             a, b = summary("runs", "paper-a"), summary("runs", "paper-b")
+            a_cpu = cpu("runs", "paper-a")
         else:
             a, b = summary("tolerances", "paper-a/" + rtol), summary("tolerances", "paper-b/" + rtol)
+            a_cpu = cpu("tolerances", "paper-a/" + rtol)
         peaks += [num(a, "peak_normal_force"), num(b, "peak_normal_force")]
         ons += [num(a, "contacts"), num(b, "contacts")]
         rows.append([rtol + (" (shipped)" if rtol == "1e-9" else ""), f(num(a, "first_contact_time"), 12),
                      n(num(a, "contacts")), n(num(a, "peak_normal_force")), pct(num(a, "contact_fraction")),
                      n(num(b, "contacts")), n(num(b, "peak_normal_force")), pct(num(b, "contact_fraction")),
-                     f(num(a, "wall_time"), 1)])
+                     f(a_cpu, 1)])
     return (table(["rtol (atol = 1e-3 rtol m)", "A: first contact, s", "onsets", "peak, N", "in contact",
-                   "B: onsets", "peak, N", "in contact", "A wall s"], rows)
+                   "B: onsets", "peak, N", "in contact", "A CPU s"], rows)
             + "\n(BDF order <= 5 as shipped; exact first contact %.12f s; %s.)\n" % (
                 exact_first_contact(), cite("tolerances", "runs", "validation")))
 
@@ -491,7 +519,7 @@ def val_mesh():
     return (table(["k (nodes)", "A: onsets", "peak, N", "in contact", "B: onsets", "peak, N", "in contact",
                    "A: first contact (rtol 1e-10, atol 1e-13), s"], rows)
             + "\n(%s.) The first contact converges (to %s s; the 13-node rig's is %s s early).\n" % (
-                cite("mesh", "references"), f(fcs[16], 8), e(fcs[16] - fcs[1], 1)))
+                cite("mesh", "references"), f(fcs[16], 8), e(fcs[16] - fcs[1])))
 
 
 def val_first_contact():
@@ -502,7 +530,7 @@ def val_first_contact():
                        ("IDA alone, defaults (rtol 1e-6, atol 1e-9)", "IDA, defaults (rtol 1e-6, atol 1e-9)"),
                        ("IDA alone, rtol 1e-12, atol 1e-16", "tight (rtol 1e-12, atol 1e-16)")]:
         err, verr, steps = fc[key]
-        rows.append([label, "%s s" % e(err, 2), e(verr, 2), steps])
+        rows.append([label, "%s s" % e(err), e(verr), steps])
     return ("Exact: t = %.12f s, radial velocity %.9f m/s (%s).\n\n" % (t, v, cite("validation"))
             + table(["method", "contact time error", "impact velocity error", "steps"], rows))
 
@@ -512,7 +540,7 @@ def val_rig_modal():
     pairs = ", ".join("%.1f" % c[0] for c in crit)
     return ("16 modes at 0, 90 and 190 rad/s, largest relative difference %s in omega_d and %s in zeta; with\n"
             "the 100 Hz force lag the rig's critical speeds are %s rad/s (zeta %s; %s).\n" % (
-                e(w, 1), e(z, 1), pairs, ", ".join("%.2f" % c[2] for c in crit), cite("validation")))
+                e(w), e(z), pairs, ", ".join("%.2f" % c[2] for c in crit), cite("validation")))
 
 
 def conv_table(case, extra=False):
@@ -520,13 +548,14 @@ def conv_table(case, extra=False):
     for rtol in ["1e-6", "1e-7"]:
         for k in [1, 2, 4, 8]:
             s = summary("convergence", "%s/%s/%d" % (case, rtol, k))
-            row = [rtol, str(12 * k), f(num(s, "wall_time"), 2), f(num(s, "peak_housing_force"), 1),
+            row = [rtol, str(12 * k), f(cpu("convergence", "%s/%s/%d" % (case, rtol, k)), 2),
+                   f(num(s, "peak_housing_force"), 1),
                    f(num(s, "total_impulse"), 2), g(num(s, "friction_work"), 6), f(num(s, "contact_time"), 5),
                    f(num(s, "peak_normal_force"), 1)]
             if extra:
                 row += [f(num(s, "final_speed"), 3), s.get("ending") or "-"]
             rows.append(row)
-    head = ["rtol", "elements", "wall s", "peak housing force (N)", "total impulse (N s)", "friction work (J)",
+    head = ["rtol", "elements", "CPU s", "peak housing force (N)", "total impulse (N s)", "friction work (J)",
             "time in contact (s)", "peak normal force (N)"]
     if extra:
         head += ["final speed (rad/s)", "ending"]
@@ -561,13 +590,12 @@ def span_rub_mean_normal():
 def span_val_first_contact_cell():
     fc = first_contact_test()
     ida, tight = fc["IDA, defaults (rtol 1e-6, atol 1e-9)"], fc["tight (rtol 1e-12, atol 1e-16)"]
-    return "%s s, %s (tight); %s s, %s (defaults)" % (e(abs(tight[0]), 1), e(tight[1], 1), e(abs(ida[0]), 1),
-                                                     e(ida[1], 1))
+    return "%s s, %s (tight); %s s, %s (defaults)" % (e(abs(tight[0])), e(tight[1]), e(abs(ida[0])), e(ida[1]))
 
 
 def span_val_rig_modal_cell():
     w, z, _ = rig_modal_test()
-    return "omega_d %s, zeta %s" % (e(w, 1), e(z, 1))
+    return "omega_d %s, zeta %s" % (e(w), e(z))
 
 
 def span_rig_mass():
@@ -578,15 +606,16 @@ def span_rig_polar():
     return "%.4f kg m^2" % res("modal")["info"]["polar_inertia"]
 
 
-def span_drop_wall():
-    return "%.0f s" % summary("runs", "drop")["wall_time"]
+def span_drop_cpu():
+    return "%.0f s" % cpu("runs", "drop")
 
 
 def span_run_up_criticals():
     c = sorted(x["speed"] for x in res("modal")["modal"]["run-up"]["critical_speeds"])
-    if len(c) < 6:
+    pairs = ["%.0f and %.0f" % (c[i], c[i + 1]) for i in range(0, len(c) - 1, 2)]
+    if len(pairs) < 2:
         return ", ".join("%.0f" % x for x in c) + " rad/s"
-    return "%.0f and %.0f rad/s, the lower pair; %.0f and %.0f rad/s, the upper" % (c[0], c[3], c[4], c[5])
+    return "%s rad/s, the lower pairs; %s rad/s, the upper" % (", ".join(pairs[:-1]), pairs[-1])
 
 
 def span_run_up_contact():
@@ -598,8 +627,30 @@ def span_run_up_contact():
 
 def span_run_up_ending():
     s = summary("runs", "run-up")
-    return "%s; peak housing force %s kN; %.0f s of wall time for %.0f s" % (
-        s.get("ending") or "-", g(num(s, "peak_housing_force") / 1e3, 2), num(s, "wall_time"), num(s, "t_end"))
+    return "%s; peak housing force %s kN; %.0f s of CPU time for %.0f s" % (
+        s.get("ending") or "-", g(num(s, "peak_housing_force") / 1e3, 2), cpu("runs", "run-up"), num(s, "t_end"))
+
+
+def span_conv_impulses():
+    return "%s N s (rigid) and %s N s (compliant, damped)" % (
+        f(num(summary("runs", "paper-a"), "total_impulse"), 0), f(num(summary("runs", "rub-damped"), "total_impulse"), 0))
+
+
+def span_drop_24_vs_96():
+    s2, s8 = summary("convergence", "drop/1e-7/2"), summary("convergence", "drop/1e-7/8")
+    worst = max(rel(num(s2, k), num(s8, k)) for k in ["peak_housing_force", "friction_work", "final_speed"])
+    return "within %s" % pct(worst, 1)
+
+
+def span_drop_energy():
+    en = summary("runs", "drop/energy-12").get("energy") or {}
+    held = (num(en, "kinetic") or 0) + (num(en, "elastic") or 0)
+    lost = sum(num(en, k) or 0 for k in ["damping_loss", "contact_loss", "drag_loss", "impact_loss"])
+    r = num(en, "residual")
+    if r is None or not held or not lost:
+        return "(no energy account recorded)"
+    return "closes to %s J, %s of the %s J the machine holds (nearly all the spin's) and %s of the %s J lost" % (
+        e(abs(r), 2), e(abs(r) / held, 1), n(held), e(abs(r) / lost, 1), n(lost))
 
 
 REGIONS = {"readme-glance": readme_glance, "readme-realtime": readme_realtime,
@@ -611,8 +662,9 @@ REGIONS = {"readme-glance": readme_glance, "readme-realtime": readme_realtime,
            "val-conv-paper-a": val_conv_paper_a, "val-conv-drop": val_conv_drop}
 SPANS = {"rub-mean-normal": span_rub_mean_normal, "val-first-contact-cell": span_val_first_contact_cell,
          "val-rig-modal-cell": span_val_rig_modal_cell, "rig-mass": span_rig_mass,
-         "rig-polar": span_rig_polar, "drop-wall": span_drop_wall, "run-up-criticals": span_run_up_criticals,
-         "run-up-contact": span_run_up_contact, "run-up-ending": span_run_up_ending}
+         "rig-polar": span_rig_polar, "drop-cpu": span_drop_cpu, "run-up-criticals": span_run_up_criticals,
+         "run-up-contact": span_run_up_contact, "run-up-ending": span_run_up_ending,
+         "conv-impulses": span_conv_impulses, "drop-24-vs-96": span_drop_24_vs_96, "drop-energy": span_drop_energy}
 
 
 def render(path, text):
