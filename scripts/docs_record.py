@@ -86,8 +86,10 @@ def git_revision():
     rev = git("describe", "--always", "--tags")
     if not rev:
         return "unknown"
-    # Changes to the documentation and its results do not change a number; anything else does.
-    dirty = git("status", "--porcelain", "--untracked-files=no", "--", ".", ":!docs", ":!README.md")
+    # "-modified": the sources the numbers come from (library, tool, cases, build, the scripts
+    # that run them) differ from the commit; the docs and their results do not count
+    dirty = git("status", "--porcelain", "--untracked-files=no", "--", "lib", "include", "tools", "cases",
+                "cmake", "CMakeLists.txt", "bench", "scripts/make-figures.sh", "scripts/docs_record.py")
     return rev + ("-modified" if dirty else "")
 
 

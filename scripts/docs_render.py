@@ -131,7 +131,7 @@ def span_range(values, fmt, unit=""):
 def table(header, rows):
     out = ["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
     out += ["| " + " | ".join(r) + " |" for r in rows]
-    return "\n".join(out) + "\n"
+    return "\n".join(line.replace("|  |", "| |").replace("|  |", "| |") for line in out) + "\n"
 
 
 # --- the sources, read ---------------------------------------------------------------------------
@@ -560,11 +560,14 @@ def conv_table(case, extra=False):
     if extra:
         head += ["final speed (rad/s)", "ending"]
     changes = []
+    keys = [("housing force", "peak_housing_force"), ("impulse", "total_impulse"),
+            ("friction work", "friction_work"), ("time in contact", "contact_time")]
+    if extra:
+        keys.append(("final speed", "final_speed"))
     for rtol in ["1e-6", "1e-7"]:
         s4, s8 = (summary("convergence", "%s/%s/%d" % (case, rtol, k)) for k in (4, 8))
-        changes.append("rtol %s: housing force %s, impulse %s, friction work %s, time in contact %s" % (
-            rtol, *(pct(rel(num(s8, k), num(s4, k)), 2) for k in
-                    ["peak_housing_force", "total_impulse", "friction_work", "contact_time"])))
+        changes.append("rtol %s: %s" % (rtol, ", ".join(
+            "%s %s %%" % (label, g(100 * rel(num(s8, k), num(s4, k)), 2)) for label, k in keys)))
     return (table(head, rows) + "\n48 -> 96 elements, relative change: %s (%s).\n" % (
         "; ".join(changes), cite("convergence")))
 
