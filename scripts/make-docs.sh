@@ -5,10 +5,12 @@
 # README.md and docs/*.md from those records (<!-- generated: NAME --> ... <!-- end generated -->
 # blocks and <!-- gen: NAME -->...<!-- /gen --> spans; scripts/docs_render.py says which is which).
 #   scripts/make-docs.sh [BUILD_DIR]           the fast part: the shipped cases as they are, the
-#                                              critical speeds, the validation tests quoted (~1 min)
+#                                              critical speeds, the validation tests quoted (52 s
+#                                              on 2 shared cores at load 7)
 #   scripts/make-docs.sh --full [BUILD_DIR]    also the slow part: touchdown bench, the paper's cases
 #                                              at converged settings, tolerance, mesh and convergence
-#                                              studies, the figures (scripts/make-figures.sh; ~25 min)
+#                                              studies, the figures (scripts/make-figures.sh; 40 min
+#                                              at load 5-14, some 15 min of CPU)
 #   scripts/make-docs.sh --render              only rewrite the regions from the recorded results
 #   scripts/make-docs.sh --full --only SOURCE  rerun one source (runs, modal, validation, bench,
 #                                              references, intervals, tolerances, mesh, convergence,
@@ -25,7 +27,7 @@ while [ $# -gt 0 ]; do
     --full) mode=full ;;
     --render) mode=render ;;
     --only) only+=("$2"); shift ;;
-    -h | --help) sed -n '2,19p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h | --help) awk 'NR > 1 && /^#/ { sub(/^# ?/, ""); print; next } NR > 1 { exit }' "$0"; exit 0 ;;
     *) build=$(cd "$1" && pwd) ;;
     esac
     shift
