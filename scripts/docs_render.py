@@ -84,7 +84,7 @@ def cite(*sources):
 # Number formats: one place, so that every region writes a number the same way.
 def g(x, digits=3):
     """x to DIGITS significant digits, '-' for a missing value."""
-    if x is None:
+    if x is None or not math.isfinite(x):
         return "-"
     if x == 0:
         return "0"
@@ -96,7 +96,7 @@ def g(x, digits=3):
 
 def e(x, digits=2):
     """x in exponent form (1.0e-13), '-' for a missing value."""
-    if x is None:
+    if x is None or not math.isfinite(x):
         return "-"
     mantissa, exponent = ("%.*e" % (digits - 1, x)).split("e")
     return "%se%d" % (mantissa, int(exponent))
@@ -108,7 +108,7 @@ def n(x):
 
 
 def f(x, decimals):
-    return "-" if x is None else "%.*f" % (decimals, x)
+    return "-" if x is None or not math.isfinite(x) else "%.*f" % (decimals, x)
 
 
 def pct(x, decimals=1):
@@ -117,6 +117,34 @@ def pct(x, decimals=1):
 
 def rel(a, b):
     return None if a is None or b is None or b == 0 else abs(a - b) / abs(b)
+
+
+# Arithmetic that lets a missing value (null in the JSON: a failed or undefined quantity) through
+# as None, printed '-', instead of failing the whole page.
+def mx(values):
+    v = [x for x in values if x is not None]
+    return max(v) if v else None
+
+
+def mn(values):
+    v = [x for x in values if x is not None]
+    return min(v) if v else None
+
+
+def sub(a, b):
+    return None if a is None or b is None else a - b
+
+
+def div(a, b):
+    return None if a is None or not b else a / b
+
+
+def kn(x):
+    return div(x, 1e3)
+
+
+def lt(a, b):
+    return a is not None and a < b
 
 
 def span_range(values, fmt, unit=""):
@@ -223,7 +251,7 @@ def readme_glance():
         ["first contact of case A against the exact linear solution", "-",
          "%s s (closed-form flight, any tolerance); IDA alone: %s s (rtol 1e-12), %s s (defaults)" % (
              e(abs(flight)), e(abs(tight)), e(abs(ida_def)))],
-        ["worst drift off the clearance circle in contact (cases A, B)", "-", "%s m" % e(max(drift))],
+        ["worst drift off the clearance circle in contact (cases A, B)", "-", "%s m" % e(mx(drift))],
         ["rig eigenvalues against ross-rotordynamics", "-", "%s relative" % e(w)],
         ["peak contact force, constrained, case A", "1.8 kN",
          "%s N, %s N into the housing (a reconstructed rig; %s kN as the shaft mesh is refined: not mesh-converged, see validation.md)" % (
@@ -267,21 +295,21 @@ def perf_summary():
          "as shipped (rtol 1e-9, BDF order <= 5, [settings that converge](#the-papers-cases-settings-that-converge)): "
          "%s s CPU (`touchdown bench`, %sx real time); first contact exact (closed-form flight); first ten "
          "intervals (0.3 s, `bench/intervals.sh`) %s s and %s %s. At the library defaults %s s CPU, intervals %s s off" % (
-             g(b_cpu, 3), g(rtf, 2), e(max(iv["shipped"][:2]), 2), e(iv["shipped"][2], 2),
+             g(b_cpu, 3), g(rtf, 2), e(mx(iv["shipped"][:2]), 2), e(iv["shipped"][2], 2),
              "in the peaks" if ok_iv else "in the peaks (not met)",
-             g(bench_case("defaults", "B", "cpu_time"), 3), e(max(iv["defaults"][:2]))),
-         "**no**, about %.0fx short" % (10 / rtf) if rtf and rtf < 10 else "yes"],
+             g(bench_case("defaults", "B", "cpu_time"), 3), e(mx(iv["defaults"][:2]))),
+         ("**no**, about %.0fx short" % (10 / rtf) if rtf < 10 else "yes") if rtf else "-"],
         ["penalty (Kc = 1.25e12 N/m) within 5x the constrained model's time on the same case",
          "as shipped C/A %s, D/B %s, D10/B %s (CPU, same invocation); at the defaults %s, %s, %s (the paper: 54)" % (
              tuple(g(ratios_s[r], 2) for r in ratios_s) + tuple(g(ratios_d[r], 2) for r in ratios_d)),
          "yes" if all(x is not None and x <= 5 for x in ratios_s.values()) else "no"],
         ["worst constraint drift < 1e-9 m (cases A, B)",
-         "%s m as shipped, %s m at the defaults" % (e(max(drift_s)), e(max(drift_d))),
-         "yes" if max(drift_s + drift_d) < 1e-9 else "no"],
+         "%s m as shipped, %s m at the defaults" % (e(mx(drift_s)), e(mx(drift_d))),
+         "yes" if lt(mx(drift_s + drift_d), 1e-9) and None not in drift_s + drift_d else "no"],
         ["first contact of case A within 1e-7 s of the exact %.12f s" % exact,
          "%s s as shipped, %s s at the defaults (closed-form flight, [0.5.0](#050-free-flight-in-closed-form))" % (
-             e(fa - exact), e(fa_d - exact)),
-         "yes" if max(abs(fa - exact), abs(fa_d - exact)) <= 1e-7 else "no"],
+             e(sub(fa, exact)), e(sub(fa_d, exact))),
+         "yes" if None not in (fa, fa_d) and max(abs(fa - exact), abs(fa_d - exact)) <= 1e-7 else "no"],
     ]
     return ("From %s.\n\n" % cite("bench", "runs", "references", "intervals", "validation")
             + table(["target", "measured (2.0 s simulated)", "met?"], rows))
@@ -340,13 +368,14 @@ def perf_paper_findings():
         d = summary("references", case + "/defaults")
         for k, acc_s, acc_d in [("total_impulse", imp_s, imp_d), ("friction_work", fw_s, fw_d)]:
             v = [num(x, k) for x in refs + [s]]
-            acc_s.append(max(rel(a, b) for a in v for b in v))
-            acc_d.append(max(rel(num(d, k), num(r, k)) for r in refs))
+            acc_s.append(mx(rel(a, b) for a in v for b in v))
+            acc_d.append(mx(rel(num(d, k), num(r, k)) for r in refs))
         on = [num(r, "contacts") for r in refs]
         ct = [num(r, "contact_time") for r in refs]
-        on_sp.append(rel(max(on), min(on)))
-        ct_sp.append(rel(max(ct), min(ct)))
-        if min(on) <= num(s, "contacts") <= max(on) and min(ct) <= num(s, "contact_time") <= max(ct):
+        on_sp.append(rel(mx(on), mn(on)))
+        ct_sp.append(rel(mx(ct), mn(ct)))
+        if None not in on + ct + [num(s, "contacts"), num(s, "contact_time")] and \
+                min(on) <= num(s, "contacts") <= max(on) and min(ct) <= num(s, "contact_time") <= max(ct):
             inside += 1
         else:
             outside.append("%s: %s onsets and %s s against %s and %s s" % (
@@ -356,17 +385,18 @@ def perf_paper_findings():
     for key, case in CASES[2:]:
         d = summary("references", case + "/defaults")
         ct = [num(summary("references", case + "/" + r), "contact_time") for r in ["ref12", "ref11"]]
-        factor = num(d, "contact_time") / max(ct)
+        factor = div(num(d, "contact_time"), mx(ct))
         pen.append("%s %s s against %s s%s" % (key, g(num(d, "contact_time"), 3), span_range(ct, lambda x: g(x, 2)),
-                                               " (%.0f times)" % factor if factor >= 2 else " (within %s)" % pct(
-                                                   rel(num(d, "contact_time"), max(ct)), 0)))
+                                               " (%.0f times)" % factor if factor and factor >= 2 else " (within %s)" % pct(
+                                                   rel(num(d, "contact_time"), mx(ct)), 0)))
     dpk = [num(summary("references", "paper-d-kc1.25e12/" + r), "peak_housing_force") for r in ["ref12", "ref11"]]
     firsts = {}
     for key, case in CASES:
         for src, k in [("runs", case)] + [("references", case + "/" + r) for r in ["ref12", "ref11", "defaults"]]:
             firsts.setdefault("A" if key in ("A", "C") else "B", []).append(num(summary(src, k), "first_contact_time"))
-    first_txt = "; ".join("%s's rotor (%s) %.12f s, %s s between the %d runs" % (
-        rotor, "A, C" if rotor == "A" else "B, D, D10", statistics.median(v), e(max(v) - min(v), 1), len(v))
+    firsts = {r: [x for x in v if x is not None] or [float("nan")] for r, v in firsts.items()}
+    first_txt = "; ".join("%s's rotor (%s) %s s, %s s between the %d runs" % (
+        rotor, "A, C" if rotor == "A" else "B, D, D10", f(statistics.median(v), 12), e(max(v) - min(v), 1), len(v))
         for rotor, v in sorted(firsts.items()))
     cpu = {k: bench_case("shipped", k, "cpu_time") for k, _ in CASES}
     dcpu = {k: bench_case("defaults", k, "cpu_time") for k, _ in CASES}
@@ -375,7 +405,7 @@ def perf_paper_findings():
         "- **The total impulse and the friction work converge**, and the summary leads with them: the\n"
         "  references and the shipped run of a case agree within %s (impulse) and %s (friction work),\n"
         "  the defaults within %s and %s of the references.\n" % (
-            pct(max(imp_s)), pct(max(fw_s)), pct(max(imp_d)), pct(max(fw_d)))
+            pct(mx(imp_s)), pct(mx(fw_s)), pct(mx(imp_d)), pct(mx(fw_d)))
         + "- **The onset count and the time in contact are not converged quantities** over 2 s of bouncing:\n"
         "  the two references differ by %s in onsets and %s in time in contact (the sequence depends\n"
         "  on rounding after a few dozen bounces). As shipped %d of the 5 cases fall inside that spread%s.\n"
@@ -386,7 +416,7 @@ def perf_paper_findings():
             inside, (" (outside: " + "; ".join(outside) + ")") if outside else "", ", ".join(pen))
         + "- **The peak forces are not converged** (the constraint's is an instantaneous impulse-like peak,\n"
         "  the summary says so; a stiff penalty peak is v0 sqrt(m_eff Kc) of the hardest of two thousand\n"
-        "  chaotic impacts: D's references differ by %s).\n" % pct(rel(max(dpk), min(dpk)), 0)
+        "  chaotic impacts: D's references differ by %s).\n" % pct(rel(mx(dpk), mn(dpk)), 0)
         + "- **First contacts** are the closed-form flight's at every setting: %s.\n" % first_txt
         + "- **Cost** (`touchdown bench -n 3`, cases as shipped, CPU s, median of 3, load average %s to %s):\n"
         "  A %s, B %s, C %s, D %s, D10 %s; penalty against constraint in the same invocation\n"
@@ -396,7 +426,7 @@ def perf_paper_findings():
             g(m["loadavg_start"], 2), g(m["loadavg_end"], 2),
             *(g(cpu[k], 3) for k, _ in CASES),
             *(g(bench_ratio("shipped", r), 2) for r in ["C/A", "D/B", "D10/B"]),
-            g(cpu["A"] / dcpu["A"], 2), g(cpu["B"] / dcpu["B"], 2), g(dcpu["A"], 3), g(dcpu["B"], 3),
+            g(div(cpu["A"], dcpu["A"]), 2), g(div(cpu["B"], dcpu["B"]), 2), g(dcpu["A"], 3), g(dcpu["B"], 3),
             g(rtf_cpu("shipped", "B"), 2), cite("bench")))
 
 
@@ -423,8 +453,8 @@ def perf_remains():
             g(cpu("runs", "paper-b/0.5"), 3), n(num(full, "stats", "steps")), g(cpu("runs", "paper-b/0.5/reduced"), 3),
             n(num(red, "stats", "steps")), f(num(red, "total_impulse"), 2), f(num(full, "total_impulse"), 2),
             n(num(red, "contacts")), n(num(full, "contacts")), cite("runs"),
-            "met" if 2 / rub_c >= 30 and 2 / rubr_c >= 100 else "not met",
-            g(2 / rub_c, 2), g(2 / rubr_c, 2), g(rub_c, 2), g(rubr_c, 2), n(num(rub, "stats", "steps"))))
+            "met" if lt(rub_c, 2 / 30) and lt(rubr_c, 2 / 100) else "not met",
+            g(div(2, rub_c), 2), g(div(2, rubr_c), 2), g(rub_c, 2), g(rubr_c, 2), n(num(rub, "stats", "steps"))))
 
 
 # --- docs/validation.md --------------------------------------------------------------------------
@@ -459,19 +489,19 @@ def val_paper_vs_here():
     d, d10 = summary("runs", "paper-d-kc1.25e12"), summary("runs", "paper-d-kc1.25e10")
     rows = [
         ["A: peak contact force", "1.8 kN, settling to peaks of ~700 N",
-         "%s kN (%s kN across rtol 1e-6..1e-9)" % (g(num(a, "peak_normal_force") / 1e3, 2),
-                                                  span_range([x / 1e3 for x in tol], lambda x: g(x, 2)))],
+         "%s kN (%s kN across rtol 1e-6..1e-9)" % (g(kn(num(a, "peak_normal_force")), 2),
+                                                  span_range([kn(x) for x in tol], lambda x: g(x, 2)))],
         ["A: after the unbalance is reduced", "returns to the non-contacting orbit",
          "%s (last contact ends at %s s)" % ("yes" if a.get("returned_to_free_orbit") else "no",
                                              f(num(a, "last_contact_time"), 2))],
         ["B: motion, peak force", "bouncing, up to 2.2 kN",
-         "%s contact onsets, peak %s kN" % (n(num(b, "contacts")), g(num(b, "peak_normal_force") / 1e3, 3))],
+         "%s contact onsets, peak %s kN" % (n(num(b, "contacts")), g(kn(num(b, "peak_normal_force")), 3))],
         ["constrained model, s per revolution", "13.3", "%s (A), %s (B)" % (
             g(bench_cpu_per_rev("shipped", "A"), 2), g(bench_cpu_per_rev("shipped", "B"), 2))],
         ["penalty 1.25e12 (190 rad/s): s per revolution, peak", "716 s, 0.9 kN", "%s s, %s kN" % (
-            g(bench_cpu_per_rev("shipped", "D"), 2), g(num(d, "peak_normal_force") / 1e3, 3))],
+            g(bench_cpu_per_rev("shipped", "D"), 2), g(kn(num(d, "peak_normal_force")), 3))],
         ["penalty 1.25e10 (190 rad/s): s per revolution, peak", "331 s, 85 N", "%s s, %s kN" % (
-            g(bench_cpu_per_rev("shipped", "D10"), 2), g(num(d10, "peak_normal_force") / 1e3, 3))],
+            g(bench_cpu_per_rev("shipped", "D10"), 2), g(kn(num(d10, "peak_normal_force")), 3))],
     ]
     return (table(["", "paper (its own rig and computer, 2000s)", "here"], rows)
             + "\n(s per revolution: CPU time per revolution after the first contact, `touchdown bench -n 3`\n"
@@ -519,7 +549,7 @@ def val_mesh():
     return (table(["k (nodes)", "A: onsets", "peak, N", "in contact", "B: onsets", "peak, N", "in contact",
                    "A: first contact (rtol 1e-10, atol 1e-13), s"], rows)
             + "\n(%s.) The first contact converges (to %s s; the 13-node rig's is %s s early).\n" % (
-                cite("mesh", "references"), f(fcs[16], 8), e(fcs[16] - fcs[1])))
+                cite("mesh", "references"), f(fcs[16], 8), e(sub(fcs[16], fcs[1]))))
 
 
 def val_first_contact():
@@ -567,7 +597,7 @@ def conv_table(case, extra=False):
     for rtol in ["1e-6", "1e-7"]:
         s4, s8 = (summary("convergence", "%s/%s/%d" % (case, rtol, k)) for k in (4, 8))
         changes.append("rtol %s: %s" % (rtol, ", ".join(
-            "%s %s %%" % (label, g(100 * rel(num(s8, k), num(s4, k)), 2)) for label, k in keys)))
+            "%s %s %%" % (label, g(div(rel(num(s8, k), num(s4, k)), 0.01), 2)) for label, k in keys)))
     return (table(head, rows) + "\n48 -> 96 elements, relative change: %s (%s).\n" % (
         "; ".join(changes), cite("convergence")))
 
@@ -610,7 +640,7 @@ def span_rig_polar():
 
 
 def span_drop_cpu():
-    return "%.0f s" % cpu("runs", "drop")
+    return "%s s" % f(cpu("runs", "drop"), 0)
 
 
 def span_run_up_criticals():
@@ -630,8 +660,8 @@ def span_run_up_contact():
 
 def span_run_up_ending():
     s = summary("runs", "run-up")
-    return "%s; peak housing force %s kN; %.0f s of CPU time for %.0f s" % (
-        s.get("ending") or "-", g(num(s, "peak_housing_force") / 1e3, 2), cpu("runs", "run-up"), num(s, "t_end"))
+    return "%s; peak housing force %s kN; %s s of CPU time for %s s" % (
+        s.get("ending") or "-", g(kn(num(s, "peak_housing_force")), 2), f(cpu("runs", "run-up"), 0), f(num(s, "t_end"), 0))
 
 
 def span_conv_impulses():
@@ -641,7 +671,7 @@ def span_conv_impulses():
 
 def span_drop_24_vs_96():
     s2, s8 = summary("convergence", "drop/1e-7/2"), summary("convergence", "drop/1e-7/8")
-    worst = max(rel(num(s2, k), num(s8, k)) for k in ["peak_housing_force", "friction_work", "final_speed"])
+    worst = mx(rel(num(s2, k), num(s8, k)) for k in ["peak_housing_force", "friction_work", "final_speed"])
     return "within %s" % pct(worst, 1)
 
 
