@@ -160,7 +160,8 @@ def src_validation(tool, build):
     """The messages of the validation tests the docs quote (cmocka print_message lines)."""
     data = stamp(tool, "validation", "tests/validation executables, their printed measurements")
     data["tests"] = {}
-    for test in ["test_first_contact", "test_rig_modal"]:
+    for test in ["test_first_contact", "test_rig_modal", "test_beams", "test_jeffcott", "test_overhung_disc",
+                 "test_harmonic", "test_modal"]:
         exe = os.path.join(build, "tests", test)
         proc = subprocess.run([exe], cwd=os.path.dirname(exe), stdout=subprocess.PIPE,
                               stderr=subprocess.STDOUT, universal_newlines=True,

@@ -614,6 +614,121 @@ def val_conv_drop():
     return conv_table("drop", extra=True)
 
 
+def test_messages(test):
+    return res("validation")["tests"][test]["messages"]
+
+
+def beam_blocks():
+    """test_beams' convergence tables: {title: {elements: [(error, order) of modes 1-3]}}."""
+    blocks, title = {}, None
+    for line in test_messages("test_beams"):
+        if re.match(r"(Pinned|Free)", line):
+            title = line
+            blocks[title] = {}
+        elif title and re.match(r"\s+\d+\s+-?[0-9.]+e", line):
+            fields = line.replace("(", " ").replace(")", " ").split()
+            k, rest = int(fields[0]), [float(x) for x in fields[1:]]
+            # "K  e1  e2  e3" on the first row, "K  e1 (o1)  e2 (o2)  e3 (o3)" after it
+            errs, orders = (rest, [None] * 3) if len(rest) == 3 else (rest[0::2], rest[1::2])
+            blocks[title][k] = list(zip(errs, orders))
+        elif not line.strip() or line.startswith(("Timoshenko", "EB vs")):
+            title = None
+    return blocks
+
+
+BEAMS = [("pinned-pinned, L/d = 1000, EB consistent vs Rayleigh", "EB element, consistent mass, vs Rayleigh", "L/d = 1000"),
+         ("free-free, L/d = 10000, EB consistent vs EB", "Free-free, EB element", "L/d = 10000"),
+         ("pinned-pinned, L/d = 10, EB lumped vs Rayleigh", "LUMPED", "L/d = 10)"),
+         ("pinned-pinned, L/d = 10, Timoshenko vs Timoshenko", "Timoshenko element", "L/d = 10)"),
+         ("pinned-pinned, L/d = 4, Timoshenko vs Timoshenko", "Timoshenko element", "L/d = 4)")]
+
+
+def beam_block(part, ld):
+    for title, rows in beam_blocks().items():
+        if part in title and ld in title:
+            return rows
+    return {}
+
+
+def val_beams():
+    rows = []
+    for label, part, ld in BEAMS:
+        b = beam_block(part, ld)
+        cells = [", ".join(e(x[0]) for x in b.get(k, [])) or "-" for k in (4, 16, 64)]
+        cells.append(", ".join(f(x[1], 1) for x in b.get(32, [])) or "-")
+        rows.append([label] + cells)
+    timo = [l for l in test_messages("test_beams") if re.match(r"\s+(5|100)\s+-?[0-9.]+e", l)]
+    t = {int(l.split()[0]): float(l.split()[1]) for l in timo}
+    return (table(["beam, element", "4 el.", "16 el.", "64 el.", "order (16 -> 32 el.)"], rows)
+            + "\nConsistent mass converges from above, lumped mass from below; Timoshenko minus EB scales as\n"
+            "(d/L)^2 (%s at L/d = 100, %s at L/d = 5 for mode 1; %s).\n" % (e(t.get(100)), e(t.get(5)),
+                                                                           cite("validation")))
+
+
+def jeffcott():
+    out = {}
+    for line in test_messages("test_jeffcott"):
+        m = re.match(r"Jeffcott omega_n = ([0-9.]+) rad/s, modes ([0-9.]+) / ([0-9.]+) \(rel err ([0-9.eE+-]+)\)", line)
+        if m:
+            out["wn"], out["modes"], out["err"] = m.group(1), (m.group(2), m.group(3)), float(m.group(4))
+        m = re.match(r"Jeffcott critical speed \((\w+)\).*rel err ([0-9.eE+-]+)", line)
+        if m:
+            out[m.group(1)] = float(m.group(2))
+    return out
+
+
+def overhung_errors():
+    return [float(x) for line in test_messages("test_overhung_disc")
+            for x in re.findall(r"\(closed [0-9.]+, ([0-9.eE+-]+)\)", line)]
+
+
+def harmonic_worst():
+    return mx(float(x) for line in test_messages("test_harmonic") for x in re.findall(r"rel err ([0-9.eE+-]+)", line))
+
+
+def critical_root_finder():
+    for line in test_messages("test_modal"):
+        m = re.search(r"root finder: .*\(rel diff ([0-9.eE+-]+)\)", line)
+        if m:
+            return float(m.group(1))
+    return None
+
+
+def val_rotor_models():
+    j = jeffcott()
+    o = overhung_errors()
+    return ("**Rotor models.** Jeffcott (`test_jeffcott`, disc on a massless shaft and bearings):\n"
+            "omega_n = %s rad/s, modes %s / %s (%s), critical speeds\n"
+            "%s and %s. Overhung disc (`test_overhung_disc`): forward and backward whirl frequencies of\n"
+            "both modes at 0, 500, 1000, 3000 rad/s within %s .. %s of the quartic's roots. Unbalance\n"
+            "response (`test_harmonic`): amplitude and phase at W/wn = 0.3 .. 3 to %s (%s).\n" % (
+                j.get("wn", "-"), *j.get("modes", ("-", "-")), e(j.get("err")), e(j.get("backward")),
+                e(j.get("forward")), e(mn(o)), e(mx(o)), e(harmonic_worst()), cite("validation")))
+
+
+def span_val_beams_cell():
+    eb = beam_block("EB element, consistent mass, vs Rayleigh", "L/d = 1000").get(16)
+    ti = beam_block("Timoshenko element", "L/d = 10)").get(16)
+    return "%s (EB mode 1), %s (Timoshenko mode 1)" % (e(eb[0][0]) if eb else "-", e(ti[0][0]) if ti else "-")
+
+
+def span_val_jeffcott_cell():
+    j = jeffcott()
+    return "%s (mode), %s / %s (critical speeds)" % (e(j.get("err")), e(j.get("backward")), e(j.get("forward")))
+
+
+def span_val_overhung_cell():
+    return "<= %s" % e(mx(overhung_errors()))
+
+
+def span_val_harmonic_cell():
+    return "<= %s" % e(harmonic_worst())
+
+
+def span_val_root_finder_cell():
+    return e(critical_root_finder())
+
+
 # --- inline spans --------------------------------------------------------------------------------
 def span_rub_mean_normal():
     s = summary("runs", "rub-damped")
@@ -691,12 +806,15 @@ REGIONS = {"readme-glance": readme_glance, "readme-realtime": readme_realtime,
            "perf-paper-findings": perf_paper_findings, "perf-remains": perf_remains,
            "val-paper-cases": val_paper_cases, "val-paper-vs-here": val_paper_vs_here,
            "val-tolerances": val_tolerances, "val-mesh": val_mesh, "val-first-contact": val_first_contact,
-           "val-rig-modal": val_rig_modal, "val-conv-rub-damped": val_conv_rub_damped,
+           "val-rig-modal": val_rig_modal, "val-beams": val_beams, "val-rotor-models": val_rotor_models, "val-conv-rub-damped": val_conv_rub_damped,
            "val-conv-paper-a": val_conv_paper_a, "val-conv-drop": val_conv_drop}
 SPANS = {"rub-mean-normal": span_rub_mean_normal, "val-first-contact-cell": span_val_first_contact_cell,
          "val-rig-modal-cell": span_val_rig_modal_cell, "rig-mass": span_rig_mass,
          "rig-polar": span_rig_polar, "drop-cpu": span_drop_cpu, "run-up-criticals": span_run_up_criticals,
          "run-up-contact": span_run_up_contact, "run-up-ending": span_run_up_ending,
+         "val-beams-cell": span_val_beams_cell, "val-jeffcott-cell": span_val_jeffcott_cell,
+         "val-overhung-cell": span_val_overhung_cell, "val-harmonic-cell": span_val_harmonic_cell,
+         "val-root-finder-cell": span_val_root_finder_cell,
          "conv-impulses": span_conv_impulses, "drop-24-vs-96": span_drop_24_vs_96, "drop-energy": span_drop_energy}
 
 
