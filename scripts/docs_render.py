@@ -462,8 +462,8 @@ def perf_remains():
         "  mount is linear; its spin-down under Coulomb drag is piecewise) is the next step for speed.\n" % (
             g(rtf_cpu("shipped", "B"), 2),
             g(cpu("runs", "paper-b/0.5"), 3), n(num(full, "stats", "steps")), g(cpu("runs", "paper-b/0.5/reduced"), 3),
-            n(num(red, "stats", "steps")), f(num(red, "total_impulse"), 2), f(num(full, "total_impulse"), 2),
-            n(num(red, "contacts")), n(num(full, "contacts")), cite("runs"),
+            n(num(red, "stats", "steps")), f(num(full, "total_impulse"), 2), f(num(red, "total_impulse"), 2),
+            n(num(full, "contacts")), n(num(red, "contacts")), cite("runs"),
             "met" if lt(rub_c, 2 / 30) and lt(rubr_c, 2 / 100) else "not met",
             g(div(2, rub_c), 2), g(div(2, rubr_c), 2), g(rub_c, 2), g(rubr_c, 2), n(num(rub, "stats", "steps"))))
 
