@@ -5,12 +5,12 @@
 # README.md and docs/*.md from those records (<!-- generated: NAME --> ... <!-- end generated -->
 # blocks and <!-- gen: NAME -->...<!-- /gen --> spans; scripts/docs_render.py says which is which).
 #   scripts/make-docs.sh [BUILD_DIR]           the fast part: the shipped cases as they are, the
-#                                              critical speeds, the validation tests quoted (52 s
-#                                              on 2 shared cores at load 7)
+#                                              critical speeds, the validation tests quoted (about
+#                                              55 s on 2 cores)
 #   scripts/make-docs.sh --full [BUILD_DIR]    also the slow part: touchdown bench, the paper's cases
 #                                              at converged settings, tolerance, mesh and convergence
-#                                              studies, the figures (scripts/make-figures.sh; 40 min
-#                                              at load 5-14, some 15 min of CPU)
+#                                              studies, the figures (scripts/make-figures.sh; 13 min
+#                                              on 2 cores at load 2, 40 min at load 5-14)
 #   scripts/make-docs.sh --render              only rewrite the regions from the recorded results
 #   scripts/make-docs.sh --full --only SOURCE  rerun one source (runs, modal, validation, bench,
 #                                              references, intervals, tolerances, mesh, convergence,
