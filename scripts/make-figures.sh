@@ -2,6 +2,8 @@
 # Regenerates the figures in docs/figures/ from the paper's cases and the worked sweep studies
 # (docs/sweep-study.md); the README and docs show them.
 #   scripts/make-figures.sh [BUILD_DIR]
+# With TD_FIGURES_TABLES=DIR set, the two study sweeps' tables (study.csv, study-drop.csv) are also
+# copied to DIR (scripts/make-docs.sh --full records them in docs/results/figures.json).
 set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 tool=${1:-$here/build}/touchdown
@@ -40,4 +42,7 @@ cp study/sweep-peak_housing_force.png "$out/study-a-peak-housing-force.png"
 cp study-drop/regime-map.png "$out/study-drop-regime-map.png"
 cp study-drop/sweep-peak_housing_force.png "$out/study-drop-peak-housing-force.png"
 cp study-drop/sweep-ending_whirl_frequency.png "$out/study-drop-whirl-frequency.png"
+if [ -n "${TD_FIGURES_TABLES:-}" ]; then
+    cp study.csv study-drop.csv "$TD_FIGURES_TABLES/"
+fi
 echo "make-figures: wrote $(ls "$out" | wc -l) figures to $out"

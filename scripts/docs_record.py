@@ -1,0 +1,396 @@
+#!/usr/bin/python3
+"""Reruns every number the documentation quotes from the tool and records it in docs/results/.
+
+    docs_record.py BUILD_DIR fast|slow [SOURCE ...]
+    docs_record.py --check TOOL SOURCE KEY ...
+
+The second form reruns recorded runs (docs/results/SOURCE.json, runs KEY) with their recorded
+arguments and fails if a number differs from the record by more than RTOL relative (below), or a
+text, a count or a null differs; the wall-clock quantities are not compared, nor keys the record
+lacks (a newer tool's additions).
+
+One JSON file per source (docs/results/SOURCE.json), each stamped with the tool's version, the
+source revision, the date, the machine and the exact commands (paths relative to the repository
+root, where every command runs). The fast sources take seconds each; the slow ones (benchmarks,
+tolerance and mesh studies) minutes. scripts/make-docs.sh runs this and then docs_render.py.
+Only Debian's python3 modules are used.
+"""
+import datetime
+import json
+import os
+import re
+import resource
+import subprocess
+import sys
+import time
+
+ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+RESULTS = os.path.join(ROOT, "docs", "results")
+
+PAPER = ["paper-a", "paper-b", "paper-c", "paper-d-kc1.25e12", "paper-d-kc1.25e10"]
+NO_FILES = ["--json", "-q", "--hdf5", "", "--csv", ""]
+# The library defaults (lib/util/options.c) written out, for the runs compared against them.
+DEFAULTS = {"solver.rtol": "1e-6", "solver.atol": "1e-9", "solver.max_order": "2"}
+# The converged references of docs/performance.md, "The paper's cases: settings that converge".
+REF12 = {"solver.rtol": "1e-12", "solver.atol": "1e-15", "solver.max_order": "5"}
+REF11 = {"solver.rtol": "1e-11", "solver.atol": "1e-14", "solver.max_order": "5"}
+# Sources that fit in seconds: what README.md, docs/validation.md and docs/reference-rig.md quote
+# from the shipped cases as they are.
+FAST_CASES = PAPER + ["rub-damped", "drop", "run-up"]
+
+
+def run_args(case, sets=None):
+    """The argument list of `touchdown run` without output files for CASE with --set SETS."""
+    args = ["run"] + NO_FILES
+    for key, value in (sets or {}).items():
+        args += ["--set", "%s=%s" % (key, value)]
+    return args + ["cases/%s.cfg" % case]
+
+
+def tool_output(tool, args, check=True):
+    """Run the tool from the repository root; its stdout and the wall time it took."""
+    start = time.monotonic()
+    proc = subprocess.run([tool] + args, cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                          universal_newlines=True)
+    wall = time.monotonic() - start
+    if check and proc.returncode != 0:
+        sys.exit("docs_record: touchdown %s: exit %d: %s" % (" ".join(args), proc.returncode,
+                                                             proc.stderr.strip()[:500]))
+    return proc.stdout, wall
+
+
+def record_run(tool, args):
+    """One `touchdown run --json`: the command as written from the repository root and the
+    summary as printed (a failed run is recorded too: its JSON says so)."""
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    out, wall = tool_output(tool, args, check=False)
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    try:
+        summary = json.loads(out)
+    except ValueError:
+        sys.exit("docs_record: touchdown %s printed no JSON" % " ".join(args))
+    # CPU time of the process (user + system): on a shared machine it scatters far less than the
+    # wall time the summary gives
+    cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+    print("  %-60s %6.1f s wall %6.1f s CPU" % (" ".join(a if a else "''" for a in args[len(NO_FILES) + 1:]),
+                                                wall, cpu), flush=True)
+    return {"command": "touchdown " + " ".join(a if a else "''" for a in args), "args": args,
+            "cpu_time": round(cpu, 3), "summary": summary}
+
+
+def git_revision():
+    def git(*args):
+        proc = subprocess.run(["git", "-C", ROOT] + list(args), stdout=subprocess.PIPE,
+                              stderr=subprocess.DEVNULL, universal_newlines=True)
+        return proc.stdout.strip() if proc.returncode == 0 else ""
+    rev = git("describe", "--always", "--tags")
+    if not rev:
+        return "unknown"
+    # "-modified": the sources the numbers come from (library, tool, cases, build, the scripts
+    # that run them) differ from the commit; the docs and their results do not count
+    dirty = git("status", "--porcelain", "--untracked-files=no", "--", "lib", "include", "tools", "cases",
+                "cmake", "CMakeLists.txt", "bench", "scripts/make-figures.sh", "scripts/docs_record.py")
+    return rev + ("-modified" if dirty else "")
+
+
+def stamp(tool, source, commands_note):
+    version, _ = tool_output(tool, ["--version"])
+    with open("/proc/loadavg") as f:
+        load = f.read().split()[0]
+    cpu = ""
+    if os.path.exists("/proc/cpuinfo"):
+        with open("/proc/cpuinfo") as f:
+            m = re.search(r"^model name\s*:\s*(.*)$", f.read(), re.M)
+            cpu = m.group(1) if m else ""
+    return {"source": source, "tool_version": version.splitlines()[0],
+            "revision": git_revision(),
+            "date": datetime.datetime.utcnow().strftime("%Y-%m-%dT%H:%M:%SZ"),
+            "machine": {"nproc": os.cpu_count(), "cpu": cpu, "loadavg_start": float(load)},
+            "made_by": "scripts/make-docs.sh", "how": commands_note}
+
+
+def save(name, data):
+    os.makedirs(RESULTS, exist_ok=True)
+    path = os.path.join(RESULTS, name + ".json")
+    with open(path + ".tmp", "w") as f:
+        json.dump(data, f, indent=1, sort_keys=True)
+        f.write("\n")
+    os.replace(path + ".tmp", path)
+    print("docs_record: wrote docs/results/%s.json" % name, flush=True)
+
+
+def src_runs(tool, build):
+    """The shipped cases as they are, without output files."""
+    data = stamp(tool, "runs", "touchdown run --json, one run per case as shipped")
+    data["runs"] = {case: record_run(tool, run_args(case)) for case in FAST_CASES}
+    # docs/performance.md, "What remains": what the reduced rotor gives on case B and rub-damped
+    for case, sets in [("paper-b/0.5", {"end_time": "0.5"}),
+                       ("paper-b/0.5/reduced", {"end_time": "0.5", "reduction.cutoff": "2000"}),
+                       ("rub-damped/reduced", {"reduction.cutoff": "2000"}),
+                       # docs/validation.md, "The drop": the energy account at 12 elements
+                       ("drop/energy-12", {"energy": "true", "shaft.refine": "1"})]:
+        data["runs"][case] = record_run(tool, run_args(case.split("/")[0], sets))
+    return data
+
+
+def parse_criticals(text):
+    rows = re.findall(r"^\s+(forward|backward)\s+([0-9.eE+-]+) rad/s.*zeta ([0-9.eE+-]+)", text, re.M)
+    return [{"whirl": w, "speed": float(s), "zeta": float(z)} for w, s, z in rows]
+
+
+def src_modal(tool, build):
+    """Critical speeds and the rig's mass (touchdown modal and info, their text output)."""
+    data = stamp(tool, "modal", "touchdown modal and touchdown info, text output parsed")
+    data["modal"] = {}
+    for case in ["run-up", "paper-a"]:
+        args = ["modal", "--csv", "", "--hdf5", "", "cases/%s.cfg" % case]
+        out, _ = tool_output(tool, args)
+        data["modal"][case] = {"command": "touchdown " + " ".join(a or "''" for a in args),
+                               "critical_speeds": parse_criticals(out)}
+    out, _ = tool_output(tool, ["info", "cases/paper-a.cfg"])
+    m = re.search(r"^mass\s+([0-9.]+) kg", out, re.M)
+    j = re.search(r"^polar\s+J = ([0-9.eE+-]+) kg m\^2", out, re.M)
+    data["info"] = {"command": "touchdown info cases/paper-a.cfg",
+                    "mass": float(m.group(1)) if m else None,
+                    "polar_inertia": float(j.group(1)) if j else None}
+    return data
+
+
+def src_validation(tool, build):
+    """The messages of the validation tests the docs quote (cmocka print_message lines)."""
+    data = stamp(tool, "validation", "tests/validation executables, their printed measurements")
+    data["tests"] = {}
+    for test in ["test_first_contact", "test_rig_modal", "test_beams", "test_jeffcott", "test_overhung_disc",
+                 "test_harmonic", "test_modal", "test_annular_rub", "test_penalty_convergence",
+                 "test_sim_scenarios", "test_race", "test_speed"]:
+        exe = os.path.join(build, "tests", test)
+        proc = subprocess.run([exe], cwd=os.path.dirname(exe), stdout=subprocess.PIPE,
+                              stderr=subprocess.STDOUT, universal_newlines=True,
+                              env=dict(os.environ, CMOCKA_MESSAGE_OUTPUT="stdout"))
+        if proc.returncode != 0:
+            sys.exit("docs_record: %s failed:\n%s" % (test, proc.stdout[-2000:]))
+        lines = [l for l in proc.stdout.splitlines() if l and not l.startswith("[")]
+        data["tests"][test] = {"command": "build/tests/" + test, "messages": lines}
+    return data
+
+
+def src_bench(tool, build):
+    """touchdown bench, as shipped and at the library defaults (3 repeats, medians)."""
+    data = stamp(tool, "bench", "touchdown bench -n 3 --json, as shipped and at the defaults")
+    data["bench"] = {}
+    for name, sets in [("shipped", {}), ("defaults", DEFAULTS)]:
+        args = ["bench", "-n", "3", "--json", "--dir", "cases"]
+        for key, value in sets.items():
+            args += ["--set", "%s=%s" % (key, value)]
+        out, wall = tool_output(tool, args)
+        print("  bench %-10s %6.1f s" % (name, wall), flush=True)
+        data["bench"][name] = {"command": "touchdown " + " ".join(args), "result": json.loads(out)}
+    return data
+
+
+def src_references(tool, build):
+    """The paper's cases at two converged settings and at the library defaults."""
+    data = stamp(tool, "references", "touchdown run --json at the reference settings and defaults")
+    data["runs"] = {}
+    for case in PAPER:
+        for name, sets in [("ref12", REF12), ("ref11", REF11), ("defaults", DEFAULTS)]:
+            data["runs"]["%s/%s" % (case, name)] = record_run(tool, run_args(case, sets))
+    return data
+
+
+def src_tolerances(tool, build):
+    """Cases A and B at rtol 1e-6..1e-8 (atol 1e-3 rtol m, order <= 5; 1e-9 is the shipped run)."""
+    data = stamp(tool, "tolerances", "touchdown run --json, cases A and B at looser tolerances")
+    data["runs"] = {}
+    for case in ["paper-a", "paper-b"]:
+        for rtol in ["1e-6", "1e-7", "1e-8"]:
+            atol = "%.0e" % (float(rtol) * 1e-3)
+            sets = {"solver.rtol": rtol, "solver.atol": atol.replace("e-0", "e-")}
+            data["runs"]["%s/%s" % (case, rtol)] = record_run(tool, run_args(case, sets))
+    return data
+
+
+def src_mesh(tool, build):
+    """Cases A and B with the shaft refined (defaults), and case A's first contact converging."""
+    data = stamp(tool, "mesh", "touchdown run --json with shaft.refine, library defaults")
+    data["runs"] = {}
+    for case in ["paper-a", "paper-b"]:
+        for k in [2, 4, 8]:
+            sets = dict(DEFAULTS, **{"shaft.refine": str(k)})
+            data["runs"]["%s/%d" % (case, k)] = record_run(tool, run_args(case, sets))
+    for k in [1, 2, 4, 8, 16]:
+        sets = {"solver.rtol": "1e-10", "solver.atol": "1e-13", "end_time": "0.11",
+                "shaft.refine": str(k)}
+        data["runs"]["first-contact/%d" % k] = record_run(tool, run_args("paper-a", sets))
+    return data
+
+
+def src_convergence(tool, build):
+    """bench/convergence.sh's runs: shaft.refine 1, 2, 4, 8 at two tolerances, three cases."""
+    data = stamp(tool, "convergence", "the runs of bench/convergence.sh CASE, touchdown run --json")
+    data["runs"] = {}
+    # Case A at the library's BDF order <= 2 (bench/convergence.sh cases/paper-a.cfg
+    # solver.max_order=2): at its shipped order <= 5 a refined undamped shaft takes minutes a run.
+    for case, extra in [("rub-damped", {}), ("paper-a", {"solver.max_order": "2"}), ("drop", {})]:
+        for rtol, atol in [("1e-6", "1e-9"), ("1e-7", "1e-10")]:
+            for k in [1, 2, 4, 8]:
+                sets = dict(extra, **{"shaft.refine": str(k), "solver.rtol": rtol, "solver.atol": atol})
+                data["runs"]["%s/%s/%d" % (case, rtol, k)] = record_run(tool, run_args(case, sets))
+    return data
+
+
+def contact_intervals(events_csv):
+    """[start, end, peak normal force] of each contact interval in the events file's order (the
+    peak on the release's row), as bench/intervals.sh reads them."""
+    import csv
+    out, open_at = [], {}
+    with open(events_csv) as f:
+        rows = [r for r in csv.reader(f) if r and not r[0].startswith("#")][1:]
+    for r in rows:
+        t, kind, ret = float(r[0]), r[2], r[3]
+        if kind == "contact_onset" and ret not in open_at:
+            open_at[ret] = len(out)
+            out.append([t, None, None])
+        elif kind == "release" and ret in open_at:
+            out[open_at.pop(ret)][1:] = [t, float(r[12])]
+    return out
+
+
+def src_intervals(tool, build):
+    """bench/intervals.sh's measure for case B to 0.3 s: the first ten contact intervals as shipped
+    and at the defaults against a converged run (rtol 1e-11, atol 1e-14 m, order <= 5)."""
+    import tempfile
+    data = stamp(tool, "intervals", "bench/intervals.sh's runs: touchdown run --csv, events compared")
+    data["runs"] = {}
+    with tempfile.TemporaryDirectory() as tmp:
+        for name, sets in [("ref", REF11), ("shipped", {}), ("defaults", DEFAULTS)]:
+            sets = dict(sets, **{"end_time": "0.3", "output.sample_rate": "1000"})
+            args = run_args("paper-b", sets)[:]
+            args[args.index("--csv") + 1] = os.path.join(tmp, name + ".csv")
+            args.remove("--json")
+            before = resource.getrusage(resource.RUSAGE_CHILDREN).ru_utime
+            tool_output(tool, args)
+            cpu = resource.getrusage(resource.RUSAGE_CHILDREN).ru_utime - before
+            shown = [a if not a.startswith(tmp) else "OUT.csv" for a in args]
+            data["runs"][name] = {"command": "touchdown " + " ".join(a or "''" for a in shown),
+                                  "cpu_time": cpu,
+                                  "intervals": contact_intervals(os.path.join(tmp, name + ".events.csv"))}
+            print("  intervals %-10s %6.1f s CPU" % (name, cpu), flush=True)
+    return data
+
+
+def src_figures(tool, build):
+    """docs/figures/ by scripts/make-figures.sh (its own runs of the cases and the studies), and the
+    tables of the two study sweeps it runs (docs/sweep-study.md reads them)."""
+    import csv
+    import tempfile
+    data = stamp(tool, "figures", "scripts/make-figures.sh BUILD_DIR; the study sweeps' tables kept")
+    start = time.monotonic()
+    with tempfile.TemporaryDirectory() as tmp:
+        subprocess.run([os.path.join(ROOT, "scripts", "make-figures.sh"), build], check=True,
+                       env=dict(os.environ, TD_FIGURES_TABLES=tmp))
+        data["sweeps"] = {}
+        for name, command in [("study", "touchdown sweep -j 1 --vary speed=50:250:41 --vary "
+                               "'unbalances[0].magnitude=0.005,0.01,0.015,0.02,0.05,0.1' -o study cases/study-a.cfg"),
+                              ("study-drop", "touchdown sweep -j 2 -o study-drop cases/study-drop.cfg")]:
+            with open(os.path.join(tmp, name + ".csv")) as f:
+                lines = [l for l in f if not l.startswith("#")]
+            rows = list(csv.reader(lines))
+            data["sweeps"][name] = {"command": command, "columns": rows[0], "rows": rows[1:]}
+    data["wall_time"] = time.monotonic() - start
+    data["figures"] = sorted(f for f in os.listdir(os.path.join(ROOT, "docs", "figures"))
+                             if f.endswith(".png"))
+    return data
+
+
+SOURCES = {"fast": [("runs", src_runs), ("modal", src_modal), ("validation", src_validation)],
+           "slow": [("bench", src_bench), ("references", src_references),
+                    ("intervals", src_intervals), ("tolerances", src_tolerances), ("mesh", src_mesh),
+                    ("convergence", src_convergence), ("figures", src_figures)]}
+
+
+# The runs are deterministic: the same build gives the same bits. The tolerance allows for another
+# compiler or libm rounding a last digit differently in a run that does not amplify it; the
+# chaotic bouncing of the undamped paper cases amplifies any such difference to a different,
+# equally valid contact sequence, which this check then reports (rerun scripts/make-docs.sh on
+# that platform).
+RTOL = 1e-6
+WALL_CLOCK = {"wall_time", "solver_wall_time", "wall_time_per_revolution", "realtime_factor",
+              "library_version", "hdf5_path", "csv_path", "events_path"}
+
+
+def is_number(x):
+    return isinstance(x, (int, float)) and not isinstance(x, bool)
+
+
+def differences(rec, new, where=""):
+    """Where NEW departs from the record REC beyond RTOL; keys REC lacks are ignored."""
+    out = []
+    if isinstance(rec, dict):
+        if not isinstance(new, dict):
+            return ["%s: %r, recorded an object" % (where, new)]
+        for k, v in rec.items():
+            if k in WALL_CLOCK:
+                continue
+            if k not in new:
+                out.append("%s.%s: missing, recorded %r" % (where, k, v))
+            else:
+                out += differences(v, new[k], "%s.%s" % (where, k))
+    elif isinstance(rec, list):
+        if not isinstance(new, list) or len(new) != len(rec):
+            return ["%s: %d values, recorded %d" % (where, len(new) if isinstance(new, list) else -1, len(rec))]
+        for i, (a, b) in enumerate(zip(rec, new)):
+            out += differences(a, b, "%s[%d]" % (where, i))
+    elif is_number(rec) and is_number(new):
+        # counts (below a million) must match exactly, measured values to RTOL
+        if abs(new - rec) > RTOL * max(abs(rec), abs(new)):
+            out.append("%s: %.17g, recorded %.17g" % (where, new, rec))
+    elif rec != new:
+        out.append("%s: %r, recorded %r" % (where, new, rec))
+    return out
+
+
+def check(tool, source, keys):
+    with open(os.path.join(RESULTS, source + ".json")) as f:
+        runs = json.load(f)["runs"]
+    bad = 0
+    for key in keys:
+        if key not in runs:
+            print("FAIL: %s: no recorded run %s" % (source, key))
+            bad += 1
+            continue
+        rec = runs[key]
+        out, wall = tool_output(tool, rec["args"], check=False)
+        try:
+            diffs = differences(rec["summary"], json.loads(out), key)
+        except ValueError:
+            diffs = ["%s: the tool printed no JSON" % key]
+        if diffs:
+            bad += 1
+            print("FAIL: %s (%.1f s) differs from docs/results/%s.json (rtol %g): %s%s" % (
+                key, wall, source, RTOL, "; ".join(diffs[:8]), " ..." if len(diffs) > 8 else ""))
+        else:
+            print("ok:   %s (%.1f s) matches docs/results/%s.json (rtol %g)" % (key, wall, source, RTOL))
+    return 1 if bad else 0
+
+
+def main():
+    if len(sys.argv) >= 4 and sys.argv[1] == "--check":
+        sys.exit(check(os.path.abspath(sys.argv[2]), sys.argv[3], sys.argv[4:]))
+    if len(sys.argv) < 3 or sys.argv[2] not in SOURCES:
+        sys.exit("usage: docs_record.py BUILD_DIR fast|slow [SOURCE ...]")
+    build = os.path.abspath(sys.argv[1])
+    tool = os.path.join(build, "touchdown")
+    only = set(sys.argv[3:])
+    for name, fn in SOURCES[sys.argv[2]]:
+        if only and name not in only:
+            continue
+        start = time.monotonic()
+        print("docs_record: %s ..." % name, flush=True)
+        data = fn(tool, build)
+        data["record_wall_time"] = round(time.monotonic() - start, 1)
+        save(name, data)
+
+
+if __name__ == "__main__":
+    main()

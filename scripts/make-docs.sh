@@ -1,0 +1,61 @@
+#!/usr/bin/env bash
+# Regenerates every number and figure the documentation quotes from the tool: reruns them, records
+# them in docs/results/*.json (one file per source, stamped with the tool's version, the source
+# revision, the date, the machine and the commands), then rewrites the generated regions of
+# README.md and docs/*.md from those records (<!-- generated: NAME --> ... <!-- end generated -->
+# blocks and <!-- gen: NAME -->...<!-- /gen --> spans; scripts/docs_render.py says which is which).
+#   scripts/make-docs.sh [BUILD_DIR]           the fast part: the shipped cases as they are, the
+#                                              critical speeds, the validation tests quoted (about
+#                                              55 s on 2 cores)
+#   scripts/make-docs.sh --full [BUILD_DIR]    also the slow part: touchdown bench, the paper's cases
+#                                              at converged settings, tolerance, mesh and convergence
+#                                              studies, the figures (scripts/make-figures.sh; 13 min
+#                                              on 2 cores at load 2, 40 min at load 5-14)
+#   scripts/make-docs.sh --render              only rewrite the regions from the recorded results
+#   scripts/make-docs.sh --full --only SOURCE  rerun one source (runs, modal, validation, bench,
+#                                              references, intervals, tolerances, mesh, convergence,
+#                                              figures), then render
+# BUILD_DIR defaults to ./build (scripts/setup.sh builds it). tests/cli/test_docs.sh checks that
+# the docs match the records and that the tool still prints the recorded numbers.
+set -euo pipefail
+here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+mode=fast
+build=$here/build
+only=()
+while [ $# -gt 0 ]; do
+    case $1 in
+    --full) mode=full ;;
+    --render) mode=render ;;
+    --only) only+=("$2"); shift ;;
+    -h | --help) awk 'NR > 1 && /^#/ { sub(/^# ?/, ""); print; next } NR > 1 { exit }' "$0"; exit 0 ;;
+    *) build=$(cd "$1" && pwd) ;;
+    esac
+    shift
+done
+py=/usr/bin/python3
+[ -x "$py" ] || py=python3
+start=$(date +%s)
+if [ "$mode" != render ]; then
+    if [ ! -x "$build/touchdown" ]; then
+        echo "make-docs: no tool at $build/touchdown: build it first (scripts/setup.sh $build)" >&2
+        exit 2
+    fi
+    if [ ${#only[@]} -gt 0 ]; then
+        fast=() slow=()
+        for s in "${only[@]}"; do
+            case $s in runs | modal | validation) fast+=("$s") ;; *) slow+=("$s") ;; esac
+        done
+        [ ${#fast[@]} -eq 0 ] || "$py" "$here/scripts/docs_record.py" "$build" fast "${fast[@]}"
+        [ ${#slow[@]} -eq 0 ] || "$py" "$here/scripts/docs_record.py" "$build" slow "${slow[@]}"
+    else
+        "$py" "$here/scripts/docs_record.py" "$build" fast
+        fast_end=$(date +%s)
+        echo "make-docs: fast part $((fast_end - start)) s"
+        if [ "$mode" = full ]; then
+            "$py" "$here/scripts/docs_record.py" "$build" slow
+            echo "make-docs: slow part $(($(date +%s) - fast_end)) s"
+        fi
+    fi
+fi
+"$py" "$here/scripts/docs_render.py"
+echo "make-docs: done in $(($(date +%s) - start)) s"

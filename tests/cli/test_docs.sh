@@ -1,0 +1,37 @@
+#!/usr/bin/env bash
+# The documentation's numbers against the tool (scripts/make-docs.sh writes them):
+#   (a) every generated region of README.md and docs/*.md, rebuilt from the recorded results
+#       (docs/results/*.json), equals the text in the file: a number edited by hand, or results
+#       recorded without rewriting the docs, fails;
+#   (b) the cheap shipped runs, rerun with their recorded arguments, print the recorded numbers
+#       (relative tolerance 1e-6, counts and texts exact; wall-clock quantities not compared;
+#       scripts/docs_record.py says why the tolerance is that): a change of the tool that moves a
+#       documented number fails until scripts/make-docs.sh is rerun. Rerun here: rub-damped (full
+#       and reduced rotor: race bodies, mounts, compliant contact) and the penalty case C (the
+#       closed-form flight, penalty contact), about 2.5 s of CPU in the plain build and 7 s under
+#       ASan (which gives the same numbers). The longer runs (cases A and B to 2 s, D, D10, the
+#       drop, the run-up: 2-6 s each, 5-7 times that under ASan) are checked by (a) only, through
+#       their records.
+# Needs python3 (json, difflib only). Args: $1 = the touchdown binary, $2 = the source directory.
+set -u
+tool=$1
+src=$2
+. "$(dirname "${BASH_SOURCE[0]}")/common.sh" # fail, pass, check, finish
+py=/usr/bin/python3
+[ -x "$py" ] || py=python3
+
+out=$("$py" "$src/scripts/docs_render.py" --check 2>&1)
+rc=$?
+if [ "$rc" = 0 ]; then pass "generated regions match docs/results/ ($out)"; else fail "generated regions: $out"; fi
+
+# the runs of docs/results/runs.json cheap enough to rerun here
+cheap=(rub-damped rub-damped/reduced paper-c)
+while IFS= read -r line; do
+    case $line in
+    ok:*) pass "${line#ok:   }" ;;
+    FAIL:*) fail "${line#FAIL: }" ;;
+    *) echo "$line" ;;
+    esac
+done < <("$py" "$src/scripts/docs_record.py" --check "$tool" runs "${cheap[@]}" 2>&1)
+check "every cheap run checked (${#cheap[@]})" test "$checks" -ge $((${#cheap[@]} + 1))
+finish
