@@ -44,24 +44,14 @@ for sets in "$@"; do
   echo "$sets" > "$tmp/s$i.sets"
   i=$((i + 1))
 done
-python3 - "$tmp" "$i" "$count" "$ref_sets" <<'PY'
-import csv, os, sys
-d, runs, n, ref_sets = sys.argv[1], int(sys.argv[2]), int(sys.argv[3]), sys.argv[4]
+python3 - "$(dirname "${BASH_SOURCE[0]}")" "$tmp" "$i" "$count" "$ref_sets" <<'PY'
+import os, sys
+sys.path.insert(0, sys.argv[1])
+from contact_intervals import contact_intervals
+d, runs, n, ref_sets = sys.argv[2], int(sys.argv[3]), int(sys.argv[4]), sys.argv[5]
 
 def intervals(name):
-    """[start, end, peak normal force] of each contact interval, in the order the events file
-    lists them (the peak is on the release's row)."""
-    out, open_at = [], {}
-    with open(os.path.join(d, name + ".events.csv")) as f:
-        rows = [r for r in csv.reader(f) if r and not r[0].startswith("#")][1:]
-    for r in rows:
-        t, kind, ret = float(r[0]), r[2], r[3]
-        if kind == "contact_onset" and ret not in open_at:
-            open_at[ret] = len(out)
-            out.append([t, None, None])
-        elif kind == "release" and ret in open_at:
-            out[open_at.pop(ret)][1:] = [t, float(r[12])]
-    return out
+    return contact_intervals(os.path.join(d, name + ".events.csv"))
 
 def cpu(name):
     return float(open(os.path.join(d, name + ".cpu")).read().split()[-1])

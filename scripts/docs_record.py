@@ -24,6 +24,9 @@ import subprocess
 import sys
 import time
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "bench"))
+from contact_intervals import contact_intervals  # noqa: E402  (bench/intervals.sh reads them the same way)
+
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 RESULTS = os.path.join(ROOT, "docs", "results")
 
@@ -237,23 +240,6 @@ def src_convergence(tool, build):
                 sets = dict(extra, **{"shaft.refine": str(k), "solver.rtol": rtol, "solver.atol": atol})
                 data["runs"]["%s/%s/%d" % (case, rtol, k)] = record_run(tool, run_args(case, sets))
     return data
-
-
-def contact_intervals(events_csv):
-    """[start, end, peak normal force] of each contact interval in the events file's order (the
-    peak on the release's row), as bench/intervals.sh reads them."""
-    import csv
-    out, open_at = [], {}
-    with open(events_csv) as f:
-        rows = [r for r in csv.reader(f) if r and not r[0].startswith("#")][1:]
-    for r in rows:
-        t, kind, ret = float(r[0]), r[2], r[3]
-        if kind == "contact_onset" and ret not in open_at:
-            open_at[ret] = len(out)
-            out.append([t, None, None])
-        elif kind == "release" and ret in open_at:
-            out[open_at.pop(ret)][1:] = [t, float(r[12])]
-    return out
 
 
 def src_intervals(tool, build):
