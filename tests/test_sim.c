@@ -748,6 +748,48 @@ static void test_free_free_rotor_start(void **state)
     td_case_free(&c);
 }
 
+/* The start state of a machine whose AMBs the schedule switches off at t = 0 is judged for the
+ * machine as it is then, after the changes due at the start: the same steady orbit and stability as
+ * the rig with its AMBs removed (a second way to the same machine), and under gravity no static
+ * position ("not held"). Before, the start took the levitated orbit of the machine with its AMBs on
+ * (here 1.28 mm off the free rotor's orbit, which runs into the retainers). */
+static void test_start_after_changes_at_start(void **state)
+{
+    const char *off[3] = {"schedule=({time=0.0;amb_off=0},{time=0.0;amb_off=1})", "start=\"orbit\"",
+                          "gravity={enabled=true;}"};
+    const char *none[2] = {"ambs=()", "start=\"orbit\""};
+    td_case *c = td_test_load_case("cases/paper-a.cfg", off, 2), *ref = td_test_load_case("cases/paper-a.cfg", none, 2);
+    td_sim *s = NULL, *r = NULL;
+    td_sim_start_info info;
+    td_error err;
+    double q[52], qr[52], dq = 0.0, qmax = 0.0;
+    int i;
+    (void)state;
+    assert_int_equal(td_sim_create(td_case_model(c), td_case_sim_options(c), &s, &err), TD_OK);
+    assert_int_equal(td_sim_create(td_case_model(ref), td_case_sim_options(ref), &r, &err), TD_OK);
+    assert_int_equal(td_sim_dof_count(s), 52);
+    assert_int_equal(td_sim_start_info_get(s, &info), TD_OK);
+    assert_int_equal(info.used, TD_START_ORBIT);
+    assert_int_equal(info.stability, TD_STABILITY_STABLE);
+    td_sim_get_state(s, q, NULL);
+    td_sim_get_state(r, qr, NULL);
+    for (i = 0; i < 52; i++) {
+        dq = fmax(dq, fabs(q[i] - qr[i]));
+        qmax = fmax(qmax, fabs(qr[i]));
+    }
+    print_message("AMBs off at t = 0: start state %.3g m from the free rotor's (largest %.3g m)\n", dq, qmax);
+    assert_true(dq <= 1e-9 * qmax);
+    td_sim_free(&s);
+    td_sim_free(&r);
+    td_case_free(&c);
+
+    c = td_test_load_case("cases/paper-a.cfg", off, 3);
+    assert_int_equal(td_sim_create(td_case_model(c), td_case_sim_options(c), &s, &err), TD_ERR_INVALID);
+    assert_non_null(strstr(err.message, "not held"));
+    td_case_free(&c);
+    td_case_free(&ref);
+}
+
 /* The run loop cannot go on for ever. An absolute tolerance far above the clearance (refused by
  * the case reader and td_sim_create, so forced here on a running simulation: every tolerance scales
  * with it) made the drop run's steps and stops stop moving time (2e-6 s in 35 s of steps) without
@@ -1109,6 +1151,7 @@ int main(void)
         cmocka_unit_test(test_api_change_matches_schedule),
         cmocka_unit_test(test_schedule_events_name_entries_as_written),
         cmocka_unit_test(test_free_free_rotor_start),
+        cmocka_unit_test(test_start_after_changes_at_start),
         cmocka_unit_test(test_no_progress_fails),
         cmocka_unit_test(test_speed_change_continuity),
         cmocka_unit_test(test_friction_reversal),

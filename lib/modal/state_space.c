@@ -9,7 +9,8 @@
  * K_eff = K - ks at (actuator, actuator) for every AMB axis; C_eff = C + Omega G. An axis with
  * tau == 0 has no filter state: its force ks x + command(xs, vs, e) is exactly a spring-damper,
  * -ki kp at (actuator, sensor) moved to K_eff and -ki kd to C_eff, plus -ki kint on e. The
- * integrator runs unclamped here: the analysis is of the linear, unsaturated loop. The AMB coefficients come from
+ * integrator runs unclamped here: the analysis is of the linear, unsaturated loop. An AMB that is off
+ * (td_system_set_amb_off) exerts nothing and its integrator holds, as in the simulation. The AMB coefficients come from
  * the axis law in model/amb.c (evaluated at unit inputs, which is exact for a linear law), so the
  * AMB physics lives in one place.
  */
@@ -62,7 +63,7 @@ typedef struct amb_coeffs {
 static amb_coeffs amb_axis_coeffs(const td_amb_axis *a)
 {
     amb_coeffs c = {0};
-    (void)td_amb_axis_force(a, 1, 0.0, 0.0, &c.dfdx, &c.dfdfc);
+    (void)td_amb_axis_force(a, !a->off, 0.0, 0.0, &c.dfdx, &c.dfdfc); /* an AMB off: 0, 0 */
     c.cmd_x = td_amb_axis_command(a, 1.0, 0.0, 0.0);
     c.cmd_v = td_amb_axis_command(a, 0.0, 1.0, 0.0);
     c.cmd_e = td_amb_axis_command(a, 0.0, 0.0, 1.0);
@@ -113,7 +114,7 @@ void td_state_space_filter_rows(const td_system *sys, td_entry_sink *A)
             if (a->integral >= 0)
                 td_entry_add(A, row, 2 * nd + a->integral, c.rate_e);
         }
-        if (a->integral >= 0) /* e' = xs */
+        if (a->integral >= 0 && !a->off) /* e' = xs; an AMB off holds it (e' = 0) */
             td_entry_add(A, 2 * nd + a->integral, a->sensor_dof, 1.0);
     }
 }

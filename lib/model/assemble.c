@@ -180,6 +180,14 @@ static td_status build_amb_axes(td_system *s, td_error *err)
     return TD_OK;
 }
 
+void td_system_set_amb_off(td_system *s, int amb, int off)
+{
+    int k;
+    for (k = 0; k < s->n_amb_axes; k++)
+        if (s->amb_axes[k].amb == amb)
+            s->amb_axes[k].off = off != 0;
+}
+
 /* gravity_load = M a with a the uniform acceleration (gx, gy) on every translational DOF. The
  * consistent M also gives the end moments of the distributed weight on the rotations. */
 static td_status build_gravity_load(td_system *s, td_error *err)

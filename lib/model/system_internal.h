@@ -21,6 +21,8 @@ typedef struct td_amb_axis {
     int state;    /* index of its lag state Fc among the controller states, or -1 when tau == 0 */
     int integral; /* index of its integrator state e among the controller states, or -1 when kint == 0 */
     double kint;  /* integral gain, A/(m s) */
+    int off;      /* 1: the AMB is off (failed) in the machine the system describes now: no force,
+                   * its integrator holds (td_system_set_amb_off); 0 as built */
 } td_amb_axis;
 
 struct td_system {
@@ -47,6 +49,10 @@ struct td_system {
                               * integrator state e per axis with kint > 0 */
     double *gravity_load;    /* M g, length ndof: the weight as nodal forces */
 };
+
+/* Mark AMB `amb`'s axes off (off != 0) or working, so that the contact-free system's analyses
+ * (touchdown/modal.h) are of the machine with the AMBs that work now. */
+void td_system_set_amb_off(td_system *s, int amb, int off);
 
 /* Replace M, K, C, G and the gravity load (all physical on entry) by their Craig-Bampton reduction
  * at the model's cut-off and fill the reduction fields (reduce.c). */

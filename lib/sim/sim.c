@@ -251,7 +251,7 @@ static void init_machine(td_sim *s)
     for (i = 0; i < s->nu; i++)
         td_model_get_unbalance(s->model, i, &s->unb[i]);
     for (i = 0; i < na; i++)
-        s->amb_mode[i] = TD_AMB_PD;
+        td_sim_amb_mode_set(s, i, TD_AMB_PD);
     /* the AMB laws are linear (model/amb.c): unit probes give their coefficients exactly */
     for (i = 0; i < s->sys->n_amb_axes; i++) {
         const td_amb_axis *a = &s->sys->amb_axes[i];
@@ -1476,7 +1476,7 @@ td_status td_sim_set_amb_mode(td_sim *sim, int amb, td_amb_mode mode, td_error *
         snprintf(sim->errmsg, sizeof sim->errmsg, "td_sim_set_amb_mode: invalid AMB %d or mode %d", amb, (int)mode);
         return failed(sim, TD_ERR_INVALID, err);
     }
-    sim->amb_mode[amb] = mode;
+    td_sim_amb_mode_set(sim, amb, mode);
     return reported(sim, restart_after_change(sim), err);
 }
 

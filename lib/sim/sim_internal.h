@@ -333,6 +333,9 @@ td_status td_sim_handle_roots(td_sim *s, int *restart);
 td_status td_sim_apply_due_changes(td_sim *s);
 /* Apply silently every change due at or before s->t (before the start of the run). */
 void td_sim_apply_past_changes(td_sim *s);
+/* AMB amb's mode, also in s->sys (td_system_set_amb_off), so that the start state's stability and
+ * steady orbit are those of the machine at the start, after the changes due then. */
+void td_sim_amb_mode_set(td_sim *s, int amb, td_amb_mode mode);
 /* Re-initialise IDA at s->t from s->y, s->yp (counters saved, root directions, restart step,
  * stop time, KLU refactorisation). */
 td_status td_sim_restart(td_sim *s);

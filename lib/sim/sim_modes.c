@@ -680,6 +680,12 @@ td_status td_sim_start_contacts(td_sim *s, const int *touching)
     return st == TD_OK ? td_sim_make_consistent(s, s->entered) : st;
 }
 
+void td_sim_amb_mode_set(td_sim *s, int amb, td_amb_mode mode)
+{
+    s->amb_mode[amb] = mode;
+    td_system_set_amb_off(s->sys, amb, mode == TD_AMB_OFF);
+}
+
 /* Apply schedule entry c (the model's TD_CHANGE_*). */
 static void apply_change(td_sim *s, const td_change *c)
 {
@@ -692,11 +698,11 @@ static void apply_change(td_sim *s, const td_change *c)
         break;
     case TD_CHANGE_AMB_OFF:
         if (c->index >= 0 && c->index < td_model_amb_count(s->model))
-            s->amb_mode[c->index] = TD_AMB_OFF;
+            td_sim_amb_mode_set(s, c->index, TD_AMB_OFF);
         break;
     case TD_CHANGE_AMB_ON:
         if (c->index >= 0 && c->index < td_model_amb_count(s->model))
-            s->amb_mode[c->index] = TD_AMB_PD;
+            td_sim_amb_mode_set(s, c->index, TD_AMB_PD);
         break;
     }
 }
