@@ -65,8 +65,7 @@ static void check_rows(const td_sweep_row *rows, long points, long found)
     long p, ran = 0;
     for (p = 0; p < points; p++) {
         const td_sweep_row *r = &rows[p];
-        if (!memchr(r->status, '\0', sizeof r->status) || !memchr(r->message, '\0', sizeof r->message) ||
-            !memchr(r->ending, '\0', sizeof r->ending) || !memchr(r->regime, '\0', sizeof r->regime))
+        if (!sweep_row_texts_end(r))
             fuzz_contract_failed("a text field of a row read does not end in its array", "");
         if (r->state != TD_SWEEP_NOT_RUN && r->state != TD_SWEEP_DONE && r->state != TD_SWEEP_FAILED)
             fuzz_contract_failed("a row read with an unknown state", "");

@@ -98,6 +98,7 @@ static void assert_written_rows(const td_sweep_row *rows, long found)
         assert_true(memchr(rows[p].status, '\0', sizeof rows[p].status) &&
                     memchr(rows[p].message, '\0', sizeof rows[p].message) &&
                     memchr(rows[p].ending, '\0', sizeof rows[p].ending) &&
+                    memchr(rows[p].warnings, '\0', sizeof rows[p].warnings) &&
                     memchr(rows[p].regime, '\0', sizeof rows[p].regime));
 }
 
@@ -150,26 +151,36 @@ static void test_garbage_last_record(void **state)
     remove(journal_path);
 }
 
-/* A record whose text fields have no terminating zero, its frame (length, CRC-32) made whole
- * again so that only the bounds of its text can refuse it. */
-static void test_unterminated_text(void **state)
+/* A last record whose text field at `off` (n bytes) has no terminating zero, its frame (length,
+ * CRC-32) made whole again so that only the bounds of its text can refuse it: it is dropped as a
+ * torn tail and the rows of the whole records read back. */
+static void assert_unterminated_dropped(size_t off, size_t n)
 {
     td_sweep_row rows[POINTS];
-    long n, found, rec = write_journal();
-    unsigned char *last = bytes_of(HEADER + rec, rec, &n);
+    long len, found, rec = write_journal();
+    unsigned char *last = bytes_of(HEADER + rec, rec, &len);
     uint32_t crc;
-    (void)state;
-    memset(last + row_byte(rec, offsetof(td_sweep_row, status)), 'A', sizeof rows[0].status);
-    memset(last + row_byte(rec, offsetof(td_sweep_row, regime)), 'B', sizeof rows[0].regime);
-    if (rec - (long)sizeof(td_sweep_row) == 16) { /* framed: u32 length, u32 CRC, i64 point, row */
-        crc = (uint32_t)crc32(crc32(0L, Z_NULL, 0), last + 8, (uInt)(rec - 8));
-        memcpy(last + 4, &crc, 4);
-    }
+    memset(last + row_byte(rec, off), 'A', n);
+    assert_int_equal(rec - (long)sizeof(td_sweep_row), 16); /* framed: u32 length, u32 CRC, i64 point, row */
+    crc = (uint32_t)crc32(crc32(0L, Z_NULL, 0), last + 8, (uInt)(rec - 8));
+    memcpy(last + 4, &crc, 4);
     put_bytes(HEADER + 2 * rec, last, rec);
     free(last);
     assert_int_equal(read_back(rows, &found), 0);
     assert_written_rows(rows, found);
     remove(journal_path);
+}
+
+/* Each text field of a row in turn, the others whole. */
+static void test_unterminated_text(void **state)
+{
+    td_sweep_row r;
+    (void)state;
+    assert_unterminated_dropped(offsetof(td_sweep_row, status), sizeof r.status);
+    assert_unterminated_dropped(offsetof(td_sweep_row, message), sizeof r.message);
+    assert_unterminated_dropped(offsetof(td_sweep_row, ending), sizeof r.ending);
+    assert_unterminated_dropped(offsetof(td_sweep_row, warnings), sizeof r.warnings);
+    assert_unterminated_dropped(offsetof(td_sweep_row, regime), sizeof r.regime);
 }
 
 /* A record cut short (the kill came during its write) is cut off when the journal is reopened:

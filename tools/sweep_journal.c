@@ -119,15 +119,21 @@ static int text_ends(const char *s, size_t n)
     return memchr(s, '\0', n) != NULL;
 }
 
+int sweep_row_texts_end(const td_sweep_row *r)
+{
+    /* every char array of td_sweep_row (touchdown/sweep.h): a text field added there is added here */
+    return text_ends(r->status, sizeof r->status) && text_ends(r->message, sizeof r->message) &&
+           text_ends(r->ending, sizeof r->ending) && text_ends(r->warnings, sizeof r->warnings) &&
+           text_ends(r->regime, sizeof r->regime);
+}
+
 /* 1 if rec is a whole record of a sweep of `points` points: its frame holds, its point is one of
  * the sweep's, its state is one a run leaves (done or failed), its text fields end in bounds. */
 static int record_whole(const journal_record *rec, long points)
 {
     const td_sweep_row *r = &rec->row;
     return rec->length == RECORD_BODY && rec->crc == record_crc(rec) && rec->point >= 0 && rec->point < points &&
-           (r->state == TD_SWEEP_DONE || r->state == TD_SWEEP_FAILED) && text_ends(r->status, sizeof r->status) &&
-           text_ends(r->message, sizeof r->message) && text_ends(r->ending, sizeof r->ending) &&
-           text_ends(r->regime, sizeof r->regime);
+           (r->state == TD_SWEEP_DONE || r->state == TD_SWEEP_FAILED) && sweep_row_texts_end(r);
 }
 
 /* What the records of a journal held. */

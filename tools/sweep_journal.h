@@ -30,6 +30,10 @@ int sweep_store_check_inputs(const char *journal, const char *const *inputs, int
 /* Remove the journal and its parts (once a finished table is written). */
 void sweep_store_remove(const char *journal);
 
+/* 1 if every text field of row r ends within its array (holds its terminating zero): the one list
+ * of a row's text fields, checked before a row read from a file is trusted. */
+int sweep_row_texts_end(const td_sweep_row *r);
+
 /* Room for the path of a part: the journal's, ".rank-" and a rank. */
 #define SWEEP_PART_PATH_SIZE (TD_OUTPUT_PATH_SIZE + 24)
 
