@@ -112,6 +112,18 @@ static int read_axis(hid_t file, const char *path, int k)
     return (int)axis;
 }
 
+/* 0 if the strings *text just read (n of them) are one per point (want); else -1, with them freed
+ * by their own count and *text NULL, so that nothing of the wrong length is kept for
+ * plot_sweep_free (which frees s->n of each). */
+static int one_per_point(char ***text, size_t n, size_t want)
+{
+    if (n == want)
+        return 0;
+    plot_strings_free(*text, n);
+    *text = NULL;
+    return -1;
+}
+
 /* Key k's values: doubles when the dataset is numeric (and their text), else the text itself. */
 static int read_key(hid_t file, plot_sweep *s, int k)
 {
@@ -121,7 +133,7 @@ static int read_key(hid_t file, plot_sweep *s, int k)
     snprintf(path, sizeof path, "vary/%s", s->key[k]);
     s->axis[k] = read_axis(file, path, k);
     if (plot_h5_read_strings(file, path, &s->text[k], &n) == 0)
-        return n == s->n ? 0 : -1;
+        return one_per_point(&s->text[k], n, s->n);
     if (plot_h5_read(file, path, &a) != 0 || a.n != s->n) {
         plot_array_free(&a);
         return -1;
@@ -152,7 +164,7 @@ static int read_regimes(hid_t file, plot_sweep *s)
         s->regime[i] = -1;
     if (!plot_h5_exists(file, "regime"))
         return 0;
-    if (plot_h5_read_strings(file, "regime", &text, &n) != 0 || n != s->n)
+    if (plot_h5_read_strings(file, "regime", &text, &n) != 0 || one_per_point(&text, n, s->n) != 0)
         return -1;
     for (i = 0; i < n; i++)
         for (r = 0; r < TD_REGIME_COUNT; r++)
@@ -183,7 +195,7 @@ static int read_status(hid_t file, plot_sweep *s)
     }
     if (!plot_h5_exists(file, "status"))
         return 0;
-    if (plot_h5_read_strings(file, "status", &s->status, &n) != 0 || n != s->n)
+    if (plot_h5_read_strings(file, "status", &s->status, &n) != 0 || one_per_point(&s->status, n, s->n) != 0)
         return -1;
     for (i = 0; i < n; i++)
         s->failed[i] = strcmp(s->status[i], td_strerror(TD_OK)) != 0;
@@ -200,8 +212,10 @@ static int read_section(hid_t file, plot_sweep *s)
     for (i = 0; i < s->n; i++)
         s->clearance[i] = NAN;
     if (plot_h5_exists(file, "section_clearance")) {
-        if (plot_h5_read(file, "section_clearance", &a) != 0 || a.n != s->n)
+        if (plot_h5_read(file, "section_clearance", &a) != 0 || a.n != s->n) {
+            plot_array_free(&a);
             return -1;
+        }
         memcpy(s->clearance, a.v, s->n * sizeof *a.v);
         plot_array_free(&a);
     }

@@ -6,6 +6,8 @@
 #     columns it can plot, which are exactly the table's numeric per-point datasets (read with h5py)
 #     and each of which plots; never a crash (the tool under ASan aborts on a bad free);
 #   plot refusing leaves no output folder it created (nor its parents), and keeps one that was there;
+#   plot of a sweep table whose /status, /regime or /vary/KEY is shorter or longer than /point:
+#     one line naming the column, exit 2, never a crash or a leak;
 #   run/modal/sweep -o PREFIX naming no file ('', 'dir/', '.', 'dir/..') write no hidden file;
 #   sweep --vary ranges whose arithmetic overflows (a log ratio or a linear span beyond a double,
 #     on the command line and in a case file's sweep group) name the ends written, not "inf".
@@ -63,6 +65,31 @@ mkdir -p "$work/s/kept"
 t "$work/s" plot --no-run -d kept/sub --quantity regime s.h5
 check "plot refused into kept/sub: kept/ (there before) stays, kept/sub goes" \
     test "$rc" = 2 -a -d "$work/s/kept" -a ! -e "$work/s/kept/sub"
+
+# ---- plot of a table whose per-point columns disagree in length -------------------------------
+# /status, /regime or a text /vary/KEY rewritten (h5py) shorter or longer than /point: refused with
+# one line naming the column, never a crash (what was read is freed by its own length; under ASan
+# a bad free or a leak aborts)
+if [ -n "$py" ]; then
+    t "$work/m" sweep -q --no-progress -j 1 --set end_time=0.002 --vary speed=60:120:8 -o m \
+        "$src/tests/data/case/amb-jeffcott.cfg"
+    check "sweep: an 8-point table (exit $rc: $(head -c 200 "$work/m/.err"))" test "$rc" = 0 -a -s "$work/m/m.h5"
+    for edit in status:1 status:11 regime:2 vary/speed:3; do
+        name=${edit%:*}
+        cp "$work/m/m.h5" "$work/m/e.h5"
+        "$py" - "$work/m/e.h5" "$name" "${edit#*:}" <<'EOF'
+import sys, h5py
+with h5py.File(sys.argv[1], "r+") as f:
+    name, n = sys.argv[2], int(sys.argv[3])
+    del f[name]
+    f.create_dataset(name, data=["success"] * n, dtype=h5py.string_dtype())
+EOF
+        t "$work/m" plot --no-run -d e-plots e.h5
+        check "plot of a table whose /$name has ${edit#*:} of 8 entries: exit 2, one line naming it (exit $rc: $(head -c 300 "$work/m/.err"))" \
+            test "$rc" = 2 -a -n "$(grep -F "/$name" "$work/m/.err")" -a ! -e "$work/m/e-plots" && one_line "$work/m"
+    done
+    rm -rf "$work/m" # the -o checks below expect nothing else in $work
+fi
 
 # ---- -o PREFIX that names no file ---------------------------------------------------------------
 mkdir -p "$work/o/d"
