@@ -1,11 +1,11 @@
 /*
  * The sweep journal (tools/sweep_journal.c, the tool's) against what a crash or a bad disk leaves
  * behind: a zero-filled tail, a last record of garbage that says "done", a record cut short, text
- * fields without their terminating zero, a damaged record with whole records after it, and a
- * journal of the previous format. Each journal is written by the journal's own writer and then
- * has its bytes changed; what it must read back is what was written, never more: the rows of the
- * whole records, every text field ending in bounds, a torn tail dropped (its point runs again) and
- * damage in the middle refused.
+ * fields without their terminating zero, a damaged record with whole records after it, a
+ * journal of the previous format, and files shorter than a header. Each journal is written by the journal's own writer
+ * and then has its bytes changed; what it must read back is what was written, never more: the rows of the whole
+ * records, every text field ending in bounds, a torn tail dropped (its point runs again) and damage in the middle
+ * refused.
  */
 #include "td_test.h"
 
@@ -69,6 +69,15 @@ static void put_bytes(long at, const void *b, long n)
     FILE *f = fopen(journal_path, "r+b");
     assert_non_null(f);
     assert_int_equal(fseek(f, at, at < 0 ? SEEK_END : SEEK_SET), 0);
+    assert_int_equal(fwrite(b, 1, (size_t)n, f), (size_t)n);
+    fclose(f);
+}
+
+/* A new file at the journal's path holding the n bytes b. */
+static void put_bytes_new(const void *b, long n)
+{
+    FILE *f = fopen(journal_path, "wb");
+    assert_non_null(f);
     assert_int_equal(fwrite(b, 1, (size_t)n, f), (size_t)n);
     fclose(f);
 }
@@ -239,13 +248,47 @@ static void test_previous_format(void **state)
     remove(journal_path);
 }
 
+/* A file shorter than the header: the first 20 bytes of the journal's own header (a crash while
+ * the header was written) are no journal, started afresh; 10 bytes of text are not a journal,
+ * refused by the reader and the writer and left as they were. */
+static void test_short_file(void **state)
+{
+    td_sweep_row rows[POINTS];
+    sweep_journal *j = NULL;
+    long n, found;
+    unsigned char *head;
+    struct stat sb;
+    (void)state;
+    write_journal();
+    head = bytes_of(0, 20, &n);
+    remove(journal_path);
+    put_bytes_new(head, n);
+    free(head);
+    assert_int_equal(read_back(rows, &found), 0);
+    assert_int_equal(found, 0);
+    assert_int_equal(sweep_journal_open(journal_path, FP, POINTS, &j), 0);
+    sweep_journal_close(&j);
+    assert_int_equal(stat(journal_path, &sb), 0);
+    assert_int_equal((long)sb.st_size, HEADER);
+    remove(journal_path);
+    put_bytes_new("my notes\n\n", 10);
+    assert_int_equal(read_back(rows, &found), TD_EXIT_USAGE);
+    assert_int_equal(sweep_journal_open(journal_path, FP, POINTS, &j), TD_EXIT_USAGE);
+    assert_null(j);
+    head = bytes_of(0, 0, &n);
+    assert_int_equal(n, 10);
+    assert_memory_equal(head, "my notes\n\n", 10);
+    free(head);
+    remove(journal_path);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_whole_journal),       cmocka_unit_test(test_zero_filled_tail),
         cmocka_unit_test(test_garbage_last_record), cmocka_unit_test(test_unterminated_text),
         cmocka_unit_test(test_torn_record_cut),     cmocka_unit_test(test_damage_in_the_middle),
-        cmocka_unit_test(test_previous_format),
+        cmocka_unit_test(test_previous_format),     cmocka_unit_test(test_short_file),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -168,7 +168,7 @@ static void read_records(FILE *f, long points, td_sweep_row *rows, journal_read 
 }
 
 /* What a journal's first bytes say: the header wanted, none (the file was cut before its header
- * was whole, or only zeros reached the disk: as good as no journal), or a refusal. */
+ * was whole, a prefix of it, or only zeros reached the disk: as good as no journal), or a refusal. */
 enum { HEADER_OTHER_SWEEP = -1, HEADER_OTHER_FORMAT = -2, HEADER_NOT_JOURNAL = -3, HEADER_NONE = 0, HEADER_OURS = 1 };
 
 /* 1 if the rest of f is zeros. */
@@ -184,8 +184,11 @@ static int header_matches(FILE *f, const journal_header *want)
 {
     static const journal_header zero;
     journal_header have;
-    if (fread(&have, sizeof have, 1, f) != 1)
-        return HEADER_NONE;
+    size_t k = fread(&have, 1, sizeof have, f);
+    /* shorter than a header: a journal cut while its header was written holds a prefix of it (or
+     * zeros); anything else is a file of the user's, never taken for none and overwritten */
+    if (k < sizeof have)
+        return !memcmp(&have, want, k) || !memcmp(&have, &zero, k) ? HEADER_NONE : HEADER_NOT_JOURNAL;
     if (memcmp(&have, want, sizeof have) == 0)
         return HEADER_OURS;
     if (memcmp(&have, &zero, sizeof have) == 0 && rest_is_zero(f))

@@ -3,7 +3,8 @@
 # its inputs, whatever the names. A case file or an @include named like (or hard-linked to) any
 # point's file under --point-files, like the journal or like a part of it, is refused before
 # anything runs: one line naming the file, exit 2, the input unchanged and still there, and the
-# advice is to choose another -o prefix, never to remove the file (it is the user's case). A sweep
+# advice is to choose another -o prefix, never to remove the file (it is the user's case). A file
+# shorter than a journal's header at the journal's name is refused and kept. A sweep
 # killed by SIGKILL takes its workers with it.
 # Args: $1 = the touchdown binary, $2 = the source directory. Runs in the build's tests directory.
 set -u
@@ -73,6 +74,16 @@ make_case "$work/tc" main.cfg s.csv
 t "$work/tc" sweep -j 1 --vary speed=60,90 -o s main.cfg
 refused "$work/tc" s.csv "an @include named like the table"
 check "an @include named like the table: the advice is another -o prefix" has "$work/tc/.err" "choose another -o prefix"
+
+# ---- (b2) a short file of the user's at the journal's name ------------------------------------
+# shorter than the journal's 32-byte header and not a prefix of it: not a journal cut before its
+# header was whole, so refused and kept, never truncated to start a journal
+make_case "$work/js" main.cfg
+printf 'my notes\n\n' >"$work/js/s.journal" # 10 bytes
+cp "$work/js/s.journal" "$work/js/s.journal.orig"
+t "$work/js" sweep -j 1 --vary speed=60,90 -o s main.cfg
+refused "$work/js" s.journal "a 10-byte text file at the journal's name"
+check "a 10-byte text file at the journal's name: no table written" test ! -e "$work/js/s.csv" -a ! -e "$work/js/s.h5"
 
 # ---- (c) the workers die with their sweep ------------------------------------------------------
 # Two points of the rig simulated for 500 s (minutes of CPU each), -j 2: once both workers run,
