@@ -137,6 +137,14 @@ TD_API int td_writer_events_path(const char *csv_path, char *buf, size_t n);
 TD_API td_status td_output_check_paths(const td_output_options *out, const char *const *inputs, int n_inputs,
                                        td_error *err);
 
+/**
+ * 1 if the paths a and b name one file by the rule of td_output_check_paths (equal device and
+ * inode when both exist; when neither exists, the same base name in the same directory), else 0
+ * (also for NULL or empty paths). For a caller's own outputs beyond one run's, e.g. a sweep's
+ * table and its points' files.
+ */
+TD_API int td_output_same_file(const char *a, const char *b);
+
 /** Lower-case name of an event kind ("contact_onset", "release", ...); "unknown" otherwise. */
 TD_API const char *td_event_kind_name(td_event_kind kind);
 

@@ -174,6 +174,18 @@ td_status td_output_check_paths(const td_output_options *out, const char *const 
     return st;
 }
 
+int td_output_same_file(const char *a, const char *b)
+{
+    path_id ia, ib;
+    td_error err;
+    if (!a || !b || !a[0] || !b[0])
+        return 0;
+    td_error_clear(&err);
+    if (identify(a, "file", 0, &ia, &err) != TD_OK || identify(b, "file", 0, &ib, &err) != TD_OK)
+        return 0;
+    return same_file(&ia, &ib);
+}
+
 td_status td_modal_check_paths(const char *csv_path, const char *hdf5_path, const char *const *inputs, int n_inputs,
                                td_error *err)
 {

@@ -4,7 +4,8 @@
 # point's file under --point-files, like the journal or like a part of it, is refused before
 # anything runs: one line naming the file, exit 2, the input unchanged and still there, and the
 # advice is to choose another -o prefix, never to remove the file (it is the user's case). A file
-# shorter than a journal's header at the journal's name is refused and kept. A sweep
+# shorter than a journal's header at the journal's name is refused and kept. A point's file that is
+# the sweep's own table or journal (by name, or by device and inode) is refused. A sweep
 # killed by SIGKILL takes its workers with it.
 # Args: $1 = the touchdown binary, $2 = the source directory. Runs in the build's tests directory.
 set -u
@@ -84,6 +85,24 @@ cp "$work/js/s.journal" "$work/js/s.journal.orig"
 t "$work/js" sweep -j 1 --vary speed=60,90 -o s main.cfg
 refused "$work/js" s.journal "a 10-byte text file at the journal's name"
 check "a 10-byte text file at the journal's name: no table written" test ! -e "$work/js/s.csv" -a ! -e "$work/js/s.h5"
+
+# ---- (b3) a point's file that is the sweep's own table or journal -------------------------------
+# -o DIR/point-000001 --point-files DIR: the table DIR/point-000001.h5 is also point 1's file, and
+# written last it would replace it; and a point's file hard-linked to the journal of an earlier
+# run (a file there: compared by device and inode)
+make_case "$work/pt" main.cfg
+mkdir -p "$work/pt/out"
+t "$work/pt" sweep -j 1 --point-files out --vary speed=60,90,120 -o out/point-000001 main.cfg
+check "-o out/point-000001 --point-files out: exit 2, one line naming point 1's HDF5 file and the table ($(head -c 300 "$work/pt/.err"))" \
+    test "$rc" = 2 -a "$(wc -l <"$work/pt/.err")" = 1 -a -n "$(grep -F 'out/point-000001.h5' "$work/pt/.err" | grep -F 'table')"
+check "-o out/point-000001 --point-files out: nothing written" test -z "$(ls -A "$work/pt/out")"
+printf 'TDSWJ02' >"$work/pt/s.journal" # a journal cut in its header, of this sweep
+ln "$work/pt/s.journal" "$work/pt/out/point-000001.h5"
+t "$work/pt" sweep -j 1 --point-files out --vary speed=60,90 -o s main.cfg
+check "point 1's HDF5 file hard-linked to the journal: exit 2, one line naming both ($(head -c 300 "$work/pt/.err"))" \
+    test "$rc" = 2 -a "$(wc -l <"$work/pt/.err")" = 1 -a -n "$(grep -F 'point-000001.h5' "$work/pt/.err" | grep -F 's.journal')"
+check "point 1's HDF5 file hard-linked to the journal: both left as they were" \
+    test "$(cat "$work/pt/s.journal")" = TDSWJ02 -a ! -e "$work/pt/s.csv" -a ! -e "$work/pt/out/point-000000.h5"
 
 # ---- (c) the workers die with their sweep ------------------------------------------------------
 # Two points of the rig simulated for 500 s (minutes of CPU each), -j 2: once both workers run,
