@@ -598,6 +598,18 @@ static void test_summary_text(void **state)
     assert_non_null(strstr(buf, "\"returned_to_free_orbit\":true,"));
     assert_non_null(strstr(buf, "\"complete\":true,"));
     assert_non_null(strstr(buf, "\"steps\":4242,"));
+    /* a retainer whose race speed has no value: null in JSON, n/a in the text, never 0 */
+    s.retainer_count = 2;
+    snprintf(s.retainers[0].whirl, sizeof s.retainers[0].whirl, "none");
+    snprintf(s.retainers[1].whirl, sizeof s.retainers[1].whirl, "none");
+    s.retainers[0].race_speed = 12.5;
+    s.retainers[1].race_speed = TD_UNDEFINED;
+    s.retainers[0].whirl_frequency = s.retainers[1].whirl_frequency = TD_UNDEFINED;
+    td_run_summary_json(buf, sizeof buf, &s);
+    assert_non_null(strstr(buf, "\"retainer_race_speed\":[12.5,null]"));
+    td_run_summary_format(buf, sizeof buf, &s);
+    assert_non_null(strstr(buf, "; race 12.5 rad/s\n"));
+    assert_non_null(strstr(buf, "; race n/a\n"));
     s.complete = 0;
     s.status = TD_ERR_SOLVER;
     snprintf(s.message, sizeof s.message, "bad \"step\"\n at t = 1");

@@ -84,7 +84,7 @@ typedef enum td_regime {
 /** One retainer at the end of a run: its totals and what its whirl was (td_run_whirl_classify). */
 typedef struct td_run_retainer {
     td_retainer_totals totals;
-    double race_speed;      /**< rad/s at the end */
+    double race_speed;      /**< rad/s at the end (TD_UNDEFINED when its state cannot be read) */
     double mean_normal;     /**< N: impulse / contact time while in contact (TD_UNDEFINED without contact) */
     double rms_normal;      /**< N: sqrt(integral of N^2 / contact time) (TD_UNDEFINED without contact) */
     double whirl_frequency; /**< Hz: mean whirl rate while in contact / 2 pi, signed like the spin (< 0 backward);

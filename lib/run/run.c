@@ -299,7 +299,8 @@ static void summary_totals(run_state *r)
             s->peak_converges = 0;
         if (k < TD_RUN_SUMMARY_RETAINERS) {
             s->retainers[k].totals = t;
-            s->retainers[k].race_speed = td_sim_retainer_state(r->sim, k, &st) == TD_OK ? st.race_speed : 0.0;
+            /* a state that cannot be read is no speed (touchdown/dofs.h "Undefined values"), never 0 */
+            s->retainers[k].race_speed = td_sim_retainer_state(r->sim, k, &st) == TD_OK ? st.race_speed : TD_UNDEFINED;
             td_run_retainer_classify(
                 &s->retainers[k], s->final_speed,
                 !td_is_undefined(s->first_contact_time) ? s->last_contact_time - s->first_contact_time : 0.0);
