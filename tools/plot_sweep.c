@@ -510,7 +510,7 @@ static void report_few_crossings(const plot_file *f)
         if (s->failed[p] || !(s->section_count[p] > 0.0)) /* no crossing: nothing drawn */
             continue;
         ran++;
-        if (s->section_count[p] < TD_RUN_SECTION_MIN_CROSSINGS) {
+        if (td_run_section_too_few(s->section_count[p])) {
             few++;
             fewest = fmin(fewest, s->section_count[p]);
         }

@@ -42,8 +42,9 @@
  * not happen (no contact: no first-contact time; no whirl: no whirl frequency). Test it with
  * td_is_undefined. The outputs carry it as null in JSON and NaN in HDF5 and CSV (written `nan`),
  * always with a status beside it that says why (docs/output-format.md, "Undefined values").
- * Counts and indices are whole numbers: a count is never undefined, an index that names nothing
- * is -1 (JSON null).
+ * Counts and indices are whole numbers: a count of a run is never undefined (a sweep table's row
+ * of a point with no run has NaN counts, as its other answers), an index that names nothing is -1
+ * (JSON null).
  */
 #ifndef TOUCHDOWN_DOFS_H
 #define TOUCHDOWN_DOFS_H

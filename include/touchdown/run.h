@@ -230,6 +230,10 @@ TD_API void td_run_summary_ending(td_run_summary *s, const td_retainer_totals *b
 TD_API td_regime td_run_summary_regime(const td_run_summary *s);
 /** "free", "rub", "bounce", "backward whirl", "failed" (anything else). */
 TD_API const char *td_regime_name(td_regime r);
+/** 1 if a section of `crossings` (> 0) samples is too short to tell an orbit (fewer than
+ *  TD_RUN_SECTION_MIN_CROSSINGS), 0 otherwise (none at all: nothing to tell). The one rule behind
+ *  the run's warning and the bifurcation diagram's. */
+TD_API int td_run_section_too_few(double crossings);
 
 /** Human-readable multi-line summary (times with 10 decimals). Returns the length needed, like
  *  snprintf; buf is always NUL-terminated when n > 0. */

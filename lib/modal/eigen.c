@@ -419,6 +419,13 @@ td_status td_modal_solve(const td_system *sys, double omega, td_modal **out, td_
     return st;
 }
 
+/* The one test of growth: a real part beyond the rounding of a marginal root
+ * (TD_MODAL_MARGINAL_REAL_PART of the spectral radius, modal.h says why). */
+static int grows(double max_real, double radius)
+{
+    return max_real > TD_MODAL_MARGINAL_REAL_PART * radius;
+}
+
 /* Largest real part and spectral radius of the eigenvalues in eval. */
 static void rightmost(const gsl_vector_complex *eval, double *max_real, double *radius)
 {
@@ -458,7 +465,7 @@ td_status td_modal_stability(const td_system *sys, double omega, double *max_rea
     if (st == TD_OK && max_real_part)
         *max_real_part = max_real;
     if (st == TD_OK && unstable)
-        *unstable = max_real > TD_MODAL_MARGINAL_REAL_PART * radius;
+        *unstable = grows(max_real, radius);
     return st;
 }
 
@@ -515,7 +522,7 @@ double td_modal_spectral_radius(const td_modal *m)
 }
 int td_modal_is_unstable(const td_modal *m)
 {
-    return m && m->max_real > TD_MODAL_MARGINAL_REAL_PART * td_modal_spectral_radius(m);
+    return m && grows(m->max_real, td_modal_spectral_radius(m));
 }
 
 td_status td_modal_get_mode(const td_modal *m, int i, td_mode *out)

@@ -171,6 +171,11 @@ td_regime td_run_summary_regime(const td_run_summary *s)
     return !s || s->status != TD_OK ? TD_REGIME_FAILED : (td_regime)s->regime;
 }
 
+int td_run_section_too_few(double crossings)
+{
+    return crossings > 0.0 && crossings < TD_RUN_SECTION_MIN_CROSSINGS;
+}
+
 const char *td_regime_name(td_regime r)
 {
     switch (r) {

@@ -72,7 +72,7 @@ static void check_clearances(td_run_summary *s, const td_model *m)
 /* A section from a few crossings cannot tell a period-n orbit from a spread. */
 static void check_section(td_run_summary *s)
 {
-    if (s->status != TD_OK || s->section_count <= 0 || s->section_count >= TD_RUN_SECTION_MIN_CROSSINGS)
+    if (s->status != TD_OK || !td_run_section_too_few((double)s->section_count))
         return;
     warn(s,
          "the once-per-revolution section has only %ld crossings after the transient (from t = %.6g s; at least %d "
