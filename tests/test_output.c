@@ -6,6 +6,7 @@
  */
 #include "td_test.h"
 
+#include "io/writer_internal.h"
 #include "touchdown/case.h"
 #include "touchdown/modal.h"
 #include "touchdown/modal_output.h"
@@ -14,6 +15,7 @@
 
 #include <dirent.h>
 #include <errno.h>
+#include <fcntl.h>
 #include <float.h>
 #include <hdf5.h>
 #include <hdf5_hl.h>
@@ -23,6 +25,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/file.h>
 #include <sys/resource.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
@@ -885,6 +888,88 @@ static void test_stale_file_removed(void **state)
     }
 }
 
+/* One writer of `path` from start to end: its temporary file created (the leftover scan first),
+ * written and renamed to `path` if `commit`, else removed; 0 on success, else 1 with the message
+ * in *err. */
+static int whole_write(const char *path, int commit, td_error *err)
+{
+    char *tmp = NULL;
+    int fd = -1, lock = -1, bad;
+    if (td_io_create_temp(path, &tmp, &fd, &lock, err) != TD_OK)
+        return 1;
+    bad = write(fd, "x\n", 2) != 2;
+    close(fd);
+    if (commit)
+        bad = bad || td_io_commit_temp(tmp, path, err) != TD_OK;
+    else
+        bad = bad || remove(tmp) != 0;
+    free(tmp);
+    close(lock);
+    return bad;
+}
+
+/* Writes of one path by each of two processes at once (the race they once lost took a few
+ * thousand to show). */
+#define CONCURRENT_WRITES 20000
+
+/* Two writers of one path at once both succeed: a child writes the path in a tight loop (each of
+ * its writes scans for leftovers and locks the unlocked temporary files it finds) while this
+ * process does the same. A file created and not yet locked is one such; its writer used to fail
+ * ("cannot lock its temporary file") when the scan held it for that moment, or lose it to the scan
+ * (then fail at the rename). */
+static void test_concurrent_writers(void **state)
+{
+    char path[512], msg[TD_ERROR_MESSAGE_SIZE] = "";
+    td_error err;
+    int i, status = -1, failed = 0;
+    pid_t pid;
+    (void)state;
+    tmp_name(path, sizeof path, "both.txt");
+    pid = fork();
+    assert_true(pid >= 0);
+    if (pid == 0) {
+        for (i = 0; i < CONCURRENT_WRITES; i++)
+            failed += whole_write(path, i == 0, &err);
+        _exit(failed ? 1 : 0);
+    }
+    for (i = 0; i < CONCURRENT_WRITES; i++)
+        if (whole_write(path, i == 0, &err) != 0 && failed++ == 0)
+            snprintf(msg, sizeof msg, "%s", err.message);
+    waitpid(pid, &status, 0);
+    if (failed)
+        fail_msg("%d of %d writes failed, the first: %s", failed, CONCURRENT_WRITES, msg);
+    assert_true(WIFEXITED(status) && WEXITSTATUS(status) == 0);
+    assert_true(exists(path));
+    assert_int_equal(partials_of(path), 0);
+    remove(path);
+}
+
+/* The leftover scan removes a temporary file nobody holds the lock of (empty and new: a writer
+ * that created it and had not locked it yet creates another, test_concurrent_writers) and keeps
+ * a locked one. */
+static void test_leftovers(void **state)
+{
+    char path[512], orphan[600], live[600];
+    td_error err;
+    int fd;
+    (void)state;
+    tmp_name(path, sizeof path, "left.txt");
+    snprintf(orphan, sizeof orphan, "%s.aaaaaa.partial", path);
+    snprintf(live, sizeof live, "%s.bbbbbb.partial", path);
+    assert_true((fd = open(orphan, O_WRONLY | O_CREAT | O_EXCL, 0666)) >= 0);
+    close(fd);
+    assert_true((fd = open(live, O_WRONLY | O_CREAT | O_EXCL, 0666)) >= 0);
+    assert_int_equal(flock(fd, LOCK_EX), 0);
+    assert_int_equal(whole_write(path, 1, &err), 0);
+    assert_false(exists(orphan));
+    assert_true(exists(live));
+    close(fd); /* its writer is gone now */
+    assert_int_equal(whole_write(path, 1, &err), 0);
+    assert_false(exists(live));
+    assert_int_equal(partials_of(path), 0);
+    remove(path);
+}
+
 /* Run job(arg) in a child process with a file size limit of `limit` bytes (SIGXFSZ ignored:
  * writes fail with EFBIG, as on a full disk); the child exits through exit() with job's return
  * value, so the HDF5 library's exit handler runs too. Returns the child's wait status. */
@@ -1372,6 +1457,8 @@ int main(void)
         cmocka_unit_test(test_csv_gnuplot),
         cmocka_unit_test(test_open_failure_leaves_nothing),
         cmocka_unit_test(test_stale_file_removed),
+        cmocka_unit_test(test_concurrent_writers),
+        cmocka_unit_test(test_leftovers),
         cmocka_unit_test(test_failed_writes_leave_nothing),
         cmocka_unit_test(test_modal_writers_rename),
         cmocka_unit_test(test_modal_path_checks),

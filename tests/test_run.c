@@ -7,6 +7,9 @@
  */
 #include "td_test.h"
 
+#include "run/summary.h"
+#include "run/warnings.h"
+
 #include "touchdown/dofs.h"
 #include "touchdown/output.h"
 #include "touchdown/run.h"
@@ -972,10 +975,44 @@ static void test_summary_ending(void **state)
     assert_string_equal(td_regime_name(TD_REGIME_FAILED), "failed");
 }
 
+/* More warnings than a summary keeps: the first TD_RUN_MAX_WARNINGS - 1 as found, then a notice
+ * counting the rest (ten schedule entries after the end: seven kept, three left out). With exactly
+ * TD_RUN_MAX_WARNINGS all are kept. */
+static void test_warnings_overflow(void **state)
+{
+    td_model *m = NULL;
+    td_run_summary s;
+    td_change c = {0};
+    char want[TD_RUN_WARNING_SIZE];
+    int i, n;
+    (void)state;
+    for (n = TD_RUN_MAX_WARNINGS; n <= TD_RUN_MAX_WARNINGS + 2; n += 2) {
+        assert_int_equal(td_model_create(&m, NULL), TD_OK);
+        for (i = 0; i < n; i++) {
+            c.time = 2.0 + i;
+            assert_int_equal(td_model_add_change(m, &c, NULL), TD_OK);
+        }
+        td_run_summary_init(&s, 0.0, 1.0, 0.0);
+        td_run_check_warnings(&s, m);
+        assert_int_equal(s.warning_count, TD_RUN_MAX_WARNINGS);
+        assert_int_equal(s.warnings_left_out, n > TD_RUN_MAX_WARNINGS ? n - (TD_RUN_MAX_WARNINGS - 1) : 0);
+        for (i = 0; i < TD_RUN_MAX_WARNINGS - (s.warnings_left_out > 0); i++) {
+            snprintf(want, sizeof want, "schedule[%d] at t = %d s", i, 2 + i);
+            assert_non_null(strstr(s.warnings[i], want));
+        }
+        if (s.warnings_left_out > 0) {
+            snprintf(want, sizeof want, "%d more warnings left out", n - (TD_RUN_MAX_WARNINGS - 1));
+            assert_non_null(strstr(s.warnings[TD_RUN_MAX_WARNINGS - 1], want));
+        }
+        td_model_free(&m);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_summary_text),
+        cmocka_unit_test(test_warnings_overflow),
         cmocka_unit_test(test_run_bad_arguments),
         cmocka_unit_test(test_run_matches_hand_loop),
         cmocka_unit_test(test_run_cancel),

@@ -180,7 +180,9 @@ typedef struct td_run_summary {
        schedule entry at or after the end time (it never happens); a retainer clearance larger
        than the shaft radius there that no AMB air gap bounds; a section from fewer than
        TD_RUN_SECTION_MIN_CROSSINGS crossings. td_run checks them once, at the end of the run. */
-    int warning_count;                                       /**< warnings kept, <= TD_RUN_MAX_WARNINGS */
+    int warning_count;     /**< warnings kept, <= TD_RUN_MAX_WARNINGS */
+    int warnings_left_out; /**< warnings found past the first TD_RUN_MAX_WARNINGS - 1 and not kept (0 if
+                                none were): the last kept is then a notice saying how many */
     char warnings[TD_RUN_MAX_WARNINGS][TD_RUN_WARNING_SIZE]; /**< each NUL-terminated */
 } td_run_summary;
 

@@ -92,22 +92,24 @@ static int is_temp_of(const char *name, const char *base, size_t base_len)
     return strcmp(name + base_len + 1 + TEMP_TAG_LEN, partial_suffix) == 0;
 }
 
-/* A temporary file younger than this (s), and still empty, may be one whose writer has created it
- * and not yet locked it (the two calls of td_io_create_temp): it is left alone. */
-#define TEMP_UNLOCKED_AGE 2
+/* 1 if the open file `fd` is still the one at `name` (not removed or replaced meanwhile). */
+static int is_file_at(int fd, const char *name)
+{
+    struct stat a, b;
+    return fstat(fd, &a) == 0 && lstat(name, &b) == 0 && a.st_dev == b.st_dev && a.st_ino == b.st_ino;
+}
 
 /* Remove the temporary file `name` if its writer is gone: nobody holds its lock (a live writer
  * holds it until the file is renamed or removed, td_io_create_temp), and it is still the file
- * opened (not replaced meanwhile). */
+ * opened (not replaced meanwhile). A file created but not yet locked may go too: its writer finds
+ * it gone once it holds the lock, and creates another (td_io_create_temp). */
 static void remove_if_orphan(const char *name)
 {
-    struct stat a, b;
-    int fd = open(name, O_RDONLY | O_NONBLOCK | O_NOFOLLOW);
+    struct stat a;
+    int fd = open(name, O_RDONLY | O_NONBLOCK | O_NOFOLLOW | O_CLOEXEC);
     if (fd < 0)
         return;
-    if (fstat(fd, &a) == 0 && S_ISREG(a.st_mode) && flock(fd, LOCK_EX | LOCK_NB) == 0 &&
-        !(a.st_size == 0 && time(NULL) - a.st_mtime < TEMP_UNLOCKED_AGE) && lstat(name, &b) == 0 &&
-        a.st_dev == b.st_dev && a.st_ino == b.st_ino)
+    if (fstat(fd, &a) == 0 && S_ISREG(a.st_mode) && flock(fd, LOCK_EX | LOCK_NB) == 0 && is_file_at(fd, name))
         unlink(name);
     close(fd); /* and its lock */
 }
@@ -140,13 +142,30 @@ static void remove_leftovers(const char *path)
     free(dir);
 }
 
+/* Lock the temporary file `fd` just created at `tmp`: 0 if it is locked and still at `tmp`, 1 if a
+ * concurrent writer's remove_leftovers took it for a leftover between its creation and the lock
+ * (it is closed: try another name), -1 (errno set, fd closed) on an error. The lock waits: the
+ * leftover scan holds a lock only while it checks and unlinks. */
+static int lock_temp(int fd, const char *tmp)
+{
+    int r, e;
+    while ((r = flock(fd, LOCK_EX)) != 0 && errno == EINTR)
+        continue;
+    if (r == 0 && is_file_at(fd, tmp))
+        return 0;
+    e = r == 0 ? 0 : errno;
+    close(fd);
+    errno = e;
+    return r == 0 ? 1 : -1;
+}
+
 td_status td_io_create_temp(const char *path, char **tmp_out, int *fd_out, int *lock_out, td_error *err)
 {
     size_t len = strlen(path);
     char *tmp = malloc(len + 1 + TEMP_TAG_LEN + sizeof partial_suffix);
     char tag[TEMP_TAG_LEN + 1];
     unsigned attempt;
-    int fd = -1, e = EEXIST;
+    int fd = -1, e = EEXIST, lock;
     *tmp_out = NULL;
     *fd_out = *lock_out = -1;
     if (!tmp)
@@ -158,16 +177,21 @@ td_status td_io_create_temp(const char *path, char **tmp_out, int *fd_out, int *
         tmp[len] = '.';
         memcpy(tmp + len + 1, tag, TEMP_TAG_LEN);
         memcpy(tmp + len + 1 + TEMP_TAG_LEN, partial_suffix, sizeof partial_suffix);
-        fd = open(tmp, O_WRONLY | O_CREAT | O_EXCL, 0666);
+        fd = open(tmp, O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
         e = fd < 0 ? errno : 0;
+        if (fd >= 0 && (lock = lock_temp(fd, tmp)) != 0) { /* 1: removed meanwhile, another name */
+            e = lock > 0 ? EEXIST : errno;
+            fd = -1;
+        }
     }
     if (fd < 0) {
         free(tmp);
         return td_error_set(err, TD_ERR_IO, "%s: cannot create its temporary file: %s", path, strerror(e));
     }
     /* The lock says a writer is alive (remove_leftovers): held on a duplicate of the descriptor, so
-     * it outlives fd (closed by the writer before the rename) until the caller closes *lock_out. */
-    if (flock(fd, LOCK_EX | LOCK_NB) != 0 || (*lock_out = dup(fd)) < 0) {
+     * it outlives fd (closed by the writer before the rename) until the caller closes *lock_out. Not
+     * inherited by a child process: one that outlived the writer would keep its leftovers alive. */
+    if ((*lock_out = fcntl(fd, F_DUPFD_CLOEXEC, 0)) < 0) {
         e = errno;
         close(fd);
         remove(tmp);

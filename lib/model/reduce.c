@@ -57,11 +57,12 @@ typedef struct partition {
  * DOFs) and so are the planes (M, K of the shaft do not couple x-z with y-z): K_ii and M_ii are
  * block-diagonal over the groups, and each is solved on its own. */
 typedef struct group {
-    int plane;     /* 0: x-z (x, phi), 1: y-z (y, theta) */
-    int n;         /* its DOFs */
-    int *rows;     /* their positions in the interior list */
-    gsl_matrix *V; /* n x n fixed-interface modes, mass-normalised */
-    gsl_vector *S; /* n: the gravity load's static correction, mass-normalised; NULL if none */
+    int plane;      /* 0: x-z (x, phi), 1: y-z (y, theta) */
+    int n;          /* its DOFs */
+    int *rows;      /* their positions in the interior list */
+    gsl_matrix *V;  /* n x n fixed-interface modes, mass-normalised */
+    gsl_vector *S;  /* n: the gravity load's static correction, mass-normalised; NULL if none */
+    gsl_vector *w2; /* n: the squared circular frequencies of V's columns */
 } group;
 
 /* A kept fixed-interface mode: its frequency, plane, group and column in the group's V; col = -1:
@@ -249,25 +250,49 @@ static td_status group_modes(reduction *r, int gi, gsl_matrix *Kgg, gsl_matrix *
     }
     gsl_eigen_gensymmv_free(w);
     gsl_vector_free(work);
-    gsl_vector_free(eval);
+    gr->w2 = eval;
     gsl_matrix_free(Mc);
     return st;
 }
 
+/* The energy f^T u of the deflection the kept modes leave out, from the modes left out:
+ * sum (phi^T f)^2 / w^2 over them (phi mass-normalised). Unlike f^T u it holds no rounding of the
+ * solve (eps cond(K_gg) |u|): zero when the group keeps all its modes or f loads none of the others. */
+static double left_out_energy(const reduction *r, int gi, const gsl_vector *f, char *kept)
+{
+    const group *gr = &r->g[gi];
+    double sum = 0.0;
+    int k;
+    memset(kept, 0, (size_t)gr->n);
+    for (k = 0; k < r->nk; k++)
+        if (r->kept[k].group == gi && r->kept[k].col >= 0)
+            kept[r->kept[k].col] = 1;
+    for (k = 0; k < gr->n; k++) {
+        gsl_vector_const_view phi = gsl_matrix_const_column(gr->V, (size_t)k);
+        double pf;
+        if (kept[k] || !(gsl_vector_get(gr->w2, (size_t)k) > 0.0))
+            continue;
+        gsl_blas_ddot(&phi.vector, f, &pf);
+        sum += pf * pf / gsl_vector_get(gr->w2, (size_t)k);
+    }
+    return sum;
+}
+
 /* The gravity load's static correction of group gi (docs/theory.md, "Reduced rotor"): with Kchol
  * the Cholesky factor of K_gg and Mg its M_gg, u = K_gg^-1 f_g less the kept modes' share
- * phi (phi^T f_g) / w^2, appended to r->kept unless the kept modes already hold the deflection (to
- * rounding: the basis would be singular). */
+ * phi (phi^T f_g) / w^2, appended to r->kept unless the modes left out hold none of the deflection
+ * (u is then rounding, mostly along kept modes: the basis would be singular). */
 static td_status group_static_correction(reduction *r, int gi, const gsl_matrix *Kchol, const gsl_matrix *Mg,
                                          td_error *err)
 {
     group *gr = &r->g[gi];
     gsl_vector *f = gsl_vector_calloc((size_t)gr->n), *u = gsl_vector_alloc((size_t)gr->n);
     gsl_vector *w = gsl_vector_alloc((size_t)gr->n);
-    double full = 0.0, left = 0.0, mass = 0.0;
+    char *kept = malloc((size_t)gr->n);
+    double full = 0.0, left = 0.0, mass = 0.0, rest = 0.0;
     int k;
-    if (!f || !u || !w) {
-        gsl_vector_free(f), gsl_vector_free(u), gsl_vector_free(w);
+    if (!f || !u || !w || !kept) {
+        gsl_vector_free(f), gsl_vector_free(u), gsl_vector_free(w), free(kept);
         return td_error_set(err, TD_ERR_NOMEM, "reduction: out of memory for a static correction");
     }
     for (k = 0; k < gr->n; k++)
@@ -287,15 +312,16 @@ static td_status group_static_correction(reduction *r, int gi, const gsl_matrix 
         gsl_blas_ddot(f, u, &left); /* u^T K u = f^T u: u is M-orthogonal to the kept modes */
         gsl_blas_dgemv(CblasNoTrans, 1.0, Mg, u, 0.0, w);
         gsl_blas_ddot(u, w, &mass);
+        rest = left_out_energy(r, gi, f, kept);
     }
-    if (left > 1e-12 * full && mass > 0.0) {
+    if (rest > 1e-12 * full && left > 0.0 && mass > 0.0) {
         gsl_vector_scale(u, 1.0 / sqrt(mass));
         gr->S = u;
         u = NULL;
         r->kept[r->nk++] = (kept_mode){sqrt(left / mass) / (2.0 * TD_PI), gr->plane, gi, -1};
         r->ns++;
     }
-    gsl_vector_free(f), gsl_vector_free(u), gsl_vector_free(w);
+    gsl_vector_free(f), gsl_vector_free(u), gsl_vector_free(w), free(kept);
     return TD_OK;
 }
 
@@ -357,7 +383,8 @@ static td_status substructures(reduction *r, int nphys, double cutoff, td_error 
                           "reduction: the shaft couples its x-z and y-z planes or "
                           "non-neighbouring nodes: no Craig-Bampton reduction for it");
     r->pos = malloc((size_t)nphys * sizeof *r->pos);
-    r->kept = malloc((size_t)(r->p.ni > 0 ? r->p.ni : 1) * sizeof *r->kept);
+    /* each group's modes and at most one static correction */
+    r->kept = malloc((size_t)(r->p.ni + r->ng + 1) * sizeof *r->kept);
     r->Psi = gsl_matrix_calloc((size_t)(r->p.ni > 0 ? r->p.ni : 1), (size_t)r->p.nb);
     if (st == TD_OK && (!r->pos || !r->kept || !r->Psi))
         st = td_error_set(err, TD_ERR_NOMEM, "reduction: out of memory for the interior substructures");
@@ -512,6 +539,7 @@ static void reduction_free(reduction *r)
         free(r->g[k].rows);
         gsl_matrix_free(r->g[k].V);
         gsl_vector_free(r->g[k].S);
+        gsl_vector_free(r->g[k].w2);
     }
     free(r->g);
     free(r->kept);

@@ -9,13 +9,16 @@
 
 #include "touchdown/dofs.h"
 
-/* One more warning; past TD_RUN_MAX_WARNINGS the last slot counts the ones left out. */
+/* One more warning. Past TD_RUN_MAX_WARNINGS the last slot becomes a notice of how many were left
+ * out: the warning it held and each one after it. */
 static void warn(td_run_summary *s, const char *fmt, ...)
 {
     va_list ap;
     if (s->warning_count >= TD_RUN_MAX_WARNINGS) {
-        snprintf(s->warnings[TD_RUN_MAX_WARNINGS - 1], TD_RUN_WARNING_SIZE, "more warnings than the %d a summary keeps",
-                 TD_RUN_MAX_WARNINGS);
+        s->warnings_left_out += s->warnings_left_out == 0 ? 2 : 1;
+        snprintf(s->warnings[TD_RUN_MAX_WARNINGS - 1], TD_RUN_WARNING_SIZE,
+                 "%d more warnings left out: a summary keeps %d and this notice", s->warnings_left_out,
+                 TD_RUN_MAX_WARNINGS - 1);
         return;
     }
     va_start(ap, fmt);
