@@ -174,25 +174,35 @@ static int read_regimes(hid_t file, plot_sweep *s)
     return 0;
 }
 
+/* A number column the table may lack (tables of older versions): *out gets one value per point,
+ * NaN (undefined) where the table has none; a column of another length is refused. */
+static int read_optional_column(hid_t file, const char *name, size_t n, double **out)
+{
+    plot_array a;
+    size_t i;
+    if (!(*out = malloc((n + 1) * sizeof **out)))
+        return -1;
+    for (i = 0; i < n; i++)
+        (*out)[i] = NAN;
+    if (!plot_h5_exists(file, name))
+        return 0;
+    if (plot_h5_read(file, name, &a) != 0 || a.n != n) {
+        plot_array_free(&a);
+        return -1;
+    }
+    memcpy(*out, a.v, n * sizeof *a.v);
+    plot_array_free(&a);
+    return 0;
+}
+
 /* /status: a point is failed (no answers, touchdown/dofs.h "Undefined values") unless it ran to
  * its end, "success"; a table without the column has every point run. And /section_count. */
 static int read_status(hid_t file, plot_sweep *s)
 {
     size_t i, n = 0;
-    plot_array a;
     if (!(s->failed = calloc(s->n + 1, sizeof *s->failed)) ||
-        !(s->section_count = malloc((s->n + 1) * sizeof *s->section_count)))
+        read_optional_column(file, "section_count", s->n, &s->section_count) != 0)
         return -1;
-    for (i = 0; i < s->n; i++)
-        s->section_count[i] = NAN;
-    if (plot_h5_exists(file, "section_count")) {
-        if (plot_h5_read(file, "section_count", &a) != 0 || a.n != s->n) {
-            plot_array_free(&a);
-            return -1;
-        }
-        memcpy(s->section_count, a.v, s->n * sizeof *a.v);
-        plot_array_free(&a);
-    }
     if (!plot_h5_exists(file, "status"))
         return 0;
     if (plot_h5_read_strings(file, "status", &s->status, &n) != 0 || one_per_point(&s->status, n, s->n) != 0)
@@ -206,19 +216,8 @@ static int read_status(hid_t file, plot_sweep *s)
 static int read_section(hid_t file, plot_sweep *s)
 {
     plot_array a;
-    size_t i;
-    if (!(s->clearance = malloc((s->n + 1) * sizeof *s->clearance)))
+    if (read_optional_column(file, "section_clearance", s->n, &s->clearance) != 0)
         return -1;
-    for (i = 0; i < s->n; i++)
-        s->clearance[i] = NAN;
-    if (plot_h5_exists(file, "section_clearance")) {
-        if (plot_h5_read(file, "section_clearance", &a) != 0 || a.n != s->n) {
-            plot_array_free(&a);
-            return -1;
-        }
-        memcpy(s->clearance, a.v, s->n * sizeof *a.v);
-        plot_array_free(&a);
-    }
     if (!plot_h5_exists(file, "section_radius"))
         return 0;
     if (plot_h5_read(file, "section_radius", &a) != 0 || a.rank != 2 || a.dims[0] != s->n) {
