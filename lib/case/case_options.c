@@ -4,6 +4,7 @@
  * reader never restates them.
  */
 #include "case/case_internal.h"
+#include "model/gap.h"
 #include "touchdown/dofs.h"
 #include "touchdown/modal.h"
 #include "util/error_internal.h"

@@ -3,6 +3,7 @@
  * The DAE itself is in sim_residual.c, mode switching in sim_modes.c, the per-retainer queries and
  * mode bookkeeping in retainer.c.
  */
+#include "model/gap.h"
 #include "sim/sim_internal.h"
 #include "touchdown/dofs.h"
 #include "touchdown/modal.h"

@@ -5,7 +5,6 @@
 #include <stddef.h>
 
 #include "touchdown/limits.h"
-#include "touchdown/model.h"
 
 /* Which bound a run breaks. */
 typedef enum td_run_limit {
@@ -15,15 +14,6 @@ typedef enum td_run_limit {
     TD_LIMIT_REVOLUTIONS = 3, /* |speed| x duration / 2 pi > TD_MAX_REVOLUTIONS */
     TD_LIMIT_ATOL = 4         /* solver.atol > TD_MAX_ATOL_FRACTION x the smallest gap */
 } td_run_limit;
-
-/* The machine's smallest gap: the least retainer clearance and nonzero AMB air gap of model m, m;
- * infinity when it has none. *retainer and *amb (either may be NULL) get the index of the part
- * that has it (-1 for the other kind, both -1 when none). */
-double td_model_smallest_gap(const td_model *m, int *retainer, int *amb);
-
-/* solver.atol against the smallest gap of m (TD_MAX_ATOL_FRACTION): TD_LIMIT_NONE, or
- * TD_LIMIT_ATOL with `why` (n bytes) saying which gap bounds it and by how much. */
-td_run_limit td_atol_limit_check(const td_model *m, double atol, char *why, size_t n);
 
 /* The first bound a run of `duration` s at `speed` rad/s, sampled at `sample_rate` Hz with the
  * largest solver step `max_step` s (0: the default) breaks; TD_LIMIT_NONE if none. When one is
