@@ -14,7 +14,7 @@
  * bad one is found whichever command loads the case.
  */
 #include "case/case_internal.h"
-#include "run/sweep_internal.h"
+#include "sweep/sweep_internal.h"
 #include "util/text.h"
 
 #include <stdlib.h>

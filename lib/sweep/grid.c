@@ -5,7 +5,7 @@
  * or several zipped keys with as many values each that move together.
  */
 #include "case/case_internal.h" /* td_cr_printable: user text in messages */
-#include "run/sweep_internal.h"
+#include "sweep/sweep_internal.h"
 #include "touchdown/case.h"
 #include "util/error_internal.h"
 
