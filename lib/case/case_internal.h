@@ -28,7 +28,7 @@ struct td_case {
     int sweep_count;
 };
 
-/* One swept key of the case's `sweep` group as read (case_sweep.c): the spec --vary (an entry of
+/* One swept key of the case's `sweep` group as read (case_vary.c): the spec --vary (an entry of
  * `with`: --with) would take, with the place it was written. The reader checks the group's shape
  * only; the specs are judged by the sweep's rules (lib/sweep), which name the setting at fault as
  * the reader names its own (td_cr_sweep_context). */
@@ -194,7 +194,7 @@ extern const char *const td_cr_damping_names[TD_CR_DAMPING_NAMES];
 td_status td_cr_read_shaft(td_case_reader *r, const config_setting_t *root);
 td_status td_cr_read_parts(td_case_reader *r, const config_setting_t *root);
 td_status td_cr_read_options(td_case_reader *r, const config_setting_t *root);
-/* The optional `sweep` group (case_sweep.c): its shape checked, its specs kept as read. */
+/* The optional `sweep` group (case_vary.c): its shape checked, its specs kept as read. */
 td_status td_cr_read_sweep(td_case_reader *r, const config_setting_t *root);
 /* Free the case's sweep specs. */
 void td_cr_free_sweep(td_case *c);
