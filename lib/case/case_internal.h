@@ -200,8 +200,10 @@ td_status td_cr_read_sweep(td_case_reader *r, const config_setting_t *root);
 void td_cr_free_sweep(td_case *c);
 /* Spec i (0 <= i < td_case_sweep_specs(c)) of the case's `sweep` group as read, borrowed. */
 const td_cr_sweep_spec *td_cr_sweep_entry(const td_case *c, int i);
-/* Bytes of an error's context "WHERE: KEY.SETTING" before it is cut, as in td_cr_fail. */
+/* Bytes of an error's context "WHERE: KEY.SETTING" and of its "KEY.SETTING" before they are cut,
+ * as in td_cr_fail. */
 #define TD_CR_SWEEP_CONTEXT_SIZE 2048
+#define TD_CR_SWEEP_KEY_SIZE 512
 /* The context of an error about entry s, as td_cr_fail would give it: "WHERE: KEY", or
  * "WHERE: KEY.SETTING" when `setting` (a member of the entry, e.g. "points") is not NULL; into
  * buf (n bytes, TD_CR_SWEEP_CONTEXT_SIZE for the reader's own cut). */

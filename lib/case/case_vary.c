@@ -133,14 +133,14 @@ static char *dup_string(const char *s)
  * (as td_cr_fail would name them) and td_case_sweep_spec's "FILE:LINE: KEY". */
 static td_status keep_spec(td_case_reader *r, const config_setting_t *e, int with, td_text *t)
 {
-    char at[TD_CR_SWEEP_CONTEXT_SIZE], key[512], where[1024];
+    char at[TD_CR_SWEEP_CONTEXT_SIZE], key[TD_CR_SWEEP_KEY_SIZE], where[1024];
     td_cr_sweep_spec *list;
     size_t len;
     if (t->failed)
         return td_cr_fail_file(r->err, TD_ERR_NOMEM, r->path_shown, 0, "out of memory");
     td_cr_where(r, e, at, sizeof at);
     td_cr_key(e, key, sizeof key);
-    td_cr_where(r, e, where, sizeof where);
+    td_cr_where(r, e, where, sizeof where); /* td_case_sweep_spec's place, as it always was */
     len = strlen(where);
     snprintf(where + len, sizeof where - len, ": %.255s", key);
     if (!(list = realloc(r->c->sweep, (size_t)(r->c->sweep_count + 1) * sizeof *list)))
@@ -220,7 +220,7 @@ const td_cr_sweep_spec *td_cr_sweep_entry(const td_case *c, int i)
 
 void td_cr_sweep_context(const td_cr_sweep_spec *s, const char *setting, char *buf, size_t n)
 {
-    char key[512]; /* the key with its setting, cut as td_cr_fail cuts it */
+    char key[TD_CR_SWEEP_KEY_SIZE]; /* the key with its setting, cut as td_cr_fail cuts it */
     snprintf(key, sizeof key, "%s%s%s", s->key, setting ? "." : "", setting ? setting : "");
     snprintf(buf, n, "%s: %s", s->at, key);
 }
