@@ -6,7 +6,8 @@
  * MAIN is written to case.cfg and INCLUDED to part.cfg in a private temporary directory, so a
  * main file that says @include "part.cfg" pulls in the second fuzzed file (the seed corpus made by
  * scripts/fuzz.sh does so for every case that includes rig.cfg); every further line is one
- * --set override (at most 8). Then td_case_load runs on case.cfg with the overrides.
+ * --set override (at most 8). Then td_case_load runs on case.cfg with the overrides, and on a
+ * case it loads td_sweep_check_case judges the `sweep` group (lib/sweep), as every command does.
  *
  * Besides the sanitizers (ASan + UBSan, -fno-sanitize-recover), the target checks the reader's
  * contract and abort()s when it is broken, so libFuzzer saves the input:
@@ -14,7 +15,8 @@
  *   - on failure: no case is returned, and the message is one non-empty line with no control
  *     characters (what the tool prints on stderr);
  *   - on success: every accessor answers, the case text and name are strings, the model has
- *     nodes, the end time is finite and positive.
+ *     nodes, the end time is finite and positive; the sweep group's judge returns TD_OK,
+ *     TD_ERR_PARSE or TD_ERR_NOMEM, a failure with one such message line.
  *
  * The known findings K1-K3 (fuzz/README.md) are fixed, so the harness checks them like anything
  * else. TD_FUZZ_STRICT=0 brings back the filters that stepped round them (to fuzz an old reader):
@@ -30,6 +32,7 @@
  */
 #include "touchdown/case.h"
 #include "touchdown/model.h"
+#include "touchdown/sweep.h"
 
 #include <math.h>
 #include <stddef.h>
@@ -149,6 +152,22 @@ static void check_case(const td_case *c)
         contract_failed("a loaded case with a bad end time", "");
 }
 
+/* The sweep group's specs judged by the sweep's rules, as every command judges a case it loads. */
+static void check_sweep_group(const td_case *c)
+{
+    td_error err;
+    td_status st;
+    td_error_clear(&err);
+    st = td_sweep_check_case(c, &err);
+    if (st == TD_OK)
+        return;
+    if (st != TD_ERR_PARSE && st != TD_ERR_NOMEM)
+        contract_failed("the sweep group's judge returned an unexpected status", err.message);
+    if (err.code != st)
+        contract_failed("the sweep group's judge: err.code differs from the status returned", err.message);
+    check_message(err.message);
+}
+
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
@@ -196,6 +215,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         if (!c)
             contract_failed("TD_OK without a case", err.message);
         check_case(c);
+        check_sweep_group(c);
         break;
     case TD_ERR_PARSE:
     case TD_ERR_IO:

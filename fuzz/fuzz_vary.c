@@ -1,6 +1,6 @@
 /*
  * libFuzzer target for the `--vary` / `--with` parser (td_sweep_grid_vary, td_sweep_grid_with in
- * lib/run/sweep_grid.c): the grid of a sweep's points from the specs of its command line.
+ * lib/sweep/grid.c): the grid of a sweep's points from the specs of its command line.
  *
  * An input is up to 20 lines, one spec each: a line that starts with '+' is a --with (the rest of
  * the line), any other a --vary (a NUL byte ends a line too). Each spec is added in turn, the

@@ -324,29 +324,35 @@ static const char *case_with_group(const char *group, int *line)
     return path;
 }
 
-/* A bad group is one error at FILE:LINE and the setting at fault, from any td_case_load. */
+/* A bad group is one error at FILE:LINE and the setting at fault: its shape from td_case_load
+ * (judge 0), what its specs mean from td_sweep_check_case (judge 1), which td_case_load leaves to
+ * it; td_sweep_grid_from_case gives the same error and leaves the grid as it was. */
 static void test_case_group_errors(void **state)
 {
     static const struct {
         const char *group, *key, *why;
+        int judge;
     } bad[] = {
         {"sweep = { vary = ( { key = \"speed\"; from = 1.0; to = 2.0; points = 0; } ); };", "sweep.vary[0].points",
-         "whole number from 1 to 100000"},
+         "whole number from 1 to 100000", 1},
         {"sweep = { vary = ( { key = \"speed\"; from = 0.0; to = 2.0; points = 3; spacing = \"log\"; } ); };",
-         "sweep.vary[0].from", "both ends > 0"},
+         "sweep.vary[0].from", "both ends > 0", 1},
         {"sweep = { vary = ( { key = \"speed\"; from = 1.0; to = 2.0; points = 3; spacing = \"cubic\"; } ); };",
-         "sweep.vary[0].spacing", "linear or log"},
+         "sweep.vary[0].spacing", "linear or log", 1},
         {"sweep = { vary = ( { key = \"speed\"; values = [1.0, 2.0];\n with = ( { key = \"end_time\"; values = [1.0]; "
          "} ); } ); };",
-         "sweep.vary[0].with[0].values", "end_time has 1 values but speed"},
+         "sweep.vary[0].with[0].values", "end_time has 1 values but speed", 1},
+        {"sweep = { vary = ( { key = \"speed\"; from = 1.0; to = 2.0; points = 2;\n with = ( { key = \"end_time\"; "
+         "from = 1.0; to = 2.0; points = 3; } ); } ); };",
+         "sweep.vary[0].with[0].points", "end_time has 3 values but speed", 1},
         {"sweep = { vary = ( { key = \"speed\"; values = [1.0]; }, { key = \"speed\"; values = [2.0]; } ); };",
-         "sweep.vary[1].key", "speed is swept twice"},
+         "sweep.vary[1].key", "speed is swept twice", 1},
         {"sweep = { vary = ( { key = \"speed\"; values = [1.0]; points = 2; } ); };", "sweep.vary[0]",
-         "either values or a range"},
-        {"sweep = { vary = ( { key = \"speed\"; from = 1.0; points = 2; } ); };", "sweep.vary[0]", "to"},
-        {"sweep = { vary = ( { values = [1.0]; } ); };", "sweep.vary[0]", "key"},
-        {"sweep = { vary = ( { key = \"speed\"; values = [1.0]; step = 2; } ); };", "sweep.vary[0].step", "unknown"},
-        {"sweep = { vary = ( { key = \"speed\"; values = [ ]; } ); };", "sweep.vary[0].values", "no values"},
+         "either values or a range", 0},
+        {"sweep = { vary = ( { key = \"speed\"; from = 1.0; points = 2; } ); };", "sweep.vary[0].to", "missing", 0},
+        {"sweep = { vary = ( { values = [1.0]; } ); };", "sweep.vary[0].key", "missing", 0},
+        {"sweep = { vary = ( { key = \"speed\"; values = [1.0]; step = 2; } ); };", "sweep.vary[0].step", "unknown", 0},
+        {"sweep = { vary = ( { key = \"speed\"; values = [ ]; } ); };", "sweep.vary[0].values", "no values", 0},
     };
     char want[1100];
     size_t i;
@@ -355,14 +361,39 @@ static void test_case_group_errors(void **state)
     for (i = 0; i < sizeof bad / sizeof bad[0]; i++) {
         const char *path = case_with_group(bad[i].group, &line);
         td_case *c = NULL;
-        td_error err;
-        assert_int_equal(td_case_load(path, NULL, 0, &c, &err), TD_ERR_PARSE);
-        snprintf(want, sizeof want, "%s:%d: %s", path, line + (strstr(bad[i].key, "with") != NULL), bad[i].key);
-        if (!strstr(err.message, want) || !strstr(err.message, bad[i].why)) {
+        td_sweep_grid *g = NULL;
+        td_error err, from;
+        td_status st = td_case_load(path, NULL, 0, &c, &err);
+        assert_int_equal(st, bad[i].judge ? TD_OK : TD_ERR_PARSE);
+        if (bad[i].judge) {
+            assert_int_equal(td_sweep_check_case(c, &err), TD_ERR_PARSE);
+            assert_int_equal(td_sweep_grid_create(&g, NULL), TD_OK);
+            assert_int_equal(td_sweep_grid_vary(g, "end_time=1,2,3", &from), TD_OK);
+            assert_int_equal(td_sweep_grid_from_case(g, c, &from), TD_ERR_PARSE);
+            assert_string_equal(from.message, err.message);
+            assert_int_equal(td_sweep_grid_keys(g), 1);
+            assert_int_equal(td_sweep_grid_points(g), 3);
+            td_sweep_grid_free(&g);
+            td_case_free(&c);
+        }
+        snprintf(want, sizeof want, "%s:%d: %s: ", path, line + (strstr(bad[i].key, "with") != NULL), bad[i].key);
+        if (strncmp(err.message, want, strlen(want)) != 0 || !strstr(err.message, bad[i].why)) {
             print_error("case %zu: expected \"%s\" and \"%s\" in \"%s\"\n", i, want, bad[i].why, err.message);
             fail();
         }
     }
+}
+
+/* A case without a sweep group passes the judge; a NULL case is refused. */
+static void test_case_group_none(void **state)
+{
+    td_error err;
+    td_case *c = load_case(td_source_path("cases/paper-a.cfg"), NULL, 0, &err);
+    (void)state;
+    assert_int_equal(td_case_sweep_specs(c), 0);
+    assert_int_equal(td_sweep_check_case(c, &err), TD_OK);
+    assert_int_equal(td_sweep_check_case(NULL, &err), TD_ERR_INVALID);
+    td_case_free(&c);
 }
 
 /* Three rows: one done, one failed, one not run. */
@@ -524,6 +555,7 @@ int main(void)
         cmocka_unit_test(test_key_limit),
         cmocka_unit_test(test_case_group),
         cmocka_unit_test(test_case_group_errors),
+        cmocka_unit_test(test_case_group_none),
         cmocka_unit_test(test_zipped_table),
         cmocka_unit_test(test_bad_spec_control_chars), /* found by fuzz/fuzz_vary.c */
     };

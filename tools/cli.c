@@ -44,6 +44,9 @@ int td_cli_load_case(const char *path, const td_cli_sets *sets, td_case **out)
     td_status st;
     td_error_clear(&err);
     st = td_case_load(path, sets ? sets->items : NULL, sets ? sets->count : 0, out, &err);
+    /* the sweep group is judged whichever command loads the case (docs/case-format.md, "sweep") */
+    if (st == TD_OK && (st = td_sweep_check_case(*out, &err)) != TD_OK)
+        td_case_free(out);
     if (st != TD_OK) {
         fprintf(stderr, "touchdown: %s\n", err.message[0] ? err.message : td_strerror(st));
         return TD_EXIT_USAGE;

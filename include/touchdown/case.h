@@ -100,14 +100,15 @@ TD_API const char *const *td_case_files(const td_case *c, int *count);
 TD_API const char *td_case_description(const td_case *c);
 
 /**
- * The case's optional `sweep` group (docs/case-format.md), read by every td_case_load and checked
- * by the rules of touchdown/sweep.h, as the specs td_sweep_grid_vary and td_sweep_grid_with take:
- * one per swept key, in the order of the file. td_case_sweep_specs is their number (0 without a
- * group). td_case_sweep_spec returns spec i (borrowed): "KEY=START:STOP:N[:SPACING]" or
- * "KEY=V1,V2,..."; *with (if not NULL) is 1 when it is zipped onto the axis of the spec before
- * (an entry of `with`), 0 when it starts an axis; *where (if not NULL) is its place in the file,
- * "FILE:LINE: sweep.vary[i]" or "FILE:LINE: sweep.vary[i].with[j]". td_sweep_grid_from_case
- * adds them to a grid.
+ * The case's optional `sweep` group (docs/case-format.md), read by every td_case_load (its shape:
+ * known keys, the types of their values, a key to sweep) as the specs td_sweep_grid_vary and
+ * td_sweep_grid_with take, and judged by their rules not here but by td_sweep_check_case
+ * (touchdown/sweep.h): one spec per swept key, in the order of the file. td_case_sweep_specs is
+ * their number (0 without a group). td_case_sweep_spec returns spec i (borrowed):
+ * "KEY=START:STOP:N[:SPACING]" or "KEY=V1,V2,..."; *with (if not NULL) is 1 when it is zipped
+ * onto the axis of the spec before (an entry of `with`), 0 when it starts an axis; *where (if not
+ * NULL) is its place in the file, "FILE:LINE: sweep.vary[i]" or "FILE:LINE: sweep.vary[i].with[j]".
+ * td_sweep_grid_from_case adds them to a grid.
  */
 TD_API int td_case_sweep_specs(const td_case *c);
 TD_API const char *td_case_sweep_spec(const td_case *c, int i, int *with, const char **where);

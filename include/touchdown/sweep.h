@@ -69,11 +69,24 @@ TD_API td_status td_sweep_grid_vary(td_sweep_grid *g, const char *spec, td_error
 TD_API td_status td_sweep_grid_with(td_sweep_grid *g, const char *spec, td_error *err);
 
 /**
+ * Judge the case's `sweep` group (td_case_sweep_spec) on its own by the rules of
+ * td_sweep_grid_vary and td_sweep_grid_with, in the order of the file. td_case_load checks only
+ * the group's shape (its keys, the types of their values, a key to sweep); these rules are the
+ * grid's, so call this once a case is loaded (the tool does for every command, so that a bad
+ * group is found whichever command loads the case). Returns TD_OK (also without a group),
+ * TD_ERR_INVALID (NULL c), TD_ERR_NOMEM, or TD_ERR_PARSE with one line naming the entry and the
+ * setting at fault, "FILE:LINE: sweep.vary[i].points: why" ("...vary[i].with[j].values: ...",
+ * "...vary[i]: ..." for the entry as a whole).
+ */
+TD_API td_status td_sweep_check_case(const td_case *c, td_error *err);
+
+/**
  * Add the axes of the case's `sweep` group (td_case_sweep_spec) after g's own: each axis of the
  * case that has a key g already sweeps is left out whole (the caller's axes replace the file's).
- * The case's specs were checked when it was loaded; what is left to fail is a limit on axes,
- * keys or points reached with g's own, an error "FILE:LINE: sweep.vary[i]: why". Each axis added
- * has that "FILE:LINE: sweep.vary[i]" as its origin (td_sweep_grid_origin).
+ * The group is judged first (td_sweep_check_case, its errors; g is then unchanged); what is left
+ * to fail is a limit on axes, keys or points reached with g's own, an error "FILE:LINE:
+ * sweep.vary[i]: why". Each axis added has that "FILE:LINE: sweep.vary[i]" as its origin
+ * (td_sweep_grid_origin).
  */
 TD_API td_status td_sweep_grid_from_case(td_sweep_grid *g, const td_case *c, td_error *err);
 

@@ -24,15 +24,21 @@ struct td_case {
     char *description; /* "" when absent */
     char **files;      /* the case file and every @include file read, as opened (td_case_files) */
     int file_count;
-    struct td_cr_sweep_spec *sweep; /* the `sweep` group as specs (td_case_sweep_spec) */
+    struct td_cr_sweep_spec *sweep; /* the `sweep` group as specs, as read (td_cr_sweep_spec) */
     int sweep_count;
 };
 
-/* One swept key of the case's `sweep` group, as touchdown/sweep.h takes it. */
+/* One swept key of the case's `sweep` group as read (case_vary.c): the spec --vary (an entry of
+ * `with`: --with) would take, with the place it was written. The reader checks the group's shape
+ * only; the specs are judged by the sweep's rules (lib/sweep), which name the setting at fault as
+ * the reader names its own (td_cr_sweep_context). */
 typedef struct td_cr_sweep_spec {
-    char *spec;  /* "KEY=START:STOP:N[:SPACING]" or "KEY=V1,V2,..." */
-    char *where; /* "FILE:LINE: sweep.vary[i]" (or "...with[j]") */
+    char *spec;  /* "KEY=START:STOP:N[:SPACING]" or "KEY=V1,V2,...", the key as written */
+    char *where; /* "FILE:LINE: sweep.vary[i]" (or "...with[j]"): td_case_sweep_spec's, the axis's origin */
+    char *at;    /* "FILE:LINE" of the entry, or how an override placed it (td_cr_where) */
+    char *key;   /* the entry's setting, "sweep.vary[i]" or "sweep.vary[i].with[j]" (td_cr_key) */
     int with;    /* 1: zipped onto the axis of the spec before */
+    int values;  /* 1: written as `values`, 0: as a range (from, to, points, spacing) */
 } td_cr_sweep_spec;
 
 /* A decimal or hex integer literal that libconfig 1.5 silently wraps to 32 bits (it has no
@@ -188,9 +194,19 @@ extern const char *const td_cr_damping_names[TD_CR_DAMPING_NAMES];
 td_status td_cr_read_shaft(td_case_reader *r, const config_setting_t *root);
 td_status td_cr_read_parts(td_case_reader *r, const config_setting_t *root);
 td_status td_cr_read_options(td_case_reader *r, const config_setting_t *root);
-/* The optional `sweep` group (case_sweep.c), checked by the rules of the sweep grid. */
+/* The optional `sweep` group (case_vary.c): its shape checked, its specs kept as read. */
 td_status td_cr_read_sweep(td_case_reader *r, const config_setting_t *root);
 /* Free the case's sweep specs. */
 void td_cr_free_sweep(td_case *c);
+/* Spec i (0 <= i < td_case_sweep_specs(c)) of the case's `sweep` group as read, borrowed. */
+const td_cr_sweep_spec *td_cr_sweep_entry(const td_case *c, int i);
+/* Bytes of an error's context "WHERE: KEY.SETTING" and of its "KEY.SETTING" before they are cut,
+ * as in td_cr_fail. */
+#define TD_CR_SWEEP_CONTEXT_SIZE 2048
+#define TD_CR_SWEEP_KEY_SIZE 512
+/* The context of an error about entry s, as td_cr_fail would give it: "WHERE: KEY", or
+ * "WHERE: KEY.SETTING" when `setting` (a member of the entry, e.g. "points") is not NULL; into
+ * buf (n bytes, TD_CR_SWEEP_CONTEXT_SIZE for the reader's own cut). */
+void td_cr_sweep_context(const td_cr_sweep_spec *s, const char *setting, char *buf, size_t n);
 
 #endif

@@ -1,4 +1,4 @@
-/* Text buffers (util/text.h) and the JSON string escape (touchdown/json.h). */
+/* Text buffers (util/text.h), the JSON string escape (touchdown/json.h) and exact short numbers. */
 #include "util/text.h"
 
 #include <stdarg.h>
@@ -101,4 +101,14 @@ int td_json_string(char *buf, size_t n, const char *s)
     td_text_fixed(&t, buf, n);
     td_text_json_string(&t, s ? s : "");
     return (int)t.len;
+}
+
+void td_text_shortest_number(char *buf, size_t n, double x)
+{
+    int digits;
+    for (digits = 15; digits <= 17; digits++) {
+        snprintf(buf, n, "%.*g", digits, x);
+        if (strtod(buf, NULL) == x)
+            return;
+    }
 }

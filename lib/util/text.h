@@ -26,4 +26,8 @@ void td_text_printf(td_text *t, const char *fmt, ...) TD_PRINTF(2, 3);
 /** Append `s` as a JSON string: quoted, with the escapes RFC 8259 requires. */
 void td_text_json_string(td_text *t, const char *s);
 
+/** x into buf (n bytes) with the fewest significant digits (15, 16 or 17) that read back to x:
+ *  short, and exact (a sweep's range values, a case file's numbers as sweep specs). */
+void td_text_shortest_number(char *buf, size_t n, double x);
+
 #endif

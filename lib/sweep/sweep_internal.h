@@ -1,15 +1,15 @@
 /*
- * The sweep grid's rules shared with the case reader (lib/case/case_sweep.c): the reader turns
- * the case file's `sweep` group into the same specs as --vary and --with and checks them with
- * td_sweep_grid_add on a dry grid (counts only, no values), so that one set of rules, in
- * sweep_grid.c, judges both the command line and the case file.
+ * The sweep grid's rules (grid.c) shared with the judge of the case file's `sweep` group
+ * (case_group.c): the case reader keeps the group as the same specs as --vary and --with, and the
+ * judge checks them with td_sweep_grid_add on a dry grid (counts only, no values), so that one set
+ * of rules judges both the command line and the case file.
  */
-#ifndef TD_RUN_SWEEP_INTERNAL_H
-#define TD_RUN_SWEEP_INTERNAL_H
+#ifndef TD_SWEEP_SWEEP_INTERNAL_H
+#define TD_SWEEP_SWEEP_INTERNAL_H
 
 #include "touchdown/sweep.h"
 
-/* The part of a spec a rule found wrong, so that the case reader can name the setting. */
+/* The part of a spec a rule found wrong, so that the judge of the case's group can name the setting. */
 typedef enum td_sweep_part {
     TD_SWEEP_PART_SPEC,    /* the spec as a whole (form, limits on axes, keys and points) */
     TD_SWEEP_PART_KEY,     /* the key (too long, swept twice) */
@@ -29,8 +29,5 @@ td_status td_sweep_grid_create_dry(td_sweep_grid **out, td_error *err);
  * names the part at fault and reason (n bytes) says why, without any prefix. */
 td_status td_sweep_grid_add(td_sweep_grid *g, const char *spec, int with, const char *origin, td_sweep_part *part,
                             char *reason, size_t n);
-
-/* x with the fewest significant digits (15, 16 or 17) that read back to x, as range values are. */
-void td_sweep_print_number(char *buf, size_t n, double x);
 
 #endif

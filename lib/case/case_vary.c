@@ -8,13 +8,13 @@
  *                with = ( { key = "unbalances[0].phase"; values = [ 0.0, 1.5 ]; } ); } );
  *   };
  *
- * Each entry becomes the spec --vary (an entry of `with`: --with) would take, checked on a dry
- * grid by the sweep's own rules (lib/run/sweep_grid.c), so that the command line and the file
- * obey one set of rules; an error names the setting at fault. Every command reads the group, so a
- * bad one is found whichever command loads the case.
+ * Each entry becomes the spec --vary (an entry of `with`: --with) would take, kept with the place
+ * it was written (td_cr_sweep_spec). The reader checks the group's shape as it checks every group:
+ * its keys, the types of the values, a key to sweep, values or a range but not both. What the
+ * specs mean (forms, counts, limits) is judged by the sweep's own rules (lib/sweep), so that the
+ * command line and the file obey one set of rules.
  */
 #include "case/case_internal.h"
-#include "run/sweep_internal.h"
 #include "util/text.h"
 
 #include <stdlib.h>
@@ -30,6 +30,8 @@ void td_cr_free_sweep(td_case *c)
         c->sweep_count--;
         free(c->sweep[c->sweep_count].spec);
         free(c->sweep[c->sweep_count].where);
+        free(c->sweep[c->sweep_count].at);
+        free(c->sweep[c->sweep_count].key);
     }
     free(c->sweep);
     c->sweep = NULL;
@@ -39,7 +41,7 @@ void td_cr_free_sweep(td_case *c)
 static void number_text(const config_setting_t *s, char *buf, size_t n)
 {
     if (config_setting_type(s) == CONFIG_TYPE_FLOAT)
-        td_sweep_print_number(buf, n, config_setting_get_float(s));
+        td_text_shortest_number(buf, n, config_setting_get_float(s));
     else
         snprintf(buf, n, "%lld", config_setting_get_int64(s));
 }
@@ -121,47 +123,43 @@ static td_status range_spec(td_case_reader *r, const config_setting_t *e, td_tex
     return st;
 }
 
-/* The setting a part of a spec came from, for the error: NULL is the entry itself. */
-static const char *part_key(td_sweep_part part, const config_setting_t *e)
+static char *dup_string(const char *s)
 {
-    static const char *const names[] = {NULL, "key", "from", "to", "points", "spacing", "values", NULL};
-    if (part == TD_SWEEP_PART_COUNT)
-        return td_cr_has(e, "values") ? "values" : "points";
-    return names[part];
+    char *d = malloc(strlen(s) + 1);
+    return d ? strcpy(d, s) : NULL;
 }
 
-/* The spec joins the dry grid (the sweep's rules) and the case's list of specs. */
-static td_status keep_spec(td_case_reader *r, td_sweep_grid *dry, const config_setting_t *e, int with, td_text *t)
+/* The spec joins the case's list of specs, with its place: the entry's "FILE:LINE" and setting
+ * (as td_cr_fail would name them) and td_case_sweep_spec's "FILE:LINE: KEY". */
+static td_status keep_spec(td_case_reader *r, const config_setting_t *e, int with, td_text *t)
 {
-    char reason[TD_ERROR_MESSAGE_SIZE], where[1024], key[256];
+    char at[TD_CR_SWEEP_CONTEXT_SIZE], key[TD_CR_SWEEP_KEY_SIZE], where[1024];
     td_cr_sweep_spec *list;
-    td_sweep_part part;
     size_t len;
     if (t->failed)
         return td_cr_fail_file(r->err, TD_ERR_NOMEM, r->path_shown, 0, "out of memory");
-    if (td_sweep_grid_add(dry, t->data, with, "", &part, reason, sizeof reason) != TD_OK)
-        return td_cr_fail(r, e, part_key(part, e), "%s", reason);
-    td_cr_where(r, e, where, sizeof where);
+    td_cr_where(r, e, at, sizeof at);
     td_cr_key(e, key, sizeof key);
+    td_cr_where(r, e, where, sizeof where); /* td_case_sweep_spec's place, as it always was */
     len = strlen(where);
-    snprintf(where + len, sizeof where - len, ": %s", key);
+    snprintf(where + len, sizeof where - len, ": %.255s", key);
     if (!(list = realloc(r->c->sweep, (size_t)(r->c->sweep_count + 1) * sizeof *list)))
         return td_cr_fail_file(r->err, TD_ERR_NOMEM, r->path_shown, 0, "out of memory");
     r->c->sweep = list;
     list += r->c->sweep_count;
+    memset(list, 0, sizeof *list);
     list->with = with;
+    list->values = td_cr_has(e, "values");
     list->spec = t->data;
-    list->where = malloc(strlen(where) + 1);
     t->data = NULL;
     r->c->sweep_count++;
-    if (!list->where)
+    if (!(list->where = dup_string(where)) || !(list->at = dup_string(at)) || !(list->key = dup_string(key)))
         return td_cr_fail_file(r->err, TD_ERR_NOMEM, r->path_shown, 0, "out of memory");
-    strcpy(list->where, where);
     return TD_OK;
 }
 
 /* One swept key: an entry of `vary` (with = 0) or of its `with` (with = 1). */
-static td_status read_key(td_case_reader *r, td_sweep_grid *dry, const config_setting_t *e, int with)
+static td_status read_key(td_case_reader *r, const config_setting_t *e, int with)
 {
     td_text t = {NULL, 0, 0, 0, 0};
     const char *key = NULL;
@@ -177,25 +175,25 @@ static td_status read_key(td_case_reader *r, td_sweep_grid *dry, const config_se
         st = td_cr_has(e, "values") ? list_spec(r, e, &t) : range_spec(r, e, &t);
     }
     if (st == TD_OK)
-        st = keep_spec(r, dry, e, with, &t);
+        st = keep_spec(r, e, with, &t);
     free(t.data);
     return st;
 }
 
 /* An entry of `vary`: its key, then the keys zipped with it. */
-static td_status read_axis(td_case_reader *r, td_sweep_grid *dry, const config_setting_t *list, int i)
+static td_status read_axis(td_case_reader *r, const config_setting_t *list, int i)
 {
     const config_setting_t *e, *with, *z;
     int j;
     td_status st = td_cr_entry(r, list, i, &e);
     if (st == TD_OK)
-        st = read_key(r, dry, e, 0);
+        st = read_key(r, e, 0);
     if (st == TD_OK)
         st = td_cr_list(r, e, "with", &with);
     for (j = 0; st == TD_OK && with && j < config_setting_length(with); j++) {
         st = td_cr_entry(r, with, j, &z);
         if (st == TD_OK)
-            st = read_key(r, dry, z, 1);
+            st = read_key(r, z, 1);
     }
     return st;
 }
@@ -203,7 +201,6 @@ static td_status read_axis(td_case_reader *r, td_sweep_grid *dry, const config_s
 td_status td_cr_read_sweep(td_case_reader *r, const config_setting_t *root)
 {
     const config_setting_t *g, *vary = NULL;
-    td_sweep_grid *dry = NULL;
     int i;
     td_status st = td_cr_group(r, root, "sweep", NULL, &g);
     if (st != TD_OK || !g)
@@ -211,10 +208,19 @@ td_status td_cr_read_sweep(td_case_reader *r, const config_setting_t *root)
     st = td_cr_check_keys(r, g, sweep_keys);
     if (st == TD_OK)
         st = td_cr_list(r, g, "vary", &vary);
-    if (st == TD_OK && vary && td_sweep_grid_create_dry(&dry, NULL) != TD_OK)
-        st = td_cr_fail_file(r->err, TD_ERR_NOMEM, r->path_shown, 0, "out of memory");
     for (i = 0; st == TD_OK && vary && i < config_setting_length(vary); i++)
-        st = read_axis(r, dry, vary, i);
-    td_sweep_grid_free(&dry);
+        st = read_axis(r, vary, i);
     return st;
+}
+
+const td_cr_sweep_spec *td_cr_sweep_entry(const td_case *c, int i)
+{
+    return &c->sweep[i];
+}
+
+void td_cr_sweep_context(const td_cr_sweep_spec *s, const char *setting, char *buf, size_t n)
+{
+    char key[TD_CR_SWEEP_KEY_SIZE]; /* the key with its setting, cut as td_cr_fail cuts it */
+    snprintf(key, sizeof key, "%s%s%s", s->key, setting ? "." : "", setting ? setting : "");
+    snprintf(buf, n, "%s: %s", s->at, key);
 }

@@ -5,9 +5,9 @@
  * or several zipped keys with as many values each that move together.
  */
 #include "case/case_internal.h" /* td_cr_printable: user text in messages */
-#include "run/sweep_internal.h"
-#include "touchdown/case.h"
+#include "sweep/sweep_internal.h"
 #include "util/error_internal.h"
+#include "util/text.h"
 
 #include <math.h>
 #include <stdarg.h>
@@ -102,17 +102,6 @@ static int parse_number(const char *s, double *v)
     return *end == '\0' && isfinite(*v);
 }
 
-/* x with the fewest significant digits (15, 16, 17) that read back to x: short, and exact. */
-void td_sweep_print_number(char *buf, size_t n, double x)
-{
-    int digits;
-    for (digits = 15; digits <= 17; digits++) {
-        snprintf(buf, n, "%.*g", digits, x);
-        if (strtod(buf, NULL) == x)
-            return;
-    }
-}
-
 /* Point i of n from start to stop, both ends exact: evenly spaced, or geometric (log). */
 static double range_value(double start, double stop, long n, long i, int log_spacing)
 {
@@ -154,7 +143,7 @@ static td_status fill_range(sweep_key *k, double start, double stop, long n, int
     if (!(k->values = malloc((size_t)n * sizeof *k->values)))
         return reject(e, TD_SWEEP_PART_SPEC, "out of memory");
     for (i = 0; i < n; i++)
-        td_sweep_print_number(k->values[i], TD_SWEEP_VALUE_SIZE, range_value(start, stop, n, i, log_spacing));
+        td_text_shortest_number(k->values[i], TD_SWEEP_VALUE_SIZE, range_value(start, stop, n, i, log_spacing));
     return TD_OK;
 }
 
@@ -400,56 +389,6 @@ td_status td_sweep_grid_vary(td_sweep_grid *g, const char *spec, td_error *err)
 td_status td_sweep_grid_with(td_sweep_grid *g, const char *spec, td_error *err)
 {
     return add_option(g, spec, 1, err);
-}
-
-/* 1 if `spec` sweeps one of the first `own` keys of g. */
-static int spec_is_swept(const td_sweep_grid *g, int own, const char *spec)
-{
-    int i;
-    for (i = 0; i < own; i++) {
-        size_t len = strlen(g->key[i].key);
-        if (!strncmp(spec, g->key[i].key, len) && spec[len] == '=')
-            return 1;
-    }
-    return 0;
-}
-
-/* The case's specs [first, *end) of one axis; 1 if the grid's own keys (the first `own`) sweep
- * any of them, which then replaces the whole axis. */
-static int case_axis(const td_sweep_grid *g, int own, const td_case *c, int first, int *end)
-{
-    int i, with = 0, n = td_case_sweep_specs(c), taken = 0;
-    for (i = first; i < n; i++) {
-        const char *spec = td_case_sweep_spec(c, i, &with, NULL);
-        if (i > first && !with)
-            break;
-        taken = taken || spec_is_swept(g, own, spec);
-    }
-    *end = i;
-    return taken;
-}
-
-td_status td_sweep_grid_from_case(td_sweep_grid *g, const td_case *c, td_error *err)
-{
-    char reason[TD_ERROR_MESSAGE_SIZE];
-    int i, j, end, own, with;
-    td_sweep_part part;
-    const char *where, *spec, *origin = NULL;
-    if (!g || !c)
-        return td_error_set(err, TD_ERR_INVALID, "td_sweep_grid_from_case: NULL argument");
-    own = g->keys;
-    for (i = 0; i < td_case_sweep_specs(c); i = end) {
-        if (case_axis(g, own, c, i, &end))
-            continue;
-        for (j = i; j < end; j++) {
-            spec = td_case_sweep_spec(c, j, &with, &where);
-            if (j == i)
-                origin = where;
-            if (td_sweep_grid_add(g, spec, j > i, origin, &part, reason, sizeof reason) != TD_OK)
-                return td_error_set_reason(err, TD_ERR_PARSE, where, reason);
-        }
-    }
-    return TD_OK;
 }
 
 long td_sweep_grid_points(const td_sweep_grid *g)
