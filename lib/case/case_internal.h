@@ -186,8 +186,6 @@ const config_setting_t *td_cr_file_override(const td_case_reader *r, const char 
 extern const char *const td_cr_damping_names[TD_CR_DAMPING_NAMES];
 
 td_status td_cr_read_shaft(td_case_reader *r, const config_setting_t *root);
-td_status td_cr_read_parts(td_case_reader *r, const config_setting_t *root);
-td_status td_cr_read_options(td_case_reader *r, const config_setting_t *root);
 /* The optional `sweep` group (case_sweep.c), checked by the rules of the sweep grid. */
 td_status td_cr_read_sweep(td_case_reader *r, const config_setting_t *root);
 /* Free the case's sweep specs. */
