@@ -3,11 +3,13 @@
 
     docs_record.py BUILD_DIR fast|slow [SOURCE ...]
     docs_record.py --check TOOL SOURCE KEY ...
+    docs_record.py --check-keys TOOL
 
 The second form reruns recorded runs (docs/results/SOURCE.json, runs KEY) with their recorded
 arguments and fails if a number differs from the record by more than RTOL relative (below), or a
 text, a count or a null differs; the wall-clock quantities are not compared, nor keys the record
-lacks (a newer tool's additions).
+lacks (a newer tool's additions). The third compares the tool's case keys (touchdown info --keys)
+with docs/results/keys.json, exactly.
 
 One JSON file per source (docs/results/SOURCE.json), each stamped with the tool's version, the
 source revision, the date, the machine and the exact commands (paths relative to the repository
@@ -177,6 +179,15 @@ def src_validation(tool, build):
     return data
 
 
+def src_keys(tool, build):
+    """The case reader's schema (touchdown info --keys): the key tables of docs/case-format.md."""
+    data = stamp(tool, "keys", "touchdown info --keys, its JSON as printed")
+    out, _ = tool_output(tool, ["info", "--keys"])
+    data["command"] = "touchdown info --keys"
+    data["keys"] = json.loads(out)
+    return data
+
+
 def src_bench(tool, build):
     """touchdown bench, as shipped and at the library defaults (3 repeats, medians)."""
     data = stamp(tool, "bench", "touchdown bench -n 3 --json, as shipped and at the defaults")
@@ -289,7 +300,7 @@ def src_figures(tool, build):
     return data
 
 
-SOURCES = {"fast": [("runs", src_runs), ("modal", src_modal), ("validation", src_validation)],
+SOURCES = {"fast": [("runs", src_runs), ("modal", src_modal), ("validation", src_validation), ("keys", src_keys)],
            "slow": [("bench", src_bench), ("references", src_references),
                     ("intervals", src_intervals), ("tolerances", src_tolerances), ("mesh", src_mesh),
                     ("convergence", src_convergence), ("figures", src_figures)]}
@@ -360,7 +371,31 @@ def check(tool, source, keys):
     return 1 if bad else 0
 
 
+def check_keys(tool):
+    """The tool's case keys against docs/results/keys.json: any difference fails (rerun
+    scripts/make-docs.sh, which rewrites the key tables of docs/case-format.md from them)."""
+    with open(os.path.join(RESULTS, "keys.json")) as f:
+        rec = json.load(f)["keys"]
+    out, _ = tool_output(tool, ["info", "--keys"])
+    new = json.loads(out)
+    old = {k["key"]: k for k in rec}
+    diffs = ["%s: new" % k["key"] for k in new if k["key"] not in old]
+    diffs += ["%s: gone" % k for k in old if k not in {n["key"] for n in new}]
+    for k in new:
+        diffs += differences(old.get(k["key"], k), k, k["key"])
+    if not diffs and [k["key"] for k in rec] != [k["key"] for k in new]:
+        diffs = ["the keys are in another order"]
+    if diffs:
+        print("FAIL: touchdown info --keys differs from docs/results/keys.json (rerun scripts/make-docs.sh): "
+              "%s%s" % ("; ".join(diffs[:8]), " ..." if len(diffs) > 8 else ""))
+        return 1
+    print("ok:   touchdown info --keys matches docs/results/keys.json (%d keys)" % len(rec))
+    return 0
+
+
 def main():
+    if len(sys.argv) == 3 and sys.argv[1] == "--check-keys":
+        sys.exit(check_keys(os.path.abspath(sys.argv[2])))
     if len(sys.argv) >= 4 and sys.argv[1] == "--check":
         sys.exit(check(os.path.abspath(sys.argv[2]), sys.argv[3], sys.argv[4:]))
     if len(sys.argv) < 3 or sys.argv[2] not in SOURCES:

@@ -150,7 +150,8 @@ td_status td_cs_read_record(td_case_reader *r, const config_setting_t *g, const 
 {
     cs_record rec;
     if (t->size > sizeof rec.bytes)
-        return td_error_set(r->err, TD_ERR_INVALID, "%s: internal: the record of '%s' is too large", r->path_shown, t->name);
+        return td_error_set(r->err, TD_ERR_INVALID, "%s: internal: the record of '%s' is too large", r->path_shown,
+                            t->name);
     memset(&rec, 0, sizeof rec);
     if (t->preset)
         t->preset(rec.bytes);

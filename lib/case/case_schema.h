@@ -74,9 +74,9 @@ struct td_cs_table {
     const char *section; /* the docs' table it is listed in; NULL: its parent's */
     const td_cs_key *keys;
     int count;
-    size_t size;                 /* of the record */
-    void (*preset)(void *rec);   /* sets TD_CS_PRESET defaults (and a record's starting values) */
-    td_cs_finish_fn finish;      /* non-NULL: the group has a record of its own, handed over here */
+    size_t size;               /* of the record */
+    void (*preset)(void *rec); /* sets TD_CS_PRESET defaults (and a record's starting values) */
+    td_cs_finish_fn finish;    /* non-NULL: the group has a record of its own, handed over here */
 };
 
 #define TD_CS_COUNT(keys) ((int)(sizeof(keys) / sizeof((keys)[0])))
@@ -99,8 +99,8 @@ extern const td_cs_table td_cs_root;
 /* The groups read by case_options.c that the root table names. */
 extern const td_cs_table td_cs_contact, td_cs_solver, td_cs_output, td_cs_modal, td_cs_gravity, td_cs_reduction;
 /* The lists and groups of case_parts.c. */
-extern const td_cs_table td_cs_discs, td_cs_point_masses, td_cs_ambs, td_cs_bearings, td_cs_retainers,
-    td_cs_unbalances, td_cs_schedule, td_cs_speed_ramp, td_cs_spin;
+extern const td_cs_table td_cs_discs, td_cs_point_masses, td_cs_ambs, td_cs_bearings, td_cs_retainers, td_cs_unbalances,
+    td_cs_schedule, td_cs_speed_ramp, td_cs_spin;
 /* The shaft (case_shaft.c). */
 extern const td_cs_table td_cs_shaft;
 
