@@ -34,14 +34,20 @@ RESULTS = os.path.join(ROOT, "docs", "results")
 
 PAPER = ["paper-a", "paper-b", "paper-c", "paper-d-kc1.25e12", "paper-d-kc1.25e10"]
 NO_FILES = ["--json", "-q", "--hdf5", "", "--csv", ""]
-# The library defaults (lib/util/options.c) written out, for the runs compared against them.
-DEFAULTS = {"solver.rtol": "1e-6", "solver.atol": "1e-9", "solver.max_order": "2"}
 # The converged references of docs/performance.md, "The paper's cases: settings that converge".
 REF12 = {"solver.rtol": "1e-12", "solver.atol": "1e-15", "solver.max_order": "5"}
 REF11 = {"solver.rtol": "1e-11", "solver.atol": "1e-14", "solver.max_order": "5"}
 # Sources that fit in seconds: what README.md, docs/validation.md and docs/reference-rig.md quote
 # from the shipped cases as they are.
 FAST_CASES = PAPER + ["rub-damped", "drop", "run-up"]
+
+
+def library_defaults(tool):
+    """The library's defaults (lib/util/options.c) of the solver keys the studies compare against,
+    as the case reader's tables give them (touchdown info --keys)."""
+    out, _ = tool_output(tool, ["info", "--keys"])
+    keys = {k["key"]: k["default"] for k in json.loads(out)}
+    return {k: keys[k] for k in ("solver.rtol", "solver.atol", "solver.max_order")}
 
 
 def run_args(case, sets=None):
@@ -192,7 +198,7 @@ def src_bench(tool, build):
     """touchdown bench, as shipped and at the library defaults (3 repeats, medians)."""
     data = stamp(tool, "bench", "touchdown bench -n 3 --json, as shipped and at the defaults")
     data["bench"] = {}
-    for name, sets in [("shipped", {}), ("defaults", DEFAULTS)]:
+    for name, sets in [("shipped", {}), ("defaults", library_defaults(tool))]:
         args = ["bench", "-n", "3", "--json", "--dir", "cases"]
         for key, value in sets.items():
             args += ["--set", "%s=%s" % (key, value)]
@@ -207,7 +213,7 @@ def src_references(tool, build):
     data = stamp(tool, "references", "touchdown run --json at the reference settings and defaults")
     data["runs"] = {}
     for case in PAPER:
-        for name, sets in [("ref12", REF12), ("ref11", REF11), ("defaults", DEFAULTS)]:
+        for name, sets in [("ref12", REF12), ("ref11", REF11), ("defaults", library_defaults(tool))]:
             data["runs"]["%s/%s" % (case, name)] = record_run(tool, run_args(case, sets))
     return data
 
@@ -230,7 +236,7 @@ def src_mesh(tool, build):
     data["runs"] = {}
     for case in ["paper-a", "paper-b"]:
         for k in [2, 4, 8]:
-            sets = dict(DEFAULTS, **{"shaft.refine": str(k)})
+            sets = dict(library_defaults(tool), **{"shaft.refine": str(k)})
             data["runs"]["%s/%d" % (case, k)] = record_run(tool, run_args(case, sets))
     for k in [1, 2, 4, 8, 16]:
         sets = {"solver.rtol": "1e-10", "solver.atol": "1e-13", "end_time": "0.11",
@@ -260,7 +266,7 @@ def src_intervals(tool, build):
     data = stamp(tool, "intervals", "bench/intervals.sh's runs: touchdown run --csv, events compared")
     data["runs"] = {}
     with tempfile.TemporaryDirectory() as tmp:
-        for name, sets in [("ref", REF11), ("shipped", {}), ("defaults", DEFAULTS)]:
+        for name, sets in [("ref", REF11), ("shipped", {}), ("defaults", library_defaults(tool))]:
             sets = dict(sets, **{"end_time": "0.3", "output.sample_rate": "1000"})
             args = run_args("paper-b", sets)[:]
             args[args.index("--csv") + 1] = os.path.join(tmp, name + ".csv")

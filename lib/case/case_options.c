@@ -1,7 +1,9 @@
 /*
- * Run settings: speed, gravity, end time, start state, and the option groups contact, solver,
- * output and modal. Defaults come from td_*_options_default (lib/util/options.c), so the case
- * reader never restates them.
+ * The tables of the top level and of the run settings: speed, gravity, reduction, end time,
+ * start state, and the option groups contact, solver, output and modal, with their custom
+ * readers and row checks, and the bounds on the whole run (the `output` row's check). The option
+ * groups' defaults are td_*_options_default's (lib/util/options.c, TD_CS_PRESET): the tables
+ * never restate them.
  */
 #include "case/case_schema.h"
 #include "touchdown/dofs.h"
