@@ -15,6 +15,14 @@ typedef union cs_record {
     unsigned char bytes[512];
 } cs_record;
 
+/* TD_CS_ENUM stores an int into the enum field its row names: every enum the tables read is
+ * int-sized (a row that names another must not compile). */
+typedef char cs_enums_are_ints[sizeof(td_contact_model) == sizeof(int) && sizeof(td_contact_damping) == sizeof(int) &&
+                                       sizeof(td_linear_solver) == sizeof(int) && sizeof(td_start) == sizeof(int) &&
+                                       sizeof(td_beam_theory) == sizeof(int) && sizeof(td_mass_form) == sizeof(int)
+                                   ? 1
+                                   : -1];
+
 /* The keys of the widest table (the top level) with room to spare. */
 #define CS_MAX_KEYS 64
 
@@ -96,7 +104,7 @@ td_status td_cs_elsewhere(td_case_reader *r, const config_setting_t *g, const td
     return TD_OK;
 }
 
-/* One key by its type (enums and booleans are int-sized: checked in case_tables.c). */
+/* One key by its type. */
 static td_status read_key(td_case_reader *r, const config_setting_t *g, const td_cs_key *k, unsigned char *rec)
 {
     const char *what = k->need == TD_CS_REQUIRED ? k->what : NULL;

@@ -65,7 +65,8 @@ struct td_cs_key {
     const char *unit;        /* NULL: none */
     const char *doc_type;    /* the type as the docs say it, when not the generated one */
     const char *doc_range;   /* the range (a model rule, a form), when not the generated one */
-    const char *doc_default; /* the default as the docs say it, when not the generated one */
+    const char *doc_default; /* the default as the docs say it, when not the generated one ("%s" in
+                              * it: where the generated one goes, "%s (none)") */
     const char *doc;         /* one line */
 };
 
