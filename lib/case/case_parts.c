@@ -1,6 +1,8 @@
 /*
- * The machine's parts: discs, point masses, AMBs, plain bearings, retainers, unbalances and the
- * schedule of timed changes. Each list entry becomes one td_model_add_* call. The model's rules
+ * The tables of the machine's parts: discs, point masses, AMBs, plain bearings, retainers,
+ * unbalances, the schedule of timed changes, the speed ramp and the spin. Each list entry is read
+ * into a record of its own by its table and handed to the model by the table's finish, one
+ * td_model_add_* call (case_schema.h). The model's rules
  * (value ranges, bore = shaft radius + clearance, nodes on the shaft, one AMB / retainer per
  * node, retainers tighter than the air gaps, schedule indices) are checked by the model alone:
  * its errors name part, index and field, which case_site.c turns back into the setting. The
