@@ -234,7 +234,11 @@ int td_cmd_info(int argc, char **argv)
     }
     if (keys && optind == argc)
         return print_keys();
-    if (keys || optind != argc - 1) {
+    if (keys) {
+        td_cli_error("info", "--keys lists the keys every case may use: give it no case file");
+        return TD_EXIT_USAGE;
+    }
+    if (optind != argc - 1) {
         td_cli_error("info", "expected exactly one case file (see touchdown info --help)");
         return TD_EXIT_USAGE;
     }

@@ -328,6 +328,10 @@ for cmd in run info modal; do
 done
 expect_usage "run --output without its argument" run "$case_a" --output
 expect_usage "info --modes 0" info --modes 0 "$case_a"
+expect_usage "info --keys with a case file" info --keys "$case_a"
+run_tool info --keys
+check "info --keys: exit 0, a JSON array of the case keys on stdout, nothing on stderr" \
+    test "$rc" = 0 -a -z "$err" -a "${out:0:1}" = "[" -a "${out: -1}" = "]"
 # a speed the library does not take (touchdown/dofs.h: >= 0, the spin about +z), as in the case file
 for w in -5 -1e-9 nan inf; do
     expect_bad "modal --speed $w" "touchdown modal: --speed wants a speed >= 0 in rad/s, not '$w'" -- \
