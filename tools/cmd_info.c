@@ -7,6 +7,7 @@
 
 static const char info_usage[] =
     "usage: touchdown info [OPTIONS] CASE\n"
+    "       touchdown info --keys\n"
     "\n"
     "Print what CASE describes: shaft nodes and elements, masses, AMBs, plain bearings,\n"
     "retainers, unbalances, the schedule, the speed (constant, a ramp or a free spin) and the\n"
