@@ -3,11 +3,13 @@
 
     docs_record.py BUILD_DIR fast|slow [SOURCE ...]
     docs_record.py --check TOOL SOURCE KEY ...
+    docs_record.py --check-keys TOOL
 
 The second form reruns recorded runs (docs/results/SOURCE.json, runs KEY) with their recorded
 arguments and fails if a number differs from the record by more than RTOL relative (below), or a
 text, a count or a null differs; the wall-clock quantities are not compared, nor keys the record
-lacks (a newer tool's additions).
+lacks (a newer tool's additions). The third compares the tool's case keys (touchdown info --keys)
+with docs/results/keys.json, exactly.
 
 One JSON file per source (docs/results/SOURCE.json), each stamped with the tool's version, the
 source revision, the date, the machine and the exact commands (paths relative to the repository
@@ -32,14 +34,20 @@ RESULTS = os.path.join(ROOT, "docs", "results")
 
 PAPER = ["paper-a", "paper-b", "paper-c", "paper-d-kc1.25e12", "paper-d-kc1.25e10"]
 NO_FILES = ["--json", "-q", "--hdf5", "", "--csv", ""]
-# The library defaults (lib/util/options.c) written out, for the runs compared against them.
-DEFAULTS = {"solver.rtol": "1e-6", "solver.atol": "1e-9", "solver.max_order": "2"}
 # The converged references of docs/performance.md, "The paper's cases: settings that converge".
 REF12 = {"solver.rtol": "1e-12", "solver.atol": "1e-15", "solver.max_order": "5"}
 REF11 = {"solver.rtol": "1e-11", "solver.atol": "1e-14", "solver.max_order": "5"}
 # Sources that fit in seconds: what README.md, docs/validation.md and docs/reference-rig.md quote
 # from the shipped cases as they are.
 FAST_CASES = PAPER + ["rub-damped", "drop", "run-up"]
+
+
+def library_defaults(tool):
+    """The library's defaults (lib/util/options.c) of the solver keys the studies compare against,
+    as the case reader's tables give them (touchdown info --keys)."""
+    out, _ = tool_output(tool, ["info", "--keys"])
+    keys = {k["key"]: k["default"] for k in json.loads(out)}
+    return {k: keys[k] for k in ("solver.rtol", "solver.atol", "solver.max_order")}
 
 
 def run_args(case, sets=None):
@@ -177,11 +185,20 @@ def src_validation(tool, build):
     return data
 
 
+def src_keys(tool, build):
+    """The case reader's schema (touchdown info --keys): the key tables of docs/case-format.md."""
+    data = stamp(tool, "keys", "touchdown info --keys, its JSON as printed")
+    out, _ = tool_output(tool, ["info", "--keys"])
+    data["command"] = "touchdown info --keys"
+    data["keys"] = json.loads(out)
+    return data
+
+
 def src_bench(tool, build):
     """touchdown bench, as shipped and at the library defaults (3 repeats, medians)."""
     data = stamp(tool, "bench", "touchdown bench -n 3 --json, as shipped and at the defaults")
     data["bench"] = {}
-    for name, sets in [("shipped", {}), ("defaults", DEFAULTS)]:
+    for name, sets in [("shipped", {}), ("defaults", library_defaults(tool))]:
         args = ["bench", "-n", "3", "--json", "--dir", "cases"]
         for key, value in sets.items():
             args += ["--set", "%s=%s" % (key, value)]
@@ -196,7 +213,7 @@ def src_references(tool, build):
     data = stamp(tool, "references", "touchdown run --json at the reference settings and defaults")
     data["runs"] = {}
     for case in PAPER:
-        for name, sets in [("ref12", REF12), ("ref11", REF11), ("defaults", DEFAULTS)]:
+        for name, sets in [("ref12", REF12), ("ref11", REF11), ("defaults", library_defaults(tool))]:
             data["runs"]["%s/%s" % (case, name)] = record_run(tool, run_args(case, sets))
     return data
 
@@ -219,7 +236,7 @@ def src_mesh(tool, build):
     data["runs"] = {}
     for case in ["paper-a", "paper-b"]:
         for k in [2, 4, 8]:
-            sets = dict(DEFAULTS, **{"shaft.refine": str(k)})
+            sets = dict(library_defaults(tool), **{"shaft.refine": str(k)})
             data["runs"]["%s/%d" % (case, k)] = record_run(tool, run_args(case, sets))
     for k in [1, 2, 4, 8, 16]:
         sets = {"solver.rtol": "1e-10", "solver.atol": "1e-13", "end_time": "0.11",
@@ -249,7 +266,7 @@ def src_intervals(tool, build):
     data = stamp(tool, "intervals", "bench/intervals.sh's runs: touchdown run --csv, events compared")
     data["runs"] = {}
     with tempfile.TemporaryDirectory() as tmp:
-        for name, sets in [("ref", REF11), ("shipped", {}), ("defaults", DEFAULTS)]:
+        for name, sets in [("ref", REF11), ("shipped", {}), ("defaults", library_defaults(tool))]:
             sets = dict(sets, **{"end_time": "0.3", "output.sample_rate": "1000"})
             args = run_args("paper-b", sets)[:]
             args[args.index("--csv") + 1] = os.path.join(tmp, name + ".csv")
@@ -289,7 +306,7 @@ def src_figures(tool, build):
     return data
 
 
-SOURCES = {"fast": [("runs", src_runs), ("modal", src_modal), ("validation", src_validation)],
+SOURCES = {"fast": [("runs", src_runs), ("modal", src_modal), ("validation", src_validation), ("keys", src_keys)],
            "slow": [("bench", src_bench), ("references", src_references),
                     ("intervals", src_intervals), ("tolerances", src_tolerances), ("mesh", src_mesh),
                     ("convergence", src_convergence), ("figures", src_figures)]}
@@ -360,7 +377,31 @@ def check(tool, source, keys):
     return 1 if bad else 0
 
 
+def check_keys(tool):
+    """The tool's case keys against docs/results/keys.json: any difference fails (rerun
+    scripts/make-docs.sh, which rewrites the key tables of docs/case-format.md from them)."""
+    with open(os.path.join(RESULTS, "keys.json")) as f:
+        rec = json.load(f)["keys"]
+    out, _ = tool_output(tool, ["info", "--keys"])
+    new = json.loads(out)
+    old = {k["key"]: k for k in rec}
+    diffs = ["%s: new" % k["key"] for k in new if k["key"] not in old]
+    diffs += ["%s: gone" % k for k in old if k not in {n["key"] for n in new}]
+    for k in new:
+        diffs += differences(old.get(k["key"], k), k, k["key"])
+    if not diffs and [k["key"] for k in rec] != [k["key"] for k in new]:
+        diffs = ["the keys are in another order"]
+    if diffs:
+        print("FAIL: touchdown info --keys differs from docs/results/keys.json (rerun scripts/make-docs.sh): "
+              "%s%s" % ("; ".join(diffs[:8]), " ..." if len(diffs) > 8 else ""))
+        return 1
+    print("ok:   touchdown info --keys matches docs/results/keys.json (%d keys)" % len(rec))
+    return 0
+
+
 def main():
+    if len(sys.argv) == 3 and sys.argv[1] == "--check-keys":
+        sys.exit(check_keys(os.path.abspath(sys.argv[2])))
     if len(sys.argv) >= 4 and sys.argv[1] == "--check":
         sys.exit(check(os.path.abspath(sys.argv[2]), sys.argv[3], sys.argv[4:]))
     if len(sys.argv) < 3 or sys.argv[2] not in SOURCES:

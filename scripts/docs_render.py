@@ -976,6 +976,35 @@ SPANS = {"rub-mean-normal": span_rub_mean_normal, "val-first-contact-cell": span
          "conv-impulses": span_conv_impulses, "drop-24-vs-96": span_drop_24_vs_96, "drop-energy": span_drop_energy}
 
 
+# --- the case keys (docs/case-format.md) ------------------------------------------------------------
+# The sections of docs/results/keys.json (touchdown info --keys), each a table of its own region
+# "keys-SECTION"; a section the tool names that is not here fails the rendering.
+KEY_SECTIONS = ["top", "shaft", "discs", "ambs", "speed", "bearings", "retainers", "retainer-parts", "unbalances",
+                "schedule", "gravity", "reduction", "contact", "solver", "output", "modal"]
+
+
+def cell(text):
+    """A table cell: '-' when empty, '|' escaped."""
+    return text.replace("|", "\\|") if text else "-"
+
+
+def key_table(section):
+    keys = res("keys")["keys"]
+    unknown = sorted({k["section"] for k in keys} - set(KEY_SECTIONS))
+    if unknown:
+        sys.exit("docs_render: docs/results/keys.json has sections with no table: %s" % ", ".join(unknown))
+    rows = [["`%s`" % k["key"], cell(k["type"]), cell(k["range"]), cell(k["unit"]), cell(k["default"]), cell(k["doc"])]
+            for k in keys if k["section"] == section]
+    return table(["key", "type", "range", "unit", "default", "meaning"], rows)
+
+
+def key_region(section):
+    return lambda: key_table(section)
+
+
+REGIONS.update({"keys-" + s: key_region(s) for s in KEY_SECTIONS})
+
+
 def render(path, text):
     docs_prefix = "" if path.startswith("docs/") else "docs/"
     used = []

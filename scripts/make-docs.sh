@@ -5,14 +5,14 @@
 # README.md and docs/*.md from those records (<!-- generated: NAME --> ... <!-- end generated -->
 # blocks and <!-- gen: NAME -->...<!-- /gen --> spans; scripts/docs_render.py says which is which).
 #   scripts/make-docs.sh [BUILD_DIR]           the fast part: the shipped cases as they are, the
-#                                              critical speeds, the validation tests quoted (about
-#                                              55 s on 2 cores)
+#                                              critical speeds, the validation tests quoted, the
+#                                              case keys (about 55 s on 2 cores)
 #   scripts/make-docs.sh --full [BUILD_DIR]    also the slow part: touchdown bench, the paper's cases
 #                                              at converged settings, tolerance, mesh and convergence
 #                                              studies, the figures (scripts/make-figures.sh; 13 min
 #                                              on 2 cores at load 2, 40 min at load 5-14)
 #   scripts/make-docs.sh --render              only rewrite the regions from the recorded results
-#   scripts/make-docs.sh --full --only SOURCE  rerun one source (runs, modal, validation, bench,
+#   scripts/make-docs.sh --full --only SOURCE  rerun one source (runs, modal, validation, keys, bench,
 #                                              references, intervals, tolerances, mesh, convergence,
 #                                              figures), then render
 # BUILD_DIR defaults to ./build (scripts/setup.sh builds it). tests/cli/test_docs.sh checks that
@@ -43,7 +43,7 @@ if [ "$mode" != render ]; then
     if [ ${#only[@]} -gt 0 ]; then
         fast=() slow=()
         for s in "${only[@]}"; do
-            case $s in runs | modal | validation) fast+=("$s") ;; *) slow+=("$s") ;; esac
+            case $s in runs | modal | validation | keys) fast+=("$s") ;; *) slow+=("$s") ;; esac
         done
         [ ${#fast[@]} -eq 0 ] || "$py" "$here/scripts/docs_record.py" "$build" fast "${fast[@]}"
         [ ${#slow[@]} -eq 0 ] || "$py" "$here/scripts/docs_record.py" "$build" slow "${slow[@]}"

@@ -639,6 +639,115 @@ static void test_docs_match_reader(void **state)
     free(b);
 }
 
+/* The value a key's documented default gives as a case value: the text in backticks, or the first
+ * word; 0 when it is none (required, none, a key name, a phrase). */
+static int default_as_value(const char *def, char *buf, size_t n)
+{
+    const char *end;
+    char *stop;
+    if (def[0] == '`') {
+        end = strchr(def + 1, '`');
+        if (!end || def[1] != '"' || (size_t)(end - def) > n)
+            return 0; /* `node`, `[0.0, -1.0]`: not a value --set takes alone */
+        snprintf(buf, n, "%.*s", (int)(end - def - 1), def + 1);
+        return 1;
+    }
+    end = strchr(def, ' ');
+    snprintf(buf, n, "%.*s", end ? (int)(end - def) : (int)strlen(def), def);
+    if (strcmp(buf, "true") == 0 || strcmp(buf, "false") == 0)
+        return 1;
+    strtod(buf, &stop);
+    return buf[0] && !*stop;
+}
+
+/* Every default the reader's tables document (td_case_key: docs/case-format.md's tables) is the
+ * value the reader gives an absent key: writing the documented default into a case that omits the
+ * key changes nothing the case gives (its options, end time, start, the shaft's mass, options and
+ * nodes). The base case holds every option group, empty. */
+static void test_documented_defaults(void **state)
+{
+    const char *path = scratch("defaults.cfg");
+    td_case *base, *set;
+    td_case_key_info k;
+    td_shaft_options sa, sb;
+    td_error err;
+    int i, tried = 0;
+    (void)state;
+    write_file(path, "shaft = { length = 2.0; elements = 12; outer_diameter = 0.05;\n"
+                     "  material = { E = 2.11e11; G = 8.1e10; density = 7810.0; }; };\n"
+                     "speed = 100.0;\nend_time = 0.1;\n"
+                     "contact = {};\nsolver = {};\noutput = {};\nmodal = {};\n");
+    assert_int_equal(td_case_load(path, NULL, 0, &base, &err), TD_OK);
+    for (i = 0; i < td_case_key_count(); i++) {
+        char value[128], ov[256];
+        const char *ovs[1];
+        assert_int_equal(td_case_key(i, &k, &err), TD_OK);
+        if (strchr(k.key, '[') || strncmp(k.key, "gravity", 7) == 0 || strncmp(k.key, "spin", 4) == 0 ||
+            strncmp(k.key, "reduction", 9) == 0 || !default_as_value(k.default_value, value, sizeof value))
+            continue; /* entries of lists, and groups whose presence is a setting of its own */
+        snprintf(ov, sizeof ov, "%s=%s", k.key, value);
+        ovs[0] = ov;
+        if (td_case_load(path, ovs, 1, &set, &err) != TD_OK) {
+            print_error("%s (the documented default): %s\n", ov, err.message);
+            fail();
+        }
+        td_model_shaft_options(td_case_model(base), &sa);
+        td_model_shaft_options(td_case_model(set), &sb);
+        if (memcmp(td_case_sim_options(base), td_case_sim_options(set), sizeof(td_sim_options)) != 0 ||
+            memcmp(td_case_output_options(base), td_case_output_options(set), sizeof(td_output_options)) != 0 ||
+            memcmp(td_case_modal_options(base), td_case_modal_options(set), sizeof(td_modal_options)) != 0 ||
+            memcmp(&sa, &sb, sizeof sa) != 0 || td_case_end_time(base) != td_case_end_time(set) ||
+            td_model_total_mass(td_case_model(base)) != td_model_total_mass(td_case_model(set)) ||
+            td_model_node_count(td_case_model(base)) != td_model_node_count(td_case_model(set))) {
+            print_error("%s: the documented default is not the reader's\n", ov);
+            fail();
+        }
+        td_case_free(&set);
+        tried++;
+    }
+    /* contact 5, solver 7, output 5, modal 4, start, energy, description, shaft 6 */
+    assert_true(tried >= 28);
+    td_case_free(&base);
+}
+
+/* td_case_key: every key once, each after its group; out of range and NULL refused. */
+static void test_case_key_api(void **state)
+{
+    td_case_key_info k;
+    td_error err;
+    int i, j, n = td_case_key_count();
+    char(*keys)[128];
+    (void)state;
+    assert_true(n > 100);
+    keys = calloc((size_t)n, sizeof *keys);
+    assert_non_null(keys);
+    for (i = 0; i < n; i++) {
+        const char *dot;
+        assert_int_equal(td_case_key(i, &k, &err), TD_OK);
+        assert_true(k.key[0] && k.type[0] && k.default_value[0] && k.doc[0] && k.section[0]);
+        for (j = 0; j < i; j++)
+            assert_string_not_equal(keys[j], k.key);
+        /* a key in a group comes after the group's own row ("shaft.material.E" after "shaft.material") */
+        if ((dot = strrchr(k.key, '.')) != NULL) {
+            char group[128];
+            snprintf(group, sizeof group, "%.*s", (int)(dot - k.key), k.key);
+            if (strlen(group) > 2 && strcmp(group + strlen(group) - 2, "[]") == 0)
+                group[strlen(group) - 2] = '\0';
+            for (j = 0; j < i && strcmp(keys[j], group) != 0; j++)
+                ;
+            if (j == i) {
+                print_error("%s comes before its group %s\n", k.key, group);
+                fail();
+            }
+        }
+        snprintf(keys[i], sizeof keys[i], "%s", k.key);
+    }
+    free(keys);
+    assert_int_equal(td_case_key(n, &k, &err), TD_ERR_INVALID);
+    assert_int_equal(td_case_key(-1, &k, &err), TD_ERR_INVALID);
+    assert_int_equal(td_case_key(0, NULL, &err), TD_ERR_INVALID);
+}
+
 /* shaft.refine: node numbers in the case are those of the shaft as written; every part and output
  * node keeps its axial position on the refined shaft (the model itself: test_model.c). */
 static void test_refine(void **state)
@@ -1440,6 +1549,8 @@ int main(void)
         cmocka_unit_test(test_other_forms_and_defaults),
         cmocka_unit_test(test_retainer_contact_stiffness_zero),
         cmocka_unit_test(test_docs_match_reader),
+        cmocka_unit_test(test_documented_defaults),
+        cmocka_unit_test(test_case_key_api),
         cmocka_unit_test(test_refine),
         cmocka_unit_test(test_overrides),
         cmocka_unit_test(test_bad_overrides),

@@ -7,6 +7,7 @@
 
 static const char info_usage[] =
     "usage: touchdown info [OPTIONS] CASE\n"
+    "       touchdown info --keys\n"
     "\n"
     "Print what CASE describes: shaft nodes and elements, masses, AMBs, plain bearings,\n"
     "retainers, unbalances, the schedule, the speed (constant, a ramp or a free spin) and the\n"
@@ -17,6 +18,9 @@ static const char info_usage[] =
     "options:\n"
     "  -s, --set KEY=VALUE  override a case key (repeatable)\n"
     "  -n, --modes N        number of modes to list (default 6)\n"
+    "      --keys           print every case key the reader knows (no CASE): one JSON object a\n"
+    "                       line with its section, key, type, range, unit, default and doc, in\n"
+    "                       a JSON array (docs/case-format.md's key tables are made from it)\n"
     "  -h, --help           this help\n";
 
 /* The race, mount, own contact law and stick state of a retainer, when it has them. */
@@ -130,6 +134,39 @@ static void print_speed(const td_model *m)
                sp.drag_viscous, sp.inertia > 0.0 ? "" : ", J as above");
 }
 
+/* One member "name": "value" of a key's JSON line. */
+static void print_member(const char *name, const char *value, const char *after)
+{
+    char buf[2048];
+    td_json_string(buf, sizeof buf, value);
+    printf("\"%s\": %s%s", name, buf, after);
+}
+
+/* touchdown info --keys: the case schema (td_case_key), a JSON array with one key a line. */
+static int print_keys(void)
+{
+    td_case_key_info k;
+    td_error err;
+    int i, n = td_case_key_count();
+    printf("[\n");
+    for (i = 0; i < n; i++) {
+        if (td_case_key(i, &k, &err) != TD_OK) {
+            fprintf(stderr, "touchdown info: %s\n", err.message);
+            return TD_EXIT_FAILED;
+        }
+        printf(" {");
+        print_member("section", k.section, ", ");
+        print_member("key", k.key, ", ");
+        print_member("type", k.type, ", ");
+        print_member("range", k.range, ", ");
+        print_member("unit", k.unit, ", ");
+        print_member("default", k.default_value, ", ");
+        print_member("doc", k.doc, i + 1 < n ? "},\n" : "}\n");
+    }
+    printf("]\n");
+    return TD_EXIT_OK;
+}
+
 static int print_modes(const td_model *m, const td_modal_options *opt, int count)
 {
     td_system *sys = NULL;
@@ -169,11 +206,12 @@ int td_cmd_info(int argc, char **argv)
 {
     static const struct option longopts[] = {{"set", required_argument, NULL, 's'},
                                              {"modes", required_argument, NULL, 'n'},
+                                             {"keys", no_argument, NULL, 'k'},
                                              {"help", no_argument, NULL, 'h'},
                                              {NULL, 0, NULL, 0}};
     td_cli_sets sets = {{0}, 0};
     td_case *c = NULL;
-    int opt, code, count = 6;
+    int opt, code, count = 6, keys = 0;
     char *end;
 
     optind = 1;
@@ -190,9 +228,16 @@ int td_cmd_info(int argc, char **argv)
                 return TD_EXIT_USAGE;
             }
             break;
+        case 'k': keys = 1; break;
         case 'h': fputs(info_usage, stdout); return TD_EXIT_OK;
         default: fputs(info_usage, stderr); return TD_EXIT_USAGE;
         }
+    }
+    if (keys && optind == argc)
+        return print_keys();
+    if (keys) {
+        td_cli_error("info", "--keys lists the keys every case may use: give it no case file");
+        return TD_EXIT_USAGE;
     }
     if (optind != argc - 1) {
         td_cli_error("info", "expected exactly one case file (see touchdown info --help)");

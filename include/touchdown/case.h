@@ -113,6 +113,25 @@ TD_API const char *td_case_description(const td_case *c);
 TD_API int td_case_sweep_specs(const td_case *c);
 TD_API const char *td_case_sweep_spec(const td_case *c, int i, int *with, const char **where);
 
+/** One key of the case file as the reader's schema describes it (the key tables of
+ *  docs/case-format.md are printed from these by `touchdown info --keys`). */
+typedef struct td_case_key_info {
+    const char *section;     /**< the table of docs/case-format.md that lists it: "top", "shaft", ... */
+    char key[128];           /**< the full key, an entry of a list written []: "retainers[].race.inertia" */
+    char type[128];          /**< "number", "integer", "boolean", "string", "group", "list", the names... */
+    char range[128];         /**< the values it may take beyond its type ("> 0", "1..5"); "" for any */
+    const char *unit;        /**< "" for none */
+    char default_value[128]; /**< "required", the value an absent key gives, or what it means */
+    const char *doc;         /**< what it is, one line */
+} td_case_key_info;
+
+/** The number of keys the case reader knows, groups and lists included (not the keys of the
+ *  `sweep` group's entries, which touchdown/sweep.h describes). */
+TD_API int td_case_key_count(void);
+/** Key i (0 <= i < td_case_key_count()) into *out, each group's keys after the group, in the
+ *  order of the reader's tables. TD_ERR_INVALID for an i out of range or a NULL out. */
+TD_API td_status td_case_key(int i, td_case_key_info *out, td_error *err);
+
 #ifdef __cplusplus
 }
 #endif

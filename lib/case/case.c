@@ -3,16 +3,11 @@
  * file's directory), apply the --set overrides, then read every section into a td_model and the
  * option structs. Each step stops at the first error with a "FILE:LINE: KEY: what" message.
  */
-#include "case/case_internal.h"
+#include "case/case_schema.h"
 #include "util/error_internal.h"
 
 #include <stdlib.h>
 #include <string.h>
-
-static const char *const top_keys[] = {"description",  "speed",      "end_time", "start",     "shaft",      "discs",
-                                       "point_masses", "ambs",       "bearings", "retainers", "unbalances", "schedule",
-                                       "gravity",      "contact",    "solver",   "output",    "modal",      "overrides",
-                                       "energy",       "speed_ramp", "spin",     "reduction", "sweep",      NULL};
 
 static char *dup_string(const char *s, size_t n)
 {
@@ -172,25 +167,12 @@ static td_status apply_refine(td_case_reader *r)
     return TD_OK;
 }
 
-/* Every section, in dependency order: the shaft fixes the nodes, AMBs come before retainers. */
+/* Every section by the top level's table (its order: the shaft fixes the nodes, AMBs come before
+ * retainers), then the model's cross checks and the refinement. */
 static td_status read_case(td_case_reader *r)
 {
-    const config_setting_t *root = config_root_setting(&r->cfg);
-    const char *desc;
     td_error merr;
-    td_status st = td_cr_check_keys(r, root, top_keys);
-    if (st == TD_OK)
-        st = td_cr_string(r, root, "description", "", &desc);
-    if (st == TD_OK && !(r->c->description = dup_string(desc, strlen(desc))))
-        st = td_cr_fail_file(r->err, TD_ERR_NOMEM, r->path_shown, 0, "out of memory");
-    if (st == TD_OK)
-        st = td_cr_read_shaft(r, root);
-    if (st == TD_OK)
-        st = td_cr_read_parts(r, root);
-    if (st == TD_OK)
-        st = td_cr_read_options(r, root);
-    if (st == TD_OK)
-        st = td_cr_read_sweep(r, root);
+    td_status st = td_cs_read(r, config_root_setting(&r->cfg), &td_cs_root, r->c);
     /* the model's cross checks (nodes on the shaft, one AMB and one retainer per node, retainers
      * tighter than the air gaps, schedule indices), reported at the settings they name */
     if (st == TD_OK && td_model_validate(r->c->model, &merr) != TD_OK)

@@ -186,14 +186,13 @@ td_status td_cr_apply_file_overrides(td_case_reader *r);
 /* The entry of the case's "overrides" list whose string is `ov`, or NULL (a --set). */
 const config_setting_t *td_cr_file_override(const td_case_reader *r, const char *ov);
 
-/* ---- section readers (case_shaft.c, case_parts.c, case_options.c) ------------------------- */
+/* ---- sections (case_schema.h: the tables; case_shaft.c, case_vary.c: readers of their own) ---- */
 /* The names of td_contact_damping, in its order (the run's and the retainers' contact groups). */
 #define TD_CR_DAMPING_NAMES 3
 extern const char *const td_cr_damping_names[TD_CR_DAMPING_NAMES];
 
+/* The required `shaft` group by its table (case_shaft.c), with the element arrays it needs. */
 td_status td_cr_read_shaft(td_case_reader *r, const config_setting_t *root);
-td_status td_cr_read_parts(td_case_reader *r, const config_setting_t *root);
-td_status td_cr_read_options(td_case_reader *r, const config_setting_t *root);
 /* The optional `sweep` group (case_vary.c): its shape checked, its specs kept as read. */
 td_status td_cr_read_sweep(td_case_reader *r, const config_setting_t *root);
 /* Free the case's sweep specs. */

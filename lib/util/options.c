@@ -1,4 +1,5 @@
-/* Defaults of every option struct; docs/case-format.md states the same values. */
+/* Defaults of every option struct: the one statement of them. The case reader's tables take them from
+ * here (TD_CS_PRESET, lib/case/case_schema.h), and docs/case-format.md's key tables print them. */
 #include "touchdown/options.h"
 
 #include <string.h>

@@ -257,6 +257,66 @@ speed|KEY=VALUE
 speed="abc|speed
 EOF
 
+# ---- the case reader's own rules, forms and getters through its tables: the whole message of a
+# --set on tests/data/case/all-keys.cfg (a row check, a custom reader or a typed getter of each
+# kind; the text as the reader gave it before it read by tables) ----------------------------
+all_keys=$src/tests/data/case/all-keys.cfg
+while IFS='|' read -r set rest; do
+    [ -z "$set" ] && continue
+    run_tool info -n 1 --set "$set" "$all_keys"
+    if [ "$rc" = 2 ] && [ "$err" = "touchdown: $all_keys$rest" ] && [ -z "$out" ]; then
+        pass "info --set '$set' -> exact message"
+    else
+        fail "info --set '$set': exit $rc, stderr '$err', expected 'touchdown: $all_keys$rest'"
+    fi
+done <<'EOF'
+solver.initial_step=1.0|: --set 'solver.initial_step=1.0': solver.initial_step: 1 s is larger than max_step 0.0001 s
+contact.exponent=0.5|: --set 'contact.exponent=0.5': contact.exponent: must be >= 1 (got 0.5)
+modal.speed_max=1.0|: --set 'modal.speed_max=1.0': modal.speed_max: speed_max (1 rad/s) must be larger than speed_min (10 rad/s)
+modal.speed_steps=100000|: --set 'modal.speed_steps=100000': modal.speed_steps: 100000 speeds on a model of 28 DOFs is too much work: speed_steps x DOFs must stay below 200000 (here at most 7142 speeds; see docs/performance.md)
+modal.modes=1000|: --set 'modal.modes=1000': modal.modes: must lie in [1, 28] (got 1000)
+output.nodes=[1, 1]|: --set 'output.nodes=[1, 1]': output.nodes[1]: node 1 is listed twice
+output.nodes=[99]|: --set 'output.nodes=[99]': output.nodes[0]: node 99 is out of range (the shaft has nodes 0..6)
+gravity.direction=[1.0, 2.0, 3.0]|: --set 'gravity.direction=[1.0, 2.0, 3.0]': gravity.direction: too many entries (3, at most 2)
+gravity.direction=[0.0, 0.0]|: --set 'gravity.direction=[0.0, 0.0]': gravity.direction: must not be the zero vector
+gravity.direction=[1.0]|: --set 'gravity.direction=[1.0]': gravity.direction: expected two components [gx, gy], got 1
+shaft.nodes=[0.0, 1.0]|: --set 'shaft.nodes=[0.0, 1.0]': shaft.nodes: give either 'nodes' or 'length' + 'elements', not both
+shaft.sections[0].element=1|: --set 'shaft.sections[0].element=1': shaft.sections[0].element: give either 'element' or 'from' + 'to', not both
+shaft.sections[0].to=-1|: --set 'shaft.sections[0].to=-1': shaft.sections[0].to: must lie in [0, 5] (got -1)
+shaft.sections[1].element=0|:20: shaft.sections[1]: element 0 is already in sections[0]; sections must not overlap
+shaft.refine=5000|: --set 'shaft.refine=5000': shaft.refine: 6 elements split 5000 times make 30000 (at most 10000)
+shaft.damping={ ratio = 0.01; frequencies = [10.0]; }|: --set 'shaft.damping={ ratio = 0.01; frequencies = [10.0]; }': shaft.damping: give either 'rayleigh' or 'damping', not both
+shaft.rayleigh.gamma=1.0|: --set 'shaft.rayleigh.gamma=1.0': shaft.rayleigh.gamma: unknown key (valid here: alpha, beta)
+discs[0].radius=0.1|: --set 'discs[0].radius=0.1': discs[0].radius: give either mass + Ip + Id or the geometry (radius + density + thickness or mass), not both
+ambs[0].bandwidth=100.0|: --set 'ambs[0].bandwidth=100.0': ambs[0].bandwidth: give either tau or bandwidth, not both
+ambs[1].bandwidth=-1.0|: --set 'ambs[1].bandwidth=-1.0': ambs[1].bandwidth: must be > 0 (got -1)
+schedule[0].amb_off=0|:59: schedule[0].amb_on: a schedule entry makes one change: unbalance, amb_off or amb_on
+schedule[0].amb_on=1.5|: --set 'schedule[0].amb_on=1.5': schedule[0].amb_on: expected an integer, got the number 1.5 (write integers without a point)
+description=1|: --set 'description=1': description: expected a string "...", got an integer
+speed="x"|: --set 'speed="x"': speed: expected a number, got the string "x"
+retainers[0].bore_radius="x"|: --set 'retainers[0].bore_radius="x"': retainers[0].bore_radius: expected a number, got the string "x"
+retainers[0].race.mass="x"|: --set 'retainers[0].race.mass="x"': retainers[0].race.mass: expected a number, got the string "x"
+retainers[0].mount.damping="x"|: --set 'retainers[0].mount.damping="x"': retainers[0].mount.damping: expected a number, got the string "x"
+retainers[0].contact.damping="x"|: --set 'retainers[0].contact.damping="x"': retainers[0].contact.damping: must be one of "none", "hunt-crossley", "kelvin-voigt" (got "x")
+shaft.material.E=0|: --set 'shaft.material.E=0': shaft.material.E: must be > 0 (got 0)
+shaft.sections[0].material.E=-1|: --set 'shaft.sections[0].material.E=-1': shaft.sections[0].material.E: must be > 0 (got -1)
+shaft.shear_coefficient="x"|: --set 'shaft.shear_coefficient="x"': shaft.shear_coefficient: must be one of "hutchinson", "cowper" (got "x")
+shaft.shear_coefficient=[1]|: --set 'shaft.shear_coefficient=[1]': shaft.shear_coefficient: expected a number, got an array [ ... ]
+spin.free=1|: --set 'spin.free=1': spin.free: expected true or false, got an integer
+point_masses[0].nodde=1|: --set 'point_masses[0].nodde=1': point_masses[0].nodde: unknown key; did you mean 'node'?
+modal.response_speeds=[-1.0]|: --set 'modal.response_speeds=[-1.0]': modal.response_speeds[0]: must be >= 0 (got -1)
+output.compression=10|: --set 'output.compression=10': output.compression: must lie in [0, 9] (got 10)
+energy=1|: --set 'energy=1': energy: expected true or false, got an integer
+start="x"|: --set 'start="x"': start: must be one of "orbit", "rest", "auto" (got "x")
+discs=1|: --set 'discs=1': discs: expected a list of groups ( { ... }, { ... } ), got an integer
+discs=(1)|: --set 'discs=(1)': discs[0]: expected a group { ... }, got an integer
+gravity=1|: --set 'gravity=1': gravity: expected a group { ... }, got an integer
+EOF
+long=$(printf 'A%.0s' $(seq 1100))
+run_tool info --set "output.hdf5=\"$long\"" "$all_keys"
+check "info: an output path of 1100 characters -> path too long" test "$rc" = 2 -a \
+    "${err##*: }" = "path too long (1100 characters, at most 1023)"
+
 # ---- bad usage -----------------------------------------------------------------------------
 expect_usage "no arguments"
 expect_usage "unknown command" frobnicate "$case_a"
@@ -268,6 +328,10 @@ for cmd in run info modal; do
 done
 expect_usage "run --output without its argument" run "$case_a" --output
 expect_usage "info --modes 0" info --modes 0 "$case_a"
+expect_usage "info --keys with a case file" info --keys "$case_a"
+run_tool info --keys
+check "info --keys: exit 0, a JSON array of the case keys on stdout, nothing on stderr" \
+    test "$rc" = 0 -a -z "$err" -a "${out:0:1}" = "[" -a "${out: -1}" = "]"
 # a speed the library does not take (touchdown/dofs.h: >= 0, the spin about +z), as in the case file
 for w in -5 -1e-9 nan inf; do
     expect_bad "modal --speed $w" "touchdown modal: --speed wants a speed >= 0 in rad/s, not '$w'" -- \

@@ -11,7 +11,11 @@
 #       closed-form flight, penalty contact), about 2.5 s of CPU in the plain build and 7 s under
 #       ASan (which gives the same numbers). The longer runs (cases A and B to 2 s, D, D10, the
 #       drop, the run-up: 2-6 s each, 5-7 times that under ASan) are checked by (a) only, through
-#       their records.
+#       their records;
+#   (c) the case keys the tool knows (touchdown info --keys, the reader's tables) equal
+#       docs/results/keys.json, the record the key tables of docs/case-format.md are made from: a
+#       key, type, range, unit, default or doc changed in the reader without rerunning
+#       scripts/make-docs.sh fails (and (a) fails a key table edited by hand).
 # Needs python3 (json, difflib only). Args: $1 = the touchdown binary, $2 = the source directory.
 set -u
 tool=$1
@@ -33,5 +37,13 @@ while IFS= read -r line; do
     *) echo "$line" ;;
     esac
 done < <("$py" "$src/scripts/docs_record.py" --check "$tool" runs "${cheap[@]}" 2>&1)
-check "every cheap run checked (${#cheap[@]})" test "$checks" -ge $((${#cheap[@]} + 1))
+# (c) the case keys
+while IFS= read -r line; do
+    case $line in
+    ok:*) pass "${line#ok:   }" ;;
+    FAIL:*) fail "${line#FAIL: }" ;;
+    *) echo "$line" ;;
+    esac
+done < <("$py" "$src/scripts/docs_record.py" --check-keys "$tool" 2>&1)
+check "every cheap run and the case keys checked (${#cheap[@]} + 1)" test "$checks" -ge $((${#cheap[@]} + 2))
 finish
