@@ -144,15 +144,12 @@ void td_sim_energy_rewind(td_sim *s)
     memcpy(s->energy_prev, pw, sizeof pw);
 }
 
-td_status td_sim_energy(const td_sim *sim, td_energy *out)
+void td_sim_energy_get(const td_sim *s, td_energy *out)
 {
     double pw[5];
-    if (!sim || !out || !sim->opt.energy)
-        return TD_ERR_INVALID;
-    *out = sim->energy;
-    if (sim->totals_t > sim->t) /* powers() uses the sim's scratch force vector only */
-        energy_back_to_now((td_sim *)sim, out, pw);
+    *out = s->energy;
+    if (s->totals_t > s->t) /* powers() uses the sim's scratch force vector only */
+        energy_back_to_now((td_sim *)s, out, pw);
     out->residual = out->kinetic + out->elastic - out->initial - out->external_work - out->drive_work +
                     out->damping_loss + out->contact_loss + out->drag_loss + out->impact_loss;
-    return TD_OK;
 }

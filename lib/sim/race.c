@@ -128,36 +128,6 @@ void td_sim_races_gravity(const td_sim *s, double *f, double sign)
     }
 }
 
-/*
- * The race speed's absolute tolerance, rad/s. In contact the race is coupled to the node: v_s ties
- * its surface speed R_b Omega_b to the node's tangential velocity, which is controlled to
- * atol freq_max, so the race speed gets that, divided by R_b (a tighter one made the error test fail
- * on the node's noise carried into it). Free, the race has no fast modes and nothing else: the slow
- * scale atol freq_scale / R_b resolves its coast-down to rest under the drag (at freq_max it
- * wandered by 0.05 rad/s about rest).
- */
-double td_sim_race_speed_atol(const td_sim *s, int k)
-{
-    const td_sim_retainer *r = &s->ret[k];
-    return s->opt.solver.atol * (r->mode != TD_RMODE_FREE ? s->freq_max : s->freq_scale) / r->r.bore_radius;
-}
-
-int td_sim_races_retolerance(td_sim *s)
-{
-    double *at = N_VGetArrayPointer(s->atol);
-    int k, changed = 0;
-    for (k = 0; k < s->nr; k++) {
-        int i = s->ov + s->ret[k].rs;
-        double want;
-        if (s->ret[k].rs < 0)
-            continue;
-        want = td_sim_race_speed_atol(s, k);
-        changed = changed || at[i] != want;
-        at[i] = want;
-    }
-    return changed;
-}
-
 void td_sim_races_start(const td_sim *s, double *y)
 {
     double gx, gy;

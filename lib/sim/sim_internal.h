@@ -63,10 +63,10 @@ typedef struct td_sim_totals {
     int in_contact;        /* in contact at the last point */
     double whirl_at_onset; /* t.whirl_angle when the open interval began */
     double interval_peak;  /* N, the largest normal force of the open (or the last) contact interval
-                              at the accepted points (sim.c, monitor_at) */
+                              at the accepted points (monitor.c, td_sim_monitor_at) */
 } td_sim_totals;
 
-/* The closed-form free flight's decomposition, forcing and anchor (flight.c). */
+/* The closed-form free flight's decomposition, forcing and anchor (flight_internal.h). */
 typedef struct td_sim_flight td_sim_flight;
 
 struct td_sim {
@@ -122,7 +122,8 @@ struct td_sim {
     SUNContext ctx;
     void *ida;
     N_Vector y, yp, id, atol;
-    N_Vector newton_del; /* the Newton correction, its multipliers weighed against their rounding floor (sim.c) */
+    N_Vector
+        newton_del; /* the Newton correction, its multipliers weighed against their rounding floor (integrator.c) */
     SUNMatrix A;
     SUNLinearSolver LS;
     SUNNonlinearSolver NLS;
@@ -139,7 +140,7 @@ struct td_sim {
     double t;         /* current time: y, yp hold the state here */
     double t_ida;     /* IDA's internal time (>= t after an interpolated output) */
     double t_acc;     /* contact time accumulated up to here */
-    int pending;      /* what stopped IDA beyond the last output time (sim.c TD_PENDING_*), 0: nothing */
+    int pending;      /* what stopped IDA beyond the last output time (stepping.c TD_PENDING_*), 0: nothing */
     double t_pending; /* where */
 
     /* events */
@@ -182,17 +183,102 @@ struct td_sim {
 
     td_sim_flight *flight;          /* flight.c, allocated at the first flight; NULL: none yet */
     struct td_sim_section *section; /* section.c, NULL: no section taken */
-    long tiny_steps;                /* consecutive IDA steps too short to move t (sim.c, stalled) */
-    long passes;                    /* integration passes (steps, flights) since t_window (sim.c, no_progress) */
+    long tiny_steps;                /* consecutive IDA steps too short to move t (integrator.c, td_sim_stalled) */
+    long passes;                    /* integration passes (steps, flights) since t_window (stepping.c, no_progress) */
     double t_window;                /* the time when the current window of passes began */
     int ida_stale;                  /* the flight moved the state: IDA restarts before its next step */
 
     volatile sig_atomic_t *interrupt; /* borrowed (td_sim_set_interrupt), NULL: none */
-    td_sim_start_info start;          /* how the start state was chosen (start_state in sim.c) */
+    td_sim_start_info start;          /* how the start state was chosen (start.c) */
 
     char errmsg[TD_ERROR_MESSAGE_SIZE];
     char warnmsg[TD_ERROR_MESSAGE_SIZE];
 };
+
+/*
+ * The files of lib/sim are layers: each calls only the files listed above it here (and below it in
+ * no way), so that no call runs back up:
+ *
+ *   sim_nvector, sim_linsol      vector operations, the KLU solver
+ *   spin, retainer, race         the spin, the retainers' queries and modes, the races' DOFs
+ *   sim_pattern                  the Jacobian's pattern, the structural operator, the mass matrix
+ *   sim_residual                 the DAE: forces, residual, Jacobian, roots
+ *   monitor, energy, totals      statistics and events, the energy account, the retainers' totals
+ *   flight_modal, flight_roots,  the closed-form free flight
+ *   flight
+ *   sim_modes, schedule          mode switching (KKT, impacts, roots), the model's timed changes
+ *   tolerance, integrator        the tolerances, IDA and its restarts
+ *   section                      the once-per-revolution section (section.h)
+ *   start, stepping, setup       the start state, the step loop, creation and release
+ *   sim                          the public functions of touchdown/sim.h
+ */
+
+/* ---- sim_nvector.c: compiled vector operations ----------------------------------------- */
+
+/* Replace the operations of serial vector v (and of every later clone of it) by the library's
+ * compiled loops; see sim_nvector.c for why. */
+void td_sim_nvector_optimize(N_Vector v);
+
+/* ---- sim_linsol.c: KLU inside IDA ------------------------------------------------------- */
+
+/* A SUNLinearSolver factorising s->jdata on s->colptr/s->rowind with KLU: one symbolic analysis
+ * per run, a pivoting factorisation after every restart, refactorisations in between. */
+SUNLinearSolver td_sim_klu_create(const td_sim *s);
+
+/* ---- spin.c: the rotor's spin as a DOF when the speed varies ----------------------------- */
+
+/* rad/s: the free spin's constant drag is regularised over this band around standstill */
+#define TD_SIM_SPIN_BAND 1e-2
+
+/* Assign the spin DOF (after the races') when the model's speed varies; s->spin = -1 otherwise. */
+void td_sim_spin_layout(td_sim *s);
+/* The spin's diagonal entry of matrix `which` ('M': J, 'C': the free spin's viscous drag). */
+void td_sim_spin_diagonal(const td_sim *s, char which, double *d);
+/* Rotor speed Omega (rad/s) and spin angle phi (rad) at (t, y). */
+double td_sim_rotor_speed(const td_sim *s, const double *y);
+double td_sim_rotor_angle(const td_sim *s, double t, const double *y);
+/* The torque that drives the spin DOF from outside (ramp: J alpha, what the drive must give;
+ * free: the drive torque); 0 without a spin DOF. */
+double td_sim_spin_torque(const td_sim *s, double t);
+/* A free spin's constant drag torque, regularised over TD_SIM_SPIN_BAND at standstill, with its
+ * slope in Omega (may be NULL); 0 otherwise. */
+double td_sim_spin_drag(const td_sim *s, const double *y, double *dT);
+/* The spin's start state into y: angle and speed at s->t. */
+void td_sim_spin_start(const td_sim *s, double *y);
+/* A ramp's spin angle and speed (and their rates into yp, which may be NULL) in y set to the
+ * prescribed profile's at t: what an accepted or interpolated state reports. Nothing otherwise. */
+void td_sim_spin_hold(const td_sim *s, double t, double *y, double *yp);
+/* The spin angle taken modulo 2 pi (at restarts). */
+void td_sim_spin_wrap(const td_sim *s, double *y);
+
+/* ---- retainer.c: the retainers (retainer.h) ---------------------------------------------- */
+
+/* ---- race.c: the races' DOFs and matrices ----------------------------------------------- */
+
+/* Assign the race DOFs after the rotor's and set s->n. */
+void td_sim_races_layout(td_sim *s);
+/* s->M, s->K, s->C, s->G over all n DOFs. */
+td_status td_sim_races_matrices(td_sim *s, td_error *err);
+void td_sim_races_free(td_sim *s);
+/* f += sign * the races' weight (length n). */
+void td_sim_races_gravity(const td_sim *s, double *f, double sign);
+/* The races' start state into y: centres resting on their mounts, speeds at bore_speed. */
+void td_sim_races_start(const td_sim *s, double *y);
+
+/* ---- sim_pattern.c: the Jacobian's sparsity pattern, the structural operator, the mass ---- */
+
+/* Build s->colptr, s->rowind, s->jdata and the maps of the system matrices. */
+td_status td_sim_pattern_build(td_sim *s, td_error *err);
+/* Position of (row, col) in the pattern, -1 if absent. */
+int td_sim_pattern_find(const td_sim *s, int row, int col);
+/* Build the row-compressed M, K, D of the structural operator (s->st_*), D at s->omega. */
+td_status td_sim_structural_build(td_sim *s, td_error *err);
+/* Recompute D = C + Omega G after a change of s->omega. */
+void td_sim_structural_speed(td_sim *s);
+/* Factorise M (s->Ms, s->Mn). */
+td_status td_sim_mass_factor(td_sim *s, td_error *err);
+/* x = M^-1 b in place (length n). */
+void td_sim_mass_solve(const td_sim *s, double *b);
 
 /* ---- sim_residual.c: the DAE ------------------------------------------------------------- */
 
@@ -217,17 +303,30 @@ double td_sim_amb_axis_force(const td_sim *s, int k, const double *y);
 double td_sim_unbalance_spin_coupling(const td_sim *s, double t, const double *y, const double *yp, double *rv);
 /* Rate of AMB axis k's integrator state at y (model/amb.c td_amb_axis_integral_rate); 0 without one. */
 double td_sim_amb_axis_integral_rate(const td_sim *s, int k, const double *y);
-/* Spin angle phi(t). */
+/* Spin angle phi(t) at the prescribed speed. */
 double td_sim_spin_angle(const td_sim *s, double t);
+/* dOmega/dt at (t, y): the ramp's slope on the interval being integrated, (s->t, t] (at t = s->t
+ * the segment starting there), or a free spin's torque balance over J (spin.c). */
+double td_sim_rotor_rate(const td_sim *s, double t, const double *y);
 
-/* ---- totals.c: the retainers' running totals --------------------------------------------- */
+/* ---- monitor.c: statistics and the event queue ------------------------------------------- */
 
-/* A point of the totals at time t with the state in s->y: closes the segment since the last point
- * (restart 0: an accepted step or a stop), or opens one after a restart (restart 1). */
-void td_sim_totals_point(td_sim *s, double t, int restart);
-/* Before a restart at s->t inside the integrator's last step (a change between steps): the totals
- * taken back to s->t. */
-void td_sim_totals_rewind(td_sim *s);
+/* Append an event to the queue (and the statistics). */
+void td_sim_queue_event(td_sim *s, const td_event *ev);
+/* Fill the velocity fields of an event from the node velocity of retainer k. */
+void td_sim_event_velocities(const td_sim *s, int k, const double *y, int after, td_event *ev);
+/* An event of `kind` at s->t, of retainer k (-1: none), no schedule entry. */
+td_event td_sim_event_at(const td_sim *s, td_event_kind kind, int k);
+/* The next queued event into s->last; 0 when the queue is empty. */
+int td_sim_pop_event(td_sim *s);
+/* AMB axis k's force `force` at time t: a new peak load if it is the largest yet. */
+void td_sim_monitor_amb_load(td_sim *s, int k, double force, double t);
+/* Statistics at the state in s->y (time t): contact time, peak normal force, AMB load, and at an
+ * integrator step's end (at_step) the constraint drift. */
+void td_sim_monitor_at(td_sim *s, double t, int at_step);
+
+/* ---- energy.c, totals.c: the energy account and the retainers' running totals ------------- */
+
 /* The energy account's point at time t (energy.c), with the segment length dt since the last one
  * (0 at a restart): called by td_sim_totals_point. */
 void td_sim_energy_point(td_sim *s, double t, int restart, double dt);
@@ -238,115 +337,20 @@ void td_sim_energy_impact(td_sim *s, double before, double after);
 void td_sim_energy_rewind(td_sim *s);
 /* Kinetic energy 1/2 v^T M v of the state y, J. */
 double td_sim_kinetic_energy(const td_sim *s, const double *y);
+/* The energy account at s->t (td_sim_energy). */
+void td_sim_energy_get(const td_sim *s, td_energy *out);
+/* A point of the totals at time t with the state in s->y: closes the segment since the last point
+ * (restart 0: an accepted step or a stop), or opens one after a restart (restart 1). */
+void td_sim_totals_point(td_sim *s, double t, int restart);
+/* Before a restart at s->t inside the integrator's last step (a change between steps): the totals
+ * taken back to s->t. */
+void td_sim_totals_rewind(td_sim *s);
 /* An impact of retainer k with `impulse` (N s); `bounced`: it left at once (touch-and-go). */
 void td_sim_totals_impact(td_sim *s, int k, double impulse, int bounced);
+/* Retainer k's totals at s->t (td_sim_retainer_totals). */
+void td_sim_totals_get(const td_sim *s, int k, td_retainer_totals *out);
 
-/* ---- race.c: the races' DOFs and matrices ----------------------------------------------- */
-
-/* Assign the race DOFs after the rotor's and set s->n. */
-void td_sim_races_layout(td_sim *s);
-/* s->M, s->K, s->C, s->G over all n DOFs. */
-td_status td_sim_races_matrices(td_sim *s, td_error *err);
-void td_sim_races_free(td_sim *s);
-/* f += sign * the races' weight (length n). */
-void td_sim_races_gravity(const td_sim *s, double *f, double sign);
-/* Absolute tolerance of retainer k's race speed now (it depends on whether the race rolls). */
-double td_sim_race_speed_atol(const td_sim *s, int k);
-/* Set the race speeds' tolerances in s->atol for the current modes; 1 if one changed. */
-int td_sim_races_retolerance(td_sim *s);
-/* The races' start state into y: centres resting on their mounts, speeds at bore_speed. */
-void td_sim_races_start(const td_sim *s, double *y);
-
-/* ---- spin.c: the rotor's spin as a DOF when the speed varies ----------------------------- */
-
-/* rad/s: the free spin's constant drag is regularised over this band around standstill */
-#define TD_SIM_SPIN_BAND 1e-2
-
-/* Assign the spin DOF (after the races') when the model's speed varies; s->spin = -1 otherwise. */
-void td_sim_spin_layout(td_sim *s);
-/* The spin's diagonal entry of matrix `which` ('M': J, 'C': the free spin's viscous drag). */
-void td_sim_spin_diagonal(const td_sim *s, char which, double *d);
-/* Rotor speed Omega (rad/s) and spin angle phi (rad) at (t, y). */
-double td_sim_rotor_speed(const td_sim *s, const double *y);
-double td_sim_rotor_angle(const td_sim *s, double t, const double *y);
-/* dOmega/dt at (t, y): the ramp's slope on the interval being integrated, (s->t, t] (at t = s->t
- * the segment starting there), or a free spin's torque balance over J. */
-double td_sim_rotor_rate(const td_sim *s, double t, const double *y);
-/* The torque that drives the spin DOF from outside (ramp: J alpha, what the drive must give;
- * free: the drive torque); 0 without a spin DOF. */
-double td_sim_spin_torque(const td_sim *s, double t);
-/* A free spin's constant drag torque, regularised over TD_SIM_SPIN_BAND at standstill, with its
- * slope in Omega (may be NULL); 0 otherwise. */
-double td_sim_spin_drag(const td_sim *s, const double *y, double *dT);
-/* The spin's start state into y: angle and speed at s->t. */
-void td_sim_spin_start(const td_sim *s, double *y);
-/* A ramp's spin angle and speed (and their rates into yp, which may be NULL) in y set to the
- * prescribed profile's at t: what an accepted or interpolated state reports. Nothing otherwise. */
-void td_sim_spin_hold(const td_sim *s, double t, double *y, double *yp);
-/* The spin angle taken modulo 2 pi (at restarts). */
-void td_sim_spin_wrap(const td_sim *s, double *y);
-
-/* ---- sim_nvector.c: compiled vector operations ----------------------------------------- */
-
-/* Replace the operations of serial vector v (and of every later clone of it) by the library's
- * compiled loops; see sim_nvector.c for why. */
-void td_sim_nvector_optimize(N_Vector v);
-
-/* ---- sim_linsol.c: KLU inside IDA ------------------------------------------------------- */
-
-/* A SUNLinearSolver factorising s->jdata on s->colptr/s->rowind with KLU: one symbolic analysis
- * per run, a pivoting factorisation after every restart, refactorisations in between. */
-SUNLinearSolver td_sim_klu_create(const td_sim *s);
-
-/* ---- sim_pattern.c: the Jacobian's sparsity pattern -------------------------------------- */
-
-/* Build s->colptr, s->rowind, s->jdata and the maps of the system matrices. */
-td_status td_sim_pattern_build(td_sim *s, td_error *err);
-/* Position of (row, col) in the pattern, -1 if absent. */
-int td_sim_pattern_find(const td_sim *s, int row, int col);
-/* Build the row-compressed M, K, D of the structural operator (s->st_*), D at s->omega. */
-td_status td_sim_structural_build(td_sim *s, td_error *err);
-/* Recompute D = C + Omega G after a change of s->omega. */
-void td_sim_structural_speed(td_sim *s);
-
-/* ---- sim_modes.c: mode switching, consistent restarts, events ---------------------------- */
-
-/* x = M^-1 b in place (length n). */
-void td_sim_mass_solve(const td_sim *s, double *b);
-/* Make (y, y') consistent with the current modes at time t: eta = 0, lambda of free retainers 0,
- * q' = v, w' = filter rate, and [v'; lambda] from the KKT system. Contacts whose lambda comes out
- * negative (or <= 0 for those flagged in just_entered) are released and the solve repeated; each
- * release is queued as an event unless just entered (then the onset event records it). */
-td_status td_sim_make_consistent(td_sim *s, const int *just_entered);
-/* 1 if some retainer's mode disagrees with the state y, i.e. IDA missed a crossing of its root:
- * a penalty contact's mode beyond the noise band (retainer.c td_sim_penalty_mode_wanted), or a
- * stick retainer sliding against its slip direction beyond the slip band (stick_out_of_step). */
-int td_sim_modes_out_of_step(const td_sim *s, const double *y);
-/* Start of a run with the retainers flagged in `touching` on (or a hair outside) their circles:
- * projection and impact as at an onset, then td_sim_make_consistent. */
-td_status td_sim_start_contacts(td_sim *s, const int *touching);
-/* Handle the roots found at s->t (IDAGetRootInfo in s->rootsfound; all zero: only bring the
- * penalty modes in step with the state). *restart is set when the integrator must be
- * re-initialised. */
-td_status td_sim_handle_roots(td_sim *s, int *restart);
-/* Apply every schedule change due at s->t, queueing TD_EVENT_SCHEDULE events. */
-td_status td_sim_apply_due_changes(td_sim *s);
-/* Apply silently every change due at or before s->t (before the start of the run). */
-void td_sim_apply_past_changes(td_sim *s);
-/* AMB amb's mode, also in s->sys (td_system_set_amb_off), so that the start state's stability and
- * steady orbit are those of the machine at the start, after the changes due then. */
-void td_sim_amb_mode_set(td_sim *s, int amb, td_amb_mode mode);
-/* Re-initialise IDA at s->t from s->y, s->yp (counters saved, root directions, restart step,
- * stop time, KLU refactorisation). */
-td_status td_sim_restart(td_sim *s);
-/* Where the integrator must stop next: the next schedule change or speed-ramp point; INFINITY if none. */
-double td_sim_next_stop(const td_sim *s);
-/* Append an event to the queue (and the statistics). */
-void td_sim_queue_event(td_sim *s, const td_event *ev);
-/* Fill the velocity fields of an event from the node velocity of retainer k. */
-void td_sim_event_velocities(const td_sim *s, int k, const double *y, int after, td_event *ev);
-
-/* ---- flight.c: free flight in closed form ------------------------------------------------ */
+/* ---- flight_modal.c, flight_roots.c, flight.c: free flight in closed form ------------------ */
 
 /* 1 if the machine may fly in closed form now: free flight on (td_solver_options), no energy
  * account, a prescribed constant speed, no races, no AMB saturation, every retainer free (one
@@ -368,6 +372,65 @@ void td_sim_flight_free(td_sim *s);
  * outputs between steps (section.c). work: 2 neq doubles. Returns 0 when no flight is anchored. */
 int td_sim_flight_peek(const td_sim *s, double t, double *y, double *work);
 
+/* ---- sim_modes.c: mode switching, consistent restarts, impacts, roots --------------------- */
+
+/* Make (y, y') consistent with the current modes at time t: eta = 0, lambda of free retainers 0,
+ * q' = v, w' = filter rate, and [v'; lambda] from the KKT system. Contacts whose lambda comes out
+ * negative (or <= 0 for those flagged in just_entered) are released and the solve repeated; each
+ * release is queued as an event unless just entered (then the onset event records it). */
+td_status td_sim_make_consistent(td_sim *s, const int *just_entered);
+/* 1 if some retainer's mode disagrees with the state y, i.e. IDA missed a crossing of its root:
+ * a penalty contact's mode beyond the noise band (retainer.c td_sim_penalty_mode_wanted), or a
+ * stick retainer sliding against its slip direction beyond the slip band (stick_out_of_step). */
+int td_sim_modes_out_of_step(const td_sim *s, const double *y);
+/* Start of a run with the retainers flagged in `touching` on (or a hair outside) their circles:
+ * projection and impact as at an onset, then td_sim_make_consistent. */
+td_status td_sim_start_contacts(td_sim *s, const int *touching);
+/* Handle the roots found at s->t (IDAGetRootInfo in s->rootsfound; all zero: only bring the
+ * penalty modes in step with the state). *restart is set when the integrator must be
+ * re-initialised. */
+td_status td_sim_handle_roots(td_sim *s, int *restart);
+
+/* ---- schedule.c: the model's timed changes ------------------------------------------------ */
+
+/* AMB amb's mode, also in s->sys (td_system_set_amb_off), so that the start state's stability and
+ * steady orbit are those of the machine at the start, after the changes due then. */
+void td_sim_amb_mode_set(td_sim *s, int amb, td_amb_mode mode);
+/* Apply every schedule change due at s->t, queueing TD_EVENT_SCHEDULE events. */
+td_status td_sim_apply_due_changes(td_sim *s);
+/* Apply silently every change due at or before s->t (before the start of the run). */
+void td_sim_apply_past_changes(td_sim *s);
+/* Where the integrator must stop next: the next schedule change or speed-ramp point; INFINITY if none. */
+double td_sim_next_stop(const td_sim *s);
+
+/* ---- tolerance.c: the integrator's tolerances --------------------------------------------- */
+
+/* The per-component absolute tolerances into s->atol and the differential/algebraic flags into
+ * s->id. */
+void td_sim_set_tolerances(td_sim *s);
+/* Absolute tolerance of retainer k's race speed now (it depends on whether the race rolls). */
+double td_sim_race_speed_atol(const td_sim *s, int k);
+/* Set the race speeds' tolerances in s->atol for the current modes; 1 if one changed. */
+int td_sim_races_retolerance(td_sim *s);
+
+/* ---- integrator.c: IDA ---------------------------------------------------------------------- */
+
+/* The SUNDIALS context, the state vectors and the IDA instance; failures leave their message in
+ * s->errmsg. */
+td_status td_sim_integrator_create(td_sim *s, td_error *err);
+/* IDA initialised on the start state: tolerances, the Newton and linear solvers, the roots. */
+td_status td_sim_integrator_attach(td_sim *s, td_error *err);
+/* Re-initialise IDA at s->t from s->y, s->yp (counters saved, root directions, restart step,
+ * stop time, KLU refactorisation). */
+td_status td_sim_restart(td_sim *s);
+/* y, yp at time t inside IDA's last step. */
+td_status td_sim_interpolate(td_sim *s, double t);
+/* 1 (with a message) when IDA's steps have stopped moving t (the step just taken ended at t). */
+int td_sim_stalled(td_sim *s, double t);
+/* The integrator's counters, over every restart, into the counter fields of out. */
+void td_sim_integrator_counters(const td_sim *s, td_sim_stats *out);
+void td_sim_integrator_free(td_sim *s);
+
 /* ---- section.c: the once-per-revolution section (section.h) ------------------------------- */
 
 /* The crossings of the spin angle through multiples of 2 pi in (the last covered time, t] from
@@ -377,5 +440,28 @@ void td_sim_section_flight(td_sim *s, double t);
 /* A restart at s->t: samples taken beyond it belonged to a state that has since been changed. */
 void td_sim_section_rewind(td_sim *s);
 void td_sim_section_free(td_sim *s);
+
+/* ---- start.c: the start state --------------------------------------------------------------- */
+
+/* Stability of the contact-free closed loop at the start speed into s->start. */
+void td_sim_start_stability(td_sim *s);
+/* The start state into s->y, s->yp (s->start says which); contacts at the start made consistent. */
+td_status td_sim_start_state(td_sim *s, td_error *err);
+
+/* ---- stepping.c: the step loop ---------------------------------------------------------------- */
+
+/* Restart after a change made between steps or at a schedule time. */
+td_status td_sim_restart_after_change(td_sim *s);
+/* Integrate from s->t to tout (> s->t), stopping early at an event to report or a failure. */
+td_status td_sim_advance(td_sim *s, double tout);
+
+/* ---- setup.c: creation and release ---------------------------------------------------------- */
+
+/* A new simulation of `model` into *out (model and out not NULL). */
+td_status td_sim_setup(const td_model *model, const td_sim_options *options, volatile sig_atomic_t *cancel,
+                       td_sim **out, td_error *err);
+void td_sim_teardown(td_sim *s);
+/* The step bound when the options set none, at the current speed. */
+double td_sim_default_max_step(const td_sim *s);
 
 #endif

@@ -257,3 +257,25 @@ td_status td_sim_structural_build(td_sim *s, td_error *err)
     td_sim_structural_speed(s);
     return TD_OK;
 }
+
+/* ---- the mass matrix's factorisation (LU, CXSparse) ---------------------------------------- */
+
+td_status td_sim_mass_factor(td_sim *s, td_error *err)
+{
+    s->Ms = cs_di_sqr(1, s->M, 0);
+    if (!s->Ms)
+        return td_error_set(err, TD_ERR_NOMEM, "out of memory factorising the mass matrix");
+    s->Mn = cs_di_lu(s->M, s->Ms, 1.0);
+    if (!s->Mn)
+        return td_error_set(err, TD_ERR_NUMERIC, "the mass matrix is singular");
+    return TD_OK;
+}
+
+void td_sim_mass_solve(const td_sim *s, double *b)
+{
+    double *x = s->mass_x;
+    cs_di_ipvec(s->Mn->pinv, b, x, s->n);
+    cs_di_lsolve(s->Mn->L, x);
+    cs_di_usolve(s->Mn->U, x);
+    cs_di_ipvec(s->Ms->q, x, b, s->n);
+}

@@ -12,6 +12,23 @@ double td_sim_spin_angle(const td_sim *s, double t)
     return s->spin_ref + s->omega * (t - s->t_spin_ref);
 }
 
+double td_sim_rotor_rate(const td_sim *s, double t, const double *y)
+{
+    td_spin sp;
+    double torque;
+    int k;
+    if (s->spin < 0)
+        return 0.0;
+    torque = td_sim_spin_torque(s, t);
+    if (!s->spin_free)
+        return torque / s->spin_inertia;
+    td_model_spin(s->model, &sp);
+    torque -= td_sim_spin_drag(s, y, NULL) + sp.drag_viscous * y[s->ov + s->spin];
+    for (k = 0; k < s->nr; k++) /* zero for a free retainer: no normal force */
+        torque -= s->ret[k].r.shaft_radius * td_sim_friction_force(s, k, y);
+    return torque / s->spin_inertia;
+}
+
 /* The integrator state e of an AMB axis (0 for a PD axis). */
 static double amb_axis_integral(const td_sim *s, const td_amb_axis *a, const double *y)
 {

@@ -153,15 +153,11 @@ void td_sim_totals_rewind(td_sim *s)
     s->totals_t = s->t;
 }
 
-td_status td_sim_retainer_totals(const td_sim *sim, int retainer, td_retainer_totals *out)
+void td_sim_totals_get(const td_sim *s, int k, td_retainer_totals *out)
 {
-    const td_sim_totals *tk;
-    if (!sim || !out || retainer < 0 || retainer >= sim->nr)
-        return TD_ERR_INVALID;
-    tk = &sim->totals[retainer];
+    const td_sim_totals *tk = &s->totals[k];
     *out = tk->t;
-    back_to_now(sim, retainer, out);
+    back_to_now(s, k, out);
     if (tk->in_contact) /* the interval still open counts as a contact */
         out->contacts++;
-    return TD_OK;
 }

@@ -1,0 +1,390 @@
+/*
+ * The creation of a simulation and its release: options checked, the system assembled, the
+ * retainers, races and spin laid out, the work space, the machine at the start, the scales, the
+ * Jacobian pattern, the integrator, the tolerances and the start state, in that order.
+ */
+#include "sim/section.h"
+#include "sim/sim_internal.h"
+#include "util/error_internal.h"
+#include "util/limits.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+static td_status check_options(const td_sim_options *o, td_error *err)
+{
+    const td_solver_options *so = &o->solver;
+    const td_contact_options *co = &o->contact;
+    if (!(so->rtol > 0.0 && so->rtol < 1.0) || !(so->atol > 0.0) || !isfinite(so->atol))
+        return td_error_set(err, TD_ERR_INVALID, "solver tolerances must be positive (rtol < 1)");
+    if (!(so->max_step >= 0.0) || !(so->initial_step >= 0.0) || !isfinite(so->max_step) || !isfinite(so->initial_step))
+        return td_error_set(err, TD_ERR_INVALID, "solver max_step and initial_step must be >= 0");
+    if (so->max_order < 1 || so->max_order > 5)
+        return td_error_set(err, TD_ERR_INVALID, "solver max_order must be 1..5, got %d", so->max_order);
+    if (so->linear_solver != TD_LINSOL_KLU && so->linear_solver != TD_LINSOL_DENSE)
+        return td_error_set(err, TD_ERR_INVALID, "unknown linear solver %d", (int)so->linear_solver);
+    if (co->model != TD_CONTACT_CONSTRAINT && co->model != TD_CONTACT_PENALTY)
+        return td_error_set(err, TD_ERR_INVALID, "unknown contact model %d", (int)co->model);
+    if (co->model == TD_CONTACT_PENALTY) {
+        if (!(co->stiffness > 0.0) || !isfinite(co->stiffness))
+            return td_error_set(err, TD_ERR_INVALID, "penalty stiffness must be positive");
+        if (!(co->exponent >= 1.0) || !isfinite(co->exponent))
+            return td_error_set(err, TD_ERR_INVALID, "penalty exponent must be >= 1");
+        if (co->damping != TD_DAMPING_NONE && co->damping != TD_DAMPING_HUNT_CROSSLEY &&
+            co->damping != TD_DAMPING_KELVIN_VOIGT)
+            return td_error_set(err, TD_ERR_INVALID, "unknown contact damping law %d", (int)co->damping);
+        if (!(co->damping_coefficient >= 0.0) || !isfinite(co->damping_coefficient))
+            return td_error_set(err, TD_ERR_INVALID, "contact damping coefficient must be >= 0");
+    }
+    if (o->start != TD_START_ORBIT && o->start != TD_START_REST && o->start != TD_START_AUTO)
+        return td_error_set(err, TD_ERR_INVALID, "unknown start state %d", (int)o->start);
+    if (!isfinite(o->t0))
+        return td_error_set(err, TD_ERR_INVALID, "t0 must be finite");
+    return TD_OK;
+}
+
+/* The work space of sim_internal.h; 0 if out of memory. */
+static int alloc_work(td_sim *s, size_t nr)
+{
+    size_t n = (size_t)s->n, nc = nr + (size_t)s->ns; /* KKT multipliers: lambda and F_t */
+    s->mass_x = calloc(n, sizeof(double));
+    s->minv_f = calloc(n, sizeof(double));
+    s->power_x = calloc(n, sizeof(double));
+    s->power_kx = calloc(n, sizeof(double));
+    s->power_mx = calloc(n, sizeof(double));
+    s->schur = calloc(nc * nc, sizeof(double));
+    s->schur_rhs = calloc(nc, sizeof(double));
+    s->restitution = calloc(nr, sizeof(double));
+    s->impulse = calloc(nr, sizeof(double));
+    s->impact_work = calloc(nr * (nr + 1), sizeof(double));
+    s->minv_cols = calloc(n * nc, sizeof(double));
+    s->rows = calloc(nc, sizeof *s->rows);
+    s->active = calloc(nc, sizeof(int));
+    s->active_roll = calloc(nc, sizeof(int));
+    s->onset = calloc(nr, sizeof(int));
+    s->entered = calloc(nr, sizeof(int));
+    s->roll_tried = calloc(nr, sizeof(int));
+    s->touching = calloc(nr, sizeof(int));
+    s->totals = calloc(nr, sizeof *s->totals);
+    s->energy_f = calloc(n, sizeof(double));
+    return s->mass_x && s->minv_f && s->power_x && s->power_kx && s->power_mx && s->schur && s->schur_rhs &&
+           s->restitution && s->impulse && s->impact_work && s->minv_cols && s->rows && s->active && s->active_roll &&
+           s->onset && s->roll_tried && s->totals && s->energy_f && s->entered && s->touching;
+}
+
+static td_status alloc_arrays(td_sim *s, td_error *err)
+{
+    int na = td_model_amb_count(s->model), ok, i;
+    size_t nr = (size_t)(s->nr > 0 ? s->nr : 1);
+    s->nu = td_model_unbalance_count(s->model);
+    s->unb = calloc((size_t)(s->nu > 0 ? s->nu : 1), sizeof *s->unb);
+    s->amb_mode = calloc((size_t)(na > 0 ? na : 1), sizeof *s->amb_mode);
+    s->amb_control = calloc((size_t)(2 * na + 2), sizeof(double));
+    s->amb_coef = calloc((size_t)(s->sys->n_amb_axes + 1), sizeof *s->amb_coef);
+    s->q_cap = 4 * s->nr + td_model_change_count(s->model) + 4;
+    s->queue = calloc((size_t)s->q_cap, sizeof *s->queue);
+    ok = alloc_work(s, nr);
+    s->n_sat_roots = 0;
+    for (i = 0; i < s->sys->n_amb_axes; i++)
+        if (s->sys->amb_axes[i].saturation)
+            s->n_sat_roots = 2 * s->sys->n_amb_axes;
+    s->nroots = TD_ROOTS_PER_RETAINER * s->nr + s->n_sat_roots;
+    s->rootdir = calloc(TD_ROOTS_PER_RETAINER * nr + (size_t)s->n_sat_roots, sizeof(int));
+    s->rootsfound = calloc(TD_ROOTS_PER_RETAINER * nr + (size_t)s->n_sat_roots, sizeof(int));
+    s->ysave = calloc((size_t)s->neq, sizeof(double));
+    s->ypsave = calloc((size_t)s->neq, sizeof(double));
+    if (!ok || !s->unb || !s->amb_mode || !s->amb_control || !s->amb_coef || !s->queue || !s->rootdir ||
+        !s->rootsfound || !s->ysave || !s->ypsave)
+        return td_error_set(err, TD_ERR_NOMEM, "out of memory creating a simulation");
+    return TD_OK;
+}
+
+/* Machine state at the start: the model's unbalances, AMBs on, retainers free. */
+static void init_machine(td_sim *s)
+{
+    int i, na = td_model_amb_count(s->model);
+    s->omega = td_model_speed_at(s->model, s->t, NULL, NULL);
+    for (i = 0; i < s->nu; i++)
+        td_model_get_unbalance(s->model, i, &s->unb[i]);
+    for (i = 0; i < na; i++)
+        td_sim_amb_mode_set(s, i, TD_AMB_PD);
+    /* the AMB laws are linear (model/amb.c): unit probes give their coefficients exactly */
+    for (i = 0; i < s->sys->n_amb_axes; i++) {
+        const td_amb_axis *a = &s->sys->amb_axes[i];
+        td_sim_amb_coef *c = &s->amb_coef[i];
+        c->cmd_x = td_amb_axis_command(a, 1.0, 0.0, 0.0) - td_amb_axis_command(a, 0.0, 0.0, 0.0);
+        c->cmd_v = td_amb_axis_command(a, 0.0, 1.0, 0.0) - td_amb_axis_command(a, 0.0, 0.0, 0.0);
+        c->cmd_e = td_amb_axis_command(a, 0.0, 0.0, 1.0) - td_amb_axis_command(a, 0.0, 0.0, 0.0);
+        if (a->state >= 0) {
+            double r0 = td_amb_axis_filter_rate(a, 0.0, 0.0, 0.0, 0.0);
+            c->rate_x = td_amb_axis_filter_rate(a, 1.0, 0.0, 0.0, 0.0) - r0;
+            c->rate_v = td_amb_axis_filter_rate(a, 0.0, 1.0, 0.0, 0.0) - r0;
+            c->rate_e = td_amb_axis_filter_rate(a, 0.0, 0.0, 1.0, 0.0) - r0;
+            c->rate_w = td_amb_axis_filter_rate(a, 0.0, 0.0, 0.0, 1.0) - r0;
+        }
+    }
+}
+
+/* Highest natural frequency sqrt(lambda_max(M^-1 K)) of the shaft, by 60 power iterations with
+ * the Rayleigh quotient (an estimate from below, good to a few per cent: it only sets a tolerance). */
+static double highest_frequency(const td_sim *s)
+{
+    double *x = s->power_x, *kx = s->power_kx, *mx = s->power_mx, lam = 0.0;
+    int i, it;
+    for (i = 0; i < s->n; i++)
+        x[i] = (i % 2 ? 1.0 : -1.0) * (1.0 + 0.1 * (i % 7));
+    for (it = 0; it < 60; it++) {
+        double num = 0.0, den = 0.0, norm = 0.0;
+        memset(kx, 0, sizeof(double) * (size_t)s->n);
+        cs_di_gaxpy(s->K, x, kx);
+        for (i = 0; i < s->n; i++)
+            num += x[i] * kx[i];
+        td_sim_mass_solve(s, kx); /* kx = M^-1 K x */
+        memset(mx, 0, sizeof(double) * (size_t)s->n);
+        cs_di_gaxpy(s->M, x, mx);
+        for (i = 0; i < s->n; i++)
+            den += x[i] * mx[i];
+        if (den > 0.0)
+            lam = num / den;
+        for (i = 0; i < s->n; i++)
+            norm = fmax(norm, fabs(kx[i]));
+        if (!(norm > 0.0))
+            break;
+        for (i = 0; i < s->n; i++)
+            x[i] = kx[i] / norm;
+    }
+    return lam > 0.0 ? sqrt(lam) : 0.0;
+}
+
+/*
+ * Scales for the tolerances and the step bound. Forces scale with a stiffness: the AMB's
+ * (|ks| + ki kp, the largest axis) or, without AMBs, the largest diagonal of K. Velocities scale
+ * with a frequency: the larger of the speed and sqrt(stiffness / rotor mass), the rigid-body
+ * bearing frequency.
+ */
+static void set_scales(td_sim *s)
+{
+    double k = 0.0, mass = td_model_total_mass(s->model), cmin = HUGE_VAL;
+    int i;
+    for (i = 0; i < s->sys->n_amb_axes; i++) {
+        const td_amb_axis *a = &s->sys->amb_axes[i];
+        double ka = fabs(a->ks) + fabs(s->amb_coef[i].cmd_x);
+        if (ka > k)
+            k = ka;
+    }
+    if (k == 0.0) {
+        const cs_di *K = s->sys->K;
+        int j, p;
+        for (j = 0; j < K->n; j++)
+            for (p = K->p[j]; p < K->p[j + 1]; p++)
+                if (K->i[p] == j && fabs(K->x[p]) > k)
+                    k = fabs(K->x[p]);
+    }
+    if (!(k > 0.0))
+        k = 1.0;
+    s->stiff_scale = k;
+    s->freq_scale = mass > 0.0 ? sqrt(k / mass) : 1.0;
+    if (fabs(s->omega) > s->freq_scale)
+        s->freq_scale = fabs(s->omega);
+    if (s->freq_scale < 1.0)
+        s->freq_scale = 1.0;
+    for (i = 0; i < s->nr; i++)
+        if (s->ret[i].r.clearance < cmin)
+            cmin = s->ret[i].r.clearance;
+    if (s->nr == 0)
+        cmin = s->opt.solver.atol * 1e3;
+    s->freq_max = highest_frequency(s);
+    if (s->freq_max < s->freq_scale)
+        s->freq_max = s->freq_scale;
+    /* contact constraints hold to a tenth of the displacement tolerance at every step */
+    s->constraint_tol = 0.1 * s->opt.solver.atol;
+    /* hysteresis of the onset root after a release or a bounce: a gap or penetration of a tenth of
+     * the displacement tolerance (the accuracy the constraint is held to) is not a new contact; far
+     * above rounding (1e-19 m), so a rotor grazing the circle does not chatter */
+    s->rearm_eps = s->opt.solver.atol;
+    /* impacts slower than 1e-3 of the typical impact speed c * freq_scale become plastic */
+    s->rebound_min = 1e-3 * cmin * s->freq_scale;
+}
+
+/* Step bound: 1/20 of the shortest period among the spin and the bearing frequency, so that a
+ * gap cannot close and open again (two roots) inside one step unnoticed. */
+double td_sim_default_max_step(const td_sim *s)
+{
+    double w = fabs(s->omega) > s->freq_scale ? fabs(s->omega) : s->freq_scale;
+    return 2.0 * TD_PI / w / 20.0;
+}
+
+static int cancelled(volatile sig_atomic_t *cancel)
+{
+    return cancel && *cancel;
+}
+
+/* TD_OK, or TD_ERR_INTERRUPTED once `cancel` is set: read between the stages of the set-up. */
+static td_status setup_stage(td_status st, volatile sig_atomic_t *cancel, td_error *err)
+{
+    if (st == TD_OK && cancelled(cancel))
+        return td_error_set(err, TD_ERR_INTERRUPTED, "interrupted while setting up the simulation");
+    return st;
+}
+
+/* Block offsets of the unknowns (sim_internal.h), the start time and the statistics' "none yet"
+ * markers. */
+static void init_layout(td_sim *s)
+{
+    s->nw = s->sys->n_controller_states;
+    s->oq = 0;
+    s->ov = s->n;
+    s->ow = 2 * s->n;
+    s->ol = s->ow + s->nw;
+    s->ou = s->ol + s->nr;
+    s->of = s->ou + s->nr;
+    s->neq = s->of + s->ns;
+    s->t = s->t_ida = s->t_acc = s->opt.t0;
+    s->t_window = s->opt.t0;
+    s->stats.first_contact_time = TD_UNDEFINED;
+    s->stats.peak_time = TD_UNDEFINED;
+    s->stats.peak_retainer = -1;
+    s->stats.peak_amb_time = TD_UNDEFINED;
+    s->stats.peak_amb = -1;
+}
+
+/* The retainers, free, with their contact laws, and the DOFs of their races after the rotor's
+ * (s->n: all DOFs). */
+static td_status init_retainers(td_sim *s, td_error *err)
+{
+    int k;
+    s->model = td_system_model(s->sys);
+    s->nr = td_model_retainer_count(s->model);
+    s->ret = calloc((size_t)(s->nr > 0 ? s->nr : 1), sizeof *s->ret);
+    if (!s->ret)
+        return td_error_set(err, TD_ERR_NOMEM, "out of memory creating a simulation");
+    for (k = 0; k < s->nr; k++) {
+        td_sim_retainer_init(&s->ret[k], s->sys, k, &s->opt.contact);
+        if (s->ret[k].r.stick)
+            s->ret[k].fi = s->ns++;
+    }
+    td_sim_races_layout(s);
+    return td_sim_races_matrices(s, err);
+}
+
+td_status td_sim_setup(const td_model *model, const td_sim_options *options, volatile sig_atomic_t *cancel,
+                       td_sim **out, td_error *err)
+{
+    td_sim *s;
+    td_status st;
+    char why[320];
+    *out = NULL;
+    s = calloc(1, sizeof *s);
+    if (!s)
+        return td_error_set(err, TD_ERR_NOMEM, "out of memory creating a simulation");
+    if (options)
+        s->opt = *options;
+    else
+        td_sim_options_default(&s->opt);
+    st = check_options(&s->opt, err);
+    if (st == TD_OK && td_atol_limit_check(model, s->opt.solver.atol, why, sizeof why) != TD_LIMIT_NONE)
+        st = td_error_set(err, TD_ERR_INVALID, "solver.atol: %s", why);
+    if (st == TD_OK)
+        st = setup_stage(td_system_create(model, &s->sys, err), cancel, err);
+    if (st == TD_OK)
+        st = init_retainers(s, err);
+    if (st == TD_OK) {
+        init_layout(s);
+        st = alloc_arrays(s, err);
+    }
+    if (st == TD_OK) {
+        init_machine(s);
+        td_sim_apply_past_changes(s);
+        s->spin_ref = s->omega * s->t;
+        s->t_spin_ref = s->t;
+        st = td_sim_mass_factor(s, err);
+    }
+    if (st == TD_OK) {
+        set_scales(s);
+        s->hmax = s->opt.solver.max_step > 0.0 ? s->opt.solver.max_step : td_sim_default_max_step(s);
+    }
+    if (st == TD_OK)
+        st = td_sim_pattern_build(s, err);
+    if (st == TD_OK)
+        st = td_sim_structural_build(s, err);
+    if (st == TD_OK)
+        st = setup_stage(td_sim_integrator_create(s, err), cancel, err);
+    if (st == TD_OK) {
+        td_sim_set_tolerances(s);
+        td_sim_start_stability(s);
+        st = setup_stage(TD_OK, cancel, err);
+    }
+    if (st == TD_OK)
+        st = setup_stage(td_sim_start_state(s, err), cancel, err);
+    if (st == TD_OK)
+        st = td_sim_integrator_attach(s, err);
+    if (st != TD_OK) {
+        td_sim_teardown(s);
+        return st;
+    }
+    td_sim_totals_point(s, s->t, 1);
+    s->q_len = s->q_pos = 0; /* contacts at the start are a state, not events */
+    s->stats.events = s->stats.releases = s->stats.contact_onsets = 0;
+    *out = s;
+    return TD_OK;
+}
+
+static void free_work(td_sim *s)
+{
+    free(s->mass_x);
+    free(s->minv_f);
+    free(s->power_x);
+    free(s->power_kx);
+    free(s->power_mx);
+    free(s->schur);
+    free(s->schur_rhs);
+    free(s->restitution);
+    free(s->impulse);
+    free(s->impact_work);
+    free(s->minv_cols);
+    free(s->rows);
+    free(s->active);
+    free(s->active_roll);
+    free(s->onset);
+    free(s->entered);
+    free(s->roll_tried);
+    free(s->totals);
+    free(s->energy_f);
+    free(s->touching);
+}
+
+void td_sim_teardown(td_sim *s)
+{
+    td_sim_integrator_free(s);
+    cs_di_sfree(s->Ms);
+    cs_di_nfree(s->Mn);
+    free(s->colptr);
+    free(s->rowind);
+    free(s->jdata);
+    free(s->map_M);
+    free(s->map_C);
+    free(s->map_G);
+    free(s->map_K);
+    free(s->st_rowptr);
+    free(s->st_col);
+    free(s->st_M);
+    free(s->st_K);
+    free(s->st_D);
+    free(s->unb);
+    free(s->amb_mode);
+    free(s->amb_control);
+    free(s->ret);
+    free(s->amb_coef);
+    free(s->queue);
+    free_work(s);
+    free(s->rootdir);
+    free(s->rootsfound);
+    free(s->ysave);
+    free(s->ypsave);
+    td_sim_races_free(s);
+    td_sim_flight_free(s);
+    td_sim_section_free(s);
+    td_system_free(&s->sys);
+    free(s);
+}
