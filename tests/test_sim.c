@@ -813,7 +813,7 @@ static void test_no_progress_fails(void **state)
     s->opt.solver.atol *= scale; /* what an atol of 1e6 m sets (sim.c, set_tolerances and the onset roots) */
     s->constraint_tol *= scale;
     s->rearm_eps *= scale;
-    N_VScale(scale, s->atol, s->atol);
+    N_VScale(scale, s->solver.atol, s->solver.atol);
     while ((r = td_sim_step(s, 2.0, &t, &err)) == TD_EVENT)
         ;
     assert_int_equal(r, TD_ERR_SOLVER);

@@ -70,11 +70,11 @@ static double powers(td_sim *s, double t, const double *y, double pw[5])
     const double *q = y + s->oq, *v = y + s->ov;
     double held = td_sim_kinetic_energy(s, y) + 0.5 * quadratic(s, s->st_K, q, q);
     int i, k;
-    memset(s->energy_f, 0, sizeof(double) * (size_t)s->n);
-    td_sim_external_forces(s, t, y, 1.0, s->energy_f);
+    memset(s->monitor.energy_f, 0, sizeof(double) * (size_t)s->n);
+    td_sim_external_forces(s, t, y, 1.0, s->monitor.energy_f);
     memset(pw, 0, 5 * sizeof *pw);
     for (i = 0; i < s->n; i++)
-        pw[0] += s->energy_f[i] * v[i];
+        pw[0] += s->monitor.energy_f[i] * v[i];
     pw[0] += td_sim_unbalance_spin_coupling(s, t, y, N_VGetArrayPointer(s->yp), NULL);
     pw[2] = quadratic(s, s->st_D, v, v);
     for (k = 0; k < s->nr; k++) {
@@ -94,8 +94,8 @@ static double powers(td_sim *s, double t, const double *y, double pw[5])
 void td_sim_energy_point(td_sim *s, double t, int restart, double dt)
 {
     const double *y = N_VGetArrayPointer(s->y);
-    double pw[5], held = powers(s, t, y, pw), *prev = s->energy_prev;
-    td_energy *e = &s->energy;
+    double pw[5], held = powers(s, t, y, pw), *prev = s->monitor.energy_prev;
+    td_energy *e = &s->monitor.energy;
     if (dt > 0.0) {
         e->external_work += 0.5 * dt * (prev[0] + pw[0]);
         e->drive_work += 0.5 * dt * (prev[1] + pw[1]);
@@ -103,9 +103,9 @@ void td_sim_energy_point(td_sim *s, double t, int restart, double dt)
         e->contact_loss += 0.5 * dt * (prev[3] + pw[3]);
         e->drag_loss += 0.5 * dt * (prev[4] + pw[4]);
     }
-    if (restart && !s->energy_started) {
+    if (restart && !s->monitor.energy_started) {
         e->initial = held;
-        s->energy_started = 1;
+        s->monitor.energy_started = 1;
     }
     memcpy(prev, pw, sizeof pw);
     e->kinetic = td_sim_kinetic_energy(s, y);
@@ -114,7 +114,7 @@ void td_sim_energy_point(td_sim *s, double t, int restart, double dt)
 
 void td_sim_energy_impact(td_sim *s, double before, double after)
 {
-    s->energy.impact_loss += before - after;
+    s->monitor.energy.impact_loss += before - after;
 }
 
 /* The account at s->t when the last point lies beyond it (an output, the end time, or a change
@@ -122,8 +122,8 @@ void td_sim_energy_impact(td_sim *s, double before, double after)
  * the machine holds read at s->t, as the retainers' totals do (totals.c). Returns the powers at s->t. */
 static void energy_back_to_now(td_sim *s, td_energy *e, double pw[5])
 {
-    const double *y = N_VGetArrayPointer(s->y), *prev = s->energy_prev;
-    double dt = s->totals_t - s->t, held = powers(s, s->t, y, pw);
+    const double *y = N_VGetArrayPointer(s->y), *prev = s->monitor.energy_prev;
+    double dt = s->monitor.totals_t - s->t, held = powers(s, s->t, y, pw);
     if (dt > 0.0) {
         e->external_work -= 0.5 * dt * (prev[0] + pw[0]);
         e->drive_work -= 0.5 * dt * (prev[1] + pw[1]);
@@ -138,17 +138,17 @@ static void energy_back_to_now(td_sim *s, td_energy *e, double pw[5])
 void td_sim_energy_rewind(td_sim *s)
 {
     double pw[5];
-    if (!s->opt.energy || !(s->totals_t > s->t))
+    if (!s->opt.energy || !(s->monitor.totals_t > s->t))
         return;
-    energy_back_to_now(s, &s->energy, pw);
-    memcpy(s->energy_prev, pw, sizeof pw);
+    energy_back_to_now(s, &s->monitor.energy, pw);
+    memcpy(s->monitor.energy_prev, pw, sizeof pw);
 }
 
 void td_sim_energy_get(const td_sim *s, td_energy *out)
 {
     double pw[5];
-    *out = s->energy;
-    if (s->totals_t > s->t) /* powers() uses the sim's scratch force vector only */
+    *out = s->monitor.energy;
+    if (s->monitor.totals_t > s->t) /* powers() uses the sim's scratch force vector only */
         energy_back_to_now((td_sim *)s, out, pw);
     out->residual = out->kinetic + out->elastic - out->initial - out->external_work - out->drive_work +
                     out->damping_loss + out->contact_loss + out->drag_loss + out->impact_loss;

@@ -12,7 +12,7 @@
 int td_sim_flight_eligible(const td_sim *s)
 {
     int k;
-    if (!s->opt.solver.free_flight || s->opt.energy || s->spin >= 0 || td_model_speed_varies(s->model) || s->pending)
+    if (!s->opt.solver.free_flight || s->opt.energy || s->spin >= 0 || td_model_speed_varies(s->model))
         return 0;
     for (k = 0; k < s->sys->n_amb_axes; k++)
         if (s->sys->amb_axes[k].saturation)
@@ -46,7 +46,7 @@ static void amb_peak_search(td_sim *s, td_sim_flight *f, int k, double ta, doubl
     const td_amb_axis *a = &s->sys->amb_axes[k];
     double fm;
     if (fmax(fabs(fa), fabs(fb)) + 0.125 * b2 * h * h <=
-            s->stats.peak_amb_load * a->capacity * (1.0 + FLIGHT_PEAK_RTOL) ||
+            s->monitor.stats.peak_amb_load * a->capacity * (1.0 + FLIGHT_PEAK_RTOL) ||
         depth >= 60)
         return;
     fm = amb_force_at(s, f, k, ta + 0.5 * h);
@@ -77,7 +77,7 @@ static void amb_peaks(td_sim *s, td_sim_flight *f, double t, double h, const dou
     int k;
     for (k = 0; k < s->sys->n_amb_axes; k++) {
         const td_amb_axis *a = &s->sys->amb_axes[k];
-        double peak = s->stats.peak_amb_load * a->capacity * (1.0 + FLIGHT_PEAK_RTOL);
+        double peak = s->monitor.stats.peak_amb_load * a->capacity * (1.0 + FLIGHT_PEAK_RTOL);
         if (s->amb_mode[a->amb] == TD_AMB_OFF || fmax(fabs(fa[k]), fabs(fb[k])) + 0.125 * b2[k] * h * h <= peak)
             continue;
         amb_peak_search(s, f, k, t, h, fa[k], fb[k], b2[k], 0);
@@ -125,13 +125,13 @@ static void amb_pending_part(td_sim *s, td_sim_flight *f, double t_out)
  * s->t): outputs only evaluate the solution, so the steps, the roots and the peaks found do not
  * depend on the output times (as IDA's do not). A stop (t_stop: a schedule change) ends a step.
  */
-int td_sim_flight_advance(td_sim *s, double t_out, double t_stop, int *root)
+int td_sim_flight_advance(td_sim *s, const double *scale, double t_out, double t_stop, int *root)
 {
     td_sim_flight *f;
     double t, t_end = fmin(t_out, t_stop);
     long steps = 0;
     *root = 0;
-    if (!td_sim_flight_eligible(s) || !td_sim_flight_ready(s))
+    if (!td_sim_flight_eligible(s) || !td_sim_flight_ready(s, scale))
         return 0;
     f = s->flight;
     if (f->t_step < s->t || f->t_step > t_stop) { /* a fresh flight */
@@ -185,8 +185,8 @@ int td_sim_flight_advance(td_sim *s, double t_out, double t_stop, int *root)
     if (t > t_end && !*root) /* the last step ran past the output: the state there */
         t = t_end;
     td_sim_flight_materialise(s, f, t, 0);
-    s->stats.flight_steps += steps;
-    s->stats.flight_time += t - s->t;
+    s->monitor.stats.flight_steps += steps;
+    s->monitor.stats.flight_time += t - s->t;
     s->t = t;
     return 1;
 }

@@ -98,9 +98,9 @@ struct td_sim_flight {
 
 /* ---- flight_modal.c ------------------------------------------------------------------------- */
 
-/* The flight allocated, its decomposition and forcing brought up to date with the machine and
- * anchored at s->t; 0 if the flight cannot carry the machine. */
-int td_sim_flight_ready(td_sim *s);
+/* The flight allocated, its decomposition (in the states scaled by `scale`, neq) and forcing brought
+ * up to date with the machine and anchored at s->t; 0 if the flight cannot carry the machine. */
+int td_sim_flight_ready(td_sim *s, const double *scale);
 /* e_j = e^{lambda_j (t - ta)} and the bound factors |e_j| grow_j, for the time t. */
 void td_sim_flight_propagate(td_sim_flight *f, double t);
 /* Observation o at the time of the last propagate (t). */

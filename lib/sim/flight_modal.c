@@ -80,9 +80,8 @@ static double probe_size(const td_sim *s, int i)
 
 /* A in the scaled states z_i / S_i, S the integrator's absolute tolerances (each state in its
  * tolerance's units: the eigenvectors come out balanced, and their checks mean something). */
-static void fill_matrix(const td_sim *s, td_sim_flight *f, gsl_matrix *A)
+static void fill_matrix(const td_sim *s, td_sim_flight *f, gsl_matrix *A, const double *S)
 {
-    const double *S = N_VGetArrayPointer(s->atol);
     double *z = f->b[0];
     int i, j, nz = f->nz;
     memset(z, 0, sizeof(double) * (size_t)nz);
@@ -98,9 +97,8 @@ static void fill_matrix(const td_sim *s, td_sim_flight *f, gsl_matrix *A)
 }
 
 /* V <- S V, V^-1 <- V^-1 S^-1: the modes of the unscaled states. */
-static void unscale_modes(const td_sim *s, td_sim_flight *f)
+static void unscale_modes(td_sim_flight *f, const double *S)
 {
-    const double *S = N_VGetArrayPointer(s->atol);
     size_t i, j, nz = (size_t)f->nz;
     for (i = 0; i < nz; i++)
         for (j = 0; j < nz; j++) {
@@ -180,7 +178,7 @@ static void pair_modes(td_sim_flight *f)
 
 /* A's modes; 0 if A cannot be trusted to them (defective, ill-conditioned, a zero or resonant
  * eigenvalue, a mode growing faster than the bounds allow). */
-static int decompose(const td_sim *s, td_sim_flight *f)
+static int decompose(const td_sim *s, td_sim_flight *f, const double *scale)
 {
     size_t nz = (size_t)f->nz;
     gsl_matrix *A = gsl_matrix_alloc(nz, nz), *Acopy = gsl_matrix_alloc(nz, nz);
@@ -191,7 +189,7 @@ static int decompose(const td_sim *s, td_sim_flight *f)
     size_t j;
     gsl_set_error_handler_off();
     if (ok) {
-        fill_matrix(s, f, A);
+        fill_matrix(s, f, A, scale);
         gsl_matrix_memcpy(Acopy, A);
         gsl_eigen_nonsymmv_params(1, w);
         ok = gsl_eigen_nonsymmv(A, eval, evec, w) == GSL_SUCCESS && invert_modes(f, evec);
@@ -206,7 +204,7 @@ static int decompose(const td_sim *s, td_sim_flight *f)
     if (ok)
         ok = decomposition_error(f, Acopy) < FLIGHT_DECOMPOSITION_TOL;
     if (ok) {
-        unscale_modes(s, f);
+        unscale_modes(f, scale);
         pair_modes(f);
     }
     gsl_eigen_nonsymmv_free(w);
@@ -639,7 +637,7 @@ void td_sim_flight_forget(td_sim *s)
 
 /* The decomposition and the forcing brought up to date with the machine; 0 if the flight cannot
  * carry it. */
-int td_sim_flight_ready(td_sim *s)
+int td_sim_flight_ready(td_sim *s, const double *scale)
 {
     td_sim_flight *f;
     int n;
@@ -651,7 +649,7 @@ int td_sim_flight_ready(td_sim *s)
     n = machine_key(s, f->key_work);
     if (key_changed(f, f->machine_key, n) || n != f->nkey_m) {
         f->nkey_m = n;
-        f->machine_ok = decompose(s, f);
+        f->machine_ok = decompose(s, f, scale);
         if (f->machine_ok)
             build_observations(s, f);
         f->nkey_f = -1;

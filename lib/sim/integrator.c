@@ -84,13 +84,13 @@ static N_Vector floored_multipliers(td_sim *s, N_Vector del, N_Vector ewt, doubl
         if (fl >= 1.0 && fu >= 1.0)
             continue;
         if (!d) {
-            N_VScale(1.0, del, s->newton_del);
-            d = N_VGetArrayPointer(s->newton_del);
+            N_VScale(1.0, del, s->solver.newton_del);
+            d = N_VGetArrayPointer(s->solver.newton_del);
         }
         d[s->ol + k] *= fmin(fl, 1.0);
         d[s->ou + k] *= fmin(fu, 1.0);
     }
-    return d ? s->newton_del : del;
+    return d ? s->solver.newton_del : del;
 }
 
 /*
@@ -112,9 +112,9 @@ static int conv_test_cb(SUNNonlinearSolver nls, N_Vector ycor, N_Vector del, sun
     void *user;
     const double *cor, *pred;
     int k, flag;
-    if (IDAGetNonlinearSystemData(s->ida, &tcur, &ypred, &yppred, &yyn, &ypn, &res, &cj, &user) != IDA_SUCCESS)
-        return s->ida_ctest(nls, ycor, del, tol, ewt, s->ida_ctest_data);
-    flag = s->ida_ctest(nls, ycor, floored_multipliers(s, del, ewt, cj), tol, ewt, s->ida_ctest_data);
+    if (IDAGetNonlinearSystemData(s->solver.ida, &tcur, &ypred, &yppred, &yyn, &ypn, &res, &cj, &user) != IDA_SUCCESS)
+        return s->solver.ida_ctest(nls, ycor, del, tol, ewt, s->solver.ida_ctest_data);
+    flag = s->solver.ida_ctest(nls, ycor, floored_multipliers(s, del, ewt, cj), tol, ewt, s->solver.ida_ctest_data);
     if (flag != SUN_NLS_SUCCESS)
         return flag;
     cor = N_VGetArrayPointer(ycor);
@@ -149,86 +149,86 @@ static void message_sink(int code, const char *function, const char *msg, void *
 /* IDA set-up; failures leave their message in s->errmsg. */
 td_status td_sim_integrator_create(td_sim *s, td_error *err)
 {
-    if (td_sun_context_create(&s->ctx) != 0)
+    if (td_sun_context_create(&s->solver.ctx) != 0)
         return td_error_set(err, TD_ERR_NOMEM, "SUNContext_Create failed");
-    s->y = N_VNew_Serial(s->neq, s->ctx);
+    s->y = N_VNew_Serial(s->neq, s->solver.ctx);
     if (!s->y)
         return td_error_set(err, TD_ERR_NOMEM, "out of memory creating the state vectors");
     td_sim_nvector_optimize(s->y); /* before any clone: the clones copy its operations */
     s->yp = N_VClone(s->y);
-    s->id = N_VClone(s->y);
-    s->atol = N_VClone(s->y);
-    s->newton_del = N_VClone(s->y);
-    s->ida = IDACreate(s->ctx);
-    if (!s->yp || !s->id || !s->atol || !s->newton_del || !s->ida)
+    s->solver.id = N_VClone(s->y);
+    s->solver.atol = N_VClone(s->y);
+    s->solver.newton_del = N_VClone(s->y);
+    s->solver.ida = IDACreate(s->solver.ctx);
+    if (!s->yp || !s->solver.id || !s->solver.atol || !s->solver.newton_del || !s->solver.ida)
         return td_error_set(err, TD_ERR_NOMEM, "out of memory creating the integrator");
-    s->sink.fn = message_sink;
-    s->sink.data = s;
-    if (td_sun_install_message_sink(s->ctx, s->ida, &s->sink) != 0)
+    s->solver.sink.fn = message_sink;
+    s->solver.sink.data = s;
+    if (td_sun_install_message_sink(s->solver.ctx, s->solver.ida, &s->solver.sink) != 0)
         return td_error_set(err, TD_ERR_SOLVER, "cannot install the IDA error handler");
     return TD_OK;
 }
 
 td_status td_sim_integrator_attach(td_sim *s, td_error *err)
 {
-    int flag = IDAInit(s->ida, res_cb, s->t, s->y, s->yp);
+    int flag = IDAInit(s->solver.ida, res_cb, s->t, s->y, s->yp);
     if (flag == IDA_SUCCESS)
-        flag = IDASVtolerances(s->ida, s->opt.solver.rtol, s->atol);
+        flag = IDASVtolerances(s->solver.ida, s->opt.solver.rtol, s->solver.atol);
     if (flag == IDA_SUCCESS)
-        flag = IDASetUserData(s->ida, s);
+        flag = IDASetUserData(s->solver.ida, s);
     if (flag == IDA_SUCCESS)
-        flag = IDASetId(s->ida, s->id);
+        flag = IDASetId(s->solver.ida, s->solver.id);
     if (flag == IDA_SUCCESS)
-        flag = IDASetSuppressAlg(s->ida, SUNTRUE);
+        flag = IDASetSuppressAlg(s->solver.ida, SUNTRUE);
     if (flag == IDA_SUCCESS)
-        flag = IDASetMaxOrd(s->ida, s->opt.solver.max_order);
+        flag = IDASetMaxOrd(s->solver.ida, s->opt.solver.max_order);
     if (flag == IDA_SUCCESS)
-        flag = IDASetMaxNumSteps(s->ida, 100000);
+        flag = IDASetMaxNumSteps(s->solver.ida, 100000);
     if (flag != IDA_SUCCESS)
         return td_error_set(err, TD_ERR_SOLVER, "IDA set-up failed: %s", s->errmsg);
     /* our own Newton solver, so that its convergence test can be wrapped (conv_test_cb) */
-    s->NLS = SUNNonlinSol_Newton(s->y, s->ctx);
-    if (!s->NLS)
+    s->solver.NLS = SUNNonlinSol_Newton(s->y, s->solver.ctx);
+    if (!s->solver.NLS)
         return td_error_set(err, TD_ERR_NOMEM, "out of memory creating the nonlinear solver");
-    if (IDASetNonlinearSolver(s->ida, s->NLS) != IDA_SUCCESS)
+    if (IDASetNonlinearSolver(s->solver.ida, s->solver.NLS) != IDA_SUCCESS)
         return td_error_set(err, TD_ERR_SOLVER, "IDA set-up failed: %s", s->errmsg);
     {
-        SUNNonlinearSolverContent_Newton c = (SUNNonlinearSolverContent_Newton)s->NLS->content;
-        s->ida_ctest = c->CTest;
-        s->ida_ctest_data = c->ctest_data;
-        if (!s->ida_ctest || SUNNonlinSolSetConvTestFn(s->NLS, conv_test_cb, s) != SUN_NLS_SUCCESS)
+        SUNNonlinearSolverContent_Newton c = (SUNNonlinearSolverContent_Newton)s->solver.NLS->content;
+        s->solver.ida_ctest = c->CTest;
+        s->solver.ida_ctest_data = c->ctest_data;
+        if (!s->solver.ida_ctest || SUNNonlinSolSetConvTestFn(s->solver.NLS, conv_test_cb, s) != SUN_NLS_SUCCESS)
             return td_error_set(err, TD_ERR_SOLVER, "cannot install the Newton convergence test");
     }
     if (s->opt.solver.linear_solver == TD_LINSOL_KLU) {
-        s->A = SUNSparseMatrix(s->neq, s->neq, s->nnz, CSC_MAT, s->ctx);
-        s->LS = s->A ? td_sim_klu_create(s) : NULL;
+        s->solver.A = SUNSparseMatrix(s->neq, s->neq, s->nnz, CSC_MAT, s->solver.ctx);
+        s->solver.LS = s->solver.A ? td_sim_klu_create(s) : NULL;
     } else {
-        s->A = SUNDenseMatrix(s->neq, s->neq, s->ctx);
-        s->LS = s->A ? SUNLinSol_Dense(s->y, s->A, s->ctx) : NULL;
+        s->solver.A = SUNDenseMatrix(s->neq, s->neq, s->solver.ctx);
+        s->solver.LS = s->solver.A ? SUNLinSol_Dense(s->y, s->solver.A, s->solver.ctx) : NULL;
     }
-    if (!s->A || !s->LS)
+    if (!s->solver.A || !s->solver.LS)
         return td_error_set(err, TD_ERR_NOMEM, "out of memory creating the linear solver");
-    flag = IDASetLinearSolver(s->ida, s->LS, s->A);
+    flag = IDASetLinearSolver(s->solver.ida, s->solver.LS, s->solver.A);
     if (flag == IDA_SUCCESS)
-        flag = IDASetJacFn(s->ida, jac_cb);
+        flag = IDASetJacFn(s->solver.ida, jac_cb);
     if (flag == IDA_SUCCESS && s->nroots > 0) {
-        flag = IDARootInit(s->ida, s->nroots, root_cb);
+        flag = IDARootInit(s->solver.ida, s->nroots, root_cb);
         if (flag == IDA_SUCCESS)
-            flag = IDASetNoInactiveRootWarn(s->ida);
+            flag = IDASetNoInactiveRootWarn(s->solver.ida);
     }
     if (flag != IDA_SUCCESS)
         return td_error_set(err, TD_ERR_SOLVER, "IDA set-up failed: %s", s->errmsg);
     /* directions, first step, step bound and stop time as at every restart */
     if (td_sim_restart(s) != TD_OK)
         return td_error_set(err, TD_ERR_SOLVER, "IDA set-up failed: %s", s->errmsg);
-    s->stats.restarts = 0;
+    s->monitor.stats.restarts = 0;
     return TD_OK;
 }
 
 /* y, yp at time t inside IDA's last step. */
 td_status td_sim_interpolate(td_sim *s, double t)
 {
-    if (IDAGetDky(s->ida, t, 0, s->y) != IDA_SUCCESS || IDAGetDky(s->ida, t, 1, s->yp) != IDA_SUCCESS) {
+    if (IDAGetDky(s->solver.ida, t, 0, s->y) != IDA_SUCCESS || IDAGetDky(s->solver.ida, t, 1, s->yp) != IDA_SUCCESS) {
         snprintf(s->errmsg, sizeof s->errmsg, "t = %.9g s: IDA could not interpolate its last step (IDAGetDky)", t);
         return TD_ERR_SOLVER;
     }
@@ -249,36 +249,36 @@ td_status td_sim_interpolate(td_sim *s, double t)
 int td_sim_stalled(td_sim *s, double t)
 {
     double h;
-    if (IDAGetLastStep(s->ida, &h) != IDA_SUCCESS || h >= STALL_STEP * DBL_EPSILON * fmax(fabs(t), 1.0)) {
-        s->tiny_steps = 0;
+    if (IDAGetLastStep(s->solver.ida, &h) != IDA_SUCCESS || h >= STALL_STEP * DBL_EPSILON * fmax(fabs(t), 1.0)) {
+        s->solver.tiny_steps = 0;
         return 0;
     }
-    if (++s->tiny_steps < STALL_COUNT)
+    if (++s->solver.tiny_steps < STALL_COUNT)
         return 0;
     snprintf(s->errmsg, sizeof s->errmsg,
              "t = %.9g s: the integrator stalled (%ld steps in a row of %.2g s or less); loosen solver.rtol or "
              "solver.atol",
-             t, s->tiny_steps, h);
+             t, s->solver.tiny_steps, h);
     return 1;
 }
 
 static void save_counters(td_sim *s)
 {
     long v;
-    if (IDAGetNumSteps(s->ida, &v) == IDA_SUCCESS)
-        s->base.steps += v;
-    if (IDAGetNumResEvals(s->ida, &v) == IDA_SUCCESS)
-        s->base.res += v;
-    if (IDAGetNumJacEvals(s->ida, &v) == IDA_SUCCESS)
-        s->base.jac += v;
-    if (IDAGetNumLinSolvSetups(s->ida, &v) == IDA_SUCCESS)
-        s->base.setups += v;
-    if (IDAGetNumNonlinSolvIters(s->ida, &v) == IDA_SUCCESS)
-        s->base.nli += v;
-    if (IDAGetNumErrTestFails(s->ida, &v) == IDA_SUCCESS)
-        s->base.etf += v;
-    if (IDAGetNumNonlinSolvConvFails(s->ida, &v) == IDA_SUCCESS)
-        s->base.ncf += v;
+    if (IDAGetNumSteps(s->solver.ida, &v) == IDA_SUCCESS)
+        s->solver.base.steps += v;
+    if (IDAGetNumResEvals(s->solver.ida, &v) == IDA_SUCCESS)
+        s->solver.base.res += v;
+    if (IDAGetNumJacEvals(s->solver.ida, &v) == IDA_SUCCESS)
+        s->solver.base.jac += v;
+    if (IDAGetNumLinSolvSetups(s->solver.ida, &v) == IDA_SUCCESS)
+        s->solver.base.setups += v;
+    if (IDAGetNumNonlinSolvIters(s->solver.ida, &v) == IDA_SUCCESS)
+        s->solver.base.nli += v;
+    if (IDAGetNumErrTestFails(s->solver.ida, &v) == IDA_SUCCESS)
+        s->solver.base.etf += v;
+    if (IDAGetNumNonlinSolvConvFails(s->solver.ida, &v) == IDA_SUCCESS)
+        s->solver.base.ncf += v;
 }
 
 /*
@@ -299,9 +299,9 @@ static double restart_step(const td_sim *s)
         if (a > amax)
             amax = a;
     }
-    h = amax > 0.0 ? sqrt(0.5 / amax) : s->hmax;
-    if (h > s->hmax)
-        h = s->hmax;
+    h = amax > 0.0 ? sqrt(0.5 / amax) : s->solver.hmax;
+    if (h > s->solver.hmax)
+        h = s->solver.hmax;
     if (h < 1e-12)
         h = 1e-12;
     return h;
@@ -313,78 +313,78 @@ td_status td_sim_restart(td_sim *s)
     int flag;
     save_counters(s);
     td_sim_spin_wrap(s, N_VGetArrayPointer(s->y));
-    flag = IDAReInit(s->ida, s->t, s->y, s->yp);
+    flag = IDAReInit(s->solver.ida, s->t, s->y, s->yp);
     if (flag == IDA_SUCCESS && td_sim_races_retolerance(s)) /* a race came into or out of contact */
-        flag = IDASVtolerances(s->ida, s->opt.solver.rtol, s->atol);
+        flag = IDASVtolerances(s->solver.ida, s->opt.solver.rtol, s->solver.atol);
     if (flag == IDA_SUCCESS) {
         td_sim_root_directions(s, s->rootdir);
         if (s->nroots > 0)
-            flag = IDASetRootDirection(s->ida, s->rootdir);
+            flag = IDASetRootDirection(s->solver.ida, s->rootdir);
     }
     if (flag == IDA_SUCCESS)
-        flag = IDASetInitStep(s->ida, restart_step(s));
+        flag = IDASetInitStep(s->solver.ida, restart_step(s));
     if (flag == IDA_SUCCESS)
-        flag = IDASetMaxStep(s->ida, s->hmax);
+        flag = IDASetMaxStep(s->solver.ida, s->solver.hmax);
     if (flag == IDA_SUCCESS) /* none: a stop that the flight passed over must not stay set */
-        flag = IDASetStopTime(s->ida, isfinite(stop) ? stop : DBL_MAX);
+        flag = IDASetStopTime(s->solver.ida, isfinite(stop) ? stop : DBL_MAX);
     if (flag != IDA_SUCCESS) {
         if (!s->errmsg[0])
             snprintf(s->errmsg, sizeof s->errmsg, "t = %.9g s: IDA re-initialisation failed (%d)", s->t, flag);
         return TD_ERR_SOLVER;
     }
-    s->t_ida = s->t;
-    s->ida_stale = 0;
+    s->solver.t_ida = s->t;
+    s->solver.ida_stale = 0;
     td_sim_flight_forget(s);
-    s->stats.restarts++;
+    s->monitor.stats.restarts++;
     return TD_OK;
 }
 
 void td_sim_integrator_counters(const td_sim *s, td_sim_stats *out)
 {
     long v;
-    out->steps = s->base.steps;
-    out->residual_evals = s->base.res;
-    out->jacobian_evals = s->base.jac;
-    out->linear_setups = s->base.setups;
-    out->nonlinear_iters = s->base.nli;
-    out->error_test_fails = s->base.etf;
-    out->nonlinear_fails = s->base.ncf;
-    if (IDAGetNumSteps(s->ida, &v) == IDA_SUCCESS)
+    out->steps = s->solver.base.steps;
+    out->residual_evals = s->solver.base.res;
+    out->jacobian_evals = s->solver.base.jac;
+    out->linear_setups = s->solver.base.setups;
+    out->nonlinear_iters = s->solver.base.nli;
+    out->error_test_fails = s->solver.base.etf;
+    out->nonlinear_fails = s->solver.base.ncf;
+    if (IDAGetNumSteps(s->solver.ida, &v) == IDA_SUCCESS)
         out->steps += v;
-    if (IDAGetNumResEvals(s->ida, &v) == IDA_SUCCESS)
+    if (IDAGetNumResEvals(s->solver.ida, &v) == IDA_SUCCESS)
         out->residual_evals += v;
-    if (IDAGetNumJacEvals(s->ida, &v) == IDA_SUCCESS)
+    if (IDAGetNumJacEvals(s->solver.ida, &v) == IDA_SUCCESS)
         out->jacobian_evals += v;
-    if (IDAGetNumLinSolvSetups(s->ida, &v) == IDA_SUCCESS)
+    if (IDAGetNumLinSolvSetups(s->solver.ida, &v) == IDA_SUCCESS)
         out->linear_setups += v;
-    if (IDAGetNumNonlinSolvIters(s->ida, &v) == IDA_SUCCESS)
+    if (IDAGetNumNonlinSolvIters(s->solver.ida, &v) == IDA_SUCCESS)
         out->nonlinear_iters += v;
-    if (IDAGetNumErrTestFails(s->ida, &v) == IDA_SUCCESS)
+    if (IDAGetNumErrTestFails(s->solver.ida, &v) == IDA_SUCCESS)
         out->error_test_fails += v;
-    if (IDAGetNumNonlinSolvConvFails(s->ida, &v) == IDA_SUCCESS)
+    if (IDAGetNumNonlinSolvConvFails(s->solver.ida, &v) == IDA_SUCCESS)
         out->nonlinear_fails += v;
 }
 
 void td_sim_integrator_free(td_sim *s)
 {
-    if (s->ida)
-        IDAFree(&s->ida);
-    if (s->LS)
-        SUNLinSolFree(s->LS);
-    if (s->NLS)
-        SUNNonlinSolFree(s->NLS);
-    if (s->A)
-        SUNMatDestroy(s->A);
+    if (s->solver.ida)
+        IDAFree(&s->solver.ida);
+    if (s->solver.LS)
+        SUNLinSolFree(s->solver.LS);
+    if (s->solver.NLS)
+        SUNNonlinSolFree(s->solver.NLS);
+    if (s->solver.A)
+        SUNMatDestroy(s->solver.A);
     if (s->y)
         N_VDestroy(s->y);
     if (s->yp)
         N_VDestroy(s->yp);
-    if (s->id)
-        N_VDestroy(s->id);
-    if (s->atol)
-        N_VDestroy(s->atol);
-    if (s->newton_del)
-        N_VDestroy(s->newton_del);
-    if (s->ctx)
-        SUNContext_Free(&s->ctx);
+    if (s->solver.id)
+        N_VDestroy(s->solver.id);
+    if (s->solver.atol)
+        N_VDestroy(s->solver.atol);
+    if (s->solver.newton_del)
+        N_VDestroy(s->solver.newton_del);
+    if (s->solver.ctx)
+        SUNContext_Free(&s->solver.ctx);
 }

@@ -15,21 +15,21 @@ void td_sim_queue_event(td_sim *s, const td_event *ev)
 {
     td_event e = *ev;
     if ((e.kind == TD_EVENT_CONTACT_ONSET || e.kind == TD_EVENT_PENALTY_ENTER) && e.retainer >= 0)
-        s->totals[e.retainer].interval_peak = 0.0;
+        s->monitor.totals[e.retainer].interval_peak = 0.0;
     if ((e.kind == TD_EVENT_RELEASE || e.kind == TD_EVENT_PENALTY_EXIT) && e.retainer >= 0)
-        e.peak_normal_force = s->totals[e.retainer].interval_peak;
-    if (s->q_len < s->q_cap)
-        s->queue[s->q_len++] = e;
-    s->stats.events++;
+        e.peak_normal_force = s->monitor.totals[e.retainer].interval_peak;
+    if (s->monitor.q_len < s->monitor.q_cap)
+        s->monitor.queue[s->monitor.q_len++] = e;
+    s->monitor.stats.events++;
     switch (ev->kind) {
     case TD_EVENT_CONTACT_ONSET:
     case TD_EVENT_PENALTY_ENTER:
-        s->stats.contact_onsets++;
-        if (td_is_undefined(s->stats.first_contact_time))
-            s->stats.first_contact_time = ev->time;
+        s->monitor.stats.contact_onsets++;
+        if (td_is_undefined(s->monitor.stats.first_contact_time))
+            s->monitor.stats.first_contact_time = ev->time;
         break;
     case TD_EVENT_RELEASE:
-    case TD_EVENT_PENALTY_EXIT: s->stats.releases++; break;
+    case TD_EVENT_PENALTY_EXIT: s->monitor.stats.releases++; break;
     default: break;
     }
 }
@@ -66,11 +66,11 @@ void td_sim_monitor_amb_load(td_sim *s, int k, double force, double t)
 {
     const td_amb_axis *a = &s->sys->amb_axes[k];
     double load = fabs(force) / a->capacity;
-    if (load > s->stats.peak_amb_load) {
-        s->stats.peak_amb_load = load;
-        s->stats.peak_amb_force = fabs(force);
-        s->stats.peak_amb_time = t;
-        s->stats.peak_amb = a->amb;
+    if (load > s->monitor.stats.peak_amb_load) {
+        s->monitor.stats.peak_amb_load = load;
+        s->monitor.stats.peak_amb_force = fabs(force);
+        s->monitor.stats.peak_amb_time = t;
+        s->monitor.stats.peak_amb = a->amb;
     }
 }
 
@@ -88,7 +88,7 @@ static void monitor_ambs(td_sim *s, double t, const double *y)
 void td_sim_monitor_at(td_sim *s, double t, int at_step)
 {
     const double *y = N_VGetArrayPointer(s->y);
-    double dt = t - s->t_acc;
+    double dt = t - s->monitor.t_acc;
     int k;
     for (k = 0; k < s->nr; k++) {
         const td_sim_retainer *r = &s->ret[k];
@@ -96,37 +96,37 @@ void td_sim_monitor_at(td_sim *s, double t, int at_step)
         if (r->mode == TD_RMODE_FREE)
             continue;
         if (dt > 0.0)
-            s->stats.time_in_contact += dt;
+            s->monitor.stats.time_in_contact += dt;
         if (r->mode == TD_RMODE_CONTACT && at_step) {
             double x, yy, vx, vy, drift;
             td_sim_node_state(s, k, y, &x, &yy, &vx, &vy);
             drift = fabs(hypot(x, yy) - r->r.clearance);
-            if (drift > s->stats.worst_drift)
-                s->stats.worst_drift = drift;
+            if (drift > s->monitor.stats.worst_drift)
+                s->monitor.stats.worst_drift = drift;
         }
         fn = td_sim_normal_force(s, k, y);
-        s->totals[k].interval_peak = fmax(s->totals[k].interval_peak, fn);
-        if (fn > s->stats.peak_normal_force) {
-            s->stats.peak_normal_force = fn;
-            s->stats.peak_time = t;
-            s->stats.peak_retainer = k;
+        s->monitor.totals[k].interval_peak = fmax(s->monitor.totals[k].interval_peak, fn);
+        if (fn > s->monitor.stats.peak_normal_force) {
+            s->monitor.stats.peak_normal_force = fn;
+            s->monitor.stats.peak_time = t;
+            s->monitor.stats.peak_retainer = k;
         }
     }
     monitor_ambs(s, t, y);
-    if (t > s->t_acc)
-        s->t_acc = t;
+    if (t > s->monitor.t_acc)
+        s->monitor.t_acc = t;
 }
 
-/* The next queued event into s->last (td_sim_last_event); 0 when the queue is empty. */
+/* The next queued event into s->monitor.last (td_sim_last_event); 0 when the queue is empty. */
 int td_sim_pop_event(td_sim *s)
 {
-    if (s->q_pos >= s->q_len) {
-        s->q_pos = s->q_len = 0;
+    if (s->monitor.q_pos >= s->monitor.q_len) {
+        s->monitor.q_pos = s->monitor.q_len = 0;
         return 0;
     }
-    s->last = s->queue[s->q_pos++];
-    s->have_last = 1;
-    if (s->q_pos >= s->q_len)
-        s->q_pos = s->q_len = 0;
+    s->monitor.last = s->monitor.queue[s->monitor.q_pos++];
+    s->monitor.have_last = 1;
+    if (s->monitor.q_pos >= s->monitor.q_len)
+        s->monitor.q_pos = s->monitor.q_len = 0;
     return 1;
 }

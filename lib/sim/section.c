@@ -89,7 +89,7 @@ static int state_at(td_sim *s, source from, double t)
         memcpy(c->y, N_VGetArrayPointer(s->y), sizeof(double) * (size_t)s->neq);
         return td_sim_flight_peek(s, t, c->y, c->work);
     }
-    if (IDAGetDky(s->ida, t, 0, c->dky) != IDA_SUCCESS)
+    if (IDAGetDky(s->solver.ida, t, 0, c->dky) != IDA_SUCCESS)
         return 0;
     memcpy(c->y, N_VGetArrayPointer(c->dky), sizeof(double) * (size_t)s->neq);
     td_sim_spin_hold(s, t, c->y, NULL);

@@ -66,11 +66,11 @@ static int alloc_work(td_sim *s, size_t nr)
     s->entered = calloc(nr, sizeof(int));
     s->roll_tried = calloc(nr, sizeof(int));
     s->touching = calloc(nr, sizeof(int));
-    s->totals = calloc(nr, sizeof *s->totals);
-    s->energy_f = calloc(n, sizeof(double));
+    s->monitor.totals = calloc(nr, sizeof *s->monitor.totals);
+    s->monitor.energy_f = calloc(n, sizeof(double));
     return s->mass_x && s->minv_f && s->power_x && s->power_kx && s->power_mx && s->schur && s->schur_rhs &&
            s->restitution && s->impulse && s->impact_work && s->minv_cols && s->rows && s->active && s->active_roll &&
-           s->onset && s->roll_tried && s->totals && s->energy_f && s->entered && s->touching;
+           s->onset && s->roll_tried && s->monitor.totals && s->monitor.energy_f && s->entered && s->touching;
 }
 
 static td_status alloc_arrays(td_sim *s, td_error *err)
@@ -82,8 +82,8 @@ static td_status alloc_arrays(td_sim *s, td_error *err)
     s->amb_mode = calloc((size_t)(na > 0 ? na : 1), sizeof *s->amb_mode);
     s->amb_control = calloc((size_t)(2 * na + 2), sizeof(double));
     s->amb_coef = calloc((size_t)(s->sys->n_amb_axes + 1), sizeof *s->amb_coef);
-    s->q_cap = 4 * s->nr + td_model_change_count(s->model) + 4;
-    s->queue = calloc((size_t)s->q_cap, sizeof *s->queue);
+    s->monitor.q_cap = 4 * s->nr + td_model_change_count(s->model) + 4;
+    s->monitor.queue = calloc((size_t)s->monitor.q_cap, sizeof *s->monitor.queue);
     ok = alloc_work(s, nr);
     s->n_sat_roots = 0;
     for (i = 0; i < s->sys->n_amb_axes; i++)
@@ -92,10 +92,10 @@ static td_status alloc_arrays(td_sim *s, td_error *err)
     s->nroots = TD_ROOTS_PER_RETAINER * s->nr + s->n_sat_roots;
     s->rootdir = calloc(TD_ROOTS_PER_RETAINER * nr + (size_t)s->n_sat_roots, sizeof(int));
     s->rootsfound = calloc(TD_ROOTS_PER_RETAINER * nr + (size_t)s->n_sat_roots, sizeof(int));
-    s->ysave = calloc((size_t)s->neq, sizeof(double));
-    s->ypsave = calloc((size_t)s->neq, sizeof(double));
-    if (!ok || !s->unb || !s->amb_mode || !s->amb_control || !s->amb_coef || !s->queue || !s->rootdir ||
-        !s->rootsfound || !s->ysave || !s->ypsave)
+    s->loop.ysave = calloc((size_t)s->neq, sizeof(double));
+    s->loop.ypsave = calloc((size_t)s->neq, sizeof(double));
+    if (!ok || !s->unb || !s->amb_mode || !s->amb_control || !s->amb_coef || !s->monitor.queue || !s->rootdir ||
+        !s->rootsfound || !s->loop.ysave || !s->loop.ypsave)
         return td_error_set(err, TD_ERR_NOMEM, "out of memory creating a simulation");
     return TD_OK;
 }
@@ -240,13 +240,13 @@ static void init_layout(td_sim *s)
     s->ou = s->ol + s->nr;
     s->of = s->ou + s->nr;
     s->neq = s->of + s->ns;
-    s->t = s->t_ida = s->t_acc = s->opt.t0;
-    s->t_window = s->opt.t0;
-    s->stats.first_contact_time = TD_UNDEFINED;
-    s->stats.peak_time = TD_UNDEFINED;
-    s->stats.peak_retainer = -1;
-    s->stats.peak_amb_time = TD_UNDEFINED;
-    s->stats.peak_amb = -1;
+    s->t = s->solver.t_ida = s->monitor.t_acc = s->opt.t0;
+    s->loop.t_window = s->opt.t0;
+    s->monitor.stats.first_contact_time = TD_UNDEFINED;
+    s->monitor.stats.peak_time = TD_UNDEFINED;
+    s->monitor.stats.peak_retainer = -1;
+    s->monitor.stats.peak_amb_time = TD_UNDEFINED;
+    s->monitor.stats.peak_amb = -1;
 }
 
 /* The retainers, free, with their contact laws, and the DOFs of their races after the rotor's
@@ -302,7 +302,7 @@ td_status td_sim_setup(const td_model *model, const td_sim_options *options, vol
     }
     if (st == TD_OK) {
         set_scales(s);
-        s->hmax = s->opt.solver.max_step > 0.0 ? s->opt.solver.max_step : td_sim_default_max_step(s);
+        s->solver.hmax = s->opt.solver.max_step > 0.0 ? s->opt.solver.max_step : td_sim_default_max_step(s);
     }
     if (st == TD_OK)
         st = td_sim_pattern_build(s, err);
@@ -324,8 +324,8 @@ td_status td_sim_setup(const td_model *model, const td_sim_options *options, vol
         return st;
     }
     td_sim_totals_point(s, s->t, 1);
-    s->q_len = s->q_pos = 0; /* contacts at the start are a state, not events */
-    s->stats.events = s->stats.releases = s->stats.contact_onsets = 0;
+    s->monitor.q_len = s->monitor.q_pos = 0; /* contacts at the start are a state, not events */
+    s->monitor.stats.events = s->monitor.stats.releases = s->monitor.stats.contact_onsets = 0;
     *out = s;
     return TD_OK;
 }
@@ -349,8 +349,8 @@ static void free_work(td_sim *s)
     free(s->onset);
     free(s->entered);
     free(s->roll_tried);
-    free(s->totals);
-    free(s->energy_f);
+    free(s->monitor.totals);
+    free(s->monitor.energy_f);
     free(s->touching);
 }
 
@@ -376,12 +376,12 @@ void td_sim_teardown(td_sim *s)
     free(s->amb_control);
     free(s->ret);
     free(s->amb_coef);
-    free(s->queue);
+    free(s->monitor.queue);
     free_work(s);
     free(s->rootdir);
     free(s->rootsfound);
-    free(s->ysave);
-    free(s->ypsave);
+    free(s->loop.ysave);
+    free(s->loop.ypsave);
     td_sim_races_free(s);
     td_sim_flight_free(s);
     td_sim_section_free(s);

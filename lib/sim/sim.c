@@ -76,7 +76,7 @@ td_status td_sim_step(td_sim *sim, double tout, double *t_reached, td_error *err
     }
     w0 = td_wall_clock();
     st = tout > sim->t ? td_sim_advance(sim, tout) : TD_OK;
-    sim->stats.wall_time += td_wall_clock() - w0;
+    sim->monitor.stats.wall_time += td_wall_clock() - w0;
     if (t_reached)
         *t_reached = sim->t;
     return reported(sim, st, err);
@@ -112,9 +112,9 @@ td_status td_sim_last_event(const td_sim *sim, td_event *ev)
 {
     if (!sim || !ev)
         return TD_ERR_INVALID;
-    if (!sim->have_last)
+    if (!sim->monitor.have_last)
         return TD_ERR_STATE;
-    *ev = sim->last;
+    *ev = sim->monitor.last;
     return TD_OK;
 }
 
@@ -188,7 +188,7 @@ td_status td_sim_stats_get(const td_sim *sim, td_sim_stats *out)
 {
     if (!sim || !out)
         return TD_ERR_INVALID;
-    *out = sim->stats;
+    *out = sim->monitor.stats;
     td_sim_integrator_counters(sim, out);
     return TD_OK;
 }
@@ -246,7 +246,7 @@ td_status td_sim_set_speed(td_sim *sim, double omega, td_error *err)
     sim->omega = omega;
     td_sim_structural_speed(sim);
     if (sim->opt.solver.max_step <= 0.0) {
-        sim->hmax = td_sim_default_max_step(sim);
+        sim->solver.hmax = td_sim_default_max_step(sim);
     }
     return reported(sim, td_sim_restart_after_change(sim), err);
 }

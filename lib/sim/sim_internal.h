@@ -32,7 +32,10 @@
 
 #include "contact/contact.h"
 #include "model/system_internal.h"
+#include "sim/integrator.h"
+#include "sim/monitor.h"
 #include "sim/retainer.h"
+#include "sim/stepping.h"
 #include "sim/sundials_compat.h"
 #include "touchdown/sim.h"
 
@@ -47,24 +50,6 @@ typedef struct td_sim_amb_coef {
     double cmd_x, cmd_v, cmd_e;            /* d(command)/d(xs, vs, e) */
     double rate_x, rate_v, rate_e, rate_w; /* d(dFc/dt)/d(xs, vs, e, Fc), tau > 0 only */
 } td_sim_amb_coef;
-
-/* Running totals of the IDA counters, which IDAReInit resets. */
-typedef struct td_sim_counters {
-    long steps, res, jac, setups, nli, etf, ncf;
-} td_sim_counters;
-
-/* One retainer's running totals (totals.c): the public record, the integrands at the last point
- * and the contact interval's bookkeeping. */
-typedef struct td_sim_totals {
-    td_retainer_totals t;
-    struct {
-        double n, n2, power, whirl_rate;
-    } prev;
-    int in_contact;        /* in contact at the last point */
-    double whirl_at_onset; /* t.whirl_angle when the open interval began */
-    double interval_peak;  /* N, the largest normal force of the open (or the last) contact interval
-                              at the accepted points (monitor.c, td_sim_monitor_at) */
-} td_sim_totals;
 
 /* The closed-form free flight's decomposition, forcing and anchor (flight_internal.h). */
 typedef struct td_sim_flight td_sim_flight;
@@ -118,75 +103,40 @@ struct td_sim {
     int *st_rowptr, *st_col;
     double *st_M, *st_K, *st_D;
 
-    /* SUNDIALS */
-    SUNContext ctx;
-    void *ida;
-    N_Vector y, yp, id, atol;
-    N_Vector
-        newton_del; /* the Newton correction, its multipliers weighed against their rounding floor (integrator.c) */
-    SUNMatrix A;
-    SUNLinearSolver LS;
-    SUNNonlinearSolver NLS;
-    SUNNonlinSolConvTestFn ida_ctest; /* IDA's own Newton convergence test, wrapped by the sim's */
-    void *ida_ctest_data;
     double constraint_tol; /* m: |g| of every contact at an accepted Newton iterate */
-    td_sun_message_sink sink;
+    N_Vector y, yp;
     int nroots;      /* TD_ROOTS_PER_RETAINER per retainer, then n_sat_roots */
     int n_sat_roots; /* 2 per AMB axis when any axis saturates (its clip's kinks), else 0 */
     int *rootdir, *rootsfound;
-    double hmax;
 
     /* time */
-    double t;         /* current time: y, yp hold the state here */
-    double t_ida;     /* IDA's internal time (>= t after an interpolated output) */
-    double t_acc;     /* contact time accumulated up to here */
-    int pending;      /* what stopped IDA beyond the last output time (stepping.c TD_PENDING_*), 0: nothing */
-    double t_pending; /* where */
+    double t; /* current time: y, yp hold the state here */
 
-    /* events */
-    td_event *queue;
-    int q_len, q_pos, q_cap;
-    td_event last;
-    int have_last;
-
-    /* the retainers' totals (totals.c), nr of them, and the time of their last point */
-    td_sim_totals *totals;
-    double totals_t;
-    td_energy energy;      /* the energy account (totals.c) */
-    double energy_prev[5]; /* its powers at the last point: external, drive, damping, contact, drag */
-    double *energy_f;      /* n: the external forces at a point */
-    int energy_started;    /* the initial energy is set */
-
-    /* statistics */
-    td_sim_stats stats;   /* event totals, drift, forces, times (counters filled on demand) */
-    td_sim_counters base; /* IDA counters of finished integrator runs */
+    td_sim_monitor monitor; /* statistics, events, totals, energy (monitor.h) */
+    td_sim_solver solver;   /* IDA, its tolerances and counters (integrator.h) */
+    td_sim_loop loop;       /* the step loop (stepping.h) */
 
     /* work space, each array with one job (n: DOFs, nr: retainers) */
-    double *mass_x;         /* n: td_sim_mass_solve's permuted solution */
-    double *minv_f;         /* n: M^-1 f (kkt_solve, free_normal_acceleration) */
-    double *power_x;        /* n: highest_frequency's iterate x */
-    double *power_kx;       /* n: highest_frequency's M^-1 K x */
-    double *power_mx;       /* n: highest_frequency's M x */
-    double *schur;          /* (nr + ns)^2: kkt_solve's J M^-1 B of the active contacts and rolls */
-    double *schur_rhs;      /* nr + ns: its right-hand side, then lambda and F_t */
-    double *restitution;    /* nr: impacts, the restitution of each contact in the impact map */
-    double *impulse;        /* nr: impacts, the impulse of each contact */
-    double *impact_work;    /* nr * (nr + 1): td_contact_impact_map's work space */
-    double *minv_cols;      /* n * (nr + ns): M^-1 B_k or M^-1 J_k^T columns of the active contacts */
-    td_contact_row *rows;   /* nr + ns: contact rows J_k of the active contacts */
-    int *active;            /* nr + ns: indices of the retainers in the small system (kkt_solve, impacts) */
-    int *active_roll;       /* nr + ns: 1 where that multiplier is a rolling F_t, 0 a normal force */
-    int *onset, *entered;   /* nr each: onset roots and contacts entered at an instant (sim_modes.c) */
-    int *roll_tried;        /* nr: stick retainers set rolling at a slip root, not yet confirmed */
-    int *touching;          /* nr: retainers touching their circles at the start (start_state) */
-    double *ysave, *ypsave; /* last good state */
+    double *mass_x;       /* n: td_sim_mass_solve's permuted solution */
+    double *minv_f;       /* n: M^-1 f (kkt_solve, free_normal_acceleration) */
+    double *power_x;      /* n: highest_frequency's iterate x */
+    double *power_kx;     /* n: highest_frequency's M^-1 K x */
+    double *power_mx;     /* n: highest_frequency's M x */
+    double *schur;        /* (nr + ns)^2: kkt_solve's J M^-1 B of the active contacts and rolls */
+    double *schur_rhs;    /* nr + ns: its right-hand side, then lambda and F_t */
+    double *restitution;  /* nr: impacts, the restitution of each contact in the impact map */
+    double *impulse;      /* nr: impacts, the impulse of each contact */
+    double *impact_work;  /* nr * (nr + 1): td_contact_impact_map's work space */
+    double *minv_cols;    /* n * (nr + ns): M^-1 B_k or M^-1 J_k^T columns of the active contacts */
+    td_contact_row *rows; /* nr + ns: contact rows J_k of the active contacts */
+    int *active;          /* nr + ns: indices of the retainers in the small system (kkt_solve, impacts) */
+    int *active_roll;     /* nr + ns: 1 where that multiplier is a rolling F_t, 0 a normal force */
+    int *onset, *entered; /* nr each: onset roots and contacts entered at an instant (sim_modes.c) */
+    int *roll_tried;      /* nr: stick retainers set rolling at a slip root, not yet confirmed */
+    int *touching;        /* nr: retainers touching their circles at the start (start_state) */
 
     td_sim_flight *flight;          /* flight.c, allocated at the first flight; NULL: none yet */
     struct td_sim_section *section; /* section.c, NULL: no section taken */
-    long tiny_steps;                /* consecutive IDA steps too short to move t (integrator.c, td_sim_stalled) */
-    long passes;                    /* integration passes (steps, flights) since t_window (stepping.c, no_progress) */
-    double t_window;                /* the time when the current window of passes began */
-    int ida_stale;                  /* the flight moved the state: IDA restarts before its next step */
 
     volatile sig_atomic_t *interrupt; /* borrowed (td_sim_set_interrupt), NULL: none */
     td_sim_start_info start;          /* how the start state was chosen (start.c) */
@@ -317,7 +267,7 @@ void td_sim_queue_event(td_sim *s, const td_event *ev);
 void td_sim_event_velocities(const td_sim *s, int k, const double *y, int after, td_event *ev);
 /* An event of `kind` at s->t, of retainer k (-1: none), no schedule entry. */
 td_event td_sim_event_at(const td_sim *s, td_event_kind kind, int k);
-/* The next queued event into s->last; 0 when the queue is empty. */
+/* The next queued event into s->monitor.last; 0 when the queue is empty. */
 int td_sim_pop_event(td_sim *s);
 /* AMB axis k's force `force` at time t: a new peak load if it is the largest yet. */
 void td_sim_monitor_amb_load(td_sim *s, int k, double force, double t);
@@ -354,14 +304,16 @@ void td_sim_totals_get(const td_sim *s, int k, td_retainer_totals *out);
 
 /* 1 if the machine may fly in closed form now: free flight on (td_solver_options), no energy
  * account, a prescribed constant speed, no races, no AMB saturation, every retainer free (one
- * with a force law only once its gap has opened by eps after its last exit), nothing pending. The decomposition may
- * still refuse it (td_sim_flight_advance). */
+ * with a force law only once its gap has opened by eps after its last exit). The decomposition may
+ * still refuse it (td_sim_flight_advance). The step loop flies only with no stop pending. */
 int td_sim_flight_eligible(const td_sim *s);
 /* Carry the state from s->t in closed form to t_out or the stop t_stop, whichever comes first,
  * or to a root before them (*root = 1, s->rootsfound as IDAGetRootInfo would set it), or less far
- * at an interrupt; y holds the state at the new s->t (y': td_sim_flight_rates). Returns 0 (nothing
- * moved) when the flight cannot carry the machine: the integrator does. */
-int td_sim_flight_advance(td_sim *s, double t_out, double t_stop, int *root);
+ * at an interrupt; y holds the state at the new s->t (y': td_sim_flight_rates). The flight works in
+ * the states scaled by `scale` (neq: the integrator's absolute tolerances, each state in its
+ * tolerance's units). Returns 0 (nothing moved) when the flight cannot carry the machine: the
+ * integrator does. */
+int td_sim_flight_advance(td_sim *s, const double *scale, double t_out, double t_stop, int *root);
 /* The state was moved by something else (an integrator step, a restart): the next flight starts
  * from s->y afresh. */
 void td_sim_flight_forget(td_sim *s);
@@ -405,12 +357,12 @@ double td_sim_next_stop(const td_sim *s);
 
 /* ---- tolerance.c: the integrator's tolerances --------------------------------------------- */
 
-/* The per-component absolute tolerances into s->atol and the differential/algebraic flags into
- * s->id. */
+/* The per-component absolute tolerances into s->solver.atol and the differential/algebraic flags into
+ * s->solver.id. */
 void td_sim_set_tolerances(td_sim *s);
 /* Absolute tolerance of retainer k's race speed now (it depends on whether the race rolls). */
 double td_sim_race_speed_atol(const td_sim *s, int k);
-/* Set the race speeds' tolerances in s->atol for the current modes; 1 if one changed. */
+/* Set the race speeds' tolerances in s->solver.atol for the current modes; 1 if one changed. */
 int td_sim_races_retolerance(td_sim *s);
 
 /* ---- integrator.c: IDA ---------------------------------------------------------------------- */

@@ -124,7 +124,7 @@ static int ls_free(SUNLinearSolver S)
 
 SUNLinearSolver td_sim_klu_create(const td_sim *s)
 {
-    SUNLinearSolver S = SUNLinSolNewEmpty(s->ctx);
+    SUNLinearSolver S = SUNLinSolNewEmpty(s->solver.ctx);
     td_klu_ls *c;
     if (!S)
         return NULL;

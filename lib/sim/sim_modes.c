@@ -388,10 +388,10 @@ static void complete_onsets(td_sim *s, const int *onset, int m, int first_event,
         k = s->active[i];
         if (!onset[k])
             continue;
-        for (q = first_event; q < s->q_len; q++)
-            if (s->queue[q].retainer == k && s->queue[q].kind == TD_EVENT_CONTACT_ONSET) {
-                td_sim_event_velocities(s, k, y, 1, &s->queue[q]);
-                s->queue[q].impulse = s->impulse[i];
+        for (q = first_event; q < s->monitor.q_len; q++)
+            if (s->monitor.queue[q].retainer == k && s->monitor.queue[q].kind == TD_EVENT_CONTACT_ONSET) {
+                td_sim_event_velocities(s, k, y, 1, &s->monitor.queue[q]);
+                s->monitor.queue[q].impulse = s->impulse[i];
             }
     }
 }
@@ -417,7 +417,7 @@ static void stop_rolling(td_sim *s, double *y)
 static int impacts(td_sim *s, const int *onset, int *entered)
 {
     double *y = N_VGetArrayPointer(s->y), before;
-    int m, k, queued, first_event = s->q_len;
+    int m, k, queued, first_event = s->monitor.q_len;
     for (k = 0; k < s->nr; k++) {
         entered[k] = 0;
         if (onset[k])
@@ -572,7 +572,7 @@ static td_status onset_impacts(td_sim *s, int any)
 td_status td_sim_handle_roots(td_sim *s, int *restart)
 {
     double *y = N_VGetArrayPointer(s->y);
-    int k, any_onset = 0, first_event = s->q_len;
+    int k, any_onset = 0, first_event = s->monitor.q_len;
     td_status st;
     *restart = 0;
     for (k = 0; k < s->nr; k++) {
@@ -600,9 +600,9 @@ td_status td_sim_handle_roots(td_sim *s, int *restart)
     if (st != TD_OK)
         return st;
     /* record the normal force right after each event of this instant */
-    for (k = first_event; k < s->q_len; k++)
-        if (s->queue[k].retainer >= 0)
-            s->queue[k].normal_force = td_sim_normal_force(s, s->queue[k].retainer, y);
+    for (k = first_event; k < s->monitor.q_len; k++)
+        if (s->monitor.queue[k].retainer >= 0)
+            s->monitor.queue[k].normal_force = td_sim_normal_force(s, s->monitor.queue[k].retainer, y);
     return TD_OK;
 }
 

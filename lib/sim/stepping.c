@@ -21,11 +21,11 @@ static td_status solver_failure(td_sim *s, int flag)
     char msg[TD_ERROR_MESSAGE_SIZE];
     double tn = s->t;
     snprintf(msg, sizeof msg, "%s", s->errmsg);
-    if (IDAGetCurrentTime(s->ida, &tn) == IDA_SUCCESS && tn >= s->t && td_sim_interpolate(s, tn) == TD_OK) {
+    if (IDAGetCurrentTime(s->solver.ida, &tn) == IDA_SUCCESS && tn >= s->t && td_sim_interpolate(s, tn) == TD_OK) {
         /* state at tn */
     } else {
-        memcpy(N_VGetArrayPointer(s->y), s->ysave, sizeof(double) * (size_t)s->neq);
-        memcpy(N_VGetArrayPointer(s->yp), s->ypsave, sizeof(double) * (size_t)s->neq);
+        memcpy(N_VGetArrayPointer(s->y), s->loop.ysave, sizeof(double) * (size_t)s->neq);
+        memcpy(N_VGetArrayPointer(s->yp), s->loop.ypsave, sizeof(double) * (size_t)s->neq);
     }
     snprintf(s->errmsg, sizeof s->errmsg, "t = %.9g s: IDA failed (flag %d): %.400s", s->t, flag, msg);
     return TD_ERR_SOLVER;
@@ -45,18 +45,18 @@ static td_status solver_failure(td_sim *s, int flag)
 
 static int no_progress(td_sim *s)
 {
-    if (++s->passes < PROGRESS_WINDOW)
+    if (++s->loop.passes < PROGRESS_WINDOW)
         return 0;
-    if (s->t - s->t_window >= PROGRESS_SPAN) {
-        s->passes = 0;
-        s->t_window = s->t;
+    if (s->t - s->loop.t_window >= PROGRESS_SPAN) {
+        s->loop.passes = 0;
+        s->loop.t_window = s->t;
         return 0;
     }
     snprintf(s->errmsg, sizeof s->errmsg,
              "t = %.9g s: no progress: %ld integrator steps and stops advanced the time by only %.3g s (a run "
              "this slow would take over %.0e steps per simulated second); loosen solver.rtol or solver.atol, "
              "or check the machine for forces that grow without bound",
-             s->t, s->passes, s->t - s->t_window, (double)PROGRESS_WINDOW / PROGRESS_SPAN);
+             s->t, s->loop.passes, s->t - s->loop.t_window, (double)PROGRESS_WINDOW / PROGRESS_SPAN);
     return 1;
 }
 
@@ -69,7 +69,7 @@ static td_status restart_integrator(td_sim *s)
     td_sim_section_rewind(s);
     st = td_sim_restart(s);
     if (st == TD_OK)
-        s->pending = 0;
+        s->loop.pending = 0;
     return st;
 }
 
@@ -87,7 +87,7 @@ td_status td_sim_restart_after_change(td_sim *s)
     return st;
 }
 
-/* What stopped the integration at s->t_pending (s->pending). */
+/* What stopped the integration at s->loop.t_pending (s->loop.pending). */
 enum { TD_PENDING_NONE = 0, TD_PENDING_ROOT = 1, TD_PENDING_TSTOP = 2, TD_PENDING_RESYNC = 3 };
 
 /* Handle a root (IDAGetRootInfo in s->rootsfound), a penalty mode out of step with the state
@@ -121,15 +121,15 @@ static td_status handle_stop(td_sim *s, int kind)
  * reached, an event to report or a failure), 0 to go on integrating. */
 static int pending_stop(td_sim *s, double tout, td_status *st)
 {
-    int kind = s->pending;
-    if (s->t_pending > tout) {
+    int kind = s->loop.pending;
+    if (s->loop.t_pending > tout) {
         *st = td_sim_interpolate(s, tout);
         monitor(s, tout);
         return 1;
     }
-    s->pending = 0;
-    td_sim_section_ida(s, s->t_pending); /* the crossings before the stop, from the step that found it */
-    *st = td_sim_interpolate(s, s->t_pending);
+    s->loop.pending = 0;
+    td_sim_section_ida(s, s->loop.t_pending); /* the crossings before the stop, from the step that found it */
+    *st = td_sim_interpolate(s, s->loop.t_pending);
     monitor(s, s->t);
     if (*st == TD_OK)
         td_sim_totals_point(s, s->t, 0); /* the segment up to the stop */
@@ -152,8 +152,8 @@ static void accept_point(td_sim *s, double tret, int at_step)
     td_sim_spin_hold(s, tret, N_VGetArrayPointer(s->y), N_VGetArrayPointer(s->yp));
     td_sim_monitor_at(s, tret, at_step);
     td_sim_totals_point(s, tret, 0);
-    memcpy(s->ysave, N_VGetArrayPointer(s->y), sizeof(double) * (size_t)s->neq);
-    memcpy(s->ypsave, N_VGetArrayPointer(s->yp), sizeof(double) * (size_t)s->neq);
+    memcpy(s->loop.ysave, N_VGetArrayPointer(s->y), sizeof(double) * (size_t)s->neq);
+    memcpy(s->loop.ypsave, N_VGetArrayPointer(s->yp), sizeof(double) * (size_t)s->neq);
 }
 
 /* Free flight in closed form (flight.c) from s->t toward tout, up to the next stop. Returns 0 if
@@ -163,10 +163,10 @@ static int fly(td_sim *s, double tout, td_status *st)
 {
     double stop = td_sim_next_stop(s);
     int root = 0;
-    if (!td_sim_flight_advance(s, tout, stop, &root))
+    if (!td_sim_flight_advance(s, N_VGetArrayPointer(s->solver.atol), tout, stop, &root))
         return 0;
-    s->ida_stale = 1; /* IDA's history is of the state before the flight */
-    s->t_ida = s->t;
+    s->solver.ida_stale = 1; /* IDA's history is of the state before the flight */
+    s->solver.t_ida = s->t;
     td_sim_section_flight(s, s->t);
     accept_point(s, s->t, 0);
     *st = TD_OK;
@@ -189,16 +189,17 @@ td_status td_sim_advance(td_sim *s, double tout)
         sunrealtype tret = s->t, tn = s->t;
         int flag;
         td_status st;
-        if (s->pending) {
+        if (s->loop.pending) {
             if (pending_stop(s, tout, &st))
                 return st;
             continue;
         }
-        if (s->t_ida == s->t && tout == s->t) { /* restarted right here (a stop at tout): nothing to interpolate */
+        if (s->solver.t_ida == s->t &&
+            tout == s->t) { /* restarted right here (a stop at tout): nothing to interpolate */
             monitor(s, tout);
             return TD_OK;
         }
-        if (s->t_ida >= tout) {
+        if (s->solver.t_ida >= tout) {
             st = td_sim_interpolate(s, tout);
             monitor(s, tout);
             return st;
@@ -219,31 +220,31 @@ td_status td_sim_advance(td_sim *s, double tout)
         case 2: continue;
         default: break;
         }
-        if (s->ida_stale) {
+        if (s->solver.ida_stale) {
             td_sim_flight_rates(s);
             if ((st = restart_integrator(s)) != TD_OK)
                 return st;
         }
-        flag = IDASolve(s->ida, tout, &tret, s->y, s->yp, IDA_ONE_STEP);
+        flag = IDASolve(s->solver.ida, tout, &tret, s->y, s->yp, IDA_ONE_STEP);
         if (flag < 0)
             return solver_failure(s, flag);
-        if (IDAGetCurrentTime(s->ida, &tn) == IDA_SUCCESS && tn > s->t_ida)
-            s->t_ida = tn;
+        if (IDAGetCurrentTime(s->solver.ida, &tn) == IDA_SUCCESS && tn > s->solver.t_ida)
+            s->solver.t_ida = tn;
         if (td_sim_stalled(s, tret)) {
             accept_point(s, tret, 1); /* the run ends at the stalled step, its state in place */
             return TD_ERR_SOLVER;
         }
         if (flag == IDA_ROOT_RETURN || flag == IDA_TSTOP_RETURN) {
             if (flag == IDA_ROOT_RETURN)
-                IDAGetRootInfo(s->ida, s->rootsfound);
-            s->pending = flag == IDA_ROOT_RETURN ? TD_PENDING_ROOT : TD_PENDING_TSTOP;
-            s->t_pending = tret;
+                IDAGetRootInfo(s->solver.ida, s->rootsfound);
+            s->loop.pending = flag == IDA_ROOT_RETURN ? TD_PENDING_ROOT : TD_PENDING_TSTOP;
+            s->loop.t_pending = tret;
             continue;
         }
         if (td_sim_modes_out_of_step(s, N_VGetArrayPointer(s->y))) {
             /* IDA missed a crossing (retainer.c): switch the mode at this step's end */
-            s->pending = TD_PENDING_RESYNC;
-            s->t_pending = tret;
+            s->loop.pending = TD_PENDING_RESYNC;
+            s->loop.t_pending = tret;
             continue;
         }
         accept_point(s, tret, 1);

@@ -23,7 +23,7 @@ double td_sim_race_speed_atol(const td_sim *s, int k)
 
 int td_sim_races_retolerance(td_sim *s)
 {
-    double *at = N_VGetArrayPointer(s->atol);
+    double *at = N_VGetArrayPointer(s->solver.atol);
     int k, changed = 0;
     for (k = 0; k < s->nr; k++) {
         int i = s->ov + s->ret[k].rs;
@@ -93,7 +93,7 @@ static void spin_tolerances(const td_sim *s, double *at, double *id)
 
 void td_sim_set_tolerances(td_sim *s)
 {
-    double *at = N_VGetArrayPointer(s->atol), *id = N_VGetArrayPointer(s->id), atol = s->opt.solver.atol;
+    double *at = N_VGetArrayPointer(s->solver.atol), *id = N_VGetArrayPointer(s->solver.id), atol = s->opt.solver.atol;
     int i;
     int ne = td_model_shaft_element_count(s->model);
     for (i = 0; i < s->sys->ndof; i++) {

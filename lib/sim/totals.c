@@ -54,7 +54,7 @@ static double housing_force(const td_sim *s, int k, const double *y)
 /* Retainer k's contact interval ends: a contact if it swept TD_TOUCH_AND_GO_ANGLE, else an impact. */
 static void interval_ends(td_sim *s, int k)
 {
-    td_sim_totals *tk = &s->totals[k];
+    td_sim_totals *tk = &s->monitor.totals[k];
     if (fabs(tk->t.whirl_angle - tk->whirl_at_onset) >= TD_TOUCH_AND_GO_ANGLE)
         tk->t.contacts++;
     else
@@ -64,7 +64,7 @@ static void interval_ends(td_sim *s, int k)
 /* Open and close contact intervals as retainer k's mode says at this point. */
 static void track_interval(td_sim *s, int k)
 {
-    td_sim_totals *tk = &s->totals[k];
+    td_sim_totals *tk = &s->monitor.totals[k];
     int in = s->ret[k].mode != TD_RMODE_FREE;
     if (in && !tk->in_contact)
         tk->whirl_at_onset = tk->t.whirl_angle;
@@ -76,10 +76,10 @@ static void track_interval(td_sim *s, int k)
 void td_sim_totals_point(td_sim *s, double t, int restart)
 {
     const double *y = N_VGetArrayPointer(s->y);
-    double dt = restart ? 0.0 : t - s->totals_t;
+    double dt = restart ? 0.0 : t - s->monitor.totals_t;
     int k;
     for (k = 0; k < s->nr; k++) {
-        td_sim_totals *tk = &s->totals[k];
+        td_sim_totals *tk = &s->monitor.totals[k];
         integrands now = integrands_at(s, k, y);
         double hf = housing_force(s, k, y);
         if (dt > 0.0) {
@@ -103,24 +103,24 @@ void td_sim_totals_point(td_sim *s, double t, int restart)
     }
     if (s->opt.energy)
         td_sim_energy_point(s, t, restart, dt);
-    if (t > s->totals_t || restart)
-        s->totals_t = t;
+    if (t > s->monitor.totals_t || restart)
+        s->monitor.totals_t = t;
 }
 
 void td_sim_totals_impact(td_sim *s, int k, double impulse, int bounced)
 {
-    s->totals[k].t.impulse += impulse;
-    s->totals[k].t.impact_impulse += impulse;
+    s->monitor.totals[k].t.impulse += impulse;
+    s->monitor.totals[k].t.impact_impulse += impulse;
     if (bounced) /* a rebound: in and out at one instant */
-        s->totals[k].t.touch_and_go++;
+        s->monitor.totals[k].t.touch_and_go++;
 }
 
 /* The totals of retainer k at s->t when the last point lies beyond it (an output inside the
  * integrator's last step): the trapezoid from s->t to that point taken back. */
 static void back_to_now(const td_sim *s, int k, td_retainer_totals *t)
 {
-    const td_sim_totals *tk = &s->totals[k];
-    double dt = s->totals_t - s->t;
+    const td_sim_totals *tk = &s->monitor.totals[k];
+    double dt = s->monitor.totals_t - s->t;
     integrands now;
     if (!(dt > 0.0))
         return;
@@ -138,10 +138,10 @@ static void back_to_now(const td_sim *s, int k, td_retainer_totals *t)
 void td_sim_totals_rewind(td_sim *s)
 {
     int k;
-    if (!(s->totals_t > s->t))
+    if (!(s->monitor.totals_t > s->t))
         return;
     for (k = 0; k < s->nr; k++) {
-        td_sim_totals *tk = &s->totals[k];
+        td_sim_totals *tk = &s->monitor.totals[k];
         integrands now = integrands_at(s, k, N_VGetArrayPointer(s->y));
         back_to_now(s, k, &tk->t);
         tk->prev.n = now.n;
@@ -150,12 +150,12 @@ void td_sim_totals_rewind(td_sim *s)
         tk->prev.whirl_rate = now.whirl_rate;
     }
     td_sim_energy_rewind(s);
-    s->totals_t = s->t;
+    s->monitor.totals_t = s->t;
 }
 
 void td_sim_totals_get(const td_sim *s, int k, td_retainer_totals *out)
 {
-    const td_sim_totals *tk = &s->totals[k];
+    const td_sim_totals *tk = &s->monitor.totals[k];
     *out = tk->t;
     back_to_now(s, k, out);
     if (tk->in_contact) /* the interval still open counts as a contact */
