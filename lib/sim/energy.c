@@ -23,10 +23,10 @@ static double quadratic(const td_sim *s, const double *vals, const double *x, co
 {
     double sum = 0.0;
     int i, p;
-    for (i = 0; i < s->n; i++) {
+    for (i = 0; i < s->dae.n; i++) {
         double row = 0.0;
-        for (p = s->st_rowptr[i]; p < s->st_rowptr[i + 1]; p++)
-            row += vals[p] * y[s->st_col[p]];
+        for (p = s->dae.st_rowptr[i]; p < s->dae.st_rowptr[i + 1]; p++)
+            row += vals[p] * y[s->dae.st_col[p]];
         sum += x[i] * row;
     }
     return sum;
@@ -34,7 +34,7 @@ static double quadratic(const td_sim *s, const double *vals, const double *x, co
 
 double td_sim_kinetic_energy(const td_sim *s, const double *y)
 {
-    return 0.5 * quadratic(s, s->st_M, y + s->ov, y + s->ov);
+    return 0.5 * quadratic(s, s->dae.st_M, y + s->dae.ov, y + s->dae.ov);
 }
 
 /* Elastic energy of retainer k's contact spring and the power its contact dissipates, at y. */
@@ -67,17 +67,17 @@ static double contact_spring(const td_sim *s, int k, const double *y, double *lo
 /* The powers at y (external, drive, damping, contact, drag) into pw; returns the energy held. */
 static double powers(td_sim *s, double t, const double *y, double pw[5])
 {
-    const double *q = y + s->oq, *v = y + s->ov;
-    double held = td_sim_kinetic_energy(s, y) + 0.5 * quadratic(s, s->st_K, q, q);
+    const double *q = y + s->dae.oq, *v = y + s->dae.ov;
+    double held = td_sim_kinetic_energy(s, y) + 0.5 * quadratic(s, s->dae.st_K, q, q);
     int i, k;
-    memset(s->monitor.energy_f, 0, sizeof(double) * (size_t)s->n);
+    memset(s->monitor.energy_f, 0, sizeof(double) * (size_t)s->dae.n);
     td_sim_external_forces(s, t, y, 1.0, s->monitor.energy_f);
     memset(pw, 0, 5 * sizeof *pw);
-    for (i = 0; i < s->n; i++)
+    for (i = 0; i < s->dae.n; i++)
         pw[0] += s->monitor.energy_f[i] * v[i];
-    pw[0] += td_sim_unbalance_spin_coupling(s, t, y, N_VGetArrayPointer(s->yp), NULL);
-    pw[2] = quadratic(s, s->st_D, v, v);
-    for (k = 0; k < s->nr; k++) {
+    pw[0] += td_sim_unbalance_spin_coupling(s, t, y, N_VGetArrayPointer(s->dae.yp), NULL);
+    pw[2] = quadratic(s, s->dae.st_D, v, v);
+    for (k = 0; k < s->dae.nr; k++) {
         double loss;
         held += contact_spring(s, k, y, &loss);
         pw[3] += loss;
@@ -93,7 +93,7 @@ static double powers(td_sim *s, double t, const double *y, double pw[5])
 
 void td_sim_energy_point(td_sim *s, double t, int restart, double dt)
 {
-    const double *y = N_VGetArrayPointer(s->y);
+    const double *y = N_VGetArrayPointer(s->dae.y);
     double pw[5], held = powers(s, t, y, pw), *prev = s->monitor.energy_prev;
     td_energy *e = &s->monitor.energy;
     if (dt > 0.0) {
@@ -117,13 +117,13 @@ void td_sim_energy_impact(td_sim *s, double before, double after)
     s->monitor.energy.impact_loss += before - after;
 }
 
-/* The account at s->t when the last point lies beyond it (an output, the end time, or a change
- * inside the integrator's last step): the trapezoids from s->t to that point taken back, and what
- * the machine holds read at s->t, as the retainers' totals do (totals.c). Returns the powers at s->t. */
+/* The account at s->dae.t when the last point lies beyond it (an output, the end time, or a change
+ * inside the integrator's last step): the trapezoids from s->dae.t to that point taken back, and what
+ * the machine holds read at s->dae.t, as the retainers' totals do (totals.c). Returns the powers at s->dae.t. */
 static void energy_back_to_now(td_sim *s, td_energy *e, double pw[5])
 {
-    const double *y = N_VGetArrayPointer(s->y), *prev = s->monitor.energy_prev;
-    double dt = s->monitor.totals_t - s->t, held = powers(s, s->t, y, pw);
+    const double *y = N_VGetArrayPointer(s->dae.y), *prev = s->monitor.energy_prev;
+    double dt = s->monitor.totals_t - s->dae.t, held = powers(s, s->dae.t, y, pw);
     if (dt > 0.0) {
         e->external_work -= 0.5 * dt * (prev[0] + pw[0]);
         e->drive_work -= 0.5 * dt * (prev[1] + pw[1]);
@@ -138,7 +138,7 @@ static void energy_back_to_now(td_sim *s, td_energy *e, double pw[5])
 void td_sim_energy_rewind(td_sim *s)
 {
     double pw[5];
-    if (!s->opt.energy || !(s->monitor.totals_t > s->t))
+    if (!s->opt.energy || !(s->monitor.totals_t > s->dae.t))
         return;
     energy_back_to_now(s, &s->monitor.energy, pw);
     memcpy(s->monitor.energy_prev, pw, sizeof pw);
@@ -148,7 +148,7 @@ void td_sim_energy_get(const td_sim *s, td_energy *out)
 {
     double pw[5];
     *out = s->monitor.energy;
-    if (s->monitor.totals_t > s->t) /* powers() uses the sim's scratch force vector only */
+    if (s->monitor.totals_t > s->dae.t) /* powers() uses the sim's scratch force vector only */
         energy_back_to_now((td_sim *)s, out, pw);
     out->residual = out->kinetic + out->elastic - out->initial - out->external_work - out->drive_work +
                     out->damping_loss + out->contact_loss + out->drag_loss + out->impact_loss;

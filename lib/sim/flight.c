@@ -17,7 +17,7 @@ int td_sim_flight_eligible(const td_sim *s)
     for (k = 0; k < s->sys->n_amb_axes; k++)
         if (s->sys->amb_axes[k].saturation)
             return 0;
-    for (k = 0; k < s->nr; k++) {
+    for (k = 0; k < s->dae.nr; k++) {
         const td_sim_retainer *r = &s->ret[k];
         if ((r->compliant && !r->armed) || r->rx >= 0 || r->rs >= 0 || r->mode != TD_RMODE_FREE || r->rolling)
             return 0;
@@ -32,7 +32,7 @@ static double amb_force_at(td_sim *s, td_sim_flight *f, int k, double t)
 {
     flight_val v;
     td_sim_flight_propagate(f, t);
-    v = td_sim_flight_observe(f, 2 * s->nr + k, t);
+    v = td_sim_flight_observe(f, 2 * s->dae.nr + k, t);
     td_sim_monitor_amb_load(s, k, v.v, t);
     return v.v;
 }
@@ -60,7 +60,7 @@ static void amb_forces(td_sim *s, td_sim_flight *f, double t, double *fa, double
 {
     int k;
     for (k = 0; k < s->sys->n_amb_axes; k++) {
-        flight_val v = td_sim_flight_observe(f, 2 * s->nr + k, t);
+        flight_val v = td_sim_flight_observe(f, 2 * s->dae.nr + k, t);
         fa[k] = v.v;
         if (b2)
             b2[k] = v.b2;
@@ -122,7 +122,7 @@ static void amb_pending_part(td_sim *s, td_sim_flight *f, double t_out)
 
 /*
  * The flight's own steps run on from where the last one ended (f->t_step, which may lie beyond
- * s->t): outputs only evaluate the solution, so the steps, the roots and the peaks found do not
+ * s->dae.t): outputs only evaluate the solution, so the steps, the roots and the peaks found do not
  * depend on the output times (as IDA's do not). A stop (t_stop: a schedule change) ends a step.
  */
 int td_sim_flight_advance(td_sim *s, const double *scale, double t_out, double t_stop, int *root)
@@ -134,10 +134,10 @@ int td_sim_flight_advance(td_sim *s, const double *scale, double t_out, double t
     if (!td_sim_flight_eligible(s) || !td_sim_flight_ready(s, scale))
         return 0;
     f = s->flight;
-    if (f->t_step < s->t || f->t_step > t_stop) { /* a fresh flight */
+    if (f->t_step < s->dae.t || f->t_step > t_stop) { /* a fresh flight */
         if (!td_sim_flight_clear_of_roots(s, f))
             return 0;
-        f->t_step = s->t;
+        f->t_step = s->dae.t;
         f->amb_pending = INFINITY;
         td_sim_flight_propagate(f, f->t_step);
         amb_forces(s, f, f->t_step, f->amb_a, f->amb_b2, 1);
@@ -180,13 +180,13 @@ int td_sim_flight_advance(td_sim *s, const double *scale, double t_out, double t
         t = tn;
     }
     f->t_step = t;
-    if (t == s->t && t < t_end && !*root) /* no progress (a grazing start): IDA's turn, nothing moved */
+    if (t == s->dae.t && t < t_end && !*root) /* no progress (a grazing start): IDA's turn, nothing moved */
         return 0;
     if (t > t_end && !*root) /* the last step ran past the output: the state there */
         t = t_end;
     td_sim_flight_materialise(s, f, t, 0);
     s->monitor.stats.flight_steps += steps;
-    s->monitor.stats.flight_time += t - s->t;
-    s->t = t;
+    s->monitor.stats.flight_time += t - s->dae.t;
+    s->dae.t = t;
     return 1;
 }

@@ -79,7 +79,7 @@ struct td_sim_flight {
     double complex *p0, *pp, *pm;
     /* the anchor */
     int anchored;
-    double ta, t_step;     /* the anchor's time; where the flight's last step ended (>= s->t) */
+    double ta, t_step;     /* the anchor's time; where the flight's last step ended (>= s->dae.t) */
     double t_root;         /* the last root the flight stopped at */
     double complex *d, *e; /* nz: homogeneous amplitudes at ta, e^{lambda (t - ta)} at t_e */
     double t_e;
@@ -99,7 +99,7 @@ struct td_sim_flight {
 /* ---- flight_modal.c ------------------------------------------------------------------------- */
 
 /* The flight allocated, its decomposition (in the states scaled by `scale`, neq) and forcing brought
- * up to date with the machine and anchored at s->t; 0 if the flight cannot carry the machine. */
+ * up to date with the machine and anchored at s->dae.t; 0 if the flight cannot carry the machine. */
 int td_sim_flight_ready(td_sim *s, const double *scale);
 /* e_j = e^{lambda_j (t - ta)} and the bound factors |e_j| grow_j, for the time t. */
 void td_sim_flight_propagate(td_sim_flight *f, double t);
@@ -107,15 +107,15 @@ void td_sim_flight_propagate(td_sim_flight *f, double t);
 flight_val td_sim_flight_observe(const td_sim_flight *f, int o, double t);
 /* e^{iW(t - tf)}: the forcing's phase at t. */
 double complex td_sim_flight_phase(const td_sim_flight *f, double t);
-/* The state z at t into s->y (and its rate into s->yp with `rate`). */
+/* The state z at t into s->dae.y (and its rate into s->dae.yp with `rate`). */
 void td_sim_flight_materialise(td_sim *s, td_sim_flight *f, double t, int rate);
 
 /* ---- flight_roots.c ------------------------------------------------------------------------- */
 
 /* The step from t that cannot pass a root; the roots reached (to FLIGHT_ROOT_TOL) flagged in
- * s->rootsfound (*root: any). */
+ * s->dae.rootsfound (*root: any). */
 double td_sim_flight_next_step(td_sim *s, td_sim_flight *f, double t, int *root);
-/* Every root function positive at s->t: the flight starts clear of every root. */
+/* Every root function positive at s->dae.t: the flight starts clear of every root. */
 int td_sim_flight_clear_of_roots(td_sim *s, td_sim_flight *f);
 
 #endif

@@ -54,12 +54,12 @@ static int key_changed(td_sim_flight *f, double *stored, int n)
 static void rates(const td_sim *s, td_sim_flight *f, double t, const double *z, double *rate)
 {
     int i;
-    memset(f->y, 0, sizeof(double) * (size_t)s->neq);
+    memset(f->y, 0, sizeof(double) * (size_t)s->dae.neq);
     memcpy(f->y, z, sizeof(double) * (size_t)f->nz);
     td_sim_residual(s, t, f->y, f->yp, f->res);
     for (i = 0; i < f->nz; i++)
         rate[i] = -f->res[i];
-    td_sim_mass_solve(s, rate + s->ov);
+    td_sim_mass_solve(s, rate + s->dae.ov);
 }
 
 /* Probe size of state i: half the smallest clearance for a displacement (a penalty contact stays
@@ -69,9 +69,9 @@ static double probe_size(const td_sim *s, int i)
 {
     double c = INFINITY;
     int k;
-    if (i >= s->n)
+    if (i >= s->dae.n)
         return 1.0;
-    for (k = 0; k < s->nr; k++)
+    for (k = 0; k < s->dae.nr; k++)
         c = fmin(c, s->ret[k].r.clearance);
     return isfinite(c) ? 0.5 * c : 1.0;
 }
@@ -85,11 +85,11 @@ static void fill_matrix(const td_sim *s, td_sim_flight *f, gsl_matrix *A, const 
     double *z = f->b[0];
     int i, j, nz = f->nz;
     memset(z, 0, sizeof(double) * (size_t)nz);
-    rates(s, f, s->t, z, f->rate0);
+    rates(s, f, s->dae.t, z, f->rate0);
     for (j = 0; j < nz; j++) {
         double h = probe_size(s, j);
         z[j] = h;
-        rates(s, f, s->t, z, f->rate);
+        rates(s, f, s->dae.t, z, f->rate);
         z[j] = 0.0;
         for (i = 0; i < nz; i++)
             gsl_matrix_set(A, (size_t)i, (size_t)j, (f->rate[i] - f->rate0[i]) / h * S[j] / S[i]);
@@ -233,7 +233,7 @@ static void to_modal(const td_sim_flight *f, const double complex *x, double com
 /* The block of first-order state i: 0 the displacements q, 1 the velocities v, 2 the AMB states w. */
 static int forcing_block(const td_sim *s, int i)
 {
-    return i < s->n ? 0 : i < 2 * s->n ? 1 : 2;
+    return i < s->dae.n ? 0 : i < 2 * s->dae.n ? 1 : 2;
 }
 
 /* b(t) at tf, tf + T/4, tf + T/2 (T = 2 pi / W) gives b0, bc, bs; tf + T/8 checks that b is
@@ -274,7 +274,7 @@ static int probe_forcing(const td_sim *s, td_sim_flight *f)
 static int build_forcing(const td_sim *s, td_sim_flight *f)
 {
     int j;
-    f->tf = s->t;
+    f->tf = s->dae.t;
     f->omega = s->omega;
     if (!probe_forcing(s, f))
         return 0;
@@ -310,17 +310,17 @@ static void build_observations(const td_sim *s, td_sim_flight *f)
 {
     double *a = f->rate;
     int i, k, nz = f->nz;
-    for (k = 0; k < s->nr; k++) {
+    for (k = 0; k < s->dae.nr; k++) {
         memset(a, 0, sizeof(double) * (size_t)nz);
-        a[s->oq + s->ret[k].dx] = 1.0;
+        a[s->dae.oq + s->ret[k].dx] = 1.0;
         set_obs_row(f, &f->obs[2 * k], a, 0.0);
-        a[s->oq + s->ret[k].dx] = 0.0;
-        a[s->oq + s->ret[k].dy] = 1.0;
+        a[s->dae.oq + s->ret[k].dx] = 0.0;
+        a[s->dae.oq + s->ret[k].dy] = 1.0;
         set_obs_row(f, &f->obs[2 * k + 1], a, 0.0);
     }
     for (k = 0; k < s->sys->n_amb_axes; k++) {
         double f0;
-        memset(f->y, 0, sizeof(double) * (size_t)s->neq);
+        memset(f->y, 0, sizeof(double) * (size_t)s->dae.neq);
         f0 = td_sim_amb_axis_force(s, k, f->y);
         for (i = 0; i < nz; i++) {
             double h = probe_size(s, i);
@@ -328,7 +328,7 @@ static void build_observations(const td_sim *s, td_sim_flight *f)
             a[i] = (td_sim_amb_axis_force(s, k, f->y) - f0) / h;
             f->y[i] = 0.0;
         }
-        set_obs_row(f, &f->obs[2 * s->nr + k], a, f0);
+        set_obs_row(f, &f->obs[2 * s->dae.nr + k], a, f0);
     }
 }
 
@@ -364,18 +364,18 @@ static void particular(const td_sim_flight *f, double t, double complex *out)
         out[j] = f->p0[j] + f->pp[j] * ep + f->pm[j] * em;
 }
 
-/* Anchor the flight at s->t on the state in s->y. */
+/* Anchor the flight at s->dae.t on the state in s->dae.y. */
 static void anchor(td_sim *s, td_sim_flight *f)
 {
-    const double *y = N_VGetArrayPointer(s->y);
+    const double *y = N_VGetArrayPointer(s->dae.y);
     int j, o, nz = f->nz;
     for (j = 0; j < nz; j++)
         f->e[j] = y[j];
     to_modal(f, f->e, f->d);
-    particular(f, s->t, f->e);
+    particular(f, s->dae.t, f->e);
     for (j = 0; j < nz; j++)
         f->d[j] -= f->e[j];
-    f->ta = s->t;
+    f->ta = s->dae.t;
     f->t_e = NAN; /* e is stale */
     for (o = 0; o < f->nobs; o++) {
         flight_obs *b = &f->obs[o];
@@ -451,7 +451,7 @@ static void modal_state(const td_sim_flight *f, double t, double complex *a, dou
 /* The state z at t into y (and its rate into yp with `rate`; the rest of yp: zero in free flight). */
 void td_sim_flight_materialise(td_sim *s, td_sim_flight *f, double t, int rate)
 {
-    double *y = N_VGetArrayPointer(s->y), *yp = N_VGetArrayPointer(s->yp);
+    double *y = N_VGetArrayPointer(s->dae.y), *yp = N_VGetArrayPointer(s->dae.yp);
     double complex *a = f->work, *da = rate ? f->work + f->nz : NULL;
     int i, k, nz = f->nz;
     td_sim_flight_propagate(f, t);
@@ -469,7 +469,7 @@ void td_sim_flight_materialise(td_sim *s, td_sim_flight *f, double t, int rate)
         if (rate)
             yp[i] = zd;
     }
-    for (i = nz; rate && i < s->neq; i++)
+    for (i = nz; rate && i < s->dae.neq; i++)
         yp[i] = 0.0;
 }
 
@@ -504,7 +504,7 @@ int td_sim_flight_peek(const td_sim *s, double t, double *y, double *work)
 void td_sim_flight_rates(td_sim *s)
 {
     if (s->flight && s->flight->anchored)
-        td_sim_flight_materialise(s, s->flight, s->t, 1);
+        td_sim_flight_materialise(s, s->flight, s->dae.t, 1);
 }
 
 /* ---- life cycle ----------------------------------------------------------------------------- */
@@ -574,13 +574,13 @@ static int alloc_obs(flight_obs *o, size_t nz)
 static int flight_alloc(td_sim *s)
 {
     td_sim_flight *f = calloc(1, sizeof *f);
-    size_t nz = (size_t)(2 * s->n + s->nw), neq = (size_t)s->neq, nk, na;
+    size_t nz = (size_t)(2 * s->dae.n + s->dae.nw), neq = (size_t)s->dae.neq, nk, na;
     int i, ok = f != NULL;
     if (!ok)
         return 0;
     s->flight = f;
     f->nz = (int)nz;
-    f->nobs = 2 * s->nr + s->sys->n_amb_axes;
+    f->nobs = 2 * s->dae.nr + s->sys->n_amb_axes;
     nk = (size_t)(3 + 2 * s->nu + 3 * td_model_amb_count(s->model));
     f->machine_key = calloc(nk, sizeof(double));
     f->forcing_key = calloc(nk, sizeof(double));

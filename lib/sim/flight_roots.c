@@ -143,21 +143,22 @@ static void retainer_roots(const td_sim *s, td_sim_flight *f, int k, double t, d
 }
 
 /* The step from t that cannot pass a root; the roots reached (to FLIGHT_ROOT_TOL) flagged in
- * s->rootsfound (*root: any). */
+ * s->dae.rootsfound (*root: any). */
 double td_sim_flight_next_step(td_sim *s, td_sim_flight *f, double t, int *root)
 {
     int k, i;
     double step = INFINITY;
     *root = 0;
-    memset(s->rootsfound, 0, sizeof(int) * (size_t)s->nroots);
-    for (k = 0; k < s->nr; k++) {
+    memset(s->dae.rootsfound, 0, sizeof(int) * (size_t)s->dae.nroots);
+    for (k = 0; k < s->dae.nr; k++) {
         double tau[2];
         int hit[2];
         td_sim_flight_propagate(f, t); /* crosses() moves it */
         retainer_roots(s, f, k, t, tau, hit);
         for (i = 0; i < 2; i++) {
             if (hit[i]) {
-                s->rootsfound[TD_ROOTS_PER_RETAINER * k + (i == 0 ? TD_ROOT_CONTACT : TD_ROOT_REARM)] = i == 0 ? -1 : 1;
+                s->dae.rootsfound[TD_ROOTS_PER_RETAINER * k + (i == 0 ? TD_ROOT_CONTACT : TD_ROOT_REARM)] =
+                    i == 0 ? -1 : 1;
                 *root = 1;
             }
             step = fmin(step, tau[i]);
@@ -166,10 +167,10 @@ double td_sim_flight_next_step(td_sim *s, td_sim_flight *f, double t, int *root)
     return *root ? 0.0 : step;
 }
 
-/* Every root function positive at s->t: the flight starts clear of every root. */
+/* Every root function positive at s->dae.t: the flight starts clear of every root. */
 int td_sim_flight_clear_of_roots(td_sim *s, td_sim_flight *f)
 {
     int root;
-    td_sim_flight_propagate(f, s->t);
-    return td_sim_flight_next_step(s, f, s->t, &root) > 0.0 && !root;
+    td_sim_flight_propagate(f, s->dae.t);
+    return td_sim_flight_next_step(s, f, s->dae.t, &root) > 0.0 && !root;
 }

@@ -34,18 +34,18 @@ static int jac_cb(sunrealtype t, sunrealtype cj, N_Vector y, N_Vector yp, N_Vect
         /* IDA's SUNMatZero cleared the index arrays too: write the whole pattern every time */
         sunindextype *cp = SUNSparseMatrix_IndexPointers(J), *ri = SUNSparseMatrix_IndexValues(J);
         sunrealtype *d = SUNSparseMatrix_Data(J);
-        for (j = 0; j <= s->neq; j++)
-            cp[j] = s->colptr[j];
-        for (p = 0; p < s->nnz; p++) {
-            ri[p] = s->rowind[p];
-            d[p] = s->jdata[p];
+        for (j = 0; j <= s->dae.neq; j++)
+            cp[j] = s->dae.colptr[j];
+        for (p = 0; p < s->dae.nnz; p++) {
+            ri[p] = s->dae.rowind[p];
+            d[p] = s->dae.jdata[p];
         }
     } else {
         SUNMatZero(J);
-        for (j = 0; j < s->neq; j++) {
+        for (j = 0; j < s->dae.neq; j++) {
             sunrealtype *col = SUNDenseMatrix_Column(J, j);
-            for (p = s->colptr[j]; p < s->colptr[j + 1]; p++)
-                col[s->rowind[p]] = s->jdata[p];
+            for (p = s->dae.colptr[j]; p < s->dae.colptr[j + 1]; p++)
+                col[s->dae.rowind[p]] = s->dae.jdata[p];
         }
     }
     return 0;
@@ -77,18 +77,18 @@ static N_Vector floored_multipliers(td_sim *s, N_Vector del, N_Vector ewt, doubl
     const double *w = N_VGetArrayPointer(ewt);
     double *d = NULL;
     int k;
-    for (k = 0; k < s->nr; k++) {
+    for (k = 0; k < s->dae.nr; k++) {
         double mu_floor = MULTIPLIER_FLOOR * DBL_EPSILON * s->ret[k].r.clearance * cj;
         double lambda_floor = mu_floor * s->stiff_scale / s->freq_scale;
-        double fl = 1.0 / (lambda_floor * w[s->ol + k]), fu = 1.0 / (mu_floor * w[s->ou + k]);
+        double fl = 1.0 / (lambda_floor * w[s->dae.ol + k]), fu = 1.0 / (mu_floor * w[s->dae.ou + k]);
         if (fl >= 1.0 && fu >= 1.0)
             continue;
         if (!d) {
             N_VScale(1.0, del, s->solver.newton_del);
             d = N_VGetArrayPointer(s->solver.newton_del);
         }
-        d[s->ol + k] *= fmin(fl, 1.0);
-        d[s->ou + k] *= fmin(fu, 1.0);
+        d[s->dae.ol + k] *= fmin(fl, 1.0);
+        d[s->dae.ou + k] *= fmin(fu, 1.0);
     }
     return d ? s->solver.newton_del : del;
 }
@@ -119,16 +119,16 @@ static int conv_test_cb(SUNNonlinearSolver nls, N_Vector ycor, N_Vector del, sun
         return flag;
     cor = N_VGetArrayPointer(ycor);
     pred = N_VGetArrayPointer(ypred);
-    for (k = 0; k < s->nr; k++) {
+    for (k = 0; k < s->dae.nr; k++) {
         const td_sim_retainer *r = &s->ret[k];
         double x, y;
         if (r->mode != TD_RMODE_CONTACT)
             continue;
-        x = pred[s->oq + r->dx] + cor[s->oq + r->dx];
-        y = pred[s->oq + r->dy] + cor[s->oq + r->dy];
+        x = pred[s->dae.oq + r->dx] + cor[s->dae.oq + r->dx];
+        y = pred[s->dae.oq + r->dy] + cor[s->dae.oq + r->dy];
         if (r->rx >= 0) {
-            x -= pred[s->oq + r->rx] + cor[s->oq + r->rx];
-            y -= pred[s->oq + r->ry] + cor[s->oq + r->ry];
+            x -= pred[s->dae.oq + r->rx] + cor[s->dae.oq + r->rx];
+            y -= pred[s->dae.oq + r->ry] + cor[s->dae.oq + r->ry];
         }
         if (fabs(td_contact_constraint(x, y, r->r.clearance)) > s->constraint_tol)
             return SUN_NLS_CONTINUE;
@@ -151,16 +151,16 @@ td_status td_sim_integrator_create(td_sim *s, td_error *err)
 {
     if (td_sun_context_create(&s->solver.ctx) != 0)
         return td_error_set(err, TD_ERR_NOMEM, "SUNContext_Create failed");
-    s->y = N_VNew_Serial(s->neq, s->solver.ctx);
-    if (!s->y)
+    s->dae.y = N_VNew_Serial(s->dae.neq, s->solver.ctx);
+    if (!s->dae.y)
         return td_error_set(err, TD_ERR_NOMEM, "out of memory creating the state vectors");
-    td_sim_nvector_optimize(s->y); /* before any clone: the clones copy its operations */
-    s->yp = N_VClone(s->y);
-    s->solver.id = N_VClone(s->y);
-    s->solver.atol = N_VClone(s->y);
-    s->solver.newton_del = N_VClone(s->y);
+    td_sim_nvector_optimize(s->dae.y); /* before any clone: the clones copy its operations */
+    s->dae.yp = N_VClone(s->dae.y);
+    s->solver.id = N_VClone(s->dae.y);
+    s->solver.atol = N_VClone(s->dae.y);
+    s->solver.newton_del = N_VClone(s->dae.y);
     s->solver.ida = IDACreate(s->solver.ctx);
-    if (!s->yp || !s->solver.id || !s->solver.atol || !s->solver.newton_del || !s->solver.ida)
+    if (!s->dae.yp || !s->solver.id || !s->solver.atol || !s->solver.newton_del || !s->solver.ida)
         return td_error_set(err, TD_ERR_NOMEM, "out of memory creating the integrator");
     s->solver.sink.fn = message_sink;
     s->solver.sink.data = s;
@@ -171,7 +171,7 @@ td_status td_sim_integrator_create(td_sim *s, td_error *err)
 
 td_status td_sim_integrator_attach(td_sim *s, td_error *err)
 {
-    int flag = IDAInit(s->solver.ida, res_cb, s->t, s->y, s->yp);
+    int flag = IDAInit(s->solver.ida, res_cb, s->dae.t, s->dae.y, s->dae.yp);
     if (flag == IDA_SUCCESS)
         flag = IDASVtolerances(s->solver.ida, s->opt.solver.rtol, s->solver.atol);
     if (flag == IDA_SUCCESS)
@@ -187,7 +187,7 @@ td_status td_sim_integrator_attach(td_sim *s, td_error *err)
     if (flag != IDA_SUCCESS)
         return td_error_set(err, TD_ERR_SOLVER, "IDA set-up failed: %s", s->errmsg);
     /* our own Newton solver, so that its convergence test can be wrapped (conv_test_cb) */
-    s->solver.NLS = SUNNonlinSol_Newton(s->y, s->solver.ctx);
+    s->solver.NLS = SUNNonlinSol_Newton(s->dae.y, s->solver.ctx);
     if (!s->solver.NLS)
         return td_error_set(err, TD_ERR_NOMEM, "out of memory creating the nonlinear solver");
     if (IDASetNonlinearSolver(s->solver.ida, s->solver.NLS) != IDA_SUCCESS)
@@ -200,19 +200,19 @@ td_status td_sim_integrator_attach(td_sim *s, td_error *err)
             return td_error_set(err, TD_ERR_SOLVER, "cannot install the Newton convergence test");
     }
     if (s->opt.solver.linear_solver == TD_LINSOL_KLU) {
-        s->solver.A = SUNSparseMatrix(s->neq, s->neq, s->nnz, CSC_MAT, s->solver.ctx);
+        s->solver.A = SUNSparseMatrix(s->dae.neq, s->dae.neq, s->dae.nnz, CSC_MAT, s->solver.ctx);
         s->solver.LS = s->solver.A ? td_sim_klu_create(s) : NULL;
     } else {
-        s->solver.A = SUNDenseMatrix(s->neq, s->neq, s->solver.ctx);
-        s->solver.LS = s->solver.A ? SUNLinSol_Dense(s->y, s->solver.A, s->solver.ctx) : NULL;
+        s->solver.A = SUNDenseMatrix(s->dae.neq, s->dae.neq, s->solver.ctx);
+        s->solver.LS = s->solver.A ? SUNLinSol_Dense(s->dae.y, s->solver.A, s->solver.ctx) : NULL;
     }
     if (!s->solver.A || !s->solver.LS)
         return td_error_set(err, TD_ERR_NOMEM, "out of memory creating the linear solver");
     flag = IDASetLinearSolver(s->solver.ida, s->solver.LS, s->solver.A);
     if (flag == IDA_SUCCESS)
         flag = IDASetJacFn(s->solver.ida, jac_cb);
-    if (flag == IDA_SUCCESS && s->nroots > 0) {
-        flag = IDARootInit(s->solver.ida, s->nroots, root_cb);
+    if (flag == IDA_SUCCESS && s->dae.nroots > 0) {
+        flag = IDARootInit(s->solver.ida, s->dae.nroots, root_cb);
         if (flag == IDA_SUCCESS)
             flag = IDASetNoInactiveRootWarn(s->solver.ida);
     }
@@ -228,12 +228,13 @@ td_status td_sim_integrator_attach(td_sim *s, td_error *err)
 /* y, yp at time t inside IDA's last step. */
 td_status td_sim_interpolate(td_sim *s, double t)
 {
-    if (IDAGetDky(s->solver.ida, t, 0, s->y) != IDA_SUCCESS || IDAGetDky(s->solver.ida, t, 1, s->yp) != IDA_SUCCESS) {
+    if (IDAGetDky(s->solver.ida, t, 0, s->dae.y) != IDA_SUCCESS ||
+        IDAGetDky(s->solver.ida, t, 1, s->dae.yp) != IDA_SUCCESS) {
         snprintf(s->errmsg, sizeof s->errmsg, "t = %.9g s: IDA could not interpolate its last step (IDAGetDky)", t);
         return TD_ERR_SOLVER;
     }
-    s->t = t;
-    td_sim_spin_hold(s, t, N_VGetArrayPointer(s->y), N_VGetArrayPointer(s->yp));
+    s->dae.t = t;
+    td_sim_spin_hold(s, t, N_VGetArrayPointer(s->dae.y), N_VGetArrayPointer(s->dae.yp));
     return TD_OK;
 }
 
@@ -288,14 +289,14 @@ static void save_counters(td_sim *s)
  */
 static double restart_step(const td_sim *s)
 {
-    const double *y = N_VGetArrayPointer(s->y), *yp = N_VGetArrayPointer(s->yp);
+    const double *y = N_VGetArrayPointer(s->dae.y), *yp = N_VGetArrayPointer(s->dae.yp);
     double amax = 0.0, h;
     int i;
     if (s->opt.solver.initial_step > 0.0)
         return s->opt.solver.initial_step;
-    for (i = 0; i < s->n; i++) {
-        double tol = s->opt.solver.rtol * fabs(y[s->oq + i]) + s->opt.solver.atol;
-        double a = fabs(yp[s->ov + i]) / tol;
+    for (i = 0; i < s->dae.n; i++) {
+        double tol = s->opt.solver.rtol * fabs(y[s->dae.oq + i]) + s->opt.solver.atol;
+        double a = fabs(yp[s->dae.ov + i]) / tol;
         if (a > amax)
             amax = a;
     }
@@ -312,14 +313,14 @@ td_status td_sim_restart(td_sim *s)
     double stop = td_sim_next_stop(s);
     int flag;
     save_counters(s);
-    td_sim_spin_wrap(s, N_VGetArrayPointer(s->y));
-    flag = IDAReInit(s->solver.ida, s->t, s->y, s->yp);
+    td_sim_spin_wrap(s, N_VGetArrayPointer(s->dae.y));
+    flag = IDAReInit(s->solver.ida, s->dae.t, s->dae.y, s->dae.yp);
     if (flag == IDA_SUCCESS && td_sim_races_retolerance(s)) /* a race came into or out of contact */
         flag = IDASVtolerances(s->solver.ida, s->opt.solver.rtol, s->solver.atol);
     if (flag == IDA_SUCCESS) {
-        td_sim_root_directions(s, s->rootdir);
-        if (s->nroots > 0)
-            flag = IDASetRootDirection(s->solver.ida, s->rootdir);
+        td_sim_root_directions(s, s->dae.rootdir);
+        if (s->dae.nroots > 0)
+            flag = IDASetRootDirection(s->solver.ida, s->dae.rootdir);
     }
     if (flag == IDA_SUCCESS)
         flag = IDASetInitStep(s->solver.ida, restart_step(s));
@@ -329,10 +330,10 @@ td_status td_sim_restart(td_sim *s)
         flag = IDASetStopTime(s->solver.ida, isfinite(stop) ? stop : DBL_MAX);
     if (flag != IDA_SUCCESS) {
         if (!s->errmsg[0])
-            snprintf(s->errmsg, sizeof s->errmsg, "t = %.9g s: IDA re-initialisation failed (%d)", s->t, flag);
+            snprintf(s->errmsg, sizeof s->errmsg, "t = %.9g s: IDA re-initialisation failed (%d)", s->dae.t, flag);
         return TD_ERR_SOLVER;
     }
-    s->solver.t_ida = s->t;
+    s->solver.t_ida = s->dae.t;
     s->solver.ida_stale = 0;
     td_sim_flight_forget(s);
     s->monitor.stats.restarts++;
@@ -375,10 +376,10 @@ void td_sim_integrator_free(td_sim *s)
         SUNNonlinSolFree(s->solver.NLS);
     if (s->solver.A)
         SUNMatDestroy(s->solver.A);
-    if (s->y)
-        N_VDestroy(s->y);
-    if (s->yp)
-        N_VDestroy(s->yp);
+    if (s->dae.y)
+        N_VDestroy(s->dae.y);
+    if (s->dae.yp)
+        N_VDestroy(s->dae.yp);
     if (s->solver.id)
         N_VDestroy(s->solver.id);
     if (s->solver.atol)

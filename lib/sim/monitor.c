@@ -49,13 +49,13 @@ void td_sim_event_velocities(const td_sim *s, int k, const double *y, int after,
     }
 }
 
-/* An event of `kind` at s->t, of retainer k (-1: none), no schedule entry. */
+/* An event of `kind` at s->dae.t, of retainer k (-1: none), no schedule entry. */
 td_event td_sim_event_at(const td_sim *s, td_event_kind kind, int k)
 {
     td_event ev;
     memset(&ev, 0, sizeof ev);
     ev.kind = kind;
-    ev.time = s->t;
+    ev.time = s->dae.t;
     ev.retainer = k;
     ev.change = -1;
     return ev;
@@ -83,14 +83,14 @@ static void monitor_ambs(td_sim *s, double t, const double *y)
             td_sim_monitor_amb_load(s, k, td_sim_amb_axis_force(s, k, y), t);
 }
 
-/* Statistics at the state in s->y (time t): contact time, peak normal force, AMB load, and, at
+/* Statistics at the state in s->dae.y (time t): contact time, peak normal force, AMB load, and, at
  * integrator steps only (at_step; interpolated states carry the interpolation error), the drift. */
 void td_sim_monitor_at(td_sim *s, double t, int at_step)
 {
-    const double *y = N_VGetArrayPointer(s->y);
+    const double *y = N_VGetArrayPointer(s->dae.y);
     double dt = t - s->monitor.t_acc;
     int k;
-    for (k = 0; k < s->nr; k++) {
+    for (k = 0; k < s->dae.nr; k++) {
         const td_sim_retainer *r = &s->ret[k];
         double fn;
         if (r->mode == TD_RMODE_FREE)

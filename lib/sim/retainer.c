@@ -36,22 +36,22 @@ void td_sim_retainer_init(td_sim_retainer *r, const td_system *sys, int k, const
 void td_sim_node_state(const td_sim *s, int k, const double *y, double *x, double *yy, double *vx, double *vy)
 {
     const td_sim_retainer *r = &s->ret[k];
-    *x = y[s->oq + r->dx];
-    *yy = y[s->oq + r->dy];
-    *vx = y[s->ov + r->dx];
-    *vy = y[s->ov + r->dy];
+    *x = y[s->dae.oq + r->dx];
+    *yy = y[s->dae.oq + r->dy];
+    *vx = y[s->dae.ov + r->dx];
+    *vy = y[s->dae.ov + r->dy];
     if (r->rx >= 0) {
-        *x -= y[s->oq + r->rx];
-        *yy -= y[s->oq + r->ry];
-        *vx -= y[s->ov + r->rx];
-        *vy -= y[s->ov + r->ry];
+        *x -= y[s->dae.oq + r->rx];
+        *yy -= y[s->dae.oq + r->ry];
+        *vx -= y[s->dae.ov + r->rx];
+        *vy -= y[s->dae.ov + r->ry];
     }
 }
 
 double td_sim_race_speed(const td_sim *s, int k, const double *y)
 {
     const td_sim_retainer *r = &s->ret[k];
-    return r->rs >= 0 ? y[s->ov + r->rs] : r->r.bore_speed;
+    return r->rs >= 0 ? y[s->dae.ov + r->rs] : r->r.bore_speed;
 }
 
 /* Contact through a force law: the force acts whenever the node penetrates, whatever the
@@ -92,7 +92,7 @@ double td_sim_penalty_force(const td_sim *s, int k, const double *y, double *fd,
 double td_sim_normal_force(const td_sim *s, int k, const double *y)
 {
     if (s->ret[k].mode == TD_RMODE_CONTACT)
-        return y[s->ol + k];
+        return y[s->dae.ol + k];
     return td_sim_penalty_model(s, k) ? td_sim_penalty_force(s, k, y, NULL, NULL) : 0.0;
 }
 
@@ -126,7 +126,7 @@ double td_sim_friction_force(const td_sim *s, int k, const double *y)
 {
     const td_sim_retainer *r = &s->ret[k];
     if (r->rolling)
-        return y[s->of + r->fi];
+        return y[s->dae.of + r->fi];
     return td_sim_slip_factor(s, k, y, NULL) * r->r.friction * td_sim_normal_force(s, k, y);
 }
 
@@ -164,7 +164,7 @@ void td_sim_roll_column(const td_sim *s, int k, const double *y, double *col)
     double x, yy, vx, vy, n[2], t[2];
     td_sim_node_state(s, k, y, &x, &yy, &vx, &vy);
     td_contact_frame(x, yy, n, t);
-    memset(col, 0, sizeof(double) * (size_t)s->n);
+    memset(col, 0, sizeof(double) * (size_t)s->dae.n);
     col[r->dx] = t[0];
     col[r->dy] = t[1];
     if (r->rx >= 0) {
@@ -187,7 +187,7 @@ double td_sim_race_drag(const td_sim *s, int k, const double *y, double *dT)
         return 0.0;
     }
     band = TD_CONTACT_SLIP_BAND / r->r.bore_radius; /* the race surface creeps at v_reg */
-    phi = td_contact_slip_factor(y[s->ov + r->rs], band, &dphi);
+    phi = td_contact_slip_factor(y[s->dae.ov + r->rs], band, &dphi);
     if (dT)
         *dT = r->r.race.drag_torque * dphi;
     return r->r.race.drag_torque * phi;
@@ -218,7 +218,7 @@ void td_sim_contact_column(const td_sim *s, int k, const double *y, double *col)
     double sm = td_sim_slip_factor(s, k, y, NULL) * r->r.friction;
     td_sim_node_state(s, k, y, &x, &yy, &vx, &vy);
     rad = hypot(x, yy);
-    memset(col, 0, sizeof(double) * (size_t)s->n);
+    memset(col, 0, sizeof(double) * (size_t)s->dae.n);
     col[r->dx] = x / c - sm * yy / rad;
     col[r->dy] = yy / c + sm * x / rad;
     if (r->rx >= 0) {
@@ -240,11 +240,11 @@ void td_sim_project_onto_circle(const td_sim *s, int k, double *y)
     if (!(rad > 0.0))
         return;
     /* the node moves, the race stays: node = race centre + relative position scaled onto c */
-    y[s->oq + r->dx] = x * (r->r.clearance / rad);
-    y[s->oq + r->dy] = yy * (r->r.clearance / rad);
+    y[s->dae.oq + r->dx] = x * (r->r.clearance / rad);
+    y[s->dae.oq + r->dy] = yy * (r->r.clearance / rad);
     if (r->rx >= 0) {
-        y[s->oq + r->dx] += y[s->oq + r->rx];
-        y[s->oq + r->dy] += y[s->oq + r->ry];
+        y[s->dae.oq + r->dx] += y[s->dae.oq + r->rx];
+        y[s->dae.oq + r->dy] += y[s->dae.oq + r->ry];
     }
 }
 
@@ -267,15 +267,15 @@ void td_sim_project_rolling(const td_sim *s, int k, double *y)
     const td_sim_retainer *r = &s->ret[k];
     double vs = td_sim_sliding_velocity(s, k, y), x, yy, vx, vy, rad, n[2], t[2], dv;
     if (r->rs >= 0) { /* the race turns by what its surface lags: v_s = 0 */
-        y[s->ov + r->rs] += vs / r->r.bore_radius;
+        y[s->dae.ov + r->rs] += vs / r->r.bore_radius;
         return;
     }
     /* a fixed bore: the node's whirl rate moves, v_s = ... + (R_b - R_s) dtheta/dt (eq. 16) */
     td_sim_node_state(s, k, y, &x, &yy, &vx, &vy);
     rad = td_contact_frame(x, yy, n, t);
     dv = -vs * rad / (r->r.bore_radius - r->r.shaft_radius);
-    y[s->ov + r->dx] += dv * t[0];
-    y[s->ov + r->dy] += dv * t[1];
+    y[s->dae.ov + r->dx] += dv * t[0];
+    y[s->dae.ov + r->dy] += dv * t[1];
 }
 
 void td_sim_unroll(td_sim *s, int k, double *y, int slip)
@@ -284,7 +284,7 @@ void td_sim_unroll(td_sim *s, int k, double *y, int slip)
     r->rolling = 0;
     r->slip = slip;
     if (r->fi >= 0)
-        y[s->of + r->fi] = 0.0;
+        y[s->dae.of + r->fi] = 0.0;
 }
 
 /* +1 or -1: the sign of v, or `otherwise` at v == 0. */
@@ -311,7 +311,7 @@ void td_sim_release(td_sim *s, int k, double *y)
     td_sim_unroll(s, k, y, s->ret[k].slip);
     s->ret[k].mode = TD_RMODE_FREE;
     s->ret[k].armed = 0; /* left at r = c: no onset until the gap has opened (grazing guard) */
-    y[s->ol + k] = 0.0;
+    y[s->dae.ol + k] = 0.0;
 }
 
 /*

@@ -35,7 +35,7 @@ typedef struct td_sim_retainer {
     int compliant;      /* 1: contact through a force law (the run's penalty model or the retainer's own) */
     td_penalty_law law; /* that force law */
     int fi;             /* stick retainers (r.stick): index of its friction multiplier F_t in the y block
-                         * at s->of; -1 for the others */
+                         * at s->dae.of; -1 for the others */
     int rolling;        /* stick retainers in contact: 1 while rolling without slip (v_s = 0 held by F_t) */
     td_rmode mode;
     int armed;     /* free, constraint model: onset root at gap = 0 (1) or at gap = -eps (0, after a

@@ -47,7 +47,7 @@ td_status td_sim_apply_due_changes(td_sim *s)
         td_change c;
         td_event ev;
         td_model_get_change(s->model, s->next_change, &c);
-        if (c.time > s->t + due_tolerance(s->t))
+        if (c.time > s->dae.t + due_tolerance(s->dae.t))
             break;
         apply_change(s, &c);
         ev = td_sim_event_at(s, TD_EVENT_SCHEDULE, -1);
@@ -64,7 +64,7 @@ void td_sim_apply_past_changes(td_sim *s)
     while (s->next_change < count) {
         td_change c;
         td_model_get_change(s->model, s->next_change, &c);
-        if (c.time > s->t + due_tolerance(s->t))
+        if (c.time > s->dae.t + due_tolerance(s->dae.t))
             break;
         apply_change(s, &c);
         s->next_change++;
@@ -85,7 +85,7 @@ double td_sim_next_stop(const td_sim *s)
     for (i = 0; i < td_model_speed_point_count(s->model); i++) {
         td_speed_point p;
         td_model_get_speed_point(s->model, i, &p);
-        if (p.time > s->t + due_tolerance(s->t)) {
+        if (p.time > s->dae.t + due_tolerance(s->dae.t)) {
             stop = fmin(stop, p.time);
             break;
         }

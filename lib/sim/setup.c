@@ -47,12 +47,12 @@ static td_status check_options(const td_sim_options *o, td_error *err)
 /* The work space of sim_internal.h; 0 if out of memory. */
 static int alloc_work(td_sim *s, size_t nr)
 {
-    size_t n = (size_t)s->n, nc = nr + (size_t)s->ns; /* KKT multipliers: lambda and F_t */
-    s->mass_x = calloc(n, sizeof(double));
+    size_t n = (size_t)s->dae.n, nc = nr + (size_t)s->dae.ns; /* KKT multipliers: lambda and F_t */
+    s->dae.mass_x = calloc(n, sizeof(double));
     s->minv_f = calloc(n, sizeof(double));
-    s->power_x = calloc(n, sizeof(double));
-    s->power_kx = calloc(n, sizeof(double));
-    s->power_mx = calloc(n, sizeof(double));
+    s->dae.power_x = calloc(n, sizeof(double));
+    s->dae.power_kx = calloc(n, sizeof(double));
+    s->dae.power_mx = calloc(n, sizeof(double));
     s->schur = calloc(nc * nc, sizeof(double));
     s->schur_rhs = calloc(nc, sizeof(double));
     s->restitution = calloc(nr, sizeof(double));
@@ -68,34 +68,35 @@ static int alloc_work(td_sim *s, size_t nr)
     s->touching = calloc(nr, sizeof(int));
     s->monitor.totals = calloc(nr, sizeof *s->monitor.totals);
     s->monitor.energy_f = calloc(n, sizeof(double));
-    return s->mass_x && s->minv_f && s->power_x && s->power_kx && s->power_mx && s->schur && s->schur_rhs &&
-           s->restitution && s->impulse && s->impact_work && s->minv_cols && s->rows && s->active && s->active_roll &&
-           s->onset && s->roll_tried && s->monitor.totals && s->monitor.energy_f && s->entered && s->touching;
+    return s->dae.mass_x && s->minv_f && s->dae.power_x && s->dae.power_kx && s->dae.power_mx && s->schur &&
+           s->schur_rhs && s->restitution && s->impulse && s->impact_work && s->minv_cols && s->rows && s->active &&
+           s->active_roll && s->onset && s->roll_tried && s->monitor.totals && s->monitor.energy_f && s->entered &&
+           s->touching;
 }
 
 static td_status alloc_arrays(td_sim *s, td_error *err)
 {
     int na = td_model_amb_count(s->model), ok, i;
-    size_t nr = (size_t)(s->nr > 0 ? s->nr : 1);
+    size_t nr = (size_t)(s->dae.nr > 0 ? s->dae.nr : 1);
     s->nu = td_model_unbalance_count(s->model);
     s->unb = calloc((size_t)(s->nu > 0 ? s->nu : 1), sizeof *s->unb);
     s->amb_mode = calloc((size_t)(na > 0 ? na : 1), sizeof *s->amb_mode);
     s->amb_control = calloc((size_t)(2 * na + 2), sizeof(double));
     s->amb_coef = calloc((size_t)(s->sys->n_amb_axes + 1), sizeof *s->amb_coef);
-    s->monitor.q_cap = 4 * s->nr + td_model_change_count(s->model) + 4;
+    s->monitor.q_cap = 4 * s->dae.nr + td_model_change_count(s->model) + 4;
     s->monitor.queue = calloc((size_t)s->monitor.q_cap, sizeof *s->monitor.queue);
     ok = alloc_work(s, nr);
-    s->n_sat_roots = 0;
+    s->dae.n_sat_roots = 0;
     for (i = 0; i < s->sys->n_amb_axes; i++)
         if (s->sys->amb_axes[i].saturation)
-            s->n_sat_roots = 2 * s->sys->n_amb_axes;
-    s->nroots = TD_ROOTS_PER_RETAINER * s->nr + s->n_sat_roots;
-    s->rootdir = calloc(TD_ROOTS_PER_RETAINER * nr + (size_t)s->n_sat_roots, sizeof(int));
-    s->rootsfound = calloc(TD_ROOTS_PER_RETAINER * nr + (size_t)s->n_sat_roots, sizeof(int));
-    s->loop.ysave = calloc((size_t)s->neq, sizeof(double));
-    s->loop.ypsave = calloc((size_t)s->neq, sizeof(double));
-    if (!ok || !s->unb || !s->amb_mode || !s->amb_control || !s->amb_coef || !s->monitor.queue || !s->rootdir ||
-        !s->rootsfound || !s->loop.ysave || !s->loop.ypsave)
+            s->dae.n_sat_roots = 2 * s->sys->n_amb_axes;
+    s->dae.nroots = TD_ROOTS_PER_RETAINER * s->dae.nr + s->dae.n_sat_roots;
+    s->dae.rootdir = calloc(TD_ROOTS_PER_RETAINER * nr + (size_t)s->dae.n_sat_roots, sizeof(int));
+    s->dae.rootsfound = calloc(TD_ROOTS_PER_RETAINER * nr + (size_t)s->dae.n_sat_roots, sizeof(int));
+    s->loop.ysave = calloc((size_t)s->dae.neq, sizeof(double));
+    s->loop.ypsave = calloc((size_t)s->dae.neq, sizeof(double));
+    if (!ok || !s->unb || !s->amb_mode || !s->amb_control || !s->amb_coef || !s->monitor.queue || !s->dae.rootdir ||
+        !s->dae.rootsfound || !s->loop.ysave || !s->loop.ypsave)
         return td_error_set(err, TD_ERR_NOMEM, "out of memory creating a simulation");
     return TD_OK;
 }
@@ -104,7 +105,7 @@ static td_status alloc_arrays(td_sim *s, td_error *err)
 static void init_machine(td_sim *s)
 {
     int i, na = td_model_amb_count(s->model);
-    s->omega = td_model_speed_at(s->model, s->t, NULL, NULL);
+    s->omega = td_model_speed_at(s->model, s->dae.t, NULL, NULL);
     for (i = 0; i < s->nu; i++)
         td_model_get_unbalance(s->model, i, &s->unb[i]);
     for (i = 0; i < na; i++)
@@ -130,28 +131,28 @@ static void init_machine(td_sim *s)
  * the Rayleigh quotient (an estimate from below, good to a few per cent: it only sets a tolerance). */
 static double highest_frequency(const td_sim *s)
 {
-    double *x = s->power_x, *kx = s->power_kx, *mx = s->power_mx, lam = 0.0;
+    double *x = s->dae.power_x, *kx = s->dae.power_kx, *mx = s->dae.power_mx, lam = 0.0;
     int i, it;
-    for (i = 0; i < s->n; i++)
+    for (i = 0; i < s->dae.n; i++)
         x[i] = (i % 2 ? 1.0 : -1.0) * (1.0 + 0.1 * (i % 7));
     for (it = 0; it < 60; it++) {
         double num = 0.0, den = 0.0, norm = 0.0;
-        memset(kx, 0, sizeof(double) * (size_t)s->n);
-        cs_di_gaxpy(s->K, x, kx);
-        for (i = 0; i < s->n; i++)
+        memset(kx, 0, sizeof(double) * (size_t)s->dae.n);
+        cs_di_gaxpy(s->dae.K, x, kx);
+        for (i = 0; i < s->dae.n; i++)
             num += x[i] * kx[i];
         td_sim_mass_solve(s, kx); /* kx = M^-1 K x */
-        memset(mx, 0, sizeof(double) * (size_t)s->n);
-        cs_di_gaxpy(s->M, x, mx);
-        for (i = 0; i < s->n; i++)
+        memset(mx, 0, sizeof(double) * (size_t)s->dae.n);
+        cs_di_gaxpy(s->dae.M, x, mx);
+        for (i = 0; i < s->dae.n; i++)
             den += x[i] * mx[i];
         if (den > 0.0)
             lam = num / den;
-        for (i = 0; i < s->n; i++)
+        for (i = 0; i < s->dae.n; i++)
             norm = fmax(norm, fabs(kx[i]));
         if (!(norm > 0.0))
             break;
-        for (i = 0; i < s->n; i++)
+        for (i = 0; i < s->dae.n; i++)
             x[i] = kx[i] / norm;
     }
     return lam > 0.0 ? sqrt(lam) : 0.0;
@@ -189,10 +190,10 @@ static void set_scales(td_sim *s)
         s->freq_scale = fabs(s->omega);
     if (s->freq_scale < 1.0)
         s->freq_scale = 1.0;
-    for (i = 0; i < s->nr; i++)
+    for (i = 0; i < s->dae.nr; i++)
         if (s->ret[i].r.clearance < cmin)
             cmin = s->ret[i].r.clearance;
-    if (s->nr == 0)
+    if (s->dae.nr == 0)
         cmin = s->opt.solver.atol * 1e3;
     s->freq_max = highest_frequency(s);
     if (s->freq_max < s->freq_scale)
@@ -232,15 +233,15 @@ static td_status setup_stage(td_status st, volatile sig_atomic_t *cancel, td_err
  * markers. */
 static void init_layout(td_sim *s)
 {
-    s->nw = s->sys->n_controller_states;
-    s->oq = 0;
-    s->ov = s->n;
-    s->ow = 2 * s->n;
-    s->ol = s->ow + s->nw;
-    s->ou = s->ol + s->nr;
-    s->of = s->ou + s->nr;
-    s->neq = s->of + s->ns;
-    s->t = s->solver.t_ida = s->monitor.t_acc = s->opt.t0;
+    s->dae.nw = s->sys->n_controller_states;
+    s->dae.oq = 0;
+    s->dae.ov = s->dae.n;
+    s->dae.ow = 2 * s->dae.n;
+    s->dae.ol = s->dae.ow + s->dae.nw;
+    s->dae.ou = s->dae.ol + s->dae.nr;
+    s->dae.of = s->dae.ou + s->dae.nr;
+    s->dae.neq = s->dae.of + s->dae.ns;
+    s->dae.t = s->solver.t_ida = s->monitor.t_acc = s->opt.t0;
     s->loop.t_window = s->opt.t0;
     s->monitor.stats.first_contact_time = TD_UNDEFINED;
     s->monitor.stats.peak_time = TD_UNDEFINED;
@@ -250,19 +251,19 @@ static void init_layout(td_sim *s)
 }
 
 /* The retainers, free, with their contact laws, and the DOFs of their races after the rotor's
- * (s->n: all DOFs). */
+ * (s->dae.n: all DOFs). */
 static td_status init_retainers(td_sim *s, td_error *err)
 {
     int k;
     s->model = td_system_model(s->sys);
-    s->nr = td_model_retainer_count(s->model);
-    s->ret = calloc((size_t)(s->nr > 0 ? s->nr : 1), sizeof *s->ret);
+    s->dae.nr = td_model_retainer_count(s->model);
+    s->ret = calloc((size_t)(s->dae.nr > 0 ? s->dae.nr : 1), sizeof *s->ret);
     if (!s->ret)
         return td_error_set(err, TD_ERR_NOMEM, "out of memory creating a simulation");
-    for (k = 0; k < s->nr; k++) {
+    for (k = 0; k < s->dae.nr; k++) {
         td_sim_retainer_init(&s->ret[k], s->sys, k, &s->opt.contact);
         if (s->ret[k].r.stick)
-            s->ret[k].fi = s->ns++;
+            s->ret[k].fi = s->dae.ns++;
     }
     td_sim_races_layout(s);
     return td_sim_races_matrices(s, err);
@@ -296,8 +297,8 @@ td_status td_sim_setup(const td_model *model, const td_sim_options *options, vol
     if (st == TD_OK) {
         init_machine(s);
         td_sim_apply_past_changes(s);
-        s->spin_ref = s->omega * s->t;
-        s->t_spin_ref = s->t;
+        s->spin_ref = s->omega * s->dae.t;
+        s->t_spin_ref = s->dae.t;
         st = td_sim_mass_factor(s, err);
     }
     if (st == TD_OK) {
@@ -323,7 +324,7 @@ td_status td_sim_setup(const td_model *model, const td_sim_options *options, vol
         td_sim_teardown(s);
         return st;
     }
-    td_sim_totals_point(s, s->t, 1);
+    td_sim_totals_point(s, s->dae.t, 1);
     s->monitor.q_len = s->monitor.q_pos = 0; /* contacts at the start are a state, not events */
     s->monitor.stats.events = s->monitor.stats.releases = s->monitor.stats.contact_onsets = 0;
     *out = s;
@@ -332,11 +333,11 @@ td_status td_sim_setup(const td_model *model, const td_sim_options *options, vol
 
 static void free_work(td_sim *s)
 {
-    free(s->mass_x);
+    free(s->dae.mass_x);
     free(s->minv_f);
-    free(s->power_x);
-    free(s->power_kx);
-    free(s->power_mx);
+    free(s->dae.power_x);
+    free(s->dae.power_kx);
+    free(s->dae.power_mx);
     free(s->schur);
     free(s->schur_rhs);
     free(s->restitution);
@@ -357,20 +358,20 @@ static void free_work(td_sim *s)
 void td_sim_teardown(td_sim *s)
 {
     td_sim_integrator_free(s);
-    cs_di_sfree(s->Ms);
-    cs_di_nfree(s->Mn);
-    free(s->colptr);
-    free(s->rowind);
-    free(s->jdata);
-    free(s->map_M);
-    free(s->map_C);
-    free(s->map_G);
-    free(s->map_K);
-    free(s->st_rowptr);
-    free(s->st_col);
-    free(s->st_M);
-    free(s->st_K);
-    free(s->st_D);
+    cs_di_sfree(s->dae.Ms);
+    cs_di_nfree(s->dae.Mn);
+    free(s->dae.colptr);
+    free(s->dae.rowind);
+    free(s->dae.jdata);
+    free(s->dae.map_M);
+    free(s->dae.map_C);
+    free(s->dae.map_G);
+    free(s->dae.map_K);
+    free(s->dae.st_rowptr);
+    free(s->dae.st_col);
+    free(s->dae.st_M);
+    free(s->dae.st_K);
+    free(s->dae.st_D);
     free(s->unb);
     free(s->amb_mode);
     free(s->amb_control);
@@ -378,8 +379,8 @@ void td_sim_teardown(td_sim *s)
     free(s->amb_coef);
     free(s->monitor.queue);
     free_work(s);
-    free(s->rootdir);
-    free(s->rootsfound);
+    free(s->dae.rootdir);
+    free(s->dae.rootsfound);
     free(s->loop.ysave);
     free(s->loop.ypsave);
     td_sim_races_free(s);

@@ -66,19 +66,19 @@ td_status td_sim_step(td_sim *sim, double tout, double *t_reached, td_error *err
     begin_call(sim);
     if (td_sim_pop_event(sim)) {
         if (t_reached)
-            *t_reached = sim->t;
+            *t_reached = sim->dae.t;
         return TD_EVENT;
     }
-    if (!isfinite(tout) || tout < sim->t) {
+    if (!isfinite(tout) || tout < sim->dae.t) {
         snprintf(sim->errmsg, sizeof sim->errmsg, "td_sim_step: tout = %.17g is before the current time %.17g", tout,
-                 sim->t);
+                 sim->dae.t);
         return failed(sim, TD_ERR_INVALID, err);
     }
     w0 = td_wall_clock();
-    st = tout > sim->t ? td_sim_advance(sim, tout) : TD_OK;
+    st = tout > sim->dae.t ? td_sim_advance(sim, tout) : TD_OK;
     sim->monitor.stats.wall_time += td_wall_clock() - w0;
     if (t_reached)
-        *t_reached = sim->t;
+        *t_reached = sim->dae.t;
     return reported(sim, st, err);
 }
 
@@ -100,12 +100,12 @@ td_status td_sim_set_interrupt(td_sim *sim, volatile sig_atomic_t *flag)
 
 double td_sim_speed(const td_sim *sim)
 {
-    return sim ? td_sim_rotor_speed(sim, N_VGetArrayPointer(sim->y)) : 0.0;
+    return sim ? td_sim_rotor_speed(sim, N_VGetArrayPointer(sim->dae.y)) : 0.0;
 }
 
 double td_sim_time(const td_sim *sim)
 {
-    return sim ? sim->t : NAN;
+    return sim ? sim->dae.t : NAN;
 }
 
 td_status td_sim_last_event(const td_sim *sim, td_event *ev)
@@ -130,11 +130,11 @@ td_status td_sim_get_state(const td_sim *sim, double *q, double *v)
     const double *y;
     if (!sim)
         return TD_ERR_INVALID;
-    y = N_VGetArrayPointer(sim->y);
+    y = N_VGetArrayPointer(sim->dae.y);
     if (q)
-        memcpy(q, y + sim->oq, sizeof(double) * (size_t)sim->sys->ndof);
+        memcpy(q, y + sim->dae.oq, sizeof(double) * (size_t)sim->sys->ndof);
     if (v)
-        memcpy(v, y + sim->ov, sizeof(double) * (size_t)sim->sys->ndof);
+        memcpy(v, y + sim->dae.ov, sizeof(double) * (size_t)sim->sys->ndof);
     return TD_OK;
 }
 
@@ -143,14 +143,14 @@ td_status td_sim_retainer_state(const td_sim *sim, int retainer, td_retainer_sta
     const double *y;
     const td_sim_retainer *r;
     double rx, ry, vx, vy;
-    if (!sim || !out || retainer < 0 || retainer >= sim->nr)
+    if (!sim || !out || retainer < 0 || retainer >= sim->dae.nr)
         return TD_ERR_INVALID;
-    y = N_VGetArrayPointer(sim->y);
+    y = N_VGetArrayPointer(sim->dae.y);
     r = &sim->ret[retainer];
-    out->x = y[sim->oq + r->dx];
-    out->y = y[sim->oq + r->dy];
-    out->race_x = r->rx >= 0 ? y[sim->oq + r->rx] : 0.0;
-    out->race_y = r->rx >= 0 ? y[sim->oq + r->ry] : 0.0;
+    out->x = y[sim->dae.oq + r->dx];
+    out->y = y[sim->dae.oq + r->dy];
+    out->race_x = r->rx >= 0 ? y[sim->dae.oq + r->rx] : 0.0;
+    out->race_y = r->rx >= 0 ? y[sim->dae.oq + r->ry] : 0.0;
     out->race_speed = td_sim_race_speed(sim, retainer, y);
     td_sim_node_state(sim, retainer, y, &rx, &ry, &vx, &vy);
     out->radius = hypot(rx, ry);
@@ -165,7 +165,7 @@ td_status td_sim_retainer_state(const td_sim *sim, int retainer, td_retainer_sta
             ? td_contact_friction_force(r->r.friction, td_sim_slip_factor(sim, retainer, y, NULL), out->normal_force)
             : 0.0;
     if (r->rolling) /* F_t acts on the race along t, the opposite on the rotor */
-        out->friction_force = -y[sim->of + r->fi];
+        out->friction_force = -y[sim->dae.of + r->fi];
     out->sliding_velocity = td_sim_sliding_velocity(sim, retainer, y);
     return TD_OK;
 }
@@ -176,7 +176,7 @@ td_status td_sim_amb_force(const td_sim *sim, int amb, double f[2])
     int k;
     if (!sim || !f || amb < 0 || amb >= td_model_amb_count(sim->model))
         return TD_ERR_INVALID;
-    y = N_VGetArrayPointer(sim->y);
+    y = N_VGetArrayPointer(sim->dae.y);
     f[0] = f[1] = 0.0;
     for (k = 0; k < sim->sys->n_amb_axes; k++)
         if (sim->sys->amb_axes[k].amb == amb)
@@ -195,7 +195,7 @@ td_status td_sim_stats_get(const td_sim *sim, td_sim_stats *out)
 
 td_status td_sim_retainer_totals(const td_sim *sim, int retainer, td_retainer_totals *out)
 {
-    if (!sim || !out || retainer < 0 || retainer >= sim->nr)
+    if (!sim || !out || retainer < 0 || retainer >= sim->dae.nr)
         return TD_ERR_INVALID;
     td_sim_totals_get(sim, retainer, out);
     return TD_OK;
@@ -241,8 +241,8 @@ td_status td_sim_set_speed(td_sim *sim, double omega, td_error *err)
         return failed(sim, TD_ERR_INVALID, err);
     }
     /* keep the spin angle continuous: the unbalance force turns on from where it is */
-    sim->spin_ref = td_sim_spin_angle(sim, sim->t);
-    sim->t_spin_ref = sim->t;
+    sim->spin_ref = td_sim_spin_angle(sim, sim->dae.t);
+    sim->t_spin_ref = sim->dae.t;
     sim->omega = omega;
     td_sim_structural_speed(sim);
     if (sim->opt.solver.max_step <= 0.0) {

@@ -32,6 +32,7 @@
 
 #include "contact/contact.h"
 #include "model/system_internal.h"
+#include "sim/dae.h"
 #include "sim/integrator.h"
 #include "sim/monitor.h"
 #include "sim/retainer.h"
@@ -59,9 +60,6 @@ struct td_sim {
     const td_model *model; /* the system's copy */
     td_sim_options opt;
 
-    int n, nw, nr, ns, neq;     /* DOFs (rotor and races), filter states, retainers, stick retainers, equations */
-    int oq, ov, ow, ol, ou, of; /* block offsets in y */
-
     /* the machine as it is now (changed by the schedule and the td_sim_set_* calls) */
     double omega; /* rad/s: the speed, or with a spin DOF the speed D = C + omega G was built at */
     int spin;     /* the spin DOF (spin.c), -1: the speed is omega, prescribed */
@@ -83,45 +81,15 @@ struct td_sim {
     double rearm_eps;   /* m, hysteresis of the onset root (constraint model) */
     double rebound_min; /* m/s, radial speed below which an impact with e > 0 becomes plastic */
 
-    /* the structural matrices of all n DOFs (race.c): the system's own without races */
-    cs_di *M, *K, *C, *G;
-    int own_matrices; /* 1: M, K, C, G extended with races, owned */
-
-    /* mass matrix factorisation (LU, CXSparse), for consistent accelerations and the impact map */
-    cs_dis *Ms;
-    cs_din *Mn;
-
-    /* Jacobian: one fixed CSC pattern (superset of every mode), values rebuilt at every call */
-    int nnz;
-    int *colptr, *rowind;
-    double *jdata;
-    int *map_M, *map_C, *map_G, *map_K; /* position of each stored entry of the system matrices */
-
-    /* M, K and D = C + Omega G on the union of their patterns, row-compressed (CSR): the residual
-     * forms M v' + D v + K q row by row in one pass (sim_residual.c); D follows the speed */
-    int st_nnz;
-    int *st_rowptr, *st_col;
-    double *st_M, *st_K, *st_D;
-
     double constraint_tol; /* m: |g| of every contact at an accepted Newton iterate */
-    N_Vector y, yp;
-    int nroots;      /* TD_ROOTS_PER_RETAINER per retainer, then n_sat_roots */
-    int n_sat_roots; /* 2 per AMB axis when any axis saturates (its clip's kinks), else 0 */
-    int *rootdir, *rootsfound;
 
-    /* time */
-    double t; /* current time: y, yp hold the state here */
-
+    td_sim_dae dae;         /* the unknowns, the state, the matrices, the pattern (dae.h) */
     td_sim_monitor monitor; /* statistics, events, totals, energy (monitor.h) */
     td_sim_solver solver;   /* IDA, its tolerances and counters (integrator.h) */
     td_sim_loop loop;       /* the step loop (stepping.h) */
 
     /* work space, each array with one job (n: DOFs, nr: retainers) */
-    double *mass_x;       /* n: td_sim_mass_solve's permuted solution */
     double *minv_f;       /* n: M^-1 f (kkt_solve, free_normal_acceleration) */
-    double *power_x;      /* n: highest_frequency's iterate x */
-    double *power_kx;     /* n: highest_frequency's M^-1 K x */
-    double *power_mx;     /* n: highest_frequency's M x */
     double *schur;        /* (nr + ns)^2: kkt_solve's J M^-1 B of the active contacts and rolls */
     double *schur_rhs;    /* nr + ns: its right-hand side, then lambda and F_t */
     double *restitution;  /* nr: impacts, the restitution of each contact in the impact map */
@@ -171,7 +139,7 @@ void td_sim_nvector_optimize(N_Vector v);
 
 /* ---- sim_linsol.c: KLU inside IDA ------------------------------------------------------- */
 
-/* A SUNLinearSolver factorising s->jdata on s->colptr/s->rowind with KLU: one symbolic analysis
+/* A SUNLinearSolver factorising s->dae.jdata on s->dae.colptr/s->dae.rowind with KLU: one symbolic analysis
  * per run, a pivoting factorisation after every restart, refactorisations in between. */
 SUNLinearSolver td_sim_klu_create(const td_sim *s);
 
@@ -193,7 +161,7 @@ double td_sim_spin_torque(const td_sim *s, double t);
 /* A free spin's constant drag torque, regularised over TD_SIM_SPIN_BAND at standstill, with its
  * slope in Omega (may be NULL); 0 otherwise. */
 double td_sim_spin_drag(const td_sim *s, const double *y, double *dT);
-/* The spin's start state into y: angle and speed at s->t. */
+/* The spin's start state into y: angle and speed at s->dae.t. */
 void td_sim_spin_start(const td_sim *s, double *y);
 /* A ramp's spin angle and speed (and their rates into yp, which may be NULL) in y set to the
  * prescribed profile's at t: what an accepted or interpolated state reports. Nothing otherwise. */
@@ -205,9 +173,9 @@ void td_sim_spin_wrap(const td_sim *s, double *y);
 
 /* ---- race.c: the races' DOFs and matrices ----------------------------------------------- */
 
-/* Assign the race DOFs after the rotor's and set s->n. */
+/* Assign the race DOFs after the rotor's and set s->dae.n. */
 void td_sim_races_layout(td_sim *s);
-/* s->M, s->K, s->C, s->G over all n DOFs. */
+/* s->dae.M, s->dae.K, s->dae.C, s->dae.G over all n DOFs. */
 td_status td_sim_races_matrices(td_sim *s, td_error *err);
 void td_sim_races_free(td_sim *s);
 /* f += sign * the races' weight (length n). */
@@ -217,7 +185,7 @@ void td_sim_races_start(const td_sim *s, double *y);
 
 /* ---- sim_pattern.c: the Jacobian's sparsity pattern, the structural operator, the mass ---- */
 
-/* Build s->colptr, s->rowind, s->jdata and the maps of the system matrices. */
+/* Build s->dae.colptr, s->dae.rowind, s->dae.jdata and the maps of the system matrices. */
 td_status td_sim_pattern_build(td_sim *s, td_error *err);
 /* Position of (row, col) in the pattern, -1 if absent. */
 int td_sim_pattern_find(const td_sim *s, int row, int col);
@@ -225,7 +193,7 @@ int td_sim_pattern_find(const td_sim *s, int row, int col);
 td_status td_sim_structural_build(td_sim *s, td_error *err);
 /* Recompute D = C + Omega G after a change of s->omega. */
 void td_sim_structural_speed(td_sim *s);
-/* Factorise M (s->Ms, s->Mn). */
+/* Factorise M (s->dae.Ms, s->dae.Mn). */
 td_status td_sim_mass_factor(td_sim *s, td_error *err);
 /* x = M^-1 b in place (length n). */
 void td_sim_mass_solve(const td_sim *s, double *b);
@@ -239,7 +207,7 @@ void td_sim_external_forces(const td_sim *s, double t, const double *y, double s
 void td_sim_forces(const td_sim *s, double t, const double *y, double *f);
 /* F(t, y, y'). */
 void td_sim_residual(const td_sim *s, double t, const double *y, const double *yp, double *res);
-/* dF/dy + cj dF/dy' into s->jdata (pattern s->colptr, s->rowind). */
+/* dF/dy + cj dF/dy' into s->dae.jdata (pattern s->dae.colptr, s->dae.rowind). */
 void td_sim_jacobian(td_sim *s, double t, double cj, const double *y);
 /* Root functions (TD_ROOTS_PER_RETAINER per retainer, then the AMB clips' kinks) and their
  * directions for the current modes. */
@@ -255,7 +223,7 @@ double td_sim_unbalance_spin_coupling(const td_sim *s, double t, const double *y
 double td_sim_amb_axis_integral_rate(const td_sim *s, int k, const double *y);
 /* Spin angle phi(t) at the prescribed speed. */
 double td_sim_spin_angle(const td_sim *s, double t);
-/* dOmega/dt at (t, y): the ramp's slope on the interval being integrated, (s->t, t] (at t = s->t
+/* dOmega/dt at (t, y): the ramp's slope on the interval being integrated, (s->dae.t, t] (at t = s->dae.t
  * the segment starting there), or a free spin's torque balance over J (spin.c). */
 double td_sim_rotor_rate(const td_sim *s, double t, const double *y);
 
@@ -265,13 +233,13 @@ double td_sim_rotor_rate(const td_sim *s, double t, const double *y);
 void td_sim_queue_event(td_sim *s, const td_event *ev);
 /* Fill the velocity fields of an event from the node velocity of retainer k. */
 void td_sim_event_velocities(const td_sim *s, int k, const double *y, int after, td_event *ev);
-/* An event of `kind` at s->t, of retainer k (-1: none), no schedule entry. */
+/* An event of `kind` at s->dae.t, of retainer k (-1: none), no schedule entry. */
 td_event td_sim_event_at(const td_sim *s, td_event_kind kind, int k);
 /* The next queued event into s->monitor.last; 0 when the queue is empty. */
 int td_sim_pop_event(td_sim *s);
 /* AMB axis k's force `force` at time t: a new peak load if it is the largest yet. */
 void td_sim_monitor_amb_load(td_sim *s, int k, double force, double t);
-/* Statistics at the state in s->y (time t): contact time, peak normal force, AMB load, and at an
+/* Statistics at the state in s->dae.y (time t): contact time, peak normal force, AMB load, and at an
  * integrator step's end (at_step) the constraint drift. */
 void td_sim_monitor_at(td_sim *s, double t, int at_step);
 
@@ -282,22 +250,22 @@ void td_sim_monitor_at(td_sim *s, double t, int at_step);
 void td_sim_energy_point(td_sim *s, double t, int restart, double dt);
 /* An impact changed the kinetic energy from `before` to `after`, J. */
 void td_sim_energy_impact(td_sim *s, double before, double after);
-/* The energy account taken back from its last point to s->t (a change or an output inside the
+/* The energy account taken back from its last point to s->dae.t (a change or an output inside the
  * integrator's last step), as td_sim_totals_rewind does with the retainers' totals. */
 void td_sim_energy_rewind(td_sim *s);
 /* Kinetic energy 1/2 v^T M v of the state y, J. */
 double td_sim_kinetic_energy(const td_sim *s, const double *y);
-/* The energy account at s->t (td_sim_energy). */
+/* The energy account at s->dae.t (td_sim_energy). */
 void td_sim_energy_get(const td_sim *s, td_energy *out);
-/* A point of the totals at time t with the state in s->y: closes the segment since the last point
+/* A point of the totals at time t with the state in s->dae.y: closes the segment since the last point
  * (restart 0: an accepted step or a stop), or opens one after a restart (restart 1). */
 void td_sim_totals_point(td_sim *s, double t, int restart);
-/* Before a restart at s->t inside the integrator's last step (a change between steps): the totals
- * taken back to s->t. */
+/* Before a restart at s->dae.t inside the integrator's last step (a change between steps): the totals
+ * taken back to s->dae.t. */
 void td_sim_totals_rewind(td_sim *s);
 /* An impact of retainer k with `impulse` (N s); `bounced`: it left at once (touch-and-go). */
 void td_sim_totals_impact(td_sim *s, int k, double impulse, int bounced);
-/* Retainer k's totals at s->t (td_sim_retainer_totals). */
+/* Retainer k's totals at s->dae.t (td_sim_retainer_totals). */
 void td_sim_totals_get(const td_sim *s, int k, td_retainer_totals *out);
 
 /* ---- flight_modal.c, flight_roots.c, flight.c: free flight in closed form ------------------ */
@@ -307,17 +275,17 @@ void td_sim_totals_get(const td_sim *s, int k, td_retainer_totals *out);
  * with a force law only once its gap has opened by eps after its last exit). The decomposition may
  * still refuse it (td_sim_flight_advance). The step loop flies only with no stop pending. */
 int td_sim_flight_eligible(const td_sim *s);
-/* Carry the state from s->t in closed form to t_out or the stop t_stop, whichever comes first,
- * or to a root before them (*root = 1, s->rootsfound as IDAGetRootInfo would set it), or less far
- * at an interrupt; y holds the state at the new s->t (y': td_sim_flight_rates). The flight works in
+/* Carry the state from s->dae.t in closed form to t_out or the stop t_stop, whichever comes first,
+ * or to a root before them (*root = 1, s->dae.rootsfound as IDAGetRootInfo would set it), or less far
+ * at an interrupt; y holds the state at the new s->dae.t (y': td_sim_flight_rates). The flight works in
  * the states scaled by `scale` (neq: the integrator's absolute tolerances, each state in its
  * tolerance's units). Returns 0 (nothing moved) when the flight cannot carry the machine: the
  * integrator does. */
 int td_sim_flight_advance(td_sim *s, const double *scale, double t_out, double t_stop, int *root);
 /* The state was moved by something else (an integrator step, a restart): the next flight starts
- * from s->y afresh. */
+ * from s->dae.y afresh. */
 void td_sim_flight_forget(td_sim *s);
-/* y' at s->t from the flight that carried the state there (its outputs write y only). */
+/* y' at s->dae.t from the flight that carried the state there (its outputs write y only). */
 void td_sim_flight_rates(td_sim *s);
 void td_sim_flight_free(td_sim *s);
 /* The displacements z at t (any time since the anchor) into y[0..nz) without moving anything:
@@ -338,7 +306,7 @@ int td_sim_modes_out_of_step(const td_sim *s, const double *y);
 /* Start of a run with the retainers flagged in `touching` on (or a hair outside) their circles:
  * projection and impact as at an onset, then td_sim_make_consistent. */
 td_status td_sim_start_contacts(td_sim *s, const int *touching);
-/* Handle the roots found at s->t (IDAGetRootInfo in s->rootsfound; all zero: only bring the
+/* Handle the roots found at s->dae.t (IDAGetRootInfo in s->dae.rootsfound; all zero: only bring the
  * penalty modes in step with the state). *restart is set when the integrator must be
  * re-initialised. */
 td_status td_sim_handle_roots(td_sim *s, int *restart);
@@ -348,9 +316,9 @@ td_status td_sim_handle_roots(td_sim *s, int *restart);
 /* AMB amb's mode, also in s->sys (td_system_set_amb_off), so that the start state's stability and
  * steady orbit are those of the machine at the start, after the changes due then. */
 void td_sim_amb_mode_set(td_sim *s, int amb, td_amb_mode mode);
-/* Apply every schedule change due at s->t, queueing TD_EVENT_SCHEDULE events. */
+/* Apply every schedule change due at s->dae.t, queueing TD_EVENT_SCHEDULE events. */
 td_status td_sim_apply_due_changes(td_sim *s);
-/* Apply silently every change due at or before s->t (before the start of the run). */
+/* Apply silently every change due at or before s->dae.t (before the start of the run). */
 void td_sim_apply_past_changes(td_sim *s);
 /* Where the integrator must stop next: the next schedule change or speed-ramp point; INFINITY if none. */
 double td_sim_next_stop(const td_sim *s);
@@ -372,7 +340,7 @@ int td_sim_races_retolerance(td_sim *s);
 td_status td_sim_integrator_create(td_sim *s, td_error *err);
 /* IDA initialised on the start state: tolerances, the Newton and linear solvers, the roots. */
 td_status td_sim_integrator_attach(td_sim *s, td_error *err);
-/* Re-initialise IDA at s->t from s->y, s->yp (counters saved, root directions, restart step,
+/* Re-initialise IDA at s->dae.t from s->dae.y, s->dae.yp (counters saved, root directions, restart step,
  * stop time, KLU refactorisation). */
 td_status td_sim_restart(td_sim *s);
 /* y, yp at time t inside IDA's last step. */
@@ -389,7 +357,7 @@ void td_sim_integrator_free(td_sim *s);
  * IDA's interpolant (after an accepted step or at a stop inside one) or from the flight. */
 void td_sim_section_ida(td_sim *s, double t);
 void td_sim_section_flight(td_sim *s, double t);
-/* A restart at s->t: samples taken beyond it belonged to a state that has since been changed. */
+/* A restart at s->dae.t: samples taken beyond it belonged to a state that has since been changed. */
 void td_sim_section_rewind(td_sim *s);
 void td_sim_section_free(td_sim *s);
 
@@ -397,14 +365,14 @@ void td_sim_section_free(td_sim *s);
 
 /* Stability of the contact-free closed loop at the start speed into s->start. */
 void td_sim_start_stability(td_sim *s);
-/* The start state into s->y, s->yp (s->start says which); contacts at the start made consistent. */
+/* The start state into s->dae.y, s->dae.yp (s->start says which); contacts at the start made consistent. */
 td_status td_sim_start_state(td_sim *s, td_error *err);
 
 /* ---- stepping.c: the step loop ---------------------------------------------------------------- */
 
 /* Restart after a change made between steps or at a schedule time. */
 td_status td_sim_restart_after_change(td_sim *s);
-/* Integrate from s->t to tout (> s->t), stopping early at an event to report or a failure. */
+/* Integrate from s->dae.t to tout (> s->dae.t), stopping early at an event to report or a failure. */
 td_status td_sim_advance(td_sim *s, double tout);
 
 /* ---- setup.c: creation and release ---------------------------------------------------------- */

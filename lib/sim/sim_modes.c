@@ -35,7 +35,7 @@
 #include <stdio.h>
 #include <string.h>
 
-/* Queue an event of retainer k at s->t with its node velocities at y. */
+/* Queue an event of retainer k at s->dae.t with its node velocities at y. */
 static void queue_retainer_event(td_sim *s, td_event_kind kind, int k, const double *y)
 {
     td_event ev = td_sim_event_at(s, kind, k);
@@ -58,9 +58,9 @@ static double contact_dterm(const td_sim *s, int k, const double *y)
 static int kkt_multipliers(td_sim *s, const double *y, double *rhs)
 {
     int m = 0, k;
-    for (k = 0; k < s->nr; k++)
+    for (k = 0; k < s->dae.nr; k++)
         if (s->ret[k].mode == TD_RMODE_CONTACT) {
-            double *z = s->minv_cols + (size_t)m * s->n;
+            double *z = s->minv_cols + (size_t)m * s->dae.n;
             td_sim_contact_column(s, k, y, z);
             td_sim_mass_solve(s, z);
             td_sim_contact_row(s, k, y, &s->rows[m]);
@@ -68,9 +68,9 @@ static int kkt_multipliers(td_sim *s, const double *y, double *rhs)
             s->active_roll[m] = 0;
             s->active[m++] = k;
         }
-    for (k = 0; k < s->nr; k++)
+    for (k = 0; k < s->dae.nr; k++)
         if (s->ret[k].rolling) {
-            double *z = s->minv_cols + (size_t)m * s->n;
+            double *z = s->minv_cols + (size_t)m * s->dae.n;
             td_sim_roll_column(s, k, y, z);
             td_sim_mass_solve(s, z);
             td_sim_roll_row(s, k, y, &s->rows[m], &rhs[m]);
@@ -87,27 +87,27 @@ static int kkt_multipliers(td_sim *s, const double *y, double *rhs)
  * multiplier entries. Returns the number of multipliers, or -1 if singular. */
 static int kkt_solve(td_sim *s, double *y, double *yp)
 {
-    double *a = s->minv_f, *S = s->schur, *rhs = s->schur_rhs, *vp = yp + s->ov;
+    double *a = s->minv_f, *S = s->schur, *rhs = s->schur_rhs, *vp = yp + s->dae.ov;
     int m, i, j;
-    td_sim_forces(s, s->t, y, a);
+    td_sim_forces(s, s->dae.t, y, a);
     td_sim_mass_solve(s, a);
     m = kkt_multipliers(s, y, rhs);
     for (i = 0; i < m; i++) {
         const td_contact_row *row = &s->rows[i];
         for (j = 0; j < m; j++)
-            S[i + j * m] = td_contact_row_dot(row, s->minv_cols + (size_t)j * s->n);
+            S[i + j * m] = td_contact_row_dot(row, s->minv_cols + (size_t)j * s->dae.n);
         rhs[i] = td_contact_row_dot(row, a) + rhs[i];
     }
     if (m > 0 && td_contact_dense_solve(m, S, rhs) != 0)
         return -1;
-    for (i = 0; i < s->n; i++)
+    for (i = 0; i < s->dae.n; i++)
         vp[i] = a[i];
     for (j = 0; j < m; j++) {
-        const double *z = s->minv_cols + (size_t)j * s->n;
+        const double *z = s->minv_cols + (size_t)j * s->dae.n;
         const td_sim_retainer *r = &s->ret[s->active[j]];
-        for (i = 0; i < s->n; i++)
+        for (i = 0; i < s->dae.n; i++)
             vp[i] -= z[i] * rhs[j];
-        y[s->active_roll[j] ? s->of + r->fi : s->ol + s->active[j]] = rhs[j];
+        y[s->active_roll[j] ? s->dae.of + r->fi : s->dae.ol + s->active[j]] = rhs[j];
     }
     return m;
 }
@@ -133,20 +133,20 @@ static void keep_rolling(td_sim *s, int k, double *y)
 static void reset_multipliers(td_sim *s, double *y, double *yp)
 {
     int k;
-    for (k = 0; k < s->nr; k++) {
+    for (k = 0; k < s->dae.nr; k++) {
         const td_sim_retainer *r = &s->ret[k];
-        y[s->ou + k] = 0.0;
-        yp[s->ol + k] = yp[s->ou + k] = 0.0;
+        y[s->dae.ou + k] = 0.0;
+        yp[s->dae.ol + k] = yp[s->dae.ou + k] = 0.0;
         if (r->mode != TD_RMODE_CONTACT)
-            y[s->ol + k] = 0.0;
+            y[s->dae.ol + k] = 0.0;
         else
             td_sim_project_onto_circle(s, k, y);
         if (r->fi >= 0) {
-            yp[s->of + r->fi] = 0.0;
+            yp[s->dae.of + r->fi] = 0.0;
             if (r->rolling)
                 keep_rolling(s, k, y);
             if (!r->rolling)
-                y[s->of + r->fi] = 0.0;
+                y[s->dae.of + r->fi] = 0.0;
         }
     }
 }
@@ -157,8 +157,8 @@ static int worst_pull(const td_sim *s, const double *y, const int *just_entered)
 {
     double worst_lam = 0.0;
     int worst = -1, k;
-    for (k = 0; k < s->nr; k++) {
-        double lam = y[s->ol + k];
+    for (k = 0; k < s->dae.nr; k++) {
+        double lam = y[s->dae.ol + k];
         int reject;
         if (s->ret[k].mode != TD_RMODE_CONTACT)
             continue;
@@ -176,12 +176,12 @@ static int worst_slip(const td_sim *s, const double *y)
 {
     double worst_excess = 0.0;
     int worst = -1, k;
-    for (k = 0; k < s->nr; k++) {
+    for (k = 0; k < s->dae.nr; k++) {
         const td_sim_retainer *r = &s->ret[k];
         double excess;
         if (!r->rolling)
             continue;
-        excess = fabs(y[s->of + r->fi]) - r->r.friction * td_sim_normal_force(s, k, y);
+        excess = fabs(y[s->dae.of + r->fi]) - r->r.friction * td_sim_normal_force(s, k, y);
         if (excess > worst_excess) {
             worst = k;
             worst_excess = excess;
@@ -196,7 +196,7 @@ static int worst_slip(const td_sim *s, const double *y)
 static void slip_from_roll(td_sim *s, int k, double *y)
 {
     td_sim_retainer *r = &s->ret[k];
-    int was = r->slip, slip = y[s->of + r->fi] > 0.0 ? 1 : -1;
+    int was = r->slip, slip = y[s->dae.of + r->fi] > 0.0 ? 1 : -1;
     td_sim_unroll(s, k, y, slip);
     if (!s->roll_tried[k])
         queue_retainer_event(s, TD_EVENT_ROLL_END, k, y);
@@ -207,14 +207,14 @@ static void slip_from_roll(td_sim *s, int k, double *y)
 
 td_status td_sim_make_consistent(td_sim *s, const int *just_entered)
 {
-    double *y = N_VGetArrayPointer(s->y), *yp = N_VGetArrayPointer(s->yp);
+    double *y = N_VGetArrayPointer(s->dae.y), *yp = N_VGetArrayPointer(s->dae.yp);
     int i, k, pass;
     reset_multipliers(s, y, yp);
-    for (pass = 0; pass <= s->nr + s->ns; pass++) {
+    for (pass = 0; pass <= s->dae.nr + s->dae.ns; pass++) {
         int worst;
         if (kkt_solve(s, y, yp) < 0) {
             snprintf(s->errmsg, sizeof s->errmsg,
-                     "t = %.9g s: the contact constraints are singular (J M^-1 J^T not invertible)", s->t);
+                     "t = %.9g s: the contact constraints are singular (J M^-1 J^T not invertible)", s->dae.t);
             return TD_ERR_NUMERIC;
         }
         if ((worst = worst_pull(s, y, just_entered)) >= 0) {
@@ -229,23 +229,23 @@ td_status td_sim_make_consistent(td_sim *s, const int *just_entered)
             break;
         }
     }
-    for (k = 0; k < s->nr; k++) /* tried rolls that held */
+    for (k = 0; k < s->dae.nr; k++) /* tried rolls that held */
         if (s->roll_tried[k]) {
             s->roll_tried[k] = 0;
             if (s->ret[k].rolling)
                 queue_retainer_event(s, TD_EVENT_ROLL_START, k, y);
         }
     /* q' = v, w' = the filter and integrator rates */
-    for (i = 0; i < s->n; i++)
-        yp[s->oq + i] = y[s->ov + i];
+    for (i = 0; i < s->dae.n; i++)
+        yp[s->dae.oq + i] = y[s->dae.ov + i];
     for (k = 0; k < s->sys->n_amb_axes; k++) {
         const td_amb_axis *a = &s->sys->amb_axes[k];
-        double e = a->integral >= 0 ? y[s->ow + a->integral] : 0.0;
+        double e = a->integral >= 0 ? y[s->dae.ow + a->integral] : 0.0;
         if (a->state >= 0)
-            yp[s->ow + a->state] =
-                td_amb_axis_filter_rate(a, y[s->oq + a->sensor_dof], y[s->ov + a->sensor_dof], e, y[s->ow + a->state]);
+            yp[s->dae.ow + a->state] = td_amb_axis_filter_rate(
+                a, y[s->dae.oq + a->sensor_dof], y[s->dae.ov + a->sensor_dof], e, y[s->dae.ow + a->state]);
         if (a->integral >= 0)
-            yp[s->ow + a->integral] = td_sim_amb_axis_integral_rate(s, k, y);
+            yp[s->dae.ow + a->integral] = td_sim_amb_axis_integral_rate(s, k, y);
     }
     return TD_OK;
 }
@@ -260,7 +260,7 @@ td_status td_sim_make_consistent(td_sim *s, const int *just_entered)
 static double free_normal_acceleration(td_sim *s, int k, const double *y, double *a)
 {
     td_contact_row row;
-    td_sim_forces(s, s->t, y, a);
+    td_sim_forces(s, s->dae.t, y, a);
     td_sim_mass_solve(s, a);
     td_sim_contact_row(s, k, y, &row);
     return td_contact_row_dot(&row, a) + contact_dterm(s, k, y);
@@ -308,7 +308,7 @@ static int impact_contacts(td_sim *s, const int *onset, const double *y)
 {
     double *e = s->restitution;
     int m = 0, k;
-    for (k = 0; k < s->nr; k++) {
+    for (k = 0; k < s->dae.nr; k++) {
         const td_sim_retainer *r = &s->ret[k];
         double x, yy, vx, vy, vr;
         if (r->mode == TD_RMODE_CONTACT) {
@@ -331,9 +331,9 @@ static void impact_columns(td_sim *s, int m, const double *y)
 {
     int i;
     for (i = 0; i < m; i++) {
-        double *col = s->minv_cols + (size_t)i * s->n;
+        double *col = s->minv_cols + (size_t)i * s->dae.n;
         td_sim_contact_row(s, s->active[i], y, &s->rows[i]);
-        memset(col, 0, sizeof(double) * (size_t)s->n);
+        memset(col, 0, sizeof(double) * (size_t)s->dae.n);
         td_contact_row_scatter(&s->rows[i], col);
         td_sim_mass_solve(s, col);
     }
@@ -401,7 +401,7 @@ static void complete_onsets(td_sim *s, const int *onset, int m, int first_event,
 static void stop_rolling(td_sim *s, double *y)
 {
     int k;
-    for (k = 0; k < s->nr; k++)
+    for (k = 0; k < s->dae.nr; k++)
         if (s->ret[k].rolling) {
             td_sim_unroll(s, k, y, s->ret[k].slip);
             queue_retainer_event(s, TD_EVENT_ROLL_END, k, y);
@@ -416,9 +416,9 @@ static void stop_rolling(td_sim *s, double *y)
  */
 static int impacts(td_sim *s, const int *onset, int *entered)
 {
-    double *y = N_VGetArrayPointer(s->y), before;
+    double *y = N_VGetArrayPointer(s->dae.y), before;
     int m, k, queued, first_event = s->monitor.q_len;
-    for (k = 0; k < s->nr; k++) {
+    for (k = 0; k < s->dae.nr; k++) {
         entered[k] = 0;
         if (onset[k])
             td_sim_project_onto_circle(s, k, y);
@@ -428,7 +428,7 @@ static int impacts(td_sim *s, const int *onset, int *entered)
     impact_columns(s, m, y);
     queued = queue_onsets(s, onset, m, y);
     before = s->opt.energy ? td_sim_kinetic_energy(s, y) : 0.0;
-    if (m > 0 && td_contact_impact_map(s->n, m, s->rows, s->minv_cols, s->restitution, y + s->ov, s->impulse,
+    if (m > 0 && td_contact_impact_map(s->dae.n, m, s->rows, s->minv_cols, s->restitution, y + s->dae.ov, s->impulse,
                                        s->impact_work) != 0)
         return -1;
     if (s->opt.energy)
@@ -438,12 +438,12 @@ static int impacts(td_sim *s, const int *onset, int *entered)
                              onset[s->active[k]] && s->ret[s->active[k]].mode != TD_RMODE_CONTACT &&
                                  s->restitution[k] > 0.0);
     enter_contacts(s, onset, m, y, entered);
-    for (k = 0; k < s->nr; k++) /* stick retainers slide the way the impact left them */
+    for (k = 0; k < s->dae.nr; k++) /* stick retainers slide the way the impact left them */
         if (s->ret[k].r.stick && s->ret[k].mode == TD_RMODE_CONTACT && !entered[k])
             td_sim_init_slip(s, k, y);
     complete_onsets(s, onset, m, first_event, y);
     /* onsets with no outward velocity: disarm, nothing happened */
-    for (k = 0; k < s->nr; k++)
+    for (k = 0; k < s->dae.nr; k++)
         if (onset[k] && s->ret[k].mode == TD_RMODE_FREE)
             s->ret[k].armed = 0;
     return queued;
@@ -461,7 +461,7 @@ static int stick_out_of_step(const td_sim *s, int k, const double *y)
 int td_sim_modes_out_of_step(const td_sim *s, const double *y)
 {
     int k;
-    for (k = 0; k < s->nr; k++)
+    for (k = 0; k < s->dae.nr; k++)
         if ((td_sim_penalty_model(s, k) && td_sim_penalty_mode_wanted(s, k, y, s->ret[k].mode) != s->ret[k].mode) ||
             stick_out_of_step(s, k, y))
             return 1;
@@ -499,7 +499,7 @@ static void slip_root(td_sim *s, int k, double *y)
         if (td_sim_slip_root(s, k, y))
             queue_retainer_event(s, TD_EVENT_FRICTION_REVERSAL, k, y);
     } else if (r->rolling) {
-        td_sim_unroll(s, k, y, y[s->of + r->fi] > 0.0 ? 1 : -1);
+        td_sim_unroll(s, k, y, y[s->dae.of + r->fi] > 0.0 ? 1 : -1);
         queue_retainer_event(s, TD_EVENT_ROLL_END, k, y);
     } else {
         r->rolling = 1;
@@ -558,12 +558,12 @@ static td_status onset_impacts(td_sim *s, int any)
 {
     int k;
     if (!any) {
-        for (k = 0; k < s->nr; k++)
+        for (k = 0; k < s->dae.nr; k++)
             s->entered[k] = 0;
         return TD_OK;
     }
     if (impacts(s, s->onset, s->entered) < 0) {
-        snprintf(s->errmsg, sizeof s->errmsg, "t = %.9g s: impact map singular", s->t);
+        snprintf(s->errmsg, sizeof s->errmsg, "t = %.9g s: impact map singular", s->dae.t);
         return TD_ERR_NUMERIC;
     }
     return TD_OK;
@@ -571,12 +571,12 @@ static td_status onset_impacts(td_sim *s, int any)
 
 td_status td_sim_handle_roots(td_sim *s, int *restart)
 {
-    double *y = N_VGetArrayPointer(s->y);
+    double *y = N_VGetArrayPointer(s->dae.y);
     int k, any_onset = 0, first_event = s->monitor.q_len;
     td_status st;
     *restart = 0;
-    for (k = 0; k < s->nr; k++) {
-        const int *f = s->rootsfound + TD_ROOTS_PER_RETAINER * k;
+    for (k = 0; k < s->dae.nr; k++) {
+        const int *f = s->dae.rootsfound + TD_ROOTS_PER_RETAINER * k;
         s->onset[k] = 0;
         if (td_sim_penalty_model(s, k) ? penalty_roots(s, k, y, f) : constraint_roots(s, k, y, f, &s->onset[k]))
             *restart = 1;
@@ -586,8 +586,8 @@ td_status td_sim_handle_roots(td_sim *s, int *restart)
         }
         any_onset = any_onset || s->onset[k];
     }
-    for (k = 0; k < s->n_sat_roots; k++) /* an AMB's clip: restart on its kink */
-        if (s->rootsfound[TD_ROOTS_PER_RETAINER * s->nr + k])
+    for (k = 0; k < s->dae.n_sat_roots; k++) /* an AMB's clip: restart on its kink */
+        if (s->dae.rootsfound[TD_ROOTS_PER_RETAINER * s->dae.nr + k])
             *restart = 1;
     st = onset_impacts(s, any_onset);
     if (st != TD_OK)
@@ -610,7 +610,7 @@ td_status td_sim_start_contacts(td_sim *s, const int *touching)
 {
     int k, any = 0;
     td_status st;
-    for (k = 0; k < s->nr; k++) {
+    for (k = 0; k < s->dae.nr; k++) {
         s->onset[k] = touching[k];
         any = any || s->onset[k];
     }

@@ -30,7 +30,7 @@ void td_sim_spin_layout(td_sim *s)
     if (!td_model_speed_varies(s->model))
         return;
     td_model_spin(s->model, &sp);
-    s->spin = s->n++;
+    s->spin = s->dae.n++;
     s->spin_free = sp.free != 0;
     s->spin_inertia = sp.inertia > 0.0 ? sp.inertia : td_model_polar_inertia(s->model);
 }
@@ -46,12 +46,12 @@ void td_sim_spin_diagonal(const td_sim *s, char which, double *d)
 
 double td_sim_rotor_speed(const td_sim *s, const double *y)
 {
-    return s->spin >= 0 ? y[s->ov + s->spin] : s->omega;
+    return s->spin >= 0 ? y[s->dae.ov + s->spin] : s->omega;
 }
 
 double td_sim_rotor_angle(const td_sim *s, double t, const double *y)
 {
-    return s->spin >= 0 ? y[s->oq + s->spin] : s->spin_ref + s->omega * (t - s->t_spin_ref);
+    return s->spin >= 0 ? y[s->dae.oq + s->spin] : s->spin_ref + s->omega * (t - s->t_spin_ref);
 }
 
 double td_sim_spin_drag(const td_sim *s, const double *y, double *dT)
@@ -63,24 +63,24 @@ double td_sim_spin_drag(const td_sim *s, const double *y, double *dT)
     if (!s->spin_free)
         return 0.0;
     td_model_spin(s->model, &sp);
-    phi = td_contact_slip_factor(y[s->ov + s->spin], TD_SIM_SPIN_BAND, &dphi);
+    phi = td_contact_slip_factor(y[s->dae.ov + s->spin], TD_SIM_SPIN_BAND, &dphi);
     if (dT)
         *dT = sp.drag_torque * dphi;
     return sp.drag_torque * phi;
 }
 
 /*
- * A ramp's slope over the interval the integrator is covering, (s->t, t]: IDA stops at every ramp
+ * A ramp's slope over the interval the integrator is covering, (s->dae.t, t]: IDA stops at every ramp
  * point (td_sim_next_stop), so that interval lies inside one segment, and a step that ends on a
  * point belongs to the segment before it. The slope at the point itself (td_model_speed_at: the next
  * segment's) would drive that whole step with the next segment's alpha, losing the U alpha h of the
- * unbalance's impulse. At t = s->t (a restart: the consistent rates there) the segment is the one
+ * unbalance's impulse. At t = s->dae.t (a restart: the consistent rates there) the segment is the one
  * that starts there.
  */
 static double ramp_rate(const td_sim *s, double t)
 {
     double rate;
-    td_model_speed_at(s->model, t > s->t ? 0.5 * (s->t + t) : t, &rate, NULL);
+    td_model_speed_at(s->model, t > s->dae.t ? 0.5 * (s->dae.t + t) : t, &rate, NULL);
     return rate;
 }
 
@@ -100,8 +100,8 @@ void td_sim_spin_start(const td_sim *s, double *y)
     double angle;
     if (s->spin < 0)
         return;
-    y[s->ov + s->spin] = td_model_speed_at(s->model, s->t, NULL, &angle);
-    y[s->oq + s->spin] = angle;
+    y[s->dae.ov + s->spin] = td_model_speed_at(s->model, s->dae.t, NULL, &angle);
+    y[s->dae.oq + s->spin] = angle;
 }
 
 void td_sim_spin_hold(const td_sim *s, double t, double *y, double *yp)
@@ -112,11 +112,11 @@ void td_sim_spin_hold(const td_sim *s, double t, double *y, double *yp)
     if (s->spin < 0 || s->spin_free)
         return;
     w = td_model_speed_at(s->model, t, NULL, &angle);
-    y[s->oq + s->spin] = angle;
-    y[s->ov + s->spin] = w;
+    y[s->dae.oq + s->spin] = angle;
+    y[s->dae.ov + s->spin] = w;
     if (yp) {
-        yp[s->oq + s->spin] = w;
-        yp[s->ov + s->spin] = ramp_rate(s, t);
+        yp[s->dae.oq + s->spin] = w;
+        yp[s->dae.ov + s->spin] = ramp_rate(s, t);
     }
 }
 
@@ -125,5 +125,5 @@ void td_sim_spin_wrap(const td_sim *s, double *y)
     /* keep a free spin's angle small, so that its relative tolerance stays an absolute one (a
      * ramp's is the prescribed angle itself) */
     if (s->spin_free)
-        y[s->oq + s->spin] = fmod(y[s->oq + s->spin], 2.0 * TD_PI);
+        y[s->dae.oq + s->spin] = fmod(y[s->dae.oq + s->spin], 2.0 * TD_PI);
 }

@@ -32,7 +32,7 @@ void td_sim_start_stability(td_sim *s)
 static int first_outside(const td_sim *s, const double *y, double *rad)
 {
     int k;
-    for (k = 0; k < s->nr; k++) {
+    for (k = 0; k < s->dae.nr; k++) {
         const td_sim_retainer *r = &s->ret[k];
         double x, yy, vx, vy;
         td_sim_node_state(s, k, y, &x, &yy, &vx, &vy);
@@ -48,15 +48,15 @@ static int first_outside(const td_sim *s, const double *y, double *rad)
 static void spread_rotor_state(const td_sim *s, double *y)
 {
     int nd = s->sys->ndof, i;
-    if (s->n == nd)
+    if (s->dae.n == nd)
         return;
-    for (i = s->nw - 1; i >= 0; i--) /* back to front: the blocks only move up */
-        y[s->ow + i] = y[2 * nd + i];
+    for (i = s->dae.nw - 1; i >= 0; i--) /* back to front: the blocks only move up */
+        y[s->dae.ow + i] = y[2 * nd + i];
     for (i = nd - 1; i >= 0; i--)
-        y[s->ov + i] = y[nd + i];
-    for (i = nd; i < s->ov; i++) /* the races' q, and the gap the rotor's v left */
-        y[s->oq + i] = 0.0;
-    for (i = s->ov + nd; i < s->ow; i++)
+        y[s->dae.ov + i] = y[nd + i];
+    for (i = nd; i < s->dae.ov; i++) /* the races' q, and the gap the rotor's v left */
+        y[s->dae.oq + i] = 0.0;
+    for (i = s->dae.ov + nd; i < s->dae.ow; i++)
         y[i] = 0.0;
 }
 
@@ -66,8 +66,8 @@ static double orbit_phase_time(const td_sim *s)
 {
     double angle;
     if (s->spin < 0 || !(s->omega > 0.0))
-        return s->t;
-    td_model_speed_at(s->model, s->t, NULL, &angle);
+        return s->dae.t;
+    td_model_speed_at(s->model, s->dae.t, NULL, &angle);
     return angle / s->omega;
 }
 
@@ -92,10 +92,10 @@ static td_status orbit_start(td_sim *s, double *y, td_error *err)
         return TD_OK;
     }
     td_model_gravity(s->model, &gx, &gy);
-    st = td_modal_start_state(s->sys, s->omega, s->unb, s->nu, gx != 0.0 || gy != 0.0, orbit_phase_time(s), y + s->oq,
-                              &merr);
+    st = td_modal_start_state(s->sys, s->omega, s->unb, s->nu, gx != 0.0 || gy != 0.0, orbit_phase_time(s),
+                              y + s->dae.oq, &merr);
     if (st == TD_ERR_NUMERIC) { /* no steady state: nothing holds the rotor against gravity, a resonance */
-        N_VConst(0.0, s->y);
+        N_VConst(0.0, s->dae.y);
         if (strict)
             return td_error_set(err, TD_ERR_INVALID,
                                 "start = \"orbit\": %s, so there is no steady orbit; use "
@@ -113,26 +113,26 @@ static td_status orbit_start(td_sim *s, double *y, td_error *err)
     snprintf(s->start.reason, sizeof s->start.reason,
              "the steady orbit lies outside the clearance of retainer %d (r = %.6g m > c = %.6g m)", k, rad,
              s->ret[k].r.clearance);
-    N_VConst(0.0, s->y);
+    N_VConst(0.0, s->dae.y);
     s->start.used = TD_START_REST;
     return TD_OK;
 }
 
 td_status td_sim_start_state(td_sim *s, td_error *err)
 {
-    double *y = N_VGetArrayPointer(s->y);
+    double *y = N_VGetArrayPointer(s->dae.y);
     int *touching = s->touching;
     int k;
     td_status st;
-    N_VConst(0.0, s->y);
-    N_VConst(0.0, s->yp);
+    N_VConst(0.0, s->dae.y);
+    N_VConst(0.0, s->dae.yp);
     s->start.requested = s->opt.start;
     s->start.used = TD_START_REST;
     s->start.reason[0] = '\0';
     if (s->opt.start != TD_START_REST && (st = orbit_start(s, y, err)) != TD_OK)
         return st;
     td_sim_races_start(s, y);
-    for (k = 0; k < s->nr; k++) {
+    for (k = 0; k < s->dae.nr; k++) {
         td_sim_retainer *r = &s->ret[k];
         double x, yy, vx, vy, rad, c = r->r.clearance;
         td_sim_node_state(s, k, y, &x, &yy, &vx, &vy);

@@ -25,8 +25,8 @@ int td_sim_races_retolerance(td_sim *s)
 {
     double *at = N_VGetArrayPointer(s->solver.atol);
     int k, changed = 0;
-    for (k = 0; k < s->nr; k++) {
-        int i = s->ov + s->ret[k].rs;
+    for (k = 0; k < s->dae.nr; k++) {
+        int i = s->dae.ov + s->ret[k].rs;
         double want;
         if (s->ret[k].rs < 0)
             continue;
@@ -60,17 +60,18 @@ static void race_tolerances(td_sim *s, double *at, double *id)
 {
     double atol = s->opt.solver.atol;
     int k, i;
-    for (k = 0; k < s->nr; k++) {
+    for (k = 0; k < s->dae.nr; k++) {
         const td_sim_retainer *r = &s->ret[k];
         int dofs[3] = {r->rx, r->ry, r->rs};
         for (i = 0; i < 3; i++) {
             double scale = i == 2 ? 1.0 / r->r.bore_radius : 1.0;
             if (dofs[i] < 0)
                 continue;
-            at[s->oq + dofs[i]] = atol * scale;
-            at[s->ov + dofs[i]] = i == 2 ? td_sim_race_speed_atol(s, k)
-                                         : atol * fmax(s->freq_scale, sqrt(r->r.race.mount_stiffness / r->r.race.mass));
-            id[s->oq + dofs[i]] = id[s->ov + dofs[i]] = 1.0;
+            at[s->dae.oq + dofs[i]] = atol * scale;
+            at[s->dae.ov + dofs[i]] =
+                i == 2 ? td_sim_race_speed_atol(s, k)
+                       : atol * fmax(s->freq_scale, sqrt(r->r.race.mount_stiffness / r->r.race.mass));
+            id[s->dae.oq + dofs[i]] = id[s->dae.ov + dofs[i]] = 1.0;
         }
     }
 }
@@ -84,11 +85,11 @@ static void spin_tolerances(const td_sim *s, double *at, double *id)
     int k;
     if (s->spin < 0)
         return;
-    for (k = 0; k < s->nr; k++)
+    for (k = 0; k < s->dae.nr; k++)
         c = fmin(c, s->ret[k].r.clearance);
-    at[s->oq + s->spin] = s->opt.solver.atol / c;
-    at[s->ov + s->spin] = s->opt.solver.atol / c * s->freq_scale;
-    id[s->oq + s->spin] = id[s->ov + s->spin] = s->spin_free ? 1.0 : 0.0; /* a ramp's are algebraic */
+    at[s->dae.oq + s->spin] = s->opt.solver.atol / c;
+    at[s->dae.ov + s->spin] = s->opt.solver.atol / c * s->freq_scale;
+    id[s->dae.oq + s->spin] = id[s->dae.ov + s->spin] = s->spin_free ? 1.0 : 0.0; /* a ramp's are algebraic */
 }
 
 void td_sim_set_tolerances(td_sim *s)
@@ -113,34 +114,34 @@ void td_sim_set_tolerances(td_sim *s)
             if (cnt > 0 && len > 0.0)
                 scale = cnt / len;
         }
-        at[s->oq + i] = atol * scale;
-        at[s->ov + i] = atol * scale * s->freq_max;
-        id[s->oq + i] = id[s->ov + i] = 1.0;
+        at[s->dae.oq + i] = atol * scale;
+        at[s->dae.ov + i] = atol * scale * s->freq_max;
+        id[s->dae.oq + i] = id[s->dae.ov + i] = 1.0;
     }
     for (i = 0; i < s->sys->n_amb_axes; i++) {
         const td_amb_axis *a = &s->sys->amb_axes[i];
         double kc = fabs(s->amb_coef[i].cmd_x);
         if (a->state >= 0) {
-            at[s->ow + a->state] = atol * (kc > 1.0 ? kc : 1.0);
-            id[s->ow + a->state] = 1.0;
+            at[s->dae.ow + a->state] = atol * (kc > 1.0 ? kc : 1.0);
+            id[s->dae.ow + a->state] = 1.0;
         }
         if (a->integral >= 0) {
             /* e (m s) moves the force by ki kint e as xs does by ki kp xs: an error of e worth the
              * displacement tolerance in force, or the displacement tolerance over a bearing period */
             double ke = fabs(s->amb_coef[i].cmd_e);
-            at[s->ow + a->integral] = kc > 0.0 ? atol * kc / ke : atol / s->freq_scale;
-            id[s->ow + a->integral] = 1.0;
+            at[s->dae.ow + a->integral] = kc > 0.0 ? atol * kc / ke : atol / s->freq_scale;
+            id[s->dae.ow + a->integral] = 1.0;
         }
     }
     race_tolerances(s, at, id);
     spin_tolerances(s, at, id);
-    for (i = 0; i < s->ns; i++) { /* F_t: a force, algebraic like lambda */
-        at[s->of + i] = atol * s->stiff_scale;
-        id[s->of + i] = 0.0;
+    for (i = 0; i < s->dae.ns; i++) { /* F_t: a force, algebraic like lambda */
+        at[s->dae.of + i] = atol * s->stiff_scale;
+        id[s->dae.of + i] = 0.0;
     }
-    for (i = 0; i < s->nr; i++) {
-        at[s->ol + i] = atol * s->stiff_scale;
-        at[s->ou + i] = atol * s->freq_scale;
-        id[s->ol + i] = id[s->ou + i] = 0.0;
+    for (i = 0; i < s->dae.nr; i++) {
+        at[s->dae.ol + i] = atol * s->stiff_scale;
+        at[s->dae.ou + i] = atol * s->freq_scale;
+        id[s->dae.ol + i] = id[s->dae.ou + i] = 0.0;
     }
 }

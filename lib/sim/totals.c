@@ -40,8 +40,8 @@ static double housing_force(const td_sim *s, int k, const double *y)
     const td_sim_retainer *r = &s->ret[k];
     double n, f;
     if (r->rx >= 0) {
-        double fx = r->r.race.mount_stiffness * y[s->oq + r->rx] + r->r.race.mount_damping * y[s->ov + r->rx];
-        double fy = r->r.race.mount_stiffness * y[s->oq + r->ry] + r->r.race.mount_damping * y[s->ov + r->ry];
+        double fx = r->r.race.mount_stiffness * y[s->dae.oq + r->rx] + r->r.race.mount_damping * y[s->dae.ov + r->rx];
+        double fy = r->r.race.mount_stiffness * y[s->dae.oq + r->ry] + r->r.race.mount_damping * y[s->dae.ov + r->ry];
         return hypot(fx, fy);
     }
     if (r->mode == TD_RMODE_FREE && !(r->compliant && td_sim_penalty_force(s, k, y, NULL, NULL) > 0.0))
@@ -75,10 +75,10 @@ static void track_interval(td_sim *s, int k)
 
 void td_sim_totals_point(td_sim *s, double t, int restart)
 {
-    const double *y = N_VGetArrayPointer(s->y);
+    const double *y = N_VGetArrayPointer(s->dae.y);
     double dt = restart ? 0.0 : t - s->monitor.totals_t;
     int k;
-    for (k = 0; k < s->nr; k++) {
+    for (k = 0; k < s->dae.nr; k++) {
         td_sim_totals *tk = &s->monitor.totals[k];
         integrands now = integrands_at(s, k, y);
         double hf = housing_force(s, k, y);
@@ -115,16 +115,16 @@ void td_sim_totals_impact(td_sim *s, int k, double impulse, int bounced)
         s->monitor.totals[k].t.touch_and_go++;
 }
 
-/* The totals of retainer k at s->t when the last point lies beyond it (an output inside the
- * integrator's last step): the trapezoid from s->t to that point taken back. */
+/* The totals of retainer k at s->dae.t when the last point lies beyond it (an output inside the
+ * integrator's last step): the trapezoid from s->dae.t to that point taken back. */
 static void back_to_now(const td_sim *s, int k, td_retainer_totals *t)
 {
     const td_sim_totals *tk = &s->monitor.totals[k];
-    double dt = s->monitor.totals_t - s->t;
+    double dt = s->monitor.totals_t - s->dae.t;
     integrands now;
     if (!(dt > 0.0))
         return;
-    now = integrands_at(s, k, N_VGetArrayPointer(s->y));
+    now = integrands_at(s, k, N_VGetArrayPointer(s->dae.y));
     t->impulse -= 0.5 * dt * (tk->prev.n + now.n);
     t->normal_force_sq -= 0.5 * dt * (tk->prev.n2 + now.n2);
     t->friction_work -= 0.5 * dt * (tk->prev.power + now.power);
@@ -138,11 +138,11 @@ static void back_to_now(const td_sim *s, int k, td_retainer_totals *t)
 void td_sim_totals_rewind(td_sim *s)
 {
     int k;
-    if (!(s->monitor.totals_t > s->t))
+    if (!(s->monitor.totals_t > s->dae.t))
         return;
-    for (k = 0; k < s->nr; k++) {
+    for (k = 0; k < s->dae.nr; k++) {
         td_sim_totals *tk = &s->monitor.totals[k];
-        integrands now = integrands_at(s, k, N_VGetArrayPointer(s->y));
+        integrands now = integrands_at(s, k, N_VGetArrayPointer(s->dae.y));
         back_to_now(s, k, &tk->t);
         tk->prev.n = now.n;
         tk->prev.n2 = now.n2;
@@ -150,7 +150,7 @@ void td_sim_totals_rewind(td_sim *s)
         tk->prev.whirl_rate = now.whirl_rate;
     }
     td_sim_energy_rewind(s);
-    s->monitor.totals_t = s->t;
+    s->monitor.totals_t = s->dae.t;
 }
 
 void td_sim_totals_get(const td_sim *s, int k, td_retainer_totals *out)
