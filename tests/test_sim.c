@@ -152,10 +152,10 @@ static void test_jacobian_free_and_amb_modes(void **state)
     td_sim *s = small_sim(TD_CONTACT_CONSTRAINT, TD_DAMPING_NONE, TD_LINSOL_KLU);
     (void)state;
     check_jacobian(s, 3e-4, "free, PD");
-    s->amb_mode[0] = TD_AMB_EXTERNAL;
-    s->amb_control[0] = 123.0;
-    s->amb_control[1] = -45.0;
-    s->amb_mode[1] = TD_AMB_OFF;
+    s->machine.amb_mode[0] = TD_AMB_EXTERNAL;
+    s->machine.amb_control[0] = 123.0;
+    s->machine.amb_control[1] = -45.0;
+    s->machine.amb_mode[1] = TD_AMB_OFF;
     check_jacobian(s, 3e-4, "free, external/off AMBs");
     td_sim_free(&s);
 }
@@ -811,8 +811,8 @@ static void test_no_progress_fails(void **state)
     assert_null(s);
     assert_int_equal(td_sim_create(td_case_model(c), td_case_sim_options(c), &s, &err), TD_OK);
     s->opt.solver.atol *= scale; /* what an atol of 1e6 m sets (sim.c, set_tolerances and the onset roots) */
-    s->constraint_tol *= scale;
-    s->rearm_eps *= scale;
+    s->machine.constraint_tol *= scale;
+    s->machine.rearm_eps *= scale;
     N_VScale(scale, s->solver.atol, s->solver.atol);
     while ((r = td_sim_step(s, 2.0, &t, &err)) == TD_EVENT)
         ;

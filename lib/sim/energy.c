@@ -81,13 +81,13 @@ static double powers(td_sim *s, double t, const double *y, double pw[5])
         double loss;
         held += contact_spring(s, k, y, &loss);
         pw[3] += loss;
-        if (s->ret[k].mode != TD_RMODE_FREE && !s->spin_free) /* the drive holds the speed against it */
+        if (s->ret[k].mode != TD_RMODE_FREE && !s->machine.spin_free) /* the drive holds the speed against it */
             pw[1] += td_sim_friction_force(s, k, y) * s->ret[k].r.shaft_radius * td_sim_rotor_speed(s, y);
         if (s->ret[k].rs >= 0)
             pw[4] += td_sim_race_drag(s, k, y, NULL) * v[s->ret[k].rs];
     }
-    if (s->spin_free)
-        pw[4] += td_sim_spin_drag(s, y, NULL) * v[s->spin];
+    if (s->machine.spin_free)
+        pw[4] += td_sim_spin_drag(s, y, NULL) * v[s->machine.spin];
     return held;
 }
 

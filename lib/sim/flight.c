@@ -12,7 +12,7 @@
 int td_sim_flight_eligible(const td_sim *s)
 {
     int k;
-    if (!s->opt.solver.free_flight || s->opt.energy || s->spin >= 0 || td_model_speed_varies(s->model))
+    if (!s->opt.solver.free_flight || s->opt.energy || s->machine.spin >= 0 || td_model_speed_varies(s->model))
         return 0;
     for (k = 0; k < s->sys->n_amb_axes; k++)
         if (s->sys->amb_axes[k].saturation)
@@ -64,7 +64,7 @@ static void amb_forces(td_sim *s, td_sim_flight *f, double t, double *fa, double
         fa[k] = v.v;
         if (b2)
             b2[k] = v.b2;
-        if (record && s->amb_mode[s->sys->amb_axes[k].amb] != TD_AMB_OFF)
+        if (record && s->machine.amb_mode[s->sys->amb_axes[k].amb] != TD_AMB_OFF)
             td_sim_monitor_amb_load(s, k, v.v, t);
     }
 }
@@ -78,7 +78,7 @@ static void amb_peaks(td_sim *s, td_sim_flight *f, double t, double h, const dou
     for (k = 0; k < s->sys->n_amb_axes; k++) {
         const td_amb_axis *a = &s->sys->amb_axes[k];
         double peak = s->monitor.stats.peak_amb_load * a->capacity * (1.0 + FLIGHT_PEAK_RTOL);
-        if (s->amb_mode[a->amb] == TD_AMB_OFF || fmax(fabs(fa[k]), fabs(fb[k])) + 0.125 * b2[k] * h * h <= peak)
+        if (s->machine.amb_mode[a->amb] == TD_AMB_OFF || fmax(fabs(fa[k]), fabs(fb[k])) + 0.125 * b2[k] * h * h <= peak)
             continue;
         amb_peak_search(s, f, k, t, h, fa[k], fb[k], b2[k], 0);
     }

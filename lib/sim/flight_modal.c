@@ -18,9 +18,9 @@
 static int machine_key(const td_sim *s, double *key)
 {
     int a, n = 0, na = td_model_amb_count(s->model);
-    key[n++] = s->omega;
+    key[n++] = s->machine.omega;
     for (a = 0; a < na; a++)
-        key[n++] = (double)s->amb_mode[a];
+        key[n++] = (double)s->machine.amb_mode[a];
     return n;
 }
 
@@ -28,14 +28,14 @@ static int machine_key(const td_sim *s, double *key)
 static int forcing_key(const td_sim *s, double *key)
 {
     int i, n = 0, na = td_model_amb_count(s->model);
-    key[n++] = s->spin_ref;
-    key[n++] = s->t_spin_ref;
-    for (i = 0; i < s->nu; i++) {
-        key[n++] = s->unb[i].magnitude;
-        key[n++] = s->unb[i].phase;
+    key[n++] = s->machine.spin_ref;
+    key[n++] = s->machine.t_spin_ref;
+    for (i = 0; i < s->machine.nu; i++) {
+        key[n++] = s->machine.unb[i].magnitude;
+        key[n++] = s->machine.unb[i].phase;
     }
     for (i = 0; i < 2 * na; i++)
-        key[n++] = s->amb_control[i];
+        key[n++] = s->machine.amb_control[i];
     return n;
 }
 
@@ -275,7 +275,7 @@ static int build_forcing(const td_sim *s, td_sim_flight *f)
 {
     int j;
     f->tf = s->dae.t;
-    f->omega = s->omega;
+    f->omega = s->machine.omega;
     if (!probe_forcing(s, f))
         return 0;
     for (j = 0; j < f->nz; j++) {
@@ -581,7 +581,7 @@ static int flight_alloc(td_sim *s)
     s->flight = f;
     f->nz = (int)nz;
     f->nobs = 2 * s->dae.nr + s->sys->n_amb_axes;
-    nk = (size_t)(3 + 2 * s->nu + 3 * td_model_amb_count(s->model));
+    nk = (size_t)(3 + 2 * s->machine.nu + 3 * td_model_amb_count(s->model));
     f->machine_key = calloc(nk, sizeof(double));
     f->forcing_key = calloc(nk, sizeof(double));
     f->key_work = calloc(nk, sizeof(double));

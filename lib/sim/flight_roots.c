@@ -124,8 +124,8 @@ static void retainer_roots(const td_sim *s, td_sim_flight *f, int k, double t, d
     double p = hypot(x.b0, y.b0), v = hypot(x.b1, y.b1), a = hypot(x.b2, y.b2);
     double bound = 2.0 * (v * v + p * a);
     /* the radii of td_sim_roots' functions: gap + off = 0 (contact), gap - eps = 0 (rearm) */
-    double contact2 = c * c + (r->armed ? 0.0 : 2.0 * c * s->rearm_eps);
-    double rearm2 = c * c - 2.0 * c * s->rearm_eps;
+    double contact2 = c * c + (r->armed ? 0.0 : 2.0 * c * s->machine.rearm_eps);
+    double rearm2 = c * c - 2.0 * c * s->machine.rearm_eps;
     tau[0] = safe_step(contact2 - r2, -dr2, bound);
     hit[0] = tau[0] < FLIGHT_ROOT_TOL && dr2 > 0.0 &&
              (surely_crossed(contact2 - r2, dr2, bound) || crosses(f, k, t, contact2, 1.0, (contact2 - r2) / dr2));

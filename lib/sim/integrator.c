@@ -79,7 +79,7 @@ static N_Vector floored_multipliers(td_sim *s, N_Vector del, N_Vector ewt, doubl
     int k;
     for (k = 0; k < s->dae.nr; k++) {
         double mu_floor = MULTIPLIER_FLOOR * DBL_EPSILON * s->ret[k].r.clearance * cj;
-        double lambda_floor = mu_floor * s->stiff_scale / s->freq_scale;
+        double lambda_floor = mu_floor * s->machine.stiff_scale / s->machine.freq_scale;
         double fl = 1.0 / (lambda_floor * w[s->dae.ol + k]), fu = 1.0 / (mu_floor * w[s->dae.ou + k]);
         if (fl >= 1.0 && fu >= 1.0)
             continue;
@@ -130,7 +130,7 @@ static int conv_test_cb(SUNNonlinearSolver nls, N_Vector ycor, N_Vector del, sun
             x -= pred[s->dae.oq + r->rx] + cor[s->dae.oq + r->rx];
             y -= pred[s->dae.oq + r->ry] + cor[s->dae.oq + r->ry];
         }
-        if (fabs(td_contact_constraint(x, y, r->r.clearance)) > s->constraint_tol)
+        if (fabs(td_contact_constraint(x, y, r->r.clearance)) > s->machine.constraint_tol)
             return SUN_NLS_CONTINUE;
     }
     return flag;

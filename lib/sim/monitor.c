@@ -79,7 +79,7 @@ static void monitor_ambs(td_sim *s, double t, const double *y)
 {
     int k;
     for (k = 0; k < s->sys->n_amb_axes; k++)
-        if (s->amb_mode[s->sys->amb_axes[k].amb] != TD_AMB_OFF)
+        if (s->machine.amb_mode[s->sys->amb_axes[k].amb] != TD_AMB_OFF)
             td_sim_monitor_amb_load(s, k, td_sim_amb_axis_force(s, k, y), t);
 }
 

@@ -152,8 +152,8 @@ void td_sim_roll_row(const td_sim *s, int k, const double *y, td_contact_row *ro
         row->dof[row->count] = r->rs;
         row->j[row->count++] = -r->r.bore_radius;
     }
-    if (s->spin >= 0) { /* eq. (16): d v_s / d Omega = R_s */
-        row->dof[row->count] = s->spin;
+    if (s->machine.spin >= 0) { /* eq. (16): d v_s / d Omega = R_s */
+        row->dof[row->count] = s->machine.spin;
         row->j[row->count++] = r->r.shaft_radius;
     }
 }
@@ -173,8 +173,8 @@ void td_sim_roll_column(const td_sim *s, int k, const double *y, double *col)
     }
     if (r->rs >= 0)
         col[r->rs] = -r->r.bore_radius;
-    if (s->spin_free) /* F_t brakes a free spin: torque -R_s F_t */
-        col[s->spin] = r->r.shaft_radius;
+    if (s->machine.spin_free) /* F_t brakes a free spin: torque -R_s F_t */
+        col[s->machine.spin] = r->r.shaft_radius;
 }
 
 double td_sim_race_drag(const td_sim *s, int k, const double *y, double *dT)
@@ -227,8 +227,8 @@ void td_sim_contact_column(const td_sim *s, int k, const double *y, double *col)
     }
     if (r->rs >= 0) /* the friction force s mu lambda turns the race: torque R_b s mu lambda */
         col[r->rs] = -r->r.bore_radius * sm;
-    if (s->spin_free) /* and brakes a free rotor: torque -R_s s mu lambda */
-        col[s->spin] = r->r.shaft_radius * sm;
+    if (s->machine.spin_free) /* and brakes a free rotor: torque -R_s s mu lambda */
+        col[s->machine.spin] = r->r.shaft_radius * sm;
 }
 
 void td_sim_project_onto_circle(const td_sim *s, int k, double *y)
@@ -327,7 +327,7 @@ void td_sim_release(td_sim *s, int k, double *y)
  */
 static double penalty_band(const td_sim *s)
 {
-    return s->constraint_tol;
+    return s->machine.constraint_tol;
 }
 
 td_rmode td_sim_penalty_mode_wanted(const td_sim *s, int k, const double *y, td_rmode in_band)

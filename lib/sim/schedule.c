@@ -9,7 +9,7 @@
 
 void td_sim_amb_mode_set(td_sim *s, int amb, td_amb_mode mode)
 {
-    s->amb_mode[amb] = mode;
+    s->machine.amb_mode[amb] = mode;
     td_system_set_amb_off(s->sys, amb, mode == TD_AMB_OFF);
 }
 
@@ -18,9 +18,9 @@ static void apply_change(td_sim *s, const td_change *c)
 {
     switch (c->kind) {
     case TD_CHANGE_UNBALANCE:
-        if (c->index >= 0 && c->index < s->nu) {
-            s->unb[c->index].magnitude = c->magnitude;
-            s->unb[c->index].phase = c->phase;
+        if (c->index >= 0 && c->index < s->machine.nu) {
+            s->machine.unb[c->index].magnitude = c->magnitude;
+            s->machine.unb[c->index].phase = c->phase;
         }
         break;
     case TD_CHANGE_AMB_OFF:
@@ -43,17 +43,17 @@ static double due_tolerance(double t)
 td_status td_sim_apply_due_changes(td_sim *s)
 {
     int count = td_model_change_count(s->model);
-    while (s->next_change < count) {
+    while (s->machine.next_change < count) {
         td_change c;
         td_event ev;
-        td_model_get_change(s->model, s->next_change, &c);
+        td_model_get_change(s->model, s->machine.next_change, &c);
         if (c.time > s->dae.t + due_tolerance(s->dae.t))
             break;
         apply_change(s, &c);
         ev = td_sim_event_at(s, TD_EVENT_SCHEDULE, -1);
-        ev.change = td_model_change_entry(s->model, s->next_change); /* as written, not in time order */
+        ev.change = td_model_change_entry(s->model, s->machine.next_change); /* as written, not in time order */
         td_sim_queue_event(s, &ev);
-        s->next_change++;
+        s->machine.next_change++;
     }
     return TD_OK;
 }
@@ -61,13 +61,13 @@ td_status td_sim_apply_due_changes(td_sim *s)
 void td_sim_apply_past_changes(td_sim *s)
 {
     int count = td_model_change_count(s->model);
-    while (s->next_change < count) {
+    while (s->machine.next_change < count) {
         td_change c;
-        td_model_get_change(s->model, s->next_change, &c);
+        td_model_get_change(s->model, s->machine.next_change, &c);
         if (c.time > s->dae.t + due_tolerance(s->dae.t))
             break;
         apply_change(s, &c);
-        s->next_change++;
+        s->machine.next_change++;
     }
 }
 
@@ -77,9 +77,9 @@ double td_sim_next_stop(const td_sim *s)
 {
     double stop = INFINITY;
     int i;
-    if (s->next_change < td_model_change_count(s->model)) {
+    if (s->machine.next_change < td_model_change_count(s->model)) {
         td_change c;
-        td_model_get_change(s->model, s->next_change, &c);
+        td_model_get_change(s->model, s->machine.next_change, &c);
         stop = c.time;
     }
     for (i = 0; i < td_model_speed_point_count(s->model); i++) {

@@ -99,8 +99,8 @@ static int state_at(td_sim *s, source from, double t)
 /* The spin angle at t on the stretch's interpolant; NAN if the state cannot be had. */
 static double angle_at(td_sim *s, source from, double t)
 {
-    if (s->spin < 0) /* prescribed: phi(t) in closed form, no state needed */
-        return s->spin_ref + s->omega * (t - s->t_spin_ref);
+    if (s->machine.spin < 0) /* prescribed: phi(t) in closed form, no state needed */
+        return s->machine.spin_ref + s->machine.omega * (t - s->machine.t_spin_ref);
     return state_at(s, from, t) ? td_sim_rotor_angle(s, t, s->section->y) : NAN;
 }
 
@@ -109,8 +109,8 @@ static double angle_at(td_sim *s, source from, double t)
 static double crossing_time(td_sim *s, source from, double a, double b, double phi_a, double phi_b, double target)
 {
     int i;
-    if (s->spin < 0)
-        return s->t_spin_ref + (target - s->spin_ref) / s->omega;
+    if (s->machine.spin < 0)
+        return s->machine.t_spin_ref + (target - s->machine.spin_ref) / s->machine.omega;
     for (i = 0; i < SECTION_MAX_ITER && b - a > 4.0 * DBL_EPSILON * fmax(fabs(b), 1.0); i++) {
         double t = a + (b - a) * (target - phi_a) / (phi_b - phi_a), mid = 0.5 * (a + b), phi;
         /* a secant point too near an end would shrink the bracket slowly: bisect instead */

@@ -78,11 +78,11 @@ static td_status alloc_arrays(td_sim *s, td_error *err)
 {
     int na = td_model_amb_count(s->model), ok, i;
     size_t nr = (size_t)(s->dae.nr > 0 ? s->dae.nr : 1);
-    s->nu = td_model_unbalance_count(s->model);
-    s->unb = calloc((size_t)(s->nu > 0 ? s->nu : 1), sizeof *s->unb);
-    s->amb_mode = calloc((size_t)(na > 0 ? na : 1), sizeof *s->amb_mode);
-    s->amb_control = calloc((size_t)(2 * na + 2), sizeof(double));
-    s->amb_coef = calloc((size_t)(s->sys->n_amb_axes + 1), sizeof *s->amb_coef);
+    s->machine.nu = td_model_unbalance_count(s->model);
+    s->machine.unb = calloc((size_t)(s->machine.nu > 0 ? s->machine.nu : 1), sizeof *s->machine.unb);
+    s->machine.amb_mode = calloc((size_t)(na > 0 ? na : 1), sizeof *s->machine.amb_mode);
+    s->machine.amb_control = calloc((size_t)(2 * na + 2), sizeof(double));
+    s->machine.amb_coef = calloc((size_t)(s->sys->n_amb_axes + 1), sizeof *s->machine.amb_coef);
     s->monitor.q_cap = 4 * s->dae.nr + td_model_change_count(s->model) + 4;
     s->monitor.queue = calloc((size_t)s->monitor.q_cap, sizeof *s->monitor.queue);
     ok = alloc_work(s, nr);
@@ -95,8 +95,8 @@ static td_status alloc_arrays(td_sim *s, td_error *err)
     s->dae.rootsfound = calloc(TD_ROOTS_PER_RETAINER * nr + (size_t)s->dae.n_sat_roots, sizeof(int));
     s->loop.ysave = calloc((size_t)s->dae.neq, sizeof(double));
     s->loop.ypsave = calloc((size_t)s->dae.neq, sizeof(double));
-    if (!ok || !s->unb || !s->amb_mode || !s->amb_control || !s->amb_coef || !s->monitor.queue || !s->dae.rootdir ||
-        !s->dae.rootsfound || !s->loop.ysave || !s->loop.ypsave)
+    if (!ok || !s->machine.unb || !s->machine.amb_mode || !s->machine.amb_control || !s->machine.amb_coef ||
+        !s->monitor.queue || !s->dae.rootdir || !s->dae.rootsfound || !s->loop.ysave || !s->loop.ypsave)
         return td_error_set(err, TD_ERR_NOMEM, "out of memory creating a simulation");
     return TD_OK;
 }
@@ -105,15 +105,15 @@ static td_status alloc_arrays(td_sim *s, td_error *err)
 static void init_machine(td_sim *s)
 {
     int i, na = td_model_amb_count(s->model);
-    s->omega = td_model_speed_at(s->model, s->dae.t, NULL, NULL);
-    for (i = 0; i < s->nu; i++)
-        td_model_get_unbalance(s->model, i, &s->unb[i]);
+    s->machine.omega = td_model_speed_at(s->model, s->dae.t, NULL, NULL);
+    for (i = 0; i < s->machine.nu; i++)
+        td_model_get_unbalance(s->model, i, &s->machine.unb[i]);
     for (i = 0; i < na; i++)
         td_sim_amb_mode_set(s, i, TD_AMB_PD);
     /* the AMB laws are linear (model/amb.c): unit probes give their coefficients exactly */
     for (i = 0; i < s->sys->n_amb_axes; i++) {
         const td_amb_axis *a = &s->sys->amb_axes[i];
-        td_sim_amb_coef *c = &s->amb_coef[i];
+        td_sim_amb_coef *c = &s->machine.amb_coef[i];
         c->cmd_x = td_amb_axis_command(a, 1.0, 0.0, 0.0) - td_amb_axis_command(a, 0.0, 0.0, 0.0);
         c->cmd_v = td_amb_axis_command(a, 0.0, 1.0, 0.0) - td_amb_axis_command(a, 0.0, 0.0, 0.0);
         c->cmd_e = td_amb_axis_command(a, 0.0, 0.0, 1.0) - td_amb_axis_command(a, 0.0, 0.0, 0.0);
@@ -170,7 +170,7 @@ static void set_scales(td_sim *s)
     int i;
     for (i = 0; i < s->sys->n_amb_axes; i++) {
         const td_amb_axis *a = &s->sys->amb_axes[i];
-        double ka = fabs(a->ks) + fabs(s->amb_coef[i].cmd_x);
+        double ka = fabs(a->ks) + fabs(s->machine.amb_coef[i].cmd_x);
         if (ka > k)
             k = ka;
     }
@@ -184,35 +184,35 @@ static void set_scales(td_sim *s)
     }
     if (!(k > 0.0))
         k = 1.0;
-    s->stiff_scale = k;
-    s->freq_scale = mass > 0.0 ? sqrt(k / mass) : 1.0;
-    if (fabs(s->omega) > s->freq_scale)
-        s->freq_scale = fabs(s->omega);
-    if (s->freq_scale < 1.0)
-        s->freq_scale = 1.0;
+    s->machine.stiff_scale = k;
+    s->machine.freq_scale = mass > 0.0 ? sqrt(k / mass) : 1.0;
+    if (fabs(s->machine.omega) > s->machine.freq_scale)
+        s->machine.freq_scale = fabs(s->machine.omega);
+    if (s->machine.freq_scale < 1.0)
+        s->machine.freq_scale = 1.0;
     for (i = 0; i < s->dae.nr; i++)
         if (s->ret[i].r.clearance < cmin)
             cmin = s->ret[i].r.clearance;
     if (s->dae.nr == 0)
         cmin = s->opt.solver.atol * 1e3;
-    s->freq_max = highest_frequency(s);
-    if (s->freq_max < s->freq_scale)
-        s->freq_max = s->freq_scale;
+    s->machine.freq_max = highest_frequency(s);
+    if (s->machine.freq_max < s->machine.freq_scale)
+        s->machine.freq_max = s->machine.freq_scale;
     /* contact constraints hold to a tenth of the displacement tolerance at every step */
-    s->constraint_tol = 0.1 * s->opt.solver.atol;
+    s->machine.constraint_tol = 0.1 * s->opt.solver.atol;
     /* hysteresis of the onset root after a release or a bounce: a gap or penetration of a tenth of
      * the displacement tolerance (the accuracy the constraint is held to) is not a new contact; far
      * above rounding (1e-19 m), so a rotor grazing the circle does not chatter */
-    s->rearm_eps = s->opt.solver.atol;
+    s->machine.rearm_eps = s->opt.solver.atol;
     /* impacts slower than 1e-3 of the typical impact speed c * freq_scale become plastic */
-    s->rebound_min = 1e-3 * cmin * s->freq_scale;
+    s->machine.rebound_min = 1e-3 * cmin * s->machine.freq_scale;
 }
 
 /* Step bound: 1/20 of the shortest period among the spin and the bearing frequency, so that a
  * gap cannot close and open again (two roots) inside one step unnoticed. */
 double td_sim_default_max_step(const td_sim *s)
 {
-    double w = fabs(s->omega) > s->freq_scale ? fabs(s->omega) : s->freq_scale;
+    double w = fabs(s->machine.omega) > s->machine.freq_scale ? fabs(s->machine.omega) : s->machine.freq_scale;
     return 2.0 * TD_PI / w / 20.0;
 }
 
@@ -297,8 +297,8 @@ td_status td_sim_setup(const td_model *model, const td_sim_options *options, vol
     if (st == TD_OK) {
         init_machine(s);
         td_sim_apply_past_changes(s);
-        s->spin_ref = s->omega * s->dae.t;
-        s->t_spin_ref = s->dae.t;
+        s->machine.spin_ref = s->machine.omega * s->dae.t;
+        s->machine.t_spin_ref = s->dae.t;
         st = td_sim_mass_factor(s, err);
     }
     if (st == TD_OK) {
@@ -372,11 +372,11 @@ void td_sim_teardown(td_sim *s)
     free(s->dae.st_M);
     free(s->dae.st_K);
     free(s->dae.st_D);
-    free(s->unb);
-    free(s->amb_mode);
-    free(s->amb_control);
+    free(s->machine.unb);
+    free(s->machine.amb_mode);
+    free(s->machine.amb_control);
     free(s->ret);
-    free(s->amb_coef);
+    free(s->machine.amb_coef);
     free(s->monitor.queue);
     free_work(s);
     free(s->dae.rootdir);

@@ -216,12 +216,13 @@ td_status td_sim_set_unbalance(td_sim *sim, int unbalance, double magnitude, dou
     if (!sim)
         return td_error_set(err, TD_ERR_INVALID, "%s: NULL simulation", __func__);
     begin_call(sim);
-    if (unbalance < 0 || unbalance >= sim->nu || !(magnitude >= 0.0) || !isfinite(magnitude) || !isfinite(phase)) {
+    if (unbalance < 0 || unbalance >= sim->machine.nu || !(magnitude >= 0.0) || !isfinite(magnitude) ||
+        !isfinite(phase)) {
         snprintf(sim->errmsg, sizeof sim->errmsg, "td_sim_set_unbalance: invalid unbalance %d or value", unbalance);
         return failed(sim, TD_ERR_INVALID, err);
     }
-    sim->unb[unbalance].magnitude = magnitude;
-    sim->unb[unbalance].phase = phase;
+    sim->machine.unb[unbalance].magnitude = magnitude;
+    sim->machine.unb[unbalance].phase = phase;
     return reported(sim, td_sim_restart_after_change(sim), err);
 }
 
@@ -235,15 +236,15 @@ td_status td_sim_set_speed(td_sim *sim, double omega, td_error *err)
                  "td_sim_set_speed: speed must be finite and >= 0 rad/s (got %g; the spin is about +z)", omega);
         return failed(sim, TD_ERR_INVALID, err);
     }
-    if (sim->spin >= 0) {
+    if (sim->machine.spin >= 0) {
         snprintf(sim->errmsg, sizeof sim->errmsg, "td_sim_set_speed: the model's speed is %s, not set by the caller",
-                 sim->spin_free ? "free (spin.free)" : "a ramp (speed_ramp)");
+                 sim->machine.spin_free ? "free (spin.free)" : "a ramp (speed_ramp)");
         return failed(sim, TD_ERR_INVALID, err);
     }
     /* keep the spin angle continuous: the unbalance force turns on from where it is */
-    sim->spin_ref = td_sim_spin_angle(sim, sim->dae.t);
-    sim->t_spin_ref = sim->dae.t;
-    sim->omega = omega;
+    sim->machine.spin_ref = td_sim_spin_angle(sim, sim->dae.t);
+    sim->machine.t_spin_ref = sim->dae.t;
+    sim->machine.omega = omega;
     td_sim_structural_speed(sim);
     if (sim->opt.solver.max_step <= 0.0) {
         sim->solver.hmax = td_sim_default_max_step(sim);
@@ -274,10 +275,10 @@ td_status td_sim_set_amb_control(td_sim *sim, int amb, double fx, double fy, td_
         snprintf(sim->errmsg, sizeof sim->errmsg, "td_sim_set_amb_control: invalid AMB %d or force", amb);
         return failed(sim, TD_ERR_INVALID, err);
     }
-    sim->amb_control[2 * amb] = fx;
-    sim->amb_control[2 * amb + 1] = fy;
+    sim->machine.amb_control[2 * amb] = fx;
+    sim->machine.amb_control[2 * amb + 1] = fy;
     /* the held force jumps: restart only when it acts now */
-    return sim->amb_mode[amb] == TD_AMB_EXTERNAL ? reported(sim, td_sim_restart_after_change(sim), err) : TD_OK;
+    return sim->machine.amb_mode[amb] == TD_AMB_EXTERNAL ? reported(sim, td_sim_restart_after_change(sim), err) : TD_OK;
 }
 
 const td_system *td_sim_system(const td_sim *sim)

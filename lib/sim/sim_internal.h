@@ -34,6 +34,7 @@
 #include "model/system_internal.h"
 #include "sim/dae.h"
 #include "sim/integrator.h"
+#include "sim/machine.h"
 #include "sim/monitor.h"
 #include "sim/retainer.h"
 #include "sim/stepping.h"
@@ -46,12 +47,6 @@
 #include <sundials/sundials_matrix.h>
 #include <sundials/sundials_nonlinearsolver.h>
 
-/* Linear coefficients of one AMB axis law (probed from model/amb.c, exact for the linear law). */
-typedef struct td_sim_amb_coef {
-    double cmd_x, cmd_v, cmd_e;            /* d(command)/d(xs, vs, e) */
-    double rate_x, rate_v, rate_e, rate_w; /* d(dFc/dt)/d(xs, vs, e, Fc), tau > 0 only */
-} td_sim_amb_coef;
-
 /* The closed-form free flight's decomposition, forcing and anchor (flight_internal.h). */
 typedef struct td_sim_flight td_sim_flight;
 
@@ -60,29 +55,9 @@ struct td_sim {
     const td_model *model; /* the system's copy */
     td_sim_options opt;
 
-    /* the machine as it is now (changed by the schedule and the td_sim_set_* calls) */
-    double omega; /* rad/s: the speed, or with a spin DOF the speed D = C + omega G was built at */
-    int spin;     /* the spin DOF (spin.c), -1: the speed is omega, prescribed */
-    int spin_free;
-    double spin_inertia;         /* J, kg m^2 */
-    double spin_ref, t_spin_ref; /* spin angle phi(t) = spin_ref + omega (t - t_spin_ref) */
-    int nu;
-    td_unbalance *unb;
-    td_amb_mode *amb_mode; /* per AMB */
-    double *amb_control;   /* per AMB, x and y: held control force (TD_AMB_EXTERNAL) */
-    int next_change;       /* first schedule entry not yet applied */
     td_sim_retainer *ret;
-    td_sim_amb_coef *amb_coef; /* per AMB axis */
 
-    /* scales */
-    double freq_scale;  /* rad/s, the bearing frequency or the speed: step bound, rebound speed */
-    double freq_max;    /* rad/s, estimate of the highest natural frequency: velocity tolerance */
-    double stiff_scale; /* N/m, forces ~ stiff_scale * displacements */
-    double rearm_eps;   /* m, hysteresis of the onset root (constraint model) */
-    double rebound_min; /* m/s, radial speed below which an impact with e > 0 becomes plastic */
-
-    double constraint_tol; /* m: |g| of every contact at an accepted Newton iterate */
-
+    td_sim_machine machine; /* the machine as it is now and its scales (machine.h) */
     td_sim_dae dae;         /* the unknowns, the state, the matrices, the pattern (dae.h) */
     td_sim_monitor monitor; /* statistics, events, totals, energy (monitor.h) */
     td_sim_solver solver;   /* IDA, its tolerances and counters (integrator.h) */
@@ -148,7 +123,7 @@ SUNLinearSolver td_sim_klu_create(const td_sim *s);
 /* rad/s: the free spin's constant drag is regularised over this band around standstill */
 #define TD_SIM_SPIN_BAND 1e-2
 
-/* Assign the spin DOF (after the races') when the model's speed varies; s->spin = -1 otherwise. */
+/* Assign the spin DOF (after the races') when the model's speed varies; s->machine.spin = -1 otherwise. */
 void td_sim_spin_layout(td_sim *s);
 /* The spin's diagonal entry of matrix `which` ('M': J, 'C': the free spin's viscous drag). */
 void td_sim_spin_diagonal(const td_sim *s, char which, double *d);
@@ -189,9 +164,9 @@ void td_sim_races_start(const td_sim *s, double *y);
 td_status td_sim_pattern_build(td_sim *s, td_error *err);
 /* Position of (row, col) in the pattern, -1 if absent. */
 int td_sim_pattern_find(const td_sim *s, int row, int col);
-/* Build the row-compressed M, K, D of the structural operator (s->st_*), D at s->omega. */
+/* Build the row-compressed M, K, D of the structural operator (s->st_*), D at s->machine.omega. */
 td_status td_sim_structural_build(td_sim *s, td_error *err);
-/* Recompute D = C + Omega G after a change of s->omega. */
+/* Recompute D = C + Omega G after a change of s->machine.omega. */
 void td_sim_structural_speed(td_sim *s);
 /* Factorise M (s->dae.Ms, s->dae.Mn). */
 td_status td_sim_mass_factor(td_sim *s, td_error *err);

@@ -294,10 +294,10 @@ static double free_normal_acceleration(td_sim *s, int k, const double *y, double
 static double impact_restitution(td_sim *s, int k, const double *y, double vr)
 {
     double e = s->ret[k].r.restitution, an, vmin;
-    if (!(e > 0.0) || vr < s->rebound_min)
+    if (!(e > 0.0) || vr < s->machine.rebound_min)
         return 0.0;
     an = free_normal_acceleration(s, k, y, s->minv_f);
-    vmin = an > 0.0 ? 2.0 * sqrt(2.0 * an * s->rearm_eps) : 0.0;
+    vmin = an > 0.0 ? 2.0 * sqrt(2.0 * an * s->machine.rearm_eps) : 0.0;
     return e * vr < vmin ? 0.0 : e;
 }
 

@@ -47,8 +47,8 @@ static int put_race(const td_sim *s, cs_di *T, int k)
     }
     if (r->rs >= 0)
         dofs[nd++] = r->rs;
-    if (s->spin >= 0)
-        dofs[nd++] = s->spin;
+    if (s->machine.spin >= 0)
+        dofs[nd++] = s->machine.spin;
     for (i = 0; i < nd && ok; i++) {
         int vi = s->dae.ov + dofs[i], qi = s->dae.oq + dofs[i];
         ok = put(T, vi, s->dae.ol + k) && put(T, qi, s->dae.ou + k) && put(T, s->dae.ol + k, qi) &&
@@ -67,16 +67,17 @@ static int put_race(const td_sim *s, cs_di *T, int k)
 static int put_spin(const td_sim *s, cs_di *T)
 {
     int j, p, i, ok = 1;
-    if (s->spin < 0)
+    if (s->machine.spin < 0)
         return 1;
     for (j = 0; j < s->dae.G->n && ok; j++)
         for (p = s->dae.G->p[j]; p < s->dae.G->p[j + 1] && ok; p++)
-            ok = put(T, s->dae.ov + s->dae.G->i[p], s->dae.ov + s->spin);
-    for (i = 0; i < s->nu && ok; i++) {
-        int x = s->dae.ov + td_system_node_dof(s->sys, s->unb[i].node, TD_DOF_X),
-            y = s->dae.ov + td_system_node_dof(s->sys, s->unb[i].node, TD_DOF_Y);
-        ok = put(T, x, s->dae.oq + s->spin) && put(T, y, s->dae.oq + s->spin) && put(T, x, s->dae.ov + s->spin) &&
-             put(T, y, s->dae.ov + s->spin) && put(T, s->dae.ov + s->spin, x) && put(T, s->dae.ov + s->spin, y);
+            ok = put(T, s->dae.ov + s->dae.G->i[p], s->dae.ov + s->machine.spin);
+    for (i = 0; i < s->machine.nu && ok; i++) {
+        int x = s->dae.ov + td_system_node_dof(s->sys, s->machine.unb[i].node, TD_DOF_X),
+            y = s->dae.ov + td_system_node_dof(s->sys, s->machine.unb[i].node, TD_DOF_Y);
+        ok = put(T, x, s->dae.oq + s->machine.spin) && put(T, y, s->dae.oq + s->machine.spin) &&
+             put(T, x, s->dae.ov + s->machine.spin) && put(T, y, s->dae.ov + s->machine.spin) &&
+             put(T, s->dae.ov + s->machine.spin, x) && put(T, s->dae.ov + s->machine.spin, y);
     }
     return ok;
 }
@@ -110,7 +111,7 @@ static int put_all(const td_sim *s, cs_di *T)
         ok = put_block(T, vx, vy, qx, qy) && put_block(T, vx, vy, vx, vy) && put(T, vx, lk) && put(T, vy, lk) &&
              put(T, qx, uk) && put(T, qy, uk) && put(T, lk, lk) && put(T, lk, qx) && put(T, lk, qy) && put(T, uk, uk) &&
              put(T, uk, qx) && put(T, uk, qy) && put(T, uk, vx) && put(T, uk, vy);
-        if (ok && (r->rx >= 0 || r->rs >= 0 || r->fi >= 0 || s->spin >= 0))
+        if (ok && (r->rx >= 0 || r->rs >= 0 || r->fi >= 0 || s->machine.spin >= 0))
             ok = put_race(s, T, k);
     }
     return ok && put_spin(s, T);
@@ -217,8 +218,8 @@ void td_sim_structural_speed(td_sim *s)
         return;
     memset(s->dae.st_D, 0, sizeof(double) * (size_t)(s->dae.st_nnz > 0 ? s->dae.st_nnz : 1));
     st_add(s, s->dae.C, 1.0, s->dae.st_D);
-    if (s->omega != 0.0)
-        st_add(s, s->dae.G, s->omega, s->dae.st_D);
+    if (s->machine.omega != 0.0)
+        st_add(s, s->dae.G, s->machine.omega, s->dae.st_D);
 }
 
 td_status td_sim_structural_build(td_sim *s, td_error *err)

@@ -9,7 +9,7 @@
 
 double td_sim_spin_angle(const td_sim *s, double t)
 {
-    return s->spin_ref + s->omega * (t - s->t_spin_ref);
+    return s->machine.spin_ref + s->machine.omega * (t - s->machine.t_spin_ref);
 }
 
 double td_sim_rotor_rate(const td_sim *s, double t, const double *y)
@@ -17,16 +17,16 @@ double td_sim_rotor_rate(const td_sim *s, double t, const double *y)
     td_spin sp;
     double torque;
     int k;
-    if (s->spin < 0)
+    if (s->machine.spin < 0)
         return 0.0;
     torque = td_sim_spin_torque(s, t);
-    if (!s->spin_free)
-        return torque / s->spin_inertia;
+    if (!s->machine.spin_free)
+        return torque / s->machine.spin_inertia;
     td_model_spin(s->model, &sp);
-    torque -= td_sim_spin_drag(s, y, NULL) + sp.drag_viscous * y[s->dae.ov + s->spin];
+    torque -= td_sim_spin_drag(s, y, NULL) + sp.drag_viscous * y[s->dae.ov + s->machine.spin];
     for (k = 0; k < s->dae.nr; k++) /* zero for a free retainer: no normal force */
         torque -= s->ret[k].r.shaft_radius * td_sim_friction_force(s, k, y);
-    return torque / s->spin_inertia;
+    return torque / s->machine.spin_inertia;
 }
 
 /* The integrator state e of an AMB axis (0 for a PD axis). */
@@ -47,8 +47,8 @@ static double amb_axis_command(const td_sim *s, const td_amb_axis *a, const doub
 static double amb_axis_fc(const td_sim *s, int k, const double *y)
 {
     const td_amb_axis *a = &s->sys->amb_axes[k];
-    if (s->amb_mode[a->amb] == TD_AMB_EXTERNAL)
-        return s->amb_control[2 * a->amb + a->axis];
+    if (s->machine.amb_mode[a->amb] == TD_AMB_EXTERNAL)
+        return s->machine.amb_control[2 * a->amb + a->axis];
     if (a->state >= 0)
         return y[s->dae.ow + a->state];
     return amb_axis_command(s, a, y);
@@ -57,7 +57,7 @@ static double amb_axis_fc(const td_sim *s, int k, const double *y)
 double td_sim_amb_axis_force(const td_sim *s, int k, const double *y)
 {
     const td_amb_axis *a = &s->sys->amb_axes[k];
-    int enabled = s->amb_mode[a->amb] != TD_AMB_OFF;
+    int enabled = s->machine.amb_mode[a->amb] != TD_AMB_OFF;
     return td_amb_axis_force(a, enabled, y[s->dae.oq + a->actuator_dof], amb_axis_fc(s, k, y), NULL, NULL);
 }
 
@@ -66,7 +66,7 @@ double td_sim_amb_axis_integral_rate(const td_sim *s, int k, const double *y)
     const td_amb_axis *a = &s->sys->amb_axes[k];
     if (a->integral < 0)
         return 0.0;
-    return td_amb_axis_integral_rate(a, s->amb_mode[a->amb] == TD_AMB_PD, y[s->dae.oq + a->sensor_dof],
+    return td_amb_axis_integral_rate(a, s->machine.amb_mode[a->amb] == TD_AMB_PD, y[s->dae.oq + a->sensor_dof],
                                      td_sim_amb_axis_force(s, k, y));
 }
 
@@ -98,7 +98,7 @@ static void structural(const td_sim *s, const double *q, const double *v, const 
     }
 }
 
-/* out += (Omega - omega) G v: with a spin DOF the structural operator was built at s->omega and
+/* out += (Omega - omega) G v: with a spin DOF the structural operator was built at s->machine.omega and
  * the gyroscopic term follows the speed Omega of the state (spin.c). */
 static void gyroscopic_follow(const td_sim *s, const double *y, double *out)
 {
@@ -106,7 +106,7 @@ static void gyroscopic_follow(const td_sim *s, const double *y, double *out)
     const double *v = y + s->dae.ov;
     double dw;
     int j, p;
-    if (s->spin < 0 || (dw = td_sim_rotor_speed(s, y) - s->omega) == 0.0)
+    if (s->machine.spin < 0 || (dw = td_sim_rotor_speed(s, y) - s->machine.omega) == 0.0)
         return;
     for (j = 0; j < G->n; j++)
         for (p = G->p[j]; p < G->p[j + 1]; p++)
@@ -136,8 +136,8 @@ static void penalty_forces(const td_sim *s, int k, const double *y, double sign,
     }
     if (r->rs >= 0)
         f[r->rs] += r->r.bore_radius * sm * fn;
-    if (s->spin_free)
-        f[s->spin] -= r->r.shaft_radius * sm * fn;
+    if (s->machine.spin_free)
+        f[s->machine.spin] -= r->r.shaft_radius * sm * fn;
 }
 
 /* f += sign * the applied forces: gravity, unbalance, AMBs, penalty contacts and the races'
@@ -146,15 +146,15 @@ void td_sim_external_forces(const td_sim *s, double t, const double *y, double s
 {
     const td_system *sys = s->sys;
     double w = td_sim_rotor_speed(s, y), w2 = w * w, phi = td_sim_rotor_angle(s, t, y);
-    double alpha = s->nu > 0 ? td_sim_rotor_rate(s, t, y) : 0.0; /* a free spin's sums the torques */
+    double alpha = s->machine.nu > 0 ? td_sim_rotor_rate(s, t, y) : 0.0; /* a free spin's sums the torques */
     int i, k;
     for (i = 0; i < sys->ndof; i++)
         f[i] += sign * sys->gravity_load[i];
     td_sim_races_gravity(s, f, sign);
     /* unbalance: U Omega^2 (cos, sin)(phi + phase) at its node (touchdown/model.h), and while the
      * speed changes U alpha (sin, -cos)(phi + phase) (spin.c) */
-    for (i = 0; i < s->nu; i++) {
-        const td_unbalance *u = &s->unb[i];
+    for (i = 0; i < s->machine.nu; i++) {
+        const td_unbalance *u = &s->machine.unb[i];
         double a = sign * u->magnitude * w2;
         f[td_system_node_dof(s->sys, u->node, TD_DOF_X)] += a * cos(phi + u->phase);
         f[td_system_node_dof(s->sys, u->node, TD_DOF_Y)] += a * sin(phi + u->phase);
@@ -164,8 +164,8 @@ void td_sim_external_forces(const td_sim *s, double t, const double *y, double s
             f[td_system_node_dof(s->sys, u->node, TD_DOF_Y)] -= b * cos(phi + u->phase);
         }
     }
-    if (s->spin >= 0)
-        f[s->spin] += sign * td_sim_spin_torque(s, t);
+    if (s->machine.spin >= 0)
+        f[s->machine.spin] += sign * td_sim_spin_torque(s, t);
     for (k = 0; k < sys->n_amb_axes; k++)
         f[sys->amb_axes[k].actuator_dof] += sign * td_sim_amb_axis_force(s, k, y);
 }
@@ -180,8 +180,8 @@ static void applied_forces(const td_sim *s, double t, const double *y, double si
         if (s->ret[k].rs >= 0)
             f[s->ret[k].rs] -= sign * td_sim_race_drag(s, k, y, NULL);
     }
-    if (s->spin_free)
-        f[s->spin] -= sign * td_sim_spin_drag(s, y, NULL);
+    if (s->machine.spin_free)
+        f[s->machine.spin] -= sign * td_sim_spin_drag(s, y, NULL);
 }
 
 void td_sim_forces(const td_sim *s, double t, const double *y, double *f)
@@ -218,8 +218,8 @@ static void constraint_rows(const td_sim *s, int k, const double *y, double *rq,
     }
     if (r->rs >= 0)
         rv[r->rs] -= r->r.bore_radius * sm * lam;
-    if (s->spin_free)
-        rv[s->spin] += r->r.shaft_radius * sm * lam;
+    if (s->machine.spin_free)
+        rv[s->machine.spin] += r->r.shaft_radius * sm * lam;
     res[s->dae.ol + k] = td_contact_constraint(x, yy, c); /* eq. (5) / (-2c) */
     res[s->dae.ou + k] = (x * vx + yy * vy) / c;          /* eq. (13a) / (-2c) */
 }
@@ -245,8 +245,8 @@ static void roll_rows(const td_sim *s, int k, const double *y, double *rv, doubl
     }
     if (r->rs >= 0)
         rv[r->rs] -= r->r.bore_radius * ft;
-    if (s->spin_free)
-        rv[s->spin] += r->r.shaft_radius * ft;
+    if (s->machine.spin_free)
+        rv[s->machine.spin] += r->r.shaft_radius * ft;
     res[s->dae.of + r->fi] = td_sim_sliding_velocity(s, k, y);
 }
 
@@ -254,21 +254,21 @@ double td_sim_unbalance_spin_coupling(const td_sim *s, double t, const double *y
 {
     double phi, dw, power = 0.0;
     int i;
-    if (!s->spin_free || s->nu == 0)
+    if (!s->machine.spin_free || s->machine.nu == 0)
         return 0.0;
     phi = td_sim_rotor_angle(s, t, y);
-    dw = yp[s->dae.ov + s->spin] - td_sim_rotor_rate(s, t, y); /* the forces took alpha from the torques */
-    for (i = 0; i < s->nu; i++) {
-        const td_unbalance *u = &s->unb[i];
+    dw = yp[s->dae.ov + s->machine.spin] - td_sim_rotor_rate(s, t, y); /* the forces took alpha from the torques */
+    for (i = 0; i < s->machine.nu; i++) {
+        const td_unbalance *u = &s->machine.unb[i];
         double c = cos(phi + u->phase), sn = sin(phi + u->phase), U = u->magnitude;
         int x = td_system_node_dof(s->sys, u->node, TD_DOF_X), yy = td_system_node_dof(s->sys, u->node, TD_DOF_Y);
         double fx = U * sn * dw, fy = -U * c * dw, torque = -U * (c * yp[s->dae.ov + yy] - sn * yp[s->dae.ov + x]);
         if (rv) {
             rv[x] -= fx;
             rv[yy] -= fy;
-            rv[s->spin] -= torque;
+            rv[s->machine.spin] -= torque;
         }
-        power += fx * y[s->dae.ov + x] + fy * y[s->dae.ov + yy] + torque * y[s->dae.ov + s->spin];
+        power += fx * y[s->dae.ov + x] + fy * y[s->dae.ov + yy] + torque * y[s->dae.ov + s->machine.spin];
     }
     return power;
 }
@@ -310,10 +310,10 @@ void td_sim_residual(const td_sim *s, double t, const double *y, const double *y
         if (s->ret[k].fi >= 0)
             roll_rows(s, k, y, rv, res);
     }
-    if (s->spin >= 0 && !s->spin_free) { /* a ramp: angle and speed are the prescribed ones, exactly */
+    if (s->machine.spin >= 0 && !s->machine.spin_free) { /* a ramp: angle and speed are the prescribed ones, exactly */
         double angle, w = td_model_speed_at(s->model, t, NULL, &angle);
-        rq[s->spin] = y[s->dae.oq + s->spin] - angle;
-        rv[s->spin] = y[s->dae.ov + s->spin] - w;
+        rq[s->machine.spin] = y[s->dae.oq + s->machine.spin] - angle;
+        rv[s->machine.spin] = y[s->dae.ov + s->machine.spin] - w;
     }
 }
 
@@ -341,8 +341,8 @@ static void jacobian_amb(td_sim *s, const double *y)
     int k;
     for (k = 0; k < sys->n_amb_axes; k++) {
         const td_amb_axis *a = &sys->amb_axes[k];
-        const td_sim_amb_coef *co = &s->amb_coef[k];
-        td_amb_mode mode = s->amb_mode[a->amb];
+        const td_sim_amb_coef *co = &s->machine.amb_coef[k];
+        td_amb_mode mode = s->machine.amb_mode[a->amb];
         int act = a->actuator_dof, sen = a->sensor_dof;
         double dfdx, dfdfc;
         td_amb_axis_force(a, mode != TD_AMB_OFF, y[s->dae.oq + act], amb_axis_fc(s, k, y), &dfdx, &dfdfc);
@@ -413,14 +413,14 @@ static void jacobian_slip_band_spin(td_sim *s, int k, const double *y, double a)
 {
     const td_sim_retainer *r = &s->ret[k];
     double x, yy, vx, vy, rad, gv[4], Rs = r->r.shaft_radius, Rb = r->r.bore_radius;
-    int wz = s->dae.ov + s->spin, i;
+    int wz = s->dae.ov + s->machine.spin, i;
     td_sim_node_state(s, k, y, &x, &yy, &vx, &vy);
     rad = hypot(x, yy);
     jadd_node(s, r, s->dae.ov, 0, wz, -a * Rs * yy / rad);
     jadd_node(s, r, s->dae.ov, 1, wz, a * Rs * x / rad);
     if (r->rs >= 0)
         jadd(s, s->dae.ov + r->rs, wz, -Rb * a * Rs);
-    if (!s->spin_free)
+    if (!s->machine.spin_free)
         return;
     td_sim_sliding_gradient(s, k, y, gv);
     for (i = 0; i < 4; i++)
@@ -454,7 +454,7 @@ static void jacobian_slip_band(td_sim *s, int k, const double *y, double fn, dou
         jadd_node(s, r, s->dae.ov, 1, ws, a * (-Rb) * x / rad);
         jadd(s, ws, ws, -Rb * a * (-Rb));
     }
-    if (s->spin >= 0)
+    if (s->machine.spin >= 0)
         jacobian_slip_band_spin(s, k, y, a);
 }
 
@@ -478,8 +478,8 @@ static void jacobian_contact(td_sim *s, int k, const double *y)
     jadd_node(s, r, ov, 1, lk, yy / c + sm * x / rad);
     if (r->rs >= 0) /* the friction torque -R_b sm lambda */
         jadd(s, ov + r->rs, lk, -r->r.bore_radius * sm);
-    if (s->spin_free) /* and R_s sm lambda on a free spin */
-        jadd(s, ov + s->spin, lk, r->r.shaft_radius * sm);
+    if (s->machine.spin_free) /* and R_s sm lambda on a free spin */
+        jadd(s, ov + s->machine.spin, lk, r->r.shaft_radius * sm);
     if (dphi != 0.0) /* inside the slip band: sm = mu v_s / v_reg depends on q, v and Omega_b */
         jacobian_slip_band(s, k, y, lam, dphi);
     /* q rows: eta (x, y)/c */
@@ -546,8 +546,8 @@ static void jacobian_penalty(td_sim *s, int k, const double *y)
     jadd_rel(s, r, ov, 1, ov, 1, u2 * fr * rt_vy);
     if (r->rs >= 0) /* the torque row -R_b sm F_n */
         jacobian_penalty_torque(s, r, ov + r->rs, -r->r.bore_radius * sm, f_x, f_y, fr * rt_vx, fr * rt_vy);
-    if (s->spin_free) /* and R_s sm F_n on a free spin */
-        jacobian_penalty_torque(s, r, ov + s->spin, r->r.shaft_radius * sm, f_x, f_y, fr * rt_vx, fr * rt_vy);
+    if (s->machine.spin_free) /* and R_s sm F_n on a free spin */
+        jacobian_penalty_torque(s, r, ov + s->machine.spin, r->r.shaft_radius * sm, f_x, f_y, fr * rt_vx, fr * rt_vy);
     if (dphi != 0.0) /* inside the slip band: sm = mu v_s / v_reg depends on q, v and Omega_b */
         jacobian_slip_band(s, k, y, fn, dphi);
 }
@@ -577,10 +577,10 @@ static void jacobian_roll(td_sim *s, int k, const double *y)
         jadd(s, ov + r->rs, fk, -r->r.bore_radius);
         jadd(s, fk, ov + r->rs, -r->r.bore_radius); /* eq. (16): d v_s / d Omega_b */
     }
-    if (s->spin >= 0) {
-        jadd(s, fk, ov + s->spin, r->r.shaft_radius); /* eq. (16): d v_s / d Omega */
-        if (s->spin_free)
-            jadd(s, ov + s->spin, fk, r->r.shaft_radius);
+    if (s->machine.spin >= 0) {
+        jadd(s, fk, ov + s->machine.spin, r->r.shaft_radius); /* eq. (16): d v_s / d Omega */
+        if (s->machine.spin_free)
+            jadd(s, ov + s->machine.spin, fk, r->r.shaft_radius);
     }
     td_sim_sliding_gradient(s, k, y, gv);
     for (i = 0; i < 4; i++)
@@ -603,12 +603,12 @@ static void jacobian_spin(td_sim *s, double t, const double *y)
     const cs_di *G = s->dae.G;
     const double *v = y + s->dae.ov;
     double w = td_sim_rotor_speed(s, y), phi = td_sim_rotor_angle(s, t, y), alpha = td_sim_rotor_rate(s, t, y), dT;
-    int qz = s->dae.oq + s->spin, wz = s->dae.ov + s->spin, i, j, p;
+    int qz = s->dae.oq + s->machine.spin, wz = s->dae.ov + s->machine.spin, i, j, p;
     for (j = 0; j < G->n; j++)
         for (p = G->p[j]; p < G->p[j + 1]; p++)
             jadd(s, s->dae.ov + G->i[p], wz, G->x[p] * v[j]);
-    for (i = 0; i < s->nu; i++) { /* v rows carry -f */
-        const td_unbalance *u = &s->unb[i];
+    for (i = 0; i < s->machine.nu; i++) { /* v rows carry -f */
+        const td_unbalance *u = &s->machine.unb[i];
         double c = cos(phi + u->phase), sn = sin(phi + u->phase), U = u->magnitude;
         int x = s->dae.ov + td_system_node_dof(s->sys, u->node, TD_DOF_X),
             yrow = s->dae.ov + td_system_node_dof(s->sys, u->node, TD_DOF_Y);
@@ -627,9 +627,9 @@ static void jacobian_spin(td_sim *s, double t, const double *y)
 static void jacobian_unbalance_spin(td_sim *s, double t, double cj, const double *y)
 {
     double phi = td_sim_rotor_angle(s, t, y);
-    int wz = s->dae.ov + s->spin, i;
-    for (i = 0; i < s->nu; i++) {
-        const td_unbalance *u = &s->unb[i];
+    int wz = s->dae.ov + s->machine.spin, i;
+    for (i = 0; i < s->machine.nu; i++) {
+        const td_unbalance *u = &s->machine.unb[i];
         double mx = -u->magnitude * sin(phi + u->phase), my = u->magnitude * cos(phi + u->phase);
         int x = s->dae.ov + td_system_node_dof(s->sys, u->node, TD_DOF_X),
             yrow = s->dae.ov + td_system_node_dof(s->sys, u->node, TD_DOF_Y);
@@ -644,7 +644,7 @@ static void jacobian_unbalance_spin(td_sim *s, double t, double cj, const double
  * place of the differential rows' entries (nothing else writes into them for a ramp). */
 static void jacobian_ramp_rows(td_sim *s)
 {
-    int qz = s->dae.oq + s->spin, wz = s->dae.ov + s->spin;
+    int qz = s->dae.oq + s->machine.spin, wz = s->dae.ov + s->machine.spin;
     s->dae.jdata[td_sim_pattern_find(s, qz, qz)] = 1.0;
     s->dae.jdata[td_sim_pattern_find(s, qz, wz)] = 0.0;
     s->dae.jdata[td_sim_pattern_find(s, wz, wz)] = 1.0;
@@ -663,9 +663,9 @@ void td_sim_jacobian(td_sim *s, double t, double cj, const double *y)
     jadd_matrix(s, s->dae.M, s->dae.map_M, cj);
     jadd_matrix(s, s->dae.C, s->dae.map_C, 1.0);
     jadd_matrix(s, s->dae.G, s->dae.map_G, td_sim_rotor_speed(s, y));
-    if (s->spin >= 0)
+    if (s->machine.spin >= 0)
         jacobian_spin(s, t, y);
-    if (s->spin_free)
+    if (s->machine.spin_free)
         jacobian_unbalance_spin(s, t, cj, y);
     jadd_matrix(s, s->dae.K, s->dae.map_K, 1.0);
     jacobian_amb(s, y);
@@ -684,7 +684,7 @@ void td_sim_jacobian(td_sim *s, double t, double cj, const double *y)
         jadd(s, s->dae.ol + k, s->dae.ol + k, 1.0);
         jadd(s, s->dae.ou + k, s->dae.ou + k, 1.0);
     }
-    if (s->spin >= 0 && !s->spin_free)
+    if (s->machine.spin >= 0 && !s->machine.spin_free)
         jacobian_ramp_rows(s);
 }
 
@@ -728,7 +728,7 @@ static void saturation_roots(const td_sim *s, const double *y, double *g)
     for (k = 0; k < s->sys->n_amb_axes && s->dae.n_sat_roots > 0; k++) {
         const td_amb_axis *a = &s->sys->amb_axes[k];
         double f = a->ks * y[s->dae.oq + a->actuator_dof] + amb_axis_fc(s, k, y);
-        int on = a->saturation && s->amb_mode[a->amb] != TD_AMB_OFF;
+        int on = a->saturation && s->machine.amb_mode[a->amb] != TD_AMB_OFF;
         g[2 * k] = on ? f - a->capacity : 1.0;
         g[2 * k + 1] = on ? f + a->capacity : 1.0;
     }
@@ -750,9 +750,9 @@ void td_sim_roots(const td_sim *s, double t, const double *y, double *g)
         gk[TD_ROOT_REARM] = 1.0;
         switch (r->mode) {
         case TD_RMODE_FREE:
-            gk[TD_ROOT_CONTACT] = r->armed || r->compliant ? gap : gap + s->rearm_eps;
+            gk[TD_ROOT_CONTACT] = r->armed || r->compliant ? gap : gap + s->machine.rearm_eps;
             if (!r->armed)
-                gk[TD_ROOT_REARM] = gap - s->rearm_eps;
+                gk[TD_ROOT_REARM] = gap - s->machine.rearm_eps;
             break;
         case TD_RMODE_CONTACT: gk[TD_ROOT_CONTACT] = y[s->dae.ol + k]; break;
         case TD_RMODE_PENETRATING: gk[TD_ROOT_CONTACT] = gap; break;

@@ -24,34 +24,37 @@
 void td_sim_spin_layout(td_sim *s)
 {
     td_spin sp;
-    s->spin = -1;
-    s->spin_free = 0;
-    s->spin_inertia = 0.0;
+    s->machine.spin = -1;
+    s->machine.spin_free = 0;
+    s->machine.spin_inertia = 0.0;
     if (!td_model_speed_varies(s->model))
         return;
     td_model_spin(s->model, &sp);
-    s->spin = s->dae.n++;
-    s->spin_free = sp.free != 0;
-    s->spin_inertia = sp.inertia > 0.0 ? sp.inertia : td_model_polar_inertia(s->model);
+    s->machine.spin = s->dae.n++;
+    s->machine.spin_free = sp.free != 0;
+    s->machine.spin_inertia = sp.inertia > 0.0 ? sp.inertia : td_model_polar_inertia(s->model);
 }
 
 void td_sim_spin_diagonal(const td_sim *s, char which, double *d)
 {
     td_spin sp;
-    if (s->spin < 0)
+    if (s->machine.spin < 0)
         return;
     td_model_spin(s->model, &sp);
-    d[s->spin] = which == 'M' ? s->spin_inertia : which == 'C' && s->spin_free ? sp.drag_viscous : 0.0;
+    d[s->machine.spin] = which == 'M'                           ? s->machine.spin_inertia
+                         : which == 'C' && s->machine.spin_free ? sp.drag_viscous
+                                                                : 0.0;
 }
 
 double td_sim_rotor_speed(const td_sim *s, const double *y)
 {
-    return s->spin >= 0 ? y[s->dae.ov + s->spin] : s->omega;
+    return s->machine.spin >= 0 ? y[s->dae.ov + s->machine.spin] : s->machine.omega;
 }
 
 double td_sim_rotor_angle(const td_sim *s, double t, const double *y)
 {
-    return s->spin >= 0 ? y[s->dae.oq + s->spin] : s->spin_ref + s->omega * (t - s->t_spin_ref);
+    return s->machine.spin >= 0 ? y[s->dae.oq + s->machine.spin]
+                                : s->machine.spin_ref + s->machine.omega * (t - s->machine.t_spin_ref);
 }
 
 double td_sim_spin_drag(const td_sim *s, const double *y, double *dT)
@@ -60,10 +63,10 @@ double td_sim_spin_drag(const td_sim *s, const double *y, double *dT)
     double dphi = 0.0, phi;
     if (dT)
         *dT = 0.0;
-    if (!s->spin_free)
+    if (!s->machine.spin_free)
         return 0.0;
     td_model_spin(s->model, &sp);
-    phi = td_contact_slip_factor(y[s->dae.ov + s->spin], TD_SIM_SPIN_BAND, &dphi);
+    phi = td_contact_slip_factor(y[s->dae.ov + s->machine.spin], TD_SIM_SPIN_BAND, &dphi);
     if (dT)
         *dT = sp.drag_torque * dphi;
     return sp.drag_torque * phi;
@@ -87,10 +90,10 @@ static double ramp_rate(const td_sim *s, double t)
 double td_sim_spin_torque(const td_sim *s, double t)
 {
     td_spin sp;
-    if (s->spin < 0)
+    if (s->machine.spin < 0)
         return 0.0;
-    if (!s->spin_free)
-        return s->spin_inertia * ramp_rate(s, t);
+    if (!s->machine.spin_free)
+        return s->machine.spin_inertia * ramp_rate(s, t);
     td_model_spin(s->model, &sp);
     return sp.drive_torque;
 }
@@ -98,10 +101,10 @@ double td_sim_spin_torque(const td_sim *s, double t)
 void td_sim_spin_start(const td_sim *s, double *y)
 {
     double angle;
-    if (s->spin < 0)
+    if (s->machine.spin < 0)
         return;
-    y[s->dae.ov + s->spin] = td_model_speed_at(s->model, s->dae.t, NULL, &angle);
-    y[s->dae.oq + s->spin] = angle;
+    y[s->dae.ov + s->machine.spin] = td_model_speed_at(s->model, s->dae.t, NULL, &angle);
+    y[s->dae.oq + s->machine.spin] = angle;
 }
 
 void td_sim_spin_hold(const td_sim *s, double t, double *y, double *yp)
@@ -109,14 +112,14 @@ void td_sim_spin_hold(const td_sim *s, double t, double *y, double *yp)
     /* IDA's interpolant and Newton iterate hold a ramp's algebraic rows only to the tolerance (up to
      * 2e-4 of the speed early in a ramp at the default ones); the drive holds the profile exactly */
     double angle, w;
-    if (s->spin < 0 || s->spin_free)
+    if (s->machine.spin < 0 || s->machine.spin_free)
         return;
     w = td_model_speed_at(s->model, t, NULL, &angle);
-    y[s->dae.oq + s->spin] = angle;
-    y[s->dae.ov + s->spin] = w;
+    y[s->dae.oq + s->machine.spin] = angle;
+    y[s->dae.ov + s->machine.spin] = w;
     if (yp) {
-        yp[s->dae.oq + s->spin] = w;
-        yp[s->dae.ov + s->spin] = ramp_rate(s, t);
+        yp[s->dae.oq + s->machine.spin] = w;
+        yp[s->dae.ov + s->machine.spin] = ramp_rate(s, t);
     }
 }
 
@@ -124,6 +127,6 @@ void td_sim_spin_wrap(const td_sim *s, double *y)
 {
     /* keep a free spin's angle small, so that its relative tolerance stays an absolute one (a
      * ramp's is the prescribed angle itself) */
-    if (s->spin_free)
-        y[s->dae.oq + s->spin] = fmod(y[s->dae.oq + s->spin], 2.0 * TD_PI);
+    if (s->machine.spin_free)
+        y[s->dae.oq + s->machine.spin] = fmod(y[s->dae.oq + s->machine.spin], 2.0 * TD_PI);
 }

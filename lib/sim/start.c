@@ -22,7 +22,7 @@ void td_sim_start_stability(td_sim *s)
     s->start.stability = TD_STABILITY_UNCHECKED;
     s->start.max_real_part = NAN;
     if (td_modal_state_count(s->sys) > TD_SIM_STABILITY_MAX_STATES ||
-        td_modal_stability(s->sys, s->omega, &s->start.max_real_part, &unstable, NULL) != TD_OK)
+        td_modal_stability(s->sys, s->machine.omega, &s->start.max_real_part, &unstable, NULL) != TD_OK)
         return;
     s->start.stability = unstable ? TD_STABILITY_UNSTABLE : TD_STABILITY_STABLE;
 }
@@ -65,10 +65,10 @@ static void spread_rotor_state(const td_sim *s, double *y)
 static double orbit_phase_time(const td_sim *s)
 {
     double angle;
-    if (s->spin < 0 || !(s->omega > 0.0))
+    if (s->machine.spin < 0 || !(s->machine.omega > 0.0))
         return s->dae.t;
     td_model_speed_at(s->model, s->dae.t, NULL, &angle);
-    return angle / s->omega;
+    return angle / s->machine.omega;
 }
 
 /* The steady orbit into y. An unstable system has none that the motion would stay on: "orbit"
@@ -85,15 +85,15 @@ static td_status orbit_start(td_sim *s, double *y, td_error *err)
             return td_error_set(err, TD_ERR_INVALID,
                                 "start = \"orbit\": the contact-free system is unstable at %.6g rad/s (rightmost "
                                 "eigenvalue real part %.6g 1/s), so it has no steady orbit; use start = \"rest\"",
-                                s->omega, s->start.max_real_part);
+                                s->machine.omega, s->start.max_real_part);
         snprintf(s->start.reason, sizeof s->start.reason,
                  "the contact-free system is unstable (rightmost eigenvalue real part %.6g 1/s)",
                  s->start.max_real_part);
         return TD_OK;
     }
     td_model_gravity(s->model, &gx, &gy);
-    st = td_modal_start_state(s->sys, s->omega, s->unb, s->nu, gx != 0.0 || gy != 0.0, orbit_phase_time(s),
-                              y + s->dae.oq, &merr);
+    st = td_modal_start_state(s->sys, s->machine.omega, s->machine.unb, s->machine.nu, gx != 0.0 || gy != 0.0,
+                              orbit_phase_time(s), y + s->dae.oq, &merr);
     if (st == TD_ERR_NUMERIC) { /* no steady state: nothing holds the rotor against gravity, a resonance */
         N_VConst(0.0, s->dae.y);
         if (strict)

@@ -18,7 +18,8 @@
 double td_sim_race_speed_atol(const td_sim *s, int k)
 {
     const td_sim_retainer *r = &s->ret[k];
-    return s->opt.solver.atol * (r->mode != TD_RMODE_FREE ? s->freq_max : s->freq_scale) / r->r.bore_radius;
+    return s->opt.solver.atol * (r->mode != TD_RMODE_FREE ? s->machine.freq_max : s->machine.freq_scale) /
+           r->r.bore_radius;
 }
 
 int td_sim_races_retolerance(td_sim *s)
@@ -70,7 +71,7 @@ static void race_tolerances(td_sim *s, double *at, double *id)
             at[s->dae.oq + dofs[i]] = atol * scale;
             at[s->dae.ov + dofs[i]] =
                 i == 2 ? td_sim_race_speed_atol(s, k)
-                       : atol * fmax(s->freq_scale, sqrt(r->r.race.mount_stiffness / r->r.race.mass));
+                       : atol * fmax(s->machine.freq_scale, sqrt(r->r.race.mount_stiffness / r->r.race.mass));
             id[s->dae.oq + dofs[i]] = id[s->dae.ov + dofs[i]] = 1.0;
         }
     }
@@ -83,13 +84,14 @@ static void spin_tolerances(const td_sim *s, double *at, double *id)
 {
     double c = 1e-3;
     int k;
-    if (s->spin < 0)
+    if (s->machine.spin < 0)
         return;
     for (k = 0; k < s->dae.nr; k++)
         c = fmin(c, s->ret[k].r.clearance);
-    at[s->dae.oq + s->spin] = s->opt.solver.atol / c;
-    at[s->dae.ov + s->spin] = s->opt.solver.atol / c * s->freq_scale;
-    id[s->dae.oq + s->spin] = id[s->dae.ov + s->spin] = s->spin_free ? 1.0 : 0.0; /* a ramp's are algebraic */
+    at[s->dae.oq + s->machine.spin] = s->opt.solver.atol / c;
+    at[s->dae.ov + s->machine.spin] = s->opt.solver.atol / c * s->machine.freq_scale;
+    id[s->dae.oq + s->machine.spin] = id[s->dae.ov + s->machine.spin] =
+        s->machine.spin_free ? 1.0 : 0.0; /* a ramp's are algebraic */
 }
 
 void td_sim_set_tolerances(td_sim *s)
@@ -115,12 +117,12 @@ void td_sim_set_tolerances(td_sim *s)
                 scale = cnt / len;
         }
         at[s->dae.oq + i] = atol * scale;
-        at[s->dae.ov + i] = atol * scale * s->freq_max;
+        at[s->dae.ov + i] = atol * scale * s->machine.freq_max;
         id[s->dae.oq + i] = id[s->dae.ov + i] = 1.0;
     }
     for (i = 0; i < s->sys->n_amb_axes; i++) {
         const td_amb_axis *a = &s->sys->amb_axes[i];
-        double kc = fabs(s->amb_coef[i].cmd_x);
+        double kc = fabs(s->machine.amb_coef[i].cmd_x);
         if (a->state >= 0) {
             at[s->dae.ow + a->state] = atol * (kc > 1.0 ? kc : 1.0);
             id[s->dae.ow + a->state] = 1.0;
@@ -128,20 +130,20 @@ void td_sim_set_tolerances(td_sim *s)
         if (a->integral >= 0) {
             /* e (m s) moves the force by ki kint e as xs does by ki kp xs: an error of e worth the
              * displacement tolerance in force, or the displacement tolerance over a bearing period */
-            double ke = fabs(s->amb_coef[i].cmd_e);
-            at[s->dae.ow + a->integral] = kc > 0.0 ? atol * kc / ke : atol / s->freq_scale;
+            double ke = fabs(s->machine.amb_coef[i].cmd_e);
+            at[s->dae.ow + a->integral] = kc > 0.0 ? atol * kc / ke : atol / s->machine.freq_scale;
             id[s->dae.ow + a->integral] = 1.0;
         }
     }
     race_tolerances(s, at, id);
     spin_tolerances(s, at, id);
     for (i = 0; i < s->dae.ns; i++) { /* F_t: a force, algebraic like lambda */
-        at[s->dae.of + i] = atol * s->stiff_scale;
+        at[s->dae.of + i] = atol * s->machine.stiff_scale;
         id[s->dae.of + i] = 0.0;
     }
     for (i = 0; i < s->dae.nr; i++) {
-        at[s->dae.ol + i] = atol * s->stiff_scale;
-        at[s->dae.ou + i] = atol * s->freq_scale;
+        at[s->dae.ol + i] = atol * s->machine.stiff_scale;
+        at[s->dae.ou + i] = atol * s->machine.freq_scale;
         id[s->dae.ol + i] = id[s->dae.ou + i] = 0.0;
     }
 }
