@@ -100,10 +100,10 @@ static void fill_state(const td_sim *s, double rad, double *y, double *yp)
     }
     for (k = 0; k < s->dae.nr; k++) {
         double a = 0.7 + 2.0 * k;
-        y[s->dae.oq + s->ret[k].dx] = rad * cos(a);
-        y[s->dae.oq + s->ret[k].dy] = rad * sin(a);
-        y[s->dae.ov + s->ret[k].dx] = -0.03 * sin(a) + 0.004 * cos(a); /* mostly tangential, some outward */
-        y[s->dae.ov + s->ret[k].dy] = 0.03 * cos(a) + 0.004 * sin(a);
+        y[s->dae.oq + s->contacts.ret[k].dx] = rad * cos(a);
+        y[s->dae.oq + s->contacts.ret[k].dy] = rad * sin(a);
+        y[s->dae.ov + s->contacts.ret[k].dx] = -0.03 * sin(a) + 0.004 * cos(a); /* mostly tangential, some outward */
+        y[s->dae.ov + s->contacts.ret[k].dy] = 0.03 * cos(a) + 0.004 * sin(a);
     }
 }
 
@@ -164,11 +164,11 @@ static void test_jacobian_constrained_with_friction(void **state)
 {
     td_sim *s = small_sim(TD_CONTACT_CONSTRAINT, TD_DAMPING_NONE, TD_LINSOL_KLU);
     (void)state;
-    s->ret[0].mode = s->ret[1].mode = TD_RMODE_CONTACT;
-    s->ret[0].slip = 1;
-    s->ret[1].slip = -1;
+    s->contacts.ret[0].mode = s->contacts.ret[1].mode = TD_RMODE_CONTACT;
+    s->contacts.ret[0].slip = 1;
+    s->contacts.ret[1].slip = -1;
     check_jacobian(s, 0.5e-3 * (1 + 1e-7), "two contacts with friction");
-    s->ret[1].mode = TD_RMODE_FREE;
+    s->contacts.ret[1].mode = TD_RMODE_FREE;
     check_jacobian(s, 0.5e-3, "one contact");
     td_sim_free(&s);
 }
@@ -183,7 +183,7 @@ static void put_in_slip_band(td_sim *s, double rad, const double *frac)
     assert_non_null(yp);
     fill_state(s, rad, y, yp);
     for (k = 0; k < s->dae.nr; k++) {
-        td_retainer *r = &s->ret[k].r;
+        td_retainer *r = &s->contacts.ret[k].r;
         double vs0;
         r->bore_speed = 0.0;
         vs0 = td_sim_sliding_velocity(s, k, y);
@@ -201,15 +201,15 @@ static void test_jacobian_slip_band(void **state)
     int l;
     td_sim *s = small_sim(TD_CONTACT_CONSTRAINT, TD_DAMPING_NONE, TD_LINSOL_KLU);
     (void)state;
-    s->ret[0].mode = s->ret[1].mode = TD_RMODE_CONTACT;
-    s->ret[0].slip = s->ret[1].slip = 0;
+    s->contacts.ret[0].mode = s->contacts.ret[1].mode = TD_RMODE_CONTACT;
+    s->contacts.ret[0].slip = s->contacts.ret[1].slip = 0;
     put_in_slip_band(s, 0.5e-3 * (1 + 1e-7), frac);
     check_jacobian(s, 0.5e-3 * (1 + 1e-7), "two contacts in the slip band");
     td_sim_free(&s);
     for (l = 0; l < 2; l++) {
         s = small_sim(TD_CONTACT_PENALTY, laws[l], TD_LINSOL_KLU);
-        s->ret[0].mode = s->ret[1].mode = TD_RMODE_PENETRATING;
-        s->ret[0].slip = s->ret[1].slip = 0;
+        s->contacts.ret[0].mode = s->contacts.ret[1].mode = TD_RMODE_PENETRATING;
+        s->contacts.ret[0].slip = s->contacts.ret[1].slip = 0;
         put_in_slip_band(s, 0.5e-3 + 2e-6, frac);
         check_jacobian(s, 0.5e-3 + 2e-6, "penalty contacts in the slip band");
         td_sim_free(&s);
@@ -224,9 +224,9 @@ static void test_jacobian_penalty_with_damping(void **state)
     for (l = 0; l < 3; l++) {
         td_sim *s = small_sim(TD_CONTACT_PENALTY, laws[l], TD_LINSOL_KLU);
         char what[64];
-        s->ret[0].mode = s->ret[1].mode = TD_RMODE_PENETRATING;
-        s->ret[0].slip = -1;
-        s->ret[1].slip = 1;
+        s->contacts.ret[0].mode = s->contacts.ret[1].mode = TD_RMODE_PENETRATING;
+        s->contacts.ret[0].slip = -1;
+        s->contacts.ret[1].slip = 1;
         snprintf(what, sizeof what, "penalty, damping law %d", l);
         check_jacobian(s, 0.5e-3 + 2e-6, what);
         td_sim_free(&s);

@@ -40,7 +40,7 @@ double td_sim_kinetic_energy(const td_sim *s, const double *y)
 /* Elastic energy of retainer k's contact spring and the power its contact dissipates, at y. */
 static double contact_spring(const td_sim *s, int k, const double *y, double *loss)
 {
-    const td_sim_retainer *r = &s->ret[k];
+    const td_sim_retainer *r = &s->contacts.ret[k];
     double x, yy, vx, vy, rad, delta, rate, n, n_el = 0.0, e = 0.0, ft, vt;
     *loss = 0.0;
     if (r->mode == TD_RMODE_FREE && !r->compliant)
@@ -81,10 +81,11 @@ static double powers(td_sim *s, double t, const double *y, double pw[5])
         double loss;
         held += contact_spring(s, k, y, &loss);
         pw[3] += loss;
-        if (s->ret[k].mode != TD_RMODE_FREE && !s->machine.spin_free) /* the drive holds the speed against it */
-            pw[1] += td_sim_friction_force(s, k, y) * s->ret[k].r.shaft_radius * td_sim_rotor_speed(s, y);
-        if (s->ret[k].rs >= 0)
-            pw[4] += td_sim_race_drag(s, k, y, NULL) * v[s->ret[k].rs];
+        if (s->contacts.ret[k].mode != TD_RMODE_FREE &&
+            !s->machine.spin_free) /* the drive holds the speed against it */
+            pw[1] += td_sim_friction_force(s, k, y) * s->contacts.ret[k].r.shaft_radius * td_sim_rotor_speed(s, y);
+        if (s->contacts.ret[k].rs >= 0)
+            pw[4] += td_sim_race_drag(s, k, y, NULL) * v[s->contacts.ret[k].rs];
     }
     if (s->machine.spin_free)
         pw[4] += td_sim_spin_drag(s, y, NULL) * v[s->machine.spin];

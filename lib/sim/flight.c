@@ -18,7 +18,7 @@ int td_sim_flight_eligible(const td_sim *s)
         if (s->sys->amb_axes[k].saturation)
             return 0;
     for (k = 0; k < s->dae.nr; k++) {
-        const td_sim_retainer *r = &s->ret[k];
+        const td_sim_retainer *r = &s->contacts.ret[k];
         if ((r->compliant && !r->armed) || r->rx >= 0 || r->rs >= 0 || r->mode != TD_RMODE_FREE || r->rolling)
             return 0;
     }

@@ -72,7 +72,7 @@ static double probe_size(const td_sim *s, int i)
     if (i >= s->dae.n)
         return 1.0;
     for (k = 0; k < s->dae.nr; k++)
-        c = fmin(c, s->ret[k].r.clearance);
+        c = fmin(c, s->contacts.ret[k].r.clearance);
     return isfinite(c) ? 0.5 * c : 1.0;
 }
 
@@ -312,10 +312,10 @@ static void build_observations(const td_sim *s, td_sim_flight *f)
     int i, k, nz = f->nz;
     for (k = 0; k < s->dae.nr; k++) {
         memset(a, 0, sizeof(double) * (size_t)nz);
-        a[s->dae.oq + s->ret[k].dx] = 1.0;
+        a[s->dae.oq + s->contacts.ret[k].dx] = 1.0;
         set_obs_row(f, &f->obs[2 * k], a, 0.0);
-        a[s->dae.oq + s->ret[k].dx] = 0.0;
-        a[s->dae.oq + s->ret[k].dy] = 1.0;
+        a[s->dae.oq + s->contacts.ret[k].dx] = 0.0;
+        a[s->dae.oq + s->contacts.ret[k].dy] = 1.0;
         set_obs_row(f, &f->obs[2 * k + 1], a, 0.0);
     }
     for (k = 0; k < s->sys->n_amb_axes; k++) {

@@ -118,7 +118,7 @@ static double split_step(const td_sim_flight *f, int k, double t, double R)
  * retainer unseen. */
 static void retainer_roots(const td_sim *s, td_sim_flight *f, int k, double t, double tau[2], int hit[2])
 {
-    const td_sim_retainer *r = &s->ret[k];
+    const td_sim_retainer *r = &s->contacts.ret[k];
     flight_val x = td_sim_flight_observe(f, 2 * k, t), y = td_sim_flight_observe(f, 2 * k + 1, t);
     double c = r->r.clearance, r2 = x.v * x.v + y.v * y.v, dr2 = 2.0 * (x.v * x.d + y.v * y.d);
     double p = hypot(x.b0, y.b0), v = hypot(x.b1, y.b1), a = hypot(x.b2, y.b2);

@@ -78,7 +78,7 @@ static N_Vector floored_multipliers(td_sim *s, N_Vector del, N_Vector ewt, doubl
     double *d = NULL;
     int k;
     for (k = 0; k < s->dae.nr; k++) {
-        double mu_floor = MULTIPLIER_FLOOR * DBL_EPSILON * s->ret[k].r.clearance * cj;
+        double mu_floor = MULTIPLIER_FLOOR * DBL_EPSILON * s->contacts.ret[k].r.clearance * cj;
         double lambda_floor = mu_floor * s->machine.stiff_scale / s->machine.freq_scale;
         double fl = 1.0 / (lambda_floor * w[s->dae.ol + k]), fu = 1.0 / (mu_floor * w[s->dae.ou + k]);
         if (fl >= 1.0 && fu >= 1.0)
@@ -120,7 +120,7 @@ static int conv_test_cb(SUNNonlinearSolver nls, N_Vector ycor, N_Vector del, sun
     cor = N_VGetArrayPointer(ycor);
     pred = N_VGetArrayPointer(ypred);
     for (k = 0; k < s->dae.nr; k++) {
-        const td_sim_retainer *r = &s->ret[k];
+        const td_sim_retainer *r = &s->contacts.ret[k];
         double x, y;
         if (r->mode != TD_RMODE_CONTACT)
             continue;

@@ -91,7 +91,7 @@ void td_sim_monitor_at(td_sim *s, double t, int at_step)
     double dt = t - s->monitor.t_acc;
     int k;
     for (k = 0; k < s->dae.nr; k++) {
-        const td_sim_retainer *r = &s->ret[k];
+        const td_sim_retainer *r = &s->contacts.ret[k];
         double fn;
         if (r->mode == TD_RMODE_FREE)
             continue;

@@ -24,7 +24,7 @@ void td_sim_races_layout(td_sim *s)
 {
     int k, n = s->sys->ndof;
     for (k = 0; k < s->dae.nr; k++) {
-        td_sim_retainer *r = &s->ret[k];
+        td_sim_retainer *r = &s->contacts.ret[k];
         if (r->r.race.mount_stiffness > 0.0) {
             r->rx = n++;
             r->ry = n++;
@@ -41,7 +41,7 @@ static void race_diagonal(const td_sim *s, char which, double *d)
 {
     int k;
     for (k = 0; k < s->dae.nr; k++) {
-        const td_sim_retainer *r = &s->ret[k];
+        const td_sim_retainer *r = &s->contacts.ret[k];
         const td_race *b = &r->r.race;
         if (r->rx >= 0) {
             double v = which == 'M'   ? b->mass
@@ -120,7 +120,7 @@ void td_sim_races_gravity(const td_sim *s, double *f, double sign)
     int k;
     td_model_gravity(s->model, &gx, &gy);
     for (k = 0; k < s->dae.nr; k++) {
-        const td_sim_retainer *r = &s->ret[k];
+        const td_sim_retainer *r = &s->contacts.ret[k];
         if (r->rx < 0)
             continue;
         f[r->rx] += sign * r->r.race.mass * gx;
@@ -134,7 +134,7 @@ void td_sim_races_start(const td_sim *s, double *y)
     int k;
     td_model_gravity(s->model, &gx, &gy);
     for (k = 0; k < s->dae.nr; k++) {
-        const td_sim_retainer *r = &s->ret[k];
+        const td_sim_retainer *r = &s->contacts.ret[k];
         const td_race *b = &r->r.race;
         if (r->rx >= 0) { /* resting on its mount under its weight */
             y[s->dae.oq + r->rx] = b->mass * gx / b->mount_stiffness;

@@ -35,7 +35,7 @@ void td_sim_retainer_init(td_sim_retainer *r, const td_system *sys, int k, const
 
 void td_sim_node_state(const td_sim *s, int k, const double *y, double *x, double *yy, double *vx, double *vy)
 {
-    const td_sim_retainer *r = &s->ret[k];
+    const td_sim_retainer *r = &s->contacts.ret[k];
     *x = y[s->dae.oq + r->dx];
     *yy = y[s->dae.oq + r->dy];
     *vx = y[s->dae.ov + r->dx];
@@ -50,7 +50,7 @@ void td_sim_node_state(const td_sim *s, int k, const double *y, double *x, doubl
 
 double td_sim_race_speed(const td_sim *s, int k, const double *y)
 {
-    const td_sim_retainer *r = &s->ret[k];
+    const td_sim_retainer *r = &s->contacts.ret[k];
     return r->rs >= 0 ? y[s->dae.ov + r->rs] : r->r.bore_speed;
 }
 
@@ -61,7 +61,7 @@ double td_sim_race_speed(const td_sim *s, int k, const double *y)
  * delta = 0; a Kelvin-Voigt damper's jump is met by the enter event's restart). */
 int td_sim_penalty_model(const td_sim *s, int k)
 {
-    return s->ret[k].compliant;
+    return s->contacts.ret[k].compliant;
 }
 
 /* A Kelvin-Voigt contact whose enter root left the node a hair outside (delta <= 0, inside the
@@ -79,7 +79,7 @@ static double kelvin_voigt_at_touch(const td_penalty_law *law, double rate, doub
 
 double td_sim_penalty_force(const td_sim *s, int k, const double *y, double *fd, double *fr)
 {
-    const td_sim_retainer *r = &s->ret[k];
+    const td_sim_retainer *r = &s->contacts.ret[k];
     double x, yy, vx, vy, delta, rate;
     td_sim_node_state(s, k, y, &x, &yy, &vx, &vy);
     delta = hypot(x, yy) - r->r.clearance;
@@ -91,7 +91,7 @@ double td_sim_penalty_force(const td_sim *s, int k, const double *y, double *fd,
 
 double td_sim_normal_force(const td_sim *s, int k, const double *y)
 {
-    if (s->ret[k].mode == TD_RMODE_CONTACT)
+    if (s->contacts.ret[k].mode == TD_RMODE_CONTACT)
         return y[s->dae.ol + k];
     return td_sim_penalty_model(s, k) ? td_sim_penalty_force(s, k, y, NULL, NULL) : 0.0;
 }
@@ -100,20 +100,20 @@ double td_sim_sliding_velocity(const td_sim *s, int k, const double *y)
 {
     double x, yy, vx, vy;
     td_sim_node_state(s, k, y, &x, &yy, &vx, &vy);
-    return td_contact_sliding_velocity(&s->ret[k].r, td_sim_rotor_speed(s, y), td_sim_race_speed(s, k, y), x, yy, vx,
-                                       vy);
+    return td_contact_sliding_velocity(&s->contacts.ret[k].r, td_sim_rotor_speed(s, y), td_sim_race_speed(s, k, y), x,
+                                       yy, vx, vy);
 }
 
 void td_sim_sliding_gradient(const td_sim *s, int k, const double *y, double g[4])
 {
     double x, yy, vx, vy;
     td_sim_node_state(s, k, y, &x, &yy, &vx, &vy);
-    td_contact_sliding_velocity_gradient(&s->ret[k].r, x, yy, vx, vy, g);
+    td_contact_sliding_velocity_gradient(&s->contacts.ret[k].r, x, yy, vx, vy, g);
 }
 
 double td_sim_slip_factor(const td_sim *s, int k, const double *y, double *dphi)
 {
-    const td_sim_retainer *r = &s->ret[k];
+    const td_sim_retainer *r = &s->contacts.ret[k];
     if (r->r.stick) { /* rolling: F_t carries the friction; sliding: full mu N in its direction */
         if (dphi)
             *dphi = 0.0;
@@ -124,7 +124,7 @@ double td_sim_slip_factor(const td_sim *s, int k, const double *y, double *dphi)
 
 double td_sim_friction_force(const td_sim *s, int k, const double *y)
 {
-    const td_sim_retainer *r = &s->ret[k];
+    const td_sim_retainer *r = &s->contacts.ret[k];
     if (r->rolling)
         return y[s->dae.of + r->fi];
     return td_sim_slip_factor(s, k, y, NULL) * r->r.friction * td_sim_normal_force(s, k, y);
@@ -132,7 +132,7 @@ double td_sim_friction_force(const td_sim *s, int k, const double *y)
 
 void td_sim_roll_row(const td_sim *s, int k, const double *y, td_contact_row *row, double *h)
 {
-    const td_sim_retainer *r = &s->ret[k];
+    const td_sim_retainer *r = &s->contacts.ret[k];
     double x, yy, vx, vy, g[4];
     td_sim_node_state(s, k, y, &x, &yy, &vx, &vy);
     td_sim_sliding_gradient(s, k, y, g);
@@ -160,7 +160,7 @@ void td_sim_roll_row(const td_sim *s, int k, const double *y, td_contact_row *ro
 
 void td_sim_roll_column(const td_sim *s, int k, const double *y, double *col)
 {
-    const td_sim_retainer *r = &s->ret[k];
+    const td_sim_retainer *r = &s->contacts.ret[k];
     double x, yy, vx, vy, n[2], t[2];
     td_sim_node_state(s, k, y, &x, &yy, &vx, &vy);
     td_contact_frame(x, yy, n, t);
@@ -179,7 +179,7 @@ void td_sim_roll_column(const td_sim *s, int k, const double *y, double *col)
 
 double td_sim_race_drag(const td_sim *s, int k, const double *y, double *dT)
 {
-    const td_sim_retainer *r = &s->ret[k];
+    const td_sim_retainer *r = &s->contacts.ret[k];
     double band, phi, dphi = 0.0;
     if (r->rs < 0 || !(r->r.race.drag_torque > 0.0)) {
         if (dT)
@@ -195,7 +195,7 @@ double td_sim_race_drag(const td_sim *s, int k, const double *y, double *dT)
 
 void td_sim_contact_row(const td_sim *s, int k, const double *y, td_contact_row *row)
 {
-    const td_sim_retainer *r = &s->ret[k];
+    const td_sim_retainer *r = &s->contacts.ret[k];
     double x, yy, vx, vy;
     td_sim_node_state(s, k, y, &x, &yy, &vx, &vy);
     row->count = 2;
@@ -213,7 +213,7 @@ void td_sim_contact_row(const td_sim *s, int k, const double *y, td_contact_row 
 
 void td_sim_contact_column(const td_sim *s, int k, const double *y, double *col)
 {
-    const td_sim_retainer *r = &s->ret[k];
+    const td_sim_retainer *r = &s->contacts.ret[k];
     double x, yy, vx, vy, c = r->r.clearance, rad;
     double sm = td_sim_slip_factor(s, k, y, NULL) * r->r.friction;
     td_sim_node_state(s, k, y, &x, &yy, &vx, &vy);
@@ -233,7 +233,7 @@ void td_sim_contact_column(const td_sim *s, int k, const double *y, double *col)
 
 void td_sim_project_onto_circle(const td_sim *s, int k, double *y)
 {
-    const td_sim_retainer *r = &s->ret[k];
+    const td_sim_retainer *r = &s->contacts.ret[k];
     double x, yy, vx, vy, rad;
     td_sim_node_state(s, k, y, &x, &yy, &vx, &vy);
     rad = hypot(x, yy);
@@ -250,7 +250,7 @@ void td_sim_project_onto_circle(const td_sim *s, int k, double *y)
 
 void td_sim_init_slip(td_sim *s, int k, const double *y)
 {
-    td_sim_retainer *r = &s->ret[k];
+    td_sim_retainer *r = &s->contacts.ret[k];
     double vs = td_sim_sliding_velocity(s, k, y);
     int sg = vs < 0.0 ? -1 : 1;
     r->band_from = sg;
@@ -258,13 +258,13 @@ void td_sim_init_slip(td_sim *s, int k, const double *y)
     r->rolling = 0;
     if (r->r.stick && fabs(vs) < TD_CONTACT_SLIP_BAND) { /* no slip to speak of: try rolling */
         r->rolling = 1;
-        s->roll_tried[k] = 1;
+        s->contacts.roll_tried[k] = 1;
     }
 }
 
 void td_sim_project_rolling(const td_sim *s, int k, double *y)
 {
-    const td_sim_retainer *r = &s->ret[k];
+    const td_sim_retainer *r = &s->contacts.ret[k];
     double vs = td_sim_sliding_velocity(s, k, y), x, yy, vx, vy, rad, n[2], t[2], dv;
     if (r->rs >= 0) { /* the race turns by what its surface lags: v_s = 0 */
         y[s->dae.ov + r->rs] += vs / r->r.bore_radius;
@@ -280,7 +280,7 @@ void td_sim_project_rolling(const td_sim *s, int k, double *y)
 
 void td_sim_unroll(td_sim *s, int k, double *y, int slip)
 {
-    td_sim_retainer *r = &s->ret[k];
+    td_sim_retainer *r = &s->contacts.ret[k];
     r->rolling = 0;
     r->slip = slip;
     if (r->fi >= 0)
@@ -295,7 +295,7 @@ static int sign_or(double v, int otherwise)
 
 int td_sim_slip_root(td_sim *s, int k, const double *y)
 {
-    td_sim_retainer *r = &s->ret[k];
+    td_sim_retainer *r = &s->contacts.ret[k];
     if (r->slip != 0) { /* into the band: no event */
         r->band_from = r->slip;
         r->slip = 0;
@@ -308,9 +308,9 @@ int td_sim_slip_root(td_sim *s, int k, const double *y)
 
 void td_sim_release(td_sim *s, int k, double *y)
 {
-    td_sim_unroll(s, k, y, s->ret[k].slip);
-    s->ret[k].mode = TD_RMODE_FREE;
-    s->ret[k].armed = 0; /* left at r = c: no onset until the gap has opened (grazing guard) */
+    td_sim_unroll(s, k, y, s->contacts.ret[k].slip);
+    s->contacts.ret[k].mode = TD_RMODE_FREE;
+    s->contacts.ret[k].armed = 0; /* left at r = c: no onset until the gap has opened (grazing guard) */
     y[s->dae.ol + k] = 0.0;
 }
 
@@ -332,7 +332,7 @@ static double penalty_band(const td_sim *s)
 
 td_rmode td_sim_penalty_mode_wanted(const td_sim *s, int k, const double *y, td_rmode in_band)
 {
-    const td_sim_retainer *r = &s->ret[k];
+    const td_sim_retainer *r = &s->contacts.ret[k];
     double x, yy, vx, vy, delta;
     td_sim_node_state(s, k, y, &x, &yy, &vx, &vy);
     delta = hypot(x, yy) - r->r.clearance;

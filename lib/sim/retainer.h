@@ -50,6 +50,26 @@ typedef struct td_sim_retainer {
     int band_from; /* slip = 0: the sliding sign before the band (a reversal if it leaves the other way) */
 } td_sim_retainer;
 
+/* The contact set's record: the retainers and the work space of the mode switching (sim_modes.c:
+ * the KKT solve, the impacts), each array with one job (n: DOFs, nr: retainers, ns: stick
+ * retainers). retainer.c and sim_modes.c own it; race.c and the layers above read it. */
+typedef struct td_sim_contacts {
+    td_sim_retainer *ret; /* nr */
+    double *minv_f;       /* n: M^-1 f (kkt_solve, free_normal_acceleration) */
+    double *schur;        /* (nr + ns)^2: kkt_solve's J M^-1 B of the active contacts and rolls */
+    double *schur_rhs;    /* nr + ns: its right-hand side, then lambda and F_t */
+    double *restitution;  /* nr: impacts, the restitution of each contact in the impact map */
+    double *impulse;      /* nr: impacts, the impulse of each contact */
+    double *impact_work;  /* nr * (nr + 1): td_contact_impact_map's work space */
+    double *minv_cols;    /* n * (nr + ns): M^-1 B_k or M^-1 J_k^T columns of the active contacts */
+    td_contact_row *rows; /* nr + ns: contact rows J_k of the active contacts */
+    int *active;          /* nr + ns: indices of the retainers in the small system (kkt_solve, impacts) */
+    int *active_roll;     /* nr + ns: 1 where that multiplier is a rolling F_t, 0 a normal force */
+    int *onset, *entered; /* nr each: onset roots and contacts entered at an instant (sim_modes.c) */
+    int *roll_tried;      /* nr: stick retainers set rolling at a slip root, not yet confirmed */
+    int *touching;        /* nr: retainers touching their circles at the start (start.c) */
+} td_sim_contacts;
+
 /* Retainer k of `model`, free and armed, sliding forwards, its contact law from the run's options;
  * its race DOFs unassigned (-1: td_sim_races_layout assigns them). */
 void td_sim_retainer_init(td_sim_retainer *r, const td_system *sys, int k, const td_contact_options *run);
@@ -94,7 +114,7 @@ void td_sim_project_onto_circle(const td_sim *s, int k, double *y);
 double td_sim_race_drag(const td_sim *s, int k, const double *y, double *dT);
 
 /* Set retainer k's slip mode (and band_from) from its sliding velocity at y, entering contact; a
- * stick retainer with no slip to speak of tries rolling (s->roll_tried). */
+ * stick retainer with no slip to speak of tries rolling (s->contacts.roll_tried). */
 void td_sim_init_slip(td_sim *s, int k, const double *y);
 /* Retainer k's slip root fired (|v_s| reached v_reg): into the band, or out of it with the slip
  * mode of the state. Returns 1 if it left the band on the other side (a friction reversal).

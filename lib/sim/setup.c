@@ -49,29 +49,30 @@ static int alloc_work(td_sim *s, size_t nr)
 {
     size_t n = (size_t)s->dae.n, nc = nr + (size_t)s->dae.ns; /* KKT multipliers: lambda and F_t */
     s->dae.mass_x = calloc(n, sizeof(double));
-    s->minv_f = calloc(n, sizeof(double));
+    s->contacts.minv_f = calloc(n, sizeof(double));
     s->dae.power_x = calloc(n, sizeof(double));
     s->dae.power_kx = calloc(n, sizeof(double));
     s->dae.power_mx = calloc(n, sizeof(double));
-    s->schur = calloc(nc * nc, sizeof(double));
-    s->schur_rhs = calloc(nc, sizeof(double));
-    s->restitution = calloc(nr, sizeof(double));
-    s->impulse = calloc(nr, sizeof(double));
-    s->impact_work = calloc(nr * (nr + 1), sizeof(double));
-    s->minv_cols = calloc(n * nc, sizeof(double));
-    s->rows = calloc(nc, sizeof *s->rows);
-    s->active = calloc(nc, sizeof(int));
-    s->active_roll = calloc(nc, sizeof(int));
-    s->onset = calloc(nr, sizeof(int));
-    s->entered = calloc(nr, sizeof(int));
-    s->roll_tried = calloc(nr, sizeof(int));
-    s->touching = calloc(nr, sizeof(int));
+    s->contacts.schur = calloc(nc * nc, sizeof(double));
+    s->contacts.schur_rhs = calloc(nc, sizeof(double));
+    s->contacts.restitution = calloc(nr, sizeof(double));
+    s->contacts.impulse = calloc(nr, sizeof(double));
+    s->contacts.impact_work = calloc(nr * (nr + 1), sizeof(double));
+    s->contacts.minv_cols = calloc(n * nc, sizeof(double));
+    s->contacts.rows = calloc(nc, sizeof *s->contacts.rows);
+    s->contacts.active = calloc(nc, sizeof(int));
+    s->contacts.active_roll = calloc(nc, sizeof(int));
+    s->contacts.onset = calloc(nr, sizeof(int));
+    s->contacts.entered = calloc(nr, sizeof(int));
+    s->contacts.roll_tried = calloc(nr, sizeof(int));
+    s->contacts.touching = calloc(nr, sizeof(int));
     s->monitor.totals = calloc(nr, sizeof *s->monitor.totals);
     s->monitor.energy_f = calloc(n, sizeof(double));
-    return s->dae.mass_x && s->minv_f && s->dae.power_x && s->dae.power_kx && s->dae.power_mx && s->schur &&
-           s->schur_rhs && s->restitution && s->impulse && s->impact_work && s->minv_cols && s->rows && s->active &&
-           s->active_roll && s->onset && s->roll_tried && s->monitor.totals && s->monitor.energy_f && s->entered &&
-           s->touching;
+    return s->dae.mass_x && s->contacts.minv_f && s->dae.power_x && s->dae.power_kx && s->dae.power_mx &&
+           s->contacts.schur && s->contacts.schur_rhs && s->contacts.restitution && s->contacts.impulse &&
+           s->contacts.impact_work && s->contacts.minv_cols && s->contacts.rows && s->contacts.active &&
+           s->contacts.active_roll && s->contacts.onset && s->contacts.roll_tried && s->monitor.totals &&
+           s->monitor.energy_f && s->contacts.entered && s->contacts.touching;
 }
 
 static td_status alloc_arrays(td_sim *s, td_error *err)
@@ -191,8 +192,8 @@ static void set_scales(td_sim *s)
     if (s->machine.freq_scale < 1.0)
         s->machine.freq_scale = 1.0;
     for (i = 0; i < s->dae.nr; i++)
-        if (s->ret[i].r.clearance < cmin)
-            cmin = s->ret[i].r.clearance;
+        if (s->contacts.ret[i].r.clearance < cmin)
+            cmin = s->contacts.ret[i].r.clearance;
     if (s->dae.nr == 0)
         cmin = s->opt.solver.atol * 1e3;
     s->machine.freq_max = highest_frequency(s);
@@ -257,13 +258,13 @@ static td_status init_retainers(td_sim *s, td_error *err)
     int k;
     s->model = td_system_model(s->sys);
     s->dae.nr = td_model_retainer_count(s->model);
-    s->ret = calloc((size_t)(s->dae.nr > 0 ? s->dae.nr : 1), sizeof *s->ret);
-    if (!s->ret)
+    s->contacts.ret = calloc((size_t)(s->dae.nr > 0 ? s->dae.nr : 1), sizeof *s->contacts.ret);
+    if (!s->contacts.ret)
         return td_error_set(err, TD_ERR_NOMEM, "out of memory creating a simulation");
     for (k = 0; k < s->dae.nr; k++) {
-        td_sim_retainer_init(&s->ret[k], s->sys, k, &s->opt.contact);
-        if (s->ret[k].r.stick)
-            s->ret[k].fi = s->dae.ns++;
+        td_sim_retainer_init(&s->contacts.ret[k], s->sys, k, &s->opt.contact);
+        if (s->contacts.ret[k].r.stick)
+            s->contacts.ret[k].fi = s->dae.ns++;
     }
     td_sim_races_layout(s);
     return td_sim_races_matrices(s, err);
@@ -334,25 +335,25 @@ td_status td_sim_setup(const td_model *model, const td_sim_options *options, vol
 static void free_work(td_sim *s)
 {
     free(s->dae.mass_x);
-    free(s->minv_f);
+    free(s->contacts.minv_f);
     free(s->dae.power_x);
     free(s->dae.power_kx);
     free(s->dae.power_mx);
-    free(s->schur);
-    free(s->schur_rhs);
-    free(s->restitution);
-    free(s->impulse);
-    free(s->impact_work);
-    free(s->minv_cols);
-    free(s->rows);
-    free(s->active);
-    free(s->active_roll);
-    free(s->onset);
-    free(s->entered);
-    free(s->roll_tried);
+    free(s->contacts.schur);
+    free(s->contacts.schur_rhs);
+    free(s->contacts.restitution);
+    free(s->contacts.impulse);
+    free(s->contacts.impact_work);
+    free(s->contacts.minv_cols);
+    free(s->contacts.rows);
+    free(s->contacts.active);
+    free(s->contacts.active_roll);
+    free(s->contacts.onset);
+    free(s->contacts.entered);
+    free(s->contacts.roll_tried);
     free(s->monitor.totals);
     free(s->monitor.energy_f);
-    free(s->touching);
+    free(s->contacts.touching);
 }
 
 void td_sim_teardown(td_sim *s)
@@ -375,7 +376,7 @@ void td_sim_teardown(td_sim *s)
     free(s->machine.unb);
     free(s->machine.amb_mode);
     free(s->machine.amb_control);
-    free(s->ret);
+    free(s->contacts.ret);
     free(s->machine.amb_coef);
     free(s->monitor.queue);
     free_work(s);

@@ -146,7 +146,7 @@ td_status td_sim_retainer_state(const td_sim *sim, int retainer, td_retainer_sta
     if (!sim || !out || retainer < 0 || retainer >= sim->dae.nr)
         return TD_ERR_INVALID;
     y = N_VGetArrayPointer(sim->dae.y);
-    r = &sim->ret[retainer];
+    r = &sim->contacts.ret[retainer];
     out->x = y[sim->dae.oq + r->dx];
     out->y = y[sim->dae.oq + r->dy];
     out->race_x = r->rx >= 0 ? y[sim->dae.oq + r->rx] : 0.0;

@@ -55,28 +55,12 @@ struct td_sim {
     const td_model *model; /* the system's copy */
     td_sim_options opt;
 
-    td_sim_retainer *ret;
-
-    td_sim_machine machine; /* the machine as it is now and its scales (machine.h) */
-    td_sim_dae dae;         /* the unknowns, the state, the matrices, the pattern (dae.h) */
-    td_sim_monitor monitor; /* statistics, events, totals, energy (monitor.h) */
-    td_sim_solver solver;   /* IDA, its tolerances and counters (integrator.h) */
-    td_sim_loop loop;       /* the step loop (stepping.h) */
-
-    /* work space, each array with one job (n: DOFs, nr: retainers) */
-    double *minv_f;       /* n: M^-1 f (kkt_solve, free_normal_acceleration) */
-    double *schur;        /* (nr + ns)^2: kkt_solve's J M^-1 B of the active contacts and rolls */
-    double *schur_rhs;    /* nr + ns: its right-hand side, then lambda and F_t */
-    double *restitution;  /* nr: impacts, the restitution of each contact in the impact map */
-    double *impulse;      /* nr: impacts, the impulse of each contact */
-    double *impact_work;  /* nr * (nr + 1): td_contact_impact_map's work space */
-    double *minv_cols;    /* n * (nr + ns): M^-1 B_k or M^-1 J_k^T columns of the active contacts */
-    td_contact_row *rows; /* nr + ns: contact rows J_k of the active contacts */
-    int *active;          /* nr + ns: indices of the retainers in the small system (kkt_solve, impacts) */
-    int *active_roll;     /* nr + ns: 1 where that multiplier is a rolling F_t, 0 a normal force */
-    int *onset, *entered; /* nr each: onset roots and contacts entered at an instant (sim_modes.c) */
-    int *roll_tried;      /* nr: stick retainers set rolling at a slip root, not yet confirmed */
-    int *touching;        /* nr: retainers touching their circles at the start (start_state) */
+    td_sim_machine machine;   /* the machine as it is now and its scales (machine.h) */
+    td_sim_contacts contacts; /* the retainers and the mode switching's work space (retainer.h) */
+    td_sim_dae dae;           /* the unknowns, the state, the matrices, the pattern (dae.h) */
+    td_sim_monitor monitor;   /* statistics, events, totals, energy (monitor.h) */
+    td_sim_solver solver;     /* IDA, its tolerances and counters (integrator.h) */
+    td_sim_loop loop;         /* the step loop (stepping.h) */
 
     td_sim_flight *flight;          /* flight.c, allocated at the first flight; NULL: none yet */
     struct td_sim_section *section; /* section.c, NULL: no section taken */

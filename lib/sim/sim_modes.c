@@ -48,34 +48,34 @@ static double contact_dterm(const td_sim *s, int k, const double *y)
 {
     double x, yy, vx, vy;
     td_sim_node_state(s, k, y, &x, &yy, &vx, &vy);
-    return td_contact_constraint_dterm(vx, vy, s->ret[k].r.clearance);
+    return td_contact_constraint_dterm(vx, vy, s->contacts.ret[k].r.clearance);
 }
 
-/* The multipliers of the KKT solve at the current modes into s->active / s->active_roll: the
+/* The multipliers of the KKT solve at the current modes into s->contacts.active / s->contacts.active_roll: the
  * normal force of every constrained contact, then the friction force F_t of every rolling
- * retainer. For each, its row (s->rows), M^-1 times its column (s->minv_cols) and the velocity
+ * retainer. For each, its row (s->contacts.rows), M^-1 times its column (s->contacts.minv_cols) and the velocity
  * term of its acceleration-level constraint (rhs): D of eq. (13b), or h of d v_s / dt. */
 static int kkt_multipliers(td_sim *s, const double *y, double *rhs)
 {
     int m = 0, k;
     for (k = 0; k < s->dae.nr; k++)
-        if (s->ret[k].mode == TD_RMODE_CONTACT) {
-            double *z = s->minv_cols + (size_t)m * s->dae.n;
+        if (s->contacts.ret[k].mode == TD_RMODE_CONTACT) {
+            double *z = s->contacts.minv_cols + (size_t)m * s->dae.n;
             td_sim_contact_column(s, k, y, z);
             td_sim_mass_solve(s, z);
-            td_sim_contact_row(s, k, y, &s->rows[m]);
+            td_sim_contact_row(s, k, y, &s->contacts.rows[m]);
             rhs[m] = contact_dterm(s, k, y);
-            s->active_roll[m] = 0;
-            s->active[m++] = k;
+            s->contacts.active_roll[m] = 0;
+            s->contacts.active[m++] = k;
         }
     for (k = 0; k < s->dae.nr; k++)
-        if (s->ret[k].rolling) {
-            double *z = s->minv_cols + (size_t)m * s->dae.n;
+        if (s->contacts.ret[k].rolling) {
+            double *z = s->contacts.minv_cols + (size_t)m * s->dae.n;
             td_sim_roll_column(s, k, y, z);
             td_sim_mass_solve(s, z);
-            td_sim_roll_row(s, k, y, &s->rows[m], &rhs[m]);
-            s->active_roll[m] = 1;
-            s->active[m++] = k;
+            td_sim_roll_row(s, k, y, &s->contacts.rows[m], &rhs[m]);
+            s->contacts.active_roll[m] = 1;
+            s->contacts.active[m++] = k;
         }
     return m;
 }
@@ -87,15 +87,15 @@ static int kkt_multipliers(td_sim *s, const double *y, double *rhs)
  * multiplier entries. Returns the number of multipliers, or -1 if singular. */
 static int kkt_solve(td_sim *s, double *y, double *yp)
 {
-    double *a = s->minv_f, *S = s->schur, *rhs = s->schur_rhs, *vp = yp + s->dae.ov;
+    double *a = s->contacts.minv_f, *S = s->contacts.schur, *rhs = s->contacts.schur_rhs, *vp = yp + s->dae.ov;
     int m, i, j;
     td_sim_forces(s, s->dae.t, y, a);
     td_sim_mass_solve(s, a);
     m = kkt_multipliers(s, y, rhs);
     for (i = 0; i < m; i++) {
-        const td_contact_row *row = &s->rows[i];
+        const td_contact_row *row = &s->contacts.rows[i];
         for (j = 0; j < m; j++)
-            S[i + j * m] = td_contact_row_dot(row, s->minv_cols + (size_t)j * s->dae.n);
+            S[i + j * m] = td_contact_row_dot(row, s->contacts.minv_cols + (size_t)j * s->dae.n);
         rhs[i] = td_contact_row_dot(row, a) + rhs[i];
     }
     if (m > 0 && td_contact_dense_solve(m, S, rhs) != 0)
@@ -103,11 +103,11 @@ static int kkt_solve(td_sim *s, double *y, double *yp)
     for (i = 0; i < s->dae.n; i++)
         vp[i] = a[i];
     for (j = 0; j < m; j++) {
-        const double *z = s->minv_cols + (size_t)j * s->dae.n;
-        const td_sim_retainer *r = &s->ret[s->active[j]];
+        const double *z = s->contacts.minv_cols + (size_t)j * s->dae.n;
+        const td_sim_retainer *r = &s->contacts.ret[s->contacts.active[j]];
         for (i = 0; i < s->dae.n; i++)
             vp[i] -= z[i] * rhs[j];
-        y[s->active_roll[j] ? s->dae.of + r->fi : s->dae.ol + s->active[j]] = rhs[j];
+        y[s->contacts.active_roll[j] ? s->dae.of + r->fi : s->dae.ol + s->contacts.active[j]] = rhs[j];
     }
     return m;
 }
@@ -122,9 +122,9 @@ static void keep_rolling(td_sim *s, int k, double *y)
         return;
     }
     td_sim_unroll(s, k, y, vs > 0.0 ? 1 : -1);
-    if (!s->roll_tried[k])
+    if (!s->contacts.roll_tried[k])
         queue_retainer_event(s, TD_EVENT_ROLL_END, k, y);
-    s->roll_tried[k] = 0;
+    s->contacts.roll_tried[k] = 0;
 }
 
 /* Multipliers of the modes at restart: eta = 0, lambda of free retainers 0 (nodes in contact
@@ -134,7 +134,7 @@ static void reset_multipliers(td_sim *s, double *y, double *yp)
 {
     int k;
     for (k = 0; k < s->dae.nr; k++) {
-        const td_sim_retainer *r = &s->ret[k];
+        const td_sim_retainer *r = &s->contacts.ret[k];
         y[s->dae.ou + k] = 0.0;
         yp[s->dae.ol + k] = yp[s->dae.ou + k] = 0.0;
         if (r->mode != TD_RMODE_CONTACT)
@@ -160,7 +160,7 @@ static int worst_pull(const td_sim *s, const double *y, const int *just_entered)
     for (k = 0; k < s->dae.nr; k++) {
         double lam = y[s->dae.ol + k];
         int reject;
-        if (s->ret[k].mode != TD_RMODE_CONTACT)
+        if (s->contacts.ret[k].mode != TD_RMODE_CONTACT)
             continue;
         reject = (just_entered && just_entered[k]) ? !(lam > 0.0) : lam < 0.0;
         if (reject && (worst < 0 || lam < worst_lam)) {
@@ -177,7 +177,7 @@ static int worst_slip(const td_sim *s, const double *y)
     double worst_excess = 0.0;
     int worst = -1, k;
     for (k = 0; k < s->dae.nr; k++) {
-        const td_sim_retainer *r = &s->ret[k];
+        const td_sim_retainer *r = &s->contacts.ret[k];
         double excess;
         if (!r->rolling)
             continue;
@@ -192,17 +192,17 @@ static int worst_slip(const td_sim *s, const double *y)
 
 /* Retainer k rolled and slips now, in the direction of the force it needed (+: the shaft drags
  * the race forward, v_s > 0): a rolling end, or, for a roll only tried at this instant
- * (s->roll_tried), a friction reversal if it slips the other way. */
+ * (s->contacts.roll_tried), a friction reversal if it slips the other way. */
 static void slip_from_roll(td_sim *s, int k, double *y)
 {
-    td_sim_retainer *r = &s->ret[k];
+    td_sim_retainer *r = &s->contacts.ret[k];
     int was = r->slip, slip = y[s->dae.of + r->fi] > 0.0 ? 1 : -1;
     td_sim_unroll(s, k, y, slip);
-    if (!s->roll_tried[k])
+    if (!s->contacts.roll_tried[k])
         queue_retainer_event(s, TD_EVENT_ROLL_END, k, y);
     else if (slip != was)
         queue_retainer_event(s, TD_EVENT_FRICTION_REVERSAL, k, y);
-    s->roll_tried[k] = 0;
+    s->contacts.roll_tried[k] = 0;
 }
 
 td_status td_sim_make_consistent(td_sim *s, const int *just_entered)
@@ -230,9 +230,9 @@ td_status td_sim_make_consistent(td_sim *s, const int *just_entered)
         }
     }
     for (k = 0; k < s->dae.nr; k++) /* tried rolls that held */
-        if (s->roll_tried[k]) {
-            s->roll_tried[k] = 0;
-            if (s->ret[k].rolling)
+        if (s->contacts.roll_tried[k]) {
+            s->contacts.roll_tried[k] = 0;
+            if (s->contacts.ret[k].rolling)
                 queue_retainer_event(s, TD_EVENT_ROLL_START, k, y);
         }
     /* q' = v, w' = the filter and integrator rates */
@@ -293,60 +293,61 @@ static double free_normal_acceleration(td_sim *s, int k, const double *y, double
  */
 static double impact_restitution(td_sim *s, int k, const double *y, double vr)
 {
-    double e = s->ret[k].r.restitution, an, vmin;
+    double e = s->contacts.ret[k].r.restitution, an, vmin;
     if (!(e > 0.0) || vr < s->machine.rebound_min)
         return 0.0;
-    an = free_normal_acceleration(s, k, y, s->minv_f);
+    an = free_normal_acceleration(s, k, y, s->contacts.minv_f);
     vmin = an > 0.0 ? 2.0 * sqrt(2.0 * an * s->machine.rearm_eps) : 0.0;
     return e * vr < vmin ? 0.0 : e;
 }
 
-/* The contacts of an impact at the retainers flagged in `onset`, into s->active with their
- * restitution in s->restitution: every active contact (e = 0 keeps it on the circle) and each
+/* The contacts of an impact at the retainers flagged in `onset`, into s->contacts.active with their
+ * restitution in s->contacts.restitution: every active contact (e = 0 keeps it on the circle) and each
  * onset moving outward (impact_restitution). Returns their number. */
 static int impact_contacts(td_sim *s, const int *onset, const double *y)
 {
-    double *e = s->restitution;
+    double *e = s->contacts.restitution;
     int m = 0, k;
     for (k = 0; k < s->dae.nr; k++) {
-        const td_sim_retainer *r = &s->ret[k];
+        const td_sim_retainer *r = &s->contacts.ret[k];
         double x, yy, vx, vy, vr;
         if (r->mode == TD_RMODE_CONTACT) {
             e[m] = 0.0;
-            s->active[m++] = k;
+            s->contacts.active[m++] = k;
         } else if (onset[k]) {
             td_sim_node_state(s, k, y, &x, &yy, &vx, &vy);
             vr = td_contact_radial_velocity(x, yy, vx, vy);
             if (!(vr > 0.0)) /* touching while already moving inward: no impact, stay free */
                 continue;
             e[m] = impact_restitution(s, k, y, vr);
-            s->active[m++] = k;
+            s->contacts.active[m++] = k;
         }
     }
     return m;
 }
 
-/* Rows J_k (s->rows) and columns M^-1 J_k^T (s->minv_cols) of the first m contacts in s->active. */
+/* Rows J_k (s->contacts.rows) and columns M^-1 J_k^T (s->contacts.minv_cols) of the first m contacts in
+ * s->contacts.active. */
 static void impact_columns(td_sim *s, int m, const double *y)
 {
     int i;
     for (i = 0; i < m; i++) {
-        double *col = s->minv_cols + (size_t)i * s->dae.n;
-        td_sim_contact_row(s, s->active[i], y, &s->rows[i]);
+        double *col = s->contacts.minv_cols + (size_t)i * s->dae.n;
+        td_sim_contact_row(s, s->contacts.active[i], y, &s->contacts.rows[i]);
         memset(col, 0, sizeof(double) * (size_t)s->dae.n);
-        td_contact_row_scatter(&s->rows[i], col);
+        td_contact_row_scatter(&s->contacts.rows[i], col);
         td_sim_mass_solve(s, col);
     }
 }
 
-/* Queue the onset event of every new contact among the first m in s->active, with the
+/* Queue the onset event of every new contact among the first m in s->contacts.active, with the
  * velocities before the impact. Returns how many. */
 static int queue_onsets(td_sim *s, const int *onset, int m, const double *y)
 {
     int i, k, queued = 0;
     for (i = 0; i < m; i++) {
-        k = s->active[i];
-        if (!onset[k] || s->ret[k].mode == TD_RMODE_CONTACT)
+        k = s->contacts.active[i];
+        if (!onset[k] || s->contacts.ret[k].mode == TD_RMODE_CONTACT)
             continue;
         {
             td_event ev = td_sim_event_at(s, TD_EVENT_CONTACT_ONSET, k);
@@ -365,11 +366,11 @@ static void enter_contacts(td_sim *s, const int *onset, int m, const double *y, 
     int i, k;
     for (i = 0; i < m; i++) {
         td_sim_retainer *r;
-        k = s->active[i];
-        r = &s->ret[k];
+        k = s->contacts.active[i];
+        r = &s->contacts.ret[k];
         if (!onset[k] || r->mode == TD_RMODE_CONTACT)
             continue;
-        if (s->restitution[i] > 0.0) {
+        if (s->contacts.restitution[i] > 0.0) {
             r->armed = 0; /* bounced: free until the gap has opened */
         } else {
             r->mode = TD_RMODE_CONTACT;
@@ -385,13 +386,13 @@ static void complete_onsets(td_sim *s, const int *onset, int m, int first_event,
 {
     int i, k, q;
     for (i = 0; i < m; i++) {
-        k = s->active[i];
+        k = s->contacts.active[i];
         if (!onset[k])
             continue;
         for (q = first_event; q < s->monitor.q_len; q++)
             if (s->monitor.queue[q].retainer == k && s->monitor.queue[q].kind == TD_EVENT_CONTACT_ONSET) {
                 td_sim_event_velocities(s, k, y, 1, &s->monitor.queue[q]);
-                s->monitor.queue[q].impulse = s->impulse[i];
+                s->monitor.queue[q].impulse = s->contacts.impulse[i];
             }
     }
 }
@@ -402,8 +403,8 @@ static void stop_rolling(td_sim *s, double *y)
 {
     int k;
     for (k = 0; k < s->dae.nr; k++)
-        if (s->ret[k].rolling) {
-            td_sim_unroll(s, k, y, s->ret[k].slip);
+        if (s->contacts.ret[k].rolling) {
+            td_sim_unroll(s, k, y, s->contacts.ret[k].slip);
             queue_retainer_event(s, TD_EVENT_ROLL_END, k, y);
         }
 }
@@ -428,24 +429,25 @@ static int impacts(td_sim *s, const int *onset, int *entered)
     impact_columns(s, m, y);
     queued = queue_onsets(s, onset, m, y);
     before = s->opt.energy ? td_sim_kinetic_energy(s, y) : 0.0;
-    if (m > 0 && td_contact_impact_map(s->dae.n, m, s->rows, s->minv_cols, s->restitution, y + s->dae.ov, s->impulse,
-                                       s->impact_work) != 0)
+    if (m > 0 && td_contact_impact_map(s->dae.n, m, s->contacts.rows, s->contacts.minv_cols, s->contacts.restitution,
+                                       y + s->dae.ov, s->contacts.impulse, s->contacts.impact_work) != 0)
         return -1;
     if (s->opt.energy)
         td_sim_energy_impact(s, before, td_sim_kinetic_energy(s, y));
     for (k = 0; k < m; k++) /* every contact of the impact took its impulse; e > 0 onsets bounced */
-        td_sim_totals_impact(s, s->active[k], s->impulse[k],
-                             onset[s->active[k]] && s->ret[s->active[k]].mode != TD_RMODE_CONTACT &&
-                                 s->restitution[k] > 0.0);
+        td_sim_totals_impact(s, s->contacts.active[k], s->contacts.impulse[k],
+                             onset[s->contacts.active[k]] &&
+                                 s->contacts.ret[s->contacts.active[k]].mode != TD_RMODE_CONTACT &&
+                                 s->contacts.restitution[k] > 0.0);
     enter_contacts(s, onset, m, y, entered);
     for (k = 0; k < s->dae.nr; k++) /* stick retainers slide the way the impact left them */
-        if (s->ret[k].r.stick && s->ret[k].mode == TD_RMODE_CONTACT && !entered[k])
+        if (s->contacts.ret[k].r.stick && s->contacts.ret[k].mode == TD_RMODE_CONTACT && !entered[k])
             td_sim_init_slip(s, k, y);
     complete_onsets(s, onset, m, first_event, y);
     /* onsets with no outward velocity: disarm, nothing happened */
     for (k = 0; k < s->dae.nr; k++)
-        if (onset[k] && s->ret[k].mode == TD_RMODE_FREE)
-            s->ret[k].armed = 0;
+        if (onset[k] && s->contacts.ret[k].mode == TD_RMODE_FREE)
+            s->contacts.ret[k].armed = 0;
     return queued;
 }
 
@@ -453,7 +455,7 @@ static int impacts(td_sim *s, const int *onset, int *entered)
  * a restart at v_s = 0 the other way, e.g. when rolling ended with F_t ~ 0 as N vanished). */
 static int stick_out_of_step(const td_sim *s, int k, const double *y)
 {
-    const td_sim_retainer *r = &s->ret[k];
+    const td_sim_retainer *r = &s->contacts.ret[k];
     return r->r.stick && r->mode != TD_RMODE_FREE && !r->rolling &&
            r->slip * td_sim_sliding_velocity(s, k, y) < -TD_CONTACT_SLIP_BAND;
 }
@@ -462,7 +464,8 @@ int td_sim_modes_out_of_step(const td_sim *s, const double *y)
 {
     int k;
     for (k = 0; k < s->dae.nr; k++)
-        if ((td_sim_penalty_model(s, k) && td_sim_penalty_mode_wanted(s, k, y, s->ret[k].mode) != s->ret[k].mode) ||
+        if ((td_sim_penalty_model(s, k) &&
+             td_sim_penalty_mode_wanted(s, k, y, s->contacts.ret[k].mode) != s->contacts.ret[k].mode) ||
             stick_out_of_step(s, k, y))
             return 1;
     return 0;
@@ -472,7 +475,7 @@ int td_sim_modes_out_of_step(const td_sim *s, const double *y)
  * the mode changed. */
 static int penalty_switch(td_sim *s, int k, double *y, td_rmode want)
 {
-    td_sim_retainer *r = &s->ret[k];
+    td_sim_retainer *r = &s->contacts.ret[k];
     if (want == r->mode)
         return 0;
     r->mode = want;
@@ -494,7 +497,7 @@ static int penalty_switch(td_sim *s, int k, double *y, td_rmode want)
  * on, the way that force points) or |F_t| = mu N while rolling (it slips). */
 static void slip_root(td_sim *s, int k, double *y)
 {
-    td_sim_retainer *r = &s->ret[k];
+    td_sim_retainer *r = &s->contacts.ret[k];
     if (!r->r.stick) {
         if (td_sim_slip_root(s, k, y))
             queue_retainer_event(s, TD_EVENT_FRICTION_REVERSAL, k, y);
@@ -503,7 +506,7 @@ static void slip_root(td_sim *s, int k, double *y)
         queue_retainer_event(s, TD_EVENT_ROLL_END, k, y);
     } else {
         r->rolling = 1;
-        s->roll_tried[k] = 1;
+        s->contacts.roll_tried[k] = 1;
     }
 }
 
@@ -512,7 +515,7 @@ static void slip_root(td_sim *s, int k, double *y)
  * the integrator must restart. */
 static int constraint_roots(td_sim *s, int k, double *y, const int *f, int *onset)
 {
-    td_sim_retainer *r = &s->ret[k];
+    td_sim_retainer *r = &s->contacts.ret[k];
     int restart = 0;
     if (f[TD_ROOT_CONTACT] != 0) {
         if (r->mode == TD_RMODE_FREE) {
@@ -536,7 +539,7 @@ static int constraint_roots(td_sim *s, int k, double *y, const int *f, int *onse
  * (retainer.c td_sim_penalty_mode_wanted). Returns 1 if the integrator must restart. */
 static int penalty_roots(td_sim *s, int k, double *y, const int *f)
 {
-    td_sim_retainer *r = &s->ret[k];
+    td_sim_retainer *r = &s->contacts.ret[k];
     int restart = 0;
     td_rmode flip, in_band;
     if (f[TD_ROOT_CONTACT] == 0 && f[TD_ROOT_SLIP] != 0 && r->mode != TD_RMODE_FREE) {
@@ -552,17 +555,17 @@ static int penalty_roots(td_sim *s, int k, double *y, const int *f)
     return restart;
 }
 
-/* Impacts at the retainers flagged in s->onset (any: some are), or none; s->entered says which
+/* Impacts at the retainers flagged in s->contacts.onset (any: some are), or none; s->contacts.entered says which
  * retainers came into contact. */
 static td_status onset_impacts(td_sim *s, int any)
 {
     int k;
     if (!any) {
         for (k = 0; k < s->dae.nr; k++)
-            s->entered[k] = 0;
+            s->contacts.entered[k] = 0;
         return TD_OK;
     }
-    if (impacts(s, s->onset, s->entered) < 0) {
+    if (impacts(s, s->contacts.onset, s->contacts.entered) < 0) {
         snprintf(s->errmsg, sizeof s->errmsg, "t = %.9g s: impact map singular", s->dae.t);
         return TD_ERR_NUMERIC;
     }
@@ -577,14 +580,15 @@ td_status td_sim_handle_roots(td_sim *s, int *restart)
     *restart = 0;
     for (k = 0; k < s->dae.nr; k++) {
         const int *f = s->dae.rootsfound + TD_ROOTS_PER_RETAINER * k;
-        s->onset[k] = 0;
-        if (td_sim_penalty_model(s, k) ? penalty_roots(s, k, y, f) : constraint_roots(s, k, y, f, &s->onset[k]))
+        s->contacts.onset[k] = 0;
+        if (td_sim_penalty_model(s, k) ? penalty_roots(s, k, y, f)
+                                       : constraint_roots(s, k, y, f, &s->contacts.onset[k]))
             *restart = 1;
         if (stick_out_of_step(s, k, y)) { /* the missed crossing: the restart rolls or slips the right way */
             slip_root(s, k, y);
             *restart = 1;
         }
-        any_onset = any_onset || s->onset[k];
+        any_onset = any_onset || s->contacts.onset[k];
     }
     for (k = 0; k < s->dae.n_sat_roots; k++) /* an AMB's clip: restart on its kink */
         if (s->dae.rootsfound[TD_ROOTS_PER_RETAINER * s->dae.nr + k])
@@ -596,7 +600,7 @@ td_status td_sim_handle_roots(td_sim *s, int *restart)
         *restart = 1;
     if (!*restart)
         return TD_OK;
-    st = td_sim_make_consistent(s, s->entered);
+    st = td_sim_make_consistent(s, s->contacts.entered);
     if (st != TD_OK)
         return st;
     /* record the normal force right after each event of this instant */
@@ -611,9 +615,9 @@ td_status td_sim_start_contacts(td_sim *s, const int *touching)
     int k, any = 0;
     td_status st;
     for (k = 0; k < s->dae.nr; k++) {
-        s->onset[k] = touching[k];
-        any = any || s->onset[k];
+        s->contacts.onset[k] = touching[k];
+        any = any || s->contacts.onset[k];
     }
     st = onset_impacts(s, any);
-    return st == TD_OK ? td_sim_make_consistent(s, s->entered) : st;
+    return st == TD_OK ? td_sim_make_consistent(s, s->contacts.entered) : st;
 }

@@ -37,7 +37,7 @@ static int put_matrix(cs_di *T, const cs_di *A, int roff, int coff)
  * superset of what a mode writes. */
 static int put_race(const td_sim *s, cs_di *T, int k)
 {
-    const td_sim_retainer *r = &s->ret[k];
+    const td_sim_retainer *r = &s->contacts.ret[k];
     int dofs[6], nd = 0, i, j, ok = 1;
     dofs[nd++] = r->dx;
     dofs[nd++] = r->dy;
@@ -105,7 +105,7 @@ static int put_all(const td_sim *s, cs_di *T)
         }
     }
     for (k = 0; k < s->dae.nr && ok; k++) {
-        const td_sim_retainer *r = &s->ret[k];
+        const td_sim_retainer *r = &s->contacts.ret[k];
         int qx = s->dae.oq + r->dx, qy = s->dae.oq + r->dy, vx = s->dae.ov + r->dx, vy = s->dae.ov + r->dy;
         int lk = s->dae.ol + k, uk = s->dae.ou + k;
         ok = put_block(T, vx, vy, qx, qy) && put_block(T, vx, vy, vx, vy) && put(T, vx, lk) && put(T, vy, lk) &&

@@ -25,7 +25,7 @@ double td_sim_rotor_rate(const td_sim *s, double t, const double *y)
     td_model_spin(s->model, &sp);
     torque -= td_sim_spin_drag(s, y, NULL) + sp.drag_viscous * y[s->dae.ov + s->machine.spin];
     for (k = 0; k < s->dae.nr; k++) /* zero for a free retainer: no normal force */
-        torque -= s->ret[k].r.shaft_radius * td_sim_friction_force(s, k, y);
+        torque -= s->contacts.ret[k].r.shaft_radius * td_sim_friction_force(s, k, y);
     return torque / s->machine.spin_inertia;
 }
 
@@ -118,7 +118,7 @@ static void gyroscopic_follow(const td_sim *s, const double *y, double *out)
  * R_b s mu F_n on a race that spins. */
 static void penalty_forces(const td_sim *s, int k, const double *y, double sign, double *f)
 {
-    const td_sim_retainer *r = &s->ret[k];
+    const td_sim_retainer *r = &s->contacts.ret[k];
     double x, yy, vx, vy, rad, fn, sm, fx, fy;
     fn = sign * td_sim_penalty_force(s, k, y, NULL, NULL);
     if (fn == 0.0)
@@ -177,8 +177,8 @@ static void applied_forces(const td_sim *s, double t, const double *y, double si
     for (k = 0; k < s->dae.nr; k++) {
         if (td_sim_penalty_model(s, k))
             penalty_forces(s, k, y, sign, f);
-        if (s->ret[k].rs >= 0)
-            f[s->ret[k].rs] -= sign * td_sim_race_drag(s, k, y, NULL);
+        if (s->contacts.ret[k].rs >= 0)
+            f[s->contacts.ret[k].rs] -= sign * td_sim_race_drag(s, k, y, NULL);
     }
     if (s->machine.spin_free)
         f[s->machine.spin] -= sign * td_sim_spin_drag(s, y, NULL);
@@ -199,7 +199,7 @@ void td_sim_forces(const td_sim *s, double t, const double *y, double *f)
  * the constraint and its rate (eqs. 5 and 13a, divided by -2c) in its multiplier rows. */
 static void constraint_rows(const td_sim *s, int k, const double *y, double *rq, double *rv, double *res)
 {
-    const td_sim_retainer *r = &s->ret[k];
+    const td_sim_retainer *r = &s->contacts.ret[k];
     double lam = y[s->dae.ol + k], eta = y[s->dae.ou + k];
     double x, yy, vx, vy, c = r->r.clearance, rad, sm = td_sim_slip_factor(s, k, y, NULL) * r->r.friction, bx, by;
     td_sim_node_state(s, k, y, &x, &yy, &vx, &vy);
@@ -229,7 +229,7 @@ static void constraint_rows(const td_sim *s, int k, const double *y, double *rq,
  * constraint v_s = 0 (eq. 16) in F_t's row; otherwise F_t = 0. */
 static void roll_rows(const td_sim *s, int k, const double *y, double *rv, double *res)
 {
-    const td_sim_retainer *r = &s->ret[k];
+    const td_sim_retainer *r = &s->contacts.ret[k];
     double ft = y[s->dae.of + r->fi], x, yy, vx, vy, n[2], t[2];
     if (!r->rolling) {
         res[s->dae.of + r->fi] = ft;
@@ -301,13 +301,13 @@ void td_sim_residual(const td_sim *s, double t, const double *y, const double *y
     }
     /* retainer rows */
     for (k = 0; k < s->dae.nr; k++) {
-        if (s->ret[k].mode == TD_RMODE_CONTACT) {
+        if (s->contacts.ret[k].mode == TD_RMODE_CONTACT) {
             constraint_rows(s, k, y, rq, rv, res);
         } else {
             res[s->dae.ol + k] = y[s->dae.ol + k];
             res[s->dae.ou + k] = y[s->dae.ou + k];
         }
-        if (s->ret[k].fi >= 0)
+        if (s->contacts.ret[k].fi >= 0)
             roll_rows(s, k, y, rv, res);
     }
     if (s->machine.spin >= 0 && !s->machine.spin_free) { /* a ramp: angle and speed are the prescribed ones, exactly */
@@ -411,7 +411,7 @@ static void jadd_row_rel(td_sim *s, const td_sim_retainer *r, int row, int lvl, 
  * and a free spin's row carries the friction torque R_s phi mu fn, which depends on v_s. */
 static void jacobian_slip_band_spin(td_sim *s, int k, const double *y, double a)
 {
-    const td_sim_retainer *r = &s->ret[k];
+    const td_sim_retainer *r = &s->contacts.ret[k];
     double x, yy, vx, vy, rad, gv[4], Rs = r->r.shaft_radius, Rb = r->r.bore_radius;
     int wz = s->dae.ov + s->machine.spin, i;
     td_sim_node_state(s, k, y, &x, &yy, &vx, &vy);
@@ -435,7 +435,7 @@ static void jacobian_slip_band_spin(td_sim *s, int k, const double *y, double a)
  * -phi mu fn (y, -x)/r of the node's rows and -R_b phi mu fn of the race speed's row. */
 static void jacobian_slip_band(td_sim *s, int k, const double *y, double fn, double dphi)
 {
-    const td_sim_retainer *r = &s->ret[k];
+    const td_sim_retainer *r = &s->contacts.ret[k];
     double x, yy, vx, vy, rad, gv[4], a = fn * r->r.friction * dphi, Rb = r->r.bore_radius;
     int i;
     td_sim_node_state(s, k, y, &x, &yy, &vx, &vy);
@@ -461,7 +461,7 @@ static void jacobian_slip_band(td_sim *s, int k, const double *y, double fn, dou
 /* Constrained contact k: d/dq of lambda (J^T + s mu t) and the GGL and constraint rows. */
 static void jacobian_contact(td_sim *s, int k, const double *y)
 {
-    const td_sim_retainer *r = &s->ret[k];
+    const td_sim_retainer *r = &s->contacts.ret[k];
     double x, yy, vx, vy, c = r->r.clearance, rad, r3, dphi, sm;
     double lam = y[s->dae.ol + k], eta = y[s->dae.ou + k];
     int lk = s->dae.ol + k, uk = s->dae.ou + k, oq = s->dae.oq, ov = s->dae.ov;
@@ -510,7 +510,7 @@ static void jacobian_penalty_torque(td_sim *s, const td_sim_retainer *r, int row
  * friction torque R_b sm F_n on a race that spins. */
 static void jacobian_penalty(td_sim *s, int k, const double *y)
 {
-    const td_sim_retainer *r = &s->ret[k];
+    const td_sim_retainer *r = &s->contacts.ret[k];
     double x, yy, vx, vy, rad, r3, sm, dphi, fd, fr, fn, rate;
     double d_x, d_y, rt_x, rt_y, rt_vx, rt_vy, f_x, f_y, u1, u2, u1x, u1y, u2x, u2y;
     int oq = s->dae.oq, ov = s->dae.ov;
@@ -556,7 +556,7 @@ static void jacobian_penalty(td_sim *s, int k, const double *y)
  * row is F_t itself. d t / d(x, y) for t = (-y, x)/r: ((x y, -x^2), (y^2, -x y)) / r^3. */
 static void jacobian_roll(td_sim *s, int k, const double *y)
 {
-    const td_sim_retainer *r = &s->ret[k];
+    const td_sim_retainer *r = &s->contacts.ret[k];
     double ft, x, yy, vx, vy, rad, r3, n[2], t[2], gv[4];
     int fk = s->dae.of + r->fi, oq = s->dae.oq, ov = s->dae.ov, i;
     if (!r->rolling) {
@@ -593,7 +593,7 @@ static void jacobian_drag(td_sim *s, int k, const double *y)
     double dT;
     td_sim_race_drag(s, k, y, &dT);
     if (dT != 0.0)
-        jadd(s, s->dae.ov + s->ret[k].rs, s->dae.ov + s->ret[k].rs, dT);
+        jadd(s, s->dae.ov + s->contacts.ret[k].rs, s->dae.ov + s->contacts.ret[k].rs, dT);
 }
 
 /* The spin DOF's columns (spin.c): d(Omega G v)/d Omega = G v, the unbalance's d/d(phi, Omega),
@@ -670,11 +670,11 @@ void td_sim_jacobian(td_sim *s, double t, double cj, const double *y)
     jadd_matrix(s, s->dae.K, s->dae.map_K, 1.0);
     jacobian_amb(s, y);
     for (k = 0; k < s->dae.nr; k++) {
-        if (s->ret[k].rs >= 0)
+        if (s->contacts.ret[k].rs >= 0)
             jacobian_drag(s, k, y);
-        if (s->ret[k].fi >= 0)
+        if (s->contacts.ret[k].fi >= 0)
             jacobian_roll(s, k, y);
-        if (s->ret[k].mode == TD_RMODE_CONTACT) {
+        if (s->contacts.ret[k].mode == TD_RMODE_CONTACT) {
             jacobian_contact(s, k, y);
             continue;
         }
@@ -691,7 +691,7 @@ void td_sim_jacobian(td_sim *s, double t, double cj, const double *y)
 /* Slot 1 of retainer k in contact with friction (see below). */
 static double slip_root_function(const td_sim *s, int k, const double *y)
 {
-    const td_sim_retainer *r = &s->ret[k];
+    const td_sim_retainer *r = &s->contacts.ret[k];
     double vs, vreg = TD_CONTACT_SLIP_BAND;
     if (r->rolling)
         return r->r.friction * td_sim_normal_force(s, k, y) - fabs(y[s->dae.of + r->fi]);
@@ -740,7 +740,7 @@ void td_sim_roots(const td_sim *s, double t, const double *y, double *g)
     (void)t;
     saturation_roots(s, y, g + TD_ROOTS_PER_RETAINER * s->dae.nr);
     for (k = 0; k < s->dae.nr; k++) {
-        const td_sim_retainer *r = &s->ret[k];
+        const td_sim_retainer *r = &s->contacts.ret[k];
         double *gk = g + TD_ROOTS_PER_RETAINER * k;
         double x, yy, vx, vy, gap;
         td_sim_node_state(s, k, y, &x, &yy, &vx, &vy);
@@ -767,7 +767,7 @@ void td_sim_root_directions(const td_sim *s, int *dir)
     int k;
     for (k = 0; k < s->dae.nr; k++) {
         int *dk = dir + TD_ROOTS_PER_RETAINER * k;
-        dk[TD_ROOT_CONTACT] = s->ret[k].mode == TD_RMODE_PENETRATING ? 1 : -1;
+        dk[TD_ROOT_CONTACT] = s->contacts.ret[k].mode == TD_RMODE_PENETRATING ? 1 : -1;
         dk[TD_ROOT_SLIP] = -1;
         dk[TD_ROOT_REARM] = 1;
     }

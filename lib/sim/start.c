@@ -33,7 +33,7 @@ static int first_outside(const td_sim *s, const double *y, double *rad)
 {
     int k;
     for (k = 0; k < s->dae.nr; k++) {
-        const td_sim_retainer *r = &s->ret[k];
+        const td_sim_retainer *r = &s->contacts.ret[k];
         double x, yy, vx, vy;
         td_sim_node_state(s, k, y, &x, &yy, &vx, &vy);
         *rad = hypot(x, yy);
@@ -112,7 +112,7 @@ static td_status orbit_start(td_sim *s, double *y, td_error *err)
         return TD_OK;
     snprintf(s->start.reason, sizeof s->start.reason,
              "the steady orbit lies outside the clearance of retainer %d (r = %.6g m > c = %.6g m)", k, rad,
-             s->ret[k].r.clearance);
+             s->contacts.ret[k].r.clearance);
     N_VConst(0.0, s->dae.y);
     s->start.used = TD_START_REST;
     return TD_OK;
@@ -121,7 +121,7 @@ static td_status orbit_start(td_sim *s, double *y, td_error *err)
 td_status td_sim_start_state(td_sim *s, td_error *err)
 {
     double *y = N_VGetArrayPointer(s->dae.y);
-    int *touching = s->touching;
+    int *touching = s->contacts.touching;
     int k;
     td_status st;
     N_VConst(0.0, s->dae.y);
@@ -133,7 +133,7 @@ td_status td_sim_start_state(td_sim *s, td_error *err)
         return st;
     td_sim_races_start(s, y);
     for (k = 0; k < s->dae.nr; k++) {
-        td_sim_retainer *r = &s->ret[k];
+        td_sim_retainer *r = &s->contacts.ret[k];
         double x, yy, vx, vy, rad, c = r->r.clearance;
         td_sim_node_state(s, k, y, &x, &yy, &vx, &vy);
         rad = hypot(x, yy);

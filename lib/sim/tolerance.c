@@ -17,7 +17,7 @@
  */
 double td_sim_race_speed_atol(const td_sim *s, int k)
 {
-    const td_sim_retainer *r = &s->ret[k];
+    const td_sim_retainer *r = &s->contacts.ret[k];
     return s->opt.solver.atol * (r->mode != TD_RMODE_FREE ? s->machine.freq_max : s->machine.freq_scale) /
            r->r.bore_radius;
 }
@@ -27,9 +27,9 @@ int td_sim_races_retolerance(td_sim *s)
     double *at = N_VGetArrayPointer(s->solver.atol);
     int k, changed = 0;
     for (k = 0; k < s->dae.nr; k++) {
-        int i = s->dae.ov + s->ret[k].rs;
+        int i = s->dae.ov + s->contacts.ret[k].rs;
         double want;
-        if (s->ret[k].rs < 0)
+        if (s->contacts.ret[k].rs < 0)
             continue;
         want = td_sim_race_speed_atol(s, k);
         changed = changed || at[i] != want;
@@ -62,7 +62,7 @@ static void race_tolerances(td_sim *s, double *at, double *id)
     double atol = s->opt.solver.atol;
     int k, i;
     for (k = 0; k < s->dae.nr; k++) {
-        const td_sim_retainer *r = &s->ret[k];
+        const td_sim_retainer *r = &s->contacts.ret[k];
         int dofs[3] = {r->rx, r->ry, r->rs};
         for (i = 0; i < 3; i++) {
             double scale = i == 2 ? 1.0 / r->r.bore_radius : 1.0;
@@ -87,7 +87,7 @@ static void spin_tolerances(const td_sim *s, double *at, double *id)
     if (s->machine.spin < 0)
         return;
     for (k = 0; k < s->dae.nr; k++)
-        c = fmin(c, s->ret[k].r.clearance);
+        c = fmin(c, s->contacts.ret[k].r.clearance);
     at[s->dae.oq + s->machine.spin] = s->opt.solver.atol / c;
     at[s->dae.ov + s->machine.spin] = s->opt.solver.atol / c * s->machine.freq_scale;
     id[s->dae.oq + s->machine.spin] = id[s->dae.ov + s->machine.spin] =

@@ -22,7 +22,7 @@ static integrands integrands_at(const td_sim *s, int k, const double *y)
 {
     integrands v = {0.0, 0.0, 0.0, 0.0};
     double x, yy, vx, vy, r2;
-    if (s->ret[k].mode == TD_RMODE_FREE)
+    if (s->contacts.ret[k].mode == TD_RMODE_FREE)
         return v;
     v.n = td_sim_normal_force(s, k, y);
     v.n2 = v.n * v.n;
@@ -37,7 +37,7 @@ static integrands integrands_at(const td_sim *s, int k, const double *y)
  * contact force itself, normal and friction. */
 static double housing_force(const td_sim *s, int k, const double *y)
 {
-    const td_sim_retainer *r = &s->ret[k];
+    const td_sim_retainer *r = &s->contacts.ret[k];
     double n, f;
     if (r->rx >= 0) {
         double fx = r->r.race.mount_stiffness * y[s->dae.oq + r->rx] + r->r.race.mount_damping * y[s->dae.ov + r->rx];
@@ -65,7 +65,7 @@ static void interval_ends(td_sim *s, int k)
 static void track_interval(td_sim *s, int k)
 {
     td_sim_totals *tk = &s->monitor.totals[k];
-    int in = s->ret[k].mode != TD_RMODE_FREE;
+    int in = s->contacts.ret[k].mode != TD_RMODE_FREE;
     if (in && !tk->in_contact)
         tk->whirl_at_onset = tk->t.whirl_angle;
     else if (!in && tk->in_contact)
@@ -87,9 +87,9 @@ void td_sim_totals_point(td_sim *s, double t, int restart)
             tk->t.normal_force_sq += 0.5 * dt * (tk->prev.n2 + now.n2);
             tk->t.friction_work += 0.5 * dt * (tk->prev.power + now.power);
             tk->t.whirl_angle += 0.5 * dt * (tk->prev.whirl_rate + now.whirl_rate);
-            if (s->ret[k].mode != TD_RMODE_FREE)
+            if (s->contacts.ret[k].mode != TD_RMODE_FREE)
                 tk->t.contact_time += dt;
-            if (s->ret[k].rolling)
+            if (s->contacts.ret[k].rolling)
                 tk->t.rolling_time += dt;
         }
         tk->t.peak_housing_force = fmax(tk->t.peak_housing_force, hf);
@@ -129,9 +129,9 @@ static void back_to_now(const td_sim *s, int k, td_retainer_totals *t)
     t->normal_force_sq -= 0.5 * dt * (tk->prev.n2 + now.n2);
     t->friction_work -= 0.5 * dt * (tk->prev.power + now.power);
     t->whirl_angle -= 0.5 * dt * (tk->prev.whirl_rate + now.whirl_rate);
-    if (s->ret[k].mode != TD_RMODE_FREE)
+    if (s->contacts.ret[k].mode != TD_RMODE_FREE)
         t->contact_time -= dt;
-    if (s->ret[k].rolling)
+    if (s->contacts.ret[k].rolling)
         t->rolling_time -= dt;
 }
 
