@@ -138,7 +138,7 @@ static void check_jacobian(td_sim *s, double rad, const char *what)
     for (j = 0; j < n; j++)
         for (i = 0; i < n; i++) {
             int p = td_sim_pattern_find(s, i, j);
-            double an = p >= 0 ? s->dae.jdata[p] : 0.0, f = fd[i + (size_t)j * n];
+            double an = p >= 0 ? s->ops.jdata[p] : 0.0, f = fd[i + (size_t)j * n];
             if (!(fabs(an - f) <= 1e-6 * rowmax[i] + 1e-9)) {
                 fail_msg("%s: J(%d,%d) analytic %.10g, differences %.10g (row max %.3g, in pattern %d)", what, i, j, an,
                          f, rowmax[i], p >= 0);

@@ -1,9 +1,9 @@
 /*
- * The DAE's record: the unknowns' layout (sizes and block offsets, sim_internal.h), the state they
- * hold now (t, y, y'), the structural matrices of all DOFs (race.c), the mass matrix's
- * factorisation, the Jacobian's fixed pattern and the row-compressed structural operator
- * (sim_pattern.c), and the root functions' buffers (sim_residual.c). The layers above read the
- * layout and change the state; only the set-up (setup.c) sizes it.
+ * The DAE's record, the lowest of the sim: the unknowns' layout (sizes and block offsets,
+ * sim_internal.h), the state they hold now (t, y, y'), the structural matrices of all DOFs and the
+ * root functions' buffers. The set-up (setup.c) sizes it, race.c and spin.c lay out the DOFs of the
+ * races and the spin and extend the matrices; every layer above reads the layout and moves the
+ * state.
  */
 #ifndef TD_SIM_DAE_H
 #define TD_SIM_DAE_H
@@ -22,26 +22,6 @@ typedef struct td_sim_dae {
     /* the structural matrices of all n DOFs (race.c): the system's own without races */
     cs_di *M, *K, *C, *G;
     int own_matrices; /* 1: M, K, C, G extended with races, owned */
-
-    /* mass matrix factorisation (LU, CXSparse), for consistent accelerations and the impact map */
-    cs_dis *Ms;
-    cs_din *Mn;
-    double *mass_x;   /* n: td_sim_mass_solve's permuted solution */
-    double *power_x;  /* n: highest_frequency's iterate x */
-    double *power_kx; /* n: highest_frequency's M^-1 K x */
-    double *power_mx; /* n: highest_frequency's M x */
-
-    /* Jacobian: one fixed CSC pattern (superset of every mode), values rebuilt at every call */
-    int nnz;
-    int *colptr, *rowind;
-    double *jdata;
-    int *map_M, *map_C, *map_G, *map_K; /* position of each stored entry of the system matrices */
-
-    /* M, K and D = C + Omega G on the union of their patterns, row-compressed (CSR): the residual
-     * forms M v' + D v + K q row by row in one pass (sim_residual.c); D follows the speed */
-    int st_nnz;
-    int *st_rowptr, *st_col;
-    double *st_M, *st_K, *st_D;
 
     /* root functions */
     int nroots;      /* TD_ROOTS_PER_RETAINER per retainer, then n_sat_roots */

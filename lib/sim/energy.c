@@ -25,8 +25,8 @@ static double quadratic(const td_sim *s, const double *vals, const double *x, co
     int i, p;
     for (i = 0; i < s->dae.n; i++) {
         double row = 0.0;
-        for (p = s->dae.st_rowptr[i]; p < s->dae.st_rowptr[i + 1]; p++)
-            row += vals[p] * y[s->dae.st_col[p]];
+        for (p = s->ops.st_rowptr[i]; p < s->ops.st_rowptr[i + 1]; p++)
+            row += vals[p] * y[s->ops.st_col[p]];
         sum += x[i] * row;
     }
     return sum;
@@ -34,7 +34,7 @@ static double quadratic(const td_sim *s, const double *vals, const double *x, co
 
 double td_sim_kinetic_energy(const td_sim *s, const double *y)
 {
-    return 0.5 * quadratic(s, s->dae.st_M, y + s->dae.ov, y + s->dae.ov);
+    return 0.5 * quadratic(s, s->ops.st_M, y + s->dae.ov, y + s->dae.ov);
 }
 
 /* Elastic energy of retainer k's contact spring and the power its contact dissipates, at y. */
@@ -68,7 +68,7 @@ static double contact_spring(const td_sim *s, int k, const double *y, double *lo
 static double powers(td_sim *s, double t, const double *y, double pw[5])
 {
     const double *q = y + s->dae.oq, *v = y + s->dae.ov;
-    double held = td_sim_kinetic_energy(s, y) + 0.5 * quadratic(s, s->dae.st_K, q, q);
+    double held = td_sim_kinetic_energy(s, y) + 0.5 * quadratic(s, s->ops.st_K, q, q);
     int i, k;
     memset(s->monitor.energy_f, 0, sizeof(double) * (size_t)s->dae.n);
     td_sim_external_forces(s, t, y, 1.0, s->monitor.energy_f);
@@ -76,7 +76,7 @@ static double powers(td_sim *s, double t, const double *y, double pw[5])
     for (i = 0; i < s->dae.n; i++)
         pw[0] += s->monitor.energy_f[i] * v[i];
     pw[0] += td_sim_unbalance_spin_coupling(s, t, y, N_VGetArrayPointer(s->dae.yp), NULL);
-    pw[2] = quadratic(s, s->dae.st_D, v, v);
+    pw[2] = quadratic(s, s->ops.st_D, v, v);
     for (k = 0; k < s->dae.nr; k++) {
         double loss;
         held += contact_spring(s, k, y, &loss);

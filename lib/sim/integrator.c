@@ -35,17 +35,17 @@ static int jac_cb(sunrealtype t, sunrealtype cj, N_Vector y, N_Vector yp, N_Vect
         sunindextype *cp = SUNSparseMatrix_IndexPointers(J), *ri = SUNSparseMatrix_IndexValues(J);
         sunrealtype *d = SUNSparseMatrix_Data(J);
         for (j = 0; j <= s->dae.neq; j++)
-            cp[j] = s->dae.colptr[j];
-        for (p = 0; p < s->dae.nnz; p++) {
-            ri[p] = s->dae.rowind[p];
-            d[p] = s->dae.jdata[p];
+            cp[j] = s->ops.colptr[j];
+        for (p = 0; p < s->ops.nnz; p++) {
+            ri[p] = s->ops.rowind[p];
+            d[p] = s->ops.jdata[p];
         }
     } else {
         SUNMatZero(J);
         for (j = 0; j < s->dae.neq; j++) {
             sunrealtype *col = SUNDenseMatrix_Column(J, j);
-            for (p = s->dae.colptr[j]; p < s->dae.colptr[j + 1]; p++)
-                col[s->dae.rowind[p]] = s->dae.jdata[p];
+            for (p = s->ops.colptr[j]; p < s->ops.colptr[j + 1]; p++)
+                col[s->ops.rowind[p]] = s->ops.jdata[p];
         }
     }
     return 0;
@@ -200,7 +200,7 @@ td_status td_sim_integrator_attach(td_sim *s, td_error *err)
             return td_error_set(err, TD_ERR_SOLVER, "cannot install the Newton convergence test");
     }
     if (s->opt.solver.linear_solver == TD_LINSOL_KLU) {
-        s->solver.A = SUNSparseMatrix(s->dae.neq, s->dae.neq, s->dae.nnz, CSC_MAT, s->solver.ctx);
+        s->solver.A = SUNSparseMatrix(s->dae.neq, s->dae.neq, s->ops.nnz, CSC_MAT, s->solver.ctx);
         s->solver.LS = s->solver.A ? td_sim_klu_create(s) : NULL;
     } else {
         s->solver.A = SUNDenseMatrix(s->dae.neq, s->dae.neq, s->solver.ctx);

@@ -50,22 +50,10 @@ typedef struct td_sim_retainer {
     int band_from; /* slip = 0: the sliding sign before the band (a reversal if it leaves the other way) */
 } td_sim_retainer;
 
-/* The contact set's record: the retainers and the work space of the mode switching (sim_modes.c:
- * the KKT solve, the impacts), each array with one job (n: DOFs, nr: retainers, ns: stick
- * retainers). retainer.c and sim_modes.c own it; race.c and the layers above read it. */
+/* The contact set's record: the retainers, with their DOFs (race.c lays out the races') and their
+ * contact and slip modes (retainer.c; sim_modes.c switches them). The layers above read it. */
 typedef struct td_sim_contacts {
     td_sim_retainer *ret; /* nr */
-    double *minv_f;       /* n: M^-1 f (kkt_solve, free_normal_acceleration) */
-    double *schur;        /* (nr + ns)^2: kkt_solve's J M^-1 B of the active contacts and rolls */
-    double *schur_rhs;    /* nr + ns: its right-hand side, then lambda and F_t */
-    double *restitution;  /* nr: impacts, the restitution of each contact in the impact map */
-    double *impulse;      /* nr: impacts, the impulse of each contact */
-    double *impact_work;  /* nr * (nr + 1): td_contact_impact_map's work space */
-    double *minv_cols;    /* n * (nr + ns): M^-1 B_k or M^-1 J_k^T columns of the active contacts */
-    td_contact_row *rows; /* nr + ns: contact rows J_k of the active contacts */
-    int *active;          /* nr + ns: indices of the retainers in the small system (kkt_solve, impacts) */
-    int *active_roll;     /* nr + ns: 1 where that multiplier is a rolling F_t, 0 a normal force */
-    int *onset, *entered; /* nr each: onset roots and contacts entered at an instant (sim_modes.c) */
     int *roll_tried;      /* nr: stick retainers set rolling at a slip root, not yet confirmed */
     int *touching;        /* nr: retainers touching their circles at the start (start.c) */
 } td_sim_contacts;

@@ -48,31 +48,30 @@ static td_status check_options(const td_sim_options *o, td_error *err)
 static int alloc_work(td_sim *s, size_t nr)
 {
     size_t n = (size_t)s->dae.n, nc = nr + (size_t)s->dae.ns; /* KKT multipliers: lambda and F_t */
-    s->dae.mass_x = calloc(n, sizeof(double));
-    s->contacts.minv_f = calloc(n, sizeof(double));
-    s->dae.power_x = calloc(n, sizeof(double));
-    s->dae.power_kx = calloc(n, sizeof(double));
-    s->dae.power_mx = calloc(n, sizeof(double));
-    s->contacts.schur = calloc(nc * nc, sizeof(double));
-    s->contacts.schur_rhs = calloc(nc, sizeof(double));
-    s->contacts.restitution = calloc(nr, sizeof(double));
-    s->contacts.impulse = calloc(nr, sizeof(double));
-    s->contacts.impact_work = calloc(nr * (nr + 1), sizeof(double));
-    s->contacts.minv_cols = calloc(n * nc, sizeof(double));
-    s->contacts.rows = calloc(nc, sizeof *s->contacts.rows);
-    s->contacts.active = calloc(nc, sizeof(int));
-    s->contacts.active_roll = calloc(nc, sizeof(int));
-    s->contacts.onset = calloc(nr, sizeof(int));
-    s->contacts.entered = calloc(nr, sizeof(int));
+    s->ops.mass_x = calloc(n, sizeof(double));
+    s->kkt.minv_f = calloc(n, sizeof(double));
+    s->ops.power_x = calloc(n, sizeof(double));
+    s->ops.power_kx = calloc(n, sizeof(double));
+    s->ops.power_mx = calloc(n, sizeof(double));
+    s->kkt.schur = calloc(nc * nc, sizeof(double));
+    s->kkt.schur_rhs = calloc(nc, sizeof(double));
+    s->kkt.restitution = calloc(nr, sizeof(double));
+    s->kkt.impulse = calloc(nr, sizeof(double));
+    s->kkt.impact_work = calloc(nr * (nr + 1), sizeof(double));
+    s->kkt.minv_cols = calloc(n * nc, sizeof(double));
+    s->kkt.rows = calloc(nc, sizeof *s->kkt.rows);
+    s->kkt.active = calloc(nc, sizeof(int));
+    s->kkt.active_roll = calloc(nc, sizeof(int));
+    s->kkt.onset = calloc(nr, sizeof(int));
+    s->kkt.entered = calloc(nr, sizeof(int));
     s->contacts.roll_tried = calloc(nr, sizeof(int));
     s->contacts.touching = calloc(nr, sizeof(int));
     s->monitor.totals = calloc(nr, sizeof *s->monitor.totals);
     s->monitor.energy_f = calloc(n, sizeof(double));
-    return s->dae.mass_x && s->contacts.minv_f && s->dae.power_x && s->dae.power_kx && s->dae.power_mx &&
-           s->contacts.schur && s->contacts.schur_rhs && s->contacts.restitution && s->contacts.impulse &&
-           s->contacts.impact_work && s->contacts.minv_cols && s->contacts.rows && s->contacts.active &&
-           s->contacts.active_roll && s->contacts.onset && s->contacts.roll_tried && s->monitor.totals &&
-           s->monitor.energy_f && s->contacts.entered && s->contacts.touching;
+    return s->ops.mass_x && s->kkt.minv_f && s->ops.power_x && s->ops.power_kx && s->ops.power_mx && s->kkt.schur &&
+           s->kkt.schur_rhs && s->kkt.restitution && s->kkt.impulse && s->kkt.impact_work && s->kkt.minv_cols &&
+           s->kkt.rows && s->kkt.active && s->kkt.active_roll && s->kkt.onset && s->contacts.roll_tried &&
+           s->monitor.totals && s->monitor.energy_f && s->kkt.entered && s->contacts.touching;
 }
 
 static td_status alloc_arrays(td_sim *s, td_error *err)
@@ -132,7 +131,7 @@ static void init_machine(td_sim *s)
  * the Rayleigh quotient (an estimate from below, good to a few per cent: it only sets a tolerance). */
 static double highest_frequency(const td_sim *s)
 {
-    double *x = s->dae.power_x, *kx = s->dae.power_kx, *mx = s->dae.power_mx, lam = 0.0;
+    double *x = s->ops.power_x, *kx = s->ops.power_kx, *mx = s->ops.power_mx, lam = 0.0;
     int i, it;
     for (i = 0; i < s->dae.n; i++)
         x[i] = (i % 2 ? 1.0 : -1.0) * (1.0 + 0.1 * (i % 7));
@@ -334,22 +333,22 @@ td_status td_sim_setup(const td_model *model, const td_sim_options *options, vol
 
 static void free_work(td_sim *s)
 {
-    free(s->dae.mass_x);
-    free(s->contacts.minv_f);
-    free(s->dae.power_x);
-    free(s->dae.power_kx);
-    free(s->dae.power_mx);
-    free(s->contacts.schur);
-    free(s->contacts.schur_rhs);
-    free(s->contacts.restitution);
-    free(s->contacts.impulse);
-    free(s->contacts.impact_work);
-    free(s->contacts.minv_cols);
-    free(s->contacts.rows);
-    free(s->contacts.active);
-    free(s->contacts.active_roll);
-    free(s->contacts.onset);
-    free(s->contacts.entered);
+    free(s->ops.mass_x);
+    free(s->kkt.minv_f);
+    free(s->ops.power_x);
+    free(s->ops.power_kx);
+    free(s->ops.power_mx);
+    free(s->kkt.schur);
+    free(s->kkt.schur_rhs);
+    free(s->kkt.restitution);
+    free(s->kkt.impulse);
+    free(s->kkt.impact_work);
+    free(s->kkt.minv_cols);
+    free(s->kkt.rows);
+    free(s->kkt.active);
+    free(s->kkt.active_roll);
+    free(s->kkt.onset);
+    free(s->kkt.entered);
     free(s->contacts.roll_tried);
     free(s->monitor.totals);
     free(s->monitor.energy_f);
@@ -359,20 +358,20 @@ static void free_work(td_sim *s)
 void td_sim_teardown(td_sim *s)
 {
     td_sim_integrator_free(s);
-    cs_di_sfree(s->dae.Ms);
-    cs_di_nfree(s->dae.Mn);
-    free(s->dae.colptr);
-    free(s->dae.rowind);
-    free(s->dae.jdata);
-    free(s->dae.map_M);
-    free(s->dae.map_C);
-    free(s->dae.map_G);
-    free(s->dae.map_K);
-    free(s->dae.st_rowptr);
-    free(s->dae.st_col);
-    free(s->dae.st_M);
-    free(s->dae.st_K);
-    free(s->dae.st_D);
+    cs_di_sfree(s->ops.Ms);
+    cs_di_nfree(s->ops.Mn);
+    free(s->ops.colptr);
+    free(s->ops.rowind);
+    free(s->ops.jdata);
+    free(s->ops.map_M);
+    free(s->ops.map_C);
+    free(s->ops.map_G);
+    free(s->ops.map_K);
+    free(s->ops.st_rowptr);
+    free(s->ops.st_col);
+    free(s->ops.st_M);
+    free(s->ops.st_K);
+    free(s->ops.st_D);
     free(s->machine.unb);
     free(s->machine.amb_mode);
     free(s->machine.amb_control);

@@ -37,6 +37,8 @@
 #include "sim/machine.h"
 #include "sim/monitor.h"
 #include "sim/retainer.h"
+#include "sim/sim_modes.h"
+#include "sim/sim_pattern.h"
 #include "sim/stepping.h"
 #include "sim/sundials_compat.h"
 #include "touchdown/sim.h"
@@ -50,24 +52,49 @@
 /* The closed-form free flight's decomposition, forcing and anchor (flight_internal.h). */
 typedef struct td_sim_flight td_sim_flight;
 
+/*
+ * td_sim is the composition of records, each owned by one file or a small group of files behind its
+ * own header. They are listed from the bottom up: a file writes the records it owns and those below
+ * them and reads those below, never one above (the owners in brackets; setup.c creates and frees
+ * them all, sim.c, at the top, serves the public calls):
+ *
+ *   dae        the unknowns' layout, the state (t, y, y'), the matrices, the root buffers
+ *              [setup.c; race.c and spin.c lay out their DOFs]
+ *   machine    the machine as it is now: speed, spin, unbalances, AMB modes; the scales
+ *              [spin.c; schedule.c and the td_sim_set_* calls change it]
+ *   contacts   the retainers and their modes [retainer.c, race.c; sim_modes.c switches them]
+ *   ops        the mass factorisation, the Jacobian's pattern, the structural operator
+ *              [sim_pattern.c; sim_residual.c writes the Jacobian's values]
+ *   monitor    statistics, events, the retainers' totals, the energy account
+ *              [monitor.c, totals.c, energy.c]
+ *   flight     the closed-form free flight [flight_modal.c, flight_roots.c, flight.c]
+ *   kkt        the KKT solve's and the impacts' work space [sim_modes.c]
+ *   solver     IDA, the tolerances, the restarts and counters [integrator.c, tolerance.c, sim_linsol.c]
+ *   section    the once-per-revolution section [section.c]
+ *   loop       the step loop's stops, progress window and last good state [stepping.c]
+ *   start      how the start state was chosen [start.c]
+ *
+ * Around them the shared context, which every layer reads: the system, the model, the options, the
+ * caller's interrupt flag, and the messages (errmsg, warnmsg), which a failing layer writes.
+ */
 struct td_sim {
     td_system *sys;        /* owned */
     const td_model *model; /* the system's copy */
     td_sim_options opt;
 
-    td_sim_machine machine;   /* the machine as it is now and its scales (machine.h) */
-    td_sim_contacts contacts; /* the retainers and the mode switching's work space (retainer.h) */
-    td_sim_dae dae;           /* the unknowns, the state, the matrices, the pattern (dae.h) */
-    td_sim_monitor monitor;   /* statistics, events, totals, energy (monitor.h) */
-    td_sim_solver solver;     /* IDA, its tolerances and counters (integrator.h) */
-    td_sim_loop loop;         /* the step loop (stepping.h) */
-
-    td_sim_flight *flight;          /* flight.c, allocated at the first flight; NULL: none yet */
-    struct td_sim_section *section; /* section.c, NULL: no section taken */
+    td_sim_dae dae;                 /* dae.h */
+    td_sim_machine machine;         /* machine.h */
+    td_sim_contacts contacts;       /* retainer.h */
+    td_sim_operators ops;           /* sim_pattern.h */
+    td_sim_monitor monitor;         /* monitor.h */
+    td_sim_flight *flight;          /* flight_internal.h; allocated at the first flight, NULL: none yet */
+    td_sim_kkt kkt;                 /* sim_modes.h */
+    td_sim_solver solver;           /* integrator.h */
+    struct td_sim_section *section; /* section.c; NULL: no section taken */
+    td_sim_loop loop;               /* stepping.h */
+    td_sim_start_info start;        /* touchdown/sim.h; start.c */
 
     volatile sig_atomic_t *interrupt; /* borrowed (td_sim_set_interrupt), NULL: none */
-    td_sim_start_info start;          /* how the start state was chosen (start.c) */
-
     char errmsg[TD_ERROR_MESSAGE_SIZE];
     char warnmsg[TD_ERROR_MESSAGE_SIZE];
 };
@@ -98,7 +125,7 @@ void td_sim_nvector_optimize(N_Vector v);
 
 /* ---- sim_linsol.c: KLU inside IDA ------------------------------------------------------- */
 
-/* A SUNLinearSolver factorising s->dae.jdata on s->dae.colptr/s->dae.rowind with KLU: one symbolic analysis
+/* A SUNLinearSolver factorising s->ops.jdata on s->ops.colptr/s->ops.rowind with KLU: one symbolic analysis
  * per run, a pivoting factorisation after every restart, refactorisations in between. */
 SUNLinearSolver td_sim_klu_create(const td_sim *s);
 
@@ -144,7 +171,7 @@ void td_sim_races_start(const td_sim *s, double *y);
 
 /* ---- sim_pattern.c: the Jacobian's sparsity pattern, the structural operator, the mass ---- */
 
-/* Build s->dae.colptr, s->dae.rowind, s->dae.jdata and the maps of the system matrices. */
+/* Build s->ops.colptr, s->ops.rowind, s->ops.jdata and the maps of the system matrices. */
 td_status td_sim_pattern_build(td_sim *s, td_error *err);
 /* Position of (row, col) in the pattern, -1 if absent. */
 int td_sim_pattern_find(const td_sim *s, int row, int col);
@@ -152,7 +179,7 @@ int td_sim_pattern_find(const td_sim *s, int row, int col);
 td_status td_sim_structural_build(td_sim *s, td_error *err);
 /* Recompute D = C + Omega G after a change of s->machine.omega. */
 void td_sim_structural_speed(td_sim *s);
-/* Factorise M (s->dae.Ms, s->dae.Mn). */
+/* Factorise M (s->ops.Ms, s->ops.Mn). */
 td_status td_sim_mass_factor(td_sim *s, td_error *err);
 /* x = M^-1 b in place (length n). */
 void td_sim_mass_solve(const td_sim *s, double *b);
@@ -166,7 +193,7 @@ void td_sim_external_forces(const td_sim *s, double t, const double *y, double s
 void td_sim_forces(const td_sim *s, double t, const double *y, double *f);
 /* F(t, y, y'). */
 void td_sim_residual(const td_sim *s, double t, const double *y, const double *yp, double *res);
-/* dF/dy + cj dF/dy' into s->dae.jdata (pattern s->dae.colptr, s->dae.rowind). */
+/* dF/dy + cj dF/dy' into s->ops.jdata (pattern s->ops.colptr, s->ops.rowind). */
 void td_sim_jacobian(td_sim *s, double t, double cj, const double *y);
 /* Root functions (TD_ROOTS_PER_RETAINER per retainer, then the AMB clips' kinks) and their
  * directions for the current modes. */

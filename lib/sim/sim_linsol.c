@@ -1,6 +1,6 @@
 /*
  * The linear solver inside IDA's Newton iteration: a SUNLinearSolver on SuiteSparse KLU that
- * factorises the sim's own Jacobian arrays (s->dae.colptr, s->dae.rowind, s->dae.jdata: one fixed pattern,
+ * factorises the sim's own Jacobian arrays (s->ops.colptr, s->ops.rowind, s->ops.jdata: one fixed pattern,
  * int indices) and keeps KLU's symbolic analysis for the whole run.
  *
  * Why not SUNDIALS's SUNLinSol_KLU: IDAReInit, which the sim calls at every event, makes IDA call
@@ -60,7 +60,7 @@ static int factor(td_klu_ls *c)
     const td_sim *s = c->s;
     if (c->num)
         klu_free_numeric(&c->num, &c->common);
-    c->num = klu_factor(s->dae.colptr, s->dae.rowind, s->dae.jdata, c->sym, &c->common);
+    c->num = klu_factor(s->ops.colptr, s->ops.rowind, s->ops.jdata, c->sym, &c->common);
     if (!c->num)
         return c->common.status == KLU_SINGULAR ? SUNLS_PACKAGE_FAIL_REC : SUNLS_PACKAGE_FAIL_UNREC;
     c->refresh = 0;
@@ -74,14 +74,14 @@ static int ls_setup(SUNLinearSolver S, SUNMatrix A)
     const td_sim *s = c->s;
     (void)A;
     if (!c->sym) {
-        c->sym = klu_analyze(s->dae.neq, s->dae.colptr, s->dae.rowind, &c->common);
+        c->sym = klu_analyze(s->dae.neq, s->ops.colptr, s->ops.rowind, &c->common);
         if (!c->sym)
             return c->last_flag = SUNLS_PACKAGE_FAIL_UNREC;
     }
     if (c->refresh || !c->num)
         return c->last_flag = factor(c);
     /* same pivot order; a cheap estimate of 1/cond (min/max |U_ii|) guards it, as in SUNLinSol_KLU */
-    if (!klu_refactor(s->dae.colptr, s->dae.rowind, s->dae.jdata, c->sym, c->num, &c->common) ||
+    if (!klu_refactor(s->ops.colptr, s->ops.rowind, s->ops.jdata, c->sym, c->num, &c->common) ||
         !klu_rcond(c->sym, c->num, &c->common) || !(c->common.rcond > pow(DBL_EPSILON, 2.0 / 3.0)))
         return c->last_flag = factor(c);
     return c->last_flag = SUNLS_SUCCESS;

@@ -51,31 +51,31 @@ static double contact_dterm(const td_sim *s, int k, const double *y)
     return td_contact_constraint_dterm(vx, vy, s->contacts.ret[k].r.clearance);
 }
 
-/* The multipliers of the KKT solve at the current modes into s->contacts.active / s->contacts.active_roll: the
+/* The multipliers of the KKT solve at the current modes into s->kkt.active / s->kkt.active_roll: the
  * normal force of every constrained contact, then the friction force F_t of every rolling
- * retainer. For each, its row (s->contacts.rows), M^-1 times its column (s->contacts.minv_cols) and the velocity
+ * retainer. For each, its row (s->kkt.rows), M^-1 times its column (s->kkt.minv_cols) and the velocity
  * term of its acceleration-level constraint (rhs): D of eq. (13b), or h of d v_s / dt. */
 static int kkt_multipliers(td_sim *s, const double *y, double *rhs)
 {
     int m = 0, k;
     for (k = 0; k < s->dae.nr; k++)
         if (s->contacts.ret[k].mode == TD_RMODE_CONTACT) {
-            double *z = s->contacts.minv_cols + (size_t)m * s->dae.n;
+            double *z = s->kkt.minv_cols + (size_t)m * s->dae.n;
             td_sim_contact_column(s, k, y, z);
             td_sim_mass_solve(s, z);
-            td_sim_contact_row(s, k, y, &s->contacts.rows[m]);
+            td_sim_contact_row(s, k, y, &s->kkt.rows[m]);
             rhs[m] = contact_dterm(s, k, y);
-            s->contacts.active_roll[m] = 0;
-            s->contacts.active[m++] = k;
+            s->kkt.active_roll[m] = 0;
+            s->kkt.active[m++] = k;
         }
     for (k = 0; k < s->dae.nr; k++)
         if (s->contacts.ret[k].rolling) {
-            double *z = s->contacts.minv_cols + (size_t)m * s->dae.n;
+            double *z = s->kkt.minv_cols + (size_t)m * s->dae.n;
             td_sim_roll_column(s, k, y, z);
             td_sim_mass_solve(s, z);
-            td_sim_roll_row(s, k, y, &s->contacts.rows[m], &rhs[m]);
-            s->contacts.active_roll[m] = 1;
-            s->contacts.active[m++] = k;
+            td_sim_roll_row(s, k, y, &s->kkt.rows[m], &rhs[m]);
+            s->kkt.active_roll[m] = 1;
+            s->kkt.active[m++] = k;
         }
     return m;
 }
@@ -87,15 +87,15 @@ static int kkt_multipliers(td_sim *s, const double *y, double *rhs)
  * multiplier entries. Returns the number of multipliers, or -1 if singular. */
 static int kkt_solve(td_sim *s, double *y, double *yp)
 {
-    double *a = s->contacts.minv_f, *S = s->contacts.schur, *rhs = s->contacts.schur_rhs, *vp = yp + s->dae.ov;
+    double *a = s->kkt.minv_f, *S = s->kkt.schur, *rhs = s->kkt.schur_rhs, *vp = yp + s->dae.ov;
     int m, i, j;
     td_sim_forces(s, s->dae.t, y, a);
     td_sim_mass_solve(s, a);
     m = kkt_multipliers(s, y, rhs);
     for (i = 0; i < m; i++) {
-        const td_contact_row *row = &s->contacts.rows[i];
+        const td_contact_row *row = &s->kkt.rows[i];
         for (j = 0; j < m; j++)
-            S[i + j * m] = td_contact_row_dot(row, s->contacts.minv_cols + (size_t)j * s->dae.n);
+            S[i + j * m] = td_contact_row_dot(row, s->kkt.minv_cols + (size_t)j * s->dae.n);
         rhs[i] = td_contact_row_dot(row, a) + rhs[i];
     }
     if (m > 0 && td_contact_dense_solve(m, S, rhs) != 0)
@@ -103,11 +103,11 @@ static int kkt_solve(td_sim *s, double *y, double *yp)
     for (i = 0; i < s->dae.n; i++)
         vp[i] = a[i];
     for (j = 0; j < m; j++) {
-        const double *z = s->contacts.minv_cols + (size_t)j * s->dae.n;
-        const td_sim_retainer *r = &s->contacts.ret[s->contacts.active[j]];
+        const double *z = s->kkt.minv_cols + (size_t)j * s->dae.n;
+        const td_sim_retainer *r = &s->contacts.ret[s->kkt.active[j]];
         for (i = 0; i < s->dae.n; i++)
             vp[i] -= z[i] * rhs[j];
-        y[s->contacts.active_roll[j] ? s->dae.of + r->fi : s->dae.ol + s->contacts.active[j]] = rhs[j];
+        y[s->kkt.active_roll[j] ? s->dae.of + r->fi : s->dae.ol + s->kkt.active[j]] = rhs[j];
     }
     return m;
 }
@@ -296,57 +296,57 @@ static double impact_restitution(td_sim *s, int k, const double *y, double vr)
     double e = s->contacts.ret[k].r.restitution, an, vmin;
     if (!(e > 0.0) || vr < s->machine.rebound_min)
         return 0.0;
-    an = free_normal_acceleration(s, k, y, s->contacts.minv_f);
+    an = free_normal_acceleration(s, k, y, s->kkt.minv_f);
     vmin = an > 0.0 ? 2.0 * sqrt(2.0 * an * s->machine.rearm_eps) : 0.0;
     return e * vr < vmin ? 0.0 : e;
 }
 
-/* The contacts of an impact at the retainers flagged in `onset`, into s->contacts.active with their
- * restitution in s->contacts.restitution: every active contact (e = 0 keeps it on the circle) and each
+/* The contacts of an impact at the retainers flagged in `onset`, into s->kkt.active with their
+ * restitution in s->kkt.restitution: every active contact (e = 0 keeps it on the circle) and each
  * onset moving outward (impact_restitution). Returns their number. */
 static int impact_contacts(td_sim *s, const int *onset, const double *y)
 {
-    double *e = s->contacts.restitution;
+    double *e = s->kkt.restitution;
     int m = 0, k;
     for (k = 0; k < s->dae.nr; k++) {
         const td_sim_retainer *r = &s->contacts.ret[k];
         double x, yy, vx, vy, vr;
         if (r->mode == TD_RMODE_CONTACT) {
             e[m] = 0.0;
-            s->contacts.active[m++] = k;
+            s->kkt.active[m++] = k;
         } else if (onset[k]) {
             td_sim_node_state(s, k, y, &x, &yy, &vx, &vy);
             vr = td_contact_radial_velocity(x, yy, vx, vy);
             if (!(vr > 0.0)) /* touching while already moving inward: no impact, stay free */
                 continue;
             e[m] = impact_restitution(s, k, y, vr);
-            s->contacts.active[m++] = k;
+            s->kkt.active[m++] = k;
         }
     }
     return m;
 }
 
-/* Rows J_k (s->contacts.rows) and columns M^-1 J_k^T (s->contacts.minv_cols) of the first m contacts in
- * s->contacts.active. */
+/* Rows J_k (s->kkt.rows) and columns M^-1 J_k^T (s->kkt.minv_cols) of the first m contacts in
+ * s->kkt.active. */
 static void impact_columns(td_sim *s, int m, const double *y)
 {
     int i;
     for (i = 0; i < m; i++) {
-        double *col = s->contacts.minv_cols + (size_t)i * s->dae.n;
-        td_sim_contact_row(s, s->contacts.active[i], y, &s->contacts.rows[i]);
+        double *col = s->kkt.minv_cols + (size_t)i * s->dae.n;
+        td_sim_contact_row(s, s->kkt.active[i], y, &s->kkt.rows[i]);
         memset(col, 0, sizeof(double) * (size_t)s->dae.n);
-        td_contact_row_scatter(&s->contacts.rows[i], col);
+        td_contact_row_scatter(&s->kkt.rows[i], col);
         td_sim_mass_solve(s, col);
     }
 }
 
-/* Queue the onset event of every new contact among the first m in s->contacts.active, with the
+/* Queue the onset event of every new contact among the first m in s->kkt.active, with the
  * velocities before the impact. Returns how many. */
 static int queue_onsets(td_sim *s, const int *onset, int m, const double *y)
 {
     int i, k, queued = 0;
     for (i = 0; i < m; i++) {
-        k = s->contacts.active[i];
+        k = s->kkt.active[i];
         if (!onset[k] || s->contacts.ret[k].mode == TD_RMODE_CONTACT)
             continue;
         {
@@ -366,11 +366,11 @@ static void enter_contacts(td_sim *s, const int *onset, int m, const double *y, 
     int i, k;
     for (i = 0; i < m; i++) {
         td_sim_retainer *r;
-        k = s->contacts.active[i];
+        k = s->kkt.active[i];
         r = &s->contacts.ret[k];
         if (!onset[k] || r->mode == TD_RMODE_CONTACT)
             continue;
-        if (s->contacts.restitution[i] > 0.0) {
+        if (s->kkt.restitution[i] > 0.0) {
             r->armed = 0; /* bounced: free until the gap has opened */
         } else {
             r->mode = TD_RMODE_CONTACT;
@@ -386,13 +386,13 @@ static void complete_onsets(td_sim *s, const int *onset, int m, int first_event,
 {
     int i, k, q;
     for (i = 0; i < m; i++) {
-        k = s->contacts.active[i];
+        k = s->kkt.active[i];
         if (!onset[k])
             continue;
         for (q = first_event; q < s->monitor.q_len; q++)
             if (s->monitor.queue[q].retainer == k && s->monitor.queue[q].kind == TD_EVENT_CONTACT_ONSET) {
                 td_sim_event_velocities(s, k, y, 1, &s->monitor.queue[q]);
-                s->monitor.queue[q].impulse = s->contacts.impulse[i];
+                s->monitor.queue[q].impulse = s->kkt.impulse[i];
             }
     }
 }
@@ -429,16 +429,15 @@ static int impacts(td_sim *s, const int *onset, int *entered)
     impact_columns(s, m, y);
     queued = queue_onsets(s, onset, m, y);
     before = s->opt.energy ? td_sim_kinetic_energy(s, y) : 0.0;
-    if (m > 0 && td_contact_impact_map(s->dae.n, m, s->contacts.rows, s->contacts.minv_cols, s->contacts.restitution,
-                                       y + s->dae.ov, s->contacts.impulse, s->contacts.impact_work) != 0)
+    if (m > 0 && td_contact_impact_map(s->dae.n, m, s->kkt.rows, s->kkt.minv_cols, s->kkt.restitution, y + s->dae.ov,
+                                       s->kkt.impulse, s->kkt.impact_work) != 0)
         return -1;
     if (s->opt.energy)
         td_sim_energy_impact(s, before, td_sim_kinetic_energy(s, y));
     for (k = 0; k < m; k++) /* every contact of the impact took its impulse; e > 0 onsets bounced */
-        td_sim_totals_impact(s, s->contacts.active[k], s->contacts.impulse[k],
-                             onset[s->contacts.active[k]] &&
-                                 s->contacts.ret[s->contacts.active[k]].mode != TD_RMODE_CONTACT &&
-                                 s->contacts.restitution[k] > 0.0);
+        td_sim_totals_impact(s, s->kkt.active[k], s->kkt.impulse[k],
+                             onset[s->kkt.active[k]] && s->contacts.ret[s->kkt.active[k]].mode != TD_RMODE_CONTACT &&
+                                 s->kkt.restitution[k] > 0.0);
     enter_contacts(s, onset, m, y, entered);
     for (k = 0; k < s->dae.nr; k++) /* stick retainers slide the way the impact left them */
         if (s->contacts.ret[k].r.stick && s->contacts.ret[k].mode == TD_RMODE_CONTACT && !entered[k])
@@ -555,17 +554,17 @@ static int penalty_roots(td_sim *s, int k, double *y, const int *f)
     return restart;
 }
 
-/* Impacts at the retainers flagged in s->contacts.onset (any: some are), or none; s->contacts.entered says which
+/* Impacts at the retainers flagged in s->kkt.onset (any: some are), or none; s->kkt.entered says which
  * retainers came into contact. */
 static td_status onset_impacts(td_sim *s, int any)
 {
     int k;
     if (!any) {
         for (k = 0; k < s->dae.nr; k++)
-            s->contacts.entered[k] = 0;
+            s->kkt.entered[k] = 0;
         return TD_OK;
     }
-    if (impacts(s, s->contacts.onset, s->contacts.entered) < 0) {
+    if (impacts(s, s->kkt.onset, s->kkt.entered) < 0) {
         snprintf(s->errmsg, sizeof s->errmsg, "t = %.9g s: impact map singular", s->dae.t);
         return TD_ERR_NUMERIC;
     }
@@ -580,15 +579,14 @@ td_status td_sim_handle_roots(td_sim *s, int *restart)
     *restart = 0;
     for (k = 0; k < s->dae.nr; k++) {
         const int *f = s->dae.rootsfound + TD_ROOTS_PER_RETAINER * k;
-        s->contacts.onset[k] = 0;
-        if (td_sim_penalty_model(s, k) ? penalty_roots(s, k, y, f)
-                                       : constraint_roots(s, k, y, f, &s->contacts.onset[k]))
+        s->kkt.onset[k] = 0;
+        if (td_sim_penalty_model(s, k) ? penalty_roots(s, k, y, f) : constraint_roots(s, k, y, f, &s->kkt.onset[k]))
             *restart = 1;
         if (stick_out_of_step(s, k, y)) { /* the missed crossing: the restart rolls or slips the right way */
             slip_root(s, k, y);
             *restart = 1;
         }
-        any_onset = any_onset || s->contacts.onset[k];
+        any_onset = any_onset || s->kkt.onset[k];
     }
     for (k = 0; k < s->dae.n_sat_roots; k++) /* an AMB's clip: restart on its kink */
         if (s->dae.rootsfound[TD_ROOTS_PER_RETAINER * s->dae.nr + k])
@@ -600,7 +598,7 @@ td_status td_sim_handle_roots(td_sim *s, int *restart)
         *restart = 1;
     if (!*restart)
         return TD_OK;
-    st = td_sim_make_consistent(s, s->contacts.entered);
+    st = td_sim_make_consistent(s, s->kkt.entered);
     if (st != TD_OK)
         return st;
     /* record the normal force right after each event of this instant */
@@ -615,9 +613,9 @@ td_status td_sim_start_contacts(td_sim *s, const int *touching)
     int k, any = 0;
     td_status st;
     for (k = 0; k < s->dae.nr; k++) {
-        s->contacts.onset[k] = touching[k];
-        any = any || s->contacts.onset[k];
+        s->kkt.onset[k] = touching[k];
+        any = any || s->kkt.onset[k];
     }
     st = onset_impacts(s, any);
-    return st == TD_OK ? td_sim_make_consistent(s, s->contacts.entered) : st;
+    return st == TD_OK ? td_sim_make_consistent(s, s->kkt.entered) : st;
 }

@@ -119,9 +119,9 @@ static int put_all(const td_sim *s, cs_di *T)
 
 int td_sim_pattern_find(const td_sim *s, int row, int col)
 {
-    int lo = s->dae.colptr[col], hi = s->dae.colptr[col + 1] - 1;
+    int lo = s->ops.colptr[col], hi = s->ops.colptr[col + 1] - 1;
     while (lo <= hi) {
-        int mid = (lo + hi) / 2, r = s->dae.rowind[mid];
+        int mid = (lo + hi) / 2, r = s->ops.rowind[mid];
         if (r == row)
             return mid;
         if (r < row)
@@ -159,25 +159,25 @@ td_status td_sim_pattern_build(td_sim *s, td_error *err)
         cs_di_spfree(S);
         return td_error_set(err, TD_ERR_NOMEM, "out of memory building the Jacobian pattern");
     }
-    s->dae.nnz = S->p[S->n];
-    s->dae.colptr = malloc(sizeof(int) * (size_t)(s->dae.neq + 1));
-    s->dae.rowind = malloc(sizeof(int) * (size_t)s->dae.nnz);
-    s->dae.jdata = calloc((size_t)s->dae.nnz, sizeof(double));
-    if (s->dae.colptr && s->dae.rowind && s->dae.jdata) {
+    s->ops.nnz = S->p[S->n];
+    s->ops.colptr = malloc(sizeof(int) * (size_t)(s->dae.neq + 1));
+    s->ops.rowind = malloc(sizeof(int) * (size_t)s->ops.nnz);
+    s->ops.jdata = calloc((size_t)s->ops.nnz, sizeof(double));
+    if (s->ops.colptr && s->ops.rowind && s->ops.jdata) {
         int i;
         for (i = 0; i <= s->dae.neq; i++)
-            s->dae.colptr[i] = S->p[i];
-        for (i = 0; i < s->dae.nnz; i++)
-            s->dae.rowind[i] = S->i[i];
+            s->ops.colptr[i] = S->p[i];
+        for (i = 0; i < s->ops.nnz; i++)
+            s->ops.rowind[i] = S->i[i];
     }
     cs_di_spfree(S);
-    if (!s->dae.colptr || !s->dae.rowind || !s->dae.jdata)
+    if (!s->ops.colptr || !s->ops.rowind || !s->ops.jdata)
         return td_error_set(err, TD_ERR_NOMEM, "out of memory building the Jacobian pattern");
-    s->dae.map_M = map_matrix(s, s->dae.M, s->dae.ov, s->dae.ov);
-    s->dae.map_C = map_matrix(s, s->dae.C, s->dae.ov, s->dae.ov);
-    s->dae.map_G = map_matrix(s, s->dae.G, s->dae.ov, s->dae.ov);
-    s->dae.map_K = map_matrix(s, s->dae.K, s->dae.ov, s->dae.oq);
-    if (!s->dae.map_M || !s->dae.map_C || !s->dae.map_G || !s->dae.map_K)
+    s->ops.map_M = map_matrix(s, s->dae.M, s->dae.ov, s->dae.ov);
+    s->ops.map_C = map_matrix(s, s->dae.C, s->dae.ov, s->dae.ov);
+    s->ops.map_G = map_matrix(s, s->dae.G, s->dae.ov, s->dae.ov);
+    s->ops.map_K = map_matrix(s, s->dae.K, s->dae.ov, s->dae.oq);
+    if (!s->ops.map_M || !s->ops.map_C || !s->ops.map_G || !s->ops.map_K)
         return td_error_set(err, TD_ERR_NOMEM, "out of memory building the Jacobian pattern");
     return TD_OK;
 }
@@ -187,9 +187,9 @@ td_status td_sim_pattern_build(td_sim *s, td_error *err)
 /* Position of column col in row `row` of the structural pattern (always present). */
 static int st_find(const td_sim *s, int row, int col)
 {
-    int lo = s->dae.st_rowptr[row], hi = s->dae.st_rowptr[row + 1] - 1;
+    int lo = s->ops.st_rowptr[row], hi = s->ops.st_rowptr[row + 1] - 1;
     while (lo <= hi) {
-        int mid = (lo + hi) / 2, c = s->dae.st_col[mid];
+        int mid = (lo + hi) / 2, c = s->ops.st_col[mid];
         if (c == col)
             return mid;
         if (c < col)
@@ -214,12 +214,12 @@ static void st_add(const td_sim *s, const cs_di *A, double scale, double *vals)
 
 void td_sim_structural_speed(td_sim *s)
 {
-    if (!s->dae.st_D)
+    if (!s->ops.st_D)
         return;
-    memset(s->dae.st_D, 0, sizeof(double) * (size_t)(s->dae.st_nnz > 0 ? s->dae.st_nnz : 1));
-    st_add(s, s->dae.C, 1.0, s->dae.st_D);
+    memset(s->ops.st_D, 0, sizeof(double) * (size_t)(s->ops.st_nnz > 0 ? s->ops.st_nnz : 1));
+    st_add(s, s->dae.C, 1.0, s->ops.st_D);
     if (s->machine.omega != 0.0)
-        st_add(s, s->dae.G, s->machine.omega, s->dae.st_D);
+        st_add(s, s->dae.G, s->machine.omega, s->ops.st_D);
 }
 
 td_status td_sim_structural_build(td_sim *s, td_error *err)
@@ -239,23 +239,23 @@ td_status td_sim_structural_build(td_sim *s, td_error *err)
         return td_error_set(err, TD_ERR_NOMEM, "out of memory building the structural operator");
     }
     /* cs_di_transpose sorts the row indices of each column of the result */
-    s->dae.st_nnz = R->p[R->n];
-    s->dae.st_rowptr = malloc(sizeof(int) * (size_t)(s->dae.n + 1));
-    s->dae.st_col = malloc(sizeof(int) * (size_t)(s->dae.st_nnz > 0 ? s->dae.st_nnz : 1));
-    s->dae.st_M = calloc((size_t)(s->dae.st_nnz > 0 ? s->dae.st_nnz : 1), sizeof(double));
-    s->dae.st_K = calloc((size_t)(s->dae.st_nnz > 0 ? s->dae.st_nnz : 1), sizeof(double));
-    s->dae.st_D = calloc((size_t)(s->dae.st_nnz > 0 ? s->dae.st_nnz : 1), sizeof(double));
-    if (s->dae.st_rowptr && s->dae.st_col) {
+    s->ops.st_nnz = R->p[R->n];
+    s->ops.st_rowptr = malloc(sizeof(int) * (size_t)(s->dae.n + 1));
+    s->ops.st_col = malloc(sizeof(int) * (size_t)(s->ops.st_nnz > 0 ? s->ops.st_nnz : 1));
+    s->ops.st_M = calloc((size_t)(s->ops.st_nnz > 0 ? s->ops.st_nnz : 1), sizeof(double));
+    s->ops.st_K = calloc((size_t)(s->ops.st_nnz > 0 ? s->ops.st_nnz : 1), sizeof(double));
+    s->ops.st_D = calloc((size_t)(s->ops.st_nnz > 0 ? s->ops.st_nnz : 1), sizeof(double));
+    if (s->ops.st_rowptr && s->ops.st_col) {
         for (i = 0; i <= s->dae.n; i++)
-            s->dae.st_rowptr[i] = R->p[i];
-        for (i = 0; i < s->dae.st_nnz; i++)
-            s->dae.st_col[i] = R->i[i];
+            s->ops.st_rowptr[i] = R->p[i];
+        for (i = 0; i < s->ops.st_nnz; i++)
+            s->ops.st_col[i] = R->i[i];
     }
     cs_di_spfree(R);
-    if (!s->dae.st_rowptr || !s->dae.st_col || !s->dae.st_M || !s->dae.st_K || !s->dae.st_D)
+    if (!s->ops.st_rowptr || !s->ops.st_col || !s->ops.st_M || !s->ops.st_K || !s->ops.st_D)
         return td_error_set(err, TD_ERR_NOMEM, "out of memory building the structural operator");
-    st_add(s, s->dae.M, 1.0, s->dae.st_M);
-    st_add(s, s->dae.K, 1.0, s->dae.st_K);
+    st_add(s, s->dae.M, 1.0, s->ops.st_M);
+    st_add(s, s->dae.K, 1.0, s->ops.st_K);
     td_sim_structural_speed(s);
     return TD_OK;
 }
@@ -264,20 +264,20 @@ td_status td_sim_structural_build(td_sim *s, td_error *err)
 
 td_status td_sim_mass_factor(td_sim *s, td_error *err)
 {
-    s->dae.Ms = cs_di_sqr(1, s->dae.M, 0);
-    if (!s->dae.Ms)
+    s->ops.Ms = cs_di_sqr(1, s->dae.M, 0);
+    if (!s->ops.Ms)
         return td_error_set(err, TD_ERR_NOMEM, "out of memory factorising the mass matrix");
-    s->dae.Mn = cs_di_lu(s->dae.M, s->dae.Ms, 1.0);
-    if (!s->dae.Mn)
+    s->ops.Mn = cs_di_lu(s->dae.M, s->ops.Ms, 1.0);
+    if (!s->ops.Mn)
         return td_error_set(err, TD_ERR_NUMERIC, "the mass matrix is singular");
     return TD_OK;
 }
 
 void td_sim_mass_solve(const td_sim *s, double *b)
 {
-    double *x = s->dae.mass_x;
-    cs_di_ipvec(s->dae.Mn->pinv, b, x, s->dae.n);
-    cs_di_lsolve(s->dae.Mn->L, x);
-    cs_di_usolve(s->dae.Mn->U, x);
-    cs_di_ipvec(s->dae.Ms->q, x, b, s->dae.n);
+    double *x = s->ops.mass_x;
+    cs_di_ipvec(s->ops.Mn->pinv, b, x, s->dae.n);
+    cs_di_lsolve(s->ops.Mn->L, x);
+    cs_di_usolve(s->ops.Mn->U, x);
+    cs_di_ipvec(s->ops.Ms->q, x, b, s->dae.n);
 }

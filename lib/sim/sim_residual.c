@@ -74,8 +74,8 @@ double td_sim_amb_axis_integral_rate(const td_sim *s, int k, const double *y)
  * leaves out M vp. One pass over the indices instead of one per matrix. */
 static void structural(const td_sim *s, const double *q, const double *v, const double *vp, double *out)
 {
-    const int *rp = s->dae.st_rowptr, *col = s->dae.st_col;
-    const double *Mx = s->dae.st_M, *Kx = s->dae.st_K, *Dx = s->dae.st_D;
+    const int *rp = s->ops.st_rowptr, *col = s->ops.st_col;
+    const double *Mx = s->ops.st_M, *Kx = s->ops.st_K, *Dx = s->ops.st_D;
     int i, p;
     if (vp) {
         for (i = 0; i < s->dae.n; i++) {
@@ -322,7 +322,7 @@ static void jadd(td_sim *s, int row, int col, double v)
 {
     int p = td_sim_pattern_find(s, row, col);
     if (p >= 0)
-        s->dae.jdata[p] += v;
+        s->ops.jdata[p] += v;
 }
 
 /* Add the stored entries of a system matrix times `scale` through its position map. */
@@ -332,7 +332,7 @@ static void jadd_matrix(td_sim *s, const cs_di *A, const int *map, double scale)
     if (scale == 0.0)
         return;
     for (p = 0; p < nz; p++)
-        s->dae.jdata[map[p]] += scale * A->x[p];
+        s->ops.jdata[map[p]] += scale * A->x[p];
 }
 
 static void jacobian_amb(td_sim *s, const double *y)
@@ -645,29 +645,29 @@ static void jacobian_unbalance_spin(td_sim *s, double t, double cj, const double
 static void jacobian_ramp_rows(td_sim *s)
 {
     int qz = s->dae.oq + s->machine.spin, wz = s->dae.ov + s->machine.spin;
-    s->dae.jdata[td_sim_pattern_find(s, qz, qz)] = 1.0;
-    s->dae.jdata[td_sim_pattern_find(s, qz, wz)] = 0.0;
-    s->dae.jdata[td_sim_pattern_find(s, wz, wz)] = 1.0;
+    s->ops.jdata[td_sim_pattern_find(s, qz, qz)] = 1.0;
+    s->ops.jdata[td_sim_pattern_find(s, qz, wz)] = 0.0;
+    s->ops.jdata[td_sim_pattern_find(s, wz, wz)] = 1.0;
 }
 
 void td_sim_jacobian(td_sim *s, double t, double cj, const double *y)
 {
     int i, k;
-    memset(s->dae.jdata, 0, sizeof(double) * (size_t)s->dae.nnz);
+    memset(s->ops.jdata, 0, sizeof(double) * (size_t)s->ops.nnz);
     for (i = 0; i < s->dae.n; i++) {
         jadd(s, s->dae.oq + i, s->dae.oq + i, cj);
         jadd(s, s->dae.oq + i, s->dae.ov + i, -1.0);
     }
     for (i = 0; i < s->dae.nw; i++)
         jadd(s, s->dae.ow + i, s->dae.ow + i, cj);
-    jadd_matrix(s, s->dae.M, s->dae.map_M, cj);
-    jadd_matrix(s, s->dae.C, s->dae.map_C, 1.0);
-    jadd_matrix(s, s->dae.G, s->dae.map_G, td_sim_rotor_speed(s, y));
+    jadd_matrix(s, s->dae.M, s->ops.map_M, cj);
+    jadd_matrix(s, s->dae.C, s->ops.map_C, 1.0);
+    jadd_matrix(s, s->dae.G, s->ops.map_G, td_sim_rotor_speed(s, y));
     if (s->machine.spin >= 0)
         jacobian_spin(s, t, y);
     if (s->machine.spin_free)
         jacobian_unbalance_spin(s, t, cj, y);
-    jadd_matrix(s, s->dae.K, s->dae.map_K, 1.0);
+    jadd_matrix(s, s->dae.K, s->ops.map_K, 1.0);
     jacobian_amb(s, y);
     for (k = 0; k < s->dae.nr; k++) {
         if (s->contacts.ret[k].rs >= 0)
