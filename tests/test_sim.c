@@ -810,7 +810,8 @@ static void test_no_progress_fails(void **state)
     assert_non_null(strstr(err.message, "solver.atol: "));
     assert_null(s);
     assert_int_equal(td_sim_create(td_case_model(c), td_case_sim_options(c), &s, &err), TD_OK);
-    s->opt.solver.atol *= scale; /* what an atol of 1e6 m sets (sim.c, set_tolerances and the onset roots) */
+    /* what an atol of 1e6 m sets (tolerance.c and setup.c: the tolerances, the onset roots) */
+    s->opt.solver.atol *= scale;
     s->machine.constraint_tol *= scale;
     s->machine.rearm_eps *= scale;
     N_VScale(scale, s->solver.atol, s->solver.atol);

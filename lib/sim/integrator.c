@@ -285,7 +285,8 @@ static void save_counters(td_sim *s)
 /*
  * Restart step: BDF restarts at order 1, whose local error is about h^2/2 |q''| on the
  * displacements; choose h so that this is a quarter of the displacement tolerance at the
- * largest acceleration, within [1e-12 s, hmax] (or the user's initial_step).
+ * largest acceleration, within [1e-12 s, hmax] (or the user's initial_step). The displacement
+ * tolerance is td_sim_restart_tolerance's (tolerance.c says why it is not IDA's own).
  */
 static double restart_step(const td_sim *s)
 {
@@ -295,8 +296,7 @@ static double restart_step(const td_sim *s)
     if (s->opt.solver.initial_step > 0.0)
         return s->opt.solver.initial_step;
     for (i = 0; i < s->dae.n; i++) {
-        double tol = s->opt.solver.rtol * fabs(y[s->dae.oq + i]) + s->opt.solver.atol;
-        double a = fabs(yp[s->dae.ov + i]) / tol;
+        double a = fabs(yp[s->dae.ov + i]) / td_sim_restart_tolerance(s, s->dae.oq + i, y);
         if (a > amax)
             amax = a;
     }

@@ -318,6 +318,9 @@ void td_sim_set_tolerances(td_sim *s);
 double td_sim_race_speed_atol(const td_sim *s, int k);
 /* Set the race speeds' tolerances in s->solver.atol for the current modes; 1 if one changed. */
 int td_sim_races_retolerance(td_sim *s);
+/* The tolerance rtol |q_i| + atol that a restart's first step is sized against, at unknown i of the
+ * state y (i in the q block): the displacement tolerance on every coordinate. */
+double td_sim_restart_tolerance(const td_sim *s, int i, const double *y);
 
 /* ---- integrator.c: IDA ---------------------------------------------------------------------- */
 
