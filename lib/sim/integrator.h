@@ -1,8 +1,9 @@
 /*
  * The integrator's record: SUNDIALS IDA on the contact DAE, its Newton and linear solvers, the
  * per-component tolerances, the restarts and the running totals of the counters. integrator.c owns
- * it, with tolerance.c (the tolerances) and sim_linsol.c (KLU); the step loop and the public
- * functions above read it.
+ * it, with tolerance.c (the tolerances) and sim_linsol.c (KLU). The layers above read it (the
+ * section IDA's interpolant, the public calls the counters); the step loop also keeps IDA's time in
+ * it and marks its history stale after a flight, the set-up and td_sim_set_speed its step bound.
  */
 #ifndef TD_SIM_INTEGRATOR_H
 #define TD_SIM_INTEGRATOR_H

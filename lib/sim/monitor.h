@@ -1,8 +1,9 @@
 /*
  * The monitor's record: what the simulation has seen so far, kept at the accepted points and the
  * events (monitor.c: statistics and the event queue; totals.c: the retainers' running totals;
- * energy.c: the energy account). Only those three files write it; the layers above read it and
- * report it (sim.c), the layers below never see it.
+ * energy.c: the energy account), which own it. The layers above add to it (the flight its steps,
+ * the mode switching the details of the events it queued, the integrator its restarts) and report
+ * it (sim.c); the layers below never see it.
  */
 #ifndef TD_SIM_MONITOR_H
 #define TD_SIM_MONITOR_H

@@ -100,11 +100,12 @@ struct td_sim {
 };
 
 /*
- * The files of lib/sim are layers: each calls only the files listed above it here (and below it in
- * no way), so that no call runs back up:
+ * The files of lib/sim are layers, listed here from the bottom up: a file calls only the files
+ * before it in this list, so that no call runs back up and no two files call each other.
  *
- *   sim_nvector, sim_linsol      vector operations, the KLU solver
- *   spin, retainer, race         the spin, the retainers' queries and modes, the races' DOFs
+ *   sim_nvector, sim_linsol      vector operations, the KLU solver (they call no other file)
+ *   spin                         the spin DOF
+ *   retainer, race               the retainers' queries and modes, the races' DOFs
  *   sim_pattern                  the Jacobian's pattern, the structural operator, the mass matrix
  *   sim_residual                 the DAE: forces, residual, Jacobian, roots
  *   monitor, energy, totals      statistics and events, the energy account, the retainers' totals
