@@ -77,20 +77,20 @@ static td_sim *small_sim(td_contact_model model, td_contact_damping damping, td_
 static void fill_state(const td_sim *s, double rad, double *y, double *yp)
 {
     int i, k;
-    for (i = 0; i < s->neq; i++) {
+    for (i = 0; i < s->dae.neq; i++) {
         double u = sin(1.7 * i + 0.3), w = cos(2.3 * i + 0.1);
         y[i] = u;
         yp[i] = w;
-        if (i < s->ov) { /* q */
+        if (i < s->dae.ov) { /* q */
             y[i] *= 1e-4;
             yp[i] *= 1e-2;
-        } else if (i < s->ow) { /* v */
+        } else if (i < s->dae.ow) { /* v */
             y[i] *= 1e-2;
             yp[i] *= 10.0;
-        } else if (i < s->ol) { /* w */
+        } else if (i < s->dae.ol) { /* w */
             y[i] *= 300.0;
             yp[i] *= 1e4;
-        } else if (i < s->ou) { /* lambda */
+        } else if (i < s->dae.ou) { /* lambda */
             y[i] = 400.0 + 100.0 * u;
             yp[i] = 0.0;
         } else { /* eta */
@@ -98,12 +98,12 @@ static void fill_state(const td_sim *s, double rad, double *y, double *yp)
             yp[i] = 0.0;
         }
     }
-    for (k = 0; k < s->nr; k++) {
+    for (k = 0; k < s->dae.nr; k++) {
         double a = 0.7 + 2.0 * k;
-        y[s->oq + s->ret[k].dx] = rad * cos(a);
-        y[s->oq + s->ret[k].dy] = rad * sin(a);
-        y[s->ov + s->ret[k].dx] = -0.03 * sin(a) + 0.004 * cos(a); /* mostly tangential, some outward */
-        y[s->ov + s->ret[k].dy] = 0.03 * cos(a) + 0.004 * sin(a);
+        y[s->dae.oq + s->contacts.ret[k].dx] = rad * cos(a);
+        y[s->dae.oq + s->contacts.ret[k].dy] = rad * sin(a);
+        y[s->dae.ov + s->contacts.ret[k].dx] = -0.03 * sin(a) + 0.004 * cos(a); /* mostly tangential, some outward */
+        y[s->dae.ov + s->contacts.ret[k].dy] = 0.03 * cos(a) + 0.004 * sin(a);
     }
 }
 
@@ -111,7 +111,7 @@ static void fill_state(const td_sim *s, double rad, double *y, double *yp)
  * largest entry of its row; every entry found by differences must lie in the fixed pattern. */
 static void check_jacobian(td_sim *s, double rad, const char *what)
 {
-    int n = s->neq, i, j;
+    int n = s->dae.neq, i, j;
     double *y = calloc(n, sizeof(double)), *yp = calloc(n, sizeof(double)), *rp = calloc(n, sizeof(double));
     double *rm = calloc(n, sizeof(double)), *fd = calloc((size_t)n * n, sizeof(double)),
            *rowmax = calloc(n, sizeof(double));
@@ -138,7 +138,7 @@ static void check_jacobian(td_sim *s, double rad, const char *what)
     for (j = 0; j < n; j++)
         for (i = 0; i < n; i++) {
             int p = td_sim_pattern_find(s, i, j);
-            double an = p >= 0 ? s->jdata[p] : 0.0, f = fd[i + (size_t)j * n];
+            double an = p >= 0 ? s->ops.jdata[p] : 0.0, f = fd[i + (size_t)j * n];
             if (!(fabs(an - f) <= 1e-6 * rowmax[i] + 1e-9)) {
                 fail_msg("%s: J(%d,%d) analytic %.10g, differences %.10g (row max %.3g, in pattern %d)", what, i, j, an,
                          f, rowmax[i], p >= 0);
@@ -152,10 +152,10 @@ static void test_jacobian_free_and_amb_modes(void **state)
     td_sim *s = small_sim(TD_CONTACT_CONSTRAINT, TD_DAMPING_NONE, TD_LINSOL_KLU);
     (void)state;
     check_jacobian(s, 3e-4, "free, PD");
-    s->amb_mode[0] = TD_AMB_EXTERNAL;
-    s->amb_control[0] = 123.0;
-    s->amb_control[1] = -45.0;
-    s->amb_mode[1] = TD_AMB_OFF;
+    s->machine.amb_mode[0] = TD_AMB_EXTERNAL;
+    s->machine.amb_control[0] = 123.0;
+    s->machine.amb_control[1] = -45.0;
+    s->machine.amb_mode[1] = TD_AMB_OFF;
     check_jacobian(s, 3e-4, "free, external/off AMBs");
     td_sim_free(&s);
 }
@@ -164,11 +164,11 @@ static void test_jacobian_constrained_with_friction(void **state)
 {
     td_sim *s = small_sim(TD_CONTACT_CONSTRAINT, TD_DAMPING_NONE, TD_LINSOL_KLU);
     (void)state;
-    s->ret[0].mode = s->ret[1].mode = TD_RMODE_CONTACT;
-    s->ret[0].slip = 1;
-    s->ret[1].slip = -1;
+    s->contacts.ret[0].mode = s->contacts.ret[1].mode = TD_RMODE_CONTACT;
+    s->contacts.ret[0].slip = 1;
+    s->contacts.ret[1].slip = -1;
     check_jacobian(s, 0.5e-3 * (1 + 1e-7), "two contacts with friction");
-    s->ret[1].mode = TD_RMODE_FREE;
+    s->contacts.ret[1].mode = TD_RMODE_FREE;
     check_jacobian(s, 0.5e-3, "one contact");
     td_sim_free(&s);
 }
@@ -177,13 +177,13 @@ static void test_jacobian_constrained_with_friction(void **state)
  * rad) lies inside the slip band, at `frac[k]` v_reg. */
 static void put_in_slip_band(td_sim *s, double rad, const double *frac)
 {
-    double *y = calloc(s->neq, sizeof(double)), *yp = calloc(s->neq, sizeof(double));
+    double *y = calloc(s->dae.neq, sizeof(double)), *yp = calloc(s->dae.neq, sizeof(double));
     int k;
     assert_non_null(y);
     assert_non_null(yp);
     fill_state(s, rad, y, yp);
-    for (k = 0; k < s->nr; k++) {
-        td_retainer *r = &s->ret[k].r;
+    for (k = 0; k < s->dae.nr; k++) {
+        td_retainer *r = &s->contacts.ret[k].r;
         double vs0;
         r->bore_speed = 0.0;
         vs0 = td_sim_sliding_velocity(s, k, y);
@@ -201,15 +201,15 @@ static void test_jacobian_slip_band(void **state)
     int l;
     td_sim *s = small_sim(TD_CONTACT_CONSTRAINT, TD_DAMPING_NONE, TD_LINSOL_KLU);
     (void)state;
-    s->ret[0].mode = s->ret[1].mode = TD_RMODE_CONTACT;
-    s->ret[0].slip = s->ret[1].slip = 0;
+    s->contacts.ret[0].mode = s->contacts.ret[1].mode = TD_RMODE_CONTACT;
+    s->contacts.ret[0].slip = s->contacts.ret[1].slip = 0;
     put_in_slip_band(s, 0.5e-3 * (1 + 1e-7), frac);
     check_jacobian(s, 0.5e-3 * (1 + 1e-7), "two contacts in the slip band");
     td_sim_free(&s);
     for (l = 0; l < 2; l++) {
         s = small_sim(TD_CONTACT_PENALTY, laws[l], TD_LINSOL_KLU);
-        s->ret[0].mode = s->ret[1].mode = TD_RMODE_PENETRATING;
-        s->ret[0].slip = s->ret[1].slip = 0;
+        s->contacts.ret[0].mode = s->contacts.ret[1].mode = TD_RMODE_PENETRATING;
+        s->contacts.ret[0].slip = s->contacts.ret[1].slip = 0;
         put_in_slip_band(s, 0.5e-3 + 2e-6, frac);
         check_jacobian(s, 0.5e-3 + 2e-6, "penalty contacts in the slip band");
         td_sim_free(&s);
@@ -224,9 +224,9 @@ static void test_jacobian_penalty_with_damping(void **state)
     for (l = 0; l < 3; l++) {
         td_sim *s = small_sim(TD_CONTACT_PENALTY, laws[l], TD_LINSOL_KLU);
         char what[64];
-        s->ret[0].mode = s->ret[1].mode = TD_RMODE_PENETRATING;
-        s->ret[0].slip = -1;
-        s->ret[1].slip = 1;
+        s->contacts.ret[0].mode = s->contacts.ret[1].mode = TD_RMODE_PENETRATING;
+        s->contacts.ret[0].slip = -1;
+        s->contacts.ret[1].slip = 1;
         snprintf(what, sizeof what, "penalty, damping law %d", l);
         check_jacobian(s, 0.5e-3 + 2e-6, what);
         td_sim_free(&s);
@@ -810,10 +810,11 @@ static void test_no_progress_fails(void **state)
     assert_non_null(strstr(err.message, "solver.atol: "));
     assert_null(s);
     assert_int_equal(td_sim_create(td_case_model(c), td_case_sim_options(c), &s, &err), TD_OK);
-    s->opt.solver.atol *= scale; /* what an atol of 1e6 m sets (sim.c, set_tolerances and the onset roots) */
-    s->constraint_tol *= scale;
-    s->rearm_eps *= scale;
-    N_VScale(scale, s->atol, s->atol);
+    /* what an atol of 1e6 m sets (tolerance.c and setup.c: the tolerances, the onset roots) */
+    s->opt.solver.atol *= scale;
+    s->machine.constraint_tol *= scale;
+    s->machine.rearm_eps *= scale;
+    N_VScale(scale, s->solver.atol, s->solver.atol);
     while ((r = td_sim_step(s, 2.0, &t, &err)) == TD_EVENT)
         ;
     assert_int_equal(r, TD_ERR_SOLVER);
@@ -834,17 +835,17 @@ static void test_speed_change_continuity(void **state)
     int i;
     (void)state;
     assert_int_equal(td_sim_step(s, 0.0123, NULL, &err), TD_OK);
-    phi0 = td_sim_spin_angle(s, s->t);
+    phi0 = td_sim_spin_angle(s, s->dae.t);
     td_sim_get_state(s, q0, NULL);
     assert_int_equal(td_sim_set_speed(s, 200.0, &err), TD_OK);
-    phi1 = td_sim_spin_angle(s, s->t);
+    phi1 = td_sim_spin_angle(s, s->dae.t);
     td_sim_get_state(s, q1, NULL);
     assert_close(phi1, phi0, 1e-15, 0.0);
     assert_close(phi0, 120.0 * 0.0123, 1e-12, 0.0);
     for (i = 0; i < 20; i++)
         assert_true(q1[i] == q0[i]);
     assert_int_equal(td_sim_step(s, 0.0223, NULL, &err), TD_OK);
-    assert_close(td_sim_spin_angle(s, s->t), phi0 + 200.0 * 0.01, 1e-12, 0.0);
+    assert_close(td_sim_spin_angle(s, s->dae.t), phi0 + 200.0 * 0.01, 1e-12, 0.0);
     td_sim_free(&s);
 }
 

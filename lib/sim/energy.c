@@ -23,10 +23,10 @@ static double quadratic(const td_sim *s, const double *vals, const double *x, co
 {
     double sum = 0.0;
     int i, p;
-    for (i = 0; i < s->n; i++) {
+    for (i = 0; i < s->dae.n; i++) {
         double row = 0.0;
-        for (p = s->st_rowptr[i]; p < s->st_rowptr[i + 1]; p++)
-            row += vals[p] * y[s->st_col[p]];
+        for (p = s->ops.st_rowptr[i]; p < s->ops.st_rowptr[i + 1]; p++)
+            row += vals[p] * y[s->ops.st_col[p]];
         sum += x[i] * row;
     }
     return sum;
@@ -34,13 +34,13 @@ static double quadratic(const td_sim *s, const double *vals, const double *x, co
 
 double td_sim_kinetic_energy(const td_sim *s, const double *y)
 {
-    return 0.5 * quadratic(s, s->st_M, y + s->ov, y + s->ov);
+    return 0.5 * quadratic(s, s->ops.st_M, y + s->dae.ov, y + s->dae.ov);
 }
 
 /* Elastic energy of retainer k's contact spring and the power its contact dissipates, at y. */
 static double contact_spring(const td_sim *s, int k, const double *y, double *loss)
 {
-    const td_sim_retainer *r = &s->ret[k];
+    const td_sim_retainer *r = &s->contacts.ret[k];
     double x, yy, vx, vy, rad, delta, rate, n, n_el = 0.0, e = 0.0, ft, vt;
     *loss = 0.0;
     if (r->mode == TD_RMODE_FREE && !r->compliant)
@@ -67,35 +67,36 @@ static double contact_spring(const td_sim *s, int k, const double *y, double *lo
 /* The powers at y (external, drive, damping, contact, drag) into pw; returns the energy held. */
 static double powers(td_sim *s, double t, const double *y, double pw[5])
 {
-    const double *q = y + s->oq, *v = y + s->ov;
-    double held = td_sim_kinetic_energy(s, y) + 0.5 * quadratic(s, s->st_K, q, q);
+    const double *q = y + s->dae.oq, *v = y + s->dae.ov;
+    double held = td_sim_kinetic_energy(s, y) + 0.5 * quadratic(s, s->ops.st_K, q, q);
     int i, k;
-    memset(s->energy_f, 0, sizeof(double) * (size_t)s->n);
-    td_sim_external_forces(s, t, y, 1.0, s->energy_f);
+    memset(s->monitor.energy_f, 0, sizeof(double) * (size_t)s->dae.n);
+    td_sim_external_forces(s, t, y, 1.0, s->monitor.energy_f);
     memset(pw, 0, 5 * sizeof *pw);
-    for (i = 0; i < s->n; i++)
-        pw[0] += s->energy_f[i] * v[i];
-    pw[0] += td_sim_unbalance_spin_coupling(s, t, y, N_VGetArrayPointer(s->yp), NULL);
-    pw[2] = quadratic(s, s->st_D, v, v);
-    for (k = 0; k < s->nr; k++) {
+    for (i = 0; i < s->dae.n; i++)
+        pw[0] += s->monitor.energy_f[i] * v[i];
+    pw[0] += td_sim_unbalance_spin_coupling(s, t, y, N_VGetArrayPointer(s->dae.yp), NULL);
+    pw[2] = quadratic(s, s->ops.st_D, v, v);
+    for (k = 0; k < s->dae.nr; k++) {
         double loss;
         held += contact_spring(s, k, y, &loss);
         pw[3] += loss;
-        if (s->ret[k].mode != TD_RMODE_FREE && !s->spin_free) /* the drive holds the speed against it */
-            pw[1] += td_sim_friction_force(s, k, y) * s->ret[k].r.shaft_radius * td_sim_rotor_speed(s, y);
-        if (s->ret[k].rs >= 0)
-            pw[4] += td_sim_race_drag(s, k, y, NULL) * v[s->ret[k].rs];
+        if (s->contacts.ret[k].mode != TD_RMODE_FREE &&
+            !s->machine.spin_free) /* the drive holds the speed against it */
+            pw[1] += td_sim_friction_force(s, k, y) * s->contacts.ret[k].r.shaft_radius * td_sim_rotor_speed(s, y);
+        if (s->contacts.ret[k].rs >= 0)
+            pw[4] += td_sim_race_drag(s, k, y, NULL) * v[s->contacts.ret[k].rs];
     }
-    if (s->spin_free)
-        pw[4] += td_sim_spin_drag(s, y, NULL) * v[s->spin];
+    if (s->machine.spin_free)
+        pw[4] += td_sim_spin_drag(s, y, NULL) * v[s->machine.spin];
     return held;
 }
 
 void td_sim_energy_point(td_sim *s, double t, int restart, double dt)
 {
-    const double *y = N_VGetArrayPointer(s->y);
-    double pw[5], held = powers(s, t, y, pw), *prev = s->energy_prev;
-    td_energy *e = &s->energy;
+    const double *y = N_VGetArrayPointer(s->dae.y);
+    double pw[5], held = powers(s, t, y, pw), *prev = s->monitor.energy_prev;
+    td_energy *e = &s->monitor.energy;
     if (dt > 0.0) {
         e->external_work += 0.5 * dt * (prev[0] + pw[0]);
         e->drive_work += 0.5 * dt * (prev[1] + pw[1]);
@@ -103,9 +104,9 @@ void td_sim_energy_point(td_sim *s, double t, int restart, double dt)
         e->contact_loss += 0.5 * dt * (prev[3] + pw[3]);
         e->drag_loss += 0.5 * dt * (prev[4] + pw[4]);
     }
-    if (restart && !s->energy_started) {
+    if (restart && !s->monitor.energy_started) {
         e->initial = held;
-        s->energy_started = 1;
+        s->monitor.energy_started = 1;
     }
     memcpy(prev, pw, sizeof pw);
     e->kinetic = td_sim_kinetic_energy(s, y);
@@ -114,16 +115,16 @@ void td_sim_energy_point(td_sim *s, double t, int restart, double dt)
 
 void td_sim_energy_impact(td_sim *s, double before, double after)
 {
-    s->energy.impact_loss += before - after;
+    s->monitor.energy.impact_loss += before - after;
 }
 
-/* The account at s->t when the last point lies beyond it (an output, the end time, or a change
- * inside the integrator's last step): the trapezoids from s->t to that point taken back, and what
- * the machine holds read at s->t, as the retainers' totals do (totals.c). Returns the powers at s->t. */
+/* The account at s->dae.t when the last point lies beyond it (an output, the end time, or a change
+ * inside the integrator's last step): the trapezoids from s->dae.t to that point taken back, and what
+ * the machine holds read at s->dae.t, as the retainers' totals do (totals.c). Returns the powers at s->dae.t. */
 static void energy_back_to_now(td_sim *s, td_energy *e, double pw[5])
 {
-    const double *y = N_VGetArrayPointer(s->y), *prev = s->energy_prev;
-    double dt = s->totals_t - s->t, held = powers(s, s->t, y, pw);
+    const double *y = N_VGetArrayPointer(s->dae.y), *prev = s->monitor.energy_prev;
+    double dt = s->monitor.totals_t - s->dae.t, held = powers(s, s->dae.t, y, pw);
     if (dt > 0.0) {
         e->external_work -= 0.5 * dt * (prev[0] + pw[0]);
         e->drive_work -= 0.5 * dt * (prev[1] + pw[1]);
@@ -138,21 +139,18 @@ static void energy_back_to_now(td_sim *s, td_energy *e, double pw[5])
 void td_sim_energy_rewind(td_sim *s)
 {
     double pw[5];
-    if (!s->opt.energy || !(s->totals_t > s->t))
+    if (!s->opt.energy || !(s->monitor.totals_t > s->dae.t))
         return;
-    energy_back_to_now(s, &s->energy, pw);
-    memcpy(s->energy_prev, pw, sizeof pw);
+    energy_back_to_now(s, &s->monitor.energy, pw);
+    memcpy(s->monitor.energy_prev, pw, sizeof pw);
 }
 
-td_status td_sim_energy(const td_sim *sim, td_energy *out)
+void td_sim_energy_get(const td_sim *s, td_energy *out)
 {
     double pw[5];
-    if (!sim || !out || !sim->opt.energy)
-        return TD_ERR_INVALID;
-    *out = sim->energy;
-    if (sim->totals_t > sim->t) /* powers() uses the sim's scratch force vector only */
-        energy_back_to_now((td_sim *)sim, out, pw);
+    *out = s->monitor.energy;
+    if (s->monitor.totals_t > s->dae.t) /* powers() uses the sim's scratch force vector only */
+        energy_back_to_now((td_sim *)s, out, pw);
     out->residual = out->kinetic + out->elastic - out->initial - out->external_work - out->drive_work +
                     out->damping_loss + out->contact_loss + out->drag_loss + out->impact_loss;
-    return TD_OK;
 }

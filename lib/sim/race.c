@@ -23,8 +23,8 @@
 void td_sim_races_layout(td_sim *s)
 {
     int k, n = s->sys->ndof;
-    for (k = 0; k < s->nr; k++) {
-        td_sim_retainer *r = &s->ret[k];
+    for (k = 0; k < s->dae.nr; k++) {
+        td_sim_retainer *r = &s->contacts.ret[k];
         if (r->r.race.mount_stiffness > 0.0) {
             r->rx = n++;
             r->ry = n++;
@@ -32,7 +32,7 @@ void td_sim_races_layout(td_sim *s)
         if (r->r.race.inertia > 0.0)
             r->rs = n++;
     }
-    s->n = n;
+    s->dae.n = n;
     td_sim_spin_layout(s);
 }
 
@@ -40,8 +40,8 @@ void td_sim_races_layout(td_sim *s)
 static void race_diagonal(const td_sim *s, char which, double *d)
 {
     int k;
-    for (k = 0; k < s->nr; k++) {
-        const td_sim_retainer *r = &s->ret[k];
+    for (k = 0; k < s->dae.nr; k++) {
+        const td_sim_retainer *r = &s->contacts.ret[k];
         const td_race *b = &r->r.race;
         if (r->rx >= 0) {
             double v = which == 'M'   ? b->mass
@@ -56,21 +56,21 @@ static void race_diagonal(const td_sim *s, char which, double *d)
     td_sim_spin_diagonal(s, which, d);
 }
 
-/* A, n_rotor x n_rotor, extended to s->n x s->n with the race diagonal of `which`. NULL: no memory. */
+/* A, n_rotor x n_rotor, extended to s->dae.n x s->dae.n with the race diagonal of `which`. NULL: no memory. */
 static cs_di *extend(const td_sim *s, const cs_di *A, char which, double *diag)
 {
     int n0 = A->n, nz0 = A->p[n0], j, nz;
     cs_di *E;
-    memset(diag, 0, sizeof(double) * (size_t)s->n);
+    memset(diag, 0, sizeof(double) * (size_t)s->dae.n);
     race_diagonal(s, which, diag);
-    E = cs_di_spalloc(s->n, s->n, nz0 + (s->n - n0), 1, 0);
+    E = cs_di_spalloc(s->dae.n, s->dae.n, nz0 + (s->dae.n - n0), 1, 0);
     if (!E)
         return NULL;
     memcpy(E->p, A->p, sizeof(int) * (size_t)(n0 + 1));
     memcpy(E->i, A->i, sizeof(int) * (size_t)nz0);
     memcpy(E->x, A->x, sizeof(double) * (size_t)nz0);
     nz = nz0;
-    for (j = n0; j < s->n; j++) {
+    for (j = n0; j < s->dae.n; j++) {
         if (diag[j] != 0.0) {
             E->i[nz] = j;
             E->x[nz++] = diag[j];
@@ -84,34 +84,34 @@ td_status td_sim_races_matrices(td_sim *s, td_error *err)
 {
     const td_system *sys = s->sys;
     double *diag;
-    if (s->n == sys->ndof) { /* no races: the rotor's own matrices */
-        s->M = sys->M, s->K = sys->K, s->C = sys->C, s->G = sys->G;
+    if (s->dae.n == sys->ndof) { /* no races: the rotor's own matrices */
+        s->dae.M = sys->M, s->dae.K = sys->K, s->dae.C = sys->C, s->dae.G = sys->G;
         return TD_OK;
     }
-    diag = malloc(sizeof(double) * (size_t)s->n);
-    s->own_matrices = 1;
+    diag = malloc(sizeof(double) * (size_t)s->dae.n);
+    s->dae.own_matrices = 1;
     if (diag) {
-        s->M = extend(s, sys->M, 'M', diag);
-        s->K = extend(s, sys->K, 'K', diag);
-        s->C = extend(s, sys->C, 'C', diag);
-        s->G = extend(s, sys->G, 'G', diag);
+        s->dae.M = extend(s, sys->M, 'M', diag);
+        s->dae.K = extend(s, sys->K, 'K', diag);
+        s->dae.C = extend(s, sys->C, 'C', diag);
+        s->dae.G = extend(s, sys->G, 'G', diag);
     }
     free(diag);
-    if (!s->M || !s->K || !s->C || !s->G)
+    if (!s->dae.M || !s->dae.K || !s->dae.C || !s->dae.G)
         return td_error_set(err, TD_ERR_NOMEM, "out of memory assembling the retainer races");
     return TD_OK;
 }
 
 void td_sim_races_free(td_sim *s)
 {
-    if (s->own_matrices) {
-        cs_di_spfree(s->M);
-        cs_di_spfree(s->K);
-        cs_di_spfree(s->C);
-        cs_di_spfree(s->G);
+    if (s->dae.own_matrices) {
+        cs_di_spfree(s->dae.M);
+        cs_di_spfree(s->dae.K);
+        cs_di_spfree(s->dae.C);
+        cs_di_spfree(s->dae.G);
     }
-    s->M = s->K = s->C = s->G = NULL;
-    s->own_matrices = 0;
+    s->dae.M = s->dae.K = s->dae.C = s->dae.G = NULL;
+    s->dae.own_matrices = 0;
 }
 
 void td_sim_races_gravity(const td_sim *s, double *f, double sign)
@@ -119,8 +119,8 @@ void td_sim_races_gravity(const td_sim *s, double *f, double sign)
     double gx, gy;
     int k;
     td_model_gravity(s->model, &gx, &gy);
-    for (k = 0; k < s->nr; k++) {
-        const td_sim_retainer *r = &s->ret[k];
+    for (k = 0; k < s->dae.nr; k++) {
+        const td_sim_retainer *r = &s->contacts.ret[k];
         if (r->rx < 0)
             continue;
         f[r->rx] += sign * r->r.race.mass * gx;
@@ -128,50 +128,20 @@ void td_sim_races_gravity(const td_sim *s, double *f, double sign)
     }
 }
 
-/*
- * The race speed's absolute tolerance, rad/s. In contact the race is coupled to the node: v_s ties
- * its surface speed R_b Omega_b to the node's tangential velocity, which is controlled to
- * atol freq_max, so the race speed gets that, divided by R_b (a tighter one made the error test fail
- * on the node's noise carried into it). Free, the race has no fast modes and nothing else: the slow
- * scale atol freq_scale / R_b resolves its coast-down to rest under the drag (at freq_max it
- * wandered by 0.05 rad/s about rest).
- */
-double td_sim_race_speed_atol(const td_sim *s, int k)
-{
-    const td_sim_retainer *r = &s->ret[k];
-    return s->opt.solver.atol * (r->mode != TD_RMODE_FREE ? s->freq_max : s->freq_scale) / r->r.bore_radius;
-}
-
-int td_sim_races_retolerance(td_sim *s)
-{
-    double *at = N_VGetArrayPointer(s->atol);
-    int k, changed = 0;
-    for (k = 0; k < s->nr; k++) {
-        int i = s->ov + s->ret[k].rs;
-        double want;
-        if (s->ret[k].rs < 0)
-            continue;
-        want = td_sim_race_speed_atol(s, k);
-        changed = changed || at[i] != want;
-        at[i] = want;
-    }
-    return changed;
-}
-
 void td_sim_races_start(const td_sim *s, double *y)
 {
     double gx, gy;
     int k;
     td_model_gravity(s->model, &gx, &gy);
-    for (k = 0; k < s->nr; k++) {
-        const td_sim_retainer *r = &s->ret[k];
+    for (k = 0; k < s->dae.nr; k++) {
+        const td_sim_retainer *r = &s->contacts.ret[k];
         const td_race *b = &r->r.race;
         if (r->rx >= 0) { /* resting on its mount under its weight */
-            y[s->oq + r->rx] = b->mass * gx / b->mount_stiffness;
-            y[s->oq + r->ry] = b->mass * gy / b->mount_stiffness;
+            y[s->dae.oq + r->rx] = b->mass * gx / b->mount_stiffness;
+            y[s->dae.oq + r->ry] = b->mass * gy / b->mount_stiffness;
         }
         if (r->rs >= 0)
-            y[s->ov + r->rs] = r->r.bore_speed;
+            y[s->dae.ov + r->rs] = r->r.bore_speed;
     }
     td_sim_spin_start(s, y);
 }

@@ -35,23 +35,23 @@ void td_sim_retainer_init(td_sim_retainer *r, const td_system *sys, int k, const
 
 void td_sim_node_state(const td_sim *s, int k, const double *y, double *x, double *yy, double *vx, double *vy)
 {
-    const td_sim_retainer *r = &s->ret[k];
-    *x = y[s->oq + r->dx];
-    *yy = y[s->oq + r->dy];
-    *vx = y[s->ov + r->dx];
-    *vy = y[s->ov + r->dy];
+    const td_sim_retainer *r = &s->contacts.ret[k];
+    *x = y[s->dae.oq + r->dx];
+    *yy = y[s->dae.oq + r->dy];
+    *vx = y[s->dae.ov + r->dx];
+    *vy = y[s->dae.ov + r->dy];
     if (r->rx >= 0) {
-        *x -= y[s->oq + r->rx];
-        *yy -= y[s->oq + r->ry];
-        *vx -= y[s->ov + r->rx];
-        *vy -= y[s->ov + r->ry];
+        *x -= y[s->dae.oq + r->rx];
+        *yy -= y[s->dae.oq + r->ry];
+        *vx -= y[s->dae.ov + r->rx];
+        *vy -= y[s->dae.ov + r->ry];
     }
 }
 
 double td_sim_race_speed(const td_sim *s, int k, const double *y)
 {
-    const td_sim_retainer *r = &s->ret[k];
-    return r->rs >= 0 ? y[s->ov + r->rs] : r->r.bore_speed;
+    const td_sim_retainer *r = &s->contacts.ret[k];
+    return r->rs >= 0 ? y[s->dae.ov + r->rs] : r->r.bore_speed;
 }
 
 /* Contact through a force law: the force acts whenever the node penetrates, whatever the
@@ -61,7 +61,7 @@ double td_sim_race_speed(const td_sim *s, int k, const double *y)
  * delta = 0; a Kelvin-Voigt damper's jump is met by the enter event's restart). */
 int td_sim_penalty_model(const td_sim *s, int k)
 {
-    return s->ret[k].compliant;
+    return s->contacts.ret[k].compliant;
 }
 
 /* A Kelvin-Voigt contact whose enter root left the node a hair outside (delta <= 0, inside the
@@ -79,7 +79,7 @@ static double kelvin_voigt_at_touch(const td_penalty_law *law, double rate, doub
 
 double td_sim_penalty_force(const td_sim *s, int k, const double *y, double *fd, double *fr)
 {
-    const td_sim_retainer *r = &s->ret[k];
+    const td_sim_retainer *r = &s->contacts.ret[k];
     double x, yy, vx, vy, delta, rate;
     td_sim_node_state(s, k, y, &x, &yy, &vx, &vy);
     delta = hypot(x, yy) - r->r.clearance;
@@ -91,8 +91,8 @@ double td_sim_penalty_force(const td_sim *s, int k, const double *y, double *fd,
 
 double td_sim_normal_force(const td_sim *s, int k, const double *y)
 {
-    if (s->ret[k].mode == TD_RMODE_CONTACT)
-        return y[s->ol + k];
+    if (s->contacts.ret[k].mode == TD_RMODE_CONTACT)
+        return y[s->dae.ol + k];
     return td_sim_penalty_model(s, k) ? td_sim_penalty_force(s, k, y, NULL, NULL) : 0.0;
 }
 
@@ -100,20 +100,20 @@ double td_sim_sliding_velocity(const td_sim *s, int k, const double *y)
 {
     double x, yy, vx, vy;
     td_sim_node_state(s, k, y, &x, &yy, &vx, &vy);
-    return td_contact_sliding_velocity(&s->ret[k].r, td_sim_rotor_speed(s, y), td_sim_race_speed(s, k, y), x, yy, vx,
-                                       vy);
+    return td_contact_sliding_velocity(&s->contacts.ret[k].r, td_sim_rotor_speed(s, y), td_sim_race_speed(s, k, y), x,
+                                       yy, vx, vy);
 }
 
 void td_sim_sliding_gradient(const td_sim *s, int k, const double *y, double g[4])
 {
     double x, yy, vx, vy;
     td_sim_node_state(s, k, y, &x, &yy, &vx, &vy);
-    td_contact_sliding_velocity_gradient(&s->ret[k].r, x, yy, vx, vy, g);
+    td_contact_sliding_velocity_gradient(&s->contacts.ret[k].r, x, yy, vx, vy, g);
 }
 
 double td_sim_slip_factor(const td_sim *s, int k, const double *y, double *dphi)
 {
-    const td_sim_retainer *r = &s->ret[k];
+    const td_sim_retainer *r = &s->contacts.ret[k];
     if (r->r.stick) { /* rolling: F_t carries the friction; sliding: full mu N in its direction */
         if (dphi)
             *dphi = 0.0;
@@ -124,15 +124,15 @@ double td_sim_slip_factor(const td_sim *s, int k, const double *y, double *dphi)
 
 double td_sim_friction_force(const td_sim *s, int k, const double *y)
 {
-    const td_sim_retainer *r = &s->ret[k];
+    const td_sim_retainer *r = &s->contacts.ret[k];
     if (r->rolling)
-        return y[s->of + r->fi];
+        return y[s->dae.of + r->fi];
     return td_sim_slip_factor(s, k, y, NULL) * r->r.friction * td_sim_normal_force(s, k, y);
 }
 
 void td_sim_roll_row(const td_sim *s, int k, const double *y, td_contact_row *row, double *h)
 {
-    const td_sim_retainer *r = &s->ret[k];
+    const td_sim_retainer *r = &s->contacts.ret[k];
     double x, yy, vx, vy, g[4];
     td_sim_node_state(s, k, y, &x, &yy, &vx, &vy);
     td_sim_sliding_gradient(s, k, y, g);
@@ -152,19 +152,19 @@ void td_sim_roll_row(const td_sim *s, int k, const double *y, td_contact_row *ro
         row->dof[row->count] = r->rs;
         row->j[row->count++] = -r->r.bore_radius;
     }
-    if (s->spin >= 0) { /* eq. (16): d v_s / d Omega = R_s */
-        row->dof[row->count] = s->spin;
+    if (s->machine.spin >= 0) { /* eq. (16): d v_s / d Omega = R_s */
+        row->dof[row->count] = s->machine.spin;
         row->j[row->count++] = r->r.shaft_radius;
     }
 }
 
 void td_sim_roll_column(const td_sim *s, int k, const double *y, double *col)
 {
-    const td_sim_retainer *r = &s->ret[k];
+    const td_sim_retainer *r = &s->contacts.ret[k];
     double x, yy, vx, vy, n[2], t[2];
     td_sim_node_state(s, k, y, &x, &yy, &vx, &vy);
     td_contact_frame(x, yy, n, t);
-    memset(col, 0, sizeof(double) * (size_t)s->n);
+    memset(col, 0, sizeof(double) * (size_t)s->dae.n);
     col[r->dx] = t[0];
     col[r->dy] = t[1];
     if (r->rx >= 0) {
@@ -173,13 +173,13 @@ void td_sim_roll_column(const td_sim *s, int k, const double *y, double *col)
     }
     if (r->rs >= 0)
         col[r->rs] = -r->r.bore_radius;
-    if (s->spin_free) /* F_t brakes a free spin: torque -R_s F_t */
-        col[s->spin] = r->r.shaft_radius;
+    if (s->machine.spin_free) /* F_t brakes a free spin: torque -R_s F_t */
+        col[s->machine.spin] = r->r.shaft_radius;
 }
 
 double td_sim_race_drag(const td_sim *s, int k, const double *y, double *dT)
 {
-    const td_sim_retainer *r = &s->ret[k];
+    const td_sim_retainer *r = &s->contacts.ret[k];
     double band, phi, dphi = 0.0;
     if (r->rs < 0 || !(r->r.race.drag_torque > 0.0)) {
         if (dT)
@@ -187,7 +187,7 @@ double td_sim_race_drag(const td_sim *s, int k, const double *y, double *dT)
         return 0.0;
     }
     band = TD_CONTACT_SLIP_BAND / r->r.bore_radius; /* the race surface creeps at v_reg */
-    phi = td_contact_slip_factor(y[s->ov + r->rs], band, &dphi);
+    phi = td_contact_slip_factor(y[s->dae.ov + r->rs], band, &dphi);
     if (dT)
         *dT = r->r.race.drag_torque * dphi;
     return r->r.race.drag_torque * phi;
@@ -195,7 +195,7 @@ double td_sim_race_drag(const td_sim *s, int k, const double *y, double *dT)
 
 void td_sim_contact_row(const td_sim *s, int k, const double *y, td_contact_row *row)
 {
-    const td_sim_retainer *r = &s->ret[k];
+    const td_sim_retainer *r = &s->contacts.ret[k];
     double x, yy, vx, vy;
     td_sim_node_state(s, k, y, &x, &yy, &vx, &vy);
     row->count = 2;
@@ -213,12 +213,12 @@ void td_sim_contact_row(const td_sim *s, int k, const double *y, td_contact_row 
 
 void td_sim_contact_column(const td_sim *s, int k, const double *y, double *col)
 {
-    const td_sim_retainer *r = &s->ret[k];
+    const td_sim_retainer *r = &s->contacts.ret[k];
     double x, yy, vx, vy, c = r->r.clearance, rad;
     double sm = td_sim_slip_factor(s, k, y, NULL) * r->r.friction;
     td_sim_node_state(s, k, y, &x, &yy, &vx, &vy);
     rad = hypot(x, yy);
-    memset(col, 0, sizeof(double) * (size_t)s->n);
+    memset(col, 0, sizeof(double) * (size_t)s->dae.n);
     col[r->dx] = x / c - sm * yy / rad;
     col[r->dy] = yy / c + sm * x / rad;
     if (r->rx >= 0) {
@@ -227,30 +227,30 @@ void td_sim_contact_column(const td_sim *s, int k, const double *y, double *col)
     }
     if (r->rs >= 0) /* the friction force s mu lambda turns the race: torque R_b s mu lambda */
         col[r->rs] = -r->r.bore_radius * sm;
-    if (s->spin_free) /* and brakes a free rotor: torque -R_s s mu lambda */
-        col[s->spin] = r->r.shaft_radius * sm;
+    if (s->machine.spin_free) /* and brakes a free rotor: torque -R_s s mu lambda */
+        col[s->machine.spin] = r->r.shaft_radius * sm;
 }
 
 void td_sim_project_onto_circle(const td_sim *s, int k, double *y)
 {
-    const td_sim_retainer *r = &s->ret[k];
+    const td_sim_retainer *r = &s->contacts.ret[k];
     double x, yy, vx, vy, rad;
     td_sim_node_state(s, k, y, &x, &yy, &vx, &vy);
     rad = hypot(x, yy);
     if (!(rad > 0.0))
         return;
     /* the node moves, the race stays: node = race centre + relative position scaled onto c */
-    y[s->oq + r->dx] = x * (r->r.clearance / rad);
-    y[s->oq + r->dy] = yy * (r->r.clearance / rad);
+    y[s->dae.oq + r->dx] = x * (r->r.clearance / rad);
+    y[s->dae.oq + r->dy] = yy * (r->r.clearance / rad);
     if (r->rx >= 0) {
-        y[s->oq + r->dx] += y[s->oq + r->rx];
-        y[s->oq + r->dy] += y[s->oq + r->ry];
+        y[s->dae.oq + r->dx] += y[s->dae.oq + r->rx];
+        y[s->dae.oq + r->dy] += y[s->dae.oq + r->ry];
     }
 }
 
 void td_sim_init_slip(td_sim *s, int k, const double *y)
 {
-    td_sim_retainer *r = &s->ret[k];
+    td_sim_retainer *r = &s->contacts.ret[k];
     double vs = td_sim_sliding_velocity(s, k, y);
     int sg = vs < 0.0 ? -1 : 1;
     r->band_from = sg;
@@ -258,33 +258,33 @@ void td_sim_init_slip(td_sim *s, int k, const double *y)
     r->rolling = 0;
     if (r->r.stick && fabs(vs) < TD_CONTACT_SLIP_BAND) { /* no slip to speak of: try rolling */
         r->rolling = 1;
-        s->roll_tried[k] = 1;
+        s->contacts.roll_tried[k] = 1;
     }
 }
 
 void td_sim_project_rolling(const td_sim *s, int k, double *y)
 {
-    const td_sim_retainer *r = &s->ret[k];
+    const td_sim_retainer *r = &s->contacts.ret[k];
     double vs = td_sim_sliding_velocity(s, k, y), x, yy, vx, vy, rad, n[2], t[2], dv;
     if (r->rs >= 0) { /* the race turns by what its surface lags: v_s = 0 */
-        y[s->ov + r->rs] += vs / r->r.bore_radius;
+        y[s->dae.ov + r->rs] += vs / r->r.bore_radius;
         return;
     }
     /* a fixed bore: the node's whirl rate moves, v_s = ... + (R_b - R_s) dtheta/dt (eq. 16) */
     td_sim_node_state(s, k, y, &x, &yy, &vx, &vy);
     rad = td_contact_frame(x, yy, n, t);
     dv = -vs * rad / (r->r.bore_radius - r->r.shaft_radius);
-    y[s->ov + r->dx] += dv * t[0];
-    y[s->ov + r->dy] += dv * t[1];
+    y[s->dae.ov + r->dx] += dv * t[0];
+    y[s->dae.ov + r->dy] += dv * t[1];
 }
 
 void td_sim_unroll(td_sim *s, int k, double *y, int slip)
 {
-    td_sim_retainer *r = &s->ret[k];
+    td_sim_retainer *r = &s->contacts.ret[k];
     r->rolling = 0;
     r->slip = slip;
     if (r->fi >= 0)
-        y[s->of + r->fi] = 0.0;
+        y[s->dae.of + r->fi] = 0.0;
 }
 
 /* +1 or -1: the sign of v, or `otherwise` at v == 0. */
@@ -295,7 +295,7 @@ static int sign_or(double v, int otherwise)
 
 int td_sim_slip_root(td_sim *s, int k, const double *y)
 {
-    td_sim_retainer *r = &s->ret[k];
+    td_sim_retainer *r = &s->contacts.ret[k];
     if (r->slip != 0) { /* into the band: no event */
         r->band_from = r->slip;
         r->slip = 0;
@@ -308,10 +308,10 @@ int td_sim_slip_root(td_sim *s, int k, const double *y)
 
 void td_sim_release(td_sim *s, int k, double *y)
 {
-    td_sim_unroll(s, k, y, s->ret[k].slip);
-    s->ret[k].mode = TD_RMODE_FREE;
-    s->ret[k].armed = 0; /* left at r = c: no onset until the gap has opened (grazing guard) */
-    y[s->ol + k] = 0.0;
+    td_sim_unroll(s, k, y, s->contacts.ret[k].slip);
+    s->contacts.ret[k].mode = TD_RMODE_FREE;
+    s->contacts.ret[k].armed = 0; /* left at r = c: no onset until the gap has opened (grazing guard) */
+    y[s->dae.ol + k] = 0.0;
 }
 
 /*
@@ -327,12 +327,12 @@ void td_sim_release(td_sim *s, int k, double *y)
  */
 static double penalty_band(const td_sim *s)
 {
-    return s->constraint_tol;
+    return s->machine.constraint_tol;
 }
 
 td_rmode td_sim_penalty_mode_wanted(const td_sim *s, int k, const double *y, td_rmode in_band)
 {
-    const td_sim_retainer *r = &s->ret[k];
+    const td_sim_retainer *r = &s->contacts.ret[k];
     double x, yy, vx, vy, delta;
     td_sim_node_state(s, k, y, &x, &yy, &vx, &vy);
     delta = hypot(x, yy) - r->r.clearance;

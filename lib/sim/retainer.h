@@ -35,7 +35,7 @@ typedef struct td_sim_retainer {
     int compliant;      /* 1: contact through a force law (the run's penalty model or the retainer's own) */
     td_penalty_law law; /* that force law */
     int fi;             /* stick retainers (r.stick): index of its friction multiplier F_t in the y block
-                         * at s->of; -1 for the others */
+                         * at s->dae.of; -1 for the others */
     int rolling;        /* stick retainers in contact: 1 while rolling without slip (v_s = 0 held by F_t) */
     td_rmode mode;
     int armed;     /* free, constraint model: onset root at gap = 0 (1) or at gap = -eps (0, after a
@@ -49,6 +49,14 @@ typedef struct td_sim_retainer {
                     * friction force mu N slip until v_s reaches 0 (then rolling, or a reversal) */
     int band_from; /* slip = 0: the sliding sign before the band (a reversal if it leaves the other way) */
 } td_sim_retainer;
+
+/* The contact set's record: the retainers, with their DOFs (race.c lays out the races') and their
+ * contact and slip modes (retainer.c; sim_modes.c switches them). The layers above read it. */
+typedef struct td_sim_contacts {
+    td_sim_retainer *ret; /* nr */
+    int *roll_tried;      /* nr: stick retainers set rolling at a slip root, not yet confirmed */
+    int *touching;        /* nr: retainers touching their circles at the start (start.c) */
+} td_sim_contacts;
 
 /* Retainer k of `model`, free and armed, sliding forwards, its contact law from the run's options;
  * its race DOFs unassigned (-1: td_sim_races_layout assigns them). */
@@ -94,7 +102,7 @@ void td_sim_project_onto_circle(const td_sim *s, int k, double *y);
 double td_sim_race_drag(const td_sim *s, int k, const double *y, double *dT);
 
 /* Set retainer k's slip mode (and band_from) from its sliding velocity at y, entering contact; a
- * stick retainer with no slip to speak of tries rolling (s->roll_tried). */
+ * stick retainer with no slip to speak of tries rolling (s->contacts.roll_tried). */
 void td_sim_init_slip(td_sim *s, int k, const double *y);
 /* Retainer k's slip root fired (|v_s| reached v_reg): into the band, or out of it with the slip
  * mode of the state. Returns 1 if it left the band on the other side (a friction reversal).

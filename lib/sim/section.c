@@ -60,14 +60,14 @@ td_status td_sim_section_begin(td_sim *s, double t_from, int capacity, td_error 
     if (!s || capacity <= 0 || isnan(t_from))
         return td_error_set(err, TD_ERR_INVALID, "td_sim_section_begin: NULL simulation or no capacity");
     td_sim_section_free(s);
-    neq = (size_t)s->neq;
+    neq = (size_t)s->dae.neq;
     c = calloc(1, sizeof *c);
     if (c) {
         c->time = calloc((size_t)capacity, sizeof *c->time);
-        c->radius = calloc((size_t)capacity * (size_t)(s->nr > 0 ? s->nr : 1), sizeof *c->radius);
+        c->radius = calloc((size_t)capacity * (size_t)(s->dae.nr > 0 ? s->dae.nr : 1), sizeof *c->radius);
         c->y = calloc(neq, sizeof *c->y);
         c->work = calloc(2 * neq, sizeof *c->work);
-        c->dky = N_VClone(s->y);
+        c->dky = N_VClone(s->dae.y);
     }
     s->section = c;
     if (!c || !c->time || !c->radius || !c->y || !c->work || !c->dky) {
@@ -75,23 +75,23 @@ td_status td_sim_section_begin(td_sim *s, double t_from, int capacity, td_error 
         return td_error_set(err, TD_ERR_NOMEM, "out of memory for the once-per-revolution section");
     }
     c->t_from = t_from;
-    c->t_done = s->t;
+    c->t_done = s->dae.t;
     c->capacity = capacity;
     return TD_OK;
 }
 
 /* The state at t into c->y: IDA's interpolant (t inside its last step) or the flight's closed
- * form (displacements only, the rest as at s->t). 0 if it cannot be had. */
+ * form (displacements only, the rest as at s->dae.t). 0 if it cannot be had. */
 static int state_at(td_sim *s, source from, double t)
 {
     section *c = s->section;
     if (from == FROM_FLIGHT) {
-        memcpy(c->y, N_VGetArrayPointer(s->y), sizeof(double) * (size_t)s->neq);
+        memcpy(c->y, N_VGetArrayPointer(s->dae.y), sizeof(double) * (size_t)s->dae.neq);
         return td_sim_flight_peek(s, t, c->y, c->work);
     }
-    if (IDAGetDky(s->ida, t, 0, c->dky) != IDA_SUCCESS)
+    if (IDAGetDky(s->solver.ida, t, 0, c->dky) != IDA_SUCCESS)
         return 0;
-    memcpy(c->y, N_VGetArrayPointer(c->dky), sizeof(double) * (size_t)s->neq);
+    memcpy(c->y, N_VGetArrayPointer(c->dky), sizeof(double) * (size_t)s->dae.neq);
     td_sim_spin_hold(s, t, c->y, NULL);
     return 1;
 }
@@ -99,8 +99,8 @@ static int state_at(td_sim *s, source from, double t)
 /* The spin angle at t on the stretch's interpolant; NAN if the state cannot be had. */
 static double angle_at(td_sim *s, source from, double t)
 {
-    if (s->spin < 0) /* prescribed: phi(t) in closed form, no state needed */
-        return s->spin_ref + s->omega * (t - s->t_spin_ref);
+    if (s->machine.spin < 0) /* prescribed: phi(t) in closed form, no state needed */
+        return s->machine.spin_ref + s->machine.omega * (t - s->machine.t_spin_ref);
     return state_at(s, from, t) ? td_sim_rotor_angle(s, t, s->section->y) : NAN;
 }
 
@@ -109,8 +109,8 @@ static double angle_at(td_sim *s, source from, double t)
 static double crossing_time(td_sim *s, source from, double a, double b, double phi_a, double phi_b, double target)
 {
     int i;
-    if (s->spin < 0)
-        return s->t_spin_ref + (target - s->spin_ref) / s->omega;
+    if (s->machine.spin < 0)
+        return s->machine.t_spin_ref + (target - s->machine.spin_ref) / s->machine.omega;
     for (i = 0; i < SECTION_MAX_ITER && b - a > 4.0 * DBL_EPSILON * fmax(fabs(b), 1.0); i++) {
         double t = a + (b - a) * (target - phi_a) / (phi_b - phi_a), mid = 0.5 * (a + b), phi;
         /* a secant point too near an end would shrink the bracket slowly: bisect instead */
@@ -141,10 +141,10 @@ static void record(td_sim *s, source from, double t)
     c->time[slot] = t;
     if (++c->count > c->high)
         c->high = c->count;
-    for (k = 0; k < s->nr; k++) {
+    for (k = 0; k < s->dae.nr; k++) {
         double x, yy, vx, vy;
         td_sim_node_state(s, k, c->y, &x, &yy, &vx, &vy);
-        c->radius[slot * s->nr + k] = hypot(x, yy);
+        c->radius[slot * s->dae.nr + k] = hypot(x, yy);
     }
 }
 
@@ -187,11 +187,11 @@ void td_sim_section_flight(td_sim *s, double t)
 void td_sim_section_rewind(td_sim *s)
 {
     section *c = s->section;
-    if (!c || c->t_done <= s->t)
+    if (!c || c->t_done <= s->dae.t)
         return;
-    while (c->count > 0 && c->time[(c->count - 1) % c->capacity] > s->t)
+    while (c->count > 0 && c->time[(c->count - 1) % c->capacity] > s->dae.t)
         c->count--;
-    c->t_done = s->t;
+    c->t_done = s->dae.t;
 }
 
 void td_sim_section_end(td_sim *s)
@@ -210,7 +210,7 @@ int td_sim_section_read(const td_sim *s, int retainer, double *t, double *r, int
     const section *c = s ? s->section : NULL;
     long first, i;
     int n = 0;
-    if (!c || retainer < 0 || retainer >= s->nr || max <= 0)
+    if (!c || retainer < 0 || retainer >= s->dae.nr || max <= 0)
         return 0;
     first = c->high - c->capacity > 0 ? c->high - c->capacity : 0;
     if (c->count - first > max)
@@ -220,7 +220,7 @@ int td_sim_section_read(const td_sim *s, int retainer, double *t, double *r, int
         if (t)
             t[n] = c->time[slot];
         if (r)
-            r[n] = c->radius[slot * s->nr + retainer];
+            r[n] = c->radius[slot * s->dae.nr + retainer];
     }
     return n;
 }

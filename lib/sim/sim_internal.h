@@ -32,7 +32,14 @@
 
 #include "contact/contact.h"
 #include "model/system_internal.h"
+#include "sim/dae.h"
+#include "sim/integrator.h"
+#include "sim/machine.h"
+#include "sim/monitor.h"
 #include "sim/retainer.h"
+#include "sim/sim_modes.h"
+#include "sim/sim_pattern.h"
+#include "sim/stepping.h"
 #include "sim/sundials_compat.h"
 #include "touchdown/sim.h"
 
@@ -42,157 +49,141 @@
 #include <sundials/sundials_matrix.h>
 #include <sundials/sundials_nonlinearsolver.h>
 
-/* Linear coefficients of one AMB axis law (probed from model/amb.c, exact for the linear law). */
-typedef struct td_sim_amb_coef {
-    double cmd_x, cmd_v, cmd_e;            /* d(command)/d(xs, vs, e) */
-    double rate_x, rate_v, rate_e, rate_w; /* d(dFc/dt)/d(xs, vs, e, Fc), tau > 0 only */
-} td_sim_amb_coef;
-
-/* Running totals of the IDA counters, which IDAReInit resets. */
-typedef struct td_sim_counters {
-    long steps, res, jac, setups, nli, etf, ncf;
-} td_sim_counters;
-
-/* One retainer's running totals (totals.c): the public record, the integrands at the last point
- * and the contact interval's bookkeeping. */
-typedef struct td_sim_totals {
-    td_retainer_totals t;
-    struct {
-        double n, n2, power, whirl_rate;
-    } prev;
-    int in_contact;        /* in contact at the last point */
-    double whirl_at_onset; /* t.whirl_angle when the open interval began */
-    double interval_peak;  /* N, the largest normal force of the open (or the last) contact interval
-                              at the accepted points (sim.c, monitor_at) */
-} td_sim_totals;
-
-/* The closed-form free flight's decomposition, forcing and anchor (flight.c). */
+/* The closed-form free flight's decomposition, forcing and anchor (flight_internal.h). */
 typedef struct td_sim_flight td_sim_flight;
 
+/*
+ * td_sim is the composition of records, each owned by one file or a small group of files behind its
+ * own header. They are listed from the bottom up: a file writes the records it owns and those below
+ * them and reads those below, never one above (the owners in brackets; setup.c creates and frees
+ * them all, sim.c, at the top, serves the public calls):
+ *
+ *   dae        the unknowns' layout, the state (t, y, y'), the matrices, the root buffers
+ *              [setup.c; race.c and spin.c lay out their DOFs]
+ *   machine    the machine as it is now: speed, spin, unbalances, AMB modes; the scales
+ *              [spin.c; schedule.c and the td_sim_set_* calls change it]
+ *   contacts   the retainers and their modes [retainer.c, race.c; sim_modes.c switches them]
+ *   ops        the mass factorisation, the Jacobian's pattern, the structural operator
+ *              [sim_pattern.c; sim_residual.c writes the Jacobian's values]
+ *   monitor    statistics, events, the retainers' totals, the energy account
+ *              [monitor.c, totals.c, energy.c]
+ *   flight     the closed-form free flight [flight_modal.c, flight_roots.c, flight.c]
+ *   kkt        the KKT solve's and the impacts' work space [sim_modes.c]
+ *   solver     IDA, the tolerances, the restarts and counters [integrator.c, tolerance.c, sim_linsol.c]
+ *   section    the once-per-revolution section [section.c]
+ *   loop       the step loop's stops, progress window and last good state [stepping.c]
+ *   start      how the start state was chosen [start.c]
+ *
+ * Around them the shared context, which every layer reads: the system, the model, the options, the
+ * caller's interrupt flag, and the messages (errmsg, warnmsg), which a failing layer writes.
+ */
 struct td_sim {
     td_system *sys;        /* owned */
     const td_model *model; /* the system's copy */
     td_sim_options opt;
 
-    int n, nw, nr, ns, neq;     /* DOFs (rotor and races), filter states, retainers, stick retainers, equations */
-    int oq, ov, ow, ol, ou, of; /* block offsets in y */
-
-    /* the machine as it is now (changed by the schedule and the td_sim_set_* calls) */
-    double omega; /* rad/s: the speed, or with a spin DOF the speed D = C + omega G was built at */
-    int spin;     /* the spin DOF (spin.c), -1: the speed is omega, prescribed */
-    int spin_free;
-    double spin_inertia;         /* J, kg m^2 */
-    double spin_ref, t_spin_ref; /* spin angle phi(t) = spin_ref + omega (t - t_spin_ref) */
-    int nu;
-    td_unbalance *unb;
-    td_amb_mode *amb_mode; /* per AMB */
-    double *amb_control;   /* per AMB, x and y: held control force (TD_AMB_EXTERNAL) */
-    int next_change;       /* first schedule entry not yet applied */
-    td_sim_retainer *ret;
-    td_sim_amb_coef *amb_coef; /* per AMB axis */
-
-    /* scales */
-    double freq_scale;  /* rad/s, the bearing frequency or the speed: step bound, rebound speed */
-    double freq_max;    /* rad/s, estimate of the highest natural frequency: velocity tolerance */
-    double stiff_scale; /* N/m, forces ~ stiff_scale * displacements */
-    double rearm_eps;   /* m, hysteresis of the onset root (constraint model) */
-    double rebound_min; /* m/s, radial speed below which an impact with e > 0 becomes plastic */
-
-    /* the structural matrices of all n DOFs (race.c): the system's own without races */
-    cs_di *M, *K, *C, *G;
-    int own_matrices; /* 1: M, K, C, G extended with races, owned */
-
-    /* mass matrix factorisation (LU, CXSparse), for consistent accelerations and the impact map */
-    cs_dis *Ms;
-    cs_din *Mn;
-
-    /* Jacobian: one fixed CSC pattern (superset of every mode), values rebuilt at every call */
-    int nnz;
-    int *colptr, *rowind;
-    double *jdata;
-    int *map_M, *map_C, *map_G, *map_K; /* position of each stored entry of the system matrices */
-
-    /* M, K and D = C + Omega G on the union of their patterns, row-compressed (CSR): the residual
-     * forms M v' + D v + K q row by row in one pass (sim_residual.c); D follows the speed */
-    int st_nnz;
-    int *st_rowptr, *st_col;
-    double *st_M, *st_K, *st_D;
-
-    /* SUNDIALS */
-    SUNContext ctx;
-    void *ida;
-    N_Vector y, yp, id, atol;
-    N_Vector newton_del; /* the Newton correction, its multipliers weighed against their rounding floor (sim.c) */
-    SUNMatrix A;
-    SUNLinearSolver LS;
-    SUNNonlinearSolver NLS;
-    SUNNonlinSolConvTestFn ida_ctest; /* IDA's own Newton convergence test, wrapped by the sim's */
-    void *ida_ctest_data;
-    double constraint_tol; /* m: |g| of every contact at an accepted Newton iterate */
-    td_sun_message_sink sink;
-    int nroots;      /* TD_ROOTS_PER_RETAINER per retainer, then n_sat_roots */
-    int n_sat_roots; /* 2 per AMB axis when any axis saturates (its clip's kinks), else 0 */
-    int *rootdir, *rootsfound;
-    double hmax;
-
-    /* time */
-    double t;         /* current time: y, yp hold the state here */
-    double t_ida;     /* IDA's internal time (>= t after an interpolated output) */
-    double t_acc;     /* contact time accumulated up to here */
-    int pending;      /* what stopped IDA beyond the last output time (sim.c TD_PENDING_*), 0: nothing */
-    double t_pending; /* where */
-
-    /* events */
-    td_event *queue;
-    int q_len, q_pos, q_cap;
-    td_event last;
-    int have_last;
-
-    /* the retainers' totals (totals.c), nr of them, and the time of their last point */
-    td_sim_totals *totals;
-    double totals_t;
-    td_energy energy;      /* the energy account (totals.c) */
-    double energy_prev[5]; /* its powers at the last point: external, drive, damping, contact, drag */
-    double *energy_f;      /* n: the external forces at a point */
-    int energy_started;    /* the initial energy is set */
-
-    /* statistics */
-    td_sim_stats stats;   /* event totals, drift, forces, times (counters filled on demand) */
-    td_sim_counters base; /* IDA counters of finished integrator runs */
-
-    /* work space, each array with one job (n: DOFs, nr: retainers) */
-    double *mass_x;         /* n: td_sim_mass_solve's permuted solution */
-    double *minv_f;         /* n: M^-1 f (kkt_solve, free_normal_acceleration) */
-    double *power_x;        /* n: highest_frequency's iterate x */
-    double *power_kx;       /* n: highest_frequency's M^-1 K x */
-    double *power_mx;       /* n: highest_frequency's M x */
-    double *schur;          /* (nr + ns)^2: kkt_solve's J M^-1 B of the active contacts and rolls */
-    double *schur_rhs;      /* nr + ns: its right-hand side, then lambda and F_t */
-    double *restitution;    /* nr: impacts, the restitution of each contact in the impact map */
-    double *impulse;        /* nr: impacts, the impulse of each contact */
-    double *impact_work;    /* nr * (nr + 1): td_contact_impact_map's work space */
-    double *minv_cols;      /* n * (nr + ns): M^-1 B_k or M^-1 J_k^T columns of the active contacts */
-    td_contact_row *rows;   /* nr + ns: contact rows J_k of the active contacts */
-    int *active;            /* nr + ns: indices of the retainers in the small system (kkt_solve, impacts) */
-    int *active_roll;       /* nr + ns: 1 where that multiplier is a rolling F_t, 0 a normal force */
-    int *onset, *entered;   /* nr each: onset roots and contacts entered at an instant (sim_modes.c) */
-    int *roll_tried;        /* nr: stick retainers set rolling at a slip root, not yet confirmed */
-    int *touching;          /* nr: retainers touching their circles at the start (start_state) */
-    double *ysave, *ypsave; /* last good state */
-
-    td_sim_flight *flight;          /* flight.c, allocated at the first flight; NULL: none yet */
-    struct td_sim_section *section; /* section.c, NULL: no section taken */
-    long tiny_steps;                /* consecutive IDA steps too short to move t (sim.c, stalled) */
-    long passes;                    /* integration passes (steps, flights) since t_window (sim.c, no_progress) */
-    double t_window;                /* the time when the current window of passes began */
-    int ida_stale;                  /* the flight moved the state: IDA restarts before its next step */
+    td_sim_dae dae;                 /* dae.h */
+    td_sim_machine machine;         /* machine.h */
+    td_sim_contacts contacts;       /* retainer.h */
+    td_sim_operators ops;           /* sim_pattern.h */
+    td_sim_monitor monitor;         /* monitor.h */
+    td_sim_flight *flight;          /* flight_internal.h; allocated at the first flight, NULL: none yet */
+    td_sim_kkt kkt;                 /* sim_modes.h */
+    td_sim_solver solver;           /* integrator.h */
+    struct td_sim_section *section; /* section.c; NULL: no section taken */
+    td_sim_loop loop;               /* stepping.h */
+    td_sim_start_info start;        /* touchdown/sim.h; start.c */
 
     volatile sig_atomic_t *interrupt; /* borrowed (td_sim_set_interrupt), NULL: none */
-    td_sim_start_info start;          /* how the start state was chosen (start_state in sim.c) */
-
     char errmsg[TD_ERROR_MESSAGE_SIZE];
     char warnmsg[TD_ERROR_MESSAGE_SIZE];
 };
+
+/*
+ * The files of lib/sim are layers, listed here from the bottom up: a file calls only the files
+ * before it in this list, so that no call runs back up and no two files call each other.
+ *
+ *   sim_nvector, sim_linsol      vector operations, the KLU solver (they call no other file)
+ *   spin                         the spin DOF
+ *   retainer, race               the retainers' queries and modes, the races' DOFs
+ *   sim_pattern                  the Jacobian's pattern, the structural operator, the mass matrix
+ *   sim_residual                 the DAE: forces, residual, Jacobian, roots
+ *   monitor, energy, totals      statistics and events, the energy account, the retainers' totals
+ *   flight_modal, flight_roots,  the closed-form free flight
+ *   flight
+ *   sim_modes, schedule          mode switching (KKT, impacts, roots), the model's timed changes
+ *   tolerance, integrator        the tolerances, IDA and its restarts
+ *   section                      the once-per-revolution section (section.h)
+ *   start, stepping, setup       the start state, the step loop, creation and release
+ *   sim                          the public functions of touchdown/sim.h
+ */
+
+/* ---- sim_nvector.c: compiled vector operations ----------------------------------------- */
+
+/* Replace the operations of serial vector v (and of every later clone of it) by the library's
+ * compiled loops; see sim_nvector.c for why. */
+void td_sim_nvector_optimize(N_Vector v);
+
+/* ---- sim_linsol.c: KLU inside IDA ------------------------------------------------------- */
+
+/* A SUNLinearSolver factorising s->ops.jdata on s->ops.colptr/s->ops.rowind with KLU: one symbolic analysis
+ * per run, a pivoting factorisation after every restart, refactorisations in between. */
+SUNLinearSolver td_sim_klu_create(const td_sim *s);
+
+/* ---- spin.c: the rotor's spin as a DOF when the speed varies ----------------------------- */
+
+/* rad/s: the free spin's constant drag is regularised over this band around standstill */
+#define TD_SIM_SPIN_BAND 1e-2
+
+/* Assign the spin DOF (after the races') when the model's speed varies; s->machine.spin = -1 otherwise. */
+void td_sim_spin_layout(td_sim *s);
+/* The spin's diagonal entry of matrix `which` ('M': J, 'C': the free spin's viscous drag). */
+void td_sim_spin_diagonal(const td_sim *s, char which, double *d);
+/* Rotor speed Omega (rad/s) and spin angle phi (rad) at (t, y). */
+double td_sim_rotor_speed(const td_sim *s, const double *y);
+double td_sim_rotor_angle(const td_sim *s, double t, const double *y);
+/* The torque that drives the spin DOF from outside (ramp: J alpha, what the drive must give;
+ * free: the drive torque); 0 without a spin DOF. */
+double td_sim_spin_torque(const td_sim *s, double t);
+/* A free spin's constant drag torque, regularised over TD_SIM_SPIN_BAND at standstill, with its
+ * slope in Omega (may be NULL); 0 otherwise. */
+double td_sim_spin_drag(const td_sim *s, const double *y, double *dT);
+/* The spin's start state into y: angle and speed at s->dae.t. */
+void td_sim_spin_start(const td_sim *s, double *y);
+/* A ramp's spin angle and speed (and their rates into yp, which may be NULL) in y set to the
+ * prescribed profile's at t: what an accepted or interpolated state reports. Nothing otherwise. */
+void td_sim_spin_hold(const td_sim *s, double t, double *y, double *yp);
+/* The spin angle taken modulo 2 pi (at restarts). */
+void td_sim_spin_wrap(const td_sim *s, double *y);
+
+/* ---- retainer.c: the retainers (retainer.h) ---------------------------------------------- */
+
+/* ---- race.c: the races' DOFs and matrices ----------------------------------------------- */
+
+/* Assign the race DOFs after the rotor's and set s->dae.n. */
+void td_sim_races_layout(td_sim *s);
+/* s->dae.M, s->dae.K, s->dae.C, s->dae.G over all n DOFs. */
+td_status td_sim_races_matrices(td_sim *s, td_error *err);
+void td_sim_races_free(td_sim *s);
+/* f += sign * the races' weight (length n). */
+void td_sim_races_gravity(const td_sim *s, double *f, double sign);
+/* The races' start state into y: centres resting on their mounts, speeds at bore_speed. */
+void td_sim_races_start(const td_sim *s, double *y);
+
+/* ---- sim_pattern.c: the Jacobian's sparsity pattern, the structural operator, the mass ---- */
+
+/* Build s->ops.colptr, s->ops.rowind, s->ops.jdata and the maps of the system matrices. */
+td_status td_sim_pattern_build(td_sim *s, td_error *err);
+/* Position of (row, col) in the pattern, -1 if absent. */
+int td_sim_pattern_find(const td_sim *s, int row, int col);
+/* Build the row-compressed M, K, D of the structural operator (s->st_*), D at s->machine.omega. */
+td_status td_sim_structural_build(td_sim *s, td_error *err);
+/* Recompute D = C + Omega G after a change of s->machine.omega. */
+void td_sim_structural_speed(td_sim *s);
+/* Factorise M (s->ops.Ms, s->ops.Mn). */
+td_status td_sim_mass_factor(td_sim *s, td_error *err);
+/* x = M^-1 b in place (length n). */
+void td_sim_mass_solve(const td_sim *s, double *b);
 
 /* ---- sim_residual.c: the DAE ------------------------------------------------------------- */
 
@@ -203,7 +194,7 @@ void td_sim_external_forces(const td_sim *s, double t, const double *y, double s
 void td_sim_forces(const td_sim *s, double t, const double *y, double *f);
 /* F(t, y, y'). */
 void td_sim_residual(const td_sim *s, double t, const double *y, const double *yp, double *res);
-/* dF/dy + cj dF/dy' into s->jdata (pattern s->colptr, s->rowind). */
+/* dF/dy + cj dF/dy' into s->ops.jdata (pattern s->ops.colptr, s->ops.rowind). */
 void td_sim_jacobian(td_sim *s, double t, double cj, const double *y);
 /* Root functions (TD_ROOTS_PER_RETAINER per retainer, then the AMB clips' kinks) and their
  * directions for the current modes. */
@@ -217,102 +208,79 @@ double td_sim_amb_axis_force(const td_sim *s, int k, const double *y);
 double td_sim_unbalance_spin_coupling(const td_sim *s, double t, const double *y, const double *yp, double *rv);
 /* Rate of AMB axis k's integrator state at y (model/amb.c td_amb_axis_integral_rate); 0 without one. */
 double td_sim_amb_axis_integral_rate(const td_sim *s, int k, const double *y);
-/* Spin angle phi(t). */
+/* Spin angle phi(t) at the prescribed speed. */
 double td_sim_spin_angle(const td_sim *s, double t);
+/* dOmega/dt at (t, y): the ramp's slope on the interval being integrated, (s->dae.t, t] (at t = s->dae.t
+ * the segment starting there), or a free spin's torque balance over J (spin.c). */
+double td_sim_rotor_rate(const td_sim *s, double t, const double *y);
 
-/* ---- totals.c: the retainers' running totals --------------------------------------------- */
+/* ---- monitor.c: statistics and the event queue ------------------------------------------- */
 
-/* A point of the totals at time t with the state in s->y: closes the segment since the last point
- * (restart 0: an accepted step or a stop), or opens one after a restart (restart 1). */
-void td_sim_totals_point(td_sim *s, double t, int restart);
-/* Before a restart at s->t inside the integrator's last step (a change between steps): the totals
- * taken back to s->t. */
-void td_sim_totals_rewind(td_sim *s);
+/* Append an event to the queue (and the statistics). */
+void td_sim_queue_event(td_sim *s, const td_event *ev);
+/* Fill the velocity fields of an event from the node velocity of retainer k. */
+void td_sim_event_velocities(const td_sim *s, int k, const double *y, int after, td_event *ev);
+/* An event of `kind` at s->dae.t, of retainer k (-1: none), no schedule entry. */
+td_event td_sim_event_at(const td_sim *s, td_event_kind kind, int k);
+/* The next queued event into s->monitor.last; 0 when the queue is empty. */
+int td_sim_pop_event(td_sim *s);
+/* AMB axis k's force `force` at time t: a new peak load if it is the largest yet. */
+void td_sim_monitor_amb_load(td_sim *s, int k, double force, double t);
+/* Statistics at the state in s->dae.y (time t): contact time, peak normal force, AMB load, and at an
+ * integrator step's end (at_step) the constraint drift. */
+void td_sim_monitor_at(td_sim *s, double t, int at_step);
+
+/* ---- energy.c, totals.c: the energy account and the retainers' running totals ------------- */
+
 /* The energy account's point at time t (energy.c), with the segment length dt since the last one
  * (0 at a restart): called by td_sim_totals_point. */
 void td_sim_energy_point(td_sim *s, double t, int restart, double dt);
 /* An impact changed the kinetic energy from `before` to `after`, J. */
 void td_sim_energy_impact(td_sim *s, double before, double after);
-/* The energy account taken back from its last point to s->t (a change or an output inside the
+/* The energy account taken back from its last point to s->dae.t (a change or an output inside the
  * integrator's last step), as td_sim_totals_rewind does with the retainers' totals. */
 void td_sim_energy_rewind(td_sim *s);
 /* Kinetic energy 1/2 v^T M v of the state y, J. */
 double td_sim_kinetic_energy(const td_sim *s, const double *y);
+/* The energy account at s->dae.t (td_sim_energy). */
+void td_sim_energy_get(const td_sim *s, td_energy *out);
+/* A point of the totals at time t with the state in s->dae.y: closes the segment since the last point
+ * (restart 0: an accepted step or a stop), or opens one after a restart (restart 1). */
+void td_sim_totals_point(td_sim *s, double t, int restart);
+/* Before a restart at s->dae.t inside the integrator's last step (a change between steps): the totals
+ * taken back to s->dae.t. */
+void td_sim_totals_rewind(td_sim *s);
 /* An impact of retainer k with `impulse` (N s); `bounced`: it left at once (touch-and-go). */
 void td_sim_totals_impact(td_sim *s, int k, double impulse, int bounced);
+/* Retainer k's totals at s->dae.t (td_sim_retainer_totals). */
+void td_sim_totals_get(const td_sim *s, int k, td_retainer_totals *out);
 
-/* ---- race.c: the races' DOFs and matrices ----------------------------------------------- */
+/* ---- flight_modal.c, flight_roots.c, flight.c: free flight in closed form ------------------ */
 
-/* Assign the race DOFs after the rotor's and set s->n. */
-void td_sim_races_layout(td_sim *s);
-/* s->M, s->K, s->C, s->G over all n DOFs. */
-td_status td_sim_races_matrices(td_sim *s, td_error *err);
-void td_sim_races_free(td_sim *s);
-/* f += sign * the races' weight (length n). */
-void td_sim_races_gravity(const td_sim *s, double *f, double sign);
-/* Absolute tolerance of retainer k's race speed now (it depends on whether the race rolls). */
-double td_sim_race_speed_atol(const td_sim *s, int k);
-/* Set the race speeds' tolerances in s->atol for the current modes; 1 if one changed. */
-int td_sim_races_retolerance(td_sim *s);
-/* The races' start state into y: centres resting on their mounts, speeds at bore_speed. */
-void td_sim_races_start(const td_sim *s, double *y);
+/* 1 if the machine may fly in closed form now: free flight on (td_solver_options), no energy
+ * account, a prescribed constant speed, no races, no AMB saturation, every retainer free (one
+ * with a force law only once its gap has opened by eps after its last exit). The decomposition may
+ * still refuse it (td_sim_flight_advance). The step loop flies only with no stop pending. */
+int td_sim_flight_eligible(const td_sim *s);
+/* Carry the state from s->dae.t in closed form to t_out or the stop t_stop, whichever comes first,
+ * or to a root before them (*root = 1, s->dae.rootsfound as IDAGetRootInfo would set it), or less far
+ * at an interrupt; y holds the state at the new s->dae.t (y': td_sim_flight_rates). The flight works in
+ * the states scaled by `scale` (neq: the integrator's absolute tolerances, each state in its
+ * tolerance's units). Returns 0 (nothing moved) when the flight cannot carry the machine: the
+ * integrator does. */
+int td_sim_flight_advance(td_sim *s, const double *scale, double t_out, double t_stop, int *root);
+/* The state was moved by something else (an integrator step, a restart): the next flight starts
+ * from s->dae.y afresh. */
+void td_sim_flight_forget(td_sim *s);
+/* y' at s->dae.t from the flight that carried the state there (its outputs write y only). */
+void td_sim_flight_rates(td_sim *s);
+void td_sim_flight_free(td_sim *s);
+/* The displacements z at t (any time since the anchor) into y[0..nz) without moving anything:
+ * outputs between steps (section.c). work: 2 neq doubles. Returns 0 when no flight is anchored. */
+int td_sim_flight_peek(const td_sim *s, double t, double *y, double *work);
 
-/* ---- spin.c: the rotor's spin as a DOF when the speed varies ----------------------------- */
+/* ---- sim_modes.c: mode switching, consistent restarts, impacts, roots --------------------- */
 
-/* rad/s: the free spin's constant drag is regularised over this band around standstill */
-#define TD_SIM_SPIN_BAND 1e-2
-
-/* Assign the spin DOF (after the races') when the model's speed varies; s->spin = -1 otherwise. */
-void td_sim_spin_layout(td_sim *s);
-/* The spin's diagonal entry of matrix `which` ('M': J, 'C': the free spin's viscous drag). */
-void td_sim_spin_diagonal(const td_sim *s, char which, double *d);
-/* Rotor speed Omega (rad/s) and spin angle phi (rad) at (t, y). */
-double td_sim_rotor_speed(const td_sim *s, const double *y);
-double td_sim_rotor_angle(const td_sim *s, double t, const double *y);
-/* dOmega/dt at (t, y): the ramp's slope on the interval being integrated, (s->t, t] (at t = s->t
- * the segment starting there), or a free spin's torque balance over J. */
-double td_sim_rotor_rate(const td_sim *s, double t, const double *y);
-/* The torque that drives the spin DOF from outside (ramp: J alpha, what the drive must give;
- * free: the drive torque); 0 without a spin DOF. */
-double td_sim_spin_torque(const td_sim *s, double t);
-/* A free spin's constant drag torque, regularised over TD_SIM_SPIN_BAND at standstill, with its
- * slope in Omega (may be NULL); 0 otherwise. */
-double td_sim_spin_drag(const td_sim *s, const double *y, double *dT);
-/* The spin's start state into y: angle and speed at s->t. */
-void td_sim_spin_start(const td_sim *s, double *y);
-/* A ramp's spin angle and speed (and their rates into yp, which may be NULL) in y set to the
- * prescribed profile's at t: what an accepted or interpolated state reports. Nothing otherwise. */
-void td_sim_spin_hold(const td_sim *s, double t, double *y, double *yp);
-/* The spin angle taken modulo 2 pi (at restarts). */
-void td_sim_spin_wrap(const td_sim *s, double *y);
-
-/* ---- sim_nvector.c: compiled vector operations ----------------------------------------- */
-
-/* Replace the operations of serial vector v (and of every later clone of it) by the library's
- * compiled loops; see sim_nvector.c for why. */
-void td_sim_nvector_optimize(N_Vector v);
-
-/* ---- sim_linsol.c: KLU inside IDA ------------------------------------------------------- */
-
-/* A SUNLinearSolver factorising s->jdata on s->colptr/s->rowind with KLU: one symbolic analysis
- * per run, a pivoting factorisation after every restart, refactorisations in between. */
-SUNLinearSolver td_sim_klu_create(const td_sim *s);
-
-/* ---- sim_pattern.c: the Jacobian's sparsity pattern -------------------------------------- */
-
-/* Build s->colptr, s->rowind, s->jdata and the maps of the system matrices. */
-td_status td_sim_pattern_build(td_sim *s, td_error *err);
-/* Position of (row, col) in the pattern, -1 if absent. */
-int td_sim_pattern_find(const td_sim *s, int row, int col);
-/* Build the row-compressed M, K, D of the structural operator (s->st_*), D at s->omega. */
-td_status td_sim_structural_build(td_sim *s, td_error *err);
-/* Recompute D = C + Omega G after a change of s->omega. */
-void td_sim_structural_speed(td_sim *s);
-
-/* ---- sim_modes.c: mode switching, consistent restarts, events ---------------------------- */
-
-/* x = M^-1 b in place (length n). */
-void td_sim_mass_solve(const td_sim *s, double *b);
 /* Make (y, y') consistent with the current modes at time t: eta = 0, lambda of free retainers 0,
  * q' = v, w' = filter rate, and [v'; lambda] from the KKT system. Contacts whose lambda comes out
  * negative (or <= 0 for those flagged in just_entered) are released and the solve repeated; each
@@ -325,48 +293,53 @@ int td_sim_modes_out_of_step(const td_sim *s, const double *y);
 /* Start of a run with the retainers flagged in `touching` on (or a hair outside) their circles:
  * projection and impact as at an onset, then td_sim_make_consistent. */
 td_status td_sim_start_contacts(td_sim *s, const int *touching);
-/* Handle the roots found at s->t (IDAGetRootInfo in s->rootsfound; all zero: only bring the
+/* Handle the roots found at s->dae.t (IDAGetRootInfo in s->dae.rootsfound; all zero: only bring the
  * penalty modes in step with the state). *restart is set when the integrator must be
  * re-initialised. */
 td_status td_sim_handle_roots(td_sim *s, int *restart);
-/* Apply every schedule change due at s->t, queueing TD_EVENT_SCHEDULE events. */
-td_status td_sim_apply_due_changes(td_sim *s);
-/* Apply silently every change due at or before s->t (before the start of the run). */
-void td_sim_apply_past_changes(td_sim *s);
+
+/* ---- schedule.c: the model's timed changes ------------------------------------------------ */
+
 /* AMB amb's mode, also in s->sys (td_system_set_amb_off), so that the start state's stability and
  * steady orbit are those of the machine at the start, after the changes due then. */
 void td_sim_amb_mode_set(td_sim *s, int amb, td_amb_mode mode);
-/* Re-initialise IDA at s->t from s->y, s->yp (counters saved, root directions, restart step,
- * stop time, KLU refactorisation). */
-td_status td_sim_restart(td_sim *s);
+/* Apply every schedule change due at s->dae.t, queueing TD_EVENT_SCHEDULE events. */
+td_status td_sim_apply_due_changes(td_sim *s);
+/* Apply silently every change due at or before s->dae.t (before the start of the run). */
+void td_sim_apply_past_changes(td_sim *s);
 /* Where the integrator must stop next: the next schedule change or speed-ramp point; INFINITY if none. */
 double td_sim_next_stop(const td_sim *s);
-/* Append an event to the queue (and the statistics). */
-void td_sim_queue_event(td_sim *s, const td_event *ev);
-/* Fill the velocity fields of an event from the node velocity of retainer k. */
-void td_sim_event_velocities(const td_sim *s, int k, const double *y, int after, td_event *ev);
 
-/* ---- flight.c: free flight in closed form ------------------------------------------------ */
+/* ---- tolerance.c: the integrator's tolerances --------------------------------------------- */
 
-/* 1 if the machine may fly in closed form now: free flight on (td_solver_options), no energy
- * account, a prescribed constant speed, no races, no AMB saturation, every retainer free (one
- * with a force law only once its gap has opened by eps after its last exit), nothing pending. The decomposition may
- * still refuse it (td_sim_flight_advance). */
-int td_sim_flight_eligible(const td_sim *s);
-/* Carry the state from s->t in closed form to t_out or the stop t_stop, whichever comes first,
- * or to a root before them (*root = 1, s->rootsfound as IDAGetRootInfo would set it), or less far
- * at an interrupt; y holds the state at the new s->t (y': td_sim_flight_rates). Returns 0 (nothing
- * moved) when the flight cannot carry the machine: the integrator does. */
-int td_sim_flight_advance(td_sim *s, double t_out, double t_stop, int *root);
-/* The state was moved by something else (an integrator step, a restart): the next flight starts
- * from s->y afresh. */
-void td_sim_flight_forget(td_sim *s);
-/* y' at s->t from the flight that carried the state there (its outputs write y only). */
-void td_sim_flight_rates(td_sim *s);
-void td_sim_flight_free(td_sim *s);
-/* The displacements z at t (any time since the anchor) into y[0..nz) without moving anything:
- * outputs between steps (section.c). work: 2 neq doubles. Returns 0 when no flight is anchored. */
-int td_sim_flight_peek(const td_sim *s, double t, double *y, double *work);
+/* The per-component absolute tolerances into s->solver.atol and the differential/algebraic flags into
+ * s->solver.id. */
+void td_sim_set_tolerances(td_sim *s);
+/* Absolute tolerance of retainer k's race speed now (it depends on whether the race rolls). */
+double td_sim_race_speed_atol(const td_sim *s, int k);
+/* Set the race speeds' tolerances in s->solver.atol for the current modes; 1 if one changed. */
+int td_sim_races_retolerance(td_sim *s);
+/* The tolerance rtol |q_i| + atol that a restart's first step is sized against, at unknown i of the
+ * state y (i in the q block): the displacement tolerance on every coordinate. */
+double td_sim_restart_tolerance(const td_sim *s, int i, const double *y);
+
+/* ---- integrator.c: IDA ---------------------------------------------------------------------- */
+
+/* The SUNDIALS context, the state vectors and the IDA instance; failures leave their message in
+ * s->errmsg. */
+td_status td_sim_integrator_create(td_sim *s, td_error *err);
+/* IDA initialised on the start state: tolerances, the Newton and linear solvers, the roots. */
+td_status td_sim_integrator_attach(td_sim *s, td_error *err);
+/* Re-initialise IDA at s->dae.t from s->dae.y, s->dae.yp (counters saved, root directions, restart step,
+ * stop time, KLU refactorisation). */
+td_status td_sim_restart(td_sim *s);
+/* y, yp at time t inside IDA's last step. */
+td_status td_sim_interpolate(td_sim *s, double t);
+/* 1 (with a message) when IDA's steps have stopped moving t (the step just taken ended at t). */
+int td_sim_stalled(td_sim *s, double t);
+/* The integrator's counters, over every restart, into the counter fields of out. */
+void td_sim_integrator_counters(const td_sim *s, td_sim_stats *out);
+void td_sim_integrator_free(td_sim *s);
 
 /* ---- section.c: the once-per-revolution section (section.h) ------------------------------- */
 
@@ -374,8 +347,31 @@ int td_sim_flight_peek(const td_sim *s, double t, double *y, double *work);
  * IDA's interpolant (after an accepted step or at a stop inside one) or from the flight. */
 void td_sim_section_ida(td_sim *s, double t);
 void td_sim_section_flight(td_sim *s, double t);
-/* A restart at s->t: samples taken beyond it belonged to a state that has since been changed. */
+/* A restart at s->dae.t: samples taken beyond it belonged to a state that has since been changed. */
 void td_sim_section_rewind(td_sim *s);
 void td_sim_section_free(td_sim *s);
+
+/* ---- start.c: the start state --------------------------------------------------------------- */
+
+/* Stability of the contact-free closed loop at the start speed into s->start. */
+void td_sim_start_stability(td_sim *s);
+/* The start state into s->dae.y, s->dae.yp (s->start says which); contacts at the start made consistent. */
+td_status td_sim_start_state(td_sim *s, td_error *err);
+
+/* ---- stepping.c: the step loop ---------------------------------------------------------------- */
+
+/* Restart after a change made between steps or at a schedule time. */
+td_status td_sim_restart_after_change(td_sim *s);
+/* Integrate from s->dae.t to tout (> s->dae.t), stopping early at an event to report or a failure. */
+td_status td_sim_advance(td_sim *s, double tout);
+
+/* ---- setup.c: creation and release ---------------------------------------------------------- */
+
+/* A new simulation of `model` into *out (model and out not NULL). */
+td_status td_sim_setup(const td_model *model, const td_sim_options *options, volatile sig_atomic_t *cancel,
+                       td_sim **out, td_error *err);
+void td_sim_teardown(td_sim *s);
+/* The step bound when the options set none, at the current speed. */
+double td_sim_default_max_step(const td_sim *s);
 
 #endif

@@ -1,6 +1,6 @@
 /*
  * The linear solver inside IDA's Newton iteration: a SUNLinearSolver on SuiteSparse KLU that
- * factorises the sim's own Jacobian arrays (s->colptr, s->rowind, s->jdata: one fixed pattern,
+ * factorises the sim's own Jacobian arrays (s->ops.colptr, s->ops.rowind, s->ops.jdata: one fixed pattern,
  * int indices) and keeps KLU's symbolic analysis for the whole run.
  *
  * Why not SUNDIALS's SUNLinSol_KLU: IDAReInit, which the sim calls at every event, makes IDA call
@@ -60,7 +60,7 @@ static int factor(td_klu_ls *c)
     const td_sim *s = c->s;
     if (c->num)
         klu_free_numeric(&c->num, &c->common);
-    c->num = klu_factor(s->colptr, s->rowind, s->jdata, c->sym, &c->common);
+    c->num = klu_factor(s->ops.colptr, s->ops.rowind, s->ops.jdata, c->sym, &c->common);
     if (!c->num)
         return c->common.status == KLU_SINGULAR ? SUNLS_PACKAGE_FAIL_REC : SUNLS_PACKAGE_FAIL_UNREC;
     c->refresh = 0;
@@ -74,14 +74,14 @@ static int ls_setup(SUNLinearSolver S, SUNMatrix A)
     const td_sim *s = c->s;
     (void)A;
     if (!c->sym) {
-        c->sym = klu_analyze(s->neq, s->colptr, s->rowind, &c->common);
+        c->sym = klu_analyze(s->dae.neq, s->ops.colptr, s->ops.rowind, &c->common);
         if (!c->sym)
             return c->last_flag = SUNLS_PACKAGE_FAIL_UNREC;
     }
     if (c->refresh || !c->num)
         return c->last_flag = factor(c);
     /* same pivot order; a cheap estimate of 1/cond (min/max |U_ii|) guards it, as in SUNLinSol_KLU */
-    if (!klu_refactor(s->colptr, s->rowind, s->jdata, c->sym, c->num, &c->common) ||
+    if (!klu_refactor(s->ops.colptr, s->ops.rowind, s->ops.jdata, c->sym, c->num, &c->common) ||
         !klu_rcond(c->sym, c->num, &c->common) || !(c->common.rcond > pow(DBL_EPSILON, 2.0 / 3.0)))
         return c->last_flag = factor(c);
     return c->last_flag = SUNLS_SUCCESS;
@@ -93,8 +93,8 @@ static int ls_solve(SUNLinearSolver S, SUNMatrix A, N_Vector x, N_Vector b, sunr
     double *xd = N_VGetArrayPointer(x);
     (void)A, (void)tol;
     if (x != b)
-        memcpy(xd, N_VGetArrayPointer(b), sizeof(double) * (size_t)c->s->neq);
-    if (!c->num || !klu_solve(c->sym, c->num, c->s->neq, 1, xd, &c->common))
+        memcpy(xd, N_VGetArrayPointer(b), sizeof(double) * (size_t)c->s->dae.neq);
+    if (!c->num || !klu_solve(c->sym, c->num, c->s->dae.neq, 1, xd, &c->common))
         return c->last_flag = SUNLS_PACKAGE_FAIL_REC;
     return c->last_flag = SUNLS_SUCCESS;
 }
@@ -124,7 +124,7 @@ static int ls_free(SUNLinearSolver S)
 
 SUNLinearSolver td_sim_klu_create(const td_sim *s)
 {
-    SUNLinearSolver S = SUNLinSolNewEmpty(s->ctx);
+    SUNLinearSolver S = SUNLinSolNewEmpty(s->solver.ctx);
     td_klu_ls *c;
     if (!S)
         return NULL;

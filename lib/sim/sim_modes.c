@@ -35,72 +35,10 @@
 #include <stdio.h>
 #include <string.h>
 
-#include <ida/ida_ls.h>
-
-void td_sim_mass_solve(const td_sim *s, double *b)
-{
-    double *x = s->mass_x;
-    cs_di_ipvec(s->Mn->pinv, b, x, s->n);
-    cs_di_lsolve(s->Mn->L, x);
-    cs_di_usolve(s->Mn->U, x);
-    cs_di_ipvec(s->Ms->q, x, b, s->n);
-}
-
-/* Queue an event and count it. A contact onset opens the retainer's interval peak; an event that
- * ends a contact interval carries it. */
-void td_sim_queue_event(td_sim *s, const td_event *ev)
-{
-    td_event e = *ev;
-    if ((e.kind == TD_EVENT_CONTACT_ONSET || e.kind == TD_EVENT_PENALTY_ENTER) && e.retainer >= 0)
-        s->totals[e.retainer].interval_peak = 0.0;
-    if ((e.kind == TD_EVENT_RELEASE || e.kind == TD_EVENT_PENALTY_EXIT) && e.retainer >= 0)
-        e.peak_normal_force = s->totals[e.retainer].interval_peak;
-    if (s->q_len < s->q_cap)
-        s->queue[s->q_len++] = e;
-    s->stats.events++;
-    switch (ev->kind) {
-    case TD_EVENT_CONTACT_ONSET:
-    case TD_EVENT_PENALTY_ENTER:
-        s->stats.contact_onsets++;
-        if (td_is_undefined(s->stats.first_contact_time))
-            s->stats.first_contact_time = ev->time;
-        break;
-    case TD_EVENT_RELEASE:
-    case TD_EVENT_PENALTY_EXIT: s->stats.releases++; break;
-    default: break;
-    }
-}
-
-void td_sim_event_velocities(const td_sim *s, int k, const double *y, int after, td_event *ev)
-{
-    double x, yy, vx, vy, vr, vt;
-    td_sim_node_state(s, k, y, &x, &yy, &vx, &vy);
-    vr = td_contact_radial_velocity(x, yy, vx, vy);
-    vt = td_contact_tangential_velocity(x, yy, vx, vy);
-    if (after) {
-        ev->radial_velocity_after = vr;
-        ev->tangential_velocity_after = vt;
-    } else {
-        ev->radial_velocity_before = ev->radial_velocity_after = vr;
-        ev->tangential_velocity_before = ev->tangential_velocity_after = vt;
-    }
-}
-
-static td_event event_of(const td_sim *s, td_event_kind kind, int k)
-{
-    td_event ev;
-    memset(&ev, 0, sizeof ev);
-    ev.kind = kind;
-    ev.time = s->t;
-    ev.retainer = k;
-    ev.change = -1;
-    return ev;
-}
-
-/* Queue an event of retainer k at s->t with its node velocities at y. */
+/* Queue an event of retainer k at s->dae.t with its node velocities at y. */
 static void queue_retainer_event(td_sim *s, td_event_kind kind, int k, const double *y)
 {
-    td_event ev = event_of(s, kind, k);
+    td_event ev = td_sim_event_at(s, kind, k);
     td_sim_event_velocities(s, k, y, 0, &ev);
     td_sim_queue_event(s, &ev);
 }
@@ -110,34 +48,34 @@ static double contact_dterm(const td_sim *s, int k, const double *y)
 {
     double x, yy, vx, vy;
     td_sim_node_state(s, k, y, &x, &yy, &vx, &vy);
-    return td_contact_constraint_dterm(vx, vy, s->ret[k].r.clearance);
+    return td_contact_constraint_dterm(vx, vy, s->contacts.ret[k].r.clearance);
 }
 
-/* The multipliers of the KKT solve at the current modes into s->active / s->active_roll: the
+/* The multipliers of the KKT solve at the current modes into s->kkt.active / s->kkt.active_roll: the
  * normal force of every constrained contact, then the friction force F_t of every rolling
- * retainer. For each, its row (s->rows), M^-1 times its column (s->minv_cols) and the velocity
+ * retainer. For each, its row (s->kkt.rows), M^-1 times its column (s->kkt.minv_cols) and the velocity
  * term of its acceleration-level constraint (rhs): D of eq. (13b), or h of d v_s / dt. */
 static int kkt_multipliers(td_sim *s, const double *y, double *rhs)
 {
     int m = 0, k;
-    for (k = 0; k < s->nr; k++)
-        if (s->ret[k].mode == TD_RMODE_CONTACT) {
-            double *z = s->minv_cols + (size_t)m * s->n;
+    for (k = 0; k < s->dae.nr; k++)
+        if (s->contacts.ret[k].mode == TD_RMODE_CONTACT) {
+            double *z = s->kkt.minv_cols + (size_t)m * s->dae.n;
             td_sim_contact_column(s, k, y, z);
             td_sim_mass_solve(s, z);
-            td_sim_contact_row(s, k, y, &s->rows[m]);
+            td_sim_contact_row(s, k, y, &s->kkt.rows[m]);
             rhs[m] = contact_dterm(s, k, y);
-            s->active_roll[m] = 0;
-            s->active[m++] = k;
+            s->kkt.active_roll[m] = 0;
+            s->kkt.active[m++] = k;
         }
-    for (k = 0; k < s->nr; k++)
-        if (s->ret[k].rolling) {
-            double *z = s->minv_cols + (size_t)m * s->n;
+    for (k = 0; k < s->dae.nr; k++)
+        if (s->contacts.ret[k].rolling) {
+            double *z = s->kkt.minv_cols + (size_t)m * s->dae.n;
             td_sim_roll_column(s, k, y, z);
             td_sim_mass_solve(s, z);
-            td_sim_roll_row(s, k, y, &s->rows[m], &rhs[m]);
-            s->active_roll[m] = 1;
-            s->active[m++] = k;
+            td_sim_roll_row(s, k, y, &s->kkt.rows[m], &rhs[m]);
+            s->kkt.active_roll[m] = 1;
+            s->kkt.active[m++] = k;
         }
     return m;
 }
@@ -149,27 +87,27 @@ static int kkt_multipliers(td_sim *s, const double *y, double *rhs)
  * multiplier entries. Returns the number of multipliers, or -1 if singular. */
 static int kkt_solve(td_sim *s, double *y, double *yp)
 {
-    double *a = s->minv_f, *S = s->schur, *rhs = s->schur_rhs, *vp = yp + s->ov;
+    double *a = s->kkt.minv_f, *S = s->kkt.schur, *rhs = s->kkt.schur_rhs, *vp = yp + s->dae.ov;
     int m, i, j;
-    td_sim_forces(s, s->t, y, a);
+    td_sim_forces(s, s->dae.t, y, a);
     td_sim_mass_solve(s, a);
     m = kkt_multipliers(s, y, rhs);
     for (i = 0; i < m; i++) {
-        const td_contact_row *row = &s->rows[i];
+        const td_contact_row *row = &s->kkt.rows[i];
         for (j = 0; j < m; j++)
-            S[i + j * m] = td_contact_row_dot(row, s->minv_cols + (size_t)j * s->n);
+            S[i + j * m] = td_contact_row_dot(row, s->kkt.minv_cols + (size_t)j * s->dae.n);
         rhs[i] = td_contact_row_dot(row, a) + rhs[i];
     }
     if (m > 0 && td_contact_dense_solve(m, S, rhs) != 0)
         return -1;
-    for (i = 0; i < s->n; i++)
+    for (i = 0; i < s->dae.n; i++)
         vp[i] = a[i];
     for (j = 0; j < m; j++) {
-        const double *z = s->minv_cols + (size_t)j * s->n;
-        const td_sim_retainer *r = &s->ret[s->active[j]];
-        for (i = 0; i < s->n; i++)
+        const double *z = s->kkt.minv_cols + (size_t)j * s->dae.n;
+        const td_sim_retainer *r = &s->contacts.ret[s->kkt.active[j]];
+        for (i = 0; i < s->dae.n; i++)
             vp[i] -= z[i] * rhs[j];
-        y[s->active_roll[j] ? s->of + r->fi : s->ol + s->active[j]] = rhs[j];
+        y[s->kkt.active_roll[j] ? s->dae.of + r->fi : s->dae.ol + s->kkt.active[j]] = rhs[j];
     }
     return m;
 }
@@ -184,9 +122,9 @@ static void keep_rolling(td_sim *s, int k, double *y)
         return;
     }
     td_sim_unroll(s, k, y, vs > 0.0 ? 1 : -1);
-    if (!s->roll_tried[k])
+    if (!s->contacts.roll_tried[k])
         queue_retainer_event(s, TD_EVENT_ROLL_END, k, y);
-    s->roll_tried[k] = 0;
+    s->contacts.roll_tried[k] = 0;
 }
 
 /* Multipliers of the modes at restart: eta = 0, lambda of free retainers 0 (nodes in contact
@@ -195,20 +133,20 @@ static void keep_rolling(td_sim *s, int k, double *y)
 static void reset_multipliers(td_sim *s, double *y, double *yp)
 {
     int k;
-    for (k = 0; k < s->nr; k++) {
-        const td_sim_retainer *r = &s->ret[k];
-        y[s->ou + k] = 0.0;
-        yp[s->ol + k] = yp[s->ou + k] = 0.0;
+    for (k = 0; k < s->dae.nr; k++) {
+        const td_sim_retainer *r = &s->contacts.ret[k];
+        y[s->dae.ou + k] = 0.0;
+        yp[s->dae.ol + k] = yp[s->dae.ou + k] = 0.0;
         if (r->mode != TD_RMODE_CONTACT)
-            y[s->ol + k] = 0.0;
+            y[s->dae.ol + k] = 0.0;
         else
             td_sim_project_onto_circle(s, k, y);
         if (r->fi >= 0) {
-            yp[s->of + r->fi] = 0.0;
+            yp[s->dae.of + r->fi] = 0.0;
             if (r->rolling)
                 keep_rolling(s, k, y);
             if (!r->rolling)
-                y[s->of + r->fi] = 0.0;
+                y[s->dae.of + r->fi] = 0.0;
         }
     }
 }
@@ -219,10 +157,10 @@ static int worst_pull(const td_sim *s, const double *y, const int *just_entered)
 {
     double worst_lam = 0.0;
     int worst = -1, k;
-    for (k = 0; k < s->nr; k++) {
-        double lam = y[s->ol + k];
+    for (k = 0; k < s->dae.nr; k++) {
+        double lam = y[s->dae.ol + k];
         int reject;
-        if (s->ret[k].mode != TD_RMODE_CONTACT)
+        if (s->contacts.ret[k].mode != TD_RMODE_CONTACT)
             continue;
         reject = (just_entered && just_entered[k]) ? !(lam > 0.0) : lam < 0.0;
         if (reject && (worst < 0 || lam < worst_lam)) {
@@ -238,12 +176,12 @@ static int worst_slip(const td_sim *s, const double *y)
 {
     double worst_excess = 0.0;
     int worst = -1, k;
-    for (k = 0; k < s->nr; k++) {
-        const td_sim_retainer *r = &s->ret[k];
+    for (k = 0; k < s->dae.nr; k++) {
+        const td_sim_retainer *r = &s->contacts.ret[k];
         double excess;
         if (!r->rolling)
             continue;
-        excess = fabs(y[s->of + r->fi]) - r->r.friction * td_sim_normal_force(s, k, y);
+        excess = fabs(y[s->dae.of + r->fi]) - r->r.friction * td_sim_normal_force(s, k, y);
         if (excess > worst_excess) {
             worst = k;
             worst_excess = excess;
@@ -254,29 +192,29 @@ static int worst_slip(const td_sim *s, const double *y)
 
 /* Retainer k rolled and slips now, in the direction of the force it needed (+: the shaft drags
  * the race forward, v_s > 0): a rolling end, or, for a roll only tried at this instant
- * (s->roll_tried), a friction reversal if it slips the other way. */
+ * (s->contacts.roll_tried), a friction reversal if it slips the other way. */
 static void slip_from_roll(td_sim *s, int k, double *y)
 {
-    td_sim_retainer *r = &s->ret[k];
-    int was = r->slip, slip = y[s->of + r->fi] > 0.0 ? 1 : -1;
+    td_sim_retainer *r = &s->contacts.ret[k];
+    int was = r->slip, slip = y[s->dae.of + r->fi] > 0.0 ? 1 : -1;
     td_sim_unroll(s, k, y, slip);
-    if (!s->roll_tried[k])
+    if (!s->contacts.roll_tried[k])
         queue_retainer_event(s, TD_EVENT_ROLL_END, k, y);
     else if (slip != was)
         queue_retainer_event(s, TD_EVENT_FRICTION_REVERSAL, k, y);
-    s->roll_tried[k] = 0;
+    s->contacts.roll_tried[k] = 0;
 }
 
 td_status td_sim_make_consistent(td_sim *s, const int *just_entered)
 {
-    double *y = N_VGetArrayPointer(s->y), *yp = N_VGetArrayPointer(s->yp);
+    double *y = N_VGetArrayPointer(s->dae.y), *yp = N_VGetArrayPointer(s->dae.yp);
     int i, k, pass;
     reset_multipliers(s, y, yp);
-    for (pass = 0; pass <= s->nr + s->ns; pass++) {
+    for (pass = 0; pass <= s->dae.nr + s->dae.ns; pass++) {
         int worst;
         if (kkt_solve(s, y, yp) < 0) {
             snprintf(s->errmsg, sizeof s->errmsg,
-                     "t = %.9g s: the contact constraints are singular (J M^-1 J^T not invertible)", s->t);
+                     "t = %.9g s: the contact constraints are singular (J M^-1 J^T not invertible)", s->dae.t);
             return TD_ERR_NUMERIC;
         }
         if ((worst = worst_pull(s, y, just_entered)) >= 0) {
@@ -291,23 +229,23 @@ td_status td_sim_make_consistent(td_sim *s, const int *just_entered)
             break;
         }
     }
-    for (k = 0; k < s->nr; k++) /* tried rolls that held */
-        if (s->roll_tried[k]) {
-            s->roll_tried[k] = 0;
-            if (s->ret[k].rolling)
+    for (k = 0; k < s->dae.nr; k++) /* tried rolls that held */
+        if (s->contacts.roll_tried[k]) {
+            s->contacts.roll_tried[k] = 0;
+            if (s->contacts.ret[k].rolling)
                 queue_retainer_event(s, TD_EVENT_ROLL_START, k, y);
         }
     /* q' = v, w' = the filter and integrator rates */
-    for (i = 0; i < s->n; i++)
-        yp[s->oq + i] = y[s->ov + i];
+    for (i = 0; i < s->dae.n; i++)
+        yp[s->dae.oq + i] = y[s->dae.ov + i];
     for (k = 0; k < s->sys->n_amb_axes; k++) {
         const td_amb_axis *a = &s->sys->amb_axes[k];
-        double e = a->integral >= 0 ? y[s->ow + a->integral] : 0.0;
+        double e = a->integral >= 0 ? y[s->dae.ow + a->integral] : 0.0;
         if (a->state >= 0)
-            yp[s->ow + a->state] =
-                td_amb_axis_filter_rate(a, y[s->oq + a->sensor_dof], y[s->ov + a->sensor_dof], e, y[s->ow + a->state]);
+            yp[s->dae.ow + a->state] = td_amb_axis_filter_rate(
+                a, y[s->dae.oq + a->sensor_dof], y[s->dae.ov + a->sensor_dof], e, y[s->dae.ow + a->state]);
         if (a->integral >= 0)
-            yp[s->ow + a->integral] = td_sim_amb_axis_integral_rate(s, k, y);
+            yp[s->dae.ow + a->integral] = td_sim_amb_axis_integral_rate(s, k, y);
     }
     return TD_OK;
 }
@@ -322,7 +260,7 @@ td_status td_sim_make_consistent(td_sim *s, const int *just_entered)
 static double free_normal_acceleration(td_sim *s, int k, const double *y, double *a)
 {
     td_contact_row row;
-    td_sim_forces(s, s->t, y, a);
+    td_sim_forces(s, s->dae.t, y, a);
     td_sim_mass_solve(s, a);
     td_sim_contact_row(s, k, y, &row);
     return td_contact_row_dot(&row, a) + contact_dterm(s, k, y);
@@ -355,63 +293,64 @@ static double free_normal_acceleration(td_sim *s, int k, const double *y, double
  */
 static double impact_restitution(td_sim *s, int k, const double *y, double vr)
 {
-    double e = s->ret[k].r.restitution, an, vmin;
-    if (!(e > 0.0) || vr < s->rebound_min)
+    double e = s->contacts.ret[k].r.restitution, an, vmin;
+    if (!(e > 0.0) || vr < s->machine.rebound_min)
         return 0.0;
-    an = free_normal_acceleration(s, k, y, s->minv_f);
-    vmin = an > 0.0 ? 2.0 * sqrt(2.0 * an * s->rearm_eps) : 0.0;
+    an = free_normal_acceleration(s, k, y, s->kkt.minv_f);
+    vmin = an > 0.0 ? 2.0 * sqrt(2.0 * an * s->machine.rearm_eps) : 0.0;
     return e * vr < vmin ? 0.0 : e;
 }
 
-/* The contacts of an impact at the retainers flagged in `onset`, into s->active with their
- * restitution in s->restitution: every active contact (e = 0 keeps it on the circle) and each
+/* The contacts of an impact at the retainers flagged in `onset`, into s->kkt.active with their
+ * restitution in s->kkt.restitution: every active contact (e = 0 keeps it on the circle) and each
  * onset moving outward (impact_restitution). Returns their number. */
 static int impact_contacts(td_sim *s, const int *onset, const double *y)
 {
-    double *e = s->restitution;
+    double *e = s->kkt.restitution;
     int m = 0, k;
-    for (k = 0; k < s->nr; k++) {
-        const td_sim_retainer *r = &s->ret[k];
+    for (k = 0; k < s->dae.nr; k++) {
+        const td_sim_retainer *r = &s->contacts.ret[k];
         double x, yy, vx, vy, vr;
         if (r->mode == TD_RMODE_CONTACT) {
             e[m] = 0.0;
-            s->active[m++] = k;
+            s->kkt.active[m++] = k;
         } else if (onset[k]) {
             td_sim_node_state(s, k, y, &x, &yy, &vx, &vy);
             vr = td_contact_radial_velocity(x, yy, vx, vy);
             if (!(vr > 0.0)) /* touching while already moving inward: no impact, stay free */
                 continue;
             e[m] = impact_restitution(s, k, y, vr);
-            s->active[m++] = k;
+            s->kkt.active[m++] = k;
         }
     }
     return m;
 }
 
-/* Rows J_k (s->rows) and columns M^-1 J_k^T (s->minv_cols) of the first m contacts in s->active. */
+/* Rows J_k (s->kkt.rows) and columns M^-1 J_k^T (s->kkt.minv_cols) of the first m contacts in
+ * s->kkt.active. */
 static void impact_columns(td_sim *s, int m, const double *y)
 {
     int i;
     for (i = 0; i < m; i++) {
-        double *col = s->minv_cols + (size_t)i * s->n;
-        td_sim_contact_row(s, s->active[i], y, &s->rows[i]);
-        memset(col, 0, sizeof(double) * (size_t)s->n);
-        td_contact_row_scatter(&s->rows[i], col);
+        double *col = s->kkt.minv_cols + (size_t)i * s->dae.n;
+        td_sim_contact_row(s, s->kkt.active[i], y, &s->kkt.rows[i]);
+        memset(col, 0, sizeof(double) * (size_t)s->dae.n);
+        td_contact_row_scatter(&s->kkt.rows[i], col);
         td_sim_mass_solve(s, col);
     }
 }
 
-/* Queue the onset event of every new contact among the first m in s->active, with the
+/* Queue the onset event of every new contact among the first m in s->kkt.active, with the
  * velocities before the impact. Returns how many. */
 static int queue_onsets(td_sim *s, const int *onset, int m, const double *y)
 {
     int i, k, queued = 0;
     for (i = 0; i < m; i++) {
-        k = s->active[i];
-        if (!onset[k] || s->ret[k].mode == TD_RMODE_CONTACT)
+        k = s->kkt.active[i];
+        if (!onset[k] || s->contacts.ret[k].mode == TD_RMODE_CONTACT)
             continue;
         {
-            td_event ev = event_of(s, TD_EVENT_CONTACT_ONSET, k);
+            td_event ev = td_sim_event_at(s, TD_EVENT_CONTACT_ONSET, k);
             td_sim_event_velocities(s, k, y, 0, &ev);
             td_sim_queue_event(s, &ev);
             queued++;
@@ -427,11 +366,11 @@ static void enter_contacts(td_sim *s, const int *onset, int m, const double *y, 
     int i, k;
     for (i = 0; i < m; i++) {
         td_sim_retainer *r;
-        k = s->active[i];
-        r = &s->ret[k];
+        k = s->kkt.active[i];
+        r = &s->contacts.ret[k];
         if (!onset[k] || r->mode == TD_RMODE_CONTACT)
             continue;
-        if (s->restitution[i] > 0.0) {
+        if (s->kkt.restitution[i] > 0.0) {
             r->armed = 0; /* bounced: free until the gap has opened */
         } else {
             r->mode = TD_RMODE_CONTACT;
@@ -447,13 +386,13 @@ static void complete_onsets(td_sim *s, const int *onset, int m, int first_event,
 {
     int i, k, q;
     for (i = 0; i < m; i++) {
-        k = s->active[i];
+        k = s->kkt.active[i];
         if (!onset[k])
             continue;
-        for (q = first_event; q < s->q_len; q++)
-            if (s->queue[q].retainer == k && s->queue[q].kind == TD_EVENT_CONTACT_ONSET) {
-                td_sim_event_velocities(s, k, y, 1, &s->queue[q]);
-                s->queue[q].impulse = s->impulse[i];
+        for (q = first_event; q < s->monitor.q_len; q++)
+            if (s->monitor.queue[q].retainer == k && s->monitor.queue[q].kind == TD_EVENT_CONTACT_ONSET) {
+                td_sim_event_velocities(s, k, y, 1, &s->monitor.queue[q]);
+                s->monitor.queue[q].impulse = s->kkt.impulse[i];
             }
     }
 }
@@ -463,9 +402,9 @@ static void complete_onsets(td_sim *s, const int *onset, int m, int first_event,
 static void stop_rolling(td_sim *s, double *y)
 {
     int k;
-    for (k = 0; k < s->nr; k++)
-        if (s->ret[k].rolling) {
-            td_sim_unroll(s, k, y, s->ret[k].slip);
+    for (k = 0; k < s->dae.nr; k++)
+        if (s->contacts.ret[k].rolling) {
+            td_sim_unroll(s, k, y, s->contacts.ret[k].slip);
             queue_retainer_event(s, TD_EVENT_ROLL_END, k, y);
         }
 }
@@ -478,9 +417,9 @@ static void stop_rolling(td_sim *s, double *y)
  */
 static int impacts(td_sim *s, const int *onset, int *entered)
 {
-    double *y = N_VGetArrayPointer(s->y), before;
-    int m, k, queued, first_event = s->q_len;
-    for (k = 0; k < s->nr; k++) {
+    double *y = N_VGetArrayPointer(s->dae.y), before;
+    int m, k, queued, first_event = s->monitor.q_len;
+    for (k = 0; k < s->dae.nr; k++) {
         entered[k] = 0;
         if (onset[k])
             td_sim_project_onto_circle(s, k, y);
@@ -490,24 +429,24 @@ static int impacts(td_sim *s, const int *onset, int *entered)
     impact_columns(s, m, y);
     queued = queue_onsets(s, onset, m, y);
     before = s->opt.energy ? td_sim_kinetic_energy(s, y) : 0.0;
-    if (m > 0 && td_contact_impact_map(s->n, m, s->rows, s->minv_cols, s->restitution, y + s->ov, s->impulse,
-                                       s->impact_work) != 0)
+    if (m > 0 && td_contact_impact_map(s->dae.n, m, s->kkt.rows, s->kkt.minv_cols, s->kkt.restitution, y + s->dae.ov,
+                                       s->kkt.impulse, s->kkt.impact_work) != 0)
         return -1;
     if (s->opt.energy)
         td_sim_energy_impact(s, before, td_sim_kinetic_energy(s, y));
     for (k = 0; k < m; k++) /* every contact of the impact took its impulse; e > 0 onsets bounced */
-        td_sim_totals_impact(s, s->active[k], s->impulse[k],
-                             onset[s->active[k]] && s->ret[s->active[k]].mode != TD_RMODE_CONTACT &&
-                                 s->restitution[k] > 0.0);
+        td_sim_totals_impact(s, s->kkt.active[k], s->kkt.impulse[k],
+                             onset[s->kkt.active[k]] && s->contacts.ret[s->kkt.active[k]].mode != TD_RMODE_CONTACT &&
+                                 s->kkt.restitution[k] > 0.0);
     enter_contacts(s, onset, m, y, entered);
-    for (k = 0; k < s->nr; k++) /* stick retainers slide the way the impact left them */
-        if (s->ret[k].r.stick && s->ret[k].mode == TD_RMODE_CONTACT && !entered[k])
+    for (k = 0; k < s->dae.nr; k++) /* stick retainers slide the way the impact left them */
+        if (s->contacts.ret[k].r.stick && s->contacts.ret[k].mode == TD_RMODE_CONTACT && !entered[k])
             td_sim_init_slip(s, k, y);
     complete_onsets(s, onset, m, first_event, y);
     /* onsets with no outward velocity: disarm, nothing happened */
-    for (k = 0; k < s->nr; k++)
-        if (onset[k] && s->ret[k].mode == TD_RMODE_FREE)
-            s->ret[k].armed = 0;
+    for (k = 0; k < s->dae.nr; k++)
+        if (onset[k] && s->contacts.ret[k].mode == TD_RMODE_FREE)
+            s->contacts.ret[k].armed = 0;
     return queued;
 }
 
@@ -515,7 +454,7 @@ static int impacts(td_sim *s, const int *onset, int *entered)
  * a restart at v_s = 0 the other way, e.g. when rolling ended with F_t ~ 0 as N vanished). */
 static int stick_out_of_step(const td_sim *s, int k, const double *y)
 {
-    const td_sim_retainer *r = &s->ret[k];
+    const td_sim_retainer *r = &s->contacts.ret[k];
     return r->r.stick && r->mode != TD_RMODE_FREE && !r->rolling &&
            r->slip * td_sim_sliding_velocity(s, k, y) < -TD_CONTACT_SLIP_BAND;
 }
@@ -523,8 +462,9 @@ static int stick_out_of_step(const td_sim *s, int k, const double *y)
 int td_sim_modes_out_of_step(const td_sim *s, const double *y)
 {
     int k;
-    for (k = 0; k < s->nr; k++)
-        if ((td_sim_penalty_model(s, k) && td_sim_penalty_mode_wanted(s, k, y, s->ret[k].mode) != s->ret[k].mode) ||
+    for (k = 0; k < s->dae.nr; k++)
+        if ((td_sim_penalty_model(s, k) &&
+             td_sim_penalty_mode_wanted(s, k, y, s->contacts.ret[k].mode) != s->contacts.ret[k].mode) ||
             stick_out_of_step(s, k, y))
             return 1;
     return 0;
@@ -534,7 +474,7 @@ int td_sim_modes_out_of_step(const td_sim *s, const double *y)
  * the mode changed. */
 static int penalty_switch(td_sim *s, int k, double *y, td_rmode want)
 {
-    td_sim_retainer *r = &s->ret[k];
+    td_sim_retainer *r = &s->contacts.ret[k];
     if (want == r->mode)
         return 0;
     r->mode = want;
@@ -556,16 +496,16 @@ static int penalty_switch(td_sim *s, int k, double *y, td_rmode want)
  * on, the way that force points) or |F_t| = mu N while rolling (it slips). */
 static void slip_root(td_sim *s, int k, double *y)
 {
-    td_sim_retainer *r = &s->ret[k];
+    td_sim_retainer *r = &s->contacts.ret[k];
     if (!r->r.stick) {
         if (td_sim_slip_root(s, k, y))
             queue_retainer_event(s, TD_EVENT_FRICTION_REVERSAL, k, y);
     } else if (r->rolling) {
-        td_sim_unroll(s, k, y, y[s->of + r->fi] > 0.0 ? 1 : -1);
+        td_sim_unroll(s, k, y, y[s->dae.of + r->fi] > 0.0 ? 1 : -1);
         queue_retainer_event(s, TD_EVENT_ROLL_END, k, y);
     } else {
         r->rolling = 1;
-        s->roll_tried[k] = 1;
+        s->contacts.roll_tried[k] = 1;
     }
 }
 
@@ -574,7 +514,7 @@ static void slip_root(td_sim *s, int k, double *y)
  * the integrator must restart. */
 static int constraint_roots(td_sim *s, int k, double *y, const int *f, int *onset)
 {
-    td_sim_retainer *r = &s->ret[k];
+    td_sim_retainer *r = &s->contacts.ret[k];
     int restart = 0;
     if (f[TD_ROOT_CONTACT] != 0) {
         if (r->mode == TD_RMODE_FREE) {
@@ -598,7 +538,7 @@ static int constraint_roots(td_sim *s, int k, double *y, const int *f, int *onse
  * (retainer.c td_sim_penalty_mode_wanted). Returns 1 if the integrator must restart. */
 static int penalty_roots(td_sim *s, int k, double *y, const int *f)
 {
-    td_sim_retainer *r = &s->ret[k];
+    td_sim_retainer *r = &s->contacts.ret[k];
     int restart = 0;
     td_rmode flip, in_band;
     if (f[TD_ROOT_CONTACT] == 0 && f[TD_ROOT_SLIP] != 0 && r->mode != TD_RMODE_FREE) {
@@ -614,18 +554,18 @@ static int penalty_roots(td_sim *s, int k, double *y, const int *f)
     return restart;
 }
 
-/* Impacts at the retainers flagged in s->onset (any: some are), or none; s->entered says which
+/* Impacts at the retainers flagged in s->kkt.onset (any: some are), or none; s->kkt.entered says which
  * retainers came into contact. */
 static td_status onset_impacts(td_sim *s, int any)
 {
     int k;
     if (!any) {
-        for (k = 0; k < s->nr; k++)
-            s->entered[k] = 0;
+        for (k = 0; k < s->dae.nr; k++)
+            s->kkt.entered[k] = 0;
         return TD_OK;
     }
-    if (impacts(s, s->onset, s->entered) < 0) {
-        snprintf(s->errmsg, sizeof s->errmsg, "t = %.9g s: impact map singular", s->t);
+    if (impacts(s, s->kkt.onset, s->kkt.entered) < 0) {
+        snprintf(s->errmsg, sizeof s->errmsg, "t = %.9g s: impact map singular", s->dae.t);
         return TD_ERR_NUMERIC;
     }
     return TD_OK;
@@ -633,23 +573,23 @@ static td_status onset_impacts(td_sim *s, int any)
 
 td_status td_sim_handle_roots(td_sim *s, int *restart)
 {
-    double *y = N_VGetArrayPointer(s->y);
-    int k, any_onset = 0, first_event = s->q_len;
+    double *y = N_VGetArrayPointer(s->dae.y);
+    int k, any_onset = 0, first_event = s->monitor.q_len;
     td_status st;
     *restart = 0;
-    for (k = 0; k < s->nr; k++) {
-        const int *f = s->rootsfound + TD_ROOTS_PER_RETAINER * k;
-        s->onset[k] = 0;
-        if (td_sim_penalty_model(s, k) ? penalty_roots(s, k, y, f) : constraint_roots(s, k, y, f, &s->onset[k]))
+    for (k = 0; k < s->dae.nr; k++) {
+        const int *f = s->dae.rootsfound + TD_ROOTS_PER_RETAINER * k;
+        s->kkt.onset[k] = 0;
+        if (td_sim_penalty_model(s, k) ? penalty_roots(s, k, y, f) : constraint_roots(s, k, y, f, &s->kkt.onset[k]))
             *restart = 1;
         if (stick_out_of_step(s, k, y)) { /* the missed crossing: the restart rolls or slips the right way */
             slip_root(s, k, y);
             *restart = 1;
         }
-        any_onset = any_onset || s->onset[k];
+        any_onset = any_onset || s->kkt.onset[k];
     }
-    for (k = 0; k < s->n_sat_roots; k++) /* an AMB's clip: restart on its kink */
-        if (s->rootsfound[TD_ROOTS_PER_RETAINER * s->nr + k])
+    for (k = 0; k < s->dae.n_sat_roots; k++) /* an AMB's clip: restart on its kink */
+        if (s->dae.rootsfound[TD_ROOTS_PER_RETAINER * s->dae.nr + k])
             *restart = 1;
     st = onset_impacts(s, any_onset);
     if (st != TD_OK)
@@ -658,13 +598,13 @@ td_status td_sim_handle_roots(td_sim *s, int *restart)
         *restart = 1;
     if (!*restart)
         return TD_OK;
-    st = td_sim_make_consistent(s, s->entered);
+    st = td_sim_make_consistent(s, s->kkt.entered);
     if (st != TD_OK)
         return st;
     /* record the normal force right after each event of this instant */
-    for (k = first_event; k < s->q_len; k++)
-        if (s->queue[k].retainer >= 0)
-            s->queue[k].normal_force = td_sim_normal_force(s, s->queue[k].retainer, y);
+    for (k = first_event; k < s->monitor.q_len; k++)
+        if (s->monitor.queue[k].retainer >= 0)
+            s->monitor.queue[k].normal_force = td_sim_normal_force(s, s->monitor.queue[k].retainer, y);
     return TD_OK;
 }
 
@@ -672,175 +612,10 @@ td_status td_sim_start_contacts(td_sim *s, const int *touching)
 {
     int k, any = 0;
     td_status st;
-    for (k = 0; k < s->nr; k++) {
-        s->onset[k] = touching[k];
-        any = any || s->onset[k];
+    for (k = 0; k < s->dae.nr; k++) {
+        s->kkt.onset[k] = touching[k];
+        any = any || s->kkt.onset[k];
     }
     st = onset_impacts(s, any);
-    return st == TD_OK ? td_sim_make_consistent(s, s->entered) : st;
-}
-
-void td_sim_amb_mode_set(td_sim *s, int amb, td_amb_mode mode)
-{
-    s->amb_mode[amb] = mode;
-    td_system_set_amb_off(s->sys, amb, mode == TD_AMB_OFF);
-}
-
-/* Apply schedule entry c (the model's TD_CHANGE_*). */
-static void apply_change(td_sim *s, const td_change *c)
-{
-    switch (c->kind) {
-    case TD_CHANGE_UNBALANCE:
-        if (c->index >= 0 && c->index < s->nu) {
-            s->unb[c->index].magnitude = c->magnitude;
-            s->unb[c->index].phase = c->phase;
-        }
-        break;
-    case TD_CHANGE_AMB_OFF:
-        if (c->index >= 0 && c->index < td_model_amb_count(s->model))
-            td_sim_amb_mode_set(s, c->index, TD_AMB_OFF);
-        break;
-    case TD_CHANGE_AMB_ON:
-        if (c->index >= 0 && c->index < td_model_amb_count(s->model))
-            td_sim_amb_mode_set(s, c->index, TD_AMB_PD);
-        break;
-    }
-}
-
-/* Changes at most this close after t count as due at t (the stop time lands on them exactly). */
-static double due_tolerance(double t)
-{
-    return 1e-14 * (1.0 + fabs(t));
-}
-
-td_status td_sim_apply_due_changes(td_sim *s)
-{
-    int count = td_model_change_count(s->model);
-    while (s->next_change < count) {
-        td_change c;
-        td_event ev;
-        td_model_get_change(s->model, s->next_change, &c);
-        if (c.time > s->t + due_tolerance(s->t))
-            break;
-        apply_change(s, &c);
-        ev = event_of(s, TD_EVENT_SCHEDULE, -1);
-        ev.change = td_model_change_entry(s->model, s->next_change); /* as written, not in time order */
-        td_sim_queue_event(s, &ev);
-        s->next_change++;
-    }
-    return TD_OK;
-}
-
-void td_sim_apply_past_changes(td_sim *s)
-{
-    int count = td_model_change_count(s->model);
-    while (s->next_change < count) {
-        td_change c;
-        td_model_get_change(s->model, s->next_change, &c);
-        if (c.time > s->t + due_tolerance(s->t))
-            break;
-        apply_change(s, &c);
-        s->next_change++;
-    }
-}
-
-/* Where the integrator must stop next: the next schedule change, or the next point of a speed
- * ramp (the speed's slope jumps there, and with it the unbalance's alpha term); infinity if none. */
-double td_sim_next_stop(const td_sim *s)
-{
-    double stop = INFINITY;
-    int i;
-    if (s->next_change < td_model_change_count(s->model)) {
-        td_change c;
-        td_model_get_change(s->model, s->next_change, &c);
-        stop = c.time;
-    }
-    for (i = 0; i < td_model_speed_point_count(s->model); i++) {
-        td_speed_point p;
-        td_model_get_speed_point(s->model, i, &p);
-        if (p.time > s->t + due_tolerance(s->t)) {
-            stop = fmin(stop, p.time);
-            break;
-        }
-    }
-    return stop;
-}
-
-static void save_counters(td_sim *s)
-{
-    long v;
-    if (IDAGetNumSteps(s->ida, &v) == IDA_SUCCESS)
-        s->base.steps += v;
-    if (IDAGetNumResEvals(s->ida, &v) == IDA_SUCCESS)
-        s->base.res += v;
-    if (IDAGetNumJacEvals(s->ida, &v) == IDA_SUCCESS)
-        s->base.jac += v;
-    if (IDAGetNumLinSolvSetups(s->ida, &v) == IDA_SUCCESS)
-        s->base.setups += v;
-    if (IDAGetNumNonlinSolvIters(s->ida, &v) == IDA_SUCCESS)
-        s->base.nli += v;
-    if (IDAGetNumErrTestFails(s->ida, &v) == IDA_SUCCESS)
-        s->base.etf += v;
-    if (IDAGetNumNonlinSolvConvFails(s->ida, &v) == IDA_SUCCESS)
-        s->base.ncf += v;
-}
-
-/*
- * Restart step: BDF restarts at order 1, whose local error is about h^2/2 |q''| on the
- * displacements; choose h so that this is a quarter of the displacement tolerance at the
- * largest acceleration, within [1e-12 s, hmax] (or the user's initial_step).
- */
-static double restart_step(const td_sim *s)
-{
-    const double *y = N_VGetArrayPointer(s->y), *yp = N_VGetArrayPointer(s->yp);
-    double amax = 0.0, h;
-    int i;
-    if (s->opt.solver.initial_step > 0.0)
-        return s->opt.solver.initial_step;
-    for (i = 0; i < s->n; i++) {
-        double tol = s->opt.solver.rtol * fabs(y[s->oq + i]) + s->opt.solver.atol;
-        double a = fabs(yp[s->ov + i]) / tol;
-        if (a > amax)
-            amax = a;
-    }
-    h = amax > 0.0 ? sqrt(0.5 / amax) : s->hmax;
-    if (h > s->hmax)
-        h = s->hmax;
-    if (h < 1e-12)
-        h = 1e-12;
-    return h;
-}
-
-td_status td_sim_restart(td_sim *s)
-{
-    double stop = td_sim_next_stop(s);
-    int flag;
-    save_counters(s);
-    td_sim_section_rewind(s);
-    td_sim_spin_wrap(s, N_VGetArrayPointer(s->y));
-    flag = IDAReInit(s->ida, s->t, s->y, s->yp);
-    if (flag == IDA_SUCCESS && td_sim_races_retolerance(s)) /* a race came into or out of contact */
-        flag = IDASVtolerances(s->ida, s->opt.solver.rtol, s->atol);
-    if (flag == IDA_SUCCESS) {
-        td_sim_root_directions(s, s->rootdir);
-        if (s->nroots > 0)
-            flag = IDASetRootDirection(s->ida, s->rootdir);
-    }
-    if (flag == IDA_SUCCESS)
-        flag = IDASetInitStep(s->ida, restart_step(s));
-    if (flag == IDA_SUCCESS)
-        flag = IDASetMaxStep(s->ida, s->hmax);
-    if (flag == IDA_SUCCESS) /* none: a stop that the flight passed over must not stay set */
-        flag = IDASetStopTime(s->ida, isfinite(stop) ? stop : DBL_MAX);
-    if (flag != IDA_SUCCESS) {
-        if (!s->errmsg[0])
-            snprintf(s->errmsg, sizeof s->errmsg, "t = %.9g s: IDA re-initialisation failed (%d)", s->t, flag);
-        return TD_ERR_SOLVER;
-    }
-    s->t_ida = s->t;
-    s->ida_stale = 0;
-    td_sim_flight_forget(s);
-    s->pending = 0; /* whatever IDA had found beyond s->t belongs to the discarded integration */
-    s->stats.restarts++;
-    return TD_OK;
+    return st == TD_OK ? td_sim_make_consistent(s, s->kkt.entered) : st;
 }

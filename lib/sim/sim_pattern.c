@@ -37,7 +37,7 @@ static int put_matrix(cs_di *T, const cs_di *A, int roff, int coff)
  * superset of what a mode writes. */
 static int put_race(const td_sim *s, cs_di *T, int k)
 {
-    const td_sim_retainer *r = &s->ret[k];
+    const td_sim_retainer *r = &s->contacts.ret[k];
     int dofs[6], nd = 0, i, j, ok = 1;
     dofs[nd++] = r->dx;
     dofs[nd++] = r->dy;
@@ -47,16 +47,16 @@ static int put_race(const td_sim *s, cs_di *T, int k)
     }
     if (r->rs >= 0)
         dofs[nd++] = r->rs;
-    if (s->spin >= 0)
-        dofs[nd++] = s->spin;
+    if (s->machine.spin >= 0)
+        dofs[nd++] = s->machine.spin;
     for (i = 0; i < nd && ok; i++) {
-        int vi = s->ov + dofs[i], qi = s->oq + dofs[i];
-        ok = put(T, vi, s->ol + k) && put(T, qi, s->ou + k) && put(T, s->ol + k, qi) && put(T, s->ou + k, qi) &&
-             put(T, s->ou + k, vi);
+        int vi = s->dae.ov + dofs[i], qi = s->dae.oq + dofs[i];
+        ok = put(T, vi, s->dae.ol + k) && put(T, qi, s->dae.ou + k) && put(T, s->dae.ol + k, qi) &&
+             put(T, s->dae.ou + k, qi) && put(T, s->dae.ou + k, vi);
         for (j = 0; j < nd && ok; j++)
-            ok = put(T, vi, s->oq + dofs[j]) && put(T, vi, s->ov + dofs[j]) && put(T, qi, s->oq + dofs[j]);
+            ok = put(T, vi, s->dae.oq + dofs[j]) && put(T, vi, s->dae.ov + dofs[j]) && put(T, qi, s->dae.oq + dofs[j]);
         if (ok && r->fi >= 0) { /* F_t: its column in the v rows, its row v_s over q and v */
-            int fk = s->of + r->fi;
+            int fk = s->dae.of + r->fi;
             ok = put(T, vi, fk) && put(T, fk, qi) && put(T, fk, vi) && put(T, fk, fk);
         }
     }
@@ -67,16 +67,17 @@ static int put_race(const td_sim *s, cs_di *T, int k)
 static int put_spin(const td_sim *s, cs_di *T)
 {
     int j, p, i, ok = 1;
-    if (s->spin < 0)
+    if (s->machine.spin < 0)
         return 1;
-    for (j = 0; j < s->G->n && ok; j++)
-        for (p = s->G->p[j]; p < s->G->p[j + 1] && ok; p++)
-            ok = put(T, s->ov + s->G->i[p], s->ov + s->spin);
-    for (i = 0; i < s->nu && ok; i++) {
-        int x = s->ov + td_system_node_dof(s->sys, s->unb[i].node, TD_DOF_X),
-            y = s->ov + td_system_node_dof(s->sys, s->unb[i].node, TD_DOF_Y);
-        ok = put(T, x, s->oq + s->spin) && put(T, y, s->oq + s->spin) && put(T, x, s->ov + s->spin) &&
-             put(T, y, s->ov + s->spin) && put(T, s->ov + s->spin, x) && put(T, s->ov + s->spin, y);
+    for (j = 0; j < s->dae.G->n && ok; j++)
+        for (p = s->dae.G->p[j]; p < s->dae.G->p[j + 1] && ok; p++)
+            ok = put(T, s->dae.ov + s->dae.G->i[p], s->dae.ov + s->machine.spin);
+    for (i = 0; i < s->machine.nu && ok; i++) {
+        int x = s->dae.ov + td_system_node_dof(s->sys, s->machine.unb[i].node, TD_DOF_X),
+            y = s->dae.ov + td_system_node_dof(s->sys, s->machine.unb[i].node, TD_DOF_Y);
+        ok = put(T, x, s->dae.oq + s->machine.spin) && put(T, y, s->dae.oq + s->machine.spin) &&
+             put(T, x, s->dae.ov + s->machine.spin) && put(T, y, s->dae.ov + s->machine.spin) &&
+             put(T, s->dae.ov + s->machine.spin, x) && put(T, s->dae.ov + s->machine.spin, y);
     }
     return ok;
 }
@@ -85,31 +86,32 @@ static int put_all(const td_sim *s, cs_di *T)
 {
     const td_system *sys = s->sys;
     int i, k, ok = 1;
-    for (i = 0; i < s->n && ok; i++)
-        ok = put(T, s->oq + i, s->oq + i) && put(T, s->oq + i, s->ov + i);
-    ok = ok && put_matrix(T, s->M, s->ov, s->ov) && put_matrix(T, s->C, s->ov, s->ov) &&
-         put_matrix(T, s->G, s->ov, s->ov) && put_matrix(T, s->K, s->ov, s->oq);
+    for (i = 0; i < s->dae.n && ok; i++)
+        ok = put(T, s->dae.oq + i, s->dae.oq + i) && put(T, s->dae.oq + i, s->dae.ov + i);
+    ok = ok && put_matrix(T, s->dae.M, s->dae.ov, s->dae.ov) && put_matrix(T, s->dae.C, s->dae.ov, s->dae.ov) &&
+         put_matrix(T, s->dae.G, s->dae.ov, s->dae.ov) && put_matrix(T, s->dae.K, s->dae.ov, s->dae.oq);
     for (k = 0; k < sys->n_amb_axes && ok; k++) {
         const td_amb_axis *a = &sys->amb_axes[k];
         int act = a->actuator_dof, sen = a->sensor_dof;
-        ok = put(T, s->ov + act, s->oq + act) && put(T, s->ov + act, s->oq + sen) && put(T, s->ov + act, s->ov + sen);
+        ok = put(T, s->dae.ov + act, s->dae.oq + act) && put(T, s->dae.ov + act, s->dae.oq + sen) &&
+             put(T, s->dae.ov + act, s->dae.ov + sen);
         if (ok && a->state >= 0) {
-            int w = s->ow + a->state;
-            ok = put(T, s->ov + act, w) && put(T, w, w) && put(T, w, s->oq + sen) && put(T, w, s->ov + sen);
+            int w = s->dae.ow + a->state;
+            ok = put(T, s->dae.ov + act, w) && put(T, w, w) && put(T, w, s->dae.oq + sen) && put(T, w, s->dae.ov + sen);
         }
         if (ok && a->integral >= 0) {
-            int e = s->ow + a->integral, w = a->state >= 0 ? s->ow + a->state : s->ov + act;
-            ok = put(T, w, e) && put(T, e, e) && put(T, e, s->oq + sen);
+            int e = s->dae.ow + a->integral, w = a->state >= 0 ? s->dae.ow + a->state : s->dae.ov + act;
+            ok = put(T, w, e) && put(T, e, e) && put(T, e, s->dae.oq + sen);
         }
     }
-    for (k = 0; k < s->nr && ok; k++) {
-        const td_sim_retainer *r = &s->ret[k];
-        int qx = s->oq + r->dx, qy = s->oq + r->dy, vx = s->ov + r->dx, vy = s->ov + r->dy;
-        int lk = s->ol + k, uk = s->ou + k;
+    for (k = 0; k < s->dae.nr && ok; k++) {
+        const td_sim_retainer *r = &s->contacts.ret[k];
+        int qx = s->dae.oq + r->dx, qy = s->dae.oq + r->dy, vx = s->dae.ov + r->dx, vy = s->dae.ov + r->dy;
+        int lk = s->dae.ol + k, uk = s->dae.ou + k;
         ok = put_block(T, vx, vy, qx, qy) && put_block(T, vx, vy, vx, vy) && put(T, vx, lk) && put(T, vy, lk) &&
              put(T, qx, uk) && put(T, qy, uk) && put(T, lk, lk) && put(T, lk, qx) && put(T, lk, qy) && put(T, uk, uk) &&
              put(T, uk, qx) && put(T, uk, qy) && put(T, uk, vx) && put(T, uk, vy);
-        if (ok && (r->rx >= 0 || r->rs >= 0 || r->fi >= 0 || s->spin >= 0))
+        if (ok && (r->rx >= 0 || r->rs >= 0 || r->fi >= 0 || s->machine.spin >= 0))
             ok = put_race(s, T, k);
     }
     return ok && put_spin(s, T);
@@ -117,9 +119,9 @@ static int put_all(const td_sim *s, cs_di *T)
 
 int td_sim_pattern_find(const td_sim *s, int row, int col)
 {
-    int lo = s->colptr[col], hi = s->colptr[col + 1] - 1;
+    int lo = s->ops.colptr[col], hi = s->ops.colptr[col + 1] - 1;
     while (lo <= hi) {
-        int mid = (lo + hi) / 2, r = s->rowind[mid];
+        int mid = (lo + hi) / 2, r = s->ops.rowind[mid];
         if (r == row)
             return mid;
         if (r < row)
@@ -144,7 +146,7 @@ static int *map_matrix(const td_sim *s, const cs_di *A, int roff, int coff)
 
 td_status td_sim_pattern_build(td_sim *s, td_error *err)
 {
-    cs_di *T = cs_di_spalloc(s->neq, s->neq, 16 * s->neq, 1, 1), *C = NULL, *Ct = NULL, *S = NULL;
+    cs_di *T = cs_di_spalloc(s->dae.neq, s->dae.neq, 16 * s->dae.neq, 1, 1), *C = NULL, *Ct = NULL, *S = NULL;
     int ok = T != NULL && put_all(s, T);
     /* compress, sum duplicates, and sort row indices by transposing twice */
     if (ok)
@@ -157,25 +159,25 @@ td_status td_sim_pattern_build(td_sim *s, td_error *err)
         cs_di_spfree(S);
         return td_error_set(err, TD_ERR_NOMEM, "out of memory building the Jacobian pattern");
     }
-    s->nnz = S->p[S->n];
-    s->colptr = malloc(sizeof(int) * (size_t)(s->neq + 1));
-    s->rowind = malloc(sizeof(int) * (size_t)s->nnz);
-    s->jdata = calloc((size_t)s->nnz, sizeof(double));
-    if (s->colptr && s->rowind && s->jdata) {
+    s->ops.nnz = S->p[S->n];
+    s->ops.colptr = malloc(sizeof(int) * (size_t)(s->dae.neq + 1));
+    s->ops.rowind = malloc(sizeof(int) * (size_t)s->ops.nnz);
+    s->ops.jdata = calloc((size_t)s->ops.nnz, sizeof(double));
+    if (s->ops.colptr && s->ops.rowind && s->ops.jdata) {
         int i;
-        for (i = 0; i <= s->neq; i++)
-            s->colptr[i] = S->p[i];
-        for (i = 0; i < s->nnz; i++)
-            s->rowind[i] = S->i[i];
+        for (i = 0; i <= s->dae.neq; i++)
+            s->ops.colptr[i] = S->p[i];
+        for (i = 0; i < s->ops.nnz; i++)
+            s->ops.rowind[i] = S->i[i];
     }
     cs_di_spfree(S);
-    if (!s->colptr || !s->rowind || !s->jdata)
+    if (!s->ops.colptr || !s->ops.rowind || !s->ops.jdata)
         return td_error_set(err, TD_ERR_NOMEM, "out of memory building the Jacobian pattern");
-    s->map_M = map_matrix(s, s->M, s->ov, s->ov);
-    s->map_C = map_matrix(s, s->C, s->ov, s->ov);
-    s->map_G = map_matrix(s, s->G, s->ov, s->ov);
-    s->map_K = map_matrix(s, s->K, s->ov, s->oq);
-    if (!s->map_M || !s->map_C || !s->map_G || !s->map_K)
+    s->ops.map_M = map_matrix(s, s->dae.M, s->dae.ov, s->dae.ov);
+    s->ops.map_C = map_matrix(s, s->dae.C, s->dae.ov, s->dae.ov);
+    s->ops.map_G = map_matrix(s, s->dae.G, s->dae.ov, s->dae.ov);
+    s->ops.map_K = map_matrix(s, s->dae.K, s->dae.ov, s->dae.oq);
+    if (!s->ops.map_M || !s->ops.map_C || !s->ops.map_G || !s->ops.map_K)
         return td_error_set(err, TD_ERR_NOMEM, "out of memory building the Jacobian pattern");
     return TD_OK;
 }
@@ -185,9 +187,9 @@ td_status td_sim_pattern_build(td_sim *s, td_error *err)
 /* Position of column col in row `row` of the structural pattern (always present). */
 static int st_find(const td_sim *s, int row, int col)
 {
-    int lo = s->st_rowptr[row], hi = s->st_rowptr[row + 1] - 1;
+    int lo = s->ops.st_rowptr[row], hi = s->ops.st_rowptr[row + 1] - 1;
     while (lo <= hi) {
-        int mid = (lo + hi) / 2, c = s->st_col[mid];
+        int mid = (lo + hi) / 2, c = s->ops.st_col[mid];
         if (c == col)
             return mid;
         if (c < col)
@@ -212,22 +214,22 @@ static void st_add(const td_sim *s, const cs_di *A, double scale, double *vals)
 
 void td_sim_structural_speed(td_sim *s)
 {
-    if (!s->st_D)
+    if (!s->ops.st_D)
         return;
-    memset(s->st_D, 0, sizeof(double) * (size_t)(s->st_nnz > 0 ? s->st_nnz : 1));
-    st_add(s, s->C, 1.0, s->st_D);
-    if (s->omega != 0.0)
-        st_add(s, s->G, s->omega, s->st_D);
+    memset(s->ops.st_D, 0, sizeof(double) * (size_t)(s->ops.st_nnz > 0 ? s->ops.st_nnz : 1));
+    st_add(s, s->dae.C, 1.0, s->ops.st_D);
+    if (s->machine.omega != 0.0)
+        st_add(s, s->dae.G, s->machine.omega, s->ops.st_D);
 }
 
 td_status td_sim_structural_build(td_sim *s, td_error *err)
 {
-    cs_di *T = cs_di_spalloc(s->n, s->n, 1, 1, 1), *C = NULL, *R = NULL;
+    cs_di *T = cs_di_spalloc(s->dae.n, s->dae.n, 1, 1, 1), *C = NULL, *R = NULL;
     int ok = T != NULL, i;
     /* the union pattern, transposed: the CSC of U^T is the CSR of U, with sorted columns */
-    ok = ok && put_matrix(T, s->M, 0, 0) && put_matrix(T, s->K, 0, 0) && put_matrix(T, s->C, 0, 0) &&
-         put_matrix(T, s->G, 0, 0);
-    for (i = 0; i < s->n && ok; i++) /* every row present, even an empty one */
+    ok = ok && put_matrix(T, s->dae.M, 0, 0) && put_matrix(T, s->dae.K, 0, 0) && put_matrix(T, s->dae.C, 0, 0) &&
+         put_matrix(T, s->dae.G, 0, 0);
+    for (i = 0; i < s->dae.n && ok; i++) /* every row present, even an empty one */
         ok = put(T, i, i);
     ok = ok && (C = cs_di_compress(T)) != NULL && cs_di_dupl(C) && (R = cs_di_transpose(C, 0)) != NULL;
     cs_di_spfree(T);
@@ -237,23 +239,45 @@ td_status td_sim_structural_build(td_sim *s, td_error *err)
         return td_error_set(err, TD_ERR_NOMEM, "out of memory building the structural operator");
     }
     /* cs_di_transpose sorts the row indices of each column of the result */
-    s->st_nnz = R->p[R->n];
-    s->st_rowptr = malloc(sizeof(int) * (size_t)(s->n + 1));
-    s->st_col = malloc(sizeof(int) * (size_t)(s->st_nnz > 0 ? s->st_nnz : 1));
-    s->st_M = calloc((size_t)(s->st_nnz > 0 ? s->st_nnz : 1), sizeof(double));
-    s->st_K = calloc((size_t)(s->st_nnz > 0 ? s->st_nnz : 1), sizeof(double));
-    s->st_D = calloc((size_t)(s->st_nnz > 0 ? s->st_nnz : 1), sizeof(double));
-    if (s->st_rowptr && s->st_col) {
-        for (i = 0; i <= s->n; i++)
-            s->st_rowptr[i] = R->p[i];
-        for (i = 0; i < s->st_nnz; i++)
-            s->st_col[i] = R->i[i];
+    s->ops.st_nnz = R->p[R->n];
+    s->ops.st_rowptr = malloc(sizeof(int) * (size_t)(s->dae.n + 1));
+    s->ops.st_col = malloc(sizeof(int) * (size_t)(s->ops.st_nnz > 0 ? s->ops.st_nnz : 1));
+    s->ops.st_M = calloc((size_t)(s->ops.st_nnz > 0 ? s->ops.st_nnz : 1), sizeof(double));
+    s->ops.st_K = calloc((size_t)(s->ops.st_nnz > 0 ? s->ops.st_nnz : 1), sizeof(double));
+    s->ops.st_D = calloc((size_t)(s->ops.st_nnz > 0 ? s->ops.st_nnz : 1), sizeof(double));
+    if (s->ops.st_rowptr && s->ops.st_col) {
+        for (i = 0; i <= s->dae.n; i++)
+            s->ops.st_rowptr[i] = R->p[i];
+        for (i = 0; i < s->ops.st_nnz; i++)
+            s->ops.st_col[i] = R->i[i];
     }
     cs_di_spfree(R);
-    if (!s->st_rowptr || !s->st_col || !s->st_M || !s->st_K || !s->st_D)
+    if (!s->ops.st_rowptr || !s->ops.st_col || !s->ops.st_M || !s->ops.st_K || !s->ops.st_D)
         return td_error_set(err, TD_ERR_NOMEM, "out of memory building the structural operator");
-    st_add(s, s->M, 1.0, s->st_M);
-    st_add(s, s->K, 1.0, s->st_K);
+    st_add(s, s->dae.M, 1.0, s->ops.st_M);
+    st_add(s, s->dae.K, 1.0, s->ops.st_K);
     td_sim_structural_speed(s);
     return TD_OK;
+}
+
+/* ---- the mass matrix's factorisation (LU, CXSparse) ---------------------------------------- */
+
+td_status td_sim_mass_factor(td_sim *s, td_error *err)
+{
+    s->ops.Ms = cs_di_sqr(1, s->dae.M, 0);
+    if (!s->ops.Ms)
+        return td_error_set(err, TD_ERR_NOMEM, "out of memory factorising the mass matrix");
+    s->ops.Mn = cs_di_lu(s->dae.M, s->ops.Ms, 1.0);
+    if (!s->ops.Mn)
+        return td_error_set(err, TD_ERR_NUMERIC, "the mass matrix is singular");
+    return TD_OK;
+}
+
+void td_sim_mass_solve(const td_sim *s, double *b)
+{
+    double *x = s->ops.mass_x;
+    cs_di_ipvec(s->ops.Mn->pinv, b, x, s->dae.n);
+    cs_di_lsolve(s->ops.Mn->L, x);
+    cs_di_usolve(s->ops.Mn->U, x);
+    cs_di_ipvec(s->ops.Ms->q, x, b, s->dae.n);
 }

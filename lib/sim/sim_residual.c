@@ -9,19 +9,37 @@
 
 double td_sim_spin_angle(const td_sim *s, double t)
 {
-    return s->spin_ref + s->omega * (t - s->t_spin_ref);
+    return s->machine.spin_ref + s->machine.omega * (t - s->machine.t_spin_ref);
+}
+
+double td_sim_rotor_rate(const td_sim *s, double t, const double *y)
+{
+    td_spin sp;
+    double torque;
+    int k;
+    if (s->machine.spin < 0)
+        return 0.0;
+    torque = td_sim_spin_torque(s, t);
+    if (!s->machine.spin_free)
+        return torque / s->machine.spin_inertia;
+    td_model_spin(s->model, &sp);
+    torque -= td_sim_spin_drag(s, y, NULL) + sp.drag_viscous * y[s->dae.ov + s->machine.spin];
+    for (k = 0; k < s->dae.nr; k++) /* zero for a free retainer: no normal force */
+        torque -= s->contacts.ret[k].r.shaft_radius * td_sim_friction_force(s, k, y);
+    return torque / s->machine.spin_inertia;
 }
 
 /* The integrator state e of an AMB axis (0 for a PD axis). */
 static double amb_axis_integral(const td_sim *s, const td_amb_axis *a, const double *y)
 {
-    return a->integral >= 0 ? y[s->ow + a->integral] : 0.0;
+    return a->integral >= 0 ? y[s->dae.ow + a->integral] : 0.0;
 }
 
 /* The controller's command -ki (kp xs + kd vs + kint e) of an AMB axis at y. */
 static double amb_axis_command(const td_sim *s, const td_amb_axis *a, const double *y)
 {
-    return td_amb_axis_command(a, y[s->oq + a->sensor_dof], y[s->ov + a->sensor_dof], amb_axis_integral(s, a, y));
+    return td_amb_axis_command(a, y[s->dae.oq + a->sensor_dof], y[s->dae.ov + a->sensor_dof],
+                               amb_axis_integral(s, a, y));
 }
 
 /* Control force Fc of AMB axis k that enters F = ks x + Fc: the lagged state (tau > 0), the
@@ -29,18 +47,18 @@ static double amb_axis_command(const td_sim *s, const td_amb_axis *a, const doub
 static double amb_axis_fc(const td_sim *s, int k, const double *y)
 {
     const td_amb_axis *a = &s->sys->amb_axes[k];
-    if (s->amb_mode[a->amb] == TD_AMB_EXTERNAL)
-        return s->amb_control[2 * a->amb + a->axis];
+    if (s->machine.amb_mode[a->amb] == TD_AMB_EXTERNAL)
+        return s->machine.amb_control[2 * a->amb + a->axis];
     if (a->state >= 0)
-        return y[s->ow + a->state];
+        return y[s->dae.ow + a->state];
     return amb_axis_command(s, a, y);
 }
 
 double td_sim_amb_axis_force(const td_sim *s, int k, const double *y)
 {
     const td_amb_axis *a = &s->sys->amb_axes[k];
-    int enabled = s->amb_mode[a->amb] != TD_AMB_OFF;
-    return td_amb_axis_force(a, enabled, y[s->oq + a->actuator_dof], amb_axis_fc(s, k, y), NULL, NULL);
+    int enabled = s->machine.amb_mode[a->amb] != TD_AMB_OFF;
+    return td_amb_axis_force(a, enabled, y[s->dae.oq + a->actuator_dof], amb_axis_fc(s, k, y), NULL, NULL);
 }
 
 double td_sim_amb_axis_integral_rate(const td_sim *s, int k, const double *y)
@@ -48,7 +66,7 @@ double td_sim_amb_axis_integral_rate(const td_sim *s, int k, const double *y)
     const td_amb_axis *a = &s->sys->amb_axes[k];
     if (a->integral < 0)
         return 0.0;
-    return td_amb_axis_integral_rate(a, s->amb_mode[a->amb] == TD_AMB_PD, y[s->oq + a->sensor_dof],
+    return td_amb_axis_integral_rate(a, s->machine.amb_mode[a->amb] == TD_AMB_PD, y[s->dae.oq + a->sensor_dof],
                                      td_sim_amb_axis_force(s, k, y));
 }
 
@@ -56,11 +74,11 @@ double td_sim_amb_axis_integral_rate(const td_sim *s, int k, const double *y)
  * leaves out M vp. One pass over the indices instead of one per matrix. */
 static void structural(const td_sim *s, const double *q, const double *v, const double *vp, double *out)
 {
-    const int *rp = s->st_rowptr, *col = s->st_col;
-    const double *Mx = s->st_M, *Kx = s->st_K, *Dx = s->st_D;
+    const int *rp = s->ops.st_rowptr, *col = s->ops.st_col;
+    const double *Mx = s->ops.st_M, *Kx = s->ops.st_K, *Dx = s->ops.st_D;
     int i, p;
     if (vp) {
-        for (i = 0; i < s->n; i++) {
+        for (i = 0; i < s->dae.n; i++) {
             double acc = 0.0;
             for (p = rp[i]; p < rp[i + 1]; p++) {
                 int j = col[p];
@@ -69,7 +87,7 @@ static void structural(const td_sim *s, const double *q, const double *v, const 
             out[i] = acc;
         }
     } else {
-        for (i = 0; i < s->n; i++) {
+        for (i = 0; i < s->dae.n; i++) {
             double acc = 0.0;
             for (p = rp[i]; p < rp[i + 1]; p++) {
                 int j = col[p];
@@ -80,15 +98,15 @@ static void structural(const td_sim *s, const double *q, const double *v, const 
     }
 }
 
-/* out += (Omega - omega) G v: with a spin DOF the structural operator was built at s->omega and
+/* out += (Omega - omega) G v: with a spin DOF the structural operator was built at s->machine.omega and
  * the gyroscopic term follows the speed Omega of the state (spin.c). */
 static void gyroscopic_follow(const td_sim *s, const double *y, double *out)
 {
-    const cs_di *G = s->G;
-    const double *v = y + s->ov;
+    const cs_di *G = s->dae.G;
+    const double *v = y + s->dae.ov;
     double dw;
     int j, p;
-    if (s->spin < 0 || (dw = td_sim_rotor_speed(s, y) - s->omega) == 0.0)
+    if (s->machine.spin < 0 || (dw = td_sim_rotor_speed(s, y) - s->machine.omega) == 0.0)
         return;
     for (j = 0; j < G->n; j++)
         for (p = G->p[j]; p < G->p[j + 1]; p++)
@@ -100,7 +118,7 @@ static void gyroscopic_follow(const td_sim *s, const double *y, double *out)
  * R_b s mu F_n on a race that spins. */
 static void penalty_forces(const td_sim *s, int k, const double *y, double sign, double *f)
 {
-    const td_sim_retainer *r = &s->ret[k];
+    const td_sim_retainer *r = &s->contacts.ret[k];
     double x, yy, vx, vy, rad, fn, sm, fx, fy;
     fn = sign * td_sim_penalty_force(s, k, y, NULL, NULL);
     if (fn == 0.0)
@@ -118,8 +136,8 @@ static void penalty_forces(const td_sim *s, int k, const double *y, double sign,
     }
     if (r->rs >= 0)
         f[r->rs] += r->r.bore_radius * sm * fn;
-    if (s->spin_free)
-        f[s->spin] -= r->r.shaft_radius * sm * fn;
+    if (s->machine.spin_free)
+        f[s->machine.spin] -= r->r.shaft_radius * sm * fn;
 }
 
 /* f += sign * the applied forces: gravity, unbalance, AMBs, penalty contacts and the races'
@@ -128,15 +146,15 @@ void td_sim_external_forces(const td_sim *s, double t, const double *y, double s
 {
     const td_system *sys = s->sys;
     double w = td_sim_rotor_speed(s, y), w2 = w * w, phi = td_sim_rotor_angle(s, t, y);
-    double alpha = s->nu > 0 ? td_sim_rotor_rate(s, t, y) : 0.0; /* a free spin's sums the torques */
+    double alpha = s->machine.nu > 0 ? td_sim_rotor_rate(s, t, y) : 0.0; /* a free spin's sums the torques */
     int i, k;
     for (i = 0; i < sys->ndof; i++)
         f[i] += sign * sys->gravity_load[i];
     td_sim_races_gravity(s, f, sign);
     /* unbalance: U Omega^2 (cos, sin)(phi + phase) at its node (touchdown/model.h), and while the
      * speed changes U alpha (sin, -cos)(phi + phase) (spin.c) */
-    for (i = 0; i < s->nu; i++) {
-        const td_unbalance *u = &s->unb[i];
+    for (i = 0; i < s->machine.nu; i++) {
+        const td_unbalance *u = &s->machine.unb[i];
         double a = sign * u->magnitude * w2;
         f[td_system_node_dof(s->sys, u->node, TD_DOF_X)] += a * cos(phi + u->phase);
         f[td_system_node_dof(s->sys, u->node, TD_DOF_Y)] += a * sin(phi + u->phase);
@@ -146,8 +164,8 @@ void td_sim_external_forces(const td_sim *s, double t, const double *y, double s
             f[td_system_node_dof(s->sys, u->node, TD_DOF_Y)] -= b * cos(phi + u->phase);
         }
     }
-    if (s->spin >= 0)
-        f[s->spin] += sign * td_sim_spin_torque(s, t);
+    if (s->machine.spin >= 0)
+        f[s->machine.spin] += sign * td_sim_spin_torque(s, t);
     for (k = 0; k < sys->n_amb_axes; k++)
         f[sys->amb_axes[k].actuator_dof] += sign * td_sim_amb_axis_force(s, k, y);
 }
@@ -156,22 +174,22 @@ static void applied_forces(const td_sim *s, double t, const double *y, double si
 {
     int k;
     td_sim_external_forces(s, t, y, sign, f);
-    for (k = 0; k < s->nr; k++) {
+    for (k = 0; k < s->dae.nr; k++) {
         if (td_sim_penalty_model(s, k))
             penalty_forces(s, k, y, sign, f);
-        if (s->ret[k].rs >= 0)
-            f[s->ret[k].rs] -= sign * td_sim_race_drag(s, k, y, NULL);
+        if (s->contacts.ret[k].rs >= 0)
+            f[s->contacts.ret[k].rs] -= sign * td_sim_race_drag(s, k, y, NULL);
     }
-    if (s->spin_free)
-        f[s->spin] -= sign * td_sim_spin_drag(s, y, NULL);
+    if (s->machine.spin_free)
+        f[s->machine.spin] -= sign * td_sim_spin_drag(s, y, NULL);
 }
 
 void td_sim_forces(const td_sim *s, double t, const double *y, double *f)
 {
     int i;
-    structural(s, y + s->oq, y + s->ov, NULL, f);
+    structural(s, y + s->dae.oq, y + s->dae.ov, NULL, f);
     gyroscopic_follow(s, y, f);
-    for (i = 0; i < s->n; i++)
+    for (i = 0; i < s->dae.n; i++)
         f[i] = -f[i];
     applied_forces(s, t, y, 1.0, f);
 }
@@ -181,8 +199,8 @@ void td_sim_forces(const td_sim *s, double t, const double *y, double *f)
  * the constraint and its rate (eqs. 5 and 13a, divided by -2c) in its multiplier rows. */
 static void constraint_rows(const td_sim *s, int k, const double *y, double *rq, double *rv, double *res)
 {
-    const td_sim_retainer *r = &s->ret[k];
-    double lam = y[s->ol + k], eta = y[s->ou + k];
+    const td_sim_retainer *r = &s->contacts.ret[k];
+    double lam = y[s->dae.ol + k], eta = y[s->dae.ou + k];
     double x, yy, vx, vy, c = r->r.clearance, rad, sm = td_sim_slip_factor(s, k, y, NULL) * r->r.friction, bx, by;
     td_sim_node_state(s, k, y, &x, &yy, &vx, &vy);
     rad = hypot(x, yy);
@@ -200,10 +218,10 @@ static void constraint_rows(const td_sim *s, int k, const double *y, double *rq,
     }
     if (r->rs >= 0)
         rv[r->rs] -= r->r.bore_radius * sm * lam;
-    if (s->spin_free)
-        rv[s->spin] += r->r.shaft_radius * sm * lam;
-    res[s->ol + k] = td_contact_constraint(x, yy, c); /* eq. (5) / (-2c) */
-    res[s->ou + k] = (x * vx + yy * vy) / c;          /* eq. (13a) / (-2c) */
+    if (s->machine.spin_free)
+        rv[s->machine.spin] += r->r.shaft_radius * sm * lam;
+    res[s->dae.ol + k] = td_contact_constraint(x, yy, c); /* eq. (5) / (-2c) */
+    res[s->dae.ou + k] = (x * vx + yy * vy) / c;          /* eq. (13a) / (-2c) */
 }
 
 /* Rows of stick retainer k: rolling, the friction force F_t on the race along t (the rotor node
@@ -211,10 +229,10 @@ static void constraint_rows(const td_sim *s, int k, const double *y, double *rq,
  * constraint v_s = 0 (eq. 16) in F_t's row; otherwise F_t = 0. */
 static void roll_rows(const td_sim *s, int k, const double *y, double *rv, double *res)
 {
-    const td_sim_retainer *r = &s->ret[k];
-    double ft = y[s->of + r->fi], x, yy, vx, vy, n[2], t[2];
+    const td_sim_retainer *r = &s->contacts.ret[k];
+    double ft = y[s->dae.of + r->fi], x, yy, vx, vy, n[2], t[2];
     if (!r->rolling) {
-        res[s->of + r->fi] = ft;
+        res[s->dae.of + r->fi] = ft;
         return;
     }
     td_sim_node_state(s, k, y, &x, &yy, &vx, &vy);
@@ -227,30 +245,30 @@ static void roll_rows(const td_sim *s, int k, const double *y, double *rv, doubl
     }
     if (r->rs >= 0)
         rv[r->rs] -= r->r.bore_radius * ft;
-    if (s->spin_free)
-        rv[s->spin] += r->r.shaft_radius * ft;
-    res[s->of + r->fi] = td_sim_sliding_velocity(s, k, y);
+    if (s->machine.spin_free)
+        rv[s->machine.spin] += r->r.shaft_radius * ft;
+    res[s->dae.of + r->fi] = td_sim_sliding_velocity(s, k, y);
 }
 
 double td_sim_unbalance_spin_coupling(const td_sim *s, double t, const double *y, const double *yp, double *rv)
 {
     double phi, dw, power = 0.0;
     int i;
-    if (!s->spin_free || s->nu == 0)
+    if (!s->machine.spin_free || s->machine.nu == 0)
         return 0.0;
     phi = td_sim_rotor_angle(s, t, y);
-    dw = yp[s->ov + s->spin] - td_sim_rotor_rate(s, t, y); /* the forces took alpha from the torques */
-    for (i = 0; i < s->nu; i++) {
-        const td_unbalance *u = &s->unb[i];
+    dw = yp[s->dae.ov + s->machine.spin] - td_sim_rotor_rate(s, t, y); /* the forces took alpha from the torques */
+    for (i = 0; i < s->machine.nu; i++) {
+        const td_unbalance *u = &s->machine.unb[i];
         double c = cos(phi + u->phase), sn = sin(phi + u->phase), U = u->magnitude;
         int x = td_system_node_dof(s->sys, u->node, TD_DOF_X), yy = td_system_node_dof(s->sys, u->node, TD_DOF_Y);
-        double fx = U * sn * dw, fy = -U * c * dw, torque = -U * (c * yp[s->ov + yy] - sn * yp[s->ov + x]);
+        double fx = U * sn * dw, fy = -U * c * dw, torque = -U * (c * yp[s->dae.ov + yy] - sn * yp[s->dae.ov + x]);
         if (rv) {
             rv[x] -= fx;
             rv[yy] -= fy;
-            rv[s->spin] -= torque;
+            rv[s->machine.spin] -= torque;
         }
-        power += fx * y[s->ov + x] + fy * y[s->ov + yy] + torque * y[s->ov + s->spin];
+        power += fx * y[s->dae.ov + x] + fy * y[s->dae.ov + yy] + torque * y[s->dae.ov + s->machine.spin];
     }
     return power;
 }
@@ -258,15 +276,15 @@ double td_sim_unbalance_spin_coupling(const td_sim *s, double t, const double *y
 void td_sim_residual(const td_sim *s, double t, const double *y, const double *yp, double *res)
 {
     const td_system *sys = s->sys;
-    const double *v = y + s->ov;
-    double *rq = res + s->oq, *rv = res + s->ov;
+    const double *v = y + s->dae.ov;
+    double *rq = res + s->dae.oq, *rv = res + s->dae.ov;
     int i, k;
 
     /* q rows: q' - v (+ J^T eta below) */
-    for (i = 0; i < s->n; i++)
-        rq[i] = yp[s->oq + i] - v[i];
+    for (i = 0; i < s->dae.n; i++)
+        rq[i] = yp[s->dae.oq + i] - v[i];
     /* v rows: M v' - f = M v' + (C + Omega G) v + K q - applied forces */
-    structural(s, y + s->oq, v, yp + s->ov, rv);
+    structural(s, y + s->dae.oq, v, yp + s->dae.ov, rv);
     gyroscopic_follow(s, y, rv);
     applied_forces(s, t, y, -1.0, rv);
     td_sim_unbalance_spin_coupling(s, t, y, yp, rv);
@@ -274,27 +292,28 @@ void td_sim_residual(const td_sim *s, double t, const double *y, const double *y
     for (k = 0; k < sys->n_amb_axes; k++) {
         const td_amb_axis *a = &sys->amb_axes[k];
         if (a->state >= 0)
-            res[s->ow + a->state] =
-                yp[s->ow + a->state] - td_amb_axis_filter_rate(a, y[s->oq + a->sensor_dof], y[s->ov + a->sensor_dof],
-                                                               amb_axis_integral(s, a, y), y[s->ow + a->state]);
+            res[s->dae.ow + a->state] =
+                yp[s->dae.ow + a->state] - td_amb_axis_filter_rate(a, y[s->dae.oq + a->sensor_dof],
+                                                                   y[s->dae.ov + a->sensor_dof],
+                                                                   amb_axis_integral(s, a, y), y[s->dae.ow + a->state]);
         if (a->integral >= 0)
-            res[s->ow + a->integral] = yp[s->ow + a->integral] - td_sim_amb_axis_integral_rate(s, k, y);
+            res[s->dae.ow + a->integral] = yp[s->dae.ow + a->integral] - td_sim_amb_axis_integral_rate(s, k, y);
     }
     /* retainer rows */
-    for (k = 0; k < s->nr; k++) {
-        if (s->ret[k].mode == TD_RMODE_CONTACT) {
+    for (k = 0; k < s->dae.nr; k++) {
+        if (s->contacts.ret[k].mode == TD_RMODE_CONTACT) {
             constraint_rows(s, k, y, rq, rv, res);
         } else {
-            res[s->ol + k] = y[s->ol + k];
-            res[s->ou + k] = y[s->ou + k];
+            res[s->dae.ol + k] = y[s->dae.ol + k];
+            res[s->dae.ou + k] = y[s->dae.ou + k];
         }
-        if (s->ret[k].fi >= 0)
+        if (s->contacts.ret[k].fi >= 0)
             roll_rows(s, k, y, rv, res);
     }
-    if (s->spin >= 0 && !s->spin_free) { /* a ramp: angle and speed are the prescribed ones, exactly */
+    if (s->machine.spin >= 0 && !s->machine.spin_free) { /* a ramp: angle and speed are the prescribed ones, exactly */
         double angle, w = td_model_speed_at(s->model, t, NULL, &angle);
-        rq[s->spin] = y[s->oq + s->spin] - angle;
-        rv[s->spin] = y[s->ov + s->spin] - w;
+        rq[s->machine.spin] = y[s->dae.oq + s->machine.spin] - angle;
+        rv[s->machine.spin] = y[s->dae.ov + s->machine.spin] - w;
     }
 }
 
@@ -303,7 +322,7 @@ static void jadd(td_sim *s, int row, int col, double v)
 {
     int p = td_sim_pattern_find(s, row, col);
     if (p >= 0)
-        s->jdata[p] += v;
+        s->ops.jdata[p] += v;
 }
 
 /* Add the stored entries of a system matrix times `scale` through its position map. */
@@ -313,7 +332,7 @@ static void jadd_matrix(td_sim *s, const cs_di *A, const int *map, double scale)
     if (scale == 0.0)
         return;
     for (p = 0; p < nz; p++)
-        s->jdata[map[p]] += scale * A->x[p];
+        s->ops.jdata[map[p]] += scale * A->x[p];
 }
 
 static void jacobian_amb(td_sim *s, const double *y)
@@ -322,40 +341,40 @@ static void jacobian_amb(td_sim *s, const double *y)
     int k;
     for (k = 0; k < sys->n_amb_axes; k++) {
         const td_amb_axis *a = &sys->amb_axes[k];
-        const td_sim_amb_coef *co = &s->amb_coef[k];
-        td_amb_mode mode = s->amb_mode[a->amb];
+        const td_sim_amb_coef *co = &s->machine.amb_coef[k];
+        td_amb_mode mode = s->machine.amb_mode[a->amb];
         int act = a->actuator_dof, sen = a->sensor_dof;
         double dfdx, dfdfc;
-        td_amb_axis_force(a, mode != TD_AMB_OFF, y[s->oq + act], amb_axis_fc(s, k, y), &dfdx, &dfdfc);
+        td_amb_axis_force(a, mode != TD_AMB_OFF, y[s->dae.oq + act], amb_axis_fc(s, k, y), &dfdx, &dfdfc);
         /* v rows carry -f_amb */
-        jadd(s, s->ov + act, s->oq + act, -dfdx);
+        jadd(s, s->dae.ov + act, s->dae.oq + act, -dfdx);
         if (mode == TD_AMB_PD) {
             if (a->state >= 0) {
-                jadd(s, s->ov + act, s->ow + a->state, -dfdfc);
+                jadd(s, s->dae.ov + act, s->dae.ow + a->state, -dfdfc);
             } else {
-                jadd(s, s->ov + act, s->oq + sen, -dfdfc * co->cmd_x);
-                jadd(s, s->ov + act, s->ov + sen, -dfdfc * co->cmd_v);
+                jadd(s, s->dae.ov + act, s->dae.oq + sen, -dfdfc * co->cmd_x);
+                jadd(s, s->dae.ov + act, s->dae.ov + sen, -dfdfc * co->cmd_v);
                 if (a->integral >= 0)
-                    jadd(s, s->ov + act, s->ow + a->integral, -dfdfc * co->cmd_e);
+                    jadd(s, s->dae.ov + act, s->dae.ow + a->integral, -dfdfc * co->cmd_e);
             }
         }
         if (a->state >= 0) {
-            int row = s->ow + a->state;
-            jadd(s, row, s->oq + sen, -co->rate_x);
-            jadd(s, row, s->ov + sen, -co->rate_v);
+            int row = s->dae.ow + a->state;
+            jadd(s, row, s->dae.oq + sen, -co->rate_x);
+            jadd(s, row, s->dae.ov + sen, -co->rate_v);
             jadd(s, row, row, -co->rate_w);
             if (a->integral >= 0)
-                jadd(s, row, s->ow + a->integral, -co->rate_e);
+                jadd(s, row, s->dae.ow + a->integral, -co->rate_e);
         }
         /* e' = xs while integrating; the clamp's switch is left to the error test, as the clip's */
         if (a->integral >= 0 && td_sim_amb_axis_integral_rate(s, k, y) != 0.0)
-            jadd(s, s->ow + a->integral, s->oq + sen, -1.0);
+            jadd(s, s->dae.ow + a->integral, s->dae.oq + sen, -1.0);
     }
 }
 
 /*
  * The contact's entries come in pairs: a term of the node's row a (0: x, 1: y) that depends on the
- * relative coordinate b (node minus race centre) at level lvl (s->oq or s->ov) also enters, with
+ * relative coordinate b (node minus race centre) at level lvl (s->dae.oq or s->dae.ov) also enters, with
  * the opposite sign, through the race centre's column b, and the race's row carries the opposite of
  * the node's term (the race feels the opposite force, the GGL correction the opposite share).
  * Without a mount these are the node's entries alone.
@@ -392,22 +411,22 @@ static void jadd_row_rel(td_sim *s, const td_sim_retainer *r, int row, int lvl, 
  * and a free spin's row carries the friction torque R_s phi mu fn, which depends on v_s. */
 static void jacobian_slip_band_spin(td_sim *s, int k, const double *y, double a)
 {
-    const td_sim_retainer *r = &s->ret[k];
+    const td_sim_retainer *r = &s->contacts.ret[k];
     double x, yy, vx, vy, rad, gv[4], Rs = r->r.shaft_radius, Rb = r->r.bore_radius;
-    int wz = s->ov + s->spin, i;
+    int wz = s->dae.ov + s->machine.spin, i;
     td_sim_node_state(s, k, y, &x, &yy, &vx, &vy);
     rad = hypot(x, yy);
-    jadd_node(s, r, s->ov, 0, wz, -a * Rs * yy / rad);
-    jadd_node(s, r, s->ov, 1, wz, a * Rs * x / rad);
+    jadd_node(s, r, s->dae.ov, 0, wz, -a * Rs * yy / rad);
+    jadd_node(s, r, s->dae.ov, 1, wz, a * Rs * x / rad);
     if (r->rs >= 0)
-        jadd(s, s->ov + r->rs, wz, -Rb * a * Rs);
-    if (!s->spin_free)
+        jadd(s, s->dae.ov + r->rs, wz, -Rb * a * Rs);
+    if (!s->machine.spin_free)
         return;
     td_sim_sliding_gradient(s, k, y, gv);
     for (i = 0; i < 4; i++)
-        jadd_row_rel(s, r, wz, i < 2 ? s->oq : s->ov, i % 2, Rs * a * gv[i]);
+        jadd_row_rel(s, r, wz, i < 2 ? s->dae.oq : s->dae.ov, i % 2, Rs * a * gv[i]);
     if (r->rs >= 0)
-        jadd(s, wz, s->ov + r->rs, Rs * a * (-Rb));
+        jadd(s, wz, s->dae.ov + r->rs, Rs * a * (-Rb));
     jadd(s, wz, wz, Rs * a * Rs);
 }
 
@@ -416,36 +435,36 @@ static void jacobian_slip_band_spin(td_sim *s, int k, const double *y, double a)
  * -phi mu fn (y, -x)/r of the node's rows and -R_b phi mu fn of the race speed's row. */
 static void jacobian_slip_band(td_sim *s, int k, const double *y, double fn, double dphi)
 {
-    const td_sim_retainer *r = &s->ret[k];
+    const td_sim_retainer *r = &s->contacts.ret[k];
     double x, yy, vx, vy, rad, gv[4], a = fn * r->r.friction * dphi, Rb = r->r.bore_radius;
     int i;
     td_sim_node_state(s, k, y, &x, &yy, &vx, &vy);
     rad = hypot(x, yy);
     td_sim_sliding_gradient(s, k, y, gv);
     for (i = 0; i < 4; i++) {
-        int lvl = i < 2 ? s->oq : s->ov, b = i % 2;
-        jadd_rel(s, r, s->ov, 0, lvl, b, -a * gv[i] * yy / rad);
-        jadd_rel(s, r, s->ov, 1, lvl, b, a * gv[i] * x / rad);
+        int lvl = i < 2 ? s->dae.oq : s->dae.ov, b = i % 2;
+        jadd_rel(s, r, s->dae.ov, 0, lvl, b, -a * gv[i] * yy / rad);
+        jadd_rel(s, r, s->dae.ov, 1, lvl, b, a * gv[i] * x / rad);
         if (r->rs >= 0)
-            jadd_row_rel(s, r, s->ov + r->rs, lvl, b, -Rb * a * gv[i]);
+            jadd_row_rel(s, r, s->dae.ov + r->rs, lvl, b, -Rb * a * gv[i]);
     }
     if (r->rs >= 0) {
-        int ws = s->ov + r->rs;
-        jadd_node(s, r, s->ov, 0, ws, -a * (-Rb) * yy / rad);
-        jadd_node(s, r, s->ov, 1, ws, a * (-Rb) * x / rad);
+        int ws = s->dae.ov + r->rs;
+        jadd_node(s, r, s->dae.ov, 0, ws, -a * (-Rb) * yy / rad);
+        jadd_node(s, r, s->dae.ov, 1, ws, a * (-Rb) * x / rad);
         jadd(s, ws, ws, -Rb * a * (-Rb));
     }
-    if (s->spin >= 0)
+    if (s->machine.spin >= 0)
         jacobian_slip_band_spin(s, k, y, a);
 }
 
 /* Constrained contact k: d/dq of lambda (J^T + s mu t) and the GGL and constraint rows. */
 static void jacobian_contact(td_sim *s, int k, const double *y)
 {
-    const td_sim_retainer *r = &s->ret[k];
+    const td_sim_retainer *r = &s->contacts.ret[k];
     double x, yy, vx, vy, c = r->r.clearance, rad, r3, dphi, sm;
-    double lam = y[s->ol + k], eta = y[s->ou + k];
-    int lk = s->ol + k, uk = s->ou + k, oq = s->oq, ov = s->ov;
+    double lam = y[s->dae.ol + k], eta = y[s->dae.ou + k];
+    int lk = s->dae.ol + k, uk = s->dae.ou + k, oq = s->dae.oq, ov = s->dae.ov;
     td_sim_node_state(s, k, y, &x, &yy, &vx, &vy);
     rad = hypot(x, yy);
     r3 = rad * rad * rad;
@@ -459,8 +478,8 @@ static void jacobian_contact(td_sim *s, int k, const double *y)
     jadd_node(s, r, ov, 1, lk, yy / c + sm * x / rad);
     if (r->rs >= 0) /* the friction torque -R_b sm lambda */
         jadd(s, ov + r->rs, lk, -r->r.bore_radius * sm);
-    if (s->spin_free) /* and R_s sm lambda on a free spin */
-        jadd(s, ov + s->spin, lk, r->r.shaft_radius * sm);
+    if (s->machine.spin_free) /* and R_s sm lambda on a free spin */
+        jadd(s, ov + s->machine.spin, lk, r->r.shaft_radius * sm);
     if (dphi != 0.0) /* inside the slip band: sm = mu v_s / v_reg depends on q, v and Omega_b */
         jacobian_slip_band(s, k, y, lam, dphi);
     /* q rows: eta (x, y)/c */
@@ -481,20 +500,20 @@ static void jacobian_contact(td_sim *s, int k, const double *y)
 static void jacobian_penalty_torque(td_sim *s, const td_sim_retainer *r, int row, double m, double f_x, double f_y,
                                     double g_x, double g_y)
 {
-    jadd_row_rel(s, r, row, s->oq, 0, m * f_x);
-    jadd_row_rel(s, r, row, s->oq, 1, m * f_y);
-    jadd_row_rel(s, r, row, s->ov, 0, m * g_x);
-    jadd_row_rel(s, r, row, s->ov, 1, m * g_y);
+    jadd_row_rel(s, r, row, s->dae.oq, 0, m * f_x);
+    jadd_row_rel(s, r, row, s->dae.oq, 1, m * f_y);
+    jadd_row_rel(s, r, row, s->dae.ov, 0, m * g_x);
+    jadd_row_rel(s, r, row, s->dae.ov, 1, m * g_y);
 }
 
 /* Penalty contact k: d/dq and d/dv of F_n(delta, rate) u, u = (x - sm y, y + sm x)/r, and of the
  * friction torque R_b sm F_n on a race that spins. */
 static void jacobian_penalty(td_sim *s, int k, const double *y)
 {
-    const td_sim_retainer *r = &s->ret[k];
+    const td_sim_retainer *r = &s->contacts.ret[k];
     double x, yy, vx, vy, rad, r3, sm, dphi, fd, fr, fn, rate;
     double d_x, d_y, rt_x, rt_y, rt_vx, rt_vy, f_x, f_y, u1, u2, u1x, u1y, u2x, u2y;
-    int oq = s->oq, ov = s->ov;
+    int oq = s->dae.oq, ov = s->dae.ov;
     fn = td_sim_penalty_force(s, k, y, &fd, &fr);
     if (fn == 0.0 && fd == 0.0 && fr == 0.0)
         return; /* not penetrating */
@@ -527,8 +546,8 @@ static void jacobian_penalty(td_sim *s, int k, const double *y)
     jadd_rel(s, r, ov, 1, ov, 1, u2 * fr * rt_vy);
     if (r->rs >= 0) /* the torque row -R_b sm F_n */
         jacobian_penalty_torque(s, r, ov + r->rs, -r->r.bore_radius * sm, f_x, f_y, fr * rt_vx, fr * rt_vy);
-    if (s->spin_free) /* and R_s sm F_n on a free spin */
-        jacobian_penalty_torque(s, r, ov + s->spin, r->r.shaft_radius * sm, f_x, f_y, fr * rt_vx, fr * rt_vy);
+    if (s->machine.spin_free) /* and R_s sm F_n on a free spin */
+        jacobian_penalty_torque(s, r, ov + s->machine.spin, r->r.shaft_radius * sm, f_x, f_y, fr * rt_vx, fr * rt_vy);
     if (dphi != 0.0) /* inside the slip band: sm = mu v_s / v_reg depends on q, v and Omega_b */
         jacobian_slip_band(s, k, y, fn, dphi);
 }
@@ -537,9 +556,9 @@ static void jacobian_penalty(td_sim *s, int k, const double *y)
  * row is F_t itself. d t / d(x, y) for t = (-y, x)/r: ((x y, -x^2), (y^2, -x y)) / r^3. */
 static void jacobian_roll(td_sim *s, int k, const double *y)
 {
-    const td_sim_retainer *r = &s->ret[k];
+    const td_sim_retainer *r = &s->contacts.ret[k];
     double ft, x, yy, vx, vy, rad, r3, n[2], t[2], gv[4];
-    int fk = s->of + r->fi, oq = s->oq, ov = s->ov, i;
+    int fk = s->dae.of + r->fi, oq = s->dae.oq, ov = s->dae.ov, i;
     if (!r->rolling) {
         jadd(s, fk, fk, 1.0);
         return;
@@ -558,10 +577,10 @@ static void jacobian_roll(td_sim *s, int k, const double *y)
         jadd(s, ov + r->rs, fk, -r->r.bore_radius);
         jadd(s, fk, ov + r->rs, -r->r.bore_radius); /* eq. (16): d v_s / d Omega_b */
     }
-    if (s->spin >= 0) {
-        jadd(s, fk, ov + s->spin, r->r.shaft_radius); /* eq. (16): d v_s / d Omega */
-        if (s->spin_free)
-            jadd(s, ov + s->spin, fk, r->r.shaft_radius);
+    if (s->machine.spin >= 0) {
+        jadd(s, fk, ov + s->machine.spin, r->r.shaft_radius); /* eq. (16): d v_s / d Omega */
+        if (s->machine.spin_free)
+            jadd(s, ov + s->machine.spin, fk, r->r.shaft_radius);
     }
     td_sim_sliding_gradient(s, k, y, gv);
     for (i = 0; i < 4; i++)
@@ -574,25 +593,25 @@ static void jacobian_drag(td_sim *s, int k, const double *y)
     double dT;
     td_sim_race_drag(s, k, y, &dT);
     if (dT != 0.0)
-        jadd(s, s->ov + s->ret[k].rs, s->ov + s->ret[k].rs, dT);
+        jadd(s, s->dae.ov + s->contacts.ret[k].rs, s->dae.ov + s->contacts.ret[k].rs, dT);
 }
 
 /* The spin DOF's columns (spin.c): d(Omega G v)/d Omega = G v, the unbalance's d/d(phi, Omega),
  * and the free spin's drag. */
 static void jacobian_spin(td_sim *s, double t, const double *y)
 {
-    const cs_di *G = s->G;
-    const double *v = y + s->ov;
+    const cs_di *G = s->dae.G;
+    const double *v = y + s->dae.ov;
     double w = td_sim_rotor_speed(s, y), phi = td_sim_rotor_angle(s, t, y), alpha = td_sim_rotor_rate(s, t, y), dT;
-    int qz = s->oq + s->spin, wz = s->ov + s->spin, i, j, p;
+    int qz = s->dae.oq + s->machine.spin, wz = s->dae.ov + s->machine.spin, i, j, p;
     for (j = 0; j < G->n; j++)
         for (p = G->p[j]; p < G->p[j + 1]; p++)
-            jadd(s, s->ov + G->i[p], wz, G->x[p] * v[j]);
-    for (i = 0; i < s->nu; i++) { /* v rows carry -f */
-        const td_unbalance *u = &s->unb[i];
+            jadd(s, s->dae.ov + G->i[p], wz, G->x[p] * v[j]);
+    for (i = 0; i < s->machine.nu; i++) { /* v rows carry -f */
+        const td_unbalance *u = &s->machine.unb[i];
         double c = cos(phi + u->phase), sn = sin(phi + u->phase), U = u->magnitude;
-        int x = s->ov + td_system_node_dof(s->sys, u->node, TD_DOF_X),
-            yrow = s->ov + td_system_node_dof(s->sys, u->node, TD_DOF_Y);
+        int x = s->dae.ov + td_system_node_dof(s->sys, u->node, TD_DOF_X),
+            yrow = s->dae.ov + td_system_node_dof(s->sys, u->node, TD_DOF_Y);
         jadd(s, x, qz, -U * (-w * w * sn + alpha * c));
         jadd(s, yrow, qz, -U * (w * w * c + alpha * sn));
         jadd(s, x, wz, -2.0 * U * w * c);
@@ -608,12 +627,12 @@ static void jacobian_spin(td_sim *s, double t, const double *y)
 static void jacobian_unbalance_spin(td_sim *s, double t, double cj, const double *y)
 {
     double phi = td_sim_rotor_angle(s, t, y);
-    int wz = s->ov + s->spin, i;
-    for (i = 0; i < s->nu; i++) {
-        const td_unbalance *u = &s->unb[i];
+    int wz = s->dae.ov + s->machine.spin, i;
+    for (i = 0; i < s->machine.nu; i++) {
+        const td_unbalance *u = &s->machine.unb[i];
         double mx = -u->magnitude * sin(phi + u->phase), my = u->magnitude * cos(phi + u->phase);
-        int x = s->ov + td_system_node_dof(s->sys, u->node, TD_DOF_X),
-            yrow = s->ov + td_system_node_dof(s->sys, u->node, TD_DOF_Y);
+        int x = s->dae.ov + td_system_node_dof(s->sys, u->node, TD_DOF_X),
+            yrow = s->dae.ov + td_system_node_dof(s->sys, u->node, TD_DOF_Y);
         jadd(s, x, wz, cj * mx);
         jadd(s, yrow, wz, cj * my);
         jadd(s, wz, x, cj * mx);
@@ -625,57 +644,57 @@ static void jacobian_unbalance_spin(td_sim *s, double t, double cj, const double
  * place of the differential rows' entries (nothing else writes into them for a ramp). */
 static void jacobian_ramp_rows(td_sim *s)
 {
-    int qz = s->oq + s->spin, wz = s->ov + s->spin;
-    s->jdata[td_sim_pattern_find(s, qz, qz)] = 1.0;
-    s->jdata[td_sim_pattern_find(s, qz, wz)] = 0.0;
-    s->jdata[td_sim_pattern_find(s, wz, wz)] = 1.0;
+    int qz = s->dae.oq + s->machine.spin, wz = s->dae.ov + s->machine.spin;
+    s->ops.jdata[td_sim_pattern_find(s, qz, qz)] = 1.0;
+    s->ops.jdata[td_sim_pattern_find(s, qz, wz)] = 0.0;
+    s->ops.jdata[td_sim_pattern_find(s, wz, wz)] = 1.0;
 }
 
 void td_sim_jacobian(td_sim *s, double t, double cj, const double *y)
 {
     int i, k;
-    memset(s->jdata, 0, sizeof(double) * (size_t)s->nnz);
-    for (i = 0; i < s->n; i++) {
-        jadd(s, s->oq + i, s->oq + i, cj);
-        jadd(s, s->oq + i, s->ov + i, -1.0);
+    memset(s->ops.jdata, 0, sizeof(double) * (size_t)s->ops.nnz);
+    for (i = 0; i < s->dae.n; i++) {
+        jadd(s, s->dae.oq + i, s->dae.oq + i, cj);
+        jadd(s, s->dae.oq + i, s->dae.ov + i, -1.0);
     }
-    for (i = 0; i < s->nw; i++)
-        jadd(s, s->ow + i, s->ow + i, cj);
-    jadd_matrix(s, s->M, s->map_M, cj);
-    jadd_matrix(s, s->C, s->map_C, 1.0);
-    jadd_matrix(s, s->G, s->map_G, td_sim_rotor_speed(s, y));
-    if (s->spin >= 0)
+    for (i = 0; i < s->dae.nw; i++)
+        jadd(s, s->dae.ow + i, s->dae.ow + i, cj);
+    jadd_matrix(s, s->dae.M, s->ops.map_M, cj);
+    jadd_matrix(s, s->dae.C, s->ops.map_C, 1.0);
+    jadd_matrix(s, s->dae.G, s->ops.map_G, td_sim_rotor_speed(s, y));
+    if (s->machine.spin >= 0)
         jacobian_spin(s, t, y);
-    if (s->spin_free)
+    if (s->machine.spin_free)
         jacobian_unbalance_spin(s, t, cj, y);
-    jadd_matrix(s, s->K, s->map_K, 1.0);
+    jadd_matrix(s, s->dae.K, s->ops.map_K, 1.0);
     jacobian_amb(s, y);
-    for (k = 0; k < s->nr; k++) {
-        if (s->ret[k].rs >= 0)
+    for (k = 0; k < s->dae.nr; k++) {
+        if (s->contacts.ret[k].rs >= 0)
             jacobian_drag(s, k, y);
-        if (s->ret[k].fi >= 0)
+        if (s->contacts.ret[k].fi >= 0)
             jacobian_roll(s, k, y);
-        if (s->ret[k].mode == TD_RMODE_CONTACT) {
+        if (s->contacts.ret[k].mode == TD_RMODE_CONTACT) {
             jacobian_contact(s, k, y);
             continue;
         }
         if (td_sim_penalty_model(s, k))
             jacobian_penalty(s, k, y); /* zero where the node does not penetrate */
         /* free and penalty contacts: the multiplier rows are lambda = eta = 0 */
-        jadd(s, s->ol + k, s->ol + k, 1.0);
-        jadd(s, s->ou + k, s->ou + k, 1.0);
+        jadd(s, s->dae.ol + k, s->dae.ol + k, 1.0);
+        jadd(s, s->dae.ou + k, s->dae.ou + k, 1.0);
     }
-    if (s->spin >= 0 && !s->spin_free)
+    if (s->machine.spin >= 0 && !s->machine.spin_free)
         jacobian_ramp_rows(s);
 }
 
 /* Slot 1 of retainer k in contact with friction (see below). */
 static double slip_root_function(const td_sim *s, int k, const double *y)
 {
-    const td_sim_retainer *r = &s->ret[k];
+    const td_sim_retainer *r = &s->contacts.ret[k];
     double vs, vreg = TD_CONTACT_SLIP_BAND;
     if (r->rolling)
-        return r->r.friction * td_sim_normal_force(s, k, y) - fabs(y[s->of + r->fi]);
+        return r->r.friction * td_sim_normal_force(s, k, y) - fabs(y[s->dae.of + r->fi]);
     vs = td_sim_sliding_velocity(s, k, y);
     if (r->r.stick)
         return r->slip * vs;
@@ -706,10 +725,10 @@ static double slip_root_function(const td_sim *s, int k, const double *y)
 static void saturation_roots(const td_sim *s, const double *y, double *g)
 {
     int k;
-    for (k = 0; k < s->sys->n_amb_axes && s->n_sat_roots > 0; k++) {
+    for (k = 0; k < s->sys->n_amb_axes && s->dae.n_sat_roots > 0; k++) {
         const td_amb_axis *a = &s->sys->amb_axes[k];
-        double f = a->ks * y[s->oq + a->actuator_dof] + amb_axis_fc(s, k, y);
-        int on = a->saturation && s->amb_mode[a->amb] != TD_AMB_OFF;
+        double f = a->ks * y[s->dae.oq + a->actuator_dof] + amb_axis_fc(s, k, y);
+        int on = a->saturation && s->machine.amb_mode[a->amb] != TD_AMB_OFF;
         g[2 * k] = on ? f - a->capacity : 1.0;
         g[2 * k + 1] = on ? f + a->capacity : 1.0;
     }
@@ -719,9 +738,9 @@ void td_sim_roots(const td_sim *s, double t, const double *y, double *g)
 {
     int k;
     (void)t;
-    saturation_roots(s, y, g + TD_ROOTS_PER_RETAINER * s->nr);
-    for (k = 0; k < s->nr; k++) {
-        const td_sim_retainer *r = &s->ret[k];
+    saturation_roots(s, y, g + TD_ROOTS_PER_RETAINER * s->dae.nr);
+    for (k = 0; k < s->dae.nr; k++) {
+        const td_sim_retainer *r = &s->contacts.ret[k];
         double *gk = g + TD_ROOTS_PER_RETAINER * k;
         double x, yy, vx, vy, gap;
         td_sim_node_state(s, k, y, &x, &yy, &vx, &vy);
@@ -731,11 +750,11 @@ void td_sim_roots(const td_sim *s, double t, const double *y, double *g)
         gk[TD_ROOT_REARM] = 1.0;
         switch (r->mode) {
         case TD_RMODE_FREE:
-            gk[TD_ROOT_CONTACT] = r->armed || r->compliant ? gap : gap + s->rearm_eps;
+            gk[TD_ROOT_CONTACT] = r->armed || r->compliant ? gap : gap + s->machine.rearm_eps;
             if (!r->armed)
-                gk[TD_ROOT_REARM] = gap - s->rearm_eps;
+                gk[TD_ROOT_REARM] = gap - s->machine.rearm_eps;
             break;
-        case TD_RMODE_CONTACT: gk[TD_ROOT_CONTACT] = y[s->ol + k]; break;
+        case TD_RMODE_CONTACT: gk[TD_ROOT_CONTACT] = y[s->dae.ol + k]; break;
         case TD_RMODE_PENETRATING: gk[TD_ROOT_CONTACT] = gap; break;
         }
         if (r->mode != TD_RMODE_FREE && r->r.friction > 0.0)
@@ -746,12 +765,12 @@ void td_sim_roots(const td_sim *s, double t, const double *y, double *g)
 void td_sim_root_directions(const td_sim *s, int *dir)
 {
     int k;
-    for (k = 0; k < s->nr; k++) {
+    for (k = 0; k < s->dae.nr; k++) {
         int *dk = dir + TD_ROOTS_PER_RETAINER * k;
-        dk[TD_ROOT_CONTACT] = s->ret[k].mode == TD_RMODE_PENETRATING ? 1 : -1;
+        dk[TD_ROOT_CONTACT] = s->contacts.ret[k].mode == TD_RMODE_PENETRATING ? 1 : -1;
         dk[TD_ROOT_SLIP] = -1;
         dk[TD_ROOT_REARM] = 1;
     }
-    for (k = 0; k < s->n_sat_roots; k++)
-        dir[TD_ROOTS_PER_RETAINER * s->nr + k] = 0;
+    for (k = 0; k < s->dae.n_sat_roots; k++)
+        dir[TD_ROOTS_PER_RETAINER * s->dae.nr + k] = 0;
 }

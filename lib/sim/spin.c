@@ -24,34 +24,37 @@
 void td_sim_spin_layout(td_sim *s)
 {
     td_spin sp;
-    s->spin = -1;
-    s->spin_free = 0;
-    s->spin_inertia = 0.0;
+    s->machine.spin = -1;
+    s->machine.spin_free = 0;
+    s->machine.spin_inertia = 0.0;
     if (!td_model_speed_varies(s->model))
         return;
     td_model_spin(s->model, &sp);
-    s->spin = s->n++;
-    s->spin_free = sp.free != 0;
-    s->spin_inertia = sp.inertia > 0.0 ? sp.inertia : td_model_polar_inertia(s->model);
+    s->machine.spin = s->dae.n++;
+    s->machine.spin_free = sp.free != 0;
+    s->machine.spin_inertia = sp.inertia > 0.0 ? sp.inertia : td_model_polar_inertia(s->model);
 }
 
 void td_sim_spin_diagonal(const td_sim *s, char which, double *d)
 {
     td_spin sp;
-    if (s->spin < 0)
+    if (s->machine.spin < 0)
         return;
     td_model_spin(s->model, &sp);
-    d[s->spin] = which == 'M' ? s->spin_inertia : which == 'C' && s->spin_free ? sp.drag_viscous : 0.0;
+    d[s->machine.spin] = which == 'M'                           ? s->machine.spin_inertia
+                         : which == 'C' && s->machine.spin_free ? sp.drag_viscous
+                                                                : 0.0;
 }
 
 double td_sim_rotor_speed(const td_sim *s, const double *y)
 {
-    return s->spin >= 0 ? y[s->ov + s->spin] : s->omega;
+    return s->machine.spin >= 0 ? y[s->dae.ov + s->machine.spin] : s->machine.omega;
 }
 
 double td_sim_rotor_angle(const td_sim *s, double t, const double *y)
 {
-    return s->spin >= 0 ? y[s->oq + s->spin] : s->spin_ref + s->omega * (t - s->t_spin_ref);
+    return s->machine.spin >= 0 ? y[s->dae.oq + s->machine.spin]
+                                : s->machine.spin_ref + s->machine.omega * (t - s->machine.t_spin_ref);
 }
 
 double td_sim_spin_drag(const td_sim *s, const double *y, double *dT)
@@ -60,65 +63,48 @@ double td_sim_spin_drag(const td_sim *s, const double *y, double *dT)
     double dphi = 0.0, phi;
     if (dT)
         *dT = 0.0;
-    if (!s->spin_free)
+    if (!s->machine.spin_free)
         return 0.0;
     td_model_spin(s->model, &sp);
-    phi = td_contact_slip_factor(y[s->ov + s->spin], TD_SIM_SPIN_BAND, &dphi);
+    phi = td_contact_slip_factor(y[s->dae.ov + s->machine.spin], TD_SIM_SPIN_BAND, &dphi);
     if (dT)
         *dT = sp.drag_torque * dphi;
     return sp.drag_torque * phi;
 }
 
 /*
- * A ramp's slope over the interval the integrator is covering, (s->t, t]: IDA stops at every ramp
+ * A ramp's slope over the interval the integrator is covering, (s->dae.t, t]: IDA stops at every ramp
  * point (td_sim_next_stop), so that interval lies inside one segment, and a step that ends on a
  * point belongs to the segment before it. The slope at the point itself (td_model_speed_at: the next
  * segment's) would drive that whole step with the next segment's alpha, losing the U alpha h of the
- * unbalance's impulse. At t = s->t (a restart: the consistent rates there) the segment is the one
+ * unbalance's impulse. At t = s->dae.t (a restart: the consistent rates there) the segment is the one
  * that starts there.
  */
 static double ramp_rate(const td_sim *s, double t)
 {
     double rate;
-    td_model_speed_at(s->model, t > s->t ? 0.5 * (s->t + t) : t, &rate, NULL);
+    td_model_speed_at(s->model, t > s->dae.t ? 0.5 * (s->dae.t + t) : t, &rate, NULL);
     return rate;
 }
 
 double td_sim_spin_torque(const td_sim *s, double t)
 {
     td_spin sp;
-    if (s->spin < 0)
+    if (s->machine.spin < 0)
         return 0.0;
-    if (!s->spin_free)
-        return s->spin_inertia * ramp_rate(s, t);
+    if (!s->machine.spin_free)
+        return s->machine.spin_inertia * ramp_rate(s, t);
     td_model_spin(s->model, &sp);
     return sp.drive_torque;
-}
-
-double td_sim_rotor_rate(const td_sim *s, double t, const double *y)
-{
-    td_spin sp;
-    double torque;
-    int k;
-    if (s->spin < 0)
-        return 0.0;
-    torque = td_sim_spin_torque(s, t);
-    if (!s->spin_free)
-        return torque / s->spin_inertia;
-    td_model_spin(s->model, &sp);
-    torque -= td_sim_spin_drag(s, y, NULL) + sp.drag_viscous * y[s->ov + s->spin];
-    for (k = 0; k < s->nr; k++) /* zero for a free retainer: no normal force */
-        torque -= s->ret[k].r.shaft_radius * td_sim_friction_force(s, k, y);
-    return torque / s->spin_inertia;
 }
 
 void td_sim_spin_start(const td_sim *s, double *y)
 {
     double angle;
-    if (s->spin < 0)
+    if (s->machine.spin < 0)
         return;
-    y[s->ov + s->spin] = td_model_speed_at(s->model, s->t, NULL, &angle);
-    y[s->oq + s->spin] = angle;
+    y[s->dae.ov + s->machine.spin] = td_model_speed_at(s->model, s->dae.t, NULL, &angle);
+    y[s->dae.oq + s->machine.spin] = angle;
 }
 
 void td_sim_spin_hold(const td_sim *s, double t, double *y, double *yp)
@@ -126,14 +112,14 @@ void td_sim_spin_hold(const td_sim *s, double t, double *y, double *yp)
     /* IDA's interpolant and Newton iterate hold a ramp's algebraic rows only to the tolerance (up to
      * 2e-4 of the speed early in a ramp at the default ones); the drive holds the profile exactly */
     double angle, w;
-    if (s->spin < 0 || s->spin_free)
+    if (s->machine.spin < 0 || s->machine.spin_free)
         return;
     w = td_model_speed_at(s->model, t, NULL, &angle);
-    y[s->oq + s->spin] = angle;
-    y[s->ov + s->spin] = w;
+    y[s->dae.oq + s->machine.spin] = angle;
+    y[s->dae.ov + s->machine.spin] = w;
     if (yp) {
-        yp[s->oq + s->spin] = w;
-        yp[s->ov + s->spin] = ramp_rate(s, t);
+        yp[s->dae.oq + s->machine.spin] = w;
+        yp[s->dae.ov + s->machine.spin] = ramp_rate(s, t);
     }
 }
 
@@ -141,6 +127,6 @@ void td_sim_spin_wrap(const td_sim *s, double *y)
 {
     /* keep a free spin's angle small, so that its relative tolerance stays an absolute one (a
      * ramp's is the prescribed angle itself) */
-    if (s->spin_free)
-        y[s->oq + s->spin] = fmod(y[s->oq + s->spin], 2.0 * TD_PI);
+    if (s->machine.spin_free)
+        y[s->dae.oq + s->machine.spin] = fmod(y[s->dae.oq + s->machine.spin], 2.0 * TD_PI);
 }

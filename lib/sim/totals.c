@@ -22,7 +22,7 @@ static integrands integrands_at(const td_sim *s, int k, const double *y)
 {
     integrands v = {0.0, 0.0, 0.0, 0.0};
     double x, yy, vx, vy, r2;
-    if (s->ret[k].mode == TD_RMODE_FREE)
+    if (s->contacts.ret[k].mode == TD_RMODE_FREE)
         return v;
     v.n = td_sim_normal_force(s, k, y);
     v.n2 = v.n * v.n;
@@ -37,11 +37,11 @@ static integrands integrands_at(const td_sim *s, int k, const double *y)
  * contact force itself, normal and friction. */
 static double housing_force(const td_sim *s, int k, const double *y)
 {
-    const td_sim_retainer *r = &s->ret[k];
+    const td_sim_retainer *r = &s->contacts.ret[k];
     double n, f;
     if (r->rx >= 0) {
-        double fx = r->r.race.mount_stiffness * y[s->oq + r->rx] + r->r.race.mount_damping * y[s->ov + r->rx];
-        double fy = r->r.race.mount_stiffness * y[s->oq + r->ry] + r->r.race.mount_damping * y[s->ov + r->ry];
+        double fx = r->r.race.mount_stiffness * y[s->dae.oq + r->rx] + r->r.race.mount_damping * y[s->dae.ov + r->rx];
+        double fy = r->r.race.mount_stiffness * y[s->dae.oq + r->ry] + r->r.race.mount_damping * y[s->dae.ov + r->ry];
         return hypot(fx, fy);
     }
     if (r->mode == TD_RMODE_FREE && !(r->compliant && td_sim_penalty_force(s, k, y, NULL, NULL) > 0.0))
@@ -54,7 +54,7 @@ static double housing_force(const td_sim *s, int k, const double *y)
 /* Retainer k's contact interval ends: a contact if it swept TD_TOUCH_AND_GO_ANGLE, else an impact. */
 static void interval_ends(td_sim *s, int k)
 {
-    td_sim_totals *tk = &s->totals[k];
+    td_sim_totals *tk = &s->monitor.totals[k];
     if (fabs(tk->t.whirl_angle - tk->whirl_at_onset) >= TD_TOUCH_AND_GO_ANGLE)
         tk->t.contacts++;
     else
@@ -64,8 +64,8 @@ static void interval_ends(td_sim *s, int k)
 /* Open and close contact intervals as retainer k's mode says at this point. */
 static void track_interval(td_sim *s, int k)
 {
-    td_sim_totals *tk = &s->totals[k];
-    int in = s->ret[k].mode != TD_RMODE_FREE;
+    td_sim_totals *tk = &s->monitor.totals[k];
+    int in = s->contacts.ret[k].mode != TD_RMODE_FREE;
     if (in && !tk->in_contact)
         tk->whirl_at_onset = tk->t.whirl_angle;
     else if (!in && tk->in_contact)
@@ -75,11 +75,11 @@ static void track_interval(td_sim *s, int k)
 
 void td_sim_totals_point(td_sim *s, double t, int restart)
 {
-    const double *y = N_VGetArrayPointer(s->y);
-    double dt = restart ? 0.0 : t - s->totals_t;
+    const double *y = N_VGetArrayPointer(s->dae.y);
+    double dt = restart ? 0.0 : t - s->monitor.totals_t;
     int k;
-    for (k = 0; k < s->nr; k++) {
-        td_sim_totals *tk = &s->totals[k];
+    for (k = 0; k < s->dae.nr; k++) {
+        td_sim_totals *tk = &s->monitor.totals[k];
         integrands now = integrands_at(s, k, y);
         double hf = housing_force(s, k, y);
         if (dt > 0.0) {
@@ -87,9 +87,9 @@ void td_sim_totals_point(td_sim *s, double t, int restart)
             tk->t.normal_force_sq += 0.5 * dt * (tk->prev.n2 + now.n2);
             tk->t.friction_work += 0.5 * dt * (tk->prev.power + now.power);
             tk->t.whirl_angle += 0.5 * dt * (tk->prev.whirl_rate + now.whirl_rate);
-            if (s->ret[k].mode != TD_RMODE_FREE)
+            if (s->contacts.ret[k].mode != TD_RMODE_FREE)
                 tk->t.contact_time += dt;
-            if (s->ret[k].rolling)
+            if (s->contacts.ret[k].rolling)
                 tk->t.rolling_time += dt;
         }
         tk->t.peak_housing_force = fmax(tk->t.peak_housing_force, hf);
@@ -103,46 +103,46 @@ void td_sim_totals_point(td_sim *s, double t, int restart)
     }
     if (s->opt.energy)
         td_sim_energy_point(s, t, restart, dt);
-    if (t > s->totals_t || restart)
-        s->totals_t = t;
+    if (t > s->monitor.totals_t || restart)
+        s->monitor.totals_t = t;
 }
 
 void td_sim_totals_impact(td_sim *s, int k, double impulse, int bounced)
 {
-    s->totals[k].t.impulse += impulse;
-    s->totals[k].t.impact_impulse += impulse;
+    s->monitor.totals[k].t.impulse += impulse;
+    s->monitor.totals[k].t.impact_impulse += impulse;
     if (bounced) /* a rebound: in and out at one instant */
-        s->totals[k].t.touch_and_go++;
+        s->monitor.totals[k].t.touch_and_go++;
 }
 
-/* The totals of retainer k at s->t when the last point lies beyond it (an output inside the
- * integrator's last step): the trapezoid from s->t to that point taken back. */
+/* The totals of retainer k at s->dae.t when the last point lies beyond it (an output inside the
+ * integrator's last step): the trapezoid from s->dae.t to that point taken back. */
 static void back_to_now(const td_sim *s, int k, td_retainer_totals *t)
 {
-    const td_sim_totals *tk = &s->totals[k];
-    double dt = s->totals_t - s->t;
+    const td_sim_totals *tk = &s->monitor.totals[k];
+    double dt = s->monitor.totals_t - s->dae.t;
     integrands now;
     if (!(dt > 0.0))
         return;
-    now = integrands_at(s, k, N_VGetArrayPointer(s->y));
+    now = integrands_at(s, k, N_VGetArrayPointer(s->dae.y));
     t->impulse -= 0.5 * dt * (tk->prev.n + now.n);
     t->normal_force_sq -= 0.5 * dt * (tk->prev.n2 + now.n2);
     t->friction_work -= 0.5 * dt * (tk->prev.power + now.power);
     t->whirl_angle -= 0.5 * dt * (tk->prev.whirl_rate + now.whirl_rate);
-    if (s->ret[k].mode != TD_RMODE_FREE)
+    if (s->contacts.ret[k].mode != TD_RMODE_FREE)
         t->contact_time -= dt;
-    if (s->ret[k].rolling)
+    if (s->contacts.ret[k].rolling)
         t->rolling_time -= dt;
 }
 
 void td_sim_totals_rewind(td_sim *s)
 {
     int k;
-    if (!(s->totals_t > s->t))
+    if (!(s->monitor.totals_t > s->dae.t))
         return;
-    for (k = 0; k < s->nr; k++) {
-        td_sim_totals *tk = &s->totals[k];
-        integrands now = integrands_at(s, k, N_VGetArrayPointer(s->y));
+    for (k = 0; k < s->dae.nr; k++) {
+        td_sim_totals *tk = &s->monitor.totals[k];
+        integrands now = integrands_at(s, k, N_VGetArrayPointer(s->dae.y));
         back_to_now(s, k, &tk->t);
         tk->prev.n = now.n;
         tk->prev.n2 = now.n2;
@@ -150,18 +150,14 @@ void td_sim_totals_rewind(td_sim *s)
         tk->prev.whirl_rate = now.whirl_rate;
     }
     td_sim_energy_rewind(s);
-    s->totals_t = s->t;
+    s->monitor.totals_t = s->dae.t;
 }
 
-td_status td_sim_retainer_totals(const td_sim *sim, int retainer, td_retainer_totals *out)
+void td_sim_totals_get(const td_sim *s, int k, td_retainer_totals *out)
 {
-    const td_sim_totals *tk;
-    if (!sim || !out || retainer < 0 || retainer >= sim->nr)
-        return TD_ERR_INVALID;
-    tk = &sim->totals[retainer];
+    const td_sim_totals *tk = &s->monitor.totals[k];
     *out = tk->t;
-    back_to_now(sim, retainer, out);
+    back_to_now(s, k, out);
     if (tk->in_contact) /* the interval still open counts as a contact */
         out->contacts++;
-    return TD_OK;
 }

@@ -39,7 +39,7 @@ static td_model *free_rotor(double speed)
 }
 
 /* Tight tolerances: the velocity tolerance scales with the highest natural frequency, which on
- * this stubby free-free element is some 1e6 rad/s (sim.c set_tolerances) */
+ * this stubby free-free element is some 1e6 rad/s (tolerance.c td_sim_set_tolerances) */
 static td_sim *start(const td_model *m)
 {
     td_sim_options o;

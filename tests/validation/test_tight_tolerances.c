@@ -3,7 +3,7 @@
  * one. Case B (docs/reference-rig.md) at rtol 1e-12, atol 1e-15 m once stalled at t = 0.19568 s,
  * right after a slow impact: the Newton iteration could not fix the contact multipliers below
  * the rounding floor that grows with 1 / h, IDA shortened the step to 1e-18 s and failed
- * millions of times (lib/sim/sim.c, floored_multipliers; a stall is now reported as an error, not
+ * millions of times (lib/sim/integrator.c, floored_multipliers; a stall is now reported as an error, not
  * a hang). Here that run must pass the stall point with few convergence failures, and its contact intervals must agree
  * with an independent run at rtol 1e-10: converged to 1e-7 s, the accuracy of the looser run (measured against rtol
  * 1e-11: 1.1e-8 s over the first ten intervals).

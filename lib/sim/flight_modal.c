@@ -1,0 +1,675 @@
+/*
+ * The closed-form free flight's modal machinery (flight_internal.h): the machine's decomposition
+ * and its forcing, probed from the residual, the observed functions, the anchor, the evaluation of
+ * the state at any time, and the flight's life cycle.
+ */
+#include "sim/flight_internal.h"
+
+#include <gsl/gsl_eigen.h>
+#include <gsl/gsl_errno.h>
+#include <gsl/gsl_linalg.h>
+
+#include <complex.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* What A depends on: the speed and the AMBs' modes. */
+static int machine_key(const td_sim *s, double *key)
+{
+    int a, n = 0, na = td_model_amb_count(s->model);
+    key[n++] = s->machine.omega;
+    for (a = 0; a < na; a++)
+        key[n++] = (double)s->machine.amb_mode[a];
+    return n;
+}
+
+/* What b(t) depends on beyond A: the spin angle, the unbalances and the held AMB forces. */
+static int forcing_key(const td_sim *s, double *key)
+{
+    int i, n = 0, na = td_model_amb_count(s->model);
+    key[n++] = s->machine.spin_ref;
+    key[n++] = s->machine.t_spin_ref;
+    for (i = 0; i < s->machine.nu; i++) {
+        key[n++] = s->machine.unb[i].magnitude;
+        key[n++] = s->machine.unb[i].phase;
+    }
+    for (i = 0; i < 2 * na; i++)
+        key[n++] = s->machine.amb_control[i];
+    return n;
+}
+
+/* 1 if key (n entries, freshly made in f->key_work) differs from *stored; then stores it. */
+static int key_changed(td_sim_flight *f, double *stored, int n)
+{
+    if (memcmp(stored, f->key_work, sizeof(double) * (size_t)n) == 0)
+        return 0;
+    memcpy(stored, f->key_work, sizeof(double) * (size_t)n);
+    return 1;
+}
+
+/* ---- the first-order rates, probed from the residual ------------------------------------ */
+
+/* z' at (t, z) with every retainer free: -F(t, y, 0) on the q and w rows, M^-1 (-F) on the v rows. */
+static void rates(const td_sim *s, td_sim_flight *f, double t, const double *z, double *rate)
+{
+    int i;
+    memset(f->y, 0, sizeof(double) * (size_t)s->dae.neq);
+    memcpy(f->y, z, sizeof(double) * (size_t)f->nz);
+    td_sim_residual(s, t, f->y, f->yp, f->res);
+    for (i = 0; i < f->nz; i++)
+        rate[i] = -f->res[i];
+    td_sim_mass_solve(s, rate + s->dae.ov);
+}
+
+/* Probe size of state i: half the smallest clearance for a displacement (a penalty contact stays
+ * out of reach at the centre), 1 in the other states' units; the law is linear, so only the
+ * rounding depends on it. */
+static double probe_size(const td_sim *s, int i)
+{
+    double c = INFINITY;
+    int k;
+    if (i >= s->dae.n)
+        return 1.0;
+    for (k = 0; k < s->dae.nr; k++)
+        c = fmin(c, s->contacts.ret[k].r.clearance);
+    return isfinite(c) ? 0.5 * c : 1.0;
+}
+
+/* ---- the machine: A and its eigen-decomposition ----------------------------------------- */
+
+/* A in the scaled states z_i / S_i, S the integrator's absolute tolerances (each state in its
+ * tolerance's units: the eigenvectors come out balanced, and their checks mean something). */
+static void fill_matrix(const td_sim *s, td_sim_flight *f, gsl_matrix *A, const double *S)
+{
+    double *z = f->b[0];
+    int i, j, nz = f->nz;
+    memset(z, 0, sizeof(double) * (size_t)nz);
+    rates(s, f, s->dae.t, z, f->rate0);
+    for (j = 0; j < nz; j++) {
+        double h = probe_size(s, j);
+        z[j] = h;
+        rates(s, f, s->dae.t, z, f->rate);
+        z[j] = 0.0;
+        for (i = 0; i < nz; i++)
+            gsl_matrix_set(A, (size_t)i, (size_t)j, (f->rate[i] - f->rate0[i]) / h * S[j] / S[i]);
+    }
+}
+
+/* V <- S V, V^-1 <- V^-1 S^-1: the modes of the unscaled states. */
+static void unscale_modes(td_sim_flight *f, const double *S)
+{
+    size_t i, j, nz = (size_t)f->nz;
+    for (i = 0; i < nz; i++)
+        for (j = 0; j < nz; j++) {
+            f->V[i * nz + j] *= S[i];
+            f->Vinv[i * nz + j] /= S[j];
+        }
+}
+
+/* The decomposition's quality: the largest of max_i |A v_j - lambda_j v_j| / (|lambda_j| max_i |v_j|)
+ * over the modes j (the phase error per radian of each mode) and max |V V^-1 - I|. */
+static double decomposition_error(const td_sim_flight *f, const gsl_matrix *A)
+{
+    int i, j, k, nz = f->nz;
+    double worst = 0.0;
+    for (j = 0; j < nz; j++) {
+        double res = 0.0, vmax = 0.0;
+        for (i = 0; i < nz; i++) {
+            double complex av = -f->V[i * nz + j] * f->lam[j], vv = 0.0;
+            for (k = 0; k < nz; k++) {
+                av += gsl_matrix_get(A, (size_t)i, (size_t)k) * f->V[k * nz + j];
+                vv += f->V[i * nz + k] * f->Vinv[k * nz + j];
+            }
+            res = fmax(res, cabs(av));
+            vmax = fmax(vmax, cabs(f->V[i * nz + j]));
+            worst = fmax(worst, cabs(vv - (i == j ? 1.0 : 0.0)));
+        }
+        worst = fmax(worst, res / (cabs(f->lam[j]) * vmax));
+    }
+    return worst;
+}
+
+static int invert_modes(td_sim_flight *f, const gsl_matrix_complex *evec)
+{
+    size_t nz = (size_t)f->nz, i, j;
+    gsl_matrix_complex *lu = gsl_matrix_complex_alloc(nz, nz), *inv = gsl_matrix_complex_alloc(nz, nz);
+    gsl_permutation *p = gsl_permutation_alloc(nz);
+    int signum, ok = lu && inv && p;
+    if (ok) {
+        gsl_matrix_complex_memcpy(lu, evec);
+        ok = gsl_linalg_complex_LU_decomp(lu, p, &signum) == GSL_SUCCESS &&
+             gsl_linalg_complex_LU_invert(lu, p, inv) == GSL_SUCCESS;
+    }
+    for (i = 0; ok && i < nz; i++)
+        for (j = 0; j < nz; j++) {
+            gsl_complex v = gsl_matrix_complex_get(evec, i, j), w = gsl_matrix_complex_get(inv, i, j);
+            f->V[i * nz + j] = GSL_REAL(v) + I * GSL_IMAG(v);
+            f->Vinv[i * nz + j] = GSL_REAL(w) + I * GSL_IMAG(w);
+        }
+    gsl_permutation_free(p);
+    gsl_matrix_complex_free(inv);
+    gsl_matrix_complex_free(lu);
+    return ok;
+}
+
+/* One mode of each conjugate pair (GSL gives a pair's two columns side by side, exactly
+ * conjugate): the real part of a sum over both is twice that over one. */
+static void pair_modes(td_sim_flight *f)
+{
+    int i, j, nz = f->nz;
+    f->nkeep = 0;
+    for (j = 0; j < nz; j++) {
+        int paired = j + 1 < nz && cimag(f->lam[j]) > 0.0 && f->lam[j + 1] == conj(f->lam[j]);
+        for (i = 0; paired && i < nz; i++)
+            paired = f->V[i * nz + j + 1] == conj(f->V[i * nz + j]);
+        f->keep[f->nkeep++] = j;
+        f->weight[j] = paired ? 2.0 : 1.0;
+        if (paired)
+            f->weight[++j] = 0.0;
+    }
+    for (i = 0; i < f->nkeep; i++) { /* insertion sort by |lambda|: once per machine */
+        int m = f->keep[i], p = i;
+        for (; p > 0 && cabs(f->lam[f->order[p - 1]]) > cabs(f->lam[m]); p--)
+            f->order[p] = f->order[p - 1];
+        f->order[p] = m;
+    }
+}
+
+/* A's modes; 0 if A cannot be trusted to them (defective, ill-conditioned, a zero or resonant
+ * eigenvalue, a mode growing faster than the bounds allow). */
+static int decompose(const td_sim *s, td_sim_flight *f, const double *scale)
+{
+    size_t nz = (size_t)f->nz;
+    gsl_matrix *A = gsl_matrix_alloc(nz, nz), *Acopy = gsl_matrix_alloc(nz, nz);
+    gsl_vector_complex *eval = gsl_vector_complex_alloc(nz);
+    gsl_matrix_complex *evec = gsl_matrix_complex_alloc(nz, nz);
+    gsl_eigen_nonsymmv_workspace *w = gsl_eigen_nonsymmv_alloc(nz);
+    int ok = A && Acopy && eval && evec && w;
+    size_t j;
+    gsl_set_error_handler_off();
+    if (ok) {
+        fill_matrix(s, f, A, scale);
+        gsl_matrix_memcpy(Acopy, A);
+        gsl_eigen_nonsymmv_params(1, w);
+        ok = gsl_eigen_nonsymmv(A, eval, evec, w) == GSL_SUCCESS && invert_modes(f, evec);
+    }
+    for (j = 0; ok && j < nz; j++) {
+        gsl_complex l = gsl_vector_complex_get(eval, j);
+        f->lam[j] = GSL_REAL(l) + I * GSL_IMAG(l);
+        if (!(cabs(f->lam[j]) > 0.0) || GSL_REAL(l) * FLIGHT_MAX_STEP > 1.0)
+            ok = 0;
+        f->grow[j] = exp(fmax(0.0, GSL_REAL(l)) * FLIGHT_MAX_STEP);
+    }
+    if (ok)
+        ok = decomposition_error(f, Acopy) < FLIGHT_DECOMPOSITION_TOL;
+    if (ok) {
+        unscale_modes(f, scale);
+        pair_modes(f);
+    }
+    gsl_eigen_nonsymmv_free(w);
+    gsl_matrix_complex_free(evec);
+    gsl_vector_complex_free(eval);
+    gsl_matrix_free(Acopy);
+    gsl_matrix_free(A);
+    return ok;
+}
+
+/* ---- the forcing --------------------------------------------------------------------------- */
+
+/* out = V^-1 x, x complex */
+static void to_modal(const td_sim_flight *f, const double complex *x, double complex *out)
+{
+    int i, j, nz = f->nz;
+    for (i = 0; i < nz; i++) {
+        double complex acc = 0.0;
+        const double complex *row = f->Vinv + (size_t)i * (size_t)nz;
+        for (j = 0; j < nz; j++)
+            acc += row[j] * x[j];
+        out[i] = acc;
+    }
+}
+
+/* The block of first-order state i: 0 the displacements q, 1 the velocities v, 2 the AMB states w. */
+static int forcing_block(const td_sim *s, int i)
+{
+    return i < s->dae.n ? 0 : i < 2 * s->dae.n ? 1 : 2;
+}
+
+/* b(t) at tf, tf + T/4, tf + T/2 (T = 2 pi / W) gives b0, bc, bs; tf + T/8 checks that b is
+ * that harmonic. Returns 0 if it is not. */
+static int probe_forcing(const td_sim *s, td_sim_flight *f)
+{
+    double *z = f->rate0, w = f->omega, q = w != 0.0 ? M_PI / w : 0.0;
+    double complex *bp = f->e, *bm = f->d; /* work until the anchor */
+    double scale[3] = {0.0, 0.0, 0.0};
+    int i, nz = f->nz, ok = 1;
+    memset(z, 0, sizeof(double) * (size_t)nz);
+    rates(s, f, f->tf, z, f->b[0]);
+    rates(s, f, f->tf + 0.5 * q, z, f->b[1]);
+    rates(s, f, f->tf + q, z, f->b[2]);
+    rates(s, f, f->tf + 0.25 * q, z, f->b[3]);
+    for (i = 0; i < nz; i++) /* each block's size: the rounding of the mass solve is relative to it */
+        scale[forcing_block(s, i)] = fmax(scale[forcing_block(s, i)], fabs(f->b[0][i]) + fabs(f->b[1][i]));
+    for (i = 0; i < nz; i++) {
+        double b0 = w != 0.0 ? 0.5 * (f->b[0][i] + f->b[2][i]) : f->b[0][i];
+        double bc = f->b[0][i] - b0, bs = w != 0.0 ? f->b[1][i] - b0 : 0.0;
+        double check = b0 + M_SQRT1_2 * (bc + bs);
+        if (fabs(check - f->b[3][i]) > 1e-10 * scale[forcing_block(s, i)] + 1e-300)
+            ok = 0;
+        f->b[0][i] = b0;
+        bp[i] = 0.5 * (bc - I * bs);
+        bm[i] = 0.5 * (bc + I * bs);
+    }
+    to_modal(f, bp, f->pp); /* beta+, beta-, beta0: build_forcing divides them */
+    to_modal(f, bm, f->pm);
+    for (i = 0; i < nz; i++)
+        bp[i] = f->b[0][i];
+    to_modal(f, bp, f->p0);
+    return ok;
+}
+
+/* The particular solution's modal coefficients; 0 if the forcing is not harmonic at the speed or
+ * resonant with a mode. */
+static int build_forcing(const td_sim *s, td_sim_flight *f)
+{
+    int j;
+    f->tf = s->dae.t;
+    f->omega = s->machine.omega;
+    if (!probe_forcing(s, f))
+        return 0;
+    for (j = 0; j < f->nz; j++) {
+        double complex l = f->lam[j];
+        if (cabs(I * f->omega - l) == 0.0 || cabs(-I * f->omega - l) == 0.0)
+            return 0;
+        f->p0[j] = -f->p0[j] / l;
+        f->pp[j] = f->pp[j] / (I * f->omega - l);
+        f->pm[j] = f->pm[j] / (-I * f->omega - l);
+    }
+    return 1;
+}
+
+/* ---- observations ---------------------------------------------------------------------------- */
+
+/* Observation o as the real row a (nz) with value a0 at z = 0. */
+static void set_obs_row(td_sim_flight *f, flight_obs *o, const double *a, double a0)
+{
+    int i, j, nz = f->nz;
+    for (j = 0; j < nz; j++) {
+        double complex acc = 0.0;
+        for (i = 0; i < nz; i++)
+            if (a[i] != 0.0)
+                acc += a[i] * f->V[(size_t)i * (size_t)nz + (size_t)j];
+        o->w[j] = acc;
+    }
+    o->offset = a0;
+}
+
+/* The rows of the observations: retainer nodes' x, y; AMB axis forces (probed, linear). */
+static void build_observations(const td_sim *s, td_sim_flight *f)
+{
+    double *a = f->rate;
+    int i, k, nz = f->nz;
+    for (k = 0; k < s->dae.nr; k++) {
+        memset(a, 0, sizeof(double) * (size_t)nz);
+        a[s->dae.oq + s->contacts.ret[k].dx] = 1.0;
+        set_obs_row(f, &f->obs[2 * k], a, 0.0);
+        a[s->dae.oq + s->contacts.ret[k].dx] = 0.0;
+        a[s->dae.oq + s->contacts.ret[k].dy] = 1.0;
+        set_obs_row(f, &f->obs[2 * k + 1], a, 0.0);
+    }
+    for (k = 0; k < s->sys->n_amb_axes; k++) {
+        double f0;
+        memset(f->y, 0, sizeof(double) * (size_t)s->dae.neq);
+        f0 = td_sim_amb_axis_force(s, k, f->y);
+        for (i = 0; i < nz; i++) {
+            double h = probe_size(s, i);
+            f->y[i] = h;
+            a[i] = (td_sim_amb_axis_force(s, k, f->y) - f0) / h;
+            f->y[i] = 0.0;
+        }
+        set_obs_row(f, &f->obs[2 * s->dae.nr + k], a, f0);
+    }
+}
+
+/* The observations' particular parts for the current forcing. */
+static void observe_forcing(td_sim_flight *f)
+{
+    int o, j;
+    for (o = 0; o < f->nobs; o++) {
+        flight_obs *b = &f->obs[o];
+        b->h0 = b->offset;
+        b->hp = b->hm = 0.0;
+        for (j = 0; j < f->nz; j++) {
+            b->h0 += b->w[j] * f->p0[j];
+            b->hp += b->w[j] * f->pp[j];
+            b->hm += b->w[j] * f->pm[j];
+        }
+    }
+}
+
+/* ---- the anchor and evaluation -------------------------------------------------------------- */
+
+double complex td_sim_flight_phase(const td_sim_flight *f, double t)
+{
+    return cexp(I * f->omega * (t - f->tf));
+}
+
+/* The particular solution's modal coordinates at t into out. */
+static void particular(const td_sim_flight *f, double t, double complex *out)
+{
+    double complex ep = td_sim_flight_phase(f, t), em = conj(ep);
+    int j;
+    for (j = 0; j < f->nz; j++)
+        out[j] = f->p0[j] + f->pp[j] * ep + f->pm[j] * em;
+}
+
+/* Anchor the flight at s->dae.t on the state in s->dae.y. */
+static void anchor(td_sim *s, td_sim_flight *f)
+{
+    const double *y = N_VGetArrayPointer(s->dae.y);
+    int j, o, nz = f->nz;
+    for (j = 0; j < nz; j++)
+        f->e[j] = y[j];
+    to_modal(f, f->e, f->d);
+    particular(f, s->dae.t, f->e);
+    for (j = 0; j < nz; j++)
+        f->d[j] -= f->e[j];
+    f->ta = s->dae.t;
+    f->t_e = NAN; /* e is stale */
+    for (o = 0; o < f->nobs; o++) {
+        flight_obs *b = &f->obs[o];
+        for (j = 0; j < nz; j++) {
+            double l = cabs(f->lam[j]);
+            b->c[j] = f->weight[j] * b->w[j] * f->d[j];
+            b->m0[j] = cabs(b->c[j]);
+            b->m1[j] = b->m0[j] * l;
+            b->m2[j] = b->m1[j] * l;
+        }
+    }
+    f->anchored = 1;
+}
+
+/* e_j = e^{lambda_j (t - ta)} and the bound factors |e_j| grow_j, for the time t. */
+void td_sim_flight_propagate(td_sim_flight *f, double t)
+{
+    double dt = t - f->ta;
+    int i;
+    if (t == f->t_e)
+        return;
+    for (i = 0; i < f->nkeep; i++) {
+        int j = f->keep[i];
+        double m = exp(creal(f->lam[j]) * dt);
+        f->e[j] = m * (cos(cimag(f->lam[j]) * dt) + I * sin(cimag(f->lam[j]) * dt));
+        f->ae[j] = m * f->grow[j];
+    }
+    f->t_e = t;
+}
+
+/* Observation o at the time of the last propagate (t). */
+flight_val td_sim_flight_observe(const td_sim_flight *f, int o, double t)
+{
+    const flight_obs *b = &f->obs[o];
+    double complex ep = td_sim_flight_phase(f, t), v = 0.0, d = 0.0;
+    double w = fabs(f->omega), h = cabs(b->hp) + cabs(b->hm);
+    flight_val r = {0.0, 0.0, 0.0, 0.0, 0.0};
+    int i;
+    for (i = 0; i < f->nkeep; i++) {
+        int j = f->keep[i];
+        double complex ce = b->c[j] * f->e[j];
+        v += ce;
+        d += ce * f->lam[j];
+        r.b0 += b->m0[j] * f->ae[j];
+        r.b1 += b->m1[j] * f->ae[j];
+        r.b2 += b->m2[j] * f->ae[j];
+    }
+    v += b->h0 + b->hp * ep + b->hm * conj(ep);
+    d += I * f->omega * (b->hp * ep - b->hm * conj(ep));
+    r.v = creal(v);
+    r.d = creal(d);
+    r.b0 += cabs(b->h0) + h;
+    r.b1 += w * h;
+    r.b2 += w * w * h;
+    return r;
+}
+
+/* The modal coordinates at t (propagated), weighted for the kept modes, into f->b-sized complex
+ * work `a`; with `rate`, their time derivatives into `da`. */
+static void modal_state(const td_sim_flight *f, double t, double complex *a, double complex *da)
+{
+    double complex ep = td_sim_flight_phase(f, t), em = conj(ep);
+    int i;
+    for (i = 0; i < f->nkeep; i++) {
+        int j = f->keep[i];
+        double complex h = f->d[j] * f->e[j], p = f->pp[j] * ep, m = f->pm[j] * em;
+        a[i] = f->weight[j] * (h + f->p0[j] + p + m);
+        if (da)
+            da[i] = f->weight[j] * (f->lam[j] * h + I * f->omega * (p - m));
+    }
+}
+
+/* The state z at t into y (and its rate into yp with `rate`; the rest of yp: zero in free flight). */
+void td_sim_flight_materialise(td_sim *s, td_sim_flight *f, double t, int rate)
+{
+    double *y = N_VGetArrayPointer(s->dae.y), *yp = N_VGetArrayPointer(s->dae.yp);
+    double complex *a = f->work, *da = rate ? f->work + f->nz : NULL;
+    int i, k, nz = f->nz;
+    td_sim_flight_propagate(f, t);
+    modal_state(f, t, a, da);
+    for (i = 0; i < nz; i++) {
+        const double complex *row = f->V + (size_t)i * (size_t)nz;
+        double z = 0.0, zd = 0.0;
+        for (k = 0; k < f->nkeep; k++) {
+            double complex v = row[f->keep[k]];
+            z += creal(v) * creal(a[k]) - cimag(v) * cimag(a[k]);
+            if (rate)
+                zd += creal(v) * creal(da[k]) - cimag(v) * cimag(da[k]);
+        }
+        y[i] = z;
+        if (rate)
+            yp[i] = zd;
+    }
+    for (i = nz; rate && i < s->dae.neq; i++)
+        yp[i] = 0.0;
+}
+
+/* The displacements z at t into y[0..nz) from the anchored flight, leaving the flight's own cache
+ * (e, t_e) untouched: the modal coordinates go to the caller's `work` (2 neq doubles). */
+int td_sim_flight_peek(const td_sim *s, double t, double *y, double *work)
+{
+    const td_sim_flight *f = s->flight;
+    double complex *e = (double complex *)(void *)work;
+    double complex ep, em;
+    int i, k;
+    if (!f || !f->anchored)
+        return 0;
+    ep = td_sim_flight_phase(f, t);
+    em = conj(ep);
+    for (i = 0; i < f->nkeep; i++) {
+        int j = f->keep[i];
+        double dt = t - f->ta, m = exp(creal(f->lam[j]) * dt);
+        double complex h = f->d[j] * (m * (cos(cimag(f->lam[j]) * dt) + I * sin(cimag(f->lam[j]) * dt)));
+        e[i] = f->weight[j] * (h + f->p0[j] + f->pp[j] * ep + f->pm[j] * em);
+    }
+    for (i = 0; i < f->nz; i++) {
+        const double complex *row = f->V + (size_t)i * (size_t)f->nz;
+        double z = 0.0;
+        for (k = 0; k < f->nkeep; k++)
+            z += creal(row[f->keep[k]]) * creal(e[k]) - cimag(row[f->keep[k]]) * cimag(e[k]);
+        y[i] = z;
+    }
+    return 1;
+}
+
+void td_sim_flight_rates(td_sim *s)
+{
+    if (s->flight && s->flight->anchored)
+        td_sim_flight_materialise(s, s->flight, s->dae.t, 1);
+}
+
+/* ---- life cycle ----------------------------------------------------------------------------- */
+
+static void free_obs(flight_obs *o)
+{
+    free(o->w);
+    free(o->c);
+    free(o->m0);
+    free(o->m1);
+    free(o->m2);
+}
+
+void td_sim_flight_free(td_sim *s)
+{
+    td_sim_flight *f = s->flight;
+    int i;
+    if (!f)
+        return;
+    for (i = 0; f->obs && i < f->nobs; i++)
+        free_obs(&f->obs[i]);
+    free(f->obs);
+    free(f->machine_key);
+    free(f->forcing_key);
+    free(f->key_work);
+    free(f->lam);
+    free(f->V);
+    free(f->Vinv);
+    free(f->grow);
+    free(f->keep);
+    free(f->order);
+    free(f->weight);
+    free(f->work);
+    free(f->p0);
+    free(f->pp);
+    free(f->pm);
+    free(f->d);
+    free(f->e);
+    free(f->ae);
+    free(f->y);
+    free(f->yp);
+    free(f->res);
+    free(f->rate);
+    free(f->rate0);
+    for (i = 0; i < 4; i++)
+        free(f->b[i]);
+    free(f->amb_a);
+    free(f->amb_b);
+    free(f->amb_b2);
+    free(f->amb_p);
+    free(f->amb_b2p);
+    free(f);
+    s->flight = NULL;
+}
+
+static int alloc_obs(flight_obs *o, size_t nz)
+{
+    o->w = calloc(nz, sizeof *o->w);
+    o->c = calloc(nz, sizeof *o->c);
+    o->m0 = calloc(nz, sizeof *o->m0);
+    o->m1 = calloc(nz, sizeof *o->m1);
+    o->m2 = calloc(nz, sizeof *o->m2);
+    return o->w && o->c && o->m0 && o->m1 && o->m2;
+}
+
+/* The flight's arrays; 0 when out of memory (the integrator then carries the machine). */
+static int flight_alloc(td_sim *s)
+{
+    td_sim_flight *f = calloc(1, sizeof *f);
+    size_t nz = (size_t)(2 * s->dae.n + s->dae.nw), neq = (size_t)s->dae.neq, nk, na;
+    int i, ok = f != NULL;
+    if (!ok)
+        return 0;
+    s->flight = f;
+    f->nz = (int)nz;
+    f->nobs = 2 * s->dae.nr + s->sys->n_amb_axes;
+    nk = (size_t)(3 + 2 * s->machine.nu + 3 * td_model_amb_count(s->model));
+    f->machine_key = calloc(nk, sizeof(double));
+    f->forcing_key = calloc(nk, sizeof(double));
+    f->key_work = calloc(nk, sizeof(double));
+    f->lam = calloc(nz, sizeof *f->lam);
+    f->V = calloc(nz * nz, sizeof *f->V);
+    f->Vinv = calloc(nz * nz, sizeof *f->Vinv);
+    f->grow = calloc(nz, sizeof *f->grow);
+    f->keep = calloc(nz, sizeof *f->keep);
+    f->order = calloc(nz, sizeof *f->order);
+    f->weight = calloc(nz, sizeof *f->weight);
+    f->work = calloc(2 * nz, sizeof *f->work);
+    f->p0 = calloc(nz, sizeof *f->p0);
+    f->pp = calloc(nz, sizeof *f->pp);
+    f->pm = calloc(nz, sizeof *f->pm);
+    f->d = calloc(nz, sizeof *f->d);
+    f->e = calloc(nz, sizeof *f->e);
+    f->ae = calloc(nz, sizeof *f->ae);
+    f->y = calloc(neq, sizeof *f->y);
+    f->yp = calloc(neq, sizeof *f->yp);
+    f->res = calloc(neq, sizeof *f->res);
+    f->rate = calloc(nz, sizeof *f->rate);
+    f->rate0 = calloc(nz, sizeof *f->rate0);
+    for (i = 0; i < 4; i++)
+        ok = ok && (f->b[i] = calloc(nz, sizeof(double))) != NULL;
+    f->obs = calloc((size_t)(f->nobs > 0 ? f->nobs : 1), sizeof *f->obs);
+    na = (size_t)(s->sys->n_amb_axes > 0 ? s->sys->n_amb_axes : 1);
+    f->amb_a = calloc(na, sizeof(double));
+    f->amb_b = calloc(na, sizeof(double));
+    f->amb_b2 = calloc(na, sizeof(double));
+    f->amb_p = calloc(na, sizeof(double));
+    f->amb_b2p = calloc(na, sizeof(double));
+    ok = ok && f->amb_a && f->amb_b && f->amb_b2 && f->amb_p && f->amb_b2p;
+    ok = ok && f->machine_key && f->forcing_key && f->key_work && f->lam && f->V && f->Vinv && f->grow && f->keep &&
+         f->order && f->weight && f->work && f->p0 && f->pp && f->pm && f->d && f->e && f->ae && f->y && f->yp &&
+         f->res && f->rate && f->rate0 && f->obs;
+    for (i = 0; ok && i < f->nobs; i++)
+        ok = alloc_obs(&f->obs[i], nz);
+    f->nkey_m = f->nkey_f = -1;
+    f->t_root = -INFINITY;
+    if (!ok)
+        td_sim_flight_free(s);
+    return ok;
+}
+
+void td_sim_flight_forget(td_sim *s)
+{
+    if (s->flight) {
+        s->flight->anchored = 0;
+        s->flight->handover = 0;
+        s->flight->t_step = -INFINITY;
+    }
+}
+
+/* The decomposition and the forcing brought up to date with the machine; 0 if the flight cannot
+ * carry it. */
+int td_sim_flight_ready(td_sim *s, const double *scale)
+{
+    td_sim_flight *f;
+    int n;
+    if (!s->flight && !flight_alloc(s))
+        return 0;
+    f = s->flight;
+    if (f->handover)
+        return 0;
+    n = machine_key(s, f->key_work);
+    if (key_changed(f, f->machine_key, n) || n != f->nkey_m) {
+        f->nkey_m = n;
+        f->machine_ok = decompose(s, f, scale);
+        if (f->machine_ok)
+            build_observations(s, f);
+        f->nkey_f = -1;
+        f->anchored = 0;
+    }
+    if (!f->machine_ok)
+        return 0;
+    n = forcing_key(s, f->key_work);
+    if (key_changed(f, f->forcing_key, n) || n != f->nkey_f) {
+        f->nkey_f = n;
+        f->forcing_ok = build_forcing(s, f);
+        if (f->forcing_ok)
+            observe_forcing(f);
+        f->anchored = 0;
+    }
+    if (!f->forcing_ok)
+        return 0;
+    if (!f->anchored) {
+        anchor(s, f);
+        f->t_step = -INFINITY;
+    }
+    return 1;
+}

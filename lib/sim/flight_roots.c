@@ -1,0 +1,176 @@
+/*
+ * The closed-form free flight's next root (flight_internal.h): a step that cannot pass a root of
+ * any retainer's root functions, from the bounds of the modal sum (flight_modal.c).
+ */
+#include "sim/flight_internal.h"
+
+#include <complex.h>
+#include <math.h>
+#include <string.h>
+
+/* The largest tau for which G + G' tau - B tau^2 / 2 > 0 (G > 0): no root of a function with
+ * G'' >= -B before it; 0 if G <= 0. */
+static double safe_step(double g, double dg, double bound)
+{
+    double sq;
+    if (g <= 0.0)
+        return 0.0;
+    if (bound <= 0.0)
+        return dg < 0.0 ? g / -dg : INFINITY;
+    sq = sqrt(dg * dg + 2.0 * bound * g);
+    return 2.0 * g / (sq - dg); /* (dg + sq) / bound without its cancellation */
+}
+
+/* 1 if sign (R2 - |p|^2) of retainer k's node is negative a little after t, by twice the Newton
+ * estimate `newton` of the time to the root (and at least FLIGHT_ROOT_TOL): the function crosses
+ * there, it does not only graze its root. Leaves f->e at t + that. */
+static int crosses(td_sim_flight *f, int k, double t, double R2, double sign, double newton)
+{
+    double t2 = t + fmax(2.0 * newton, FLIGHT_ROOT_TOL);
+    flight_val x, y;
+    td_sim_flight_propagate(f, t2);
+    x = td_sim_flight_observe(f, 2 * k, t2);
+    y = td_sim_flight_observe(f, 2 * k + 1, t2);
+    return sign * (R2 - (x.v * x.v + y.v * y.v)) < 0.0;
+}
+
+/* 1 if a root function g, falling at the rate `closing` (g' = -closing) with |g''| <= bound, is
+ * below zero FLIGHT_ROOT_TOL from now whatever its curvature: g - closing tau + bound tau^2 / 2 < 0
+ * at tau = FLIGHT_ROOT_TOL. (Also when g is already at or below zero, a rounding error past the
+ * root, and moving on.) */
+static int surely_crossed(double g, double closing, double bound)
+{
+    double tau = FLIGHT_ROOT_TOL;
+    return g - closing * tau + 0.5 * bound * tau * tau < 0.0;
+}
+
+/* The node inside radius R until F(tau) = R - m - a tau^2 / 2 - |p + v tau| reaches zero (F is
+ * concave: one crossing, found by bisection to a 2^-30 of the longest step); 0 if F(0) <= 0. */
+static double inside_until(double R, double m, double a, const double p[2], const double v[2])
+{
+    double lo = 0.0, hi = FLIGHT_MAX_STEP;
+    int i;
+#define INSIDE(tau) (R - m - 0.5 * a * (tau) * (tau)-hypot(p[0] + v[0] * (tau), p[1] + v[1] * (tau)))
+    if (INSIDE(0.0) <= 0.0)
+        return 0.0;
+    if (INSIDE(hi) > 0.0)
+        return hi;
+    for (i = 0; i < 30; i++) {
+        double mid = 0.5 * (lo + hi);
+        if (INSIDE(mid) > 0.0)
+            lo = mid;
+        else
+            hi = mid;
+    }
+#undef INSIDE
+    return lo;
+}
+
+/* splits of the modal sum tried by split_step */
+#define FLIGHT_SPLITS 8
+
+/*
+ * A safe step inside radius R for retainer k's node (at the last propagate, time t) from the modal
+ * sum split by frequency: the modes above the split bounded by their amplitudes m (they ring, but
+ * never further out than that), the slower ones and the forcing by a Taylor expansion with their
+ * acceleration bound a: |p(t + tau)| <= |p_s + p_s' tau| + a tau^2 / 2 + m. Near the clearance the
+ * ringing 11-13 kHz modes make the acceleration bound of the whole sum (retainer_roots) large and
+ * its step short; each split is a bound, the best is taken.
+ */
+static double split_step(const td_sim_flight *f, int k, double t, double R)
+{
+    const flight_obs *o[2] = {&f->obs[2 * k], &f->obs[2 * k + 1]};
+    double complex ep = td_sim_flight_phase(f, t);
+    double p[2], v[2], a[2], m[2] = {0.0, 0.0}, best = 0.0, w = f->omega;
+    int c, i = 0, stride = f->nkeep / FLIGHT_SPLITS + 1;
+    for (c = 0; c < 2; c++) { /* start: the forcing slow, every mode fast */
+        p[c] = creal(o[c]->h0 + o[c]->hp * ep + o[c]->hm * conj(ep));
+        v[c] = creal(I * w * (o[c]->hp * ep - o[c]->hm * conj(ep)));
+        a[c] = w * w * (cabs(o[c]->hp) + cabs(o[c]->hm));
+        for (i = 0; i < f->nkeep; i++)
+            m[c] += o[c]->m0[f->keep[i]] * f->ae[f->keep[i]];
+    }
+    for (i = 0; i <= f->nkeep; i++) {
+        int j;
+        if (i % stride == 0 || i == f->nkeep)
+            best = fmax(best, inside_until(R, hypot(fmax(m[0], 0.0), fmax(m[1], 0.0)), hypot(a[0], a[1]), p, v));
+        if (i == f->nkeep)
+            break;
+        j = f->order[i]; /* mode j joins the slow side */
+        for (c = 0; c < 2; c++) {
+            double complex ce = o[c]->c[j] * f->e[j];
+            p[c] += creal(ce);
+            v[c] += creal(ce * f->lam[j]);
+            a[c] += o[c]->m2[j] * f->ae[j];
+            m[c] -= o[c]->m0[j] * f->ae[j];
+        }
+    }
+    return best;
+}
+
+/* Retainer k's root functions at the last propagate (time t): the safe step to each (contact,
+ * rearm: INFINITY where there is none) and whether each is converged on its root: within
+ * FLIGHT_ROOT_TOL of it and crossing it: surely by the bound on its curvature, else as evaluated
+ * FLIGHT_ROOT_TOL ahead (a graze that turns back before its root is no contact). The bound matters
+ * for a slow approach: the safe steps creep up to the root and may stop a rounding error short of
+ * it or beyond it, where the evaluation ahead is itself at the rounding level; missed there, the
+ * flight hands over to IDA with the root behind IDA's restart, and the node passes through the
+ * retainer unseen. */
+static void retainer_roots(const td_sim *s, td_sim_flight *f, int k, double t, double tau[2], int hit[2])
+{
+    const td_sim_retainer *r = &s->contacts.ret[k];
+    flight_val x = td_sim_flight_observe(f, 2 * k, t), y = td_sim_flight_observe(f, 2 * k + 1, t);
+    double c = r->r.clearance, r2 = x.v * x.v + y.v * y.v, dr2 = 2.0 * (x.v * x.d + y.v * y.d);
+    double p = hypot(x.b0, y.b0), v = hypot(x.b1, y.b1), a = hypot(x.b2, y.b2);
+    double bound = 2.0 * (v * v + p * a);
+    /* the radii of td_sim_roots' functions: gap + off = 0 (contact), gap - eps = 0 (rearm) */
+    double contact2 = c * c + (r->armed ? 0.0 : 2.0 * c * s->machine.rearm_eps);
+    double rearm2 = c * c - 2.0 * c * s->machine.rearm_eps;
+    tau[0] = safe_step(contact2 - r2, -dr2, bound);
+    hit[0] = tau[0] < FLIGHT_ROOT_TOL && dr2 > 0.0 &&
+             (surely_crossed(contact2 - r2, dr2, bound) || crosses(f, k, t, contact2, 1.0, (contact2 - r2) / dr2));
+    if (!hit[0]) {
+        td_sim_flight_propagate(f, t); /* crosses() may have moved it */
+        tau[0] = fmax(tau[0], split_step(f, k, t, sqrt(contact2)));
+    }
+    tau[1] = INFINITY;
+    hit[1] = 0;
+    if (!r->armed) {
+        tau[1] = safe_step(r2 - rearm2, dr2, bound);
+        hit[1] = tau[1] < FLIGHT_ROOT_TOL && dr2 < 0.0 &&
+                 (surely_crossed(r2 - rearm2, -dr2, bound) || crosses(f, k, t, rearm2, -1.0, (r2 - rearm2) / -dr2));
+    }
+}
+
+/* The step from t that cannot pass a root; the roots reached (to FLIGHT_ROOT_TOL) flagged in
+ * s->dae.rootsfound (*root: any). */
+double td_sim_flight_next_step(td_sim *s, td_sim_flight *f, double t, int *root)
+{
+    int k, i;
+    double step = INFINITY;
+    *root = 0;
+    memset(s->dae.rootsfound, 0, sizeof(int) * (size_t)s->dae.nroots);
+    for (k = 0; k < s->dae.nr; k++) {
+        double tau[2];
+        int hit[2];
+        td_sim_flight_propagate(f, t); /* crosses() moves it */
+        retainer_roots(s, f, k, t, tau, hit);
+        for (i = 0; i < 2; i++) {
+            if (hit[i]) {
+                s->dae.rootsfound[TD_ROOTS_PER_RETAINER * k + (i == 0 ? TD_ROOT_CONTACT : TD_ROOT_REARM)] =
+                    i == 0 ? -1 : 1;
+                *root = 1;
+            }
+            step = fmin(step, tau[i]);
+        }
+    }
+    return *root ? 0.0 : step;
+}
+
+/* Every root function positive at s->dae.t: the flight starts clear of every root. */
+int td_sim_flight_clear_of_roots(td_sim *s, td_sim_flight *f)
+{
+    int root;
+    td_sim_flight_propagate(f, s->dae.t);
+    return td_sim_flight_next_step(s, f, s->dae.t, &root) > 0.0 && !root;
+}

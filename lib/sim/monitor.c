@@ -1,0 +1,132 @@
+/*
+ * The monitor's running statistics and event queue: the statistics of the accepted points (contact
+ * time, peak normal force, the AMBs' peak load, the constraint drift) and the events waiting to be
+ * reported by td_sim_step. Called by the layers above (the flight, the mode switching, the step
+ * loop); calls only the retainers' queries and the DAE's forces below it.
+ */
+#include "sim/sim_internal.h"
+
+#include <math.h>
+#include <string.h>
+
+/* Queue an event and count it. A contact onset opens the retainer's interval peak; an event that
+ * ends a contact interval carries it. */
+void td_sim_queue_event(td_sim *s, const td_event *ev)
+{
+    td_event e = *ev;
+    if ((e.kind == TD_EVENT_CONTACT_ONSET || e.kind == TD_EVENT_PENALTY_ENTER) && e.retainer >= 0)
+        s->monitor.totals[e.retainer].interval_peak = 0.0;
+    if ((e.kind == TD_EVENT_RELEASE || e.kind == TD_EVENT_PENALTY_EXIT) && e.retainer >= 0)
+        e.peak_normal_force = s->monitor.totals[e.retainer].interval_peak;
+    if (s->monitor.q_len < s->monitor.q_cap)
+        s->monitor.queue[s->monitor.q_len++] = e;
+    s->monitor.stats.events++;
+    switch (ev->kind) {
+    case TD_EVENT_CONTACT_ONSET:
+    case TD_EVENT_PENALTY_ENTER:
+        s->monitor.stats.contact_onsets++;
+        if (td_is_undefined(s->monitor.stats.first_contact_time))
+            s->monitor.stats.first_contact_time = ev->time;
+        break;
+    case TD_EVENT_RELEASE:
+    case TD_EVENT_PENALTY_EXIT: s->monitor.stats.releases++; break;
+    default: break;
+    }
+}
+
+void td_sim_event_velocities(const td_sim *s, int k, const double *y, int after, td_event *ev)
+{
+    double x, yy, vx, vy, vr, vt;
+    td_sim_node_state(s, k, y, &x, &yy, &vx, &vy);
+    vr = td_contact_radial_velocity(x, yy, vx, vy);
+    vt = td_contact_tangential_velocity(x, yy, vx, vy);
+    if (after) {
+        ev->radial_velocity_after = vr;
+        ev->tangential_velocity_after = vt;
+    } else {
+        ev->radial_velocity_before = ev->radial_velocity_after = vr;
+        ev->tangential_velocity_before = ev->tangential_velocity_after = vt;
+    }
+}
+
+/* An event of `kind` at s->dae.t, of retainer k (-1: none), no schedule entry. */
+td_event td_sim_event_at(const td_sim *s, td_event_kind kind, int k)
+{
+    td_event ev;
+    memset(&ev, 0, sizeof ev);
+    ev.kind = kind;
+    ev.time = s->dae.t;
+    ev.retainer = k;
+    ev.change = -1;
+    return ev;
+}
+
+/* AMB axis k's force at time t against its capacity: a new peak load if it is the largest yet. */
+void td_sim_monitor_amb_load(td_sim *s, int k, double force, double t)
+{
+    const td_amb_axis *a = &s->sys->amb_axes[k];
+    double load = fabs(force) / a->capacity;
+    if (load > s->monitor.stats.peak_amb_load) {
+        s->monitor.stats.peak_amb_load = load;
+        s->monitor.stats.peak_amb_force = fabs(force);
+        s->monitor.stats.peak_amb_time = t;
+        s->monitor.stats.peak_amb = a->amb;
+    }
+}
+
+/* The AMBs' peak load at the state y (time t): the axis force against its capacity, while on. */
+static void monitor_ambs(td_sim *s, double t, const double *y)
+{
+    int k;
+    for (k = 0; k < s->sys->n_amb_axes; k++)
+        if (s->machine.amb_mode[s->sys->amb_axes[k].amb] != TD_AMB_OFF)
+            td_sim_monitor_amb_load(s, k, td_sim_amb_axis_force(s, k, y), t);
+}
+
+/* Statistics at the state in s->dae.y (time t): contact time, peak normal force, AMB load, and, at
+ * integrator steps only (at_step; interpolated states carry the interpolation error), the drift. */
+void td_sim_monitor_at(td_sim *s, double t, int at_step)
+{
+    const double *y = N_VGetArrayPointer(s->dae.y);
+    double dt = t - s->monitor.t_acc;
+    int k;
+    for (k = 0; k < s->dae.nr; k++) {
+        const td_sim_retainer *r = &s->contacts.ret[k];
+        double fn;
+        if (r->mode == TD_RMODE_FREE)
+            continue;
+        if (dt > 0.0)
+            s->monitor.stats.time_in_contact += dt;
+        if (r->mode == TD_RMODE_CONTACT && at_step) {
+            double x, yy, vx, vy, drift;
+            td_sim_node_state(s, k, y, &x, &yy, &vx, &vy);
+            drift = fabs(hypot(x, yy) - r->r.clearance);
+            if (drift > s->monitor.stats.worst_drift)
+                s->monitor.stats.worst_drift = drift;
+        }
+        fn = td_sim_normal_force(s, k, y);
+        s->monitor.totals[k].interval_peak = fmax(s->monitor.totals[k].interval_peak, fn);
+        if (fn > s->monitor.stats.peak_normal_force) {
+            s->monitor.stats.peak_normal_force = fn;
+            s->monitor.stats.peak_time = t;
+            s->monitor.stats.peak_retainer = k;
+        }
+    }
+    monitor_ambs(s, t, y);
+    if (t > s->monitor.t_acc)
+        s->monitor.t_acc = t;
+}
+
+/* The next queued event into s->monitor.last (td_sim_last_event); 0 when the queue is empty. */
+int td_sim_pop_event(td_sim *s)
+{
+    if (s->monitor.q_pos >= s->monitor.q_len) {
+        s->monitor.q_pos = s->monitor.q_len = 0;
+        return 0;
+    }
+    s->monitor.last = s->monitor.queue[s->monitor.q_pos++];
+    s->monitor.have_last = 1;
+    if (s->monitor.q_pos >= s->monitor.q_len)
+        s->monitor.q_pos = s->monitor.q_len = 0;
+    return 1;
+}

@@ -1,0 +1,47 @@
+/*
+ * The monitor's record: what the simulation has seen so far, kept at the accepted points and the
+ * events (monitor.c: statistics and the event queue; totals.c: the retainers' running totals;
+ * energy.c: the energy account), which own it. The layers above add to it (the flight its steps,
+ * the mode switching the details of the events it queued, the integrator its restarts) and report
+ * it (sim.c); the layers below never see it.
+ */
+#ifndef TD_SIM_MONITOR_H
+#define TD_SIM_MONITOR_H
+
+#include "touchdown/records.h"
+#include "touchdown/sim.h"
+
+/* One retainer's running totals (totals.c): the public record, the integrands at the last point
+ * and the contact interval's bookkeeping. */
+typedef struct td_sim_totals {
+    td_retainer_totals t;
+    struct {
+        double n, n2, power, whirl_rate;
+    } prev;
+    int in_contact;        /* in contact at the last point */
+    double whirl_at_onset; /* t.whirl_angle when the open interval began */
+    double interval_peak;  /* N, the largest normal force of the open (or the last) contact interval
+                              at the accepted points (monitor.c, td_sim_monitor_at) */
+} td_sim_totals;
+
+typedef struct td_sim_monitor {
+    /* events waiting to be reported (monitor.c), the last one reported */
+    td_event *queue;
+    int q_len, q_pos, q_cap;
+    td_event last;
+    int have_last;
+
+    /* the retainers' totals (totals.c), nr of them, and the time of their last point */
+    td_sim_totals *totals;
+    double totals_t;
+    td_energy energy;      /* the energy account (energy.c) */
+    double energy_prev[5]; /* its powers at the last point: external, drive, damping, contact, drag */
+    double *energy_f;      /* n: the external forces at a point */
+    int energy_started;    /* the initial energy is set */
+
+    /* statistics (monitor.c) */
+    td_sim_stats stats; /* event totals, drift, forces, times (counters filled on demand) */
+    double t_acc;       /* contact time accumulated up to here */
+} td_sim_monitor;
+
+#endif
