@@ -3,10 +3,10 @@
  * retainers, races and spin laid out, the work space, the machine at the start, the scales, the
  * Jacobian pattern, the integrator, the tolerances and the start state, in that order.
  */
+#include "model/gap.h"
 #include "sim/section.h"
 #include "sim/sim_internal.h"
 #include "util/error_internal.h"
-#include "util/limits.h"
 
 #include <math.h>
 #include <stdlib.h>

@@ -4,7 +4,6 @@
  * sim_modes.c, the per-retainer queries in retainer.c; each public call checks its arguments,
  * starts with no message and reports a failure through its td_error.
  */
-#include "model/gap.h"
 #include "sim/sim_internal.h"
 #include "util/clock.h"
 #include "util/error_internal.h"
