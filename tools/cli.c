@@ -38,17 +38,29 @@ int td_cli_add_set(td_cli_sets *sets, const char *kv)
     return TD_EXIT_OK;
 }
 
+/* A case that cannot be loaded: "touchdown: MESSAGE", exit 2. */
+static int load_failed(td_status st, const td_error *err)
+{
+    fprintf(stderr, "touchdown: %s\n", err->message[0] ? err->message : td_strerror(st));
+    return TD_EXIT_USAGE;
+}
+
 int td_cli_load_case(const char *path, const td_cli_sets *sets, td_case **out)
 {
     td_error err;
     td_status st;
     td_error_clear(&err);
     st = td_case_load(path, sets ? sets->items : NULL, sets ? sets->count : 0, out, &err);
-    if (st != TD_OK) {
-        fprintf(stderr, "touchdown: %s\n", err.message[0] ? err.message : td_strerror(st));
-        return TD_EXIT_USAGE;
-    }
-    return TD_EXIT_OK;
+    return st == TD_OK ? TD_EXIT_OK : load_failed(st, &err);
+}
+
+int td_cli_job_create(const char *path, const td_cli_sets *sets, td_job **out)
+{
+    td_error err;
+    td_status st;
+    td_error_clear(&err);
+    st = td_job_create(path, sets ? sets->items : NULL, sets ? sets->count : 0, out, &err);
+    return st == TD_OK ? TD_EXIT_OK : load_failed(st, &err);
 }
 
 int td_cli_exit_code(td_status st)
