@@ -1,5 +1,5 @@
 /*
- * libFuzzer target for the sweep journal's reader (tools/sweep_journal.c): sweep_store_read, and
+ * libFuzzer target for the sweep journal's reader (tools/sweep/sweep_journal.c): sweep_store_read, and
  * sweep_journal_open, which cuts a torn tail off before appending.
  *
  * An input is a control byte, a byte giving the sweep's number of points (1 .. 64), then the

@@ -1,5 +1,5 @@
 /*
- * libFuzzer target for the reading of result files by `touchdown plot` (tools/plot_file.c,
+ * libFuzzer target for the reading of result files by `touchdown plot` (tools/plot/plot_file.c,
  * plot_h5.c, plot_sweep_load.c): the input's bytes are written as result.h5 and loaded with
  * plot_file_load, as the tool loads each file it is given, HDF5's own error printing off as in
  * the tool. The seed corpus (scripts/fuzz.sh) is small result files of the tool itself: a run,

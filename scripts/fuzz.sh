@@ -2,9 +2,9 @@
 # Fuzz a reader of untrusted bytes with libFuzzer for SECONDS seconds (default 60).
 #   [FUZZ_TARGET=case|journal|vary|plot] scripts/fuzz.sh [SECONDS] [BUILD_DIR]   (default BUILD_DIR: build-fuzz)
 # The targets (fuzz/README.md): case, the case-file reader (td_case_load, the default); journal,
-# the sweep journal's reader and appender (tools/sweep_journal.c); vary, the --vary / --with
+# the sweep journal's reader and appender (tools/sweep/sweep_journal.c); vary, the --vary / --with
 # parser (td_sweep_grid_vary, _with); plot, result files as touchdown plot loads them
-# (tools/plot_file.c, plot_h5.c, plot_sweep_load.c).
+# (tools/plot/plot_file.c, plot_h5.c, plot_sweep_load.c).
 # Installs clang and libclang-rt-14-dev when missing (Debian 12, as root), builds fuzz/ with
 # -fsanitize=fuzzer,address,undefined, makes the target's seed corpus (case: from cases/ and
 # tests/data/, a case that includes another file becoming "MAIN\n@@@\nINCLUDED" with @include

@@ -1,5 +1,5 @@
 /*
- * The sweep journal (tools/sweep_journal.c, the tool's) against what a crash or a bad disk leaves
+ * The sweep journal (tools/sweep/sweep_journal.c, the tool's) against what a crash or a bad disk leaves
  * behind: a zero-filled tail, a last record of garbage that says "done", a record cut short, text
  * fields without their terminating zero, a damaged record with whole records after it, a
  * journal of the previous format, and files shorter than a header. Each journal is written by the journal's own writer

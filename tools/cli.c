@@ -38,6 +38,13 @@ int td_cli_add_set(td_cli_sets *sets, const char *kv)
     return TD_EXIT_OK;
 }
 
+/* A case that cannot be loaded: "touchdown: MESSAGE", exit 2. */
+static int load_failed(td_status st, const td_error *err)
+{
+    fprintf(stderr, "touchdown: %s\n", err->message[0] ? err->message : td_strerror(st));
+    return TD_EXIT_USAGE;
+}
+
 int td_cli_load_case(const char *path, const td_cli_sets *sets, td_case **out)
 {
     td_error err;
@@ -47,11 +54,19 @@ int td_cli_load_case(const char *path, const td_cli_sets *sets, td_case **out)
     /* the sweep group is judged whichever command loads the case (docs/case-format.md, "sweep") */
     if (st == TD_OK && (st = td_sweep_check_case(*out, &err)) != TD_OK)
         td_case_free(out);
-    if (st != TD_OK) {
-        fprintf(stderr, "touchdown: %s\n", err.message[0] ? err.message : td_strerror(st));
-        return TD_EXIT_USAGE;
-    }
-    return TD_EXIT_OK;
+    return st == TD_OK ? TD_EXIT_OK : load_failed(st, &err);
+}
+
+int td_cli_job_create(const char *path, const td_cli_sets *sets, td_job **out)
+{
+    td_error err;
+    td_status st;
+    td_error_clear(&err);
+    st = td_job_create(path, sets ? sets->items : NULL, sets ? sets->count : 0, out, &err);
+    /* as td_cli_load_case: the sweep group is judged whichever command loads the case */
+    if (st == TD_OK && (st = td_sweep_check_case(td_job_case(*out), &err)) != TD_OK)
+        td_job_free(out);
+    return st == TD_OK ? TD_EXIT_OK : load_failed(st, &err);
 }
 
 int td_cli_exit_code(td_status st)

@@ -3,6 +3,7 @@
 #define TD_TOOLS_CLI_H
 
 #include "touchdown/case.h"
+#include "touchdown/job.h"
 #include "touchdown/touchdown.h"
 
 #include <signal.h>
@@ -29,6 +30,9 @@ int td_cli_add_set(td_cli_sets *sets, const char *kv);
 
 /* Load a case with overrides; on failure print "touchdown: MESSAGE" and return TD_EXIT_USAGE. */
 int td_cli_load_case(const char *path, const td_cli_sets *sets, td_case **out);
+
+/* The job of a case with overrides (touchdown/job.h); on failure as td_cli_load_case. */
+int td_cli_job_create(const char *path, const td_cli_sets *sets, td_job **out);
 
 /* Catch SIGINT, SIGTERM and SIGHUP (a closed terminal, a dropped ssh) from now on: each sets the
  * returned flag (cleared here), which the command reads to stop and keep what it has written. */

@@ -7,6 +7,7 @@
 #include "touchdown/case.h"
 #include "touchdown/dofs.h"
 #include "touchdown/error.h"
+#include "touchdown/job.h"
 #include "touchdown/json.h"
 #include "touchdown/modal.h"
 #include "touchdown/modal_output.h"

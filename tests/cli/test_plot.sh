@@ -170,7 +170,7 @@ else
 fi
 
 # ---- every kind of kept script reruns on its own, silently ---------------------------------
-# (each is a template from tools/gp/ with its variables in front: nothing else is needed)
+# (each is a template from tools/plot/gp/ with its variables in front: nothing else is needed)
 if command -v gnuplot >/dev/null && [ -d modal-plots ]; then
     rerun_ok=1
     for gp in plot-fixture-constraint-plots/*.gp cmp/*.gp modal-plots/*.gp; do

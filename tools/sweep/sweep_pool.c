@@ -69,35 +69,29 @@ int sweep_point_paths(const sweep_job *job, long point, td_output_options *out)
     return bad;
 }
 
-/* The whole run of one point, as `touchdown run` does it, its files written only when the sweep
- * keeps them (DIR/point-NNNNNN.h5 and .csv, checked before the sweep). */
+/* The whole run of one point, as `touchdown run` does it (touchdown/job.h), its files written only
+ * when the sweep keeps them (DIR/point-NNNNNN.h5 and .csv, checked before the sweep). */
 static void run_point(const sweep_job *job, long point, td_sweep_row *row)
 {
     const char *items[TD_CLI_MAX_SETS + TD_SWEEP_MAX_KEYS];
     char store[TD_SWEEP_MAX_KEYS][TD_SWEEP_KEY_SIZE + TD_SWEEP_VALUE_SIZE];
     int n = sweep_point_overrides(job, point, items, store);
-    td_case *c = NULL;
-    td_sim *sim = NULL;
-    td_output_options out;
+    td_job *j = NULL;
+    td_job_settings set;
     td_run_summary s;
     td_error err;
     td_status st;
     td_error_clear(&err);
-    if ((st = td_case_load(job->case_path, items, n, &c, &err)) != TD_OK) {
+    if ((st = td_job_create(job->case_path, items, n, &j, &err)) != TD_OK) {
         td_sweep_row_unknown(row, TD_SWEEP_FAILED, td_strerror(st), err.message);
         return;
     }
-    out = *td_case_output_options(c);
-    sweep_point_paths(job, point, &out); /* every point's checked before the sweep */
-    st = td_sim_create(td_case_model(c), td_case_sim_options(c), &sim, &err);
-    if (st != TD_OK)
-        td_run_summary_failed(&s, td_case_sim_options(c)->t0, td_case_end_time(c), td_model_speed(td_case_model(c)),
-                              td_case_sim_options(c)->start, st, err.message);
-    else /* the case text goes into the point's files, as touchdown run stores it */
-        td_run(sim, td_case_end_time(c), &out, NULL, td_case_text(c), &s, &err);
+    set = *td_job_settings_get(j);
+    sweep_point_paths(job, point, &set.out); /* every point's checked before the sweep */
+    td_job_set(j, &set, NULL);               /* cannot fail: the job has not started */
+    td_job_run(j, NULL, &s, &err);           /* a failed set-up: the failed summary */
     td_sweep_row_from_summary(row, &s);
-    td_sim_free(&sim);
-    td_case_free(&c);
+    td_job_free(&j);
 }
 
 static int write_all(int fd, const void *buf, size_t n)

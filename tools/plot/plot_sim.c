@@ -176,7 +176,7 @@ static int write_amb_data(const plot_job *job, const plot_file *f, const char *p
     return plot_close(out, job->opt, name);
 }
 
-/* ---- figures: variables for the templates tools/gp/NAME.gp ------------------------------- */
+/* ---- figures: variables for the templates tools/plot/gp/NAME.gp -------------------------- */
 
 /* markers = "T1 T2 ...": the scheduled changes (e.g. the unbalance steps), drawn dashed. */
 static void schedule_markers(FILE *out, const plot_sim *s)

@@ -91,6 +91,23 @@ static int parse_count(const char *s, int lo, int hi, int *out)
     return 1;
 }
 
+/* Once the options are read (optind past them): the files given and the window. Returns -1 to go
+ * on, else the exit code. */
+static int check_operands(int argc, const plot_opts *opt)
+{
+    if (optind >= argc)
+        return usage_error("%s", "no result file given");
+    if (argc - optind > PLOT_MAX_FILES) {
+        fprintf(stderr, "touchdown plot: at most %d files at once\n", PLOT_MAX_FILES);
+        return TD_EXIT_USAGE;
+    }
+    if (!(opt->win.from < opt->win.to)) {
+        fprintf(stderr, "touchdown plot: --from %g is not before --to %g\n", opt->win.from, opt->win.to);
+        return TD_EXIT_USAGE;
+    }
+    return -1;
+}
+
 /* Parse the options into `opt`; returns -1 to go on, else the exit code. */
 static int parse(int argc, char **argv, plot_opts *opt)
 {
@@ -161,17 +178,7 @@ static int parse(int argc, char **argv, plot_opts *opt)
         default: return usage_error("unknown option '%s'", argv[optind - 1]);
         }
     }
-    if (optind >= argc)
-        return usage_error("%s", "no result file given");
-    if (argc - optind > PLOT_MAX_FILES) {
-        fprintf(stderr, "touchdown plot: at most %d files at once\n", PLOT_MAX_FILES);
-        return TD_EXIT_USAGE;
-    }
-    if (!(opt->win.from < opt->win.to)) {
-        fprintf(stderr, "touchdown plot: --from %g is not before --to %g\n", opt->win.from, opt->win.to);
-        return TD_EXIT_USAGE;
-    }
-    return -1;
+    return check_operands(argc, opt);
 }
 
 /* --retainer must exist in every simulation file. */

@@ -1,4 +1,4 @@
-/* touchdown sweep: the progress line on stderr (tools/sweep_progress.c). */
+/* touchdown sweep: the progress line on stderr (tools/sweep/sweep_progress.c). */
 #ifndef TD_TOOLS_SWEEP_PROGRESS_H
 #define TD_TOOLS_SWEEP_PROGRESS_H
 

@@ -10,6 +10,7 @@
  */
 #include "cli.h"
 #include "touchdown/dofs.h"
+#include "touchdown/job.h"
 #include "touchdown/json.h"
 #include "touchdown/run.h"
 
@@ -209,30 +210,28 @@ static int find_case_dir(const char *dir, char *out, size_t n)
 
 /* ---- one run ----------------------------------------------------------------------------- */
 
-/* Run `model` with `opt` from opt->t0 to t_end through td_run, no files. */
-static int run_model(volatile sig_atomic_t *cancel, const td_model *model, const td_sim_options *opt,
-                     const td_output_options *case_out, double t_end, bench_run *r, char *msg, size_t nmsg)
+/* Run `job` with no files (touchdown/job.h), its CPU time taken over the run alone (not the set-up). */
+static int run_job(volatile sig_atomic_t *cancel, td_job *job, bench_run *r, char *msg, size_t nmsg)
 {
-    td_output_options out = *case_out;
+    td_job_settings set = *td_job_settings_get(job);
     td_run_hooks hooks;
-    td_sim *sim = NULL;
     td_error err;
     td_status st;
     double c0;
     memset(r, 0, sizeof *r);
-    out.hdf5_path[0] = out.csv_path[0] = '\0';
+    set.out.hdf5_path[0] = set.out.csv_path[0] = '\0';
+    td_job_set(job, &set, NULL); /* cannot fail: the job has not started */
     td_error_clear(&err);
     memset(&hooks, 0, sizeof hooks);
     hooks.cancel = cancel;
-    st = td_sim_create_cancellable(model, opt, cancel, &sim, &err);
+    st = td_job_start(job, cancel, &err);
     if (st != TD_OK) {
         snprintf(msg, nmsg, "%s", err.message[0] ? err.message : td_strerror(st));
         return 0;
     }
     c0 = cpu_now();
-    st = td_run(sim, t_end, &out, &hooks, NULL, &r->sum, &err);
+    st = td_job_run(job, &hooks, &r->sum, &err);
     r->cpu = cpu_now() - c0;
-    td_sim_free(&sim);
     if (st != TD_OK) {
         snprintf(msg, nmsg, "%s", err.message[0] ? err.message : td_strerror(st));
         return 0;
@@ -241,27 +240,47 @@ static int run_model(volatile sig_atomic_t *cancel, const td_model *model, const
     return 1;
 }
 
+/* Run `model` with `opt` from opt->t0 to t_end, no files (the case's sampling). */
+static int run_model(volatile sig_atomic_t *cancel, const td_model *model, const td_sim_options *opt,
+                     const td_output_options *case_out, double t_end, bench_run *r, char *msg, size_t nmsg)
+{
+    td_job_settings set;
+    td_job *job = NULL;
+    td_error err;
+    int ok;
+    set.sim = *opt;
+    set.out = *case_out;
+    set.t_end = t_end;
+    if (td_job_create_model(model, &set, NULL, &job, &err) != TD_OK) {
+        memset(r, 0, sizeof *r);
+        snprintf(msg, nmsg, "%s", err.message);
+        return 0;
+    }
+    ok = run_job(cancel, job, r, msg, nmsg);
+    td_job_free(&job);
+    return ok;
+}
+
 static int run_case(const bench_options *bo, const char *dir, int ci, bench_run *r)
 {
     char path[TD_OUTPUT_PATH_SIZE + 64], msg[TD_ERROR_MESSAGE_SIZE];
-    td_case *c = NULL;
-    td_sim_options o;
-    double t_end;
+    td_job *job = NULL;
+    td_job_settings set;
     int ok;
     if (td_cli_path(path, sizeof path, dir, "/", "bench", "--dir") ||
         td_cli_path(path + strlen(path), sizeof path - strlen(path), bench_cases[ci].file, "", "bench", "--dir") ||
-        td_cli_load_case(path, &bo->sets, &c))
+        td_cli_job_create(path, &bo->sets, &job))
         return 0;
-    o = *td_case_sim_options(c);
-    t_end = td_case_end_time(c);
+    set = *td_job_settings_get(job);
     if (bo->quick) {
-        o.t0 = QUICK_T0;
-        t_end = QUICK_T1;
+        set.sim.t0 = QUICK_T0;
+        set.t_end = QUICK_T1;
     }
-    ok = run_model(bo->cancel, td_case_model(c), &o, td_case_output_options(c), t_end, r, msg, sizeof msg);
+    td_job_set(job, &set, NULL); /* cannot fail: the job has not started */
+    ok = run_job(bo->cancel, job, r, msg, sizeof msg);
     if (!ok)
         td_cli_error("bench", "case %s (%s): %s", bench_cases[ci].key, path, msg);
-    td_case_free(&c);
+    td_job_free(&job);
     return ok;
 }
 

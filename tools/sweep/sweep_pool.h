@@ -1,4 +1,4 @@
-/* touchdown sweep: the worker processes that run a sweep's points (tools/sweep_pool.c). */
+/* touchdown sweep: the worker processes that run a sweep's points (tools/sweep/sweep_pool.c). */
 #ifndef TD_TOOLS_SWEEP_POOL_H
 #define TD_TOOLS_SWEEP_POOL_H
 
@@ -37,7 +37,7 @@ int sweep_point_overrides(const sweep_job *job, long point, const char **items,
 #define SWEEP_FEED_END (-2L)
 
 /* Where a pool's points come from and where their rows go: the points of this process alone, or
- * those rank 0 of an MPI run hands out (tools/sweep_mpi.c). */
+ * those rank 0 of an MPI run hands out (tools/sweep/sweep_mpi.c). */
 typedef struct sweep_feed {
     /* The next point to run, SWEEP_FEED_WAIT or SWEEP_FEED_END. */
     long (*next)(void *ctx);

@@ -8,7 +8,7 @@
  *   plot_sim.c     figures of one simulation file (orbit, radial displacement + force, AMB forces)
  *   plot_modal.c   figures of one modal file (Campbell diagram, mode shapes)
  *   plot_compare.c overlays of several simulation files
- * The gnuplot text is in the templates tools/gp/NAME.gp (docs/plotting.md): the figure files write
+ * The gnuplot text is in the templates tools/plot/gp/NAME.gp (docs/plotting.md): the figure files write
  * the data and the variables a template reads, then the template itself.
  */
 #ifndef TD_TOOLS_PLOT_H
@@ -172,11 +172,11 @@ FILE *plot_open(const plot_opts *opt, const char *name);
 /* Close a file opened by plot_open; PLOT_OK or PLOT_FAILED with a line printed. */
 int plot_close(FILE *f, const plot_opts *opt, const char *name);
 /* Start the script NAME.gp for the figure NAME.png/.svg (width x height pixels): header comment
- * `what` and the variables figure, format, width and height that tools/gp/common.gp uses.
+ * `what` and the variables figure, format, width and height that tools/plot/gp/common.gp uses.
  * Returns the open file (NULL with a line printed) and records the script in the job. The caller
  * then writes the figure's own variables and ends with plot_script_end. */
 FILE *plot_script_begin(plot_job *job, const char *name, const char *what, const char *source, int width, int height);
-/* Append tools/gp/common.gp (terminal and style), the template `pre` (NULL: none) and the
+/* Append tools/plot/gp/common.gp (terminal and style), the template `pre` (NULL: none) and the
  * figure's template `body`, then close. */
 int plot_script_end(FILE *f, const plot_job *job, const char *name, const char *pre, const char *body);
 /* name = "value" */
@@ -188,7 +188,7 @@ int plot_run_all(const plot_job *job);
 /* Image file extension for the options: "png" or "svg". */
 const char *plot_ext(const plot_opts *opt);
 
-/* ---- the templates tools/gp/NAME.gp, built into the binary (cmake/EmbedText.cmake) ---------- */
+/* ---- the templates tools/plot/gp/NAME.gp, built into the binary (cmake/EmbedText.cmake) ----- */
 
 extern const char plot_tpl_common[], plot_tpl_markers[], plot_tpl_orbit[], plot_tpl_radial_force[],
     plot_tpl_amb_forces[], plot_tpl_palette[], plot_tpl_compare[], plot_tpl_campbell[], plot_tpl_mode_shapes[],

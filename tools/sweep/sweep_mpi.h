@@ -1,4 +1,4 @@
-/* touchdown sweep over the ranks of an MPI run (tools/sweep_mpi.c). */
+/* touchdown sweep over the ranks of an MPI run (tools/sweep/sweep_mpi.c). */
 #ifndef TD_TOOLS_SWEEP_MPI_H
 #define TD_TOOLS_SWEEP_MPI_H
 

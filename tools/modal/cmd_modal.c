@@ -151,6 +151,39 @@ static int check_outputs(const modal_outputs *paths, const td_case *c)
     return td_cli_exit_code(st);
 }
 
+/* 1 (said on stderr) when the Campbell grid, speed_steps x DOFs, is past TD_MODAL_MAX_GRID_WORK.
+ * The case reader checks the key where it is written; this catches the default on a large model. */
+static int grid_too_big(const td_case *c)
+{
+    const td_model *m = td_case_model(c);
+    const td_modal_options *opt = td_case_modal_options(c);
+    if ((long)opt->speed_steps * td_model_dof_count(m) <= TD_MODAL_MAX_GRID_WORK)
+        return 0;
+    fprintf(stderr,
+            "touchdown modal: %s: modal.speed_steps: the default %d speeds are too many for %d DOFs "
+            "(speed_steps x DOFs at most %ld): set modal.speed_steps to at most %ld\n",
+            td_case_path(c), opt->speed_steps, td_model_dof_count(m), (long)TD_MODAL_MAX_GRID_WORK,
+            (long)TD_MODAL_MAX_GRID_WORK / (td_model_dof_count(m)));
+    return 1;
+}
+
+/* The text report: modes, critical speeds, unbalance orbits and, of a reduced model, the reduction. */
+static void print_results(const td_case *c, const td_system *sys, double speed, const td_modal *modes,
+                          const td_critical_speed *cs, int n_cs, td_harmonic *const *h, int n_h)
+{
+    const td_model *m = td_case_model(c);
+    const td_modal_options *opt = td_case_modal_options(c);
+    int i;
+    print_modes(modes, opt->mode_count, m);
+    print_critical(cs, n_cs, opt);
+    for (i = 0; i < n_h; i++)
+        print_orbits(m, h[i]);
+    if (td_system_is_reduced(sys)) {
+        td_print_reduction(stdout, sys);
+        td_print_reduction_error(stdout, sys, speed, opt->response_speeds, n_h);
+    }
+}
+
 static int analyse(const td_case *c, double speed, const modal_outputs *paths, int quiet)
 {
     volatile sig_atomic_t *cancel = td_cli_catch_signals();
@@ -169,15 +202,8 @@ static int analyse(const td_case *c, double speed, const modal_outputs *paths, i
 
     memset(h, 0, sizeof h);
     td_error_clear(&err);
-    if ((long)opt->speed_steps * td_model_dof_count(m) > TD_MODAL_MAX_GRID_WORK) {
-        /* the case reader checks the key where it is written; this catches the default on a large model */
-        fprintf(stderr,
-                "touchdown modal: %s: modal.speed_steps: the default %d speeds are too many for %d DOFs "
-                "(speed_steps x DOFs at most %ld): set modal.speed_steps to at most %ld\n",
-                td_case_path(c), opt->speed_steps, td_model_dof_count(m), (long)TD_MODAL_MAX_GRID_WORK,
-                (long)TD_MODAL_MAX_GRID_WORK / (td_model_dof_count(m)));
+    if (grid_too_big(c))
         return TD_EXIT_USAGE;
-    }
     if ((st = stage(td_system_create(m, &sys, &err), cancel, &err)) != TD_OK)
         goto done;
     if ((st = stage(td_modal_solve_lowest(sys, speed, opt->mode_count, &modes, &err), cancel, &err)) != TD_OK)
@@ -193,16 +219,8 @@ static int analyse(const td_case *c, double speed, const modal_outputs *paths, i
     for (i = 0; i < opt->response_speed_count && i < 64; i++, n_h++)
         if ((st = stage(td_harmonic_compute(sys, opt->response_speeds[i], u, n_u, &h[i], &err), cancel, &err)) != TD_OK)
             goto done;
-    if (!quiet) {
-        print_modes(modes, opt->mode_count, m);
-        print_critical(cs, n_cs, opt);
-        for (i = 0; i < n_h; i++)
-            print_orbits(m, h[i]);
-        if (td_system_is_reduced(sys)) {
-            td_print_reduction(stdout, sys);
-            td_print_reduction_error(stdout, sys, speed, opt->response_speeds, n_h);
-        }
-    }
+    if (!quiet)
+        print_results(c, sys, speed, modes, cs, n_cs, h, n_h);
     res.modes = modes;
     res.campbell = camp;
     res.critical = cs;

@@ -1,4 +1,4 @@
-/* touchdown sweep: the journal that makes a sweep resumable (tools/sweep_journal.c). */
+/* touchdown sweep: the journal that makes a sweep resumable (tools/sweep/sweep_journal.c). */
 #ifndef TD_TOOLS_SWEEP_JOURNAL_H
 #define TD_TOOLS_SWEEP_JOURNAL_H
 

@@ -1,4 +1,4 @@
-/* touchdown sweep: the books of a sweep kept by the process that writes its table (tools/sweep_book.c). */
+/* touchdown sweep: the books of a sweep kept by the process that writes its table (tools/sweep/sweep_book.c). */
 #ifndef TD_TOOLS_SWEEP_BOOK_H
 #define TD_TOOLS_SWEEP_BOOK_H
 

@@ -1,6 +1,6 @@
 /* touchdown run: a case file to HDF5/CSV plus a summary. */
 #include "cli.h"
-#include "touchdown/run.h"
+#include "touchdown/job.h"
 
 #include <getopt.h>
 #include <signal.h>
@@ -104,15 +104,13 @@ static int choose_outputs(td_output_options *out, const td_case *c, const char *
 }
 
 /* Refuse, before the run, outputs that collide with each other or with the case's files, or that
- * cannot be written (td_output_check_paths). Returns 0 or an exit code. */
-static int check_outputs(const td_output_options *out, const td_case *c)
+ * cannot be written (td_job_check_outputs). Returns 0 or an exit code. */
+static int check_outputs(const td_job *job)
 {
-    int n = 0;
-    const char *const *files = td_case_files(c, &n);
     td_error err;
     td_status st;
     td_error_clear(&err);
-    st = td_output_check_paths(out, files, n, &err);
+    st = td_job_check_outputs(job, &err);
     if (st == TD_OK)
         return 0;
     fprintf(stderr, "touchdown: %s\n", err.message[0] ? err.message : td_strerror(st));
@@ -154,7 +152,15 @@ static void print_warnings(const char *path, const td_run_summary *s)
         fprintf(stderr, "touchdown: %s: warning: %s\n", path, s->warnings[i]);
 }
 
-int td_cmd_run(int argc, char **argv)
+/* What the command line asks of the run. */
+typedef struct run_args {
+    td_cli_sets sets;
+    const char *prefix, *hdf5, *csv, *case_path;
+    int quiet, json, want_progress, compress;
+} run_args;
+
+/* Parse the command line into a; -1 to go on, else the exit code (--help, a usage error). */
+static int parse_args(int argc, char **argv, run_args *a)
 {
     enum { OPT_HDF5 = 256, OPT_CSV, OPT_JSON, OPT_NO_PROGRESS, OPT_COMPRESS };
     static const struct option longopts[] = {{"set", required_argument, NULL, 's'},
@@ -167,36 +173,27 @@ int td_cmd_run(int argc, char **argv)
                                              {"no-progress", no_argument, NULL, OPT_NO_PROGRESS},
                                              {"help", no_argument, NULL, 'h'},
                                              {NULL, 0, NULL, 0}};
-    td_cli_sets sets = {{0}, 0};
-    const char *prefix = NULL, *hdf5 = NULL, *csv = NULL;
-    int quiet = 0, json = 0, want_progress = 1, opt, code, compress = -1;
-    td_case *c = NULL;
-    td_sim *sim = NULL;
-    td_output_options out;
-    td_run_hooks hooks;
-    td_run_summary summary;
-    progress prog = {0.0, 0.0, 0};
-    td_error err;
-    td_status st;
-    volatile sig_atomic_t *cancel;
-
+    int opt;
+    memset(a, 0, sizeof *a);
+    a->want_progress = 1;
+    a->compress = -1;
     optind = 1;
     while ((opt = getopt_long(argc, argv, "s:o:qh", longopts, NULL)) != -1) {
         switch (opt) {
         case 's':
-            if (td_cli_add_set(&sets, optarg))
+            if (td_cli_add_set(&a->sets, optarg))
                 return TD_EXIT_USAGE;
             break;
-        case 'o': prefix = optarg; break;
-        case OPT_HDF5: hdf5 = optarg; break;
-        case OPT_CSV: csv = optarg; break;
+        case 'o': a->prefix = optarg; break;
+        case OPT_HDF5: a->hdf5 = optarg; break;
+        case OPT_CSV: a->csv = optarg; break;
         case OPT_COMPRESS:
-            if (parse_level(optarg, &compress))
+            if (parse_level(optarg, &a->compress))
                 return TD_EXIT_USAGE;
             break;
-        case 'q': quiet = 1; break;
-        case OPT_JSON: json = 1; break;
-        case OPT_NO_PROGRESS: want_progress = 0; break;
+        case 'q': a->quiet = 1; break;
+        case OPT_JSON: a->json = 1; break;
+        case OPT_NO_PROGRESS: a->want_progress = 0; break;
         case 'h': fputs(run_usage, stdout); return TD_EXIT_OK;
         default: fputs(run_usage, stderr); return TD_EXIT_USAGE;
         }
@@ -205,49 +202,67 @@ int td_cmd_run(int argc, char **argv)
         td_cli_error("run", "expected exactly one case file (see touchdown run --help)");
         return TD_EXIT_USAGE;
     }
-    if ((code = td_cli_load_case(argv[optind], &sets, &c)))
-        return code;
+    a->case_path = argv[optind];
+    return -1;
+}
 
-    td_error_clear(&err);
-    out = *td_case_output_options(c);
-    if ((code = choose_outputs(&out, c, prefix, hdf5, csv)) || (code = check_outputs(&out, c))) {
-        td_case_free(&c);
+/* The job's outputs from the command line, checked before the run. Returns 0 or an exit code. */
+static int set_outputs(td_job *job, const run_args *a)
+{
+    td_job_settings s = *td_job_settings_get(job);
+    int code;
+    if ((code = choose_outputs(&s.out, td_job_case(job), a->prefix, a->hdf5, a->csv)))
         return code;
-    }
-    if (compress >= 0)
-        out.compression = compress;
-    /* before the set-up: its dense start solve may be long, and a signal must not kill it */
-    cancel = td_cli_catch_signals();
-    st = td_sim_create_cancellable(td_case_model(c), td_case_sim_options(c), cancel, &sim, &err);
-    if (st != TD_OK) {
-        fprintf(stderr, "touchdown: %s: %s\n", td_case_path(c), err.message[0] ? err.message : td_strerror(st));
-        td_run_summary_failed(&summary, td_case_sim_options(c)->t0, td_case_end_time(c),
-                              td_model_speed(td_case_model(c)), td_case_sim_options(c)->start, st, err.message);
-        if (json)
-            print_summary(&summary, 1);
-        td_case_free(&c);
-        return td_cli_exit_code(st);
-    }
+    if (a->compress >= 0)
+        s.out.compression = a->compress;
+    td_job_set(job, &s, NULL); /* cannot fail: the job has not started */
+    return check_outputs(job);
+}
 
+/* Start and run the job, with the progress line when asked for and stderr is a terminal; print
+ * what went wrong, the warnings and the summary. Returns the exit code. */
+static int run_job(td_job *job, const run_args *a, volatile sig_atomic_t *cancel)
+{
+    const char *path = td_case_path(td_job_case(job));
+    progress prog = {0.0, 0.0, 0};
+    td_run_hooks hooks;
+    td_run_summary summary;
+    td_error err;
+    td_status st;
     memset(&hooks, 0, sizeof hooks);
+    td_error_clear(&err);
+    /* the set-up first, reading the flag: its dense start solve may be long */
+    st = td_job_start(job, cancel, NULL);
     prog.started = td_cli_now();
-    if (want_progress && !quiet && isatty(STDERR_FILENO)) {
+    if (st == TD_OK && a->want_progress && !a->quiet && isatty(STDERR_FILENO)) {
         hooks.progress = show_progress;
         hooks.user = &prog;
     }
     hooks.cancel = cancel;
-
-    st = td_run(sim, td_case_end_time(c), &out, &hooks, td_case_text(c), &summary, &err);
+    st = td_job_run(job, &hooks, &summary, &err); /* a failed set-up: its status, the failed summary */
     if (prog.shown)
         fputs("\r\033[K", stderr);
     if (st != TD_OK)
-        fprintf(stderr, "touchdown: %s: %s\n", td_case_path(c), err.message[0] ? err.message : td_strerror(st));
-    print_warnings(td_case_path(c), &summary);
+        fprintf(stderr, "touchdown: %s: %s\n", path, err.message[0] ? err.message : td_strerror(st));
+    print_warnings(path, &summary);
     /* JSON whenever asked (scripts read it, also of a failed run); -q silences only the text */
-    if (json || (!quiet && summary.t_reached > summary.t_start))
-        print_summary(&summary, json);
+    if (a->json || (!a->quiet && summary.t_reached > summary.t_start))
+        print_summary(&summary, a->json);
+    return td_cli_exit_code(st);
+}
 
-    td_sim_free(&sim);
-    td_case_free(&c);
-    return st == TD_OK ? TD_EXIT_OK : (st == TD_ERR_INVALID ? TD_EXIT_USAGE : TD_EXIT_FAILED);
+int td_cmd_run(int argc, char **argv)
+{
+    run_args a;
+    td_job *job = NULL;
+    int code = parse_args(argc, argv, &a);
+    if (code >= 0)
+        return code;
+    if ((code = td_cli_job_create(a.case_path, &a.sets, &job)))
+        return code;
+    if (!(code = set_outputs(job, &a)))
+        /* catch signals before the set-up: a signal must not kill its long start solve */
+        code = run_job(job, &a, td_cli_catch_signals());
+    td_job_free(&job);
+    return code;
 }
