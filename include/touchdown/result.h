@@ -224,6 +224,9 @@ typedef enum td_out_id {
     TD_OUT_HARMONIC_STATE_IM,
     TD_OUT_HARMONIC_NODE,
     TD_OUT_HARMONIC_STATE,
+    TD_OUT_MODAL_MODE_SHAPES, /**< the modal CSV file's section of the mode shapes */
+    TD_OUT_MODAL_INDEX,       /**< the modal CSV file's column of the real eigenvalues' index */
+    TD_OUT_MODAL_NODE,        /**< the modal CSV file's node column (mode shapes, harmonic) */
     /* sweep table */
     TD_OUT_SWEEP_POINT,
     TD_OUT_SWEEP_VARY, /**< the group /vary: the `sub` of the reading calls names the key */

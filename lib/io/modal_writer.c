@@ -30,22 +30,48 @@ static const char *whirl_name(td_whirl w)
 
 /* ---- CSV --------------------------------------------------------------------------------- */
 
+/* "# section: NAME" of the section `id`. */
+static void csv_section(FILE *f, td_out_id id)
+{
+    fprintf(f, "# section: %s\n", td_out_name(id));
+}
+
+/* A section's header line: the CSV names of its columns (td_schema_csv). */
+static void csv_columns(FILE *f, const td_out_id *cols, int n)
+{
+    int i;
+    for (i = 0; i < n; i++)
+        fprintf(f, "%s%s", i ? "," : "", td_schema_csv(cols[i]));
+    fputc('\n', f);
+}
+
 static void csv_modes(FILE *f, const td_modal *m)
 {
+    static const td_out_id modes[] = {TD_OUT_MODES_MODE,        TD_OUT_MODES_SIGMA,   TD_OUT_MODES_OMEGA_D,
+                                      TD_OUT_MODES_FREQ_HZ,     TD_OUT_MODES_OMEGA_N, TD_OUT_MODES_ZETA,
+                                      TD_OUT_MODES_WHIRL_INDEX, TD_OUT_MODES_WHIRL};
+    static const td_out_id reals[] = {TD_OUT_MODAL_INDEX, TD_OUT_MODES_REAL_EIGENVALUES};
+    static const td_out_id shapes[] = {TD_OUT_MODES_MODE,       TD_OUT_MODAL_NODE,       TD_OUT_MODES_SHAPE_X_RE,
+                                       TD_OUT_MODES_SHAPE_X_IM, TD_OUT_MODES_SHAPE_Y_RE, TD_OUT_MODES_SHAPE_Y_IM};
     int i, k, nn = td_modal_node_count(m);
     double *s = malloc(4u * (size_t)(nn > 0 ? nn : 1) * sizeof *s);
-    fprintf(f, "# section: modes\n# speed_rad_s = %.12g\n", td_modal_speed(m));
-    fprintf(f, "mode,sigma_1_s,omega_d_rad_s,freq_hz,omega_n_rad_s,zeta,whirl_index,whirl\n");
+    csv_section(f, TD_OUT_MODES);
+    fprintf(f, "# %s = %.12g\n", td_schema_csv(TD_OUT_MODES_SPEED), td_modal_speed(m));
+    csv_columns(f, modes, 8);
     for (i = 0; i < td_modal_mode_count(m); i++) {
         td_mode md;
         td_modal_get_mode(m, i, &md);
         fprintf(f, "%d,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%s\n", i, md.sigma, md.omega_d, md.freq_hz, md.omega_n,
                 md.zeta, md.whirl_index, whirl_name(md.whirl));
     }
-    fprintf(f, "\n# section: real_eigenvalues\nindex,s_1_s\n");
+    fputc('\n', f);
+    csv_section(f, TD_OUT_MODES_REAL_EIGENVALUES);
+    csv_columns(f, reals, 2);
     for (i = 0; i < td_modal_real_count(m); i++)
         fprintf(f, "%d,%.12g\n", i, td_modal_real_eigenvalue(m, i));
-    fprintf(f, "\n# section: mode_shapes\nmode,node,x_re,x_im,y_re,y_im\n");
+    fputc('\n', f);
+    csv_section(f, TD_OUT_MODAL_MODE_SHAPES);
+    csv_columns(f, shapes, 6);
     for (i = 0; s && i < td_modal_mode_count(m); i++) {
         td_modal_mode_shape(m, i, s, s + nn, s + 2 * nn, s + 3 * nn);
         for (k = 0; k < nn; k++)
@@ -57,8 +83,12 @@ static void csv_modes(FILE *f, const td_modal *m)
 
 static void csv_campbell(FILE *f, const td_campbell *c)
 {
+    static const td_out_id cols[] = {TD_OUT_CAMPBELL_SPEED,   TD_OUT_CAMPBELL_BRANCH, TD_OUT_CAMPBELL_OMEGA_D,
+                                     TD_OUT_CAMPBELL_FREQ_HZ, TD_OUT_CAMPBELL_SIGMA,  TD_OUT_CAMPBELL_ZETA,
+                                     TD_OUT_CAMPBELL_WHIRL};
     int k, j;
-    fprintf(f, "# section: campbell\nspeed_rad_s,branch,omega_d_rad_s,freq_hz,sigma_1_s,zeta,whirl\n");
+    csv_section(f, TD_OUT_CAMPBELL);
+    csv_columns(f, cols, 7);
     for (k = 0; k < td_campbell_speed_count(c); k++)
         for (j = 0; j < td_campbell_branch_count(c); j++) {
             td_mode md;
@@ -71,8 +101,11 @@ static void csv_campbell(FILE *f, const td_campbell *c)
 
 static void csv_critical(FILE *f, const td_critical_speed *cs, int n)
 {
+    static const td_out_id cols[] = {TD_OUT_CRITICAL_SPEED,  TD_OUT_CRITICAL_FREQ_HZ, TD_OUT_CRITICAL_WHIRL,
+                                     TD_OUT_CRITICAL_BRANCH, TD_OUT_CRITICAL_ZETA,    TD_OUT_CRITICAL_SIGMA};
     int i;
-    fprintf(f, "# section: critical_speeds\nspeed_rad_s,freq_hz,whirl,branch,zeta,sigma_1_s\n");
+    csv_section(f, TD_OUT_CRITICAL);
+    csv_columns(f, cols, 6);
     for (i = 0; i < n; i++)
         fprintf(f, "%.12g,%.12g,%s,%d,%.12g,%.12g\n", cs[i].speed, cs[i].freq_hz, whirl_name(cs[i].whirl), cs[i].branch,
                 cs[i].zeta, cs[i].sigma);
@@ -81,9 +114,13 @@ static void csv_critical(FILE *f, const td_critical_speed *cs, int n)
 
 static void csv_harmonic(FILE *f, const td_harmonic *const *h, int n)
 {
+    static const td_out_id cols[] = {TD_OUT_HARMONIC_SPEED,   TD_OUT_MODAL_NODE,        TD_OUT_HARMONIC_X_AMP,
+                                     TD_OUT_HARMONIC_X_PHASE, TD_OUT_HARMONIC_Y_AMP,    TD_OUT_HARMONIC_Y_PHASE,
+                                     TD_OUT_HARMONIC_FORWARD, TD_OUT_HARMONIC_BACKWARD, TD_OUT_HARMONIC_MAJOR,
+                                     TD_OUT_HARMONIC_MINOR};
     int i, k;
-    fprintf(f, "# section: harmonic\nspeed_rad_s,node,x_amp_m,x_phase_rad,y_amp_m,y_phase_rad,forward_m,backward_m,"
-               "major_m,minor_m\n");
+    csv_section(f, TD_OUT_HARMONIC);
+    csv_columns(f, cols, 10);
     for (i = 0; i < n; i++)
         for (k = 0; h[i] && k < td_harmonic_node_count(h[i]); k++) {
             td_orbit o;

@@ -17,6 +17,9 @@
 #define GROUP(id, name, parent, files) [id] = {name, parent, TD_OUT_GROUP, files, TD_OUT_NO_TYPE, "", "", NULL, NULL}
 #define DATA(id, name, parent, files, type, units, shape)                                                              \
     [id] = {name, parent, TD_OUT_DATASET, files, TD_OUT_##type, units, shape, NULL, NULL}
+/* A dataset of the modal file whose column in the modal CSV file has a name of its own. */
+#define DATA_CSV(id, name, parent, type, units, shape, csv)                                                            \
+    [id] = {name, parent, TD_OUT_DATASET, MODAL, TD_OUT_##type, units, shape, csv, NULL}
 #define SERIES(id, name, parent, type, units, shape, csv, csv_units)                                                   \
     [id] = {name, parent, TD_OUT_DATASET, RUN, TD_OUT_##type, units, shape, csv, csv_units}
 #define ATTR(id, name, parent, files, type, units, shape)                                                              \
@@ -28,10 +31,10 @@
 #define RUN_ATTR(id, name, type, units) ATTR(id, name, TD_OUT_ROOT, RUN, type, units, "scalar")
 #define RET_ATTR(id, name, type, units) ATTR(id, name, TD_OUT_ROOT, RUN, type, units, "(n_ret)")
 #define MODE_TABLE(prefix, group, shape)                                                                               \
-    DATA(prefix##SIGMA, "sigma", group, MODAL, F64, "1/s", shape),                                                     \
-        DATA(prefix##OMEGA_D, "omega_d", group, MODAL, F64, "rad/s", shape),                                           \
+    DATA_CSV(prefix##SIGMA, "sigma", group, F64, "1/s", shape, "sigma_1_s"),                                           \
+        DATA_CSV(prefix##OMEGA_D, "omega_d", group, F64, "rad/s", shape, "omega_d_rad_s"),                             \
         DATA(prefix##FREQ_HZ, "freq_hz", group, MODAL, F64, "Hz", shape),                                              \
-        DATA(prefix##OMEGA_N, "omega_n", group, MODAL, F64, "rad/s", shape),                                           \
+        DATA_CSV(prefix##OMEGA_N, "omega_n", group, F64, "rad/s", shape, "omega_n_rad_s"),                             \
         DATA(prefix##ZETA, "zeta", group, MODAL, F64, "1", shape),                                                     \
         DATA(prefix##WHIRL_INDEX, "whirl_index", group, MODAL, F64, "1", shape),                                       \
         DATA(prefix##WHIRL, "whirl", group, MODAL, I32, "1: forward, -1: backward, 0: mixed", shape)
@@ -186,48 +189,53 @@ static const td_schema_entry entries[TD_OUT_ID_COUNT] = {
     /* ---- modal file ---- */
     ATTR(TD_OUT_PRODUCER, "producer", TD_OUT_ROOT, MODAL, TEXT, "", "scalar"),
     GROUP(TD_OUT_MODES, "modes", TD_OUT_ROOT, MODAL),
-    ATTR(TD_OUT_MODES_SPEED, "speed", TD_OUT_MODES, MODAL, F64, "rad/s", "scalar"),
+    [TD_OUT_MODES_SPEED] = {"speed", TD_OUT_MODES, TD_OUT_ATTRIBUTE, MODAL, TD_OUT_F64, "rad/s", "scalar",
+                            "speed_rad_s", NULL},
     ATTR(TD_OUT_MODES_SPEED_UNITS, "speed_units", TD_OUT_MODES, MODAL, TEXT, "", "scalar"),
     MODE_TABLE(TD_OUT_MODES_, TD_OUT_MODES, "(modes)"),
-    DATA(TD_OUT_MODES_REAL_EIGENVALUES, "real_eigenvalues", TD_OUT_MODES, MODAL, F64, "1/s", "(real roots)"),
-    DATA(TD_OUT_MODES_SHAPE_X_RE, "shape_x_re", TD_OUT_MODES, MODAL, F64, SHAPE_UNITS, "(modes, nodes)"),
-    DATA(TD_OUT_MODES_SHAPE_X_IM, "shape_x_im", TD_OUT_MODES, MODAL, F64, SHAPE_UNITS, "(modes, nodes)"),
-    DATA(TD_OUT_MODES_SHAPE_Y_RE, "shape_y_re", TD_OUT_MODES, MODAL, F64, SHAPE_UNITS, "(modes, nodes)"),
-    DATA(TD_OUT_MODES_SHAPE_Y_IM, "shape_y_im", TD_OUT_MODES, MODAL, F64, SHAPE_UNITS, "(modes, nodes)"),
+    DATA_CSV(TD_OUT_MODES_REAL_EIGENVALUES, "real_eigenvalues", TD_OUT_MODES, F64, "1/s", "(real roots)", "s_1_s"),
+    DATA_CSV(TD_OUT_MODES_SHAPE_X_RE, "shape_x_re", TD_OUT_MODES, F64, SHAPE_UNITS, "(modes, nodes)", "x_re"),
+    DATA_CSV(TD_OUT_MODES_SHAPE_X_IM, "shape_x_im", TD_OUT_MODES, F64, SHAPE_UNITS, "(modes, nodes)", "x_im"),
+    DATA_CSV(TD_OUT_MODES_SHAPE_Y_RE, "shape_y_re", TD_OUT_MODES, F64, SHAPE_UNITS, "(modes, nodes)", "y_re"),
+    DATA_CSV(TD_OUT_MODES_SHAPE_Y_IM, "shape_y_im", TD_OUT_MODES, F64, SHAPE_UNITS, "(modes, nodes)", "y_im"),
     DATA(TD_OUT_MODES_MODE, "mode", TD_OUT_MODES, MODAL, I32, "mode number", "(modes)"),
     DATA(TD_OUT_MODES_NODE_Z, "node_z", TD_OUT_MODES, MODAL, F64, "m", "(nodes)"),
     DATA(TD_OUT_MODES_RETAINER_NODES, "retainer_nodes", TD_OUT_MODES, MODAL, I32, "node", "(n_ret)"),
     DATA(TD_OUT_MODES_AMB_NODES, "amb_nodes", TD_OUT_MODES, MODAL, I32, "node", "(n_amb)"),
     GROUP(TD_OUT_CAMPBELL, "campbell", TD_OUT_ROOT, MODAL),
     MODE_TABLE(TD_OUT_CAMPBELL_, TD_OUT_CAMPBELL, "(speeds, branches)"),
-    DATA(TD_OUT_CAMPBELL_SPEED, "speed", TD_OUT_CAMPBELL, MODAL, F64, "rad/s", "(speeds)"),
+    DATA_CSV(TD_OUT_CAMPBELL_SPEED, "speed", TD_OUT_CAMPBELL, F64, "rad/s", "(speeds)", "speed_rad_s"),
     DATA(TD_OUT_CAMPBELL_BRANCH, "branch", TD_OUT_CAMPBELL, MODAL, I32, "branch number (j-th lowest omega_d)",
          "(branches)"),
     ATTR(TD_OUT_CAMPBELL_LAYOUT, "layout", TD_OUT_CAMPBELL, MODAL, TEXT, "", "scalar"),
     GROUP(TD_OUT_CRITICAL, "critical_speeds", TD_OUT_ROOT, MODAL),
-    DATA(TD_OUT_CRITICAL_SPEED, "speed", TD_OUT_CRITICAL, MODAL, F64, "rad/s", "(critical speeds)"),
+    DATA_CSV(TD_OUT_CRITICAL_SPEED, "speed", TD_OUT_CRITICAL, F64, "rad/s", "(critical speeds)", "speed_rad_s"),
     DATA(TD_OUT_CRITICAL_FREQ_HZ, "freq_hz", TD_OUT_CRITICAL, MODAL, F64, "Hz", "(critical speeds)"),
     DATA(TD_OUT_CRITICAL_ZETA, "zeta", TD_OUT_CRITICAL, MODAL, F64, "1", "(critical speeds)"),
-    DATA(TD_OUT_CRITICAL_SIGMA, "sigma", TD_OUT_CRITICAL, MODAL, F64, "1/s", "(critical speeds)"),
+    DATA_CSV(TD_OUT_CRITICAL_SIGMA, "sigma", TD_OUT_CRITICAL, F64, "1/s", "(critical speeds)", "sigma_1_s"),
     DATA(TD_OUT_CRITICAL_WHIRL, "whirl", TD_OUT_CRITICAL, MODAL, I32, "1: forward, -1: backward", "(critical speeds)"),
     DATA(TD_OUT_CRITICAL_BRANCH, "branch", TD_OUT_CRITICAL, MODAL, I32, "index among modes of that whirl",
          "(critical speeds)"),
     GROUP(TD_OUT_HARMONIC, "harmonic", TD_OUT_ROOT, MODAL),
     GROUP(TD_OUT_HARMONIC_I, "", TD_OUT_HARMONIC, MODAL),
-    ATTR(TD_OUT_HARMONIC_SPEED, "speed", TD_OUT_HARMONIC_I, MODAL, F64, "rad/s", "scalar"),
+    [TD_OUT_HARMONIC_SPEED] = {"speed", TD_OUT_HARMONIC_I, TD_OUT_ATTRIBUTE, MODAL, TD_OUT_F64, "rad/s", "scalar",
+                               "speed_rad_s", NULL},
     ATTR(TD_OUT_HARMONIC_SPEED_UNITS, "speed_units", TD_OUT_HARMONIC_I, MODAL, TEXT, "", "scalar"),
-    DATA(TD_OUT_HARMONIC_X_AMP, "x_amp", TD_OUT_HARMONIC_I, MODAL, F64, "m", "(nodes)"),
-    DATA(TD_OUT_HARMONIC_X_PHASE, "x_phase", TD_OUT_HARMONIC_I, MODAL, F64, "rad", "(nodes)"),
-    DATA(TD_OUT_HARMONIC_Y_AMP, "y_amp", TD_OUT_HARMONIC_I, MODAL, F64, "m", "(nodes)"),
-    DATA(TD_OUT_HARMONIC_Y_PHASE, "y_phase", TD_OUT_HARMONIC_I, MODAL, F64, "rad", "(nodes)"),
-    DATA(TD_OUT_HARMONIC_FORWARD, "forward", TD_OUT_HARMONIC_I, MODAL, F64, "m", "(nodes)"),
-    DATA(TD_OUT_HARMONIC_BACKWARD, "backward", TD_OUT_HARMONIC_I, MODAL, F64, "m", "(nodes)"),
-    DATA(TD_OUT_HARMONIC_MAJOR, "major", TD_OUT_HARMONIC_I, MODAL, F64, "m", "(nodes)"),
-    DATA(TD_OUT_HARMONIC_MINOR, "minor", TD_OUT_HARMONIC_I, MODAL, F64, "m", "(nodes)"),
+    DATA_CSV(TD_OUT_HARMONIC_X_AMP, "x_amp", TD_OUT_HARMONIC_I, F64, "m", "(nodes)", "x_amp_m"),
+    DATA_CSV(TD_OUT_HARMONIC_X_PHASE, "x_phase", TD_OUT_HARMONIC_I, F64, "rad", "(nodes)", "x_phase_rad"),
+    DATA_CSV(TD_OUT_HARMONIC_Y_AMP, "y_amp", TD_OUT_HARMONIC_I, F64, "m", "(nodes)", "y_amp_m"),
+    DATA_CSV(TD_OUT_HARMONIC_Y_PHASE, "y_phase", TD_OUT_HARMONIC_I, F64, "rad", "(nodes)", "y_phase_rad"),
+    DATA_CSV(TD_OUT_HARMONIC_FORWARD, "forward", TD_OUT_HARMONIC_I, F64, "m", "(nodes)", "forward_m"),
+    DATA_CSV(TD_OUT_HARMONIC_BACKWARD, "backward", TD_OUT_HARMONIC_I, F64, "m", "(nodes)", "backward_m"),
+    DATA_CSV(TD_OUT_HARMONIC_MAJOR, "major", TD_OUT_HARMONIC_I, F64, "m", "(nodes)", "major_m"),
+    DATA_CSV(TD_OUT_HARMONIC_MINOR, "minor", TD_OUT_HARMONIC_I, F64, "m", "(nodes)", "minor_m"),
     DATA(TD_OUT_HARMONIC_STATE_RE, "state_re", TD_OUT_HARMONIC_I, MODAL, F64, STATE_UNITS, "(states)"),
     DATA(TD_OUT_HARMONIC_STATE_IM, "state_im", TD_OUT_HARMONIC_I, MODAL, F64, STATE_UNITS, "(states)"),
     DATA(TD_OUT_HARMONIC_NODE, "node", TD_OUT_HARMONIC_I, MODAL, I32, "node number", "(nodes)"),
     DATA(TD_OUT_HARMONIC_STATE, "state", TD_OUT_HARMONIC_I, MODAL, I32, "state index", "(states)"),
+    CSV_LINE(TD_OUT_MODAL_MODE_SHAPES, "mode_shapes", MODAL),
+    CSV_LINE(TD_OUT_MODAL_INDEX, "index", MODAL),
+    CSV_LINE(TD_OUT_MODAL_NODE, "node", MODAL),
     /* ---- sweep table ---- */
     [TD_OUT_SWEEP_POINT] = {"point", TD_OUT_ROOT, TD_OUT_DATASET, SWEEP, TD_OUT_I32, "", "(points)", NULL, "-"},
     GROUP(TD_OUT_SWEEP_VARY, "vary", TD_OUT_ROOT, SWEEP),
