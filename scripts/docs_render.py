@@ -13,7 +13,9 @@ or, inside a sentence or a table cell, a span <!-- gen: NAME -->...<!-- /gen -->
 the functions below (REGIONS, SPANS), each built from docs/results/*.json alone (written by
 docs_record.py), so that the same results always give the same text; the one exception,
 out-name-index (docs/output-format.md), is built from the output schema's table lib/io/schema.c
-(read through the C preprocessor, $CC or cc) and touchdown/result.h. --check writes nothing and
+(read through the C preprocessor, $CC or cc) and touchdown/result.h; and the hand-written tables
+of the run file in docs/output-format.md (datasets, scales, /events fields, root attributes) are
+checked against that table (a name, type, shape or unit that differs fails). --check writes nothing and
 fails (exit 1, with a diff) if a file differs from what the results give: a number edited by
 hand, or results regenerated without the docs. Only Debian's python3 modules are used.
 """
@@ -1030,6 +1032,62 @@ def out_name_index():
     return "\n".join(rows) + "\n"
 
 
+DOC_TYPES = {"f64": "TD_OUT_F64", "int8": "TD_OUT_I8", "int32": "TD_OUT_I32", "int64": "TD_OUT_I64",
+             "string": "TD_OUT_TEXT", "compound": "TD_OUT_COMPOUND", "enum (int32)": "TD_OUT_ENUM"}
+
+
+def doc_table(text, header):
+    """The rows (lists of cells) of the markdown table under the line `header`."""
+    lines = text[text.index(header + "\n"):].splitlines()[2:]
+    rows = []
+    for ln in lines:
+        if not ln.startswith("|"):
+            break
+        rows.append([c.strip() for c in re.split(r"(?<!\\)\|", ln.strip()[1:-1])])
+    return rows
+
+
+def check_out_tables():
+    """The hand-written tables of the run file in docs/output-format.md against the schema: every
+    name exists, with the type, shape and units the schema gives. The list of what differs."""
+    entries, table = schema_entries()
+    by_path = {}
+    for ident, e in entries:
+        if e["place"] in ("TD_OUT_GROUP", "TD_OUT_DATASET") and "TD_OUT_IN_RUN" in re.findall(r"TD_OUT_IN_[A-Z_]+", e["files"] or ""):
+            by_path[schema_path(table, ident)] = e
+    fields = {e["name"]: e for _, e in entries if e["place"] == "TD_OUT_FIELD"}
+    roots = {e["name"]: e for _, e in entries
+             if e["place"] == "TD_OUT_ATTRIBUTE" and e["parent"] in ("TD_OUT_ROOT", "TD_OUT_ID_COUNT")}
+    with open(os.path.join(ROOT, "docs", "output-format.md")) as fh:
+        text = fh.read()
+    bad = []
+
+    def compare(where, e, shape, typ, units):
+        if e is None:
+            return bad.append("%s: not in lib/io/schema.c" % where)
+        if shape is not None and shape != e["shape"]:
+            bad.append("%s: shape %s, the schema says %s" % (where, shape, e["shape"]))
+        if DOC_TYPES.get(typ) != e["type"]:
+            bad.append("%s: type %s, the schema says %s" % (where, typ, e["type"]))
+        if units is not None and units != "see below" and units != e["units"]:
+            bad.append("%s: units '%s', the schema says '%s'" % (where, units, e["units"]))
+
+    for row in doc_table(text, "| scale | shape | type | axis of |"):
+        for name in re.findall(r"`(/[^`]+)`", row[0]):
+            compare(name, by_path.get(name), row[1], row[2], None)
+    for row in doc_table(text, "| dataset | shape | type | units | content |"):
+        for name in re.findall(r"`(/[^`]+)`", row[0]):
+            compare(name, by_path.get(name), row[1], row[2], row[3])
+    for row in doc_table(text, "| field | type | units | meaning |"):
+        for name in re.findall(r"`([^`]+)`", row[0]):
+            compare("/events " + name, fields.get(name), None, row[1], row[2])
+    for row in doc_table(text, "| attribute | type | meaning |"):
+        for name in re.findall(r"`([a-z_]+)`", row[0]):
+            if name not in roots and not name.endswith("_"):
+                bad.append("root attribute %s: not in lib/io/schema.c" % name)
+    return bad
+
+
 REGIONS = {"readme-glance": readme_glance, "readme-realtime": readme_realtime,
            "perf-summary": perf_summary, "perf-paper-settings": perf_paper_settings,
            "perf-paper-findings": perf_paper_findings, "perf-remains": perf_remains,
@@ -1090,6 +1148,11 @@ def main():
             else:
                 with open(os.path.join(ROOT, path), "w") as fh:
                     fh.write(new)
+    wrong = check_out_tables()
+    if wrong:
+        print("docs_render: docs/output-format.md disagrees with the output schema (lib/io/schema.c):\n  " +
+              "\n  ".join(wrong))
+        return 1
     missing = [m for m in sorted(set(REGIONS) | set(SPANS)) if m not in used]
     if missing:
         print("docs_render: regions with no marker in README.md or docs/: %s" % ", ".join(missing))
