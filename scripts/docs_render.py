@@ -11,7 +11,11 @@ A generated region is a block
 
 or, inside a sentence or a table cell, a span <!-- gen: NAME -->...<!-- /gen -->; NAME is one of
 the functions below (REGIONS, SPANS), each built from docs/results/*.json alone (written by
-docs_record.py), so that the same results always give the same text. --check writes nothing and
+docs_record.py), so that the same results always give the same text; the one exception,
+out-name-index (docs/output-format.md), is built from the output schema's table lib/io/schema.c
+(read through the C preprocessor, $CC or cc) and touchdown/result.h; and the hand-written tables
+of the run file in docs/output-format.md (datasets, scales, /events fields, root attributes) are
+checked against that table (a name, type, shape or unit that differs fails). --check writes nothing and
 fails (exit 1, with a diff) if a file differs from what the results give: a number edited by
 hand, or results regenerated without the docs. Only Debian's python3 modules are used.
 """
@@ -954,6 +958,136 @@ def span_drop_energy():
         e(abs(r), 2), e(abs(r) / held, 1), n(held), e(abs(r) / lost, 1), n(lost))
 
 
+# ---- the output schema (lib/io/schema.c): the name index of docs/output-format.md ---------------
+
+def schema_entries():
+    """The entries of lib/io/schema.c in the order of td_out_id (touchdown/result.h), each a dict,
+    read through the C preprocessor (the table is written with macros)."""
+    import shlex
+    import subprocess
+    cc = shlex.split(os.environ.get("CC") or "cc")
+    out = subprocess.run(cc + ["-E", "-P", "-I" + os.path.join(ROOT, "include"), "-I" + os.path.join(ROOT, "lib"),
+                               os.path.join(ROOT, "lib", "io", "schema.c")],
+                         check=True, capture_output=True, text=True).stdout
+    with open(os.path.join(ROOT, "include", "touchdown", "result.h")) as fh:
+        header = fh.read()
+    ids = re.findall(r"^\s*(TD_OUT_[A-Z0-9_]+)(?: = 0)?,", header[header.index("typedef enum td_out_id"):header.index("} td_out_id;")], re.M)
+    table = {}
+    for m in re.finditer(r"(?<![A-Za-z0-9_])\[(TD_OUT_[A-Z0-9_]+)\] = \{", out):
+        vals, cur, depth, quoted, i = [], "", 0, False, m.end()
+        while quoted or depth > 0 or out[i] != "}":  # split at the commas outside strings and parentheses
+            ch = out[i]
+            i += 1
+            if ch == '"' and out[i - 2] != "\\":
+                quoted = not quoted
+            elif not quoted and ch in "()":
+                depth += 1 if ch == "(" else -1
+            elif not quoted and depth == 0 and ch == ",":
+                vals.append(cur.strip())
+                cur = ""
+                continue
+            cur += ch
+        vals.append(cur.strip())
+        vals = [None if v == "((void *)0)" else v[1:-1] if v.startswith('"') else v for v in vals]
+        table[m.group(1)] = dict(zip(["name", "parent", "place", "files", "type", "units", "shape", "csv",
+                                      "csv_units"], vals))
+    return [(i, table[i]) for i in ids if i != "TD_OUT_ID_COUNT"], table
+
+
+def schema_path(table, ident):
+    e = table[ident]
+    if ident == "TD_OUT_ROOT":
+        return ""
+    name = e["name"] or "I"
+    return schema_path(table, e["parent"]) + "/" + name
+
+
+def out_name_index():
+    entries, table = schema_entries()
+    kinds = {"TD_OUT_GROUP": "group", "TD_OUT_DATASET": "dataset", "TD_OUT_ATTRIBUTE": "attribute",
+             "TD_OUT_FIELD": "field", "TD_OUT_CSV_ONLY": "CSV line"}
+    files = [("TD_OUT_IN_RUN", "run"), ("TD_OUT_IN_RUN_CSV", "run CSV"), ("TD_OUT_IN_MODAL", "modal"),
+             ("TD_OUT_IN_SWEEP", "sweep")]
+    rows = ["| id | name | where (group; the object of an attribute) | kind | type | shape | units | files |",
+            "|---|---|---|---|---|---|---|---|"]
+    for ident, e in entries:
+        place = e["place"]
+        if place in ("TD_OUT_GROUP", "TD_OUT_DATASET"):
+            where = schema_path(table, ident) or "/"
+        elif e["parent"] == "TD_OUT_ID_COUNT":
+            where = "several"
+        else:
+            where = schema_path(table, e["parent"]) or "/"
+        where = where.replace("/vary/", "/vary/KEY/") if where.startswith("/vary/") else where
+        if ident.startswith("TD_OUT_SWEEP_KEY_"):
+            where = "/vary/KEY"
+        units = e["units"] or ""
+        name = e["name"] or ("(root)" if ident == "TD_OUT_ROOT" else "I")
+        bits = re.findall(r"TD_OUT_IN_[A-Z_]+", e["files"] or "")
+        csv = e["csv"] or e["name"] if "TD_OUT_IN_RUN_CSV" in bits and place in ("TD_OUT_DATASET", "TD_OUT_FIELD") else ""
+        rows.append("| `%s` | `%s` | `%s` | %s | %s | %s | %s | %s |" % (
+            ident, name, where, kinds[place] + (", CSV `%s`" % csv if csv and place != "TD_OUT_ATTRIBUTE" else ""),
+            e["type"].replace("TD_OUT_", "").replace("NO_TYPE", "-").lower(), e["shape"] or "",
+            units.replace("|", "\\|"), ", ".join(w for b, w in files if b in bits)))
+    return "\n".join(rows) + "\n"
+
+
+DOC_TYPES = {"f64": "TD_OUT_F64", "int8": "TD_OUT_I8", "int32": "TD_OUT_I32", "int64": "TD_OUT_I64",
+             "string": "TD_OUT_TEXT", "compound": "TD_OUT_COMPOUND", "enum (int32)": "TD_OUT_ENUM"}
+
+
+def doc_table(text, header):
+    """The rows (lists of cells) of the markdown table under the line `header`."""
+    lines = text[text.index(header + "\n"):].splitlines()[2:]
+    rows = []
+    for ln in lines:
+        if not ln.startswith("|"):
+            break
+        rows.append([c.strip() for c in re.split(r"(?<!\\)\|", ln.strip()[1:-1])])
+    return rows
+
+
+def check_out_tables():
+    """The hand-written tables of the run file in docs/output-format.md against the schema: every
+    name exists, with the type, shape and units the schema gives. The list of what differs."""
+    entries, table = schema_entries()
+    by_path = {}
+    for ident, e in entries:
+        if e["place"] in ("TD_OUT_GROUP", "TD_OUT_DATASET") and "TD_OUT_IN_RUN" in re.findall(r"TD_OUT_IN_[A-Z_]+", e["files"] or ""):
+            by_path[schema_path(table, ident)] = e
+    fields = {e["name"]: e for _, e in entries if e["place"] == "TD_OUT_FIELD"}
+    roots = {e["name"]: e for _, e in entries
+             if e["place"] == "TD_OUT_ATTRIBUTE" and e["parent"] in ("TD_OUT_ROOT", "TD_OUT_ID_COUNT")}
+    with open(os.path.join(ROOT, "docs", "output-format.md")) as fh:
+        text = fh.read()
+    bad = []
+
+    def compare(where, e, shape, typ, units):
+        if e is None:
+            return bad.append("%s: not in lib/io/schema.c" % where)
+        if shape is not None and shape != e["shape"]:
+            bad.append("%s: shape %s, the schema says %s" % (where, shape, e["shape"]))
+        if DOC_TYPES.get(typ) != e["type"]:
+            bad.append("%s: type %s, the schema says %s" % (where, typ, e["type"]))
+        if units is not None and units != "see below" and units != e["units"]:
+            bad.append("%s: units '%s', the schema says '%s'" % (where, units, e["units"]))
+
+    for row in doc_table(text, "| scale | shape | type | axis of |"):
+        for name in re.findall(r"`(/[^`]+)`", row[0]):
+            compare(name, by_path.get(name), row[1], row[2], None)
+    for row in doc_table(text, "| dataset | shape | type | units | content |"):
+        for name in re.findall(r"`(/[^`]+)`", row[0]):
+            compare(name, by_path.get(name), row[1], row[2], row[3])
+    for row in doc_table(text, "| field | type | units | meaning |"):
+        for name in re.findall(r"`([^`]+)`", row[0]):
+            compare("/events " + name, fields.get(name), None, row[1], row[2])
+    for row in doc_table(text, "| attribute | type | meaning |"):
+        for name in re.findall(r"`([a-z_]+)`", row[0]):
+            if name not in roots and not name.endswith("_"):
+                bad.append("root attribute %s: not in lib/io/schema.c" % name)
+    return bad
+
+
 REGIONS = {"readme-glance": readme_glance, "readme-realtime": readme_realtime,
            "perf-summary": perf_summary, "perf-paper-settings": perf_paper_settings,
            "perf-paper-findings": perf_paper_findings, "perf-remains": perf_remains,
@@ -962,7 +1096,8 @@ REGIONS = {"readme-glance": readme_glance, "readme-realtime": readme_realtime,
            "val-rig-modal": val_rig_modal, "val-beams": val_beams, "val-rotor-models": val_rotor_models,
            "val-annular-rub": val_annular_rub, "val-annular-mount": val_annular_mount, "val-penalty": val_penalty,
            "val-scenarios": val_scenarios, "val-conv-rub-damped": val_conv_rub_damped,
-           "val-conv-paper-a": val_conv_paper_a, "val-conv-drop": val_conv_drop}
+           "val-conv-paper-a": val_conv_paper_a, "val-conv-drop": val_conv_drop,
+           "out-name-index": out_name_index}
 SPANS = {"rub-mean-normal": span_rub_mean_normal, "val-first-contact-cell": span_val_first_contact_cell,
          "val-rig-modal-cell": span_val_rig_modal_cell, "rig-mass": span_rig_mass,
          "rig-polar": span_rig_polar, "drop-cpu": span_drop_cpu, "run-up-criticals": span_run_up_criticals,
@@ -1042,6 +1177,11 @@ def main():
             else:
                 with open(os.path.join(ROOT, path), "w") as fh:
                     fh.write(new)
+    wrong = check_out_tables()
+    if wrong:
+        print("docs_render: docs/output-format.md disagrees with the output schema (lib/io/schema.c):\n  " +
+              "\n  ".join(wrong))
+        return 1
     missing = [m for m in sorted(set(REGIONS) | set(SPANS)) if m not in used]
     if missing:
         print("docs_render: regions with no marker in README.md or docs/: %s" % ", ".join(missing))

@@ -4,7 +4,7 @@
 # The targets (fuzz/README.md): case, the case-file reader (td_case_load, the default); journal,
 # the sweep journal's reader and appender (tools/sweep/sweep_journal.c); vary, the --vary / --with
 # parser (td_sweep_grid_vary, _with); plot, result files as touchdown plot loads them
-# (tools/plot/plot_file.c, plot_h5.c, plot_sweep_load.c).
+# (tools/plot/plot_file.c, plot_sweep_load.c through lib/io/result.c).
 # Installs clang and libclang-rt-14-dev when missing (Debian 12, as root), builds fuzz/ with
 # -fsanitize=fuzzer,address,undefined, makes the target's seed corpus (case: from cases/ and
 # tests/data/, a case that includes another file becoming "MAIN\n@@@\nINCLUDED" with @include

@@ -16,7 +16,6 @@
 #include "touchdown/touchdown.h"
 
 #include <float.h>
-#include <hdf5.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -195,85 +194,56 @@ static void reference_run(const td_model *m, reference *ref)
     td_sim_free(&sim);
 }
 
-/* ---- reading the HDF5 result ------------------------------------------------------------- */
+/* ---- reading the HDF5 result (touchdown/result.h) ------------------------------------------ */
 
-static double *read_doubles(hid_t f, const char *name, hsize_t *rows, int cols_expected)
+static td_result *open_result(const char *path)
 {
-    hid_t d = H5Dopen2(f, name, H5P_DEFAULT), sp;
-    hsize_t dims[3] = {0, 1, 1};
-    int rank, i;
-    size_t total;
-    double *buf;
-    assert_true(d >= 0);
-    sp = H5Dget_space(d);
-    rank = H5Sget_simple_extent_ndims(sp);
-    H5Sget_simple_extent_dims(sp, dims, NULL);
-    total = 1;
-    for (i = 0; i < rank; i++)
-        total *= (size_t)dims[i];
-    assert_int_equal(total, (size_t)dims[0] * (size_t)cols_expected);
-    buf = malloc(total * sizeof *buf + 1);
-    assert_non_null(buf);
-    assert_true(H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, buf) >= 0);
-    H5Sclose(sp);
-    H5Dclose(d);
-    *rows = dims[0];
-    return buf;
+    td_result *r = NULL;
+    td_error err;
+    if (td_result_open(path, &r, &err) != TD_OK)
+        fail_msg("td_result_open: %s", err.message);
+    assert_int_equal(td_result_get_kind(r), TD_RESULT_RUN);
+    return r;
 }
 
-static long long root_ll(hid_t f, const char *name)
+/* The dataset `id` (rows x cols_expected values), malloc'd; *rows its first dimension. */
+static double *read_doubles(const td_result *f, td_out_id id, size_t *rows, int cols_expected)
 {
-    long long v = -99;
-    hid_t a = H5Aopen(f, name, H5P_DEFAULT);
-    assert_true(a >= 0);
-    assert_true(H5Aread(a, H5T_NATIVE_LLONG, &v) >= 0);
-    H5Aclose(a);
+    td_result_array a;
+    td_error err;
+    if (td_result_read(f, id, NULL, &a, &err) != TD_OK)
+        fail_msg("td_result_read: %s", err.message);
+    assert_int_equal(a.n, a.dims[0] * (size_t)cols_expected);
+    assert_string_equal(a.units, td_out_units(id));
+    *rows = a.dims[0];
+    return a.v;
+}
+
+static double root_double(const td_result *f, td_out_id id)
+{
+    td_result_array a;
+    double v;
+    td_error err;
+    if (td_result_read(f, id, NULL, &a, &err) != TD_OK)
+        fail_msg("td_result_read: %s", err.message);
+    assert_int_equal(a.n, 1);
+    v = a.v[0];
+    td_result_array_free(&a);
     return v;
 }
 
-static double root_double(hid_t f, const char *name)
+static long long root_ll(const td_result *f, td_out_id id)
 {
-    double v = -99.0;
-    hid_t a = H5Aopen(f, name, H5P_DEFAULT);
-    assert_true(a >= 0);
-    assert_true(H5Aread(a, H5T_NATIVE_DOUBLE, &v) >= 0);
-    H5Aclose(a);
-    return v;
+    return (long long)root_double(f, id);
 }
 
-typedef struct ev_row {
-    double time;
-    int kind, retainer, change;
-    long long sample;
-    double vrb, vra, vtb, vta, impulse, normal_force;
-} ev_row;
-
-static ev_row *read_events(hid_t f, hsize_t *n)
+static td_result_event *read_events(const td_result *f, size_t *n)
 {
-    hid_t d = H5Dopen2(f, "/events", H5P_DEFAULT), sp, m = H5Tcreate(H5T_COMPOUND, sizeof(ev_row));
-    ev_row *rows;
-    H5Tinsert(m, "time", HOFFSET(ev_row, time), H5T_NATIVE_DOUBLE);
-    H5Tinsert(m, "kind", HOFFSET(ev_row, kind), H5T_NATIVE_INT); /* enum -> int converts */
-    H5Tinsert(m, "retainer", HOFFSET(ev_row, retainer), H5T_NATIVE_INT);
-    H5Tinsert(m, "change", HOFFSET(ev_row, change), H5T_NATIVE_INT);
-    H5Tinsert(m, "sample", HOFFSET(ev_row, sample), H5T_NATIVE_LLONG);
-    H5Tinsert(m, "radial_velocity_before", HOFFSET(ev_row, vrb), H5T_NATIVE_DOUBLE);
-    H5Tinsert(m, "radial_velocity_after", HOFFSET(ev_row, vra), H5T_NATIVE_DOUBLE);
-    H5Tinsert(m, "tangential_velocity_before", HOFFSET(ev_row, vtb), H5T_NATIVE_DOUBLE);
-    H5Tinsert(m, "tangential_velocity_after", HOFFSET(ev_row, vta), H5T_NATIVE_DOUBLE);
-    H5Tinsert(m, "impulse", HOFFSET(ev_row, impulse), H5T_NATIVE_DOUBLE);
-    H5Tinsert(m, "normal_force", HOFFSET(ev_row, normal_force), H5T_NATIVE_DOUBLE);
-    assert_true(d >= 0);
-    sp = H5Dget_space(d);
-    H5Sget_simple_extent_dims(sp, n, NULL);
-    rows = malloc((size_t)*n * sizeof *rows + 1);
-    assert_non_null(rows);
-    if (*n > 0)
-        assert_true(H5Dread(d, m, H5S_ALL, H5S_ALL, H5P_DEFAULT, rows) >= 0);
-    H5Tclose(m);
-    H5Sclose(sp);
-    H5Dclose(d);
-    return rows;
+    td_result_event *ev = NULL;
+    td_error err;
+    if (td_result_events(f, &ev, n, &err) != TD_OK)
+        fail_msg("td_result_events: %s", err.message);
+    return ev;
 }
 
 /* ---- tests ------------------------------------------------------------------------------- */
@@ -286,10 +256,10 @@ static void test_run_matches_hand_loop(void **state)
     td_run_summary s;
     td_error err;
     reference *ref = calloc(1, sizeof *ref);
-    hid_t f;
-    hsize_t rows, n_ev, i;
+    td_result *f;
+    size_t rows, n_ev, i;
     double *t, *r, *x, *nf;
-    ev_row *ev;
+    td_result_event *ev;
     long grid = 0, onsets = 0;
     double contact_time = 0.0, onset_t = -1.0, first_onset = -1.0, last_release = -1.0, window;
     double sampled_peak = 0.0, sampled_peak_t = -1.0;
@@ -311,14 +281,14 @@ static void test_run_matches_hand_loop(void **state)
                   s.wall_time);
     assert_true(ref->events >= 3); /* two schedule events and at least one contact onset */
 
-    f = H5Fopen(out.hdf5_path, H5F_ACC_RDONLY, H5P_DEFAULT);
-    assert_true(f >= 0);
-    assert_int_equal(root_ll(f, "complete"), 1);
-    t = read_doubles(f, "/time", &rows, 1);
-    assert_int_equal(rows, (hsize_t)ref->rows);
-    r = read_doubles(f, "/retainers/radial_position", &rows, 1);
-    nf = read_doubles(f, "/retainers/normal_force", &rows, 1);
-    x = read_doubles(f, "/nodes/displacement", &rows, 4);
+    f = open_result(out.hdf5_path);
+    assert_int_equal(td_result_complete(f), 1);
+    assert_int_equal(root_ll(f, TD_OUT_COMPLETE), 1);
+    t = read_doubles(f, TD_OUT_TIME, &rows, 1);
+    assert_int_equal(rows, (size_t)ref->rows);
+    r = read_doubles(f, TD_OUT_RET_RADIAL_POSITION, &rows, 1);
+    nf = read_doubles(f, TD_OUT_RET_NORMAL_FORCE, &rows, 1);
+    x = read_doubles(f, TD_OUT_NODE_DISPLACEMENT, &rows, 4);
     for (i = 0; i < rows; i++) {
         if (!same_bits(t[i], ref->t[i]) || !same_bits(r[i], ref->r[i]) || !same_bits(nf[i], ref->n[i]) ||
             !same_bits(x[4 * i + 2], ref->x3[i]))
@@ -337,36 +307,36 @@ static void test_run_matches_hand_loop(void **state)
     assert_int_equal(s.samples, (long)rows);
 
     ev = read_events(f, &n_ev);
-    assert_int_equal(n_ev, (hsize_t)ref->events);
+    assert_int_equal(n_ev, (size_t)ref->events);
     assert_int_equal(s.events, ref->events);
     for (i = 0; i < n_ev; i++) {
         const td_event *e = &ref->ev[i];
-        assert_true(same_bits(ev[i].time, e->time));
-        assert_int_equal(ev[i].kind, (int)e->kind);
-        assert_int_equal(ev[i].retainer, e->retainer);
-        assert_int_equal(ev[i].change, e->change);
-        assert_true(same_bits(ev[i].vrb, e->radial_velocity_before));
-        assert_true(same_bits(ev[i].vra, e->radial_velocity_after));
-        assert_true(same_bits(ev[i].vtb, e->tangential_velocity_before));
-        assert_true(same_bits(ev[i].vta, e->tangential_velocity_after));
-        assert_true(same_bits(ev[i].impulse, e->impulse));
-        assert_true(same_bits(ev[i].normal_force, e->normal_force));
+        assert_true(same_bits(ev[i].event.time, e->time));
+        assert_int_equal(ev[i].event.kind, (int)e->kind);
+        assert_int_equal(ev[i].event.retainer, e->retainer);
+        assert_int_equal(ev[i].event.change, e->change);
+        assert_true(same_bits(ev[i].event.radial_velocity_before, e->radial_velocity_before));
+        assert_true(same_bits(ev[i].event.radial_velocity_after, e->radial_velocity_after));
+        assert_true(same_bits(ev[i].event.tangential_velocity_before, e->tangential_velocity_before));
+        assert_true(same_bits(ev[i].event.tangential_velocity_after, e->tangential_velocity_after));
+        assert_true(same_bits(ev[i].event.impulse, e->impulse));
+        assert_true(same_bits(ev[i].event.normal_force, e->normal_force));
         /* the sample taken at the event: same time, not a grid row */
         assert_int_equal(ev[i].sample, ref->ev_row[i]);
-        assert_true(same_bits(t[ev[i].sample], ev[i].time));
+        assert_true(same_bits(t[ev[i].sample], ev[i].event.time));
         assert_false(ref->on_grid[ev[i].sample]);
         /* contact bookkeeping from the table alone (one retainer, plastic impacts) */
-        if (ev[i].kind == TD_EVENT_CONTACT_ONSET) {
+        if (ev[i].event.kind == TD_EVENT_CONTACT_ONSET) {
             onsets++;
             if (first_onset < 0.0)
-                first_onset = ev[i].time;
+                first_onset = ev[i].event.time;
             if (ref->contact[ev[i].sample] && onset_t < 0.0)
-                onset_t = ev[i].time;
-        } else if (ev[i].kind == TD_EVENT_RELEASE && onset_t >= 0.0) {
-            peak_in_contact |= s.peak_time >= onset_t && s.peak_time <= ev[i].time;
-            contact_time += ev[i].time - onset_t;
+                onset_t = ev[i].event.time;
+        } else if (ev[i].event.kind == TD_EVENT_RELEASE && onset_t >= 0.0) {
+            peak_in_contact |= s.peak_time >= onset_t && s.peak_time <= ev[i].event.time;
+            contact_time += ev[i].event.time - onset_t;
             onset_t = -1.0;
-            last_release = ev[i].time;
+            last_release = ev[i].event.time;
         }
     }
     if (onset_t >= 0.0)
@@ -407,9 +377,9 @@ static void test_run_matches_hand_loop(void **state)
     assert_string_equal(s.csv_path, out.csv_path);
     assert_non_null(strstr(s.events_path, ".events.csv"));
     assert_true(exists(s.events_path));
-    assert_int_equal(root_ll(f, "summary_contacts"), onsets);
-    assert_int_equal(root_ll(f, "steps"), s.stats.steps);
-    H5Fclose(f);
+    assert_int_equal(root_ll(f, TD_OUT_SUM_CONTACTS), onsets);
+    assert_int_equal(root_ll(f, TD_OUT_STAT_STEPS), s.stats.steps);
+    td_result_free(&f);
 
     free(t);
     free(r);
@@ -449,8 +419,8 @@ static void test_run_cancel(void **state)
     volatile sig_atomic_t flag = 0;
     cancel_ctx ctx;
     td_run_hooks hooks;
-    hid_t f, a, type;
-    hsize_t rows;
+    td_result *f;
+    size_t rows;
     double *t;
     char reason[512] = "", *tail, *text = NULL;
     FILE *csv;
@@ -476,27 +446,21 @@ static void test_run_cancel(void **state)
     assert_true(td_is_undefined(s.final_speed) && td_is_undefined(s.contact_time));
     assert_true(td_is_undefined(s.retainers[0].totals.impulse));
     assert_true(s.samples > 0);
-    f = H5Fopen(out.hdf5_path, H5F_ACC_RDONLY, H5P_DEFAULT);
-    assert_true(f >= 0);
-    assert_int_equal(root_ll(f, "complete"), 0);
-    assert_true(td_is_undefined(root_double(f, "summary_peak_housing_force")));
-    assert_true(td_is_undefined(root_double(f, "summary_final_speed")));
-    assert_true(root_double(f, "t_reached") == s.t_reached);
-    a = H5Aopen(f, "incomplete_reason", H5P_DEFAULT);
-    assert_true(a >= 0);
-    type = H5Aget_type(a);
-    assert_true(H5Tis_variable_str(type) > 0);
-    assert_true(H5Aread(a, type, &text) >= 0 && text);
+    f = open_result(out.hdf5_path);
+    assert_int_equal(td_result_get_flag(f), TD_RESULT_INCOMPLETE);
+    assert_int_equal(td_result_complete(f), 0);
+    assert_true(td_is_undefined(root_double(f, TD_OUT_SUM_PEAK_HOUSING_FORCE)));
+    assert_true(td_is_undefined(root_double(f, TD_OUT_SUM_FINAL_SPEED)));
+    assert_true(root_double(f, TD_OUT_T_REACHED) == s.t_reached);
+    assert_int_equal(td_result_read_text(f, TD_OUT_INCOMPLETE_REASON, NULL, &text, &err), TD_OK);
     snprintf(reason, sizeof reason, "%s", text);
-    H5free_memory(text);
-    H5Tclose(type);
-    H5Aclose(a);
+    free(text);
     assert_non_null(strstr(reason, "interrupted at t = 0.05"));
-    t = read_doubles(f, "/time", &rows, 1);
-    assert_int_equal(rows, (hsize_t)s.samples);
+    t = read_doubles(f, TD_OUT_TIME, &rows, 1);
+    assert_int_equal(rows, (size_t)s.samples);
     assert_true(same_bits(t[rows - 1], s.t_reached));
     free(t);
-    H5Fclose(f);
+    td_result_free(&f);
     csv = fopen(out.csv_path, "r");
     assert_non_null(csv);
     while (fgets(line, sizeof line, csv))

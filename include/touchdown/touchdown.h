@@ -15,6 +15,7 @@
 #include "touchdown/options.h"
 #include "touchdown/output.h"
 #include "touchdown/records.h"
+#include "touchdown/result.h"
 #include "touchdown/run.h"
 #include "touchdown/sim.h"
 #include "touchdown/sweep.h"

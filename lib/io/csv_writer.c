@@ -6,6 +6,7 @@
  * double reads back to the same bits; attributes and the completeness line are '#' comments at
  * the end, which gnuplot and pandas (comment='#') skip.
  */
+#include "io/schema.h"
 #include "io/writer_internal.h"
 #include "touchdown/dofs.h"
 #include "util/error_internal.h"
@@ -40,34 +41,64 @@ static const char *exact_text(double v, char *buf, size_t n)
 
 /* ---- headers ----------------------------------------------------------------------------- */
 
+/* One column title: ",NAME [UNITS]" (no comma first, no brackets without a unit), NAME the schema's
+ * CSV column of `id` filled with the component `comp` and/or the index `i`. */
+static int column(FILE *f, int first, td_out_id id, const char *comp, int i)
+{
+    const char *units = td_schema_csv_units(id);
+    int rc = !first && fputc(',', f) == EOF;
+    if (comp)
+        rc |= fprintf(f, td_schema_csv(id), comp, i) < 0;
+    else
+        rc |= fprintf(f, td_schema_csv(id), i) < 0;
+    if (units[0])
+        rc |= fprintf(f, " [%s]", units) < 0;
+    return rc;
+}
+
 static int write_sample_header(FILE *f, const td_writer *w)
 {
-    static const char *ret_cols[] = {"x", "y", "r", "vr", "theta", "N", "Ff", "vs", "contact"};
-    static const char *ret_units[] = {"m", "m", "m", "m/s", "rad", "N", "N", "m/s", "-"};
-    int i, k, rc = fputs(w->speed_field ? "t [s],speed [rad/s]" : "t [s]", f) < 0;
+    static const td_out_id ret_cols[] = {TD_OUT_RET_X,
+                                         TD_OUT_RET_Y,
+                                         TD_OUT_RET_RADIAL_POSITION,
+                                         TD_OUT_RET_RADIAL_VELOCITY,
+                                         TD_OUT_RET_WHIRL_ANGLE,
+                                         TD_OUT_RET_NORMAL_FORCE,
+                                         TD_OUT_RET_FRICTION_FORCE,
+                                         TD_OUT_RET_SLIDING_VELOCITY,
+                                         TD_OUT_RET_CONTACT_STATE};
+    static const td_out_id race_cols[] = {TD_OUT_RET_RACE_X, TD_OUT_RET_RACE_Y, TD_OUT_RET_RACE_SPEED,
+                                          TD_OUT_RET_ROLLING};
+    static const char *const xy[2] = {"x", "y"};
+    int i, k, rc = column(f, 1, TD_OUT_TIME, NULL, 0);
+    if (w->speed_field)
+        rc |= column(f, 0, TD_OUT_SPEED, NULL, 0);
     for (i = 0; i < w->node_count; i++)
-        rc |= fprintf(f, ",x_n%d [m],y_n%d [m]", w->nodes[i], w->nodes[i]) < 0;
-    static const char *race_cols[] = {"xr", "yr", "wr", "rolling"};
-    static const char *race_units[] = {"m", "m", "rad/s", "-"};
+        for (k = 0; k < 2; k++)
+            rc |= column(f, 0, TD_OUT_NODE_DISPLACEMENT, xy[k], w->nodes[i]);
     for (i = 0; i < w->retainer_count; i++) {
         for (k = 0; k < 9; k++)
-            rc |= fprintf(f, ",%s_ret%d [%s]", ret_cols[k], i, ret_units[k]) < 0;
+            rc |= column(f, 0, ret_cols[k], NULL, i);
         for (k = 0; k < 4 && w->race_fields; k++)
-            rc |= fprintf(f, ",%s_ret%d [%s]", race_cols[k], i, race_units[k]) < 0;
+            rc |= column(f, 0, race_cols[k], NULL, i);
         if (w->whirl_field)
-            rc |= fprintf(f, ",dtheta_ret%d [rad/s]", i) < 0;
+            rc |= column(f, 0, TD_OUT_RET_WHIRL_RATE, NULL, i);
     }
     for (i = 0; i < w->amb_count; i++)
-        rc |= fprintf(f, ",Fx_amb%d [N],Fy_amb%d [N]", i, i) < 0;
+        for (k = 0; k < 2; k++)
+            rc |= column(f, 0, TD_OUT_AMB_FORCE, xy[k], i);
     rc |= fputc('\n', f) == EOF;
     return rc;
 }
 
+/* The events file's columns: the /events fields in order, the kind's name after the kind. */
 static int write_event_header(FILE *f)
 {
-    return fputs("t [s],kind [-],kind_name,retainer [-],change [-],sample [-],vr_before [m/s],vr_after [m/s],"
-                 "vt_before [m/s],vt_after [m/s],impulse [N s],N [N],peak_N [N]\n",
-                 f) < 0;
+    int id, rc = 0;
+    for (id = TD_OUT_EV_TIME; id <= TD_OUT_EV_PEAK_NORMAL_FORCE; id++)
+        rc |= column(f, id == TD_OUT_EV_TIME, (td_out_id)id, NULL, 0);
+    rc |= fputc('\n', f) == EOF;
+    return rc;
 }
 
 static void csv_destroy(td_writer *w);
@@ -186,7 +217,7 @@ static int write_flag(FILE *f, int complete, const char *reason)
 {
     int rc;
     if (complete)
-        return fputs("# complete\n", f) < 0;
+        return fprintf(f, "# %s\n", td_out_name(TD_OUT_COMPLETE)) < 0;
     rc = fputs("# incomplete: ", f) < 0;
     for (; *reason; reason++)
         rc |= fputc(*reason == '\n' || *reason == '\r' ? ' ' : *reason, f) == EOF;
@@ -203,7 +234,7 @@ static td_status csv_finish(td_writer *w, int complete, const char *reason, td_e
     for (i = 0; i < w->attr_count; i++)
         rc |= write_attr(c->samples, &w->attrs[i]);
     if (!complete)
-        rc |= write_string_attr(c->samples, "incomplete_reason", reason);
+        rc |= write_string_attr(c->samples, td_out_name(TD_OUT_INCOMPLETE_REASON), reason);
     /* Events file first, samples file last: its flag line is the authority. */
     rc |= write_flag(c->events, complete, reason);
     if (td_io_close_stream(&c->events))

@@ -3,6 +3,7 @@
  */
 #include "io/h5_util.h"
 #include "io/h5_vfd.h"
+#include "io/schema.h"
 #include "util/error_internal.h"
 
 #include <hdf5_hl.h> /* H5DS: dimension scales */
@@ -109,7 +110,7 @@ int td_h5_dataset(hid_t loc, const char *name, hid_t file_type, hid_t mem_type, 
                   const hsize_t *dims, const char *units)
 {
     hid_t dset = td_h5_fixed_dataset(loc, name, file_type, mem_type, data, rank, dims);
-    int ok = dset >= 0 && td_h5_attr_string(dset, "units", units) >= 0;
+    int ok = dset >= 0 && td_h5_attr_string(dset, td_out_name(TD_OUT_UNITS), units) >= 0;
     if (dset >= 0 && H5Dclose(dset) < 0)
         ok = 0;
     return ok;

@@ -15,6 +15,7 @@
  */
 #include "io/h5_util.h"
 #include "io/h5_vfd.h"
+#include "io/schema.h"
 #include "io/writer_internal.h"
 #include "util/error_internal.h"
 
@@ -79,21 +80,20 @@ typedef struct h5_impl {
 
 /* Retainer fields in the order of the /retainers datasets. */
 static const struct {
-    const char *name;
-    const char *units;
+    td_out_id id;
     size_t offset;
-} ret_fields[] = {{"x", "m", offsetof(td_retainer_state, x)},
-                  {"y", "m", offsetof(td_retainer_state, y)},
-                  {"radial_position", "m", offsetof(td_retainer_state, radius)},
-                  {"radial_velocity", "m/s", offsetof(td_retainer_state, radial_velocity)},
-                  {"whirl_angle", "rad", offsetof(td_retainer_state, whirl_angle)},
-                  {"normal_force", "N", offsetof(td_retainer_state, normal_force)},
-                  {"friction_force", "N", offsetof(td_retainer_state, friction_force)},
-                  {"sliding_velocity", "m/s", offsetof(td_retainer_state, sliding_velocity)},
+} ret_fields[] = {{TD_OUT_RET_X, offsetof(td_retainer_state, x)},
+                  {TD_OUT_RET_Y, offsetof(td_retainer_state, y)},
+                  {TD_OUT_RET_RADIAL_POSITION, offsetof(td_retainer_state, radius)},
+                  {TD_OUT_RET_RADIAL_VELOCITY, offsetof(td_retainer_state, radial_velocity)},
+                  {TD_OUT_RET_WHIRL_ANGLE, offsetof(td_retainer_state, whirl_angle)},
+                  {TD_OUT_RET_NORMAL_FORCE, offsetof(td_retainer_state, normal_force)},
+                  {TD_OUT_RET_FRICTION_FORCE, offsetof(td_retainer_state, friction_force)},
+                  {TD_OUT_RET_SLIDING_VELOCITY, offsetof(td_retainer_state, sliding_velocity)},
                   /* with race fields (td_output_layout.race_fields) */
-                  {"race_x", "m", offsetof(td_retainer_state, race_x)},
-                  {"race_y", "m", offsetof(td_retainer_state, race_y)},
-                  {"race_speed", "rad/s", offsetof(td_retainer_state, race_speed)}};
+                  {TD_OUT_RET_RACE_X, offsetof(td_retainer_state, race_x)},
+                  {TD_OUT_RET_RACE_Y, offsetof(td_retainer_state, race_y)},
+                  {TD_OUT_RET_RACE_SPEED, offsetof(td_retainer_state, race_speed)}};
 #define RET_FIELD_ALL ((int)(sizeof ret_fields / sizeof ret_fields[0]))
 /* The double fields written: the first 8, or all with the race fields. */
 #define RET_FIELD_COUNT(w) ((w)->race_fields ? RET_FIELD_ALL : RET_FIELD_ALL - 3)
@@ -132,12 +132,18 @@ static hid_t chunked_dcpl(int rank, const hsize_t *chunk, int level)
     return dcpl;
 }
 
-/* A fixed 1-D dimension scale `name` under `loc` holding `values` (int32 or text). */
-static hid_t make_scale(hid_t loc, const char *name, hid_t file_type, hid_t mem_type, const void *values, hsize_t n,
-                        const char *units)
+/* The `units` attribute of the dataset `id` (td_schema). */
+static herr_t units_attr(hid_t dset, td_out_id id)
 {
+    return td_h5_attr_string(dset, td_out_name(TD_OUT_UNITS), td_out_units(id));
+}
+
+/* A fixed 1-D dimension scale `id` under `loc` holding `values` (int32 or text). */
+static hid_t make_scale(hid_t loc, td_out_id id, hid_t file_type, hid_t mem_type, const void *values, hsize_t n)
+{
+    const char *name = td_out_name(id);
     hid_t dset = td_h5_fixed_dataset(loc, name, file_type, mem_type, values, 1, &n);
-    if (dset >= 0 && (H5DSset_scale(dset, name) < 0 || td_h5_attr_string(dset, "units", units) < 0)) {
+    if (dset >= 0 && (H5DSset_scale(dset, name) < 0 || units_attr(dset, id) < 0)) {
         H5Dclose(dset);
         return -1;
     }
@@ -145,7 +151,7 @@ static hid_t make_scale(hid_t loc, const char *name, hid_t file_type, hid_t mem_
 }
 
 /* Scale of the int32 indices 0..n-1 (retainers, AMBs). */
-static hid_t make_index_scale(hid_t loc, const char *name, int n, const char *units)
+static hid_t make_index_scale(hid_t loc, td_out_id id, int n)
 {
     int *v = malloc((size_t)(n > 0 ? n : 1) * sizeof *v);
     hid_t dset;
@@ -154,7 +160,7 @@ static hid_t make_index_scale(hid_t loc, const char *name, int n, const char *un
         return -1;
     for (i = 0; i < n; i++)
         v[i] = i;
-    dset = make_scale(loc, name, H5T_STD_I32LE, H5T_NATIVE_INT, v, (hsize_t)n, units);
+    dset = make_scale(loc, id, H5T_STD_I32LE, H5T_NATIVE_INT, v, (hsize_t)n);
     free(v);
     return dset;
 }
@@ -165,17 +171,18 @@ static hid_t make_component_scale(hid_t file)
     static const char *const xy[2] = {"x", "y"};
     hid_t type = td_h5_text_type(), dset = -1;
     if (type >= 0)
-        dset = make_scale(file, "component", type, type, xy, 2, "1");
+        dset = make_scale(file, TD_OUT_COMPONENT, type, type, xy, 2);
     if (type >= 0)
         H5Tclose(type);
     return dset;
 }
 
-/* Create one extendible sample dataset under `loc`. */
-static td_status add_series(td_writer *w, h5_impl *h, hid_t loc, const char *name, const char *units, int rank,
-                            const hsize_t *row_dims, int is_int8, td_error *err)
+/* Create the extendible sample dataset `id` under `loc`. */
+static td_status add_series(td_writer *w, h5_impl *h, hid_t loc, td_out_id id, int rank, const hsize_t *row_dims,
+                            int is_int8, td_error *err)
 {
     h5_series *s = &h->series[h->series_count];
+    const char *name = td_out_name(id);
     hsize_t dims[3], maxdims[3], chunk[3];
     hid_t space, dcpl, dset = -1;
     int i;
@@ -209,10 +216,10 @@ static td_status add_series(td_writer *w, h5_impl *h, hid_t loc, const char *nam
     if (dset < 0)
         return h5_fail(err, w, "cannot create a sample dataset");
     s->dset = dset;
-    if (td_h5_attr_string(dset, "units", units) < 0)
+    if (units_attr(dset, id) < 0)
         return h5_fail(err, w, "cannot write a units attribute");
     /* /time is the first series: it names the sample axis of every later one */
-    if (h->series_count - 1 == h->idx_time ? H5DSset_scale(dset, "time") < 0
+    if (h->series_count - 1 == h->idx_time ? H5DSset_scale(dset, td_out_name(TD_OUT_TIME)) < 0
                                            : H5DSattach_scale(dset, h->series[h->idx_time].dset, 0) < 0)
         return h5_fail(err, w, "cannot attach the time axis");
     return TD_OK;
@@ -239,10 +246,10 @@ static td_status attach_own_axis(td_writer *w, h5_impl *h, int first, hid_t scal
     return st;
 }
 
-static hid_t make_group(hid_t file, const char *name, int count)
+static hid_t make_group(hid_t file, td_out_id id, int count)
 {
-    hid_t g = H5Gcreate2(file, name, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
-    if (g >= 0 && td_h5_attr_int(g, "count", count) < 0) {
+    hid_t g = H5Gcreate2(file, td_out_name(id), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    if (g >= 0 && td_h5_attr_int(g, td_out_name(TD_OUT_COUNT), count) < 0) {
         H5Gclose(g);
         return -1;
     }
@@ -251,7 +258,7 @@ static hid_t make_group(hid_t file, const char *name, int count)
 
 static td_status create_nodes(td_writer *w, h5_impl *h, td_error *err)
 {
-    hid_t g = make_group(h->file, "nodes", w->node_count);
+    hid_t g = make_group(h->file, TD_OUT_NODES, w->node_count);
     hsize_t row[2];
     td_status st = TD_OK;
     if (g < 0)
@@ -260,16 +267,15 @@ static td_status create_nodes(td_writer *w, h5_impl *h, td_error *err)
         row[0] = (hsize_t)w->node_count;
         row[1] = 2;
         h->idx_disp = h->series_count;
-        st = add_series(w, h, g, "displacement", "m", 3, row, 0, err);
-        if (st == TD_OK && (td_h5_attr_numeric(h->series[h->idx_disp].dset, "nodes", H5T_STD_I32LE, H5T_NATIVE_INT,
-                                               w->nodes, w->node_count, 1) < 0 ||
-                            td_h5_attr_string(h->series[h->idx_disp].dset, "components", "x,y") < 0))
+        st = add_series(w, h, g, TD_OUT_NODE_DISPLACEMENT, 3, row, 0, err);
+        if (st == TD_OK && (td_h5_attr_numeric(h->series[h->idx_disp].dset, td_out_name(TD_OUT_NODES_ATTR),
+                                               H5T_STD_I32LE, H5T_NATIVE_INT, w->nodes, w->node_count, 1) < 0 ||
+                            td_h5_attr_string(h->series[h->idx_disp].dset, td_out_name(TD_OUT_COMPONENTS), "x,y") < 0))
             st = h5_fail(err, w, "cannot write the node attributes");
         if (st == TD_OK)
             st = attach_own_axis(
                 w, h, h->idx_disp,
-                make_scale(g, "node", H5T_STD_I32LE, H5T_NATIVE_INT, w->nodes, (hsize_t)w->node_count, "node number"),
-                1, err);
+                make_scale(g, TD_OUT_NODE, H5T_STD_I32LE, H5T_NATIVE_INT, w->nodes, (hsize_t)w->node_count), 1, err);
         if (st == TD_OK)
             st = attach_axis(w, h, h->idx_disp, h->component, 2, err);
     }
@@ -279,7 +285,7 @@ static td_status create_nodes(td_writer *w, h5_impl *h, td_error *err)
 
 static td_status create_retainers(td_writer *w, h5_impl *h, td_error *err)
 {
-    hid_t g = make_group(h->file, "retainers", w->retainer_count);
+    hid_t g = make_group(h->file, TD_OUT_RETAINERS, w->retainer_count);
     hsize_t row[1];
     td_status st = TD_OK;
     int i;
@@ -289,18 +295,17 @@ static td_status create_retainers(td_writer *w, h5_impl *h, td_error *err)
         row[0] = (hsize_t)w->retainer_count;
         h->idx_ret = h->series_count;
         for (i = 0; i < RET_FIELD_COUNT(w) && st == TD_OK; i++)
-            st = add_series(w, h, g, ret_fields[i].name, ret_fields[i].units, 2, row, 0, err);
+            st = add_series(w, h, g, ret_fields[i].id, 2, row, 0, err);
         if (st == TD_OK)
-            st = add_series(w, h, g, "contact_state", "1", 2, row, 1, err);
+            st = add_series(w, h, g, TD_OUT_RET_CONTACT_STATE, 2, row, 1, err);
         if (st == TD_OK && w->race_fields)
-            st = add_series(w, h, g, "rolling", "1", 2, row, 1, err);
+            st = add_series(w, h, g, TD_OUT_RET_ROLLING, 2, row, 1, err);
         if (st == TD_OK && w->whirl_field) {
             h->idx_whirl = h->series_count;
-            st = add_series(w, h, g, "whirl_rate", "rad/s", 2, row, 0, err);
+            st = add_series(w, h, g, TD_OUT_RET_WHIRL_RATE, 2, row, 0, err);
         }
         if (st == TD_OK)
-            st = attach_own_axis(w, h, h->idx_ret, make_index_scale(g, "retainer", w->retainer_count, "retainer index"),
-                                 1, err);
+            st = attach_own_axis(w, h, h->idx_ret, make_index_scale(g, TD_OUT_RETAINER, w->retainer_count), 1, err);
     }
     H5Gclose(g);
     return st;
@@ -308,7 +313,7 @@ static td_status create_retainers(td_writer *w, h5_impl *h, td_error *err)
 
 static td_status create_ambs(td_writer *w, h5_impl *h, td_error *err)
 {
-    hid_t g = make_group(h->file, "ambs", w->amb_count);
+    hid_t g = make_group(h->file, TD_OUT_AMBS, w->amb_count);
     hsize_t row[2];
     td_status st = TD_OK;
     if (g < 0)
@@ -317,11 +322,11 @@ static td_status create_ambs(td_writer *w, h5_impl *h, td_error *err)
         row[0] = (hsize_t)w->amb_count;
         row[1] = 2;
         h->idx_amb = h->series_count;
-        st = add_series(w, h, g, "force", "N", 3, row, 0, err);
-        if (st == TD_OK && td_h5_attr_string(h->series[h->idx_amb].dset, "components", "x,y") < 0)
+        st = add_series(w, h, g, TD_OUT_AMB_FORCE, 3, row, 0, err);
+        if (st == TD_OK && td_h5_attr_string(h->series[h->idx_amb].dset, td_out_name(TD_OUT_COMPONENTS), "x,y") < 0)
             st = h5_fail(err, w, "cannot write the AMB attributes");
         if (st == TD_OK)
-            st = attach_own_axis(w, h, h->idx_amb, make_index_scale(g, "amb", w->amb_count, "AMB index"), 1, err);
+            st = attach_own_axis(w, h, h->idx_amb, make_index_scale(g, TD_OUT_AMB, w->amb_count), 1, err);
         if (st == TD_OK)
             st = attach_axis(w, h, h->idx_amb, h->component, 2, err);
     }
@@ -329,43 +334,64 @@ static td_status create_ambs(td_writer *w, h5_impl *h, td_error *err)
     return st;
 }
 
-/* The event kind enum, the compound row types and the /events dataset. */
-static td_status create_events(td_writer *w, h5_impl *h, td_error *err)
+/* The fields of an event row, in the file's order: what the member is in memory. */
+typedef enum ev_mem { EV_DOUBLE, EV_INT, EV_INT64, EV_KIND } ev_mem;
+static const struct {
+    td_out_id id;
+    size_t offset;
+    ev_mem mem;
+} event_fields[] = {
+    {TD_OUT_EV_TIME, offsetof(h5_event_row, time), EV_DOUBLE},
+    {TD_OUT_EV_KIND, offsetof(h5_event_row, kind), EV_KIND},
+    {TD_OUT_EV_RETAINER, offsetof(h5_event_row, retainer), EV_INT},
+    {TD_OUT_EV_CHANGE, offsetof(h5_event_row, change), EV_INT},
+    {TD_OUT_EV_SAMPLE, offsetof(h5_event_row, sample), EV_INT64},
+    {TD_OUT_EV_RADIAL_VELOCITY_BEFORE, offsetof(h5_event_row, radial_velocity_before), EV_DOUBLE},
+    {TD_OUT_EV_RADIAL_VELOCITY_AFTER, offsetof(h5_event_row, radial_velocity_after), EV_DOUBLE},
+    {TD_OUT_EV_TANGENTIAL_VELOCITY_BEFORE, offsetof(h5_event_row, tangential_velocity_before), EV_DOUBLE},
+    {TD_OUT_EV_TANGENTIAL_VELOCITY_AFTER, offsetof(h5_event_row, tangential_velocity_after), EV_DOUBLE},
+    {TD_OUT_EV_IMPULSE, offsetof(h5_event_row, impulse), EV_DOUBLE},
+    {TD_OUT_EV_NORMAL_FORCE, offsetof(h5_event_row, normal_force), EV_DOUBLE},
+    {TD_OUT_EV_PEAK_NORMAL_FORCE, offsetof(h5_event_row, peak_normal_force), EV_DOUBLE}};
+
+/* The event kind enum (its names into `names`, "0=contact_onset,...") and the memory row type. */
+static int event_types(h5_impl *h, char *names, size_t size)
 {
     static const td_event_kind kinds[] = {TD_EVENT_CONTACT_ONSET, TD_EVENT_RELEASE,       TD_EVENT_FRICTION_REVERSAL,
                                           TD_EVENT_SCHEDULE,      TD_EVENT_PENALTY_ENTER, TD_EVENT_PENALTY_EXIT,
                                           TD_EVENT_ROLL_START,    TD_EVENT_ROLL_END};
-    hsize_t dims[1] = {0}, maxdims[1] = {H5S_UNLIMITED}, chunk[1] = {H5_EVENT_CHUNK};
-    hid_t m, space = -1, dcpl = -1;
     size_t i;
     int ok;
-    char names[256] = "";
     h->kind_type = H5Tenum_create(H5T_NATIVE_INT);
     ok = h->kind_type >= 0;
     for (i = 0; ok && i < sizeof kinds / sizeof kinds[0]; i++) {
         int v = (int)kinds[i];
         size_t len = strlen(names);
         ok = H5Tenum_insert(h->kind_type, td_event_kind_name(kinds[i]), &v) >= 0;
-        snprintf(names + len, sizeof names - len, "%s%d=%s", i ? "," : "", v, td_event_kind_name(kinds[i]));
+        snprintf(names + len, size - len, "%s%d=%s", i ? "," : "", v, td_event_kind_name(kinds[i]));
     }
-    h->event_mtype = m = ok ? H5Tcreate(H5T_COMPOUND, sizeof(h5_event_row)) : -1;
-    ok =
-        m >= 0 && H5Tinsert(m, "time", HOFFSET(h5_event_row, time), H5T_NATIVE_DOUBLE) >= 0 &&
-        H5Tinsert(m, "kind", HOFFSET(h5_event_row, kind), h->kind_type) >= 0 &&
-        H5Tinsert(m, "retainer", HOFFSET(h5_event_row, retainer), H5T_NATIVE_INT) >= 0 &&
-        H5Tinsert(m, "change", HOFFSET(h5_event_row, change), H5T_NATIVE_INT) >= 0 &&
-        H5Tinsert(m, "sample", HOFFSET(h5_event_row, sample), H5T_NATIVE_INT64) >= 0 &&
-        H5Tinsert(m, "radial_velocity_before", HOFFSET(h5_event_row, radial_velocity_before), H5T_NATIVE_DOUBLE) >= 0 &&
-        H5Tinsert(m, "radial_velocity_after", HOFFSET(h5_event_row, radial_velocity_after), H5T_NATIVE_DOUBLE) >= 0 &&
-        H5Tinsert(m, "tangential_velocity_before", HOFFSET(h5_event_row, tangential_velocity_before),
-                  H5T_NATIVE_DOUBLE) >= 0 &&
-        H5Tinsert(m, "tangential_velocity_after", HOFFSET(h5_event_row, tangential_velocity_after),
-                  H5T_NATIVE_DOUBLE) >= 0 &&
-        H5Tinsert(m, "impulse", HOFFSET(h5_event_row, impulse), H5T_NATIVE_DOUBLE) >= 0 &&
-        H5Tinsert(m, "normal_force", HOFFSET(h5_event_row, normal_force), H5T_NATIVE_DOUBLE) >= 0 &&
-        H5Tinsert(m, "peak_normal_force", HOFFSET(h5_event_row, peak_normal_force), H5T_NATIVE_DOUBLE) >= 0;
+    h->event_mtype = ok ? H5Tcreate(H5T_COMPOUND, sizeof(h5_event_row)) : -1;
+    ok = h->event_mtype >= 0;
+    for (i = 0; ok && i < sizeof event_fields / sizeof event_fields[0]; i++) {
+        ev_mem m = event_fields[i].mem;
+        hid_t type = m == EV_DOUBLE  ? H5T_NATIVE_DOUBLE
+                     : m == EV_INT   ? H5T_NATIVE_INT
+                     : m == EV_INT64 ? H5T_NATIVE_INT64
+                                     : h->kind_type;
+        ok = H5Tinsert(h->event_mtype, td_out_name(event_fields[i].id), event_fields[i].offset, type) >= 0;
+    }
+    return ok;
+}
+
+/* The event kind enum, the compound row types and the /events dataset with its scale /event. */
+static td_status create_events(td_writer *w, h5_impl *h, td_error *err)
+{
+    hsize_t dims[1] = {0}, maxdims[1] = {H5S_UNLIMITED}, chunk[1] = {H5_EVENT_CHUNK};
+    hid_t space = -1, dcpl = -1;
+    char names[256] = "";
+    int ok = event_types(h, names, sizeof names);
     if (ok) {
-        h->event_ftype = H5Tcopy(m);
+        h->event_ftype = H5Tcopy(h->event_mtype);
         ok = h->event_ftype >= 0 && H5Tpack(h->event_ftype) >= 0;
     }
     if (ok) {
@@ -374,21 +400,22 @@ static td_status create_events(td_writer *w, h5_impl *h, td_error *err)
         ok = space >= 0 && dcpl >= 0;
     }
     if (ok)
-        h->event_dset = H5Dcreate2(h->file, "events", h->event_ftype, space, H5P_DEFAULT, dcpl, H5P_DEFAULT);
+        h->event_dset =
+            H5Dcreate2(h->file, td_out_name(TD_OUT_EVENTS), h->event_ftype, space, H5P_DEFAULT, dcpl, H5P_DEFAULT);
     if (ok && h->event_dset >= 0)
-        h->event_index = H5Dcreate2(h->file, "event", H5T_STD_I64LE, space, H5P_DEFAULT, dcpl, H5P_DEFAULT);
+        h->event_index =
+            H5Dcreate2(h->file, td_out_name(TD_OUT_EVENT), H5T_STD_I64LE, space, H5P_DEFAULT, dcpl, H5P_DEFAULT);
     if (dcpl >= 0)
         H5Pclose(dcpl);
     if (space >= 0)
         H5Sclose(space);
-    if (!ok || h->event_dset < 0 || h->event_index < 0 || H5DSset_scale(h->event_index, "event") < 0 ||
+    if (!ok || h->event_dset < 0 || h->event_index < 0 ||
+        H5DSset_scale(h->event_index, td_out_name(TD_OUT_EVENT)) < 0 ||
         H5DSattach_scale(h->event_dset, h->event_index, 0) < 0)
         return h5_fail(err, w, "cannot create /events");
-    if (td_h5_attr_string(h->event_index, "units", "1 (row number of /events)") < 0 ||
-        td_h5_attr_string(h->event_dset, "kind_names", names) < 0 ||
-        td_h5_attr_string(h->event_dset, "units",
-                          "time: s; radial_velocity_*, tangential_velocity_*: m/s; impulse: N s; normal_force, "
-                          "peak_normal_force: N") < 0)
+    if (units_attr(h->event_index, TD_OUT_EVENT) < 0 ||
+        td_h5_attr_string(h->event_dset, td_out_name(TD_OUT_KIND_NAMES), names) < 0 ||
+        units_attr(h->event_dset, TD_OUT_EVENTS) < 0)
         return h5_fail(err, w, "cannot write the /events attributes");
     return TD_OK;
 }
@@ -416,11 +443,11 @@ static td_status open_impl(td_writer *w, h5_impl *h, td_error *err)
     if (h->file < 0)
         return h5_fail(err, w, h->driver < 0 ? "cannot set up file access" : "cannot create the file");
     h->idx_time = h->series_count;
-    if ((st = add_series(w, h, h->file, "time", "s", 1, NULL, 0, err)) != TD_OK)
+    if ((st = add_series(w, h, h->file, TD_OUT_TIME, 1, NULL, 0, err)) != TD_OK)
         return st;
     if (w->speed_field) {
         h->idx_speed = h->series_count;
-        if ((st = add_series(w, h, h->file, "speed", "rad/s", 1, NULL, 0, err)) != TD_OK)
+        if ((st = add_series(w, h, h->file, TD_OUT_SPEED, 1, NULL, 0, err)) != TD_OK)
             return st;
     }
     if ((w->node_count > 0 || w->amb_count > 0) && (h->component = make_component_scale(h->file)) < 0)
@@ -428,7 +455,7 @@ static td_status open_impl(td_writer *w, h5_impl *h, td_error *err)
     if ((st = create_nodes(w, h, err)) != TD_OK || (st = create_retainers(w, h, err)) != TD_OK ||
         (st = create_ambs(w, h, err)) != TD_OK || (st = create_events(w, h, err)) != TD_OK)
         return st;
-    if (td_h5_attr_string(h->file, "units", "SI (touchdown/dofs.h); each dataset has a units attribute") < 0)
+    if (units_attr(h->file, TD_OUT_ROOT) < 0)
         return h5_fail(err, w, "cannot write the units attribute");
     return TD_OK;
 }
@@ -641,10 +668,10 @@ static td_status finish_impl(td_writer *w, h5_impl *h, int complete, const char 
     for (i = 0; i < w->attr_count; i++)
         if (write_attr(h->file, &w->attrs[i]) < 0)
             return h5_fail(err, w, "cannot write a root attribute");
-    if (!complete && td_h5_attr_string(h->file, "incomplete_reason", reason) < 0)
+    if (!complete && td_h5_attr_string(h->file, td_out_name(TD_OUT_INCOMPLETE_REASON), reason) < 0)
         return h5_fail(err, w, "cannot write incomplete_reason");
     /* The flag last: a file that stops before this line has no flag at all. */
-    if (td_h5_attr_int(h->file, "complete", complete ? 1 : 0) < 0)
+    if (td_h5_attr_int(h->file, td_out_name(TD_OUT_COMPLETE), complete ? 1 : 0) < 0)
         return h5_fail(err, w, "cannot write the completeness flag");
     if (H5Fflush(h->file, H5F_SCOPE_GLOBAL) < 0)
         return h5_fail(err, w, "cannot flush the file");

@@ -11,6 +11,7 @@
  */
 #include "io/h5_util.h"
 #include "io/h5_vfd.h"
+#include "io/schema.h"
 #include "io/writer_internal.h"
 #include "touchdown/modal_output.h"
 #include "util/error_internal.h"
@@ -29,22 +30,48 @@ static const char *whirl_name(td_whirl w)
 
 /* ---- CSV --------------------------------------------------------------------------------- */
 
+/* "# section: NAME" of the section `id`. */
+static void csv_section(FILE *f, td_out_id id)
+{
+    fprintf(f, "# section: %s\n", td_out_name(id));
+}
+
+/* A section's header line: the CSV names of its columns (td_schema_csv). */
+static void csv_columns(FILE *f, const td_out_id *cols, int n)
+{
+    int i;
+    for (i = 0; i < n; i++)
+        fprintf(f, "%s%s", i ? "," : "", td_schema_csv(cols[i]));
+    fputc('\n', f);
+}
+
 static void csv_modes(FILE *f, const td_modal *m)
 {
+    static const td_out_id modes[] = {TD_OUT_MODES_MODE,        TD_OUT_MODES_SIGMA,   TD_OUT_MODES_OMEGA_D,
+                                      TD_OUT_MODES_FREQ_HZ,     TD_OUT_MODES_OMEGA_N, TD_OUT_MODES_ZETA,
+                                      TD_OUT_MODES_WHIRL_INDEX, TD_OUT_MODES_WHIRL};
+    static const td_out_id reals[] = {TD_OUT_MODAL_INDEX, TD_OUT_MODES_REAL_EIGENVALUES};
+    static const td_out_id shapes[] = {TD_OUT_MODES_MODE,       TD_OUT_MODAL_NODE,       TD_OUT_MODES_SHAPE_X_RE,
+                                       TD_OUT_MODES_SHAPE_X_IM, TD_OUT_MODES_SHAPE_Y_RE, TD_OUT_MODES_SHAPE_Y_IM};
     int i, k, nn = td_modal_node_count(m);
     double *s = malloc(4u * (size_t)(nn > 0 ? nn : 1) * sizeof *s);
-    fprintf(f, "# section: modes\n# speed_rad_s = %.12g\n", td_modal_speed(m));
-    fprintf(f, "mode,sigma_1_s,omega_d_rad_s,freq_hz,omega_n_rad_s,zeta,whirl_index,whirl\n");
+    csv_section(f, TD_OUT_MODES);
+    fprintf(f, "# %s = %.12g\n", td_schema_csv(TD_OUT_MODES_SPEED), td_modal_speed(m));
+    csv_columns(f, modes, 8);
     for (i = 0; i < td_modal_mode_count(m); i++) {
         td_mode md;
         td_modal_get_mode(m, i, &md);
         fprintf(f, "%d,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%s\n", i, md.sigma, md.omega_d, md.freq_hz, md.omega_n,
                 md.zeta, md.whirl_index, whirl_name(md.whirl));
     }
-    fprintf(f, "\n# section: real_eigenvalues\nindex,s_1_s\n");
+    fputc('\n', f);
+    csv_section(f, TD_OUT_MODES_REAL_EIGENVALUES);
+    csv_columns(f, reals, 2);
     for (i = 0; i < td_modal_real_count(m); i++)
         fprintf(f, "%d,%.12g\n", i, td_modal_real_eigenvalue(m, i));
-    fprintf(f, "\n# section: mode_shapes\nmode,node,x_re,x_im,y_re,y_im\n");
+    fputc('\n', f);
+    csv_section(f, TD_OUT_MODAL_MODE_SHAPES);
+    csv_columns(f, shapes, 6);
     for (i = 0; s && i < td_modal_mode_count(m); i++) {
         td_modal_mode_shape(m, i, s, s + nn, s + 2 * nn, s + 3 * nn);
         for (k = 0; k < nn; k++)
@@ -56,8 +83,12 @@ static void csv_modes(FILE *f, const td_modal *m)
 
 static void csv_campbell(FILE *f, const td_campbell *c)
 {
+    static const td_out_id cols[] = {TD_OUT_CAMPBELL_SPEED,   TD_OUT_CAMPBELL_BRANCH, TD_OUT_CAMPBELL_OMEGA_D,
+                                     TD_OUT_CAMPBELL_FREQ_HZ, TD_OUT_CAMPBELL_SIGMA,  TD_OUT_CAMPBELL_ZETA,
+                                     TD_OUT_CAMPBELL_WHIRL};
     int k, j;
-    fprintf(f, "# section: campbell\nspeed_rad_s,branch,omega_d_rad_s,freq_hz,sigma_1_s,zeta,whirl\n");
+    csv_section(f, TD_OUT_CAMPBELL);
+    csv_columns(f, cols, 7);
     for (k = 0; k < td_campbell_speed_count(c); k++)
         for (j = 0; j < td_campbell_branch_count(c); j++) {
             td_mode md;
@@ -70,8 +101,11 @@ static void csv_campbell(FILE *f, const td_campbell *c)
 
 static void csv_critical(FILE *f, const td_critical_speed *cs, int n)
 {
+    static const td_out_id cols[] = {TD_OUT_CRITICAL_SPEED,  TD_OUT_CRITICAL_FREQ_HZ, TD_OUT_CRITICAL_WHIRL,
+                                     TD_OUT_CRITICAL_BRANCH, TD_OUT_CRITICAL_ZETA,    TD_OUT_CRITICAL_SIGMA};
     int i;
-    fprintf(f, "# section: critical_speeds\nspeed_rad_s,freq_hz,whirl,branch,zeta,sigma_1_s\n");
+    csv_section(f, TD_OUT_CRITICAL);
+    csv_columns(f, cols, 6);
     for (i = 0; i < n; i++)
         fprintf(f, "%.12g,%.12g,%s,%d,%.12g,%.12g\n", cs[i].speed, cs[i].freq_hz, whirl_name(cs[i].whirl), cs[i].branch,
                 cs[i].zeta, cs[i].sigma);
@@ -80,9 +114,13 @@ static void csv_critical(FILE *f, const td_critical_speed *cs, int n)
 
 static void csv_harmonic(FILE *f, const td_harmonic *const *h, int n)
 {
+    static const td_out_id cols[] = {TD_OUT_HARMONIC_SPEED,   TD_OUT_MODAL_NODE,        TD_OUT_HARMONIC_X_AMP,
+                                     TD_OUT_HARMONIC_X_PHASE, TD_OUT_HARMONIC_Y_AMP,    TD_OUT_HARMONIC_Y_PHASE,
+                                     TD_OUT_HARMONIC_FORWARD, TD_OUT_HARMONIC_BACKWARD, TD_OUT_HARMONIC_MAJOR,
+                                     TD_OUT_HARMONIC_MINOR};
     int i, k;
-    fprintf(f, "# section: harmonic\nspeed_rad_s,node,x_amp_m,x_phase_rad,y_amp_m,y_phase_rad,forward_m,backward_m,"
-               "major_m,minor_m\n");
+    csv_section(f, TD_OUT_HARMONIC);
+    csv_columns(f, cols, 10);
     for (i = 0; i < n; i++)
         for (k = 0; h[i] && k < td_harmonic_node_count(h[i]); k++) {
             td_orbit o;
@@ -132,19 +170,36 @@ td_status td_modal_write_csv(const char *path, const td_modal_results *r, td_err
 
 /* ---- HDF5 -------------------------------------------------------------------------------- */
 
-/* A 1-D (cols == 0) or 2-D dataset of doubles or ints with a "units" attribute. */
-static int h5_dataset(hid_t group, const char *name, hid_t memtype, const void *data, hsize_t rows, hsize_t cols,
-                      const char *units)
+/* The 1-D (cols == 0) or 2-D dataset `id` of doubles or ints with its "units" attribute. */
+static int h5_dataset(hid_t group, td_out_id id, hid_t memtype, const void *data, hsize_t rows, hsize_t cols)
 {
     hsize_t dims[2];
     dims[0] = rows;
     dims[1] = cols;
-    return td_h5_dataset(group, name, memtype == H5T_NATIVE_INT ? H5T_STD_I32LE : H5T_IEEE_F64LE, memtype, data,
-                         cols ? 2 : 1, dims, units);
+    return td_h5_dataset(group, td_out_name(id), memtype == H5T_NATIVE_INT ? H5T_STD_I32LE : H5T_IEEE_F64LE, memtype,
+                         data, cols ? 2 : 1, dims, td_out_units(id));
 }
 
-/* The mode-shape datasets: rows modes, columns nodes (NULL-ended). */
-static const char *const shape_names[] = {"shape_x_re", "shape_x_im", "shape_y_re", "shape_y_im", NULL};
+/* The index dataset `id` 0..n-1 with its units (td_h5_index). */
+static int h5_index(hid_t group, td_out_id id, int n)
+{
+    return td_h5_index(group, td_out_name(id), n, td_out_units(id));
+}
+
+/* Make `scale` a dimension scale of axis `axis` of the datasets ids[0 .. n) (td_h5_attach). */
+static int h5_attach(hid_t group, td_out_id scale, const td_out_id *ids, int n, unsigned axis)
+{
+    const char *names[16];
+    int i;
+    for (i = 0; i < n && i < 15; i++)
+        names[i] = td_out_name(ids[i]);
+    names[i] = NULL;
+    return td_h5_attach(group, td_out_name(scale), n > 0 ? names : NULL, axis);
+}
+
+/* The mode-shape datasets: rows modes, columns nodes. */
+static const td_out_id shape_ids[4] = {TD_OUT_MODES_SHAPE_X_RE, TD_OUT_MODES_SHAPE_X_IM, TD_OUT_MODES_SHAPE_Y_RE,
+                                       TD_OUT_MODES_SHAPE_Y_IM};
 
 /* Columns of a td_mode array, gathered one field at a time. */
 enum mode_field { F_SIGMA, F_OMEGA_D, F_FREQ, F_OMEGA_N, F_ZETA, F_WHIRL_INDEX };
@@ -161,25 +216,23 @@ static double mode_field(const td_mode *m, int field)
     }
 }
 
-static const struct {
-    const char *name, *units;
-} mode_fields[6] = {{"sigma", "1/s"},     {"omega_d", "rad/s"}, {"freq_hz", "Hz"},
-                    {"omega_n", "rad/s"}, {"zeta", "1"},        {"whirl_index", "1"}};
+/* The mode table of a group: its first id (sigma; the fields F_SIGMA .. F_WHIRL_INDEX follow in
+ * order, then the int whirl). */
+#define MODE_TABLE_SIZE 7
 
-/* Attach g/scale to axis `axis` of every dataset h5_mode_table writes. */
-static int h5_mode_table_axis(hid_t g, const char *scale, unsigned axis)
+/* Attach the scale g/scale to axis `axis` of every dataset h5_mode_table writes. */
+static int h5_mode_table_axis(hid_t g, td_out_id first, td_out_id scale, unsigned axis)
 {
-    const char *names[8];
+    td_out_id ids[MODE_TABLE_SIZE];
     int f;
-    for (f = 0; f < 6; f++)
-        names[f] = mode_fields[f].name;
-    names[6] = "whirl";
-    names[7] = NULL;
-    return td_h5_attach(g, scale, names, axis);
+    for (f = 0; f < MODE_TABLE_SIZE; f++)
+        ids[f] = (td_out_id)(first + f);
+    return h5_attach(g, scale, ids, MODE_TABLE_SIZE, axis);
 }
 
-/* Write the td_mode fields of `modes` (count rows x cols, cols 0: 1-D) plus an int "whirl" dataset. */
-static int h5_mode_table(hid_t g, const td_mode *modes, hsize_t rows, hsize_t cols)
+/* Write the td_mode fields of `modes` (count rows x cols, cols 0: 1-D) plus the int whirl dataset
+ * as the mode table starting at `first`. */
+static int h5_mode_table(hid_t g, td_out_id first, const td_mode *modes, hsize_t rows, hsize_t cols)
 {
     size_t n = (size_t)rows * (size_t)(cols ? cols : 1), i;
     double *d = malloc((n ? n : 1) * sizeof *d);
@@ -188,11 +241,11 @@ static int h5_mode_table(hid_t g, const td_mode *modes, hsize_t rows, hsize_t co
     for (f = 0; ok && f < 6; f++) {
         for (i = 0; i < n; i++)
             d[i] = mode_field(&modes[i], f);
-        ok = h5_dataset(g, mode_fields[f].name, H5T_NATIVE_DOUBLE, d, rows, cols, mode_fields[f].units);
+        ok = h5_dataset(g, (td_out_id)(first + f), H5T_NATIVE_DOUBLE, d, rows, cols);
     }
     for (i = 0; ok && i < n; i++)
         w[i] = (int)modes[i].whirl;
-    ok = ok && h5_dataset(g, "whirl", H5T_NATIVE_INT, w, rows, cols, "1: forward, -1: backward, 0: mixed");
+    ok = ok && h5_dataset(g, (td_out_id)(first + MODE_TABLE_SIZE - 1), H5T_NATIVE_INT, w, rows, cols);
     free(d);
     free(w);
     return ok;
@@ -205,7 +258,7 @@ static int h5_modes(hid_t file, const td_modal *m)
     double *real = malloc((size_t)(nr ? nr : 1) * sizeof *real);
     double *sh = malloc(4u * (size_t)(nm ? nm : 1) * (size_t)(nn ? nn : 1) * sizeof *sh);
     double *part = malloc((size_t)(nm ? nm : 1) * (size_t)(nn ? nn : 1) * sizeof *part);
-    hid_t g = H5Gcreate2(file, "modes", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    hid_t g = H5Gcreate2(file, td_out_name(TD_OUT_MODES), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
     ok = modes && real && sh && part && g >= 0;
     for (i = 0; ok && i < nm; i++) {
         td_modal_get_mode(m, i, &modes[i]);
@@ -214,21 +267,20 @@ static int h5_modes(hid_t file, const td_modal *m)
     }
     for (i = 0; ok && i < nr; i++)
         real[i] = td_modal_real_eigenvalue(m, i);
-    ok = ok && td_h5_attr_double(g, "speed", td_modal_speed(m)) >= 0 &&
-         td_h5_attr_string(g, "speed_units", "rad/s") >= 0;
-    ok = ok && h5_mode_table(g, modes, (hsize_t)nm, 0);
-    ok = ok && h5_dataset(g, "real_eigenvalues", H5T_NATIVE_DOUBLE, real, (hsize_t)nr, 0, "1/s");
-    ok = ok && td_h5_attach(g, "real_eigenvalues", NULL, 0); /* its own axis */
+    ok = ok && td_h5_attr_double(g, td_out_name(TD_OUT_MODES_SPEED), td_modal_speed(m)) >= 0 &&
+         td_h5_attr_string(g, td_out_name(TD_OUT_MODES_SPEED_UNITS), td_out_units(TD_OUT_MODES_SPEED)) >= 0;
+    ok = ok && h5_mode_table(g, TD_OUT_MODES_SIGMA, modes, (hsize_t)nm, 0);
+    ok = ok && h5_dataset(g, TD_OUT_MODES_REAL_EIGENVALUES, H5T_NATIVE_DOUBLE, real, (hsize_t)nr, 0);
+    ok = ok && h5_attach(g, TD_OUT_MODES_REAL_EIGENVALUES, NULL, 0, 0); /* its own axis */
     for (i = 0; ok && i < 4; i++) {
         int k, j;
         for (k = 0; k < nm; k++)
             for (j = 0; j < nn; j++)
                 part[(size_t)k * (size_t)nn + (size_t)j] = sh[(size_t)(4 * k + i) * (size_t)nn + (size_t)j];
-        ok = h5_dataset(g, shape_names[i], H5T_NATIVE_DOUBLE, part, (hsize_t)nm, (hsize_t)nn,
-                        "1 (normalised: largest |X| or |Y| = 1); rows: modes, columns: nodes");
+        ok = h5_dataset(g, shape_ids[i], H5T_NATIVE_DOUBLE, part, (hsize_t)nm, (hsize_t)nn);
     }
-    ok = ok && td_h5_index(g, "mode", nm, "mode number") && h5_mode_table_axis(g, "mode", 0) &&
-         td_h5_attach(g, "mode", shape_names, 0);
+    ok = ok && h5_index(g, TD_OUT_MODES_MODE, nm) && h5_mode_table_axis(g, TD_OUT_MODES_SIGMA, TD_OUT_MODES_MODE, 0) &&
+         h5_attach(g, TD_OUT_MODES_MODE, shape_ids, 4, 0);
     if (g >= 0)
         H5Gclose(g);
     free(modes);
@@ -243,18 +295,20 @@ static int h5_campbell(hid_t file, const td_campbell *c)
     int ns = td_campbell_speed_count(c), nb = td_campbell_branch_count(c), k, j, ok;
     td_mode *pts = malloc((size_t)(ns ? ns : 1) * (size_t)(nb ? nb : 1) * sizeof *pts);
     double *sp = malloc((size_t)(ns ? ns : 1) * sizeof *sp);
-    hid_t g = H5Gcreate2(file, "campbell", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    hid_t g = H5Gcreate2(file, td_out_name(TD_OUT_CAMPBELL), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
     ok = pts && sp && g >= 0;
     for (k = 0; ok && k < ns; k++) {
         sp[k] = td_campbell_speed(c, k);
         for (j = 0; j < nb; j++)
             td_campbell_get(c, k, j, &pts[(size_t)k * (size_t)nb + (size_t)j]);
     }
-    ok = ok && h5_dataset(g, "speed", H5T_NATIVE_DOUBLE, sp, (hsize_t)ns, 0, "rad/s");
-    ok = ok && h5_mode_table(g, pts, (hsize_t)ns, (hsize_t)nb);
-    ok = ok && td_h5_attr_string(g, "layout", "rows: speeds, columns: branches (j-th lowest omega_d)") >= 0;
-    ok = ok && td_h5_index(g, "branch", nb, "branch number (j-th lowest omega_d)");
-    ok = ok && h5_mode_table_axis(g, "speed", 0) && h5_mode_table_axis(g, "branch", 1);
+    ok = ok && h5_dataset(g, TD_OUT_CAMPBELL_SPEED, H5T_NATIVE_DOUBLE, sp, (hsize_t)ns, 0);
+    ok = ok && h5_mode_table(g, TD_OUT_CAMPBELL_SIGMA, pts, (hsize_t)ns, (hsize_t)nb);
+    ok = ok && td_h5_attr_string(g, td_out_name(TD_OUT_CAMPBELL_LAYOUT),
+                                 "rows: speeds, columns: branches (j-th lowest omega_d)") >= 0;
+    ok = ok && h5_index(g, TD_OUT_CAMPBELL_BRANCH, nb);
+    ok = ok && h5_mode_table_axis(g, TD_OUT_CAMPBELL_SIGMA, TD_OUT_CAMPBELL_SPEED, 0) &&
+         h5_mode_table_axis(g, TD_OUT_CAMPBELL_SIGMA, TD_OUT_CAMPBELL_BRANCH, 1);
     if (g >= 0)
         H5Gclose(g);
     free(pts);
@@ -264,10 +318,11 @@ static int h5_campbell(hid_t file, const td_campbell *c)
 
 static int h5_critical(hid_t file, const td_critical_speed *cs, int n)
 {
-    static const char *const critical_names[] = {"freq_hz", "zeta", "sigma", "whirl", "branch", NULL};
+    static const td_out_id critical_ids[] = {TD_OUT_CRITICAL_FREQ_HZ, TD_OUT_CRITICAL_ZETA, TD_OUT_CRITICAL_SIGMA,
+                                             TD_OUT_CRITICAL_WHIRL, TD_OUT_CRITICAL_BRANCH};
     double *d = malloc((size_t)(n ? n : 1) * 4u * sizeof *d);
     int *w = malloc((size_t)(n ? n : 1) * 2u * sizeof *w), i, ok;
-    hid_t g = H5Gcreate2(file, "critical_speeds", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    hid_t g = H5Gcreate2(file, td_out_name(TD_OUT_CRITICAL), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
     ok = d && w && g >= 0;
     for (i = 0; ok && i < n; i++) {
         d[i] = cs[i].speed;
@@ -277,13 +332,13 @@ static int h5_critical(hid_t file, const td_critical_speed *cs, int n)
         w[i] = (int)cs[i].whirl;
         w[n + i] = cs[i].branch;
     }
-    ok = ok && h5_dataset(g, "speed", H5T_NATIVE_DOUBLE, d, (hsize_t)n, 0, "rad/s");
-    ok = ok && h5_dataset(g, "freq_hz", H5T_NATIVE_DOUBLE, d + n, (hsize_t)n, 0, "Hz");
-    ok = ok && h5_dataset(g, "zeta", H5T_NATIVE_DOUBLE, d + 2 * n, (hsize_t)n, 0, "1");
-    ok = ok && h5_dataset(g, "sigma", H5T_NATIVE_DOUBLE, d + 3 * n, (hsize_t)n, 0, "1/s");
-    ok = ok && h5_dataset(g, "whirl", H5T_NATIVE_INT, w, (hsize_t)n, 0, "1: forward, -1: backward");
-    ok = ok && h5_dataset(g, "branch", H5T_NATIVE_INT, w + n, (hsize_t)n, 0, "index among modes of that whirl");
-    ok = ok && td_h5_attach(g, "speed", critical_names, 0);
+    ok = ok && h5_dataset(g, TD_OUT_CRITICAL_SPEED, H5T_NATIVE_DOUBLE, d, (hsize_t)n, 0);
+    ok = ok && h5_dataset(g, TD_OUT_CRITICAL_FREQ_HZ, H5T_NATIVE_DOUBLE, d + n, (hsize_t)n, 0);
+    ok = ok && h5_dataset(g, TD_OUT_CRITICAL_ZETA, H5T_NATIVE_DOUBLE, d + 2 * n, (hsize_t)n, 0);
+    ok = ok && h5_dataset(g, TD_OUT_CRITICAL_SIGMA, H5T_NATIVE_DOUBLE, d + 3 * n, (hsize_t)n, 0);
+    ok = ok && h5_dataset(g, TD_OUT_CRITICAL_WHIRL, H5T_NATIVE_INT, w, (hsize_t)n, 0);
+    ok = ok && h5_dataset(g, TD_OUT_CRITICAL_BRANCH, H5T_NATIVE_INT, w + n, (hsize_t)n, 0);
+    ok = ok && h5_attach(g, TD_OUT_CRITICAL_SPEED, critical_ids, 5, 0);
     if (g >= 0)
         H5Gclose(g);
     free(d);
@@ -293,21 +348,18 @@ static int h5_critical(hid_t file, const td_critical_speed *cs, int n)
 
 static int h5_harmonic_one(hid_t parent, int index, const td_harmonic *h)
 {
-    static const struct {
-        const char *name, *units;
-    } cols[8] = {{"x_amp", "m"},   {"x_phase", "rad"}, {"y_amp", "m"}, {"y_phase", "rad"},
-                 {"forward", "m"}, {"backward", "m"},  {"major", "m"}, {"minor", "m"}};
-    static const char *const orbit_names[] = {"x_amp",    "x_phase", "y_amp", "y_phase", "forward",
-                                              "backward", "major",   "minor", NULL};
-    static const char *const state_names[] = {"state_re", "state_im", NULL};
+    static const td_out_id cols[8] = {TD_OUT_HARMONIC_X_AMP,   TD_OUT_HARMONIC_X_PHASE, TD_OUT_HARMONIC_Y_AMP,
+                                      TD_OUT_HARMONIC_Y_PHASE, TD_OUT_HARMONIC_FORWARD, TD_OUT_HARMONIC_BACKWARD,
+                                      TD_OUT_HARMONIC_MAJOR,   TD_OUT_HARMONIC_MINOR};
+    static const td_out_id states[2] = {TD_OUT_HARMONIC_STATE_RE, TD_OUT_HARMONIC_STATE_IM};
     int nn = td_harmonic_node_count(h), ns = td_harmonic_state_count(h), k, c, ok;
     double *d = malloc((size_t)(nn > ns ? nn : ns) * 2u * sizeof *d);
     char name[32];
     hid_t g;
     snprintf(name, sizeof name, "%d", index);
     g = H5Gcreate2(parent, name, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
-    ok = d && g >= 0 && td_h5_attr_double(g, "speed", td_harmonic_speed(h)) >= 0 &&
-         td_h5_attr_string(g, "speed_units", "rad/s") >= 0;
+    ok = d && g >= 0 && td_h5_attr_double(g, td_out_name(TD_OUT_HARMONIC_SPEED), td_harmonic_speed(h)) >= 0 &&
+         td_h5_attr_string(g, td_out_name(TD_OUT_HARMONIC_SPEED_UNITS), td_out_units(TD_OUT_HARMONIC_SPEED)) >= 0;
     for (c = 0; ok && c < 8; c++) {
         for (k = 0; k < nn; k++) {
             td_orbit o;
@@ -317,14 +369,14 @@ static int h5_harmonic_one(hid_t parent, int index, const td_harmonic *h)
             v[4] = o.forward, v[5] = o.backward, v[6] = o.major, v[7] = o.minor;
             d[k] = v[c];
         }
-        ok = h5_dataset(g, cols[c].name, H5T_NATIVE_DOUBLE, d, (hsize_t)nn, 0, cols[c].units);
+        ok = h5_dataset(g, cols[c], H5T_NATIVE_DOUBLE, d, (hsize_t)nn, 0);
     }
     for (k = 0; ok && k < ns; k++)
         td_harmonic_state(h, k, &d[k], &d[ns + k]);
-    ok = ok && h5_dataset(g, "state_re", H5T_NATIVE_DOUBLE, d, (hsize_t)ns, 0, "SI per state: m, m/s, N");
-    ok = ok && h5_dataset(g, "state_im", H5T_NATIVE_DOUBLE, d + ns, (hsize_t)ns, 0, "SI per state: m, m/s, N");
-    ok = ok && td_h5_index(g, "node", nn, "node number") && td_h5_attach(g, "node", orbit_names, 0);
-    ok = ok && td_h5_index(g, "state", ns, "state index") && td_h5_attach(g, "state", state_names, 0);
+    ok = ok && h5_dataset(g, TD_OUT_HARMONIC_STATE_RE, H5T_NATIVE_DOUBLE, d, (hsize_t)ns, 0);
+    ok = ok && h5_dataset(g, TD_OUT_HARMONIC_STATE_IM, H5T_NATIVE_DOUBLE, d + ns, (hsize_t)ns, 0);
+    ok = ok && h5_index(g, TD_OUT_HARMONIC_NODE, nn) && h5_attach(g, TD_OUT_HARMONIC_NODE, cols, 8, 0);
+    ok = ok && h5_index(g, TD_OUT_HARMONIC_STATE, ns) && h5_attach(g, TD_OUT_HARMONIC_STATE, states, 2, 0);
     if (g >= 0)
         H5Gclose(g);
     free(d);
@@ -333,7 +385,7 @@ static int h5_harmonic_one(hid_t parent, int index, const td_harmonic *h)
 
 static int h5_harmonics(hid_t file, const td_harmonic *const *h, int n)
 {
-    hid_t g = H5Gcreate2(file, "harmonic", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    hid_t g = H5Gcreate2(file, td_out_name(TD_OUT_HARMONIC), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
     int ok = g >= 0, i;
     for (i = 0; ok && i < n; i++)
         ok = !h[i] || h5_harmonic_one(g, i, h[i]);
@@ -350,7 +402,7 @@ static int h5_layout(hid_t file, const td_model *model)
     int i, ok;
     double *z = malloc((size_t)(nn ? nn : 1) * sizeof *z);
     int *nodes = malloc((size_t)(nr + na ? nr + na : 1) * sizeof *nodes);
-    hid_t g = H5Gopen2(file, "modes", H5P_DEFAULT);
+    hid_t g = H5Gopen2(file, td_out_name(TD_OUT_MODES), H5P_DEFAULT);
     ok = z && nodes && g >= 0;
     for (i = 0; ok && i < nn; i++)
         z[i] = td_model_node_position(model, i);
@@ -364,13 +416,13 @@ static int h5_layout(hid_t file, const td_model *model)
         td_model_get_amb(model, i, &a);
         nodes[nr + i] = a.node;
     }
-    ok = ok && h5_dataset(g, "node_z", H5T_NATIVE_DOUBLE, z, (hsize_t)nn, 0, "m");
-    ok = ok && (nr == 0 || h5_dataset(g, "retainer_nodes", H5T_NATIVE_INT, nodes, (hsize_t)nr, 0, "node"));
-    ok = ok && (na == 0 || h5_dataset(g, "amb_nodes", H5T_NATIVE_INT, nodes + nr, (hsize_t)na, 0, "node"));
+    ok = ok && h5_dataset(g, TD_OUT_MODES_NODE_Z, H5T_NATIVE_DOUBLE, z, (hsize_t)nn, 0);
+    ok = ok && (nr == 0 || h5_dataset(g, TD_OUT_MODES_RETAINER_NODES, H5T_NATIVE_INT, nodes, (hsize_t)nr, 0));
+    ok = ok && (na == 0 || h5_dataset(g, TD_OUT_MODES_AMB_NODES, H5T_NATIVE_INT, nodes + nr, (hsize_t)na, 0));
     /* node_z is the column axis of the mode shapes; the bearing lists are their own axes */
-    ok = ok && td_h5_attach(g, "node_z", shape_names, 1);
-    ok = ok && (nr == 0 || td_h5_attach(g, "retainer_nodes", NULL, 0)) &&
-         (na == 0 || td_h5_attach(g, "amb_nodes", NULL, 0));
+    ok = ok && h5_attach(g, TD_OUT_MODES_NODE_Z, shape_ids, 4, 1);
+    ok = ok && (nr == 0 || h5_attach(g, TD_OUT_MODES_RETAINER_NODES, NULL, 0, 0)) &&
+         (na == 0 || h5_attach(g, TD_OUT_MODES_AMB_NODES, NULL, 0, 0));
     if (g >= 0)
         H5Gclose(g);
     free(z);
@@ -381,7 +433,7 @@ static int h5_layout(hid_t file, const td_model *model)
 /* Every part into the open file; the first part that fails, NULL when every call succeeded. */
 static const char *h5_parts(hid_t file, const td_modal_results *r)
 {
-    if (td_h5_attr_string(file, "producer", "touchdown modal analysis") < 0)
+    if (td_h5_attr_string(file, td_out_name(TD_OUT_PRODUCER), "touchdown modal analysis") < 0)
         return "the producer attribute";
     if (r->modes && !h5_modes(file, r->modes))
         return "/modes";
@@ -393,7 +445,7 @@ static const char *h5_parts(hid_t file, const td_modal_results *r)
         return "/harmonic";
     if (r->model && r->modes && !h5_layout(file, r->model))
         return "the node layout in /modes";
-    if (r->case_text && td_h5_attr_string(file, "case_text", r->case_text) < 0)
+    if (r->case_text && td_h5_attr_string(file, td_out_name(TD_OUT_CASE_TEXT), r->case_text) < 0)
         return "the case_text attribute";
     return NULL;
 }

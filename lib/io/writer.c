@@ -2,6 +2,7 @@
  * The format-independent half of td_writer: argument checks, the attribute list and the
  * PATH.XXXXXX.partial -> PATH protocol that keeps an unfinished file from ever looking finished.
  */
+#include "io/schema.h"
 #include "io/writer_internal.h"
 #include "util/error_internal.h"
 
@@ -532,7 +533,7 @@ static td_status check_name(const td_writer *w, const char *name, td_error *err)
     for (i = 0; i < len; i++)
         if (!name_char_ok(name[i]))
             return td_error_set(err, TD_ERR_INVALID, "attribute name '%s': only letters, digits, '_', '.', '-'", name);
-    if (strcmp(name, "complete") == 0 || strcmp(name, "incomplete_reason") == 0)
+    if (strcmp(name, td_out_name(TD_OUT_COMPLETE)) == 0 || strcmp(name, td_out_name(TD_OUT_INCOMPLETE_REASON)) == 0)
         return td_error_set(err, TD_ERR_INVALID, "attribute name '%s' is reserved for the writer", name);
     return TD_OK;
 }
@@ -624,45 +625,45 @@ td_status td_writer_set_longs(td_writer *w, const char *name, const long *values
 td_status td_writer_set_stats(td_writer *w, const td_sim_stats *s, td_error *err)
 {
     const struct {
-        const char *name;
+        td_out_id id;
         long value;
-    } counts[] = {{"steps", s ? s->steps : 0},
-                  {"residual_evals", s ? s->residual_evals : 0},
-                  {"jacobian_evals", s ? s->jacobian_evals : 0},
-                  {"linear_setups", s ? s->linear_setups : 0},
-                  {"nonlinear_iters", s ? s->nonlinear_iters : 0},
-                  {"error_test_fails", s ? s->error_test_fails : 0},
-                  {"nonlinear_fails", s ? s->nonlinear_fails : 0},
-                  {"restarts", s ? s->restarts : 0},
-                  {"events", s ? s->events : 0},
-                  {"contact_onsets", s ? s->contact_onsets : 0},
-                  {"releases", s ? s->releases : 0},
-                  {"peak_amb", s ? s->peak_amb : 0},
-                  {"flight_steps", s ? s->flight_steps : 0}};
+    } counts[] = {{TD_OUT_STAT_STEPS, s ? s->steps : 0},
+                  {TD_OUT_STAT_RESIDUAL_EVALS, s ? s->residual_evals : 0},
+                  {TD_OUT_STAT_JACOBIAN_EVALS, s ? s->jacobian_evals : 0},
+                  {TD_OUT_STAT_LINEAR_SETUPS, s ? s->linear_setups : 0},
+                  {TD_OUT_STAT_NONLINEAR_ITERS, s ? s->nonlinear_iters : 0},
+                  {TD_OUT_STAT_ERROR_TEST_FAILS, s ? s->error_test_fails : 0},
+                  {TD_OUT_STAT_NONLINEAR_FAILS, s ? s->nonlinear_fails : 0},
+                  {TD_OUT_STAT_RESTARTS, s ? s->restarts : 0},
+                  {TD_OUT_STAT_EVENTS, s ? s->events : 0},
+                  {TD_OUT_STAT_CONTACT_ONSETS, s ? s->contact_onsets : 0},
+                  {TD_OUT_STAT_RELEASES, s ? s->releases : 0},
+                  {TD_OUT_STAT_PEAK_AMB, s ? s->peak_amb : 0},
+                  {TD_OUT_STAT_FLIGHT_STEPS, s ? s->flight_steps : 0}};
     const struct {
-        const char *name;
+        td_out_id id;
         double value;
-    } reals[] = {{"worst_drift", s ? s->worst_drift : 0.0},
-                 {"peak_normal_force", s ? s->peak_normal_force : 0.0},
-                 {"time_in_contact", s ? s->time_in_contact : 0.0},
-                 {"first_contact_time", s ? s->first_contact_time : 0.0},
-                 {"wall_time", s ? s->wall_time : 0.0},
+    } reals[] = {{TD_OUT_STAT_WORST_DRIFT, s ? s->worst_drift : 0.0},
+                 {TD_OUT_STAT_PEAK_NORMAL_FORCE, s ? s->peak_normal_force : 0.0},
+                 {TD_OUT_STAT_TIME_IN_CONTACT, s ? s->time_in_contact : 0.0},
+                 {TD_OUT_STAT_FIRST_CONTACT_TIME, s ? s->first_contact_time : 0.0},
+                 {TD_OUT_STAT_WALL_TIME, s ? s->wall_time : 0.0},
                  /* no working AMB: no peak AMB force (touchdown/dofs.h, "Undefined values") */
-                 {"peak_amb_force", s && s->peak_amb >= 0 ? s->peak_amb_force : TD_UNDEFINED},
-                 {"peak_amb_load", s && s->peak_amb >= 0 ? s->peak_amb_load : TD_UNDEFINED},
-                 {"peak_amb_time", s && s->peak_amb >= 0 ? s->peak_amb_time : TD_UNDEFINED},
-                 {"flight_time", s ? s->flight_time : 0.0}};
+                 {TD_OUT_STAT_PEAK_AMB_FORCE, s && s->peak_amb >= 0 ? s->peak_amb_force : TD_UNDEFINED},
+                 {TD_OUT_STAT_PEAK_AMB_LOAD, s && s->peak_amb >= 0 ? s->peak_amb_load : TD_UNDEFINED},
+                 {TD_OUT_STAT_PEAK_AMB_TIME, s && s->peak_amb >= 0 ? s->peak_amb_time : TD_UNDEFINED},
+                 {TD_OUT_STAT_FLIGHT_TIME, s ? s->flight_time : 0.0}};
     size_t i;
     td_status st;
     if (!s)
         return td_error_set(err, TD_ERR_INVALID, "td_writer_set_stats: NULL statistics");
     for (i = 0; i < sizeof counts / sizeof counts[0]; i++)
-        if ((st = td_writer_set_long(w, counts[i].name, counts[i].value, err)) != TD_OK)
+        if ((st = td_writer_set_long(w, td_out_name(counts[i].id), counts[i].value, err)) != TD_OK)
             return st;
     for (i = 0; i < sizeof reals / sizeof reals[0]; i++)
-        if ((st = td_writer_set_double(w, reals[i].name, reals[i].value, err)) != TD_OK)
+        if ((st = td_writer_set_double(w, td_out_name(reals[i].id), reals[i].value, err)) != TD_OK)
             return st;
-    return td_writer_set_string(w, "library_version", td_version(), err);
+    return td_writer_set_string(w, td_out_name(TD_OUT_LIBRARY_VERSION), td_version(), err);
 }
 
 /* ---- close ------------------------------------------------------------------------------- */
@@ -693,7 +694,7 @@ td_status td_writer_close(td_writer **wp, int complete, const char *reason, td_e
     w = *wp;
     td_error_clear(&local);
     /* library_version always goes in, whoever set it before. */
-    st = td_writer_set_string(w, "library_version", td_version(), &local);
+    st = td_writer_set_string(w, td_out_name(TD_OUT_LIBRARY_VERSION), td_version(), &local);
     if (st != TD_OK && !w->failed)
         mark_failed(w, st, &local, NULL);
     if (w->failed) {

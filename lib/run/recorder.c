@@ -119,15 +119,15 @@ static td_status write_model_attributes(td_recorder *r, const td_model *model, c
         st = model_tables(r, model, ret_nodes, clearance, amb_nodes, amb_capacity, err);
     for (w = 0; w < r->writer_count && st == TD_OK; w++) {
         td_writer *wr = r->writers[w];
-        st = td_writer_set_double(wr, "sample_rate", out->sample_rate, err);
+        st = td_writer_set_double(wr, td_out_name(TD_OUT_SAMPLE_RATE), out->sample_rate, err);
         if (st == TD_OK && r->retainer_count > 0)
-            st = td_writer_set_longs(wr, "retainer_nodes", ret_nodes, r->retainer_count, err);
+            st = td_writer_set_longs(wr, td_out_name(TD_OUT_RETAINER_NODES), ret_nodes, r->retainer_count, err);
         if (st == TD_OK && r->retainer_count > 0)
-            st = td_writer_set_doubles(wr, "retainer_clearance", clearance, r->retainer_count, err);
+            st = td_writer_set_doubles(wr, td_out_name(TD_OUT_RETAINER_CLEARANCE), clearance, r->retainer_count, err);
         if (st == TD_OK && r->amb_count > 0)
-            st = td_writer_set_longs(wr, "amb_nodes", amb_nodes, r->amb_count, err);
+            st = td_writer_set_longs(wr, td_out_name(TD_OUT_AMB_NODES), amb_nodes, r->amb_count, err);
         if (st == TD_OK && r->amb_count > 0)
-            st = td_writer_set_doubles(wr, "amb_capacity", amb_capacity, r->amb_count, err);
+            st = td_writer_set_doubles(wr, td_out_name(TD_OUT_AMB_CAPACITY), amb_capacity, r->amb_count, err);
     }
     free(ret_nodes);
     free(clearance);
@@ -267,29 +267,29 @@ td_status td_recorder_event(td_recorder *r, const td_event *ev, long sample, td_
         return TD_OK;                                                                                                  \
     } while (0)
 
-td_status td_recorder_set_string(td_recorder *r, const char *name, const char *value, td_error *err)
+td_status td_recorder_set_string(td_recorder *r, td_out_id name, const char *value, td_error *err)
 {
-    FOR_EACH_WRITER(r, td_writer_set_string(w_, name, value, err));
+    FOR_EACH_WRITER(r, td_writer_set_string(w_, td_out_name(name), value, err));
 }
 
-td_status td_recorder_set_double(td_recorder *r, const char *name, double value, td_error *err)
+td_status td_recorder_set_double(td_recorder *r, td_out_id name, double value, td_error *err)
 {
-    FOR_EACH_WRITER(r, td_writer_set_double(w_, name, value, err));
+    FOR_EACH_WRITER(r, td_writer_set_double(w_, td_out_name(name), value, err));
 }
 
-td_status td_recorder_set_long(td_recorder *r, const char *name, long value, td_error *err)
+td_status td_recorder_set_long(td_recorder *r, td_out_id name, long value, td_error *err)
 {
-    FOR_EACH_WRITER(r, td_writer_set_long(w_, name, value, err));
+    FOR_EACH_WRITER(r, td_writer_set_long(w_, td_out_name(name), value, err));
 }
 
-td_status td_recorder_set_doubles(td_recorder *r, const char *name, const double *values, int n, td_error *err)
+td_status td_recorder_set_doubles(td_recorder *r, td_out_id name, const double *values, int n, td_error *err)
 {
-    FOR_EACH_WRITER(r, td_writer_set_doubles(w_, name, values, n, err));
+    FOR_EACH_WRITER(r, td_writer_set_doubles(w_, td_out_name(name), values, n, err));
 }
 
-td_status td_recorder_set_longs(td_recorder *r, const char *name, const long *values, int n, td_error *err)
+td_status td_recorder_set_longs(td_recorder *r, td_out_id name, const long *values, int n, td_error *err)
 {
-    FOR_EACH_WRITER(r, td_writer_set_longs(w_, name, values, n, err));
+    FOR_EACH_WRITER(r, td_writer_set_longs(w_, td_out_name(name), values, n, err));
 }
 
 td_status td_recorder_set_stats(td_recorder *r, const td_sim_stats *stats, td_error *err)

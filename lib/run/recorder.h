@@ -10,6 +10,7 @@
 #include "touchdown/model.h"
 #include "touchdown/options.h"
 #include "touchdown/output.h"
+#include "touchdown/result.h"
 #include "touchdown/sim.h"
 
 typedef struct td_recorder td_recorder;
@@ -32,11 +33,11 @@ int td_recorder_retainer_count(const td_recorder *rec);
 td_status td_recorder_event(td_recorder *rec, const td_event *ev, long sample, td_error *err);
 
 /** Attributes for every writer (see td_writer_set_*). */
-td_status td_recorder_set_string(td_recorder *rec, const char *name, const char *value, td_error *err);
-td_status td_recorder_set_double(td_recorder *rec, const char *name, double value, td_error *err);
-td_status td_recorder_set_long(td_recorder *rec, const char *name, long value, td_error *err);
-td_status td_recorder_set_doubles(td_recorder *rec, const char *name, const double *values, int n, td_error *err);
-td_status td_recorder_set_longs(td_recorder *rec, const char *name, const long *values, int n, td_error *err);
+td_status td_recorder_set_string(td_recorder *rec, td_out_id name, const char *value, td_error *err);
+td_status td_recorder_set_double(td_recorder *rec, td_out_id name, double value, td_error *err);
+td_status td_recorder_set_long(td_recorder *rec, td_out_id name, long value, td_error *err);
+td_status td_recorder_set_doubles(td_recorder *rec, td_out_id name, const double *values, int n, td_error *err);
+td_status td_recorder_set_longs(td_recorder *rec, td_out_id name, const long *values, int n, td_error *err);
 td_status td_recorder_set_stats(td_recorder *rec, const td_sim_stats *stats, td_error *err);
 
 /** Close every writer (all are tried even if one fails; the first failure is returned) and free. */

@@ -373,20 +373,20 @@ static td_status write_warnings(td_recorder *rec, const td_run_summary *s, td_er
     text[0] = '\0';
     for (i = 0; i < s->warning_count; i++)
         len += (size_t)snprintf(text + len, sizeof text - len, "%s\n", s->warnings[i]);
-    return td_recorder_set_string(rec, "warnings", text, err);
+    return td_recorder_set_string(rec, TD_OUT_WARNINGS, text, err);
 }
 
 /* The energy account, when the run kept it, as attributes of every file. */
 static td_status write_energy(td_recorder *rec, const td_energy *e, td_error *err)
 {
     const struct {
-        const char *name;
+        td_out_id name;
         double value;
-    } reals[] = {{"summary_energy_kinetic", e->kinetic},           {"summary_energy_elastic", e->elastic},
-                 {"summary_energy_initial", e->initial},           {"summary_energy_external_work", e->external_work},
-                 {"summary_energy_drive_work", e->drive_work},     {"summary_energy_damping_loss", e->damping_loss},
-                 {"summary_energy_contact_loss", e->contact_loss}, {"summary_energy_drag_loss", e->drag_loss},
-                 {"summary_energy_impact_loss", e->impact_loss},   {"summary_energy_residual", e->residual}};
+    } reals[] = {{TD_OUT_SUM_ENERGY_KINETIC, e->kinetic},           {TD_OUT_SUM_ENERGY_ELASTIC, e->elastic},
+                 {TD_OUT_SUM_ENERGY_INITIAL, e->initial},           {TD_OUT_SUM_ENERGY_EXTERNAL_WORK, e->external_work},
+                 {TD_OUT_SUM_ENERGY_DRIVE_WORK, e->drive_work},     {TD_OUT_SUM_ENERGY_DAMPING_LOSS, e->damping_loss},
+                 {TD_OUT_SUM_ENERGY_CONTACT_LOSS, e->contact_loss}, {TD_OUT_SUM_ENERGY_DRAG_LOSS, e->drag_loss},
+                 {TD_OUT_SUM_ENERGY_IMPACT_LOSS, e->impact_loss},   {TD_OUT_SUM_ENERGY_RESIDUAL, e->residual}};
     size_t i;
     td_status st = TD_OK;
     for (i = 0; st == TD_OK && i < sizeof reals / sizeof reals[0]; i++)
@@ -398,15 +398,15 @@ static td_status write_energy(td_recorder *rec, const td_energy *e, td_error *er
 static td_status write_retainer_totals(td_recorder *rec, const td_sim *sim, int reached_end, td_error *err)
 {
     static const struct {
-        const char *name;
+        td_out_id name;
         size_t offset;
-    } reals[] = {{"retainer_impulse", offsetof(td_retainer_totals, impulse)},
-                 {"retainer_impact_impulse", offsetof(td_retainer_totals, impact_impulse)},
-                 {"retainer_friction_work", offsetof(td_retainer_totals, friction_work)},
-                 {"retainer_peak_housing_force", offsetof(td_retainer_totals, peak_housing_force)},
-                 {"retainer_peak_normal_force", offsetof(td_retainer_totals, peak_normal_force)},
-                 {"retainer_contact_time", offsetof(td_retainer_totals, contact_time)},
-                 {"retainer_rolling_time", offsetof(td_retainer_totals, rolling_time)}};
+    } reals[] = {{TD_OUT_RETAINER_IMPULSE, offsetof(td_retainer_totals, impulse)},
+                 {TD_OUT_RETAINER_IMPACT_IMPULSE, offsetof(td_retainer_totals, impact_impulse)},
+                 {TD_OUT_RETAINER_FRICTION_WORK, offsetof(td_retainer_totals, friction_work)},
+                 {TD_OUT_RETAINER_PEAK_HOUSING_FORCE, offsetof(td_retainer_totals, peak_housing_force)},
+                 {TD_OUT_RETAINER_PEAK_NORMAL_FORCE, offsetof(td_retainer_totals, peak_normal_force)},
+                 {TD_OUT_RETAINER_CONTACT_TIME, offsetof(td_retainer_totals, contact_time)},
+                 {TD_OUT_RETAINER_ROLLING_TIME, offsetof(td_retainer_totals, rolling_time)}};
     int n = td_model_retainer_count(td_sim_model(sim)), k;
     size_t i;
     td_retainer_totals *t = calloc((size_t)(n > 0 ? n : 1), sizeof *t);
@@ -424,9 +424,9 @@ static td_status write_retainer_totals(td_recorder *rec, const td_sim *sim, int 
         st = td_recorder_set_doubles(rec, reals[i].name, v, n, err);
     }
     if (st == TD_OK && n > 0)
-        st = td_recorder_set_longs(rec, "retainer_contacts", c, n, err);
+        st = td_recorder_set_longs(rec, TD_OUT_RETAINER_CONTACTS, c, n, err);
     if (st == TD_OK && n > 0)
-        st = td_recorder_set_longs(rec, "retainer_touch_and_go", g, n, err);
+        st = td_recorder_set_longs(rec, TD_OUT_RETAINER_TOUCH_AND_GO, g, n, err);
     free(t);
     free(v);
     free(c);
@@ -437,17 +437,17 @@ static td_status write_retainer_totals(td_recorder *rec, const td_sim *sim, int 
 /* The once-per-revolution section as attributes of every file (docs/output-format.md). */
 static td_status write_section(td_recorder *rec, const td_run_summary *s, td_error *err)
 {
-    td_status st = td_recorder_set_double(rec, "section_start", s->section_start, err);
+    td_status st = td_recorder_set_double(rec, TD_OUT_SECTION_START, s->section_start, err);
     if (st == TD_OK)
-        st = td_recorder_set_long(rec, "section_count", s->section_count, err);
+        st = td_recorder_set_long(rec, TD_OUT_SECTION_COUNT, s->section_count, err);
     if (st == TD_OK)
-        st = td_recorder_set_long(rec, "section_retainer", s->section_retainer, err);
+        st = td_recorder_set_long(rec, TD_OUT_SECTION_RETAINER, s->section_retainer, err);
     if (st == TD_OK)
-        st = td_recorder_set_double(rec, "section_clearance", s->section_clearance, err);
+        st = td_recorder_set_double(rec, TD_OUT_SECTION_CLEARANCE, s->section_clearance, err);
     if (st == TD_OK && s->section_kept > 0)
-        st = td_recorder_set_doubles(rec, "section_time", s->section_time, s->section_kept, err);
+        st = td_recorder_set_doubles(rec, TD_OUT_SECTION_TIME, s->section_time, s->section_kept, err);
     if (st == TD_OK && s->section_kept > 0)
-        st = td_recorder_set_doubles(rec, "section_radius", s->section_radius, s->section_kept, err);
+        st = td_recorder_set_doubles(rec, TD_OUT_SECTION_RADIUS, s->section_radius, s->section_kept, err);
     return st;
 }
 
@@ -461,44 +461,44 @@ static double flag_value(int v)
 static td_status write_summary(td_recorder *rec, const td_run_summary *s, const char *case_text, td_error *err)
 {
     const struct {
-        const char *name;
+        td_out_id name;
         double value;
-    } reals[] = {{"t_start", s->t_start},
-                 {"t_end", s->t_end},
-                 {"t_reached", s->t_reached},
-                 {"speed", s->speed},
-                 {"summary_first_contact_time", s->first_contact_time},
-                 {"summary_last_contact_time", s->last_contact_time},
-                 {"summary_peak_normal_force", s->peak_normal_force},
-                 {"summary_peak_housing_force", s->peak_housing_force},
-                 {"summary_total_impulse", s->total_impulse},
-                 {"summary_friction_work", s->friction_work},
-                 {"summary_final_speed", s->final_speed},
-                 {"summary_ending_whirl_frequency", s->ending_whirl_frequency},
-                 {"summary_ending_window", s->ending_window},
+    } reals[] = {{TD_OUT_T_START, s->t_start},
+                 {TD_OUT_T_END, s->t_end},
+                 {TD_OUT_T_REACHED, s->t_reached},
+                 {TD_OUT_MODEL_SPEED, s->speed},
+                 {TD_OUT_SUM_FIRST_CONTACT_TIME, s->first_contact_time},
+                 {TD_OUT_SUM_LAST_CONTACT_TIME, s->last_contact_time},
+                 {TD_OUT_SUM_PEAK_NORMAL_FORCE, s->peak_normal_force},
+                 {TD_OUT_SUM_PEAK_HOUSING_FORCE, s->peak_housing_force},
+                 {TD_OUT_SUM_TOTAL_IMPULSE, s->total_impulse},
+                 {TD_OUT_SUM_FRICTION_WORK, s->friction_work},
+                 {TD_OUT_SUM_FINAL_SPEED, s->final_speed},
+                 {TD_OUT_SUM_ENDING_WHIRL_FREQUENCY, s->ending_whirl_frequency},
+                 {TD_OUT_SUM_ENDING_WINDOW, s->ending_window},
 
-                 {"summary_contact_time", s->contact_time},
-                 {"summary_contact_fraction", s->contact_fraction},
-                 {"summary_free_window", s->free_window},
-                 {"summary_revolutions", s->revolutions},
-                 {"summary_revolutions_after_contact", s->revolutions_after_contact},
-                 {"summary_wall_time", s->wall_time},
-                 {"summary_solver_wall_time", s->solver_wall_time},
-                 {"summary_wall_time_per_revolution", s->wall_time_per_revolution},
-                 {"summary_realtime_factor", s->realtime_factor}};
+                 {TD_OUT_SUM_CONTACT_TIME, s->contact_time},
+                 {TD_OUT_SUM_CONTACT_FRACTION, s->contact_fraction},
+                 {TD_OUT_SUM_FREE_WINDOW, s->free_window},
+                 {TD_OUT_SUM_REVOLUTIONS, s->revolutions},
+                 {TD_OUT_SUM_REVOLUTIONS_AFTER_CONTACT, s->revolutions_after_contact},
+                 {TD_OUT_SUM_WALL_TIME, s->wall_time},
+                 {TD_OUT_SUM_SOLVER_WALL_TIME, s->solver_wall_time},
+                 {TD_OUT_SUM_WALL_TIME_PER_REVOLUTION, s->wall_time_per_revolution},
+                 {TD_OUT_SUM_REALTIME_FACTOR, s->realtime_factor}};
     const struct {
-        const char *name;
+        td_out_id name;
         long value;
-    } counts[] = {{"summary_samples", s->samples},
-                  {"summary_grid_samples", s->grid_samples},
-                  {"summary_events", s->events},
-                  {"summary_contacts", s->contacts}};
+    } counts[] = {{TD_OUT_SUM_SAMPLES, s->samples},
+                  {TD_OUT_SUM_GRID_SAMPLES, s->grid_samples},
+                  {TD_OUT_SUM_EVENTS, s->events},
+                  {TD_OUT_SUM_CONTACTS, s->contacts}};
     size_t i;
-    td_status st = td_recorder_set_string(rec, "case_text", case_text ? case_text : "", err);
+    td_status st = td_recorder_set_string(rec, TD_OUT_CASE_TEXT, case_text ? case_text : "", err);
     if (st == TD_OK)
-        st = td_recorder_set_string(rec, "status", td_strerror(s->status), err);
+        st = td_recorder_set_string(rec, TD_OUT_STATUS, td_strerror(s->status), err);
     if (st == TD_OK)
-        st = td_recorder_set_string(rec, "summary_ending", s->ending, err);
+        st = td_recorder_set_string(rec, TD_OUT_SUM_ENDING, s->ending, err);
     if (st == TD_OK)
         st = td_recorder_set_stats(rec, &s->stats, err);
     for (i = 0; st == TD_OK && i < sizeof reals / sizeof reals[0]; i++)
@@ -506,11 +506,11 @@ static td_status write_summary(td_recorder *rec, const td_run_summary *s, const 
     for (i = 0; st == TD_OK && i < sizeof counts / sizeof counts[0]; i++)
         st = td_recorder_set_long(rec, counts[i].name, counts[i].value, err);
     if (st == TD_OK)
-        st = td_recorder_set_double(rec, "summary_free_at_end", flag_value(s->free_at_end), err);
+        st = td_recorder_set_double(rec, TD_OUT_SUM_FREE_AT_END, flag_value(s->free_at_end), err);
     if (st == TD_OK)
-        st = td_recorder_set_double(rec, "summary_returned_to_free_orbit", flag_value(s->returned_to_free_orbit), err);
+        st = td_recorder_set_double(rec, TD_OUT_SUM_RETURNED_TO_FREE_ORBIT, flag_value(s->returned_to_free_orbit), err);
     if (st == TD_OK)
-        st = td_recorder_set_long(rec, "summary_peak_normal_force_converges", s->peak_converges, err);
+        st = td_recorder_set_long(rec, TD_OUT_SUM_PEAK_NORMAL_FORCE_CONVERGES, s->peak_converges, err);
     if (st == TD_OK && s->warning_count > 0)
         st = write_warnings(rec, s, err);
     if (st == TD_OK && s->energy_kept)

@@ -7,6 +7,7 @@
  */
 #include "io/h5_util.h"
 #include "io/h5_vfd.h"
+#include "io/schema.h"
 #include "io/writer_internal.h"
 #include "touchdown/dofs.h"
 #include "touchdown/sweep.h"
@@ -27,33 +28,33 @@
 typedef enum col_kind { COL_TEXT, COL_DOUBLE, COL_LONG, COL_INT } col_kind;
 
 typedef struct sweep_column {
-    const char *name, *units;
+    td_out_id id; /* name and units: td_schema */
     col_kind kind;
     size_t offset;
 } sweep_column;
 
 static const sweep_column columns[] = {
-    {"status", "", COL_TEXT, offsetof(td_sweep_row, status)},
-    {"message", "", COL_TEXT, offsetof(td_sweep_row, message)},
-    {"peak_housing_force", "N", COL_DOUBLE, offsetof(td_sweep_row, peak_housing_force)},
-    {"total_impulse", "N s", COL_DOUBLE, offsetof(td_sweep_row, total_impulse)},
-    {"friction_work", "J", COL_DOUBLE, offsetof(td_sweep_row, friction_work)},
-    {"contact_time", "s", COL_DOUBLE, offsetof(td_sweep_row, contact_time)},
-    {"contacts", "-", COL_LONG, offsetof(td_sweep_row, contacts)},
-    {"first_contact_time", "s", COL_DOUBLE, offsetof(td_sweep_row, first_contact_time)},
-    {"ending", "", COL_TEXT, offsetof(td_sweep_row, ending)},
-    {"regime", "", COL_TEXT, offsetof(td_sweep_row, regime)},
-    {"ending_whirl_frequency", "Hz", COL_DOUBLE, offsetof(td_sweep_row, ending_whirl_frequency)},
-    {"returned_to_free_orbit", "-", COL_INT, offsetof(td_sweep_row, returned_to_free_orbit)},
-    {"section_count", "-", COL_LONG, offsetof(td_sweep_row, section_count)},
-    {"section_radius_min", "m", COL_DOUBLE, offsetof(td_sweep_row, section_radius_min)},
-    {"section_radius_max", "m", COL_DOUBLE, offsetof(td_sweep_row, section_radius_max)},
-    {"section_clearance", "m", COL_DOUBLE, offsetof(td_sweep_row, section_clearance)},
-    {"final_speed", "rad/s", COL_DOUBLE, offsetof(td_sweep_row, final_speed)},
-    {"peak_amb_load", "1", COL_DOUBLE, offsetof(td_sweep_row, peak_amb_load)},
-    {"t_reached", "s", COL_DOUBLE, offsetof(td_sweep_row, t_reached)},
-    {"warnings", "", COL_TEXT, offsetof(td_sweep_row, warnings)},
-    {"wall_time", "s", COL_DOUBLE, offsetof(td_sweep_row, wall_time)},
+    {TD_OUT_SWEEP_STATUS, COL_TEXT, offsetof(td_sweep_row, status)},
+    {TD_OUT_SWEEP_MESSAGE, COL_TEXT, offsetof(td_sweep_row, message)},
+    {TD_OUT_SWEEP_PEAK_HOUSING_FORCE, COL_DOUBLE, offsetof(td_sweep_row, peak_housing_force)},
+    {TD_OUT_SWEEP_TOTAL_IMPULSE, COL_DOUBLE, offsetof(td_sweep_row, total_impulse)},
+    {TD_OUT_SWEEP_FRICTION_WORK, COL_DOUBLE, offsetof(td_sweep_row, friction_work)},
+    {TD_OUT_SWEEP_CONTACT_TIME, COL_DOUBLE, offsetof(td_sweep_row, contact_time)},
+    {TD_OUT_SWEEP_CONTACTS, COL_LONG, offsetof(td_sweep_row, contacts)},
+    {TD_OUT_SWEEP_FIRST_CONTACT_TIME, COL_DOUBLE, offsetof(td_sweep_row, first_contact_time)},
+    {TD_OUT_SWEEP_ENDING, COL_TEXT, offsetof(td_sweep_row, ending)},
+    {TD_OUT_SWEEP_REGIME, COL_TEXT, offsetof(td_sweep_row, regime)},
+    {TD_OUT_SWEEP_ENDING_WHIRL_FREQUENCY, COL_DOUBLE, offsetof(td_sweep_row, ending_whirl_frequency)},
+    {TD_OUT_SWEEP_RETURNED_TO_FREE_ORBIT, COL_INT, offsetof(td_sweep_row, returned_to_free_orbit)},
+    {TD_OUT_SWEEP_SECTION_COUNT, COL_LONG, offsetof(td_sweep_row, section_count)},
+    {TD_OUT_SWEEP_SECTION_RADIUS_MIN, COL_DOUBLE, offsetof(td_sweep_row, section_radius_min)},
+    {TD_OUT_SWEEP_SECTION_RADIUS_MAX, COL_DOUBLE, offsetof(td_sweep_row, section_radius_max)},
+    {TD_OUT_SWEEP_SECTION_CLEARANCE, COL_DOUBLE, offsetof(td_sweep_row, section_clearance)},
+    {TD_OUT_SWEEP_FINAL_SPEED, COL_DOUBLE, offsetof(td_sweep_row, final_speed)},
+    {TD_OUT_SWEEP_PEAK_AMB_LOAD, COL_DOUBLE, offsetof(td_sweep_row, peak_amb_load)},
+    {TD_OUT_SWEEP_T_REACHED, COL_DOUBLE, offsetof(td_sweep_row, t_reached)},
+    {TD_OUT_SWEEP_WARNINGS, COL_TEXT, offsetof(td_sweep_row, warnings)},
+    {TD_OUT_SWEEP_WALL_TIME, COL_DOUBLE, offsetof(td_sweep_row, wall_time)},
 };
 #define N_COLUMNS ((int)(sizeof columns / sizeof columns[0]))
 
@@ -107,13 +108,14 @@ static void csv_text(FILE *f, const char *s)
 static void csv_header(FILE *f, const td_sweep_grid *g)
 {
     int a, c;
-    fputs("point [-]", f);
+    fprintf(f, "%s [%s]", td_out_name(TD_OUT_SWEEP_POINT), td_schema_csv_units(TD_OUT_SWEEP_POINT));
     for (a = 0; a < td_sweep_grid_keys(g); a++) {
         fputc(',', f);
         csv_text(f, td_sweep_grid_key(g, a));
     }
     for (c = 0; c < N_COLUMNS; c++)
-        fprintf(f, columns[c].units[0] ? ",%s [%s]" : ",%s", columns[c].name, columns[c].units);
+        fprintf(f, td_out_units(columns[c].id)[0] ? ",%s [%s]" : ",%s", td_out_name(columns[c].id),
+                td_out_units(columns[c].id));
     fputc('\n', f);
 }
 
@@ -160,23 +162,25 @@ static void csv_axes(FILE *f, const td_sweep_grid *g)
     int k, n = td_sweep_grid_keys(g);
     for (k = 0; k < n; k++) {
         int first = k == 0 || td_sweep_grid_axis(g, k - 1) != td_sweep_grid_axis(g, k);
-        fprintf(f, "# %s = %s\n", first ? "vary" : "with", td_sweep_grid_spec(g, k));
+        fprintf(f, "# %s = %s\n", td_out_name(first ? TD_OUT_SWEEP_VARY_SPECS : TD_OUT_SWEEP_WITH),
+                td_sweep_grid_spec(g, k));
         if (k == n - 1 || td_sweep_grid_axis(g, k + 1) != td_sweep_grid_axis(g, k))
-            fprintf(f, "# from = %s\n", td_sweep_grid_origin(g, k));
+            fprintf(f, "# %s = %s\n", td_out_name(TD_OUT_SWEEP_FROM), td_sweep_grid_origin(g, k));
     }
 }
 
 static void csv_attributes(FILE *f, const td_sweep_table *t)
 {
     int i;
-    fprintf(f, "# library_version = %s\n# points = %ld\n", td_version(), td_sweep_grid_points(t->grid));
+    fprintf(f, "# %s = %s\n# %s = %ld\n", td_out_name(TD_OUT_LIBRARY_VERSION), td_version(),
+            td_out_name(TD_OUT_SWEEP_POINTS), td_sweep_grid_points(t->grid));
     csv_axes(f, t->grid);
     for (i = 0; i < t->n_sets; i++)
-        fprintf(f, "# set = %s\n", t->sets[i]);
+        fprintf(f, "# %s = %s\n", td_out_name(TD_OUT_SWEEP_SET), t->sets[i]);
     if (t->case_text && t->case_text[0])
-        csv_comment_text(f, "case_text", t->case_text);
+        csv_comment_text(f, td_out_name(TD_OUT_CASE_TEXT), t->case_text);
     if (t->complete)
-        fputs("# complete\n", f);
+        fprintf(f, "# %s\n", td_out_name(TD_OUT_COMPLETE));
     else
         fprintf(f, "# incomplete: %s\n", t->reason && t->reason[0] ? t->reason : "not every point was run");
 }
@@ -223,9 +227,10 @@ static int h5_quantity(hid_t file, const td_sweep_table *t, int c, hsize_t n, co
             num[p] = col_double(&t->rows[p], c);
     }
     if (columns[c].kind == COL_TEXT)
-        return h5_text_column(file, columns[c].name, text, n);
+        return h5_text_column(file, td_out_name(columns[c].id), text, n);
     /* counts and flags are small whole numbers: a double holds them exactly and keeps one type */
-    return td_h5_dataset(file, columns[c].name, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, num, 1, &n, columns[c].units);
+    return td_h5_dataset(file, td_out_name(columns[c].id), H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, num, 1, &n,
+                         td_out_units(columns[c].id));
 }
 
 /* The attributes of /vary/KEY: its spec, its axis (keys of one axis are zipped) and where the
@@ -233,9 +238,9 @@ static int h5_quantity(hid_t file, const td_sweep_table *t, int c, hsize_t n, co
 static int h5_key_attributes(hid_t group, const td_sweep_grid *g, int k)
 {
     hid_t d = H5Dopen2(group, td_sweep_grid_key(g, k), H5P_DEFAULT);
-    int ok = d >= 0 && td_h5_attr_string(d, "spec", td_sweep_grid_spec(g, k)) >= 0 &&
-             td_h5_attr_int(d, "axis", td_sweep_grid_axis(g, k)) >= 0 &&
-             td_h5_attr_string(d, "origin", td_sweep_grid_origin(g, k)) >= 0;
+    int ok = d >= 0 && td_h5_attr_string(d, td_out_name(TD_OUT_SWEEP_KEY_SPEC), td_sweep_grid_spec(g, k)) >= 0 &&
+             td_h5_attr_int(d, td_out_name(TD_OUT_SWEEP_KEY_AXIS), td_sweep_grid_axis(g, k)) >= 0 &&
+             td_h5_attr_string(d, td_out_name(TD_OUT_SWEEP_KEY_ORIGIN), td_sweep_grid_origin(g, k)) >= 0;
     if (d >= 0)
         H5Dclose(d);
     return ok;
@@ -259,7 +264,7 @@ static int h5_axis(hid_t group, const td_sweep_grid *g, int k, hsize_t n, const 
 
 static int h5_axes(hid_t file, const td_sweep_table *t, hsize_t n, const char **text, double *num)
 {
-    hid_t group = H5Gcreate2(file, "vary", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    hid_t group = H5Gcreate2(file, td_out_name(TD_OUT_SWEEP_VARY), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
     int a, ok = group >= 0;
     for (a = 0; ok && a < td_sweep_grid_keys(t->grid); a++)
         ok = h5_axis(group, t->grid, a, n, text, num);
@@ -278,7 +283,8 @@ static int h5_section(hid_t file, const td_sweep_table *t, hsize_t n)
     dims[1] = TD_RUN_SECTION_SAMPLES;
     for (p = 0; v && p < n; p++)
         memcpy(v + p * TD_RUN_SECTION_SAMPLES, t->rows[p].section_radius, sizeof t->rows[p].section_radius);
-    ok = v && td_h5_dataset(file, "section_radius", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, v, 2, dims, "m");
+    ok = v && td_h5_dataset(file, td_out_name(TD_OUT_SWEEP_SECTION_RADIUS), H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, v, 2,
+                            dims, td_out_units(TD_OUT_SWEEP_SECTION_RADIUS));
     free(v);
     return ok;
 }
@@ -291,18 +297,21 @@ static int h5_columns(hid_t file, const td_sweep_table *t)
     double *num = malloc((size_t)n * sizeof *num);
     const char *names[N_COLUMNS + TD_SWEEP_MAX_KEYS + 2];
     char vary_names[TD_SWEEP_MAX_KEYS][TD_SWEEP_KEY_SIZE + 8];
-    int c, a, ok = text && num && td_h5_index(file, "point", (int)n, "") && h5_axes(file, t, n, text, num);
+    int c, a,
+        ok = text && num &&
+             td_h5_index(file, td_out_name(TD_OUT_SWEEP_POINT), (int)n, td_out_units(TD_OUT_SWEEP_POINT)) &&
+             h5_axes(file, t, n, text, num);
     for (c = 0; ok && c < N_COLUMNS; c++) {
         ok = h5_quantity(file, t, c, n, text, num);
-        names[c] = columns[c].name;
+        names[c] = td_out_name(columns[c].id);
     }
     for (a = 0; a < td_sweep_grid_keys(t->grid); a++) {
-        snprintf(vary_names[a], sizeof vary_names[a], "vary/%s", td_sweep_grid_key(t->grid, a));
+        td_out_path(TD_OUT_SWEEP_VARY, td_sweep_grid_key(t->grid, a), vary_names[a], sizeof vary_names[a]);
         names[N_COLUMNS + a] = vary_names[a];
     }
-    names[N_COLUMNS + td_sweep_grid_keys(t->grid)] = "section_radius";
+    names[N_COLUMNS + td_sweep_grid_keys(t->grid)] = td_out_name(TD_OUT_SWEEP_SECTION_RADIUS);
     names[N_COLUMNS + td_sweep_grid_keys(t->grid) + 1] = NULL;
-    ok = ok && h5_section(file, t, n) && td_h5_attach(file, "point", names, 0);
+    ok = ok && h5_section(file, t, n) && td_h5_attach(file, td_out_name(TD_OUT_SWEEP_POINT), names, 0);
     free(text);
     free(num);
     return ok;
@@ -323,13 +332,14 @@ static int h5_attributes(hid_t file, const td_sweep_table *t)
         strcat(strcat(vary, td_sweep_grid_spec(t->grid, a)), "\n");
     for (i = 0; ok && i < t->n_sets; i++)
         strcat(strcat(sets, t->sets[i]), "\n");
-    ok = ok && td_h5_attr_string(file, "vary", vary) >= 0 && td_h5_attr_string(file, "set", sets) >= 0 &&
-         td_h5_attr_string(file, "case_text", t->case_text ? t->case_text : "") >= 0 &&
-         td_h5_attr_string(file, "library_version", td_version()) >= 0;
+    ok = ok && td_h5_attr_string(file, td_out_name(TD_OUT_SWEEP_VARY_SPECS), vary) >= 0 &&
+         td_h5_attr_string(file, td_out_name(TD_OUT_SWEEP_SET), sets) >= 0 &&
+         td_h5_attr_string(file, td_out_name(TD_OUT_CASE_TEXT), t->case_text ? t->case_text : "") >= 0 &&
+         td_h5_attr_string(file, td_out_name(TD_OUT_LIBRARY_VERSION), td_version()) >= 0;
     if (ok && !t->complete)
-        ok = td_h5_attr_string(file, "incomplete_reason",
+        ok = td_h5_attr_string(file, td_out_name(TD_OUT_INCOMPLETE_REASON),
                                t->reason && t->reason[0] ? t->reason : "not every point was run") >= 0;
-    ok = ok && td_h5_attr_int(file, "complete", t->complete ? 1 : 0) >= 0;
+    ok = ok && td_h5_attr_int(file, td_out_name(TD_OUT_COMPLETE), t->complete ? 1 : 0) >= 0;
     free(vary);
     free(sets);
     return ok;

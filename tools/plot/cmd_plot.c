@@ -250,7 +250,6 @@ int td_cmd_plot(int argc, char **argv)
     opt.modes = 6;
     if ((code = parse(argc, argv, &opt)) >= 0)
         return code;
-    H5Eset_auto2(H5E_DEFAULT, NULL, NULL); /* every HDF5 failure becomes one line of ours */
     for (i = optind; i < argc; i++, count++)
         if ((code = plot_file_load(argv[i], &opt.win, &files[count])) != PLOT_OK)
             goto done;

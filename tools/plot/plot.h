@@ -2,8 +2,7 @@
  * touchdown plot: declarations shared by the plot_*.c files (no physics here: the tool only reads
  * result files, writes gnuplot data + scripts, and runs gnuplot).
  *
- *   plot_h5.c      reading datasets and attributes with the HDF5 C API
- *   plot_file.c    a simulation or modal result file loaded into memory
+ *   plot_file.c    a simulation or modal result file loaded into memory (touchdown/result.h)
  *   plot_script.c  output directory, data files, script preamble, running gnuplot
  *   plot_sim.c     figures of one simulation file (orbit, radial displacement + force, AMB forces)
  *   plot_modal.c   figures of one modal file (Campbell diagram, mode shapes)
@@ -17,7 +16,7 @@
 #include <stddef.h>
 #include <stdio.h>
 
-#include <hdf5.h>
+#include "touchdown/result.h"
 
 /* Exit-code-like results of the plot helpers (see cli.h): 0 ok, 1 failed, 2 bad input. */
 enum { PLOT_OK = 0, PLOT_FAILED = 1, PLOT_BAD_INPUT = 2 };
@@ -27,32 +26,6 @@ enum { PLOT_OK = 0, PLOT_FAILED = 1, PLOT_BAD_INPUT = 2 };
 
 /* Longest path the tool builds. */
 #define PLOT_PATH_SIZE 4096
-
-/* ---- plot_h5.c: HDF5 reading --------------------------------------------------------------- */
-
-/* A dataset read as doubles, row-major, dims[0] x dims[1] x dims[2] (missing dims are 1). */
-typedef struct plot_array {
-    double *v;
-    int rank;
-    size_t dims[3];
-    size_t n; /* product of dims */
-} plot_array;
-
-/* 1 if the link `path` (e.g. "retainers/x") exists under `loc`, else 0. */
-int plot_h5_exists(hid_t loc, const char *path);
-/* Read dataset `path` (rank 1..3, any numeric type) as doubles; 0 ok, -1 failure. */
-int plot_h5_read(hid_t loc, const char *path, plot_array *out);
-void plot_array_free(plot_array *a);
-/* Numeric attribute of `obj` as doubles (scalar: n = 1); caller frees *v. 0 ok, -1 absent/bad. */
-int plot_h5_attr_doubles(hid_t obj, const char *name, double **v, size_t *n);
-/* Scalar numeric attribute; 0 ok, -1 absent or bad (then *v is left alone). */
-int plot_h5_attr_double(hid_t obj, const char *name, double *v);
-/* String attribute (fixed or variable length, any character set), malloc'd; NULL if absent/bad. */
-char *plot_h5_attr_string(hid_t obj, const char *name);
-/* Rank-1 dataset of variable-length strings: *n malloc'd strings (free with plot_strings_free);
- * 0 ok, -1 absent or bad. */
-int plot_h5_read_strings(hid_t loc, const char *path, char ***out, size_t *n);
-void plot_strings_free(char **s, size_t n);
 
 /* ---- plot_file.c: result files in memory --------------------------------------------------- */
 
@@ -131,6 +104,8 @@ typedef struct plot_file {
     plot_sweep sweep;
 } plot_file;
 
+/* One line "touchdown plot: PATH: BEFORE/NAME-PATH-OF-id AFTER"; PLOT_BAD_INPUT. */
+int plot_bad_part(const char *path, const char *before, td_out_id id, const char *after);
 /* Load `path` (window applies to simulation files). On failure prints one line
  * "touchdown plot: PATH: why" and returns PLOT_BAD_INPUT (or PLOT_FAILED when out of memory). */
 int plot_file_load(const char *path, const plot_window *win, plot_file *f);
@@ -196,16 +171,14 @@ extern const char plot_tpl_common[], plot_tpl_markers[], plot_tpl_orbit[], plot_
 
 /* ---- plot_sweep_load.c: sweep tables --------------------------------------------------------- */
 
-/* 1 if the open file is a sweep table (/point and /vary). */
-int plot_sweep_is_table(hid_t file);
-/* 1 if `name` is a column --quantity can plot: a numeric dataset at the table's root with one value
- * per point (n), other than the index /point. */
-int plot_sweep_is_column(hid_t file, const char *name, size_t n);
-/* The table's columns that plot_sweep_is_column accepts, in name order, ", "-separated into buf
+/* Read the column `name` --quantity can plot: a numeric dataset at the table's root with one value
+ * per point (n), other than the index /point; 0 ok, -1 when it is not one (a freed). */
+int plot_sweep_read_column(const td_result *r, const char *name, size_t n, td_result_array *a);
+/* The table's columns that plot_sweep_read_column accepts, in name order, ", "-separated into buf
  * (", ..." when they do not fit; "(none)" when there are none). */
-void plot_sweep_columns(hid_t file, size_t n, char *buf, size_t size);
+void plot_sweep_columns(const td_result *r, size_t n, char *buf, size_t size);
 /* Load the table's keys, regimes and section; PLOT_OK, else a line printed and PLOT_BAD_INPUT. */
-int plot_sweep_load(hid_t file, plot_file *f);
+int plot_sweep_load(const td_result *r, plot_file *f);
 void plot_sweep_free(plot_sweep *s);
 
 /* ---- figures -------------------------------------------------------------------------------- */

@@ -15,6 +15,17 @@ static int bad(const char *path, const char *msg, int code)
     return code;
 }
 
+int plot_bad_part(const char *path, const char *before, td_out_id id, const char *after)
+{
+    char where[256] = "/";
+    if (td_out_place_of(id) == TD_OUT_ATTRIBUTE) /* an attribute by its name, an object by its path */
+        snprintf(where, sizeof where, "%s", td_out_name(id));
+    else
+        td_out_path(id, NULL, where + 1, sizeof where - 1);
+    fprintf(stderr, "touchdown plot: %s: %s%s%s\n", path, before, where, after);
+    return PLOT_BAD_INPUT;
+}
+
 /* ---- names and titles ---------------------------------------------------------------------- */
 
 static void make_stem(const char *path, char *stem, size_t n)
@@ -68,15 +79,16 @@ static int case_description(const char *text, char *out, size_t n)
     return found;
 }
 
-static void make_title(plot_file *f, hid_t file)
+static void make_title(plot_file *f, const td_result *r)
 {
-    char *text = plot_h5_attr_string(file, "case_text"), *reason;
+    char *text = NULL, *reason = NULL;
     char desc[300];
+    td_result_read_text(r, TD_OUT_CASE_TEXT, NULL, &text, NULL);
     if (!(text && case_description(text, desc, sizeof desc)))
         snprintf(desc, sizeof desc, "%s", f->stem);
     free(text);
     if (f->kind != PLOT_KIND_MODAL && f->complete == 0) {
-        reason = plot_h5_attr_string(file, "incomplete_reason");
+        td_result_read_text(r, TD_OUT_INCOMPLETE_REASON, NULL, &reason, NULL);
         snprintf(f->title, sizeof f->title, "%s  [INCOMPLETE: %.150s]", desc, reason ? reason : "no reason given");
         free(reason);
     } else if (f->kind != PLOT_KIND_MODAL && f->complete < 0) {
@@ -88,13 +100,13 @@ static void make_title(plot_file *f, hid_t file)
 
 /* ---- simulation files ---------------------------------------------------------------------- */
 
-/* Read /retainers/NAME (n x nret) or fail. */
-static int read_matrix(hid_t file, const char *name, size_t n, size_t cols, size_t depth, plot_array *a)
+/* Read the dataset `id` (n x cols x depth) or fail. */
+static int read_matrix(const td_result *r, td_out_id id, size_t n, size_t cols, size_t depth, td_result_array *a)
 {
-    if (plot_h5_read(file, name, a) != 0)
+    if (td_result_read(r, id, NULL, a, NULL) != TD_OK)
         return -1;
     if (a->dims[0] != n || a->dims[1] != cols || a->dims[2] != depth) {
-        plot_array_free(a);
+        td_result_array_free(a);
         return -1;
     }
     return 0;
@@ -115,73 +127,48 @@ static double *compact(double *v, const unsigned char *keep, size_t n, size_t le
 }
 
 /* Events inside the window: time, retainer and the kind's name from the file's enum. */
-static int read_events(hid_t file, plot_sim *s, const plot_window *win)
+static int read_events(const td_result *r, plot_sim *s, const plot_window *win)
 {
-    typedef struct row {
-        double time;
-        int retainer;
-        int kind;
-    } row;
-    hid_t d, ftype = -1, kind_ftype = -1, kind_mtype = -1, mtype = -1, space = -1;
-    hssize_t n;
-    row *rows = NULL;
-    int idx, rc = -1;
-    size_t i;
-    if (!plot_h5_exists(file, "events"))
-        return 0; /* a file without events plots fine */
-    if ((d = H5Dopen2(file, "events", H5P_DEFAULT)) < 0)
+    td_result_event *ev = NULL;
+    size_t n = 0, i;
+    if (td_result_events(r, &ev, &n, NULL) != TD_OK)
         return -1;
-    ftype = H5Dget_type(d);
-    space = H5Dget_space(d);
-    n = space >= 0 ? H5Sget_simple_extent_npoints(space) : -1;
-    idx = ftype >= 0 ? H5Tget_member_index(ftype, "kind") : -1;
-    if (idx >= 0)
-        kind_ftype = H5Tget_member_type(ftype, (unsigned)idx);
-    if (kind_ftype >= 0 && H5Tget_class(kind_ftype) == H5T_ENUM)
-        kind_mtype = H5Tget_native_type(kind_ftype, H5T_DIR_DEFAULT);
-    if (n < 0 || kind_mtype < 0 || H5Tget_size(kind_mtype) != sizeof(int))
-        goto done;
-    mtype = H5Tcreate(H5T_COMPOUND, sizeof(row));
-    if (mtype < 0 || H5Tinsert(mtype, "time", HOFFSET(row, time), H5T_NATIVE_DOUBLE) < 0 ||
-        H5Tinsert(mtype, "retainer", HOFFSET(row, retainer), H5T_NATIVE_INT) < 0 ||
-        H5Tinsert(mtype, "kind", HOFFSET(row, kind), kind_mtype) < 0)
-        goto done;
-    rows = malloc((size_t)(n > 0 ? n : 1) * sizeof *rows);
-    s->ev = malloc((size_t)(n > 0 ? n : 1) * sizeof *s->ev);
-    if (!rows || !s->ev || (n > 0 && H5Dread(d, mtype, H5S_ALL, H5S_ALL, H5P_DEFAULT, rows) < 0))
-        goto done;
-    for (i = 0; i < (size_t)n; i++) {
+    s->ev = malloc((n > 0 ? n : 1) * sizeof *s->ev);
+    if (!s->ev) {
+        free(ev);
+        return -1;
+    }
+    for (i = 0; i < n; i++) {
         plot_event *e = &s->ev[s->nev];
-        if (rows[i].time < win->from || rows[i].time > win->to)
+        if (ev[i].event.time < win->from || ev[i].event.time > win->to)
             continue;
-        e->time = rows[i].time;
-        e->retainer = rows[i].retainer;
-        if (H5Tenum_nameof(kind_mtype, &rows[i].kind, e->kind, sizeof e->kind) < 0)
-            snprintf(e->kind, sizeof e->kind, "unknown");
+        e->time = ev[i].event.time;
+        e->retainer = ev[i].event.retainer;
+        snprintf(e->kind, sizeof e->kind, "%s", ev[i].kind_name);
         s->nev++;
     }
-    rc = 0;
-done:
-    free(rows);
-    if (mtype >= 0)
-        H5Tclose(mtype);
-    if (kind_mtype >= 0)
-        H5Tclose(kind_mtype);
-    if (kind_ftype >= 0)
-        H5Tclose(kind_ftype);
-    if (ftype >= 0)
-        H5Tclose(ftype);
-    if (space >= 0)
-        H5Sclose(space);
-    H5Dclose(d);
-    return rc;
+    free(ev);
+    return 0;
+}
+
+/* The attribute `id` into to[0 .. count) when it has that many values (else to is left alone). */
+static void read_table(const td_result *r, td_out_id id, int count, double *to, long *to_long)
+{
+    td_result_array a;
+    int i;
+    if (td_result_read(r, id, NULL, &a, NULL) != TD_OK)
+        return;
+    for (i = 0; a.n == (size_t)count && i < count; i++)
+        if (to)
+            to[i] = a.v[i];
+        else
+            to_long[i] = (long)a.v[i];
+    td_result_array_free(&a);
 }
 
 /* Node numbers and clearances from the root attributes (absent: -1 and NAN). */
-static int read_tables(hid_t file, plot_sim *s)
+static int read_tables(const td_result *r, plot_sim *s)
 {
-    double *v = NULL;
-    size_t n = 0;
     int i;
     s->clearance = malloc((size_t)(s->nret + 1) * sizeof *s->clearance);
     s->ret_nodes = malloc((size_t)(s->nret + 1) * sizeof *s->ret_nodes);
@@ -194,156 +181,154 @@ static int read_tables(hid_t file, plot_sim *s)
     }
     for (i = 0; i < s->namb; i++)
         s->amb_nodes[i] = -1;
-    if (plot_h5_attr_doubles(file, "retainer_clearance", &v, &n) == 0 && n == (size_t)s->nret)
-        for (i = 0; i < s->nret; i++)
-            s->clearance[i] = v[i];
-    free(v);
-    if (plot_h5_attr_doubles(file, "retainer_nodes", &v, &n) == 0 && n == (size_t)s->nret)
-        for (i = 0; i < s->nret; i++)
-            s->ret_nodes[i] = (long)v[i];
-    free(v);
-    if (plot_h5_attr_doubles(file, "amb_nodes", &v, &n) == 0 && n == (size_t)s->namb)
-        for (i = 0; i < s->namb; i++)
-            s->amb_nodes[i] = (long)v[i];
-    free(v);
+    read_table(r, TD_OUT_RETAINER_CLEARANCE, s->nret, s->clearance, NULL);
+    read_table(r, TD_OUT_RETAINER_NODES, s->nret, NULL, s->ret_nodes);
+    read_table(r, TD_OUT_AMB_NODES, s->namb, NULL, s->amb_nodes);
     return 0;
 }
 
 /* Retainer and AMB counts from the dataset shapes (the groups may be empty). */
-static int count_columns(hid_t file, const char *path, size_t n, int *count)
+static int count_columns(const td_result *r, td_out_id id, size_t n, int *count)
 {
-    plot_array a;
+    td_result_array a;
     *count = 0;
-    if (!plot_h5_exists(file, path))
+    if (!td_result_has(r, id, NULL))
         return 0;
-    if (plot_h5_read(file, path, &a) != 0)
+    if (td_result_read(r, id, NULL, &a, NULL) != TD_OK)
         return -1;
     if (a.dims[0] != n) {
-        plot_array_free(&a);
+        td_result_array_free(&a);
         return -1;
     }
     *count = (int)a.dims[1];
-    plot_array_free(&a);
+    td_result_array_free(&a);
     return 0;
 }
 
-static int load_sim(hid_t file, plot_file *f, const plot_window *win)
+/* The samples of /retainers and /ambs (kept where keep is set), the tables and the events. */
+static int keep_samples(const td_result *r, plot_file *f, const plot_window *win, td_result_array *t,
+                        td_result_array *a, td_result_array *amb)
 {
-    static const char *fields[5] = {"retainers/x", "retainers/y", "retainers/radial_position", "retainers/normal_force",
-                                    "retainers/contact_state"};
     plot_sim *s = &f->sim;
-    plot_array t, a[5], amb;
     double **dst[5];
-    unsigned char *keep = NULL;
-    size_t n, i, kept = 0;
-    int k, rc = PLOT_FAILED;
-    memset(a, 0, sizeof a);
-    memset(&amb, 0, sizeof amb);
+    unsigned char *keep;
+    size_t n = t->n, i, kept = 0;
+    int k;
     dst[0] = &s->x, dst[1] = &s->y, dst[2] = &s->r, dst[3] = &s->fn, dst[4] = &s->contact;
-    if (plot_h5_read(file, "time", &t) != 0 || t.rank != 1)
-        return bad(f->path, "unreadable /time dataset (not a touchdown simulation file?)", PLOT_BAD_INPUT);
-    n = t.n;
-    if (count_columns(file, "retainers/x", n, &s->nret) != 0 || count_columns(file, "ambs/force", n, &s->namb) != 0) {
-        plot_array_free(&t);
-        return bad(f->path, "/retainers or /ambs datasets do not match /time", PLOT_BAD_INPUT);
-    }
-    for (k = 0; k < 5 && s->nret > 0; k++)
-        if (read_matrix(file, fields[k], n, (size_t)s->nret, 1, &a[k]) != 0) {
-            rc = bad(f->path, "a /retainers dataset is missing or has the wrong shape", PLOT_BAD_INPUT);
-            goto done;
-        }
-    if (s->namb > 0 && read_matrix(file, "ambs/force", n, (size_t)s->namb, 2, &amb) != 0) {
-        rc = bad(f->path, "/ambs/force has the wrong shape", PLOT_BAD_INPUT);
-        goto done;
-    }
     if (!(keep = malloc(n ? n : 1)))
-        goto nomem;
+        return bad(f->path, "out of memory", PLOT_FAILED);
     for (i = 0; i < n; i++) {
-        keep[i] = t.v[i] >= win->from && t.v[i] <= win->to;
+        keep[i] = t->v[i] >= win->from && t->v[i] <= win->to;
         kept += keep[i];
     }
     if (kept == 0) {
-        rc = bad(f->path, n ? "no samples inside the time window (--from/--to)" : "the file holds no samples",
-                 PLOT_BAD_INPUT);
-        goto done;
+        free(keep);
+        return bad(f->path, n ? "no samples inside the time window (--from/--to)" : "the file holds no samples",
+                   PLOT_BAD_INPUT);
     }
     s->n = kept;
-    s->t = compact(t.v, keep, n, 1);
-    t.v = NULL;
+    s->t = compact(t->v, keep, n, 1);
+    t->v = NULL;
     for (k = 0; k < 5; k++) {
         *dst[k] = compact(a[k].v, keep, n, (size_t)s->nret);
         a[k].v = NULL;
     }
-    s->amb = compact(amb.v, keep, n, 2 * (size_t)s->namb);
-    amb.v = NULL;
-    if (read_tables(file, s) != 0)
-        goto nomem;
-    if (read_events(file, s, win) != 0) {
-        rc = bad(f->path, "unreadable /events table", PLOT_BAD_INPUT);
-        goto done;
-    }
-    rc = PLOT_OK;
-    goto done;
-nomem:
-    rc = bad(f->path, "out of memory", PLOT_FAILED);
-done:
+    s->amb = compact(amb->v, keep, n, 2 * (size_t)s->namb);
+    amb->v = NULL;
     free(keep);
-    plot_array_free(&t);
-    plot_array_free(&amb);
+    if (read_tables(r, s) != 0)
+        return bad(f->path, "out of memory", PLOT_FAILED);
+    if (read_events(r, s, win) != 0)
+        return plot_bad_part(f->path, "unreadable ", TD_OUT_EVENTS, " table");
+    return PLOT_OK;
+}
+
+static int load_sim(const td_result *r, plot_file *f, const plot_window *win)
+{
+    static const td_out_id fields[5] = {TD_OUT_RET_X, TD_OUT_RET_Y, TD_OUT_RET_RADIAL_POSITION, TD_OUT_RET_NORMAL_FORCE,
+                                        TD_OUT_RET_CONTACT_STATE};
+    plot_sim *s = &f->sim;
+    td_result_array t, a[5], amb;
+    size_t n;
+    int k, rc = PLOT_OK;
+    memset(a, 0, sizeof a);
+    memset(&amb, 0, sizeof amb);
+    if (td_result_read(r, TD_OUT_TIME, NULL, &t, NULL) != TD_OK || t.rank != 1) {
+        td_result_array_free(&t);
+        return plot_bad_part(f->path, "unreadable ", TD_OUT_TIME, " dataset (not a touchdown simulation file?)");
+    }
+    n = t.n;
+    if (count_columns(r, TD_OUT_RET_X, n, &s->nret) != 0 || count_columns(r, TD_OUT_AMB_FORCE, n, &s->namb) != 0) {
+        td_result_array_free(&t);
+        return plot_bad_part(f->path, "the sample datasets do not match ", TD_OUT_TIME, "");
+    }
+    for (k = 0; k < 5 && s->nret > 0 && rc == PLOT_OK; k++)
+        if (read_matrix(r, fields[k], n, (size_t)s->nret, 1, &a[k]) != 0)
+            rc = plot_bad_part(f->path, "a dataset of ", TD_OUT_RETAINERS, " is missing or has the wrong shape");
+    if (rc == PLOT_OK && s->namb > 0 && read_matrix(r, TD_OUT_AMB_FORCE, n, (size_t)s->namb, 2, &amb) != 0)
+        rc = plot_bad_part(f->path, "", TD_OUT_AMB_FORCE, " has the wrong shape");
+    if (rc == PLOT_OK)
+        rc = keep_samples(r, f, win, &t, a, &amb);
+    td_result_array_free(&t);
+    td_result_array_free(&amb);
     for (k = 0; k < 5; k++)
-        plot_array_free(&a[k]);
+        td_result_array_free(&a[k]);
     return rc;
 }
 
 /* ---- modal files --------------------------------------------------------------------------- */
 
-/* Dataset `path` as a new array of `n` doubles (NULL when absent or of another size). */
-static double *read_vector(hid_t file, const char *path, size_t n)
+/* Dataset `id` (+ `sub`) as a new array of `n` doubles (NULL when absent or of another size). */
+static double *read_vector(const td_result *r, td_out_id id, const char *sub, size_t n)
 {
-    plot_array a;
-    if (plot_h5_read(file, path, &a) != 0)
+    td_result_array a;
+    if (td_result_read(r, id, sub, &a, NULL) != TD_OK)
         return NULL;
     if (a.n != n) {
-        plot_array_free(&a);
+        td_result_array_free(&a);
         return NULL;
     }
     return a.v;
 }
 
-static int load_campbell(hid_t file, plot_modal *m)
+static int load_campbell(const td_result *r, plot_modal *m)
 {
-    plot_array f;
-    if (!plot_h5_exists(file, "campbell/freq_hz"))
+    td_result_array f;
+    if (!td_result_has(r, TD_OUT_CAMPBELL_FREQ_HZ, NULL))
         return 0;
-    if (plot_h5_read(file, "campbell/freq_hz", &f) != 0 || f.rank != 2)
+    if (td_result_read(r, TD_OUT_CAMPBELL_FREQ_HZ, NULL, &f, NULL) != TD_OK || f.rank != 2) {
+        td_result_array_free(&f);
         return -1;
+    }
     m->ns = (int)f.dims[0];
     m->nb = (int)f.dims[1];
     m->freq = f.v;
-    m->speed = read_vector(file, "campbell/speed", (size_t)m->ns);
-    m->whirl = read_vector(file, "campbell/whirl", (size_t)m->ns * (size_t)m->nb);
+    m->speed = read_vector(r, TD_OUT_CAMPBELL_SPEED, NULL, (size_t)m->ns);
+    m->whirl = read_vector(r, TD_OUT_CAMPBELL_WHIRL, NULL, (size_t)m->ns * (size_t)m->nb);
     return m->speed && m->whirl ? 0 : -1;
 }
 
-static int load_critical(hid_t file, plot_modal *m)
+static int load_critical(const td_result *r, plot_modal *m)
 {
-    plot_array s;
-    if (!plot_h5_exists(file, "critical_speeds/speed"))
+    td_result_array s;
+    if (!td_result_has(r, TD_OUT_CRITICAL_SPEED, NULL))
         return 0;
-    if (plot_h5_read(file, "critical_speeds/speed", &s) != 0 || s.rank != 1)
+    if (td_result_read(r, TD_OUT_CRITICAL_SPEED, NULL, &s, NULL) != TD_OK || s.rank != 1) {
+        td_result_array_free(&s);
         return -1;
+    }
     m->ncrit = (int)s.n;
     m->crit_speed = s.v;
-    m->crit_freq = read_vector(file, "critical_speeds/freq_hz", s.n);
-    m->crit_whirl = read_vector(file, "critical_speeds/whirl", s.n);
+    m->crit_freq = read_vector(r, TD_OUT_CRITICAL_FREQ_HZ, NULL, s.n);
+    m->crit_whirl = read_vector(r, TD_OUT_CRITICAL_WHIRL, NULL, s.n);
     return m->crit_freq && m->crit_whirl ? 0 : -1;
 }
 
-/* Axial node positions, if the file has them (dataset /modes/node_z or /node_z, m). */
-static double *node_positions(hid_t file, size_t nn)
+/* Axial node positions, if the file has them (/modes/node_z, or at the root in older files, m). */
+static double *node_positions(const td_result *r, size_t nn)
 {
-    double *z = read_vector(file, "modes/node_z", nn);
-    return z ? z : read_vector(file, "node_z", nn);
+    double *z = read_vector(r, TD_OUT_MODES_NODE_Z, NULL, nn);
+    return z ? z : read_vector(r, TD_OUT_ROOT, td_out_name(TD_OUT_MODES_NODE_Z), nn);
 }
 
 /* Keep only vibration modes: the overdamped AMB-lag pairs (see touchdown/modal.h) have no
@@ -369,30 +354,31 @@ static void drop_overdamped(plot_modal *m)
     m->nm = kept;
 }
 
-static int load_shapes(hid_t file, plot_modal *m)
+static int load_shapes(const td_result *r, plot_modal *m)
 {
-    plot_array xr;
-    hid_t g;
+    td_result_array xr, speed;
     size_t total;
-    if (!plot_h5_exists(file, "modes/shape_x_re"))
+    if (!td_result_has(r, TD_OUT_MODES_SHAPE_X_RE, NULL))
         return 0;
-    if (plot_h5_read(file, "modes/shape_x_re", &xr) != 0 || xr.rank != 2)
+    if (td_result_read(r, TD_OUT_MODES_SHAPE_X_RE, NULL, &xr, NULL) != TD_OK || xr.rank != 2) {
+        td_result_array_free(&xr);
         return -1;
+    }
     m->nm = (int)xr.dims[0];
     m->nn = (int)xr.dims[1];
     m->xr = xr.v;
     total = (size_t)m->nm * (size_t)m->nn;
-    m->xi = read_vector(file, "modes/shape_x_im", total);
-    m->yr = read_vector(file, "modes/shape_y_re", total);
-    m->yi = read_vector(file, "modes/shape_y_im", total);
-    m->mode_freq = read_vector(file, "modes/freq_hz", (size_t)m->nm);
-    m->mode_whirl = read_vector(file, "modes/whirl", (size_t)m->nm);
-    m->mode_zeta = read_vector(file, "modes/zeta", (size_t)m->nm);
-    m->node_z = node_positions(file, (size_t)m->nn);
+    m->xi = read_vector(r, TD_OUT_MODES_SHAPE_X_IM, NULL, total);
+    m->yr = read_vector(r, TD_OUT_MODES_SHAPE_Y_RE, NULL, total);
+    m->yi = read_vector(r, TD_OUT_MODES_SHAPE_Y_IM, NULL, total);
+    m->mode_freq = read_vector(r, TD_OUT_MODES_FREQ_HZ, NULL, (size_t)m->nm);
+    m->mode_whirl = read_vector(r, TD_OUT_MODES_WHIRL, NULL, (size_t)m->nm);
+    m->mode_zeta = read_vector(r, TD_OUT_MODES_ZETA, NULL, (size_t)m->nm);
+    m->node_z = node_positions(r, (size_t)m->nn);
     m->mode_speed = NAN;
-    if ((g = H5Gopen2(file, "modes", H5P_DEFAULT)) >= 0) {
-        plot_h5_attr_double(g, "speed", &m->mode_speed);
-        H5Gclose(g);
+    if (td_result_read(r, TD_OUT_MODES_SPEED, NULL, &speed, NULL) == TD_OK) {
+        m->mode_speed = speed.v[0];
+        td_result_array_free(&speed);
     }
     if (!(m->xi && m->yr && m->yi && m->mode_freq && m->mode_whirl))
         return -1;
@@ -400,15 +386,15 @@ static int load_shapes(hid_t file, plot_modal *m)
     return 0;
 }
 
-static int load_modal(hid_t file, plot_file *f)
+static int load_modal(const td_result *r, plot_file *f)
 {
     plot_modal *m = &f->modal;
-    if (load_campbell(file, m) != 0)
-        return bad(f->path, "unreadable /campbell group", PLOT_BAD_INPUT);
-    if (load_critical(file, m) != 0)
-        return bad(f->path, "unreadable /critical_speeds group", PLOT_BAD_INPUT);
-    if (load_shapes(file, m) != 0)
-        return bad(f->path, "unreadable /modes group", PLOT_BAD_INPUT);
+    if (load_campbell(r, m) != 0)
+        return plot_bad_part(f->path, "unreadable ", TD_OUT_CAMPBELL, " group");
+    if (load_critical(r, m) != 0)
+        return plot_bad_part(f->path, "unreadable ", TD_OUT_CRITICAL, " group");
+    if (load_shapes(r, m) != 0)
+        return plot_bad_part(f->path, "unreadable ", TD_OUT_MODES, " group");
     if (m->ns == 0 && m->nm == 0)
         return bad(f->path, "the modal file holds neither a Campbell diagram nor mode shapes", PLOT_BAD_INPUT);
     return PLOT_OK;
@@ -416,55 +402,33 @@ static int load_modal(hid_t file, plot_file *f)
 
 /* ---- entry --------------------------------------------------------------------------------- */
 
-static int is_modal(hid_t file)
-{
-    char *producer = plot_h5_attr_string(file, "producer");
-    int yes = producer && strstr(producer, "modal") != NULL;
-    free(producer);
-    return yes || plot_h5_exists(file, "campbell") || plot_h5_exists(file, "modes");
-}
-
 int plot_file_load(const char *path, const plot_window *win, plot_file *f)
 {
-    FILE *probe;
-    hid_t file;
-    htri_t is_h5;
-    double flag;
+    td_result *r = NULL;
+    td_error err;
     int rc;
     memset(f, 0, sizeof *f);
     f->path = path;
     make_stem(path, f->stem, sizeof f->stem);
-    if (!(probe = fopen(path, "rb")))
-        return bad(path, strerror(errno), PLOT_BAD_INPUT);
-    fclose(probe);
-    is_h5 = H5Fis_hdf5(path);
-    if (is_h5 <= 0)
-        return bad(path,
-                   "not an HDF5 file (touchdown plot reads the .h5 files of 'touchdown run' and 'touchdown modal')",
-                   PLOT_BAD_INPUT);
-    if ((file = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT)) < 0)
-        return bad(path, "cannot open the HDF5 file", PLOT_BAD_INPUT);
-    if (plot_sweep_is_table(file)) {
+    if (td_result_open(path, &r, &err) != TD_OK) {
+        fprintf(stderr, "touchdown plot: %s\n", err.message);
+        return err.code == TD_ERR_NOMEM ? PLOT_FAILED : PLOT_BAD_INPUT;
+    }
+    f->complete = (int)td_result_get_flag(r);
+    switch (td_result_get_kind(r)) {
+    case TD_RESULT_SWEEP:
         f->kind = PLOT_KIND_SWEEP;
-        f->complete = plot_h5_attr_double(file, "complete", &flag) == 0 ? flag != 0.0 : -1;
-        rc = plot_sweep_load(file, f);
-    } else if (plot_h5_exists(file, "time") && plot_h5_exists(file, "retainers")) {
+        rc = plot_sweep_load(r, f);
+        break;
+    case TD_RESULT_RUN:
         f->kind = PLOT_KIND_SIM;
-        f->complete = plot_h5_attr_double(file, "complete", &flag) == 0 ? flag != 0.0 : -1;
-        rc = load_sim(file, f, win);
-    } else if (is_modal(file)) {
-        f->kind = PLOT_KIND_MODAL;
-        f->complete = 1;
-        rc = load_modal(file, f);
-    } else {
-        rc =
-            bad(path,
-                "not a touchdown result file (neither /time and /retainers, /campbell or /modes, nor /point and /vary)",
-                PLOT_BAD_INPUT);
+        rc = load_sim(r, f, win);
+        break;
+    default: f->kind = PLOT_KIND_MODAL; rc = load_modal(r, f);
     }
     if (rc == PLOT_OK)
-        make_title(f, file);
-    H5Fclose(file);
+        make_title(f, r);
+    td_result_free(&r);
     if (rc != PLOT_OK)
         plot_file_free(f);
     return rc;

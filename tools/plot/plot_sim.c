@@ -6,6 +6,7 @@
  * with the data files PREFIXretainerN.dat, PREFIXcontactsN.dat and PREFIXambs.dat.
  */
 #include "plot.h"
+#include "touchdown/output.h" /* td_event_kind_name */
 
 #include <math.h>
 #include <stdlib.h>
@@ -69,7 +70,8 @@ static int write_retainer_data(const plot_job *job, const plot_file *f, const ch
 
 static int is_onset(const plot_event *e, int r)
 {
-    return e->retainer == r && (!strcmp(e->kind, "contact_onset") || !strcmp(e->kind, "penalty_enter"));
+    return e->retainer == r && (!strcmp(e->kind, td_event_kind_name(TD_EVENT_CONTACT_ONSET)) ||
+                                !strcmp(e->kind, td_event_kind_name(TD_EVENT_PENALTY_ENTER)));
 }
 
 static int by_start(const void *a, const void *b)
@@ -186,7 +188,7 @@ static void schedule_markers(FILE *out, const plot_sim *s)
     int n = 0;
     fprintf(out, "markers = \"");
     for (i = 0; i < s->nev && n < MAX_MARKERS; i++) {
-        if (strcmp(s->ev[i].kind, "schedule") || s->ev[i].time == last)
+        if (strcmp(s->ev[i].kind, td_event_kind_name(TD_EVENT_SCHEDULE)) || s->ev[i].time == last)
             continue;
         last = s->ev[i].time;
         fprintf(out, n++ ? " %.12g" : "%.12g", last);

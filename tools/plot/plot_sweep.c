@@ -57,7 +57,10 @@ static void group_label(const plot_sweep *s, int x, size_t p, char *buf, size_t 
 
 static void order_free(sweep_order *o)
 {
-    plot_strings_free(o->label, o->ngroups);
+    size_t g;
+    for (g = 0; o->label && g < o->ngroups; g++)
+        free(o->label[g]);
+    free(o->label);
     free(o->index);
     free(o->start);
     free(o->group);
@@ -172,25 +175,19 @@ static void axis_scales(FILE *out, const plot_opts *opt, int takes_log_y)
 
 /* The numeric column `name` of the table and its units; -1 with a line printed that lists the
  * columns it could plot. */
-static int read_quantity(const plot_file *f, const char *name, plot_array *q, char *units, size_t n)
+static int read_quantity(const plot_file *f, const char *name, td_result_array *q, char *units, size_t n)
 {
-    hid_t file = H5Fopen(f->path, H5F_ACC_RDONLY, H5P_DEFAULT), d;
-    char *u = NULL, columns[1024] = "";
+    td_result *r = NULL;
+    char columns[1024] = "";
     int ok;
     memset(q, 0, sizeof *q); /* freed below whether or not it was read */
-    ok = file >= 0 && plot_sweep_is_column(file, name, f->sweep.n) && plot_h5_read(file, name, q) == 0;
-    if (ok && (d = H5Dopen2(file, name, H5P_DEFAULT)) >= 0) {
-        u = plot_h5_attr_string(d, "units");
-        H5Dclose(d);
-    }
-    snprintf(units, n, "%s", u ? u : "");
-    free(u);
-    if (!ok && file >= 0)
-        plot_sweep_columns(file, f->sweep.n, columns, sizeof columns);
-    if (file >= 0)
-        H5Fclose(file);
+    ok = td_result_open(f->path, &r, NULL) == TD_OK && plot_sweep_read_column(r, name, f->sweep.n, q) == 0;
+    snprintf(units, n, "%s", ok ? q->units : "");
+    if (!ok && r)
+        plot_sweep_columns(r, f->sweep.n, columns, sizeof columns);
+    td_result_free(&r);
     if (!ok) {
-        plot_array_free(q);
+        td_result_array_free(q);
         fprintf(stderr, "touchdown plot: %s: --quantity '%s' is not a numeric column of the sweep table (it has: %s)\n",
                 f->path, name, columns);
         return -1;
@@ -213,7 +210,7 @@ static void title_array(FILE *out, const sweep_order *o, const size_t *keep, siz
 /* ---- quantity against the x key ------------------------------------------------------------- */
 
 /* 1 if point p has a value of the quantity to draw: it ran to its end and the value is defined. */
-static int drawn(const plot_sweep *s, const plot_array *q, size_t p)
+static int drawn(const plot_sweep *s, const td_result_array *q, size_t p)
 {
     return !s->failed[p] && isfinite(q->v[p]);
 }
@@ -221,7 +218,7 @@ static int drawn(const plot_sweep *s, const plot_array *q, size_t p)
 /* Group g's line: its points in x order, a blank line (a gap in the line) where a point has no
  * value, so that a line never bridges a failed or undefined point. */
 static void write_quantity_group(FILE *out, const plot_sweep *s, int x, const sweep_order *o, size_t g,
-                                 const plot_array *q)
+                                 const td_result_array *q)
 {
     size_t i, p;
     int gap = 0;
@@ -250,7 +247,7 @@ static size_t write_failed_marks(FILE *out, const plot_sweep *s, int x, int firs
 }
 
 static int write_quantity(const plot_job *job, const plot_file *f, const char *name, int x, const sweep_order *o,
-                          const plot_array *q, const char *qname, size_t *keep, size_t *nkeep, size_t *nfailed)
+                          const td_result_array *q, const char *qname, size_t *keep, size_t *nkeep, size_t *nfailed)
 {
     const plot_sweep *s = &f->sweep;
     FILE *out = plot_open(job->opt, name);
@@ -277,7 +274,7 @@ static int write_quantity(const plot_job *job, const plot_file *f, const char *n
 
 /* One line on stderr for the points of the table that ran without a value of `qname` (e.g. no
  * contact: no first-contact time); the failed ones are told once for every figure. */
-static void report_undefined(const plot_file *f, const plot_array *q, const char *qname)
+static void report_undefined(const plot_file *f, const td_result_array *q, const char *qname)
 {
     size_t p, ran = 0, none = 0;
     for (p = 0; p < f->sweep.n; p++)
@@ -294,10 +291,10 @@ static void report_undefined(const plot_file *f, const plot_array *q, const char
 
 static int quantity_figure(plot_job *job, const plot_file *f, const char *prefix, int x, const sweep_order *o)
 {
-    const char *qname = job->opt->quantity ? job->opt->quantity : "peak_housing_force";
-    char name[300], data[320], units[64], label[256];
+    const char *qname = job->opt->quantity ? job->opt->quantity : td_out_name(TD_OUT_SWEEP_PEAK_HOUSING_FORCE);
+    char name[300], data[320], units[sizeof((td_result_array *)0)->units], label[256];
     size_t *keep = malloc((o->ngroups + 1) * sizeof *keep), nkeep = 0, nfailed = 0;
-    plot_array q;
+    td_result_array q;
     FILE *out;
     int rc = PLOT_FAILED;
     if (!keep)
@@ -326,7 +323,7 @@ static int quantity_figure(plot_job *job, const plot_file *f, const char *prefix
             printf("no figure of %s: no point of %s has a value of it\n", qname, f->path);
         rc = PLOT_OK;
     }
-    plot_array_free(&q);
+    td_result_array_free(&q);
     free(keep);
     return rc;
 }

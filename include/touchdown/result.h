@@ -1,0 +1,399 @@
+/*
+ * touchdown/result.h - the output schema and reading result files.
+ *
+ * The schema: every dataset, group, attribute and event field of the files touchdown writes (a
+ * run's HDF5 and CSV files, a modal file, a sweep table) has one td_out_id here, and its name,
+ * units, shape and type are declared once, as a table, in lib/io/schema.c. The writers take every
+ * name from that table, so a reader that uses the ids reads what the writers wrote.
+ * docs/output-format.md describes each name.
+ *
+ * The reader: td_result_open opens a run, modal or sweep HDF5 file, says which it is and whether
+ * it is complete (docs/output-format.md, "Completeness rule"), and reads its datasets (as doubles
+ * or text, with their units and shape), its events and its attributes. No call prints; every
+ * failure is a status with a one-line message naming the file. The HDF5 library's own error
+ * printing is silenced inside every call.
+ */
+#ifndef TOUCHDOWN_RESULT_H
+#define TOUCHDOWN_RESULT_H
+
+#include <stddef.h>
+
+#include "touchdown/error.h"
+#include "touchdown/export.h"
+#include "touchdown/records.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* ---- the schema ----------------------------------------------------------------------------- */
+
+/** Every name of the output files (td_out_name gives the text). */
+typedef enum td_out_id {
+    TD_OUT_ROOT = 0, /**< the file's root group ("") */
+    /* run file: groups, sample datasets and dimension scales */
+    TD_OUT_NODES,
+    TD_OUT_RETAINERS,
+    TD_OUT_AMBS,
+    TD_OUT_TIME,
+    TD_OUT_SPEED,
+    TD_OUT_COMPONENT,
+    TD_OUT_NODE_DISPLACEMENT,
+    TD_OUT_NODE,
+    TD_OUT_RET_X,
+    TD_OUT_RET_Y,
+    TD_OUT_RET_RADIAL_POSITION,
+    TD_OUT_RET_RADIAL_VELOCITY,
+    TD_OUT_RET_WHIRL_ANGLE,
+    TD_OUT_RET_NORMAL_FORCE,
+    TD_OUT_RET_FRICTION_FORCE,
+    TD_OUT_RET_SLIDING_VELOCITY,
+    TD_OUT_RET_CONTACT_STATE,
+    TD_OUT_RET_RACE_X,
+    TD_OUT_RET_RACE_Y,
+    TD_OUT_RET_RACE_SPEED,
+    TD_OUT_RET_ROLLING,
+    TD_OUT_RET_WHIRL_RATE,
+    TD_OUT_RETAINER,
+    TD_OUT_AMB_FORCE,
+    TD_OUT_AMB,
+    TD_OUT_EVENTS,
+    TD_OUT_EVENT,
+    /* run file: the fields of /events (and the columns of the CSV events file) */
+    TD_OUT_EV_TIME,
+    TD_OUT_EV_KIND,
+    TD_OUT_EV_KIND_NAME,
+    TD_OUT_EV_RETAINER,
+    TD_OUT_EV_CHANGE,
+    TD_OUT_EV_SAMPLE,
+    TD_OUT_EV_RADIAL_VELOCITY_BEFORE,
+    TD_OUT_EV_RADIAL_VELOCITY_AFTER,
+    TD_OUT_EV_TANGENTIAL_VELOCITY_BEFORE,
+    TD_OUT_EV_TANGENTIAL_VELOCITY_AFTER,
+    TD_OUT_EV_IMPULSE,
+    TD_OUT_EV_NORMAL_FORCE,
+    TD_OUT_EV_PEAK_NORMAL_FORCE,
+    /* attributes of datasets and groups */
+    TD_OUT_UNITS,
+    TD_OUT_COUNT,
+    TD_OUT_NODES_ATTR,
+    TD_OUT_COMPONENTS,
+    TD_OUT_KIND_NAMES,
+    /* root attributes shared by the files */
+    TD_OUT_COMPLETE,
+    TD_OUT_INCOMPLETE_REASON,
+    TD_OUT_CASE_TEXT,
+    TD_OUT_LIBRARY_VERSION,
+    /* run file: root attributes */
+    TD_OUT_STATUS,
+    TD_OUT_SAMPLE_RATE,
+    TD_OUT_T_START,
+    TD_OUT_T_END,
+    TD_OUT_T_REACHED,
+    TD_OUT_MODEL_SPEED,
+    TD_OUT_RETAINER_NODES,
+    TD_OUT_RETAINER_CLEARANCE,
+    TD_OUT_RETAINER_IMPULSE,
+    TD_OUT_RETAINER_IMPACT_IMPULSE,
+    TD_OUT_RETAINER_FRICTION_WORK,
+    TD_OUT_RETAINER_PEAK_HOUSING_FORCE,
+    TD_OUT_RETAINER_PEAK_NORMAL_FORCE,
+    TD_OUT_RETAINER_CONTACT_TIME,
+    TD_OUT_RETAINER_ROLLING_TIME,
+    TD_OUT_RETAINER_CONTACTS,
+    TD_OUT_RETAINER_TOUCH_AND_GO,
+    TD_OUT_AMB_NODES,
+    TD_OUT_AMB_CAPACITY,
+    TD_OUT_STAT_STEPS,
+    TD_OUT_STAT_RESIDUAL_EVALS,
+    TD_OUT_STAT_JACOBIAN_EVALS,
+    TD_OUT_STAT_LINEAR_SETUPS,
+    TD_OUT_STAT_NONLINEAR_ITERS,
+    TD_OUT_STAT_ERROR_TEST_FAILS,
+    TD_OUT_STAT_NONLINEAR_FAILS,
+    TD_OUT_STAT_RESTARTS,
+    TD_OUT_STAT_EVENTS,
+    TD_OUT_STAT_CONTACT_ONSETS,
+    TD_OUT_STAT_RELEASES,
+    TD_OUT_STAT_PEAK_AMB,
+    TD_OUT_STAT_FLIGHT_STEPS,
+    TD_OUT_STAT_WORST_DRIFT,
+    TD_OUT_STAT_PEAK_NORMAL_FORCE,
+    TD_OUT_STAT_TIME_IN_CONTACT,
+    TD_OUT_STAT_FIRST_CONTACT_TIME,
+    TD_OUT_STAT_WALL_TIME,
+    TD_OUT_STAT_PEAK_AMB_FORCE,
+    TD_OUT_STAT_PEAK_AMB_LOAD,
+    TD_OUT_STAT_PEAK_AMB_TIME,
+    TD_OUT_STAT_FLIGHT_TIME,
+    TD_OUT_WARNINGS,
+    TD_OUT_SUM_FIRST_CONTACT_TIME,
+    TD_OUT_SUM_LAST_CONTACT_TIME,
+    TD_OUT_SUM_PEAK_NORMAL_FORCE,
+    TD_OUT_SUM_PEAK_HOUSING_FORCE,
+    TD_OUT_SUM_TOTAL_IMPULSE,
+    TD_OUT_SUM_FRICTION_WORK,
+    TD_OUT_SUM_FINAL_SPEED,
+    TD_OUT_SUM_ENDING_WHIRL_FREQUENCY,
+    TD_OUT_SUM_ENDING_WINDOW,
+    TD_OUT_SUM_CONTACT_TIME,
+    TD_OUT_SUM_CONTACT_FRACTION,
+    TD_OUT_SUM_FREE_WINDOW,
+    TD_OUT_SUM_REVOLUTIONS,
+    TD_OUT_SUM_REVOLUTIONS_AFTER_CONTACT,
+    TD_OUT_SUM_WALL_TIME,
+    TD_OUT_SUM_SOLVER_WALL_TIME,
+    TD_OUT_SUM_WALL_TIME_PER_REVOLUTION,
+    TD_OUT_SUM_REALTIME_FACTOR,
+    TD_OUT_SUM_SAMPLES,
+    TD_OUT_SUM_GRID_SAMPLES,
+    TD_OUT_SUM_EVENTS,
+    TD_OUT_SUM_CONTACTS,
+    TD_OUT_SUM_ENDING,
+    TD_OUT_SUM_FREE_AT_END,
+    TD_OUT_SUM_RETURNED_TO_FREE_ORBIT,
+    TD_OUT_SUM_PEAK_NORMAL_FORCE_CONVERGES,
+    TD_OUT_SUM_ENERGY_KINETIC,
+    TD_OUT_SUM_ENERGY_ELASTIC,
+    TD_OUT_SUM_ENERGY_INITIAL,
+    TD_OUT_SUM_ENERGY_EXTERNAL_WORK,
+    TD_OUT_SUM_ENERGY_DRIVE_WORK,
+    TD_OUT_SUM_ENERGY_DAMPING_LOSS,
+    TD_OUT_SUM_ENERGY_CONTACT_LOSS,
+    TD_OUT_SUM_ENERGY_DRAG_LOSS,
+    TD_OUT_SUM_ENERGY_IMPACT_LOSS,
+    TD_OUT_SUM_ENERGY_RESIDUAL,
+    TD_OUT_SECTION_START,
+    TD_OUT_SECTION_COUNT,
+    TD_OUT_SECTION_RETAINER,
+    TD_OUT_SECTION_CLEARANCE,
+    TD_OUT_SECTION_TIME,
+    TD_OUT_SECTION_RADIUS,
+    /* modal file */
+    TD_OUT_PRODUCER,
+    TD_OUT_MODES,
+    TD_OUT_MODES_SPEED,
+    TD_OUT_MODES_SPEED_UNITS,
+    TD_OUT_MODES_SIGMA, /* the mode table: sigma .. whirl in this order, as for /campbell */
+    TD_OUT_MODES_OMEGA_D,
+    TD_OUT_MODES_FREQ_HZ,
+    TD_OUT_MODES_OMEGA_N,
+    TD_OUT_MODES_ZETA,
+    TD_OUT_MODES_WHIRL_INDEX,
+    TD_OUT_MODES_WHIRL,
+    TD_OUT_MODES_REAL_EIGENVALUES,
+    TD_OUT_MODES_SHAPE_X_RE,
+    TD_OUT_MODES_SHAPE_X_IM,
+    TD_OUT_MODES_SHAPE_Y_RE,
+    TD_OUT_MODES_SHAPE_Y_IM,
+    TD_OUT_MODES_MODE,
+    TD_OUT_MODES_NODE_Z,
+    TD_OUT_MODES_RETAINER_NODES,
+    TD_OUT_MODES_AMB_NODES,
+    TD_OUT_CAMPBELL,
+    TD_OUT_CAMPBELL_SIGMA,
+    TD_OUT_CAMPBELL_OMEGA_D,
+    TD_OUT_CAMPBELL_FREQ_HZ,
+    TD_OUT_CAMPBELL_OMEGA_N,
+    TD_OUT_CAMPBELL_ZETA,
+    TD_OUT_CAMPBELL_WHIRL_INDEX,
+    TD_OUT_CAMPBELL_WHIRL,
+    TD_OUT_CAMPBELL_SPEED,
+    TD_OUT_CAMPBELL_BRANCH,
+    TD_OUT_CAMPBELL_LAYOUT,
+    TD_OUT_CRITICAL,
+    TD_OUT_CRITICAL_SPEED,
+    TD_OUT_CRITICAL_FREQ_HZ,
+    TD_OUT_CRITICAL_ZETA,
+    TD_OUT_CRITICAL_SIGMA,
+    TD_OUT_CRITICAL_WHIRL,
+    TD_OUT_CRITICAL_BRANCH,
+    TD_OUT_HARMONIC,
+    TD_OUT_HARMONIC_I, /**< /harmonic/I, I = 0, 1, ...: the `sub` of the reading calls names I */
+    TD_OUT_HARMONIC_SPEED,
+    TD_OUT_HARMONIC_SPEED_UNITS,
+    TD_OUT_HARMONIC_X_AMP, /* the orbit columns: x_amp .. minor in this order */
+    TD_OUT_HARMONIC_X_PHASE,
+    TD_OUT_HARMONIC_Y_AMP,
+    TD_OUT_HARMONIC_Y_PHASE,
+    TD_OUT_HARMONIC_FORWARD,
+    TD_OUT_HARMONIC_BACKWARD,
+    TD_OUT_HARMONIC_MAJOR,
+    TD_OUT_HARMONIC_MINOR,
+    TD_OUT_HARMONIC_STATE_RE,
+    TD_OUT_HARMONIC_STATE_IM,
+    TD_OUT_HARMONIC_NODE,
+    TD_OUT_HARMONIC_STATE,
+    TD_OUT_MODAL_MODE_SHAPES, /**< the modal CSV file's section of the mode shapes */
+    TD_OUT_MODAL_INDEX,       /**< the modal CSV file's column of the real eigenvalues' index */
+    TD_OUT_MODAL_NODE,        /**< the modal CSV file's node column (mode shapes, harmonic) */
+    /* sweep table */
+    TD_OUT_SWEEP_POINT,
+    TD_OUT_SWEEP_VARY, /**< the group /vary: the `sub` of the reading calls names the key */
+    TD_OUT_SWEEP_KEY_SPEC,
+    TD_OUT_SWEEP_KEY_AXIS,
+    TD_OUT_SWEEP_KEY_ORIGIN,
+    TD_OUT_SWEEP_STATUS, /* the columns after the swept keys, in the table's order */
+    TD_OUT_SWEEP_MESSAGE,
+    TD_OUT_SWEEP_PEAK_HOUSING_FORCE,
+    TD_OUT_SWEEP_TOTAL_IMPULSE,
+    TD_OUT_SWEEP_FRICTION_WORK,
+    TD_OUT_SWEEP_CONTACT_TIME,
+    TD_OUT_SWEEP_CONTACTS,
+    TD_OUT_SWEEP_FIRST_CONTACT_TIME,
+    TD_OUT_SWEEP_ENDING,
+    TD_OUT_SWEEP_REGIME,
+    TD_OUT_SWEEP_ENDING_WHIRL_FREQUENCY,
+    TD_OUT_SWEEP_RETURNED_TO_FREE_ORBIT,
+    TD_OUT_SWEEP_SECTION_COUNT,
+    TD_OUT_SWEEP_SECTION_RADIUS_MIN,
+    TD_OUT_SWEEP_SECTION_RADIUS_MAX,
+    TD_OUT_SWEEP_SECTION_CLEARANCE,
+    TD_OUT_SWEEP_FINAL_SPEED,
+    TD_OUT_SWEEP_PEAK_AMB_LOAD,
+    TD_OUT_SWEEP_T_REACHED,
+    TD_OUT_SWEEP_WARNINGS,
+    TD_OUT_SWEEP_WALL_TIME,
+    TD_OUT_SWEEP_SECTION_RADIUS,
+    TD_OUT_SWEEP_VARY_SPECS,
+    TD_OUT_SWEEP_SET,
+    TD_OUT_SWEEP_POINTS,
+    TD_OUT_SWEEP_WITH,
+    TD_OUT_SWEEP_FROM,
+    TD_OUT_ID_COUNT /**< number of ids; also "several objects" as the parent of an attribute */
+} td_out_id;
+
+/** What a name is in the file. */
+typedef enum td_out_place {
+    TD_OUT_GROUP = 0,
+    TD_OUT_DATASET = 1,   /**< a dataset (also a dimension scale, which is one) */
+    TD_OUT_ATTRIBUTE = 2, /**< an attribute of its parent (td_out_parent) */
+    TD_OUT_FIELD = 3,     /**< a field of the /events compound (and a column of the CSV events file) */
+    TD_OUT_CSV_ONLY = 4   /**< a line or column only the CSV file has */
+} td_out_place;
+
+/** Type in the file (HDF5). */
+typedef enum td_out_type {
+    TD_OUT_NO_TYPE = 0, /**< a group */
+    TD_OUT_F64 = 1,
+    TD_OUT_I64 = 2,
+    TD_OUT_I32 = 3,
+    TD_OUT_I8 = 4,
+    TD_OUT_TEXT = 5,    /**< variable-length UTF-8 */
+    TD_OUT_ENUM = 6,    /**< the event kind (int32 enum) */
+    TD_OUT_COMPOUND = 7 /**< /events */
+} td_out_type;
+
+/** Which files hold a name (a bit set). */
+enum { TD_OUT_IN_RUN = 1, TD_OUT_IN_RUN_CSV = 2, TD_OUT_IN_MODAL = 4, TD_OUT_IN_SWEEP = 8 };
+
+/** The name itself: the link or attribute name, never a path ("x" of /retainers/x); "" for the
+ *  root; NULL for an id out of range. */
+TD_API const char *td_out_name(td_out_id id);
+/** The units: what the dataset's `units` attribute says, for an attribute or field its unit in
+ *  docs/output-format.md; "" when it has none. NULL for an id out of range. */
+TD_API const char *td_out_units(td_out_id id);
+/** The shape, in the words of docs/output-format.md ("(N, n_ret)", "scalar"); never NULL. */
+TD_API const char *td_out_shape(td_out_id id);
+TD_API td_out_place td_out_place_of(td_out_id id);
+TD_API td_out_type td_out_type_of(td_out_id id);
+/** TD_OUT_IN_* bits. */
+TD_API unsigned td_out_files(td_out_id id);
+/** The group a dataset or group is in, the object an attribute is on (TD_OUT_ID_COUNT: several,
+ *  e.g. `units`), /events for a field. */
+TD_API td_out_id td_out_parent(td_out_id id);
+/**
+ * The path from the root ("retainers/x"; an attribute: its object's path) into buf; `sub`, when
+ * not NULL, is appended after a '/' (a swept key under TD_OUT_SWEEP_VARY, the index I under
+ * TD_OUT_HARMONIC_I). Returns the length snprintf would, -1 for an id out of range.
+ */
+TD_API int td_out_path(td_out_id id, const char *sub, char *buf, size_t n);
+
+/* ---- reading -------------------------------------------------------------------------------- */
+
+typedef struct td_result td_result;
+
+typedef enum td_result_kind {
+    TD_RESULT_RUN = 0,   /**< td_run / touchdown run */
+    TD_RESULT_MODAL = 1, /**< td_modal_write_hdf5 / touchdown modal */
+    TD_RESULT_SWEEP = 2  /**< td_sweep_write_hdf5 / touchdown sweep */
+} td_result_kind;
+
+/** The completeness flag as the file holds it. */
+typedef enum td_result_flag {
+    TD_RESULT_NO_FLAG = -1,   /**< no `complete` attribute: a file still written or killed (.partial) */
+    TD_RESULT_INCOMPLETE = 0, /**< complete = 0: see the attribute incomplete_reason */
+    TD_RESULT_COMPLETE = 1
+} td_result_flag;
+
+/**
+ * Open the HDF5 file `path` for reading and say what it is. Fails (*out NULL) with TD_ERR_IO for
+ * a file that cannot be read (missing, not HDF5, damaged or cut short) and TD_ERR_INVALID for an
+ * HDF5 file that is none of touchdown's: a run file has /time and /retainers, a sweep table
+ * /point and /vary, a modal file the producer attribute or /campbell or /modes.
+ */
+TD_API td_status td_result_open(const char *path, td_result **out, td_error *err);
+/** Close; *r set to NULL. Accepts NULL. */
+TD_API void td_result_free(td_result **r);
+
+TD_API td_result_kind td_result_get_kind(const td_result *r);
+/** The flag (TD_RESULT_COMPLETE for a modal file: one is written whole or not at all). */
+TD_API td_result_flag td_result_get_flag(const td_result *r);
+/**
+ * 1 only for a whole result: flag 1 (a modal file: readable), and a name that is not a writer's
+ * temporary PATH.XXXXXX.partial; else 0.
+ */
+TD_API int td_result_complete(const td_result *r);
+
+/** 1 if `id` (with `sub`, see td_out_path) exists in the file: a group, a dataset, an attribute. */
+TD_API int td_result_has(const td_result *r, td_out_id id, const char *sub);
+
+/** A dataset or numeric attribute read as doubles, row-major (missing dims are 1). */
+typedef struct td_result_array {
+    double *v;       /**< n values, malloc'd (td_result_array_free) */
+    size_t n;        /**< product of the dims */
+    int rank;        /**< 0 (a scalar attribute) to 3 */
+    size_t dims[3];  /**< unused dims are 1 */
+    char units[128]; /**< the dataset's units attribute, else the schema's (td_out_units) */
+} td_result_array;
+
+/**
+ * Read a numeric dataset (TD_OUT_DATASET: rank 1..3, any integer or float type) or a numeric
+ * attribute (TD_OUT_ATTRIBUTE, on the object td_out_path names) as doubles. `sub` as for
+ * td_out_path (TD_OUT_ROOT with `sub` reads any dataset by its path, e.g. a sweep column named by
+ * the user). TD_ERR_INVALID when absent or not numeric.
+ */
+TD_API td_status td_result_read(const td_result *r, td_out_id id, const char *sub, td_result_array *a, td_error *err);
+TD_API void td_result_array_free(td_result_array *a);
+
+/** A text attribute (any string type), malloc'd into *text (free()). */
+TD_API td_status td_result_read_text(const td_result *r, td_out_id id, const char *sub, char **text, td_error *err);
+
+/** A 1-D dataset of variable-length strings: *n malloc'd strings (td_result_strings_free). */
+TD_API td_status td_result_read_strings(const td_result *r, td_out_id id, const char *sub, char ***text, size_t *n,
+                                        td_error *err);
+TD_API void td_result_strings_free(char **text, size_t n);
+
+/**
+ * The numeric 1-D datasets of n values directly in the group `id` (+ `sub`), other than its
+ * dimension scales' index TD_OUT_SWEEP_POINT, in name order: *n_names malloc'd names
+ * (td_result_strings_free). The columns of a sweep table: TD_OUT_ROOT with n = the points.
+ */
+TD_API td_status td_result_columns(const td_result *r, td_out_id id, const char *sub, size_t n, char ***names,
+                                   size_t *n_names, td_error *err);
+
+/** One row of /events. */
+typedef struct td_result_event {
+    td_event event;
+    long sample;        /**< the sample row taken at the event, -1 if none */
+    char kind_name[32]; /**< the kind's name as the file's enum has it ("contact_onset", ...) */
+} td_result_event;
+
+/** Every row of a run file's /events (0 rows when the file has none), malloc'd (free()). */
+TD_API td_status td_result_events(const td_result *r, td_result_event **events, size_t *n, td_error *err);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* TOUCHDOWN_RESULT_H */

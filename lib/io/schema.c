@@ -1,0 +1,376 @@
+/*
+ * The output schema (schema.h, touchdown/result.h): every name of the files touchdown writes,
+ * declared once, with its units, shape and type. docs/output-format.md describes each.
+ */
+#include "io/schema.h"
+
+#include <stdio.h>
+
+#define RUN (TD_OUT_IN_RUN | TD_OUT_IN_RUN_CSV)
+#define H5RUN TD_OUT_IN_RUN
+#define CSVRUN TD_OUT_IN_RUN_CSV
+#define MODAL TD_OUT_IN_MODAL
+#define SWEEP TD_OUT_IN_SWEEP
+#define SEVERAL TD_OUT_ID_COUNT
+
+/* One entry, by id (designated initialisers: an id cannot land on another's entry). */
+#define GROUP(id, name, parent, files) [id] = {name, parent, TD_OUT_GROUP, files, TD_OUT_NO_TYPE, "", "", NULL, NULL}
+#define DATA(id, name, parent, files, type, units, shape)                                                              \
+    [id] = {name, parent, TD_OUT_DATASET, files, TD_OUT_##type, units, shape, NULL, NULL}
+/* A dataset of the modal file whose column in the modal CSV file has a name of its own. */
+#define DATA_CSV(id, name, parent, type, units, shape, csv)                                                            \
+    [id] = {name, parent, TD_OUT_DATASET, MODAL, TD_OUT_##type, units, shape, csv, NULL}
+#define SERIES(id, name, parent, type, units, shape, csv, csv_units)                                                   \
+    [id] = {name, parent, TD_OUT_DATASET, RUN, TD_OUT_##type, units, shape, csv, csv_units}
+#define ATTR(id, name, parent, files, type, units, shape)                                                              \
+    [id] = {name, parent, TD_OUT_ATTRIBUTE, files, TD_OUT_##type, units, shape, NULL, NULL}
+#define FIELD(id, name, type, units, csv, csv_units)                                                                   \
+    [id] = {name, TD_OUT_EVENTS, TD_OUT_FIELD, RUN, TD_OUT_##type, units, "(E)", csv, csv_units}
+#define CSV_LINE(id, name, files) [id] = {name, TD_OUT_ROOT, TD_OUT_CSV_ONLY, files, TD_OUT_TEXT, "", "", NULL, NULL}
+/* Root attributes of a run's files (HDF5 and CSV), scalar unless a shape is given. */
+#define RUN_ATTR(id, name, type, units) ATTR(id, name, TD_OUT_ROOT, RUN, type, units, "scalar")
+#define RET_ATTR(id, name, type, units) ATTR(id, name, TD_OUT_ROOT, RUN, type, units, "(n_ret)")
+#define MODE_TABLE(prefix, group, shape)                                                                               \
+    DATA_CSV(prefix##SIGMA, "sigma", group, F64, "1/s", shape, "sigma_1_s"),                                           \
+        DATA_CSV(prefix##OMEGA_D, "omega_d", group, F64, "rad/s", shape, "omega_d_rad_s"),                             \
+        DATA(prefix##FREQ_HZ, "freq_hz", group, MODAL, F64, "Hz", shape),                                              \
+        DATA_CSV(prefix##OMEGA_N, "omega_n", group, F64, "rad/s", shape, "omega_n_rad_s"),                             \
+        DATA(prefix##ZETA, "zeta", group, MODAL, F64, "1", shape),                                                     \
+        DATA(prefix##WHIRL_INDEX, "whirl_index", group, MODAL, F64, "1", shape),                                       \
+        DATA(prefix##WHIRL, "whirl", group, MODAL, I32, "1: forward, -1: backward, 0: mixed", shape)
+#define COLUMN(id, name, type, units) DATA(id, name, TD_OUT_ROOT, SWEEP, type, units, "(points)")
+#define SHAPE_UNITS "1 (normalised: largest |X| or |Y| = 1); rows: modes, columns: nodes"
+#define STATE_UNITS "SI per state: m, m/s, N"
+
+static const td_schema_entry entries[TD_OUT_ID_COUNT] = {
+    [TD_OUT_ROOT] = {"", TD_OUT_ROOT, TD_OUT_GROUP, RUN | MODAL | SWEEP, TD_OUT_NO_TYPE,
+                     "SI (touchdown/dofs.h); each dataset has a units attribute", "", NULL, NULL},
+    /* ---- run file: groups, samples, scales ---- */
+    GROUP(TD_OUT_NODES, "nodes", TD_OUT_ROOT, H5RUN),
+    GROUP(TD_OUT_RETAINERS, "retainers", TD_OUT_ROOT, H5RUN),
+    GROUP(TD_OUT_AMBS, "ambs", TD_OUT_ROOT, H5RUN),
+    SERIES(TD_OUT_TIME, "time", TD_OUT_ROOT, F64, "s", "(N)", "t", NULL),
+    SERIES(TD_OUT_SPEED, "speed", TD_OUT_ROOT, F64, "rad/s", "(N)", NULL, NULL),
+    DATA(TD_OUT_COMPONENT, "component", TD_OUT_ROOT, H5RUN, TEXT, "1", "(2)"),
+    SERIES(TD_OUT_NODE_DISPLACEMENT, "displacement", TD_OUT_NODES, F64, "m", "(N, n_nodes, 2)", "%s_n%d", NULL),
+    DATA(TD_OUT_NODE, "node", TD_OUT_NODES, H5RUN, I32, "node number", "(n_nodes)"),
+    SERIES(TD_OUT_RET_X, "x", TD_OUT_RETAINERS, F64, "m", "(N, n_ret)", "x_ret%d", NULL),
+    SERIES(TD_OUT_RET_Y, "y", TD_OUT_RETAINERS, F64, "m", "(N, n_ret)", "y_ret%d", NULL),
+    SERIES(TD_OUT_RET_RADIAL_POSITION, "radial_position", TD_OUT_RETAINERS, F64, "m", "(N, n_ret)", "r_ret%d", NULL),
+    SERIES(TD_OUT_RET_RADIAL_VELOCITY, "radial_velocity", TD_OUT_RETAINERS, F64, "m/s", "(N, n_ret)", "vr_ret%d", NULL),
+    SERIES(TD_OUT_RET_WHIRL_ANGLE, "whirl_angle", TD_OUT_RETAINERS, F64, "rad", "(N, n_ret)", "theta_ret%d", NULL),
+    SERIES(TD_OUT_RET_NORMAL_FORCE, "normal_force", TD_OUT_RETAINERS, F64, "N", "(N, n_ret)", "N_ret%d", NULL),
+    SERIES(TD_OUT_RET_FRICTION_FORCE, "friction_force", TD_OUT_RETAINERS, F64, "N", "(N, n_ret)", "Ff_ret%d", NULL),
+    SERIES(TD_OUT_RET_SLIDING_VELOCITY, "sliding_velocity", TD_OUT_RETAINERS, F64, "m/s", "(N, n_ret)", "vs_ret%d",
+           NULL),
+    SERIES(TD_OUT_RET_CONTACT_STATE, "contact_state", TD_OUT_RETAINERS, I8, "1", "(N, n_ret)", "contact_ret%d", "-"),
+    SERIES(TD_OUT_RET_RACE_X, "race_x", TD_OUT_RETAINERS, F64, "m", "(N, n_ret)", "xr_ret%d", NULL),
+    SERIES(TD_OUT_RET_RACE_Y, "race_y", TD_OUT_RETAINERS, F64, "m", "(N, n_ret)", "yr_ret%d", NULL),
+    SERIES(TD_OUT_RET_RACE_SPEED, "race_speed", TD_OUT_RETAINERS, F64, "rad/s", "(N, n_ret)", "wr_ret%d", NULL),
+    SERIES(TD_OUT_RET_ROLLING, "rolling", TD_OUT_RETAINERS, I8, "1", "(N, n_ret)", "rolling_ret%d", "-"),
+    SERIES(TD_OUT_RET_WHIRL_RATE, "whirl_rate", TD_OUT_RETAINERS, F64, "rad/s", "(N, n_ret)", "dtheta_ret%d", NULL),
+    DATA(TD_OUT_RETAINER, "retainer", TD_OUT_RETAINERS, H5RUN, I32, "retainer index", "(n_ret)"),
+    SERIES(TD_OUT_AMB_FORCE, "force", TD_OUT_AMBS, F64, "N", "(N, n_amb, 2)", "F%s_amb%d", NULL),
+    DATA(TD_OUT_AMB, "amb", TD_OUT_AMBS, H5RUN, I32, "AMB index", "(n_amb)"),
+    DATA(TD_OUT_EVENTS, "events", TD_OUT_ROOT, H5RUN, COMPOUND,
+         "time: s; radial_velocity_*, tangential_velocity_*: m/s; impulse: N s; normal_force, peak_normal_force: N",
+         "(E)"),
+    DATA(TD_OUT_EVENT, "event", TD_OUT_ROOT, H5RUN, I64, "1 (row number of /events)", "(E)"),
+    /* ---- run file: the events ---- */
+    FIELD(TD_OUT_EV_TIME, "time", F64, "s", "t", NULL),
+    FIELD(TD_OUT_EV_KIND, "kind", ENUM, "", NULL, "-"),
+    [TD_OUT_EV_KIND_NAME] = {"kind_name", TD_OUT_EVENTS, TD_OUT_CSV_ONLY, CSVRUN, TD_OUT_TEXT, "", "(E)", NULL, NULL},
+    FIELD(TD_OUT_EV_RETAINER, "retainer", I32, "", NULL, "-"),
+    FIELD(TD_OUT_EV_CHANGE, "change", I32, "", NULL, "-"),
+    FIELD(TD_OUT_EV_SAMPLE, "sample", I64, "", NULL, "-"),
+    FIELD(TD_OUT_EV_RADIAL_VELOCITY_BEFORE, "radial_velocity_before", F64, "m/s", "vr_before", NULL),
+    FIELD(TD_OUT_EV_RADIAL_VELOCITY_AFTER, "radial_velocity_after", F64, "m/s", "vr_after", NULL),
+    FIELD(TD_OUT_EV_TANGENTIAL_VELOCITY_BEFORE, "tangential_velocity_before", F64, "m/s", "vt_before", NULL),
+    FIELD(TD_OUT_EV_TANGENTIAL_VELOCITY_AFTER, "tangential_velocity_after", F64, "m/s", "vt_after", NULL),
+    FIELD(TD_OUT_EV_IMPULSE, "impulse", F64, "N s", NULL, NULL),
+    FIELD(TD_OUT_EV_NORMAL_FORCE, "normal_force", F64, "N", "N", NULL),
+    FIELD(TD_OUT_EV_PEAK_NORMAL_FORCE, "peak_normal_force", F64, "N", "peak_N", NULL),
+    /* ---- attributes of datasets and groups ---- */
+    ATTR(TD_OUT_UNITS, "units", SEVERAL, H5RUN | MODAL | SWEEP, TEXT, "", "scalar"),
+    ATTR(TD_OUT_COUNT, "count", SEVERAL, H5RUN, I32, "", "scalar"),
+    ATTR(TD_OUT_NODES_ATTR, "nodes", TD_OUT_NODE_DISPLACEMENT, H5RUN, I32, "", "(n_nodes)"),
+    ATTR(TD_OUT_COMPONENTS, "components", SEVERAL, H5RUN, TEXT, "", "scalar"),
+    ATTR(TD_OUT_KIND_NAMES, "kind_names", TD_OUT_EVENTS, H5RUN, TEXT, "", "scalar"),
+    /* ---- root attributes shared by the files ---- */
+    ATTR(TD_OUT_COMPLETE, "complete", TD_OUT_ROOT, RUN | SWEEP, I32, "", "scalar"),
+    ATTR(TD_OUT_INCOMPLETE_REASON, "incomplete_reason", TD_OUT_ROOT, RUN | SWEEP, TEXT, "", "scalar"),
+    ATTR(TD_OUT_CASE_TEXT, "case_text", TD_OUT_ROOT, RUN | MODAL | SWEEP, TEXT, "", "scalar"),
+    ATTR(TD_OUT_LIBRARY_VERSION, "library_version", TD_OUT_ROOT, RUN | SWEEP, TEXT, "", "scalar"),
+    /* ---- run file: root attributes ---- */
+    RUN_ATTR(TD_OUT_STATUS, "status", TEXT, ""),
+    RUN_ATTR(TD_OUT_SAMPLE_RATE, "sample_rate", F64, "Hz"),
+    RUN_ATTR(TD_OUT_T_START, "t_start", F64, "s"),
+    RUN_ATTR(TD_OUT_T_END, "t_end", F64, "s"),
+    RUN_ATTR(TD_OUT_T_REACHED, "t_reached", F64, "s"),
+    RUN_ATTR(TD_OUT_MODEL_SPEED, "speed", F64, "rad/s"),
+    RET_ATTR(TD_OUT_RETAINER_NODES, "retainer_nodes", I64, ""),
+    RET_ATTR(TD_OUT_RETAINER_CLEARANCE, "retainer_clearance", F64, "m"),
+    RET_ATTR(TD_OUT_RETAINER_IMPULSE, "retainer_impulse", F64, "N s"),
+    RET_ATTR(TD_OUT_RETAINER_IMPACT_IMPULSE, "retainer_impact_impulse", F64, "N s"),
+    RET_ATTR(TD_OUT_RETAINER_FRICTION_WORK, "retainer_friction_work", F64, "J"),
+    RET_ATTR(TD_OUT_RETAINER_PEAK_HOUSING_FORCE, "retainer_peak_housing_force", F64, "N"),
+    RET_ATTR(TD_OUT_RETAINER_PEAK_NORMAL_FORCE, "retainer_peak_normal_force", F64, "N"),
+    RET_ATTR(TD_OUT_RETAINER_CONTACT_TIME, "retainer_contact_time", F64, "s"),
+    RET_ATTR(TD_OUT_RETAINER_ROLLING_TIME, "retainer_rolling_time", F64, "s"),
+    RET_ATTR(TD_OUT_RETAINER_CONTACTS, "retainer_contacts", I64, ""),
+    RET_ATTR(TD_OUT_RETAINER_TOUCH_AND_GO, "retainer_touch_and_go", I64, ""),
+    ATTR(TD_OUT_AMB_NODES, "amb_nodes", TD_OUT_ROOT, RUN, I64, "", "(n_amb)"),
+    ATTR(TD_OUT_AMB_CAPACITY, "amb_capacity", TD_OUT_ROOT, RUN, F64, "N", "(n_amb)"),
+    RUN_ATTR(TD_OUT_STAT_STEPS, "steps", I64, ""),
+    RUN_ATTR(TD_OUT_STAT_RESIDUAL_EVALS, "residual_evals", I64, ""),
+    RUN_ATTR(TD_OUT_STAT_JACOBIAN_EVALS, "jacobian_evals", I64, ""),
+    RUN_ATTR(TD_OUT_STAT_LINEAR_SETUPS, "linear_setups", I64, ""),
+    RUN_ATTR(TD_OUT_STAT_NONLINEAR_ITERS, "nonlinear_iters", I64, ""),
+    RUN_ATTR(TD_OUT_STAT_ERROR_TEST_FAILS, "error_test_fails", I64, ""),
+    RUN_ATTR(TD_OUT_STAT_NONLINEAR_FAILS, "nonlinear_fails", I64, ""),
+    RUN_ATTR(TD_OUT_STAT_RESTARTS, "restarts", I64, ""),
+    RUN_ATTR(TD_OUT_STAT_EVENTS, "events", I64, ""),
+    RUN_ATTR(TD_OUT_STAT_CONTACT_ONSETS, "contact_onsets", I64, ""),
+    RUN_ATTR(TD_OUT_STAT_RELEASES, "releases", I64, ""),
+    RUN_ATTR(TD_OUT_STAT_PEAK_AMB, "peak_amb", I64, ""),
+    RUN_ATTR(TD_OUT_STAT_FLIGHT_STEPS, "flight_steps", I64, ""),
+    RUN_ATTR(TD_OUT_STAT_WORST_DRIFT, "worst_drift", F64, "m"),
+    RUN_ATTR(TD_OUT_STAT_PEAK_NORMAL_FORCE, "peak_normal_force", F64, "N"),
+    RUN_ATTR(TD_OUT_STAT_TIME_IN_CONTACT, "time_in_contact", F64, "s"),
+    RUN_ATTR(TD_OUT_STAT_FIRST_CONTACT_TIME, "first_contact_time", F64, "s"),
+    RUN_ATTR(TD_OUT_STAT_WALL_TIME, "wall_time", F64, "s"),
+    RUN_ATTR(TD_OUT_STAT_PEAK_AMB_FORCE, "peak_amb_force", F64, "N"),
+    RUN_ATTR(TD_OUT_STAT_PEAK_AMB_LOAD, "peak_amb_load", F64, "1"),
+    RUN_ATTR(TD_OUT_STAT_PEAK_AMB_TIME, "peak_amb_time", F64, "s"),
+    RUN_ATTR(TD_OUT_STAT_FLIGHT_TIME, "flight_time", F64, "s"),
+    RUN_ATTR(TD_OUT_WARNINGS, "warnings", TEXT, ""),
+    RUN_ATTR(TD_OUT_SUM_FIRST_CONTACT_TIME, "summary_first_contact_time", F64, "s"),
+    RUN_ATTR(TD_OUT_SUM_LAST_CONTACT_TIME, "summary_last_contact_time", F64, "s"),
+    RUN_ATTR(TD_OUT_SUM_PEAK_NORMAL_FORCE, "summary_peak_normal_force", F64, "N"),
+    RUN_ATTR(TD_OUT_SUM_PEAK_HOUSING_FORCE, "summary_peak_housing_force", F64, "N"),
+    RUN_ATTR(TD_OUT_SUM_TOTAL_IMPULSE, "summary_total_impulse", F64, "N s"),
+    RUN_ATTR(TD_OUT_SUM_FRICTION_WORK, "summary_friction_work", F64, "J"),
+    RUN_ATTR(TD_OUT_SUM_FINAL_SPEED, "summary_final_speed", F64, "rad/s"),
+    RUN_ATTR(TD_OUT_SUM_ENDING_WHIRL_FREQUENCY, "summary_ending_whirl_frequency", F64, "Hz"),
+    RUN_ATTR(TD_OUT_SUM_ENDING_WINDOW, "summary_ending_window", F64, "s"),
+    RUN_ATTR(TD_OUT_SUM_CONTACT_TIME, "summary_contact_time", F64, "s"),
+    RUN_ATTR(TD_OUT_SUM_CONTACT_FRACTION, "summary_contact_fraction", F64, "1"),
+    RUN_ATTR(TD_OUT_SUM_FREE_WINDOW, "summary_free_window", F64, "s"),
+    RUN_ATTR(TD_OUT_SUM_REVOLUTIONS, "summary_revolutions", F64, ""),
+    RUN_ATTR(TD_OUT_SUM_REVOLUTIONS_AFTER_CONTACT, "summary_revolutions_after_contact", F64, ""),
+    RUN_ATTR(TD_OUT_SUM_WALL_TIME, "summary_wall_time", F64, "s"),
+    RUN_ATTR(TD_OUT_SUM_SOLVER_WALL_TIME, "summary_solver_wall_time", F64, "s"),
+    RUN_ATTR(TD_OUT_SUM_WALL_TIME_PER_REVOLUTION, "summary_wall_time_per_revolution", F64, "s"),
+    RUN_ATTR(TD_OUT_SUM_REALTIME_FACTOR, "summary_realtime_factor", F64, "1"),
+    RUN_ATTR(TD_OUT_SUM_SAMPLES, "summary_samples", I64, ""),
+    RUN_ATTR(TD_OUT_SUM_GRID_SAMPLES, "summary_grid_samples", I64, ""),
+    RUN_ATTR(TD_OUT_SUM_EVENTS, "summary_events", I64, ""),
+    RUN_ATTR(TD_OUT_SUM_CONTACTS, "summary_contacts", I64, ""),
+    RUN_ATTR(TD_OUT_SUM_ENDING, "summary_ending", TEXT, ""),
+    RUN_ATTR(TD_OUT_SUM_FREE_AT_END, "summary_free_at_end", F64, ""),
+    RUN_ATTR(TD_OUT_SUM_RETURNED_TO_FREE_ORBIT, "summary_returned_to_free_orbit", F64, ""),
+    RUN_ATTR(TD_OUT_SUM_PEAK_NORMAL_FORCE_CONVERGES, "summary_peak_normal_force_converges", I64, ""),
+    RUN_ATTR(TD_OUT_SUM_ENERGY_KINETIC, "summary_energy_kinetic", F64, "J"),
+    RUN_ATTR(TD_OUT_SUM_ENERGY_ELASTIC, "summary_energy_elastic", F64, "J"),
+    RUN_ATTR(TD_OUT_SUM_ENERGY_INITIAL, "summary_energy_initial", F64, "J"),
+    RUN_ATTR(TD_OUT_SUM_ENERGY_EXTERNAL_WORK, "summary_energy_external_work", F64, "J"),
+    RUN_ATTR(TD_OUT_SUM_ENERGY_DRIVE_WORK, "summary_energy_drive_work", F64, "J"),
+    RUN_ATTR(TD_OUT_SUM_ENERGY_DAMPING_LOSS, "summary_energy_damping_loss", F64, "J"),
+    RUN_ATTR(TD_OUT_SUM_ENERGY_CONTACT_LOSS, "summary_energy_contact_loss", F64, "J"),
+    RUN_ATTR(TD_OUT_SUM_ENERGY_DRAG_LOSS, "summary_energy_drag_loss", F64, "J"),
+    RUN_ATTR(TD_OUT_SUM_ENERGY_IMPACT_LOSS, "summary_energy_impact_loss", F64, "J"),
+    RUN_ATTR(TD_OUT_SUM_ENERGY_RESIDUAL, "summary_energy_residual", F64, "J"),
+    RUN_ATTR(TD_OUT_SECTION_START, "section_start", F64, "s"),
+    RUN_ATTR(TD_OUT_SECTION_COUNT, "section_count", I64, ""),
+    RUN_ATTR(TD_OUT_SECTION_RETAINER, "section_retainer", I64, ""),
+    RUN_ATTR(TD_OUT_SECTION_CLEARANCE, "section_clearance", F64, "m"),
+    ATTR(TD_OUT_SECTION_TIME, "section_time", TD_OUT_ROOT, RUN, F64, "s", "(kept crossings)"),
+    ATTR(TD_OUT_SECTION_RADIUS, "section_radius", TD_OUT_ROOT, RUN, F64, "m", "(kept crossings)"),
+    /* ---- modal file ---- */
+    ATTR(TD_OUT_PRODUCER, "producer", TD_OUT_ROOT, MODAL, TEXT, "", "scalar"),
+    GROUP(TD_OUT_MODES, "modes", TD_OUT_ROOT, MODAL),
+    [TD_OUT_MODES_SPEED] = {"speed", TD_OUT_MODES, TD_OUT_ATTRIBUTE, MODAL, TD_OUT_F64, "rad/s", "scalar",
+                            "speed_rad_s", NULL},
+    ATTR(TD_OUT_MODES_SPEED_UNITS, "speed_units", TD_OUT_MODES, MODAL, TEXT, "", "scalar"),
+    MODE_TABLE(TD_OUT_MODES_, TD_OUT_MODES, "(modes)"),
+    DATA_CSV(TD_OUT_MODES_REAL_EIGENVALUES, "real_eigenvalues", TD_OUT_MODES, F64, "1/s", "(real roots)", "s_1_s"),
+    DATA_CSV(TD_OUT_MODES_SHAPE_X_RE, "shape_x_re", TD_OUT_MODES, F64, SHAPE_UNITS, "(modes, nodes)", "x_re"),
+    DATA_CSV(TD_OUT_MODES_SHAPE_X_IM, "shape_x_im", TD_OUT_MODES, F64, SHAPE_UNITS, "(modes, nodes)", "x_im"),
+    DATA_CSV(TD_OUT_MODES_SHAPE_Y_RE, "shape_y_re", TD_OUT_MODES, F64, SHAPE_UNITS, "(modes, nodes)", "y_re"),
+    DATA_CSV(TD_OUT_MODES_SHAPE_Y_IM, "shape_y_im", TD_OUT_MODES, F64, SHAPE_UNITS, "(modes, nodes)", "y_im"),
+    DATA(TD_OUT_MODES_MODE, "mode", TD_OUT_MODES, MODAL, I32, "mode number", "(modes)"),
+    DATA(TD_OUT_MODES_NODE_Z, "node_z", TD_OUT_MODES, MODAL, F64, "m", "(nodes)"),
+    DATA(TD_OUT_MODES_RETAINER_NODES, "retainer_nodes", TD_OUT_MODES, MODAL, I32, "node", "(n_ret)"),
+    DATA(TD_OUT_MODES_AMB_NODES, "amb_nodes", TD_OUT_MODES, MODAL, I32, "node", "(n_amb)"),
+    GROUP(TD_OUT_CAMPBELL, "campbell", TD_OUT_ROOT, MODAL),
+    MODE_TABLE(TD_OUT_CAMPBELL_, TD_OUT_CAMPBELL, "(speeds, branches)"),
+    DATA_CSV(TD_OUT_CAMPBELL_SPEED, "speed", TD_OUT_CAMPBELL, F64, "rad/s", "(speeds)", "speed_rad_s"),
+    DATA(TD_OUT_CAMPBELL_BRANCH, "branch", TD_OUT_CAMPBELL, MODAL, I32, "branch number (j-th lowest omega_d)",
+         "(branches)"),
+    ATTR(TD_OUT_CAMPBELL_LAYOUT, "layout", TD_OUT_CAMPBELL, MODAL, TEXT, "", "scalar"),
+    GROUP(TD_OUT_CRITICAL, "critical_speeds", TD_OUT_ROOT, MODAL),
+    DATA_CSV(TD_OUT_CRITICAL_SPEED, "speed", TD_OUT_CRITICAL, F64, "rad/s", "(critical speeds)", "speed_rad_s"),
+    DATA(TD_OUT_CRITICAL_FREQ_HZ, "freq_hz", TD_OUT_CRITICAL, MODAL, F64, "Hz", "(critical speeds)"),
+    DATA(TD_OUT_CRITICAL_ZETA, "zeta", TD_OUT_CRITICAL, MODAL, F64, "1", "(critical speeds)"),
+    DATA_CSV(TD_OUT_CRITICAL_SIGMA, "sigma", TD_OUT_CRITICAL, F64, "1/s", "(critical speeds)", "sigma_1_s"),
+    DATA(TD_OUT_CRITICAL_WHIRL, "whirl", TD_OUT_CRITICAL, MODAL, I32, "1: forward, -1: backward", "(critical speeds)"),
+    DATA(TD_OUT_CRITICAL_BRANCH, "branch", TD_OUT_CRITICAL, MODAL, I32, "index among modes of that whirl",
+         "(critical speeds)"),
+    GROUP(TD_OUT_HARMONIC, "harmonic", TD_OUT_ROOT, MODAL),
+    GROUP(TD_OUT_HARMONIC_I, "", TD_OUT_HARMONIC, MODAL),
+    [TD_OUT_HARMONIC_SPEED] = {"speed", TD_OUT_HARMONIC_I, TD_OUT_ATTRIBUTE, MODAL, TD_OUT_F64, "rad/s", "scalar",
+                               "speed_rad_s", NULL},
+    ATTR(TD_OUT_HARMONIC_SPEED_UNITS, "speed_units", TD_OUT_HARMONIC_I, MODAL, TEXT, "", "scalar"),
+    DATA_CSV(TD_OUT_HARMONIC_X_AMP, "x_amp", TD_OUT_HARMONIC_I, F64, "m", "(nodes)", "x_amp_m"),
+    DATA_CSV(TD_OUT_HARMONIC_X_PHASE, "x_phase", TD_OUT_HARMONIC_I, F64, "rad", "(nodes)", "x_phase_rad"),
+    DATA_CSV(TD_OUT_HARMONIC_Y_AMP, "y_amp", TD_OUT_HARMONIC_I, F64, "m", "(nodes)", "y_amp_m"),
+    DATA_CSV(TD_OUT_HARMONIC_Y_PHASE, "y_phase", TD_OUT_HARMONIC_I, F64, "rad", "(nodes)", "y_phase_rad"),
+    DATA_CSV(TD_OUT_HARMONIC_FORWARD, "forward", TD_OUT_HARMONIC_I, F64, "m", "(nodes)", "forward_m"),
+    DATA_CSV(TD_OUT_HARMONIC_BACKWARD, "backward", TD_OUT_HARMONIC_I, F64, "m", "(nodes)", "backward_m"),
+    DATA_CSV(TD_OUT_HARMONIC_MAJOR, "major", TD_OUT_HARMONIC_I, F64, "m", "(nodes)", "major_m"),
+    DATA_CSV(TD_OUT_HARMONIC_MINOR, "minor", TD_OUT_HARMONIC_I, F64, "m", "(nodes)", "minor_m"),
+    DATA(TD_OUT_HARMONIC_STATE_RE, "state_re", TD_OUT_HARMONIC_I, MODAL, F64, STATE_UNITS, "(states)"),
+    DATA(TD_OUT_HARMONIC_STATE_IM, "state_im", TD_OUT_HARMONIC_I, MODAL, F64, STATE_UNITS, "(states)"),
+    DATA(TD_OUT_HARMONIC_NODE, "node", TD_OUT_HARMONIC_I, MODAL, I32, "node number", "(nodes)"),
+    DATA(TD_OUT_HARMONIC_STATE, "state", TD_OUT_HARMONIC_I, MODAL, I32, "state index", "(states)"),
+    CSV_LINE(TD_OUT_MODAL_MODE_SHAPES, "mode_shapes", MODAL),
+    CSV_LINE(TD_OUT_MODAL_INDEX, "index", MODAL),
+    CSV_LINE(TD_OUT_MODAL_NODE, "node", MODAL),
+    /* ---- sweep table ---- */
+    [TD_OUT_SWEEP_POINT] = {"point", TD_OUT_ROOT, TD_OUT_DATASET, SWEEP, TD_OUT_I32, "", "(points)", NULL, "-"},
+    GROUP(TD_OUT_SWEEP_VARY, "vary", TD_OUT_ROOT, SWEEP),
+    ATTR(TD_OUT_SWEEP_KEY_SPEC, "spec", TD_OUT_SWEEP_VARY, SWEEP, TEXT, "", "scalar"),
+    ATTR(TD_OUT_SWEEP_KEY_AXIS, "axis", TD_OUT_SWEEP_VARY, SWEEP, I32, "", "scalar"),
+    ATTR(TD_OUT_SWEEP_KEY_ORIGIN, "origin", TD_OUT_SWEEP_VARY, SWEEP, TEXT, "", "scalar"),
+    COLUMN(TD_OUT_SWEEP_STATUS, "status", TEXT, ""),
+    COLUMN(TD_OUT_SWEEP_MESSAGE, "message", TEXT, ""),
+    COLUMN(TD_OUT_SWEEP_PEAK_HOUSING_FORCE, "peak_housing_force", F64, "N"),
+    COLUMN(TD_OUT_SWEEP_TOTAL_IMPULSE, "total_impulse", F64, "N s"),
+    COLUMN(TD_OUT_SWEEP_FRICTION_WORK, "friction_work", F64, "J"),
+    COLUMN(TD_OUT_SWEEP_CONTACT_TIME, "contact_time", F64, "s"),
+    COLUMN(TD_OUT_SWEEP_CONTACTS, "contacts", F64, "-"),
+    COLUMN(TD_OUT_SWEEP_FIRST_CONTACT_TIME, "first_contact_time", F64, "s"),
+    COLUMN(TD_OUT_SWEEP_ENDING, "ending", TEXT, ""),
+    COLUMN(TD_OUT_SWEEP_REGIME, "regime", TEXT, ""),
+    COLUMN(TD_OUT_SWEEP_ENDING_WHIRL_FREQUENCY, "ending_whirl_frequency", F64, "Hz"),
+    COLUMN(TD_OUT_SWEEP_RETURNED_TO_FREE_ORBIT, "returned_to_free_orbit", F64, "-"),
+    COLUMN(TD_OUT_SWEEP_SECTION_COUNT, "section_count", F64, "-"),
+    COLUMN(TD_OUT_SWEEP_SECTION_RADIUS_MIN, "section_radius_min", F64, "m"),
+    COLUMN(TD_OUT_SWEEP_SECTION_RADIUS_MAX, "section_radius_max", F64, "m"),
+    COLUMN(TD_OUT_SWEEP_SECTION_CLEARANCE, "section_clearance", F64, "m"),
+    COLUMN(TD_OUT_SWEEP_FINAL_SPEED, "final_speed", F64, "rad/s"),
+    COLUMN(TD_OUT_SWEEP_PEAK_AMB_LOAD, "peak_amb_load", F64, "1"),
+    COLUMN(TD_OUT_SWEEP_T_REACHED, "t_reached", F64, "s"),
+    COLUMN(TD_OUT_SWEEP_WARNINGS, "warnings", TEXT, ""),
+    COLUMN(TD_OUT_SWEEP_WALL_TIME, "wall_time", F64, "s"),
+    DATA(TD_OUT_SWEEP_SECTION_RADIUS, "section_radius", TD_OUT_ROOT, SWEEP, F64, "m", "(points, 64)"),
+    ATTR(TD_OUT_SWEEP_VARY_SPECS, "vary", TD_OUT_ROOT, SWEEP, TEXT, "", "scalar"),
+    ATTR(TD_OUT_SWEEP_SET, "set", TD_OUT_ROOT, SWEEP, TEXT, "", "scalar"),
+    CSV_LINE(TD_OUT_SWEEP_POINTS, "points", SWEEP),
+    CSV_LINE(TD_OUT_SWEEP_WITH, "with", SWEEP),
+    CSV_LINE(TD_OUT_SWEEP_FROM, "from", SWEEP),
+};
+
+const td_schema_entry *td_schema(td_out_id id)
+{
+    return (int)id >= 0 && id < TD_OUT_ID_COUNT ? &entries[id] : NULL;
+}
+
+const char *td_schema_csv(td_out_id id)
+{
+    const td_schema_entry *e = td_schema(id);
+    return !e ? NULL : e->csv ? e->csv : e->name;
+}
+
+const char *td_schema_csv_units(td_out_id id)
+{
+    const td_schema_entry *e = td_schema(id);
+    return !e ? NULL : e->csv_units ? e->csv_units : e->units;
+}
+
+const char *td_out_name(td_out_id id)
+{
+    const td_schema_entry *e = td_schema(id);
+    return e ? e->name : NULL;
+}
+
+const char *td_out_units(td_out_id id)
+{
+    const td_schema_entry *e = td_schema(id);
+    return e ? e->units : NULL;
+}
+
+const char *td_out_shape(td_out_id id)
+{
+    const td_schema_entry *e = td_schema(id);
+    return e ? e->shape : "";
+}
+
+td_out_place td_out_place_of(td_out_id id)
+{
+    const td_schema_entry *e = td_schema(id);
+    return e ? e->place : TD_OUT_GROUP;
+}
+
+td_out_type td_out_type_of(td_out_id id)
+{
+    const td_schema_entry *e = td_schema(id);
+    return e ? e->type : TD_OUT_NO_TYPE;
+}
+
+unsigned td_out_files(td_out_id id)
+{
+    const td_schema_entry *e = td_schema(id);
+    return e ? e->files : 0u;
+}
+
+td_out_id td_out_parent(td_out_id id)
+{
+    const td_schema_entry *e = td_schema(id);
+    return e ? e->parent : TD_OUT_ID_COUNT;
+}
+
+/* Append "/text" (no '/' at the start) to buf, which holds len characters; the new length. */
+static size_t append(char *buf, size_t n, size_t len, const char *text)
+{
+    int k = snprintf(buf + (len < n ? len : n - 1), len < n ? n - len : 1, "%s%s", len > 0 ? "/" : "", text);
+    return len + (size_t)(k > 0 ? k : 0);
+}
+
+/* The path of a group or dataset: its parents' names joined by '/', the root's "" left out. A
+ * group without a name of its own (/harmonic/I) takes `sub` as its name, *used set. */
+static size_t object_path(td_out_id id, const char *sub, int *used, char *buf, size_t n)
+{
+    const td_schema_entry *e = td_schema(id);
+    size_t len;
+    if (!e || id == TD_OUT_ROOT)
+        return 0;
+    len = object_path(e->parent, sub, used, buf, n);
+    if (e->name[0])
+        return append(buf, n, len, e->name);
+    *used = 1;
+    return append(buf, n, len, sub ? sub : "");
+}
+
+int td_out_path(td_out_id id, const char *sub, char *buf, size_t n)
+{
+    const td_schema_entry *e = td_schema(id);
+    char empty[1];
+    size_t len = 0;
+    int used = 0;
+    if (!buf || n == 0) {
+        buf = empty;
+        n = 1;
+    }
+    buf[0] = '\0';
+    if (!e)
+        return -1;
+    /* an attribute or field: its object's path (one on several objects: `sub` alone names it) */
+    if (e->place == TD_OUT_ATTRIBUTE || e->place == TD_OUT_FIELD || e->place == TD_OUT_CSV_ONLY)
+        id = e->parent;
+    if (id != TD_OUT_ID_COUNT)
+        len = object_path(id, sub, &used, buf, n);
+    if (!used && sub && *sub)
+        len = append(buf, n, len, sub);
+    return (int)len;
+}
