@@ -100,18 +100,6 @@ static td_status check_wraps(td_case_reader *r)
                            w->literal);
 }
 
-td_status td_cr_record_file(td_case *c, const char *path)
-{
-    char **files = realloc(c->files, (size_t)(c->file_count + 1) * sizeof *files);
-    if (!files)
-        return TD_ERR_NOMEM;
-    c->files = files;
-    if (!(files[c->file_count] = dup_string(path, strlen(path))))
-        return TD_ERR_NOMEM;
-    c->file_count++;
-    return TD_OK;
-}
-
 static td_case *case_new(const char *path)
 {
     td_case *c = calloc(1, sizeof *c);

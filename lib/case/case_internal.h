@@ -2,6 +2,20 @@
  * Case-file reader internals: the td_case record, the reader state shared by the section
  * readers, and the typed getters that turn libconfig settings into checked values with
  * "FILE:LINE: KEY: what is wrong" errors.
+ *
+ * The files of lib/case in layers, each calling only the layers below it (no call cycle between
+ * files; tests/style/call_cycles.py):
+ *   1. case_message.c   where a setting is, its key, user text made printable, the error format
+ *   2. case_value.c     typed getters of libconfig settings
+ *   3. case_text.c      reading files, @include expanded, wrapped literals, the files read
+ *   4. case_override.c  "KEY=VALUE" grafted into the parsed case (the value bounded by 3's scan)
+ *   5. case_site.c      model errors turned back into the settings they came from
+ *   6. case_schema.c    the generic reader of a group by its table (case_schema.h)
+ *   7. the tables: case_vary.c, case_shaft.c, case_parts.c, then case_options.c (the root table,
+ *      which names the others)
+ *   8. case_keys.c      every key of the tables, for the docs
+ *   9. case.c           td_case_load and the rest of touchdown/case.h
+ * A function two layers need lives in the lower one.
  */
 #ifndef TD_IO_CASE_INTERNAL_H
 #define TD_IO_CASE_INTERNAL_H
@@ -92,19 +106,7 @@ typedef enum td_cr_range {
     TD_CR_OPEN_UNIT = 4    /* (0, 1) */
 } td_cr_range;
 
-/* ---- text (case_text.c) ---------------------------------------------------------------- */
-/* Read a regular file of at most TD_CASE_MAX_FILE_SIZE bytes, rejecting binary data.
- * `shown` names the file in messages. TD_ERR_IO if unreadable, TD_ERR_PARSE if binary. */
-td_status td_cr_read_file(const char *shown, const char *path, char **text, td_error *err);
-/* Add `path` to the case's list of files read (td_case_files); TD_ERR_NOMEM on failure. */
-td_status td_cr_record_file(td_case *c, const char *path);
-/* Append `text` (the file libconfig calls `file`, NULL for the main file) to `out` with every
- * @include expanded in place, and record integer literals libconfig would wrap. */
-td_status td_cr_expand(td_case_reader *r, const char *text, const char *file, int depth, td_text *out);
-/* Scan one value string (an override) for literals libconfig would wrap; returns 1 if found. */
-int td_cr_value_wraps(const char *text, char *literal, size_t n);
-
-/* ---- locations and getters (case_value.c) ------------------------------------------------ */
+/* ---- 1. locations and messages (case_message.c) ---------------------------------------- */
 /* User text (a string value, an override, a file name) made fit to quote in a one-line message:
  * control characters become \n, \t, \r or \xHH (so no raw ESC reaches a terminal), and text
  * longer than the buffer is cut with "...". Writes at most n bytes (n >= 8) to buf; returns buf.
@@ -131,6 +133,10 @@ td_status td_cr_fail_file(td_error *err, td_status code, const char *shown, int 
     __attribute__((format(printf, 5, 6)))
 #endif
     ;
+/* The entry of the case's "overrides" list whose string is `ov`, or NULL (a --set). */
+const config_setting_t *td_cr_file_override(const td_case_reader *r, const char *ov);
+
+/* ---- 2. typed getters (case_value.c) ---------------------------------------------------- */
 /* A quantity derived from setting s (`what`, e.g. "the time constant tau = 1 / (2 pi bandwidth)"):
  * fail naming s when it overflowed to infinity or is NaN. */
 td_status td_cr_derived(td_case_reader *r, const config_setting_t *s, double value, const char *what);
@@ -169,7 +175,25 @@ td_status td_cr_reals(td_case_reader *r, const config_setting_t *g, const char *
 td_status td_cr_ints(td_case_reader *r, const config_setting_t *g, const char *key, int max, long lo, long hi, int *out,
                      int *n);
 
-/* ---- model errors located (case_site.c) --------------------------------------------------- */
+/* ---- 3. text (case_text.c) ------------------------------------------------------------- */
+/* Read a regular file of at most TD_CASE_MAX_FILE_SIZE bytes, rejecting binary data.
+ * `shown` names the file in messages. TD_ERR_IO if unreadable, TD_ERR_PARSE if binary. */
+td_status td_cr_read_file(const char *shown, const char *path, char **text, td_error *err);
+/* Add `path` to the case's list of files read (td_case_files); TD_ERR_NOMEM on failure. */
+td_status td_cr_record_file(td_case *c, const char *path);
+/* Append `text` (the file libconfig calls `file`, NULL for the main file) to `out` with every
+ * @include expanded in place, and record integer literals libconfig would wrap. */
+td_status td_cr_expand(td_case_reader *r, const char *text, const char *file, int depth, td_text *out);
+/* Scan one value string (an override) for literals libconfig would wrap; returns 1 if found. */
+int td_cr_value_wraps(const char *text, char *literal, size_t n);
+
+/* ---- 4. overrides (case_override.c) ------------------------------------------------------ */
+/* Apply one "KEY=VALUE" string to the parsed configuration. */
+td_status td_cr_apply_override(td_case_reader *r, const char *ov);
+/* The case's own list `overrides = ( "KEY=VALUE", ... )`, applied in order before the --set ones. */
+td_status td_cr_apply_file_overrides(td_case_reader *r);
+
+/* ---- 5. model errors located (case_site.c) ----------------------------------------------- */
 /* Re-word an error of a td_model_* call made for entry (or group) g with the location of the
  * setting it came from: the member of g named by the error's field (touchdown/error.h), else g. */
 td_status td_cr_model_fail(td_case_reader *r, const config_setting_t *g, td_status st, const td_error *merr);
@@ -178,16 +202,9 @@ td_status td_cr_model_fail(td_case_reader *r, const config_setting_t *g, td_stat
  * with its location; "FILE: message" when it names no part of the case. */
 td_status td_cr_validate_fail(td_case_reader *r, const td_error *merr);
 
-/* ---- overrides (case_override.c) --------------------------------------------------------- */
-/* Apply one "KEY=VALUE" string to the parsed configuration. */
-td_status td_cr_apply_override(td_case_reader *r, const char *ov);
-/* The case's own list `overrides = ( "KEY=VALUE", ... )`, applied in order before the --set ones. */
-td_status td_cr_apply_file_overrides(td_case_reader *r);
-/* The entry of the case's "overrides" list whose string is `ov`, or NULL (a --set). */
-const config_setting_t *td_cr_file_override(const td_case_reader *r, const char *ov);
-
-/* ---- sections (case_schema.h: the tables; case_shaft.c, case_vary.c: readers of their own) ---- */
-/* The names of td_contact_damping, in its order (the run's and the retainers' contact groups). */
+/* ---- 7. group tables: what other files use (the rest: case_schema.h) -------------------- */
+/* The names of td_contact_damping, in its order (case_parts.c: the run's and the retainers'
+ * contact groups). */
 #define TD_CR_DAMPING_NAMES 3
 extern const char *const td_cr_damping_names[TD_CR_DAMPING_NAMES];
 

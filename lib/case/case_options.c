@@ -27,7 +27,6 @@ typedef struct gravity_rec {
 
 static const char *const start_names[] = {"orbit", "rest", "auto"}; /* td_start order */
 static const char *const contact_names[] = {"constraint", "penalty"};
-const char *const td_cr_damping_names[TD_CR_DAMPING_NAMES] = {"none", "hunt-crossley", "kelvin-voigt"};
 static const char *const linsol_names[] = {"klu", "dense"};
 
 /* Fail at member `key` of g when it is there (its line), else at g naming the key. */

@@ -40,17 +40,6 @@ static td_status fail_override(td_case_reader *r, td_status code, const char *ov
     return td_error_set_reason(r->err, code, where, what);
 }
 
-const config_setting_t *td_cr_file_override(const td_case_reader *r, const char *ov)
-{
-    int i, n = r->overrides ? config_setting_length(r->overrides) : 0;
-    for (i = 0; i < n; i++) {
-        const config_setting_t *e = config_setting_get_elem(r->overrides, (unsigned)i);
-        if (config_setting_get_string(e) == ov)
-            return e;
-    }
-    return NULL;
-}
-
 td_status td_cr_apply_file_overrides(td_case_reader *r)
 {
     const config_setting_t *list = config_setting_get_member(config_root_setting(&r->cfg), "overrides");

@@ -17,6 +17,9 @@
 
 #include "touchdown/dofs.h"
 
+/* Here, in the lower of the two files whose tables use them (case_options.c: the run's contact). */
+const char *const td_cr_damping_names[TD_CR_DAMPING_NAMES] = {"none", "hunt-crossley", "kelvin-voigt"};
+
 /* The first member of g among the NULL-terminated keys, or NULL. */
 static const config_setting_t *first_of(const config_setting_t *g, const char *const *keys)
 {

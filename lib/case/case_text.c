@@ -1,6 +1,7 @@
 /*
- * Case-file text: reading files safely (regular files only, size limit, no binary data),
- * expanding @include in place for td_case_text, and two guards against libconfig 1.5 defects
+ * Case-file text: reading files safely (regular files only, size limit, no binary data) and
+ * keeping the list of files read (td_case_files), expanding @include in place for td_case_text,
+ * and two guards against libconfig 1.5 defects
  * that its parser reports nowhere:
  *   - integer literals beyond 32 bits are silently wrapped (10000000000 reads as 1410065408);
  *   - an unterminated block comment silently drops the rest of the file.
@@ -78,6 +79,20 @@ td_status td_cr_read_file(const char *shown, const char *path, char **text, td_e
             line++;
     }
     *text = buf;
+    return TD_OK;
+}
+
+td_status td_cr_record_file(td_case *c, const char *path)
+{
+    size_t n = strlen(path);
+    char **files = realloc(c->files, (size_t)(c->file_count + 1) * sizeof *files);
+    if (!files)
+        return TD_ERR_NOMEM;
+    c->files = files;
+    if (!(files[c->file_count] = malloc(n + 1)))
+        return TD_ERR_NOMEM;
+    memcpy(files[c->file_count], path, n + 1);
+    c->file_count++;
     return TD_OK;
 }
 

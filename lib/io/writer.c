@@ -26,21 +26,6 @@ static const char partial_suffix[] = TD_IO_TEMP_SUFFIX;
 #define TEMP_TAG_LEN 6
 #define TEMP_ATTEMPTS 100
 
-const char *td_event_kind_name(td_event_kind kind)
-{
-    switch (kind) {
-    case TD_EVENT_CONTACT_ONSET: return "contact_onset";
-    case TD_EVENT_RELEASE: return "release";
-    case TD_EVENT_FRICTION_REVERSAL: return "friction_reversal";
-    case TD_EVENT_SCHEDULE: return "schedule";
-    case TD_EVENT_PENALTY_ENTER: return "penalty_enter";
-    case TD_EVENT_PENALTY_EXIT: return "penalty_exit";
-    case TD_EVENT_ROLL_START: return "roll_start";
-    case TD_EVENT_ROLL_END: return "roll_end";
-    }
-    return "unknown";
-}
-
 int td_writer_events_path(const char *csv_path, char *buf, size_t n)
 {
     static const char ext[] = ".csv";
@@ -271,23 +256,6 @@ td_status td_io_fsync_path(const char *path, td_error *err)
     if (close(fd) != 0 || rc != 0)
         return td_error_set(err, TD_ERR_IO, "%s: flush to disk failed: %s", path, strerror(errno));
     return TD_OK;
-}
-
-td_status td_io_fail(td_error *err, const char *path, const char *what)
-{
-    return td_error_set(err, TD_ERR_IO, "%s: %s: %s", path, what, errno ? strerror(errno) : "write error");
-}
-
-int td_io_close_stream(FILE **f)
-{
-    int rc = 0;
-    if (*f) {
-        rc |= fflush(*f) != 0;
-        rc |= ferror(*f) != 0;
-        rc |= fclose(*f) != 0;
-        *f = NULL;
-    }
-    return rc;
 }
 
 /* ---- open / free ------------------------------------------------------------------------- */

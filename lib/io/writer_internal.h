@@ -103,6 +103,7 @@ td_status td_io_write_named_file(const char *path,
 /** Flush a closed file's data to disk (fsync); TD_ERR_IO on failure. */
 td_status td_io_fsync_path(const char *path, td_error *err);
 
+/* ---- io_common.c, below writer.c and the back ends ---- */
 /** TD_ERR_IO "PATH: WHAT: CAUSE", the cause strerror(errno) ("write error" when errno is 0). */
 td_status td_io_fail(td_error *err, const char *path, const char *what);
 
