@@ -31,6 +31,18 @@ USED = frozenset("Uwv")
 DEFINED = frozenset("TDBRCGSVWui")
 
 
+def cmake_source_dir(build):
+    """The source tree of a CMake build (CMakeCache.txt's CMAKE_HOME_DIRECTORY), or None."""
+    try:
+        with open(os.path.join(build, "CMakeCache.txt")) as cache:
+            for line in cache:
+                if line.startswith("CMAKE_HOME_DIRECTORY:"):
+                    return line.split("=", 1)[1].strip()
+    except OSError:
+        pass
+    return None
+
+
 def object_files(build, target, prefix):
     """{source path: object path} of TARGET's objects under BUILD_DIR whose source is under PREFIX.
     Raises SystemExit(2) when the target's folder is missing or found twice."""
@@ -45,6 +57,7 @@ def object_files(build, target, prefix):
                          % (len(homes) or "no", target, build,
                             "".join("\n  " + h for h in homes)))
         raise SystemExit(2)
+    source_dir = cmake_source_dir(build)
     objects = {}
     for here, dirs, files in os.walk(homes[0]):
         dirs.sort()
@@ -53,7 +66,9 @@ def object_files(build, target, prefix):
                 if name.endswith(suffix):
                     path = os.path.join(here, name)
                     source = os.path.relpath(path, homes[0])[: -len(suffix)]
-                    if source.startswith(prefix.rstrip("/") + "/"):
+                    # an object left by a source since moved or removed is not the target's
+                    gone = source_dir and not os.path.exists(os.path.join(source_dir, source))
+                    if source.startswith(prefix.rstrip("/") + "/") and not gone:
                         objects[source] = path
     if not objects:
         sys.stderr.write("call_cycles: no object file of a source under %s in %s\n"

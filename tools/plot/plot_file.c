@@ -15,17 +15,6 @@ static int bad(const char *path, const char *msg, int code)
     return code;
 }
 
-int plot_bad_part(const char *path, const char *before, td_out_id id, const char *after)
-{
-    char where[256] = "/";
-    if (td_out_place_of(id) == TD_OUT_ATTRIBUTE) /* an attribute by its name, an object by its path */
-        snprintf(where, sizeof where, "%s", td_out_name(id));
-    else
-        td_out_path(id, NULL, where + 1, sizeof where - 1);
-    fprintf(stderr, "touchdown plot: %s: %s%s%s\n", path, before, where, after);
-    return PLOT_BAD_INPUT;
-}
-
 /* ---- names and titles ---------------------------------------------------------------------- */
 
 static void make_stem(const char *path, char *stem, size_t n)
