@@ -21,9 +21,9 @@
  * TD_FUZZ_VERBOSE=1 prints the journal's own messages (silenced otherwise).
  * Build and run: FUZZ_TARGET=journal scripts/fuzz.sh SECONDS (fuzz/README.md).
  */
-#include "cli.h"
+#include "common/cli.h"
 #include "fuzz_util.h"
-#include "sweep_journal.h"
+#include "sweep/sweep_journal.h"
 
 #include <stdio.h>
 #include <stdlib.h>

@@ -16,7 +16,7 @@
  * Build and run: FUZZ_TARGET=plot scripts/fuzz.sh SECONDS (fuzz/README.md).
  */
 #include "fuzz_util.h"
-#include "plot.h"
+#include "plot/plot.h"
 
 #include <math.h>
 #include <stdio.h>

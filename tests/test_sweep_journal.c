@@ -9,8 +9,8 @@
  */
 #include "td_test.h"
 
-#include "cli.h"
-#include "sweep_journal.h"
+#include "common/cli.h"
+#include "sweep/sweep_journal.h"
 
 #include <stdio.h>
 #include <stdlib.h>

@@ -2,8 +2,8 @@
  * touchdown - simulate flexible rotors on active magnetic bearings through retainer contact.
  * This file only dispatches to the subcommands.
  */
-#include "cli.h"
-#include "sweep_mpi.h"
+#include "common/cli.h"
+#include "sweep/sweep_mpi.h"
 
 #include <string.h>
 

@@ -8,7 +8,7 @@
  * shared machine the load changes from one minute to the next, not between two neighbouring runs.
  * Method and results: docs/performance.md.
  */
-#include "cli.h"
+#include "common/cli.h"
 #include "touchdown/dofs.h"
 #include "touchdown/job.h"
 #include "touchdown/json.h"

@@ -1,5 +1,5 @@
 /* Helpers shared by the subcommands: overrides, case loading, error lines, exit codes. */
-#include "cli.h"
+#include "common/cli.h"
 
 #include <stdarg.h>
 #include <string.h>

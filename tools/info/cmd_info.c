@@ -1,6 +1,6 @@
 /* touchdown info: what a case describes, and its first modes. */
-#include "cli.h"
-#include "modal_print.h"
+#include "common/cli.h"
+#include "modal/modal_print.h"
 
 #include <getopt.h>
 #include <stdlib.h>

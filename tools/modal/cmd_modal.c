@@ -1,6 +1,6 @@
 /* touchdown modal: modes, Campbell diagram, critical speeds and unbalance response of a case. */
-#include "cli.h"
-#include "modal_print.h"
+#include "common/cli.h"
+#include "modal/modal_print.h"
 
 #include <getopt.h>
 #include <stdlib.h>

@@ -1,5 +1,5 @@
 /* Printing of modal results shared by `touchdown modal` and `touchdown info`. */
-#include "modal_print.h"
+#include "modal/modal_print.h"
 
 #include <math.h>
 

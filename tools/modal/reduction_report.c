@@ -3,7 +3,7 @@
  * `touchdown info` for a case with a `reduction` group: the vibration modes below the cut-off and
  * the steady unbalance response at the retainer and AMB nodes, each full vs reduced.
  */
-#include "modal_print.h"
+#include "modal/modal_print.h"
 
 #include "touchdown/sim.h"
 

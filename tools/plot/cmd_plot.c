@@ -1,7 +1,7 @@
 /* touchdown plot: figures (PNG or SVG, through gnuplot scripts kept for editing) from the HDF5
  * files of 'touchdown run' and 'touchdown modal'. The work is in plot_*.c (plot.h). */
-#include "cli.h"
-#include "plot.h"
+#include "common/cli.h"
+#include "plot/plot.h"
 
 #include <getopt.h>
 #include <math.h>

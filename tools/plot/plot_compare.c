@@ -4,7 +4,7 @@
  *               colour per file, the legend from the file names
  * It reuses the PREFIXretainerN.dat data files written for each file's own figures.
  */
-#include "plot.h"
+#include "plot/plot.h"
 
 #include <math.h>
 #include <string.h>

@@ -1,6 +1,6 @@
 /* touchdown plot: a simulation or modal result file (docs/output-format.md, lib/io/modal_writer.c)
  * loaded into memory, simulation samples cut to the time window. */
-#include "plot.h"
+#include "plot/plot.h"
 #include "touchdown/modal.h"
 
 #include <errno.h>

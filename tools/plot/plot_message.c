@@ -3,7 +3,7 @@
  * schema (touchdown/result.h): shared by the run, modal and sweep loaders (plot_file.c,
  * plot_sweep_load.c), below both.
  */
-#include "plot.h"
+#include "plot/plot.h"
 
 #include <stdio.h>
 

@@ -5,7 +5,7 @@
  *   PREFIXmode-shapes  lateral mode shapes of the first modes along the rotor
  * with the data files PREFIXcampbell.dat, PREFIXcritical.dat and PREFIXmode-shapes.dat.
  */
-#include "plot.h"
+#include "plot/plot.h"
 #include "touchdown/dofs.h"
 
 #include <math.h>

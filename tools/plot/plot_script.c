@@ -1,5 +1,5 @@
 /* touchdown plot: output directory, data and script files, and running gnuplot on the scripts. */
-#include "plot.h"
+#include "plot/plot.h"
 
 #include <errno.h>
 #include <fcntl.h>

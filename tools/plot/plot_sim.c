@@ -5,7 +5,7 @@
  *   PREFIXamb-forces       AMB forces against time
  * with the data files PREFIXretainerN.dat, PREFIXcontactsN.dat and PREFIXambs.dat.
  */
-#include "plot.h"
+#include "plot/plot.h"
 #include "touchdown/output.h" /* td_event_kind_name */
 
 #include <math.h>

@@ -8,7 +8,7 @@
  *                         the clearance dashed: the classic bifurcation diagram
  * with the data files of the same names (.dat).
  */
-#include "plot.h"
+#include "plot/plot.h"
 
 #include "touchdown/run.h"
 

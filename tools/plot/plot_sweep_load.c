@@ -4,7 +4,7 @@
  * each point's regime from /regime, its once-per-revolution section radii from /section_radius
  * (point x 64, NaN-padded) and the sampled retainer's clearance from /section_clearance.
  */
-#include "plot.h"
+#include "plot/plot.h"
 
 #include "touchdown/run.h"
 

@@ -1,5 +1,5 @@
 /* touchdown run: a case file to HDF5/CSV plus a summary. */
-#include "cli.h"
+#include "common/cli.h"
 #include "touchdown/job.h"
 
 #include <getopt.h>

@@ -1,6 +1,6 @@
 /* touchdown sweep: run a case over a grid of key values in parallel, one summary row per point. */
-#include "cli.h"
-#include "sweep_mpi.h"
+#include "common/cli.h"
+#include "sweep/sweep_mpi.h"
 #include "touchdown/json.h"
 #include "touchdown/sweep.h"
 

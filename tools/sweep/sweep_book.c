@@ -3,7 +3,7 @@
  * an MPI run) hands out the points here, one at a time and never one twice, keeps each row as it
  * arrives, and counts what the progress line and the summary say.
  */
-#include "sweep_book.h"
+#include "sweep/sweep_book.h"
 
 #include <stdio.h>
 

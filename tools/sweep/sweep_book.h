@@ -2,9 +2,9 @@
 #ifndef TD_TOOLS_SWEEP_BOOK_H
 #define TD_TOOLS_SWEEP_BOOK_H
 
-#include "sweep_journal.h"
-#include "sweep_pool.h"
-#include "sweep_progress.h"
+#include "sweep/sweep_journal.h"
+#include "sweep/sweep_pool.h"
+#include "sweep/sweep_progress.h"
 
 /* Every point's row as it arrives, which point goes next, the counts and the progress line: one
  * per sweep, in the one process of a sweep or in rank 0 of an MPI run, which hands out the points

@@ -21,9 +21,9 @@
  * that no rank waits for another to record a row; rank 0 merges the parts into the table at the
  * end. A resume, with any number of ranks or none, reads the journal and every part of the sweep.
  */
-#include "sweep_journal.h"
+#include "sweep/sweep_journal.h"
 
-#include "cli.h"
+#include "common/cli.h"
 #include "touchdown/output.h"
 #include "touchdown/version.h"
 

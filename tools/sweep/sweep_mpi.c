@@ -20,9 +20,9 @@
  * and PMI ones such as MPICH's hydra or srun --mpi=pmi2 (PMI_RANK with PMI_SIZE). Without any of
  * them the tool never calls MPI_Init and runs exactly as it does when built without MPI.
  */
-#include "sweep_mpi.h"
+#include "sweep/sweep_mpi.h"
 
-#include "cli.h"
+#include "common/cli.h"
 
 #include <stdio.h>
 #include <stdlib.h>

@@ -2,7 +2,7 @@
 #ifndef TD_TOOLS_SWEEP_MPI_H
 #define TD_TOOLS_SWEEP_MPI_H
 
-#include "sweep_book.h"
+#include "sweep/sweep_book.h"
 #include "touchdown/output.h"
 
 #include <signal.h>

@@ -6,7 +6,7 @@
  * are handed out one at a time to whichever worker is free, because their costs differ by orders
  * of magnitude (a free orbit against a long rub).
  */
-#include "sweep_pool.h"
+#include "sweep/sweep_pool.h"
 
 #include <errno.h>
 #include <poll.h>

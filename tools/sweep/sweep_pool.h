@@ -2,7 +2,7 @@
 #ifndef TD_TOOLS_SWEEP_POOL_H
 #define TD_TOOLS_SWEEP_POOL_H
 
-#include "cli.h"
+#include "common/cli.h"
 #include "touchdown/sweep.h"
 
 /* Most worker processes (-j). */

@@ -6,7 +6,7 @@
  *
  *   sweep: 37/100 points, 4 running, 1 failed, ETA 1m20s
  */
-#include "sweep_progress.h"
+#include "sweep/sweep_progress.h"
 
 #include <stdio.h>
 #include <string.h>
