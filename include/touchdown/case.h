@@ -63,6 +63,12 @@ typedef struct td_case td_case;
  * TD_ERR_PARSE for a syntax error, an unknown, missing, mistyped or invalid key, a bad
  * override, or a case past the bounds of touchdown/limits.h; TD_ERR_NOMEM; TD_ERR_INVALID for
  * NULL path/out or n_overrides < 0.
+ *
+ * The optional `sweep` group is read for its shape only (known keys, types, values or a range),
+ * its entries kept as written (td_case_sweep_spec); the grid's rules (a range's points and
+ * spacing, log ends, zipped counts, limits) are judged by td_sweep_check_case (touchdown/sweep.h),
+ * which sits above the case reader: call it after td_case_load where a bad group must be refused,
+ * as the tool does for every command.
  */
 TD_API td_status td_case_load(const char *path, const char *const *overrides, int n_overrides, td_case **out,
                               td_error *err);

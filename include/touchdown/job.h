@@ -43,6 +43,8 @@ typedef struct td_job_settings {
  * A job of the case file at `path` loaded with `overrides` (td_case_load): its model, its settings
  * (td_case_sim_options, td_case_output_options, td_case_end_time) and its text, which the run
  * stores in its files. On failure *out is NULL and the status and `err` are td_case_load's.
+ * Like td_case_load it does not judge the case's `sweep` group, which a single run does not use:
+ * td_sweep_check_case(td_job_case(job), &err) refuses a bad one, as the tool does.
  */
 TD_API td_status td_job_create(const char *path, const char *const *overrides, int n_overrides, td_job **out,
                                td_error *err);

@@ -21,7 +21,7 @@
 /** Largest solver.atol as a fraction of the machine's smallest gap (a retainer's clearance or an
  *  AMB's air gap). Displacements are controlled to atol, and everything the run reports happens in
  *  the gap c - r: at 1e-3 the gap is resolved to 0.1 % of the clearance, as fine as the run resolves
- *  impacts (slower ones are plastic: 1e-3 of c times the bearing frequency, lib/sim/sim.c). An atol
+ *  impacts (slower ones are plastic: 1e-3 of c times the bearing frequency, lib/sim/setup.c). An atol
  *  of the order of the clearance lets the integrator step across contacts unchecked: forces grow
  *  without bound and the run stops progressing (the drop case at atol = 1e6 m advanced 2e-6 s in
  *  35 s of steps). */

@@ -17,8 +17,8 @@
  *   9. case.c           td_case_load and the rest of touchdown/case.h
  * A function two layers need lives in the lower one.
  */
-#ifndef TD_IO_CASE_INTERNAL_H
-#define TD_IO_CASE_INTERNAL_H
+#ifndef TD_CASE_INTERNAL_H
+#define TD_CASE_INTERNAL_H
 
 #include <libconfig.h>
 #include <stddef.h>
@@ -154,9 +154,10 @@ td_status td_cr_real(td_case_reader *r, const config_setting_t *g, const char *k
                      td_cr_range range, double *out);
 td_status td_cr_int(td_case_reader *r, const config_setting_t *g, const char *key, const char *what, int def, long lo,
                     long hi, int *out);
-/* A part's node number: an int; the model checks that the shaft has it. */
-td_status td_cr_node(td_case_reader *r, const config_setting_t *g, const char *key, const char *what, int def,
-                     int *out);
+/* The range of a node number the reader takes: any int; whether the shaft has that node is the
+ * model's rule (td_model_add_*, td_model_validate), stated once there. */
+#define TD_CR_ANY_INT_LO (-2147483647L)
+#define TD_CR_ANY_INT_HI 2147483647L
 td_status td_cr_bool(td_case_reader *r, const config_setting_t *g, const char *key, int def, int *out);
 td_status td_cr_string(td_case_reader *r, const config_setting_t *g, const char *key, const char *def,
                        const char **out);

@@ -75,7 +75,7 @@ static void key_range(const td_cs_key *k, char *buf, size_t n)
     const char *r = range_text(k->range != TD_CR_FINITE ? k->range : k->rule);
     if (k->doc_range)
         snprintf(buf, n, "%s", k->doc_range);
-    else if (k->type == TD_CS_INT && k->lo > -2147483647L && k->hi < 2147483647L)
+    else if (k->type == TD_CS_INT && k->lo > TD_CR_ANY_INT_LO && k->hi < TD_CR_ANY_INT_HI)
         snprintf(buf, n, "%ld..%ld", k->lo, k->hi);
     else if (k->type == TD_CS_REALS)
         snprintf(buf, n, "%s%sat most %ld", r, r[0] ? ", " : "", k->hi);

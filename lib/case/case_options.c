@@ -271,7 +271,8 @@ static td_status read_output_nodes(td_case_reader *r, const config_setting_t *g,
     td_output_options *o = rec;
     const config_setting_t *list;
     int i, j;
-    td_status st = td_cr_ints(r, g, k->key, TD_OUTPUT_MAX_NODES, -2147483647L, 2147483647L, o->nodes, &o->node_count);
+    td_status st =
+        td_cr_ints(r, g, k->key, TD_OUTPUT_MAX_NODES, TD_CR_ANY_INT_LO, TD_CR_ANY_INT_HI, o->nodes, &o->node_count);
     if (st != TD_OK)
         return st;
     list = config_setting_get_member(g, k->key);

@@ -96,7 +96,7 @@ static td_status add_disc(td_case_reader *r, const config_setting_t *g, void *re
     return added(r, g, td_model_add_disc(r->c->model, rec, &merr), &merr);
 }
 
-#define NODE_RANGE .lo = -2147483647L, .hi = 2147483647L /* any int: the model checks the shaft has it */
+#define NODE_RANGE .lo = TD_CR_ANY_INT_LO, .hi = TD_CR_ANY_INT_HI
 #define FORM .read = td_cs_elsewhere
 
 static const td_cs_key disc_keys[] = {
@@ -591,7 +591,7 @@ static td_status read_change_kind(td_case_reader *r, const config_setting_t *g, 
     if (!kind)
         return td_cr_missing(r, g, "unbalance", "what changes: unbalance = INDEX, amb_off = INDEX or amb_on = INDEX");
     /* an unbalance or AMB that exists: the model's rule (td_model_validate) */
-    st = td_cr_value_int(r, kind, -2147483647L, 2147483647L, &c->index);
+    st = td_cr_value_int(r, kind, TD_CR_ANY_INT_LO, TD_CR_ANY_INT_HI, &c->index);
     if (st != TD_OK || c->kind != TD_CHANGE_UNBALANCE)
         return st == TD_OK && (extra = first_of(g, unbalance_only)) != NULL
                    ? td_cr_fail(r, extra, NULL, "only an unbalance change takes a magnitude or phase")

@@ -93,8 +93,8 @@ td_status td_cs_read_record(td_case_reader *r, const config_setting_t *g, const 
 /* Reject members of g that t does not list ("unknown key", with the keys in table order). */
 td_status td_cs_check_keys(td_case_reader *r, const config_setting_t *g, const td_cs_table *t);
 
-/* The tables (case_tables_*.c). td_cs_root is the case file's top level: its groups and lists
- * name the others. */
+/* The tables (case_options.c, case_parts.c, case_shaft.c). td_cs_root is the case file's top level: its groups and
+ * lists name the others. */
 extern const td_cs_table td_cs_root;
 
 /* The groups read by case_options.c that the root table names. */

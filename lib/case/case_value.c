@@ -202,12 +202,6 @@ td_status td_cr_int(td_case_reader *r, const config_setting_t *g, const char *ke
     return td_cr_value_int(r, s, lo, hi, out);
 }
 
-td_status td_cr_node(td_case_reader *r, const config_setting_t *g, const char *key, const char *what, int def, int *out)
-{
-    /* any int: whether the shaft has that node is the model's rule (td_model_add_*, td_model_validate) */
-    return td_cr_int(r, g, key, what, def, -2147483647L, 2147483647L, out);
-}
-
 td_status td_cr_bool(td_case_reader *r, const config_setting_t *g, const char *key, int def, int *out)
 {
     const config_setting_t *s = config_setting_get_member(g, key);

@@ -4,8 +4,8 @@
  * the simulation's state (nodes, retainers, AMBs) and hands it to every writer, so the writers
  * themselves never see the solver.
  */
-#ifndef TD_IO_RECORDER_H
-#define TD_IO_RECORDER_H
+#ifndef TD_RUN_RECORDER_H
+#define TD_RUN_RECORDER_H
 
 #include "touchdown/model.h"
 #include "touchdown/options.h"

@@ -200,8 +200,8 @@ static void set_scales(td_sim *s)
         s->machine.freq_max = s->machine.freq_scale;
     /* contact constraints hold to a tenth of the displacement tolerance at every step */
     s->machine.constraint_tol = 0.1 * s->opt.solver.atol;
-    /* hysteresis of the onset root after a release or a bounce: a gap or penetration of a tenth of
-     * the displacement tolerance (the accuracy the constraint is held to) is not a new contact; far
+    /* hysteresis of the onset root after a release or a bounce: a gap or penetration within the
+     * displacement tolerance (ten times the accuracy the constraint is held to) is not a contact; far
      * above rounding (1e-19 m), so a rotor grazing the circle does not chatter */
     s->machine.rearm_eps = s->opt.solver.atol;
     /* impacts slower than 1e-3 of the typical impact speed c * freq_scale become plastic */

@@ -9,7 +9,7 @@
 #include <signal.h>
 #include <stdio.h>
 
-/* Exit codes (documented in --help and docs/cli.md). */
+/* Exit codes (documented in every command's --help). */
 enum {
     TD_EXIT_OK = 0,     /* success */
     TD_EXIT_FAILED = 1, /* the simulation or analysis failed (solver, numerics, interrupted, output) */
