@@ -353,6 +353,20 @@ static void test_case_group_errors(void **state)
         {"sweep = { vary = ( { values = [1.0]; } ); };", "sweep.vary[0].key", "missing", 0},
         {"sweep = { vary = ( { key = \"speed\"; values = [1.0]; step = 2; } ); };", "sweep.vary[0].step", "unknown", 0},
         {"sweep = { vary = ( { key = \"speed\"; values = [ ]; } ); };", "sweep.vary[0].values", "no values", 0},
+        /* the reader's order: the key, the values, the range, the spec, then the keys zipped on */
+        {"sweep = { vary = ( { key = 1; values = [1.0]; } ); };", "sweep.vary[0].key", "expected a string", 0},
+        {"sweep = { vary = ( { key = \"speed\"; from = \"a\"; to = 2.0; points = 2; } ); };", "sweep.vary[0].from",
+         "expected a number", 0},
+        {"sweep = { vary = ( { key = \"speed\"; from = 1.0; to = 2.0; points = 2.5; spacing = 1; } ); };",
+         "sweep.vary[0].points", "expected a whole number", 0},
+        {"sweep = { vary = ( { key = \"speed\"; from = 1.0; to = 2.0; points = 3; spacing = 1; } ); };",
+         "sweep.vary[0].spacing", "expected a string", 0},
+        {"sweep = { vary = ( { key = \"speed\"; values = (1.0, [2.0]); with = ( { key = \"end_time\"; values = 3; } ); "
+         "} ); };",
+         "sweep.vary[0].values[1]", "expected a number, true/false", 0},
+        {"sweep = { vary = ( { key = \"speed\"; values = [1.0, 2.0];\n with = ( { key = \"end_time\"; values = [1.0, "
+         "2.0]; with = ( ); } ); } ); };",
+         "sweep.vary[0].with[0].with", "unknown", 0},
     };
     char want[1100];
     size_t i;

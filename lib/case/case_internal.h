@@ -211,8 +211,6 @@ extern const char *const td_cr_damping_names[TD_CR_DAMPING_NAMES];
 
 /* The required `shaft` group by its table (case_shaft.c), with the element arrays it needs. */
 td_status td_cr_read_shaft(td_case_reader *r, const config_setting_t *root);
-/* The optional `sweep` group (case_vary.c): its shape checked, its specs kept as read. */
-td_status td_cr_read_sweep(td_case_reader *r, const config_setting_t *root);
 /* Free the case's sweep specs. */
 void td_cr_free_sweep(td_case *c);
 /* Spec i (0 <= i < td_case_sweep_specs(c)) of the case's `sweep` group as read, borrowed. */

@@ -577,13 +577,6 @@ static td_status read_shaft(td_case_reader *r, const config_setting_t *root, con
     return td_cr_read_shaft(r, root);
 }
 
-static td_status read_sweep(td_case_reader *r, const config_setting_t *root, const td_cs_key *k, void *rec)
-{
-    (void)k;
-    (void)rec;
-    return td_cr_read_sweep(r, root);
-}
-
 static void root_preset(void *rec)
 {
     td_case *c = rec;
@@ -752,7 +745,7 @@ static const td_cs_key root_keys[] = {
      .doc = "a Craig-Bampton reduced rotor, see [reduction](#reduction)"},
     {.key = "sweep",
      .type = TD_CS_GROUP,
-     .read = read_sweep,
+     .sub = &td_cs_sweep,
      .order = 21,
      .doc = "the keys `touchdown sweep` varies, see [sweep](#sweep); every command checks it, only `touchdown sweep` "
             "runs it"},

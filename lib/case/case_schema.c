@@ -74,6 +74,20 @@ static int int_default(const td_cs_key *k, const unsigned char *rec)
     return v;
 }
 
+/* A string member: the record's value (NULL, or its preset) when absent. */
+static td_status read_string(td_case_reader *r, const config_setting_t *g, const td_cs_key *k, unsigned char *rec)
+{
+    const char *v, *def;
+    td_status st;
+    memcpy(&def, rec + k->offset, sizeof def);
+    v = def;
+    st = td_cr_string(r, g, k->key, def, &v);
+    if (st == TD_OK && !v && k->need == TD_CS_REQUIRED)
+        return td_cr_missing(r, g, k->key, k->what);
+    memcpy(rec + k->offset, &v, sizeof v);
+    return st;
+}
+
 /* A group key: in the parent's record at its offset, or a record of its own. */
 static td_status read_group(td_case_reader *r, const config_setting_t *g, const td_cs_key *k, unsigned char *rec)
 {
@@ -131,7 +145,7 @@ static td_status read_key(td_case_reader *r, const config_setting_t *g, const td
         return st;
     case TD_CS_GROUP: return read_group(r, g, k, rec);
     case TD_CS_LIST: return read_list(r, g, k);
-    case TD_CS_STRING:
+    case TD_CS_STRING: return read_string(r, g, k, rec);
     case TD_CS_CUSTOM: return TD_OK; /* read with another key of the group */
     }
     return TD_OK;

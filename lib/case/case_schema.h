@@ -20,7 +20,7 @@ typedef enum td_cs_type {
     TD_CS_BOOL,   /* int, 0 or 1 */
     TD_CS_ENUM,   /* an enum (int-sized): the index of the string among `names` */
     TD_CS_PATH,   /* char[TD_OUTPUT_PATH_SIZE] */
-    TD_CS_STRING, /* a string (read by a custom reader) */
+    TD_CS_STRING, /* const char *: the setting's own text, valid while the file is read (a NULL default) */
     TD_CS_REALS,  /* double[hi] with its count (int) at `count_offset` */
     TD_CS_GROUP,  /* a group read by table `sub` (into the record at offset, or its own: sub->finish) */
     TD_CS_LIST,   /* a list of groups, each read by table `sub` into a record of its own */
@@ -104,5 +104,7 @@ extern const td_cs_table td_cs_discs, td_cs_point_masses, td_cs_ambs, td_cs_bear
     td_cs_schedule, td_cs_speed_ramp, td_cs_spin;
 /* The shaft (case_shaft.c). */
 extern const td_cs_table td_cs_shaft;
+/* The sweep (case_vary.c). */
+extern const td_cs_table td_cs_sweep;
 
 #endif
