@@ -10,6 +10,7 @@
 #include "touchdown/model.h"
 #include "touchdown/run.h"
 #include "touchdown/sim.h"
+#include "touchdown/sweep.h"
 
 #include <dirent.h>
 #include <errno.h>
@@ -753,6 +754,24 @@ static void dump_events(const td_model *m, char *buf, size_t n)
 /* Everything a case gives, as text: the model through its getters, the end time, the description
  * and the option records (their bytes: each is a plain record set field by field from its
  * td_*_options_default). */
+/* The sweep group as the grid it makes (td_sweep_grid_from_case): every point's overrides, not the
+ * specs' text, which keeps what was written (an explicit `spacing = "linear"`). */
+static void dump_sweep(const td_case *c, char *buf, size_t n)
+{
+    td_sweep_grid *g;
+    char ov[TD_SWEEP_KEY_SIZE + TD_SWEEP_VALUE_SIZE];
+    long p;
+    int k;
+    assert_int_equal(td_sweep_grid_create(&g, NULL), TD_OK);
+    assert_int_equal(td_sweep_grid_from_case(g, c, NULL), TD_OK);
+    for (p = 0; p < td_sweep_grid_points(g); p++)
+        for (k = 0; k < td_sweep_grid_keys(g); k++) {
+            td_sweep_grid_override(g, p, k, ov, sizeof ov);
+            dump_add(buf, n, "sweep point %ld axis %d %s\n", p, td_sweep_grid_axis(g, k), ov);
+        }
+    td_sweep_grid_free(&g);
+}
+
 static void dump_case(const td_case *c, char *buf, size_t n)
 {
     const unsigned char *rec[3];
@@ -768,6 +787,7 @@ static void dump_case(const td_case *c, char *buf, size_t n)
     dump_supports(td_case_model(c), buf, n);
     dump_events(td_case_model(c), buf, n);
     dump_add(buf, n, "end %a description \"%s\"\n", td_case_end_time(c), td_case_description(c));
+    dump_sweep(c, buf, n);
     for (i = 0; i < 3; i++) {
         dump_add(buf, n, "options %zu:", i);
         for (j = 0; j < size[i]; j++)
@@ -778,8 +798,8 @@ static void dump_case(const td_case *c, char *buf, size_t n)
 
 /* The base of test_documented_defaults: every group and list with a key that has a default, with
  * one entry (the retainers two: the second on a mount, which needs a race mass), each holding its
- * required keys only (radii of exact binary sums). Point masses, the speed ramp and the reduction have no
- * key with a default. */
+ * required keys only (radii of exact binary sums), and a sweep axis with a key zipped onto it.
+ * Point masses, the speed ramp and the reduction have no key with a default. */
 static const char documented_defaults_base[] =
     "shaft = { length = 2.0; elements = 12; outer_diameter = 0.05; rayleigh = {}; sections = ( { element = 2; } );\n"
     "  material = { E = 2.11e11; G = 8.1e10; density = 7810.0; }; };\n"
@@ -794,7 +814,9 @@ static const char documented_defaults_base[] =
     "unbalances = ( { node = 5; magnitude = 1.0e-4; } );\n"
     "schedule = ( { time = 0.05; unbalance = 0; magnitude = 2.0e-4; } );\n"
     "gravity = {};\nspin = {};\n"
-    "contact = {};\nsolver = {};\noutput = {};\nmodal = {};\n";
+    "contact = {};\nsolver = {};\noutput = {};\nmodal = {};\n"
+    "sweep = { vary = ( { key = \"speed\"; from = 100.0; to = 200.0; points = 3;\n"
+    "  with = ( { key = \"end_time\"; from = 0.1; to = 0.2; points = 3; } ); } ); };\n";
 
 /* Keys whose documented default is another key's value (of their entry, the unbalance they set, the
  * shaft), and that value in the base. */
@@ -833,15 +855,18 @@ static const char *documented_default_value(const td_case_key_info *k, char *buf
 }
 
 /* The override that writes `value` into the key of the base: a key of a list entry into the
- * entry (the first; a mount's, the second retainer's). */
+ * entry (the first; a mount's, the second retainer's; a zipped key's, the first of the first). */
 static void documented_default_override(const char *key, const char *value, char *buf, size_t n)
 {
     const char *entry = strncmp(key, "retainers[].mount.", 18) == 0 ? "[1]" : "[0]";
-    const char *q = strstr(key, "[]");
-    if (q)
-        snprintf(buf, n, "%.*s%s%s=%s", (int)(q - key), key, entry, q + 2, value);
-    else
-        snprintf(buf, n, "%s=%s", key, value);
+    const char *q;
+    size_t used = 0;
+    while ((q = strstr(key, "[]")) != NULL && used < n) {
+        used += (size_t)snprintf(buf + used, n - used, "%.*s%s", (int)(q - key), key, entry);
+        key = q + 2;
+    }
+    if (used < n)
+        snprintf(buf + used, n - used, "%s=%s", key, value);
 }
 
 /* Fail at the first line where two dumps differ. */
@@ -902,9 +927,9 @@ static void test_documented_defaults(void **state)
     print_message("documented defaults: %d keys checked; skipped: %d groups and lists, %d required, %d other\n", tried,
                   part, required, other);
     assert_int_equal(tried + part + required + other, td_case_key_count());
-    assert_int_equal(tried, 64);
-    assert_int_equal(part, 25);     /* their keys are checked */
-    assert_int_equal(required, 44); /* required, or one form's required key */
+    assert_int_equal(tried, 66);
+    assert_int_equal(part, 27);     /* their keys are checked */
+    assert_int_equal(required, 54); /* required, or one form's required key (a sweep entry's range or values) */
     /* an alternative with no default ("-": shaft.nodes, sections' element, schedule's unbalance,
      * amb_off, amb_on), "unknown" (an AMB's air gap), "all nodes", "none" (response speeds,
      * overrides), "the rotor's" (spin.inertia, kept as 0: td_spin) */
