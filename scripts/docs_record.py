@@ -208,6 +208,29 @@ def src_bench(tool, build):
     return data
 
 
+def src_scaling(tool, build):
+    """touchdown bench --scaling (docs/performance.md, "Scaling with the number of DOFs"): at the
+    library's solver defaults with IDA through the free flight too (the cost of a step against the
+    DOF count, KLU against dense; 3 repeats, medians), and once with case A's settings as shipped
+    (the paper's rtol 1e-9, BDF order <= 5, closed-form free flight: the step counts they give on
+    the refined rigs; one repeat, its cost is most of this source's)."""
+    data = stamp(tool, "scaling", "touchdown bench --scaling --json, at the library defaults and as shipped")
+    data["scaling"] = {}
+    sets = dict(library_defaults(tool), **{"solver.free_flight": "false"})
+    for name, repeats, sets in [("defaults", "3", sets), ("shipped", "1", {})]:
+        args = ["bench", "--scaling", "-n", repeats, "--json", "--dir", "cases"]
+        for key, value in sets.items():
+            args += ["--set", "%s=%s" % (key, value)]
+        before = resource.getrusage(resource.RUSAGE_CHILDREN)
+        out, wall = tool_output(tool, args)
+        after = resource.getrusage(resource.RUSAGE_CHILDREN)
+        cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+        print("  bench --scaling %-10s %6.1f s wall %6.1f s CPU" % (name, wall, cpu), flush=True)
+        data["scaling"][name] = {"command": "touchdown " + " ".join(args), "cpu_time": round(cpu, 1),
+                                 "result": json.loads(out)}
+    return data
+
+
 def src_references(tool, build):
     """The paper's cases at two converged settings and at the library defaults."""
     data = stamp(tool, "references", "touchdown run --json at the reference settings and defaults")
@@ -307,7 +330,7 @@ def src_figures(tool, build):
 
 
 SOURCES = {"fast": [("runs", src_runs), ("modal", src_modal), ("validation", src_validation), ("keys", src_keys)],
-           "slow": [("bench", src_bench), ("references", src_references),
+           "slow": [("bench", src_bench), ("scaling", src_scaling), ("references", src_references),
                     ("intervals", src_intervals), ("tolerances", src_tolerances), ("mesh", src_mesh),
                     ("convergence", src_convergence), ("figures", src_figures)]}
 

@@ -26,6 +26,7 @@ import os
 import re
 import statistics
 import sys
+import textwrap
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 RESULTS = os.path.join(ROOT, "docs", "results")
@@ -721,6 +722,109 @@ def val_rotor_models():
                 e(j.get("forward")), e(mn(o)), e(mx(o)), e(harmonic_worst()), cite("validation")))
 
 
+# --- touchdown bench --scaling (docs/performance.md, "Scaling with the number of DOFs") ------------
+def scaling(which):
+    """One recorded `touchdown bench --scaling`: its command, its JSON and, per size, what the table
+    quotes (costs are CPU s per simulated s, medians; us/step are CPU microseconds per IDA step)."""
+    rec = res("scaling")["scaling"][which]
+    r = rec["result"]
+    span_c = r["t_contact"] - r["t0"]
+    rows = []
+    for x in r["scaling"]:
+        us = div(1e6 * x["contact_klu_cpu_cost"] * span_c, x["contact_steps"])
+        rows.append(dict(x, us_step=us, us_step_dof=div(us, x["dofs"]),
+                         dense_over_klu=div(x["free_dense_cpu_cost"], x["free_klu_cpu_cost"])))
+    return rec, r, rows
+
+
+def slopes(rows, key):
+    """The exponents p of cost ~ DOFs^p between successive sizes."""
+    return [math.log(b[key] / a[key]) / math.log(b["dofs"] / a["dofs"]) for a, b in zip(rows, rows[1:])
+            if a[key] and b[key]]
+
+
+def wrap(text, indent=""):
+    """A paragraph or a list item (INDENT on its continuation lines) wrapped at the page's width."""
+    return textwrap.fill(" ".join(text.split()), 105, subsequent_indent=indent, break_long_words=False,
+                         break_on_hyphens=False) + "\n"
+
+
+def perf_scaling():
+    rec, r, rows = scaling("defaults")
+    srec, sr, srows = scaling("shipped")
+    sets = re.findall(r"--set (\S+)", rec["command"])
+    first, last = rows[0], rows[-1]
+    per_dof = [x["us_step_dof"] for x in rows]
+    free = sorted({x["free_steps"] for x in rows} | {x["free_steps_dense"] for x in rows})
+    dense = slopes(rows, "free_dense_cpu_cost")
+    grow = div(last["contact_klu_cpu_cost"], first["contact_klu_cpu_cost"])
+    m = r["machine"]
+    out = wrap(
+        "`touchdown bench --scaling`: case A's machine with every shaft element split into k = 1, 4, 8, 16 "
+        "equal ones (%s nodes; node i becomes node k i, so discs, AMBs, retainers and the unbalance keep their "
+        "axial positions), from t = %s s; free flight to %s s with KLU and with the dense solver (SUNDIALS's "
+        "`SUNLinSol_Dense`), and through the first contact to %s s with KLU. Cost: CPU s of the run (set-up "
+        "aside) per simulated s, median of %d; us/step: CPU microseconds per IDA step in contact. At the "
+        "library's solver defaults, with IDA through the free flight too (`%s`; %s; load average %s to %s):" % (
+            ", ".join(str(x["nodes"]) for x in rows), f(r["t0"], 2), f(r["t_free"], 2), f(r["t_contact"], 2),
+            r["repeats"], "`, `".join(sets), cite("scaling"), f(m["loadavg_start"], 2), f(m["loadavg_end"], 2)))
+    out += "\n" + table(["nodes", "DOFs", "free: steps", "KLU cost", "dense cost", "dense / KLU", "contact: steps",
+                         "onsets", "KLU cost", "us/step", "us/step/DOF"],
+                        [[n(x["nodes"]), n(x["dofs"]), n(x["free_steps"]), g(x["free_klu_cpu_cost"]),
+                          g(x["free_dense_cpu_cost"]), g(x["dense_over_klu"], 2), n(x["contact_steps"]),
+                          n(x["contact_onsets"]), g(x["contact_klu_cpu_cost"]), g(x["us_step"], 2),
+                          g(x["us_step_dof"], 2)] for x in rows]) + "\n"
+    out += wrap(
+        "- The cost of a step in contact %s the DOF count (%s to %s us per step per DOF, %s to %s DOFs)%s." % (
+            "grows in proportion to" if mx(per_dof) / mn(per_dof) < 1.5 else "grows faster than",
+            g(mn(per_dof), 2), g(mx(per_dof), 2), n(first["dofs"]), n(last["dofs"]),
+            ", as it does when KLU's fill of the banded shaft stays proportional to its size"
+            if mx(per_dof) / mn(per_dof) < 1.5 else ""), "  ")
+    fewer = last["contact_steps"] < first["contact_steps"]
+    out += wrap(
+        "- The cost per simulated second of contact grows %sx for %sx the DOFs%s. The free flight is %s IDA "
+        "steps at every size, with KLU and dense alike." % (
+            g(grow, 2), g(div(last["dofs"], first["dofs"]), 2),
+            (", less than linearly, because the refined rigs take fewer steps (%s at %s nodes against %s at %s): "
+             "their highest modes are far above 1/h and BDF2 damps them in a step (see above)" % (
+                 n(last["contact_steps"]), n(last["nodes"]), n(first["contact_steps"]), n(first["nodes"])))
+            if fewer and grow < div(last["dofs"], first["dofs"]) else "",
+            " or ".join(n(x) for x in free)), "  ")
+    if all(lt(1, x["dense_over_klu"]) for x in rows):
+        out += wrap(
+            "- KLU is faster than the dense solver at every size tried, %sx already at %s DOFs; the dense cost "
+            "grows like DOFs^%s to DOFs^%s between successive sizes (the dense LU of this SUNDIALS build, not "
+            "an optimised one)." % (g(first["dense_over_klu"], 2), n(first["dofs"]), f(mn(dense), 1), f(mx(dense), 1)),
+            "  ")
+    else:
+        out += wrap("- The dense solver is faster than KLU at some size tried (dense / KLU in the table).", "  ")
+    up = all(b["contact_steps"] > a["contact_steps"] for a, b in zip(srows, srows[1:]))
+    out += wrap(
+        "- Without the `--set`s, `touchdown bench --scaling` runs case A's settings as shipped (the paper's "
+        "rtol 1e-9, BDF order <= 5 and the closed-form free flight, [above](#the-papers-cases-settings-that-converge)), "
+        "and the step counts in contact %s with the refinement: %s at %s nodes, %sx the defaults' steps. One "
+        "repeat (`%s`: %s s of CPU; the table above took %s s):" % (
+            "grow" if up else "do not fall", n(srows[-1]["contact_steps"]), n(srows[-1]["nodes"]),
+            g(div(srows[-1]["contact_steps"], last["contact_steps"]), 2), srec["command"], g(srec["cpu_time"], 3),
+            g(rec["cpu_time"], 2)), "  ")
+    out += "\n" + table(["nodes", "free: IDA steps", "free: cost", "contact: steps", "onsets", "KLU cost",
+                         "us/step", "steps / defaults' steps"],
+                        [[n(x["nodes"]), n(x["free_steps"]), g(x["free_klu_cpu_cost"]), n(x["contact_steps"]),
+                          n(x["contact_onsets"]), g(x["contact_klu_cpu_cost"]), g(x["us_step"], 2),
+                          g(div(x["contact_steps"], d["contact_steps"]), 2)] for x, d in zip(srows, rows)])
+    closed = [(x, d) for x, d in zip(srows, rows) if x["free_steps"] == 0]
+    if closed:
+        x, d = closed[-1]
+        out += "\n" + wrap(
+            "Where the free window takes 0 IDA steps (%s nodes) the closed-form flight carries it; at %s nodes "
+            "it costs %s CPU s per simulated s against %s for IDA's %s steps at the defaults%s." % (
+                ", ".join(str(c["nodes"]) for c, _ in closed), n(x["nodes"]), g(x["free_klu_cpu_cost"]),
+                g(d["free_klu_cpu_cost"]), n(d["free_steps"]),
+                "; at %s nodes IDA takes %s steps in it" % (n(srows[-1]["nodes"]), n(srows[-1]["free_steps"]))
+                if srows[-1]["free_steps"] else ""))
+    return out
+
+
 def span_val_beams_cell():
     eb = beam_block("EB element, consistent mass, vs Rayleigh", "L/d = 1000").get(16)
     ti = beam_block("Timoshenko element", "L/d = 10)").get(16)
@@ -1097,7 +1201,7 @@ REGIONS = {"readme-glance": readme_glance, "readme-realtime": readme_realtime,
            "val-annular-rub": val_annular_rub, "val-annular-mount": val_annular_mount, "val-penalty": val_penalty,
            "val-scenarios": val_scenarios, "val-conv-rub-damped": val_conv_rub_damped,
            "val-conv-paper-a": val_conv_paper_a, "val-conv-drop": val_conv_drop,
-           "out-name-index": out_name_index}
+           "out-name-index": out_name_index, "perf-scaling": perf_scaling}
 SPANS = {"rub-mean-normal": span_rub_mean_normal, "val-first-contact-cell": span_val_first_contact_cell,
          "val-rig-modal-cell": span_val_rig_modal_cell, "rig-mass": span_rig_mass,
          "rig-polar": span_rig_polar, "drop-cpu": span_drop_cpu, "run-up-criticals": span_run_up_criticals,
