@@ -69,7 +69,7 @@ static int write_sample_header(FILE *f, const td_writer *w)
                                          TD_OUT_RET_CONTACT_STATE};
     static const td_out_id race_cols[] = {TD_OUT_RET_RACE_X, TD_OUT_RET_RACE_Y, TD_OUT_RET_RACE_SPEED,
                                           TD_OUT_RET_ROLLING};
-    static const char *const xy[2] = {"x", "y"};
+    const char *const *xy = td_schema_components();
     int i, k, rc = column(f, 1, TD_OUT_TIME, NULL, 0);
     if (w->speed_field)
         rc |= column(f, 0, TD_OUT_SPEED, NULL, 0);
