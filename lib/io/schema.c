@@ -324,7 +324,7 @@ const char *td_out_shape(td_out_id id)
 td_out_place td_out_place_of(td_out_id id)
 {
     const td_schema_entry *e = td_schema(id);
-    return e ? e->place : TD_OUT_GROUP;
+    return e ? e->place : TD_OUT_NO_PLACE;
 }
 
 td_out_type td_out_type_of(td_out_id id)
