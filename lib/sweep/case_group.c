@@ -1,11 +1,12 @@
 /*
  * The case file's `sweep` group (touchdown/sweep.h): its specs, kept by the case reader as they
- * were written (td_cr_sweep_spec, case/case_internal.h), judged here by the grid's rules on a dry grid (counts only,
- * no values), then added to a grid after the caller's own axes. The error names the entry and the
- * setting at fault as the case reader names its own ("FILE:LINE: sweep.vary[i].points: why"), so
- * that a bad group reads the same whichever stage finds it.
+ * were written (td_cr_sweep_spec, case/case_sweep_specs.h), judged here by the grid's rules on a
+ * dry grid (counts only, no values), then added to a grid after the caller's own axes. The error names the entry and
+ * the setting at fault as the case reader names its own ("FILE:LINE: sweep.vary[i].points: why"), so that a bad group
+ * reads the same whichever stage finds it.
  */
-#include "case/case_internal.h" /* the group as read; td_cr_printable, td_cr_fail_file */
+#include "case/case_message.h"     /* td_cr_printable, td_cr_fail_file */
+#include "case/case_sweep_specs.h" /* the group as read */
 #include "sweep/sweep_internal.h"
 #include "util/error_internal.h"
 
