@@ -16,7 +16,10 @@
  * case file writes a spec's parts in (docs/case-format.md, "sweep"). */
 static const char *part_setting(td_sweep_part part, const td_cr_sweep_spec *s)
 {
-    static const char *const names[] = {NULL, "key", "from", "to", "points", "spacing", "values", NULL};
+    static const char *const names[TD_SWEEP_PART_COUNT] = {
+        [TD_SWEEP_PART_SPEC] = NULL,      [TD_SWEEP_PART_KEY] = "key",  [TD_SWEEP_PART_START] = "from",
+        [TD_SWEEP_PART_STOP] = "to",      [TD_SWEEP_PART_N] = "points", [TD_SWEEP_PART_SPACING] = "spacing",
+        [TD_SWEEP_PART_VALUES] = "values"};
     if (part == TD_SWEEP_PART_COUNT)
         return s->values ? "values" : "points";
     return names[part];
