@@ -30,8 +30,8 @@ extern "C" {
 
 /**
  * Every name of the output files (td_out_name gives the text). The ids' numbers are not stable
- * across versions (a new name may take its place anywhere in the list): store or exchange the
- * names, which are, never the numbers.
+ * across versions (a new name may be added anywhere in the list); the names are: store or
+ * exchange names, never numbers.
  */
 typedef enum td_out_id {
     TD_OUT_ROOT = 0, /**< the file's root group ("") */
