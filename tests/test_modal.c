@@ -321,6 +321,12 @@ static void test_arguments(void **state)
     assert_null(md);
     td_modal_free(&md);
     td_modal_free(NULL);
+    /* the whirl's names as docs/output-format.md gives the HDF5 file's numbers (1, -1, 0); none
+     * for a value that is no whirl */
+    assert_string_equal(td_whirl_name((td_whirl)1), "forward");
+    assert_string_equal(td_whirl_name((td_whirl)-1), "backward");
+    assert_string_equal(td_whirl_name((td_whirl)0), "mixed");
+    assert_null(td_whirl_name((td_whirl)2));
     td_campbell_free(NULL);
     td_harmonic_free(NULL);
     td_system_free(&s);

@@ -285,6 +285,45 @@ static void check_every_unit(const td_result *r)
     assert_int_equal(seen, 24); /* every run dataset: this layout has them all */
 }
 
+/* Each reading call's refusals on an open run file: the status, a message naming the file and
+ * what was asked, and nothing left to free. */
+static void check_read_failures(const td_result *r, const char *path)
+{
+    td_result_array a;
+    td_error err;
+    char *text = (char *)&text, **list = (char **)&list;
+    size_t n = 99;
+    memset(&a, 0xff, sizeof a);
+    assert_int_equal(td_result_read(r, TD_OUT_ID_COUNT, NULL, &a, &err), TD_ERR_INVALID);
+    assert_true(a.v == NULL && a.n == 0 && a.rank == 0 && a.units[0] == '\0');
+    /* absent attribute, a dataset asked as text */
+    assert_int_equal(td_result_read_text(r, TD_OUT_SUM_ENDING, NULL, &text, &err), TD_ERR_INVALID);
+    assert_null(text);
+    assert_non_null(strstr(err.message, path));
+    assert_non_null(strstr(err.message, "summary_ending"));
+    text = (char *)&text;
+    assert_int_equal(td_result_read_text(r, TD_OUT_TIME, NULL, &text, &err), TD_ERR_INVALID);
+    assert_null(text);
+    /* numbers asked as strings, an attribute asked as a dataset */
+    assert_int_equal(td_result_read_strings(r, TD_OUT_TIME, NULL, &list, &n, &err), TD_ERR_INVALID);
+    assert_true(list == NULL && n == 0);
+    assert_non_null(strstr(err.message, path));
+    assert_non_null(strstr(err.message, "/time"));
+    list = (char **)&list;
+    n = 99;
+    assert_int_equal(td_result_read_strings(r, TD_OUT_CASE_TEXT, NULL, &list, &n, &err), TD_ERR_INVALID);
+    assert_true(list == NULL && n == 0);
+    /* columns of a dataset, of a group the file lacks */
+    list = (char **)&list;
+    n = 99;
+    assert_int_equal(td_result_columns(r, TD_OUT_TIME, NULL, 3, &list, &n, &err), TD_ERR_INVALID);
+    assert_true(list == NULL && n == 0);
+    assert_int_equal(td_result_columns(r, TD_OUT_CAMPBELL, NULL, 3, &list, &n, &err), TD_ERR_INVALID);
+    assert_true(list == NULL && n == 0);
+    assert_non_null(strstr(err.message, "/campbell"));
+    td_result_array_free(&a); /* already empty: harmless */
+}
+
 /* A run file: kind, flag, samples, events and attributes as written. */
 static void test_run_file(void **state)
 {
@@ -304,6 +343,7 @@ static void test_run_file(void **state)
     check_events(r, d);
     check_attributes(r);
     check_every_unit(r);
+    check_read_failures(r, path);
     td_result_free(&r);
     assert_null(r);
     remove(path);
@@ -327,6 +367,16 @@ static void test_schema_paths(void **state)
                 {TD_OUT_HARMONIC_SPEED, "0", "harmonic/0", "speed"},
                 {TD_OUT_SWEEP_KEY_AXIS, "speed", "vary/speed", "axis"},
                 {TD_OUT_SWEEP_SECTION_RADIUS, NULL, "section_radius", "section_radius"}};
+    /* what each is and its type, as docs/output-format.md's tables say */
+    static const struct {
+        td_out_id id;
+        td_out_place place;
+        td_out_type type;
+    } kinds[] = {
+        {TD_OUT_RETAINERS, TD_OUT_GROUP, TD_OUT_NO_TYPE},      {TD_OUT_RET_X, TD_OUT_DATASET, TD_OUT_F64},
+        {TD_OUT_RET_CONTACT_STATE, TD_OUT_DATASET, TD_OUT_I8}, {TD_OUT_EVENTS, TD_OUT_DATASET, TD_OUT_COMPOUND},
+        {TD_OUT_EV_KIND, TD_OUT_FIELD, TD_OUT_ENUM},           {TD_OUT_COMPLETE, TD_OUT_ATTRIBUTE, TD_OUT_I32},
+        {TD_OUT_CASE_TEXT, TD_OUT_ATTRIBUTE, TD_OUT_TEXT},     {TD_OUT_SWEEP_POINTS, TD_OUT_CSV_ONLY, TD_OUT_TEXT}};
     char buf[64];
     size_t i;
     int id;
@@ -341,6 +391,20 @@ static void test_schema_paths(void **state)
         assert_true(td_out_name((td_out_id)id) && td_out_units((td_out_id)id) && td_out_shape((td_out_id)id));
     assert_null(td_out_name(TD_OUT_ID_COUNT));
     assert_int_equal(td_out_path(TD_OUT_ID_COUNT, NULL, buf, sizeof buf), -1);
+    for (i = 0; i < sizeof kinds / sizeof kinds[0]; i++) {
+        assert_int_equal(td_out_place_of(kinds[i].id), kinds[i].place);
+        assert_int_equal(td_out_type_of(kinds[i].id), kinds[i].type);
+    }
+    /* an id out of range is nothing: no place, type, file or parent of a real name */
+    for (i = 0; i < 2; i++) {
+        td_out_id bad = i ? (td_out_id)-1 : TD_OUT_ID_COUNT;
+        assert_int_equal(td_out_place_of(bad), TD_OUT_NO_PLACE);
+        assert_int_equal(td_out_type_of(bad), TD_OUT_NO_TYPE);
+        assert_int_equal(td_out_files(bad), 0);
+        assert_int_equal(td_out_parent(bad), TD_OUT_ID_COUNT);
+        assert_null(td_out_units(bad));
+        assert_string_equal(td_out_shape(bad), "");
+    }
     /* cut short: the length it needs, the text cut and ended */
     assert_int_equal(td_out_path(TD_OUT_RET_RADIAL_VELOCITY, NULL, buf, 8), 25);
     assert_string_equal(buf, "retaine");
@@ -411,6 +475,34 @@ static void test_completeness(void **state)
 }
 
 /* A missing file, a text file and another program's HDF5 file: refused with the file's name. */
+/* The reading calls with a NULL handle or output: TD_ERR_INVALID, outputs empty. */
+static void refusals_without_file(void)
+{
+    td_result_array a;
+    td_result_event *ev = (td_result_event *)&ev;
+    char *text = (char *)&text, **list = (char **)&list;
+    size_t n = 99;
+    memset(&a, 0xff, sizeof a);
+    assert_int_equal(td_result_read(NULL, TD_OUT_TIME, NULL, &a, NULL), TD_ERR_INVALID);
+    assert_true(a.v == NULL && a.n == 0);
+    assert_int_equal(td_result_read(NULL, TD_OUT_TIME, NULL, NULL, NULL), TD_ERR_INVALID);
+    assert_int_equal(td_result_read_text(NULL, TD_OUT_CASE_TEXT, NULL, &text, NULL), TD_ERR_INVALID);
+    assert_null(text);
+    assert_int_equal(td_result_read_text(NULL, TD_OUT_CASE_TEXT, NULL, NULL, NULL), TD_ERR_INVALID);
+    assert_int_equal(td_result_read_strings(NULL, TD_OUT_SWEEP_STATUS, NULL, &list, &n, NULL), TD_ERR_INVALID);
+    assert_true(list == NULL && n == 0);
+    assert_int_equal(td_result_read_strings(NULL, TD_OUT_SWEEP_STATUS, NULL, &list, NULL, NULL), TD_ERR_INVALID);
+    list = (char **)&list;
+    n = 99;
+    assert_int_equal(td_result_columns(NULL, TD_OUT_ROOT, NULL, 3, &list, &n, NULL), TD_ERR_INVALID);
+    assert_true(list == NULL && n == 0);
+    n = 99;
+    assert_int_equal(td_result_events(NULL, &ev, &n, NULL), TD_ERR_INVALID);
+    assert_true(ev == NULL && n == 0);
+    td_result_array_free(NULL);
+    td_result_strings_free(NULL, 3);
+}
+
 static void test_refusals(void **state)
 {
     td_result *r = (td_result *)&r;
@@ -450,6 +542,12 @@ static void test_refusals(void **state)
     assert_int_equal(td_result_open(NULL, &r, &err), TD_ERR_INVALID);
     assert_int_equal(td_result_open(path, NULL, &err), TD_ERR_INVALID);
     td_result_free(NULL);
+    /* no handle: no kind, flag or name, and every reading call refuses with nothing to free */
+    assert_int_equal(td_result_get_kind(NULL), TD_RESULT_NO_KIND);
+    assert_int_equal(td_result_get_flag(NULL), TD_RESULT_NO_FLAG);
+    assert_int_equal(td_result_complete(NULL), 0);
+    assert_int_equal(td_result_has(NULL, TD_OUT_TIME, NULL), 0);
+    refusals_without_file();
 }
 
 /* A modal file (critical speeds only: found by its producer attribute) and its units. */

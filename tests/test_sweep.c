@@ -454,6 +454,13 @@ static void test_csv_table(void **state)
     assert_non_null(strstr(text, "# incomplete: interrupted: 1 of 3 points not run\n"));
     assert_int_equal(text[strlen(text) - 1], '\n');
     free(text);
+    /* a reason of several lines: the flag stays the file's one last line, as a run's CSV has it */
+    t.reason = "stopped:\r\nsecond line";
+    assert_int_equal(td_sweep_write_csv(path, &t, NULL), TD_OK);
+    text = td_test_read_file(path);
+    assert_non_null(strstr(text, "\n# incomplete: stopped:  second line\n"));
+    assert_string_equal(strstr(text, "# incomplete: "), "# incomplete: stopped:  second line\n");
+    free(text);
     remove(path);
     td_sweep_grid_free(&g);
 }

@@ -47,6 +47,10 @@ typedef enum td_whirl {
     TD_WHIRL_FORWARD = 1    /**< with the spin */
 } td_whirl;
 
+/** The whirl's name, as every output and the tool write it: "forward", "backward" or "mixed";
+ *  NULL for a value that is none of the three. The string is static. */
+TD_API const char *td_whirl_name(td_whirl w);
+
 /** One oscillatory mode (the omega_d > 0 member of a complex pair). */
 typedef struct td_mode {
     double sigma;       /**< real part of the eigenvalue, 1/s (negative: decaying) */

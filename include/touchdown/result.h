@@ -28,7 +28,11 @@ extern "C" {
 
 /* ---- the schema ----------------------------------------------------------------------------- */
 
-/** Every name of the output files (td_out_name gives the text). */
+/**
+ * Every name of the output files (td_out_name gives the text). The ids' numbers are not stable
+ * across versions (a new name may be added anywhere in the list); the names are: store or
+ * exchange names, never numbers.
+ */
 typedef enum td_out_id {
     TD_OUT_ROOT = 0, /**< the file's root group ("") */
     /* run file: groups, sample datasets and dimension scales */
@@ -265,6 +269,7 @@ typedef enum td_out_id {
 
 /** What a name is in the file. */
 typedef enum td_out_place {
+    TD_OUT_NO_PLACE = -1, /**< no name: an id out of range */
     TD_OUT_GROUP = 0,
     TD_OUT_DATASET = 1,   /**< a dataset (also a dimension scale, which is one) */
     TD_OUT_ATTRIBUTE = 2, /**< an attribute of its parent (td_out_parent) */
@@ -295,12 +300,16 @@ TD_API const char *td_out_name(td_out_id id);
 TD_API const char *td_out_units(td_out_id id);
 /** The shape, in the words of docs/output-format.md ("(N, n_ret)", "scalar"); never NULL. */
 TD_API const char *td_out_shape(td_out_id id);
+/** What `id` is in the file (group, dataset, attribute, event field, CSV line or column);
+ *  TD_OUT_NO_PLACE for an id out of range. */
 TD_API td_out_place td_out_place_of(td_out_id id);
+/** Its type in the HDF5 file (a CSV-only name: TD_OUT_TEXT); TD_OUT_NO_TYPE for a group and for an
+ *  id out of range. */
 TD_API td_out_type td_out_type_of(td_out_id id);
-/** TD_OUT_IN_* bits. */
+/** The files that hold it, TD_OUT_IN_* bits; 0 for an id out of range. */
 TD_API unsigned td_out_files(td_out_id id);
 /** The group a dataset or group is in, the object an attribute is on (TD_OUT_ID_COUNT: several,
- *  e.g. `units`), /events for a field. */
+ *  e.g. `units`), /events for a field; TD_OUT_ID_COUNT for an id out of range. */
 TD_API td_out_id td_out_parent(td_out_id id);
 /**
  * The path from the root ("retainers/x"; an attribute: its object's path) into buf; `sub`, when
@@ -311,12 +320,15 @@ TD_API int td_out_path(td_out_id id, const char *sub, char *buf, size_t n);
 
 /* ---- reading -------------------------------------------------------------------------------- */
 
+/** An open result file (opaque): td_result_open, td_result_free. One handle is not to be used
+ *  from two threads at once. */
 typedef struct td_result td_result;
 
 typedef enum td_result_kind {
-    TD_RESULT_RUN = 0,   /**< td_run / touchdown run */
-    TD_RESULT_MODAL = 1, /**< td_modal_write_hdf5 / touchdown modal */
-    TD_RESULT_SWEEP = 2  /**< td_sweep_write_hdf5 / touchdown sweep */
+    TD_RESULT_NO_KIND = -1, /**< no file: td_result_get_kind(NULL) */
+    TD_RESULT_RUN = 0,      /**< td_run / touchdown run */
+    TD_RESULT_MODAL = 1,    /**< td_modal_write_hdf5 / touchdown modal */
+    TD_RESULT_SWEEP = 2     /**< td_sweep_write_hdf5 / touchdown sweep */
 } td_result_kind;
 
 /** The completeness flag as the file holds it. */
@@ -327,25 +339,35 @@ typedef enum td_result_flag {
 } td_result_flag;
 
 /**
- * Open the HDF5 file `path` for reading and say what it is. Fails (*out NULL) with TD_ERR_IO for
- * a file that cannot be read (missing, not HDF5, damaged or cut short) and TD_ERR_INVALID for an
- * HDF5 file that is none of touchdown's: a run file has /time and /retainers, a sweep table
- * /point and /vary, a modal file the producer attribute or /campbell or /modes.
+ * Open the HDF5 file `path` for reading and say what it is.
+ *
+ * path   the file (borrowed for the call; the handle keeps its own copy).
+ * out    receives the new handle, which keeps the file open until td_result_free; set to NULL on
+ *        failure.
+ * err    may be NULL.
+ *
+ * Returns TD_OK; TD_ERR_IO for a file that cannot be read (missing, not HDF5, damaged or cut
+ * short); TD_ERR_INVALID for an HDF5 file that is none of touchdown's (a run file has /time and
+ * /retainers, a sweep table /point and /vary, a modal file the producer attribute or /campbell or
+ * /modes), and for a NULL out or a NULL or empty path; TD_ERR_NOMEM.
  */
 TD_API td_status td_result_open(const char *path, td_result **out, td_error *err);
-/** Close; *r set to NULL. Accepts NULL. */
+/** Close; *r set to NULL. Accepts NULL and *r == NULL. */
 TD_API void td_result_free(td_result **r);
 
+/** Which file it is; TD_RESULT_NO_KIND for a NULL handle. */
 TD_API td_result_kind td_result_get_kind(const td_result *r);
-/** The flag (TD_RESULT_COMPLETE for a modal file: one is written whole or not at all). */
+/** The flag (TD_RESULT_COMPLETE for a modal file: one is written whole or not at all);
+ *  TD_RESULT_NO_FLAG for a NULL handle. */
 TD_API td_result_flag td_result_get_flag(const td_result *r);
 /**
  * 1 only for a whole result: flag 1 (a modal file: readable), and a name that is not a writer's
- * temporary PATH.XXXXXX.partial; else 0.
+ * temporary PATH.XXXXXX.partial; else 0 (also for a NULL handle).
  */
 TD_API int td_result_complete(const td_result *r);
 
-/** 1 if `id` (with `sub`, see td_out_path) exists in the file: a group, a dataset, an attribute. */
+/** 1 if `id` (with `sub`, see td_out_path) exists in the file: a group, a dataset, an attribute;
+ *  0 otherwise, and for a NULL handle or an id out of range. */
 TD_API int td_result_has(const td_result *r, td_out_id id, const char *sub);
 
 /** A dataset or numeric attribute read as doubles, row-major (missing dims are 1). */
@@ -359,25 +381,52 @@ typedef struct td_result_array {
 
 /**
  * Read a numeric dataset (TD_OUT_DATASET: rank 1..3, any integer or float type) or a numeric
- * attribute (TD_OUT_ATTRIBUTE, on the object td_out_path names) as doubles. `sub` as for
- * td_out_path (TD_OUT_ROOT with `sub` reads any dataset by its path, e.g. a sweep column named by
- * the user). TD_ERR_INVALID when absent or not numeric.
+ * attribute (TD_OUT_ATTRIBUTE, on the object td_out_path names) as doubles into *a, which then
+ * owns its values (td_result_array_free). `sub` as for td_out_path (TD_OUT_ROOT with `sub` reads
+ * any dataset by its path, e.g. a sweep column named by the user).
+ *
+ * Returns TD_OK; TD_ERR_INVALID for a NULL a or r, an id out of range, a path too long, and a
+ * name that is absent, not numeric or unreadable (the message names the file and the object). On
+ * failure *a is all zero (nothing to free).
  */
 TD_API td_status td_result_read(const td_result *r, td_out_id id, const char *sub, td_result_array *a, td_error *err);
+/** Free the values of *a and set every field of it to zero (so a second call is harmless).
+ *  Accepts NULL. */
 TD_API void td_result_array_free(td_result_array *a);
 
-/** A text attribute (any string type), malloc'd into *text (free()). */
+/**
+ * A text attribute (any string type; `id` a TD_OUT_ATTRIBUTE, on the object td_out_path names
+ * with `sub`), malloc'd into *text (the caller frees it with free()).
+ *
+ * Returns TD_OK; TD_ERR_INVALID for a NULL text or r, an id that is no attribute, a path too
+ * long, and an attribute that is absent or not text (the message names the file, the attribute
+ * and its object). On failure *text is NULL.
+ */
 TD_API td_status td_result_read_text(const td_result *r, td_out_id id, const char *sub, char **text, td_error *err);
 
-/** A 1-D dataset of variable-length strings: *n malloc'd strings (td_result_strings_free). */
+/**
+ * A dataset of variable-length strings (`id` with `sub` as for td_out_path; the text columns of a
+ * sweep table are 1-D), its values in row-major order: *n malloc'd strings in *text, a NULL
+ * string read as "" (td_result_strings_free frees them).
+ *
+ * Returns TD_OK; TD_ERR_INVALID for a NULL text, n or r, an id that is an attribute or out of
+ * range, a path too long, and a dataset that is absent, not of variable-length strings or
+ * unreadable (the message names the file and the dataset). On failure *text is NULL and *n 0.
+ */
 TD_API td_status td_result_read_strings(const td_result *r, td_out_id id, const char *sub, char ***text, size_t *n,
                                         td_error *err);
+/** Free the n strings of `text` and the array itself (td_result_read_strings,
+ *  td_result_columns). Accepts NULL. */
 TD_API void td_result_strings_free(char **text, size_t n);
 
 /**
  * The numeric 1-D datasets of n values directly in the group `id` (+ `sub`), other than its
  * dimension scales' index TD_OUT_SWEEP_POINT, in name order: *n_names malloc'd names
  * (td_result_strings_free). The columns of a sweep table: TD_OUT_ROOT with n = the points.
+ *
+ * Returns TD_OK (no such dataset: *n_names 0); TD_ERR_INVALID for a NULL names, n_names or r, an
+ * id that is no group, a path too long, and a group that is absent (the message names the file
+ * and the group); TD_ERR_NOMEM. On failure *names is NULL and *n_names 0.
  */
 TD_API td_status td_result_columns(const td_result *r, td_out_id id, const char *sub, size_t n, char ***names,
                                    size_t *n_names, td_error *err);
@@ -389,7 +438,13 @@ typedef struct td_result_event {
     char kind_name[32]; /**< the kind's name as the file's enum has it ("contact_onset", ...) */
 } td_result_event;
 
-/** Every row of a run file's /events (0 rows when the file has none), malloc'd (free()). */
+/**
+ * Every row of a run file's /events, malloc'd into *events (the caller frees it with free()), their
+ * number in *n: 0 rows (and *events NULL) when the file has no /events.
+ *
+ * Returns TD_OK; TD_ERR_INVALID for a NULL events, n or r, and an /events table that cannot be
+ * read (the message names the file). On failure *events is NULL and *n 0.
+ */
 TD_API td_status td_result_events(const td_result *r, td_result_event **events, size_t *n, td_error *err);
 
 #ifdef __cplusplus

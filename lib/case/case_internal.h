@@ -23,6 +23,8 @@
 #include <libconfig.h>
 #include <stddef.h>
 
+#include "case/case_message.h"     /* layer 1's helpers that need no reader, also lib/sweep's */
+#include "case/case_sweep_specs.h" /* the `sweep` group as read, as lib/sweep sees it */
 #include "touchdown/case.h"
 #include "util/text.h"
 
@@ -41,19 +43,6 @@ struct td_case {
     struct td_cr_sweep_spec *sweep; /* the `sweep` group as specs, as read (td_cr_sweep_spec) */
     int sweep_count;
 };
-
-/* One swept key of the case's `sweep` group as read (case_vary.c): the spec --vary (an entry of
- * `with`: --with) would take, with the place it was written. The reader checks the group's shape
- * only; the specs are judged by the sweep's rules (lib/sweep), which name the setting at fault as
- * the reader names its own (td_cr_sweep_context). */
-typedef struct td_cr_sweep_spec {
-    char *spec;  /* "KEY=START:STOP:N[:SPACING]" or "KEY=V1,V2,...", the key as written */
-    char *where; /* "FILE:LINE: sweep.vary[i]" (or "...with[j]"): td_case_sweep_spec's, the axis's origin */
-    char *at;    /* "FILE:LINE" of the entry, or how an override placed it (td_cr_where) */
-    char *key;   /* the entry's setting, "sweep.vary[i]" or "sweep.vary[i].with[j]" (td_cr_key) */
-    int with;    /* 1: zipped onto the axis of the spec before */
-    int values;  /* 1: written as `values`, 0: as a range (from, to, points, spacing) */
-} td_cr_sweep_spec;
 
 /* A decimal or hex integer literal that libconfig 1.5 silently wraps to 32 bits (it has no
  * overflow check); found by td_cr_scan_text, reported against the setting on that line. */
@@ -106,14 +95,7 @@ typedef enum td_cr_range {
     TD_CR_OPEN_UNIT = 4    /* (0, 1) */
 } td_cr_range;
 
-/* ---- 1. locations and messages (case_message.c) ---------------------------------------- */
-/* User text (a string value, an override, a file name) made fit to quote in a one-line message:
- * control characters become \n, \t, \r or \xHH (so no raw ESC reaches a terminal), and text
- * longer than the buffer is cut with "...". Writes at most n bytes (n >= 8) to buf; returns buf.
- * Every message that quotes user text passes it through here. */
-const char *td_cr_printable(const char *s, char *buf, size_t n);
-/* td_cr_printable into a new string (caller frees); NULL when out of memory. */
-char *td_cr_printable_dup(const char *s);
+/* ---- 1. locations and messages (case_message.c; the rest: case_message.h) -------------- */
 /* How a file libconfig recorded (NULL: main) is shown in messages. */
 void td_cr_file_shown(const td_case_reader *r, const char *file, char *buf, size_t n);
 /* Full key of a setting, e.g. "retainers[1].clearance"; "" for the root. */
@@ -124,13 +106,6 @@ void td_cr_where(const td_case_reader *r, const config_setting_t *s, char *buf, 
 td_status td_cr_fail(td_case_reader *r, const config_setting_t *s, const char *sub, const char *fmt, ...)
 #if defined(__GNUC__)
     __attribute__((format(printf, 4, 5)))
-#endif
-    ;
-/* Fail with "SHOWN:LINE: message" ("SHOWN: message" when line is 0), SHOWN (a file as shown in
- * messages) cut in its middle if needed so that the message survives; returns code. */
-td_status td_cr_fail_file(td_error *err, td_status code, const char *shown, int line, const char *fmt, ...)
-#if defined(__GNUC__)
-    __attribute__((format(printf, 5, 6)))
 #endif
     ;
 /* The entry of the case's "overrides" list whose string is `ov`, or NULL (a --set). */
@@ -211,17 +186,7 @@ extern const char *const td_cr_damping_names[TD_CR_DAMPING_NAMES];
 
 /* The required `shaft` group by its table (case_shaft.c), with the element arrays it needs. */
 td_status td_cr_read_shaft(td_case_reader *r, const config_setting_t *root);
-/* Free the case's sweep specs. */
+/* Free the case's sweep specs. (What lib/sweep reads of them: case_sweep_specs.h.) */
 void td_cr_free_sweep(td_case *c);
-/* Spec i (0 <= i < td_case_sweep_specs(c)) of the case's `sweep` group as read, borrowed. */
-const td_cr_sweep_spec *td_cr_sweep_entry(const td_case *c, int i);
-/* Bytes of an error's context "WHERE: KEY.SETTING" and of its "KEY.SETTING" before they are cut,
- * as in td_cr_fail. */
-#define TD_CR_SWEEP_CONTEXT_SIZE 2048
-#define TD_CR_SWEEP_KEY_SIZE 512
-/* The context of an error about entry s, as td_cr_fail would give it: "WHERE: KEY", or
- * "WHERE: KEY.SETTING" when `setting` (a member of the entry, e.g. "points") is not NULL; into
- * buf (n bytes, TD_CR_SWEEP_CONTEXT_SIZE for the reader's own cut). */
-void td_cr_sweep_context(const td_cr_sweep_spec *s, const char *setting, char *buf, size_t n);
 
 #endif

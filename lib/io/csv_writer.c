@@ -69,7 +69,7 @@ static int write_sample_header(FILE *f, const td_writer *w)
                                          TD_OUT_RET_CONTACT_STATE};
     static const td_out_id race_cols[] = {TD_OUT_RET_RACE_X, TD_OUT_RET_RACE_Y, TD_OUT_RET_RACE_SPEED,
                                           TD_OUT_RET_ROLLING};
-    static const char *const xy[2] = {"x", "y"};
+    const char *const *xy = td_schema_components();
     int i, k, rc = column(f, 1, TD_OUT_TIME, NULL, 0);
     if (w->speed_field)
         rc |= column(f, 0, TD_OUT_SPEED, NULL, 0);
@@ -212,19 +212,6 @@ static int write_attr(FILE *f, const td_attr *a)
     return rc;
 }
 
-/* The completeness line, the last line of each file. Newlines in the reason become spaces. */
-static int write_flag(FILE *f, int complete, const char *reason)
-{
-    int rc;
-    if (complete)
-        return fprintf(f, "# %s\n", td_out_name(TD_OUT_COMPLETE)) < 0;
-    rc = fputs("# incomplete: ", f) < 0;
-    for (; *reason; reason++)
-        rc |= fputc(*reason == '\n' || *reason == '\r' ? ' ' : *reason, f) == EOF;
-    rc |= fputc('\n', f) == EOF;
-    return rc;
-}
-
 static td_status csv_finish(td_writer *w, int complete, const char *reason, td_error *err)
 {
     csv_impl *c = w->impl;
@@ -236,10 +223,10 @@ static td_status csv_finish(td_writer *w, int complete, const char *reason, td_e
     if (!complete)
         rc |= write_string_attr(c->samples, td_out_name(TD_OUT_INCOMPLETE_REASON), reason);
     /* Events file first, samples file last: its flag line is the authority. */
-    rc |= write_flag(c->events, complete, reason);
+    rc |= td_io_csv_flag(c->events, complete, reason);
     if (td_io_close_stream(&c->events))
         st = td_io_fail(err, w->events_tmp, "cannot finish");
-    rc |= write_flag(c->samples, complete, reason);
+    rc |= td_io_csv_flag(c->samples, complete, reason);
     rc |= td_io_close_stream(&c->samples);
     if (rc && st == TD_OK)
         st = td_io_fail(err, w->tmp_path, "cannot finish");

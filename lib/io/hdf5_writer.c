@@ -65,7 +65,7 @@ typedef struct h5_impl {
     hid_t file;
     hid_t event_dset, event_mtype, event_ftype, kind_type;
     hid_t event_index; /* /event: the dimension scale of /events (row numbers) */
-    hid_t component;   /* /component ("x", "y"), -1 when no dataset has that axis */
+    hid_t component;   /* /component (td_schema_components), -1 when no dataset has that axis */
     h5_series series[H5_MAX_SERIES];
     int series_count;
     int idx_time, idx_speed, idx_disp, idx_ret, idx_whirl, idx_amb; /* first series of each part, -1 if absent */
@@ -165,13 +165,13 @@ static hid_t make_index_scale(hid_t loc, td_out_id id, int n)
     return dset;
 }
 
-/* /component = {"x", "y"}: the last axis of /nodes/displacement and /ambs/force. */
+/* /component = {"x", "y"} (td_schema_components): the last axis of /nodes/displacement and
+ * /ambs/force. */
 static hid_t make_component_scale(hid_t file)
 {
-    static const char *const xy[2] = {"x", "y"};
     hid_t type = td_h5_text_type(), dset = -1;
     if (type >= 0)
-        dset = make_scale(file, TD_OUT_COMPONENT, type, type, xy, 2);
+        dset = make_scale(file, TD_OUT_COMPONENT, type, type, td_schema_components(), 2);
     if (type >= 0)
         H5Tclose(type);
     return dset;
@@ -270,7 +270,8 @@ static td_status create_nodes(td_writer *w, h5_impl *h, td_error *err)
         st = add_series(w, h, g, TD_OUT_NODE_DISPLACEMENT, 3, row, 0, err);
         if (st == TD_OK && (td_h5_attr_numeric(h->series[h->idx_disp].dset, td_out_name(TD_OUT_NODES_ATTR),
                                                H5T_STD_I32LE, H5T_NATIVE_INT, w->nodes, w->node_count, 1) < 0 ||
-                            td_h5_attr_string(h->series[h->idx_disp].dset, td_out_name(TD_OUT_COMPONENTS), "x,y") < 0))
+                            td_h5_attr_string(h->series[h->idx_disp].dset, td_out_name(TD_OUT_COMPONENTS),
+                                              td_schema_components_list()) < 0))
             st = h5_fail(err, w, "cannot write the node attributes");
         if (st == TD_OK)
             st = attach_own_axis(
@@ -323,7 +324,8 @@ static td_status create_ambs(td_writer *w, h5_impl *h, td_error *err)
         row[1] = 2;
         h->idx_amb = h->series_count;
         st = add_series(w, h, g, TD_OUT_AMB_FORCE, 3, row, 0, err);
-        if (st == TD_OK && td_h5_attr_string(h->series[h->idx_amb].dset, td_out_name(TD_OUT_COMPONENTS), "x,y") < 0)
+        if (st == TD_OK && td_h5_attr_string(h->series[h->idx_amb].dset, td_out_name(TD_OUT_COMPONENTS),
+                                             td_schema_components_list()) < 0)
             st = h5_fail(err, w, "cannot write the AMB attributes");
         if (st == TD_OK)
             st = attach_own_axis(w, h, h->idx_amb, make_index_scale(g, TD_OUT_AMB, w->amb_count), 1, err);

@@ -1,8 +1,9 @@
 /*
  * What the writers share below writer.c and the format back ends (csv_writer.c, hdf5_writer.c),
- * so that each calls down to it: the names of the event kinds, the I/O error and the checked
- * close of a stream.
+ * so that each calls down to it: the names of the event kinds, the I/O error, the checked
+ * close of a stream and the CSV files' completeness line.
  */
+#include "io/schema.h"
 #include "io/writer_internal.h"
 #include "util/error_internal.h"
 
@@ -39,5 +40,17 @@ int td_io_close_stream(FILE **f)
         rc |= fclose(*f) != 0;
         *f = NULL;
     }
+    return rc;
+}
+
+int td_io_csv_flag(FILE *f, int complete, const char *reason)
+{
+    int rc;
+    if (complete)
+        return fprintf(f, "# %s\n", td_out_name(TD_OUT_COMPLETE)) < 0;
+    rc = fputs("# incomplete: ", f) < 0;
+    for (; reason && *reason; reason++)
+        rc |= fputc(*reason == '\n' || *reason == '\r' ? ' ' : *reason, f) == EOF;
+    rc |= fputc('\n', f) == EOF;
     return rc;
 }

@@ -23,11 +23,6 @@
 #include <stdlib.h>
 #include <unistd.h>
 
-static const char *whirl_name(td_whirl w)
-{
-    return w == TD_WHIRL_FORWARD ? "forward" : (w == TD_WHIRL_BACKWARD ? "backward" : "mixed");
-}
-
 /* ---- CSV --------------------------------------------------------------------------------- */
 
 /* "# section: NAME" of the section `id`. */
@@ -62,7 +57,7 @@ static void csv_modes(FILE *f, const td_modal *m)
         td_mode md;
         td_modal_get_mode(m, i, &md);
         fprintf(f, "%d,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%s\n", i, md.sigma, md.omega_d, md.freq_hz, md.omega_n,
-                md.zeta, md.whirl_index, whirl_name(md.whirl));
+                md.zeta, md.whirl_index, td_whirl_name(md.whirl));
     }
     fputc('\n', f);
     csv_section(f, TD_OUT_MODES_REAL_EIGENVALUES);
@@ -94,7 +89,7 @@ static void csv_campbell(FILE *f, const td_campbell *c)
             td_mode md;
             td_campbell_get(c, k, j, &md);
             fprintf(f, "%.12g,%d,%.12g,%.12g,%.12g,%.12g,%s\n", td_campbell_speed(c, k), j, md.omega_d, md.freq_hz,
-                    md.sigma, md.zeta, whirl_name(md.whirl));
+                    md.sigma, md.zeta, td_whirl_name(md.whirl));
         }
     fprintf(f, "\n");
 }
@@ -107,8 +102,8 @@ static void csv_critical(FILE *f, const td_critical_speed *cs, int n)
     csv_section(f, TD_OUT_CRITICAL);
     csv_columns(f, cols, 6);
     for (i = 0; i < n; i++)
-        fprintf(f, "%.12g,%.12g,%s,%d,%.12g,%.12g\n", cs[i].speed, cs[i].freq_hz, whirl_name(cs[i].whirl), cs[i].branch,
-                cs[i].zeta, cs[i].sigma);
+        fprintf(f, "%.12g,%.12g,%s,%d,%.12g,%.12g\n", cs[i].speed, cs[i].freq_hz, td_whirl_name(cs[i].whirl),
+                cs[i].branch, cs[i].zeta, cs[i].sigma);
     fprintf(f, "\n");
 }
 

@@ -192,7 +192,7 @@ void td_result_free(td_result **r)
 
 td_result_kind td_result_get_kind(const td_result *r)
 {
-    return r ? r->kind : TD_RESULT_RUN;
+    return r ? r->kind : TD_RESULT_NO_KIND;
 }
 
 td_result_flag td_result_get_flag(const td_result *r)

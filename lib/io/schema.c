@@ -271,6 +271,21 @@ static const td_schema_entry entries[TD_OUT_ID_COUNT] = {
     CSV_LINE(TD_OUT_SWEEP_FROM, "from", SWEEP),
 };
 
+/* The lateral components, each name written once here (td_schema_components). */
+#define COMPONENT_X "x"
+#define COMPONENT_Y "y"
+
+const char *const *td_schema_components(void)
+{
+    static const char *const xy[2] = {COMPONENT_X, COMPONENT_Y};
+    return xy;
+}
+
+const char *td_schema_components_list(void)
+{
+    return COMPONENT_X "," COMPONENT_Y;
+}
+
 const td_schema_entry *td_schema(td_out_id id)
 {
     return (int)id >= 0 && id < TD_OUT_ID_COUNT ? &entries[id] : NULL;
@@ -309,7 +324,7 @@ const char *td_out_shape(td_out_id id)
 td_out_place td_out_place_of(td_out_id id)
 {
     const td_schema_entry *e = td_schema(id);
-    return e ? e->place : TD_OUT_GROUP;
+    return e ? e->place : TD_OUT_NO_PLACE;
 }
 
 td_out_type td_out_type_of(td_out_id id)

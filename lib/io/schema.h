@@ -29,4 +29,11 @@ const char *td_schema_csv(td_out_id id);
 /** The unit in the CSV header of `id`: its csv_units, else its units. */
 const char *td_schema_csv_units(td_out_id id);
 
+/** The two lateral components of every x-y pair written, in order ("x", "y"): the values of
+ *  /component, the last axis of /nodes/displacement and /ambs/force, and the component in the
+ *  names of their CSV columns. */
+const char *const *td_schema_components(void);
+/** The same names joined by ',' ("x,y"): the `components` attribute of those datasets. */
+const char *td_schema_components_list(void);
+
 #endif

@@ -111,4 +111,9 @@ td_status td_io_fail(td_error *err, const char *path, const char *what);
  *  an earlier buffered write included. */
 int td_io_close_stream(FILE **f);
 
+/** The completeness line of a CSV file, its last line (docs/output-format.md, "Completeness
+ *  rule"): "# complete", or "# incomplete: REASON" with each line break of the reason written as
+ *  a space, so that the flag stays one line. Nonzero if a write failed. */
+int td_io_csv_flag(FILE *f, int complete, const char *reason);
+
 #endif

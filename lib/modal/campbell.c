@@ -58,6 +58,16 @@ int td_mode_is_vibration(const td_mode *m)
     return m && m->zeta < TD_MODAL_OVERDAMPED_ZETA;
 }
 
+const char *td_whirl_name(td_whirl w)
+{
+    switch (w) {
+    case TD_WHIRL_FORWARD: return "forward";
+    case TD_WHIRL_BACKWARD: return "backward";
+    case TD_WHIRL_MIXED: return "mixed";
+    }
+    return NULL;
+}
+
 /* Branch j at one speed is the j-th lowest vibration mode there (overdamped pairs skipped);
  * missing branches are NAN. */
 static void fill_branches(const td_modal *m, td_mode *row, int nbranches)

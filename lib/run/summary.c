@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "touchdown/dofs.h"
+#include "touchdown/modal.h"
 #include "touchdown/version.h"
 #include "util/text.h"
 
@@ -104,7 +105,8 @@ void td_run_retainer_classify(td_run_retainer *out, double speed, double span)
     }
     rate = t->contact_time > 0.0 ? t->whirl_angle / t->contact_time : 0.0;
     out->whirl_frequency = (speed < 0.0 ? -rate : rate) / (2.0 * TD_PI);
-    snprintf(out->whirl, sizeof out->whirl, "%s %s%s", out->whirl_frequency < 0.0 ? "backward" : "forward",
+    snprintf(out->whirl, sizeof out->whirl, "%s %s%s",
+             td_whirl_name(out->whirl_frequency < 0.0 ? TD_WHIRL_BACKWARD : TD_WHIRL_FORWARD),
              t->rolling_time > 0.5 * t->contact_time ? "rolling" : "sliding",
              t->contact_time < 0.5 * span ? ", bouncing" : "");
 }

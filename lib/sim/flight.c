@@ -9,7 +9,11 @@
 #include <math.h>
 #include <string.h>
 
-int td_sim_flight_eligible(const td_sim *s)
+/* 1 if the machine may fly in closed form now: free flight on (td_solver_options), no energy
+ * account, a prescribed constant speed, no races, no AMB saturation, every retainer free (one
+ * with a force law only once its gap has opened by eps after its last exit). The decomposition may
+ * still refuse it (td_sim_flight_advance). The step loop flies only with no stop pending. */
+static int flight_eligible(const td_sim *s)
 {
     int k;
     if (!s->opt.solver.free_flight || s->opt.energy || s->machine.spin >= 0 || td_model_speed_varies(s->model))
@@ -131,7 +135,7 @@ int td_sim_flight_advance(td_sim *s, const double *scale, double t_out, double t
     double t, t_end = fmin(t_out, t_stop);
     long steps = 0;
     *root = 0;
-    if (!td_sim_flight_eligible(s) || !td_sim_flight_ready(s, scale))
+    if (!flight_eligible(s) || !td_sim_flight_ready(s, scale))
         return 0;
     f = s->flight;
     if (f->t_step < s->dae.t || f->t_step > t_stop) { /* a fresh flight */

@@ -210,9 +210,6 @@ double td_sim_unbalance_spin_coupling(const td_sim *s, double t, const double *y
 double td_sim_amb_axis_integral_rate(const td_sim *s, int k, const double *y);
 /* Spin angle phi(t) at the prescribed speed. */
 double td_sim_spin_angle(const td_sim *s, double t);
-/* dOmega/dt at (t, y): the ramp's slope on the interval being integrated, (s->dae.t, t] (at t = s->dae.t
- * the segment starting there), or a free spin's torque balance over J (spin.c). */
-double td_sim_rotor_rate(const td_sim *s, double t, const double *y);
 
 /* ---- monitor.c: statistics and the event queue ------------------------------------------- */
 
@@ -257,11 +254,6 @@ void td_sim_totals_get(const td_sim *s, int k, td_retainer_totals *out);
 
 /* ---- flight_modal.c, flight_roots.c, flight.c: free flight in closed form ------------------ */
 
-/* 1 if the machine may fly in closed form now: free flight on (td_solver_options), no energy
- * account, a prescribed constant speed, no races, no AMB saturation, every retainer free (one
- * with a force law only once its gap has opened by eps after its last exit). The decomposition may
- * still refuse it (td_sim_flight_advance). The step loop flies only with no stop pending. */
-int td_sim_flight_eligible(const td_sim *s);
 /* Carry the state from s->dae.t in closed form to t_out or the stop t_stop, whichever comes first,
  * or to a root before them (*root = 1, s->dae.rootsfound as IDAGetRootInfo would set it), or less far
  * at an interrupt; y holds the state at the new s->dae.t (y': td_sim_flight_rates). The flight works in
@@ -315,8 +307,6 @@ double td_sim_next_stop(const td_sim *s);
 /* The per-component absolute tolerances into s->solver.atol and the differential/algebraic flags into
  * s->solver.id. */
 void td_sim_set_tolerances(td_sim *s);
-/* Absolute tolerance of retainer k's race speed now (it depends on whether the race rolls). */
-double td_sim_race_speed_atol(const td_sim *s, int k);
 /* Set the race speeds' tolerances in s->solver.atol for the current modes; 1 if one changed. */
 int td_sim_races_retolerance(td_sim *s);
 /* The tolerance rtol |q_i| + atol that a restart's first step is sized against, at unknown i of the

@@ -12,7 +12,9 @@ double td_sim_spin_angle(const td_sim *s, double t)
     return s->machine.spin_ref + s->machine.omega * (t - s->machine.t_spin_ref);
 }
 
-double td_sim_rotor_rate(const td_sim *s, double t, const double *y)
+/* dOmega/dt at (t, y): the ramp's slope on the interval being integrated, (s->dae.t, t] (at t = s->dae.t
+ * the segment starting there), or a free spin's torque balance over J (spin.c). */
+static double rotor_rate(const td_sim *s, double t, const double *y)
 {
     td_spin sp;
     double torque;
@@ -146,7 +148,7 @@ void td_sim_external_forces(const td_sim *s, double t, const double *y, double s
 {
     const td_system *sys = s->sys;
     double w = td_sim_rotor_speed(s, y), w2 = w * w, phi = td_sim_rotor_angle(s, t, y);
-    double alpha = s->machine.nu > 0 ? td_sim_rotor_rate(s, t, y) : 0.0; /* a free spin's sums the torques */
+    double alpha = s->machine.nu > 0 ? rotor_rate(s, t, y) : 0.0; /* a free spin's sums the torques */
     int i, k;
     for (i = 0; i < sys->ndof; i++)
         f[i] += sign * sys->gravity_load[i];
@@ -257,7 +259,7 @@ double td_sim_unbalance_spin_coupling(const td_sim *s, double t, const double *y
     if (!s->machine.spin_free || s->machine.nu == 0)
         return 0.0;
     phi = td_sim_rotor_angle(s, t, y);
-    dw = yp[s->dae.ov + s->machine.spin] - td_sim_rotor_rate(s, t, y); /* the forces took alpha from the torques */
+    dw = yp[s->dae.ov + s->machine.spin] - rotor_rate(s, t, y); /* the forces took alpha from the torques */
     for (i = 0; i < s->machine.nu; i++) {
         const td_unbalance *u = &s->machine.unb[i];
         double c = cos(phi + u->phase), sn = sin(phi + u->phase), U = u->magnitude;
@@ -602,7 +604,7 @@ static void jacobian_spin(td_sim *s, double t, const double *y)
 {
     const cs_di *G = s->dae.G;
     const double *v = y + s->dae.ov;
-    double w = td_sim_rotor_speed(s, y), phi = td_sim_rotor_angle(s, t, y), alpha = td_sim_rotor_rate(s, t, y), dT;
+    double w = td_sim_rotor_speed(s, y), phi = td_sim_rotor_angle(s, t, y), alpha = rotor_rate(s, t, y), dT;
     int qz = s->dae.oq + s->machine.spin, wz = s->dae.ov + s->machine.spin, i, j, p;
     for (j = 0; j < G->n; j++)
         for (p = G->p[j]; p < G->p[j + 1]; p++)

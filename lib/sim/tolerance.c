@@ -15,7 +15,7 @@
  * scale atol freq_scale / R_b resolves its coast-down to rest under the drag (at freq_max it
  * wandered by 0.05 rad/s about rest).
  */
-double td_sim_race_speed_atol(const td_sim *s, int k)
+static double race_speed_atol(const td_sim *s, int k)
 {
     const td_sim_retainer *r = &s->contacts.ret[k];
     return s->opt.solver.atol * (r->mode != TD_RMODE_FREE ? s->machine.freq_max : s->machine.freq_scale) /
@@ -31,7 +31,7 @@ int td_sim_races_retolerance(td_sim *s)
         double want;
         if (s->contacts.ret[k].rs < 0)
             continue;
-        want = td_sim_race_speed_atol(s, k);
+        want = race_speed_atol(s, k);
         changed = changed || at[i] != want;
         at[i] = want;
     }
@@ -56,7 +56,7 @@ int td_sim_races_retolerance(td_sim *s)
  */
 /* The races' DOFs: the centre as a displacement, its velocity at the mount's own frequency
  * sqrt(k_m / m_r) (the race rings on its mount, not in the shaft's modes); the angle as the arc
- * atol / R_b at the race surface, and the speed as td_sim_race_speed_atol says. */
+ * atol / R_b at the race surface, and the speed as race_speed_atol says. */
 static void race_tolerances(td_sim *s, double *at, double *id)
 {
     double atol = s->opt.solver.atol;
@@ -70,7 +70,7 @@ static void race_tolerances(td_sim *s, double *at, double *id)
                 continue;
             at[s->dae.oq + dofs[i]] = atol * scale;
             at[s->dae.ov + dofs[i]] =
-                i == 2 ? td_sim_race_speed_atol(s, k)
+                i == 2 ? race_speed_atol(s, k)
                        : atol * fmax(s->machine.freq_scale, sqrt(r->r.race.mount_stiffness / r->r.race.mass));
             id[s->dae.oq + dofs[i]] = id[s->dae.ov + dofs[i]] = 1.0;
         }

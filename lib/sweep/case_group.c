@@ -1,11 +1,12 @@
 /*
  * The case file's `sweep` group (touchdown/sweep.h): its specs, kept by the case reader as they
- * were written (td_cr_sweep_spec, case/case_internal.h), judged here by the grid's rules on a dry grid (counts only,
- * no values), then added to a grid after the caller's own axes. The error names the entry and the
- * setting at fault as the case reader names its own ("FILE:LINE: sweep.vary[i].points: why"), so
- * that a bad group reads the same whichever stage finds it.
+ * were written (td_cr_sweep_spec, case/case_sweep_specs.h), judged here by the grid's rules on a
+ * dry grid (counts only, no values), then added to a grid after the caller's own axes. The error names the entry and
+ * the setting at fault as the case reader names its own ("FILE:LINE: sweep.vary[i].points: why"), so that a bad group
+ * reads the same whichever stage finds it.
  */
-#include "case/case_internal.h" /* the group as read; td_cr_printable, td_cr_fail_file */
+#include "case/case_message.h"     /* td_cr_printable, td_cr_fail_file */
+#include "case/case_sweep_specs.h" /* the group as read */
 #include "sweep/sweep_internal.h"
 #include "util/error_internal.h"
 
@@ -15,7 +16,10 @@
  * case file writes a spec's parts in (docs/case-format.md, "sweep"). */
 static const char *part_setting(td_sweep_part part, const td_cr_sweep_spec *s)
 {
-    static const char *const names[] = {NULL, "key", "from", "to", "points", "spacing", "values", NULL};
+    static const char *const names[TD_SWEEP_PART_COUNT] = {
+        [TD_SWEEP_PART_SPEC] = NULL,      [TD_SWEEP_PART_KEY] = "key",  [TD_SWEEP_PART_START] = "from",
+        [TD_SWEEP_PART_STOP] = "to",      [TD_SWEEP_PART_N] = "points", [TD_SWEEP_PART_SPACING] = "spacing",
+        [TD_SWEEP_PART_VALUES] = "values"};
     if (part == TD_SWEEP_PART_COUNT)
         return s->values ? "values" : "points";
     return names[part];

@@ -4,7 +4,7 @@
  * point is nothing but the case loaded with one more override per swept key. An axis has one key,
  * or several zipped keys with as many values each that move together.
  */
-#include "case/case_internal.h" /* td_cr_printable: user text in messages */
+#include "case/case_message.h" /* td_cr_printable: user text in messages */
 #include "sweep/sweep_internal.h"
 #include "util/error_internal.h"
 #include "util/text.h"

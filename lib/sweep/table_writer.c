@@ -157,6 +157,12 @@ static void csv_comment_text(FILE *f, const char *name, const char *text)
 
 /* Per axis: "# vary = SPEC" of its first key, "# with = SPEC" of each key zipped with it, then
  * "# from = ORIGIN" (command line, or the case file's FILE:LINE: sweep.vary[i]). */
+/* Why the table is incomplete: its reason, else the rule's own. */
+static const char *incomplete_reason(const td_sweep_table *t)
+{
+    return t->reason && t->reason[0] ? t->reason : "not every point was run";
+}
+
 static void csv_axes(FILE *f, const td_sweep_grid *g)
 {
     int k, n = td_sweep_grid_keys(g);
@@ -179,10 +185,7 @@ static void csv_attributes(FILE *f, const td_sweep_table *t)
         fprintf(f, "# %s = %s\n", td_out_name(TD_OUT_SWEEP_SET), t->sets[i]);
     if (t->case_text && t->case_text[0])
         csv_comment_text(f, td_out_name(TD_OUT_CASE_TEXT), t->case_text);
-    if (t->complete)
-        fprintf(f, "# %s\n", td_out_name(TD_OUT_COMPLETE));
-    else
-        fprintf(f, "# incomplete: %s\n", t->reason && t->reason[0] ? t->reason : "not every point was run");
+    td_io_csv_flag(f, t->complete, incomplete_reason(t)); /* a failed write shows at the close */
 }
 
 static void csv_write_all(FILE *f, const td_sweep_table *t)
@@ -337,8 +340,7 @@ static int h5_attributes(hid_t file, const td_sweep_table *t)
          td_h5_attr_string(file, td_out_name(TD_OUT_CASE_TEXT), t->case_text ? t->case_text : "") >= 0 &&
          td_h5_attr_string(file, td_out_name(TD_OUT_LIBRARY_VERSION), td_version()) >= 0;
     if (ok && !t->complete)
-        ok = td_h5_attr_string(file, td_out_name(TD_OUT_INCOMPLETE_REASON),
-                               t->reason && t->reason[0] ? t->reason : "not every point was run") >= 0;
+        ok = td_h5_attr_string(file, td_out_name(TD_OUT_INCOMPLETE_REASON), incomplete_reason(t)) >= 0;
     ok = ok && td_h5_attr_int(file, td_out_name(TD_OUT_COMPLETE), t->complete ? 1 : 0) >= 0;
     free(vary);
     free(sets);

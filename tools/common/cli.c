@@ -45,15 +45,21 @@ static int load_failed(td_status st, const td_error *err)
     return TD_EXIT_USAGE;
 }
 
+td_status td_cli_case_checked(const char *path, const char *const *items, int count, td_case **out, td_error *err)
+{
+    td_status st = td_case_load(path, items, count, out, err);
+    /* the sweep group is judged whichever command loads the case (docs/case-format.md, "sweep") */
+    if (st == TD_OK && (st = td_sweep_check_case(*out, err)) != TD_OK)
+        td_case_free(out);
+    return st;
+}
+
 int td_cli_load_case(const char *path, const td_cli_sets *sets, td_case **out)
 {
     td_error err;
     td_status st;
     td_error_clear(&err);
-    st = td_case_load(path, sets ? sets->items : NULL, sets ? sets->count : 0, out, &err);
-    /* the sweep group is judged whichever command loads the case (docs/case-format.md, "sweep") */
-    if (st == TD_OK && (st = td_sweep_check_case(*out, &err)) != TD_OK)
-        td_case_free(out);
+    st = td_cli_case_checked(path, sets ? sets->items : NULL, sets ? sets->count : 0, out, &err);
     return st == TD_OK ? TD_EXIT_OK : load_failed(st, &err);
 }
 
@@ -63,7 +69,7 @@ int td_cli_job_create(const char *path, const td_cli_sets *sets, td_job **out)
     td_status st;
     td_error_clear(&err);
     st = td_job_create(path, sets ? sets->items : NULL, sets ? sets->count : 0, out, &err);
-    /* as td_cli_load_case: the sweep group is judged whichever command loads the case */
+    /* as td_cli_case_checked: the sweep group is judged whichever command loads the case */
     if (st == TD_OK && (st = td_sweep_check_case(td_job_case(*out), &err)) != TD_OK)
         td_job_free(out);
     return st == TD_OK ? TD_EXIT_OK : load_failed(st, &err);

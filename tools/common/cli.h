@@ -28,7 +28,12 @@ typedef struct td_cli_sets {
 /* Add one --set argument; prints an error and returns TD_EXIT_USAGE when there are too many. */
 int td_cli_add_set(td_cli_sets *sets, const char *kv);
 
-/* Load a case with overrides; on failure print "touchdown: MESSAGE" and return TD_EXIT_USAGE. */
+/* Load a case with `count` overrides and judge its sweep group, as every command loads one
+ * (td_case_load, td_sweep_check_case); on failure *out is NULL and err says why. Prints nothing. */
+td_status td_cli_case_checked(const char *path, const char *const *items, int count, td_case **out, td_error *err);
+
+/* td_cli_case_checked with the --set overrides; on failure print "touchdown: MESSAGE" and return
+ * TD_EXIT_USAGE. */
 int td_cli_load_case(const char *path, const td_cli_sets *sets, td_case **out);
 
 /* The job of a case with overrides (touchdown/job.h); on failure as td_cli_load_case. */

@@ -3,11 +3,6 @@
 
 #include <math.h>
 
-const char *td_whirl_name(td_whirl w)
-{
-    return w == TD_WHIRL_FORWARD ? "forward" : w == TD_WHIRL_BACKWARD ? "backward" : "mixed";
-}
-
 int td_print_modes(FILE *f, const td_modal *modes, int count, int digits)
 {
     int i, shown = 0, n = td_modal_mode_count(modes), overdamped = 0;

@@ -7,7 +7,6 @@
 
 #include <stdio.h>
 
-const char *td_whirl_name(td_whirl w);
 /* Table of the first `count` vibration modes with `digits` significant digits; returns how many
  * near-critically damped pairs (AMB lags) were left out. */
 int td_print_modes(FILE *f, const td_modal *modes, int count, int digits);

@@ -7,6 +7,7 @@
  */
 #include "plot/plot.h"
 #include "touchdown/dofs.h"
+#include "touchdown/modal.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -16,9 +17,10 @@
 #define COLOR_BACKWARD "#d62728"
 #define COLOR_MIXED "#7f7f7f"
 
+/* The name of a whirl as the modal file holds it (1 forward, -1 backward, 0 mixed). */
 static const char *whirl_word(double w)
 {
-    return w > 0.5 ? "forward" : w < -0.5 ? "backward" : "mixed";
+    return td_whirl_name(w > 0.5 ? TD_WHIRL_FORWARD : w < -0.5 ? TD_WHIRL_BACKWARD : TD_WHIRL_MIXED);
 }
 
 /* ---- Campbell diagram ---------------------------------------------------------------------- */

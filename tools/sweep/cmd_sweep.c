@@ -307,8 +307,7 @@ static int check_points(const sweep_job *job)
     for (p = 0; p < n; p++) {
         int k = sweep_point_overrides(job, p, items, store);
         td_error_clear(&err);
-        if (td_case_load(job->case_path, items, k, &c, &err) != TD_OK || td_sweep_check_case(c, &err) != TD_OK) {
-            td_case_free(&c);
+        if (td_cli_case_checked(job->case_path, items, k, &c, &err) != TD_OK) {
             report_point_error(job->grid, err.message);
             return TD_EXIT_USAGE;
         }
