@@ -41,14 +41,6 @@ static const int node_list[NODES] = {2, 7, 11};
 
 /* ---- synthetic data ---------------------------------------------------------------------- */
 
-static uint64_t splitmix(uint64_t *s)
-{
-    uint64_t z = (*s += 0x9e3779b97f4a7c15ULL);
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-    return z ^ (z >> 31);
-}
-
 /* Any finite double, by bit pattern (subnormals, -0 and huge values included), with a few
  * special values mixed in. */
 static double any_double(uint64_t *s)
@@ -56,7 +48,7 @@ static double any_double(uint64_t *s)
     static const double specials[] = {
         0.0, -0.0, 0.1, 1.0 / 3.0, DBL_MAX, -DBL_MAX, DBL_MIN, 4.9406564584124654e-324, 1e-10, 2.0000000001};
     for (;;) {
-        uint64_t bits = splitmix(s);
+        uint64_t bits = td_test_splitmix(s);
         double d;
         if ((bits & 0xff) < 10)
             return specials[bits & 0xff];
@@ -94,7 +86,7 @@ static sample_set *make_samples(void)
             s->normal_force = any_double(&seed);
             s->friction_force = any_double(&seed);
             s->sliding_velocity = any_double(&seed);
-            s->in_contact = (int)(splitmix(&seed) & 1);
+            s->in_contact = (int)(td_test_splitmix(&seed) & 1);
         }
         for (i = 0; i < 2 * AMBS; i++)
             d->amb[r][i] = any_double(&seed);

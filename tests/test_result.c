@@ -31,19 +31,11 @@
 
 static const int node_list[NODES] = {3, 8};
 
-static uint64_t splitmix(uint64_t *s)
-{
-    uint64_t z = (*s += 0x9e3779b97f4a7c15ULL);
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-    return z ^ (z >> 31);
-}
-
 /* A double of any size and sign: 53 random bits scaled over +-1e+-9. */
 static double any_double(uint64_t *s)
 {
-    double u = (double)(splitmix(s) >> 11) / 9007199254740992.0;
-    return (u - 0.5) * pow(10.0, (double)(splitmix(s) % 19) - 9.0);
+    double u = (double)(td_test_splitmix(s) >> 11) / 9007199254740992.0;
+    return (u - 0.5) * pow(10.0, (double)(td_test_splitmix(s) % 19) - 9.0);
 }
 
 typedef struct run_data {
@@ -65,11 +57,11 @@ static void fill_retainer(td_retainer_state *s, uint64_t *seed)
     s->normal_force = any_double(seed);
     s->friction_force = any_double(seed);
     s->sliding_velocity = any_double(seed);
-    s->in_contact = (int)(splitmix(seed) & 1);
+    s->in_contact = (int)(td_test_splitmix(seed) & 1);
     s->race_x = any_double(seed);
     s->race_y = any_double(seed);
     s->race_speed = any_double(seed);
-    s->rolling = (int)(splitmix(seed) & 1);
+    s->rolling = (int)(td_test_splitmix(seed) & 1);
     s->whirl_rate = any_double(seed);
 }
 

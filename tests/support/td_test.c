@@ -71,3 +71,11 @@ double td_test_max_abs(const double *a, int n)
         m = fmax(m, fabs(a[i]));
     return m;
 }
+
+uint64_t td_test_splitmix(uint64_t *s)
+{
+    uint64_t z = (*s += 0x9e3779b97f4a7c15ULL);
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+    return z ^ (z >> 31);
+}

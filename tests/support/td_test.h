@@ -37,4 +37,8 @@ char *td_test_read_file(const char *path);
 /* Path of a file in the source tree (tests/..., cases/...), in a static buffer per call slot. */
 const char *td_source_path(const char *relative);
 
+/* The next of a reproducible stream of 64 random bits from the state *s (SplitMix64, Steele, Lea
+ * and Flood 2014): synthetic data that any seed reproduces. */
+uint64_t td_test_splitmix(uint64_t *s);
+
 #endif
