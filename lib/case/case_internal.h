@@ -108,8 +108,6 @@ td_status td_cr_fail(td_case_reader *r, const config_setting_t *s, const char *s
     __attribute__((format(printf, 4, 5)))
 #endif
     ;
-/* The entry of the case's "overrides" list whose string is `ov`, or NULL (a --set). */
-const config_setting_t *td_cr_file_override(const td_case_reader *r, const char *ov);
 
 /* ---- 2. typed getters (case_value.c) ---------------------------------------------------- */
 /* A quantity derived from setting s (`what`, e.g. "the time constant tau = 1 / (2 pi bandwidth)"):

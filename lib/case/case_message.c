@@ -105,7 +105,8 @@ static const char *override_of(const config_setting_t *s)
     return NULL;
 }
 
-const config_setting_t *td_cr_file_override(const td_case_reader *r, const char *ov)
+/* The entry of the case's "overrides" list whose string is `ov`, or NULL (a --set). */
+static const config_setting_t *file_override(const td_case_reader *r, const char *ov)
 {
     int i, n = r->overrides ? config_setting_length(r->overrides) : 0;
     for (i = 0; i < n; i++) {
@@ -119,7 +120,7 @@ const config_setting_t *td_cr_file_override(const td_case_reader *r, const char 
 void td_cr_where(const td_case_reader *r, const config_setting_t *s, char *buf, size_t n)
 {
     const char *ov = override_of(s);
-    const config_setting_t *entry = ov ? td_cr_file_override(r, ov) : NULL;
+    const config_setting_t *entry = ov ? file_override(r, ov) : NULL;
     char shown[1024], at[1024], key[256];
     if (entry) { /* grafted by the case's own overrides list: where that entry is */
         td_cr_where(r, entry, at, sizeof at);
