@@ -9,6 +9,7 @@
 #ifndef TOUCHDOWN_MODEL_H
 #define TOUCHDOWN_MODEL_H
 
+#include "touchdown/controller.h"
 #include "touchdown/error.h"
 #include "touchdown/export.h"
 #include "touchdown/options.h"
@@ -258,6 +259,19 @@ TD_API td_status td_model_add_bearing(td_model *m, const td_bearing *b, td_error
 TD_API td_status td_model_add_retainer(td_model *m, const td_retainer *r, td_error *err);
 TD_API td_status td_model_add_unbalance(td_model *m, const td_unbalance *u, td_error *err);
 TD_API td_status td_model_add_change(td_model *m, const td_change *c, td_error *err);
+/**
+ * A linear controller (touchdown/controller.h) driving AMB axes. An AMB axis is numbered
+ * 2 * amb + axis (axis 0: x, 1: y), as the system numbers them. Input j of the controller reads the
+ * sensor of axis inputs[j] (its error e = -xs), output j is the current command of axis
+ * outputs[j]'s amplifier (force ki i, lagged by the AMB's tau, clipped as the AMB says). An axis is
+ * driven by at most one controller, and the AMB of a driven axis has kp = kd = kint = 0: its td_amb
+ * keeps the magnet (ks, ki) and the amplifier (tau, force_capacity, saturation), the controller
+ * replaces the shorthand law. A controller reads its sensors and runs while its AMB is off; the
+ * AMB then exerts no force. The model keeps copies of k and of the lists. name (may be NULL, at
+ * most 63 characters) names it in messages and events. A fault names site part "controller".
+ */
+TD_API td_status td_model_add_controller(td_model *m, const char *name, const td_controller *k, const int *inputs,
+                                         const int *outputs, td_error *err);
 /** Rotor speed Omega, rad/s (constant between changes). */
 TD_API td_status td_model_set_speed(td_model *m, double omega, td_error *err);
 /** Append a point of the speed ramp (time after the previous point's). */
@@ -294,6 +308,7 @@ TD_API int td_model_bearing_count(const td_model *m);
 TD_API int td_model_retainer_count(const td_model *m);
 TD_API int td_model_unbalance_count(const td_model *m);
 TD_API int td_model_change_count(const td_model *m);
+TD_API int td_model_controller_count(const td_model *m);
 /** The order of addition (from 0) of change i, i counted in time order as td_model_get_change
  *  counts it: the schedule entry as written, which events report (td_event.change); -1 when i is
  *  out of range. */
@@ -324,6 +339,11 @@ TD_API td_status td_model_get_bearing(const td_model *m, int i, td_bearing *out)
 TD_API td_status td_model_get_retainer(const td_model *m, int i, td_retainer *out);
 TD_API td_status td_model_get_unbalance(const td_model *m, int i, td_unbalance *out);
 TD_API td_status td_model_get_change(const td_model *m, int i, td_change *out);
+/** Controller i as the model keeps it (NULL when i is out of range); *name, *inputs and *outputs
+ *  (each may be NULL) receive the model's name (never NULL: "" when none) and axis lists,
+ *  td_controller_inputs(k) and td_controller_outputs(k) long. Valid while the model lives unchanged. */
+TD_API const td_controller *td_model_get_controller(const td_model *m, int i, const char **name, const int **inputs,
+                                                    const int **outputs);
 
 #ifdef __cplusplus
 }

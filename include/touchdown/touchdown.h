@@ -5,6 +5,7 @@
 #define TOUCHDOWN_TOUCHDOWN_H
 
 #include "touchdown/case.h"
+#include "touchdown/controller.h"
 #include "touchdown/dofs.h"
 #include "touchdown/error.h"
 #include "touchdown/job.h"

@@ -23,7 +23,22 @@ typedef struct td_amb_axis {
     double kint;  /* integral gain, A/(m s) */
     int off;      /* 1: the AMB is off (failed) in the machine the system describes now: no force,
                    * its integrator holds (td_system_set_amb_off); 0 as built */
+    int law;      /* -1: the shorthand law above (kp, kd, kint); else the index in td_system.laws of
+                   * the linear controller that drives this axis */
+    int law_output; /* the output of that controller that commands this axis; -1 for the shorthand */
 } td_amb_axis;
+
+/* One linear controller of the model (touchdown/controller.h) as the system runs it. */
+typedef struct td_lti_law {
+    int n, nin, nout;
+    double *A, *B, *C, *D; /* column-major, owned */
+    double *D1;            /* nout x nin velocity feedthrough, owned; NULL when zero (always when sampled) */
+    double sample_rate;    /* Hz; 0: continuous */
+    int *in_axis;          /* nin AMB axis indices (2 amb + axis) whose sensors it reads, e = -xs */
+    int *out_axis;         /* nout AMB axis indices whose amplifiers it commands */
+    int state;             /* continuous: index of its first state among the controller states (after
+                            * every shorthand state); -1 when sampled (its state is the simulation's) */
+} td_lti_law;
 
 struct td_system {
     td_model *model; /* owned copy */
@@ -46,7 +61,10 @@ struct td_system {
     int n_amb_axes; /* 2 * number of AMBs */
     td_amb_axis *amb_axes;
     int n_controller_states; /* AMB controller states: a lag state Fc per axis with tau > 0, then an
-                              * integrator state e per axis with kint > 0 */
+                              * integrator state e per axis with kint > 0, then the states of each
+                              * continuous linear controller in turn */
+    int n_laws;              /* linear controllers, in the model's order */
+    td_lti_law *laws;
     double *gravity_load;    /* M g, length ndof: the weight as nodal forces */
 };
 

@@ -26,6 +26,9 @@ typedef struct td_sim_machine {
     td_unbalance *unb;
     td_amb_mode *amb_mode;     /* per AMB */
     double *amb_control;       /* per AMB, x and y: held control force (TD_AMB_EXTERNAL) */
+    double *held_current;      /* per AMB axis: the current command (A) a sampled controller holds
+                                * on it between its samples (sampler.c writes it, the residual reads
+                                * it); 0 for an axis no sampled controller drives */
     int next_change;           /* first schedule entry not yet applied */
     td_sim_amb_coef *amb_coef; /* per AMB axis */
 
