@@ -137,8 +137,8 @@ TD_API td_status td_controller_frequency_response(const td_controller *k, double
 /** Response y (outputs x n_times, column-major) to a unit step on input `input` at t = 0 from rest,
  *  at the times t (>= 0, s): exact for a continuous law (matrix exponential), the sample sequence
  *  held for a sampled one. A law with D1 != 0 is refused (its step response has an impulse). */
-TD_API td_status td_controller_step_response(const td_controller *k, int input, const double *t, int n_times,
-                                             double *y, td_error *err);
+TD_API td_status td_controller_step_response(const td_controller *k, int input, const double *t, int n_times, double *y,
+                                             td_error *err);
 
 /* --- Rigid-body coordinates (docs/theory.md, "Rigid-body coordinates") ---
  * For two bearing planes a and b at axial positions za != zb and a reference position zr, in each

@@ -18,13 +18,13 @@ typedef struct td_amb_axis {
     int sensor_dof;   /* global DOF the controller reads */
     double ks, ki, kp, kd, tau, capacity;
     int saturation;
-    int state;    /* index of its lag state Fc among the controller states, or -1 when tau == 0 */
-    int integral; /* index of its integrator state e among the controller states, or -1 when kint == 0 */
-    double kint;  /* integral gain, A/(m s) */
-    int off;      /* 1: the AMB is off (failed) in the machine the system describes now: no force,
-                   * its integrator holds (td_system_set_amb_off); 0 as built */
-    int law;      /* -1: the shorthand law above (kp, kd, kint); else the index in td_system.laws of
-                   * the linear controller that drives this axis */
+    int state;      /* index of its lag state Fc among the controller states, or -1 when tau == 0 */
+    int integral;   /* index of its integrator state e among the controller states, or -1 when kint == 0 */
+    double kint;    /* integral gain, A/(m s) */
+    int off;        /* 1: the AMB is off (failed) in the machine the system describes now: no force,
+                     * its integrator holds (td_system_set_amb_off); 0 as built */
+    int law;        /* -1: the shorthand law above (kp, kd, kint); else the index in td_system.laws of
+                     * the linear controller that drives this axis */
     int law_output; /* the output of that controller that commands this axis; -1 for the shorthand */
 } td_amb_axis;
 
@@ -65,7 +65,7 @@ struct td_system {
                               * continuous linear controller in turn */
     int n_laws;              /* linear controllers, in the model's order */
     td_lti_law *laws;
-    double *gravity_load;    /* M g, length ndof: the weight as nodal forces */
+    double *gravity_load; /* M g, length ndof: the weight as nodal forces */
 };
 
 /* Mark AMB `amb`'s axes off (off != 0) or working, so that the contact-free system's analyses
