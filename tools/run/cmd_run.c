@@ -1,5 +1,6 @@
 /* touchdown run: a case file to HDF5/CSV plus a summary. */
 #include "common/cli.h"
+#include "run/spread.h"
 #include "touchdown/job.h"
 
 #include <getopt.h>
@@ -129,16 +130,29 @@ static int parse_level(const char *text, int *level)
     return 0;
 }
 
-static void print_summary(const td_run_summary *s, int json)
+/* One of the library's writers of a summary, `spread` NULL or not (the text's spread follows it). */
+static int write_summary(char *buf, size_t n, const td_run_summary *s, int json, int with_spread,
+                         const td_spread *spread)
 {
-    int n = json ? td_run_summary_json(NULL, 0, s) : td_run_summary_format(NULL, 0, s);
+    if (json)
+        return with_spread ? td_run_summary_json_spread(buf, n, s, spread) : td_run_summary_json(buf, n, s);
+    if (!with_spread)
+        return td_run_summary_format(buf, n, s);
+    {
+        int k = td_run_summary_format(buf, n, s);
+        size_t used = (size_t)k < n ? (size_t)k : n;
+        return k + td_spread_format(buf ? buf + used : NULL, n - used, spread);
+    }
+}
+
+/* The summary, text or JSON; with --spread its spread too (NULL: not measured). */
+static void print_summary(const td_run_summary *s, int json, int with_spread, const td_spread *spread)
+{
+    int n = write_summary(NULL, 0, s, json, with_spread, spread);
     char *buf = malloc((size_t)n + 1);
     if (!buf)
         return;
-    if (json)
-        td_run_summary_json(buf, (size_t)n + 1, s);
-    else
-        td_run_summary_format(buf, (size_t)n + 1, s);
+    write_summary(buf, (size_t)n + 1, s, json, with_spread, spread);
     fputs(buf, stdout);
     if (n > 0 && buf[n - 1] != '\n')
         fputc('\n', stdout);
@@ -158,12 +172,13 @@ typedef struct run_args {
     td_cli_sets sets;
     const char *prefix, *hdf5, *csv, *case_path;
     int quiet, json, want_progress, compress;
+    int spread; /* --spread N: runs in the ensemble, 0: none */
 } run_args;
 
 /* Parse the command line into a; -1 to go on, else the exit code (--help, a usage error). */
 static int parse_args(int argc, char **argv, run_args *a)
 {
-    enum { OPT_HDF5 = 256, OPT_CSV, OPT_JSON, OPT_NO_PROGRESS, OPT_COMPRESS };
+    enum { OPT_HDF5 = 256, OPT_CSV, OPT_JSON, OPT_NO_PROGRESS, OPT_COMPRESS, OPT_SPREAD };
     static const struct option longopts[] = {{"set", required_argument, NULL, 's'},
                                              {"output", required_argument, NULL, 'o'},
                                              {"hdf5", required_argument, NULL, OPT_HDF5},
@@ -172,6 +187,7 @@ static int parse_args(int argc, char **argv, run_args *a)
                                              {"quiet", no_argument, NULL, 'q'},
                                              {"json", no_argument, NULL, OPT_JSON},
                                              {"no-progress", no_argument, NULL, OPT_NO_PROGRESS},
+                                             {"spread", required_argument, NULL, OPT_SPREAD},
                                              {"help", no_argument, NULL, 'h'},
                                              {NULL, 0, NULL, 0}};
     int opt;
@@ -195,6 +211,10 @@ static int parse_args(int argc, char **argv, run_args *a)
         case 'q': a->quiet = 1; break;
         case OPT_JSON: a->json = 1; break;
         case OPT_NO_PROGRESS: a->want_progress = 0; break;
+        case OPT_SPREAD:
+            if (td_run_spread_parse(optarg, &a->spread))
+                return TD_EXIT_USAGE;
+            break;
         case 'h': fputs(run_usage, stdout); return TD_EXIT_OK;
         default: fputs(run_usage, stderr); return TD_EXIT_USAGE;
         }
@@ -228,14 +248,17 @@ static int run_job(td_job *job, const run_args *a, volatile sig_atomic_t *cancel
     progress prog = {0.0, 0.0, 0};
     td_run_hooks hooks;
     td_run_summary summary;
+    td_spread spread;
     td_error err;
     td_status st;
+    int code, show = a->want_progress && !a->quiet && isatty(STDERR_FILENO);
     memset(&hooks, 0, sizeof hooks);
+    spread.members = 0;
     td_error_clear(&err);
     /* the set-up first, reading the flag: its dense start solve may be long */
     st = td_job_start(job, cancel, NULL);
     prog.started = td_cli_now();
-    if (st == TD_OK && a->want_progress && !a->quiet && isatty(STDERR_FILENO)) {
+    if (st == TD_OK && show) {
         hooks.progress = show_progress;
         hooks.user = &prog;
     }
@@ -246,10 +269,14 @@ static int run_job(td_job *job, const run_args *a, volatile sig_atomic_t *cancel
     if (st != TD_OK)
         fprintf(stderr, "touchdown: %s: %s\n", path, err.message[0] ? err.message : td_strerror(st));
     print_warnings(path, &summary);
+    code = td_cli_exit_code(st);
+    /* the spread of a run that reached its end: its other members, after its own files */
+    if (st == TD_OK && a->spread)
+        code = td_run_spread(job, &summary, a->spread, show, cancel, &spread);
     /* JSON whenever asked (scripts read it, also of a failed run); -q silences only the text */
     if (a->json || (!a->quiet && summary.t_reached > summary.t_start))
-        print_summary(&summary, a->json);
-    return td_cli_exit_code(st);
+        print_summary(&summary, a->json, a->spread > 0, spread.members > 0 ? &spread : NULL);
+    return code;
 }
 
 int td_cmd_run(int argc, char **argv)
