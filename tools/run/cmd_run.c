@@ -28,11 +28,15 @@ static const char run_usage[] =
     "  -q, --quiet          print no text summary (errors still go to stderr, --json still prints)\n"
     "      --json           print the summary as one JSON object on stdout, also of a failed run\n"
     "      --no-progress    no progress line (it is shown only when stderr is a terminal)\n"
+    "      --spread N       then run the case N - 1 more times without files, solver.atol scaled\n"
+    "                       within +-1 % (N odd, 3..21), and print the spread of each leading\n"
+    "                       answer over the N runs after the summary (--json: its member \"spread\")\n"
     "  -h, --help           this help\n"
     "\n"
     "The summary leads with the peak force into the housing, the total impulse, the friction work\n"
     "and the final speed (all converge in a steady rub; in a run that bounces the peak force, the\n"
-    "contacts and the time in contact are chaotic: docs/validation.md); then how the run ended (free,\n"
+    "contacts and the time in contact are chaotic: docs/validation.md; --spread N says which of this\n"
+    "run's answers settle); then how the run ended (free,\n"
     "recovered, at rest, rolling or sliding on the retainers, backward whirl or forward rub at F Hz,\n"
     "bouncing), the AMBs' peak force against their capacity and each retainer's whirl, its sustained\n"
     "and brief (touch-and-go) contacts and its share of the run in contact. It also gives\n"
@@ -54,10 +58,27 @@ static const char run_usage[] =
     "Refused before the run (exit 2): two outputs (HDF5, CSV, events file) that are the same\n"
     "file, an output that is the case file or one of its @include files, an output named\n"
     "*.partial, an output that exists and is not a regular file, an output directory that does\n"
-    "not exist or is not writable, an --output PREFIX that names no file ('', 'dir/', '.').\n"
+    "not exist or is not writable, an --output PREFIX that names no file ('', 'dir/', '.').\n";
+
+/* The help's second part (ISO C bounds one string literal's length). */
+static const char run_usage_more[] =
+    "\n"
+    "With --spread N the N runs are equally accurate (the same rtol, atol within +-1 %): each answer\n"
+    "is given with its least, greatest and median value over them and its spread, (greatest -\n"
+    "least) / |median|; it settles when the spread is at most 2 %, the range of atol (a converged\n"
+    "answer moves by less than the tolerance that moves it), else it does not. A further run that\n"
+    "fails is counted, never averaged in, and leaves the exit code as it was. The spread needs a run that reached its "
+    "end: else \"spread\" is\n"
+    "null. N runs take about N times as long; the progress line counts them.\n"
     "\n"
     "exit codes: 0 complete, 1 the simulation failed or was interrupted (SIGINT/SIGTERM/SIGHUP, also\n"
-    "during the set-up), 2 bad input or usage (an unusable start state included).\n";
+    "during the set-up or the spread's runs), 2 bad input or usage (an unusable start state included).\n";
+
+static void print_usage(FILE *f)
+{
+    fputs(run_usage, f);
+    fputs(run_usage_more, f);
+}
 
 /* Progress line state: shown once a run has taken about a second, refreshed a few times a second. */
 typedef struct progress {
@@ -215,8 +236,8 @@ static int parse_args(int argc, char **argv, run_args *a)
             if (td_run_spread_parse(optarg, &a->spread))
                 return TD_EXIT_USAGE;
             break;
-        case 'h': fputs(run_usage, stdout); return TD_EXIT_OK;
-        default: fputs(run_usage, stderr); return TD_EXIT_USAGE;
+        case 'h': print_usage(stdout); return TD_EXIT_OK;
+        default: print_usage(stderr); return TD_EXIT_USAGE;
         }
     }
     if (optind != argc - 1) {
