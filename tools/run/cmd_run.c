@@ -67,9 +67,9 @@ static const char run_usage_more[] =
     "is given with its least, greatest and median value over them and its spread, (greatest -\n"
     "least) / |median|; it settles when the spread is at most 2 %, the range of atol (a converged\n"
     "answer moves by less than the tolerance that moves it), else it does not. A further run that\n"
-    "fails is counted, never averaged in, and leaves the exit code as it was. The spread needs a run that reached its "
-    "end: else \"spread\" is\n"
-    "null. N runs take about N times as long; the progress line counts them.\n"
+    "fails is counted, never averaged in, and leaves the exit code as it was. The spread needs a\n"
+    "run that reached its end: else \"spread\" is null. N runs take about N times as long; the\n"
+    "progress line counts them.\n"
     "\n"
     "exit codes: 0 complete, 1 the simulation failed or was interrupted (SIGINT/SIGTERM/SIGHUP, also\n"
     "during the set-up or the spread's runs), 2 bad input or usage (an unusable start state included).\n";
