@@ -116,6 +116,9 @@ static void test_collect_odd(void **state)
     assert_int_equal(sp.answers[TD_SPREAD_FINAL_SPEED].settles, 1);
     assert_true(sp.answers[TD_SPREAD_PEAK_AMB_FORCE].median == 700.0);
     assert_true(sp.atol_factor[0] == 1.0 && sp.atol_factor[3] == 1.01);
+    assert_string_equal(td_spread_answer_name(TD_SPREAD_PEAK_HOUSING_FORCE), "peak_housing_force");
+    assert_string_equal(td_spread_answer_name(TD_SPREAD_PEAK_AMB_FORCE), "peak_amb_force");
+    assert_null(td_spread_answer_name(TD_SPREAD_ANSWERS));
 }
 
 /* A failed member: counted, in no statistic, null in the JSON; four completed give an even median. */
