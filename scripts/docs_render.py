@@ -656,7 +656,9 @@ def spread_cell(a, fmt):
 def val_spread():
     runs = res("spread")["runs"]
     rows, settle = [], []
-    for case in runs:
+    # the paper's cases in their order, then the others as recorded
+    order = [c for _, c in CASES if c in runs] + sorted(c for c in runs if c not in dict(CASES).values())
+    for case in order:
         sp = runs[case]["summary"].get("spread") or {}
         answers = sp.get("answers", {})
         label = next((k for k, c in CASES if c == case), case)
@@ -664,7 +666,7 @@ def val_spread():
                      "%s (%s)" % (sp.get("same_ending", "-"), sp.get("ending") or "-")]
                     + [spread_cell(answers.get(k), fmt) for k, _, fmt in SPREAD_COLUMNS]
                     + [f(cpu("spread", case), 1)])
-        ok = [SPREAD_NAMES[k] for k, a in answers.items() if a.get("settles") is True]
+        ok = [SPREAD_NAMES[k] for k in SPREAD_NAMES if (answers.get(k) or {}).get("settles") is True]
         settle.append("%s: %s" % (label, ", ".join(ok) if ok else "none"))
     members = next(iter(runs.values()))["summary"]["spread"]["members"]
     return (table(["case", "runs that reached their end", "ended as the run did"] + [h for _, h, _ in SPREAD_COLUMNS]
