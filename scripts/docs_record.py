@@ -305,6 +305,23 @@ def src_intervals(tool, build):
     return data
 
 
+# The cases of docs/validation.md, "Does this run's answer settle?": the paper's cases, the drop, and
+# the damped steady rub beside them.
+SPREAD_CASES = PAPER + ["drop", "rub-damped"]
+SPREAD_MEMBERS = 5
+
+
+def src_spread(tool, build):
+    """touchdown run --spread 5 of each case as shipped: the run and four more with solver.atol
+    within +-1 %, each leading answer's least, median, greatest and spread over the five."""
+    data = stamp(tool, "spread", "touchdown run --json --spread %d, one ensemble per case as shipped" % SPREAD_MEMBERS)
+    data["runs"] = {}
+    for case in SPREAD_CASES:
+        args = run_args(case)
+        data["runs"][case] = record_run(tool, args[:-1] + ["--spread", str(SPREAD_MEMBERS), args[-1]])
+    return data
+
+
 def src_figures(tool, build):
     """docs/figures/ by scripts/make-figures.sh (its own runs of the cases and the studies), and the
     tables of the two study sweeps it runs (docs/sweep-study.md reads them)."""
@@ -332,7 +349,7 @@ def src_figures(tool, build):
 SOURCES = {"fast": [("runs", src_runs), ("modal", src_modal), ("validation", src_validation), ("keys", src_keys)],
            "slow": [("bench", src_bench), ("scaling", src_scaling), ("references", src_references),
                     ("intervals", src_intervals), ("tolerances", src_tolerances), ("mesh", src_mesh),
-                    ("convergence", src_convergence), ("figures", src_figures)]}
+                    ("convergence", src_convergence), ("spread", src_spread), ("figures", src_figures)]}
 
 
 # The runs are deterministic: the same build gives the same bits. The tolerance allows for another

@@ -630,6 +630,74 @@ def val_conv_drop():
     return conv_table("drop", extra=True)
 
 
+# The answers of the spread table: JSON name, column head, number format.
+SPREAD_COLUMNS = [("peak_housing_force", "peak housing force (N)", n), ("contacts", "contacts", n),
+                  ("contact_time", "time in contact (s)", lambda x: g(x, 3)),
+                  ("total_impulse", "total impulse (N s)", lambda x: f(x, 1)),
+                  ("friction_work", "friction work (J)", lambda x: g(x, 4)),
+                  ("final_speed", "final speed (rad/s)", lambda x: g(x, 5))]
+SPREAD_NAMES = {"peak_housing_force": "peak housing force", "total_impulse": "impulse",
+                "friction_work": "friction work", "final_speed": "final speed", "contacts": "contacts",
+                "contact_time": "time in contact", "first_contact_time": "first contact",
+                "peak_normal_force": "peak normal force", "peak_amb_force": "peak AMB force"}
+
+
+def spread_cell(a, fmt):
+    """'least-greatest (spread)', the spread bold when it does not settle; '-' without values."""
+    if not a or not a.get("count"):
+        return "-"
+    lo, hi = fmt(a["least"]), fmt(a["greatest"])
+    spread = "-" if a["spread"] is None else g(100.0 * a["spread"], 2) + " %"
+    if a.get("settles") is False:
+        spread = "**%s**" % spread
+    return "%s (%s)" % (lo if lo == hi else "%s-%s" % (lo, hi), spread)
+
+
+def val_spread():
+    runs = res("spread")["runs"]
+    rows, settle = [], []
+    # the paper's cases in their order, then the others as recorded
+    order = [c for _, c in CASES if c in runs] + sorted(c for c in runs if c not in dict(CASES).values())
+    for case in order:
+        sp = runs[case]["summary"].get("spread") or {}
+        answers = sp.get("answers", {})
+        label = next((k for k, c in CASES if c == case), case)
+        rows.append([label, "%s of %s" % (sp.get("completed", "-"), sp.get("members", "-")),
+                     "%s (%s)" % (sp.get("same_ending", "-"), sp.get("ending") or "-")]
+                    + [spread_cell(answers.get(k), fmt) for k, _, fmt in SPREAD_COLUMNS]
+                    + [f(cpu("spread", case), 1)])
+        ok = [SPREAD_NAMES[k] for k in SPREAD_NAMES if (answers.get(k) or {}).get("settles") is True]
+        settle.append("%s: %s" % (label, ", ".join(ok) if ok else "none"))
+    members = next(iter(runs.values()))["summary"]["spread"]["members"]
+    return (table(["case", "runs that reached their end", "ended as the run did"] + [h for _, h, _ in SPREAD_COLUMNS]
+                  + ["CPU s"], rows)
+            + "\n(`touchdown run --json --spread %d --hdf5 '' --csv '' cases/CASE.cfg`: each case as shipped and %d "
+            "more runs with\nsolver.atol x 0.99 .. 1.01; least-greatest over the %d runs, and in brackets the spread, "
+            "(greatest - least) /\n|median|, **bold** where it is above 2 %%, the range of atol: the answer does not "
+            "settle. CPU s: the\n%d runs together on the shared 2-core machine; %s.)\n\nSettles (spread at most "
+            "2 %%), of all nine answers of the summary:\n\n%s\n" % (
+                members, members - 1, members, members, cite("spread"),
+                "\n".join("- " + line for line in settle)))
+
+
+def span_readme_spread_a():
+    """Which of case A's answers in the spread table settle and which do not."""
+    answers = summary("spread", "paper-a")["spread"]["answers"]
+    words = {True: [], False: []}
+    for k, _, _ in SPREAD_COLUMNS:
+        if answers[k].get("settles") is not None:
+            words[answers[k]["settles"]].append("the " + SPREAD_NAMES[k])
+
+    def listing(w):
+        return w[0] if len(w) == 1 else ", ".join(w[:-1]) + " and " + w[-1]
+    parts = []
+    if words[False]:
+        parts.append("%s do%s not settle" % (listing(words[False]), "es" if len(words[False]) == 1 else ""))
+    if words[True]:
+        parts.append("%s do%s" % (listing(words[True]), "es" if len(words[True]) == 1 else ""))
+    return "; ".join(parts) or "no answer has a spread"
+
+
 def test_messages(test):
     return res("validation")["tests"][test]["messages"]
 
@@ -1200,7 +1268,7 @@ REGIONS = {"readme-glance": readme_glance, "readme-realtime": readme_realtime,
            "val-rig-modal": val_rig_modal, "val-beams": val_beams, "val-rotor-models": val_rotor_models,
            "val-annular-rub": val_annular_rub, "val-annular-mount": val_annular_mount, "val-penalty": val_penalty,
            "val-scenarios": val_scenarios, "val-conv-rub-damped": val_conv_rub_damped,
-           "val-conv-paper-a": val_conv_paper_a, "val-conv-drop": val_conv_drop,
+           "val-conv-paper-a": val_conv_paper_a, "val-conv-drop": val_conv_drop, "val-spread": val_spread,
            "out-name-index": out_name_index, "perf-scaling": perf_scaling}
 SPANS = {"rub-mean-normal": span_rub_mean_normal, "val-first-contact-cell": span_val_first_contact_cell,
          "val-rig-modal-cell": span_val_rig_modal_cell, "rig-mass": span_rig_mass,
@@ -1212,7 +1280,8 @@ SPANS = {"rub-mean-normal": span_rub_mean_normal, "val-first-contact-cell": span
          "val-two-cell": span_val_two_cell, "val-drop-rest-cell": span_val_drop_rest_cell,
          "val-annular-cell": span_val_annular_cell, "val-race-energy-cell": span_val_race_energy_cell,
          "val-spin-up-cell": span_val_spin_up_cell, "val-run-up-cell": span_val_run_up_cell,
-         "conv-impulses": span_conv_impulses, "drop-24-vs-96": span_drop_24_vs_96, "drop-energy": span_drop_energy}
+         "conv-impulses": span_conv_impulses, "drop-24-vs-96": span_drop_24_vs_96,
+         "readme-spread-a": span_readme_spread_a, "drop-energy": span_drop_energy}
 
 
 # --- the case keys (docs/case-format.md) ------------------------------------------------------------

@@ -9,14 +9,16 @@
 #                                              case keys (about 55 s on 2 cores)
 #   scripts/make-docs.sh --full [BUILD_DIR]    also the slow part: touchdown bench, the paper's cases
 #                                              at converged settings, tolerance, mesh and convergence
-#                                              studies, the figures (scripts/make-figures.sh; 13 min
+#                                              studies, the spread of the answers of the paper's cases,
+#                                              the drop and the damped rub (touchdown run --spread 5,
+#                                              about 2 min of CPU), the figures (scripts/make-figures.sh; 13 min
 #                                              on 2 cores at load 2, 40 min at load 5-14), and
 #                                              touchdown bench --scaling (about 6 min of CPU more: its
 #                                              record says how much)
 #   scripts/make-docs.sh --render              only rewrite the regions from the recorded results
 #   scripts/make-docs.sh --full --only SOURCE  rerun one source (runs, modal, validation, keys, bench,
 #                                              scaling, references, intervals, tolerances, mesh,
-#                                              convergence, figures), then render
+#                                              convergence, spread, figures), then render
 # BUILD_DIR defaults to ./build (scripts/setup.sh builds it). tests/cli/test_docs.sh checks that
 # the docs match the records and that the tool still prints the recorded numbers.
 set -euo pipefail

@@ -100,6 +100,21 @@ TD_API td_status td_job_start(td_job *job, volatile sig_atomic_t *cancel, td_err
  */
 TD_API td_status td_job_run(td_job *job, const td_run_hooks *hooks, td_run_summary *summary, td_error *err);
 
+/**
+ * Run members 1..n-1 of the spread ensemble of `job` (touchdown/run.h, td_spread_collect): each a
+ * job of the job's model (td_job_create_model) with its settings, solver.atol times
+ * td_spread_atol_factor(k, n) and no files, into members[k]; members[0] (the run as given, e.g.
+ * td_job_run's summary) is not touched. The job is only read: it may have run. `hooks` (may be
+ * NULL): hooks->cancel is read before each member and during its run; hooks->progress is called
+ * with the member's simulated time and contacts and the fraction of the n - 1 members done. A member
+ * that fails is kept in its summary (its status and message) and the next one runs. Returns TD_OK
+ * when every member ran (whatever its status); TD_ERR_INTERRUPTED when the cancel flag or the
+ * progress callback stopped them (the member stopped and those not run: failed summaries with that
+ * status); TD_ERR_INVALID for NULL job or members or an n that is no ensemble.
+ */
+TD_API td_status td_spread_run(const td_job *job, int n, const td_run_hooks *hooks, td_run_summary *members,
+                               td_error *err);
+
 #ifdef __cplusplus
 }
 #endif

@@ -244,6 +244,111 @@ TD_API int td_run_summary_format(char *buf, size_t n, const td_run_summary *s);
  *  Returns the length needed, like snprintf. */
 TD_API int td_run_summary_json(char *buf, size_t n, const td_run_summary *s);
 
+/*
+ * The spread of a run's answers: does THIS run's answer settle, or is it one draw of a chaotic
+ * sequence of impacts? An ensemble of n runs (n odd, TD_SPREAD_MIN_MEMBERS..TD_SPREAD_MAX_MEMBERS):
+ * member 0 is the run as given; members 1..n-1 the same case with solver.atol scaled by
+ * td_spread_atol_factor (1 +- TD_SPREAD_ATOL_WIDTH k / m, m = (n - 1) / 2, k = 1..m) and no files
+ * (td_spread_run, touchdown/job.h). The members are equally accurate: an answer that converges
+ * with the tolerances moves by a fraction of its error between them, a chaotic one by as much as
+ * the bounce sequence moves it. td_spread_collect gathers each leading answer over the members
+ * that reached their end; td_spread_format and td_spread_json write it (docs/validation.md).
+ */
+
+/** Fewest and most members of an ensemble (odd counts only). */
+#define TD_SPREAD_MIN_MEMBERS 3
+#define TD_SPREAD_MAX_MEMBERS 21
+/** Members' solver.atol lies within 1 +- this of the run's (+-1 %). */
+#define TD_SPREAD_ATOL_WIDTH 0.01
+/**
+ * An answer settles when its spread is at most the relative range of solver.atol over the members,
+ * 2 TD_SPREAD_ATOL_WIDTH (2 %). Why that bound: an answer A that converges with the tolerance, A =
+ * A* + C atol^p, moves by dA / A = p e datol / atol, e = |A - A*| / |A| the part of its error that
+ * atol sets; over the members (datol / atol spanning 2 TD_SPREAD_ATOL_WIDTH) its spread is about
+ * p e 2 TD_SPREAD_ATOL_WIDTH. An integrator that controls its local error has a global error at most
+ * proportional to its tolerance (p <= 1), so a spread larger than the range of atol needs e > 1, an
+ * error larger than the answer: it follows no converging value but the sequence of impacts. A
+ * spread within the range proves no convergence either: the answer is reproducible to its spread.
+ */
+#define TD_SPREAD_SETTLE_LIMIT (2.0 * TD_SPREAD_ATOL_WIDTH)
+
+/** The leading answers of td_run_summary whose spread is measured, in the order they are written. */
+typedef enum td_spread_answer {
+    TD_SPREAD_PEAK_HOUSING_FORCE = 0, /**< peak_housing_force, N */
+    TD_SPREAD_TOTAL_IMPULSE,          /**< total_impulse, N s */
+    TD_SPREAD_FRICTION_WORK,          /**< friction_work, J */
+    TD_SPREAD_FINAL_SPEED,            /**< final_speed, rad/s */
+    TD_SPREAD_CONTACTS,               /**< contacts (onsets) */
+    TD_SPREAD_CONTACT_TIME,           /**< contact_time, s */
+    TD_SPREAD_FIRST_CONTACT_TIME,     /**< first_contact_time, s (none without contact) */
+    TD_SPREAD_PEAK_NORMAL_FORCE,      /**< peak_normal_force, N */
+    TD_SPREAD_PEAK_AMB_FORCE,         /**< stats.peak_amb_force, N (none without a working AMB) */
+    TD_SPREAD_ANSWERS                 /**< how many */
+} td_spread_answer;
+
+/** One answer over the members. A member that did not reach its end (status != TD_OK) gives no
+ *  value; nor does one of a quantity it does not have (no contact: no first-contact time). */
+typedef struct td_spread_stat {
+    double run;                           /**< member 0's value (TD_UNDEFINED: none, or member 0 failed) */
+    int count;                            /**< members with a value */
+    double least;                         /**< smallest of those values (TD_UNDEFINED when count is 0) */
+    double median;                        /**< their median (the mean of the middle two when count is even) */
+    double greatest;                      /**< largest */
+    double spread;                        /**< (greatest - least) / |median|; 0 when all are equal; TD_UNDEFINED when
+                                               count < 2, or the median is 0 and the values differ */
+    int settles;                          /**< 1: spread <= TD_SPREAD_SETTLE_LIMIT, 0: larger, -1: spread undefined */
+    double values[TD_SPREAD_MAX_MEMBERS]; /**< each member's value, TD_UNDEFINED where it has none */
+} td_spread_stat;
+
+/** The answers of an ensemble (td_spread_collect). */
+typedef struct td_spread {
+    int members;                               /**< n */
+    int completed;                             /**< members that reached their end (status TD_OK) */
+    int failed;                                /**< members - completed: counted, never in a statistic */
+    int same_ending;                           /**< completed members that ended as member 0 did: its regime
+                                                    and its `ending` but for the whirl frequency (0 when
+                                                    member 0 failed) */
+    char ending[96];                           /**< member 0's ending */
+    double atol_factor[TD_SPREAD_MAX_MEMBERS]; /**< td_spread_atol_factor of each member */
+    td_status status[TD_SPREAD_MAX_MEMBERS];   /**< each member's status */
+    td_spread_stat answers[TD_SPREAD_ANSWERS];
+} td_spread;
+
+/** 1 if n members make an ensemble: odd, TD_SPREAD_MIN_MEMBERS..TD_SPREAD_MAX_MEMBERS. */
+TD_API int td_spread_members_valid(int n);
+
+/**
+ * The factor on solver.atol of `member` (0..n-1) of an ensemble of n (td_spread_members_valid):
+ * 1 for member 0; for k = 1..m (m = (n - 1) / 2) member 2k - 1 has 1 + TD_SPREAD_ATOL_WIDTH k / m
+ * and member 2k has 1 - TD_SPREAD_ATOL_WIDTH k / m, each the double nearest that rational
+ * (n = 5: 1, 1.005, 0.995, 1.01, 0.99). TD_UNDEFINED for a member or n out of range.
+ */
+TD_API double td_spread_atol_factor(int member, int n);
+
+/** The name of an answer as in the summary's JSON ("peak_housing_force", ...), NULL out of range. */
+TD_API const char *td_spread_answer_name(td_spread_answer a);
+
+/**
+ * Gather the n members' summaries (members[0] the run as given, members[k] the run at
+ * td_spread_atol_factor(k, n)) into `out`: each answer's values, least, median, greatest, spread
+ * and whether it settles, over the members that reached their end; the failed ones counted
+ * (out->failed, out->status) and left out. TD_ERR_INVALID for NULL arguments or an n that is no
+ * ensemble (td_spread_members_valid).
+ */
+TD_API td_status td_spread_collect(const td_run_summary *members, int n, td_spread *out, td_error *err);
+
+/** The spread as text, one line per answer (member 0's value, the range, the median, the spread
+ *  and whether it settles) after a line on the members, and the rule; for a NULL spread one line
+ *  saying it was not measured (the run did not reach its end). Returns the length needed, like
+ *  snprintf; buf is always NUL-terminated when n > 0. */
+TD_API int td_spread_format(char *buf, size_t n, const td_spread *spread);
+/** The spread as one JSON object (docs/output-format.md, "spread"): doubles with 17 significant
+ *  digits, a value a member does not have as null. Returns the length needed, like snprintf. */
+TD_API int td_spread_json(char *buf, size_t n, const td_spread *spread);
+/** td_run_summary_json's object with one more member, "spread": td_spread_json's object, or null
+ *  for a NULL spread (asked for but not measured: the run did not reach its end). */
+TD_API int td_run_summary_json_spread(char *buf, size_t n, const td_run_summary *s, const td_spread *spread);
+
 #ifdef __cplusplus
 }
 #endif

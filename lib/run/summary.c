@@ -412,10 +412,10 @@ int td_run_summary_format(char *buf, size_t n, const td_run_summary *s)
 /* A JSON number, or null for TD_UNDEFINED (and any other value JSON cannot hold). */
 static void json_real(td_text *b, const char *key, double v, int comma)
 {
-    if (td_is_undefined(v) || !isfinite(v))
-        td_text_printf(b, "\"%s\":null%s", key, comma ? "," : "");
-    else
-        td_text_printf(b, "\"%s\":%.17g%s", key, v, comma ? "," : "");
+    td_text_printf(b, "\"%s\":", key);
+    td_text_json_real(b, v);
+    if (comma)
+        td_text_append(b, ",", 1);
 }
 
 /* "key":"value", with the escapes of td_text_json_string; "" as null when empty_is_null. */
@@ -569,65 +569,70 @@ static void json_answers(td_text *b, const td_run_summary *s)
     td_text_printf(b, "},");
 }
 
-int td_run_summary_json(char *buf, size_t n, const td_run_summary *s)
+void td_run_summary_json_members(td_text *b, const td_run_summary *s)
 {
-    td_text b;
-    td_text_fixed(&b, buf, n);
-    if (!s)
-        return 0;
-    td_text_printf(&b, "{\"library_version\":\"%s\",", td_version());
-    td_text_printf(&b, "\"complete\":%s,", s->complete ? "true" : "false");
-    json_string(&b, "status", td_strerror(s->status));
-    json_string(&b, "message", s->message);
-    json_answers(&b, s);
-    json_real(&b, "t_start", s->t_start, 1);
-    json_real(&b, "t_end", s->t_end, 1);
-    json_real(&b, "t_reached", s->t_reached, 1);
-    json_real(&b, "speed", s->speed, 1);
-    json_start(&b, s);
-    json_files(&b, s);
-    td_text_printf(&b, "\"samples\":%ld,\"grid_samples\":%ld,\"events\":%ld,\"contacts\":%ld,", s->samples,
+    td_text_printf(b, "{\"library_version\":\"%s\",", td_version());
+    td_text_printf(b, "\"complete\":%s,", s->complete ? "true" : "false");
+    json_string(b, "status", td_strerror(s->status));
+    json_string(b, "message", s->message);
+    json_answers(b, s);
+    json_real(b, "t_start", s->t_start, 1);
+    json_real(b, "t_end", s->t_end, 1);
+    json_real(b, "t_reached", s->t_reached, 1);
+    json_real(b, "speed", s->speed, 1);
+    json_start(b, s);
+    json_files(b, s);
+    td_text_printf(b, "\"samples\":%ld,\"grid_samples\":%ld,\"events\":%ld,\"contacts\":%ld,", s->samples,
                    s->grid_samples, s->events, s->contacts);
-    json_real(&b, "first_contact_time", s->first_contact_time, 1);
-    json_real(&b, "last_contact_time", s->last_contact_time, 1);
-    json_real(&b, "peak_normal_force", s->peak_normal_force, 1);
-    td_text_printf(&b, "\"peak_normal_force_converges\":%s,", s->peak_converges ? "true" : "false");
-    json_real(&b, "peak_time", s->peak_time, 1);
+    json_real(b, "first_contact_time", s->first_contact_time, 1);
+    json_real(b, "last_contact_time", s->last_contact_time, 1);
+    json_real(b, "peak_normal_force", s->peak_normal_force, 1);
+    td_text_printf(b, "\"peak_normal_force_converges\":%s,", s->peak_converges ? "true" : "false");
+    json_real(b, "peak_time", s->peak_time, 1);
     if (s->peak_retainer >= 0)
-        td_text_printf(&b, "\"peak_retainer\":%d,", s->peak_retainer);
+        td_text_printf(b, "\"peak_retainer\":%d,", s->peak_retainer);
     else
-        td_text_printf(&b, "\"peak_retainer\":null,");
-    json_real(&b, "contact_time", s->contact_time, 1);
-    json_real(&b, "contact_fraction", s->contact_fraction, 1);
-    json_real(&b, "free_window", s->free_window, 1);
-    td_text_printf(&b, "\"free_at_end\":%s,", s->free_at_end < 0 ? "null" : s->free_at_end ? "true" : "false");
-    td_text_printf(&b, "\"returned_to_free_orbit\":%s,",
+        td_text_printf(b, "\"peak_retainer\":null,");
+    json_real(b, "contact_time", s->contact_time, 1);
+    json_real(b, "contact_fraction", s->contact_fraction, 1);
+    json_real(b, "free_window", s->free_window, 1);
+    td_text_printf(b, "\"free_at_end\":%s,", s->free_at_end < 0 ? "null" : s->free_at_end ? "true" : "false");
+    td_text_printf(b, "\"returned_to_free_orbit\":%s,",
                    s->returned_to_free_orbit < 0 ? "null"
                    : s->returned_to_free_orbit   ? "true"
                                                  : "false");
-    json_real(&b, "revolutions", s->revolutions, 1);
-    json_real(&b, "revolutions_after_contact", s->revolutions_after_contact, 1);
-    json_real(&b, "wall_time", s->wall_time, 1);
-    json_real(&b, "solver_wall_time", s->solver_wall_time, 1);
-    json_real(&b, "wall_time_per_revolution", s->wall_time_per_revolution, 1);
-    json_real(&b, "realtime_factor", s->realtime_factor, 1);
-    td_text_printf(&b,
+    json_real(b, "revolutions", s->revolutions, 1);
+    json_real(b, "revolutions_after_contact", s->revolutions_after_contact, 1);
+    json_real(b, "wall_time", s->wall_time, 1);
+    json_real(b, "solver_wall_time", s->solver_wall_time, 1);
+    json_real(b, "wall_time_per_revolution", s->wall_time_per_revolution, 1);
+    json_real(b, "realtime_factor", s->realtime_factor, 1);
+    td_text_printf(b,
                    "\"stats\":{\"steps\":%ld,\"residual_evals\":%ld,\"jacobian_evals\":%ld,\"linear_setups\":%ld,"
                    "\"nonlinear_iters\":%ld,\"error_test_fails\":%ld,\"nonlinear_fails\":%ld,\"restarts\":%ld,"
                    "\"events\":%ld,\"contact_onsets\":%ld,\"releases\":%ld,\"flight_steps\":%ld,",
                    s->stats.steps, s->stats.residual_evals, s->stats.jacobian_evals, s->stats.linear_setups,
                    s->stats.nonlinear_iters, s->stats.error_test_fails, s->stats.nonlinear_fails, s->stats.restarts,
                    s->stats.events, s->stats.contact_onsets, s->stats.releases, s->stats.flight_steps);
-    json_real(&b, "flight_time", s->stats.flight_time, 1);
-    json_real(&b, "worst_drift", s->stats.worst_drift, 1);
-    json_real(&b, "peak_normal_force", s->stats.peak_normal_force, 1);
-    json_real(&b, "time_in_contact", s->stats.time_in_contact, 1);
-    json_real(&b, "first_contact_time", s->stats.first_contact_time, 1);
-    json_real(&b, "wall_time", s->stats.wall_time, 0);
-    td_text_printf(&b, "},");
-    json_section(&b, s);
-    json_warnings(&b, s);
-    json_retainers(&b, s);
+    json_real(b, "flight_time", s->stats.flight_time, 1);
+    json_real(b, "worst_drift", s->stats.worst_drift, 1);
+    json_real(b, "peak_normal_force", s->stats.peak_normal_force, 1);
+    json_real(b, "time_in_contact", s->stats.time_in_contact, 1);
+    json_real(b, "first_contact_time", s->stats.first_contact_time, 1);
+    json_real(b, "wall_time", s->stats.wall_time, 0);
+    td_text_printf(b, "},");
+    json_section(b, s);
+    json_warnings(b, s);
+    json_retainers(b, s);
+}
+
+int td_run_summary_json(char *buf, size_t n, const td_run_summary *s)
+{
+    td_text b;
+    td_text_fixed(&b, buf, n);
+    if (!s)
+        return 0;
+    td_run_summary_json_members(&b, s);
     td_text_printf(&b, "}");
     return (int)b.len;
 }

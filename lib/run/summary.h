@@ -3,6 +3,7 @@
 #define TD_RUN_SUMMARY_H
 
 #include "touchdown/run.h"
+#include "util/text.h"
 
 /** `s` before a run from t0 towards t_end at `speed`: nothing simulated, every "none" sentinel set,
  *  status TD_OK, the start requested and used TD_START_REST. */
@@ -16,5 +17,9 @@ void td_run_retainer_classify(td_run_retainer *out, double speed, double span);
 /** A run that did not reach its end has no answers: every quantity that sums up or picks the
  *  largest over the whole run, or describes its end, set TD_UNDEFINED (touchdown/run.h). */
 void td_run_summary_undefine_answers(td_run_summary *s);
+
+/** td_run_summary_json's object less its closing brace, into `b`: a writer that adds members to it
+ *  (td_run_summary_json_spread) closes it. */
+void td_run_summary_json_members(td_text *b, const td_run_summary *s);
 
 #endif

@@ -1,6 +1,7 @@
 /* Text buffers (util/text.h), the JSON string escape (touchdown/json.h) and exact short numbers. */
 #include "util/text.h"
 
+#include <math.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -93,6 +94,14 @@ void td_text_json_string(td_text *t, const char *s)
             td_text_append(t, s, 1);
     }
     td_text_append(t, "\"", 1);
+}
+
+void td_text_json_real(td_text *t, double x)
+{
+    if (isfinite(x))
+        td_text_printf(t, "%.17g", x);
+    else
+        td_text_append(t, "null", 4);
 }
 
 int td_json_string(char *buf, size_t n, const char *s)

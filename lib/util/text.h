@@ -25,6 +25,9 @@ void td_text_append(td_text *t, const char *s, size_t n);
 void td_text_printf(td_text *t, const char *fmt, ...) TD_PRINTF(2, 3);
 /** Append `s` as a JSON string: quoted, with the escapes RFC 8259 requires. */
 void td_text_json_string(td_text *t, const char *s);
+/** Append x as a JSON number with 17 significant digits (it reads back exactly), or null for a
+ *  value JSON cannot hold (TD_UNDEFINED, any NaN or infinity): a failure is never a number. */
+void td_text_json_real(td_text *t, double x);
 
 /** x into buf (n bytes) with the fewest significant digits (15, 16 or 17) that read back to x:
  *  short, and exact (a sweep's range values, a case file's numbers as sweep specs). */

@@ -1,5 +1,6 @@
 /* touchdown run: a case file to HDF5/CSV plus a summary. */
 #include "common/cli.h"
+#include "run/spread.h"
 #include "touchdown/job.h"
 
 #include <getopt.h>
@@ -27,11 +28,15 @@ static const char run_usage[] =
     "  -q, --quiet          print no text summary (errors still go to stderr, --json still prints)\n"
     "      --json           print the summary as one JSON object on stdout, also of a failed run\n"
     "      --no-progress    no progress line (it is shown only when stderr is a terminal)\n"
+    "      --spread N       then run the case N - 1 more times without files, solver.atol scaled\n"
+    "                       within +-1 % (N odd, 3..21), and print the spread of each leading\n"
+    "                       answer over the N runs after the summary (--json: its member \"spread\")\n"
     "  -h, --help           this help\n"
     "\n"
     "The summary leads with the peak force into the housing, the total impulse, the friction work\n"
     "and the final speed (all converge in a steady rub; in a run that bounces the peak force, the\n"
-    "contacts and the time in contact are chaotic: docs/validation.md); then how the run ended (free,\n"
+    "contacts and the time in contact are chaotic: docs/validation.md; --spread N says which of this\n"
+    "run's answers settle); then how the run ended (free,\n"
     "recovered, at rest, rolling or sliding on the retainers, backward whirl or forward rub at F Hz,\n"
     "bouncing), the AMBs' peak force against their capacity and each retainer's whirl, its sustained\n"
     "and brief (touch-and-go) contacts and its share of the run in contact. It also gives\n"
@@ -53,10 +58,27 @@ static const char run_usage[] =
     "Refused before the run (exit 2): two outputs (HDF5, CSV, events file) that are the same\n"
     "file, an output that is the case file or one of its @include files, an output named\n"
     "*.partial, an output that exists and is not a regular file, an output directory that does\n"
-    "not exist or is not writable, an --output PREFIX that names no file ('', 'dir/', '.').\n"
+    "not exist or is not writable, an --output PREFIX that names no file ('', 'dir/', '.').\n";
+
+/* The help's second part (ISO C bounds one string literal's length). */
+static const char run_usage_more[] =
+    "\n"
+    "With --spread N the N runs are equally accurate (the same rtol, atol within +-1 %): each answer\n"
+    "is given with its least, greatest and median value over them and its spread, (greatest -\n"
+    "least) / |median|; it settles when the spread is at most 2 %, the range of atol (a converged\n"
+    "answer moves by less than the tolerance that moves it), else it does not. A further run that\n"
+    "fails is counted, never averaged in, and leaves the exit code as it was. The spread needs a\n"
+    "run that reached its end: else \"spread\" is null. N runs take about N times as long; the\n"
+    "progress line counts them.\n"
     "\n"
     "exit codes: 0 complete, 1 the simulation failed or was interrupted (SIGINT/SIGTERM/SIGHUP, also\n"
-    "during the set-up), 2 bad input or usage (an unusable start state included).\n";
+    "during the set-up or the spread's runs), 2 bad input or usage (an unusable start state included).\n";
+
+static void print_usage(FILE *f)
+{
+    fputs(run_usage, f);
+    fputs(run_usage_more, f);
+}
 
 /* Progress line state: shown once a run has taken about a second, refreshed a few times a second. */
 typedef struct progress {
@@ -129,16 +151,29 @@ static int parse_level(const char *text, int *level)
     return 0;
 }
 
-static void print_summary(const td_run_summary *s, int json)
+/* One of the library's writers of a summary, `spread` NULL or not (the text's spread follows it). */
+static int write_summary(char *buf, size_t n, const td_run_summary *s, int json, int with_spread,
+                         const td_spread *spread)
 {
-    int n = json ? td_run_summary_json(NULL, 0, s) : td_run_summary_format(NULL, 0, s);
+    if (json)
+        return with_spread ? td_run_summary_json_spread(buf, n, s, spread) : td_run_summary_json(buf, n, s);
+    if (!with_spread)
+        return td_run_summary_format(buf, n, s);
+    {
+        int k = td_run_summary_format(buf, n, s);
+        size_t used = (size_t)k < n ? (size_t)k : n;
+        return k + td_spread_format(buf ? buf + used : NULL, n - used, spread);
+    }
+}
+
+/* The summary, text or JSON; with --spread its spread too (NULL: not measured). */
+static void print_summary(const td_run_summary *s, int json, int with_spread, const td_spread *spread)
+{
+    int n = write_summary(NULL, 0, s, json, with_spread, spread);
     char *buf = malloc((size_t)n + 1);
     if (!buf)
         return;
-    if (json)
-        td_run_summary_json(buf, (size_t)n + 1, s);
-    else
-        td_run_summary_format(buf, (size_t)n + 1, s);
+    write_summary(buf, (size_t)n + 1, s, json, with_spread, spread);
     fputs(buf, stdout);
     if (n > 0 && buf[n - 1] != '\n')
         fputc('\n', stdout);
@@ -158,12 +193,13 @@ typedef struct run_args {
     td_cli_sets sets;
     const char *prefix, *hdf5, *csv, *case_path;
     int quiet, json, want_progress, compress;
+    int spread; /* --spread N: runs in the ensemble, 0: none */
 } run_args;
 
 /* Parse the command line into a; -1 to go on, else the exit code (--help, a usage error). */
 static int parse_args(int argc, char **argv, run_args *a)
 {
-    enum { OPT_HDF5 = 256, OPT_CSV, OPT_JSON, OPT_NO_PROGRESS, OPT_COMPRESS };
+    enum { OPT_HDF5 = 256, OPT_CSV, OPT_JSON, OPT_NO_PROGRESS, OPT_COMPRESS, OPT_SPREAD };
     static const struct option longopts[] = {{"set", required_argument, NULL, 's'},
                                              {"output", required_argument, NULL, 'o'},
                                              {"hdf5", required_argument, NULL, OPT_HDF5},
@@ -172,6 +208,7 @@ static int parse_args(int argc, char **argv, run_args *a)
                                              {"quiet", no_argument, NULL, 'q'},
                                              {"json", no_argument, NULL, OPT_JSON},
                                              {"no-progress", no_argument, NULL, OPT_NO_PROGRESS},
+                                             {"spread", required_argument, NULL, OPT_SPREAD},
                                              {"help", no_argument, NULL, 'h'},
                                              {NULL, 0, NULL, 0}};
     int opt;
@@ -195,8 +232,12 @@ static int parse_args(int argc, char **argv, run_args *a)
         case 'q': a->quiet = 1; break;
         case OPT_JSON: a->json = 1; break;
         case OPT_NO_PROGRESS: a->want_progress = 0; break;
-        case 'h': fputs(run_usage, stdout); return TD_EXIT_OK;
-        default: fputs(run_usage, stderr); return TD_EXIT_USAGE;
+        case OPT_SPREAD:
+            if (td_run_spread_parse(optarg, &a->spread))
+                return TD_EXIT_USAGE;
+            break;
+        case 'h': print_usage(stdout); return TD_EXIT_OK;
+        default: print_usage(stderr); return TD_EXIT_USAGE;
         }
     }
     if (optind != argc - 1) {
@@ -228,14 +269,17 @@ static int run_job(td_job *job, const run_args *a, volatile sig_atomic_t *cancel
     progress prog = {0.0, 0.0, 0};
     td_run_hooks hooks;
     td_run_summary summary;
+    td_spread spread;
     td_error err;
     td_status st;
+    int code, show = a->want_progress && !a->quiet && isatty(STDERR_FILENO);
     memset(&hooks, 0, sizeof hooks);
+    spread.members = 0;
     td_error_clear(&err);
     /* the set-up first, reading the flag: its dense start solve may be long */
     st = td_job_start(job, cancel, NULL);
     prog.started = td_cli_now();
-    if (st == TD_OK && a->want_progress && !a->quiet && isatty(STDERR_FILENO)) {
+    if (st == TD_OK && show) {
         hooks.progress = show_progress;
         hooks.user = &prog;
     }
@@ -246,10 +290,14 @@ static int run_job(td_job *job, const run_args *a, volatile sig_atomic_t *cancel
     if (st != TD_OK)
         fprintf(stderr, "touchdown: %s: %s\n", path, err.message[0] ? err.message : td_strerror(st));
     print_warnings(path, &summary);
+    code = td_cli_exit_code(st);
+    /* the spread of a run that reached its end: its other members, after its own files */
+    if (st == TD_OK && a->spread)
+        code = td_run_spread(job, &summary, a->spread, show, cancel, &spread);
     /* JSON whenever asked (scripts read it, also of a failed run); -q silences only the text */
     if (a->json || (!a->quiet && summary.t_reached > summary.t_start))
-        print_summary(&summary, a->json);
-    return td_cli_exit_code(st);
+        print_summary(&summary, a->json, a->spread > 0, spread.members > 0 ? &spread : NULL);
+    return code;
 }
 
 int td_cmd_run(int argc, char **argv)
