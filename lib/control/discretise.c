@@ -74,7 +74,9 @@ td_controller *td_controller_discretise(const td_controller *k, double sample_ra
     } else if (k->n > 0) {
         double w0 = 2.0 * TD_PI * prewarp;
         double beta = prewarp > 0.0 ? w0 / tan(0.5 * w0 / sample_rate) : 2.0 * sample_rate;
-        st = td_slicot_bilinear(k->n, k->inputs, k->outputs, beta, d->A, d->B, d->C, d->D, err);
+        st = td_slicot_balance(k->n, k->inputs, k->outputs, d->A, d->B, d->C, err);
+        if (st == TD_OK)
+            st = td_slicot_bilinear(k->n, k->inputs, k->outputs, beta, d->A, d->B, d->C, d->D, err);
     }
     if (st != TD_OK)
         td_controller_free(&d);
