@@ -269,6 +269,7 @@ static void expect_invalid(td_controller *k, const td_error *err, const char *wo
 static void test_bad_laws_are_refused(void **state)
 {
     const double num3[] = {1.0, 0.0, 0.0}, den1[] = {1.0}, den0[] = {0.0, 1.0}, nan1[] = {NAN, 1.0}, one = 1.0;
+    double y[1];
     td_pid_block pid = {1.0, -1.0, 0.0, 0.0};
     td_notch_block no = {34.4, 6.0, 1.0};
     td_lowpass_block lp = {100.0, 3, 0.7};
@@ -290,6 +291,16 @@ static void test_bad_laws_are_refused(void **state)
     expect_invalid(td_controller_append(z, c, &err), &err, "timing");
     expect_invalid(td_controller_create_ss(1, 1, 1, nan1, &one, &one, &one, NULL, 0.0, &err), &err, "not finite");
     expect_invalid(td_controller_create_ss(0, 1, 1, NULL, NULL, NULL, &one, &one, 1e3, &err), &err, "D1");
+    /* a sampled law needs a rate; an unfiltered derivative has no sampled form and no step response */
+    expect_invalid(td_controller_discretise(c, 0.0, TD_DISCRETISE_TUSTIN, 0.0, &err), &err, "sample_rate");
+    expect_invalid(td_controller_discretise(c, 1e3, TD_DISCRETISE_TUSTIN, 600.0, &err), &err, "Nyquist");
+    expect_invalid(td_controller_discretise(z, 1e3, TD_DISCRETISE_ZOH, 0.0, &err), &err, "sampled already");
+    td_controller_free(&c);
+    pid.kint = 0.0, pid.kd = 40.0;
+    c = td_controller_create_pid(&pid, NULL);
+    expect_invalid(td_controller_discretise(c, 1e3, TD_DISCRETISE_ZOH, 0.0, &err), &err, "derivative");
+    assert_int_equal(td_controller_step_response(c, 0, &one, 1, y, &err), TD_ERR_INVALID);
+    assert_non_null(strstr(err.message, "impulse"));
     td_controller_free(&c);
     td_controller_free(&z);
 }
