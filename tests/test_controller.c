@@ -372,6 +372,7 @@ static void test_delay_is_z_to_the_minus_d(void **state)
     k = td_controller_create_gain(1.0, NULL); /* continuous: no whole samples to delay by */
     assert_null(td_controller_delay(k, 1, &err));
     assert_non_null(strstr(err.message, "sampled"));
+    td_controller_free(&k);
     td_controller_free(&d3);
     td_controller_free(&d0);
 }
