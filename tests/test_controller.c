@@ -285,6 +285,8 @@ static void test_bad_laws_are_refused(void **state)
     expect_invalid(td_controller_create_tf(num3, 2, den1, 1, NAN, &err), &err, "sample_rate");
     expect_invalid(td_controller_create_gain(INFINITY, &err), &err, "finite");
     expect_invalid(td_controller_create_pid(&pid, &err), &err, "kint");
+    assert_string_equal(err.site.field, "kint");
+    assert_string_equal(err.message, "pid: kint: must be finite and >= 0 (got -1)");
     expect_invalid(td_controller_create_notch(&no, &err), &err, "depth");
     expect_invalid(td_controller_create_lowpass(&lp, &err), &err, "order");
     expect_invalid(td_controller_series(c, z, &err), &err, "timing");
@@ -294,6 +296,9 @@ static void test_bad_laws_are_refused(void **state)
     /* a sampled law needs a rate; an unfiltered derivative has no sampled form and no step response */
     expect_invalid(td_controller_discretise(c, 0.0, TD_DISCRETISE_TUSTIN, 0.0, &err), &err, "sample_rate");
     expect_invalid(td_controller_discretise(c, 1e3, TD_DISCRETISE_TUSTIN, 600.0, &err), &err, "Nyquist");
+    /* the site names the argument, for a case reader to point at the key it read */
+    assert_string_equal(err.site.part, "discretise");
+    assert_string_equal(err.site.field, "prewarp");
     expect_invalid(td_controller_discretise(z, 1e3, TD_DISCRETISE_ZOH, 0.0, &err), &err, "sampled already");
     td_controller_free(&c);
     pid.kint = 0.0, pid.kd = 40.0;
