@@ -314,7 +314,8 @@ static double amb_force_max(const td_sim *sim)
 
 /* (c) a PID with its integrator (a pole at 0) on every axis, levitating under gravity: the AMB
  * force is exactly 0 while the AMBs are off (the controller runs on and winds up), the run stays
- * finite, and the integrators bring the sensors back to 0 after the drop. */
+ * finite, the integrators bring the sensors back to 0 after the drop, and a force the caller holds
+ * (TD_AMB_EXTERNAL) replaces the controller's. */
 static void test_integrator_law_drop(void **state)
 {
     td_pid_block pid = {RIG_KP, 2.5e5, RIG_KD, 0.0};
@@ -348,6 +349,19 @@ static void test_integrator_law_drop(void **state)
         /* PD alone would sag by W/2 / (ki kp - ks), about 0.5 mm */
         print_message("PID controller, 1 s after a 50 ms drop: largest sensor displacement %.3g m\n", worst);
         assert_true(worst < 1e-5);
+        /* the caller's held force wins over the controller: ks x + f at AMB 0's actuator (node 3) */
+        assert_int_equal(td_sim_set_amb_mode(sim, 0, TD_AMB_EXTERNAL, NULL), TD_OK);
+        assert_int_equal(td_sim_set_amb_control(sim, 0, 10.0, -20.0, NULL), TD_OK);
+        run_to(sim, 1.01);
+        assert_int_equal(td_sim_get_state(sim, q, q + n), TD_OK);
+        {
+            double f[2];
+            td_amb a;
+            assert_int_equal(td_model_get_amb(td_sim_model(sim), 0, &a), TD_OK);
+            assert_int_equal(td_sim_amb_force(sim, 0, f), TD_OK);
+            assert_close(f[0], a.ks * q[TD_DOF(3, TD_DOF_X)] + 10.0, 1e-12, 0.0);
+            assert_close(f[1], a.ks * q[TD_DOF(3, TD_DOF_Y)] - 20.0, 1e-12, 0.0);
+        }
         free(q);
     }
     td_sim_free(&sim);
