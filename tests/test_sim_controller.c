@@ -650,6 +650,45 @@ static void test_model_controllers(void **state)
     td_model_free(&r);
 }
 
+/* A sampled controller has no state in the first-order form: the closed-loop analysis refuses it
+ * (naming it), the orbit start refuses it when asked for strictly and starts at rest on "auto". */
+static void test_sampled_law_refused_by_analysis(void **state)
+{
+    td_pid_block pid = {RIG_KP, 0.0, RIG_KD, 2000.0};
+    td_controller *c = td_controller_create_pid(&pid, NULL), *k;
+    td_model *m;
+    td_system *sys = NULL;
+    td_modal *md = NULL;
+    td_sim *sim = NULL;
+    td_sim_options o;
+    td_sim_start_info info;
+    td_error err;
+    (void)state;
+    assert_non_null(c);
+    k = td_controller_discretise(c, 10000.0, TD_DISCRETISE_TUSTIN, 0.0, &err);
+    assert_non_null(k);
+    m = rig_with_law(TD_RIG_TAU, TD_RIG_WITH_RETAINERS, k);
+    assert_int_equal(td_system_create(m, &sys, NULL), TD_OK);
+    assert_int_equal(td_modal_solve(sys, RIG_SPEED, &md, &err), TD_ERR_INVALID);
+    print_message("%s\n", err.message);
+    assert_non_null(strstr(err.message, "controller 0 is sampled"));
+    td_sim_options_default(&o);
+    o.start = TD_START_ORBIT;
+    assert_int_equal(td_sim_create(m, &o, &sim, &err), TD_ERR_INVALID);
+    assert_non_null(strstr(err.message, "sampled"));
+    o.start = TD_START_AUTO;
+    assert_int_equal(td_sim_create(m, &o, &sim, &err), TD_OK);
+    assert_int_equal(td_sim_start_info_get(sim, &info), TD_OK);
+    assert_int_equal(info.used, TD_START_REST);
+    assert_int_equal(info.stability, TD_STABILITY_UNCHECKED);
+    assert_non_null(strstr(info.reason, "sampled"));
+    td_sim_free(&sim);
+    td_system_free(&sys);
+    td_controller_free(&c);
+    td_controller_free(&k);
+    td_model_free(&m);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -660,6 +699,7 @@ int main(void)
         cmocka_unit_test(test_pd_run_equals_shorthand),
         cmocka_unit_test(test_flight_with_controller_states),
         cmocka_unit_test(test_integrator_law_drop),
+        cmocka_unit_test(test_sampled_law_refused_by_analysis),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
