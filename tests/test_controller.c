@@ -188,6 +188,31 @@ static void test_series_append_transform_by_hand(void **state)
     td_controller_free(&t);
 }
 
+/* PD 2 + 3 s (no filter: D = 2, D1 = 3) and 1/(s + 1) in series, either way round, is
+ * (3 s + 2)/(s + 1) = 3 - 1/(s + 1), by hand: the velocity feedthrough lands in D, none is left. */
+static void test_series_with_velocity_feedthrough_by_hand(void **state)
+{
+    const double a = -1.0, b = 1.0, c = 1.0, zero = 0.0;
+    td_pid_block pd = {2.0, 0.0, 3.0, 0.0};
+    td_controller *P = td_controller_create_pid(&pd, NULL);
+    td_controller *L = td_controller_create_ss(1, 1, 1, &a, &b, &c, &zero, NULL, 0.0, NULL);
+    td_controller *s1 = td_controller_series(P, L, NULL), *s2 = td_controller_series(L, P, NULL);
+    double A, B, C, D, D1;
+    (void)state;
+    assert_non_null(s1);
+    assert_non_null(s2);
+    /* P then L: B = B2 D1 + A2 B2 E1 = 2 - 3, C = C2, D = C2 B2 E1 = 3 */
+    td_controller_matrices(s1, &A, &B, &C, &D, &D1);
+    assert_true(A == -1.0 && B == -1.0 && C == 1.0 && D == 3.0 && D1 == 0.0);
+    /* L then P: C = D2 C1 + E2 C1 A1 = 2 - 3, D = E2 C1 B1 = 3 */
+    td_controller_matrices(s2, &A, &B, &C, &D, &D1);
+    assert_true(A == -1.0 && B == 1.0 && C == -1.0 && D == 3.0 && D1 == 0.0);
+    td_controller_free(&P);
+    td_controller_free(&L);
+    td_controller_free(&s1);
+    td_controller_free(&s2);
+}
+
 /* Laws in series respond as the product of their responses, including the improper-by-one cases
  * (the velocity feedthrough in the first law, in the second, and carried to the result). */
 static void test_series_is_the_product(void **state)
@@ -285,6 +310,8 @@ static void test_bad_laws_are_refused(void **state)
     expect_invalid(td_controller_create_tf(num3, 2, den1, 1, NAN, &err), &err, "sample_rate");
     expect_invalid(td_controller_create_gain(INFINITY, &err), &err, "finite");
     expect_invalid(td_controller_create_pid(&pid, &err), &err, "kint");
+    assert_string_equal(err.site.field, "kint");
+    assert_string_equal(err.message, "pid: kint: must be finite and >= 0 (got -1)");
     expect_invalid(td_controller_create_notch(&no, &err), &err, "depth");
     expect_invalid(td_controller_create_lowpass(&lp, &err), &err, "order");
     expect_invalid(td_controller_series(c, z, &err), &err, "timing");
@@ -294,6 +321,9 @@ static void test_bad_laws_are_refused(void **state)
     /* a sampled law needs a rate; an unfiltered derivative has no sampled form and no step response */
     expect_invalid(td_controller_discretise(c, 0.0, TD_DISCRETISE_TUSTIN, 0.0, &err), &err, "sample_rate");
     expect_invalid(td_controller_discretise(c, 1e3, TD_DISCRETISE_TUSTIN, 600.0, &err), &err, "Nyquist");
+    /* the site names the argument, for a case reader to point at the key it read */
+    assert_string_equal(err.site.part, "discretise");
+    assert_string_equal(err.site.field, "prewarp");
     expect_invalid(td_controller_discretise(z, 1e3, TD_DISCRETISE_ZOH, 0.0, &err), &err, "sampled already");
     td_controller_free(&c);
     pid.kint = 0.0, pid.kd = 40.0;
@@ -423,6 +453,7 @@ int main(void)
         cmocka_unit_test(test_tf_and_zpk),
         cmocka_unit_test(test_sampled_tf_and_zpk),
         cmocka_unit_test(test_series_append_transform_by_hand),
+        cmocka_unit_test(test_series_with_velocity_feedthrough_by_hand),
         cmocka_unit_test(test_series_is_the_product),
         cmocka_unit_test(test_rigid_transform_by_hand),
         cmocka_unit_test(test_bad_laws_are_refused),

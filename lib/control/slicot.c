@@ -1,7 +1,9 @@
 /*
- * slicot.c - the one file that calls SLICOT (declarations and conventions: slicot.h).
+ * slicot.c - the one file that calls SLICOT (its declarations and conventions: slicot.h) and the
+ * wrappers of numerics.h.
  */
 #include "control/slicot.h"
+#include "control/numerics.h"
 
 #include "util/error_internal.h"
 
