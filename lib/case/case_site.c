@@ -26,6 +26,9 @@ static const config_setting_t *field_setting(const config_setting_t *g, const td
             s = config_setting_get_member(g, change_kinds[k]);
     else if (strcmp(site->part, "amb") == 0 && strcmp(site->field, "tau") == 0 && !td_cr_has(g, "tau"))
         s = config_setting_get_member(g, "bandwidth"); /* tau = 1 / (2 pi bandwidth) */
+    else if (strcmp(site->part, "controller") == 0 &&
+             (strcmp(site->field, "inputs") == 0 || strcmp(site->field, "outputs") == 0))
+        s = config_setting_get_member(g, "ambs"); /* its axes: the AMBs' */
     else if (strcmp(site->part, "disc") == 0 && strcmp(site->field, "outer_radius") == 0)
         s = config_setting_get_member(g, "radius"); /* td_disc_geometry */
     else if (strcmp(site->part, "disc") == 0 && strcmp(site->field, "inner_radius") == 0)
@@ -51,7 +54,8 @@ static const config_setting_t *part_entry(const config_setting_t *root, const td
                                            {"bearing", "bearings"},
                                            {"retainer", "retainers"},
                                            {"unbalance", "unbalances"},
-                                           {"speed_ramp", "speed_ramp"}};
+                                           {"speed_ramp", "speed_ramp"},
+                                           {"controller", "controllers"}};
     const config_setting_t *discs = config_setting_get_member(root, "discs");
     size_t k;
     if (strcmp(site->part, "disc") == 0) {
