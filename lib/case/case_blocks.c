@@ -42,9 +42,11 @@ typedef struct cb_ss {
 } cb_ss;
 
 #define DOMAIN(rec)                                                                                                    \
-    {.key = "domain", .type = TD_CS_ENUM, .offset = offsetof(rec, domain), .names = domain_names, .name_count = 2,     \
-     .doc = "`\"s\"`: continuous, descending powers of s; `\"z\"`: sampled at the controller's `sample_rate`, "      \
-            "ascending powers of z^-1"}
+    {                                                                                                                  \
+        .key = "domain", .type = TD_CS_ENUM, .offset = offsetof(rec, domain), .names = domain_names, .name_count = 2,  \
+        .doc = "`\"s\"`: continuous, descending powers of s; `\"z\"`: sampled at the controller's `sample_rate`, "     \
+               "ascending powers of z^-1"                                                                              \
+    }
 
 static const td_cs_key pid_keys[] = {
     {.key = "kp", .type = TD_CS_REAL, .offset = offsetof(td_pid_block, kp), .unit = "A/m", .doc = "proportional gain"},
@@ -68,8 +70,8 @@ static const td_cs_key pid_keys[] = {
      .doc = "corner of the derivative's first-order filter; 0: kd s on the exact sensor velocity, as the AMB "
             "shorthand's kd"},
 };
-static const td_cs_table pid_table = {
-    "controllers[].law[].pid", NULL, pid_keys, TD_CS_COUNT(pid_keys), sizeof(td_pid_block), NULL, NULL};
+static const td_cs_table pid_table = {"controllers[].law[].pid", NULL, pid_keys, TD_CS_COUNT(pid_keys),
+                                      sizeof(td_pid_block),      NULL, NULL};
 
 static const td_cs_key leadlag_keys[] = {
     {.key = "gain",
@@ -95,13 +97,8 @@ static const td_cs_key leadlag_keys[] = {
      .unit = "Hz",
      .doc = "the pole's frequency"},
 };
-static const td_cs_table leadlag_table = {"controllers[].law[].leadlag",
-                                          NULL,
-                                          leadlag_keys,
-                                          TD_CS_COUNT(leadlag_keys),
-                                          sizeof(td_leadlag_block),
-                                          NULL,
-                                          NULL};
+static const td_cs_table leadlag_table = {"controllers[].law[].leadlag", NULL, leadlag_keys, TD_CS_COUNT(leadlag_keys),
+                                          sizeof(td_leadlag_block),      NULL, NULL};
 
 static void lowpass_preset(void *rec)
 {
@@ -134,13 +131,9 @@ static const td_cs_key lowpass_keys[] = {
      .doc_default = "1/sqrt(2) (Butterworth)",
      .doc = "damping ratio of the second-order filter (order 2 only)"},
 };
-static const td_cs_table lowpass_table = {"controllers[].law[].lowpass",
-                                          NULL,
-                                          lowpass_keys,
-                                          TD_CS_COUNT(lowpass_keys),
-                                          sizeof(td_lowpass_block),
-                                          lowpass_preset,
-                                          NULL};
+static const td_cs_table lowpass_table = {
+    "controllers[].law[].lowpass", NULL,           lowpass_keys, TD_CS_COUNT(lowpass_keys),
+    sizeof(td_lowpass_block),      lowpass_preset, NULL};
 
 static const td_cs_key notch_keys[] = {
     {.key = "frequency",
@@ -166,8 +159,8 @@ static const td_cs_key notch_keys[] = {
      .doc_range = ">= 0, < 1",
      .doc = "the gain at fn: damping of the zeros zz = depth zp (0: a full notch)"},
 };
-static const td_cs_table notch_table = {
-    "controllers[].law[].notch", NULL, notch_keys, TD_CS_COUNT(notch_keys), sizeof(td_notch_block), NULL, NULL};
+static const td_cs_table notch_table = {"controllers[].law[].notch", NULL, notch_keys, TD_CS_COUNT(notch_keys),
+                                        sizeof(td_notch_block),      NULL, NULL};
 
 static const td_cs_key tf_keys[] = {
     {.key = "num",
@@ -186,8 +179,8 @@ static const td_cs_key tf_keys[] = {
      .doc = "denominator coefficients (in z^-1: the first nonzero)"},
     DOMAIN(cb_tf),
 };
-static const td_cs_table tf_table = {"controllers[].law[].tf", NULL, tf_keys, TD_CS_COUNT(tf_keys), sizeof(cb_tf),
-                                     NULL, NULL};
+static const td_cs_table tf_table = {
+    "controllers[].law[].tf", NULL, tf_keys, TD_CS_COUNT(tf_keys), sizeof(cb_tf), NULL, NULL};
 
 /* zeros or poles: a list of [re, im] pairs, one per real root or conjugate pair. */
 static td_status read_roots(td_case_reader *r, const config_setting_t *g, const td_cs_key *k, void *rec)
@@ -237,8 +230,8 @@ static const td_cs_key zpk_keys[] = {
      .doc = "k in k prod(s - zero) / prod(s - pole)"},
     DOMAIN(cb_zpk),
 };
-static const td_cs_table zpk_table = {"controllers[].law[].zpk", NULL, zpk_keys, TD_CS_COUNT(zpk_keys), sizeof(cb_zpk),
-                                      NULL, NULL};
+static const td_cs_table zpk_table = {
+    "controllers[].law[].zpk", NULL, zpk_keys, TD_CS_COUNT(zpk_keys), sizeof(cb_zpk), NULL, NULL};
 
 /* One row [ ... ] of a matrix into out (at most max entries); *n its length. */
 static td_status read_row(td_case_reader *r, const config_setting_t *row, int max, double *out, int *n)
@@ -312,11 +305,13 @@ static const td_cs_key ss_keys[] = {
      .doc = "1 x 1, e.g. `([0.0])`; an array `[ ... ]` is one row"},
     DOMAIN(cb_ss),
 };
-static const td_cs_table ss_table = {"controllers[].law[].ss", NULL, ss_keys, TD_CS_COUNT(ss_keys), sizeof(cb_ss),
-                                     NULL, NULL};
+static const td_cs_table ss_table = {
+    "controllers[].law[].ss", NULL, ss_keys, TD_CS_COUNT(ss_keys), sizeof(cb_ss), NULL, NULL};
 
 #define BLOCK(name, tab, what)                                                                                         \
-    {.key = name, .type = TD_CS_GROUP, .sub = &tab, .read = td_cs_elsewhere, .doc_default = "-", .doc = what}
+    {                                                                                                                  \
+        .key = name, .type = TD_CS_GROUP, .sub = &tab, .read = td_cs_elsewhere, .doc_default = "-", .doc = what        \
+    }
 
 static const td_cs_key block_keys[] = {
     {.key = "gain",

@@ -4,8 +4,8 @@
  * coordinates (the law on each axis of each AMB) or in rigid-body coordinates (a translation and a
  * tilt law in each lateral plane of two AMBs, td_rigid_transform), continuous or sampled, and
  * handed to the model (td_model_add_controller), whose rules (axes in range, each axis driven
- * once) it keeps. The reader checks what is about the file: the forms, the AMBs it names, a sample
- * rate for what needs one, unique names.
+ * once, unique names) it keeps. The reader checks what is about the file: the forms, the AMBs it
+ * names (their nodes' positions make the rigid-body transform), a sample rate for what needs one.
  *
  * Axis order of a controller's inputs and outputs (the model numbers AMB axes 2 amb + axis):
  * bearing, AMB by AMB as listed, x then y; rigid, plane x (AMB a, AMB b) then plane y.
@@ -35,27 +35,6 @@ typedef struct cc_rec {
     double prewarp;
     int delay;
 } cc_rec;
-
-/* name: unique among the controllers (the entries before this one). */
-static td_status check_name(td_case_reader *r, const config_setting_t *g, const td_cs_key *k, void *rec)
-{
-    const cc_rec *c = rec;
-    const config_setting_t *list = config_setting_parent(g);
-    char key[256], where[1200];
-    int i;
-    (void)k;
-    for (i = 0; c->name && i < config_setting_index(g); i++) {
-        const config_setting_t *other = config_setting_get_member(config_setting_get_elem(list, (unsigned)i), "name");
-        if (other && config_setting_type(other) == CONFIG_TYPE_STRING &&
-            strcmp(config_setting_get_string(other), c->name) == 0) {
-            td_cr_key(other, key, sizeof key);
-            td_cr_where(r, other, where, sizeof where);
-            return td_cr_fail(r, config_setting_get_member(g, "name"), NULL,
-                              "a controller of this name exists already; see %s at %s", key, where);
-        }
-    }
-    return TD_OK;
-}
 
 /* ambs: at least one, each an AMB of the case (the model has read them). */
 static td_status read_ambs(td_case_reader *r, const config_setting_t *g, const td_cs_key *k, void *rec)
@@ -118,8 +97,9 @@ static td_status check_laws(td_case_reader *r, const config_setting_t *g, const 
                                  c->rigid ? "rigid coordinates: the blocks of the translation and of the tilt law"
                                           : "the blocks of the law in series");
         if (list && !wanted)
-            return td_cr_fail(r, list, NULL, "%s", c->rigid ? "rigid coordinates take `translation` and `tilt`, not `law`"
-                                                            : "`translation` and `tilt` need coordinates = \"rigid\"");
+            return td_cr_fail(r, list, NULL, "%s",
+                              c->rigid ? "rigid coordinates take `translation` and `tilt`, not `law`"
+                                       : "`translation` and `tilt` need coordinates = \"rigid\"");
         if (list && config_setting_length(list) == 0)
             return td_cr_fail(r, list, NULL, "a law has at least one block, e.g. ( { gain = 1.0; } )");
     }
@@ -131,9 +111,9 @@ static td_status check_sampled(td_case_reader *r, const config_setting_t *g, con
 {
     const cc_rec *c = rec;
     const config_setting_t *s = config_setting_get_member(g, k->key);
-    int set = strcmp(k->key, "delay") == 0 ? c->delay > 0
+    int set = strcmp(k->key, "delay") == 0     ? c->delay > 0
               : strcmp(k->key, "prewarp") == 0 ? c->prewarp > 0.0
-                                                 : c->discretisation != TD_DISCRETISE_TUSTIN;
+                                               : c->discretisation != TD_DISCRETISE_TUSTIN;
     if (set && !(c->sample_rate > 0.0))
         return td_cr_fail(r, s, NULL, "%s applies to a sampled controller: give its sample_rate", k->key);
     if (set && strcmp(k->key, "prewarp") == 0 && c->discretisation != TD_DISCRETISE_TUSTIN)
@@ -245,8 +225,8 @@ static td_status rigid_transforms(td_case_reader *r, const config_setting_t *g, 
     int i, j, nodes = td_model_node_count(m);
     td_model_get_amb(m, c->ambs[0], &a);
     td_model_get_amb(m, c->ambs[1], &b);
-    if (a.node < 0 || a.node >= nodes || b.node < 0 || b.node >= nodes || a.sensor_node < 0 ||
-        a.sensor_node >= nodes || b.sensor_node < 0 || b.sensor_node >= nodes)
+    if (a.node < 0 || a.node >= nodes || b.node < 0 || b.node >= nodes || a.sensor_node < 0 || a.sensor_node >= nodes ||
+        b.sensor_node < 0 || b.sensor_node >= nodes)
         return td_model_validate(m, &merr) != TD_OK ? td_cr_validate_fail(r, &merr) : TD_ERR_PARSE;
     if (td_rigid_transform(td_model_node_position(m, a.sensor_node), td_model_node_position(m, b.sensor_node),
                            c->reference_z, Ts, &merr) != TD_OK ||
@@ -275,9 +255,9 @@ static td_status rigid_law(td_case_reader *r, const config_setting_t *g, const c
         st = build_law(r, g, "translation", c, &t);
     if (st == TD_OK)
         st = build_law(r, g, "tilt", c, &tilt);
-    if (st == TD_OK && (!(plane = td_controller_append(t, tilt, &merr)) ||
-                        !(both = td_controller_append(plane, plane, &merr)) ||
-                        !(*out = td_controller_transform(both, 4, Tin, 4, Tout, &merr))))
+    if (st == TD_OK &&
+        (!(plane = td_controller_append(t, tilt, &merr)) || !(both = td_controller_append(plane, plane, &merr)) ||
+         !(*out = td_controller_transform(both, 4, Tin, 4, Tout, &merr))))
         st = api_fail(r, g, "tilt", &merr);
     td_controller_free(&t);
     td_controller_free(&tilt);
@@ -347,7 +327,6 @@ static const td_cs_key controller_keys[] = {
      .type = TD_CS_STRING,
      .offset = offsetof(cc_rec, name),
      .need = TD_CS_REQUIRED,
-     .check = check_name,
      .what = "the controller's name, unique among the controllers",
      .doc = "its name in messages and events, unique among the controllers (at most 63 characters)"},
     {.key = "ambs",
@@ -422,5 +401,5 @@ static const td_cs_key controller_keys[] = {
      .doc = "whole samples of computation delay (sampled only): the current applied on [t_k, t_k+1) is computed "
             "from the sensors at t_k-delay"},
 };
-const td_cs_table td_cs_controllers = {"controllers[]",  "controllers", controller_keys, TD_CS_COUNT(controller_keys),
-                                       sizeof(cc_rec), NULL,          add_controller};
+const td_cs_table td_cs_controllers = {"controllers[]", "controllers", controller_keys, TD_CS_COUNT(controller_keys),
+                                       sizeof(cc_rec),  NULL,          add_controller};
