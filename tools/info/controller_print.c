@@ -10,6 +10,9 @@
 #include <stdlib.h>
 
 #define TWO_PI 6.283185307179586
+/* |z| below which a sampled pole is z = 0, a delay's (a shift register's eigenvalue 0 comes out of
+ * the solver at round-off size; a pole of the law there would be far beyond the Nyquist frequency). */
+#define Z_ZERO 1e-6
 
 int td_amb_controller(const td_model *m, int amb)
 {
@@ -49,11 +52,12 @@ static int eigenvalues(const double *A, int n, double *re, double *im)
     return status;
 }
 
-/* A pole as "F Hz (zeta Z)", from s (rad/s); "integrator" at s = 0; after a comma unless first. */
-static void print_pole(FILE *f, double re, double im, int count, int first)
+/* A pole as "F Hz (zeta Z)", from s (rad/s); "integrator" at s = 0 (|s| below 1e-9 of the
+ * largest pole, `scale`: an eigenvalue 0 computed with round-off); after a comma unless first. */
+static void print_pole(FILE *f, double re, double im, int count, int first, double scale)
 {
     double w = hypot(re, im);
-    if (w == 0.0)
+    if (w <= 1e-9 * scale)
         fprintf(f, "%s 0 Hz (integrator)", first ? "" : ",");
     else
         fprintf(f, "%s %.6g Hz (zeta %.3g)", first ? "" : ",", w / TWO_PI, -re / w);
@@ -72,7 +76,7 @@ static int same_pole(const double *re, const double *im, int i, int j)
 static void print_poles(FILE *f, const td_controller *k)
 {
     int n = td_controller_order(k), i, j, delays = 0, shown = 0;
-    double rate = td_controller_sample_rate(k);
+    double rate = td_controller_sample_rate(k), scale = 0.0;
     double *A = malloc((size_t)n * n * sizeof *A + 1), *re = malloc((size_t)n * sizeof *re + 1),
            *im = malloc((size_t)n * sizeof *im + 1);
     fprintf(f, "             poles:");
@@ -80,10 +84,12 @@ static void print_poles(FILE *f, const td_controller *k)
         fprintf(f, " (not computed)");
     for (i = 0; A && re && im && i < n && rate > 0.0; i++) { /* s = ln(z) rate */
         double r = hypot(re[i], im[i]), a = atan2(im[i], re[i]);
-        delays += r == 0.0;
-        re[i] = r == 0.0 ? NAN : log(r) * rate;
+        delays += r < Z_ZERO;
+        re[i] = r < Z_ZERO ? NAN : log(r) * rate;
         im[i] = a * rate;
     }
+    for (i = 0; A && re && im && i < n; i++)
+        scale = isnan(re[i]) || hypot(re[i], im[i]) < scale ? scale : hypot(re[i], im[i]);
     for (i = 0; A && re && im && i < n; i++) {
         int count = 1, first = 1;
         if (isnan(re[i]) || im[i] < 0.0)
@@ -92,7 +98,7 @@ static void print_poles(FILE *f, const td_controller *k)
             if (j != i && same_pole(re, im, i, j))
                 j < i ? (void)(first = 0) : (void)count++;
         if (first)
-            print_pole(f, re[i], im[i], count, shown++ == 0);
+            print_pole(f, re[i], im[i], count, shown++ == 0, scale);
     }
     if (delays > 0)
         fprintf(f, "%s z = 0 (delay) x%d", shown ? "," : "", delays);
