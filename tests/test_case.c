@@ -584,10 +584,20 @@ static void test_docs_match_reader(void **state)
                                          "solver.",
                                          "output.",
                                          "modal.",
-                                         "sweep."};
+                                         "sweep.",
+                                         "controllers[0].",
+                                         "controllers[0].law[0].",
+                                         "controllers[0].law[0].pid.",
+                                         "controllers[0].law[1].leadlag.",
+                                         "controllers[0].law[2].lowpass.",
+                                         "controllers[0].law[3].notch.",
+                                         "controllers[0].law[4].tf.",
+                                         "controllers[0].law[5].zpk.",
+                                         "controllers[0].law[7].ss."};
     char *doc = td_test_read_file(td_source_path("docs/case-format.md"));
     char *a = td_test_read_file(td_source_path("tests/data/case/all-keys.cfg"));
     char *b = td_test_read_file(td_source_path("tests/data/case/all-keys-nodes.cfg"));
+    char *ctl = td_test_read_file(td_source_path("tests/data/case/all-keys-controllers.cfg"));
     const char *p = doc;
     int documented = 0;
     size_t g;
@@ -601,7 +611,7 @@ static void test_docs_match_reader(void **state)
         key[n] = '\0';
         dot = strrchr(key, '.');
         snprintf(leaf, sizeof leaf, "%s =", dot ? dot + 1 : key);
-        if (!strstr(a, leaf) && !strstr(b, leaf)) {
+        if (!strstr(a, leaf) && !strstr(b, leaf) && !strstr(ctl, leaf)) {
             print_error("documented key %s is not used by the all-keys files\n", key);
             fail();
         }
@@ -613,11 +623,13 @@ static void test_docs_match_reader(void **state)
     for (g = 0; g < sizeof groups / sizeof groups[0]; g++) {
         char ov[160], docprefix[160], *q, *list;
         const char *ovs[1];
+        const char *file = strncmp(groups[g], "controllers", 11) == 0 ? "tests/data/case/all-keys-controllers.cfg"
+                                                                        : "tests/data/case/all-keys.cfg";
         td_case *c = NULL;
         td_error err;
         snprintf(ov, sizeof ov, "%szzzzzzzzzz=1", groups[g]);
         ovs[0] = ov;
-        assert_int_equal(td_case_load(td_source_path("tests/data/case/all-keys.cfg"), ovs, 1, &c, &err), TD_ERR_PARSE);
+        assert_int_equal(td_case_load(td_source_path(file), ovs, 1, &c, &err), TD_ERR_PARSE);
         list = strstr(err.message, "(valid here: ");
         if (!list) {
             print_error("%s: %s\n", ov, err.message);
@@ -625,8 +637,8 @@ static void test_docs_match_reader(void **state)
         }
         list += strlen("(valid here: ");
         snprintf(docprefix, sizeof docprefix, "%s", groups[g]);
-        if ((q = strstr(docprefix, "[0]")) != NULL)
-            memmove(q + 1, q + 2, strlen(q + 2) + 1); /* "discs[0]." -> "discs[]." */
+        for (q = strchr(docprefix, '['); q; q = strchr(q + 1, '[')) /* "discs[0]." -> "discs[]." */
+            memmove(q + 1, strchr(q, ']'), strlen(strchr(q, ']')) + 1);
         for (q = strtok(list, ", )"); q; q = strtok(NULL, ", )")) {
             char want[200];
             snprintf(want, sizeof want, "| `%s%s` |", docprefix, q);
@@ -639,6 +651,7 @@ static void test_docs_match_reader(void **state)
     free(doc);
     free(a);
     free(b);
+    free(ctl);
 }
 
 /* The value a key's documented default gives as a case value: a number or boolean (the first
@@ -725,6 +738,35 @@ static void dump_supports(const td_model *m, char *buf, size_t n)
     }
 }
 
+/* The controllers of a case: their names, axes, order, timing, the case's account of each and
+ * their frequency responses at a few frequencies, every number exactly (%a). */
+static void dump_controllers(const td_case *c, char *buf, size_t n)
+{
+    static const double f[] = {0.0, 3.0, 70.0, 900.0};
+    const td_model *m = td_case_model(c);
+    int i, j, l;
+    for (i = 0; i < td_model_controller_count(m); i++) {
+        const char *name;
+        const int *in, *out;
+        const td_controller *k = td_model_get_controller(m, i, &name, &in, &out);
+        td_case_controller_info info;
+        double re[64], im[64];
+        assert_int_equal(td_case_controller(c, i, &info), TD_OK);
+        dump_add(buf, n, "controller \"%s\" %d states %a Hz rigid %d %a delay %d %d %a axes", name,
+                 td_controller_order(k), td_controller_sample_rate(k), info.rigid, info.reference_z, info.delay,
+                 (int)info.discretisation, info.prewarp);
+        for (j = 0; j < td_controller_inputs(k); j++)
+            dump_add(buf, n, " %d>%d", in[j], out[j]);
+        assert_true(td_controller_inputs(k) * td_controller_outputs(k) <= 64);
+        for (j = 0; j < 4; j++) {
+            assert_int_equal(td_controller_frequency_response(k, f[j], re, im, NULL), TD_OK);
+            for (l = 0; l < td_controller_inputs(k) * td_controller_outputs(k); l++)
+                dump_add(buf, n, " %a%+a", re[l], im[l]);
+        }
+        dump_add(buf, n, "\n");
+    }
+}
+
 /* The retainers, unbalances and timed changes of a model. */
 static void dump_events(const td_model *m, char *buf, size_t n)
 {
@@ -786,6 +828,7 @@ static void dump_case(const td_case *c, char *buf, size_t n)
     dump_machine(td_case_model(c), buf, n);
     dump_supports(td_case_model(c), buf, n);
     dump_events(td_case_model(c), buf, n);
+    dump_controllers(c, buf, n);
     dump_add(buf, n, "end %a description \"%s\"\n", td_case_end_time(c), td_case_description(c));
     dump_sweep(c, buf, n);
     for (i = 0; i < 3; i++) {
@@ -797,7 +840,8 @@ static void dump_case(const td_case *c, char *buf, size_t n)
 }
 
 /* The base of test_documented_defaults: every group and list with a key that has a default, with
- * one entry (the retainers two: the second on a mount, which needs a race mass), each holding its
+ * one entry (the retainers two: the second on a mount, which needs a race mass; the controller's
+ * law a block of each kind but gain, in the order of the blocks' table), each holding its
  * required keys only (radii of exact binary sums), and a sweep axis with a key zipped onto it.
  * Point masses, the speed ramp and the reduction have no key with a default. */
 static const char documented_defaults_base[] =
@@ -805,7 +849,11 @@ static const char documented_defaults_base[] =
     "  material = { E = 2.11e11; G = 8.1e10; density = 7810.0; }; };\n"
     "speed = 100.0;\nend_time = 0.1;\n"
     "discs = ( { node = 3; radius = 0.1; thickness = 0.02; density = 7810.0; } );\n"
-    "ambs = ( { node = 2; ks = 1.0e5; ki = 50.0; kp = 1.0e4; kd = 10.0; tau = 1.0e-4; force_capacity = 1000.0; } );\n"
+    "ambs = ( { node = 2; ks = 1.0e5; ki = 50.0; kp = 1.0e4; kd = 10.0; tau = 1.0e-4; force_capacity = 1000.0; },\n"
+    "  { node = 8; ks = 1.0e5; ki = 50.0; tau = 1.0e-4; force_capacity = 1000.0; } );\n"
+    "controllers = ( { name = \"k\"; ambs = [1]; law = ( { pid = {}; }, { leadlag = { gain = 2.0; zero = 10.0;\n"
+    "  pole = 100.0; }; }, { lowpass = { frequency = 500.0; }; }, { notch = { frequency = 50.0; width = 5.0; }; },\n"
+    "  { tf = { num = [1.0]; den = [1.0, 100.0]; }; }, { zpk = {}; }, { ss = { D = ([1.0]); }; } ); } );\n"
     "bearings = ( { node = 10; kxx = 1.0e6; } );\n"
     "retainers = ( { node = 1; clearance = 0.000244140625; shaft_radius = 0.03125; friction = 0.1; race = {};\n"
     "    contact = { stiffness = 1.0e9; }; },\n"
@@ -858,11 +906,18 @@ static const char *documented_default_value(const td_case_key_info *k, char *buf
  * entry (the first; a mount's, the second retainer's; a zipped key's, the first of the first). */
 static void documented_default_override(const char *key, const char *value, char *buf, size_t n)
 {
+    static const char *const blocks[] = {"law[].pid.", "law[].leadlag.", "law[].lowpass.", "law[].notch.",
+                                         "law[].tf.",  "law[].zpk.",     "law[].ss."};
     const char *entry = strncmp(key, "retainers[].mount.", 18) == 0 ? "[1]" : "[0]";
     const char *q;
-    size_t used = 0;
+    char block[8] = "[0]";
+    size_t used = 0, b;
+    for (b = 0; b < sizeof blocks / sizeof blocks[0]; b++)
+        if (strstr(key, blocks[b]))
+            snprintf(block, sizeof block, "[%d]", (int)b); /* the base's law: a block of each kind */
     while ((q = strstr(key, "[]")) != NULL && used < n) {
-        used += (size_t)snprintf(buf + used, n - used, "%.*s%s", (int)(q - key), key, entry);
+        used += (size_t)snprintf(buf + used, n - used, "%.*s%s", (int)(q - key), key,
+                                 strncmp(q - 3, "law", 3) == 0 ? block : entry);
         key = q + 2;
     }
     if (used < n)
@@ -927,13 +982,15 @@ static void test_documented_defaults(void **state)
     print_message("documented defaults: %d keys checked; skipped: %d groups and lists, %d required, %d other\n", tried,
                   part, required, other);
     assert_int_equal(tried + part + required + other, td_case_key_count());
-    assert_int_equal(tried, 66);
-    assert_int_equal(part, 27);     /* their keys are checked */
-    assert_int_equal(required, 54); /* required, or one form's required key (a sweep entry's range or values) */
+    assert_int_equal(tried, 80);
+    assert_int_equal(part, 38);     /* their keys are checked */
+    assert_int_equal(required, 65); /* required, or one form's required key (a sweep entry's range or values) */
     /* an alternative with no default ("-": shaft.nodes, sections' element, schedule's unbalance,
-     * amb_off, amb_on), "unknown" (an AMB's air gap), "all nodes", "none" (response speeds,
-     * overrides), "the rotor's" (spin.inertia, kept as 0: td_spin) */
-    assert_int_equal(other, 10);
+     * amb_off, amb_on, a law's gain block), "unknown" (an AMB's air gap), "all nodes", "none"
+     * (response speeds, overrides, a zpk's zeros and poles, an ss block's A, B and C), "the rotor's"
+     * (spin.inertia, kept as 0: td_spin; a controller's reference_z, its mass centre),
+     * "continuous" (a controller's sample_rate), "1/sqrt(2)" (a low-pass's damping) */
+    assert_int_equal(other, 19);
     td_case_free(&base);
     free(want);
     free(got);
