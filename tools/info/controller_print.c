@@ -72,37 +72,51 @@ static int same_pole(const double *re, const double *im, int i, int j)
     return fabs(re[i] - re[j]) + fabs(im[i] - im[j]) <= 1e-9 * scale;
 }
 
-/* The poles of k, each conjugate pair once, equal ones counted, in the order of the solver. */
-static void print_poles(FILE *f, const td_controller *k)
+/* The poles s (re, im: n of them, NaN re for a delay's z = 0), each conjugate pair once, equal
+ * ones counted, in the order of the solver. */
+static void print_pole_list(FILE *f, const double *re, const double *im, int n)
 {
-    int n = td_controller_order(k), i, j, delays = 0, shown = 0;
-    double rate = td_controller_sample_rate(k), scale = 0.0;
-    double *A = malloc((size_t)n * n * sizeof *A + 1), *re = malloc((size_t)n * sizeof *re + 1),
-           *im = malloc((size_t)n * sizeof *im + 1);
-    fprintf(f, "             poles:");
-    if (!A || !re || !im || (td_controller_matrices(k, A, NULL, NULL, NULL, NULL), eigenvalues(A, n, re, im) != 0))
-        fprintf(f, " (not computed)");
-    for (i = 0; A && re && im && i < n && rate > 0.0; i++) { /* s = ln(z) rate */
-        double r = hypot(re[i], im[i]), a = atan2(im[i], re[i]);
-        delays += r < Z_ZERO;
-        re[i] = r < Z_ZERO ? NAN : log(r) * rate;
-        im[i] = a * rate;
-    }
-    for (i = 0; A && re && im && i < n; i++)
+    double scale = 0.0;
+    int i, j, delays = 0, shown = 0;
+    for (i = 0; i < n; i++)
         scale = isnan(re[i]) || hypot(re[i], im[i]) < scale ? scale : hypot(re[i], im[i]);
-    for (i = 0; A && re && im && i < n; i++) {
+    for (i = 0; i < n; i++) {
         int count = 1, first = 1;
+        delays += isnan(re[i]);
         if (isnan(re[i]) || im[i] < 0.0)
             continue; /* a delay's z = 0; a pair's lower half */
         for (j = 0; j < n; j++)
-            if (j != i && same_pole(re, im, i, j))
+            if (j != i && !isnan(re[j]) && same_pole(re, im, i, j))
                 j < i ? (void)(first = 0) : (void)count++;
         if (first)
             print_pole(f, re[i], im[i], count, shown++ == 0, scale);
     }
     if (delays > 0)
         fprintf(f, "%s z = 0 (delay) x%d", shown ? "," : "", delays);
-    fprintf(f, n == 0 ? " none\n" : "\n");
+}
+
+/* The poles of k in s (a sampled law's z mapped to s = ln(z) sample_rate). */
+static void print_poles(FILE *f, const td_controller *k)
+{
+    int n = td_controller_order(k), i, ok;
+    double rate = td_controller_sample_rate(k);
+    double *A = malloc((size_t)n * n * sizeof *A + 1), *re = malloc((size_t)n * sizeof *re + 1),
+           *im = malloc((size_t)n * sizeof *im + 1);
+    ok = n > 0 && A && re && im;
+    if (ok)
+        td_controller_matrices(k, A, NULL, NULL, NULL, NULL);
+    ok = ok && eigenvalues(A, n, re, im) == 0; /* GSL takes no empty matrix: a static law has none */
+    for (i = 0; ok && i < n && rate > 0.0; i++) {
+        double r = hypot(re[i], im[i]), a = atan2(im[i], re[i]);
+        re[i] = r < Z_ZERO ? NAN : log(r) * rate;
+        im[i] = a * rate;
+    }
+    fprintf(f, "             poles:");
+    if (ok)
+        print_pole_list(f, re, im, n);
+    else
+        fprintf(f, n == 0 ? " none" : " (not computed)");
+    fprintf(f, "\n");
     free(A);
     free(re);
     free(im);
