@@ -1547,6 +1547,10 @@ static void test_controller_errors(void **state)
          "controllers[0].law[0].tf.domain", "needs the controller's sample_rate", 0},
         {"controllers = ( { name = \"a\"; ambs = [0, 1]; law = ( { gain = 1.0; } ); delay = 1; } );",
          "controllers[0].delay", "applies to a sampled controller", 0},
+        {"controllers = ( { name = \"a\"; ambs = [0, 1]; law = ( { gain = 1.0; } ); discretisation = \"zoh\"; } );",
+         "controllers[0].discretisation", "applies to a sampled controller", 0},
+        {"controllers = ( { name = \"a\"; ambs = [0, 1]; law = ( { gain = 1.0; } ); sample_rate = 0.0; } );",
+         "controllers[0].sample_rate", "must be > 0", 0},
         {"controllers = ( { name = \"a\"; ambs = [0, 1]; law = ( { gain = 1.0; } ); sample_rate = 1.0e4; "
          "discretisation = \"zoh\"; prewarp = 50.0; } );",
          "controllers[0].prewarp", "tustin", 0},
