@@ -1556,7 +1556,7 @@ static void test_controller_errors(void **state)
          "controllers[0].prewarp", "tustin", 0},
         {"controllers = ( { name = \"a\"; ambs = [0, 1]; law = ( { tf = { num = [1.0, 2.0, 3.0]; den = [1.0]; }; } ); "
          "} );",
-         "controllers[0].law[0].tf", "improper", 0},
+         "controllers[0].law[0].tf.num", "improper", 0},
         {"controllers = ( { name = \"a\"; ambs = [0, 1]; law = ( { pid = { kp = 1.0; kd = 1.0; }; }, { pid = { kp = "
          "1.0; kd = 1.0; }; } ); } );",
          "controllers[0].law[1]", "improper", 0},
@@ -1582,7 +1582,10 @@ static void test_controller_errors(void **state)
          "controllers[1].ambs", "already driven by controller 0", 0},
         {"controllers = ( { name = \"a\"; ambs = [0, 1]; law = ( { notch = { frequency = 9.0; width = 1.0; depth = "
          "1.5; }; } ); } );",
-         "controllers[0].law[0].notch", "depth", 0},
+         "controllers[0].law[0].notch.depth", "must be >= 0 and < 1 (got 1.5)", 0},
+        {"controllers = ( { name = \"a\"; ambs = [0, 1]; law = ( { lowpass = { frequency = 100.0; }; } ); sample_rate "
+         "= 8000.0; prewarp = 5000.0; } );",
+         "controllers[0].prewarp", "below the Nyquist frequency 4000 Hz", 0},
     };
     size_t k;
     (void)state;
