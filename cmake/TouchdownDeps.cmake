@@ -82,5 +82,17 @@ td_require(LIBCONFIG_INCLUDE_DIR "libconfig header libconfig.h" libconfig-dev)
 td_require(LIBCONFIG_LIBRARY "libconfig library" libconfig-dev)
 td_dependency(libconfig INCLUDE ${LIBCONFIG_INCLUDE_DIR} LINK ${LIBCONFIG_LIBRARY})
 
+# SLICOT 5.0 (GPL-2+, compatible with GSL's GPL-3): the control-system numerics of lib/control
+# (bilinear map, matrix exponential and its integral, minimal realisation, balancing). A Fortran
+# library without a C header (lib/control/slicot.h declares what is used) nor a pkg-config module;
+# its shared library links LAPACK, BLAS and libgfortran itself, and a static link needs the first two.
+find_library(SLICOT_LIBRARY slicot)
+find_library(TD_LAPACK_LIBRARY lapack)
+find_library(TD_BLAS_LIBRARY blas)
+td_require(SLICOT_LIBRARY "SLICOT library" libslicot-dev)
+td_require(TD_LAPACK_LIBRARY "LAPACK library" liblapack-dev)
+td_require(TD_BLAS_LIBRARY "BLAS library" libblas-dev)
+td_dependency(slicot LINK ${SLICOT_LIBRARY} ${TD_LAPACK_LIBRARY} ${TD_BLAS_LIBRARY})
+
 set(TD_DEPENDENCY_TARGETS touchdown_deps::sundials touchdown_deps::suitesparse GSL::gsl
-                          hdf5::hdf5_hl HDF5::HDF5 touchdown_deps::libconfig)
+                          hdf5::hdf5_hl HDF5::HDF5 touchdown_deps::libconfig touchdown_deps::slicot)

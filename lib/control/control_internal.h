@@ -39,7 +39,7 @@ td_status td_ctl_check_positive(double v, const char *what, td_error *err);
 td_controller *td_ctl_from_polynomials(const double *num, int num_len, const double *den, int den_len,
                                        double sample_rate, const char *who, td_error *err);
 
-/* x = M e for column-major M (rows x cols), e (cols); used by the responses. */
-void td_ctl_matvec(const double *M, int rows, int cols, const double *e, double *x);
+/* Z = X Y for column-major X (rows x inner) and Y (inner x cols); Z (rows x cols) is overwritten. */
+void td_ctl_matmul(const double *X, int rows, int inner, const double *Y, int cols, double *Z);
 
 #endif

@@ -56,14 +56,16 @@ td_status td_ctl_check_positive(double v, const char *what, td_error *err)
     return TD_OK;
 }
 
-void td_ctl_matvec(const double *M, int rows, int cols, const double *e, double *x)
+void td_ctl_matmul(const double *X, int rows, int inner, const double *Y, int cols, double *Z)
 {
-    int i, j;
-    for (i = 0; i < rows; i++)
-        x[i] = 0.0;
+    int i, j, l;
     for (j = 0; j < cols; j++)
-        for (i = 0; i < rows; i++)
-            x[i] += M[i + (size_t)j * (size_t)rows] * e[j];
+        for (i = 0; i < rows; i++) {
+            double z = 0.0;
+            for (l = 0; l < inner; l++)
+                z += X[i + (size_t)l * rows] * Y[l + (size_t)j * inner];
+            Z[i + (size_t)j * rows] = z;
+        }
 }
 
 /* Checks the sizes and values of create_ss's arguments. */
