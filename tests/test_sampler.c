@@ -172,7 +172,9 @@ static void write_records(const char *path, const td_model *m, const sample_log 
  * inputs and outputs, so it is read from there. */
 static void log_first_sample(const td_sim *s, sample_log *log)
 {
-    const td_sim_sampled *l = &s->sampler->law[0];
+    const td_sim_sampled *l;
+    assert_non_null(s->sampler);
+    l = &s->sampler->law[0];
     assert_int_equal(l->k_next, 1);
     log_sample(log, 0, td_sim_time(s), l->e, AXES, l->u, AXES);
 }

@@ -22,7 +22,7 @@ typedef struct td_sim_sampled {
     double rate;    /* Hz */
     long k_next;    /* the next sample to take */
     double *x, *xn; /* n: the state x_k, and x_{k+1} while it is computed */
-    double *e, *u;  /* nin inputs e_k = -xs, nout outputs i_k */
+    double *e, *u;  /* the last sample's nin inputs e_k = -xs and nout outputs i_k */
 } td_sim_sampled;
 
 typedef struct td_sim_sampler {
