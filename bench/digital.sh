@@ -5,9 +5,12 @@
 #
 #   bench/digital.sh [-n REPEATS] [BUILD_DIR]
 #
-# Each case runs REPEATS times (default 3), the two alternating, with no output files; the CPU time
-# (user + system, of the tool's process) printed is the median. Beside it, where the time goes: the
-# integrator's steps and restarts, the closed-form flight's share of the simulated time, the
+# Each case runs REPEATS times (default 3), the runs alternating, with no output files; the CPU time
+# (user + system, of the tool's process) printed is the median. Where the time goes: a third run,
+# case A with the closed-form flight off (solver.free_flight = false), separates what the digital
+# case loses by integrating the free flight with IDA (the flight does not carry sampled controllers
+# yet) from what its samples cost (each one a stop and a restart of the integrator); beside each
+# run, the integrator's steps and restarts, the flight's share of the simulated time, the
 # controller's samples, and the time in contact. BUILD_DIR defaults to ./build of the source tree.
 set -euo pipefail
 
@@ -17,7 +20,7 @@ repeats=3
 while [ $# -gt 0 ]; do
     case $1 in
     -n) repeats=$2; shift ;;
-    -h | --help) sed -n '2,11p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h | --help) sed -n '2,15p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) build=$1 ;;
     esac
     shift
@@ -27,12 +30,13 @@ tool=$build/touchdown
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 
-# one NAME CASE I: run CASE once, its CPU seconds into $work/NAME.cpu (a line per run), its JSON
-# summary into $work/NAME.json
+# one NAME CASE [OVERRIDE...]: run CASE once, its CPU seconds into $work/NAME.cpu (a line per run),
+# its JSON summary into $work/NAME.json
 one() {
     local name=$1 case=$2 t0 t1
+    shift 2
     t0=$(awk '{ print $14 + $15 + $16 + $17 }' /proc/$$/stat)
-    "$tool" run -q --json --hdf5 '' --csv '' "$here/cases/$case" >"$work/$name.json" 2>"$work/$name.err" || {
+    "$tool" run -q --json --hdf5 '' --csv '' "$@" "$here/cases/$case" >"$work/$name.json" 2>"$work/$name.err" || {
         echo "digital.sh: $case failed:" >&2
         cat "$work/$name.err" >&2
         exit 1
@@ -44,22 +48,27 @@ one() {
 for ((i = 0; i < repeats; i++)); do
     one continuous paper-a.cfg
     one digital paper-a-digital.cfg
+    one noflight paper-a.cfg --set solver.free_flight=false
 done
 
 /usr/bin/python3 - "$work" <<'PY'
 import json, os, statistics, sys
 work = sys.argv[1]
 rows = {}
-for name in ("continuous", "digital"):
+for name in ("continuous", "digital", "noflight"):
     cpu = [float(x) for x in open(os.path.join(work, name + ".cpu")).read().split()]
     d = json.load(open(os.path.join(work, name + ".json")))
     rows[name] = (statistics.median(cpu), d)
-print("%-32s %8s %10s %9s %8s %9s %9s" % ("case", "CPU s", "steps", "restarts", "samples", "flight s", "contact s"))
-for name, case in (("continuous", "paper-a.cfg"), ("digital", "paper-a-digital.cfg")):
+print("%-40s %8s %10s %9s %8s %9s %9s" % ("case", "CPU s", "steps", "restarts", "samples", "flight s", "contact s"))
+for name, case in (("continuous", "paper-a.cfg"), ("digital", "paper-a-digital.cfg"),
+                   ("noflight", "paper-a.cfg, solver.free_flight=false")):
     cpu, d = rows[name]
     st = d["stats"]
-    print("%-32s %8.2f %10d %9d %8d %9.3f %9.3f" % (case, cpu, st["steps"], st["restarts"],
+    print("%-40s %8.2f %10d %9d %8d %9.3f %9.3f" % (case, cpu, st["steps"], st["restarts"],
           st.get("controller_samples", 0), st["flight_time"], d["contact_time"]))
-a, b = rows["continuous"][0], rows["digital"][0]
-print("CPU ratio digital / continuous: %.2f" % (b / a if a > 0 else float("nan")))
+a, b, c = rows["continuous"][0], rows["digital"][0], rows["noflight"][0]
+ratio = lambda x, y: x / y if y > 0 else float("nan")
+print("CPU ratio digital / continuous: %.2f" % ratio(b, a))
+print("  of which: continuous without the flight / with it %.2f, digital / continuous without the flight %.2f"
+      % (ratio(c, a), ratio(b, c)))
 PY
