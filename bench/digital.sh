@@ -20,7 +20,7 @@ repeats=3
 while [ $# -gt 0 ]; do
     case $1 in
     -n) repeats=$2; shift ;;
-    -h | --help) sed -n '2,15p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h | --help) sed -n '2,14p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) build=$1 ;;
     esac
     shift
