@@ -188,6 +188,31 @@ static void test_series_append_transform_by_hand(void **state)
     td_controller_free(&t);
 }
 
+/* PD 2 + 3 s (no filter: D = 2, D1 = 3) and 1/(s + 1) in series, either way round, is
+ * (3 s + 2)/(s + 1) = 3 - 1/(s + 1), by hand: the velocity feedthrough lands in D, none is left. */
+static void test_series_with_velocity_feedthrough_by_hand(void **state)
+{
+    const double a = -1.0, b = 1.0, c = 1.0, zero = 0.0;
+    td_pid_block pd = {2.0, 0.0, 3.0, 0.0};
+    td_controller *P = td_controller_create_pid(&pd, NULL);
+    td_controller *L = td_controller_create_ss(1, 1, 1, &a, &b, &c, &zero, NULL, 0.0, NULL);
+    td_controller *s1 = td_controller_series(P, L, NULL), *s2 = td_controller_series(L, P, NULL);
+    double A, B, C, D, D1;
+    (void)state;
+    assert_non_null(s1);
+    assert_non_null(s2);
+    /* P then L: B = B2 D1 + A2 B2 E1 = 2 - 3, C = C2, D = C2 B2 E1 = 3 */
+    td_controller_matrices(s1, &A, &B, &C, &D, &D1);
+    assert_true(A == -1.0 && B == -1.0 && C == 1.0 && D == 3.0 && D1 == 0.0);
+    /* L then P: C = D2 C1 + E2 C1 A1 = 2 - 3, D = E2 C1 B1 = 3 */
+    td_controller_matrices(s2, &A, &B, &C, &D, &D1);
+    assert_true(A == -1.0 && B == 1.0 && C == -1.0 && D == 3.0 && D1 == 0.0);
+    td_controller_free(&P);
+    td_controller_free(&L);
+    td_controller_free(&s1);
+    td_controller_free(&s2);
+}
+
 /* Laws in series respond as the product of their responses, including the improper-by-one cases
  * (the velocity feedthrough in the first law, in the second, and carried to the result). */
 static void test_series_is_the_product(void **state)
@@ -269,6 +294,7 @@ static void expect_invalid(td_controller *k, const td_error *err, const char *wo
 static void test_bad_laws_are_refused(void **state)
 {
     const double num3[] = {1.0, 0.0, 0.0}, den1[] = {1.0}, den0[] = {0.0, 1.0}, nan1[] = {NAN, 1.0}, one = 1.0;
+    double y[1];
     td_pid_block pid = {1.0, -1.0, 0.0, 0.0};
     td_notch_block no = {34.4, 6.0, 1.0};
     td_lowpass_block lp = {100.0, 3, 0.7};
@@ -284,12 +310,27 @@ static void test_bad_laws_are_refused(void **state)
     expect_invalid(td_controller_create_tf(num3, 2, den1, 1, NAN, &err), &err, "sample_rate");
     expect_invalid(td_controller_create_gain(INFINITY, &err), &err, "finite");
     expect_invalid(td_controller_create_pid(&pid, &err), &err, "kint");
+    assert_string_equal(err.site.field, "kint");
+    assert_string_equal(err.message, "pid: kint: must be finite and >= 0 (got -1)");
     expect_invalid(td_controller_create_notch(&no, &err), &err, "depth");
     expect_invalid(td_controller_create_lowpass(&lp, &err), &err, "order");
     expect_invalid(td_controller_series(c, z, &err), &err, "timing");
     expect_invalid(td_controller_append(z, c, &err), &err, "timing");
     expect_invalid(td_controller_create_ss(1, 1, 1, nan1, &one, &one, &one, NULL, 0.0, &err), &err, "not finite");
     expect_invalid(td_controller_create_ss(0, 1, 1, NULL, NULL, NULL, &one, &one, 1e3, &err), &err, "D1");
+    /* a sampled law needs a rate; an unfiltered derivative has no sampled form and no step response */
+    expect_invalid(td_controller_discretise(c, 0.0, TD_DISCRETISE_TUSTIN, 0.0, &err), &err, "sample_rate");
+    expect_invalid(td_controller_discretise(c, 1e3, TD_DISCRETISE_TUSTIN, 600.0, &err), &err, "Nyquist");
+    /* the site names the argument, for a case reader to point at the key it read */
+    assert_string_equal(err.site.part, "discretise");
+    assert_string_equal(err.site.field, "prewarp");
+    expect_invalid(td_controller_discretise(z, 1e3, TD_DISCRETISE_ZOH, 0.0, &err), &err, "sampled already");
+    td_controller_free(&c);
+    pid.kint = 0.0, pid.kd = 40.0;
+    c = td_controller_create_pid(&pid, NULL);
+    expect_invalid(td_controller_discretise(c, 1e3, TD_DISCRETISE_ZOH, 0.0, &err), &err, "derivative");
+    assert_int_equal(td_controller_step_response(c, 0, &one, 1, y, &err), TD_ERR_INVALID);
+    assert_non_null(strstr(err.message, "impulse"));
     td_controller_free(&c);
     td_controller_free(&z);
 }
@@ -361,6 +402,7 @@ static void test_delay_is_z_to_the_minus_d(void **state)
     k = td_controller_create_gain(1.0, NULL); /* continuous: no whole samples to delay by */
     assert_null(td_controller_delay(k, 1, &err));
     assert_non_null(strstr(err.message, "sampled"));
+    td_controller_free(&k);
     td_controller_free(&d3);
     td_controller_free(&d0);
 }
@@ -411,6 +453,7 @@ int main(void)
         cmocka_unit_test(test_tf_and_zpk),
         cmocka_unit_test(test_sampled_tf_and_zpk),
         cmocka_unit_test(test_series_append_transform_by_hand),
+        cmocka_unit_test(test_series_with_velocity_feedthrough_by_hand),
         cmocka_unit_test(test_series_is_the_product),
         cmocka_unit_test(test_rigid_transform_by_hand),
         cmocka_unit_test(test_bad_laws_are_refused),

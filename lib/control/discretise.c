@@ -4,7 +4,7 @@
  * register on the outputs (touchdown/controller.h; docs/theory.md, "Controllers").
  */
 #include "control/control_internal.h"
-#include "control/slicot.h"
+#include "control/numerics.h"
 
 #include "touchdown/dofs.h" /* TD_PI */
 #include "util/error_internal.h"
@@ -20,17 +20,15 @@ static td_status check_discretise(const td_controller *k, double rate, td_discre
         return td_error_set(err, TD_ERR_INVALID, "discretise: NULL controller");
     if (k->sample_rate > 0.0)
         return td_error_set(err, TD_ERR_INVALID, "discretise: the law is sampled already (at %g Hz)", k->sample_rate);
-    if (td_ctl_check_positive(rate, "discretise: sample_rate (Hz)", err) != TD_OK)
+    if (td_ctl_check_positive(rate, "discretise", "sample_rate", err) != TD_OK)
         return err ? err->code : TD_ERR_INVALID;
     if (method != TD_DISCRETISE_TUSTIN && method != TD_DISCRETISE_ZOH)
-        return td_error_set(err, TD_ERR_INVALID, "discretise: unknown method %d", (int)method);
+        return td_ctl_invalid(err, "discretise", "method", "unknown method %d", (int)method);
     if (!(isfinite(prewarp) && prewarp >= 0.0 && prewarp < 0.5 * rate))
-        return td_error_set(err, TD_ERR_INVALID,
-                            "discretise: prewarp: must be >= 0 and below the Nyquist frequency %g Hz (got %g)",
-                            0.5 * rate, prewarp);
+        return td_ctl_invalid(err, "discretise", "prewarp",
+                              "must be >= 0 and below the Nyquist frequency %g Hz (got %g)", 0.5 * rate, prewarp);
     if (method == TD_DISCRETISE_ZOH && prewarp != 0.0)
-        return td_error_set(err, TD_ERR_INVALID, "discretise: prewarp applies to Tustin only (got %g Hz with zoh)",
-                            prewarp);
+        return td_ctl_invalid(err, "discretise", "prewarp", "applies to Tustin only (got %g Hz with zoh)", prewarp);
     if (td_controller_has_velocity_feedthrough(k))
         return td_error_set(err, TD_ERR_INVALID,
                             "discretise: the law has an unfiltered derivative (velocity "
@@ -74,7 +72,9 @@ td_controller *td_controller_discretise(const td_controller *k, double sample_ra
     } else if (k->n > 0) {
         double w0 = 2.0 * TD_PI * prewarp;
         double beta = prewarp > 0.0 ? w0 / tan(0.5 * w0 / sample_rate) : 2.0 * sample_rate;
-        st = td_slicot_bilinear(k->n, k->inputs, k->outputs, beta, d->A, d->B, d->C, d->D, err);
+        st = td_slicot_balance(k->n, k->inputs, k->outputs, d->A, d->B, d->C, err);
+        if (st == TD_OK)
+            st = td_slicot_bilinear(k->n, k->inputs, k->outputs, beta, d->A, d->B, d->C, d->D, err);
     }
     if (st != TD_OK)
         td_controller_free(&d);
@@ -87,8 +87,12 @@ td_controller *td_controller_delay(const td_controller *k, int samples, td_error
 {
     td_controller *d;
     int n, p, N, i, j, l;
-    if (!k || samples < 0) {
-        td_error_set(err, TD_ERR_INVALID, "delay: needs a controller and samples >= 0 (got %d)", samples);
+    if (!k) {
+        td_error_set(err, TD_ERR_INVALID, "delay: NULL controller");
+        return NULL;
+    }
+    if (samples < 0) {
+        td_ctl_invalid(err, "delay", "samples", "must be >= 0 (got %d)", samples);
         return NULL;
     }
     if (!(k->sample_rate > 0.0)) {

@@ -3,7 +3,7 @@
  * untouched: removing states and a diagonal similarity change neither.
  */
 #include "control/control_internal.h"
-#include "control/slicot.h"
+#include "control/numerics.h"
 
 #include "util/error_internal.h"
 

@@ -1,7 +1,9 @@
 /*
- * slicot.c - the one file that calls SLICOT (declarations and conventions: slicot.h).
+ * slicot.c - the one file that calls SLICOT (its declarations and conventions: slicot.h) and the
+ * wrappers of numerics.h.
  */
 #include "control/slicot.h"
+#include "control/numerics.h"
 
 #include "util/error_internal.h"
 
@@ -41,26 +43,50 @@ td_status td_slicot_bilinear(int n, int m, int p, double beta, double *A, double
     return TD_OK;
 }
 
-/* TOL is MB05ND's requested relative error of its Pade approximant: machine precision. */
+/* A balanced copy of A (TB01ID, JOB = 'N': A alone, by a diagonal similarity inv(S) A S); scale
+ * receives S. */
+static td_status balance_matrix(int n, const double *A, double *Ab, double *scale, td_error *err)
+{
+    double maxred = 0.0, dummy = 0.0;
+    int lda = n > 0 ? n : 1, zero = 0, one = 1, info = 0;
+    memcpy(Ab, A, (size_t)n * n * sizeof *A);
+    tb01id_("N", &n, &zero, &zero, &maxred, Ab, &lda, &dummy, &one, &dummy, &one, scale, &info, 1);
+    return info == 0 ? TD_OK : info_error(err, "TB01ID", "failed", info);
+}
+
+/* MB05ND on the balanced A, then back: exp(A d) = S exp(inv(S) A S d) inv(S), and so for the
+ * integral. Without the balancing MB05ND lost up to 1e-10 (relative) on the realisations of
+ * chained blocks (entries from 1 to 1e8) against scipy's expm (tests/validation/control). TOL is
+ * MB05ND's requested relative error of its Pade approximant: machine precision. */
 td_status td_slicot_expm(int n, double delta, const double *A, double *EX, double *EXINT, td_error *err)
 {
     const double tol = DBL_EPSILON;
-    int ld = imax(1, n), ldwork = imax(1, 2 * n * n + n), info = 0;
+    int ld = imax(1, n), ldwork = imax(1, 2 * n * n + n), info = 0, i, j;
     int *iwork = malloc((size_t)ld * sizeof *iwork);
-    double *dwork = malloc((size_t)ldwork * sizeof *dwork);
+    double *dwork = malloc(((size_t)ldwork + (size_t)n * n + (size_t)n + 1) * sizeof *dwork), *Ab, *scale;
+    td_status st;
     if (!iwork || !dwork) {
         free(iwork);
         free(dwork);
         return td_error_set(err, TD_ERR_NOMEM, "out of memory in SLICOT MB05ND's workspace");
     }
-    mb05nd_(&n, &delta, A, &ld, EX, &ld, EXINT, &ld, &tol, iwork, dwork, &ldwork, &info);
+    Ab = dwork + ldwork;
+    scale = Ab + (size_t)n * n;
+    st = balance_matrix(n, A, Ab, scale, err);
+    if (st == TD_OK)
+        mb05nd_(&n, &delta, Ab, &ld, EX, &ld, EXINT, &ld, &tol, iwork, dwork, &ldwork, &info);
+    for (j = 0; j < n && st == TD_OK && info == 0; j++)
+        for (i = 0; i < n; i++) {
+            EX[i + (size_t)j * n] *= scale[i] / scale[j];
+            EXINT[i + (size_t)j * n] *= scale[i] / scale[j];
+        }
     free(iwork);
     free(dwork);
-    if (info != 0)
+    if (st == TD_OK && info != 0)
         return info_error(err, "MB05ND",
                           info == n + 1 ? "delta times the norm of A is too large" : "the Pade denominator is singular",
                           info);
-    return TD_OK;
+    return st;
 }
 
 /* Copies the rows x cols matrix X (ldx) into Y (ldy). */

@@ -1,7 +1,7 @@
 /*
  * slicot.h - the SLICOT routines touchdown calls (SLICOT 5.0, Debian libslicot-dev, GPL-2+; a
- * Fortran 77 library that ships no C header), declared here once and called only from slicot.c,
- * whose wrappers own the workspaces and turn INFO into a td_status with a message.
+ * Fortran 77 library that ships no C header), declared here once and included only by slicot.c,
+ * whose wrappers (numerics.h) own the workspaces and turn INFO into a td_status with a message.
  *
  * Fortran calling convention (gfortran >= 8): every argument by pointer, INTEGER a 4-byte int,
  * arrays column-major, and each CHARACTER argument adds a hidden size_t length at the end of the
@@ -9,8 +9,6 @@
  */
 #ifndef TD_CONTROL_SLICOT_H
 #define TD_CONTROL_SLICOT_H
-
-#include "touchdown/error.h"
 
 #include <stddef.h>
 
@@ -26,25 +24,5 @@ void tb01pd_(const char *job, const char *equil, const int *n, const int *m, con
              double *dwork, const int *ldwork, int *info, size_t job_len, size_t equil_len);
 void tb01id_(const char *job, const int *n, const int *m, const int *p, double *maxred, double *a, const int *lda,
              double *b, const int *ldb, double *c, const int *ldc, double *scale, int *info, size_t job_len);
-
-/* The wrappers. Matrices are column-major with leading dimension = their row count (n for A and
- * B, p for C and D). Each returns TD_OK, TD_ERR_NOMEM or TD_ERR_NUMERIC with a message naming
- * the routine. */
-
-/* AB04MD, TYPE = 'C': the continuous (A, B, C, D) becomes, in place, the discrete system of the
- * bilinear map s = beta (z - 1)/(z + 1) (alpha = 1). */
-td_status td_slicot_bilinear(int n, int m, int p, double beta, double *A, double *B, double *C, double *D,
-                             td_error *err);
-
-/* MB05ND: EX = exp(A delta) and EXINT = the integral of exp(A s) ds over [0, delta] (n x n each). */
-td_status td_slicot_expm(int n, double delta, const double *A, double *EX, double *EXINT, td_error *err);
-
-/* TB01PD (JOB = 'M', EQUIL = 'S'): removes the uncontrollable and unobservable states of
- * (A, B, C) in place; *nr is the remaining order, the leading nr x nr, nr x m and p x nr parts
- * (re-packed with leading dimensions nr, nr and p) hold the minimal realisation. */
-td_status td_slicot_minimal(int n, int m, int p, double *A, double *B, double *C, int *nr, td_error *err);
-
-/* TB01ID (JOB = 'A'): balances (A, B, C) in place by a diagonal similarity. */
-td_status td_slicot_balance(int n, int m, int p, double *A, double *B, double *C, td_error *err);
 
 #endif

@@ -4,7 +4,7 @@
  * (SLICOT MB05ND at each time), and the held sample sequence of a sampled law.
  */
 #include "control/control_internal.h"
-#include "control/slicot.h"
+#include "control/numerics.h"
 
 #include "util/error_internal.h"
 
