@@ -314,7 +314,8 @@ static double amb_force_max(const td_sim *sim)
 
 /* (c) a PID with its integrator (a pole at 0) on every axis, levitating under gravity: the AMB
  * force is exactly 0 while the AMBs are off (the controller runs on and winds up), the run stays
- * finite, and the integrators bring the sensors back to 0 after the drop. */
+ * finite, the integrators bring the sensors back to 0 after the drop, and a force the caller holds
+ * (TD_AMB_EXTERNAL) replaces the controller's. */
 static void test_integrator_law_drop(void **state)
 {
     td_pid_block pid = {RIG_KP, 2.5e5, RIG_KD, 0.0};
@@ -348,6 +349,19 @@ static void test_integrator_law_drop(void **state)
         /* PD alone would sag by W/2 / (ki kp - ks), about 0.5 mm */
         print_message("PID controller, 1 s after a 50 ms drop: largest sensor displacement %.3g m\n", worst);
         assert_true(worst < 1e-5);
+        /* the caller's held force wins over the controller: ks x + f at AMB 0's actuator (node 3) */
+        assert_int_equal(td_sim_set_amb_mode(sim, 0, TD_AMB_EXTERNAL, NULL), TD_OK);
+        assert_int_equal(td_sim_set_amb_control(sim, 0, 10.0, -20.0, NULL), TD_OK);
+        run_to(sim, 1.01);
+        assert_int_equal(td_sim_get_state(sim, q, q + n), TD_OK);
+        {
+            double f[2];
+            td_amb a;
+            assert_int_equal(td_model_get_amb(td_sim_model(sim), 0, &a), TD_OK);
+            assert_int_equal(td_sim_amb_force(sim, 0, f), TD_OK);
+            assert_close(f[0], a.ks * q[TD_DOF(3, TD_DOF_X)] + 10.0, 1e-12, 0.0);
+            assert_close(f[1], a.ks * q[TD_DOF(3, TD_DOF_Y)] - 20.0, 1e-12, 0.0);
+        }
         free(q);
     }
     td_sim_free(&sim);
@@ -636,6 +650,45 @@ static void test_model_controllers(void **state)
     td_model_free(&r);
 }
 
+/* A sampled controller has no state in the first-order form: the closed-loop analysis refuses it
+ * (naming it), the orbit start refuses it when asked for strictly and starts at rest on "auto". */
+static void test_sampled_law_refused_by_analysis(void **state)
+{
+    td_pid_block pid = {RIG_KP, 0.0, RIG_KD, 2000.0};
+    td_controller *c = td_controller_create_pid(&pid, NULL), *k;
+    td_model *m;
+    td_system *sys = NULL;
+    td_modal *md = NULL;
+    td_sim *sim = NULL;
+    td_sim_options o;
+    td_sim_start_info info;
+    td_error err;
+    (void)state;
+    assert_non_null(c);
+    k = td_controller_discretise(c, 10000.0, TD_DISCRETISE_TUSTIN, 0.0, &err);
+    assert_non_null(k);
+    m = rig_with_law(TD_RIG_TAU, TD_RIG_WITH_RETAINERS, k);
+    assert_int_equal(td_system_create(m, &sys, NULL), TD_OK);
+    assert_int_equal(td_modal_solve(sys, RIG_SPEED, &md, &err), TD_ERR_INVALID);
+    print_message("%s\n", err.message);
+    assert_non_null(strstr(err.message, "controller 0 is sampled"));
+    td_sim_options_default(&o);
+    o.start = TD_START_ORBIT;
+    assert_int_equal(td_sim_create(m, &o, &sim, &err), TD_ERR_INVALID);
+    assert_non_null(strstr(err.message, "sampled"));
+    o.start = TD_START_AUTO;
+    assert_int_equal(td_sim_create(m, &o, &sim, &err), TD_OK);
+    assert_int_equal(td_sim_start_info_get(sim, &info), TD_OK);
+    assert_int_equal(info.used, TD_START_REST);
+    assert_int_equal(info.stability, TD_STABILITY_UNCHECKED);
+    assert_non_null(strstr(info.reason, "sampled"));
+    td_sim_free(&sim);
+    td_system_free(&sys);
+    td_controller_free(&c);
+    td_controller_free(&k);
+    td_model_free(&m);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -646,6 +699,7 @@ int main(void)
         cmocka_unit_test(test_pd_run_equals_shorthand),
         cmocka_unit_test(test_flight_with_controller_states),
         cmocka_unit_test(test_integrator_law_drop),
+        cmocka_unit_test(test_sampled_law_refused_by_analysis),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -77,9 +77,9 @@ static amb_coeffs amb_axis_coeffs(const td_amb_axis *a)
         c.rate_v = td_amb_axis_filter_rate(a, 0.0, 1.0, 0.0, 0.0);
         c.rate_e = td_amb_axis_filter_rate(a, 0.0, 0.0, 1.0, 0.0);
         c.rate_w = td_amb_axis_filter_rate(a, 0.0, 0.0, 0.0, 1.0);
-        c.rate_i = td_amb_axis_lag_rate(a, td_amb_axis_current_target(a, 1.0), 0.0);
+        c.rate_i = td_amb_axis_lag_rate(a, td_amb_axis_current_command(a, 1.0), 0.0);
     }
-    c.target_i = td_amb_axis_current_target(a, 1.0);
+    c.target_i = td_amb_axis_current_command(a, 1.0);
     return c;
 }
 
