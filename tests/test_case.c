@@ -1362,6 +1362,10 @@ static void test_controllers_all_keys(void **state)
     double Ts[4], Ta[4], Tin[16] = {0}, Tout[16] = {0};
     int i, j;
     (void)state;
+    /* the mass centre (the rigid reference when none is given): the shaft's at its middle, the disc's at node 1 */
+    assert_close(td_model_mass_centre(m),
+                 (7800.0 * TD_PI * 0.02 * 0.02 * 1.2 * 0.6 + 8.0 * 0.2) / (7800.0 * TD_PI * 0.02 * 0.02 * 1.2 + 8.0),
+                 1e-14, 0.0);
     assert_int_equal(td_model_controller_count(m), 2);
     want = side_by_side(td_controller_clone(law, NULL), law);
     assert_non_null(td_model_get_controller(m, 0, &name, &in, &out));
@@ -1470,6 +1474,7 @@ static void test_controller_rigid_by_hand(void **state)
                  a[2][2] = {{0.5 / 0.6, 0.1 / 0.6}, {-1.0 / 0.6, 1.0 / 0.6}};
     const int axes[] = {0, 2, 1, 3};
     const int *in, *out;
+    td_case_controller_info info;
     td_case *c = NULL;
     td_error err;
     double re[16], im[16];
@@ -1492,6 +1497,14 @@ static void test_controller_rigid_by_hand(void **state)
             assert_close(re[i + 4 * j], want, 1e-14, 1e-14);
             assert_close(im[i + 4 * j], 0.0, 0.0, 1e-14);
         }
+    td_case_free(&c);
+    /* without reference_z: the uniform shaft's middle */
+    assert_int_equal(load_controllers("controllers = ( { name = \"rb\"; ambs = [0, 1]; coordinates = \"rigid\"; "
+                                      "translation = ( { gain = 3.0; } ); tilt = ( { gain = 5.0; } ); } );",
+                                      &c, &err),
+                     TD_OK);
+    assert_int_equal(td_case_controller(c, 0, &info), TD_OK);
+    assert_close(info.reference_z, 0.6, 1e-15, 0.0);
     td_case_free(&c);
 }
 
@@ -1534,6 +1547,10 @@ static void test_controller_errors(void **state)
          "controllers[0].law[0].tf.domain", "needs the controller's sample_rate", 0},
         {"controllers = ( { name = \"a\"; ambs = [0, 1]; law = ( { gain = 1.0; } ); delay = 1; } );",
          "controllers[0].delay", "applies to a sampled controller", 0},
+        {"controllers = ( { name = \"a\"; ambs = [0, 1]; law = ( { gain = 1.0; } ); discretisation = \"zoh\"; } );",
+         "controllers[0].discretisation", "applies to a sampled controller", 0},
+        {"controllers = ( { name = \"a\"; ambs = [0, 1]; law = ( { gain = 1.0; } ); sample_rate = 0.0; } );",
+         "controllers[0].sample_rate", "must be > 0", 0},
         {"controllers = ( { name = \"a\"; ambs = [0, 1]; law = ( { gain = 1.0; } ); sample_rate = 1.0e4; "
          "discretisation = \"zoh\"; prewarp = 50.0; } );",
          "controllers[0].prewarp", "tustin", 0},
@@ -1607,6 +1624,13 @@ static const bad_file bad_files[] = {
     {"spin-torque-not-free.cfg", 4, "spin", NULL},
     {"amb-tau-and-bandwidth.cfg", 6, "ambs[0].bandwidth", NULL},
     {"amb-zero-capacity.cfg", 6, "ambs[0].force_capacity", NULL},
+    {"controller-driven-amb-gain.cfg", 5, "ambs[1].kd", NULL},
+    {"controller-duplicate-name.cfg", 7, "controllers[1].name", NULL},
+    {"controller-rigid-three-ambs.cfg", 8, "controllers[0].coordinates", NULL},
+    {"controller-ss-shape.cfg", 8, "controllers[0].law[0].ss.B", NULL},
+    {"controller-two-members.cfg", 8, "controllers[0].law[0].notch", NULL},
+    {"controller-unknown-block.cfg", 7, "controllers[0].law[0].pidd", NULL},
+    {"controller-z-block-continuous.cfg", 8, "controllers[0].law[0].tf.domain", NULL},
     {"binary.cfg", 2, NULL, NULL},
     {"comments-only.cfg", 1, NULL, NULL},
     {"contact-bad-model.cfg", 5, "contact.model", NULL},

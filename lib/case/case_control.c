@@ -121,11 +121,6 @@ static td_status check_sampled(td_case_reader *r, const config_setting_t *g, con
     return TD_OK;
 }
 
-/* The law of list `key` of g, its blocks in series; sampled at c->sample_rate when it has one (each
- * run of blocks in s as a whole, by c's discretisation; a block in z as written). */
-static td_status build_law(td_case_reader *r, const config_setting_t *g, const char *key, const cc_rec *c,
-                           td_controller **out);
-
 /* *first then second in series (second not NULL; *first NULL: second alone), freeing both; a
  * failure located at block e. */
 static td_status chain(td_case_reader *r, const config_setting_t *e, td_controller **first, td_controller *second)
@@ -153,11 +148,15 @@ static td_status flush(td_case_reader *r, const config_setting_t *e, const cc_re
         return TD_OK;
     d = td_controller_discretise(*run, c->sample_rate, (td_discretisation)c->discretisation, c->prewarp, &merr);
     td_controller_free(run);
+    if (!d && merr.site.field && strcmp(merr.site.field, "prewarp") == 0) /* the controller's key, e's grandparent */
+        return td_cr_model_fail(r, config_setting_parent(config_setting_parent(e)), merr.code, &merr);
     if (!d)
         return td_cr_model_fail(r, e, merr.code, &merr);
     return chain(r, e, acc, d);
 }
 
+/* The law of list `key` of g, its blocks in series; sampled at c->sample_rate when it has one (each
+ * run of blocks in s as a whole, by c's discretisation; a block in z as written). */
 static td_status build_law(td_case_reader *r, const config_setting_t *g, const char *key, const cc_rec *c,
                            td_controller **out)
 {
