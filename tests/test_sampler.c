@@ -89,7 +89,7 @@ static td_controller *digital_pd(void)
 /* Case A from rest, cut to T_END, its AMBs' PD replaced by the sampled one (a new model). */
 static td_model *digital_case_a(td_case **c)
 {
-    const char *ov[6] = {"end_time=0.5",  "start=\"rest\"", "ambs[0].kp=0.0",
+    const char *ov[6] = {"end_time=0.5",   "start=\"rest\"", "ambs[0].kp=0.0",
                          "ambs[0].kd=0.0", "ambs[1].kp=0.0", "ambs[1].kd=0.0"};
     const int axes[AXES] = {0, 1, 2, 3};
     td_model *m = NULL;
