@@ -607,7 +607,8 @@ td_status td_writer_set_stats(td_writer *w, const td_sim_stats *s, td_error *err
                   {TD_OUT_STAT_CONTACT_ONSETS, s ? s->contact_onsets : 0},
                   {TD_OUT_STAT_RELEASES, s ? s->releases : 0},
                   {TD_OUT_STAT_PEAK_AMB, s ? s->peak_amb : 0},
-                  {TD_OUT_STAT_FLIGHT_STEPS, s ? s->flight_steps : 0}};
+                  {TD_OUT_STAT_FLIGHT_STEPS, s ? s->flight_steps : 0},
+                  {TD_OUT_STAT_CONTROLLER_SAMPLES, s ? s->controller_samples : 0}};
     const struct {
         td_out_id id;
         double value;

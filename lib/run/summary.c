@@ -394,6 +394,8 @@ int td_run_summary_format(char *buf, size_t n, const td_run_summary *s)
                        s->section_kept);
     td_text_printf(&b, "free flight in closed form  %.6g s of %.6g s (%ld steps to the next root)\n",
                    s->stats.flight_time, s->t_reached - s->t_start, s->stats.flight_steps);
+    if (s->stats.controller_samples > 0)
+        td_text_printf(&b, "controller samples          %ld\n", s->stats.controller_samples);
     if (s->stats.worst_drift > 0.0 || s->contacts == 0)
         td_text_printf(&b, "worst constraint drift      %.3e m\n", s->stats.worst_drift);
     else /* contacts, none of them constrained: a penalty model has no constraint to drift from */
@@ -610,10 +612,12 @@ void td_run_summary_json_members(td_text *b, const td_run_summary *s)
     td_text_printf(b,
                    "\"stats\":{\"steps\":%ld,\"residual_evals\":%ld,\"jacobian_evals\":%ld,\"linear_setups\":%ld,"
                    "\"nonlinear_iters\":%ld,\"error_test_fails\":%ld,\"nonlinear_fails\":%ld,\"restarts\":%ld,"
-                   "\"events\":%ld,\"contact_onsets\":%ld,\"releases\":%ld,\"flight_steps\":%ld,",
+                   "\"events\":%ld,\"contact_onsets\":%ld,\"releases\":%ld,\"flight_steps\":%ld,"
+                   "\"controller_samples\":%ld,",
                    s->stats.steps, s->stats.residual_evals, s->stats.jacobian_evals, s->stats.linear_setups,
                    s->stats.nonlinear_iters, s->stats.error_test_fails, s->stats.nonlinear_fails, s->stats.restarts,
-                   s->stats.events, s->stats.contact_onsets, s->stats.releases, s->stats.flight_steps);
+                   s->stats.events, s->stats.contact_onsets, s->stats.releases, s->stats.flight_steps,
+                   s->stats.controller_samples);
     json_real(b, "flight_time", s->stats.flight_time, 1);
     json_real(b, "worst_drift", s->stats.worst_drift, 1);
     json_real(b, "peak_normal_force", s->stats.peak_normal_force, 1);

@@ -10,13 +10,17 @@
 #include <string.h>
 
 /* 1 if the machine may fly in closed form now: free flight on (td_solver_options), no energy
- * account, a prescribed constant speed, no races, no AMB saturation, every retainer free (one
- * with a force law only once its gap has opened by eps after its last exit). The decomposition may
- * still refuse it (td_sim_flight_advance). The step loop flies only with no stop pending. */
+ * account, a prescribed constant speed, no sampled controller, no races, no AMB saturation, every
+ * retainer free (one with a force law only once its gap has opened by eps after its last exit).
+ * The decomposition may still refuse it (td_sim_flight_advance). The step loop flies only with no
+ * stop pending. */
 static int flight_eligible(const td_sim *s)
 {
     int k;
     if (!s->opt.solver.free_flight || s->opt.energy || s->machine.spin >= 0 || td_model_speed_varies(s->model))
+        return 0;
+    if (s->sampler) /* a sampled controller: the flight neither stops at its samples nor updates its held
+                     * command yet, so the integrator carries the machine between them */
         return 0;
     for (k = 0; k < s->sys->n_amb_axes; k++)
         if (s->sys->amb_axes[k].saturation)

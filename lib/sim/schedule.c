@@ -37,7 +37,7 @@ static void apply_change(td_sim *s, const td_change *c)
 /* Changes at most this close after t count as due at t (the stop time lands on them exactly). */
 static double due_tolerance(double t)
 {
-    return 1e-14 * (1.0 + fabs(t));
+    return TD_SIM_DUE_TOLERANCE(t);
 }
 
 td_status td_sim_apply_due_changes(td_sim *s)
@@ -71,8 +71,9 @@ void td_sim_apply_past_changes(td_sim *s)
     }
 }
 
-/* Where the integrator must stop next: the next schedule change, or the next point of a speed
- * ramp (the speed's slope jumps there, and with it the unbalance's alpha term); infinity if none. */
+/* Where the integrator must stop next: the next schedule change, the next point of a speed ramp
+ * (the speed's slope jumps there, and with it the unbalance's alpha term), or the next sample of a
+ * sampled controller (its held command jumps there); infinity if none. */
 double td_sim_next_stop(const td_sim *s)
 {
     double stop = INFINITY;
@@ -90,5 +91,7 @@ double td_sim_next_stop(const td_sim *s)
             break;
         }
     }
+    if (s->sampler)
+        stop = fmin(stop, td_sim_sampler_next_time(s));
     return stop;
 }

@@ -298,6 +298,16 @@ static td_status init_retainers(td_sim *s, td_error *err)
     return td_sim_races_matrices(s, err);
 }
 
+/* The sampled controllers' sample 0, at the start time from the start state, and y' made
+ * consistent with the commands they hold from then on. */
+static td_status first_samples(td_sim *s, td_error *err)
+{
+    td_status st;
+    if (td_sim_sampler_take_due(s) == 0 || (st = td_sim_make_consistent(s, NULL)) == TD_OK)
+        return TD_OK;
+    return td_error_set(err, st, "%s", s->errmsg);
+}
+
 td_status td_sim_setup(const td_model *model, const td_sim_options *options, volatile sig_atomic_t *cancel,
                        td_sim **out, td_error *err)
 {
@@ -323,6 +333,8 @@ td_status td_sim_setup(const td_model *model, const td_sim_options *options, vol
         init_layout(s);
         st = alloc_arrays(s, err);
     }
+    if (st == TD_OK)
+        st = td_sim_sampler_create(s, err);
     if (st == TD_OK) {
         init_machine(s);
         td_sim_apply_past_changes(s);
@@ -347,6 +359,8 @@ td_status td_sim_setup(const td_model *model, const td_sim_options *options, vol
     }
     if (st == TD_OK)
         st = setup_stage(td_sim_start_state(s, err), cancel, err);
+    if (st == TD_OK && s->sampler)
+        st = first_samples(s, err);
     if (st == TD_OK)
         st = td_sim_integrator_attach(s, err);
     if (st != TD_OK) {
@@ -415,6 +429,7 @@ void td_sim_teardown(td_sim *s)
     free(s->loop.ypsave);
     td_sim_races_free(s);
     td_sim_flight_free(s);
+    td_sim_sampler_free(s);
     td_sim_section_free(s);
     td_system_free(&s->sys);
     free(s);

@@ -37,12 +37,14 @@
 #include "sim/machine.h"
 #include "sim/monitor.h"
 #include "sim/retainer.h"
+#include "sim/sampler.h"
 #include "sim/sim_modes.h"
 #include "sim/sim_pattern.h"
 #include "sim/stepping.h"
 #include "sim/sundials_compat.h"
 #include "touchdown/sim.h"
 
+#include <math.h>
 #include <nvector/nvector_serial.h>
 #include <suitesparse/cs.h>
 #include <sundials/sundials_linearsolver.h>
@@ -51,6 +53,10 @@
 
 /* The closed-form free flight's decomposition, forcing and anchor (flight_internal.h). */
 typedef struct td_sim_flight td_sim_flight;
+
+/* s: a stop (a schedule change, a controller's sample) at most this far after t is due at t: the
+ * stop time lands on it exactly, and the rest is rounding. */
+#define TD_SIM_DUE_TOLERANCE(t) (1e-14 * (1.0 + fabs(t)))
 
 /*
  * td_sim is the composition of records, each owned by one file or a small group of files behind its
@@ -68,6 +74,7 @@ typedef struct td_sim_flight td_sim_flight;
  *   monitor    statistics, events, the retainers' totals, the energy account
  *              [monitor.c, totals.c, energy.c]
  *   flight     the closed-form free flight [flight_modal.c, flight_roots.c, flight.c]
+ *   sampler    the sampled controllers' states and sample counts [sampler.c]
  *   kkt        the KKT solve's and the impacts' work space [sim_modes.c]
  *   solver     IDA, the tolerances, the restarts and counters [integrator.c, tolerance.c, sim_linsol.c]
  *   section    the once-per-revolution section [section.c]
@@ -88,6 +95,7 @@ struct td_sim {
     td_sim_operators ops;           /* sim_pattern.h */
     td_sim_monitor monitor;         /* monitor.h */
     td_sim_flight *flight;          /* flight_internal.h; allocated at the first flight, NULL: none yet */
+    td_sim_sampler *sampler;        /* sampler.h; NULL: the model has no sampled controller */
     td_sim_kkt kkt;                 /* sim_modes.h */
     td_sim_solver solver;           /* integrator.h */
     struct td_sim_section *section; /* section.c; NULL: no section taken */
@@ -112,6 +120,7 @@ struct td_sim {
  *   monitor, energy, totals      statistics and events, the energy account, the retainers' totals
  *   flight_modal, flight_roots,  the closed-form free flight
  *   flight
+ *   sampler                      the sampled controllers' samples
  *   sim_modes, schedule          mode switching (KKT, impacts, roots), the model's timed changes
  *   tolerance, integrator        the tolerances, IDA and its restarts
  *   section                      the once-per-revolution section (section.h)
@@ -289,6 +298,21 @@ void td_sim_flight_free(td_sim *s);
 /* The displacements z at t (any time since the anchor) into y[0..nz) without moving anything:
  * outputs between steps (section.c). work: 2 neq doubles. Returns 0 when no flight is anchored. */
 int td_sim_flight_peek(const td_sim *s, double t, double *y, double *work);
+
+/* ---- sampler.c: sampled linear controllers (sampler.h) ------------------------------------ */
+
+/* s->sampler for the model's sampled laws (td_lti_law with sample_rate > 0), each at rest with its
+ * sample 0 at s->dae.t; left NULL when there is none. */
+td_status td_sim_sampler_create(td_sim *s, td_error *err);
+void td_sim_sampler_free(td_sim *s);
+/* The time of the next sample of any law (s->sampler not NULL). */
+double td_sim_sampler_next_time(const td_sim *s);
+/* Take every sample due at s->dae.t (TD_SIM_DUE_TOLERANCE) from the state in s->dae.y, law by law:
+ * the new commands into s->machine.held_current; returns how many (s->sampler not NULL). The
+ * caller restarts the integrator when it took one: the force jumps there. */
+int td_sim_sampler_take_due(td_sim *s);
+/* Tell `hook` of every sample from now on (nothing without a sampled law). */
+void td_sim_sampler_set_hook(td_sim *s, td_sim_sample_hook hook, void *data);
 
 /* ---- sim_modes.c: mode switching, consistent restarts, impacts, roots --------------------- */
 

@@ -91,7 +91,8 @@ td_status td_sim_restart_after_change(td_sim *s)
 enum { TD_PENDING_NONE = 0, TD_PENDING_ROOT = 1, TD_PENDING_TSTOP = 2, TD_PENDING_RESYNC = 3 };
 
 /* Handle a root (IDAGetRootInfo in s->dae.rootsfound), a penalty mode out of step with the state
- * (TD_PENDING_RESYNC: no root), or the stop time at s->dae.t. */
+ * (TD_PENDING_RESYNC: no root), or the stop time at s->dae.t. The samples of sampled controllers
+ * due then are taken last, from the state after the event or the change. */
 static td_status handle_stop(td_sim *s, int kind)
 {
     td_status st;
@@ -108,9 +109,13 @@ static td_status handle_stop(td_sim *s, int kind)
             monitor(s, s->dae.t); /* the state after the event: an impact's normal force counts in the peaks */
             td_sim_totals_point(s, s->dae.t, 1);
         }
+        if (st == TD_OK && s->sampler && td_sim_sampler_take_due(s) > 0) /* a root on a sample instant */
+            st = td_sim_restart_after_change(s);
         return st;
     }
     st = td_sim_apply_due_changes(s);
+    if (st == TD_OK && s->sampler)
+        td_sim_sampler_take_due(s);
     if (st == TD_OK)
         st = td_sim_restart_after_change(s);
     return st;

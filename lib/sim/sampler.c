@@ -1,0 +1,145 @@
+/*
+ * Sampled linear controllers (sampler.h): their sample instants, which are stops of the step loop
+ * like the schedule's changes (td_sim_next_stop), and at each the update from the sensors' values
+ * at that instant,
+ *
+ *   e_k = -xs(t_k),   i_k = C x_k + D e_k,   x_{k+1} = A x_k + B e_k     (touchdown/controller.h)
+ *
+ * with i_k held on the output axes' amplifiers until the next sample. A sample is taken only by
+ * td_sim_sampler_take_due, which moves k_next on by one per sample: none is taken twice, and since
+ * the next one is always a stop, none is passed over.
+ */
+#include "sim/sampler.h"
+#include "sim/sim_internal.h"
+#include "util/error_internal.h"
+
+#include <math.h>
+#include <stdlib.h>
+
+/* The time of sample k of law l: from the integer k, never by adding periods. */
+static double sample_time(const td_sim_sampled *l, long k)
+{
+    return l->t0 + (double)k / l->rate;
+}
+
+static int sampled_count(const td_system *sys)
+{
+    int i, n = 0;
+    for (i = 0; i < sys->n_laws; i++)
+        if (sys->laws[i].sample_rate > 0.0)
+            n++;
+    return n;
+}
+
+td_status td_sim_sampler_create(td_sim *s, td_error *err)
+{
+    td_sim_sampler *sp;
+    int i, j = 0, n = sampled_count(s->sys);
+    if (n == 0)
+        return TD_OK; /* s->sampler stays NULL: no sampled law, nothing on the path of the others */
+    sp = calloc(1, sizeof *sp);
+    s->sampler = sp;
+    if (!sp || !(sp->law = calloc((size_t)n, sizeof *sp->law)))
+        return td_error_set(err, TD_ERR_NOMEM, "out of memory creating a simulation");
+    sp->n = n;
+    for (i = 0; i < s->sys->n_laws; i++) {
+        const td_lti_law *law = &s->sys->laws[i];
+        td_sim_sampled *l;
+        if (!(law->sample_rate > 0.0))
+            continue;
+        l = &sp->law[j++];
+        l->law = i;
+        l->t0 = s->dae.t;
+        l->rate = law->sample_rate;
+        l->x = calloc((size_t)law->n + 1, sizeof(double)); /* x_0 = 0: the controller starts at rest */
+        l->xn = calloc((size_t)law->n + 1, sizeof(double));
+        l->e = calloc((size_t)law->nin + 1, sizeof(double));
+        l->u = calloc((size_t)law->nout + 1, sizeof(double));
+        if (!l->x || !l->xn || !l->e || !l->u)
+            return td_error_set(err, TD_ERR_NOMEM, "out of memory creating a simulation");
+    }
+    return TD_OK;
+}
+
+void td_sim_sampler_free(td_sim *s)
+{
+    int i;
+    if (!s->sampler)
+        return;
+    for (i = 0; i < s->sampler->n && s->sampler->law; i++) {
+        free(s->sampler->law[i].x);
+        free(s->sampler->law[i].xn);
+        free(s->sampler->law[i].e);
+        free(s->sampler->law[i].u);
+    }
+    free(s->sampler->law);
+    free(s->sampler);
+    s->sampler = NULL;
+}
+
+void td_sim_sampler_set_hook(td_sim *s, td_sim_sample_hook hook, void *data)
+{
+    if (!s->sampler)
+        return;
+    s->sampler->hook = hook;
+    s->sampler->hook_data = data;
+}
+
+double td_sim_sampler_next_time(const td_sim *s)
+{
+    double t = INFINITY;
+    int i;
+    for (i = 0; i < s->sampler->n; i++)
+        t = fmin(t, sample_time(&s->sampler->law[i], s->sampler->law[i].k_next));
+    return t;
+}
+
+/* Law l's sample k_next from the state at s->dae.t: e_k read, i_k = C x_k + D e_k held on the output
+ * axes, x_{k+1} = A x_k + B e_k (column-major matrices), k_next moved on. */
+static void take_sample(td_sim *s, td_sim_sampled *l)
+{
+    const td_lti_law *law = &s->sys->laws[l->law];
+    const double *y = N_VGetArrayPointer(s->dae.y);
+    double *swap;
+    int i, j;
+    for (j = 0; j < law->nin; j++) /* the error e = r - xs with r = 0 (touchdown/controller.h) */
+        l->e[j] = -y[s->dae.oq + s->sys->amb_axes[law->in_axis[j]].sensor_dof];
+    for (i = 0; i < law->nout; i++) {
+        double u = 0.0;
+        for (j = 0; j < law->n; j++)
+            u += law->C[i + law->nout * j] * l->x[j];
+        for (j = 0; j < law->nin; j++)
+            u += law->D[i + law->nout * j] * l->e[j];
+        l->u[i] = u;
+        s->machine.held_current[law->out_axis[i]] = u;
+    }
+    for (i = 0; i < law->n; i++) {
+        double x = 0.0;
+        for (j = 0; j < law->n; j++)
+            x += law->A[i + law->n * j] * l->x[j];
+        for (j = 0; j < law->nin; j++)
+            x += law->B[i + law->n * j] * l->e[j];
+        l->xn[i] = x;
+    }
+    swap = l->x;
+    l->x = l->xn;
+    l->xn = swap;
+    if (s->sampler->hook)
+        s->sampler->hook(s->sampler->hook_data, l->law, l->k_next, s->dae.t, l->e, law->nin, l->u, law->nout);
+    l->k_next++;
+    s->monitor.stats.controller_samples++;
+}
+
+int td_sim_sampler_take_due(td_sim *s)
+{
+    double due = s->dae.t + TD_SIM_DUE_TOLERANCE(s->dae.t);
+    int i, taken = 0;
+    for (i = 0; i < s->sampler->n; i++) {
+        td_sim_sampled *l = &s->sampler->law[i];
+        while (sample_time(l, l->k_next) <= due) {
+            take_sample(s, l);
+            taken++;
+        }
+    }
+    return taken;
+}
