@@ -20,8 +20,8 @@ static td_model *small_rotor(void)
     td_model *m = NULL;
     td_shaft_element el = {0.25, 0.05, 0.0, {2.11e11, 8.1e10, 7810.0}};
     td_disc disc = {2, 10.0, 0.072, 0.036668};
-    td_amb amb0 = {1, 1, 1.0e6, 200.0, 1.0e4, 40.0, 1.0 / (2 * TD_PI * 100), 1700.0, 0, 1.2e-3, 0.0};
-    td_amb amb1 = {3, 3, 1.0e6, 200.0, 1.0e4, 40.0, 0.0, 1700.0, 0, 1.2e-3, 0.0};
+    td_amb amb0 = {1, 1, 1.0e6, 200.0, 1.0e4, 40.0, 1.0 / (2 * TD_PI * 100), 1700.0, 0, 1.2e-3, 0.0, 0.0};
+    td_amb amb1 = {3, 3, 1.0e6, 200.0, 1.0e4, 40.0, 0.0, 1700.0, 0, 1.2e-3, 0.0, 0.0};
     td_retainer r0 = {.node = 0,
                       .clearance = 0.5e-3,
                       .shaft_radius = 0.025,

@@ -128,6 +128,7 @@ typedef struct td_sim_stats {
     int peak_amb;              /**< AMB of peak_amb_load (-1 if no AMB force) */
     long flight_steps;         /**< steps of the closed-form free flight (root bounds evaluated) */
     double flight_time;        /**< s simulated in closed-form free flight */
+    double time_slewing;       /**< s, summed over AMB axes, with the amplifier at its slew-rate limit */
 } td_sim_stats;
 
 #ifdef __cplusplus

@@ -10,7 +10,8 @@
 #include <string.h>
 
 /* 1 if the machine may fly in closed form now: free flight on (td_solver_options), no energy
- * account, a prescribed constant speed, no races, no AMB saturation, every retainer free (one
+ * account, a prescribed constant speed, no races, no AMB saturation or slew limit (the flight has
+ * no root function for their kinks and would step across one unseen), every retainer free (one
  * with a force law only once its gap has opened by eps after its last exit). The decomposition may
  * still refuse it (td_sim_flight_advance). The step loop flies only with no stop pending. */
 static int flight_eligible(const td_sim *s)
@@ -19,7 +20,7 @@ static int flight_eligible(const td_sim *s)
     if (!s->opt.solver.free_flight || s->opt.energy || s->machine.spin >= 0 || td_model_speed_varies(s->model))
         return 0;
     for (k = 0; k < s->sys->n_amb_axes; k++)
-        if (s->sys->amb_axes[k].saturation)
+        if (s->sys->amb_axes[k].saturation || s->sys->amb_axes[k].slew_rate > 0.0)
             return 0;
     for (k = 0; k < s->dae.nr; k++) {
         const td_sim_retainer *r = &s->contacts.ret[k];

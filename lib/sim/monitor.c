@@ -83,7 +83,7 @@ static void monitor_ambs(td_sim *s, double t, const double *y)
             td_sim_monitor_amb_load(s, k, td_sim_amb_axis_force(s, k, y), t);
 }
 
-/* Statistics at the state in s->dae.y (time t): contact time, peak normal force, AMB load, and, at
+/* Statistics at the state in s->dae.y (time t): contact and slewing time, peak normal force, AMB load, and, at
  * integrator steps only (at_step; interpolated states carry the interpolation error), the drift. */
 void td_sim_monitor_at(td_sim *s, double t, int at_step)
 {
@@ -113,6 +113,11 @@ void td_sim_monitor_at(td_sim *s, double t, int at_step)
         }
     }
     monitor_ambs(s, t, y);
+    if (s->dae.n_slew_roots > 0) {
+        if (dt > 0.0)
+            s->monitor.stats.time_slewing += dt * s->monitor.slewing;
+        s->monitor.slewing = td_sim_amb_slewing_axes(s, y);
+    }
     if (t > s->monitor.t_acc)
         s->monitor.t_acc = t;
 }

@@ -42,6 +42,8 @@ typedef struct td_sim_monitor {
     /* statistics (monitor.c) */
     td_sim_stats stats; /* event totals, drift, forces, times (counters filled on demand) */
     double t_acc;       /* contact time accumulated up to here */
+    int slewing;        /* AMB axes slewing at the last point: the count over the interval after it (the
+                         * slew's kinks are roots, so the count holds until the next point) */
 } td_sim_monitor;
 
 #endif

@@ -240,10 +240,8 @@ td_status td_sim_make_consistent(td_sim *s, const int *just_entered)
         yp[s->dae.oq + i] = y[s->dae.ov + i];
     for (k = 0; k < s->sys->n_amb_axes; k++) {
         const td_amb_axis *a = &s->sys->amb_axes[k];
-        double e = a->integral >= 0 ? y[s->dae.ow + a->integral] : 0.0;
         if (a->state >= 0)
-            yp[s->dae.ow + a->state] = td_amb_axis_filter_rate(
-                a, y[s->dae.oq + a->sensor_dof], y[s->dae.ov + a->sensor_dof], e, y[s->dae.ow + a->state]);
+            yp[s->dae.ow + a->state] = td_sim_amb_axis_lag_rate(s, k, y);
         if (a->integral >= 0)
             yp[s->dae.ow + a->integral] = td_sim_amb_axis_integral_rate(s, k, y);
     }
@@ -588,7 +586,7 @@ td_status td_sim_handle_roots(td_sim *s, int *restart)
         }
         any_onset = any_onset || s->kkt.onset[k];
     }
-    for (k = 0; k < s->dae.n_sat_roots; k++) /* an AMB's clip: restart on its kink */
+    for (k = 0; k < s->dae.n_sat_roots + s->dae.n_slew_roots; k++) /* an AMB's clip or slew: restart on its kink */
         if (s->dae.rootsfound[TD_ROOTS_PER_RETAINER * s->dae.nr + k])
             *restart = 1;
     st = onset_impacts(s, any_onset);
