@@ -331,6 +331,7 @@ td_status td_sim_setup(const td_model *model, const td_sim_options *options, vol
     }
     td_sim_totals_point(s, s->dae.t, 1);
     s->monitor.slewing = td_sim_amb_slewing_axes(s, N_VGetArrayPointer(s->dae.y)); /* from the start */
+    s->monitor.slew_t = s->dae.t;
     s->monitor.q_len = s->monitor.q_pos = 0; /* contacts at the start are a state, not events */
     s->monitor.stats.events = s->monitor.stats.releases = s->monitor.stats.contact_onsets = 0;
     *out = s;
