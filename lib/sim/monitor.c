@@ -99,8 +99,9 @@ static void monitor_slew(td_sim *s, double t, const double *y)
     s->monitor.slewing = now;
 }
 
-/* Statistics at the state in s->dae.y (time t): contact and slewing time, peak normal force, AMB load, and, at
- * integrator steps only (at_step; interpolated states carry the interpolation error), the drift. */
+/* Statistics at the state in s->dae.y (time t): contact and slewing time, peak normal force, AMB
+ * load, and, at integrator steps only (at_step; interpolated states carry the interpolation
+ * error), the drift. */
 void td_sim_monitor_at(td_sim *s, double t, int at_step)
 {
     const double *y = N_VGetArrayPointer(s->dae.y);
