@@ -192,6 +192,7 @@ static void run_drop(const char *slew, double *qv, td_sim_stats *st)
 {
     char s0[64], s1[64];
     const char *ov[] = {"solver.free_flight=false",
+                        "solver.rtol=1e-6",
                         "start=\"rest\"",
                         "gravity={enabled=true;}",
                         "schedule=({time=0.0; amb_off=0;}, {time=0.0; amb_off=1;}, {time=0.04; amb_on=0;}, "
@@ -204,7 +205,7 @@ static void run_drop(const char *slew, double *qv, td_sim_stats *st)
     int i, n;
     snprintf(s0, sizeof s0, "ambs[0].slew_rate=%s", slew);
     snprintf(s1, sizeof s1, "ambs[1].slew_rate=%s", slew);
-    c = td_test_load_case("cases/paper-a.cfg", ov, 6);
+    c = td_test_load_case("cases/paper-a.cfg", ov, 7);
     if (td_sim_create(td_case_model(c), td_case_sim_options(c), &s, &err) != TD_OK)
         fail_msg("%s", err.message);
     n = td_sim_dof_count(s);
