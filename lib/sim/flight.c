@@ -11,7 +11,8 @@
 
 /* 1 if the machine may fly in closed form now: free flight on (td_solver_options), no energy
  * account, a prescribed constant speed, no races, no AMB saturation or slew limit (the flight has
- * no root function for their kinks and would step across one unseen), every retainer free (one
+ * no root function for their kinks and would step across one unseen, and its probes of the
+ * residual, half a clearance and 1 m/s, would reach a clip), every retainer free (one
  * with a force law only once its gap has opened by eps after its last exit). The decomposition may
  * still refuse it (td_sim_flight_advance). The step loop flies only with no stop pending. */
 static int flight_eligible(const td_sim *s)
