@@ -33,7 +33,7 @@ static int build_rotor(td_model *m, td_error *err)
     for (i = 0; i < 2; i++) {
         /* our own controller replaces the built-in PD, so only ks (the magnet) matters here */
         td_amb a = {amb_nodes[i], amb_nodes[i], 1.0e6, 200.0, 1.0e4, 40.0, 1.0 / (2 * TD_PI * 100), 1700, 0,
-                    1.2e-3,       0.0};
+                    1.2e-3,       0.0,          0.0};
         td_retainer r = {.node = retainer_nodes[i],
                          .clearance = 0.75e-3,
                          .shaft_radius = 0.025,

@@ -248,7 +248,7 @@ static void test_amb_axis_table(void **state)
 {
     td_model *m = reference_rig();
     td_system *s = NULL;
-    td_amb third = {6, 5, 2.0e5, 100.0, 5.0e3, 20.0, 0.0, 500.0, 1, 0.0, 0.0}; /* no lag, non-collocated */
+    td_amb third = {6, 5, 2.0e5, 100.0, 5.0e3, 20.0, 0.0, 500.0, 1, 0.0, 0.0, 0.0}; /* no lag, non-collocated */
     int k;
     (void)state;
     assert_int_equal(td_model_add_amb(m, &third, NULL), TD_OK);
@@ -316,16 +316,16 @@ static void test_amb_law(void **state)
     /* integral action: -ki kint e joins the command; de/dt = xs while running */
     a.kint = 2.5e5;
     assert_close(td_amb_axis_command(&a, 1e-4, 0.01, -2e-3), -200.0 * (1.0 + 0.4 - 500.0), 1e-14, 0.0);
-    assert_true(td_amb_axis_integral_rate(&a, 1, -3e-4, 100.0) == -3e-4);
-    assert_true(td_amb_axis_integral_rate(&a, 0, -3e-4, 100.0) == 0.0); /* off: holds */
+    assert_true(td_amb_axis_integral_rate(&a, 1, -3e-4, 100.0, 0.0) == -3e-4);
+    assert_true(td_amb_axis_integral_rate(&a, 0, -3e-4, 100.0, 0.0) == 0.0); /* off: holds */
     /* clipped at +capacity: xs < 0 would raise the force further, so the integrator stops; xs > 0
      * brings it back and integrates; the same mirrored at -capacity */
-    assert_true(td_amb_axis_integral_rate(&a, 1, -3e-4, 1700.0) == 0.0);
-    assert_true(td_amb_axis_integral_rate(&a, 1, 3e-4, 1700.0) == 3e-4);
-    assert_true(td_amb_axis_integral_rate(&a, 1, 3e-4, -1700.0) == 0.0);
-    assert_true(td_amb_axis_integral_rate(&a, 1, -3e-4, -1700.0) == -3e-4);
+    assert_true(td_amb_axis_integral_rate(&a, 1, -3e-4, 1700.0, 0.0) == 0.0);
+    assert_true(td_amb_axis_integral_rate(&a, 1, 3e-4, 1700.0, 0.0) == 3e-4);
+    assert_true(td_amb_axis_integral_rate(&a, 1, 3e-4, -1700.0, 0.0) == 0.0);
+    assert_true(td_amb_axis_integral_rate(&a, 1, -3e-4, -1700.0, 0.0) == -3e-4);
     a.saturation = 0; /* no clip, no clamp */
-    assert_true(td_amb_axis_integral_rate(&a, 1, -3e-4, 5000.0) == -3e-4);
+    assert_true(td_amb_axis_integral_rate(&a, 1, -3e-4, 5000.0, 0.0) == -3e-4);
 }
 
 /* Rayleigh damping on the shaft only, plain bearings in K and C, AMBs nowhere in K. */
@@ -336,7 +336,7 @@ static void test_damping_and_bearings(void **state)
     td_shaft_element el = {0.2, 0.04, 0.01, {2.11e11, 8.1e10, 7810.0}};
     td_shaft_options opt = {TD_BEAM_TIMOSHENKO, TD_MASS_CONSISTENT, 3.0, 2e-5, TD_SHEAR_HUTCHINSON, 0.0};
     td_bearing b = {0, 1e7, 2e7, 300.0, 400.0};
-    td_amb amb = {2, 2, 1.0e6, 200.0, 1.0e4, 40.0, 0.0, 1700.0, 0, 0.0, 0.0};
+    td_amb amb = {2, 2, 1.0e6, 200.0, 1.0e4, 40.0, 0.0, 1700.0, 0, 0.0, 0.0, 0.0};
     double *M, *K, *C, *K0, Me[64], Ke[64];
     int n, i, e;
     (void)state;

@@ -359,6 +359,7 @@ static void check_all_keys_model(const td_model *m)
     assert_close(a.force_capacity, 1200.0, 0.0, 0.0);
     assert_int_equal(a.saturation, 1);
     assert_close(a.air_gap, 1.0e-3, 0.0, 0.0);
+    assert_close(a.slew_rate, 400.0, 0.0, 0.0);
     td_model_get_amb(m, 1, &a);
     assert_int_equal(a.node, 4);
     assert_int_equal(a.sensor_node, 4);                           /* default: collocated */
@@ -366,6 +367,7 @@ static void check_all_keys_model(const td_model *m)
     assert_int_equal(a.saturation, 0);
     assert_close(a.air_gap, 0.0, 0.0, 0.0);
     assert_close(a.kint, 1.0e5, 0.0, 0.0);
+    assert_true(a.slew_rate == 0.0); /* default: no slew limit */
 
     assert_int_equal(td_model_bearing_count(m), 2);
     td_model_get_bearing(m, 0, &b);
@@ -728,8 +730,8 @@ static void dump_supports(const td_model *m, char *buf, size_t n)
     for (i = 0; i < td_model_amb_count(m); i++) {
         td_amb a;
         assert_int_equal(td_model_get_amb(m, i, &a), TD_OK);
-        dump_add(buf, n, "amb %d %d %a %a %a %a %a %a %d %a %a\n", a.node, a.sensor_node, a.ks, a.ki, a.kp, a.kd, a.tau,
-                 a.force_capacity, a.saturation, a.air_gap, a.kint);
+        dump_add(buf, n, "amb %d %d %a %a %a %a %a %a %d %a %a %a\n", a.node, a.sensor_node, a.ks, a.ki, a.kp, a.kd,
+                 a.tau, a.force_capacity, a.saturation, a.air_gap, a.kint, a.slew_rate);
     }
     for (i = 0; i < td_model_bearing_count(m); i++) {
         td_bearing b;
@@ -982,7 +984,7 @@ static void test_documented_defaults(void **state)
     print_message("documented defaults: %d keys checked; skipped: %d groups and lists, %d required, %d other\n", tried,
                   part, required, other);
     assert_int_equal(tried + part + required + other, td_case_key_count());
-    assert_int_equal(tried, 80);
+    assert_int_equal(tried, 81);
     assert_int_equal(part, 38);     /* their keys are checked */
     assert_int_equal(required, 65); /* required, or one form's required key (a sweep entry's range or values) */
     /* an alternative with no default ("-": shaft.nodes, sections' element, schedule's unbalance,

@@ -62,7 +62,7 @@ static void test_validate_cross_references(void **state)
 {
     td_model *m = uniform_shaft(2);
     td_error err;
-    td_amb amb = {1, 1, 1e6, 200, 1e4, 40, 1.0 / (2 * TD_PI * 100), 1700, 0, 0.5e-3, 0.0};
+    td_amb amb = {1, 1, 1e6, 200, 1e4, 40, 1.0 / (2 * TD_PI * 100), 1700, 0, 0.5e-3, 0.0, 0.0};
     td_retainer r = {.node = 0,
                      .clearance = 0.75e-3,
                      .shaft_radius = 0.025,
@@ -104,7 +104,7 @@ static void test_errors_name_part_index_field(void **state)
 {
     td_model *m = uniform_shaft(2), *fine = NULL;
     td_error err;
-    td_amb amb = {1, 1, 1e6, 200, 1e4, 40, 1.0 / (2 * TD_PI * 100), 1700, 0, 0.5e-3, 0.0};
+    td_amb amb = {1, 1, 1e6, 200, 1e4, 40, 1.0 / (2 * TD_PI * 100), 1700, 0, 0.5e-3, 0.0, 0.0};
     td_retainer r = {.node = 0,
                      .clearance = 0.25e-3,
                      .shaft_radius = 0.025,

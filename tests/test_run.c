@@ -42,7 +42,7 @@ static td_model *jeffcott_rotor(const td_retainer *ret, const td_unbalance *u, c
     td_shaft_element el = {0.1, 0.02, 0.0, {2.11e11, 8.1e10, 7810.0}};
     td_disc disc = {3, 4.91, 0.0245, 0.0124};
     td_bearing b0 = {0, 1e8, 1e8, 200.0, 200.0}, b6 = {6, 1e8, 1e8, 200.0, 200.0};
-    td_amb amb = {1, 1, 0.0, 1.0, 1e5, 20.0, 1e-4, 1e4, 0, 0.0, 0.0};
+    td_amb amb = {1, 1, 0.0, 1.0, 1e5, 20.0, 1e-4, 1e4, 0, 0.0, 0.0, 0.0};
     td_error err;
     int i;
     assert_int_equal(td_model_create(&m, &err), TD_OK);

@@ -20,8 +20,8 @@ static td_model *small_rotor(void)
     td_model *m = NULL;
     td_shaft_element el = {0.25, 0.05, 0.0, {2.11e11, 8.1e10, 7810.0}};
     td_disc disc = {2, 10.0, 0.072, 0.036668};
-    td_amb amb0 = {1, 1, 1.0e6, 200.0, 1.0e4, 40.0, 1.0 / (2 * TD_PI * 100), 1700.0, 0, 1.2e-3, 0.0};
-    td_amb amb1 = {3, 3, 1.0e6, 200.0, 1.0e4, 40.0, 0.0, 1700.0, 0, 1.2e-3, 0.0};
+    td_amb amb0 = {1, 1, 1.0e6, 200.0, 1.0e4, 40.0, 1.0 / (2 * TD_PI * 100), 1700.0, 0, 1.2e-3, 0.0, 0.0};
+    td_amb amb1 = {3, 3, 1.0e6, 200.0, 1.0e4, 40.0, 0.0, 1700.0, 0, 1.2e-3, 0.0, 0.0};
     td_retainer r0 = {.node = 0,
                       .clearance = 0.5e-3,
                       .shaft_radius = 0.025,
@@ -157,6 +157,30 @@ static void test_jacobian_free_and_amb_modes(void **state)
     s->machine.amb_control[1] = -45.0;
     s->machine.amb_mode[1] = TD_AMB_OFF;
     check_jacobian(s, 3e-4, "free, external/off AMBs");
+    td_sim_free(&s);
+}
+
+/* While an amplifier slews its lag's row is Fc' = +-ki slew_rate: no entry but cj on the diagonal.
+ * The small rotor's lagged AMB (node 1) given a limit below its x axis's rate at the test state (it
+ * slews) and above its y axis's (it does not). */
+static void test_jacobian_slewing(void **state)
+{
+    td_sim *s = small_sim(TD_CONTACT_CONSTRAINT, TD_DAMPING_NONE, TD_LINSOL_KLU);
+    td_amb_axis *ax = s->sys->amb_axes;
+    int n = s->dae.neq, k;
+    double *y = calloc(n, sizeof(double)), *yp = calloc(n, sizeof(double)), r[2];
+    (void)state;
+    fill_state(s, 3e-4, y, yp);
+    for (k = 0; k < 2; k++) /* the unclipped rates at check_jacobian's state */
+        r[k] = fabs(td_amb_axis_filter_rate(&ax[k], y[s->dae.oq + ax[k].sensor_dof], y[s->dae.ov + ax[k].sensor_dof],
+                                            0.0, y[s->dae.ow + ax[k].state]));
+    ax[0].slew_rate = 0.5 * r[0] / ax[0].ki;
+    ax[1].slew_rate = 2.0 * r[1] / ax[1].ki;
+    assert_int_equal(td_amb_axis_slewing(&ax[0], r[0]) != 0, 1);
+    check_jacobian(s, 3e-4, "free, PD, x axis slewing");
+    assert_true(s->ops.jdata[td_sim_pattern_find(s, s->dae.ow + ax[0].state, s->dae.ov + ax[0].sensor_dof)] == 0.0);
+    assert_true(s->ops.jdata[td_sim_pattern_find(s, s->dae.ow + ax[1].state, s->dae.ov + ax[1].sensor_dof)] != 0.0);
+    free(y), free(yp);
     td_sim_free(&s);
 }
 
@@ -1138,6 +1162,7 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_jacobian_free_and_amb_modes),
+        cmocka_unit_test(test_jacobian_slewing),
         cmocka_unit_test(test_jacobian_constrained_with_friction),
         cmocka_unit_test(test_jacobian_penalty_with_damping),
         cmocka_unit_test(test_jacobian_slip_band),

@@ -108,7 +108,9 @@ typedef struct td_disc_geometry {
  * ks > 0 is the negative-stiffness term of the magnet. With saturation on, F is clipped to
  * +-force_capacity and the integrator stops while the clip holds and xs would drive it deeper
  * (anti-windup by clamping); while the AMB is off (or driven externally) the integrator holds its
- * value, so a restored AMB resumes with the bias it had.
+ * value, so a restored AMB resumes with the bias it had. With slew_rate > 0 the amplifier's rate is
+ * clipped: dFc/dt = clip(r, +-ki slew_rate), r the lag's rate above, and the integrator also stops
+ * while the clip holds and xs would drive r deeper into it.
  */
 typedef struct td_amb {
     int node;              /**< actuator node */
@@ -123,6 +125,8 @@ typedef struct td_amb {
     double air_gap;        /**< radial air gap, m (0: unknown); a retainer must be tighter */
     double kint;           /**< integral gain, A/(m s), >= 0 (0: PD, no integrator state); last, so that
                             *   positional initialisers written for 0.3 keep their meaning */
+    double slew_rate;      /**< the amplifier's slew-rate limit, A/s, >= 0 (0: none): |dFc/dt| <= ki slew_rate;
+                            *   needs tau > 0 (the current is then a state). Last, as kint */
 } td_amb;
 
 /** A plain linear bearing (spring and damper per axis) for non-AMB supports. */

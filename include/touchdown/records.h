@@ -129,6 +129,7 @@ typedef struct td_sim_stats {
     long flight_steps;         /**< steps of the closed-form free flight (root bounds evaluated) */
     double flight_time;        /**< s simulated in closed-form free flight */
     long controller_samples;   /**< samples taken by sampled controllers (each law's count, summed) */
+    double time_slewing;       /**< s, summed over AMB axes, with the amplifier at its slew-rate limit */
 } td_sim_stats;
 
 #ifdef __cplusplus

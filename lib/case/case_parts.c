@@ -348,6 +348,14 @@ static const td_cs_key amb_keys[] = {
      .doc_default = "unknown",
      .unit = "m",
      .doc = "radial air gap; every retainer clearance must be smaller than it"}, /* 0: unknown, no retainer check */
+    {.key = "slew_rate",
+     .type = TD_CS_REAL,
+     .offset = offsetof(td_amb, slew_rate),
+     .range = TD_CR_NONNEGATIVE,
+     .unit = "A/s",
+     .doc = "the amplifier's slew-rate limit (0: none): dFc/dt is clipped to +-ki slew_rate (needs a `bandwidth` or "
+            "`tau` > 0; the integrator stops while the limit holds against it, as against `saturation`; a machine "
+            "with a limit is integrated without the closed-form flight, as with `saturation`)"},
 };
 const td_cs_table td_cs_ambs = {"ambs[]", "ambs", amb_keys, TD_CS_COUNT(amb_keys), sizeof(td_amb), NULL, add_amb};
 

@@ -144,6 +144,7 @@ static const td_schema_entry entries[TD_OUT_ID_COUNT] = {
     RUN_ATTR(TD_OUT_STAT_PEAK_AMB_TIME, "peak_amb_time", F64, "s"),
     RUN_ATTR(TD_OUT_STAT_FLIGHT_TIME, "flight_time", F64, "s"),
     RUN_ATTR(TD_OUT_STAT_CONTROLLER_SAMPLES, "controller_samples", I64, ""),
+    RUN_ATTR(TD_OUT_STAT_TIME_SLEWING, "time_slewing", F64, "s"),
     RUN_ATTR(TD_OUT_WARNINGS, "warnings", TEXT, ""),
     RUN_ATTR(TD_OUT_SUM_FIRST_CONTACT_TIME, "summary_first_contact_time", F64, "s"),
     RUN_ATTR(TD_OUT_SUM_LAST_CONTACT_TIME, "summary_last_contact_time", F64, "s"),

@@ -621,7 +621,8 @@ td_status td_writer_set_stats(td_writer *w, const td_sim_stats *s, td_error *err
                  {TD_OUT_STAT_PEAK_AMB_FORCE, s && s->peak_amb >= 0 ? s->peak_amb_force : TD_UNDEFINED},
                  {TD_OUT_STAT_PEAK_AMB_LOAD, s && s->peak_amb >= 0 ? s->peak_amb_load : TD_UNDEFINED},
                  {TD_OUT_STAT_PEAK_AMB_TIME, s && s->peak_amb >= 0 ? s->peak_amb_time : TD_UNDEFINED},
-                 {TD_OUT_STAT_FLIGHT_TIME, s ? s->flight_time : 0.0}};
+                 {TD_OUT_STAT_FLIGHT_TIME, s ? s->flight_time : 0.0},
+                 {TD_OUT_STAT_TIME_SLEWING, s ? s->time_slewing : 0.0}};
     size_t i;
     td_status st;
     if (!s)

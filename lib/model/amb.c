@@ -1,12 +1,15 @@
 /*
  * The AMB axis law of docs/reference-rig.md ("AMBs" row), one lateral axis at a time:
  *   F = ks x + Fc,   tau dFc/dt = -Fc - ki (kp xs + kd dxs/dt + kint e),   de/dt = xs,
- *   F clipped to +-capacity (saturation).
+ *   F clipped to +-capacity (saturation),
+ *   dFc/dt clipped to +-ki slew_rate (the amplifier's slew-rate limit, when slew_rate > 0).
  * The paper linearises the bearing ("linearised magnetic bearing characteristics", with eq. 1) and
- * controls it PD; the lag, the clipping and the integral action (PID, docs/theory.md "AMB control")
- * are this project's additions.
+ * controls it PD; the lag, the clipping, the slew limit and the integral action (PID,
+ * docs/theory.md "AMB control") are this project's additions.
  */
 #include "model/system_internal.h"
+
+#include <math.h>
 
 double td_amb_axis_command(const td_amb_axis *a, double xs, double vs, double e)
 {
@@ -31,13 +34,35 @@ double td_amb_axis_filter_rate(const td_amb_axis *a, double xs, double vs, doubl
     return td_amb_axis_lag_rate(a, td_amb_axis_command(a, xs, vs, e), fc);
 }
 
-double td_amb_axis_integral_rate(const td_amb_axis *a, int running, double xs, double f)
+int td_amb_axis_slewing(const td_amb_axis *a, double rate)
+{
+    double limit;
+    if (!(a->slew_rate > 0.0)) /* no limit: not one operation on the rate */
+        return 0;
+    limit = fabs(a->ki) * a->slew_rate; /* |dFc/dt| = |ki| |di/dt| */
+    return rate > limit ? 1 : rate < -limit ? -1 : 0;
+}
+
+double td_amb_axis_slew(const td_amb_axis *a, double rate)
+{
+    int side = td_amb_axis_slewing(a, rate);
+    return side == 0 ? rate : side * fabs(a->ki) * a->slew_rate;
+}
+
+double td_amb_axis_integral_rate(const td_amb_axis *a, int running, double xs, double f, double rate)
 {
     /* the integrator's share of the command is -ki kint e: integrating xs moves the force by
-     * -ki kint xs per second, deeper into a clip at +capacity when xs < 0, at -capacity when xs > 0 */
+     * -ki kint xs per second, deeper into a clip at +capacity when xs < 0, at -capacity when xs > 0.
+     * The same share moves the lag's unclipped rate r = (command - Fc)/tau by -ki kint xs / tau per
+     * second: while the amplifier slews at +ki slew_rate (r above it) an xs < 0 drives r further
+     * past the limit, a command the amplifier cannot follow, and winds the integrator up as a clip
+     * would; it stops then, and mirrored at -ki slew_rate. */
+    int slewing = td_amb_axis_slewing(a, rate);
     if (!running)
         return 0.0;
     if (a->saturation && ((f >= a->capacity && xs < 0.0) || (f <= -a->capacity && xs > 0.0)))
+        return 0.0;
+    if ((slewing > 0 && xs < 0.0) || (slewing < 0 && xs > 0.0))
         return 0.0;
     return xs;
 }

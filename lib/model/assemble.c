@@ -172,6 +172,7 @@ static td_status build_amb_axes(td_system *s, td_error *err)
             a->saturation = b->saturation;
             a->state = b->tau > 0.0 ? s->n_controller_states++ : -1;
             a->law = a->law_output = -1; /* the shorthand until a linear controller claims the axis */
+            a->slew_rate = b->slew_rate;
         }
     }
     for (k = 0; k < s->n_amb_axes; k++) {

@@ -358,8 +358,13 @@ td_status td_model_add_amb(td_model *m, const td_amb *amb, td_error *err)
         need(finite_nonnegative(amb->kint), err, "amb", i, "kint", NONNEG, amb->kint) ||
         need(finite_nonnegative(amb->tau), err, "amb", i, "tau", NONNEG, amb->tau) ||
         need(finite_positive(amb->force_capacity), err, "amb", i, "force_capacity", POS, amb->force_capacity) ||
-        need(finite_nonnegative(amb->air_gap), err, "amb", i, "air_gap", NONNEG, amb->air_gap))
+        need(finite_nonnegative(amb->air_gap), err, "amb", i, "air_gap", NONNEG, amb->air_gap) ||
+        need(finite_nonnegative(amb->slew_rate), err, "amb", i, "slew_rate", NONNEG, amb->slew_rate))
         return TD_ERR_INVALID;
+    if (amb->slew_rate > 0.0 && !(amb->tau > 0.0)) /* the limit acts on dFc/dt: Fc must be a state */
+        return FAIL_AT(err, "amb", i, "slew_rate",
+                       "a slew-rate limit (%g A/s) needs a force lag, tau > 0 or a bandwidth (got tau = %g)",
+                       amb->slew_rate, amb->tau);
     return APPEND(m->ambs, amb, err);
 }
 

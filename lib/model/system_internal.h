@@ -26,6 +26,10 @@ typedef struct td_amb_axis {
     int law;        /* -1: the shorthand law above (kp, kd, kint); else the index in td_system.laws of
                      * the linear controller that drives this axis */
     int law_output; /* the output of that controller that commands this axis; -1 for the shorthand */
+
+    /* the amplifier's slew-rate limit, A/s (td_amb.slew_rate); 0: none. Last, so that positional
+     * initialisers without it keep their meaning */
+    double slew_rate;
 } td_amb_axis;
 
 /* One linear controller of the model (touchdown/controller.h) as the system runs it. */
@@ -103,10 +107,20 @@ double td_amb_axis_lag_rate(const td_amb_axis *a, double command, double fc);
 /* Filter rate dFc/dt = (command - Fc) / tau, for tau > 0. */
 double td_amb_axis_filter_rate(const td_amb_axis *a, double xs, double vs, double e, double fc);
 
+/* The amplifier's slew-rate limit on the lag's rate `rate` (td_amb_axis_filter_rate, or a linear
+ * controller's (ki i - Fc)/tau): 1 while rate > ki slew_rate (the amplifier slews up, dFc/dt held
+ * at ki slew_rate), -1 while rate < -ki slew_rate, else 0 (always 0 without a limit). */
+int td_amb_axis_slewing(const td_amb_axis *a, double rate);
+
+/* dFc/dt = clip(rate, +-ki slew_rate): `rate` itself (no operation on it) without a limit or
+ * inside it. */
+double td_amb_axis_slew(const td_amb_axis *a, double rate);
+
 /* Integrator rate de/dt: xs while the controller runs (`running`: the AMB on and under its own
- * control), 0 while it is off, and 0 while the force `f` (td_amb_axis_force) is clipped and
- * integrating xs would push it deeper into the clip (anti-windup by clamping). */
-double td_amb_axis_integral_rate(const td_amb_axis *a, int running, double xs, double f);
+ * control), 0 while it is off, and 0 while the force `f` (td_amb_axis_force) is clipped or the
+ * amplifier slews (the lag's unclipped rate `rate`, td_amb_axis_slewing) and integrating xs would
+ * push it deeper into the clip (anti-windup by clamping). `rate` matters only with a slew limit. */
+double td_amb_axis_integral_rate(const td_amb_axis *a, int running, double xs, double f, double rate);
 
 /* Total force on the rotor ks x + fc, clipped to +-capacity when saturation is on and
  * `enabled`; 0 when not enabled (failed AMB). *dfdx and *dfdfc (may be NULL) receive the

@@ -68,7 +68,7 @@ void td_run_summary_undefine_answers(td_run_summary *s)
     s->peak_retainer = -1;
     s->contact_time = s->contact_fraction = TD_UNDEFINED;
     s->free_at_end = s->returned_to_free_orbit = -1; /* undetermined */
-    s->stats.peak_normal_force = s->stats.peak_time = s->stats.time_in_contact = TD_UNDEFINED;
+    s->stats.peak_normal_force = s->stats.peak_time = s->stats.time_in_contact = s->stats.time_slewing = TD_UNDEFINED;
     s->stats.peak_amb_force = s->stats.peak_amb_load = s->stats.peak_amb_time = TD_UNDEFINED;
     s->stats.peak_amb = s->stats.peak_retainer = -1;
     energy[0] = &s->energy.kinetic, energy[1] = &s->energy.elastic, energy[2] = &s->energy.initial;
@@ -333,6 +333,9 @@ static void format_answers(td_text *b, const td_run_summary *s)
         td_text_printf(b, "peak AMB force              %s\n",
                        td_is_undefined(s->stats.peak_amb_load) ? "n/a (the run did not reach its end)"
                                                                : "none (no working AMB)");
+    if (s->stats.time_slewing > 0.0) /* only an amplifier with a slew-rate limit slews */
+        td_text_printf(b, "AMB slewing                 %.6g s (summed over the axes at their slew-rate limit)\n",
+                       s->stats.time_slewing);
     if (s->energy_kept && td_is_undefined(s->energy.residual))
         td_text_printf(b, "energy                      n/a (the run did not reach its end)\n");
     else if (s->energy_kept)
@@ -622,6 +625,7 @@ void td_run_summary_json_members(td_text *b, const td_run_summary *s)
     json_real(b, "worst_drift", s->stats.worst_drift, 1);
     json_real(b, "peak_normal_force", s->stats.peak_normal_force, 1);
     json_real(b, "time_in_contact", s->stats.time_in_contact, 1);
+    json_real(b, "time_slewing", s->stats.time_slewing, 1);
     json_real(b, "first_contact_time", s->stats.first_contact_time, 1);
     json_real(b, "wall_time", s->stats.wall_time, 0);
     td_text_printf(b, "},");

@@ -24,10 +24,13 @@ typedef struct td_sim_dae {
     int own_matrices; /* 1: M, K, C, G extended with races, owned */
 
     /* root functions */
-    int nroots;      /* TD_ROOTS_PER_RETAINER per retainer, then n_sat_roots */
+    int nroots;      /* TD_ROOTS_PER_RETAINER per retainer, then n_sat_roots, n_slew_roots */
     int n_sat_roots; /* 2 per AMB axis when any axis saturates (its clip's kinks), else 0 */
     int *rootdir;    /* nroots: their directions for the current modes (td_sim_root_directions) */
     int *rootsfound; /* nroots: the roots found at the last stop (IDAGetRootInfo or the flight) */
+
+    /* 2 per AMB axis when any amplifier has a slew-rate limit (its kinks, after the clips'), else 0 */
+    int n_slew_roots;
 } td_sim_dae;
 
 #endif

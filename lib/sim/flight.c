@@ -10,10 +10,11 @@
 #include <string.h>
 
 /* 1 if the machine may fly in closed form now: free flight on (td_solver_options), no energy
- * account, a prescribed constant speed, no sampled controller, no races, no AMB saturation, every
- * retainer free (one with a force law only once its gap has opened by eps after its last exit).
- * The decomposition may still refuse it (td_sim_flight_advance). The step loop flies only with no
- * stop pending. */
+ * account, a prescribed constant speed, no sampled controller, no races, no AMB saturation or slew
+ * limit (the flight has no root function for their kinks and would step across one unseen, and its
+ * probes of the residual, half a clearance and 1 m/s, would reach a clip), every retainer free (one
+ * with a force law only once its gap has opened by eps after its last exit). The decomposition may
+ * still refuse it (td_sim_flight_advance). The step loop flies only with no stop pending. */
 static int flight_eligible(const td_sim *s)
 {
     int k;
@@ -23,7 +24,7 @@ static int flight_eligible(const td_sim *s)
                      * command yet, so the integrator carries the machine between them */
         return 0;
     for (k = 0; k < s->sys->n_amb_axes; k++)
-        if (s->sys->amb_axes[k].saturation)
+        if (s->sys->amb_axes[k].saturation || s->sys->amb_axes[k].slew_rate > 0.0)
             return 0;
     for (k = 0; k < s->dae.nr; k++) {
         const td_sim_retainer *r = &s->contacts.ret[k];

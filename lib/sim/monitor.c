@@ -83,8 +83,25 @@ static void monitor_ambs(td_sim *s, double t, const double *y)
             td_sim_monitor_amb_load(s, k, td_sim_amb_axis_force(s, k, y), t);
 }
 
-/* Statistics at the state in s->dae.y (time t): contact time, peak normal force, AMB load, and, at
- * integrator steps only (at_step; interpolated states carry the interpolation error), the drift. */
+/* The time the amplifiers slew, up to t (the state y). The count of slewing axes holds between
+ * two points, a kink of the slew being a stop (a root): it is the count at the interval's start,
+ * or at its end after a stop on a kink, where the count is ambiguous (the root function is about
+ * 0 there). Signed: an output inside the last step takes back the part of the step beyond it, so
+ * that the time is exact at every time reached. */
+static void monitor_slew(td_sim *s, double t, const double *y)
+{
+    int now = td_sim_amb_slewing_axes(s, y);
+    int count = s->monitor.slew_kink && t != s->monitor.slew_t ? now : s->monitor.slewing;
+    s->monitor.stats.time_slewing += (t - s->monitor.slew_t) * count;
+    if (t != s->monitor.slew_t)
+        s->monitor.slew_kink = 0;
+    s->monitor.slew_t = t;
+    s->monitor.slewing = now;
+}
+
+/* Statistics at the state in s->dae.y (time t): contact and slewing time, peak normal force, AMB
+ * load, and, at integrator steps only (at_step; interpolated states carry the interpolation
+ * error), the drift. */
 void td_sim_monitor_at(td_sim *s, double t, int at_step)
 {
     const double *y = N_VGetArrayPointer(s->dae.y);
@@ -113,6 +130,8 @@ void td_sim_monitor_at(td_sim *s, double t, int at_step)
         }
     }
     monitor_ambs(s, t, y);
+    if (s->dae.n_slew_roots > 0)
+        monitor_slew(s, t, y);
     if (t > s->monitor.t_acc)
         s->monitor.t_acc = t;
 }

@@ -87,13 +87,18 @@ static td_status alloc_arrays(td_sim *s, td_error *err)
     s->monitor.q_cap = 4 * s->dae.nr + td_model_change_count(s->model) + 4;
     s->monitor.queue = calloc((size_t)s->monitor.q_cap, sizeof *s->monitor.queue);
     ok = alloc_work(s, nr);
-    s->dae.n_sat_roots = 0;
-    for (i = 0; i < s->sys->n_amb_axes; i++)
+    s->dae.n_sat_roots = s->dae.n_slew_roots = 0;
+    for (i = 0; i < s->sys->n_amb_axes; i++) {
         if (s->sys->amb_axes[i].saturation)
             s->dae.n_sat_roots = 2 * s->sys->n_amb_axes;
-    s->dae.nroots = TD_ROOTS_PER_RETAINER * s->dae.nr + s->dae.n_sat_roots;
-    s->dae.rootdir = calloc(TD_ROOTS_PER_RETAINER * nr + (size_t)s->dae.n_sat_roots, sizeof(int));
-    s->dae.rootsfound = calloc(TD_ROOTS_PER_RETAINER * nr + (size_t)s->dae.n_sat_roots, sizeof(int));
+        if (s->sys->amb_axes[i].slew_rate > 0.0)
+            s->dae.n_slew_roots = 2 * s->sys->n_amb_axes;
+    }
+    s->dae.nroots = TD_ROOTS_PER_RETAINER * s->dae.nr + s->dae.n_sat_roots + s->dae.n_slew_roots;
+    s->dae.rootdir =
+        calloc(TD_ROOTS_PER_RETAINER * nr + (size_t)(s->dae.n_sat_roots + s->dae.n_slew_roots), sizeof(int));
+    s->dae.rootsfound =
+        calloc(TD_ROOTS_PER_RETAINER * nr + (size_t)(s->dae.n_sat_roots + s->dae.n_slew_roots), sizeof(int));
     s->loop.ysave = calloc((size_t)s->dae.neq, sizeof(double));
     s->loop.ypsave = calloc((size_t)s->dae.neq, sizeof(double));
     if (!ok || !s->machine.unb || !s->machine.amb_mode || !s->machine.amb_control || !s->machine.held_current ||
@@ -368,6 +373,8 @@ td_status td_sim_setup(const td_model *model, const td_sim_options *options, vol
         return st;
     }
     td_sim_totals_point(s, s->dae.t, 1);
+    s->monitor.slewing = td_sim_amb_slewing_axes(s, N_VGetArrayPointer(s->dae.y)); /* from the start */
+    s->monitor.slew_t = s->dae.t;
     s->monitor.q_len = s->monitor.q_pos = 0; /* contacts at the start are a state, not events */
     s->monitor.stats.events = s->monitor.stats.releases = s->monitor.stats.contact_onsets = 0;
     *out = s;

@@ -221,8 +221,8 @@ void td_sim_forces(const td_sim *s, double t, const double *y, double *f);
 void td_sim_residual(const td_sim *s, double t, const double *y, const double *yp, double *res);
 /* dF/dy + cj dF/dy' into s->ops.jdata (pattern s->ops.colptr, s->ops.rowind). */
 void td_sim_jacobian(td_sim *s, double t, double cj, const double *y);
-/* Root functions (TD_ROOTS_PER_RETAINER per retainer, then the AMB clips' kinks) and their
- * directions for the current modes. */
+/* Root functions (TD_ROOTS_PER_RETAINER per retainer, then the AMB clips' kinks, then the
+ * amplifiers' slew kinks) and their directions for the current modes. */
 void td_sim_roots(const td_sim *s, double t, const double *y, double *g);
 void td_sim_root_directions(const td_sim *s, int *dir);
 /* Force of AMB axis k at state y (N), with the mode of its AMB. */
@@ -236,6 +236,10 @@ double td_sim_unbalance_spin_coupling(const td_sim *s, double t, const double *y
 double td_sim_amb_axis_lag_rate(const td_sim *s, int k, const double *y);
 /* Rate of AMB axis k's integrator state at y (model/amb.c td_amb_axis_integral_rate); 0 without one. */
 double td_sim_amb_axis_integral_rate(const td_sim *s, int k, const double *y);
+/* dFc/dt of AMB axis k (tau > 0) at y: the lag's rate through the amplifier's slew limit. */
+double td_sim_amb_axis_lag_rate(const td_sim *s, int k, const double *y);
+/* How many AMB axes slew at y (their amplifiers held at the slew-rate limit); 0 without a limit. */
+int td_sim_amb_slewing_axes(const td_sim *s, const double *y);
 /* Spin angle phi(t) at the prescribed speed. */
 double td_sim_spin_angle(const td_sim *s, double t);
 

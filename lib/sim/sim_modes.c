@@ -587,9 +587,11 @@ td_status td_sim_handle_roots(td_sim *s, int *restart)
         }
         any_onset = any_onset || s->kkt.onset[k];
     }
-    for (k = 0; k < s->dae.n_sat_roots; k++) /* an AMB's clip: restart on its kink */
-        if (s->dae.rootsfound[TD_ROOTS_PER_RETAINER * s->dae.nr + k])
+    for (k = 0; k < s->dae.n_sat_roots + s->dae.n_slew_roots; k++) /* an AMB's clip or slew: restart on its kink */
+        if (s->dae.rootsfound[TD_ROOTS_PER_RETAINER * s->dae.nr + k]) {
             *restart = 1;
+            s->monitor.slew_kink = s->monitor.slew_kink || k >= s->dae.n_sat_roots;
+        }
     st = onset_impacts(s, any_onset);
     if (st != TD_OK)
         return st;

@@ -72,8 +72,9 @@ double td_sim_amb_axis_force(const td_sim *s, int k, const double *y)
     return td_amb_axis_force(a, enabled, y[s->dae.oq + a->actuator_dof], amb_axis_fc(s, k, y), NULL, NULL);
 }
 
-/* The lag's rate (command - Fc)/tau of AMB axis k (tau > 0) at y: towards the shorthand's command,
- * or the target ki i of its linear controller's current. */
+/* The lag's rate (command - Fc)/tau of AMB axis k (tau > 0) at y, before the amplifier's slew
+ * limit (model/amb.c td_amb_axis_slew): towards the shorthand's command, or the target ki i of its
+ * linear controller's current. */
 static double amb_axis_lag_rate(const td_sim *s, const td_amb_axis *a, const double *y)
 {
     if (a->law >= 0)
@@ -82,9 +83,27 @@ static double amb_axis_lag_rate(const td_sim *s, const td_amb_axis *a, const dou
                                    amb_axis_integral(s, a, y), y[s->dae.ow + a->state]);
 }
 
+/* 1 or -1 while AMB axis k's amplifier slews up or down at y (td_amb_axis_slewing), else 0; 0
+ * without a slew limit, with no rate computed. */
+static int amb_axis_slews(const td_sim *s, const td_amb_axis *a, const double *y)
+{
+    if (!(a->slew_rate > 0.0) || a->state < 0)
+        return 0;
+    return td_amb_axis_slewing(a, amb_axis_lag_rate(s, a, y));
+}
+
+int td_sim_amb_slewing_axes(const td_sim *s, const double *y)
+{
+    int k, n = 0;
+    for (k = 0; k < s->sys->n_amb_axes && s->dae.n_slew_roots > 0; k++)
+        n += amb_axis_slews(s, &s->sys->amb_axes[k], y) != 0;
+    return n;
+}
+
 double td_sim_amb_axis_lag_rate(const td_sim *s, int k, const double *y)
 {
-    return amb_axis_lag_rate(s, &s->sys->amb_axes[k], y);
+    const td_amb_axis *a = &s->sys->amb_axes[k];
+    return td_amb_axis_slew(a, amb_axis_lag_rate(s, a, y));
 }
 
 double td_sim_amb_axis_integral_rate(const td_sim *s, int k, const double *y)
@@ -92,8 +111,10 @@ double td_sim_amb_axis_integral_rate(const td_sim *s, int k, const double *y)
     const td_amb_axis *a = &s->sys->amb_axes[k];
     if (a->integral < 0)
         return 0.0;
+    /* the unclipped lag rate only where a slew limit reads it: a case without one computes nothing more */
     return td_amb_axis_integral_rate(a, s->machine.amb_mode[a->amb] == TD_AMB_PD, y[s->dae.oq + a->sensor_dof],
-                                     td_sim_amb_axis_force(s, k, y));
+                                     td_sim_amb_axis_force(s, k, y),
+                                     a->slew_rate > 0.0 && a->state >= 0 ? amb_axis_lag_rate(s, a, y) : 0.0);
 }
 
 /* out = M vp + D v + K q (D = C + Omega G), row by row over the union pattern; vp == NULL
@@ -385,7 +406,7 @@ static void jacobian_amb(td_sim *s, const double *y)
                     td_sim_lti_jacobian_current(s, a, s->dae.ov + act, -dfdfc * co->target_i);
             }
         }
-        if (a->state >= 0) {
+        if (a->state >= 0 && !amb_axis_slews(s, a, y)) { /* slewing, dFc/dt = +-ki slew_rate: constant */
             int row = s->dae.ow + a->state;
             jadd(s, row, s->dae.oq + sen, -co->rate_x);
             jadd(s, row, s->dae.ov + sen, -co->rate_v);
@@ -751,6 +772,9 @@ static double slip_root_function(const td_sim *s, int k, const double *y)
  * axis does not saturate). The force is continuous there but its slope jumps, and so does the
  * integrator's rate (anti-windup): a step across the kink would carry the wrong law over part of
  * itself, so the integrator restarts on it.
+ * Then, when an amplifier has a slew limit, two per AMB axis: r - ki slew_rate and r + ki slew_rate,
+ * r the lag's unclipped rate, either direction: the kinks of dFc/dt = clip(r) (1 on an axis without a
+ * limit), for the same reason. They hold while the AMB is off, as the lag runs on.
  */
 static void saturation_roots(const td_sim *s, const double *y, double *g)
 {
@@ -764,11 +788,24 @@ static void saturation_roots(const td_sim *s, const double *y, double *g)
     }
 }
 
+static void slew_roots(const td_sim *s, const double *y, double *g)
+{
+    int k;
+    for (k = 0; k < s->sys->n_amb_axes && s->dae.n_slew_roots > 0; k++) {
+        const td_amb_axis *a = &s->sys->amb_axes[k];
+        int on = a->slew_rate > 0.0 && a->state >= 0;
+        double r = on ? amb_axis_lag_rate(s, a, y) : 0.0, limit = fabs(a->ki) * a->slew_rate;
+        g[2 * k] = on ? r - limit : 1.0;
+        g[2 * k + 1] = on ? r + limit : 1.0;
+    }
+}
+
 void td_sim_roots(const td_sim *s, double t, const double *y, double *g)
 {
     int k;
     (void)t;
     saturation_roots(s, y, g + TD_ROOTS_PER_RETAINER * s->dae.nr);
+    slew_roots(s, y, g + TD_ROOTS_PER_RETAINER * s->dae.nr + s->dae.n_sat_roots);
     for (k = 0; k < s->dae.nr; k++) {
         const td_sim_retainer *r = &s->contacts.ret[k];
         double *gk = g + TD_ROOTS_PER_RETAINER * k;
@@ -801,6 +838,6 @@ void td_sim_root_directions(const td_sim *s, int *dir)
         dk[TD_ROOT_SLIP] = -1;
         dk[TD_ROOT_REARM] = 1;
     }
-    for (k = 0; k < s->dae.n_sat_roots; k++)
+    for (k = 0; k < s->dae.n_sat_roots + s->dae.n_slew_roots; k++)
         dir[TD_ROOTS_PER_RETAINER * s->dae.nr + k] = 0;
 }

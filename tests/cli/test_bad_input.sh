@@ -290,6 +290,8 @@ shaft.rayleigh.gamma=1.0|: --set 'shaft.rayleigh.gamma=1.0': shaft.rayleigh.gamm
 discs[0].radius=0.1|: --set 'discs[0].radius=0.1': discs[0].radius: give either mass + Ip + Id or the geometry (radius + density + thickness or mass), not both
 ambs[0].bandwidth=100.0|: --set 'ambs[0].bandwidth=100.0': ambs[0].bandwidth: give either tau or bandwidth, not both
 ambs[1].bandwidth=-1.0|: --set 'ambs[1].bandwidth=-1.0': ambs[1].bandwidth: must be > 0 (got -1)
+ambs[0].slew_rate=-1.0|: --set 'ambs[0].slew_rate=-1.0': ambs[0].slew_rate: must be >= 0 (got -1)
+ambs[0].tau=0.0|:36: ambs[0].slew_rate: a slew-rate limit (400 A/s) needs a force lag, tau > 0 or a bandwidth (got tau = 0)
 schedule[0].amb_off=0|:59: schedule[0].amb_on: a schedule entry makes one change: unbalance, amb_off or amb_on
 schedule[0].amb_on=1.5|: --set 'schedule[0].amb_on=1.5': schedule[0].amb_on: expected an integer, got the number 1.5 (write integers without a point)
 description=1|: --set 'description=1': description: expected a string "...", got an integer

@@ -23,7 +23,7 @@ void td_test_build_rig(td_model *m, double speed, double amb_tau, int retainers)
             fail_msg("rig disc: %s", err.message);
     }
     for (i = 0; i < 2; i++) {
-        td_amb a = {amb_nodes[i], amb_nodes[i], 1.0e6, 200.0, 1.0e4, 40.0, amb_tau, 1700.0, 0, 1.2e-3, 0.0};
+        td_amb a = {amb_nodes[i], amb_nodes[i], 1.0e6, 200.0, 1.0e4, 40.0, amb_tau, 1700.0, 0, 1.2e-3, 0.0, 0.0};
         if (td_model_add_point_mass(m, amb_nodes[i], 14.6, &err) != TD_OK || td_model_add_amb(m, &a, &err) != TD_OK)
             fail_msg("rig AMB: %s", err.message);
     }

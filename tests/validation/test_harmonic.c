@@ -141,7 +141,7 @@ static void test_amb_axis_with_lag(void **state)
 {
     const double m[4] = {M_DISC, M_DISC, 0.5, 0.5}, k[4] = {0.0, 0.0, 1.0e7, 1.0e7}, c[4] = {0.0, 0.0, 1.0, 1.0};
     td_amb_axis amb = {0,      0, 0, 0,  1.0e6, 200.0, 1.0e4, 40.0, 1.0 / (2.0 * TD_PI * 100.0),
-                       1700.0, 0, 0, -1, 0.0,   0,     -1,    -1};
+                       1700.0, 0, 0, -1, 0.0,   0,     -1,    -1,   0.0};
     td_system *s = one_node(m, k, c, &amb, -9.81);
     td_unbalance u = {0, 1e-3, 0.3};
     const double speeds[3] = {50.0, 190.0, 600.0};

@@ -42,7 +42,7 @@ static td_model *pressed_rotor(double contact_stiffness, int stick)
     td_shaft_element el = {0.2, 0.05, 0.0, {2.11e11 * ghost, 8.1e10 * ghost, 7810.0 * ghost}};
     td_disc d0 = {0, RACE_M, 0.0, 0.01}, d1 = {1, RACE_M, 0.0, 0.01};
     td_bearing b1 = {1, 1e6, 1e6, 1e3, 1e3};
-    td_amb press = {0, 0, 0.0, 1.0, 0.0, 0.0, 0.0, 1e4, 0, 0.0, 0.0};
+    td_amb press = {0, 0, 0.0, 1.0, 0.0, 0.0, 0.0, 1e4, 0, 0.0, 0.0, 0.0};
     td_retainer r = {.node = 0,
                      .clearance = RACE_C,
                      .shaft_radius = RACE_RS,
@@ -193,7 +193,7 @@ static td_model *whip_rotor(double contact_stiffness)
     td_shaft_element el = {0.2, 0.05, 0.0, {2.11e11 * ghost, 8.1e10 * ghost, 7810.0 * ghost}};
     td_disc d0 = {0, WHIP_M, 0.0, 0.01}, d1 = {1, WHIP_M, 0.0, 0.01};
     td_bearing b0 = {0, WHIP_K, WHIP_K, WHIP_CD, WHIP_CD}, b1 = {1, WHIP_K, WHIP_K, WHIP_CD, WHIP_CD};
-    td_amb push = {0, 0, 0.0, 1.0, 0.0, 0.0, 0.0, 1e5, 0, 0.0, 0.0};
+    td_amb push = {0, 0, 0.0, 1.0, 0.0, 0.0, 0.0, 1e5, 0, 0.0, 0.0, 0.0};
     td_retainer r = {.node = 0,
                      .clearance = RACE_C,
                      .shaft_radius = RACE_RS,

@@ -169,7 +169,7 @@ static td_system *rigid_mass_amb(double m, const td_amb_axis *proto)
 static void test_single_axis_lag_cubic(void **state)
 {
     /* the rig's AMB on a 50 kg rigid mass (about half the rotor) */
-    td_amb_axis proto = {0, 0, 0, 0, 1.0e6, 200.0, 1.0e4, 40.0, RIG_TAU, 1700.0, 0, 0, -1, 0.0, 0, -1, -1};
+    td_amb_axis proto = {0, 0, 0, 0, 1.0e6, 200.0, 1.0e4, 40.0, RIG_TAU, 1700.0, 0, 0, -1, 0.0, 0, -1, -1, 0.0};
     double m = 50.0, z[6];
     td_system *s = rigid_mass_amb(m, &proto);
     td_modal *md = NULL;

@@ -61,7 +61,10 @@ static void print_ambs(const td_model *m)
             printf("kp %.6g A/m, kd %.6g A s/m, ", a.kp, a.kd);
         if (a.kint > 0.0)
             printf("kint %.6g A/(m s), ", a.kint);
-        printf("tau %.6g s, capacity %.6g N%s\n", a.tau, a.force_capacity, a.saturation ? " (saturating)" : "");
+        printf("tau %.6g s, ", a.tau);
+        if (a.slew_rate > 0.0)
+            printf("slew rate %.6g A/s, ", a.slew_rate);
+        printf("capacity %.6g N%s\n", a.force_capacity, a.saturation ? " (saturating)" : "");
     }
 }
 
