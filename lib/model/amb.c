@@ -16,9 +16,19 @@ double td_amb_axis_command(const td_amb_axis *a, double xs, double vs, double e)
     return -a->ki * u;
 }
 
+double td_amb_axis_current_command(const td_amb_axis *a, double current)
+{
+    return a->ki * current;
+}
+
+double td_amb_axis_lag_rate(const td_amb_axis *a, double command, double fc)
+{
+    return (command - fc) / a->tau;
+}
+
 double td_amb_axis_filter_rate(const td_amb_axis *a, double xs, double vs, double e, double fc)
 {
-    return (td_amb_axis_command(a, xs, vs, e) - fc) / a->tau;
+    return td_amb_axis_lag_rate(a, td_amb_axis_command(a, xs, vs, e), fc);
 }
 
 double td_amb_axis_integral_rate(const td_amb_axis *a, int running, double xs, double f)

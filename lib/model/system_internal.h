@@ -93,6 +93,13 @@ double td_system_coordinate_amplitude(const td_system *s, int i);
  * without one). */
 double td_amb_axis_command(const td_amb_axis *a, double xs, double vs, double e);
 
+/* The force target ki i of the amplifier commanded with the current i (A): what a current command
+ * (a linear controller's output, or the loop analysis's input, touchdown/modal.h) asks of it. */
+double td_amb_axis_current_command(const td_amb_axis *a, double current);
+
+/* The amplifier lag dFc/dt = (command - Fc) / tau towards a force target `command`, for tau > 0. */
+double td_amb_axis_lag_rate(const td_amb_axis *a, double command, double fc);
+
 /* Filter rate dFc/dt = (command - Fc) / tau, for tau > 0. */
 double td_amb_axis_filter_rate(const td_amb_axis *a, double xs, double vs, double e, double fc);
 
