@@ -1,0 +1,45 @@
+/*
+ * control_internal.h - the realisation behind a td_controller (touchdown/controller.h) and the
+ * helpers the files of lib/control share.
+ */
+#ifndef TD_CONTROL_INTERNAL_H
+#define TD_CONTROL_INTERNAL_H
+
+#include "touchdown/controller.h"
+
+/* One state-space realisation (A, B, C, D, D1), every matrix column-major, all in one allocation
+ * that follows the struct. Sign convention and meaning: touchdown/controller.h. */
+struct td_controller {
+    int n;              /* states */
+    int inputs;         /* error signals e (m) */
+    int outputs;        /* current commands i (A) */
+    double *A;          /* n x n */
+    double *B;          /* n x inputs */
+    double *C;          /* outputs x n */
+    double *D;          /* outputs x inputs */
+    double *D1;         /* outputs x inputs, velocity feedthrough; all zero for a sampled law */
+    double sample_rate; /* Hz; 0: continuous */
+};
+
+/* A zeroed controller of the given sizes and timing; NULL with err set when out of memory. */
+td_controller *td_ctl_alloc(int n, int inputs, int outputs, double sample_rate, td_error *err);
+
+/* 1 if any of the count values is nonzero. */
+int td_ctl_any_nonzero(const double *v, int count);
+
+/* 1 if all count values are finite (a NULL v with count 0 is fine). */
+int td_ctl_all_finite(const double *v, int count);
+
+/* Sets TD_ERR_INVALID with "WHAT: must be finite and > 0 (got V)" unless v is; returns the status. */
+td_status td_ctl_check_positive(double v, const char *what, td_error *err);
+
+/* The proper or improper-by-one SISO law num/den, both in descending powers of s (or of z for a
+ * sampled law: then deg num <= deg den), realised in controllable canonical form. Leading zeros
+ * of num are ignored; den[0] != 0. `who` names the caller in messages. */
+td_controller *td_ctl_from_polynomials(const double *num, int num_len, const double *den, int den_len,
+                                       double sample_rate, const char *who, td_error *err);
+
+/* x = M e for column-major M (rows x cols), e (cols); used by the responses. */
+void td_ctl_matvec(const double *M, int rows, int cols, const double *e, double *x);
+
+#endif

@@ -1,0 +1,309 @@
+/*
+ * Controllers as linear systems (touchdown/controller.h, docs/theory.md "Controllers" and
+ * "Rigid-body coordinates"). Independent references: each block's transfer function evaluated
+ * directly as a ratio of complex polynomials, products of responses for laws in series,
+ * hand-computed realisations for series/append/transform, and the hand computation of the
+ * rigid-body transform with virtual work. scipy.signal checks the rest (tests/validation/control).
+ */
+#include "td_test.h"
+
+#include "touchdown/controller.h"
+
+#include <complex.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define W(f) (2.0 * TD_PI * (f))
+
+/* The polynomial p (descending powers, len terms) at x. */
+static double complex poly(const double *p, int len, double complex x)
+{
+    double complex v = 0.0;
+    int i;
+    for (i = 0; i < len; i++)
+        v = v * x + p[i];
+    return v;
+}
+
+/* The SISO response of k at f (Hz). */
+static double complex response(const td_controller *k, double f)
+{
+    double re, im;
+    td_error err;
+    if (td_controller_frequency_response(k, f, &re, &im, &err) != TD_OK)
+        fail_msg("frequency_response: %s", err.message);
+    return re + I * im;
+}
+
+static void assert_complex_close(double complex a, double complex b, double rtol)
+{
+    double d = cabs(a - b), tol = rtol * cabs(b);
+    if (!(d <= tol)) {
+        print_error("got %.17g%+.17gi, expected %.17g%+.17gi (|diff| %.3g > %.3g)\n", creal(a), cimag(a), creal(b),
+                    cimag(b), d, tol);
+        fail();
+    }
+}
+
+static const double freqs[] = {0.1, 3.0, 17.0, 34.4, 120.0, 999.0, 4321.0};
+#define N_FREQS ((int)(sizeof freqs / sizeof freqs[0]))
+
+/* Every block against its transfer function of the header, written out in s. */
+static void test_blocks_match_their_transfer_functions(void **state)
+{
+    td_pid_block pid = {1.0e4, 2.0e5, 40.0, 2000.0}, pd = {1.0e4, 0.0, 40.0, 0.0};
+    td_leadlag_block ll = {1.2e4, 15.0, 150.0};
+    td_lowpass_block lp1 = {500.0, 1, 0.0}, lp2 = {2000.0, 2, 0.7};
+    td_notch_block no = {34.4, 6.0, 0.05};
+    td_controller *k[6];
+    int i, j;
+    (void)state;
+    k[0] = td_controller_create_pid(&pid, NULL);
+    k[1] = td_controller_create_pid(&pd, NULL);
+    k[2] = td_controller_create_leadlag(&ll, NULL);
+    k[3] = td_controller_create_lowpass(&lp1, NULL);
+    k[4] = td_controller_create_lowpass(&lp2, NULL);
+    k[5] = td_controller_create_notch(&no, NULL);
+    for (i = 0; i < 6; i++)
+        assert_non_null(k[i]);
+    assert_int_equal(td_controller_order(k[0]), 2);
+    assert_int_equal(td_controller_order(k[1]), 0);
+    assert_true(td_controller_has_velocity_feedthrough(k[1]));
+    assert_false(td_controller_has_velocity_feedthrough(k[0]));
+    for (j = 0; j < N_FREQS; j++) {
+        double complex s = I * W(freqs[j]), wd = W(2000.0), wc = W(2000.0), wn = W(34.4);
+        double zp = 6.0 / (2.0 * 34.4), zz = 0.05 * zp;
+        assert_complex_close(response(k[0], freqs[j]), 1.0e4 + 2.0e5 / s + 40.0 * s / (1.0 + s / wd), 1e-13);
+        assert_complex_close(response(k[1], freqs[j]), 1.0e4 + 40.0 * s, 1e-15);
+        assert_complex_close(response(k[2], freqs[j]), 1.2e4 * (1.0 + s / W(15.0)) / (1.0 + s / W(150.0)), 1e-13);
+        assert_complex_close(response(k[3], freqs[j]), W(500.0) / (s + W(500.0)), 1e-13);
+        assert_complex_close(response(k[4], freqs[j]), wc * wc / (s * s + 2.0 * 0.7 * wc * s + wc * wc), 1e-13);
+        assert_complex_close(response(k[5], freqs[j]),
+                             (s * s + 2.0 * zz * wn * s + wn * wn) / (s * s + 2.0 * zp * wn * s + wn * wn), 1e-12);
+    }
+    /* the notch's depth is its gain at the centre frequency */
+    assert_close(cabs(response(k[5], 34.4)), 0.05, 1e-12, 0.0);
+    for (i = 0; i < 6; i++)
+        td_controller_free(&k[i]);
+    assert_null(k[0]);
+}
+
+/* tf in s, proper and improper by one (polynomial division into D1 s + D + rest), and zpk. */
+static void test_tf_and_zpk(void **state)
+{
+    const double num[] = {2.0, 3.0, 7.0, 11.0}, den[] = {4.0, 5.0, 6.0}; /* improper by one */
+    const double num2[] = {0.0, 1.0, 30.0}, den2[] = {1.0, 12.0, 3500.0, 1.0e4};
+    const double zr[] = {-3.0, -1.0}, zi[] = {0.0, 20.0}, pr[] = {-2.0, -5.0, -40.0}, pi[] = {10.0, 0.0, 0.0};
+    td_controller *a = td_controller_create_tf(num, 4, den, 3, 0.0, NULL);
+    td_controller *b = td_controller_create_tf(num2, 3, den2, 4, 0.0, NULL);
+    td_controller *z = td_controller_create_zpk(zr, zi, 2, pr, pi, 3, 2.5, 0.0, NULL);
+    double D, D1;
+    int j;
+    (void)state;
+    assert_non_null(a);
+    assert_non_null(b);
+    assert_non_null(z);
+    assert_int_equal(td_controller_order(a), 2);
+    assert_int_equal(td_controller_order(b), 3);
+    assert_int_equal(td_controller_order(z), 4);
+    td_controller_matrices(a, NULL, NULL, NULL, &D, &D1);
+    /* (2 s^3 + 3 s^2 + 7 s + 11) / (4 s^2 + 5 s + 6) = 0.5 s + 0.125 + (...) / (...) */
+    assert_close(D1, 0.5, 1e-15, 0.0);
+    assert_close(D, 0.125, 1e-15, 0.0);
+    for (j = 0; j < N_FREQS; j++) {
+        double complex s = I * W(freqs[j]);
+        double complex zk = 2.5 * (s + 3.0) * ((s + 1.0) * (s + 1.0) + 400.0);
+        double complex pk = ((s + 2.0) * (s + 2.0) + 100.0) * (s + 5.0) * (s + 40.0);
+        assert_complex_close(response(a, freqs[j]), poly(num, 4, s) / poly(den, 3, s), 1e-13);
+        assert_complex_close(response(b, freqs[j]), poly(num2, 3, s) / poly(den2, 4, s), 1e-12);
+        assert_complex_close(response(z, freqs[j]), zk / pk, 1e-12);
+    }
+    td_controller_free(&a);
+    td_controller_free(&b);
+    td_controller_free(&z);
+}
+
+/* A sampled tf in ascending powers of z^-1 and a sampled zpk (positive powers of z). */
+static void test_sampled_tf_and_zpk(void **state)
+{
+    const double num[] = {0.5, -0.2, 0.1, 0.0}, den[] = {1.0, -1.1, 0.3};
+    const double zr[] = {0.5}, zi[] = {0.0}, pr[] = {0.2, 0.6}, pi[] = {0.0, 0.3};
+    double rate = 1.0e4;
+    td_controller *k = td_controller_create_tf(num, 4, den, 3, rate, NULL);
+    td_controller *z = td_controller_create_zpk(zr, zi, 1, pr, pi, 2, 3.0, rate, NULL);
+    int j;
+    (void)state;
+    assert_non_null(k);
+    assert_non_null(z);
+    assert_int_equal(td_controller_order(k), 2);
+    assert_int_equal(td_controller_order(z), 3);
+    assert_close(td_controller_sample_rate(k), rate, 0.0, 0.0);
+    for (j = 0; j < N_FREQS; j++) {
+        double complex q = cexp(-I * W(freqs[j]) / rate), x = 1.0 / q; /* z^-1, z */
+        double complex hk = (0.5 - 0.2 * q + 0.1 * q * q) / (1.0 - 1.1 * q + 0.3 * q * q);
+        double complex hz = 3.0 * (x - 0.5) / ((x - 0.2) * ((x - 0.6) * (x - 0.6) + 0.09));
+        assert_complex_close(response(k, freqs[j]), hk, 1e-12);
+        assert_complex_close(response(z, freqs[j]), hz, 1e-12);
+    }
+    td_controller_free(&k);
+    td_controller_free(&z);
+}
+
+/* 1st: A1 = -1, B1 = 1, C1 = 2, D1 = 0; 2nd: A2 = -3, B2 = 1, C2 = 1, D2 = 0.5 (by hand). */
+static void test_series_append_transform_by_hand(void **state)
+{
+    const double a1 = -1.0, b1 = 1.0, c1 = 2.0, d1 = 0.0, a2 = -3.0, b2 = 1.0, c2 = 1.0, d2 = 0.5;
+    td_controller *k1 = td_controller_create_ss(1, 1, 1, &a1, &b1, &c1, &d1, NULL, 0.0, NULL);
+    td_controller *k2 = td_controller_create_ss(1, 1, 1, &a2, &b2, &c2, &d2, NULL, 0.0, NULL);
+    td_controller *s = td_controller_series(k1, k2, NULL), *p = td_controller_append(k1, k2, NULL), *t;
+    const double Tin[] = {1.0, 2.0, 3.0, 4.0}, Tout[] = {5.0, 6.0, 7.0, 8.0}; /* Tin = [1 3; 2 4] */
+    double A[4], B[4], C[4], D[4], D1[4];
+    (void)state;
+    assert_non_null(s);
+    assert_non_null(p);
+    td_controller_matrices(s, A, B, C, D, D1);
+    /* A = [A1 0; B2 C1 A2], B = [B1; B2 D1], C = [D2 C1  C2], D = D2 D1 */
+    assert_true(A[0] == -1.0 && A[1] == 2.0 && A[2] == 0.0 && A[3] == -3.0);
+    assert_true(B[0] == 1.0 && B[1] == 0.0 && C[0] == 1.0 && C[1] == 1.0 && D[0] == 0.0 && D1[0] == 0.0);
+    td_controller_matrices(p, A, B, C, D, D1);
+    assert_int_equal(td_controller_inputs(p), 2);
+    assert_int_equal(td_controller_outputs(p), 2);
+    assert_true(A[0] == -1.0 && A[1] == 0.0 && A[2] == 0.0 && A[3] == -3.0);
+    assert_true(B[0] == 1.0 && B[1] == 0.0 && B[2] == 0.0 && B[3] == 1.0);
+    assert_true(C[0] == 2.0 && C[1] == 0.0 && C[2] == 0.0 && C[3] == 1.0);
+    assert_true(D[0] == 0.0 && D[1] == 0.0 && D[2] == 0.0 && D[3] == 0.5);
+    /* Tout = [5 7; 6 8]: B = diag(1, 1) Tin = [1 3; 2 4], C = Tout diag(2, 1) = [10 7; 12 8],
+     * D = Tout diag(0, 0.5) Tin = Tout [0 0; 1 2] = [7 14; 8 16] */
+    t = td_controller_transform(p, 2, Tin, 2, Tout, NULL);
+    assert_non_null(t);
+    td_controller_matrices(t, A, B, C, D, D1);
+    assert_true(B[0] == 1.0 && B[1] == 2.0 && B[2] == 3.0 && B[3] == 4.0);
+    assert_true(C[0] == 10.0 && C[1] == 12.0 && C[2] == 7.0 && C[3] == 8.0);
+    assert_true(D[0] == 7.0 && D[1] == 8.0 && D[2] == 14.0 && D[3] == 16.0);
+    td_controller_free(&k1);
+    td_controller_free(&k2);
+    td_controller_free(&s);
+    td_controller_free(&p);
+    td_controller_free(&t);
+}
+
+/* Laws in series respond as the product of their responses, including the improper-by-one cases
+ * (the velocity feedthrough in the first law, in the second, and carried to the result). */
+static void test_series_is_the_product(void **state)
+{
+    td_pid_block pid = {1.0e4, 2.0e5, 40.0, 2000.0}, pd = {1.0e4, 0.0, 40.0, 0.0};
+    td_lowpass_block lp1 = {500.0, 1, 0.0}, lp2 = {2000.0, 2, 0.7};
+    td_notch_block no = {34.4, 6.0, 0.05};
+    td_controller *PID = td_controller_create_pid(&pid, NULL), *PD = td_controller_create_pid(&pd, NULL);
+    td_controller *L1 = td_controller_create_lowpass(&lp1, NULL), *L2 = td_controller_create_lowpass(&lp2, NULL);
+    td_controller *N = td_controller_create_notch(&no, NULL);
+    td_controller *first[] = {PD, L1, N, PID, PD}, *second[] = {L2, PD, PD, N, N}, *s;
+    const int improper[] = {0, 0, 1, 0, 1};
+    td_error err;
+    int c, j;
+    (void)state;
+    for (c = 0; c < 5; c++) {
+        s = td_controller_series(first[c], second[c], &err);
+        assert_non_null(s);
+        assert_int_equal(td_controller_has_velocity_feedthrough(s), improper[c]);
+        assert_int_equal(td_controller_order(s), td_controller_order(first[c]) + td_controller_order(second[c]));
+        for (j = 0; j < N_FREQS; j++)
+            assert_complex_close(response(s, freqs[j]), response(first[c], freqs[j]) * response(second[c], freqs[j]),
+                                 1e-12);
+        td_controller_free(&s);
+    }
+    /* PD then PD: kd^2 s^2 needs the sensor's acceleration */
+    assert_null(td_controller_series(PD, PD, &err));
+    assert_int_equal(err.code, TD_ERR_INVALID);
+    assert_non_null(strstr(err.message, "improper by two"));
+    td_controller_free(&PID);
+    td_controller_free(&PD);
+    td_controller_free(&L1);
+    td_controller_free(&L2);
+    td_controller_free(&N);
+}
+
+/* Bearings at za = 0.2 m and zb = 1.0 m, reference zr = 0.5 m, by hand. */
+static void test_rigid_transform_by_hand(void **state)
+{
+    double T[4], za = 0.2, zb = 1.0, zr = 0.5, theta = 3.0e-4, xa, xb, xr, tilt, Fr = 120.0, M = -35.0, Fa, Fb;
+    td_error err;
+    (void)state;
+    assert_int_equal(td_rigid_transform(za, zb, zr, T, &err), TD_OK);
+    /* T = 1/0.8 [0.5 0.3; -1 1] */
+    assert_close(T[0], 0.625, 1e-15, 0.0);
+    assert_close(T[2], 0.375, 1e-15, 0.0);
+    assert_close(T[1], -1.25, 1e-15, 0.0);
+    assert_close(T[3], 1.25, 1e-15, 0.0);
+    /* a pure translation: both bearings move 1e-4 m; x_r = 1e-4, no tilt */
+    xa = xb = 1.0e-4;
+    assert_close(T[0] * xa + T[2] * xb, 1.0e-4, 1e-15, 0.0);
+    assert_close(T[1] * xa + T[3] * xb, 0.0, 0.0, 1e-20);
+    /* a pure tilt about zr: x = theta (z - zr); x_r = 0, tilt = theta */
+    xa = theta * (za - zr), xb = theta * (zb - zr);
+    xr = T[0] * xa + T[2] * xb, tilt = T[1] * xa + T[3] * xb;
+    assert_close(xr, 0.0, 0.0, 1e-19);
+    assert_close(tilt, theta, 1e-14, 0.0);
+    /* forces: [Fa; Fb] = T^T [Fr; M] sum to Fr and have the moment M about zr */
+    Fa = T[0] * Fr + T[1] * M, Fb = T[2] * Fr + T[3] * M;
+    assert_close(Fa + Fb, Fr, 1e-15, 0.0);
+    assert_close(Fa * (za - zr) + Fb * (zb - zr), M, 1e-14, 0.0);
+    /* virtual work for an arbitrary displacement: Fa dxa + Fb dxb = Fr dxr + M dtilt */
+    xa = 2.0e-5, xb = -7.0e-5;
+    assert_close(Fa * xa + Fb * xb, Fr * (T[0] * xa + T[2] * xb) + M * (T[1] * xa + T[3] * xb), 1e-14, 0.0);
+    assert_int_equal(td_rigid_transform(0.4, 0.4, 0.5, T, &err), TD_ERR_INVALID);
+    assert_non_null(strstr(err.message, "coincide"));
+    assert_int_equal(td_rigid_transform(0.1, NAN, 0.5, T, &err), TD_ERR_INVALID);
+}
+
+/* Bad laws are refused with TD_ERR_INVALID and a message that says what is wrong. */
+static void expect_invalid(td_controller *k, const td_error *err, const char *words)
+{
+    assert_null(k);
+    assert_int_equal(err->code, TD_ERR_INVALID);
+    if (!strstr(err->message, words))
+        fail_msg("message \"%s\" lacks \"%s\"", err->message, words);
+}
+
+static void test_bad_laws_are_refused(void **state)
+{
+    const double num3[] = {1.0, 0.0, 0.0}, den1[] = {1.0}, den0[] = {0.0, 1.0}, nan1[] = {NAN, 1.0}, one = 1.0;
+    td_pid_block pid = {1.0, -1.0, 0.0, 0.0};
+    td_notch_block no = {34.4, 6.0, 1.0};
+    td_lowpass_block lp = {100.0, 3, 0.7};
+    td_controller *c = td_controller_create_gain(1.0, NULL), *z = td_controller_create_tf(&one, 1, &one, 1, 1e3, NULL);
+    td_error err;
+    (void)state;
+    expect_invalid(td_controller_create_tf(num3, 3, den1, 1, 0.0, &err), &err, "improper by 2");
+    expect_invalid(td_controller_create_tf(num3, 2, den0, 2, 0.0, &err), &err, "den[0]");
+    expect_invalid(td_controller_create_tf(nan1, 2, den1, 1, 0.0, &err), &err, "not finite");
+    /* in z^-1 every tf is proper; in zeros and poles of z, more zeros than poles is not */
+    expect_invalid(td_controller_create_zpk(num3, num3 + 1, 2, &one, num3 + 1, 1, 1.0, 1e4, &err), &err,
+                   "improper sampled");
+    expect_invalid(td_controller_create_tf(num3, 2, den1, 1, NAN, &err), &err, "sample_rate");
+    expect_invalid(td_controller_create_gain(INFINITY, &err), &err, "finite");
+    expect_invalid(td_controller_create_pid(&pid, &err), &err, "kint");
+    expect_invalid(td_controller_create_notch(&no, &err), &err, "depth");
+    expect_invalid(td_controller_create_lowpass(&lp, &err), &err, "order");
+    expect_invalid(td_controller_series(c, z, &err), &err, "timing");
+    expect_invalid(td_controller_append(z, c, &err), &err, "timing");
+    expect_invalid(td_controller_create_ss(1, 1, 1, nan1, &one, &one, &one, NULL, 0.0, &err), &err, "not finite");
+    expect_invalid(td_controller_create_ss(0, 1, 1, NULL, NULL, NULL, &one, &one, 1e3, &err), &err, "D1");
+    td_controller_free(&c);
+    td_controller_free(&z);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_blocks_match_their_transfer_functions),
+        cmocka_unit_test(test_tf_and_zpk),
+        cmocka_unit_test(test_sampled_tf_and_zpk),
+        cmocka_unit_test(test_series_append_transform_by_hand),
+        cmocka_unit_test(test_series_is_the_product),
+        cmocka_unit_test(test_rigid_transform_by_hand),
+        cmocka_unit_test(test_bad_laws_are_refused),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
