@@ -323,9 +323,10 @@ TD_API char td_loop_zone(double peak);
  * the peak of |S_j| over the grid, refined by Brent's method between the grid neighbours, with its
  * frequency and zone (td_loop_zone); and per AMB axis the dynamic compliance, the displacement
  * per unit force at its actuator node with every loop closed (m/N). Stability: the largest real
- * part of the closed-loop eigenvalues (td_modal_solve). The loop is stable when that is below
- * the round-off of zero (TD_MODAL_ROUNDOFF_REAL_PART times the spectral radius); otherwise S,
- * its peaks and zones and the compliance are TD_UNDEFINED (0 for a zone), L is still given.
+ * part of the closed-loop eigenvalues (td_modal_solve). The loop is stable unless an eigenvalue
+ * grows (td_modal_is_unstable: an undamped mode that no AMB sees, rounding-level real part, keeps
+ * it stable); when not stable, S, its peaks and zones and the compliance are TD_UNDEFINED (0 for
+ * a zone), and L is still given.
  *
  * opt may be NULL (td_loop_options_default). Errors: TD_ERR_INVALID (NULL argument, bad options
  * or speed, no controlled axis, a sampled controller: "loop analysis of a sampled controller is not

@@ -43,8 +43,8 @@ typedef struct td_modal_results {
 /**
  * CSV: one file with sections, each a '# section: NAME' line, then a header line of column
  * names with units, then rows; numbers as "%.12g". Sections: modes, real_eigenvalues,
- * mode_shapes, campbell, critical_speeds, harmonic, loop, sensitivity_peaks, compliance. Errors: TD_ERR_INVALID (NULL argument, bad
- * counts), TD_ERR_IO (the file cannot be created, written or renamed), TD_ERR_NOMEM.
+ * mode_shapes, campbell, critical_speeds, harmonic, loop, sensitivity_peaks, compliance. Errors: TD_ERR_INVALID (NULL
+ * argument, bad counts), TD_ERR_IO (the file cannot be created, written or renamed), TD_ERR_NOMEM.
  */
 TD_API td_status td_modal_write_csv(const char *path, const td_modal_results *r, td_error *err);
 /**

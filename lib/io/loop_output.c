@@ -4,8 +4,8 @@
  * --json`. An undefined value (an unstable loop's sensitivity) is "nan" in CSV, NaN in HDF5,
  * null in JSON, an empty zone "" in the files (docs/output-format.md, "Undefined values").
  */
-#include "io/h5_util.h"
 #include "io/loop_output.h"
+#include "io/h5_util.h"
 #include "io/schema.h"
 #include "touchdown/modal_output.h"
 #include "util/text.h"
@@ -77,8 +77,8 @@ static int h5_data(hid_t g, td_out_id id, hid_t memtype, const void *data, hsize
     hsize_t dims[2];
     dims[0] = rows;
     dims[1] = cols;
-    return td_h5_dataset(g, td_out_name(id), memtype == H5T_NATIVE_INT ? H5T_STD_I32LE : H5T_IEEE_F64LE, memtype,
-                         data, cols ? 2 : 1, dims, td_out_units(id));
+    return td_h5_dataset(g, td_out_name(id), memtype == H5T_NATIVE_INT ? H5T_STD_I32LE : H5T_IEEE_F64LE, memtype, data,
+                         cols ? 2 : 1, dims, td_out_units(id));
 }
 
 /* Table `id` (re) and id + 1 (im): (frequencies, cols) from get(l, j, k). */
@@ -104,7 +104,7 @@ static int h5_axes(hid_t g, const td_loop *l)
     int nc = td_loop_axis_count(l), na = td_loop_amb_axis_count(l), j, ok;
     int *ax = malloc((size_t)(nc + na + 1) * sizeof *ax);
     double *pk = malloc((size_t)(2 * nc + 1) * sizeof *pk);
-    char (*zones)[2] = malloc((size_t)(nc + 1) * sizeof *zones);
+    char(*zones)[2] = malloc((size_t)(nc + 1) * sizeof *zones);
     const char **zp = malloc((size_t)(nc + 1) * sizeof *zp);
     hid_t text = td_h5_text_type();
     hsize_t dims[1];
@@ -135,9 +135,12 @@ static int h5_axes(hid_t g, const td_loop *l)
 
 int td_loop_write_h5_group(hid_t file, const td_loop *l)
 {
-    const char *by_freq[7] = {td_out_name(TD_OUT_LOOP_SENSITIVITY_RE), td_out_name(TD_OUT_LOOP_SENSITIVITY_IM),
-                              td_out_name(TD_OUT_LOOP_OPEN_LOOP_RE),   td_out_name(TD_OUT_LOOP_OPEN_LOOP_IM),
-                              td_out_name(TD_OUT_LOOP_COMPLIANCE_RE),  td_out_name(TD_OUT_LOOP_COMPLIANCE_IM),
+    const char *by_freq[7] = {td_out_name(TD_OUT_LOOP_SENSITIVITY_RE),
+                              td_out_name(TD_OUT_LOOP_SENSITIVITY_IM),
+                              td_out_name(TD_OUT_LOOP_OPEN_LOOP_RE),
+                              td_out_name(TD_OUT_LOOP_OPEN_LOOP_IM),
+                              td_out_name(TD_OUT_LOOP_COMPLIANCE_RE),
+                              td_out_name(TD_OUT_LOOP_COMPLIANCE_IM),
                               NULL};
     const char *by_axis[5] = {by_freq[0], by_freq[1], by_freq[2], by_freq[3], NULL};
     const char *by_amb[3] = {by_freq[4], by_freq[5], NULL};
@@ -204,7 +207,10 @@ int td_loop_json(char *buf, size_t n, const td_loop *l)
     char z = td_loop_worst_zone(l);
     td_text_fixed(&b, buf, n);
     td_text_printf(&b, "{\"%s\":%s,\"%s\":", td_out_name(TD_OUT_LOOP_STABLE),
-                   !l ? "null" : td_loop_stable(l) ? "true" : "false", td_out_name(TD_OUT_LOOP_MAX_REAL_PART));
+                   !l                  ? "null"
+                   : td_loop_stable(l) ? "true"
+                                       : "false",
+                   td_out_name(TD_OUT_LOOP_MAX_REAL_PART));
     json_number(&b, l ? td_loop_max_real_part(l) : NAN);
     td_text_printf(&b, ",\"%s\":", td_out_name(TD_OUT_LOOP_SPEED));
     json_number(&b, l ? td_loop_speed(l) : NAN);

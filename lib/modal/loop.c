@@ -39,20 +39,20 @@ typedef struct loop_block {
 
 struct td_loop {
     double omega;
-    int n;            /* plant states */
-    int nc, ns, na;   /* controlled axes (current inputs), sensed axes (controller inputs), AMB axes */
-    int m, p;         /* plant inputs nc + na, outputs ns + na */
-    int *axis;        /* nc: AMB axis of each current input */
-    int *sensor;      /* ns: AMB axis of each sensor */
-    double *H;        /* n x n upper Hessenberg, row-major */
-    double *B;        /* n x m, row-major, in the Hessenberg basis */
-    double *C;        /* p x n, row-major, in the Hessenberg basis */
+    int n;          /* plant states */
+    int nc, ns, na; /* controlled axes (current inputs), sensed axes (controller inputs), AMB axes */
+    int m, p;       /* plant inputs nc + na, outputs ns + na */
+    int *axis;      /* nc: AMB axis of each current input */
+    int *sensor;    /* ns: AMB axis of each sensor */
+    double *H;      /* n x n upper Hessenberg, row-major */
+    double *B;      /* n x m, row-major, in the Hessenberg basis */
+    double *C;      /* p x n, row-major, in the Hessenberg basis */
     int n_blocks;
     loop_block *blocks;
     int nf;
-    double *freq;                  /* Hz */
-    double complex *s, *l, *comp;  /* nf x nc, nf x nc, nf x na */
-    double *peak, *peak_freq;      /* nc */
+    double *freq;                 /* Hz */
+    double complex *s, *l, *comp; /* nf x nc, nf x nc, nf x na */
+    double *peak, *peak_freq;     /* nc */
     int stable;
     double max_real;
 };
@@ -99,8 +99,9 @@ static td_status loop_axes(const td_system *sys, int *driven, int *sensed, td_er
     for (i = 0; i < sys->n_laws; i++) {
         const td_lti_law *w = &sys->laws[i];
         if (w->sample_rate > 0.0)
-            return td_error_set(err, TD_ERR_INVALID, "loop analysis of a sampled controller is not supported yet "
-                                                     "(controller %d samples at %g Hz)",
+            return td_error_set(err, TD_ERR_INVALID,
+                                "loop analysis of a sampled controller is not supported yet "
+                                "(controller %d samples at %g Hz)",
                                 i, w->sample_rate);
         for (j = 0; j < w->nout; j++)
             driven[w->out_axis[j]] = 1;
@@ -281,8 +282,7 @@ static td_status add_block(td_loop *l, td_controller *k, const int *in, const in
 
 /* Every controller: a PID block (td_controller_create_pid, exact derivative) per shorthand axis,
  * then the system's linear controllers as it runs them. */
-static td_status build_controllers(const td_system *sys, td_loop *l, const int *pos_s, const int *pos_c,
-                                   td_error *err)
+static td_status build_controllers(const td_system *sys, td_loop *l, const int *pos_s, const int *pos_c, td_error *err)
 {
     td_status st = TD_OK;
     int a, i;
@@ -446,8 +446,8 @@ static td_status close_loop(const td_loop *l, double f, loop_work *wk, td_error 
     if (gsl_linalg_complex_LU_decomp(&M.matrix, wk->perm, &sign) != GSL_SUCCESS)
         return td_error_set(err, TD_ERR_NUMERIC, "loop analysis: I + K P is singular at %.9g Hz", f);
     for (j = 0; j < m; j++) {
-        gsl_vector_complex_view x = gsl_vector_complex_view_array_with_stride((double *)(wk->X + j), (size_t)m,
-                                                                              (size_t)nc);
+        gsl_vector_complex_view x =
+            gsl_vector_complex_view_array_with_stride((double *)(wk->X + j), (size_t)m, (size_t)nc);
         if (gsl_linalg_complex_LU_svx(&M.matrix, wk->perm, &x.vector) != GSL_SUCCESS)
             return td_error_set(err, TD_ERR_NUMERIC, "loop analysis: I + K P is singular at %.9g Hz", f);
     }
@@ -538,7 +538,8 @@ static void find_peaks(td_loop *l, loop_work *wk)
         if (!l->stable)
             continue;
         for (k = 1; k < l->nf; k++)
-            if (cabs(l->s[(size_t)k * (size_t)l->nc + (size_t)j]) > cabs(l->s[(size_t)best * (size_t)l->nc + (size_t)j]))
+            if (cabs(l->s[(size_t)k * (size_t)l->nc + (size_t)j]) >
+                cabs(l->s[(size_t)best * (size_t)l->nc + (size_t)j]))
                 best = k;
         l->peak[j] = cabs(l->s[(size_t)best * (size_t)l->nc + (size_t)j]);
         l->peak_freq[j] = l->freq[best];
@@ -547,8 +548,10 @@ static void find_peaks(td_loop *l, loop_work *wk)
     }
 }
 
-/* The closed loop's eigenvalues (td_modal_solve): stable when every real part is below the
- * round-off of zero, as `touchdown modal` calls a machine stable. */
+/* The closed loop's eigenvalues (td_modal_solve): stable unless some eigenvalue grows beyond the
+ * rounding of a marginal root (td_modal_is_unstable). An undamped closed-loop mode (an undamped
+ * shaft's mode that no AMB sees, e.g. with nodes at the AMBs) keeps the loop stable; one that S
+ * sees shows as a peak without bound. */
 static td_status closed_loop_stability(const td_system *sys, td_loop *l, td_error *err)
 {
     td_modal *md = NULL;
@@ -556,7 +559,7 @@ static td_status closed_loop_stability(const td_system *sys, td_loop *l, td_erro
     if (st != TD_OK)
         return st;
     l->max_real = td_modal_max_real_part(md);
-    l->stable = l->max_real < -TD_MODAL_ROUNDOFF_REAL_PART * td_modal_spectral_radius(md);
+    l->stable = !td_modal_is_unstable(md);
     td_modal_free(&md);
     return TD_OK;
 }
@@ -608,14 +611,13 @@ static td_status loop_alloc(const td_system *sys, const td_loop_options *o, td_l
     if (st == TD_OK && (!l->freq || !l->s || !l->l || !l->comp || !l->peak || !l->peak_freq))
         st = td_error_set(err, TD_ERR_NOMEM, "loop analysis: out of memory");
     for (k = 0; st == TD_OK && k < l->nf; k++) /* log-spaced, the ends exact */
-        l->freq[k] = k == 0             ? o->f_min
+        l->freq[k] = k == 0           ? o->f_min
                      : k == l->nf - 1 ? o->f_max
-                                        : o->f_min * pow(o->f_max / o->f_min, (double)k / (double)(l->nf - 1));
+                                      : o->f_min * pow(o->f_max / o->f_min, (double)k / (double)(l->nf - 1));
     return st;
 }
 
-td_status td_loop_compute(const td_system *sys, double omega, const td_loop_options *opt, td_loop **out,
-                          td_error *err)
+td_status td_loop_compute(const td_system *sys, double omega, const td_loop_options *opt, td_loop **out, td_error *err)
 {
     td_loop_options o;
     td_loop *l;
@@ -785,8 +787,8 @@ char td_loop_worst_zone(const td_loop *l)
     return worst;
 }
 
-td_status td_loop_evaluate(const td_loop *l, int j, double f, double *s_re, double *s_im, double *l_re,
-                           double *l_im, td_error *err)
+td_status td_loop_evaluate(const td_loop *l, int j, double f, double *s_re, double *s_im, double *l_re, double *l_im,
+                           td_error *err)
 {
     loop_work wk;
     td_status st;
