@@ -466,6 +466,15 @@ static double complex compliance(const td_loop *l, const loop_work *wk, int a)
 
 /* ---- the grid, the peaks, stability ------------------------------------------------------- */
 
+/* An undefined complex value: both parts TD_UNDEFINED. */
+static double complex undefined_complex(void)
+{
+    double complex z = 0.0;
+    double *part = (double *)&z; /* C99 6.2.5: a complex is an array of its two parts */
+    part[0] = part[1] = TD_UNDEFINED;
+    return z;
+}
+
 static td_status fill_grid(td_loop *l, loop_work *wk, td_error *err)
 {
     int k, j;
@@ -476,10 +485,10 @@ static td_status fill_grid(td_loop *l, loop_work *wk, td_error *err)
         for (j = 0; j < l->nc; j++) {
             double complex s = wk->X[j * l->m + j];
             l->l[(size_t)k * (size_t)l->nc + (size_t)j] = 1.0 / s - 1.0;
-            l->s[(size_t)k * (size_t)l->nc + (size_t)j] = l->stable ? s : TD_UNDEFINED;
+            l->s[(size_t)k * (size_t)l->nc + (size_t)j] = l->stable ? s : undefined_complex();
         }
         for (j = 0; j < l->na; j++)
-            l->comp[(size_t)k * (size_t)l->na + (size_t)j] = l->stable ? compliance(l, wk, j) : TD_UNDEFINED;
+            l->comp[(size_t)k * (size_t)l->na + (size_t)j] = l->stable ? compliance(l, wk, j) : undefined_complex();
     }
     return TD_OK;
 }

@@ -7,8 +7,9 @@
 void td_print_loop(FILE *f, const td_loop *l)
 {
     int j;
-    fprintf(f, "loop analysis at %.12g rad/s (ISO 14839-3: sensitivity at each amplifier input, every loop closed): %s, "
-               "largest real part %.6g 1/s\n",
+    fprintf(f,
+            "loop analysis at %.12g rad/s (ISO 14839-3: sensitivity at each amplifier input, every loop closed): %s, "
+            "largest real part %.6g 1/s\n",
             td_loop_speed(l), td_loop_stable(l) ? "stable" : "NOT STABLE: no sensitivity", td_loop_max_real_part(l));
     if (!td_loop_stable(l))
         return;
