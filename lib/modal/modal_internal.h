@@ -39,6 +39,9 @@ void td_entry_add_matrix(td_entry_sink *k, const cs_di *S, int col0, double scal
 void td_state_space_rhs_blocks(const td_system *sys, double omega, td_entry_sink *R);
 /* Filter rows w' = rate_x xs + rate_v vs + rate_w w (rows 2 ndof + state of the state vector). */
 void td_state_space_filter_rows(const td_system *sys, td_entry_sink *A);
+/* TD_OK when the first-order form above can hold sys: every linear controller continuous (a
+ * sampled one has no state here); TD_ERR_INVALID naming the first sampled one otherwise. */
+td_status td_state_space_supported(const td_system *sys, td_error *err);
 
 /* Build the state space of `sys` at speed `omega`; on failure *ss is left empty (freed). */
 td_status td_state_space_build(const td_system *sys, double omega, td_state_space *ss, td_error *err);

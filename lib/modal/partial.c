@@ -100,7 +100,10 @@ static td_status pencil_factor(const td_system *sys, double omega, double sigma,
     p->M = sys->M;
     p->sym = NULL;
     p->num = NULL;
+    p->P = NULL;
     klu_defaults(&p->common);
+    if (td_state_space_supported(sys, err) != TD_OK)
+        return TD_ERR_INVALID;
     if (!(p->P = pencil_matrix(sys, omega, sigma)))
         return td_error_set(err, TD_ERR_NOMEM, "modal: out of memory for the sparse %d-state system", p->n);
     p->sym = klu_analyze(p->n, p->P->p, p->P->i, &p->common);

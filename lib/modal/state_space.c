@@ -5,7 +5,10 @@
  *   M v' = -K_eff q - C_eff v + B_w w
  *   w'   = (command(xs, vs, e) - w) / tau       (one per AMB axis with tau > 0)
  *   e'   = xs                                   (one per AMB axis with kint > 0: PID)
+ *   x'   = A x + B e,  e = -xs                   (the states of each continuous linear controller)
  *
+ * An axis a linear controller drives takes ki i in place of the command, i = C x + D e + D1 e'
+ * (touchdown/controller.h), lagged or not as the AMB says.
  * K_eff = K - ks at (actuator, actuator) for every AMB axis; C_eff = C + Omega G. An axis with
  * tau == 0 has no filter state: its force ks x + command(xs, vs, e) is exactly a spring-damper,
  * -ki kp at (actuator, sensor) moved to K_eff and -ki kd to C_eff, plus -ki kint on e. The
@@ -58,6 +61,8 @@ typedef struct amb_coeffs {
     double cmd_v;                          /* d(command)/d(vs) = -ki kd */
     double cmd_e;                          /* d(command)/d(e) = -ki kint */
     double rate_x, rate_v, rate_e, rate_w; /* d(dFc/dt)/d(xs, vs, e, Fc), tau > 0 only */
+    double target_i;                       /* d(target force)/d(current) = ki, a driven axis */
+    double rate_i;                         /* d(dFc/dt)/d(current) = ki / tau, tau > 0 only */
 } amb_coeffs;
 
 static amb_coeffs amb_axis_coeffs(const td_amb_axis *a)
@@ -72,8 +77,54 @@ static amb_coeffs amb_axis_coeffs(const td_amb_axis *a)
         c.rate_v = td_amb_axis_filter_rate(a, 0.0, 1.0, 0.0, 0.0);
         c.rate_e = td_amb_axis_filter_rate(a, 0.0, 0.0, 1.0, 0.0);
         c.rate_w = td_amb_axis_filter_rate(a, 0.0, 0.0, 0.0, 1.0);
+        c.rate_i = td_amb_axis_lag_rate(a, td_amb_axis_current_target(a, 1.0), 0.0);
     }
+    c.target_i = td_amb_axis_current_target(a, 1.0);
     return c;
+}
+
+/* Row `row` += scale * (the current command of axis a's output, a continuous law): C on the law's
+ * states, D on its inputs' sensor displacements and D1 on their velocities, both times de/dxs = -1. */
+static void add_current(const td_system *sys, const td_amb_axis *a, int row, double scale, td_entry_sink *R)
+{
+    const td_lti_law *L = &sys->laws[a->law];
+    int nd = sys->ndof, o = a->law_output, j, m;
+    for (j = 0; j < L->n; j++)
+        td_entry_add(R, row, 2 * nd + L->state + j, scale * L->C[o + (size_t)j * L->nout]);
+    for (m = 0; m < L->nin; m++) {
+        int sen = sys->amb_axes[L->in_axis[m]].sensor_dof;
+        td_entry_add(R, row, sen, -scale * L->D[o + (size_t)m * L->nout]);
+        if (L->D1)
+            td_entry_add(R, row, nd + sen, -scale * L->D1[o + (size_t)m * L->nout]);
+    }
+}
+
+/* The continuous laws' rows x' = A x + B e, e = -xs. */
+static void law_rows(const td_system *sys, td_entry_sink *A)
+{
+    int nd = sys->ndof, l, r, j, m;
+    for (l = 0; l < sys->n_laws; l++) {
+        const td_lti_law *L = &sys->laws[l];
+        for (r = 0; r < L->n; r++) {
+            int row = 2 * nd + L->state + r;
+            for (j = 0; j < L->n; j++)
+                td_entry_add(A, row, 2 * nd + L->state + j, L->A[r + (size_t)j * L->n]);
+            for (m = 0; m < L->nin; m++)
+                td_entry_add(A, row, sys->amb_axes[L->in_axis[m]].sensor_dof, -L->B[r + (size_t)m * L->n]);
+        }
+    }
+}
+
+td_status td_state_space_supported(const td_system *sys, td_error *err)
+{
+    int l;
+    for (l = 0; sys && l < sys->n_laws; l++)
+        if (sys->laws[l].state < 0)
+            return td_error_set(err, TD_ERR_INVALID,
+                                "modal: controller %d is sampled (%g Hz): the closed-loop analysis here is of "
+                                "continuous controllers",
+                                l, sys->laws[l].sample_rate);
+    return TD_OK;
 }
 
 void td_state_space_rhs_blocks(const td_system *sys, double omega, td_entry_sink *R)
@@ -94,6 +145,8 @@ void td_state_space_rhs_blocks(const td_system *sys, double omega, td_entry_sink
             td_entry_add(R, act, nd + sen, c.dfdfc * c.cmd_v);
             if (a->integral >= 0)
                 td_entry_add(R, act, 2 * nd + a->integral, c.dfdfc * c.cmd_e);
+            if (a->law >= 0) /* Fc = ki i, i = C x + D e + D1 e' */
+                add_current(sys, a, act, c.dfdfc * c.target_i, R);
         } else {
             td_entry_add(R, act, 2 * nd + a->state, c.dfdfc);
         }
@@ -113,10 +166,13 @@ void td_state_space_filter_rows(const td_system *sys, td_entry_sink *A)
             td_entry_add(A, row, row, c.rate_w);
             if (a->integral >= 0)
                 td_entry_add(A, row, 2 * nd + a->integral, c.rate_e);
+            if (a->law >= 0)
+                add_current(sys, a, row, c.rate_i, A);
         }
         if (a->integral >= 0 && !a->off) /* e' = xs; an AMB off holds it (e' = 0) */
             td_entry_add(A, 2 * nd + a->integral, a->sensor_dof, 1.0);
     }
+    law_rows(sys, A); /* a controller runs on its sensors while its AMB is off */
 }
 
 void td_state_space_free(td_state_space *ss)
@@ -150,6 +206,8 @@ td_status td_state_space_build(const td_system *sys, double omega, td_state_spac
         return td_error_set(err, TD_ERR_INVALID, "modal: NULL system");
     if (!TD_SPEED_VALID(omega))
         return td_error_set(err, TD_ERR_INVALID, "modal: speed must be finite and >= 0 rad/s (got %g)", omega);
+    if (td_state_space_supported(sys, err) != TD_OK)
+        return TD_ERR_INVALID;
     td_modal_gsl_quiet();
     ss->ndof = sys->ndof;
     ss->nfilter = sys->n_controller_states;

@@ -140,7 +140,7 @@ static td_status assemble_matrices(td_system *s, td_error *err)
 
 /* The AMB axis table: axis 2 i is x of AMB i, 2 i + 1 its y. Controller states: first the lag
  * states of the axes with tau > 0, in axis order, then the integrators of those with kint > 0 (a
- * PD model keeps the numbering it always had). */
+ * PD model keeps the numbering it always had), then the linear controllers' (build_laws). */
 static td_status build_amb_axes(td_system *s, td_error *err)
 {
     const td_model *m = s->model;
@@ -179,6 +179,82 @@ static td_status build_amb_axes(td_system *s, td_error *err)
         a->integral = a->kint > 0.0 ? s->n_controller_states++ : -1;
     }
     return TD_OK;
+}
+
+/* One linear controller of the model as the system runs it: its matrices, its axes, and for a
+ * continuous law its first state among the controller states (after every shorthand state, so
+ * that a model without controllers keeps its numbering). */
+static td_status build_law(td_system *s, int l, td_error *err)
+{
+    const int *in, *out;
+    const td_controller *k = td_model_get_controller(s->model, l, NULL, &in, &out);
+    td_lti_law *L = &s->laws[l];
+    size_t n, nin, nout;
+    int o;
+    L->n = td_controller_order(k);
+    L->nin = td_controller_inputs(k);
+    L->nout = td_controller_outputs(k);
+    L->sample_rate = td_controller_sample_rate(k);
+    n = (size_t)L->n;
+    nin = (size_t)L->nin;
+    nout = (size_t)L->nout;
+    /* +1: a law without states still gets valid (unused) pointers */
+    L->A = calloc(n * n + 1, sizeof(double));
+    L->B = calloc(n * nin + 1, sizeof(double));
+    L->C = calloc(nout * n + 1, sizeof(double));
+    L->D = calloc(nout * nin, sizeof(double));
+    L->D1 = td_controller_has_velocity_feedthrough(k) ? calloc(nout * nin, sizeof(double)) : NULL;
+    L->in_axis = malloc(nin * sizeof(int));
+    L->out_axis = malloc(nout * sizeof(int));
+    if (!L->A || !L->B || !L->C || !L->D || !L->in_axis || !L->out_axis ||
+        (td_controller_has_velocity_feedthrough(k) && !L->D1))
+        return td_error_set(err, TD_ERR_NOMEM, "out of memory building controller %d", l);
+    td_controller_matrices(k, L->A, L->B, L->C, L->D, L->D1);
+    memcpy(L->in_axis, in, nin * sizeof(int));
+    memcpy(L->out_axis, out, nout * sizeof(int));
+    L->state = -1;
+    if (L->sample_rate == 0.0) {
+        L->state = s->n_controller_states;
+        s->n_controller_states += L->n;
+    }
+    for (o = 0; o < L->nout; o++) {
+        s->amb_axes[out[o]].law = l;
+        s->amb_axes[out[o]].law_output = o;
+    }
+    return TD_OK;
+}
+
+static td_status build_laws(td_system *s, td_error *err)
+{
+    int l;
+    s->n_laws = td_model_controller_count(s->model);
+    if (s->n_laws == 0)
+        return TD_OK;
+    s->laws = calloc((size_t)s->n_laws, sizeof *s->laws);
+    if (!s->laws)
+        return td_error_set(err, TD_ERR_NOMEM, "out of memory building the controllers");
+    for (l = 0; l < s->n_laws; l++) {
+        td_status st = build_law(s, l, err);
+        if (st != TD_OK)
+            return st;
+    }
+    return TD_OK;
+}
+
+static void free_laws(td_system *s)
+{
+    int l;
+    for (l = 0; l < s->n_laws; l++) {
+        td_lti_law *L = &s->laws[l];
+        free(L->A);
+        free(L->B);
+        free(L->C);
+        free(L->D);
+        free(L->D1);
+        free(L->in_axis);
+        free(L->out_axis);
+    }
+    free(s->laws);
 }
 
 void td_system_set_amb_off(td_system *s, int amb, int off)
@@ -235,6 +311,8 @@ td_status td_system_create(const td_model *model, td_system **out, td_error *err
         st = td_system_reduce(s, err);
     if (st == TD_OK)
         st = build_amb_axes(s, err);
+    if (st == TD_OK)
+        st = build_laws(s, err);
     if (st != TD_OK) {
         td_system_free(&s);
         return st;
@@ -255,6 +333,7 @@ void td_system_free(td_system **sys)
     cs_di_spfree(s->C);
     cs_di_spfree(s->G);
     free(s->amb_axes);
+    free_laws(s);
     free(s->gravity_load);
     td_system_reduction_free(s);
     free(s);

@@ -90,6 +90,7 @@ void td_model_free(td_model **model)
     free(m->changes.items);
     free(m->change_entries.items);
     free(m->speed_points.items);
+    td_model_free_controllers(m);
     free(m);
     *model = NULL;
 }
@@ -118,6 +119,7 @@ static void *dup_items(const void *items, int count, size_t size, int *ok)
 td_status td_model_clone(const td_model *model, td_model **out, td_error *err)
 {
     td_model *m;
+    td_status st;
     int ok = 1;
     if (!model || !out)
         return td_error_set(err, TD_ERR_INVALID, "td_model_clone: NULL argument");
@@ -142,6 +144,11 @@ td_status td_model_clone(const td_model *model, td_model **out, td_error *err)
     if (!ok) {
         td_model_free(&m);
         return td_error_set(err, TD_ERR_NOMEM, "out of memory cloning a model");
+    }
+    st = td_model_clone_controllers(m, model, err);
+    if (st != TD_OK) {
+        td_model_free(&m);
+        return st;
     }
     *out = m;
     return TD_OK;
@@ -656,6 +663,8 @@ td_status td_model_validate(const td_model *m, td_error *err)
                        "the speed would step from `speed` %g rad/s to %g rad/s at the ramp's first point (%g s): "
                        "start the ramp at `speed`, or add a point at time 0",
                        m->speed, m->speed_points.items[0].speed, m->speed_points.items[0].time);
+    if (td_model_check_controllers(m, err))
+        return TD_ERR_INVALID;
     return check_changes(m, err);
 }
 

@@ -14,6 +14,9 @@
 typedef struct td_sim_amb_coef {
     double cmd_x, cmd_v, cmd_e;            /* d(command)/d(xs, vs, e) */
     double rate_x, rate_v, rate_e, rate_w; /* d(dFc/dt)/d(xs, vs, e, Fc), tau > 0 only */
+    double target_i, rate_i;               /* a driven axis's d(target)/d(current), d(dFc/dt)/d(current) */
+    double gain_x; /* |d(command)/d(xs)| of the law's direct part (the scale of its force per metre):
+                    * ki kp for the shorthand, ki max|D| for a linear controller (setup.c) */
 } td_sim_amb_coef;
 
 typedef struct td_sim_machine {

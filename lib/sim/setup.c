@@ -82,6 +82,7 @@ static td_status alloc_arrays(td_sim *s, td_error *err)
     s->machine.unb = calloc((size_t)(s->machine.nu > 0 ? s->machine.nu : 1), sizeof *s->machine.unb);
     s->machine.amb_mode = calloc((size_t)(na > 0 ? na : 1), sizeof *s->machine.amb_mode);
     s->machine.amb_control = calloc((size_t)(2 * na + 2), sizeof(double));
+    s->machine.held_current = calloc((size_t)(2 * na + 2), sizeof(double));
     s->machine.amb_coef = calloc((size_t)(s->sys->n_amb_axes + 1), sizeof *s->machine.amb_coef);
     s->monitor.q_cap = 4 * s->dae.nr + td_model_change_count(s->model) + 4;
     s->monitor.queue = calloc((size_t)s->monitor.q_cap, sizeof *s->monitor.queue);
@@ -95,10 +96,35 @@ static td_status alloc_arrays(td_sim *s, td_error *err)
     s->dae.rootsfound = calloc(TD_ROOTS_PER_RETAINER * nr + (size_t)s->dae.n_sat_roots, sizeof(int));
     s->loop.ysave = calloc((size_t)s->dae.neq, sizeof(double));
     s->loop.ypsave = calloc((size_t)s->dae.neq, sizeof(double));
-    if (!ok || !s->machine.unb || !s->machine.amb_mode || !s->machine.amb_control || !s->machine.amb_coef ||
-        !s->monitor.queue || !s->dae.rootdir || !s->dae.rootsfound || !s->loop.ysave || !s->loop.ypsave)
+    if (!ok || !s->machine.unb || !s->machine.amb_mode || !s->machine.amb_control || !s->machine.held_current ||
+        !s->machine.amb_coef || !s->monitor.queue || !s->dae.rootdir || !s->dae.rootsfound || !s->loop.ysave ||
+        !s->loop.ypsave)
         return td_error_set(err, TD_ERR_NOMEM, "out of memory creating a simulation");
     return TD_OK;
+}
+
+/* The stiffness scale of a linear controller's axis a: the target force per metre of sensor
+ * displacement of the law's direct part, |d target/d i| max|D| over the inputs (for a PD written as a
+ * transfer function, ki kp, what the shorthand's gives). A strictly proper law (D = 0) has none;
+ * its gain at the open-loop magnet's frequency sqrt(|ks| / rotor mass), where the law must act, is
+ * taken instead. Scales only (tolerances, the step bound), never the dynamics. */
+static double law_gain(const td_sim *s, const td_amb_axis *a, double target_i)
+{
+    const td_lti_law *L = &s->sys->laws[a->law];
+    const td_controller *k = td_model_get_controller(s->model, a->law, NULL, NULL, NULL);
+    double g = 0.0, mass = td_model_total_mass(s->model), *re;
+    int m;
+    for (m = 0; m < L->nin; m++)
+        g = fmax(g, fabs(L->D[a->law_output + (size_t)m * L->nout]));
+    re = g == 0.0 && mass > 0.0 ? malloc(2 * (size_t)L->nin * (size_t)L->nout * sizeof *re) : NULL;
+    if (re && td_controller_frequency_response(k, sqrt(fabs(a->ks) / mass) / (2.0 * TD_PI), re,
+                                               re + (size_t)L->nin * (size_t)L->nout, NULL) == TD_OK)
+        for (m = 0; m < L->nin; m++) {
+            size_t at = (size_t)a->law_output + (size_t)m * (size_t)L->nout;
+            g = fmax(g, hypot(re[at], re[(size_t)L->nin * (size_t)L->nout + at]));
+        }
+    free(re);
+    return isfinite(g) ? fabs(target_i) * g : 0.0;
 }
 
 /* Machine state at the start: the model's unbalances, AMBs on, retainers free. */
@@ -123,7 +149,11 @@ static void init_machine(td_sim *s)
             c->rate_v = td_amb_axis_filter_rate(a, 0.0, 1.0, 0.0, 0.0) - r0;
             c->rate_e = td_amb_axis_filter_rate(a, 0.0, 0.0, 1.0, 0.0) - r0;
             c->rate_w = td_amb_axis_filter_rate(a, 0.0, 0.0, 0.0, 1.0) - r0;
+            c->rate_i = td_amb_axis_lag_rate(a, td_amb_axis_current_target(a, 1.0), 0.0) -
+                        td_amb_axis_lag_rate(a, td_amb_axis_current_target(a, 0.0), 0.0);
         }
+        c->target_i = td_amb_axis_current_target(a, 1.0) - td_amb_axis_current_target(a, 0.0);
+        c->gain_x = a->law >= 0 ? law_gain(s, a, c->target_i) : fabs(c->cmd_x);
     }
 }
 
@@ -160,9 +190,8 @@ static double highest_frequency(const td_sim *s)
 
 /*
  * Scales for the tolerances and the step bound. Forces scale with a stiffness: the AMB's
- * (|ks| + ki kp, the largest axis) or, without AMBs, the largest diagonal of K. Velocities scale
- * with a frequency: the larger of the speed and sqrt(stiffness / rotor mass), the rigid-body
- * bearing frequency.
+ * (|ks| + ki kp, or its controller's gain_x, the largest axis) or, without AMBs, the largest diagonal of K. Velocities
+ * scale with a frequency: the larger of the speed and sqrt(stiffness / rotor mass), the rigid-body bearing frequency.
  */
 static void set_scales(td_sim *s)
 {
@@ -170,7 +199,7 @@ static void set_scales(td_sim *s)
     int i;
     for (i = 0; i < s->sys->n_amb_axes; i++) {
         const td_amb_axis *a = &s->sys->amb_axes[i];
-        double ka = fabs(a->ks) + fabs(s->machine.amb_coef[i].cmd_x);
+        double ka = fabs(a->ks) + s->machine.amb_coef[i].gain_x;
         if (ka > k)
             k = ka;
     }
@@ -375,6 +404,7 @@ void td_sim_teardown(td_sim *s)
     free(s->machine.unb);
     free(s->machine.amb_mode);
     free(s->machine.amb_control);
+    free(s->machine.held_current);
     free(s->contacts.ret);
     free(s->machine.amb_coef);
     free(s->monitor.queue);

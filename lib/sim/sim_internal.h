@@ -107,6 +107,7 @@ struct td_sim {
  *   spin                         the spin DOF
  *   retainer, race               the retainers' queries and modes, the races' DOFs
  *   sim_pattern                  the Jacobian's pattern, the structural operator, the mass matrix
+ *   sim_lti                      the linear controllers' rows, currents and Jacobian entries
  *   sim_residual                 the DAE: forces, residual, Jacobian, roots
  *   monitor, energy, totals      statistics and events, the energy account, the retainers' totals
  *   flight_modal, flight_roots,  the closed-form free flight
@@ -117,6 +118,21 @@ struct td_sim {
  *   start, stepping, setup       the start state, the step loop, creation and release
  *   sim                          the public functions of touchdown/sim.h
  */
+
+/* ---- sim_lti.c: linear controllers in the DAE ------------------------------------------------ */
+
+/* The current command (A) of driven AMB axis a (a->law >= 0) at y: C x + D e + D1 e' of its
+ * continuous law, or the current its sampled law holds (machine.held_current). */
+double td_sim_lti_current(const td_sim *s, const td_amb_axis *a, const double *y);
+/* res = x' - A x - B e on every continuous law's rows. */
+void td_sim_lti_rows(const td_sim *s, const double *y, const double *yp, double *res);
+/* yp = A x + B e on the same rows (the consistent rates at y). */
+void td_sim_lti_rates(const td_sim *s, const double *y, double *yp);
+/* Jacobian entries of scale * (driven axis a's current) into row `row`: C on the law's states,
+ * -D and -D1 on its inputs' sensor displacements and velocities; none for a sampled law. */
+void td_sim_lti_jacobian_current(td_sim *s, const td_amb_axis *a, int row, double scale);
+/* Jacobian entries of the continuous laws' rows: -A on their states, B on their sensors (e = -xs). */
+void td_sim_lti_jacobian_rows(td_sim *s);
 
 /* ---- sim_nvector.c: compiled vector operations ----------------------------------------- */
 
@@ -206,6 +222,9 @@ double td_sim_amb_axis_force(const td_sim *s, int k, const double *y);
  * residual's explicit alpha missed and the unbalances' drag on the spin (rv may be NULL); returns
  * their power at y, J/s. 0 unless the spin is free. */
 double td_sim_unbalance_spin_coupling(const td_sim *s, double t, const double *y, const double *yp, double *rv);
+/* Rate dFc/dt of AMB axis k's lag state at y (tau > 0): towards the shorthand's command, or the
+ * target ki i of its linear controller's current (model/amb.c). */
+double td_sim_amb_axis_lag_rate(const td_sim *s, int k, const double *y);
 /* Rate of AMB axis k's integrator state at y (model/amb.c td_amb_axis_integral_rate); 0 without one. */
 double td_sim_amb_axis_integral_rate(const td_sim *s, int k, const double *y);
 /* Spin angle phi(t) at the prescribed speed. */

@@ -235,18 +235,17 @@ td_status td_sim_make_consistent(td_sim *s, const int *just_entered)
             if (s->contacts.ret[k].rolling)
                 queue_retainer_event(s, TD_EVENT_ROLL_START, k, y);
         }
-    /* q' = v, w' = the filter and integrator rates */
+    /* q' = v, w' = the filter and integrator rates and the linear controllers' */
     for (i = 0; i < s->dae.n; i++)
         yp[s->dae.oq + i] = y[s->dae.ov + i];
     for (k = 0; k < s->sys->n_amb_axes; k++) {
         const td_amb_axis *a = &s->sys->amb_axes[k];
-        double e = a->integral >= 0 ? y[s->dae.ow + a->integral] : 0.0;
         if (a->state >= 0)
-            yp[s->dae.ow + a->state] = td_amb_axis_filter_rate(
-                a, y[s->dae.oq + a->sensor_dof], y[s->dae.ov + a->sensor_dof], e, y[s->dae.ow + a->state]);
+            yp[s->dae.ow + a->state] = td_sim_amb_axis_lag_rate(s, k, y);
         if (a->integral >= 0)
             yp[s->dae.ow + a->integral] = td_sim_amb_axis_integral_rate(s, k, y);
     }
+    td_sim_lti_rates(s, y, yp);
     return TD_OK;
 }
 

@@ -1,6 +1,6 @@
 /*
  * The Jacobian's sparsity pattern: one fixed compressed-column pattern, the union of every entry
- * any mode can write (system matrices, AMB couplings, every retainer's constraint, friction and
+ * any mode can write (system matrices, AMB couplings, linear controllers, every retainer's constraint, friction and
  * penalty blocks, the diagonal of the multiplier rows). A mode switch therefore never changes
  * the structure: KLU's symbolic analysis is done once.
  */
@@ -82,6 +82,37 @@ static int put_spin(const td_sim *s, cs_di *T)
     return ok;
 }
 
+/* The entries of the linear controllers (sim_lti.c): each continuous law's rows over its states
+ * and its inputs' sensors, and the row each driven axis's current enters (its lag state's, or
+ * the actuator's v row) over the same columns and the sensors' velocities. */
+static int put_lti(const td_sim *s, cs_di *T)
+{
+    int k, l, r, j, m, ok = 1;
+    for (l = 0; l < s->sys->n_laws && ok; l++) {
+        const td_lti_law *L = &s->sys->laws[l];
+        for (r = 0; L->state >= 0 && r < L->n && ok; r++) {
+            int row = s->dae.ow + L->state + r;
+            for (j = 0; j < L->n && ok; j++)
+                ok = put(T, row, s->dae.ow + L->state + j);
+            for (m = 0; m < L->nin && ok; m++)
+                ok = put(T, row, s->dae.oq + s->sys->amb_axes[L->in_axis[m]].sensor_dof);
+        }
+    }
+    for (k = 0; k < s->sys->n_amb_axes && ok; k++) {
+        const td_amb_axis *a = &s->sys->amb_axes[k];
+        const td_lti_law *L;
+        int row = a->state >= 0 ? s->dae.ow + a->state : s->dae.ov + a->actuator_dof;
+        if (a->law < 0 || (L = &s->sys->laws[a->law])->state < 0)
+            continue;
+        for (j = 0; j < L->n && ok; j++)
+            ok = put(T, row, s->dae.ow + L->state + j);
+        for (m = 0; m < L->nin && ok; m++)
+            ok = put(T, row, s->dae.oq + s->sys->amb_axes[L->in_axis[m]].sensor_dof) &&
+                 put(T, row, s->dae.ov + s->sys->amb_axes[L->in_axis[m]].sensor_dof);
+    }
+    return ok;
+}
+
 static int put_all(const td_sim *s, cs_di *T)
 {
     const td_system *sys = s->sys;
@@ -114,7 +145,7 @@ static int put_all(const td_sim *s, cs_di *T)
         if (ok && (r->rx >= 0 || r->rs >= 0 || r->fi >= 0 || s->machine.spin >= 0))
             ok = put_race(s, T, k);
     }
-    return ok && put_spin(s, T);
+    return ok && put_spin(s, T) && put_lti(s, T);
 }
 
 int td_sim_pattern_find(const td_sim *s, int row, int col)

@@ -44,8 +44,15 @@ static double amb_axis_command(const td_sim *s, const td_amb_axis *a, const doub
                                amb_axis_integral(s, a, y));
 }
 
+/* The target force ki i of the current command i of an axis a linear controller drives. */
+static double amb_axis_current_target(const td_sim *s, const td_amb_axis *a, const double *y)
+{
+    return td_amb_axis_current_target(a, td_sim_lti_current(s, a, y));
+}
+
 /* Control force Fc of AMB axis k that enters F = ks x + Fc: the lagged state (tau > 0), the
- * lag-free command (tau == 0) or the caller's held value (TD_AMB_EXTERNAL). */
+ * lag-free command (tau == 0: the shorthand's, or ki i of a linear controller's current) or the
+ * caller's held value (TD_AMB_EXTERNAL). */
 static double amb_axis_fc(const td_sim *s, int k, const double *y)
 {
     const td_amb_axis *a = &s->sys->amb_axes[k];
@@ -53,7 +60,19 @@ static double amb_axis_fc(const td_sim *s, int k, const double *y)
         return s->machine.amb_control[2 * a->amb + a->axis];
     if (a->state >= 0)
         return y[s->dae.ow + a->state];
+    if (a->law >= 0)
+        return amb_axis_current_target(s, a, y);
     return amb_axis_command(s, a, y);
+}
+
+double td_sim_amb_axis_lag_rate(const td_sim *s, int k, const double *y)
+{
+    const td_amb_axis *a = &s->sys->amb_axes[k];
+    double fc = y[s->dae.ow + a->state];
+    if (a->law >= 0)
+        return td_amb_axis_lag_rate(a, amb_axis_current_target(s, a, y), fc);
+    return td_amb_axis_filter_rate(a, y[s->dae.oq + a->sensor_dof], y[s->dae.ov + a->sensor_dof],
+                                   amb_axis_integral(s, a, y), fc);
 }
 
 double td_sim_amb_axis_force(const td_sim *s, int k, const double *y)
@@ -294,13 +313,12 @@ void td_sim_residual(const td_sim *s, double t, const double *y, const double *y
     for (k = 0; k < sys->n_amb_axes; k++) {
         const td_amb_axis *a = &sys->amb_axes[k];
         if (a->state >= 0)
-            res[s->dae.ow + a->state] =
-                yp[s->dae.ow + a->state] - td_amb_axis_filter_rate(a, y[s->dae.oq + a->sensor_dof],
-                                                                   y[s->dae.ov + a->sensor_dof],
-                                                                   amb_axis_integral(s, a, y), y[s->dae.ow + a->state]);
+            res[s->dae.ow + a->state] = yp[s->dae.ow + a->state] - td_sim_amb_axis_lag_rate(s, k, y);
         if (a->integral >= 0)
             res[s->dae.ow + a->integral] = yp[s->dae.ow + a->integral] - td_sim_amb_axis_integral_rate(s, k, y);
     }
+    /* and the linear controllers' states */
+    td_sim_lti_rows(s, y, yp, res);
     /* retainer rows */
     for (k = 0; k < s->dae.nr; k++) {
         if (s->contacts.ret[k].mode == TD_RMODE_CONTACT) {
@@ -358,6 +376,8 @@ static void jacobian_amb(td_sim *s, const double *y)
                 jadd(s, s->dae.ov + act, s->dae.ov + sen, -dfdfc * co->cmd_v);
                 if (a->integral >= 0)
                     jadd(s, s->dae.ov + act, s->dae.ow + a->integral, -dfdfc * co->cmd_e);
+                if (a->law >= 0) /* d target / d i = ki */
+                    td_sim_lti_jacobian_current(s, a, s->dae.ov + act, -dfdfc * co->target_i);
             }
         }
         if (a->state >= 0) {
@@ -367,6 +387,8 @@ static void jacobian_amb(td_sim *s, const double *y)
             jadd(s, row, row, -co->rate_w);
             if (a->integral >= 0)
                 jadd(s, row, s->dae.ow + a->integral, -co->rate_e);
+            if (a->law >= 0)
+                td_sim_lti_jacobian_current(s, a, row, -co->rate_i);
         }
         /* e' = xs while integrating; the clamp's switch is left to the error test, as the clip's */
         if (a->integral >= 0 && td_sim_amb_axis_integral_rate(s, k, y) != 0.0)
@@ -671,6 +693,7 @@ void td_sim_jacobian(td_sim *s, double t, double cj, const double *y)
         jacobian_unbalance_spin(s, t, cj, y);
     jadd_matrix(s, s->dae.K, s->ops.map_K, 1.0);
     jacobian_amb(s, y);
+    td_sim_lti_jacobian_rows(s);
     for (k = 0; k < s->dae.nr; k++) {
         if (s->contacts.ret[k].rs >= 0)
             jacobian_drag(s, k, y);

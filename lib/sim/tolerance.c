@@ -5,6 +5,9 @@
 #include "sim/sim_internal.h"
 #include "touchdown/dofs.h"
 
+#include <gsl/gsl_complex_math.h>
+#include <gsl/gsl_linalg.h>
+
 #include <math.h>
 
 /*
@@ -49,7 +52,8 @@ int td_sim_races_retolerance(td_sim *s)
  *           ringing in v long after it is below atol in q (measured on case A: 6x more steps); at
  *           freq_max the velocity test is no stricter than the displacement test for any mode,
  *           and the displacements, what the run reports, stay controlled to atol + rtol |q|;
- *   w       atol times the axis's control stiffness ki kp (the force error of a position error atol);
+ *   w       atol times the axis's control stiffness ki kp (the force error of a position error atol),
+ *           or its linear controller's (gain_x); a linear controller's states as lti_tolerances says;
  *   lambda  atol * stiff_scale (N); eta (a velocity correction, m/s): atol * freq_scale. lambda and
  *           eta are algebraic and excluded from the error test, but the Newton convergence test
  *           still weighs them.
@@ -94,6 +98,53 @@ static void spin_tolerances(const td_sim *s, double *at, double *id)
         s->machine.spin_free ? 1.0 : 0.0; /* a ramp's are algebraic */
 }
 
+/*
+ * A linear controller's states (x' = A x + B e) have no units of their own: a realisation may
+ * scale each one freely. Each gets the excursion that a sensor error of atol at the bearing
+ * frequency w = freq_scale drives in it, max over the inputs of |((j w I - A)^-1 B)_i| atol: an
+ * error of that size in the state is worth the displacement tolerance at its input, the scale the
+ * shorthand's lag state gets in force (atol ki kp). A state no input reaches at w (or a singular
+ * j w I - A, a pole exactly at j w) falls back to atol.
+ */
+static void law_tolerances(const td_sim *s, const td_lti_law *L, double *at, double *id)
+{
+    size_t n = (size_t)L->n, i, j;
+    gsl_matrix_complex *M = gsl_matrix_complex_alloc(n, n);
+    gsl_vector_complex *b = gsl_vector_complex_alloc(n), *z = gsl_vector_complex_alloc(n);
+    gsl_permutation *p = gsl_permutation_alloc(n);
+    double atol = s->opt.solver.atol, w = s->machine.freq_scale, *scale = at + s->dae.ow + L->state;
+    int sign, m, ok = M && b && z && p;
+    for (i = 0; i < n; i++)
+        scale[i] = 0.0;
+    for (i = 0; ok && i < n; i++)
+        for (j = 0; j < n; j++)
+            gsl_matrix_complex_set(M, i, j, gsl_complex_rect(-L->A[i + j * n], i == j ? w : 0.0));
+    ok = ok && gsl_linalg_complex_LU_decomp(M, p, &sign) == GSL_SUCCESS;
+    for (m = 0; ok && m < L->nin; m++) {
+        for (i = 0; i < n; i++)
+            gsl_vector_complex_set(b, i, gsl_complex_rect(L->B[i + (size_t)m * n], 0.0));
+        ok = gsl_linalg_complex_LU_solve(M, p, b, z) == GSL_SUCCESS;
+        for (i = 0; ok && i < n; i++)
+            scale[i] = fmax(scale[i], gsl_complex_abs(gsl_vector_complex_get(z, i)));
+    }
+    for (i = 0; i < n; i++) {
+        scale[i] = ok && isfinite(scale[i]) && scale[i] > 0.0 ? atol * scale[i] : atol;
+        id[s->dae.ow + L->state + (int)i] = 1.0;
+    }
+    gsl_matrix_complex_free(M);
+    gsl_vector_complex_free(b);
+    gsl_vector_complex_free(z);
+    gsl_permutation_free(p);
+}
+
+static void lti_tolerances(const td_sim *s, double *at, double *id)
+{
+    int l;
+    for (l = 0; l < s->sys->n_laws; l++)
+        if (s->sys->laws[l].state >= 0 && s->sys->laws[l].n > 0)
+            law_tolerances(s, &s->sys->laws[l], at, id);
+}
+
 void td_sim_set_tolerances(td_sim *s)
 {
     double *at = N_VGetArrayPointer(s->solver.atol), *id = N_VGetArrayPointer(s->solver.id), atol = s->opt.solver.atol;
@@ -122,7 +173,7 @@ void td_sim_set_tolerances(td_sim *s)
     }
     for (i = 0; i < s->sys->n_amb_axes; i++) {
         const td_amb_axis *a = &s->sys->amb_axes[i];
-        double kc = fabs(s->machine.amb_coef[i].cmd_x);
+        double kc = s->machine.amb_coef[i].gain_x;
         if (a->state >= 0) {
             at[s->dae.ow + a->state] = atol * (kc > 1.0 ? kc : 1.0);
             id[s->dae.ow + a->state] = 1.0;
@@ -135,6 +186,7 @@ void td_sim_set_tolerances(td_sim *s)
             id[s->dae.ow + a->integral] = 1.0;
         }
     }
+    lti_tolerances(s, at, id);
     race_tolerances(s, at, id);
     spin_tolerances(s, at, id);
     for (i = 0; i < s->dae.ns; i++) { /* F_t: a force, algebraic like lambda */
