@@ -604,7 +604,7 @@ static td_status loop_alloc(const td_system *sys, const td_loop_options *o, td_l
         l->m = l->nc + l->na;
         l->p = l->ns + l->na;
         if (l->nc == 0)
-            st = td_error_set(err, TD_ERR_INVALID, "loop analysis: no AMB axis is under control (no loop to analyse)");
+            st = td_error_set(err, TD_ERR_INVALID, "no loop analysis: no AMB axis is under control");
     }
     if (st == TD_OK)
         st = build_plant(sys, driven, l, err);

@@ -200,7 +200,7 @@ static td_loop *loop_analysis(const td_case *c, const td_system *sys, double spe
     td_error err;
     td_error_clear(&err);
     if (td_loop_compute(sys, speed, NULL, &l, &err) != TD_OK)
-        fprintf(stderr, "touchdown modal: %s: no loop analysis: %s\n", td_case_path(c),
+        fprintf(stderr, "touchdown modal: %s: %s\n", td_case_path(c),
                 err.message[0] ? err.message : td_strerror(err.code));
     return l;
 }
