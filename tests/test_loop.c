@@ -76,8 +76,8 @@ static void dump_machine(const char *path, const td_system *s, const td_model *m
 static void run_reference(const char *in, const char *out)
 {
     char cmd[2048];
-    snprintf(cmd, sizeof cmd, "OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=1 /usr/bin/python3 %s %s %s", td_source_path("tests/validation/control/loop_reference.py"),
-             in, out);
+    snprintf(cmd, sizeof cmd, "OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=1 /usr/bin/python3 %s %s %s",
+             td_source_path("tests/validation/control/loop_reference.py"), in, out);
     assert_int_equal(system(cmd), 0);
 }
 

@@ -28,6 +28,9 @@
 #include <string.h>
 
 #define LOOP_TWO_PI 6.283185307179586
+/* Closed-loop modes damped less than this are searched for narrow peaks of |S| (mode_peaks): the
+ * grid's spacing (0.77 % at the defaults) is about the half-power width 2 zeta of a 0.4 % mode. */
+#define LOOP_LIGHT_DAMPING 0.05
 
 /* One controller as the loop sees it: k maps sensors cols[] (indices among the sensed axes) to
  * currents rows[] (indices among the controlled axes). */
@@ -55,12 +58,14 @@ struct td_loop {
     double *peak, *peak_freq;     /* nc */
     int stable;
     double max_real;
+    int n_modes;                /* lightly damped closed-loop modes (peak candidates) */
+    double *mode_f, *mode_zeta; /* their damped frequencies (Hz) and damping ratios */
 };
 
 /* Scratch of one frequency evaluation. */
 typedef struct loop_work {
     double complex *T, *Y, *G, *K, *M, *X;
-    double *kre, *kim;
+    double *kre, *kim, *sv;
     gsl_permutation *perm;
 } loop_work;
 
@@ -321,6 +326,7 @@ static void work_free(loop_work *w)
     free(w->X);
     free(w->kre);
     free(w->kim);
+    free(w->sv);
     if (w->perm)
         gsl_permutation_free(w->perm);
     memset(w, 0, sizeof *w);
@@ -342,8 +348,9 @@ static td_status work_alloc(const td_loop *l, loop_work *w, td_error *err)
     w->X = malloc((size_t)l->nc * (size_t)(l->nc + l->na) * sizeof *w->X);
     w->kre = malloc(kmax * sizeof *w->kre);
     w->kim = malloc(kmax * sizeof *w->kim);
+    w->sv = malloc((size_t)l->nc * sizeof *w->sv);
     w->perm = gsl_permutation_alloc((size_t)l->nc);
-    if (w->T && w->Y && w->G && w->K && w->M && w->X && w->kre && w->kim && w->perm)
+    if (w->T && w->Y && w->G && w->K && w->M && w->X && w->kre && w->kim && w->sv && w->perm)
         return TD_OK;
     work_free(w);
     return td_error_set(err, TD_ERR_NOMEM, "loop analysis: out of memory");
@@ -511,20 +518,20 @@ static double minus_abs_s(double x, void *data)
     return -cabs(p->wk->X[p->j * p->l->m + p->j]);
 }
 
-/* Brent's method on -|S_j(e^x)| between the grid neighbours of the grid maximum k. */
-static void refine_peak(td_loop *l, loop_work *wk, int j, int k)
+/* Brent's method on -|S_j(e^x)| over [flo, fhi] Hz from f inside, where |S_j| is larger than at
+ * both ends (else nothing); a better peak replaces l->peak[j]. */
+static void refine_peak(td_loop *l, loop_work *wk, int j, double flo, double f, double fhi)
 {
     gsl_min_fminimizer *s = gsl_min_fminimizer_alloc(gsl_min_fminimizer_brent);
     peak_fn p;
     gsl_function fn;
-    double lo = log(l->freq[k - 1]), hi = log(l->freq[k + 1]), x = log(l->freq[k]);
     int it, status = GSL_CONTINUE;
     p.l = l, p.wk = wk, p.j = j, p.failed = 0;
     fn.function = minus_abs_s;
     fn.params = &p;
     if (!s)
         return;
-    if (gsl_min_fminimizer_set(s, &fn, x, lo, hi) == GSL_SUCCESS) {
+    if (gsl_min_fminimizer_set(s, &fn, log(f), log(flo), log(fhi)) == GSL_SUCCESS) {
         for (it = 0; it < 100 && status == GSL_CONTINUE && !p.failed; it++) {
             if (gsl_min_fminimizer_iterate(s) != GSL_SUCCESS)
                 break;
@@ -536,6 +543,27 @@ static void refine_peak(td_loop *l, loop_work *wk, int j, int k)
         }
     }
     gsl_min_fminimizer_free(s);
+}
+
+/* A lightly damped closed-loop mode makes a peak of |S| narrower than the grid's spacing, which
+ * the grid can step over: |S| at each such mode's damped frequency, refined over +-3 zeta of it
+ * where it beats the grid's peak. */
+static void mode_peaks(td_loop *l, loop_work *wk)
+{
+    int i, j;
+    for (i = 0; i < l->n_modes; i++) {
+        double f = l->mode_f[i], h = fmax(3.0 * l->mode_zeta[i], 1e-9);
+        if (f < l->freq[0] || f > l->freq[l->nf - 1] || close_loop(l, f, wk, NULL) != TD_OK)
+            continue;
+        for (j = 0; j < l->nc; j++)
+            wk->sv[j] = cabs(wk->X[j * l->m + j]);
+        for (j = 0; j < l->nc; j++)
+            if (wk->sv[j] > l->peak[j]) {
+                l->peak[j] = wk->sv[j];
+                l->peak_freq[j] = f;
+                refine_peak(l, wk, j, f / (1.0 + h), f, f * (1.0 + h));
+            }
+    }
 }
 
 static void find_peaks(td_loop *l, loop_work *wk)
@@ -553,8 +581,10 @@ static void find_peaks(td_loop *l, loop_work *wk)
         l->peak[j] = cabs(l->s[(size_t)best * (size_t)l->nc + (size_t)j]);
         l->peak_freq[j] = l->freq[best];
         if (best > 0 && best + 1 < l->nf)
-            refine_peak(l, wk, j, best);
+            refine_peak(l, wk, j, l->freq[best - 1], l->freq[best], l->freq[best + 1]);
     }
+    if (l->stable)
+        mode_peaks(l, wk);
 }
 
 /* The closed loop's eigenvalues (td_modal_solve): stable unless some eigenvalue grows beyond the
@@ -565,11 +595,24 @@ static td_status closed_loop_stability(const td_system *sys, td_loop *l, td_erro
 {
     td_modal *md = NULL;
     td_status st = td_modal_solve(sys, l->omega, &md, err);
+    int i;
     if (st != TD_OK)
         return st;
     l->max_real = td_modal_max_real_part(md);
     l->stable = !td_modal_is_unstable(md);
+    l->mode_f = malloc(((size_t)td_modal_mode_count(md) + 1u) * sizeof *l->mode_f);
+    l->mode_zeta = malloc(((size_t)td_modal_mode_count(md) + 1u) * sizeof *l->mode_zeta);
+    for (i = 0; l->mode_f && l->mode_zeta && i < td_modal_mode_count(md); i++) {
+        td_mode m;
+        td_modal_get_mode(md, i, &m);
+        if (m.zeta < LOOP_LIGHT_DAMPING && m.zeta >= 0.0) {
+            l->mode_f[l->n_modes] = m.freq_hz;
+            l->mode_zeta[l->n_modes++] = m.zeta;
+        }
+    }
     td_modal_free(&md);
+    if (!l->mode_f || !l->mode_zeta)
+        return td_error_set(err, TD_ERR_NOMEM, "loop analysis: out of memory");
     return TD_OK;
 }
 
@@ -696,6 +739,8 @@ void td_loop_free(td_loop **lp)
     free(l->comp);
     free(l->peak);
     free(l->peak_freq);
+    free(l->mode_f);
+    free(l->mode_zeta);
     free(l);
     *lp = NULL;
 }
