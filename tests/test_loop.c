@@ -285,6 +285,62 @@ static void test_notch(void **state)
     td_case_free(&c);
 }
 
+/* The same PD as the shorthand's, given as a linear controller on each axis (exact derivative:
+ * velocity feedthrough), gives the same loop: S_j at the grid to rounding. And a sampled law is
+ * refused with the sentence the docs quote. */
+static void test_controller_as_shorthand(void **state)
+{
+    static const char *no_gains[] = {"ambs[0].kp=0", "ambs[0].kd=0", "ambs[1].kp=0", "ambs[1].kd=0"};
+    td_case *c = NULL, *c0 = NULL;
+    td_system *pd = load_system(NULL, 0, &c0), *s = NULL, *sampled = NULL;
+    td_pid_block pid = {1.0e4, 0.0, 40.0, 0.0}, filtered = {1.0e4, 0.0, 40.0, 2000.0};
+    td_controller *k = td_controller_create_pid(&pid, NULL), *kf = td_controller_create_pid(&filtered, NULL);
+    td_controller *kd = td_controller_discretise(kf, 10000.0, TD_DISCRETISE_TUSTIN, 0.0, NULL);
+    td_model *m = NULL, *md = NULL;
+    td_loop_options coarse = {1.0, 1000.0, 200};
+    td_loop *l0 = NULL, *l1 = NULL, *l2 = NULL;
+    td_error err;
+    int a, i, j;
+    (void)state;
+    assert_non_null(kd);
+    c = td_test_load_case("cases/rub-damped.cfg", no_gains, 4);
+    assert_int_equal(td_model_clone(td_case_model(c), &m, &err), TD_OK);
+    assert_int_equal(td_model_clone(td_case_model(c), &md, &err), TD_OK);
+    for (a = 0; a < 4; a++) {
+        char name[32];
+        snprintf(name, sizeof name, "pd %d", a);
+        assert_int_equal(td_model_add_controller(m, name, k, &a, &a, &err), TD_OK);
+        assert_int_equal(td_model_add_controller(md, name, kd, &a, &a, &err), TD_OK);
+    }
+    assert_int_equal(td_system_create(m, &s, &err), TD_OK);
+    assert_int_equal(td_loop_compute(pd, 90.0, &coarse, &l0, &err), TD_OK);
+    assert_int_equal(td_loop_compute(s, 90.0, &coarse, &l1, &err), TD_OK);
+    for (i = 0; i < td_loop_frequency_count(l0); i++)
+        for (j = 0; j < 4; j++) {
+            double r0, i0, r1, i1;
+            td_loop_sensitivity(l0, j, i, &r0, &i0);
+            td_loop_sensitivity(l1, j, i, &r1, &i1);
+            assert_true(hypot(r1 - r0, i1 - i0) <= 1e-10 * hypot(r0, i0));
+        }
+    assert_close(td_loop_sensitivity_peak(l1, 0), td_loop_sensitivity_peak(l0, 0), 1e-10, 0.0);
+    assert_int_equal(td_system_create(md, &sampled, &err), TD_OK);
+    assert_int_equal(td_loop_compute(sampled, 90.0, &coarse, &l2, &err), TD_ERR_INVALID);
+    assert_null(l2);
+    assert_non_null(strstr(err.message, "loop analysis of a sampled controller is not supported yet"));
+    td_loop_free(&l0);
+    td_loop_free(&l1);
+    td_system_free(&pd);
+    td_system_free(&s);
+    td_system_free(&sampled);
+    td_model_free(&m);
+    td_model_free(&md);
+    td_controller_free(&k);
+    td_controller_free(&kf);
+    td_controller_free(&kd);
+    td_case_free(&c);
+    td_case_free(&c0);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -292,6 +348,7 @@ int main(void)
         cmocka_unit_test(test_zone_limits),
         cmocka_unit_test(test_unstable),
         cmocka_unit_test(test_notch),
+        cmocka_unit_test(test_controller_as_shorthand),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
