@@ -82,5 +82,17 @@ td_require(LIBCONFIG_INCLUDE_DIR "libconfig header libconfig.h" libconfig-dev)
 td_require(LIBCONFIG_LIBRARY "libconfig library" libconfig-dev)
 td_dependency(libconfig INCLUDE ${LIBCONFIG_INCLUDE_DIR} LINK ${LIBCONFIG_LIBRARY})
 
+# SLICOT 5.0 (GPL-2+, compatible with GSL's GPL-3): the control-system numerics of lib/control
+# (bilinear map, matrix exponential and its integral, minimal realisation, balancing). A Fortran
+# library without a C header (lib/control/slicot.h declares what is used) nor a pkg-config module.
+# Only libslicot itself is linked, never LAPACK or BLAS: its shared library loads them as its own
+# dependencies, after GSL's CBLAS (libgsl's own dependency) in the loader's breadth-first order. The
+# system's libblas.so.3 (OpenBLAS, say) also exports the CBLAS symbols, and linked directly it came
+# first and took GSL's BLAS calls, which changed the arithmetic of every shipped case
+# (tests/link/cblas_order.sh checks the order).
+find_library(SLICOT_LIBRARY slicot)
+td_require(SLICOT_LIBRARY "SLICOT library" libslicot-dev)
+td_dependency(slicot LINK ${SLICOT_LIBRARY})
+
 set(TD_DEPENDENCY_TARGETS touchdown_deps::sundials touchdown_deps::suitesparse GSL::gsl
-                          hdf5::hdf5_hl HDF5::HDF5 touchdown_deps::libconfig)
+                          hdf5::hdf5_hl HDF5::HDF5 touchdown_deps::libconfig touchdown_deps::slicot)

@@ -79,6 +79,7 @@ if(td_libconfig_module)
 else()
   list(APPEND td_pc_libs ${LIBCONFIG_LIBRARY})
 endif()
+list(APPEND td_pc_libs ${SLICOT_LIBRARY}) # not LAPACK, BLAS: see TouchdownDeps.cmake
 td_pc_flags(td_pc_lib_flags ${td_pc_libs} m)
 string(JOIN " " TD_PC_REQUIRES_PRIVATE ${td_pc_requires})
 string(JOIN " " TD_PC_LIBS_PRIVATE ${td_pc_lib_flags})

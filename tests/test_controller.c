@@ -188,6 +188,31 @@ static void test_series_append_transform_by_hand(void **state)
     td_controller_free(&t);
 }
 
+/* PD 2 + 3 s (no filter: D = 2, D1 = 3) and 1/(s + 1) in series, either way round, is
+ * (3 s + 2)/(s + 1) = 3 - 1/(s + 1), by hand: the velocity feedthrough lands in D, none is left. */
+static void test_series_with_velocity_feedthrough_by_hand(void **state)
+{
+    const double a = -1.0, b = 1.0, c = 1.0, zero = 0.0;
+    td_pid_block pd = {2.0, 0.0, 3.0, 0.0};
+    td_controller *P = td_controller_create_pid(&pd, NULL);
+    td_controller *L = td_controller_create_ss(1, 1, 1, &a, &b, &c, &zero, NULL, 0.0, NULL);
+    td_controller *s1 = td_controller_series(P, L, NULL), *s2 = td_controller_series(L, P, NULL);
+    double A, B, C, D, D1;
+    (void)state;
+    assert_non_null(s1);
+    assert_non_null(s2);
+    /* P then L: B = B2 D1 + A2 B2 E1 = 2 - 3, C = C2, D = C2 B2 E1 = 3 */
+    td_controller_matrices(s1, &A, &B, &C, &D, &D1);
+    assert_true(A == -1.0 && B == -1.0 && C == 1.0 && D == 3.0 && D1 == 0.0);
+    /* L then P: C = D2 C1 + E2 C1 A1 = 2 - 3, D = E2 C1 B1 = 3 */
+    td_controller_matrices(s2, &A, &B, &C, &D, &D1);
+    assert_true(A == -1.0 && B == 1.0 && C == -1.0 && D == 3.0 && D1 == 0.0);
+    td_controller_free(&P);
+    td_controller_free(&L);
+    td_controller_free(&s1);
+    td_controller_free(&s2);
+}
+
 /* Laws in series respond as the product of their responses, including the improper-by-one cases
  * (the velocity feedthrough in the first law, in the second, and carried to the result). */
 static void test_series_is_the_product(void **state)
@@ -269,6 +294,7 @@ static void expect_invalid(td_controller *k, const td_error *err, const char *wo
 static void test_bad_laws_are_refused(void **state)
 {
     const double num3[] = {1.0, 0.0, 0.0}, den1[] = {1.0}, den0[] = {0.0, 1.0}, nan1[] = {NAN, 1.0}, one = 1.0;
+    double y[1];
     td_pid_block pid = {1.0, -1.0, 0.0, 0.0};
     td_notch_block no = {34.4, 6.0, 1.0};
     td_lowpass_block lp = {100.0, 3, 0.7};
@@ -284,14 +310,140 @@ static void test_bad_laws_are_refused(void **state)
     expect_invalid(td_controller_create_tf(num3, 2, den1, 1, NAN, &err), &err, "sample_rate");
     expect_invalid(td_controller_create_gain(INFINITY, &err), &err, "finite");
     expect_invalid(td_controller_create_pid(&pid, &err), &err, "kint");
+    assert_string_equal(err.site.field, "kint");
+    assert_string_equal(err.message, "pid: kint: must be finite and >= 0 (got -1)");
     expect_invalid(td_controller_create_notch(&no, &err), &err, "depth");
     expect_invalid(td_controller_create_lowpass(&lp, &err), &err, "order");
     expect_invalid(td_controller_series(c, z, &err), &err, "timing");
     expect_invalid(td_controller_append(z, c, &err), &err, "timing");
     expect_invalid(td_controller_create_ss(1, 1, 1, nan1, &one, &one, &one, NULL, 0.0, &err), &err, "not finite");
     expect_invalid(td_controller_create_ss(0, 1, 1, NULL, NULL, NULL, &one, &one, 1e3, &err), &err, "D1");
+    /* a sampled law needs a rate; an unfiltered derivative has no sampled form and no step response */
+    expect_invalid(td_controller_discretise(c, 0.0, TD_DISCRETISE_TUSTIN, 0.0, &err), &err, "sample_rate");
+    expect_invalid(td_controller_discretise(c, 1e3, TD_DISCRETISE_TUSTIN, 600.0, &err), &err, "Nyquist");
+    /* the site names the argument, for a case reader to point at the key it read */
+    assert_string_equal(err.site.part, "discretise");
+    assert_string_equal(err.site.field, "prewarp");
+    expect_invalid(td_controller_discretise(z, 1e3, TD_DISCRETISE_ZOH, 0.0, &err), &err, "sampled already");
+    td_controller_free(&c);
+    pid.kint = 0.0, pid.kd = 40.0;
+    c = td_controller_create_pid(&pid, NULL);
+    expect_invalid(td_controller_discretise(c, 1e3, TD_DISCRETISE_ZOH, 0.0, &err), &err, "derivative");
+    assert_int_equal(td_controller_step_response(c, 0, &one, 1, y, &err), TD_ERR_INVALID);
+    assert_non_null(strstr(err.message, "impulse"));
     td_controller_free(&c);
     td_controller_free(&z);
+}
+
+/* Tustin (plain and prewarped) is the continuous response at s = beta (z - 1)/(z + 1); the
+ * zero-order hold of wc/(s + wc) is (1 - a) z^-1/(1 - a z^-1), a = exp(-wc T); the prewarped law
+ * matches the continuous one exactly at the prewarp frequency. */
+static void test_discretise_closed_forms(void **state)
+{
+    td_notch_block no = {34.4, 6.0, 0.05};
+    td_lowpass_block lp1 = {500.0, 1, 0.0};
+    td_controller *N = td_controller_create_notch(&no, NULL), *L = td_controller_create_lowpass(&lp1, NULL);
+    double rate = 2000.0, T = 1.0 / rate, a = exp(-W(500.0) * T), w0 = W(34.4);
+    td_controller *Nt = td_controller_discretise(N, rate, TD_DISCRETISE_TUSTIN, 0.0, NULL);
+    td_controller *Np = td_controller_discretise(N, rate, TD_DISCRETISE_TUSTIN, 34.4, NULL);
+    td_controller *Lz = td_controller_discretise(L, rate, TD_DISCRETISE_ZOH, 0.0, NULL);
+    int j;
+    (void)state;
+    assert_non_null(Nt);
+    assert_non_null(Np);
+    assert_non_null(Lz);
+    assert_close(td_controller_sample_rate(Nt), rate, 0.0, 0.0);
+    for (j = 0; j < N_FREQS; j++) {
+        double f = freqs[j] < 0.5 * rate ? freqs[j] : 0.37 * rate;
+        double complex z = cexp(I * W(f) * T), s2 = 2.0 * rate * (z - 1.0) / (z + 1.0);
+        double complex sp = w0 / tan(0.5 * w0 * T) * (z - 1.0) / (z + 1.0);
+        double zp = 6.0 / (2.0 * 34.4), zz = 0.05 * zp;
+        double complex Ns, Nps;
+        Ns = (s2 * s2 + 2.0 * zz * w0 * s2 + w0 * w0) / (s2 * s2 + 2.0 * zp * w0 * s2 + w0 * w0);
+        Nps = (sp * sp + 2.0 * zz * w0 * sp + w0 * w0) / (sp * sp + 2.0 * zp * w0 * sp + w0 * w0);
+        assert_complex_close(response(Nt, f), Ns, 1e-11);
+        assert_complex_close(response(Np, f), Nps, 1e-11);
+        assert_complex_close(response(Lz, f), (1.0 - a) / z / (1.0 - a / z), 1e-12);
+    }
+    /* prewarped: exact at the notch frequency (the depth survives); plain Tustin shifts the notch */
+    assert_complex_close(response(Np, 34.4), response(N, 34.4), 1e-9);
+    td_controller_free(&N);
+    td_controller_free(&L);
+    td_controller_free(&Nt);
+    td_controller_free(&Np);
+    td_controller_free(&Lz);
+}
+
+/* A delay of d samples multiplies the response by z^-d and shifts the step sequence by d samples. */
+static void test_delay_is_z_to_the_minus_d(void **state)
+{
+    const double num[] = {0.5, -0.2, 0.1}, den[] = {1.0, -1.1, 0.3};
+    double rate = 1.0e4, t[12], y0[12], y3[12];
+    td_controller *k = td_controller_create_tf(num, 3, den, 3, rate, NULL), *d3 = td_controller_delay(k, 3, NULL);
+    td_controller *d0 = td_controller_delay(k, 0, NULL);
+    td_error err;
+    int j;
+    (void)state;
+    assert_non_null(d3);
+    assert_int_equal(td_controller_order(d3), td_controller_order(k) + 3);
+    assert_int_equal(td_controller_order(d0), td_controller_order(k));
+    for (j = 0; j < N_FREQS; j++) {
+        double complex z = cexp(I * W(freqs[j]) / rate);
+        assert_complex_close(response(d3, freqs[j]), response(k, freqs[j]) / (z * z * z), 1e-13);
+    }
+    for (j = 0; j < 12; j++)
+        t[j] = j / rate;
+    assert_int_equal(td_controller_step_response(k, 0, t, 12, y0, &err), TD_OK);
+    assert_int_equal(td_controller_step_response(d3, 0, t, 12, y3, &err), TD_OK);
+    for (j = 0; j < 12; j++)
+        assert_true(y3[j] == (j < 3 ? 0.0 : y0[j - 3]));
+    assert_close(y0[0], 0.5, 0.0, 0.0); /* y_0 = D = num[0] / den[0] */
+    td_controller_free(&k);
+    k = td_controller_create_gain(1.0, NULL); /* continuous: no whole samples to delay by */
+    assert_null(td_controller_delay(k, 1, &err));
+    assert_non_null(strstr(err.message, "sampled"));
+    td_controller_free(&k);
+    td_controller_free(&d3);
+    td_controller_free(&d0);
+}
+
+/* The same law on two outputs fed by one input: append(K, K) with Tin = [1; 1] has twice K's
+ * states, half of them a copy; minimal() removes the copy and keeps the response. */
+static void test_minimal_removes_duplicate_states(void **state)
+{
+    td_pid_block pid = {1.0e4, 2.0e5, 40.0, 2000.0};
+    td_notch_block no = {34.4, 6.0, 0.05};
+    td_controller *P = td_controller_create_pid(&pid, NULL), *N = td_controller_create_notch(&no, NULL);
+    td_controller *K = td_controller_series(P, N, NULL), *KK = td_controller_append(K, K, NULL), *T, *M;
+    const double Tin[] = {1.0, 1.0}, Tout[] = {1.0, 0.0, 0.0, 1.0};
+    double re[2], im[2], rm[2], imm[2];
+    int j;
+    (void)state;
+    T = td_controller_transform(KK, 1, Tin, 2, Tout, NULL);
+    assert_non_null(T);
+    M = td_controller_minimal(T, NULL);
+    assert_non_null(M);
+    assert_int_equal(td_controller_order(T), 8);
+    assert_int_equal(td_controller_order(M), 4);
+    assert_int_equal(td_controller_order(K), 4);
+    for (j = 0; j < N_FREQS; j++) {
+        assert_int_equal(td_controller_frequency_response(T, freqs[j], re, im, NULL), TD_OK);
+        assert_int_equal(td_controller_frequency_response(M, freqs[j], rm, imm, NULL), TD_OK);
+        double complex k = response(P, freqs[j]) * response(N, freqs[j]);
+        double scale = cabs(response(P, freqs[j])); /* |K| without the notch's dip */
+        assert_complex_close(re[0] + I * im[0], k, 1e-12);
+        assert_complex_close(re[1] + I * im[1], k, 1e-12);
+        /* the orthogonal reduction of this badly scaled law (entries of B up to 1e8) rounds at
+         * about 1e-10 of the law's scale, seen relative to |K| in the notch's dip */
+        assert_true(cabs(rm[0] + I * imm[0] - k) <= 1e-9 * scale);
+        assert_true(cabs(rm[1] + I * imm[1] - k) <= 1e-9 * scale);
+    }
+    td_controller_free(&P);
+    td_controller_free(&N);
+    td_controller_free(&K);
+    td_controller_free(&KK);
+    td_controller_free(&T);
+    td_controller_free(&M);
 }
 
 int main(void)
@@ -301,9 +453,13 @@ int main(void)
         cmocka_unit_test(test_tf_and_zpk),
         cmocka_unit_test(test_sampled_tf_and_zpk),
         cmocka_unit_test(test_series_append_transform_by_hand),
+        cmocka_unit_test(test_series_with_velocity_feedthrough_by_hand),
         cmocka_unit_test(test_series_is_the_product),
         cmocka_unit_test(test_rigid_transform_by_hand),
         cmocka_unit_test(test_bad_laws_are_refused),
+        cmocka_unit_test(test_discretise_closed_forms),
+        cmocka_unit_test(test_delay_is_z_to_the_minus_d),
+        cmocka_unit_test(test_minimal_removes_duplicate_states),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -36,7 +36,7 @@ td_controller *td_controller_create_gain(double gain, td_error *err)
 {
     td_controller *k;
     if (!isfinite(gain)) {
-        td_error_set(err, TD_ERR_INVALID, "gain: must be finite (got %g)", gain);
+        td_ctl_invalid(err, "gain", NULL, "must be finite (got %g)", gain);
         return NULL;
     }
     k = td_ctl_alloc(0, 1, 1, 0.0, err);
@@ -49,13 +49,15 @@ static td_status check_pid(const td_pid_block *b, td_error *err)
 {
     if (!b)
         return td_error_set(err, TD_ERR_INVALID, "pid: NULL block");
-    if (!isfinite(b->kp) || !isfinite(b->kd))
-        return td_error_set(err, TD_ERR_INVALID, "pid: kp and kd must be finite (got %g, %g)", b->kp, b->kd);
+    if (!isfinite(b->kp))
+        return td_ctl_invalid(err, "pid", "kp", "must be finite (got %g)", b->kp);
+    if (!isfinite(b->kd))
+        return td_ctl_invalid(err, "pid", "kd", "must be finite (got %g)", b->kd);
     if (!(isfinite(b->kint) && b->kint >= 0.0))
-        return td_error_set(err, TD_ERR_INVALID, "pid: kint: must be finite and >= 0 (got %g)", b->kint);
+        return td_ctl_invalid(err, "pid", "kint", "must be finite and >= 0 (got %g)", b->kint);
     if (!(isfinite(b->derivative_filter) && b->derivative_filter >= 0.0))
-        return td_error_set(err, TD_ERR_INVALID, "pid: derivative_filter: must be finite and >= 0 Hz (got %g)",
-                            b->derivative_filter);
+        return td_ctl_invalid(err, "pid", "derivative_filter", "must be finite and >= 0 Hz (got %g)",
+                              b->derivative_filter);
     return TD_OK;
 }
 
@@ -93,11 +95,11 @@ td_controller *td_controller_create_leadlag(const td_leadlag_block *b, td_error 
         return NULL;
     }
     if (!isfinite(b->gain)) {
-        td_error_set(err, TD_ERR_INVALID, "leadlag: gain: must be finite (got %g)", b->gain);
+        td_ctl_invalid(err, "leadlag", "gain", "must be finite (got %g)", b->gain);
         return NULL;
     }
-    if (td_ctl_check_positive(b->zero, "leadlag: zero (Hz)", err) != TD_OK ||
-        td_ctl_check_positive(b->pole, "leadlag: pole (Hz)", err) != TD_OK)
+    if (td_ctl_check_positive(b->zero, "leadlag", "zero", err) != TD_OK ||
+        td_ctl_check_positive(b->pole, "leadlag", "pole", err) != TD_OK)
         return NULL;
     wz = 2.0 * TD_PI * b->zero;
     wp = 2.0 * TD_PI * b->pole;
@@ -120,11 +122,11 @@ td_controller *td_controller_create_lowpass(const td_lowpass_block *b, td_error 
         return NULL;
     }
     if (b->order != 1 && b->order != 2) {
-        td_error_set(err, TD_ERR_INVALID, "lowpass: order: must be 1 or 2 (got %d)", b->order);
+        td_ctl_invalid(err, "lowpass", "order", "must be 1 or 2 (got %d)", b->order);
         return NULL;
     }
-    if (td_ctl_check_positive(b->frequency, "lowpass: frequency (Hz)", err) != TD_OK ||
-        (b->order == 2 && td_ctl_check_positive(b->damping, "lowpass: damping", err) != TD_OK))
+    if (td_ctl_check_positive(b->frequency, "lowpass", "frequency", err) != TD_OK ||
+        (b->order == 2 && td_ctl_check_positive(b->damping, "lowpass", "damping", err) != TD_OK))
         return NULL;
     wc = 2.0 * TD_PI * b->frequency;
     k = td_ctl_alloc(b->order, 1, 1, 0.0, err);
@@ -149,11 +151,11 @@ td_controller *td_controller_create_notch(const td_notch_block *b, td_error *err
         td_error_set(err, TD_ERR_INVALID, "notch: NULL block");
         return NULL;
     }
-    if (td_ctl_check_positive(b->frequency, "notch: frequency (Hz)", err) != TD_OK ||
-        td_ctl_check_positive(b->width, "notch: width (Hz)", err) != TD_OK)
+    if (td_ctl_check_positive(b->frequency, "notch", "frequency", err) != TD_OK ||
+        td_ctl_check_positive(b->width, "notch", "width", err) != TD_OK)
         return NULL;
     if (!(isfinite(b->depth) && b->depth >= 0.0 && b->depth < 1.0)) {
-        td_error_set(err, TD_ERR_INVALID, "notch: depth: must be >= 0 and < 1 (got %g)", b->depth);
+        td_ctl_invalid(err, "notch", "depth", "must be >= 0 and < 1 (got %g)", b->depth);
         return NULL;
     }
     wn = 2.0 * TD_PI * b->frequency;

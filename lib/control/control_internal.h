@@ -6,6 +6,7 @@
 #define TD_CONTROL_INTERNAL_H
 
 #include "touchdown/controller.h"
+#include "util/error_internal.h" /* TD_PRINTF */
 
 /* One state-space realisation (A, B, C, D, D1), every matrix column-major, all in one allocation
  * that follows the struct. Sign convention and meaning: touchdown/controller.h. */
@@ -30,8 +31,13 @@ int td_ctl_any_nonzero(const double *v, int count);
 /* 1 if all count values are finite (a NULL v with count 0 is fine). */
 int td_ctl_all_finite(const double *v, int count);
 
-/* Sets TD_ERR_INVALID with "WHAT: must be finite and > 0 (got V)" unless v is; returns the status. */
-td_status td_ctl_check_positive(double v, const char *what, td_error *err);
+/* TD_ERR_INVALID with the message "PART: FIELD: REASON" (printf-style REASON) and err->site naming
+ * the part (a block, "tf", "discretise", ...; index -1: in no model) and the field (its member or
+ * argument, as the header names it), so that a case reader can point at the key it read. */
+td_status td_ctl_invalid(td_error *err, const char *part, const char *field, const char *fmt, ...) TD_PRINTF(4, 5);
+
+/* td_ctl_invalid with "must be finite and > 0 (got V)" unless v is; returns the status. */
+td_status td_ctl_check_positive(double v, const char *part, const char *field, td_error *err);
 
 /* The proper or improper-by-one SISO law num/den, both in descending powers of s (or of z for a
  * sampled law: then deg num <= deg den), realised in controllable canonical form. Leading zeros
@@ -39,7 +45,7 @@ td_status td_ctl_check_positive(double v, const char *what, td_error *err);
 td_controller *td_ctl_from_polynomials(const double *num, int num_len, const double *den, int den_len,
                                        double sample_rate, const char *who, td_error *err);
 
-/* x = M e for column-major M (rows x cols), e (cols); used by the responses. */
-void td_ctl_matvec(const double *M, int rows, int cols, const double *e, double *x);
+/* Z = X Y for column-major X (rows x inner) and Y (inner x cols); Z (rows x cols) is overwritten. */
+void td_ctl_matmul(const double *X, int rows, int inner, const double *Y, int cols, double *Z);
 
 #endif

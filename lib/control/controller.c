@@ -7,6 +7,8 @@
 #include "util/error_internal.h"
 
 #include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -49,21 +51,34 @@ int td_ctl_all_finite(const double *v, int count)
     return 1;
 }
 
-td_status td_ctl_check_positive(double v, const char *what, td_error *err)
+td_status td_ctl_invalid(td_error *err, const char *part, const char *field, const char *fmt, ...)
+{
+    td_error_site site = {part, -1, field}, none = {NULL, -1, NULL};
+    char reason[TD_ERROR_MESSAGE_SIZE];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(reason, sizeof reason, fmt, ap);
+    va_end(ap);
+    return td_error_set_site(err, TD_ERR_INVALID, &site, &none, "%s", reason);
+}
+
+td_status td_ctl_check_positive(double v, const char *part, const char *field, td_error *err)
 {
     if (!(isfinite(v) && v > 0.0))
-        return td_error_set(err, TD_ERR_INVALID, "%s: must be finite and > 0 (got %g)", what, v);
+        return td_ctl_invalid(err, part, field, "must be finite and > 0 (got %g)", v);
     return TD_OK;
 }
 
-void td_ctl_matvec(const double *M, int rows, int cols, const double *e, double *x)
+void td_ctl_matmul(const double *X, int rows, int inner, const double *Y, int cols, double *Z)
 {
-    int i, j;
-    for (i = 0; i < rows; i++)
-        x[i] = 0.0;
+    int i, j, l;
     for (j = 0; j < cols; j++)
-        for (i = 0; i < rows; i++)
-            x[i] += M[i + (size_t)j * (size_t)rows] * e[j];
+        for (i = 0; i < rows; i++) {
+            double z = 0.0;
+            for (l = 0; l < inner; l++)
+                z += X[i + (size_t)l * rows] * Y[l + (size_t)j * inner];
+            Z[i + (size_t)j * rows] = z;
+        }
 }
 
 /* Checks the sizes and values of create_ss's arguments. */
@@ -76,13 +91,12 @@ static td_status check_ss(int n, int inputs, int outputs, const double *A, const
     if ((n > 0 && (!A || !B || !C)) || !D)
         return td_error_set(err, TD_ERR_INVALID, "ss: a matrix is missing (NULL)");
     if (!(isfinite(sample_rate) && sample_rate >= 0.0))
-        return td_error_set(err, TD_ERR_INVALID, "ss: sample_rate: must be finite and >= 0 (got %g)", sample_rate);
+        return td_ctl_invalid(err, "ss", "sample_rate", "must be finite and >= 0 (got %g)", sample_rate);
     if (!td_ctl_all_finite(A, n * n) || !td_ctl_all_finite(B, n * inputs) || !td_ctl_all_finite(C, outputs * n) ||
         !td_ctl_all_finite(D, outputs * inputs) || (D1 && !td_ctl_all_finite(D1, outputs * inputs)))
         return td_error_set(err, TD_ERR_INVALID, "ss: a matrix entry is not finite");
     if (sample_rate > 0.0 && D1 && td_ctl_any_nonzero(D1, outputs * inputs))
-        return td_error_set(err, TD_ERR_INVALID,
-                            "ss: D1: a sampled law has no velocity feedthrough (D1 must be NULL or zero)");
+        return td_ctl_invalid(err, "ss", "D1", "a sampled law has no velocity feedthrough (D1 must be NULL or zero)");
     return TD_OK;
 }
 

@@ -13,9 +13,9 @@
 static td_status check_coefficients(const double *v, int len, const char *who, const char *name, td_error *err)
 {
     if (!v || len < 1)
-        return td_error_set(err, TD_ERR_INVALID, "%s: %s: needs at least one coefficient", who, name);
+        return td_ctl_invalid(err, who, name, "needs at least one coefficient");
     if (!td_ctl_all_finite(v, len))
-        return td_error_set(err, TD_ERR_INVALID, "%s: %s: a coefficient is not finite", who, name);
+        return td_ctl_invalid(err, who, name, "a coefficient is not finite");
     return TD_OK;
 }
 
@@ -42,17 +42,18 @@ td_controller *td_ctl_from_polynomials(const double *num, int num_len, const dou
         check_coefficients(den, den_len, who, "den", err) != TD_OK)
         return NULL;
     if (den[0] == 0.0) {
-        td_error_set(err, TD_ERR_INVALID, "%s: den: the leading coefficient den[0] must be nonzero", who);
+        td_ctl_invalid(err, who, "den", "the leading coefficient den[0] must be nonzero");
         return NULL;
     }
     while (lead < num_len - 1 && num[lead] == 0.0)
         lead++;
     deg = num_len - 1 - lead;
     if (deg > n + (sample_rate > 0.0 ? 0 : 1)) {
-        td_error_set(err, TD_ERR_INVALID,
-                     sample_rate > 0.0 ? "%s: improper sampled law (%d more zeros than poles)"
-                                       : "%s: improper by %d (at most one more zero than poles: a PD without filter)",
-                     who, deg - n);
+        if (sample_rate > 0.0)
+            td_ctl_invalid(err, who, "num", "improper sampled law (%d more zeros than poles)", deg - n);
+        else
+            td_ctl_invalid(err, who, "num", "improper by %d (at most one more zero than poles: a PD without filter)",
+                           deg - n);
         return NULL;
     }
     a = calloc(2 * (size_t)n + 3, sizeof *a);
@@ -123,7 +124,7 @@ td_controller *td_controller_create_tf(const double *num, int num_len, const dou
                                        double sample_rate, td_error *err)
 {
     if (!(isfinite(sample_rate) && sample_rate >= 0.0)) {
-        td_error_set(err, TD_ERR_INVALID, "tf: sample_rate: must be finite and >= 0 (got %g)", sample_rate);
+        td_ctl_invalid(err, "tf", "sample_rate", "must be finite and >= 0 (got %g)", sample_rate);
         return NULL;
     }
     if (sample_rate > 0.0)
@@ -158,9 +159,9 @@ static int expand_roots(const double *re, const double *im, int count, double *p
 static td_status check_roots(const double *re, const double *im, int count, const char *name, td_error *err)
 {
     if (count < 0 || (count > 0 && (!re || !im)))
-        return td_error_set(err, TD_ERR_INVALID, "zpk: %s: bad count or NULL array", name);
+        return td_ctl_invalid(err, "zpk", name, "bad count or NULL array");
     if (!td_ctl_all_finite(re, count) || !td_ctl_all_finite(im, count))
-        return td_error_set(err, TD_ERR_INVALID, "zpk: %s: a root is not finite", name);
+        return td_ctl_invalid(err, "zpk", name, "a root is not finite");
     return TD_OK;
 }
 
@@ -174,9 +175,12 @@ td_controller *td_controller_create_zpk(const double *zero_re, const double *zer
     if (check_roots(zero_re, zero_im, n_zeros, "zeros", err) != TD_OK ||
         check_roots(pole_re, pole_im, n_poles, "poles", err) != TD_OK)
         return NULL;
-    if (!isfinite(gain) || !(isfinite(sample_rate) && sample_rate >= 0.0)) {
-        td_error_set(err, TD_ERR_INVALID, "zpk: gain and sample_rate must be finite, sample_rate >= 0 (got %g, %g)",
-                     gain, sample_rate);
+    if (!isfinite(gain)) {
+        td_ctl_invalid(err, "zpk", "gain", "must be finite (got %g)", gain);
+        return NULL;
+    }
+    if (!(isfinite(sample_rate) && sample_rate >= 0.0)) {
+        td_ctl_invalid(err, "zpk", "sample_rate", "must be finite and >= 0 (got %g)", sample_rate);
         return NULL;
     }
     pz = calloc(2 * ((size_t)n_zeros + (size_t)n_poles) + 2, sizeof *pz);
