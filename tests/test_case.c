@@ -584,10 +584,20 @@ static void test_docs_match_reader(void **state)
                                          "solver.",
                                          "output.",
                                          "modal.",
-                                         "sweep."};
+                                         "sweep.",
+                                         "controllers[0].",
+                                         "controllers[0].law[0].",
+                                         "controllers[0].law[0].pid.",
+                                         "controllers[0].law[1].leadlag.",
+                                         "controllers[0].law[2].lowpass.",
+                                         "controllers[0].law[3].notch.",
+                                         "controllers[0].law[4].tf.",
+                                         "controllers[0].law[5].zpk.",
+                                         "controllers[0].law[7].ss."};
     char *doc = td_test_read_file(td_source_path("docs/case-format.md"));
     char *a = td_test_read_file(td_source_path("tests/data/case/all-keys.cfg"));
     char *b = td_test_read_file(td_source_path("tests/data/case/all-keys-nodes.cfg"));
+    char *ctl = td_test_read_file(td_source_path("tests/data/case/all-keys-controllers.cfg"));
     const char *p = doc;
     int documented = 0;
     size_t g;
@@ -601,7 +611,7 @@ static void test_docs_match_reader(void **state)
         key[n] = '\0';
         dot = strrchr(key, '.');
         snprintf(leaf, sizeof leaf, "%s =", dot ? dot + 1 : key);
-        if (!strstr(a, leaf) && !strstr(b, leaf)) {
+        if (!strstr(a, leaf) && !strstr(b, leaf) && !strstr(ctl, leaf)) {
             print_error("documented key %s is not used by the all-keys files\n", key);
             fail();
         }
@@ -613,11 +623,13 @@ static void test_docs_match_reader(void **state)
     for (g = 0; g < sizeof groups / sizeof groups[0]; g++) {
         char ov[160], docprefix[160], *q, *list;
         const char *ovs[1];
+        const char *file = strncmp(groups[g], "controllers", 11) == 0 ? "tests/data/case/all-keys-controllers.cfg"
+                                                                      : "tests/data/case/all-keys.cfg";
         td_case *c = NULL;
         td_error err;
         snprintf(ov, sizeof ov, "%szzzzzzzzzz=1", groups[g]);
         ovs[0] = ov;
-        assert_int_equal(td_case_load(td_source_path("tests/data/case/all-keys.cfg"), ovs, 1, &c, &err), TD_ERR_PARSE);
+        assert_int_equal(td_case_load(td_source_path(file), ovs, 1, &c, &err), TD_ERR_PARSE);
         list = strstr(err.message, "(valid here: ");
         if (!list) {
             print_error("%s: %s\n", ov, err.message);
@@ -625,8 +637,8 @@ static void test_docs_match_reader(void **state)
         }
         list += strlen("(valid here: ");
         snprintf(docprefix, sizeof docprefix, "%s", groups[g]);
-        if ((q = strstr(docprefix, "[0]")) != NULL)
-            memmove(q + 1, q + 2, strlen(q + 2) + 1); /* "discs[0]." -> "discs[]." */
+        for (q = strchr(docprefix, '['); q; q = strchr(q + 1, '[')) /* "discs[0]." -> "discs[]." */
+            memmove(q + 1, strchr(q, ']'), strlen(strchr(q, ']')) + 1);
         for (q = strtok(list, ", )"); q; q = strtok(NULL, ", )")) {
             char want[200];
             snprintf(want, sizeof want, "| `%s%s` |", docprefix, q);
@@ -639,6 +651,7 @@ static void test_docs_match_reader(void **state)
     free(doc);
     free(a);
     free(b);
+    free(ctl);
 }
 
 /* The value a key's documented default gives as a case value: a number or boolean (the first
@@ -725,6 +738,35 @@ static void dump_supports(const td_model *m, char *buf, size_t n)
     }
 }
 
+/* The controllers of a case: their names, axes, order, timing, the case's account of each and
+ * their frequency responses at a few frequencies, every number exactly (%a). */
+static void dump_controllers(const td_case *c, char *buf, size_t n)
+{
+    static const double f[] = {0.0, 3.0, 70.0, 900.0};
+    const td_model *m = td_case_model(c);
+    int i, j, l;
+    for (i = 0; i < td_model_controller_count(m); i++) {
+        const char *name;
+        const int *in, *out;
+        const td_controller *k = td_model_get_controller(m, i, &name, &in, &out);
+        td_case_controller_info info;
+        double re[64], im[64];
+        assert_int_equal(td_case_controller(c, i, &info), TD_OK);
+        dump_add(buf, n, "controller \"%s\" %d states %a Hz rigid %d %a delay %d %d %a axes", name,
+                 td_controller_order(k), td_controller_sample_rate(k), info.rigid, info.reference_z, info.delay,
+                 (int)info.discretisation, info.prewarp);
+        for (j = 0; j < td_controller_inputs(k); j++)
+            dump_add(buf, n, " %d>%d", in[j], out[j]);
+        assert_true(td_controller_inputs(k) * td_controller_outputs(k) <= 64);
+        for (j = 0; j < 4; j++) {
+            assert_int_equal(td_controller_frequency_response(k, f[j], re, im, NULL), TD_OK);
+            for (l = 0; l < td_controller_inputs(k) * td_controller_outputs(k); l++)
+                dump_add(buf, n, " %a%+a", re[l], im[l]);
+        }
+        dump_add(buf, n, "\n");
+    }
+}
+
 /* The retainers, unbalances and timed changes of a model. */
 static void dump_events(const td_model *m, char *buf, size_t n)
 {
@@ -786,6 +828,7 @@ static void dump_case(const td_case *c, char *buf, size_t n)
     dump_machine(td_case_model(c), buf, n);
     dump_supports(td_case_model(c), buf, n);
     dump_events(td_case_model(c), buf, n);
+    dump_controllers(c, buf, n);
     dump_add(buf, n, "end %a description \"%s\"\n", td_case_end_time(c), td_case_description(c));
     dump_sweep(c, buf, n);
     for (i = 0; i < 3; i++) {
@@ -797,7 +840,8 @@ static void dump_case(const td_case *c, char *buf, size_t n)
 }
 
 /* The base of test_documented_defaults: every group and list with a key that has a default, with
- * one entry (the retainers two: the second on a mount, which needs a race mass), each holding its
+ * one entry (the retainers two: the second on a mount, which needs a race mass; the controller's
+ * law a block of each kind but gain, in the order of the blocks' table), each holding its
  * required keys only (radii of exact binary sums), and a sweep axis with a key zipped onto it.
  * Point masses, the speed ramp and the reduction have no key with a default. */
 static const char documented_defaults_base[] =
@@ -805,7 +849,11 @@ static const char documented_defaults_base[] =
     "  material = { E = 2.11e11; G = 8.1e10; density = 7810.0; }; };\n"
     "speed = 100.0;\nend_time = 0.1;\n"
     "discs = ( { node = 3; radius = 0.1; thickness = 0.02; density = 7810.0; } );\n"
-    "ambs = ( { node = 2; ks = 1.0e5; ki = 50.0; kp = 1.0e4; kd = 10.0; tau = 1.0e-4; force_capacity = 1000.0; } );\n"
+    "ambs = ( { node = 2; ks = 1.0e5; ki = 50.0; kp = 1.0e4; kd = 10.0; tau = 1.0e-4; force_capacity = 1000.0; },\n"
+    "  { node = 8; ks = 1.0e5; ki = 50.0; tau = 1.0e-4; force_capacity = 1000.0; } );\n"
+    "controllers = ( { name = \"k\"; ambs = [1]; law = ( { pid = {}; }, { leadlag = { gain = 2.0; zero = 10.0;\n"
+    "  pole = 100.0; }; }, { lowpass = { frequency = 500.0; }; }, { notch = { frequency = 50.0; width = 5.0; }; },\n"
+    "  { tf = { num = [1.0]; den = [1.0, 100.0]; }; }, { zpk = {}; }, { ss = { D = ([1.0]); }; } ); } );\n"
     "bearings = ( { node = 10; kxx = 1.0e6; } );\n"
     "retainers = ( { node = 1; clearance = 0.000244140625; shaft_radius = 0.03125; friction = 0.1; race = {};\n"
     "    contact = { stiffness = 1.0e9; }; },\n"
@@ -858,11 +906,18 @@ static const char *documented_default_value(const td_case_key_info *k, char *buf
  * entry (the first; a mount's, the second retainer's; a zipped key's, the first of the first). */
 static void documented_default_override(const char *key, const char *value, char *buf, size_t n)
 {
+    static const char *const blocks[] = {"law[].pid.", "law[].leadlag.", "law[].lowpass.", "law[].notch.",
+                                         "law[].tf.",  "law[].zpk.",     "law[].ss."};
     const char *entry = strncmp(key, "retainers[].mount.", 18) == 0 ? "[1]" : "[0]";
     const char *q;
-    size_t used = 0;
+    char block[8] = "[0]";
+    size_t used = 0, b;
+    for (b = 0; b < sizeof blocks / sizeof blocks[0]; b++)
+        if (strstr(key, blocks[b]))
+            snprintf(block, sizeof block, "[%d]", (int)b); /* the base's law: a block of each kind */
     while ((q = strstr(key, "[]")) != NULL && used < n) {
-        used += (size_t)snprintf(buf + used, n - used, "%.*s%s", (int)(q - key), key, entry);
+        used += (size_t)snprintf(buf + used, n - used, "%.*s%s", (int)(q - key), key,
+                                 strncmp(q - 3, "law", 3) == 0 ? block : entry);
         key = q + 2;
     }
     if (used < n)
@@ -927,13 +982,15 @@ static void test_documented_defaults(void **state)
     print_message("documented defaults: %d keys checked; skipped: %d groups and lists, %d required, %d other\n", tried,
                   part, required, other);
     assert_int_equal(tried + part + required + other, td_case_key_count());
-    assert_int_equal(tried, 66);
-    assert_int_equal(part, 27);     /* their keys are checked */
-    assert_int_equal(required, 54); /* required, or one form's required key (a sweep entry's range or values) */
+    assert_int_equal(tried, 80);
+    assert_int_equal(part, 38);     /* their keys are checked */
+    assert_int_equal(required, 65); /* required, or one form's required key (a sweep entry's range or values) */
     /* an alternative with no default ("-": shaft.nodes, sections' element, schedule's unbalance,
-     * amb_off, amb_on), "unknown" (an AMB's air gap), "all nodes", "none" (response speeds,
-     * overrides), "the rotor's" (spin.inertia, kept as 0: td_spin) */
-    assert_int_equal(other, 10);
+     * amb_off, amb_on, a law's gain block), "unknown" (an AMB's air gap), "all nodes", "none"
+     * (response speeds, overrides, a zpk's zeros and poles, an ss block's A, B and C), "the rotor's"
+     * (spin.inertia, kept as 0: td_spin; a controller's reference_z, its mass centre),
+     * "continuous" (a controller's sample_rate), "1/sqrt(2)" (a low-pass's damping) */
+    assert_int_equal(other, 19);
     td_case_free(&base);
     free(want);
     free(got);
@@ -1195,6 +1252,356 @@ static void test_model_rules_located(void **state)
                    "node 40 is out of range (the shaft has nodes 0..12)");
 }
 
+/* ---- controllers ---------------------------------------------------------------------------- */
+
+/* The frequency responses of a and b (same shape and timing) agree to tol of their largest entry
+ * at frequencies from 0.3 Hz to 3 kHz (below the Nyquist frequency of the sampled laws here). */
+static void assert_same_response(const td_controller *a, const td_controller *b, double tol)
+{
+    static const double f[] = {0.3, 7.0, 34.4, 60.0, 333.0, 2999.0};
+    double are[64], aim[64], bre[64], bim[64];
+    int ni = td_controller_inputs(a), no = td_controller_outputs(a), j, l;
+    assert_int_equal(ni, td_controller_inputs(b));
+    assert_int_equal(no, td_controller_outputs(b));
+    assert_int_equal(td_controller_order(a), td_controller_order(b));
+    assert_true(td_controller_sample_rate(a) == td_controller_sample_rate(b));
+    assert_true(ni * no <= 64);
+    for (j = 0; j < 6; j++) {
+        double scale = 0.0;
+        assert_int_equal(td_controller_frequency_response(a, f[j], are, aim, NULL), TD_OK);
+        assert_int_equal(td_controller_frequency_response(b, f[j], bre, bim, NULL), TD_OK);
+        for (l = 0; l < ni * no; l++)
+            scale = fmax(scale, hypot(are[l], aim[l]));
+        for (l = 0; l < ni * no; l++)
+            if (!(hypot(are[l] - bre[l], aim[l] - bim[l]) <= tol * scale)) {
+                print_error("at %g Hz entry %d: %g%+gj, expected %g%+gj\n", f[j], l, are[l], aim[l], bre[l], bim[l]);
+                fail();
+            }
+    }
+}
+
+/* first, then second (both freed); second may be the result of a call that failed (test fails). */
+static td_controller *then(td_controller *first, td_controller *second)
+{
+    td_controller *k;
+    assert_non_null(second);
+    if (!first)
+        return second;
+    k = td_controller_series(first, second, NULL);
+    assert_non_null(k);
+    td_controller_free(&first);
+    td_controller_free(&second);
+    return k;
+}
+
+static td_controller *side_by_side(td_controller *a, const td_controller *b)
+{
+    td_controller *k = td_controller_append(a, b, NULL);
+    assert_non_null(k);
+    td_controller_free(&a);
+    return k;
+}
+
+static td_controller *sampled(td_controller *k, double rate, double prewarp)
+{
+    td_controller *d = td_controller_discretise(k, rate, TD_DISCRETISE_TUSTIN, prewarp, NULL);
+    assert_non_null(d);
+    td_controller_free(&k);
+    return d;
+}
+
+/* tests/data/case/all-keys-controllers.cfg's "decentralised" law, through the API. */
+static td_controller *decentralised_law(void)
+{
+    const td_pid_block pid = {8.0e3, 2.0e4, 30.0, 0.0};
+    const td_leadlag_block ll = {1.5, 20.0, 200.0};
+    const td_lowpass_block lp = {800.0, 2, 0.6};
+    const td_notch_block nb = {60.0, 8.0, 0.1};
+    const double num[] = {1.0, 300.0}, den[] = {1.0, 400.0}, zr[] = {-50.0}, zi[] = {0.0}, pr[] = {-100.0},
+                 pi[] = {200.0};
+    const double A[] = {-500.0, 1.0, 0.0, -700.0}, B[] = {500.0, 0.0}, C[] = {0.0, 700.0}, D[] = {0.0};
+    td_controller *k = then(NULL, td_controller_create_pid(&pid, NULL));
+    k = then(k, td_controller_create_leadlag(&ll, NULL));
+    k = then(k, td_controller_create_lowpass(&lp, NULL));
+    k = then(k, td_controller_create_notch(&nb, NULL));
+    k = then(k, td_controller_create_tf(num, 2, den, 2, 0.0, NULL));
+    k = then(k, td_controller_create_zpk(zr, zi, 1, pr, pi, 1, 900.0, 0.0, NULL));
+    k = then(k, td_controller_create_gain(0.5, NULL));
+    return then(k, td_controller_create_ss(2, 1, 1, A, B, C, D, NULL, 0.0, NULL));
+}
+
+/* Its "rigid" controller's translation and tilt laws in one plane, [x_r, tilt] in and out. */
+static td_controller *rigid_plane(void)
+{
+    const double rate = 8000.0, tn[] = {0.2, 0.2}, td[] = {1.0, -0.6}, zr[] = {0.5}, zi[] = {0.0}, pr[] = {0.3},
+                 pi[] = {0.4}, A[] = {0.5}, B[] = {0.5}, C[] = {1.0}, D[] = {0.0};
+    const td_pid_block pid = {6.0e3, 0.0, 20.0, 1500.0};
+    const td_lowpass_block lp = {900.0, 1, 0.0};
+    td_controller *t = sampled(td_controller_create_pid(&pid, NULL), rate, 60.0), *tilt;
+    t = then(t, td_controller_create_tf(tn, 2, td, 2, rate, NULL));
+    tilt = sampled(td_controller_create_lowpass(&lp, NULL), rate, 60.0);
+    tilt = then(tilt, td_controller_create_zpk(zr, zi, 1, pr, pi, 1, 2.0e3, rate, NULL));
+    tilt = then(tilt, td_controller_create_ss(1, 1, 1, A, B, C, D, NULL, rate, NULL));
+    t = side_by_side(t, tilt);
+    td_controller_free(&tilt);
+    return t;
+}
+
+/* Every key of the controllers table lands in the model's controllers: each law as the controller
+ * API builds it from the same numbers (its frequency response), on the axes in the documented
+ * order, with the case's account of what the realisation does not say. */
+static void test_controllers_all_keys(void **state)
+{
+    td_case *c = load_ok("tests/data/case/all-keys-controllers.cfg", NULL, 0);
+    const td_model *m = td_case_model(c);
+    const int bearing_axes[] = {0, 1}, rigid_axes[] = {2, 4, 3, 5}; /* AMBs 1 and 2: x of each, then y */
+    const char *name;
+    const int *in, *out;
+    td_controller *law = decentralised_law(), *want, *plane, *both;
+    td_case_controller_info info;
+    double Ts[4], Ta[4], Tin[16] = {0}, Tout[16] = {0};
+    int i, j;
+    (void)state;
+    /* the mass centre (the rigid reference when none is given): the shaft's at its middle, the disc's at node 1 */
+    assert_close(td_model_mass_centre(m),
+                 (7800.0 * TD_PI * 0.02 * 0.02 * 1.2 * 0.6 + 8.0 * 0.2) / (7800.0 * TD_PI * 0.02 * 0.02 * 1.2 + 8.0),
+                 1e-14, 0.0);
+    assert_int_equal(td_model_controller_count(m), 2);
+    want = side_by_side(td_controller_clone(law, NULL), law);
+    assert_non_null(td_model_get_controller(m, 0, &name, &in, &out));
+    assert_memory_equal(in, bearing_axes, sizeof bearing_axes);
+    assert_memory_equal(out, bearing_axes, sizeof bearing_axes);
+    assert_string_equal(name, "decentralised");
+    assert_same_response(td_model_get_controller(m, 0, NULL, NULL, NULL), want, 1e-12);
+    assert_int_equal(td_case_controller(c, 0, &info), TD_OK);
+    assert_int_equal(info.rigid, 0);
+    td_controller_free(&want);
+    td_controller_free(&law);
+
+    /* sensors at nodes 4 and 6 (z = 0.8, 1.2 m), actuators at nodes 4 and 5 (0.8, 1.0 m) */
+    assert_int_equal(td_rigid_transform(0.8, 1.2, 0.75, Ts, NULL), TD_OK);
+    assert_int_equal(td_rigid_transform(0.8, 1.0, 0.75, Ta, NULL), TD_OK);
+    for (i = 0; i < 2; i++)
+        for (j = 0; j < 2; j++) {
+            Tin[i + 4 * j] = Tin[i + 2 + 4 * (j + 2)] = Ts[i + 2 * j];
+            Tout[i + 4 * j] = Tout[i + 2 + 4 * (j + 2)] = Ta[j + 2 * i];
+        }
+    plane = rigid_plane();
+    both = side_by_side(td_controller_clone(plane, NULL), plane);
+    law = td_controller_transform(both, 4, Tin, 4, Tout, NULL);
+    want = td_controller_delay(law, 1, NULL);
+    assert_non_null(want);
+    assert_non_null(td_model_get_controller(m, 1, &name, &in, &out));
+    assert_string_equal(name, "rigid");
+    assert_memory_equal(in, rigid_axes, sizeof rigid_axes);
+    assert_memory_equal(out, rigid_axes, sizeof rigid_axes);
+    assert_same_response(td_model_get_controller(m, 1, NULL, NULL, NULL), want, 1e-12);
+    assert_int_equal(td_case_controller(c, 1, &info), TD_OK);
+    assert_int_equal(info.rigid, 1);
+    assert_close(info.reference_z, 0.75, 0.0, 0.0);
+    assert_int_equal(info.delay, 1);
+    assert_int_equal(info.discretisation, TD_DISCRETISE_TUSTIN);
+    assert_close(info.prewarp, 60.0, 0.0, 0.0);
+    assert_int_equal(td_case_controller(c, 2, &info), TD_ERR_INVALID);
+    td_controller_free(&want);
+    td_controller_free(&law);
+    td_controller_free(&both);
+    td_controller_free(&plane);
+    td_case_free(&c);
+}
+
+/* A machine for controller cases: a 1.2 m shaft of 6 elements (node i at z = 0.2 i m), AMB 0 at
+ * node 1 sensing at node 2, AMB 1 at node 4 sensing at node 5, neither with gains, and AMB 2 at
+ * node 6 with the shorthand PD; the controllers are on line 7 (CONTROL_LINE). */
+static const char control_base[] =
+    "speed = 100.0;\nend_time = 0.1;\n"
+    "shaft = { length = 1.2; elements = 6; outer_diameter = 0.04; material = { E = 2.0e11; G = 7.7e10; density = "
+    "7800.0; }; };\n"
+    "ambs = ( { node = 1; sensor_node = 2; ks = 5.0e5; ki = 150.0; tau = 2.0e-3; force_capacity = 1200.0; },\n"
+    "  { node = 4; sensor_node = 5; ks = 5.0e5; ki = 150.0; tau = 2.0e-3; force_capacity = 1200.0; },\n"
+    "  { node = 6; ks = 5.0e5; ki = 150.0; kp = 8.0e3; kd = 30.0; tau = 2.0e-3; force_capacity = 1200.0; } );\n";
+#define CONTROL_LINE 7
+
+/* Load control_base + `controllers` (one line) from a scratch file; *c NULL on failure. */
+static td_status load_controllers(const char *controllers, td_case **c, td_error *err)
+{
+    const char *path = scratch("controllers.cfg");
+    char text[4096];
+    snprintf(text, sizeof text, "%s%s\n", control_base, controllers);
+    assert_true(strlen(text) < sizeof text - 1);
+    write_file(path, text);
+    return td_case_load(path, NULL, 0, c, err);
+}
+
+/* A PD block with the exact derivative is the shorthand's law i = kp e + kd de/dt (e = -xs): its
+ * response is kp + j w kd (closed form); a notch's at its frequency is its depth. */
+static void test_controller_closed_forms(void **state)
+{
+    td_case *c = NULL;
+    td_error err;
+    int i;
+    double re[16], im[16], w = 2.0 * TD_PI * 25.0;
+    (void)state;
+    assert_int_equal(load_controllers("controllers = ( { name = \"pd\"; ambs = [0, 1]; law = ( { pid = { kp = 8.0e3; "
+                                      "kd = 30.0; }; } ); }, { name = \"n\"; ambs = [2]; law = ( { notch = { "
+                                      "frequency = 50.0; width = 5.0; depth = 0.25; }; } ); } );",
+                                      &c, &err),
+                     TD_ERR_PARSE); /* AMB 2 keeps its kp */
+    assert_contains(err.message, "ambs[2].kp: this AMB is driven by controller controllers[1] at ");
+    assert_int_equal(load_controllers("controllers = ( { name = \"pd\"; ambs = [1, 0]; law = ( { pid = { kp = 8.0e3; "
+                                      "kd = 30.0; }; } ); } );",
+                                      &c, &err),
+                     TD_OK);
+    assert_int_equal(td_controller_order(td_model_get_controller(td_case_model(c), 0, NULL, NULL, NULL)), 0);
+    assert_int_equal(td_controller_frequency_response(td_model_get_controller(td_case_model(c), 0, NULL, NULL, NULL),
+                                                      25.0, re, im, NULL),
+                     TD_OK);
+    assert_close(re[0], 8.0e3, 1e-15, 0.0);
+    assert_close(im[0], 30.0 * w, 1e-15, 0.0);
+    for (i = 1; i < 16; i++) /* each axis on its own, the same law */
+        assert_close(hypot(re[i], im[i]), i % 5 == 0 ? hypot(8.0e3, 30.0 * w) : 0.0, 1e-15, 0.0);
+    td_case_free(&c);
+}
+
+/* Rigid-body coordinates, by hand: translation gain gt and tilt gain gr about z_r = 0.3 m, AMB a
+ * sensing at z = 0.4 m and pushing at 0.2 m, AMB b sensing at 1.0 m and pushing at 0.8 m. In each
+ * plane the bearing currents are Ta^T diag(gt, gr) Ts [e_a; e_b] with
+ * T = 1/(z_b - z_a) [z_b - z_r, z_r - z_a; -1, 1] (docs/case-format.md, controllers); the axes
+ * are plane x (a, b) then plane y (a, b), and the planes do not couple. */
+static void test_controller_rigid_by_hand(void **state)
+{
+    const double gt = 3.0, gr = 5.0, s[2][2] = {{0.7 / 0.6, -0.1 / 0.6}, {-1.0 / 0.6, 1.0 / 0.6}},
+                 a[2][2] = {{0.5 / 0.6, 0.1 / 0.6}, {-1.0 / 0.6, 1.0 / 0.6}};
+    const int axes[] = {0, 2, 1, 3};
+    const int *in, *out;
+    td_case_controller_info info;
+    td_case *c = NULL;
+    td_error err;
+    double re[16], im[16];
+    int i, j;
+    (void)state;
+    assert_int_equal(load_controllers("controllers = ( { name = \"rb\"; ambs = [0, 1]; coordinates = \"rigid\"; "
+                                      "reference_z = 0.3; translation = ( { gain = 3.0; } ); tilt = ( { gain = 5.0; "
+                                      "} ); } );",
+                                      &c, &err),
+                     TD_OK);
+    assert_int_equal(td_controller_frequency_response(td_model_get_controller(td_case_model(c), 0, NULL, &in, &out),
+                                                      10.0, re, im, NULL),
+                     TD_OK);
+    assert_memory_equal(in, axes, sizeof axes);
+    assert_memory_equal(out, axes, sizeof axes);
+    for (i = 0; i < 4; i++)
+        for (j = 0; j < 4; j++) {
+            /* output i (bearing i % 2 of plane i / 2) from input j */
+            double want = i / 2 != j / 2 ? 0.0 : a[0][i % 2] * gt * s[0][j % 2] + a[1][i % 2] * gr * s[1][j % 2];
+            assert_close(re[i + 4 * j], want, 1e-14, 1e-14);
+            assert_close(im[i + 4 * j], 0.0, 0.0, 1e-14);
+        }
+    td_case_free(&c);
+    /* without reference_z: the uniform shaft's middle */
+    assert_int_equal(load_controllers("controllers = ( { name = \"rb\"; ambs = [0, 1]; coordinates = \"rigid\"; "
+                                      "translation = ( { gain = 3.0; } ); tilt = ( { gain = 5.0; } ); } );",
+                                      &c, &err),
+                     TD_OK);
+    assert_int_equal(td_case_controller(c, 0, &info), TD_OK);
+    assert_close(info.reference_z, 0.6, 1e-15, 0.0);
+    td_case_free(&c);
+}
+
+/* Each bad controller (one line of control_base) fails with FILE:LINE: KEY: and says what. */
+static void test_controller_errors(void **state)
+{
+    static const struct {
+        const char *text, *key, *what;
+        int line; /* 0: CONTROL_LINE */
+    } bad[] = {
+        {"controllers = ( { name = \"a\"; ambs = [0, 1]; law = ( { pidd = { kp = 1.0; }; } ); } );",
+         "controllers[0].law[0].pidd", "unknown key; did you mean 'pid'?", 0},
+        {"controllers = ( { name = \"a\"; ambs = [0, 1]; law = ( { pid = { kp = 1.0; }; notch = { frequency = 9.0; "
+         "width = 1.0; }; } ); } );",
+         "controllers[0].law[0].notch", "a block has exactly one member", 0},
+        {"controllers = ( { name = \"a\"; ambs = [0, 1]; law = ( { } ); } );", "controllers[0].law[0]",
+         "an empty block", 0},
+        {"controllers = ( { ambs = [0, 1]; law = ( { gain = 1.0; } ); } );", "controllers[0].name",
+         "missing required key", 0},
+        {"controllers = ( { name = \"a\"; ambs = [0, 1]; } );", "controllers[0].law", "missing required key", 0},
+        {"controllers = ( { name = \"a\"; ambs = [0, 1]; law = ( { notch = { frequency = 9.0; }; } ); } );",
+         "controllers[0].law[0].notch.width", "missing required key", 0},
+        {"controllers = ( { name = \"a\"; ambs = [0, 1, 7]; law = ( { gain = 1.0; } ); } );", "controllers[0].ambs[2]",
+         "AMB 7 does not exist (3 defined", 0},
+        {"controllers = ( { name = \"a\"; ambs = [0, 1, 2]; law = ( { gain = 1.0; } ); } );", "ambs[2].kp",
+         "driven by controller controllers[0] at", 6},
+        {"controllers = ( { name = \"a\"; ambs = [0]; coordinates = \"rigid\"; translation = ( { gain = 1.0; } ); "
+         "tilt = ( { gain = 1.0; } ); }, { name = \"b\"; ambs = [1]; law = ( { gain = 1.0; } ); } );",
+         "controllers[0].coordinates", "exactly two AMBs", 0},
+        {"controllers = ( { name = \"a\"; ambs = [0, 1]; coordinates = \"rigid\"; law = ( { gain = 1.0; } ); } );",
+         "controllers[0].law", "rigid coordinates take `translation` and `tilt`, not `law`", 0},
+        {"controllers = ( { name = \"a\"; ambs = [0, 1]; coordinates = \"rigid\"; tilt = ( { gain = 1.0; } ); } );",
+         "controllers[0].translation", "missing required key", 0},
+        {"controllers = ( { name = \"a\"; ambs = [0, 1]; law = ( { gain = 1.0; } ); tilt = ( { gain = 1.0; } ); } );",
+         "controllers[0].tilt", "need coordinates = \"rigid\"", 0},
+        {"controllers = ( { name = \"a\"; ambs = [0, 1]; law = ( { gain = 1.0; } ); reference_z = 0.5; } );",
+         "controllers[0].reference_z", "needs coordinates = \"rigid\"", 0},
+        {"controllers = ( { name = \"a\"; ambs = [0, 1]; law = ( { tf = { num = [1.0]; den = [1.0, -0.5]; domain = "
+         "\"z\"; }; } ); } );",
+         "controllers[0].law[0].tf.domain", "needs the controller's sample_rate", 0},
+        {"controllers = ( { name = \"a\"; ambs = [0, 1]; law = ( { gain = 1.0; } ); delay = 1; } );",
+         "controllers[0].delay", "applies to a sampled controller", 0},
+        {"controllers = ( { name = \"a\"; ambs = [0, 1]; law = ( { gain = 1.0; } ); discretisation = \"zoh\"; } );",
+         "controllers[0].discretisation", "applies to a sampled controller", 0},
+        {"controllers = ( { name = \"a\"; ambs = [0, 1]; law = ( { gain = 1.0; } ); sample_rate = 0.0; } );",
+         "controllers[0].sample_rate", "must be > 0", 0},
+        {"controllers = ( { name = \"a\"; ambs = [0, 1]; law = ( { gain = 1.0; } ); sample_rate = 1.0e4; "
+         "discretisation = \"zoh\"; prewarp = 50.0; } );",
+         "controllers[0].prewarp", "tustin", 0},
+        {"controllers = ( { name = \"a\"; ambs = [0, 1]; law = ( { tf = { num = [1.0, 2.0, 3.0]; den = [1.0]; }; } ); "
+         "} );",
+         "controllers[0].law[0].tf", "improper", 0},
+        {"controllers = ( { name = \"a\"; ambs = [0, 1]; law = ( { pid = { kp = 1.0; kd = 1.0; }; }, { pid = { kp = "
+         "1.0; kd = 1.0; }; } ); } );",
+         "controllers[0].law[1]", "improper", 0},
+        {"controllers = ( { name = \"a\"; ambs = [0, 1]; law = ( { pid = { kp = 1.0; kd = 1.0; }; } ); sample_rate = "
+         "1.0e4; } );",
+         "controllers[0].law[0]", "cannot be sampled", 0},
+        {"controllers = ( { name = \"a\"; ambs = [0, 1]; law = ( { ss = { A = ([-1.0, 0.0], [0.0, -2.0]); B = ([1.0, "
+         "1.0]); C = ([1.0, 1.0]); D = ([0.0]); }; } ); } );",
+         "controllers[0].law[0].ss.B", "is 1 x 2; B must be n x 1", 0},
+        {"controllers = ( { name = \"a\"; ambs = [0, 1]; law = ( { ss = { A = ([-1.0, 0.0], [0.0]); B = ([1.0], "
+         "[1.0]); C = ([1.0, 1.0]); D = ([0.0]); }; } ); } );",
+         "controllers[0].law[0].ss.A[1]", "row 1 has 1 entries, row 0 has 2", 0},
+        {"controllers = ( { name = \"a\"; ambs = [0, 1]; law = ( { zpk = { poles = ([-1.0, 2.0, 3.0]); }; } ); } );",
+         "controllers[0].law[0].zpk.poles[0]", "expected a root [re, im]", 0},
+        {"controllers = ( { name = \"a\"; ambs = [0, 1]; law = ( { lowpass = { frequency = 9.0; order = 1; damping = "
+         "0.5; }; } ); } );",
+         "controllers[0].law[0].lowpass.damping", "no damping", 0},
+        {"controllers = ( { name = \"a\"; ambs = [0]; law = ( { gain = 1.0; } ); }, { name = \"a\"; ambs = [1]; law "
+         "= ( { gain = 1.0; } ); } );",
+         "controllers[1].name", "already names controller 0; see controllers[0].name at ", 0},
+        {"controllers = ( { name = \"a\"; ambs = [0, 1]; law = ( { gain = 1.0; } ); }, { name = \"b\"; ambs = [1]; "
+         "law = ( { gain = 1.0; } ); } );",
+         "controllers[1].ambs", "already driven by controller 0", 0},
+        {"controllers = ( { name = \"a\"; ambs = [0, 1]; law = ( { notch = { frequency = 9.0; width = 1.0; depth = "
+         "1.5; }; } ); } );",
+         "controllers[0].law[0].notch", "depth", 0},
+    };
+    size_t k;
+    (void)state;
+    for (k = 0; k < sizeof bad / sizeof bad[0]; k++) {
+        td_case *c = (td_case *)&k; /* must come back NULL */
+        td_error err;
+        char where[256];
+        snprintf(where, sizeof where, "controllers.cfg:%d: %s: ", bad[k].line ? bad[k].line : CONTROL_LINE, bad[k].key);
+        if (load_controllers(bad[k].text, &c, &err) != TD_ERR_PARSE) {
+            print_error("%s: loaded, expected \"%s\"\n", bad[k].text, where);
+            fail();
+        }
+        assert_null(c);
+        assert_contains(err.message, where);
+        assert_contains(err.message, bad[k].what);
+        assert_null(strchr(err.message, '\n'));
+    }
+}
+
 /* ---- broken files ------------------------------------------------------------------------- */
 
 typedef struct bad_file {
@@ -1217,6 +1624,13 @@ static const bad_file bad_files[] = {
     {"spin-torque-not-free.cfg", 4, "spin", NULL},
     {"amb-tau-and-bandwidth.cfg", 6, "ambs[0].bandwidth", NULL},
     {"amb-zero-capacity.cfg", 6, "ambs[0].force_capacity", NULL},
+    {"controller-driven-amb-gain.cfg", 5, "ambs[1].kd", NULL},
+    {"controller-duplicate-name.cfg", 7, "controllers[1].name", NULL},
+    {"controller-rigid-three-ambs.cfg", 8, "controllers[0].coordinates", NULL},
+    {"controller-ss-shape.cfg", 8, "controllers[0].law[0].ss.B", NULL},
+    {"controller-two-members.cfg", 8, "controllers[0].law[0].notch", NULL},
+    {"controller-unknown-block.cfg", 7, "controllers[0].law[0].pidd", NULL},
+    {"controller-z-block-continuous.cfg", 8, "controllers[0].law[0].tf.domain", NULL},
     {"binary.cfg", 2, NULL, NULL},
     {"comments-only.cfg", 1, NULL, NULL},
     {"contact-bad-model.cfg", 5, "contact.model", NULL},
@@ -1797,6 +2211,10 @@ int main(void)
         cmocka_unit_test(test_gravity_direction_huge),
         cmocka_unit_test(test_comment_at_eof),
         cmocka_unit_test(test_api_misuse),
+        cmocka_unit_test(test_controllers_all_keys),
+        cmocka_unit_test(test_controller_closed_forms),
+        cmocka_unit_test(test_controller_rigid_by_hand),
+        cmocka_unit_test(test_controller_errors),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

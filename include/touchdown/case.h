@@ -105,6 +105,20 @@ TD_API const char *const *td_case_files(const td_case *c, int *count);
 /** The optional "description" string of the case; "" when absent (borrowed). */
 TD_API const char *td_case_description(const td_case *c);
 
+/** How the case file wrote one of its controllers (the `controllers` table), beyond what the
+ *  model's realisation says (td_model_get_controller with the same index). */
+typedef struct td_case_controller_info {
+    int rigid;                        /**< 1: rigid-body coordinates (translation and tilt per plane); 0: bearing */
+    double reference_z;               /**< m, the rigid-body reference position (rigid only; else 0) */
+    int delay;                        /**< whole samples of computation delay (sampled only; else 0) */
+    td_discretisation discretisation; /**< how its s-domain blocks were sampled (sampled only) */
+    double prewarp;                   /**< Hz, the Tustin prewarp frequency; 0: none */
+} td_case_controller_info;
+
+/** Controller i of the case (0 <= i < td_model_controller_count(td_case_model(c))) into *out;
+ *  TD_ERR_INVALID for an i out of range or a NULL argument. */
+TD_API td_status td_case_controller(const td_case *c, int i, td_case_controller_info *out);
+
 /**
  * The case's optional `sweep` group (docs/case-format.md), read by every td_case_load (its shape:
  * known keys, the types of their values, a key to sweep) as the specs td_sweep_grid_vary and

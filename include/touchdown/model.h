@@ -332,6 +332,9 @@ TD_API void td_model_shaft_options(const td_model *m, td_shaft_options *out);
 TD_API double td_model_node_position(const td_model *m, int node);
 /** Total rotor mass, kg: shaft, discs and point masses. */
 TD_API double td_model_total_mass(const td_model *m);
+/** Axial position of the rotor's mass centre, m (node 0 at z = 0): shaft elements (each a uniform
+ *  cylinder, its mass at its middle), discs and point masses; 0 for a model without mass. */
+TD_API double td_model_mass_centre(const td_model *m);
 TD_API td_status td_model_get_shaft_element(const td_model *m, int i, td_shaft_element *out);
 TD_API td_status td_model_get_disc(const td_model *m, int i, td_disc *out);
 TD_API td_status td_model_get_amb(const td_model *m, int i, td_amb *out);

@@ -307,6 +307,7 @@ void td_case_free(td_case **c)
         free((*c)->files[--(*c)->file_count]);
     free((*c)->files);
     td_cr_free_sweep(*c);
+    free((*c)->controllers);
     free(*c);
     *c = NULL;
 }
@@ -364,4 +365,11 @@ const char *td_case_sweep_spec(const td_case *c, int i, int *with, const char **
     if (where)
         *where = c->sweep[i].where;
     return c->sweep[i].spec;
+}
+td_status td_case_controller(const td_case *c, int i, td_case_controller_info *out)
+{
+    if (!c || !out || i < 0 || i >= c->controller_count)
+        return TD_ERR_INVALID;
+    *out = c->controllers[i];
+    return TD_OK;
 }

@@ -11,8 +11,9 @@
  *   4. case_override.c  "KEY=VALUE" grafted into the parsed case (the value bounded by 3's scan)
  *   5. case_site.c      model errors turned back into the settings they came from
  *   6. case_schema.c    the generic reader of a group by its table (case_schema.h)
- *   7. the tables: case_vary.c, case_shaft.c, case_parts.c, then case_options.c (the root table,
- *      which names the others)
+ *   7. the tables: case_vary.c, case_shaft.c, case_parts.c, case_blocks.c (a controller's blocks),
+ *      case_control.c (the controllers, built of those blocks), then case_options.c (the root
+ *      table, which names the others)
  *   8. case_keys.c      every key of the tables, for the docs
  *   9. case.c           td_case_load and the rest of touchdown/case.h
  * A function two layers need lives in the lower one.
@@ -42,6 +43,8 @@ struct td_case {
     int file_count;
     struct td_cr_sweep_spec *sweep; /* the `sweep` group as specs, as read (td_cr_sweep_spec) */
     int sweep_count;
+    td_case_controller_info *controllers; /* per controller of the model, as the file wrote it */
+    int controller_count;
 };
 
 /* A decimal or hex integer literal that libconfig 1.5 silently wraps to 32 bits (it has no

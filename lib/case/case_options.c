@@ -586,8 +586,9 @@ static void root_preset(void *rec)
 }
 
 /* The top level, in the order of its "unknown key" list; `order` reads it in dependency order:
- * the shaft fixes the nodes, the parts come before the speed that loads them, AMBs before
- * retainers, the run settings before the bounds on the run (the `output` key's check). */
+ * the shaft fixes the nodes, the parts come before the speed that loads them, AMBs (then the
+ * controllers that drive them) before retainers, the run settings before the bounds on the run
+ * (the `output` key's check). */
 static const td_cs_key root_keys[] = {
     {.key = "description",
      .type = TD_CS_STRING,
@@ -656,6 +657,12 @@ static const td_cs_key root_keys[] = {
      .sub = &td_cs_ambs,
      .order = 4,
      .doc = "active magnetic bearings, see [ambs](#ambs)"},
+    {.key = "controllers",
+     .type = TD_CS_LIST,
+     .sub = &td_cs_controllers,
+     .order = 4,
+     .doc = "linear controllers of AMBs (transfer functions, blocks in series, rigid-body coordinates, sampled), "
+            "see [controllers](#controllers)"},
     {.key = "bearings",
      .type = TD_CS_LIST,
      .sub = &td_cs_bearings,

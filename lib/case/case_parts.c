@@ -213,6 +213,42 @@ static td_status read_amb_lag(td_case_reader *r, const config_setting_t *g, cons
     return st == TD_OK ? td_cr_derived(r, bw, *tau, "the time constant tau = 1 / (2 pi bandwidth)") : st;
 }
 
+/* The entry of the case's `controllers` that lists AMB entry g among its `ambs`, or NULL (an entry
+ * written wrongly is no one's: case_control.c reports it when it reads it). */
+static const config_setting_t *amb_driver(td_case_reader *r, const config_setting_t *g)
+{
+    const config_setting_t *list = config_setting_get_member(config_root_setting(&r->cfg), "controllers");
+    int i, j, amb = config_setting_index(g);
+    for (i = 0; list && config_setting_is_list(list) && i < config_setting_length(list); i++) {
+        const config_setting_t *e = config_setting_get_elem(list, (unsigned)i);
+        const config_setting_t *ambs = config_setting_is_group(e) ? config_setting_get_member(e, "ambs") : NULL;
+        for (j = 0; ambs && config_setting_is_aggregate(ambs) && j < config_setting_length(ambs); j++)
+            if (config_setting_type(config_setting_get_elem(ambs, (unsigned)j)) == CONFIG_TYPE_INT &&
+                config_setting_get_int(config_setting_get_elem(ambs, (unsigned)j)) == amb)
+                return e;
+    }
+    return NULL;
+}
+
+/* kp, kd and kint: the shorthand law's gains, required (kp, kd) unless a controller drives the AMB,
+ * which replaces that law: then none of them may be written. */
+static td_status read_amb_gain(td_case_reader *r, const config_setting_t *g, const td_cs_key *k, void *rec)
+{
+    const config_setting_t *driver = amb_driver(r, g);
+    char key[256], where[1200];
+    double *at = (double *)((unsigned char *)rec + k->offset);
+    if (!driver)
+        return td_cr_real(r, g, k->key, k->need == TD_CS_REQUIRED ? k->what : NULL, 0.0, k->range, at);
+    *at = 0.0;
+    if (!td_cr_has(g, k->key))
+        return TD_OK;
+    td_cr_key(driver, key, sizeof key);
+    td_cr_where(r, driver, where, sizeof where);
+    return td_cr_fail(r, config_setting_get_member(g, k->key), NULL,
+                      "this AMB is driven by controller %s at %s, which replaces the kp, kd, kint law: leave %s out",
+                      key, where, k->key);
+}
+
 static td_status add_amb(td_case_reader *r, const config_setting_t *g, void *rec)
 {
     td_error merr;
@@ -255,21 +291,26 @@ static const td_cs_key amb_keys[] = {
      .type = TD_CS_REAL,
      .offset = offsetof(td_amb, kp),
      .need = TD_CS_REQUIRED,
+     .read = read_amb_gain,
      .range = TD_CR_NONNEGATIVE,
-     .what = "proportional gain, A/m",
+     .what = "proportional gain, A/m; left out when a controller drives the AMB",
+     .doc_default = "required, unless a controller drives the AMB (then not written)",
      .unit = "A/m",
      .doc = "proportional gain"},
     {.key = "kd",
      .type = TD_CS_REAL,
      .offset = offsetof(td_amb, kd),
      .need = TD_CS_REQUIRED,
+     .read = read_amb_gain,
      .range = TD_CR_NONNEGATIVE,
-     .what = "derivative gain, A s/m",
+     .what = "derivative gain, A s/m; left out when a controller drives the AMB",
+     .doc_default = "required, unless a controller drives the AMB (then not written)",
      .unit = "A s/m",
      .doc = "derivative gain"},
     {.key = "kint",
      .type = TD_CS_REAL,
      .offset = offsetof(td_amb, kint),
+     .read = read_amb_gain,
      .range = TD_CR_NONNEGATIVE,
      .unit = "A/(m s)",
      .doc = "integral gain: 0 is PD (the paper's law); > 0 adds an integrator per axis that centres the rotor under a "

@@ -106,5 +106,14 @@ extern const td_cs_table td_cs_discs, td_cs_point_masses, td_cs_ambs, td_cs_bear
 extern const td_cs_table td_cs_shaft;
 /* The sweep (case_vary.c). */
 extern const td_cs_table td_cs_sweep;
+/* The controllers (case_control.c), and the table of one block of a controller's law (case_blocks.c). */
+extern const td_cs_table td_cs_controllers, td_cs_block;
+
+/* Block entry e of a law (a group with exactly one member: gain, pid, leadlag, lowpass, notch, tf,
+ * zpk or ss) as a new SISO controller (*out, the caller frees it). A block in z (domain = "z")
+ * needs sample_rate > 0 (the controller's, Hz) and is sampled at it (*sampled 1); every other
+ * block is continuous (*sampled 0). */
+td_status td_cr_read_block(td_case_reader *r, const config_setting_t *e, double sample_rate, td_controller **out,
+                           int *sampled);
 
 #endif

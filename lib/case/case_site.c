@@ -26,6 +26,9 @@ static const config_setting_t *field_setting(const config_setting_t *g, const td
             s = config_setting_get_member(g, change_kinds[k]);
     else if (strcmp(site->part, "amb") == 0 && strcmp(site->field, "tau") == 0 && !td_cr_has(g, "tau"))
         s = config_setting_get_member(g, "bandwidth"); /* tau = 1 / (2 pi bandwidth) */
+    else if (strcmp(site->part, "controller") == 0 &&
+             (strcmp(site->field, "inputs") == 0 || strcmp(site->field, "outputs") == 0))
+        s = config_setting_get_member(g, "ambs"); /* its axes: the AMBs' */
     else if (strcmp(site->part, "disc") == 0 && strcmp(site->field, "outer_radius") == 0)
         s = config_setting_get_member(g, "radius"); /* td_disc_geometry */
     else if (strcmp(site->part, "disc") == 0 && strcmp(site->field, "inner_radius") == 0)
@@ -51,7 +54,8 @@ static const config_setting_t *part_entry(const config_setting_t *root, const td
                                            {"bearing", "bearings"},
                                            {"retainer", "retainers"},
                                            {"unbalance", "unbalances"},
-                                           {"speed_ramp", "speed_ramp"}};
+                                           {"speed_ramp", "speed_ramp"},
+                                           {"controller", "controllers"}};
     const config_setting_t *discs = config_setting_get_member(root, "discs");
     size_t k;
     if (strcmp(site->part, "disc") == 0) {
@@ -68,27 +72,35 @@ static const config_setting_t *part_entry(const config_setting_t *root, const td
     return NULL;
 }
 
+/* Fail at g's setting for merr's site, with "; see KEY at WHERE" for the part a cross check
+ * compared against when the case has it. */
+static td_status fail_with_other(td_case_reader *r, const config_setting_t *root, const config_setting_t *g,
+                                 const td_error *merr)
+{
+    const config_setting_t *other = merr->other.part ? part_entry(root, r->c->model, &merr->other) : NULL;
+    char key[512], where[1200];
+    if (!other)
+        return td_cr_fail(r, field_setting(g, &merr->site), NULL, "%s", merr->message + merr->reason);
+    other = field_setting(other, &merr->other);
+    td_cr_key(other, key, sizeof key);
+    td_cr_where(r, other, where, sizeof where);
+    return td_cr_fail(r, field_setting(g, &merr->site), NULL, "%s; see %s at %s", merr->message + merr->reason, key,
+                      where);
+}
+
 td_status td_cr_model_fail(td_case_reader *r, const config_setting_t *g, td_status st, const td_error *merr)
 {
     if (st == TD_ERR_NOMEM)
         return td_error_set(r->err, TD_ERR_NOMEM, "%s: %s", r->path_shown, merr->message);
     if (!merr->site.part)
         return td_cr_fail(r, g, NULL, "%s", merr->message);
-    return td_cr_fail(r, field_setting(g, &merr->site), NULL, "%s", merr->message + merr->reason);
+    return fail_with_other(r, config_root_setting(&r->cfg), g, merr);
 }
 
 td_status td_cr_validate_fail(td_case_reader *r, const td_error *merr)
 {
-    const config_setting_t *root = config_root_setting(&r->cfg), *g, *other;
-    char key[512], where[1200];
+    const config_setting_t *root = config_root_setting(&r->cfg), *g;
     if (!merr->site.part || !(g = part_entry(root, r->c->model, &merr->site)))
         return td_cr_fail_file(r->err, TD_ERR_PARSE, r->path_shown, 0, "%s", merr->message);
-    if (!merr->other.part || !(other = part_entry(root, r->c->model, &merr->other)))
-        return td_cr_model_fail(r, g, TD_ERR_PARSE, merr);
-    /* a cross check: say where the other part is, too */
-    other = field_setting(other, &merr->other);
-    td_cr_key(other, key, sizeof key);
-    td_cr_where(r, other, where, sizeof where);
-    return td_cr_fail(r, field_setting(g, &merr->site), NULL, "%s; see %s at %s", merr->message + merr->reason, key,
-                      where);
+    return fail_with_other(r, root, g, merr);
 }

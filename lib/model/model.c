@@ -816,6 +816,25 @@ double td_model_total_mass(const td_model *m)
     return total;
 }
 
+double td_model_mass_centre(const td_model *m)
+{
+    double total = 0.0, moment = 0.0, z = 0.0;
+    int i;
+    if (!m)
+        return 0.0;
+    for (i = 0; i < m->elements.count; i++) {
+        double mass = element_inertia(&m->elements.items[i], 0), length = m->elements.items[i].length;
+        total += mass;
+        moment += mass * (z + 0.5 * length);
+        z += length;
+    }
+    for (i = 0; i < m->discs.count; i++) {
+        total += m->discs.items[i].mass;
+        moment += m->discs.items[i].mass * td_model_node_position(m, m->discs.items[i].node);
+    }
+    return total > 0.0 ? moment / total : 0.0;
+}
+
 #define GETTER(fn, type, arr)                                                                                          \
     td_status fn(const td_model *m, int i, type *out)                                                                  \
     {                                                                                                                  \

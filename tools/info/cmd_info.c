@@ -1,5 +1,6 @@
 /* touchdown info: what a case describes, and its first modes. */
 #include "common/cli.h"
+#include "info/controller_print.h"
 #include "modal/modal_print.h"
 
 #include <getopt.h>
@@ -10,7 +11,8 @@ static const char info_usage[] =
     "       touchdown info --keys\n"
     "\n"
     "Print what CASE describes: shaft nodes and elements, masses, AMBs, plain bearings,\n"
-    "retainers, unbalances, the schedule, the speed (constant, a ramp or a free spin) and the\n"
+    "retainers, unbalances, the schedule, the controllers (their AMBs, coordinates, states,\n"
+    "timing and poles), the speed (constant, a ramp or a free spin) and the\n"
     "rotor's polar inertia, DOF and state counts, and the first modes of the\n"
     "contact-free system at the case speed. Large models get only the lowest modes (shift-invert\n"
     "Arnoldi); their stability line then covers the roots computed, not all of them.\n"
@@ -44,6 +46,25 @@ static void print_race(const td_retainer *r)
                r->contact.damping_coefficient);
 }
 
+/* The AMBs: magnet, law (the shorthand's gains, or the controller that drives it) and amplifier. */
+static void print_ambs(const td_model *m)
+{
+    int i;
+    for (i = 0; i < td_model_amb_count(m); i++) {
+        td_amb a;
+        int k = td_amb_controller(m, i);
+        td_model_get_amb(m, i, &a);
+        printf("amb %-8d node %d (sensor %d): ks %.6g N/m, ki %.6g N/A, ", i, a.node, a.sensor_node, a.ks, a.ki);
+        if (k >= 0)
+            printf("controller %d, ", k);
+        else
+            printf("kp %.6g A/m, kd %.6g A s/m, ", a.kp, a.kd);
+        if (a.kint > 0.0)
+            printf("kint %.6g A/(m s), ", a.kint);
+        printf("tau %.6g s, capacity %.6g N%s\n", a.tau, a.force_capacity, a.saturation ? " (saturating)" : "");
+    }
+}
+
 static void print_parts(const td_model *m)
 {
     int i;
@@ -73,15 +94,7 @@ static void print_parts(const td_model *m)
     }
     printf("mass         %.6f kg in all (shaft %.6f kg, discs and point masses %.6f kg)\n", td_model_total_mass(m),
            td_model_total_mass(m) - disc_mass, disc_mass);
-    for (i = 0; i < td_model_amb_count(m); i++) {
-        td_amb a;
-        td_model_get_amb(m, i, &a);
-        printf("amb %-8d node %d (sensor %d): ks %.6g N/m, ki %.6g N/A, kp %.6g A/m, kd %.6g A s/m, ", i, a.node,
-               a.sensor_node, a.ks, a.ki, a.kp, a.kd);
-        if (a.kint > 0.0)
-            printf("kint %.6g A/(m s), ", a.kint);
-        printf("tau %.6g s, capacity %.6g N%s\n", a.tau, a.force_capacity, a.saturation ? " (saturating)" : "");
-    }
+    print_ambs(m);
     for (i = 0; i < td_model_bearing_count(m); i++) {
         td_bearing b;
         td_model_get_bearing(m, i, &b);
@@ -249,6 +262,7 @@ int td_cmd_info(int argc, char **argv)
     if (td_case_description(c)[0])
         printf("description  %s\n", td_case_description(c));
     print_parts(td_case_model(c));
+    td_print_controllers(stdout, c);
     code = print_modes(td_case_model(c), td_case_modal_options(c), count);
     td_case_free(&c);
     return code;
