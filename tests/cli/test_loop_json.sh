@@ -5,7 +5,8 @@
 #     the worst of the axes' and the zone each peak's (A < 3 <= B < 4 <= C < 5 <= D), every value
 #     the same as the modal HDF5 file's /loop (h5py), and nothing but the object on stdout;
 #   - kp ki below ks (an unstable loop): stable false, every sensitivity answer null, exit 0;
-#   - a machine without a controlled axis (kp = kd = 0): no analysis, null answers, said on stderr.
+#   - a machine without a controlled axis (kp = kd = 0): no analysis, null answers, said on stderr;
+#   - cases/rig-notch.cfg (a rigid-body linear controller from the case file): stable, 4 axes.
 # Args: $1 = the touchdown binary, $2 = the source directory. Runs in the build's tests directory.
 set -u
 tool=$1
@@ -14,7 +15,16 @@ work=$(mktemp -d "${PWD}/cli-loop.XXXXXX")
 trap 'rm -rf "$work"' EXIT
 case_a=$src/cases/paper-a.cfg
 
-. "$(dirname "${BASH_SOURCE[0]}")/common.sh" # fail, pass, check, t, jf, finish
+. "$(dirname "${BASH_SOURCE[0]}")/common.sh" # fail, pass, check, t, jf, t "$work/r" modal --json -o "$work/r/m" "$src/cases/rig-notch.cfg"
+check "a linear controller from the case file (rigid-body PD + notch): exit 0" [ "$rc" = 0 ]
+check "a linear controller from the case file: stable, a peak per driven axis" /usr/bin/python3 -c '
+import json, sys
+d = json.load(open(sys.argv[1]))
+assert d["stable"] is True and d["axis"] == [0, 1, 2, 3] and len(d["sensitivity_peak"]) == 4, d
+assert all(p > 1 for p in d["sensitivity_peak"]) and d["sensitivity_zone"] in "ABCD", d
+' "$work/r/.out"
+
+finish
 
 t "$work/a" modal --json -o "$work/a/m" "$case_a"
 check "modal --json exits 0" [ "$rc" = 0 ]
@@ -57,5 +67,14 @@ d = json.load(open(sys.argv[1]))
 assert d["stable"] is None and d["sensitivity_peak"] is None and d["sensitivity_zone"] is None, d
 ' "$work/n/.out"
 check "no controlled axis: said on stderr" grep -q "no loop analysis: no AMB axis is under control" "$work/n/.err"
+
+t "$work/r" modal --json -o "$work/r/m" "$src/cases/rig-notch.cfg"
+check "a linear controller from the case file (rigid-body PD + notch): exit 0" [ "$rc" = 0 ]
+check "a linear controller from the case file: stable, a peak per driven axis" /usr/bin/python3 -c '
+import json, sys
+d = json.load(open(sys.argv[1]))
+assert d["stable"] is True and d["axis"] == [0, 1, 2, 3] and len(d["sensitivity_peak"]) == 4, d
+assert all(p > 1 for p in d["sensitivity_peak"]) and d["sensitivity_zone"] in "ABCD", d
+' "$work/r/.out"
 
 finish
