@@ -301,6 +301,11 @@ typedef struct td_loop_options {
     int points;   /**< >= 2 */
 } td_loop_options;
 
+/** The largest first-order system (td_modal_state_count) td_loop_compute analyses: its dense
+ *  eigen-solve and its O(states^2) per frequency and input grow past seconds beyond this (a
+ *  reduction, docs/theory.md "Reduced rotor", brings a large model under it). */
+#define TD_LOOP_MAX_STATES 240
+
 /** Defaults: 0.5 Hz to 5 kHz, 1200 points. */
 TD_API void td_loop_options_default(td_loop_options *opt);
 
@@ -330,7 +335,8 @@ TD_API char td_loop_zone(double peak);
  *
  * opt may be NULL (td_loop_options_default). Errors: TD_ERR_INVALID (NULL argument, bad options
  * or speed, no controlled axis, a sampled controller: "loop analysis of a sampled controller is not
- * supported yet"), TD_ERR_NUMERIC, TD_ERR_NOMEM. Caller frees *out with td_loop_free; NULL on failure.
+ * supported yet", more than TD_LOOP_MAX_STATES states), TD_ERR_NUMERIC, TD_ERR_NOMEM. Caller frees *out with
+ * td_loop_free; NULL on failure.
  */
 TD_API td_status td_loop_compute(const td_system *sys, double omega, const td_loop_options *opt, td_loop **out,
                                  td_error *err);
