@@ -306,7 +306,7 @@ typedef struct td_loop_options {
  *  reduction, docs/theory.md "Reduced rotor", brings a large model under it). */
 #define TD_LOOP_MAX_STATES 240
 
-/** Defaults: 0.5 Hz to 5 kHz, 1200 points. */
+/** Defaults: 0.5 Hz to 5 kHz, 800 points. */
 TD_API void td_loop_options_default(td_loop_options *opt);
 
 /** The ISO 14839-3:2006 zone ("Evaluation of stability margin") of a peak sensitivity (linear):

@@ -29,7 +29,7 @@
 
 #define LOOP_TWO_PI 6.283185307179586
 /* Closed-loop modes damped less than this are searched for narrow peaks of |S| (mode_peaks): the
- * grid's spacing (0.77 % at the defaults) is about the half-power width 2 zeta of a 0.4 % mode. */
+ * grid's spacing (1.2 % at the defaults) is about the half-power width 2 zeta of a 0.6 % mode. */
 #define LOOP_LIGHT_DAMPING 0.05
 
 /* One controller as the loop sees it: k maps sensors cols[] (indices among the sensed axes) to
@@ -65,7 +65,7 @@ struct td_loop {
 /* Scratch of one frequency evaluation. */
 typedef struct loop_work {
     double complex *T, *Y, *G, *K, *M, *X;
-    double *kre, *kim, *sv;
+    double *kre, *kim;
     gsl_permutation *perm;
 } loop_work;
 
@@ -75,7 +75,7 @@ void td_loop_options_default(td_loop_options *opt)
         return;
     opt->f_min = 0.5;
     opt->f_max = 5000.0;
-    opt->points = 1200;
+    opt->points = 800;
 }
 
 char td_loop_zone(double peak)
@@ -326,7 +326,6 @@ static void work_free(loop_work *w)
     free(w->X);
     free(w->kre);
     free(w->kim);
-    free(w->sv);
     if (w->perm)
         gsl_permutation_free(w->perm);
     memset(w, 0, sizeof *w);
@@ -348,9 +347,8 @@ static td_status work_alloc(const td_loop *l, loop_work *w, td_error *err)
     w->X = malloc((size_t)l->nc * (size_t)(l->nc + l->na) * sizeof *w->X);
     w->kre = malloc(kmax * sizeof *w->kre);
     w->kim = malloc(kmax * sizeof *w->kim);
-    w->sv = malloc((size_t)l->nc * sizeof *w->sv);
     w->perm = gsl_permutation_alloc((size_t)l->nc);
-    if (w->T && w->Y && w->G && w->K && w->M && w->X && w->kre && w->kim && w->sv && w->perm)
+    if (w->T && w->Y && w->G && w->K && w->M && w->X && w->kre && w->kim && w->perm)
         return TD_OK;
     work_free(w);
     return td_error_set(err, TD_ERR_NOMEM, "loop analysis: out of memory");
@@ -392,13 +390,15 @@ static int plant_response(const td_loop *l, double w, loop_work *wk)
             Y[(k + 1) * m + j] -= f * Y[k * m + j];
     }
     for (k = n; k-- > 0;) {
+        double complex d;
         if (T[k * n + k] == 0.0)
             return 0;
+        d = 1.0 / T[k * n + k];
         for (j = 0; j < m; j++) {
             double complex s = Y[k * m + j];
             for (i = k + 1; i < n; i++)
                 s -= T[k * n + i] * Y[i * m + j];
-            Y[k * m + j] = s / T[k * n + k];
+            Y[k * m + j] = s * d;
         }
     }
     for (i = 0; i < p; i++)
@@ -546,24 +546,35 @@ static void refine_peak(td_loop *l, loop_work *wk, int j, double flo, double f, 
 }
 
 /* A lightly damped closed-loop mode makes a peak of |S| narrower than the grid's spacing, which
- * the grid can step over: |S| at each such mode's damped frequency, refined over +-3 zeta of it
- * where it beats the grid's peak. */
+ * the grid can step over: |S| at each such mode's damped frequency; per axis the largest, where it
+ * beats the grid's peak, refined over +-3 zeta of its mode. */
 static void mode_peaks(td_loop *l, loop_work *wk)
 {
-    int i, j;
-    for (i = 0; i < l->n_modes; i++) {
-        double f = l->mode_f[i], h = fmax(3.0 * l->mode_zeta[i], 1e-9);
+    double *best = malloc(2u * (size_t)l->nc * sizeof *best);
+    int *at = malloc((size_t)l->nc * sizeof *at), i, j;
+    for (j = 0; best && at && j < l->nc; j++) {
+        best[j] = l->peak[j];
+        at[j] = -1;
+    }
+    for (i = 0; best && at && i < l->n_modes; i++) {
+        double f = l->mode_f[i];
         if (f < l->freq[0] || f > l->freq[l->nf - 1] || close_loop(l, f, wk, NULL) != TD_OK)
             continue;
         for (j = 0; j < l->nc; j++)
-            wk->sv[j] = cabs(wk->X[j * l->m + j]);
-        for (j = 0; j < l->nc; j++)
-            if (wk->sv[j] > l->peak[j]) {
-                l->peak[j] = wk->sv[j];
-                l->peak_freq[j] = f;
-                refine_peak(l, wk, j, f / (1.0 + h), f, f * (1.0 + h));
+            if (cabs(wk->X[j * l->m + j]) > best[j]) {
+                best[j] = cabs(wk->X[j * l->m + j]);
+                at[j] = i;
             }
     }
+    for (j = 0; best && at && j < l->nc; j++)
+        if (at[j] >= 0) {
+            double f = l->mode_f[at[j]], h = fmax(3.0 * l->mode_zeta[at[j]], 1e-9);
+            l->peak[j] = best[j];
+            l->peak_freq[j] = f;
+            refine_peak(l, wk, j, f / (1.0 + h), f, f * (1.0 + h));
+        }
+    free(best);
+    free(at);
 }
 
 static void find_peaks(td_loop *l, loop_work *wk)

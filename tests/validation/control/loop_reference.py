@@ -83,7 +83,7 @@ def sensitivity(d, sysm, f):
 
 
 def peaks(d, sysm):
-    grid = np.logspace(np.log10(0.5), np.log10(5000.0), 1200)
+    grid = np.logspace(np.log10(0.5), np.log10(5000.0), 800)
     s = np.array([np.abs(sensitivity(d, sysm, f)) for f in grid])
     res = []
     for j in range(s.shape[1]):
