@@ -4,6 +4,8 @@
  *   (tests/validation/control/loop_reference.py: numpy + scipy build the loop from the assembled
  *   matrices and the AMB law; the compliance from the existing closed-loop state matrix);
  * - the ISO 14839-3 zone limits at exactly 3, 4 and 5;
+ * - the static compliance against the closed form of a rigid rotor on two bearings;
+ * - the notch at the first bending mode; the same PD as the shorthand and as a linear controller;
  * - an unstable loop gives no sensitivity (undefined, null in JSON), never a number.
  */
 #include "td_test.h"
@@ -341,11 +343,38 @@ static void test_controller_as_shorthand(void **state)
     td_case_free(&c0);
 }
 
+/* The static compliance in closed form: a rigid rotor on two bearings carries a force at bearing
+ * a on bearing a alone (moments about b), so x_a / F_a = 1 / (ki kp - ks), the PD's stiffness
+ * less the magnet's. The rig's shaft is nearly rigid at 0.5 Hz: within 0.2 % (its flexibility
+ * and the inertia at 0.5 Hz). */
+static void test_static_compliance(void **state)
+{
+    td_case *c = NULL;
+    td_system *s = load_system(NULL, 0, &c);
+    td_loop *l = NULL;
+    td_error err;
+    td_amb b;
+    double re, im;
+    int a;
+    (void)state;
+    assert_int_equal(td_loop_compute(s, 90.0, NULL, &l, &err), TD_OK);
+    assert_close(td_loop_frequency(l, 0), 0.5, 0.0, 0.0);
+    for (a = 0; a < td_loop_amb_axis_count(l); a++) {
+        assert_int_equal(td_model_get_amb(td_case_model(c), a / 2, &b), TD_OK);
+        assert_int_equal(td_loop_compliance(l, a, 0, &re, &im), TD_OK);
+        assert_close(hypot(re, im), 1.0 / (b.ki * b.kp - b.ks), 2e-3, 0.0);
+    }
+    td_loop_free(&l);
+    td_system_free(&s);
+    td_case_free(&c);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_against_scipy),
         cmocka_unit_test(test_zone_limits),
+        cmocka_unit_test(test_static_compliance),
         cmocka_unit_test(test_unstable),
         cmocka_unit_test(test_notch),
         cmocka_unit_test(test_controller_as_shorthand),

@@ -15,10 +15,11 @@
 
 /* ---- CSV --------------------------------------------------------------------------------- */
 
-static void csv_header(FILE *f, td_out_id section, const td_out_id *cols, int n)
+/* The section line, then `notes` ("# NAME = VALUE" lines, may be ""), then the column names. */
+static void csv_header(FILE *f, td_out_id section, const char *notes, const td_out_id *cols, int n)
 {
     int i;
-    fprintf(f, "# section: %s\n", td_out_name(section));
+    fprintf(f, "# section: %s\n%s", td_out_name(section), notes);
     for (i = 0; i < n; i++)
         fprintf(f, "%s%s", i ? "," : "", td_schema_csv(cols[i]));
     fputc('\n', f);
@@ -43,10 +44,11 @@ void td_loop_write_csv_sections(FILE *f, const td_loop *l)
     int k, j, nc = td_loop_axis_count(l), na = td_loop_amb_axis_count(l);
     char z[2];
     double v[4];
-    csv_header(f, TD_OUT_LOOP, loop, 6);
-    fprintf(f, "# %s = %.12g\n# %s = %d\n# %s = %.12g\n", td_schema_csv(TD_OUT_LOOP_SPEED), td_loop_speed(l),
-            td_out_name(TD_OUT_LOOP_STABLE), td_loop_stable(l), td_out_name(TD_OUT_LOOP_MAX_REAL_PART),
-            td_loop_max_real_part(l));
+    char notes[256];
+    snprintf(notes, sizeof notes, "# %s = %.12g\n# %s = %d\n# %s = %.12g\n", td_schema_csv(TD_OUT_LOOP_SPEED),
+             td_loop_speed(l), td_out_name(TD_OUT_LOOP_STABLE), td_loop_stable(l),
+             td_out_name(TD_OUT_LOOP_MAX_REAL_PART), td_loop_max_real_part(l));
+    csv_header(f, TD_OUT_LOOP, notes, loop, 6);
     for (k = 0; k < td_loop_frequency_count(l); k++)
         for (j = 0; j < nc; j++) {
             td_loop_sensitivity(l, j, k, &v[0], &v[1]);
@@ -55,13 +57,14 @@ void td_loop_write_csv_sections(FILE *f, const td_loop *l)
                     v[2], v[3]);
         }
     fputc('\n', f);
-    csv_header(f, TD_OUT_LOOP_PEAKS, peaks, 4);
-    fprintf(f, "# %s = %s\n", td_out_name(TD_OUT_LOOP_SENSITIVITY_ZONE), zone_text(td_loop_worst_zone(l), z));
+    snprintf(notes, sizeof notes, "# %s = %s\n", td_out_name(TD_OUT_LOOP_SENSITIVITY_ZONE),
+             zone_text(td_loop_worst_zone(l), z));
+    csv_header(f, TD_OUT_LOOP_PEAKS, notes, peaks, 4);
     for (j = 0; j < nc; j++)
         fprintf(f, "%d,%.12g,%.12g,%s\n", td_loop_axis(l, j), td_loop_sensitivity_peak(l, j),
                 td_loop_sensitivity_peak_frequency(l, j), zone_text(td_loop_sensitivity_zone(l, j), z));
     fputc('\n', f);
-    csv_header(f, TD_OUT_LOOP_COMPLIANCE, comp, 4);
+    csv_header(f, TD_OUT_LOOP_COMPLIANCE, "", comp, 4);
     for (k = 0; k < td_loop_frequency_count(l); k++)
         for (j = 0; j < na; j++) {
             td_loop_compliance(l, j, k, &v[0], &v[1]);
