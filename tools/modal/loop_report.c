@@ -4,13 +4,22 @@
 
 #include <stdlib.h>
 
+/* "stable", "marginally stable (undamped modes)" (no eigenvalue grows, some real part is zero to
+ * rounding: an undamped shaft's mode the AMBs do not see) or "NOT STABLE: no sensitivity". */
+static const char *loop_word(const td_loop *l)
+{
+    if (!td_loop_stable(l))
+        return "NOT STABLE: no sensitivity";
+    return td_loop_max_real_part(l) < 0.0 ? "stable" : "marginally stable (undamped modes)";
+}
+
 void td_print_loop(FILE *f, const td_loop *l)
 {
     int j;
     fprintf(f,
             "loop analysis at %.12g rad/s (ISO 14839-3: sensitivity at each amplifier input, every loop closed): %s, "
             "largest real part %.6g 1/s\n",
-            td_loop_speed(l), td_loop_stable(l) ? "stable" : "NOT STABLE: no sensitivity", td_loop_max_real_part(l));
+            td_loop_speed(l), loop_word(l), td_loop_max_real_part(l));
     if (!td_loop_stable(l))
         return;
     fprintf(f, "  %-6s %-4s %14s %16s  %s\n", "axis", "amb", "peak |S|", "at f [Hz]", "zone");
