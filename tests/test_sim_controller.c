@@ -115,8 +115,8 @@ static td_model *rig_with_law(double tau, int retainers, const td_controller *k)
 /* ---- eigenvalues --------------------------------------------------------------------------- */
 
 /* Every eigenvalue of the closed loop at RIG_SPEED (a pair as both members) into ev (capacity
- * cap); returns the count. */
-static int closed_loop_eigenvalues(const td_model *m, double complex *ev, int cap)
+ * cap), td_modal_state_count + `extra` of them (the states of sampled controllers); returns the count. */
+static int closed_loop_eigenvalues(const td_model *m, double complex *ev, int cap, int extra)
 {
     td_system *sys = NULL;
     td_modal *md = NULL;
@@ -136,7 +136,7 @@ static int closed_loop_eigenvalues(const td_model *m, double complex *ev, int ca
         assert_true(n < cap);
         ev[n++] = td_modal_real_eigenvalue(md, i);
     }
-    assert_int_equal(n, td_modal_state_count(sys));
+    assert_int_equal(n, td_modal_state_count(sys) + extra);
     td_modal_free(&md);
     td_system_free(&sys);
     return n;
@@ -176,7 +176,7 @@ static void test_pd_eigenvalues_equal_shorthand(void **state)
         td_model *shorthand = td_test_rig_create(RIG_SPEED, taus[t], TD_RIG_NO_RETAINERS);
         td_controller *k = pd_as_tf();
         td_model *lti = rig_with_law(taus[t], TD_RIG_NO_RETAINERS, k);
-        int na = closed_loop_eigenvalues(shorthand, ea, 160), nb = closed_loop_eigenvalues(lti, eb, 160);
+        int na = closed_loop_eigenvalues(shorthand, ea, 160, 0), nb = closed_loop_eigenvalues(lti, eb, 160, 0);
         double worst;
         assert_int_equal(na, nb);
         worst = match_eigenvalues(ea, eb, na, 1e-10);
@@ -314,7 +314,8 @@ static double amb_force_max(const td_sim *sim)
 
 /* (c) a PID with its integrator (a pole at 0) on every axis, levitating under gravity: the AMB
  * force is exactly 0 while the AMBs are off (the controller runs on and winds up), the run stays
- * finite, and the integrators bring the sensors back to 0 after the drop. */
+ * finite, the integrators bring the sensors back to 0 after the drop, and a force the caller holds
+ * (TD_AMB_EXTERNAL) replaces the controller's. */
 static void test_integrator_law_drop(void **state)
 {
     td_pid_block pid = {RIG_KP, 2.5e5, RIG_KD, 0.0};
@@ -348,6 +349,19 @@ static void test_integrator_law_drop(void **state)
         /* PD alone would sag by W/2 / (ki kp - ks), about 0.5 mm */
         print_message("PID controller, 1 s after a 50 ms drop: largest sensor displacement %.3g m\n", worst);
         assert_true(worst < 1e-5);
+        /* the caller's held force wins over the controller: ks x + f at AMB 0's actuator (node 3) */
+        assert_int_equal(td_sim_set_amb_mode(sim, 0, TD_AMB_EXTERNAL, NULL), TD_OK);
+        assert_int_equal(td_sim_set_amb_control(sim, 0, 10.0, -20.0, NULL), TD_OK);
+        run_to(sim, 1.01);
+        assert_int_equal(td_sim_get_state(sim, q, q + n), TD_OK);
+        {
+            double f[2];
+            td_amb a;
+            assert_int_equal(td_model_get_amb(td_sim_model(sim), 0, &a), TD_OK);
+            assert_int_equal(td_sim_amb_force(sim, 0, f), TD_OK);
+            assert_close(f[0], a.ks * q[TD_DOF(3, TD_DOF_X)] + 10.0, 1e-12, 0.0);
+            assert_close(f[1], a.ks * q[TD_DOF(3, TD_DOF_Y)] - 20.0, 1e-12, 0.0);
+        }
         free(q);
     }
     td_sim_free(&sim);
@@ -390,9 +404,9 @@ static void test_flight_with_controller_states(void **state)
 
 /* ---- scipy ----------------------------------------------------------------------------------- */
 
-/* The plant of m (matrices at the rig's speed, AMB axes) and LAW into `path`, as closed_loop.py
- * reads them. */
-static void dump_plant(const td_model *m, const char *path)
+/* The plant of m (matrices at the rig's speed, AMB axes) and the law's line into `path`, as
+ * closed_loop.py reads them. */
+static void dump_plant(const td_model *m, const char *law, const char *path)
 {
     td_system *sys = NULL;
     const td_matrix_kind kinds[4] = {TD_MATRIX_MASS, TD_MATRIX_STIFFNESS, TD_MATRIX_DAMPING, TD_MATRIX_GYROSCOPIC};
@@ -414,9 +428,7 @@ static void dump_plant(const td_model *m, const char *path)
                     td_system_node_dof(sys, amb.sensor_node, off), amb.ks, amb.ki, amb.tau);
         }
     }
-    for (i = 0; i < 6; i++)
-        fprintf(f, "%.17g ", LAW[i]);
-    fprintf(f, "\n");
+    fprintf(f, "%s\n", law);
     for (a = 0; a < 4; a++) {
         assert_int_equal(td_system_dense(sys, kinds[a], A, NULL), TD_OK);
         for (i = 0; i < n; i++) {
@@ -465,8 +477,11 @@ static void test_leadlag_notch_eigenvalues_against_scipy(void **state)
         const char *path = "sim_controller_plant.txt";
         int n, nref, i;
         double worst, re_max = -INFINITY;
-        dump_plant(m, path);
-        n = closed_loop_eigenvalues(m, ours, 200);
+        char law[256];
+        snprintf(law, sizeof law, "leadlag_notch %.17g %.17g %.17g %.17g %.17g %.17g", LAW[0], LAW[1], LAW[2], LAW[3],
+                 LAW[4], LAW[5]);
+        dump_plant(m, law, path);
+        n = closed_loop_eigenvalues(m, ours, 200, 0);
         nref = scipy_eigenvalues(path, ref, 200);
         assert_int_equal(n, nref);
         worst = match_eigenvalues(ref, ours, n, 1e-8);
@@ -636,6 +651,68 @@ static void test_model_controllers(void **state)
     td_model_free(&r);
 }
 
+/* The start of a run under a sampled controller: its stability checked on the sampled loop, the
+ * orbit (computed for continuous laws) refused when asked for strictly, rest on "auto". */
+static void check_sampled_start(const td_model *m)
+{
+    td_sim *sim = NULL;
+    td_sim_options o;
+    td_sim_start_info info;
+    td_error err;
+    td_sim_options_default(&o);
+    o.start = TD_START_ORBIT;
+    assert_int_equal(td_sim_create(m, &o, &sim, &err), TD_ERR_INVALID);
+    print_message("%s\n", err.message);
+    o.start = TD_START_AUTO;
+    assert_int_equal(td_sim_create(m, &o, &sim, &err), TD_OK);
+    assert_int_equal(td_sim_start_info_get(sim, &info), TD_OK);
+    assert_int_equal(info.used, TD_START_REST);
+    assert_true(info.stability != TD_STABILITY_UNCHECKED && isfinite(info.max_real_part));
+    td_sim_free(&sim);
+}
+
+/* A sampled controller (a PID with a filtered derivative, Tustin at 10 kHz) on every axis: the
+ * eigenvalues of the loop over one sample, exact at the samples, against scipy's (its own Tustin
+ * map, zero-order hold and loop), as s = ln(mu) rate; the start's stability check uses them, and the
+ * orbit start, computed for continuous laws, is refused when asked for strictly and falls back to
+ * rest on "auto". */
+static void test_sampled_law_eigenvalues_against_scipy(void **state)
+{
+    const double taus[2] = {TD_RIG_TAU, 0.0}, rate = 10000.0;
+    td_pid_block pid = {RIG_KP, 0.0, RIG_KD, 2000.0};
+    double complex ours[200], ref[200];
+    int t;
+    (void)state;
+    for (t = 0; t < 2; t++) {
+        td_controller *c = td_controller_create_pid(&pid, NULL);
+        td_controller *k = c ? td_controller_discretise(c, rate, TD_DISCRETISE_TUSTIN, 0.0, NULL) : NULL;
+        td_model *m;
+        const char *path = "sim_controller_sampled.txt";
+        char law[256];
+        int n, nref, i;
+        double worst, re_max = -INFINITY;
+        assert_non_null(k);
+        m = rig_with_law(taus[t], TD_RIG_NO_RETAINERS, k);
+        snprintf(law, sizeof law, "pid_tustin %.17g %.17g %.17g %.17g", pid.kp, pid.kd, pid.derivative_filter, rate);
+        dump_plant(m, law, path);
+        n = closed_loop_eigenvalues(m, ours, 200, 4 * td_controller_order(k));
+        nref = scipy_eigenvalues(path, ref, 200);
+        assert_int_equal(n, nref);
+        worst = match_eigenvalues(ref, ours, n, 1e-8);
+        remove(path);
+        if (t == 0)
+            check_sampled_start(m);
+        for (i = 0; i < n; i++)
+            re_max = fmax(re_max, creal(ours[i]));
+        print_message("sampled PID, tau %.3g s: %d eigenvalues, largest relative difference to scipy %.3g, largest "
+                      "real part %.6g 1/s\n",
+                      taus[t], n, worst, re_max);
+        td_controller_free(&c);
+        td_controller_free(&k);
+        td_model_free(&m);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -646,6 +723,7 @@ int main(void)
         cmocka_unit_test(test_pd_run_equals_shorthand),
         cmocka_unit_test(test_flight_with_controller_states),
         cmocka_unit_test(test_integrator_law_drop),
+        cmocka_unit_test(test_sampled_law_eigenvalues_against_scipy),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -8,7 +8,12 @@
  *   z = [q (ndof); v = q' (ndof); w (n_controller_states)]
  *
  * where q follows touchdown/dofs.h and w holds the lagged AMB control forces Fc, N, one per AMB
- * axis with tau > 0, in the order of the system's AMB axis table (filter-state index). AMB axes
+ * axis with tau > 0, in the order of the system's AMB axis table (filter-state index), then the
+ * integrators (kint > 0), then the states of each continuous linear controller (td_model_add_controller)
+ * in turn. A sampled controller has no state here: td_modal_solve and td_modal_stability analyse its
+ * loop over one sample, exactly at the samples (the plant held by zero-order hold), its states
+ * appended to z and each eigenvalue mu reported as s = ln(mu) sample_rate; the other analyses refuse
+ * it (TD_ERR_INVALID). AMB axes
  * with tau == 0 enter as their exact spring-damper. Saturation is ignored (linear analysis);
  * contact is absent. The state dimension is td_modal_state_count(sys).
  *

@@ -383,6 +383,54 @@ static void drop_zero_roots(td_modal *m, int zeros)
     }
 }
 
+/* mu -> s = ln(mu) rate for the eigenvalues of a sampled loop (sampled.c); a root at mu = 0 (a
+ * delay's) is taken at |mu| = DBL_MIN, the fastest decay a double can say. */
+static void sampled_to_continuous(gsl_vector_complex *eval, double rate)
+{
+    size_t i;
+    for (i = 0; i < eval->size; i++) {
+        gsl_complex mu = gsl_vector_complex_get(eval, i);
+        double r = fmax(gsl_complex_abs(mu), DBL_MIN), arg = gsl_complex_arg(mu);
+        if (GSL_IMAG(mu) == 0.0 && GSL_REAL(mu) > 0.0)
+            arg = 0.0; /* a real root stays real */
+        gsl_vector_complex_set(eval, i, gsl_complex_rect(log(r) * rate, arg * rate));
+    }
+}
+
+/* td_modal_solve for a system with sampled controllers: the eigen-pairs of the loop over one sample
+ * (sampled.c), its eigenvalues as s = ln(mu) rate; the plant's rows of each eigenvector are the
+ * mode's shape. */
+static td_status solve_sampled(const td_system *sys, double omega, td_modal **out, td_error *err)
+{
+    gsl_matrix *P = NULL;
+    gsl_vector_complex *eval = NULL;
+    gsl_matrix_complex *evec = NULL;
+    gsl_eigen_nonsymmv_workspace *w = NULL;
+    double rate;
+    td_status st = td_sampled_closed_loop(sys, omega, &P, &rate, err);
+    if (st != TD_OK)
+        return st;
+    eval = gsl_vector_complex_alloc(P->size1);
+    evec = gsl_matrix_complex_alloc(P->size1, P->size1);
+    w = gsl_eigen_nonsymmv_alloc(P->size1);
+    if (!eval || !evec || !w)
+        st = td_error_set(err, TD_ERR_NOMEM, "modal: out of memory for the eigen-solver (%d states)", (int)P->size1);
+    else {
+        gsl_eigen_nonsymmv_params(1, w); /* balance */
+        if (gsl_eigen_nonsymmv(P, eval, evec, w) != GSL_SUCCESS)
+            st = td_error_set(err, TD_ERR_NUMERIC, "modal: the eigen-solver did not converge at %g rad/s", omega);
+        else {
+            sampled_to_continuous(eval, rate);
+            st = td_modal_collect_system(eval, evec, sys, omega, out, err);
+        }
+    }
+    gsl_eigen_nonsymmv_free(w);
+    gsl_matrix_complex_free(evec);
+    gsl_vector_complex_free(eval);
+    gsl_matrix_free(P);
+    return st;
+}
+
 td_status td_modal_solve(const td_system *sys, double omega, td_modal **out, td_error *err)
 {
     td_state_space ss;
@@ -394,6 +442,8 @@ td_status td_modal_solve(const td_system *sys, double omega, td_modal **out, td_
     if (!out)
         return td_error_set(err, TD_ERR_INVALID, "td_modal_solve: NULL output pointer");
     *out = NULL;
+    if (td_system_has_sampled_law(sys))
+        return solve_sampled(sys, omega, out, err);
     st = td_state_space_build(sys, omega, &ss, err);
     if (st != TD_OK)
         return st;
@@ -441,26 +491,34 @@ static void rightmost(const gsl_vector_complex *eval, double *max_real, double *
 
 td_status td_modal_stability(const td_system *sys, double omega, double *max_real_part, int *unstable, td_error *err)
 {
-    td_state_space ss;
+    td_state_space ss = {0, 0, 0, 0.0, NULL, NULL};
+    gsl_matrix *A = NULL, *P = NULL;
     gsl_vector_complex *eval = NULL;
     gsl_eigen_nonsymm_workspace *w = NULL;
-    double max_real = NAN, radius = 0.0;
-    td_status st = td_state_space_build(sys, omega, &ss, err);
+    double max_real = NAN, radius = 0.0, rate = 0.0;
+    /* a sampled loop: the eigenvalues over one sample (sampled.c), as s = ln(mu) rate */
+    td_status st = td_system_has_sampled_law(sys) ? td_sampled_closed_loop(sys, omega, &P, &rate, err)
+                                                  : td_state_space_build(sys, omega, &ss, err);
     if (st != TD_OK)
         return st;
-    eval = gsl_vector_complex_alloc((size_t)ss.n);
-    w = gsl_eigen_nonsymm_alloc((size_t)ss.n);
+    A = P ? P : ss.A;
+    eval = gsl_vector_complex_alloc(A->size1);
+    w = gsl_eigen_nonsymm_alloc(A->size1);
     if (!eval || !w)
-        st = td_error_set(err, TD_ERR_NOMEM, "modal: out of memory for the eigen-solver (%d states)", ss.n);
+        st = td_error_set(err, TD_ERR_NOMEM, "modal: out of memory for the eigen-solver (%d states)", (int)A->size1);
     else {
         gsl_eigen_nonsymm_params(0, 1, w); /* eigenvalues only, balanced as in td_modal_solve */
-        if (gsl_eigen_nonsymm(ss.A, eval, w) != GSL_SUCCESS)
+        if (gsl_eigen_nonsymm(A, eval, w) != GSL_SUCCESS)
             st = td_error_set(err, TD_ERR_NUMERIC, "modal: the eigen-solver did not converge at %g rad/s", omega);
-        else
+        else {
+            if (P)
+                sampled_to_continuous(eval, rate);
             rightmost(eval, &max_real, &radius);
+        }
     }
     gsl_eigen_nonsymm_free(w);
     gsl_vector_complex_free(eval);
+    gsl_matrix_free(P);
     td_state_space_free(&ss);
     if (st == TD_OK && max_real_part)
         *max_real_part = max_real;

@@ -45,6 +45,15 @@ td_status td_state_space_supported(const td_system *sys, td_error *err);
 
 /* Build the state space of `sys` at speed `omega`; on failure *ss is left empty (freed). */
 td_status td_state_space_build(const td_system *sys, double omega, td_state_space *ss, td_error *err);
+/* The same first-order form with the sampled controllers left out: their axes' held currents are
+ * inputs (sampled.c closes that loop at the samples). */
+td_status td_state_space_build_plant(const td_system *sys, double omega, td_state_space *ss, td_error *err);
+/* 1 if sys has a sampled controller. */
+int td_system_has_sampled_law(const td_system *sys);
+/* The closed loop of the plant (td_state_space_build_plant) and the sampled controllers over one
+ * sample period, z[k+1] = P z[k] with z = [plant state; sampled controllers' states] (N x N, new,
+ * *P; *rate the common sample rate, Hz); TD_ERR_INVALID when the rates differ. */
+td_status td_sampled_closed_loop(const td_system *sys, double omega, gsl_matrix **P, double *rate, td_error *err);
 void td_state_space_free(td_state_space *ss);
 
 /* Load term of a mechanical force f (length ndof): out[ndof .. 2 ndof) = M^-1 f, the rest 0. */

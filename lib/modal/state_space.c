@@ -77,9 +77,9 @@ static amb_coeffs amb_axis_coeffs(const td_amb_axis *a)
         c.rate_v = td_amb_axis_filter_rate(a, 0.0, 1.0, 0.0, 0.0);
         c.rate_e = td_amb_axis_filter_rate(a, 0.0, 0.0, 1.0, 0.0);
         c.rate_w = td_amb_axis_filter_rate(a, 0.0, 0.0, 0.0, 1.0);
-        c.rate_i = td_amb_axis_lag_rate(a, td_amb_axis_current_target(a, 1.0), 0.0);
+        c.rate_i = td_amb_axis_lag_rate(a, td_amb_axis_current_command(a, 1.0), 0.0);
     }
-    c.target_i = td_amb_axis_current_target(a, 1.0);
+    c.target_i = td_amb_axis_current_command(a, 1.0);
     return c;
 }
 
@@ -89,6 +89,8 @@ static void add_current(const td_system *sys, const td_amb_axis *a, int row, dou
 {
     const td_lti_law *L = &sys->laws[a->law];
     int nd = sys->ndof, o = a->law_output, j, m;
+    if (L->state < 0)
+        return; /* a sampled law's held current is an input of the plant (sampled.c) */
     for (j = 0; j < L->n; j++)
         td_entry_add(R, row, 2 * nd + L->state + j, scale * L->C[o + (size_t)j * L->nout]);
     for (m = 0; m < L->nin; m++) {
@@ -105,7 +107,7 @@ static void law_rows(const td_system *sys, td_entry_sink *A)
     int nd = sys->ndof, l, r, j, m;
     for (l = 0; l < sys->n_laws; l++) {
         const td_lti_law *L = &sys->laws[l];
-        for (r = 0; r < L->n; r++) {
+        for (r = 0; L->state >= 0 && r < L->n; r++) {
             int row = 2 * nd + L->state + r;
             for (j = 0; j < L->n; j++)
                 td_entry_add(A, row, 2 * nd + L->state + j, L->A[r + (size_t)j * L->n]);
@@ -199,6 +201,15 @@ static td_status factor_mass(const td_system *sys, gsl_matrix *L, td_error *err)
 
 td_status td_state_space_build(const td_system *sys, double omega, td_state_space *ss, td_error *err)
 {
+    if (!sys || !ss)
+        return td_error_set(err, TD_ERR_INVALID, "modal: NULL system");
+    if (td_state_space_supported(sys, err) != TD_OK)
+        return TD_ERR_INVALID;
+    return td_state_space_build_plant(sys, omega, ss, err);
+}
+
+td_status td_state_space_build_plant(const td_system *sys, double omega, td_state_space *ss, td_error *err)
+{
     gsl_matrix *R = NULL;
     size_t nd, n;
     td_status st;
@@ -206,8 +217,6 @@ td_status td_state_space_build(const td_system *sys, double omega, td_state_spac
         return td_error_set(err, TD_ERR_INVALID, "modal: NULL system");
     if (!TD_SPEED_VALID(omega))
         return td_error_set(err, TD_ERR_INVALID, "modal: speed must be finite and >= 0 rad/s (got %g)", omega);
-    if (td_state_space_supported(sys, err) != TD_OK)
-        return TD_ERR_INVALID;
     td_modal_gsl_quiet();
     ss->ndof = sys->ndof;
     ss->nfilter = sys->n_controller_states;

@@ -2,8 +2,6 @@
  * The AMB axis law of docs/reference-rig.md ("AMBs" row), one lateral axis at a time:
  *   F = ks x + Fc,   tau dFc/dt = -Fc - ki (kp xs + kd dxs/dt + kint e),   de/dt = xs,
  *   F clipped to +-capacity (saturation).
- * A linear controller (touchdown/controller.h) replaces the shorthand's command by ki i, i its
- * current command; the lag, the magnet and the clip stay the same.
  * The paper linearises the bearing ("linearised magnetic bearing characteristics", with eq. 1) and
  * controls it PD; the lag, the clipping and the integral action (PID, docs/theory.md "AMB control")
  * are this project's additions.
@@ -18,19 +16,19 @@ double td_amb_axis_command(const td_amb_axis *a, double xs, double vs, double e)
     return -a->ki * u;
 }
 
-double td_amb_axis_lag_rate(const td_amb_axis *a, double target, double fc)
+double td_amb_axis_current_command(const td_amb_axis *a, double current)
 {
-    return (target - fc) / a->tau;
+    return a->ki * current;
+}
+
+double td_amb_axis_lag_rate(const td_amb_axis *a, double command, double fc)
+{
+    return (command - fc) / a->tau;
 }
 
 double td_amb_axis_filter_rate(const td_amb_axis *a, double xs, double vs, double e, double fc)
 {
     return td_amb_axis_lag_rate(a, td_amb_axis_command(a, xs, vs, e), fc);
-}
-
-double td_amb_axis_current_target(const td_amb_axis *a, double current)
-{
-    return a->ki * current;
 }
 
 double td_amb_axis_integral_rate(const td_amb_axis *a, int running, double xs, double f)

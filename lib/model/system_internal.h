@@ -93,15 +93,15 @@ double td_system_coordinate_amplitude(const td_system *s, int i);
  * without one). */
 double td_amb_axis_command(const td_amb_axis *a, double xs, double vs, double e);
 
-/* The amplifier's lag dFc/dt = (target - Fc) / tau, for tau > 0: Fc relaxes to the target force. */
-double td_amb_axis_lag_rate(const td_amb_axis *a, double target, double fc);
+/* The force target ki i of the amplifier commanded with the current i (A): what a current command
+ * (a linear controller's output, or the loop analysis's input, touchdown/modal.h) asks of it. */
+double td_amb_axis_current_command(const td_amb_axis *a, double current);
 
-/* Filter rate dFc/dt = (command - Fc) / tau, for tau > 0 (the lag with the shorthand's command). */
+/* The amplifier lag dFc/dt = (command - Fc) / tau towards a force target `command`, for tau > 0. */
+double td_amb_axis_lag_rate(const td_amb_axis *a, double command, double fc);
+
+/* Filter rate dFc/dt = (command - Fc) / tau, for tau > 0. */
 double td_amb_axis_filter_rate(const td_amb_axis *a, double xs, double vs, double e, double fc);
-
-/* The target force ki i of a linear controller's current command i (A): the lag-free control force
- * when tau == 0, the target the lagged force Fc relaxes to otherwise (td_amb_axis_lag_rate). */
-double td_amb_axis_current_target(const td_amb_axis *a, double current);
 
 /* Integrator rate de/dt: xs while the controller runs (`running`: the AMB on and under its own
  * control), 0 while it is off, and 0 while the force `f` (td_amb_axis_force) is clipped and

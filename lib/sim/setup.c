@@ -149,10 +149,10 @@ static void init_machine(td_sim *s)
             c->rate_v = td_amb_axis_filter_rate(a, 0.0, 1.0, 0.0, 0.0) - r0;
             c->rate_e = td_amb_axis_filter_rate(a, 0.0, 0.0, 1.0, 0.0) - r0;
             c->rate_w = td_amb_axis_filter_rate(a, 0.0, 0.0, 0.0, 1.0) - r0;
-            c->rate_i = td_amb_axis_lag_rate(a, td_amb_axis_current_target(a, 1.0), 0.0) -
-                        td_amb_axis_lag_rate(a, td_amb_axis_current_target(a, 0.0), 0.0);
+            c->rate_i = td_amb_axis_lag_rate(a, td_amb_axis_current_command(a, 1.0), 0.0) -
+                        td_amb_axis_lag_rate(a, td_amb_axis_current_command(a, 0.0), 0.0);
         }
-        c->target_i = td_amb_axis_current_target(a, 1.0) - td_amb_axis_current_target(a, 0.0);
+        c->target_i = td_amb_axis_current_command(a, 1.0) - td_amb_axis_current_command(a, 0.0);
         c->gain_x = a->law >= 0 ? law_gain(s, a, c->target_i) : fabs(c->cmd_x);
     }
 }

@@ -47,7 +47,7 @@ static double amb_axis_command(const td_sim *s, const td_amb_axis *a, const doub
 /* The target force ki i of the current command i of an axis a linear controller drives. */
 static double amb_axis_current_target(const td_sim *s, const td_amb_axis *a, const double *y)
 {
-    return td_amb_axis_current_target(a, td_sim_lti_current(s, a, y));
+    return td_amb_axis_current_command(a, td_sim_lti_current(s, a, y));
 }
 
 /* Control force Fc of AMB axis k that enters F = ks x + Fc: the lagged state (tau > 0), the
@@ -65,21 +65,26 @@ static double amb_axis_fc(const td_sim *s, int k, const double *y)
     return amb_axis_command(s, a, y);
 }
 
-double td_sim_amb_axis_lag_rate(const td_sim *s, int k, const double *y)
-{
-    const td_amb_axis *a = &s->sys->amb_axes[k];
-    double fc = y[s->dae.ow + a->state];
-    if (a->law >= 0)
-        return td_amb_axis_lag_rate(a, amb_axis_current_target(s, a, y), fc);
-    return td_amb_axis_filter_rate(a, y[s->dae.oq + a->sensor_dof], y[s->dae.ov + a->sensor_dof],
-                                   amb_axis_integral(s, a, y), fc);
-}
-
 double td_sim_amb_axis_force(const td_sim *s, int k, const double *y)
 {
     const td_amb_axis *a = &s->sys->amb_axes[k];
     int enabled = s->machine.amb_mode[a->amb] != TD_AMB_OFF;
     return td_amb_axis_force(a, enabled, y[s->dae.oq + a->actuator_dof], amb_axis_fc(s, k, y), NULL, NULL);
+}
+
+/* The lag's rate (command - Fc)/tau of AMB axis k (tau > 0) at y: towards the shorthand's command,
+ * or the target ki i of its linear controller's current. */
+static double amb_axis_lag_rate(const td_sim *s, const td_amb_axis *a, const double *y)
+{
+    if (a->law >= 0)
+        return td_amb_axis_lag_rate(a, amb_axis_current_target(s, a, y), y[s->dae.ow + a->state]);
+    return td_amb_axis_filter_rate(a, y[s->dae.oq + a->sensor_dof], y[s->dae.ov + a->sensor_dof],
+                                   amb_axis_integral(s, a, y), y[s->dae.ow + a->state]);
+}
+
+double td_sim_amb_axis_lag_rate(const td_sim *s, int k, const double *y)
+{
+    return amb_axis_lag_rate(s, &s->sys->amb_axes[k], y);
 }
 
 double td_sim_amb_axis_integral_rate(const td_sim *s, int k, const double *y)

@@ -91,6 +91,16 @@ static td_status orbit_start(td_sim *s, double *y, td_error *err)
                  s->start.max_real_part);
         return TD_OK;
     }
+    for (k = 0; k < s->sys->n_laws; k++)
+        if (s->sys->laws[k].state < 0) { /* its state is the sampler's, outside the first-order form */
+            if (strict)
+                return td_error_set(err, TD_ERR_INVALID,
+                                    "start = \"orbit\": controller %d is sampled, and the steady orbit is computed "
+                                    "for continuous controllers only; use start = \"rest\"",
+                                    k);
+            snprintf(s->start.reason, sizeof s->start.reason, "controller %d is sampled: no steady orbit computed", k);
+            return TD_OK;
+        }
     td_model_gravity(s->model, &gx, &gy);
     st = td_modal_start_state(s->sys, s->machine.omega, s->machine.unb, s->machine.nu, gx != 0.0 || gy != 0.0,
                               orbit_phase_time(s), y + s->dae.oq, &merr);
