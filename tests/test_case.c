@@ -1508,6 +1508,27 @@ static void test_controller_rigid_by_hand(void **state)
     td_case_free(&c);
 }
 
+/* cases/rig-notch.cfg's rigid-body PD without its notch and filters is the rig's per-bearing PD
+ * (kp = 1e4 A/m, kd = 40 A s/m on each axis, docs/reference-rig.md): for collocated AMBs 1 m apart
+ * about their midpoint T^T diag(2 kp, kp / 2) T = kp I, each axis on its own. */
+static void test_controller_rigid_is_the_shorthand(void **state)
+{
+    const char *ov[2] = {"controllers[0].translation = ( { pid = { kp = 2.0e4; kd = 80.0; }; } )",
+                         "controllers[0].tilt = ( { pid = { kp = 5.0e3; kd = 20.0; }; } )"};
+    td_case *c = load_ok("cases/rig-notch.cfg", ov, 2);
+    double re[16], im[16], w = 2.0 * TD_PI * 34.4;
+    int i;
+    (void)state;
+    assert_int_equal(td_controller_frequency_response(td_model_get_controller(td_case_model(c), 0, NULL, NULL, NULL),
+                                                      34.4, re, im, NULL),
+                     TD_OK);
+    for (i = 0; i < 16; i++) {
+        assert_close(re[i], i % 5 == 0 ? 1.0e4 : 0.0, 1e-14, 1e-10);
+        assert_close(im[i], i % 5 == 0 ? 40.0 * w : 0.0, 1e-14, 1e-10);
+    }
+    td_case_free(&c);
+}
+
 /* Each bad controller (one line of control_base) fails with FILE:LINE: KEY: and says what. */
 static void test_controller_errors(void **state)
 {
@@ -1556,7 +1577,7 @@ static void test_controller_errors(void **state)
          "controllers[0].prewarp", "tustin", 0},
         {"controllers = ( { name = \"a\"; ambs = [0, 1]; law = ( { tf = { num = [1.0, 2.0, 3.0]; den = [1.0]; }; } ); "
          "} );",
-         "controllers[0].law[0].tf", "improper", 0},
+         "controllers[0].law[0].tf.num", "improper", 0},
         {"controllers = ( { name = \"a\"; ambs = [0, 1]; law = ( { pid = { kp = 1.0; kd = 1.0; }; }, { pid = { kp = "
          "1.0; kd = 1.0; }; } ); } );",
          "controllers[0].law[1]", "improper", 0},
@@ -1582,7 +1603,10 @@ static void test_controller_errors(void **state)
          "controllers[1].ambs", "already driven by controller 0", 0},
         {"controllers = ( { name = \"a\"; ambs = [0, 1]; law = ( { notch = { frequency = 9.0; width = 1.0; depth = "
          "1.5; }; } ); } );",
-         "controllers[0].law[0].notch", "depth", 0},
+         "controllers[0].law[0].notch.depth", "must be >= 0 and < 1 (got 1.5)", 0},
+        {"controllers = ( { name = \"a\"; ambs = [0, 1]; law = ( { lowpass = { frequency = 100.0; }; } ); sample_rate "
+         "= 8000.0; prewarp = 5000.0; } );",
+         "controllers[0].prewarp", "below the Nyquist frequency 4000 Hz", 0},
     };
     size_t k;
     (void)state;
@@ -2214,6 +2238,7 @@ int main(void)
         cmocka_unit_test(test_controllers_all_keys),
         cmocka_unit_test(test_controller_closed_forms),
         cmocka_unit_test(test_controller_rigid_by_hand),
+        cmocka_unit_test(test_controller_rigid_is_the_shorthand),
         cmocka_unit_test(test_controller_errors),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
