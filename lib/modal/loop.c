@@ -8,7 +8,7 @@
  * The plant is the system's own first-order form (state_space.c) with the controlled axes' laws
  * taken out (kp = kd = kint = 0, no linear controller): rotor, ks and the amplifier lag stay as
  * the AMB law of model/amb.c states them. Its inputs are the current commands (the amplifier
- * law's td_amb_axis_current_target, through the lag td_amb_axis_lag_rate or directly as a force
+ * law's td_amb_axis_current_command, through the lag td_amb_axis_lag_rate or directly as a force
  * when tau = 0) and unit forces at the actuator nodes; its outputs are the sensor and actuator
  * displacements. The state matrix is balanced and brought to upper Hessenberg form once, so that
  * each frequency costs O(n^2) per input (Laub, "Efficient multivariable frequency response
@@ -169,9 +169,9 @@ static td_status input_column(const td_state_space *ss, const td_amb_axis *a, in
         for (i = 0; i < ss->n; i++)
             col[i] = 0.0;
         /* the command sets the lag's target: dFc/dt = (ki i - Fc) / tau */
-        col[2 * ss->ndof + a->state] = td_amb_axis_lag_rate(a, td_amb_axis_current_target(a, 1.0), 0.0);
+        col[2 * ss->ndof + a->state] = td_amb_axis_lag_rate(a, td_amb_axis_current_command(a, 1.0), 0.0);
     } else {
-        f[a->actuator_dof] = current ? dfdfc * td_amb_axis_current_target(a, 1.0) : 1.0;
+        f[a->actuator_dof] = current ? dfdfc * td_amb_axis_current_command(a, 1.0) : 1.0;
         st = td_state_space_load(ss, f, col, err);
     }
     free(f);
