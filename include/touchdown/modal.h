@@ -293,6 +293,94 @@ TD_API td_status td_harmonic_orbit(const td_harmonic *h, int node, td_orbit *out
 TD_API td_status td_modal_start_state(const td_system *sys, double omega, const td_unbalance *u, int n_u,
                                       int with_gravity, double t, double *z, td_error *err);
 
+/* ---------------------------------------------------------------------------------------- */
+/* Loop analysis: sensitivity, open loop and compliance (docs/theory.md, "Sensitivity")     */
+
+typedef struct td_loop td_loop;
+
+/** The frequency grid of td_loop_compute: `points` frequencies evenly spaced in log f from f_min
+ *  to f_max (Hz, inclusive). */
+typedef struct td_loop_options {
+    double f_min; /**< Hz, > 0 */
+    double f_max; /**< Hz, > f_min */
+    int points;   /**< >= 2 */
+} td_loop_options;
+
+/** The largest first-order system (td_modal_state_count) td_loop_compute analyses: its dense
+ *  eigen-solve and its O(states^2) per frequency and input grow past seconds beyond this (a
+ *  reduction, docs/theory.md "Reduced rotor", brings a large model under it). */
+#define TD_LOOP_MAX_STATES 240
+
+/** Defaults: 0.5 Hz to 5 kHz, 800 points. */
+TD_API void td_loop_options_default(td_loop_options *opt);
+
+/** The ISO 14839-3:2006 zone ("Evaluation of stability margin") of a peak sensitivity (linear):
+ *  'A' below 3, 'B' from 3 below 4, 'C' from 4 below 5, 'D' from 5; 0 for an undefined peak. */
+TD_API char td_loop_zone(double peak);
+
+/**
+ * The linear loop analysis of the contact-free machine at speed `omega` (rad/s), as ISO 14839-3
+ * measures it: a signal injected at one axis's controller output (amplifier input) with every
+ * loop closed. The plant P(s) runs from the amplifier commands (current, A) of the controlled AMB
+ * axes to their sensors' displacements (m): rotor, ks, ki and the amplifier lag tau. The
+ * controller K(s) runs from the errors e = -xs to the currents: kp + kd s + kint / s for an axis
+ * under the td_amb shorthand, the model's linear controller (td_model_add_controller) for an
+ * axis it drives. Per controlled axis j:
+ *
+ *   S_j(jw) = [(I + K(jw) P(jw))^-1]_jj    (the input sensitivity's diagonal),
+ *   L_j     = 1 / S_j - 1                   (the open loop seen at that point),
+ *
+ * the peak of |S_j| over the grid, refined by Brent's method between the grid neighbours, with its
+ * frequency and zone (td_loop_zone); and per AMB axis the dynamic compliance, the displacement
+ * per unit force at its actuator node with every loop closed (m/N). Stability: the largest real
+ * part of the closed-loop eigenvalues (td_modal_solve). The loop is stable unless an eigenvalue
+ * grows (td_modal_is_unstable: an undamped mode that no AMB sees, rounding-level real part, keeps
+ * it stable); when not stable, S, its peaks and zones and the compliance are TD_UNDEFINED (0 for
+ * a zone), and L is still given.
+ *
+ * opt may be NULL (td_loop_options_default). Errors: TD_ERR_INVALID (NULL argument, bad options
+ * or speed, no controlled axis, a sampled controller: "loop analysis of a sampled controller is not
+ * supported yet", more than TD_LOOP_MAX_STATES states), TD_ERR_NUMERIC, TD_ERR_NOMEM. Caller frees *out with
+ * td_loop_free; NULL on failure.
+ */
+TD_API td_status td_loop_compute(const td_system *sys, double omega, const td_loop_options *opt, td_loop **out,
+                                 td_error *err);
+/** Free and set *l to NULL; accepts NULL. */
+TD_API void td_loop_free(td_loop **l);
+/** Speed of the analysis, rad/s. */
+TD_API double td_loop_speed(const td_loop *l);
+/** 1 when the closed loop is stable (see td_loop_compute), else 0. */
+TD_API int td_loop_stable(const td_loop *l);
+/** Largest real part of the closed-loop eigenvalues, 1/s. */
+TD_API double td_loop_max_real_part(const td_loop *l);
+/** Number of controlled axes (the columns of the sensitivity), in AMB-axis order. */
+TD_API int td_loop_axis_count(const td_loop *l);
+/** The AMB axis (2 amb + (0: x, 1: y)) of controlled axis j; -1 out of range. */
+TD_API int td_loop_axis(const td_loop *l, int j);
+/** Number of AMB axes (the columns of the compliance): 2 per AMB. */
+TD_API int td_loop_amb_axis_count(const td_loop *l);
+/** Number of grid frequencies. */
+TD_API int td_loop_frequency_count(const td_loop *l);
+/** Grid frequency k, Hz (NAN out of range). */
+TD_API double td_loop_frequency(const td_loop *l, int k);
+/** S_j at grid frequency k into re, im (TD_UNDEFINED when unstable). TD_ERR_INVALID out of range. */
+TD_API td_status td_loop_sensitivity(const td_loop *l, int j, int k, double *re, double *im);
+/** L_j at grid frequency k. TD_ERR_INVALID out of range. */
+TD_API td_status td_loop_open_loop(const td_loop *l, int j, int k, double *re, double *im);
+/** Compliance of AMB axis a at grid frequency k, m/N (TD_UNDEFINED when unstable). */
+TD_API td_status td_loop_compliance(const td_loop *l, int a, int k, double *re, double *im);
+/** Peak of |S_j| (linear) and its frequency (Hz); TD_UNDEFINED when unstable or out of range. */
+TD_API double td_loop_sensitivity_peak(const td_loop *l, int j);
+TD_API double td_loop_sensitivity_peak_frequency(const td_loop *l, int j);
+/** Zone of axis j's peak (td_loop_zone); 0 when unstable or out of range. */
+TD_API char td_loop_sensitivity_zone(const td_loop *l, int j);
+/** The worst zone over the axes; 0 when unstable. */
+TD_API char td_loop_worst_zone(const td_loop *l);
+/** S_j and L_j at any frequency f (Hz), computed afresh (the grid's values at grid frequencies);
+ *  either pointer pair may be NULL. TD_ERR_INVALID for j or f out of range (f > 0). */
+TD_API td_status td_loop_evaluate(const td_loop *l, int j, double f, double *s_re, double *s_im, double *l_re,
+                                  double *l_im, td_error *err);
+
 #ifdef __cplusplus
 }
 #endif

@@ -17,6 +17,8 @@
 #include "touchdown/modal.h"
 #include "touchdown/model.h"
 
+#include <stddef.h>
+
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -35,21 +37,34 @@ typedef struct td_modal_results {
     int n_harmonics;
     const td_model *model; /**< optional: node positions (/modes/node_z) and bearing nodes for plots */
     const char *case_text; /**< optional: the case file text, written as the case_text attribute */
+    const td_loop *loop;   /**< optional: the loop analysis (/loop; CSV sections loop, sensitivity_peaks, compliance) */
 } td_modal_results;
 
 /**
  * CSV: one file with sections, each a '# section: NAME' line, then a header line of column
  * names with units, then rows; numbers as "%.12g". Sections: modes, real_eigenvalues,
- * mode_shapes, campbell, critical_speeds, harmonic. Errors: TD_ERR_INVALID (NULL argument, bad
- * counts), TD_ERR_IO (the file cannot be created, written or renamed), TD_ERR_NOMEM.
+ * mode_shapes, campbell, critical_speeds, harmonic, loop, sensitivity_peaks, compliance. Errors: TD_ERR_INVALID (NULL
+ * argument, bad counts), TD_ERR_IO (the file cannot be created, written or renamed), TD_ERR_NOMEM.
  */
 TD_API td_status td_modal_write_csv(const char *path, const td_modal_results *r, td_error *err);
 /**
- * HDF5: groups /modes, /campbell, /critical_speeds, /harmonic/<k> with one-dimensional (or 2-D for
+ * HDF5: groups /modes, /campbell, /critical_speeds, /harmonic/<k>, /loop with one-dimensional (or 2-D for
  * Campbell and mode shapes) double datasets, each with a "units" string attribute. Errors as
  * td_modal_write_csv.
  */
 TD_API td_status td_modal_write_hdf5(const char *path, const td_modal_results *r, td_error *err);
+
+/**
+ * The loop analysis as one JSON object (what `touchdown modal --json` prints), its keys the names
+ * of the /loop outputs: "stable" (true/false), "max_real_part" (1/s), "speed" (rad/s), "axis"
+ * (the AMB axes, 2 amb + (0: x, 1: y)), "sensitivity_peak" (linear) and
+ * "sensitivity_peak_frequency" (Hz), one per controlled axis, "sensitivity_zones" ("A".."D" per
+ * axis) and "sensitivity_zone" (the worst); the sensitivity ones null when the loop is unstable
+ * (docs/output-format.md, "Undefined values"). l NULL (no analysis: it was refused or failed):
+ * every answer null, "stable" too. Returns the length needed, like snprintf; buf is
+ * NUL-terminated when n > 0 (n may be 0 to measure).
+ */
+TD_API int td_loop_json(char *buf, size_t n, const td_loop *l);
 
 /**
  * Check the output paths of a modal analysis before it runs, with the rules of

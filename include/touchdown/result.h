@@ -233,6 +233,26 @@ typedef enum td_out_id {
     TD_OUT_MODAL_MODE_SHAPES, /**< the modal CSV file's section of the mode shapes */
     TD_OUT_MODAL_INDEX,       /**< the modal CSV file's column of the real eigenvalues' index */
     TD_OUT_MODAL_NODE,        /**< the modal CSV file's node column (mode shapes, harmonic) */
+    TD_OUT_LOOP,              /**< /loop: the loop analysis (td_loop_compute) */
+    TD_OUT_LOOP_SPEED,
+    TD_OUT_LOOP_SPEED_UNITS,
+    TD_OUT_LOOP_STABLE,
+    TD_OUT_LOOP_MAX_REAL_PART,
+    TD_OUT_LOOP_SENSITIVITY_ZONE,
+    TD_OUT_LOOP_FREQUENCY,
+    TD_OUT_LOOP_AXIS,
+    TD_OUT_LOOP_AMB_AXIS,
+    TD_OUT_LOOP_SENSITIVITY_RE,
+    TD_OUT_LOOP_SENSITIVITY_IM,
+    TD_OUT_LOOP_OPEN_LOOP_RE,
+    TD_OUT_LOOP_OPEN_LOOP_IM,
+    TD_OUT_LOOP_COMPLIANCE_RE,
+    TD_OUT_LOOP_COMPLIANCE_IM,
+    TD_OUT_LOOP_SENSITIVITY_PEAK,
+    TD_OUT_LOOP_SENSITIVITY_PEAK_FREQUENCY,
+    TD_OUT_LOOP_SENSITIVITY_ZONES,
+    TD_OUT_LOOP_PEAKS,      /**< the modal CSV file's section of the sensitivity peaks */
+    TD_OUT_LOOP_COMPLIANCE, /**< the modal CSV file's section of the compliance */
     /* sweep table */
     TD_OUT_SWEEP_POINT,
     TD_OUT_SWEEP_VARY, /**< the group /vary: the `sub` of the reading calls names the key */

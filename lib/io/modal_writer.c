@@ -11,6 +11,7 @@
  */
 #include "io/h5_util.h"
 #include "io/h5_vfd.h"
+#include "io/loop_output.h"
 #include "io/schema.h"
 #include "io/writer_internal.h"
 #include "touchdown/modal_output.h"
@@ -138,6 +139,8 @@ static void csv_write_all(FILE *f, const td_modal_results *r)
         csv_critical(f, r->critical, r->n_critical);
     if (r->n_harmonics > 0)
         csv_harmonic(f, r->harmonics, r->n_harmonics);
+    if (r->loop)
+        td_loop_write_csv_sections(f, r->loop);
 }
 
 static td_status check_results(const td_modal_results *r, const char *what, td_error *err)
@@ -438,6 +441,8 @@ static const char *h5_parts(hid_t file, const td_modal_results *r)
         return "/critical_speeds";
     if (r->n_harmonics > 0 && !h5_harmonics(file, r->harmonics, r->n_harmonics))
         return "/harmonic";
+    if (r->loop && !td_loop_write_h5_group(file, r->loop))
+        return "/loop";
     if (r->model && r->modes && !h5_layout(file, r->model))
         return "the node layout in /modes";
     if (r->case_text && td_h5_attr_string(file, td_out_name(TD_OUT_CASE_TEXT), r->case_text) < 0)

@@ -160,7 +160,7 @@ fi
 # ---- a modal file -------------------------------------------------------------------------
 if "$tool" modal -q -o modal "$src/cases/paper-a.cfg" >/dev/null 2>err.txt; then
     if "$tool" plot -q modal.h5 2>err.txt; then
-        expect_pngs modal-plots campbell mode-shapes
+        expect_pngs modal-plots campbell mode-shapes sensitivity open-loop nyquist compliance
         grep -q "x/(2\*pi)" modal-plots/campbell.gp && pass "Campbell diagram has the 1x line" || fail "no 1x line"
     else
         fail "plot of a modal file: $(cat err.txt)"

@@ -12,8 +12,11 @@ static const char modal_usage[] =
     "Eigen-analysis of the contact-free first-order system (AMB force lags included):\n"
     "damped natural frequencies (rad/s and Hz, 12 significant digits), damping ratios and\n"
     "whirl directions at the case speed; the Campbell diagram over modal.speed_min..speed_max;\n"
-    "the critical speeds (forward and backward whirl crossing the 1x line); and the steady\n"
-    "unbalance response (orbits at the retainer and AMB nodes) at modal.response_speeds.\n"
+    "the critical speeds (forward and backward whirl crossing the 1x line); the steady\n"
+    "unbalance response (orbits at the retainer and AMB nodes) at modal.response_speeds; and the\n"
+    "loop analysis at the case speed (ISO 14839-3): per controlled AMB axis the sensitivity with\n"
+    "every loop closed, its peak and zone, the open loop (Bode, Nyquist) and the compliance at the\n"
+    "AMBs, 0.5 Hz to 5 kHz.\n"
     "Writes everything, mode shapes included, to CSV and HDF5. Large models (over 240 states) get\n"
     "their lowest modes only (docs/case-format.md); speed_steps x DOFs is limited to 200000.\n"
     "\n"
@@ -24,6 +27,9 @@ static const char modal_usage[] =
     "      --csv PATH       CSV path ('' for none)\n"
     "      --hdf5 PATH      HDF5 path ('' for none)\n"
     "  -q, --quiet          print nothing but errors\n"
+    "      --json           print only the loop analysis as one JSON object (stable, max_real_part,\n"
+    "                       sensitivity_peak, sensitivity_peak_frequency, sensitivity_zones,\n"
+    "                       sensitivity_zone; docs/output-format.md); the files are written as usual\n"
     "  -h, --help           this help\n"
     "\n"
     "Refused before the analysis (exit 2): CSV and HDF5 outputs that are the same file, an output\n"
@@ -169,7 +175,7 @@ static int grid_too_big(const td_case *c)
 
 /* The text report: modes, critical speeds, unbalance orbits and, of a reduced model, the reduction. */
 static void print_results(const td_case *c, const td_system *sys, double speed, const td_modal *modes,
-                          const td_critical_speed *cs, int n_cs, td_harmonic *const *h, int n_h)
+                          const td_critical_speed *cs, int n_cs, td_harmonic *const *h, int n_h, const td_loop *loop)
 {
     const td_model *m = td_case_model(c);
     const td_modal_options *opt = td_case_modal_options(c);
@@ -178,12 +184,28 @@ static void print_results(const td_case *c, const td_system *sys, double speed, 
     print_critical(cs, n_cs, opt);
     for (i = 0; i < n_h; i++)
         print_orbits(m, h[i]);
+    if (loop)
+        td_print_loop(stdout, loop);
     if (td_system_is_reduced(sys)) {
         td_print_reduction(stdout, sys);
         td_print_reduction_error(stdout, sys, speed, opt->response_speeds, n_h);
     }
 }
 
+/* The loop analysis, or NULL (said on stderr) for a machine it does not apply to or refuses: a
+ * machine without a controlled AMB axis, a sampled controller. That fails nothing else. */
+static td_loop *loop_analysis(const td_case *c, const td_system *sys, double speed)
+{
+    td_loop *l = NULL;
+    td_error err;
+    td_error_clear(&err);
+    if (td_loop_compute(sys, speed, NULL, &l, &err) != TD_OK)
+        fprintf(stderr, "touchdown modal: %s: %s\n", td_case_path(c),
+                err.message[0] ? err.message : td_strerror(err.code));
+    return l;
+}
+
+/* quiet: 1 prints nothing, 2 (--json) only the loop analysis as JSON. */
 static int analyse(const td_case *c, double speed, const modal_outputs *paths, int quiet)
 {
     volatile sig_atomic_t *cancel = td_cli_catch_signals();
@@ -195,6 +217,7 @@ static int analyse(const td_case *c, double speed, const modal_outputs *paths, i
     td_critical_speed cs[64];
     td_harmonic *h[64];
     td_unbalance *u = NULL;
+    td_loop *loop = NULL;
     int n_cs = 0, n_h = 0, n_u = 0, i, code = TD_EXIT_FAILED;
     td_modal_results res;
     td_error err;
@@ -219,8 +242,11 @@ static int analyse(const td_case *c, double speed, const modal_outputs *paths, i
     for (i = 0; i < opt->response_speed_count && i < 64; i++, n_h++)
         if ((st = stage(td_harmonic_compute(sys, opt->response_speeds[i], u, n_u, &h[i], &err), cancel, &err)) != TD_OK)
             goto done;
+    loop = loop_analysis(c, sys, speed);
     if (!quiet)
-        print_results(c, sys, speed, modes, cs, n_cs, h, n_h);
+        print_results(c, sys, speed, modes, cs, n_cs, h, n_h, loop);
+    memset(&res, 0, sizeof res);
+    res.loop = loop;
     res.modes = modes;
     res.campbell = camp;
     res.critical = cs;
@@ -235,6 +261,10 @@ static int analyse(const td_case *c, double speed, const modal_outputs *paths, i
         goto done;
     if (paths->hdf5[0] && (st = td_modal_write_hdf5(paths->hdf5, &res, &err)) != TD_OK)
         goto done;
+    if (quiet == 2 && td_print_loop_json(stdout, loop)) {
+        st = TD_ERR_NOMEM;
+        goto done;
+    }
     if (!quiet && (paths->csv[0] || paths->hdf5[0]))
         printf("wrote%s%s%s%s\n", paths->csv[0] ? " " : "", paths->csv, paths->hdf5[0] ? " " : "", paths->hdf5);
     code = TD_EXIT_OK;
@@ -247,6 +277,7 @@ done:
         td_harmonic_free(&h[i]);
     free(u);
     td_campbell_free(&camp);
+    td_loop_free(&loop);
     td_modal_free(&modes);
     td_system_free(&sys);
     return code;
@@ -254,13 +285,14 @@ done:
 
 int td_cmd_modal(int argc, char **argv)
 {
-    enum { OPT_CSV = 256, OPT_HDF5 };
+    enum { OPT_CSV = 256, OPT_HDF5, OPT_JSON };
     static const struct option longopts[] = {{"set", required_argument, NULL, 's'},
                                              {"speed", required_argument, NULL, 'w'},
                                              {"output", required_argument, NULL, 'o'},
                                              {"csv", required_argument, NULL, OPT_CSV},
                                              {"hdf5", required_argument, NULL, OPT_HDF5},
                                              {"quiet", no_argument, NULL, 'q'},
+                                             {"json", no_argument, NULL, OPT_JSON},
                                              {"help", no_argument, NULL, 'h'},
                                              {NULL, 0, NULL, 0}};
     td_cli_sets sets = {{0}, 0};
@@ -282,7 +314,8 @@ int td_cmd_modal(int argc, char **argv)
         case 'o': prefix = optarg; break;
         case OPT_CSV: csv = optarg; break;
         case OPT_HDF5: hdf5 = optarg; break;
-        case 'q': quiet = 1; break;
+        case 'q': quiet = quiet ? quiet : 1; break;
+        case OPT_JSON: quiet = 2; break;
         case 'h': fputs(modal_usage, stdout); return TD_EXIT_OK;
         default: fputs(modal_usage, stderr); return TD_EXIT_USAGE;
         }

@@ -15,6 +15,11 @@ int td_print_modes(FILE *f, const td_modal *modes, int count, int digits);
 void td_print_overdamped(FILE *f, const td_modal *modes, const td_model *model);
 /* "stable", "marginally stable (undamped modes)" or "UNSTABLE", judged against round-off. */
 const char *td_stability_word(const td_modal *modes);
+/* The loop analysis (touchdown/modal.h, td_loop_compute): stability, and per controlled axis the
+ * peak sensitivity, its frequency and ISO 14839-3 zone. */
+void td_print_loop(FILE *f, const td_loop *l);
+/* td_loop_json's object and a newline (l NULL: no analysis, every answer null); 1 when out of memory. */
+int td_print_loop_json(FILE *f, const td_loop *l);
 /* One line on a reduced system (its boundary DOFs and kept modes); nothing for a full one. */
 void td_print_reduction(FILE *f, const td_system *sys);
 /* The reduced system's error against the full model of the same machine: the frequencies of the

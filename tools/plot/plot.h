@@ -79,6 +79,17 @@ typedef struct plot_sim {
 } plot_sim;
 
 /* A modal file. Arrays absent from the file are NULL with zero counts. */
+/* The loop analysis of a modal file (/loop; nf = 0 when the file has none). */
+typedef struct plot_loop {
+    int nf, nc, na;           /* frequencies, controlled axes, AMB axes */
+    int stable;               /* 1: S is defined */
+    double *freq;             /* nf, Hz */
+    double *s_re, *s_im;      /* nf x nc */
+    double *l_re, *l_im;      /* nf x nc */
+    double *c_re, *c_im;      /* nf x na, m/N */
+    double *axis, *peak, *fp; /* nc: AMB axis, peak |S|, its frequency (Hz) */
+} plot_loop;
+
 typedef struct plot_modal {
     int ns, nb;    /* Campbell: speeds x branches */
     double *speed; /* ns, rad/s */
@@ -91,6 +102,7 @@ typedef struct plot_modal {
     double *xr, *xi, *yr, *yi;                   /* nm x nn */
     double *node_z;                              /* nn axial positions (m) when the file has them, else NULL */
     double mode_speed;                           /* rad/s of the mode shapes, NAN when unknown */
+    plot_loop loop;
 } plot_modal;
 
 typedef struct plot_file {
@@ -110,6 +122,12 @@ int plot_bad_part(const char *path, const char *before, td_out_id id, const char
  * "touchdown plot: PATH: why" and returns PLOT_BAD_INPUT (or PLOT_FAILED when out of memory). */
 int plot_file_load(const char *path, const plot_window *win, plot_file *f);
 void plot_file_free(plot_file *f);
+
+/* ---- plot_loop.c: the loop analysis of a modal file ------------------------------------------ */
+
+/* Read /loop into *l when the file has it (0; nothing read: l->nf = 0), -1 when unreadable. */
+int plot_loop_load(const td_result *r, plot_loop *l);
+void plot_loop_free(plot_loop *l);
 
 /* ---- plot_script.c: output and gnuplot ----------------------------------------------------- */
 
@@ -167,7 +185,8 @@ const char *plot_ext(const plot_opts *opt);
 
 extern const char plot_tpl_common[], plot_tpl_markers[], plot_tpl_orbit[], plot_tpl_radial_force[],
     plot_tpl_amb_forces[], plot_tpl_palette[], plot_tpl_compare[], plot_tpl_campbell[], plot_tpl_mode_shapes[],
-    plot_tpl_sweep_quantity[], plot_tpl_regime_map[], plot_tpl_bifurcation[];
+    plot_tpl_sweep_quantity[], plot_tpl_regime_map[], plot_tpl_bifurcation[], plot_tpl_sensitivity[],
+    plot_tpl_open_loop[], plot_tpl_nyquist[], plot_tpl_compliance[];
 
 /* ---- plot_sweep_load.c: sweep tables --------------------------------------------------------- */
 
@@ -187,6 +206,10 @@ void plot_sweep_free(plot_sweep *s);
 int plot_sim_figures(plot_job *job, const plot_file *f, const char *prefix);
 /* Every figure of one modal file. */
 int plot_modal_figures(plot_job *job, const plot_file *f, const char *prefix);
+/* The loop figures of a modal file with /loop (plot_loop.c): PREFIXsensitivity (|S| per axis with
+ * the ISO 14839-3 zone bands), PREFIXopen-loop (Bode of L), PREFIXnyquist (L with the circles of
+ * radius 1/3, 1/4, 1/5 around -1), PREFIXcompliance; nothing for a file without it. */
+int plot_loop_figures(plot_job *job, const plot_file *f, const char *prefix);
 /* The figures of one sweep table: the quantity against the x key, the regime map, the bifurcation
  * diagram (plot_sweep.c). PLOT_BAD_INPUT with a line printed for an option the table cannot take. */
 int plot_sweep_figures(plot_job *job, const plot_file *f, const char *prefix);

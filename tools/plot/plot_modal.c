@@ -242,5 +242,7 @@ int plot_modal_figures(plot_job *job, const plot_file *f, const char *prefix)
     }
     if (rc == PLOT_OK && m->nm > 0 && m->nn > 0 && (rc = write_shapes(job, f, prefix, comps)) == PLOT_OK)
         rc = shapes_figure(job, f, prefix, comps);
+    if (rc == PLOT_OK)
+        rc = plot_loop_figures(job, f, prefix);
     return rc;
 }

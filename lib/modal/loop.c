@@ -1,0 +1,884 @@
+/*
+ * The loop analysis of touchdown/modal.h (docs/theory.md, "Sensitivity"): the plant from the
+ * amplifier commands to the sensors, the controllers as frequency responses, and per controlled
+ * axis the input sensitivity S_j = [(I + K P)^-1]_jj, the open loop L_j = 1/S_j - 1, the peak of
+ * |S_j| and its ISO 14839-3:2006 zone ("Evaluation of stability margin"), and the compliance at
+ * the bearings with every loop closed.
+ *
+ * The plant is the system's own first-order form (state_space.c) with the controlled axes' laws
+ * taken out (kp = kd = kint = 0, no linear controller): rotor, ks and the amplifier lag stay as
+ * the AMB law of model/amb.c states them. Its inputs are the current commands (the amplifier
+ * law's td_amb_axis_current_command, through the lag td_amb_axis_lag_rate or directly as a force
+ * when tau = 0) and unit forces at the actuator nodes; its outputs are the sensor and actuator
+ * displacements. The state matrix is balanced and brought to upper Hessenberg form once, so that
+ * each frequency costs O(n^2) per input (Laub, "Efficient multivariable frequency response
+ * computations", IEEE Trans. Autom. Control 26(2), 1981; SLICOT's TB05AD does the same).
+ */
+#include "modal/modal_internal.h"
+#include "touchdown/controller.h"
+#include "util/error_internal.h"
+
+#include <gsl/gsl_errno.h>
+#include <gsl/gsl_linalg.h>
+#include <gsl/gsl_min.h>
+
+#include <complex.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define LOOP_TWO_PI 6.283185307179586
+/* Closed-loop modes damped less than this are searched for narrow peaks of |S| (mode_peaks): the
+ * grid's spacing (1.2 % at the defaults) is about the half-power width 2 zeta of a 0.6 % mode. */
+#define LOOP_LIGHT_DAMPING 0.05
+
+/* One controller as the loop sees it: k maps sensors cols[] (indices among the sensed axes) to
+ * currents rows[] (indices among the controlled axes). */
+typedef struct loop_block {
+    td_controller *k;
+    int *rows, *cols;
+    int nout, nin;
+} loop_block;
+
+struct td_loop {
+    double omega;
+    int n;          /* plant states */
+    int nc, ns, na; /* controlled axes (current inputs), sensed axes (controller inputs), AMB axes */
+    int m, p;       /* plant inputs nc + na, outputs ns + na */
+    int *axis;      /* nc: AMB axis of each current input */
+    int *sensor;    /* ns: AMB axis of each sensor */
+    double *H;      /* n x n upper Hessenberg, row-major */
+    double *B;      /* n x m, row-major, in the Hessenberg basis */
+    double *C;      /* p x n, row-major, in the Hessenberg basis */
+    int n_blocks;
+    loop_block *blocks;
+    int nf;
+    double *freq;                 /* Hz */
+    double complex *s, *l, *comp; /* nf x nc, nf x nc, nf x na */
+    double *peak, *peak_freq;     /* nc */
+    int stable;
+    double max_real;
+    int n_modes;                /* lightly damped closed-loop modes (peak candidates) */
+    double *mode_f, *mode_zeta; /* their damped frequencies (Hz) and damping ratios */
+};
+
+/* Scratch of one frequency evaluation. */
+typedef struct loop_work {
+    double complex *T, *Y, *G, *K, *M, *X;
+    double *kre, *kim;
+    gsl_permutation *perm;
+} loop_work;
+
+void td_loop_options_default(td_loop_options *opt)
+{
+    if (!opt)
+        return;
+    opt->f_min = 0.5;
+    opt->f_max = 5000.0;
+    opt->points = 800;
+}
+
+char td_loop_zone(double peak)
+{
+    /* ISO 14839-3:2006, "Evaluation of stability margin": zone limits on the peak sensitivity */
+    if (!isfinite(peak))
+        return 0;
+    return peak < 3.0 ? 'A' : peak < 4.0 ? 'B' : peak < 5.0 ? 'C' : 'D';
+}
+
+/* ---- which axes are in the loop ----------------------------------------------------------- */
+
+/* 1 if the shorthand law of axis a (td_amb: kp, kd, kint) closes a loop. */
+static int shorthand_controlled(const td_amb_axis *a)
+{
+    return a->law < 0 && !a->off && (a->kp != 0.0 || a->kd != 0.0 || a->kint != 0.0);
+}
+
+/* Flags over the AMB axes: driven[a] when a current command reaches axis a, sensed[a] when a
+ * controller reads its sensor. TD_ERR_INVALID for a sampled controller. */
+static td_status loop_axes(const td_system *sys, int *driven, int *sensed, td_error *err)
+{
+    int a, i, j;
+    for (a = 0; a < sys->n_amb_axes; a++)
+        driven[a] = sensed[a] = shorthand_controlled(&sys->amb_axes[a]);
+    for (i = 0; i < sys->n_laws; i++) {
+        const td_lti_law *w = &sys->laws[i];
+        if (w->sample_rate > 0.0)
+            return td_error_set(err, TD_ERR_INVALID,
+                                "loop analysis of a sampled controller is not supported yet "
+                                "(controller %d samples at %g Hz)",
+                                i, w->sample_rate);
+        for (j = 0; j < w->nout; j++)
+            driven[w->out_axis[j]] = 1;
+        for (j = 0; j < w->nin; j++)
+            sensed[w->in_axis[j]] = 1;
+    }
+    return TD_OK;
+}
+
+/* Index lists of the flagged axes; the index of each axis in its list into pos[] (-1: none). */
+static int list_axes(const int *flag, int n, int *list, int *pos)
+{
+    int a, k = 0;
+    for (a = 0; a < n; a++) {
+        pos[a] = flag[a] ? k : -1;
+        if (flag[a])
+            list[k++] = a;
+    }
+    return k;
+}
+
+/* ---- the plant ---------------------------------------------------------------------------- */
+
+/* The machine without the controlled axes' laws: the plant's state space at `omega`. */
+static td_status open_loop_state_space(const td_system *sys, const int *driven, double omega, td_state_space *ss,
+                                       td_error *err)
+{
+    td_system open = *sys;
+    td_amb_axis *axes = malloc((size_t)(sys->n_amb_axes > 0 ? sys->n_amb_axes : 1) * sizeof *axes);
+    td_status st;
+    int a;
+    if (!axes)
+        return td_error_set(err, TD_ERR_NOMEM, "loop analysis: out of memory");
+    for (a = 0; a < sys->n_amb_axes; a++) {
+        axes[a] = sys->amb_axes[a];
+        if (driven[a]) {
+            axes[a].kp = axes[a].kd = axes[a].kint = 0.0;
+            axes[a].law = axes[a].law_output = -1;
+        }
+    }
+    open.amb_axes = axes;
+    open.n_laws = 0;
+    open.laws = NULL;
+    st = td_state_space_build(&open, omega, ss, err);
+    free(axes);
+    return st;
+}
+
+/* Column `col` of the input matrix Bz (n x m, row-major): a current command of 1 A on axis a
+ * (current = 1) or a force of 1 N at its actuator node (current = 0). */
+static td_status input_column(const td_state_space *ss, const td_amb_axis *a, int current, double *col, td_error *err)
+{
+    double dfdx, dfdfc, *f = calloc((size_t)ss->ndof, sizeof *f);
+    td_status st = TD_OK;
+    int i;
+    if (!f)
+        return td_error_set(err, TD_ERR_NOMEM, "loop analysis: out of memory");
+    (void)td_amb_axis_force(a, !a->off, 0.0, 0.0, &dfdx, &dfdfc);
+    if (current && a->state >= 0) {
+        for (i = 0; i < ss->n; i++)
+            col[i] = 0.0;
+        /* the command sets the lag's target: dFc/dt = (ki i - Fc) / tau */
+        col[2 * ss->ndof + a->state] = td_amb_axis_lag_rate(a, td_amb_axis_current_command(a, 1.0), 0.0);
+    } else {
+        f[a->actuator_dof] = current ? dfdfc * td_amb_axis_current_command(a, 1.0) : 1.0;
+        st = td_state_space_load(ss, f, col, err);
+    }
+    free(f);
+    return st;
+}
+
+/* Bz (n x m) and Cz (p x n), row-major, of the plant in the state space's own coordinates. */
+static td_status plant_io(const td_system *sys, const td_loop *l, const td_state_space *ss, double *Bz, double *Cz,
+                          td_error *err)
+{
+    double *col = malloc((size_t)ss->n * sizeof *col);
+    td_status st = col ? TD_OK : td_error_set(err, TD_ERR_NOMEM, "loop analysis: out of memory");
+    int c, i;
+    for (c = 0; st == TD_OK && c < l->m; c++) {
+        const td_amb_axis *a = &sys->amb_axes[c < l->nc ? l->axis[c] : c - l->nc];
+        st = input_column(ss, a, c < l->nc, col, err);
+        for (i = 0; st == TD_OK && i < ss->n; i++)
+            Bz[(size_t)i * (size_t)l->m + (size_t)c] = col[i];
+    }
+    memset(Cz, 0, (size_t)l->p * (size_t)ss->n * sizeof *Cz);
+    for (c = 0; c < l->p; c++) {
+        const td_amb_axis *a = &sys->amb_axes[c < l->ns ? l->sensor[c] : c - l->ns];
+        Cz[(size_t)c * (size_t)ss->n + (size_t)(c < l->ns ? a->sensor_dof : a->actuator_dof)] = 1.0;
+    }
+    free(col);
+    return st;
+}
+
+/* Balance A (D^-1 A D), reduce it to Hessenberg form U^T (D^-1 A D) U and carry B and C along:
+ * l->H, l->B = U^T D^-1 Bz, l->C = Cz D U. */
+static td_status hessenberg_plant(td_loop *l, gsl_matrix *A, const double *Bz, const double *Cz, td_error *err)
+{
+    size_t n = A->size1, i, j, k;
+    gsl_vector *D = gsl_vector_alloc(n), *tau = gsl_vector_alloc(n);
+    gsl_matrix *U = gsl_matrix_alloc(n, n);
+    td_status st = TD_OK;
+    if (!D || !tau || !U)
+        st = td_error_set(err, TD_ERR_NOMEM, "loop analysis: out of memory");
+    else if (gsl_linalg_balance_matrix(A, D) != GSL_SUCCESS || gsl_linalg_hessenberg_decomp(A, tau) != GSL_SUCCESS ||
+             gsl_linalg_hessenberg_unpack(A, tau, U) != GSL_SUCCESS || gsl_linalg_hessenberg_set_zero(A) != GSL_SUCCESS)
+        st = td_error_set(err, TD_ERR_NUMERIC, "loop analysis: the Hessenberg reduction of the plant failed");
+    for (i = 0; st == TD_OK && i < n; i++) {
+        for (j = 0; j < n; j++)
+            l->H[i * n + j] = gsl_matrix_get(A, i, j);
+        for (j = 0; j < (size_t)l->m; j++) { /* (U^T D^-1 Bz)(i, j) */
+            double s = 0.0;
+            for (k = 0; k < n; k++)
+                s += gsl_matrix_get(U, k, i) * Bz[k * (size_t)l->m + j] / gsl_vector_get(D, k);
+            l->B[i * (size_t)l->m + j] = s;
+        }
+        for (j = 0; j < (size_t)l->p; j++) { /* (Cz D U)(j, i) */
+            double s = 0.0;
+            for (k = 0; k < n; k++)
+                s += Cz[j * n + k] * gsl_vector_get(D, k) * gsl_matrix_get(U, k, i);
+            l->C[j * n + i] = s;
+        }
+    }
+    gsl_vector_free(D);
+    gsl_vector_free(tau);
+    gsl_matrix_free(U);
+    return st;
+}
+
+static td_status build_plant(const td_system *sys, const int *driven, td_loop *l, td_error *err)
+{
+    td_state_space ss;
+    double *Bz = NULL, *Cz = NULL;
+    td_status st = open_loop_state_space(sys, driven, l->omega, &ss, err);
+    if (st != TD_OK)
+        return st;
+    l->n = ss.n;
+    Bz = malloc((size_t)ss.n * (size_t)l->m * sizeof *Bz);
+    Cz = malloc((size_t)ss.n * (size_t)l->p * sizeof *Cz);
+    l->H = malloc((size_t)ss.n * (size_t)ss.n * sizeof *l->H);
+    l->B = malloc((size_t)ss.n * (size_t)l->m * sizeof *l->B);
+    l->C = malloc((size_t)ss.n * (size_t)l->p * sizeof *l->C);
+    if (!Bz || !Cz || !l->H || !l->B || !l->C)
+        st = td_error_set(err, TD_ERR_NOMEM, "loop analysis: out of memory for a %d-state plant", ss.n);
+    if (st == TD_OK)
+        st = plant_io(sys, l, &ss, Bz, Cz, err);
+    if (st == TD_OK)
+        st = hessenberg_plant(l, ss.A, Bz, Cz, err);
+    free(Bz);
+    free(Cz);
+    td_state_space_free(&ss);
+    return st;
+}
+
+/* ---- the controllers ---------------------------------------------------------------------- */
+
+/* Block b: controller k (taken) from the sensors `in` to the currents `out` (AMB axes). */
+static td_status add_block(td_loop *l, td_controller *k, const int *in, const int *out, const int *pos_s,
+                           const int *pos_c, td_error *err)
+{
+    loop_block *b = &l->blocks[l->n_blocks];
+    int i;
+    if (!k)
+        return err && err->code != TD_OK ? err->code : TD_ERR_NOMEM;
+    b->k = k;
+    l->n_blocks++;
+    b->nin = td_controller_inputs(k);
+    b->nout = td_controller_outputs(k);
+    b->rows = malloc((size_t)b->nout * sizeof *b->rows);
+    b->cols = malloc((size_t)b->nin * sizeof *b->cols);
+    if (!b->rows || !b->cols)
+        return td_error_set(err, TD_ERR_NOMEM, "loop analysis: out of memory");
+    for (i = 0; i < b->nout; i++)
+        b->rows[i] = pos_c[out[i]];
+    for (i = 0; i < b->nin; i++)
+        b->cols[i] = pos_s[in[i]];
+    return TD_OK;
+}
+
+/* Every controller: a PID block (td_controller_create_pid, exact derivative) per shorthand axis,
+ * then the system's linear controllers as it runs them. */
+static td_status build_controllers(const td_system *sys, td_loop *l, const int *pos_s, const int *pos_c, td_error *err)
+{
+    td_status st = TD_OK;
+    int a, i;
+    l->blocks = calloc((size_t)(sys->n_amb_axes + sys->n_laws + 1), sizeof *l->blocks);
+    if (!l->blocks)
+        return td_error_set(err, TD_ERR_NOMEM, "loop analysis: out of memory");
+    for (a = 0; st == TD_OK && a < sys->n_amb_axes; a++) {
+        const td_amb_axis *x = &sys->amb_axes[a];
+        if (shorthand_controlled(x)) {
+            /* the shorthand's current -(kp xs + kd vs + kint e) is kp + kd s + kint/s acting on -xs */
+            td_pid_block pid;
+            pid.kp = x->kp;
+            pid.kint = x->kint;
+            pid.kd = x->kd;
+            pid.derivative_filter = 0.0;
+            st = add_block(l, td_controller_create_pid(&pid, err), &a, &a, pos_s, pos_c, err);
+        }
+    }
+    for (i = 0; st == TD_OK && i < sys->n_laws; i++) {
+        const td_lti_law *w = &sys->laws[i];
+        td_controller *k = td_controller_create_ss(w->n, w->nin, w->nout, w->A, w->B, w->C, w->D, w->D1, 0.0, err);
+        st = add_block(l, k, w->in_axis, w->out_axis, pos_s, pos_c, err);
+    }
+    return st;
+}
+
+/* ---- one frequency ------------------------------------------------------------------------ */
+
+static void work_free(loop_work *w)
+{
+    free(w->T);
+    free(w->Y);
+    free(w->G);
+    free(w->K);
+    free(w->M);
+    free(w->X);
+    free(w->kre);
+    free(w->kim);
+    if (w->perm)
+        gsl_permutation_free(w->perm);
+    memset(w, 0, sizeof *w);
+}
+
+static td_status work_alloc(const td_loop *l, loop_work *w, td_error *err)
+{
+    size_t n = (size_t)l->n, kmax = 1;
+    int i;
+    for (i = 0; i < l->n_blocks; i++)
+        if ((size_t)(l->blocks[i].nin * l->blocks[i].nout) > kmax)
+            kmax = (size_t)(l->blocks[i].nin * l->blocks[i].nout);
+    memset(w, 0, sizeof *w);
+    w->T = malloc(n * n * sizeof *w->T);
+    w->Y = malloc(n * (size_t)l->m * sizeof *w->Y);
+    w->G = malloc((size_t)l->p * (size_t)l->m * sizeof *w->G);
+    w->K = malloc((size_t)l->nc * (size_t)l->ns * sizeof *w->K);
+    w->M = malloc((size_t)l->nc * (size_t)l->nc * sizeof *w->M);
+    w->X = malloc((size_t)l->nc * (size_t)(l->nc + l->na) * sizeof *w->X);
+    w->kre = malloc(kmax * sizeof *w->kre);
+    w->kim = malloc(kmax * sizeof *w->kim);
+    w->perm = gsl_permutation_alloc((size_t)l->nc);
+    if (w->T && w->Y && w->G && w->K && w->M && w->X && w->kre && w->kim && w->perm)
+        return TD_OK;
+    work_free(w);
+    return td_error_set(err, TD_ERR_NOMEM, "loop analysis: out of memory");
+}
+
+/* G = C (jw I - H)^-1 B (p x m): Gaussian elimination with partial pivoting on the Hessenberg
+ * matrix (one subdiagonal: each step pivots between two rows), then back substitution.
+ * Returns 0 when jw is an eigenvalue of the plant to working precision. */
+static int plant_response(const td_loop *l, double w, loop_work *wk)
+{
+    size_t n = (size_t)l->n, m = (size_t)l->m, p = (size_t)l->p, i, j, k;
+    double complex *T = wk->T, *Y = wk->Y;
+    for (i = 0; i < n; i++) {
+        for (j = 0; j < n; j++)
+            T[i * n + j] = (i == j ? I * w : 0.0) - l->H[i * n + j];
+        for (j = 0; j < m; j++)
+            Y[i * m + j] = l->B[i * m + j];
+    }
+    for (k = 0; k + 1 < n; k++) {
+        double complex f;
+        if (cabs(T[(k + 1) * n + k]) > cabs(T[k * n + k])) {
+            for (j = k; j < n; j++) {
+                double complex t = T[k * n + j];
+                T[k * n + j] = T[(k + 1) * n + j];
+                T[(k + 1) * n + j] = t;
+            }
+            for (j = 0; j < m; j++) {
+                double complex t = Y[k * m + j];
+                Y[k * m + j] = Y[(k + 1) * m + j];
+                Y[(k + 1) * m + j] = t;
+            }
+        }
+        if (T[k * n + k] == 0.0)
+            return 0;
+        f = T[(k + 1) * n + k] / T[k * n + k];
+        for (j = k + 1; j < n; j++)
+            T[(k + 1) * n + j] -= f * T[k * n + j];
+        for (j = 0; j < m; j++)
+            Y[(k + 1) * m + j] -= f * Y[k * m + j];
+    }
+    for (k = n; k-- > 0;) {
+        double complex d;
+        if (T[k * n + k] == 0.0)
+            return 0;
+        d = 1.0 / T[k * n + k];
+        for (j = 0; j < m; j++) {
+            double complex s = Y[k * m + j];
+            for (i = k + 1; i < n; i++)
+                s -= T[k * n + i] * Y[i * m + j];
+            Y[k * m + j] = s * d;
+        }
+    }
+    for (i = 0; i < p; i++)
+        for (j = 0; j < m; j++) {
+            double complex s = 0.0;
+            for (k = 0; k < n; k++)
+                s += l->C[i * n + k] * Y[k * m + j];
+            wk->G[i * m + j] = s;
+        }
+    return 1;
+}
+
+/* K (nc x ns, row-major) at f Hz from every block. */
+static td_status controller_response(const td_loop *l, double f, loop_work *wk, td_error *err)
+{
+    int b, i, j;
+    for (i = 0; i < l->nc * l->ns; i++)
+        wk->K[i] = 0.0;
+    for (b = 0; b < l->n_blocks; b++) {
+        const loop_block *k = &l->blocks[b];
+        td_status st = td_controller_frequency_response(k->k, f, wk->kre, wk->kim, err);
+        if (st != TD_OK)
+            return st;
+        for (j = 0; j < k->nin; j++) /* column-major outputs x inputs */
+            for (i = 0; i < k->nout; i++)
+                wk->K[k->rows[i] * l->ns + k->cols[j]] += wk->kre[i + j * k->nout] + I * wk->kim[i + j * k->nout];
+    }
+    return TD_OK;
+}
+
+/* At f Hz: M = I + K P_si, factored, and X = M^-1 [I | K P_sf] (nc x (nc + na)): its first nc
+ * columns are the input sensitivity, the rest the currents per unit actuator force. */
+static td_status close_loop(const td_loop *l, double f, loop_work *wk, td_error *err)
+{
+    int nc = l->nc, ns = l->ns, m = l->m, i, j, q, sign;
+    gsl_matrix_complex_view M = gsl_matrix_complex_view_array((double *)wk->M, (size_t)nc, (size_t)nc);
+    td_status st;
+    if (!plant_response(l, LOOP_TWO_PI * f, wk))
+        return td_error_set(err, TD_ERR_NUMERIC, "loop analysis: %.9g Hz is a pole of the plant", f);
+    if ((st = controller_response(l, f, wk, err)) != TD_OK)
+        return st;
+    for (i = 0; i < nc; i++) {
+        for (j = 0; j < nc + l->na; j++) {
+            double complex s = j == i ? 1.0 : 0.0;
+            for (q = 0; q < ns; q++) /* K P_si (j < nc) or K P_sf (j >= nc): P_s* are G's first ns rows */
+                s += wk->K[i * ns + q] * wk->G[q * m + j];
+            if (j < nc)
+                wk->M[i * nc + j] = s;
+            wk->X[i * m + j] = j < nc ? (j == i ? 1.0 : 0.0) : s;
+        }
+    }
+    if (gsl_linalg_complex_LU_decomp(&M.matrix, wk->perm, &sign) != GSL_SUCCESS)
+        return td_error_set(err, TD_ERR_NUMERIC, "loop analysis: I + K P is singular at %.9g Hz", f);
+    for (j = 0; j < m; j++) {
+        gsl_vector_complex_view x =
+            gsl_vector_complex_view_array_with_stride((double *)(wk->X + j), (size_t)m, (size_t)nc);
+        if (gsl_linalg_complex_LU_svx(&M.matrix, wk->perm, &x.vector) != GSL_SUCCESS)
+            return td_error_set(err, TD_ERR_NUMERIC, "loop analysis: I + K P is singular at %.9g Hz", f);
+    }
+    return TD_OK;
+}
+
+/* Compliance of AMB axis a with the loops closed: P_af - P_ai M^-1 K P_sf, diagonal entry. */
+static double complex compliance(const td_loop *l, const loop_work *wk, int a)
+{
+    int m = l->m, row = l->ns + a, col = l->nc + a, j;
+    double complex c = wk->G[row * m + col];
+    for (j = 0; j < l->nc; j++)
+        c -= wk->G[row * m + j] * wk->X[j * m + col];
+    return c;
+}
+
+/* ---- the grid, the peaks, stability ------------------------------------------------------- */
+
+/* An undefined complex value: both parts TD_UNDEFINED. */
+static double complex undefined_complex(void)
+{
+    double complex z = 0.0;
+    double *part = (double *)&z; /* C99 6.2.5: a complex is an array of its two parts */
+    part[0] = part[1] = TD_UNDEFINED;
+    return z;
+}
+
+static td_status fill_grid(td_loop *l, loop_work *wk, td_error *err)
+{
+    int k, j;
+    for (k = 0; k < l->nf; k++) {
+        td_status st = close_loop(l, l->freq[k], wk, err);
+        if (st != TD_OK)
+            return st;
+        for (j = 0; j < l->nc; j++) {
+            double complex s = wk->X[j * l->m + j];
+            l->l[(size_t)k * (size_t)l->nc + (size_t)j] = 1.0 / s - 1.0;
+            l->s[(size_t)k * (size_t)l->nc + (size_t)j] = l->stable ? s : undefined_complex();
+        }
+        for (j = 0; j < l->na; j++)
+            l->comp[(size_t)k * (size_t)l->na + (size_t)j] = l->stable ? compliance(l, wk, j) : undefined_complex();
+    }
+    return TD_OK;
+}
+
+typedef struct peak_fn {
+    const td_loop *l;
+    loop_work *wk;
+    int j;
+    int failed;
+} peak_fn;
+
+/* -|S_j| at f = e^x (GSL minimises). */
+static double minus_abs_s(double x, void *data)
+{
+    peak_fn *p = data;
+    if (close_loop(p->l, exp(x), p->wk, NULL) != TD_OK) {
+        p->failed = 1;
+        return 0.0;
+    }
+    return -cabs(p->wk->X[p->j * p->l->m + p->j]);
+}
+
+/* Brent's method on -|S_j(e^x)| over [flo, fhi] Hz from f inside, where |S_j| is larger than at
+ * both ends (else nothing); a better peak replaces l->peak[j]. */
+static void refine_peak(td_loop *l, loop_work *wk, int j, double flo, double f, double fhi)
+{
+    gsl_min_fminimizer *s = gsl_min_fminimizer_alloc(gsl_min_fminimizer_brent);
+    peak_fn p;
+    gsl_function fn;
+    int it, status = GSL_CONTINUE;
+    p.l = l, p.wk = wk, p.j = j, p.failed = 0;
+    fn.function = minus_abs_s;
+    fn.params = &p;
+    if (!s)
+        return;
+    if (gsl_min_fminimizer_set(s, &fn, log(f), log(flo), log(fhi)) == GSL_SUCCESS) {
+        for (it = 0; it < 100 && status == GSL_CONTINUE && !p.failed; it++) {
+            if (gsl_min_fminimizer_iterate(s) != GSL_SUCCESS)
+                break;
+            status = gsl_min_test_interval(gsl_min_fminimizer_x_lower(s), gsl_min_fminimizer_x_upper(s), 0.0, 1e-12);
+        }
+        if (!p.failed && -gsl_min_fminimizer_f_minimum(s) > l->peak[j]) {
+            l->peak[j] = -gsl_min_fminimizer_f_minimum(s);
+            l->peak_freq[j] = exp(gsl_min_fminimizer_x_minimum(s));
+        }
+    }
+    gsl_min_fminimizer_free(s);
+}
+
+/* A lightly damped closed-loop mode makes a peak of |S| narrower than the grid's spacing, which
+ * the grid can step over: |S| at each such mode's damped frequency; per axis the largest, where it
+ * beats the grid's peak, refined over +-3 zeta of its mode. */
+static void mode_peaks(td_loop *l, loop_work *wk)
+{
+    double *best = malloc(2u * (size_t)l->nc * sizeof *best);
+    int *at = malloc((size_t)l->nc * sizeof *at), i, j;
+    for (j = 0; best && at && j < l->nc; j++) {
+        best[j] = l->peak[j];
+        at[j] = -1;
+    }
+    for (i = 0; best && at && i < l->n_modes; i++) {
+        double f = l->mode_f[i];
+        if (f < l->freq[0] || f > l->freq[l->nf - 1] || close_loop(l, f, wk, NULL) != TD_OK)
+            continue;
+        for (j = 0; j < l->nc; j++)
+            if (cabs(wk->X[j * l->m + j]) > best[j]) {
+                best[j] = cabs(wk->X[j * l->m + j]);
+                at[j] = i;
+            }
+    }
+    for (j = 0; best && at && j < l->nc; j++)
+        if (at[j] >= 0) {
+            double f = l->mode_f[at[j]], h = fmax(3.0 * l->mode_zeta[at[j]], 1e-9);
+            l->peak[j] = best[j];
+            l->peak_freq[j] = f;
+            refine_peak(l, wk, j, f / (1.0 + h), f, f * (1.0 + h));
+        }
+    free(best);
+    free(at);
+}
+
+static void find_peaks(td_loop *l, loop_work *wk)
+{
+    int j, k;
+    for (j = 0; j < l->nc; j++) {
+        int best = 0;
+        l->peak[j] = l->peak_freq[j] = TD_UNDEFINED;
+        if (!l->stable)
+            continue;
+        for (k = 1; k < l->nf; k++)
+            if (cabs(l->s[(size_t)k * (size_t)l->nc + (size_t)j]) >
+                cabs(l->s[(size_t)best * (size_t)l->nc + (size_t)j]))
+                best = k;
+        l->peak[j] = cabs(l->s[(size_t)best * (size_t)l->nc + (size_t)j]);
+        l->peak_freq[j] = l->freq[best];
+        if (best > 0 && best + 1 < l->nf)
+            refine_peak(l, wk, j, l->freq[best - 1], l->freq[best], l->freq[best + 1]);
+    }
+    if (l->stable)
+        mode_peaks(l, wk);
+}
+
+/* The closed loop's eigenvalues (td_modal_solve): stable unless some eigenvalue grows beyond the
+ * rounding of a marginal root (td_modal_is_unstable). An undamped closed-loop mode (an undamped
+ * shaft's mode that no AMB sees, e.g. with nodes at the AMBs) keeps the loop stable; one that S
+ * sees shows as a peak without bound. */
+static td_status closed_loop_stability(const td_system *sys, td_loop *l, td_error *err)
+{
+    td_modal *md = NULL;
+    td_status st = td_modal_solve(sys, l->omega, &md, err);
+    int i;
+    if (st != TD_OK)
+        return st;
+    l->max_real = td_modal_max_real_part(md);
+    l->stable = !td_modal_is_unstable(md);
+    l->mode_f = malloc(((size_t)td_modal_mode_count(md) + 1u) * sizeof *l->mode_f);
+    l->mode_zeta = malloc(((size_t)td_modal_mode_count(md) + 1u) * sizeof *l->mode_zeta);
+    for (i = 0; l->mode_f && l->mode_zeta && i < td_modal_mode_count(md); i++) {
+        td_mode m;
+        td_modal_get_mode(md, i, &m);
+        if (m.zeta < LOOP_LIGHT_DAMPING && m.zeta >= 0.0) {
+            l->mode_f[l->n_modes] = m.freq_hz;
+            l->mode_zeta[l->n_modes++] = m.zeta;
+        }
+    }
+    td_modal_free(&md);
+    if (!l->mode_f || !l->mode_zeta)
+        return td_error_set(err, TD_ERR_NOMEM, "loop analysis: out of memory");
+    return TD_OK;
+}
+
+/* ---- public ------------------------------------------------------------------------------- */
+
+static td_status check_options(const td_loop_options *o, td_error *err)
+{
+    if (!(o->f_min > 0.0) || !(o->f_max > o->f_min) || !isfinite(o->f_max) || o->points < 2 || o->points > 1000000)
+        return td_error_set(err, TD_ERR_INVALID,
+                            "loop analysis: the grid wants 0 < f_min < f_max (finite) and 2..1000000 points "
+                            "(got %g, %g, %d)",
+                            o->f_min, o->f_max, o->points);
+    return TD_OK;
+}
+
+/* The axis lists, the grid and the result arrays of a new analysis. */
+static td_status loop_alloc(const td_system *sys, const td_loop_options *o, td_loop *l, int *pos_s, int *pos_c,
+                            td_error *err)
+{
+    int *driven = calloc((size_t)sys->n_amb_axes + 1u, sizeof *driven);
+    int *sensed = calloc((size_t)sys->n_amb_axes + 1u, sizeof *sensed), k;
+    td_status st = driven && sensed ? loop_axes(sys, driven, sensed, err)
+                                    : td_error_set(err, TD_ERR_NOMEM, "loop analysis: out of memory");
+    l->axis = malloc(((size_t)sys->n_amb_axes + 1u) * sizeof *l->axis);
+    l->sensor = malloc(((size_t)sys->n_amb_axes + 1u) * sizeof *l->sensor);
+    if (st == TD_OK && (!l->axis || !l->sensor))
+        st = td_error_set(err, TD_ERR_NOMEM, "loop analysis: out of memory");
+    if (st == TD_OK) {
+        l->nc = list_axes(driven, sys->n_amb_axes, l->axis, pos_c);
+        l->ns = list_axes(sensed, sys->n_amb_axes, l->sensor, pos_s);
+        l->na = sys->n_amb_axes;
+        l->m = l->nc + l->na;
+        l->p = l->ns + l->na;
+        if (l->nc == 0)
+            st = td_error_set(err, TD_ERR_INVALID, "no loop analysis: no AMB axis is under control");
+    }
+    if (st == TD_OK)
+        st = build_plant(sys, driven, l, err);
+    free(driven);
+    free(sensed);
+    l->nf = o->points;
+    l->freq = malloc((size_t)l->nf * sizeof *l->freq);
+    l->s = malloc((size_t)l->nf * (size_t)(l->nc + 1) * sizeof *l->s);
+    l->l = malloc((size_t)l->nf * (size_t)(l->nc + 1) * sizeof *l->l);
+    l->comp = malloc((size_t)l->nf * (size_t)(l->na + 1) * sizeof *l->comp);
+    l->peak = malloc((size_t)(l->nc + 1) * sizeof *l->peak);
+    l->peak_freq = malloc((size_t)(l->nc + 1) * sizeof *l->peak_freq);
+    if (st == TD_OK && (!l->freq || !l->s || !l->l || !l->comp || !l->peak || !l->peak_freq))
+        st = td_error_set(err, TD_ERR_NOMEM, "loop analysis: out of memory");
+    for (k = 0; st == TD_OK && k < l->nf; k++) /* log-spaced, the ends exact */
+        l->freq[k] = k == 0           ? o->f_min
+                     : k == l->nf - 1 ? o->f_max
+                                      : o->f_min * pow(o->f_max / o->f_min, (double)k / (double)(l->nf - 1));
+    return st;
+}
+
+td_status td_loop_compute(const td_system *sys, double omega, const td_loop_options *opt, td_loop **out, td_error *err)
+{
+    td_loop_options o;
+    td_loop *l;
+    loop_work wk;
+    int *pos = NULL;
+    td_status st;
+    if (!out)
+        return td_error_set(err, TD_ERR_INVALID, "td_loop_compute: NULL output pointer");
+    *out = NULL;
+    if (!sys)
+        return td_error_set(err, TD_ERR_INVALID, "td_loop_compute: NULL system");
+    if (!TD_SPEED_VALID(omega))
+        return td_error_set(err, TD_ERR_INVALID, "loop analysis: speed must be finite and >= 0 rad/s (got %g)", omega);
+    if (td_modal_state_count(sys) > TD_LOOP_MAX_STATES)
+        return td_error_set(err, TD_ERR_INVALID,
+                            "no loop analysis: %d first-order states, more than the %d it takes (a reduction of "
+                            "the shaft brings the model under it)",
+                            td_modal_state_count(sys), TD_LOOP_MAX_STATES);
+    td_loop_options_default(&o);
+    if (opt)
+        o = *opt;
+    if ((st = check_options(&o, err)) != TD_OK)
+        return st;
+    td_modal_gsl_quiet();
+    l = calloc(1, sizeof *l);
+    pos = malloc(2u * ((size_t)sys->n_amb_axes + 1u) * sizeof *pos);
+    if (!l || !pos) {
+        free(l);
+        free(pos);
+        return td_error_set(err, TD_ERR_NOMEM, "loop analysis: out of memory");
+    }
+    l->omega = omega;
+    st = loop_alloc(sys, &o, l, pos, pos + sys->n_amb_axes + 1, err);
+    if (st == TD_OK)
+        st = build_controllers(sys, l, pos, pos + sys->n_amb_axes + 1, err);
+    free(pos);
+    if (st == TD_OK)
+        st = closed_loop_stability(sys, l, err);
+    if (st == TD_OK && (st = work_alloc(l, &wk, err)) == TD_OK) {
+        st = fill_grid(l, &wk, err);
+        if (st == TD_OK)
+            find_peaks(l, &wk);
+        work_free(&wk);
+    }
+    if (st != TD_OK)
+        td_loop_free(&l);
+    *out = l;
+    return st;
+}
+
+void td_loop_free(td_loop **lp)
+{
+    td_loop *l;
+    int i;
+    if (!lp || !*lp)
+        return;
+    l = *lp;
+    for (i = 0; l->blocks && i < l->n_blocks; i++) {
+        td_controller_free(&l->blocks[i].k);
+        free(l->blocks[i].rows);
+        free(l->blocks[i].cols);
+    }
+    free(l->blocks);
+    free(l->axis);
+    free(l->sensor);
+    free(l->H);
+    free(l->B);
+    free(l->C);
+    free(l->freq);
+    free(l->s);
+    free(l->l);
+    free(l->comp);
+    free(l->peak);
+    free(l->peak_freq);
+    free(l->mode_f);
+    free(l->mode_zeta);
+    free(l);
+    *lp = NULL;
+}
+
+double td_loop_speed(const td_loop *l)
+{
+    return l ? l->omega : TD_UNDEFINED;
+}
+
+int td_loop_stable(const td_loop *l)
+{
+    return l ? l->stable : 0;
+}
+
+double td_loop_max_real_part(const td_loop *l)
+{
+    return l ? l->max_real : TD_UNDEFINED;
+}
+
+int td_loop_axis_count(const td_loop *l)
+{
+    return l ? l->nc : 0;
+}
+
+int td_loop_axis(const td_loop *l, int j)
+{
+    return l && j >= 0 && j < l->nc ? l->axis[j] : -1;
+}
+
+int td_loop_amb_axis_count(const td_loop *l)
+{
+    return l ? l->na : 0;
+}
+
+int td_loop_frequency_count(const td_loop *l)
+{
+    return l ? l->nf : 0;
+}
+
+double td_loop_frequency(const td_loop *l, int k)
+{
+    return l && k >= 0 && k < l->nf ? l->freq[k] : TD_UNDEFINED;
+}
+
+/* Entry (k, j) of an nf x cols table into re, im. */
+static td_status table_get(const td_loop *l, const double complex *t, int cols, int j, int k, double *re, double *im)
+{
+    double complex v;
+    if (!l || j < 0 || j >= cols || k < 0 || k >= l->nf)
+        return TD_ERR_INVALID;
+    v = t[(size_t)k * (size_t)cols + (size_t)j];
+    if (re)
+        *re = creal(v);
+    if (im)
+        *im = cimag(v);
+    return TD_OK;
+}
+
+td_status td_loop_sensitivity(const td_loop *l, int j, int k, double *re, double *im)
+{
+    return table_get(l, l ? l->s : NULL, l ? l->nc : 0, j, k, re, im);
+}
+
+td_status td_loop_open_loop(const td_loop *l, int j, int k, double *re, double *im)
+{
+    return table_get(l, l ? l->l : NULL, l ? l->nc : 0, j, k, re, im);
+}
+
+td_status td_loop_compliance(const td_loop *l, int a, int k, double *re, double *im)
+{
+    return table_get(l, l ? l->comp : NULL, l ? l->na : 0, a, k, re, im);
+}
+
+double td_loop_sensitivity_peak(const td_loop *l, int j)
+{
+    return l && j >= 0 && j < l->nc ? l->peak[j] : TD_UNDEFINED;
+}
+
+double td_loop_sensitivity_peak_frequency(const td_loop *l, int j)
+{
+    return l && j >= 0 && j < l->nc ? l->peak_freq[j] : TD_UNDEFINED;
+}
+
+char td_loop_sensitivity_zone(const td_loop *l, int j)
+{
+    return td_loop_zone(td_loop_sensitivity_peak(l, j));
+}
+
+char td_loop_worst_zone(const td_loop *l)
+{
+    char worst = 0;
+    int j;
+    for (j = 0; l && l->stable && j < l->nc; j++) {
+        char z = td_loop_sensitivity_zone(l, j);
+        if (z > worst)
+            worst = z;
+    }
+    return worst;
+}
+
+td_status td_loop_evaluate(const td_loop *l, int j, double f, double *s_re, double *s_im, double *l_re, double *l_im,
+                           td_error *err)
+{
+    loop_work wk;
+    td_status st;
+    double complex s;
+    if (!l || j < 0 || j >= l->nc || !(f > 0.0) || !isfinite(f))
+        return td_error_set(err, TD_ERR_INVALID, "td_loop_evaluate: no axis %d or a bad frequency %g Hz", j, f);
+    if ((st = work_alloc(l, &wk, err)) != TD_OK)
+        return st;
+    st = close_loop(l, f, &wk, err);
+    s = wk.X[j * l->m + j];
+    work_free(&wk);
+    if (st != TD_OK)
+        return st;
+    if (s_re)
+        *s_re = l->stable ? creal(s) : TD_UNDEFINED;
+    if (s_im)
+        *s_im = l->stable ? cimag(s) : TD_UNDEFINED;
+    if (l_re)
+        *l_re = creal(1.0 / s - 1.0);
+    if (l_im)
+        *l_im = cimag(1.0 / s - 1.0);
+    return TD_OK;
+}

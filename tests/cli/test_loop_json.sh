@@ -1,0 +1,71 @@
+#!/usr/bin/env bash
+# `touchdown modal --json CASE`: the loop analysis as one JSON object (docs/output-format.md,
+# "Loop analysis"), checked by python3's json module:
+#   - paper case A: stable, one peak, frequency and zone per controlled axis (4), the worst zone
+#     the worst of the axes' and the zone each peak's (A < 3 <= B < 4 <= C < 5 <= D), every value
+#     the same as the modal HDF5 file's /loop (h5py), and nothing but the object on stdout;
+#   - kp ki below ks (an unstable loop): stable false, every sensitivity answer null, exit 0;
+#   - a machine without a controlled axis (kp = kd = 0): no analysis, null answers, said on stderr;
+#   - cases/rig-notch.cfg (a rigid-body linear controller from the case file): stable, 4 axes.
+# Args: $1 = the touchdown binary, $2 = the source directory. Runs in the build's tests directory.
+set -u
+tool=$1
+src=$2
+work=$(mktemp -d "${PWD}/cli-loop.XXXXXX")
+trap 'rm -rf "$work"' EXIT
+case_a=$src/cases/paper-a.cfg
+
+. "$(dirname "${BASH_SOURCE[0]}")/common.sh" # fail, pass, check, t, jf, finish
+
+t "$work/a" modal --json -o "$work/a/m" "$case_a"
+check "modal --json exits 0" [ "$rc" = 0 ]
+check "modal --json prints one line, the object" [ "$(wc -l <"$work/a/.out")" = 1 ]
+check "the JSON of case A has the loop's shape and the zones follow the peaks" /usr/bin/python3 - "$work/a/.out" "$work/a/m.h5" <<'PY'
+import json, sys
+import h5py
+d = json.load(open(sys.argv[1]))
+zone = lambda p: "A" if p < 3 else "B" if p < 4 else "C" if p < 5 else "D"
+assert d["stable"] is True and d["max_real_part"] < 1e-6, d
+n = len(d["axis"])
+assert n == 4 and all(len(d[k]) == n for k in ("sensitivity_peak", "sensitivity_peak_frequency", "sensitivity_zones"))
+assert all(p > 1 for p in d["sensitivity_peak"])
+assert d["sensitivity_zones"] == [zone(p) for p in d["sensitivity_peak"]], d
+assert d["sensitivity_zone"] == max(d["sensitivity_zones"]), d
+with h5py.File(sys.argv[2], "r") as f:
+    g = f["loop"]
+    assert list(g["sensitivity_peak"][...]) == d["sensitivity_peak"]
+    assert list(g["sensitivity_peak_frequency"][...]) == d["sensitivity_peak_frequency"]
+    assert [z.decode() if isinstance(z, bytes) else z for z in g["sensitivity_zones"][...]] == d["sensitivity_zones"]
+    assert g.attrs["stable"] == 1 and g.attrs["sensitivity_zone"] == d["sensitivity_zone"]
+    s = abs(g["sensitivity_re"][...] + 1j * g["sensitivity_im"][...])
+    assert s.shape == (len(g["frequency"]), 4) and (s.max(axis=0) <= d["sensitivity_peak"]).all()
+PY
+
+t "$work/u" modal --json -o "$work/u/m" --set 'ambs[0].kp=1000' --set 'ambs[1].kp=1000' "$case_a"
+check "an unstable loop: exit 0" [ "$rc" = 0 ]
+check "an unstable loop: stable false, every sensitivity answer null" /usr/bin/python3 -c '
+import json, sys
+d = json.load(open(sys.argv[1]))
+assert d["stable"] is False and d["max_real_part"] > 0, d
+assert all(d[k] is None for k in ("sensitivity_peak", "sensitivity_peak_frequency", "sensitivity_zones", "sensitivity_zone")), d
+' "$work/u/.out"
+
+t "$work/n" modal --json -o "$work/n/m" --set 'ambs[0].kp=0' --set 'ambs[0].kd=0' --set 'ambs[1].kp=0' \
+    --set 'ambs[1].kd=0' "$case_a"
+check "no controlled axis: exit 0, null answers" /usr/bin/python3 -c '
+import json, sys
+d = json.load(open(sys.argv[1]))
+assert d["stable"] is None and d["sensitivity_peak"] is None and d["sensitivity_zone"] is None, d
+' "$work/n/.out"
+check "no controlled axis: said on stderr" grep -q "no loop analysis: no AMB axis is under control" "$work/n/.err"
+
+t "$work/r" modal --json -o "$work/r/m" "$src/cases/rig-notch.cfg"
+check "a linear controller from the case file (rigid-body PD + notch): exit 0" [ "$rc" = 0 ]
+check "a linear controller from the case file: stable, a peak per driven axis" /usr/bin/python3 -c '
+import json, sys
+d = json.load(open(sys.argv[1]))
+assert d["stable"] is True and d["axis"] == [0, 1, 2, 3] and len(d["sensitivity_peak"]) == 4, d
+assert all(p > 1 for p in d["sensitivity_peak"]) and d["sensitivity_zone"] in "ABCD", d
+' "$work/r/.out"
+
+finish
