@@ -11,9 +11,14 @@ check() { # DESCRIPTION COMMAND...
     if "$@"; then pass "$what"; else fail "$what"; fi
 }
 
-# The end of a script: the counts, then exit 0 if every check passed, else 1.
+# The end of a script: the counts, then exit 0 if every check passed, else 1. A script that ran no
+# check at all fails too: a finish reached early (a stray call, a skipped block) must not pass.
 finish() {
     echo "$((checks - fails)) passed, $fails failed"
+    if [ "$checks" = 0 ]; then
+        echo "FAIL: no check ran"
+        exit 1
+    fi
     if [ "$fails" = 0 ]; then exit 0; fi
     exit 1
 }
