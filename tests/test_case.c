@@ -1653,6 +1653,8 @@ static const bad_file bad_files[] = {
     {"controller-driven-amb-gain.cfg", 5, "ambs[1].kd", NULL},
     {"controller-duplicate-name.cfg", 7, "controllers[1].name", NULL},
     {"controller-rigid-three-ambs.cfg", 8, "controllers[0].coordinates", NULL},
+    {"controller-rate-too-high.cfg", 8, "controllers[0].sample_rate", NULL},
+    {"controller-reference-off-shaft.cfg", 8, "controllers[0].reference_z", NULL},
     {"controller-ss-shape.cfg", 8, "controllers[0].law[0].ss.B", NULL},
     {"controller-two-members.cfg", 8, "controllers[0].law[0].notch", NULL},
     {"controller-unknown-block.cfg", 7, "controllers[0].law[0].pidd", NULL},

@@ -271,9 +271,15 @@ TD_API td_status td_model_add_change(td_model *m, const td_change *c, td_error *
  * driven by at most one controller, and the AMB of a driven axis has kp = kd = kint = 0: its td_amb
  * keeps the magnet (ks, ki) and the amplifier (tau, force_capacity, saturation), the controller
  * replaces the shorthand law. A controller reads its sensors and runs while its AMB is off; the
- * AMB then exerts no force. The model keeps copies of k and of the lists. name (may be NULL, at
+ * AMB then exerts no force. A sampled controller's rate is within TD_CONTROLLER_RATE_MIN ..
+ * TD_CONTROLLER_RATE_MAX. The model keeps copies of k and of the lists. name (may be NULL, at
  * most 63 characters) names it in messages and events. A fault names site part "controller".
  */
+/** The sample rates a model's sampled controller may have, Hz: an AMB's DSP runs at a few kHz to a
+ *  few tens of kHz; the simulation takes each sample at t0 + k / rate to 1e-14 (1 + |t|) s, so the
+ *  period must stay far above that, and below 1 Hz a sampled law is no AMB controller. */
+#define TD_CONTROLLER_RATE_MIN 1.0
+#define TD_CONTROLLER_RATE_MAX 1.0e7
 TD_API td_status td_model_add_controller(td_model *m, const char *name, const td_controller *k, const int *inputs,
                                          const int *outputs, td_error *err);
 /** Rotor speed Omega, rad/s (constant between changes). */

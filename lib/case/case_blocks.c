@@ -41,11 +41,11 @@ typedef struct cb_ss {
     int domain;
 } cb_ss;
 
-#define DOMAIN(rec)                                                                                                    \
+/* A block's `domain` key; what the domain says of its numbers is the block's own doc. */
+#define DOMAIN(rec, what)                                                                                              \
     {                                                                                                                  \
         .key = "domain", .type = TD_CS_ENUM, .offset = offsetof(rec, domain), .names = domain_names, .name_count = 2,  \
-        .doc = "`\"s\"`: continuous, descending powers of s; `\"z\"`: sampled at the controller's `sample_rate`, "     \
-               "ascending powers of z^-1"                                                                              \
+        .doc = what                                                                                                    \
     }
 
 static const td_cs_key pid_keys[] = {
@@ -177,7 +177,8 @@ static const td_cs_key tf_keys[] = {
      .hi = CB_MAX_COEFS,
      .doc_default = "required",
      .doc = "denominator coefficients (in z^-1: the first nonzero)"},
-    DOMAIN(cb_tf),
+    DOMAIN(cb_tf, "`\"s\"`: continuous, `num` and `den` in descending powers of s; `\"z\"`: sampled at the "
+                  "controller's `sample_rate`, in ascending powers of z^-1"),
 };
 static const td_cs_table tf_table = {
     "controllers[].law[].tf", NULL, tf_keys, TD_CS_COUNT(tf_keys), sizeof(cb_tf), NULL, NULL};
@@ -228,7 +229,8 @@ static const td_cs_key zpk_keys[] = {
      .offset = offsetof(cb_zpk, gain),
      .def = 1.0,
      .doc = "k in k prod(s - zero) / prod(s - pole)"},
-    DOMAIN(cb_zpk),
+    DOMAIN(cb_zpk, "`\"s\"`: continuous, the zeros and poles in the s-plane (1/s); `\"z\"`: sampled at the "
+                   "controller's `sample_rate`, the zeros and poles in the z-plane"),
 };
 static const td_cs_table zpk_table = {
     "controllers[].law[].zpk", NULL, zpk_keys, TD_CS_COUNT(zpk_keys), sizeof(cb_zpk), NULL, NULL};
@@ -303,7 +305,8 @@ static const td_cs_key ss_keys[] = {
      .doc_type = "list of rows",
      .doc_default = "required",
      .doc = "1 x 1, e.g. `([0.0])`; an array `[ ... ]` is one row"},
-    DOMAIN(cb_ss),
+    DOMAIN(cb_ss, "`\"s\"`: continuous, x' = A x + B e; `\"z\"`: sampled at the controller's `sample_rate`, "
+                  "x[k+1] = A x[k] + B e[k]"),
 };
 static const td_cs_table ss_table = {
     "controllers[].law[].ss", NULL, ss_keys, TD_CS_COUNT(ss_keys), sizeof(cb_ss), NULL, NULL};

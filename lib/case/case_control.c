@@ -18,8 +18,9 @@
 
 /* The most AMBs one controller drives (two axes each). */
 #define CC_MAX_AMBS 16
-/* The most samples of computation delay. */
-#define CC_MAX_DELAY 1000
+/* The most samples of computation delay (a DSP is one to a few samples late; each sample of delay adds
+ * a state per output to the analyses' dense eigenproblem). */
+#define CC_MAX_DELAY 100
 
 static const char *const coordinate_names[] = {"bearing", "rigid"};
 static const char *const discretisation_names[] = {"tustin", "zoh"}; /* td_discretisation order */
@@ -71,12 +72,19 @@ static td_status check_coordinates(td_case_reader *r, const config_setting_t *g,
 static td_status read_reference_z(td_case_reader *r, const config_setting_t *g, const td_cs_key *k, void *rec)
 {
     cc_rec *c = rec;
+    const td_model *m = r->c->model;
+    double length = td_model_node_position(m, td_model_node_count(m) - 1);
+    td_status st;
     if (!c->rigid && td_cr_has(g, k->key))
         return td_cr_fail(r, config_setting_get_member(g, k->key), NULL,
                           "reference_z is the rigid-body reference: it needs coordinates = \"rigid\"");
     if (!c->rigid)
         return TD_OK;
-    return td_cr_real(r, g, k->key, NULL, td_model_mass_centre(r->c->model), TD_CR_FINITE, &c->reference_z);
+    st = td_cr_real(r, g, k->key, NULL, td_model_mass_centre(m), TD_CR_FINITE, &c->reference_z);
+    if (st == TD_OK && !(c->reference_z >= 0.0 && c->reference_z <= length)) /* a point of the rotor */
+        return td_cr_fail(r, config_setting_get_member(g, k->key), NULL, "must lie on the shaft, 0 to %g m (got %g)",
+                          length, c->reference_z);
+    return st;
 }
 
 /* law (bearing), or translation and tilt (rigid): which the coordinates need, each a list. */

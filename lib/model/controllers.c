@@ -125,6 +125,10 @@ td_status td_model_add_controller(td_model *m, const char *name, const td_contro
     if (nin < 1 || nout < 1)
         return FAIL_AT(err, "controller", i, NULL, "has %d inputs and %d outputs: it needs at least one of each", nin,
                        nout);
+    if (td_controller_sample_rate(k) > 0.0 && !(td_controller_sample_rate(k) >= TD_CONTROLLER_RATE_MIN &&
+                                                td_controller_sample_rate(k) <= TD_CONTROLLER_RATE_MAX))
+        return FAIL_AT(err, "controller", i, "sample_rate", "must be %g to %g Hz (got %g)", TD_CONTROLLER_RATE_MIN,
+                       TD_CONTROLLER_RATE_MAX, td_controller_sample_rate(k));
     if (!inputs || !outputs)
         return FAIL_AT(err, "controller", i, inputs ? "outputs" : "inputs", "NULL axis list");
     if (check_axis_lists(i, inputs, nin, outputs, nout, err))

@@ -136,7 +136,10 @@ int td_sim_sampler_take_due(td_sim *s)
     int i, taken = 0;
     for (i = 0; i < s->sampler->n; i++) {
         td_sim_sampled *l = &s->sampler->law[i];
-        while (sample_time(l, l->k_next) <= due) {
+        /* the times must rise: a rate too high for t's precision would take one instant forever (the
+         * model bounds the rate, TD_CONTROLLER_RATE_MAX; the step loop then reports no progress) */
+        while (sample_time(l, l->k_next) <= due &&
+               (l->k_next == 0 || sample_time(l, l->k_next) > sample_time(l, l->k_next - 1))) {
             take_sample(s, l);
             taken++;
         }

@@ -13,6 +13,17 @@
 /* A start orbit at most this far outside a clearance circle (relative) counts as touching it. */
 #define TD_START_TOUCH_TOLERANCE 1e-6
 
+/* The size of the start's eigenproblem: the first-order form's states and, for a sampled
+ * controller, its own (lib/modal/sampled.c closes the held plant with them). */
+static int stability_state_count(const td_system *sys)
+{
+    int n = td_modal_state_count(sys), i;
+    for (i = 0; i < sys->n_laws; i++)
+        if (sys->laws[i].sample_rate > 0.0)
+            n += sys->laws[i].n;
+    return n;
+}
+
 /* Stability of the contact-free closed loop at the start speed, from the eigenvalues of its
  * first-order form (lib/modal, AMB filter states included). A model too big for a quick dense
  * eigen-solve, or one the solver fails on, stays unchecked: the check informs, it never blocks. */
@@ -21,7 +32,7 @@ void td_sim_start_stability(td_sim *s)
     int unstable = 0;
     s->start.stability = TD_STABILITY_UNCHECKED;
     s->start.max_real_part = NAN;
-    if (td_modal_state_count(s->sys) > TD_SIM_STABILITY_MAX_STATES ||
+    if (stability_state_count(s->sys) > TD_SIM_STABILITY_MAX_STATES ||
         td_modal_stability(s->sys, s->machine.omega, &s->start.max_real_part, &unstable, NULL) != TD_OK)
         return;
     s->start.stability = unstable ? TD_STABILITY_UNSTABLE : TD_STABILITY_STABLE;
