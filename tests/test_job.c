@@ -25,27 +25,9 @@ static void scratch(char *dst, const char *stem)
     snprintf(dst, TD_OUTPUT_PATH_SIZE, "%s/job_%ld_%s", TD_BINARY_DIR, (long)getpid(), stem);
 }
 
-/* The summary as JSON (every field the tool prints), the wall-clock fields taken from `like`. */
-static char *summary_json(const td_run_summary *s, const td_run_summary *like)
-{
-    td_run_summary t = *s;
-    char *buf;
-    int n;
-    t.wall_time = like->wall_time;
-    t.solver_wall_time = like->solver_wall_time;
-    t.wall_time_per_revolution = like->wall_time_per_revolution;
-    t.realtime_factor = like->realtime_factor;
-    t.stats.wall_time = like->stats.wall_time;
-    n = td_run_summary_json(NULL, 0, &t);
-    buf = malloc((size_t)n + 1);
-    assert_non_null(buf);
-    td_run_summary_json(buf, (size_t)n + 1, &t);
-    return buf;
-}
-
 static void assert_same_summary(const td_run_summary *a, const td_run_summary *b)
 {
-    char *ja = summary_json(a, b), *jb = summary_json(b, b);
+    char *ja = td_test_summary_json(a, b), *jb = td_test_summary_json(b, b);
     assert_string_equal(ja, jb);
     free(ja);
     free(jb);

@@ -1,5 +1,6 @@
 /* td_sim: the analytic Jacobian against finite differences of the residual in every mode, API
  * errors, independence of two simulations, grazing without event storms, constraint drift. */
+#include "td_jacobian.h"
 #include "td_test.h"
 
 #include "sim/sim_internal.h"
@@ -107,44 +108,16 @@ static void fill_state(const td_sim *s, double rad, double *y, double *yp)
     }
 }
 
-/* dF/dy + cj dF/dy' of td_sim_jacobian against central differences, entry by entry, relative to the
- * largest entry of its row; every entry found by differences must lie in the fixed pattern. */
+/* td_sim_jacobian against central differences (steps 1e-6 of each unknown) at fill_state's state
+ * with the retainer nodes at radius rad. */
 static void check_jacobian(td_sim *s, double rad, const char *what)
 {
-    int n = s->dae.neq, i, j;
-    double *y = calloc(n, sizeof(double)), *yp = calloc(n, sizeof(double)), *rp = calloc(n, sizeof(double));
-    double *rm = calloc(n, sizeof(double)), *fd = calloc((size_t)n * n, sizeof(double)),
-           *rowmax = calloc(n, sizeof(double));
-    double cj = 2.5e5, t = 0.0123;
-    assert_non_null(fd);
+    int n = s->dae.neq;
+    double *y = calloc((size_t)n, sizeof(double)), *yp = calloc((size_t)n, sizeof(double));
+    assert_true(y && yp);
     fill_state(s, rad, y, yp);
-    for (j = 0; j < n; j++) {
-        double h = 1e-6 * (fabs(y[j]) > 0.0 ? fabs(y[j]) : 1e-6), yj = y[j], ypj = yp[j];
-        y[j] = yj + h;
-        yp[j] = ypj + cj * h;
-        td_sim_residual(s, t, y, yp, rp);
-        y[j] = yj - h;
-        yp[j] = ypj - cj * h;
-        td_sim_residual(s, t, y, yp, rm);
-        y[j] = yj;
-        yp[j] = ypj;
-        for (i = 0; i < n; i++) {
-            fd[i + (size_t)j * n] = (rp[i] - rm[i]) / (2 * h);
-            if (fabs(fd[i + (size_t)j * n]) > rowmax[i])
-                rowmax[i] = fabs(fd[i + (size_t)j * n]);
-        }
-    }
-    td_sim_jacobian(s, t, cj, y);
-    for (j = 0; j < n; j++)
-        for (i = 0; i < n; i++) {
-            int p = td_sim_pattern_find(s, i, j);
-            double an = p >= 0 ? s->ops.jdata[p] : 0.0, f = fd[i + (size_t)j * n];
-            if (!(fabs(an - f) <= 1e-6 * rowmax[i] + 1e-9)) {
-                fail_msg("%s: J(%d,%d) analytic %.10g, differences %.10g (row max %.3g, in pattern %d)", what, i, j, an,
-                         f, rowmax[i], p >= 0);
-            }
-        }
-    free(y), free(yp), free(rp), free(rm), free(fd), free(rowmax);
+    td_test_check_jacobian(s, y, yp, 1e-6, what);
+    free(y), free(yp);
 }
 
 static void test_jacobian_free_and_amb_modes(void **state)

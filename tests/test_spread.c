@@ -266,24 +266,6 @@ static void test_summary_json_spread(void **state)
     free(plain), free(with), free(alone), free(want);
 }
 
-/* The summary as JSON with the wall-clock fields of `like` (they differ from run to run). */
-static char *summary_json(const td_run_summary *s, const td_run_summary *like)
-{
-    td_run_summary t = *s;
-    char *buf;
-    int n;
-    t.wall_time = like->wall_time;
-    t.solver_wall_time = like->solver_wall_time;
-    t.wall_time_per_revolution = like->wall_time_per_revolution;
-    t.realtime_factor = like->realtime_factor;
-    t.stats.wall_time = like->stats.wall_time;
-    n = td_run_summary_json(NULL, 0, &t);
-    buf = malloc((size_t)n + 1);
-    assert_non_null(buf);
-    td_run_summary_json(buf, (size_t)n + 1, &t);
-    return buf;
-}
-
 /* The run of case A to 0.12 s (through its first contact) with solver.atol = atol, no files. */
 static void case_run(double atol, td_run_summary *s)
 {
@@ -347,7 +329,7 @@ static void test_spread_run(void **state)
     for (k = 1; k < 3; k++) {
         char *a, *b;
         case_run(atol * td_spread_atol_factor(k, 3), &direct);
-        a = summary_json(&m[k], &direct), b = summary_json(&direct, &direct);
+        a = td_test_summary_json(&m[k], &direct), b = td_test_summary_json(&direct, &direct);
         assert_string_equal(a, b);
         free(a), free(b);
         assert_true(m[k].hdf5_path[0] == '\0' && m[k].csv_path[0] == '\0');

@@ -1,6 +1,7 @@
 #include "td_test.h"
 
 #include "touchdown/case.h"
+#include "touchdown/run.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -78,4 +79,21 @@ uint64_t td_test_splitmix(uint64_t *s)
     z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
     z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
     return z ^ (z >> 31);
+}
+
+char *td_test_summary_json(const td_run_summary *s, const td_run_summary *like)
+{
+    td_run_summary t = *s;
+    char *buf;
+    int n;
+    t.wall_time = like->wall_time;
+    t.solver_wall_time = like->solver_wall_time;
+    t.wall_time_per_revolution = like->wall_time_per_revolution;
+    t.realtime_factor = like->realtime_factor;
+    t.stats.wall_time = like->stats.wall_time;
+    n = td_run_summary_json(NULL, 0, &t);
+    buf = malloc((size_t)n + 1);
+    assert_non_null(buf);
+    td_run_summary_json(buf, (size_t)n + 1, &t);
+    return buf;
 }

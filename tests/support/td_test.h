@@ -24,6 +24,11 @@ double td_rel_diff(double a, double b);
 double td_test_max_abs(const double *a, int n);
 
 struct td_case;
+struct td_run_summary;
+
+/* The summary as JSON (every field the tool prints; caller frees), with the wall-clock fields of
+ * `like`, which differ from run to run: two summaries of the same run compare equal as text. */
+char *td_test_summary_json(const struct td_run_summary *s, const struct td_run_summary *like);
 
 /* Load a case file of the source tree (relative path) with overrides; fails the test on error. */
 struct td_case *td_test_load_case(const char *relative, const char **overrides, int n);
