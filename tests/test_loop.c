@@ -6,7 +6,11 @@
  * - the ISO 14839-3 zone limits at exactly 3, 4 and 5;
  * - the static compliance against the closed form of a rigid rotor on two bearings;
  * - the notch at the first bending mode; the same PD as the shorthand and as a linear controller;
- * - an unstable loop gives no sensitivity (undefined, null in JSON), never a number.
+ * - an unstable loop gives no sensitivity (undefined, null in JSON), never a number;
+ * - the sampled loop (a sampled controller, AMB 1's shorthand inside the plant) against scipy at
+ *   test time (tests/validation/control/sampled_loop_reference.py: cont2discrete zoh and bilinear,
+ *   dfreqresp, a hand closed loop over one sample), and its limit as the rate grows: the
+ *   continuous loop of the same law, the error falling as T; its grid ends at the Nyquist frequency.
  */
 #include "td_test.h"
 #include "touchdown/case.h"
@@ -44,9 +48,9 @@ static void write_matrix(FILE *f, const char *name, const double *a, size_t n)
 }
 
 /* What the reference needs: the matrices, each AMB axis (actuator dof, sensor dof, ks, ki, kp, kd,
- * kint, tau), the speed, the frequencies to compare at and the closed-loop state matrix. */
-static void dump_machine(const char *path, const td_system *s, const td_model *m, double omega, const double *freq,
-                         int nf)
+ * kint, tau), the speed, the frequencies to compare at and (acl = 1) the closed-loop state matrix. */
+static FILE *dump_machine(const char *path, const td_system *s, const td_model *m, double omega, const double *freq,
+                          int nf, int acl)
 {
     int nd = td_system_dof_count(s), n = td_modal_state_count(s), i, k;
     double *a = malloc((size_t)n * (size_t)n * sizeof *a);
@@ -68,18 +72,20 @@ static void dump_machine(const char *path, const td_system *s, const td_model *m
         write_matrix(f, names[k], a, (size_t)nd * (size_t)nd);
     }
     write_matrix(f, "freq", freq, (size_t)nf);
-    assert_int_equal(td_modal_state_matrix(s, omega, a, &err), TD_OK);
-    write_matrix(f, "Acl", a, (size_t)n * (size_t)n);
-    assert_int_equal(fclose(f), 0);
+    if (acl) {
+        assert_int_equal(td_modal_state_matrix(s, omega, a, &err), TD_OK);
+        write_matrix(f, "Acl", a, (size_t)n * (size_t)n);
+    }
     free(a);
+    return f;
 }
 
-/* Run the reference (python3 with numpy and scipy: their absence fails the test). */
-static void run_reference(const char *in, const char *out)
+/* Run a reference script (python3 with numpy and scipy: their absence fails the test). */
+static void run_reference(const char *script, const char *in, const char *out)
 {
     char cmd[2048];
     snprintf(cmd, sizeof cmd, "OPENBLAS_NUM_THREADS=1 OMP_NUM_THREADS=1 /usr/bin/python3 %s %s %s",
-             td_source_path("tests/validation/control/loop_reference.py"), in, out);
+             td_source_path(script), in, out);
     assert_int_equal(system(cmd), 0);
 }
 
@@ -109,6 +115,9 @@ static void check_line(const td_loop *l, const char *line, int *counts)
         assert_close(td_loop_sensitivity_peak(l, j), x, 1e-9, 0.0);
         assert_close(td_loop_sensitivity_peak_frequency(l, j), y, 1e-5, 0.0);
         counts[2]++;
+    } else if (what == 'R') { /* the largest |mu| of a sampled loop over one sample: s = ln(mu) rate */
+        assert_close(td_loop_max_real_part(l), log(x) * td_loop_sample_rate(l), 1e-6, 1e-9);
+        counts[3]++;
     }
 }
 
@@ -119,7 +128,7 @@ static void test_against_scipy(void **state)
     td_loop *l = NULL;
     td_error err;
     char dir[] = "/tmp/td_loop_XXXXXX", in[64], out[64], line[512];
-    int counts[3] = {0, 0, 0}, k;
+    int counts[4] = {0, 0, 0, 0}, k;
     double freq[6];
     FILE *f;
     (void)state;
@@ -131,8 +140,8 @@ static void test_against_scipy(void **state)
     assert_non_null(mkdtemp(dir));
     snprintf(in, sizeof in, "%s/in.txt", dir);
     snprintf(out, sizeof out, "%s/out.txt", dir);
-    dump_machine(in, s, td_case_model(c), 300.0, freq, 6);
-    run_reference(in, out);
+    assert_int_equal(fclose(dump_machine(in, s, td_case_model(c), 300.0, freq, 6, 1)), 0);
+    run_reference("tests/validation/control/loop_reference.py", in, out);
     f = fopen(out, "r");
     assert_non_null(f);
     while (fgets(line, sizeof line, f))
@@ -141,6 +150,93 @@ static void test_against_scipy(void **state)
     assert_int_equal(counts[0], 24);
     assert_int_equal(counts[1], 24);
     assert_int_equal(counts[2], 4);
+    remove(in);
+    remove(out);
+    rmdir(dir);
+    td_loop_free(&l);
+    td_system_free(&s);
+    td_case_free(&c);
+}
+
+/* The sampled PD of the test below on AMB axes 0 and 1: kp + kd s / (1 + s / (2 pi f_d)), Tustin at
+ * `rate`, `delay` samples; AMB 1 keeps the shorthand PID of `machine`. */
+static const double sampled_pd[5] = {20000.0, 1.0, 1.0e4, 40.0, 2000.0}; /* rate, delay, kp, kd, f_d */
+
+static td_system *rig_sampled_pd(td_case **c)
+{
+    static const char *ov[] = {"speed=300.0",     "ambs[1].kint=5.0e4", "ambs[1].kp=1.2e4",
+                               "ambs[1].kd=35.0", "ambs[0].kp=0",       "ambs[0].kd=0"};
+    td_pid_block pid = {sampled_pd[2], 0.0, sampled_pd[3], sampled_pd[4]};
+    td_controller *k = td_controller_create_pid(&pid, NULL);
+    td_controller *kt = td_controller_discretise(k, sampled_pd[0], TD_DISCRETISE_TUSTIN, 0.0, NULL);
+    td_controller *kd = td_controller_delay(kt, (int)sampled_pd[1], NULL);
+    td_model *m = NULL;
+    td_system *s = NULL;
+    td_error err;
+    int a;
+    *c = td_test_load_case("cases/rub-damped.cfg", ov, 6);
+    assert_non_null(kd);
+    assert_int_equal(td_model_clone(td_case_model(*c), &m, &err), TD_OK);
+    for (a = 0; a < 2; a++) {
+        char name[32];
+        snprintf(name, sizeof name, "digital %d", a);
+        assert_int_equal(td_model_add_controller(m, name, kd, &a, &a, &err), TD_OK);
+    }
+    assert_int_equal(td_system_create(m, &s, &err), TD_OK);
+    td_controller_free(&k);
+    td_controller_free(&kt);
+    td_controller_free(&kd);
+    td_model_free(&m);
+    return s;
+}
+
+/* The sampled loop (20 kHz, one sample of delay) on AMB 0, the shorthand PID on AMB 1 closed inside
+ * the plant, against scipy (sampled_loop_reference.py: cont2discrete zoh and bilinear, dfreqresp, a
+ * hand closed loop over one sample): S_j at six grid frequencies, its peak, the compliance at the
+ * sample instants and the largest |mu|. The peak (3.87) is that of the 304 Hz bending mode, which
+ * the hold and the delay leave lightly damped: it comes from the search at the lightly damped
+ * closed-loop modes. */
+static void test_sampled_against_scipy(void **state)
+{
+    td_case *c = NULL;
+    td_system *s = rig_sampled_pd(&c);
+    td_loop *l = NULL;
+    td_error err;
+    char dir[] = "/tmp/td_loop_XXXXXX", in[64], out[64], line[512];
+    int counts[4] = {0, 0, 0, 0}, k;
+    double freq[6];
+    FILE *f;
+    (void)state;
+    assert_int_equal(td_loop_compute(s, 300.0, NULL, &l, &err), TD_OK);
+    assert_true(td_loop_stable(l));
+    assert_close(td_loop_sample_rate(l), sampled_pd[0], 0.0, 0.0);
+    assert_int_equal(td_loop_axis_count(l), 2); /* the sampled axes; AMB 1's loop is in the plant */
+    assert_int_equal(td_loop_axis(l, 1), 1);
+    assert_close(td_loop_frequency(l, td_loop_frequency_count(l) - 1), fmin(5000.0, 0.5 * sampled_pd[0]), 0.0, 0.0);
+    assert_int_equal(td_loop_evaluate(l, 0, 0.5 * sampled_pd[0] * (1.0 + 1e-9), NULL, NULL, NULL, NULL, &err),
+                     TD_ERR_INVALID); /* beyond the Nyquist frequency */
+    for (k = 0; k < 6; k++)           /* grid points from 1.2 Hz to 2.4 kHz, where the compliance is stored */
+        freq[k] = td_loop_frequency(l, 67 + 127 * k);
+    assert_non_null(mkdtemp(dir));
+    snprintf(in, sizeof in, "%s/in.txt", dir);
+    snprintf(out, sizeof out, "%s/out.txt", dir);
+    f = dump_machine(in, s, td_case_model(c), 300.0, freq, 6, 0);
+    write_matrix(f, "sampled", sampled_pd, 5);
+    fprintf(f, "saxes 0 1\n");
+    assert_int_equal(fclose(f), 0);
+    run_reference("tests/validation/control/sampled_loop_reference.py", in, out);
+    f = fopen(out, "r");
+    assert_non_null(f);
+    while (fgets(line, sizeof line, f))
+        check_line(l, line, counts);
+    fclose(f);
+    print_message("sampled loop: peaks %.9g at %.6g Hz, %.9g at %.6g Hz, largest real part %.6g 1/s\n",
+                  td_loop_sensitivity_peak(l, 0), td_loop_sensitivity_peak_frequency(l, 0),
+                  td_loop_sensitivity_peak(l, 1), td_loop_sensitivity_peak_frequency(l, 1), td_loop_max_real_part(l));
+    assert_int_equal(counts[0], 12);
+    assert_int_equal(counts[1], 24);
+    assert_int_equal(counts[2], 2);
+    assert_int_equal(counts[3], 1);
     remove(in);
     remove(out);
     rmdir(dir);
@@ -288,35 +384,31 @@ static void test_notch(void **state)
 }
 
 /* The same PD as the shorthand's, given as a linear controller on each axis (exact derivative:
- * velocity feedthrough), gives the same loop: S_j at the grid to rounding. And a sampled law is
- * refused with the sentence the docs quote. */
+ * velocity feedthrough), gives the same loop: S_j at the grid to rounding. */
 static void test_controller_as_shorthand(void **state)
 {
     static const char *no_gains[] = {"ambs[0].kp=0", "ambs[0].kd=0", "ambs[1].kp=0", "ambs[1].kd=0"};
     td_case *c = NULL, *c0 = NULL;
-    td_system *pd = load_system(NULL, 0, &c0), *s = NULL, *sampled = NULL;
-    td_pid_block pid = {1.0e4, 0.0, 40.0, 0.0}, filtered = {1.0e4, 0.0, 40.0, 2000.0};
-    td_controller *k = td_controller_create_pid(&pid, NULL), *kf = td_controller_create_pid(&filtered, NULL);
-    td_controller *kd = td_controller_discretise(kf, 10000.0, TD_DISCRETISE_TUSTIN, 0.0, NULL);
-    td_model *m = NULL, *md = NULL;
+    td_system *pd = load_system(NULL, 0, &c0), *s = NULL;
+    td_pid_block pid = {1.0e4, 0.0, 40.0, 0.0};
+    td_controller *k = td_controller_create_pid(&pid, NULL);
+    td_model *m = NULL;
     td_loop_options coarse = {1.0, 1000.0, 200};
-    td_loop *l0 = NULL, *l1 = NULL, *l2 = NULL;
+    td_loop *l0 = NULL, *l1 = NULL;
     td_error err;
     int a, i, j;
     (void)state;
-    assert_non_null(kd);
     c = td_test_load_case("cases/rub-damped.cfg", no_gains, 4);
     assert_int_equal(td_model_clone(td_case_model(c), &m, &err), TD_OK);
-    assert_int_equal(td_model_clone(td_case_model(c), &md, &err), TD_OK);
     for (a = 0; a < 4; a++) {
         char name[32];
         snprintf(name, sizeof name, "pd %d", a);
         assert_int_equal(td_model_add_controller(m, name, k, &a, &a, &err), TD_OK);
-        assert_int_equal(td_model_add_controller(md, name, kd, &a, &a, &err), TD_OK);
     }
     assert_int_equal(td_system_create(m, &s, &err), TD_OK);
     assert_int_equal(td_loop_compute(pd, 90.0, &coarse, &l0, &err), TD_OK);
     assert_int_equal(td_loop_compute(s, 90.0, &coarse, &l1, &err), TD_OK);
+    assert_close(td_loop_sample_rate(l1), 0.0, 0.0, 0.0);
     for (i = 0; i < td_loop_frequency_count(l0); i++)
         for (j = 0; j < 4; j++) {
             double r0, i0, r1, i1;
@@ -325,22 +417,98 @@ static void test_controller_as_shorthand(void **state)
             assert_true(hypot(r1 - r0, i1 - i0) <= 1e-10 * hypot(r0, i0));
         }
     assert_close(td_loop_sensitivity_peak(l1, 0), td_loop_sensitivity_peak(l0, 0), 1e-10, 0.0);
-    assert_int_equal(td_system_create(md, &sampled, &err), TD_OK);
-    assert_int_equal(td_loop_compute(sampled, 90.0, &coarse, &l2, &err), TD_ERR_INVALID);
-    assert_null(l2);
-    assert_non_null(strstr(err.message, "loop analysis of a sampled controller is not supported yet"));
     td_loop_free(&l0);
     td_loop_free(&l1);
     td_system_free(&pd);
     td_system_free(&s);
-    td_system_free(&sampled);
     td_model_free(&m);
-    td_model_free(&md);
     td_controller_free(&k);
-    td_controller_free(&kf);
-    td_controller_free(&kd);
     td_case_free(&c);
     td_case_free(&c0);
+}
+
+/* The rig's PD with a 2 kHz derivative filter on each axis, continuous (k) or Tustin-sampled at
+ * `rate` without delay: the system (NULL k: sampled). */
+static td_system *rig_filtered_pd(double rate)
+{
+    static const char *no_gains[] = {"ambs[0].kp=0", "ambs[0].kd=0", "ambs[1].kp=0", "ambs[1].kd=0"};
+    td_case *c = td_test_load_case("cases/rub-damped.cfg", no_gains, 4);
+    td_pid_block filtered = {1.0e4, 0.0, 40.0, 2000.0};
+    td_controller *kf = td_controller_create_pid(&filtered, NULL);
+    td_controller *k = rate > 0.0 ? td_controller_discretise(kf, rate, TD_DISCRETISE_TUSTIN, 0.0, NULL) : kf;
+    td_model *m = NULL;
+    td_system *s = NULL;
+    td_error err;
+    int a;
+    assert_non_null(k);
+    assert_int_equal(td_model_clone(td_case_model(c), &m, &err), TD_OK);
+    for (a = 0; a < 4; a++) {
+        char name[32];
+        snprintf(name, sizeof name, "pd %d", a);
+        assert_int_equal(td_model_add_controller(m, name, k, &a, &a, &err), TD_OK);
+    }
+    assert_int_equal(td_system_create(m, &s, &err), TD_OK);
+    if (k != kf)
+        td_controller_free(&k);
+    td_controller_free(&kf);
+    td_model_free(&m);
+    td_case_free(&c);
+    return s;
+}
+
+/* The largest |S_j - S0_j| / |S0_j| over the grid and the axes, and the peaks' relative difference. */
+static void loop_difference(const td_loop *l, const td_loop *l0, double *ds, double *dp)
+{
+    int i, j;
+    *ds = *dp = 0.0;
+    for (i = 0; i < td_loop_frequency_count(l0); i++)
+        for (j = 0; j < td_loop_axis_count(l0); j++) {
+            double r0, i0, r1, i1;
+            td_loop_sensitivity(l0, j, i, &r0, &i0);
+            td_loop_sensitivity(l, j, i, &r1, &i1);
+            *ds = fmax(*ds, hypot(r1 - r0, i1 - i0) / hypot(r0, i0));
+        }
+    for (j = 0; j < td_loop_axis_count(l0); j++)
+        *dp = fmax(*dp, fabs(td_loop_sensitivity_peak(l, j) / td_loop_sensitivity_peak(l0, j) - 1.0));
+}
+
+/* A second method for the sampled loop: as the rate grows, the sampled loop of a Tustin-sampled
+ * law tends to the continuous loop of that law, at first order in T (the hold's half sample): S_j
+ * over 1 Hz..1 kHz and its peak at 100 kHz and at 1 MHz, the error at 1 MHz within 5e-3 (S: the
+ * hold's phase lag w T / 2 is 3e-3 at 1 kHz) and 1e-3 (the peak), and at most 0.15 of the error at
+ * 100 kHz. And the sampled loop's grid ends at the Nyquist frequency. */
+static void test_sampled_tends_to_continuous(void **state)
+{
+    td_system *s0 = rig_filtered_pd(0.0), *s1 = rig_filtered_pd(1.0e5), *s2 = rig_filtered_pd(1.0e6);
+    td_system *s3 = rig_filtered_pd(4000.0);
+    td_loop_options coarse = {1.0, 1000.0, 200}, wide = {1.0, 1.0e6, 20};
+    td_loop *l0 = NULL, *l1 = NULL, *l2 = NULL, *l3 = NULL;
+    td_error err;
+    double d1, p1, d2, p2;
+    (void)state;
+    assert_int_equal(td_loop_compute(s0, 90.0, &coarse, &l0, &err), TD_OK);
+    assert_int_equal(td_loop_compute(s1, 90.0, &coarse, &l1, &err), TD_OK);
+    assert_int_equal(td_loop_compute(s2, 90.0, &coarse, &l2, &err), TD_OK);
+    assert_true(td_loop_stable(l0) && td_loop_stable(l1) && td_loop_stable(l2));
+    loop_difference(l1, l0, &d1, &p1);
+    loop_difference(l2, l0, &d2, &p2);
+    print_message("sampled vs continuous: S %.3g (100 kHz), %.3g (1 MHz); peak %.3g, %.3g\n", d1, d2, p1, p2);
+    assert_true(d2 < 5e-3 && p2 < 1e-3);
+    assert_true(d2 < 0.15 * d1 && p2 < 0.15 * p1);
+    assert_int_equal(td_loop_compute(s3, 90.0, &wide, &l3, &err), TD_OK);
+    assert_close(td_loop_sample_rate(l3), 4000.0, 0.0, 0.0);
+    assert_close(td_loop_frequency(l3, td_loop_frequency_count(l3) - 1), 2000.0, 0.0, 0.0);
+    wide.f_min = 2000.0;
+    td_loop_free(&l3);
+    assert_int_equal(td_loop_compute(s3, 90.0, &wide, &l3, &err), TD_ERR_INVALID);
+    assert_non_null(strstr(err.message, "Nyquist"));
+    td_loop_free(&l0);
+    td_loop_free(&l1);
+    td_loop_free(&l2);
+    td_system_free(&s0);
+    td_system_free(&s1);
+    td_system_free(&s2);
+    td_system_free(&s3);
 }
 
 /* The static compliance in closed form: a rigid rotor on two bearings carries a force at bearing
@@ -373,11 +541,13 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_against_scipy),
+        cmocka_unit_test(test_sampled_against_scipy),
         cmocka_unit_test(test_zone_limits),
         cmocka_unit_test(test_static_compliance),
         cmocka_unit_test(test_unstable),
         cmocka_unit_test(test_notch),
         cmocka_unit_test(test_controller_as_shorthand),
+        cmocka_unit_test(test_sampled_tends_to_continuous),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -338,10 +338,19 @@ TD_API char td_loop_zone(double peak);
  * it stable); when not stable, S, its peaks and zones and the compliance are TD_UNDEFINED (0 for
  * a zone), and L is still given.
  *
+ * With sampled controllers (td_loop_sample_rate > 0) the loop is the sampled-data one, at the
+ * sample instants: its axes are the sampled laws' (every continuous law and shorthand stays closed
+ * inside the plant), P is the plant's zero-order hold over one sample period T (held currents in,
+ * sensor values at the samples out), and S_j = [(I + K(z) P_zoh(z))^-1]_jj at z = e^{jwT}, the
+ * grid ending at the Nyquist frequency (rate / 2) if f_max is beyond it. The compliance is the
+ * displacement at the sample instants per unit sinusoidal force. Stable iff every eigenvalue mu of
+ * the loop over one sample has |mu| < 1 (ln |mu| at most TD_MODAL_MARGINAL_REAL_PART: the rounding
+ * of a marginal root). What happens between the samples is not included (docs/theory.md).
+ *
  * opt may be NULL (td_loop_options_default). Errors: TD_ERR_INVALID (NULL argument, bad options
- * or speed, no controlled axis, a sampled controller: "loop analysis of a sampled controller is not
- * supported yet", more than TD_LOOP_MAX_STATES states), TD_ERR_NUMERIC, TD_ERR_NOMEM. Caller frees *out with
- * td_loop_free; NULL on failure.
+ * or speed, no controlled axis, f_min not below a sampled loop's Nyquist frequency, sampled laws
+ * at different rates, more than TD_LOOP_MAX_STATES states), TD_ERR_NUMERIC, TD_ERR_NOMEM. Caller
+ * frees *out with td_loop_free; NULL on failure.
  */
 TD_API td_status td_loop_compute(const td_system *sys, double omega, const td_loop_options *opt, td_loop **out,
                                  td_error *err);
@@ -349,6 +358,8 @@ TD_API td_status td_loop_compute(const td_system *sys, double omega, const td_lo
 TD_API void td_loop_free(td_loop **l);
 /** Speed of the analysis, rad/s. */
 TD_API double td_loop_speed(const td_loop *l);
+/** The sampled loop's sample rate, Hz; 0 for a continuous loop (NAN for NULL). */
+TD_API double td_loop_sample_rate(const td_loop *l);
 /** 1 when the closed loop is stable (see td_loop_compute), else 0. */
 TD_API int td_loop_stable(const td_loop *l);
 /** Largest real part of the closed-loop eigenvalues, 1/s. */
@@ -377,7 +388,8 @@ TD_API char td_loop_sensitivity_zone(const td_loop *l, int j);
 /** The worst zone over the axes; 0 when unstable. */
 TD_API char td_loop_worst_zone(const td_loop *l);
 /** S_j and L_j at any frequency f (Hz), computed afresh (the grid's values at grid frequencies);
- *  either pointer pair may be NULL. TD_ERR_INVALID for j or f out of range (f > 0). */
+ *  either pointer pair may be NULL. TD_ERR_INVALID for j or f out of range (f > 0, a sampled loop's
+ *  at most the Nyquist frequency). */
 TD_API td_status td_loop_evaluate(const td_loop *l, int j, double f, double *s_re, double *s_im, double *l_re,
                                   double *l_im, td_error *err);
 

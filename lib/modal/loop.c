@@ -40,16 +40,24 @@ typedef struct loop_block {
     int nout, nin;
 } loop_block;
 
+/* The plant's response to m of its inputs, the columns col0.. of G: C (x I - H)^-1 B with H upper
+ * Hessenberg (n x n), B (n x m), C (p x n), row-major, at x = jw (continuous) or x = e^{jwT}
+ * (discrete: the zero-order hold over one sample period T). */
+typedef struct loop_plant {
+    int m, col0, discrete;
+    double *H, *B, *C;
+} loop_plant;
+
 struct td_loop {
     double omega;
+    double rate;    /* Hz: the sampled controllers' rate; 0 for a continuous loop */
     int n;          /* plant states */
     int nc, ns, na; /* controlled axes (current inputs), sensed axes (controller inputs), AMB axes */
     int m, p;       /* plant inputs nc + na, outputs ns + na */
     int *axis;      /* nc: AMB axis of each current input */
     int *sensor;    /* ns: AMB axis of each sensor */
-    double *H;      /* n x n upper Hessenberg, row-major */
-    double *B;      /* n x m, row-major, in the Hessenberg basis */
-    double *C;      /* p x n, row-major, in the Hessenberg basis */
+    int n_plants;   /* 1: continuous, every input; 2: sampled, the held currents (discrete), then the forces */
+    loop_plant plant[2];
     int n_blocks;
     loop_block *blocks;
     int nf;
@@ -94,26 +102,27 @@ static int shorthand_controlled(const td_amb_axis *a)
     return a->law < 0 && !a->off && (a->kp != 0.0 || a->kd != 0.0 || a->kint != 0.0);
 }
 
-/* Flags over the AMB axes: driven[a] when a current command reaches axis a, sensed[a] when a
- * controller reads its sensor. TD_ERR_INVALID for a sampled controller. */
-static td_status loop_axes(const td_system *sys, int *driven, int *sensed, td_error *err)
+/* Flags over the AMB axes: driven[a] when a current command of the loop reaches axis a, sensed[a]
+ * when such a controller reads its sensor; *rate the sampled laws' rate (0: none). With a sampled
+ * controller the loop is the sampled one: the sampled laws' axes, every continuous law and
+ * shorthand closed inside the plant (td_state_space_build_plant). */
+static void loop_axes(const td_system *sys, int *driven, int *sensed, double *rate)
 {
-    int a, i, j;
+    int a, i, j, sampled = td_system_has_sampled_law(sys);
+    *rate = 0.0;
     for (a = 0; a < sys->n_amb_axes; a++)
-        driven[a] = sensed[a] = shorthand_controlled(&sys->amb_axes[a]);
+        driven[a] = sensed[a] = !sampled && shorthand_controlled(&sys->amb_axes[a]);
     for (i = 0; i < sys->n_laws; i++) {
         const td_lti_law *w = &sys->laws[i];
-        if (w->sample_rate > 0.0)
-            return td_error_set(err, TD_ERR_INVALID,
-                                "loop analysis of a sampled controller is not supported yet "
-                                "(controller %d samples at %g Hz)",
-                                i, w->sample_rate);
+        if ((w->state < 0) != sampled)
+            continue;
+        if (sampled && *rate == 0.0)
+            *rate = w->sample_rate; /* another rate is refused by the closed loop (sampled.c) */
         for (j = 0; j < w->nout; j++)
             driven[w->out_axis[j]] = 1;
         for (j = 0; j < w->nin; j++)
             sensed[w->in_axis[j]] = 1;
     }
-    return TD_OK;
 }
 
 /* Index lists of the flagged axes; the index of each axis in its list into pos[] (-1: none). */
@@ -130,7 +139,8 @@ static int list_axes(const int *flag, int n, int *list, int *pos)
 
 /* ---- the plant ---------------------------------------------------------------------------- */
 
-/* The machine without the controlled axes' laws: the plant's state space at `omega`. */
+/* The machine without the controlled axes' laws: the plant's state space at `omega` (a sampled
+ * loop's: without the sampled laws, td_state_space_build_plant). */
 static td_status open_loop_state_space(const td_system *sys, const int *driven, double omega, td_state_space *ss,
                                        td_error *err)
 {
@@ -140,6 +150,10 @@ static td_status open_loop_state_space(const td_system *sys, const int *driven, 
     int a;
     if (!axes)
         return td_error_set(err, TD_ERR_NOMEM, "loop analysis: out of memory");
+    if (td_system_has_sampled_law(sys)) {
+        free(axes);
+        return td_state_space_build_plant(sys, omega, ss, err);
+    }
     for (a = 0; a < sys->n_amb_axes; a++) {
         axes[a] = sys->amb_axes[a];
         if (driven[a]) {
@@ -156,24 +170,17 @@ static td_status open_loop_state_space(const td_system *sys, const int *driven, 
 }
 
 /* Column `col` of the input matrix Bz (n x m, row-major): a current command of 1 A on axis a
- * (current = 1) or a force of 1 N at its actuator node (current = 0). */
+ * (current = 1, td_sampled_current_column) or a force of 1 N at its actuator node (current = 0). */
 static td_status input_column(const td_state_space *ss, const td_amb_axis *a, int current, double *col, td_error *err)
 {
-    double dfdx, dfdfc, *f = calloc((size_t)ss->ndof, sizeof *f);
-    td_status st = TD_OK;
-    int i;
-    if (!f)
+    double *f;
+    td_status st;
+    if (current)
+        return td_sampled_current_column(ss, a, col, err);
+    if (!(f = calloc((size_t)ss->ndof, sizeof *f)))
         return td_error_set(err, TD_ERR_NOMEM, "loop analysis: out of memory");
-    (void)td_amb_axis_force(a, !a->off, 0.0, 0.0, &dfdx, &dfdfc);
-    if (current && a->state >= 0) {
-        for (i = 0; i < ss->n; i++)
-            col[i] = 0.0;
-        /* the command sets the lag's target: dFc/dt = (ki i - Fc) / tau */
-        col[2 * ss->ndof + a->state] = td_amb_axis_lag_rate(a, td_amb_axis_current_command(a, 1.0), 0.0);
-    } else {
-        f[a->actuator_dof] = current ? dfdfc * td_amb_axis_current_command(a, 1.0) : 1.0;
-        st = td_state_space_load(ss, f, col, err);
-    }
+    f[a->actuator_dof] = 1.0;
+    st = td_state_space_load(ss, f, col, err);
     free(f);
     return st;
 }
@@ -201,37 +208,78 @@ static td_status plant_io(const td_system *sys, const td_loop *l, const td_state
 }
 
 /* Balance A (D^-1 A D), reduce it to Hessenberg form U^T (D^-1 A D) U and carry B and C along:
- * l->H, l->B = U^T D^-1 Bz, l->C = Cz D U. */
-static td_status hessenberg_plant(td_loop *l, gsl_matrix *A, const double *Bz, const double *Cz, td_error *err)
+ * pl->H, pl->B = U^T D^-1 Bz, pl->C = Cz D U, with Bz's pl->m columns from Bz[0] (row stride ldb). */
+static td_status hessenberg_plant(const td_loop *l, loop_plant *pl, gsl_matrix *A, const double *Bz, int ldb,
+                                  const double *Cz, td_error *err)
 {
     size_t n = A->size1, i, j, k;
     gsl_vector *D = gsl_vector_alloc(n), *tau = gsl_vector_alloc(n);
     gsl_matrix *U = gsl_matrix_alloc(n, n);
     td_status st = TD_OK;
-    if (!D || !tau || !U)
-        st = td_error_set(err, TD_ERR_NOMEM, "loop analysis: out of memory");
+    pl->H = malloc(n * n * sizeof *pl->H);
+    pl->B = malloc(n * (size_t)pl->m * sizeof *pl->B);
+    pl->C = malloc(n * (size_t)l->p * sizeof *pl->C);
+    if (!D || !tau || !U || !pl->H || !pl->B || !pl->C)
+        st = td_error_set(err, TD_ERR_NOMEM, "loop analysis: out of memory for a %d-state plant", (int)n);
     else if (gsl_linalg_balance_matrix(A, D) != GSL_SUCCESS || gsl_linalg_hessenberg_decomp(A, tau) != GSL_SUCCESS ||
              gsl_linalg_hessenberg_unpack(A, tau, U) != GSL_SUCCESS || gsl_linalg_hessenberg_set_zero(A) != GSL_SUCCESS)
         st = td_error_set(err, TD_ERR_NUMERIC, "loop analysis: the Hessenberg reduction of the plant failed");
     for (i = 0; st == TD_OK && i < n; i++) {
         for (j = 0; j < n; j++)
-            l->H[i * n + j] = gsl_matrix_get(A, i, j);
-        for (j = 0; j < (size_t)l->m; j++) { /* (U^T D^-1 Bz)(i, j) */
+            pl->H[i * n + j] = gsl_matrix_get(A, i, j);
+        for (j = 0; j < (size_t)pl->m; j++) { /* (U^T D^-1 Bz)(i, j) */
             double s = 0.0;
             for (k = 0; k < n; k++)
-                s += gsl_matrix_get(U, k, i) * Bz[k * (size_t)l->m + j] / gsl_vector_get(D, k);
-            l->B[i * (size_t)l->m + j] = s;
+                s += gsl_matrix_get(U, k, i) * Bz[k * (size_t)ldb + j] / gsl_vector_get(D, k);
+            pl->B[i * (size_t)pl->m + j] = s;
         }
         for (j = 0; j < (size_t)l->p; j++) { /* (Cz D U)(j, i) */
             double s = 0.0;
             for (k = 0; k < n; k++)
                 s += Cz[j * n + k] * gsl_vector_get(D, k) * gsl_matrix_get(U, k, i);
-            l->C[j * n + i] = s;
+            pl->C[j * n + i] = s;
         }
     }
     gsl_vector_free(D);
     gsl_vector_free(tau);
     gsl_matrix_free(U);
+    return st;
+}
+
+/* The sampled loop's plant: the held currents through the zero-order hold over one sample
+ * (td_sampled_hold: Phi, Gamma; plant[0], at e^{jwT}), the forces through the continuous plant
+ * (plant[1], at jw): a sensor read at the samples sees a sinusoidal force as the sinusoid. */
+static td_status sampled_plant(td_loop *l, const td_state_space *ss, const double *Bz, const double *Cz, td_error *err)
+{
+    size_t n = (size_t)ss->n, nc = (size_t)l->nc, i, j;
+    double *A = malloc(n * n * sizeof *A), *Bu = malloc(n * nc * sizeof *Bu), *Ph = malloc(n * n * sizeof *Ph);
+    double *Ga = malloc(n * nc * sizeof *Ga), *Gr = malloc(n * nc * sizeof *Gr);
+    gsl_matrix *Phi = gsl_matrix_alloc(n, n);
+    td_status st =
+        A && Bu && Ph && Ga && Gr && Phi ? TD_OK : td_error_set(err, TD_ERR_NOMEM, "loop analysis: out of memory");
+    for (i = 0; st == TD_OK && i < n; i++) {
+        for (j = 0; j < n; j++)
+            A[i + j * n] = gsl_matrix_get(ss->A, i, j);
+        for (j = 0; j < nc; j++)
+            Bu[i + j * n] = Bz[i * (size_t)l->m + j];
+    }
+    if (st == TD_OK)
+        st = td_sampled_hold(ss->n, l->rate, A, Bu, l->nc, Ph, Ga, err);
+    for (i = 0; st == TD_OK && i < n; i++) {
+        for (j = 0; j < n; j++)
+            gsl_matrix_set(Phi, i, j, Ph[i + j * n]);
+        for (j = 0; j < nc; j++)
+            Gr[i * nc + j] = Ga[i + j * n];
+    }
+    l->n_plants = 2;
+    l->plant[0].m = l->nc, l->plant[0].col0 = 0, l->plant[0].discrete = 1;
+    l->plant[1].m = l->na, l->plant[1].col0 = l->nc, l->plant[1].discrete = 0;
+    if (st == TD_OK)
+        st = hessenberg_plant(l, &l->plant[0], Phi, Gr, l->nc, Cz, err);
+    if (st == TD_OK)
+        st = hessenberg_plant(l, &l->plant[1], ss->A, Bz + l->nc, l->m, Cz, err);
+    free(A), free(Bu), free(Ph), free(Ga), free(Gr);
+    gsl_matrix_free(Phi);
     return st;
 }
 
@@ -245,15 +293,17 @@ static td_status build_plant(const td_system *sys, const int *driven, td_loop *l
     l->n = ss.n;
     Bz = malloc((size_t)ss.n * (size_t)l->m * sizeof *Bz);
     Cz = malloc((size_t)ss.n * (size_t)l->p * sizeof *Cz);
-    l->H = malloc((size_t)ss.n * (size_t)ss.n * sizeof *l->H);
-    l->B = malloc((size_t)ss.n * (size_t)l->m * sizeof *l->B);
-    l->C = malloc((size_t)ss.n * (size_t)l->p * sizeof *l->C);
-    if (!Bz || !Cz || !l->H || !l->B || !l->C)
+    if (!Bz || !Cz)
         st = td_error_set(err, TD_ERR_NOMEM, "loop analysis: out of memory for a %d-state plant", ss.n);
     if (st == TD_OK)
         st = plant_io(sys, l, &ss, Bz, Cz, err);
-    if (st == TD_OK)
-        st = hessenberg_plant(l, ss.A, Bz, Cz, err);
+    if (st == TD_OK && l->rate > 0.0)
+        st = sampled_plant(l, &ss, Bz, Cz, err);
+    else if (st == TD_OK) {
+        l->n_plants = 1;
+        l->plant[0].m = l->m, l->plant[0].col0 = 0, l->plant[0].discrete = 0;
+        st = hessenberg_plant(l, &l->plant[0], ss.A, Bz, l->m, Cz, err);
+    }
     free(Bz);
     free(Cz);
     td_state_space_free(&ss);
@@ -296,7 +346,7 @@ static td_status build_controllers(const td_system *sys, td_loop *l, const int *
         return td_error_set(err, TD_ERR_NOMEM, "loop analysis: out of memory");
     for (a = 0; st == TD_OK && a < sys->n_amb_axes; a++) {
         const td_amb_axis *x = &sys->amb_axes[a];
-        if (shorthand_controlled(x)) {
+        if (l->rate == 0.0 && shorthand_controlled(x)) { /* a sampled loop's plant holds them */
             /* the shorthand's current -(kp xs + kd vs + kint e) is kp + kd s + kint/s acting on -xs */
             td_pid_block pid;
             pid.kp = x->kp;
@@ -308,7 +358,11 @@ static td_status build_controllers(const td_system *sys, td_loop *l, const int *
     }
     for (i = 0; st == TD_OK && i < sys->n_laws; i++) {
         const td_lti_law *w = &sys->laws[i];
-        td_controller *k = td_controller_create_ss(w->n, w->nin, w->nout, w->A, w->B, w->C, w->D, w->D1, 0.0, err);
+        td_controller *k;
+        if ((w->state < 0) != (l->rate > 0.0))
+            continue; /* a continuous law in a sampled loop: the plant holds it */
+        k = td_controller_create_ss(w->n, w->nin, w->nout, w->A, w->B, w->C, w->D, w->D1,
+                                    w->state < 0 ? w->sample_rate : 0.0, err);
         st = add_block(l, k, w->in_axis, w->out_axis, pos_s, pos_c, err);
     }
     return st;
@@ -354,18 +408,18 @@ static td_status work_alloc(const td_loop *l, loop_work *w, td_error *err)
     return td_error_set(err, TD_ERR_NOMEM, "loop analysis: out of memory");
 }
 
-/* G = C (jw I - H)^-1 B (p x m): Gaussian elimination with partial pivoting on the Hessenberg
- * matrix (one subdiagonal: each step pivots between two rows), then back substitution.
- * Returns 0 when jw is an eigenvalue of the plant to working precision. */
-static int plant_response(const td_loop *l, double w, loop_work *wk)
+/* G's columns pl->col0.. = C (x I - H)^-1 B (p x pl->m): Gaussian elimination with partial pivoting
+ * on the Hessenberg matrix (one subdiagonal: each step pivots between two rows), then back
+ * substitution. Returns 0 when x is an eigenvalue of the plant to working precision. */
+static int plant_block(const td_loop *l, const loop_plant *pl, double complex x, loop_work *wk)
 {
-    size_t n = (size_t)l->n, m = (size_t)l->m, p = (size_t)l->p, i, j, k;
+    size_t n = (size_t)l->n, m = (size_t)pl->m, p = (size_t)l->p, i, j, k;
     double complex *T = wk->T, *Y = wk->Y;
     for (i = 0; i < n; i++) {
         for (j = 0; j < n; j++)
-            T[i * n + j] = (i == j ? I * w : 0.0) - l->H[i * n + j];
+            T[i * n + j] = (i == j ? x : 0.0) - pl->H[i * n + j];
         for (j = 0; j < m; j++)
-            Y[i * m + j] = l->B[i * m + j];
+            Y[i * m + j] = pl->B[i * m + j];
     }
     for (k = 0; k + 1 < n; k++) {
         double complex f;
@@ -405,9 +459,20 @@ static int plant_response(const td_loop *l, double w, loop_work *wk)
         for (j = 0; j < m; j++) {
             double complex s = 0.0;
             for (k = 0; k < n; k++)
-                s += l->C[i * n + k] * Y[k * m + j];
-            wk->G[i * m + j] = s;
+                s += pl->C[i * n + k] * Y[k * m + j];
+            wk->G[i * (size_t)l->m + (size_t)pl->col0 + j] = s;
         }
+    return 1;
+}
+
+/* G = P (p x m) at w rad/s: each plant part at jw, or at e^{jwT} for the held currents of a sampled
+ * loop. Returns 0 at a pole of the plant. */
+static int plant_response(const td_loop *l, double w, loop_work *wk)
+{
+    int b;
+    for (b = 0; b < l->n_plants; b++)
+        if (!plant_block(l, &l->plant[b], l->plant[b].discrete ? cexp(I * w / l->rate) : I * w, wk))
+            return 0;
     return 1;
 }
 
@@ -568,10 +633,10 @@ static void mode_peaks(td_loop *l, loop_work *wk)
     }
     for (j = 0; best && at && j < l->nc; j++)
         if (at[j] >= 0) {
-            double f = l->mode_f[at[j]], h = fmax(3.0 * l->mode_zeta[at[j]], 1e-9);
+            double f = l->mode_f[at[j]], h = fmax(3.0 * l->mode_zeta[at[j]], 1e-9), hi = f * (1.0 + h);
             l->peak[j] = best[j];
             l->peak_freq[j] = f;
-            refine_peak(l, wk, j, f / (1.0 + h), f, f * (1.0 + h));
+            refine_peak(l, wk, j, f / (1.0 + h), f, l->rate > 0.0 ? fmin(hi, l->freq[l->nf - 1]) : hi);
         }
     free(best);
     free(at);
@@ -610,7 +675,9 @@ static td_status closed_loop_stability(const td_system *sys, td_loop *l, td_erro
     if (st != TD_OK)
         return st;
     l->max_real = td_modal_max_real_part(md);
-    l->stable = !td_modal_is_unstable(md);
+    /* a sampled loop's eigenvalues are s = ln(mu) rate (sampled.c): |mu| < 1, to the rounding of a
+     * marginal root, ln |mu| <= TD_MODAL_MARGINAL_REAL_PART (a delay's mu = 0 leaves out of it) */
+    l->stable = l->rate > 0.0 ? !(l->max_real > TD_MODAL_MARGINAL_REAL_PART * l->rate) : !td_modal_is_unstable(md);
     l->mode_f = malloc(((size_t)td_modal_mode_count(md) + 1u) * sizeof *l->mode_f);
     l->mode_zeta = malloc(((size_t)td_modal_mode_count(md) + 1u) * sizeof *l->mode_zeta);
     for (i = 0; l->mode_f && l->mode_zeta && i < td_modal_mode_count(md); i++) {
@@ -645,8 +712,17 @@ static td_status loop_alloc(const td_system *sys, const td_loop_options *o, td_l
 {
     int *driven = calloc((size_t)sys->n_amb_axes + 1u, sizeof *driven);
     int *sensed = calloc((size_t)sys->n_amb_axes + 1u, sizeof *sensed), k;
-    td_status st = driven && sensed ? loop_axes(sys, driven, sensed, err)
-                                    : td_error_set(err, TD_ERR_NOMEM, "loop analysis: out of memory");
+    td_status st = driven && sensed ? TD_OK : td_error_set(err, TD_ERR_NOMEM, "loop analysis: out of memory");
+    double f_max = o->f_max;
+    if (st == TD_OK)
+        loop_axes(sys, driven, sensed, &l->rate);
+    if (l->rate > 0.0) /* a sampled loop's response repeats beyond the Nyquist frequency */
+        f_max = fmin(f_max, 0.5 * l->rate);
+    if (st == TD_OK && !(o->f_min < f_max))
+        st = td_error_set(err, TD_ERR_INVALID,
+                          "loop analysis: the grid's f_min %g Hz is not below the sampled loop's Nyquist frequency "
+                          "%g Hz",
+                          o->f_min, f_max);
     l->axis = malloc(((size_t)sys->n_amb_axes + 1u) * sizeof *l->axis);
     l->sensor = malloc(((size_t)sys->n_amb_axes + 1u) * sizeof *l->sensor);
     if (st == TD_OK && (!l->axis || !l->sensor))
@@ -675,8 +751,8 @@ static td_status loop_alloc(const td_system *sys, const td_loop_options *o, td_l
         st = td_error_set(err, TD_ERR_NOMEM, "loop analysis: out of memory");
     for (k = 0; st == TD_OK && k < l->nf; k++) /* log-spaced, the ends exact */
         l->freq[k] = k == 0           ? o->f_min
-                     : k == l->nf - 1 ? o->f_max
-                                      : o->f_min * pow(o->f_max / o->f_min, (double)k / (double)(l->nf - 1));
+                     : k == l->nf - 1 ? f_max
+                                      : o->f_min * pow(f_max / o->f_min, (double)k / (double)(l->nf - 1));
     return st;
 }
 
@@ -746,9 +822,11 @@ void td_loop_free(td_loop **lp)
     free(l->blocks);
     free(l->axis);
     free(l->sensor);
-    free(l->H);
-    free(l->B);
-    free(l->C);
+    for (i = 0; i < 2; i++) {
+        free(l->plant[i].H);
+        free(l->plant[i].B);
+        free(l->plant[i].C);
+    }
     free(l->freq);
     free(l->s);
     free(l->l);
@@ -764,6 +842,11 @@ void td_loop_free(td_loop **lp)
 double td_loop_speed(const td_loop *l)
 {
     return l ? l->omega : TD_UNDEFINED;
+}
+
+double td_loop_sample_rate(const td_loop *l)
+{
+    return l ? l->rate : TD_UNDEFINED;
 }
 
 int td_loop_stable(const td_loop *l)
@@ -863,8 +946,11 @@ td_status td_loop_evaluate(const td_loop *l, int j, double f, double *s_re, doub
     loop_work wk;
     td_status st;
     double complex s;
-    if (!l || j < 0 || j >= l->nc || !(f > 0.0) || !isfinite(f))
-        return td_error_set(err, TD_ERR_INVALID, "td_loop_evaluate: no axis %d or a bad frequency %g Hz", j, f);
+    if (!l || j < 0 || j >= l->nc || !(f > 0.0) || !isfinite(f) || (l->rate > 0.0 && f > 0.5 * l->rate))
+        return td_error_set(err, TD_ERR_INVALID,
+                            "td_loop_evaluate: no axis %d or a bad frequency %g Hz (a sampled loop's: up to the "
+                            "Nyquist frequency)",
+                            j, f);
     if ((st = work_alloc(l, &wk, err)) != TD_OK)
         return st;
     st = close_loop(l, f, &wk, err);

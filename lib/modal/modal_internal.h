@@ -54,6 +54,15 @@ int td_system_has_sampled_law(const td_system *sys);
  * sample period, z[k+1] = P z[k] with z = [plant state; sampled controllers' states] (N x N, new,
  * *P; *rate the common sample rate, Hz); TD_ERR_INVALID when the rates differ. */
 td_status td_sampled_closed_loop(const td_system *sys, double omega, gsl_matrix **P, double *rate, td_error *err);
+/* Column of the plant's input matrix (length ss->n, every entry set) for a held current of 1 A on
+ * AMB axis a: the rate of its amplifier lag (tau > 0) or its force over M, through the AMB law of
+ * model/amb.c (td_amb_axis_current_command). */
+td_status td_sampled_current_column(const td_state_space *ss, const td_amb_axis *a, double *col, td_error *err);
+/* The zero-order hold of x' = A x + Bu u over one sample, 1/rate s (A n x n, Bu n x nu, column-major):
+ * Phi = exp(A T) (n x n) and Gamma = (integral of exp(A s) ds over [0, T]) Bu (n x nu), column-major,
+ * by SLICOT MB05ND (td_slicot_expm). */
+td_status td_sampled_hold(int n, double rate, const double *A, const double *Bu, int nu, double *Phi, double *Gamma,
+                          td_error *err);
 void td_state_space_free(td_state_space *ss);
 
 /* Load term of a mechanical force f (length ndof): out[ndof .. 2 ndof) = M^-1 f, the rest 0. */

@@ -52,30 +52,55 @@ static td_status sampled_sizes(const td_system *sys, double *rate, int *nx, int 
     return TD_OK;
 }
 
+td_status td_sampled_current_column(const td_state_space *ss, const td_amb_axis *a, double *col, td_error *err)
+{
+    double dfdx, dfdfc, target = td_amb_axis_current_command(a, 1.0), *f;
+    td_status st;
+    int i;
+    (void)td_amb_axis_force(a, !a->off, 0.0, 0.0, &dfdx, &dfdfc);
+    if (a->state >= 0) { /* the command sets the lag's target: dFc/dt = (ki i - Fc) / tau */
+        for (i = 0; i < ss->n; i++)
+            col[i] = 0.0;
+        col[2 * ss->ndof + a->state] = td_amb_axis_lag_rate(a, target, 0.0);
+        return TD_OK;
+    }
+    if (!(f = calloc((size_t)ss->ndof, sizeof *f)))
+        return td_error_set(err, TD_ERR_NOMEM, "modal: out of memory for the plant's inputs");
+    f[a->actuator_dof] = dfdfc * target;
+    st = td_state_space_load(ss, f, col, err);
+    free(f);
+    return st;
+}
+
 /* Bu (n x nu, column-major): column j is the plant's rate per ampere of the held current of
- * sampled output j, through the AMB law of model/amb.c (the lag's rate, or the force over M). */
+ * sampled output j (td_sampled_current_column). */
 static td_status input_matrix(const td_system *sys, const td_state_space *ss, double *Bu, td_error *err)
 {
     size_t n = (size_t)ss->n;
-    double *f = calloc((size_t)ss->ndof, sizeof *f);
     int l, o, j = 0;
-    td_status st = f ? TD_OK : td_error_set(err, TD_ERR_NOMEM, "modal: out of memory for the sampled loop");
+    td_status st = TD_OK;
     for (l = 0; st == TD_OK && l < sys->n_laws; l++) {
         const td_lti_law *L = &sys->laws[l];
-        for (o = 0; L->state < 0 && st == TD_OK && o < L->nout; o++, j++) {
-            const td_amb_axis *a = &sys->amb_axes[L->out_axis[o]];
-            double dfdx, dfdfc, target = td_amb_axis_current_command(a, 1.0);
-            (void)td_amb_axis_force(a, !a->off, 0.0, 0.0, &dfdx, &dfdfc);
-            if (a->state >= 0) {
-                Bu[(size_t)(2 * ss->ndof + a->state) + (size_t)j * n] = td_amb_axis_lag_rate(a, target, 0.0);
-                continue;
-            }
-            memset(f, 0, (size_t)ss->ndof * sizeof *f);
-            f[a->actuator_dof] = dfdfc * target;
-            st = td_state_space_load(ss, f, Bu + (size_t)j * n, err);
-        }
+        for (o = 0; L->state < 0 && st == TD_OK && o < L->nout; o++, j++)
+            st = td_sampled_current_column(ss, &sys->amb_axes[L->out_axis[o]], Bu + (size_t)j * n, err);
     }
-    free(f);
+    return st;
+}
+
+td_status td_sampled_hold(int n, double rate, const double *A, const double *Bu, int nu, double *Phi, double *Gamma,
+                          td_error *err)
+{
+    double *EI = malloc((size_t)n * (size_t)n * sizeof *EI);
+    size_t i, j, k, un = (size_t)n;
+    td_status st = EI ? td_slicot_expm(n, 1.0 / rate, A, Phi, EI, err)
+                      : td_error_set(err, TD_ERR_NOMEM, "modal: out of memory for the sampled plant (%d states)", n);
+    for (i = 0; st == TD_OK && i < un; i++) /* Gamma = EXINT Bu */
+        for (j = 0; j < (size_t)nu; j++) {
+            Gamma[i + j * un] = 0.0;
+            for (k = 0; k < un; k++)
+                Gamma[i + j * un] += EI[i + k * un] * Bu[k + j * un];
+        }
+    free(EI);
     return st;
 }
 
@@ -112,8 +137,8 @@ static void close_loop(const td_system *sys, size_t n, const double *G, gsl_matr
 td_status td_sampled_closed_loop(const td_system *sys, double omega, gsl_matrix **P, double *rate, td_error *err)
 {
     td_state_space ss;
-    double *A = NULL, *EX = NULL, *EI = NULL, *Bu = NULL, *G = NULL;
-    size_t n, i, j, k;
+    double *A = NULL, *EX = NULL, *Bu = NULL, *G = NULL;
+    size_t n, i, j;
     int nx, nu;
     td_status st = sampled_sizes(sys, rate, &nx, &nu, err);
     *P = NULL;
@@ -124,11 +149,10 @@ td_status td_sampled_closed_loop(const td_system *sys, double omega, gsl_matrix 
     n = (size_t)ss.n;
     A = malloc(n * n * sizeof *A);
     EX = malloc(n * n * sizeof *EX);
-    EI = malloc(n * n * sizeof *EI);
     Bu = calloc(n * (size_t)nu + 1, sizeof *Bu);
     G = calloc(n * (size_t)nu + 1, sizeof *G);
     *P = gsl_matrix_calloc(n + (size_t)nx, n + (size_t)nx);
-    if (!A || !EX || !EI || !Bu || !G || !*P)
+    if (!A || !EX || !Bu || !G || !*P)
         st = td_error_set(err, TD_ERR_NOMEM, "modal: out of memory for the sampled loop (%d states)", ss.n + nx);
     for (i = 0; st == TD_OK && i < n; i++)
         for (j = 0; j < n; j++)
@@ -136,17 +160,13 @@ td_status td_sampled_closed_loop(const td_system *sys, double omega, gsl_matrix 
     if (st == TD_OK)
         st = input_matrix(sys, &ss, Bu, err);
     if (st == TD_OK)
-        st = td_slicot_expm(ss.n, 1.0 / *rate, A, EX, EI, err);
-    for (i = 0; st == TD_OK && i < n; i++) { /* Gamma = EXINT Bu; P = Phi, then the loop */
-        for (j = 0; j < (size_t)nu; j++)
-            for (k = 0; k < n; k++)
-                G[i + j * n] += EI[i + k * n] * Bu[k + j * n];
+        st = td_sampled_hold(ss.n, *rate, A, Bu, nu, EX, G, err);
+    for (i = 0; st == TD_OK && i < n; i++) /* P = Phi, then the loop */
         for (j = 0; j < n; j++)
             gsl_matrix_set(*P, i, j, EX[i + j * n]);
-    }
     if (st == TD_OK)
         close_loop(sys, n, G, *P);
-    free(A), free(EX), free(EI), free(Bu), free(G);
+    free(A), free(EX), free(Bu), free(G);
     td_state_space_free(&ss);
     if (st != TD_OK) {
         gsl_matrix_free(*P);
