@@ -6,7 +6,10 @@
 #     the same as the modal HDF5 file's /loop (h5py), and nothing but the object on stdout;
 #   - kp ki below ks (an unstable loop): stable false, every sensitivity answer null, exit 0;
 #   - a machine without a controlled axis (kp = kd = 0): no analysis, null answers, said on stderr;
-#   - cases/rig-notch.cfg (a rigid-body linear controller from the case file): stable, 4 axes.
+#   - cases/rig-notch.cfg (a rigid-body linear controller from the case file): stable, 4 axes;
+#   - cases/rig-digital.cfg (a sampled controller, 10 kHz, one sample of delay): the sampled loop,
+#     stable, 4 axes, the grid up to the Nyquist frequency (5 kHz), and the zone its comment states;
+#   - cases/paper-a-digital.cfg (its sampled loop grows): stable false, every sensitivity answer null.
 # Args: $1 = the touchdown binary, $2 = the source directory. Runs in the build's tests directory.
 set -u
 tool=$1
@@ -67,5 +70,35 @@ d = json.load(open(sys.argv[1]))
 assert d["stable"] is True and d["axis"] == [0, 1, 2, 3] and len(d["sensitivity_peak"]) == 4, d
 assert all(p > 1 for p in d["sensitivity_peak"]) and d["sensitivity_zone"] in "ABCD", d
 ' "$work/r/.out"
+
+fast=(--set modal.speed_steps=2) # the loop is at the case speed: a short Campbell grid
+t "$work/d" modal --json -o "$work/d/m" "${fast[@]}" "$src/cases/rig-digital.cfg"
+check "a sampled controller: exit 0" [ "$rc" = 0 ]
+check "a sampled controller: stable, 4 axes, the zone the case's comment states, /loop up to 5 kHz" \
+    /usr/bin/python3 - "$work/d/.out" "$work/d/m.h5" "$src/cases/rig-digital.cfg" <<'PY'
+import json, re, sys
+import h5py
+d = json.load(open(sys.argv[1]))
+said = re.findall(r"^#.*ISO 14839-3\s*(?:\n#)?\s*zone ([A-D])\b", open(sys.argv[3]).read(), re.M)
+assert len(said) == 1, said
+assert d["stable"] is True and d["max_real_part"] < 0 and d["axis"] == [0, 1, 2, 3], d
+assert d["sensitivity_zone"] == said[0], (d["sensitivity_zone"], said)
+assert all(1 < p < 1e3 for p in d["sensitivity_peak"]), d
+with h5py.File(sys.argv[2], "r") as f:
+    g = f["loop"]
+    assert g["frequency"][-1] == 5000.0 and g.attrs["stable"] == 1
+    assert list(g["sensitivity_peak"][...]) == d["sensitivity_peak"]
+PY
+t "$work/dt" modal --csv '' --hdf5 '' "${fast[@]}" "$src/cases/rig-digital.cfg"
+check "a sampled controller: the text says the loop is the sampled one" \
+    grep -q "sampled at 10000 Hz: the sampled axes' loop at the sample instants" "$work/dt/.out"
+
+t "$work/p" modal --json --csv '' --hdf5 '' "${fast[@]}" "$src/cases/paper-a-digital.cfg"
+check "an unstable sampled loop: exit 0, stable false, null answers" /usr/bin/python3 -c '
+import json, sys
+d = json.load(open(sys.argv[1]))
+assert d["stable"] is False and d["max_real_part"] > 0, d
+assert all(d[k] is None for k in ("sensitivity_peak", "sensitivity_zones", "sensitivity_zone")), d
+' "$work/p/.out"
 
 finish

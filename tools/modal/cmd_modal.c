@@ -16,7 +16,8 @@ static const char modal_usage[] =
     "unbalance response (orbits at the retainer and AMB nodes) at modal.response_speeds; and the\n"
     "loop analysis at the case speed (ISO 14839-3): per controlled AMB axis the sensitivity with\n"
     "every loop closed, its peak and zone, the open loop (Bode, Nyquist) and the compliance at the\n"
-    "AMBs, 0.5 Hz to 5 kHz.\n"
+    "AMBs, 0.5 Hz to 5 kHz (with sampled controllers: their axes' sampled loop at the sample\n"
+    "instants, up to the Nyquist frequency).\n"
     "Writes everything, mode shapes included, to CSV and HDF5. Large models (over 240 states) get\n"
     "their lowest modes only (docs/case-format.md); speed_steps x DOFs is limited to 200000.\n"
     "\n"
@@ -193,7 +194,8 @@ static void print_results(const td_case *c, const td_system *sys, double speed, 
 }
 
 /* The loop analysis, or NULL (said on stderr) for a machine it does not apply to or refuses: a
- * machine without a controlled AMB axis, a sampled controller. That fails nothing else. */
+ * machine without a controlled AMB axis, sampled controllers at different rates. That fails
+ * nothing else. */
 static td_loop *loop_analysis(const td_case *c, const td_system *sys, double speed)
 {
     td_loop *l = NULL;

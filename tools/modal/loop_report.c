@@ -20,6 +20,11 @@ void td_print_loop(FILE *f, const td_loop *l)
             "loop analysis at %.12g rad/s (ISO 14839-3: sensitivity at each amplifier input, every loop closed): %s, "
             "largest real part %.6g 1/s\n",
             td_loop_speed(l), loop_word(l), td_loop_max_real_part(l));
+    if (td_loop_sample_rate(l) > 0.0)
+        fprintf(f,
+                "  sampled at %.12g Hz: the sampled axes' loop at the sample instants (zero-order hold), up to the "
+                "Nyquist frequency %.12g Hz\n",
+                td_loop_sample_rate(l), 0.5 * td_loop_sample_rate(l));
     if (!td_loop_stable(l))
         return;
     fprintf(f, "  %-6s %-4s %14s %16s  %s\n", "axis", "amb", "peak |S|", "at f [Hz]", "zone");
