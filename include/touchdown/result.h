@@ -238,6 +238,7 @@ typedef enum td_out_id {
     TD_OUT_LOOP_SPEED_UNITS,
     TD_OUT_LOOP_STABLE,
     TD_OUT_LOOP_MAX_REAL_PART,
+    TD_OUT_LOOP_SAMPLE_RATE, /**< a sampled loop's only (td_loop_sample_rate) */
     TD_OUT_LOOP_SENSITIVITY_ZONE,
     TD_OUT_LOOP_FREQUENCY,
     TD_OUT_LOOP_AXIS,

@@ -2,7 +2,8 @@
  * The loop analysis in the modal files and as JSON (loop_output.h, touchdown/modal_output.h):
  * every name from the schema (schema.c), the same names as the JSON keys of `touchdown modal
  * --json`. An undefined value (an unstable loop's sensitivity) is "nan" in CSV, NaN in HDF5,
- * null in JSON, an empty zone "" in the files (docs/output-format.md, "Undefined values").
+ * null in JSON, an empty zone "" in the files (docs/output-format.md, "Undefined values"). A sampled
+ * loop's sample rate is written for it alone (null in JSON for a continuous loop).
  */
 #include "io/loop_output.h"
 #include "io/h5_util.h"
@@ -44,10 +45,13 @@ void td_loop_write_csv_sections(FILE *f, const td_loop *l)
     int k, j, nc = td_loop_axis_count(l), na = td_loop_amb_axis_count(l);
     char z[2];
     double v[4];
-    char notes[256];
-    snprintf(notes, sizeof notes, "# %s = %.12g\n# %s = %d\n# %s = %.12g\n", td_schema_csv(TD_OUT_LOOP_SPEED),
-             td_loop_speed(l), td_out_name(TD_OUT_LOOP_STABLE), td_loop_stable(l),
-             td_out_name(TD_OUT_LOOP_MAX_REAL_PART), td_loop_max_real_part(l));
+    char notes[320];
+    int at = snprintf(notes, sizeof notes, "# %s = %.12g\n# %s = %d\n# %s = %.12g\n", td_schema_csv(TD_OUT_LOOP_SPEED),
+                      td_loop_speed(l), td_out_name(TD_OUT_LOOP_STABLE), td_loop_stable(l),
+                      td_out_name(TD_OUT_LOOP_MAX_REAL_PART), td_loop_max_real_part(l));
+    if (td_loop_sample_rate(l) > 0.0 && at > 0 && (size_t)at < sizeof notes)
+        snprintf(notes + at, sizeof notes - (size_t)at, "# %s = %.12g\n", td_out_name(TD_OUT_LOOP_SAMPLE_RATE),
+                 td_loop_sample_rate(l));
     csv_header(f, TD_OUT_LOOP, notes, loop, 6);
     for (k = 0; k < td_loop_frequency_count(l); k++)
         for (j = 0; j < nc; j++) {
@@ -159,6 +163,8 @@ int td_loop_write_h5_group(hid_t file, const td_loop *l)
          td_h5_attr_int(g, td_out_name(TD_OUT_LOOP_STABLE), td_loop_stable(l)) >= 0 &&
          td_h5_attr_double(g, td_out_name(TD_OUT_LOOP_MAX_REAL_PART), td_loop_max_real_part(l)) >= 0 &&
          td_h5_attr_string(g, td_out_name(TD_OUT_LOOP_SENSITIVITY_ZONE), zone_text(td_loop_worst_zone(l), z)) >= 0;
+    if (ok && td_loop_sample_rate(l) > 0.0)
+        ok = td_h5_attr_double(g, td_out_name(TD_OUT_LOOP_SAMPLE_RATE), td_loop_sample_rate(l)) >= 0;
     ok = ok && h5_data(g, TD_OUT_LOOP_FREQUENCY, H5T_NATIVE_DOUBLE, f, (hsize_t)nf, 0);
     ok = ok && h5_table(g, l, TD_OUT_LOOP_SENSITIVITY_RE, td_loop_axis_count(l), td_loop_sensitivity) &&
          h5_table(g, l, TD_OUT_LOOP_OPEN_LOOP_RE, td_loop_axis_count(l), td_loop_open_loop) &&
@@ -217,6 +223,8 @@ int td_loop_json(char *buf, size_t n, const td_loop *l)
     json_number(&b, l ? td_loop_max_real_part(l) : NAN);
     td_text_printf(&b, ",\"%s\":", td_out_name(TD_OUT_LOOP_SPEED));
     json_number(&b, l ? td_loop_speed(l) : NAN);
+    td_text_printf(&b, ",\"%s\":", td_out_name(TD_OUT_LOOP_SAMPLE_RATE));
+    json_number(&b, l && td_loop_sample_rate(l) > 0.0 ? td_loop_sample_rate(l) : NAN);
     td_text_printf(&b, ",\"%s\":[", td_out_name(TD_OUT_LOOP_AXIS));
     for (j = 0; l && j < td_loop_axis_count(l); j++)
         td_text_printf(&b, "%s%d", j ? "," : "", td_loop_axis(l, j));

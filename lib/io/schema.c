@@ -245,6 +245,7 @@ static const td_schema_entry entries[TD_OUT_ID_COUNT] = {
     ATTR(TD_OUT_LOOP_SPEED_UNITS, "speed_units", TD_OUT_LOOP, MODAL, TEXT, "", "scalar"),
     ATTR(TD_OUT_LOOP_STABLE, "stable", TD_OUT_LOOP, MODAL, I32, "1: stable, 0: not", "scalar"),
     ATTR(TD_OUT_LOOP_MAX_REAL_PART, "max_real_part", TD_OUT_LOOP, MODAL, F64, "1/s", "scalar"),
+    ATTR(TD_OUT_LOOP_SAMPLE_RATE, "sample_rate", TD_OUT_LOOP, MODAL, F64, "Hz", "scalar"),
     ATTR(TD_OUT_LOOP_SENSITIVITY_ZONE, "sensitivity_zone", TD_OUT_LOOP, MODAL, TEXT, "", "scalar"),
     DATA_CSV(TD_OUT_LOOP_FREQUENCY, "frequency", TD_OUT_LOOP, F64, "Hz", "(frequencies)", "frequency_hz"),
     DATA(TD_OUT_LOOP_AXIS, "axis", TD_OUT_LOOP, MODAL, I32, "AMB axis 2 amb + (0: x, 1: y)", "(axes)"),

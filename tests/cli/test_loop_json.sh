@@ -28,7 +28,8 @@ import json, sys
 import h5py
 d = json.load(open(sys.argv[1]))
 zone = lambda p: "A" if p < 3 else "B" if p < 4 else "C" if p < 5 else "D"
-assert d["stable"] is True and d["max_real_part"] < 1e-6, d
+assert d["stable"] is True and d["max_real_part"] < 1e-6 and d["sample_rate"] is None, d
+assert "sample_rate" not in h5py.File(sys.argv[2], "r")["loop"].attrs
 n = len(d["axis"])
 assert n == 4 and all(len(d[k]) == n for k in ("sensitivity_peak", "sensitivity_peak_frequency", "sensitivity_zones"))
 assert all(p > 1 for p in d["sensitivity_peak"])
@@ -82,11 +83,12 @@ d = json.load(open(sys.argv[1]))
 said = re.findall(r"^#.*ISO 14839-3\s*(?:\n#)?\s*zone ([A-D])\b", open(sys.argv[3]).read(), re.M)
 assert len(said) == 1, said
 assert d["stable"] is True and d["max_real_part"] < 0 and d["axis"] == [0, 1, 2, 3], d
+assert d["sample_rate"] == 10000, d
 assert d["sensitivity_zone"] == said[0], (d["sensitivity_zone"], said)
 assert all(1 < p < 1e3 for p in d["sensitivity_peak"]), d
 with h5py.File(sys.argv[2], "r") as f:
     g = f["loop"]
-    assert g["frequency"][-1] == 5000.0 and g.attrs["stable"] == 1
+    assert g["frequency"][-1] == 5000.0 and g.attrs["stable"] == 1 and g.attrs["sample_rate"] == 10000.0
     assert list(g["sensitivity_peak"][...]) == d["sensitivity_peak"]
 PY
 t "$work/dt" modal --csv '' --hdf5 '' "${fast[@]}" "$src/cases/rig-digital.cfg"
@@ -97,7 +99,7 @@ t "$work/p" modal --json --csv '' --hdf5 '' "${fast[@]}" "$src/cases/paper-a-dig
 check "an unstable sampled loop: exit 0, stable false, null answers" /usr/bin/python3 -c '
 import json, sys
 d = json.load(open(sys.argv[1]))
-assert d["stable"] is False and d["max_real_part"] > 0, d
+assert d["stable"] is False and d["max_real_part"] > 0 and d["sample_rate"] == 10000, d
 assert all(d[k] is None for k in ("sensitivity_peak", "sensitivity_zones", "sensitivity_zone")), d
 ' "$work/p/.out"
 

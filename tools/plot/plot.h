@@ -83,6 +83,7 @@ typedef struct plot_sim {
 typedef struct plot_loop {
     int nf, nc, na;           /* frequencies, controlled axes, AMB axes */
     int stable;               /* 1: S is defined */
+    double rate;              /* a sampled loop's sample rate, Hz; 0: continuous */
     double *freq;             /* nf, Hz */
     double *s_re, *s_im;      /* nf x nc */
     double *l_re, *l_im;      /* nf x nc */

@@ -3,7 +3,8 @@
  * "Sensitivity"): the sensitivity |S_j| per controlled axis with the ISO 14839-3 zone bands
  * (A < 3 <= B < 4 <= C < 5 <= D), the Bode diagram and the Nyquist curve of L_j (circles of
  * radius 1/3, 1/4, 1/5 around -1: the peak sensitivities 3, 4, 5), and the compliance at each
- * AMB axis. Data files PREFIXloop.dat and PREFIXcompliance.dat.
+ * AMB axis. Data files PREFIXloop.dat and PREFIXcompliance.dat. A sampled loop's titles say so
+ * (its values are at the sample instants, up to the Nyquist frequency).
  */
 #include "plot/plot.h"
 #include "touchdown/dofs.h"
@@ -57,6 +58,12 @@ int plot_loop_load(const td_result *r, plot_loop *l)
         return -1;
     l->stable = st.v[0] != 0.0;
     td_result_array_free(&st);
+    if (td_result_has(r, TD_OUT_LOOP_SAMPLE_RATE, NULL)) {
+        if (td_result_read(r, TD_OUT_LOOP_SAMPLE_RATE, NULL, &st, NULL) != TD_OK)
+            return -1;
+        l->rate = st.v[0];
+        td_result_array_free(&st);
+    }
     if (read_table(r, TD_OUT_LOOP_SENSITIVITY_RE, l->nf, &l->nc, &l->s_re, &l->s_im) ||
         read_table(r, TD_OUT_LOOP_OPEN_LOOP_RE, l->nf, &l->nc, &l->l_re, &l->l_im) ||
         read_table(r, TD_OUT_LOOP_COMPLIANCE_RE, l->nf, &l->na, &l->c_re, &l->c_im))
@@ -120,9 +127,11 @@ static int write_data(const plot_job *job, const plot_file *f, const char *prefi
 static void loop_vars(FILE *out, const plot_file *f, const char *data, const char *what, int peaks)
 {
     const plot_loop *l = &f->modal.loop;
-    char title[700];
+    char title[700], sampled[96] = "";
     int j, n = strcmp(what, "Compliance") ? l->nc : l->na;
-    snprintf(title, sizeof title, "%s\n%s", what, f->title);
+    if (l->rate > 0.0)
+        snprintf(sampled, sizeof sampled, ", sampled at %.6g Hz (at the samples)", l->rate);
+    snprintf(title, sizeof title, "%s%s\n%s", what, sampled, f->title);
     plot_var_string(out, "fig_title", title);
     plot_var_string(out, "data", data);
     fprintf(out, "fmin = %.9g\nfmax = %.9g\narray label[%d]\n", l->freq[0], l->freq[l->nf - 1], n);
