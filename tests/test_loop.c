@@ -427,29 +427,31 @@ static void test_controller_as_shorthand(void **state)
     td_case_free(&c0);
 }
 
-/* The rig's PD with a 2 kHz derivative filter on each axis, continuous (k) or Tustin-sampled at
- * `rate` without delay: the system (NULL k: sampled). */
-static td_system *rig_filtered_pd(double rate)
+/* The rig's PD with a 2 kHz derivative filter on each axis, continuous (rate 0) or Tustin-sampled
+ * without delay, at `rate` on AMB 0's axes and `rate_de` on AMB 1's: the system. */
+static td_system *rig_filtered_pd(double rate, double rate_de)
 {
     static const char *no_gains[] = {"ambs[0].kp=0", "ambs[0].kd=0", "ambs[1].kp=0", "ambs[1].kd=0"};
     td_case *c = td_test_load_case("cases/rub-damped.cfg", no_gains, 4);
     td_pid_block filtered = {1.0e4, 0.0, 40.0, 2000.0};
-    td_controller *kf = td_controller_create_pid(&filtered, NULL);
-    td_controller *k = rate > 0.0 ? td_controller_discretise(kf, rate, TD_DISCRETISE_TUSTIN, 0.0, NULL) : kf;
+    td_controller *kf = td_controller_create_pid(&filtered, NULL), *k[2];
     td_model *m = NULL;
     td_system *s = NULL;
     td_error err;
     int a;
-    assert_non_null(k);
+    k[0] = rate > 0.0 ? td_controller_discretise(kf, rate, TD_DISCRETISE_TUSTIN, 0.0, NULL) : kf;
+    k[1] = rate_de > 0.0 ? td_controller_discretise(kf, rate_de, TD_DISCRETISE_TUSTIN, 0.0, NULL) : kf;
+    assert_true(k[0] && k[1]);
     assert_int_equal(td_model_clone(td_case_model(c), &m, &err), TD_OK);
     for (a = 0; a < 4; a++) {
         char name[32];
         snprintf(name, sizeof name, "pd %d", a);
-        assert_int_equal(td_model_add_controller(m, name, k, &a, &a, &err), TD_OK);
+        assert_int_equal(td_model_add_controller(m, name, k[a / 2], &a, &a, &err), TD_OK);
     }
     assert_int_equal(td_system_create(m, &s, &err), TD_OK);
-    if (k != kf)
-        td_controller_free(&k);
+    for (a = 0; a < 2; a++)
+        if (k[a] != kf)
+            td_controller_free(&k[a]);
     td_controller_free(&kf);
     td_model_free(&m);
     td_case_free(&c);
@@ -476,11 +478,13 @@ static void loop_difference(const td_loop *l, const td_loop *l0, double *ds, dou
  * law tends to the continuous loop of that law, at first order in T (the hold's half sample): S_j
  * over 1 Hz..1 kHz and its peak at 100 kHz and at 1 MHz, the error at 1 MHz within 5e-3 (S: the
  * hold's phase lag w T / 2 is 3e-3 at 1 kHz) and 1e-3 (the peak), and at most 0.15 of the error at
- * 100 kHz. And the sampled loop's grid ends at the Nyquist frequency. */
+ * 100 kHz. And the sampled loop's grid ends at the Nyquist frequency; laws at two rates are
+ * refused. */
 static void test_sampled_tends_to_continuous(void **state)
 {
-    td_system *s0 = rig_filtered_pd(0.0), *s1 = rig_filtered_pd(1.0e5), *s2 = rig_filtered_pd(1.0e6);
-    td_system *s3 = rig_filtered_pd(4000.0);
+    td_system *s0 = rig_filtered_pd(0.0, 0.0), *s1 = rig_filtered_pd(1.0e5, 1.0e5);
+    td_system *s2 = rig_filtered_pd(1.0e6, 1.0e6), *s3 = rig_filtered_pd(4000.0, 4000.0);
+    td_system *s4 = rig_filtered_pd(1.0e4, 5.0e3);
     td_loop_options coarse = {1.0, 1000.0, 200}, wide = {1.0, 1.0e6, 20};
     td_loop *l0 = NULL, *l1 = NULL, *l2 = NULL, *l3 = NULL;
     td_error err;
@@ -502,6 +506,9 @@ static void test_sampled_tends_to_continuous(void **state)
     td_loop_free(&l3);
     assert_int_equal(td_loop_compute(s3, 90.0, &wide, &l3, &err), TD_ERR_INVALID);
     assert_non_null(strstr(err.message, "Nyquist"));
+    assert_int_equal(td_loop_compute(s4, 90.0, &coarse, &l3, &err), TD_ERR_INVALID);
+    assert_null(l3);
+    assert_non_null(strstr(err.message, "needs one sample rate"));
     td_loop_free(&l0);
     td_loop_free(&l1);
     td_loop_free(&l2);
@@ -509,6 +516,7 @@ static void test_sampled_tends_to_continuous(void **state)
     td_system_free(&s1);
     td_system_free(&s2);
     td_system_free(&s3);
+    td_system_free(&s4);
 }
 
 /* The static compliance in closed form: a rigid rotor on two bearings carries a force at bearing
