@@ -13,6 +13,14 @@
  * displacements. The state matrix is balanced and brought to upper Hessenberg form once, so that
  * each frequency costs O(n^2) per input (Laub, "Efficient multivariable frequency response
  * computations", IEEE Trans. Autom. Control 26(2), 1981; SLICOT's TB05AD does the same).
+ *
+ * With sampled controllers the loop is the sampled-data one, exact at the sample instants: the
+ * sampled laws' axes, the rest of the machine (continuous laws, shorthands) closed inside the plant
+ * (td_state_space_build_plant); the held currents reach the sensors through the plant's zero-order
+ * hold over one sample (sampled.c, td_sampled_hold), P_zoh(z) = C (z I - Phi)^-1 Gamma at
+ * z = e^{jwT}, and K(z) is the sampled law's response, up to the Nyquist frequency; the forces of
+ * the compliance go through the continuous plant at jw (a sinusoidal force, sampled, is the sinusoid
+ * at the samples). Stable iff |mu| < 1 for the loop over one sample (docs/theory.md, "Sensitivity").
  */
 #include "modal/modal_internal.h"
 #include "touchdown/controller.h"
