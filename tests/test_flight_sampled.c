@@ -132,10 +132,44 @@ static void test_flight_matches_integrator(void **state)
     td_case_free(&c);
 }
 
+/* The amplifiers without a lag (tau = 0): the AMB force is ks x + ki i and steps with the held
+ * current at every sample, which the flight's AMB peak load must follow: the peak force over the
+ * run as the flight finds it, against IDA's at a thousandth of the tolerances (the peak is found to
+ * 1e-6 relative, FLIGHT_PEAK_RTOL). */
+static void test_flight_force_steps_with_hold(void **state)
+{
+    const char *ov[2] = {"end_time=0.1", "ambs = ( { node = 3; ks = 1.0e6; ki = 200.0; tau = 0.0; force_capacity = "
+                                         "1700.0; air_gap = 1.2e-3; }, { node = 9; ks = 1.0e6; ki = 200.0; tau = 0.0; "
+                                         "force_capacity = 1700.0; air_gap = 1.2e-3; } )"};
+    td_case *c = td_test_load_case("cases/paper-a-digital.cfg", ov, 2);
+    const td_sim_options *o = td_case_sim_options(c);
+    sample_log lf = {NULL, NULL, 0, 0, 0}, li = {NULL, NULL, 0, 0, 0};
+    td_sim_stats sf, si;
+    int n = td_model_dof_count(td_case_model(c));
+    double *q = calloc(2 * (size_t)n, sizeof(double)), de;
+    (void)state;
+    assert_non_null(q);
+    run_case(c, 1, 1.0, &lf, &sf, q);
+    run_case(c, 0, 1000.0, &li, &si, q + n);
+    assert_false(lf.bad || li.bad);
+    assert_int_equal(sf.contact_onsets, 0);
+    assert_true(sf.flight_time > 0.9 * T_END);
+    assert_int_equal(li.n, lf.n);
+    de = distance(lf.e + AXES, li.e + AXES, AXES * lf.n);
+    print_message("tau = 0: peak AMB force %.10g N (flight) / %.10g N (integrator), sensor values %.3g m\n",
+                  sf.peak_amb_force, si.peak_amb_force, de);
+    assert_true(de <= 10.0 * o->solver.atol);
+    assert_close(sf.peak_amb_force, si.peak_amb_force, 1e-6, 0.0);
+    free(lf.t), free(lf.e), free(li.t), free(li.e);
+    free(q);
+    td_case_free(&c);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_flight_matches_integrator),
+        cmocka_unit_test(test_flight_force_steps_with_hold),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -272,6 +272,16 @@ static int probe_forcing(const td_sim *s, td_sim_flight *f)
     return ok;
 }
 
+/* The AMB force observations' values at z = 0 with the currents held now (ki i where tau = 0: the
+ * force follows the held current at once; 0 behind an amplifier lag, whose state carries it). */
+static void held_offsets(const td_sim *s, td_sim_flight *f)
+{
+    int k;
+    memset(f->y, 0, sizeof(double) * (size_t)s->dae.neq);
+    for (k = 0; k < s->sys->n_amb_axes; k++)
+        f->obs[2 * s->dae.nr + k].offset = td_sim_amb_axis_force(s, k, f->y);
+}
+
 /* The particular solution's modal coefficients; 0 if the forcing is not harmonic at the speed or
  * resonant with a mode. */
 static int build_forcing(const td_sim *s, td_sim_flight *f)
@@ -291,6 +301,8 @@ static int build_forcing(const td_sim *s, td_sim_flight *f)
     }
     for (j = 0; j < f->nheld; j++)
         f->held[j] = s->machine.held_current[f->held_axis[j]];
+    if (f->nheld > 0)
+        held_offsets(s, f);
     return 1;
 }
 
@@ -443,8 +455,9 @@ void td_sim_flight_propagate(td_sim_flight *f, double t)
 /*
  * A held current steps by du at t = s->dae.t: the constant forcing beta0 by G du, so p0 = -beta0 /
  * lambda by -G du / lambda (eq. of flight_internal.h), and the homogeneous amplitudes, re-anchored at
- * t, by the opposite amount: a(t) = d e^{lambda (t - ta)} + p(t) is unchanged. O(nz nheld + nobs nz)
- * per sample, against four residual probes and three O(nz^2) projections for a new forcing.
+ * t, by the opposite amount: a(t) = d e^{lambda (t - ta)} + p(t) is unchanged; the AMB forces'
+ * offsets follow the held currents. O(nz nheld + nobs nz) per sample, against four residual probes
+ * and three O(nz^2) projections for a new forcing.
  */
 void td_sim_flight_shift_held(td_sim *s, td_sim_flight *f, int reanchor)
 {
@@ -462,6 +475,7 @@ void td_sim_flight_shift_held(td_sim *s, td_sim_flight *f, int reanchor)
         dp[j] /= f->lam[j];
         f->p0[j] += dp[j];
     }
+    held_offsets(s, f);
     observe_forcing(f);
     if (!reanchor) {
         f->anchored = 0;
@@ -662,8 +676,13 @@ static int alloc_held(const td_sim *s, td_sim_flight *f)
     if (!f->held_axis || !f->held || !f->G)
         return 0;
     for (i = 0; i < sp->n; i++)
-        for (o = 0; o < s->sys->laws[sp->law[i].law].nout; o++)
-            f->held_axis[f->nheld++] = s->sys->laws[sp->law[i].law].out_axis[o];
+        for (o = 0; o < s->sys->laws[sp->law[i].law].nout; o++) {
+            int a = s->sys->laws[sp->law[i].law].out_axis[o], c = 0;
+            while (c < f->nheld && f->held_axis[c] != a) /* each axis once, however many laws name it */
+                c++;
+            if (c == f->nheld)
+                f->held_axis[f->nheld++] = a;
+        }
     return 1;
 }
 
