@@ -3,24 +3,27 @@
 # DAE) and of the same case with the PD run as a 10 kHz sampled controller with one sample of delay
 # (cases/paper-a-digital.cfg), and their ratio. A benchmark, not a test: it asserts no limit.
 #
-#   bench/digital.sh [-n REPEATS] [BUILD_DIR]
+#   bench/digital.sh [-n REPEATS] [--json] [BUILD_DIR]
 #
 # Each case runs REPEATS times (default 3), the runs alternating, with no output files; the CPU time
-# (user + system, of the tool's process) printed is the median. Where the time goes: a third run,
-# case A with the closed-form flight off (solver.free_flight = false), separates what the digital
-# case loses by integrating the free flight with IDA (the flight does not carry sampled controllers
-# yet) from what its samples cost (each one a stop and a restart of the integrator); beside each
-# run, the integrator's steps and restarts, the flight's share of the simulated time, the
-# controller's samples, and the time in contact. BUILD_DIR defaults to ./build of the source tree.
+# (user + system, of the tool's process) printed is the median. Where the time goes: both cases run
+# again with the closed-form flight off (solver.free_flight = false), which separates what the
+# flight saves (it carries the free phases, from sample to sample in the digital case) from what
+# the samples cost (a stop each; in contact also a restart of the integrator); beside each run, the
+# integrator's steps and restarts, the flight's share of the simulated time, the controller's
+# samples, and the time in contact. --json prints the same as one JSON object (scripts/make-docs.sh
+# records it for docs/performance.md). BUILD_DIR defaults to ./build of the source tree.
 set -euo pipefail
 
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 build=$here/build
 repeats=3
+json=0
 while [ $# -gt 0 ]; do
     case $1 in
     -n) repeats=$2; shift ;;
-    -h | --help) sed -n '2,14p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    --json) json=1 ;;
+    -h | --help) sed -n '2,15p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) build=$1 ;;
     esac
     shift
@@ -49,26 +52,38 @@ for ((i = 0; i < repeats; i++)); do
     one continuous paper-a.cfg
     one digital paper-a-digital.cfg
     one noflight paper-a.cfg --set solver.free_flight=false
+    one digital_noflight paper-a-digital.cfg --set solver.free_flight=false
 done
 
-/usr/bin/python3 - "$work" <<'PY'
+/usr/bin/python3 - "$work" "$repeats" "$json" <<'PY'
 import json, os, statistics, sys
-work = sys.argv[1]
+work, repeats, as_json = sys.argv[1], int(sys.argv[2]), sys.argv[3] == "1"
+RUNS = (("continuous", "paper-a.cfg"), ("digital", "paper-a-digital.cfg"),
+        ("noflight", "paper-a.cfg, solver.free_flight=false"),
+        ("digital_noflight", "paper-a-digital.cfg, solver.free_flight=false"))
 rows = {}
-for name in ("continuous", "digital", "noflight"):
+for name, case in RUNS:
     cpu = [float(x) for x in open(os.path.join(work, name + ".cpu")).read().split()]
     d = json.load(open(os.path.join(work, name + ".json")))
-    rows[name] = (statistics.median(cpu), d)
-print("%-40s %8s %10s %9s %8s %9s %9s" % ("case", "CPU s", "steps", "restarts", "samples", "flight s", "contact s"))
-for name, case in (("continuous", "paper-a.cfg"), ("digital", "paper-a-digital.cfg"),
-                   ("noflight", "paper-a.cfg, solver.free_flight=false")):
-    cpu, d = rows[name]
     st = d["stats"]
-    print("%-40s %8.2f %10d %9d %8d %9.3f %9.3f" % (case, cpu, st["steps"], st["restarts"],
-          st.get("controller_samples", 0), st["flight_time"], d["contact_time"]))
-a, b, c = rows["continuous"][0], rows["digital"][0], rows["noflight"][0]
-ratio = lambda x, y: x / y if y > 0 else float("nan")
-print("CPU ratio digital / continuous: %.2f" % ratio(b, a))
-print("  of which: continuous without the flight / with it %.2f, digital / continuous without the flight %.2f"
-      % (ratio(c, a), ratio(b, c)))
+    rows[name] = {"case": case, "cpu_median": statistics.median(cpu), "cpu": cpu, "steps": st["steps"],
+                  "restarts": st["restarts"], "controller_samples": st.get("controller_samples", 0),
+                  "flight_steps": st["flight_steps"], "flight_time": st["flight_time"],
+                  "contact_time": d["contact_time"]}
+ratio = lambda x, y: rows[x]["cpu_median"] / rows[y]["cpu_median"] if rows[y]["cpu_median"] > 0 else None
+ratios = {"digital_over_continuous": ratio("digital", "continuous"),
+          "continuous_noflight_over_flight": ratio("noflight", "continuous"),
+          "digital_noflight_over_flight": ratio("digital_noflight", "digital")}
+if as_json:
+    print(json.dumps({"repeats": repeats, "runs": rows, "ratios": ratios}, indent=1, sort_keys=True))
+    sys.exit(0)
+print("%-48s %8s %10s %9s %8s %9s %9s" % ("case", "CPU s", "steps", "restarts", "samples", "flight s", "contact s"))
+for name, case in RUNS:
+    r = rows[name]
+    print("%-48s %8.2f %10d %9d %8d %9.3f %9.3f" % (case, r["cpu_median"], r["steps"], r["restarts"],
+          r["controller_samples"], r["flight_time"], r["contact_time"]))
+fmt = lambda x: "%.2f" % x if x is not None else "n/a"
+print("CPU ratio digital / continuous: %s" % fmt(ratios["digital_over_continuous"]))
+print("  without the flight / with it: continuous %s, digital %s"
+      % (fmt(ratios["continuous_noflight_over_flight"]), fmt(ratios["digital_noflight_over_flight"])))
 PY

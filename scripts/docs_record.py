@@ -173,7 +173,7 @@ def src_validation(tool, build):
     data["tests"] = {}
     for test in ["test_first_contact", "test_rig_modal", "test_beams", "test_jeffcott", "test_overhung_disc",
                  "test_harmonic", "test_modal", "test_annular_rub", "test_penalty_convergence",
-                 "test_sim_scenarios", "test_race", "test_speed"]:
+                 "test_sim_scenarios", "test_race", "test_speed", "test_flight_sampled"]:
         exe = os.path.join(build, "tests", test)
         proc = subprocess.run([exe], cwd=os.path.dirname(exe), stdout=subprocess.PIPE,
                               stderr=subprocess.STDOUT, universal_newlines=True,
@@ -205,6 +205,21 @@ def src_bench(tool, build):
         out, wall = tool_output(tool, args)
         print("  bench %-10s %6.1f s" % (name, wall), flush=True)
         data["bench"][name] = {"command": "touchdown " + " ".join(args), "result": json.loads(out)}
+    return data
+
+
+def src_digital(tool, build):
+    """bench/digital.sh (docs/performance.md, "Digital controllers"): case A against its PD as a
+    10 kHz sampled controller, each with the closed-form flight on and off (3 repeats, medians)."""
+    data = stamp(tool, "digital", "bench/digital.sh -n 3 --json")
+    start = time.monotonic()
+    proc = subprocess.run([os.path.join(ROOT, "bench", "digital.sh"), "-n", "3", "--json", build],
+                          stdout=subprocess.PIPE, stderr=subprocess.PIPE, universal_newlines=True)
+    if proc.returncode != 0:
+        sys.exit("docs_record: bench/digital.sh failed:\n%s" % proc.stderr[-2000:])
+    print("  bench/digital.sh %6.1f s" % (time.monotonic() - start), flush=True)
+    data["command"] = "bench/digital.sh -n 3 --json"
+    data["digital"] = json.loads(proc.stdout)
     return data
 
 
@@ -347,7 +362,7 @@ def src_figures(tool, build):
 
 
 SOURCES = {"fast": [("runs", src_runs), ("modal", src_modal), ("validation", src_validation), ("keys", src_keys)],
-           "slow": [("bench", src_bench), ("scaling", src_scaling), ("references", src_references),
+           "slow": [("bench", src_bench), ("digital", src_digital), ("scaling", src_scaling), ("references", src_references),
                     ("intervals", src_intervals), ("tolerances", src_tolerances), ("mesh", src_mesh),
                     ("convergence", src_convergence), ("spread", src_spread), ("figures", src_figures)]}
 

@@ -331,6 +331,38 @@ def perf_summary():
             + table(["target", "measured (2.0 s simulated)", "met?"], rows))
 
 
+def perf_digital():
+    """bench/digital.sh: case A against its PD as a 10 kHz sampled law, the flight on and off."""
+    d = res("digital")["digital"]
+    rows = []
+    for name in ["continuous", "digital", "noflight", "digital_noflight"]:
+        r = d["runs"][name]
+        rows.append(["`%s`" % r["case"], f(r["cpu_median"], 2), n(r["steps"]), n(r["restarts"]),
+                     n(r["controller_samples"]), f(r["flight_time"], 3), f(r["contact_time"], 3)])
+    ra = d["ratios"]
+    return ("From %s (medians of %d runs each, CPU seconds of the tool's process).\n\n" % (cite("digital"), d["repeats"])
+            + table(["case", "CPU s", "steps", "restarts", "samples", "flight s", "contact s"], rows)
+            + "\nDigital / continuous: **%s** (the target: 1.3 at most). Without the flight / with it: %s for the "
+              "continuous case, %s for the digital one.\n" % (
+                  g(ra["digital_over_continuous"], 3), g(ra["continuous_noflight_over_flight"], 3),
+                  g(ra["digital_noflight_over_flight"], 3)))
+
+
+def flight_sampled(group):
+    """tests/test_flight_sampled.c's sensor error at the samples: the flight's (group 1) or IDA's at the
+    case's tolerances (group 2), both against IDA at a thousandth of them."""
+    return search("test_flight_sampled", r"sensor values " + FLOAT + r" m, .*the integrator at the case's "
+                  r"tolerances: " + FLOAT + r" m", group)
+
+
+def span_flight_sampled_flight():
+    return e(flight_sampled(1), 1)
+
+
+def span_flight_sampled_ida():
+    return e(flight_sampled(2), 1)
+
+
 def intervals_errors():
     """Largest error of the first ten contact intervals' starts, ends (s) and peaks (relative)
     against the reference, per setting: bench/intervals.sh's measure."""
@@ -1269,7 +1301,7 @@ REGIONS = {"readme-glance": readme_glance, "readme-realtime": readme_realtime,
            "val-annular-rub": val_annular_rub, "val-annular-mount": val_annular_mount, "val-penalty": val_penalty,
            "val-scenarios": val_scenarios, "val-conv-rub-damped": val_conv_rub_damped,
            "val-conv-paper-a": val_conv_paper_a, "val-conv-drop": val_conv_drop, "val-spread": val_spread,
-           "out-name-index": out_name_index, "perf-scaling": perf_scaling}
+           "out-name-index": out_name_index, "perf-scaling": perf_scaling, "perf-digital": perf_digital}
 SPANS = {"rub-mean-normal": span_rub_mean_normal, "val-first-contact-cell": span_val_first_contact_cell,
          "val-rig-modal-cell": span_val_rig_modal_cell, "rig-mass": span_rig_mass,
          "rig-polar": span_rig_polar, "drop-cpu": span_drop_cpu, "run-up-criticals": span_run_up_criticals,
@@ -1281,7 +1313,8 @@ SPANS = {"rub-mean-normal": span_rub_mean_normal, "val-first-contact-cell": span
          "val-annular-cell": span_val_annular_cell, "val-race-energy-cell": span_val_race_energy_cell,
          "val-spin-up-cell": span_val_spin_up_cell, "val-run-up-cell": span_val_run_up_cell,
          "conv-impulses": span_conv_impulses, "drop-24-vs-96": span_drop_24_vs_96,
-         "readme-spread-a": span_readme_spread_a, "drop-energy": span_drop_energy}
+         "readme-spread-a": span_readme_spread_a, "drop-energy": span_drop_energy,
+         "flight-sampled-flight": span_flight_sampled_flight, "flight-sampled-ida": span_flight_sampled_ida}
 
 
 # --- the case keys (docs/case-format.md) ------------------------------------------------------------

@@ -7,7 +7,8 @@
 #   scripts/make-docs.sh [BUILD_DIR]           the fast part: the shipped cases as they are, the
 #                                              critical speeds, the validation tests quoted, the
 #                                              case keys (about 55 s on 2 cores)
-#   scripts/make-docs.sh --full [BUILD_DIR]    also the slow part: touchdown bench, the paper's cases
+#   scripts/make-docs.sh --full [BUILD_DIR]    also the slow part: touchdown bench, bench/digital.sh
+#                                              (about 1 min of CPU), the paper's cases
 #                                              at converged settings, tolerance, mesh and convergence
 #                                              studies, the spread of the answers of the paper's cases,
 #                                              the drop and the damped rub (touchdown run --spread 5,
@@ -17,7 +18,7 @@
 #                                              record says how much)
 #   scripts/make-docs.sh --render              only rewrite the regions from the recorded results
 #   scripts/make-docs.sh --full --only SOURCE  rerun one source (runs, modal, validation, keys, bench,
-#                                              scaling, references, intervals, tolerances, mesh,
+#                                              digital, scaling, references, intervals, tolerances, mesh,
 #                                              convergence, spread, figures), then render
 # BUILD_DIR defaults to ./build (scripts/setup.sh builds it). tests/cli/test_docs.sh checks that
 # the docs match the records and that the tool still prints the recorded numbers.

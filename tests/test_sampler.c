@@ -201,7 +201,7 @@ static void test_sampled_case_a(void **state)
     assert_int_equal(td_sim_stats_get(s, &st), TD_OK);
     assert_false(log.bad_size);
     assert_true(st.contact_onsets > 0); /* a run with contacts */
-    assert_int_equal(st.flight_steps, 0);
+    assert_true(st.flight_steps > 0);   /* the closed-form flight carried the free phases, sample to sample */
     assert_int_equal(st.controller_samples, expected);
     assert_int_equal(log.n, expected);
     for (k = 0; k < log.n; k++) {

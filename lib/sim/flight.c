@@ -10,7 +10,7 @@
 #include <string.h>
 
 /* 1 if the machine may fly in closed form now: free flight on (td_solver_options), no energy
- * account, a prescribed constant speed, no sampled controller, no races, no AMB saturation or slew
+ * account, a prescribed constant speed, no races, no AMB saturation or slew
  * limit (the flight has no root function for their kinks and would step across one unseen, and its
  * probes of the residual, half a clearance and 1 m/s, would reach a clip), every retainer free (one
  * with a force law only once its gap has opened by eps after its last exit). The decomposition may
@@ -19,9 +19,6 @@ static int flight_eligible(const td_sim *s)
 {
     int k;
     if (!s->opt.solver.free_flight || s->opt.energy || s->machine.spin >= 0 || td_model_speed_varies(s->model))
-        return 0;
-    if (s->sampler) /* a sampled controller: the flight neither stops at its samples nor updates its held
-                     * command yet, so the integrator carries the machine between them */
         return 0;
     for (k = 0; k < s->sys->n_amb_axes; k++)
         if (s->sys->amb_axes[k].saturation || s->sys->amb_axes[k].slew_rate > 0.0)
@@ -130,6 +127,24 @@ static void amb_pending_part(td_sim *s, td_sim_flight *f, double t_out)
 }
 
 /*
+ * The samples just taken at a stop the flight reached (s->dae.t, where its last step ended): the
+ * currents they hold go into the flight's forcing (td_sim_flight_shift_held) and it carries on from
+ * there. Between samples the machine with its held currents is linear, so each sample is taken from
+ * the exact state (to rounding) and the flight needs no restart. 0 if the flight cannot go on from
+ * here: the caller restarts the integrator instead.
+ */
+int td_sim_flight_hold(td_sim *s)
+{
+    td_sim_flight *f = s->flight;
+    if (!f || !f->anchored || f->handover || f->t_step != s->dae.t || f->amb_pending < f->t_step || !flight_eligible(s))
+        return 0;
+    td_sim_flight_shift_held(s, f, 1);
+    td_sim_flight_propagate(f, s->dae.t);
+    amb_forces(s, f, s->dae.t, f->amb_a, f->amb_b2, 1); /* the new bounds; without a lag the force jumps */
+    return 1;
+}
+
+/*
  * The flight's own steps run on from where the last one ended (f->t_step, which may lie beyond
  * s->dae.t): outputs only evaluate the solution, so the steps, the roots and the peaks found do not
  * depend on the output times (as IDA's do not). A stop (t_stop: a schedule change) ends a step.
@@ -175,7 +190,7 @@ int td_sim_flight_advance(td_sim *s, const double *scale, double t_out, double t
             f->handover = 1;
             break;
         }
-        h = fmin(h, FLIGHT_MAX_STEP);
+        h = fmin(h, f->h_max);
         tn = t + h < t_stop - FLIGHT_ROOT_TOL ? t + h : t_stop; /* no sliver of a step before the stop */
         if (tn <= t_out) {
             td_sim_flight_propagate(f, tn);

@@ -35,7 +35,8 @@
 /* s: a step this short to a root that the function approaches is the root (far below any
  * tolerance the results are read at, far above the rounding of t) */
 #define FLIGHT_ROOT_TOL 1e-13
-/* s: the longest step, which bounds the growth of a mode with a positive real part in the bounds */
+/* s: the longest step, which bounds the growth of a mode with a positive real part in the bounds
+ * (with sampled controllers the sample period, if shorter: td_sim_flight.h_max) */
 #define FLIGHT_MAX_STEP 1e-2
 /* steps in one call after which the flight hands over to the integrator (a safety net) */
 #define FLIGHT_MAX_STEPS 1000000L
@@ -67,7 +68,8 @@ struct td_sim_flight {
     double *machine_key, *key_work;
     int nkey_m;
     double complex *lam, *V, *Vinv; /* V, V^-1 row-major nz x nz */
-    double *grow;                   /* nz: e^{max(0, Re lambda) FLIGHT_MAX_STEP} */
+    double h_max;                   /* s: the longest step, min(FLIGHT_MAX_STEP, the shortest sample period) */
+    double *grow;                   /* nz: e^{max(0, Re lambda) h_max} */
     int *keep, nkeep;               /* the modes summed: one of each conjugate pair (z is real) */
     int *order;                     /* nkeep: the kept modes by |lambda|, slowest first */
     double *weight;                 /* nz: 2 for a kept mode with a conjugate partner, else 1 */
@@ -77,6 +79,12 @@ struct td_sim_flight {
     int nkey_f;
     double tf, omega;
     double complex *p0, *pp, *pm;
+    /* the currents held by sampled controllers (machine.held_current), outside forcing_key: a change
+     * of one shifts p0 by -G du / lambda (td_sim_flight_hold) instead of probing the forcing again */
+    int nheld;         /* AMB axes driven by a sampled law (0: none, nothing below is used) */
+    int *held_axis;    /* nheld: their indices in machine.held_current */
+    double *held;      /* nheld: the currents p0 was made for */
+    double complex *G; /* nz x nheld row-major: V^-1 times z' per ampere held on each (valid for machine_key) */
     /* the anchor */
     int anchored;
     double ta, t_step;     /* the anchor's time; where the flight's last step ended (>= s->dae.t) */
@@ -107,6 +115,11 @@ void td_sim_flight_propagate(td_sim_flight *f, double t);
 flight_val td_sim_flight_observe(const td_sim_flight *f, int o, double t);
 /* e^{iW(t - tf)}: the forcing's phase at t. */
 double complex td_sim_flight_phase(const td_sim_flight *f, double t);
+/* The held currents of sampled controllers (machine.held_current) now in the forcing: p0 shifted by
+ * -G du / lambda for the change du since it was made; with `reanchor` (the flight anchored, its
+ * state at s->dae.t the machine's) the homogeneous part takes the opposite shift at s->dae.t, so the
+ * state stays continuous there, else the flight is left unanchored. */
+void td_sim_flight_shift_held(td_sim *s, td_sim_flight *f, int reanchor);
 /* The state z at t into s->dae.y (and its rate into s->dae.yp with `rate`). */
 void td_sim_flight_materialise(td_sim *s, td_sim_flight *f, double t, int rate);
 

@@ -4,6 +4,7 @@
  * the state at any time, and the flight's life cycle.
  */
 #include "sim/flight_internal.h"
+#include "sim/sampler.h"
 
 #include <gsl/gsl_eigen.h>
 #include <gsl/gsl_errno.h>
@@ -177,7 +178,9 @@ static void pair_modes(td_sim_flight *f)
 }
 
 /* A's modes; 0 if A cannot be trusted to them (defective, ill-conditioned, a zero or resonant
- * eigenvalue, a mode growing faster than the bounds allow). */
+ * eigenvalue, a mode growing faster than the bounds allow: by more than e over a step of h_max; with
+ * a current held between samples the magnets' negative stiffness makes modes grow at ~144 s^-1, which
+ * 1e-4 s allows and FLIGHT_MAX_STEP does not). */
 static int decompose(const td_sim *s, td_sim_flight *f, const double *scale)
 {
     size_t nz = (size_t)f->nz;
@@ -197,9 +200,9 @@ static int decompose(const td_sim *s, td_sim_flight *f, const double *scale)
     for (j = 0; ok && j < nz; j++) {
         gsl_complex l = gsl_vector_complex_get(eval, j);
         f->lam[j] = GSL_REAL(l) + I * GSL_IMAG(l);
-        if (!(cabs(f->lam[j]) > 0.0) || GSL_REAL(l) * FLIGHT_MAX_STEP > 1.0)
+        if (!(cabs(f->lam[j]) > 0.0) || GSL_REAL(l) * f->h_max > 1.0)
             ok = 0;
-        f->grow[j] = exp(fmax(0.0, GSL_REAL(l)) * FLIGHT_MAX_STEP);
+        f->grow[j] = exp(fmax(0.0, GSL_REAL(l)) * f->h_max);
     }
     if (ok)
         ok = decomposition_error(f, Acopy) < FLIGHT_DECOMPOSITION_TOL;
@@ -269,6 +272,16 @@ static int probe_forcing(const td_sim *s, td_sim_flight *f)
     return ok;
 }
 
+/* The AMB force observations' values at z = 0 with the currents held now (ki i where tau = 0: the
+ * force follows the held current at once; 0 behind an amplifier lag, whose state carries it). */
+static void held_offsets(const td_sim *s, td_sim_flight *f)
+{
+    int k;
+    memset(f->y, 0, sizeof(double) * (size_t)s->dae.neq);
+    for (k = 0; k < s->sys->n_amb_axes; k++)
+        f->obs[2 * s->dae.nr + k].offset = td_sim_amb_axis_force(s, k, f->y);
+}
+
 /* The particular solution's modal coefficients; 0 if the forcing is not harmonic at the speed or
  * resonant with a mode. */
 static int build_forcing(const td_sim *s, td_sim_flight *f)
@@ -286,7 +299,33 @@ static int build_forcing(const td_sim *s, td_sim_flight *f)
         f->pp[j] = f->pp[j] / (I * f->omega - l);
         f->pm[j] = f->pm[j] / (-I * f->omega - l);
     }
+    for (j = 0; j < f->nheld; j++)
+        f->held[j] = s->machine.held_current[f->held_axis[j]];
+    if (f->nheld > 0)
+        held_offsets(s, f);
     return 1;
+}
+
+/* G: V^-1 times the change of z' (at z = 0) per ampere held on each sampled axis, probed from the
+ * residual like A (it is linear in the held current, so only the rounding depends on the probe). */
+static void probe_held(td_sim *s, td_sim_flight *f)
+{
+    double *z = f->b[0];
+    double complex *col = f->work, *mod = f->work + f->nz;
+    int c, i, nz = f->nz;
+    memset(z, 0, sizeof(double) * (size_t)nz);
+    for (c = 0; c < f->nheld; c++) {
+        double *u = &s->machine.held_current[f->held_axis[c]], u0 = *u;
+        rates(s, f, s->dae.t, z, f->rate0);
+        *u = u0 + 1.0;
+        rates(s, f, s->dae.t, z, f->rate);
+        *u = u0;
+        for (i = 0; i < nz; i++)
+            col[i] = f->rate[i] - f->rate0[i];
+        to_modal(f, col, mod);
+        for (i = 0; i < nz; i++)
+            f->G[(size_t)i * (size_t)f->nheld + (size_t)c] = mod[i];
+    }
 }
 
 /* ---- observations ---------------------------------------------------------------------------- */
@@ -364,18 +403,10 @@ static void particular(const td_sim_flight *f, double t, double complex *out)
         out[j] = f->p0[j] + f->pp[j] * ep + f->pm[j] * em;
 }
 
-/* Anchor the flight at s->dae.t on the state in s->dae.y. */
-static void anchor(td_sim *s, td_sim_flight *f)
+/* The observations' homogeneous parts for the amplitudes d at the anchor ta. */
+static void anchor_observations(td_sim_flight *f)
 {
-    const double *y = N_VGetArrayPointer(s->dae.y);
     int j, o, nz = f->nz;
-    for (j = 0; j < nz; j++)
-        f->e[j] = y[j];
-    to_modal(f, f->e, f->d);
-    particular(f, s->dae.t, f->e);
-    for (j = 0; j < nz; j++)
-        f->d[j] -= f->e[j];
-    f->ta = s->dae.t;
     f->t_e = NAN; /* e is stale */
     for (o = 0; o < f->nobs; o++) {
         flight_obs *b = &f->obs[o];
@@ -388,6 +419,21 @@ static void anchor(td_sim *s, td_sim_flight *f)
         }
     }
     f->anchored = 1;
+}
+
+/* Anchor the flight at s->dae.t on the state in s->dae.y. */
+static void anchor(td_sim *s, td_sim_flight *f)
+{
+    const double *y = N_VGetArrayPointer(s->dae.y);
+    int j, nz = f->nz;
+    for (j = 0; j < nz; j++)
+        f->e[j] = y[j];
+    to_modal(f, f->e, f->d);
+    particular(f, s->dae.t, f->e);
+    for (j = 0; j < nz; j++)
+        f->d[j] -= f->e[j];
+    f->ta = s->dae.t;
+    anchor_observations(f);
 }
 
 /* e_j = e^{lambda_j (t - ta)} and the bound factors |e_j| grow_j, for the time t. */
@@ -404,6 +450,44 @@ void td_sim_flight_propagate(td_sim_flight *f, double t)
         f->ae[j] = m * f->grow[j];
     }
     f->t_e = t;
+}
+
+/*
+ * A held current steps by du at t = s->dae.t: the constant forcing beta0 by G du, so p0 = -beta0 /
+ * lambda by -G du / lambda (eq. of flight_internal.h), and the homogeneous amplitudes, re-anchored at
+ * t, by the opposite amount: a(t) = d e^{lambda (t - ta)} + p(t) is unchanged; the AMB forces'
+ * offsets follow the held currents. O(nz nheld + nobs nz) per sample, against four residual probes
+ * and three O(nz^2) projections for a new forcing.
+ */
+void td_sim_flight_shift_held(td_sim *s, td_sim_flight *f, int reanchor)
+{
+    double complex *dp = f->work;
+    int c, i, j, nz = f->nz;
+    for (j = 0; j < nz; j++)
+        dp[j] = 0.0;
+    for (c = 0; c < f->nheld; c++) {
+        double u = s->machine.held_current[f->held_axis[c]], du = u - f->held[c];
+        f->held[c] = u;
+        for (j = 0; du != 0.0 && j < nz; j++)
+            dp[j] -= f->G[(size_t)j * (size_t)f->nheld + (size_t)c] * du;
+    }
+    for (j = 0; j < nz; j++) {
+        dp[j] /= f->lam[j];
+        f->p0[j] += dp[j];
+    }
+    held_offsets(s, f);
+    observe_forcing(f);
+    if (!reanchor) {
+        f->anchored = 0;
+        return;
+    }
+    td_sim_flight_propagate(f, s->dae.t);
+    for (i = 0; i < f->nkeep; i++) { /* the kept modes: the others are never summed */
+        j = f->keep[i];
+        f->d[j] = f->d[j] * f->e[j] - dp[j];
+    }
+    f->ta = s->dae.t;
+    anchor_observations(f);
 }
 
 /* Observation o at the time of the last propagate (t). */
@@ -541,6 +625,9 @@ void td_sim_flight_free(td_sim *s)
     free(f->p0);
     free(f->pp);
     free(f->pm);
+    free(f->held_axis);
+    free(f->held);
+    free(f->G);
     free(f->d);
     free(f->e);
     free(f->ae);
@@ -568,6 +655,35 @@ static int alloc_obs(flight_obs *o, size_t nz)
     o->m1 = calloc(nz, sizeof *o->m1);
     o->m2 = calloc(nz, sizeof *o->m2);
     return o->w && o->c && o->m0 && o->m1 && o->m2;
+}
+
+/* The sampled laws' output axes (f->held_axis, in law order) and the longest step their periods
+ * allow (f->h_max); 0 when out of memory. */
+static int alloc_held(const td_sim *s, td_sim_flight *f)
+{
+    const td_sim_sampler *sp = s->sampler;
+    int i, o, n = 0;
+    f->h_max = FLIGHT_MAX_STEP;
+    for (i = 0; sp && i < sp->n; i++) {
+        f->h_max = fmin(f->h_max, 1.0 / sp->law[i].rate);
+        n += s->sys->laws[sp->law[i].law].nout;
+    }
+    if (n == 0)
+        return 1;
+    f->held_axis = calloc((size_t)n, sizeof *f->held_axis);
+    f->held = calloc((size_t)n, sizeof *f->held);
+    f->G = calloc((size_t)n * (size_t)f->nz, sizeof *f->G);
+    if (!f->held_axis || !f->held || !f->G)
+        return 0;
+    for (i = 0; i < sp->n; i++)
+        for (o = 0; o < s->sys->laws[sp->law[i].law].nout; o++) {
+            int a = s->sys->laws[sp->law[i].law].out_axis[o], c = 0;
+            while (c < f->nheld && f->held_axis[c] != a) /* each axis once, however many laws name it */
+                c++;
+            if (c == f->nheld)
+                f->held_axis[f->nheld++] = a;
+        }
+    return 1;
 }
 
 /* The flight's arrays; 0 when out of memory (the integrator then carries the machine). */
@@ -619,6 +735,7 @@ static int flight_alloc(td_sim *s)
          f->res && f->rate && f->rate0 && f->obs;
     for (i = 0; ok && i < f->nobs; i++)
         ok = alloc_obs(&f->obs[i], nz);
+    ok = ok && alloc_held(s, f);
     f->nkey_m = f->nkey_f = -1;
     f->t_root = -INFINITY;
     if (!ok)
@@ -633,6 +750,16 @@ void td_sim_flight_forget(td_sim *s)
         s->flight->handover = 0;
         s->flight->t_step = -INFINITY;
     }
+}
+
+/* 1 if a held current differs from the one the forcing was made for. */
+static int held_changed(const td_sim *s, const td_sim_flight *f)
+{
+    int c;
+    for (c = 0; c < f->nheld; c++)
+        if (s->machine.held_current[f->held_axis[c]] != f->held[c])
+            return 1;
+    return 0;
 }
 
 /* The decomposition and the forcing brought up to date with the machine; 0 if the flight cannot
@@ -650,8 +777,10 @@ int td_sim_flight_ready(td_sim *s, const double *scale)
     if (key_changed(f, f->machine_key, n) || n != f->nkey_m) {
         f->nkey_m = n;
         f->machine_ok = decompose(s, f, scale);
-        if (f->machine_ok)
+        if (f->machine_ok) {
             build_observations(s, f);
+            probe_held(s, f);
+        }
         f->nkey_f = -1;
         f->anchored = 0;
     }
@@ -667,6 +796,8 @@ int td_sim_flight_ready(td_sim *s, const double *scale)
     }
     if (!f->forcing_ok)
         return 0;
+    if (held_changed(s, f)) /* a sample taken since (at a stop the flight did not reach) */
+        td_sim_flight_shift_held(s, f, 0);
     if (!f->anchored) {
         anchor(s, f);
         f->t_step = -INFINITY;

@@ -45,10 +45,10 @@ static int surely_crossed(double g, double closing, double bound)
 }
 
 /* The node inside radius R until F(tau) = R - m - a tau^2 / 2 - |p + v tau| reaches zero (F is
- * concave: one crossing, found by bisection to a 2^-30 of the longest step); 0 if F(0) <= 0. */
-static double inside_until(double R, double m, double a, const double p[2], const double v[2])
+ * concave: one crossing, found by bisection to a 2^-30 of the longest step hi); 0 if F(0) <= 0. */
+static double inside_until(double R, double m, double a, const double p[2], const double v[2], double hi)
 {
-    double lo = 0.0, hi = FLIGHT_MAX_STEP;
+    double lo = 0.0;
     int i;
 #define INSIDE(tau) (R - m - 0.5 * a * (tau) * (tau)-hypot(p[0] + v[0] * (tau), p[1] + v[1] * (tau)))
     if (INSIDE(0.0) <= 0.0)
@@ -93,7 +93,8 @@ static double split_step(const td_sim_flight *f, int k, double t, double R)
     for (i = 0; i <= f->nkeep; i++) {
         int j;
         if (i % stride == 0 || i == f->nkeep)
-            best = fmax(best, inside_until(R, hypot(fmax(m[0], 0.0), fmax(m[1], 0.0)), hypot(a[0], a[1]), p, v));
+            best =
+                fmax(best, inside_until(R, hypot(fmax(m[0], 0.0), fmax(m[1], 0.0)), hypot(a[0], a[1]), p, v, f->h_max));
         if (i == f->nkeep)
             break;
         j = f->order[i]; /* mode j joins the slow side */

@@ -40,6 +40,15 @@ static double due_tolerance(double t)
     return TD_SIM_DUE_TOLERANCE(t);
 }
 
+int td_sim_change_due(const td_sim *s)
+{
+    td_change c;
+    if (s->machine.next_change >= td_model_change_count(s->model))
+        return 0;
+    td_model_get_change(s->model, s->machine.next_change, &c);
+    return c.time <= s->dae.t + due_tolerance(s->dae.t);
+}
+
 td_status td_sim_apply_due_changes(td_sim *s)
 {
     int count = td_model_change_count(s->model);

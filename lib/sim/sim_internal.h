@@ -296,6 +296,9 @@ int td_sim_flight_advance(td_sim *s, const double *scale, double t_out, double t
 /* The state was moved by something else (an integrator step, a restart): the next flight starts
  * from s->dae.y afresh. */
 void td_sim_flight_forget(td_sim *s);
+/* The samples just taken at a stop the flight reached: the flight carries their held currents on
+ * from s->dae.t; 0 if it cannot (the caller restarts the integrator). */
+int td_sim_flight_hold(td_sim *s);
 /* y' at s->dae.t from the flight that carried the state there (its outputs write y only). */
 void td_sim_flight_rates(td_sim *s);
 void td_sim_flight_free(td_sim *s);
@@ -348,6 +351,8 @@ td_status td_sim_apply_due_changes(td_sim *s);
 void td_sim_apply_past_changes(td_sim *s);
 /* Where the integrator must stop next: the next schedule change or speed-ramp point; INFINITY if none. */
 double td_sim_next_stop(const td_sim *s);
+/* 1 if a schedule change is due at s->dae.t. */
+int td_sim_change_due(const td_sim *s);
 
 /* ---- tolerance.c: the integrator's tolerances --------------------------------------------- */
 

@@ -121,6 +121,17 @@ static td_status handle_stop(td_sim *s, int kind)
     return st;
 }
 
+/* A stop the flight reached (no root): the samples due there are taken and the flight carries the
+ * currents they hold on from here, the integrator left stale until it is needed (td_sim_flight_hold);
+ * a schedule change, or a flight that cannot go on, takes handle_stop's restart. */
+static td_status flight_stop(td_sim *s)
+{
+    if (!s->sampler || td_sim_change_due(s))
+        return handle_stop(s, TD_PENDING_TSTOP);
+    td_sim_sampler_take_due(s);
+    return td_sim_flight_hold(s) ? TD_OK : td_sim_restart_after_change(s);
+}
+
 /* The stop pending beyond the last output time (a root, the stop time or a penalty resync): past
  * tout, only interpolate to tout; otherwise handle it. Returns 1 when advance returns *st (tout
  * reached, an event to report or a failure), 0 to go on integrating. */
@@ -176,7 +187,7 @@ static int fly(td_sim *s, double tout, td_status *st)
     accept_point(s, s->dae.t, 0);
     *st = TD_OK;
     if (root || s->dae.t >= stop) {
-        *st = handle_stop(s, root ? TD_PENDING_ROOT : TD_PENDING_TSTOP);
+        *st = root ? handle_stop(s, TD_PENDING_ROOT) : flight_stop(s);
         if (*st != TD_OK)
             return 1;
         if (td_sim_pop_event(s)) {
