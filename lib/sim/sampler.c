@@ -111,7 +111,8 @@ static void take_sample(td_sim *s, td_sim_sampled *l)
         for (j = 0; j < law->nin; j++)
             u += law->D[i + law->nout * j] * l->e[j];
         l->u[i] = u;
-        s->machine.held_current[law->out_axis[i]] = u;
+        if (!law->standby) /* a recovery law standing by drives nothing */
+            s->machine.held_current[law->out_axis[i]] = u;
     }
     for (i = 0; i < law->n; i++) {
         double x = 0.0;
