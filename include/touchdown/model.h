@@ -324,6 +324,9 @@ typedef struct td_recovery {
 TD_API td_status td_model_set_recovery(td_model *m, const td_recovery *r, td_error *err);
 /** The recovery supervisor into *out (all zero when none); returns its pair count (0: none). */
 TD_API int td_model_get_recovery(const td_model *m, td_recovery *out);
+/** The samples beyond the first that a rule of `dwell` s holds for at `rate` Hz: ceil(dwell rate),
+ *  a product within 1e-9 (relative) of an integer taken as that integer (0.02 s at 10 kHz: 200). */
+TD_API double td_recovery_dwell_samples(double dwell, double rate);
 /** Rotor speed Omega, rad/s (constant between changes). */
 TD_API td_status td_model_set_speed(td_model *m, double omega, td_error *err);
 /** Append a point of the speed ramp (time after the previous point's). */

@@ -66,6 +66,12 @@ int td_model_get_recovery(const td_model *m, td_recovery *out)
     return m ? m->recovery.pair_count : 0;
 }
 
+double td_recovery_dwell_samples(double dwell, double rate)
+{
+    double n = dwell * rate, r = floor(n + 0.5);
+    return fabs(n - r) <= 1e-9 * fmax(1.0, r) ? r : ceil(n);
+}
+
 int td_model_recovery_paired(const td_model *m, int i, int j)
 {
     int p;
