@@ -626,6 +626,11 @@ void td_run_summary_json_members(td_text *b, const td_run_summary *s)
     json_real(b, "solver_wall_time", s->solver_wall_time, 1);
     json_real(b, "wall_time_per_revolution", s->wall_time_per_revolution, 1);
     json_real(b, "realtime_factor", s->realtime_factor, 1);
+    if (s->supervised) { /* the recovery supervisor's account (td_sim_stats), at the top level */
+        td_text_printf(b, "\"controller_switches\":%ld,", s->stats.controller_switches);
+        json_real(b, "time_on_recovery", s->stats.time_on_recovery, 1);
+        json_real(b, "last_return_time", s->stats.last_return_time, 1);
+    }
     td_text_printf(b,
                    "\"stats\":{\"steps\":%ld,\"residual_evals\":%ld,\"jacobian_evals\":%ld,\"linear_setups\":%ld,"
                    "\"nonlinear_iters\":%ld,\"error_test_fails\":%ld,\"nonlinear_fails\":%ld,\"restarts\":%ld,"
@@ -640,11 +645,6 @@ void td_run_summary_json_members(td_text *b, const td_run_summary *s)
     json_real(b, "peak_normal_force", s->stats.peak_normal_force, 1);
     json_real(b, "time_in_contact", s->stats.time_in_contact, 1);
     json_real(b, "time_slewing", s->stats.time_slewing, 1);
-    if (s->supervised) {
-        td_text_printf(b, "\"controller_switches\":%ld,", s->stats.controller_switches);
-        json_real(b, "time_on_recovery", s->stats.time_on_recovery, 1);
-        json_real(b, "last_return_time", s->stats.last_return_time, 1);
-    }
     json_real(b, "first_contact_time", s->stats.first_contact_time, 1);
     json_real(b, "wall_time", s->stats.wall_time, 0);
     td_text_printf(b, "},");
