@@ -416,6 +416,14 @@ static void test_model_rules(void **state)
     assert_int_equal(td_model_set_recovery(m, &bad, &err), TD_OK);
     assert_int_equal(td_model_validate(m, &err), TD_ERR_INVALID);
     assert_non_null(strstr(err.message, "its own recovery law"));
+    bad = rec, bad.pair_count = 2, bad.nominal[1] = 1, bad.controller[1] = 0; /* a controller in two pairs */
+    assert_int_equal(td_model_set_recovery(m, &bad, &err), TD_OK);
+    assert_int_equal(td_model_validate(m, &err), TD_ERR_INVALID);
+    assert_non_null(strstr(err.message, "share a controller"));
+    bad = rec, bad.nominal[0] = 9; /* no such controller */
+    assert_int_equal(td_model_set_recovery(m, &bad, &err), TD_OK);
+    assert_int_equal(td_model_validate(m, &err), TD_ERR_INVALID);
+    assert_string_equal(err.site.field, "nominal");
     /* without the pair, the recovery law would drive the nominal's axes a second time */
     bad = rec, bad.pair_count = 0;
     assert_int_equal(td_model_set_recovery(m, &bad, &err), TD_OK);
