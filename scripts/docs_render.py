@@ -1320,7 +1320,7 @@ SPANS = {"rub-mean-normal": span_rub_mean_normal, "val-first-contact-cell": span
 # --- the case keys (docs/case-format.md) ------------------------------------------------------------
 # The sections of docs/results/keys.json (touchdown info --keys), each a table of its own region
 # "keys-SECTION"; a section the tool names that is not here fails the rendering.
-KEY_SECTIONS = ["top", "shaft", "discs", "ambs", "controllers", "speed", "bearings", "retainers", "retainer-parts", "unbalances",
+KEY_SECTIONS = ["top", "shaft", "discs", "ambs", "controllers", "recovery", "speed", "bearings", "retainers", "retainer-parts", "unbalances",
                 "schedule", "gravity", "reduction", "contact", "solver", "output", "modal", "sweep"]
 
 

@@ -595,7 +595,10 @@ static void test_docs_match_reader(void **state)
                                          "controllers[0].law[3].notch.",
                                          "controllers[0].law[4].tf.",
                                          "controllers[0].law[5].zpk.",
-                                         "controllers[0].law[7].ss."};
+                                         "controllers[0].law[7].ss.",
+                                         "recovery.",
+                                         "recovery.detect.",
+                                         "recovery.release."};
     char *doc = td_test_read_file(td_source_path("docs/case-format.md"));
     char *a = td_test_read_file(td_source_path("tests/data/case/all-keys.cfg"));
     char *b = td_test_read_file(td_source_path("tests/data/case/all-keys-nodes.cfg"));
@@ -625,8 +628,9 @@ static void test_docs_match_reader(void **state)
     for (g = 0; g < sizeof groups / sizeof groups[0]; g++) {
         char ov[160], docprefix[160], *q, *list;
         const char *ovs[1];
-        const char *file = strncmp(groups[g], "controllers", 11) == 0 ? "tests/data/case/all-keys-controllers.cfg"
-                                                                      : "tests/data/case/all-keys.cfg";
+        const char *file = strncmp(groups[g], "controllers", 11) == 0 || strncmp(groups[g], "recovery", 8) == 0
+                               ? "tests/data/case/all-keys-controllers.cfg"
+                               : "tests/data/case/all-keys.cfg";
         td_case *c = NULL;
         td_error err;
         snprintf(ov, sizeof ov, "%szzzzzzzzzz=1", groups[g]);
@@ -769,6 +773,16 @@ static void dump_controllers(const td_case *c, char *buf, size_t n)
     }
 }
 
+/* The recovery supervisor (td_model_get_recovery). */
+static void dump_recovery(const td_model *m, char *buf, size_t n)
+{
+    td_recovery r;
+    int i, pairs = td_model_get_recovery(m, &r);
+    dump_add(buf, n, "recovery %d pairs %d detect %a %a release %a %a blend %a\n", r.enabled, pairs,
+             r.detect.radius_fraction, r.detect.dwell, r.release.radius_fraction, r.release.dwell, r.blend);
+    for (i = 0; i < pairs; i++)
+        dump_add(buf, n, "  pair %d: %d -> %d\n", i, r.nominal[i], r.controller[i]);
+}
 /* The retainers, unbalances and timed changes of a model. */
 static void dump_events(const td_model *m, char *buf, size_t n)
 {
@@ -793,6 +807,7 @@ static void dump_events(const td_model *m, char *buf, size_t n)
         dump_add(buf, n, "change %a %d %d %a %a entry %d\n", ch.time, ch.kind, ch.index, ch.magnitude, ch.phase,
                  td_model_change_entry(m, i));
     }
+    dump_recovery(m, buf, n);
 }
 
 /* Everything a case gives, as text: the model through its getters, the end time, the description
@@ -852,10 +867,15 @@ static const char documented_defaults_base[] =
     "speed = 100.0;\nend_time = 0.1;\n"
     "discs = ( { node = 3; radius = 0.1; thickness = 0.02; density = 7810.0; } );\n"
     "ambs = ( { node = 2; ks = 1.0e5; ki = 50.0; kp = 1.0e4; kd = 10.0; tau = 1.0e-4; force_capacity = 1000.0; },\n"
-    "  { node = 8; ks = 1.0e5; ki = 50.0; tau = 1.0e-4; force_capacity = 1000.0; } );\n"
+    "  { node = 8; ks = 1.0e5; ki = 50.0; tau = 1.0e-4; force_capacity = 1000.0; },\n"
+    "  { node = 6; ks = 1.0e5; ki = 50.0; tau = 1.0e-4; force_capacity = 1000.0; } );\n"
     "controllers = ( { name = \"k\"; ambs = [1]; law = ( { pid = {}; }, { leadlag = { gain = 2.0; zero = 10.0;\n"
     "  pole = 100.0; }; }, { lowpass = { frequency = 500.0; }; }, { notch = { frequency = 50.0; width = 5.0; }; },\n"
-    "  { tf = { num = [1.0]; den = [1.0, 100.0]; }; }, { zpk = {}; }, { ss = { D = ([1.0]); }; } ); } );\n"
+    "  { tf = { num = [1.0]; den = [1.0, 100.0]; }; }, { zpk = {}; }, { ss = { D = ([1.0]); }; } ); },\n"
+    "  { name = \"n\"; ambs = [2]; law = ( { gain = 1.0; } ); sample_rate = 1000.0; },\n"
+    "  { name = \"r\"; ambs = [2]; law = ( { gain = 2.0; } ); sample_rate = 1000.0; } );\n"
+    "recovery = { nominal = \"n\"; controller = \"r\"; detect = { radius_fraction = 0.8; dwell = 0.0; };\n"
+    "  release = { radius_fraction = 0.3; dwell = 0.0; }; blend = 0.0; };\n"
     "bearings = ( { node = 10; kxx = 1.0e6; } );\n"
     "retainers = ( { node = 1; clearance = 0.000244140625; shaft_radius = 0.03125; friction = 0.1; race = {};\n"
     "    contact = { stiffness = 1.0e9; }; },\n"
@@ -984,9 +1004,9 @@ static void test_documented_defaults(void **state)
     print_message("documented defaults: %d keys checked; skipped: %d groups and lists, %d required, %d other\n", tried,
                   part, required, other);
     assert_int_equal(tried + part + required + other, td_case_key_count());
-    assert_int_equal(tried, 81);
-    assert_int_equal(part, 38);     /* their keys are checked */
-    assert_int_equal(required, 65); /* required, or one form's required key (a sweep entry's range or values) */
+    assert_int_equal(tried, 82);
+    assert_int_equal(part, 41);     /* their keys are checked */
+    assert_int_equal(required, 72); /* required, or one form's required key (a sweep entry's range or values) */
     /* an alternative with no default ("-": shaft.nodes, sections' element, schedule's unbalance,
      * amb_off, amb_on, a law's gain block), "unknown" (an AMB's air gap), "all nodes", "none"
      * (response speeds, overrides, a zpk's zeros and poles, an ss block's A, B and C), "the rotor's"
@@ -1349,6 +1369,20 @@ static td_controller *rigid_plane(void)
     return t;
 }
 
+/* The recovery table of the all-keys file lands in the model as written: the pair by the names'
+ * indices, the rules and the blend. */
+static void check_recovery_all_keys(const td_model *m)
+{
+    td_recovery r;
+    assert_int_equal(td_model_get_recovery(m, &r), 1);
+    assert_int_equal(r.enabled, 1);
+    assert_int_equal(r.nominal[0], 2);
+    assert_int_equal(r.controller[0], 3);
+    assert_true(r.detect.radius_fraction == 0.8 && r.detect.dwell == 0.02);
+    assert_true(r.release.radius_fraction == 0.3 && r.release.dwell == 0.2);
+    assert_true(r.blend == 0.01);
+}
+
 /* Every key of the controllers table lands in the model's controllers: each law as the controller
  * API builds it from the same numbers (its frequency response), on the axes in the documented
  * order, with the case's account of what the realisation does not say. */
@@ -1368,7 +1402,7 @@ static void test_controllers_all_keys(void **state)
     assert_close(td_model_mass_centre(m),
                  (7800.0 * TD_PI * 0.02 * 0.02 * 1.2 * 0.6 + 8.0 * 0.2) / (7800.0 * TD_PI * 0.02 * 0.02 * 1.2 + 8.0),
                  1e-14, 0.0);
-    assert_int_equal(td_model_controller_count(m), 2);
+    assert_int_equal(td_model_controller_count(m), 4);
     want = side_by_side(td_controller_clone(law, NULL), law);
     assert_non_null(td_model_get_controller(m, 0, &name, &in, &out));
     assert_memory_equal(in, bearing_axes, sizeof bearing_axes);
@@ -1404,11 +1438,12 @@ static void test_controllers_all_keys(void **state)
     assert_int_equal(info.delay, 1);
     assert_int_equal(info.discretisation, TD_DISCRETISE_TUSTIN);
     assert_close(info.prewarp, 60.0, 0.0, 0.0);
-    assert_int_equal(td_case_controller(c, 2, &info), TD_ERR_INVALID);
+    assert_int_equal(td_case_controller(c, 4, &info), TD_ERR_INVALID);
     td_controller_free(&want);
     td_controller_free(&law);
     td_controller_free(&both);
     td_controller_free(&plane);
+    check_recovery_all_keys(m);
     td_case_free(&c);
 }
 
@@ -1659,6 +1694,16 @@ static const bad_file bad_files[] = {
     {"controller-two-members.cfg", 8, "controllers[0].law[0].notch", NULL},
     {"controller-unknown-block.cfg", 7, "controllers[0].law[0].pidd", NULL},
     {"controller-z-block-continuous.cfg", 8, "controllers[0].law[0].tf.domain", NULL},
+    {"recovery-continuous.cfg", 8, "recovery.nominal", NULL},
+    {"recovery-different-axes.cfg", 8, "recovery.controller", NULL},
+    {"recovery-list-lengths.cfg", 9, "recovery.controller", NULL},
+    {"recovery-missing-detect.cfg", 7, "recovery.detect", NULL},
+    {"recovery-negative-dwell.cfg", 9, "recovery.detect.dwell", NULL},
+    {"recovery-no-hysteresis.cfg", 8, "recovery.release.radius_fraction", NULL},
+    {"recovery-no-retainer.cfg", 7, "recovery", NULL},
+    {"recovery-rate-mismatch.cfg", 8, "recovery.controller", NULL},
+    {"recovery-self.cfg", 7, "recovery.controller", NULL},
+    {"recovery-unknown-name.cfg", 6, "recovery.controller", NULL},
     {"binary.cfg", 2, NULL, NULL},
     {"comments-only.cfg", 1, NULL, NULL},
     {"contact-bad-model.cfg", 5, "contact.model", NULL},

@@ -111,6 +111,7 @@ static void write_variant(const variant *v)
     td_writer *w = NULL;
     int was_in = 0, up_done = 0, down_done = 0;
     long k, n = (long)floor(v->t_stop * RATE + 0.5);
+    memset(&layout, 0, sizeof layout); /* every field the writer reads, including those set below */
     layout.node_count = 0;
     layout.nodes = NULL;
     layout.retainer_count = 2;

@@ -282,6 +282,51 @@ TD_API td_status td_model_add_change(td_model *m, const td_change *c, td_error *
 #define TD_CONTROLLER_RATE_MAX 1.0e7
 TD_API td_status td_model_add_controller(td_model *m, const char *name, const td_controller *k, const int *inputs,
                                          const int *outputs, td_error *err);
+/** The most controller pairs one recovery supervisor switches (td_recovery). */
+#define TD_RECOVERY_MAX_PAIRS 16
+
+/** A rule of the recovery supervisor on the sensed radius (td_recovery). */
+typedef struct td_recovery_rule {
+    double radius_fraction; /**< f > 0: the sensed radius against f c, c the smallest retainer clearance */
+    double dwell;           /**< s >= 0: how long the condition must hold, counted in samples of the pair */
+} td_recovery_rule;
+
+/**
+ * The contact-aware recovery supervisor (docs/theory.md, "Recovery supervisor"): pair i switches the
+ * AMB axes of controller nominal[i] over to controller controller[i] when the rotor stays near its
+ * retainers, and back when it has left them. Evaluated at each sample of the pair, with the sensed
+ * radius r_k = the largest over the AMBs the pair drives of hypot(xs_x, xs_y) at the AMB's sensor:
+ *   detect  (on nominal):  r > detect.radius_fraction c  at every sample for at least detect.dwell
+ *   release (on recovery): r < release.radius_fraction c at every sample for at least release.dwell
+ * (a dwell of d s is ceil(d rate) samples after the first that meets the condition). A switch at t_s
+ * starts the incoming law from rest and blends the held current linearly over `blend` s,
+ * i = (1 - b) i_old + b i_new, b = min(1, (t_k - t_s) / blend) (blend 0: a step), both laws running
+ * while they weigh; no switch is taken while one blends. Model rules (td_model_validate): both
+ * controllers of a pair exist, are sampled at the same rate and have the same inputs and outputs
+ * (continuous supervised laws are not supported yet); no controller is in two pairs; the model has a
+ * retainer; 0 < release.radius_fraction < detect.radius_fraction (hysteresis). The pairs' recovery
+ * controllers share their nominal's axes and stand by (they drive nothing until a switch); the
+ * analyses (touchdown/modal.h) are of the nominal laws. pair_count 0: no supervisor (the default).
+ * A fault names site part "recovery", field "nominal", "controller", "detect.radius_fraction",
+ * "detect.dwell", "release.radius_fraction", "release.dwell" or "blend".
+ */
+typedef struct td_recovery {
+    int enabled;                           /**< 0: the nominal laws throughout (the recovery laws never run) */
+    int pair_count;                        /**< 0 .. TD_RECOVERY_MAX_PAIRS */
+    int nominal[TD_RECOVERY_MAX_PAIRS];    /**< controller index (td_model_get_controller) of each nominal law */
+    int controller[TD_RECOVERY_MAX_PAIRS]; /**< controller index of the recovery law it switches to */
+    td_recovery_rule detect;               /**< nominal -> recovery */
+    td_recovery_rule release;              /**< recovery -> nominal */
+    double blend;                          /**< s >= 0: the linear blend of the held current */
+} td_recovery;
+
+/** Set (copy) the recovery supervisor; its values are checked here, its controllers at validation. */
+TD_API td_status td_model_set_recovery(td_model *m, const td_recovery *r, td_error *err);
+/** The recovery supervisor into *out (all zero when none); returns its pair count (0: none). */
+TD_API int td_model_get_recovery(const td_model *m, td_recovery *out);
+/** The samples beyond the first that a rule of `dwell` s holds for at `rate` Hz: ceil(dwell rate),
+ *  a product within 1e-9 (relative) of an integer taken as that integer (0.02 s at 10 kHz: 200). */
+TD_API double td_recovery_dwell_samples(double dwell, double rate);
 /** Rotor speed Omega, rad/s (constant between changes). */
 TD_API td_status td_model_set_speed(td_model *m, double omega, td_error *err);
 /** Append a point of the speed ramp (time after the previous point's). */

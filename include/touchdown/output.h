@@ -52,6 +52,9 @@ typedef struct td_output_layout {
     int speed_field;    /**< nonzero: also the rotor speed (models whose speed varies: a ramp or a free spin) */
     int whirl_field;    /**< nonzero: also each retainer's whirl rate (models with race fields or a varying
                          *   speed: the paper's cases keep the layout they always had) */
+    int switch_fields;  /**< nonzero: the events also carry `controller` and `sensed_radius`, and the event kinds
+                         *   include controller_switch (models with a recovery supervisor, touchdown/model.h).
+                         *   Last, so that initialisers written before it leave it 0 */
 } td_output_layout;
 
 /**

@@ -22,7 +22,10 @@ typedef enum td_event_kind {
     TD_EVENT_PENALTY_EXIT = 5,      /**< penalty model: penetration delta returned to zero */
     TD_EVENT_ROLL_START = 6,        /**< stick retainer: v_s reached 0 and the friction force that rolling
                                          without slip needs is within mu N: it rolls */
-    TD_EVENT_ROLL_END = 7           /**< stick retainer: rolling needs more than mu N (or an impact): it slips */
+    TD_EVENT_ROLL_END = 7,          /**< stick retainer: rolling needs more than mu N (or an impact): it slips */
+    TD_EVENT_CONTROLLER_SWITCH = 8  /**< the recovery supervisor switched a pair of sampled controllers
+                                         (touchdown/model.h td_recovery): td_event.controller is the law
+                                         switched to, td_event.sensed_radius the radius it judged */
 } td_event_kind;
 
 /** One event, as recorded in the event table. Velocities are of the retainer node. */
@@ -42,6 +45,11 @@ typedef struct td_event {
                                    (release, penalty exit; 0 for other events), taken at the integrator's
                                    steps, the output samples and right after the impact. Under the rigid constraint it
                                  is the instantaneous peak, which does not converge with the mesh (docs/theory.md) */
+    int controller;           /**< TD_EVENT_CONTROLLER_SWITCH: the controller switched to (td_model_get_controller's
+                                   index), else -1. Last, as sensed_radius: the output files carry both only for
+                                   a model with a recovery supervisor */
+    double sensed_radius;     /**< TD_EVENT_CONTROLLER_SWITCH: m, the sensed radius at the switch sample (the largest
+                                   over the pair's AMBs of hypot(xs_x, xs_y) at the sensor), else 0 */
 } td_event;
 
 /** Contact state of one retainer at the current time. */
@@ -130,6 +138,9 @@ typedef struct td_sim_stats {
     double flight_time;        /**< s simulated in closed-form free flight */
     long controller_samples;   /**< samples taken by sampled controllers (each law's count, summed) */
     double time_slewing;       /**< s, summed over AMB axes, with the amplifier at its slew-rate limit */
+    long controller_switches;  /**< switches of the recovery supervisor (touchdown/model.h td_recovery), both ways */
+    double time_on_recovery;   /**< s, summed over the supervisor's pairs, on the recovery law (up to now) */
+    double last_return_time;   /**< s, the last switch back to a nominal law (TD_UNDEFINED if none) */
 } td_sim_stats;
 
 #ifdef __cplusplus

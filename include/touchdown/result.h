@@ -77,6 +77,8 @@ typedef enum td_out_id {
     TD_OUT_EV_IMPULSE,
     TD_OUT_EV_NORMAL_FORCE,
     TD_OUT_EV_PEAK_NORMAL_FORCE,
+    TD_OUT_EV_CONTROLLER, /* only in the files of a model with a recovery supervisor */
+    TD_OUT_EV_SENSED_RADIUS,
     /* attributes of datasets and groups */
     TD_OUT_UNITS,
     TD_OUT_COUNT,
@@ -132,6 +134,9 @@ typedef enum td_out_id {
     TD_OUT_STAT_FLIGHT_TIME,
     TD_OUT_STAT_CONTROLLER_SAMPLES,
     TD_OUT_STAT_TIME_SLEWING,
+    TD_OUT_STAT_CONTROLLER_SWITCHES, /* these three only in the files of a model with a recovery supervisor */
+    TD_OUT_STAT_TIME_ON_RECOVERY,
+    TD_OUT_STAT_LAST_RETURN_TIME,
     TD_OUT_WARNINGS,
     TD_OUT_SUM_FIRST_CONTACT_TIME,
     TD_OUT_SUM_LAST_CONTACT_TIME,

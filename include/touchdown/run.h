@@ -184,6 +184,9 @@ typedef struct td_run_summary {
     int warnings_left_out; /**< warnings found past the first TD_RUN_MAX_WARNINGS - 1 and not kept (0 if
                                 none were): the last kept is then a notice saying how many */
     char warnings[TD_RUN_MAX_WARNINGS][TD_RUN_WARNING_SIZE]; /**< each NUL-terminated */
+    int supervised; /**< 1: the model has a recovery supervisor (touchdown/model.h td_recovery): stats'
+                         controller_switches, time_on_recovery and last_return_time are its account, and the
+                         text, JSON and files carry them. Last, so that the record only grew */
 } td_run_summary;
 
 /**

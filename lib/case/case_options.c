@@ -663,6 +663,13 @@ static const td_cs_key root_keys[] = {
      .order = 4,
      .doc = "linear controllers of AMBs (transfer functions, blocks in series, rigid-body coordinates, sampled), "
             "see [controllers](#controllers)"},
+    {.key = "recovery",
+     .type = TD_CS_GROUP,
+     .sub = &td_cs_recovery,
+     .order = 4,
+     .doc_default = "none",
+     .doc = "a contact-aware supervisor that switches sampled controllers to recovery laws and back, see "
+            "[recovery](#recovery)"},
     {.key = "bearings",
      .type = TD_CS_LIST,
      .sub = &td_cs_bearings,

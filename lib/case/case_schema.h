@@ -108,6 +108,8 @@ extern const td_cs_table td_cs_shaft;
 extern const td_cs_table td_cs_sweep;
 /* The controllers (case_control.c), and the table of one block of a controller's law (case_blocks.c). */
 extern const td_cs_table td_cs_controllers, td_cs_block;
+/* The recovery supervisor (case_recovery.c), read after the controllers it names. */
+extern const td_cs_table td_cs_recovery;
 
 /* Block entry e of a law (a group with exactly one member: gain, pid, leadlag, lowpass, notch, tf,
  * zpk or ss) as a new SISO controller (*out, the caller frees it). A block in z (domain = "z")

@@ -64,8 +64,8 @@ static const config_setting_t *part_entry(const config_setting_t *root, const td
     }
     if (strcmp(site->part, "change") == 0) /* numbered in time order; the entry is its order of addition */
         return entry(root, "schedule", td_model_change_entry(model, site->index));
-    if (strcmp(site->part, "spin") == 0)
-        return config_setting_get_member(root, "spin");
+    if (strcmp(site->part, "spin") == 0 || strcmp(site->part, "recovery") == 0)
+        return config_setting_get_member(root, site->part);
     for (k = 0; k < sizeof parts / sizeof parts[0]; k++)
         if (strcmp(site->part, parts[k][0]) == 0)
             return entry(root, parts[k][1], site->index);

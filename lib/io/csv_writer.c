@@ -92,10 +92,10 @@ static int write_sample_header(FILE *f, const td_writer *w)
 }
 
 /* The events file's columns: the /events fields in order, the kind's name after the kind. */
-static int write_event_header(FILE *f)
+static int write_event_header(FILE *f, const td_writer *w)
 {
-    int id, rc = 0;
-    for (id = TD_OUT_EV_TIME; id <= TD_OUT_EV_PEAK_NORMAL_FORCE; id++)
+    int id, rc = 0, last = w->switch_fields ? TD_OUT_EV_SENSED_RADIUS : TD_OUT_EV_PEAK_NORMAL_FORCE;
+    for (id = TD_OUT_EV_TIME; id <= last; id++)
         rc |= column(f, id == TD_OUT_EV_TIME, (td_out_id)id, NULL, 0);
     rc |= fputc('\n', f) == EOF;
     return rc;
@@ -124,7 +124,7 @@ static td_status csv_open(td_writer *w, td_error *err)
         st = td_io_fail(err, w->tmp_path, "cannot open");
     else if (!(c->events = adopt(&w->events_fd)))
         st = td_io_fail(err, w->events_tmp, "cannot open");
-    else if (write_sample_header(c->samples, w) || write_event_header(c->events))
+    else if (write_sample_header(c->samples, w) || write_event_header(c->events, w))
         st = td_io_fail(err, w->tmp_path, "cannot write the header");
     if (st != TD_OK)
         csv_destroy(w);
@@ -166,11 +166,12 @@ static td_status csv_event(td_writer *w, const td_event *ev, long sample, td_err
     FILE *f = ((csv_impl *)w->impl)->events;
     char tbuf[32];
     errno = 0;
-    if (fprintf(f, "%s,%d,%s,%d,%d,%ld,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g\n",
+    if (fprintf(f, "%s,%d,%s,%d,%d,%ld,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g",
                 exact_text(ev->time, tbuf, sizeof tbuf), (int)ev->kind, td_event_kind_name(ev->kind), ev->retainer,
                 ev->change, sample, ev->radial_velocity_before, ev->radial_velocity_after,
                 ev->tangential_velocity_before, ev->tangential_velocity_after, ev->impulse, ev->normal_force,
-                ev->peak_normal_force) < 0)
+                ev->peak_normal_force) < 0 ||
+        (w->switch_fields && fprintf(f, ",%d,%.17g", ev->controller, ev->sensed_radius) < 0) || fputc('\n', f) == EOF)
         return td_io_fail(err, w->events_tmp, "cannot write an event");
     return TD_OK;
 }

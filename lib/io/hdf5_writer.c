@@ -59,6 +59,8 @@ typedef struct h5_event_row {
     double impulse;
     double normal_force;
     double peak_normal_force;
+    int controller; /* these two only with switch_fields (td_output_layout) */
+    double sensed_radius;
 } h5_event_row;
 
 typedef struct h5_impl {
@@ -354,19 +356,23 @@ static const struct {
     {TD_OUT_EV_TANGENTIAL_VELOCITY_AFTER, offsetof(h5_event_row, tangential_velocity_after), EV_DOUBLE},
     {TD_OUT_EV_IMPULSE, offsetof(h5_event_row, impulse), EV_DOUBLE},
     {TD_OUT_EV_NORMAL_FORCE, offsetof(h5_event_row, normal_force), EV_DOUBLE},
-    {TD_OUT_EV_PEAK_NORMAL_FORCE, offsetof(h5_event_row, peak_normal_force), EV_DOUBLE}};
+    {TD_OUT_EV_PEAK_NORMAL_FORCE, offsetof(h5_event_row, peak_normal_force), EV_DOUBLE},
+    {TD_OUT_EV_CONTROLLER, offsetof(h5_event_row, controller), EV_INT},
+    {TD_OUT_EV_SENSED_RADIUS, offsetof(h5_event_row, sensed_radius), EV_DOUBLE}};
 
-/* The event kind enum (its names into `names`, "0=contact_onset,...") and the memory row type. */
-static int event_types(h5_impl *h, char *names, size_t size)
+/* The event kind enum (its names into `names`, "0=contact_onset,...") and the memory row type;
+ * the supervisor's kind and fields only with switch_fields, so that other files keep their layout. */
+static int event_types(const td_writer *w, h5_impl *h, char *names, size_t size)
 {
     static const td_event_kind kinds[] = {TD_EVENT_CONTACT_ONSET, TD_EVENT_RELEASE,       TD_EVENT_FRICTION_REVERSAL,
                                           TD_EVENT_SCHEDULE,      TD_EVENT_PENALTY_ENTER, TD_EVENT_PENALTY_EXIT,
-                                          TD_EVENT_ROLL_START,    TD_EVENT_ROLL_END};
-    size_t i;
+                                          TD_EVENT_ROLL_START,    TD_EVENT_ROLL_END,      TD_EVENT_CONTROLLER_SWITCH};
+    size_t i, n_kinds = sizeof kinds / sizeof kinds[0] - (w->switch_fields ? 0 : 1);
+    size_t n_fields = sizeof event_fields / sizeof event_fields[0] - (w->switch_fields ? 0 : 2);
     int ok;
     h->kind_type = H5Tenum_create(H5T_NATIVE_INT);
     ok = h->kind_type >= 0;
-    for (i = 0; ok && i < sizeof kinds / sizeof kinds[0]; i++) {
+    for (i = 0; ok && i < n_kinds; i++) {
         int v = (int)kinds[i];
         size_t len = strlen(names);
         ok = H5Tenum_insert(h->kind_type, td_event_kind_name(kinds[i]), &v) >= 0;
@@ -374,7 +380,7 @@ static int event_types(h5_impl *h, char *names, size_t size)
     }
     h->event_mtype = ok ? H5Tcreate(H5T_COMPOUND, sizeof(h5_event_row)) : -1;
     ok = h->event_mtype >= 0;
-    for (i = 0; ok && i < sizeof event_fields / sizeof event_fields[0]; i++) {
+    for (i = 0; ok && i < n_fields; i++) {
         ev_mem m = event_fields[i].mem;
         hid_t type = m == EV_DOUBLE  ? H5T_NATIVE_DOUBLE
                      : m == EV_INT   ? H5T_NATIVE_INT
@@ -391,7 +397,7 @@ static td_status create_events(td_writer *w, h5_impl *h, td_error *err)
     hsize_t dims[1] = {0}, maxdims[1] = {H5S_UNLIMITED}, chunk[1] = {H5_EVENT_CHUNK};
     hid_t space = -1, dcpl = -1;
     char names[256] = "";
-    int ok = event_types(h, names, sizeof names);
+    int ok = event_types(w, h, names, sizeof names);
     if (ok) {
         h->event_ftype = H5Tcopy(h->event_mtype);
         ok = h->event_ftype >= 0 && H5Tpack(h->event_ftype) >= 0;
@@ -635,6 +641,8 @@ static td_status h5_event(td_writer *w, const td_event *ev, long sample, td_erro
     row->impulse = ev->impulse;
     row->normal_force = ev->normal_force;
     row->peak_normal_force = ev->peak_normal_force;
+    row->controller = ev->controller;
+    row->sensed_radius = ev->sensed_radius;
     if (h->events_buffered == H5_EVENT_CHUNK) {
         H5E_BEGIN_TRY
         {

@@ -22,6 +22,7 @@ const char *td_event_kind_name(td_event_kind kind)
     case TD_EVENT_PENALTY_EXIT: return "penalty_exit";
     case TD_EVENT_ROLL_START: return "roll_start";
     case TD_EVENT_ROLL_END: return "roll_end";
+    case TD_EVENT_CONTROLLER_SWITCH: return "controller_switch";
     }
     return "unknown";
 }

@@ -542,7 +542,9 @@ typedef struct event_row {
     int retainer;
     int change;
     int64_t sample;
-    double v[7]; /* radial_velocity_before .. peak_normal_force, in the order of the schema */
+    double v[7];    /* radial_velocity_before .. peak_normal_force, in the order of the schema */
+    int controller; /* a recovery supervisor's files only; -1 when the file lacks it */
+    double sensed_radius;
 } event_row;
 
 /* The memory row type: every field of the file's compound that the schema names, the kind as
@@ -566,6 +568,11 @@ static hid_t event_memory_type(hid_t ftype, hid_t *kind_type)
         ok = H5Tinsert(m, td_out_name(TD_OUT_EV_CHANGE), offsetof(event_row, change), H5T_NATIVE_INT) >= 0;
     if (ok && H5Tget_member_index(ftype, td_out_name(TD_OUT_EV_SAMPLE)) >= 0)
         ok = H5Tinsert(m, td_out_name(TD_OUT_EV_SAMPLE), offsetof(event_row, sample), H5T_NATIVE_INT64) >= 0;
+    if (ok && H5Tget_member_index(ftype, td_out_name(TD_OUT_EV_CONTROLLER)) >= 0)
+        ok = H5Tinsert(m, td_out_name(TD_OUT_EV_CONTROLLER), offsetof(event_row, controller), H5T_NATIVE_INT) >= 0;
+    if (ok && H5Tget_member_index(ftype, td_out_name(TD_OUT_EV_SENSED_RADIUS)) >= 0)
+        ok = H5Tinsert(m, td_out_name(TD_OUT_EV_SENSED_RADIUS), offsetof(event_row, sensed_radius),
+                       H5T_NATIVE_DOUBLE) >= 0;
     for (k = 0; ok && k < 7; k++) {
         const char *name = td_out_name((td_out_id)(TD_OUT_EV_RADIAL_VELOCITY_BEFORE + k));
         if (H5Tget_member_index(ftype, name) >= 0)
@@ -594,6 +601,8 @@ static void take_event(const event_row *row, hid_t kind_type, td_result_event *e
     e->event.impulse = row->v[4];
     e->event.normal_force = row->v[5];
     e->event.peak_normal_force = row->v[6];
+    e->event.controller = row->controller;
+    e->event.sensed_radius = row->sensed_radius;
     if (H5Tenum_nameof(kind_type, &kind, e->kind_name, sizeof e->kind_name) < 0)
         snprintf(e->kind_name, sizeof e->kind_name, "unknown");
 }
@@ -614,8 +623,11 @@ static int read_events(hid_t file, td_result_event **out, size_t *n)
     if (ftype >= 0 && count >= 0 && H5Tget_class(ftype) == H5T_COMPOUND)
         mtype = event_memory_type(ftype, &kind_type);
     if (mtype >= 0 && (rows = calloc((size_t)count + 1, sizeof *rows)) != NULL &&
-        (*out = calloc((size_t)count + 1, sizeof **out)) != NULL)
+        (*out = calloc((size_t)count + 1, sizeof **out)) != NULL) {
+        for (i = 0; i < (size_t)count; i++)
+            rows[i].controller = -1; /* what a file without the field means (records.h) */
         ok = count == 0 || H5Dread(d, mtype, H5S_ALL, H5S_ALL, H5P_DEFAULT, rows) >= 0;
+    }
     for (i = 0; ok && i < (size_t)count; i++)
         take_event(&rows[i], kind_type, &(*out)[i]);
     *n = ok ? (size_t)count : 0;

@@ -90,6 +90,8 @@ static const td_schema_entry entries[TD_OUT_ID_COUNT] = {
     FIELD(TD_OUT_EV_IMPULSE, "impulse", F64, "N s", NULL, NULL),
     FIELD(TD_OUT_EV_NORMAL_FORCE, "normal_force", F64, "N", "N", NULL),
     FIELD(TD_OUT_EV_PEAK_NORMAL_FORCE, "peak_normal_force", F64, "N", "peak_N", NULL),
+    FIELD(TD_OUT_EV_CONTROLLER, "controller", I32, "", NULL, "-"),
+    FIELD(TD_OUT_EV_SENSED_RADIUS, "sensed_radius", F64, "m", "r_sensed", NULL),
     /* ---- attributes of datasets and groups ---- */
     ATTR(TD_OUT_UNITS, "units", SEVERAL, H5RUN | MODAL | SWEEP, TEXT, "", "scalar"),
     ATTR(TD_OUT_COUNT, "count", SEVERAL, H5RUN, I32, "", "scalar"),
@@ -145,6 +147,9 @@ static const td_schema_entry entries[TD_OUT_ID_COUNT] = {
     RUN_ATTR(TD_OUT_STAT_FLIGHT_TIME, "flight_time", F64, "s"),
     RUN_ATTR(TD_OUT_STAT_CONTROLLER_SAMPLES, "controller_samples", I64, ""),
     RUN_ATTR(TD_OUT_STAT_TIME_SLEWING, "time_slewing", F64, "s"),
+    RUN_ATTR(TD_OUT_STAT_CONTROLLER_SWITCHES, "controller_switches", I64, ""),
+    RUN_ATTR(TD_OUT_STAT_TIME_ON_RECOVERY, "time_on_recovery", F64, "s"),
+    RUN_ATTR(TD_OUT_STAT_LAST_RETURN_TIME, "last_return_time", F64, "s"),
     RUN_ATTR(TD_OUT_WARNINGS, "warnings", TEXT, ""),
     RUN_ATTR(TD_OUT_SUM_FIRST_CONTACT_TIME, "summary_first_contact_time", F64, "s"),
     RUN_ATTR(TD_OUT_SUM_LAST_CONTACT_TIME, "summary_last_contact_time", F64, "s"),

@@ -387,6 +387,7 @@ td_status td_writer_open(td_writer_kind kind, const char *path, const td_output_
     w->race_fields = layout->race_fields != 0;
     w->speed_field = layout->speed_field != 0;
     w->whirl_field = layout->whirl_field != 0;
+    w->switch_fields = layout->switch_fields != 0;
     w->amb_count = layout->amb_count;
     w->compression = layout->compression;
     if (layout->node_count > 0) {

@@ -43,11 +43,12 @@ struct td_writer {
     int tmp_lock;      /**< holds tmp_path's lock (td_io_create_temp) until the writer is freed */
     int events_lock;   /**< likewise for events_tmp */
     int node_count, retainer_count, amb_count;
-    int race_fields; /**< nonzero: the race columns / datasets too (td_output_layout) */
-    int speed_field; /**< nonzero: the rotor speed column / dataset too (td_output_layout) */
-    int whirl_field; /**< nonzero: the retainers' whirl rate columns / dataset too (td_output_layout) */
-    int compression; /**< HDF5 deflate level, 0..9 */
-    int *nodes;      /**< node_count numbers (NULL if 0) */
+    int race_fields;   /**< nonzero: the race columns / datasets too (td_output_layout) */
+    int speed_field;   /**< nonzero: the rotor speed column / dataset too (td_output_layout) */
+    int whirl_field;   /**< nonzero: the retainers' whirl rate columns / dataset too (td_output_layout) */
+    int switch_fields; /**< nonzero: the events' controller and sensed_radius fields too (td_output_layout) */
+    int compression;   /**< HDF5 deflate level, 0..9 */
+    int *nodes;        /**< node_count numbers (NULL if 0) */
     td_attr *attrs;
     int attr_count, attr_capacity;
     long samples, events;

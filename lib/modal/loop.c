@@ -122,8 +122,8 @@ static void loop_axes(const td_system *sys, int *driven, int *sensed, double *ra
         driven[a] = sensed[a] = !sampled && shorthand_controlled(&sys->amb_axes[a]);
     for (i = 0; i < sys->n_laws; i++) {
         const td_lti_law *w = &sys->laws[i];
-        if ((w->state < 0) != sampled)
-            continue;
+        if ((w->state < 0) != sampled || w->standby)
+            continue; /* a recovery law standing by drives nothing: the nominal is analysed */
         if (sampled && *rate == 0.0)
             *rate = w->sample_rate; /* another rate is refused by the closed loop (sampled.c) */
         for (j = 0; j < w->nout; j++)
@@ -367,8 +367,8 @@ static td_status build_controllers(const td_system *sys, td_loop *l, const int *
     for (i = 0; st == TD_OK && i < sys->n_laws; i++) {
         const td_lti_law *w = &sys->laws[i];
         td_controller *k;
-        if ((w->state < 0) != (l->rate > 0.0))
-            continue; /* a continuous law in a sampled loop: the plant holds it */
+        if ((w->state < 0) != (l->rate > 0.0) || w->standby)
+            continue; /* a continuous law in a sampled loop: the plant holds it; a standby law drives nothing */
         k = td_controller_create_ss(w->n, w->nin, w->nout, w->A, w->B, w->C, w->D, w->D1,
                                     w->state < 0 ? w->sample_rate : 0.0, err);
         st = add_block(l, k, w->in_axis, w->out_axis, pos_s, pos_c, err);

@@ -38,7 +38,7 @@ static td_status sampled_sizes(const td_system *sys, double *rate, int *nx, int 
     *nx = *nu = 0;
     for (l = 0; l < sys->n_laws; l++) {
         const td_lti_law *L = &sys->laws[l];
-        if (L->state >= 0)
+        if (L->state >= 0 || L->standby) /* a recovery law standing by drives nothing */
             continue;
         if (*rate != 0.0 && L->sample_rate != *rate)
             return td_error_set(err, TD_ERR_INVALID,
@@ -81,7 +81,7 @@ static td_status input_matrix(const td_system *sys, const td_state_space *ss, do
     td_status st = TD_OK;
     for (l = 0; st == TD_OK && l < sys->n_laws; l++) {
         const td_lti_law *L = &sys->laws[l];
-        for (o = 0; L->state < 0 && st == TD_OK && o < L->nout; o++, j++)
+        for (o = 0; L->state < 0 && !L->standby && st == TD_OK && o < L->nout; o++, j++)
             st = td_sampled_current_column(ss, &sys->amb_axes[L->out_axis[o]], Bu + (size_t)j * n, err);
     }
     return st;
@@ -112,7 +112,7 @@ static void close_loop(const td_system *sys, size_t n, const double *G, gsl_matr
     for (l = 0; l < sys->n_laws; l++) {
         const td_lti_law *L = &sys->laws[l];
         size_t i, ln = (size_t)L->n, no = (size_t)L->nout;
-        if (L->state >= 0)
+        if (L->state >= 0 || L->standby)
             continue;
         for (o = 0; o < L->nout; o++, j++)
             for (i = 0; i < n; i++) {

@@ -218,7 +218,8 @@ static td_status build_law(td_system *s, int l, td_error *err)
         L->state = s->n_controller_states;
         s->n_controller_states += L->n;
     }
-    for (o = 0; o < L->nout; o++) {
+    L->standby = td_model_recovery_standby(s->model, l);
+    for (o = 0; o < L->nout && !L->standby; o++) {
         s->amb_axes[out[o]].law = l;
         s->amb_axes[out[o]].law_output = o;
     }

@@ -170,8 +170,9 @@ static td_status check_driven_amb(const td_model *m, int i, int amb, td_error *e
                              m->controllers.items[i].name, key);
 }
 
-/* Every controller's axes exist, each axis is driven by one controller at most, and a driven
- * AMB leaves the law to its controller. */
+/* Every controller's axes exist, each axis is driven by one controller at most (but for the two
+ * laws of a recovery pair, which the supervisor switches between), and a driven AMB leaves the law
+ * to its controller. */
 td_status td_model_check_controllers(const td_model *m, td_error *err)
 {
     int i, j, l, o;
@@ -184,7 +185,7 @@ td_status td_model_check_controllers(const td_model *m, td_error *err)
         for (o = 0; o < nout; o++) {
             for (j = 0; j < i; j++)
                 for (l = 0; l < td_controller_outputs(m->controllers.items[j].k); l++)
-                    if (m->controllers.items[j].outputs[l] == c->outputs[o])
+                    if (m->controllers.items[j].outputs[l] == c->outputs[o] && !td_model_recovery_paired(m, i, j))
                         return td_error_set_site(err, TD_ERR_INVALID, &(td_error_site){"controller", i, "outputs"},
                                                  &(td_error_site){"controller", j, "outputs"},
                                                  "axis %d is already driven by controller %d (\"%s\")", c->outputs[o],

@@ -141,6 +141,7 @@ td_status td_model_clone(const td_model *model, td_model **out, td_error *err)
     CLONE(m->change_entries, model->change_entries, ok);
     CLONE(m->speed_points, model->speed_points, ok);
     m->spin = model->spin;
+    m->recovery = model->recovery;
     if (!ok) {
         td_model_free(&m);
         return td_error_set(err, TD_ERR_NOMEM, "out of memory cloning a model");
@@ -668,7 +669,7 @@ td_status td_model_validate(const td_model *m, td_error *err)
                        "the speed would step from `speed` %g rad/s to %g rad/s at the ramp's first point (%g s): "
                        "start the ramp at `speed`, or add a point at time 0",
                        m->speed, m->speed_points.items[0].speed, m->speed_points.items[0].time);
-    if (td_model_check_controllers(m, err))
+    if (td_model_check_recovery(m, err) || td_model_check_controllers(m, err))
         return TD_ERR_INVALID;
     return check_changes(m, err);
 }

@@ -35,6 +35,7 @@ struct td_model {
     TD_PART_ARRAY(td_speed_point) speed_points; /* the ramp, increasing times */
     TD_PART_ARRAY(td_model_controller) controllers;
     td_spin spin;
+    td_recovery recovery;    /* the recovery supervisor (recovery.c); pair_count 0: none */
     double gravity[2];       /* m/s^2 */
     double reduction_cutoff; /* Hz: Craig-Bampton reduction of the system (lib/model/reduce.c); 0: full model */
 };
@@ -46,5 +47,14 @@ void td_model_free_controllers(td_model *m);
 td_status td_model_clone_controllers(td_model *m, const td_model *src, td_error *err);
 /* Axes in range, each axis driven once, a driven AMB with kp = kd = kint = 0. */
 td_status td_model_check_controllers(const td_model *m, td_error *err);
+
+/* The recovery supervisor's rules against the controllers (recovery.c): pairs of existing, distinct,
+ * sampled controllers at one rate over the same axes, each controller in one pair at most, and a
+ * retainer to take the clearance from. */
+td_status td_model_check_recovery(const td_model *m, td_error *err);
+/* 1 if controllers i and j are the two laws of one recovery pair (they share their axes). */
+int td_model_recovery_paired(const td_model *m, int i, int j);
+/* 1 if controller l is the recovery law of a pair: it stands by until the supervisor switches to it. */
+int td_model_recovery_standby(const td_model *m, int l);
 
 #endif

@@ -42,6 +42,9 @@ typedef struct td_lti_law {
     int *out_axis;         /* nout AMB axis indices whose amplifiers it commands */
     int state;             /* continuous: index of its first state among the controller states (after
                             * every shorthand state); -1 when sampled (its state is the simulation's) */
+    int standby;           /* 1: the recovery law of a supervised pair (td_recovery): it shares its nominal's
+                            * axes but drives none of them (amb_axes[].law is the nominal's) until the
+                            * supervisor switches to it, and the analyses leave it out */
 } td_lti_law;
 
 struct td_system {

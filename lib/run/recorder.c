@@ -18,10 +18,11 @@ struct td_recorder {
     int node_count; /* nodes written */
     int *nodes;
     int retainer_count, amb_count;
-    int race_fields; /* the writers' race columns (td_output_layout) */
-    int speed_field; /* the writers' rotor speed column (td_output_layout) */
-    double *q;       /* dof_count: the generalized coordinates (touchdown/system.h), never more */
-    double *node_xy; /* 2 node_count */
+    int race_fields;   /* the writers' race columns (td_output_layout) */
+    int speed_field;   /* the writers' rotor speed column (td_output_layout) */
+    int switch_fields; /* the writers' event fields of a recovery supervisor (td_output_layout) */
+    double *q;         /* dof_count: the generalized coordinates (touchdown/system.h), never more */
+    double *node_xy;   /* 2 node_count */
     td_retainer_state *ret;
     double *amb_f; /* 2 amb_count */
 };
@@ -159,6 +160,7 @@ static td_status open_writers(td_recorder *r, const td_output_options *out, td_e
     layout.race_fields = r->race_fields;
     layout.speed_field = r->speed_field;
     layout.whirl_field = r->race_fields || r->speed_field;
+    layout.switch_fields = r->switch_fields;
     layout.compression = out->compression;
     if (out->hdf5_path[0])
         st = td_writer_open(TD_WRITER_HDF5, out->hdf5_path, &layout, &r->writers[r->writer_count++], err);
@@ -188,6 +190,7 @@ td_status td_recorder_create(const td_model *model, const td_output_options *out
     r->amb_count = td_model_amb_count(model);
     r->race_fields = has_race_states(model);
     r->speed_field = td_model_speed_varies(model);
+    r->switch_fields = td_model_get_recovery(model, NULL) > 0;
     if ((st = choose_nodes(r, model, out, err)) != TD_OK || (st = allocate_scratch(r, err)) != TD_OK ||
         (st = open_writers(r, out, err)) != TD_OK || (st = write_model_attributes(r, model, out, err)) != TD_OK) {
         td_recorder_discard(&r);

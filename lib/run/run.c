@@ -282,6 +282,7 @@ static void summary_totals(run_state *r)
     td_sim_options_get(r->sim, &o);
     s->final_speed = td_sim_speed(r->sim);
     s->energy_kept = td_sim_energy(r->sim, &s->energy) == TD_OK;
+    s->supervised = td_model_get_recovery(m, NULL) > 0;
     s->retainer_count = td_model_retainer_count(m);
     for (k = 0; k < s->retainer_count; k++) {
         td_retainer_totals t;
@@ -392,6 +393,15 @@ static td_status write_energy(td_recorder *rec, const td_energy *e, td_error *er
     for (i = 0; st == TD_OK && i < sizeof reals / sizeof reals[0]; i++)
         st = td_recorder_set_double(rec, reals[i].name, reals[i].value, err);
     return st;
+}
+
+/* The recovery supervisor's account, when the model has one, as attributes of every file. */
+static td_status write_recovery(td_recorder *rec, const td_sim_stats *st, td_error *err)
+{
+    td_status s = td_recorder_set_long(rec, TD_OUT_STAT_CONTROLLER_SWITCHES, st->controller_switches, err);
+    if (s == TD_OK)
+        s = td_recorder_set_double(rec, TD_OUT_STAT_TIME_ON_RECOVERY, st->time_on_recovery, err);
+    return s == TD_OK ? td_recorder_set_double(rec, TD_OUT_STAT_LAST_RETURN_TIME, st->last_return_time, err) : s;
 }
 
 /* Every retainer's totals (touchdown/records.h td_retainer_totals) as arrays over the retainers. */
@@ -515,6 +525,8 @@ static td_status write_summary(td_recorder *rec, const td_run_summary *s, const 
         st = write_warnings(rec, s, err);
     if (st == TD_OK && s->energy_kept)
         st = write_energy(rec, &s->energy, err);
+    if (st == TD_OK && s->supervised)
+        st = write_recovery(rec, &s->stats, err);
     if (st == TD_OK)
         st = write_section(rec, s, err);
     return st;

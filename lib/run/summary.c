@@ -39,6 +39,7 @@ void td_run_summary_init(td_run_summary *s, double t0, double t_end, double spee
     s->section_clearance = TD_UNDEFINED;
     s->stats.first_contact_time = TD_UNDEFINED;
     s->stats.peak_time = TD_UNDEFINED;
+    s->stats.last_return_time = TD_UNDEFINED;
     s->stats.peak_retainer = -1;
     s->stats.peak_amb_time = TD_UNDEFINED;
     s->stats.peak_amb = -1;
@@ -71,6 +72,7 @@ void td_run_summary_undefine_answers(td_run_summary *s)
     s->stats.peak_normal_force = s->stats.peak_time = s->stats.time_in_contact = s->stats.time_slewing = TD_UNDEFINED;
     s->stats.peak_amb_force = s->stats.peak_amb_load = s->stats.peak_amb_time = TD_UNDEFINED;
     s->stats.peak_amb = s->stats.peak_retainer = -1;
+    s->stats.time_on_recovery = s->stats.last_return_time = TD_UNDEFINED; /* a later switch may have come */
     energy[0] = &s->energy.kinetic, energy[1] = &s->energy.elastic, energy[2] = &s->energy.initial;
     energy[3] = &s->energy.external_work, energy[4] = &s->energy.drive_work, energy[5] = &s->energy.damping_loss;
     energy[6] = &s->energy.contact_loss, energy[7] = &s->energy.drag_loss, energy[8] = &s->energy.impact_loss;
@@ -266,7 +268,6 @@ static void format_files(td_text *b, const td_run_summary *s)
             td_text_printf(b, "%s %s", n++ ? "," : "", p[i]);
     td_text_printf(b, "%s%s\n", n ? "" : " none", n && !s->complete ? " (marked incomplete)" : "");
 }
-
 /* The energy account: held now and at the start, put in, lost, and the balance's residual. */
 static void format_energy(td_text *b, const td_energy *e)
 {
@@ -309,6 +310,17 @@ static void format_answer(td_text *b, const char *label, double v, const char *u
         td_text_printf(b, "%-28s%.6g %s\n", label, v, unit);
 }
 
+/* The recovery supervisor's account (touchdown/records.h td_sim_stats), when the model has one. */
+static void format_recovery(td_text *b, const td_run_summary *s)
+{
+    td_text_printf(b, "controller switches         %ld (recovery supervisor)\n", s->stats.controller_switches);
+    format_answer(b, "time on recovery", s->stats.time_on_recovery, "s");
+    if (td_is_undefined(s->stats.last_return_time) && s->status == TD_OK)
+        td_text_printf(b, "last return to nominal      none\n");
+    else
+        format_answer(b, "last return to nominal", s->stats.last_return_time, "s");
+}
+
 /* The answers that converge, first: housing force, impulse, friction work, speeds, each retainer. */
 static void format_answers(td_text *b, const td_run_summary *s)
 {
@@ -336,6 +348,8 @@ static void format_answers(td_text *b, const td_run_summary *s)
     if (s->stats.time_slewing > 0.0) /* only an amplifier with a slew-rate limit slews */
         td_text_printf(b, "AMB slewing                 %.6g s (summed over the axes at their slew-rate limit)\n",
                        s->stats.time_slewing);
+    if (s->supervised)
+        format_recovery(b, s);
     if (s->energy_kept && td_is_undefined(s->energy.residual))
         td_text_printf(b, "energy                      n/a (the run did not reach its end)\n");
     else if (s->energy_kept)
@@ -612,6 +626,11 @@ void td_run_summary_json_members(td_text *b, const td_run_summary *s)
     json_real(b, "solver_wall_time", s->solver_wall_time, 1);
     json_real(b, "wall_time_per_revolution", s->wall_time_per_revolution, 1);
     json_real(b, "realtime_factor", s->realtime_factor, 1);
+    if (s->supervised) { /* the recovery supervisor's account (td_sim_stats), at the top level */
+        td_text_printf(b, "\"controller_switches\":%ld,", s->stats.controller_switches);
+        json_real(b, "time_on_recovery", s->stats.time_on_recovery, 1);
+        json_real(b, "last_return_time", s->stats.last_return_time, 1);
+    }
     td_text_printf(b,
                    "\"stats\":{\"steps\":%ld,\"residual_evals\":%ld,\"jacobian_evals\":%ld,\"linear_setups\":%ld,"
                    "\"nonlinear_iters\":%ld,\"error_test_fails\":%ld,\"nonlinear_fails\":%ld,\"restarts\":%ld,"

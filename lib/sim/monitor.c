@@ -58,6 +58,7 @@ td_event td_sim_event_at(const td_sim *s, td_event_kind kind, int k)
     ev.time = s->dae.t;
     ev.retainer = k;
     ev.change = -1;
+    ev.controller = -1;
     return ev;
 }
 

@@ -7,14 +7,18 @@
  *
  * with i_k held on the output axes' amplifiers until the next sample. A sample is taken only by
  * td_sim_sampler_take_due, which moves k_next on by one per sample: none is taken twice, and since
- * the next one is always a stop, none is passed over.
+ * the next one is always a stop, none is passed over. The two laws of a recovery supervisor's pair
+ * (supervisor.h) are sampled together: the supervisor says which of them run, and the held
+ * current is the blend of their outputs.
  */
 #include "sim/sampler.h"
 #include "sim/sim_internal.h"
+#include "sim/supervisor.h"
 #include "util/error_internal.h"
 
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
 /* The time of sample k of law l: from the integer k, never by adding periods. */
 static double sample_time(const td_sim_sampled *l, long k)
@@ -55,10 +59,11 @@ td_status td_sim_sampler_create(td_sim *s, td_error *err)
         l->xn = calloc((size_t)law->n + 1, sizeof(double));
         l->e = calloc((size_t)law->nin + 1, sizeof(double));
         l->u = calloc((size_t)law->nout + 1, sizeof(double));
+        l->pair = -1;
         if (!l->x || !l->xn || !l->e || !l->u)
             return td_error_set(err, TD_ERR_NOMEM, "out of memory creating a simulation");
     }
-    return TD_OK;
+    return td_sim_supervisor_create(s, err);
 }
 
 void td_sim_sampler_free(td_sim *s)
@@ -66,6 +71,7 @@ void td_sim_sampler_free(td_sim *s)
     int i;
     if (!s->sampler)
         return;
+    td_sim_supervisor_free(s);
     for (i = 0; i < s->sampler->n && s->sampler->law; i++) {
         free(s->sampler->law[i].x);
         free(s->sampler->law[i].xn);
@@ -94,16 +100,21 @@ double td_sim_sampler_next_time(const td_sim *s)
     return t;
 }
 
-/* Law l's sample k_next from the state at s->dae.t: e_k read, i_k = C x_k + D e_k held on the output
- * axes, x_{k+1} = A x_k + B e_k (column-major matrices), k_next moved on. */
-static void take_sample(td_sim *s, td_sim_sampled *l)
+/* e_k = -xs of law l's sensors at s->dae.t. */
+static void law_read(td_sim *s, td_sim_sampled *l)
 {
     const td_lti_law *law = &s->sys->laws[l->law];
     const double *y = N_VGetArrayPointer(s->dae.y);
-    double *swap;
-    int i, j;
+    int j;
     for (j = 0; j < law->nin; j++) /* the error e = r - xs with r = 0 (touchdown/controller.h) */
         l->e[j] = -y[s->dae.oq + s->sys->amb_axes[law->in_axis[j]].sensor_dof];
+}
+
+/* i_k = C x_k + D e_k into l->u. */
+static void law_output(const td_sim *s, td_sim_sampled *l)
+{
+    const td_lti_law *law = &s->sys->laws[l->law];
+    int i, j;
     for (i = 0; i < law->nout; i++) {
         double u = 0.0;
         for (j = 0; j < law->n; j++)
@@ -111,8 +122,15 @@ static void take_sample(td_sim *s, td_sim_sampled *l)
         for (j = 0; j < law->nin; j++)
             u += law->D[i + law->nout * j] * l->e[j];
         l->u[i] = u;
-        s->machine.held_current[law->out_axis[i]] = u;
     }
+}
+
+/* x_{k+1} = A x_k + B e_k (column-major matrices). */
+static void law_update(const td_sim *s, td_sim_sampled *l)
+{
+    const td_lti_law *law = &s->sys->laws[l->law];
+    double *swap;
+    int i, j;
     for (i = 0; i < law->n; i++) {
         double x = 0.0;
         for (j = 0; j < law->n; j++)
@@ -124,10 +142,73 @@ static void take_sample(td_sim *s, td_sim_sampled *l)
     swap = l->x;
     l->x = l->xn;
     l->xn = swap;
+}
+
+/* The sampler's hook told of law l's sample. */
+static void law_told(td_sim *s, const td_sim_sampled *l)
+{
+    const td_lti_law *law = &s->sys->laws[l->law];
     if (s->sampler->hook)
         s->sampler->hook(s->sampler->hook_data, l->law, l->k_next, s->dae.t, l->e, law->nin, l->u, law->nout);
+}
+
+/* Law l's sample k_next from the state at s->dae.t: e_k read, i_k = C x_k + D e_k held on the output
+ * axes, x_{k+1} = A x_k + B e_k (column-major matrices), k_next moved on. */
+static void take_sample(td_sim *s, td_sim_sampled *l)
+{
+    const td_lti_law *law = &s->sys->laws[l->law];
+    int i;
+    law_read(s, l);
+    law_output(s, l);
+    for (i = 0; i < law->nout; i++)
+        s->machine.held_current[law->out_axis[i]] = l->u[i];
+    law_update(s, l);
+    law_told(s, l);
     l->k_next++;
     s->monitor.stats.controller_samples++;
+}
+
+/* Pair p's sample: both laws' k_next (equal: one rate, one start), e_k read once; the supervisor
+ * judges the rule and may switch (supervisor.h), then every law that weighs runs and the held
+ * current is the blend (1 - b) i_old + b i_new (the old law alone before any switch, the new one
+ * alone once b = 1; so at a switch sample, b = 0, exactly the old law's output). */
+static void take_pair(td_sim *s, int p)
+{
+    td_sim_supervisor *sv = s->sampler->supervisor;
+    td_sim_pair *q = &sv->pair[p];
+    td_sim_sampled *l[2];
+    const td_lti_law *law;
+    td_sim_pair_sample ps;
+    double r, b;
+    int i, j, to, from;
+    l[0] = &s->sampler->law[q->law[0]];
+    l[1] = &s->sampler->law[q->law[1]];
+    law = &s->sys->laws[l[0]->law];
+    law_read(s, l[0]);
+    memcpy(l[1]->e, l[0]->e, (size_t)law->nin * sizeof *l[0]->e); /* the same sensors */
+    b = td_sim_supervisor_judge(s, p, l[0]->k_next, &r);
+    to = q->target;
+    from = 1 - to;
+    ps.u[0] = ps.u[1] = NULL;
+    for (i = 0; i < 2; i++)
+        if (q->running[i]) {
+            law_output(s, l[i]);
+            law_update(s, l[i]);
+            law_told(s, l[i]);
+            ps.u[i] = l[i]->u;
+        }
+    for (j = 0; j < law->nout; j++) {
+        q->held[j] = q->running[from] && b < 1.0 ? (1.0 - b) * ps.u[from][j] + b * ps.u[to][j] : ps.u[to][j];
+        s->machine.held_current[law->out_axis[j]] = q->held[j];
+    }
+    if (sv->hook) {
+        ps.pair = p, ps.k = l[0]->k_next, ps.t = s->dae.t, ps.e = l[0]->e, ps.nin = law->nin, ps.r = r, ps.b = b;
+        ps.target = to, ps.held = q->held, ps.nout = law->nout;
+        sv->hook(sv->hook_data, &ps);
+    }
+    l[0]->k_next++;
+    l[1]->k_next++;
+    s->monitor.stats.controller_samples += 2; /* each law's instants */
 }
 
 int td_sim_sampler_take_due(td_sim *s)
@@ -140,7 +221,10 @@ int td_sim_sampler_take_due(td_sim *s)
          * model bounds the rate, TD_CONTROLLER_RATE_MAX; the step loop then reports no progress) */
         while (sample_time(l, l->k_next) <= due &&
                (l->k_next == 0 || sample_time(l, l->k_next) > sample_time(l, l->k_next - 1))) {
-            take_sample(s, l);
+            if (l->pair >= 0) /* both laws of the pair, together */
+                take_pair(s, l->pair);
+            else
+                take_sample(s, l);
             taken++;
         }
     }

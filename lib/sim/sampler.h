@@ -23,6 +23,7 @@ typedef struct td_sim_sampled {
     long k_next;    /* the next sample to take */
     double *x, *xn; /* n: the state x_k, and x_{k+1} while it is computed */
     double *e, *u;  /* the last sample's nin inputs e_k = -xs and nout outputs i_k */
+    int pair;       /* the recovery supervisor's pair it is a law of (supervisor.h), or -1 */
 } td_sim_sampled;
 
 typedef struct td_sim_sampler {
@@ -30,6 +31,7 @@ typedef struct td_sim_sampler {
     td_sim_sampled *law; /* n */
     td_sim_sample_hook hook;
     void *hook_data;
+    struct td_sim_supervisor *supervisor; /* supervisor.h; NULL: no recovery supervisor */
 } td_sim_sampler;
 
 #endif

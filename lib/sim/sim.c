@@ -5,6 +5,7 @@
  * starts with no message and reports a failure through its td_error.
  */
 #include "sim/sim_internal.h"
+#include "sim/supervisor.h"
 #include "util/clock.h"
 #include "util/error_internal.h"
 
@@ -190,6 +191,7 @@ td_status td_sim_stats_get(const td_sim *sim, td_sim_stats *out)
         return TD_ERR_INVALID;
     *out = sim->monitor.stats;
     td_sim_integrator_counters(sim, out);
+    td_sim_supervisor_stats(sim, out);
     return TD_OK;
 }
 

@@ -19,7 +19,7 @@ static int stability_state_count(const td_system *sys)
 {
     int n = td_modal_state_count(sys), i;
     for (i = 0; i < sys->n_laws; i++)
-        if (sys->laws[i].sample_rate > 0.0)
+        if (sys->laws[i].sample_rate > 0.0 && !sys->laws[i].standby) /* as lib/modal/sampled.c counts */
             n += sys->laws[i].n;
     return n;
 }

@@ -1,6 +1,7 @@
 /* touchdown info: what a case describes, and its first modes. */
 #include "common/cli.h"
 #include "info/controller_print.h"
+#include "info/recovery_print.h"
 #include "modal/modal_print.h"
 
 #include <getopt.h>
@@ -12,7 +13,8 @@ static const char info_usage[] =
     "\n"
     "Print what CASE describes: shaft nodes and elements, masses, AMBs, plain bearings,\n"
     "retainers, unbalances, the schedule, the controllers (their AMBs, coordinates, states,\n"
-    "timing and poles), the speed (constant, a ramp or a free spin) and the\n"
+    "timing and poles), the recovery supervisor (its pairs and rules), the speed (constant, a ramp or a free spin) and "
+    "the\n"
     "rotor's polar inertia, DOF and state counts, and the first modes of the\n"
     "contact-free system at the case speed. Large models get only the lowest modes (shift-invert\n"
     "Arnoldi); their stability line then covers the roots computed, not all of them.\n"
@@ -266,6 +268,7 @@ int td_cmd_info(int argc, char **argv)
         printf("description  %s\n", td_case_description(c));
     print_parts(td_case_model(c));
     td_print_controllers(stdout, c);
+    td_print_recovery(stdout, td_case_model(c));
     code = print_modes(td_case_model(c), td_case_modal_options(c), count);
     td_case_free(&c);
     return code;

@@ -16,11 +16,14 @@
 
 int td_amb_controller(const td_model *m, int amb)
 {
-    int i, j;
+    td_recovery rec;
+    int i, j, p, standby, pairs = td_model_get_recovery(m, &rec);
     for (i = 0; i < td_model_controller_count(m); i++) {
         const int *outputs;
         const td_controller *k = td_model_get_controller(m, i, NULL, NULL, &outputs);
-        for (j = 0; j < td_controller_outputs(k); j++)
+        for (p = standby = 0; p < pairs; p++) /* a recovery law stands by on its nominal's AMBs */
+            standby |= rec.controller[p] == i;
+        for (j = 0; j < td_controller_outputs(k) && !standby; j++)
             if (outputs[j] / 2 == amb)
                 return i;
     }
