@@ -626,6 +626,54 @@ static void test_external_amb_control(void **state)
     td_sim_free(&b);
 }
 
+/* The Jeffcott rotor (no retainers) with an AMB at its disc whose force the caller holds
+ * (TD_AMB_EXTERNAL, ks = 1e5 N/m: F = ks y + Fc), run to t_end with flight on or off and the
+ * tolerances divided by `tighter`; the held force Fc steps from f1 to f2 at t_end / 2. */
+static void run_held_force_step(int flight, double tighter, double f1, double f2, double t_end, td_sim_stats *st)
+{
+    const char *ov[1] = {"ambs = ( { node = 3; ks = 1.0e5; ki = 200.0; kp = 1.0e3; kd = 2.0; tau = 0.0; "
+                         "force_capacity = 1000.0; } )"};
+    td_case *c = td_test_load_case("cases/jeffcott.cfg", ov, 1);
+    td_sim_options o = *td_case_sim_options(c);
+    td_sim *s = NULL;
+    td_error err;
+    o.solver.free_flight = flight;
+    o.solver.rtol /= tighter;
+    o.solver.atol /= tighter;
+    if (td_sim_create(td_case_model(c), &o, &s, &err) != TD_OK)
+        fail_msg("td_sim_create: %s", err.message);
+    assert_int_equal(td_sim_set_amb_control(s, 0, 0.0, f1, &err), TD_OK);
+    assert_int_equal(td_sim_set_amb_mode(s, 0, TD_AMB_EXTERNAL, &err), TD_OK);
+    assert_int_equal(run_to(s, 0.5 * t_end, 1e-3), 0);
+    assert_int_equal(td_sim_set_amb_control(s, 0, 0.0, f2, &err), TD_OK);
+    assert_int_equal(run_to(s, t_end, 1e-3), 0);
+    assert_int_equal(td_sim_stats_get(s, st), TD_OK);
+    td_sim_free(&s);
+    td_case_free(&c);
+}
+
+/* A held AMB force the caller steps while the flight carries the machine: the AMB peak load the
+ * flight finds between its points follows the new force (its observations' offsets are the held
+ * force, not the one the machine was decomposed with). The peak force over the run (after the step,
+ * the rotor overshooting towards the larger force) against IDA's at a ten-thousandth of the
+ * tolerances (the flight's peak is found to 1e-6 relative, FLIGHT_PEAK_RTOL). */
+static void test_flight_peak_follows_held_force(void **state)
+{
+    td_sim_stats sf, si;
+    double f1 = 20.0, f2 = 200.0, t_end = 0.1;
+    (void)state;
+    run_held_force_step(1, 1.0, f1, f2, t_end, &sf);
+    run_held_force_step(0, 1.0e4, f1, f2, t_end, &si);
+    print_message("held force %.0f -> %.0f N: peak AMB force %.10g N at %.6f s (flight, %.4f s of it) / %.10g N at "
+                  "%.6f s (integrator)\n",
+                  f1, f2, sf.peak_amb_force, sf.peak_amb_time, sf.flight_time, si.peak_amb_force, si.peak_amb_time);
+    assert_true(sf.flight_time > 0.9 * t_end); /* the flight carried the run */
+    assert_int_equal(si.flight_steps, 0);
+    assert_true(si.peak_amb_time > 0.5 * t_end && si.peak_amb_force > f2);
+    assert_close(sf.peak_amb_force, si.peak_amb_force, 1e-6, 0.0);
+    assert_close(sf.peak_amb_time, si.peak_amb_time, 0.0, 1e-4);
+}
+
 /* td_sim_set_unbalance at the schedule time gives the run the schedule gives (to the tolerance:
  * the schedule lands a step on t1, the call restarts from IDA's interpolant there). */
 static void test_api_change_matches_schedule(void **state)
@@ -1147,6 +1195,7 @@ int main(void)
         cmocka_unit_test(test_flight_carries_linear_rotor),
         cmocka_unit_test(test_constrained_drift),
         cmocka_unit_test(test_external_amb_control),
+        cmocka_unit_test(test_flight_peak_follows_held_force),
         cmocka_unit_test(test_api_change_matches_schedule),
         cmocka_unit_test(test_schedule_events_name_entries_as_written),
         cmocka_unit_test(test_free_free_rotor_start),

@@ -272,8 +272,10 @@ static int probe_forcing(const td_sim *s, td_sim_flight *f)
     return ok;
 }
 
-/* The AMB force observations' values at z = 0 with the currents held now (ki i where tau = 0: the
- * force follows the held current at once; 0 behind an amplifier lag, whose state carries it). */
+/* The AMB force observations' values at z = 0 with what is held now: the caller's force
+ * (TD_AMB_EXTERNAL, part of the forcing, not of the machine), a sampled law's current (ki i where
+ * tau = 0: the force follows the held current at once; 0 behind an amplifier lag, whose state
+ * carries it). */
 static void held_offsets(const td_sim *s, td_sim_flight *f)
 {
     int k;
@@ -301,8 +303,7 @@ static int build_forcing(const td_sim *s, td_sim_flight *f)
     }
     for (j = 0; j < f->nheld; j++)
         f->held[j] = s->machine.held_current[f->held_axis[j]];
-    if (f->nheld > 0)
-        held_offsets(s, f);
+    held_offsets(s, f); /* a held force may have changed without the machine */
     return 1;
 }
 
