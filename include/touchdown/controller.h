@@ -1,6 +1,6 @@
 /*
  * touchdown/controller.h - AMB controllers as linear systems: transfer functions, zeros-poles-gain,
- * state space and blocks in series (PID, lead-lag, low-pass, notch), continuous or sampled.
+ * state space and blocks in series (PID, lead-lag, low-pass, notch, resonant), continuous or sampled.
  *
  * A td_controller is one state-space realisation (docs/theory.md, "Controllers"):
  *
@@ -66,6 +66,23 @@ typedef struct td_notch_block {
     double depth;     /**< >= 0, < 1 */
 } td_notch_block;
 
+/** Resonant block  gain (s cos phase + w sin phase) / (s^2 + w^2), w = 2 pi frequency: an undamped
+ *  internal model of a sinusoid at `frequency` (at the spin speed, Omega / 2 pi, a synchronous
+ *  compensator: the LTI form of synchronous motion compensation, Su, Gu, Keogh et al., MSSP 2022).
+ *  Its poles +-jw lie on the imaginary axis; its response at w itself is infinite. */
+typedef struct td_resonant_block {
+    double gain;      /**< A/m for a first block, dimensionless after it */
+    double phase;     /**< degrees, finite: 0 gives gain s / (s^2 + w^2), 90 gives gain w / (s^2 + w^2) */
+    double frequency; /**< Hz, > 0 */
+} td_resonant_block;
+
+/** Every frequency a block takes (Hz: leadlag zero and pole, lowpass and notch frequency, notch
+ *  width, pid derivative_filter, resonant frequency) is finite, > 0 (a derivative_filter may be 0)
+ *  and at most this: a hundred times the fastest sample rate of a model's controller
+ *  (TD_CONTROLLER_RATE_MAX, touchdown/model.h), far above any AMB filter. Beyond it a value is a
+ *  typing error (a notch at 1e308 Hz makes w = inf and a law of NaN). */
+#define TD_CONTROLLER_FREQUENCY_MAX 1.0e9
+
 /** How a continuous law becomes a sampled one. */
 typedef enum td_discretisation {
     TD_DISCRETISE_TUSTIN = 0, /**< bilinear, with optional frequency prewarping */
@@ -79,6 +96,7 @@ TD_API td_controller *td_controller_create_pid(const td_pid_block *b, td_error *
 TD_API td_controller *td_controller_create_leadlag(const td_leadlag_block *b, td_error *err);
 TD_API td_controller *td_controller_create_lowpass(const td_lowpass_block *b, td_error *err);
 TD_API td_controller *td_controller_create_notch(const td_notch_block *b, td_error *err);
+TD_API td_controller *td_controller_create_resonant(const td_resonant_block *b, td_error *err);
 /** SISO transfer function num/den (coefficients as in the header comment). sample_rate 0: in s,
  *  proper or improper by one; > 0 (Hz): in z^-1, proper (den[0] != 0). */
 TD_API td_controller *td_controller_create_tf(const double *num, int num_len, const double *den, int den_len,

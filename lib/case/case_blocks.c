@@ -7,6 +7,7 @@
  * and that a block in z has a sample rate.
  */
 #include "case/case_schema.h"
+#include "touchdown/dofs.h" /* TD_PI */
 #include "util/error_internal.h"
 
 #include <math.h>
@@ -18,6 +19,14 @@
 #define CB_MAX_COEFS (CB_MAX_ORDER + 2)
 
 static const char *const domain_names[] = {"s", "z"};
+
+#define CB_STR_(x) #x
+#define CB_STR(x) CB_STR_(x)
+/* The range of a block's frequency, a rule of the controller API (touchdown/controller.h). */
+#define CB_FREQUENCY_RANGE "> 0, at most " CB_STR(TD_CONTROLLER_FREQUENCY_MAX)
+
+/* The kinds of block, in the order of block_keys. */
+enum { CB_GAIN, CB_PID, CB_LEADLAG, CB_LOWPASS, CB_NOTCH, CB_RESONANT, CB_TF, CB_ZPK, CB_SS };
 
 /* A `tf` block. */
 typedef struct cb_tf {
@@ -65,6 +74,7 @@ static const td_cs_key pid_keys[] = {
      .type = TD_CS_REAL,
      .offset = offsetof(td_pid_block, derivative_filter),
      .range = TD_CR_NONNEGATIVE,
+     .doc_range = ">= 0, at most " CB_STR(TD_CONTROLLER_FREQUENCY_MAX),
      .doc_default = "0 (the exact derivative: continuous only)",
      .unit = "Hz",
      .doc = "corner of the derivative's first-order filter; 0: kd s on the exact sensor velocity, as the AMB "
@@ -85,6 +95,7 @@ static const td_cs_key leadlag_keys[] = {
      .offset = offsetof(td_leadlag_block, zero),
      .need = TD_CS_REQUIRED,
      .range = TD_CR_POSITIVE,
+     .doc_range = CB_FREQUENCY_RANGE,
      .what = "zero frequency, Hz",
      .unit = "Hz",
      .doc = "the zero's frequency (a lead: zero < pole)"},
@@ -93,6 +104,7 @@ static const td_cs_key leadlag_keys[] = {
      .offset = offsetof(td_leadlag_block, pole),
      .need = TD_CS_REQUIRED,
      .range = TD_CR_POSITIVE,
+     .doc_range = CB_FREQUENCY_RANGE,
      .what = "pole frequency, Hz",
      .unit = "Hz",
      .doc = "the pole's frequency"},
@@ -113,6 +125,7 @@ static const td_cs_key lowpass_keys[] = {
      .offset = offsetof(td_lowpass_block, frequency),
      .need = TD_CS_REQUIRED,
      .range = TD_CR_POSITIVE,
+     .doc_range = CB_FREQUENCY_RANGE,
      .what = "corner frequency, Hz",
      .unit = "Hz",
      .doc = "corner frequency fc (wc = 2 pi fc)"},
@@ -141,6 +154,7 @@ static const td_cs_key notch_keys[] = {
      .offset = offsetof(td_notch_block, frequency),
      .need = TD_CS_REQUIRED,
      .range = TD_CR_POSITIVE,
+     .doc_range = CB_FREQUENCY_RANGE,
      .what = "notch frequency, Hz",
      .unit = "Hz",
      .doc = "centre frequency fn (wn = 2 pi fn): a bending mode's"},
@@ -149,6 +163,7 @@ static const td_cs_key notch_keys[] = {
      .offset = offsetof(td_notch_block, width),
      .need = TD_CS_REQUIRED,
      .range = TD_CR_POSITIVE,
+     .doc_range = CB_FREQUENCY_RANGE,
      .what = "-3 dB width, Hz",
      .unit = "Hz",
      .doc = "the -3 dB band: damping of the poles zp = width / (2 fn)"},
@@ -161,6 +176,49 @@ static const td_cs_key notch_keys[] = {
 };
 static const td_cs_table notch_table = {"controllers[].law[].notch", NULL, notch_keys, TD_CS_COUNT(notch_keys),
                                         sizeof(td_notch_block),      NULL, NULL};
+
+/* resonant.frequency absent: the case's speed Omega / (2 pi) (read before the controllers). */
+static td_status resonant_frequency(td_case_reader *r, const config_setting_t *g, const td_cs_key *k, void *rec)
+{
+    td_resonant_block *b = rec;
+    double speed = td_model_speed(r->c->model);
+    if (td_cr_has(g, k->key))
+        return TD_OK;
+    b->frequency = speed / (2.0 * TD_PI);
+    if (!(b->frequency > 0.0))
+        return td_cr_fail(r, g, k->key,
+                          "absent, it is the case's speed / (2 pi), and the speed is %g rad/s: give the frequency "
+                          "(Hz)",
+                          speed);
+    return TD_OK;
+}
+
+static const td_cs_key resonant_keys[] = {
+    {.key = "gain",
+     .type = TD_CS_REAL,
+     .offset = offsetof(td_resonant_block, gain),
+     .need = TD_CS_REQUIRED,
+     .what = "gain g, A/m as a first block",
+     .doc = "g in g (s cos phase + w sin phase) / (s^2 + w^2); A/m as a first block, dimensionless after one"},
+    {.key = "phase",
+     .type = TD_CS_REAL,
+     .offset = offsetof(td_resonant_block, phase),
+     .unit = "degree",
+     .doc = "phase: 0 gives g s / (s^2 + w^2), 90 gives g w / (s^2 + w^2)"},
+    {.key = "frequency",
+     .type = TD_CS_REAL,
+     .offset = offsetof(td_resonant_block, frequency),
+     .range = TD_CR_POSITIVE,
+     .doc_range = CB_FREQUENCY_RANGE,
+     .check = resonant_frequency,
+     .doc_default = "the case's `speed` / (2 pi)",
+     .unit = "Hz",
+     .doc = "the resonance f (w = 2 pi f), where the block's gain is infinite; absent, the rotor's speed at t = 0 "
+            "(a synchronous compensator; it stays there through a `speed_ramp` or a free `spin`)"},
+};
+static const td_cs_table resonant_table = {
+    "controllers[].law[].resonant", NULL, resonant_keys, TD_CS_COUNT(resonant_keys),
+    sizeof(td_resonant_block),      NULL, NULL};
 
 static const td_cs_key tf_keys[] = {
     {.key = "num",
@@ -326,6 +384,7 @@ static const td_cs_key block_keys[] = {
     BLOCK("leadlag", leadlag_table, "gain (1 + s / (2 pi zero)) / (1 + s / (2 pi pole)), below"),
     BLOCK("lowpass", lowpass_table, "a first- or second-order low-pass filter, below"),
     BLOCK("notch", notch_table, "(s^2 + 2 zz wn s + wn^2) / (s^2 + 2 zp wn s + wn^2), below"),
+    BLOCK("resonant", resonant_table, "gain (s cos phase + w sin phase) / (s^2 + w^2), below"),
     BLOCK("tf", tf_table, "a transfer function num / den, below"),
     BLOCK("zpk", zpk_table, "zeros, poles and gain, below"),
     BLOCK("ss", ss_table, "a SISO state-space realisation (A, B, C, D), below"),
@@ -342,7 +401,7 @@ static td_status block_member(td_case_reader *r, const config_setting_t *e, cons
     if (config_setting_length(e) == 0)
         return td_cr_fail(r, e, NULL,
                           "an empty block: a block is a group with one member, gain, pid, leadlag, lowpass, notch, "
-                          "tf, zpk or ss");
+                          "resonant, tf, zpk or ss");
     if (config_setting_length(e) > 1)
         return td_cr_fail(r, config_setting_get_elem(e, 1), NULL,
                           "a block has exactly one member (this one also has '%s'): write each block as a group of "
@@ -460,7 +519,7 @@ static td_status make_ss(td_case_reader *r, const config_setting_t *g, double sa
     return made(r, g, td_controller_create_ss(n, 1, 1, A, B, C, ss.m[3], NULL, *rate, &merr), &merr, out);
 }
 
-/* A block of a fixed form (gain, pid, leadlag, lowpass, notch): continuous. */
+/* A block of a fixed form (gain, pid, leadlag, lowpass, notch, resonant): continuous. */
 static td_status make_fixed(td_case_reader *r, const config_setting_t *member, int kind, td_controller **out)
 {
     union {
@@ -468,27 +527,29 @@ static td_status make_fixed(td_case_reader *r, const config_setting_t *member, i
         td_leadlag_block leadlag;
         td_lowpass_block lowpass;
         td_notch_block notch;
+        td_resonant_block resonant;
     } b;
     double k;
     td_error merr;
     td_status st;
     memset(&b, 0, sizeof b);
-    if (kind == 0) {
+    if (kind == CB_GAIN) {
         st = td_cr_value_real(r, member, TD_CR_FINITE, &k);
         return st == TD_OK ? made(r, member, td_controller_create_gain(k, &merr), &merr, out) : st;
     }
-    if (kind == 3)
+    if (kind == CB_LOWPASS)
         lowpass_preset(&b.lowpass);
     if ((st = td_cs_read(r, member, block_keys[kind].sub, &b)) != TD_OK)
         return st;
-    if (kind == 3 && b.lowpass.order == 1 && td_cr_has(member, "damping"))
+    if (kind == CB_LOWPASS && b.lowpass.order == 1 && td_cr_has(member, "damping"))
         return td_cr_fail(r, config_setting_get_member(member, "damping"), NULL,
                           "a first-order low-pass has no damping");
     switch (kind) {
-    case 1: return made(r, member, td_controller_create_pid(&b.pid, &merr), &merr, out);
-    case 2: return made(r, member, td_controller_create_leadlag(&b.leadlag, &merr), &merr, out);
-    case 3: return made(r, member, td_controller_create_lowpass(&b.lowpass, &merr), &merr, out);
-    default: return made(r, member, td_controller_create_notch(&b.notch, &merr), &merr, out);
+    case CB_PID: return made(r, member, td_controller_create_pid(&b.pid, &merr), &merr, out);
+    case CB_LEADLAG: return made(r, member, td_controller_create_leadlag(&b.leadlag, &merr), &merr, out);
+    case CB_LOWPASS: return made(r, member, td_controller_create_lowpass(&b.lowpass, &merr), &merr, out);
+    case CB_NOTCH: return made(r, member, td_controller_create_notch(&b.notch, &merr), &merr, out);
+    default: return made(r, member, td_controller_create_resonant(&b.resonant, &merr), &merr, out);
     }
 }
 
@@ -504,9 +565,9 @@ td_status td_cr_read_block(td_case_reader *r, const config_setting_t *e, double 
     if (st != TD_OK)
         return st;
     switch (kind) {
-    case 5: st = make_tf(r, member, sample_rate, &rate, out); break;
-    case 6: st = make_zpk(r, member, sample_rate, &rate, out); break;
-    case 7: st = make_ss(r, member, sample_rate, &rate, out); break;
+    case CB_TF: st = make_tf(r, member, sample_rate, &rate, out); break;
+    case CB_ZPK: st = make_zpk(r, member, sample_rate, &rate, out); break;
+    case CB_SS: st = make_ss(r, member, sample_rate, &rate, out); break;
     default: st = make_fixed(r, member, kind, out); break;
     }
     *sampled = st == TD_OK && rate > 0.0;

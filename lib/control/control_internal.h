@@ -39,6 +39,10 @@ td_status td_ctl_invalid(td_error *err, const char *part, const char *field, con
 /* td_ctl_invalid with "must be finite and > 0 (got V)" unless v is; returns the status. */
 td_status td_ctl_check_positive(double v, const char *part, const char *field, td_error *err);
 
+/* td_ctl_invalid unless v is a block's frequency: finite, > 0 (>= 0 when zero_ok: 0 means none)
+ * and at most TD_CONTROLLER_FREQUENCY_MAX Hz; returns the status. */
+td_status td_ctl_check_frequency(double v, int zero_ok, const char *part, const char *field, td_error *err);
+
 /* The proper or improper-by-one SISO law num/den, both in descending powers of s (or of z for a
  * sampled law: then deg num <= deg den), realised in controllable canonical form. Leading zeros
  * of num are ignored; den[0] != 0. `who` names the caller in messages. */

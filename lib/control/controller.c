@@ -69,6 +69,14 @@ td_status td_ctl_check_positive(double v, const char *part, const char *field, t
     return TD_OK;
 }
 
+td_status td_ctl_check_frequency(double v, int zero_ok, const char *part, const char *field, td_error *err)
+{
+    if (!(isfinite(v) && (v > 0.0 || (zero_ok && v == 0.0)) && v <= TD_CONTROLLER_FREQUENCY_MAX))
+        return td_ctl_invalid(err, part, field, "must be %s and at most %g Hz (got %g)", zero_ok ? ">= 0" : "> 0",
+                              TD_CONTROLLER_FREQUENCY_MAX, v);
+    return TD_OK;
+}
+
 void td_ctl_matmul(const double *X, int rows, int inner, const double *Y, int cols, double *Z)
 {
     int i, j, l;

@@ -40,7 +40,9 @@ s = 8000.0 * cmath.log(complex(0.3, 0.4))
 print("%.6g Hz (zeta %.3g) x2" % (abs(s) / (2 * math.pi), -s.real / abs(s)))')
 check "info: a sampled pole mapped to s = ln(z) rate ($pole)" has "$out" "$pole"
 check "info: one delay state per output (4 axes)" has "$out" "z = 0 (delay) x4"
+res=$(python3 -c 'import math; print("%.6g" % (100.0 / (2 * math.pi)))')
 check "info: the integrator of a PID and a zpk pair in s" has "$out" "0 Hz (integrator) x2, 35.5881 Hz (zeta 0.447) x2"
+check "info: the resonant's undamped pair at the speed, 100 rad/s = $res Hz" has "$out" "poles: $res Hz (zeta "
 
 t "$work/modal" modal --csv '' --hdf5 '' "$src/cases/rig-notch.cfg"
 check "modal rig-notch: exit 0 and stable" grep -q '^modes at 90 rad/s (stable)' "$work/modal/.out"
