@@ -994,8 +994,8 @@ static void test_documented_defaults(void **state)
      * (response speeds, overrides, a zpk's zeros and poles, an ss block's A, B and C), "the rotor's"
      * (spin.inertia, kept as 0: td_spin; a controller's reference_z, its mass centre),
      * "continuous" (a controller's sample_rate), "1/sqrt(2)" (a low-pass's damping), "the case's
-     * `speed` / (2 pi)" (a resonant's frequency) */
-    assert_int_equal(other, 20);
+     * `speed` / (2 pi)" (a resonant's frequency), "-" (a parallel block) */
+    assert_int_equal(other, 21);
     td_case_free(&base);
     free(want);
     free(got);
@@ -1335,7 +1335,8 @@ static td_controller *decentralised_law(double speed)
     k = then(k, td_controller_create_zpk(zr, zi, 1, pr, pi, 1, 900.0, 0.0, NULL));
     k = then(k, td_controller_create_gain(0.5, NULL));
     k = then(k, td_controller_create_ss(2, 1, 1, A, B, C, D, NULL, 0.0, NULL));
-    return then(k, td_controller_create_resonant(&res, NULL));
+    k = then(k, td_controller_create_resonant(&res, NULL));
+    return then(k, td_controller_create_gain(0.5 * 0.2 + 1.0, NULL)); /* the parallel block */
 }
 
 /* Its "rigid" controller's translation and tilt laws in one plane, [x_r, tilt] in and out. */
@@ -1676,6 +1677,7 @@ static const bad_file bad_files[] = {
     {"controller-rate-too-high.cfg", 8, "controllers[0].sample_rate", NULL},
     {"controller-notch-frequency-huge.cfg", 8, "controllers[0].law[1].notch.frequency", NULL},
     {"controller-resonant-no-speed.cfg", 9, "controllers[0].law[1].resonant.frequency", NULL},
+    {"controller-parallel-mixed.cfg", 8, "controllers[0].law[0].parallel[1]", NULL},
     {"controller-reference-off-shaft.cfg", 8, "controllers[0].reference_z", NULL},
     {"controller-ss-shape.cfg", 8, "controllers[0].law[0].ss.B", NULL},
     {"controller-two-members.cfg", 8, "controllers[0].law[0].notch", NULL},

@@ -368,6 +368,43 @@ static void test_resonant_block(void **state)
     }
 }
 
+/* In parallel the responses add, the velocity feedthroughs too (a PD plus a resonant is still
+ * improper by one); laws of other sizes or timing are refused. */
+static void test_parallel_is_the_sum(void **state)
+{
+    td_pid_block pd = {1.0e4, 0.0, 40.0, 0.0};
+    td_resonant_block res = {0.6, 45.0, 50.93};
+    td_notch_block no = {34.4, 6.0, 0.05};
+    const double one = 1.0;
+    td_controller *a = td_controller_create_pid(&pd, NULL), *b = td_controller_create_resonant(&res, NULL),
+                  *n = td_controller_create_notch(&no, NULL), *bn = td_controller_series(b, n, NULL), *k, *two,
+                  *z = td_controller_create_tf(&one, 1, &one, 1, 1e3, NULL);
+    td_error err;
+    int j;
+    (void)state;
+    k = td_controller_parallel(a, bn, &err);
+    assert_non_null(k);
+    assert_int_equal(td_controller_order(k), 4);
+    assert_true(td_controller_has_velocity_feedthrough(k));
+    for (j = 0; j < N_FREQS; j++) {
+        double complex s = I * W(freqs[j]), w = W(50.93), wn = W(34.4), phi = TD_PI / 4.0;
+        double zp = 6.0 / (2.0 * 34.4), zz = 0.05 * zp;
+        double complex notch = (s * s + 2.0 * zz * wn * s + wn * wn) / (s * s + 2.0 * zp * wn * s + wn * wn);
+        assert_complex_close(response(k, freqs[j]),
+                             1.0e4 + 40.0 * s + 0.6 * (s * cos(phi) + w * sin(phi)) / (s * s + w * w) * notch, 1e-14);
+    }
+    two = td_controller_append(a, a, NULL);
+    expect_invalid(td_controller_parallel(a, two, &err), &err, "size");
+    expect_invalid(td_controller_parallel(a, z, &err), &err, "timing");
+    td_controller_free(&a);
+    td_controller_free(&b);
+    td_controller_free(&n);
+    td_controller_free(&bn);
+    td_controller_free(&k);
+    td_controller_free(&two);
+    td_controller_free(&z);
+}
+
 /* Every block frequency (Hz) is finite, > 0 (a derivative filter may be 0: none) and at most
  * TD_CONTROLLER_FREQUENCY_MAX, and a refusal names the field: a notch at 1e308 Hz made w = inf. */
 static void test_block_frequencies_bounded(void **state)
@@ -532,6 +569,7 @@ int main(void)
         cmocka_unit_test(test_bad_laws_are_refused),
         cmocka_unit_test(test_resonant_block),
         cmocka_unit_test(test_block_frequencies_bounded),
+        cmocka_unit_test(test_parallel_is_the_sum),
         cmocka_unit_test(test_discretise_closed_forms),
         cmocka_unit_test(test_delay_is_z_to_the_minus_d),
         cmocka_unit_test(test_minimal_removes_duplicate_states),

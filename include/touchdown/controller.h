@@ -121,6 +121,9 @@ TD_API void td_controller_free(td_controller **k);
 /** first then second: e -> first -> second -> i (second's inputs = first's outputs). Both continuous,
  *  or both sampled at the same rate. The result may be improper by at most one. */
 TD_API td_controller *td_controller_series(const td_controller *first, const td_controller *second, td_error *err);
+/** In parallel: the same inputs into a and b, their outputs added (i = a(e) + b(e)); same timing,
+ *  same numbers of inputs and outputs. */
+TD_API td_controller *td_controller_parallel(const td_controller *a, const td_controller *b, td_error *err);
 /** Side by side: inputs and outputs stacked (block-diagonal), same timing. */
 TD_API td_controller *td_controller_append(const td_controller *a, const td_controller *b, td_error *err);
 /** Static pre- and post-multiplication  i = Tout K(Tin e): Tin is (k inputs x new inputs), Tout

@@ -26,7 +26,7 @@ static const char *const domain_names[] = {"s", "z"};
 #define CB_FREQUENCY_RANGE "> 0, at most " CB_STR(TD_CONTROLLER_FREQUENCY_MAX)
 
 /* The kinds of block, in the order of block_keys. */
-enum { CB_GAIN, CB_PID, CB_LEADLAG, CB_LOWPASS, CB_NOTCH, CB_RESONANT, CB_TF, CB_ZPK, CB_SS };
+enum { CB_GAIN, CB_PID, CB_LEADLAG, CB_LOWPASS, CB_NOTCH, CB_RESONANT, CB_TF, CB_ZPK, CB_SS, CB_PARALLEL };
 
 /* A `tf` block. */
 typedef struct cb_tf {
@@ -388,6 +388,14 @@ static const td_cs_key block_keys[] = {
     BLOCK("tf", tf_table, "a transfer function num / den, below"),
     BLOCK("zpk", zpk_table, "zeros, poles and gain, below"),
     BLOCK("ss", ss_table, "a SISO state-space realisation (A, B, C, D), below"),
+    {.key = "parallel",
+     .type = TD_CS_CUSTOM,
+     .read = td_cs_elsewhere,
+     .doc_type = "list of branches",
+     .doc_default = "-",
+     .doc = "branches fed the same error, their outputs summed: `{ parallel = ( ( { pid = { ... }; }, { notch = { "
+            "... }; } ), { resonant = { ... }; } ); }` is pid then notch, plus a resonant; a branch is a block or a "
+            "list of blocks in series, every branch all in s or all in z"},
 };
 const td_cs_table td_cs_block = {"controllers[].law[]", NULL, block_keys, TD_CS_COUNT(block_keys), 0, NULL, NULL};
 
@@ -401,7 +409,7 @@ static td_status block_member(td_case_reader *r, const config_setting_t *e, cons
     if (config_setting_length(e) == 0)
         return td_cr_fail(r, e, NULL,
                           "an empty block: a block is a group with one member, gain, pid, leadlag, lowpass, notch, "
-                          "resonant, tf, zpk or ss");
+                          "resonant, tf, zpk, ss or parallel");
     if (config_setting_length(e) > 1)
         return td_cr_fail(r, config_setting_get_elem(e, 1), NULL,
                           "a block has exactly one member (this one also has '%s'): write each block as a group of "
@@ -411,7 +419,11 @@ static td_status block_member(td_case_reader *r, const config_setting_t *e, cons
     for (i = 0; i < td_cs_block.count && strcmp(block_keys[i].key, config_setting_name(*member)) != 0; i++)
         ;
     *kind = i;
-    if (i > 0 && !config_setting_is_group(*member))
+    if (i == CB_PARALLEL && !(config_setting_is_list(*member) && config_setting_length(*member) > 0))
+        return td_cr_fail(r, *member, NULL,
+                          "expected a list of branches ( ( { ... }, { ... } ), { ... } ), each a block or a list of "
+                          "blocks in series");
+    if (i > 0 && i != CB_PARALLEL && !config_setting_is_group(*member))
         return td_cr_fail(r, *member, NULL, "expected a group { ... } of the block's keys");
     return TD_OK;
 }
@@ -553,6 +565,88 @@ static td_status make_fixed(td_case_reader *r, const config_setting_t *member, i
     }
 }
 
+/* *acc then k (k alone when *acc is NULL), joined by `join` (series or parallel), freeing both; a
+ * failure located at e. */
+static td_status join_at(td_case_reader *r, const config_setting_t *e, td_controller **acc, td_controller *k,
+                         td_controller *(*join)(const td_controller *, const td_controller *, td_error *))
+{
+    td_controller *j;
+    td_error merr;
+    if (!*acc) {
+        *acc = k;
+        return TD_OK;
+    }
+    j = join(*acc, k, &merr);
+    td_controller_free(acc);
+    td_controller_free(&k);
+    *acc = j;
+    return j ? TD_OK : td_cr_model_fail(r, e, merr.code, &merr);
+}
+
+/* One branch of a parallel block into *out: a block, or a list of blocks in series, every one in s
+ * or every one in z (*sampled says which). */
+static td_status read_branch(td_case_reader *r, const config_setting_t *br, double sample_rate, td_controller **out,
+                             int *sampled)
+{
+    const config_setting_t *e = br;
+    td_controller *b = NULL;
+    int i, s = 0;
+    td_status st = TD_OK;
+    *out = NULL;
+    if (config_setting_is_group(br))
+        return td_cr_read_block(r, br, sample_rate, out, sampled);
+    if (!config_setting_is_list(br) || config_setting_length(br) == 0)
+        return td_cr_fail(r, br, NULL, "expected a branch: a block { ... } or a list of blocks ( { ... }, ... )");
+    for (i = 0; st == TD_OK && i < config_setting_length(br); i++) {
+        st = td_cr_entry(r, br, i, &e);
+        if (st == TD_OK)
+            st = td_cr_read_block(r, e, sample_rate, &b, &s);
+        if (st == TD_OK && i > 0 && s != *sampled)
+            st = td_cr_fail(r, e, NULL,
+                            "a branch of a parallel block is all in s or all in z (this block is in %s, "
+                            "the branch's first in %s)",
+                            s ? "z" : "s", s ? "s" : "z");
+        *sampled = i == 0 ? s : *sampled;
+        if (st == TD_OK)
+            st = join_at(r, e, out, b, td_controller_series); /* takes b */
+        else
+            td_controller_free(&b);
+        b = NULL;
+    }
+    if (st != TD_OK)
+        td_controller_free(out);
+    return st;
+}
+
+/* A parallel block: its branches summed, all continuous or all sampled (*rate: 0 or sample_rate). */
+static td_status make_parallel(td_case_reader *r, const config_setting_t *list, double sample_rate, double *rate,
+                               td_controller **out)
+{
+    const config_setting_t *br;
+    td_controller *b = NULL;
+    int i, s = 0, first = 0;
+    td_status st = TD_OK;
+    for (i = 0; st == TD_OK && i < config_setting_length(list); i++) {
+        br = config_setting_get_elem(list, (unsigned)i);
+        st = read_branch(r, br, sample_rate, &b, &s);
+        if (st == TD_OK && i > 0 && s != first)
+            st = td_cr_fail(r, br, NULL,
+                            "the branches of a parallel block are all in s or all in z (this branch is "
+                            "in %s, the first in %s)",
+                            s ? "z" : "s", s ? "s" : "z");
+        first = i == 0 ? s : first;
+        if (st == TD_OK)
+            st = join_at(r, br, out, b, td_controller_parallel); /* takes b */
+        else
+            td_controller_free(&b);
+        b = NULL;
+    }
+    if (st != TD_OK)
+        td_controller_free(out);
+    *rate = first ? sample_rate : 0.0;
+    return st;
+}
+
 td_status td_cr_read_block(td_case_reader *r, const config_setting_t *e, double sample_rate, td_controller **out,
                            int *sampled)
 {
@@ -568,6 +662,7 @@ td_status td_cr_read_block(td_case_reader *r, const config_setting_t *e, double 
     case CB_TF: st = make_tf(r, member, sample_rate, &rate, out); break;
     case CB_ZPK: st = make_zpk(r, member, sample_rate, &rate, out); break;
     case CB_SS: st = make_ss(r, member, sample_rate, &rate, out); break;
+    case CB_PARALLEL: st = make_parallel(r, member, sample_rate, &rate, out); break;
     default: st = make_fixed(r, member, kind, out); break;
     }
     *sampled = st == TD_OK && rate > 0.0;

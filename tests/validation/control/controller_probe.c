@@ -10,6 +10,8 @@
  *   ss RATE N M P A... B... C... D...
  *   discretise RATE tustin|zoh PREWARP  delay SAMPLES  minimal
  *   append                              the law so far side by side with itself
+ *   branch                              keep the law so far aside and start another
+ *   sum                                 the law kept aside plus the law so far, in parallel
  *   freq F...        prints  "freq NAME F re im ..." (G column-major)
  *   step INPUT T...  prints  "step NAME T y..."
  *   matrices         prints  "matrices NAME N M P RATE A... B... C... D..."
@@ -26,7 +28,7 @@
 #define MAX_VALUES 4096
 
 static char name[128];
-static td_controller *law;
+static td_controller *law, *aside;
 
 static int fail(const char *what, const td_error *err)
 {
@@ -199,6 +201,12 @@ static int operation(const char *word, char *rest, const double *v, int count, t
         replace(td_controller_minimal(law, err), word, err);
     } else if (!strcmp(word, "append")) {
         replace(td_controller_append(law, law, err), word, err);
+    } else if (!strcmp(word, "branch")) {
+        td_controller_free(&aside);
+        aside = law;
+        law = NULL;
+    } else if (!strcmp(word, "sum")) {
+        replace(td_controller_parallel(aside, law, err), word, err);
     } else if (!strcmp(word, "freq") || !strcmp(word, "step")) {
         print_responses(word, v, count, err);
     } else if (!strcmp(word, "matrices")) {
@@ -232,5 +240,6 @@ int main(void)
         fflush(stdout);
     }
     td_controller_free(&law);
+    td_controller_free(&aside);
     return 0;
 }
