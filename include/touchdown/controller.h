@@ -78,10 +78,13 @@ typedef struct td_resonant_block {
 
 /** Every frequency a block takes (Hz: leadlag zero and pole, lowpass and notch frequency, notch
  *  width, pid derivative_filter, resonant frequency) is finite, > 0 (a derivative_filter may be 0)
- *  and at most this: a hundred times the fastest sample rate of a model's controller
- *  (TD_CONTROLLER_RATE_MAX, touchdown/model.h), far above any AMB filter. Beyond it a value is a
- *  typing error (a notch at 1e308 Hz makes w = inf and a law of NaN). */
-#define TD_CONTROLLER_FREQUENCY_MAX 1.0e9
+ *  and at most this, 1 MHz, far above any AMB filter (an amplifier's bandwidth is a few kHz).
+ *  Beyond it a value is a typing error, and the analyses would mislead: a notch at 1e308 Hz made
+ *  w = inf (`touchdown info` did not finish), and one at 1e8 Hz widened the closed-loop stability
+ *  test's rounding margin (TD_MODAL_MARGINAL_REAL_PART of the spectral radius, touchdown/modal.h)
+ *  enough to call an unstable loop marginally stable. A block at 1 MHz keeps that radius within
+ *  the FE rotor's own (the reference rig refined 8 times reaches 1.9e6 rad/s). */
+#define TD_CONTROLLER_FREQUENCY_MAX 1.0e6
 
 /** How a continuous law becomes a sampled one. */
 typedef enum td_discretisation {
