@@ -1384,6 +1384,7 @@ static void test_controllers_all_keys(void **state)
     assert_same_response(td_model_get_controller(m, 0, NULL, NULL, NULL), want, 1e-12);
     assert_int_equal(td_case_controller(c, 0, &info), TD_OK);
     assert_int_equal(info.rigid, 0);
+    assert_int_equal(info.discretised, 0); /* continuous */
     td_controller_free(&want);
     td_controller_free(&law);
 
@@ -1411,6 +1412,7 @@ static void test_controllers_all_keys(void **state)
     assert_int_equal(info.delay, 1);
     assert_int_equal(info.discretisation, TD_DISCRETISE_TUSTIN);
     assert_close(info.prewarp, 60.0, 0.0, 0.0);
+    assert_int_equal(info.discretised, 1); /* its pid and lowpass, in s */
     assert_int_equal(td_case_controller(c, 2, &info), TD_ERR_INVALID);
     td_controller_free(&want);
     td_controller_free(&law);

@@ -159,7 +159,9 @@ void td_print_controllers(FILE *f, const td_case *c)
         else
             fprintf(f, " in bearing coordinates");
         fprintf(f, ", %d states, ", td_controller_order(k));
-        if (rate > 0.0 && info.prewarp > 0.0)
+        if (rate > 0.0 && !info.discretised) /* no block in s: the law is as written in z */
+            fprintf(f, "sampled at %.6g Hz (written in z)", rate);
+        else if (rate > 0.0 && info.prewarp > 0.0)
             fprintf(f, "sampled at %.6g Hz (tustin prewarped at %.6g Hz)", rate, info.prewarp);
         else if (rate > 0.0)
             fprintf(f, "sampled at %.6g Hz (%s)", rate, info.discretisation == TD_DISCRETISE_ZOH ? "zoh" : "tustin");
