@@ -368,6 +368,33 @@ static void test_resonant_block(void **state)
     }
 }
 
+/* A law whose realisation overflows (an entry inf or NaN) is refused where it is made, naming the
+ * block or the operation: every number in range, their arithmetic out of it. */
+static void test_overflowing_laws_refused(void **state)
+{
+    const td_leadlag_block ll = {1.0e300, 1.0e-6, 1.0e6}; /* g (wp/wz)(wz - wp): 1e300 x 1e12 x -6e6 */
+    const double num[] = {1.0}, den[] = {1.0e-310, 1.0}, big = 1.0e200, one = 1.0;
+    td_controller *a = td_controller_create_gain(1.0e200, NULL), *b = td_controller_create_gain(1.0e200, NULL), *s;
+    td_error err;
+    (void)state;
+    expect_invalid(td_controller_create_leadlag(&ll, &err), &err, "leadlag: the realisation overflows");
+    assert_string_equal(err.site.part, "leadlag");
+    expect_invalid(td_controller_create_tf(num, 1, den, 2, 0.0, &err), &err, "tf: the realisation overflows");
+    expect_invalid(td_controller_series(a, b, &err), &err, "series: the realisation overflows");
+    td_controller_free(&b);
+    b = td_controller_create_gain(1.7e308, NULL); /* 1.7e308 + 1.7e308 overflows */
+    expect_invalid(td_controller_parallel(b, b, &err), &err, "parallel: the realisation overflows");
+    /* 1e200 x 1e100 stays in range */
+    td_controller_free(&b);
+    b = td_controller_create_gain(1.0e100, NULL);
+    s = td_controller_series(a, b, &err);
+    assert_non_null(s);
+    td_controller_free(&s);
+    expect_invalid(td_controller_transform(a, 1, &big, 1, &one, &err), &err, "transform: the realisation overflows");
+    td_controller_free(&a);
+    td_controller_free(&b);
+}
+
 /* In parallel the responses add, the velocity feedthroughs too (a PD plus a resonant is still
  * improper by one); laws of other sizes or timing are refused. */
 static void test_parallel_is_the_sum(void **state)
@@ -409,12 +436,12 @@ static void test_parallel_is_the_sum(void **state)
  * TD_CONTROLLER_FREQUENCY_MAX, and a refusal names the field: a notch at 1e308 Hz made w = inf. */
 static void test_block_frequencies_bounded(void **state)
 {
-    static const double bad[] = {1.0e308, INFINITY, NAN, 1.0000001e6, 0.0, -1.0};
+    static const double bad[] = {1.0e308, INFINITY, NAN, 1.0000001e6, 1.0e-300, 0.0, -1.0};
     td_error err;
     td_controller *k;
     int i;
     (void)state;
-    for (i = 0; i < 6; i++) {
+    for (i = 0; i < 7; i++) {
         double f = bad[i];
         td_leadlag_block llz = {1.0, f, 100.0}, llp = {1.0, 10.0, f};
         td_lowpass_block lp = {f, 2, 0.7};
@@ -436,10 +463,14 @@ static void test_block_frequencies_bounded(void **state)
             expect_invalid(td_controller_create_pid(&pid, &err), &err, "pid: derivative_filter: ");
         }
     }
-    assert_string_equal(err.message, "pid: derivative_filter: must be >= 0 and at most 1e+06 Hz (got -1)");
+    assert_string_equal(err.message, "pid: derivative_filter: must be 0 (none) or 1e-06 to 1e+06 Hz (got -1)");
     {
-        td_notch_block top = {TD_CONTROLLER_FREQUENCY_MAX, TD_CONTROLLER_FREQUENCY_MAX, 0.05};
+        td_notch_block top = {TD_CONTROLLER_FREQUENCY_MAX, TD_CONTROLLER_FREQUENCY_MAX, 0.05},
+                       bottom = {TD_CONTROLLER_FREQUENCY_MIN, TD_CONTROLLER_FREQUENCY_MAX, 0.05};
         k = td_controller_create_notch(&top, &err);
+        assert_non_null(k);
+        td_controller_free(&k);
+        k = td_controller_create_notch(&bottom, &err);
         assert_non_null(k);
         td_controller_free(&k);
     }
@@ -570,6 +601,7 @@ int main(void)
         cmocka_unit_test(test_resonant_block),
         cmocka_unit_test(test_block_frequencies_bounded),
         cmocka_unit_test(test_parallel_is_the_sum),
+        cmocka_unit_test(test_overflowing_laws_refused),
         cmocka_unit_test(test_discretise_closed_forms),
         cmocka_unit_test(test_delay_is_z_to_the_minus_d),
         cmocka_unit_test(test_minimal_removes_duplicate_states),

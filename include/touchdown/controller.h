@@ -77,13 +77,17 @@ typedef struct td_resonant_block {
 } td_resonant_block;
 
 /** Every frequency a block takes (Hz: leadlag zero and pole, lowpass and notch frequency, notch
- *  width, pid derivative_filter, resonant frequency) is finite, > 0 (a derivative_filter may be 0)
- *  and at most this, 1 MHz, far above any AMB filter (an amplifier's bandwidth is a few kHz).
- *  Beyond it a value is a typing error, and the analyses would mislead: a notch at 1e308 Hz made
- *  w = inf (`touchdown info` did not finish), and one at 1e8 Hz widened the closed-loop stability
- *  test's rounding margin (TD_MODAL_MARGINAL_REAL_PART of the spectral radius, touchdown/modal.h)
- *  enough to call an unstable loop marginally stable. A block at 1 MHz keeps that radius within
- *  the FE rotor's own (the reference rig refined 8 times reaches 1.9e6 rad/s). */
+ *  width, pid derivative_filter, resonant frequency) lies from TD_CONTROLLER_FREQUENCY_MIN to
+ *  TD_CONTROLLER_FREQUENCY_MAX (a derivative_filter may also be 0: none). 1 MHz is far above any
+ *  AMB filter (an amplifier's bandwidth is a few kHz), 1e-6 Hz far below (a period of 12 days).
+ *  Beyond them a value is a typing error, and the analyses would mislead: a notch at 1e308 Hz made
+ *  w = inf and one of 1e-300 Hz a realisation with entries 1e306 apart (`touchdown info` did not
+ *  finish on either), and one at 1e8 Hz widened the closed-loop stability test's rounding margin
+ *  (TD_MODAL_MARGINAL_REAL_PART of the spectral radius, touchdown/modal.h) enough to call an
+ *  unstable loop marginally stable. A block at 1 MHz keeps that radius within the FE rotor's own
+ *  (the reference rig refined 8 times reaches 1.9e6 rad/s). Every constructor and combination
+ *  also refuses a realisation that overflows (an entry inf or NaN), naming itself. */
+#define TD_CONTROLLER_FREQUENCY_MIN 1.0e-6
 #define TD_CONTROLLER_FREQUENCY_MAX 1.0e6
 
 /** How a continuous law becomes a sampled one. */

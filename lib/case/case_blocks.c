@@ -23,7 +23,7 @@ static const char *const domain_names[] = {"s", "z"};
 #define CB_STR_(x) #x
 #define CB_STR(x) CB_STR_(x)
 /* The range of a block's frequency, a rule of the controller API (touchdown/controller.h). */
-#define CB_FREQUENCY_RANGE "> 0, at most " CB_STR(TD_CONTROLLER_FREQUENCY_MAX)
+#define CB_FREQUENCY_RANGE CB_STR(TD_CONTROLLER_FREQUENCY_MIN) " to " CB_STR(TD_CONTROLLER_FREQUENCY_MAX)
 
 /* The kinds of block, in the order of block_keys. */
 enum { CB_GAIN, CB_PID, CB_LEADLAG, CB_LOWPASS, CB_NOTCH, CB_RESONANT, CB_TF, CB_ZPK, CB_SS, CB_PARALLEL };
@@ -74,7 +74,7 @@ static const td_cs_key pid_keys[] = {
      .type = TD_CS_REAL,
      .offset = offsetof(td_pid_block, derivative_filter),
      .range = TD_CR_NONNEGATIVE,
-     .doc_range = ">= 0, at most " CB_STR(TD_CONTROLLER_FREQUENCY_MAX),
+     .doc_range = "0, or " CB_FREQUENCY_RANGE,
      .doc_default = "0 (the exact derivative: continuous only)",
      .unit = "Hz",
      .doc = "corner of the derivative's first-order filter; 0: kd s on the exact sensor velocity, as the AMB "

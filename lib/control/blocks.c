@@ -79,7 +79,7 @@ td_controller *td_controller_create_pid(const td_pid_block *b, td_error *err)
         first_order_state(k, i, wd, -b->kd * wd * wd);
     k->D[0] = b->kp + (filt ? b->kd * wd : 0.0);
     k->D1[0] = wd > 0.0 ? 0.0 : b->kd;
-    return k;
+    return td_ctl_finite(k, "pid", err);
 }
 
 /* g (1 + s/wz)/(1 + s/wp) = g wp/wz + g (wp/wz)(wz - wp)/(s + wp). */
@@ -107,7 +107,7 @@ td_controller *td_controller_create_leadlag(const td_leadlag_block *b, td_error 
     if (r != 0.0)
         first_order_state(k, 0, wp, r);
     k->D[0] = b->gain * wp / wz;
-    return k;
+    return td_ctl_finite(k, "leadlag", err);
 }
 
 td_controller *td_controller_create_lowpass(const td_lowpass_block *b, td_error *err)
@@ -135,7 +135,7 @@ td_controller *td_controller_create_lowpass(const td_lowpass_block *b, td_error 
         second_order_states(k, 0, wc, b->damping);
         k->C[0] = 1.0; /* x1 = wc^2 / (s^2 + 2 zeta wc s + wc^2) u */
     }
-    return k;
+    return td_ctl_finite(k, "lowpass", err);
 }
 
 /* (s^2 + 2 zz wn s + wn^2)/(s^2 + 2 zp wn s + wn^2) = 1 + 2 (zz - zp) wn s/(s^2 + 2 zp wn s + wn^2),
@@ -164,7 +164,7 @@ td_controller *td_controller_create_notch(const td_notch_block *b, td_error *err
     second_order_states(k, 0, wn, zp);
     k->C[1] = 2.0 * (zz - zp);
     k->D[0] = 1.0;
-    return k;
+    return td_ctl_finite(k, "notch", err);
 }
 
 /* g (s cos phi + w sin phi)/(s^2 + w^2): with zeta = 0 the states of second_order_states are
@@ -195,5 +195,5 @@ td_controller *td_controller_create_resonant(const td_resonant_block *b, td_erro
     second_order_states(k, 0, w, 0.0);
     k->C[0] = b->gain * sin(phi) / w;
     k->C[1] = b->gain * cos(phi) / w;
-    return k;
+    return td_ctl_finite(k, "resonant", err);
 }

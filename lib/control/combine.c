@@ -99,7 +99,7 @@ td_controller *td_controller_series(const td_controller *first, const td_control
     mul_add(k->D, p, k2->D, p, k1->D, p1, p, p1, m, 1.0);
     if (series_feedthrough(k1, k2, k, err) != TD_OK)
         td_controller_free(&k);
-    return k;
+    return td_ctl_finite(k, "series", err);
 }
 
 td_controller *td_controller_append(const td_controller *a, const td_controller *b, td_error *err)
@@ -151,7 +151,7 @@ td_controller *td_controller_parallel(const td_controller *a, const td_controlle
         k->D[j] = a->D[j] + b->D[j];
         k->D1[j] = a->D1[j] + b->D1[j];
     }
-    return k;
+    return td_ctl_finite(k, "parallel", err);
 }
 
 static td_status check_transform(const td_controller *k, int new_inputs, const double *Tin, int new_outputs,
@@ -195,5 +195,5 @@ td_controller *td_controller_transform(const td_controller *k, int new_inputs, c
     mul_add(w, p, k->D1, p, Tin, m, p, m, new_inputs, 1.0);
     mul_add(t->D1, new_outputs, Tout, new_outputs, w, p, new_outputs, p, new_inputs, 1.0);
     free(w);
-    return t;
+    return td_ctl_finite(t, "transform", err);
 }
