@@ -1680,6 +1680,7 @@ static const bad_file bad_files[] = {
     {"controller-notch-frequency-huge.cfg", 8, "controllers[0].law[1].notch.frequency", NULL},
     {"controller-resonant-no-speed.cfg", 9, "controllers[0].law[1].resonant.frequency", NULL},
     {"controller-parallel-mixed.cfg", 8, "controllers[0].law[0].parallel[1]", NULL},
+    {"controller-prewarp-all-z.cfg", 8, "controllers[0].prewarp", NULL},
     {"controller-reference-off-shaft.cfg", 8, "controllers[0].reference_z", NULL},
     {"controller-ss-shape.cfg", 8, "controllers[0].law[0].ss.B", NULL},
     {"controller-two-members.cfg", 8, "controllers[0].law[0].notch", NULL},

@@ -319,6 +319,18 @@ static td_status keep_info(td_case_reader *r, const cc_rec *c)
     return TD_OK;
 }
 
+/* discretisation and prewarp act on the blocks in s: written for a law all in z, they would do nothing. */
+static td_status check_sampled_nothing(td_case_reader *r, const config_setting_t *g, const cc_rec *c)
+{
+    static const char *const keys[] = {"discretisation", "prewarp"};
+    int i;
+    for (i = 0; i < 2 && c->sample_rate > 0.0 && !c->discretised; i++)
+        if (td_cr_has(g, keys[i]))
+            return td_cr_fail(r, config_setting_get_member(g, keys[i]), NULL,
+                              "%s applies to the blocks in s, and every block of this controller is in z", keys[i]);
+    return TD_OK;
+}
+
 static td_status add_controller(td_case_reader *r, const config_setting_t *g, void *rec)
 {
     cc_rec *c = rec;
@@ -326,6 +338,8 @@ static td_status add_controller(td_case_reader *r, const config_setting_t *g, vo
     int axes[2 * CC_MAX_AMBS];
     td_error merr;
     td_status st = build_controller(r, g, c, &k, axes);
+    if (st == TD_OK)
+        st = check_sampled_nothing(r, g, c);
     if (st == TD_OK && (st = td_model_add_controller(r->c->model, c->name, k, axes, axes, &merr)) != TD_OK)
         st = td_cr_model_fail(r, g, st, &merr);
     td_controller_free(&k);
@@ -393,7 +407,8 @@ static const td_cs_key controller_keys[] = {
      .name_count = 2,
      .check = check_sampled,
      .doc = "how the blocks in s become sampled ones (each run of them in series as a whole): bilinear, or exact "
-            "for a held input"},
+            "for a held input (a resonant block: exact at its frequency with zoh, or tustin prewarped there); refused "
+            "when every block is in z"},
     {.key = "prewarp",
      .type = TD_CS_REAL,
      .offset = offsetof(cc_rec, prewarp),
@@ -401,7 +416,8 @@ static const td_cs_key controller_keys[] = {
      .check = check_sampled,
      .doc_default = "0 (none)",
      .unit = "Hz",
-     .doc = "Tustin only: the frequency where the sampled law matches the continuous one exactly, e.g. a notch's"},
+     .doc = "Tustin only: the frequency where the sampled law matches the continuous one exactly, e.g. a notch's or "
+            "a resonant's; refused when every block is in z"},
     {.key = "delay",
      .type = TD_CS_INT,
      .offset = offsetof(cc_rec, delay),

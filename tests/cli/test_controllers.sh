@@ -44,11 +44,14 @@ res=$(python3 -c 'import math; print("%.6g" % (100.0 / (2 * math.pi)))')
 check "info: the integrator of a PID and a zpk pair in s" has "$out" "0 Hz (integrator) x2, 35.5881 Hz (zeta 0.447) x2"
 check "info: the resonant's undamped pair at the speed, 100 rad/s = $res Hz" has "$out" "poles: $res Hz (zeta "
 
-# a law written in z throughout was sampled by nothing: info says so, whatever discretisation says
-t "$work/z" info --set 'controllers[0].law=( { tf = { num = [5.0e3, -4.9e3]; den = [1.0, -0.5]; domain = "z"; }; } )' \
-    --set 'controllers[0].discretisation="zoh"' "$src/cases/paper-a-digital.cfg"
+# a law written in z throughout was sampled by nothing: info says so (not the default "tustin"),
+# and a discretisation or prewarp written for it, which would do nothing, is refused
+t "$work/z" info "$src/tests/data/case/controller-z.cfg"
 check "info: a law written in z is not said to be discretised" \
     has "$work/z/.out" 'sampled at 10000 Hz (written in z), delay 1 sample'
+t "$work/zd" info --set 'controllers[0].discretisation="zoh"' "$src/tests/data/case/controller-z.cfg"
+check "  a discretisation for it: exit 2 naming the key" \
+    test "$rc" = 2 -a -n "$(grep -F 'controllers[0].discretisation: discretisation applies to the blocks in s' "$work/zd/.err")"
 t "$work/zs" info --set 'controllers[0].law=( { tf = { num = [5.0e3, -4.9e3]; den = [1.0, -0.5]; domain = "z"; }; }, { lowpass = { frequency = 3000.0; }; } )' \
     --set 'controllers[0].discretisation="zoh"' "$src/cases/paper-a-digital.cfg"
 check "  and one with a block in s is, by its discretisation" has "$work/zs/.out" 'sampled at 10000 Hz (zoh), delay 1 sample'
