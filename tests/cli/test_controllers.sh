@@ -56,6 +56,11 @@ t "$work/zs" info --set 'controllers[0].law=( { tf = { num = [5.0e3, -4.9e3]; de
     --set 'controllers[0].discretisation="zoh"' "$src/cases/paper-a-digital.cfg"
 check "  and one with a block in s is, by its discretisation" has "$work/zs/.out" 'sampled at 10000 Hz (zoh), delay 1 sample'
 
+# an undamped pair (a resonant block) has zeta 0, not "-0"
+t "$work/res" info --set 'controllers[0].translation=( { resonant = { gain = 1.0; frequency = 50.0; }; } )' \
+    "$src/cases/rig-notch.cfg"
+check "info: a resonant's poles, 50 Hz (zeta 0)" has "$work/res/.out" "poles: 2000 Hz (zeta 1) x2, 50 Hz (zeta 0) x2"
+
 t "$work/modal" modal --csv '' --hdf5 '' "$src/cases/rig-notch.cfg"
 check "modal rig-notch: exit 0 and stable" grep -q '^modes at 90 rad/s (stable)' "$work/modal/.out"
 

@@ -60,7 +60,7 @@ static void print_pole(FILE *f, double re, double im, int count, int first, doub
     if (w <= 1e-9 * scale)
         fprintf(f, "%s 0 Hz (integrator)", first ? "" : ",");
     else
-        fprintf(f, "%s %.6g Hz (zeta %.3g)", first ? "" : ",", w / TWO_PI, -re / w);
+        fprintf(f, "%s %.6g Hz (zeta %.3g)", first ? "" : ",", w / TWO_PI, -re / w + 0.0); /* + 0: no "-0" */
     if (count > 1)
         fprintf(f, " x%d", count);
 }
