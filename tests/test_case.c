@@ -596,6 +596,7 @@ static void test_docs_match_reader(void **state)
                                          "controllers[0].law[4].tf.",
                                          "controllers[0].law[5].zpk.",
                                          "controllers[0].law[7].ss.",
+                                         "controllers[0].law[8].resonant.",
                                          "recovery.",
                                          "recovery.detect.",
                                          "recovery.release."};
@@ -871,7 +872,8 @@ static const char documented_defaults_base[] =
     "  { node = 6; ks = 1.0e5; ki = 50.0; tau = 1.0e-4; force_capacity = 1000.0; } );\n"
     "controllers = ( { name = \"k\"; ambs = [1]; law = ( { pid = {}; }, { leadlag = { gain = 2.0; zero = 10.0;\n"
     "  pole = 100.0; }; }, { lowpass = { frequency = 500.0; }; }, { notch = { frequency = 50.0; width = 5.0; }; },\n"
-    "  { tf = { num = [1.0]; den = [1.0, 100.0]; }; }, { zpk = {}; }, { ss = { D = ([1.0]); }; } ); },\n"
+    "  { tf = { num = [1.0]; den = [1.0, 100.0]; }; }, { zpk = {}; }, { ss = { D = ([1.0]); }; },\n"
+    "  { resonant = { gain = 1.0; }; } ); },\n"
     "  { name = \"n\"; ambs = [2]; law = ( { gain = 1.0; } ); sample_rate = 1000.0; },\n"
     "  { name = \"r\"; ambs = [2]; law = ( { gain = 2.0; } ); sample_rate = 1000.0; } );\n"
     "recovery = { nominal = \"n\"; controller = \"r\"; detect = { radius_fraction = 0.8; dwell = 0.0; };\n"
@@ -929,7 +931,7 @@ static const char *documented_default_value(const td_case_key_info *k, char *buf
 static void documented_default_override(const char *key, const char *value, char *buf, size_t n)
 {
     static const char *const blocks[] = {"law[].pid.", "law[].leadlag.", "law[].lowpass.", "law[].notch.",
-                                         "law[].tf.",  "law[].zpk.",     "law[].ss."};
+                                         "law[].tf.",  "law[].zpk.",     "law[].ss.",      "law[].resonant."};
     const char *entry = strncmp(key, "retainers[].mount.", 18) == 0 ? "[1]" : "[0]";
     const char *q;
     char block[8] = "[0]";
@@ -1004,15 +1006,16 @@ static void test_documented_defaults(void **state)
     print_message("documented defaults: %d keys checked; skipped: %d groups and lists, %d required, %d other\n", tried,
                   part, required, other);
     assert_int_equal(tried + part + required + other, td_case_key_count());
-    assert_int_equal(tried, 82);
-    assert_int_equal(part, 41);     /* their keys are checked */
-    assert_int_equal(required, 72); /* required, or one form's required key (a sweep entry's range or values) */
+    assert_int_equal(tried, 83);
+    assert_int_equal(part, 42);     /* their keys are checked */
+    assert_int_equal(required, 73); /* required, or one form's required key (a sweep entry's range or values) */
     /* an alternative with no default ("-": shaft.nodes, sections' element, schedule's unbalance,
      * amb_off, amb_on, a law's gain block), "unknown" (an AMB's air gap), "all nodes", "none"
      * (response speeds, overrides, a zpk's zeros and poles, an ss block's A, B and C), "the rotor's"
      * (spin.inertia, kept as 0: td_spin; a controller's reference_z, its mass centre),
-     * "continuous" (a controller's sample_rate), "1/sqrt(2)" (a low-pass's damping) */
-    assert_int_equal(other, 19);
+     * "continuous" (a controller's sample_rate), "1/sqrt(2)" (a low-pass's damping), "the case's
+     * `speed` / (2 pi)" (a resonant's frequency), "-" (a parallel block) */
+    assert_int_equal(other, 21);
     td_case_free(&base);
     free(want);
     free(got);
@@ -1332,13 +1335,15 @@ static td_controller *sampled(td_controller *k, double rate, double prewarp)
     return d;
 }
 
-/* tests/data/case/all-keys-controllers.cfg's "decentralised" law, through the API. */
-static td_controller *decentralised_law(void)
+/* tests/data/case/all-keys-controllers.cfg's "decentralised" law, through the API, at the case's
+ * speed (rad/s: its resonant block's frequency). */
+static td_controller *decentralised_law(double speed)
 {
     const td_pid_block pid = {8.0e3, 2.0e4, 30.0, 0.0};
     const td_leadlag_block ll = {1.5, 20.0, 200.0};
     const td_lowpass_block lp = {800.0, 2, 0.6};
     const td_notch_block nb = {60.0, 8.0, 0.1};
+    const td_resonant_block res = {0.8, 30.0, speed / (2.0 * TD_PI)};
     const double num[] = {1.0, 300.0}, den[] = {1.0, 400.0}, zr[] = {-50.0}, zi[] = {0.0}, pr[] = {-100.0},
                  pi[] = {200.0};
     const double A[] = {-500.0, 1.0, 0.0, -700.0}, B[] = {500.0, 0.0}, C[] = {0.0, 700.0}, D[] = {0.0};
@@ -1349,7 +1354,9 @@ static td_controller *decentralised_law(void)
     k = then(k, td_controller_create_tf(num, 2, den, 2, 0.0, NULL));
     k = then(k, td_controller_create_zpk(zr, zi, 1, pr, pi, 1, 900.0, 0.0, NULL));
     k = then(k, td_controller_create_gain(0.5, NULL));
-    return then(k, td_controller_create_ss(2, 1, 1, A, B, C, D, NULL, 0.0, NULL));
+    k = then(k, td_controller_create_ss(2, 1, 1, A, B, C, D, NULL, 0.0, NULL));
+    k = then(k, td_controller_create_resonant(&res, NULL));
+    return then(k, td_controller_create_gain(0.5 * 0.2 + 1.0, NULL)); /* the parallel block */
 }
 
 /* Its "rigid" controller's translation and tilt laws in one plane, [x_r, tilt] in and out. */
@@ -1393,7 +1400,7 @@ static void test_controllers_all_keys(void **state)
     const int bearing_axes[] = {0, 1}, rigid_axes[] = {2, 4, 3, 5}; /* AMBs 1 and 2: x of each, then y */
     const char *name;
     const int *in, *out;
-    td_controller *law = decentralised_law(), *want, *plane, *both;
+    td_controller *law = decentralised_law(100.0), *want, *plane, *both;
     td_case_controller_info info;
     double Ts[4], Ta[4], Tin[16] = {0}, Tout[16] = {0};
     int i, j;
@@ -1411,6 +1418,7 @@ static void test_controllers_all_keys(void **state)
     assert_same_response(td_model_get_controller(m, 0, NULL, NULL, NULL), want, 1e-12);
     assert_int_equal(td_case_controller(c, 0, &info), TD_OK);
     assert_int_equal(info.rigid, 0);
+    assert_int_equal(info.discretised, 0); /* continuous */
     td_controller_free(&want);
     td_controller_free(&law);
 
@@ -1438,12 +1446,27 @@ static void test_controllers_all_keys(void **state)
     assert_int_equal(info.delay, 1);
     assert_int_equal(info.discretisation, TD_DISCRETISE_TUSTIN);
     assert_close(info.prewarp, 60.0, 0.0, 0.0);
+    assert_int_equal(info.discretised, 1); /* its pid and lowpass, in s */
     assert_int_equal(td_case_controller(c, 4, &info), TD_ERR_INVALID);
     td_controller_free(&want);
     td_controller_free(&law);
     td_controller_free(&both);
     td_controller_free(&plane);
     check_recovery_all_keys(m);
+    td_case_free(&c);
+}
+
+/* A resonant block without a frequency resonates at the case's speed, the speed as overridden
+ * (a sweep of the speed moves it along). */
+static void test_resonant_default_follows_speed(void **state)
+{
+    const char *ovs[] = {"speed=320"};
+    td_case *c = load_ok("tests/data/case/all-keys-controllers.cfg", ovs, 1);
+    td_controller *law = decentralised_law(320.0), *want = side_by_side(td_controller_clone(law, NULL), law);
+    (void)state;
+    assert_same_response(td_model_get_controller(td_case_model(c), 0, NULL, NULL, NULL), want, 1e-12);
+    td_controller_free(&want);
+    td_controller_free(&law);
     td_case_free(&c);
 }
 
@@ -1689,6 +1712,10 @@ static const bad_file bad_files[] = {
     {"controller-duplicate-name.cfg", 7, "controllers[1].name", NULL},
     {"controller-rigid-three-ambs.cfg", 8, "controllers[0].coordinates", NULL},
     {"controller-rate-too-high.cfg", 8, "controllers[0].sample_rate", NULL},
+    {"controller-notch-frequency-huge.cfg", 8, "controllers[0].law[1].notch.frequency", NULL},
+    {"controller-resonant-no-speed.cfg", 9, "controllers[0].law[1].resonant.frequency", NULL},
+    {"controller-parallel-mixed.cfg", 8, "controllers[0].law[0].parallel[1]", NULL},
+    {"controller-prewarp-all-z.cfg", 8, "controllers[0].prewarp", NULL},
     {"controller-reference-off-shaft.cfg", 8, "controllers[0].reference_z", NULL},
     {"controller-ss-shape.cfg", 8, "controllers[0].law[0].ss.B", NULL},
     {"controller-two-members.cfg", 8, "controllers[0].law[0].notch", NULL},
@@ -2285,6 +2312,7 @@ int main(void)
         cmocka_unit_test(test_comment_at_eof),
         cmocka_unit_test(test_api_misuse),
         cmocka_unit_test(test_controllers_all_keys),
+        cmocka_unit_test(test_resonant_default_follows_speed),
         cmocka_unit_test(test_controller_closed_forms),
         cmocka_unit_test(test_controller_rigid_by_hand),
         cmocka_unit_test(test_controller_rigid_is_the_shorthand),

@@ -335,6 +335,147 @@ static void test_bad_laws_are_refused(void **state)
     td_controller_free(&z);
 }
 
+/* A resonant block is g (s cos phi + w sin phi)/(s^2 + w^2): its response against the ratio
+ * written out, its poles +-jw exactly (trace 0, determinant w^2 of its A), and its step response
+ * against the closed form g (cos phi sin wt + sin phi (1 - cos wt))/w. */
+static void test_resonant_block(void **state)
+{
+    static const double phases[] = {0.0, 60.0, 90.0, -135.0};
+    const double f0 = 50.93, w = W(f0), t[] = {0.0, 0.0013, 0.0071, 0.019, 0.2};
+    double A[4], y[5];
+    int i, j;
+    (void)state;
+    for (i = 0; i < 4; i++) {
+        td_resonant_block b = {-3.0e3, phases[i], f0};
+        double phi = phases[i] * TD_PI / 180.0;
+        td_controller *k = td_controller_create_resonant(&b, NULL);
+        assert_non_null(k);
+        assert_int_equal(td_controller_order(k), 2);
+        assert_false(td_controller_has_velocity_feedthrough(k));
+        for (j = 0; j < N_FREQS; j++) {
+            double complex s = I * W(freqs[j]);
+            assert_complex_close(response(k, freqs[j]), -3.0e3 * (s * cos(phi) + w * sin(phi)) / (s * s + w * w),
+                                 1e-13);
+        }
+        td_controller_matrices(k, A, NULL, NULL, NULL, NULL);
+        assert_true(A[0] + A[3] == 0.0);
+        assert_close(A[0] * A[3] - A[1] * A[2], w * w, 1e-15, 0.0);
+        assert_int_equal(td_controller_step_response(k, 0, t, 5, y, NULL), TD_OK);
+        for (j = 0; j < 5; j++)
+            assert_close(y[j], -3.0e3 * (cos(phi) * sin(w * t[j]) + sin(phi) * (1.0 - cos(w * t[j]))) / w, 1e-11,
+                         1e-11 * 3.0e3 / w);
+        td_controller_free(&k);
+    }
+}
+
+/* A law whose realisation overflows (an entry inf or NaN) is refused where it is made, naming the
+ * block or the operation: every number in range, their arithmetic out of it. */
+static void test_overflowing_laws_refused(void **state)
+{
+    const td_leadlag_block ll = {1.0e300, 1.0e-6, 1.0e6}; /* g (wp/wz)(wz - wp): 1e300 x 1e12 x -6e6 */
+    const double num[] = {1.0}, den[] = {1.0e-310, 1.0}, big = 1.0e200, one = 1.0;
+    td_controller *a = td_controller_create_gain(1.0e200, NULL), *b = td_controller_create_gain(1.0e200, NULL), *s;
+    td_error err;
+    (void)state;
+    expect_invalid(td_controller_create_leadlag(&ll, &err), &err, "leadlag: the realisation overflows");
+    assert_string_equal(err.site.part, "leadlag");
+    expect_invalid(td_controller_create_tf(num, 1, den, 2, 0.0, &err), &err, "tf: the realisation overflows");
+    expect_invalid(td_controller_series(a, b, &err), &err, "series: the realisation overflows");
+    td_controller_free(&b);
+    b = td_controller_create_gain(1.7e308, NULL); /* 1.7e308 + 1.7e308 overflows */
+    expect_invalid(td_controller_parallel(b, b, &err), &err, "parallel: the realisation overflows");
+    /* 1e200 x 1e100 stays in range */
+    td_controller_free(&b);
+    b = td_controller_create_gain(1.0e100, NULL);
+    s = td_controller_series(a, b, &err);
+    assert_non_null(s);
+    td_controller_free(&s);
+    expect_invalid(td_controller_transform(a, 1, &big, 1, &one, &err), &err, "transform: the realisation overflows");
+    td_controller_free(&a);
+    td_controller_free(&b);
+}
+
+/* In parallel the responses add, the velocity feedthroughs too (a PD plus a resonant is still
+ * improper by one); laws of other sizes or timing are refused. */
+static void test_parallel_is_the_sum(void **state)
+{
+    td_pid_block pd = {1.0e4, 0.0, 40.0, 0.0};
+    td_resonant_block res = {0.6, 45.0, 50.93};
+    td_notch_block no = {34.4, 6.0, 0.05};
+    const double one = 1.0;
+    td_controller *a = td_controller_create_pid(&pd, NULL), *b = td_controller_create_resonant(&res, NULL),
+                  *n = td_controller_create_notch(&no, NULL), *bn = td_controller_series(b, n, NULL), *k, *two,
+                  *z = td_controller_create_tf(&one, 1, &one, 1, 1e3, NULL);
+    td_error err;
+    int j;
+    (void)state;
+    k = td_controller_parallel(a, bn, &err);
+    assert_non_null(k);
+    assert_int_equal(td_controller_order(k), 4);
+    assert_true(td_controller_has_velocity_feedthrough(k));
+    for (j = 0; j < N_FREQS; j++) {
+        double complex s = I * W(freqs[j]), w = W(50.93), wn = W(34.4), phi = TD_PI / 4.0;
+        double zp = 6.0 / (2.0 * 34.4), zz = 0.05 * zp;
+        double complex notch = (s * s + 2.0 * zz * wn * s + wn * wn) / (s * s + 2.0 * zp * wn * s + wn * wn);
+        assert_complex_close(response(k, freqs[j]),
+                             1.0e4 + 40.0 * s + 0.6 * (s * cos(phi) + w * sin(phi)) / (s * s + w * w) * notch, 1e-14);
+    }
+    two = td_controller_append(a, a, NULL);
+    expect_invalid(td_controller_parallel(a, two, &err), &err, "size");
+    expect_invalid(td_controller_parallel(a, z, &err), &err, "timing");
+    td_controller_free(&a);
+    td_controller_free(&b);
+    td_controller_free(&n);
+    td_controller_free(&bn);
+    td_controller_free(&k);
+    td_controller_free(&two);
+    td_controller_free(&z);
+}
+
+/* Every block frequency (Hz) is finite, > 0 (a derivative filter may be 0: none) and at most
+ * TD_CONTROLLER_FREQUENCY_MAX, and a refusal names the field: a notch at 1e308 Hz made w = inf. */
+static void test_block_frequencies_bounded(void **state)
+{
+    static const double bad[] = {1.0e308, INFINITY, NAN, 1.0000001e6, 1.0e-300, 0.0, -1.0};
+    td_error err;
+    td_controller *k;
+    int i;
+    (void)state;
+    for (i = 0; i < 7; i++) {
+        double f = bad[i];
+        td_leadlag_block llz = {1.0, f, 100.0}, llp = {1.0, 10.0, f};
+        td_lowpass_block lp = {f, 2, 0.7};
+        td_notch_block nf = {f, 6.0, 0.05}, nw = {34.4, f, 0.05};
+        td_pid_block pid = {1.0, 0.0, 1.0, f};
+        td_resonant_block res = {1.0, 0.0, f};
+        expect_invalid(td_controller_create_leadlag(&llz, &err), &err, "leadlag: zero: ");
+        expect_invalid(td_controller_create_leadlag(&llp, &err), &err, "leadlag: pole: ");
+        expect_invalid(td_controller_create_lowpass(&lp, &err), &err, "lowpass: frequency: ");
+        expect_invalid(td_controller_create_notch(&nf, &err), &err, "notch: frequency: ");
+        assert_string_equal(err.site.field, "frequency");
+        expect_invalid(td_controller_create_notch(&nw, &err), &err, "notch: width: ");
+        expect_invalid(td_controller_create_resonant(&res, &err), &err, "resonant: frequency: ");
+        if (f == 0.0) { /* no derivative filter: the exact derivative */
+            k = td_controller_create_pid(&pid, &err);
+            assert_non_null(k);
+            td_controller_free(&k);
+        } else {
+            expect_invalid(td_controller_create_pid(&pid, &err), &err, "pid: derivative_filter: ");
+        }
+    }
+    assert_string_equal(err.message, "pid: derivative_filter: must be 0 (none) or 1e-06 to 1e+06 Hz (got -1)");
+    {
+        td_notch_block top = {TD_CONTROLLER_FREQUENCY_MAX, TD_CONTROLLER_FREQUENCY_MAX, 0.05},
+                       bottom = {TD_CONTROLLER_FREQUENCY_MIN, TD_CONTROLLER_FREQUENCY_MAX, 0.05};
+        k = td_controller_create_notch(&top, &err);
+        assert_non_null(k);
+        td_controller_free(&k);
+        k = td_controller_create_notch(&bottom, &err);
+        assert_non_null(k);
+        td_controller_free(&k);
+    }
+}
+
 /* Tustin (plain and prewarped) is the continuous response at s = beta (z - 1)/(z + 1); the
  * zero-order hold of wc/(s + wc) is (1 - a) z^-1/(1 - a z^-1), a = exp(-wc T); the prewarped law
  * matches the continuous one exactly at the prewarp frequency. */
@@ -457,6 +598,10 @@ int main(void)
         cmocka_unit_test(test_series_is_the_product),
         cmocka_unit_test(test_rigid_transform_by_hand),
         cmocka_unit_test(test_bad_laws_are_refused),
+        cmocka_unit_test(test_resonant_block),
+        cmocka_unit_test(test_block_frequencies_bounded),
+        cmocka_unit_test(test_parallel_is_the_sum),
+        cmocka_unit_test(test_overflowing_laws_refused),
         cmocka_unit_test(test_discretise_closed_forms),
         cmocka_unit_test(test_delay_is_z_to_the_minus_d),
         cmocka_unit_test(test_minimal_removes_duplicate_states),

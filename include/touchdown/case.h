@@ -113,6 +113,9 @@ typedef struct td_case_controller_info {
     int delay;                        /**< whole samples of computation delay (sampled only; else 0) */
     td_discretisation discretisation; /**< how its s-domain blocks were sampled (sampled only) */
     double prewarp;                   /**< Hz, the Tustin prewarp frequency; 0: none */
+    int discretised;                  /**< 1: blocks in s were sampled by `discretisation`; 0: none were
+                                       *   (continuous, or every block written in z: then discretisation
+                                       *   and prewarp did nothing) */
 } td_case_controller_info;
 
 /** Controller i of the case (0 <= i < td_model_controller_count(td_case_model(c))) into *out;

@@ -1,6 +1,6 @@
 /*
  * touchdown/controller.h - AMB controllers as linear systems: transfer functions, zeros-poles-gain,
- * state space and blocks in series (PID, lead-lag, low-pass, notch), continuous or sampled.
+ * state space and blocks in series (PID, lead-lag, low-pass, notch, resonant), continuous or sampled.
  *
  * A td_controller is one state-space realisation (docs/theory.md, "Controllers"):
  *
@@ -66,6 +66,30 @@ typedef struct td_notch_block {
     double depth;     /**< >= 0, < 1 */
 } td_notch_block;
 
+/** Resonant block  gain (s cos phase + w sin phase) / (s^2 + w^2), w = 2 pi frequency: an undamped
+ *  internal model of a sinusoid at `frequency` (at the spin speed, Omega / 2 pi, a synchronous
+ *  compensator: the LTI form of synchronous motion compensation, Su, Gu, Keogh et al., MSSP 2022).
+ *  Its poles +-jw lie on the imaginary axis; its response at w itself is infinite. */
+typedef struct td_resonant_block {
+    double gain;      /**< A/m for a first block, dimensionless after it */
+    double phase;     /**< degrees, finite: 0 gives gain s / (s^2 + w^2), 90 gives gain w / (s^2 + w^2) */
+    double frequency; /**< Hz, > 0 */
+} td_resonant_block;
+
+/** Every frequency a block takes (Hz: leadlag zero and pole, lowpass and notch frequency, notch
+ *  width, pid derivative_filter, resonant frequency) lies from TD_CONTROLLER_FREQUENCY_MIN to
+ *  TD_CONTROLLER_FREQUENCY_MAX (a derivative_filter may also be 0: none). 1 MHz is far above any
+ *  AMB filter (an amplifier's bandwidth is a few kHz), 1e-6 Hz far below (a period of 12 days).
+ *  Beyond them a value is a typing error, and the analyses would mislead: a notch at 1e308 Hz made
+ *  w = inf and one of 1e-300 Hz a realisation with entries 1e306 apart (`touchdown info` did not
+ *  finish on either), and one at 1e8 Hz widened the closed-loop stability test's rounding margin
+ *  (TD_MODAL_MARGINAL_REAL_PART of the spectral radius, touchdown/modal.h) enough to call an
+ *  unstable loop marginally stable. A block at 1 MHz keeps that radius within the FE rotor's own
+ *  (the reference rig refined 8 times reaches 1.9e6 rad/s). Every constructor and combination
+ *  also refuses a realisation that overflows (an entry inf or NaN), naming itself. */
+#define TD_CONTROLLER_FREQUENCY_MIN 1.0e-6
+#define TD_CONTROLLER_FREQUENCY_MAX 1.0e6
+
 /** How a continuous law becomes a sampled one. */
 typedef enum td_discretisation {
     TD_DISCRETISE_TUSTIN = 0, /**< bilinear, with optional frequency prewarping */
@@ -79,6 +103,7 @@ TD_API td_controller *td_controller_create_pid(const td_pid_block *b, td_error *
 TD_API td_controller *td_controller_create_leadlag(const td_leadlag_block *b, td_error *err);
 TD_API td_controller *td_controller_create_lowpass(const td_lowpass_block *b, td_error *err);
 TD_API td_controller *td_controller_create_notch(const td_notch_block *b, td_error *err);
+TD_API td_controller *td_controller_create_resonant(const td_resonant_block *b, td_error *err);
 /** SISO transfer function num/den (coefficients as in the header comment). sample_rate 0: in s,
  *  proper or improper by one; > 0 (Hz): in z^-1, proper (den[0] != 0). */
 TD_API td_controller *td_controller_create_tf(const double *num, int num_len, const double *den, int den_len,
@@ -103,6 +128,9 @@ TD_API void td_controller_free(td_controller **k);
 /** first then second: e -> first -> second -> i (second's inputs = first's outputs). Both continuous,
  *  or both sampled at the same rate. The result may be improper by at most one. */
 TD_API td_controller *td_controller_series(const td_controller *first, const td_controller *second, td_error *err);
+/** In parallel: the same inputs into a and b, their outputs added (i = a(e) + b(e)); same timing,
+ *  same numbers of inputs and outputs. */
+TD_API td_controller *td_controller_parallel(const td_controller *a, const td_controller *b, td_error *err);
 /** Side by side: inputs and outputs stacked (block-diagonal), same timing. */
 TD_API td_controller *td_controller_append(const td_controller *a, const td_controller *b, td_error *err);
 /** Static pre- and post-multiplication  i = Tout K(Tin e): Tin is (k inputs x new inputs), Tout

@@ -7,6 +7,7 @@
  * and that a block in z has a sample rate.
  */
 #include "case/case_schema.h"
+#include "touchdown/dofs.h" /* TD_PI */
 #include "util/error_internal.h"
 
 #include <math.h>
@@ -18,6 +19,14 @@
 #define CB_MAX_COEFS (CB_MAX_ORDER + 2)
 
 static const char *const domain_names[] = {"s", "z"};
+
+#define CB_STR_(x) #x
+#define CB_STR(x) CB_STR_(x)
+/* The range of a block's frequency, a rule of the controller API (touchdown/controller.h). */
+#define CB_FREQUENCY_RANGE CB_STR(TD_CONTROLLER_FREQUENCY_MIN) " to " CB_STR(TD_CONTROLLER_FREQUENCY_MAX)
+
+/* The kinds of block, in the order of block_keys. */
+enum { CB_GAIN, CB_PID, CB_LEADLAG, CB_LOWPASS, CB_NOTCH, CB_RESONANT, CB_TF, CB_ZPK, CB_SS, CB_PARALLEL };
 
 /* A `tf` block. */
 typedef struct cb_tf {
@@ -65,6 +74,7 @@ static const td_cs_key pid_keys[] = {
      .type = TD_CS_REAL,
      .offset = offsetof(td_pid_block, derivative_filter),
      .range = TD_CR_NONNEGATIVE,
+     .doc_range = "0, or " CB_FREQUENCY_RANGE,
      .doc_default = "0 (the exact derivative: continuous only)",
      .unit = "Hz",
      .doc = "corner of the derivative's first-order filter; 0: kd s on the exact sensor velocity, as the AMB "
@@ -85,6 +95,7 @@ static const td_cs_key leadlag_keys[] = {
      .offset = offsetof(td_leadlag_block, zero),
      .need = TD_CS_REQUIRED,
      .range = TD_CR_POSITIVE,
+     .doc_range = CB_FREQUENCY_RANGE,
      .what = "zero frequency, Hz",
      .unit = "Hz",
      .doc = "the zero's frequency (a lead: zero < pole)"},
@@ -93,6 +104,7 @@ static const td_cs_key leadlag_keys[] = {
      .offset = offsetof(td_leadlag_block, pole),
      .need = TD_CS_REQUIRED,
      .range = TD_CR_POSITIVE,
+     .doc_range = CB_FREQUENCY_RANGE,
      .what = "pole frequency, Hz",
      .unit = "Hz",
      .doc = "the pole's frequency"},
@@ -113,6 +125,7 @@ static const td_cs_key lowpass_keys[] = {
      .offset = offsetof(td_lowpass_block, frequency),
      .need = TD_CS_REQUIRED,
      .range = TD_CR_POSITIVE,
+     .doc_range = CB_FREQUENCY_RANGE,
      .what = "corner frequency, Hz",
      .unit = "Hz",
      .doc = "corner frequency fc (wc = 2 pi fc)"},
@@ -141,6 +154,7 @@ static const td_cs_key notch_keys[] = {
      .offset = offsetof(td_notch_block, frequency),
      .need = TD_CS_REQUIRED,
      .range = TD_CR_POSITIVE,
+     .doc_range = CB_FREQUENCY_RANGE,
      .what = "notch frequency, Hz",
      .unit = "Hz",
      .doc = "centre frequency fn (wn = 2 pi fn): a bending mode's"},
@@ -149,6 +163,7 @@ static const td_cs_key notch_keys[] = {
      .offset = offsetof(td_notch_block, width),
      .need = TD_CS_REQUIRED,
      .range = TD_CR_POSITIVE,
+     .doc_range = CB_FREQUENCY_RANGE,
      .what = "-3 dB width, Hz",
      .unit = "Hz",
      .doc = "the -3 dB band: damping of the poles zp = width / (2 fn)"},
@@ -161,6 +176,49 @@ static const td_cs_key notch_keys[] = {
 };
 static const td_cs_table notch_table = {"controllers[].law[].notch", NULL, notch_keys, TD_CS_COUNT(notch_keys),
                                         sizeof(td_notch_block),      NULL, NULL};
+
+/* resonant.frequency absent: the case's speed Omega / (2 pi) (read before the controllers). */
+static td_status resonant_frequency(td_case_reader *r, const config_setting_t *g, const td_cs_key *k, void *rec)
+{
+    td_resonant_block *b = rec;
+    double speed = td_model_speed(r->c->model);
+    if (td_cr_has(g, k->key))
+        return TD_OK;
+    b->frequency = speed / (2.0 * TD_PI);
+    if (!(b->frequency > 0.0))
+        return td_cr_fail(r, g, k->key,
+                          "absent, it is the case's speed / (2 pi), and the speed is %g rad/s: give the frequency "
+                          "(Hz)",
+                          speed);
+    return TD_OK;
+}
+
+static const td_cs_key resonant_keys[] = {
+    {.key = "gain",
+     .type = TD_CS_REAL,
+     .offset = offsetof(td_resonant_block, gain),
+     .need = TD_CS_REQUIRED,
+     .what = "gain g, A/m as a first block",
+     .doc = "g in g (s cos phase + w sin phase) / (s^2 + w^2); A/m as a first block, dimensionless after one"},
+    {.key = "phase",
+     .type = TD_CS_REAL,
+     .offset = offsetof(td_resonant_block, phase),
+     .unit = "degree",
+     .doc = "phase: 0 gives g s / (s^2 + w^2), 90 gives g w / (s^2 + w^2)"},
+    {.key = "frequency",
+     .type = TD_CS_REAL,
+     .offset = offsetof(td_resonant_block, frequency),
+     .range = TD_CR_POSITIVE,
+     .doc_range = CB_FREQUENCY_RANGE,
+     .check = resonant_frequency,
+     .doc_default = "the case's `speed` / (2 pi)",
+     .unit = "Hz",
+     .doc = "the resonance f (w = 2 pi f), where the block's gain is infinite; absent, the rotor's speed at t = 0 "
+            "(a synchronous compensator; it stays there through a `speed_ramp` or a free `spin`)"},
+};
+static const td_cs_table resonant_table = {
+    "controllers[].law[].resonant", NULL, resonant_keys, TD_CS_COUNT(resonant_keys),
+    sizeof(td_resonant_block),      NULL, NULL};
 
 static const td_cs_key tf_keys[] = {
     {.key = "num",
@@ -326,9 +384,18 @@ static const td_cs_key block_keys[] = {
     BLOCK("leadlag", leadlag_table, "gain (1 + s / (2 pi zero)) / (1 + s / (2 pi pole)), below"),
     BLOCK("lowpass", lowpass_table, "a first- or second-order low-pass filter, below"),
     BLOCK("notch", notch_table, "(s^2 + 2 zz wn s + wn^2) / (s^2 + 2 zp wn s + wn^2), below"),
+    BLOCK("resonant", resonant_table, "gain (s cos phase + w sin phase) / (s^2 + w^2), below"),
     BLOCK("tf", tf_table, "a transfer function num / den, below"),
     BLOCK("zpk", zpk_table, "zeros, poles and gain, below"),
     BLOCK("ss", ss_table, "a SISO state-space realisation (A, B, C, D), below"),
+    {.key = "parallel",
+     .type = TD_CS_CUSTOM,
+     .read = td_cs_elsewhere,
+     .doc_type = "list of branches",
+     .doc_default = "-",
+     .doc = "branches fed the same error, their outputs summed: `{ parallel = ( ( { pid = { ... }; }, { notch = { "
+            "... }; } ), { resonant = { ... }; } ); }` is pid then notch, plus a resonant; a branch is a block or a "
+            "list of blocks in series, every branch all in s or all in z"},
 };
 const td_cs_table td_cs_block = {"controllers[].law[]", NULL, block_keys, TD_CS_COUNT(block_keys), 0, NULL, NULL};
 
@@ -342,7 +409,7 @@ static td_status block_member(td_case_reader *r, const config_setting_t *e, cons
     if (config_setting_length(e) == 0)
         return td_cr_fail(r, e, NULL,
                           "an empty block: a block is a group with one member, gain, pid, leadlag, lowpass, notch, "
-                          "tf, zpk or ss");
+                          "resonant, tf, zpk, ss or parallel");
     if (config_setting_length(e) > 1)
         return td_cr_fail(r, config_setting_get_elem(e, 1), NULL,
                           "a block has exactly one member (this one also has '%s'): write each block as a group of "
@@ -352,7 +419,11 @@ static td_status block_member(td_case_reader *r, const config_setting_t *e, cons
     for (i = 0; i < td_cs_block.count && strcmp(block_keys[i].key, config_setting_name(*member)) != 0; i++)
         ;
     *kind = i;
-    if (i > 0 && !config_setting_is_group(*member))
+    if (i == CB_PARALLEL && !(config_setting_is_list(*member) && config_setting_length(*member) > 0))
+        return td_cr_fail(r, *member, NULL,
+                          "expected a list of branches ( ( { ... }, { ... } ), { ... } ), each a block or a list of "
+                          "blocks in series");
+    if (i > 0 && i != CB_PARALLEL && !config_setting_is_group(*member))
         return td_cr_fail(r, *member, NULL, "expected a group { ... } of the block's keys");
     return TD_OK;
 }
@@ -460,7 +531,7 @@ static td_status make_ss(td_case_reader *r, const config_setting_t *g, double sa
     return made(r, g, td_controller_create_ss(n, 1, 1, A, B, C, ss.m[3], NULL, *rate, &merr), &merr, out);
 }
 
-/* A block of a fixed form (gain, pid, leadlag, lowpass, notch): continuous. */
+/* A block of a fixed form (gain, pid, leadlag, lowpass, notch, resonant): continuous. */
 static td_status make_fixed(td_case_reader *r, const config_setting_t *member, int kind, td_controller **out)
 {
     union {
@@ -468,28 +539,112 @@ static td_status make_fixed(td_case_reader *r, const config_setting_t *member, i
         td_leadlag_block leadlag;
         td_lowpass_block lowpass;
         td_notch_block notch;
+        td_resonant_block resonant;
     } b;
     double k;
     td_error merr;
     td_status st;
     memset(&b, 0, sizeof b);
-    if (kind == 0) {
+    if (kind == CB_GAIN) {
         st = td_cr_value_real(r, member, TD_CR_FINITE, &k);
         return st == TD_OK ? made(r, member, td_controller_create_gain(k, &merr), &merr, out) : st;
     }
-    if (kind == 3)
+    if (kind == CB_LOWPASS)
         lowpass_preset(&b.lowpass);
     if ((st = td_cs_read(r, member, block_keys[kind].sub, &b)) != TD_OK)
         return st;
-    if (kind == 3 && b.lowpass.order == 1 && td_cr_has(member, "damping"))
+    if (kind == CB_LOWPASS && b.lowpass.order == 1 && td_cr_has(member, "damping"))
         return td_cr_fail(r, config_setting_get_member(member, "damping"), NULL,
                           "a first-order low-pass has no damping");
     switch (kind) {
-    case 1: return made(r, member, td_controller_create_pid(&b.pid, &merr), &merr, out);
-    case 2: return made(r, member, td_controller_create_leadlag(&b.leadlag, &merr), &merr, out);
-    case 3: return made(r, member, td_controller_create_lowpass(&b.lowpass, &merr), &merr, out);
-    default: return made(r, member, td_controller_create_notch(&b.notch, &merr), &merr, out);
+    case CB_PID: return made(r, member, td_controller_create_pid(&b.pid, &merr), &merr, out);
+    case CB_LEADLAG: return made(r, member, td_controller_create_leadlag(&b.leadlag, &merr), &merr, out);
+    case CB_LOWPASS: return made(r, member, td_controller_create_lowpass(&b.lowpass, &merr), &merr, out);
+    case CB_NOTCH: return made(r, member, td_controller_create_notch(&b.notch, &merr), &merr, out);
+    default: return made(r, member, td_controller_create_resonant(&b.resonant, &merr), &merr, out);
     }
+}
+
+/* *acc then k (k alone when *acc is NULL), joined by `join` (series or parallel), freeing both; a
+ * failure located at e. */
+static td_status join_at(td_case_reader *r, const config_setting_t *e, td_controller **acc, td_controller *k,
+                         td_controller *(*join)(const td_controller *, const td_controller *, td_error *))
+{
+    td_controller *j;
+    td_error merr;
+    if (!*acc) {
+        *acc = k;
+        return TD_OK;
+    }
+    j = join(*acc, k, &merr);
+    td_controller_free(acc);
+    td_controller_free(&k);
+    *acc = j;
+    return j ? TD_OK : td_cr_model_fail(r, e, merr.code, &merr);
+}
+
+/* One branch of a parallel block into *out: a block, or a list of blocks in series, every one in s
+ * or every one in z (*sampled says which). */
+static td_status read_branch(td_case_reader *r, const config_setting_t *br, double sample_rate, td_controller **out,
+                             int *sampled)
+{
+    const config_setting_t *e = br;
+    td_controller *b = NULL;
+    int i, s = 0;
+    td_status st = TD_OK;
+    *out = NULL;
+    if (config_setting_is_group(br))
+        return td_cr_read_block(r, br, sample_rate, out, sampled);
+    if (!config_setting_is_list(br) || config_setting_length(br) == 0)
+        return td_cr_fail(r, br, NULL, "expected a branch: a block { ... } or a list of blocks ( { ... }, ... )");
+    for (i = 0; st == TD_OK && i < config_setting_length(br); i++) {
+        st = td_cr_entry(r, br, i, &e);
+        if (st == TD_OK)
+            st = td_cr_read_block(r, e, sample_rate, &b, &s);
+        if (st == TD_OK && i > 0 && s != *sampled)
+            st = td_cr_fail(r, e, NULL,
+                            "a branch of a parallel block is all in s or all in z (this block is in %s, "
+                            "the branch's first in %s)",
+                            s ? "z" : "s", s ? "s" : "z");
+        *sampled = i == 0 ? s : *sampled;
+        if (st == TD_OK)
+            st = join_at(r, e, out, b, td_controller_series); /* takes b */
+        else
+            td_controller_free(&b);
+        b = NULL;
+    }
+    if (st != TD_OK)
+        td_controller_free(out);
+    return st;
+}
+
+/* A parallel block: its branches summed, all continuous or all sampled (*rate: 0 or sample_rate). */
+static td_status make_parallel(td_case_reader *r, const config_setting_t *list, double sample_rate, double *rate,
+                               td_controller **out)
+{
+    const config_setting_t *br;
+    td_controller *b = NULL;
+    int i, s = 0, first = 0;
+    td_status st = TD_OK;
+    for (i = 0; st == TD_OK && i < config_setting_length(list); i++) {
+        br = config_setting_get_elem(list, (unsigned)i);
+        st = read_branch(r, br, sample_rate, &b, &s);
+        if (st == TD_OK && i > 0 && s != first)
+            st = td_cr_fail(r, br, NULL,
+                            "the branches of a parallel block are all in s or all in z (this branch is "
+                            "in %s, the first in %s)",
+                            s ? "z" : "s", s ? "s" : "z");
+        first = i == 0 ? s : first;
+        if (st == TD_OK)
+            st = join_at(r, br, out, b, td_controller_parallel); /* takes b */
+        else
+            td_controller_free(&b);
+        b = NULL;
+    }
+    if (st != TD_OK)
+        td_controller_free(out);
+    *rate = first ? sample_rate : 0.0;
+    return st;
 }
 
 td_status td_cr_read_block(td_case_reader *r, const config_setting_t *e, double sample_rate, td_controller **out,
@@ -504,9 +659,10 @@ td_status td_cr_read_block(td_case_reader *r, const config_setting_t *e, double 
     if (st != TD_OK)
         return st;
     switch (kind) {
-    case 5: st = make_tf(r, member, sample_rate, &rate, out); break;
-    case 6: st = make_zpk(r, member, sample_rate, &rate, out); break;
-    case 7: st = make_ss(r, member, sample_rate, &rate, out); break;
+    case CB_TF: st = make_tf(r, member, sample_rate, &rate, out); break;
+    case CB_ZPK: st = make_zpk(r, member, sample_rate, &rate, out); break;
+    case CB_SS: st = make_ss(r, member, sample_rate, &rate, out); break;
+    case CB_PARALLEL: st = make_parallel(r, member, sample_rate, &rate, out); break;
     default: st = make_fixed(r, member, kind, out); break;
     }
     *sampled = st == TD_OK && rate > 0.0;

@@ -35,6 +35,7 @@ typedef struct cc_rec {
     int discretisation;
     double prewarp;
     int delay;
+    int discretised; /* runs of blocks in s sampled by `discretisation` so far */
 } cc_rec;
 
 /* ambs: at least one, each an AMB of the case (the model has read them). */
@@ -147,7 +148,7 @@ static td_status chain(td_case_reader *r, const config_setting_t *e, td_controll
 }
 
 /* The run of blocks in s so far (*run) sampled and put in series after *acc. */
-static td_status flush(td_case_reader *r, const config_setting_t *e, const cc_rec *c, td_controller **acc,
+static td_status flush(td_case_reader *r, const config_setting_t *e, cc_rec *c, td_controller **acc,
                        td_controller **run)
 {
     td_controller *d;
@@ -156,6 +157,7 @@ static td_status flush(td_case_reader *r, const config_setting_t *e, const cc_re
         return TD_OK;
     d = td_controller_discretise(*run, c->sample_rate, (td_discretisation)c->discretisation, c->prewarp, &merr);
     td_controller_free(run);
+    c->discretised++;
     if (!d && merr.site.field && strcmp(merr.site.field, "prewarp") == 0) /* the controller's key, e's grandparent */
         return td_cr_model_fail(r, config_setting_parent(config_setting_parent(e)), merr.code, &merr);
     if (!d)
@@ -165,7 +167,7 @@ static td_status flush(td_case_reader *r, const config_setting_t *e, const cc_re
 
 /* The law of list `key` of g, its blocks in series; sampled at c->sample_rate when it has one (each
  * run of blocks in s as a whole, by c's discretisation; a block in z as written). */
-static td_status build_law(td_case_reader *r, const config_setting_t *g, const char *key, const cc_rec *c,
+static td_status build_law(td_case_reader *r, const config_setting_t *g, const char *key, cc_rec *c,
                            td_controller **out)
 {
     const config_setting_t *list = config_setting_get_member(g, key), *e = list;
@@ -252,7 +254,7 @@ static td_status rigid_transforms(td_case_reader *r, const config_setting_t *g, 
 
 /* Translation and tilt in each plane, [x_r, tilt] of plane x then of plane y, made bearing
  * currents: i = Tout K (Tin e). */
-static td_status rigid_law(td_case_reader *r, const config_setting_t *g, const cc_rec *c, td_controller **out)
+static td_status rigid_law(td_case_reader *r, const config_setting_t *g, cc_rec *c, td_controller **out)
 {
     td_controller *t = NULL, *tilt = NULL, *plane = NULL, *both = NULL;
     double Tin[16], Tout[16];
@@ -275,7 +277,7 @@ static td_status rigid_law(td_case_reader *r, const config_setting_t *g, const c
 
 /* The whole controller of entry g: its law over its axes, with its delay; inputs = outputs = the
  * axes in the controller's order. */
-static td_status build_controller(td_case_reader *r, const config_setting_t *g, const cc_rec *c, td_controller **out,
+static td_status build_controller(td_case_reader *r, const config_setting_t *g, cc_rec *c, td_controller **out,
                                   int *axes)
 {
     td_controller *k = NULL, *law = NULL;
@@ -313,16 +315,31 @@ static td_status keep_info(td_case_reader *r, const cc_rec *c)
     info->delay = c->delay;
     info->discretisation = (td_discretisation)c->discretisation;
     info->prewarp = c->prewarp;
+    info->discretised = c->discretised > 0;
+    return TD_OK;
+}
+
+/* discretisation and prewarp act on the blocks in s: written for a law all in z, they would do nothing. */
+static td_status check_sampled_nothing(td_case_reader *r, const config_setting_t *g, const cc_rec *c)
+{
+    static const char *const keys[] = {"discretisation", "prewarp"};
+    int i;
+    for (i = 0; i < 2 && c->sample_rate > 0.0 && !c->discretised; i++)
+        if (td_cr_has(g, keys[i]))
+            return td_cr_fail(r, config_setting_get_member(g, keys[i]), NULL,
+                              "%s applies to the blocks in s, and every block of this controller is in z", keys[i]);
     return TD_OK;
 }
 
 static td_status add_controller(td_case_reader *r, const config_setting_t *g, void *rec)
 {
-    const cc_rec *c = rec;
+    cc_rec *c = rec;
     td_controller *k = NULL;
     int axes[2 * CC_MAX_AMBS];
     td_error merr;
     td_status st = build_controller(r, g, c, &k, axes);
+    if (st == TD_OK)
+        st = check_sampled_nothing(r, g, c);
     if (st == TD_OK && (st = td_model_add_controller(r->c->model, c->name, k, axes, axes, &merr)) != TD_OK)
         st = td_cr_model_fail(r, g, st, &merr);
     td_controller_free(&k);
@@ -390,7 +407,8 @@ static const td_cs_key controller_keys[] = {
      .name_count = 2,
      .check = check_sampled,
      .doc = "how the blocks in s become sampled ones (each run of them in series as a whole): bilinear, or exact "
-            "for a held input"},
+            "for a held input (a resonant block: exact at its frequency with zoh, or tustin prewarped there); refused "
+            "when every block is in z"},
     {.key = "prewarp",
      .type = TD_CS_REAL,
      .offset = offsetof(cc_rec, prewarp),
@@ -398,7 +416,8 @@ static const td_cs_key controller_keys[] = {
      .check = check_sampled,
      .doc_default = "0 (none)",
      .unit = "Hz",
-     .doc = "Tustin only: the frequency where the sampled law matches the continuous one exactly, e.g. a notch's"},
+     .doc = "Tustin only: the frequency where the sampled law matches the continuous one exactly, e.g. a notch's or "
+            "a resonant's; refused when every block is in z"},
     {.key = "delay",
      .type = TD_CS_INT,
      .offset = offsetof(cc_rec, delay),

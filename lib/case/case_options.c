@@ -586,9 +586,9 @@ static void root_preset(void *rec)
 }
 
 /* The top level, in the order of its "unknown key" list; `order` reads it in dependency order:
- * the shaft fixes the nodes, the parts come before the speed that loads them, AMBs (then the
- * controllers that drive them) before retainers, the run settings before the bounds on the run
- * (the `output` key's check). */
+ * the shaft fixes the nodes, the speed comes before the controllers (a resonant block's frequency
+ * defaults to it), AMBs (then the controllers that drive them) before retainers, the run settings
+ * before the bounds on the run (the `output` key's check). */
 static const td_cs_key root_keys[] = {
     {.key = "description",
      .type = TD_CS_STRING,
@@ -600,7 +600,7 @@ static const td_cs_key root_keys[] = {
      .need = TD_CS_REQUIRED,
      .range = TD_CR_NONNEGATIVE,
      .read = read_speed,
-     .order = 11,
+     .order = 4,
      .what = "rotor speed Omega, rad/s",
      .unit = "rad/s",
      .doc = "rotor speed Omega (spin about +z; a negative speed is refused here, by `--set`, by `touchdown modal "

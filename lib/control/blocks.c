@@ -1,5 +1,5 @@
 /*
- * blocks.c - the blocks of a controller drawn as a chain (gain, PID, lead-lag, low-pass, notch),
+ * blocks.c - the blocks of a controller drawn as a chain (gain, PID, lead-lag, low-pass, notch, resonant),
  * each realised by its closed form (docs/theory.md, "Controllers"). A first-order term r/(s + a)
  * is split evenly between B and C (sqrt|r| each), and the second-order sections use states
  * scaled by the natural frequency, so that no realisation starts badly balanced.
@@ -55,10 +55,7 @@ static td_status check_pid(const td_pid_block *b, td_error *err)
         return td_ctl_invalid(err, "pid", "kd", "must be finite (got %g)", b->kd);
     if (!(isfinite(b->kint) && b->kint >= 0.0))
         return td_ctl_invalid(err, "pid", "kint", "must be finite and >= 0 (got %g)", b->kint);
-    if (!(isfinite(b->derivative_filter) && b->derivative_filter >= 0.0))
-        return td_ctl_invalid(err, "pid", "derivative_filter", "must be finite and >= 0 Hz (got %g)",
-                              b->derivative_filter);
-    return TD_OK;
+    return td_ctl_check_frequency(b->derivative_filter, 1, "pid", "derivative_filter", err);
 }
 
 /* kp + kint/s + kd s/(1 + s/wd) = (kp + kd wd) + kint/s - kd wd^2/(s + wd): an integrator state
@@ -82,7 +79,7 @@ td_controller *td_controller_create_pid(const td_pid_block *b, td_error *err)
         first_order_state(k, i, wd, -b->kd * wd * wd);
     k->D[0] = b->kp + (filt ? b->kd * wd : 0.0);
     k->D1[0] = wd > 0.0 ? 0.0 : b->kd;
-    return k;
+    return td_ctl_finite(k, "pid", err);
 }
 
 /* g (1 + s/wz)/(1 + s/wp) = g wp/wz + g (wp/wz)(wz - wp)/(s + wp). */
@@ -98,8 +95,8 @@ td_controller *td_controller_create_leadlag(const td_leadlag_block *b, td_error 
         td_ctl_invalid(err, "leadlag", "gain", "must be finite (got %g)", b->gain);
         return NULL;
     }
-    if (td_ctl_check_positive(b->zero, "leadlag", "zero", err) != TD_OK ||
-        td_ctl_check_positive(b->pole, "leadlag", "pole", err) != TD_OK)
+    if (td_ctl_check_frequency(b->zero, 0, "leadlag", "zero", err) != TD_OK ||
+        td_ctl_check_frequency(b->pole, 0, "leadlag", "pole", err) != TD_OK)
         return NULL;
     wz = 2.0 * TD_PI * b->zero;
     wp = 2.0 * TD_PI * b->pole;
@@ -110,7 +107,7 @@ td_controller *td_controller_create_leadlag(const td_leadlag_block *b, td_error 
     if (r != 0.0)
         first_order_state(k, 0, wp, r);
     k->D[0] = b->gain * wp / wz;
-    return k;
+    return td_ctl_finite(k, "leadlag", err);
 }
 
 td_controller *td_controller_create_lowpass(const td_lowpass_block *b, td_error *err)
@@ -125,7 +122,7 @@ td_controller *td_controller_create_lowpass(const td_lowpass_block *b, td_error 
         td_ctl_invalid(err, "lowpass", "order", "must be 1 or 2 (got %d)", b->order);
         return NULL;
     }
-    if (td_ctl_check_positive(b->frequency, "lowpass", "frequency", err) != TD_OK ||
+    if (td_ctl_check_frequency(b->frequency, 0, "lowpass", "frequency", err) != TD_OK ||
         (b->order == 2 && td_ctl_check_positive(b->damping, "lowpass", "damping", err) != TD_OK))
         return NULL;
     wc = 2.0 * TD_PI * b->frequency;
@@ -138,7 +135,7 @@ td_controller *td_controller_create_lowpass(const td_lowpass_block *b, td_error 
         second_order_states(k, 0, wc, b->damping);
         k->C[0] = 1.0; /* x1 = wc^2 / (s^2 + 2 zeta wc s + wc^2) u */
     }
-    return k;
+    return td_ctl_finite(k, "lowpass", err);
 }
 
 /* (s^2 + 2 zz wn s + wn^2)/(s^2 + 2 zp wn s + wn^2) = 1 + 2 (zz - zp) wn s/(s^2 + 2 zp wn s + wn^2),
@@ -151,8 +148,8 @@ td_controller *td_controller_create_notch(const td_notch_block *b, td_error *err
         td_error_set(err, TD_ERR_INVALID, "notch: NULL block");
         return NULL;
     }
-    if (td_ctl_check_positive(b->frequency, "notch", "frequency", err) != TD_OK ||
-        td_ctl_check_positive(b->width, "notch", "width", err) != TD_OK)
+    if (td_ctl_check_frequency(b->frequency, 0, "notch", "frequency", err) != TD_OK ||
+        td_ctl_check_frequency(b->width, 0, "notch", "width", err) != TD_OK)
         return NULL;
     if (!(isfinite(b->depth) && b->depth >= 0.0 && b->depth < 1.0)) {
         td_ctl_invalid(err, "notch", "depth", "must be >= 0 and < 1 (got %g)", b->depth);
@@ -167,5 +164,36 @@ td_controller *td_controller_create_notch(const td_notch_block *b, td_error *err
     second_order_states(k, 0, wn, zp);
     k->C[1] = 2.0 * (zz - zp);
     k->D[0] = 1.0;
-    return k;
+    return td_ctl_finite(k, "notch", err);
+}
+
+/* g (s cos phi + w sin phi)/(s^2 + w^2): with zeta = 0 the states of second_order_states are
+ * x1 = w^2/d u and x2 = w s/d u (d = s^2 + w^2), so the output is (g sin phi/w) x1 + (g cos phi/w) x2. */
+td_controller *td_controller_create_resonant(const td_resonant_block *b, td_error *err)
+{
+    td_controller *k;
+    double w, phi;
+    if (!b) {
+        td_error_set(err, TD_ERR_INVALID, "resonant: NULL block");
+        return NULL;
+    }
+    if (!isfinite(b->gain)) {
+        td_ctl_invalid(err, "resonant", "gain", "must be finite (got %g)", b->gain);
+        return NULL;
+    }
+    if (!isfinite(b->phase)) {
+        td_ctl_invalid(err, "resonant", "phase", "must be finite degrees (got %g)", b->phase);
+        return NULL;
+    }
+    if (td_ctl_check_frequency(b->frequency, 0, "resonant", "frequency", err) != TD_OK)
+        return NULL;
+    w = 2.0 * TD_PI * b->frequency;
+    phi = b->phase * (TD_PI / 180.0);
+    k = td_ctl_alloc(2, 1, 1, 0.0, err);
+    if (!k)
+        return NULL;
+    second_order_states(k, 0, w, 0.0);
+    k->C[0] = b->gain * sin(phi) / w;
+    k->C[1] = b->gain * cos(phi) / w;
+    return td_ctl_finite(k, "resonant", err);
 }

@@ -1,6 +1,6 @@
 /*
- * combine.c - controllers joined in series, side by side, and through static coordinate
- * transforms (touchdown/controller.h). E below is a law's velocity feedthrough D1.
+ * combine.c - controllers joined in series, side by side, in parallel (summed), and through static
+ * coordinate transforms (touchdown/controller.h). E below is a law's velocity feedthrough D1.
  */
 #include "control/control_internal.h"
 
@@ -99,7 +99,7 @@ td_controller *td_controller_series(const td_controller *first, const td_control
     mul_add(k->D, p, k2->D, p, k1->D, p1, p, p1, m, 1.0);
     if (series_feedthrough(k1, k2, k, err) != TD_OK)
         td_controller_free(&k);
-    return k;
+    return td_ctl_finite(k, "series", err);
 }
 
 td_controller *td_controller_append(const td_controller *a, const td_controller *b, td_error *err)
@@ -123,6 +123,35 @@ td_controller *td_controller_append(const td_controller *a, const td_controller 
     put(k->D1, p, a->D1, a->outputs, a->outputs, a->inputs);
     put(k->D1 + a->outputs + (size_t)a->inputs * p, p, b->D1, b->outputs, b->outputs, b->inputs);
     return k;
+}
+
+/* A = [A1 0; 0 A2], B = [B1; B2], C = [C1  C2], D = D1 + D2, E = E1 + E2. */
+td_controller *td_controller_parallel(const td_controller *a, const td_controller *b, td_error *err)
+{
+    td_controller *k;
+    int n, m, p, j;
+    if (check_timing(a, b, "parallel", err) != TD_OK)
+        return NULL;
+    if (a->inputs != b->inputs || a->outputs != b->outputs) {
+        td_error_set(err, TD_ERR_INVALID, "parallel: the laws differ in size (%d x %d and %d x %d, outputs x inputs)",
+                     a->outputs, a->inputs, b->outputs, b->inputs);
+        return NULL;
+    }
+    n = a->n + b->n, m = a->inputs, p = a->outputs;
+    k = td_ctl_alloc(n, m, p, a->sample_rate, err);
+    if (!k)
+        return NULL;
+    put(k->A, n, a->A, a->n, a->n, a->n);
+    put(k->A + a->n + (size_t)a->n * n, n, b->A, b->n, b->n, b->n);
+    put(k->B, n, a->B, a->n, a->n, m);
+    put(k->B + a->n, n, b->B, b->n, b->n, m);
+    put(k->C, p, a->C, p, p, a->n);
+    put(k->C + (size_t)a->n * p, p, b->C, p, p, b->n);
+    for (j = 0; j < p * m; j++) {
+        k->D[j] = a->D[j] + b->D[j];
+        k->D1[j] = a->D1[j] + b->D1[j];
+    }
+    return td_ctl_finite(k, "parallel", err);
 }
 
 static td_status check_transform(const td_controller *k, int new_inputs, const double *Tin, int new_outputs,
@@ -166,5 +195,5 @@ td_controller *td_controller_transform(const td_controller *k, int new_inputs, c
     mul_add(w, p, k->D1, p, Tin, m, p, m, new_inputs, 1.0);
     mul_add(t->D1, new_outputs, Tout, new_outputs, w, p, new_outputs, p, new_inputs, 1.0);
     free(w);
-    return t;
+    return td_ctl_finite(t, "transform", err);
 }

@@ -39,6 +39,16 @@ td_status td_ctl_invalid(td_error *err, const char *part, const char *field, con
 /* td_ctl_invalid with "must be finite and > 0 (got V)" unless v is; returns the status. */
 td_status td_ctl_check_positive(double v, const char *part, const char *field, td_error *err);
 
+/* td_ctl_invalid unless v is a block's frequency, TD_CONTROLLER_FREQUENCY_MIN to _MAX Hz (or 0,
+ * none, when zero_ok); returns the status. */
+td_status td_ctl_check_frequency(double v, int zero_ok, const char *part, const char *field, td_error *err);
+
+/* k itself when every entry of its realisation is finite; else NULL (k freed) with TD_ERR_INVALID
+ * naming `part`: numbers at the ends of the double range overflowed in the arithmetic that built
+ * it, and a law of inf or NaN must not reach the analyses (their eigen-solver did not return on
+ * one). A NULL k (a failure already set) passes through. */
+td_controller *td_ctl_finite(td_controller *k, const char *part, td_error *err);
+
 /* The proper or improper-by-one SISO law num/den, both in descending powers of s (or of z for a
  * sampled law: then deg num <= deg den), realised in controllable canonical form. Leading zeros
  * of num are ignored; den[0] != 0. `who` names the caller in messages. */

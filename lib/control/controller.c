@@ -69,6 +69,30 @@ td_status td_ctl_check_positive(double v, const char *part, const char *field, t
     return TD_OK;
 }
 
+td_status td_ctl_check_frequency(double v, int zero_ok, const char *part, const char *field, td_error *err)
+{
+    if (!((v >= TD_CONTROLLER_FREQUENCY_MIN && v <= TD_CONTROLLER_FREQUENCY_MAX) || (zero_ok && v == 0.0)))
+        return td_ctl_invalid(err, part, field, "must be %s%g to %g Hz (got %g)", zero_ok ? "0 (none) or " : "",
+                              TD_CONTROLLER_FREQUENCY_MIN, TD_CONTROLLER_FREQUENCY_MAX, v);
+    return TD_OK;
+}
+
+td_controller *td_ctl_finite(td_controller *k, const char *part, td_error *err)
+{
+    size_t n;
+    if (!k)
+        return NULL;
+    n = (size_t)k->n * (size_t)k->n + (size_t)k->n * (size_t)k->inputs + (size_t)k->outputs * (size_t)k->n +
+        2 * (size_t)k->outputs * (size_t)k->inputs; /* A, B, C, D and D1, one allocation */
+    if (td_ctl_all_finite(k->A, (int)n))
+        return k;
+    td_controller_free(&k);
+    td_ctl_invalid(err, part, NULL,
+                   "the realisation overflows (an entry is inf or NaN): its numbers are too far apart "
+                   "for double precision");
+    return NULL;
+}
+
 void td_ctl_matmul(const double *X, int rows, int inner, const double *Y, int cols, double *Z)
 {
     int i, j, l;

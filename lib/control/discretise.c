@@ -78,7 +78,7 @@ td_controller *td_controller_discretise(const td_controller *k, double sample_ra
     }
     if (st != TD_OK)
         td_controller_free(&d);
-    return d;
+    return td_ctl_finite(d, "discretise", err);
 }
 
 /* States [x; s1; ...; s_d], s_j (outputs each) the output j samples ago:

@@ -39,5 +39,5 @@ td_controller *td_controller_minimal(const td_controller *k, td_error *err)
         memcpy(r->D1, k->D1, (size_t)p * m * sizeof *w);
     }
     free(w);
-    return r;
+    return td_ctl_finite(r, "minimal", err);
 }

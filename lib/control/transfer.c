@@ -81,7 +81,7 @@ td_controller *td_ctl_from_polynomials(const double *num, int num_len, const dou
         k->D1[0] = q1;
     }
     free(a);
-    return k;
+    return td_ctl_finite(k, who, err);
 }
 
 /* Trailing zeros of a z^-1 polynomial (powers beyond its last term) carry nothing. */

@@ -102,7 +102,10 @@ static void monitor_slew(td_sim *s, double t, const double *y)
 
 /* Statistics at the state in s->dae.y (time t): contact and slewing time, peak normal force, AMB
  * load, and, at integrator steps only (at_step; interpolated states carry the interpolation
- * error), the drift. */
+ * error), the drift. The contact time is signed as the slewing time is: a retainer's mode holds
+ * over a step (it changes at stops only), and an output inside the last step takes back the part
+ * of the step beyond it, so that the time is exact at every time reached, the run's end included,
+ * and a change made there counts from there. */
 void td_sim_monitor_at(td_sim *s, double t, int at_step)
 {
     const double *y = N_VGetArrayPointer(s->dae.y);
@@ -113,8 +116,7 @@ void td_sim_monitor_at(td_sim *s, double t, int at_step)
         double fn;
         if (r->mode == TD_RMODE_FREE)
             continue;
-        if (dt > 0.0)
-            s->monitor.stats.time_in_contact += dt;
+        s->monitor.stats.time_in_contact += dt;
         if (r->mode == TD_RMODE_CONTACT && at_step) {
             double x, yy, vx, vy, drift;
             td_sim_node_state(s, k, y, &x, &yy, &vx, &vy);
@@ -133,8 +135,7 @@ void td_sim_monitor_at(td_sim *s, double t, int at_step)
     monitor_ambs(s, t, y);
     if (s->dae.n_slew_roots > 0)
         monitor_slew(s, t, y);
-    if (t > s->monitor.t_acc)
-        s->monitor.t_acc = t;
+    s->monitor.t_acc = t;
 }
 
 /* The next queued event into s->monitor.last (td_sim_last_event); 0 when the queue is empty. */

@@ -41,7 +41,7 @@ typedef struct td_sim_monitor {
 
     /* statistics (monitor.c) */
     td_sim_stats stats; /* event totals, drift, forces, times (counters filled on demand) */
-    double t_acc;       /* contact time accumulated up to here */
+    double t_acc;       /* contact time accounted up to here (monitor.c) */
     int slewing;        /* AMB axes slewing at the last point (slew_t) */
     double slew_t;      /* time_slewing is accounted up to here (monitor.c) */
     int slew_kink;      /* the last stop was on a slew's kink (sim_modes.c td_sim_handle_roots) */

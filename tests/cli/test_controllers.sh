@@ -40,7 +40,26 @@ s = 8000.0 * cmath.log(complex(0.3, 0.4))
 print("%.6g Hz (zeta %.3g) x2" % (abs(s) / (2 * math.pi), -s.real / abs(s)))')
 check "info: a sampled pole mapped to s = ln(z) rate ($pole)" has "$out" "$pole"
 check "info: one delay state per output (4 axes)" has "$out" "z = 0 (delay) x4"
+res=$(python3 -c 'import math; print("%.6g" % (100.0 / (2 * math.pi)))')
 check "info: the integrator of a PID and a zpk pair in s" has "$out" "0 Hz (integrator) x2, 35.5881 Hz (zeta 0.447) x2"
+check "info: the resonant's undamped pair at the speed, 100 rad/s = $res Hz" has "$out" "poles: $res Hz (zeta "
+
+# a law written in z throughout was sampled by nothing: info says so (not the default "tustin"),
+# and a discretisation or prewarp written for it, which would do nothing, is refused
+t "$work/z" info "$src/tests/data/case/controller-z.cfg"
+check "info: a law written in z is not said to be discretised" \
+    has "$work/z/.out" 'sampled at 10000 Hz (written in z), delay 1 sample'
+t "$work/zd" info --set 'controllers[0].discretisation="zoh"' "$src/tests/data/case/controller-z.cfg"
+check "  a discretisation for it: exit 2 naming the key" \
+    test "$rc" = 2 -a -n "$(grep -F 'controllers[0].discretisation: discretisation applies to the blocks in s' "$work/zd/.err")"
+t "$work/zs" info --set 'controllers[0].law=( { tf = { num = [5.0e3, -4.9e3]; den = [1.0, -0.5]; domain = "z"; }; }, { lowpass = { frequency = 3000.0; }; } )' \
+    --set 'controllers[0].discretisation="zoh"' "$src/cases/paper-a-digital.cfg"
+check "  and one with a block in s is, by its discretisation" has "$work/zs/.out" 'sampled at 10000 Hz (zoh), delay 1 sample'
+
+# an undamped pair (a resonant block) has zeta 0, not "-0"
+t "$work/res" info --set 'controllers[0].translation=( { resonant = { gain = 1.0; frequency = 50.0; }; } )' \
+    "$src/cases/rig-notch.cfg"
+check "info: a resonant's poles, 50 Hz (zeta 0)" has "$work/res/.out" "poles: 2000 Hz (zeta 1) x2, 50 Hz (zeta 0) x2"
 
 t "$work/modal" modal --csv '' --hdf5 '' "$src/cases/rig-notch.cfg"
 check "modal rig-notch: exit 0 and stable" grep -q '^modes at 90 rad/s (stable)' "$work/modal/.out"

@@ -63,7 +63,7 @@ static void print_pole(FILE *f, double re, double im, int count, int first, doub
     if (w <= 1e-9 * scale)
         fprintf(f, "%s 0 Hz (integrator)", first ? "" : ",");
     else
-        fprintf(f, "%s %.6g Hz (zeta %.3g)", first ? "" : ",", w / TWO_PI, -re / w);
+        fprintf(f, "%s %.6g Hz (zeta %.3g)", first ? "" : ",", w / TWO_PI, -re / w + 0.0); /* + 0: no "-0" */
     if (count > 1)
         fprintf(f, " x%d", count);
 }
@@ -162,7 +162,9 @@ void td_print_controllers(FILE *f, const td_case *c)
         else
             fprintf(f, " in bearing coordinates");
         fprintf(f, ", %d states, ", td_controller_order(k));
-        if (rate > 0.0 && info.prewarp > 0.0)
+        if (rate > 0.0 && !info.discretised) /* no block in s: the law is as written in z */
+            fprintf(f, "sampled at %.6g Hz (written in z)", rate);
+        else if (rate > 0.0 && info.prewarp > 0.0)
             fprintf(f, "sampled at %.6g Hz (tustin prewarped at %.6g Hz)", rate, info.prewarp);
         else if (rate > 0.0)
             fprintf(f, "sampled at %.6g Hz (%s)", rate, info.discretisation == TD_DISCRETISE_ZOH ? "zoh" : "tustin");

@@ -5,10 +5,13 @@
  *
  *   law NAME                            start a law (the blocks that follow go in series)
  *   gain G | pid KP KINT KD FILTER | leadlag G ZERO POLE | lowpass F ORDER DAMPING | notch F WIDTH DEPTH
+ *   resonant G PHASE F
  *   tf RATE NNUM NUM... NDEN DEN...     zpk RATE GAIN NZ (RE IM)... NP (RE IM)...
  *   ss RATE N M P A... B... C... D...
  *   discretise RATE tustin|zoh PREWARP  delay SAMPLES  minimal
  *   append                              the law so far side by side with itself
+ *   branch                              keep the law so far aside and start another
+ *   sum                                 the law kept aside plus the law so far, in parallel
  *   freq F...        prints  "freq NAME F re im ..." (G column-major)
  *   step INPUT T...  prints  "step NAME T y..."
  *   matrices         prints  "matrices NAME N M P RATE A... B... C... D..."
@@ -25,7 +28,7 @@
 #define MAX_VALUES 4096
 
 static char name[128];
-static td_controller *law;
+static td_controller *law, *aside;
 
 static int fail(const char *what, const td_error *err)
 {
@@ -126,6 +129,9 @@ static int block(const char *word, const double *v, int count, td_error *err)
     } else if (!strcmp(word, "notch") && count == 3) {
         td_notch_block b = {v[0], v[1], v[2]};
         chain(td_controller_create_notch(&b, err), word, err);
+    } else if (!strcmp(word, "resonant") && count == 3) {
+        td_resonant_block b = {v[0], v[1], v[2]};
+        chain(td_controller_create_resonant(&b, err), word, err);
     } else if (!strcmp(word, "tf") && count >= 4) {
         chain(make_tf(v, count, err), word, err);
     } else if (!strcmp(word, "zpk") && count >= 4) {
@@ -195,6 +201,12 @@ static int operation(const char *word, char *rest, const double *v, int count, t
         replace(td_controller_minimal(law, err), word, err);
     } else if (!strcmp(word, "append")) {
         replace(td_controller_append(law, law, err), word, err);
+    } else if (!strcmp(word, "branch")) {
+        td_controller_free(&aside);
+        aside = law;
+        law = NULL;
+    } else if (!strcmp(word, "sum")) {
+        replace(td_controller_parallel(aside, law, err), word, err);
     } else if (!strcmp(word, "freq") || !strcmp(word, "step")) {
         print_responses(word, v, count, err);
     } else if (!strcmp(word, "matrices")) {
@@ -228,5 +240,6 @@ int main(void)
         fflush(stdout);
     }
     td_controller_free(&law);
+    td_controller_free(&aside);
     return 0;
 }

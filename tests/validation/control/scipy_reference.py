@@ -60,6 +60,11 @@ def notch(f, width, depth):
     return f"notch {f!r} {width!r} {depth!r}", ([1.0, 2 * depth * zp * w, w * w], [1.0, 2 * zp * w, w * w])
 
 
+def resonant(g, phase_deg, f):
+    w, phi = TWO_PI * f, np.radians(phase_deg)
+    return f"resonant {g!r} {phase_deg!r} {f!r}", ([g * np.cos(phi), g * w * np.sin(phi)], [1.0, 0.0, w * w])
+
+
 def tf_s(num, den):
     return f"tf 0 {len(num)} {' '.join(map(repr, num))} {len(den)} {' '.join(map(repr, den))}", (num, den)
 
@@ -71,6 +76,18 @@ def ss_series(first, second):
     n1, n2 = a1.shape[0], a2.shape[0]
     a = np.block([[a1, np.zeros((n1, n2))], [b2 @ c1, a2]])
     return a, np.vstack([b1, b2 @ d1]), np.hstack([d2 @ c1, c2]), d2 @ d1
+
+
+def parallel(first, second):
+    """The sum of two chains (as chain() gives them): the probe's branch/sum commands, the sum of
+    the transfer functions, and the block-diagonal state space fed the same input."""
+    (c1, (n1, d1), s1), (c2, (n2, d2), s2) = first, second
+    a1, b1, cc1, dd1 = s1
+    a2, b2, cc2, dd2 = s2
+    k1, k2 = a1.shape[0], a2.shape[0]
+    a = np.block([[a1, np.zeros((k1, k2))], [np.zeros((k2, k1)), a2]])
+    ss = (a, np.vstack([b1, b2]), np.hstack([cc1, cc2]), dd1 + dd2)
+    return c1 + ["branch"] + c2 + ["sum"], tf_sum((n1, d1), (n2, d2)), ss
 
 
 def chain(*blocks):
@@ -125,6 +142,12 @@ def continuous_laws():
         "pd_unfiltered": chain(pid(1.0e4, 0.0, 40.0, 0.0))[:2] + (None,),
         "notch_then_pd": chain(notch(96.0, 10.0, 0.1), tf_s([40.0, 1.0e4], [1.0]))[:2] + (None,),
         "tf3": chain(tf_s([3.0, 1.0e3, 2.0e6], [1.0, 900.0, 4.0e5, 1.0e8])),
+        "resonant": chain(resonant(5.0e3, 60.0, 50.93)),
+        "resonant_90": chain(resonant(-2.0e3, 90.0, 120.0)),
+        "pd_plus_resonant": parallel(chain(pid(1.0e4, 0.0, 40.0, 2000.0), lowpass(3000.0, 1, 0.0)),
+                                     chain(resonant(0.6, 45.0, 50.93))),
+        "pid_resonant_lowpass": chain(pid(1.0e4, 0.0, 40.0, 2000.0), resonant(0.3, -30.0, 50.93),
+                                      lowpass(2000.0, 2, 0.7)),
     }
 
 
@@ -134,7 +157,8 @@ def sampled_laws(cont):
     for name, rate, method, prewarp, delay in [
             ("pid_notch_lowpass", 1.0e4, "tustin", 0.0, 0), ("pid_notch_lowpass", 1.0e4, "tustin", 34.4, 1),
             ("leadlag_lowpass1", 5.0e3, "zoh", 0.0, 0), ("pd_tf_lowpass2", 1.0e4, "zoh", 0.0, 2),
-            ("tf3", 2.0e3, "tustin", 300.0, 3)]:
+            ("tf3", 2.0e3, "tustin", 300.0, 3), ("resonant", 1.0e4, "tustin", 50.93, 1),
+            ("pid_resonant_lowpass", 1.0e4, "zoh", 0.0, 1), ("pd_plus_resonant", 1.0e4, "tustin", 50.93, 1)]:
         cmds, _, ss = cont[name]
         # Tustin prewarped at w0 is the bilinear map s = (2/T')(z - 1)/(z + 1), T' = 2 tan(w0 T/2)/w0
         w0 = TWO_PI * prewarp
