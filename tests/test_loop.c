@@ -301,6 +301,7 @@ static void test_sampled_slow_growth(void **state)
     assert_int_equal(td_modal_solve(s, 300.0, &m, &err), TD_OK);
     assert_close(td_modal_max_real_part(m), log(mu) * law[0], 1e-6, 0.0);
     assert_close(td_modal_sample_rate(m), law[0], 0.0, 0.0);
+    assert_close(td_modal_rounding_scale(m), law[0], 0.0, 0.0); /* what the text's stable/marginal word uses */
     assert_true(td_modal_max_real_part(m) < TD_MODAL_MARGINAL_REAL_PART * td_modal_spectral_radius(m));
     assert_int_equal(td_modal_is_unstable(m), 1);
     assert_int_equal(td_modal_stability(s, 300.0, &max_real, &unstable, &err), TD_OK);
