@@ -10,7 +10,9 @@
  * - the sampled loop (a sampled controller, AMB 1's shorthand inside the plant) against scipy at
  *   test time (tests/validation/control/sampled_loop_reference.py: cont2discrete zoh and bilinear,
  *   dfreqresp, a hand closed loop over one sample), and its limit as the rate grows: the
- *   continuous loop of the same law, the error falling as T; its grid ends at the Nyquist frequency.
+ *   continuous loop of the same law, the error falling as T; its grid ends at the Nyquist frequency;
+ * - a slowly growing sampled loop (scipy's |mu|) is unstable for td_modal_is_unstable,
+ *   td_modal_stability and td_loop_stable alike.
  */
 #include "td_test.h"
 #include "touchdown/case.h"
@@ -159,17 +161,18 @@ static void test_against_scipy(void **state)
 }
 
 /* The sampled PD of the test below on AMB axes 0 and 1: kp + kd s / (1 + s / (2 pi f_d)), Tustin at
- * `rate`, `delay` samples; AMB 1 keeps the shorthand PID of `machine`. */
+ * `rate`, `delay` samples; AMB 1 keeps the shorthand PID of `machine`. rig_sampled_pd: the system
+ * with such a law (its five numbers in that order) on AMB 0. */
 static const double sampled_pd[5] = {20000.0, 1.0, 1.0e4, 40.0, 2000.0}; /* rate, delay, kp, kd, f_d */
 
-static td_system *rig_sampled_pd(td_case **c)
+static td_system *rig_sampled_pd(const double *law, td_case **c)
 {
     static const char *ov[] = {"speed=300.0",     "ambs[1].kint=5.0e4", "ambs[1].kp=1.2e4",
                                "ambs[1].kd=35.0", "ambs[0].kp=0",       "ambs[0].kd=0"};
-    td_pid_block pid = {sampled_pd[2], 0.0, sampled_pd[3], sampled_pd[4]};
+    td_pid_block pid = {law[2], 0.0, law[3], law[4]};
     td_controller *k = td_controller_create_pid(&pid, NULL);
-    td_controller *kt = td_controller_discretise(k, sampled_pd[0], TD_DISCRETISE_TUSTIN, 0.0, NULL);
-    td_controller *kd = td_controller_delay(kt, (int)sampled_pd[1], NULL);
+    td_controller *kt = td_controller_discretise(k, law[0], TD_DISCRETISE_TUSTIN, 0.0, NULL);
+    td_controller *kd = td_controller_delay(kt, (int)law[1], NULL);
     td_model *m = NULL;
     td_system *s = NULL;
     td_error err;
@@ -199,7 +202,7 @@ static td_system *rig_sampled_pd(td_case **c)
 static void test_sampled_against_scipy(void **state)
 {
     td_case *c = NULL;
-    td_system *s = rig_sampled_pd(&c);
+    td_system *s = rig_sampled_pd(sampled_pd, &c);
     td_loop *l = NULL;
     td_error err;
     char dir[] = "/tmp/td_loop_XXXXXX", in[64], out[64], line[512];
@@ -241,6 +244,73 @@ static void test_sampled_against_scipy(void **state)
     remove(out);
     rmdir(dir);
     td_loop_free(&l);
+    td_system_free(&s);
+    td_case_free(&c);
+}
+
+/* The largest |mu| of the sampled loop of rig_sampled_pd(law) over one sample, from scipy
+ * (sampled_loop_reference.py's hand closed loop: cont2discrete zoh of the plant, the law's own
+ * realisation by tf2ss). */
+static double reference_max_mu(const td_system *s, const td_case *c, const double *law)
+{
+    char dir[] = "/tmp/td_loop_XXXXXX", in[64], out[64], line[512];
+    double freq = 10.0, mu = NAN, x;
+    int j;
+    FILE *f;
+    assert_non_null(mkdtemp(dir));
+    snprintf(in, sizeof in, "%s/in.txt", dir);
+    snprintf(out, sizeof out, "%s/out.txt", dir);
+    f = dump_machine(in, s, td_case_model(c), 300.0, &freq, 1, 0);
+    write_matrix(f, "sampled", law, 5);
+    fprintf(f, "saxes 0 1\n");
+    assert_int_equal(fclose(f), 0);
+    run_reference("tests/validation/control/sampled_loop_reference.py", in, out);
+    f = fopen(out, "r");
+    assert_non_null(f);
+    while (fgets(line, sizeof line, f))
+        if (sscanf(line, "R %d %lf", &j, &x) == 2)
+            mu = x;
+    fclose(f);
+    remove(in);
+    remove(out);
+    rmdir(dir);
+    return mu;
+}
+
+/* A slowly growing sampled loop is unstable, by one rule for the modal analysis, its stability check
+ * and the loop analysis: ln |mu| beyond the rounding of a marginal root (TD_MODAL_MARGINAL_REAL_PART),
+ * that is a largest real part above that fraction of the sample rate. The 10 kHz law with one sample
+ * of delay and kd = 41.6 leaves the 304 Hz bending mode growing at 0.006 1/s (scipy's |mu|: ln |mu|
+ * = 6e-7, four times the margin). Judged against the spectral radius instead (63000 1/s here, set
+ * by the delay's root, s = ln(mu) rate with mu = 0.0018: no growth rate of anything), the margin
+ * would be 0.0094 1/s and the loop stable. */
+static void test_sampled_slow_growth(void **state)
+{
+    static const double law[5] = {10000.0, 1.0, 1.0e4, 41.6, 2000.0}; /* rate, delay, kp, kd, f_d */
+    td_case *c = NULL;
+    td_system *s = rig_sampled_pd(law, &c);
+    td_modal *m = NULL;
+    td_loop *l = NULL;
+    td_error err;
+    double mu, max_real = NAN;
+    int unstable = -1;
+    (void)state;
+    mu = reference_max_mu(s, c, law);
+    print_message("slow growth: scipy max |mu| - 1 = %.6g, ln |mu| rate = %.6g 1/s\n", mu - 1.0, log(mu) * law[0]);
+    assert_true(log(mu) > 3.0 * TD_MODAL_MARGINAL_REAL_PART && log(mu) * law[0] < 0.01); /* grows, slowly */
+    assert_int_equal(td_modal_solve(s, 300.0, &m, &err), TD_OK);
+    assert_close(td_modal_max_real_part(m), log(mu) * law[0], 1e-6, 0.0);
+    assert_close(td_modal_sample_rate(m), law[0], 0.0, 0.0);
+    assert_close(td_modal_rounding_scale(m), law[0], 0.0, 0.0); /* what the text's stable/marginal word uses */
+    assert_true(td_modal_max_real_part(m) < TD_MODAL_MARGINAL_REAL_PART * td_modal_spectral_radius(m));
+    assert_int_equal(td_modal_is_unstable(m), 1);
+    assert_int_equal(td_modal_stability(s, 300.0, &max_real, &unstable, &err), TD_OK);
+    assert_close(max_real, td_modal_max_real_part(m), 1e-6, 0.0);
+    assert_int_equal(unstable, 1);
+    assert_int_equal(td_loop_compute(s, 300.0, NULL, &l, &err), TD_OK);
+    assert_false(td_loop_stable(l));
+    td_loop_free(&l);
+    td_modal_free(&m);
     td_system_free(&s);
     td_case_free(&c);
 }
@@ -550,6 +620,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_against_scipy),
         cmocka_unit_test(test_sampled_against_scipy),
+        cmocka_unit_test(test_sampled_slow_growth),
         cmocka_unit_test(test_zone_limits),
         cmocka_unit_test(test_static_compliance),
         cmocka_unit_test(test_unstable),

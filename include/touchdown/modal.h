@@ -144,22 +144,32 @@ TD_API td_status td_modal_mode_shape(const td_modal *m, int i, double *x_re, dou
 TD_API double td_modal_max_real_part(const td_modal *m);
 /** Largest |s| over all eigenvalues, 1/s (the spectral radius). */
 TD_API double td_modal_spectral_radius(const td_modal *m);
-/** Real parts within this fraction of the spectral radius are round-off of zero (undamped modes of
- *  an undamped shaft come out at +-1e-12..1e-9 of it). */
+/** Real parts within this fraction of the spectral radius (td_modal_rounding_scale) are round-off of
+ *  zero (undamped modes of an undamped shaft come out at +-1e-12..1e-9 of it). */
 #define TD_MODAL_ROUNDOFF_REAL_PART 1e-9
 /** Real parts up to this fraction of the spectral radius are rounding of a marginal root, not
- *  growth: 10 sqrt(DBL_EPSILON) = 1.5e-7. The eigen-solver (the QR algorithm) returns the exact
- *  roots of A + E with |E| about eps |A|: a simple root moves by O(eps |A|), but a defective one of
- *  multiplicity 2 moves by O(sqrt(eps) |A|), the roots of a 2 x 2 Jordan block perturbed by e
- *  being +-sqrt(e) (Golub & Van Loan, Matrix Computations, 4th ed., 7.2 and 7.5).
- *  A rotor without bearings (every AMB off, free-free) has such roots at 0, its rigid-body
- *  motions x'' = 0: they come out at up to about sqrt(eps) times the spectral radius (3e-9 of it
- *  on the rig without its AMBs), where the rounding of simple roots stays within
+ *  growth: 10 sqrt(DBL_EPSILON) = 1.5e-7. For a sampled loop (td_modal_sample_rate > 0) the
+ *  fraction is of the sample rate: its roots are s = ln(mu) rate with mu those of the loop over one
+ *  sample, which round relative to |mu| ~ 1 (ln |mu| up to 1.5e-7 is marginal), whereas a root
+ *  mu ~ 0 (a delay's) makes its spectral radius whatever the rounding of that mu's ln gives. The eigen-solver (the QR
+ * algorithm) returns the exact roots of A + E with |E| about eps |A|: a simple root moves by O(eps |A|), but a
+ * defective one of multiplicity 2 moves by O(sqrt(eps) |A|), the roots of a 2 x 2 Jordan block perturbed by e being
+ * +-sqrt(e) (Golub & Van Loan, Matrix Computations, 4th ed., 7.2 and 7.5). A rotor without bearings (every AMB off,
+ * free-free) has such roots at 0, its rigid-body motions x'' = 0: they come out at up to about sqrt(eps) times the
+ * spectral radius (3e-9 of it on the rig without its AMBs), where the rounding of simple roots stays within
  *  TD_MODAL_ROUNDOFF_REAL_PART. The factor 10 covers the constant of |E|; a true growth rate this
  *  small (1.5e-7 of the fastest root, e-folding over millions of its periods) is no instability a
  *  run could show. */
 #define TD_MODAL_MARGINAL_REAL_PART 1.4901161193847656e-07
-/** 1 if some eigenvalue grows: max real part > TD_MODAL_MARGINAL_REAL_PART * spectral radius. */
+/** Sample rate of the loop a sampled analysis holds (td_modal_solve of a system with sampled
+ *  controllers: its eigenvalues are s = ln(mu) rate), Hz; 0 for a continuous one. */
+TD_API double td_modal_sample_rate(const td_modal *m);
+/** The scale, 1/s, that real parts round against (TD_MODAL_ROUNDOFF_REAL_PART and
+ *  TD_MODAL_MARGINAL_REAL_PART are fractions of it): the spectral radius; for a sampled loop its
+ *  sample rate (ln |mu| rounds against 1). */
+TD_API double td_modal_rounding_scale(const td_modal *m);
+/** 1 if some eigenvalue grows: max real part > TD_MODAL_MARGINAL_REAL_PART * td_modal_rounding_scale
+ *  (the spectral radius; for a sampled loop the sample rate: ln |mu| beyond the rounding). */
 TD_API int td_modal_is_unstable(const td_modal *m);
 /**
  * Stability of the contact-free system at speed `omega` from its eigenvalues alone (no
@@ -345,7 +355,8 @@ TD_API char td_loop_zone(double peak);
  * grid ending at the Nyquist frequency (rate / 2) if f_max is beyond it. The compliance is the
  * displacement at the sample instants per unit sinusoidal force. Stable iff every eigenvalue mu of
  * the loop over one sample has |mu| < 1 (ln |mu| at most TD_MODAL_MARGINAL_REAL_PART: the rounding
- * of a marginal root). What happens between the samples is not included (docs/theory.md).
+ * of a marginal root; td_modal_is_unstable's rule for a sampled loop). What happens between the
+ * samples is not included (docs/theory.md).
  *
  * opt may be NULL (td_loop_options_default). Errors: TD_ERR_INVALID (NULL argument, bad options
  * or speed, no controlled axis, f_min not below a sampled loop's Nyquist frequency, sampled laws

@@ -422,6 +422,8 @@ static td_status solve_sampled(const td_system *sys, double omega, td_modal **ou
         else {
             sampled_to_continuous(eval, rate);
             st = td_modal_collect_system(eval, evec, sys, omega, out, err);
+            if (st == TD_OK)
+                (*out)->sample_rate = rate;
         }
     }
     gsl_eigen_nonsymmv_free(w);
@@ -469,11 +471,20 @@ td_status td_modal_solve(const td_system *sys, double omega, td_modal **out, td_
     return st;
 }
 
-/* The one test of growth: a real part beyond the rounding of a marginal root
- * (TD_MODAL_MARGINAL_REAL_PART of the spectral radius, modal.h says why). */
-static int grows(double max_real, double radius)
+/* The one test of growth: a real part beyond the rounding of a marginal root, TD_MODAL_MARGINAL_REAL_PART
+ * of the scale the roots round against (modal.h says why): a continuous system's roots s are those of
+ * its state matrix, rounded relative to the spectral radius; a sampled loop's are s = ln(mu) rate
+ * with mu those of the loop over one sample, rounded relative to |mu| ~ 1, so growth is
+ * ln |mu| > TD_MODAL_MARGINAL_REAL_PART, max_real > TD_MODAL_MARGINAL_REAL_PART rate. Its spectral
+ * radius would not do: a root mu ~ 0 (a delay's, a fast decay's) has an ln that rounding sets. */
+static double rounding_scale(double radius, double sample_rate)
 {
-    return max_real > TD_MODAL_MARGINAL_REAL_PART * radius;
+    return sample_rate > 0.0 ? sample_rate : radius;
+}
+
+static int grows(double max_real, double radius, double sample_rate)
+{
+    return max_real > TD_MODAL_MARGINAL_REAL_PART * rounding_scale(radius, sample_rate);
 }
 
 /* Largest real part and spectral radius of the eigenvalues in eval. */
@@ -523,7 +534,7 @@ td_status td_modal_stability(const td_system *sys, double omega, double *max_rea
     if (st == TD_OK && max_real_part)
         *max_real_part = max_real;
     if (st == TD_OK && unstable)
-        *unstable = grows(max_real, radius);
+        *unstable = grows(max_real, radius, rate);
     return st;
 }
 
@@ -578,9 +589,17 @@ double td_modal_spectral_radius(const td_modal *m)
         radius = fmax(radius, fabs(m->real[i]));
     return radius;
 }
+double td_modal_sample_rate(const td_modal *m)
+{
+    return m ? m->sample_rate : 0.0;
+}
+double td_modal_rounding_scale(const td_modal *m)
+{
+    return m ? rounding_scale(td_modal_spectral_radius(m), m->sample_rate) : 0.0;
+}
 int td_modal_is_unstable(const td_modal *m)
 {
-    return m && grows(m->max_real, td_modal_spectral_radius(m));
+    return m && grows(m->max_real, td_modal_spectral_radius(m), m->sample_rate);
 }
 
 td_status td_modal_get_mode(const td_modal *m, int i, td_mode *out)

@@ -683,9 +683,7 @@ static td_status closed_loop_stability(const td_system *sys, td_loop *l, td_erro
     if (st != TD_OK)
         return st;
     l->max_real = td_modal_max_real_part(md);
-    /* a sampled loop's eigenvalues are s = ln(mu) rate (sampled.c): |mu| < 1, to the rounding of a
-     * marginal root, ln |mu| <= TD_MODAL_MARGINAL_REAL_PART (a delay's mu = 0 leaves out of it) */
-    l->stable = l->rate > 0.0 ? !(l->max_real > TD_MODAL_MARGINAL_REAL_PART * l->rate) : !td_modal_is_unstable(md);
+    l->stable = !td_modal_is_unstable(md); /* a sampled loop's: ln |mu| within the rounding (eigen.c) */
     l->mode_f = malloc(((size_t)td_modal_mode_count(md) + 1u) * sizeof *l->mode_f);
     l->mode_zeta = malloc(((size_t)td_modal_mode_count(md) + 1u) * sizeof *l->mode_zeta);
     for (i = 0; l->mode_f && l->mode_zeta && i < td_modal_mode_count(md); i++) {

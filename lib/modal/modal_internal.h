@@ -87,6 +87,7 @@ struct td_modal {
     double max_real;
     int n_computed;        /* eigenvalues the solver computed (the state count for a full solve) */
     double complete_below; /* every vibration mode with omega_d below this is listed (INFINITY: all) */
+    double sample_rate;    /* Hz: a sampled loop's (its roots are s = ln(mu) rate); 0 for a continuous system */
 };
 
 /* Sort and store eigenvalues and their eigenvectors (columns of evec, state rows) into a new

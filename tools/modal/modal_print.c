@@ -65,10 +65,10 @@ void td_print_overdamped(FILE *f, const td_modal *modes, const td_model *model)
 
 const char *td_stability_word(const td_modal *modes)
 {
-    double worst = td_modal_max_real_part(modes), radius = td_modal_spectral_radius(modes);
+    double worst = td_modal_max_real_part(modes), scale = td_modal_rounding_scale(modes);
     if (td_modal_is_unstable(modes))
         return "UNSTABLE";
-    if (worst < -TD_MODAL_ROUNDOFF_REAL_PART * radius)
+    if (worst < -TD_MODAL_ROUNDOFF_REAL_PART * scale)
         return "stable";
     return "marginally stable (undamped modes)";
 }
