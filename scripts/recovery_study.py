@@ -98,7 +98,9 @@ def run(tool, sets, files=None):
         summary = json.loads(proc.stdout)
     except ValueError:
         sys.exit("recovery_study: touchdown %s printed no JSON: %s" % (" ".join(args), proc.stderr[:300]))
-    shown = ["'%s'" % a if (" " in a or not a) else a for a in args]
+    # the output prefix is a temporary directory's: shown as its base name alone
+    shown = [os.path.basename(a) if files and a == files else ("'%s'" % a if (" " in a or not a) else a)
+             for a in args]
     return {"command": "touchdown " + " ".join(shown), "summary": summary}
 
 
@@ -305,9 +307,8 @@ def region_case():
     return _table(["run", "ending", "last contact [s]", "time in contact [s]", "switches", "on recovery [s]",
                    "NDE retainer radius [mm]", "/ c", "NDE sensor radius / c", "NDE normal force [N]",
                    "AMB forces [N]", "peak AMB load"], rows) + "\n" + \
-        "The last four columns are means over t >= %g s. Commands: `%s`, `%s`.\n" % (
-            r["law"]["tail_from"], r["runs"]["case-off"]["command"].replace(" -o ", " -o OUT ").split(" -o OUT ")[0] + " ...",
-            r["runs"]["case-on"]["command"].split(" -o ")[0] + " ...")
+        "The radii and forces are means over t >= %g s, from the runs' CSV files. Commands: `%s` and `%s`.\n" % (
+            r["law"]["tail_from"], r["runs"]["case-off"]["command"], r["runs"]["case-on"]["command"])
 
 
 def region_mechanism():
