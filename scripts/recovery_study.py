@@ -358,10 +358,12 @@ def region_map():
         row = ["%g" % w]
         for u in FINAL_U:
             p = r["map"]["%g %g" % (w, u)]
-            cell = short[p["outcome"]]
+            cell = short[p["outcome"]] + ", U W^2 = %s N" % _g(u * w * w, 4)
             s = p["on"]["summary"]
             if p["outcome"] != "no free orbit":
-                cell += " (%s switches, last back to pd %s s)" % (s.get("controller_switches"), _g(s.get("last_return_time"), 4))
+                cell += "; %s switch%s, last back to pd %s s" % (s.get("controller_switches"),
+                                                                 "" if s.get("controller_switches") == 1 else "es",
+                                                                 _g(s.get("last_return_time"), 4))
             row.append(cell)
         rows.append(row)
     counts = {}
