@@ -100,7 +100,8 @@ def git_revision():
     # "-modified": the sources the numbers come from (library, tool, cases, build, the scripts
     # that run them) differ from the commit; the docs and their results do not count
     dirty = git("status", "--porcelain", "--untracked-files=no", "--", "lib", "include", "tools", "cases",
-                "cmake", "CMakeLists.txt", "bench", "scripts/make-figures.sh", "scripts/docs_record.py")
+                "cmake", "CMakeLists.txt", "bench", "scripts/make-figures.sh", "scripts/docs_record.py",
+                "scripts/recovery_study.py")
     return rev + ("-modified" if dirty else "")
 
 

@@ -101,6 +101,9 @@ def run(tool, sets, files=None):
     # the output prefix is a temporary directory's: shown as its base name alone
     shown = [os.path.basename(a) if files and a == files else ("'%s'" % a if (" " in a or not a) else a)
              for a in args]
+    for key in ("hdf5_path", "csv_path", "events_path"):
+        if summary.get(key):
+            summary[key] = os.path.basename(summary[key])
     return {"command": "touchdown " + " ".join(shown), "summary": summary}
 
 
