@@ -15,6 +15,7 @@
  *    recursion, not the realisation; the nominal law comes back from rest, not from the state it
  *    left), i_old the outgoing law's run from its own start;
  *  - the summary account: controller_switches, time_on_recovery, last_return_time;
+ *  - two pairs over two AMBs each switch by their own sensor's sequence;
  *  - enabled = false takes no switch, and its held currents are bit for bit those of the same
  *    machine with the nominal law alone (no supervisor), as are the enabled run's up to its switch;
  *  - the model rules, each refused with its site.
@@ -51,6 +52,7 @@ typedef struct row {
 typedef struct log_t {
     row s[MAX_SAMPLES];
     long n;
+    struct log_t *other; /* pair 1's samples (its nominal: controller 3), when given */
     td_event ev[8];
     int n_ev;
 } log_t;
@@ -61,7 +63,15 @@ static void on_pair_sample(void *data, const td_sim_pair_sample *ps)
     row *w;
     int i, j;
     assert_true(log->n < MAX_SAMPLES);
-    assert_int_equal(ps->pair, 0);
+    if (ps->pair != 0) {
+        assert_non_null(log->other);
+        assert_int_equal(ps->pair, 1);
+        on_pair_sample(
+            log->other,
+            &(td_sim_pair_sample){
+                0, ps->k, ps->t, ps->e, ps->nin, ps->r, ps->b, ps->target, {ps->u[0], ps->u[1]}, ps->held, ps->nout});
+        return;
+    }
     assert_int_equal(ps->nin, 2);
     assert_int_equal(ps->nout, 2);
     w = &log->s[log->n++];
@@ -98,14 +108,14 @@ static td_controller *law(double g, double a)
 
 /* The machine with the nominal law, and with the recovery law and the supervisor unless
  * `pairs` is 0 (then the nominal law alone). */
-static td_model *machine(td_case **c, int pairs, int enabled)
+static td_model *machine_at(td_case **c, int pairs, int enabled, const char *override)
 {
     const int axes[2] = {0, 1};
     td_model *m = NULL;
     td_controller *n = law(G1, A1), *r = law(G2, A2);
     td_recovery rec;
     td_error err;
-    *c = td_test_load_case("tests/data/case/recovery-jeffcott.cfg", NULL, 0);
+    *c = td_test_load_case("tests/data/case/recovery-jeffcott.cfg", &override, override ? 1 : 0);
     assert_int_equal(td_model_clone(td_case_model(*c), &m, &err), TD_OK);
     assert_int_equal(td_model_add_controller(m, "nominal", n, axes, axes, &err), TD_OK);
     if (pairs) {
@@ -126,11 +136,16 @@ static td_model *machine(td_case **c, int pairs, int enabled)
     return m;
 }
 
+static td_model *machine(td_case **c, int pairs, int enabled)
+{
+    return machine_at(c, pairs, enabled, NULL);
+}
+
 /* Sample 0, taken by td_sim_create from rest before a hook can be set, from the sampler's records:
  * the nominal law's inputs and output, which it held (r = 0 at rest: no switch). */
-static void log_first(const td_sim *s, log_t *log)
+static void log_first(const td_sim *s, log_t *log, int record)
 {
-    const td_sim_sampled *l = &s->sampler->law[0];
+    const td_sim_sampled *l = &s->sampler->law[record];
     row *w = &log->s[log->n++];
     int a;
     assert_int_equal(l->k_next, 1);
@@ -155,10 +170,14 @@ static void run(const td_case *c, const td_model *m, log_t *log, double *held_al
     td_status step;
     double tr, t_end = td_case_end_time(c);
     long j, n = (long)floor(t_end * RATE + 0.5);
+    log_t *other = log->other;
     memset(log, 0, sizeof *log);
+    log->other = other;
     if (td_sim_create(m, &o, &s, &err) != TD_OK)
         fail_msg("td_sim_create: %s", err.message);
-    log_first(s, log);
+    log_first(s, log, 0);
+    if (other)
+        log_first(s, other, 3); /* pair 1's nominal, the model's (and sampler's) fourth law */
     td_sim_supervisor_set_hook(s, on_pair_sample, log);
     for (j = 1; j <= n; j++) { /* outputs at the sample instants: the held current after each */
         while ((step = td_sim_step(s, (double)j / RATE, &tr, &err)) == TD_EVENT) {
@@ -302,6 +321,56 @@ static void test_disabled_takes_no_switch(void **state)
     td_case_free(&c), td_case_free(&c2), td_case_free(&c3);
 }
 
+/* Two pairs, each over its own AMB (pair 1's AMB at the end node, where the unbalance now is, so
+ * that the two orbits differ; its recovery law listed before its nominal): each switches where its
+ * own sensor's sequence says, and only its own events. */
+static void test_two_pairs(void **state)
+{
+    td_case *c = NULL;
+    td_model *m = machine_at(&c, 1, 1, "unbalances[0].node=2");
+    td_amb amb;
+    td_recovery rec;
+    td_controller *n = law(G1, A1), *r = law(G2, A2);
+    const int axes[2] = {2, 3};
+    log_t *log = calloc(1, sizeof *log), *log1 = calloc(1, sizeof *log1);
+    td_sim_stats st;
+    td_error err;
+    long kd, kr, kd1, kr1;
+    int e;
+    (void)state;
+    assert_int_equal(td_model_get_amb(m, 0, &amb), TD_OK);
+    amb.node = amb.sensor_node = 2;
+    assert_int_equal(td_model_add_amb(m, &amb, &err), TD_OK);
+    assert_int_equal(td_model_add_controller(m, "recovery 1", r, axes, axes, &err), TD_OK);
+    assert_int_equal(td_model_add_controller(m, "nominal 1", n, axes, axes, &err), TD_OK);
+    td_model_get_recovery(m, &rec);
+    rec.pair_count = 2, rec.nominal[1] = 3, rec.controller[1] = 2;
+    assert_int_equal(td_model_set_recovery(m, &rec, &err), TD_OK);
+    log->other = log1;
+    run(c, m, log, NULL, &st);
+    kd = rule_sample(log, 0, 1, DETECT, 10);
+    kr = rule_sample(log, kd + 1, 0, RELEASE, 20);
+    kd1 = rule_sample(log1, 0, 1, DETECT, 10);
+    kr1 = rule_sample(log1, kd1 + 1, 0, RELEASE, 20);
+    print_message("pair 0 switches at samples %ld, %ld; pair 1 at %ld, %ld\n", kd, kr, kd1, kr1);
+    assert_true(kd > 0 && kr > kd && kd1 > 0 && kr1 > kd1);
+    assert_int_equal(log->n_ev, 4);
+    for (e = 0; e < 4; e++) { /* each in its pair's place, to its pair's controller */
+        const td_event *ev = &log->ev[e];
+        int to = ev->controller;
+        long k = to == 1 ? kd : to == 0 ? kr : to == 2 ? kd1 : kr1;
+        const log_t *l = to < 2 ? log : log1;
+        assert_true(ev->time == (double)k / RATE);
+        assert_true(ev->sensed_radius == hypot(l->s[k].e[0], l->s[k].e[1]));
+    }
+    assert_int_equal(st.controller_switches, 4);
+    assert_int_equal(st.controller_samples, 4 * (long)(0.5 * RATE + 1)); /* four laws, each its instants */
+    free(log), free(log1);
+    td_controller_free(&n), td_controller_free(&r);
+    td_model_free(&m);
+    td_case_free(&c);
+}
+
 /* Each model rule refuses with its site (the case reader locates it at the key). */
 static void test_model_rules(void **state)
 {
@@ -347,6 +416,14 @@ static void test_model_rules(void **state)
     assert_int_equal(td_model_set_recovery(m, &bad, &err), TD_OK);
     assert_int_equal(td_model_validate(m, &err), TD_ERR_INVALID);
     assert_non_null(strstr(err.message, "its own recovery law"));
+    bad = rec, bad.pair_count = 2, bad.nominal[1] = 1, bad.controller[1] = 0; /* a controller in two pairs */
+    assert_int_equal(td_model_set_recovery(m, &bad, &err), TD_OK);
+    assert_int_equal(td_model_validate(m, &err), TD_ERR_INVALID);
+    assert_non_null(strstr(err.message, "share a controller"));
+    bad = rec, bad.nominal[0] = 9; /* no such controller */
+    assert_int_equal(td_model_set_recovery(m, &bad, &err), TD_OK);
+    assert_int_equal(td_model_validate(m, &err), TD_ERR_INVALID);
+    assert_string_equal(err.site.field, "nominal");
     /* without the pair, the recovery law would drive the nominal's axes a second time */
     bad = rec, bad.pair_count = 0;
     assert_int_equal(td_model_set_recovery(m, &bad, &err), TD_OK);
@@ -362,6 +439,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_switch_times_and_blend),
         cmocka_unit_test(test_disabled_takes_no_switch),
+        cmocka_unit_test(test_two_pairs),
         cmocka_unit_test(test_model_rules),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -75,8 +75,8 @@ static td_status read_names(td_case_reader *r, const config_setting_t *g, const 
     else
         c->controller_count = n;
     if (st == TD_OK && !nominal && n != c->r.pair_count)
-        return td_cr_fail(r, s, NULL, "names %d controllers, `nominal` %d: controller[i] replaces nominal[i]", n,
-                          c->r.pair_count);
+        return td_cr_fail(r, s, NULL, "gives %d name%s and `nominal` %d: controller[i] replaces nominal[i]", n,
+                          n == 1 ? "" : "s", c->r.pair_count);
     return st;
 }
 
