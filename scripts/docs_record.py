@@ -100,7 +100,8 @@ def git_revision():
     # "-modified": the sources the numbers come from (library, tool, cases, build, the scripts
     # that run them) differ from the commit; the docs and their results do not count
     dirty = git("status", "--porcelain", "--untracked-files=no", "--", "lib", "include", "tools", "cases",
-                "cmake", "CMakeLists.txt", "bench", "scripts/make-figures.sh", "scripts/docs_record.py")
+                "cmake", "CMakeLists.txt", "bench", "scripts/make-figures.sh", "scripts/docs_record.py",
+                "scripts/recovery_study.py")
     return rev + ("-modified" if dirty else "")
 
 
@@ -361,10 +362,18 @@ def src_figures(tool, build):
     return data
 
 
+def src_recovery(tool, build):
+    """docs/recovery-study.md's runs (scripts/recovery_study.py: the case with and without its
+    supervisor, the laws that fail, the damper's phase and gain, the map)."""
+    import recovery_study
+    return recovery_study.record(tool, stamp)
+
+
 SOURCES = {"fast": [("runs", src_runs), ("modal", src_modal), ("validation", src_validation), ("keys", src_keys)],
            "slow": [("bench", src_bench), ("digital", src_digital), ("scaling", src_scaling), ("references", src_references),
                     ("intervals", src_intervals), ("tolerances", src_tolerances), ("mesh", src_mesh),
-                    ("convergence", src_convergence), ("spread", src_spread), ("figures", src_figures)]}
+                    ("convergence", src_convergence), ("spread", src_spread), ("figures", src_figures),
+                    ("recovery", src_recovery)]}
 
 
 # The runs are deterministic: the same build gives the same bits. The tolerance allows for another

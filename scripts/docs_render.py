@@ -1344,6 +1344,11 @@ def key_region(section):
 
 
 REGIONS.update({"keys-" + s: key_region(s) for s in KEY_SECTIONS})
+# docs/recovery-study.md's regions, built by its study script from docs/results/recovery.json
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import recovery_study  # noqa: E402
+
+REGIONS.update(recovery_study.REGIONS)
 
 
 def render(path, text):
