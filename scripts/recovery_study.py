@@ -107,6 +107,21 @@ def run(tool, sets, files=None):
     return {"command": "touchdown " + " ".join(shown), "summary": summary}
 
 
+def modal(tool, sets):
+    """touchdown modal --json of the case with --set SETS: the contact-free loop's stability and, per
+    axis, its sampled sensitivity peak and zone (docs/theory.md, "Sensitivity")."""
+    args = ["modal", "--json"]
+    for k, v in sets:
+        args += ["--set", "%s=%s" % (k, v)]
+    args.append(CASE)
+    proc = subprocess.run([tool] + args, cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                          universal_newlines=True)
+    try:
+        return json.loads(proc.stdout)
+    except ValueError:
+        sys.exit("recovery_study: touchdown %s printed no JSON: %s" % (" ".join(args), proc.stderr[:300]))
+
+
 def point_sets(speed, u2, law_index=1, **kw):
     """The --set list of the case at SPEED with the final unbalance U2 and its recovery law (or,
     law_index 0, the law driving the AMBs directly, without the supervisor)."""
@@ -218,6 +233,8 @@ def record(tool, stamp):
         figure(tmp, data["runs"])
     data["phase"] = parallel([("%g" % p, run, (tool, point_sets(320.0, 0.01, 0, phase=p) + [("end_time", "1e-4")]))
                               for p in range(0, 360, 15)])
+    data["loop"] = parallel([("pd", modal, (tool, []))] +
+                            [("%g" % p, modal, (tool, point_sets(320.0, 0.01, 0, phase=p))) for p in range(0, 360, 15)])
     data["robust"] = parallel([("%g %g" % (p, g), run, (tool, point_sets(320.0, 0.01, 1, phase=p, gain=g)))
                                for p in ROBUST_PHASES for g in ROBUST_GAINS])
     jobs = []
@@ -333,11 +350,28 @@ def region_mechanism():
 def region_phase():
     r = _res()
     stable = [float(p) for p, run_ in r["phase"].items() if run_["summary"].get("stability") == "stable"]
-    rows = [[p, run_["summary"].get("stability"), _g(run_["summary"].get("max_real_part"), 3)]
-            for p, run_ in sorted(r["phase"].items(), key=lambda kv: float(kv[0]))]
-    return _table(["phi [deg]", "closed loop (pd-sync driving, contact-free)", "largest real part [1/s]"], rows) + \
-        "\nStable for phi in %s deg (steps of 15 deg); the damper's phase %s deg.\n" % (
-            ", ".join(_g(p, 3) for p in sorted(stable)), _g(r["law"]["phase_320"], 4))
+    rows = []
+    for p, run_ in sorted(r["phase"].items(), key=lambda kv: float(kv[0])):
+        loop = r["loop"][p]
+        rows.append([p, run_["summary"].get("stability"), _g(run_["summary"].get("max_real_part"), 3)] +
+                    _loop_cells(loop))
+    nominal = r["loop"]["pd"]
+    return _table(["phi [deg]", "closed loop (pd-sync driving, contact-free)", "largest real part [1/s]",
+                   "peak abs S (worst axis)", "at [Hz]", "ISO 14839-3 zone"], rows) + \
+        "\nStable for phi in %s deg (steps of 15 deg); the damper's phase %s deg. The nominal pd alone: " \
+        "peak abs S %s at %s Hz, zone %s.\n" % (
+            ", ".join(_g(p, 3) for p in sorted(stable)), _g(r["law"]["phase_320"], 4),
+            *_loop_cells(nominal))
+
+
+def _loop_cells(loop):
+    """The worst axis's sampled sensitivity peak, its frequency and the zone (all "-" when the loop
+    is unstable: a sensitivity of an unstable loop is no number to lead with)."""
+    peaks = loop.get("sensitivity_peak") or []
+    if not loop.get("stable") or not peaks or any(x is None for x in peaks):
+        return ["-", "-", "-"]
+    i = max(range(len(peaks)), key=lambda j: peaks[j])
+    return [_g(peaks[i], 4), _g(loop["sensitivity_peak_frequency"][i], 4), loop.get("sensitivity_zone") or "-"]
 
 
 def region_robust():
@@ -364,9 +398,11 @@ def region_map():
             cell = short[p["outcome"]] + ", U W^2 = %s N" % _g(u * w * w, 4)
             s = p["on"]["summary"]
             if p["outcome"] != "no free orbit":
-                cell += "; %s switch%s, last back to pd %s s" % (s.get("controller_switches"),
-                                                                 "" if s.get("controller_switches") == 1 else "es",
-                                                                 _g(s.get("last_return_time"), 4))
+                back = s.get("last_return_time")
+                cell += "; %s switch%s, %s" % (s.get("controller_switches"),
+                                               "" if s.get("controller_switches") == 1 else "es",
+                                               "never back to pd" if back is None else
+                                               "last back to pd %s s" % _g(back, 4))
             row.append(cell)
         rows.append(row)
     counts = {}
