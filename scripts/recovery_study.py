@@ -206,12 +206,49 @@ def switch_events(path):
     return out
 
 
+def in_contact_at(path, times):
+    """For each time, whether any retainer is in contact at the CSV's first sample at or after it."""
+    out = [None] * len(times)
+    with open(path) as f:
+        rows = csv.reader(l for l in f if not l.startswith("#"))
+        head = [h.split(" ")[0] for h in next(rows)]
+        flags = [i for i, h in enumerate(head) if h.startswith("contact_ret")]
+        for row in rows:
+            t = float(row[0])
+            for j, tj in enumerate(times):
+                if out[j] is None and t >= tj:
+                    out[j] = any(float(row[i]) != 0.0 for i in flags)
+            if all(x is not None for x in out):
+                break
+    return out
+
+
+def run_with_returns(tool, sets, tmp, name):
+    """A map run with the supervisor: its summary, its switches and, for each switch back to pd,
+    whether a retainer was still in contact then (the files are read and removed at once)."""
+    rec = run(tool, sets, files=os.path.join(tmp, name))
+    rec["switches"] = switch_events(os.path.join(tmp, name + ".events.csv"))
+    back = [sw[0] for sw in rec["switches"] if sw[1] == 0]
+    rec["returns_in_contact"] = in_contact_at(os.path.join(tmp, name + ".csv"), back)
+    for ext in (".csv", ".events.csv"):
+        os.remove(os.path.join(tmp, name + ext))
+    return rec
+
+
+def returned_while_rubbing(on):
+    """Whether the supervisor's last switch back to pd came while a retainer was still in contact."""
+    flags = on.get("returns_in_contact") or []
+    return bool(flags) and flags[-1] is True
+
+
 def outcome(off, on, exist):
     if not exist["exists"]:
         return "no free orbit"
     if free(off["summary"]):
         return "recovers by itself"
-    return "recovered with the supervisor" if free(on["summary"]) else "stays in contact"
+    if free(on["summary"]):
+        return "recovered with the supervisor"
+    return "stays in contact, back to pd while rubbing" if returned_while_rubbing(on) else "stays in contact"
 
 
 def record(tool, stamp):
@@ -237,14 +274,15 @@ def record(tool, stamp):
                             [("%g" % p, modal, (tool, point_sets(320.0, 0.01, 0, phase=p))) for p in range(0, 360, 15)])
     data["robust"] = parallel([("%g %g" % (p, g), run, (tool, point_sets(320.0, 0.01, 1, phase=p, gain=g)))
                                for p in ROBUST_PHASES for g in ROBUST_GAINS])
-    jobs = []
-    for w in SPEEDS:
-        for u in FINAL_U:
-            key = "%g %g" % (w, u)
-            jobs += [(key + " exists", exists, (tool, w, u)),
-                     (key + " off", run, (tool, point_sets(w, u) + [("recovery.enabled", "false")])),
-                     (key + " on", run, (tool, point_sets(w, u)))]
-    done = parallel(jobs)
+    with tempfile.TemporaryDirectory() as tmp:
+        jobs = []
+        for w in SPEEDS:
+            for u in FINAL_U:
+                key = "%g %g" % (w, u)
+                jobs += [(key + " exists", exists, (tool, w, u)),
+                         (key + " off", run, (tool, point_sets(w, u) + [("recovery.enabled", "false")])),
+                         (key + " on", run_with_returns, (tool, point_sets(w, u), tmp, "map-%g-%g" % (w, u)))]
+        done = parallel(jobs)
     data["map"] = {}
     for w in SPEEDS:
         for u in FINAL_U:
@@ -390,7 +428,8 @@ def region_map():
     r = _res()
     rows = []
     short = {"no free orbit": "no free orbit", "recovers by itself": "by itself",
-             "recovered with the supervisor": "**with the supervisor**", "stays in contact": "stays in contact"}
+             "recovered with the supervisor": "**with the supervisor**", "stays in contact": "stays in contact",
+             "stays in contact, back to pd while rubbing": "stays in contact, back to pd while rubbing"}
     for w in SPEEDS:
         row = ["%g" % w]
         for u in FINAL_U:
