@@ -5,7 +5,7 @@
  *
  *   law NAME                            start a law (the blocks that follow go in series)
  *   gain G | pid KP KINT KD FILTER | leadlag G ZERO POLE | lowpass F ORDER DAMPING | notch F WIDTH DEPTH
- *   resonant G PHASE F
+ *   resonant G PHASE F [DAMPING]
  *   tf RATE NNUM NUM... NDEN DEN...     zpk RATE GAIN NZ (RE IM)... NP (RE IM)...
  *   ss RATE N M P A... B... C... D...
  *   discretise RATE tustin|zoh PREWARP  delay SAMPLES  minimal
@@ -129,8 +129,8 @@ static int block(const char *word, const double *v, int count, td_error *err)
     } else if (!strcmp(word, "notch") && count == 3) {
         td_notch_block b = {v[0], v[1], v[2]};
         chain(td_controller_create_notch(&b, err), word, err);
-    } else if (!strcmp(word, "resonant") && count == 3) {
-        td_resonant_block b = {v[0], v[1], v[2]};
+    } else if (!strcmp(word, "resonant") && (count == 3 || count == 4)) {
+        td_resonant_block b = {v[0], v[1], v[2], count == 4 ? v[3] : 0.0};
         chain(td_controller_create_resonant(&b, err), word, err);
     } else if (!strcmp(word, "tf") && count >= 4) {
         chain(make_tf(v, count, err), word, err);
