@@ -1006,7 +1006,7 @@ static void test_documented_defaults(void **state)
     print_message("documented defaults: %d keys checked; skipped: %d groups and lists, %d required, %d other\n", tried,
                   part, required, other);
     assert_int_equal(tried + part + required + other, td_case_key_count());
-    assert_int_equal(tried, 83);
+    assert_int_equal(tried, 84);
     assert_int_equal(part, 42);     /* their keys are checked */
     assert_int_equal(required, 73); /* required, or one form's required key (a sweep entry's range or values) */
     /* an alternative with no default ("-": shaft.nodes, sections' element, schedule's unbalance,
@@ -1343,7 +1343,7 @@ static td_controller *decentralised_law(double speed)
     const td_leadlag_block ll = {1.5, 20.0, 200.0};
     const td_lowpass_block lp = {800.0, 2, 0.6};
     const td_notch_block nb = {60.0, 8.0, 0.1};
-    const td_resonant_block res = {0.8, 30.0, speed / (2.0 * TD_PI)};
+    const td_resonant_block res = {0.8, 30.0, speed / (2.0 * TD_PI), 0.05};
     const double num[] = {1.0, 300.0}, den[] = {1.0, 400.0}, zr[] = {-50.0}, zi[] = {0.0}, pr[] = {-100.0},
                  pi[] = {200.0};
     const double A[] = {-500.0, 1.0, 0.0, -700.0}, B[] = {500.0, 0.0}, C[] = {0.0, 700.0}, D[] = {0.0};
@@ -1664,6 +1664,9 @@ static void test_controller_errors(void **state)
         {"controllers = ( { name = \"a\"; ambs = [0, 1]; law = ( { notch = { frequency = 9.0; width = 1.0; depth = "
          "1.5; }; } ); } );",
          "controllers[0].law[0].notch.depth", "must be >= 0 and < 1 (got 1.5)", 0},
+        {"controllers = ( { name = \"a\"; ambs = [0, 1]; law = ( { resonant = { gain = 1.0; damping = 1.0; }; } ); } "
+         ");",
+         "controllers[0].law[0].resonant.damping", "must be >= 0 and < 1 (got 1)", 0},
         {"controllers = ( { name = \"a\"; ambs = [0, 1]; law = ( { lowpass = { frequency = 100.0; }; } ); sample_rate "
          "= 8000.0; prewarp = 5000.0; } );",
          "controllers[0].prewarp", "below the Nyquist frequency 4000 Hz", 0},

@@ -335,36 +335,67 @@ static void test_bad_laws_are_refused(void **state)
     td_controller_free(&z);
 }
 
-/* A resonant block is g (s cos phi + w sin phi)/(s^2 + w^2): its response against the ratio
- * written out, its poles +-jw exactly (trace 0, determinant w^2 of its A), and its step response
- * against the closed form g (cos phi sin wt + sin phi (1 - cos wt))/w. */
+/* The step response of g (s cos phi + w sin phi)/(s^2 + 2 zeta w s + w^2), by partial fractions:
+ * g sin phi/w (1 - e^(-zeta w t) cos wd t) + e^(-zeta w t) sin(wd t) g (cos phi - zeta sin phi)/wd,
+ * wd = w sqrt(1 - zeta^2); zeta = 0 gives g (cos phi sin wt + sin phi (1 - cos wt))/w. */
+static double resonant_step(double g, double phi, double w, double zeta, double t)
+{
+    double wd = w * sqrt(1.0 - zeta * zeta), decay = exp(-zeta * w * t);
+    return g * sin(phi) / w * (1.0 - decay * cos(wd * t)) + decay * sin(wd * t) * g * (cos(phi) - zeta * sin(phi)) / wd;
+}
+
+/* A resonant block is g (s cos phi + w sin phi)/(s^2 + 2 zeta w s + w^2): its response against the
+ * ratio written out, and at w against g/(2 zeta w) e^(-j phi) when damped; its poles from its A
+ * (trace -2 zeta w, determinant w^2; undamped, A is exactly [0 w; -w 0]); its step response against
+ * the closed form (resonant_step). */
 static void test_resonant_block(void **state)
 {
-    static const double phases[] = {0.0, 60.0, 90.0, -135.0};
+    static const double phases[] = {0.0, 60.0, 90.0, -135.0}, dampings[] = {0.0, 0.02, 0.3, 0.95};
     const double f0 = 50.93, w = W(f0), t[] = {0.0, 0.0013, 0.0071, 0.019, 0.2};
     double A[4], y[5];
-    int i, j;
+    int i, j, m;
     (void)state;
-    for (i = 0; i < 4; i++) {
-        td_resonant_block b = {-3.0e3, phases[i], f0};
-        double phi = phases[i] * TD_PI / 180.0;
-        td_controller *k = td_controller_create_resonant(&b, NULL);
-        assert_non_null(k);
-        assert_int_equal(td_controller_order(k), 2);
-        assert_false(td_controller_has_velocity_feedthrough(k));
-        for (j = 0; j < N_FREQS; j++) {
-            double complex s = I * W(freqs[j]);
-            assert_complex_close(response(k, freqs[j]), -3.0e3 * (s * cos(phi) + w * sin(phi)) / (s * s + w * w),
-                                 1e-13);
+    for (m = 0; m < 4; m++)
+        for (i = 0; i < 4; i++) {
+            const double zeta = dampings[m], phi = phases[i] * TD_PI / 180.0;
+            td_resonant_block b = {-3.0e3, phases[i], f0, zeta};
+            td_controller *k = td_controller_create_resonant(&b, NULL);
+            assert_non_null(k);
+            assert_int_equal(td_controller_order(k), 2);
+            assert_false(td_controller_has_velocity_feedthrough(k));
+            for (j = 0; j < N_FREQS; j++) {
+                double complex s = I * W(freqs[j]);
+                assert_complex_close(response(k, freqs[j]),
+                                     -3.0e3 * (s * cos(phi) + w * sin(phi)) / (s * s + 2.0 * zeta * w * s + w * w),
+                                     1e-13);
+            }
+            if (zeta > 0.0)
+                assert_complex_close(response(k, f0), -3.0e3 / (2.0 * zeta * w) * cexp(-I * phi), 1e-12);
+            td_controller_matrices(k, A, NULL, NULL, NULL, NULL);
+            if (zeta == 0.0)
+                assert_true(A[0] == 0.0 && A[1] == -w && A[2] == w && A[3] == 0.0);
+            assert_close(A[0] + A[3], -2.0 * zeta * w, 1e-15, 0.0);
+            assert_close(A[0] * A[3] - A[1] * A[2], w * w, 1e-15, 0.0);
+            assert_int_equal(td_controller_step_response(k, 0, t, 5, y, NULL), TD_OK);
+            for (j = 0; j < 5; j++)
+                assert_close(y[j], resonant_step(-3.0e3, phi, w, zeta, t[j]), 1e-11, 1e-11 * 3.0e3 / w);
+            td_controller_free(&k);
         }
-        td_controller_matrices(k, A, NULL, NULL, NULL, NULL);
-        assert_true(A[0] + A[3] == 0.0);
-        assert_close(A[0] * A[3] - A[1] * A[2], w * w, 1e-15, 0.0);
-        assert_int_equal(td_controller_step_response(k, 0, t, 5, y, NULL), TD_OK);
-        for (j = 0; j < 5; j++)
-            assert_close(y[j], -3.0e3 * (cos(phi) * sin(w * t[j]) + sin(phi) * (1.0 - cos(w * t[j]))) / w, 1e-11,
-                         1e-11 * 3.0e3 / w);
-        td_controller_free(&k);
+}
+
+/* A resonant block's damping is a ratio from 0 (undamped) up to, not including, 1; outside it, or
+ * not finite, the block is refused naming the field. */
+static void test_resonant_damping_bounded(void **state)
+{
+    static const double bad[] = {-1.0e-9, -0.5, 1.0, 1.5, INFINITY, NAN};
+    td_error err;
+    int i;
+    (void)state;
+    for (i = 0; i < 6; i++) {
+        td_resonant_block b = {1.0, 30.0, 50.0, bad[i]};
+        expect_invalid(td_controller_create_resonant(&b, &err), &err, "resonant: damping: must be >= 0 and < 1 (got ");
+        assert_string_equal(err.site.part, "resonant");
+        assert_string_equal(err.site.field, "damping");
     }
 }
 
@@ -400,7 +431,7 @@ static void test_overflowing_laws_refused(void **state)
 static void test_parallel_is_the_sum(void **state)
 {
     td_pid_block pd = {1.0e4, 0.0, 40.0, 0.0};
-    td_resonant_block res = {0.6, 45.0, 50.93};
+    td_resonant_block res = {0.6, 45.0, 50.93, 0.0};
     td_notch_block no = {34.4, 6.0, 0.05};
     const double one = 1.0;
     td_controller *a = td_controller_create_pid(&pd, NULL), *b = td_controller_create_resonant(&res, NULL),
@@ -447,7 +478,7 @@ static void test_block_frequencies_bounded(void **state)
         td_lowpass_block lp = {f, 2, 0.7};
         td_notch_block nf = {f, 6.0, 0.05}, nw = {34.4, f, 0.05};
         td_pid_block pid = {1.0, 0.0, 1.0, f};
-        td_resonant_block res = {1.0, 0.0, f};
+        td_resonant_block res = {1.0, 0.0, f, 0.0};
         expect_invalid(td_controller_create_leadlag(&llz, &err), &err, "leadlag: zero: ");
         expect_invalid(td_controller_create_leadlag(&llp, &err), &err, "leadlag: pole: ");
         expect_invalid(td_controller_create_lowpass(&lp, &err), &err, "lowpass: frequency: ");
@@ -599,6 +630,7 @@ int main(void)
         cmocka_unit_test(test_rigid_transform_by_hand),
         cmocka_unit_test(test_bad_laws_are_refused),
         cmocka_unit_test(test_resonant_block),
+        cmocka_unit_test(test_resonant_damping_bounded),
         cmocka_unit_test(test_block_frequencies_bounded),
         cmocka_unit_test(test_parallel_is_the_sum),
         cmocka_unit_test(test_overflowing_laws_refused),

@@ -66,14 +66,18 @@ typedef struct td_notch_block {
     double depth;     /**< >= 0, < 1 */
 } td_notch_block;
 
-/** Resonant block  gain (s cos phase + w sin phase) / (s^2 + w^2), w = 2 pi frequency: an undamped
- *  internal model of a sinusoid at `frequency` (at the spin speed, Omega / 2 pi, a synchronous
- *  compensator: the LTI form of synchronous motion compensation, Su, Gu, Keogh et al., MSSP 2022).
- *  Its poles +-jw lie on the imaginary axis; its response at w itself is infinite. */
+/** Resonant block  gain (s cos phase + w sin phase) / (s^2 + 2 damping w s + w^2), w = 2 pi frequency.
+ *  Undamped (damping 0) it is an internal model of a sinusoid at `frequency` (at the spin speed,
+ *  Omega / 2 pi, a synchronous compensator: the LTI form of synchronous motion compensation, Su, Gu,
+ *  Keogh et al., MSSP 2022): its poles +-jw lie on the imaginary axis and its response at w itself
+ *  is infinite. Damped (0 < damping < 1) its poles are -damping w +- j w sqrt(1 - damping^2) and its
+ *  response at w is finite, gain / (2 damping w) e^{-j phase}: a synchronous damper whose output
+ *  follows the present phase of the motion at w rather than integrating it. */
 typedef struct td_resonant_block {
     double gain;      /**< A/m for a first block, dimensionless after it */
     double phase;     /**< degrees, finite: 0 gives gain s / (s^2 + w^2), 90 gives gain w / (s^2 + w^2) */
     double frequency; /**< Hz, > 0 */
+    double damping;   /**< damping ratio of the poles, >= 0 and < 1; 0: undamped (as a zero-initialised block) */
 } td_resonant_block;
 
 /** Every frequency a block takes (Hz: leadlag zero and pole, lowpass and notch frequency, notch

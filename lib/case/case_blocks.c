@@ -199,12 +199,14 @@ static const td_cs_key resonant_keys[] = {
      .offset = offsetof(td_resonant_block, gain),
      .need = TD_CS_REQUIRED,
      .what = "gain g, A/m as a first block",
-     .doc = "g in g (s cos phase + w sin phase) / (s^2 + w^2); A/m as a first block, dimensionless after one"},
+     .doc = "g in g (s cos phase + w sin phase) / (s^2 + 2 damping w s + w^2); A/m as a first block, dimensionless "
+            "after one"},
     {.key = "phase",
      .type = TD_CS_REAL,
      .offset = offsetof(td_resonant_block, phase),
      .unit = "degree",
-     .doc = "phase: 0 gives g s / (s^2 + w^2), 90 gives g w / (s^2 + w^2)"},
+     .doc = "phase: 0 gives g s / (s^2 + 2 damping w s + w^2), 90 gives g w / (...); at w a damped block is "
+            "g / (2 damping w) e^(-j phase)"},
     {.key = "frequency",
      .type = TD_CS_REAL,
      .offset = offsetof(td_resonant_block, frequency),
@@ -213,8 +215,14 @@ static const td_cs_key resonant_keys[] = {
      .check = resonant_frequency,
      .doc_default = "the case's `speed` / (2 pi)",
      .unit = "Hz",
-     .doc = "the resonance f (w = 2 pi f), where the block's gain is infinite; absent, the rotor's speed at t = 0 "
-            "(a synchronous compensator; it stays there through a `speed_ramp` or a free `spin`)"},
+     .doc = "the resonance f (w = 2 pi f), where an undamped block's gain is infinite; absent, the rotor's speed "
+            "at t = 0 (a synchronous compensator; it stays there through a `speed_ramp` or a free `spin`)"},
+    {.key = "damping",
+     .type = TD_CS_REAL,
+     .offset = offsetof(td_resonant_block, damping),
+     .doc_range = ">= 0, < 1",
+     .doc = "damping ratio of the poles: 0 is the undamped internal model of a sinusoid at w, > 0 a damper whose "
+            "gain at w is finite, g / (2 damping w)"},
 };
 static const td_cs_table resonant_table = {
     "controllers[].law[].resonant", NULL, resonant_keys, TD_CS_COUNT(resonant_keys),
@@ -384,7 +392,7 @@ static const td_cs_key block_keys[] = {
     BLOCK("leadlag", leadlag_table, "gain (1 + s / (2 pi zero)) / (1 + s / (2 pi pole)), below"),
     BLOCK("lowpass", lowpass_table, "a first- or second-order low-pass filter, below"),
     BLOCK("notch", notch_table, "(s^2 + 2 zz wn s + wn^2) / (s^2 + 2 zp wn s + wn^2), below"),
-    BLOCK("resonant", resonant_table, "gain (s cos phase + w sin phase) / (s^2 + w^2), below"),
+    BLOCK("resonant", resonant_table, "gain (s cos phase + w sin phase) / (s^2 + 2 damping w s + w^2), below"),
     BLOCK("tf", tf_table, "a transfer function num / den, below"),
     BLOCK("zpk", zpk_table, "zeros, poles and gain, below"),
     BLOCK("ss", ss_table, "a SISO state-space realisation (A, B, C, D), below"),

@@ -167,8 +167,9 @@ td_controller *td_controller_create_notch(const td_notch_block *b, td_error *err
     return td_ctl_finite(k, "notch", err);
 }
 
-/* g (s cos phi + w sin phi)/(s^2 + w^2): with zeta = 0 the states of second_order_states are
- * x1 = w^2/d u and x2 = w s/d u (d = s^2 + w^2), so the output is (g sin phi/w) x1 + (g cos phi/w) x2. */
+/* g (s cos phi + w sin phi)/(s^2 + 2 zeta w s + w^2): the states of second_order_states are
+ * x1 = w^2/d u and x2 = w s/d u (d that denominator), so the output is (g sin phi/w) x1 + (g cos phi/w) x2.
+ * zeta = 0 (undamped) writes the same A, entry for entry, as the block had before it took a damping. */
 td_controller *td_controller_create_resonant(const td_resonant_block *b, td_error *err)
 {
     td_controller *k;
@@ -187,12 +188,16 @@ td_controller *td_controller_create_resonant(const td_resonant_block *b, td_erro
     }
     if (td_ctl_check_frequency(b->frequency, 0, "resonant", "frequency", err) != TD_OK)
         return NULL;
+    if (!(isfinite(b->damping) && b->damping >= 0.0 && b->damping < 1.0)) {
+        td_ctl_invalid(err, "resonant", "damping", "must be >= 0 and < 1 (got %g)", b->damping);
+        return NULL;
+    }
     w = 2.0 * TD_PI * b->frequency;
     phi = b->phase * (TD_PI / 180.0);
     k = td_ctl_alloc(2, 1, 1, 0.0, err);
     if (!k)
         return NULL;
-    second_order_states(k, 0, w, 0.0);
+    second_order_states(k, 0, w, b->damping);
     k->C[0] = b->gain * sin(phi) / w;
     k->C[1] = b->gain * cos(phi) / w;
     return td_ctl_finite(k, "resonant", err);

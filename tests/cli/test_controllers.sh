@@ -60,6 +60,13 @@ check "  and one with a block in s is, by its discretisation" has "$work/zs/.out
 t "$work/res" info --set 'controllers[0].translation=( { resonant = { gain = 1.0; frequency = 50.0; }; } )' \
     "$src/cases/rig-notch.cfg"
 check "info: a resonant's poles, 50 Hz (zeta 0)" has "$work/res/.out" "poles: 2000 Hz (zeta 1) x2, 50 Hz (zeta 0) x2"
+# a damped one: the pair's natural frequency stays 50 Hz, its damping ratio is the block's
+t "$work/resd" info --set 'controllers[0].translation=( { resonant = { gain = 1.0; frequency = 50.0; damping = 0.3; }; } )' \
+    "$src/cases/rig-notch.cfg"
+check "info: a damped resonant's poles, 50 Hz (zeta 0.3)" has "$work/resd/.out" "poles: 2000 Hz (zeta 1) x2, 50 Hz (zeta 0.3) x2"
+t "$work/resb" info --set 'controllers[0].translation=( { resonant = { gain = 1.0; damping = 1.0; }; } )' "$src/cases/rig-notch.cfg"
+check "  a damping of 1: exit 2 naming the key" \
+    test "$rc" = 2 -a -n "$(grep -F 'controllers[0].translation[0].resonant.damping: must be >= 0 and < 1 (got 1)' "$work/resb/.err")"
 
 t "$work/modal" modal --csv '' --hdf5 '' "$src/cases/rig-notch.cfg"
 check "modal rig-notch: exit 0 and stable" grep -q '^modes at 90 rad/s (stable)' "$work/modal/.out"

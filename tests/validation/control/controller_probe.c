@@ -5,10 +5,13 @@
  *
  *   law NAME                            start a law (the blocks that follow go in series)
  *   gain G | pid KP KINT KD FILTER | leadlag G ZERO POLE | lowpass F ORDER DAMPING | notch F WIDTH DEPTH
- *   resonant G PHASE F
+ *   resonant G PHASE F [DAMPING]
  *   tf RATE NNUM NUM... NDEN DEN...     zpk RATE GAIN NZ (RE IM)... NP (RE IM)...
  *   ss RATE N M P A... B... C... D...
  *   discretise RATE tustin|zoh PREWARP  delay SAMPLES  minimal
+ *   set KEY=VALUE                       a case-file override (the rest of the line) for the next `case`
+ *   case INDEX PATH                     the law: controller INDEX of the case file PATH as the case
+ *                                       reader builds it (touchdown/case.h), with the overrides set
  *   append                              the law so far side by side with itself
  *   branch                              keep the law so far aside and start another
  *   sum                                 the law kept aside plus the law so far, in parallel
@@ -18,7 +21,9 @@
  *
  * Exit status 1 with the library's message on the first failure.
  */
+#include "touchdown/case.h"
 #include "touchdown/controller.h"
+#include "touchdown/model.h"
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -26,9 +31,12 @@
 
 #define MAX_LINE (1 << 18)
 #define MAX_VALUES 4096
+#define MAX_OVERRIDES 8
 
 static char name[128];
 static td_controller *law, *aside;
+static char *overrides[MAX_OVERRIDES];
+static int n_overrides;
 
 static int fail(const char *what, const td_error *err)
 {
@@ -129,8 +137,8 @@ static int block(const char *word, const double *v, int count, td_error *err)
     } else if (!strcmp(word, "notch") && count == 3) {
         td_notch_block b = {v[0], v[1], v[2]};
         chain(td_controller_create_notch(&b, err), word, err);
-    } else if (!strcmp(word, "resonant") && count == 3) {
-        td_resonant_block b = {v[0], v[1], v[2]};
+    } else if (!strcmp(word, "resonant") && (count == 3 || count == 4)) {
+        td_resonant_block b = {v[0], v[1], v[2], count == 4 ? v[3] : 0.0};
         chain(td_controller_create_resonant(&b, err), word, err);
     } else if (!strcmp(word, "tf") && count >= 4) {
         chain(make_tf(v, count, err), word, err);
@@ -187,6 +195,44 @@ static void print_responses(const char *word, const double *v, int count, td_err
     }
 }
 
+/* `set KEY=VALUE`: the rest of the line, without its surrounding blanks, kept for the next `case`. */
+static void keep_override(const char *rest)
+{
+    size_t n;
+    while (*rest == ' ' || *rest == '\t')
+        rest++;
+    n = strcspn(rest, "\r\n");
+    while (n > 0 && (rest[n - 1] == ' ' || rest[n - 1] == '\t'))
+        n--;
+    if (n_overrides == MAX_OVERRIDES || n == 0 || !(overrides[n_overrides] = malloc(n + 1)))
+        fail("set", NULL);
+    memcpy(overrides[n_overrides], rest, n);
+    overrides[n_overrides++][n] = '\0';
+}
+
+/* `case INDEX PATH`: law <- a copy of the case's controller INDEX; the overrides are used up. */
+static void load_case(const char *rest, td_error *err)
+{
+    char path[4096];
+    int index, i;
+    td_case *c = NULL;
+    const td_controller *k;
+    if (sscanf(rest, "%d %4095s", &index, path) != 2)
+        fail("case", NULL);
+    if (td_case_load(path, (const char *const *)overrides, n_overrides, &c, err) != TD_OK)
+        fail("case", err);
+    for (i = 0; i < n_overrides; i++)
+        free(overrides[i]);
+    n_overrides = 0;
+    k = index >= 0 && index < td_model_controller_count(td_case_model(c))
+            ? td_model_get_controller(td_case_model(c), index, NULL, NULL, NULL)
+            : NULL;
+    if (!k)
+        fail("case: no such controller", NULL);
+    replace(td_controller_clone(k, err), "case", err);
+    td_case_free(&c);
+}
+
 /* The commands that transform the law so far or print it; returns 0 when word is not one. */
 static int operation(const char *word, char *rest, const double *v, int count, td_error *err)
 {
@@ -207,6 +253,10 @@ static int operation(const char *word, char *rest, const double *v, int count, t
         law = NULL;
     } else if (!strcmp(word, "sum")) {
         replace(td_controller_parallel(aside, law, err), word, err);
+    } else if (!strcmp(word, "set")) {
+        keep_override(rest);
+    } else if (!strcmp(word, "case")) {
+        load_case(rest, err);
     } else if (!strcmp(word, "freq") || !strcmp(word, "step")) {
         print_responses(word, v, count, err);
     } else if (!strcmp(word, "matrices")) {

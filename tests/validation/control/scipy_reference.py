@@ -60,9 +60,12 @@ def notch(f, width, depth):
     return f"notch {f!r} {width!r} {depth!r}", ([1.0, 2 * depth * zp * w, w * w], [1.0, 2 * zp * w, w * w])
 
 
-def resonant(g, phase_deg, f):
+def resonant(g, phase_deg, f, zeta=None):
+    """g (s cos phi + w sin phi)/(s^2 + 2 zeta w s + w^2); zeta None: the command without damping
+    (the block's default, undamped)."""
     w, phi = TWO_PI * f, np.radians(phase_deg)
-    return f"resonant {g!r} {phase_deg!r} {f!r}", ([g * np.cos(phi), g * w * np.sin(phi)], [1.0, 0.0, w * w])
+    cmd = f"resonant {g!r} {phase_deg!r} {f!r}" + ("" if zeta is None else f" {zeta!r}")
+    return cmd, ([g * np.cos(phi), g * w * np.sin(phi)], [1.0, 2.0 * (zeta or 0.0) * w, w * w])
 
 
 def tf_s(num, den):
@@ -148,6 +151,10 @@ def continuous_laws():
                                      chain(resonant(0.6, 45.0, 50.93))),
         "pid_resonant_lowpass": chain(pid(1.0e4, 0.0, 40.0, 2000.0), resonant(0.3, -30.0, 50.93),
                                       lowpass(2000.0, 2, 0.7)),
+        "resonant_damped": chain(resonant(640.0, 243.0, 50.93, 0.02)),
+        "resonant_damped_heavy": chain(resonant(-2.0e3, 90.0, 120.0, 0.7)),
+        "pd_plus_damped_resonant": parallel(chain(pid(1.0e4, 0.0, 40.0, 2000.0)),
+                                            chain(resonant(640.0, 243.0, 50.93, 0.02))),
     }
 
 
@@ -158,7 +165,8 @@ def sampled_laws(cont):
             ("pid_notch_lowpass", 1.0e4, "tustin", 0.0, 0), ("pid_notch_lowpass", 1.0e4, "tustin", 34.4, 1),
             ("leadlag_lowpass1", 5.0e3, "zoh", 0.0, 0), ("pd_tf_lowpass2", 1.0e4, "zoh", 0.0, 2),
             ("tf3", 2.0e3, "tustin", 300.0, 3), ("resonant", 1.0e4, "tustin", 50.93, 1),
-            ("pid_resonant_lowpass", 1.0e4, "zoh", 0.0, 1), ("pd_plus_resonant", 1.0e4, "tustin", 50.93, 1)]:
+            ("pid_resonant_lowpass", 1.0e4, "zoh", 0.0, 1), ("pd_plus_resonant", 1.0e4, "tustin", 50.93, 1),
+            ("resonant_damped", 1.0e4, "zoh", 0.0, 0), ("pd_plus_damped_resonant", 1.0e4, "tustin", 0.0, 0)]:
         cmds, _, ss = cont[name]
         # Tustin prewarped at w0 is the bilinear map s = (2/T')(z - 1)/(z + 1), T' = 2 tan(w0 T/2)/w0
         w0 = TWO_PI * prewarp
