@@ -74,7 +74,7 @@ typedef struct td_notch_block {
  *  response at w is finite, gain / (2 damping w) e^{-j phase}: a synchronous damper whose output
  *  follows the present phase of the motion at w rather than integrating it. */
 typedef struct td_resonant_block {
-    double gain;      /**< A/m for a first block, dimensionless after it */
+    double gain;      /**< A/(m s) for a first block, 1/s after it */
     double phase;     /**< degrees, finite: 0 gives gain s / (s^2 + w^2), 90 gives gain w / (s^2 + w^2) */
     double frequency; /**< Hz, > 0 */
     double damping;   /**< damping ratio of the poles, >= 0 and < 1; 0: undamped (as a zero-initialised block) */

@@ -185,11 +185,12 @@ static td_status resonant_frequency(td_case_reader *r, const config_setting_t *g
     if (td_cr_has(g, k->key))
         return TD_OK;
     b->frequency = speed / (2.0 * TD_PI);
-    if (!(b->frequency > 0.0))
+    /* the library's bound, said here in terms of the speed the user wrote, not of a frequency they did not */
+    if (!(b->frequency >= TD_CONTROLLER_FREQUENCY_MIN && b->frequency <= TD_CONTROLLER_FREQUENCY_MAX))
         return td_cr_fail(r, g, k->key,
-                          "absent, it is the case's speed / (2 pi), and the speed is %g rad/s: give the frequency "
-                          "(Hz)",
-                          speed);
+                          "absent, it is the case's speed / (2 pi) = %g Hz (speed %g rad/s), outside %g to %g Hz: "
+                          "give the frequency (Hz)",
+                          b->frequency, speed, TD_CONTROLLER_FREQUENCY_MIN, TD_CONTROLLER_FREQUENCY_MAX);
     return TD_OK;
 }
 
@@ -198,9 +199,9 @@ static const td_cs_key resonant_keys[] = {
      .type = TD_CS_REAL,
      .offset = offsetof(td_resonant_block, gain),
      .need = TD_CS_REQUIRED,
-     .what = "gain g, A/m as a first block",
-     .doc = "g in g (s cos phase + w sin phase) / (s^2 + 2 damping w s + w^2); A/m as a first block, dimensionless "
-            "after one"},
+     .what = "gain g, A/(m s) as a first block",
+     .doc = "g in g (s cos phase + w sin phase) / (s^2 + 2 damping w s + w^2); A/(m s) as a first block, 1/s "
+            "after one (the fraction is in s)"},
     {.key = "phase",
      .type = TD_CS_REAL,
      .offset = offsetof(td_resonant_block, phase),

@@ -67,6 +67,10 @@ check "info: a damped resonant's poles, 50 Hz (zeta 0.3)" has "$work/resd/.out" 
 t "$work/resb" info --set 'controllers[0].translation=( { resonant = { gain = 1.0; damping = 1.0; }; } )' "$src/cases/rig-notch.cfg"
 check "  a damping of 1: exit 2 naming the key" \
     test "$rc" = 2 -a -n "$(grep -F 'controllers[0].translation[0].resonant.damping: must be >= 0 and < 1 (got 1)' "$work/resb/.err")"
+t "$work/ress" info --set speed=1e-6 --set 'controllers[0].translation=( { resonant = { gain = 1.0; }; } )' \
+    "$src/cases/rig-notch.cfg"
+check "  a resonant at a speed below the frequency bound: exit 2 naming the speed, not a frequency never written" \
+    test "$rc" = 2 -a -n "$(grep -F "resonant.frequency: absent, it is the case's speed / (2 pi) = 1.59155e-07 Hz (speed 1e-06 rad/s)" "$work/ress/.err")"
 
 t "$work/modal" modal --csv '' --hdf5 '' "$src/cases/rig-notch.cfg"
 check "modal rig-notch: exit 0 and stable" grep -q '^modes at 90 rad/s (stable)' "$work/modal/.out"
