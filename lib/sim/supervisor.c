@@ -15,8 +15,8 @@
  *
  * So with blend > 0 the held current at a switch sample is the old law's (b = 0): the force has no
  * jump there (blend 0 is a step; an incoming law with a delay of d samples gives 0 for d samples,
- * which only a blend of many samples hides), and a law that does not weigh does not run, so its internal model (a resonant block) cannot wind
- * up in standby.
+ * which only a blend of many samples hides), and a law that does not weigh does not run, so its
+ * internal model (a resonant block) cannot wind up in standby.
  */
 #include "sim/supervisor.h"
 #include "sim/sim_internal.h"
