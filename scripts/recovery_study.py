@@ -84,6 +84,18 @@ def tf_block(speed, **kw):
     return "({ tf = { num = %s; den = %s; }; })" % (fmt(num), fmt(den))
 
 
+def touchdown_json(tool, args):
+    """The JSON that `touchdown ARGS CASE` prints (run from the repository's root); a run that prints
+    none stops the study with its message."""
+    args = args + [CASE]
+    proc = subprocess.run([tool] + args, cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                          universal_newlines=True)
+    try:
+        return json.loads(proc.stdout)
+    except ValueError:
+        sys.exit("recovery_study: touchdown %s printed no JSON: %s" % (" ".join(args), proc.stderr[:300]))
+
+
 def run(tool, sets, files=None):
     """touchdown run --json of the case with --set SETS (a list of (key, value)); files: an output
     prefix for the CSV (no HDF5), else none. The command as written and the summary."""
@@ -91,16 +103,10 @@ def run(tool, sets, files=None):
     args += ["--hdf5", "", "-o", files] if files else NO_FILES[2:]
     for k, v in sets:
         args += ["--set", "%s=%s" % (k, v)]
-    args.append(CASE)
-    proc = subprocess.run([tool] + args, cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
-                          universal_newlines=True)
-    try:
-        summary = json.loads(proc.stdout)
-    except ValueError:
-        sys.exit("recovery_study: touchdown %s printed no JSON: %s" % (" ".join(args), proc.stderr[:300]))
+    summary = touchdown_json(tool, args)
     # the output prefix is a temporary directory's: shown as its base name alone
     shown = [os.path.basename(a) if files and a == files else ("'%s'" % a if (" " in a or not a) else a)
-             for a in args]
+             for a in args + [CASE]]
     for key in ("hdf5_path", "csv_path", "events_path"):
         if summary.get(key):
             summary[key] = os.path.basename(summary[key])
@@ -113,13 +119,7 @@ def modal(tool, sets):
     args = ["modal", "--json"]
     for k, v in sets:
         args += ["--set", "%s=%s" % (k, v)]
-    args.append(CASE)
-    proc = subprocess.run([tool] + args, cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
-                          universal_newlines=True)
-    try:
-        return json.loads(proc.stdout)
-    except ValueError:
-        sys.exit("recovery_study: touchdown %s printed no JSON: %s" % (" ".join(args), proc.stderr[:300]))
+    return touchdown_json(tool, args)
 
 
 def point_sets(speed, u2, law_index=1, **kw):
