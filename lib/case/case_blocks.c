@@ -592,32 +592,30 @@ static td_status join_at(td_case_reader *r, const config_setting_t *e, td_contro
     return j ? TD_OK : td_cr_model_fail(r, e, merr.code, &merr);
 }
 
-/* One branch of a parallel block into *out: a block, or a list of blocks in series, every one in s
- * or every one in z (*sampled says which). */
-static td_status read_branch(td_case_reader *r, const config_setting_t *br, double sample_rate, td_controller **out,
-                             int *sampled)
+/* Reads member i of a list into *out (*sampled: in z), *e the member (where a failure is located). */
+typedef td_status (*cb_member_reader)(td_case_reader *r, const config_setting_t *list, int i, double sample_rate,
+                                      const config_setting_t **e, td_controller **out, int *sampled);
+
+/* The members of `list`, read by `read` and joined by `join` (series or parallel) into *out, every one
+ * in s or every one in z (*sampled says which); `mixed` is the message for a member in the other
+ * domain, its two %s this member's domain and the first's. */
+static td_status join_members(td_case_reader *r, const config_setting_t *list, double sample_rate,
+                              cb_member_reader read,
+                              td_controller *(*join)(const td_controller *, const td_controller *, td_error *),
+                              const char *mixed, td_controller **out, int *sampled)
 {
-    const config_setting_t *e = br;
+    const config_setting_t *e = list;
     td_controller *b = NULL;
     int i, s = 0;
     td_status st = TD_OK;
     *out = NULL;
-    if (config_setting_is_group(br))
-        return td_cr_read_block(r, br, sample_rate, out, sampled);
-    if (!config_setting_is_list(br) || config_setting_length(br) == 0)
-        return td_cr_fail(r, br, NULL, "expected a branch: a block { ... } or a list of blocks ( { ... }, ... )");
-    for (i = 0; st == TD_OK && i < config_setting_length(br); i++) {
-        st = td_cr_entry(r, br, i, &e);
-        if (st == TD_OK)
-            st = td_cr_read_block(r, e, sample_rate, &b, &s);
+    for (i = 0; st == TD_OK && i < config_setting_length(list); i++) {
+        st = read(r, list, i, sample_rate, &e, &b, &s);
         if (st == TD_OK && i > 0 && s != *sampled)
-            st = td_cr_fail(r, e, NULL,
-                            "a branch of a parallel block is all in s or all in z (this block is in %s, "
-                            "the branch's first in %s)",
-                            s ? "z" : "s", s ? "s" : "z");
+            st = td_cr_fail(r, e, NULL, mixed, s ? "z" : "s", s ? "s" : "z");
         *sampled = i == 0 ? s : *sampled;
         if (st == TD_OK)
-            st = join_at(r, e, out, b, td_controller_series); /* takes b */
+            st = join_at(r, e, out, b, join); /* takes b */
         else
             td_controller_free(&b);
         b = NULL;
@@ -627,32 +625,46 @@ static td_status read_branch(td_case_reader *r, const config_setting_t *br, doub
     return st;
 }
 
+/* Member i of a branch's list of blocks in series: a block { ... }. */
+static td_status read_series_member(td_case_reader *r, const config_setting_t *list, int i, double sample_rate,
+                                    const config_setting_t **e, td_controller **out, int *sampled)
+{
+    td_status st = td_cr_entry(r, list, i, e);
+    if (st != TD_OK) {
+        *e = config_setting_get_elem(list, (unsigned)i);
+        return st;
+    }
+    return td_cr_read_block(r, *e, sample_rate, out, sampled);
+}
+
+/* Branch i of a parallel block: a block, or a list of blocks in series, every one in s or every one
+ * in z (*sampled says which). */
+static td_status read_branch(td_case_reader *r, const config_setting_t *list, int i, double sample_rate,
+                             const config_setting_t **e, td_controller **out, int *sampled)
+{
+    const config_setting_t *br = config_setting_get_elem(list, (unsigned)i);
+    *e = br;
+    *out = NULL;
+    if (config_setting_is_group(br))
+        return td_cr_read_block(r, br, sample_rate, out, sampled);
+    if (!config_setting_is_list(br) || config_setting_length(br) == 0)
+        return td_cr_fail(r, br, NULL, "expected a branch: a block { ... } or a list of blocks ( { ... }, ... )");
+    return join_members(r, br, sample_rate, read_series_member, td_controller_series,
+                        "a branch of a parallel block is all in s or all in z (this block is in %s, the "
+                        "branch's first in %s)",
+                        out, sampled);
+}
+
 /* A parallel block: its branches summed, all continuous or all sampled (*rate: 0 or sample_rate). */
 static td_status make_parallel(td_case_reader *r, const config_setting_t *list, double sample_rate, double *rate,
                                td_controller **out)
 {
-    const config_setting_t *br;
-    td_controller *b = NULL;
-    int i, s = 0, first = 0;
-    td_status st = TD_OK;
-    for (i = 0; st == TD_OK && i < config_setting_length(list); i++) {
-        br = config_setting_get_elem(list, (unsigned)i);
-        st = read_branch(r, br, sample_rate, &b, &s);
-        if (st == TD_OK && i > 0 && s != first)
-            st = td_cr_fail(r, br, NULL,
-                            "the branches of a parallel block are all in s or all in z (this branch is "
-                            "in %s, the first in %s)",
-                            s ? "z" : "s", s ? "s" : "z");
-        first = i == 0 ? s : first;
-        if (st == TD_OK)
-            st = join_at(r, br, out, b, td_controller_parallel); /* takes b */
-        else
-            td_controller_free(&b);
-        b = NULL;
-    }
-    if (st != TD_OK)
-        td_controller_free(out);
-    *rate = first ? sample_rate : 0.0;
+    int sampled = 0;
+    td_status st = join_members(r, list, sample_rate, read_branch, td_controller_parallel,
+                                "the branches of a parallel block are all in s or all in z (this branch is "
+                                "in %s, the first in %s)",
+                                out, &sampled);
+    *rate = sampled ? sample_rate : 0.0;
     return st;
 }
 
