@@ -13,6 +13,7 @@
 #include "touchdown/error.h"
 #include "touchdown/export.h"
 #include "touchdown/options.h"
+#include "touchdown/plugin.h"
 
 #ifdef __cplusplus
 extern "C" {
@@ -282,6 +283,37 @@ TD_API td_status td_model_add_change(td_model *m, const td_change *c, td_error *
 #define TD_CONTROLLER_RATE_MAX 1.0e7
 TD_API td_status td_model_add_controller(td_model *m, const char *name, const td_controller *k, const int *inputs,
                                          const int *outputs, td_error *err);
+/**
+ * A plug-in controller (touchdown/plugin.h): the user's own code driving AMB axes, sampled at
+ * sample_rate. It is one of the model's controllers (td_model_controller_count counts it, in the
+ * order of addition; a recovery pair may name it) under the axis rules of td_model_add_controller,
+ * but no linear system: td_model_get_controller returns NULL for it and td_model_get_plugin its
+ * spec, and the analyses that need a linear law (touchdown/modal.h, an orbit start) refuse a model
+ * with one, naming it. Either `functions` is a program's own table, or `library` (functions NULL)
+ * the path of a shared library exporting TD_PLUGIN_ENTRY_NAME, opened here: a file that cannot be
+ * opened, a missing symbol or an abi_version other than TD_PLUGIN_ABI_VERSION is TD_ERR_INVALID
+ * naming the library. The model keeps copies of every string and list. A fault names site part
+ * "controller".
+ */
+typedef struct td_plugin_spec {
+    const char *name;                      /**< as td_model_add_controller's (may be NULL) */
+    const td_plugin_controller *functions; /**< a program's table, or NULL: load `library` */
+    const char *library;                   /**< shared library path (when functions is NULL) */
+    double sample_rate;                    /**< Hz, TD_CONTROLLER_RATE_MIN .. TD_CONTROLLER_RATE_MAX */
+    int delay;                             /**< whole samples of computation delay on every output, >= 0 */
+    int n_inputs;                          /**< sensors read, >= 1 */
+    const int *inputs;                     /**< n_inputs AMB axes (2 amb + axis) */
+    int n_outputs;                         /**< amplifiers commanded, >= 1 */
+    const int *outputs;                    /**< n_outputs AMB axes */
+    int n_parameters;                      /**< >= 0 */
+    const char *const *parameter_names;    /**< n_parameters names */
+    const double *parameter_values;        /**< n_parameters values */
+} td_plugin_spec;
+TD_API td_status td_model_add_plugin_controller(td_model *m, const td_plugin_spec *spec, td_error *err);
+/** Controller i's plug-in spec (borrowed, valid while the model lives unchanged; `functions` is
+ *  then always set, from the library when it named one), or NULL for a linear controller or an i
+ *  out of range. */
+TD_API const td_plugin_spec *td_model_get_plugin(const td_model *m, int i);
 /** The most controller pairs one recovery supervisor switches (td_recovery). */
 #define TD_RECOVERY_MAX_PAIRS 16
 
