@@ -5,6 +5,8 @@
 #     finds its cases;
 #   - the pkg-config file names no absolute library path, and the CMake package no absolute path
 #     at all: it finds the dependencies again where it is used (a missing one is named);
+#   - examples/plugin-pd builds with its Makefile against the installed header alone, and the
+#     installed tool runs its case with the plug-in;
 #   - examples/ (the installed copy in share/doc/touchdown) builds with find_package(touchdown),
 #     shared and static; examples/embed.c builds with pkg-config, shared (-Wl,-rpath, as the README
 #     says) and static (pkg-config --static); each program runs and all print the same result;
@@ -102,6 +104,16 @@ fi
 grep -q 'libtouchdown\.so.*cannot open' "$scratch/norpath.err" ||
     fail "without a run-time path: $(cat "$scratch/norpath.err")"
 echo "check-install: without a run-time path, as the README says: $(head -n 1 "$scratch/norpath.err")"
+
+# The plug-in example builds with its own Makefile against the installed header alone (a copy of
+# the installed example, as a user takes it), and the installed tool runs its case with it.
+echo "check-install: examples/plugin-pd with make against the installed header, run by the installed tool"
+cp -r "$doc/examples/plugin-pd" "$scratch/plugin-pd"
+make -s -C "$scratch/plugin-pd" PREFIX="$prefix" CFLAGS="-O2 -Werror" || fail "examples/plugin-pd did not build"
+"$prefix/bin/touchdown" run -q --json -o "$scratch/plugin-pd/short" --set end_time=0.02 \
+    "$scratch/plugin-pd/rig-pd.cfg" >"$scratch/plugin.json" || fail "the installed touchdown did not run rig-pd.cfg"
+grep -q '"status":"success"' "$scratch/plugin.json" ||
+    fail "the installed touchdown run of rig-pd.cfg did not succeed: $(head -c 300 "$scratch/plugin.json")"
 
 echo "check-install: the documentation in share/doc/touchdown"
 for f in README.md "$here"/docs/*.md "$here"/docs/figures/*; do

@@ -116,6 +116,10 @@ typedef struct td_case_controller_info {
     int discretised;                  /**< 1: blocks in s were sampled by `discretisation`; 0: none were
                                        *   (continuous, or every block written in z: then discretisation
                                        *   and prewarp did nothing) */
+    int plugin;                       /**< 1: a plug-in controller (`plugin`; td_model_get_plugin gives its spec) */
+    const char *where;                /**< a plug-in's "FILE:LINE: controllers[i].plugin.library" (or the
+                                       *   --set that gave it), for messages about it; else NULL.
+                                       *   Borrowed: valid while the case lives */
 } td_case_controller_info;
 
 /** Controller i of the case (0 <= i < td_model_controller_count(td_case_model(c))) into *out;

@@ -307,6 +307,8 @@ void td_case_free(td_case **c)
         free((*c)->files[--(*c)->file_count]);
     free((*c)->files);
     td_cr_free_sweep(*c);
+    while ((*c)->controller_count > 0)
+        free((char *)(*c)->controllers[--(*c)->controller_count].where);
     free((*c)->controllers);
     free(*c);
     *c = NULL;

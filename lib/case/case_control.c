@@ -35,7 +35,8 @@ typedef struct cc_rec {
     int discretisation;
     double prewarp;
     int delay;
-    int discretised; /* runs of blocks in s sampled by `discretisation` so far */
+    int discretised;     /* runs of blocks in s sampled by `discretisation` so far */
+    td_cr_plugin plugin; /* the `plugin` group (case_plugin.c); library NULL: a law */
 } cc_rec;
 
 /* ambs: at least one, each an AMB of the case (the model has read them). */
@@ -88,30 +89,53 @@ static td_status read_reference_z(td_case_reader *r, const config_setting_t *g, 
     return st;
 }
 
-/* law (bearing), or translation and tilt (rigid): which the coordinates need, each a list. */
+/* law (bearing), or translation and tilt (rigid): which the coordinates need, each a list; none
+ * with a plug-in, which is the law. */
 static td_status check_laws(td_case_reader *r, const config_setting_t *g, const td_cs_key *k, void *rec)
 {
     static const char *const keys[] = {"law", "translation", "tilt"};
     const cc_rec *c = rec;
     const config_setting_t *list;
-    int i;
+    int i, plugin = td_cr_has(g, "plugin");
     (void)k;
     for (i = 0; i < 3; i++) {
-        int wanted = (i == 0) != (c->rigid != 0);
+        int wanted = !plugin && (i == 0) != (c->rigid != 0);
         td_status st = td_cr_list(r, g, keys[i], &list);
         if (st != TD_OK)
             return st;
         if (!list && wanted)
             return td_cr_missing(r, g, keys[i],
                                  c->rigid ? "rigid coordinates: the blocks of the translation and of the tilt law"
-                                          : "the blocks of the law in series");
+                                          : "the blocks of the law in series, or a `plugin`");
         if (list && !wanted)
             return td_cr_fail(r, list, NULL, "%s",
-                              c->rigid ? "rigid coordinates take `translation` and `tilt`, not `law`"
-                                       : "`translation` and `tilt` need coordinates = \"rigid\"");
+                              plugin     ? "a plug-in controller's law is its plug-in: give `plugin` or a law, not both"
+                              : c->rigid ? "rigid coordinates take `translation` and `tilt`, not `law`"
+                                         : "`translation` and `tilt` need coordinates = \"rigid\"");
         if (list && config_setting_length(list) == 0)
             return td_cr_fail(r, list, NULL, "a law has at least one block, e.g. ( { gain = 1.0; } )");
     }
+    return TD_OK;
+}
+
+/* plugin: sampled, on the AMBs' own axes; what acts on a law's blocks in s it has none of. */
+static td_status check_plugin(td_case_reader *r, const config_setting_t *g, const td_cs_key *k, void *rec)
+{
+    static const char *const keys[] = {"discretisation", "prewarp"};
+    const cc_rec *c = rec;
+    int i;
+    (void)k;
+    if (!c->plugin.library)
+        return TD_OK;
+    if (c->rigid)
+        return td_cr_fail(r, config_setting_get_member(g, "coordinates"), NULL,
+                          "a plug-in reads and drives each AMB axis itself: coordinates = \"bearing\" only");
+    if (!(c->sample_rate > 0.0))
+        return td_cr_missing(r, g, "sample_rate", "a plug-in runs sampled: the rate its step is called at, Hz");
+    for (i = 0; i < 2; i++)
+        if (td_cr_has(g, keys[i]))
+            return td_cr_fail(r, config_setting_get_member(g, keys[i]), NULL,
+                              "%s applies to a law's blocks, and a plug-in controller has none", keys[i]);
     return TD_OK;
 }
 
@@ -300,8 +324,23 @@ static td_status build_controller(td_case_reader *r, const config_setting_t *g, 
     return st;
 }
 
+/* "FILE:LINE: controllers[i].plugin.library" of entry g's plug-in, a new string (NULL: none, or out
+ * of memory). */
+static char *plugin_where(const td_case_reader *r, const config_setting_t *g)
+{
+    const config_setting_t *s = config_setting_lookup((config_setting_t *)g, "plugin.library");
+    char where[1200], key[512], *out;
+    if (!s)
+        return NULL;
+    td_cr_where(r, s, where, sizeof where);
+    td_cr_key(s, key, sizeof key);
+    if ((out = malloc(strlen(where) + strlen(key) + 3)) != NULL)
+        sprintf(out, "%s: %s", where, key);
+    return out;
+}
+
 /* The case's own account of controller entry c (td_case_controller). */
-static td_status keep_info(td_case_reader *r, const cc_rec *c)
+static td_status keep_info(td_case_reader *r, const config_setting_t *g, const cc_rec *c)
 {
     td_case *cs = r->c;
     td_case_controller_info *info = realloc(cs->controllers, (size_t)(cs->controller_count + 1) * sizeof *info);
@@ -316,6 +355,9 @@ static td_status keep_info(td_case_reader *r, const cc_rec *c)
     info->discretisation = (td_discretisation)c->discretisation;
     info->prewarp = c->prewarp;
     info->discretised = c->discretised > 0;
+    info->plugin = c->plugin.library != NULL;
+    if (info->plugin && !(info->where = plugin_where(r, g)))
+        return td_cr_fail_file(r->err, TD_ERR_NOMEM, r->path_shown, 0, "out of memory");
     return TD_OK;
 }
 
@@ -331,19 +373,38 @@ static td_status check_sampled_nothing(td_case_reader *r, const config_setting_t
     return TD_OK;
 }
 
+/* A plug-in controller on the axes of its AMBs, AMB by AMB, x then y (bearing coordinates). */
+static td_status add_plugin(td_case_reader *r, const config_setting_t *g, const cc_rec *c)
+{
+    td_plugin_spec spec;
+    int i, axes[2 * CC_MAX_AMBS];
+    for (i = 0; i < 2 * c->amb_count; i++)
+        axes[i] = 2 * c->ambs[i / 2] + i % 2;
+    memset(&spec, 0, sizeof spec);
+    spec.name = c->name;
+    spec.sample_rate = c->sample_rate;
+    spec.delay = c->delay;
+    spec.n_inputs = spec.n_outputs = 2 * c->amb_count;
+    spec.inputs = spec.outputs = axes;
+    return td_cr_add_plugin(r, g, &c->plugin, &spec);
+}
+
 static td_status add_controller(td_case_reader *r, const config_setting_t *g, void *rec)
 {
     cc_rec *c = rec;
     td_controller *k = NULL;
     int axes[2 * CC_MAX_AMBS];
     td_error merr;
-    td_status st = build_controller(r, g, c, &k, axes);
+    td_status st;
+    if (c->plugin.library)
+        return (st = add_plugin(r, g, c)) == TD_OK ? keep_info(r, g, c) : st;
+    st = build_controller(r, g, c, &k, axes);
     if (st == TD_OK)
         st = check_sampled_nothing(r, g, c);
     if (st == TD_OK && (st = td_model_add_controller(r->c->model, c->name, k, axes, axes, &merr)) != TD_OK)
         st = td_cr_model_fail(r, g, st, &merr);
     td_controller_free(&k);
-    return st == TD_OK ? keep_info(r, c) : st;
+    return st == TD_OK ? keep_info(r, g, c) : st;
 }
 
 static const td_cs_key controller_keys[] = {
@@ -393,6 +454,15 @@ static const td_cs_key controller_keys[] = {
      .doc_type = "list",
      .doc_default = "required (rigid)",
      .doc = "the tilt law's blocks, as `law`: the moment current (A m) from the tilt (m/m)"},
+    {.key = "plugin",
+     .type = TD_CS_GROUP,
+     .offset = offsetof(cc_rec, plugin),
+     .sub = &td_cs_plugin,
+     .check = check_plugin,
+     .order = 1, /* after the coordinates, the rate and the delay it is checked against */
+     .doc_default = "none (a law)",
+     .doc = "instead of `law`: the user's own controller code, a plug-in (touchdown/plugin.h) in a shared "
+            "library, below; bearing coordinates, sample_rate required, delay as for a law"},
     {.key = "sample_rate",
      .type = TD_CS_REAL,
      .offset = offsetof(cc_rec, sample_rate),

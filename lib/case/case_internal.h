@@ -12,8 +12,8 @@
  *   5. case_site.c      model errors turned back into the settings they came from
  *   6. case_schema.c    the generic reader of a group by its table (case_schema.h)
  *   7. the tables: case_vary.c, case_shaft.c, case_parts.c, case_blocks.c (a controller's blocks),
- *      case_control.c (the controllers, built of those blocks), then case_options.c (the root
- *      table, which names the others)
+ *      case_plugin.c (a controller's plug-in), case_control.c (the controllers, built of those
+ *      blocks or a plug-in), then case_options.c (the root table, which names the others)
  *   8. case_keys.c      every key of the tables, for the docs
  *   9. case.c           td_case_load and the rest of touchdown/case.h
  * A function two layers need lives in the lower one.

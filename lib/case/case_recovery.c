@@ -17,16 +17,24 @@ typedef struct cr_rec {
     int controller_count; /* names in `controller`, to match `nominal`'s (r.pair_count) */
 } cr_rec;
 
+/* Controller i's name, a linear law's or a plug-in's ("" when none). */
+static const char *controller_name(const td_model *m, int i)
+{
+    const td_plugin_spec *p = td_model_get_plugin(m, i);
+    const char *n = "";
+    if (p)
+        return p->name ? p->name : "";
+    (void)td_model_get_controller(m, i, &n, NULL, NULL);
+    return n;
+}
+
 /* The index of the controller named `name`, or -1. */
 static int controller_index(const td_model *m, const char *name)
 {
     int i;
-    for (i = 0; i < td_model_controller_count(m); i++) {
-        const char *n;
-        (void)td_model_get_controller(m, i, &n, NULL, NULL);
-        if (strcmp(n, name) == 0)
+    for (i = 0; i < td_model_controller_count(m); i++)
+        if (strcmp(controller_name(m, i), name) == 0)
             return i;
-    }
     return -1;
 }
 
@@ -43,9 +51,7 @@ static td_status name_index(td_case_reader *r, const config_setting_t *s, int *o
     if (*out >= 0)
         return TD_OK;
     for (i = 0; i < td_model_controller_count(m) && len + 70 < sizeof names; i++) {
-        const char *n;
-        (void)td_model_get_controller(m, i, &n, NULL, NULL);
-        snprintf(names + len, sizeof names - len, "%s\"%.60s\"", i ? ", " : "", n);
+        snprintf(names + len, sizeof names - len, "%s\"%.60s\"", i ? ", " : "", controller_name(m, i));
         len = strlen(names);
     }
     return td_cr_fail(r, s, NULL, "no controller is named \"%s\" (the controllers table names %s)",

@@ -108,6 +108,20 @@ extern const td_cs_table td_cs_shaft;
 extern const td_cs_table td_cs_sweep;
 /* The controllers (case_control.c), and the table of one block of a controller's law (case_blocks.c). */
 extern const td_cs_table td_cs_controllers, td_cs_block;
+/* A controller's `plugin` group as read (case_plugin.c): the library as written, its `parameters`
+ * group (NULL when absent), each member a finite number. */
+#define TD_CR_PLUGIN_MAX_PARAMETERS 64
+typedef struct td_cr_plugin {
+    const char *library;
+    const config_setting_t *parameters;
+} td_cr_plugin;
+extern const td_cs_table td_cs_plugin;
+/* Add the plug-in p of controller entry g to the model: `spec` gives its name, rate, delay and
+ * axes; the library (under the case file's directory unless absolute) and parameters are p's. A
+ * model error is located at the key it is about (`plugin.library` for the library's own). */
+td_status td_cr_add_plugin(td_case_reader *r, const config_setting_t *g, const td_cr_plugin *p,
+                           const td_plugin_spec *spec);
+
 /* The recovery supervisor (case_recovery.c), read after the controllers it names. */
 extern const td_cs_table td_cs_recovery;
 

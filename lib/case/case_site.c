@@ -35,6 +35,10 @@ static const config_setting_t *field_setting(const config_setting_t *g, const td
         s = config_setting_get_member(g, "bore_radius");
     else
         s = config_setting_lookup((config_setting_t *)g, site->field); /* "material.E" is a path */
+    if (!s && strcmp(site->part, "controller") == 0 && (s = config_setting_get_member(g, "plugin")) != NULL)
+        /* a plug-in's fault: the member of its group the field names, else the library it is about */
+        s = config_setting_get_member(s, site->field) ? config_setting_get_member(s, site->field)
+                                                      : config_setting_get_member(s, "library");
     return s ? s : g;
 }
 

@@ -58,21 +58,31 @@ int td_cli_load_case(const char *path, const td_cli_sets *sets, td_case **out)
 {
     td_error err;
     td_status st;
+    int code;
     td_error_clear(&err);
     st = td_cli_case_checked(path, sets ? sets->items : NULL, sets ? sets->count : 0, out, &err);
-    return st == TD_OK ? TD_EXIT_OK : load_failed(st, &err);
+    if (st != TD_OK)
+        return load_failed(st, &err);
+    if ((code = td_cli_probe_plugins(*out)) != TD_EXIT_OK)
+        td_case_free(out);
+    return code;
 }
 
 int td_cli_job_create(const char *path, const td_cli_sets *sets, td_job **out)
 {
     td_error err;
     td_status st;
+    int code;
     td_error_clear(&err);
     st = td_job_create(path, sets ? sets->items : NULL, sets ? sets->count : 0, out, &err);
     /* as td_cli_case_checked: the sweep group is judged whichever command loads the case */
     if (st == TD_OK && (st = td_sweep_check_case(td_job_case(*out), &err)) != TD_OK)
         td_job_free(out);
-    return st == TD_OK ? TD_EXIT_OK : load_failed(st, &err);
+    if (st != TD_OK)
+        return load_failed(st, &err);
+    if ((code = td_cli_probe_plugins(td_job_case(*out))) != TD_EXIT_OK)
+        td_job_free(out);
+    return code;
 }
 
 int td_cli_exit_code(td_status st)

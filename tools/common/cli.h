@@ -32,8 +32,14 @@ int td_cli_add_set(td_cli_sets *sets, const char *kv);
  * (td_case_load, td_sweep_check_case); on failure *out is NULL and err says why. Prints nothing. */
 td_status td_cli_case_checked(const char *path, const char *const *items, int count, td_case **out, td_error *err);
 
-/* td_cli_case_checked with the --set overrides; on failure print "touchdown: MESSAGE" and return
- * TD_EXIT_USAGE. */
+/* Each plug-in controller of case c (touchdown/plugin.h) tried before the case is used: its init,
+ * one step from rest and its free, in a child process (probe.c), so that a crash in the user's code
+ * never takes the tool with it. A child that dies of a signal, or an init that refuses, prints
+ * "touchdown: FILE:LINE: controllers[i].plugin.library: ..." and returns TD_EXIT_USAGE; else 0. */
+int td_cli_probe_plugins(const td_case *c);
+
+/* td_cli_case_checked with the --set overrides, and its plug-ins probed (td_cli_probe_plugins); on
+ * failure print "touchdown: MESSAGE" and return TD_EXIT_USAGE. */
 int td_cli_load_case(const char *path, const td_cli_sets *sets, td_case **out);
 
 /* The job of a case with overrides (touchdown/job.h); on failure as td_cli_load_case. */

@@ -8,23 +8,44 @@
 #include <gsl/gsl_matrix.h>
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
 #define TWO_PI 6.283185307179586
 /* |z| below which a sampled pole is z = 0, a delay's (a shift register's eigenvalue 0 comes out of
  * the solver at round-off size; a pole of the law there would be far beyond the Nyquist frequency). */
 #define Z_ZERO 1e-6
 
+void td_controller_view_get(const td_model *m, int i, td_controller_view *v)
+{
+    const td_plugin_spec *p = td_model_get_plugin(m, i);
+    memset(v, 0, sizeof *v);
+    v->name = "";
+    v->plugin = p;
+    if (p) {
+        v->name = p->name ? p->name : "";
+        v->sample_rate = p->sample_rate;
+        v->n_inputs = p->n_inputs;
+        v->n_outputs = p->n_outputs;
+        v->inputs = p->inputs;
+        v->outputs = p->outputs;
+    } else if ((v->law = td_model_get_controller(m, i, &v->name, &v->inputs, &v->outputs)) != NULL) {
+        v->sample_rate = td_controller_sample_rate(v->law);
+        v->n_inputs = td_controller_inputs(v->law);
+        v->n_outputs = td_controller_outputs(v->law);
+    }
+}
+
 int td_amb_controller(const td_model *m, int amb)
 {
     td_recovery rec;
     int i, j, p, standby, pairs = td_model_get_recovery(m, &rec);
     for (i = 0; i < td_model_controller_count(m); i++) {
-        const int *outputs;
-        const td_controller *k = td_model_get_controller(m, i, NULL, NULL, &outputs);
+        td_controller_view v;
+        td_controller_view_get(m, i, &v);
         for (p = standby = 0; p < pairs; p++) /* a recovery law stands by on its nominal's AMBs */
             standby |= rec.controller[p] == i;
-        for (j = 0; j < td_controller_outputs(k) && !standby; j++)
-            if (outputs[j] / 2 == amb)
+        for (j = 0; j < v.n_outputs && !standby; j++)
+            if (v.outputs[j] / 2 == amb)
                 return i;
     }
     return -1;
@@ -125,10 +146,10 @@ static void print_poles(FILE *f, const td_controller *k)
     free(im);
 }
 
-/* "amb 0" or "ambs 0, 1" of a controller: the AMBs of its inputs, each once, in their order. */
-static void print_ambs(FILE *f, const td_controller *k, const int *inputs)
+/* "amb 0" or "ambs 0, 1" of a controller: the AMBs of its n inputs, each once, in their order. */
+static void print_ambs(FILE *f, int n, const int *inputs)
 {
-    int j, l, n = td_controller_inputs(k), pass, shown;
+    int j, l, pass, shown;
     for (pass = 0, shown = 0; pass < 2; pass++) {
         int count = shown;
         shown = 0;
@@ -144,19 +165,39 @@ static void print_ambs(FILE *f, const td_controller *k, const int *inputs)
     }
 }
 
+/* A plug-in controller's line after its AMBs: its library, ABI and output, timing, parameters. */
+static void print_plugin(FILE *f, const td_plugin_spec *p)
+{
+    int j;
+    fprintf(f, " in bearing coordinates, plug-in %s (ABI %d, %s commands), sampled at %.6g Hz, delay %d sample%s\n",
+            p->library ? p->library : "(registered by the program)", p->functions ? p->functions->abi_version : 0,
+            p->functions && p->functions->output == TD_PLUGIN_FORCE ? "force" : "current", p->sample_rate, p->delay,
+            p->delay == 1 ? "" : "s");
+    fprintf(f, "             parameters:");
+    for (j = 0; j < p->n_parameters; j++)
+        fprintf(f, "%s %s = %.9g", j ? "," : "", p->parameter_names[j], p->parameter_values[j]);
+    fprintf(f, "%s\n", p->n_parameters ? "" : " none");
+}
+
 void td_print_controllers(FILE *f, const td_case *c)
 {
     const td_model *m = td_case_model(c);
     int i;
     for (i = 0; i < td_model_controller_count(m); i++) {
-        const char *name;
-        const int *inputs;
-        const td_controller *k = td_model_get_controller(m, i, &name, &inputs, NULL);
+        td_controller_view v;
+        const td_controller *k;
         td_case_controller_info info;
-        double rate = td_controller_sample_rate(k);
+        double rate;
+        td_controller_view_get(m, i, &v);
+        k = v.law;
+        rate = v.sample_rate;
         td_case_controller(c, i, &info);
-        fprintf(f, "controller %-2d \"%s\": ", i, name);
-        print_ambs(f, k, inputs);
+        fprintf(f, "controller %-2d \"%s\": ", i, v.name);
+        print_ambs(f, v.n_inputs, v.inputs);
+        if (v.plugin) {
+            print_plugin(f, v.plugin);
+            continue;
+        }
         if (info.rigid)
             fprintf(f, " in rigid-body coordinates about z = %.6g m", info.reference_z);
         else

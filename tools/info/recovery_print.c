@@ -1,5 +1,6 @@
 /* `touchdown info`'s account of a case's recovery supervisor (touchdown/model.h td_recovery). */
 #include "info/recovery_print.h"
+#include "info/controller_print.h"
 
 #include <math.h>
 
@@ -31,15 +32,16 @@ void td_print_recovery(FILE *f, const td_model *m)
     if (pairs == 0)
         return;
     c = smallest_clearance(m);
-    rate = td_controller_sample_rate(td_model_get_controller(m, rec.nominal[0], NULL, NULL, NULL));
+    td_controller_view a, b;
+    td_controller_view_get(m, rec.nominal[0], &a);
+    rate = a.sample_rate;
     fprintf(f, "recovery     supervisor %s, %d pair%s (c = %g m, the smallest retainer clearance)\n",
             rec.enabled ? "on" : "off (enabled = false: the nominal laws throughout)", pairs, pairs == 1 ? "" : "s", c);
     for (p = 0; p < pairs; p++) {
-        const char *a, *b;
-        (void)td_model_get_controller(m, rec.nominal[p], &a, NULL, NULL);
-        (void)td_model_get_controller(m, rec.controller[p], &b, NULL, NULL);
+        td_controller_view_get(m, rec.nominal[p], &a);
+        td_controller_view_get(m, rec.controller[p], &b);
         fprintf(f, "             pair %d: controller %d \"%s\" -> controller %d \"%s\" (standing by)\n", p,
-                rec.nominal[p], a, rec.controller[p], b);
+                rec.nominal[p], a.name, rec.controller[p], b.name);
     }
     print_rule(f, "detect ", ">", &rec.detect, c, rate);
     print_rule(f, "release", "<", &rec.release, c, rate);

@@ -261,6 +261,18 @@ static int set_outputs(td_job *job, const run_args *a)
     return check_outputs(job);
 }
 
+/* Where a failure of the run is: a plug-in controller's case key when the error is about one (its
+ * failure mid-run is bad input, docs/case-format.md "Plug-ins"), else the case file. */
+static const char *fault_where(const td_job *job, const td_error *err)
+{
+    const td_case *c = td_job_case(job);
+    td_case_controller_info info;
+    if (err->site.part && strcmp(err->site.part, "controller") == 0 &&
+        td_case_controller(c, err->site.index, &info) == TD_OK && info.plugin && info.where)
+        return info.where;
+    return td_case_path(c);
+}
+
 /* Start and run the job, with the progress line when asked for and stderr is a terminal; print
  * what went wrong, the warnings and the summary. Returns the exit code. */
 static int run_job(td_job *job, const run_args *a, volatile sig_atomic_t *cancel)
@@ -288,7 +300,7 @@ static int run_job(td_job *job, const run_args *a, volatile sig_atomic_t *cancel
     if (prog.shown)
         fputs("\r\033[K", stderr);
     if (st != TD_OK)
-        fprintf(stderr, "touchdown: %s: %s\n", path, err.message[0] ? err.message : td_strerror(st));
+        fprintf(stderr, "touchdown: %s: %s\n", fault_where(job, &err), err.message[0] ? err.message : td_strerror(st));
     print_warnings(path, &summary);
     code = td_cli_exit_code(st);
     /* the spread of a run that reached its end: its other members, after its own files */
