@@ -429,9 +429,10 @@ TD_API td_status td_model_get_bearing(const td_model *m, int i, td_bearing *out)
 TD_API td_status td_model_get_retainer(const td_model *m, int i, td_retainer *out);
 TD_API td_status td_model_get_unbalance(const td_model *m, int i, td_unbalance *out);
 TD_API td_status td_model_get_change(const td_model *m, int i, td_change *out);
-/** Controller i as the model keeps it (NULL when i is out of range); *name, *inputs and *outputs
- *  (each may be NULL) receive the model's name (never NULL: "" when none) and axis lists,
- *  td_controller_inputs(k) and td_controller_outputs(k) long. Valid while the model lives unchanged. */
+/** Controller i as the model keeps it (NULL when i is out of range, and for a plug-in controller,
+ *  td_model_get_plugin); *name, *inputs and *outputs (each may be NULL) receive the model's name
+ *  (never NULL: "" when none) and axis lists, td_controller_inputs(k) and td_controller_outputs(k)
+ *  long (a plug-in's: its spec's n_inputs and n_outputs). Valid while the model lives unchanged. */
 TD_API const td_controller *td_model_get_controller(const td_model *m, int i, const char **name, const int **inputs,
                                                     const int **outputs);
 

@@ -182,16 +182,37 @@ static td_status build_amb_axes(td_system *s, td_error *err)
     return TD_OK;
 }
 
-/* One linear controller of the model as the system runs it: its matrices, its axes, and for a
- * continuous law its first state among the controller states (after every shorthand state, so
- * that a model without controllers keeps its numbering). */
-static td_status build_law(td_system *s, int l, td_error *err)
+/* A plug-in controller's law: no matrices of its own (n = 0, D = 0: the analyses that need a
+ * linear law refuse it, lib/modal), sampled, its commands the sampler's (lib/sim/sampler.c). */
+static td_status build_plugin_law(td_system *s, int l, const td_plugin_spec *p, td_error *err)
+{
+    td_lti_law *L = &s->laws[l];
+    L->nin = p->n_inputs;
+    L->nout = p->n_outputs;
+    L->sample_rate = p->sample_rate;
+    L->plugin = p;
+    L->A = calloc(1, sizeof(double));
+    L->B = calloc(1, sizeof(double));
+    L->C = calloc(1, sizeof(double));
+    L->D = calloc((size_t)L->nout * (size_t)L->nin, sizeof(double));
+    L->in_axis = malloc((size_t)L->nin * sizeof(int));
+    L->out_axis = malloc((size_t)L->nout * sizeof(int));
+    if (!L->A || !L->B || !L->C || !L->D || !L->in_axis || !L->out_axis)
+        return td_error_set(err, TD_ERR_NOMEM, "out of memory building controller %d", l);
+    memcpy(L->in_axis, p->inputs, (size_t)L->nin * sizeof(int));
+    memcpy(L->out_axis, p->outputs, (size_t)L->nout * sizeof(int));
+    return TD_OK;
+}
+
+/* A linear controller's law: its matrices, its axes, and for a continuous law its first state among
+ * the controller states (after every shorthand state, so that a model without controllers keeps its
+ * numbering). */
+static td_status build_linear_law(td_system *s, int l, td_error *err)
 {
     const int *in, *out;
     const td_controller *k = td_model_get_controller(s->model, l, NULL, &in, &out);
     td_lti_law *L = &s->laws[l];
     size_t n, nin, nout;
-    int o;
     L->n = td_controller_order(k);
     L->nin = td_controller_inputs(k);
     L->nout = td_controller_outputs(k);
@@ -213,17 +234,29 @@ static td_status build_law(td_system *s, int l, td_error *err)
     td_controller_matrices(k, L->A, L->B, L->C, L->D, L->D1);
     memcpy(L->in_axis, in, nin * sizeof(int));
     memcpy(L->out_axis, out, nout * sizeof(int));
-    L->state = -1;
     if (L->sample_rate == 0.0) {
         L->state = s->n_controller_states;
         s->n_controller_states += L->n;
     }
-    L->standby = td_model_recovery_standby(s->model, l);
-    for (o = 0; o < L->nout && !L->standby; o++) {
-        s->amb_axes[out[o]].law = l;
-        s->amb_axes[out[o]].law_output = o;
-    }
     return TD_OK;
+}
+
+/* One controller of the model as the system runs it, and the axes it drives (none while it stands
+ * by). */
+static td_status build_law(td_system *s, int l, td_error *err)
+{
+    const td_plugin_spec *p = td_model_get_plugin(s->model, l);
+    td_lti_law *L = &s->laws[l];
+    td_status st;
+    int o;
+    L->state = -1;
+    L->standby = td_model_recovery_standby(s->model, l);
+    st = p ? build_plugin_law(s, l, p, err) : build_linear_law(s, l, err);
+    for (o = 0; st == TD_OK && o < L->nout && !L->standby; o++) {
+        s->amb_axes[L->out_axis[o]].law = l;
+        s->amb_axes[L->out_axis[o]].law_output = o;
+    }
+    return st;
 }
 
 static td_status build_laws(td_system *s, td_error *err)

@@ -12,13 +12,26 @@
         int capacity;                                                                                                  \
     }
 
-/* A linear controller as the model keeps it (td_model_add_controller): owned copies of the law and of
- * its axis lists (td_controller_inputs(k) and td_controller_outputs(k) long). */
+/* A plug-in controller's spec as the model keeps it (td_model_add_plugin_controller, plugin.c):
+ * spec.name is `name`, a copy of the controller's, spec.inputs and spec.outputs its axis lists, spec.library and
+ * the parameters owned copies, spec.functions the program's table or the opened library's. */
+typedef struct td_model_plugin {
+    td_plugin_spec spec;
+    char name[64];
+    void *handle; /* the library's dlopen handle (closed with the model); NULL for a program's table */
+} td_model_plugin;
+
+/* A controller as the model keeps it: a linear law (td_model_add_controller, k set, plugin NULL) or
+ * a plug-in (td_model_add_plugin_controller, k NULL), with owned copies of the law and of its axis
+ * lists (nin and nout long). */
 typedef struct td_model_controller {
     td_controller *k;
+    td_model_plugin *plugin;
     char name[64];
-    int *inputs;  /* AMB axis (2 amb + axis) of each input's sensor */
-    int *outputs; /* AMB axis each output commands */
+    int nin, nout;      /* inputs and outputs */
+    double sample_rate; /* Hz; 0: continuous (a plug-in is always sampled) */
+    int *inputs;        /* AMB axis (2 amb + axis) of each input's sensor */
+    int *outputs;       /* AMB axis each output commands */
 } td_model_controller;
 
 struct td_model {
@@ -47,6 +60,18 @@ void td_model_free_controllers(td_model *m);
 td_status td_model_clone_controllers(td_model *m, const td_model *src, td_error *err);
 /* Axes in range, each axis driven once, a driven AMB with kp = kd = kint = 0. */
 td_status td_model_check_controllers(const td_model *m, td_error *err);
+
+/* The plug-ins' part in freeing and copying a controller (plugin.c): a deep copy of src's plug-in
+ * into dst (the library opened again) and its release. */
+td_status td_model_plugin_clone(td_model_controller *dst, const td_model_controller *src, int i, td_error *err);
+/* The spec's values other than the table, the name and the axes (controller i being added): the
+ * rate (sampled only), the delay, and named, distinct parameters with finite values. */
+td_status td_model_plugin_check(const td_plugin_spec *spec, int i, td_error *err);
+/* Owned copies of spec's library path, axis lists and parameters into c (c->name set first; c->plugin
+ * allocated); the table is spec's, or the library's, opened here and checked against this ABI. On
+ * failure c holds what it could copy, for td_model_plugin_free and free(c->inputs), free(c->outputs). */
+td_status td_model_plugin_copy(td_model_controller *c, const td_plugin_spec *spec, int i, td_error *err);
+void td_model_plugin_free(td_model_plugin **p);
 
 /* The recovery supervisor's rules against the controllers (recovery.c): pairs of existing, distinct,
  * sampled controllers at one rate over the same axes, each controller in one pair at most, and a

@@ -113,8 +113,8 @@ static td_status check_pair(const td_model *m, int p, td_error *err)
     b = &m->controllers.items[r->controller[p]];
     if (r->nominal[p] == r->controller[p])
         return FAIL_AT(err, "controller", "pair %d: \"%s\" is its own recovery law", p, a->name);
-    ra = td_controller_sample_rate(a->k);
-    rb = td_controller_sample_rate(b->k);
+    ra = a->sample_rate;
+    rb = b->sample_rate;
     if (!(ra > 0.0) || !(rb > 0.0))
         return FAIL_AT(err, ra > 0.0 ? "controller" : "nominal",
                        "pair %d: \"%s\" is continuous: a supervised law is sampled (give it a sample_rate; "
@@ -124,10 +124,8 @@ static td_status check_pair(const td_model *m, int p, td_error *err)
         return FAIL_AT(err, "controller",
                        "pair %d: \"%s\" samples at %g Hz, its nominal \"%s\" at %g Hz: a pair runs at one rate", p,
                        b->name, rb, a->name, ra);
-    if (td_controller_inputs(a->k) != td_controller_inputs(b->k) ||
-        td_controller_outputs(a->k) != td_controller_outputs(b->k) ||
-        !same_axes(a->inputs, b->inputs, td_controller_inputs(a->k)) ||
-        !same_axes(a->outputs, b->outputs, td_controller_outputs(a->k)))
+    if (a->nin != b->nin || a->nout != b->nout || !same_axes(a->inputs, b->inputs, a->nin) ||
+        !same_axes(a->outputs, b->outputs, a->nout))
         return FAIL_AT(err, "controller",
                        "pair %d: \"%s\" and its nominal \"%s\" must read and drive the same AMB axes in the same "
                        "order (the same ambs and coordinates)",

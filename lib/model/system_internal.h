@@ -6,6 +6,7 @@
 #define TD_SYSTEM_INTERNAL_H
 
 #include "touchdown/dofs.h"
+#include "touchdown/model.h"
 #include "touchdown/system.h"
 
 #include <suitesparse/cs.h>
@@ -32,7 +33,8 @@ typedef struct td_amb_axis {
     double slew_rate;
 } td_amb_axis;
 
-/* One linear controller of the model (touchdown/controller.h) as the system runs it. */
+/* One controller of the model (touchdown/controller.h, or a plug-in: touchdown/plugin.h) as the
+ * system runs it. */
 typedef struct td_lti_law {
     int n, nin, nout;
     double *A, *B, *C, *D; /* column-major, owned */
@@ -45,6 +47,10 @@ typedef struct td_lti_law {
     int standby;           /* 1: the recovery law of a supervised pair (td_recovery): it shares its nominal's
                             * axes but drives none of them (amb_axes[].law is the nominal's) until the
                             * supervisor switches to it, and the analyses leave it out */
+    /* a plug-in controller's spec (the system's model's, td_model_get_plugin): sampled, n = 0 and
+     * D = 0 (no linear law: the analyses refuse it), its commands the plug-in's
+     * (lib/sim/sampler_plugin.c); NULL for a linear law */
+    const td_plugin_spec *plugin;
 } td_lti_law;
 
 struct td_system {

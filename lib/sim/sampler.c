@@ -62,6 +62,8 @@ td_status td_sim_sampler_create(td_sim *s, td_error *err)
         l->pair = -1;
         if (!l->x || !l->xn || !l->e || !l->u)
             return td_error_set(err, TD_ERR_NOMEM, "out of memory creating a simulation");
+        if (law->plugin && td_sim_plugin_init(s, l, err) != TD_OK)
+            return err && err->code != TD_OK ? err->code : TD_ERR_INVALID;
     }
     return td_sim_supervisor_create(s, err);
 }
@@ -73,6 +75,8 @@ void td_sim_sampler_free(td_sim *s)
         return;
     td_sim_supervisor_free(s);
     for (i = 0; i < s->sampler->n && s->sampler->law; i++) {
+        if (s->sys->laws[s->sampler->law[i].law].plugin)
+            td_sim_plugin_free(s, &s->sampler->law[i]);
         free(s->sampler->law[i].x);
         free(s->sampler->law[i].xn);
         free(s->sampler->law[i].e);
@@ -144,6 +148,18 @@ static void law_update(const td_sim *s, td_sim_sampled *l)
     l->xn = swap;
 }
 
+/* Law l's sample k_next from its inputs e_k: a linear law's i_k = C x_k + D e_k and
+ * x_{k+1} = A x_k + B e_k, or a plug-in's step (sampler_plugin.c). Returns 0, or -1 when the
+ * plug-in failed (s->errmsg says why). */
+static int law_run(td_sim *s, td_sim_sampled *l)
+{
+    if (s->sys->laws[l->law].plugin)
+        return td_sim_plugin_step(s, l, l->k_next, sample_time(l, l->k_next));
+    law_output(s, l);
+    law_update(s, l);
+    return 0;
+}
+
 /* The sampler's hook told of law l's sample. */
 static void law_told(td_sim *s, const td_sim_sampled *l)
 {
@@ -152,27 +168,29 @@ static void law_told(td_sim *s, const td_sim_sampled *l)
         s->sampler->hook(s->sampler->hook_data, l->law, l->k_next, s->dae.t, l->e, law->nin, l->u, law->nout);
 }
 
-/* Law l's sample k_next from the state at s->dae.t: e_k read, i_k = C x_k + D e_k held on the output
- * axes, x_{k+1} = A x_k + B e_k (column-major matrices), k_next moved on. */
-static void take_sample(td_sim *s, td_sim_sampled *l)
+/* Law l's sample k_next from the state at s->dae.t: e_k read, the law run (law_run), i_k held on
+ * the output axes, k_next moved on. Returns 0, or -1 when a plug-in failed (nothing held). */
+static int take_sample(td_sim *s, td_sim_sampled *l)
 {
     const td_lti_law *law = &s->sys->laws[l->law];
     int i;
     law_read(s, l);
-    law_output(s, l);
+    if (law_run(s, l))
+        return -1;
     for (i = 0; i < law->nout; i++)
         s->machine.held_current[law->out_axis[i]] = l->u[i];
-    law_update(s, l);
     law_told(s, l);
     l->k_next++;
     s->monitor.stats.controller_samples++;
+    return 0;
 }
 
 /* Pair p's sample: both laws' k_next (equal: one rate, one start), e_k read once; the supervisor
  * judges the rule and may switch (supervisor.h), then every law that weighs runs and the held
  * current is the blend (1 - b) i_old + b i_new (the old law alone before any switch, the new one
- * alone once b = 1; so at a switch sample, b = 0, exactly the old law's output). */
-static void take_pair(td_sim *s, int p)
+ * alone once b = 1; so at a switch sample, b = 0, exactly the old law's output). Returns 0, or -1
+ * when a plug-in failed (nothing held). */
+static int take_pair(td_sim *s, int p)
 {
     td_sim_supervisor *sv = s->sampler->supervisor;
     td_sim_pair *q = &sv->pair[p];
@@ -192,8 +210,8 @@ static void take_pair(td_sim *s, int p)
     ps.u[0] = ps.u[1] = NULL;
     for (i = 0; i < 2; i++)
         if (q->running[i]) {
-            law_output(s, l[i]);
-            law_update(s, l[i]);
+            if (law_run(s, l[i]))
+                return -1;
             law_told(s, l[i]);
             ps.u[i] = l[i]->u;
         }
@@ -209,24 +227,33 @@ static void take_pair(td_sim *s, int p)
     l[0]->k_next++;
     l[1]->k_next++;
     s->monitor.stats.controller_samples += 2; /* each law's instants */
+    return 0;
 }
 
 int td_sim_sampler_take_due(td_sim *s)
 {
     double due = s->dae.t + TD_SIM_DUE_TOLERANCE(s->dae.t);
     int i, taken = 0;
+    if (s->sampler->failed)
+        return -1;
     for (i = 0; i < s->sampler->n; i++) {
         td_sim_sampled *l = &s->sampler->law[i];
         /* the times must rise: a rate too high for t's precision would take one instant forever (the
          * model bounds the rate, TD_CONTROLLER_RATE_MAX; the step loop then reports no progress) */
         while (sample_time(l, l->k_next) <= due &&
                (l->k_next == 0 || sample_time(l, l->k_next) > sample_time(l, l->k_next - 1))) {
-            if (l->pair >= 0) /* both laws of the pair, together */
-                take_pair(s, l->pair);
-            else
-                take_sample(s, l);
+            if (l->pair >= 0 ? take_pair(s, l->pair) : take_sample(s, l)) /* a pair's laws together */
+                return -1;
             taken++;
         }
     }
     return taken;
+}
+
+td_status td_sim_sampler_failure(td_sim *s)
+{
+    if (!s->sampler || !s->sampler->failed)
+        return TD_OK;
+    memcpy(s->errmsg, s->sampler->why, sizeof s->errmsg);
+    return TD_ERR_INVALID;
 }

@@ -306,7 +306,7 @@ void td_sim_flight_free(td_sim *s);
  * outputs between steps (section.c). work: 2 neq doubles. Returns 0 when no flight is anchored. */
 int td_sim_flight_peek(const td_sim *s, double t, double *y, double *work);
 
-/* ---- sampler.c: sampled linear controllers (sampler.h) ------------------------------------ */
+/* ---- sampler.c: sampled controllers (sampler.h) ------------------------------------------- */
 
 /* s->sampler for the model's sampled laws (td_lti_law with sample_rate > 0), each at rest with its
  * sample 0 at s->dae.t; left NULL when there is none. */
@@ -315,11 +315,28 @@ void td_sim_sampler_free(td_sim *s);
 /* The time of the next sample of any law (s->sampler not NULL). */
 double td_sim_sampler_next_time(const td_sim *s);
 /* Take every sample due at s->dae.t (TD_SIM_DUE_TOLERANCE) from the state in s->dae.y, law by law:
- * the new commands into s->machine.held_current; returns how many (s->sampler not NULL). The
- * caller restarts the integrator when it took one: the force jumps there. */
+ * the new commands into s->machine.held_current; returns how many (s->sampler not NULL), or -1
+ * when a plug-in failed (now or before: s->errmsg says why, td_sim_sampler_failure). The caller
+ * restarts the integrator when it took one: the force jumps there. */
 int td_sim_sampler_take_due(td_sim *s);
+/* TD_ERR_INVALID with the reason in s->errmsg once a plug-in law has failed (the run goes no
+ * further), else TD_OK. */
+td_status td_sim_sampler_failure(td_sim *s);
 /* Tell `hook` of every sample from now on (nothing without a sampled law). */
 void td_sim_sampler_set_hook(td_sim *s, td_sim_sample_hook hook, void *data);
+
+/* ---- sampler_plugin.c: a plug-in law's samples ------------------------------------------- */
+
+/* Law l's instance (the plug-in's init) and buffers; TD_ERR_INVALID with the plug-in's reason. */
+td_status td_sim_plugin_init(td_sim *s, td_sim_sampled *l, td_error *err);
+/* Plug-in law `law`'s direct gain on its output `output`: the largest |D| over its inputs, D its
+ * current per unit error at a sample, measured at creation (a linear law's D, touchdown/controller.h). */
+double td_sim_plugin_gain(const td_sim *s, int law, int output);
+/* Law l's instance released (its free) and its buffers. */
+void td_sim_plugin_free(const td_sim *s, td_sim_sampled *l);
+/* Law l's sample k at t_k from its inputs l->e: the held current i_k into l->u. Returns 0, or -1
+ * when the plug-in failed (s->errmsg and s->sampler->why say why). */
+int td_sim_plugin_step(td_sim *s, td_sim_sampled *l, long k, double t);
 
 /* ---- sim_modes.c: mode switching, consistent restarts, impacts, roots --------------------- */
 

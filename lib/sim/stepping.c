@@ -96,6 +96,7 @@ enum { TD_PENDING_NONE = 0, TD_PENDING_ROOT = 1, TD_PENDING_TSTOP = 2, TD_PENDIN
 static td_status handle_stop(td_sim *s, int kind)
 {
     td_status st;
+    int taken;
     if (kind == TD_PENDING_RESYNC) {
         memset(s->dae.rootsfound, 0, sizeof(int) * (size_t)s->dae.nroots);
         kind = TD_PENDING_ROOT;
@@ -109,13 +110,14 @@ static td_status handle_stop(td_sim *s, int kind)
             monitor(s, s->dae.t); /* the state after the event: an impact's normal force counts in the peaks */
             td_sim_totals_point(s, s->dae.t, 1);
         }
-        if (st == TD_OK && s->sampler && td_sim_sampler_take_due(s) > 0) /* a root on a sample instant */
+        taken = st == TD_OK && s->sampler ? td_sim_sampler_take_due(s) : 0;
+        if (taken > 0) /* a root on a sample instant */
             st = td_sim_restart_after_change(s);
-        return st;
+        return taken < 0 ? td_sim_sampler_failure(s) : st;
     }
     st = td_sim_apply_due_changes(s);
-    if (st == TD_OK && s->sampler)
-        td_sim_sampler_take_due(s);
+    if (st == TD_OK && s->sampler && td_sim_sampler_take_due(s) < 0)
+        return td_sim_sampler_failure(s);
     if (st == TD_OK)
         st = td_sim_restart_after_change(s);
     return st;
@@ -128,7 +130,8 @@ static td_status flight_stop(td_sim *s)
 {
     if (!s->sampler || td_sim_change_due(s))
         return handle_stop(s, TD_PENDING_TSTOP);
-    td_sim_sampler_take_due(s);
+    if (td_sim_sampler_take_due(s) < 0)
+        return td_sim_sampler_failure(s);
     return td_sim_flight_hold(s) ? TD_OK : td_sim_restart_after_change(s);
 }
 
@@ -201,6 +204,8 @@ static int fly(td_sim *s, double tout, td_status *st)
 
 td_status td_sim_advance(td_sim *s, double tout)
 {
+    if (td_sim_sampler_failure(s) != TD_OK) /* a plug-in failed: no result from its sample on */
+        return TD_ERR_INVALID;
     for (;;) {
         sunrealtype tret = s->dae.t, tn = s->dae.t;
         int flag;

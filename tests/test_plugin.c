@@ -1,0 +1,191 @@
+/*
+ * Plug-in controllers (touchdown/plugin.h; lib/model/plugin.c, lib/sim/sampler_plugin.c). The
+ * independent reference is the built-in sampled law: the PD plug-in (tests/plugins/pd.c, its
+ * difference equation i = -(b0 xs_k + b1 xs_{k-1})) and the transfer function b0 + b1 z^-1 in z^-1
+ * (td_controller_create_tf, run by the sampler's state-space update) on case A's four AMB axes,
+ * over a run with contacts: the same state to the last bit at every output, the same statistics.
+ */
+#include "td_test.h"
+
+#include "sim/sim_internal.h"
+#include "touchdown/touchdown.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#define RATE 1.0e4 /* Hz */
+#define KP 1.0e4   /* A/m, case A's AMBs */
+#define KD 40.0    /* A s/m */
+#define AXES 4     /* AMB 0 x, y, AMB 1 x, y */
+#define T_END 0.2  /* s: case A touches its retainers within this */
+#define DT 2.5e-4  /* s between the outputs compared */
+
+/* The PD plug-in's table (tests/plugins/pd.c, linked into this test: a program's own table). */
+const td_plugin_controller *td_plugin_controller_entry(void);
+
+/* Case A from rest, cut to T_END, its AMBs' shorthand PD set to 0 (a controller drives them). */
+static td_model *case_a(td_case **c)
+{
+    const char *ov[6] = {"end_time=0.2",   "start=\"rest\"", "ambs[0].kp=0.0",
+                         "ambs[0].kd=0.0", "ambs[1].kp=0.0", "ambs[1].kd=0.0"};
+    td_model *m = NULL;
+    td_error err;
+    *c = td_test_load_case("cases/paper-a.cfg", ov, 6);
+    assert_int_equal(td_model_clone(td_case_model(*c), &m, &err), TD_OK);
+    return m;
+}
+
+/* The built-in PD of the plug-in: b0 + b1 z^-1 at RATE (b0, b1 computed as pd.c computes them),
+ * `delay` samples later, one SISO law per axis. */
+static void add_builtin_pd(td_model *m, int delay)
+{
+    const double num[2] = {KP + KD * RATE, -KD * RATE}, den[1] = {1.0};
+    td_error err;
+    td_controller *k = td_controller_create_tf(num, 2, den, 1, RATE, &err), *kd;
+    int axis;
+    assert_non_null(k);
+    kd = td_controller_delay(k, delay, &err);
+    assert_non_null(kd);
+    for (axis = 0; axis < AXES; axis++) {
+        char name[16];
+        snprintf(name, sizeof name, "axis%d", axis);
+        if (td_model_add_controller(m, name, kd, &axis, &axis, &err) != TD_OK)
+            fail_msg("td_model_add_controller: %s", err.message);
+    }
+    td_controller_free(&k);
+    td_controller_free(&kd);
+}
+
+/* A spec for one axis of the PD plug-in: the program's table, or `library` when not NULL. */
+static td_plugin_spec pd_spec(const char *name, const int *axis, const char *library, int delay)
+{
+    static const char *const names[2] = {"kp", "kd"};
+    static const double values[2] = {KP, KD};
+    td_plugin_spec p;
+    memset(&p, 0, sizeof p);
+    p.name = name;
+    p.functions = library ? NULL : td_plugin_controller_entry();
+    p.library = library;
+    p.sample_rate = RATE;
+    p.delay = delay;
+    p.n_inputs = p.n_outputs = 1;
+    p.inputs = p.outputs = axis;
+    p.n_parameters = 2;
+    p.parameter_names = names;
+    p.parameter_values = values;
+    return p;
+}
+
+/* The PD plug-in on each axis, one controller per axis as add_builtin_pd adds them. */
+static void add_plugin_pd(td_model *m, const char *library, int delay)
+{
+    int axis;
+    for (axis = 0; axis < AXES; axis++) {
+        char name[16];
+        td_plugin_spec p;
+        td_error err;
+        snprintf(name, sizeof name, "axis%d", axis);
+        p = pd_spec(name, &axis, library, delay);
+        if (td_model_add_plugin_controller(m, &p, &err) != TD_OK)
+            fail_msg("td_model_add_plugin_controller: %s", err.message);
+    }
+}
+
+static td_sim *new_sim(const td_model *m, const td_case *c)
+{
+    td_sim *s = NULL;
+    td_error err;
+    if (td_sim_create(m, td_case_sim_options(c), &s, &err) != TD_OK)
+        fail_msg("td_sim_create: %s", err.message);
+    return s;
+}
+
+/* Step s to tout through its events; fails the test on an error. */
+static void step_to(td_sim *s, double tout)
+{
+    td_error err;
+    td_status st;
+    while ((st = td_sim_step(s, tout, NULL, &err)) == TD_EVENT)
+        ;
+    if (st != TD_OK)
+        fail_msg("td_sim_step to %.17g: %s", tout, err.message);
+}
+
+/* Largest |a - b| over the rotor's state of two simulations of one machine. */
+static double state_difference(const td_sim *a, const td_sim *b)
+{
+    const double *ya = N_VGetArrayPointer(a->dae.y), *yb = N_VGetArrayPointer(b->dae.y);
+    double d = 0.0;
+    int i;
+    for (i = 0; i < a->dae.neq; i++)
+        d = fmax(d, fabs(ya[i] - yb[i]));
+    return d;
+}
+
+/* Runs a and b side by side to T_END; the largest state difference at the outputs (0: bit for bit
+ * when `exact`, which also asks for identical bits and held currents at every output). */
+static double run_side_by_side(td_sim *a, td_sim *b, int exact)
+{
+    double t = 0.0, worst = 0.0;
+    assert_int_equal(a->dae.neq, b->dae.neq);
+    while (t < T_END) {
+        t = td_test_next_output(t, DT, T_END);
+        step_to(a, t);
+        step_to(b, t);
+        worst = fmax(worst, state_difference(a, b));
+        if (exact && (memcmp(N_VGetArrayPointer(a->dae.y), N_VGetArrayPointer(b->dae.y),
+                             (size_t)a->dae.neq * sizeof(double)) != 0 ||
+                      memcmp(a->machine.held_current, b->machine.held_current, AXES * sizeof(double)) != 0))
+            fail_msg("t = %.17g: the plug-in's run differs from the built-in one (largest state difference %.3g)", t,
+                     state_difference(a, b));
+    }
+    return worst;
+}
+
+/* The statistics of two runs that must be the same run. */
+static void assert_same_stats(const td_sim *a, const td_sim *b)
+{
+    td_sim_stats sa, sb;
+    assert_int_equal(td_sim_stats_get(a, &sa), TD_OK);
+    assert_int_equal(td_sim_stats_get(b, &sb), TD_OK);
+    assert_true(sa.contact_onsets > 0); /* a run with contacts */
+    assert_int_equal(sa.contact_onsets, sb.contact_onsets);
+    assert_int_equal(sa.controller_samples, sb.controller_samples);
+    assert_int_equal(sa.steps, sb.steps);
+    assert_true(sa.first_contact_time == sb.first_contact_time);
+}
+
+/* The PD plug-in registered as a program's table equals the built-in sampled PD bit for bit. */
+static void test_registered_pd_is_builtin_pd(void **state)
+{
+    td_case *c = NULL;
+    td_model *mb = case_a(&c), *mp = NULL;
+    td_sim *sb, *sp;
+    td_error err;
+    (void)state;
+    assert_int_equal(td_model_clone(mb, &mp, &err), TD_OK);
+    add_builtin_pd(mb, 0);
+    add_plugin_pd(mp, NULL, 0);
+    assert_null(td_model_get_plugin(mb, 0));
+    assert_non_null(td_model_get_plugin(mp, 3));
+    assert_null(td_model_get_controller(mp, 3, NULL, NULL, NULL));
+    sb = new_sim(mb, c);
+    sp = new_sim(mp, c);
+    assert_true(run_side_by_side(sb, sp, 1) == 0.0);
+    assert_same_stats(sb, sp);
+    td_sim_free(&sb);
+    td_sim_free(&sp);
+    td_model_free(&mb);
+    td_model_free(&mp);
+    td_case_free(&c);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_registered_pd_is_builtin_pd),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
