@@ -1007,15 +1007,16 @@ static void test_documented_defaults(void **state)
                   part, required, other);
     assert_int_equal(tried + part + required + other, td_case_key_count());
     assert_int_equal(tried, 84);
-    assert_int_equal(part, 42);     /* their keys are checked */
-    assert_int_equal(required, 73); /* required, or one form's required key (a sweep entry's range or values) */
+    assert_int_equal(part, 43);     /* their keys are checked */
+    assert_int_equal(required, 74); /* required, or one form's required key (a sweep entry's range or values) */
     /* an alternative with no default ("-": shaft.nodes, sections' element, schedule's unbalance,
      * amb_off, amb_on, a law's gain block), "unknown" (an AMB's air gap), "all nodes", "none"
      * (response speeds, overrides, a zpk's zeros and poles, an ss block's A, B and C), "the rotor's"
      * (spin.inertia, kept as 0: td_spin; a controller's reference_z, its mass centre),
      * "continuous" (a controller's sample_rate), "1/sqrt(2)" (a low-pass's damping), "the case's
-     * `speed` / (2 pi)" (a resonant's frequency), "-" (a parallel block) */
-    assert_int_equal(other, 21);
+     * `speed` / (2 pi)" (a resonant's frequency), "-" (a parallel block), "none" (a plug-in's
+     * parameters) */
+    assert_int_equal(other, 22);
     td_case_free(&base);
     free(want);
     free(got);
