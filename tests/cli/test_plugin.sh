@@ -171,6 +171,18 @@ check "a NaN command mid-run: exit 2, one error line naming the controller and t
 check "  the JSON says it failed, with no answers" \
     test "$(jf "$work/nan/.out" status)" != '"success"' -a "$(jf "$work/nan/.out" peak_normal_force)" = null
 check "  the CSV is marked incomplete (never a complete-looking file)" grep -q '^# incomplete: ' "$work/nan/nan_output.csv"
+
+# ---- a sweep: over a plug-in's parameter, and a point whose plug-in crashes in its worker ---------
+t "$work/sweep" sweep --vary 'controllers[0].plugin.parameters.kp=1.0e4,1.2e4' --vary \
+    'controllers[0].plugin.library="pd.so","crash_init.so"' --set end_time=0.12 -o sw "$ex/rig-pd.cfg"
+check "a sweep over a plug-in's parameter and library: the tool survives a crashing point's worker" \
+    test -f "$work/sweep/sw.csv" -a "$(grep -c ',success,' "$work/sweep/sw.csv")" = 2
+check "  the crashing points fail, the signal named" \
+    test "$(grep -c 'worker died: the worker was killed by signal 11' "$work/sweep/.err")" = 2
+check "  the parameter reaches the plug-in: kp 1.0e4 and 1.2e4 give different answers" \
+    python3 -c 'import csv, sys
+rows = [r for r in csv.DictReader(open(sys.argv[1])) if r["status"] == "success"]
+sys.exit(len({r["peak_housing_force [N]"] for r in rows}) != 2)' "$work/sweep/sw.csv"
 h5=$(command -v h5dump || true)
 if [ -n "$h5" ]; then
     check "  the HDF5 file says complete = 0" grep -q '(0): 0' <("$h5" -a /complete "$work/nan/nan_output.h5" 2>/dev/null)
