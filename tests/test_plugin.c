@@ -5,6 +5,7 @@
  * (td_controller_create_tf, run by the sampler's state-space update) on case A's four AMB axes,
  * over a run with contacts: the same state to the last bit at every output, the same statistics.
  */
+#include "td_rig.h"
 #include "td_test.h"
 
 #include "sim/sim_internal.h"
@@ -22,8 +23,9 @@
 #define T_END 0.2  /* s: case A touches its retainers within this */
 #define DT 2.5e-4  /* s between the outputs compared */
 
-/* The PD plug-in's table (tests/plugins/pd.c, linked into this test: a program's own table). */
-const td_plugin_controller *td_plugin_controller_entry(void);
+/* td_plugin_controller_entry (touchdown/plugin.h) is the PD plug-in's (tests/plugins/pd.c, linked
+ * into this test: a program's own table); the test plug-ins' libraries are in PLUGINS. */
+#define PLUGINS TD_BINARY_DIR "/tests/plugins/"
 
 /* Case A from rest, cut to T_END, its AMBs' shorthand PD set to 0 (a controller drives them). */
 static td_model *case_a(td_case **c)
@@ -182,10 +184,154 @@ static void test_registered_pd_is_builtin_pd(void **state)
     td_case_free(&c);
 }
 
+/* The PD plug-in loaded from its shared library (tests/plugins/pd.c built as pd.so) is the same run
+ * as the one registered as a table: the library's table is the same code. */
+static void test_library_pd_is_registered_pd(void **state)
+{
+    td_case *c = NULL;
+    td_model *mt = case_a(&c), *ml = NULL, *mc = NULL;
+    const td_plugin_spec *p;
+    td_sim *st, *sl;
+    td_error err;
+    (void)state;
+    assert_int_equal(td_model_clone(mt, &ml, &err), TD_OK);
+    add_plugin_pd(mt, NULL, 0);
+    add_plugin_pd(ml, PLUGINS "pd.so", 0);
+    p = td_model_get_plugin(ml, 1);
+    assert_non_null(p);
+    assert_non_null(p->functions); /* the library's table */
+    assert_true(p->functions != td_plugin_controller_entry());
+    assert_string_equal(p->library, PLUGINS "pd.so");
+    assert_string_equal(p->name, "axis1");
+    assert_int_equal(p->n_parameters, 2);
+    assert_string_equal(p->parameter_names[1], "kd");
+    assert_true(p->parameter_values[1] == KD);
+    assert_int_equal(p->inputs[0], 1);
+    /* a clone opens the library again; the copy runs as the original */
+    assert_int_equal(td_model_clone(ml, &mc, &err), TD_OK);
+    assert_true(td_model_get_plugin(mc, 1)->functions == p->functions);
+    td_model_free(&ml);
+    st = new_sim(mt, c);
+    sl = new_sim(mc, c);
+    assert_true(run_side_by_side(st, sl, 1) == 0.0);
+    assert_same_stats(st, sl);
+    td_sim_free(&st);
+    td_sim_free(&sl);
+    td_model_free(&mt);
+    td_model_free(&mc);
+    td_case_free(&c);
+}
+
+/* Adding a plug-in controller fails with `expected` in the message, naming controller 0 and the
+ * field at fault; the model is left without it. */
+static void expect_add_fails(const td_plugin_spec *p, const char *field, const char *expected)
+{
+    td_model *m = td_test_rig_create(0.0, 0.0, 0);
+    td_error err;
+    assert_int_equal(td_model_add_plugin_controller(m, p, &err), TD_ERR_INVALID);
+    if (!strstr(err.message, expected))
+        fail_msg("\"%s\" does not say \"%s\"", err.message, expected);
+    assert_string_equal(err.site.part, "controller");
+    assert_int_equal(err.site.index, 0);
+    assert_string_equal(err.site.field, field);
+    assert_int_equal(td_model_controller_count(m), 0);
+    td_model_free(&m);
+}
+
+/* A library that cannot be loaded, has no entry or another ABI, and the spec's own faults: each a
+ * one-line error naming the controller and the field; a plug-in that crashes in its init loads (its
+ * init is not called until a simulation is created). */
+static void test_bad_libraries_and_specs(void **state)
+{
+    const int axis = 0;
+    td_plugin_spec p = pd_spec("bad", &axis, PLUGINS "no_entry.so", 0);
+    td_model *m = td_test_rig_create(0.0, 0.0, 0);
+    td_error err;
+    (void)state;
+    expect_add_fails(&p, "library", "does not export td_plugin_controller_entry");
+    p.library = PLUGINS "wrong_abi.so";
+    expect_add_fails(&p, "library", "built for plug-in ABI version 2; this touchdown runs version 1");
+    p.library = PLUGINS "missing.so";
+    expect_add_fails(&p, "library", "cannot load \"" PLUGINS "missing.so\"");
+    p.library = PLUGINS "pd.so";
+    p.functions = td_plugin_controller_entry();
+    expect_add_fails(&p, "functions", "differs from the table of");
+    p = pd_spec("bad", &axis, NULL, 0);
+    p.sample_rate = 0.0;
+    expect_add_fails(&p, "sample_rate", "a plug-in controller is sampled");
+    p = pd_spec("bad", &axis, NULL, -1);
+    expect_add_fails(&p, "delay", "must be >= 0");
+    p = pd_spec("bad", &axis, NULL, 0);
+    p.functions = NULL;
+    expect_add_fails(&p, "library", "needs a table (functions) or a library");
+    p = pd_spec("bad", &axis, PLUGINS "crash.so", 0);
+    assert_int_equal(td_model_add_plugin_controller(m, &p, &err), TD_OK);
+    td_model_free(&m);
+}
+
+/* Case A with the plug-in of `library` on its four axes. */
+static td_model *case_a_with(const char *library, td_case **c)
+{
+    td_model *m = case_a(c);
+    add_plugin_pd(m, library, 0);
+    return m;
+}
+
+/* A plug-in whose init refuses: td_sim_create fails with its reason, naming the controller. */
+static void test_init_refusing(void **state)
+{
+    td_case *c = NULL;
+    td_model *m = case_a_with(PLUGINS "refuse.so", &c);
+    td_sim *s = NULL;
+    td_error err;
+    (void)state;
+    assert_int_equal(td_sim_create(m, td_case_sim_options(c), &s, &err), TD_ERR_INVALID);
+    assert_null(s);
+    assert_string_equal(err.message,
+                        "controller 0: plug-in \"axis0\" init failed: refuse: gain schedule \"axis0\" needs parameter "
+                        "\"table\"");
+    assert_string_equal(err.site.part, "controller");
+    assert_int_equal(err.site.index, 0);
+    assert_null(err.site.field);
+    td_model_free(&m);
+    td_case_free(&c);
+}
+
+/* A plug-in that commands NaN from sample 3 on: td_sim_step fails there with the sample and the
+ * reason, having integrated nothing past sample 3's instant, and so does every later call. */
+static void test_nan_output(void **state)
+{
+    td_case *c = NULL;
+    td_model *m = case_a_with(PLUGINS "nan.so", &c);
+    td_sim *s = new_sim(m, c);
+    td_error err;
+    double t = -1.0;
+    int a;
+    (void)state;
+    assert_int_equal(td_sim_step(s, 1.0e-3, &t, &err), TD_ERR_INVALID);
+    assert_string_equal(err.message,
+                        "controller 0: plug-in \"axis0\" failed at sample 3 (t = 0.0003 s): command 0 (AMB 0 x) is "
+                        "nan, not a finite current");
+    assert_int_equal(err.site.index, 0);
+    assert_true(t == 3.0 / RATE); /* stopped at the sample */
+    for (a = 0; a < AXES; a++)
+        assert_true(s->machine.held_current[a] == 0.0); /* the NaN was never held */
+    assert_int_equal(td_sim_step(s, 2.0e-3, &t, &err), TD_ERR_INVALID);
+    assert_non_null(strstr(err.message, "failed at sample 3"));
+    assert_true(t == 3.0 / RATE);
+    td_sim_free(&s);
+    td_model_free(&m);
+    td_case_free(&c);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_registered_pd_is_builtin_pd),
+        cmocka_unit_test(test_library_pd_is_registered_pd),
+        cmocka_unit_test(test_bad_libraries_and_specs),
+        cmocka_unit_test(test_init_refusing),
+        cmocka_unit_test(test_nan_output),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

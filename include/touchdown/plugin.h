@@ -83,6 +83,16 @@ typedef struct td_plugin_controller {
 /** The type of the exported entry function TD_PLUGIN_ENTRY_NAME. */
 typedef const td_plugin_controller *(*td_plugin_entry)(void);
 
+/** Exports a plug-in's entry also when it is compiled with -fvisibility=hidden. */
+#if defined(__GNUC__) || defined(__clang__)
+#define TD_PLUGIN_EXPORT __attribute__((visibility("default")))
+#else
+#define TD_PLUGIN_EXPORT
+#endif
+
+/** The entry a plug-in library defines (touchdown itself defines none: it looks it up with dlsym). */
+TD_PLUGIN_EXPORT const td_plugin_controller *td_plugin_controller_entry(void);
+
 #ifdef __cplusplus
 }
 #endif

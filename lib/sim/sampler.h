@@ -44,6 +44,7 @@ typedef struct td_sim_sampler {
     void *hook_data;
     struct td_sim_supervisor *supervisor; /* supervisor.h; NULL: no recovery supervisor */
     int failed;                           /* 1: a plug-in failed (why): the run goes no further */
+    int failed_law;                       /* the law (the model's controller) that failed */
     char why[TD_ERROR_MESSAGE_SIZE];
 } td_sim_sampler;
 

@@ -19,6 +19,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+static const td_error_site no_site = {NULL, 0, NULL};
+
 /* A plug-in's reason as one line: NUL-terminated inside its buffer, cut at the first line break,
  * and never empty. */
 static const char *one_line(char *why, size_t size, const char *none)
@@ -47,8 +49,9 @@ static td_status new_instance(const td_sim *s, const td_sim_sampled *l, void **i
     why[0] = '\0';
     *instance = p->functions->init(&setup, why, (int)sizeof why);
     if (!*instance)
-        return td_error_set(err, TD_ERR_INVALID, "controller %d (\"%s\"): plug-in init failed: %s", l->law, p->name,
-                            one_line(why, sizeof why, "no reason given"));
+        return td_error_set_site(err, TD_ERR_INVALID, &(td_error_site){"controller", l->law, NULL}, &no_site,
+                                 "plug-in \"%s\" init failed: %s", p->name,
+                                 one_line(why, sizeof why, "no reason given"));
     return TD_OK;
 }
 
@@ -135,11 +138,26 @@ void td_sim_plugin_free(const td_sim *s, td_sim_sampled *l)
 static int plugin_failed(td_sim *s, const td_sim_sampled *l, long k, double t, const char *reason)
 {
     const td_plugin_spec *p = s->sys->laws[l->law].plugin;
-    snprintf(s->sampler->why, sizeof s->sampler->why, "controller %d (\"%s\"): plug-in sample %ld (t = %.9g s): %s",
-             l->law, p->name, k, t, reason);
+    td_error e;
+    td_error_set_site(&e, TD_ERR_INVALID, &(td_error_site){"controller", l->law, NULL}, &no_site,
+                      "plug-in \"%s\" failed at sample %ld (t = %.9g s): %s", p->name, k, t, reason);
+    memcpy(s->sampler->why, e.message, sizeof s->sampler->why);
     s->sampler->failed = 1;
+    s->sampler->failed_law = l->law;
     memcpy(s->errmsg, s->sampler->why, sizeof s->errmsg);
     return -1;
+}
+
+int td_sim_plugin_error(const td_sim *s, td_status st, td_error *err)
+{
+    const td_sim_sampler *sp = s->sampler;
+    size_t reason;
+    if (!sp || !sp->failed || st != TD_ERR_INVALID || strcmp(s->errmsg, sp->why) != 0)
+        return 0;
+    reason = strcspn(sp->why, ":") + 2; /* after "controller I: ", td_error_set_site's prefix */
+    td_error_set_site(err, st, &(td_error_site){"controller", sp->failed_law, NULL}, &no_site, "%s",
+                      reason < strlen(sp->why) ? sp->why + reason : sp->why);
+    return 1;
 }
 
 /* The commands of step k as currents, each finite; -1 (failed) otherwise. */

@@ -312,8 +312,11 @@ static td_status first_samples(td_sim *s, td_error *err)
 {
     td_status st;
     int taken = td_sim_sampler_take_due(s);
-    if (taken < 0)
-        return td_error_set(err, td_sim_sampler_failure(s), "%s", s->errmsg);
+    if (taken < 0) { /* a plug-in failed at sample 0: the failure names its controller */
+        st = td_sim_sampler_failure(s);
+        td_sim_plugin_error(s, st, err);
+        return st;
+    }
     if (taken == 0 || (st = td_sim_make_consistent(s, NULL)) == TD_OK)
         return TD_OK;
     return td_error_set(err, st, "%s", s->errmsg);

@@ -23,6 +23,8 @@ static void begin_call(td_sim *s)
 /* A failure of a public call: the message the sim keeps (s->errmsg, td_sim_errmsg) into *err. */
 static td_status failed(const td_sim *s, td_status st, td_error *err)
 {
+    if (td_sim_plugin_error(s, st, err)) /* a plug-in's failure names its controller (err->site) */
+        return st;
     return td_error_set(err, st, "%s", s->errmsg[0] ? s->errmsg : td_strerror(st));
 }
 

@@ -332,6 +332,9 @@ td_status td_sim_plugin_init(td_sim *s, td_sim_sampled *l, td_error *err);
 /* Plug-in law `law`'s direct gain on its output `output`: the largest |D| over its inputs, D its
  * current per unit error at a sample, measured at creation (a linear law's D, touchdown/controller.h). */
 double td_sim_plugin_gain(const td_sim *s, int law, int output);
+/* A plug-in's failure (s->errmsg still its message, status st) into *err with its site, the failed
+ * controller: returns 1; 0 (nothing set) for any other failure. */
+int td_sim_plugin_error(const td_sim *s, td_status st, td_error *err);
 /* Law l's instance released (its free) and its buffers. */
 void td_sim_plugin_free(const td_sim *s, td_sim_sampled *l);
 /* Law l's sample k at t_k from its inputs l->e: the held current i_k into l->u. Returns 0, or -1

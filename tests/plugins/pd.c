@@ -103,7 +103,7 @@ static void pd_free(void *instance)
 static const td_plugin_controller table = {
     TD_PLUGIN_ABI_VERSION, TD_PLUGIN_CURRENT, pd_init, pd_step, pd_reset, pd_free};
 
-const td_plugin_controller *td_plugin_controller_entry(void)
+TD_PLUGIN_EXPORT const td_plugin_controller *td_plugin_controller_entry(void)
 {
     return &table;
 }
