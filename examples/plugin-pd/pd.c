@@ -125,7 +125,7 @@ static int pid_reset(void *instance, char *message, int size)
 static const td_plugin_controller table = {
     TD_PLUGIN_ABI_VERSION, TD_PLUGIN_CURRENT, pid_init, pid_step, pid_reset, pid_free};
 
-const td_plugin_controller *td_plugin_controller_entry(void)
+TD_PLUGIN_EXPORT const td_plugin_controller *td_plugin_controller_entry(void)
 {
     return &table;
 }

@@ -187,6 +187,23 @@ static int cancelled(const td_run_hooks *h)
 /* ---- the loop ---------------------------------------------------------------------------- */
 
 /* Step over the grid to t_end. Returns TD_OK at t_end, else the failure with `err` filled. */
+/* A failed td_sim_step as the run's error: where the run stopped, then the step's message; the part
+ * it names (a plug-in controller, touchdown/error.h) kept as the site, its reason offset moved with
+ * it, so that a caller can still say which part of the case failed. */
+static td_status step_failed(run_state *r, double target, td_status st, const td_error *step_err, td_error *err)
+{
+    int len =
+        snprintf(NULL, 0, "simulation failed at t = %.10f s on the way to %.10f s: ", td_sim_time(r->sim), target);
+    td_error_set(err, st, "simulation failed at t = %.10f s on the way to %.10f s: %s", td_sim_time(r->sim), target,
+                 step_err->message);
+    if (err && step_err->site.part) {
+        err->site = step_err->site;
+        err->other = step_err->other;
+        err->reason = len + step_err->reason < (int)strlen(err->message) ? len + step_err->reason : 0;
+    }
+    return st;
+}
+
 static td_status loop(run_state *r, td_error *err)
 {
     const double t0 = r->s->t_start, t_end = r->s->t_end;
@@ -227,8 +244,7 @@ static td_status loop(run_state *r, td_error *err)
                 return td_error_set(err, TD_ERR_INTERRUPTED, "interrupted at t = %.10f s", reached);
             }
             if (st != TD_OK)
-                return td_error_set(err, st, "simulation failed at t = %.10f s on the way to %.10f s: %s",
-                                    td_sim_time(r->sim), target, step_err.message);
+                return step_failed(r, target, st, &step_err, err);
         }
         if ((st = take_sample(r, target, 1, err)) != TD_OK)
             return st;
@@ -622,7 +638,9 @@ td_status td_run(td_sim *sim, double t_end, const td_output_options *out, const 
     summary->complete = st == TD_OK;
     snprintf(summary->message, sizeof summary->message, "%s", st == TD_OK ? "" : loop_err.message);
     summary->wall_time = td_wall_clock() - wall_start;
-    if (st != TD_OK)
-        return td_error_set(err, st, "%s", loop_err.message);
-    return TD_OK;
+    if (st != TD_OK && err) { /* the whole record: the part at fault too (step_failed) */
+        *err = loop_err;
+        err->code = st;
+    }
+    return st;
 }

@@ -146,35 +146,35 @@ check "an init that refuses (pd.c: an unknown parameter): one line with its reas
 check "  and no output file" test ! -e "$work/unknown/unknown.h5" -a ! -e "$work/unknown/unknown.csv"
 
 # ---- the bad plug-ins of tests/plugins, each beside a copy of the case ---------------------------
-for name in missing_symbol wrong_abi nan_output crash_init init_fails; do
+for name in no_entry wrong_abi nan crash refuse; do
     cp "$plugins/$name.so" "$ex/" || fail "no test plug-in $plugins/$name.so"
     with_library "$name" "$name.so"
 done
-t "$work/sym" run "$ex/missing_symbol.cfg"
+t "$work/sym" run "$ex/no_entry.cfg"
 check "a library without the entry symbol: one line naming the file, line and key, exit 2" \
-    one_line "$work/sym" missing_symbol.cfg "$lib_key" 'td_plugin_controller_entry'
+    one_line "$work/sym" no_entry.cfg "$lib_key" 'td_plugin_controller_entry'
 t "$work/abi" run "$ex/wrong_abi.cfg"
 check "a plug-in of another ABI version: one line naming both versions, exit 2" \
     one_line "$work/abi" wrong_abi.cfg "$lib_key" 'ABI version [0-9]+; this touchdown runs version 1'
-t "$work/crash" run "$ex/crash_init.cfg"
+t "$work/crash" run "$ex/crash.cfg"
 check "a crash (SIGSEGV) in the plug-in's init: one line naming the file, line, key and signal, exit 2" \
-    one_line "$work/crash" crash_init.cfg "$lib_key" 'crashed in its init \(SIGSEGV'
+    one_line "$work/crash" crash.cfg "$lib_key" 'crashed in its init \(SIGSEGV'
 check "  and no output file, no core file" test -z "$(ls "$work/crash")"
-t "$work/crashinfo" info "$ex/crash_init.cfg"
-check "  info too: the same line, exit 2" one_line "$work/crashinfo" crash_init.cfg "$lib_key" 'SIGSEGV'
-t "$work/refuse" run "$ex/init_fails.cfg"
+t "$work/crashinfo" info "$ex/crash.cfg"
+check "  info too: the same line, exit 2" one_line "$work/crashinfo" crash.cfg "$lib_key" 'SIGSEGV'
+t "$work/refuse" run "$ex/refuse.cfg"
 check "an init that fails with a message: one line with it, exit 2" \
-    one_line "$work/refuse" init_fails.cfg "$lib_key" 'refused to start: .'
-t "$work/nan" run --json "$ex/nan_output.cfg"
+    one_line "$work/refuse" refuse.cfg "$lib_key" 'refused to start: .'
+t "$work/nan" run --json "$ex/nan.cfg"
 check "a NaN command mid-run: exit 2, one error line naming the controller and the sample" \
-    one_line "$work/nan" nan_output.cfg "$lib_key" '"pd".* sample [0-9]+.*nan'
+    one_line "$work/nan" nan.cfg "$lib_key" '"pd".* sample [0-9]+.*nan'
 check "  the JSON says it failed, with no answers" \
     test "$(jf "$work/nan/.out" status)" != '"success"' -a "$(jf "$work/nan/.out" peak_normal_force)" = null
-check "  the CSV is marked incomplete (never a complete-looking file)" grep -q '^# incomplete: ' "$work/nan/nan_output.csv"
+check "  the CSV is marked incomplete (never a complete-looking file)" grep -q '^# incomplete: ' "$work/nan/nan.csv"
 
 # ---- a sweep: over a plug-in's parameter, and a point whose plug-in crashes in its worker ---------
 t "$work/sweep" sweep --vary 'controllers[0].plugin.parameters.kp=1.0e4,1.2e4' --vary \
-    'controllers[0].plugin.library="pd.so","crash_init.so"' --set end_time=0.12 -o sw "$ex/rig-pd.cfg"
+    'controllers[0].plugin.library="pd.so","crash.so"' --set end_time=0.12 -o sw "$ex/rig-pd.cfg"
 check "a sweep over a plug-in's parameter and library: the tool survives a crashing point's worker" \
     test -f "$work/sweep/sw.csv" -a "$(grep -c ',success,' "$work/sweep/sw.csv")" = 2
 check "  the crashing points fail, the signal named" \
@@ -185,7 +185,7 @@ rows = [r for r in csv.DictReader(open(sys.argv[1])) if r["status"] == "success"
 sys.exit(len({r["peak_housing_force [N]"] for r in rows}) != 2)' "$work/sweep/sw.csv"
 h5=$(command -v h5dump || true)
 if [ -n "$h5" ]; then
-    check "  the HDF5 file says complete = 0" grep -q '(0): 0' <("$h5" -a /complete "$work/nan/nan_output.h5" 2>/dev/null)
+    check "  the HDF5 file says complete = 0" grep -q '(0): 0' <("$h5" -a /complete "$work/nan/nan.h5" 2>/dev/null)
 fi
 
 finish
