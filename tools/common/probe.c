@@ -9,6 +9,7 @@
 #include "common/cli.h"
 
 #include <errno.h>
+#include <fcntl.h>
 #include <string.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
@@ -49,9 +50,22 @@ static void put(int fd, const char *text, size_t n)
     }
 }
 
+/* stdout and stderr to /dev/null (left as they are when it cannot be opened). */
+static void quiet(void)
+{
+    int null = open("/dev/null", O_WRONLY);
+    if (null < 0)
+        return;
+    dup2(null, STDOUT_FILENO);
+    dup2(null, STDERR_FILENO);
+    close(null);
+}
+
 /* The child: the signals a crash raises back to their default action (a sanitiser's handler would
- * turn the crash into an exit status), no core file; then init, one step from rest and free, each
- * announced on fd before it is called ('i', 's', 'f'); init's refusal is 'R' and its reason. */
+ * turn the crash into an exit status), no core file, its output to /dev/null (the parent's one line
+ * says what happened; the run calls init again, with its output); then init, one step from rest and
+ * free, each announced on fd before it is called ('i', 's', 'f'); init's refusal is 'R' and its
+ * reason. */
 static void child(const td_plugin_spec *p, int fd)
 {
     static const int crashes[] = {SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT};
@@ -65,6 +79,7 @@ static void child(const td_plugin_spec *p, int fd)
     for (i = 0; i < sizeof crashes / sizeof crashes[0]; i++)
         signal(crashes[i], SIG_DFL);
     setrlimit(RLIMIT_CORE, &no_core);
+    quiet();
     alarm(PROBE_SECONDS);
     memset(&setup, 0, sizeof setup);
     setup.abi_version = TD_PLUGIN_ABI_VERSION;

@@ -72,7 +72,9 @@ static const char run_usage_more[] =
     "progress line counts them.\n"
     "\n"
     "exit codes: 0 complete, 1 the simulation failed or was interrupted (SIGINT/SIGTERM/SIGHUP, also\n"
-    "during the set-up or the spread's runs), 2 bad input or usage (an unusable start state included).\n";
+    "during the set-up or the spread's runs), 2 bad input or usage (an unusable start state included,\n"
+    "and a plug-in controller that crashes in its init, refuses to start or fails during the run:\n"
+    "one line naming the case file, line and key, docs/case-format.md \"controllers\").\n";
 
 static void print_usage(FILE *f)
 {
