@@ -457,6 +457,47 @@ static void test_analyses_refuse(void **state)
     td_case_free(&c);
 }
 
+/* The PD plug-in of docs/api.md ("A plug-in controller"), compiled from the page's text against the
+ * header alone, equals the built-in PD bit for bit: the page is enough to write a working plug-in. */
+static void test_documented_plugin(void **state)
+{
+    char *doc = td_test_read_file(td_source_path("docs/api.md")), *code, *end, cmd[2048];
+    td_case *c = NULL;
+    td_model *mb = case_a(&c), *mp = NULL;
+    td_sim *sb, *sp;
+    td_error err;
+    FILE *f;
+    (void)state;
+    code = strstr(doc, "## A plug-in controller");
+    assert_non_null(code);
+    code = strstr(code, "```c\n");
+    assert_non_null(code);
+    code += 5;
+    end = strstr(code, "```");
+    assert_non_null(end);
+    f = fopen("doc_pd.c", "w");
+    assert_non_null(f);
+    assert_int_equal(fwrite(code, 1, (size_t)(end - code), f), (size_t)(end - code));
+    assert_int_equal(fclose(f), 0);
+    snprintf(cmd, sizeof cmd,
+             "%s -std=c99 -Wall -Wextra -pedantic -Werror -O2 -shared -fPIC -I%s -o doc_pd.so doc_pd.c", TD_C_COMPILER,
+             td_source_path("include"));
+    assert_int_equal(system(cmd), 0);
+    assert_int_equal(td_model_clone(mb, &mp, &err), TD_OK);
+    add_builtin_pd(mb, 0);
+    add_plugin_pd(mp, "./doc_pd.so", 0);
+    sb = new_sim(mb, c);
+    sp = new_sim(mp, c);
+    assert_true(run_side_by_side(sb, sp, 1, NULL) == 0.0);
+    assert_same_stats(sb, sp);
+    td_sim_free(&sb);
+    td_sim_free(&sp);
+    td_model_free(&mb);
+    td_model_free(&mp);
+    td_case_free(&c);
+    free(doc);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -468,6 +509,7 @@ int main(void)
         cmocka_unit_test(test_delay),
         cmocka_unit_test(test_force_output),
         cmocka_unit_test(test_analyses_refuse),
+        cmocka_unit_test(test_documented_plugin),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
