@@ -498,6 +498,107 @@ static void test_documented_plugin(void **state)
     free(doc);
 }
 
+/* ---- a recovery pair (td_recovery) ------------------------------------------------------------ */
+
+#define PAIR_RATE 1000.0 /* Hz */
+
+/* The PD of a pair's law on both axes of AMB 0 at PAIR_RATE: the built-in b0 + b1 z^-1 (appended
+ * for the two axes) when `plugin` is 0, else the PD plug-in's table. */
+static void add_pair_law(td_model *m, const char *name, double kp, double kd, int plugin)
+{
+    static const char *const names[2] = {"kp", "kd"};
+    const int axes[2] = {0, 1};
+    const double num[2] = {kp + kd * PAIR_RATE, -kd * PAIR_RATE}, den[1] = {1.0}, values[2] = {kp, kd};
+    td_error err;
+    td_plugin_spec p;
+    td_controller *k, *both;
+    if (plugin) {
+        memset(&p, 0, sizeof p);
+        p.name = name;
+        p.functions = td_plugin_controller_entry();
+        p.sample_rate = PAIR_RATE;
+        p.n_inputs = p.n_outputs = 2;
+        p.inputs = p.outputs = axes;
+        p.n_parameters = 2;
+        p.parameter_names = names;
+        p.parameter_values = values;
+        if (td_model_add_plugin_controller(m, &p, &err) != TD_OK)
+            fail_msg("td_model_add_plugin_controller: %s", err.message);
+        return;
+    }
+    k = td_controller_create_tf(num, 2, den, 1, PAIR_RATE, &err);
+    assert_non_null(k);
+    both = td_controller_append(k, k, &err);
+    assert_non_null(both);
+    assert_int_equal(td_model_add_controller(m, name, both, axes, axes, &err), TD_OK);
+    td_controller_free(&k);
+    td_controller_free(&both);
+}
+
+/* tests/data/case/recovery-jeffcott.cfg (its orbit crosses the thresholds whatever the laws do)
+ * under a supervisor switching a nominal PD and a stiffer recovery PD, each a plug-in or not. */
+static td_model *pair_machine(const td_case *c, int nominal_plugin, int recovery_plugin)
+{
+    td_model *m = NULL;
+    td_recovery rec;
+    td_error err;
+    assert_int_equal(td_model_clone(td_case_model(c), &m, &err), TD_OK);
+    add_pair_law(m, "nominal", 1000.0, 0.5, nominal_plugin);
+    add_pair_law(m, "recovery", 2000.0, 1.0, recovery_plugin);
+    memset(&rec, 0, sizeof rec);
+    rec.enabled = 1;
+    rec.pair_count = 1;
+    rec.nominal[0] = 0;
+    rec.controller[0] = 1;
+    rec.detect.radius_fraction = 0.5, rec.detect.dwell = 0.01;
+    rec.release.radius_fraction = 0.3, rec.release.dwell = 0.02;
+    rec.blend = 0.0; /* a step: the incoming law's first output counts (a blend weighs it 0) */
+    if (td_model_set_recovery(m, &rec, &err) != TD_OK)
+        fail_msg("td_model_set_recovery: %s", err.message);
+    return m;
+}
+
+/* Step s to each sample instant to t_end, the held currents of AMB 0 after each into held (n x 2). */
+static void pair_run(td_sim *s, double t_end, double *held, long n)
+{
+    long j;
+    for (j = 0; j < n && (double)(j + 1) / PAIR_RATE <= t_end; j++) {
+        step_to(s, (double)(j + 1) / PAIR_RATE);
+        held[2 * j] = s->machine.held_current[0];
+        held[2 * j + 1] = s->machine.held_current[1];
+    }
+}
+
+/* A plug-in in a recovery pair: the supervisor switches to it and back, resetting it (the
+ * incoming law starts from rest: the nominal PD plug-in comes back with xs(k - 1) = 0, not with the
+ * sensor it last read); as the recovery law, and as both laws, the run is bit for bit the
+ * built-in pair's, switches and returns included. */
+static void test_recovery_pair(void **state)
+{
+    enum { N = 500 };
+    static double held[3][2 * N];
+    td_case *c = td_test_load_case("tests/data/case/recovery-jeffcott.cfg", NULL, 0);
+    td_sim_stats st[3];
+    int v;
+    (void)state;
+    for (v = 0; v < 3; v++) {
+        td_model *m = pair_machine(c, v == 2, v >= 1);
+        td_sim *s = new_sim(m, c);
+        pair_run(s, td_case_end_time(c), held[v], N);
+        assert_int_equal(td_sim_stats_get(s, &st[v]), TD_OK);
+        td_sim_free(&s);
+        td_model_free(&m);
+    }
+    assert_true(st[0].controller_switches >= 2); /* there and back */
+    for (v = 1; v < 3; v++) {
+        assert_int_equal(st[v].controller_switches, st[0].controller_switches);
+        assert_int_equal(st[v].controller_samples, st[0].controller_samples);
+        assert_true(st[v].last_return_time == st[0].last_return_time);
+        assert_memory_equal(held[v], held[0], sizeof held[0]);
+    }
+    td_case_free(&c);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -510,6 +611,7 @@ int main(void)
         cmocka_unit_test(test_force_output),
         cmocka_unit_test(test_analyses_refuse),
         cmocka_unit_test(test_documented_plugin),
+        cmocka_unit_test(test_recovery_pair),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
