@@ -80,6 +80,21 @@ static td_plugin_spec pd_spec(const char *name, const int *axis, const char *lib
     return p;
 }
 
+/* The PD plug-in's table on the axes from `first` on, one controller per axis. */
+static void add_pd_axes(td_model *m, int first)
+{
+    int axis;
+    for (axis = first; axis < AXES; axis++) {
+        char name[16];
+        td_plugin_spec p;
+        td_error err;
+        snprintf(name, sizeof name, "axis%d", axis);
+        p = pd_spec(name, &axis, NULL, 0);
+        if (td_model_add_plugin_controller(m, &p, &err) != TD_OK)
+            fail_msg("td_model_add_plugin_controller: %s", err.message);
+    }
+}
+
 /* The PD plug-in on each axis, one controller per axis as add_builtin_pd adds them. */
 static void add_plugin_pd(td_model *m, const char *library, int delay)
 {
@@ -399,6 +414,38 @@ static void test_delay(void **state)
     assert_true(d < 1.0e-4 * TD_RIG_CLEARANCE);
 }
 
+/* The direct gain the simulation measures of a force table (its tolerance scale, in A per unit
+ * error) is the current table's: the force per metre over ki. */
+static void check_force_gain(const td_plugin_controller *force)
+{
+    static const char *const names[3] = {"kp", "kd", "force_gain"};
+    const double values[3] = {KP, KD, 200.0}; /* the rig's ki */
+    td_case *c = NULL;
+    td_model *mc = case_a(&c), *mf = NULL;
+    td_sim *sc, *sf;
+    td_plugin_spec p;
+    td_error err;
+    const int axis = 0;
+    assert_int_equal(td_model_clone(mc, &mf, &err), TD_OK);
+    add_plugin_pd(mc, NULL, 0);
+    p = pd_spec("force", &axis, NULL, 0);
+    p.functions = force;
+    p.n_parameters = 3;
+    p.parameter_names = names;
+    p.parameter_values = values;
+    assert_int_equal(td_model_add_plugin_controller(mf, &p, &err), TD_OK);
+    add_pd_axes(mf, 1);
+    sc = new_sim(mc, c);
+    sf = new_sim(mf, c);
+    assert_true(td_sim_plugin_gain(sc, 0, 0) == KP + KD * RATE);
+    assert_close(td_sim_plugin_gain(sf, 0, 0), KP + KD * RATE, 1e-15, 0.0);
+    td_sim_free(&sc);
+    td_sim_free(&sf);
+    td_model_free(&mc);
+    td_model_free(&mf);
+    td_case_free(&c);
+}
+
 /* A table whose output is TD_PLUGIN_FORCE: the PD's current times ki, which the simulation divides
  * by ki. (ki i) / ki is i only to rounding (ki = 200 N/A is no power of two), so the runs agree to
  * that rounding, carried by the dynamics, while the rotor flies free, and the contacts carry it on. */
@@ -408,6 +455,7 @@ static void test_force_output(void **state)
     double free, d;
     (void)state;
     force.output = TD_PLUGIN_FORCE;
+    check_force_gain(&force);
     d = compare_pd(0, &force, &free);
     printf("plug-in PD commanding forces against the built-in PD: largest displacement difference %.3g m before "
            "the first contact, %.3g m over the run (clearance %.3g m)\n",
