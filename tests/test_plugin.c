@@ -446,6 +446,35 @@ static void check_force_gain(const td_plugin_controller *force)
     td_case_free(&c);
 }
 
+/* A force table on an AMB whose ki is 0 has no current to command: the model refuses it, naming the
+ * AMB's ki and the controller. */
+static void test_force_needs_ki(void **state)
+{
+    const td_shaft_element el = {0.5, 0.05, 0.0, {2.11e11, 8.1e10, 7810.0}};
+    const td_amb amb = {1, 1, 0.0, 0.0, 0.0, 0.0, 0.0, 1700.0, 0, 1.2e-3, 0.0, 0.0}; /* ki = 0 */
+    td_plugin_controller force = *td_plugin_controller_entry();
+    td_model *m = NULL;
+    td_plugin_spec p;
+    td_error err;
+    const int axis = 0;
+    (void)state;
+    force.output = TD_PLUGIN_FORCE;
+    assert_int_equal(td_model_create(&m, &err), TD_OK);
+    assert_int_equal(td_model_add_shaft_element(m, &el, &err), TD_OK);
+    assert_int_equal(td_model_add_shaft_element(m, &el, &err), TD_OK);
+    assert_int_equal(td_model_add_amb(m, &amb, &err), TD_OK);
+    p = pd_spec("force", &axis, NULL, 0);
+    p.functions = &force;
+    assert_int_equal(td_model_add_plugin_controller(m, &p, &err), TD_OK);
+    assert_int_equal(td_model_validate(m, &err), TD_ERR_INVALID);
+    assert_string_equal(err.site.part, "amb");
+    assert_int_equal(err.site.index, 0);
+    assert_string_equal(err.site.field, "ki");
+    assert_string_equal(err.other.part, "controller");
+    assert_non_null(strstr(err.message, "plug-in controller 0 (\"force\") commands this AMB's force"));
+    td_model_free(&m);
+}
+
 /* A table whose output is TD_PLUGIN_FORCE: the PD's current times ki, which the simulation divides
  * by ki. (ki i) / ki is i only to rounding (ki = 200 N/A is no power of two), so the runs agree to
  * that rounding, carried by the dynamics, while the rotor flies free, and the contacts carry it on. */
@@ -657,6 +686,7 @@ int main(void)
         cmocka_unit_test(test_nan_output),
         cmocka_unit_test(test_delay),
         cmocka_unit_test(test_force_output),
+        cmocka_unit_test(test_force_needs_ki),
         cmocka_unit_test(test_analyses_refuse),
         cmocka_unit_test(test_documented_plugin),
         cmocka_unit_test(test_recovery_pair),
