@@ -504,6 +504,10 @@ static void test_analyses_refuse(void **state)
     td_system *sys = NULL;
     td_modal *md = NULL;
     td_loop *lp = NULL;
+    td_campbell *cb = NULL;
+    td_harmonic *hr = NULL;
+    td_modal_options mo;
+    td_unbalance u = {1, 0.02, 0.0};
     td_sim *s = NULL;
     td_sim_start_info info;
     td_error err;
@@ -517,6 +521,11 @@ static void test_analyses_refuse(void **state)
     assert_int_equal(td_modal_stability(sys, 90.0, &mr, &unstable, &err), TD_ERR_INVALID);
     assert_non_null(strstr(err.message, why));
     assert_int_equal(td_loop_compute(sys, 90.0, NULL, &lp, &err), TD_ERR_INVALID);
+    assert_non_null(strstr(err.message, why));
+    td_modal_options_default(&mo);
+    assert_int_equal(td_campbell_compute(sys, &mo, &cb, &err), TD_ERR_INVALID);
+    assert_non_null(strstr(err.message, why));
+    assert_int_equal(td_harmonic_compute(sys, 90.0, &u, 1, &hr, &err), TD_ERR_INVALID);
     assert_non_null(strstr(err.message, why));
     o.start = TD_START_AUTO;
     if (td_sim_create(m, &o, &s, &err) != TD_OK)
