@@ -286,6 +286,8 @@ static void test_bad_libraries_and_specs(void **state)
     expect_add_fails(&p, "library", "built for plug-in ABI version 2; this touchdown runs version 1");
     p.library = PLUGINS "missing.so";
     expect_add_fails(&p, "library", "cannot load \"" PLUGINS "missing.so\"");
+    p.library = "libm.so.6"; /* the system has it, but a plug-in's library is a file, never searched for */
+    expect_add_fails(&p, "library", "cannot load \"libm.so.6\": ./libm.so.6: cannot open shared object file");
     p.library = PLUGINS "pd.so";
     p.functions = td_plugin_controller_entry();
     expect_add_fails(&p, "functions", "differs from the table of");
