@@ -298,7 +298,8 @@ TD_API td_status td_model_add_controller(td_model *m, const char *name, const td
 typedef struct td_plugin_spec {
     const char *name;                      /**< as td_model_add_controller's (may be NULL) */
     const td_plugin_controller *functions; /**< a program's table, or NULL: load `library` */
-    const char *library;                   /**< shared library path (when functions is NULL) */
+    const char *library;                   /**< shared library path (when functions is NULL; a name without '/'
+                                            *   is the file in the current directory, not a library search) */
     double sample_rate;                    /**< Hz, TD_CONTROLLER_RATE_MIN .. TD_CONTROLLER_RATE_MAX */
     int delay;                             /**< whole samples of computation delay on every output, >= 0 */
     int n_inputs;                          /**< sensors read, >= 1 */

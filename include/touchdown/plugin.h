@@ -14,8 +14,16 @@
  * library (docs/case-format.md, `controllers[].plugin`).
  *
  * Versioning: TD_PLUGIN_ABI_VERSION rises whenever this header's types or calls change meaning; the
- * simulation refuses a table whose abi_version differs from its own, naming both. A plug-in built
- * against this header sets abi_version = TD_PLUGIN_ABI_VERSION.
+ * simulation refuses a table whose abi_version differs from its own, naming both, before it calls
+ * any of its functions (abi_version stays the table's first member in every version). A plug-in
+ * built against this header sets abi_version = TD_PLUGIN_ABI_VERSION.
+ *
+ * Life of an instance: td_sim_create makes two. A probe, stepped at k = 0 with xs = 0 and then,
+ * reset before each, with xs = -2^-20 m on one input at a time, then freed: its commands per metre
+ * (a linear law's direct gain) scale the integrator's tolerances, never the dynamics. Then the run's
+ * own, stepped at k = 0, 1, 2, ... in order (sample 0 at the start) until td_sim_free frees it; reset
+ * when the recovery supervisor switches to the controller (the incoming law starts from rest). A
+ * delay of d samples (td_plugin_spec) holds the command of step k from t_{k+d} on, 0 before.
  *
  * Signs and units (touchdown/dofs.h): sensed[j] is the displacement xs (m) of the sensor of input
  * axis j (positive along +x or +y); command[j] is the current command i (A) of the amplifier of
@@ -71,10 +79,12 @@ typedef struct td_plugin_controller {
     /** A new instance at rest for `setup`; NULL on failure, with the reason in message (e.g. a
      *  missing or bad parameter, a number of axes it does not handle). */
     void *(*init)(const td_plugin_setup *setup, char *message, int message_size);
-    /** Sample k at time t (s): sensed (n_inputs, m) in, command (n_outputs) out. */
+    /** Sample k at time t (s): sensed (n_inputs, m) in, command (n_outputs) out; every command
+     *  must be written (one left unwritten is not finite: a failure). */
     int (*step)(void *instance, long k, double t, const double *sensed, double *command, char *message,
                 int message_size);
-    /** Back to the state init left it in (a new run from the same instance). */
+    /** Back to the state init left it in (the probe between its steps; a switch of the recovery
+     *  supervisor to this controller). */
     int (*reset)(void *instance, char *message, int message_size);
     /** Release the instance; accepts NULL. */
     void (*free)(void *instance);

@@ -776,6 +776,8 @@ td_status td_loop_compute(const td_system *sys, double omega, const td_loop_opti
         return td_error_set(err, TD_ERR_INVALID, "td_loop_compute: NULL system");
     if (!TD_SPEED_VALID(omega))
         return td_error_set(err, TD_ERR_INVALID, "loop analysis: speed must be finite and >= 0 rad/s (got %g)", omega);
+    if (td_system_refuse_plugins(sys, err) != TD_OK)
+        return TD_ERR_INVALID;
     if (td_modal_state_count(sys) > TD_LOOP_MAX_STATES)
         return td_error_set(err, TD_ERR_INVALID,
                             "no loop analysis: %d first-order states, more than the %d it takes (a reduction of "

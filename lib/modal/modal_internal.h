@@ -39,8 +39,13 @@ void td_entry_add_matrix(td_entry_sink *k, const cs_di *S, int col0, double scal
 void td_state_space_rhs_blocks(const td_system *sys, double omega, td_entry_sink *R);
 /* Filter rows w' = rate_x xs + rate_v vs + rate_w w (rows 2 ndof + state of the state vector). */
 void td_state_space_filter_rows(const td_system *sys, td_entry_sink *A);
-/* TD_OK when the first-order form above can hold sys: every linear controller continuous (a
- * sampled one has no state here); TD_ERR_INVALID naming the first sampled one otherwise. */
+/* TD_ERR_INVALID naming the first plug-in controller of sys that drives its axes (touchdown/plugin.h:
+ * no linear law to analyse; one standing by for a recovery pair is left out, as a linear one is);
+ * TD_OK when there is none. Every analysis of the closed loop asks this first. */
+td_status td_system_refuse_plugins(const td_system *sys, td_error *err);
+/* TD_OK when the first-order form above can hold sys: no plug-in (td_system_refuse_plugins) and
+ * every linear controller continuous (a sampled one has no state here); TD_ERR_INVALID naming the
+ * first sampled one otherwise. */
 td_status td_state_space_supported(const td_system *sys, td_error *err);
 
 /* Build the state space of `sys` at speed `omega`; on failure *ss is left empty (freed). */

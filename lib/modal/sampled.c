@@ -140,8 +140,10 @@ td_status td_sampled_closed_loop(const td_system *sys, double omega, gsl_matrix 
     double *A = NULL, *EX = NULL, *Bu = NULL, *G = NULL;
     size_t n, i, j;
     int nx, nu;
-    td_status st = sampled_sizes(sys, rate, &nx, &nu, err);
+    td_status st = td_system_refuse_plugins(sys, err);
     *P = NULL;
+    if (st == TD_OK)
+        st = sampled_sizes(sys, rate, &nx, &nu, err);
     if (st == TD_OK)
         st = td_state_space_build_plant(sys, omega, &ss, err);
     if (st != TD_OK)

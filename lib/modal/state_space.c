@@ -117,9 +117,23 @@ static void law_rows(const td_system *sys, td_entry_sink *A)
     }
 }
 
+td_status td_system_refuse_plugins(const td_system *sys, td_error *err)
+{
+    int l;
+    for (l = 0; sys && l < sys->n_laws; l++)
+        if (sys->laws[l].plugin && !sys->laws[l].standby)
+            return td_error_set(err, TD_ERR_INVALID,
+                                "modal: controller %d (\"%s\") is a plug-in, the user's own code with no linear "
+                                "law: the analyses of the closed loop need linear controllers",
+                                l, sys->laws[l].plugin->name);
+    return TD_OK;
+}
+
 td_status td_state_space_supported(const td_system *sys, td_error *err)
 {
     int l;
+    if (td_system_refuse_plugins(sys, err) != TD_OK)
+        return TD_ERR_INVALID;
     for (l = 0; sys && l < sys->n_laws; l++)
         if (sys->laws[l].state < 0)
             return td_error_set(err, TD_ERR_INVALID,

@@ -59,14 +59,24 @@ static td_status check_table(const td_plugin_controller *f, int i, const char *w
 }
 
 /* p->spec.library opened (RTLD_NOW: an unresolved symbol fails here, not mid-run) and its table
- * taken from its entry function into p->spec.functions. */
+ * taken from its entry function into p->spec.functions. The library is a file: a name without a
+ * slash is the file in the current directory (dlopen would search the system's library path). */
 static td_status open_library(td_model_plugin *p, int i, td_error *err)
 {
     const char *path = p->spec.library;
     td_plugin_entry entry;
     void *sym;
+    char *here = NULL;
+    if (!strchr(path, '/')) { /* a path: "pd.so" is the file here, never a search of the library path */
+        here = malloc(strlen(path) + 3);
+        if (!here)
+            return td_error_set(err, TD_ERR_NOMEM, "out of memory adding a controller");
+        memcpy(here, "./", 2);
+        memcpy(here + 2, path, strlen(path) + 1);
+    }
     dlerror(); /* clear an earlier failure's message */
-    p->handle = dlopen(path, RTLD_NOW | RTLD_LOCAL);
+    p->handle = dlopen(here ? here : path, RTLD_NOW | RTLD_LOCAL);
+    free(here);
     if (!p->handle) {
         const char *why = dlerror();
         return FAIL_AT(err, i, "library", "cannot load \"%s\": %s", path, why ? why : "dlopen failed");

@@ -60,11 +60,11 @@ static td_status new_instance(const td_sim *s, const td_sim_sampled *l, void **i
 #define TD_PLUGIN_PROBE 0x1p-20
 
 /* Law l's direct gain into l->gain (nout x nin, column-major): a linear law's D, the current per
- * unit error e = -xs at the sample it is read, which sets the scale of the amplifier's force for
- * the tolerances and the step bound (lib/sim/setup.c), never the dynamics. From a second instance
- * at rest: its first command for xs = -h e_j less its first for xs = 0, over h, reset between, then
- * freed. A probe that fails, or is not finite, leaves the gain 0 (no scale; the run reports the
- * failure where it happens). */
+ * unit error e = -xs at the sample it is read (a force table's force per unit error over ki),
+ * which sets the scale of the amplifier's force for the tolerances and the step bound
+ * (lib/sim/setup.c), never the dynamics. From a second instance at rest: its first command for
+ * xs = -h e_j less its first for xs = 0, over h, reset between, then freed. A probe that fails, or
+ * is not finite, leaves the gain 0 (no scale; the run reports the failure where it happens). */
 static td_status probe_gain(const td_sim *s, td_sim_sampled *l, td_error *err)
 {
     const td_lti_law *law = &s->sys->laws[l->law];
@@ -85,6 +85,8 @@ static td_status probe_gain(const td_sim *s, td_sim_sampled *l, td_error *err)
         l->xs[j] = 0.0;
         for (i = 0; ok && i < law->nout; i++) {
             double g = (c1[i] - c0[i]) / TD_PLUGIN_PROBE;
+            if (f->output == TD_PLUGIN_FORCE) /* N/m: the current's gain is that over ki (ki != 0, model) */
+                g /= s->sys->amb_axes[law->out_axis[i]].ki;
             l->gain[i + (size_t)law->nout * (size_t)j] = isfinite(g) ? g : 0.0;
         }
     }

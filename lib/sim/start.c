@@ -82,6 +82,21 @@ static double orbit_phase_time(const td_sim *s)
     return angle / s->machine.omega;
 }
 
+/* An orbit start of a model with plug-in controller k: "orbit" refuses it, "auto" starts at rest
+ * with the reason. */
+static td_status plugin_no_orbit(td_sim *s, int k, int strict, td_error *err)
+{
+    const char *name = s->sys->laws[k].plugin->name;
+    if (strict)
+        return td_error_set(err, TD_ERR_INVALID,
+                            "start = \"orbit\": controller %d (\"%s\") is a plug-in, and the steady orbit is computed "
+                            "for linear controllers only; use start = \"rest\"",
+                            k, name);
+    snprintf(s->start.reason, sizeof s->start.reason, "controller %d (\"%s\") is a plug-in: no steady orbit computed",
+             k, name);
+    return TD_OK;
+}
+
 /* The steady orbit into y. An unstable system has none that the motion would stay on: "orbit"
  * refuses it, "auto" stays at rest; "auto" also stays at rest when the orbit is not contact-free.
  * s->start.used says which start y holds. */
@@ -102,6 +117,9 @@ static td_status orbit_start(td_sim *s, double *y, td_error *err)
                  s->start.max_real_part);
         return TD_OK;
     }
+    for (k = 0; k < s->sys->n_laws; k++)
+        if (s->sys->laws[k].plugin) /* no linear law: no orbit to compute */
+            return plugin_no_orbit(s, k, strict, err);
     for (k = 0; k < s->sys->n_laws; k++)
         if (s->sys->laws[k].state < 0) { /* its state is the sampler's, outside the first-order form */
             if (strict)

@@ -131,6 +131,7 @@ static void take_switch(td_sim *s, td_sim_supervisor *sv, int p, double r)
     in = &s->sampler->law[q->law[to]];
     law = &s->sys->laws[in->law];
     memset(in->x, 0, (size_t)law->n * sizeof *in->x); /* the incoming law starts from rest */
+    in->reset_due = law->plugin != NULL;              /* a plug-in by its reset, before its next step */
     q->running[to] = 1;
     q->target = to;
     q->k_switch = in->k_next;
