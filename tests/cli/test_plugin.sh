@@ -121,8 +121,11 @@ sys.exit(0 if a["status"] == b["status"] == "success" and dt <= 1e-9 and dp <= 1
 EOF
 }
 check "with one sample of delay: the same to the solver's tolerance" close_run delay
-check "the plug-in run says no stability it cannot know (the analysis has no linear law for it)" \
-    test "$(jf "$work/pd-plug/.out" stability)" = null
+check "the plug-in run claims no stability it cannot know (unchecked: no linear law for the analysis)" \
+    test "$(jf "$work/pd-plug/.out" stability)" = '"unchecked"' -a "$(jf "$work/pd-plug/.out" max_real_part)" = null
+t "$work/modal" modal "$ex/rig-pd.cfg"
+check "touchdown modal refuses a plug-in case naming the controller, exit 2" \
+    test "$rc" = 2 -a "$(wc -l <"$work/modal/.err")" = 1 -a -n "$(grep -F 'controller 0 ("pd") is a plug-in' "$work/modal/.err")"
 
 # ---- bad keys: one line naming the key, exit 2 ---------------------------------------------------
 with_library nofile nothere.so
