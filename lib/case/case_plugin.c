@@ -50,7 +50,7 @@ static const td_cs_key plugin_keys[] = {
      .need = TD_CS_REQUIRED,
      .check = check_library,
      .what = "the plug-in's shared library",
-     .doc = "the shared library exporting td_plugin_controller_entry (docs/api.md, \"Plug-in controllers\"), its "
+     .doc = "the shared library exporting td_plugin_controller_entry (docs/api.md, \"A plug-in controller\"), its "
             "path relative to the case file's directory (an @include'd file's too) unless absolute"},
     {.key = "parameters",
      .type = TD_CS_CUSTOM,

@@ -130,10 +130,13 @@ static const char *phase(const char *said)
     return p;
 }
 
-/* The child's end as the one-line error (exit 2), or 0 when init, step and free all returned. */
-static int judge(const char *where, const td_plugin_spec *p, int status, const char *said)
+/* The child's end as the one-line error (exit 2), or 0 when init, step and free all returned. A
+ * refusal's reason is the plug-in's text: its control characters (a stray newline) become spaces. */
+static int judge(const char *where, const td_plugin_spec *p, int status, char *said)
 {
-    const char *refused = strchr(said, 'R');
+    char *refused = strchr(said, 'R'), *q;
+    for (q = refused; q && *q; q++)
+        *q = (unsigned char)*q < 0x20 || *q == 0x7f ? ' ' : *q;
     if (WIFEXITED(status) && WEXITSTATUS(status) == 0)
         return TD_EXIT_OK;
     if (WIFSIGNALED(status) && WTERMSIG(status) == SIGALRM)
@@ -163,9 +166,15 @@ static int probe(const td_case *c, int i, const td_plugin_spec *p)
     if (p->n_inputs > PROBE_MAX_AXES || p->n_outputs > PROBE_MAX_AXES)
         return TD_EXIT_OK; /* the model bounds them below this; nothing to try it with */
     fflush(NULL);          /* the child's copies of unwritten output would be written twice */
-    if (pipe(fds) != 0 || (pid = fork()) < 0) {
+    if (pipe(fds) != 0)
+        fds[0] = fds[1] = -1;
+    if (fds[0] < 0 || (pid = fork()) < 0) {
         fprintf(stderr, "touchdown: %s: cannot try the plug-in \"%s\" in a child process first: %s\n", info.where,
                 p->name, strerror(errno));
+        if (fds[0] >= 0) {
+            close(fds[0]);
+            close(fds[1]);
+        }
         return TD_EXIT_FAILED;
     }
     if (pid == 0) {
