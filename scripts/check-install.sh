@@ -110,8 +110,9 @@ echo "check-install: without a run-time path, as the README says: $(head -n 1 "$
 echo "check-install: examples/plugin-pd with make against the installed header, run by the installed tool"
 cp -r "$doc/examples/plugin-pd" "$scratch/plugin-pd"
 make -s -C "$scratch/plugin-pd" PREFIX="$prefix" CFLAGS="-O2 -Werror" || fail "examples/plugin-pd did not build"
-"$prefix/bin/touchdown" run -q --json -o "$scratch/plugin-pd/short" --set end_time=0.02 \
-    "$scratch/plugin-pd/rig-pd.cfg" >"$scratch/plugin.json" || fail "the installed touchdown did not run rig-pd.cfg"
+"$prefix/bin/touchdown" run -q --json -o "$scratch/plugin-pd/short" --set end_time=0.11 \
+    "$scratch/plugin-pd/rig-pd.cfg" >"$scratch/plugin.json" 2>"$scratch/plugin.err" ||
+    fail "the installed touchdown did not run rig-pd.cfg: $(head -c 300 "$scratch/plugin.err")"
 grep -q '"status":"success"' "$scratch/plugin.json" ||
     fail "the installed touchdown run of rig-pd.cfg did not succeed: $(head -c 300 "$scratch/plugin.json")"
 
