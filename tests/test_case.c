@@ -1290,6 +1290,7 @@ static void test_rules_name_the_set_they_compare_with(void **state)
     static const char *const one_amb[] = {"ambs=({ node = 3; ks = 1.0e6; ki = 200.0; kp = 1.0e4; kd = 40.0; "
                                           "bandwidth = 100.0; force_capacity = 1700.0; air_gap = 1.2e-3; })"};
     static const char *const renamed[] = {"controllers[0].name=\"x\""};
+    static const char *const fast[] = {"end_time=1e-3", "speed=1e7"};
     char tail[512];
     (void)state;
     expect_located("cases/paper-a.cfg", elements, 1,
@@ -1305,6 +1306,10 @@ static void test_rules_name_the_set_they_compare_with(void **state)
                    "cases/recovery.cfg:66: recovery.nominal: no controller is named \"pd\" (the controllers table "
                    "names \"x\", \"pd-sync\"; see controllers at ",
                    "cases/recovery.cfg: --set 'controllers[0].name=\"x\"')");
+    expect_located("cases/paper-a.cfg", fast, 2,
+                   "cases/paper-a.cfg:9: unbalances[0].magnitude: the unbalance force U Omega^2 = 0.02 kg m x (1e+07 "
+                   "rad/s)^2 = 2e+12 N exceeds 1e+12 N; see speed at ",
+                   "cases/paper-a.cfg: --set 'speed=1e7'");
 }
 
 /* ---- controllers ---------------------------------------------------------------------------- */

@@ -491,7 +491,8 @@ static td_status check_atol(td_case_reader *r, const config_setting_t *root)
 
 /* The unbalance force U Omega^2 of every entry of the list `key` with a magnitude, at the case
  * speed, within TD_MAX_UNBALANCE_FORCE (the lists were read and checked by case_parts.c). */
-static td_status check_unbalance_forces(td_case_reader *r, const config_setting_t *root, const char *key, double speed)
+static td_status check_unbalance_forces(td_case_reader *r, const config_setting_t *root, const char *key, double speed,
+                                        const config_setting_t *fastest)
 {
     const config_setting_t *list = config_setting_get_member(root, key), *s;
     double u, force;
@@ -502,9 +503,9 @@ static td_status check_unbalance_forces(td_case_reader *r, const config_setting_
             continue;
         force = u * speed * speed;
         if (!(force <= TD_MAX_UNBALANCE_FORCE))
-            return td_cr_fail(r, s, NULL,
-                              "the unbalance force U Omega^2 = %g kg m x (%g rad/s)^2 = %.3g N exceeds %.0e N", u,
-                              speed, force, TD_MAX_UNBALANCE_FORCE);
+            return td_cr_fail_vs(r, s, fastest,
+                                 "the unbalance force U Omega^2 = %g kg m x (%g rad/s)^2 = %.3g N exceeds %.0e N", u,
+                                 speed, force, TD_MAX_UNBALANCE_FORCE);
     }
     return TD_OK;
 }
@@ -547,9 +548,9 @@ static td_status check_run(td_case_reader *r, const config_setting_t *root, cons
     if (st == TD_OK)
         st = check_atol(r, root);
     if (st == TD_OK)
-        st = check_unbalance_forces(r, root, "unbalances", speed);
+        st = check_unbalance_forces(r, root, "unbalances", speed, fastest);
     if (st == TD_OK)
-        st = check_unbalance_forces(r, root, "schedule", speed);
+        st = check_unbalance_forces(r, root, "schedule", speed, fastest);
     return st;
 }
 

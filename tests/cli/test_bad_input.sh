@@ -149,7 +149,7 @@ disc-inertia-overflow.cfg|:5: discs[0].radius: the disc inertia from radius, thi
 shaft-diameter-overflow.cfg|:7: shaft.outer_diameter: the second moment of area pi (D^4 - d^4) / 64 overflows (to inf)
 shaft-nodes-too-close.cfg|:4: shaft.nodes: an element stiffness E I / L^3 from the element length L overflows (to inf)
 speed-overflow-orbit.cfg|:3: speed: 1e+300 rad/s over 0.1 s makes 1.59e+298 shaft revolutions (at most 1e+06)
-unbalance-force-overflow.cfg|:6: unbalances[0].magnitude: the unbalance force U Omega^2 = 1e+300 kg m x (100 rad/s)^2 = 1e+304 N exceeds 1e+12 N
+unbalance-force-overflow.cfg|:6: unbalances[0].magnitude: the unbalance force U Omega^2 = 1e+300 kg m x (100 rad/s)^2 = 1e+304 N exceeds 1e+12 N; see speed at BAD/../case/run.cfg:2
 unbalance-wrap-same-line.cfg|:5: unbalances[0].magnitude: integer 4294967296 is out of range (at most 2147483647; libconfig would read 0)
 line-endings-cr.cfg|:5: carriage return without a line feed (CR-only line endings are not supported; save the file with LF or CRLF line endings)
 speed-unbounded.cfg|:3: speed: 1e+20 rad/s over 0.1 s makes 1.59e+18 shaft revolutions (at most 1e+06)
