@@ -504,6 +504,7 @@ static void test_run_bad_arguments(void **state)
     assert_int_equal(s.samples, 31);
     assert_int_equal(s.contacts, 0);
     assert_true(td_is_undefined(s.first_contact_time));                /* no contact: no first-contact time */
+    assert_true(td_is_undefined(s.revolutions_after_contact));         /* and no revolutions after it */
     assert_int_equal(s.free_at_end, -1);                               /* 0.015 s is shorter than 5 revolutions */
     assert_int_equal(s.returned_to_free_orbit, TD_RUN_NOT_APPLICABLE); /* no contact to return from */
     assert_true(s.t_reached == 0.015);
