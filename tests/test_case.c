@@ -1271,11 +1271,46 @@ static void test_model_rules_located(void **state)
                    "amb-duplicate-node.cfg:6: ambs[1].node: node 3 already has an AMB (amb 0); see ambs[0].node at ",
                    "amb-duplicate-node.cfg:5");
     /* the model keeps its changes in time order: change 0 is the schedule's second entry */
-    expect_located("cases/paper-a.cfg", late_bad, 2, "--set 'schedule[1].unbalance=4': schedule[1].unbalance: ",
-                   "unbalance 4 does not exist (1 defined, indices start at 0; the change at t = 0.05 s)");
+    expect_located("cases/paper-a.cfg", late_bad, 2,
+                   "--set 'schedule[1].unbalance=4': schedule[1].unbalance: unbalance 4 does not exist (1 defined, "
+                   "indices start at 0; the change at t = 0.05 s); see unbalances at ",
+                   "cases/paper-a.cfg:9");
     /* the model's discs are the discs, then the point masses */
-    expect_located("cases/paper-a.cfg", mass_node, 1, "--set 'point_masses[1].node=40': point_masses[1].node: ",
-                   "node 40 is out of range (the shaft has nodes 0..12)");
+    expect_located("cases/paper-a.cfg", mass_node, 1,
+                   "--set 'point_masses[1].node=40': point_masses[1].node: node 40 is out of range (the shaft has "
+                   "nodes 0..12); see shaft.elements at ",
+                   "cases/rig.cfg:10");
+}
+
+/* A rule that compares a key in the file with one a --set changed names the key where it is and
+ * says where the other value was written: the --set (it used to name the file's line alone, as if
+ * the value there were wrong). */
+static void test_rules_name_the_set_they_compare_with(void **state)
+{
+    static const char *const elements[] = {"shaft.elements=2"};
+    static const char *const one_amb[] = {"ambs=({ node = 3; ks = 1.0e6; ki = 200.0; kp = 1.0e4; kd = 40.0; "
+                                          "bandwidth = 100.0; force_capacity = 1700.0; air_gap = 1.2e-3; })"};
+    static const char *const renamed[] = {"controllers[0].name=\"x\""};
+    static const char *const fast[] = {"end_time=1e-3", "speed=1e7"};
+    char tail[512];
+    (void)state;
+    expect_located("cases/paper-a.cfg", elements, 1,
+                   "cases/rig.cfg:28: discs[1].node: node 5 is out of range (the shaft has nodes 0..2); see "
+                   "shaft.elements at ",
+                   "cases/paper-a.cfg: --set 'shaft.elements=2'");
+    snprintf(tail, sizeof tail, "cases/drop.cfg: --set '%s'", one_amb[0]);
+    expect_located("cases/drop.cfg", one_amb, 1,
+                   "cases/drop.cfg:33: schedule[1].amb_off: AMB 1 does not exist (1 defined, indices start at 0; the "
+                   "change at t = 0.05 s); see ambs at ",
+                   tail);
+    expect_located("cases/recovery.cfg", renamed, 1,
+                   "cases/recovery.cfg:66: recovery.nominal: no controller is named \"pd\" (the controllers table "
+                   "names \"x\", \"pd-sync\"; see controllers at ",
+                   "cases/recovery.cfg: --set 'controllers[0].name=\"x\"')");
+    expect_located("cases/paper-a.cfg", fast, 2,
+                   "cases/paper-a.cfg:9: unbalances[0].magnitude: the unbalance force U Omega^2 = 0.02 kg m x (1e+07 "
+                   "rad/s)^2 = 2e+12 N exceeds 1e+12 N; see speed at ",
+                   "cases/paper-a.cfg: --set 'speed=1e7'");
 }
 
 /* ---- controllers ---------------------------------------------------------------------------- */
@@ -2304,6 +2339,7 @@ int main(void)
         cmocka_unit_test(test_bad_files),
         cmocka_unit_test(test_ramp_judged_to_end_time),
         cmocka_unit_test(test_model_rules_located),
+        cmocka_unit_test(test_rules_name_the_set_they_compare_with),
         cmocka_unit_test(test_unreadable_paths),
         cmocka_unit_test(test_bad_includes),
         cmocka_unit_test(test_include_bounds),

@@ -504,6 +504,7 @@ static void test_run_bad_arguments(void **state)
     assert_int_equal(s.samples, 31);
     assert_int_equal(s.contacts, 0);
     assert_true(td_is_undefined(s.first_contact_time));                /* no contact: no first-contact time */
+    assert_true(td_is_undefined(s.revolutions_after_contact));         /* and no revolutions after it */
     assert_int_equal(s.free_at_end, -1);                               /* 0.015 s is shorter than 5 revolutions */
     assert_int_equal(s.returned_to_free_orbit, TD_RUN_NOT_APPLICABLE); /* no contact to return from */
     assert_true(s.t_reached == 0.015);
@@ -679,9 +680,9 @@ static void test_json_string(void **state)
 
 /* td_run_summary_ending on hand-made totals over a stretch of 1 s at 100 rad/s (15.9 Hz spin):
  * the whirl rate is the whirl angle swept over the contact time, signed like the spin. */
-/* The steady orbit of steady_rotor, started on it, over T_END with the section from a third of the
- * run on; free_flight: the closed-form flight carries it, else IDA. */
-static void steady_section(int free_flight, td_run_summary *s)
+/* The steady orbit of steady_rotor, started on it, to t_end with the section from a third of T_END
+ * on; free_flight: the closed-form flight carries it, else IDA. */
+static void steady_section_to(int free_flight, double t_end, td_run_summary *s)
 {
     td_model *m = steady_rotor();
     td_sim *sim = NULL;
@@ -699,11 +700,16 @@ static void steady_section(int free_flight, td_run_summary *s)
         fail_msg("td_sim_create: %s", err.message);
     td_output_options_default(&out);
     out.sample_rate = RATE;
-    out.section_after = 1.0 / 3.0;
-    if (td_run(sim, T_END, &out, NULL, NULL, s, &err) != TD_OK)
+    out.section_after = T_END / 3.0 / t_end;
+    if (td_run(sim, t_end, &out, NULL, NULL, s, &err) != TD_OK)
         fail_msg("td_run: %s", err.message);
     td_sim_free(&sim);
     td_model_free(&m);
+}
+
+static void steady_section(int free_flight, td_run_summary *s)
+{
+    steady_section_to(free_flight, T_END, s);
 }
 
 /* The harmonic response's position of node 3 where the spin angle is a multiple of 2 pi: the
@@ -758,6 +764,26 @@ static void test_section_steady_orbit(void **state)
             assert_close(p->section_radius[i], expect, pass == 0 ? 1e-9 : 1e-5, 0.0);
         }
     }
+    free(s);
+}
+
+/* A run that ends 1e-9 s before a crossing, inside IDA's last step, which runs on past the end: the
+ * section holds the crossings up to the end only (it used to count the one beyond end_time, with its
+ * time past it). Crossings at t = 2 pi k / omega: the 9th is 0.2827 s. */
+static void test_section_ends_at_end_time(void **state)
+{
+    td_run_summary *s = calloc(1, sizeof *s);
+    double period = 2.0 * TD_PI / OMEGA, t_end = 9.0 * period - 1e-9;
+    long expect = 8 - (long)ceil(T_END / 3.0 / period) + 1; /* k = ceil(T_END / 3 / period) .. 8 */
+    (void)state;
+    assert_non_null(s);
+    steady_section_to(0, t_end, s);
+    print_message("to %.12f s: %ld crossings (expected %ld), the last at %.12f s; IDA %ld steps\n", t_end,
+                  s->section_count, expect, s->section_kept ? s->section_time[s->section_kept - 1] : NAN,
+                  s->stats.steps);
+    assert_true(s->section_kept > 0 && s->stats.flight_time == 0.0);
+    assert_true(s->section_time[s->section_kept - 1] <= t_end);
+    assert_int_equal(s->section_count, expect);
     free(s);
 }
 
@@ -986,6 +1012,7 @@ int main(void)
         cmocka_unit_test(test_json_string),
         cmocka_unit_test(test_summary_ending),
         cmocka_unit_test(test_section_steady_orbit),
+        cmocka_unit_test(test_section_ends_at_end_time),
         cmocka_unit_test(test_section_changes_nothing),
         cmocka_unit_test(test_section_speed_ramp),
         cmocka_unit_test(test_section_matches_stepping),

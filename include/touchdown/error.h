@@ -53,7 +53,8 @@ typedef struct td_error_site {
  * names the part, index and field at fault, and the message reads "PART INDEX: FIELD: REASON"
  * ("PART INDEX: REASON" without a field), REASON starting at message + reason. A cross check
  * names the part it compared against in `other` (the AMB whose air gap a retainer's clearance
- * reaches, the retainer already on a node). Every other error leaves both parts NULL and
+ * reaches, the retainer already on a node, the shaft's nodes, a list of parts with index -1).
+ * Every other error leaves both parts NULL and
  * reason 0.
  */
 typedef struct td_error {

@@ -132,7 +132,7 @@ typedef struct td_sim_stats {
     double wall_time;          /**< s spent inside td_sim_step */
     double peak_amb_force;     /**< N: largest |force| of one AMB axis while the AMB works (steps and outputs) */
     double peak_amb_load;      /**< largest |force| / force_capacity of one AMB axis (1: at its capacity) */
-    double peak_amb_time;      /**< s, time of peak_amb_load (TD_UNDEFINED if no AMB force) */
+    double peak_amb_time;      /**< s, time of peak_amb_load, at most the time reached (TD_UNDEFINED: none) */
     int peak_amb;              /**< AMB of peak_amb_load (-1 if no AMB force) */
     long flight_steps;         /**< steps of the closed-form free flight (root bounds evaluated) */
     double flight_time;        /**< s simulated in closed-form free flight */

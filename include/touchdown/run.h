@@ -148,7 +148,8 @@ typedef struct td_run_summary {
                                               free_at_end == 0; TD_RUN_NOT_APPLICABLE: no contact;
                                               -1: undetermined */
     double revolutions;                  /**< speed (t_reached - t_start) / (2 pi) */
-    double revolutions_after_contact;    /**< speed (t_reached - first_contact_time) / (2 pi), 0 if no contact */
+    double revolutions_after_contact;    /**< speed (t_reached - first_contact_time) / (2 pi); TD_UNDEFINED
+                                              without a contact */
     double wall_time;                    /**< wall-clock time of the whole td_run (solver + output), s */
     double solver_wall_time;             /**< wall-clock time inside td_sim_step, s */
     double wall_time_per_revolution;     /**< the paper's figure of merit: solver wall time after the first

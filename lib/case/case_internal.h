@@ -105,8 +105,23 @@ void td_cr_file_shown(const td_case_reader *r, const char *file, char *buf, size
 void td_cr_key(const config_setting_t *s, char *buf, size_t n);
 /* "FILE:LINE" or "FILE: --set 'K=V'" of a setting. */
 void td_cr_where(const td_case_reader *r, const config_setting_t *s, char *buf, size_t n);
+/* The setting the shaft's node count was read from: shaft.nodes, else shaft.elements (else the
+ * shaft, or NULL): a node index is checked against it. */
+const config_setting_t *td_cr_shaft_nodes(const td_case_reader *r);
+/* td_cr_where of a list whose entries (or each entry's `member`, when not NULL) a rule counts or
+ * looks up, or of the first of them an override wrote: where the user wrote what the rule saw. */
+void td_cr_where_list(const td_case_reader *r, const config_setting_t *list, const char *member, char *buf, size_t n);
 /* Fail with "WHERE: KEY[.sub]: message"; returns TD_ERR_PARSE. `sub` may be NULL. */
 td_status td_cr_fail(td_case_reader *r, const config_setting_t *s, const char *sub, const char *fmt, ...)
+#if defined(__GNUC__)
+    __attribute__((format(printf, 4, 5)))
+#endif
+    ;
+
+/* td_cr_fail at s for a rule that compares s with the setting `other` (NULL: a default), adding
+ * "; see OTHER at WHERE": where the user wrote the other value, a line or a --set. */
+td_status td_cr_fail_vs(td_case_reader *r, const config_setting_t *s, const config_setting_t *other, const char *fmt,
+                        ...)
 #if defined(__GNUC__)
     __attribute__((format(printf, 4, 5)))
 #endif

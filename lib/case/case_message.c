@@ -137,6 +137,29 @@ void td_cr_where(const td_case_reader *r, const config_setting_t *s, char *buf, 
     snprintf(buf, n, "%s:%u", shown, s && config_setting_source_line(s) ? config_setting_source_line(s) : 1u);
 }
 
+const config_setting_t *td_cr_shaft_nodes(const td_case_reader *r)
+{
+    const config_setting_t *shaft = config_setting_get_member(config_root_setting(&r->cfg), "shaft");
+    const config_setting_t *s = shaft ? config_setting_get_member(shaft, "nodes") : NULL;
+    if (!s && shaft)
+        s = config_setting_get_member(shaft, "elements"); /* length + elements: elements + 1 nodes */
+    return s ? s : shaft;
+}
+
+void td_cr_where_list(const td_case_reader *r, const config_setting_t *list, const char *member, char *buf, size_t n)
+{
+    int i, count = list && config_setting_is_aggregate(list) ? config_setting_length(list) : 0;
+    for (i = 0; i < count; i++) {
+        const config_setting_t *e = config_setting_get_elem(list, (unsigned)i);
+        const config_setting_t *t = member ? config_setting_get_member(e, member) : e;
+        if (t && override_of(t)) {
+            td_cr_where(r, t, buf, n);
+            return;
+        }
+    }
+    td_cr_where(r, list, buf, n);
+}
+
 td_status td_cr_fail(td_case_reader *r, const config_setting_t *s, const char *sub, const char *fmt, ...)
 {
     char where[2048], key[512], msg[TD_ERROR_MESSAGE_SIZE];
@@ -156,6 +179,21 @@ td_status td_cr_fail(td_case_reader *r, const config_setting_t *s, const char *s
     }
     /* a long override or path is cut in its middle; the reason stays whole */
     return td_error_set_reason(r->err, TD_ERR_PARSE, where, msg);
+}
+
+td_status td_cr_fail_vs(td_case_reader *r, const config_setting_t *s, const config_setting_t *other, const char *fmt,
+                        ...)
+{
+    char msg[TD_ERROR_MESSAGE_SIZE], key[512], where[1200];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(msg, sizeof msg, fmt, ap);
+    va_end(ap);
+    if (!other || other == s)
+        return td_cr_fail(r, s, NULL, "%s", msg);
+    td_cr_key(other, key, sizeof key);
+    td_cr_where(r, other, where, sizeof where);
+    return td_cr_fail(r, s, NULL, "%s; see %s at %s", msg, key, where);
 }
 
 td_status td_cr_fail_file(td_error *err, td_status code, const char *shown, int line, const char *fmt, ...)

@@ -29,13 +29,16 @@ static const char *const start_names[] = {"orbit", "rest", "auto"}; /* td_start 
 static const char *const contact_names[] = {"constraint", "penalty"};
 static const char *const linsol_names[] = {"klu", "dense"};
 
-/* Fail at member `key` of g when it is there (its line), else at g naming the key. */
-static td_status fail_at(td_case_reader *r, const config_setting_t *g, const char *key, const char *fmt, ...)
+/* Fail at member `key` of g when it is there (its line), else at g naming the key; for a rule
+ * that compares it with `other` (a setting, or NULL), where that was written too. */
+static td_status fail_at(td_case_reader *r, const config_setting_t *g, const char *key, const config_setting_t *other,
+                         const char *fmt, ...)
 #if defined(__GNUC__)
-    __attribute__((format(printf, 4, 5)))
+    __attribute__((format(printf, 5, 6)))
 #endif
     ;
-static td_status fail_at(td_case_reader *r, const config_setting_t *g, const char *key, const char *fmt, ...)
+static td_status fail_at(td_case_reader *r, const config_setting_t *g, const char *key, const config_setting_t *other,
+                         const char *fmt, ...)
 {
     const config_setting_t *s = config_setting_get_member(g, key);
     char msg[256];
@@ -43,7 +46,7 @@ static td_status fail_at(td_case_reader *r, const config_setting_t *g, const cha
     va_start(ap, fmt);
     vsnprintf(msg, sizeof msg, fmt, ap);
     va_end(ap);
-    return s ? td_cr_fail(r, s, NULL, "%s", msg) : td_cr_fail(r, g, key, "%s", msg);
+    return s ? td_cr_fail_vs(r, s, other, "%s", msg) : td_cr_fail(r, g, key, "%s", msg);
 }
 
 /* gravity.direction [gx, gy]: normalised; absent: the record's [0, -1]. */
@@ -196,7 +199,8 @@ static td_status check_initial_step(td_case_reader *r, const config_setting_t *g
 {
     const td_solver_options *o = rec;
     if (o->max_step > 0.0 && o->initial_step > o->max_step)
-        return fail_at(r, g, k->key, "%g s is larger than max_step %g s", o->initial_step, o->max_step);
+        return fail_at(r, g, k->key, config_setting_get_member(g, "max_step"), "%g s is larger than max_step %g s",
+                       o->initial_step, o->max_step);
     return TD_OK;
 }
 
@@ -279,8 +283,8 @@ static td_status read_output_nodes(td_case_reader *r, const config_setting_t *g,
     for (i = 0; i < o->node_count; i++) {
         const config_setting_t *s = config_setting_get_elem(list, (unsigned)i);
         if (o->nodes[i] < 0 || o->nodes[i] >= r->nodes)
-            return td_cr_fail(r, s, NULL, "node %d is out of range (the shaft has nodes 0..%d)", o->nodes[i],
-                              r->nodes - 1);
+            return td_cr_fail_vs(r, s, o->nodes[i] < 0 ? NULL : td_cr_shaft_nodes(r),
+                                 "node %d is out of range (the shaft has nodes 0..%d)", o->nodes[i], r->nodes - 1);
         for (j = 0; j < i; j++)
             if (o->nodes[j] == o->nodes[i])
                 return td_cr_fail(r, s, NULL, "node %d is listed twice", o->nodes[i]);
@@ -351,9 +355,11 @@ static int modal_dofs(const td_case_reader *r)
 static td_status check_speed_max(td_case_reader *r, const config_setting_t *g, const td_cs_key *k, void *rec)
 {
     const td_modal_options *o = rec;
+    int at_max = td_cr_has(g, "speed_max");
     (void)k;
     if (!(o->speed_max > o->speed_min))
-        return fail_at(r, g, td_cr_has(g, "speed_max") ? "speed_max" : "speed_min",
+        return fail_at(r, g, at_max ? "speed_max" : "speed_min",
+                       config_setting_get_member(g, at_max ? "speed_min" : "speed_max"),
                        "speed_max (%g rad/s) must be larger than speed_min (%g rad/s)", o->speed_max, o->speed_min);
     return TD_OK;
 }
@@ -363,7 +369,7 @@ static td_status check_speed_steps(td_case_reader *r, const config_setting_t *g,
     const td_modal_options *o = rec;
     int dofs = modal_dofs(r);
     if (td_cr_has(g, k->key) && (long)o->speed_steps * dofs > TD_MODAL_MAX_GRID_WORK)
-        return fail_at(r, g, k->key,
+        return fail_at(r, g, k->key, td_cr_shaft_nodes(r),
                        "%d speeds on a model of %d DOFs is too much work: speed_steps x DOFs must "
                        "stay below %ld (here at most %ld speeds; see docs/performance.md)",
                        o->speed_steps, dofs, (long)TD_MODAL_MAX_GRID_WORK, (long)TD_MODAL_MAX_GRID_WORK / dofs);
@@ -375,7 +381,11 @@ static td_status read_modes(td_case_reader *r, const config_setting_t *g, const 
 {
     td_modal_options *o = rec;
     int dofs = modal_dofs(r);
-    return td_cr_int(r, g, k->key, NULL, o->mode_count < dofs ? o->mode_count : dofs, 1, dofs, &o->mode_count);
+    td_status st =
+        td_cr_int(r, g, k->key, NULL, o->mode_count < dofs ? o->mode_count : dofs, 1, TD_CR_ANY_INT_HI, &o->mode_count);
+    if (st == TD_OK && o->mode_count > dofs) /* the bound is the shaft's: say where its nodes were written */
+        return fail_at(r, g, k->key, td_cr_shaft_nodes(r), "must lie in [1, %d] (got %d)", dofs, o->mode_count);
+    return st;
 }
 
 static void modal_preset(void *rec)
@@ -481,7 +491,8 @@ static td_status check_atol(td_case_reader *r, const config_setting_t *root)
 
 /* The unbalance force U Omega^2 of every entry of the list `key` with a magnitude, at the case
  * speed, within TD_MAX_UNBALANCE_FORCE (the lists were read and checked by case_parts.c). */
-static td_status check_unbalance_forces(td_case_reader *r, const config_setting_t *root, const char *key, double speed)
+static td_status check_unbalance_forces(td_case_reader *r, const config_setting_t *root, const char *key, double speed,
+                                        const config_setting_t *fastest)
 {
     const config_setting_t *list = config_setting_get_member(root, key), *s;
     double u, force;
@@ -492,9 +503,9 @@ static td_status check_unbalance_forces(td_case_reader *r, const config_setting_
             continue;
         force = u * speed * speed;
         if (!(force <= TD_MAX_UNBALANCE_FORCE))
-            return td_cr_fail(r, s, NULL,
-                              "the unbalance force U Omega^2 = %g kg m x (%g rad/s)^2 = %.3g N exceeds %.0e N", u,
-                              speed, force, TD_MAX_UNBALANCE_FORCE);
+            return td_cr_fail_vs(r, s, fastest,
+                                 "the unbalance force U Omega^2 = %g kg m x (%g rad/s)^2 = %.3g N exceeds %.0e N", u,
+                                 speed, force, TD_MAX_UNBALANCE_FORCE);
     }
     return TD_OK;
 }
@@ -537,9 +548,9 @@ static td_status check_run(td_case_reader *r, const config_setting_t *root, cons
     if (st == TD_OK)
         st = check_atol(r, root);
     if (st == TD_OK)
-        st = check_unbalance_forces(r, root, "unbalances", speed);
+        st = check_unbalance_forces(r, root, "unbalances", speed, fastest);
     if (st == TD_OK)
-        st = check_unbalance_forces(r, root, "schedule", speed);
+        st = check_unbalance_forces(r, root, "schedule", speed, fastest);
     return st;
 }
 

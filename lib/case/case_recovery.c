@@ -42,7 +42,8 @@ static int controller_index(const td_model *m, const char *name)
 static td_status name_index(td_case_reader *r, const config_setting_t *s, int *out)
 {
     const td_model *m = r->c->model;
-    char names[256] = "", shown[64];
+    const config_setting_t *list = config_setting_get_member(config_root_setting(&r->cfg), "controllers");
+    char names[256] = "", shown[64], where[1200];
     size_t len = 0;
     int i;
     if (config_setting_type(s) != CONFIG_TYPE_STRING)
@@ -54,8 +55,13 @@ static td_status name_index(td_case_reader *r, const config_setting_t *s, int *o
         snprintf(names + len, sizeof names - len, "%s\"%.60s\"", i ? ", " : "", controller_name(m, i));
         len = strlen(names);
     }
-    return td_cr_fail(r, s, NULL, "no controller is named \"%s\" (the controllers table names %s)",
-                      td_cr_printable(config_setting_get_string(s), shown, sizeof shown), len ? names : "none");
+    if (!list)
+        return td_cr_fail(r, s, NULL, "no controller is named \"%s\" (the case has no controllers table)",
+                          td_cr_printable(config_setting_get_string(s), shown, sizeof shown));
+    td_cr_where_list(r, list, "name", where, sizeof where); /* a --set may have renamed one */
+    return td_cr_fail(r, s, NULL,
+                      "no controller is named \"%s\" (the controllers table names %s; see controllers at %s)",
+                      td_cr_printable(config_setting_get_string(s), shown, sizeof shown), len ? names : "none", where);
 }
 
 /* nominal or controller: a name, or a list (or array) of names, one per pair. */

@@ -149,6 +149,18 @@ static const td_cs_table section_material_table = {"shaft.sections[].material",
                                                    NULL,
                                                    NULL};
 
+/* Element index `key` of section sec, 0 .. count - 1: the bound is the shaft's, so a value past it
+ * also says where the shaft's elements were written (a --set may have changed them). */
+static td_status read_element(td_case_reader *r, const config_setting_t *sec, const char *key, const char *what,
+                              int count, int *out)
+{
+    td_status st = td_cr_int(r, sec, key, what, 0, TD_CR_ANY_INT_LO, TD_CR_ANY_INT_HI, out);
+    if (st == TD_OK && (*out < 0 || *out > count - 1))
+        return td_cr_fail_vs(r, config_setting_get_member(sec, key), *out < 0 ? NULL : td_cr_shaft_nodes(r),
+                             "must lie in [0, %d] (got %d)", count - 1, *out);
+    return st;
+}
+
 /* A section's elements: `element`, or `from` + `to`; they start from the element at `from`. */
 static td_status read_section_range(td_case_reader *r, const config_setting_t *sec, const td_cs_key *k, void *rec)
 {
@@ -160,12 +172,12 @@ static td_status read_section_range(td_case_reader *r, const config_setting_t *s
         if (td_cr_has(sec, "from") || td_cr_has(sec, "to"))
             return td_cr_fail(r, config_setting_get_member(sec, "element"), NULL,
                               "give either 'element' or 'from' + 'to', not both");
-        st = td_cr_int(r, sec, "element", NULL, 0, 0, count - 1, &sr->from);
+        st = read_element(r, sec, "element", NULL, count, &sr->from);
         sr->to = sr->from;
     } else {
-        st = td_cr_int(r, sec, "from", "first element of the section; or give 'element'", 0, 0, count - 1, &sr->from);
+        st = read_element(r, sec, "from", "first element of the section; or give 'element'", count, &sr->from);
         if (st == TD_OK)
-            st = td_cr_int(r, sec, "to", "last element of the section (inclusive)", 0, 0, count - 1, &sr->to);
+            st = read_element(r, sec, "to", "last element of the section (inclusive)", count, &sr->to);
         if (st == TD_OK && sr->to < sr->from)
             return td_cr_fail(r, config_setting_get_member(sec, "to"), NULL, "must be >= from (%d), got %d", sr->from,
                               sr->to);

@@ -50,7 +50,8 @@ static const config_setting_t *entry(const config_setting_t *root, const char *k
 }
 
 /* The case entry a model part was read from: discs then point masses are the model's discs, each
- * other list is one kind of part in order; NULL for the shaft's elements (sections) and unknowns. */
+ * other list is one kind of part in order, index -1 the list itself; the shaft; NULL for the
+ * shaft's elements (sections) and unknowns. */
 static const config_setting_t *part_entry(const config_setting_t *root, const td_model *model,
                                           const td_error_site *site)
 {
@@ -68,11 +69,12 @@ static const config_setting_t *part_entry(const config_setting_t *root, const td
     }
     if (strcmp(site->part, "change") == 0) /* numbered in time order; the entry is its order of addition */
         return entry(root, "schedule", td_model_change_entry(model, site->index));
-    if (strcmp(site->part, "spin") == 0 || strcmp(site->part, "recovery") == 0)
+    if (strcmp(site->part, "spin") == 0 || strcmp(site->part, "recovery") == 0 || strcmp(site->part, "shaft") == 0)
         return config_setting_get_member(root, site->part);
     for (k = 0; k < sizeof parts / sizeof parts[0]; k++)
         if (strcmp(site->part, parts[k][0]) == 0)
-            return entry(root, parts[k][1], site->index);
+            return site->index < 0 ? config_setting_get_member(root, parts[k][1])
+                                   : entry(root, parts[k][1], site->index);
     return NULL;
 }
 
@@ -85,9 +87,14 @@ static td_status fail_with_other(td_case_reader *r, const config_setting_t *root
     char key[512], where[1200];
     if (!other)
         return td_cr_fail(r, field_setting(g, &merr->site), NULL, "%s", merr->message + merr->reason);
-    other = field_setting(other, &merr->other);
+    other = strcmp(merr->other.part, "shaft") == 0 && merr->other.field && strcmp(merr->other.field, "nodes") == 0
+                ? td_cr_shaft_nodes(r)
+                : field_setting(other, &merr->other);
     td_cr_key(other, key, sizeof key);
-    td_cr_where(r, other, where, sizeof where);
+    if (merr->other.index < 0) /* a list the rule counted: where its entries were written */
+        td_cr_where_list(r, other, NULL, where, sizeof where);
+    else
+        td_cr_where(r, other, where, sizeof where);
     return td_cr_fail(r, field_setting(g, &merr->site), NULL, "%s; see %s at %s", merr->message + merr->reason, key,
                       where);
 }

@@ -578,11 +578,14 @@ double td_model_reduction(const td_model *m)
     return m ? m->reduction_cutoff : 0.0;
 }
 
+/* A node of part i: one of the shaft's, whose count is compared against (other: the shaft's nodes). */
 static td_status check_node(const td_model *m, const char *part, int i, const char *field, int node, td_error *err)
 {
     int nodes = td_model_node_count(m);
     if (node < 0 || node >= nodes)
-        return FAIL_AT(err, part, i, field, "node %d is out of range (the shaft has nodes 0..%d)", node, nodes - 1);
+        return td_error_set_site(err, TD_ERR_INVALID, &(td_error_site){part, i, field},
+                                 &(td_error_site){"shaft", 0, "nodes"},
+                                 "node %d is out of range (the shaft has nodes 0..%d)", node, nodes - 1);
     return TD_OK;
 }
 
@@ -607,17 +610,19 @@ static td_status check_air_gaps(const td_model *m, int i, td_error *err)
     return TD_OK;
 }
 
-/* Every change names an unbalance or AMB that exists. */
+/* Every change names an unbalance or AMB that exists (other: their list, index -1). */
 static td_status check_changes(const td_model *m, td_error *err)
 {
     int i;
     for (i = 0; i < m->changes.count; i++) {
         const td_change *c = &m->changes.items[i];
         int limit = c->kind == TD_CHANGE_UNBALANCE ? m->unbalances.count : m->ambs.count;
+        const char *part = c->kind == TD_CHANGE_UNBALANCE ? "unbalance" : "amb";
         if (c->index >= limit)
-            return FAIL_AT(err, "change", i, "index",
-                           "%s %d does not exist (%d defined, indices start at 0; the change at t = %g s)",
-                           c->kind == TD_CHANGE_UNBALANCE ? "unbalance" : "AMB", c->index, limit, c->time);
+            return td_error_set_site(err, TD_ERR_INVALID, &(td_error_site){"change", i, "index"},
+                                     &(td_error_site){part, -1, NULL},
+                                     "%s %d does not exist (%d defined, indices start at 0; the change at t = %g s)",
+                                     c->kind == TD_CHANGE_UNBALANCE ? "unbalance" : "AMB", c->index, limit, c->time);
     }
     return TD_OK;
 }

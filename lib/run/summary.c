@@ -23,6 +23,7 @@ void td_run_summary_init(td_run_summary *s, double t0, double t_end, double spee
     s->speed = speed;
     s->first_contact_time = TD_UNDEFINED;
     s->last_contact_time = TD_UNDEFINED;
+    s->revolutions_after_contact = TD_UNDEFINED; /* no contact, no revolutions after it (set with the first) */
     s->peak_time = TD_UNDEFINED;
     s->peak_retainer = -1;
     s->peak_housing_retainer = -1;

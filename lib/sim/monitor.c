@@ -100,23 +100,18 @@ static void monitor_slew(td_sim *s, double t, const double *y)
     s->monitor.slewing = now;
 }
 
-/* Statistics at the state in s->dae.y (time t): contact and slewing time, peak normal force, AMB
- * load, and, at integrator steps only (at_step; interpolated states carry the interpolation
- * error), the drift. The contact time is signed as the slewing time is: a retainer's mode holds
- * over a step (it changes at stops only), and an output inside the last step takes back the part
- * of the step beyond it, so that the time is exact at every time reached, the run's end included,
- * and a change made there counts from there. */
-void td_sim_monitor_at(td_sim *s, double t, int at_step)
+/* The peaks at the state y (time t): the retainers' normal forces (the run's peak, the open
+ * interval's), the AMBs' load and, at an integrator step's end only (at_step; interpolated states
+ * carry the interpolation error), the drift; with the retainers' own peaks (totals.c) when the
+ * point was held (td_sim_monitor_step_ahead), which then skipped them. */
+static void monitor_peaks(td_sim *s, double t, const double *y, int at_step)
 {
-    const double *y = N_VGetArrayPointer(s->dae.y);
-    double dt = t - s->monitor.t_acc;
     int k;
     for (k = 0; k < s->dae.nr; k++) {
         const td_sim_retainer *r = &s->contacts.ret[k];
         double fn;
         if (r->mode == TD_RMODE_FREE)
             continue;
-        s->monitor.stats.time_in_contact += dt;
         if (r->mode == TD_RMODE_CONTACT && at_step) {
             double x, yy, vx, vy, drift;
             td_sim_node_state(s, k, y, &x, &yy, &vx, &vy);
@@ -133,9 +128,61 @@ void td_sim_monitor_at(td_sim *s, double t, int at_step)
         }
     }
     monitor_ambs(s, t, y);
+}
+
+/* The held point (td_sim_monitor_step_ahead) once the run has reached t: its peaks recorded now,
+ * before those of any later point, so that the first instant of a peak stays the first. */
+static void monitor_reach(td_sim *s, double t)
+{
+    if (!s->monitor.ahead || s->monitor.ahead_t > t)
+        return;
+    s->monitor.ahead = 0;
+    monitor_peaks(s, s->monitor.ahead_t, s->monitor.ahead_y, 1);
+    td_sim_totals_peaks(s, s->monitor.ahead_y);
+}
+
+/* The times summed at the state in s->dae.y (time t): contact and slewing time. They are signed:
+ * a retainer's mode holds over a step (it changes at stops only), and an output inside the last
+ * step takes back the part of the step beyond it, so that the time is exact at every time
+ * reached, the run's end included, and a change made there counts from there. */
+static void monitor_sums(td_sim *s, double t)
+{
+    double dt = t - s->monitor.t_acc;
+    int k;
+    for (k = 0; k < s->dae.nr; k++)
+        if (s->contacts.ret[k].mode != TD_RMODE_FREE)
+            s->monitor.stats.time_in_contact += dt;
     if (s->dae.n_slew_roots > 0)
-        monitor_slew(s, t, y);
+        monitor_slew(s, t, N_VGetArrayPointer(s->dae.y));
     s->monitor.t_acc = t;
+}
+
+/* Statistics at the state in s->dae.y (time t), a point the run has reached: the times summed and
+ * the peaks, after those of a held point it has reached. */
+void td_sim_monitor_at(td_sim *s, double t, int at_step)
+{
+    monitor_reach(s, t);
+    monitor_sums(s, t);
+    monitor_peaks(s, t, N_VGetArrayPointer(s->dae.y), at_step);
+}
+
+/* An integrator step's end at t beyond the output time the call returns at: the times summed now
+ * (the output takes back the part beyond it), the peaks held with a copy of the state. A peak is
+ * never a value beyond the time reached, with its time ahead of it: the held point counts once the
+ * run reaches it, and not at all if the run goes on from before it (td_sim_monitor_settle). */
+void td_sim_monitor_step_ahead(td_sim *s, double t)
+{
+    monitor_reach(s, t);
+    monitor_sums(s, t);
+    memcpy(s->monitor.ahead_y, N_VGetArrayPointer(s->dae.y), sizeof(double) * (size_t)s->dae.neq);
+    s->monitor.ahead_t = t;
+    s->monitor.ahead = 1;
+}
+
+void td_sim_monitor_settle(td_sim *s, double t)
+{
+    monitor_reach(s, t);
+    s->monitor.ahead = 0;
 }
 
 /* The next queued event into s->monitor.last (td_sim_last_event); 0 when the queue is empty. */

@@ -45,6 +45,12 @@ typedef struct td_sim_monitor {
     int slewing;        /* AMB axes slewing at the last point (slew_t) */
     double slew_t;      /* time_slewing is accounted up to here (monitor.c) */
     int slew_kink;      /* the last stop was on a slew's kink (sim_modes.c td_sim_handle_roots) */
+
+    /* an integrator step's end beyond the output time (monitor.c td_sim_monitor_step_ahead): its
+     * peaks wait until the run reaches it (td_sim_monitor_at, td_sim_monitor_settle) */
+    int ahead;       /* a point is held */
+    double ahead_t;  /* its time, beyond s->dae.t */
+    double *ahead_y; /* neq: its state */
 } td_sim_monitor;
 
 #endif

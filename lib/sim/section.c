@@ -200,22 +200,36 @@ void td_sim_section_end(td_sim *s)
         td_sim_section_free(s);
 }
 
+/* The crossings taken up to the time reached: an integrator step is covered whole when it is
+ * accepted, and an output inside it leaves its crossings beyond the output stored, to count once
+ * the run gets there (as the retainers' totals take back the part of the step beyond it), never at
+ * an end_time before them. */
+static long reached_count(const td_sim *s)
+{
+    const section *c = s->section;
+    long n = c->count, kept = c->high - c->capacity > 0 ? c->high - c->capacity : 0;
+    while (n > kept && c->time[(n - 1) % c->capacity] > s->dae.t)
+        n--;
+    return n;
+}
+
 long td_sim_section_count(const td_sim *s)
 {
-    return s && s->section ? s->section->count : 0;
+    return s && s->section ? reached_count(s) : 0;
 }
 
 int td_sim_section_read(const td_sim *s, int retainer, double *t, double *r, int max)
 {
     const section *c = s ? s->section : NULL;
-    long first, i;
+    long first, i, count;
     int n = 0;
     if (!c || retainer < 0 || retainer >= s->dae.nr || max <= 0)
         return 0;
+    count = reached_count(s);
     first = c->high - c->capacity > 0 ? c->high - c->capacity : 0;
-    if (c->count - first > max)
-        first = c->count - max;
-    for (i = first; i < c->count; i++, n++) {
+    if (count - first > max)
+        first = count - max;
+    for (i = first; i < count; i++, n++) {
         long slot = i % c->capacity;
         if (t)
             t[n] = c->time[slot];

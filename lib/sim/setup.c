@@ -101,9 +101,10 @@ static td_status alloc_arrays(td_sim *s, td_error *err)
         calloc(TD_ROOTS_PER_RETAINER * nr + (size_t)(s->dae.n_sat_roots + s->dae.n_slew_roots), sizeof(int));
     s->loop.ysave = calloc((size_t)s->dae.neq, sizeof(double));
     s->loop.ypsave = calloc((size_t)s->dae.neq, sizeof(double));
+    s->monitor.ahead_y = calloc((size_t)s->dae.neq, sizeof(double));
     if (!ok || !s->machine.unb || !s->machine.amb_mode || !s->machine.amb_control || !s->machine.held_current ||
         !s->machine.amb_coef || !s->monitor.queue || !s->dae.rootdir || !s->dae.rootsfound || !s->loop.ysave ||
-        !s->loop.ypsave)
+        !s->loop.ypsave || !s->monitor.ahead_y)
         return td_error_set(err, TD_ERR_NOMEM, "out of memory creating a simulation");
     return TD_OK;
 }
@@ -442,6 +443,7 @@ void td_sim_teardown(td_sim *s)
     free(s->dae.rootdir);
     free(s->dae.rootsfound);
     free(s->loop.ysave);
+    free(s->monitor.ahead_y);
     free(s->loop.ypsave);
     td_sim_races_free(s);
     td_sim_flight_free(s);

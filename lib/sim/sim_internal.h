@@ -255,9 +255,15 @@ td_event td_sim_event_at(const td_sim *s, td_event_kind kind, int k);
 int td_sim_pop_event(td_sim *s);
 /* AMB axis k's force `force` at time t: a new peak load if it is the largest yet. */
 void td_sim_monitor_amb_load(td_sim *s, int k, double force, double t);
-/* Statistics at the state in s->dae.y (time t): contact time, peak normal force, AMB load, and at an
- * integrator step's end (at_step) the constraint drift. */
+/* Statistics at the state in s->dae.y (time t), a point the run has reached: contact time, peak
+ * normal force, AMB load, and at an integrator step's end (at_step) the constraint drift. */
 void td_sim_monitor_at(td_sim *s, double t, int at_step);
+/* An integrator step's end at t beyond the output time: its times summed, its peaks held until the
+ * run reaches t (td_sim_monitor_at, td_sim_monitor_settle). */
+void td_sim_monitor_step_ahead(td_sim *s, double t);
+/* The run goes on from t (a restart, the flight, a failure's last state): a held point at or before
+ * t is recorded, one beyond it dropped (it belongs to an integration that is discarded). */
+void td_sim_monitor_settle(td_sim *s, double t);
 
 /* ---- energy.c, totals.c: the energy account and the retainers' running totals ------------- */
 
@@ -276,6 +282,9 @@ void td_sim_energy_get(const td_sim *s, td_energy *out);
 /* A point of the totals at time t with the state in s->dae.y: closes the segment since the last point
  * (restart 0: an accepted step or a stop), or opens one after a restart (restart 1). */
 void td_sim_totals_point(td_sim *s, double t, int restart);
+/* The retainers' peaks (housing and normal force) at the state y; td_sim_totals_point records them
+ * but at a point the monitor holds (td_sim_monitor_step_ahead), whose peaks come when it is reached. */
+void td_sim_totals_peaks(td_sim *s, const double *y);
 /* Before a restart at s->dae.t inside the integrator's last step (a change between steps): the totals
  * taken back to s->dae.t. */
 void td_sim_totals_rewind(td_sim *s);

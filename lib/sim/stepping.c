@@ -27,6 +27,7 @@ static td_status solver_failure(td_sim *s, int flag)
         memcpy(N_VGetArrayPointer(s->dae.y), s->loop.ysave, sizeof(double) * (size_t)s->dae.neq);
         memcpy(N_VGetArrayPointer(s->dae.yp), s->loop.ypsave, sizeof(double) * (size_t)s->dae.neq);
     }
+    td_sim_monitor_settle(s, s->dae.t); /* the run ends here: a step held beyond the output counts if reached */
     snprintf(s->errmsg, sizeof s->errmsg, "t = %.9g s: IDA failed (flag %d): %.400s", s->dae.t, flag, msg);
     return TD_ERR_SOLVER;
 }
@@ -67,6 +68,7 @@ static td_status restart_integrator(td_sim *s)
 {
     td_status st;
     td_sim_section_rewind(s);
+    td_sim_monitor_settle(s, s->dae.t);
     st = td_sim_restart(s);
     if (st == TD_OK)
         s->loop.pending = 0;
@@ -164,12 +166,16 @@ static int pending_stop(td_sim *s, double tout, td_status *st)
 }
 
 /* The state at tret accepted (an integrator step's end, at_step, or the flight's): statistics,
- * and the state kept as the last good one. */
-static void accept_point(td_sim *s, double tret, int at_step)
+ * and the state kept as the last good one. A step's end beyond the output time (ahead) has its
+ * peaks held until the run reaches it (td_sim_monitor_step_ahead). */
+static void accept_point(td_sim *s, double tret, int at_step, int ahead)
 {
     s->dae.t = tret;
     td_sim_spin_hold(s, tret, N_VGetArrayPointer(s->dae.y), N_VGetArrayPointer(s->dae.yp));
-    td_sim_monitor_at(s, tret, at_step);
+    if (ahead)
+        td_sim_monitor_step_ahead(s, tret);
+    else
+        td_sim_monitor_at(s, tret, at_step);
     td_sim_totals_point(s, tret, 0);
     memcpy(s->loop.ysave, N_VGetArrayPointer(s->dae.y), sizeof(double) * (size_t)s->dae.neq);
     memcpy(s->loop.ypsave, N_VGetArrayPointer(s->dae.yp), sizeof(double) * (size_t)s->dae.neq);
@@ -180,14 +186,15 @@ static void accept_point(td_sim *s, double tret, int at_step)
  * reached, an event to report or a failure), 2 to go on. */
 static int fly(td_sim *s, double tout, td_status *st)
 {
-    double stop = td_sim_next_stop(s);
+    double stop = td_sim_next_stop(s), t0 = s->dae.t;
     int root = 0;
     if (!td_sim_flight_advance(s, N_VGetArrayPointer(s->solver.atol), tout, stop, &root))
         return 0;
     s->solver.ida_stale = 1; /* IDA's history is of the state before the flight */
     s->solver.t_ida = s->dae.t;
+    td_sim_monitor_settle(s, t0); /* and so is a step of IDA's held beyond t0 */
     td_sim_section_flight(s, s->dae.t);
-    accept_point(s, s->dae.t, 0);
+    accept_point(s, s->dae.t, 0, 0);
     *st = TD_OK;
     if (root || s->dae.t >= stop) {
         *st = root ? handle_stop(s, TD_PENDING_ROOT) : flight_stop(s);
@@ -227,6 +234,7 @@ td_status td_sim_advance(td_sim *s, double tout)
         }
         if (tout - s->dae.t <= 1e-14 * (1.0 + fabs(tout))) { /* too close for IDA to start: nothing moves */
             s->dae.t = tout;
+            td_sim_monitor_settle(s, tout);
             return TD_OK;
         }
         if (s->interrupt && *s->interrupt) {
@@ -252,7 +260,7 @@ td_status td_sim_advance(td_sim *s, double tout)
         if (IDAGetCurrentTime(s->solver.ida, &tn) == IDA_SUCCESS && tn > s->solver.t_ida)
             s->solver.t_ida = tn;
         if (td_sim_stalled(s, tret)) {
-            accept_point(s, tret, 1); /* the run ends at the stalled step, its state in place */
+            accept_point(s, tret, 1, 0); /* the run ends at the stalled step, its state in place */
             return TD_ERR_SOLVER;
         }
         if (flag == IDA_ROOT_RETURN || flag == IDA_TSTOP_RETURN) {
@@ -268,7 +276,7 @@ td_status td_sim_advance(td_sim *s, double tout)
             s->loop.t_pending = tret;
             continue;
         }
-        accept_point(s, tret, 1);
+        accept_point(s, tret, 1, tret > tout);
         td_sim_section_ida(s, tret);
         td_sim_flight_forget(s);
         if (tret > tout) { /* an output inside this step: its sample counts too */

@@ -73,6 +73,17 @@ static void track_interval(td_sim *s, int k)
     tk->in_contact = in;
 }
 
+void td_sim_totals_peaks(td_sim *s, const double *y)
+{
+    int k;
+    for (k = 0; k < s->dae.nr; k++) {
+        td_sim_totals *tk = &s->monitor.totals[k];
+        tk->t.peak_housing_force = fmax(tk->t.peak_housing_force, housing_force(s, k, y));
+        if (s->contacts.ret[k].mode != TD_RMODE_FREE) /* as integrands_at's n */
+            tk->t.peak_normal_force = fmax(tk->t.peak_normal_force, td_sim_normal_force(s, k, y));
+    }
+}
+
 void td_sim_totals_point(td_sim *s, double t, int restart)
 {
     const double *y = N_VGetArrayPointer(s->dae.y);
@@ -81,7 +92,6 @@ void td_sim_totals_point(td_sim *s, double t, int restart)
     for (k = 0; k < s->dae.nr; k++) {
         td_sim_totals *tk = &s->monitor.totals[k];
         integrands now = integrands_at(s, k, y);
-        double hf = housing_force(s, k, y);
         if (dt > 0.0) {
             tk->t.impulse += 0.5 * dt * (tk->prev.n + now.n);
             tk->t.normal_force_sq += 0.5 * dt * (tk->prev.n2 + now.n2);
@@ -92,8 +102,6 @@ void td_sim_totals_point(td_sim *s, double t, int restart)
             if (s->contacts.ret[k].rolling)
                 tk->t.rolling_time += dt;
         }
-        tk->t.peak_housing_force = fmax(tk->t.peak_housing_force, hf);
-        tk->t.peak_normal_force = fmax(tk->t.peak_normal_force, now.n);
         tk->prev.n = now.n;
         tk->prev.n2 = now.n2;
         tk->prev.power = now.power;
@@ -101,6 +109,8 @@ void td_sim_totals_point(td_sim *s, double t, int restart)
         if (restart || dt > 0.0)
             track_interval(s, k);
     }
+    if (!(s->monitor.ahead && s->monitor.ahead_t == t))
+        td_sim_totals_peaks(s, y);
     if (s->opt.energy)
         td_sim_energy_point(s, t, restart, dt);
     if (t > s->monitor.totals_t || restart)

@@ -149,7 +149,7 @@ disc-inertia-overflow.cfg|:5: discs[0].radius: the disc inertia from radius, thi
 shaft-diameter-overflow.cfg|:7: shaft.outer_diameter: the second moment of area pi (D^4 - d^4) / 64 overflows (to inf)
 shaft-nodes-too-close.cfg|:4: shaft.nodes: an element stiffness E I / L^3 from the element length L overflows (to inf)
 speed-overflow-orbit.cfg|:3: speed: 1e+300 rad/s over 0.1 s makes 1.59e+298 shaft revolutions (at most 1e+06)
-unbalance-force-overflow.cfg|:6: unbalances[0].magnitude: the unbalance force U Omega^2 = 1e+300 kg m x (100 rad/s)^2 = 1e+304 N exceeds 1e+12 N
+unbalance-force-overflow.cfg|:6: unbalances[0].magnitude: the unbalance force U Omega^2 = 1e+300 kg m x (100 rad/s)^2 = 1e+304 N exceeds 1e+12 N; see speed at BAD/../case/run.cfg:2
 unbalance-wrap-same-line.cfg|:5: unbalances[0].magnitude: integer 4294967296 is out of range (at most 2147483647; libconfig would read 0)
 line-endings-cr.cfg|:5: carriage return without a line feed (CR-only line endings are not supported; save the file with LF or CRLF line endings)
 speed-unbounded.cfg|:3: speed: 1e+20 rad/s over 0.1 s makes 1.59e+18 shaft revolutions (at most 1e+06)
@@ -259,10 +259,13 @@ EOF
 
 # ---- the case reader's own rules, forms and getters through its tables: the whole message of a
 # --set on tests/data/case/all-keys.cfg (a row check, a custom reader or a typed getter of each
-# kind; the text as the reader gave it before it read by tables) ----------------------------
+# kind; the text as the reader gave it before it read by tables; @CASE@ stands for the file). A rule
+# that compares the key with another says where that one was written: a line of the file, or the
+# --set that gave it, when the key it fails at is in the file ---------------------------------
 all_keys=$src/tests/data/case/all-keys.cfg
 while IFS='|' read -r set rest; do
     [ -z "$set" ] && continue
+    rest=${rest//@CASE@/$all_keys}
     run_tool info -n 1 --set "$set" "$all_keys"
     if [ "$rc" = 2 ] && [ "$err" = "touchdown: $all_keys$rest" ] && [ -z "$out" ]; then
         pass "info --set '$set' -> exact message"
@@ -270,19 +273,23 @@ while IFS='|' read -r set rest; do
         fail "info --set '$set': exit $rc, stderr '$err', expected 'touchdown: $all_keys$rest'"
     fi
 done <<'EOF'
-solver.initial_step=1.0|: --set 'solver.initial_step=1.0': solver.initial_step: 1 s is larger than max_step 0.0001 s
+solver.initial_step=1.0|: --set 'solver.initial_step=1.0': solver.initial_step: 1 s is larger than max_step 0.0001 s; see solver.max_step at @CASE@:69
+solver.max_step=1e-7|:69: solver.initial_step: 1e-06 s is larger than max_step 1e-07 s; see solver.max_step at @CASE@: --set 'solver.max_step=1e-7'
 contact.exponent=0.5|: --set 'contact.exponent=0.5': contact.exponent: must be >= 1 (got 0.5)
-modal.speed_max=1.0|: --set 'modal.speed_max=1.0': modal.speed_max: speed_max (1 rad/s) must be larger than speed_min (10 rad/s)
-modal.speed_steps=100000|: --set 'modal.speed_steps=100000': modal.speed_steps: 100000 speeds on a model of 28 DOFs is too much work: speed_steps x DOFs must stay below 200000 (here at most 7142 speeds; see docs/performance.md)
-modal.modes=1000|: --set 'modal.modes=1000': modal.modes: must lie in [1, 28] (got 1000)
+modal.speed_max=1.0|: --set 'modal.speed_max=1.0': modal.speed_max: speed_max (1 rad/s) must be larger than speed_min (10 rad/s); see modal.speed_min at @CASE@:72
+modal.speed_min=1e9|:72: modal.speed_max: speed_max (500 rad/s) must be larger than speed_min (1e+09 rad/s); see modal.speed_min at @CASE@: --set 'modal.speed_min=1e9'
+modal.speed_steps=100000|: --set 'modal.speed_steps=100000': modal.speed_steps: 100000 speeds on a model of 28 DOFs is too much work: speed_steps x DOFs must stay below 200000 (here at most 7142 speeds; see docs/performance.md); see shaft.elements at @CASE@:13
+modal.modes=1000|: --set 'modal.modes=1000': modal.modes: must lie in [1, 28] (got 1000); see shaft.elements at @CASE@:13
 output.nodes=[1, 1]|: --set 'output.nodes=[1, 1]': output.nodes[1]: node 1 is listed twice
-output.nodes=[99]|: --set 'output.nodes=[99]': output.nodes[0]: node 99 is out of range (the shaft has nodes 0..6)
+output.nodes=[99]|: --set 'output.nodes=[99]': output.nodes[0]: node 99 is out of range (the shaft has nodes 0..6); see shaft.elements at @CASE@:13
 gravity.direction=[1.0, 2.0, 3.0]|: --set 'gravity.direction=[1.0, 2.0, 3.0]': gravity.direction: too many entries (3, at most 2)
 gravity.direction=[0.0, 0.0]|: --set 'gravity.direction=[0.0, 0.0]': gravity.direction: must not be the zero vector
 gravity.direction=[1.0]|: --set 'gravity.direction=[1.0]': gravity.direction: expected two components [gx, gy], got 1
 shaft.nodes=[0.0, 1.0]|: --set 'shaft.nodes=[0.0, 1.0]': shaft.nodes: give either 'nodes' or 'length' + 'elements', not both
 shaft.sections[0].element=1|: --set 'shaft.sections[0].element=1': shaft.sections[0].element: give either 'element' or 'from' + 'to', not both
 shaft.sections[0].to=-1|: --set 'shaft.sections[0].to=-1': shaft.sections[0].to: must lie in [0, 5] (got -1)
+shaft.sections[0].to=9|: --set 'shaft.sections[0].to=9': shaft.sections[0].to: must lie in [0, 5] (got 9); see shaft.elements at @CASE@:13
+shaft.elements=2|:20: shaft.sections[1].element: must lie in [0, 1] (got 4); see shaft.elements at @CASE@: --set 'shaft.elements=2'
 shaft.sections[1].element=0|:20: shaft.sections[1]: element 0 is already in sections[0]; sections must not overlap
 shaft.refine=5000|: --set 'shaft.refine=5000': shaft.refine: 6 elements split 5000 times make 30000 (at most 10000)
 shaft.damping={ ratio = 0.01; frequencies = [10.0]; }|: --set 'shaft.damping={ ratio = 0.01; frequencies = [10.0]; }': shaft.damping: give either 'rayleigh' or 'damping', not both

@@ -2,7 +2,8 @@
 # A failure is never a number (docs/output-format.md, "Undefined values"): a sweep point that
 # failed has NaN for every answer in the CSV ("nan") and the HDF5 table, beside its status, and
 # counts as failed (exit 1, --json); a failed run's JSON has null answers, never 0; a run without
-# contact has no first-contact time (null in JSON, NaN in its files) and no whirl frequency;
+# contact has no first-contact time and no revolutions after it (null in JSON, NaN in its files)
+# and no whirl frequency;
 # touchdown plot leaves the failed point out of the lines, marks it and says so on stderr.
 # Cheap: paper case A for 0.03 s, where the start orbit at 190 rad/s lies outside the clearance.
 # Args: $1 = the touchdown binary, $2 = the source directory. Runs in the build's tests directory.
@@ -81,6 +82,8 @@ for k in peak_housing_force total_impulse friction_work final_speed contact_time
 done
 check "failed run (exit 2): its JSON answers are null, never 0${bad:+:$bad}" \
     test "$rc" = 2 -a -z "$bad" -a "$(jf "$o" status)" = '"invalid argument"' -a "$(jf "$o" complete)" = false
+check "failed run before any contact: JSON first_contact_time and revolutions_after_contact null" \
+    test "$(jf "$o" first_contact_time)" = null -a "$(jf "$o" revolutions_after_contact)" = null
 
 # ---- a run without contact: no first-contact time, no whirl frequency, in JSON and its files ------
 t "$work/n" run --json -o n --set end_time=0.03 --set speed=60 "$case_a"
@@ -88,15 +91,18 @@ o=$work/n/.out
 check "run without contact: JSON first_contact_time, last_contact_time and ending_whirl_frequency null" \
     test "$rc" = 0 -a "$(jf "$o" contacts)" = 0 -a "$(jf "$o" first_contact_time)" = null -a \
     "$(jf "$o" last_contact_time)" = null -a "$(jf "$o" ending_whirl_frequency)" = null
-check "run without contact: its CSV says nan, never -1, for the times and the flags" \
-    test "$(grep -cE '^# (summary_first_contact_time|summary_last_contact_time|first_contact_time|summary_ending_whirl_frequency|summary_returned_to_free_orbit) = nan$' "$work/n/n.csv")" = 5 -a \
+check "run without contact: JSON revolutions_after_contact null, never 0 ($(jf "$o" revolutions_after_contact))" \
+    test "$(jf "$o" revolutions_after_contact)" = null
+check "run without contact: its CSV says nan, never -1 or 0, for the times, the flags and the revolutions after contact" \
+    test "$(grep -cE '^# (summary_first_contact_time|summary_last_contact_time|first_contact_time|summary_ending_whirl_frequency|summary_returned_to_free_orbit|summary_revolutions_after_contact) = nan$' "$work/n/n.csv")" = 6 -a \
     -z "$(grep -E '^# [a-z_]+ = -[12]$' "$work/n/n.csv")"
 if [ -n "$py" ]; then
-    check "run without contact: its HDF5 attributes are NaN, never -1" "$py" - "$work/n/n.h5" <<'EOF'
+    check "run without contact: its HDF5 attributes are NaN, never -1 or 0" "$py" - "$work/n/n.h5" <<'EOF'
 import sys, h5py, numpy as np
 a = h5py.File(sys.argv[1], "r").attrs
 keys = ("summary_first_contact_time", "summary_last_contact_time", "first_contact_time",
-        "summary_ending_whirl_frequency", "summary_returned_to_free_orbit", "summary_free_at_end")
+        "summary_ending_whirl_frequency", "summary_returned_to_free_orbit", "summary_free_at_end",
+        "summary_revolutions_after_contact")
 sys.exit(0 if all(np.isnan(a[k]) for k in keys) else 1)
 EOF
 fi
