@@ -32,6 +32,8 @@ typedef struct td_sim_machine {
     double *held_current;      /* per AMB axis: the current command (A) a sampled controller holds
                                 * on it between its samples (sampler.c writes it, the residual reads
                                 * it); 0 for an axis no sampled controller drives */
+    double *amb_current;       /* per AMB axis (2 amb + axis): the caller's held current command (A) for
+                                * TD_AMB_CURRENT (td_sim_set_amb_current) */
     int next_change;           /* first schedule entry not yet applied */
     td_sim_amb_coef *amb_coef; /* per AMB axis */
 
