@@ -20,12 +20,6 @@ from fmu_common import FMICallException, Instance, check, finish, pack  # noqa: 
 H = 1e-4
 
 
-def started(path, parameters=None):
-    inst = Instance(path)
-    inst.start(0.0, 0.01, parameters)
-    return inst
-
-
 def nan_input(inst):
     inst.set(["ambs[0].current_x"], [math.nan])
     inst.fmu.doStep(currentCommunicationPoint=0.0, communicationStepSize=H)
@@ -55,7 +49,7 @@ def zero_step(inst):
 
 # name: (what it does to an FMU with current inputs, a word its message must hold)
 STEPPING = {"NaN current input": (nan_input, "nan"), "infinite current input": (inf_input, "inf"),
-            "setReal of an output": (set_output, "sensed_x"), "an unknown value reference": (unknown_reference, ""),
+            "setReal of an output": (set_output, "is not a Real input"), "an unknown value reference": (unknown_reference, ""),
             "doStep at a time that is not the FMU's": (wrong_time, "time"),
             "doStep of zero length": (zero_step, "step")}
 PARAMETERS = {"negative clearance": ({"retainers[0].clearance": -1.0e-3}, "clearance"),
@@ -68,10 +62,12 @@ def child(kind, name, path):
     inst = None
     try:
         if kind == "stepping":
-            inst = started(path)
+            inst = Instance(path)
+            inst.start(0.0, 0.01)
             STEPPING[name][0](inst)
         elif kind == "parameter":
-            inst = started(path, PARAMETERS[name][0])
+            inst = Instance(path)
+            inst.start(0.0, 0.01, PARAMETERS[name][0])
         else:  # an FMU whose unpacked directory was spoiled, or a wrong GUID
             inst = Instance(path, unzipdir=sys.argv[5] if len(sys.argv) > 5 else None,
                             guid="{00000000-0000-0000-0000-000000000000}" if name == "wrong GUID" else None,

@@ -1,11 +1,13 @@
 """The closed loop through an independent importer: cases/paper-a-digital.cfg (case A, its AMBs' PD
 sampled at 10 kHz with one sample of delay) packed as an FMU whose inputs are the AMB currents,
 stepped by fmpy every 0.1 ms with the same PD written in Python (examples/fmu_pd_loop.py, from the
-textbook's Tustin rule), against the built-in run of the case (touchdown run). Over the first 50 ms after the
-unbalance step (end_time 0.15 s: first contact at 0.105 s, some 150 contact events, all of them
-settled: `touchdown run --spread 5` gives the same count at atol +-1 %) they agree on the first
-contact time, the peak contact force and the event count within TOL below. The FMU with no inputs
-(the case's own PD inside), stepped by the same importer, agrees too.
+textbook's Tustin rule), against the built-in run of the case (touchdown run). To END = 0.14 s
+(first contact at 0.105 s, then some 95 contact events) they agree on the first contact time, the
+peak contact force and the event count within TOL below. The two compute the same law in another
+order, so their currents differ in the last bits; the bouncing amplifies that, and at 0.1405 s the
+Python loop has a grazing contact (an onset and a release 25 us apart) that the built-in run does
+not: from there their event counts differ (by 2 at 0.15 s), which is why the window ends before it.
+The FMU with no inputs (the case's own PD inside), stepped by the same importer, agrees too.
 
     test_loop.py TOOL SOURCE_DIR BUILD_DIR FMU_BINARY [--json FILE]    (the numbers as one JSON object into FILE, for docs/fmu.md)
 """
@@ -17,11 +19,13 @@ import tempfile
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from fmu_common import Instance, check, close, finish, native, pack, pd_loop, results  # noqa: E402
 
-# The tolerances: the two loops compute the same PD in different order (the Tustin recursion here,
-# the library's realisation there), so their currents differ in the last bits and contact times by
-# rounding; the peak force moves by less than its spread over atol +-1 % (about 5e-5 relative).
-TOL = {"first_contact_time": 1e-9, "peak_normal_force": 1e-4, "events": 0}
-END, H = 0.15, 1e-4
+# The tolerances. The first contact comes before the two PDs' last-bit differences can move it (it
+# is the same to the bit); the peak contact force moves by about 1e-6 relative (from the PDs'
+# rounding, and from the communication points where the integrator stops): the tolerance is ten
+# times that, a fifth of what it moves by over atol +-1 % (touchdown run --spread 5 of the case to
+# 0.15 s: 4.5e-5); the contact events are counted exactly.
+TOL = {"first_contact_time": 1e-9, "peak_normal_force": 1e-5, "events": 0}
+END, H = 0.14, 1e-4
 KP, KD, FC, DELAY = 1.0e4, 40.0, 2000.0, 1  # cases/paper-a-digital.cfg's law
 
 tool, src = sys.argv[1:3]
