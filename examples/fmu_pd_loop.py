@@ -1,8 +1,8 @@
 #!/usr/bin/env python3
 """Close the loop of a touchdown FMU with your own controller in Python, through fmpy (pip install fmpy).
 
-    touchdown fmu cases/paper-a-digital.cfg --inputs current -o PaperA.fmu
-    python3 fmu_pd_loop.py PaperA.fmu [--step 1e-4] [--end 0.15] [--kp 1e4] [--kd 40] [--filter 2000] [--delay 1]
+    touchdown fmu cases/paper-a-digital.cfg --inputs current --set end_time=0.14 -o PaperA.fmu
+    python3 fmu_pd_loop.py PaperA.fmu [--step 1e-4] [--end 0.14] [--kp 1e4] [--kd 40] [--filter 2000] [--delay 1]
 
 Every --step seconds (the communication step: the controller's sample time) it reads each AMB
 axis's sensed displacement, computes the axis's current with a PD, kp + kd s / (1 + s / (2 pi
@@ -79,7 +79,7 @@ def main():
     p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     p.add_argument("fmu")
     p.add_argument("--step", type=float, default=1e-4, help="communication step = sample time, s")
-    p.add_argument("--end", type=float, default=0.15, help="s")
+    p.add_argument("--end", type=float, default=0.14, help="s")
     p.add_argument("--kp", type=float, default=1.0e4, help="A/m")
     p.add_argument("--kd", type=float, default=40.0, help="A s/m")
     p.add_argument("--filter", type=float, default=2000.0, help="the derivative's filter corner, Hz")
