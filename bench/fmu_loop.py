@@ -18,7 +18,8 @@ import fmu_pd_loop  # noqa: E402
 path, mode, end, step = sys.argv[1], sys.argv[2], float(sys.argv[3]), float(sys.argv[4])
 t0 = time.process_time()
 if mode == "pd":
-    answers, n = fmu_pd_loop.run(path, end, step, 1.0e4, 40.0, 2000.0, 1)  # cases/paper-a-digital.cfg's PD
+    d = fmu_pd_loop.PAPER_A_DIGITAL
+    answers, n = fmu_pd_loop.run(path, end, step, d["kp"], d["kd"], d["fc"], d["delay"])
 else:
     fmu, md, vr = fmu_pd_loop.open_fmu(path)
     fmu.setupExperiment(startTime=0.0, stopTime=end)
@@ -27,10 +28,7 @@ else:
     n = int(round(end / step))
     for k in range(n):
         fmu.doStep(currentCommunicationPoint=k * step, communicationStepSize=step)
-    occurred = fmu.getBoolean([vr["contact_occurred"]])[0]
-    answers = {"first_contact_time": fmu.getReal([vr["first_contact_time"]])[0] if occurred else None,
-               "peak_contact_force": fmu.getReal([vr["peak_contact_force"]])[0],
-               "events": fmu.getInteger([vr["events"]])[0]}
+    answers = fmu_pd_loop.answers(fmu, vr)
     fmu.terminate()
     fmu.freeInstance()
     shutil.rmtree(fmu.unzipDirectory, ignore_errors=True)

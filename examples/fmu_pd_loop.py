@@ -20,6 +20,11 @@ from fmpy import extract, read_model_description
 from fmpy.fmi2 import FMU2Slave
 
 
+# cases/paper-a-digital.cfg's digital PD: kp A/m, kd A s/m, the derivative filter's corner Hz, samples
+# of delay (its controllers[0]); the defaults below
+PAPER_A_DIGITAL = {"kp": 1.0e4, "kd": 40.0, "fc": 2000.0, "delay": 1}
+
+
 class PD:
     """kp + kd s / (1 + s / (2 pi fc)) on the error e = -xs (the reference is the centre), by
     Tustin's rule s = (2/T)(1 - z^-1)/(1 + z^-1) at the sample time T; the current of sample k is
@@ -49,6 +54,14 @@ def open_fmu(path, callbacks=None):
     return fmu, md, {v.name: v.valueReference for v in md.modelVariables}
 
 
+def answers(fmu, vr):
+    """The run's answers so far, as the FMU gives them; the first contact time None before one."""
+    occurred = fmu.getBoolean([vr["contact_occurred"]])[0]
+    return {"first_contact_time": fmu.getReal([vr["first_contact_time"]])[0] if occurred else None,
+            "peak_contact_force": fmu.getReal([vr["peak_contact_force"]])[0],
+            "events": fmu.getInteger([vr["events"]])[0]}
+
+
 def run(path, end, step, kp, kd, fc, delay, callbacks=None):
     """The loop: the FMU's answers at `end` and the number of steps taken."""
     fmu, md, vr = open_fmu(path, callbacks)
@@ -65,14 +78,11 @@ def run(path, end, step, kp, kd, fc, delay, callbacks=None):
         xs = fmu.getReal(sensed)
         fmu.setReal(currents, [law.step(x) for law, x in zip(laws, xs)])
         fmu.doStep(currentCommunicationPoint=k * step, communicationStepSize=step)
-    occurred = fmu.getBoolean([vr["contact_occurred"]])[0]
-    answers = {"first_contact_time": fmu.getReal([vr["first_contact_time"]])[0] if occurred else None,
-               "peak_contact_force": fmu.getReal([vr["peak_contact_force"]])[0],
-               "events": fmu.getInteger([vr["events"]])[0]}
+    out = answers(fmu, vr)
     fmu.terminate()
     fmu.freeInstance()
     shutil.rmtree(fmu.unzipDirectory, ignore_errors=True)  # what extract() unpacked
-    return answers, n
+    return out, n
 
 
 def main():
@@ -80,14 +90,15 @@ def main():
     p.add_argument("fmu")
     p.add_argument("--step", type=float, default=1e-4, help="communication step = sample time, s")
     p.add_argument("--end", type=float, default=0.14, help="s")
-    p.add_argument("--kp", type=float, default=1.0e4, help="A/m")
-    p.add_argument("--kd", type=float, default=40.0, help="A s/m")
-    p.add_argument("--filter", type=float, default=2000.0, help="the derivative's filter corner, Hz")
-    p.add_argument("--delay", type=int, default=1, help="samples of computation delay")
+    d = PAPER_A_DIGITAL
+    p.add_argument("--kp", type=float, default=d["kp"], help="A/m")
+    p.add_argument("--kd", type=float, default=d["kd"], help="A s/m")
+    p.add_argument("--filter", type=float, default=d["fc"], help="the derivative's filter corner, Hz")
+    p.add_argument("--delay", type=int, default=d["delay"], help="samples of computation delay")
     a = p.parse_args()
-    answers, n = run(a.fmu, a.end, a.step, a.kp, a.kd, a.filter, a.delay)
+    out, n = run(a.fmu, a.end, a.step, a.kp, a.kd, a.filter, a.delay)
     print("%d steps of %g s" % (n, a.step))
-    for k, v in answers.items():
+    for k, v in out.items():
         print("%-20s %s" % (k, "n/a (no contact)" if v is None else "%.9g" % v))
 
 

@@ -120,20 +120,20 @@ class Instance:
             shutil.rmtree(self.dir, ignore_errors=True)
 
 
-RESULTS = ["first_contact_time", "peak_contact_force", "events", "contact_occurred"]
-
-
 def results(inst):
-    """The run's answers as the FMU gives them, under the names of the native run's statistics."""
-    fct, peak, events, occurred = inst.get(RESULTS)
-    return {"first_contact_time": fct if occurred else None, "peak_normal_force": peak, "events": events}
+    """The run's answers as the FMU gives them (examples/fmu_pd_loop.py reads them), under the names of
+    the native run's statistics."""
+    out = fmu_pd_loop.answers(inst.fmu, inst.vr)
+    out["peak_normal_force"] = out.pop("peak_contact_force")
+    return out
 
 
-def pd_loop(path, end, h, kp, kd, fc, delay):
-    """The FMU (inputs: AMB currents) in a loop closed by a PD per AMB axis in Python, stepped every h
-    s to `end`: examples/fmu_pd_loop.py, the loop docs/fmu.md shows. Its answers under the names of
-    the native run's statistics, and the number of steps."""
-    answers, n = fmu_pd_loop.run(path, end, h, kp, kd, fc, delay)
+def pd_loop(path, end, h):
+    """The FMU (inputs: AMB currents) in a loop closed by cases/paper-a-digital.cfg's PD per AMB axis
+    in Python, stepped every h s to `end`: examples/fmu_pd_loop.py, the loop docs/fmu.md shows. Its
+    answers under the names of the native run's statistics, and the number of steps."""
+    d = fmu_pd_loop.PAPER_A_DIGITAL
+    answers, n = fmu_pd_loop.run(path, end, h, d["kp"], d["kd"], d["fc"], d["delay"])
     answers["peak_normal_force"] = answers.pop("peak_contact_force")
     return answers, n
 

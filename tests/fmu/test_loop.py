@@ -30,7 +30,6 @@ from fmu_common import Instance, check, close, finish, native, pack, pd_loop, re
 TOL = {"first_contact_time": 1e-9, "peak_normal_force": 1e-5, "events": 0}
 END, H = 0.14, 1e-4
 LONG, LONG_TOL = 0.3, 0.01
-KP, KD, FC, DELAY = 1.0e4, 40.0, 2000.0, 1  # cases/paper-a-digital.cfg's law
 
 tool, src = sys.argv[1:3]
 as_json = sys.argv[6] if len(sys.argv) > 6 and sys.argv[5] == "--json" else None
@@ -41,7 +40,7 @@ ref = {k: ref[k] for k in ("first_contact_time", "peak_normal_force", "events")}
 
 with tempfile.TemporaryDirectory() as tmp:
     fmu = pack(tool, case, os.path.join(tmp, "PaperA.fmu"), "current", sets)
-    loop, steps = pd_loop(fmu, END, H, KP, KD, FC, DELAY)
+    loop, steps = pd_loop(fmu, END, H)
     inner = pack(tool, case, os.path.join(tmp, "PaperAInner.fmu"), "none", sets)
     inst = Instance(inner)
     inst.start(0.0, END)
@@ -60,7 +59,7 @@ def compare(name, got):
 
 with tempfile.TemporaryDirectory() as tmp:
     fmu = pack(tool, case, os.path.join(tmp, "PaperALong.fmu"), "current", ["end_time=%g" % LONG])
-    long_loop, _ = pd_loop(fmu, LONG, H, KP, KD, FC, DELAY)
+    long_loop, _ = pd_loop(fmu, LONG, H)
 long_ref = native(tool, case, ["end_time=%g" % LONG])
 check("to %g s: the peak contact force %r within %g of the built-in run's %r" % (
     LONG, long_loop["peak_normal_force"], LONG_TOL, long_ref["peak_normal_force"]),
