@@ -20,8 +20,6 @@
 
 /* The generic FMU binary (fmu/ of the source tree), renamed to the model identifier in each FMU. */
 #define FMU_BINARY "touchdown-fmu.so"
-/* The longest model identifier taken (td_fmu_stage's bound): it names binaries/linux64/ID.so. */
-#define FMU_ID_MAX 63
 
 static const char fmu_usage[] =
     "usage: touchdown fmu [OPTIONS] CASE -o NAME.fmu\n"
@@ -35,7 +33,8 @@ static const char fmu_usage[] =
     "\n"
     "options:\n"
     "  -o, --output NAME.fmu  the FMU to write (required); NAME, its model identifier, is a C\n"
-    "                         identifier: a letter or '_', then letters, digits or '_'\n"
+    "                         identifier: a letter or '_', then letters, digits or '_', at\n"
+    "                         most 63 characters\n"
     "  -i, --inputs KIND      what the FMU's inputs drive: \"current\" (default), a current command\n"
     "                         per AMB axis (A) into the amplifier; \"force\", a control force per AMB\n"
     "                         axis (N); \"none\", no inputs: the case's own AMB laws and controllers\n"
@@ -59,28 +58,17 @@ typedef struct fmu_args {
     int quiet;
 } fmu_args;
 
-/* NAME of dir/NAME.fmu into id (FMU_ID_MAX + 1 bytes), a C identifier. 0, or an error line and 2. */
-static int model_identifier(const char *out, char *id)
+/* NAME of dir/NAME.fmu into id (n bytes): the model identifier, which td_fmu_stage judges. 0, or an
+ * error line and 2. */
+static int model_identifier(const char *out, char *id, size_t n)
 {
     const char *slash = strrchr(out, '/'), *name = slash ? slash + 1 : out;
-    size_t i, len = strlen(name);
+    size_t len = strlen(name);
     if (len < 4 || strcmp(name + len - 4, ".fmu") != 0) {
         td_cli_error("fmu", "--output '%s': an FMU's name ends in .fmu (FMI 2.0, 2.3)", out);
         return TD_EXIT_USAGE;
     }
-    len -= 4;
-    for (i = 0; i < len; i++)
-        if (!(isalpha((unsigned char)name[i]) || name[i] == '_' || (i > 0 && isdigit((unsigned char)name[i]))))
-            break;
-    if (len == 0 || i < len || len > FMU_ID_MAX) {
-        td_cli_error("fmu",
-                     "--output '%s': '%.*s' is the FMU's model identifier, which names C functions: a letter or '_', "
-                     "then letters, digits or '_' (at most %d)",
-                     out, (int)(len < 64 ? len : 64), name, FMU_ID_MAX);
-        return TD_EXIT_USAGE;
-    }
-    memcpy(id, name, len);
-    id[len] = '\0';
+    snprintf(id, n, "%.*s", (int)(len - 4 < n ? len - 4 : n - 1), name);
     return 0;
 }
 
@@ -222,7 +210,10 @@ static int stage_and_pack(const fmu_args *a, const char *id, const char *binary,
     td_error_clear(&err);
     st = td_fmu_stage(a->case_path, a->sets.items, a->sets.count, a->inputs, id, stage, &err);
     if (st != TD_OK) {
-        td_cli_error("fmu", "%s", err.message[0] ? err.message : td_strerror(st));
+        /* TD_ERR_INVALID: the model identifier, which is the output's name (the case's errors are
+         * TD_ERR_PARSE or TD_ERR_IO) */
+        td_cli_error("fmu", "%s%s%s%s", st == TD_ERR_INVALID ? "--output '" : "", st == TD_ERR_INVALID ? a->out : "",
+                     st == TD_ERR_INVALID ? "': " : "", err.message[0] ? err.message : td_strerror(st));
         code = td_cli_exit_code(st);
     } else if (*cancel || fmu_pack(stage, binary, id, a->out, cancel, msg, sizeof msg) != 0) {
         td_cli_error("fmu", "%s: %s", a->out, *cancel ? "interrupted" : msg);
@@ -239,13 +230,13 @@ int td_cmd_fmu(int argc, char **argv)
 {
     fmu_args a;
     td_case *c = NULL;
-    char id[FMU_ID_MAX + 1], binary[4200], stage[4200];
+    char id[4096], binary[4200], stage[4200];
     int code;
     memset(&a, 0, sizeof a);
     a.inputs = TD_FMU_INPUTS_CURRENT;
     if ((code = parse_args(argc, argv, &a)))
         return code < 0 ? TD_EXIT_OK : code;
-    if ((code = model_identifier(a.out, id)))
+    if ((code = model_identifier(a.out, id, sizeof id)))
         return code;
     /* the case read as the FMU will read it, for its errors and its files (never overwritten) */
     if ((code = td_cli_load_case(a.case_path, &a.sets, &c)))
