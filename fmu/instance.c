@@ -199,15 +199,19 @@ static fmi2Status apply_inputs(td_fmu_instance *in)
     return fmi2OK;
 }
 
-/* Every AMB in the mode of the inputs (none: the case's own laws drive them). */
+/* Every AMB driven by the inputs (none: the case's own laws drive them); one the case's schedule has
+ * failed at the start stays failed, and its restore (if the schedule has one) gives it to the inputs. */
 static fmi2Status input_modes(td_fmu_instance *in)
 {
     td_amb_mode mode = in->settings.inputs == TD_FMU_INPUTS_CURRENT ? TD_AMB_CURRENT : TD_AMB_EXTERNAL;
     td_error err;
     int a;
-    for (a = 0; in->settings.inputs != TD_FMU_INPUTS_NONE && a < td_model_amb_count(td_sim_model(in->sim)); a++)
-        if (td_sim_set_amb_mode(in->sim, a, mode, &err) != TD_OK)
+    for (a = 0; in->settings.inputs != TD_FMU_INPUTS_NONE && a < td_model_amb_count(td_sim_model(in->sim)); a++) {
+        int failed = td_sim_amb_mode(in->sim, a) == TD_AMB_OFF;
+        if (td_sim_set_amb_mode(in->sim, a, mode, &err) != TD_OK ||
+            (failed && td_sim_set_amb_mode(in->sim, a, TD_AMB_OFF, &err) != TD_OK))
             return td_fmu_log(in, fmi2Error, "%s", err.message);
+    }
     in->inputs_held = 0;
     return apply_inputs(in);
 }

@@ -35,6 +35,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <time.h>
 #include <unistd.h>
 
 #define CASE "cases/paper-a-digital.cfg"
@@ -392,7 +393,8 @@ static void axis_vrs(const fmu_api *api, int a, fmi2ValueReference *sensed, fmi2
 static void closed_loop(const char **ov, int nov, double *fmu, double *builtin)
 {
     fmi2ValueReference vs[MAX_AXES], vc[MAX_AXES], unused;
-    double e[MAX_AXES], u[MAX_AXES], first, peak, de0 = 0.0, e0 = 0.0;
+    double e[MAX_AXES], u[MAX_AXES], first, peak, de0 = 0.0, e0 = 0.0, cpu_builtin, cpu_fmu;
+    clock_t cpu;
     fmu_api api;
     log_lines log = {0};
     builtin_run r;
@@ -402,12 +404,15 @@ static void closed_loop(const char **ov, int nov, double *fmu, double *builtin)
     long k, n = (long)(T_END * RATE + 0.5), events;
     int j;
     law_get(cs, &L);
+    cpu = clock();
     run_builtin(ov, nov, T_END, &r);
+    cpu_builtin = (double)(clock() - cpu) / CLOCKS_PER_SEC;
     load_fmu(&api, ov, nov, TD_FMU_INPUTS_CURRENT);
     for (j = 0; j < L.nin; j++)
         axis_vrs(&api, L.in[j], &vs[j], &unused);
     for (j = 0; j < L.nout; j++)
         axis_vrs(&api, L.out[j], &unused, &vc[j]);
+    cpu = clock();
     c = start(&api, &log, T_END);
     for (k = 0; k < n; k++) {
         double t = (double)k / RATE, h = (double)(k + 1) / RATE - t; /* t_k as the sampler takes it */
@@ -422,7 +427,9 @@ static void closed_loop(const char **ov, int nov, double *fmu, double *builtin)
         if (api.do_step(c, t, h, fmi2True) != fmi2OK)
             fail_msg("fmi2DoStep at %g: %s", t, log.last);
     }
+    cpu_fmu = (double)(clock() - cpu) / CLOCKS_PER_SEC;
     fmu_answers(&api, c, &first, &peak, &events);
+    printf("closed loop: CPU %.3g s through the FMU, %.3g s built-in (information only)\n", cpu_fmu, cpu_builtin);
     printf("closed loop at %g Hz: sensed error at the last sample before contact (k = %ld) %.3g m of %.3g m\n", RATE,
            r.k0, de0, e0);
     printf("closed loop: first contact %.17g s (built-in %.17g, difference %.3g s)\n", first,
@@ -570,12 +577,150 @@ static void test_parameters(void **state)
     unload_fmu(&api);
 }
 
+/* A schedule's failure and restore of an AMB the caller drives: the failure holds over the caller's
+ * mode, and the restore gives the AMB back to the caller's drive (not to the built-in law); an FMU
+ * whose case fails an AMB at the start leaves it failed although its inputs drive the others. */
+static void test_schedule_and_inputs(void **state)
+{
+    const char *ov[] = {"end_time=0.03", "schedule = ( { time = 0.0; amb_off = 1; }, { time = 0.01; amb_off = 0; }, "
+                                         "{ time = 0.02; amb_on = 0; } )"};
+    td_case *c = td_test_load_case(CASE, ov, 2);
+    fmu_api api;
+    log_lines log = {0};
+    fmi2ValueReference f[2], in;
+    fmi2Real i = 1.0, v[2];
+    fmi2Component fc;
+    td_sim *s = NULL;
+    td_error err;
+    (void)state;
+    assert_int_equal(td_sim_create(td_case_model(c), td_case_sim_options(c), &s, &err), TD_OK);
+    assert_int_equal(td_sim_amb_mode(s, 1), TD_AMB_OFF);
+    assert_int_equal(td_sim_set_amb_mode(s, 0, TD_AMB_CURRENT, &err), TD_OK);
+    while (td_sim_step(s, 0.015, NULL, &err) == TD_EVENT)
+        ;
+    assert_int_equal(td_sim_amb_mode(s, 0), TD_AMB_OFF);
+    while (td_sim_step(s, 0.025, NULL, &err) == TD_EVENT)
+        ;
+    assert_int_equal(td_sim_amb_mode(s, 0), TD_AMB_CURRENT);
+    assert_int_equal(td_sim_amb_mode(s, 2), -1);
+    td_sim_free(&s);
+    td_case_free(&c);
+    load_fmu(&api, ov, 2, TD_FMU_INPUTS_CURRENT);
+    fc = start(&api, &log, 0.03);
+    f[0] = vr_of(&api, "ambs[1].force_x"), f[1] = vr_of(&api, "ambs[1].force_y"), in = vr_of(&api, "ambs[1].current_x");
+    assert_int_equal(api.set_real(fc, &in, 1, &i), fmi2OK);
+    assert_int_equal(api.do_step(fc, 0.0, 1e-3, fmi2True), fmi2OK);
+    assert_int_equal(api.get_real(fc, f, 2, v), fmi2OK);
+    assert_true(v[0] == 0.0 && v[1] == 0.0); /* failed: no force at all, whatever the input */
+    api.free_instance(fc);
+    unload_fmu(&api);
+}
+
+/* Force inputs: the control forces ki i of case A's digital law, held through the FMU's
+ * ambs[i].control_force_* inputs (TD_AMB_EXTERNAL), give the sensed displacements of the same loop
+ * closed on td_sim directly with td_sim_set_amb_control, bit for bit (the same calls in the same
+ * order). */
+static void test_force_inputs(void **state)
+{
+    const char *ov[] = {"end_time=0.02"};
+    td_case *c = td_test_load_case(CASE, ov, 1);
+    const td_model *m = td_case_model(c);
+    fmi2ValueReference vs[MAX_AXES], vf[MAX_AXES];
+    double e[MAX_AXES], u[MAX_AXES], f[MAX_AXES] = {0}, held[MAX_AXES] = {0}, q[4096], direct[MAX_AXES];
+    fmu_api api;
+    log_lines log = {0};
+    fmi2Component fc;
+    td_sim *s = NULL;
+    td_error err;
+    law L;
+    long k, n = 200;
+    int j, a;
+    (void)state;
+    law_get(c, &L);
+    assert_int_equal(td_sim_create(m, td_case_sim_options(c), &s, &err), TD_OK);
+    assert_true(td_sim_dof_count(s) <= 4096);
+    for (a = 0; a < td_model_amb_count(m); a++) /* as the FMU starts: the modes, then the inputs' start values */
+        assert_int_equal(td_sim_set_amb_mode(s, a, TD_AMB_EXTERNAL, &err), TD_OK);
+    for (a = 0; a < td_model_amb_count(m); a++)
+        assert_int_equal(td_sim_set_amb_control(s, a, 0.0, 0.0, &err), TD_OK);
+    for (k = 0; k < n; k++) {
+        td_sim_get_state(s, q, NULL);
+        for (j = 0; j < L.nin; j++) {
+            td_amb amb;
+            td_model_get_amb(m, L.in[j] / 2, &amb);
+            e[j] =
+                -td_system_node_displacement(td_sim_system(s), q, amb.sensor_node, L.in[j] % 2 ? TD_DOF_Y : TD_DOF_X);
+        }
+        law_sample(&L, e, u);
+        for (j = 0; j < L.nout; j++) {
+            td_amb amb;
+            td_model_get_amb(m, L.out[j] / 2, &amb);
+            f[L.out[j]] = amb.ki * u[j];
+        }
+        for (a = 0; a < td_model_amb_count(m) && memcmp(f, held, sizeof f) != 0; a++) /* as the FMU: a change only */
+            assert_int_equal(td_sim_set_amb_control(s, a, f[2 * a], f[2 * a + 1], &err), TD_OK);
+        memcpy(held, f, sizeof f);
+        /* t + h as fmi2DoStep forms it */
+        while (td_sim_step(s, (double)k / RATE + ((double)(k + 1) / RATE - (double)k / RATE), NULL, &err) == TD_EVENT)
+            ;
+    }
+    td_sim_get_state(s, q, NULL);
+    for (j = 0; j < L.nin; j++) {
+        td_amb amb;
+        td_model_get_amb(m, L.in[j] / 2, &amb);
+        direct[j] =
+            td_system_node_displacement(td_sim_system(s), q, amb.sensor_node, L.in[j] % 2 ? TD_DOF_Y : TD_DOF_X);
+    }
+    td_sim_free(&s);
+    law_free(&L);
+    law_get(c, &L);
+    load_fmu(&api, ov, 1, TD_FMU_INPUTS_FORCE);
+    for (j = 0; j < L.nin; j++) {
+        char name[64];
+        snprintf(name, sizeof name, "ambs[%d].sensed_%c", L.in[j] / 2, L.in[j] % 2 ? 'y' : 'x');
+        vs[j] = vr_of(&api, name);
+    }
+    for (j = 0; j < 2 * td_model_amb_count(m); j++) {
+        char name[64];
+        snprintf(name, sizeof name, "ambs[%d].control_force_%c", j / 2, j % 2 ? 'y' : 'x');
+        vf[j] = vr_of(&api, name);
+    }
+    fc = start(&api, &log, 0.02);
+    for (k = 0; k < n; k++) {
+        assert_int_equal(api.get_real(fc, vs, (size_t)L.nin, e), fmi2OK);
+        for (j = 0; j < L.nin; j++)
+            e[j] = -e[j];
+        law_sample(&L, e, u);
+        for (j = 0; j < L.nout; j++) {
+            td_amb amb;
+            td_model_get_amb(m, L.out[j] / 2, &amb);
+            f[L.out[j]] = amb.ki * u[j];
+        }
+        assert_int_equal(api.set_real(fc, vf, (size_t)(2 * td_model_amb_count(m)), f), fmi2OK);
+        assert_int_equal(api.do_step(fc, (double)k / RATE, (double)(k + 1) / RATE - (double)k / RATE, fmi2True),
+                         fmi2OK);
+    }
+    assert_int_equal(api.get_real(fc, vs, (size_t)L.nin, e), fmi2OK);
+    for (j = 0; j < L.nin; j++)
+        assert_true(e[j] == direct[j]);
+    printf("force inputs: sensed x of AMB 0 at 0.02 s %.17g m through the FMU and directly\n", e[0]);
+    api.free_instance(fc);
+    unload_fmu(&api);
+    law_free(&L);
+    td_case_free(&c);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_stage),          cmocka_unit_test(test_no_inputs),
-        cmocka_unit_test(test_closed_loop_pd), cmocka_unit_test(test_closed_loop_pd_clip_slew),
-        cmocka_unit_test(test_bad_inputs),     cmocka_unit_test(test_parameters),
+        cmocka_unit_test(test_stage),
+        cmocka_unit_test(test_no_inputs),
+        cmocka_unit_test(test_closed_loop_pd),
+        cmocka_unit_test(test_closed_loop_pd_clip_slew),
+        cmocka_unit_test(test_bad_inputs),
+        cmocka_unit_test(test_parameters),
+        cmocka_unit_test(test_schedule_and_inputs),
+        cmocka_unit_test(test_force_inputs),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

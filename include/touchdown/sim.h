@@ -113,7 +113,12 @@ TD_API double td_sim_speed(const td_sim *sim);
  * Invalid arguments give TD_ERR_INVALID, a failed restart its status; *err says which. */
 TD_API td_status td_sim_set_unbalance(td_sim *sim, int unbalance, double magnitude, double phase, td_error *err);
 TD_API td_status td_sim_set_speed(td_sim *sim, double omega, td_error *err);
+/** AMB `amb`'s mode from now on. A mode other than TD_AMB_OFF is also the one a schedule's restore
+ *  (TD_CHANGE_AMB_ON) returns the AMB to after a failure (TD_AMB_PD until the caller chooses one). */
 TD_API td_status td_sim_set_amb_mode(td_sim *sim, int amb, td_amb_mode mode, td_error *err);
+/** AMB `amb`'s mode now (TD_AMB_OFF while a schedule's failure holds); -1 for a NULL sim or an AMB it
+ *  does not have. */
+TD_API int td_sim_amb_mode(const td_sim *sim, int amb);
 /** Control force (ki times current) of AMB `amb` for TD_AMB_EXTERNAL, held until the next call:
  *  the total force is ks x + f (clipped when the AMB saturates), N. */
 TD_API td_status td_sim_set_amb_control(td_sim *sim, int amb, double fx, double fy, td_error *err);

@@ -28,6 +28,9 @@ typedef struct td_sim_machine {
     int nu;
     td_unbalance *unb;
     td_amb_mode *amb_mode;     /* per AMB */
+    td_amb_mode *amb_drive;    /* per AMB: how it is driven while it works (TD_AMB_PD, or the last of
+                                * TD_AMB_EXTERNAL, TD_AMB_CURRENT the caller chose); a schedule's
+                                * restore (TD_CHANGE_AMB_ON) returns it to this */
     double *amb_control;       /* per AMB, x and y: held control force (TD_AMB_EXTERNAL) */
     double *held_current;      /* per AMB axis: the current command (A) a sampled controller holds
                                 * on it between its samples (sampler.c writes it, the residual reads

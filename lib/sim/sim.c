@@ -265,7 +265,14 @@ td_status td_sim_set_amb_mode(td_sim *sim, int amb, td_amb_mode mode, td_error *
         return failed(sim, TD_ERR_INVALID, err);
     }
     td_sim_amb_mode_set(sim, amb, mode);
+    if (mode != TD_AMB_OFF)
+        sim->machine.amb_drive[amb] = mode;
     return reported(sim, td_sim_restart_after_change(sim), err);
+}
+
+int td_sim_amb_mode(const td_sim *sim, int amb)
+{
+    return sim && amb >= 0 && amb < td_model_amb_count(sim->model) ? (int)sim->machine.amb_mode[amb] : -1;
 }
 
 td_status td_sim_set_amb_control(td_sim *sim, int amb, double fx, double fy, td_error *err)
@@ -292,6 +299,8 @@ td_status td_sim_set_amb_current(td_sim *sim, int amb, double ix, double iy, td_
         snprintf(sim->errmsg, sizeof sim->errmsg, "td_sim_set_amb_current: invalid AMB %d or current", amb);
         return failed(sim, TD_ERR_INVALID, err);
     }
+    if (sim->machine.amb_current[2 * amb] == ix && sim->machine.amb_current[2 * amb + 1] == iy)
+        return TD_OK; /* held as it is: nothing jumps */
     sim->machine.amb_current[2 * amb] = ix;
     sim->machine.amb_current[2 * amb + 1] = iy;
     /* the target ki i jumps (and with it the force where tau = 0, or the lag's rate): restart only when
