@@ -1305,9 +1305,16 @@ def fmu_loop():
         rows.append([label, g(r["first_contact_time"], 10), g(r["peak_normal_force"], 8), n(r["events"])])
     rows.append(["tolerance of the test", "%s s" % e(tol["first_contact_time"]), "%s relative" % e(tol["peak_normal_force"]),
                  "exact" if tol["events"] == 0 else "%d" % tol["events"]])
-    return ("From %s: `%s` to %s s, %s steps of %s s.\n\n" % (cite("fmu"), d["case"], g(d["end_time"]), n(d["steps"]),
-                                                             g(d["communication_step"]))
-            + table(["run", "first contact s", "peak contact force N", "events"], rows))
+    lg = d["long"]
+    fails = d.get("failed_checks", [])
+    return ("From %s: `%s` to %s s, %s steps of %s s.\n\n" % (cite("fmu"), d["case"], g(d["end_time"], 2), n(d["steps"]),
+                                                             e(d["communication_step"]))
+            + table(["run", "first contact s", "peak contact force N", "events"], rows)
+            + "\nTo %s s the peak contact force of the loop with the PD in Python is %s N, the built-in run's %s N "
+              "(the test's tolerance: %s relative).\n" % (g(lg["end_time"], 2), g(lg["fmpy_python_pd_peak"], 8),
+                                                         g(lg["native_peak"], 8), e(lg["tolerance"], 1))
+            + ("\n**The test failed when recorded:** %s.\n" % "; ".join(fails) if fails else
+               "\nEvery check of the test passed.\n"))
 
 
 def perf_fmu():
@@ -1320,7 +1327,7 @@ def perf_fmu():
                      n(r["answers"]["events"])])
     ra = d["ratios"]
     return ("From %s (`%s` to %s s, medians of %d runs each: CPU seconds of the tool's process, or of the "
-            "importer's from the FMU's instantiation to its freeing).\n\n" % (cite("fmu"), d["case"], g(d["end_time"]),
+            "importer's from the FMU's instantiation to its freeing).\n\n" % (cite("fmu"), d["case"], g(d["end_time"], 2),
                                                                               d["repeats"])
             + table(["run", "CPU s", "samples or steps", "events"], rows)
             + "\nFMU loop / native: **%s** with the PD in Python, %s with the case's PD inside the FMU.\n" % (
