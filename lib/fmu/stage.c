@@ -36,16 +36,15 @@ static int c_identifier(const char *s)
 static td_status empty_dir(const char *dir, td_error *err)
 {
     struct dirent *e;
+    td_status st = TD_OK;
     DIR *d = opendir(dir);
     if (!d)
         return td_error_set(err, TD_ERR_IO, "%s: cannot open the FMU's directory: %s", dir, strerror(errno));
-    while ((e = readdir(d)))
-        if (strcmp(e->d_name, ".") != 0 && strcmp(e->d_name, "..") != 0) {
-            closedir(d);
-            return td_error_set(err, TD_ERR_IO, "%s: the FMU's directory is not empty (%s)", dir, e->d_name);
-        }
+    while (st == TD_OK && (e = readdir(d)))
+        if (strcmp(e->d_name, ".") != 0 && strcmp(e->d_name, "..") != 0) /* the entry lives until closedir */
+            st = td_error_set(err, TD_ERR_IO, "%s: the FMU's directory is not empty (%s)", dir, e->d_name);
     closedir(d);
-    return TD_OK;
+    return st;
 }
 
 /* 64-bit FNV-1a of s, continued from h. */

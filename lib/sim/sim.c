@@ -225,7 +225,7 @@ td_status td_sim_set_unbalance(td_sim *sim, int unbalance, double magnitude, dou
     }
     sim->machine.unb[unbalance].magnitude = magnitude;
     sim->machine.unb[unbalance].phase = phase;
-    return reported(sim, td_sim_restart_after_change(sim), err);
+    return reported(sim, td_sim_restart_between_steps(sim), err);
 }
 
 td_status td_sim_set_speed(td_sim *sim, double omega, td_error *err)
@@ -251,7 +251,7 @@ td_status td_sim_set_speed(td_sim *sim, double omega, td_error *err)
     if (sim->opt.solver.max_step <= 0.0) {
         sim->solver.hmax = td_sim_default_max_step(sim);
     }
-    return reported(sim, td_sim_restart_after_change(sim), err);
+    return reported(sim, td_sim_restart_between_steps(sim), err);
 }
 
 td_status td_sim_set_amb_mode(td_sim *sim, int amb, td_amb_mode mode, td_error *err)
@@ -267,7 +267,7 @@ td_status td_sim_set_amb_mode(td_sim *sim, int amb, td_amb_mode mode, td_error *
     td_sim_amb_mode_set(sim, amb, mode);
     if (mode != TD_AMB_OFF)
         sim->machine.amb_drive[amb] = mode;
-    return reported(sim, td_sim_restart_after_change(sim), err);
+    return reported(sim, td_sim_restart_between_steps(sim), err);
 }
 
 int td_sim_amb_mode(const td_sim *sim, int amb)
@@ -287,7 +287,8 @@ td_status td_sim_set_amb_control(td_sim *sim, int amb, double fx, double fy, td_
     sim->machine.amb_control[2 * amb] = fx;
     sim->machine.amb_control[2 * amb + 1] = fy;
     /* the held force jumps: restart only when it acts now */
-    return sim->machine.amb_mode[amb] == TD_AMB_EXTERNAL ? reported(sim, td_sim_restart_after_change(sim), err) : TD_OK;
+    return sim->machine.amb_mode[amb] == TD_AMB_EXTERNAL ? reported(sim, td_sim_restart_between_steps(sim), err)
+                                                         : TD_OK;
 }
 
 td_status td_sim_set_amb_current(td_sim *sim, int amb, double ix, double iy, td_error *err)
@@ -305,7 +306,7 @@ td_status td_sim_set_amb_current(td_sim *sim, int amb, double ix, double iy, td_
     sim->machine.amb_current[2 * amb + 1] = iy;
     /* the target ki i jumps (and with it the force where tau = 0, or the lag's rate): restart only when
      * it acts now */
-    return sim->machine.amb_mode[amb] == TD_AMB_CURRENT ? reported(sim, td_sim_restart_after_change(sim), err) : TD_OK;
+    return sim->machine.amb_mode[amb] == TD_AMB_CURRENT ? reported(sim, td_sim_restart_between_steps(sim), err) : TD_OK;
 }
 
 const td_system *td_sim_system(const td_sim *sim)
