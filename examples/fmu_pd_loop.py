@@ -1,8 +1,8 @@
 #!/usr/bin/env python3
 """Close the loop of a touchdown FMU with your own controller in Python, through fmpy (pip install fmpy).
 
-    touchdown fmu cases/paper-a-digital.cfg --inputs current --set end_time=0.14 -o PaperA.fmu
-    python3 fmu_pd_loop.py PaperA.fmu [--step 1e-4] [--end 0.14] [--kp 1e4] [--kd 40] [--filter 2000] [--delay 1]
+    touchdown fmu cases/paper-a-digital.cfg --inputs current --set end_time=0.16 -o PaperA.fmu
+    python3 fmu_pd_loop.py PaperA.fmu [--step 1e-4] [--end 0.16] [--kp 1e4] [--kd 40] [--filter 2000] [--delay 1]
 
 Every --step seconds (the communication step: the controller's sample time) it reads each AMB
 axis's sensed displacement, computes the axis's current with a PD, kp + kd s / (1 + s / (2 pi
@@ -62,8 +62,9 @@ def answers(fmu, vr):
             "events": fmu.getInteger([vr["events"]])[0]}
 
 
-def run(path, end, step, kp, kd, fc, delay, callbacks=None):
-    """The loop: the FMU's answers at `end` and the number of steps taken."""
+def run(path, end, step, kp, kd, fc, delay, callbacks=None, after_step=None):
+    """The loop: the FMU's answers at `end` and the number of steps taken; after_step(k, fmu, vr), if
+    given, is called after each step k (which ends at (k + 1) step)."""
     fmu, md, vr = open_fmu(path, callbacks)
     # the AMB axes: inputs ambs[i].current_x and _y, each with its sensor ambs[i].sensed_x or _y
     axes = [v.name.split(".current_") for v in md.modelVariables if v.causality == "input" and ".current_" in v.name]
@@ -78,6 +79,8 @@ def run(path, end, step, kp, kd, fc, delay, callbacks=None):
         xs = fmu.getReal(sensed)
         fmu.setReal(currents, [law.step(x) for law, x in zip(laws, xs)])
         fmu.doStep(currentCommunicationPoint=k * step, communicationStepSize=step)
+        if after_step:
+            after_step(k, fmu, vr)
     out = answers(fmu, vr)
     fmu.terminate()
     fmu.freeInstance()
@@ -89,7 +92,7 @@ def main():
     p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     p.add_argument("fmu")
     p.add_argument("--step", type=float, default=1e-4, help="communication step = sample time, s")
-    p.add_argument("--end", type=float, default=0.14, help="s")
+    p.add_argument("--end", type=float, default=0.16, help="s")
     d = PAPER_A_DIGITAL
     p.add_argument("--kp", type=float, default=d["kp"], help="A/m")
     p.add_argument("--kd", type=float, default=d["kd"], help="A s/m")

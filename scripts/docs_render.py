@@ -1310,9 +1310,11 @@ def fmu_loop():
     return ("From %s: `%s` to %s s, %s steps of %s s.\n\n" % (cite("fmu"), d["case"], g(d["end_time"], 2), n(d["steps"]),
                                                              e(d["communication_step"]))
             + table(["run", "first contact s", "peak contact force N", "events"], rows)
-            + "\nTo %s s the peak contact force of the loop with the PD in Python is %s N, the built-in run's %s N "
-              "(the test's tolerance: %s relative).\n" % (g(lg["end_time"], 2), g(lg["fmpy_python_pd_peak"], 8),
-                                                         g(lg["native_peak"], 8), e(lg["tolerance"], 1))
+            + "\nThe event counts of the loop with the PD in Python and of the built-in run first part at %s s. To %s s "
+              "the peak contact force of the loop is %s N, the built-in run's %s N (the test's tolerance: %s "
+              "relative).\n" % ("%.4f" % lg["events_part_at"] if lg["events_part_at"] is not None else "no time",
+                                g(lg["end_time"], 2), g(lg["fmpy_python_pd_peak"], 8), g(lg["native_peak"], 8),
+                                e(lg["tolerance"], 1))
             + ("\n**The test failed when recorded:** %s.\n" % "; ".join(fails) if fails else
                "\nEvery check of the test passed.\n"))
 

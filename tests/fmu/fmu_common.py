@@ -59,9 +59,10 @@ def pack(tool, case, out, inputs="current", sets=()):
     return out
 
 
-def native(tool, case, sets=()):
-    """touchdown run of the case without files: its JSON summary's statistics."""
-    args = [tool, "run", "-q", "--json", "--hdf5", "", "--csv", ""]
+def native(tool, case, sets=(), events_csv=None):
+    """touchdown run of the case without files (or with only its CSV, for its events file, when
+    events_csv names it): its JSON summary's statistics."""
+    args = [tool, "run", "-q", "--json", "--hdf5", "", "--csv", events_csv or ""]
     for s in sets:
         args += ["--set", s]
     proc = subprocess.run(args + [case], stdout=subprocess.PIPE, stderr=subprocess.PIPE, universal_newlines=True)
@@ -69,6 +70,13 @@ def native(tool, case, sets=()):
                  proc.stderr.strip()):
         finish()
     return json.loads(proc.stdout)["stats"]
+
+
+def event_times(events_csv):
+    """The times of the events in a run's events file (docs/output-format.md), in order."""
+    with open(events_csv) as f:
+        lines = [line for line in f if not line.startswith("#")]
+    return [float(line.split(",")[0]) for line in lines[1:] if line.strip()]
 
 
 class Instance:
@@ -128,12 +136,14 @@ def results(inst):
     return out
 
 
-def pd_loop(path, end, h):
+def pd_loop(path, end, h, events=None):
     """The FMU (inputs: AMB currents) in a loop closed by cases/paper-a-digital.cfg's PD per AMB axis
     in Python, stepped every h s to `end`: examples/fmu_pd_loop.py, the loop docs/fmu.md shows. Its
-    answers under the names of the native run's statistics, and the number of steps."""
+    answers under the names of the native run's statistics, and the number of steps; the list
+    `events`, if given, receives the event count after each step."""
     d = fmu_pd_loop.PAPER_A_DIGITAL
-    answers, n = fmu_pd_loop.run(path, end, h, d["kp"], d["kd"], d["fc"], d["delay"])
+    after = (lambda k, fmu, vr: events.append(fmu.getInteger([vr["events"]])[0])) if events is not None else None
+    answers, n = fmu_pd_loop.run(path, end, h, d["kp"], d["kd"], d["fc"], d["delay"], after_step=after)
     answers["peak_normal_force"] = answers.pop("peak_contact_force")
     return answers, n
 
@@ -142,5 +152,5 @@ def close(a, b, rtol=0.0, atol=0.0):
     return a is not None and b is not None and abs(a - b) <= atol + rtol * max(abs(a), abs(b))
 
 
-__all__ = ["check", "finish", "tool_fmu", "pack", "native", "Instance", "results", "pd_loop", "close",
+__all__ = ["check", "finish", "tool_fmu", "pack", "native", "event_times", "Instance", "results", "pd_loop", "close",
            "FMICallException"]
