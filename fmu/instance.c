@@ -285,8 +285,12 @@ fmi2Status td_fmu_instance_set_real(td_fmu_instance *in, const fmi2ValueReferenc
     size_t i;
     for (i = 0; i < n; i++) { /* all checked before any is set: a refused call changes nothing */
         const td_fmu_var *var = vr[i] < (fmi2ValueReference)in->n_var ? &in->var[vr[i]] : NULL;
-        if (!var || var->type != TD_FMU_REAL || var->causality == TD_FMU_OUTPUT)
-            return td_fmu_log(in, fmi2Error, "fmi2SetReal: value reference %u is not a Real input or parameter", vr[i]);
+        if (!var)
+            return td_fmu_log(in, fmi2Error, "fmi2SetReal: value reference %u is no variable of this FMU", vr[i]);
+        if (var->type != TD_FMU_REAL || var->causality == TD_FMU_OUTPUT)
+            return td_fmu_log(in, fmi2Error,
+                              "fmi2SetReal: %s (value reference %u) is an output, not an input or parameter", var->name,
+                              vr[i]);
         if (var->causality == TD_FMU_PARAMETER && in->state >= TD_FMU_STEPPING)
             return td_fmu_log(in, fmi2Error, "fmi2SetReal: %s is a fixed parameter: set it before initialisation ends",
                               var->name);
@@ -341,9 +345,11 @@ fmi2Status td_fmu_instance_get(td_fmu_instance *in, fmi2ValueReference vr, td_fm
 {
     const td_fmu_var *v = vr < (fmi2ValueReference)in->n_var ? &in->var[vr] : NULL;
     static const char *const names[] = {"Real", "Integer", "Boolean"};
-    if (!v || v->type != type)
-        return td_fmu_log(in, fmi2Error, "fmi2Get%s: value reference %u is not a %s variable", names[type], vr,
-                          names[type]);
+    if (!v)
+        return td_fmu_log(in, fmi2Error, "fmi2Get%s: value reference %u is no variable of this FMU", names[type], vr);
+    if (v->type != type)
+        return td_fmu_log(in, fmi2Error, "fmi2Get%s: %s (value reference %u) is a %s variable", names[type], v->name,
+                          vr, names[v->type]);
     if (v->causality != TD_FMU_OUTPUT) {
         *out = in->value[vr];
         return fmi2OK;

@@ -281,6 +281,11 @@ static void test_stage(void **state)
     settings = td_test_read_file(path);
     assert_non_null(strstr(settings, ga)); /* the binary checks the guid it is given against this */
     free(settings);
+    snprintf(path, sizeof path, "%s/resources/case.cfg", a);
+    settings = td_test_read_file(path);
+    assert_non_null(strstr(settings, "# >>> @include \"paper-a.cfg\"\n")); /* the include as written, no path */
+    assert_null(strstr(settings, TD_SOURCE_DIR));
+    free(settings);
     free(xa);
     free(xb);
     /* refused: a directory that is not empty, an identifier that is not C, a bad case */
@@ -289,6 +294,9 @@ static void test_stage(void **state)
     remove_tree(b);
     assert_non_null(mkdtemp(strcpy(b, "/tmp/td-test-fmu-XXXXXX")));
     assert_int_equal(td_fmu_stage(td_source_path(CASE), NULL, 0, TD_FMU_INPUTS_NONE, "1a", b, &err), TD_ERR_INVALID);
+    assert_string_equal(
+        err.message,
+        "the model identifier '1a' is no C identifier (a letter or '_', then letters, digits or '_', at most 63)");
     {
         const char *bad[] = {"retainers[0].friction=-1"};
         assert_int_equal(td_fmu_stage(td_source_path(CASE), bad, 1, TD_FMU_INPUTS_NONE, "A", b, &err), TD_ERR_PARSE);
@@ -539,11 +547,11 @@ static void test_bad_inputs(void **state)
     assert_int_equal(api.set_real(c, &in, 1, &nan), fmi2Error);
     logged(&log, "ambs[0].current_x = nan: not a finite number");
     assert_int_equal(api.set_real(c, &out, 1, &one), fmi2Error);
-    logged(&log, "is not a Real input or parameter");
+    logged(&log, "rotor_speed (value reference");
     assert_int_equal(api.set_real(c, &bad, 1, &one), fmi2Error);
-    logged(&log, "value reference 100000");
+    logged(&log, "value reference 100000 is no variable of this FMU");
     assert_int_equal(api.get_real(c, &bad, 1, &x), fmi2Error);
-    logged(&log, "value reference 100000");
+    logged(&log, "value reference 100000 is no variable of this FMU");
     bad = vr_of(&api, "speed");
     assert_int_equal(api.set_real(c, &bad, 1, &one), fmi2Error);
     logged(&log, "speed is a fixed parameter");

@@ -72,6 +72,30 @@ static void make_guid(char *buf, size_t n, const char *text, const char *const *
              (unsigned long long)(h[1] & 0xffffffffffffULL));
 }
 
+/* The case text (td_case_text) into t without the paths its @include markers name the files by as
+ * opened ('# >>> @include "rig.cfg" (/where/it/was/rig.cfg)' keeps '# >>> @include "rig.cfg"'): the
+ * FMU carries nothing of the machine it was staged on, and the same case staged from elsewhere gives
+ * the same bytes. */
+static void case_text(td_text *t, const char *text)
+{
+    static const char marker[] = "# >>> @include \"";
+    const char *line = text;
+    while (*line) {
+        const char *end = strchr(line, '\n'), *q;
+        size_t n = end ? (size_t)(end - line) : strlen(line);
+        if (strncmp(line, marker, sizeof marker - 1) == 0) {
+            for (q = line + sizeof marker - 1; q < line + n && *q != '"'; q++)
+                if (*q == '\\' && q + 1 < line + n)
+                    q++; /* an escaped character of the name */
+            if (q < line + n)
+                n = (size_t)(q + 1 - line);
+        }
+        td_text_append(t, line, n);
+        td_text_append(t, "\n", 1);
+        line = end ? end + 1 : line + n;
+    }
+}
+
 /* Write `text` into the file `path`; TD_ERR_IO naming it. */
 static td_status write_file(const char *path, const td_text *text, td_error *err)
 {
@@ -135,7 +159,7 @@ static td_status stage_case(const td_case *c, const char *const *ov, int nov, td
         return st;
     }
     snprintf(path, n, "%s/resources/%s", dir, TD_FMU_CASE_FILE);
-    td_text_printf(&t, "%s", td_case_text(c));
+    case_text(&t, td_case_text(c));
     st = write_file(path, &t, err);
     free(t.data);
     t = (td_text){NULL, 0, 0, 0, 0};
@@ -166,9 +190,11 @@ td_status td_fmu_stage(const char *case_path, const char *const *overrides, int 
     if (!td_fmu_inputs_name(inputs))
         return td_error_set(err, TD_ERR_INVALID, "td_fmu_stage: inputs %d is not none, current or force", (int)inputs);
     if (!c_identifier(model_identifier))
-        return td_error_set(err, TD_ERR_INVALID,
-                            "td_fmu_stage: the model identifier must be a C identifier of at most %d characters",
-                            TD_FMU_NAME_SIZE - 1);
+        return td_error_set(
+            err, TD_ERR_INVALID,
+            "the model identifier '%.100s' is no C identifier (a letter or '_', then letters, digits or "
+            "'_', at most %d)",
+            model_identifier ? model_identifier : "", TD_FMU_NAME_SIZE - 1);
     if ((st = empty_dir(dir, err)) != TD_OK)
         return st;
     if ((st = td_case_load(case_path, overrides, n_overrides, &c, err)) != TD_OK)
