@@ -49,7 +49,7 @@ def zero_step(inst):
 
 # name: (what it does to an FMU with current inputs, a word its message must hold)
 STEPPING = {"NaN current input": (nan_input, "nan"), "infinite current input": (inf_input, "inf"),
-            "setReal of an output": (set_output, "is not a Real input"), "an unknown value reference": (unknown_reference, ""),
+            "setReal of an output": (set_output, "sensed_x"), "an unknown value reference": (unknown_reference, "no variable"),
             "doStep at a time that is not the FMU's": (wrong_time, "time"),
             "doStep of zero length": (zero_step, "step")}
 PARAMETERS = {"negative clearance": ({"retainers[0].clearance": -1.0e-3}, "clearance"),
