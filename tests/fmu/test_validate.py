@@ -1,11 +1,13 @@
 """touchdown fmu's FMUs as an independent importer sees them: fmpy validates each (modelDescription.xml
 against the FMI 2.0 schema, its variable names, model structure, start values and units), finds the
 64-bit Linux binary the tool packed (the build's touchdown-fmu.so, byte for byte, as NAME.so), the
-inputs each --inputs asks for, and simulates it; the same case packs to the same bits.
+inputs each --inputs asks for, and simulates it; the same case packs to the same bits, also when read
+from another directory.
 
     test_validate.py TOOL SOURCE_DIR BUILD_DIR FMU_BINARY
 """
 import os
+import shutil
 import sys
 import tempfile
 import zipfile
@@ -55,8 +57,16 @@ with tempfile.TemporaryDirectory() as tmp:
     os.mkdir(os.path.dirname(b))
     pack(tool, case, a)
     pack(tool, case, b)
-    with open(a, "rb") as fa, open(b, "rb") as fb:
-        check("the same case packs to the same bits", fa.read() == fb.read())
+    # the same case read from another directory (a copy of cases/, its @include files with it)
+    shutil.copytree(os.path.join(src, "cases"), os.path.join(tmp, "copy", "cases"))
+    c = os.path.join(tmp, "C", "A.fmu")
+    os.mkdir(os.path.dirname(c))
+    pack(tool, os.path.join(tmp, "copy", "cases", "paper-a-digital.cfg"), c)
+    with open(a, "rb") as fa, open(b, "rb") as fb, open(c, "rb") as fc:
+        first = fa.read()
+        check("the same case packs to the same bits, twice", first == fb.read())
+        check("... and from a copy of it in another directory (the FMU holds no path of the machine)",
+              first == fc.read())
     proc = tool_fmu(tool, case, os.path.join(tmp, "bad-name.fmu"))
     check("a model identifier that is no C identifier: exit 2, one line",
           proc.returncode == 2 and len(proc.stderr.splitlines()) == 1, proc.stderr)
