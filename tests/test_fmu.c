@@ -259,12 +259,14 @@ static void run_builtin(const char **ov, int nov, double t_end, builtin_run *r)
 
 static void test_stage(void **state)
 {
-    char a[] = "/tmp/td-test-fmu-XXXXXX", b[] = "/tmp/td-test-fmu-XXXXXX", path[300], ga[64], gb[64];
+    char a[] = "/tmp/td-test-fmu-XXXXXX", b[] = "/tmp/td-test-fmu-XXXXXX", c[] = "/tmp/td-test-fmu-XXXXXX", d[64];
+    char path[600], ga[64], gb[64];
     char *xa, *xb, *settings;
     td_error err;
     (void)state;
     assert_non_null(mkdtemp(a));
     assert_non_null(mkdtemp(b));
+    assert_non_null(mkdtemp(c));
     assert_int_equal(td_fmu_stage(td_source_path(CASE), NULL, 0, TD_FMU_INPUTS_CURRENT, "A_1", a, &err), TD_OK);
     assert_int_equal(td_fmu_stage(td_source_path(CASE), NULL, 0, TD_FMU_INPUTS_CURRENT, "A_1", b, &err), TD_OK);
     snprintf(path, sizeof path, "%s/modelDescription.xml", a);
@@ -272,6 +274,16 @@ static void test_stage(void **state)
     snprintf(path, sizeof path, "%s/modelDescription.xml", b);
     xb = td_test_read_file(path);
     assert_string_equal(xa, xb); /* same case, same bytes */
+    free(xb);
+    snprintf(path, sizeof path, "cp -r '%s' '%s/cases' && mkdir '%s/fmu'", td_source_path("cases"), c, c);
+    assert_int_equal(system(path), 0);
+    snprintf(path, sizeof path, "%s/cases/paper-a-digital.cfg", c);
+    strcat(strcpy(d, c), "/fmu");
+    assert_int_equal(td_fmu_stage(path, NULL, 0, TD_FMU_INPUTS_CURRENT, "A_1", d, &err), TD_OK);
+    snprintf(path, sizeof path, "%s/modelDescription.xml", d);
+    xb = td_test_read_file(path);
+    assert_string_equal(xa, xb); /* the same case read from elsewhere: the same bytes, guid included */
+    remove_tree(c);
     assert_non_null(strstr(xa, "modelIdentifier=\"A_1\""));
     assert_non_null(strstr(xa, "name=\"ambs[1].current_y\""));
     assert_non_null(strstr(xa, "name=\"retainers[1].impacts\""));

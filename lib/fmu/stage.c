@@ -2,8 +2,8 @@
  * td_fmu_stage (touchdown/fmu.h): the unpacked FMU of a case, everything but binaries/, written into
  * an empty directory: modelDescription.xml (FMI 2.0 co-simulation, fmi2ModelDescription.xsd) and
  * resources/ in the format of fmu_internal.h. The FMU's guid is a hash of what the binary reads
- * (the case text, the overrides, the inputs, the version), so the same case staged twice gives the
- * same bytes, and the binary refuses resources that are not the ones its modelDescription names.
+ * (make_guid), so the same case staged twice, from wherever, gives the same bytes, and the binary
+ * refuses resources that are not the ones its modelDescription names.
  */
 #include "fmu/fmu_internal.h"
 #include "touchdown/version.h"
@@ -57,13 +57,15 @@ static uint64_t fnv(uint64_t h, const char *s)
     return h ^ 0xff; /* a separator, so that "ab" + "c" and "a" + "bc" differ */
 }
 
-/* The guid, "{8-4-4-4-12}" hex digits, of what the binary will read. */
-static void make_guid(char *buf, size_t n, const char *text, const char *const *ov, int nov, td_fmu_inputs inputs)
+/* The guid, "{8-4-4-4-12}" hex digits, of what the binary will read: the staged case text (no path of
+ * the machine that staged it), the overrides, the inputs, the identifier and the version. */
+static void make_guid(char *buf, size_t n, const char *text, const char *const *ov, int nov, td_fmu_inputs inputs,
+                      const char *id)
 {
     uint64_t h[2] = {14695981039346656037ULL, 0x6c62272e07bb0142ULL};
     int j, i;
     for (j = 0; j < 2; j++) {
-        h[j] = fnv(fnv(fnv(h[j], TD_VERSION), td_fmu_inputs_name(inputs)), text);
+        h[j] = fnv(fnv(fnv(fnv(h[j], TD_VERSION), td_fmu_inputs_name(inputs)), id), text);
         for (i = 0; i < nov; i++)
             h[j] = fnv(h[j], ov[i]);
     }
@@ -149,17 +151,20 @@ static td_status stage_case(const td_case *c, const char *const *ov, int nov, td
     char guid[64], *path = NULL;
     size_t n = strlen(dir) + 64;
     td_status st;
-    make_guid(guid, sizeof guid, td_case_text(c), ov, nov, inputs);
-    if (!(path = malloc(n)))
+    case_text(&t, td_case_text(c));
+    if (t.failed || !(path = malloc(n))) {
+        free(t.data);
         return td_error_set(err, TD_ERR_NOMEM, "out of memory staging an FMU");
+    }
+    make_guid(guid, sizeof guid, t.data, ov, nov, inputs, id);
     snprintf(path, n, "%s/resources", dir);
     if (mkdir(path, 0777) != 0) {
         st = td_error_set(err, TD_ERR_IO, "%s: cannot create: %s", path, strerror(errno));
+        free(t.data);
         free(path);
         return st;
     }
     snprintf(path, n, "%s/resources/%s", dir, TD_FMU_CASE_FILE);
-    case_text(&t, td_case_text(c));
     st = write_file(path, &t, err);
     free(t.data);
     t = (td_text){NULL, 0, 0, 0, 0};
