@@ -2,7 +2,7 @@
 # Installs the built project into a scratch prefix, moves the prefix (an install must not depend on
 # where it was made), and then uses it as a user would, with no LD_LIBRARY_PATH:
 #   - the installed tool runs: --version, info and a short run of an installed case, and bench
-#     finds its cases;
+#     finds its cases; touchdown fmu packs the installed FMU binary;
 #   - the pkg-config file names no absolute library path, and the CMake package no absolute path
 #     at all: it finds the dependencies again where it is used (a missing one is named);
 #   - examples/plugin-pd builds with its Makefile against the installed header alone, and the
@@ -47,6 +47,15 @@ cd "$scratch/elsewhere"
 grep -q '"status":"success"' run.json || fail "the installed touchdown run did not succeed: $(head -c 300 run.json)"
 "$prefix/bin/touchdown" bench --quick --cases A --repeats 1 --json >bench.json
 grep -q '"case":"A"' bench.json || fail "the installed touchdown bench did not run case A"
+# touchdown fmu packs the installed FMU binary (LIBDIR/touchdown/touchdown-fmu.so, found from the
+# tool's own directory) as the FMU's binaries/linux64/NAME.so
+fmu_so=$(find "$prefix" -name touchdown-fmu.so -path '*/touchdown/*' | head -n 1)
+[ -n "$fmu_so" ] || fail "touchdown-fmu.so is not installed under $prefix"
+"$prefix/bin/touchdown" fmu -q --set end_time=0.15 -o PaperA.fmu "$cases/paper-a-digital.cfg" ||
+    fail "the installed touchdown fmu did not pack $cases/paper-a-digital.cfg"
+/usr/bin/python3 -c 'import sys, zipfile; sys.exit(zipfile.ZipFile(sys.argv[1]).read("binaries/linux64/PaperA.so")
+                     != open(sys.argv[2], "rb").read())' PaperA.fmu "$fmu_so" ||
+    fail "the installed touchdown fmu did not pack the installed $fmu_so"
 
 echo "check-install: touchdown.pc: $(pkg-config --print-requires-private touchdown | tr '\n' ' ')"
 static_libs=$(pkg-config --static --libs touchdown)

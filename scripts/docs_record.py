@@ -224,6 +224,40 @@ def src_digital(tool, build):
     return data
 
 
+def src_fmu(tool, build):
+    """The FMU through fmpy (docs/fmu.md, docs/performance.md "The FMU loop"): tests/fmu/test_loop.py's
+    closed loop against the built-in run, and bench/fmu.sh (3 repeats, medians); both with the fmpy
+    of the build's test environment (BUILD_DIR/fmpy-venv, tests/fmu/make_venv.sh)."""
+    import tempfile
+    data = stamp(tool, "fmu", "tests/fmu/test_loop.py --json, bench/fmu.sh -n 3 --json")
+    venv = os.path.join(build, "fmpy-venv")
+    subprocess.run(["bash", os.path.join(ROOT, "tests", "fmu", "make_venv.sh"), venv,
+                    os.path.join(ROOT, "tests", "fmu", "requirements.txt")], check=True, stdout=subprocess.DEVNULL)
+    start = time.monotonic()
+    with tempfile.TemporaryDirectory() as tmp:
+        out = os.path.join(tmp, "loop.json")
+        proc = subprocess.run([os.path.join(venv, "bin", "python"), os.path.join(ROOT, "tests", "fmu", "test_loop.py"),
+                               tool, ROOT, build, os.path.join(build, "touchdown-fmu.so"), "--json", out],
+                              stdout=subprocess.PIPE, stderr=subprocess.STDOUT, universal_newlines=True)
+        if not os.path.exists(out):
+            sys.exit("docs_record: tests/fmu/test_loop.py failed:\n%s" % proc.stdout[-2000:])
+        with open(out) as f:
+            data["loop"] = json.load(f)
+    # a check that fails is recorded as such (the docs say so), never left out
+    data["loop"]["failed_checks"] = [l[len("FAIL: "):] for l in proc.stdout.splitlines() if l.startswith("FAIL: ")]
+    data["loop"]["command"] = "build/fmpy-venv/bin/python tests/fmu/test_loop.py build/touchdown . build build/touchdown-fmu.so --json FILE"
+    print("  tests/fmu/test_loop.py %6.1f s" % (time.monotonic() - start), flush=True)
+    start = time.monotonic()
+    proc = subprocess.run([os.path.join(ROOT, "bench", "fmu.sh"), "-n", "3", "--json", build],
+                          stdout=subprocess.PIPE, stderr=subprocess.PIPE, universal_newlines=True)
+    if proc.returncode != 0:
+        sys.exit("docs_record: bench/fmu.sh failed:\n%s" % proc.stderr[-2000:])
+    print("  bench/fmu.sh %6.1f s" % (time.monotonic() - start), flush=True)
+    data["bench"] = json.loads(proc.stdout)
+    data["bench"]["command"] = "bench/fmu.sh -n 3 --json"
+    return data
+
+
 def src_scaling(tool, build):
     """touchdown bench --scaling (docs/performance.md, "Scaling with the number of DOFs"): at the
     library's solver defaults with IDA through the free flight too (the cost of a step against the
@@ -370,7 +404,7 @@ def src_recovery(tool, build):
 
 
 SOURCES = {"fast": [("runs", src_runs), ("modal", src_modal), ("validation", src_validation), ("keys", src_keys)],
-           "slow": [("bench", src_bench), ("digital", src_digital), ("scaling", src_scaling), ("references", src_references),
+           "slow": [("bench", src_bench), ("digital", src_digital), ("fmu", src_fmu), ("scaling", src_scaling), ("references", src_references),
                     ("intervals", src_intervals), ("tolerances", src_tolerances), ("mesh", src_mesh),
                     ("convergence", src_convergence), ("spread", src_spread), ("figures", src_figures),
                     ("recovery", src_recovery)]}

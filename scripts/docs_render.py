@@ -1292,6 +1292,50 @@ def check_out_tables():
     return bad
 
 
+def fmu_loop():
+    """tests/fmu/test_loop.py: the FMU in fmpy's loop with the PD in Python, and with the case's own PD
+    inside, against touchdown run of cases/paper-a-digital.cfg."""
+    d = res("fmu")["loop"]
+    tol = d["tolerance"]
+    rows = []
+    for name, label in [("native", "`touchdown run`, the PD sampled inside"),
+                        ("fmpy_python_pd", "fmpy, the PD in Python (`examples/fmu_pd_loop.py`)"),
+                        ("fmpy_inputs_none", "fmpy, `--inputs none` (the case's PD inside the FMU)")]:
+        r = d[name]
+        rows.append([label, g(r["first_contact_time"], 10), g(r["peak_normal_force"], 8), n(r["events"])])
+    rows.append(["tolerance of the test", "%s s" % e(tol["first_contact_time"]), "%s relative" % e(tol["peak_normal_force"]),
+                 "exact" if tol["events"] == 0 else "%d" % tol["events"]])
+    lg = d["long"]
+    fails = d.get("failed_checks", [])
+    return ("From %s: `%s` to %s s, %s steps of %s s.\n\n" % (cite("fmu"), d["case"], g(d["end_time"], 2), n(d["steps"]),
+                                                             e(d["communication_step"]))
+            + table(["run", "first contact s", "peak contact force N", "events"], rows)
+            + "\nThe event counts of the loop with the PD in Python and of the built-in run first part at %s s. To %s s "
+              "the peak contact force of the loop is %s N, the built-in run's %s N (the test's tolerance: %s "
+              "relative).\n" % ("%.4f" % lg["events_part_at"] if lg["events_part_at"] is not None else "no time",
+                                g(lg["end_time"], 2), g(lg["fmpy_python_pd_peak"], 8), g(lg["native_peak"], 8),
+                                e(lg["tolerance"], 1))
+            + ("\n**The test failed when recorded:** %s.\n" % "; ".join(fails) if fails else
+               "\nEvery check of the test passed.\n"))
+
+
+def perf_fmu():
+    """bench/fmu.sh: the FMU loop at a 10 kHz communication step against the native run."""
+    d = res("fmu")["bench"]
+    rows = []
+    for name in ["native", "fmu_python_pd", "fmu_inputs_none"]:
+        r = d["runs"][name]
+        rows.append([r["what"], f(r["cpu_median"], 2), n(r.get("steps", r.get("controller_samples"))),
+                     n(r["answers"]["events"])])
+    ra = d["ratios"]
+    return ("From %s (`%s` to %s s, medians of %d runs each: CPU seconds of the tool's process, or of the "
+            "importer's from the FMU's instantiation to its freeing).\n\n" % (cite("fmu"), d["case"], g(d["end_time"], 2),
+                                                                              d["repeats"])
+            + table(["run", "CPU s", "samples or steps", "events"], rows)
+            + "\nFMU loop / native: **%s** with the PD in Python, %s with the case's PD inside the FMU.\n" % (
+                g(ra["fmu_python_pd_over_native"], 3), g(ra["fmu_inputs_none_over_native"], 3)))
+
+
 REGIONS = {"readme-glance": readme_glance, "readme-realtime": readme_realtime,
            "perf-summary": perf_summary, "perf-paper-settings": perf_paper_settings,
            "perf-paper-findings": perf_paper_findings, "perf-remains": perf_remains,
@@ -1301,7 +1345,8 @@ REGIONS = {"readme-glance": readme_glance, "readme-realtime": readme_realtime,
            "val-annular-rub": val_annular_rub, "val-annular-mount": val_annular_mount, "val-penalty": val_penalty,
            "val-scenarios": val_scenarios, "val-conv-rub-damped": val_conv_rub_damped,
            "val-conv-paper-a": val_conv_paper_a, "val-conv-drop": val_conv_drop, "val-spread": val_spread,
-           "out-name-index": out_name_index, "perf-scaling": perf_scaling, "perf-digital": perf_digital}
+           "out-name-index": out_name_index, "perf-scaling": perf_scaling, "perf-digital": perf_digital,
+           "fmu-loop": fmu_loop, "perf-fmu": perf_fmu}
 SPANS = {"rub-mean-normal": span_rub_mean_normal, "val-first-contact-cell": span_val_first_contact_cell,
          "val-rig-modal-cell": span_val_rig_modal_cell, "rig-mass": span_rig_mass,
          "rig-polar": span_rig_polar, "drop-cpu": span_drop_cpu, "run-up-criticals": span_run_up_criticals,

@@ -15,12 +15,14 @@ shift || true
 packages=(gcc make cmake pkg-config libsundials-dev libsuitesparse-dev libgsl-dev libhdf5-dev
           libcmocka-dev libconfig-dev gnuplot-nox
           zlib1g-dev                                 # the sweep journal's CRC-32 (the tool)
+          libzip-dev                                 # touchdown fmu writes the FMU's zip archive
           libslicot-dev                              # control-system numerics (lib/control)
           openmpi-bin libopenmpi-dev                 # touchdown sweep across nodes (optional: TD_MPI)
-          hdf5-tools python3 python3-h5py python3-scipy clang-format)  # test-only: h5dump reads HDF5
-                                            # flags, python3 (with h5py) checks JSON and HDF5 files,
-                                            # scipy.signal is the controllers' reference,
-                                            # clang-format checks the layout
+          hdf5-tools python3 python3-h5py python3-scipy python3-venv clang-format)  # test-only: h5dump
+                                            # reads HDF5 flags, python3 (with h5py) checks JSON and
+                                            # HDF5 files, scipy.signal is the controllers' reference,
+                                            # python3-venv holds the FMU importer of the tests (fmpy,
+                                            # tests/fmu/requirements.txt), clang-format checks the layout
 
 missing=()
 for p in "${packages[@]}"; do

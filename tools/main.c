@@ -20,6 +20,7 @@ static const char usage[] =
     "  plot OUT.h5...  figures (PNG + gnuplot scripts) from output files\n"
     "  sweep CASE      run a case over a grid of key values in parallel: one summary row per point\n"
     "  bench           time the paper's cases with the constrained and penalty models\n"
+    "  fmu CASE        pack a case as an FMU (FMI 2.0 co-simulation) for Simulink, OpenModelica, Python\n"
     "\n"
     "options for every command:\n"
     "  -h, --help      help for the command (touchdown COMMAND --help)\n"
@@ -34,8 +35,8 @@ static const struct {
     const char *name;
     td_command_fn fn;
 } commands[] = {
-    {"run", td_cmd_run},   {"modal", td_cmd_modal}, {"info", td_cmd_info},
-    {"plot", td_cmd_plot}, {"bench", td_cmd_bench}, {"sweep", td_cmd_sweep},
+    {"run", td_cmd_run},     {"modal", td_cmd_modal}, {"info", td_cmd_info}, {"plot", td_cmd_plot},
+    {"bench", td_cmd_bench}, {"sweep", td_cmd_sweep}, {"fmu", td_cmd_fmu},
 };
 
 int main(int argc, char **argv)

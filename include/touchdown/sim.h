@@ -29,7 +29,9 @@ typedef struct td_sim td_sim;
 typedef enum td_amb_mode {
     TD_AMB_PD = 0,       /**< built-in PD current control with force lag (the default) */
     TD_AMB_EXTERNAL = 1, /**< control force held at the value set by td_sim_set_amb_control (zero-order hold) */
-    TD_AMB_OFF = 2       /**< failed: no force at all */
+    TD_AMB_OFF = 2,      /**< failed: no force at all */
+    TD_AMB_CURRENT = 3   /**< current command held at the value set by td_sim_set_amb_current, through the
+                              amplifier (its lag, slew limit and clip) exactly as a sampled controller's */
 } td_amb_mode;
 
 /** Create a simulation of `model` (copied) with `options` (copied; NULL: defaults).
@@ -111,10 +113,21 @@ TD_API double td_sim_speed(const td_sim *sim);
  * Invalid arguments give TD_ERR_INVALID, a failed restart its status; *err says which. */
 TD_API td_status td_sim_set_unbalance(td_sim *sim, int unbalance, double magnitude, double phase, td_error *err);
 TD_API td_status td_sim_set_speed(td_sim *sim, double omega, td_error *err);
+/** AMB `amb`'s mode from now on. A mode other than TD_AMB_OFF is also the one a schedule's restore
+ *  (TD_CHANGE_AMB_ON) returns the AMB to after a failure (TD_AMB_PD until the caller chooses one). */
 TD_API td_status td_sim_set_amb_mode(td_sim *sim, int amb, td_amb_mode mode, td_error *err);
+/** AMB `amb`'s mode now (TD_AMB_OFF while a schedule's failure holds); -1 for a NULL sim or an AMB it
+ *  does not have. */
+TD_API int td_sim_amb_mode(const td_sim *sim, int amb);
 /** Control force (ki times current) of AMB `amb` for TD_AMB_EXTERNAL, held until the next call:
  *  the total force is ks x + f (clipped when the AMB saturates), N. */
 TD_API td_status td_sim_set_amb_control(td_sim *sim, int amb, double fx, double fy, td_error *err);
+/** Current command of AMB `amb` for TD_AMB_CURRENT (A along x and y), held until the next call (zero-order
+ *  hold, 0 until the first): it drives the AMB's amplifier as a sampled controller's held current does,
+ *  the target force ki i reached through the force lag tau and the slew limit, the total ks x + Fc
+ *  clipped when the AMB saturates (docs/theory.md, "Controllers"). Invalid AMB or non-finite current:
+ *  TD_ERR_INVALID. */
+TD_API td_status td_sim_set_amb_current(td_sim *sim, int amb, double ix, double iy, td_error *err);
 
 /** The simulation's own copy of the model it was created from (borrowed, valid until td_sim_free;
  *  later td_sim_set_* changes are not in it); NULL for a NULL sim. */

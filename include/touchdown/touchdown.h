@@ -8,6 +8,7 @@
 #include "touchdown/controller.h"
 #include "touchdown/dofs.h"
 #include "touchdown/error.h"
+#include "touchdown/fmu.h"
 #include "touchdown/job.h"
 #include "touchdown/json.h"
 #include "touchdown/modal.h"

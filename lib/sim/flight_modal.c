@@ -25,7 +25,8 @@ static int machine_key(const td_sim *s, double *key)
     return n;
 }
 
-/* What b(t) depends on beyond A: the spin angle, the unbalances and the held AMB forces. */
+/* What b(t) depends on beyond A: the spin angle, the unbalances, the held AMB forces and the caller's
+ * held currents (TD_AMB_CURRENT). */
 static int forcing_key(const td_sim *s, double *key)
 {
     int i, n = 0, na = td_model_amb_count(s->model);
@@ -37,6 +38,8 @@ static int forcing_key(const td_sim *s, double *key)
     }
     for (i = 0; i < 2 * na; i++)
         key[n++] = s->machine.amb_control[i];
+    for (i = 0; i < 2 * na; i++)
+        key[n++] = s->machine.amb_current[i];
     return n;
 }
 
@@ -698,7 +701,7 @@ static int flight_alloc(td_sim *s)
     s->flight = f;
     f->nz = (int)nz;
     f->nobs = 2 * s->dae.nr + s->sys->n_amb_axes;
-    nk = (size_t)(3 + 2 * s->machine.nu + 3 * td_model_amb_count(s->model));
+    nk = (size_t)(3 + 2 * s->machine.nu + 5 * td_model_amb_count(s->model));
     f->machine_key = calloc(nk, sizeof(double));
     f->forcing_key = calloc(nk, sizeof(double));
     f->key_work = calloc(nk, sizeof(double));

@@ -28,10 +28,15 @@ typedef struct td_sim_machine {
     int nu;
     td_unbalance *unb;
     td_amb_mode *amb_mode;     /* per AMB */
+    td_amb_mode *amb_drive;    /* per AMB: how it is driven while it works (TD_AMB_PD, or the last of
+                                * TD_AMB_EXTERNAL, TD_AMB_CURRENT the caller chose); a schedule's
+                                * restore (TD_CHANGE_AMB_ON) returns it to this */
     double *amb_control;       /* per AMB, x and y: held control force (TD_AMB_EXTERNAL) */
     double *held_current;      /* per AMB axis: the current command (A) a sampled controller holds
                                 * on it between its samples (sampler.c writes it, the residual reads
                                 * it); 0 for an axis no sampled controller drives */
+    double *amb_current;       /* per AMB axis (2 amb + axis): the caller's held current command (A) for
+                                * TD_AMB_CURRENT (td_sim_set_amb_current) */
     int next_change;           /* first schedule entry not yet applied */
     td_sim_amb_coef *amb_coef; /* per AMB axis */
 

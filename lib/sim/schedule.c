@@ -29,7 +29,7 @@ static void apply_change(td_sim *s, const td_change *c)
         break;
     case TD_CHANGE_AMB_ON:
         if (c->index >= 0 && c->index < td_model_amb_count(s->model))
-            td_sim_amb_mode_set(s, c->index, TD_AMB_PD);
+            td_sim_amb_mode_set(s, c->index, s->machine.amb_drive[c->index]); /* its control as before */
         break;
     }
 }

@@ -81,8 +81,10 @@ static td_status alloc_arrays(td_sim *s, td_error *err)
     s->machine.nu = td_model_unbalance_count(s->model);
     s->machine.unb = calloc((size_t)(s->machine.nu > 0 ? s->machine.nu : 1), sizeof *s->machine.unb);
     s->machine.amb_mode = calloc((size_t)(na > 0 ? na : 1), sizeof *s->machine.amb_mode);
+    s->machine.amb_drive = calloc((size_t)(na > 0 ? na : 1), sizeof *s->machine.amb_drive); /* TD_AMB_PD */
     s->machine.amb_control = calloc((size_t)(2 * na + 2), sizeof(double));
     s->machine.held_current = calloc((size_t)(2 * na + 2), sizeof(double));
+    s->machine.amb_current = calloc((size_t)(2 * na + 2), sizeof(double));
     s->machine.amb_coef = calloc((size_t)(s->sys->n_amb_axes + 1), sizeof *s->machine.amb_coef);
     s->monitor.q_cap = 4 * s->dae.nr + td_model_change_count(s->model) + 4;
     s->monitor.queue = calloc((size_t)s->monitor.q_cap, sizeof *s->monitor.queue);
@@ -102,9 +104,9 @@ static td_status alloc_arrays(td_sim *s, td_error *err)
     s->loop.ysave = calloc((size_t)s->dae.neq, sizeof(double));
     s->loop.ypsave = calloc((size_t)s->dae.neq, sizeof(double));
     s->monitor.ahead_y = calloc((size_t)s->dae.neq, sizeof(double));
-    if (!ok || !s->machine.unb || !s->machine.amb_mode || !s->machine.amb_control || !s->machine.held_current ||
-        !s->machine.amb_coef || !s->monitor.queue || !s->dae.rootdir || !s->dae.rootsfound || !s->loop.ysave ||
-        !s->loop.ypsave || !s->monitor.ahead_y)
+    if (!ok || !s->machine.unb || !s->machine.amb_mode || !s->machine.amb_drive || !s->machine.amb_control ||
+        !s->machine.held_current || !s->machine.amb_current || !s->machine.amb_coef || !s->monitor.queue ||
+        !s->dae.rootdir || !s->dae.rootsfound || !s->loop.ysave || !s->loop.ypsave || !s->monitor.ahead_y)
         return td_error_set(err, TD_ERR_NOMEM, "out of memory creating a simulation");
     return TD_OK;
 }
@@ -434,8 +436,10 @@ void td_sim_teardown(td_sim *s)
     free(s->ops.st_D);
     free(s->machine.unb);
     free(s->machine.amb_mode);
+    free(s->machine.amb_drive);
     free(s->machine.amb_control);
     free(s->machine.held_current);
+    free(s->machine.amb_current);
     free(s->contacts.ret);
     free(s->machine.amb_coef);
     free(s->monitor.queue);

@@ -227,7 +227,7 @@ td_status td_sim_set_unbalance(td_sim *sim, int unbalance, double magnitude, dou
     }
     sim->machine.unb[unbalance].magnitude = magnitude;
     sim->machine.unb[unbalance].phase = phase;
-    return reported(sim, td_sim_restart_after_change(sim), err);
+    return reported(sim, td_sim_restart_between_steps(sim), err);
 }
 
 td_status td_sim_set_speed(td_sim *sim, double omega, td_error *err)
@@ -253,7 +253,7 @@ td_status td_sim_set_speed(td_sim *sim, double omega, td_error *err)
     if (sim->opt.solver.max_step <= 0.0) {
         sim->solver.hmax = td_sim_default_max_step(sim);
     }
-    return reported(sim, td_sim_restart_after_change(sim), err);
+    return reported(sim, td_sim_restart_between_steps(sim), err);
 }
 
 td_status td_sim_set_amb_mode(td_sim *sim, int amb, td_amb_mode mode, td_error *err)
@@ -262,12 +262,19 @@ td_status td_sim_set_amb_mode(td_sim *sim, int amb, td_amb_mode mode, td_error *
         return td_error_set(err, TD_ERR_INVALID, "%s: NULL simulation", __func__);
     begin_call(sim);
     if (amb < 0 || amb >= td_model_amb_count(sim->model) ||
-        (mode != TD_AMB_PD && mode != TD_AMB_EXTERNAL && mode != TD_AMB_OFF)) {
+        (mode != TD_AMB_PD && mode != TD_AMB_EXTERNAL && mode != TD_AMB_OFF && mode != TD_AMB_CURRENT)) {
         snprintf(sim->errmsg, sizeof sim->errmsg, "td_sim_set_amb_mode: invalid AMB %d or mode %d", amb, (int)mode);
         return failed(sim, TD_ERR_INVALID, err);
     }
     td_sim_amb_mode_set(sim, amb, mode);
-    return reported(sim, td_sim_restart_after_change(sim), err);
+    if (mode != TD_AMB_OFF)
+        sim->machine.amb_drive[amb] = mode;
+    return reported(sim, td_sim_restart_between_steps(sim), err);
+}
+
+int td_sim_amb_mode(const td_sim *sim, int amb)
+{
+    return sim && amb >= 0 && amb < td_model_amb_count(sim->model) ? (int)sim->machine.amb_mode[amb] : -1;
 }
 
 td_status td_sim_set_amb_control(td_sim *sim, int amb, double fx, double fy, td_error *err)
@@ -282,7 +289,26 @@ td_status td_sim_set_amb_control(td_sim *sim, int amb, double fx, double fy, td_
     sim->machine.amb_control[2 * amb] = fx;
     sim->machine.amb_control[2 * amb + 1] = fy;
     /* the held force jumps: restart only when it acts now */
-    return sim->machine.amb_mode[amb] == TD_AMB_EXTERNAL ? reported(sim, td_sim_restart_after_change(sim), err) : TD_OK;
+    return sim->machine.amb_mode[amb] == TD_AMB_EXTERNAL ? reported(sim, td_sim_restart_between_steps(sim), err)
+                                                         : TD_OK;
+}
+
+td_status td_sim_set_amb_current(td_sim *sim, int amb, double ix, double iy, td_error *err)
+{
+    if (!sim)
+        return td_error_set(err, TD_ERR_INVALID, "%s: NULL simulation", __func__);
+    begin_call(sim);
+    if (amb < 0 || amb >= td_model_amb_count(sim->model) || !isfinite(ix) || !isfinite(iy)) {
+        snprintf(sim->errmsg, sizeof sim->errmsg, "td_sim_set_amb_current: invalid AMB %d or current", amb);
+        return failed(sim, TD_ERR_INVALID, err);
+    }
+    if (sim->machine.amb_current[2 * amb] == ix && sim->machine.amb_current[2 * amb + 1] == iy)
+        return TD_OK; /* held as it is: nothing jumps */
+    sim->machine.amb_current[2 * amb] = ix;
+    sim->machine.amb_current[2 * amb + 1] = iy;
+    /* the target ki i jumps (and with it the force where tau = 0, or the lag's rate): restart only when
+     * it acts now */
+    return sim->machine.amb_mode[amb] == TD_AMB_CURRENT ? reported(sim, td_sim_restart_between_steps(sim), err) : TD_OK;
 }
 
 const td_system *td_sim_system(const td_sim *sim)

@@ -433,6 +433,9 @@ td_status td_sim_start_state(td_sim *s, td_error *err);
 
 /* Restart after a change made between steps or at a schedule time. */
 td_status td_sim_restart_after_change(td_sim *s);
+/* The restart after a change between steps (sim.c's td_sim_set_*), with a stop due within rounding of
+ * s->dae.t handled at once. */
+td_status td_sim_restart_between_steps(td_sim *s);
 /* Integrate from s->dae.t to tout (> s->dae.t), stopping early at an event to report or a failure. */
 td_status td_sim_advance(td_sim *s, double tout);
 

@@ -50,9 +50,16 @@ static double amb_axis_current_target(const td_sim *s, const td_amb_axis *a, con
     return td_amb_axis_current_command(a, td_sim_lti_current(s, a, y));
 }
 
+/* The target force ki i of the current the caller holds on an axis (TD_AMB_CURRENT), as a sampled
+ * law's held current (td_sim_lti_current) enters amb_axis_current_target. */
+static double amb_axis_caller_target(const td_sim *s, const td_amb_axis *a)
+{
+    return td_amb_axis_current_command(a, s->machine.amb_current[2 * a->amb + a->axis]);
+}
+
 /* Control force Fc of AMB axis k that enters F = ks x + Fc: the lagged state (tau > 0), the
- * lag-free command (tau == 0: the shorthand's, or ki i of a linear controller's current) or the
- * caller's held value (TD_AMB_EXTERNAL). */
+ * lag-free command (tau == 0: the shorthand's, ki i of a linear controller's current or of the
+ * caller's held current) or the caller's held force (TD_AMB_EXTERNAL). */
 static double amb_axis_fc(const td_sim *s, int k, const double *y)
 {
     const td_amb_axis *a = &s->sys->amb_axes[k];
@@ -60,6 +67,8 @@ static double amb_axis_fc(const td_sim *s, int k, const double *y)
         return s->machine.amb_control[2 * a->amb + a->axis];
     if (a->state >= 0)
         return y[s->dae.ow + a->state];
+    if (s->machine.amb_mode[a->amb] == TD_AMB_CURRENT)
+        return amb_axis_caller_target(s, a);
     if (a->law >= 0)
         return amb_axis_current_target(s, a, y);
     return amb_axis_command(s, a, y);
@@ -74,9 +83,11 @@ double td_sim_amb_axis_force(const td_sim *s, int k, const double *y)
 
 /* The lag's rate (command - Fc)/tau of AMB axis k (tau > 0) at y, before the amplifier's slew
  * limit (model/amb.c td_amb_axis_slew): towards the shorthand's command, or the target ki i of its
- * linear controller's current. */
+ * linear controller's current or of the caller's (TD_AMB_CURRENT). */
 static double amb_axis_lag_rate(const td_sim *s, const td_amb_axis *a, const double *y)
 {
+    if (s->machine.amb_mode[a->amb] == TD_AMB_CURRENT)
+        return td_amb_axis_lag_rate(a, amb_axis_caller_target(s, a), y[s->dae.ow + a->state]);
     if (a->law >= 0)
         return td_amb_axis_lag_rate(a, amb_axis_current_target(s, a, y), y[s->dae.ow + a->state]);
     return td_amb_axis_filter_rate(a, y[s->dae.oq + a->sensor_dof], y[s->dae.ov + a->sensor_dof],
@@ -394,7 +405,9 @@ static void jacobian_amb(td_sim *s, const double *y)
         td_amb_axis_force(a, mode != TD_AMB_OFF, y[s->dae.oq + act], amb_axis_fc(s, k, y), &dfdx, &dfdfc);
         /* v rows carry -f_amb */
         jadd(s, s->dae.ov + act, s->dae.oq + act, -dfdx);
-        if (mode == TD_AMB_PD) {
+        if (mode == TD_AMB_CURRENT && a->state >= 0) { /* Fc is the lag's state; its target is held */
+            jadd(s, s->dae.ov + act, s->dae.ow + a->state, -dfdfc);
+        } else if (mode == TD_AMB_PD) {
             if (a->state >= 0) {
                 jadd(s, s->dae.ov + act, s->dae.ow + a->state, -dfdfc);
             } else {
@@ -406,7 +419,9 @@ static void jacobian_amb(td_sim *s, const double *y)
                     td_sim_lti_jacobian_current(s, a, s->dae.ov + act, -dfdfc * co->target_i);
             }
         }
-        if (a->state >= 0 && !amb_axis_slews(s, a, y)) { /* slewing, dFc/dt = +-ki slew_rate: constant */
+        if (a->state >= 0 && mode == TD_AMB_CURRENT && !amb_axis_slews(s, a, y)) { /* (ki i - Fc)/tau */
+            jadd(s, s->dae.ow + a->state, s->dae.ow + a->state, -co->rate_w);
+        } else if (a->state >= 0 && !amb_axis_slews(s, a, y)) { /* slewing, dFc/dt = +-ki slew_rate: constant */
             int row = s->dae.ow + a->state;
             jadd(s, row, s->dae.oq + sen, -co->rate_x);
             jadd(s, row, s->dae.ov + sen, -co->rate_v);

@@ -288,3 +288,17 @@ td_status td_sim_advance(td_sim *s, double tout)
             return TD_OK;
     }
 }
+
+/* A change made between steps (the td_sim_set_* calls): the restart, then a stop within rounding ahead
+ * of the current time (a sample or schedule time that the last td_sim_step's tout fell short of by an
+ * ulp or so) is due now and handled here, as the loop handles a stop it reaches: IDA cannot start
+ * towards a stop time within rounding of its own ("tstop is behind current t"), and a stop left an ulp
+ * ahead would cut the next step to nothing. */
+td_status td_sim_restart_between_steps(td_sim *s)
+{
+    td_status st = td_sim_restart_after_change(s);
+    double stop = td_sim_next_stop(s);
+    if (st == TD_OK && stop <= s->dae.t + TD_SIM_DUE_TOLERANCE(s->dae.t)) /* also one passed by rounding */
+        st = handle_stop(s, TD_PENDING_TSTOP);
+    return st;
+}

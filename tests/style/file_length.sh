@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Every C source and header under lib/ and tools/ (in any sub-folder) is at most MAX lines (1000):
+# Every C source and header under lib/, tools/ and fmu/ (in any sub-folder) is at most MAX lines (1000):
 # a file longer than that holds more than one part, and its parts belong in files of their own.
 # Usage: file_length.sh SOURCE_DIR [MAX]   (exit 1 and one line per long file)
 #        file_length.sh --self-check        (the check itself, on a tree it writes in a temporary
@@ -17,7 +17,7 @@ long_files() {
             echo "${file#"$src"/}: $n lines (at most $max)"
             status=1
         fi
-    done < <(find "$src/lib" "$src/tools" \( -name '*.c' -o -name '*.h' \) -print0 | sort -z)
+    done < <(find "$src/lib" "$src/tools" $([ -d "$src/fmu" ] && echo "$src/fmu") \( -name '*.c' -o -name '*.h' \) -print0 | sort -z)
     return $status
 }
 

@@ -15,7 +15,7 @@ if [ "$version" != 14 ]; then
     echo "skipped: clang-format ${version:-of unknown version}; the tree is formatted with clang-format 14"
     exit 77
 fi
-mapfile -d '' files < <(find "$src/include" "$src/lib" "$src/tools" "$src/tests" "$src/fuzz" "$src/examples" \
+mapfile -d '' files < <(find "$src/include" "$src/lib" "$src/tools" "$src/fmu" "$src/tests" "$src/fuzz" "$src/examples" \
     \( -name '*.c' -o -name '*.h' \) -print0 | sort -z)
 # one run over all files; each line a formatting violation reports starts "FILE:LINE:COLUMN:"
 if report=$(clang-format --style=file --dry-run -Werror "${files[@]}" 2>&1); then

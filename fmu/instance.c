@@ -1,0 +1,361 @@
+/*
+ * An instance of touchdown's FMU (instance.h): made from its resources (lib/fmu/fmu_internal.h), the
+ * simulation created at initialisation from the case with the parameters the importer set (each a
+ * td_case_load override KEY=VALUE), and stepped from one communication point exactly onto the next
+ * (FMI 2.0, 4.2.2 fmi2DoStep), through every event inside the step.
+ */
+#include "fmu/instance.h"
+
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+fmi2Status td_fmu_log(const td_fmu_instance *in, fmi2Status status, const char *fmt, ...)
+{
+    char msg[TD_ERROR_MESSAGE_SIZE + 128];
+    va_list ap;
+    if (!in->logger || (!in->logging && status == fmi2OK))
+        return status;
+    va_start(ap, fmt);
+    vsnprintf(msg, sizeof msg, fmt, ap);
+    va_end(ap);
+    /* the message is data, never the logger's format */
+    in->logger(in->env, in->name, status, status >= fmi2Error ? "logStatusError" : "logEvents", "%s", msg);
+    return status;
+}
+
+static int hex(int c)
+{
+    return c >= '0' && c <= '9'   ? c - '0'
+           : c >= 'a' && c <= 'f' ? c - 'a' + 10
+           : c >= 'A' && c <= 'F' ? c - 'A' + 10
+                                  : -1;
+}
+
+/* The local path of a file URI (RFC 8089: file:///p, file://localhost/p, file:/p), percent-decoded,
+ * without a trailing slash; NULL for anything else. */
+static char *uri_path(const char *uri)
+{
+    const char *p;
+    char *out, *o;
+    if (!uri || strncmp(uri, "file:", 5) != 0)
+        return NULL;
+    p = uri + 5;
+    if (strncmp(p, "//localhost/", 12) == 0)
+        p += 11;
+    else if (strncmp(p, "///", 3) == 0)
+        p += 2;
+    else if (p[0] != '/' || p[1] == '/')
+        return NULL; /* a remote host */
+    if (!(out = malloc(strlen(p) + 1)))
+        return NULL;
+    for (o = out; *p; p++) {
+        if (*p == '%' && hex(p[1]) >= 0 && hex(p[2]) >= 0) {
+            *o++ = (char)(16 * hex(p[1]) + hex(p[2]));
+            p += 2;
+        } else {
+            *o++ = *p;
+        }
+    }
+    *o = '\0';
+    while (o > out + 1 && o[-1] == '/')
+        *--o = '\0';
+    return out;
+}
+
+/* The variables and their start values from the case of the resources. */
+static int load_variables(td_fmu_instance *in)
+{
+    td_case *c = NULL;
+    td_error err;
+    int i;
+    if (td_case_load(in->settings.case_path, (const char *const *)in->settings.overrides, in->settings.n_overrides, &c,
+                     &err) != TD_OK) {
+        td_fmu_log(in, fmi2Error, "%s", err.message);
+        return 0;
+    }
+    i = td_fmu_variables(td_case_model(c), in->settings.inputs, &in->var, &in->n_var, &err) == TD_OK;
+    in->n_retainers = td_model_retainer_count(td_case_model(c));
+    td_case_free(&c);
+    if (!i || !(in->value = calloc((size_t)in->n_var + 1, sizeof *in->value)) ||
+        !(in->impacts = calloc((size_t)in->n_retainers + 1, sizeof *in->impacts))) {
+        td_fmu_log(in, fmi2Error, "out of memory instantiating the FMU");
+        return 0;
+    }
+    td_fmu_instance_reset(in);
+    return 1;
+}
+
+td_fmu_instance *td_fmu_instance_create(const char *name, const char *guid, const char *resources,
+                                        fmi2CallbackLogger logger, fmi2ComponentEnvironment env, int logging)
+{
+    td_fmu_instance *in = calloc(1, sizeof *in);
+    char *dir;
+    td_error err;
+    if (!in)
+        return NULL;
+    in->logger = logger, in->env = env, in->logging = logging;
+    if (!(in->name = malloc(strlen(name ? name : "") + 1))) {
+        free(in);
+        return NULL;
+    }
+    strcpy(in->name, name ? name : "");
+    if (!(dir = uri_path(resources))) {
+        td_fmu_log(in, fmi2Error, "fmi2Instantiate: the resource location '%s' is not a local file URI",
+                   resources ? resources : "(null)");
+    } else if (td_fmu_settings_read(dir, &in->settings, &err) != TD_OK) {
+        td_fmu_log(in, fmi2Error, "fmi2Instantiate: %s", err.message);
+    } else if (!guid || strcmp(guid, in->settings.guid) != 0) {
+        td_fmu_log(in, fmi2Error, "fmi2Instantiate: guid %s is not the FMU's %s", guid ? guid : "(null)",
+                   in->settings.guid);
+    } else if (load_variables(in)) {
+        free(dir);
+        return in;
+    }
+    free(dir);
+    td_fmu_instance_free(in);
+    return NULL;
+}
+
+void td_fmu_instance_free(td_fmu_instance *in)
+{
+    if (!in)
+        return;
+    td_sim_free(&in->sim);
+    td_fmu_settings_free(&in->settings);
+    free(in->var);
+    free(in->value);
+    free(in->impacts);
+    free(in->name);
+    free(in);
+}
+
+void td_fmu_instance_reset(td_fmu_instance *in)
+{
+    int i;
+    td_sim_free(&in->sim);
+    for (i = 0; i < in->n_var; i++)
+        in->value[i] = in->var[i].start;
+    for (i = 0; i < in->n_retainers; i++)
+        in->impacts[i] = 0;
+    in->state = TD_FMU_INSTANTIATED;
+    in->t_start = in->t_comm = 0.0;
+    in->has_stop = 0;
+    in->inputs_held = 0;
+}
+
+/* The overrides of the simulation: the staged ones, then KEY=VALUE for each parameter the importer
+ * changed (a parameter left at its start value is the case's own, untouched). *list (free() it and
+ * its strings), *n; 0 when out of memory. */
+static int parameter_overrides(const td_fmu_instance *in, char ***list, int *n)
+{
+    int i, k = in->settings.n_overrides;
+    char **l = calloc((size_t)(k + in->n_var + 1), sizeof *l);
+    *list = l;
+    *n = 0;
+    if (!l)
+        return 0;
+    for (i = 0; i < k; i++)
+        l[(*n)++] = in->settings.overrides[i];
+    for (i = 0; i < in->n_var; i++) {
+        const td_fmu_var *v = &in->var[i];
+        if (v->causality != TD_FMU_PARAMETER || memcmp(&in->value[i], &v->start, sizeof(double)) == 0)
+            continue;
+        if (!(l[*n] = malloc(TD_FMU_NAME_SIZE + 32)))
+            return 0;
+        snprintf(l[(*n)++], TD_FMU_NAME_SIZE + 32, "%s=%.17g", v->name, in->value[i]);
+    }
+    return 1;
+}
+
+static void free_overrides(const td_fmu_instance *in, char **list, int n)
+{
+    int i;
+    for (i = in->settings.n_overrides; list && i < n; i++)
+        free(list[i]);
+    free(list);
+}
+
+/* The held inputs into the simulation: per AMB its current (TD_AMB_CURRENT) or control force. */
+static fmi2Status apply_inputs(td_fmu_instance *in)
+{
+    td_error err;
+    int i;
+    for (i = 0; i < in->n_var && !in->inputs_held; i++) {
+        const td_fmu_var *v = &in->var[i];
+        td_status st = TD_OK;
+        if (v->causality != TD_FMU_INPUT || v->axis != 0)
+            continue; /* x and y together, at the x input (y follows it: td_fmu_variables) */
+        if (v->quantity == TD_FMU_Q_CURRENT_IN)
+            st = td_sim_set_amb_current(in->sim, v->index, in->value[i], in->value[i + 1], &err);
+        else
+            st = td_sim_set_amb_control(in->sim, v->index, in->value[i], in->value[i + 1], &err);
+        if (st != TD_OK)
+            return td_fmu_log(in, fmi2Error, "%s", err.message);
+    }
+    in->inputs_held = 1;
+    return fmi2OK;
+}
+
+/* Every AMB driven by the inputs (none: the case's own laws drive them); one the case's schedule has
+ * failed at the start stays failed, and its restore (if the schedule has one) gives it to the inputs. */
+static fmi2Status input_modes(td_fmu_instance *in)
+{
+    td_amb_mode mode = in->settings.inputs == TD_FMU_INPUTS_CURRENT ? TD_AMB_CURRENT : TD_AMB_EXTERNAL;
+    td_error err;
+    int a;
+    for (a = 0; in->settings.inputs != TD_FMU_INPUTS_NONE && a < td_model_amb_count(td_sim_model(in->sim)); a++) {
+        int failed = td_sim_amb_mode(in->sim, a) == TD_AMB_OFF;
+        if (td_sim_set_amb_mode(in->sim, a, mode, &err) != TD_OK ||
+            (failed && td_sim_set_amb_mode(in->sim, a, TD_AMB_OFF, &err) != TD_OK))
+            return td_fmu_log(in, fmi2Error, "%s", err.message);
+    }
+    in->inputs_held = 0;
+    return apply_inputs(in);
+}
+
+fmi2Status td_fmu_instance_start(td_fmu_instance *in)
+{
+    td_sim_options opt;
+    td_case *c = NULL;
+    td_error err;
+    char **ov;
+    int n;
+    fmi2Status fs = fmi2Error;
+    td_sim_free(&in->sim);
+    if (!parameter_overrides(in, &ov, &n)) {
+        free_overrides(in, ov, n);
+        return td_fmu_log(in, fmi2Error, "out of memory initialising the FMU");
+    }
+    if (td_case_load(in->settings.case_path, (const char *const *)ov, n, &c, &err) != TD_OK) {
+        td_fmu_log(in, fmi2Error, "%s", err.message);
+    } else {
+        opt = *td_case_sim_options(c);
+        opt.t0 = in->t_start;
+        if (td_sim_create(td_case_model(c), &opt, &in->sim, &err) != TD_OK)
+            td_fmu_log(in, fmi2Error, "%s", err.message);
+        else
+            fs = input_modes(in);
+    }
+    td_case_free(&c);
+    free_overrides(in, ov, n);
+    in->t_comm = in->t_start;
+    return fs;
+}
+
+/* An event inside a step: a contact onset counts as an impact of its retainer. */
+static void count_event(td_fmu_instance *in)
+{
+    td_event ev;
+    if (td_sim_last_event(in->sim, &ev) == TD_OK &&
+        (ev.kind == TD_EVENT_CONTACT_ONSET || ev.kind == TD_EVENT_PENALTY_ENTER) && ev.retainer >= 0 &&
+        ev.retainer < in->n_retainers)
+        in->impacts[ev.retainer]++;
+}
+
+fmi2Status td_fmu_instance_step(td_fmu_instance *in, double t, double h)
+{
+    double tout = t + h, tol = 1e-12 * fmax(1.0, fabs(in->t_comm));
+    td_status st;
+    td_error err;
+    if (!isfinite(t) || !isfinite(h) || !(h > 0.0))
+        return td_fmu_log(in, fmi2Error, "fmi2DoStep: the step must be finite and > 0 (t = %.17g, h = %.17g)", t, h);
+    if (fabs(t - in->t_comm) > tol)
+        return td_fmu_log(in, fmi2Error, "fmi2DoStep: the communication point %.17g is not the FMU's time %.17g", t,
+                          in->t_comm);
+    if (in->has_stop && tout > in->t_stop + 1e-12 * fmax(1.0, fabs(in->t_stop)))
+        return td_fmu_log(in, fmi2Error, "fmi2DoStep: t + h = %.17g is past the stop time %.17g", tout, in->t_stop);
+    if (!(tout > td_sim_time(in->sim)))
+        return td_fmu_log(in, fmi2Error, "fmi2DoStep: t + h = %.17g does not move on from %.17g", tout,
+                          td_sim_time(in->sim));
+    if (apply_inputs(in) != fmi2OK)
+        return fmi2Error;
+    while ((st = td_sim_step(in->sim, tout, NULL, &err)) == TD_EVENT)
+        count_event(in);
+    if (st != TD_OK)
+        return td_fmu_log(in, fmi2Error, "fmi2DoStep at t = %.17g: %s", td_sim_time(in->sim), err.message);
+    in->t_comm = tout;
+    return fmi2OK;
+}
+
+fmi2Status td_fmu_instance_set_real(td_fmu_instance *in, const fmi2ValueReference vr[], size_t n, const fmi2Real v[])
+{
+    size_t i;
+    for (i = 0; i < n; i++) { /* all checked before any is set: a refused call changes nothing */
+        const td_fmu_var *var = vr[i] < (fmi2ValueReference)in->n_var ? &in->var[vr[i]] : NULL;
+        if (!var)
+            return td_fmu_log(in, fmi2Error, "fmi2SetReal: value reference %u is no variable of this FMU", vr[i]);
+        if (var->type != TD_FMU_REAL || var->causality == TD_FMU_OUTPUT)
+            return td_fmu_log(in, fmi2Error,
+                              "fmi2SetReal: %s (value reference %u) is an output, not an input or parameter", var->name,
+                              vr[i]);
+        if (var->causality == TD_FMU_PARAMETER && in->state >= TD_FMU_STEPPING)
+            return td_fmu_log(in, fmi2Error, "fmi2SetReal: %s is a fixed parameter: set it before initialisation ends",
+                              var->name);
+        if (!isfinite(v[i]))
+            return td_fmu_log(in, fmi2Error, "fmi2SetReal: %s = %g: not a finite number", var->name, v[i]);
+    }
+    for (i = 0; i < n; i++) {
+        const td_fmu_var *var = &in->var[vr[i]];
+        if (var->causality == TD_FMU_PARAMETER && in->sim) /* made in initialisation mode: made again */
+            td_sim_free(&in->sim);
+        if (var->causality == TD_FMU_INPUT && in->value[vr[i]] != v[i])
+            in->inputs_held = 0;
+        in->value[vr[i]] = v[i];
+    }
+    return fmi2OK;
+}
+
+/* Output `v` of the simulation now. */
+static double output(const td_fmu_instance *in, const td_fmu_var *v)
+{
+    td_retainer_state rs;
+    td_sim_stats stats;
+    double f[2];
+    td_sim_stats_get(in->sim, &stats);
+    switch (v->quantity) {
+    case TD_FMU_Q_SENSED: {
+        td_amb amb;
+        double *q = malloc(sizeof(double) * (size_t)(td_sim_dof_count(in->sim) + 1)), x = TD_UNDEFINED;
+        td_model_get_amb(td_sim_model(in->sim), v->index, &amb);
+        if (q && td_sim_get_state(in->sim, q, NULL) == TD_OK)
+            x = td_system_node_displacement(td_sim_system(in->sim), q, amb.sensor_node, v->axis ? TD_DOF_Y : TD_DOF_X);
+        free(q);
+        return x;
+    }
+    case TD_FMU_Q_AMB_FORCE: return td_sim_amb_force(in->sim, v->index, f) == TD_OK ? f[v->axis] : TD_UNDEFINED;
+    case TD_FMU_Q_CONTACT_FORCE:
+    case TD_FMU_Q_IN_CONTACT:
+        if (td_sim_retainer_state(in->sim, v->index, &rs) != TD_OK)
+            return TD_UNDEFINED;
+        return v->quantity == TD_FMU_Q_IN_CONTACT ? (double)(rs.in_contact != 0) : rs.normal_force;
+    case TD_FMU_Q_IMPACTS: return (double)in->impacts[v->index];
+    case TD_FMU_Q_ROTOR_SPEED: return td_sim_speed(in->sim);
+    case TD_FMU_Q_EVENTS: return (double)stats.events;
+    case TD_FMU_Q_HAD_CONTACT: return (double)!td_is_undefined(stats.first_contact_time);
+    case TD_FMU_Q_FIRST_CONTACT: return stats.first_contact_time;
+    case TD_FMU_Q_PEAK_FORCE: return stats.peak_normal_force; /* 0 before a contact: no force yet */
+    default: return TD_UNDEFINED;
+    }
+}
+
+fmi2Status td_fmu_instance_get(td_fmu_instance *in, fmi2ValueReference vr, td_fmu_type type, double *out)
+{
+    const td_fmu_var *v = vr < (fmi2ValueReference)in->n_var ? &in->var[vr] : NULL;
+    static const char *const names[] = {"Real", "Integer", "Boolean"};
+    if (!v)
+        return td_fmu_log(in, fmi2Error, "fmi2Get%s: value reference %u is no variable of this FMU", names[type], vr);
+    if (v->type != type)
+        return td_fmu_log(in, fmi2Error, "fmi2Get%s: %s (value reference %u) is a %s variable", names[type], v->name,
+                          vr, names[v->type]);
+    if (v->causality != TD_FMU_OUTPUT) {
+        *out = in->value[vr];
+        return fmi2OK;
+    }
+    if (!in->sim && (in->state != TD_FMU_INITIALISING || td_fmu_instance_start(in) != fmi2OK))
+        return td_fmu_log(in, fmi2Error, "fmi2Get%s: %s has no value before initialisation", names[type], v->name);
+    *out = output(in, v);
+    return fmi2OK;
+}
