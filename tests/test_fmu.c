@@ -18,6 +18,10 @@
  *   step loop). Before the first contact the two agree to rounding, amplified only by the flow;
  *   after it the bouncing is chaotic (docs/validation.md), so the peak force and event count are
  *   compared over a short window with the tolerance stated at the check.
+ * - Plug-in controllers: a case whose controllers load two libraries of one file name, staged from
+ *   a directory removed before the FMU runs, gives the direct run's answers bit for bit (the
+ *   libraries travel in resources/plugins/); the guid follows the libraries' bytes, not where they
+ *   were; a NaN command or a refusing init is fmi2Error with the plug-in's line.
  * - Bad inputs: NaN, a value reference that is not an input, a fixed parameter after
  *   initialisation, a step from the wrong time, a wrong guid or resource location: fmi2Error (NULL
  *   for fmi2Instantiate) with one line through the logger, and nothing crashes.
@@ -869,7 +873,8 @@ static void test_plugin_case(void **state)
 
 /* Two different libraries of one file name both go into the FMU, the second as plugins/2/pd.so, and
  * each controller loads its own: controller 1's (the NaN plug-in, NaN from sample 3) fails the step
- * with fmi2Error and its one-line message, and every later step too; nothing crashes. */
+ * with fmi2Error and its one-line message, and a later step is refused too; one whose init refuses
+ * (tests/plugins/refuse.c) fails initialisation with its reason. Nothing crashes. */
 static void test_plugin_failing(void **state)
 {
     const char *ov[] = {"end_time=0.01"};
@@ -899,6 +904,25 @@ static void test_plugin_failing(void **state)
     assert_non_null(strstr(log.last, "nan"));
     assert_null(strchr(log.last, '\n'));
     assert_int_equal(api.do_step(c, (double)(k - 1) / 1000.0, 0.001, fmi2True), fmi2Error);
+    api.free_instance(c);
+    unload_fmu(&api);
+    /* a plug-in whose init refuses: initialisation fails with its reason */
+    assert_non_null(mkdtemp(strcpy(src, "/tmp/td-test-fmu-XXXXXX")));
+    write_plugin_case(src, PLUGIN_DIR "/pd.so", PLUGIN_DIR "/refuse.so");
+    snprintf(path, sizeof path, "%s/plug.cfg", src);
+    load_fmu_of(&api, path, ov, 1, TD_FMU_INPUTS_NONE);
+    remove_tree(src);
+    {
+        fmi2CallbackFunctions cb = {logger, NULL, NULL, NULL, &log};
+        c = api.instantiate("test", fmi2CoSimulation, api.guid, api.uri, &cb, fmi2False, fmi2False);
+        assert_non_null(c);
+        assert_int_equal(api.setup(c, fmi2False, 0.0, 0.0, fmi2True, 0.01), fmi2OK);
+        assert_int_equal(api.enter_init(c), fmi2OK);
+        assert_int_equal(api.exit_init(c), fmi2Error);
+    }
+    printf("refusing plug-in in the FMU: %s\n", log.last);
+    assert_non_null(strstr(log.last, "controller 1: plug-in \"p1\" init failed"));
+    assert_null(strchr(log.last, '\n'));
     api.free_instance(c);
     unload_fmu(&api);
 }
