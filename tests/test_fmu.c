@@ -18,6 +18,10 @@
  *   step loop). Before the first contact the two agree to rounding, amplified only by the flow;
  *   after it the bouncing is chaotic (docs/validation.md), so the peak force and event count are
  *   compared over a short window with the tolerance stated at the check.
+ * - Plug-in controllers: a case whose controllers load two libraries of one file name, staged from
+ *   a directory removed before the FMU runs, gives the direct run's answers bit for bit (the
+ *   libraries travel in resources/plugins/); the guid follows the libraries' bytes, not where they
+ *   were; a NaN command or a refusing init is fmi2Error with the plug-in's line.
  * - Bad inputs: NaN, a value reference that is not an input, a fixed parameter after
  *   initialisation, a step from the wrong time, a wrong guid or resource location: fmi2Error (NULL
  *   for fmi2Instantiate) with one line through the logger, and nothing crashes.
@@ -123,15 +127,16 @@ static void *sym(void *lib, const char *name)
 /* dlsym's object pointer into a function pointer, the way POSIX (dlsym, rationale) writes it. */
 #define LOAD(field, name) (*(void **)&api->field = sym(api->lib, name))
 
-/* Stage the case with `ov` and `inputs`, put the binary in, load it as an importer does. */
-static void load_fmu(fmu_api *api, const char **ov, int nov, td_fmu_inputs inputs)
+/* Stage the case file `case_path` with `ov` and `inputs`, put the binary in, load it as an importer
+ * does. */
+static void load_fmu_of(fmu_api *api, const char *case_path, const char **ov, int nov, td_fmu_inputs inputs)
 {
     char path[400];
     td_error err;
     memset(api, 0, sizeof *api);
     snprintf(api->dir, sizeof api->dir, "/tmp/td-test-fmu-XXXXXX");
     assert_non_null(mkdtemp(api->dir));
-    if (td_fmu_stage(td_source_path(CASE), ov, nov, inputs, "touchdown_case", api->dir, &err) != TD_OK)
+    if (td_fmu_stage(case_path, ov, nov, inputs, "touchdown_case", api->dir, &err) != TD_OK)
         fail_msg("td_fmu_stage: %s", err.message);
     snprintf(path, sizeof path, "%s/binaries", api->dir);
     assert_int_equal(mkdir(path, 0777), 0);
@@ -156,6 +161,12 @@ static void load_fmu(fmu_api *api, const char **ov, int nov, td_fmu_inputs input
     LOAD(do_step, "fmi2DoStep");
     snprintf(api->uri, sizeof api->uri, "file://%s/resources", api->dir);
     read_guid(api->dir, api->guid, sizeof api->guid);
+}
+
+/* Stage case CASE with `ov` and `inputs` and load it. */
+static void load_fmu(fmu_api *api, const char **ov, int nov, td_fmu_inputs inputs)
+{
+    load_fmu_of(api, td_source_path(CASE), ov, nov, inputs);
 }
 
 static void remove_tree(const char *dir)
@@ -234,13 +245,15 @@ static void on_sample(void *data, int law, long k, double t, const double *e, in
     }
 }
 
-/* The case run by td_sim_step to t_end, through its events. */
-static void run_builtin(const char **ov, int nov, double t_end, builtin_run *r)
+/* The case file case_path run by td_sim_step to t_end, through its events. */
+static void run_case(const char *case_path, const char **ov, int nov, double t_end, builtin_run *r)
 {
-    td_case *c = td_test_load_case(CASE, ov, nov);
+    td_case *c = NULL;
     td_sim *s = NULL;
     td_error err;
     td_status st;
+    if (td_case_load(case_path, ov, nov, &c, &err) != TD_OK)
+        fail_msg("%s", err.message);
     memset(r, 0, sizeof *r);
     r->stats.first_contact_time = TD_UNDEFINED;
     if (td_sim_create(td_case_model(c), td_case_sim_options(c), &s, &err) != TD_OK)
@@ -253,6 +266,12 @@ static void run_builtin(const char **ov, int nov, double t_end, builtin_run *r)
     td_sim_stats_get(s, &r->stats);
     td_sim_free(&s);
     td_case_free(&c);
+}
+
+/* The case CASE run by td_sim_step to t_end, through its events. */
+static void run_builtin(const char **ov, int nov, double t_end, builtin_run *r)
+{
+    run_case(td_source_path(CASE), ov, nov, t_end, r);
 }
 
 /* ---- the tests -------------------------------------------------------------------------------- */
@@ -751,6 +770,163 @@ static void test_force_inputs(void **state)
     td_case_free(&c);
 }
 
+/* ---- plug-in controllers in the FMU ------------------------------------------------------------ */
+
+#define PLUGIN_DIR TD_BINARY_DIR "/tests/plugins"
+
+/* In dir: the example's rig (examples/plugin-pd/rig-pd.cfg) as plug.cfg with one plug-in controller
+ * per AMB, controller 0 loading a/pd.so (a copy of lib0) and controller 1 b/pd.so (of lib1): two
+ * libraries of one file name, relative to the case file. */
+static void write_plugin_case(const char *dir, const char *lib0, const char *lib1)
+{
+    static const char controllers[] =
+        "controllers = (\n"
+        "  { name = \"p0\"; ambs = [0]; sample_rate = 10000.0;\n"
+        "    plugin = { library = \"a/pd.so\"; parameters = { kp = 1.0e4; kd = 40.0; }; }; },\n"
+        "  { name = \"p1\"; ambs = [1]; sample_rate = 10000.0;\n"
+        "    plugin = { library = \"b/pd.so\"; parameters = { kp = 1.0e4; kd = 40.0; }; }; } );\n";
+    char path[600], *rig = td_test_read_file(td_source_path("examples/plugin-pd/rig-pd.cfg"));
+    char *from = strstr(rig, "controllers = ("), *to = strstr(rig, "\nspeed = "); /* not bore_speed */
+    FILE *f;
+    assert_non_null(from);
+    assert_non_null(to);
+    snprintf(path, sizeof path, "mkdir '%s/a' '%s/b'", dir, dir);
+    assert_int_equal(system(path), 0);
+    snprintf(path, sizeof path, "%s/a/pd.so", dir);
+    copy_file(lib0, path);
+    snprintf(path, sizeof path, "%s/b/pd.so", dir);
+    copy_file(lib1, path);
+    snprintf(path, sizeof path, "%s/plug.cfg", dir);
+    assert_non_null(f = fopen(path, "w"));
+    fwrite(rig, 1, (size_t)(from - rig), f);
+    fputs(controllers, f);
+    fputs(to + 1, f);
+    assert_int_equal(fclose(f), 0);
+    free(rig);
+}
+
+/* The bytes of file a equal those of file b. */
+static int same_file(const char *a, const char *b)
+{
+    char cmd[700];
+    snprintf(cmd, sizeof cmd, "cmp -s '%s' '%s'", a, b);
+    return system(cmd) == 0;
+}
+
+/* A case with plug-ins staged from a directory that is gone when the FMU runs: the FMU carries the
+ * libraries (one copy of a library two controllers load) and its answers are the direct run's
+ * bit for bit, the run of the case where it was written. The same case staged from elsewhere has
+ * the same guid; other library bytes under the same names give another. */
+static void test_plugin_case(void **state)
+{
+    const char *ov[] = {"end_time=0.12", "retainers[0].friction=0.2"};
+    char src[] = "/tmp/td-test-fmu-XXXXXX", other[] = "/tmp/td-test-fmu-XXXXXX", path[600], g1[64], g2[64];
+    fmu_api api, again;
+    log_lines log = {0};
+    builtin_run r;
+    fmi2Component c;
+    double first, peak;
+    long k, events;
+    (void)state;
+    assert_non_null(mkdtemp(src));
+    write_plugin_case(src, PLUGIN_DIR "/pd.so", PLUGIN_DIR "/pd.so");
+    snprintf(path, sizeof path, "%s/plug.cfg", src);
+    run_case(path, ov, 2, 0.12, &r);
+    load_fmu_of(&api, path, ov, 2, TD_FMU_INPUTS_NONE);
+    remove_tree(src); /* the case and its libraries where they were written are gone */
+    snprintf(path, sizeof path, "%s/resources/plugins/pd.so", api.dir);
+    assert_true(same_file(path, PLUGIN_DIR "/pd.so"));
+    snprintf(path, sizeof path, "%s/resources/plugins/2", api.dir);
+    assert_int_equal(access(path, F_OK), -1); /* the same bytes twice: one copy */
+    c = start(&api, &log, 0.12);
+    for (k = 0; k < 120; k++)
+        assert_int_equal(api.do_step(c, (double)k / 1000.0, (double)(k + 1) / 1000.0 - (double)k / 1000.0, fmi2True),
+                         fmi2OK);
+    fmu_answers(&api, c, &first, &peak, &events);
+    printf("plug-ins: first contact %.17g s (direct %.17g), peak %.17g N (direct %.17g), events %ld (direct %ld)\n",
+           first, r.stats.first_contact_time, peak, r.stats.peak_normal_force, events, r.stats.events);
+    assert_false(td_is_undefined(first));
+    assert_true(first == r.stats.first_contact_time);
+    assert_true(peak == r.stats.peak_normal_force);
+    assert_int_equal(events, r.stats.events);
+    api.terminate(c);
+    api.free_instance(c);
+    /* the guid: the same case and libraries from another directory, then other bytes in b/pd.so */
+    assert_non_null(mkdtemp(strcpy(src, "/tmp/td-test-fmu-XXXXXX")));
+    assert_non_null(mkdtemp(other));
+    write_plugin_case(other, PLUGIN_DIR "/pd.so", PLUGIN_DIR "/pd.so");
+    snprintf(path, sizeof path, "%s/plug.cfg", other);
+    load_fmu_of(&again, path, ov, 2, TD_FMU_INPUTS_NONE);
+    read_guid(again.dir, g1, sizeof g1);
+    assert_string_equal(g1, api.guid);
+    unload_fmu(&again);
+    write_plugin_case(src, PLUGIN_DIR "/pd.so", PLUGIN_DIR "/nan.so");
+    snprintf(path, sizeof path, "%s/plug.cfg", src);
+    load_fmu_of(&again, path, ov, 2, TD_FMU_INPUTS_NONE);
+    read_guid(again.dir, g2, sizeof g2);
+    assert_string_not_equal(g2, api.guid);
+    unload_fmu(&again);
+    remove_tree(src);
+    remove_tree(other);
+    unload_fmu(&api);
+}
+
+/* Two different libraries of one file name both go into the FMU, the second as plugins/2/pd.so, and
+ * each controller loads its own: controller 1's (the NaN plug-in, NaN from sample 3) fails the step
+ * with fmi2Error and its one-line message, and a later step is refused too; one whose init refuses
+ * (tests/plugins/refuse.c) fails initialisation with its reason. Nothing crashes. */
+static void test_plugin_failing(void **state)
+{
+    const char *ov[] = {"end_time=0.01"};
+    char src[] = "/tmp/td-test-fmu-XXXXXX", path[600];
+    fmu_api api;
+    log_lines log = {0};
+    fmi2Component c;
+    fmi2Status st = fmi2OK;
+    long k;
+    (void)state;
+    assert_non_null(mkdtemp(src));
+    write_plugin_case(src, PLUGIN_DIR "/pd.so", PLUGIN_DIR "/nan.so");
+    snprintf(path, sizeof path, "%s/plug.cfg", src);
+    load_fmu_of(&api, path, ov, 1, TD_FMU_INPUTS_NONE);
+    remove_tree(src);
+    snprintf(path, sizeof path, "%s/resources/plugins/pd.so", api.dir);
+    assert_true(same_file(path, PLUGIN_DIR "/pd.so"));
+    snprintf(path, sizeof path, "%s/resources/plugins/2/pd.so", api.dir);
+    assert_true(same_file(path, PLUGIN_DIR "/nan.so"));
+    c = start(&api, &log, 0.01);
+    for (k = 0; k < 10 && st == fmi2OK; k++)
+        st = api.do_step(c, (double)k / 1000.0, (double)(k + 1) / 1000.0 - (double)k / 1000.0, fmi2True);
+    printf("NaN plug-in in the FMU: step %ld: %s\n", k, log.last);
+    assert_int_equal(st, fmi2Error);
+    assert_int_equal(log.status, fmi2Error);
+    assert_non_null(strstr(log.last, "controller 1"));
+    assert_non_null(strstr(log.last, "nan"));
+    assert_null(strchr(log.last, '\n'));
+    assert_int_equal(api.do_step(c, (double)(k - 1) / 1000.0, 0.001, fmi2True), fmi2Error);
+    api.free_instance(c);
+    unload_fmu(&api);
+    /* a plug-in whose init refuses: initialisation fails with its reason */
+    assert_non_null(mkdtemp(strcpy(src, "/tmp/td-test-fmu-XXXXXX")));
+    write_plugin_case(src, PLUGIN_DIR "/pd.so", PLUGIN_DIR "/refuse.so");
+    snprintf(path, sizeof path, "%s/plug.cfg", src);
+    load_fmu_of(&api, path, ov, 1, TD_FMU_INPUTS_NONE);
+    remove_tree(src);
+    {
+        fmi2CallbackFunctions cb = {logger, NULL, NULL, NULL, &log};
+        c = api.instantiate("test", fmi2CoSimulation, api.guid, api.uri, &cb, fmi2False, fmi2False);
+        assert_non_null(c);
+        assert_int_equal(api.setup(c, fmi2False, 0.0, 0.0, fmi2True, 0.01), fmi2OK);
+        assert_int_equal(api.enter_init(c), fmi2OK);
+        assert_int_equal(api.exit_init(c), fmi2Error);
+    }
+    printf("refusing plug-in in the FMU: %s\n", log.last);
+    assert_non_null(strstr(log.last, "controller 1: plug-in \"p1\" init failed"));
+    assert_null(strchr(log.last, '\n'));
+    api.free_instance(c);
+    unload_fmu(&api);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -763,6 +939,8 @@ int main(void)
         cmocka_unit_test(test_parameters),
         cmocka_unit_test(test_schedule_and_inputs),
         cmocka_unit_test(test_force_inputs),
+        cmocka_unit_test(test_plugin_case),
+        cmocka_unit_test(test_plugin_failing),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

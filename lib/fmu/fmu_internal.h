@@ -8,7 +8,12 @@
  *   resources/touchdown-fmu.cfg  a libconfig file: format (TD_FMU_FORMAT), touchdown (the version
  *                                that staged it), guid, model_identifier, case ("case.cfg"), inputs
  *                                ("none", "current" or "force") and overrides (the td_case_load
- *                                overrides the FMU was staged with, applied again at instantiation)
+ *                                overrides the FMU was staged with, applied again at instantiation,
+ *                                then one `controllers[i].plugin.library="plugins/NAME"` per
+ *                                plug-in controller: a relative library resolves under the case
+ *                                file's directory, resources/)
+ *   resources/plugins/NAME       each plug-in library the case loads, copied (plugins.c); another
+ *                                library of the same file name as plugins/2/NAME, ...
  *
  * The variables are a pure function of the case's model and the inputs (td_fmu_variables): the
  * stage lists them in modelDescription.xml and the binary rebuilds the same list from the same
@@ -19,6 +24,7 @@
 
 #include "touchdown/case.h"
 #include "touchdown/fmu.h"
+#include "util/text.h"
 
 /* The version of the resources' format; the binary refuses any other. */
 #define TD_FMU_FORMAT 1
@@ -75,6 +81,22 @@ const char *td_fmu_inputs_name(td_fmu_inputs inputs);
 struct td_text;
 td_status td_fmu_model_description(const td_case *c, td_fmu_inputs inputs, const char *id, const char *guid,
                                    struct td_text *t, td_error *err);
+
+/* Longest name of a plug-in library under resources/ ("plugins/[K/]NAME"), NUL included. */
+#define TD_FMU_PLUGIN_NAME_SIZE 256
+
+/* The plug-in libraries of a staged case: the overrides that point the FMU at the copies, and the
+ * fingerprint of their bytes for the guid ("NAME HASH SIZE" lines). */
+typedef struct td_fmu_plugins {
+    char **overrides;
+    int n;
+    td_text fingerprint;
+} td_fmu_plugins;
+
+/* Copy each plug-in library case c loads into resources_dir/plugins/ (plugins.c) and fill *out
+ * (freed with td_fmu_plugins_free, also after a failure). TD_ERR_IO naming a file. */
+td_status td_fmu_plugins_stage(const td_case *c, const char *resources_dir, td_fmu_plugins *out, td_error *err);
+void td_fmu_plugins_free(td_fmu_plugins *p);
 
 /* resources/touchdown-fmu.cfg as read. */
 typedef struct td_fmu_settings {

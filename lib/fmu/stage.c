@@ -58,9 +58,10 @@ static uint64_t fnv(uint64_t h, const char *s)
 }
 
 /* The guid, "{8-4-4-4-12}" hex digits, of what the binary will read: the staged case text (no path of
- * the machine that staged it), the overrides, the inputs, the identifier and the version. */
+ * the machine that staged it), the overrides, the inputs, the identifier, the version and the
+ * plug-in libraries' fingerprint fp (their bytes hashed, plugins.c; not their paths). */
 static void make_guid(char *buf, size_t n, const char *text, const char *const *ov, int nov, td_fmu_inputs inputs,
-                      const char *id)
+                      const char *id, const char *fp)
 {
     uint64_t h[2] = {14695981039346656037ULL, 0x6c62272e07bb0142ULL};
     int j, i;
@@ -68,6 +69,8 @@ static void make_guid(char *buf, size_t n, const char *text, const char *const *
         h[j] = fnv(fnv(fnv(fnv(h[j], TD_VERSION), td_fmu_inputs_name(inputs)), id), text);
         for (i = 0; i < nov; i++)
             h[j] = fnv(h[j], ov[i]);
+        if (fp[0])
+            h[j] = fnv(h[j], fp);
     }
     snprintf(buf, n, "{%08lx-%04lx-%04lx-%04lx-%012llx}", (unsigned long)(h[0] >> 32),
              (unsigned long)((h[0] >> 16) & 0xffff), (unsigned long)(h[0] & 0xffff), (unsigned long)(h[1] >> 48),
@@ -143,9 +146,10 @@ static void settings_text(td_text *t, const char *guid, const char *id, td_fmu_i
     td_text_printf(t, "%s);\n", nov ? "\n" : "");
 }
 
-/* Write the FMU's resources/ and modelDescription.xml from the loaded case. */
-static td_status stage_case(const td_case *c, const char *const *ov, int nov, td_fmu_inputs inputs, const char *id,
-                            const char *dir, td_error *err)
+/* Write into dir the case text, the settings and modelDescription.xml, with guid of those and the
+ * plug-in libraries' fingerprint fp ("" for none: the guid of a case without plug-ins is unchanged). */
+static td_status write_staged(const td_case *c, const char *const *ov, int nov, td_fmu_inputs inputs, const char *id,
+                              const char *fp, const char *dir, td_error *err)
 {
     td_text t = {NULL, 0, 0, 0, 0};
     char guid[64], *path = NULL;
@@ -156,14 +160,7 @@ static td_status stage_case(const td_case *c, const char *const *ov, int nov, td
         free(t.data);
         return td_error_set(err, TD_ERR_NOMEM, "out of memory staging an FMU");
     }
-    make_guid(guid, sizeof guid, t.data, ov, nov, inputs, id);
-    snprintf(path, n, "%s/resources", dir);
-    if (mkdir(path, 0777) != 0) {
-        st = td_error_set(err, TD_ERR_IO, "%s: cannot create: %s", path, strerror(errno));
-        free(t.data);
-        free(path);
-        return st;
-    }
+    make_guid(guid, sizeof guid, t.data, ov, nov, inputs, id, fp);
     snprintf(path, n, "%s/resources/%s", dir, TD_FMU_CASE_FILE);
     st = write_file(path, &t, err);
     free(t.data);
@@ -181,6 +178,41 @@ static td_status stage_case(const td_case *c, const char *const *ov, int nov, td
         st = st == TD_OK ? write_file(path, &t, err) : st;
         free(t.data);
     }
+    free(path);
+    return st;
+}
+
+/* Write the FMU's resources/ (the plug-in libraries the case loads among them) and
+ * modelDescription.xml from the loaded case; the binary gets the user's overrides, then those that
+ * point its plug-in controllers at the copies. */
+static td_status stage_case(const td_case *c, const char *const *ov, int nov, td_fmu_inputs inputs, const char *id,
+                            const char *dir, td_error *err)
+{
+    td_fmu_plugins pl;
+    const char **all = NULL;
+    char *path;
+    int i;
+    td_status st;
+    if (!(path = malloc(strlen(dir) + 16)))
+        return td_error_set(err, TD_ERR_NOMEM, "out of memory staging an FMU");
+    sprintf(path, "%s/resources", dir);
+    if (mkdir(path, 0777) != 0) {
+        st = td_error_set(err, TD_ERR_IO, "%s: cannot create: %s", path, strerror(errno));
+        free(path);
+        return st;
+    }
+    st = td_fmu_plugins_stage(c, path, &pl, err);
+    if (st == TD_OK && !(all = malloc((size_t)(nov + pl.n + 1) * sizeof *all)))
+        st = td_error_set(err, TD_ERR_NOMEM, "out of memory staging an FMU");
+    if (st == TD_OK) {
+        for (i = 0; i < nov; i++)
+            all[i] = ov[i];
+        for (i = 0; i < pl.n; i++)
+            all[nov + i] = pl.overrides[i];
+        st = write_staged(c, all, nov + pl.n, inputs, id, pl.fingerprint.data ? pl.fingerprint.data : "", dir, err);
+    }
+    free(all);
+    td_fmu_plugins_free(&pl);
     free(path);
     return st;
 }

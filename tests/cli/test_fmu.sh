@@ -3,10 +3,11 @@
 # place whole), and its bad input: each refusal is one line on stderr and exit 2, writes nothing and
 # leaves every input as it was; a tool without its FMU binary fails with exit 1. fmpy's view of the
 # FMU (validation, simulation) is tests/fmu/.
-#   test_fmu.sh TOOL SOURCE_DIR
+#   test_fmu.sh TOOL SOURCE_DIR [PLUGIN_DIR]
 set -u
 tool=$1
 src=$2
+plugins=${3:-}
 . "$src/tests/cli/common.sh"
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
@@ -92,6 +93,28 @@ t "$work/in" fmu "$case_a" -o Dir.fmu
 [ "$rc" = 2 ] && [ -d "$work/in/Dir.fmu" ]
 verdict "-o a directory: exit 2"
 check "no temporary file left by the refusals" [ -z "$(find "$work/in" -name '*.partial')" ]
+
+# a case whose controller is a plug-in (the example's, with the test PD of PLUGIN_DIR beside it): the
+# FMU carries the library in resources/plugins/ and points its controller at it; a plug-in that
+# crashes in its init is refused at packing (the tool's probe), one line, exit 2, no file
+mkdir -p "$work/plug"
+sed 's/ ki = 0.0;//' "$src/examples/plugin-pd/rig-pd.cfg" >"$work/plug/rig-pd.cfg"
+cp "$plugins/pd.so" "$work/plug/pd.so" || fail "no test plug-in $plugins/pd.so"
+t "$work/plug" fmu --inputs none rig-pd.cfg -o Plug.fmu
+[ "$rc" = 0 ] && entries "$work/plug/Plug.fmu" | grep -qx resources/plugins/pd.so &&
+    /usr/bin/python3 -c 'import sys, zipfile; sys.stdout.buffer.write(zipfile.ZipFile(sys.argv[1]).read("resources/plugins/pd.so"))' \
+        "$work/plug/Plug.fmu" | cmp -s - "$plugins/pd.so" &&
+    /usr/bin/python3 -c 'import sys, zipfile; print(zipfile.ZipFile(sys.argv[1]).read("resources/touchdown-fmu.cfg").decode())' \
+        "$work/plug/Plug.fmu" | grep -qF '"controllers[0].plugin.library=\"plugins/pd.so\""'
+verdict "a plug-in case: its library's bytes in resources/plugins/pd.so, the controller pointed at it"
+cp "$plugins/crash.so" "$work/plug/pd.so"
+rm -rf "$work/r"
+mkdir -p "$work/r"
+cp "$work/plug/rig-pd.cfg" "$work/plug/pd.so" "$work/r/"
+t "$work/r" fmu --inputs none rig-pd.cfg -o Crash.fmu
+[ "$rc" = 2 ] && [ "$(wc -l <"$work/r/.err")" = 1 ] && grep -q "controllers\[0\].plugin.library: .*crashed in its init" "$work/r/.err" &&
+    [ ! -e "$work/r/Crash.fmu" ]
+verdict "a plug-in crashing in its init: refused at packing, exit 2, one line naming the key: $(cat "$work/r/.err")"
 
 # a tool copied away from its FMU binary: exit 1 (it cannot be written), one line, no file
 mkdir -p "$work/alone"
