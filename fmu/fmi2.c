@@ -41,11 +41,9 @@ fmi2Status fmi2SetDebugLogging(fmi2Component c, fmi2Boolean loggingOn, size_t nC
                                const fmi2String categories[])
 {
     td_fmu_instance *in = allowed(c, ANY, "fmi2SetDebugLogging");
-    (void)nCategories, (void)categories;
     if (!in)
         return fmi2Error;
-    in->logging = loggingOn != fmi2False;
-    return fmi2OK;
+    return td_fmu_instance_set_logging(in, loggingOn != fmi2False, nCategories, categories);
 }
 
 fmi2Component fmi2Instantiate(fmi2String instanceName, fmi2Type fmuType, fmi2String fmuGUID,
@@ -100,7 +98,7 @@ fmi2Status fmi2ExitInitializationMode(fmi2Component c)
     td_fmu_instance *in = allowed(c, S(TD_FMU_INITIALISING), "fmi2ExitInitializationMode");
     if (!in)
         return fmi2Error;
-    if (!in->sim && td_fmu_instance_start(in) != fmi2OK) {
+    if (!in->sim && td_fmu_instance_start(in, "fmi2ExitInitializationMode") != fmi2OK) {
         in->state = TD_FMU_FAILED;
         return fmi2Error;
     }
@@ -295,35 +293,63 @@ fmi2Status fmi2CancelStep(fmi2Component c)
     return unsupported(c, "fmi2CancelStep");
 }
 
+/* A status query of kind s (FMI 2.0, 4.2.3): the instance when the call is allowed and value is
+ * there; NULL, logged, otherwise. */
+static td_fmu_instance *status_query(fmi2Component c, const void *value, const char *what)
+{
+    td_fmu_instance *in = allowed(c, ANY, what);
+    if (in && !value) {
+        td_fmu_log(in, fmi2Error, "%s: value is NULL", what);
+        return NULL;
+    }
+    return in;
+}
+
+/* A status this FMU cannot give: fmi2Discard, as 4.2.3 says ("If a status is required which cannot
+ * be retrieved by the slave it returns fmi2Discard"). Its steps are synchronous (no fmi2Pending, so
+ * no fmi2DoStepStatus nor fmi2PendingStatus) and the kinds of another type have no value here. */
+static fmi2Status no_such_status(td_fmu_instance *in, const char *what, fmi2StatusKind s)
+{
+    return td_fmu_log(in, fmi2Discard, "%s: status kind %d has no value in this FMU (its steps never pend)", what,
+                      (int)s);
+}
+
 fmi2Status fmi2GetStatus(fmi2Component c, const fmi2StatusKind s, fmi2Status *value)
 {
-    (void)s, (void)value;
-    return unsupported(c, "fmi2GetStatus");
+    td_fmu_instance *in = status_query(c, value, "fmi2GetStatus");
+    return in ? no_such_status(in, "fmi2GetStatus", s) : fmi2Error;
 }
 
 fmi2Status fmi2GetRealStatus(fmi2Component c, const fmi2StatusKind s, fmi2Real *value)
 {
-    td_fmu_instance *in = allowed(c, ANY, "fmi2GetRealStatus");
-    if (!in || s != fmi2LastSuccessfulTime || !value)
-        return in ? unsupported(c, "fmi2GetRealStatus of this kind") : fmi2Error;
-    *value = in->sim ? td_sim_time(in->sim) : in->t_start;
+    td_fmu_instance *in = status_query(c, value, "fmi2GetRealStatus");
+    if (!in)
+        return fmi2Error;
+    if (s != fmi2LastSuccessfulTime)
+        return no_such_status(in, "fmi2GetRealStatus", s);
+    *value = in->sim ? in->t_comm : in->t_start; /* the end of the last completed communication step */
     return fmi2OK;
 }
 
 fmi2Status fmi2GetIntegerStatus(fmi2Component c, const fmi2StatusKind s, fmi2Integer *value)
 {
-    (void)s, (void)value;
-    return unsupported(c, "fmi2GetIntegerStatus");
+    td_fmu_instance *in = status_query(c, value, "fmi2GetIntegerStatus");
+    return in ? no_such_status(in, "fmi2GetIntegerStatus", s) : fmi2Error;
 }
 
 fmi2Status fmi2GetBooleanStatus(fmi2Component c, const fmi2StatusKind s, fmi2Boolean *value)
 {
-    (void)s, (void)value;
-    return unsupported(c, "fmi2GetBooleanStatus");
+    td_fmu_instance *in = status_query(c, value, "fmi2GetBooleanStatus");
+    if (!in)
+        return fmi2Error;
+    if (s != fmi2Terminated)
+        return no_such_status(in, "fmi2GetBooleanStatus", s);
+    *value = fmi2False; /* the FMU never asks to end the run: its doStep gives fmi2OK or fmi2Error */
+    return fmi2OK;
 }
 
 fmi2Status fmi2GetStringStatus(fmi2Component c, const fmi2StatusKind s, fmi2String *value)
 {
-    (void)s, (void)value;
-    return unsupported(c, "fmi2GetStringStatus");
+    td_fmu_instance *in = status_query(c, value, "fmi2GetStringStatus");
+    return in ? no_such_status(in, "fmi2GetStringStatus", s) : fmi2Error;
 }

@@ -12,18 +12,47 @@
 #include <stdlib.h>
 #include <string.h>
 
+/* The category of a line of `status`. */
+static td_fmu_log_category category_of(fmi2Status status)
+{
+    return status >= fmi2Error ? TD_FMU_LOG_ERROR : status == fmi2OK ? TD_FMU_LOG_EVENTS : TD_FMU_LOG_DISCARD;
+}
+
 fmi2Status td_fmu_log(const td_fmu_instance *in, fmi2Status status, const char *fmt, ...)
 {
     char msg[TD_ERROR_MESSAGE_SIZE + 128];
+    td_fmu_log_category cat = category_of(status);
     va_list ap;
-    if (!in->logger || (!in->logging && status == fmi2OK))
+    /* an error's line is the reason of the fmi2Error it comes with, not debug output: always sent */
+    if (!in->logger || (cat != TD_FMU_LOG_ERROR && !(in->logging && (in->log_mask & (1u << cat)))))
         return status;
     va_start(ap, fmt);
     vsnprintf(msg, sizeof msg, fmt, ap);
     va_end(ap);
     /* the message is data, never the logger's format */
-    in->logger(in->env, in->name, status, status >= fmi2Error ? "logStatusError" : "logEvents", "%s", msg);
+    in->logger(in->env, in->name, status, td_fmu_log_categories[cat].name, "%s", msg);
     return status;
+}
+
+fmi2Status td_fmu_instance_set_logging(td_fmu_instance *in, int on, size_t n, const fmi2String categories[])
+{
+    unsigned mask = n ? 0u : (1u << TD_FMU_LOG_CATEGORIES) - 1u;
+    size_t i;
+    int k;
+    for (i = 0; i < n; i++) {
+        for (k = 0; k < TD_FMU_LOG_CATEGORIES && categories && categories[i]; k++)
+            if (strcmp(categories[i], td_fmu_log_categories[k].name) == 0)
+                break;
+        if (!categories || !categories[i] || k == TD_FMU_LOG_CATEGORIES)
+            return td_fmu_log(in, fmi2Error,
+                              "fmi2SetDebugLogging: '%s' is no log category of this FMU (see its "
+                              "modelDescription.xml)",
+                              categories && categories[i] ? categories[i] : "(null)");
+        mask |= 1u << k;
+    }
+    in->logging = on;
+    in->log_mask = mask;
+    return fmi2OK;
 }
 
 static int hex(int c)
@@ -76,11 +105,19 @@ static int load_variables(td_fmu_instance *in)
         td_fmu_log(in, fmi2Error, "%s", err.message);
         return 0;
     }
+    if (in->settings.inputs != TD_FMU_INPUTS_NONE && td_case_sim_options(c)->start == TD_START_ORBIT) {
+        /* the orbit is that of the case's own controllers, which the inputs replace from the start */
+        td_fmu_log(in, fmi2Error,
+                   "fmi2Instantiate: start = \"orbit\" is the steady orbit under the case's own controllers, "
+                   "which the FMU's %s inputs replace: an FMU with inputs starts at rest (start = \"rest\" or "
+                   "\"auto\")",
+                   td_fmu_inputs_name(in->settings.inputs));
+        td_case_free(&c);
+        return 0;
+    }
     i = td_fmu_variables(td_case_model(c), in->settings.inputs, &in->var, &in->n_var, &err) == TD_OK;
-    in->n_retainers = td_model_retainer_count(td_case_model(c));
     td_case_free(&c);
-    if (!i || !(in->value = calloc((size_t)in->n_var + 1, sizeof *in->value)) ||
-        !(in->impacts = calloc((size_t)in->n_retainers + 1, sizeof *in->impacts))) {
+    if (!i || !(in->value = calloc((size_t)in->n_var + 1, sizeof *in->value))) {
         td_fmu_log(in, fmi2Error, "out of memory instantiating the FMU");
         return 0;
     }
@@ -97,6 +134,7 @@ td_fmu_instance *td_fmu_instance_create(const char *name, const char *guid, cons
     if (!in)
         return NULL;
     in->logger = logger, in->env = env, in->logging = logging;
+    in->log_mask = (1u << TD_FMU_LOG_CATEGORIES) - 1u;
     if (!(in->name = malloc(strlen(name ? name : "") + 1))) {
         free(in);
         return NULL;
@@ -127,7 +165,7 @@ void td_fmu_instance_free(td_fmu_instance *in)
     td_fmu_settings_free(&in->settings);
     free(in->var);
     free(in->value);
-    free(in->impacts);
+    free(in->q);
     free(in->name);
     free(in);
 }
@@ -138,8 +176,6 @@ void td_fmu_instance_reset(td_fmu_instance *in)
     td_sim_free(&in->sim);
     for (i = 0; i < in->n_var; i++)
         in->value[i] = in->var[i].start;
-    for (i = 0; i < in->n_retainers; i++)
-        in->impacts[i] = 0;
     in->state = TD_FMU_INSTANTIATED;
     in->t_start = in->t_comm = 0.0;
     in->has_stop = 0;
@@ -216,43 +252,77 @@ static fmi2Status input_modes(td_fmu_instance *in)
     return apply_inputs(in);
 }
 
-fmi2Status td_fmu_instance_start(td_fmu_instance *in)
+/* The line of a case that fails to load: when the override at fault is one of the importer's
+ * parameters, the parameter and the case reader's reason, since the importer set neither a --set nor
+ * the resources' path. The case reader names an override "FILE: --set 'KEY=VALUE': KEY: REASON"
+ * (lib/case/case_message.c; err->reason is not set on that path). */
+static fmi2Status load_failed(const td_fmu_instance *in, const char *what, char **ov, int n, const td_error *err)
 {
-    td_sim_options opt;
+    char at[TD_FMU_NAME_SIZE + 48];
+    int i;
+    for (i = in->settings.n_overrides; i < n; i++) {
+        const char *eq = strchr(ov[i], '='), *r;
+        size_t klen = eq ? (size_t)(eq - ov[i]) : 0;
+        snprintf(at, sizeof at, ": --set '%s': ", ov[i]);
+        if (!eq || !(r = strstr(err->message, at)))
+            continue;
+        r += strlen(at);
+        if (strncmp(r, ov[i], klen) == 0 && strncmp(r + klen, ": ", 2) == 0)
+            r += klen + 2; /* the key again, before the reason */
+        return td_fmu_log(in, fmi2Error, "%s: parameter %.*s = %s: %s", what, (int)klen, ov[i], eq + 1, r);
+    }
+    return td_fmu_log(in, fmi2Error, "%s: %s", what, err->message);
+}
+
+/* The simulation of case c from t_start. An FMU with inputs starts at rest when the case asks for
+ * "auto": the orbit would be the case's own controllers', which the inputs replace (load_variables
+ * refuses "orbit"). */
+static fmi2Status create_sim(td_fmu_instance *in, const char *what, const td_case *c)
+{
+    td_sim_options opt = *td_case_sim_options(c);
+    td_error err;
+    opt.t0 = in->t_start;
+    if (in->settings.inputs != TD_FMU_INPUTS_NONE && opt.start == TD_START_AUTO)
+        opt.start = TD_START_REST;
+    if (td_sim_create(td_case_model(c), &opt, &in->sim, &err) != TD_OK)
+        return td_fmu_log(in, fmi2Error, "%s: %s", what, err.message);
+    free(in->q); /* the displacements' buffer for the sensed outputs, made once here */
+    if (!(in->q = malloc(sizeof(double) * (size_t)(td_sim_dof_count(in->sim) + 1)))) {
+        td_sim_free(&in->sim);
+        return td_fmu_log(in, fmi2Error, "%s: out of memory initialising the FMU", what);
+    }
+    return input_modes(in);
+}
+
+fmi2Status td_fmu_instance_start(td_fmu_instance *in, const char *what)
+{
     td_case *c = NULL;
     td_error err;
     char **ov;
     int n;
-    fmi2Status fs = fmi2Error;
+    fmi2Status fs;
     td_sim_free(&in->sim);
     if (!parameter_overrides(in, &ov, &n)) {
         free_overrides(in, ov, n);
-        return td_fmu_log(in, fmi2Error, "out of memory initialising the FMU");
+        return td_fmu_log(in, fmi2Error, "%s: out of memory initialising the FMU", what);
     }
-    if (td_case_load(in->settings.case_path, (const char *const *)ov, n, &c, &err) != TD_OK) {
-        td_fmu_log(in, fmi2Error, "%s", err.message);
-    } else {
-        opt = *td_case_sim_options(c);
-        opt.t0 = in->t_start;
-        if (td_sim_create(td_case_model(c), &opt, &in->sim, &err) != TD_OK)
-            td_fmu_log(in, fmi2Error, "%s", err.message);
-        else
-            fs = input_modes(in);
-    }
+    if (td_case_load(in->settings.case_path, (const char *const *)ov, n, &c, &err) != TD_OK)
+        fs = load_failed(in, what, ov, n, &err);
+    else
+        fs = create_sim(in, what, c);
     td_case_free(&c);
     free_overrides(in, ov, n);
     in->t_comm = in->t_start;
     return fs;
 }
 
-/* An event inside a step: a contact onset counts as an impact of its retainer. */
-static void count_event(td_fmu_instance *in)
+/* An event inside a step, into the log (category logEvents). */
+static void log_event(td_fmu_instance *in)
 {
     td_event ev;
-    if (td_sim_last_event(in->sim, &ev) == TD_OK &&
-        (ev.kind == TD_EVENT_CONTACT_ONSET || ev.kind == TD_EVENT_PENALTY_ENTER) && ev.retainer >= 0 &&
-        ev.retainer < in->n_retainers)
-        in->impacts[ev.retainer]++;
+    if (td_sim_last_event(in->sim, &ev) == TD_OK)
+        td_fmu_log(in, fmi2OK, "event %s at t = %.17g s (retainer %d)", td_event_kind_name(ev.kind), ev.time,
+                   ev.retainer);
 }
 
 fmi2Status td_fmu_instance_step(td_fmu_instance *in, double t, double h)
@@ -273,7 +343,7 @@ fmi2Status td_fmu_instance_step(td_fmu_instance *in, double t, double h)
     if (apply_inputs(in) != fmi2OK)
         return fmi2Error;
     while ((st = td_sim_step(in->sim, tout, NULL, &err)) == TD_EVENT)
-        count_event(in);
+        log_event(in);
     if (st != TD_OK)
         return td_fmu_log(in, fmi2Error, "fmi2DoStep at t = %.17g: %s", td_sim_time(in->sim), err.message);
     in->t_comm = tout;
@@ -308,36 +378,41 @@ fmi2Status td_fmu_instance_set_real(td_fmu_instance *in, const fmi2ValueReferenc
     return fmi2OK;
 }
 
-/* Output `v` of the simulation now. */
-static double output(const td_fmu_instance *in, const td_fmu_var *v)
+/* Output `v` of the simulation now: *x; fmi2Error (logged by the caller) when the simulation cannot
+ * give it. */
+static int output(const td_fmu_instance *in, const td_fmu_var *v, double *x)
 {
     td_retainer_state rs;
+    td_retainer_totals rt;
     td_sim_stats stats;
     double f[2];
+    td_amb amb;
     td_sim_stats_get(in->sim, &stats);
     switch (v->quantity) {
-    case TD_FMU_Q_SENSED: {
-        td_amb amb;
-        double *q = malloc(sizeof(double) * (size_t)(td_sim_dof_count(in->sim) + 1)), x = TD_UNDEFINED;
-        td_model_get_amb(td_sim_model(in->sim), v->index, &amb);
-        if (q && td_sim_get_state(in->sim, q, NULL) == TD_OK)
-            x = td_system_node_displacement(td_sim_system(in->sim), q, amb.sensor_node, v->axis ? TD_DOF_Y : TD_DOF_X);
-        free(q);
-        return x;
-    }
-    case TD_FMU_Q_AMB_FORCE: return td_sim_amb_force(in->sim, v->index, f) == TD_OK ? f[v->axis] : TD_UNDEFINED;
+    case TD_FMU_Q_SENSED:
+        if (td_model_get_amb(td_sim_model(in->sim), v->index, &amb) != TD_OK ||
+            td_sim_get_state(in->sim, in->q, NULL) != TD_OK)
+            return 0;
+        *x = td_system_node_displacement(td_sim_system(in->sim), in->q, amb.sensor_node, v->axis ? TD_DOF_Y : TD_DOF_X);
+        return 1;
+    case TD_FMU_Q_AMB_FORCE: return td_sim_amb_force(in->sim, v->index, f) == TD_OK ? (*x = f[v->axis], 1) : 0;
     case TD_FMU_Q_CONTACT_FORCE:
     case TD_FMU_Q_IN_CONTACT:
         if (td_sim_retainer_state(in->sim, v->index, &rs) != TD_OK)
-            return TD_UNDEFINED;
-        return v->quantity == TD_FMU_Q_IN_CONTACT ? (double)(rs.in_contact != 0) : rs.normal_force;
-    case TD_FMU_Q_IMPACTS: return (double)in->impacts[v->index];
-    case TD_FMU_Q_ROTOR_SPEED: return td_sim_speed(in->sim);
-    case TD_FMU_Q_EVENTS: return (double)stats.events;
-    case TD_FMU_Q_HAD_CONTACT: return (double)!td_is_undefined(stats.first_contact_time);
-    case TD_FMU_Q_FIRST_CONTACT: return stats.first_contact_time;
-    case TD_FMU_Q_PEAK_FORCE: return stats.peak_normal_force; /* 0 before a contact: no force yet */
-    default: return TD_UNDEFINED;
+            return 0;
+        *x = v->quantity == TD_FMU_Q_IN_CONTACT ? (double)(rs.in_contact != 0) : rs.normal_force;
+        return 1;
+    case TD_FMU_Q_IMPACTS: /* every contact onset: a contact interval or a touch-and-go impact (records.h) */
+        if (td_sim_retainer_totals(in->sim, v->index, &rt) != TD_OK)
+            return 0;
+        *x = (double)(rt.contacts + rt.touch_and_go);
+        return 1;
+    case TD_FMU_Q_ROTOR_SPEED: *x = td_sim_speed(in->sim); return 1;
+    case TD_FMU_Q_EVENTS: *x = (double)stats.events; return 1;
+    case TD_FMU_Q_HAD_CONTACT: *x = (double)!td_is_undefined(stats.first_contact_time); return 1;
+    case TD_FMU_Q_FIRST_CONTACT: *x = stats.first_contact_time; return 1;
+    case TD_FMU_Q_PEAK_FORCE: *x = stats.peak_normal_force; return 1; /* 0 before a contact: no force yet */
+    default: return 0;
     }
 }
 
@@ -354,8 +429,16 @@ fmi2Status td_fmu_instance_get(td_fmu_instance *in, fmi2ValueReference vr, td_fm
         *out = in->value[vr];
         return fmi2OK;
     }
-    if (!in->sim && (in->state != TD_FMU_INITIALISING || td_fmu_instance_start(in) != fmi2OK))
+    if (!in->sim && in->state != TD_FMU_INITIALISING)
         return td_fmu_log(in, fmi2Error, "fmi2Get%s: %s has no value before initialisation", names[type], v->name);
-    *out = output(in, v);
+    if (!in->sim) {
+        char what[32];
+        snprintf(what, sizeof what, "fmi2Get%s", names[type]);
+        if (td_fmu_instance_start(in, what) != fmi2OK)
+            return fmi2Error;
+    }
+    if (!output(in, v, out))
+        return td_fmu_log(in, fmi2Error, "fmi2Get%s: %s: the simulation cannot give it at t = %.17g", names[type],
+                          v->name, td_sim_time(in->sim));
     return fmi2OK;
 }

@@ -24,7 +24,8 @@ typedef struct td_fmu_instance {
     fmi2CallbackLogger logger; /* may be NULL */
     fmi2ComponentEnvironment env;
     char *name;
-    int logging;
+    int logging;       /* fmi2Instantiate's or fmi2SetDebugLogging's loggingOn */
+    unsigned log_mask; /* the categories logged when logging is on (a bit per td_fmu_log_category) */
     td_fmu_state state;
     td_fmu_settings settings;
     td_fmu_var *var; /* n_var, vr = index */
@@ -33,18 +34,21 @@ typedef struct td_fmu_instance {
     int inputs_held;                /* the input values are those the simulation holds */
     double t_start, t_stop, t_comm; /* t_comm: the next doStep's communication point */
     int has_stop;
-    td_sim *sim;   /* NULL until it is made at initialisation */
-    long *impacts; /* per retainer: contact onsets so far */
-    int n_retainers;
+    td_sim *sim; /* NULL until it is made at initialisation */
+    double *q;   /* the simulation's displacements, td_sim_dof_count of them: made with the simulation */
 } td_fmu_instance;
 
-/* One line through the logger (category "logStatusError" for errors, "logEvents" for the rest);
- * returns status. */
+/* One line through the logger in the category of its status (td_fmu_log_category_of): an error's
+ * line always, the others when logging is on and their category is chosen; returns status. */
 fmi2Status td_fmu_log(const td_fmu_instance *in, fmi2Status status, const char *fmt, ...)
 #if defined(__GNUC__)
     __attribute__((format(printf, 3, 4)))
 #endif
     ;
+
+/* fmi2SetDebugLogging: logging on or off, and the categories logged (none named: all of them); an
+ * unknown category is fmi2Error, logged, and changes nothing. */
+fmi2Status td_fmu_instance_set_logging(td_fmu_instance *in, int on, size_t n, const fmi2String categories[]);
 
 /* A new instance from the resources at the URI `resources` (file:///...) after checking the guid;
  * NULL (logged) on failure. */
@@ -53,8 +57,9 @@ td_fmu_instance *td_fmu_instance_create(const char *name, const char *guid, cons
 void td_fmu_instance_free(td_fmu_instance *in);
 /* Back to the instantiated state with the start values (fmi2Reset). */
 void td_fmu_instance_reset(td_fmu_instance *in);
-/* The simulation made from the case with the parameters set, at t_start, the inputs applied. */
-fmi2Status td_fmu_instance_start(td_fmu_instance *in);
+/* The simulation made from the case with the parameters set, at t_start, the inputs applied; `what`
+ * (the FMI function that asks for it) opens a failure's line. */
+fmi2Status td_fmu_instance_start(td_fmu_instance *in, const char *what);
 fmi2Status td_fmu_instance_step(td_fmu_instance *in, double t, double h);
 fmi2Status td_fmu_instance_set_real(td_fmu_instance *in, const fmi2ValueReference vr[], size_t n, const fmi2Real v[]);
 /* Variable vr's value now as a double (Integer and Boolean ones as 0/1/counts): *out. */

@@ -63,14 +63,22 @@ typedef struct fmu_api {
     fmi2GetBooleanTYPE *get_boolean;
     fmi2SetRealTYPE *set_real;
     fmi2DoStepTYPE *do_step;
+    fmi2SetDebugLoggingTYPE *set_debug_logging;
+    fmi2GetStatusTYPE *get_status;
+    fmi2GetRealStatusTYPE *get_real_status;
+    fmi2GetIntegerStatusTYPE *get_integer_status;
+    fmi2GetBooleanStatusTYPE *get_boolean_status;
+    fmi2GetStringStatusTYPE *get_string_status;
     char dir[256], uri[300], guid[64];
 } fmu_api;
 
 /* The logger's lines, kept for the checks. */
 typedef struct log_lines {
     int n;
-    char last[1024];
+    char last[1024], category[64];
     fmi2Status status;
+    int n_category; /* lines in the category `count` */
+    const char *count;
 } log_lines;
 
 static void logger(fmi2ComponentEnvironment env, fmi2String name, fmi2Status status, fmi2String category,
@@ -78,10 +86,13 @@ static void logger(fmi2ComponentEnvironment env, fmi2String name, fmi2Status sta
 {
     log_lines *l = env;
     va_list ap;
-    (void)name, (void)category;
+    (void)name;
     va_start(ap, message);
     vsnprintf(l->last, sizeof l->last, message, ap);
     va_end(ap);
+    snprintf(l->category, sizeof l->category, "%s", category);
+    if (l->count && strcmp(category, l->count) == 0)
+        l->n_category++;
     l->n++;
     l->status = status;
 }
@@ -159,6 +170,12 @@ static void load_fmu_of(fmu_api *api, const char *case_path, const char **ov, in
     LOAD(get_boolean, "fmi2GetBoolean");
     LOAD(set_real, "fmi2SetReal");
     LOAD(do_step, "fmi2DoStep");
+    LOAD(set_debug_logging, "fmi2SetDebugLogging");
+    LOAD(get_status, "fmi2GetStatus");
+    LOAD(get_real_status, "fmi2GetRealStatus");
+    LOAD(get_integer_status, "fmi2GetIntegerStatus");
+    LOAD(get_boolean_status, "fmi2GetBooleanStatus");
+    LOAD(get_string_status, "fmi2GetStringStatus");
     snprintf(api->uri, sizeof api->uri, "file://%s/resources", api->dir);
     read_guid(api->dir, api->guid, sizeof api->guid);
 }
@@ -229,9 +246,13 @@ static void fmu_answers(const fmu_api *api, fmi2Component c, double *first, doub
 
 /* ---- the direct runs ------------------------------------------------------------------------- */
 
+#define MAX_RETAINERS 4
+
 typedef struct builtin_run {
     td_sim_stats stats;
-    double e0[MAX_AXES]; /* the inputs of the sample just before the first contact */
+    long onsets[MAX_RETAINERS];               /* TD_EVENT_CONTACT_ONSET and TD_EVENT_PENALTY_ENTER events */
+    td_retainer_totals totals[MAX_RETAINERS]; /* at the end */
+    double e0[MAX_AXES];                      /* the inputs of the sample just before the first contact */
     long k0;
 } builtin_run;
 
@@ -252,6 +273,7 @@ static void run_case(const char *case_path, const char **ov, int nov, double t_e
     td_sim *s = NULL;
     td_error err;
     td_status st;
+    int k;
     if (td_case_load(case_path, ov, nov, &c, &err) != TD_OK)
         fail_msg("%s", err.message);
     memset(r, 0, sizeof *r);
@@ -260,10 +282,17 @@ static void run_case(const char *case_path, const char **ov, int nov, double t_e
         fail_msg("%s", err.message);
     td_sim_sampler_set_hook(s, on_sample, r);
     while ((st = td_sim_step(s, t_end, NULL, &err)) == TD_EVENT) {
+        td_event ev;
         td_sim_stats_get(s, &r->stats);
+        assert_int_equal(td_sim_last_event(s, &ev), TD_OK);
+        if ((ev.kind == TD_EVENT_CONTACT_ONSET || ev.kind == TD_EVENT_PENALTY_ENTER) && ev.retainer < MAX_RETAINERS)
+            r->onsets[ev.retainer]++;
     }
     assert_int_equal(st, TD_OK);
     td_sim_stats_get(s, &r->stats);
+    assert_true(td_model_retainer_count(td_case_model(c)) <= MAX_RETAINERS);
+    for (k = 0; k < td_model_retainer_count(td_case_model(c)); k++)
+        assert_int_equal(td_sim_retainer_totals(s, k, &r->totals[k]), TD_OK);
     td_sim_free(&s);
     td_case_free(&c);
 }
@@ -349,9 +378,16 @@ static void test_no_inputs(void **state)
     double first, peak;
     long k, events;
     (void)state;
+    const char *events_only[] = {"logEvents"};
+    fmi2ValueReference imp[2];
+    fmi2Integer impacts[2];
+    int j;
     run_builtin(ov, 1, 0.12, &r);
     load_fmu(&api, ov, 1, TD_FMU_INPUTS_NONE);
     c = start(&api, &log, 0.12);
+    /* the events inside the steps, one line each in logEvents (and nothing else logged) */
+    assert_int_equal(api.set_debug_logging(c, fmi2True, 1, events_only), fmi2OK);
+    log.count = "logEvents";
     for (k = 0; k < 120; k++)
         assert_int_equal(api.do_step(c, (double)k / 1000.0, (double)(k + 1) / 1000.0 - (double)k / 1000.0, fmi2True),
                          fmi2OK);
@@ -361,6 +397,19 @@ static void test_no_inputs(void **state)
     assert_true(first == r.stats.first_contact_time);
     assert_true(peak == r.stats.peak_normal_force);
     assert_int_equal(events, r.stats.events);
+    printf("no inputs: %d lines logged, %d in logEvents\n", log.n, log.n_category);
+    assert_true(events > 0);
+    assert_int_equal(log.n_category, events);
+    assert_int_equal(log.n, events);
+    /* impacts per retainer: the simulation's own totals, and the onsets among the direct run's events */
+    imp[0] = vr_of(&api, "retainers[0].impacts"), imp[1] = vr_of(&api, "retainers[1].impacts");
+    assert_int_equal(api.get_integer(c, imp, 2, impacts), fmi2OK);
+    for (j = 0; j < 2; j++) {
+        printf("no inputs: retainer %d impacts %d (direct: contacts %ld + touch-and-go %ld, onset events %ld)\n", j,
+               impacts[j], r.totals[j].contacts, r.totals[j].touch_and_go, r.onsets[j]);
+        assert_int_equal(impacts[j], r.totals[j].contacts + r.totals[j].touch_and_go);
+        assert_int_equal(impacts[j], r.onsets[j]);
+    }
     api.terminate(c);
     api.free_instance(c);
     unload_fmu(&api);
@@ -632,7 +681,20 @@ static void test_parameters(void **state)
     assert_int_equal(api.set_real(c, &clearance, 1, &v), fmi2OK);
     assert_int_equal(api.enter_init(c), fmi2OK);
     assert_int_equal(api.exit_init(c), fmi2Error);
-    logged(&log, "--set 'retainers[0].clearance=-1': retainers[0].clearance:");
+    logged(&log, "fmi2ExitInitializationMode: parameter retainers[0].clearance = -1: must be > 0 (got -1)");
+    api.free_instance(c);
+    /* the importer's parameter, in the importer's words: neither a --set nor the resources' path */
+    c = api.instantiate("p", fmi2CoSimulation, api.guid, api.uri, &cb, fmi2False, fmi2False);
+    v = -5.0;
+    assert_int_equal(api.set_real(c, &speed, 1, &v), fmi2OK);
+    assert_int_equal(api.enter_init(c), fmi2OK);
+    assert_int_equal(api.get_real(c, &rotor, 1, &x), fmi2Error); /* an output made in initialisation mode */
+    printf("parameters: %s\n", log.last);
+    assert_string_equal(log.last, "fmi2GetReal: parameter speed = -5: must be >= 0 (got -5)");
+    logged(&log, "parameter speed = -5");
+    assert_int_equal(api.exit_init(c), fmi2Error);
+    assert_string_equal(log.last, "fmi2ExitInitializationMode: parameter speed = -5: must be >= 0 (got -5)");
+    logged(&log, "parameter speed = -5");
     api.free_instance(c);
     unload_fmu(&api);
 }
@@ -927,6 +989,126 @@ static void test_plugin_failing(void **state)
     unload_fmu(&api);
 }
 
+/* The log categories: modelDescription.xml lists each one the binary logs in (FMI 2.0, 2.2.4: after
+ * UnitDefinitions, before DefaultExperiment), fmi2SetDebugLogging chooses among them and refuses a
+ * name it lacks; the status queries of 4.2.3: fmi2Terminated is fmi2False (the FMU never asks to
+ * stop), the last successful time the last communication point, a status the FMU cannot give
+ * fmi2Discard. */
+static void test_logging_and_status(void **state)
+{
+    const char *unknown[] = {"logEvents", "logEverything"}, *discard_only[] = {"logStatusDiscard"};
+    const char *names[] = {"logEvents", "logStatusDiscard", "logStatusError"};
+    char path[300], *xml, *cats, *p;
+    fmu_api api;
+    log_lines log = {0};
+    fmi2Component c;
+    fmi2Boolean b = fmi2True;
+    fmi2Status st = fmi2OK;
+    fmi2Real t = -1.0;
+    fmi2Integer i;
+    fmi2String str;
+    size_t k;
+    (void)state;
+    load_fmu(&api, NULL, 0, TD_FMU_INPUTS_CURRENT);
+    snprintf(path, sizeof path, "%s/modelDescription.xml", api.dir);
+    xml = td_test_read_file(path);
+    cats = strstr(xml, "<LogCategories>");
+    assert_non_null(cats);
+    assert_true(strstr(xml, "</UnitDefinitions>") < cats && cats < strstr(xml, "<DefaultExperiment"));
+    for (k = 0; k < sizeof names / sizeof names[0]; k++) {
+        char want[64];
+        snprintf(want, sizeof want, "<Category name=\"%s\"", names[k]);
+        assert_non_null(p = strstr(cats, want));
+        assert_true(p < strstr(cats, "</LogCategories>"));
+    }
+    free(xml);
+    c = start(&api, &log, 1.0);
+    assert_int_equal(api.set_debug_logging(c, fmi2True, 2, unknown), fmi2Error);
+    logged(&log, "fmi2SetDebugLogging: 'logEverything' is no log category of this FMU");
+    assert_string_equal(log.category, "logStatusError");
+    assert_int_equal(api.get_boolean_status(c, fmi2Terminated, &b), fmi2OK);
+    assert_int_equal(b, fmi2False);
+    assert_int_equal(api.do_step(c, 0.0, 1e-3, fmi2True), fmi2OK);
+    assert_int_equal(api.get_real_status(c, fmi2LastSuccessfulTime, &t), fmi2OK);
+    assert_true(t == 1e-3);
+    assert_int_equal(log.n, 0); /* logging is off: a discard is not logged */
+    assert_int_equal(api.get_status(c, fmi2DoStepStatus, &st), fmi2Discard);
+    assert_int_equal(api.get_integer_status(c, fmi2LastSuccessfulTime, &i), fmi2Discard);
+    assert_int_equal(api.get_string_status(c, fmi2PendingStatus, &str), fmi2Discard);
+    assert_int_equal(api.get_real_status(c, fmi2Terminated, &t), fmi2Discard);
+    assert_int_equal(log.n, 0);
+    assert_int_equal(api.set_debug_logging(c, fmi2True, 1, discard_only), fmi2OK);
+    assert_int_equal(api.get_status(c, fmi2DoStepStatus, &st), fmi2Discard);
+    assert_int_equal(log.n, 1);
+    assert_int_equal(log.status, fmi2Discard);
+    assert_string_equal(log.category, "logStatusDiscard");
+    log.n = 0;
+    assert_int_equal(api.get_boolean_status(c, fmi2Terminated, NULL), fmi2Error);
+    logged(&log, "fmi2GetBooleanStatus: value is NULL");
+    assert_int_equal(api.set_debug_logging(c, fmi2False, 0, NULL), fmi2OK);
+    assert_int_equal(api.get_status(c, fmi2DoStepStatus, &st), fmi2Discard);
+    assert_int_equal(log.n, 0);
+    api.free_instance(c);
+    unload_fmu(&api);
+}
+
+/* The sensed displacements of AMB 0 at t = 0 of a direct run of case A from rest (td_sim). */
+static void rest_sensed(const char *case_file, double xs[2])
+{
+    const char *ov[] = {"start = \"rest\""};
+    td_case *c = td_test_load_case(case_file, ov, 1);
+    td_sim *s = NULL;
+    td_error err;
+    td_amb amb;
+    double q[4096];
+    assert_int_equal(td_sim_create(td_case_model(c), td_case_sim_options(c), &s, &err), TD_OK);
+    assert_true(td_sim_dof_count(s) <= 4096);
+    assert_int_equal(td_sim_get_state(s, q, NULL), TD_OK);
+    td_model_get_amb(td_case_model(c), 0, &amb);
+    xs[0] = td_system_node_displacement(td_sim_system(s), q, amb.sensor_node, TD_DOF_X);
+    xs[1] = td_system_node_displacement(td_sim_system(s), q, amb.sensor_node, TD_DOF_Y);
+    td_sim_free(&s);
+    td_case_free(&c);
+}
+
+/* With inputs the FMU starts at rest: case A's start = "auto" would take the steady orbit of its own
+ * (continuous) controllers, which the inputs replace from t = 0, so the sensed displacements at the
+ * start are those of the direct run from rest; start = "orbit" with inputs is refused at
+ * fmi2Instantiate; without inputs the case's own orbit start holds. */
+static void test_inputs_start(void **state)
+{
+    const char *orbit[] = {"start = \"orbit\""};
+    fmu_api api;
+    log_lines log = {0};
+    fmi2CallbackFunctions cb = {logger, NULL, NULL, NULL, &log};
+    fmi2ValueReference vs[2];
+    fmi2Real x[2];
+    fmi2Component c;
+    double rest[2];
+    (void)state;
+    rest_sensed("cases/paper-a.cfg", rest);
+    load_fmu_of(&api, td_source_path("cases/paper-a.cfg"), NULL, 0, TD_FMU_INPUTS_CURRENT);
+    vs[0] = vr_of(&api, "ambs[0].sensed_x"), vs[1] = vr_of(&api, "ambs[0].sensed_y");
+    c = start(&api, &log, 0.01);
+    assert_int_equal(api.get_real(c, vs, 2, x), fmi2OK);
+    printf("inputs start: sensed at t = 0 (%.17g, %.17g) m, from rest (%.17g, %.17g) m\n", x[0], x[1], rest[0],
+           rest[1]);
+    assert_true(x[0] == rest[0] && x[1] == rest[1]);
+    api.free_instance(c);
+    unload_fmu(&api);
+    load_fmu_of(&api, td_source_path("cases/paper-a.cfg"), NULL, 0, TD_FMU_INPUTS_NONE); /* its own controllers: the orbit */
+    vs[0] = vr_of(&api, "ambs[0].sensed_x"), vs[1] = vr_of(&api, "ambs[0].sensed_y");
+    c = start(&api, &log, 0.01);
+    assert_int_equal(api.get_real(c, vs, 2, x), fmi2OK);
+    assert_false(x[0] == rest[0] && x[1] == rest[1]);
+    api.free_instance(c);
+    unload_fmu(&api);
+    load_fmu_of(&api, td_source_path("cases/paper-a.cfg"), orbit, 1, TD_FMU_INPUTS_FORCE);
+    assert_null(api.instantiate("o", fmi2CoSimulation, api.guid, api.uri, &cb, fmi2False, fmi2False));
+    logged(&log, "fmi2Instantiate: start = \"orbit\" is the steady orbit under the case's own controllers");
+    unload_fmu(&api);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -941,6 +1123,8 @@ int main(void)
         cmocka_unit_test(test_force_inputs),
         cmocka_unit_test(test_plugin_case),
         cmocka_unit_test(test_plugin_failing),
+        cmocka_unit_test(test_logging_and_status),
+        cmocka_unit_test(test_inputs_start),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

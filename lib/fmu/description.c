@@ -65,6 +65,24 @@ static void unit_definitions(td_text *t)
     td_text_printf(t, "  </UnitDefinitions>\n");
 }
 
+const td_fmu_log_category_def td_fmu_log_categories[TD_FMU_LOG_CATEGORIES] = {
+    {"logEvents", "an event inside a communication step: a contact, a mode change, a controller's event"},
+    {"logStatusDiscard", "a status query the FMU has no answer for (fmi2Discard)"},
+    {"logStatusError", "a refused call or a failed step (fmi2Error), always logged"}};
+
+/* LogCategories (2.2.4), after UnitDefinitions and TypeDefinitions, before DefaultExperiment. */
+static void log_categories(td_text *t)
+{
+    int i;
+    td_text_printf(t, "  <LogCategories>\n");
+    for (i = 0; i < TD_FMU_LOG_CATEGORIES; i++) {
+        td_text_printf(t, "    <Category name=\"%s\" description=\"", td_fmu_log_categories[i].name);
+        xml_text(t, td_fmu_log_categories[i].description);
+        td_text_printf(t, "\"/>\n");
+    }
+    td_text_printf(t, "  </LogCategories>\n");
+}
+
 /* The type element of v: <Real unit=".." start=".."/>, <Integer/>, <Boolean/>. */
 static void type_element(td_text *t, const td_fmu_var *v)
 {
@@ -141,6 +159,7 @@ td_status td_fmu_model_description(const td_case *c, td_fmu_inputs inputs, const
         return st;
     header(t, c, inputs, id, guid);
     unit_definitions(t);
+    log_categories(t);
     td_text_printf(t, "  <DefaultExperiment startTime=\"%.17g\" stopTime=\"%.17g\"/>\n", td_case_sim_options(c)->t0,
                    td_case_end_time(c));
     td_text_printf(t, "  <ModelVariables>\n");

@@ -76,6 +76,21 @@ td_status td_fmu_variables(const td_model *model, td_fmu_inputs inputs, td_fmu_v
 /* "none", "current", "force"; NULL for another value. */
 const char *td_fmu_inputs_name(td_fmu_inputs inputs);
 
+/* The categories of the FMU's log lines (FMI 2.0, 2.2.4 LogCategories; the names those the standard
+ * proposes): each line the binary logs is in one of them, and modelDescription.xml lists them all. */
+typedef enum td_fmu_log_category {
+    TD_FMU_LOG_EVENTS = 0,  /* an event inside a communication step (fmi2OK) */
+    TD_FMU_LOG_DISCARD = 1, /* a status the FMU cannot give (fmi2Discard) */
+    TD_FMU_LOG_ERROR = 2,   /* a refused call or a failed step (fmi2Error): always logged */
+    TD_FMU_LOG_CATEGORIES = 3
+} td_fmu_log_category;
+
+typedef struct td_fmu_log_category_def {
+    const char *name, *description;
+} td_fmu_log_category_def;
+
+extern const td_fmu_log_category_def td_fmu_log_categories[TD_FMU_LOG_CATEGORIES];
+
 /* modelDescription.xml of the FMU of case c into t (util/text.h): FMI 2.0 co-simulation,
  * modelIdentifier id, the guid the settings carry, the variables of td_fmu_variables. */
 struct td_text;

@@ -16,6 +16,7 @@ import zipfile
 here = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, here)
 from fmu_common import FMICallException, Instance, check, finish, pack  # noqa: E402
+from fmpy.fmi2 import fmi2LastSuccessfulTime, fmi2Terminated  # noqa: E402
 
 H = 1e-4
 
@@ -47,13 +48,33 @@ def zero_step(inst):
     inst.fmu.doStep(currentCommunicationPoint=0.0, communicationStepSize=0.0)
 
 
+def unknown_category(inst):
+    inst.fmu.setDebugLogging(True, ["logEvents", "logNothing"])
+
+
 # name: (what it does to an FMU with current inputs, a word its message must hold)
 STEPPING = {"NaN current input": (nan_input, "nan"), "infinite current input": (inf_input, "inf"),
             "setReal of an output": (set_output, "sensed_x"), "an unknown value reference": (unknown_reference, "no variable"),
             "doStep at a time that is not the FMU's": (wrong_time, "time"),
-            "doStep of zero length": (zero_step, "step")}
+            "doStep of zero length": (zero_step, "step"),
+            "an unknown log category": (unknown_category, "'logNothing' is no log category")}
 PARAMETERS = {"negative clearance": ({"retainers[0].clearance": -1.0e-3}, "clearance"),
-              "NaN speed": ({"speed": math.nan}, "speed")}
+              "NaN speed": ({"speed": math.nan}, "speed"),
+              "negative speed": ({"speed": -5.0}, "fmi2ExitInitializationMode: parameter speed = -5: must be >= 0")}
+
+
+def status_queries(path):
+    """FMI 2.0, 4.2.3: fmi2Terminated is fmi2OK and false, the last successful time the step's end."""
+    inst = Instance(path)
+    try:
+        inst.start(0.0, 0.01)
+        inst.fmu.doStep(currentCommunicationPoint=0.0, communicationStepSize=H)
+        terminated, last = inst.fmu.getBooleanStatus(fmi2Terminated), inst.fmu.getRealStatus(fmi2LastSuccessfulTime)
+        check("getBooleanStatus(fmi2Terminated): fmi2OK, false", terminated is False, str(terminated))
+        check("getRealStatus(fmi2LastSuccessfulTime): the step's end", last == H, repr(last))
+    except FMICallException as e:
+        check("the status queries: fmi2OK", False, str(e))
+    inst.free()
 
 
 def child(kind, name, path):
@@ -115,6 +136,7 @@ with tempfile.TemporaryDirectory() as tmp:
     for name, (_, word) in PARAMETERS.items():
         judge("parameter: " + name, run_child("parameter", name, fmu), word)
     judge("wrong GUID", run_child("setup", "wrong GUID", fmu), "guid")
+    status_queries(fmu)
     for spoil, word in [("resources/case.cfg", "case.cfg"), ("resources/touchdown-fmu.cfg", "touchdown-fmu.cfg")]:
         d = os.path.join(tmp, "spoiled-" + os.path.basename(spoil))
         with zipfile.ZipFile(fmu) as z:
