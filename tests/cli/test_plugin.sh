@@ -176,6 +176,8 @@ check "an init that fails with a message: one line with it, exit 2" \
 t "$work/nan" run --json "$ex/nan.cfg"
 check "a NaN command mid-run: exit 2, one error line naming the controller and the sample" \
     one_line "$work/nan" nan.cfg "$lib_key" '"pd".* sample [0-9]+.*nan'
+check "  the time it failed at is said once (the sample is at an output time, not on the way to one)" \
+    grep -qF 'simulation failed at t = 0.0003000000 s: controller 0: plug-in "pd" failed at sample 3' "$work/nan/.err"
 check "  the JSON says it failed, with no answers" \
     test "$(jf "$work/nan/.out" status)" != '"success"' -a "$(jf "$work/nan/.out" peak_normal_force)" = null
 check "  the CSV is marked incomplete (never a complete-looking file)" grep -q '^# incomplete: ' "$work/nan/nan.csv"
