@@ -12,6 +12,7 @@
 #include "touchdown/touchdown.h"
 
 #include <math.h>
+#include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -586,6 +587,39 @@ static void test_documented_plugin(void **state)
     free(doc);
 }
 
+/* The table's layout, as the ABI, holds whatever enum size a plug-in's compiler picks: a plug-in
+ * built with -fshort-enums (1-byte enums) sees every member of td_plugin_controller at the offset
+ * and with the size this build does. (An enum member, `output`, was 1 byte there and 4 here.) */
+static void test_table_layout(void **state)
+{
+    static const char *const program =
+        "#include <stddef.h>\n#include <stdio.h>\n#include \"touchdown/plugin.h\"\n"
+        "#define M(f) offsetof(td_plugin_controller, f), sizeof(((td_plugin_controller *)0)->f)\n"
+        "int main(void) { printf(\"%zu %zu %zu %zu %zu %zu %zu %zu %zu %zu %zu %zu %zu\", M(abi_version), "
+        "M(output), M(init), M(step), M(reset), M(free), sizeof(td_plugin_controller)); return 0; }\n";
+    char cmd[2048], got[256] = "", want[256];
+    FILE *f;
+    (void)state;
+#define M(f) offsetof(td_plugin_controller, f), sizeof(((td_plugin_controller *)0)->f)
+    snprintf(want, sizeof want, "%zu %zu %zu %zu %zu %zu %zu %zu %zu %zu %zu %zu %zu", M(abi_version), M(output),
+             M(init), M(step), M(reset), M(free), sizeof(td_plugin_controller));
+#undef M
+    f = fopen("layout.c", "w");
+    assert_non_null(f);
+    assert_true(fputs(program, f) >= 0);
+    assert_int_equal(fclose(f), 0);
+    snprintf(cmd, sizeof cmd, "%s -std=c99 -fshort-enums -I%s -o layout layout.c && ./layout > layout.txt",
+             TD_C_COMPILER, td_source_path("include"));
+    assert_int_equal(system(cmd), 0);
+    f = fopen("layout.txt", "r");
+    assert_non_null(f);
+    assert_non_null(fgets(got, sizeof got, f));
+    fclose(f);
+    printf("td_plugin_controller (offset size of each member, then its size): %s here, %s with -fshort-enums\n", want,
+           got);
+    assert_string_equal(got, want);
+}
+
 /* ---- a recovery pair (td_recovery) ------------------------------------------------------------ */
 
 #define PAIR_RATE 1000.0 /* Hz */
@@ -700,6 +734,7 @@ int main(void)
         cmocka_unit_test(test_force_needs_ki),
         cmocka_unit_test(test_analyses_refuse),
         cmocka_unit_test(test_documented_plugin),
+        cmocka_unit_test(test_table_layout),
         cmocka_unit_test(test_recovery_pair),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
