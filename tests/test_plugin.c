@@ -498,7 +498,8 @@ static void test_force_output(void **state)
 }
 
 /* The analyses that need a linear law refuse a model with a plug-in, naming it; an "auto" start
- * falls back to rest with that reason, an "orbit" start is refused. */
+ * falls back to rest with that reason, an "orbit" start is refused; the start's stability stays
+ * unchecked with the analysis' refusal as its reason, whatever the start. */
 static void test_analyses_refuse(void **state)
 {
     td_case *c = NULL;
@@ -537,6 +538,15 @@ static void test_analyses_refuse(void **state)
     assert_int_equal(info.used, TD_START_REST);
     assert_int_equal(info.stability, TD_STABILITY_UNCHECKED);
     assert_string_equal(info.reason, "controller 0 (\"axis0\") is a plug-in: no steady orbit computed");
+    assert_non_null(strstr(info.unchecked, why)); /* the stability's own reason, also at start = "rest" */
+    td_sim_free(&s);
+    o.start = TD_START_REST;
+    if (td_sim_create(m, &o, &s, &err) != TD_OK)
+        fail_msg("td_sim_create: %s", err.message);
+    assert_int_equal(td_sim_start_info_get(s, &info), TD_OK);
+    assert_int_equal(info.stability, TD_STABILITY_UNCHECKED);
+    assert_string_equal(info.reason, "");
+    assert_non_null(strstr(info.unchecked, why));
     td_sim_free(&s);
     o.start = TD_START_ORBIT;
     assert_int_equal(td_sim_create(m, &o, &s, &err), TD_ERR_INVALID);

@@ -124,6 +124,9 @@ EOF
 check "with one sample of delay: the same to the solver's tolerance" close_run delay
 check "the plug-in run claims no stability it cannot know (unchecked: no linear law for the analysis)" \
     test "$(jf "$work/pd-plug/.out" stability)" = '"unchecked"' -a "$(jf "$work/pd-plug/.out" max_real_part)" = null
+t "$work/text" run --set end_time=0.001 --hdf5 '' "$ex/rig-pd.cfg"
+check "  and its summary says why: the plug-in (not a count of states)" \
+    grep -qE '^contact-free system +stability not checked: modal: controller 0 \("pd"\) is a plug-in' "$work/text/.out"
 t "$work/modal" modal "$ex/rig-pd.cfg"
 check "touchdown modal refuses a plug-in case naming the controller, exit 2" \
     test "$rc" = 2 -a "$(wc -l <"$work/modal/.err")" = 1 -a -n "$(grep -F 'controller 0 ("pd") is a plug-in' "$work/modal/.err")"
