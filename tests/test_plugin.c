@@ -597,6 +597,78 @@ static void test_documented_plugin(void **state)
     free(doc);
 }
 
+/* ---- a non-linear plug-in: a PD with a deadband ------------------------------------------------ */
+
+#define DEADBAND 4.0e-6 /* m: wider than the probe's 2^-20 m, far inside case A's clearance */
+
+/* -(KP + KD RATE) d(xs) + KD RATE d(xs_{k-1}), d the deadband: 0 for |xs| <= DEADBAND. */
+static void *dead_init(const td_plugin_setup *s, char *message, int message_size)
+{
+    (void)s, (void)message, (void)message_size;
+    return calloc(1, sizeof(double));
+}
+
+static int dead_step(void *instance, long k, double t, const double *sensed, double *command, char *message,
+                     int message_size)
+{
+    double *last = instance, x = sensed[0], d = fabs(x) <= DEADBAND ? 0.0 : x - copysign(DEADBAND, x);
+    (void)k, (void)t, (void)message, (void)message_size;
+    command[0] = -(KP + KD * RATE) * d + KD * RATE * *last;
+    *last = d;
+    return 0;
+}
+
+static int dead_reset(void *instance, char *message, int message_size)
+{
+    (void)message, (void)message_size;
+    *(double *)instance = 0.0;
+    return 0;
+}
+
+static const td_plugin_controller deadband = {
+    TD_PLUGIN_ABI_VERSION, TD_PLUGIN_CURRENT, dead_init, dead_step, dead_reset, free};
+
+/* A plug-in the probe measures no gain of (its deadband is wider than the probe) still gives the
+ * tolerances a scale: the magnet's |ks| (setup.c law_gain), where a gain of 0 was taken as it was
+ * (the stiffness scale then lacked the controller's part, and an AMB's filter state would be
+ * weighed at atol N); the run goes through its first contacts. */
+static void test_deadband_scale(void **state)
+{
+    td_case *c = NULL;
+    td_model *m = case_a(&c);
+    td_sim *s;
+    td_sim_stats st;
+    int axis;
+    (void)state;
+    for (axis = 0; axis < AXES; axis++) {
+        char name[16];
+        td_plugin_spec p;
+        td_error err;
+        snprintf(name, sizeof name, "axis%d", axis);
+        p = pd_spec(name, &axis, NULL, 0);
+        p.functions = &deadband;
+        p.n_parameters = 0;
+        if (td_model_add_plugin_controller(m, &p, &err) != TD_OK)
+            fail_msg("td_model_add_plugin_controller: %s", err.message);
+    }
+    s = new_sim(m, c);
+    for (axis = 0; axis < AXES; axis++) {
+        const td_amb_axis *a = &s->sys->amb_axes[axis];
+        printf("axis %d: measured gain %g A/m, scale %g N/m (|ks| %g N/m)\n", axis,
+               td_sim_plugin_gain(s, a->law, a->law_output), s->machine.amb_coef[axis].gain_x, fabs(a->ks));
+        assert_true(td_sim_plugin_gain(s, a->law, a->law_output) == 0.0);
+        assert_true(fabs(a->ks) > 0.0);
+        assert_close(s->machine.amb_coef[axis].gain_x, fabs(a->ks), 1e-15, 0.0);
+    }
+    step_to(s, T_END);
+    assert_int_equal(td_sim_stats_get(s, &st), TD_OK);
+    printf("deadband PD to %g s: %ld steps, first contact at %.6g s\n", T_END, st.steps, st.first_contact_time);
+    assert_true(st.contact_onsets > 0);
+    td_sim_free(&s);
+    td_model_free(&m);
+    td_case_free(&c);
+}
+
 /* The table's layout, as the ABI, holds whatever enum size a plug-in's compiler picks: a plug-in
  * built with -fshort-enums (1-byte enums) sees every member of td_plugin_controller at the offset
  * and with the size this build does. (An enum member, `output`, was 1 byte there and 4 here.) */
@@ -745,6 +817,7 @@ int main(void)
         cmocka_unit_test(test_analyses_refuse),
         cmocka_unit_test(test_documented_plugin),
         cmocka_unit_test(test_table_layout),
+        cmocka_unit_test(test_deadband_scale),
         cmocka_unit_test(test_recovery_pair),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
