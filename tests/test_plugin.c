@@ -12,6 +12,7 @@
 #include "touchdown/touchdown.h"
 
 #include <math.h>
+#include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -497,7 +498,8 @@ static void test_force_output(void **state)
 }
 
 /* The analyses that need a linear law refuse a model with a plug-in, naming it; an "auto" start
- * falls back to rest with that reason, an "orbit" start is refused. */
+ * falls back to rest with that reason, an "orbit" start is refused; the start's stability stays
+ * unchecked with the analysis' refusal as its reason, whatever the start. */
 static void test_analyses_refuse(void **state)
 {
     td_case *c = NULL;
@@ -536,6 +538,15 @@ static void test_analyses_refuse(void **state)
     assert_int_equal(info.used, TD_START_REST);
     assert_int_equal(info.stability, TD_STABILITY_UNCHECKED);
     assert_string_equal(info.reason, "controller 0 (\"axis0\") is a plug-in: no steady orbit computed");
+    assert_non_null(strstr(info.unchecked, why)); /* the stability's own reason, also at start = "rest" */
+    td_sim_free(&s);
+    o.start = TD_START_REST;
+    if (td_sim_create(m, &o, &s, &err) != TD_OK)
+        fail_msg("td_sim_create: %s", err.message);
+    assert_int_equal(td_sim_start_info_get(s, &info), TD_OK);
+    assert_int_equal(info.stability, TD_STABILITY_UNCHECKED);
+    assert_string_equal(info.reason, "");
+    assert_non_null(strstr(info.unchecked, why));
     td_sim_free(&s);
     o.start = TD_START_ORBIT;
     assert_int_equal(td_sim_create(m, &o, &s, &err), TD_ERR_INVALID);
@@ -584,6 +595,111 @@ static void test_documented_plugin(void **state)
     td_model_free(&mp);
     td_case_free(&c);
     free(doc);
+}
+
+/* ---- a non-linear plug-in: a PD with a deadband ------------------------------------------------ */
+
+#define DEADBAND 4.0e-6 /* m: wider than the probe's 2^-20 m, far inside case A's clearance */
+
+/* -(KP + KD RATE) d(xs) + KD RATE d(xs_{k-1}), d the deadband: 0 for |xs| <= DEADBAND. */
+static void *dead_init(const td_plugin_setup *s, char *message, int message_size)
+{
+    (void)s, (void)message, (void)message_size;
+    return calloc(1, sizeof(double));
+}
+
+static int dead_step(void *instance, long k, double t, const double *sensed, double *command, char *message,
+                     int message_size)
+{
+    double *last = instance, x = sensed[0], d = fabs(x) <= DEADBAND ? 0.0 : x - copysign(DEADBAND, x);
+    (void)k, (void)t, (void)message, (void)message_size;
+    command[0] = -(KP + KD * RATE) * d + KD * RATE * *last;
+    *last = d;
+    return 0;
+}
+
+static int dead_reset(void *instance, char *message, int message_size)
+{
+    (void)message, (void)message_size;
+    *(double *)instance = 0.0;
+    return 0;
+}
+
+static const td_plugin_controller deadband = {
+    TD_PLUGIN_ABI_VERSION, TD_PLUGIN_CURRENT, dead_init, dead_step, dead_reset, free};
+
+/* A plug-in the probe measures no gain of (its deadband is wider than the probe) still gives the
+ * tolerances a scale: the magnet's |ks| (setup.c law_gain), where a gain of 0 was taken as it was
+ * (the stiffness scale then lacked the controller's part, and an AMB's filter state would be
+ * weighed at atol N); the run goes through its first contacts. */
+static void test_deadband_scale(void **state)
+{
+    td_case *c = NULL;
+    td_model *m = case_a(&c);
+    td_sim *s;
+    td_sim_stats st;
+    int axis;
+    (void)state;
+    for (axis = 0; axis < AXES; axis++) {
+        char name[16];
+        td_plugin_spec p;
+        td_error err;
+        snprintf(name, sizeof name, "axis%d", axis);
+        p = pd_spec(name, &axis, NULL, 0);
+        p.functions = &deadband;
+        p.n_parameters = 0;
+        if (td_model_add_plugin_controller(m, &p, &err) != TD_OK)
+            fail_msg("td_model_add_plugin_controller: %s", err.message);
+    }
+    s = new_sim(m, c);
+    for (axis = 0; axis < AXES; axis++) {
+        const td_amb_axis *a = &s->sys->amb_axes[axis];
+        printf("axis %d: measured gain %g A/m, scale %g N/m (|ks| %g N/m)\n", axis,
+               td_sim_plugin_gain(s, a->law, a->law_output), s->machine.amb_coef[axis].gain_x, fabs(a->ks));
+        assert_true(td_sim_plugin_gain(s, a->law, a->law_output) == 0.0);
+        assert_true(fabs(a->ks) > 0.0);
+        assert_close(s->machine.amb_coef[axis].gain_x, fabs(a->ks), 1e-15, 0.0);
+    }
+    step_to(s, T_END);
+    assert_int_equal(td_sim_stats_get(s, &st), TD_OK);
+    printf("deadband PD to %g s: %ld steps, first contact at %.6g s\n", T_END, st.steps, st.first_contact_time);
+    assert_true(st.contact_onsets > 0);
+    td_sim_free(&s);
+    td_model_free(&m);
+    td_case_free(&c);
+}
+
+/* The table's layout, as the ABI, holds whatever enum size a plug-in's compiler picks: a plug-in
+ * built with -fshort-enums (1-byte enums) sees every member of td_plugin_controller at the offset
+ * and with the size this build does. (An enum member, `output`, was 1 byte there and 4 here.) */
+static void test_table_layout(void **state)
+{
+    static const char *const program =
+        "#include <stddef.h>\n#include <stdio.h>\n#include \"touchdown/plugin.h\"\n"
+        "#define M(f) offsetof(td_plugin_controller, f), sizeof(((td_plugin_controller *)0)->f)\n"
+        "int main(void) { printf(\"%zu %zu %zu %zu %zu %zu %zu %zu %zu %zu %zu %zu %zu\", M(abi_version), "
+        "M(output), M(init), M(step), M(reset), M(free), sizeof(td_plugin_controller)); return 0; }\n";
+    char cmd[2048], got[256] = "", want[256];
+    FILE *f;
+    (void)state;
+#define M(f) offsetof(td_plugin_controller, f), sizeof(((td_plugin_controller *)0)->f)
+    snprintf(want, sizeof want, "%zu %zu %zu %zu %zu %zu %zu %zu %zu %zu %zu %zu %zu", M(abi_version), M(output),
+             M(init), M(step), M(reset), M(free), sizeof(td_plugin_controller));
+#undef M
+    f = fopen("layout.c", "w");
+    assert_non_null(f);
+    assert_true(fputs(program, f) >= 0);
+    assert_int_equal(fclose(f), 0);
+    snprintf(cmd, sizeof cmd, "%s -std=c99 -fshort-enums -I%s -o layout layout.c && ./layout > layout.txt",
+             TD_C_COMPILER, td_source_path("include"));
+    assert_int_equal(system(cmd), 0);
+    f = fopen("layout.txt", "r");
+    assert_non_null(f);
+    assert_non_null(fgets(got, sizeof got, f));
+    fclose(f);
+    printf("td_plugin_controller (offset size of each member, then its size): %s here, %s with -fshort-enums\n", want,
+           got);
+    assert_string_equal(got, want);
 }
 
 /* ---- a recovery pair (td_recovery) ------------------------------------------------------------ */
@@ -700,6 +816,8 @@ int main(void)
         cmocka_unit_test(test_force_needs_ki),
         cmocka_unit_test(test_analyses_refuse),
         cmocka_unit_test(test_documented_plugin),
+        cmocka_unit_test(test_table_layout),
+        cmocka_unit_test(test_deadband_scale),
         cmocka_unit_test(test_recovery_pair),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -21,8 +21,11 @@
  * Life of an instance: td_sim_create makes two. A probe, stepped at k = 0 with xs = 0 and then,
  * reset before each, with xs = -2^-20 m on one input at a time, then freed: its commands per metre
  * (a linear law's direct gain) scale the integrator's tolerances, never the dynamics. Then the run's
- * own, stepped at k = 0, 1, 2, ... in order (sample 0 at the start) until td_sim_free frees it; reset
- * when the recovery supervisor switches to the controller (the incoming law starts from rest). A
+ * own, stepped once per sample until td_sim_free frees it; reset when the recovery supervisor
+ * switches to the controller (the incoming law starts from rest). k is the sample's index on the
+ * run's grid, t = t0 + k / sample_rate, not a count of the calls: sample 0 at the start, but a
+ * recovery pair's standby plug-in is first stepped at the switch's sample K > 0, and after a reset
+ * k goes on from the grid, never back to 0 (it jumps over the samples the controller stood by). A
  * delay of d samples (td_plugin_spec) holds the command of step k from t_{k+d} on, 0 before.
  *
  * Signs and units (touchdown/dofs.h): sensed[j] is the displacement xs (m) of the sensor of input
@@ -52,11 +55,11 @@ extern "C" {
 /** The name of the function a plug-in library exports (a td_plugin_entry). */
 #define TD_PLUGIN_ENTRY_NAME "td_plugin_controller_entry"
 
-/** What a plug-in's step returns. */
-typedef enum td_plugin_output {
+/** What a plug-in's step returns: the values of td_plugin_controller.output. */
+enum td_plugin_output {
     TD_PLUGIN_CURRENT = 0, /**< current commands i, A (the force is ki i) */
     TD_PLUGIN_FORCE = 1    /**< force commands ki i, N (the simulation divides by ki) */
-} td_plugin_output;
+};
 
 /** What the simulation tells a new instance (borrowed: valid during init only; copy what you keep). */
 typedef struct td_plugin_setup {
@@ -74,8 +77,10 @@ typedef struct td_plugin_setup {
 
 /** The functions of a plug-in controller. */
 typedef struct td_plugin_controller {
-    int abi_version;         /**< TD_PLUGIN_ABI_VERSION of the header the plug-in was built with */
-    td_plugin_output output; /**< what step writes into command */
+    int abi_version; /**< TD_PLUGIN_ABI_VERSION of the header the plug-in was built with */
+    /** What step writes into command: TD_PLUGIN_CURRENT or TD_PLUGIN_FORCE. An int, not the enum:
+     *  an enum's size is the compiler's choice (1 byte with -fshort-enums), a table's layout is not. */
+    int output;
     /** A new instance at rest for `setup`; NULL on failure, with the reason in message (e.g. a
      *  missing or bad parameter, a number of axes it does not handle). */
     void *(*init)(const td_plugin_setup *setup, char *message, int message_size);

@@ -51,7 +51,9 @@ TD_API td_status td_sim_create_cancellable(const td_model *model, const td_sim_o
 
 /** Stability of the contact-free closed loop (AMB filter states included) at the start speed. */
 typedef enum td_stability {
-    TD_STABILITY_UNCHECKED = -1, /**< more than TD_SIM_STABILITY_MAX_STATES states: not checked */
+    TD_STABILITY_UNCHECKED = -1, /**< not checked: more than TD_SIM_STABILITY_MAX_STATES states, a
+                                  *   plug-in controller (no linear law), or no eigen-solution; the
+                                  *   start info's `unchecked` says which */
     TD_STABILITY_STABLE = 0,     /**< every eigenvalue decays or is undamped (marginal) */
     TD_STABILITY_UNSTABLE = 1    /**< some eigenvalue grows (real part above round-off) */
 } td_stability;
@@ -63,6 +65,7 @@ typedef struct td_sim_start_info {
     td_stability stability; /**< of the contact-free system at the start speed */
     double max_real_part;   /**< rightmost eigenvalue's real part, 1/s (NAN when unchecked) */
     char reason[256];       /**< why TD_START_AUTO fell back to rest ("" otherwise) */
+    char unchecked[256];    /**< why the stability is TD_STABILITY_UNCHECKED ("" otherwise) */
 } td_sim_start_info;
 
 /** Copy the start-state choice into *out. TD_ERR_INVALID on NULL arguments. */

@@ -186,16 +186,22 @@ static int cancelled(const td_run_hooks *h)
 
 /* ---- the loop ---------------------------------------------------------------------------- */
 
-/* Step over the grid to t_end. Returns TD_OK at t_end, else the failure with `err` filled. */
-/* A failed td_sim_step as the run's error: where the run stopped, then the step's message; the part
- * it names (a plug-in controller, touchdown/error.h) kept as the site, its reason offset moved with
- * it, so that a caller can still say which part of the case failed. */
+/* A failed td_sim_step as the run's error: where the run stopped (and the output time it was going
+ * to, when that reads otherwise: a sample that fails at an output time is not on its way there),
+ * then the step's message; the part it names (a plug-in controller, touchdown/error.h) kept as the
+ * site, its reason offset moved with it, so that a caller can still say which part of the case
+ * failed. */
 static td_status step_failed(run_state *r, double target, td_status st, const td_error *step_err, td_error *err)
 {
-    int len =
-        snprintf(NULL, 0, "simulation failed at t = %.10f s on the way to %.10f s: ", td_sim_time(r->sim), target);
-    td_error_set(err, st, "simulation failed at t = %.10f s on the way to %.10f s: %s", td_sim_time(r->sim), target,
-                 step_err->message);
+    char at[400], to[400], where[900]; /* %.10f of any double fits */
+    int len;
+    snprintf(at, sizeof at, "%.10f", td_sim_time(r->sim));
+    snprintf(to, sizeof to, "%.10f", target);
+    if (strcmp(at, to) == 0)
+        len = snprintf(where, sizeof where, "simulation failed at t = %s s: ", at);
+    else
+        len = snprintf(where, sizeof where, "simulation failed at t = %s s on the way to %s s: ", at, to);
+    td_error_set(err, st, "%s%s", where, step_err->message);
     if (err && step_err->site.part) {
         err->site = step_err->site;
         err->other = step_err->other;
@@ -204,6 +210,7 @@ static td_status step_failed(run_state *r, double target, td_status st, const td
     return st;
 }
 
+/* Step over the grid to t_end. Returns TD_OK at t_end, else the failure with `err` filled. */
 static td_status loop(run_state *r, td_error *err)
 {
     const double t0 = r->s->t_start, t_end = r->s->t_end;

@@ -249,10 +249,9 @@ static void format_start(td_text *b, const td_run_summary *s)
     if (si->requested == TD_START_AUTO)
         td_text_printf(b, " (start = \"auto\"%s%s)", si->reason[0] ? ": " : "", si->reason);
     td_text_printf(b, "\n");
-    if (si->stability == TD_STABILITY_UNCHECKED)
-        td_text_printf(
-            b, "contact-free system         stability not checked (more than %d states, or no eigen-solution)\n",
-            TD_SIM_STABILITY_MAX_STATES);
+    if (si->stability == TD_STABILITY_UNCHECKED) /* the reason the start gave (lib/sim/start.c) */
+        td_text_printf(b, "contact-free system         stability not checked: %s\n",
+                       si->unchecked[0] ? si->unchecked : "no reason recorded");
     else
         td_text_printf(b, "contact-free system         %s at %.6g rad/s (rightmost eigenvalue real part %.6g 1/s)\n",
                        stability_name(si->stability), s->speed, si->max_real_part);

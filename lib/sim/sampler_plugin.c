@@ -64,7 +64,9 @@ static td_status new_instance(const td_sim *s, const td_sim_sampled *l, void **i
  * which sets the scale of the amplifier's force for the tolerances and the step bound
  * (lib/sim/setup.c), never the dynamics. From a second instance at rest: its first command for
  * xs = -h e_j less its first for xs = 0, over h, reset between, then freed. A probe that fails, or
- * is not finite, leaves the gain 0 (no scale; the run reports the failure where it happens). */
+ * is not finite, leaves the gain 0 (the run reports the failure where it happens), as does a
+ * non-linear law that does not answer h (a deadband wider than it): setup.c's law_gain then takes
+ * the magnet's |ks| as the scale, never 0. */
 static td_status probe_gain(const td_sim *s, td_sim_sampled *l, td_error *err)
 {
     const td_lti_law *law = &s->sys->laws[l->law];

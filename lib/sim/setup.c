@@ -115,16 +115,23 @@ static td_status alloc_arrays(td_sim *s, td_error *err)
  * displacement of the law's direct part, |d target/d i| max|D| over the inputs (for a PD written as a
  * transfer function, ki kp, what the shorthand's gives). A strictly proper law (D = 0) has none;
  * its gain at the open-loop magnet's frequency sqrt(|ks| / rotor mass), where the law must act, is
- * taken instead; a plug-in's, measured (td_sim_plugin_gain). Scales only (tolerances, the step
- * bound), never the dynamics. */
+ * taken instead; a plug-in's, measured (td_sim_plugin_gain), or where that is 0 (a non-linear
+ * plug-in whose deadband the probe does not leave) the magnet's |ks| (the gain a holding law must
+ * exceed). Scales only (tolerances, the step bound), never the dynamics. */
 static double law_gain(const td_sim *s, const td_amb_axis *a, double target_i)
 {
     const td_lti_law *L = &s->sys->laws[a->law];
     const td_controller *k = td_model_get_controller(s->model, a->law, NULL, NULL, NULL);
     double g = 0.0, mass = td_model_total_mass(s->model), *re;
     int m;
-    if (L->plugin) /* its gain as measured (sampler_plugin.c); it has no frequency response */
-        return fabs(target_i) * td_sim_plugin_gain(s, a->law, a->law_output);
+    if (L->plugin) { /* its gain as measured (sampler_plugin.c); it has no frequency response */
+        g = td_sim_plugin_gain(s, a->law, a->law_output);
+        /* none measured (a deadband wider than the probe, a probe that failed): the least a law that
+         * holds the rotor must make, the magnet's own negative stiffness |ks|, as |ks| / |ki| A/m */
+        if (g == 0.0 && a->ki != 0.0)
+            g = fabs(a->ks / a->ki);
+        return isfinite(g) ? fabs(target_i) * g : 0.0;
+    }
     for (m = 0; m < L->nin; m++)
         g = fmax(g, fabs(L->D[a->law_output + (size_t)m * L->nout]));
     re = g == 0.0 && mass > 0.0 ? malloc(2 * (size_t)L->nin * (size_t)L->nout * sizeof *re) : NULL;

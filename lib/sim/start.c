@@ -26,15 +26,28 @@ static int stability_state_count(const td_system *sys)
 
 /* Stability of the contact-free closed loop at the start speed, from the eigenvalues of its
  * first-order form (lib/modal, AMB filter states included). A model too big for a quick dense
- * eigen-solve, or one the solver fails on, stays unchecked: the check informs, it never blocks. */
+ * eigen-solve, or one the analysis refuses (a plug-in controller has no linear law) or fails on,
+ * stays unchecked, with the reason: the check informs, it never blocks. */
 void td_sim_start_stability(td_sim *s)
 {
-    int unstable = 0;
+    int unstable = 0, n = stability_state_count(s->sys);
+    td_error merr;
     s->start.stability = TD_STABILITY_UNCHECKED;
     s->start.max_real_part = NAN;
-    if (stability_state_count(s->sys) > TD_SIM_STABILITY_MAX_STATES ||
-        td_modal_stability(s->sys, s->machine.omega, &s->start.max_real_part, &unstable, NULL) != TD_OK)
+    s->start.unchecked[0] = '\0';
+    if (n > TD_SIM_STABILITY_MAX_STATES) {
+        snprintf(s->start.unchecked, sizeof s->start.unchecked,
+                 "%d first-order states, more than %d for a check at the start (touchdown modal does it)", n,
+                 TD_SIM_STABILITY_MAX_STATES);
         return;
+    }
+    td_error_clear(&merr);
+    if (td_modal_stability(s->sys, s->machine.omega, &s->start.max_real_part, &unstable, &merr) != TD_OK) {
+        snprintf(s->start.unchecked, sizeof s->start.unchecked, "%.250s",
+                 merr.message[0] ? merr.message : "no eigen-solution");
+        s->start.max_real_part = NAN;
+        return;
+    }
     s->start.stability = unstable ? TD_STABILITY_UNSTABLE : TD_STABILITY_STABLE;
 }
 

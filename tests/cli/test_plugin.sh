@@ -5,8 +5,9 @@
 # the same bits as the built-in sampled law with the same numbers (the same case with the law
 # written as an `ss` block in z: the samples, the events and the summary's answers compared byte for
 # byte); a bad plug-in (no file, no entry symbol, another ABI version, a NaN command mid-run, a
-# crash in its init, an init that refuses) and bad plug-in keys each give one line naming the file,
-# line and key, exit 2, and never a result that looks complete.
+# crash in its init, an init that refuses, an init that ends the process with exit(0)) and bad
+# plug-in keys each give one line naming the file, line and key, exit 2, and never a result that
+# looks complete.
 # Args: $1 = the touchdown binary, $2 = the source directory, $3 = the directory of the test
 # plug-ins (tests/plugins, built by CMake). Runs in the build's tests directory.
 set -u
@@ -123,6 +124,9 @@ EOF
 check "with one sample of delay: the same to the solver's tolerance" close_run delay
 check "the plug-in run claims no stability it cannot know (unchecked: no linear law for the analysis)" \
     test "$(jf "$work/pd-plug/.out" stability)" = '"unchecked"' -a "$(jf "$work/pd-plug/.out" max_real_part)" = null
+t "$work/text" run --set end_time=0.001 --hdf5 '' "$ex/rig-pd.cfg"
+check "  and its summary says why: the plug-in (not a count of states)" \
+    grep -qE '^contact-free system +stability not checked: modal: controller 0 \("pd"\) is a plug-in' "$work/text/.out"
 t "$work/modal" modal "$ex/rig-pd.cfg"
 check "touchdown modal refuses a plug-in case naming the controller, exit 2" \
     test "$rc" = 2 -a "$(wc -l <"$work/modal/.err")" = 1 -a -n "$(grep -F 'controller 0 ("pd") is a plug-in' "$work/modal/.err")"
@@ -149,7 +153,7 @@ check "an init that refuses (pd.c: an unknown parameter): one line with its reas
 check "  and no output file" test ! -e "$work/unknown/unknown.h5" -a ! -e "$work/unknown/unknown.csv"
 
 # ---- the bad plug-ins of tests/plugins, each beside a copy of the case ---------------------------
-for name in no_entry wrong_abi nan crash refuse; do
+for name in no_entry wrong_abi nan crash refuse exits; do
     cp "$plugins/$name.so" "$ex/" || fail "no test plug-in $plugins/$name.so"
     with_library "$name" "$name.so"
 done
@@ -165,12 +169,18 @@ check "a crash (SIGSEGV) in the plug-in's init: one line naming the file, line, 
 check "  and no output file, no core file" test -z "$(ls "$work/crash")"
 t "$work/crashinfo" info "$ex/crash.cfg"
 check "  info too: the same line, exit 2" one_line "$work/crashinfo" crash.cfg "$lib_key" 'SIGSEGV'
+t "$work/exits" run "$ex/exits.cfg"
+check "a plug-in that ends the process (exit(0)) in its init: one line naming the file, line, key and call, exit 2" \
+    one_line "$work/exits" exits.cfg "$lib_key" 'ended the process in its init \(exit status 0\)'
+check "  and no output file" test -z "$(ls "$work/exits")"
 t "$work/refuse" run "$ex/refuse.cfg"
 check "an init that fails with a message: one line with it, exit 2" \
     one_line "$work/refuse" refuse.cfg "$lib_key" 'refused to start: .'
 t "$work/nan" run --json "$ex/nan.cfg"
 check "a NaN command mid-run: exit 2, one error line naming the controller and the sample" \
     one_line "$work/nan" nan.cfg "$lib_key" '"pd".* sample [0-9]+.*nan'
+check "  the time it failed at is said once (the sample is at an output time, not on the way to one)" \
+    grep -qF 'simulation failed at t = 0.0003000000 s: controller 0: plug-in "pd" failed at sample 3' "$work/nan/.err"
 check "  the JSON says it failed, with no answers" \
     test "$(jf "$work/nan/.out" status)" != '"success"' -a "$(jf "$work/nan/.out" peak_normal_force)" = null
 check "  the CSV is marked incomplete (never a complete-looking file)" grep -q '^# incomplete: ' "$work/nan/nan.csv"
@@ -186,9 +196,11 @@ check "  the parameter reaches the plug-in: kp 1.0e4 and 1.2e4 give different an
     python3 -c 'import csv, sys
 rows = [r for r in csv.DictReader(open(sys.argv[1])) if r["status"] == "success"]
 sys.exit(len({r["peak_housing_force [N]"] for r in rows}) != 2)' "$work/sweep/sw.csv"
-h5=$(command -v h5dump || true)
-if [ -n "$h5" ]; then
+# h5dump comes with hdf5-tools (scripts/setup.sh): without it the check fails, never skips
+if h5=$(command -v h5dump); then
     check "  the HDF5 file says complete = 0" grep -q '(0): 0' <("$h5" -a /complete "$work/nan/nan.h5" 2>/dev/null)
+else
+    fail "  the HDF5 file says complete = 0: no h5dump to read it (hdf5-tools, scripts/setup.sh)"
 fi
 
 finish

@@ -7,7 +7,7 @@
 #                                           final newline, in sub-folders of lib/ and tools/)
 set -euo pipefail
 
-# SOURCE_DIR MAX: one line per .c/.h file of SOURCE_DIR/{lib,tools}/** longer than MAX lines;
+# SOURCE_DIR MAX: one line per .c/.h file of SOURCE_DIR/{lib,tools,fmu}/** longer than MAX lines;
 # status 1 if any. A last line without a newline counts as a line.
 long_files() {
     local src=$1 max=$2 file n status=0
@@ -46,7 +46,7 @@ fi
 src=${1:?usage: file_length.sh SOURCE_DIR [MAX] | --self-check}
 max=${2:-1000}
 if long_files "$src" "$max"; then
-    echo "ok:   every .c and .h file under lib/ and tools/ is at most $max lines"
+    echo "ok:   every .c and .h file under lib/, tools/ and fmu/ is at most $max lines"
     exit 0
 fi
 exit 1

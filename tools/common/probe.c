@@ -64,8 +64,9 @@ static void quiet(void)
 /* The child: the signals a crash raises back to their default action (a sanitiser's handler would
  * turn the crash into an exit status), no core file, its output to /dev/null (the parent's one line
  * says what happened; the run calls init again, with its output); then init, one step from rest and
- * free, each announced on fd before it is called ('i', 's', 'f'); init's refusal is 'R' and its
- * reason. */
+ * free, each announced on fd before it is called ('i', 's', 'f'), and 'd' once free has returned;
+ * init's refusal is 'R' and its reason. A plug-in that ends the process itself (exit(0) in its init)
+ * never writes the 'd': only the whole sequence is a success. */
 static void child(const td_plugin_spec *p, int fd)
 {
     static const int crashes[] = {SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT};
@@ -103,6 +104,7 @@ static void child(const td_plugin_spec *p, int fd)
     (void)f->step(instance, 0, 0.0, sensed, command, message, (int)sizeof message); /* the run judges its outputs */
     put(fd, "f", 1);
     f->free(instance);
+    put(fd, "d", 1);
     _exit(0);
 }
 
@@ -126,18 +128,19 @@ static const char *phase(const char *said)
 {
     const char *p = "init";
     for (; *said && *said != 'R'; said++)
-        p = *said == 's' ? "step" : *said == 'f' ? "free" : "init";
+        p = *said == 's' ? "step" : *said == 'f' || *said == 'd' ? "free" : "init";
     return p;
 }
 
-/* The child's end as the one-line error (exit 2), or 0 when init, step and free all returned. A
- * refusal's reason is the plug-in's text: its control characters (a stray newline) become spaces. */
+/* The child's end as the one-line error (exit 2), or 0 when init, step and free all returned (it
+ * said "isfd" and exited 0: an exit status 0 alone may be the plug-in's own exit(0)). A refusal's
+ * reason is the plug-in's text: its control characters (a stray newline) become spaces. */
 static int judge(const char *where, const td_plugin_spec *p, int status, char *said)
 {
     char *refused = strchr(said, 'R'), *q;
     for (q = refused; q && *q; q++)
         *q = (unsigned char)*q < 0x20 || *q == 0x7f ? ' ' : *q;
-    if (WIFEXITED(status) && WEXITSTATUS(status) == 0)
+    if (WIFEXITED(status) && WEXITSTATUS(status) == 0 && strcmp(said, "isfd") == 0)
         return TD_EXIT_OK;
     if (WIFSIGNALED(status) && WTERMSIG(status) == SIGALRM)
         fprintf(stderr, "touchdown: %s: the plug-in \"%s\" did not return from its %s within %d s\n", where, p->name,
