@@ -105,13 +105,8 @@ static int load_variables(td_fmu_instance *in)
         td_fmu_log(in, fmi2Error, "%s", err.message);
         return 0;
     }
-    if (in->settings.inputs != TD_FMU_INPUTS_NONE && td_case_sim_options(c)->start == TD_START_ORBIT) {
-        /* the orbit is that of the case's own controllers, which the inputs replace from the start */
-        td_fmu_log(in, fmi2Error,
-                   "fmi2Instantiate: start = \"orbit\" is the steady orbit under the case's own controllers, "
-                   "which the FMU's %s inputs replace: an FMU with inputs starts at rest (start = \"rest\" or "
-                   "\"auto\")",
-                   td_fmu_inputs_name(in->settings.inputs));
+    if (td_fmu_check_start(c, in->settings.inputs, &err) != TD_OK) {
+        td_fmu_log(in, fmi2Error, "fmi2Instantiate: %s", err.message);
         td_case_free(&c);
         return 0;
     }

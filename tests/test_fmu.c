@@ -1071,10 +1071,44 @@ static void rest_sensed(const char *case_file, double xs[2])
     td_case_free(&c);
 }
 
+/* td_fmu_stage refuses a case that starts on its orbit with inputs, naming the case and the rule. */
+static void refused_orbit_stage(const char **orbit)
+{
+    char dir[64];
+    td_error err;
+    snprintf(dir, sizeof dir, "/tmp/td-test-fmu-XXXXXX");
+    assert_non_null(mkdtemp(dir));
+    assert_int_equal(td_fmu_stage(td_source_path("cases/paper-a.cfg"), orbit, 1, TD_FMU_INPUTS_FORCE, "o", dir, &err),
+                     TD_ERR_PARSE);
+    printf("orbit start with inputs, staged: %s\n", err.message);
+    assert_non_null(strstr(err.message, "paper-a.cfg: start = \"orbit\""));
+    assert_non_null(strstr(err.message, "force inputs replace"));
+    assert_int_equal(rmdir(dir), 0); /* nothing was written */
+}
+
+/* Replace `inputs = "FROM"` by `inputs = "TO"` in the staged settings of dir. */
+static void edit_settings_inputs(const char *dir, const char *from, const char *to)
+{
+    char path[400], text[8192], key[64];
+    FILE *f;
+    size_t n;
+    char *at;
+    snprintf(path, sizeof path, "%s/resources/touchdown-fmu.cfg", dir);
+    assert_non_null(f = fopen(path, "r"));
+    n = fread(text, 1, sizeof text - 1, f);
+    fclose(f);
+    text[n] = '\0';
+    snprintf(key, sizeof key, "inputs = \"%s\"", from);
+    assert_non_null(at = strstr(text, key));
+    assert_non_null(f = fopen(path, "w"));
+    fprintf(f, "%.*sinputs = \"%s\"%s", (int)(at - text), text, to, at + strlen(key));
+    fclose(f);
+}
+
 /* With inputs the FMU starts at rest: case A's start = "auto" would take the steady orbit of its own
  * (continuous) controllers, which the inputs replace from t = 0, so the sensed displacements at the
- * start are those of the direct run from rest; start = "orbit" with inputs is refused at
- * fmi2Instantiate; without inputs the case's own orbit start holds. */
+ * start are those of the direct run from rest; start = "orbit" with inputs is refused where the FMU
+ * is staged and where it is instantiated; without inputs the case's own orbit start holds. */
 static void test_inputs_start(void **state)
 {
     const char *orbit[] = {"start = \"orbit\""};
@@ -1096,16 +1130,20 @@ static void test_inputs_start(void **state)
     assert_true(x[0] == rest[0] && x[1] == rest[1]);
     api.free_instance(c);
     unload_fmu(&api);
-    load_fmu_of(&api, td_source_path("cases/paper-a.cfg"), NULL, 0, TD_FMU_INPUTS_NONE); /* its own controllers: the orbit */
+    load_fmu_of(&api, td_source_path("cases/paper-a.cfg"), NULL, 0,
+                TD_FMU_INPUTS_NONE); /* its own controllers: the orbit */
     vs[0] = vr_of(&api, "ambs[0].sensed_x"), vs[1] = vr_of(&api, "ambs[0].sensed_y");
     c = start(&api, &log, 0.01);
     assert_int_equal(api.get_real(c, vs, 2, x), fmi2OK);
     assert_false(x[0] == rest[0] && x[1] == rest[1]);
     api.free_instance(c);
     unload_fmu(&api);
-    load_fmu_of(&api, td_source_path("cases/paper-a.cfg"), orbit, 1, TD_FMU_INPUTS_FORCE);
+    refused_orbit_stage(orbit);
+    /* an FMU whose settings were edited to inputs after staging: refused where it is instantiated too */
+    load_fmu_of(&api, td_source_path("cases/paper-a.cfg"), orbit, 1, TD_FMU_INPUTS_NONE);
+    edit_settings_inputs(api.dir, "none", "force");
     assert_null(api.instantiate("o", fmi2CoSimulation, api.guid, api.uri, &cb, fmi2False, fmi2False));
-    logged(&log, "fmi2Instantiate: start = \"orbit\" is the steady orbit under the case's own controllers");
+    logged(&log, "start = \"orbit\" (also the default of a case that sets no start) is the steady orbit");
     unload_fmu(&api);
 }
 

@@ -75,6 +75,10 @@ typedef struct td_fmu_var {
 td_status td_fmu_variables(const td_model *model, td_fmu_inputs inputs, td_fmu_var **out, int *n, td_error *err);
 /* "none", "current", "force"; NULL for another value. */
 const char *td_fmu_inputs_name(td_fmu_inputs inputs);
+/* The start rule of an FMU with inputs (docs/fmu.md, "The start state with inputs"): it starts at rest,
+ * so a case that asks for the orbit (start = "orbit", the default) is TD_ERR_PARSE, naming the case;
+ * "auto" becomes rest at instantiation. Checked where the FMU is staged and where it is instantiated. */
+td_status td_fmu_check_start(const td_case *c, td_fmu_inputs inputs, td_error *err);
 
 /* The categories of the FMU's log lines (FMI 2.0, 2.2.4 LogCategories; the names those the standard
  * proposes): each line the binary logs is in one of them, and modelDescription.xml lists them all. */

@@ -236,7 +236,8 @@ td_status td_fmu_stage(const char *case_path, const char *const *overrides, int 
         return st;
     if ((st = td_case_load(case_path, overrides, n_overrides, &c, err)) != TD_OK)
         return st;
-    st = stage_case(c, overrides, n_overrides, inputs, model_identifier, dir, err);
+    if ((st = td_fmu_check_start(c, inputs, err)) == TD_OK)
+        st = stage_case(c, overrides, n_overrides, inputs, model_identifier, dir, err);
     td_case_free(&c);
     return st;
 }

@@ -172,3 +172,15 @@ const char *td_fmu_inputs_name(td_fmu_inputs inputs)
     }
     return NULL;
 }
+
+td_status td_fmu_check_start(const td_case *c, td_fmu_inputs inputs, td_error *err)
+{
+    if (inputs == TD_FMU_INPUTS_NONE || td_case_sim_options(c)->start != TD_START_ORBIT)
+        return TD_OK;
+    /* the orbit is that of the case's own controllers, which the inputs replace from the start */
+    return td_error_set(err, TD_ERR_PARSE,
+                        "%s: start = \"orbit\" (also the default of a case that sets no start) is the steady orbit "
+                        "under the case's own controllers, which the FMU's %s inputs replace: an FMU with inputs "
+                        "starts at rest (set start = \"rest\" or \"auto\")",
+                        td_case_path(c), td_fmu_inputs_name(inputs));
+}

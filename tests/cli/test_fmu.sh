@@ -57,6 +57,7 @@ verdict "--set changes the FMU (its case settings)"
 
 refused "no -o" "$case_a"
 refused "no case" -o A.fmu
+refused "an orbit start with inputs" "$case_a" --set 'start="orbit"' -o A.fmu
 refused "two cases" "$case_a" "$case_a" -o A.fmu
 refused "-o not ending in .fmu" "$case_a" -o A.zip
 refused "-o whose name is no C identifier (a dash)" "$case_a" -o my-rig.fmu
