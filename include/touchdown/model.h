@@ -315,6 +315,10 @@ TD_API td_status td_model_add_plugin_controller(td_model *m, const td_plugin_spe
  *  then always set, from the library when it named one), or NULL for a linear controller or an i
  *  out of range. */
 TD_API const td_plugin_spec *td_model_get_plugin(const td_model *m, int i);
+/** The setup (touchdown/plugin.h) a simulation gives a new instance of the plug-in `spec`: its
+ *  name ("" for none), rate, axes and parameters, borrowed from spec. For a program that creates
+ *  an instance itself, as the tool's probe of a plug-in does. */
+TD_API void td_plugin_spec_setup(const td_plugin_spec *spec, td_plugin_setup *setup);
 /** The most controller pairs one recovery supervisor switches (td_recovery). */
 #define TD_RECOVERY_MAX_PAIRS 16
 

@@ -73,6 +73,9 @@ typedef struct td_fmu_var {
 /* The variables of an FMU of `model` with `inputs`, parameters first, then inputs, then outputs,
  * vr = position; *out (free()) and *n. TD_ERR_NOMEM. */
 td_status td_fmu_variables(const td_model *model, td_fmu_inputs inputs, td_fmu_var **out, int *n, td_error *err);
+/* s as a libconfig string onto t: quoted, with \\, \" and \xNN for control characters (the settings
+ * file's strings, resources/touchdown-fmu.cfg). */
+void td_fmu_config_string(td_text *t, const char *s);
 /* "none", "current", "force"; NULL for another value. */
 const char *td_fmu_inputs_name(td_fmu_inputs inputs);
 /* The start rule of an FMU with inputs (docs/fmu.md, "The start state with inputs"): it starts at rest,

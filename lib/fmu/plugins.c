@@ -122,22 +122,6 @@ static td_status put_library(const char *resources_dir, const staged_lib *lib, c
     return st == TD_OK ? write_library(path, data, lib->size, err) : st;
 }
 
-/* s as a libconfig string (quoted, \\, \" and \xNN escaped) onto t. */
-static void quoted(td_text *t, const char *s)
-{
-    td_text_append(t, "\"", 1);
-    for (; *s; s++) {
-        unsigned char c = (unsigned char)*s;
-        if (c == '\\' || c == '"')
-            td_text_printf(t, "\\%c", c);
-        else if (c < 0x20 || c == 0x7f)
-            td_text_printf(t, "\\x%02x", c);
-        else
-            td_text_append(t, s, 1);
-    }
-    td_text_append(t, "\"", 1);
-}
-
 /* Stage the library of plug-in controller i (path) among the `n` staged so far into libs[n]. */
 static td_status stage_one(const char *resources_dir, int i, const char *path, staged_lib *libs, int *n,
                            td_fmu_plugins *out, td_error *err)
@@ -167,7 +151,7 @@ static td_status stage_one(const char *resources_dir, int i, const char *path, s
     }
     free(data);
     td_text_printf(&ov, "controllers[%d].plugin.library=", i);
-    quoted(&ov, name);
+    td_fmu_config_string(&ov, name);
     if (st == TD_OK && (ov.failed || out->fingerprint.failed))
         st = td_error_set(err, TD_ERR_NOMEM, "out of memory staging an FMU");
     if (st == TD_OK)

@@ -108,3 +108,18 @@ void td_fmu_settings_free(td_fmu_settings *s)
     free(s->case_path);
     memset(s, 0, sizeof *s);
 }
+
+void td_fmu_config_string(td_text *t, const char *s)
+{
+    td_text_append(t, "\"", 1);
+    for (; *s; s++) {
+        unsigned char c = (unsigned char)*s;
+        if (c == '\\' || c == '"')
+            td_text_printf(t, "\\%c", c);
+        else if (c < 0x20 || c == 0x7f)
+            td_text_printf(t, "\\x%02x", c);
+        else
+            td_text_append(t, s, 1);
+    }
+    td_text_append(t, "\"", 1);
+}

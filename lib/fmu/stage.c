@@ -115,22 +115,6 @@ static td_status write_file(const char *path, const td_text *text, td_error *err
     return ok ? TD_OK : td_error_set(err, TD_ERR_IO, "%s: cannot write: %s", path, strerror(errno));
 }
 
-/* s as a libconfig string: quoted, with \\, \" and \xNN for control characters. */
-static void config_string(td_text *t, const char *s)
-{
-    td_text_append(t, "\"", 1);
-    for (; *s; s++) {
-        unsigned char c = (unsigned char)*s;
-        if (c == '\\' || c == '"')
-            td_text_printf(t, "\\%c", c);
-        else if (c < 0x20 || c == 0x7f)
-            td_text_printf(t, "\\x%02x", c);
-        else
-            td_text_append(t, s, 1);
-    }
-    td_text_append(t, "\"", 1);
-}
-
 static void settings_text(td_text *t, const char *guid, const char *id, td_fmu_inputs inputs, const char *const *ov,
                           int nov)
 {
@@ -141,7 +125,7 @@ static void settings_text(td_text *t, const char *guid, const char *id, td_fmu_i
                    TD_FMU_CASE_FILE, td_fmu_inputs_name(inputs));
     for (i = 0; i < nov; i++) {
         td_text_printf(t, "%s\n    ", i ? "," : "");
-        config_string(t, ov[i]);
+        td_fmu_config_string(t, ov[i]);
     }
     td_text_printf(t, "%s);\n", nov ? "\n" : "");
 }

@@ -186,3 +186,18 @@ const td_plugin_spec *td_model_get_plugin(const td_model *m, int i)
         return NULL;
     return &m->controllers.items[i].plugin->spec;
 }
+
+void td_plugin_spec_setup(const td_plugin_spec *spec, td_plugin_setup *setup)
+{
+    memset(setup, 0, sizeof *setup);
+    setup->abi_version = TD_PLUGIN_ABI_VERSION;
+    setup->name = spec->name ? spec->name : "";
+    setup->sample_rate = spec->sample_rate;
+    setup->n_inputs = spec->n_inputs;
+    setup->n_outputs = spec->n_outputs;
+    setup->input_axes = spec->inputs;
+    setup->output_axes = spec->outputs;
+    setup->n_parameters = spec->n_parameters;
+    setup->parameter_names = spec->parameter_names;
+    setup->parameter_values = spec->parameter_values;
+}

@@ -36,16 +36,7 @@ static td_status new_instance(const td_sim *s, const td_sim_sampled *l, void **i
     const td_plugin_spec *p = s->sys->laws[l->law].plugin;
     td_plugin_setup setup;
     char why[TD_ERROR_MESSAGE_SIZE / 2];
-    setup.abi_version = TD_PLUGIN_ABI_VERSION;
-    setup.name = p->name;
-    setup.sample_rate = p->sample_rate;
-    setup.n_inputs = p->n_inputs;
-    setup.n_outputs = p->n_outputs;
-    setup.input_axes = p->inputs;
-    setup.output_axes = p->outputs;
-    setup.n_parameters = p->n_parameters;
-    setup.parameter_names = p->parameter_names;
-    setup.parameter_values = p->parameter_values;
+    td_plugin_spec_setup(p, &setup);
     why[0] = '\0';
     *instance = p->functions->init(&setup, why, (int)sizeof why);
     if (!*instance)

@@ -82,17 +82,7 @@ static void child(const td_plugin_spec *p, int fd)
     setrlimit(RLIMIT_CORE, &no_core);
     quiet();
     alarm(PROBE_SECONDS);
-    memset(&setup, 0, sizeof setup);
-    setup.abi_version = TD_PLUGIN_ABI_VERSION;
-    setup.name = p->name ? p->name : "";
-    setup.sample_rate = p->sample_rate;
-    setup.n_inputs = p->n_inputs;
-    setup.n_outputs = p->n_outputs;
-    setup.input_axes = p->inputs;
-    setup.output_axes = p->outputs;
-    setup.n_parameters = p->n_parameters;
-    setup.parameter_names = p->parameter_names;
-    setup.parameter_values = p->parameter_values;
+    td_plugin_spec_setup(p, &setup);
     put(fd, "i", 1);
     if (!(instance = f->init(&setup, message, (int)sizeof message))) {
         message[sizeof message - 1] = '\0';
