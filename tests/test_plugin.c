@@ -348,7 +348,9 @@ static void test_nan_output(void **state)
     assert_string_equal(err.message,
                         "controller 0: plug-in \"axis0\" failed at sample 3 (t = 0.0003 s): command 0 (AMB 0 x) is "
                         "nan, not a finite current");
+    assert_string_equal(err.site.part, "controller"); /* the sampler's own record, site and reason kept */
     assert_int_equal(err.site.index, 0);
+    assert_true(strncmp(err.message + err.reason, "plug-in \"axis0\" failed at sample 3", 34) == 0);
     assert_true(t == 3.0 / RATE); /* stopped at the sample */
     for (a = 0; a < AXES; a++)
         assert_true(s->machine.held_current[a] == 0.0); /* the NaN was never held */

@@ -254,6 +254,6 @@ td_status td_sim_sampler_failure(td_sim *s)
 {
     if (!s->sampler || !s->sampler->failed)
         return TD_OK;
-    memcpy(s->errmsg, s->sampler->why, sizeof s->errmsg);
+    memcpy(s->errmsg, s->sampler->failure.message, sizeof s->errmsg);
     return TD_ERR_INVALID;
 }

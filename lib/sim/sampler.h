@@ -43,9 +43,8 @@ typedef struct td_sim_sampler {
     td_sim_sample_hook hook;
     void *hook_data;
     struct td_sim_supervisor *supervisor; /* supervisor.h; NULL: no recovery supervisor */
-    int failed;                           /* 1: a plug-in failed (why): the run goes no further */
-    int failed_law;                       /* the law (the model's controller) that failed */
-    char why[TD_ERROR_MESSAGE_SIZE];
+    int failed;                           /* 1: a plug-in failed (failure): the run goes no further */
+    td_error failure;                     /* its error, the failed controller its site */
 } td_sim_sampler;
 
 #endif

@@ -129,29 +129,25 @@ void td_sim_plugin_free(const td_sim *s, td_sim_sampled *l)
     free(l->gain);
 }
 
-/* The run stops at law l's sample k: the reason into s->errmsg, kept by the sampler. Returns -1. */
+/* The run stops at law l's sample k: its error, the controller its site, kept by the sampler and its
+ * message in s->errmsg. Returns -1. */
 static int plugin_failed(td_sim *s, const td_sim_sampled *l, long k, double t, const char *reason)
 {
     const td_plugin_spec *p = s->sys->laws[l->law].plugin;
-    td_error e;
-    td_error_set_site(&e, TD_ERR_INVALID, &(td_error_site){"controller", l->law, NULL}, &no_site,
+    td_error_set_site(&s->sampler->failure, TD_ERR_INVALID, &(td_error_site){"controller", l->law, NULL}, &no_site,
                       "plug-in \"%s\" failed at sample %ld (t = %.9g s): %s", p->name, k, t, reason);
-    memcpy(s->sampler->why, e.message, sizeof s->sampler->why);
     s->sampler->failed = 1;
-    s->sampler->failed_law = l->law;
-    memcpy(s->errmsg, s->sampler->why, sizeof s->errmsg);
+    memcpy(s->errmsg, s->sampler->failure.message, sizeof s->errmsg);
     return -1;
 }
 
 int td_sim_plugin_error(const td_sim *s, td_status st, td_error *err)
 {
     const td_sim_sampler *sp = s->sampler;
-    size_t reason;
-    if (!sp || !sp->failed || st != TD_ERR_INVALID || strcmp(s->errmsg, sp->why) != 0)
+    if (!sp || !sp->failed || st != TD_ERR_INVALID || strcmp(s->errmsg, sp->failure.message) != 0)
         return 0;
-    reason = strcspn(sp->why, ":") + 2; /* after "controller I: ", td_error_set_site's prefix */
-    td_error_set_site(err, st, &(td_error_site){"controller", sp->failed_law, NULL}, &no_site, "%s",
-                      reason < strlen(sp->why) ? sp->why + reason : sp->why);
+    if (err)
+        *err = sp->failure;
     return 1;
 }
 

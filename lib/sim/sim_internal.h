@@ -347,7 +347,7 @@ int td_sim_plugin_error(const td_sim *s, td_status st, td_error *err);
 /* Law l's instance released (its free) and its buffers. */
 void td_sim_plugin_free(const td_sim *s, td_sim_sampled *l);
 /* Law l's sample k at t_k from its inputs l->e: the held current i_k into l->u. Returns 0, or -1
- * when the plug-in failed (s->errmsg and s->sampler->why say why). */
+ * when the plug-in failed (s->errmsg and s->sampler->failure say why). */
 int td_sim_plugin_step(td_sim *s, td_sim_sampled *l, long k, double t);
 
 /* ---- sim_modes.c: mode switching, consistent restarts, impacts, roots --------------------- */
