@@ -68,9 +68,6 @@ with tempfile.TemporaryDirectory(dir=os.environ.get("TD_FMU_OUTSIDE", "/tmp")) a
           str(named))
     os.remove(fmu)  # the build tree's copy is gone: only the one away can serve
     env = {"PATH": "/usr/bin:/bin", "HOME": tmp, "LD_DEBUG": "libs", "LD_DEBUG_OUTPUT": os.path.join(tmp, "ld")}
-    for k in ("LD_PRELOAD", "ASAN_OPTIONS", "UBSAN_OPTIONS"):  # the sanitizer pass needs its runtime
-        if k in os.environ:
-            env[k] = os.environ[k]
     proc = subprocess.run([sys.executable, os.path.abspath(__file__), "--child", copy], cwd=tmp, env=env,
                           stdout=subprocess.PIPE, stderr=subprocess.PIPE, universal_newlines=True)
     check("the copy runs in a fresh process with no library path (exit 0)", proc.returncode == 0,
