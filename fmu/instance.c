@@ -248,24 +248,15 @@ static fmi2Status input_modes(td_fmu_instance *in)
 }
 
 /* The line of a case that fails to load: when the override at fault is one of the importer's
- * parameters, the parameter and the case reader's reason, since the importer set neither a --set nor
- * the resources' path. The case reader names an override "FILE: --set 'KEY=VALUE': KEY: REASON"
- * (lib/case/case_message.c; err->reason is not set on that path). */
+ * parameters (the case reader names it in err->site, touchdown/error.h), the parameter and the
+ * reader's reason, since the importer set neither a --set nor the resources' path. */
 static fmi2Status load_failed(const td_fmu_instance *in, const char *what, char **ov, int n, const td_error *err)
 {
-    char at[TD_FMU_NAME_SIZE + 48];
-    int i;
-    for (i = in->settings.n_overrides; i < n; i++) {
-        const char *eq = strchr(ov[i], '='), *r;
-        size_t klen = eq ? (size_t)(eq - ov[i]) : 0;
-        snprintf(at, sizeof at, ": --set '%s': ", ov[i]);
-        if (!eq || !(r = strstr(err->message, at)))
-            continue;
-        r += strlen(at);
-        if (strncmp(r, ov[i], klen) == 0 && strncmp(r + klen, ": ", 2) == 0)
-            r += klen + 2; /* the key again, before the reason */
-        return td_fmu_log(in, fmi2Error, "%s: parameter %.*s = %s: %s", what, (int)klen, ov[i], eq + 1, r);
-    }
+    int i = err->site.part && strcmp(err->site.part, "override") == 0 ? err->site.index : -1;
+    const char *eq = i >= in->settings.n_overrides && i < n ? strchr(ov[i], '=') : NULL; /* KEY=VALUE */
+    if (eq)
+        return td_fmu_log(in, fmi2Error, "%s: parameter %.*s = %s: %s", what, (int)(eq - ov[i]), ov[i], eq + 1,
+                          err->message + err->reason);
     return td_fmu_log(in, fmi2Error, "%s: %s", what, err->message);
 }
 

@@ -1230,6 +1230,10 @@ static void test_bad_overrides(void **state)
         snprintf(prefix, sizeof prefix, "paper-a.cfg: --set '");
         assert_contains(err.message, prefix);
         assert_printable(err.message);
+        assert_string_equal(err.site.part, "override"); /* the override named in the record, its reason after */
+        assert_int_equal(err.site.index, 0);
+        assert_null(err.site.field);
+        assert_true(err.reason > (int)strlen(prefix) && !strstr(err.message + err.reason, prefix));
     }
 }
 
@@ -1280,6 +1284,31 @@ static void test_model_rules_located(void **state)
                    "--set 'point_masses[1].node=40': point_masses[1].node: node 40 is out of range (the shaft has "
                    "nodes 0..12); see shaft.elements at ",
                    "cases/rig.cfg:10");
+}
+
+/* An error on a value an override wrote names that override in err.site (its index among
+ * td_case_load's), the reason at err.reason; one on a value of the file, or of the case's own
+ * overrides list, names none, although a --set may be what it was compared with. */
+static void test_override_named_in_site(void **state)
+{
+    static const char *const late_bad[] = {"schedule[1].time=0.05", "schedule[1].unbalance=4"};
+    static const char *const elements[] = {"shaft.elements=2"};
+    td_case *c = NULL;
+    td_error err;
+    (void)state;
+    assert_int_equal(td_case_load(td_source_path("cases/paper-a.cfg"), late_bad, 2, &c, &err), TD_ERR_PARSE);
+    assert_string_equal(err.site.part, "override");
+    assert_int_equal(err.site.index, 1);
+    assert_contains(err.message, "--set 'schedule[1].unbalance=4': schedule[1].unbalance: unbalance 4 does not");
+    assert_true(strncmp(err.message + err.reason, "unbalance 4 does not exist", 26) == 0);
+    assert_int_equal(td_case_load(td_source_path("cases/paper-a.cfg"), elements, 1, &c, &err), TD_ERR_PARSE);
+    assert_null(err.site.part);
+    assert_true(strncmp(err.message + err.reason, "node 5 is out of range", 22) == 0);
+    assert_int_equal(td_case_load(td_source_path("tests/data/bad/retainer-clearance-ge-airgap.cfg"), NULL, 0, &c, &err),
+                     TD_ERR_PARSE);
+    assert_null(err.site.part);
+    assert_true(strncmp(err.message + err.reason, "clearance 0.0012 m is not smaller", 33) == 0);
+    assert_null(c);
 }
 
 /* A rule that compares a key in the file with one a --set changed names the key where it is and
@@ -2340,6 +2369,7 @@ int main(void)
         cmocka_unit_test(test_ramp_judged_to_end_time),
         cmocka_unit_test(test_model_rules_located),
         cmocka_unit_test(test_rules_name_the_set_they_compare_with),
+        cmocka_unit_test(test_override_named_in_site),
         cmocka_unit_test(test_unreadable_paths),
         cmocka_unit_test(test_bad_includes),
         cmocka_unit_test(test_include_bounds),

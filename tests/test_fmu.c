@@ -659,6 +659,7 @@ static void test_parameters(void **state)
     fmi2CallbackFunctions cb = {logger, NULL, NULL, NULL, &log};
     fmi2ValueReference speed, clearance, rotor;
     fmi2Real v = 120.0, x;
+    char deep[201], uri[600];
     fmi2Component c;
     (void)state;
     load_fmu(&api, NULL, 0, TD_FMU_INPUTS_NONE);
@@ -682,6 +683,23 @@ static void test_parameters(void **state)
     assert_int_equal(api.enter_init(c), fmi2OK);
     assert_int_equal(api.exit_init(c), fmi2Error);
     logged(&log, "fmi2ExitInitializationMode: parameter retainers[0].clearance = -1: must be > 0 (got -1)");
+    api.free_instance(c);
+    /* a rule comparing it with a key of the case, the FMU unpacked deep down (a link to its own
+     * directory, 200 characters long): the reason names where that key is and the reader's message
+     * shortens where the parameter is, in its middle; the parameter is still named */
+    memset(deep, 'd', 200);
+    deep[200] = '\0';
+    snprintf(uri, sizeof uri, "%s/%s", api.dir, deep);
+    assert_int_equal(symlink(".", uri), 0);
+    snprintf(uri, sizeof uri, "file://%s/%s/resources", api.dir, deep);
+    c = api.instantiate("p", fmi2CoSimulation, api.guid, uri, &cb, fmi2False, fmi2False);
+    v = 3.0e-3;
+    assert_int_equal(api.set_real(c, &clearance, 1, &v), fmi2OK);
+    assert_int_equal(api.enter_init(c), fmi2OK);
+    assert_int_equal(api.exit_init(c), fmi2Error);
+    printf("parameters: %s\n", log.last);
+    logged(&log, "fmi2ExitInitializationMode: parameter retainers[0].clearance = 0.0030000000000000001: clearance "
+                 "0.003 m is not smaller than the air gap 0.0012 m of amb 0; see ambs[0].air_gap at ");
     api.free_instance(c);
     /* the importer's parameter, in the importer's words: neither a --set nor the resources' path */
     c = api.instantiate("p", fmi2CoSimulation, api.guid, api.uri, &cb, fmi2False, fmi2False);

@@ -54,8 +54,10 @@ typedef struct td_error_site {
  * ("PART INDEX: REASON" without a field), REASON starting at message + reason. A cross check
  * names the part it compared against in `other` (the AMB whose air gap a retainer's clearance
  * reaches, the retainer already on a node, the shaft's nodes, a list of parts with index -1).
- * Every other error leaves both parts NULL and
- * reason 0.
+ * The case reader's errors ("FILE:LINE: KEY: REASON", the sweep's too) put REASON at message +
+ * reason as well; when the value at fault was written by one of td_case_load's overrides, `site`
+ * names that override: part "override", index its position in the list, field NULL.
+ * Every other error leaves both parts NULL and reason 0.
  */
 typedef struct td_error {
     td_status code;

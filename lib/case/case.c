@@ -271,6 +271,8 @@ td_status td_case_load(const char *path, const char *const *overrides, int n_ove
     memset(&r, 0, sizeof r);
     r.path = path;
     r.err = err;
+    r.sets = overrides;
+    r.n_sets = n_overrides;
     r.refine = 1;
     r.path_shown = td_cr_printable_dup(path);
     r.c = r.path_shown ? case_new(path) : NULL;

@@ -87,6 +87,8 @@ typedef struct td_case_reader {
     const config_setting_t *overrides; /* the case's own "overrides" list, or NULL: its strings are the
                                         * hooks of what they graft (td_cr_where names the entry) */
     const config_setting_t *ov_entry;  /* the entry being applied, NULL for a --set */
+    const char *const *sets;           /* td_case_load's overrides (n_sets): an error on a value one of */
+    int n_sets;                        /* them wrote names it (td_cr_blame_override) */
 } td_case_reader;
 
 /* Range a real value must lie in. */
@@ -111,7 +113,11 @@ const config_setting_t *td_cr_shaft_nodes(const td_case_reader *r);
 /* td_cr_where of a list whose entries (or each entry's `member`, when not NULL) a rule counts or
  * looks up, or of the first of them an override wrote: where the user wrote what the rule saw. */
 void td_cr_where_list(const td_case_reader *r, const config_setting_t *list, const char *member, char *buf, size_t n);
-/* Fail with "WHERE: KEY[.sub]: message"; returns TD_ERR_PARSE. `sub` may be NULL. */
+/* When `ov` is one of td_case_load's overrides, r->err's site names it: {"override", its index,
+ * NULL} (touchdown/error.h); otherwise (NULL, an entry of the case's own list) nothing changes. */
+void td_cr_blame_override(const td_case_reader *r, const char *ov);
+/* Fail with "WHERE: KEY[.sub]: message", the message at r->err->reason and the override that wrote
+ * s, if any, in r->err->site (td_cr_blame_override); returns TD_ERR_PARSE. `sub` may be NULL. */
 td_status td_cr_fail(td_case_reader *r, const config_setting_t *s, const char *sub, const char *fmt, ...)
 #if defined(__GNUC__)
     __attribute__((format(printf, 4, 5)))

@@ -117,6 +117,16 @@ static const config_setting_t *file_override(const td_case_reader *r, const char
     return NULL;
 }
 
+void td_cr_blame_override(const td_case_reader *r, const char *ov)
+{
+    int i;
+    for (i = 0; r->err && ov && i < r->n_sets; i++)
+        if (r->sets[i] == ov) { /* the hook is the caller's string itself (case_override.c) */
+            r->err->site = (td_error_site){"override", i, NULL};
+            return;
+        }
+}
+
 void td_cr_where(const td_case_reader *r, const config_setting_t *s, char *buf, size_t n)
 {
     const char *ov = override_of(s);
@@ -178,7 +188,9 @@ td_status td_cr_fail(td_case_reader *r, const config_setting_t *s, const char *s
         snprintf(where + len, sizeof where - len, ": %s", key);
     }
     /* a long override or path is cut in its middle; the reason stays whole */
-    return td_error_set_reason(r->err, TD_ERR_PARSE, where, msg);
+    td_error_set_reason(r->err, TD_ERR_PARSE, where, msg);
+    td_cr_blame_override(r, override_of(s));
+    return TD_ERR_PARSE;
 }
 
 td_status td_cr_fail_vs(td_case_reader *r, const config_setting_t *s, const config_setting_t *other, const char *fmt,

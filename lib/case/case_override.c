@@ -37,7 +37,10 @@ static td_status fail_override(td_case_reader *r, td_status code, const char *ov
     } else {
         snprintf(where, sizeof where, "%s: --set '%s'", r->path_shown, shown);
     }
-    return td_error_set_reason(r->err, code, where, what);
+    td_error_set_reason(r->err, code, where, what);
+    if (!r->ov_entry)
+        td_cr_blame_override(r, ov);
+    return code;
 }
 
 td_status td_cr_apply_file_overrides(td_case_reader *r)
@@ -258,7 +261,6 @@ static td_status count_value(td_case_reader *r, const char *ov, const char *src)
 {
     td_text scratch = {NULL, 0, 0, 0, 0};
     td_error scan_err, *saved = r->err;
-    const char *reason;
     int root_keys = r->shape.keys[0];
     td_status st;
     r->err = &scan_err;
@@ -269,9 +271,8 @@ static td_status count_value(td_case_reader *r, const char *ov, const char *src)
     free(scratch.data);
     if (st == TD_OK)
         return TD_OK;
-    /* the scan names the case file, line 1: keep what follows "FILE:1: " */
-    reason = strstr(scan_err.message, ":1: ");
-    return bad(r, ov, reason ? reason + 4 : scan_err.message);
+    /* the scan names the case file, line 1: keep its reason */
+    return bad(r, ov, scan_err.message + scan_err.reason);
 }
 
 /* Parse VALUE as a libconfig value into vc (a single setting "v"), or as a bare string. */

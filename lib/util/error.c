@@ -111,9 +111,10 @@ td_status td_error_set_reason(td_error *err, td_status code, const char *context
         memcpy(err->message + len, ": ", 2);
         len += 2;
     }
-    append_cut(err->message, &len, reason, room - len);
-    err->message[len] = '\0';
     err->code = code;
     clear_sites(err);
+    err->reason = (int)len; /* the reason starts past "CONTEXT: " */
+    append_cut(err->message, &len, reason, room - len);
+    err->message[len] = '\0';
     return code;
 }

@@ -8,12 +8,6 @@
 #define TD_PRINTF(f, a) __attribute__((format(printf, f, a)))
 #else
 #define TD_PRINTF(f, a)
-/** Fill `err` with "CONTEXT: REASON" (REASON alone when CONTEXT is empty). When the two do not fit
- *  in TD_ERROR_MESSAGE_SIZE, CONTEXT (where: a file, an echoed override, a key) is cut in its
- *  middle with "...", keeping its start and end, so that the reason always survives; REASON is
- *  cut only beyond 3/4 of the record. Returns `code`. */
-td_status td_error_set_reason(td_error *err, td_status code, const char *context, const char *reason);
-
 #endif
 
 /** Fill `err` (may be NULL) with `code` and a printf-style message; returns `code`. */
@@ -25,10 +19,11 @@ td_status td_error_set(td_error *err, td_status code, const char *fmt, ...) TD_P
 td_status td_error_set_site(td_error *err, td_status code, const td_error_site *site, const td_error_site *other,
                             const char *fmt, ...) TD_PRINTF(5, 6);
 
-/** Fill `err` with "CONTEXT: REASON" (REASON alone when CONTEXT is empty). When the two do not fit
- *  in TD_ERROR_MESSAGE_SIZE, CONTEXT (where: a file, an echoed override, a key) is cut in its
- *  middle with "...", keeping its start and end, so that the reason always survives; REASON is
- *  cut only beyond 3/4 of the record. Returns `code`. */
+/** Fill `err` with "CONTEXT: REASON" (REASON alone when CONTEXT is empty), REASON at
+ *  err->message + err->reason, no site. When the two do not fit in TD_ERROR_MESSAGE_SIZE, CONTEXT
+ *  (where: a file, an echoed override, a key) is cut in its middle with "...", keeping its start
+ *  and end, so that the reason always survives; REASON is cut only beyond 3/4 of the record.
+ *  Returns `code`. */
 td_status td_error_set_reason(td_error *err, td_status code, const char *context, const char *reason);
 
 #endif
