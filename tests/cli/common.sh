@@ -32,6 +32,14 @@ t() {
     rc=$?
 }
 
+# need PROGRAM PACKAGE: PROGRAM must be on the PATH, else the script ends here with a FAIL line
+# naming the package (scripts/setup.sh installs it): a check that needs it never passes by skipping.
+need() {
+    command -v "$1" >/dev/null && return 0
+    fail "$1 not found: the checks that need it cannot run (install $2; scripts/setup.sh does)"
+    finish
+}
+
 # First top-level "KEY":VALUE of a one-line JSON object (strings keep their quotes).
 jf() { grep -oE "\"$2\":(\"[^\"]*\"|[^,}]*)" "$1" | head -n 1 | sed -E "s/^\"$2\"://"; }
 

@@ -37,8 +37,8 @@ check_text() { # WHAT TEXTFILE [NAMES]
     fi
 }
 
-have_h5dump=0
-if command -v h5dump >/dev/null; then have_h5dump=1; else echo "note: h5dump not found (hdf5-tools): HDF5 attributes not checked"; fi
+need h5dump hdf5-tools
+need h5ls hdf5-tools
 
 # The CSV text a writer adds besides the numbers: the header line and the '#' lines.
 csv_text() { grep -E '^#' "$1"; head -n 1 "$1"; }
@@ -55,14 +55,12 @@ check_outputs() { # NAME PREFIX CSV-HAS-CASE-TEXT (1: a run's CSV, whose footer 
         csv_text "$prefix.events.csv" >"$prefix.events-text"
         check_text "$name: $(basename "$prefix").events.csv header" "$prefix.events-text"
     fi
-    if [ "$have_h5dump" = 1 ]; then
-        if (cd "$(dirname "$prefix")" && h5dump -A "$(basename "$prefix").h5") >"$prefix.h5-text" 2>&1 &&
-            grep -q case_text "$prefix.h5-text" &&
-            h5ls -r "$prefix.h5" | awk '{ print $1 }' | grep '^/' >"$prefix.h5-names"; then
-            check_text "$name: $(basename "$prefix").h5 attributes" "$prefix.h5-text" "$prefix.h5-names"
-        else
-            fail "$name: no HDF5 file with a case_text attribute at $prefix.h5"
-        fi
+    if (cd "$(dirname "$prefix")" && h5dump -A "$(basename "$prefix").h5") >"$prefix.h5-text" 2>&1 &&
+        grep -q case_text "$prefix.h5-text" &&
+        h5ls -r "$prefix.h5" | awk '{ print $1 }' | grep '^/' >"$prefix.h5-names"; then
+        check_text "$name: $(basename "$prefix").h5 attributes" "$prefix.h5-text" "$prefix.h5-names"
+    else
+        fail "$name: no HDF5 file with a case_text attribute at $prefix.h5"
     fi
 }
 

@@ -31,8 +31,8 @@
 #      *.partial, an output that is a device node or a directory, an output directory that does
 #      not exist or is not writable, a path longer than 1023 characters (also for modal and
 #      bench).
-# HDF5 attributes are read with h5dump (Debian package hdf5-tools); without it those checks are
-# skipped and said so. Args: $1 = the touchdown binary, $2 = the source directory.
+# HDF5 attributes are read with h5dump (Debian package hdf5-tools); without it the test fails.
+# Args: $1 = the touchdown binary, $2 = the source directory.
 set -u
 tool=$1
 src=$2
@@ -48,8 +48,7 @@ trap cleanup EXIT
 
 . "$(dirname "${BASH_SOURCE[0]}")/common.sh" # fail, pass, check, t, jf, finish
 
-have_h5dump=0
-if command -v h5dump >/dev/null; then have_h5dump=1; else echo "skip: h5dump not found (apt-get install hdf5-tools): HDF5 attributes not checked"; fi
+need h5dump hdf5-tools
 
 # h5attr FILE NAME: the value of a root attribute (strings without quotes); fails if absent.
 h5attr() {
@@ -114,7 +113,6 @@ check_final() {
     done
     reason=$(last_line "$d/paper-a.csv")
     reason_time=$(printf '%s\n' "$reason" | grep -oE 't = [0-9.eE+-]+ s' | head -n 1 | sed -E 's/t = (.*) s/\1/')
-    [ "$have_h5dump" = 1 ] || return 0
     h5c=$(h5attr "$d/paper-a.h5" complete)
     if [ "$want" = complete ]; then
         check "HDF5 complete = 1 (got '$h5c')" test "$h5c" = 1
@@ -217,10 +215,8 @@ check "solver failure: the message says what failed and when: $err" \
     grep -qE "fail.*t = [0-9]" "$work/f.err"
 check "solver failure: the summary on stdout says INCOMPLETE" grep -q "INCOMPLETE (solver failure)" "$work/f.out"
 check_final "$d" incomplete fail
-if [ "$have_h5dump" = 1 ]; then
-    st=$(h5attr "$d/paper-a.h5" status)
-    check "solver failure: HDF5 status '$st'" test "$st" = "solver failure"
-fi
+st=$(h5attr "$d/paper-a.h5" status)
+check "solver failure: HDF5 status '$st'" test "$st" = "solver failure"
 
 # leftovers_check DIR: DIR holds the leftovers of a run killed with SIGKILL (its writer gone). A new
 # run on the same paths removes them when it opens its outputs, never a live run's temporary files
@@ -339,7 +335,7 @@ for outs in h5 csv both; do
         case $f in
         *.csv) check "full disk ($outs): $f at its final path is marked incomplete" \
             test "$(last_line "$d/$f" | cut -c1-14)" = "# incomplete: " ;;
-        *) [ "$have_h5dump" = 1 ] && check "full disk ($outs): $f at its final path has complete = 0" \
+        *) check "full disk ($outs): $f at its final path has complete = 0" \
             test "$(h5attr "$d/$f" complete)" = 0 ;;
         esac
     done
@@ -377,14 +373,12 @@ check "concurrent runs: r.csv's last row (t = $csv_last) is its own run's end_ti
     same_time "$csv_last" "$csv_end"
 check "concurrent runs: r.csv's rows are in time order" \
     awk -F, '!/^#/ && NR > 1 { if ($1 + 0 < last) exit 1; last = $1 + 0 }' "$d/r.csv"
-if [ "$have_h5dump" = 1 ]; then
-    h5_end=$(h5dump -a /case_text "$d/r.h5" 2>/dev/null | grep -oE -- '--set end_time=[0-9.]+' | cut -d= -f2)
-    h5dump -d /time -y -w 0 -o "$work/twin-time.txt" "$d/r.h5" >/dev/null 2>&1
-    h5_last=$(tr ', ' '\n\n' <"$work/twin-time.txt" | grep . | tail -n 1)
-    check "concurrent runs: r.h5 complete = 1" test "$(h5attr "$d/r.h5" complete)" = 1
-    check "concurrent runs: r.h5's last time ($h5_last) is its own run's end_time ($h5_end)" \
-        same_time "$h5_last" "$h5_end"
-fi
+h5_end=$(h5dump -a /case_text "$d/r.h5" 2>/dev/null | grep -oE -- '--set end_time=[0-9.]+' | cut -d= -f2)
+h5dump -d /time -y -w 0 -o "$work/twin-time.txt" "$d/r.h5" >/dev/null 2>&1
+h5_last=$(tr ', ' '\n\n' <"$work/twin-time.txt" | grep . | tail -n 1)
+check "concurrent runs: r.h5 complete = 1" test "$(h5attr "$d/r.h5" complete)" = 1
+check "concurrent runs: r.h5's last time ($h5_last) is its own run's end_time ($h5_end)" \
+    same_time "$h5_last" "$h5_end"
 
 # ---- 9. output paths refused before the run -------------------------------------------------
 d=$work/refuse

@@ -17,6 +17,8 @@ case_r=$src/cases/rub-damped.cfg
 case_a=$src/cases/paper-a.cfg
 
 . "$(dirname "${BASH_SOURCE[0]}")/common.sh" # fail, pass, check, t, jf, finish
+need h5dump hdf5-tools
+need h5diff hdf5-tools
 has() { grep -qF -- "$2" "$1"; }
 # The table without its last column (wall time) on the data lines.
 no_wall() { sed '/^#/!s/,[^,]*$//' "$1"; }
@@ -44,15 +46,11 @@ check "sweep: the first key varies slowest (row 4 is speed 90, magnitude 0.1)" \
     test "$(sed -n 6p "$work/j2/s.csv" | cut -d, -f1-4)" = "4,90,0.1,success"
 check "sweep -j 1 and -j 2: identical CSV tables apart from wall time" \
     cmp -s <(no_wall "$work/j1/s.csv") <(no_wall "$work/j2/s.csv")
-if command -v h5diff >/dev/null; then
-    # /point is left out too: its list of the datasets that use it as their axis leads h5diff into /wall_time
-    check "sweep -j 1 and -j 2: identical HDF5 tables apart from wall time (h5diff)" \
-        h5diff -q --exclude-path /wall_time --exclude-path /point "$work/j1/s.h5" "$work/j2/s.h5"
-fi
-if command -v h5dump >/dev/null; then
-    check "sweep: the HDF5 table is flagged complete" \
-        test -n "$(h5dump -a /complete "$work/j2/s.h5" | grep -E '^ *\(0\): 1$')"
-fi
+# /point is left out too: its list of the datasets that use it as their axis leads h5diff into /wall_time
+check "sweep -j 1 and -j 2: identical HDF5 tables apart from wall time (h5diff)" \
+    h5diff -q --exclude-path /wall_time --exclude-path /point "$work/j1/s.h5" "$work/j2/s.h5"
+check "sweep: the HDF5 table is flagged complete" \
+    test -n "$(h5dump -a /complete "$work/j2/s.h5" | grep -E '^ *\(0\): 1$')"
 
 # ---- (b) each row against an independent touchdown run ----------------------------------------
 bad=""
@@ -148,7 +146,7 @@ if [ -e "$work/int/i.csv" ]; then
         test -n "$(tail -n 1 "$work/int/i.csv" | grep '^# incomplete: interrupted')" \
         -a -n "$(grep ',not run,' "$work/int/i.csv")"
 fi
-if [ -e "$work/int/i.h5" ] && command -v h5dump >/dev/null; then
+if [ -e "$work/int/i.h5" ]; then
     check "sweep interrupted: the HDF5 table is flagged incomplete" \
         test -n "$(h5dump -a /complete "$work/int/i.h5" | grep -E '^ *\(0\): 0$')"
 fi

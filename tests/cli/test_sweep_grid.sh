@@ -15,6 +15,8 @@ case_r=$src/cases/rub-damped.cfg
 case_s=$src/cases/rub-damped-sweep.cfg
 
 . "$(dirname "${BASH_SOURCE[0]}")/common.sh" # fail, pass, check, t, jf, finish
+need h5dump hdf5-tools
+need h5diff hdf5-tools
 has() { grep -qF -- "$2" "$1"; }
 # The table's header and rows without their last column (wall time).
 rows() { grep -v '^#' "$1" | sed 's/,[^,]*$//'; }
@@ -37,10 +39,8 @@ check "the file's group and the equivalent --vary give the same rows" \
 check "the table records where each axis came from" \
     has "$work/file/s.csv" "# from = $case_s:15: sweep.vary[0]"
 check "... and the command line's" has "$work/cli/s.csv" "# from = command line"
-if command -v h5dump >/dev/null; then
-    check "HDF5: /vary/speed has the origin attribute of the file's axis" \
-        test -n "$(h5dump -a /vary/speed/origin "$work/file/s.h5" | grep -F 'sweep.vary[0]')"
-fi
+check "HDF5: /vary/speed has the origin attribute of the file's axis" \
+    test -n "$(h5dump -a /vary/speed/origin "$work/file/s.h5" | grep -F 'sweep.vary[0]')"
 # the log range: a constant ratio 2^(1/4) between neighbours, both ends exact
 ratio_bad=$(rows "$work/file/s.csv" | awk -F, 'NR > 1 && $3 == 0.05 { v[n++] = $2 }
     END { if (v[0] != 60 || v[8] != 240) print "ends " v[0] " " v[8];
@@ -90,14 +90,10 @@ check "--point-files: each point's CSV is complete" \
 t "$work/pf1" run -q --set end_time=0.05 --set speed=150 --set 'schedule[0].magnitude=0.2' -o r "$case_r"
 check "point 1's CSV equals that of 'touchdown run --set ...' but for wall times" \
     cmp -s <(no_wall_lines "$work/pf/pts/point-000001.csv") <(no_wall_lines "$work/pf1/r.csv")
-if command -v h5diff >/dev/null; then
-    check "point 1's HDF5 datasets equal those of 'touchdown run --set ...' (h5diff)" \
-        h5diff -q --exclude-attribute / "$work/pf/pts/point-000001.h5" "$work/pf1/r.h5"
-fi
-if command -v h5dump >/dev/null; then
-    check "point 1's HDF5 file is flagged complete" \
-        test -n "$(h5dump -a /complete "$work/pf/pts/point-000001.h5" | grep -E '^ *\(0\): 1$')"
-fi
+check "point 1's HDF5 datasets equal those of 'touchdown run --set ...' (h5diff)" \
+    h5diff -q --exclude-attribute / "$work/pf/pts/point-000001.h5" "$work/pf1/r.h5"
+check "point 1's HDF5 file is flagged complete" \
+    test -n "$(h5dump -a /complete "$work/pf/pts/point-000001.h5" | grep -E '^ *\(0\): 1$')"
 
 # ---- (d) bad input: one line naming what is wrong, exit 2, nothing written -------------------
 bad_run() { # DIR EXPECTED ARGS...: exit 2, one line holding EXPECTED, no table

@@ -110,15 +110,12 @@ for args in "--quantity nosuch" "--x nosuch" "--x speed --y speed" "--quantity e
 done
 
 # ---- gnuplot ------------------------------------------------------------------------------------
-if command -v gnuplot >/dev/null; then
-    t "$work/s" plot -d g s.h5
-    ok=1
-    for f in sweep-peak_housing_force regime-map bifurcation; do
-        [ -s "$work/s/g/$f.png" ] || ok=0
-    done
-    check "plot with gnuplot: exit 0, three PNGs, no gnuplot message (got $rc: $(cat "$work/s/.err"))" \
-        test "$rc" = 0 -a "$ok" = 1 -a -z "$(find "$work/s/g" -name '*.log' -size +0)"
-else
-    echo "skip: gnuplot not found"
-fi
+need gnuplot gnuplot-nox
+t "$work/s" plot -d g s.h5
+ok=1
+for f in sweep-peak_housing_force regime-map bifurcation; do
+    [ -s "$work/s/g/$f.png" ] || ok=0
+done
+check "plot with gnuplot: exit 0, three PNGs, no gnuplot message (got $rc: $(cat "$work/s/.err"))" \
+    test "$rc" = 0 -a "$ok" = 1 -a -z "$(find "$work/s/g" -name '*.log' -size +0)"
 finish
