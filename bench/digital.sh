@@ -16,43 +16,14 @@
 set -euo pipefail
 
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
-build=$here/build
-repeats=3
-json=0
-while [ $# -gt 0 ]; do
-    case $1 in
-    -n) repeats=$2; shift ;;
-    --json) json=1 ;;
-    -h | --help) sed -n '2,15p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
-    *) build=$1 ;;
-    esac
-    shift
-done
-tool=$build/touchdown
-[ -x "$tool" ] || { echo "digital.sh: no tool at $tool (scripts/setup.sh $build builds it)" >&2; exit 2; }
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-
-# one NAME CASE [OVERRIDE...]: run CASE once, its CPU seconds into $work/NAME.cpu (a line per run),
-# its JSON summary into $work/NAME.json
-one() {
-    local name=$1 case=$2 t0 t1
-    shift 2
-    t0=$(awk '{ print $14 + $15 + $16 + $17 }' /proc/$$/stat)
-    "$tool" run -q --json --hdf5 '' --csv '' "$@" "$here/cases/$case" >"$work/$name.json" 2>"$work/$name.err" || {
-        echo "digital.sh: $case failed:" >&2
-        cat "$work/$name.err" >&2
-        exit 1
-    }
-    t1=$(awk '{ print $14 + $15 + $16 + $17 }' /proc/$$/stat)
-    echo "$t0 $t1" | awk -v hz="$(getconf CLK_TCK)" '{ printf "%.2f\n", ($2 - $1) / hz }' >>"$work/$name.cpu"
-}
+. "$here/bench/common.sh" # bench_options, bench_run
+bench_options '2,15p' "$@"
 
 for ((i = 0; i < repeats; i++)); do
-    one continuous paper-a.cfg
-    one digital paper-a-digital.cfg
-    one noflight paper-a.cfg --set solver.free_flight=false
-    one digital_noflight paper-a-digital.cfg --set solver.free_flight=false
+    bench_run continuous "$here/cases/paper-a.cfg"
+    bench_run digital "$here/cases/paper-a-digital.cfg"
+    bench_run noflight --set solver.free_flight=false "$here/cases/paper-a.cfg"
+    bench_run digital_noflight --set solver.free_flight=false "$here/cases/paper-a-digital.cfg"
 done
 
 /usr/bin/python3 - "$work" "$repeats" "$json" <<'PY'

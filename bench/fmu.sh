@@ -19,45 +19,17 @@
 set -euo pipefail
 
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
-build=$here/build
-repeats=3
-json=0
+. "$here/bench/common.sh" # bench_options, bench_run
 end=2.0
-while [ $# -gt 0 ]; do
-    case $1 in
-    -n) repeats=$2; shift ;;
-    --end) end=$2; shift ;;
-    --json) json=1 ;;
-    -h | --help) sed -n '2,19p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
-    *) build=$1 ;;
-    esac
-    shift
-done
-tool=$build/touchdown
-[ -x "$tool" ] || { echo "fmu.sh: no tool at $tool (scripts/setup.sh $build builds it)" >&2; exit 2; }
+bench_options '2,19p' "$@"
 venv=$build/fmpy-venv
 bash "$here/tests/fmu/make_venv.sh" "$venv" "$here/tests/fmu/requirements.txt" >&2
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
 case=$here/cases/paper-a-digital.cfg
 "$tool" fmu -q --inputs current --set end_time="$end" -o "$work/PaperA.fmu" "$case"
 "$tool" fmu -q --inputs none --set end_time="$end" -o "$work/PaperAInner.fmu" "$case"
 
-# native: touchdown run of the case, its CPU seconds (a line per run) into $work/native.cpu
-native() {
-    local t0 t1
-    t0=$(awk '{ print $14 + $15 + $16 + $17 }' /proc/$$/stat)
-    "$tool" run -q --json --hdf5 '' --csv '' --set end_time="$end" "$case" >"$work/native.json" 2>"$work/native.err" || {
-        echo "fmu.sh: touchdown run failed:" >&2
-        cat "$work/native.err" >&2
-        exit 1
-    }
-    t1=$(awk '{ print $14 + $15 + $16 + $17 }' /proc/$$/stat)
-    echo "$t0 $t1" | awk -v hz="$(getconf CLK_TCK)" '{ printf "%.2f\n", ($2 - $1) / hz }' >>"$work/native.cpu"
-}
-
 for ((i = 0; i < repeats; i++)); do
-    native
+    bench_run native --set end_time="$end" "$case"
     "$venv/bin/python" "$here/bench/fmu_loop.py" "$work/PaperA.fmu" pd "$end" 1e-4 >>"$work/pd.jsonl"
     "$venv/bin/python" "$here/bench/fmu_loop.py" "$work/PaperAInner.fmu" none "$end" 1e-4 >>"$work/none.jsonl"
 done

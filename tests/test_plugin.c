@@ -111,26 +111,6 @@ static void add_plugin_pd(td_model *m, const char *library, int delay)
     }
 }
 
-static td_sim *new_sim(const td_model *m, const td_case *c)
-{
-    td_sim *s = NULL;
-    td_error err;
-    if (td_sim_create(m, td_case_sim_options(c), &s, &err) != TD_OK)
-        fail_msg("td_sim_create: %s", err.message);
-    return s;
-}
-
-/* Step s to tout through its events; fails the test on an error. */
-static void step_to(td_sim *s, double tout)
-{
-    td_error err;
-    td_status st;
-    while ((st = td_sim_step(s, tout, NULL, &err)) == TD_EVENT)
-        ;
-    if (st != TD_OK)
-        fail_msg("td_sim_step to %.17g: %s", tout, err.message);
-}
-
 /* Largest |a - b| over the rotor's displacements (m; rad for the rotations) of two simulations of
  * one machine. */
 static double state_difference(const td_sim *a, const td_sim *b)
@@ -162,8 +142,8 @@ static double run_side_by_side(td_sim *a, td_sim *b, int exact, double *free)
         *free = 0.0;
     while (t < T_END) {
         t = td_test_next_output(t, DT, T_END);
-        step_to(a, t);
-        step_to(b, t);
+        td_test_step_to(a, t);
+        td_test_step_to(b, t);
         d = state_difference(a, b);
         worst = fmax(worst, d);
         if (free && !touched(a) && !touched(b))
@@ -193,12 +173,25 @@ static void assert_same_stats(const td_sim *a, const td_sim *b)
     assert_true(sa.first_contact_time == sb.first_contact_time);
 }
 
+/* Models a and b of case c run side by side are the same run: the whole state and the held currents
+ * the same bits at every output, and the same statistics. Frees the models and the case. */
+static void assert_same_run(td_model **a, td_model **b, td_case **c)
+{
+    td_sim *sa = td_test_new_sim(*a, *c), *sb = td_test_new_sim(*b, *c);
+    assert_true(run_side_by_side(sa, sb, 1, NULL) == 0.0);
+    assert_same_stats(sa, sb);
+    td_sim_free(&sa);
+    td_sim_free(&sb);
+    td_model_free(a);
+    td_model_free(b);
+    td_case_free(c);
+}
+
 /* The PD plug-in registered as a program's table equals the built-in sampled PD bit for bit. */
 static void test_registered_pd_is_builtin_pd(void **state)
 {
     td_case *c = NULL;
     td_model *mb = case_a(&c), *mp = NULL;
-    td_sim *sb, *sp;
     td_error err;
     (void)state;
     assert_int_equal(td_model_clone(mb, &mp, &err), TD_OK);
@@ -207,15 +200,7 @@ static void test_registered_pd_is_builtin_pd(void **state)
     assert_null(td_model_get_plugin(mb, 0));
     assert_non_null(td_model_get_plugin(mp, 3));
     assert_null(td_model_get_controller(mp, 3, NULL, NULL, NULL));
-    sb = new_sim(mb, c);
-    sp = new_sim(mp, c);
-    assert_true(run_side_by_side(sb, sp, 1, NULL) == 0.0);
-    assert_same_stats(sb, sp);
-    td_sim_free(&sb);
-    td_sim_free(&sp);
-    td_model_free(&mb);
-    td_model_free(&mp);
-    td_case_free(&c);
+    assert_same_run(&mb, &mp, &c);
 }
 
 /* The PD plug-in loaded from its shared library (tests/plugins/pd.c built as pd.so) is the same run
@@ -225,7 +210,6 @@ static void test_library_pd_is_registered_pd(void **state)
     td_case *c = NULL;
     td_model *mt = case_a(&c), *ml = NULL, *mc = NULL;
     const td_plugin_spec *p;
-    td_sim *st, *sl;
     td_error err;
     (void)state;
     assert_int_equal(td_model_clone(mt, &ml, &err), TD_OK);
@@ -245,15 +229,7 @@ static void test_library_pd_is_registered_pd(void **state)
     assert_int_equal(td_model_clone(ml, &mc, &err), TD_OK);
     assert_true(td_model_get_plugin(mc, 1)->functions == p->functions);
     td_model_free(&ml);
-    st = new_sim(mt, c);
-    sl = new_sim(mc, c);
-    assert_true(run_side_by_side(st, sl, 1, NULL) == 0.0);
-    assert_same_stats(st, sl);
-    td_sim_free(&st);
-    td_sim_free(&sl);
-    td_model_free(&mt);
-    td_model_free(&mc);
-    td_case_free(&c);
+    assert_same_run(&mt, &mc, &c);
 }
 
 /* Adding a plug-in controller fails with `expected` in the message, naming controller 0 and the
@@ -339,7 +315,7 @@ static void test_nan_output(void **state)
 {
     td_case *c = NULL;
     td_model *m = case_a_with(PLUGINS "nan.so", &c);
-    td_sim *s = new_sim(m, c);
+    td_sim *s = td_test_new_sim(m, c);
     td_error err;
     double t = -1.0;
     int a;
@@ -391,8 +367,8 @@ static double compare_pd(int delay, const td_plugin_controller *table, double *f
         if (td_model_add_plugin_controller(mp, &p, &err) != TD_OK)
             fail_msg("td_model_add_plugin_controller: %s", err.message);
     }
-    sb = new_sim(mb, c);
-    sp = new_sim(mp, c);
+    sb = td_test_new_sim(mb, c);
+    sp = td_test_new_sim(mp, c);
     d = run_side_by_side(sb, sp, 0, free);
     td_sim_free(&sb);
     td_sim_free(&sp);
@@ -440,8 +416,8 @@ static void check_force_gain(const td_plugin_controller *force)
     p.parameter_values = values;
     assert_int_equal(td_model_add_plugin_controller(mf, &p, &err), TD_OK);
     add_pd_axes(mf, 1);
-    sc = new_sim(mc, c);
-    sf = new_sim(mf, c);
+    sc = td_test_new_sim(mc, c);
+    sf = td_test_new_sim(mf, c);
     assert_true(td_sim_plugin_gain(sc, 0, 0) == KP + KD * RATE);
     assert_close(td_sim_plugin_gain(sf, 0, 0), KP + KD * RATE, 1e-15, 0.0);
     td_sim_free(&sc);
@@ -565,7 +541,6 @@ static void test_documented_plugin(void **state)
     char *doc = td_test_read_file(td_source_path("docs/api.md")), *code, *end, cmd[2048];
     td_case *c = NULL;
     td_model *mb = case_a(&c), *mp = NULL;
-    td_sim *sb, *sp;
     td_error err;
     FILE *f;
     (void)state;
@@ -587,15 +562,7 @@ static void test_documented_plugin(void **state)
     assert_int_equal(td_model_clone(mb, &mp, &err), TD_OK);
     add_builtin_pd(mb, 0);
     add_plugin_pd(mp, "./doc_pd.so", 0);
-    sb = new_sim(mb, c);
-    sp = new_sim(mp, c);
-    assert_true(run_side_by_side(sb, sp, 1, NULL) == 0.0);
-    assert_same_stats(sb, sp);
-    td_sim_free(&sb);
-    td_sim_free(&sp);
-    td_model_free(&mb);
-    td_model_free(&mp);
-    td_case_free(&c);
+    assert_same_run(&mb, &mp, &c);
     free(doc);
 }
 
@@ -653,7 +620,7 @@ static void test_deadband_scale(void **state)
         if (td_model_add_plugin_controller(m, &p, &err) != TD_OK)
             fail_msg("td_model_add_plugin_controller: %s", err.message);
     }
-    s = new_sim(m, c);
+    s = td_test_new_sim(m, c);
     for (axis = 0; axis < AXES; axis++) {
         const td_amb_axis *a = &s->sys->amb_axes[axis];
         printf("axis %d: measured gain %g A/m, scale %g N/m (|ks| %g N/m)\n", axis,
@@ -662,7 +629,7 @@ static void test_deadband_scale(void **state)
         assert_true(fabs(a->ks) > 0.0);
         assert_close(s->machine.amb_coef[axis].gain_x, fabs(a->ks), 1e-15, 0.0);
     }
-    step_to(s, T_END);
+    td_test_step_to(s, T_END);
     assert_int_equal(td_sim_stats_get(s, &st), TD_OK);
     printf("deadband PD to %g s: %ld steps, first contact at %.6g s\n", T_END, st.steps, st.first_contact_time);
     assert_true(st.contact_onsets > 0);
@@ -712,21 +679,15 @@ static void test_table_layout(void **state)
  * for the two axes) when `plugin` is 0, else the PD plug-in's table. */
 static void add_pair_law(td_model *m, const char *name, double kp, double kd, int plugin)
 {
-    static const char *const names[2] = {"kp", "kd"};
     const int axes[2] = {0, 1};
     const double num[2] = {kp + kd * PAIR_RATE, -kd * PAIR_RATE}, den[1] = {1.0}, values[2] = {kp, kd};
     td_error err;
     td_plugin_spec p;
     td_controller *k, *both;
     if (plugin) {
-        memset(&p, 0, sizeof p);
-        p.name = name;
-        p.functions = td_plugin_controller_entry();
+        p = pd_spec(name, axes, NULL, 0); /* on both axes, at the pair's rate, with this law's gains */
         p.sample_rate = PAIR_RATE;
         p.n_inputs = p.n_outputs = 2;
-        p.inputs = p.outputs = axes;
-        p.n_parameters = 2;
-        p.parameter_names = names;
         p.parameter_values = values;
         if (td_model_add_plugin_controller(m, &p, &err) != TD_OK)
             fail_msg("td_model_add_plugin_controller: %s", err.message);
@@ -769,7 +730,7 @@ static void pair_run(td_sim *s, double t_end, double *held, long n)
 {
     long j;
     for (j = 0; j < n && (double)(j + 1) / PAIR_RATE <= t_end; j++) {
-        step_to(s, (double)(j + 1) / PAIR_RATE);
+        td_test_step_to(s, (double)(j + 1) / PAIR_RATE);
         held[2 * j] = s->machine.held_current[0];
         held[2 * j + 1] = s->machine.held_current[1];
     }
@@ -789,7 +750,7 @@ static void test_recovery_pair(void **state)
     (void)state;
     for (v = 0; v < 3; v++) {
         td_model *m = pair_machine(c, v == 2, v >= 1);
-        td_sim *s = new_sim(m, c);
+        td_sim *s = td_test_new_sim(m, c);
         pair_run(s, td_case_end_time(c), held[v], N);
         assert_int_equal(td_sim_stats_get(s, &st[v]), TD_OK);
         td_sim_free(&s);

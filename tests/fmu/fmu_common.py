@@ -128,6 +128,51 @@ class Instance:
             shutil.rmtree(self.dir, ignore_errors=True)
 
 
+def step_to(inst, end, h):
+    """Step the started instance from 0 every h s to `end` (communication points k h, exactly as an
+    importer computes them); an fmi2Error raises FMICallException. The number of steps."""
+    n = int(round(end / h))
+    for k in range(n):
+        inst.fmu.doStep(currentCommunicationPoint=k * h, communicationStepSize=h)
+    return n
+
+
+def free_run(path, end, h):
+    """The FMU at `path` with no inputs (the case's own controllers inside), stepped every h s to `end`:
+    its answers."""
+    inst = Instance(path)
+    inst.start(0.0, end)
+    step_to(inst, end, h)
+    out = results(inst)
+    inst.free()
+    return out
+
+
+def child_main(run):
+    """In a script run as `SCRIPT --child FMU` (by fresh_process): print run(FMU) as JSON and exit."""
+    if len(sys.argv) == 3 and sys.argv[1] == "--child":
+        print(json.dumps(run(sys.argv[2])))
+        sys.exit(0)
+
+
+def fresh_process(script, fmu, tmp, ld):
+    """`script --child FMU` in a fresh process, in tmp, its environment holding no library path (PATH
+    /usr/bin:/bin, HOME tmp), its dynamic loader's log into ld.PID (LD_DEBUG=libs): checks that it ended
+    normally; its answers (child_main's JSON, None if it failed) and the libraries its loader
+    initialised."""
+    env = {"PATH": "/usr/bin:/bin", "HOME": tmp, "LD_DEBUG": "libs", "LD_DEBUG_OUTPUT": ld}
+    proc = subprocess.run([sys.executable, os.path.abspath(script), "--child", fmu], cwd=tmp, env=env,
+                          stdout=subprocess.PIPE, stderr=subprocess.PIPE, universal_newlines=True)
+    check("the FMU runs in a fresh process with no library path that ends normally (exit 0)", proc.returncode == 0,
+          "exit %d: %s" % (proc.returncode, proc.stderr[-800:]))
+    loaded = []
+    for name in os.listdir(os.path.dirname(ld)):
+        if name.startswith(os.path.basename(ld) + "."):
+            with open(os.path.join(os.path.dirname(ld), name)) as f:
+                loaded += [l.split("calling init:")[1].strip() for l in f if "calling init:" in l]
+    return (json.loads(proc.stdout.splitlines()[-1]) if proc.returncode == 0 else None), loaded
+
+
 def results(inst):
     """The run's answers as the FMU gives them (examples/fmu_pd_loop.py reads them), under the names of
     the native run's statistics."""
@@ -152,5 +197,5 @@ def close(a, b, rtol=0.0, atol=0.0):
     return a is not None and b is not None and abs(a - b) <= atol + rtol * max(abs(a), abs(b))
 
 
-__all__ = ["check", "finish", "tool_fmu", "pack", "native", "event_times", "Instance", "results", "pd_loop", "close",
-           "FMICallException"]
+__all__ = ["check", "finish", "tool_fmu", "pack", "native", "event_times", "Instance", "step_to", "free_run", "child_main",
+           "fresh_process", "results", "pd_loop", "close", "FMICallException"]

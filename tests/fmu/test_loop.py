@@ -21,7 +21,7 @@ import sys
 import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from fmu_common import Instance, check, close, event_times, finish, native, pack, pd_loop, results  # noqa: E402
+from fmu_common import check, close, event_times, finish, free_run, native, pack, pd_loop  # noqa: E402
 
 # The tolerances. The first contact comes before the two PDs' last-bit differences can move it (it
 # is the same to the bit); the peak contact force moves by about 1e-6 relative (from the PDs'
@@ -43,12 +43,7 @@ with tempfile.TemporaryDirectory() as tmp:
     fmu = pack(tool, case, os.path.join(tmp, "PaperA.fmu"), "current", sets)
     loop, steps = pd_loop(fmu, END, H)
     inner = pack(tool, case, os.path.join(tmp, "PaperAInner.fmu"), "none", sets)
-    inst = Instance(inner)
-    inst.start(0.0, END)
-    for k in range(steps):
-        inst.fmu.doStep(currentCommunicationPoint=k * H, communicationStepSize=H)
-    own = results(inst)
-    inst.free()
+    own = free_run(inner, END, H)
 
 
 def compare(name, got):

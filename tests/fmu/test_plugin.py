@@ -9,16 +9,15 @@ with one line naming the controller, and the process ends normally.
 
     test_plugin.py TOOL SOURCE_DIR BUILD_DIR FMU_BINARY
 """
-import json
 import os
 import shutil
-import subprocess
 import sys
 import tempfile
 
 here = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, here)
-from fmu_common import FMICallException, Instance, check, finish, native, pack, results  # noqa: E402
+from fmu_common import (FMICallException, Instance, check, child_main, finish, fresh_process,  # noqa: E402
+                        native, pack, results, step_to)
 
 END, H = 0.12, 1e-3
 
@@ -28,8 +27,7 @@ def run(path):
     inst = Instance(path)
     inst.start(0.0, END)
     try:
-        for k in range(int(round(END / H))):
-            inst.fmu.doStep(currentCommunicationPoint=k * H, communicationStepSize=H)
+        step_to(inst, END, H)
         out = results(inst)
     except FMICallException as e:
         out = {"error": str(e), "messages": [m for s, m in inst.messages]}
@@ -37,12 +35,8 @@ def run(path):
     return out
 
 
-if len(sys.argv) == 3 and sys.argv[1] == "--child":
-    print(json.dumps(run(sys.argv[2])))
-    sys.exit(0)
-
+child_main(run)
 tool, src, build = (os.path.realpath(a) for a in sys.argv[1:4])
-trees = [src, build]
 
 
 def write_case(where, library):
@@ -57,29 +51,13 @@ def write_case(where, library):
     return os.path.join(where, "rig-pd.cfg")
 
 
-def child(tmp, fmu, ld):
-    """Run the FMU in a fresh process with no library path: its answers and the libraries its loader
-    initialised."""
-    env = {"PATH": "/usr/bin:/bin", "HOME": tmp, "LD_DEBUG": "libs", "LD_DEBUG_OUTPUT": ld}
-    proc = subprocess.run([sys.executable, os.path.abspath(__file__), "--child", fmu], cwd=tmp, env=env,
-                          stdout=subprocess.PIPE, stderr=subprocess.PIPE, universal_newlines=True)
-    check("the FMU runs in a fresh process that ends normally (exit 0)", proc.returncode == 0,
-          "exit %d: %s" % (proc.returncode, proc.stderr[-800:]))
-    loaded = []
-    for name in os.listdir(tmp):
-        if name.startswith(os.path.basename(ld) + "."):
-            with open(os.path.join(tmp, name)) as f:
-                loaded += [l.split("calling init:")[1].strip() for l in f if "calling init:" in l]
-    return (json.loads(proc.stdout.splitlines()[-1]) if proc.returncode == 0 else None), loaded
-
-
 sets = ["end_time=%g" % END]
 with tempfile.TemporaryDirectory(dir=os.environ.get("TD_FMU_OUTSIDE", "/tmp")) as tmp:
     case = write_case(os.path.join(tmp, "case"), os.path.join(build, "tests", "plugins", "pd.so"))
     direct = native(tool, case, sets)
     fmu = pack(tool, case, os.path.join(tmp, "Plug.fmu"), "none", sets)
     shutil.rmtree(os.path.join(tmp, "case"))  # the case and its library where they were packed are gone
-    answers, loaded = child(tmp, fmu, os.path.join(tmp, "ld"))
+    answers, loaded = fresh_process(__file__, fmu, tmp, os.path.join(tmp, "ld"))
     keys = ("first_contact_time", "peak_normal_force", "events")
     check("its answers equal touchdown run of the case bit for bit: %s" % answers,
           answers is not None and "error" not in answers and all(answers[k] == direct[k] for k in keys),
@@ -92,7 +70,7 @@ with tempfile.TemporaryDirectory(dir=os.environ.get("TD_FMU_OUTSIDE", "/tmp")) a
     case = write_case(os.path.join(tmp, "nan"), os.path.join(build, "tests", "plugins", "nan.so"))
     fmu = pack(tool, case, os.path.join(tmp, "NaN.fmu"), "none", sets)
     shutil.rmtree(os.path.join(tmp, "nan"))
-    answers, loaded = child(tmp, fmu, os.path.join(tmp, "ld-nan"))
+    answers, loaded = fresh_process(__file__, fmu, tmp, os.path.join(tmp, "ld-nan"))
     errors = answers["messages"] if answers and "error" in answers else []
     check("the NaN plug-in: doStep is fmi2Error with one line naming the controller: %s" % errors,
           len(errors) == 1 and "controller 0" in errors[0] and "nan" in errors[0] and "\n" not in errors[0],

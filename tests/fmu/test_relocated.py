@@ -6,7 +6,6 @@ names no RPATH or RUNPATH, the dynamic loader resolves every library it needs ou
 
     test_relocated.py TOOL SOURCE_DIR BUILD_DIR FMU_BINARY
 """
-import json
 import os
 import shutil
 import subprocess
@@ -16,26 +15,17 @@ import zipfile
 
 here = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, here)
-from fmu_common import Instance, check, finish, pack, results  # noqa: E402
+from fmu_common import check, child_main, finish, free_run, fresh_process, pack  # noqa: E402
 
 END, H = 0.12, 1e-4
 
 
 def run(path):
     """Step the FMU (no inputs: the case's own controllers) every H s to END; its answers."""
-    inst = Instance(path)
-    inst.start(0.0, END)
-    for k in range(int(round(END / H))):
-        inst.fmu.doStep(currentCommunicationPoint=k * H, communicationStepSize=H)
-    out = results(inst)
-    inst.free()
-    return out
+    return free_run(path, END, H)
 
 
-if len(sys.argv) == 3 and sys.argv[1] == "--child":
-    print(json.dumps(run(sys.argv[2])))
-    sys.exit(0)
-
+child_main(run)
 tool, src, build = (os.path.realpath(a) for a in sys.argv[1:4])
 trees = [src, build]
 
@@ -67,18 +57,8 @@ with tempfile.TemporaryDirectory(dir=os.environ.get("TD_FMU_OUTSIDE", "/tmp")) a
     check("no text file of the FMU (modelDescription.xml, resources/) names the source or build tree", not named,
           str(named))
     os.remove(fmu)  # the build tree's copy is gone: only the one away can serve
-    env = {"PATH": "/usr/bin:/bin", "HOME": tmp, "LD_DEBUG": "libs", "LD_DEBUG_OUTPUT": os.path.join(tmp, "ld")}
-    proc = subprocess.run([sys.executable, os.path.abspath(__file__), "--child", copy], cwd=tmp, env=env,
-                          stdout=subprocess.PIPE, stderr=subprocess.PIPE, universal_newlines=True)
-    check("the copy runs in a fresh process with no library path (exit 0)", proc.returncode == 0,
-          "exit %d: %s" % (proc.returncode, proc.stderr[-800:]))
-    away = json.loads(proc.stdout.splitlines()[-1]) if proc.returncode == 0 else None
+    away, loaded = fresh_process(__file__, copy, tmp, os.path.join(tmp, "ld"))
     check("its answers equal the build tree's bit for bit: %s" % here_answers, away == here_answers, str(away))
-    loaded = []
-    for name in os.listdir(tmp):
-        if name.startswith("ld."):
-            with open(os.path.join(tmp, name)) as f:
-                loaded += [l.split("calling init:")[1].strip() for l in f if "calling init:" in l]
     # (the importer's own Python libraries come from its virtual environment, which may lie anywhere)
     stray = [l for l in loaded if inside(l) and not l.startswith(os.path.realpath(sys.prefix) + os.sep)]
     check("the loader resolved its libraries (%d) all outside the trees" % len(loaded),

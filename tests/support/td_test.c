@@ -2,6 +2,7 @@
 
 #include "touchdown/case.h"
 #include "touchdown/run.h"
+#include "touchdown/sim.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -40,6 +41,25 @@ td_case *td_test_load_case(const char *relative, const char **overrides, int n)
     if (td_case_load(td_source_path(relative), overrides, n, &c, &err) != TD_OK)
         fail_msg("%s: %s", relative, err.message);
     return c;
+}
+
+td_sim *td_test_new_sim(const td_model *m, const td_case *c)
+{
+    td_sim *s = NULL;
+    td_error err;
+    if (td_sim_create(m, td_case_sim_options(c), &s, &err) != TD_OK)
+        fail_msg("td_sim_create: %s", err.message);
+    return s;
+}
+
+void td_test_step_to(td_sim *s, double tout)
+{
+    td_error err;
+    td_status st;
+    while ((st = td_sim_step(s, tout, NULL, &err)) == TD_EVENT)
+        ;
+    if (st != TD_OK)
+        fail_msg("td_sim_step to %.17g: %s", tout, err.message);
 }
 
 double td_test_next_output(double t, double dt, double t_end)

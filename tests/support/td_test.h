@@ -24,7 +24,9 @@ double td_rel_diff(double a, double b);
 double td_test_max_abs(const double *a, int n);
 
 struct td_case;
+struct td_model;
 struct td_run_summary;
+struct td_sim;
 
 /* The summary as JSON (every field the tool prints; caller frees), with the wall-clock fields of
  * `like`, which differ from run to run: two summaries of the same run compare equal as text. */
@@ -32,6 +34,12 @@ char *td_test_summary_json(const struct td_run_summary *s, const struct td_run_s
 
 /* Load a case file of the source tree (relative path) with overrides; fails the test on error. */
 struct td_case *td_test_load_case(const char *relative, const char **overrides, int n);
+
+/* A simulation of model m with case c's options (td_sim_free it); fails the test on error. */
+struct td_sim *td_test_new_sim(const struct td_model *m, const struct td_case *c);
+
+/* Step s to tout through its events; fails the test on an error. */
+void td_test_step_to(struct td_sim *s, double tout);
 
 /* The output grid point after t: k dt with k dt >= t + dt/2, capped at t_end. */
 double td_test_next_output(double t, double dt, double t_end);
