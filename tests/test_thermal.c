@@ -238,17 +238,18 @@ static void test_rises_independent_of_outputs(void **state)
     td_case_free(&c);
 }
 
-/* A retainer without a network: its temperatures and peak are undefined, never 0; drag work counted. */
+/* A retainer without a network (rub-damped.cfg's, races with drag, in contact after the unbalance
+ * step at 0.1 s): its temperatures and peak are undefined, never 0; its heat still counted. */
 static void test_no_network_undefined(void **state)
 {
-    td_case *c = td_test_load_case("cases/drop.cfg", NULL, 0);
+    td_case *c = td_test_load_case("cases/rub-damped.cfg", NULL, 0);
     td_sim *s = NULL;
     td_retainer_state rs;
     td_retainer_totals t;
     (void)state;
     assert_int_equal(td_model_get_retainer_thermal(td_case_model(c), 0, NULL), 0);
     assert_int_equal(td_sim_create(td_case_model(c), td_case_sim_options(c), &s, NULL), TD_OK);
-    step_to(s, 0.08);
+    step_to(s, 0.2);
     td_sim_retainer_state(s, 0, &rs);
     td_sim_retainer_totals(s, 0, &t);
     assert_true(td_is_undefined(rs.race_temperature) && td_is_undefined(rs.housing_temperature));

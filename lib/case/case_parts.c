@@ -556,10 +556,10 @@ static const td_cs_table thermal_table = {"retainers[].thermal",
                                           NULL};
 
 /* A retainer as read: the model's record and the groups the model keeps beside it. */
-typedef struct cs_retainer {
+typedef struct cr_retainer {
     td_retainer r;               /* first: the retainer keys' offsets are td_retainer's */
     td_retainer_thermal thermal; /* race_capacity 0: no `thermal` group */
-} cs_retainer;
+} cr_retainer;
 
 /* bore_radius: absent, shaft_radius + clearance (the model's rule when given) */
 static td_status read_bore_radius(td_case_reader *r, const config_setting_t *g, const td_cs_key *k, void *rec)
@@ -570,7 +570,7 @@ static td_status read_bore_radius(td_case_reader *r, const config_setting_t *g, 
 
 static td_status add_retainer(td_case_reader *r, const config_setting_t *g, void *rec)
 {
-    const cs_retainer *cr = rec;
+    const cr_retainer *cr = rec;
     td_error merr;
     td_status st = added(r, g, td_model_add_retainer(r->c->model, &cr->r, &merr), &merr);
     if (st == TD_OK && cr->thermal.race_capacity > 0.0) /* heat */
@@ -655,14 +655,14 @@ static const td_cs_key retainer_keys[] = {
     /* heat */
     {.key = "thermal",
      .type = TD_CS_GROUP,
-     .offset = offsetof(cs_retainer, thermal),
+     .offset = offsetof(cr_retainer, thermal),
      .sub = &thermal_table,
      .doc_default = "none (no temperatures)",
      .doc = "the race-housing-ambient thermal network heated by the retainer's friction and drag, below "
             "([theory](theory.md#thermal-retainers))"},
 };
 const td_cs_table td_cs_retainers = {"retainers[]",       "retainers", retainer_keys, TD_CS_COUNT(retainer_keys),
-                                     sizeof(cs_retainer), NULL,        add_retainer};
+                                     sizeof(cr_retainer), NULL,        add_retainer};
 
 static td_status add_unbalance(td_case_reader *r, const config_setting_t *g, void *rec)
 {
