@@ -20,7 +20,7 @@ static const td_retainer_thermal bearing = {40.0, 500.0, 2.0, 1.5, 1.2e-5};
 /* T(t) from rest under a constant heat P into the race, derived without the symmetric form: the
  * steady state T_ss = G^-1 e_r P and the modes of A = C^-1 G, s^2 - tr(A) s + det(A) = 0, with the
  * eigenvectors v(s) = (G_rh / C_r, G_rh / C_r - s), in long double. */
-static void two_exponentials(const td_retainer_thermal *th, double P, double t, double T[2])
+static void two_exponentials(const td_retainer_thermal *th, double P, double t, double T[2], double *lost)
 {
     long double g = th->race_housing_conductance, ga = th->housing_ambient_conductance;
     long double cr = th->race_capacity, ch = th->housing_capacity;
@@ -33,6 +33,8 @@ static void two_exponentials(const td_retainer_thermal *th, double P, double t, 
     int i;
     for (i = 0; i < 2; i++)
         T[i] = (double)(ss[i] + c1 * (i ? v1[1] : v1[0]) * expl(-s1 * t) + c2 * (i ? v2[1] : v2[0]) * expl(-s2 * t));
+    /* G_ha times the integral of T_h from 0 to t: the heat the ambient took */
+    *lost = (double)(ga * (ss[1] * t - c1 * v1[1] * expm1l(-s1 * t) / s1 - c2 * v2[1] * expm1l(-s2 * t) / s2));
 }
 
 /* Carry T from rest to each of the times under P with steps of random lengths (1e-4 s .. 20 s). */
@@ -40,7 +42,7 @@ static double worst_against_closed_form(const td_retainer_thermal *th, double P,
 {
     static const double times[] = {0.5, 7.0, 60.0, 600.0, 3600.0, 36000.0};
     td_thermal_network n;
-    double T[2] = {0.0, 0.0}, t = 0.0, worst = 0.0, ref[2];
+    double T[2] = {0.0, 0.0}, t = 0.0, worst = 0.0, ref[2], lost, balance;
     uint64_t seed = 29;
     int i;
     td_thermal_network_init(&n, th);
@@ -51,8 +53,11 @@ static double worst_against_closed_form(const td_retainer_thermal *th, double P,
             td_thermal_network_step(&n, T, h, P, P);
             t = t + h == t ? times[i] : t + h;
         }
-        two_exponentials(th, P, times[i], ref);
+        two_exponentials(th, P, times[i], ref, &lost);
         worst = fmax(worst, fmax(fabs(T[0] - ref[0]), fabs(T[1] - ref[1])) / scale);
+        /* the energy balance: C_r T_r + C_h T_h + G_ha int T_h dt = P t */
+        balance = th->race_capacity * T[0] + th->housing_capacity * T[1] + lost;
+        assert_close(balance, P * times[i], 1e-12, 0.0);
         print_message("t = %8g s: T_r %.15g (closed form %.15g), T_h %.15g (%.15g) K\n", times[i], T[0], ref[0], T[1],
                       ref[1]);
     }
@@ -123,6 +128,28 @@ static void test_energy_balance_and_back_step(void **state)
                   worst_back, T[0]);
     assert_close(held, heat, 5e-12, 0.0);
     assert_true(worst_back < 1e-12 * T[0]);
+}
+
+/* A heat linear in time: one step over h is 1000 steps over h / 1000 with the heat at their ends on
+ * the same line (the exact solution of a linear system composes), from a warm start, for steps
+ * short and long against the network's time constants (1 s to 1e4 s here). */
+static void test_linear_heat_subdivides(void **state)
+{
+    static const double lengths[] = {0.01, 3.0, 400.0, 20000.0};
+    td_thermal_network n;
+    int i, j;
+    (void)state;
+    td_thermal_network_init(&n, &bearing);
+    for (i = 0; i < 4; i++) {
+        double h = lengths[i], p0 = 30.0, p1 = 250.0, one[2] = {12.0, 3.0}, many[2] = {12.0, 3.0};
+        td_thermal_network_step(&n, one, h, p0, p1);
+        for (j = 0; j < 1000; j++)
+            td_thermal_network_step(&n, many, h / 1000.0, p0 + (p1 - p0) * j / 1000.0,
+                                    p0 + (p1 - p0) * (j + 1) / 1000.0);
+        print_message("h = %g s: T_r %.15g in one step, %.15g in 1000\n", h, one[0], many[0]);
+        assert_close(many[0], one[0], 1e-12, 0.0);
+        assert_close(many[1], one[1], 1e-12, 0.0);
+    }
 }
 
 /* ---- in a run ------------------------------------------------------------------------------ */
@@ -286,7 +313,8 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_constant_heat_two_exponentials), cmocka_unit_test(test_single_node_limit),
-        cmocka_unit_test(test_energy_balance_and_back_step),   cmocka_unit_test(test_model_api),
+        cmocka_unit_test(test_energy_balance_and_back_step),
+        cmocka_unit_test(test_linear_heat_subdivides),   cmocka_unit_test(test_model_api),
         cmocka_unit_test(test_no_network_undefined),           cmocka_unit_test(test_run_heat_held),
         cmocka_unit_test(test_rises_independent_of_outputs),
     };
