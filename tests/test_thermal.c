@@ -312,10 +312,13 @@ static void test_model_api(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_constant_heat_two_exponentials), cmocka_unit_test(test_single_node_limit),
+        cmocka_unit_test(test_constant_heat_two_exponentials),
+        cmocka_unit_test(test_single_node_limit),
         cmocka_unit_test(test_energy_balance_and_back_step),
-        cmocka_unit_test(test_linear_heat_subdivides),   cmocka_unit_test(test_model_api),
-        cmocka_unit_test(test_no_network_undefined),           cmocka_unit_test(test_run_heat_held),
+        cmocka_unit_test(test_linear_heat_subdivides),
+        cmocka_unit_test(test_model_api),
+        cmocka_unit_test(test_no_network_undefined),
+        cmocka_unit_test(test_run_heat_held),
         cmocka_unit_test(test_rises_independent_of_outputs),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -171,7 +171,8 @@ void td_sim_totals_get(const td_sim *s, int k, td_retainer_totals *out)
     const td_sim_totals *tk = &s->monitor.totals[k];
     *out = tk->t;
     back_to_now(s, k, out);
-    td_sim_thermal_back(s, k, out, NULL); /* heat */
-    if (tk->in_contact)                   /* the interval still open counts as a contact */
+    /* heat */
+    td_sim_thermal_back(s, k, out, NULL);
+    if (tk->in_contact) /* the interval still open counts as a contact */
         out->contacts++;
 }
