@@ -300,6 +300,19 @@ static void check_element(const td_model *m, int i, double od, double id, double
     assert_close(el.material.density, rho, 0.0, 0.0);
 }
 
+/* heat: retainer 0's network as written, retainer 1 without one */
+static void check_all_keys_thermal(const td_model *m)
+{
+    td_retainer_thermal t;
+    assert_int_equal(td_model_get_retainer_thermal(m, 0, &t), 1);
+    assert_close(t.race_capacity, 45.0, 0.0, 0.0);
+    assert_close(t.housing_capacity, 600.0, 0.0, 0.0);
+    assert_close(t.race_housing_conductance, 3.0, 0.0, 0.0);
+    assert_close(t.housing_ambient_conductance, 1.2, 0.0, 0.0);
+    assert_close(t.expansion, 1.1e-5, 0.0, 0.0);
+    assert_int_equal(td_model_get_retainer_thermal(m, 1, &t), 0);
+}
+
 static void check_all_keys_model(const td_model *m)
 {
     td_shaft_options so;
@@ -401,6 +414,7 @@ static void check_all_keys_model(const td_model *m)
     assert_close(r.contact.exponent, 1.5, 0.0, 0.0);
     assert_int_equal(r.contact.damping, TD_DAMPING_KELVIN_VOIGT);
     assert_close(r.contact.damping_coefficient, 1000.0, 0.0, 0.0);
+    check_all_keys_thermal(m);
     td_model_get_retainer(m, 1, &r);
     assert_int_equal(r.node, 5);
     assert_close(r.bore_radius, 0.0204, 1e-15, 0.0); /* default shaft_radius + clearance */
@@ -1007,8 +1021,8 @@ static void test_documented_defaults(void **state)
                   part, required, other);
     assert_int_equal(tried + part + required + other, td_case_key_count());
     assert_int_equal(tried, 84);
-    assert_int_equal(part, 43);     /* their keys are checked */
-    assert_int_equal(required, 74); /* required, or one form's required key (a sweep entry's range or values) */
+    assert_int_equal(part, 44);     /* their keys are checked */
+    assert_int_equal(required, 78); /* required, or one form's required key (a sweep entry's range or values) */
     /* an alternative with no default ("-": shaft.nodes, sections' element, schedule's unbalance,
      * amb_off, amb_on, a law's gain block), "unknown" (an AMB's air gap), "all nodes", "none"
      * (response speeds, overrides, a zpk's zeros and poles, an ss block's A, B and C), "the rotor's"
@@ -1016,7 +1030,7 @@ static void test_documented_defaults(void **state)
      * "continuous" (a controller's sample_rate), "1/sqrt(2)" (a low-pass's damping), "the case's
      * `speed` / (2 pi)" (a resonant's frequency), "-" (a parallel block), "none" (a plug-in's
      * parameters) */
-    assert_int_equal(other, 22);
+    assert_int_equal(other, 23); /* and "none (no growth reported)" (a thermal network's expansion) */
     td_case_free(&base);
     free(want);
     free(got);
@@ -1329,7 +1343,7 @@ static void test_rules_name_the_set_they_compare_with(void **state)
                    "cases/paper-a.cfg: --set 'shaft.elements=2'");
     snprintf(tail, sizeof tail, "cases/drop.cfg: --set '%s'", one_amb[0]);
     expect_located("cases/drop.cfg", one_amb, 1,
-                   "cases/drop.cfg:33: schedule[1].amb_off: AMB 1 does not exist (1 defined, indices start at 0; the "
+                   "cases/drop.cfg:36: schedule[1].amb_off: AMB 1 does not exist (1 defined, indices start at 0; the "
                    "change at t = 0.05 s); see ambs at ",
                    tail);
     expect_located("cases/recovery.cfg", renamed, 1,
@@ -1907,6 +1921,11 @@ static const bad_file bad_files[] = {
     {"unknown-top-key.cfg", 4, "strat", NULL},
     {"unterminated-comment.cfg", 4, NULL, NULL},
     {"include-error.cfg", 4, "point_masses[0].mass", "bad-fragment.cfg"},
+    /* heat */
+    {"retainer-thermal-zero-capacity.cfg", 6, "retainers[0].thermal.race_capacity", NULL},
+    {"retainer-thermal-missing-conductance.cfg", 6, "retainers[0].thermal.housing_ambient_conductance", NULL},
+    {"retainer-thermal-negative-expansion.cfg", 7, "retainers[0].thermal.expansion", NULL},
+    {"retainer-thermal-unknown-key.cfg", 7, "retainers[0].thermal.expansoin", NULL},
 };
 
 static void check_bad_file(const bad_file *b)

@@ -441,6 +441,28 @@ TD_API td_status td_model_get_change(const td_model *m, int i, td_change *out);
 TD_API const td_controller *td_model_get_controller(const td_model *m, int i, const char **name, const int **inputs,
                                                     const int **outputs);
 
+/* heat */
+/**
+ * A retainer's lumped thermal network (docs/theory.md, "Thermal retainers"): the race node (capacity
+ * C_r) joined to the housing node (C_h) by G_rh, the housing to the ambient (temperature rise 0) by
+ * G_ha, the race heated by the retainer's friction power F_t v_s and its race's drag power. The
+ * temperatures are rises above the ambient, K. The race bore's radial thermal growth alpha R_b dT_r
+ * is an output only: it does not change the clearance.
+ */
+typedef struct td_retainer_thermal {
+    double race_capacity;               /**< C_r, J/K, > 0 */
+    double housing_capacity;            /**< C_h, J/K, > 0 */
+    double race_housing_conductance;    /**< G_rh, W/K, > 0 */
+    double housing_ambient_conductance; /**< G_ha, W/K, >= 0 (0: an insulated housing, no steady state) */
+    double expansion;                   /**< alpha, 1/K, >= 0 (TD_UNDEFINED: not given, no growth reported) */
+} td_retainer_thermal;
+
+/** Give retainer i (already added) a thermal network, replacing any it had. Errors: TD_ERR_INVALID
+ *  (NULL model or t, i out of range, a value out of its range: the field named), TD_ERR_NOMEM. */
+TD_API td_status td_model_set_retainer_thermal(td_model *m, int i, const td_retainer_thermal *t, td_error *err);
+/** 1 if retainer i has a thermal network (*out filled, out may be NULL), else 0 (*out zeroed). */
+TD_API int td_model_get_retainer_thermal(const td_model *m, int i, td_retainer_thermal *out);
+
 #ifdef __cplusplus
 }
 #endif

@@ -55,6 +55,9 @@ typedef struct td_output_layout {
     int switch_fields;  /**< nonzero: the events also carry `controller` and `sensed_radius`, and the event kinds
                          *   include controller_switch (models with a recovery supervisor, touchdown/model.h).
                          *   Last, so that initialisers written before it leave it 0 */
+    /* heat */
+    int thermal_fields; /**< nonzero: also each retainer's race and housing temperature rise (models where some
+                         *   retainer has a thermal network; NaN for the others). Last, as switch_fields */
 } td_output_layout;
 
 /**

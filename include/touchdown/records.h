@@ -66,6 +66,9 @@ typedef struct td_retainer_state {
     double race_speed;       /**< race speed Omega_b, rad/s (bore_speed when it is fixed) */
     int rolling;             /**< 1 while rolling without slip (stick retainers, model.h) */
     double whirl_rate;       /**< d(whirl_angle)/dt, rad/s: > 0 forward (with the spin), < 0 backward */
+    /* heat */
+    double race_temperature;    /**< K above the ambient, the race node (TD_UNDEFINED without retainers[].thermal) */
+    double housing_temperature; /**< K above the ambient, the housing node (TD_UNDEFINED without it) */
 } td_retainer_state;
 
 /**
@@ -88,6 +91,13 @@ typedef struct td_retainer_totals {
     long contacts;             /**< contact intervals that swept at least TD_TOUCH_AND_GO_ANGLE of whirl
                                     (the one still open counts) */
     long touch_and_go;         /**< impacts that left again within less: bounces, rebounds, grazes */
+    /* heat */
+    double drag_work; /**< J: work of the race's drag torques (the bearing's own losses; 0 on a fixed race) */
+    double heat;      /**< J into the thermal network: friction_work + drag_work (the same trapezoids) */
+    double peak_temperature_rise; /**< K: the race's largest rise above the ambient (TD_UNDEFINED without
+                                       retainers[].thermal) */
+    double peak_thermal_growth;   /**< m: the race bore's radial growth alpha R_b peak_temperature_rise (an output
+                                       only: the clearance does not change; TD_UNDEFINED without the expansion) */
 } td_retainer_totals;
 
 /**

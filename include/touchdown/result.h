@@ -292,6 +292,13 @@ typedef enum td_out_id {
     TD_OUT_SWEEP_POINTS,
     TD_OUT_SWEEP_WITH,
     TD_OUT_SWEEP_FROM,
+    /* heat */
+    TD_OUT_RET_RACE_TEMPERATURE,
+    TD_OUT_RET_HOUSING_TEMPERATURE,
+    TD_OUT_RETAINER_DRAG_WORK,
+    TD_OUT_RETAINER_HEAT,
+    TD_OUT_RETAINER_PEAK_TEMPERATURE_RISE,
+    TD_OUT_RETAINER_PEAK_THERMAL_GROWTH,
     TD_OUT_ID_COUNT /**< number of ids; also "several objects" as the parent of an attribute */
 } td_out_id;
 

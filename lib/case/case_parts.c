@@ -501,6 +501,66 @@ static const td_cs_table retainer_contact_table = {"retainers[].contact",
                                                    NULL,
                                                    NULL};
 
+/* heat */
+/* A retainer's thermal network (model.h td_retainer_thermal), checked as read; expansion absent:
+ * TD_UNDEFINED, no growth reported. */
+static const td_cs_key thermal_keys[] = {
+    {.key = "race_capacity",
+     .type = TD_CS_REAL,
+     .offset = offsetof(td_retainer_thermal, race_capacity),
+     .need = TD_CS_REQUIRED,
+     .range = TD_CR_POSITIVE,
+     .what = "heat capacity of the race node, J/K",
+     .unit = "J/K",
+     .doc = "heat capacity C_r of the race node (the races and balls)"},
+    {.key = "housing_capacity",
+     .type = TD_CS_REAL,
+     .offset = offsetof(td_retainer_thermal, housing_capacity),
+     .need = TD_CS_REQUIRED,
+     .range = TD_CR_POSITIVE,
+     .what = "heat capacity of the housing node, J/K",
+     .unit = "J/K",
+     .doc = "heat capacity C_h of the housing node"},
+    {.key = "race_housing_conductance",
+     .type = TD_CS_REAL,
+     .offset = offsetof(td_retainer_thermal, race_housing_conductance),
+     .need = TD_CS_REQUIRED,
+     .range = TD_CR_POSITIVE,
+     .what = "thermal conductance race to housing, W/K",
+     .unit = "W/K",
+     .doc = "thermal conductance G_rh from the race node to the housing node"},
+    {.key = "housing_ambient_conductance",
+     .type = TD_CS_REAL,
+     .offset = offsetof(td_retainer_thermal, housing_ambient_conductance),
+     .need = TD_CS_REQUIRED,
+     .range = TD_CR_NONNEGATIVE,
+     .what = "thermal conductance housing to ambient, W/K",
+     .unit = "W/K",
+     .doc = "thermal conductance G_ha from the housing to the ambient (0: insulated, no steady state)"},
+    {.key = "expansion",
+     .type = TD_CS_REAL,
+     .offset = offsetof(td_retainer_thermal, expansion),
+     .def = NAN,
+     .range = TD_CR_NONNEGATIVE,
+     .doc_default = "none (no growth reported)",
+     .unit = "1/K",
+     .doc = "linear thermal expansion coefficient alpha of the race: the bore's radial growth alpha R_b dT_r at the "
+            "peak is reported (an output only: the clearance does not change)"},
+};
+static const td_cs_table thermal_table = {"retainers[].thermal",
+                                          "retainer-parts",
+                                          thermal_keys,
+                                          TD_CS_COUNT(thermal_keys),
+                                          sizeof(td_retainer_thermal),
+                                          NULL,
+                                          NULL};
+
+/* A retainer as read: the model's record and the groups the model keeps beside it. */
+typedef struct cr_retainer {
+    td_retainer r;               /* first: the retainer keys' offsets are td_retainer's */
+    td_retainer_thermal thermal; /* race_capacity 0: no `thermal` group */
+} cr_retainer;
+
 /* bore_radius: absent, shaft_radius + clearance (the model's rule when given) */
 static td_status read_bore_radius(td_case_reader *r, const config_setting_t *g, const td_cs_key *k, void *rec)
 {
@@ -510,8 +570,15 @@ static td_status read_bore_radius(td_case_reader *r, const config_setting_t *g, 
 
 static td_status add_retainer(td_case_reader *r, const config_setting_t *g, void *rec)
 {
+    const cr_retainer *cr = rec;
     td_error merr;
-    return added(r, g, td_model_add_retainer(r->c->model, rec, &merr), &merr);
+    td_status st = added(r, g, td_model_add_retainer(r->c->model, &cr->r, &merr), &merr);
+    if (st == TD_OK && cr->thermal.race_capacity > 0.0) /* heat */
+        st = added(
+            r, g,
+            td_model_set_retainer_thermal(r->c->model, td_model_retainer_count(r->c->model) - 1, &cr->thermal, &merr),
+            &merr);
+    return st;
 }
 
 static const td_cs_key retainer_keys[] = {
@@ -585,9 +652,17 @@ static const td_cs_key retainer_keys[] = {
      .sub = &retainer_contact_table,
      .doc_default = "the run's `contact`",
      .doc = "the retainer's own compliant contact law, below"},
+    /* heat */
+    {.key = "thermal",
+     .type = TD_CS_GROUP,
+     .offset = offsetof(cr_retainer, thermal),
+     .sub = &thermal_table,
+     .doc_default = "none (no temperatures)",
+     .doc = "the race-housing-ambient thermal network heated by the retainer's friction and drag, below "
+            "([theory](theory.md#thermal-retainers))"},
 };
 const td_cs_table td_cs_retainers = {"retainers[]",       "retainers", retainer_keys, TD_CS_COUNT(retainer_keys),
-                                     sizeof(td_retainer), NULL,        add_retainer};
+                                     sizeof(cr_retainer), NULL,        add_retainer};
 
 static td_status add_unbalance(td_case_reader *r, const config_setting_t *g, void *rec)
 {

@@ -83,6 +83,10 @@ static int write_sample_header(FILE *f, const td_writer *w)
             rc |= column(f, 0, race_cols[k], NULL, i);
         if (w->whirl_field)
             rc |= column(f, 0, TD_OUT_RET_WHIRL_RATE, NULL, i);
+        if (w->thermal_fields) { /* heat */
+            rc |= column(f, 0, TD_OUT_RET_RACE_TEMPERATURE, NULL, i);
+            rc |= column(f, 0, TD_OUT_RET_HOUSING_TEMPERATURE, NULL, i);
+        }
     }
     for (i = 0; i < w->amb_count; i++)
         for (k = 0; k < 2; k++)
@@ -154,6 +158,8 @@ static td_status csv_sample(td_writer *w, double t, double speed, const double *
             rc |= fprintf(f, ",%.17g,%.17g,%.17g,%d", s->race_x, s->race_y, s->race_speed, s->rolling ? 1 : 0) < 0;
         if (w->whirl_field)
             rc |= fprintf(f, ",%.17g", s->whirl_rate) < 0;
+        if (w->thermal_fields) /* heat */
+            rc |= fprintf(f, ",%.17g,%.17g", s->race_temperature, s->housing_temperature) < 0;
     }
     for (i = 0; i < 2 * w->amb_count; i++)
         rc |= fprintf(f, ",%.17g", amb_f[i]) < 0;

@@ -71,6 +71,7 @@ typedef struct h5_impl {
     h5_series series[H5_MAX_SERIES];
     int series_count;
     int idx_time, idx_speed, idx_disp, idx_ret, idx_whirl, idx_amb; /* first series of each part, -1 if absent */
+    int idx_thermal; /* heat: the race temperature's series (the housing's next), -1 if absent */
     size_t chunk_rows, buffered;
     hsize_t flushed;
     hsize_t event_rows;      /* events in the file */
@@ -307,6 +308,12 @@ static td_status create_retainers(td_writer *w, h5_impl *h, td_error *err)
             h->idx_whirl = h->series_count;
             st = add_series(w, h, g, TD_OUT_RET_WHIRL_RATE, 2, row, 0, err);
         }
+        if (st == TD_OK && w->thermal_fields) { /* heat */
+            h->idx_thermal = h->series_count;
+            st = add_series(w, h, g, TD_OUT_RET_RACE_TEMPERATURE, 2, row, 0, err);
+            if (st == TD_OK)
+                st = add_series(w, h, g, TD_OUT_RET_HOUSING_TEMPERATURE, 2, row, 0, err);
+        }
         if (st == TD_OK)
             st = attach_own_axis(w, h, h->idx_ret, make_index_scale(g, TD_OUT_RETAINER, w->retainer_count), 1, err);
     }
@@ -477,6 +484,7 @@ static td_status h5_open(td_writer *w, td_error *err)
     h->file = h->event_dset = h->event_mtype = h->event_ftype = h->kind_type = h->event_index = h->component =
         h->driver = -1;
     h->idx_time = h->idx_speed = h->idx_disp = h->idx_ret = h->idx_whirl = h->idx_amb = -1;
+    h->idx_thermal = -1;
     h->chunk_rows = choose_chunk_rows(w);
     w->impl = h;
     h->event_buf = malloc(H5_EVENT_CHUNK * sizeof *h->event_buf);
@@ -557,6 +565,10 @@ static void buffer_row(const td_writer *w, h5_impl *h, double t, double speed, c
                 ((int8_t *)h->series[h->idx_ret + nf + 1].buf)[at] = (int8_t)(ret[i].rolling ? 1 : 0);
             if (h->idx_whirl >= 0)
                 ((double *)h->series[h->idx_whirl].buf)[at] = ret[i].whirl_rate;
+            if (h->idx_thermal >= 0) { /* heat */
+                ((double *)h->series[h->idx_thermal].buf)[at] = ret[i].race_temperature;
+                ((double *)h->series[h->idx_thermal + 1].buf)[at] = ret[i].housing_temperature;
+            }
         }
     }
     if (h->idx_amb >= 0)

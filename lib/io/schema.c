@@ -302,6 +302,14 @@ static const td_schema_entry entries[TD_OUT_ID_COUNT] = {
     CSV_LINE(TD_OUT_SWEEP_POINTS, "points", SWEEP),
     CSV_LINE(TD_OUT_SWEEP_WITH, "with", SWEEP),
     CSV_LINE(TD_OUT_SWEEP_FROM, "from", SWEEP),
+    /* ---- heat: the retainers' thermal networks (series with thermal fields) and the heat totals ---- */
+    SERIES(TD_OUT_RET_RACE_TEMPERATURE, "race_temperature", TD_OUT_RETAINERS, F64, "K", "(N, n_ret)", "Tr_ret%d", NULL),
+    SERIES(TD_OUT_RET_HOUSING_TEMPERATURE, "housing_temperature", TD_OUT_RETAINERS, F64, "K", "(N, n_ret)", "Th_ret%d",
+           NULL),
+    RET_ATTR(TD_OUT_RETAINER_DRAG_WORK, "retainer_drag_work", F64, "J"),
+    RET_ATTR(TD_OUT_RETAINER_HEAT, "retainer_heat", F64, "J"),
+    RET_ATTR(TD_OUT_RETAINER_PEAK_TEMPERATURE_RISE, "retainer_peak_temperature_rise", F64, "K"),
+    RET_ATTR(TD_OUT_RETAINER_PEAK_THERMAL_GROWTH, "retainer_peak_thermal_growth", F64, "m"),
 };
 
 /* The lateral components, each name written once here (td_schema_components). */

@@ -388,6 +388,7 @@ td_status td_writer_open(td_writer_kind kind, const char *path, const td_output_
     w->speed_field = layout->speed_field != 0;
     w->whirl_field = layout->whirl_field != 0;
     w->switch_fields = layout->switch_fields != 0;
+    w->thermal_fields = layout->thermal_fields != 0; /* heat */
     w->amb_count = layout->amb_count;
     w->compression = layout->compression;
     if (layout->node_count > 0) {

@@ -56,6 +56,9 @@ struct td_writer {
     char failure[TD_ERROR_MESSAGE_SIZE];
     const td_writer_ops *ops;
     void *impl; /**< back end state */
+
+    /* heat */
+    int thermal_fields; /**< nonzero: the retainers' temperature rises too (td_output_layout) */
 };
 
 /** Back-end operations. Each returns a status and fills err; finish and destroy release impl. */

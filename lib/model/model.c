@@ -90,6 +90,7 @@ void td_model_free(td_model **model)
     free(m->changes.items);
     free(m->change_entries.items);
     free(m->speed_points.items);
+    free(m->thermals.items);
     td_model_free_controllers(m);
     free(m);
     *model = NULL;
@@ -140,6 +141,7 @@ td_status td_model_clone(const td_model *model, td_model **out, td_error *err)
     CLONE(m->changes, model->changes, ok);
     CLONE(m->change_entries, model->change_entries, ok);
     CLONE(m->speed_points, model->speed_points, ok);
+    CLONE(m->thermals, model->thermals, ok);
     m->spin = model->spin;
     m->recovery = model->recovery;
     if (!ok) {

@@ -34,6 +34,12 @@ typedef struct td_model_controller {
     int *outputs;       /* AMB axis each output commands */
 } td_model_controller;
 
+/* A retainer's thermal network as the model keeps it (thermal.c). */
+typedef struct td_model_thermal {
+    int retainer;
+    td_retainer_thermal t;
+} td_model_thermal;
+
 struct td_model {
     td_shaft_options shaft;
     TD_PART_ARRAY(td_shaft_element) elements;
@@ -51,6 +57,8 @@ struct td_model {
     td_recovery recovery;    /* the recovery supervisor (recovery.c); pair_count 0: none */
     double gravity[2];       /* m/s^2 */
     double reduction_cutoff; /* Hz: Craig-Bampton reduction of the system (lib/model/reduce.c); 0: full model */
+    /* heat */
+    TD_PART_ARRAY(td_model_thermal) thermals; /* the retainers' thermal networks (thermal.c), by retainer */
 };
 
 /* The controllers' part in freeing, copying and validating a model (controllers.c). */

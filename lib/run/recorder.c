@@ -25,6 +25,9 @@ struct td_recorder {
     double *node_xy;   /* 2 node_count */
     td_retainer_state *ret;
     double *amb_f; /* 2 amb_count */
+
+    /* heat */
+    int thermal_fields; /* the writers' temperature columns (td_output_layout) */
 };
 
 static void recorder_free(td_recorder *r)
@@ -149,6 +152,16 @@ static int has_race_states(const td_model *model)
     return 0;
 }
 
+/* heat: 1 if some retainer has a thermal network. */
+static int has_thermal(const td_model *model)
+{
+    int i;
+    for (i = 0; i < td_model_retainer_count(model); i++)
+        if (td_model_get_retainer_thermal(model, i, NULL))
+            return 1;
+    return 0;
+}
+
 static td_status open_writers(td_recorder *r, const td_output_options *out, td_error *err)
 {
     td_output_layout layout;
@@ -161,6 +174,7 @@ static td_status open_writers(td_recorder *r, const td_output_options *out, td_e
     layout.speed_field = r->speed_field;
     layout.whirl_field = r->race_fields || r->speed_field;
     layout.switch_fields = r->switch_fields;
+    layout.thermal_fields = r->thermal_fields;
     layout.compression = out->compression;
     if (out->hdf5_path[0])
         st = td_writer_open(TD_WRITER_HDF5, out->hdf5_path, &layout, &r->writers[r->writer_count++], err);
@@ -191,6 +205,7 @@ td_status td_recorder_create(const td_model *model, const td_output_options *out
     r->race_fields = has_race_states(model);
     r->speed_field = td_model_speed_varies(model);
     r->switch_fields = td_model_get_recovery(model, NULL) > 0;
+    r->thermal_fields = has_thermal(model);
     if ((st = choose_nodes(r, model, out, err)) != TD_OK || (st = allocate_scratch(r, err)) != TD_OK ||
         (st = open_writers(r, out, err)) != TD_OK || (st = write_model_attributes(r, model, out, err)) != TD_OK) {
         td_recorder_discard(&r);

@@ -439,7 +439,12 @@ static td_status write_retainer_totals(td_recorder *rec, const td_sim *sim, int 
                  {TD_OUT_RETAINER_PEAK_HOUSING_FORCE, offsetof(td_retainer_totals, peak_housing_force)},
                  {TD_OUT_RETAINER_PEAK_NORMAL_FORCE, offsetof(td_retainer_totals, peak_normal_force)},
                  {TD_OUT_RETAINER_CONTACT_TIME, offsetof(td_retainer_totals, contact_time)},
-                 {TD_OUT_RETAINER_ROLLING_TIME, offsetof(td_retainer_totals, rolling_time)}};
+                 {TD_OUT_RETAINER_ROLLING_TIME, offsetof(td_retainer_totals, rolling_time)},
+                 /* heat */
+                 {TD_OUT_RETAINER_DRAG_WORK, offsetof(td_retainer_totals, drag_work)},
+                 {TD_OUT_RETAINER_HEAT, offsetof(td_retainer_totals, heat)},
+                 {TD_OUT_RETAINER_PEAK_TEMPERATURE_RISE, offsetof(td_retainer_totals, peak_temperature_rise)},
+                 {TD_OUT_RETAINER_PEAK_THERMAL_GROWTH, offsetof(td_retainer_totals, peak_thermal_growth)}};
     int n = td_model_retainer_count(td_sim_model(sim)), k;
     size_t i;
     td_retainer_totals *t = calloc((size_t)(n > 0 ? n : 1), sizeof *t);

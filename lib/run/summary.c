@@ -55,6 +55,7 @@ static void retainer_undefine(td_run_retainer *r)
     td_retainer_totals *t = &r->totals;
     t->impulse = t->impact_impulse = t->contact_time = t->rolling_time = t->normal_force_sq = TD_UNDEFINED;
     t->friction_work = t->whirl_angle = t->peak_housing_force = t->peak_normal_force = TD_UNDEFINED;
+    t->drag_work = t->heat = t->peak_temperature_rise = t->peak_thermal_growth = TD_UNDEFINED; /* heat */
     r->race_speed = r->mean_normal = r->rms_normal = r->whirl_frequency = TD_UNDEFINED;
     snprintf(r->whirl, sizeof r->whirl, "undetermined");
 }
@@ -321,6 +322,21 @@ static void format_recovery(td_text *b, const td_run_summary *s)
         format_answer(b, "last return to nominal", s->stats.last_return_time, "s");
 }
 
+/* heat: a retainer's thermal network, when it has one: the heat into it, the race's peak rise and
+ * the bore's growth (an output only: the clearance does not change). */
+static void format_retainer_heat(td_text *b, const td_run_summary *s, int k)
+{
+    const td_retainer_totals *t = &s->retainers[k].totals;
+    if (td_is_undefined(t->peak_temperature_rise))
+        return;
+    td_text_printf(b, "retainer %-2d heat            %.6g J (friction %.6g J, drag %.6g J); race peak rise %.4g K", k,
+                   t->heat, t->friction_work, t->drag_work, t->peak_temperature_rise);
+    if (td_is_undefined(t->peak_thermal_growth))
+        td_text_printf(b, "\n");
+    else
+        td_text_printf(b, ", bore growth %.3g um (not fed back)\n", 1e6 * t->peak_thermal_growth);
+}
+
 /* The answers that converge, first: housing force, impulse, friction work, speeds, each retainer. */
 static void format_answers(td_text *b, const td_run_summary *s)
 {
@@ -354,8 +370,10 @@ static void format_answers(td_text *b, const td_run_summary *s)
         td_text_printf(b, "energy                      n/a (the run did not reach its end)\n");
     else if (s->energy_kept)
         format_energy(b, &s->energy);
-    for (k = 0; k < n; k++)
+    for (k = 0; k < n; k++) {
         format_retainer(b, s, k);
+        format_retainer_heat(b, s, k);
+    }
 }
 
 int td_run_summary_format(char *buf, size_t n, const td_run_summary *s)
@@ -513,7 +531,12 @@ static void json_retainers(td_text *b, const td_run_summary *s)
                   {"peak_normal_force", offsetof(td_run_retainer, totals.peak_normal_force), 0},
                   {"race_speed", offsetof(td_run_retainer, race_speed), 0},
                   {"contacts", offsetof(td_run_retainer, totals.contacts), 1},
-                  {"touch_and_go", offsetof(td_run_retainer, totals.touch_and_go), 1}};
+                  {"touch_and_go", offsetof(td_run_retainer, totals.touch_and_go), 1},
+                  /* heat */
+                  {"drag_work", offsetof(td_run_retainer, totals.drag_work), 0},
+                  {"heat", offsetof(td_run_retainer, totals.heat), 0},
+                  {"peak_temperature_rise", offsetof(td_run_retainer, totals.peak_temperature_rise), 0},
+                  {"peak_thermal_growth", offsetof(td_run_retainer, totals.peak_thermal_growth), 0}};
     int k, n = s->retainer_count < TD_RUN_SUMMARY_RETAINERS ? s->retainer_count : TD_RUN_SUMMARY_RETAINERS;
     size_t i;
     td_text_printf(b, "\"retainer_whirl\":[");

@@ -8,6 +8,7 @@
 #ifndef TD_SIM_MONITOR_H
 #define TD_SIM_MONITOR_H
 
+#include "sim/thermal.h"
 #include "touchdown/records.h"
 #include "touchdown/sim.h"
 
@@ -23,6 +24,19 @@ typedef struct td_sim_totals {
     double interval_peak;  /* N, the largest normal force of the open (or the last) contact interval
                               at the accepted points (monitor.c, td_sim_monitor_at) */
 } td_sim_totals;
+
+/* heat: retainer k's drag power and thermal network at the points of the totals (thermal.c) */
+typedef struct td_sim_thermal {
+    double drag;            /* W, the race's drag power at the last point */
+    double power;           /* W, the heat into the race at the last point: friction + drag */
+    int on;                 /* the retainer has a network (td_model_get_retainer_thermal) */
+    td_thermal_network net; /* its modal form */
+    double T[2];            /* K above the ambient, race and housing, at the last point (totals_t) */
+    double T_before[2];     /* at the point before it (t_before), with the heat power there */
+    double t_before, power_before;
+    double peak;              /* K, the race's largest rise at the points reached */
+    double growth_per_kelvin; /* m/K, alpha R_b (TD_UNDEFINED without expansion) */
+} td_sim_thermal;
 
 typedef struct td_sim_monitor {
     /* events waiting to be reported (monitor.c), the last one reported */
@@ -45,6 +59,9 @@ typedef struct td_sim_monitor {
     int slewing;        /* AMB axes slewing at the last point (slew_t) */
     double slew_t;      /* time_slewing is accounted up to here (monitor.c) */
     int slew_kink;      /* the last stop was on a slew's kink (sim_modes.c td_sim_handle_roots) */
+
+    /* heat: the retainers' drag power and thermal networks (thermal.c), nr of them */
+    td_sim_thermal *thermal;
 
     /* an integrator step's end beyond the output time (monitor.c td_sim_monitor_step_ahead): its
      * peaks wait until the run reaches it (td_sim_monitor_at, td_sim_monitor_settle) */

@@ -67,11 +67,12 @@ static int alloc_work(td_sim *s, size_t nr)
     s->contacts.roll_tried = calloc(nr, sizeof(int));
     s->contacts.touching = calloc(nr, sizeof(int));
     s->monitor.totals = calloc(nr, sizeof *s->monitor.totals);
+    s->monitor.thermal = calloc(nr, sizeof *s->monitor.thermal); /* heat */
     s->monitor.energy_f = calloc(n, sizeof(double));
     return s->ops.mass_x && s->kkt.minv_f && s->ops.power_x && s->ops.power_kx && s->ops.power_mx && s->kkt.schur &&
            s->kkt.schur_rhs && s->kkt.restitution && s->kkt.impulse && s->kkt.impact_work && s->kkt.minv_cols &&
            s->kkt.rows && s->kkt.active && s->kkt.active_roll && s->kkt.onset && s->contacts.roll_tried &&
-           s->monitor.totals && s->monitor.energy_f && s->kkt.entered && s->contacts.touching;
+           s->monitor.totals && s->monitor.energy_f && s->kkt.entered && s->contacts.touching && s->monitor.thermal;
 }
 
 static td_status alloc_arrays(td_sim *s, td_error *err)
@@ -391,6 +392,7 @@ td_status td_sim_setup(const td_model *model, const td_sim_options *options, vol
         td_sim_teardown(s);
         return st;
     }
+    td_sim_thermal_setup(s);
     td_sim_totals_point(s, s->dae.t, 1);
     s->monitor.slewing = td_sim_amb_slewing_axes(s, N_VGetArrayPointer(s->dae.y)); /* from the start */
     s->monitor.slew_t = s->dae.t;
@@ -420,6 +422,7 @@ static void free_work(td_sim *s)
     free(s->kkt.entered);
     free(s->contacts.roll_tried);
     free(s->monitor.totals);
+    free(s->monitor.thermal);
     free(s->monitor.energy_f);
     free(s->contacts.touching);
 }

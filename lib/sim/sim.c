@@ -170,6 +170,12 @@ td_status td_sim_retainer_state(const td_sim *sim, int retainer, td_retainer_sta
     if (r->rolling) /* F_t acts on the race along t, the opposite on the rotor */
         out->friction_force = -y[sim->dae.of + r->fi];
     out->sliding_velocity = td_sim_sliding_velocity(sim, retainer, y);
+    {
+        double T[2]; /* heat */
+        td_sim_thermal_now(sim, retainer, T);
+        out->race_temperature = T[0];
+        out->housing_temperature = T[1];
+    }
     return TD_OK;
 }
 

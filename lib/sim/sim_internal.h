@@ -293,6 +293,25 @@ void td_sim_totals_impact(td_sim *s, int k, double impulse, int bounced);
 /* Retainer k's totals at s->dae.t (td_sim_retainer_totals). */
 void td_sim_totals_get(const td_sim *s, int k, td_retainer_totals *out);
 
+/* ---- thermal.c: heat, the races' drag work and the retainers' thermal networks -------------- */
+
+/* The networks of the model's retainers (td_model_get_retainer_thermal), zero rises. */
+void td_sim_thermal_setup(td_sim *s);
+/* Retainer k's heat power F_t v_s at y (0 out of contact), W: friction_work's integrand. */
+double td_sim_friction_power(const td_sim *s, int k, const double *y);
+/* Retainer k's point of the totals with the state in s->dae.y, dt after the last one (0: a restart
+ * opens a segment), its friction power there `friction` (W): drag_work and the network carried. */
+void td_sim_thermal_point(td_sim *s, int k, double dt, double friction, td_retainer_totals *t);
+/* Retainer k's heat taken back from the last point to s->dae.t into t (td_sim_totals_get, rewind)
+ * with its temperatures there into T (may be NULL). */
+void td_sim_thermal_back(const td_sim *s, int k, td_retainer_totals *t, double T[2]);
+/* Before a restart at s->dae.t inside the last step: the networks' states taken back to it. */
+void td_sim_thermal_rewind(td_sim *s, int k);
+/* The race's rise at the last point into the peak (a point reached: td_sim_totals_peaks). */
+void td_sim_thermal_peak(td_sim *s, int k);
+/* Retainer k's rises at s->dae.t (race, housing), TD_UNDEFINED without a network. */
+void td_sim_thermal_now(const td_sim *s, int k, double T[2]);
+
 /* ---- flight_modal.c, flight_roots.c, flight.c: free flight in closed form ------------------ */
 
 /* Carry the state from s->dae.t in closed form to t_out or the stop t_stop, whichever comes first,

@@ -26,7 +26,7 @@ static integrands integrands_at(const td_sim *s, int k, const double *y)
         return v;
     v.n = td_sim_normal_force(s, k, y);
     v.n2 = v.n * v.n;
-    v.power = td_sim_friction_force(s, k, y) * td_sim_sliding_velocity(s, k, y);
+    v.power = td_sim_friction_power(s, k, y);
     td_sim_node_state(s, k, y, &x, &yy, &vx, &vy);
     r2 = x * x + yy * yy;
     v.whirl_rate = r2 > 0.0 ? (x * vy - yy * vx) / r2 : 0.0;
@@ -81,6 +81,7 @@ void td_sim_totals_peaks(td_sim *s, const double *y)
         tk->t.peak_housing_force = fmax(tk->t.peak_housing_force, housing_force(s, k, y));
         if (s->contacts.ret[k].mode != TD_RMODE_FREE) /* as integrands_at's n */
             tk->t.peak_normal_force = fmax(tk->t.peak_normal_force, td_sim_normal_force(s, k, y));
+        td_sim_thermal_peak(s, k); /* heat */
     }
 }
 
@@ -102,6 +103,7 @@ void td_sim_totals_point(td_sim *s, double t, int restart)
             if (s->contacts.ret[k].rolling)
                 tk->t.rolling_time += dt;
         }
+        td_sim_thermal_point(s, k, dt, now.power, &tk->t); /* heat */
         tk->prev.n = now.n;
         tk->prev.n2 = now.n2;
         tk->prev.power = now.power;
@@ -154,6 +156,7 @@ void td_sim_totals_rewind(td_sim *s)
         td_sim_totals *tk = &s->monitor.totals[k];
         integrands now = integrands_at(s, k, N_VGetArrayPointer(s->dae.y));
         back_to_now(s, k, &tk->t);
+        td_sim_thermal_rewind(s, k); /* heat */
         tk->prev.n = now.n;
         tk->prev.n2 = now.n2;
         tk->prev.power = now.power;
@@ -168,6 +171,8 @@ void td_sim_totals_get(const td_sim *s, int k, td_retainer_totals *out)
     const td_sim_totals *tk = &s->monitor.totals[k];
     *out = tk->t;
     back_to_now(s, k, out);
+    /* heat */
+    td_sim_thermal_back(s, k, out, NULL);
     if (tk->in_contact) /* the interval still open counts as a contact */
         out->contacts++;
 }

@@ -4,8 +4,8 @@
 # spin. Physics checked, not only presence: centred before the failure (integral action), the
 # spin slows before the failure as its drag and the unbalance's steady orbit (the harmonic solve)
 # say, and faster on the retainers, the races spin up from rest, the energy balance
-# closes with the spin's kinetic energy and drag in it, the summary says how the drop ended, and
-# the files carry the rotor speed per sample.
+# closes with the spin's kinetic energy and drag in it, the summary says how the drop ended, the
+# files carry the rotor speed per sample, and the retainers' networks hold the heat they receive.
 # Args: $1 = the touchdown binary, $2 = the source directory. Runs in the build's tests directory.
 set -u
 tool=$1
@@ -80,6 +80,34 @@ assert r.min() > 5e-5, r.min()
 swept, integral = th[-1] - th[i0], np.trapz(wr[i0:], t[i0:])
 assert abs(swept) > 1.0 and abs(integral - swept) < 0.01 * abs(swept), (swept, integral)
 print("ok", drop, want, mean, w[-1], f["retainers/race_speed"][-1, :], swept, integral)
+PY
+# The retainers' heat (docs/theory.md, "Thermal retainers"; the networks of drop.cfg): the drag work
+# against the race speed series integrated independently (T_0 + c_b w) w on the 5 kHz samples, the
+# heat as friction plus drag work, the networks' energy at the end (C_r T_r + C_h T_h + G_ha times
+# the integral of T_h) against the heat, the peak rise against the series.
+check "the heat: drag work from the race speed, heat held by the networks, the peak rise" "$py" - "$work/run/drop.h5" "$out" <<'PY'
+import json, sys
+import h5py, numpy as np
+f = h5py.File(sys.argv[1], "r")
+d = json.load(open(sys.argv[2]))
+t = f["time"][:]
+w = f["retainers/race_speed"][:]
+Tr, Th = f["retainers/race_temperature"][:], f["retainers/housing_temperature"][:]
+assert f["retainers/race_temperature"].attrs["units"] in (b"K", "K")
+fw, dw, heat = (np.array(f.attrs["retainer_" + k]) for k in ("friction_work", "drag_work", "heat"))
+peak = np.array(f.attrs["retainer_peak_temperature_rise"])
+growth = np.array(f.attrs["retainer_peak_thermal_growth"])
+assert d["retainer_heat"] == list(heat) and d["retainer_peak_temperature_rise"] == list(peak)
+Cr, Ch, Gha, alpha, Rb = 76.0, 1100.0, 2.0, 1.2e-5, 0.02575
+for k in range(2):
+    drag = np.trapz((0.02 * np.sign(w[:, k]) + 1e-5 * w[:, k]) * w[:, k], t)
+    held = Cr * Tr[-1, k] + Ch * Th[-1, k] + Gha * np.trapz(Th[:, k], t)
+    assert dw[k] > 0.1 and abs(drag - dw[k]) < 1e-4 * dw[k], (k, drag, dw[k])
+    assert heat[k] == fw[k] + dw[k], (k, heat[k], fw[k], dw[k])
+    assert abs(held - heat[k]) < 1e-6 * heat[k], (k, held, heat[k])
+    assert Tr[0, k] == 0.0 and Tr[:, k].min() >= 0.0 and peak[k] >= Tr[:, k].max() * (1 - 1e-9), (k, peak[k])
+    assert abs(growth[k] - alpha * Rb * peak[k]) <= 1e-15 * growth[k], (k, growth[k])
+    print("ok", k, drag, dw[k], held, heat[k], peak[k], Tr[:, k].max())
 PY
 # The run ended while the AMB force still rose: its peak is the force at the end (the last sample's),
 # never one of the integrator's step beyond end_time (once 831.2 N at 1.05e-3 s for 829.7 N at 1e-3 s).

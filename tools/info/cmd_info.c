@@ -49,6 +49,20 @@ static void print_race(const td_retainer *r)
                r->contact.damping_coefficient);
 }
 
+/* heat: retainer i's thermal network, when it has one. */
+static void print_thermal(const td_model *m, int i)
+{
+    td_retainer_thermal t;
+    if (!td_model_get_retainer_thermal(m, i, &t))
+        return;
+    printf("             thermal: race %.6g J/K, housing %.6g J/K, race-housing %.6g W/K, housing-ambient %.6g W/K",
+           t.race_capacity, t.housing_capacity, t.race_housing_conductance, t.housing_ambient_conductance);
+    if (td_is_undefined(t.expansion))
+        printf("\n");
+    else
+        printf(", expansion %.6g 1/K (growth reported, not fed back)\n", t.expansion);
+}
+
 /* The AMBs: magnet, law (the shorthand's gains, or the controller that drives it) and amplifier. */
 static void print_ambs(const td_model *m)
 {
@@ -114,6 +128,7 @@ static void print_parts(const td_model *m)
                "restitution %.6g\n",
                i, r.node, r.clearance, r.shaft_radius, r.bore_radius, r.friction, r.bore_speed, r.restitution);
         print_race(&r);
+        print_thermal(m, i); /* heat */
     }
     for (i = 0; i < td_model_unbalance_count(m); i++) {
         td_unbalance u;
