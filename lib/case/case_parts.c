@@ -555,11 +555,6 @@ static const td_cs_table thermal_table = {"retainers[].thermal",
                                           NULL,
                                           NULL};
 
-/* A retainer as read: the model's record and the groups the model keeps beside it. */
-typedef struct cr_retainer {
-    td_retainer r;               /* first: the retainer keys' offsets are td_retainer's */
-    td_retainer_thermal thermal; /* race_capacity 0: no `thermal` group */
-} cr_retainer;
 
 /* bore_radius: absent, shaft_radius + clearance (the model's rule when given) */
 static td_status read_bore_radius(td_case_reader *r, const config_setting_t *g, const td_cs_key *k, void *rec)
@@ -568,15 +563,26 @@ static td_status read_bore_radius(td_case_reader *r, const config_setting_t *g, 
     return td_cr_real(r, g, k->key, NULL, ret->shaft_radius + ret->clearance, TD_CR_FINITE, &ret->bore_radius);
 }
 
+/* A retainer entry as read: the retainer, then the groups the model keeps beside it. */
+typedef struct cr_retainer {
+    td_retainer r; /* first: the keys' offsets are td_retainer's */
+    /* the bearing's duty */
+    td_retainer_bearing bearing;
+    /* heat */
+    td_retainer_thermal thermal; /* race_capacity 0: no `thermal` group */
+} cr_retainer;
+
 static td_status add_retainer(td_case_reader *r, const config_setting_t *g, void *rec)
 {
-    const cr_retainer *cr = rec;
+    cr_retainer *c = rec;
     td_error merr;
-    td_status st = added(r, g, td_model_add_retainer(r->c->model, &cr->r, &merr), &merr);
-    if (st == TD_OK && cr->thermal.race_capacity > 0.0) /* heat */
+    td_status st = added(r, g, td_model_add_retainer(r->c->model, &c->r, &merr), &merr);
+    if (st == TD_OK)
+        st = td_cr_set_retainer_bearing(r, g, &c->bearing);
+    if (st == TD_OK && c->thermal.race_capacity > 0.0) /* heat */
         st = added(
             r, g,
-            td_model_set_retainer_thermal(r->c->model, td_model_retainer_count(r->c->model) - 1, &cr->thermal, &merr),
+            td_model_set_retainer_thermal(r->c->model, td_model_retainer_count(r->c->model) - 1, &c->thermal, &merr),
             &merr);
     return st;
 }
@@ -652,6 +658,14 @@ static const td_cs_key retainer_keys[] = {
      .sub = &retainer_contact_table,
      .doc_default = "the run's `contact`",
      .doc = "the retainer's own compliant contact law, below"},
+    /* the bearing's duty */
+    {.key = "bearing",
+     .type = TD_CS_GROUP,
+     .offset = offsetof(cr_retainer, bearing),
+     .sub = &td_cs_retainer_bearing,
+     .doc_default = "none",
+     .doc = "the rolling bearing, for its assessment (ratings, ball geometry, width), below; it changes nothing in "
+            "the run"},
     /* heat */
     {.key = "thermal",
      .type = TD_CS_GROUP,

@@ -92,6 +92,7 @@ void td_model_free(td_model **model)
     free(m->speed_points.items);
     free(m->thermals.items);
     td_model_free_controllers(m);
+    td_model_free_assessment(m);
     free(m);
     *model = NULL;
 }
@@ -144,6 +145,8 @@ td_status td_model_clone(const td_model *model, td_model **out, td_error *err)
     CLONE(m->thermals, model->thermals, ok);
     m->spin = model->spin;
     m->recovery = model->recovery;
+    if (ok)
+        ok = td_model_clone_assessment(m, model);
     if (!ok) {
         td_model_free(&m);
         return td_error_set(err, TD_ERR_NOMEM, "out of memory cloning a model");
