@@ -292,6 +292,8 @@ void td_sim_totals_rewind(td_sim *s);
 void td_sim_totals_impact(td_sim *s, int k, double impulse, int bounced);
 /* Retainer k's totals at s->dae.t (td_sim_retainer_totals). */
 void td_sim_totals_get(const td_sim *s, int k, td_retainer_totals *out);
+/* The bearing's duty: AMB amb's largest sensed displacement so far (td_sim_sensor_peak_displacement). */
+void td_sim_sensor_peak_get(const td_sim *s, int amb, double *out);
 
 /* ---- flight_modal.c, flight_roots.c, flight.c: free flight in closed form ------------------ */
 
