@@ -93,7 +93,7 @@ void td_run_duty_collect(td_run_summary *s, const td_sim *sim)
         s->sensor_zone[k] = td_vibration_zone_of(s->sensor_peak_displacement[k], s->sensor_clearance, &lim.zones);
     }
     settle(s);
-    s->contact_totals_converge = td_run_summary_regime(s) != TD_REGIME_BOUNCE;
+    s->contact_totals_converge = s->regime != TD_REGIME_BOUNCE; /* the ending's, set before */
 }
 
 /* A zone as a file value: 0..3, NaN when undefined. */
@@ -155,12 +155,12 @@ td_status td_run_duty_write(td_recorder *rec, const td_run_summary *s, const td_
 }
 
 /* A value with its unit, or "n/a" (undefined: not given, or the run did not reach its end). */
-static void value_or_na(td_text *b, const char *label, double v, const char *unit)
+static void value_or_na(td_text *b, const char *label, double v, const char *unit, const char *sep)
 {
     if (td_is_undefined(v))
-        td_text_printf(b, "%s n/a", label);
+        td_text_printf(b, "%s n/a%s", label, sep);
     else
-        td_text_printf(b, "%s %.4g %s", label, v, unit);
+        td_text_printf(b, "%s %.4g%s%s%s", label, v, unit[0] ? " " : "", unit, sep);
 }
 
 void td_run_duty_format(td_text *b, const td_run_summary *s)
@@ -169,12 +169,12 @@ void td_run_duty_format(td_text *b, const td_run_summary *s)
     for (k = 0; k < n; k++) {
         const td_run_retainer *r = &s->retainers[k];
         td_text_printf(b, "bearing %-2d duty             peaks:", k);
-        value_or_na(b, " sliding", r->totals.peak_sliding_velocity, "m/s,");
-        value_or_na(b, " friction power", r->totals.peak_friction_power, "W,");
-        value_or_na(b, " PV", r->totals.peak_pv, "Pa m/s,");
-        value_or_na(b, " Hertz", r->totals.peak_contact_stress, "Pa,");
-        value_or_na(b, " race speed", r->totals.peak_race_speed, "rad/s;");
-        value_or_na(b, " load / C0", r->load_ratio, "");
+        value_or_na(b, " sliding", r->totals.peak_sliding_velocity, "m/s", ",");
+        value_or_na(b, " friction power", r->totals.peak_friction_power, "W", ",");
+        value_or_na(b, " PV", r->totals.peak_pv, "Pa m/s", ",");
+        value_or_na(b, " Hertz", r->totals.peak_contact_stress, "Pa", ",");
+        value_or_na(b, " race speed", r->totals.peak_race_speed, "rad/s", ";");
+        value_or_na(b, " load / C0", r->load_ratio, "", "");
         td_text_printf(b, "%s\n",
                        s->peak_converges ? ""
                                          : " (rigid constraint: the load, power, PV and stress peaks do not converge)");
