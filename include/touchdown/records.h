@@ -91,6 +91,14 @@ typedef struct td_retainer_totals {
     long contacts;             /**< contact intervals that swept at least TD_TOUCH_AND_GO_ANGLE of whirl
                                     (the one still open counts) */
     long touch_and_go;         /**< impacts that left again within less: bounces, rebounds, grazes */
+    /* the bearing's duty (docs/theory.md, "The bearing's duty"): peaks at the accepted points, like
+     * peak_normal_force; 0 before the first contact (peak_race_speed: from the start) */
+    double peak_sliding_velocity; /**< m/s, largest |v_s| in contact */
+    double peak_friction_power;   /**< W, largest F_t v_s */
+    double peak_pv;             /**< Pa m/s, largest N / (2 R_s b) |v_s| (TD_UNDEFINED without the bearing's width b) */
+    double peak_contact_stress; /**< Pa, Hertz, the most loaded ball on the inner raceway at peak_normal_force
+                                     (TD_UNDEFINED without the bearing's ball geometry) */
+    double peak_race_speed;     /**< rad/s, largest |race speed| */
     /* heat */
     double drag_work; /**< J: work of the race's drag torques (the bearing's own losses; 0 on a fixed race) */
     double heat;      /**< J into the thermal network: friction_work + drag_work (the same trapezoids) */
