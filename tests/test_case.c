@@ -1015,8 +1015,9 @@ static void test_documented_defaults(void **state)
      * (spin.inertia, kept as 0: td_spin; a controller's reference_z, its mass centre),
      * "continuous" (a controller's sample_rate), "1/sqrt(2)" (a low-pass's damping), "the case's
      * `speed` / (2 pi)" (a resonant's frequency), "-" (a parallel block), "none" (a plug-in's
-     * parameters) */
-    assert_int_equal(other, 22);
+     * parameters), "none" (modal.operating_speed_min and _max), "every disc, AMB sensor and retainer node"
+     * (modal.response_nodes) */
+    assert_int_equal(other, 25);
     td_case_free(&base);
     free(want);
     free(got);

@@ -38,6 +38,10 @@ typedef struct td_modal_results {
     const td_model *model; /**< optional: node positions (/modes/node_z) and bearing nodes for plots */
     const char *case_text; /**< optional: the case file text, written as the case_text attribute */
     const td_loop *loop;   /**< optional: the loop analysis (/loop; CSV sections loop, sensitivity_peaks, compliance) */
+    /* the API 617 unbalance response report (docs/api617.md) */
+    const td_sweep *sweep;        /**< optional: /unbalance_response; CSV sections unbalance_response, response_peaks */
+    const double *static_amb;     /**< optional, with model: 2 per AMB (/static_reactions/amb_force) */
+    const double *static_bearing; /**< optional, with model: 2 per plain bearing (/static_reactions/bearing_force) */
 } td_modal_results;
 
 /**

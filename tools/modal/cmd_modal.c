@@ -177,7 +177,8 @@ static int grid_too_big(const td_case *c)
 
 /* The text report: modes, critical speeds, unbalance orbits and, of a reduced model, the reduction. */
 static void print_results(const td_case *c, const td_system *sys, double speed, const td_modal *modes,
-                          const td_critical_speed *cs, int n_cs, td_harmonic *const *h, int n_h, const td_loop *loop)
+                          const td_critical_speed *cs, int n_cs, td_harmonic *const *h, int n_h, const td_loop *loop,
+                          const td_modal_api617_results *api)
 {
     const td_model *m = td_case_model(c);
     const td_modal_options *opt = td_case_modal_options(c);
@@ -186,6 +187,7 @@ static void print_results(const td_case *c, const td_system *sys, double speed, 
     print_critical(cs, n_cs, opt);
     for (i = 0; i < n_h; i++)
         print_orbits(m, h[i]);
+    td_print_api617(stdout, m, opt, api);
     if (loop)
         td_print_loop(stdout, loop);
     if (td_system_is_reduced(sys)) {
@@ -223,6 +225,7 @@ static int analyse(const td_case *c, double speed, const modal_outputs *paths, i
     td_loop *loop = NULL;
     int n_cs = 0, n_h = 0, n_u = 0, i, code = TD_EXIT_FAILED;
     td_modal_results res;
+    td_modal_api617_results api = {NULL, NULL, NULL, 0};
     td_error err;
     td_status st;
 
@@ -245,10 +248,12 @@ static int analyse(const td_case *c, double speed, const modal_outputs *paths, i
     for (i = 0; i < opt->response_speed_count && i < 64; i++, n_h++)
         if ((st = stage(td_harmonic_compute(sys, opt->response_speeds[i], u, n_u, &h[i], &err), cancel, &err)) != TD_OK)
             goto done;
+    if ((st = stage(td_modal_api617(m, sys, opt, u, n_u, &api, &err), cancel, &err)) != TD_OK)
+        goto done;
     loop = loop_analysis(c, sys, speed);
     if (!quiet)
-        print_results(c, sys, speed, modes, cs, n_cs, h, n_h, loop);
-    memset(&res, 0, sizeof res);
+        print_results(c, sys, speed, modes, cs, n_cs, h, n_h, loop, &api);
+    td_modal_api617_into(&res, &api);
     res.loop = loop;
     res.modes = modes;
     res.campbell = camp;
@@ -279,6 +284,7 @@ done:
     for (i = 0; i < 64; i++)
         td_harmonic_free(&h[i]);
     free(u);
+    td_modal_api617_free(&api);
     td_campbell_free(&camp);
     td_loop_free(&loop);
     td_modal_free(&modes);
