@@ -475,6 +475,8 @@ TD_API int td_sweep_node(const td_sweep *s, int j);
 /** The orbit of response node j at speed number k. TD_ERR_INVALID out of range. */
 TD_API td_status td_sweep_orbit(const td_sweep *s, int k, int j, td_orbit *out);
 TD_API int td_sweep_peak_count(const td_sweep *s);
+/** The operating range the peaks were assessed against, rad/s (TD_UNDEFINED: none). */
+TD_API void td_sweep_operating_range(const td_sweep *s, double *lo, double *hi);
 /** Peak i (by node, then speed). TD_ERR_INVALID out of range. */
 TD_API td_status td_sweep_get_peak(const td_sweep *s, int i, td_response_peak *out);
 

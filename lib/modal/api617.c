@@ -35,13 +35,14 @@ struct td_sweep {
     td_orbit *orbit; /* n x nn, speed-major */
     int n_peaks;
     td_response_peak *peaks;
+    double operating_min, operating_max; /* rad/s, as given */
 };
 
 double td_log_decrement(double zeta)
 {
     if (!isfinite(zeta) || zeta >= 1.0)
         return TD_UNDEFINED;
-    return 2.0 * M_PI * zeta / sqrt(1.0 - zeta * zeta);
+    return 2.0 * TD_PI * zeta / sqrt(1.0 - zeta * zeta);
 }
 
 double td_api617_required_margin(double af, int above)
@@ -94,6 +95,12 @@ int td_sweep_peak_count(const td_sweep *s)
 {
     return s ? s->n_peaks : 0;
 }
+void td_sweep_operating_range(const td_sweep *s, double *lo, double *hi)
+{
+    *lo = s ? s->operating_min : TD_UNDEFINED;
+    *hi = s ? s->operating_max : TD_UNDEFINED;
+}
+
 td_status td_sweep_get_peak(const td_sweep *s, int i, td_response_peak *out)
 {
     if (!s || !out || i < 0 || i >= s->n_peaks)
@@ -306,7 +313,7 @@ static double cross_level(sweep_problem *p, double level, double lo, double hi)
  * stays above the level to the end of the sweep. */
 static double half_power_speed(const td_sweep *s, sweep_problem *p, int j, int k, int dir, double peak)
 {
-    double level = peak / M_SQRT2;
+    double level = peak / sqrt(2.0);
     int i;
     for (i = k + dir; i >= 0 && i < s->n; i += dir) {
         double a = s->orbit[(size_t)i * (size_t)s->nn + (size_t)j].major;
@@ -421,6 +428,8 @@ td_status td_unbalance_sweep(const td_system *sys, const td_unbalance *u, int n_
         return td_error_set(err, TD_ERR_NOMEM, "modal: out of memory for the unbalance sweep");
     }
     memcpy(s->nodes, opt->nodes, (size_t)s->nn * sizeof *s->nodes);
+    s->operating_min = opt->operating_min;
+    s->operating_max = opt->operating_max;
     for (k = 0; st == TD_OK && k < SWEEP_START; k++) {
         s->speed[k] = opt->speed_min + (opt->speed_max - opt->speed_min) * k / (SWEEP_START - 1);
         s->n = k + 1;
