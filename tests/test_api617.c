@@ -7,6 +7,7 @@
  */
 #include "td_test.h"
 
+#include "touchdown/assess.h"
 #include "touchdown/modal.h"
 #include "touchdown/touchdown.h"
 
@@ -151,16 +152,14 @@ static void test_required_margin(void **state)
 
 /* A steel shaft of 1 m on 4 elements, a 10 kg disc at its tip (node 4), supports at nodes 0 and 3
  * (z = 0, 0.75 m): plain bearings, or PID AMBs with a force lag (amb != 0). */
-static td_system *overhung_beam(int amb, double *shaft_mass)
+static td_model *overhung_model(int amb, double *shaft_mass)
 {
     td_model *m = NULL;
-    td_system *s = NULL;
     td_shaft_element el = {0.25, 0.05, 0.0, {2.11e11, 8.1e10, 7810.0}};
     td_disc d = {4, 10.0, 0.05, 0.03};
     td_bearing b = {0, 5e7, 3e7, 100.0, 100.0};
     td_amb a = {0, 0, 1e6, 200.0, 1e4, 40.0, 1.0 / (2.0 * TD_PI * 500.0), 5000.0, 0, 1e-3, 2e5, 0.0};
     int i, nodes[2] = {0, 3};
-    td_error err;
     assert_int_equal(td_model_create(&m, NULL), TD_OK);
     for (i = 0; i < 4; i++)
         assert_int_equal(td_model_add_shaft_element(m, &el, NULL), TD_OK);
@@ -170,10 +169,24 @@ static td_system *overhung_beam(int amb, double *shaft_mass)
         assert_int_equal(amb ? td_model_add_amb(m, &a, NULL) : td_model_add_bearing(m, &b, NULL), TD_OK);
     }
     assert_int_equal(td_model_set_gravity(m, 0.0, -G, NULL), TD_OK);
+    *shaft_mass = 7810.0 * TD_PI * 0.05 * 0.05 / 4;
+    return m;
+}
+
+static td_system *system_of(td_model *m)
+{
+    td_system *s = NULL;
+    td_error err;
     if (td_system_create(m, &s, &err) != TD_OK)
         fail_msg("%s", err.message);
+    return s;
+}
+
+static td_system *overhung_beam(int amb, double *shaft_mass)
+{
+    td_model *m = overhung_model(amb, shaft_mass);
+    td_system *s = system_of(m);
     td_model_free(&m);
-    *shaft_mass = 7810.0 * TD_PI * 0.05 * 0.05 / 4;
     return s;
 }
 
@@ -200,6 +213,55 @@ static void test_static_reactions_lever_rule(void **state)
         assert_true(fabs(f[0]) < 1e-9 && fabs(f[2]) < 1e-9);
         td_system_free(&s);
     }
+}
+
+/* The zone of each AMB sensor along the sweep is td_vibration_zone_of of the orbit's major semi-axis
+ * at its sensor node (from a harmonic solve of its own at that speed) against the smallest
+ * retainer clearance; a sweep without a sensor node gives none. */
+static void test_sensor_zones(void **state)
+{
+    double ms, c_min;
+    td_model *m = overhung_model(1, &ms);
+    td_system *s;
+    td_retainer r;
+    td_unbalance u = {4, 1e-3, 0.0};
+    int nodes[3] = {0, 3, 4}, zones[2 * TD_SWEEP_MAX_SPEEDS], k, i, changes = 0;
+    td_sweep_options opt = {0.0, 1500.0, NAN, NAN, nodes, 3};
+    td_sweep *sw = NULL;
+    td_zone_limits lim;
+    td_error err;
+    (void)state;
+    td_zone_limits_default(&lim);
+    /* two retainers, the tighter one at the tip: C_min is its clearance */
+    memset(&r, 0, sizeof r);
+    r.node = 4, r.clearance = 2e-4, r.shaft_radius = 0.025, r.bore_radius = 0.0252;
+    assert_int_equal(td_model_add_retainer(m, &r, NULL), TD_OK);
+    r.node = 0, r.clearance = 3e-4, r.bore_radius = 0.0253;
+    assert_int_equal(td_model_add_retainer(m, &r, NULL), TD_OK);
+    s = system_of(m);
+    if (td_unbalance_sweep(s, &u, 1, &opt, &sw, &err) != TD_OK)
+        fail_msg("%s", err.message);
+    assert_int_equal(td_sweep_sensor_zones(sw, m, zones, &c_min, &err), TD_OK);
+    assert_true(c_min == 2e-4);
+    for (k = 0; k < td_sweep_speed_count(sw); k += 7)
+        for (i = 0; i < 2; i++) {
+            td_harmonic *h = NULL;
+            td_orbit o;
+            assert_int_equal(td_harmonic_compute(s, td_sweep_speed(sw, k), &u, 1, &h, NULL), TD_OK);
+            assert_int_equal(td_harmonic_orbit(h, nodes[i], &o), TD_OK);
+            assert_int_equal(zones[2 * k + i], td_vibration_zone_of(o.major, 2e-4, &lim));
+            changes += k > 0 && zones[2 * k + i] != zones[2 * (k - 7) + i];
+            td_harmonic_free(&h);
+        }
+    assert_true(changes > 0); /* the response crosses at least one boundary over the sweep */
+    td_sweep_free(&sw);
+    opt.node_count = 1; /* node 0 only: AMB 1's sensor (node 3) is no response node */
+    assert_int_equal(td_unbalance_sweep(s, &u, 1, &opt, &sw, &err), TD_OK);
+    assert_int_equal(td_sweep_sensor_zones(sw, m, zones, &c_min, &err), TD_ERR_INVALID);
+    assert_non_null(strstr(err.message, "sensor node 3"));
+    td_sweep_free(&sw);
+    td_model_free(&m);
+    td_system_free(&s);
 }
 
 /* Bad arguments are refused, naming what is wrong; no sweep is made. */
@@ -243,7 +305,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_jeffcott_amplification), cmocka_unit_test(test_log_decrement),
         cmocka_unit_test(test_required_margin),        cmocka_unit_test(test_static_reactions_lever_rule),
-        cmocka_unit_test(test_sweep_arguments),
+        cmocka_unit_test(test_sweep_arguments),        cmocka_unit_test(test_sensor_zones),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

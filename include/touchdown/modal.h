@@ -481,6 +481,16 @@ TD_API void td_sweep_operating_range(const td_sweep *s, double *lo, double *hi);
 TD_API td_status td_sweep_get_peak(const td_sweep *s, int i, td_response_peak *out);
 
 /**
+ * ISO 14839-2 zone (touchdown/assess.h, td_vibration_zone_of) of each AMB's sensor along the swept
+ * response: zones[k n_amb + i] for speed number k and AMB i of `m` (the model the sweep was made
+ * of), from the orbit's major semi-axis at the AMB's sensor node against C_min, the smallest
+ * retainer clearance of `m`, with the boundaries of its limits (td_model_get_limits); *c_min gets
+ * C_min (TD_UNDEFINED without retainers: every zone -1). TD_ERR_INVALID when a sensor node is not
+ * a response node of the sweep (zones left unspecified).
+ */
+TD_API td_status td_sweep_sensor_zones(const td_sweep *s, const td_model *m, int *zones, double *c_min, td_error *err);
+
+/**
  * The default response nodes of a model: every disc's, AMB sensor's and retainer's node, ascending,
  * each once; at most `capacity` go to nodes. Returns how many there are.
  */

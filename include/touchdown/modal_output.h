@@ -42,6 +42,8 @@ typedef struct td_modal_results {
     const td_sweep *sweep;        /**< optional: /unbalance_response; CSV sections unbalance_response, response_peaks */
     const double *static_amb;     /**< optional, with model: 2 per AMB (/static_reactions/amb_force) */
     const double *static_bearing; /**< optional, with model: 2 per plain bearing (/static_reactions/bearing_force) */
+    const int *sensor_zones;      /**< optional, with sweep and model: td_sweep_sensor_zones (speeds x n_amb) */
+    double zone_c_min;            /**< m, their C_min */
 } td_modal_results;
 
 /**

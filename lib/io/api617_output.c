@@ -8,15 +8,18 @@
 #include "io/api617_output.h"
 #include "io/h5_util.h"
 #include "io/schema.h"
+#include "touchdown/assess.h"
 
 #include <stdlib.h>
 
 /* ---- CSV --------------------------------------------------------------------------------- */
 
-static void csv_columns(FILE *f, td_out_id section, const td_out_id *cols, int n)
+/* "# section: NAME" (NULL: none) and the columns' names, without the line's end. */
+static void csv_columns(FILE *f, const char *section, const td_out_id *cols, int n)
 {
     int i;
-    fprintf(f, "# section: %s\n", td_out_name(section));
+    if (section)
+        fprintf(f, "# section: %s\n", section);
     for (i = 0; i < n; i++)
         fprintf(f, "%s%s", i ? "," : "", td_schema_csv(cols[i]));
 }
@@ -27,7 +30,7 @@ static void csv_sweep(FILE *f, const td_sweep *s)
                                      TD_OUT_UR_Y_AMP, TD_OUT_UR_Y_PHASE, TD_OUT_UR_FORWARD, TD_OUT_UR_BACKWARD,
                                      TD_OUT_UR_MAJOR, TD_OUT_UR_MINOR};
     int k, j;
-    csv_columns(f, TD_OUT_UNBALANCE_RESPONSE, cols, 10);
+    csv_columns(f, td_out_name(TD_OUT_UNBALANCE_RESPONSE), cols, 10);
     fputc('\n', f);
     for (k = 0; k < td_sweep_speed_count(s); k++)
         for (j = 0; j < td_sweep_node_count(s); j++) {
@@ -50,7 +53,7 @@ static void csv_peaks(FILE *f, const td_sweep *s)
     td_sweep_operating_range(s, &lo, &hi);
     fprintf(f, "# %s = %.12g\n# %s = %.12g\n", td_out_name(TD_OUT_PEAK_OPERATING_SPEED_MIN), lo,
             td_out_name(TD_OUT_PEAK_OPERATING_SPEED_MAX), hi);
-    csv_columns(f, TD_OUT_RESPONSE_PEAKS, cols, 9);
+    csv_columns(f, td_out_name(TD_OUT_RESPONSE_PEAKS), cols, 9);
     fputc('\n', f);
     for (i = 0; i < td_sweep_peak_count(s); i++) {
         td_response_peak p;
@@ -67,7 +70,7 @@ static void csv_reactions(FILE *f, const td_modal_results *r)
     static const td_out_id cols[] = {TD_OUT_STATIC_SUPPORT, TD_OUT_MODAL_INDEX, TD_OUT_MODAL_NODE};
     const char *const *comp = td_schema_components();
     int i;
-    csv_columns(f, TD_OUT_STATIC_REACTIONS, cols, 3);
+    csv_columns(f, td_out_name(TD_OUT_STATIC_REACTIONS), cols, 3);
     for (i = 0; i < 2; i++) { /* the force's components */
         fputc(',', f);
         fprintf(f, td_schema_csv(TD_OUT_STATIC_AMB_FORCE), comp[i]);
@@ -86,6 +89,22 @@ static void csv_reactions(FILE *f, const td_modal_results *r)
     fputc('\n', f);
 }
 
+/* One row per speed and AMB: the zone's name ("A".."D", "undefined"). */
+static void csv_zones(FILE *f, const td_modal_results *r)
+{
+    static const td_out_id cols[] = {TD_OUT_UR_SPEED, TD_OUT_AMB, TD_OUT_UR_SENSOR_ZONE};
+    int k, i, na = td_model_amb_count(r->model);
+    fprintf(f, "# section: %s\n# %s = %.12g\n", td_out_name(TD_OUT_UR_SENSOR_ZONE), td_out_name(TD_OUT_UR_C_MIN),
+            r->zone_c_min);
+    csv_columns(f, NULL, cols, 3);
+    fputc('\n', f);
+    for (k = 0; k < td_sweep_speed_count(r->sweep); k++)
+        for (i = 0; i < na; i++)
+            fprintf(f, "%.12g,%d,%s\n", td_sweep_speed(r->sweep, k), i,
+                    td_vibration_zone_name(r->sensor_zones[(size_t)k * (size_t)na + (size_t)i]));
+    fputc('\n', f);
+}
+
 void td_api617_write_csv_sections(FILE *f, const td_modal_results *r)
 {
     if (r->sweep) {
@@ -94,6 +113,8 @@ void td_api617_write_csv_sections(FILE *f, const td_modal_results *r)
     }
     if (r->model && r->static_amb && r->static_bearing)
         csv_reactions(f, r);
+    if (r->sweep && r->model && r->sensor_zones && td_model_amb_count(r->model) > 0)
+        csv_zones(f, r);
 }
 
 /* ---- HDF5 -------------------------------------------------------------------------------- */
@@ -125,7 +146,15 @@ static double orbit_field(const td_orbit *o, int c)
     return v[c];
 }
 
-static int h5_sweep(hid_t file, const td_sweep *s)
+/* The zones of the AMB sensors and their C_min in the group g. */
+static int h5_zones(hid_t g, const td_modal_results *r)
+{
+    int ns = td_sweep_speed_count(r->sweep), na = td_model_amb_count(r->model);
+    return h5_data(g, TD_OUT_UR_SENSOR_ZONE, H5T_NATIVE_INT, r->sensor_zones, (hsize_t)ns, (hsize_t)na) &&
+           td_h5_attr_double(g, td_out_name(TD_OUT_UR_C_MIN), r->zone_c_min) >= 0;
+}
+
+static int h5_sweep(hid_t file, const td_sweep *s, const td_modal_results *r)
 {
     static const td_out_id cols[8] = {TD_OUT_UR_X_AMP,   TD_OUT_UR_X_PHASE,  TD_OUT_UR_Y_AMP, TD_OUT_UR_Y_PHASE,
                                       TD_OUT_UR_FORWARD, TD_OUT_UR_BACKWARD, TD_OUT_UR_MAJOR, TD_OUT_UR_MINOR};
@@ -150,6 +179,7 @@ static int h5_sweep(hid_t file, const td_sweep *s)
         ok = h5_data(g, cols[c], H5T_NATIVE_DOUBLE, d, (hsize_t)ns, (hsize_t)nn);
     }
     ok = ok && h5_scale(g, TD_OUT_UR_SPEED, cols, 8, 0) && h5_scale(g, TD_OUT_UR_NODE, cols, 8, 1);
+    ok = ok && (!r->model || !r->sensor_zones || td_model_amb_count(r->model) == 0 || h5_zones(g, r));
     if (g >= 0)
         H5Gclose(g);
     free(d);
@@ -250,7 +280,7 @@ const char *td_api617_write_h5(hid_t file, const td_modal_results *r)
 {
     if (r->modes && !h5_modes_extra(file, r))
         return "the log decrements in /modes";
-    if (r->sweep && !h5_sweep(file, r->sweep))
+    if (r->sweep && !h5_sweep(file, r->sweep, r))
         return "/unbalance_response";
     if (r->sweep && !h5_peaks(file, r->sweep))
         return "/response_peaks";

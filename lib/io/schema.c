@@ -341,6 +341,9 @@ static const td_schema_entry entries[TD_OUT_ID_COUNT] = {
                                  "(n_amb, 2)", "F%s_N", NULL},
     DATA(TD_OUT_STATIC_BEARING_FORCE, "bearing_force", TD_OUT_STATIC_REACTIONS, MODAL, F64, "N", "(n_bearing, 2)"),
     CSV_LINE(TD_OUT_STATIC_SUPPORT, "support", MODAL),
+    DATA(TD_OUT_UR_SENSOR_ZONE, "sensor_zone", TD_OUT_UNBALANCE_RESPONSE, MODAL, I32,
+         "ISO 14839-2 zone: 0 A, 1 B, 2 C, 3 D, -1 undefined", "(speeds, n_amb)"),
+    ATTR(TD_OUT_UR_C_MIN, "c_min", TD_OUT_UNBALANCE_RESPONSE, MODAL, F64, "m", "scalar"),
 };
 
 /* The lateral components, each name written once here (td_schema_components). */

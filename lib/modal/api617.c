@@ -10,6 +10,7 @@
  * methods (GSL), not read off the grid, which only has to bracket them.
  */
 #include "modal/modal_internal.h"
+#include "touchdown/assess.h"
 #include "util/error_internal.h"
 
 #include <gsl/gsl_errno.h>
@@ -543,4 +544,43 @@ td_status td_static_reactions(const td_system *sys, double *amb, double *bearing
     free(z);
     free(q);
     return st;
+}
+
+/* The smallest retainer clearance of m, TD_UNDEFINED without retainers. */
+static double min_clearance(const td_model *m)
+{
+    double c = TD_UNDEFINED;
+    int i;
+    for (i = 0; i < td_model_retainer_count(m); i++) {
+        td_retainer r;
+        td_model_get_retainer(m, i, &r);
+        if (!(r.clearance >= c))
+            c = r.clearance;
+    }
+    return c;
+}
+
+td_status td_sweep_sensor_zones(const td_sweep *s, const td_model *m, int *zones, double *c_min, td_error *err)
+{
+    td_limits lim;
+    int i, j, k, na;
+    if (!s || !m || !zones || !c_min)
+        return td_error_set(err, TD_ERR_INVALID, "td_sweep_sensor_zones: NULL argument");
+    na = td_model_amb_count(m);
+    td_model_get_limits(m, &lim);
+    *c_min = min_clearance(m);
+    for (i = 0; i < na; i++) {
+        td_amb a;
+        td_model_get_amb(m, i, &a);
+        for (j = 0; j < s->nn && s->nodes[j] != a.sensor_node; j++)
+            ;
+        if (j == s->nn)
+            return td_error_set(err, TD_ERR_INVALID,
+                                "td_sweep_sensor_zones: the sensor node %d of AMB %d is not a response node",
+                                a.sensor_node, i);
+        for (k = 0; k < s->n; k++)
+            zones[(size_t)k * (size_t)na + (size_t)i] =
+                td_vibration_zone_of(s->orbit[(size_t)k * (size_t)s->nn + (size_t)j].major, *c_min, &lim.zones);
+    }
+    return TD_OK;
 }

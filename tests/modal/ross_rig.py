@@ -34,7 +34,7 @@ from scipy.optimize import brentq, minimize_scalar  # noqa: E402
 SPEED = 150.0  # rad/s, the case speed: modes and log decrements there
 UNBALANCE = (1, 1.0e-4)  # node, kg m
 OPERATING = (250.0, 400.0)  # rad/s
-NODES = [1, 3, 9]
+NODES = [1, 3]  # the unbalanced disc and an AMB sensor
 G = 9.8065  # m/s^2, ROSS's (Rotor.gravitational_force)
 # relative tolerances: the same finite elements give the same roots and responses to rounding; a
 # peak's speed (a flat maximum) is located to about sqrt(eps) by either minimiser, and AF and SM
@@ -141,18 +141,19 @@ def major(rotor, w, node):
     return 0.5 * (abs(x + 1j * y) + abs(x - 1j * y))
 
 
-def ross_peak(rotor, node, nc):
-    """Peak speed, amplitude and half-power speeds of ROSS's curve near nc."""
+def ross_peak(rotor, node, nc, af):
+    """Peak speed, amplitude and half-power speeds of ROSS's curve near nc (af: a guess of its AF)."""
     pk = minimize_scalar(lambda w: -major(rotor, w, node), bounds=(0.95 * nc, 1.05 * nc), method="bounded",
                          options={"xatol": 1e-9 * nc})
     wc, amp = pk.x, -pk.fun
     level = amp / math.sqrt(2.0)
     sides = []
-    for d in (-1, 1):
+    for d in (-1, 1):  # bracket each half-power speed by steps of 1/(2 AF) of the peak's (touchdown's AF)
+        step = d * 0.5 * nc / af
         w = wc
-        while major(rotor, w + d * 0.02 * nc, node) > level:
-            w += d * 0.02 * nc
-        sides.append(brentq(lambda v: major(rotor, v, node) - level, w, w + d * 0.02 * nc, rtol=1e-12))
+        while major(rotor, w + step, node) > level:
+            w += step
+        sides.append(brentq(lambda v: major(rotor, v, node) - level, w, w + step, rtol=1e-12))
     return wc, amp, sides[0], sides[1]
 
 
@@ -198,7 +199,7 @@ def compare_peaks(check, rotor, sec):
         if row["amplification"] == "nan":
             continue
         node, nc = int(row["node"]), float(row["speed_rad_s"])
-        wc, amp, w1, w2 = ross_peak(rotor, node, nc)
+        wc, amp, w1, w2 = ross_peak(rotor, node, nc, float(row["amplification"]))
         af = wc / (w2 - w1)
         lo, hi = OPERATING
         below, above = 100.0 * (lo - wc) / lo, 100.0 * (wc - hi) / hi

@@ -2,6 +2,7 @@
  * the response nodes, its peaks with amplification factors and separation margins, and the static
  * reactions under gravity. */
 #include "modal/modal_print.h"
+#include "touchdown/assess.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -20,6 +21,21 @@ static int response_nodes(const td_model *m, const td_modal_options *opt, int *n
     return n < TD_SWEEP_MAX_NODES ? n : TD_SWEEP_MAX_NODES;
 }
 
+/* The zones of the AMB sensors along the sweep, or none (said on stderr) when a sensor is not a
+ * response node. */
+static void sensor_zones(const td_model *m, td_modal_api617_results *out)
+{
+    td_error e;
+    size_t n = (size_t)td_sweep_speed_count(out->sweep) * (size_t)td_model_amb_count(m);
+    if (n == 0 || !(out->zones = malloc(n * sizeof *out->zones)))
+        return;
+    if (td_sweep_sensor_zones(out->sweep, m, out->zones, &out->c_min, &e) != TD_OK) {
+        fprintf(stderr, "touchdown modal: no ISO 14839-2 zones along the unbalance response: %s\n", e.message);
+        free(out->zones);
+        out->zones = NULL;
+    }
+}
+
 td_status td_modal_api617(const td_model *m, const td_system *sys, const td_modal_options *opt, const td_unbalance *u,
                           int n_u, td_modal_api617_results *out, td_error *err)
 {
@@ -28,6 +44,7 @@ td_status td_modal_api617(const td_model *m, const td_system *sys, const td_moda
     size_t na = 2u * (size_t)td_model_amb_count(m) + 1u, nb = 2u * (size_t)td_model_bearing_count(m) + 1u;
     td_status st = TD_OK;
     out->sweep = NULL;
+    out->zones = NULL;
     out->amb = calloc(na, sizeof *out->amb);
     out->bearing = calloc(nb, sizeof *out->bearing);
     if (!out->amb || !out->bearing)
@@ -40,6 +57,8 @@ td_status td_modal_api617(const td_model *m, const td_system *sys, const td_moda
     so.node_count = response_nodes(m, opt, nodes);
     if (n_u > 0 && so.node_count > 0)
         st = td_unbalance_sweep(sys, u, n_u, &so, &out->sweep, err);
+    if (st == TD_OK && out->sweep)
+        sensor_zones(m, out);
     out->reactions_ok = st == TD_OK && td_static_reactions(sys, out->amb, out->bearing, NULL) == TD_OK;
     return st;
 }
@@ -50,6 +69,8 @@ void td_modal_api617_into(td_modal_results *res, const td_modal_api617_results *
     res->sweep = r->sweep;
     res->static_amb = r->reactions_ok ? r->amb : NULL;
     res->static_bearing = r->reactions_ok ? r->bearing : NULL;
+    res->sensor_zones = r->zones;
+    res->zone_c_min = r->c_min;
 }
 
 void td_modal_api617_free(td_modal_api617_results *r)
@@ -57,7 +78,9 @@ void td_modal_api617_free(td_modal_api617_results *r)
     td_sweep_free(&r->sweep);
     free(r->amb);
     free(r->bearing);
+    free(r->zones);
     r->amb = r->bearing = NULL;
+    r->zones = NULL;
 }
 
 static const char *verdict_word(int v)
@@ -81,6 +104,27 @@ static void print_peaks(FILE *f, const td_sweep *s)
     }
 }
 
+/* Per AMB sensor: the worst zone along the sweep, and inside the operating range when one is given. */
+static void print_zones(FILE *f, const td_model *m, const td_modal_options *opt, const td_modal_api617_results *r)
+{
+    int i, k, na = td_model_amb_count(m), ns = td_sweep_speed_count(r->sweep);
+    fprintf(f, "ISO 14839-2 zones at the AMB sensors along the unbalance response (C_min %.6g m):\n", r->c_min);
+    for (i = 0; i < na; i++) {
+        int worst = -1, in_range = -1;
+        for (k = 0; k < ns; k++) {
+            int z = r->zones[(size_t)k * (size_t)na + (size_t)i];
+            double w = td_sweep_speed(r->sweep, k);
+            worst = z > worst ? z : worst;
+            if (w >= opt->operating_speed_min && w <= opt->operating_speed_max && z > in_range)
+                in_range = z;
+        }
+        fprintf(f, "  amb %d: worst zone %s over the sweep", i, td_vibration_zone_name(worst));
+        if (isfinite(opt->operating_speed_min))
+            fprintf(f, ", %s in the operating range", td_vibration_zone_name(in_range));
+        fputc('\n', f);
+    }
+}
+
 void td_print_api617(FILE *f, const td_model *m, const td_modal_options *opt, const td_modal_api617_results *r)
 {
     int i;
@@ -96,6 +140,8 @@ void td_print_api617(FILE *f, const td_model *m, const td_modal_options *opt, co
         else
             fprintf(f, "API 617 peaks (no operating range: modal.operating_speed_min/max not given):\n");
         print_peaks(f, r->sweep);
+        if (r->zones)
+            print_zones(f, m, opt, r);
     }
     if (!r->reactions_ok)
         return;

@@ -37,6 +37,8 @@ typedef struct td_modal_api617_results {
     double *amb;      /* static reactions, 2 per AMB */
     double *bearing;  /* 2 per plain bearing */
     int reactions_ok; /* 0: the static state was refused (a free rotor, sampled controllers) */
+    int *zones;       /* ISO 14839-2 zone per speed and AMB sensor (td_sweep_sensor_zones); NULL: none */
+    double c_min;     /* m, their C_min */
 } td_modal_api617_results;
 /* The sweep over modal.speed_min..speed_max at the response nodes and the static reactions. */
 td_status td_modal_api617(const td_model *m, const td_system *sys, const td_modal_options *opt, const td_unbalance *u,
