@@ -37,11 +37,12 @@ OPERATING = (250.0, 400.0)  # rad/s
 NODES = [1, 3]  # the unbalanced disc and an AMB sensor
 G = 9.8065  # m/s^2, ROSS's (Rotor.gravitational_force)
 # relative tolerances: the same finite elements give the same roots and responses to rounding; a
-# peak's speed (a flat maximum) is located to about sqrt(eps) by either minimiser, and AF and SM
-# inherit that
+# peak's speed (a flat maximum) is located only to a fraction of its width N_c / AF by either
+# minimiser (about sqrt(eps) of the amplitude), so its tolerance is TOL_PEAK / AF, and AF and SM
+# inherit it
 TOL_CRITICAL = 1e-9
 TOL_LOGDEC = 1e-9
-TOL_PEAK = 1e-6  # peak speed, AF, SM
+TOL_PEAK = 2e-5  # over AF: peak speed, AF, SM
 TOL_CURVE = 1e-9  # peak amplitude, half-power speeds
 TOL_FORCE = 1e-9  # static reactions
 
@@ -203,15 +204,16 @@ def compare_peaks(check, rotor, sec):
         af = wc / (w2 - w1)
         lo, hi = OPERATING
         below, above = 100.0 * (lo - wc) / lo, 100.0 * (wc - hi) / hi
-        check(f"node {node} peak speed", nc, wc, TOL_PEAK)
+        tol = TOL_PEAK / max(af, 1.0)
+        check(f"node {node} peak speed", nc, wc, tol)
         check(f"node {node} peak amplitude", float(row["amplitude_m"]), amp, TOL_CURVE)
         check(f"node {node} N_1", float(row["speed_low_rad_s"]), w1, TOL_CURVE)
         check(f"node {node} N_2", float(row["speed_high_rad_s"]), w2, TOL_CURVE)
-        check(f"node {node} AF", float(row["amplification"]), af, TOL_PEAK)
-        check(f"node {node} SM", float(row["margin_percent"]), max(below, above), TOL_PEAK * 100)
+        check(f"node {node} AF", float(row["amplification"]), af, tol)
+        check(f"node {node} SM", float(row["margin_percent"]), max(below, above), tol * 100)
         req = required_margin(af, above > below)
         if req > 0.0:
-            check(f"node {node} required SM", float(row["required_margin_percent"]), req, TOL_PEAK)
+            check(f"node {node} required SM", float(row["required_margin_percent"]), req, tol)
         n += 1
     return n
 
