@@ -135,7 +135,7 @@ static void test_log_decrement(void **state)
     td_system_free(&s);
 }
 
-/* API 617 8th ed. 4.8.2.10: none below AF 2.5; 17 (1 - 1/(AF - 1.5)) capped at 16 below the
+/* API 617 7th ed. 2.6.2.10 (docs/api617.md): none below AF 2.5; 17 (1 - 1/(AF - 1.5)) capped at 16 below the
  * operating range, 10 + that capped at 26 above. */
 static void test_required_margin(void **state)
 {

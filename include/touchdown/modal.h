@@ -412,11 +412,11 @@ TD_API td_status td_loop_evaluate(const td_loop *l, int j, double f, double *s_r
 TD_API double td_log_decrement(double zeta);
 
 /**
- * The separation margin API 617 (8th ed., 2014, 4.8.2.10; 2.6.2.10 in the 7th ed.) requires of a
- * response peak of amplification factor af, in % of the operating speed it is counted from:
- * 0 when af < 2.5 (critically damped); else below the minimum operating speed
- * min(16, 17 (1 - 1 / (af - 1.5))), above the maximum continuous speed (above != 0)
- * min(26, 10 + 17 (1 - 1 / (af - 1.5))). TD_UNDEFINED for af not a finite positive number.
+ * The separation margin API 617 (7th ed., 2002, 2.6.2.10; the clause moved in the 8th ed.: docs/api617.md) requires of
+ * a response peak of amplification factor af, in % of the operating speed it is counted from: 0 when af < 2.5
+ * (critically damped); else below the minimum operating speed min(16, 17 (1 - 1 / (af - 1.5))), above the maximum
+ * continuous speed (above != 0) min(26, 10 + 17 (1 - 1 / (af - 1.5))). TD_UNDEFINED for af not a finite positive
+ * number.
  */
 TD_API double td_api617_required_margin(double af, int above);
 

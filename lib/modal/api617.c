@@ -2,7 +2,7 @@
  * The API 617 unbalance response report (touchdown/modal.h; docs/api617.md): the steady
  * unbalance response over a speed range on an adaptive grid, its peaks with the amplification
  * factor by the half-power method and the separation margin from the operating range (API 617
- * 8th ed., 2014, 4.8.2.10; API 684 2nd ed., 2005, 2.8), the log decrement, the default response
+ * 7th ed., 2002, 2.6.2.10; API 684 2nd ed., 2005: docs/api617.md), the log decrement, the default response
  * nodes and the static reactions under gravity.
  *
  * Every point of the curve is td_harmonic_compute's solve, so the curve between grid speeds is

@@ -159,7 +159,7 @@ def ross_peak(rotor, node, nc, af):
 
 
 def required_margin(af, above):
-    """API 617 8th ed. 4.8.2.10, written out again: none below AF 2.5."""
+    """API 617 7th ed. 2.6.2.10 (docs/api617.md), written out again: none below AF 2.5."""
     if af < 2.5:
         return 0.0
     f = 17.0 * (1.0 - 1.0 / (af - 1.5))
