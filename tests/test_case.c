@@ -1075,8 +1075,10 @@ static void test_documented_defaults(void **state)
      * "continuous" (a controller's sample_rate), "1/sqrt(2)" (a low-pass's damping), "the case's
      * `speed` / (2 pi)" (a resonant's frequency), "-" (a parallel block), "none" (a plug-in's
      * parameters), "none" (a retainer bearing's ratings, geometry and width; the limits on temperature and
-     * drops), "the defaults below" (limits), "none (no growth reported)" (a thermal network's expansion) */
-    assert_int_equal(other, 31);
+     * drops), "the defaults below" (limits), "none" (modal.operating_speed_min and _max), "every disc, AMB
+     * sensor and retainer node" (modal.response_nodes), "none (no growth reported)" (a thermal network's
+     * expansion) */
+    assert_int_equal(other, 34);
     td_case_free(&base);
     free(want);
     free(got);

@@ -404,6 +404,108 @@ TD_API char td_loop_worst_zone(const td_loop *l);
 TD_API td_status td_loop_evaluate(const td_loop *l, int j, double f, double *s_re, double *s_im, double *l_re,
                                   double *l_im, td_error *err);
 
+/* ---------------------------------------------------------------------------------------- */
+/* API 617 unbalance response report (lib/modal/api617.c; docs/api617.md)                  */
+
+/** Logarithmic decrement of a mode of damping ratio zeta: delta = 2 pi zeta / sqrt(1 - zeta^2)
+ *  (the decay of successive peaks, ln(x_k / x_k+1)); TD_UNDEFINED for zeta >= 1 or not finite. */
+TD_API double td_log_decrement(double zeta);
+
+/**
+ * The separation margin API 617 (7th ed., 2002, 2.6.2.10; the clause moved in the 8th ed.: docs/api617.md) requires of
+ * a response peak of amplification factor af, in % of the operating speed it is counted from: 0 when af < 2.5
+ * (critically damped); else below the minimum operating speed min(16, 17 (1 - 1 / (af - 1.5))), above the maximum
+ * continuous speed (above != 0) min(26, 10 + 17 (1 - 1 / (af - 1.5))). TD_UNDEFINED for af not a finite positive
+ * number.
+ */
+TD_API double td_api617_required_margin(double af, int above);
+
+/** The options of td_unbalance_sweep. */
+typedef struct td_sweep_options {
+    double speed_min;     /**< rad/s, >= 0 */
+    double speed_max;     /**< rad/s, > speed_min */
+    double operating_min; /**< minimum operating speed, rad/s; TD_UNDEFINED: no operating range */
+    double operating_max; /**< maximum continuous speed, rad/s; TD_UNDEFINED: no operating range */
+    const int *nodes;     /**< the response nodes */
+    int node_count;       /**< 1..TD_SWEEP_MAX_NODES */
+} td_sweep_options;
+
+/** At most this many response nodes, and at most TD_SWEEP_MAX_SPEEDS speeds on the adaptive grid. */
+#define TD_SWEEP_MAX_NODES 64
+#define TD_SWEEP_MAX_SPEEDS 4000
+
+/** A peak of the unbalance response at one node, with its API 617 assessment. */
+typedef struct td_response_peak {
+    int node;               /**< the response node */
+    double speed;           /**< N_c, rad/s: the amplitude's local maximum (Brent's method on the curve) */
+    double amplitude;       /**< m, the orbit's major semi-axis there (0-peak, the largest probe reading) */
+    double speed_low;       /**< N_1, rad/s: amplitude / sqrt(2) below the peak (root of the curve); TD_UNDEFINED
+                             *   when the curve does not fall that far inside the sweep */
+    double speed_high;      /**< N_2, rad/s: the same above the peak */
+    double amplification;   /**< AF = N_c / (N_2 - N_1) (half-power method); TD_UNDEFINED without N_1 or N_2 */
+    double margin;          /**< separation margin, %: 100 (N_min - N_c) / N_min below the operating range,
+                             *   100 (N_c - N_max) / N_max above it, the larger of the two (negative) inside;
+                             *   TD_UNDEFINED without an operating range */
+    double required_margin; /**< %, td_api617_required_margin (the side of the nearer end inside the range) */
+    int verdict;            /**< 1: margin >= required (or AF < 2.5), 0: not, -1: undefined */
+} td_response_peak;
+
+typedef struct td_sweep td_sweep;
+
+/**
+ * The steady unbalance response (td_harmonic_compute, to u[0..n_u-1]) over the speed range of
+ * `opt` on an adaptive grid: 101 even speeds, then every interval bisected where the orbit's
+ * major semi-axis at a response node changes by more than 5 % (amplitudes above 1e-6 of that
+ * node's largest), until none does, the interval is 1e-7 of the range or the grid holds
+ * TD_SWEEP_MAX_SPEEDS speeds. Each local maximum of a node's amplitude (above 1e-3 of its largest)
+ * is a peak, located by Brent's minimiser between its grid neighbours, its half-power speeds by
+ * Brent's root finder on the curve (never read off the grid), and assessed by API 617 against the
+ * operating range. A speed where the solve fails (an undamped resonance) holds TD_UNDEFINED
+ * orbits. Errors: TD_ERR_INVALID (arguments), TD_ERR_NOMEM, and those of the harmonic solve.
+ */
+TD_API td_status td_unbalance_sweep(const td_system *sys, const td_unbalance *u, int n_u, const td_sweep_options *opt,
+                                    td_sweep **out, td_error *err);
+TD_API void td_sweep_free(td_sweep **s);
+TD_API int td_sweep_speed_count(const td_sweep *s);
+/** Speed number k of the grid (ascending), rad/s; NAN out of range. */
+TD_API double td_sweep_speed(const td_sweep *s, int k);
+TD_API int td_sweep_node_count(const td_sweep *s);
+/** Response node j; -1 out of range. */
+TD_API int td_sweep_node(const td_sweep *s, int j);
+/** The orbit of response node j at speed number k. TD_ERR_INVALID out of range. */
+TD_API td_status td_sweep_orbit(const td_sweep *s, int k, int j, td_orbit *out);
+TD_API int td_sweep_peak_count(const td_sweep *s);
+/** The operating range the peaks were assessed against, rad/s (TD_UNDEFINED: none). */
+TD_API void td_sweep_operating_range(const td_sweep *s, double *lo, double *hi);
+/** Peak i (by node, then speed). TD_ERR_INVALID out of range. */
+TD_API td_status td_sweep_get_peak(const td_sweep *s, int i, td_response_peak *out);
+
+/**
+ * ISO 14839-2 zone (touchdown/assess.h, td_vibration_zone_of) of each AMB's sensor along the swept
+ * response: zones[k n_amb + i] for speed number k and AMB i of `m` (the model the sweep was made
+ * of), from the orbit's major semi-axis at the AMB's sensor node against C_min, the smallest
+ * retainer clearance of `m`, with the boundaries of its limits (td_model_get_limits); *c_min gets
+ * C_min (TD_UNDEFINED without retainers: every zone -1). TD_ERR_INVALID when a sensor node is not
+ * a response node of the sweep (zones left unspecified).
+ */
+TD_API td_status td_sweep_sensor_zones(const td_sweep *s, const td_model *m, int *zones, double *c_min, td_error *err);
+
+/**
+ * The default response nodes of a model: every disc's, AMB sensor's and retainer's node, ascending,
+ * each once; at most `capacity` go to nodes. Returns how many there are.
+ */
+TD_API int td_modal_default_response_nodes(const td_model *m, int *nodes, int capacity);
+
+/**
+ * Static reactions under the model's gravity: the force (N, x and y) each support exerts on the
+ * rotor in the closed-loop static equilibrium (td_modal_start_state's z_s): amb[2 i + c] of AMB i
+ * (ks x + Fc at its node, the lagged Fc or the control law's static command), bearing[2 i + c] of
+ * plain bearing i (-k x). Either array may be NULL. An AMB axis driven by a linear controller
+ * without a lag state is TD_UNDEFINED (its static command is not a state). Errors as
+ * td_modal_start_state.
+ */
+TD_API td_status td_static_reactions(const td_system *sys, double *amb, double *bearing, td_error *err);
+
 #ifdef __cplusplus
 }
 #endif

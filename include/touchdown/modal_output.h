@@ -38,6 +38,12 @@ typedef struct td_modal_results {
     const td_model *model; /**< optional: node positions (/modes/node_z) and bearing nodes for plots */
     const char *case_text; /**< optional: the case file text, written as the case_text attribute */
     const td_loop *loop;   /**< optional: the loop analysis (/loop; CSV sections loop, sensitivity_peaks, compliance) */
+    /* the API 617 unbalance response report (docs/api617.md) */
+    const td_sweep *sweep;        /**< optional: /unbalance_response; CSV sections unbalance_response, response_peaks */
+    const double *static_amb;     /**< optional, with model: 2 per AMB (/static_reactions/amb_force) */
+    const double *static_bearing; /**< optional, with model: 2 per plain bearing (/static_reactions/bearing_force) */
+    const int *sensor_zones;      /**< optional, with sweep and model: td_sweep_sensor_zones (speeds x n_amb) */
+    double zone_c_min;            /**< m, their C_min */
 } td_modal_results;
 
 /**

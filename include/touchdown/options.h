@@ -92,6 +92,11 @@ typedef struct td_modal_options {
     int mode_count;             /**< modes reported (lowest damped natural frequencies), > 0 */
     int response_speed_count;   /**< harmonic unbalance response speeds */
     double response_speeds[64]; /**< rad/s */
+    /* the API 617 unbalance response report (td_unbalance_sweep) */
+    double operating_speed_min; /**< minimum operating speed, rad/s; TD_UNDEFINED: no operating range */
+    double operating_speed_max; /**< maximum continuous speed, rad/s; TD_UNDEFINED: no operating range */
+    int response_node_count;    /**< 0: the default nodes (td_modal_default_response_nodes) */
+    int response_nodes[64];     /**< nodes of the swept response (Bode, polar, peaks) */
 } td_modal_options;
 
 TD_API void td_contact_options_default(td_contact_options *o);

@@ -317,7 +317,40 @@ typedef enum td_out_id {
     TD_OUT_RETAINER_HEAT,
     TD_OUT_RETAINER_PEAK_TEMPERATURE_RISE,
     TD_OUT_RETAINER_PEAK_THERMAL_GROWTH,
-    TD_OUT_ID_COUNT /**< number of ids; also "several objects" as the parent of an attribute */
+    /* the API 617 unbalance response report (modal file; docs/api617.md) */
+    TD_OUT_MODES_LOG_DECREMENT, /**< /modes/log_decrement */
+    TD_OUT_MODES_DISC_NODES,    /**< /modes/disc_nodes, for the mode-shape plots */
+    TD_OUT_MODES_SENSOR_NODES,  /**< /modes/sensor_nodes (AMB sensors) */
+    TD_OUT_UNBALANCE_RESPONSE,  /**< /unbalance_response: the swept response (td_unbalance_sweep) */
+    TD_OUT_UR_SPEED,
+    TD_OUT_UR_NODE,
+    TD_OUT_UR_X_AMP, /* the swept orbit columns: x_amp .. minor in this order */
+    TD_OUT_UR_X_PHASE,
+    TD_OUT_UR_Y_AMP,
+    TD_OUT_UR_Y_PHASE,
+    TD_OUT_UR_FORWARD,
+    TD_OUT_UR_BACKWARD,
+    TD_OUT_UR_MAJOR,
+    TD_OUT_UR_MINOR,
+    TD_OUT_RESPONSE_PEAKS, /**< /response_peaks: the peaks with their API 617 assessment */
+    TD_OUT_PEAK_OPERATING_SPEED_MIN,
+    TD_OUT_PEAK_OPERATING_SPEED_MAX,
+    TD_OUT_PEAK_NODE,
+    TD_OUT_PEAK_SPEED,
+    TD_OUT_PEAK_AMPLITUDE,
+    TD_OUT_PEAK_SPEED_LOW,
+    TD_OUT_PEAK_SPEED_HIGH,
+    TD_OUT_PEAK_AMPLIFICATION,
+    TD_OUT_PEAK_MARGIN,
+    TD_OUT_PEAK_REQUIRED_MARGIN,
+    TD_OUT_PEAK_VERDICT,
+    TD_OUT_STATIC_REACTIONS, /**< /static_reactions: the supports' forces under gravity */
+    TD_OUT_STATIC_AMB_FORCE,
+    TD_OUT_STATIC_BEARING_FORCE,
+    TD_OUT_STATIC_SUPPORT, /**< the modal CSV file's column of the support's kind */
+    TD_OUT_UR_SENSOR_ZONE, /**< /unbalance_response/sensor_zone: ISO 14839-2 zone per speed and AMB sensor */
+    TD_OUT_UR_C_MIN,       /**< /unbalance_response attribute: C_min of the zones */
+    TD_OUT_ID_COUNT        /**< number of ids; also "several objects" as the parent of an attribute */
 } td_out_id;
 
 /** What a name is in the file. */

@@ -152,6 +152,8 @@ static td_status apply_refine(td_case_reader *r)
     r->c->model = fine;
     for (i = 0; i < r->c->output.node_count; i++)
         r->c->output.nodes[i] *= r->refine;
+    for (i = 0; i < r->c->modal.response_node_count; i++)
+        r->c->modal.response_nodes[i] *= r->refine;
     return TD_OK;
 }
 

@@ -388,6 +388,45 @@ static td_status read_modes(td_case_reader *r, const config_setting_t *g, const 
     return st;
 }
 
+/* modal.operating_speed_min and _max: both or neither, max >= min */
+static td_status check_operating_range(td_case_reader *r, const config_setting_t *g, const td_cs_key *k, void *rec)
+{
+    const td_modal_options *o = rec;
+    int has_min = td_cr_has(g, "operating_speed_min"), has_max = td_cr_has(g, k->key);
+    if (has_min != has_max)
+        return td_cr_fail(r, config_setting_get_member(g, has_min ? "operating_speed_min" : k->key), NULL,
+                          "the operating range wants both operating_speed_min and operating_speed_max");
+    if (has_max && !(o->operating_speed_max >= o->operating_speed_min))
+        return td_cr_fail(r, config_setting_get_member(g, k->key), NULL,
+                          "operating_speed_max (%g rad/s) must not be below operating_speed_min (%g rad/s)",
+                          o->operating_speed_max, o->operating_speed_min);
+    return TD_OK;
+}
+
+/* modal.response_nodes: nodes of the shaft as written, no repeats */
+static td_status read_response_nodes(td_case_reader *r, const config_setting_t *g, const td_cs_key *k, void *rec)
+{
+    td_modal_options *o = rec;
+    const config_setting_t *list;
+    int i, j;
+    td_status st =
+        td_cr_ints(r, g, k->key, 64, TD_CR_ANY_INT_LO, TD_CR_ANY_INT_HI, o->response_nodes, &o->response_node_count);
+    if (st != TD_OK)
+        return st;
+    list = config_setting_get_member(g, k->key);
+    for (i = 0; i < o->response_node_count; i++) {
+        const config_setting_t *s = config_setting_get_elem(list, (unsigned)i);
+        if (o->response_nodes[i] < 0 || o->response_nodes[i] >= r->nodes)
+            return td_cr_fail_vs(r, s, o->response_nodes[i] < 0 ? NULL : td_cr_shaft_nodes(r),
+                                 "node %d is out of range (the shaft has nodes 0..%d)", o->response_nodes[i],
+                                 r->nodes - 1);
+        for (j = 0; j < i; j++)
+            if (o->response_nodes[j] == o->response_nodes[i])
+                return td_cr_fail(r, s, NULL, "node %d is listed twice", o->response_nodes[i]);
+    }
+    return TD_OK;
+}
+
 static void modal_preset(void *rec)
 {
     td_modal_options_default(rec);
@@ -437,6 +476,34 @@ static const td_cs_key modal_keys[] = {
      .doc_default = "none",
      .unit = "rad/s",
      .doc = "speeds of the harmonic unbalance response, at most 64"},
+    /* the API 617 unbalance response report */
+    {.key = "operating_speed_min",
+     .type = TD_CS_REAL,
+     .offset = offsetof(td_modal_options, operating_speed_min),
+     .need = TD_CS_PRESET,
+     .range = TD_CR_POSITIVE,
+     .doc_default = "none",
+     .unit = "rad/s",
+     .doc = "minimum operating speed: the separation margins of the unbalance response's peaks are counted from "
+            "it and `operating_speed_max` ([API 617 report](api617.md)); both or neither"},
+    {.key = "operating_speed_max",
+     .type = TD_CS_REAL,
+     .offset = offsetof(td_modal_options, operating_speed_max),
+     .need = TD_CS_PRESET,
+     .range = TD_CR_POSITIVE,
+     .check = check_operating_range,
+     .doc_range = ">= operating_speed_min",
+     .doc_default = "none",
+     .unit = "rad/s",
+     .doc = "maximum continuous speed (MCS) of the operating range"},
+    {.key = "response_nodes",
+     .type = TD_CS_CUSTOM,
+     .read = read_response_nodes,
+     .doc_type = "array of integers",
+     .doc_range = "nodes of the shaft, at most 64, no repeats",
+     .doc_default = "every disc, AMB sensor and retainer node",
+     .doc = "nodes of the unbalance response over the speed range (Bode, polar, peaks with their amplification "
+            "factors)"},
 };
 const td_cs_table td_cs_modal = {"modal",      "modal", modal_keys, TD_CS_COUNT(modal_keys), sizeof(td_modal_options),
                                  modal_preset, NULL};

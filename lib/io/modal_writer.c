@@ -9,6 +9,7 @@
  * to PATH only once every byte is on disk, so a file at PATH is always whole; the file goes
  * through the writers' HDF5 driver (h5_vfd.h) so that no I/O error is lost.
  */
+#include "io/api617_output.h"
 #include "io/h5_util.h"
 #include "io/h5_vfd.h"
 #include "io/loop_output.h"
@@ -45,7 +46,7 @@ static void csv_modes(FILE *f, const td_modal *m)
 {
     static const td_out_id modes[] = {TD_OUT_MODES_MODE,        TD_OUT_MODES_SIGMA,   TD_OUT_MODES_OMEGA_D,
                                       TD_OUT_MODES_FREQ_HZ,     TD_OUT_MODES_OMEGA_N, TD_OUT_MODES_ZETA,
-                                      TD_OUT_MODES_WHIRL_INDEX, TD_OUT_MODES_WHIRL};
+                                      TD_OUT_MODES_WHIRL_INDEX, TD_OUT_MODES_WHIRL,   TD_OUT_MODES_LOG_DECREMENT};
     static const td_out_id reals[] = {TD_OUT_MODAL_INDEX, TD_OUT_MODES_REAL_EIGENVALUES};
     static const td_out_id shapes[] = {TD_OUT_MODES_MODE,       TD_OUT_MODAL_NODE,       TD_OUT_MODES_SHAPE_X_RE,
                                        TD_OUT_MODES_SHAPE_X_IM, TD_OUT_MODES_SHAPE_Y_RE, TD_OUT_MODES_SHAPE_Y_IM};
@@ -53,12 +54,12 @@ static void csv_modes(FILE *f, const td_modal *m)
     double *s = malloc(4u * (size_t)(nn > 0 ? nn : 1) * sizeof *s);
     csv_section(f, TD_OUT_MODES);
     fprintf(f, "# %s = %.12g\n", td_schema_csv(TD_OUT_MODES_SPEED), td_modal_speed(m));
-    csv_columns(f, modes, 8);
+    csv_columns(f, modes, 9);
     for (i = 0; i < td_modal_mode_count(m); i++) {
         td_mode md;
         td_modal_get_mode(m, i, &md);
-        fprintf(f, "%d,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%s\n", i, md.sigma, md.omega_d, md.freq_hz, md.omega_n,
-                md.zeta, md.whirl_index, td_whirl_name(md.whirl));
+        fprintf(f, "%d,%.12g,%.12g,%.12g,%.12g,%.12g,%.12g,%s,%.12g\n", i, md.sigma, md.omega_d, md.freq_hz, md.omega_n,
+                md.zeta, md.whirl_index, td_whirl_name(md.whirl), td_log_decrement(md.zeta));
     }
     fputc('\n', f);
     csv_section(f, TD_OUT_MODES_REAL_EIGENVALUES);
@@ -141,6 +142,7 @@ static void csv_write_all(FILE *f, const td_modal_results *r)
         csv_harmonic(f, r->harmonics, r->n_harmonics);
     if (r->loop)
         td_loop_write_csv_sections(f, r->loop);
+    td_api617_write_csv_sections(f, r);
 }
 
 static td_status check_results(const td_modal_results *r, const char *what, td_error *err)
@@ -447,7 +449,7 @@ static const char *h5_parts(hid_t file, const td_modal_results *r)
         return "the node layout in /modes";
     if (r->case_text && td_h5_attr_string(file, td_out_name(TD_OUT_CASE_TEXT), r->case_text) < 0)
         return "the case_text attribute";
-    return NULL;
+    return td_api617_write_h5(file, r);
 }
 
 /* Create the temporary file `tmp` on the writers' driver (h5_vfd.h: an I/O error goes to

@@ -2,6 +2,7 @@
  * here (TD_CS_PRESET, lib/case/case_schema.h), and docs/case-format.md's key tables print them. */
 #include "touchdown/options.h"
 
+#include <math.h>
 #include <string.h>
 
 void td_contact_options_default(td_contact_options *o)
@@ -51,4 +52,7 @@ void td_modal_options_default(td_modal_options *o)
     o->speed_steps = 41;
     o->mode_count = 8;
     o->response_speed_count = 0;
+    o->operating_speed_min = NAN;
+    o->operating_speed_max = NAN;
+    o->response_node_count = 0;
 }

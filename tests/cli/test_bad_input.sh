@@ -273,11 +273,11 @@ while IFS='|' read -r set rest; do
         fail "info --set '$set': exit $rc, stderr '$err', expected 'touchdown: $all_keys$rest'"
     fi
 done <<'EOF'
-solver.initial_step=1.0|: --set 'solver.initial_step=1.0': solver.initial_step: 1 s is larger than max_step 0.0001 s; see solver.max_step at @CASE@:69
-solver.max_step=1e-7|:69: solver.initial_step: 1e-06 s is larger than max_step 1e-07 s; see solver.max_step at @CASE@: --set 'solver.max_step=1e-7'
+solver.initial_step=1.0|: --set 'solver.initial_step=1.0': solver.initial_step: 1 s is larger than max_step 0.0001 s; see solver.max_step at @CASE@:71
+solver.max_step=1e-7|:71: solver.initial_step: 1e-06 s is larger than max_step 1e-07 s; see solver.max_step at @CASE@: --set 'solver.max_step=1e-7'
 contact.exponent=0.5|: --set 'contact.exponent=0.5': contact.exponent: must be >= 1 (got 0.5)
-modal.speed_max=1.0|: --set 'modal.speed_max=1.0': modal.speed_max: speed_max (1 rad/s) must be larger than speed_min (10 rad/s); see modal.speed_min at @CASE@:72
-modal.speed_min=1e9|:72: modal.speed_max: speed_max (500 rad/s) must be larger than speed_min (1e+09 rad/s); see modal.speed_min at @CASE@: --set 'modal.speed_min=1e9'
+modal.speed_max=1.0|: --set 'modal.speed_max=1.0': modal.speed_max: speed_max (1 rad/s) must be larger than speed_min (10 rad/s); see modal.speed_min at @CASE@:74
+modal.speed_min=1e9|:74: modal.speed_max: speed_max (500 rad/s) must be larger than speed_min (1e+09 rad/s); see modal.speed_min at @CASE@: --set 'modal.speed_min=1e9'
 modal.speed_steps=100000|: --set 'modal.speed_steps=100000': modal.speed_steps: 100000 speeds on a model of 28 DOFs is too much work: speed_steps x DOFs must stay below 200000 (here at most 7142 speeds; see docs/performance.md); see shaft.elements at @CASE@:13
 modal.modes=1000|: --set 'modal.modes=1000': modal.modes: must lie in [1, 28] (got 1000); see shaft.elements at @CASE@:13
 output.nodes=[1, 1]|: --set 'output.nodes=[1, 1]': output.nodes[1]: node 1 is listed twice
@@ -299,7 +299,7 @@ ambs[0].bandwidth=100.0|: --set 'ambs[0].bandwidth=100.0': ambs[0].bandwidth: gi
 ambs[1].bandwidth=-1.0|: --set 'ambs[1].bandwidth=-1.0': ambs[1].bandwidth: must be > 0 (got -1)
 ambs[0].slew_rate=-1.0|: --set 'ambs[0].slew_rate=-1.0': ambs[0].slew_rate: must be >= 0 (got -1)
 ambs[0].tau=0.0|:36: ambs[0].slew_rate: a slew-rate limit (400 A/s) needs a force lag, tau > 0 or a bandwidth (got tau = 0)
-schedule[0].amb_off=0|:59: schedule[0].amb_on: a schedule entry makes one change: unbalance, amb_off or amb_on
+schedule[0].amb_off=0|:61: schedule[0].amb_on: a schedule entry makes one change: unbalance, amb_off or amb_on
 schedule[0].amb_on=1.5|: --set 'schedule[0].amb_on=1.5': schedule[0].amb_on: expected an integer, got the number 1.5 (write integers without a point)
 description=1|: --set 'description=1': description: expected a string "...", got an integer
 speed="x"|: --set 'speed="x"': speed: expected a number, got the string "x"

@@ -13,7 +13,11 @@ static const char modal_usage[] =
     "damped natural frequencies (rad/s and Hz, 12 significant digits), damping ratios and\n"
     "whirl directions at the case speed; the Campbell diagram over modal.speed_min..speed_max;\n"
     "the critical speeds (forward and backward whirl crossing the 1x line); the steady\n"
-    "unbalance response (orbits at the retainer and AMB nodes) at modal.response_speeds; and the\n"
+    "unbalance response (orbits at the retainer and AMB nodes) at modal.response_speeds; the API 617\n"
+    "report (docs/api617.md): the unbalance response over the speed range at modal.response_nodes,\n"
+    "each peak's amplification factor and separation margin from modal.operating_speed_min/max with\n"
+    "its verdict, the log decrement of every mode, the ISO 14839-2 zone of each AMB sensor along the\n"
+    "response and the static reactions under gravity; and the\n"
     "loop analysis at the case speed (ISO 14839-3): per controlled AMB axis the sensitivity with\n"
     "every loop closed, its peak and zone, the open loop (Bode, Nyquist) and the compliance at the\n"
     "AMBs, 0.5 Hz to 5 kHz (with sampled controllers: their axes' sampled loop at the sample\n"
@@ -177,7 +181,8 @@ static int grid_too_big(const td_case *c)
 
 /* The text report: modes, critical speeds, unbalance orbits and, of a reduced model, the reduction. */
 static void print_results(const td_case *c, const td_system *sys, double speed, const td_modal *modes,
-                          const td_critical_speed *cs, int n_cs, td_harmonic *const *h, int n_h, const td_loop *loop)
+                          const td_critical_speed *cs, int n_cs, td_harmonic *const *h, int n_h, const td_loop *loop,
+                          const td_modal_api617_results *api)
 {
     const td_model *m = td_case_model(c);
     const td_modal_options *opt = td_case_modal_options(c);
@@ -186,6 +191,7 @@ static void print_results(const td_case *c, const td_system *sys, double speed, 
     print_critical(cs, n_cs, opt);
     for (i = 0; i < n_h; i++)
         print_orbits(m, h[i]);
+    td_print_api617(stdout, m, opt, api);
     if (loop)
         td_print_loop(stdout, loop);
     if (td_system_is_reduced(sys)) {
@@ -223,6 +229,7 @@ static int analyse(const td_case *c, double speed, const modal_outputs *paths, i
     td_loop *loop = NULL;
     int n_cs = 0, n_h = 0, n_u = 0, i, code = TD_EXIT_FAILED;
     td_modal_results res;
+    td_modal_api617_results api = {NULL, NULL, NULL, 0, NULL, 0.0};
     td_error err;
     td_status st;
 
@@ -245,10 +252,12 @@ static int analyse(const td_case *c, double speed, const modal_outputs *paths, i
     for (i = 0; i < opt->response_speed_count && i < 64; i++, n_h++)
         if ((st = stage(td_harmonic_compute(sys, opt->response_speeds[i], u, n_u, &h[i], &err), cancel, &err)) != TD_OK)
             goto done;
+    if ((st = stage(td_modal_api617(m, sys, opt, u, n_u, &api, &err), cancel, &err)) != TD_OK)
+        goto done;
     loop = loop_analysis(c, sys, speed);
     if (!quiet)
-        print_results(c, sys, speed, modes, cs, n_cs, h, n_h, loop);
-    memset(&res, 0, sizeof res);
+        print_results(c, sys, speed, modes, cs, n_cs, h, n_h, loop, &api);
+    td_modal_api617_into(&res, &api);
     res.loop = loop;
     res.modes = modes;
     res.campbell = camp;
@@ -279,6 +288,7 @@ done:
     for (i = 0; i < 64; i++)
         td_harmonic_free(&h[i]);
     free(u);
+    td_modal_api617_free(&api);
     td_campbell_free(&camp);
     td_loop_free(&loop);
     td_modal_free(&modes);

@@ -6,7 +6,8 @@
 int td_print_modes(FILE *f, const td_modal *modes, int count, int digits)
 {
     int i, shown = 0, n = td_modal_mode_count(modes), overdamped = 0;
-    fprintf(f, "  %-4s %*s %*s %12s  %s\n", "#", digits + 6, "omega_d [rad/s]", digits + 6, "f [Hz]", "zeta", "whirl");
+    fprintf(f, "  %-4s %*s %*s %12s  %-8s  %s\n", "#", digits + 6, "omega_d [rad/s]", digits + 6, "f [Hz]", "zeta",
+            "whirl", "log dec");
     for (i = 0; i < n && shown < count; i++) {
         td_mode m;
         td_modal_get_mode(modes, i, &m);
@@ -15,8 +16,8 @@ int td_print_modes(FILE *f, const td_modal *modes, int count, int digits)
             continue;
         }
         shown++;
-        fprintf(f, "  %-4d %*.*g %*.*g %12.6g  %s\n", shown, digits + 6, digits, m.omega_d, digits + 6, digits,
-                m.freq_hz, m.zeta, td_whirl_name(m.whirl));
+        fprintf(f, "  %-4d %*.*g %*.*g %12.6g  %-8s  %.6g\n", shown, digits + 6, digits, m.omega_d, digits + 6, digits,
+                m.freq_hz, m.zeta, td_whirl_name(m.whirl), td_log_decrement(m.zeta));
     }
     return overdamped;
 }

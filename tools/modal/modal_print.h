@@ -3,6 +3,8 @@
 #define TD_TOOLS_MODAL_PRINT_H
 
 #include "touchdown/modal.h"
+#include "touchdown/modal_output.h"
+#include "touchdown/options.h"
 #include "touchdown/system.h"
 
 #include <stdio.h>
@@ -28,5 +30,23 @@ void td_print_reduction(FILE *f, const td_system *sys);
  * full model is too large for a quick dense solve. Returns 0, or 1 when the comparison failed
  * (said on stderr). */
 int td_print_reduction_error(FILE *f, const td_system *red, double speed, const double *response_speeds, int n_speeds);
+
+/* The API 617 unbalance response report of a case (api617_report.c). */
+typedef struct td_modal_api617_results {
+    td_sweep *sweep;  /* NULL without unbalances */
+    double *amb;      /* static reactions, 2 per AMB */
+    double *bearing;  /* 2 per plain bearing */
+    int reactions_ok; /* 0: the static state was refused (a free rotor, sampled controllers) */
+    int *zones;       /* ISO 14839-2 zone per speed and AMB sensor (td_sweep_sensor_zones); NULL: none */
+    double c_min;     /* m, their C_min */
+} td_modal_api617_results;
+/* The sweep over modal.speed_min..speed_max at the response nodes and the static reactions. */
+td_status td_modal_api617(const td_model *m, const td_system *sys, const td_modal_options *opt, const td_unbalance *u,
+                          int n_u, td_modal_api617_results *out, td_error *err);
+void td_modal_api617_free(td_modal_api617_results *r);
+/* A zeroed td_modal_results holding the report's parts (the static reactions only when computed). */
+void td_modal_api617_into(td_modal_results *res, const td_modal_api617_results *r);
+/* Its text: the peak table and the static reactions. */
+void td_print_api617(FILE *f, const td_model *m, const td_modal_options *opt, const td_modal_api617_results *r);
 
 #endif

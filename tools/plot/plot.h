@@ -91,6 +91,19 @@ typedef struct plot_loop {
     double *axis, *peak, *fp; /* nc: AMB axis, peak |S|, its frequency (Hz) */
 } plot_loop;
 
+/* The API 617 report of a modal file (plot_api617.c): what its figures read. */
+#define PLOT_PARTS 4 /* discs, AMBs, AMB sensors, retainers */
+typedef struct plot_api617 {
+    int ns, nn;                      /* swept speeds x response nodes (0: no sweep in the file) */
+    double *speed, *node;            /* ns, nn */
+    double *major, *x_amp, *x_phase; /* ns x nn: m, m, rad */
+    int np;                          /* peaks */
+    double *peak_node, *peak_speed, *peak_amp, *peak_af;
+    double op_min, op_max; /* operating range, rad/s (NAN: none) */
+    int nparts[PLOT_PARTS];
+    double *parts[PLOT_PARTS]; /* node numbers of each kind of part */
+} plot_api617;
+
 typedef struct plot_modal {
     int ns, nb;    /* Campbell: speeds x branches */
     double *speed; /* ns, rad/s */
@@ -104,6 +117,7 @@ typedef struct plot_modal {
     double *node_z;                              /* nn axial positions (m) when the file has them, else NULL */
     double mode_speed;                           /* rad/s of the mode shapes, NAN when unknown */
     plot_loop loop;
+    plot_api617 api; /* the API 617 report: swept response, peaks, the parts' nodes */
 } plot_modal;
 
 typedef struct plot_file {
@@ -187,7 +201,7 @@ const char *plot_ext(const plot_opts *opt);
 extern const char plot_tpl_common[], plot_tpl_markers[], plot_tpl_orbit[], plot_tpl_radial_force[],
     plot_tpl_amb_forces[], plot_tpl_palette[], plot_tpl_compare[], plot_tpl_campbell[], plot_tpl_mode_shapes[],
     plot_tpl_sweep_quantity[], plot_tpl_regime_map[], plot_tpl_bifurcation[], plot_tpl_sensitivity[],
-    plot_tpl_open_loop[], plot_tpl_nyquist[], plot_tpl_compliance[];
+    plot_tpl_open_loop[], plot_tpl_nyquist[], plot_tpl_compliance[], plot_tpl_bode[], plot_tpl_polar[];
 
 /* ---- plot_sweep_load.c: sweep tables --------------------------------------------------------- */
 
@@ -211,6 +225,19 @@ int plot_modal_figures(plot_job *job, const plot_file *f, const char *prefix);
  * the ISO 14839-3 zone bands), PREFIXopen-loop (Bode of L), PREFIXnyquist (L with the circles of
  * radius 1/3, 1/4, 1/5 around -1), PREFIXcompliance; nothing for a file without it. */
 int plot_loop_figures(plot_job *job, const plot_file *f, const char *prefix);
+
+/* ---- plot_api617.c: the API 617 report of a modal file --------------------------------------- */
+
+/* Read /unbalance_response, /response_peaks and the parts' nodes in /modes (absent parts stay
+ * empty); 0, or -1 when a part is there but unreadable. */
+int plot_api617_load(const td_result *r, plot_api617 *a);
+void plot_api617_free(plot_api617 *a);
+/* PREFIXbode (amplitude and phase against speed at the response nodes, the peaks and the operating
+ * range marked) and PREFIXpolar (the x response in the complex plane), when the file has a sweep. */
+int plot_api617_figures(plot_job *job, const plot_file *f, const char *prefix);
+/* gnuplot lines marking the parts (discs, AMBs, sensors, retainers) at their axial positions
+ * node_z (nn nodes; NULL: node numbers) on the mode-shape figure. */
+void plot_api617_mark_parts(FILE *out, const plot_api617 *a, const double *node_z, int nn);
 /* The figures of one sweep table: the quantity against the x key, the regime map, the bifurcation
  * diagram (plot_sweep.c). PLOT_BAD_INPUT with a line printed for an option the table cannot take. */
 int plot_sweep_figures(plot_job *job, const plot_file *f, const char *prefix);

@@ -386,6 +386,8 @@ static int load_modal(const td_result *r, plot_file *f)
         return plot_bad_part(f->path, "unreadable ", TD_OUT_MODES, " group");
     if (plot_loop_load(r, &m->loop) != 0)
         return plot_bad_part(f->path, "unreadable ", TD_OUT_LOOP, " group");
+    if (plot_api617_load(r, &m->api) != 0)
+        return plot_bad_part(f->path, "unreadable ", TD_OUT_UNBALANCE_RESPONSE, " group");
     if (m->ns == 0 && m->nm == 0)
         return bad(f->path, "the modal file holds neither a Campbell diagram nor mode shapes", PLOT_BAD_INPUT);
     return PLOT_OK;
@@ -435,6 +437,7 @@ void plot_file_free(plot_file *f)
     free(m->mode_freq), free(m->mode_whirl), free(m->mode_zeta), free(m->xr), free(m->xi), free(m->yr), free(m->yi);
     free(m->node_z);
     plot_loop_free(&m->loop);
+    plot_api617_free(&m->api);
     plot_sweep_free(&f->sweep);
     memset(s, 0, sizeof *s);
     memset(m, 0, sizeof *m);

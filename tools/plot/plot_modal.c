@@ -2,7 +2,9 @@
  * touchdown plot: figures of one modal file (touchdown modal):
  *   PREFIXcampbell     damped natural frequencies against speed, forward/backward whirl, the 1x
  *                      line, the critical speeds
- *   PREFIXmode-shapes  lateral mode shapes of the first modes along the rotor
+ *   PREFIXmode-shapes  lateral mode shapes of the first modes along the rotor, the discs, AMBs,
+ *                      sensors and retainers marked
+ *   PREFIXbode, PREFIXpolar  the swept unbalance response (plot_api617.c)
  * with the data files PREFIXcampbell.dat, PREFIXcritical.dat and PREFIXmode-shapes.dat.
  */
 #include "plot/plot.h"
@@ -228,6 +230,7 @@ static int shapes_figure(plot_job *job, const plot_file *f, const char *prefix, 
         plot_gp_string(out, label);
         fputc('\n', out);
     }
+    plot_api617_mark_parts(out, &m->api, m->node_z, m->nn);
     return plot_script_end(out, job, name, plot_tpl_palette, plot_tpl_mode_shapes);
 }
 
@@ -244,5 +247,7 @@ int plot_modal_figures(plot_job *job, const plot_file *f, const char *prefix)
         rc = shapes_figure(job, f, prefix, comps);
     if (rc == PLOT_OK)
         rc = plot_loop_figures(job, f, prefix);
+    if (rc == PLOT_OK)
+        rc = plot_api617_figures(job, f, prefix);
     return rc;
 }
