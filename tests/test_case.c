@@ -300,6 +300,32 @@ static void check_element(const td_model *m, int i, double od, double id, double
     assert_close(el.material.density, rho, 0.0, 0.0);
 }
 
+/* retainers[0].bearing and limits of all-keys.cfg; retainer 1 has no bearing. */
+static void check_all_keys_assessment(const td_model *m)
+{
+    td_retainer_bearing b;
+    td_limits l;
+    assert_int_equal(td_model_get_retainer_bearing(m, 0, &b), TD_OK);
+    assert_close(b.static_rating, 18000.0, 0.0, 0.0);
+    assert_close(b.dynamic_rating, 27000.0, 0.0, 0.0);
+    assert_close(b.life_exponent, 3.3, 0.0, 0.0);
+    assert_int_equal(b.balls, 10);
+    assert_close(b.ball_diameter, 0.0111, 0.0, 0.0);
+    assert_close(b.pitch_diameter, 0.0775, 0.0, 0.0);
+    assert_close(b.groove_conformity, 0.53, 0.0, 0.0);
+    assert_close(b.width, 0.018, 0.0, 0.0);
+    assert_int_equal(td_model_get_retainer_bearing(m, 1, &b), TD_OK);
+    assert_true(b.static_rating == 0.0 && b.balls == 0 && b.width == 0.0);
+    assert_close(b.life_exponent, 3.0, 0.0, 0.0);
+    assert_close(b.groove_conformity, 0.52, 0.0, 0.0);
+    assert_int_equal(td_model_get_retainer_bearing(m, 2, &b), TD_ERR_INVALID);
+    td_model_get_limits(m, &l);
+    assert_close(l.zones.ab, 0.25, 0.0, 0.0);
+    assert_close(l.zones.bc, 0.35, 0.0, 0.0);
+    assert_close(l.zones.cd, 0.45, 0.0, 0.0);
+    assert_close(l.temperature_rise, 60.0, 0.0, 0.0);
+    assert_close(l.drops, 200.0, 0.0, 0.0);
+}
 static void check_all_keys_model(const td_model *m)
 {
     td_shaft_options so;
@@ -401,6 +427,7 @@ static void check_all_keys_model(const td_model *m)
     assert_close(r.contact.exponent, 1.5, 0.0, 0.0);
     assert_int_equal(r.contact.damping, TD_DAMPING_KELVIN_VOIGT);
     assert_close(r.contact.damping_coefficient, 1000.0, 0.0, 0.0);
+    check_all_keys_assessment(m);
     td_model_get_retainer(m, 1, &r);
     assert_int_equal(r.node, 5);
     assert_close(r.bore_radius, 0.0204, 1e-15, 0.0); /* default shaft_radius + clearance */
@@ -578,6 +605,7 @@ static void test_docs_match_reader(void **state)
                                          "retainers[0].race.",
                                          "retainers[0].mount.",
                                          "retainers[0].contact.",
+                                         "retainers[0].bearing.",
                                          "unbalances[0].",
                                          "schedule[0].",
                                          "gravity.",
@@ -599,7 +627,8 @@ static void test_docs_match_reader(void **state)
                                          "controllers[0].law[8].resonant.",
                                          "recovery.",
                                          "recovery.detect.",
-                                         "recovery.release."};
+                                         "recovery.release.",
+                                         "limits."};
     char *doc = td_test_read_file(td_source_path("docs/case-format.md"));
     char *a = td_test_read_file(td_source_path("tests/data/case/all-keys.cfg"));
     char *b = td_test_read_file(td_source_path("tests/data/case/all-keys-nodes.cfg"));
@@ -724,6 +753,21 @@ static void dump_machine(const td_model *m, char *buf, size_t n)
 }
 
 /* The discs (and point masses), AMBs and bearings of a model. */
+/* The retainers' bearings and the limits (the bearing's duty). */
+static void dump_assessment(const td_model *m, char *buf, size_t n)
+{
+    td_limits l;
+    int i;
+    for (i = 0; i < td_model_retainer_count(m); i++) {
+        td_retainer_bearing b;
+        assert_int_equal(td_model_get_retainer_bearing(m, i, &b), TD_OK);
+        dump_add(buf, n, "retainer bearing %a %a %a %d %a %a %a %a\n", b.static_rating, b.dynamic_rating,
+                 b.life_exponent, b.balls, b.ball_diameter, b.pitch_diameter, b.groove_conformity, b.width);
+    }
+    td_model_get_limits(m, &l);
+    dump_add(buf, n, "limits %a %a %a %a %a\n", l.zones.ab, l.zones.bc, l.zones.cd, l.temperature_rise, l.drops);
+}
+
 static void dump_supports(const td_model *m, char *buf, size_t n)
 {
     int i;
@@ -743,6 +787,7 @@ static void dump_supports(const td_model *m, char *buf, size_t n)
         assert_int_equal(td_model_get_bearing(m, i, &b), TD_OK);
         dump_add(buf, n, "bearing %d %a %a %a %a\n", b.node, b.kxx, b.kyy, b.cxx, b.cyy);
     }
+    dump_assessment(m, buf, n);
 }
 
 /* The controllers of a case: their names, axes, order, timing, the case's account of each and
@@ -1006,8 +1051,8 @@ static void test_documented_defaults(void **state)
     print_message("documented defaults: %d keys checked; skipped: %d groups and lists, %d required, %d other\n", tried,
                   part, required, other);
     assert_int_equal(tried + part + required + other, td_case_key_count());
-    assert_int_equal(tried, 84);
-    assert_int_equal(part, 43);     /* their keys are checked */
+    assert_int_equal(tried, 87);
+    assert_int_equal(part, 45);     /* their keys are checked */
     assert_int_equal(required, 74); /* required, or one form's required key (a sweep entry's range or values) */
     /* an alternative with no default ("-": shaft.nodes, sections' element, schedule's unbalance,
      * amb_off, amb_on, a law's gain block), "unknown" (an AMB's air gap), "all nodes", "none"
@@ -1015,8 +1060,9 @@ static void test_documented_defaults(void **state)
      * (spin.inertia, kept as 0: td_spin; a controller's reference_z, its mass centre),
      * "continuous" (a controller's sample_rate), "1/sqrt(2)" (a low-pass's damping), "the case's
      * `speed` / (2 pi)" (a resonant's frequency), "-" (a parallel block), "none" (a plug-in's
-     * parameters) */
-    assert_int_equal(other, 22);
+     * parameters), "none" (a retainer bearing's ratings, geometry and width; the limits on temperature and
+     * drops), "the defaults below" (limits) */
+    assert_int_equal(other, 30);
     td_case_free(&base);
     free(want);
     free(got);
@@ -1810,6 +1856,12 @@ static const bad_file bad_files[] = {
     {"output-sample-absurd.cfg", 5, "output.sample_rate", NULL},
     {"point-mass-negative.cfg", 5, "point_masses[0].mass", NULL},
     {"retainer-bore-mismatch.cfg", 6, "retainers[0].bore_radius", NULL},
+    /* the bearing's duty */
+    {"retainer-bearing-raceway-in-bore.cfg", 7, "retainers[0].bearing.pitch_diameter", NULL},
+    {"retainer-bearing-balls-missing.cfg", 6, "retainers[0].bearing.ball_diameter", NULL},
+    {"retainer-bearing-negative-rating.cfg", 7, "retainers[0].bearing.static_rating", NULL},
+    {"limits-zones-order.cfg", 5, "limits.zones", NULL},
+    {"limits-zones-two.cfg", 5, "limits.zones", NULL},
     {"retainer-clearance-ge-airgap.cfg", 8, "retainers[0].clearance", NULL},
     {"retainer-duplicate-node.cfg", 6, "retainers[1].node", NULL},
     {"shaft-shear-above-one.cfg", 5, "shaft.shear_coefficient", NULL},

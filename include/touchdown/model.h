@@ -9,6 +9,7 @@
 #ifndef TOUCHDOWN_MODEL_H
 #define TOUCHDOWN_MODEL_H
 
+#include "touchdown/assess.h"
 #include "touchdown/controller.h"
 #include "touchdown/error.h"
 #include "touchdown/export.h"
@@ -440,6 +441,50 @@ TD_API td_status td_model_get_change(const td_model *m, int i, td_change *out);
  *  long (a plug-in's: its spec's n_inputs and n_outputs). Valid while the model lives unchanged. */
 TD_API const td_controller *td_model_get_controller(const td_model *m, int i, const char **name, const int **inputs,
                                                     const int **outputs);
+
+/* the bearing's duty: the touchdown bearing and the limits a run is assessed against */
+
+/**
+ * A retainer's rolling bearing as the assessment sees it (docs/theory.md, "The bearing's duty"):
+ * its ratings, and the geometry of its balls for the Hertz contact stress. It changes nothing in
+ * the run. 0 in a field means "not given" (the quantity that needs it is TD_UNDEFINED), except
+ * life_exponent and groove_conformity, whose 0 is their default (3 and 0.52), filled in by
+ * td_model_set_retainer_bearing. The ball geometry is all three of balls, ball_diameter and
+ * pitch_diameter, or none; its inner raceway (pitch_diameter - ball_diameter) must lie outside
+ * the bore (2 bore_radius). A fault names site part "retainer", field "bearing.KEY".
+ */
+typedef struct td_retainer_bearing {
+    double static_rating;     /**< C0, N (ISO 76), >= 0 */
+    double dynamic_rating;    /**< C, N (ISO 281), >= 0 */
+    double life_exponent;     /**< p: 3 ball bearings, 10/3 roller bearings (ISO 281); 0: 3; else in [1, 10] */
+    int balls;                /**< Z, >= 3 (0: no geometry) */
+    double ball_diameter;     /**< D, m, > 0 with balls */
+    double pitch_diameter;    /**< d_m, m, > ball_diameter with balls */
+    double groove_conformity; /**< f_i = inner raceway groove radius / D, in (0.5, 1); 0: 0.52 */
+    double width;             /**< race width b, m, >= 0: PV = N / (2 R_s b) |v_s| */
+} td_retainer_bearing;
+
+/** Set (copy) retainer k's bearing (k an added retainer); checked here. */
+TD_API td_status td_model_set_retainer_bearing(td_model *m, int k, const td_retainer_bearing *b, td_error *err);
+/** Retainer k's bearing into *out (all zero but the defaults when none was set); TD_ERR_INVALID
+ *  when k is out of range. */
+TD_API td_status td_model_get_retainer_bearing(const td_model *m, int k, td_retainer_bearing *out);
+
+/**
+ * The limits a run is assessed against (the case's top-level `limits`). Not set: the zones of
+ * td_zone_limits_default and no temperature or drop limit (TD_UNDEFINED). A fault names site part
+ * "limits", field "zones", "temperature_rise" or "drops".
+ */
+typedef struct td_limits {
+    td_zone_limits zones;    /**< ISO 14839-2 boundaries, fractions of C_min, 0 < ab < bc < cd */
+    double temperature_rise; /**< K allowed race temperature rise, > 0 (TD_UNDEFINED: none) */
+    double drops;            /**< drops the touchdown bearing must survive, > 0 (TD_UNDEFINED: none) */
+} td_limits;
+
+/** Set (copy) the limits, checked here. */
+TD_API td_status td_model_set_limits(td_model *m, const td_limits *l, td_error *err);
+/** The limits into *out (the defaults above when none were set). */
+TD_API void td_model_get_limits(const td_model *m, td_limits *out);
 
 #ifdef __cplusplus
 }

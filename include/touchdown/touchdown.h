@@ -4,6 +4,7 @@
 #ifndef TOUCHDOWN_TOUCHDOWN_H
 #define TOUCHDOWN_TOUCHDOWN_H
 
+#include "touchdown/assess.h"
 #include "touchdown/case.h"
 #include "touchdown/controller.h"
 #include "touchdown/dofs.h"

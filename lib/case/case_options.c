@@ -774,5 +774,12 @@ static const td_cs_key root_keys[] = {
      .order = 21,
      .doc = "the keys `touchdown sweep` varies, see [sweep](#sweep); every command checks it, only `touchdown sweep` "
             "runs it"},
+    /* the bearing's duty */
+    {.key = "limits",
+     .type = TD_CS_GROUP,
+     .sub = &td_cs_limits,
+     .order = 11,
+     .doc_default = "the defaults below",
+     .doc = "the limits a run is assessed against (vibration zones, temperature rise, drops), see [limits](#limits)"},
 };
 const td_cs_table td_cs_root = {"", "top", root_keys, TD_CS_COUNT(root_keys), sizeof(td_case), root_preset, NULL};

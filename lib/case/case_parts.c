@@ -508,10 +508,21 @@ static td_status read_bore_radius(td_case_reader *r, const config_setting_t *g, 
     return td_cr_real(r, g, k->key, NULL, ret->shaft_radius + ret->clearance, TD_CR_FINITE, &ret->bore_radius);
 }
 
+/* A retainer entry as read: the retainer, then what the model keeps beside it. */
+typedef struct cr_retainer {
+    td_retainer r; /* first: the keys' offsets are td_retainer's */
+    /* the bearing's duty */
+    td_retainer_bearing bearing;
+} cr_retainer;
+
 static td_status add_retainer(td_case_reader *r, const config_setting_t *g, void *rec)
 {
+    cr_retainer *c = rec;
     td_error merr;
-    return added(r, g, td_model_add_retainer(r->c->model, rec, &merr), &merr);
+    td_status st = added(r, g, td_model_add_retainer(r->c->model, &c->r, &merr), &merr);
+    if (st == TD_OK)
+        st = td_cr_set_retainer_bearing(r, g, &c->bearing);
+    return st;
 }
 
 static const td_cs_key retainer_keys[] = {
@@ -585,9 +596,17 @@ static const td_cs_key retainer_keys[] = {
      .sub = &retainer_contact_table,
      .doc_default = "the run's `contact`",
      .doc = "the retainer's own compliant contact law, below"},
+    /* the bearing's duty */
+    {.key = "bearing",
+     .type = TD_CS_GROUP,
+     .offset = offsetof(cr_retainer, bearing),
+     .sub = &td_cs_retainer_bearing,
+     .doc_default = "none",
+     .doc = "the rolling bearing, for its assessment (ratings, ball geometry, width), below; it changes nothing in "
+            "the run"},
 };
 const td_cs_table td_cs_retainers = {"retainers[]",       "retainers", retainer_keys, TD_CS_COUNT(retainer_keys),
-                                     sizeof(td_retainer), NULL,        add_retainer};
+                                     sizeof(cr_retainer), NULL,        add_retainer};
 
 static td_status add_unbalance(td_case_reader *r, const config_setting_t *g, void *rec)
 {

@@ -125,6 +125,12 @@ td_status td_cr_add_plugin(td_case_reader *r, const config_setting_t *g, const t
 /* The recovery supervisor (case_recovery.c), read after the controllers it names. */
 extern const td_cs_table td_cs_recovery;
 
+/* The assessment (case_assess.c): a retainer's `bearing` group and the top-level `limits`.
+ * td_cr_set_retainer_bearing hands the bearing b read from retainer entry g to the model, for
+ * the retainer just added, when g has a `bearing` group. */
+extern const td_cs_table td_cs_retainer_bearing, td_cs_limits;
+td_status td_cr_set_retainer_bearing(td_case_reader *r, const config_setting_t *g, const td_retainer_bearing *b);
+
 /* Block entry e of a law (a group with exactly one member: gain, pid, leadlag, lowpass, notch, tf,
  * zpk or ss) as a new SISO controller (*out, the caller frees it). A block in z (domain = "z")
  * needs sample_rate > 0 (the controller's, Hz) and is sampled at it (*sampled 1); every other

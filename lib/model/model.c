@@ -91,6 +91,7 @@ void td_model_free(td_model **model)
     free(m->change_entries.items);
     free(m->speed_points.items);
     td_model_free_controllers(m);
+    td_model_free_assessment(m);
     free(m);
     *model = NULL;
 }
@@ -142,6 +143,8 @@ td_status td_model_clone(const td_model *model, td_model **out, td_error *err)
     CLONE(m->speed_points, model->speed_points, ok);
     m->spin = model->spin;
     m->recovery = model->recovery;
+    if (ok)
+        ok = td_model_clone_assessment(m, model);
     if (!ok) {
         td_model_free(&m);
         return td_error_set(err, TD_ERR_NOMEM, "out of memory cloning a model");

@@ -51,6 +51,11 @@ struct td_model {
     td_recovery recovery;    /* the recovery supervisor (recovery.c); pair_count 0: none */
     double gravity[2];       /* m/s^2 */
     double reduction_cutoff; /* Hz: Craig-Bampton reduction of the system (lib/model/reduce.c); 0: full model */
+    /* the bearing's duty (assessment.c) */
+    td_retainer_bearing *retainer_bearings; /* retainer_bearing_count long (<= retainers.count); NULL: none set */
+    int retainer_bearing_count;
+    td_limits limits; /* valid when has_limits */
+    int has_limits;
 };
 
 /* The controllers' part in freeing, copying and validating a model (controllers.c). */
@@ -81,5 +86,10 @@ td_status td_model_check_recovery(const td_model *m, td_error *err);
 int td_model_recovery_paired(const td_model *m, int i, int j);
 /* 1 if controller l is the recovery law of a pair: it stands by until the supervisor switches to it. */
 int td_model_recovery_standby(const td_model *m, int l);
+
+/* The assessment's part in freeing and copying a model (assessment.c). */
+void td_model_free_assessment(td_model *m);
+/* A copy of src's retainer bearings and limits into m (which has none); 0 when out of memory. */
+int td_model_clone_assessment(td_model *m, const td_model *src);
 
 #endif
