@@ -35,7 +35,11 @@ check "report --help: exit 0 and the usage" test "$rc" = 0 -a -n "$(grep 'usage:
 check "touchdown --help lists report" grep -q '^  report RUN.h5' "$work/.out"
 
 # ---- a real run -----------------------------------------------------------------------------------
-t "$work/run" run -q -o "$work/run/drop" --set end_time=0.15 "$src/cases/drop.cfg"
+# the limits and one bearing's ratings as --set overrides: the report reads them back from the case
+# text the file holds, where the overrides are recorded as comment lines
+t "$work/run" run -q -o "$work/run/drop" --set end_time=0.15 \
+    --set "retainers[0].bearing={static_rating=18000.0;dynamic_rating=27000.0;}" \
+    --set "limits={temperature_rise=40.0;drops=100.0;zones=[0.25,0.4,0.55];}" "$src/cases/drop.cfg"
 check "drop to 0.15 s: exit 0" test "$rc" = 0
 t "$work/rep" report -o "$work/rep/r" "$work/run/drop.h5"
 check "report: exit 0" test "$rc" = 0
@@ -72,10 +76,31 @@ for q in d["quantities"]:
     if flag in f.attrs and q["state"] == "value":
         assert q["converges"] == bool(f.attrs[flag]), q
 assert seen >= 9 + 2 * 5, seen     # the run's nine and each retainer's five of 0.14.0 at least
+# the limits of the case, and each judged quantity against its own
+lim = d["limits"]
+assert lim["temperature_rise"] == 40.0 and lim["drops"] == 100.0 and lim["zones"] == [0.25, 0.4, 0.55], lim
+assert lim["static_rating"] == [18000.0, None] and lim["dynamic_rating"] == [27000.0, None], lim
+rule = {"retainer_load_ratio": (1.0, lambda v, l: v <= l), "retainer_peak_temperature_rise": (40.0, lambda v, l: v <= l),
+        "retainer_drops_to_failure": (100.0, lambda v, l: v >= l), "sensor_zone": (1.0, lambda v, l: v <= l)}
+judged = 0
+for q in d["quantities"]:
+    if q["name"] not in rule:
+        assert q["limit"] is None and q["verdict"] in (None, "no limit given"), q
+        continue
+    want, within = rule[q["name"]]
+    assert q["limit"] == want, q
+    if q["state"] == "value":
+        assert q["verdict"] == ("within" if within(q["value"], want) else "exceeds"), q
+        judged += 1
+    else:
+        assert q["verdict"] is None, q
+assert "limits        from the case: temperature rise 40 K, drops 100, ISO 14839-2 zone boundaries 0.25, 0.4, 0.55 of C_min" in text
+assert "retainer 0 bearing: static rating C0 18000 N, dynamic rating C 27000 N" in text
+assert "retainer 1 bearing: static rating C0 none given, dynamic rating C none given" in text
 # the text: the first line names the file; a quantity's value as %.6g beside its label
 assert text.startswith("drop report of "), text[:80]
 assert "peak housing force                     %.6g N" % f.attrs["summary_peak_housing_force"] in text
-print("ok", seen, "values")
+print("ok", seen, "values,", judged, "judged against a limit")
 PY
 
 # ---- an older file: quantities absent are "not in this file", never 0 --------------------------

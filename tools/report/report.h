@@ -99,8 +99,6 @@ int report_read(const td_result *r, const char *path, report *rep);
 const char *report_state_words(report_state s);
 /* The verdict's words: "within", "exceeds", "no limit given", "-". */
 const char *report_verdict_words(report_verdict v);
-/* The ISO 14839-2 zone's letter of a zone number 0..3, else "undefined". */
-const char *report_zone_letter(double zone);
 
 /* ---- report_limits.c ---- */
 

@@ -58,9 +58,27 @@ static int temporary_case(const char *text, char *path, size_t n, report_limits 
     return 0;
 }
 
+/* The limits and the bearings' ratings the case's model holds (td_model_get_limits,
+ * td_model_get_retainer_bearing: 0 a rating not given). */
+static void model_limits(const td_model *m, int nret, report_limits *lim)
+{
+    td_limits l;
+    int k;
+    td_model_get_limits(m, &l);
+    lim->temperature_rise = l.temperature_rise;
+    lim->drops = l.drops;
+    lim->zones[0] = l.zones.ab, lim->zones[1] = l.zones.bc, lim->zones[2] = l.zones.cd;
+    for (k = 0; k < nret && k < REPORT_MAX_PARTS && k < td_model_retainer_count(m); k++) {
+        td_retainer_bearing b;
+        if (td_model_get_retainer_bearing(m, k, &b) != TD_OK)
+            continue;
+        lim->static_rating[k] = b.static_rating > 0.0 ? b.static_rating : TD_UNDEFINED;
+        lim->dynamic_rating[k] = b.dynamic_rating > 0.0 ? b.dynamic_rating : TD_UNDEFINED;
+    }
+}
+
 void report_case_limits(const char *case_text, int nret, report_limits *lim, char *desc, size_t n)
 {
-    (void)nret; /* the bearings' ratings: with the case keys of the touchdown bearing */
     char path[4096], *ov[64];
     int i, nov;
     td_case *c = NULL;
@@ -82,6 +100,7 @@ void report_case_limits(const char *case_text, int nret, report_limits *lim, cha
     if (td_case_load(path, (const char *const *)ov, nov, &c, &err) == TD_OK) {
         lim->read = 1;
         snprintf(desc, n, "%s", td_case_description(c));
+        model_limits(td_case_model(c), nret, lim);
         td_case_free(&c);
     } else {
         snprintf(lim->why, sizeof lim->why, "its case text could not be read: %s", err.message);

@@ -68,12 +68,6 @@ const char *report_verdict_words(report_verdict v)
     }
 }
 
-const char *report_zone_letter(double zone)
-{
-    static const char *const letters[] = {"A", "B", "C", "D"};
-    return zone == 0.0 || zone == 1.0 || zone == 2.0 || zone == 3.0 ? letters[(int)zone] : "undefined";
-}
-
 /* A root attribute of the run file by its output name: its id when the schema knows it and the file
  * holds it, else TD_OUT_ID_COUNT. */
 static td_out_id attribute(const td_result *r, const char *name)
@@ -153,7 +147,7 @@ static void read_item(const td_result *r, const report_def *d, int part, report 
         it->state = REPORT_ABSENT;
     else if (!rep->complete)
         it->state = REPORT_NOT_ANSWER;
-    else if (isnan(a.v[k]))
+    else if (isnan(a.v[k]) || (d->limit == REPORT_LIMIT_ZONE && a.v[k] < 0.0)) /* a zone: -1 undefined */
         it->state = REPORT_UNDEFINED;
     else
         it->state = REPORT_VALUE, it->value = a.v[k];

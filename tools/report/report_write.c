@@ -3,6 +3,7 @@
  * a number; an incomplete run says so on its first line. */
 #include "report/report.h"
 
+#include "touchdown/assess.h"
 #include "touchdown/json.h"
 
 #include <math.h>
@@ -17,7 +18,7 @@ static void value_words(const report_item *it, char *buf, size_t n)
     if (it->state != REPORT_VALUE)
         snprintf(buf, n, "%s", report_state_words(it->state));
     else if (it->def->limit == REPORT_LIMIT_ZONE)
-        snprintf(buf, n, "zone %s", report_zone_letter(it->value));
+        snprintf(buf, n, "zone %s", td_vibration_zone_name(it->value == floor(it->value) ? (int)it->value : -1));
     else
         snprintf(buf, n, "%.6g%s%s", it->value, it->units[0] ? " " : "", it->units);
 }
@@ -66,11 +67,8 @@ static void text_limits(FILE *f, const report_limits *lim, int nret)
     int k;
     fprintf(f, "limits        from the case: temperature rise %s, drops %s",
             given(a, sizeof a, lim->temperature_rise, " K"), given(b, sizeof b, lim->drops, ""));
-    if (isnan(lim->zones[0]))
-        fprintf(f, ", ISO 14839-2 zones not in this version's case keys\n");
-    else
-        fprintf(f, ", ISO 14839-2 zone boundaries %.3g, %.3g, %.3g of C_min\n", lim->zones[0], lim->zones[1],
-                lim->zones[2]);
+    fprintf(f, ", ISO 14839-2 zone boundaries %.3g, %.3g, %.3g of C_min\n", lim->zones[0], lim->zones[1],
+            lim->zones[2]);
     for (k = 0; k < nret && k < REPORT_MAX_PARTS; k++)
         fprintf(f, "              retainer %d bearing: static rating C0 %s, dynamic rating C %s\n", k,
                 given(a, sizeof a, lim->static_rating[k], " N"), given(b, sizeof b, lim->dynamic_rating[k], " N"));
