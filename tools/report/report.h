@@ -95,7 +95,7 @@ typedef struct report {
 /* Fill *rep from the open run file r (path as given). Returns 0, or 2 with a line printed for a
  * file that is no run file. */
 int report_read(const td_result *r, const char *path, report *rep);
-/* The state's words in the text: "not in this file", "not computed", "not an answer (...)". */
+/* The state's words in the text: "not in this file", "not computed", "not an answer". */
 const char *report_state_words(report_state s);
 /* The verdict's words: "within", "exceeds", "no limit given", "-". */
 const char *report_verdict_words(report_verdict v);

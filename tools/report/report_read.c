@@ -54,7 +54,7 @@ const char *report_state_words(report_state s)
     case REPORT_VALUE: return "";
     case REPORT_ABSENT: return "not in this file";
     case REPORT_UNDEFINED: return "not computed";
-    default: return "not an answer (the run did not complete)";
+    default: return "not an answer"; /* the first line says why: the run did not complete */
     }
 }
 
