@@ -1,12 +1,14 @@
 /*
  * touchdown/assess.h - what a run's numbers mean against the standards: ISO 14839-2 vibration
- * zones of an AMB machine, and the contact stress of a touchdown ball bearing (Hertz).
+ * zones of an AMB machine, the contact stress of a touchdown ball bearing (Hertz), and its life
+ * (rainflow-counted load cycles against its rating life).
  * Units and the undefined value: touchdown/dofs.h. docs/theory.md, "Assessment", gives the
  * equations and their sources.
  */
 #ifndef TOUCHDOWN_ASSESS_H
 #define TOUCHDOWN_ASSESS_H
 
+#include "touchdown/error.h"
 #include "touchdown/export.h"
 
 #ifdef __cplusplus
@@ -35,6 +37,70 @@ TD_API int td_vibration_zone_of(double displacement, double c_min, const td_zone
 
 /** "A".."D" for a zone, "undefined" for anything else (-1). */
 TD_API const char *td_vibration_zone_name(int zone);
+
+/* life (lib/assess/rainflow.c, lib/assess/life.c; docs/theory.md, "Touchdown bearing life") */
+
+/**
+ * An online rainflow counter (ASTM E1049-85 (2017), 5.4.4, "rainflow counting"): the history's
+ * values come one at a time (td_rainflow_add); each reversal goes onto a stack, and the ranges of
+ * the three-point rule that close go to the caller as they close, a full cycle (count 1) or, on
+ * the range that holds the history's first point, a half cycle (count 0.5). What is left on the
+ * stack at the end, the residue, counts as half cycles (td_rainflow_residue), as in the
+ * standard's worked example (its Fig. 6 and Table 4).
+ *
+ * Hysteresis gate: a turn of the history is a reversal only once the history has moved back from
+ * its extreme by more than `gate` (>= 0, in the units of the values); smaller wiggles are not
+ * reversals and add no cycle. The gate 0 keeps every strict turn (the standard's peak-valley
+ * step; equal neighbouring values are one point). Ranges below the gate can still close where the
+ * gate let their reversals through (a wiggle larger than the gate turns twice).
+ */
+typedef struct td_rainflow td_rainflow;
+
+/** A counted cycle: its range (|peak - valley| >= 0), its mean ((peak + valley) / 2), its count
+ *  (1: a full cycle, 0.5: a half cycle). */
+typedef void (*td_rainflow_cycle_fn)(void *user, double range, double mean, double count);
+
+/** A counter with its hysteresis gate (finite, >= 0; else TD_ERR_INVALID). NULL on failure. */
+TD_API td_rainflow *td_rainflow_create(double gate, td_error *err);
+/** Free a counter; NULL is accepted. */
+TD_API void td_rainflow_free(td_rainflow **rf);
+/** The history's next value (finite; else TD_ERR_INVALID and the counter unchanged). The cycles it
+ *  closes go to fn(user, ...) (fn may be NULL); TD_ERR_NOMEM when the stack cannot grow (the value
+ *  is then not taken: the counter is as before the call). */
+TD_API td_status td_rainflow_add(td_rainflow *rf, double value, td_rainflow_cycle_fn fn, void *user, td_error *err);
+/** The residue as half cycles, each range between neighbouring points left on the stack, the
+ *  history's last extreme included, as though the history ended now. The counter is unchanged:
+ *  it can go on taking values. */
+TD_API void td_rainflow_residue(const td_rainflow *rf, td_rainflow_cycle_fn fn, void *user);
+/** Values taken so far. */
+TD_API long td_rainflow_values(const td_rainflow *rf);
+
+/**
+ * The touchdown bearing's fatigue damage (docs/theory.md, "Touchdown bearing life"): the basic
+ * rating life of ISO 281:2007 (eq. 1, L10 = (C / P)^p million revolutions, 90 % reliability) taken
+ * per load cycle and per revolution, summed by the Palmgren-Miner rule. A load cycle of range dF
+ * counts as one revolution at the load dF; a revolution of the race under the load F counts as one
+ * revolution at F. The damage of a run is the fraction of the L10 life it used; 1 / damage the
+ * runs like it the bearing survives.
+ */
+typedef struct td_life_law {
+    double dynamic_rating; /**< C, N: the basic dynamic radial load rating (ISO 281) */
+    double life_exponent;  /**< p: 3 for ball bearings, 10/3 for roller bearings (ISO 281) */
+} td_life_law;
+
+/** The hysteresis gate of the contact load's rainflow count, as a fraction of C: a load cycle this
+ *  small adds (1e-3)^p of a revolution's damage, 1e-9 of it for p = 3 (docs/theory.md). */
+#define TD_LIFE_GATE 1e-3
+
+/** Miner damage of `count` load cycles (1 or 0.5) of range dF (N): count (dF / C)^p 1e-6.
+ *  TD_UNDEFINED when the law is not a finite C > 0 and p > 0, or dF is not finite and >= 0. */
+TD_API double td_life_cycle_damage(const td_life_law *law, double range, double count);
+/** Runs like the one that did `damage` the bearing survives: 1 / damage; TD_UNDEFINED when damage is
+ *  not finite and > 0 (no rating, or no load: a run that used none of the life gives no count). */
+TD_API double td_life_runs_to_failure(double damage);
+/** Miner damage per second of the race turning at race_speed (rad/s) under the load F (N):
+ *  (F / C)^p |race_speed| / (2 pi) 1e-6 (0 for F <= 0). TD_UNDEFINED as td_life_cycle_damage. */
+TD_API double td_life_rolling_rate(const td_life_law *law, double load, double race_speed);
 
 #ifdef __cplusplus
 }
