@@ -4,7 +4,9 @@
  * implementation (the PyPI package rainflow) is tests/life/rainflow_reference.py. */
 #include "td_test.h"
 
+#include "sim/sim_internal.h"
 #include "touchdown/assess.h"
+#include "touchdown/case.h"
 
 #include <math.h>
 #include <string.h>
@@ -166,12 +168,97 @@ static void test_damage_by_hand(void **state)
     assert_true(td_is_undefined(td_life_rolling_rate(&bad, 500.0, 1.0)));
 }
 
+/* cases/drop.cfg with a 55 mm deep-groove ball bearing's rating on both retainers (the drop-speed
+ * sweep's, cases/drop-speed-sweep.cfg). */
+static const char *rated[] = {"retainers[0].bearing = { dynamic_rating = 30700.0; static_rating = 21200.0; }",
+                              "retainers[1].bearing = { dynamic_rating = 30700.0; static_rating = 21200.0; }"};
+
+/* The drop stepped to t_end on outputs every dt; with `reach`, at every output inside an integrator
+ * step (a step's end held beyond it) a second output right at that step's end. Each retainer's
+ * totals at t_end into out[2]; returns the outputs at which the held point, once reached, was
+ * taken by the counter as one more value (the count grows by 1 there, not before). */
+static int drop_life(double dt, double t_end, int reach, td_retainer_totals out[2])
+{
+    td_case *c = td_test_load_case("cases/drop.cfg", rated, 2);
+    td_sim *s = NULL;
+    td_error err;
+    int k, i, taken = 0;
+    assert_int_equal(td_sim_create(td_case_model(c), td_case_sim_options(c), &s, &err), TD_OK);
+    for (k = 1; k * dt <= t_end + 1e-12; k++) {
+        td_status r;
+        while ((r = td_sim_step(s, fmin(k * dt, t_end), NULL, &err)) == TD_EVENT)
+            continue;
+        assert_int_equal(r, TD_OK);
+        if (reach && s->monitor.ahead && s->monitor.ahead_t < (k + 1) * dt && s->monitor.ahead_t < t_end) {
+            long before = td_rainflow_values(s->monitor.totals[0].cycles);
+            assert_int_equal(td_sim_step(s, s->monitor.ahead_t, NULL, &err), TD_OK);
+            taken += td_rainflow_values(s->monitor.totals[0].cycles) == before + 1;
+        }
+    }
+    for (i = 0; i < 2; i++)
+        assert_int_equal(td_sim_retainer_totals(s, i, &out[i]), TD_OK);
+    td_sim_free(&s);
+    td_case_free(&c);
+    return taken;
+}
+
+/* The counter takes the contact load at the points the run has reached, each once: the same load
+ * cycles and damage on output grids of 0.1 ms, 0.37 ms and none (one step to the end), and with
+ * extra outputs at the integrator's steps; a step's end held beyond an output is taken only when
+ * the run reaches it (the count grows there), never at the output before it. Through the fall and
+ * the first bounces of the drop (to 0.111 s, a multiple of both grids). */
+static void test_life_independent_of_outputs(void **state)
+{
+    td_retainer_totals a[2], b[2], c[2], d[2];
+    int i, taken;
+    (void)state;
+    drop_life(1e-4, 0.111, 0, a);
+    drop_life(3.7e-4, 0.111, 0, b);
+    drop_life(0.111, 0.111, 0, c);
+    taken = drop_life(3.7e-4, 0.111, 1, d);
+    for (i = 0; i < 2; i++) {
+        print_message("retainer %d to 0.111 s: %.6g load cycles, damage %.17g (0.37 ms: %.17g, one step: %.17g, "
+                      "reaching the held points: %.17g)\n",
+                      i, a[i].load_cycles, a[i].damage, b[i].damage, c[i].damage, d[i].damage);
+        assert_true(a[i].load_cycles >= 10.0 && a[i].damage > 0.0);
+        assert_true(a[i].load_cycles == b[i].load_cycles && a[i].load_cycles == c[i].load_cycles);
+        assert_true(a[i].load_cycles == d[i].load_cycles);
+        assert_close(b[i].damage, a[i].damage, 1e-12, 0.0);
+        assert_close(c[i].damage, a[i].damage, 1e-12, 0.0);
+        assert_close(d[i].damage, a[i].damage, 1e-12, 0.0);
+    }
+    print_message("%d held points taken when reached\n", taken);
+    assert_true(taken > 10);
+}
+
+/* No rating, no life: the damage and load cycles are undefined, never 0. */
+static void test_no_rating_no_life(void **state)
+{
+    td_case *c = td_test_load_case("cases/drop.cfg", rated, 1);
+    td_sim *s = NULL;
+    td_retainer_totals t[2];
+    (void)state;
+    assert_int_equal(td_sim_create(td_case_model(c), td_case_sim_options(c), &s, NULL), TD_OK);
+    while (td_sim_step(s, 0.08, NULL, NULL) == TD_EVENT)
+        continue;
+    assert_int_equal(td_sim_retainer_totals(s, 0, &t[0]), TD_OK);
+    assert_int_equal(td_sim_retainer_totals(s, 1, &t[1]), TD_OK);
+    assert_true(t[0].damage > 0.0 && t[0].load_cycles > 0.0);
+    assert_true(td_is_undefined(t[1].damage) && td_is_undefined(t[1].load_cycles));
+    assert_true(td_is_undefined(td_life_runs_to_failure(t[1].damage)));
+    assert_close(td_life_runs_to_failure(t[0].damage), 1.0 / t[0].damage, 0.0, 0.0);
+    assert_true(td_is_undefined(td_life_runs_to_failure(0.0)));
+    td_sim_free(&s);
+    td_case_free(&c);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_astm_worked_example), cmocka_unit_test(test_hysteresis_gate),
         cmocka_unit_test(test_flat_and_refused),    cmocka_unit_test(test_long_residue),
-        cmocka_unit_test(test_damage_by_hand),
+        cmocka_unit_test(test_damage_by_hand),      cmocka_unit_test(test_life_independent_of_outputs),
+        cmocka_unit_test(test_no_rating_no_life),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

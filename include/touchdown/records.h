@@ -88,6 +88,12 @@ typedef struct td_retainer_totals {
     long contacts;             /**< contact intervals that swept at least TD_TOUCH_AND_GO_ANGLE of whirl
                                     (the one still open counts) */
     long touch_and_go;         /**< impacts that left again within less: bounces, rebounds, grazes */
+    /* life (touchdown/assess.h td_life_law; docs/theory.md, "Touchdown bearing life") */
+    double damage;      /**< Miner sum of the ISO 281 rating life used: the contact load's rainflow cycles (those
+                             the history's end closes and its residue included) and the race's revolutions
+                             under load; TD_UNDEFINED without the bearing's dynamic rating */
+    double load_cycles; /**< the contact load's rainflow cycles counted (a half cycle 0.5), those of the end
+                             included; TD_UNDEFINED without the bearing's dynamic rating (the gate's scale) */
 } td_retainer_totals;
 
 /**

@@ -108,6 +108,10 @@ typedef enum td_out_id {
     TD_OUT_RETAINER_ROLLING_TIME,
     TD_OUT_RETAINER_CONTACTS,
     TD_OUT_RETAINER_TOUCH_AND_GO,
+    /* life: written only when a retainer's bearing has a dynamic rating */
+    TD_OUT_RETAINER_DAMAGE,
+    TD_OUT_RETAINER_DROPS_TO_FAILURE,
+    TD_OUT_RETAINER_LOAD_CYCLES,
     TD_OUT_AMB_NODES,
     TD_OUT_AMB_CAPACITY,
     TD_OUT_STAT_STEPS,
@@ -284,6 +288,7 @@ typedef enum td_out_id {
     TD_OUT_SWEEP_FINAL_SPEED,
     TD_OUT_SWEEP_PEAK_AMB_LOAD,
     TD_OUT_SWEEP_T_REACHED,
+    TD_OUT_SWEEP_DROPS_TO_FAILURE, /**< life: only in a table with a row whose bearings have a dynamic rating */
     TD_OUT_SWEEP_WARNINGS,
     TD_OUT_SWEEP_WALL_TIME,
     TD_OUT_SWEEP_SECTION_RADIUS,

@@ -90,6 +90,9 @@ typedef struct td_run_retainer {
     double whirl_frequency; /**< Hz: mean whirl rate while in contact / 2 pi, signed like the spin (< 0 backward);
                                  TD_UNDEFINED without a sustained contact (no whirl) */
     char whirl[40];         /**< "none", "touch-and-go", or "forward|backward rolling|sliding[, bouncing]" */
+    /* life (touchdown/assess.h; docs/theory.md, "Touchdown bearing life") */
+    double drops_to_failure; /**< 1 / totals.damage: runs like this one the bearing survives (ISO 281 L10, 90 %
+                                  reliability); TD_UNDEFINED without a dynamic rating or without damage */
 } td_run_retainer;
 
 /** What a run did. Times in s, forces in N. A quantity without a value is TD_UNDEFINED (NaN,
@@ -188,6 +191,9 @@ typedef struct td_run_summary {
     int supervised; /**< 1: the model has a recovery supervisor (touchdown/model.h td_recovery): stats'
                          controller_switches, time_on_recovery and last_return_time are its account, and the
                          text, JSON and files carry them. Last, so that the record only grew */
+    /* life */
+    int life_kept; /**< 1: some retainer's bearing has a dynamic rating (td_model_get_retainer_bearing): the
+                        retainers' damage, drops to failure and load cycles are in the text, JSON and files */
 } td_run_summary;
 
 /**

@@ -154,6 +154,9 @@ typedef struct td_sweep_row {
     double section_clearance;                      /**< m, the sampled retainer's radial clearance (NaN: none) */
     double section_radius[TD_RUN_SECTION_SAMPLES]; /**< m, the last section radii, oldest first (NaN
                                                         beyond section_kept) */
+    /* life (td_run_summary.life_kept; docs/theory.md, "Touchdown bearing life") */
+    int life_kept;           /**< 1: the point's bearings have a dynamic rating: the table has drops_to_failure */
+    double drops_to_failure; /**< the fewest over the retainers (the first bearing to fail); TD_UNDEFINED: none */
 } td_sweep_row;
 
 /** The row of a point whose run ended with summary `s` (state DONE if s->status is TD_OK, else

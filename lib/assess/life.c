@@ -27,6 +27,11 @@ double td_life_cycle_damage(const td_life_law *law, double range, double count)
     return count * pow(range / law->dynamic_rating, law->life_exponent) / TD_LIFE_UNIT;
 }
 
+double td_life_runs_to_failure(double damage)
+{
+    return isfinite(damage) && damage > 0.0 ? 1.0 / damage : TD_UNDEFINED;
+}
+
 double td_life_rolling_rate(const td_life_law *law, double load, double race_speed)
 {
     if (!law_ok(law) || !isfinite(load) || !isfinite(race_speed))

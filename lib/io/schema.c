@@ -122,6 +122,10 @@ static const td_schema_entry entries[TD_OUT_ID_COUNT] = {
     RET_ATTR(TD_OUT_RETAINER_ROLLING_TIME, "retainer_rolling_time", F64, "s"),
     RET_ATTR(TD_OUT_RETAINER_CONTACTS, "retainer_contacts", I64, ""),
     RET_ATTR(TD_OUT_RETAINER_TOUCH_AND_GO, "retainer_touch_and_go", I64, ""),
+    /* life */
+    RET_ATTR(TD_OUT_RETAINER_DAMAGE, "retainer_damage", F64, "1"),
+    RET_ATTR(TD_OUT_RETAINER_DROPS_TO_FAILURE, "retainer_drops_to_failure", F64, "1"),
+    RET_ATTR(TD_OUT_RETAINER_LOAD_CYCLES, "retainer_load_cycles", F64, "1"),
     ATTR(TD_OUT_AMB_NODES, "amb_nodes", TD_OUT_ROOT, RUN, I64, "", "(n_amb)"),
     ATTR(TD_OUT_AMB_CAPACITY, "amb_capacity", TD_OUT_ROOT, RUN, F64, "N", "(n_amb)"),
     RUN_ATTR(TD_OUT_STAT_STEPS, "steps", I64, ""),
@@ -295,6 +299,7 @@ static const td_schema_entry entries[TD_OUT_ID_COUNT] = {
     COLUMN(TD_OUT_SWEEP_FINAL_SPEED, "final_speed", F64, "rad/s"),
     COLUMN(TD_OUT_SWEEP_PEAK_AMB_LOAD, "peak_amb_load", F64, "1"),
     COLUMN(TD_OUT_SWEEP_T_REACHED, "t_reached", F64, "s"),
+    COLUMN(TD_OUT_SWEEP_DROPS_TO_FAILURE, "drops_to_failure", F64, "1"), /* life */
     COLUMN(TD_OUT_SWEEP_WARNINGS, "warnings", TEXT, ""),
     COLUMN(TD_OUT_SWEEP_WALL_TIME, "wall_time", F64, "s"),
     DATA(TD_OUT_SWEEP_SECTION_RADIUS, "section_radius", TD_OUT_ROOT, SWEEP, F64, "m", "(points, 64)"),

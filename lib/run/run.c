@@ -16,6 +16,7 @@
 #include "run/summary.h"
 #include "run/warnings.h"
 #include "sim/section.h"
+#include "touchdown/assess.h"
 #include "touchdown/dofs.h"
 #include "touchdown/output.h"
 #include "util/clock.h"
@@ -295,6 +296,18 @@ static void summary_section(run_state *r)
         td_sim_section_read(r->sim, s->section_retainer, s->section_time, s->section_radius, TD_RUN_SECTION_SAMPLES);
 }
 
+/* life: 1 when some retainer's bearing has a dynamic rating, whose damage the run counts. */
+static int life_kept(const td_model *m)
+{
+    int k, n = td_model_retainer_count(m);
+    for (k = 0; k < n; k++) {
+        td_retainer_bearing b;
+        if (td_model_get_retainer_bearing(m, k, &b) == TD_OK && b.dynamic_rating > 0.0)
+            return 1;
+    }
+    return 0;
+}
+
 /* The answers that converge: every retainer's totals, their sums and peaks, the speeds. */
 static void summary_totals(run_state *r)
 {
@@ -328,8 +341,10 @@ static void summary_totals(run_state *r)
             td_run_retainer_classify(
                 &s->retainers[k], s->final_speed,
                 !td_is_undefined(s->first_contact_time) ? s->last_contact_time - s->first_contact_time : 0.0);
+            s->retainers[k].drops_to_failure = td_life_runs_to_failure(t.damage); /* life */
         }
     }
+    s->life_kept = life_kept(m); /* life */
 }
 
 /* How the run ended: judged over the last stretch when the run got through it. */
@@ -464,6 +479,34 @@ static td_status write_retainer_totals(td_recorder *rec, const td_sim *sim, int 
     free(v);
     free(c);
     free(g);
+    return st;
+}
+
+/* life: every retainer's damage, drops to failure and load cycles as arrays over the retainers, when
+ * some bearing has a dynamic rating (TD_UNDEFINED for the others, and for a run that did not reach
+ * its end). */
+static td_status write_retainer_life(td_recorder *rec, const td_sim *sim, int reached_end, td_error *err)
+{
+    int n = td_model_retainer_count(td_sim_model(sim)), k;
+    size_t sz = (size_t)(n > 0 ? n : 1);
+    double *d = calloc(sz, sizeof *d), *f = calloc(sz, sizeof *f), *c = calloc(sz, sizeof *c);
+    td_status st = d && f && c ? TD_OK : td_error_set(err, TD_ERR_NOMEM, "out of memory writing the summary");
+    for (k = 0; st == TD_OK && k < n; k++) {
+        td_retainer_totals t;
+        td_sim_retainer_totals(sim, k, &t);
+        d[k] = reached_end ? t.damage : TD_UNDEFINED;
+        f[k] = td_life_runs_to_failure(d[k]);
+        c[k] = reached_end ? t.load_cycles : TD_UNDEFINED;
+    }
+    if (st == TD_OK && n > 0)
+        st = td_recorder_set_doubles(rec, TD_OUT_RETAINER_DAMAGE, d, n, err);
+    if (st == TD_OK && n > 0)
+        st = td_recorder_set_doubles(rec, TD_OUT_RETAINER_DROPS_TO_FAILURE, f, n, err);
+    if (st == TD_OK && n > 0)
+        st = td_recorder_set_doubles(rec, TD_OUT_RETAINER_LOAD_CYCLES, c, n, err);
+    free(d);
+    free(f);
+    free(c);
     return st;
 }
 
@@ -631,6 +674,8 @@ td_status td_run(td_sim *sim, double t_end, const td_output_options *out, const 
     cst = write_summary(r.rec, summary, case_text, &close_err);
     if (cst == TD_OK)
         cst = write_retainer_totals(r.rec, sim, st == TD_OK, &close_err);
+    if (cst == TD_OK && summary->life_kept)
+        cst = write_retainer_life(r.rec, sim, st == TD_OK, &close_err);
     if (cst == TD_OK)
         cst = td_recorder_close(&r.rec, st == TD_OK, loop_err.message, &close_err);
     else

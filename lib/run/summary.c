@@ -57,6 +57,7 @@ static void retainer_undefine(td_run_retainer *r)
     t->friction_work = t->whirl_angle = t->peak_housing_force = t->peak_normal_force = TD_UNDEFINED;
     r->race_speed = r->mean_normal = r->rms_normal = r->whirl_frequency = TD_UNDEFINED;
     snprintf(r->whirl, sizeof r->whirl, "undetermined");
+    t->damage = t->load_cycles = r->drops_to_failure = TD_UNDEFINED; /* life */
 }
 
 void td_run_summary_undefine_answers(td_run_summary *s)
@@ -301,6 +302,23 @@ static void format_retainer(td_text *b, const td_run_summary *s, int k)
         td_text_printf(b, "; race %.6g rad/s\n", r->race_speed);
 }
 
+/* life: a retainer's fatigue damage, its load cycles and the drops to failure it leads to (ISO 281
+ * L10); "no rating" for a retainer without a dynamic rating, n/a for a run that did not reach its end. */
+static void format_life(td_text *b, const td_run_summary *s, int k)
+{
+    const td_run_retainer *r = &s->retainers[k];
+    td_text_printf(b, "retainer %-2d life            ", k);
+    if (s->status != TD_OK)
+        td_text_printf(b, "n/a (the run did not reach its end)\n");
+    else if (td_is_undefined(r->totals.damage))
+        td_text_printf(b, "no rating (retainers[%d].bearing.dynamic_rating)\n", k);
+    else if (td_is_undefined(r->drops_to_failure))
+        td_text_printf(b, "damage 0 over %.6g load cycles: no drops to failure\n", r->totals.load_cycles);
+    else
+        td_text_printf(b, "damage %.6g over %.6g load cycles: %.6g drops to failure (ISO 281 L10)\n", r->totals.damage,
+                       r->totals.load_cycles, r->drops_to_failure);
+}
+
 /* One answer: its value and unit, or n/a for a run that did not reach its end. */
 static void format_answer(td_text *b, const char *label, double v, const char *unit)
 {
@@ -356,6 +374,8 @@ static void format_answers(td_text *b, const td_run_summary *s)
         format_energy(b, &s->energy);
     for (k = 0; k < n; k++)
         format_retainer(b, s, k);
+    for (k = 0; s->life_kept && k < n; k++) /* life */
+        format_life(b, s, k);
 }
 
 int td_run_summary_format(char *buf, size_t n, const td_run_summary *s)
@@ -524,6 +544,11 @@ static void json_retainers(td_text *b, const td_run_summary *s)
     td_text_printf(b, "]");
     for (i = 0; i < sizeof fields / sizeof fields[0]; i++)
         json_retainer_array(b, s, fields[i].key, fields[i].offset, fields[i].is_long);
+    if (s->life_kept) { /* life */
+        json_retainer_array(b, s, "damage", offsetof(td_run_retainer, totals.damage), 0);
+        json_retainer_array(b, s, "drops_to_failure", offsetof(td_run_retainer, drops_to_failure), 0);
+        json_retainer_array(b, s, "load_cycles", offsetof(td_run_retainer, totals.load_cycles), 0);
+    }
 }
 
 /* The once-per-revolution section: where it starts, the crossings taken and the radii kept. */

@@ -8,6 +8,7 @@
 #ifndef TD_SIM_MONITOR_H
 #define TD_SIM_MONITOR_H
 
+#include "touchdown/assess.h"
 #include "touchdown/records.h"
 #include "touchdown/sim.h"
 
@@ -22,6 +23,13 @@ typedef struct td_sim_totals {
     double whirl_at_onset; /* t.whirl_angle when the open interval began */
     double interval_peak;  /* N, the largest normal force of the open (or the last) contact interval
                               at the accepted points (monitor.c, td_sim_monitor_at) */
+    /* life (load_cycles.c): t.damage sums the rolling damage over the steps as the other integrals */
+    td_life_law law;       /* the bearing's ratings; dynamic_rating 0: none, no life */
+    td_rainflow *cycles;   /* the contact load's rainflow count at the points the run has reached */
+    double cycle_damage;   /* Miner sum of the cycles it has closed */
+    double closed_cycles;  /* their count */
+    double life_rate_prev; /* the rolling damage rate at the last point */
+    int life_failed;       /* the counter could not grow: the life is undefined */
 } td_sim_totals;
 
 typedef struct td_sim_monitor {

@@ -387,6 +387,8 @@ td_status td_sim_setup(const td_model *model, const td_sim_options *options, vol
         st = first_samples(s, err);
     if (st == TD_OK)
         st = td_sim_integrator_attach(s, err);
+    if (st == TD_OK)
+        st = td_sim_life_setup(s, err);
     if (st != TD_OK) {
         td_sim_teardown(s);
         return st;
@@ -419,6 +421,7 @@ static void free_work(td_sim *s)
     free(s->kkt.onset);
     free(s->kkt.entered);
     free(s->contacts.roll_tried);
+    td_sim_life_free(s);
     free(s->monitor.totals);
     free(s->monitor.energy_f);
     free(s->contacts.touching);

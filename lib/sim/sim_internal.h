@@ -292,6 +292,17 @@ void td_sim_totals_rewind(td_sim *s);
 void td_sim_totals_impact(td_sim *s, int k, double impulse, int bounced);
 /* Retainer k's totals at s->dae.t (td_sim_retainer_totals). */
 void td_sim_totals_get(const td_sim *s, int k, td_retainer_totals *out);
+/* life (load_cycles.c): the retainers' rainflow counters for those whose bearing has a dynamic
+ * rating (td_model_get_retainer_bearing), before the first point; freed by td_sim_life_free. */
+td_status td_sim_life_setup(td_sim *s, td_error *err);
+void td_sim_life_free(td_sim *s);
+/* Retainer k's rolling damage rate at y (1/s, td_life_rolling_rate; 0 without a rating). */
+double td_sim_life_rate(const td_sim *s, int k, const double *y);
+/* Retainer k's contact load at y, a point the run has reached, into its rainflow counter. */
+void td_sim_life_point(td_sim *s, int k, const double *y);
+/* Retainer k's damage and load cycles into *out, whose damage holds the rolling damage up to
+ * s->dae.t: the cycles closed, those the end closes and the residue added (TD_UNDEFINED: no rating). */
+void td_sim_life_get(const td_sim *s, int k, td_retainer_totals *out);
 
 /* ---- flight_modal.c, flight_roots.c, flight.c: free flight in closed form ------------------ */
 

@@ -81,6 +81,7 @@ void td_sim_totals_peaks(td_sim *s, const double *y)
         tk->t.peak_housing_force = fmax(tk->t.peak_housing_force, housing_force(s, k, y));
         if (s->contacts.ret[k].mode != TD_RMODE_FREE) /* as integrands_at's n */
             tk->t.peak_normal_force = fmax(tk->t.peak_normal_force, td_sim_normal_force(s, k, y));
+        td_sim_life_point(s, k, y); /* life: a point reached, into the rainflow count */
     }
 }
 
@@ -108,6 +109,12 @@ void td_sim_totals_point(td_sim *s, double t, int restart)
         tk->prev.whirl_rate = now.whirl_rate;
         if (restart || dt > 0.0)
             track_interval(s, k);
+        { /* life: the race's revolutions under load (load_cycles.c) */
+            double rate = td_sim_life_rate(s, k, y);
+            if (dt > 0.0)
+                tk->t.damage += 0.5 * dt * (tk->life_rate_prev + rate);
+            tk->life_rate_prev = rate;
+        }
     }
     if (!(s->monitor.ahead && s->monitor.ahead_t == t))
         td_sim_totals_peaks(s, y);
@@ -143,6 +150,7 @@ static void back_to_now(const td_sim *s, int k, td_retainer_totals *t)
         t->contact_time -= dt;
     if (s->contacts.ret[k].rolling)
         t->rolling_time -= dt;
+    t->damage -= 0.5 * dt * (tk->life_rate_prev + td_sim_life_rate(s, k, N_VGetArrayPointer(s->dae.y))); /* life */
 }
 
 void td_sim_totals_rewind(td_sim *s)
@@ -158,6 +166,7 @@ void td_sim_totals_rewind(td_sim *s)
         tk->prev.n2 = now.n2;
         tk->prev.power = now.power;
         tk->prev.whirl_rate = now.whirl_rate;
+        tk->life_rate_prev = td_sim_life_rate(s, k, N_VGetArrayPointer(s->dae.y)); /* life */
     }
     td_sim_energy_rewind(s);
     s->monitor.totals_t = s->dae.t;
@@ -170,4 +179,5 @@ void td_sim_totals_get(const td_sim *s, int k, td_retainer_totals *out)
     back_to_now(s, k, out);
     if (tk->in_contact) /* the interval still open counts as a contact */
         out->contacts++;
+    td_sim_life_get(s, k, out); /* life: the rainflow cycles added, the end's included */
 }

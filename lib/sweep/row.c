@@ -35,6 +35,19 @@ static void row_warnings(td_sweep_row *row, const td_run_summary *s)
         len += (size_t)snprintf(row->warnings + len, sizeof row->warnings - len, "%s%s", i ? "; " : "", s->warnings[i]);
 }
 
+/* life: the fewest drops to failure over the retainers whose bearing has a rating and took damage. */
+static void row_life(td_sweep_row *row, const td_run_summary *s)
+{
+    int k, n = s->retainer_count < TD_RUN_SUMMARY_RETAINERS ? s->retainer_count : TD_RUN_SUMMARY_RETAINERS;
+    row->life_kept = s->life_kept;
+    row->drops_to_failure = TD_UNDEFINED;
+    for (k = 0; k < n; k++) {
+        double f = s->retainers[k].drops_to_failure;
+        if (!td_is_undefined(f) && (td_is_undefined(row->drops_to_failure) || f < row->drops_to_failure))
+            row->drops_to_failure = f;
+    }
+}
+
 void td_sweep_row_from_summary(td_sweep_row *row, const td_run_summary *s)
 {
     if (s->status != TD_OK) { /* a failed point has no answers: only how far it got and how long */
@@ -42,6 +55,7 @@ void td_sweep_row_from_summary(td_sweep_row *row, const td_run_summary *s)
         row->t_reached = s->t_reached;
         row->wall_time = s->wall_time;
         row_warnings(row, s);
+        row->life_kept = s->life_kept; /* life: its column, with no number */
         return;
     }
     memset(row, 0, sizeof *row);
@@ -64,6 +78,7 @@ void td_sweep_row_from_summary(td_sweep_row *row, const td_run_summary *s)
     snprintf(row->regime, sizeof row->regime, "%s", td_regime_name(td_run_summary_regime(s)));
     row_section(row, s);
     row_warnings(row, s);
+    row_life(row, s);
 }
 
 void td_sweep_row_unknown(td_sweep_row *row, td_sweep_state state, const char *status, const char *message)
@@ -76,6 +91,7 @@ void td_sweep_row_unknown(td_sweep_row *row, td_sweep_state state, const char *s
     row->peak_housing_force = row->total_impulse = row->friction_work = row->contact_time = TD_UNDEFINED;
     row->first_contact_time = row->ending_whirl_frequency = row->final_speed = row->peak_amb_load = TD_UNDEFINED;
     row->t_reached = row->wall_time = TD_UNDEFINED;
+    row->drops_to_failure = TD_UNDEFINED; /* life */
     row->contacts = -1;
     row->returned_to_free_orbit = -1;
     snprintf(row->regime, sizeof row->regime, "%s", td_regime_name(TD_REGIME_FAILED));

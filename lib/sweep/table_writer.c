@@ -53,10 +53,24 @@ static const sweep_column columns[] = {
     {TD_OUT_SWEEP_FINAL_SPEED, COL_DOUBLE, offsetof(td_sweep_row, final_speed)},
     {TD_OUT_SWEEP_PEAK_AMB_LOAD, COL_DOUBLE, offsetof(td_sweep_row, peak_amb_load)},
     {TD_OUT_SWEEP_T_REACHED, COL_DOUBLE, offsetof(td_sweep_row, t_reached)},
+    {TD_OUT_SWEEP_DROPS_TO_FAILURE, COL_DOUBLE, offsetof(td_sweep_row, drops_to_failure)}, /* life: see shown() */
     {TD_OUT_SWEEP_WARNINGS, COL_TEXT, offsetof(td_sweep_row, warnings)},
     {TD_OUT_SWEEP_WALL_TIME, COL_DOUBLE, offsetof(td_sweep_row, wall_time)},
 };
 #define N_COLUMNS ((int)(sizeof columns / sizeof columns[0]))
+
+/* Whether column c is in the table: the life's only when some row's bearings have a dynamic rating
+ * (td_sweep_row.life_kept), so that a sweep without ratings has the table it always had. */
+static int shown(const td_sweep_table *t, int c)
+{
+    long p, n = td_sweep_grid_points(t->grid);
+    if (columns[c].id != TD_OUT_SWEEP_DROPS_TO_FAILURE)
+        return 1;
+    for (p = 0; p < n; p++)
+        if (t->rows[p].life_kept)
+            return 1;
+    return 0;
+}
 
 static const char *col_text(const td_sweep_row *r, int c)
 {
@@ -105,8 +119,9 @@ static void csv_text(FILE *f, const char *s)
     fputc('"', f);
 }
 
-static void csv_header(FILE *f, const td_sweep_grid *g)
+static void csv_header(FILE *f, const td_sweep_table *t)
 {
+    const td_sweep_grid *g = t->grid;
     int a, c;
     fprintf(f, "%s [%s]", td_out_name(TD_OUT_SWEEP_POINT), td_schema_csv_units(TD_OUT_SWEEP_POINT));
     for (a = 0; a < td_sweep_grid_keys(g); a++) {
@@ -114,13 +129,15 @@ static void csv_header(FILE *f, const td_sweep_grid *g)
         csv_text(f, td_sweep_grid_key(g, a));
     }
     for (c = 0; c < N_COLUMNS; c++)
-        fprintf(f, td_out_units(columns[c].id)[0] ? ",%s [%s]" : ",%s", td_out_name(columns[c].id),
-                td_out_units(columns[c].id));
+        if (shown(t, c))
+            fprintf(f, td_out_units(columns[c].id)[0] ? ",%s [%s]" : ",%s", td_out_name(columns[c].id),
+                    td_out_units(columns[c].id));
     fputc('\n', f);
 }
 
-static void csv_row(FILE *f, const td_sweep_grid *g, long point, const td_sweep_row *r)
+static void csv_row(FILE *f, const td_sweep_table *t, long point, const td_sweep_row *r)
 {
+    const td_sweep_grid *g = t->grid;
     int a, c;
     fprintf(f, "%ld", point);
     for (a = 0; a < td_sweep_grid_keys(g); a++) {
@@ -128,6 +145,8 @@ static void csv_row(FILE *f, const td_sweep_grid *g, long point, const td_sweep_
         csv_text(f, td_sweep_grid_value(g, point, a));
     }
     for (c = 0; c < N_COLUMNS; c++) {
+        if (!shown(t, c))
+            continue;
         fputc(',', f);
         if (columns[c].kind == COL_TEXT)
             csv_text(f, col_text(r, c));
@@ -191,9 +210,9 @@ static void csv_attributes(FILE *f, const td_sweep_table *t)
 static void csv_write_all(FILE *f, const td_sweep_table *t)
 {
     long p, n = td_sweep_grid_points(t->grid);
-    csv_header(f, t->grid);
+    csv_header(f, t);
     for (p = 0; p < n; p++)
-        csv_row(f, t->grid, p, &t->rows[p]);
+        csv_row(f, t, p, &t->rows[p]);
     csv_attributes(f, t);
 }
 
@@ -300,20 +319,21 @@ static int h5_columns(hid_t file, const td_sweep_table *t)
     double *num = malloc((size_t)n * sizeof *num);
     const char *names[N_COLUMNS + TD_SWEEP_MAX_KEYS + 2];
     char vary_names[TD_SWEEP_MAX_KEYS][TD_SWEEP_KEY_SIZE + 8];
-    int c, a,
-        ok = text && num &&
-             td_h5_index(file, td_out_name(TD_OUT_SWEEP_POINT), (int)n, td_out_units(TD_OUT_SWEEP_POINT)) &&
-             h5_axes(file, t, n, text, num);
-    for (c = 0; ok && c < N_COLUMNS; c++) {
-        ok = h5_quantity(file, t, c, n, text, num);
-        names[c] = td_out_name(columns[c].id);
-    }
+    int c, a, m = 0,
+              ok = text && num &&
+                   td_h5_index(file, td_out_name(TD_OUT_SWEEP_POINT), (int)n, td_out_units(TD_OUT_SWEEP_POINT)) &&
+                   h5_axes(file, t, n, text, num);
+    for (c = 0; ok && c < N_COLUMNS; c++)
+        if (shown(t, c)) {
+            ok = h5_quantity(file, t, c, n, text, num);
+            names[m++] = td_out_name(columns[c].id);
+        }
     for (a = 0; a < td_sweep_grid_keys(t->grid); a++) {
         td_out_path(TD_OUT_SWEEP_VARY, td_sweep_grid_key(t->grid, a), vary_names[a], sizeof vary_names[a]);
-        names[N_COLUMNS + a] = vary_names[a];
+        names[m + a] = vary_names[a];
     }
-    names[N_COLUMNS + td_sweep_grid_keys(t->grid)] = td_out_name(TD_OUT_SWEEP_SECTION_RADIUS);
-    names[N_COLUMNS + td_sweep_grid_keys(t->grid) + 1] = NULL;
+    names[m + td_sweep_grid_keys(t->grid)] = td_out_name(TD_OUT_SWEEP_SECTION_RADIUS);
+    names[m + td_sweep_grid_keys(t->grid) + 1] = NULL;
     ok = ok && h5_section(file, t, n) && td_h5_attach(file, td_out_name(TD_OUT_SWEEP_POINT), names, 0);
     free(text);
     free(num);
