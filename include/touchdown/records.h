@@ -88,6 +88,14 @@ typedef struct td_retainer_totals {
     long contacts;             /**< contact intervals that swept at least TD_TOUCH_AND_GO_ANGLE of whirl
                                     (the one still open counts) */
     long touch_and_go;         /**< impacts that left again within less: bounces, rebounds, grazes */
+    /* the bearing's duty (docs/theory.md, "The bearing's duty"): peaks at the accepted points, like
+     * peak_normal_force; 0 before the first contact (peak_race_speed: from the start) */
+    double peak_sliding_velocity; /**< m/s, largest |v_s| in contact */
+    double peak_friction_power;   /**< W, largest F_t v_s */
+    double peak_pv;             /**< Pa m/s, largest N / (2 R_s b) |v_s| (TD_UNDEFINED without the bearing's width b) */
+    double peak_contact_stress; /**< Pa, Hertz, the most loaded ball on the inner raceway at peak_normal_force
+                                     (TD_UNDEFINED without the bearing's ball geometry) */
+    double peak_race_speed;     /**< rad/s, largest |race speed| */
     /* life (touchdown/assess.h td_life_law; docs/theory.md, "Touchdown bearing life") */
     double damage;      /**< Miner sum of the ISO 281 rating life used: the contact load's rainflow cycles (those
                              the history's end closes and its residue included) and the race's revolutions

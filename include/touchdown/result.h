@@ -297,6 +297,17 @@ typedef enum td_out_id {
     TD_OUT_SWEEP_POINTS,
     TD_OUT_SWEEP_WITH,
     TD_OUT_SWEEP_FROM,
+    /* the bearing's duty */
+    TD_OUT_RETAINER_PEAK_SLIDING_VELOCITY,
+    TD_OUT_RETAINER_PEAK_FRICTION_POWER,
+    TD_OUT_RETAINER_PEAK_PV,
+    TD_OUT_RETAINER_PEAK_CONTACT_STRESS,
+    TD_OUT_RETAINER_PEAK_RACE_SPEED,
+    TD_OUT_RETAINER_LOAD_RATIO,
+    TD_OUT_SENSOR_CLEARANCE,
+    TD_OUT_SENSOR_PEAK_DISPLACEMENT,
+    TD_OUT_SENSOR_ZONE,
+    TD_OUT_SUM_SETTLE_TIME,
     TD_OUT_ID_COUNT /**< number of ids; also "several objects" as the parent of an attribute */
 } td_out_id;
 

@@ -80,6 +80,8 @@ typedef enum td_regime {
 
 /** Retainers whose totals td_run_summary carries itself (the output files carry every retainer's). */
 #define TD_RUN_SUMMARY_RETAINERS 8
+/** AMBs whose sensors the summary grades (ISO 14839-2 zones): the first this many. */
+#define TD_RUN_SUMMARY_AMBS 8
 
 /** One retainer at the end of a run: its totals and what its whirl was (td_run_whirl_classify). */
 typedef struct td_run_retainer {
@@ -90,6 +92,8 @@ typedef struct td_run_retainer {
     double whirl_frequency; /**< Hz: mean whirl rate while in contact / 2 pi, signed like the spin (< 0 backward);
                                  TD_UNDEFINED without a sustained contact (no whirl) */
     char whirl[40];         /**< "none", "touch-and-go", or "forward|backward rolling|sliding[, bouncing]" */
+    /* the bearing's duty */
+    double load_ratio; /**< peak normal force / the bearing's static rating C0 (TD_UNDEFINED without C0) */
     /* life (touchdown/assess.h; docs/theory.md, "Touchdown bearing life") */
     double drops_to_failure; /**< 1 / totals.damage: runs like this one the bearing survives (ISO 281 L10, 90 %
                                   reliability); TD_UNDEFINED without a dynamic rating or without damage */
@@ -191,6 +195,19 @@ typedef struct td_run_summary {
     int supervised; /**< 1: the model has a recovery supervisor (touchdown/model.h td_recovery): stats'
                          controller_switches, time_on_recovery and last_return_time are its account, and the
                          text, JSON and files carry them. Last, so that the record only grew */
+    /* the bearing's duty (docs/theory.md, "Assessment") */
+    int sensor_count;        /**< AMBs; the first TD_RUN_SUMMARY_AMBS below */
+    double sensor_clearance; /**< C_min, m: the smallest retainer clearance
+                                  (TD_UNDEFINED without a retainer) */
+    double
+        sensor_peak_displacement[TD_RUN_SUMMARY_AMBS]; /**< m, the largest 0-peak displacement at the AMB's
+                                                             sensor while it worked (td_sim_sensor_peak_displacement) */
+    int sensor_zone[TD_RUN_SUMMARY_AMBS];              /**< its ISO 14839-2 zone against the model's limits
+                                                            (td_vibration_zone, -1: undefined) */
+    double contact_onset; /**< s, when the contact still open at the end began (TD_UNDEFINED: free at the end) */
+    double settle_time;   /**< s from the first contact until the rotor settled: to contact_onset when it ends in
+                               contact, to last_contact_time when it ends free; TD_UNDEFINED without contact or
+                               for a run that did not reach its end */
     /* life */
     int life_kept; /**< 1: some retainer's bearing has a dynamic rating (td_model_get_retainer_bearing): the
                         retainers' damage, drops to failure and load cycles are in the text, JSON and files */

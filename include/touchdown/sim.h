@@ -139,6 +139,12 @@ TD_API const td_model *td_sim_model(const td_sim *sim);
  *  TD_ERR_INVALID on NULL arguments. */
 TD_API td_status td_sim_options_get(const td_sim *sim, td_sim_options *out);
 
+/* the bearing's duty */
+/** The largest 0-peak displacement hypot(x_s, y_s) at AMB `amb`'s sensor so far, over the accepted
+ *  points while the AMB works (ISO 14839-2's D: touchdown/assess.h), m; 0 before any. TD_ERR_INVALID
+ *  for an AMB out of range or a NULL argument. */
+TD_API td_status td_sim_sensor_peak_displacement(const td_sim *sim, int amb, double *out);
+
 #ifdef __cplusplus
 }
 #endif

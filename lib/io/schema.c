@@ -308,6 +308,17 @@ static const td_schema_entry entries[TD_OUT_ID_COUNT] = {
     CSV_LINE(TD_OUT_SWEEP_POINTS, "points", SWEEP),
     CSV_LINE(TD_OUT_SWEEP_WITH, "with", SWEEP),
     CSV_LINE(TD_OUT_SWEEP_FROM, "from", SWEEP),
+    /* ---- the bearing's duty ---- */
+    RET_ATTR(TD_OUT_RETAINER_PEAK_SLIDING_VELOCITY, "retainer_peak_sliding_velocity", F64, "m/s"),
+    RET_ATTR(TD_OUT_RETAINER_PEAK_FRICTION_POWER, "retainer_peak_friction_power", F64, "W"),
+    RET_ATTR(TD_OUT_RETAINER_PEAK_PV, "retainer_peak_pv", F64, "Pa m/s"),
+    RET_ATTR(TD_OUT_RETAINER_PEAK_CONTACT_STRESS, "retainer_peak_contact_stress", F64, "Pa"),
+    RET_ATTR(TD_OUT_RETAINER_PEAK_RACE_SPEED, "retainer_peak_race_speed", F64, "rad/s"),
+    RET_ATTR(TD_OUT_RETAINER_LOAD_RATIO, "retainer_load_ratio", F64, "1"),
+    RUN_ATTR(TD_OUT_SENSOR_CLEARANCE, "sensor_clearance", F64, "m"),
+    ATTR(TD_OUT_SENSOR_PEAK_DISPLACEMENT, "sensor_peak_displacement", TD_OUT_ROOT, RUN, F64, "m", "(n_amb)"),
+    ATTR(TD_OUT_SENSOR_ZONE, "sensor_zone", TD_OUT_ROOT, RUN, F64, "0 A, 1 B, 2 C, 3 D", "(n_amb)"),
+    RUN_ATTR(TD_OUT_SUM_SETTLE_TIME, "summary_settle_time", F64, "s"),
 };
 
 /* The lateral components, each name written once here (td_schema_components). */

@@ -12,6 +12,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "run/duty.h"
 #include "run/recorder.h"
 #include "run/summary.h"
 #include "run/warnings.h"
@@ -92,6 +93,8 @@ static void contact_advance(run_state *r, double t, int now_in_contact)
         if (!now_in_contact)
             r->s->last_contact_time = t;
     }
+    if (now_in_contact != r->in_contact) /* the bearing's duty: when the contact open now began */
+        r->s->contact_onset = now_in_contact ? t : TD_UNDEFINED;
     if (now_in_contact && td_is_undefined(r->s->first_contact_time)) {
         r->s->first_contact_time = t;
         r->solver_wall_at_contact = r->s->solver_wall_time;
@@ -390,6 +393,7 @@ static void summary_finish(run_state *r, double wall_start)
             s->free_at_end = 1;
     }
     summary_totals(r);
+    td_run_duty_collect(s, r->sim);
     summary_section(r);
     summary_ending(r);
     if (s->contacts == 0)
@@ -454,7 +458,13 @@ static td_status write_retainer_totals(td_recorder *rec, const td_sim *sim, int 
                  {TD_OUT_RETAINER_PEAK_HOUSING_FORCE, offsetof(td_retainer_totals, peak_housing_force)},
                  {TD_OUT_RETAINER_PEAK_NORMAL_FORCE, offsetof(td_retainer_totals, peak_normal_force)},
                  {TD_OUT_RETAINER_CONTACT_TIME, offsetof(td_retainer_totals, contact_time)},
-                 {TD_OUT_RETAINER_ROLLING_TIME, offsetof(td_retainer_totals, rolling_time)}};
+                 {TD_OUT_RETAINER_ROLLING_TIME, offsetof(td_retainer_totals, rolling_time)},
+                 /* the bearing's duty */
+                 {TD_OUT_RETAINER_PEAK_SLIDING_VELOCITY, offsetof(td_retainer_totals, peak_sliding_velocity)},
+                 {TD_OUT_RETAINER_PEAK_FRICTION_POWER, offsetof(td_retainer_totals, peak_friction_power)},
+                 {TD_OUT_RETAINER_PEAK_PV, offsetof(td_retainer_totals, peak_pv)},
+                 {TD_OUT_RETAINER_PEAK_CONTACT_STRESS, offsetof(td_retainer_totals, peak_contact_stress)},
+                 {TD_OUT_RETAINER_PEAK_RACE_SPEED, offsetof(td_retainer_totals, peak_race_speed)}};
     int n = td_model_retainer_count(td_sim_model(sim)), k;
     size_t i;
     td_retainer_totals *t = calloc((size_t)(n > 0 ? n : 1), sizeof *t);
@@ -676,6 +686,8 @@ td_status td_run(td_sim *sim, double t_end, const td_output_options *out, const 
         cst = write_retainer_totals(r.rec, sim, st == TD_OK, &close_err);
     if (cst == TD_OK && summary->life_kept)
         cst = write_retainer_life(r.rec, sim, st == TD_OK, &close_err);
+    if (cst == TD_OK)
+        cst = td_run_duty_write(r.rec, summary, sim, st == TD_OK, &close_err);
     if (cst == TD_OK)
         cst = td_recorder_close(&r.rec, st == TD_OK, loop_err.message, &close_err);
     else

@@ -2,6 +2,7 @@
  * The run summary: its initial state, and its text and JSON forms (touchdown/run.h).
  */
 #include "run/summary.h"
+#include "run/duty.h"
 
 #include <math.h>
 #include <stddef.h>
@@ -47,6 +48,7 @@ void td_run_summary_init(td_run_summary *s, double t0, double t_end, double spee
     s->start.requested = s->start.used = TD_START_REST;
     s->start.stability = TD_STABILITY_UNCHECKED;
     s->start.max_real_part = TD_UNDEFINED;
+    td_run_duty_init(s);
 }
 
 /* A retainer's answers: its totals' sums and peaks, and what they lead to. */
@@ -85,6 +87,7 @@ void td_run_summary_undefine_answers(td_run_summary *s)
         retainer_undefine(&s->retainers[k]);
     snprintf(s->ending, sizeof s->ending, "undetermined");
     s->regime = TD_REGIME_FAILED;
+    td_run_duty_undefine(s);
 }
 
 /*
@@ -374,6 +377,7 @@ static void format_answers(td_text *b, const td_run_summary *s)
         format_energy(b, &s->energy);
     for (k = 0; k < n; k++)
         format_retainer(b, s, k);
+    td_run_duty_format(b, s);
     for (k = 0; s->life_kept && k < n; k++) /* life */
         format_life(b, s, k);
 }
@@ -533,7 +537,14 @@ static void json_retainers(td_text *b, const td_run_summary *s)
                   {"peak_normal_force", offsetof(td_run_retainer, totals.peak_normal_force), 0},
                   {"race_speed", offsetof(td_run_retainer, race_speed), 0},
                   {"contacts", offsetof(td_run_retainer, totals.contacts), 1},
-                  {"touch_and_go", offsetof(td_run_retainer, totals.touch_and_go), 1}};
+                  {"touch_and_go", offsetof(td_run_retainer, totals.touch_and_go), 1},
+                  /* the bearing's duty */
+                  {"peak_sliding_velocity", offsetof(td_run_retainer, totals.peak_sliding_velocity), 0},
+                  {"peak_friction_power", offsetof(td_run_retainer, totals.peak_friction_power), 0},
+                  {"peak_pv", offsetof(td_run_retainer, totals.peak_pv), 0},
+                  {"peak_contact_stress", offsetof(td_run_retainer, totals.peak_contact_stress), 0},
+                  {"peak_race_speed", offsetof(td_run_retainer, totals.peak_race_speed), 0},
+                  {"load_ratio", offsetof(td_run_retainer, load_ratio), 0}};
     int k, n = s->retainer_count < TD_RUN_SUMMARY_RETAINERS ? s->retainer_count : TD_RUN_SUMMARY_RETAINERS;
     size_t i;
     td_text_printf(b, "\"retainer_whirl\":[");
@@ -675,6 +686,7 @@ void td_run_summary_json_members(td_text *b, const td_run_summary *s)
     td_text_printf(b, "},");
     json_section(b, s);
     json_warnings(b, s);
+    td_run_duty_json(b, s);
     json_retainers(b, s);
 }
 

@@ -59,6 +59,9 @@ typedef struct td_sim_monitor {
     int ahead;       /* a point is held */
     double ahead_t;  /* its time, beyond s->dae.t */
     double *ahead_y; /* neq: its state */
+
+    /* the bearing's duty: the largest 0-peak displacement at each AMB's sensor while it works (totals.c) */
+    double *sensor_peak; /* n_amb */
 } td_sim_monitor;
 
 #endif

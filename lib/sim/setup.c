@@ -104,9 +104,11 @@ static td_status alloc_arrays(td_sim *s, td_error *err)
     s->loop.ysave = calloc((size_t)s->dae.neq, sizeof(double));
     s->loop.ypsave = calloc((size_t)s->dae.neq, sizeof(double));
     s->monitor.ahead_y = calloc((size_t)s->dae.neq, sizeof(double));
+    s->monitor.sensor_peak = calloc((size_t)(na > 0 ? na : 1), sizeof(double)); /* the bearing's duty */
     if (!ok || !s->machine.unb || !s->machine.amb_mode || !s->machine.amb_drive || !s->machine.amb_control ||
         !s->machine.held_current || !s->machine.amb_current || !s->machine.amb_coef || !s->monitor.queue ||
-        !s->dae.rootdir || !s->dae.rootsfound || !s->loop.ysave || !s->loop.ypsave || !s->monitor.ahead_y)
+        !s->dae.rootdir || !s->dae.rootsfound || !s->loop.ysave || !s->loop.ypsave || !s->monitor.ahead_y ||
+        !s->monitor.sensor_peak)
         return td_error_set(err, TD_ERR_NOMEM, "out of memory creating a simulation");
     return TD_OK;
 }
@@ -446,6 +448,7 @@ void td_sim_teardown(td_sim *s)
     free(s->ops.st_D);
     free(s->machine.unb);
     free(s->machine.amb_mode);
+    free(s->monitor.sensor_peak);
     free(s->machine.amb_drive);
     free(s->machine.amb_control);
     free(s->machine.held_current);

@@ -328,3 +328,11 @@ td_status td_sim_options_get(const td_sim *sim, td_sim_options *out)
     *out = sim->opt;
     return TD_OK;
 }
+
+td_status td_sim_sensor_peak_displacement(const td_sim *sim, int amb, double *out)
+{
+    if (!sim || !out || amb < 0 || amb >= td_model_amb_count(sim->model))
+        return TD_ERR_INVALID;
+    td_sim_sensor_peak_get(sim, amb, out);
+    return TD_OK;
+}

@@ -292,6 +292,8 @@ void td_sim_totals_rewind(td_sim *s);
 void td_sim_totals_impact(td_sim *s, int k, double impulse, int bounced);
 /* Retainer k's totals at s->dae.t (td_sim_retainer_totals). */
 void td_sim_totals_get(const td_sim *s, int k, td_retainer_totals *out);
+/* The bearing's duty: AMB amb's largest sensed displacement so far (td_sim_sensor_peak_displacement). */
+void td_sim_sensor_peak_get(const td_sim *s, int amb, double *out);
 /* life (load_cycles.c): the retainers' rainflow counters for those whose bearing has a dynamic
  * rating (td_model_get_retainer_bearing), before the first point; freed by td_sim_life_free. */
 td_status td_sim_life_setup(td_sim *s, td_error *err);

@@ -9,6 +9,7 @@
  * so time in contact and rolling is the segment's length in the mode at its end.
  */
 #include "sim/sim_internal.h"
+#include "touchdown/assess.h"
 
 #include <math.h>
 #include <string.h>
@@ -73,6 +74,38 @@ static void track_interval(td_sim *s, int k)
     tk->in_contact = in;
 }
 
+/* The bearing's duty at y: retainer k's sliding, friction power and PV in contact, its race speed
+ * always; the race's width from the model's bearing (0: none, PV stays 0 here, TD_UNDEFINED in
+ * td_sim_totals_get). */
+static void duty_peaks(td_sim *s, int k, const double *y)
+{
+    td_retainer_totals *t = &s->monitor.totals[k].t;
+    td_retainer_bearing b;
+    t->peak_race_speed = fmax(t->peak_race_speed, fabs(td_sim_race_speed(s, k, y)));
+    if (s->contacts.ret[k].mode != TD_RMODE_FREE) {
+        double vs = fabs(td_sim_sliding_velocity(s, k, y));
+        t->peak_sliding_velocity = fmax(t->peak_sliding_velocity, vs);
+        t->peak_friction_power =
+            fmax(t->peak_friction_power, td_sim_friction_force(s, k, y) * td_sim_sliding_velocity(s, k, y));
+        if (td_model_get_retainer_bearing(s->model, k, &b) == TD_OK && b.width > 0.0)
+            t->peak_pv = fmax(t->peak_pv,
+                              td_sim_normal_force(s, k, y) / (2.0 * s->contacts.ret[k].r.shaft_radius * b.width) * vs);
+    }
+}
+
+/* The largest 0-peak displacement at each AMB's sensor while the AMB works (ISO 14839-2's D). */
+static void sensor_peaks(td_sim *s, const double *y)
+{
+    int j;
+    for (j = 0; j < s->sys->n_amb_axes / 2; j++) {
+        const td_amb_axis *ax = &s->sys->amb_axes[2 * j], *ay = &s->sys->amb_axes[2 * j + 1];
+        if (s->machine.amb_mode[ax->amb] == TD_AMB_OFF)
+            continue;
+        s->monitor.sensor_peak[ax->amb] =
+            fmax(s->monitor.sensor_peak[ax->amb], hypot(y[s->dae.oq + ax->sensor_dof], y[s->dae.oq + ay->sensor_dof]));
+    }
+}
+
 void td_sim_totals_peaks(td_sim *s, const double *y)
 {
     int k;
@@ -81,8 +114,10 @@ void td_sim_totals_peaks(td_sim *s, const double *y)
         tk->t.peak_housing_force = fmax(tk->t.peak_housing_force, housing_force(s, k, y));
         if (s->contacts.ret[k].mode != TD_RMODE_FREE) /* as integrands_at's n */
             tk->t.peak_normal_force = fmax(tk->t.peak_normal_force, td_sim_normal_force(s, k, y));
+        duty_peaks(s, k, y);
         td_sim_life_point(s, k, y); /* life: a point reached, into the rainflow count */
     }
+    sensor_peaks(s, y);
 }
 
 void td_sim_totals_point(td_sim *s, double t, int restart)
@@ -172,6 +207,20 @@ void td_sim_totals_rewind(td_sim *s)
     s->monitor.totals_t = s->dae.t;
 }
 
+/* The duty's quantities that need the bearing: undefined without it, the Hertz stress at the peak load. */
+static void duty_get(const td_sim *s, int k, td_retainer_totals *out)
+{
+    td_retainer_bearing b;
+    if (td_model_get_retainer_bearing(s->model, k, &b) != TD_OK)
+        memset(&b, 0, sizeof b);
+    if (!(b.width > 0.0))
+        out->peak_pv = TD_UNDEFINED;
+    out->peak_contact_stress = b.balls > 0
+                                   ? td_ball_inner_contact_stress(out->peak_normal_force, b.balls, b.ball_diameter,
+                                                                  b.pitch_diameter, b.groove_conformity)
+                                   : TD_UNDEFINED;
+}
+
 void td_sim_totals_get(const td_sim *s, int k, td_retainer_totals *out)
 {
     const td_sim_totals *tk = &s->monitor.totals[k];
@@ -179,5 +228,11 @@ void td_sim_totals_get(const td_sim *s, int k, td_retainer_totals *out)
     back_to_now(s, k, out);
     if (tk->in_contact) /* the interval still open counts as a contact */
         out->contacts++;
+    duty_get(s, k, out);
     td_sim_life_get(s, k, out); /* life: the rainflow cycles added, the end's included */
+}
+
+void td_sim_sensor_peak_get(const td_sim *s, int amb, double *out)
+{
+    *out = s->monitor.sensor_peak[amb];
 }
