@@ -38,7 +38,7 @@ check "touchdown --help lists report" grep -q '^  report RUN.h5' "$work/.out"
 # the limits and one bearing's ratings as --set overrides: the report reads them back from the case
 # text the file holds, where the overrides are recorded as comment lines
 t "$work/run" run -q -o "$work/run/drop" --set end_time=0.15 \
-    --set "retainers[0].bearing={static_rating=18000.0;dynamic_rating=27000.0;}" \
+    --set "retainers[0].bearing={static_rating=5000.0;dynamic_rating=27000.0;}" \
     --set "limits={temperature_rise=40.0;drops=100.0;zones=[0.25,0.4,0.55];}" "$src/cases/drop.cfg"
 check "drop to 0.15 s: exit 0" test "$rc" = 0
 t "$work/rep" report -o "$work/rep/r" "$work/run/drop.h5"
@@ -79,7 +79,7 @@ assert seen >= 9 + 2 * 5, seen     # the run's nine and each retainer's five of 
 # the limits of the case, and each judged quantity against its own
 lim = d["limits"]
 assert lim["temperature_rise"] == 40.0 and lim["drops"] == 100.0 and lim["zones"] == [0.25, 0.4, 0.55], lim
-assert lim["static_rating"] == [18000.0, None] and lim["dynamic_rating"] == [27000.0, None], lim
+assert lim["static_rating"] == [5000.0, None] and lim["dynamic_rating"] == [27000.0, None], lim
 rule = {"retainer_load_ratio": (1.0, lambda v, l: v <= l), "retainer_peak_temperature_rise": (40.0, lambda v, l: v <= l),
         "retainer_drops_to_failure": (100.0, lambda v, l: v >= l), "sensor_zone": (1.0, lambda v, l: v <= l)}
 judged = 0
@@ -95,11 +95,16 @@ for q in d["quantities"]:
     else:
         assert q["verdict"] is None, q
 assert "limits        from the case: temperature rise 40 K, drops 100, ISO 14839-2 zone boundaries 0.25, 0.4, 0.55 of C_min" in text
-assert "retainer 0 bearing: static rating C0 18000 N, dynamic rating C 27000 N" in text
+assert "retainer 0 bearing: static rating C0 5000 N, dynamic rating C 27000 N" in text
 assert "retainer 1 bearing: static rating C0 none given, dynamic rating C none given" in text
 # the text: the first line names the file; a quantity's value as %.6g beside its label
 assert text.startswith("drop report of "), text[:80]
 assert "peak housing force                     %.6g N" % f.attrs["summary_peak_housing_force"] in text
+# a C0 below the landing's peak force: the load ratio exceeds 1 wherever the file has it
+for q in d["quantities"]:
+    if q["name"] == "retainer_load_ratio" and q["retainer"] == 0 and q["state"] == "value":
+        assert q["value"] > 1.0 and q["verdict"] == "exceeds", q
+        assert "peak normal force / static rating C0   %.6g" % q["value"] in text
 print("ok", seen, "values,", judged, "judged against a limit")
 PY
 
@@ -109,14 +114,17 @@ cp "$work/run/drop.h5" "$work/run/old.h5"
 import sys, h5py
 with h5py.File(sys.argv[1], "r+") as f:
     del f.attrs["summary_peak_housing_force"], f.attrs["retainer_friction_work"]
+    if "retainer_load_ratio" in f.attrs:  # a quantity of this version's, absent from an older file
+        del f.attrs["retainer_load_ratio"]
 PY
 t "$work/old" report --json -o "$work/old/r" "$work/run/old.h5"
 check "older file: exit 0" test "$rc" = 0
 check "older file: the absent quantities are null and 'not in this file'" "$py" - "$work/old/.out" "$work/old/r.txt" <<'PY'
 import json, sys
 d = json.load(open(sys.argv[1]))
-gone = [q for q in d["quantities"] if q["name"] in ("summary_peak_housing_force", "retainer_friction_work")]
-assert len(gone) == 3, gone
+gone = [q for q in d["quantities"] if q["name"] in ("summary_peak_housing_force", "retainer_friction_work",
+                                                     "retainer_load_ratio")]
+assert len(gone) == 5, gone
 assert all(q["value"] is None and q["state"] == "not in this file" for q in gone), gone
 text = open(sys.argv[2]).read()
 assert "  peak housing force                     not in this file" in text

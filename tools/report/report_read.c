@@ -22,6 +22,8 @@ static const report_def defs[] = {
     {"summary_contacts", "contact onsets", 0, REPORT_LIMIT_NONE},
     {"summary_ending_whirl_frequency", "whirl frequency at the end", 0, REPORT_LIMIT_NONE},
     {"summary_final_speed", "final speed", 0, REPORT_LIMIT_NONE},
+    {"summary_settle_time", "time to settle", 0, REPORT_LIMIT_NONE},
+    {"sensor_clearance", "smallest retainer clearance C_min", 0, REPORT_LIMIT_NONE},
     /* ISO 14839-2 at each AMB's sensor */
     {"sensor_peak_displacement", "peak displacement", 2, REPORT_LIMIT_NONE},
     {"sensor_zone", "ISO 14839-2 zone", 2, REPORT_LIMIT_ZONE},
@@ -42,6 +44,7 @@ static const report_def defs[] = {
     {"retainer_drag_work", "race drag work", 1, REPORT_LIMIT_NONE},
     {"retainer_heat", "heat into the race", 1, REPORT_LIMIT_NONE},
     {"retainer_peak_temperature_rise", "peak race temperature rise", 1, REPORT_LIMIT_TEMPERATURE},
+    {"retainer_peak_thermal_growth", "peak thermal growth of the race bore", 1, REPORT_LIMIT_NONE},
     /* life */
     {"retainer_load_cycles", "load cycles (rainflow)", 1, REPORT_LIMIT_NONE},
     {"retainer_damage", "damage of this drop (Miner)", 1, REPORT_LIMIT_NONE},

@@ -19,8 +19,10 @@ static void value_words(const report_item *it, char *buf, size_t n)
         snprintf(buf, n, "%s", report_state_words(it->state));
     else if (it->def->limit == REPORT_LIMIT_ZONE)
         snprintf(buf, n, "zone %s", td_vibration_zone_name(it->value == floor(it->value) ? (int)it->value : -1));
+    else if (!it->units[0] || !strcmp(it->units, "1")) /* a ratio or a count */
+        snprintf(buf, n, "%.6g", it->value);
     else
-        snprintf(buf, n, "%.6g%s%s", it->value, it->units[0] ? " " : "", it->units);
+        snprintf(buf, n, "%.6g %s", it->value, it->units);
 }
 
 /* The limit of an item in words ("-" when none applies). */
