@@ -167,7 +167,7 @@ echo "not hdf5" >"$work/text.h5"
 t "$work/in2" report -o "$work/in2/r" "$work/text.h5"
 check "not HDF5: exit 2, one line" test "$rc" = 2 -a "$(wc -l <"$work/in2/.err")" = 1
 check "not HDF5: nothing written" nothing_but "$work/in2"
-t "$work/modal" modal -q -o "$work/modal/m" --set "modal.speed_steps=2" "$src/cases/drop.cfg"
+t "$work/modal" modal -q -o "$work/modal/m" --set "modal.speed_steps=2" "$src/cases/jeffcott.cfg"
 t "$work/in3" report -o "$work/in3/r" "$work/modal/m.h5"
 check "a modal file: exit 2, 'a modal file, not a run file'" test "$rc" = 2 -a \
     -n "$(grep 'a modal file, not a run file' "$work/in3/.err")"
