@@ -111,8 +111,9 @@ int report_figure(const td_result *r, const report *rep, const char *dir, const 
     opt.run = opt.quiet = 1;
     memset(&job, 0, sizeof job);
     job.opt = &opt;
-    if (rep->nret < 1 || data_load(r, rep->nret, &d)) {
-        fprintf(stderr, "touchdown report: %s: no time series of a retainer to draw\n", rep->path);
+    if (data_load(r, rep->nret, &d)) { /* a run file has /time (td_result_open) */
+        fprintf(stderr, "touchdown report: %s: its time series cannot be read\n", rep->path);
+        data_free(&d);
         return PLOT_FAILED;
     }
     st = write_data(&opt, &d, rep->path);
