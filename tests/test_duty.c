@@ -151,10 +151,88 @@ static void test_duty_peaks(void **state)
     }
 }
 
+/* The contact of some retainer, from the events of a run stepped by hand: when it first began, when
+ * the one open at the end began (or -1), when the last one ended (or -1). */
+static void contact_history(const char *file, const char **ov, int n, double t_end, double *first, double *onset,
+                            double *ended)
+{
+    td_case *c = td_test_load_case(file, ov, n);
+    td_sim *s = NULL;
+    td_error err;
+    td_status r;
+    double tr = 0.0;
+    int in = 0, k;
+    *first = *onset = *ended = -1.0;
+    assert_int_equal(td_sim_create(td_case_model(c), td_case_sim_options(c), &s, &err), TD_OK);
+    while ((r = td_sim_step(s, t_end, &tr, &err)) == TD_EVENT) {
+        int now = 0;
+        for (k = 0; k < td_model_retainer_count(td_case_model(c)); k++) {
+            td_retainer_state rs;
+            assert_int_equal(td_sim_retainer_state(s, k, &rs), TD_OK);
+            now |= rs.in_contact;
+        }
+        if (now && !in)
+            *onset = tr, *first = *first < 0.0 ? tr : *first;
+        if (!now && in)
+            *ended = tr, *onset = -1.0;
+        in = now;
+    }
+    assert_int_equal(r, TD_OK);
+    td_sim_free(&s);
+    td_case_free(&c);
+}
+
+/* The time to settle (docs/theory.md, "Time to settle") of td_run against the contact history: the
+ * steady rub of rub-damped.cfg held to 0.8 s (settled in its contact), the same run to its end at 2 s
+ * (the rub ends at the unbalance step at 1.1 s: settled free), the drop to 0.3 s (bouncing: not
+ * settled). */
+static void test_time_to_settle(void **state)
+{
+    static const char *to_08[] = {"end_time = 0.8"}, *to_03[] = {"end_time = 0.3"};
+    const struct {
+        const char *file;
+        const char **ov;
+        double t_end;
+        int settled;
+    } runs[] = {{"cases/rub-damped.cfg", to_08, 0.8, 1},
+                {"cases/rub-damped.cfg", NULL, 2.0, 1},
+                {"cases/drop.cfg", to_03, 0.3, 0}};
+    size_t i;
+    (void)state;
+    for (i = 0; i < sizeof runs / sizeof runs[0]; i++) {
+        td_case *c = td_test_load_case(runs[i].file, runs[i].ov, runs[i].ov ? 1 : 0);
+        td_output_options out = *td_case_output_options(c);
+        td_run_summary sum;
+        td_sim *s = NULL;
+        td_error err;
+        double first, onset, ended, since;
+        out.hdf5_path[0] = out.csv_path[0] = '\0';
+        assert_int_equal(td_sim_create(td_case_model(c), td_case_sim_options(c), &s, &err), TD_OK);
+        assert_int_equal(td_run(s, runs[i].t_end, &out, NULL, NULL, &sum, &err), TD_OK);
+        contact_history(runs[i].file, runs[i].ov, runs[i].ov ? 1 : 0, runs[i].t_end, &first, &onset, &ended);
+        since = onset >= 0.0 ? onset : ended;
+        print_message("%s to %g s: first contact %.9f s, the last %s %.9f s, last stretch %.4g s: settled %d, settle "
+                      "time %.9g s\n",
+                      runs[i].file, runs[i].t_end, first, onset >= 0.0 ? "began" : "ended", since, sum.ending_window,
+                      sum.settled, sum.settle_time);
+        assert_int_equal(sum.settled, runs[i].settled);
+        assert_int_equal(runs[i].t_end - since >= sum.ending_window, runs[i].settled);
+        assert_true(first > 0.0 && sum.first_contact_time == first);
+        if (runs[i].settled)
+            assert_true(sum.settle_time == since - first);
+        else
+            assert_true(td_is_undefined(sum.settle_time));
+        assert_int_equal(sum.contact_totals_converge, td_run_summary_regime(&sum) != TD_REGIME_BOUNCE);
+        td_sim_free(&s);
+        td_case_free(&c);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_duty_peaks),
+        cmocka_unit_test(test_time_to_settle),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

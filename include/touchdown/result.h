@@ -308,6 +308,8 @@ typedef enum td_out_id {
     TD_OUT_SENSOR_PEAK_DISPLACEMENT,
     TD_OUT_SENSOR_ZONE,
     TD_OUT_SUM_SETTLE_TIME,
+    TD_OUT_SUM_SETTLED,
+    TD_OUT_SUM_CONTACT_TOTALS_CONVERGE,
     TD_OUT_ID_COUNT /**< number of ids; also "several objects" as the parent of an attribute */
 } td_out_id;
 

@@ -205,9 +205,17 @@ typedef struct td_run_summary {
     int sensor_zone[TD_RUN_SUMMARY_AMBS];              /**< its ISO 14839-2 zone against the model's limits
                                                             (td_vibration_zone, -1: undefined) */
     double contact_onset; /**< s, when the contact still open at the end began (TD_UNDEFINED: free at the end) */
-    double settle_time;   /**< s from the first contact until the rotor settled: to contact_onset when it ends in
-                               contact, to last_contact_time when it ends free; TD_UNDEFINED without contact or
-                               for a run that did not reach its end */
+    double settle_time;   /**< s from the first contact until the rotor settled (docs/theory.md, "Time to settle"):
+                               to contact_onset when that contact has held through the last stretch
+                               (ending_window), to last_contact_time when the rotor has been free through it;
+                               TD_UNDEFINED otherwise (settled says why) */
+    int settled;          /**< 1: settled (settle_time); 0: not settled, it still touches and leaves its
+                               retainers in the last stretch; TD_RUN_NOT_APPLICABLE: no contact; -1: undetermined
+                               (the run did not reach its end) */
+    int contact_totals_converge; /**< 0: the run bounces at its end (regime bounce), a chaotic sequence of impacts:
+                                      its impulse, time in contact, contact counts, mean and rms normal force,
+                                      whirl frequency and the energy lost in damping and in the contacts move with
+                                      the mesh and the tolerances (docs/validation.md) */
     /* life */
     int life_kept; /**< 1: some retainer's bearing has a dynamic rating (td_model_get_retainer_bearing): the
                         retainers' damage, drops to failure and load cycles are in the text, JSON and files */

@@ -319,6 +319,8 @@ static const td_schema_entry entries[TD_OUT_ID_COUNT] = {
     ATTR(TD_OUT_SENSOR_PEAK_DISPLACEMENT, "sensor_peak_displacement", TD_OUT_ROOT, RUN, F64, "m", "(n_amb)"),
     ATTR(TD_OUT_SENSOR_ZONE, "sensor_zone", TD_OUT_ROOT, RUN, F64, "0 A, 1 B, 2 C, 3 D", "(n_amb)"),
     RUN_ATTR(TD_OUT_SUM_SETTLE_TIME, "summary_settle_time", F64, "s"),
+    RUN_ATTR(TD_OUT_SUM_SETTLED, "summary_settled", F64, ""),
+    RUN_ATTR(TD_OUT_SUM_CONTACT_TOTALS_CONVERGE, "summary_contact_totals_converge", I64, ""),
 };
 
 /* The lateral components, each name written once here (td_schema_components). */

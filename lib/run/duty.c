@@ -22,6 +22,8 @@ void td_run_duty_init(td_run_summary *s)
     }
     s->contact_onset = TD_UNDEFINED;
     s->settle_time = TD_UNDEFINED;
+    s->settled = -1;
+    s->contact_totals_converge = 1;
 }
 
 void td_run_duty_undefine(td_run_summary *s)
@@ -37,6 +39,7 @@ void td_run_duty_undefine(td_run_summary *s)
         s->sensor_zone[k] = -1;
     }
     s->settle_time = TD_UNDEFINED;
+    s->settled = -1;
 }
 
 /* Retainer k's peak normal force over its bearing's static rating C0; TD_UNDEFINED without C0. */
@@ -61,6 +64,19 @@ static double smallest_clearance(const td_model *m)
     return c;
 }
 
+/* Settled: in one contact, or free of the retainers, through the whole last stretch (ending_window). */
+static void settle(td_run_summary *s)
+{
+    double since;
+    if (td_is_undefined(s->first_contact_time)) {
+        s->settled = TD_RUN_NOT_APPLICABLE;
+        return;
+    }
+    since = td_is_undefined(s->contact_onset) ? s->last_contact_time : s->contact_onset;
+    s->settled = s->t_reached - since >= s->ending_window;
+    s->settle_time = s->settled ? since - s->first_contact_time : TD_UNDEFINED;
+}
+
 void td_run_duty_collect(td_run_summary *s, const td_sim *sim)
 {
     const td_model *m = td_sim_model(sim);
@@ -76,10 +92,8 @@ void td_run_duty_collect(td_run_summary *s, const td_sim *sim)
             s->sensor_peak_displacement[k] = TD_UNDEFINED;
         s->sensor_zone[k] = td_vibration_zone_of(s->sensor_peak_displacement[k], s->sensor_clearance, &lim.zones);
     }
-    /* settled: in the contact still open at the end, or off the retainers since the last one ended */
-    if (!td_is_undefined(s->first_contact_time))
-        s->settle_time =
-            (td_is_undefined(s->contact_onset) ? s->last_contact_time : s->contact_onset) - s->first_contact_time;
+    settle(s);
+    s->contact_totals_converge = td_run_summary_regime(s) != TD_REGIME_BOUNCE;
 }
 
 /* A zone as a file value: 0..3, NaN when undefined. */
@@ -131,7 +145,13 @@ td_status td_run_duty_write(td_recorder *rec, const td_run_summary *s, const td_
     free(v);
     if (st == TD_OK)
         st = write_sensors(rec, s, sim, reached_end, err);
-    return st == TD_OK ? td_recorder_set_double(rec, TD_OUT_SUM_SETTLE_TIME, s->settle_time, err) : st;
+    if (st == TD_OK)
+        st = td_recorder_set_double(rec, TD_OUT_SUM_SETTLE_TIME, s->settle_time, err);
+    if (st == TD_OK)
+        st = td_recorder_set_double(rec, TD_OUT_SUM_SETTLED,
+                                    s->settled == 0 || s->settled == 1 ? (double)s->settled : TD_UNDEFINED, err);
+    return st == TD_OK ? td_recorder_set_long(rec, TD_OUT_SUM_CONTACT_TOTALS_CONVERGE, s->contact_totals_converge, err)
+                       : st;
 }
 
 /* A value with its unit, or "n/a" (undefined: not given, or the run did not reach its end). */
@@ -155,7 +175,9 @@ void td_run_duty_format(td_text *b, const td_run_summary *s)
         value_or_na(b, " Hertz", r->totals.peak_contact_stress, "Pa,");
         value_or_na(b, " race speed", r->totals.peak_race_speed, "rad/s;");
         value_or_na(b, " load / C0", r->load_ratio, "");
-        td_text_printf(b, "\n");
+        td_text_printf(b, "%s\n",
+                       s->peak_converges ? ""
+                                         : " (rigid constraint: the load, power, PV and stress peaks do not converge)");
     }
     for (k = 0; k < s->sensor_count && k < TD_RUN_SUMMARY_AMBS; k++) {
         if (td_is_undefined(s->sensor_peak_displacement[k]) || td_is_undefined(s->sensor_clearance)) {
@@ -166,13 +188,20 @@ void td_run_duty_format(td_text *b, const td_run_summary *s)
                        k, td_vibration_zone_name(s->sensor_zone[k]), s->sensor_peak_displacement[k],
                        s->sensor_peak_displacement[k] / s->sensor_clearance);
     }
-    if (!td_is_undefined(s->settle_time))
+    if (s->settled == 1)
         td_text_printf(b, "time to settle              %.6g s after the first contact (%s)\n", s->settle_time,
-                       td_is_undefined(s->contact_onset) ? "to the end of the last contact"
-                                                         : "to the start of the contact held to the end");
+                       td_is_undefined(s->contact_onset) ? "free since its last contact ended"
+                                                         : "in one contact since, held to the end");
     else
-        td_text_printf(b, "time to settle              n/a (%s)\n",
-                       td_is_undefined(s->first_contact_time) ? "no contact" : "the run did not reach its end");
+        td_text_printf(b, "time to settle              %s\n",
+                       s->settled == 0 ? "not settled (it still touches and leaves its retainers in the last stretch)"
+                       : s->settled == TD_RUN_NOT_APPLICABLE ? "n/a (no contact)"
+                                                             : "n/a (the run did not reach its end)");
+    if (!s->contact_totals_converge)
+        td_text_printf(
+            b, "not converged               total impulse, time in contact, contact counts, mean and rms "
+               "normal force, whirl frequency, energy lost in damping and in the contacts (it bounces: a chaotic "
+               "sequence of impacts)\n");
 }
 
 /* "KEY":[...] of n numbers, null for undefined. */
@@ -201,5 +230,9 @@ void td_run_duty_json(td_text *b, const td_run_summary *s)
                        s->sensor_zone[j] >= 0 ? "\"" : "");
     td_text_printf(b, "],\"settle_time\":");
     td_text_json_real(b, s->settle_time);
-    td_text_printf(b, ",");
+    td_text_printf(b, ",\"settled\":%s,\"contact_totals_converge\":%s,",
+                   s->settled == 1   ? "true"
+                   : s->settled == 0 ? "false"
+                                     : "null",
+                   s->contact_totals_converge ? "true" : "false");
 }

@@ -393,9 +393,9 @@ static void summary_finish(run_state *r, double wall_start)
             s->free_at_end = 1;
     }
     summary_totals(r);
-    td_run_duty_collect(s, r->sim);
     summary_section(r);
     summary_ending(r);
+    td_run_duty_collect(s, r->sim); /* after the ending: the time to settle is judged over its stretch */
     if (s->contacts == 0)
         s->returned_to_free_orbit = TD_RUN_NOT_APPLICABLE;
     else if (s->free_at_end < 0)
