@@ -48,6 +48,7 @@ typedef struct report_def {
     const char *label; /* in the text */
     int per;           /* 0 the run, 1 each retainer, 2 each AMB sensor */
     report_limit limit;
+    const char *flag; /* the attribute that says whether it converges (0: flagged); NULL: NAME_converges */
 } report_def;
 
 /* One line of the report. */

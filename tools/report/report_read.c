@@ -9,46 +9,50 @@
 #include <stdlib.h>
 #include <string.h>
 
+/* The flag of the contact totals that a run bouncing at its end does not converge (the summary's
+ * contact_totals_converge: docs/output-format.md lists what it covers). */
+#define TOTALS "summary_contact_totals_converge"
+
 /* The quantities, in the report's order: the run's, then each sensor's, then each retainer's
  * (its loads, the bearing's duty, heat and life). docs/report.md lists them. */
 static const report_def defs[] = {
     /* the drop, over the run */
-    {"summary_peak_housing_force", "peak housing force", 0, REPORT_LIMIT_NONE},
-    {"summary_peak_normal_force", "peak contact normal force", 0, REPORT_LIMIT_NONE},
-    {"summary_total_impulse", "total impulse", 0, REPORT_LIMIT_NONE},
-    {"summary_friction_work", "friction work", 0, REPORT_LIMIT_NONE},
-    {"summary_first_contact_time", "first contact", 0, REPORT_LIMIT_NONE},
-    {"summary_contact_time", "time in contact", 0, REPORT_LIMIT_NONE},
-    {"summary_contacts", "contact onsets", 0, REPORT_LIMIT_NONE},
-    {"summary_ending_whirl_frequency", "whirl frequency at the end", 0, REPORT_LIMIT_NONE},
-    {"summary_final_speed", "final speed", 0, REPORT_LIMIT_NONE},
-    {"summary_settle_time", "time to settle", 0, REPORT_LIMIT_NONE},
-    {"sensor_clearance", "smallest retainer clearance C_min", 0, REPORT_LIMIT_NONE},
+    {"summary_peak_housing_force", "peak housing force", 0, REPORT_LIMIT_NONE, NULL},
+    {"summary_peak_normal_force", "peak contact normal force", 0, REPORT_LIMIT_NONE, NULL},
+    {"summary_total_impulse", "total impulse", 0, REPORT_LIMIT_NONE, TOTALS},
+    {"summary_friction_work", "friction work", 0, REPORT_LIMIT_NONE, NULL},
+    {"summary_first_contact_time", "first contact", 0, REPORT_LIMIT_NONE, NULL},
+    {"summary_contact_time", "time in contact", 0, REPORT_LIMIT_NONE, TOTALS},
+    {"summary_contacts", "contact onsets", 0, REPORT_LIMIT_NONE, TOTALS},
+    {"summary_ending_whirl_frequency", "whirl frequency at the end", 0, REPORT_LIMIT_NONE, TOTALS},
+    {"summary_final_speed", "final speed", 0, REPORT_LIMIT_NONE, NULL},
+    {"summary_settle_time", "time to settle", 0, REPORT_LIMIT_NONE, NULL},
+    {"sensor_clearance", "smallest retainer clearance C_min", 0, REPORT_LIMIT_NONE, NULL},
     /* ISO 14839-2 at each AMB's sensor */
-    {"sensor_peak_displacement", "peak displacement", 2, REPORT_LIMIT_NONE},
-    {"sensor_zone", "ISO 14839-2 zone", 2, REPORT_LIMIT_ZONE},
+    {"sensor_peak_displacement", "peak displacement", 2, REPORT_LIMIT_NONE, NULL},
+    {"sensor_zone", "ISO 14839-2 zone", 2, REPORT_LIMIT_ZONE, NULL},
     /* each retainer: its loads */
-    {"retainer_peak_housing_force", "peak housing force", 1, REPORT_LIMIT_NONE},
-    {"retainer_peak_normal_force", "peak contact normal force", 1, REPORT_LIMIT_NONE},
-    {"retainer_impulse", "impulse", 1, REPORT_LIMIT_NONE},
-    {"retainer_friction_work", "friction work", 1, REPORT_LIMIT_NONE},
-    {"retainer_contact_time", "time in contact", 1, REPORT_LIMIT_NONE},
+    {"retainer_peak_housing_force", "peak housing force", 1, REPORT_LIMIT_NONE, NULL},
+    {"retainer_peak_normal_force", "peak contact normal force", 1, REPORT_LIMIT_NONE, NULL},
+    {"retainer_impulse", "impulse", 1, REPORT_LIMIT_NONE, TOTALS},
+    {"retainer_friction_work", "friction work", 1, REPORT_LIMIT_NONE, NULL},
+    {"retainer_contact_time", "time in contact", 1, REPORT_LIMIT_NONE, TOTALS},
     /* the bearing's duty */
-    {"retainer_load_ratio", "peak normal force / static rating C0", 1, REPORT_LIMIT_RATIO},
-    {"retainer_peak_contact_stress", "peak contact stress (Hertz)", 1, REPORT_LIMIT_NONE},
-    {"retainer_peak_sliding_velocity", "peak sliding velocity", 1, REPORT_LIMIT_NONE},
-    {"retainer_peak_pv", "peak PV", 1, REPORT_LIMIT_NONE},
-    {"retainer_peak_friction_power", "peak friction power", 1, REPORT_LIMIT_NONE},
-    {"retainer_peak_race_speed", "peak race speed", 1, REPORT_LIMIT_NONE},
+    {"retainer_load_ratio", "peak normal force / static rating C0", 1, REPORT_LIMIT_RATIO, NULL},
+    {"retainer_peak_contact_stress", "peak contact stress (Hertz)", 1, REPORT_LIMIT_NONE, NULL},
+    {"retainer_peak_sliding_velocity", "peak sliding velocity", 1, REPORT_LIMIT_NONE, NULL},
+    {"retainer_peak_pv", "peak PV", 1, REPORT_LIMIT_NONE, NULL},
+    {"retainer_peak_friction_power", "peak friction power", 1, REPORT_LIMIT_NONE, NULL},
+    {"retainer_peak_race_speed", "peak race speed", 1, REPORT_LIMIT_NONE, NULL},
     /* heat */
-    {"retainer_drag_work", "race drag work", 1, REPORT_LIMIT_NONE},
-    {"retainer_heat", "heat into the race", 1, REPORT_LIMIT_NONE},
-    {"retainer_peak_temperature_rise", "peak race temperature rise", 1, REPORT_LIMIT_TEMPERATURE},
-    {"retainer_peak_thermal_growth", "peak thermal growth of the race bore", 1, REPORT_LIMIT_NONE},
+    {"retainer_drag_work", "race drag work", 1, REPORT_LIMIT_NONE, NULL},
+    {"retainer_heat", "heat into the race", 1, REPORT_LIMIT_NONE, NULL},
+    {"retainer_peak_temperature_rise", "peak race temperature rise", 1, REPORT_LIMIT_TEMPERATURE, NULL},
+    {"retainer_peak_thermal_growth", "peak thermal growth of the race bore", 1, REPORT_LIMIT_NONE, NULL},
     /* life */
-    {"retainer_load_cycles", "load cycles (rainflow)", 1, REPORT_LIMIT_NONE},
-    {"retainer_damage", "damage of this drop (Miner)", 1, REPORT_LIMIT_NONE},
-    {"retainer_drops_to_failure", "drops to failure", 1, REPORT_LIMIT_DROPS},
+    {"retainer_load_cycles", "load cycles (rainflow)", 1, REPORT_LIMIT_NONE, NULL},
+    {"retainer_damage", "damage of this drop (Miner)", 1, REPORT_LIMIT_NONE, NULL},
+    {"retainer_drops_to_failure", "drops to failure", 1, REPORT_LIMIT_DROPS, NULL},
 };
 
 const char *report_state_words(report_state s)
@@ -113,14 +117,15 @@ static void judge(report_item *it, const report_limits *lim)
         it->verdict = within ? REPORT_WITHIN : REPORT_EXCEEDS;
 }
 
-/* Whether the file says the quantity converges: its attribute NAME_converges (1, 0), else -1. */
-static int converges(const td_result *r, const char *name, int part)
+/* Whether the file says the quantity converges: its flag attribute (d->flag, else NAME_converges) 1
+ * or 0, else -1. */
+static int converges(const td_result *r, const report_def *d, int part)
 {
     char flag[128];
     td_result_array a;
     td_out_id id;
     int c = -1;
-    snprintf(flag, sizeof flag, "%s_converges", name);
+    snprintf(flag, sizeof flag, d->flag ? "%s" : "%s_converges", d->flag ? d->flag : d->name);
     if ((id = attribute(r, flag)) == TD_OUT_ID_COUNT || td_result_read(r, id, NULL, &a, NULL) != TD_OK)
         return -1;
     if (a.n == 1 || (part >= 0 && (size_t)part < a.n))
@@ -154,7 +159,7 @@ static void read_item(const td_result *r, const report_def *d, int part, report 
         it->state = REPORT_UNDEFINED;
     else
         it->state = REPORT_VALUE, it->value = a.v[k];
-    it->converges = it->state == REPORT_VALUE ? converges(r, d->name, part) : -1;
+    it->converges = it->state == REPORT_VALUE ? converges(r, d, part) : -1;
     judge(it, &rep->lim);
     td_result_array_free(&a);
 }
