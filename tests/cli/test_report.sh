@@ -148,6 +148,13 @@ t "$work/nocase" report --json -o "$work/nocase/r" "$work/run/nocase.h5"
 check "unreadable case text: exit 0, no limits, the reason given" test "$rc" = 0 -a \
     "$(jf "$work/nocase/.out" from_case)" = false -a -n "$(grep -o '"why_none":"its case text could not be read' "$work/nocase/.out")"
 
+# ---- a run without retainers (the Jeffcott rotor): a report of the run alone, no retainer part ----
+t "$work/jr" run -q -o "$work/jr/j" --set end_time=0.02 "$src/cases/jeffcott.cfg"
+t "$work/jrep" report --json -o "$work/jrep/r" "$work/jr/j.h5"
+check "no retainer: exit 0, the three files" test "$rc" = 0 -a -s "$work/jrep/r.png" -a -s "$work/jrep/r.txt"
+check "no retainer: no retainer's quantity listed" test "$(jf "$work/jrep/.out" retainers)" = 0 -a \
+    -z "$(grep -o '"retainer":[0-9]' "$work/jrep/.out")"
+
 # ---- an incomplete run: said first, no number given as an answer -------------------------------
 t "$work/bad" run -q -o "$work/bad/bad" --set end_time=0.1 --set solver.atol=1e-300 "$src/cases/drop.cfg"
 check "a solver failure: the run exits 1" test "$rc" = 1

@@ -122,7 +122,8 @@ int report_figure(const td_result *r, const report *rep, const char *dir, const 
                  rep->complete ? "" : "  [INCOMPLETE: not answers]");
         plot_var_string(f, "case_title", title);
         plot_var_string(f, "data", "report.dat");
-        fprintf(f, "nret = %d\nhas_temperature = %d\n", rep->nret, d.temp.v != NULL);
+        fprintf(f, "nret = %d\nhas_speed = %d\nhas_races = %d\nhas_temperature = %d\n", rep->nret, d.speed.v != NULL,
+                rep->nret > 0 && d.race.v != NULL, rep->nret > 0 && d.temp.v != NULL);
         write_clearances(f, r, rep->nret);
         st = plot_script_end(f, &job, name, NULL, plot_tpl_report);
     } else if (st == PLOT_OK) {

@@ -2,7 +2,7 @@
 # ---- the drop report's figure (touchdown report) -------------------------------------------------
 # data columns: 1 time [s], 2 rotor speed [rad/s], then for retainer k = 0, 1, ... five columns from
 # 3 + 5k: normal contact force [N], race speed [rad/s], x [mm], y [mm], race temperature above
-# ambient [K] (NaN: not in the file)
+# ambient [K]; NaN: not in the file (has_speed, has_races, has_temperature say which are)
 FN(k) = 3 + 5*k
 set multiplot layout 2,2 margins 0.07,0.97,0.07,0.9 spacing 0.08,0.1 title case_title
 set key top right samplen 2
@@ -22,11 +22,13 @@ if (nret > 0) {
 # top right: the rotor's speed and the races'
 set ylabel 'speed [rad/s]'
 set key bottom right
-if (nret > 0) {
-    plot data using 1:2 with lines lw 1.5 lc rgb '#333333' title 'rotor', \
-         for [k=0:nret-1] data using 1:FN(k)+1 with lines lw 0.8 title sprintf('race %d', k)
+# a prescribed speed is not in the file, nor are the speeds of races that are not bodies
+ROTOR = has_speed ? "data using 1:2 with lines lw 1.5 lc rgb '#333333' title 'rotor'" : ""
+RACES = has_races ? "for [k=0:nret-1] data using 1:FN(k)+1 with lines lw 0.8 title sprintf('race %d', k)" : ""
+if (has_speed || has_races) {
+    eval "plot ".ROTOR.((has_speed && has_races) ? ", " : "").RACES
 } else {
-    plot data using 1:2 with lines lw 1.5 lc rgb '#333333' title 'rotor'
+    eval NOTHING('speeds: not in this file (a prescribed speed, no race bodies)')
 }
 
 # bottom left: race temperatures (the retainers' thermal model), or why there are none
