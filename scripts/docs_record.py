@@ -396,6 +396,28 @@ def src_figures(tool, build):
     return data
 
 
+def src_report(tool, build):
+    """docs/report.md's example: cases/drop.cfg run as shipped, then `touchdown report` of its file,
+    the text and the JSON as written (run in a temporary directory, so that the report names the
+    file as drop.h5)."""
+    import tempfile
+    data = stamp(tool, "report", "touchdown run -q -o drop cases/drop.cfg, then touchdown report drop.h5, "
+                                 "in a temporary directory")
+    commands = [["run", "-q", "-o", "drop", os.path.join(ROOT, "cases", "drop.cfg")], ["report", "drop.h5"]]
+    with tempfile.TemporaryDirectory() as tmp:
+        for args in commands:
+            proc = subprocess.run([tool] + args, cwd=tmp, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                                  universal_newlines=True)
+            if proc.returncode != 0:
+                sys.exit("docs_record: touchdown %s: exit %d: %s" % (args[0], proc.returncode, proc.stderr.strip()[:500]))
+        with open(os.path.join(tmp, "drop-report.txt")) as f:
+            data["text"] = f.read()
+        with open(os.path.join(tmp, "drop-report.json")) as f:
+            data["json"] = json.load(f)
+    data["commands"] = ["touchdown run -q -o drop cases/drop.cfg", "touchdown report drop.h5"]
+    return data
+
+
 def src_recovery(tool, build):
     """docs/recovery-study.md's runs (scripts/recovery_study.py: the case with and without its
     supervisor, the laws that fail, the damper's phase and gain, the map)."""
@@ -407,7 +429,7 @@ SOURCES = {"fast": [("runs", src_runs), ("modal", src_modal), ("validation", src
            "slow": [("bench", src_bench), ("digital", src_digital), ("fmu", src_fmu), ("scaling", src_scaling), ("references", src_references),
                     ("intervals", src_intervals), ("tolerances", src_tolerances), ("mesh", src_mesh),
                     ("convergence", src_convergence), ("spread", src_spread), ("figures", src_figures),
-                    ("recovery", src_recovery)]}
+                    ("recovery", src_recovery), ("report", src_report)]}
 
 
 # The runs are deterministic: the same build gives the same bits. The tolerance allows for another

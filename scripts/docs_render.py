@@ -1336,6 +1336,14 @@ def perf_fmu():
                 g(ra["fmu_python_pd_over_native"], 3), g(ra["fmu_inputs_none_over_native"], 3)))
 
 
+def report_drop():
+    """docs/report.md: the report of cases/drop.cfg as `touchdown report` wrote it."""
+    d = res("report")
+    return ("From %s:\n\n    %s\n\nwrites drop-report.txt, drop-report.json and drop-report.png; the text "
+            "(also printed):\n\n" % (cite("report"), "\n    ".join(d["commands"]))
+            + "".join("    " + line if line.strip() else "\n" for line in d["text"].splitlines(True)))
+
+
 REGIONS = {"readme-glance": readme_glance, "readme-realtime": readme_realtime,
            "perf-summary": perf_summary, "perf-paper-settings": perf_paper_settings,
            "perf-paper-findings": perf_paper_findings, "perf-remains": perf_remains,
@@ -1346,7 +1354,7 @@ REGIONS = {"readme-glance": readme_glance, "readme-realtime": readme_realtime,
            "val-scenarios": val_scenarios, "val-conv-rub-damped": val_conv_rub_damped,
            "val-conv-paper-a": val_conv_paper_a, "val-conv-drop": val_conv_drop, "val-spread": val_spread,
            "out-name-index": out_name_index, "perf-scaling": perf_scaling, "perf-digital": perf_digital,
-           "fmu-loop": fmu_loop, "perf-fmu": perf_fmu}
+           "fmu-loop": fmu_loop, "perf-fmu": perf_fmu, "report-drop": report_drop}
 SPANS = {"rub-mean-normal": span_rub_mean_normal, "val-first-contact-cell": span_val_first_contact_cell,
          "val-rig-modal-cell": span_val_rig_modal_cell, "rig-mass": span_rig_mass,
          "rig-polar": span_rig_polar, "drop-cpu": span_drop_cpu, "run-up-criticals": span_run_up_criticals,

@@ -402,6 +402,32 @@ static void test_schema_paths(void **state)
     assert_string_equal(buf, "retaine");
 }
 
+/* td_out_find: a stored name back to its id. The same name in two places (retainer_nodes: a run
+ * file's attribute, a modal file's dataset) is told apart by place and file; every id is found from
+ * its own name, place and files (or is one of the same name, place and files declared before it);
+ * an unknown name, a NULL one, a wrong place or file is TD_OUT_ID_COUNT. */
+static void test_schema_find(void **state)
+{
+    int id;
+    (void)state;
+    assert_int_equal(td_out_find("retainer_nodes", TD_OUT_ATTRIBUTE, TD_OUT_IN_RUN), TD_OUT_RETAINER_NODES);
+    assert_int_equal(td_out_find("retainer_nodes", TD_OUT_DATASET, TD_OUT_IN_MODAL), TD_OUT_MODES_RETAINER_NODES);
+    assert_int_equal(td_out_find("summary_peak_housing_force", TD_OUT_ATTRIBUTE, TD_OUT_IN_RUN),
+                     TD_OUT_SUM_PEAK_HOUSING_FORCE);
+    assert_int_equal(td_out_find("summary_peak_housing_force", TD_OUT_DATASET, TD_OUT_IN_RUN), TD_OUT_ID_COUNT);
+    assert_int_equal(td_out_find("summary_peak_housing_force", TD_OUT_ATTRIBUTE, TD_OUT_IN_SWEEP), TD_OUT_ID_COUNT);
+    assert_int_equal(td_out_find("no_such_name", TD_OUT_ATTRIBUTE, TD_OUT_IN_RUN), TD_OUT_ID_COUNT);
+    assert_int_equal(td_out_find(NULL, TD_OUT_ATTRIBUTE, TD_OUT_IN_RUN), TD_OUT_ID_COUNT);
+    for (id = 0; id < TD_OUT_ID_COUNT; id++) {
+        td_out_id found =
+            td_out_find(td_out_name((td_out_id)id), td_out_place_of((td_out_id)id), td_out_files((td_out_id)id));
+        assert_true(found <= (td_out_id)id);
+        assert_string_equal(td_out_name(found), td_out_name((td_out_id)id));
+        assert_int_equal(td_out_place_of(found), td_out_place_of((td_out_id)id));
+        assert_true(td_out_files(found) & td_out_files((td_out_id)id));
+    }
+}
+
 /* Copy the first `bytes` of `from` (all when negative) to `to`. */
 static void copy_file(const char *from, const char *to, long bytes)
 {
@@ -634,8 +660,9 @@ static void test_sweep_file(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_run_file), cmocka_unit_test(test_schema_paths), cmocka_unit_test(test_completeness),
-        cmocka_unit_test(test_refusals), cmocka_unit_test(test_modal_file),   cmocka_unit_test(test_sweep_file),
+        cmocka_unit_test(test_run_file),     cmocka_unit_test(test_schema_paths), cmocka_unit_test(test_schema_find),
+        cmocka_unit_test(test_completeness), cmocka_unit_test(test_refusals),     cmocka_unit_test(test_modal_file),
+        cmocka_unit_test(test_sweep_file),
     };
     H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -21,6 +21,7 @@ static const char usage[] =
     "  sweep CASE      run a case over a grid of key values in parallel: one summary row per point\n"
     "  bench           time the paper's cases with the constrained and penalty models\n"
     "  fmu CASE        pack a case as an FMU (FMI 2.0 co-simulation) for Simulink, OpenModelica, Python\n"
+    "  report RUN.h5   the one-page drop report: each quantity beside its limit from the case\n"
     "\n"
     "options for every command:\n"
     "  -h, --help      help for the command (touchdown COMMAND --help)\n"
@@ -36,7 +37,7 @@ static const struct {
     td_command_fn fn;
 } commands[] = {
     {"run", td_cmd_run},     {"modal", td_cmd_modal}, {"info", td_cmd_info}, {"plot", td_cmd_plot},
-    {"bench", td_cmd_bench}, {"sweep", td_cmd_sweep}, {"fmu", td_cmd_fmu},
+    {"bench", td_cmd_bench}, {"sweep", td_cmd_sweep}, {"fmu", td_cmd_fmu},   {"report", td_cmd_report},
 };
 
 int main(int argc, char **argv)

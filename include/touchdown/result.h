@@ -403,6 +403,13 @@ TD_API td_out_id td_out_parent(td_out_id id);
  * TD_OUT_HARMONIC_I). Returns the length snprintf would, -1 for an id out of range.
  */
 TD_API int td_out_path(td_out_id id, const char *sub, char *buf, size_t n);
+/**
+ * The id of the name `name` that is a `place` (group, dataset, attribute, ...) in one of the files
+ * `files` (TD_OUT_IN_* bits): the lookup of a name stored or exchanged, e.g. a quantity a report
+ * lists, which an older or newer schema may lack. TD_OUT_ID_COUNT when this schema declares no such
+ * name (also for a NULL name).
+ */
+TD_API td_out_id td_out_find(const char *name, td_out_place place, unsigned files);
 
 /* ---- reading -------------------------------------------------------------------------------- */
 

@@ -5,6 +5,7 @@
 #include "io/schema.h"
 
 #include <stdio.h>
+#include <string.h>
 
 #define RUN (TD_OUT_IN_RUN | TD_OUT_IN_RUN_CSV)
 #define H5RUN TD_OUT_IN_RUN
@@ -444,6 +445,16 @@ td_out_id td_out_parent(td_out_id id)
 {
     const td_schema_entry *e = td_schema(id);
     return e ? e->parent : TD_OUT_ID_COUNT;
+}
+
+td_out_id td_out_find(const char *name, td_out_place place, unsigned files)
+{
+    int i;
+    for (i = 0; name && i < TD_OUT_ID_COUNT; i++)
+        if (entries[i].name && entries[i].place == place && (entries[i].files & files) &&
+            !strcmp(entries[i].name, name))
+            return (td_out_id)i;
+    return TD_OUT_ID_COUNT;
 }
 
 /* Append "/text" (no '/' at the start) to buf, which holds len characters; the new length. */

@@ -79,5 +79,6 @@ int td_cmd_plot(int argc, char **argv);
 int td_cmd_bench(int argc, char **argv);
 int td_cmd_sweep(int argc, char **argv);
 int td_cmd_fmu(int argc, char **argv);
+int td_cmd_report(int argc, char **argv);
 
 #endif

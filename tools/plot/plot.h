@@ -201,7 +201,8 @@ const char *plot_ext(const plot_opts *opt);
 extern const char plot_tpl_common[], plot_tpl_markers[], plot_tpl_orbit[], plot_tpl_radial_force[],
     plot_tpl_amb_forces[], plot_tpl_palette[], plot_tpl_compare[], plot_tpl_campbell[], plot_tpl_mode_shapes[],
     plot_tpl_sweep_quantity[], plot_tpl_regime_map[], plot_tpl_bifurcation[], plot_tpl_sensitivity[],
-    plot_tpl_open_loop[], plot_tpl_nyquist[], plot_tpl_compliance[], plot_tpl_bode[], plot_tpl_polar[];
+    plot_tpl_open_loop[], plot_tpl_nyquist[], plot_tpl_compliance[], plot_tpl_bode[], plot_tpl_polar[],
+    plot_tpl_report[];
 
 /* ---- plot_sweep_load.c: sweep tables --------------------------------------------------------- */
 

@@ -1,0 +1,241 @@
+/* touchdown report: the run file's quantities, read by their output names (td_out_find), and the
+ * limits of the case stored in it (report_limits.c). A name the file does not hold, from an older
+ * version or a part not modelled, is "not in this file", never a number. */
+#include "report/report.h"
+
+#include "touchdown/dofs.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* The flag of the contact totals that a run bouncing at its end does not converge (the summary's
+ * contact_totals_converge: docs/output-format.md lists what it covers). */
+#define TOTALS "summary_contact_totals_converge"
+
+/* The quantities, in the report's order: the run's, then each sensor's, then each retainer's
+ * (its loads, the bearing's duty, heat and life). docs/report.md lists them. */
+static const report_def defs[] = {
+    /* the drop, over the run */
+    {"summary_peak_housing_force", "peak housing force", 0, REPORT_LIMIT_NONE, NULL},
+    {"summary_peak_normal_force", "peak contact normal force", 0, REPORT_LIMIT_NONE, NULL},
+    {"summary_total_impulse", "total impulse", 0, REPORT_LIMIT_NONE, TOTALS},
+    {"summary_friction_work", "friction work", 0, REPORT_LIMIT_NONE, NULL},
+    {"summary_first_contact_time", "first contact", 0, REPORT_LIMIT_NONE, NULL},
+    {"summary_contact_time", "time in contact", 0, REPORT_LIMIT_NONE, TOTALS},
+    {"summary_contacts", "contact onsets", 0, REPORT_LIMIT_NONE, TOTALS},
+    {"summary_ending_whirl_frequency", "whirl frequency at the end", 0, REPORT_LIMIT_NONE, TOTALS},
+    {"summary_final_speed", "final speed", 0, REPORT_LIMIT_NONE, NULL},
+    {"summary_settle_time", "time to settle", 0, REPORT_LIMIT_NONE, NULL},
+    {"sensor_clearance", "smallest retainer clearance C_min", 0, REPORT_LIMIT_NONE, NULL},
+    /* ISO 14839-2 at each AMB's sensor */
+    {"sensor_peak_displacement", "peak displacement", 2, REPORT_LIMIT_NONE, NULL},
+    {"sensor_zone", "ISO 14839-2 zone", 2, REPORT_LIMIT_ZONE, NULL},
+    /* each retainer: its loads */
+    {"retainer_peak_housing_force", "peak housing force", 1, REPORT_LIMIT_NONE, NULL},
+    {"retainer_peak_normal_force", "peak contact normal force", 1, REPORT_LIMIT_NONE, NULL},
+    {"retainer_impulse", "impulse", 1, REPORT_LIMIT_NONE, TOTALS},
+    {"retainer_friction_work", "friction work", 1, REPORT_LIMIT_NONE, NULL},
+    {"retainer_contact_time", "time in contact", 1, REPORT_LIMIT_NONE, TOTALS},
+    /* the bearing's duty */
+    {"retainer_load_ratio", "peak normal force / static rating C0", 1, REPORT_LIMIT_RATIO, NULL},
+    {"retainer_peak_contact_stress", "peak contact stress (Hertz)", 1, REPORT_LIMIT_NONE, NULL},
+    {"retainer_peak_sliding_velocity", "peak sliding velocity", 1, REPORT_LIMIT_NONE, NULL},
+    {"retainer_peak_pv", "peak PV", 1, REPORT_LIMIT_NONE, NULL},
+    {"retainer_peak_friction_power", "peak friction power", 1, REPORT_LIMIT_NONE, NULL},
+    {"retainer_peak_race_speed", "peak race speed", 1, REPORT_LIMIT_NONE, NULL},
+    /* heat */
+    {"retainer_drag_work", "race drag work", 1, REPORT_LIMIT_NONE, NULL},
+    {"retainer_heat", "heat into the race", 1, REPORT_LIMIT_NONE, NULL},
+    {"retainer_peak_temperature_rise", "peak race temperature rise", 1, REPORT_LIMIT_TEMPERATURE, NULL},
+    {"retainer_peak_thermal_growth", "peak thermal growth of the race bore", 1, REPORT_LIMIT_NONE, NULL},
+    /* life */
+    {"retainer_load_cycles", "load cycles (rainflow)", 1, REPORT_LIMIT_NONE, NULL},
+    {"retainer_damage", "damage of this drop (Miner)", 1, REPORT_LIMIT_NONE, NULL},
+    {"retainer_drops_to_failure", "drops to failure", 1, REPORT_LIMIT_DROPS, NULL},
+};
+
+const char *report_state_words(report_state s)
+{
+    switch (s) {
+    case REPORT_VALUE: return "";
+    case REPORT_ABSENT: return "not in this file";
+    case REPORT_UNDEFINED: return "not computed";
+    default: return "not an answer"; /* the first line says why: the run did not complete */
+    }
+}
+
+const char *report_verdict_words(report_verdict v)
+{
+    switch (v) {
+    case REPORT_WITHIN: return "within";
+    case REPORT_EXCEEDS: return "exceeds";
+    case REPORT_NO_LIMIT: return "no limit given";
+    default: return "-";
+    }
+}
+
+/* A root attribute of the run file by its output name: its id when the schema knows it and the file
+ * holds it, else TD_OUT_ID_COUNT. */
+static td_out_id attribute(const td_result *r, const char *name)
+{
+    td_out_id id = td_out_find(name, TD_OUT_ATTRIBUTE, TD_OUT_IN_RUN);
+    return id != TD_OUT_ID_COUNT && td_result_has(r, id, NULL) ? id : TD_OUT_ID_COUNT;
+}
+
+/* The number of entries of the attribute `name` (0 when absent or unreadable). */
+static int attribute_length(const td_result *r, const char *name)
+{
+    td_result_array a;
+    td_out_id id = attribute(r, name);
+    int n = 0;
+    if (id != TD_OUT_ID_COUNT && td_result_read(r, id, NULL, &a, NULL) == TD_OK) {
+        n = (int)a.n;
+        td_result_array_free(&a);
+    }
+    return n;
+}
+
+/* The limit of a quantity of `part` and its verdict for `value`. */
+static void judge(report_item *it, const report_limits *lim)
+{
+    double v = it->value, l = TD_UNDEFINED;
+    int within = 0;
+    switch (it->def->limit) {
+    case REPORT_LIMIT_RATIO: l = 1.0, within = v <= l; break;
+    case REPORT_LIMIT_TEMPERATURE: l = lim->temperature_rise, within = v <= l; break;
+    case REPORT_LIMIT_DROPS: l = lim->drops, within = v >= l; break;
+    case REPORT_LIMIT_ZONE: l = 1.0, within = v <= l; break; /* zone B at most */
+    default: break;
+    }
+    it->limit = l;
+    if (it->state != REPORT_VALUE)
+        it->verdict = REPORT_NOT_JUDGED;
+    else if (isnan(l))
+        it->verdict = REPORT_NO_LIMIT;
+    else
+        it->verdict = within ? REPORT_WITHIN : REPORT_EXCEEDS;
+}
+
+/* Whether the file says the quantity converges: its flag attribute (d->flag, else NAME_converges) 1
+ * or 0, else -1. */
+static int converges(const td_result *r, const report_def *d, int part)
+{
+    char flag[128];
+    td_result_array a;
+    td_out_id id;
+    int c = -1;
+    snprintf(flag, sizeof flag, d->flag ? "%s" : "%s_converges", d->flag ? d->flag : d->name);
+    if ((id = attribute(r, flag)) == TD_OUT_ID_COUNT || td_result_read(r, id, NULL, &a, NULL) != TD_OK)
+        return -1;
+    if (a.n == 1 || (part >= 0 && (size_t)part < a.n))
+        c = a.v[a.n == 1 ? 0 : part] != 0.0;
+    td_result_array_free(&a);
+    return c;
+}
+
+/* The quantity d of `part` (-1: the run) into the next item. */
+static void read_item(const td_result *r, const report_def *d, int part, report *rep)
+{
+    td_result_array a;
+    td_out_id id = attribute(r, d->name);
+    size_t k = part < 0 ? 0 : (size_t)part;
+    report_item *it;
+    int have;
+    if (rep->n >= REPORT_MAX_ITEMS)
+        return;
+    it = &rep->items[rep->n++];
+    memset(it, 0, sizeof *it);
+    memset(&a, 0, sizeof a);
+    have = id != TD_OUT_ID_COUNT && td_result_read(r, id, NULL, &a, NULL) == TD_OK;
+    it->def = d;
+    it->part = part;
+    snprintf(it->units, sizeof it->units, "%s", have ? a.units : "");
+    if (!have || k >= a.n)
+        it->state = REPORT_ABSENT;
+    else if (!rep->complete)
+        it->state = REPORT_NOT_ANSWER;
+    else if (isnan(a.v[k]) || (d->limit == REPORT_LIMIT_ZONE && a.v[k] < 0.0)) /* a zone: -1 undefined */
+        it->state = REPORT_UNDEFINED;
+    else
+        it->state = REPORT_VALUE, it->value = a.v[k];
+    it->converges = it->state == REPORT_VALUE ? converges(r, d, part) : -1;
+    judge(it, &rep->lim);
+    td_result_array_free(&a);
+}
+
+/* Every quantity of the run (per 0), of each sensor (2), of each retainer (1), in the table's order. */
+static void read_quantities(const td_result *r, report *rep)
+{
+    static const int pers[3] = {0, 2, 1};
+    size_t i;
+    int p, k;
+    for (p = 0; p < 3; p++) {
+        int parts = pers[p] == 0 ? 1 : pers[p] == 1 ? rep->nret : rep->namb;
+        for (k = 0; k < parts && k < REPORT_MAX_PARTS; k++)
+            for (i = 0; i < sizeof defs / sizeof defs[0]; i++)
+                if (defs[i].per == pers[p])
+                    read_item(r, &defs[i], pers[p] == 0 ? -1 : k, rep);
+    }
+}
+
+/* A scalar numeric root attribute by id, NaN when absent. */
+static double scalar(const td_result *r, td_out_id id)
+{
+    td_result_array a;
+    double v = TD_UNDEFINED;
+    if (td_result_has(r, id, NULL) && td_result_read(r, id, NULL, &a, NULL) == TD_OK) {
+        if (a.n == 1)
+            v = a.v[0];
+        td_result_array_free(&a);
+    }
+    return v;
+}
+
+/* A text root attribute by id into buf ("" when absent). */
+static void text(const td_result *r, td_out_id id, char *buf, size_t n)
+{
+    char *t = NULL;
+    buf[0] = '\0';
+    if (td_result_has(r, id, NULL) && td_result_read_text(r, id, NULL, &t, NULL) == TD_OK)
+        snprintf(buf, n, "%s", t);
+    free(t);
+}
+
+/* The run's facts: completeness, times, version, ending, the numbers of retainers and sensors. */
+static void read_header(const td_result *r, report *rep)
+{
+    td_result_array a;
+    rep->complete = td_result_complete(r);
+    rep->flag = td_result_get_flag(r);
+    text(r, TD_OUT_INCOMPLETE_REASON, rep->reason, sizeof rep->reason);
+    text(r, TD_OUT_LIBRARY_VERSION, rep->version, sizeof rep->version);
+    text(r, TD_OUT_SUM_ENDING, rep->ending, sizeof rep->ending);
+    rep->t_start = scalar(r, TD_OUT_T_START);
+    rep->t_end = scalar(r, TD_OUT_T_END);
+    rep->t_reached = scalar(r, TD_OUT_T_REACHED);
+    rep->nret = attribute_length(r, td_out_name(TD_OUT_RETAINER_CLEARANCE));
+    if (rep->nret == 0 && td_result_read(r, TD_OUT_RET_X, NULL, &a, NULL) == TD_OK) {
+        rep->nret = a.rank >= 2 ? (int)a.dims[1] : 0;
+        td_result_array_free(&a);
+    }
+    rep->namb = attribute_length(r, td_out_name(TD_OUT_AMB_NODES));
+}
+
+int report_read(const td_result *r, const char *path, report *rep)
+{
+    char *case_text = NULL;
+    if (td_result_get_kind(r) != TD_RESULT_RUN) {
+        fprintf(stderr, "touchdown report: %s: a %s file, not a run file (touchdown run)\n", path,
+                td_result_get_kind(r) == TD_RESULT_MODAL ? "modal" : "sweep");
+        return 2;
+    }
+    rep->path = path;
+    read_header(r, rep);
+    if (td_result_has(r, TD_OUT_CASE_TEXT, NULL))
+        td_result_read_text(r, TD_OUT_CASE_TEXT, NULL, &case_text, NULL);
+    report_case_limits(case_text, rep->nret, &rep->lim, rep->description, sizeof rep->description);
+    free(case_text);
+    read_quantities(r, rep);
+    return 0;
+}
