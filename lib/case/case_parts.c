@@ -555,7 +555,6 @@ static const td_cs_table thermal_table = {"retainers[].thermal",
                                           NULL,
                                           NULL};
 
-
 /* bore_radius: absent, shaft_radius + clearance (the model's rule when given) */
 static td_status read_bore_radius(td_case_reader *r, const config_setting_t *g, const td_cs_key *k, void *rec)
 {

@@ -115,7 +115,7 @@ void td_sim_totals_peaks(td_sim *s, const double *y)
         if (s->contacts.ret[k].mode != TD_RMODE_FREE) /* as integrands_at's n */
             tk->t.peak_normal_force = fmax(tk->t.peak_normal_force, td_sim_normal_force(s, k, y));
         duty_peaks(s, k, y);
-        td_sim_thermal_peak(s, k); /* heat */
+        td_sim_thermal_peak(s, k);  /* heat */
         td_sim_life_point(s, k, y); /* life: a point reached, into the rainflow count */
     }
     sensor_peaks(s, y);
