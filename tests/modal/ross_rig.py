@@ -26,6 +26,8 @@ import sys
 import warnings
 
 warnings.filterwarnings("ignore")
+# one BLAS thread: the matrices are 156 x 156, and a thread pool on busy cores only costs time
+os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 import libconf  # noqa: E402
 import numpy as np  # noqa: E402
 import ross as rs  # noqa: E402
@@ -111,7 +113,9 @@ def ross_rotor(rig_cfg):
 
 def lateral_modes(rotor, speed):
     """ROSS's lateral vibration modes at `speed`: (eigenvalue, whirl, log decrement), omega_d > 1."""
-    m = rotor.run_modal(speed, num_modes=40, sparse=False)
+    # sparse=False: scipy.linalg.eig of the whole state matrix, every root, whatever num_modes; num_modes
+    # only sets how many of them ROSS turns into mode shapes for its plots (orbits by numba), none here
+    m = rotor.run_modal(speed, num_modes=0, sparse=False)
     nd = rotor.number_dof  # per node: x, y, z, alpha, beta, theta
     out = []
     for i, s in enumerate(m.evalues):
