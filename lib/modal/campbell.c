@@ -20,12 +20,6 @@ struct td_campbell {
     double *mac;     /* nspeeds x nbranches: each point's weakest MAC link from the previous speed */
 };
 
-/* Branch tracking (td_campbell_compute): a step from one speed to the next whose weakest match has a
- * MAC below this is halved. 0.9 is the usual bound for "the same mode" in modal correlation
- * (Allemang, The Modal Assurance Criterion - Twenty Years of Use and Abuse, Sound and Vibration
- * 37(8), 2003: consistent modes above 0.9, distinct ones below about 0.1-0.4 (0 for a forward and a
- * backward circular whirl of one shape)). */
-#define TD_CAMPBELL_MAC_REFINE 0.9
 /* At most this many halvings of a grid step: the finest step is 1/1024 of the grid's. Where even that
  * step matches with a low MAC (degenerate modes at rest, splitting into forward and backward whirl;
  * a mode entering the lowest mode_count), the match is taken as found and its MAC says so. */
