@@ -495,12 +495,12 @@ static double shape_mac(const td_modal *a, int ia, const td_modal *b, int ib)
  * uncoupled. Cylindrical whirl at about sqrt(2 k / M) = 350 rad/s whatever the speed; the conical one
  * starts at about 480 rad/s and its backward whirl falls, Id w^2 + Ip Omega w = k_theta, through both
  * cylindrical whirls near Omega = 210 rad/s (rigid-rotor estimate). */
-static td_system *gyroscopic_rotor(void)
+static td_system *gyroscopic_rotor_k2(double k2)
 {
     td_model *m = NULL;
     td_system *s = NULL;
     td_shaft_element el = {0.2, 0.05, 0.0, {2.11e11, 8.1e10, 7810.0}};
-    td_bearing b0 = {0, 1e6, 1e6, 10.0, 10.0}, b2 = {2, 1e6, 1e6, 10.0, 10.0};
+    td_bearing b0 = {0, 1e6, 1e6, 10.0, 10.0}, b2 = {2, k2, k2, 10.0, 10.0};
     td_disc d = {1, 10.0, 0.5, 0.25};
     td_error err;
     assert_int_equal(td_model_create(&m, NULL), TD_OK);
@@ -513,6 +513,11 @@ static td_system *gyroscopic_rotor(void)
         fail_msg("%s", err.message);
     td_model_free(&m);
     return s;
+}
+
+static td_system *gyroscopic_rotor(void)
+{
+    return gyroscopic_rotor_k2(1e6);
 }
 
 /* Every critical speed lies where a tracked branch of its whirl crosses the 1x line in the Campbell
@@ -614,6 +619,59 @@ static void test_campbell_tracks_crossings(void **state)
     td_modal_free(&md[0]);
     td_modal_free(&md[1]);
     td_campbell_free(&c);
+    td_system_free(&s);
+}
+
+/* With one bearing stiffer the rotor is no longer symmetric: its cylindrical and conical backward
+ * whirls couple and veer instead of crossing, their shapes turning into each other over a narrow speed
+ * range. A grid of 3 speeds steps across it in one step, where the best match by MAC would pair
+ * shapes rather than follow the curves; the halving of weak steps makes that grid follow the same
+ * branches as a grid of 49 speeds does. */
+static void test_campbell_refines_weak_steps(void **state)
+{
+    td_system *s = gyroscopic_rotor_k2(1.6e6);
+    td_campbell *coarse = NULL, *fine = NULL;
+    td_modal_options opt;
+    double weakest = 1.0;
+    int k, j;
+    (void)state;
+    td_modal_options_default(&opt);
+    opt.speed_min = 0.0;
+    opt.speed_max = 600.0;
+    opt.mode_count = 4;
+    opt.speed_steps = 3;
+    assert_int_equal(td_campbell_compute(s, &opt, &coarse, NULL), TD_OK);
+    opt.speed_steps = 49;
+    assert_int_equal(td_campbell_compute(s, &opt, &fine, NULL), TD_OK);
+    for (k = 0; k < 3; k++)
+        for (j = 0; j < 4; j++) {
+            td_mode a, b;
+            td_campbell_get(coarse, k, j, &a);
+            td_campbell_get(fine, 24 * k, j, &b);
+            print_message("%.0f rad/s branch %d: coarse %.3f (%s, MAC %.4f), fine %.3f (%s)\n",
+                          td_campbell_speed(coarse, k), j, a.omega_d, td_whirl_name(a.whirl),
+                          td_campbell_mac(coarse, k, j), b.omega_d, td_whirl_name(b.whirl));
+            assert_true(a.omega_d == b.omega_d);
+        }
+    for (k = 1; k < 3; k++) { /* the coarse steps are too long for a match across them */
+        td_modal *m0 = NULL, *m1 = NULL;
+        assert_int_equal(td_modal_solve(s, td_campbell_speed(coarse, k - 1), &m0, NULL), TD_OK);
+        assert_int_equal(td_modal_solve(s, td_campbell_speed(coarse, k), &m1, NULL), TD_OK);
+        for (j = 0; j < 4; j++) {
+            td_mode a, b;
+            double mac;
+            td_campbell_get(coarse, k - 1, j, &a);
+            td_campbell_get(coarse, k, j, &b);
+            mac = shape_mac(m0, mode_at(m0, a.omega_d), m1, mode_at(m1, b.omega_d));
+            weakest = fmin(weakest, mac);
+        }
+        td_modal_free(&m0);
+        td_modal_free(&m1);
+    }
+    print_message("weakest MAC across a whole coarse step: %.4f\n", weakest);
+    assert_true(weakest < TD_CAMPBELL_MAC_REFINE);
+    td_campbell_free(&coarse);
+    td_campbell_free(&fine);
     td_system_free(&s);
 }
 
@@ -971,6 +1029,7 @@ int main(void)
         cmocka_unit_test(test_campbell_labels),
         cmocka_unit_test(test_campbell_tracks_crossings),
         cmocka_unit_test(test_assignment_vs_enumeration),
+        cmocka_unit_test(test_campbell_refines_weak_steps),
         cmocka_unit_test(test_critical_speed_vs_scan),
         cmocka_unit_test(test_writers_round_trip),
         cmocka_unit_test(test_partial_equals_dense),

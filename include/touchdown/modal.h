@@ -205,9 +205,24 @@ typedef struct td_campbell td_campbell;
 
 /**
  * Case files may ask for at most this many speed_steps x mechanical DOFs: every grid speed costs an
- * eigen-solve for the Campbell diagram and one for the critical speeds (docs/performance.md).
+ * eigen-solve for the Campbell diagram (more where its branch tracking halves the step) and one for
+ * the critical speeds (docs/performance.md).
  */
 #define TD_MODAL_MAX_GRID_WORK 200000L
+
+/**
+ * Branch tracking: a step of td_campbell_compute whose weakest match has a MAC below this is halved;
+ * a point whose td_campbell_mac is below it was not followed as one mode. 0.9 is the usual bound for
+ * "the same mode" in modal correlation (Allemang, The Modal Assurance Criterion - Twenty Years of Use
+ * and Abuse, Sound and Vibration 37(8), 2003); a forward and a backward circular whirl of one shape
+ * have MAC 0.
+ */
+#define TD_CAMPBELL_MAC_REFINE 0.9
+/** At most this many halvings of a grid step: the finest step is 1/1024 of the grid's. Where even that
+ *  step matches with a low MAC (a mode that left the modes matched, degenerate modes), the match is
+ *  taken as found, td_campbell_mac says so, and the rest of that grid step is taken in one: a grid
+ *  step costs at most TD_CAMPBELL_MAX_HALVINGS + 2 eigen-solves, one where every match is good. */
+#define TD_CAMPBELL_MAX_HALVINGS 10
 
 /**
  * Oscillatory modes over opt->speed_steps speeds evenly spaced from opt->speed_min to
@@ -217,22 +232,15 @@ typedef struct td_campbell td_campbell;
  * shape matches its own best, the Modal Assurance Criterion MAC = |a^H b|^2 / ((a^H a)(b^H b)) of the
  * complex nodal displacements (x and y at every node) matched by the optimal assignment (largest
  * total MAC, Hungarian algorithm) among the lowest 2 mode_count modes; where the weakest match of a
- * step has MAC < TD_CAMPBELL_MAC_REFINE the step is halved, down to 1/1024 of the grid step. So a branch keeps its mode
+ * step has MAC < TD_CAMPBELL_MAC_REFINE the step is halved, down to 2^-TD_CAMPBELL_MAX_HALVINGS of the
+ * grid step (a branch whose mode lies above td_modal_complete_below of a partial solve, where it may
+ * be absent, asks for no halving). So a branch keeps its mode
  * (and whirl) where it crosses another; the points of a row are the same modes as sorting gives,
  * their columns permuted. A mode that leaves the lowest mode_count hands its branch to the one
  * entering (the lowest no branch followed in), with the low MAC of that link (td_campbell_mac).
  * A speed with fewer modes leaves its missing points with omega_d = NAN.
  * Caller frees with td_campbell_free.
  */
-/**
- * Branch tracking: a step of td_campbell_compute whose weakest match has a MAC below this is halved;
- * a point whose td_campbell_mac is below it was not followed as one mode. 0.9 is the usual bound for
- * "the same mode" in modal correlation (Allemang, The Modal Assurance Criterion - Twenty Years of Use
- * and Abuse, Sound and Vibration 37(8), 2003); a forward and a backward circular whirl of one shape
- * have MAC 0.
- */
-#define TD_CAMPBELL_MAC_REFINE 0.9
-
 TD_API td_status td_campbell_compute(const td_system *sys, const td_modal_options *opt, td_campbell **out,
                                      td_error *err);
 TD_API void td_campbell_free(td_campbell **c);

@@ -20,11 +20,6 @@ struct td_campbell {
     double *mac;     /* nspeeds x nbranches: each point's weakest MAC link from the previous speed */
 };
 
-/* At most this many halvings of a grid step: the finest step is 1/1024 of the grid's. Where even that
- * step matches with a low MAC (degenerate modes at rest, splitting into forward and backward whirl;
- * a mode entering the lowest mode_count), the match is taken as found and its MAC says so. */
-#define TD_CAMPBELL_MAX_HALVINGS 10
-
 /* Relative width at which a critical-speed bracket counts as converged. */
 #define TD_CRITICAL_RTOL 1e-12
 /* A converged point must lie this close to the 1x line, else the bracket straddled a branch jump. */
@@ -178,7 +173,8 @@ static void tracker_take(tracker *t, int j, const td_modal *m, int i)
 
 /* Match the followed branches to the lowest 2 nb vibration modes of m by the assignment of largest
  * total MAC (cost 1 - MAC; columns of cost 1 pad the candidates when fewer than the branches, a branch
- * assigned to one matches nothing). *least: the smallest MAC of a match (1 when none). */
+ * assigned to one matches nothing). *least: the smallest MAC of a match of a branch whose mode lies
+ * below the solve's td_modal_complete_below (1 when none). */
 static td_status tracker_match(tracker *t, const td_modal *m, double *least, td_error *err)
 {
     int i, j, r, nrows = 0, ncols;
@@ -207,7 +203,8 @@ static td_status tracker_match(tracker *t, const td_modal *m, double *least, td_
             j = t->rows[r];
             t->match[j] = t->assign[r];
             t->link[j] = 1.0 - t->cost[(size_t)r * (size_t)ncols + (size_t)t->assign[r]];
-            *least = fmin(*least, t->link[j]);
+            if (t->mode[j].omega_d < m->complete_below) /* above it the mode may just be absent */
+                *least = fmin(*least, t->link[j]);
         }
     return st;
 }
@@ -261,11 +258,15 @@ static void tracker_row(tracker *t, const td_modal *m, td_mode *row, double *mac
 /* Follow the branches from grid speed s0 to s1, ending with the solve at s1 in *at_s1, matched. A
  * step whose weakest match has MAC < TD_CAMPBELL_MAC_REFINE is halved (down to the grid step over
  * 2^TD_CAMPBELL_MAX_HALVINGS, where the match is taken as it is) and the step doubles again after
- * each accepted one: positions count in units of that finest step, so the speeds are exact. */
+ * each accepted one: positions count in units of that finest step, so the speeds are exact. Once a
+ * weak match was taken at the finest step (modes that stay degenerate, whose shapes any basis of
+ * their plane gives), the rest of the interval is one step: an interval costs at most
+ * TD_CAMPBELL_MAX_HALVINGS + 2 solves. */
 static td_status track_interval(const td_system *sys, tracker *t, double s0, double s1, td_modal **at_s1, td_error *err)
 {
     const long units = 1L << TD_CAMPBELL_MAX_HALVINGS;
     long pos = 0, step = units;
+    int floor_hit = 0;
     *at_s1 = NULL;
     while (pos < units) {
         long to = pos + step < units ? pos + step : units;
@@ -278,13 +279,14 @@ static td_status track_interval(const td_system *sys, tracker *t, double s0, dou
             td_modal_free(&m);
             return st;
         }
-        if (least < TD_CAMPBELL_MAC_REFINE && to - pos > 1) {
+        if (least < TD_CAMPBELL_MAC_REFINE && to - pos > 1 && !floor_hit) {
             td_modal_free(&m);
             step = (to - pos) / 2;
             continue;
         }
         tracker_accept(t, m);
-        step = 2 * (to - pos);
+        floor_hit = floor_hit || least < TD_CAMPBELL_MAC_REFINE;
+        step = floor_hit ? units : 2 * (to - pos); /* after a weak match at the finest step: one more */
         pos = to;
         if (pos == units)
             *at_s1 = m;
