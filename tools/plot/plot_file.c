@@ -436,7 +436,8 @@ void plot_file_free(plot_file *f)
     plot_modal *m = &f->modal;
     free(s->t), free(s->x), free(s->y), free(s->r), free(s->fn), free(s->contact), free(s->amb);
     free(s->clearance), free(s->ret_nodes), free(s->amb_nodes), free(s->ev);
-    free(m->speed), free(m->freq), free(m->whirl), free(m->mac), free(m->crit_speed), free(m->crit_freq), free(m->crit_whirl);
+    free(m->speed), free(m->freq), free(m->whirl), free(m->mac), free(m->crit_speed), free(m->crit_freq),
+        free(m->crit_whirl);
     free(m->mode_freq), free(m->mode_whirl), free(m->mode_zeta), free(m->xr), free(m->xi), free(m->yr), free(m->yi);
     free(m->node_z);
     plot_loop_free(&m->loop);
