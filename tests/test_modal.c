@@ -1,6 +1,7 @@
 /*
- * td_modal API: argument checks, the state matrix layout, Campbell labelling, critical speeds
- * against a fine scan, and the CSV/HDF5 writers read back (HDF5 through its C API).
+ * td_modal API: argument checks, the state matrix layout, Campbell labelling and branch tracking
+ * through crossings, the optimal assignment against enumeration, critical speeds against a fine
+ * scan, and the CSV/HDF5 writers read back (HDF5 through its C API).
  */
 #include "td_test.h"
 
@@ -438,7 +439,7 @@ static void test_campbell_labels(void **state)
             assert_close(fabs(m.whirl_index), 1.0, 0.0, 1e-6);
             if (j > 0) {
                 td_campbell_get(c, k, j - 1, &prev);
-                assert_true(m.omega_d >= prev.omega_d); /* branches are sorted */
+                assert_true(m.omega_d >= prev.omega_d); /* no crossings here: tracked = sorted */
             }
         }
         lowest_whirls(c, k, &f, &b);
@@ -453,6 +454,271 @@ static void test_campbell_labels(void **state)
     td_campbell_free(&c);
     assert_null(c);
     td_system_free(&s);
+}
+
+/* Index of the mode of md whose damped frequency is omega_d (to 1e-12 relative); -1 if none. */
+static int mode_at(const td_modal *md, double omega_d)
+{
+    int i;
+    for (i = 0; i < td_modal_mode_count(md); i++) {
+        td_mode m;
+        td_modal_get_mode(md, i, &m);
+        if (fabs(m.omega_d - omega_d) <= 1e-12 * omega_d)
+            return i;
+    }
+    return -1;
+}
+
+/* MAC of mode ia of a and mode ib of b from their shapes (complex nodal x and y displacements). */
+static double shape_mac(const td_modal *a, int ia, const td_modal *b, int ib)
+{
+    int nn = td_modal_node_count(a), k;
+    double *sa = calloc(8 * (size_t)nn, sizeof *sa), *sb = sa + 4 * nn, na = 0.0, nb = 0.0;
+    double complex dot = 0.0;
+    assert_non_null(sa);
+    assert_int_equal(td_modal_mode_shape(a, ia, sa, sa + nn, sa + 2 * nn, sa + 3 * nn), TD_OK);
+    assert_int_equal(td_modal_mode_shape(b, ib, sb, sb + nn, sb + 2 * nn, sb + 3 * nn), TD_OK);
+    for (k = 0; k < 2 * nn; k++) {
+        int c = k / nn, i = k % nn;
+        double complex u = sa[2 * c * nn + i] + I * sa[(2 * c + 1) * nn + i];
+        double complex v = sb[2 * c * nn + i] + I * sb[(2 * c + 1) * nn + i];
+        dot += conj(u) * v;
+        na += creal(conj(u) * u);
+        nb += creal(conj(v) * v);
+    }
+    free(sa);
+    return creal(dot * conj(dot)) / (na * nb);
+}
+
+/* A short stiff shaft (2 elements of 0.2 m, 50 mm) with a flat disc at its middle (Ip = 2 Id) on two
+ * equal isotropic bearings: a near-rigid rotor, symmetric, so its cylindrical and conical modes are
+ * uncoupled. Cylindrical whirl at about sqrt(2 k / M) = 350 rad/s whatever the speed; the conical one
+ * starts at about 480 rad/s and its backward whirl falls, Id w^2 + Ip Omega w = k_theta, through both
+ * cylindrical whirls near Omega = 210 rad/s (rigid-rotor estimate). */
+static td_system *gyroscopic_rotor_k2(double k2)
+{
+    td_model *m = NULL;
+    td_system *s = NULL;
+    td_shaft_element el = {0.2, 0.05, 0.0, {2.11e11, 8.1e10, 7810.0}};
+    td_bearing b0 = {0, 1e6, 1e6, 10.0, 10.0}, b2 = {2, k2, k2, 10.0, 10.0};
+    td_disc d = {1, 10.0, 0.5, 0.25};
+    td_error err;
+    assert_int_equal(td_model_create(&m, NULL), TD_OK);
+    assert_int_equal(td_model_add_shaft_element(m, &el, NULL), TD_OK);
+    assert_int_equal(td_model_add_shaft_element(m, &el, NULL), TD_OK);
+    assert_int_equal(td_model_add_disc(m, &d, NULL), TD_OK);
+    assert_int_equal(td_model_add_bearing(m, &b0, NULL), TD_OK);
+    assert_int_equal(td_model_add_bearing(m, &b2, NULL), TD_OK);
+    if (td_system_create(m, &s, &err) != TD_OK)
+        fail_msg("%s", err.message);
+    td_model_free(&m);
+    return s;
+}
+
+static td_system *gyroscopic_rotor(void)
+{
+    return gyroscopic_rotor_k2(1e6);
+}
+
+/* Every critical speed lies where a tracked branch of its whirl crosses the 1x line in the Campbell
+ * diagram: the critical speeds are bracketed on the sorted branches of each whirl, the tracked
+ * branches must show the same crossings. */
+static void critical_on_branches(const td_system *s, const td_modal_options *opt, const td_campbell *c)
+{
+    td_critical_speed cs[8];
+    int n = 0, i, k, j;
+    assert_int_equal(td_modal_critical_speeds(s, opt, cs, 8, &n, NULL), TD_OK);
+    assert_true(n >= 3 && n <= 8); /* cylindrical backward and forward, conical backward */
+    for (i = 0; i < n; i++) {
+        int on = 0;
+        for (k = 1; k < td_campbell_speed_count(c); k++)
+            for (j = 0; j < td_campbell_branch_count(c); j++) {
+                double s0 = td_campbell_speed(c, k - 1), s1 = td_campbell_speed(c, k);
+                td_mode a, b;
+                td_campbell_get(c, k - 1, j, &a);
+                td_campbell_get(c, k, j, &b);
+                on += a.whirl == cs[i].whirl && b.whirl == cs[i].whirl && cs[i].speed >= s0 && cs[i].speed <= s1 &&
+                      (a.omega_d - s0 > 0.0) != (b.omega_d - s1 > 0.0);
+            }
+        print_message("critical speed %.6f rad/s (%s): on %d tracked branch(es)\n", cs[i].speed,
+                      td_whirl_name(cs[i].whirl), on);
+        assert_int_equal(on, 1);
+    }
+}
+
+/* The Campbell branches of the gyroscopic rotor (isotropic bearings: every mode whirls in circles) are
+ * tracked by mode shape through their crossings: where two branches cross (the order of their
+ * frequencies flips between two speeds, so sorting would swap them) each keeps its whirl, and the
+ * shape it goes on to, from fresh solves, is the better match (MAC) of the two. Every row holds the
+ * same modes as the sorted lowest ones of a fresh solve. */
+static void test_campbell_tracks_crossings(void **state)
+{
+    td_system *s = gyroscopic_rotor();
+    td_campbell *c = NULL;
+    td_modal_options opt;
+    td_modal *md[2] = {NULL, NULL};
+    int k, j, i, crossings = 0;
+    (void)state;
+    td_modal_options_default(&opt);
+    opt.speed_min = 0.0;
+    opt.speed_max = 600.0;
+    opt.speed_steps = 25;
+    opt.mode_count = 4;
+    assert_int_equal(td_campbell_compute(s, &opt, &c, NULL), TD_OK);
+    for (k = 0; k < 25; k++) {
+        td_mode p[4], q[4];
+        int n = 0;
+        td_modal_free(&md[0]);
+        md[0] = md[1];
+        md[1] = NULL;
+        assert_int_equal(td_modal_solve(s, td_campbell_speed(c, k), &md[1], NULL), TD_OK);
+        for (i = 0; i < td_modal_mode_count(md[1]) && n < 4; i++)
+            if (td_modal_get_mode(md[1], i, &q[n]) == TD_OK && td_mode_is_vibration(&q[n]))
+                n++;
+        assert_int_equal(n, 4);
+        for (j = 0; j < 4; j++) {
+            td_campbell_get(c, k, j, &p[j]);
+            assert_true(mode_at(md[1], p[j].omega_d) >= 0);
+            for (i = 0; i < j; i++) /* the row's modes are distinct and are the lowest four */
+                assert_true(p[i].omega_d != p[j].omega_d);
+            assert_true(p[j].omega_d <= q[3].omega_d * (1.0 + 1e-12));
+        }
+        if (k == 0) {
+            for (j = 0; j < 4; j++)
+                assert_true(isnan(td_campbell_mac(c, 0, j)));
+            continue;
+        }
+        for (j = 0; j < 4; j++) {
+            td_mode a, b;
+            td_campbell_get(c, k - 1, j, &a);
+            td_campbell_get(c, k, j, &b);
+            assert_int_equal(b.whirl, a.whirl); /* circular whirls: a swap would flip it */
+            assert_true(td_campbell_mac(c, k, j) >= 0.9);
+            for (i = 0; i < 4; i++) {
+                td_mode a2, b2;
+                int ia, ib, ib2;
+                td_campbell_get(c, k - 1, i, &a2);
+                td_campbell_get(c, k, i, &b2);
+                if (i == j || (a.omega_d - a2.omega_d > 0.0) == (b.omega_d - b2.omega_d > 0.0))
+                    continue;
+                crossings++;
+                ia = mode_at(md[0], a.omega_d);
+                ib = mode_at(md[1], b.omega_d);
+                ib2 = mode_at(md[1], b2.omega_d);
+                print_message("crossing %.0f-%.0f rad/s: branch %d (%s) %.2f -> %.2f rad/s, branch %d (%s) %.2f -> "
+                              "%.2f; MAC %.4f kept, %.4f swapped\n",
+                              td_campbell_speed(c, k - 1), td_campbell_speed(c, k), j, td_whirl_name(a.whirl),
+                              a.omega_d, b.omega_d, i, td_whirl_name(a2.whirl), a2.omega_d, b2.omega_d,
+                              shape_mac(md[0], ia, md[1], ib), shape_mac(md[0], ia, md[1], ib2));
+                assert_true(shape_mac(md[0], ia, md[1], ib) > shape_mac(md[0], ia, md[1], ib2));
+            }
+        }
+    }
+    assert_true(crossings >= 2); /* each crossing is seen from both of its branches */
+    critical_on_branches(s, &opt, c);
+    td_modal_free(&md[0]);
+    td_modal_free(&md[1]);
+    td_campbell_free(&c);
+    td_system_free(&s);
+}
+
+/* With one bearing stiffer the rotor is no longer symmetric: its cylindrical and conical backward
+ * whirls couple and veer instead of crossing, their shapes turning into each other over a narrow speed
+ * range. A grid of 3 speeds steps across it in one step, where the best match by MAC would pair
+ * shapes rather than follow the curves; the halving of weak steps makes that grid follow the same
+ * branches as a grid of 49 speeds does. */
+static void test_campbell_refines_weak_steps(void **state)
+{
+    td_system *s = gyroscopic_rotor_k2(1.6e6);
+    td_campbell *coarse = NULL, *fine = NULL;
+    td_modal_options opt;
+    double weakest = 1.0;
+    int k, j;
+    (void)state;
+    td_modal_options_default(&opt);
+    opt.speed_min = 0.0;
+    opt.speed_max = 600.0;
+    opt.mode_count = 4;
+    opt.speed_steps = 3;
+    assert_int_equal(td_campbell_compute(s, &opt, &coarse, NULL), TD_OK);
+    opt.speed_steps = 49;
+    assert_int_equal(td_campbell_compute(s, &opt, &fine, NULL), TD_OK);
+    for (k = 0; k < 3; k++)
+        for (j = 0; j < 4; j++) {
+            td_mode a, b;
+            td_campbell_get(coarse, k, j, &a);
+            td_campbell_get(fine, 24 * k, j, &b);
+            print_message("%.0f rad/s branch %d: coarse %.3f (%s, MAC %.4f), fine %.3f (%s)\n",
+                          td_campbell_speed(coarse, k), j, a.omega_d, td_whirl_name(a.whirl),
+                          td_campbell_mac(coarse, k, j), b.omega_d, td_whirl_name(b.whirl));
+            assert_true(a.omega_d == b.omega_d);
+        }
+    for (k = 1; k < 3; k++) { /* the coarse steps are too long for a match across them */
+        td_modal *m0 = NULL, *m1 = NULL;
+        assert_int_equal(td_modal_solve(s, td_campbell_speed(coarse, k - 1), &m0, NULL), TD_OK);
+        assert_int_equal(td_modal_solve(s, td_campbell_speed(coarse, k), &m1, NULL), TD_OK);
+        for (j = 0; j < 4; j++) {
+            td_mode a, b;
+            double mac;
+            td_campbell_get(coarse, k - 1, j, &a);
+            td_campbell_get(coarse, k, j, &b);
+            mac = shape_mac(m0, mode_at(m0, a.omega_d), m1, mode_at(m1, b.omega_d));
+            weakest = fmin(weakest, mac);
+        }
+        td_modal_free(&m0);
+        td_modal_free(&m1);
+    }
+    print_message("weakest MAC across a whole coarse step: %.4f\n", weakest);
+    assert_true(weakest < TD_CAMPBELL_MAC_REFINE);
+    td_campbell_free(&coarse);
+    td_campbell_free(&fine);
+    td_system_free(&s);
+}
+
+/* Least total cost over every assignment of the rows of cost (n x m) to distinct columns, by
+ * enumeration: row r takes each free column in turn. */
+static double least_cost(const double *cost, int n, int m, int r, unsigned used)
+{
+    double best = INFINITY;
+    int j;
+    if (r == n)
+        return 0.0;
+    for (j = 0; j < m; j++)
+        if (!(used & (1u << j)))
+            best = fmin(best, cost[r * m + j] + least_cost(cost, n, m, r + 1, used | (1u << j)));
+    return best;
+}
+
+/* The Hungarian algorithm (td_assign_min_cost) against enumeration of every assignment, on
+ * pseudo-random rectangular cost matrices up to 6 x 7, ties included. */
+static void test_assignment_vs_enumeration(void **state)
+{
+    unsigned seed = 12345u;
+    int trial, n, m, i;
+    (void)state;
+    for (trial = 0; trial < 300; trial++) {
+        double cost[42], sum = 0.0;
+        int to[6];
+        unsigned used = 0;
+        n = 1 + trial % 6;
+        m = n + (trial / 6) % 2;
+        for (i = 0; i < n * m; i++) {
+            seed = seed * 1103515245u + 12345u;
+            cost[i] = trial % 3 == 0 ? (double)((seed >> 16) % 4) : (double)((seed >> 8) % 100000) / 99999.0;
+        }
+        assert_int_equal(td_assign_min_cost(cost, n, m, to, NULL), TD_OK);
+        for (i = 0; i < n; i++) {
+            assert_true(to[i] >= 0 && to[i] < m && !(used & (1u << to[i])));
+            used |= 1u << to[i];
+            sum += cost[i * m + to[i]];
+        }
+        assert_close(sum, least_cost(cost, n, m, 0, 0u), 1e-12, 1e-12);
+    }
+    {
+        double c2[2] = {0.0, 1.0};
+        int to2[2];
+        assert_int_equal(td_assign_min_cost(c2, 2, 1, to2, NULL), TD_ERR_INVALID); /* more rows than columns */
+    }
 }
 
 /* omega_d - Omega of the lowest forward mode. */
@@ -761,6 +1027,9 @@ int main(void)
         cmocka_unit_test(test_state_matrix_layout),
         cmocka_unit_test(test_singular_mass),
         cmocka_unit_test(test_campbell_labels),
+        cmocka_unit_test(test_campbell_tracks_crossings),
+        cmocka_unit_test(test_assignment_vs_enumeration),
+        cmocka_unit_test(test_campbell_refines_weak_steps),
         cmocka_unit_test(test_critical_speed_vs_scan),
         cmocka_unit_test(test_writers_round_trip),
         cmocka_unit_test(test_partial_equals_dense),

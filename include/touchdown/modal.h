@@ -205,15 +205,40 @@ typedef struct td_campbell td_campbell;
 
 /**
  * Case files may ask for at most this many speed_steps x mechanical DOFs: every grid speed costs an
- * eigen-solve for the Campbell diagram and one for the critical speeds (docs/performance.md).
+ * eigen-solve for the Campbell diagram (more where its branch tracking halves the step) and one for
+ * the critical speeds (docs/performance.md).
  */
 #define TD_MODAL_MAX_GRID_WORK 200000L
 
 /**
+ * Branch tracking: a step of td_campbell_compute whose weakest match has a MAC below this is halved;
+ * a point whose td_campbell_mac is below it was not followed as one mode. 0.9 is the usual bound for
+ * "the same mode" in modal correlation (Allemang, The Modal Assurance Criterion - Twenty Years of Use
+ * and Abuse, Sound and Vibration 37(8), 2003); a forward and a backward circular whirl of one shape
+ * have MAC 0.
+ */
+#define TD_CAMPBELL_MAC_REFINE 0.9
+/** At most this many halvings of a grid step: the finest step is 1/1024 of the grid's. Where even that
+ *  step matches with a low MAC (a mode that left the modes matched, degenerate modes), the match is
+ *  taken as found, td_campbell_mac says so, and the rest of that grid step is taken in one: a grid
+ *  step costs at most TD_CAMPBELL_MAX_HALVINGS + 2 eigen-solves, one where every match is good. */
+#define TD_CAMPBELL_MAX_HALVINGS 10
+
+/**
  * Oscillatory modes over opt->speed_steps speeds evenly spaced from opt->speed_min to
- * opt->speed_max (inclusive), the lowest opt->mode_count at each speed. Branch j at a speed is
- * the j-th lowest damped frequency there (branches are tracked by sorting), each point labelled
- * with its own whirl. A speed with fewer modes leaves its missing points with omega_d = NAN.
+ * opt->speed_max (inclusive), the lowest opt->mode_count vibration modes at each speed, each point
+ * labelled with its own whirl. Branches are tracked by mode shape: branch j starts as the j-th
+ * lowest mode at speed_min and, from each speed to the next, every branch moves on to the mode whose
+ * shape matches its own best, the Modal Assurance Criterion MAC = |a^H b|^2 / ((a^H a)(b^H b)) of the
+ * complex nodal displacements (x and y at every node) matched by the optimal assignment (largest
+ * total MAC, Hungarian algorithm) among the lowest 2 mode_count modes; where the weakest match of a
+ * step has MAC < TD_CAMPBELL_MAC_REFINE the step is halved, down to 2^-TD_CAMPBELL_MAX_HALVINGS of the
+ * grid step (a branch whose mode lies above td_modal_complete_below of a partial solve, where it may
+ * be absent, asks for no halving). So a branch keeps its mode
+ * (and whirl) where it crosses another; the points of a row are the same modes as sorting gives,
+ * their columns permuted. A mode that leaves the lowest mode_count hands its branch to the one
+ * entering (the lowest no branch followed in), with the low MAC of that link (td_campbell_mac).
+ * A speed with fewer modes leaves its missing points with omega_d = NAN.
  * Caller frees with td_campbell_free.
  */
 TD_API td_status td_campbell_compute(const td_system *sys, const td_modal_options *opt, td_campbell **out,
@@ -225,6 +250,10 @@ TD_API int td_campbell_branch_count(const td_campbell *c);
 TD_API double td_campbell_speed(const td_campbell *c, int k);
 /** Branch j at speed number k. */
 TD_API td_status td_campbell_get(const td_campbell *c, int k, int j, td_mode *out);
+/** MAC of branch j at speed number k to its point at speed k - 1: the weakest match of the steps that
+ *  carried it there (1: the same shape; near 0: another mode took the branch over). NAN at k = 0, at
+ *  a missing point or one whose branch had no point before, and out of range. */
+TD_API double td_campbell_mac(const td_campbell *c, int k, int j);
 
 /* ---------------------------------------------------------------------------------------- */
 /* Critical speeds                                                                           */

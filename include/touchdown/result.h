@@ -350,6 +350,7 @@ typedef enum td_out_id {
     TD_OUT_STATIC_SUPPORT, /**< the modal CSV file's column of the support's kind */
     TD_OUT_UR_SENSOR_ZONE, /**< /unbalance_response/sensor_zone: ISO 14839-2 zone per speed and AMB sensor */
     TD_OUT_UR_C_MIN,       /**< /unbalance_response attribute: C_min of the zones */
+    TD_OUT_CAMPBELL_MAC,   /**< /campbell/mac: each point's MAC to its branch's point at the previous speed */
     TD_OUT_ID_COUNT        /**< number of ids; also "several objects" as the parent of an attribute */
 } td_out_id;
 

@@ -82,16 +82,16 @@ static void csv_campbell(FILE *f, const td_campbell *c)
 {
     static const td_out_id cols[] = {TD_OUT_CAMPBELL_SPEED,   TD_OUT_CAMPBELL_BRANCH, TD_OUT_CAMPBELL_OMEGA_D,
                                      TD_OUT_CAMPBELL_FREQ_HZ, TD_OUT_CAMPBELL_SIGMA,  TD_OUT_CAMPBELL_ZETA,
-                                     TD_OUT_CAMPBELL_WHIRL};
+                                     TD_OUT_CAMPBELL_WHIRL,   TD_OUT_CAMPBELL_MAC};
     int k, j;
     csv_section(f, TD_OUT_CAMPBELL);
-    csv_columns(f, cols, 7);
+    csv_columns(f, cols, 8);
     for (k = 0; k < td_campbell_speed_count(c); k++)
         for (j = 0; j < td_campbell_branch_count(c); j++) {
             td_mode md;
             td_campbell_get(c, k, j, &md);
-            fprintf(f, "%.12g,%d,%.12g,%.12g,%.12g,%.12g,%s\n", td_campbell_speed(c, k), j, md.omega_d, md.freq_hz,
-                    md.sigma, md.zeta, td_whirl_name(md.whirl));
+            fprintf(f, "%.12g,%d,%.12g,%.12g,%.12g,%.12g,%s,%.12g\n", td_campbell_speed(c, k), j, md.omega_d,
+                    md.freq_hz, md.sigma, md.zeta, td_whirl_name(md.whirl), td_campbell_mac(c, k, j));
         }
     fprintf(f, "\n");
 }
@@ -294,24 +294,32 @@ static int h5_campbell(hid_t file, const td_campbell *c)
 {
     int ns = td_campbell_speed_count(c), nb = td_campbell_branch_count(c), k, j, ok;
     td_mode *pts = malloc((size_t)(ns ? ns : 1) * (size_t)(nb ? nb : 1) * sizeof *pts);
+    double *mac = malloc((size_t)(ns ? ns : 1) * (size_t)(nb ? nb : 1) * sizeof *mac);
     double *sp = malloc((size_t)(ns ? ns : 1) * sizeof *sp);
     hid_t g = H5Gcreate2(file, td_out_name(TD_OUT_CAMPBELL), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
-    ok = pts && sp && g >= 0;
+    ok = pts && mac && sp && g >= 0;
     for (k = 0; ok && k < ns; k++) {
         sp[k] = td_campbell_speed(c, k);
-        for (j = 0; j < nb; j++)
+        for (j = 0; j < nb; j++) {
             td_campbell_get(c, k, j, &pts[(size_t)k * (size_t)nb + (size_t)j]);
+            mac[(size_t)k * (size_t)nb + (size_t)j] = td_campbell_mac(c, k, j);
+        }
     }
     ok = ok && h5_dataset(g, TD_OUT_CAMPBELL_SPEED, H5T_NATIVE_DOUBLE, sp, (hsize_t)ns, 0);
     ok = ok && h5_mode_table(g, TD_OUT_CAMPBELL_SIGMA, pts, (hsize_t)ns, (hsize_t)nb);
+    ok = ok && h5_dataset(g, TD_OUT_CAMPBELL_MAC, H5T_NATIVE_DOUBLE, mac, (hsize_t)ns, (hsize_t)nb);
     ok = ok && td_h5_attr_string(g, td_out_name(TD_OUT_CAMPBELL_LAYOUT),
-                                 "rows: speeds, columns: branches (j-th lowest omega_d)") >= 0;
+                                 "rows: speeds, columns: branches (tracked by MAC from the j-th lowest omega_d at "
+                                 "the first speed)") >= 0;
     ok = ok && h5_index(g, TD_OUT_CAMPBELL_BRANCH, nb);
     ok = ok && h5_mode_table_axis(g, TD_OUT_CAMPBELL_SIGMA, TD_OUT_CAMPBELL_SPEED, 0) &&
          h5_mode_table_axis(g, TD_OUT_CAMPBELL_SIGMA, TD_OUT_CAMPBELL_BRANCH, 1);
+    ok = ok && h5_attach(g, TD_OUT_CAMPBELL_SPEED, (const td_out_id[]){TD_OUT_CAMPBELL_MAC}, 1, 0) &&
+         h5_attach(g, TD_OUT_CAMPBELL_BRANCH, (const td_out_id[]){TD_OUT_CAMPBELL_MAC}, 1, 1);
     if (g >= 0)
         H5Gclose(g);
     free(pts);
+    free(mac);
     free(sp);
     return ok;
 }

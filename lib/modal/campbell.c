@@ -1,5 +1,6 @@
 /*
- * Campbell diagram (modes over a speed grid, branches tracked by sorting) and critical speeds
+ * Campbell diagram (modes over a speed grid, branches tracked by the MAC of their mode shapes
+ * from one speed to the next, matched by the optimal assignment) and critical speeds
  * (crossings of a whirl branch with the synchronous line omega_d = Omega, refined by the
  * Illinois variant of regula falsi on fresh eigen-solves).
  */
@@ -9,12 +10,14 @@
 
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
 struct td_campbell {
     int nspeeds;
     int nbranches;
     double *speeds;  /* nspeeds */
     td_mode *points; /* nspeeds x nbranches, speed-major */
+    double *mac;     /* nspeeds x nbranches: each point's weakest MAC link from the previous speed */
 };
 
 /* Relative width at which a critical-speed bracket counts as converged. */
@@ -49,6 +52,7 @@ void td_campbell_free(td_campbell **c)
         return;
     free((*c)->speeds);
     free((*c)->points);
+    free((*c)->mac);
     free(*c);
     *c = NULL;
 }
@@ -82,38 +86,278 @@ static void fill_branches(const td_modal *m, td_mode *row, int nbranches)
     }
 }
 
+double td_shape_mac(const double *a, const double *b, int nn)
+{
+    double re = 0.0, im = 0.0, aa = 0.0, bb = 0.0;
+    int c, k;
+    for (c = 0; c < 2; c++) { /* the x, then the y components */
+        const double *ar = a + 2 * c * nn, *ai = ar + nn, *br = b + 2 * c * nn, *bi = br + nn;
+        for (k = 0; k < nn; k++) {
+            re += ar[k] * br[k] + ai[k] * bi[k]; /* conj(a) b */
+            im += ar[k] * bi[k] - ai[k] * br[k];
+            aa += ar[k] * ar[k] + ai[k] * ai[k];
+            bb += br[k] * br[k] + bi[k] * bi[k];
+        }
+    }
+    if (!(aa > 0.0 && bb > 0.0))
+        return 0.0;
+    return fmin(1.0, (re * re + im * im) / (aa * bb));
+}
+
+/* The branches being followed from one speed to the next: each branch's last point (mode and shape;
+ * has[j] = 0: none yet), the weakest MAC link that carried it since the last grid speed, and the
+ * candidates of the latest solve with the match found among them. */
+typedef struct tracker {
+    int nb, nn;
+    int *has;
+    td_mode *mode;
+    double *shape;   /* nb x 4 nn */
+    double *weakest; /* nb */
+    double *link;    /* nb: MAC of the latest match (NAN: matched to nothing) */
+    int *match;      /* nb: candidate matched, -1: none */
+    int *cand;       /* up to 2 nb candidates: indices of vibration modes of the latest solve, ascending */
+    int ncand;
+    double *cost; /* nb x 2 nb */
+    int *rows, *assign;
+    char *taken; /* nb */
+} tracker;
+
+static void tracker_free(tracker *t)
+{
+    free(t->has);
+    free(t->mode);
+    free(t->shape);
+    free(t->weakest);
+    free(t->link);
+    free(t->match);
+    free(t->cand);
+    free(t->cost);
+    free(t->rows);
+    free(t->assign);
+    free(t->taken);
+}
+
+static int tracker_init(tracker *t, int nb, int nn)
+{
+    size_t b = (size_t)nb;
+    t->nb = nb;
+    t->nn = nn;
+    t->ncand = 0;
+    t->has = calloc(b, sizeof *t->has);
+    t->mode = calloc(b, sizeof *t->mode);
+    t->shape = calloc(b * 4u * (size_t)(nn > 0 ? nn : 1), sizeof *t->shape);
+    t->weakest = calloc(b, sizeof *t->weakest);
+    t->link = calloc(b, sizeof *t->link);
+    t->match = calloc(b, sizeof *t->match);
+    t->cand = calloc(2u * b, sizeof *t->cand);
+    t->cost = calloc(2u * b * b, sizeof *t->cost);
+    t->rows = calloc(b, sizeof *t->rows);
+    t->assign = calloc(b, sizeof *t->assign);
+    t->taken = calloc(b, 1);
+    return t->taken && t->has && t->mode && t->shape && t->weakest && t->link && t->match && t->cand && t->cost &&
+           t->rows && t->assign;
+}
+
+static const double *mode_shape(const td_modal *m, int i)
+{
+    return m->shapes + (size_t)i * 4u * (size_t)m->nnodes;
+}
+
+/* Branch j follows mode i of m from here on. */
+static void tracker_take(tracker *t, int j, const td_modal *m, int i)
+{
+    t->has[j] = 1;
+    t->mode[j] = m->modes[i];
+    memcpy(t->shape + (size_t)j * 4u * (size_t)t->nn, mode_shape(m, i), 4u * (size_t)t->nn * sizeof *t->shape);
+}
+
+/* Match the followed branches to the lowest 2 nb vibration modes of m by the assignment of largest
+ * total MAC (cost 1 - MAC; columns of cost 1 pad the candidates when fewer than the branches, a branch
+ * assigned to one matches nothing). *least: the smallest MAC of a match of a branch whose mode lies
+ * below the solve's td_modal_complete_below (1 when none). */
+static td_status tracker_match(tracker *t, const td_modal *m, double *least, td_error *err)
+{
+    int i, j, r, nrows = 0, ncols;
+    td_status st;
+    t->ncand = 0;
+    for (i = 0; i < m->n_modes && t->ncand < 2 * t->nb; i++)
+        if (td_mode_is_vibration(&m->modes[i]))
+            t->cand[t->ncand++] = i;
+    for (j = 0; j < t->nb; j++) {
+        t->match[j] = -1;
+        t->link[j] = NAN;
+        if (t->has[j])
+            t->rows[nrows++] = j;
+    }
+    ncols = t->ncand > nrows ? t->ncand : nrows;
+    for (r = 0; r < nrows; r++)
+        for (i = 0; i < ncols; i++)
+            t->cost[(size_t)r * (size_t)ncols + (size_t)i] =
+                i < t->ncand ? 1.0 - td_shape_mac(t->shape + (size_t)t->rows[r] * 4u * (size_t)t->nn,
+                                                  mode_shape(m, t->cand[i]), t->nn)
+                             : 1.0;
+    st = td_assign_min_cost(t->cost, nrows, ncols, t->assign, err);
+    *least = 1.0;
+    for (r = 0; st == TD_OK && r < nrows; r++)
+        if (t->assign[r] < t->ncand) {
+            j = t->rows[r];
+            t->match[j] = t->assign[r];
+            t->link[j] = 1.0 - t->cost[(size_t)r * (size_t)ncols + (size_t)t->assign[r]];
+            if (t->mode[j].omega_d < m->complete_below) /* above it the mode may just be absent */
+                *least = fmin(*least, t->link[j]);
+        }
+    return st;
+}
+
+/* Move every matched branch on to its match, keeping the weakest link. */
+static void tracker_accept(tracker *t, const td_modal *m)
+{
+    int j;
+    for (j = 0; j < t->nb; j++)
+        if (t->match[j] >= 0) {
+            tracker_take(t, j, m, t->cand[t->match[j]]);
+            t->weakest[j] = fmin(t->weakest[j], t->link[j]);
+        }
+}
+
+/* The Campbell row of the grid speed just solved (m, matched): the lowest nb vibration modes, each in
+ * the column of the branch that followed it there. A branch whose mode left the lowest nb (or that
+ * had none) takes the lowest mode no branch followed in (its MAC the link from its last point). */
+static void tracker_row(tracker *t, const td_modal *m, td_mode *row, double *mac)
+{
+    int j, q, nwin = t->ncand < t->nb ? t->ncand : t->nb, next = 0;
+    char *taken = t->taken;
+    memset(taken, 0, (size_t)t->nb);
+    for (j = 0; j < t->nb; j++)
+        if (t->match[j] >= 0 && t->match[j] < nwin) {
+            row[j] = t->mode[j];
+            mac[j] = t->weakest[j];
+            taken[t->match[j]] = 1;
+        }
+    for (j = 0; j < t->nb; j++) {
+        if (t->match[j] >= 0 && t->match[j] < nwin)
+            continue;
+        while (next < nwin && taken[next])
+            next++;
+        if (next == nwin) { /* fewer modes than branches here */
+            row[j].sigma = row[j].omega_d = row[j].freq_hz = row[j].omega_n = row[j].zeta = row[j].whirl_index = NAN;
+            row[j].whirl = TD_WHIRL_MIXED;
+            mac[j] = NAN;
+            t->has[j] = 0;
+            continue;
+        }
+        q = next++;
+        mac[j] =
+            t->has[j] ? td_shape_mac(t->shape + (size_t)j * 4u * (size_t)t->nn, mode_shape(m, t->cand[q]), t->nn) : NAN;
+        tracker_take(t, j, m, t->cand[q]);
+        row[j] = t->mode[j];
+    }
+    for (j = 0; j < t->nb; j++)
+        t->weakest[j] = 1.0;
+}
+/* Follow the branches from grid speed s0 to s1, ending with the solve at s1 in *at_s1, matched. A
+ * step whose weakest match has MAC < TD_CAMPBELL_MAC_REFINE is halved (down to the grid step over
+ * 2^TD_CAMPBELL_MAX_HALVINGS, where the match is taken as it is) and the step doubles again after
+ * each accepted one: positions count in units of that finest step, so the speeds are exact. Once a
+ * weak match was taken at the finest step (modes that stay degenerate, whose shapes any basis of
+ * their plane gives), the rest of the interval is one step: an interval costs at most
+ * TD_CAMPBELL_MAX_HALVINGS + 2 solves. */
+static td_status track_interval(const td_system *sys, tracker *t, double s0, double s1, td_modal **at_s1, td_error *err)
+{
+    const long units = 1L << TD_CAMPBELL_MAX_HALVINGS;
+    long pos = 0, step = units;
+    int floor_hit = 0;
+    *at_s1 = NULL;
+    while (pos < units) {
+        long to = pos + step < units ? pos + step : units;
+        double speed = to == units ? s1 : s0 + (s1 - s0) * (double)to / (double)units, least;
+        td_modal *m = NULL;
+        td_status st = td_modal_solve_lowest(sys, speed, t->nb, &m, err);
+        if (st == TD_OK)
+            st = tracker_match(t, m, &least, err);
+        if (st != TD_OK) {
+            td_modal_free(&m);
+            return st;
+        }
+        if (least < TD_CAMPBELL_MAC_REFINE && to - pos > 1 && !floor_hit) {
+            td_modal_free(&m);
+            step = (to - pos) / 2;
+            continue;
+        }
+        tracker_accept(t, m);
+        floor_hit = floor_hit || least < TD_CAMPBELL_MAC_REFINE;
+        step = floor_hit ? units : 2 * (to - pos); /* after a weak match at the finest step: one more */
+        pos = to;
+        if (pos == units)
+            *at_s1 = m;
+        else
+            td_modal_free(&m);
+    }
+    return TD_OK;
+}
+
+static td_campbell *campbell_new(const td_modal_options *opt)
+{
+    td_campbell *c = calloc(1, sizeof *c);
+    if (!c)
+        return NULL;
+    c->nspeeds = opt->speed_steps;
+    c->nbranches = opt->mode_count;
+    c->speeds = malloc((size_t)c->nspeeds * sizeof *c->speeds);
+    c->points = malloc((size_t)c->nspeeds * (size_t)c->nbranches * sizeof *c->points);
+    c->mac = malloc((size_t)c->nspeeds * (size_t)c->nbranches * sizeof *c->mac);
+    if (!c->speeds || !c->points || !c->mac)
+        td_campbell_free(&c);
+    return c;
+}
+
+/* Row 0: the lowest modes at the first speed, sorted; each branch starts there. */
+static void first_row(td_campbell *c, tracker *t, const td_modal *m)
+{
+    int j, i = 0;
+    fill_branches(m, c->points, c->nbranches);
+    for (j = 0; j < c->nbranches; j++) {
+        c->mac[j] = NAN;
+        t->weakest[j] = 1.0;
+        while (i < m->n_modes && !td_mode_is_vibration(&m->modes[i]))
+            i++;
+        if (i < m->n_modes)
+            tracker_take(t, j, m, i++);
+    }
+}
+
 td_status td_campbell_compute(const td_system *sys, const td_modal_options *opt, td_campbell **out, td_error *err)
 {
     td_campbell *c;
+    tracker t;
     td_status st;
     int k;
     if (!out)
         return td_error_set(err, TD_ERR_INVALID, "td_campbell_compute: NULL output pointer");
     *out = NULL;
-    st = check_options(opt, err);
-    if (st != TD_OK)
+    if ((st = check_options(opt, err)) != TD_OK)
         return st;
-    c = calloc(1, sizeof *c);
-    if (!c)
+    if (!(c = campbell_new(opt)))
         return td_error_set(err, TD_ERR_NOMEM, "modal: out of memory for the Campbell diagram");
-    c->nspeeds = opt->speed_steps;
-    c->nbranches = opt->mode_count;
-    c->speeds = malloc((size_t)c->nspeeds * sizeof *c->speeds);
-    c->points = malloc((size_t)c->nspeeds * (size_t)c->nbranches * sizeof *c->points);
-    if (!c->speeds || !c->points) {
-        td_campbell_free(&c);
-        return td_error_set(err, TD_ERR_NOMEM, "modal: out of memory for the Campbell diagram");
-    }
-    for (k = 0; k < c->nspeeds; k++) {
+    memset(&t, 0, sizeof t);
+    for (k = 0; k < c->nspeeds && st == TD_OK; k++) {
         td_modal *m = NULL;
+        size_t row = (size_t)k * (size_t)c->nbranches;
         c->speeds[k] = grid_speed(opt, k);
-        st = td_modal_solve_lowest(sys, c->speeds[k], c->nbranches, &m, err);
-        if (st != TD_OK) {
-            td_campbell_free(&c);
-            return st;
+        if (k == 0 && (st = td_modal_solve_lowest(sys, c->speeds[0], c->nbranches, &m, err)) == TD_OK) {
+            if (tracker_init(&t, c->nbranches, m->nnodes))
+                first_row(c, &t, m);
+            else
+                st = td_error_set(err, TD_ERR_NOMEM, "modal: out of memory for the Campbell diagram");
+        } else if (k > 0 && (st = track_interval(sys, &t, c->speeds[k - 1], c->speeds[k], &m, err)) == TD_OK) {
+            tracker_row(&t, m, c->points + row, c->mac + row);
         }
-        fill_branches(m, c->points + (size_t)k * (size_t)c->nbranches, c->nbranches);
         td_modal_free(&m);
+    }
+    tracker_free(&t);
+    if (st != TD_OK) {
+        td_campbell_free(&c);
+        return st;
     }
     *out = c;
     return TD_OK;
@@ -133,6 +377,13 @@ double td_campbell_speed(const td_campbell *c, int k)
     if (!c || k < 0 || k >= c->nspeeds)
         return NAN;
     return c->speeds[k];
+}
+
+double td_campbell_mac(const td_campbell *c, int k, int j)
+{
+    if (!c || k < 0 || k >= c->nspeeds || j < 0 || j >= c->nbranches)
+        return NAN;
+    return c->mac[(size_t)k * (size_t)c->nbranches + (size_t)j];
 }
 
 td_status td_campbell_get(const td_campbell *c, int k, int j, td_mode *out)

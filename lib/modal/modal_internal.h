@@ -115,6 +115,16 @@ td_status td_modal_collect_system(const gsl_vector_complex *eval, gsl_matrix_com
 td_status td_modal_lowest(const td_system *sys, double omega, int count, double wmax, int force_sparse, td_modal **out,
                           td_error *err);
 
+/* The optimal assignment (lib/modal/assign.c, Hungarian algorithm): row i of the n x m cost matrix
+ * (row-major, n <= m, every entry finite) to column row_to_col[i], each column used at most once,
+ * with the least sum of costs. Errors: TD_ERR_INVALID, TD_ERR_NOMEM. */
+td_status td_assign_min_cost(const double *cost, int n, int m, int *row_to_col, td_error *err);
+
+/* Modal Assurance Criterion of two complex nodal shapes a, b (each 4 nn doubles laid out as
+ * td_modal's: x_re, x_im, y_re, y_im): |a^H b|^2 / ((a^H a)(b^H b)) in [0, 1] (lib/modal/campbell.c);
+ * 0 when either shape is zero. */
+double td_shape_mac(const double *a, const double *b, int nn);
+
 /* Switch GSL's abort-on-error handler off (idempotent; see touchdown/modal.h). */
 void td_modal_gsl_quiet(void);
 

@@ -109,6 +109,7 @@ typedef struct plot_modal {
     double *speed; /* ns, rad/s */
     double *freq;  /* ns x nb, Hz (NAN: missing point) */
     double *whirl; /* ns x nb: 1 forward, -1 backward, 0 mixed */
+    double *mac;   /* ns x nb: MAC to the branch's previous point (td_campbell_mac), NULL in older files */
     int ncrit;
     double *crit_speed, *crit_freq, *crit_whirl; /* ncrit */
     int nm, nn;                                  /* modes x nodes of the mode shapes */

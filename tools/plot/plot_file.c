@@ -294,6 +294,9 @@ static int load_campbell(const td_result *r, plot_modal *m)
     m->freq = f.v;
     m->speed = read_vector(r, TD_OUT_CAMPBELL_SPEED, NULL, (size_t)m->ns);
     m->whirl = read_vector(r, TD_OUT_CAMPBELL_WHIRL, NULL, (size_t)m->ns * (size_t)m->nb);
+    if (td_result_has(r, TD_OUT_CAMPBELL_MAC, NULL) &&
+        !(m->mac = read_vector(r, TD_OUT_CAMPBELL_MAC, NULL, (size_t)m->ns * (size_t)m->nb)))
+        return -1;
     return m->speed && m->whirl ? 0 : -1;
 }
 
@@ -433,7 +436,8 @@ void plot_file_free(plot_file *f)
     plot_modal *m = &f->modal;
     free(s->t), free(s->x), free(s->y), free(s->r), free(s->fn), free(s->contact), free(s->amb);
     free(s->clearance), free(s->ret_nodes), free(s->amb_nodes), free(s->ev);
-    free(m->speed), free(m->freq), free(m->whirl), free(m->crit_speed), free(m->crit_freq), free(m->crit_whirl);
+    free(m->speed), free(m->freq), free(m->whirl), free(m->mac), free(m->crit_speed), free(m->crit_freq),
+        free(m->crit_whirl);
     free(m->mode_freq), free(m->mode_whirl), free(m->mode_zeta), free(m->xr), free(m->xi), free(m->yr), free(m->yi);
     free(m->node_z);
     plot_loop_free(&m->loop);

@@ -27,12 +27,15 @@ static const char *whirl_word(double w)
 
 /* ---- Campbell diagram ---------------------------------------------------------------------- */
 
-/* A branch (the j-th lowest damped frequency at each speed) is a sorted index, not a tracked
- * mode: where modes cross or one appears, it jumps to another curve. Its line is therefore cut
- * (blank line) where the whirl changes or the frequency jumps by more than a quarter. */
-static int joins(double f0, double w0, double f1, double w1)
+/* A branch follows one mode by its shape (td_campbell_compute) except where another mode took it
+ * over, which its MAC to the previous point says (below TD_CAMPBELL_MAC_REFINE). Files without
+ * /campbell/mac (sorted branches, which jump to another curve where modes cross) are cut where the
+ * frequency jumps by more than a quarter. Either way the line is cut where the whirl changes. */
+static int joins(double f0, double w0, double f1, double w1, const double *mac)
 {
-    return isfinite(f0) && isfinite(f1) && w0 == w1 && fabs(f1 - f0) <= 0.25 * fmax(fabs(f0), fabs(f1));
+    if (!isfinite(f0) || !isfinite(f1) || w0 != w1)
+        return 0;
+    return mac ? *mac >= TD_CAMPBELL_MAC_REFINE : fabs(f1 - f0) <= 0.25 * fmax(fabs(f0), fabs(f1));
 }
 
 static int write_campbell(const plot_job *job, const plot_file *f, const char *prefix)
@@ -45,8 +48,8 @@ static int write_campbell(const plot_job *job, const plot_file *f, const char *p
     if (!(out = plot_open(job->opt, name)))
         return PLOT_FAILED;
     fprintf(out,
-            "# Campbell diagram from %s: one block per branch (j-th lowest damped frequency), cut\n"
-            "# by blank lines where the whirl changes or the frequency jumps (another mode)\n"
+            "# Campbell diagram from %s: one block per branch (one mode, tracked by its shape), cut\n"
+            "# by blank lines where the whirl changes or another mode takes the branch over\n"
             "# columns: 1 speed [rad/s], 2 damped natural frequency [Hz], 3 whirl (1 forward, -1 backward, "
             "0 mixed)\n",
             f->path);
@@ -55,7 +58,7 @@ static int write_campbell(const plot_job *job, const plot_file *f, const char *p
         for (k = 0; k < m->ns; k++) {
             size_t q = (size_t)k * (size_t)m->nb + (size_t)j, p = q - (size_t)m->nb;
             double fr = m->freq[q];
-            if (k > 0 && !joins(m->freq[p], m->whirl[p], fr, m->whirl[q]))
+            if (k > 0 && !joins(m->freq[p], m->whirl[p], fr, m->whirl[q], m->mac ? &m->mac[q] : NULL))
                 fputc('\n', out);
             if (isfinite(fr))
                 fprintf(out, "%.12g %.12g %g\n", m->speed[k], fr, m->whirl[q]);
