@@ -18,7 +18,13 @@ if all(js[r]["energy"] for r in R):
     rows.append(("energy lost (the four)", [sum(js[r]["energy"][k] for k in LOSSES) for r in R]))
 for k in ["impulse", "friction_work", "contact_time", "mean_normal_force", "rms_normal_force", "whirl_frequency",
           "contacts", "touch_and_go", "peak_normal_force", "load_ratio", "peak_sliding_velocity",
-          "peak_friction_power", "peak_pv", "peak_contact_stress", "peak_race_speed", "race_speed"]:
+          "peak_friction_power", "peak_pv", "peak_contact_stress", "peak_race_speed", "race_speed",
+          # the heat (with a retainers[].thermal) and the life (with a bearing.dynamic_rating): in the
+          # summary only when the case gives them
+          "drag_work", "heat", "peak_temperature_rise", "peak_thermal_growth",
+          "load_cycles", "damage", "drops_to_failure"]:
+    if js[2].get("retainer_" + k) is None:
+        continue
     for i in range(len(js[2]["retainer_" + k])):
         rows.append(("retainer %d %s" % (i, k), [js[r]["retainer_" + k][i] for r in R]))
 for i in range(len(js[2]["sensor_peak_displacement"])):

@@ -3,8 +3,9 @@
 # elements on the rig) at the case's tolerances with the energy account on, one run at a time, and
 # prints each candidate answer at the three meshes with its change from 48 to 96 elements, marking
 # those that move more than 2 %: the run's totals and peaks, the energy lost, each retainer's
-# totals and bearing duty (docs/theory.md, "The bearing's duty"), the sensors' peaks, and means over
-# time windows of the sampled normal force, friction power and race speed.
+# totals and bearing duty (docs/theory.md, "The bearing's duty"), its heat and life when the case
+# gives a thermal network and a dynamic rating, the sensors' peaks, and means over time windows of
+# the sampled normal force, friction power and race speed.
 #
 #   bench/led.sh [-b TOUCHDOWN] CASE [KEY=VALUE ...]   (extra --set overrides for every run, e.g. a
 #                                                    retainers[0].bearing for the duty's PV and stress)

@@ -418,6 +418,19 @@ def src_report(tool, build):
     return data
 
 
+def src_drop_sweep(tool, build):
+    """docs/theory.md's table of the drop over its speed: cases/drop-speed-sweep.cfg's points, each
+    a `touchdown run --json` of that case at the point's speed (the runs `touchdown sweep` makes of
+    it; about 12 s of CPU in all), and the sweep's speeds read from the case."""
+    data = stamp(tool, "drop_sweep", "touchdown run --json --set speed=S cases/drop-speed-sweep.cfg, "
+                                     "S the sweep's speeds")
+    with open(os.path.join(ROOT, "cases", "drop-speed-sweep.cfg")) as f:
+        m = re.search(r'key = "speed"; values = \[([^]]*)\]', f.read())
+    speeds = [float(v) for v in m.group(1).split(",")]
+    data["runs"] = {"%g" % s: record_run(tool, run_args("drop-speed-sweep", {"speed": repr(s)})) for s in speeds}
+    return data
+
+
 def src_recovery(tool, build):
     """docs/recovery-study.md's runs (scripts/recovery_study.py: the case with and without its
     supervisor, the laws that fail, the damper's phase and gain, the map)."""
@@ -429,7 +442,8 @@ SOURCES = {"fast": [("runs", src_runs), ("modal", src_modal), ("validation", src
            "slow": [("bench", src_bench), ("digital", src_digital), ("fmu", src_fmu), ("scaling", src_scaling), ("references", src_references),
                     ("intervals", src_intervals), ("tolerances", src_tolerances), ("mesh", src_mesh),
                     ("convergence", src_convergence), ("spread", src_spread), ("figures", src_figures),
-                    ("recovery", src_recovery), ("report", src_report)]}
+                    ("recovery", src_recovery), ("report", src_report),
+                    ("drop_sweep", src_drop_sweep)]}
 
 
 # The runs are deterministic: the same build gives the same bits. The tolerance allows for another

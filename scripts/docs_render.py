@@ -1344,6 +1344,23 @@ def report_drop():
             + "".join("    " + line if line.strip() else "\n" for line in d["text"].splitlines(True)))
 
 
+def theory_drop_sweep():
+    """docs/theory.md, "Touchdown bearing life": cases/drop-speed-sweep.cfg's points (docs_record.py's
+    drop_sweep), the first retainer to fail and the hotter race of each."""
+    runs = res("drop_sweep")["runs"]
+    rows = []
+    for key in sorted(runs, key=float):
+        s = runs[key]["summary"]
+        drops = [x for x in (s.get("retainer_drops_to_failure") or []) if x is not None]
+        rise = [x for x in (s.get("retainer_peak_temperature_rise") or []) if x is not None]
+        rows.append([f(float(key), 0), s.get("ending") or "-", f(num(s, "peak_housing_force"), 0),
+                     e(min(drops) if drops else None, 3), g(max(rise) if rise else None, 3)])
+    total = sum(runs[k]["cpu_time"] for k in runs)
+    return (table(["speed (rad/s)", "ending", "peak housing force (N)", "drops to failure", "peak temperature rise (K)"],
+                  rows)
+            + "\n%d points, %s s of CPU in all (%s).\n" % (len(runs), f(total, 1), cite("drop_sweep")))
+
+
 REGIONS = {"readme-glance": readme_glance, "readme-realtime": readme_realtime,
            "perf-summary": perf_summary, "perf-paper-settings": perf_paper_settings,
            "perf-paper-findings": perf_paper_findings, "perf-remains": perf_remains,
@@ -1354,7 +1371,8 @@ REGIONS = {"readme-glance": readme_glance, "readme-realtime": readme_realtime,
            "val-scenarios": val_scenarios, "val-conv-rub-damped": val_conv_rub_damped,
            "val-conv-paper-a": val_conv_paper_a, "val-conv-drop": val_conv_drop, "val-spread": val_spread,
            "out-name-index": out_name_index, "perf-scaling": perf_scaling, "perf-digital": perf_digital,
-           "fmu-loop": fmu_loop, "perf-fmu": perf_fmu, "report-drop": report_drop}
+           "fmu-loop": fmu_loop, "perf-fmu": perf_fmu, "report-drop": report_drop,
+           "theory-drop-sweep": theory_drop_sweep}
 SPANS = {"rub-mean-normal": span_rub_mean_normal, "val-first-contact-cell": span_val_first_contact_cell,
          "val-rig-modal-cell": span_val_rig_modal_cell, "rig-mass": span_rig_mass,
          "rig-polar": span_rig_polar, "drop-cpu": span_drop_cpu, "run-up-criticals": span_run_up_criticals,

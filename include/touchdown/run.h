@@ -214,8 +214,9 @@ typedef struct td_run_summary {
                                (the run did not reach its end) */
     int contact_totals_converge; /**< 0: the run bounces at its end (regime bounce), a chaotic sequence of impacts:
                                       its impulse, time in contact, contact counts, mean and rms normal force,
-                                      whirl frequency and the energy lost in damping and in the contacts move with
-                                      the mesh and the tolerances (docs/validation.md) */
+                                      whirl frequency, the energy lost in damping and in the contacts, and the
+                                      life's load cycles, damage and drops to failure (rainflow cycles of those
+                                      impacts) move with the mesh and the tolerances (docs/validation.md) */
     /* life */
     int life_kept; /**< 1: some retainer's bearing has a dynamic rating (td_model_get_retainer_bearing): the
                         retainers' damage, drops to failure and load cycles are in the text, JSON and files */

@@ -199,9 +199,11 @@ void td_run_duty_format(td_text *b, const td_run_summary *s)
                                                              : "n/a (the run did not reach its end)");
     if (!s->contact_totals_converge)
         td_text_printf(
-            b, "not converged               total impulse, time in contact, contact counts, mean and rms "
-               "normal force, whirl frequency, energy lost in damping and in the contacts (it bounces: a chaotic "
-               "sequence of impacts)\n");
+            b,
+            "not converged               total impulse, time in contact, contact counts, mean and rms "
+            "normal force, whirl frequency, energy lost in damping and in the contacts%s (it bounces: a chaotic "
+            "sequence of impacts)\n",
+            s->life_kept ? ", the life's load cycles, damage and drops to failure" : "");
 }
 
 /* "KEY":[...] of n numbers, null for undefined. */
