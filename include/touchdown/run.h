@@ -267,6 +267,10 @@ TD_API void td_run_summary_ending(td_run_summary *s, const td_retainer_totals *b
 TD_API td_regime td_run_summary_regime(const td_run_summary *s);
 /** "free", "rub", "bounce", "backward whirl", "failed" (anything else). */
 TD_API const char *td_regime_name(td_regime r);
+/** Whether a rotor that started at speed0 and turns at speed (rad/s) is at rest: below 1 % of
+ *  speed0 or below 1 rad/s. The summary's ending "at rest" uses it; a report judges the totals of a
+ *  run (damage, heat) as those of a whole drop only when the run ended at rest. */
+TD_API int td_run_at_rest(double speed0, double speed);
 /** 1 if a section of `crossings` (> 0) samples is too short to tell an orbit (fewer than
  *  TD_RUN_SECTION_MIN_CROSSINGS), 0 otherwise (none at all: nothing to tell). The one rule behind
  *  the run's warning and the bifurcation diagram's. */

@@ -134,6 +134,11 @@ static int busiest(const td_retainer_totals *before, const td_retainer_totals *a
     return best;
 }
 
+int td_run_at_rest(double speed0, double speed)
+{
+    return fabs(speed) < 0.01 * fabs(speed0) || fabs(speed) < 1.0;
+}
+
 void td_run_summary_ending(td_run_summary *s, const td_retainer_totals *before, const td_retainer_totals *after, int n,
                            double speed0, double speed)
 {
@@ -153,7 +158,7 @@ void td_run_summary_ending(td_run_summary *s, const td_retainer_totals *before, 
         s->regime = TD_REGIME_FREE;
         return;
     }
-    if (fabs(speed) < 0.01 * fabs(speed0) || fabs(speed) < 1.0) {
+    if (td_run_at_rest(speed0, speed)) {
         snprintf(s->ending, sizeof s->ending, "at rest");
         s->regime = TD_REGIME_RUB;
         return;
