@@ -136,8 +136,9 @@ typedef struct td_life_law {
 /** Miner damage of `count` load cycles (1 or 0.5) of range dF (N): count (dF / C)^p 1e-6.
  *  TD_UNDEFINED when the law is not a finite C > 0 and p > 0, or dF is not finite and >= 0. */
 TD_API double td_life_cycle_damage(const td_life_law *law, double range, double count);
-/** Runs like the one that did `damage` the bearing survives: 1 / damage; TD_UNDEFINED when damage is
- *  not finite and > 0 (no rating, or no load: a run that used none of the life gives no count). */
+/** Runs like the one that did `damage` the bearing survives: 1 / damage; +infinity (unlimited) for a
+ *  run that used none of the life (damage 0); TD_UNDEFINED when damage is not finite and >= 0 (no
+ *  rating). So NaN and infinity tell "not computed" from "no damage" in files and sweep tables. */
 TD_API double td_life_runs_to_failure(double damage);
 /** Miner damage per second of the race turning at race_speed (rad/s) under the load F (N):
  *  (F / C)^p |race_speed| / (2 pi) 1e-6 (0 for F <= 0). TD_UNDEFINED as td_life_cycle_damage. */

@@ -151,14 +151,16 @@ static const td_cs_key limits_keys[] = {
      .range = TD_CR_POSITIVE,
      .unit = "K",
      .doc_default = "none",
-     .doc = "the race temperature rise allowed"},
+     .doc = "the race temperature rise allowed; a run's peak rise, a total over the run, is judged within it "
+            "only when the run ended at rest"},
     {.key = "drops",
      .type = TD_CS_REAL,
      .offset = offsetof(cr_limits, drops),
      .need = TD_CS_PRESET,
      .range = TD_CR_POSITIVE,
      .doc_default = "none",
-     .doc = "the drops the touchdown bearing must survive"},
+     .doc = "the drops the touchdown bearing must survive; drops to failure (1 / the run's damage) is judged "
+            "within it only when the run ended at rest"},
     {.key = "zone",
      .type = TD_CS_ENUM,
      .offset = offsetof(cr_limits, zone),
