@@ -194,7 +194,8 @@ typedef struct td_run_summary {
     char warnings[TD_RUN_MAX_WARNINGS][TD_RUN_WARNING_SIZE]; /**< each NUL-terminated */
     int supervised; /**< 1: the model has a recovery supervisor (touchdown/model.h td_recovery): stats'
                          controller_switches, time_on_recovery and last_return_time are its account, and the
-                         text, JSON and files carry them. Last, so that the record only grew */
+                         text, JSON and files carry them. The fields below were appended after it (the record only grows
+                       at its end) */
     /* the bearing's duty (docs/theory.md, "Assessment") */
     int sensor_count;        /**< AMBs; the first TD_RUN_SUMMARY_AMBS below */
     double sensor_clearance; /**< C_min, m: the smallest retainer clearance
