@@ -150,6 +150,10 @@ assert len(peaks) == 4 and all(q["converges"] is False for q in peaks), peaks
 assert "  %-52s %-26s %-26s -  [does not converge with the mesh]" % ("peak contact normal force", "%.6g N" %
        f.attrs["retainer_peak_normal_force"][0], "-") in text, text
 assert "  %-52s %-26s" % ("time to settle", "not settled within the run") in text, text
+# no dynamic rating in the case: the run writes no life, and the report says why (not "not in this file")
+assert "retainer_damage" not in f.attrs
+life = [q for q in d["quantities"] if q["name"] in ("retainer_damage", "retainer_drops_to_failure", "retainer_load_cycles")]
+assert len(life) == 6 and all(q["state"] == "not computed (no dynamic rating C)" and q["value"] is None for q in life), life
 print("ok")
 PY
 

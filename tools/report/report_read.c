@@ -70,6 +70,7 @@ const char *report_state_words(report_state s)
     case REPORT_VALUE: return "";
     case REPORT_ABSENT: return "not in this file";
     case REPORT_UNDEFINED: return "not computed";
+    case REPORT_NO_RATING: return "not computed (no dynamic rating C)";
     default: return "not an answer"; /* the first line says why: the run did not complete */
     }
 }
@@ -141,6 +142,12 @@ static int converges(const td_result *r, const report_def *d, int part)
     return c;
 }
 
+/* Life, which a run writes only when some retainer's bearing has a dynamic rating. */
+static int needs_rating(td_out_id id)
+{
+    return id == TD_OUT_RETAINER_LOAD_CYCLES || id == TD_OUT_RETAINER_DAMAGE || id == TD_OUT_RETAINER_DROPS_TO_FAILURE;
+}
+
 /* The quantity d of `part` (-1: the run) into the next item. */
 static void read_item(const td_result *r, const report_def *d, int part, report *rep)
 {
@@ -158,7 +165,10 @@ static void read_item(const td_result *r, const report_def *d, int part, report 
     it->def = d;
     it->part = part;
     snprintf(it->units, sizeof it->units, "%s", have ? a.units : "");
-    if (!have || k >= a.n)
+    if (!have && needs_rating(d->id) && rep->lim.read && part >= 0 && part < REPORT_MAX_PARTS &&
+        isnan(rep->lim.dynamic_rating[part]))
+        it->state = REPORT_NO_RATING; /* the run writes life only for a case with a rating */
+    else if (!have || k >= a.n)
         it->state = REPORT_ABSENT;
     else if (!rep->complete)
         it->state = REPORT_NOT_ANSWER;
