@@ -20,9 +20,9 @@
 
 /* What the report has of one quantity. */
 typedef enum report_state {
-    REPORT_VALUE = 0,     /* a number, an answer */
-    REPORT_ABSENT = 1,    /* the file has no such name: an older file, or not modelled ("not in this file") */
-    REPORT_UNDEFINED = 2, /* the file has it as NaN: not computed (e.g. no rating given) */
+    REPORT_VALUE = 0,      /* a number, an answer */
+    REPORT_ABSENT = 1,     /* the file has no such name: an older file, or not modelled ("not in this file") */
+    REPORT_UNDEFINED = 2,  /* the file has it as NaN: not computed (e.g. no rating given) */
     REPORT_NOT_ANSWER = 3, /* the run did not complete: its numbers are not answers */
     REPORT_NO_RATING = 4   /* life, not written: the case gives the bearing no dynamic rating C */
 } report_state;
