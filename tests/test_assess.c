@@ -126,6 +126,7 @@ static void test_limits(void **state)
     td_model_get_limits(m, &got);
     assert_true(got.zones.ab == 0.3 && got.zones.bc == 0.4 && got.zones.cd == 0.5);
     assert_true(td_is_undefined(got.temperature_rise) && td_is_undefined(got.drops));
+    assert_int_equal(got.zone, TD_ZONE_B); /* ISO 14839-2: B, unrestricted long-term operation */
     l = got;
     l.zones.ab = 0.2;
     l.drops = 100.0;
@@ -143,6 +144,10 @@ static void test_limits(void **state)
     assert_int_equal(td_model_set_limits(m, &l, &err), TD_ERR_INVALID);
     assert_string_equal(err.site.field, "temperature_rise");
     l.temperature_rise = TD_UNDEFINED;
+    l.zone = 4; /* no such zone */
+    assert_int_equal(td_model_set_limits(m, &l, &err), TD_ERR_INVALID);
+    assert_string_equal(err.site.field, "zone");
+    l.zone = TD_ZONE_B;
     l.drops = -3.0;
     assert_int_equal(td_model_set_limits(m, &l, &err), TD_ERR_INVALID);
     assert_string_equal(err.site.field, "drops");

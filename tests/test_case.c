@@ -338,6 +338,7 @@ static void check_all_keys_assessment(const td_model *m)
     assert_close(l.zones.cd, 0.45, 0.0, 0.0);
     assert_close(l.temperature_rise, 60.0, 0.0, 0.0);
     assert_close(l.drops, 200.0, 0.0, 0.0);
+    assert_int_equal(l.zone, TD_ZONE_C);
 }
 static void check_all_keys_model(const td_model *m)
 {
@@ -779,7 +780,8 @@ static void dump_assessment(const td_model *m, char *buf, size_t n)
                  b.life_exponent, b.balls, b.ball_diameter, b.pitch_diameter, b.groove_conformity, b.width);
     }
     td_model_get_limits(m, &l);
-    dump_add(buf, n, "limits %a %a %a %a %a\n", l.zones.ab, l.zones.bc, l.zones.cd, l.temperature_rise, l.drops);
+    dump_add(buf, n, "limits %a %a %a %a %a %d\n", l.zones.ab, l.zones.bc, l.zones.cd, l.temperature_rise, l.drops,
+             l.zone);
 }
 
 static void dump_supports(const td_model *m, char *buf, size_t n)
@@ -1065,7 +1067,7 @@ static void test_documented_defaults(void **state)
     print_message("documented defaults: %d keys checked; skipped: %d groups and lists, %d required, %d other\n", tried,
                   part, required, other);
     assert_int_equal(tried + part + required + other, td_case_key_count());
-    assert_int_equal(tried, 87);
+    assert_int_equal(tried, 88);
     assert_int_equal(part, 46);     /* their keys are checked */
     assert_int_equal(required, 78); /* required, or one form's required key (a sweep entry's range or values) */
     /* an alternative with no default ("-": shaft.nodes, sections' element, schedule's unbalance,

@@ -250,7 +250,9 @@ static void test_no_rating_no_life(void **state)
     assert_true(td_is_undefined(t[1].damage) && td_is_undefined(t[1].load_cycles));
     assert_true(td_is_undefined(td_life_runs_to_failure(t[1].damage)));
     assert_close(td_life_runs_to_failure(t[0].damage), 1.0 / t[0].damage, 0.0, 0.0);
-    assert_true(td_is_undefined(td_life_runs_to_failure(0.0)));
+    /* no damage: unlimited (+inf), told apart from no rating (NaN), never 0 */
+    assert_true(isinf(td_life_runs_to_failure(0.0)) && td_life_runs_to_failure(0.0) > 0.0);
+    assert_true(td_is_undefined(td_life_runs_to_failure(-1.0)));
     td_sim_free(&s);
     td_case_free(&c);
 }

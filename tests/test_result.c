@@ -657,12 +657,25 @@ static void test_sweep_file(void **state)
     remove(path);
 }
 
+/* The ids are public numbers: a program built against 0.14.0's header keeps reading the same outputs,
+ * so every id of 0.14.0 keeps its number and new ids go after them. 0.14.0's values (its header):
+ * TD_OUT_AMB_NODES 69, TD_OUT_SWEEP_WARNINGS 243, TD_OUT_SWEEP_FROM 250, its last. */
+static void test_ids_keep_their_numbers(void **state)
+{
+    (void)state;
+    assert_int_equal(TD_OUT_AMB_NODES, 69);
+    assert_int_equal(TD_OUT_SWEEP_WARNINGS, 243);
+    assert_int_equal(TD_OUT_SWEEP_FROM, 250);
+    assert_true(TD_OUT_RETAINER_DAMAGE > TD_OUT_SWEEP_FROM && TD_OUT_SWEEP_DROPS_TO_FAILURE > TD_OUT_SWEEP_FROM);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_run_file),     cmocka_unit_test(test_schema_paths), cmocka_unit_test(test_schema_find),
-        cmocka_unit_test(test_completeness), cmocka_unit_test(test_refusals),     cmocka_unit_test(test_modal_file),
-        cmocka_unit_test(test_sweep_file),
+        cmocka_unit_test(test_run_file),    cmocka_unit_test(test_schema_paths),
+        cmocka_unit_test(test_schema_find), cmocka_unit_test(test_completeness),
+        cmocka_unit_test(test_refusals),    cmocka_unit_test(test_modal_file),
+        cmocka_unit_test(test_sweep_file),  cmocka_unit_test(test_ids_keep_their_numbers),
     };
     H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
     return cmocka_run_group_tests(tests, NULL, NULL);

@@ -18,6 +18,11 @@ extern "C" {
 /** ISO 14839-2 vibration zones (lib/assess/zones.c). */
 typedef enum td_vibration_zone { TD_ZONE_A = 0, TD_ZONE_B = 1, TD_ZONE_C = 2, TD_ZONE_D = 3 } td_vibration_zone;
 
+/** The largest zone acceptable by default: zone B, "acceptable for unrestricted long-term operation"
+ *  (ISO 14839-2:2004's zone descriptions, which follow ISO 10816-1's: A newly commissioned machines,
+ *  B unrestricted long-term operation, C a limited period only, D damage may result). */
+#define TD_ZONE_ACCEPTABLE TD_ZONE_B
+
 /** Boundaries A/B, B/C, C/D as fractions of the minimum touchdown clearance C_min (0 < ab < bc < cd). */
 typedef struct td_zone_limits {
     double ab, bc, cd;
@@ -43,6 +48,10 @@ TD_API const char *td_vibration_zone_name(int zone);
 /** The contact modulus E* = 1 / ((1 - nu1^2)/E1 + (1 - nu2^2)/E2) of bearing steel on bearing steel
  *  (AISI 52100, E = 207.5 GPa, nu = 0.3: Hamrock & Anderson, NASA RP-1105, 1983), Pa. */
 #define TD_BEARING_STEEL_CONTACT_MODULUS (207.5e9 / (2.0 * (1.0 - 0.3 * 0.3)))
+
+/** Pa, the largest contact stress of a radial ball bearing at its static rating C0 (ISO 76: 4200 MPa
+ *  at the most loaded ball's contact, a permanent deformation of about 1/10000 of the ball diameter). */
+#define TD_BALL_STATIC_STRESS_LIMIT 4.2e9
 
 /** A Hertz point contact: the contact ellipse's semi-axes and its largest pressure. */
 typedef struct td_hertz_contact {
@@ -127,8 +136,9 @@ typedef struct td_life_law {
 /** Miner damage of `count` load cycles (1 or 0.5) of range dF (N): count (dF / C)^p 1e-6.
  *  TD_UNDEFINED when the law is not a finite C > 0 and p > 0, or dF is not finite and >= 0. */
 TD_API double td_life_cycle_damage(const td_life_law *law, double range, double count);
-/** Runs like the one that did `damage` the bearing survives: 1 / damage; TD_UNDEFINED when damage is
- *  not finite and > 0 (no rating, or no load: a run that used none of the life gives no count). */
+/** Runs like the one that did `damage` the bearing survives: 1 / damage; +infinity (unlimited) for a
+ *  run that used none of the life (damage 0); TD_UNDEFINED when damage is not finite and >= 0 (no
+ *  rating). So NaN and infinity tell "not computed" from "no damage" in files and sweep tables. */
 TD_API double td_life_runs_to_failure(double damage);
 /** Miner damage per second of the race turning at race_speed (rad/s) under the load F (N):
  *  (F / C)^p |race_speed| / (2 pi) 1e-6 (0 for F <= 0). TD_UNDEFINED as td_life_cycle_damage. */

@@ -89,9 +89,15 @@ TD_API double td_case_end_time(const td_case *c);
 /**
  * The case text as read (borrowed, NUL-terminated): the file with every @include expanded in
  * place between "# >>> @include" and "# <<< end of" comment lines, followed by the overrides as
- * comment lines. Meant to be stored with the results (e.g. as an HDF5 attribute).
+ * comment lines: the line TD_CASE_TEXT_OVERRIDES, then one TD_CASE_TEXT_SET line per override (its
+ * text as given), so that a reader of stored results can load the case again as it was run. Meant
+ * to be stored with the results (e.g. as an HDF5 attribute).
  */
 TD_API const char *td_case_text(const td_case *c);
+/** The comment line that opens the overrides at the end of a case text (without its newline). */
+#define TD_CASE_TEXT_OVERRIDES "# >>> overrides (--set), applied after parsing"
+/** The start of each override's comment line in a case text, the override follows it. */
+#define TD_CASE_TEXT_SET "# --set "
 /** The path given to td_case_load (borrowed copy). */
 TD_API const char *td_case_path(const td_case *c);
 /** The file's base name without a ".cfg" extension, e.g. "paper-a" (borrowed). */

@@ -479,6 +479,7 @@ typedef struct td_limits {
     td_zone_limits zones;    /**< ISO 14839-2 boundaries, fractions of C_min, 0 < ab < bc < cd */
     double temperature_rise; /**< K allowed race temperature rise, > 0 (TD_UNDEFINED: none) */
     double drops;            /**< drops the touchdown bearing must survive, > 0 (TD_UNDEFINED: none) */
+    int zone; /**< the largest acceptable ISO 14839-2 zone, TD_ZONE_A..TD_ZONE_D (default TD_ZONE_ACCEPTABLE) */
 } td_limits;
 
 /** Set (copy) the limits, checked here. */

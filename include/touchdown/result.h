@@ -108,10 +108,6 @@ typedef enum td_out_id {
     TD_OUT_RETAINER_ROLLING_TIME,
     TD_OUT_RETAINER_CONTACTS,
     TD_OUT_RETAINER_TOUCH_AND_GO,
-    /* life: written only when a retainer's bearing has a dynamic rating */
-    TD_OUT_RETAINER_DAMAGE,
-    TD_OUT_RETAINER_DROPS_TO_FAILURE,
-    TD_OUT_RETAINER_LOAD_CYCLES,
     TD_OUT_AMB_NODES,
     TD_OUT_AMB_CAPACITY,
     TD_OUT_STAT_STEPS,
@@ -288,7 +284,6 @@ typedef enum td_out_id {
     TD_OUT_SWEEP_FINAL_SPEED,
     TD_OUT_SWEEP_PEAK_AMB_LOAD,
     TD_OUT_SWEEP_T_REACHED,
-    TD_OUT_SWEEP_DROPS_TO_FAILURE, /**< life: only in a table with a row whose bearings have a dynamic rating */
     TD_OUT_SWEEP_WARNINGS,
     TD_OUT_SWEEP_WALL_TIME,
     TD_OUT_SWEEP_SECTION_RADIUS,
@@ -351,7 +346,13 @@ typedef enum td_out_id {
     TD_OUT_UR_SENSOR_ZONE, /**< /unbalance_response/sensor_zone: ISO 14839-2 zone per speed and AMB sensor */
     TD_OUT_UR_C_MIN,       /**< /unbalance_response attribute: C_min of the zones */
     TD_OUT_CAMPBELL_MAC,   /**< /campbell/mac: each point's MAC to its branch's point at the previous speed */
-    TD_OUT_ID_COUNT        /**< number of ids; also "several objects" as the parent of an attribute */
+    /* life: written only when a retainer's bearing has a dynamic rating (appended here, after every id
+       of 0.14.0 and this release's other blocks, so that no earlier id changes its number) */
+    TD_OUT_RETAINER_DAMAGE,
+    TD_OUT_RETAINER_DROPS_TO_FAILURE,
+    TD_OUT_RETAINER_LOAD_CYCLES,
+    TD_OUT_SWEEP_DROPS_TO_FAILURE, /**< only in a table with a row whose bearings have a dynamic rating */
+    TD_OUT_ID_COUNT                /**< number of ids; also "several objects" as the parent of an attribute */
 } td_out_id;
 
 /** What a name is in the file. */

@@ -194,7 +194,8 @@ typedef struct td_run_summary {
     char warnings[TD_RUN_MAX_WARNINGS][TD_RUN_WARNING_SIZE]; /**< each NUL-terminated */
     int supervised; /**< 1: the model has a recovery supervisor (touchdown/model.h td_recovery): stats'
                          controller_switches, time_on_recovery and last_return_time are its account, and the
-                         text, JSON and files carry them. Last, so that the record only grew */
+                         text, JSON and files carry them. The fields below were appended after it (the record only grows
+                       at its end) */
     /* the bearing's duty (docs/theory.md, "Assessment") */
     int sensor_count;        /**< AMBs; the first TD_RUN_SUMMARY_AMBS below */
     double sensor_clearance; /**< C_min, m: the smallest retainer clearance
@@ -268,6 +269,10 @@ TD_API void td_run_summary_ending(td_run_summary *s, const td_retainer_totals *b
 TD_API td_regime td_run_summary_regime(const td_run_summary *s);
 /** "free", "rub", "bounce", "backward whirl", "failed" (anything else). */
 TD_API const char *td_regime_name(td_regime r);
+/** Whether a rotor that started at speed0 and turns at speed (rad/s) is at rest: below 1 % of
+ *  speed0 or below 1 rad/s. The summary's ending "at rest" uses it; a report judges the totals of a
+ *  run (damage, heat) as those of a whole drop only when the run ended at rest. */
+TD_API int td_run_at_rest(double speed0, double speed);
 /** 1 if a section of `crossings` (> 0) samples is too short to tell an orbit (fewer than
  *  TD_RUN_SECTION_MIN_CROSSINGS), 0 otherwise (none at all: nothing to tell). The one rule behind
  *  the run's warning and the bifurcation diagram's. */

@@ -29,7 +29,9 @@ double td_life_cycle_damage(const td_life_law *law, double range, double count)
 
 double td_life_runs_to_failure(double damage)
 {
-    return isfinite(damage) && damage > 0.0 ? 1.0 / damage : TD_UNDEFINED;
+    if (!isfinite(damage) || damage < 0.0)
+        return TD_UNDEFINED;
+    return damage > 0.0 ? 1.0 / damage : HUGE_VAL; /* no damage: unlimited, not "none" */
 }
 
 double td_life_rolling_rate(const td_life_law *law, double load, double race_speed)

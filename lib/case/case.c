@@ -122,9 +122,9 @@ static td_status finish_text(td_case_reader *r, td_text *buf, const char *const 
     if (buf->len > 0 && buf->data[buf->len - 1] != '\n')
         td_text_append(buf, "\n", 1);
     if (n > 0)
-        td_text_printf(buf, "# >>> overrides (--set), applied after parsing\n");
+        td_text_printf(buf, "%s\n", TD_CASE_TEXT_OVERRIDES);
     for (i = 0; i < n; i++) {
-        td_text_append(buf, "# --set ", 8);
+        td_text_append(buf, TD_CASE_TEXT_SET, strlen(TD_CASE_TEXT_SET));
         td_text_append(buf, ov[i], strlen(ov[i])); /* one line: checked by td_cr_apply_override */
         td_text_append(buf, "\n", 1);
     }

@@ -95,6 +95,7 @@ typedef struct cr_limits {
     double zones[3];
     int zone_count;
     double temperature_rise, drops;
+    int zone; /* td_vibration_zone */
 } cr_limits;
 
 static void limits_preset(void *rec)
@@ -107,6 +108,7 @@ static void limits_preset(void *rec)
     l->zones[2] = z.cd;
     l->temperature_rise = TD_UNDEFINED;
     l->drops = TD_UNDEFINED;
+    l->zone = TD_ZONE_ACCEPTABLE;
 }
 
 static td_status set_limits(td_case_reader *r, const config_setting_t *g, void *rec)
@@ -123,9 +125,12 @@ static td_status set_limits(td_case_reader *r, const config_setting_t *g, void *
     l.zones.cd = c->zones[2];
     l.temperature_rise = c->temperature_rise;
     l.drops = c->drops;
+    l.zone = c->zone;
     st = td_model_set_limits(r->c->model, &l, &merr);
     return st == TD_OK ? TD_OK : td_cr_model_fail(r, g, st, &merr);
 }
+
+static const char *const zone_names[] = {"A", "B", "C", "D"}; /* td_vibration_zone order */
 
 static const td_cs_key limits_keys[] = {
     {.key = "zones",
@@ -146,14 +151,26 @@ static const td_cs_key limits_keys[] = {
      .range = TD_CR_POSITIVE,
      .unit = "K",
      .doc_default = "none",
-     .doc = "the race temperature rise allowed"},
+     .doc = "the race temperature rise allowed; a run's peak rise, a total over the run, is judged within it "
+            "only when the run ended at rest"},
     {.key = "drops",
      .type = TD_CS_REAL,
      .offset = offsetof(cr_limits, drops),
      .need = TD_CS_PRESET,
      .range = TD_CR_POSITIVE,
      .doc_default = "none",
-     .doc = "the drops the touchdown bearing must survive"},
+     .doc = "the drops the touchdown bearing must survive; drops to failure (1 / the run's damage) is judged "
+            "within it only when the run ended at rest"},
+    {.key = "zone",
+     .type = TD_CS_ENUM,
+     .offset = offsetof(cr_limits, zone),
+     .need = TD_CS_PRESET,
+     .names = zone_names,
+     .name_count = 4,
+     .doc_default = "`\"B\"`",
+     .doc = "the largest acceptable ISO 14839-2 zone of a sensor's displacement while levitated; the default is "
+            "zone B, \"acceptable for unrestricted long-term operation\" in the standard's zone descriptions "
+            "([theory](theory.md#vibration-zones))"},
 };
 const td_cs_table td_cs_limits = {"limits",          "limits",      limits_keys, TD_CS_COUNT(limits_keys),
                                   sizeof(cr_limits), limits_preset, set_limits};

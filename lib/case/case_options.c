@@ -847,6 +847,7 @@ static const td_cs_key root_keys[] = {
      .sub = &td_cs_limits,
      .order = 11,
      .doc_default = "the defaults below",
-     .doc = "the limits a run is assessed against (vibration zones, temperature rise, drops), see [limits](#limits)"},
+     .doc = "the limits a run is assessed against (vibration zones, temperature rise, drops), see "
+            "[limits (assessment)](#limits-assessment)"},
 };
 const td_cs_table td_cs_root = {"", "top", root_keys, TD_CS_COUNT(root_keys), sizeof(td_case), root_preset, NULL};

@@ -161,6 +161,8 @@ td_status td_model_set_limits(td_model *m, const td_limits *l, td_error *err)
         return FAIL_AT(err, "limits", -1, "temperature_rise", "must be > 0 K (got %g)", l->temperature_rise);
     if (!limit_ok(l->drops))
         return FAIL_AT(err, "limits", -1, "drops", "must be > 0 (got %g)", l->drops);
+    if (l->zone < TD_ZONE_A || l->zone > TD_ZONE_D)
+        return FAIL_AT(err, "limits", -1, "zone", "must be a zone A..D (got %d)", l->zone);
     m->limits = *l;
     m->has_limits = 1;
     return TD_OK;
@@ -177,4 +179,5 @@ void td_model_get_limits(const td_model *m, td_limits *out)
     td_zone_limits_default(&out->zones);
     out->temperature_rise = TD_UNDEFINED;
     out->drops = TD_UNDEFINED;
+    out->zone = TD_ZONE_ACCEPTABLE;
 }

@@ -134,6 +134,11 @@ static int busiest(const td_retainer_totals *before, const td_retainer_totals *a
     return best;
 }
 
+int td_run_at_rest(double speed0, double speed)
+{
+    return fabs(speed) < 0.01 * fabs(speed0) || fabs(speed) < 1.0;
+}
+
 void td_run_summary_ending(td_run_summary *s, const td_retainer_totals *before, const td_retainer_totals *after, int n,
                            double speed0, double speed)
 {
@@ -153,7 +158,7 @@ void td_run_summary_ending(td_run_summary *s, const td_retainer_totals *before, 
         s->regime = TD_REGIME_FREE;
         return;
     }
-    if (fabs(speed) < 0.01 * fabs(speed0) || fabs(speed) < 1.0) {
+    if (td_run_at_rest(speed0, speed)) {
         snprintf(s->ending, sizeof s->ending, "at rest");
         s->regime = TD_REGIME_RUB;
         return;
@@ -316,11 +321,20 @@ static void format_life(td_text *b, const td_run_summary *s, int k)
         td_text_printf(b, "n/a (the run did not reach its end)\n");
     else if (td_is_undefined(r->totals.damage))
         td_text_printf(b, "no rating (retainers[%d].bearing.dynamic_rating)\n", k);
-    else if (td_is_undefined(r->drops_to_failure))
-        td_text_printf(b, "damage 0 over %.6g load cycles: no drops to failure\n", r->totals.load_cycles);
+    else if (isinf(r->drops_to_failure))
+        td_text_printf(
+            b,
+            "damage 0 over %.6g load cycles, over the run (%.6g s to %.6g s): drops to failure unlimited (no "
+            "damage)\n",
+            r->totals.load_cycles, s->t_start, s->t_reached);
     else
-        td_text_printf(b, "damage %.6g over %.6g load cycles: %.6g drops to failure (ISO 281 L10)\n", r->totals.damage,
-                       r->totals.load_cycles, r->drops_to_failure);
+        td_text_printf(b,
+                       "damage %.6g over %.6g load cycles, over the run (%.6g s to %.6g s): %.6g drops to failure "
+                       "(ISO 281 L10)%s\n",
+                       r->totals.damage, r->totals.load_cycles, s->t_start, s->t_reached, r->drops_to_failure,
+                       td_run_at_rest(s->speed, s->final_speed)
+                           ? ""
+                           : "; the run ended before the rotor came to rest, a whole drop does more damage");
 }
 
 /* One answer: its value and unit, or n/a for a run that did not reach its end. */
@@ -350,12 +364,16 @@ static void format_retainer_heat(td_text *b, const td_run_summary *s, int k)
     const td_retainer_totals *t = &s->retainers[k].totals;
     if (td_is_undefined(t->peak_temperature_rise))
         return;
-    td_text_printf(b, "retainer %-2d heat            %.6g J (friction %.6g J, drag %.6g J); race peak rise %.4g K", k,
-                   t->heat, t->friction_work, t->drag_work, t->peak_temperature_rise);
+    td_text_printf(
+        b,
+        "retainer %-2d heat            %.6g J (friction %.6g J, drag %.6g J); race peak rise %.4g K, over the "
+        "run (%.6g s to %.6g s)",
+        k, t->heat, t->friction_work, t->drag_work, t->peak_temperature_rise, s->t_start, s->t_reached);
     if (td_is_undefined(t->peak_thermal_growth))
         td_text_printf(b, "\n");
     else
-        td_text_printf(b, ", bore growth %.3g um (not fed back)\n", 1e6 * t->peak_thermal_growth);
+        td_text_printf(b, ", race bore growth %.3g um (widens the touchdown gap; not fed back)\n",
+                       1e6 * t->peak_thermal_growth);
 }
 
 /* The answers that converge, first: housing force, impulse, friction work, speeds, each retainer. */
@@ -526,10 +544,10 @@ static void json_retainer_array(td_text *b, const td_run_summary *s, const char 
         const char *base = (const char *)&s->retainers[k] + offset;
         if (is_long)
             td_text_printf(b, "%s%ld", k ? "," : "", *(const long *)base);
-        else if (td_is_undefined(*(const double *)base))
-            td_text_printf(b, "%snull", k ? "," : "");
-        else
-            td_text_printf(b, "%s%.17g", k ? "," : "", *(const double *)base);
+        else {
+            td_text_printf(b, "%s", k ? "," : "");
+            td_text_json_real(b, *(const double *)base); /* null also for an unlimited (infinite) life */
+        }
     }
     td_text_printf(b, "]");
 }

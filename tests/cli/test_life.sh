@@ -39,7 +39,7 @@ got=$(life_json "$work/r/.out")
 check "JSON: retainer 0's damage > 0, its drops 1 / damage, retainer 1's null ($got)" test "${got%% *}" = ok
 t "$work/r" run --set end_time=0.08 --set "$rated" --set "$unrated1" -o r "$drop"
 check "text: retainer 0's life line with its drops to failure" \
-    grep -qE "^retainer 0  life +damage [0-9.e+-]+ over [0-9.]+ load cycles: [0-9.e+]+ drops to failure" "$work/r/.out"
+    grep -qE "^retainer 0  life +damage [0-9.e+-]+ over [0-9.]+ load cycles, over the run \(0 s to 0.08 s\): [0-9.e+]+ drops to failure \(ISO 281 L10\); the run ended before the rotor came to rest" "$work/r/.out"
 # to 0.08 s the rotor bounces at its end: the damage, a sum over the rainflow cycles of those
 # impacts, is flagged with the contact totals (docs/validation.md: 40 % from 48 to 96 elements)
 check "text: the bouncing run's life flagged with the contact totals" \
@@ -54,6 +54,19 @@ if command -v h5dump >/dev/null; then
 else
     fail "h5dump is missing (scripts/setup.sh installs hdf5-tools)"
 fi
+
+# ---- a rated bearing the run never loads: unlimited, not "no drops" (0) -------------------------
+t "$work/u" run --json --set end_time=0.01 --set "$rated" -o u "$drop"
+check "rated, no contact: JSON damage 0, drops to failure null (infinite)" /usr/bin/python3 -c '
+import json, sys
+d = json.load(open(sys.argv[1]))
+assert d["contacts"] == 0 and d["retainer_damage"][0] == 0 and d["retainer_drops_to_failure"][0] is None, d' \
+    "$work/u/.out"
+t "$work/u" run --set end_time=0.01 --set "$rated" -o u "$drop"
+check "rated, no contact: the text says unlimited (no damage)" \
+    grep -qE "^retainer 0  life +damage 0 over 0 load cycles, .*drops to failure unlimited \(no damage\)" "$work/u/.out"
+check "rated, no contact: the CSV holds inf (no damage), nan for the unrated retainer" \
+    grep -qE '^# retainer_drops_to_failure = inf nan$' "$work/u/u.csv"
 
 # ---- no rating: none of it ------------------------------------------------------------------
 t "$work/n" run --json --set end_time=0.08 --set "$unrated0" --set "$unrated1" -o n "$drop"

@@ -20,10 +20,11 @@
 
 /* What the report has of one quantity. */
 typedef enum report_state {
-    REPORT_VALUE = 0,     /* a number, an answer */
-    REPORT_ABSENT = 1,    /* the file has no such name: an older file, or not modelled ("not in this file") */
-    REPORT_UNDEFINED = 2, /* the file has it as NaN: not computed (e.g. no rating given) */
-    REPORT_NOT_ANSWER = 3 /* the run did not complete: its numbers are not answers */
+    REPORT_VALUE = 0,      /* a number, an answer */
+    REPORT_ABSENT = 1,     /* the file has no such name: an older file, or not modelled ("not in this file") */
+    REPORT_UNDEFINED = 2,  /* the file has it as NaN: not computed (e.g. no rating given) */
+    REPORT_NOT_ANSWER = 3, /* the run did not complete: its numbers are not answers */
+    REPORT_NO_RATING = 4   /* life, not written: the case gives the bearing no dynamic rating C */
 } report_state;
 
 /* How a quantity is judged against the case's limits. */
@@ -32,23 +33,27 @@ typedef enum report_limit {
     REPORT_LIMIT_RATIO = 1,       /* a load over its rating: within while <= 1 */
     REPORT_LIMIT_TEMPERATURE = 2, /* limits.temperature_rise, K: within while <= */
     REPORT_LIMIT_DROPS = 3,       /* limits.drops: within while drops to failure >= */
-    REPORT_LIMIT_ZONE = 4         /* an ISO 14839-2 zone (0 A .. 3 D): within in A and B */
+    REPORT_LIMIT_ZONE = 4,        /* an ISO 14839-2 zone (0 A .. 3 D): within up to limits.zone */
+    REPORT_LIMIT_STRESS = 5       /* a ball bearing's contact stress: within up to ISO 76's 4200 MPa */
 } report_limit;
 
 typedef enum report_verdict {
     REPORT_NOT_JUDGED = 0, /* no value to judge */
     REPORT_NO_LIMIT = 1,   /* a value, no limit given */
     REPORT_WITHIN = 2,
-    REPORT_EXCEEDS = 3
+    REPORT_EXCEEDS = 3,
+    REPORT_NOT_AT_REST = 4 /* a total of the run within its limit, but the run ended before the rotor came to
+                              rest: the drop's total would be larger (td_run_at_rest), so not judged */
 } report_verdict;
 
 /* One quantity of the report, as the table in report_read.c declares it. */
 typedef struct report_def {
-    const char *name;  /* its output name (lib/io/schema.c), looked up with td_out_find */
+    td_out_id id;      /* its output (lib/io/schema.c declares the name) */
     const char *label; /* in the text */
     int per;           /* 0 the run, 1 each retainer, 2 each AMB sensor */
     report_limit limit;
-    const char *flag; /* the attribute that says whether it converges (0: flagged); NULL: NAME_converges */
+    td_out_id flag; /* the attribute that says whether it converges (0: flagged); TD_OUT_ID_COUNT: none */
+    int run_total;  /* 1: a total over the simulated run that only grows with time (heat, damage) */
 } report_def;
 
 /* One line of the report. */
@@ -70,6 +75,7 @@ typedef struct report_limits {
     double temperature_rise;
     double drops;
     double zones[3]; /* A/B, B/C, C/D as fractions of C_min */
+    double zone;     /* the largest acceptable zone (limits.zone), 0 A .. 3 D */
     double static_rating[REPORT_MAX_PARTS];
     double dynamic_rating[REPORT_MAX_PARTS];
 } report_limits;
@@ -85,7 +91,10 @@ typedef struct report {
     char version[64];      /* library_version of the file, else "" */
     char ending[128];      /* summary_ending, else "" */
     double t_start, t_end, t_reached;
-    int nret, namb; /* in the file (the report lists at most REPORT_MAX_PARTS of each) */
+    double speed, final_speed; /* the rotor's at the start and at the end, rad/s (NaN: not in the file) */
+    int at_rest;               /* td_run_at_rest(speed, final_speed): the totals are those of the whole drop */
+    int settled;               /* summary_settled: 1, 0, -1 not in the file or not applicable */
+    int nret, namb;            /* in the file (the report lists at most REPORT_MAX_PARTS of each) */
     report_limits lim;
     int n;
     report_item items[REPORT_MAX_ITEMS];
@@ -98,7 +107,7 @@ typedef struct report {
 int report_read(const td_result *r, const char *path, report *rep);
 /* The state's words in the text: "not in this file", "not computed", "not an answer". */
 const char *report_state_words(report_state s);
-/* The verdict's words: "within", "exceeds", "no limit given", "-". */
+/* The verdict's words: "within", "exceeds", "-" (no limit given or nothing to judge), "not judged: ...". */
 const char *report_verdict_words(report_verdict v);
 
 /* ---- report_limits.c ---- */

@@ -12,9 +12,9 @@
 #include <string.h>
 #include <unistd.h>
 
-/* The comment lines lib/case/case.c (finish_text) writes for the overrides. */
-static const char overrides_mark[] = "# >>> overrides (--set), applied after parsing";
-static const char set_mark[] = "# --set ";
+/* The comment lines the case reader writes for the overrides (touchdown/case.h). */
+static const char overrides_mark[] = TD_CASE_TEXT_OVERRIDES;
+static const char set_mark[] = TD_CASE_TEXT_SET;
 
 /* The overrides recorded at the end of the text, as malloc'd strings into ov (at most max);
  * their number. */
@@ -68,6 +68,7 @@ static void model_limits(const td_model *m, int nret, report_limits *lim)
     lim->temperature_rise = l.temperature_rise;
     lim->drops = l.drops;
     lim->zones[0] = l.zones.ab, lim->zones[1] = l.zones.bc, lim->zones[2] = l.zones.cd;
+    lim->zone = l.zone;
     for (k = 0; k < nret && k < REPORT_MAX_PARTS && k < td_model_retainer_count(m); k++) {
         td_retainer_bearing b;
         if (td_model_get_retainer_bearing(m, k, &b) != TD_OK)
@@ -87,6 +88,7 @@ void report_case_limits(const char *case_text, int nret, report_limits *lim, cha
     lim->temperature_rise = lim->drops = TD_UNDEFINED;
     for (i = 0; i < 3; i++)
         lim->zones[i] = TD_UNDEFINED;
+    lim->zone = TD_UNDEFINED; /* no case text: no limit */
     for (i = 0; i < REPORT_MAX_PARTS; i++)
         lim->static_rating[i] = lim->dynamic_rating[i] = TD_UNDEFINED;
     desc[0] = '\0';

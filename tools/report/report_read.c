@@ -1,58 +1,67 @@
-/* touchdown report: the run file's quantities, read by their output names (td_out_find), and the
+/* touchdown report: the run file's quantities, read by their output ids (touchdown/result.h), and the
  * limits of the case stored in it (report_limits.c). A name the file does not hold, from an older
  * version or a part not modelled, is "not in this file", never a number. */
 #include "report/report.h"
 
+#include "touchdown/assess.h"
 #include "touchdown/dofs.h"
+#include "touchdown/run.h"
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-/* The flag of the contact totals that a run bouncing at its end does not converge (the summary's
- * contact_totals_converge: docs/output-format.md lists what it covers). */
-#define TOTALS "summary_contact_totals_converge"
+/* The flags that say whether a quantity converges with the mesh: the contact totals that a run
+ * bouncing at its end does not converge (summary_contact_totals_converge: docs/output-format.md
+ * lists what it covers), and the instantaneous peaks of a rigid constraint (the contact load and
+ * what follows from it: the summary's "(rigid constraint: ...)"). NONE: no flag applies. */
+#define TOTALS TD_OUT_SUM_CONTACT_TOTALS_CONVERGE
+#define PEAK TD_OUT_SUM_PEAK_NORMAL_FORCE_CONVERGES
+#define NONE TD_OUT_ID_COUNT
 
 /* The quantities, in the report's order: the run's, then each sensor's, then each retainer's
- * (its loads, the bearing's duty, heat and life). docs/report.md lists them. */
+ * (its loads, the bearing's duty, heat and life). Keyed by output id, so that each name is the
+ * schema's. The last column marks the totals over the simulated run (they only grow with time).
+ * docs/report.md lists them. */
 static const report_def defs[] = {
     /* the drop, over the run */
-    {"summary_peak_housing_force", "peak housing force", 0, REPORT_LIMIT_NONE, NULL},
-    {"summary_peak_normal_force", "peak contact normal force", 0, REPORT_LIMIT_NONE, NULL},
-    {"summary_total_impulse", "total impulse", 0, REPORT_LIMIT_NONE, TOTALS},
-    {"summary_friction_work", "friction work", 0, REPORT_LIMIT_NONE, NULL},
-    {"summary_first_contact_time", "first contact", 0, REPORT_LIMIT_NONE, NULL},
-    {"summary_contact_time", "time in contact", 0, REPORT_LIMIT_NONE, TOTALS},
-    {"summary_contacts", "contact onsets", 0, REPORT_LIMIT_NONE, TOTALS},
-    {"summary_ending_whirl_frequency", "whirl frequency at the end", 0, REPORT_LIMIT_NONE, TOTALS},
-    {"summary_final_speed", "final speed", 0, REPORT_LIMIT_NONE, NULL},
-    {"summary_settle_time", "time to settle", 0, REPORT_LIMIT_NONE, NULL},
-    {"sensor_clearance", "smallest retainer clearance C_min", 0, REPORT_LIMIT_NONE, NULL},
+    {TD_OUT_SUM_PEAK_HOUSING_FORCE, "peak housing force", 0, REPORT_LIMIT_NONE, NONE, 0},
+    {TD_OUT_SUM_PEAK_NORMAL_FORCE, "peak contact normal force", 0, REPORT_LIMIT_NONE, PEAK, 0},
+    {TD_OUT_SUM_TOTAL_IMPULSE, "total impulse", 0, REPORT_LIMIT_NONE, TOTALS, 0},
+    {TD_OUT_SUM_FRICTION_WORK, "friction work", 0, REPORT_LIMIT_NONE, NONE, 0},
+    {TD_OUT_SUM_FIRST_CONTACT_TIME, "first contact", 0, REPORT_LIMIT_NONE, NONE, 0},
+    {TD_OUT_SUM_CONTACT_TIME, "time in contact", 0, REPORT_LIMIT_NONE, TOTALS, 0},
+    {TD_OUT_SUM_CONTACTS, "contact onsets", 0, REPORT_LIMIT_NONE, TOTALS, 0},
+    {TD_OUT_SUM_ENDING_WHIRL_FREQUENCY, "whirl frequency at the end (busiest retainer)", 0, REPORT_LIMIT_NONE, TOTALS,
+     0},
+    {TD_OUT_SUM_FINAL_SPEED, "final speed", 0, REPORT_LIMIT_NONE, NONE, 0},
+    {TD_OUT_SUM_SETTLE_TIME, "time to settle", 0, REPORT_LIMIT_NONE, NONE, 0},
+    {TD_OUT_SENSOR_CLEARANCE, "smallest retainer clearance C_min", 0, REPORT_LIMIT_NONE, NONE, 0},
     /* ISO 14839-2 at each AMB's sensor */
-    {"sensor_peak_displacement", "peak displacement", 2, REPORT_LIMIT_NONE, NULL},
-    {"sensor_zone", "ISO 14839-2 zone", 2, REPORT_LIMIT_ZONE, NULL},
+    {TD_OUT_SENSOR_PEAK_DISPLACEMENT, "peak displacement while levitated", 2, REPORT_LIMIT_NONE, NONE, 0},
+    {TD_OUT_SENSOR_ZONE, "ISO 14839-2 zone while levitated", 2, REPORT_LIMIT_ZONE, NONE, 0},
     /* each retainer: its loads */
-    {"retainer_peak_housing_force", "peak housing force", 1, REPORT_LIMIT_NONE, NULL},
-    {"retainer_peak_normal_force", "peak contact normal force", 1, REPORT_LIMIT_NONE, NULL},
-    {"retainer_impulse", "impulse", 1, REPORT_LIMIT_NONE, TOTALS},
-    {"retainer_friction_work", "friction work", 1, REPORT_LIMIT_NONE, NULL},
-    {"retainer_contact_time", "time in contact", 1, REPORT_LIMIT_NONE, TOTALS},
+    {TD_OUT_RETAINER_PEAK_HOUSING_FORCE, "peak housing force", 1, REPORT_LIMIT_NONE, NONE, 0},
+    {TD_OUT_RETAINER_PEAK_NORMAL_FORCE, "peak contact normal force", 1, REPORT_LIMIT_NONE, PEAK, 0},
+    {TD_OUT_RETAINER_IMPULSE, "impulse", 1, REPORT_LIMIT_NONE, TOTALS, 0},
+    {TD_OUT_RETAINER_FRICTION_WORK, "friction work", 1, REPORT_LIMIT_NONE, NONE, 0},
+    {TD_OUT_RETAINER_CONTACT_TIME, "time in contact", 1, REPORT_LIMIT_NONE, TOTALS, 0},
     /* the bearing's duty */
-    {"retainer_load_ratio", "peak normal force / static rating C0", 1, REPORT_LIMIT_RATIO, NULL},
-    {"retainer_peak_contact_stress", "peak contact stress (Hertz)", 1, REPORT_LIMIT_NONE, NULL},
-    {"retainer_peak_sliding_velocity", "peak sliding velocity", 1, REPORT_LIMIT_NONE, NULL},
-    {"retainer_peak_pv", "peak PV", 1, REPORT_LIMIT_NONE, NULL},
-    {"retainer_peak_friction_power", "peak friction power", 1, REPORT_LIMIT_NONE, NULL},
-    {"retainer_peak_race_speed", "peak race speed", 1, REPORT_LIMIT_NONE, NULL},
+    {TD_OUT_RETAINER_LOAD_RATIO, "peak normal force / static rating C0", 1, REPORT_LIMIT_RATIO, PEAK, 0},
+    {TD_OUT_RETAINER_PEAK_CONTACT_STRESS, "peak contact stress (Hertz)", 1, REPORT_LIMIT_STRESS, PEAK, 0},
+    {TD_OUT_RETAINER_PEAK_SLIDING_VELOCITY, "peak sliding velocity", 1, REPORT_LIMIT_NONE, NONE, 0},
+    {TD_OUT_RETAINER_PEAK_PV, "peak PV", 1, REPORT_LIMIT_NONE, PEAK, 0},
+    {TD_OUT_RETAINER_PEAK_FRICTION_POWER, "peak friction power", 1, REPORT_LIMIT_NONE, PEAK, 0},
+    {TD_OUT_RETAINER_PEAK_RACE_SPEED, "peak race speed", 1, REPORT_LIMIT_NONE, NONE, 0},
     /* heat */
-    {"retainer_drag_work", "race drag work", 1, REPORT_LIMIT_NONE, NULL},
-    {"retainer_heat", "heat into the race", 1, REPORT_LIMIT_NONE, NULL},
-    {"retainer_peak_temperature_rise", "peak race temperature rise", 1, REPORT_LIMIT_TEMPERATURE, NULL},
-    {"retainer_peak_thermal_growth", "peak thermal growth of the race bore", 1, REPORT_LIMIT_NONE, NULL},
-    /* life: rainflow cycles of a bouncing contact, summed like the contact totals (docs/validation.md) */
-    {"retainer_load_cycles", "load cycles (rainflow)", 1, REPORT_LIMIT_NONE, TOTALS},
-    {"retainer_damage", "damage of this drop (Miner)", 1, REPORT_LIMIT_NONE, TOTALS},
-    {"retainer_drops_to_failure", "drops to failure", 1, REPORT_LIMIT_DROPS, TOTALS},
+    {TD_OUT_RETAINER_DRAG_WORK, "race drag work", 1, REPORT_LIMIT_NONE, NONE, 1},
+    {TD_OUT_RETAINER_HEAT, "heat into the race", 1, REPORT_LIMIT_NONE, NONE, 1},
+    {TD_OUT_RETAINER_PEAK_TEMPERATURE_RISE, "peak race temperature rise", 1, REPORT_LIMIT_TEMPERATURE, NONE, 1},
+    {TD_OUT_RETAINER_PEAK_THERMAL_GROWTH, "peak thermal growth of the race bore", 1, REPORT_LIMIT_NONE, NONE, 1},
+    /* life */
+    {TD_OUT_RETAINER_LOAD_CYCLES, "load cycles (rainflow)", 1, REPORT_LIMIT_NONE, TOTALS, 1},
+    {TD_OUT_RETAINER_DAMAGE, "damage (Miner)", 1, REPORT_LIMIT_NONE, TOTALS, 1},
+    {TD_OUT_RETAINER_DROPS_TO_FAILURE, "drops to failure (1 / damage)", 1, REPORT_LIMIT_DROPS, TOTALS, 1},
 };
 
 const char *report_state_words(report_state s)
@@ -61,6 +70,7 @@ const char *report_state_words(report_state s)
     case REPORT_VALUE: return "";
     case REPORT_ABSENT: return "not in this file";
     case REPORT_UNDEFINED: return "not computed";
+    case REPORT_NO_RATING: return "not computed (no dynamic rating C)";
     default: return "not an answer"; /* the first line says why: the run did not complete */
     }
 }
@@ -70,34 +80,33 @@ const char *report_verdict_words(report_verdict v)
     switch (v) {
     case REPORT_WITHIN: return "within";
     case REPORT_EXCEEDS: return "exceeds";
-    case REPORT_NO_LIMIT: return "no limit given";
+    case REPORT_NOT_AT_REST: return "not judged: the run ended before the rotor came to rest";
     default: return "-";
     }
 }
 
-/* A root attribute of the run file by its output name: its id when the schema knows it and the file
- * holds it, else TD_OUT_ID_COUNT. */
-static td_out_id attribute(const td_result *r, const char *name)
+/* A root attribute of the run file by id: the id when the file holds it, else TD_OUT_ID_COUNT. */
+static td_out_id attribute(const td_result *r, td_out_id id)
 {
-    td_out_id id = td_out_find(name, TD_OUT_ATTRIBUTE, TD_OUT_IN_RUN);
     return id != TD_OUT_ID_COUNT && td_result_has(r, id, NULL) ? id : TD_OUT_ID_COUNT;
 }
 
-/* The number of entries of the attribute `name` (0 when absent or unreadable). */
-static int attribute_length(const td_result *r, const char *name)
+/* The number of entries of the attribute id (0 when absent or unreadable). */
+static int attribute_length(const td_result *r, td_out_id id)
 {
     td_result_array a;
-    td_out_id id = attribute(r, name);
     int n = 0;
-    if (id != TD_OUT_ID_COUNT && td_result_read(r, id, NULL, &a, NULL) == TD_OK) {
+    if (attribute(r, id) != TD_OUT_ID_COUNT && td_result_read(r, id, NULL, &a, NULL) == TD_OK) {
         n = (int)a.n;
         td_result_array_free(&a);
     }
     return n;
 }
 
-/* The limit of a quantity of `part` and its verdict for `value`. */
-static void judge(report_item *it, const report_limits *lim)
+/* The limit of a quantity of `part` and its verdict for `value`. A total over the run that only
+ * grows (damage, heat) exceeds its limit for certain once it does; it is within only for a run that
+ * ended at rest (the whole drop), else not judged. */
+static void judge(report_item *it, const report_limits *lim, int at_rest)
 {
     double v = it->value, l = TD_UNDEFINED;
     int within = 0;
@@ -105,7 +114,8 @@ static void judge(report_item *it, const report_limits *lim)
     case REPORT_LIMIT_RATIO: l = 1.0, within = v <= l; break;
     case REPORT_LIMIT_TEMPERATURE: l = lim->temperature_rise, within = v <= l; break;
     case REPORT_LIMIT_DROPS: l = lim->drops, within = v >= l; break;
-    case REPORT_LIMIT_ZONE: l = 1.0, within = v <= l; break; /* zone B at most */
+    case REPORT_LIMIT_ZONE: l = lim->zone, within = v <= l; break;
+    case REPORT_LIMIT_STRESS: l = TD_BALL_STATIC_STRESS_LIMIT, within = v <= l; break;
     default: break;
     }
     it->limit = l;
@@ -113,20 +123,18 @@ static void judge(report_item *it, const report_limits *lim)
         it->verdict = REPORT_NOT_JUDGED;
     else if (isnan(l))
         it->verdict = REPORT_NO_LIMIT;
+    else if (!within)
+        it->verdict = REPORT_EXCEEDS;
     else
-        it->verdict = within ? REPORT_WITHIN : REPORT_EXCEEDS;
+        it->verdict = it->def->run_total && !at_rest ? REPORT_NOT_AT_REST : REPORT_WITHIN;
 }
 
-/* Whether the file says the quantity converges: its flag attribute (d->flag, else NAME_converges) 1
- * or 0, else -1. */
+/* Whether the file says the quantity converges: its flag attribute (d->flag) 1 or 0, else -1. */
 static int converges(const td_result *r, const report_def *d, int part)
 {
-    char flag[128];
     td_result_array a;
-    td_out_id id;
     int c = -1;
-    snprintf(flag, sizeof flag, d->flag ? "%s" : "%s_converges", d->flag ? d->flag : d->name);
-    if ((id = attribute(r, flag)) == TD_OUT_ID_COUNT || td_result_read(r, id, NULL, &a, NULL) != TD_OK)
+    if (attribute(r, d->flag) == TD_OUT_ID_COUNT || td_result_read(r, d->flag, NULL, &a, NULL) != TD_OK)
         return -1;
     if (a.n == 1 || (part >= 0 && (size_t)part < a.n))
         c = a.v[a.n == 1 ? 0 : part] != 0.0;
@@ -134,11 +142,17 @@ static int converges(const td_result *r, const report_def *d, int part)
     return c;
 }
 
+/* Life, which a run writes only when some retainer's bearing has a dynamic rating. */
+static int needs_rating(td_out_id id)
+{
+    return id == TD_OUT_RETAINER_LOAD_CYCLES || id == TD_OUT_RETAINER_DAMAGE || id == TD_OUT_RETAINER_DROPS_TO_FAILURE;
+}
+
 /* The quantity d of `part` (-1: the run) into the next item. */
 static void read_item(const td_result *r, const report_def *d, int part, report *rep)
 {
     td_result_array a;
-    td_out_id id = attribute(r, d->name);
+    td_out_id id = attribute(r, d->id);
     size_t k = part < 0 ? 0 : (size_t)part;
     report_item *it;
     int have;
@@ -151,7 +165,10 @@ static void read_item(const td_result *r, const report_def *d, int part, report 
     it->def = d;
     it->part = part;
     snprintf(it->units, sizeof it->units, "%s", have ? a.units : "");
-    if (!have || k >= a.n)
+    if (!have && needs_rating(d->id) && rep->lim.read && part >= 0 && part < REPORT_MAX_PARTS &&
+        isnan(rep->lim.dynamic_rating[part]))
+        it->state = REPORT_NO_RATING; /* the run writes life only for a case with a rating */
+    else if (!have || k >= a.n)
         it->state = REPORT_ABSENT;
     else if (!rep->complete)
         it->state = REPORT_NOT_ANSWER;
@@ -160,7 +177,7 @@ static void read_item(const td_result *r, const report_def *d, int part, report 
     else
         it->state = REPORT_VALUE, it->value = a.v[k];
     it->converges = it->state == REPORT_VALUE ? converges(r, d, part) : -1;
-    judge(it, &rep->lim);
+    judge(it, &rep->lim, rep->at_rest);
     td_result_array_free(&a);
 }
 
@@ -206,6 +223,7 @@ static void text(const td_result *r, td_out_id id, char *buf, size_t n)
 static void read_header(const td_result *r, report *rep)
 {
     td_result_array a;
+    double settled;
     rep->complete = td_result_complete(r);
     rep->flag = td_result_get_flag(r);
     text(r, TD_OUT_INCOMPLETE_REASON, rep->reason, sizeof rep->reason);
@@ -214,12 +232,17 @@ static void read_header(const td_result *r, report *rep)
     rep->t_start = scalar(r, TD_OUT_T_START);
     rep->t_end = scalar(r, TD_OUT_T_END);
     rep->t_reached = scalar(r, TD_OUT_T_REACHED);
-    rep->nret = attribute_length(r, td_out_name(TD_OUT_RETAINER_CLEARANCE));
+    rep->speed = scalar(r, TD_OUT_MODEL_SPEED);
+    rep->final_speed = scalar(r, TD_OUT_SUM_FINAL_SPEED);
+    rep->at_rest = rep->complete && td_run_at_rest(rep->speed, rep->final_speed);
+    settled = scalar(r, TD_OUT_SUM_SETTLED);
+    rep->settled = isnan(settled) ? -1 : settled != 0.0;
+    rep->nret = attribute_length(r, TD_OUT_RETAINER_CLEARANCE);
     if (rep->nret == 0 && td_result_read(r, TD_OUT_RET_X, NULL, &a, NULL) == TD_OK) {
         rep->nret = a.rank >= 2 ? (int)a.dims[1] : 0;
         td_result_array_free(&a);
     }
-    rep->namb = attribute_length(r, td_out_name(TD_OUT_AMB_NODES));
+    rep->namb = attribute_length(r, TD_OUT_AMB_NODES);
 }
 
 int report_read(const td_result *r, const char *path, report *rep)

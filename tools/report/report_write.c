@@ -13,9 +13,11 @@
 /* ---- text ------------------------------------------------------------------------------------ */
 
 /* The value of an item in words: "1234.5 N", "zone D", "not in this file". */
-static void value_words(const report_item *it, char *buf, size_t n)
+static void value_words(const report *rep, const report_item *it, char *buf, size_t n)
 {
-    if (it->state != REPORT_VALUE)
+    if (it->def->id == TD_OUT_SUM_SETTLE_TIME && it->state == REPORT_UNDEFINED && rep->settled == 0)
+        snprintf(buf, n, "not settled within the run");
+    else if (it->state != REPORT_VALUE)
         snprintf(buf, n, "%s", report_state_words(it->state));
     else if (it->def->limit == REPORT_LIMIT_ZONE)
         snprintf(buf, n, "zone %s", td_vibration_zone_name(it->value == floor(it->value) ? (int)it->value : -1));
@@ -38,17 +40,19 @@ static void limit_words(const report_item *it, const report_limits *lim, char *b
         break;
     case REPORT_LIMIT_TEMPERATURE: snprintf(buf, n, "%.6g K (limits)", it->limit); break;
     case REPORT_LIMIT_DROPS: snprintf(buf, n, "at least %.6g (limits)", it->limit); break;
-    case REPORT_LIMIT_ZONE: snprintf(buf, n, "zone B at most"); break;
+    case REPORT_LIMIT_ZONE: snprintf(buf, n, "zone %s at most (limits)", td_vibration_zone_name((int)it->limit)); break;
+    case REPORT_LIMIT_STRESS: snprintf(buf, n, "%.6g MPa (ISO 76)", it->limit / 1e6); break;
     default: snprintf(buf, n, "%s", it->def->limit == REPORT_LIMIT_NONE ? "-" : "none given"); break;
     }
 }
 
 static void text_item(FILE *f, const report *rep, const report_item *it)
 {
-    char value[96], limit[96];
-    value_words(it, value, sizeof value);
+    char value[160], limit[96], label[128];
+    value_words(rep, it, value, sizeof value);
     limit_words(it, &rep->lim, limit, sizeof limit);
-    fprintf(f, "  %-38s %-26s %-26s %s%s\n", it->def->label, value, limit, report_verdict_words(it->verdict),
+    snprintf(label, sizeof label, "%s%s", it->def->label, it->def->run_total ? ", over the run" : "");
+    fprintf(f, "  %-52s %-26s %-26s %s%s\n", label, value, limit, report_verdict_words(it->verdict),
             it->converges == 0 ? "  [does not converge with the mesh]" : "");
 }
 
@@ -69,8 +73,8 @@ static void text_limits(FILE *f, const report_limits *lim, int nret)
     int k;
     fprintf(f, "limits        from the case: temperature rise %s, drops %s",
             given(a, sizeof a, lim->temperature_rise, " K"), given(b, sizeof b, lim->drops, ""));
-    fprintf(f, ", ISO 14839-2 zone boundaries %.3g, %.3g, %.3g of C_min\n", lim->zones[0], lim->zones[1],
-            lim->zones[2]);
+    fprintf(f, ", ISO 14839-2 zone boundaries %.3g, %.3g, %.3g of C_min, zone %s at most\n", lim->zones[0],
+            lim->zones[1], lim->zones[2], td_vibration_zone_name((int)lim->zone));
     for (k = 0; k < nret && k < REPORT_MAX_PARTS; k++)
         fprintf(f, "              retainer %d bearing: static rating C0 %s, dynamic rating C %s\n", k,
                 given(a, sizeof a, lim->static_rating[k], " N"), given(b, sizeof b, lim->dynamic_rating[k], " N"));
@@ -92,6 +96,11 @@ static void text_header(FILE *f, const report *rep)
     fprintf(f, "run           %s, %.10g s to %.10g s (requested %.10g s), written by touchdown %s\n",
             rep->complete ? "complete" : "INCOMPLETE", rep->t_start, rep->t_reached, rep->t_end,
             rep->version[0] ? rep->version : "(version not in this file)");
+    fprintf(f,
+            "over the run  %.10g s to %.10g s: the totals so marked are this run's, a drop's only when it\n"
+            "              ended at rest (final speed %.6g of %.6g rad/s: %s)\n",
+            rep->t_start, rep->t_reached, rep->final_speed, rep->speed,
+            rep->at_rest ? "at rest" : "not at rest, a total within its limit is not judged");
     fprintf(f, "ending        %s\n",
             !rep->complete   ? "not an answer (the run did not complete)"
             : rep->ending[0] ? rep->ending
@@ -100,7 +109,7 @@ static void text_header(FILE *f, const report *rep)
         fprintf(f, "limits        none: %s\n", rep->lim.why);
     else
         text_limits(f, &rep->lim, rep->nret);
-    fprintf(f, "\n  %-38s %-26s %-26s %s\n", "quantity", "value", "limit", "verdict");
+    fprintf(f, "\n  %-52s %-26s %-26s %s\n", "quantity", "value", "limit", "verdict");
 }
 
 void report_write_text(FILE *f, const report *rep)
@@ -159,7 +168,7 @@ static void json_text(FILE *f, const char *key, const char *text)
 
 static void json_item(FILE *f, const report_item *it)
 {
-    fprintf(f, "{\"name\":\"%s\",\"label\":", it->def->name);
+    fprintf(f, "{\"name\":\"%s\",\"label\":", td_out_name(it->def->id));
     json_string(f, it->def->label);
     fprintf(f, ",\"%s\":", it->def->per == 2 ? "sensor" : "retainer");
     if (it->part >= 0)
@@ -175,9 +184,13 @@ static void json_item(FILE *f, const report_item *it)
     fputs(",\"verdict\":", f);
     if (it->verdict == REPORT_NOT_JUDGED)
         fputs("null", f);
-    else
-        fprintf(f, "\"%s\"", report_verdict_words(it->verdict));
-    fprintf(f, ",\"converges\":%s}", it->converges < 0 ? "null" : it->converges ? "true" : "false");
+    else /* the text's "-" of a value with no limit is "no limit" here */
+        fprintf(f, "\"%s\"", it->verdict == REPORT_NO_LIMIT ? "no limit" : report_verdict_words(it->verdict));
+    fprintf(f, ",\"converges\":%s,\"over_the_run\":%s}",
+            it->converges < 0 ? "null"
+            : it->converges   ? "true"
+                              : "false",
+            it->def->run_total ? "true" : "false");
 }
 
 static void json_limits(FILE *f, const report *rep)
@@ -194,6 +207,11 @@ static void json_limits(FILE *f, const report *rep)
         fputs("null", f);
     else
         fprintf(f, "[%.17g,%.17g,%.17g]", rep->lim.zones[0], rep->lim.zones[1], rep->lim.zones[2]);
+    fputs(",\"zone\":", f);
+    if (isnan(rep->lim.zone))
+        fputs("null", f);
+    else
+        fprintf(f, "\"%s\"", td_vibration_zone_name((int)rep->lim.zone));
     fputs(",\"static_rating\":[", f);
     for (k = 0; k < n; k++) {
         fputs(k ? "," : "", f);
