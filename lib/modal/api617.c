@@ -546,20 +546,6 @@ td_status td_static_reactions(const td_system *sys, double *amb, double *bearing
     return st;
 }
 
-/* The smallest retainer clearance of m, TD_UNDEFINED without retainers. */
-static double min_clearance(const td_model *m)
-{
-    double c = TD_UNDEFINED;
-    int i;
-    for (i = 0; i < td_model_retainer_count(m); i++) {
-        td_retainer r;
-        td_model_get_retainer(m, i, &r);
-        if (!(r.clearance >= c))
-            c = r.clearance;
-    }
-    return c;
-}
-
 td_status td_sweep_sensor_zones(const td_sweep *s, const td_model *m, int *zones, double *c_min, td_error *err)
 {
     td_limits lim;
@@ -568,7 +554,7 @@ td_status td_sweep_sensor_zones(const td_sweep *s, const td_model *m, int *zones
         return td_error_set(err, TD_ERR_INVALID, "td_sweep_sensor_zones: NULL argument");
     na = td_model_amb_count(m);
     td_model_get_limits(m, &lim);
-    *c_min = min_clearance(m);
+    *c_min = td_model_min_retainer_clearance(m);
     for (i = 0; i < na; i++) {
         td_amb a;
         td_model_get_amb(m, i, &a);
