@@ -486,11 +486,11 @@ typedef struct td_sweep td_sweep;
  * `opt` on an adaptive grid: 101 even speeds, then every interval bisected where the orbit's
  * major semi-axis at a response node changes by more than 5 % (amplitudes above 1e-6 of that
  * node's largest), until none does, the interval is 1e-7 of the range or the grid holds
- * TD_SWEEP_MAX_SPEEDS speeds. Each local maximum of a node's amplitude (above 1e-3 of its largest)
- * is a peak, located by Brent's minimiser between its grid neighbours, its half-power speeds by
- * Brent's root finder on the curve (never read off the grid), and assessed by API 617 against the
- * operating range. A speed where the solve fails (an undamped resonance) holds TD_UNDEFINED
- * orbits. Errors: TD_ERR_INVALID (arguments), TD_ERR_NOMEM, and those of the harmonic solve.
+ * TD_SWEEP_MAX_SPEEDS speeds. Each local maximum of a node's amplitude of at least 1 % of that
+ * node's largest over the sweep is a peak (smaller ones are not assessed), located by Brent's minimiser between its
+ * grid neighbours, its half-power speeds by Brent's root finder on the curve (never read off the grid), and assessed by
+ * API 617 against the operating range. A speed where the solve fails (an undamped resonance) holds TD_UNDEFINED orbits.
+ * Errors: TD_ERR_INVALID (arguments), TD_ERR_NOMEM, and those of the harmonic solve.
  */
 TD_API td_status td_unbalance_sweep(const td_system *sys, const td_unbalance *u, int n_u, const td_sweep_options *opt,
                                     td_sweep **out, td_error *err);
@@ -518,6 +518,34 @@ TD_API td_status td_sweep_get_peak(const td_sweep *s, int i, td_response_peak *o
  * a response node of the sweep (zones left unspecified).
  */
 TD_API td_status td_sweep_sensor_zones(const td_sweep *s, const td_model *m, int *zones, double *c_min, td_error *err);
+
+/** API 617's limit on the unbalance response at the close clearances, as a fraction of the running
+ *  clearance (7th ed., 2002, 2.6.2.10 as recalled, "75 % of the minimum design diametral running
+ *  clearances": peak-to-peak against diametral is major semi-axis against radial; docs/api617.md). */
+#define TD_API617_CLEARANCE_FRACTION 0.75
+
+/** The unbalance response at one retainer against its clearance (td_sweep_clearance_check). */
+typedef struct td_clearance_check {
+    int node;         /**< the retainer's node */
+    double clearance; /**< m, its radial clearance */
+    double amplitude; /**< m, the largest major semi-axis at the node over the range (grid speeds and located
+                       *   peaks); TD_UNDEFINED when the node is not a response node or the response is
+                       *   undefined (an undamped resonance) somewhere in the range */
+    double speed;     /**< rad/s, where it is largest */
+    double ratio;     /**< amplitude / clearance */
+    int verdict;      /**< 1: ratio <= TD_API617_CLEARANCE_FRACTION, 0: above, -1: undefined */
+} td_clearance_check;
+
+/**
+ * API 617's amplitude check at the close clearances, here the retainers: out[i] for retainer i of
+ * `m` (the model the sweep was made of; td_model_retainer_count(m) entries), the largest major
+ * semi-axis at its node over the sweep's operating range (td_sweep_operating_range; the whole sweep
+ * when none is given), against TD_API617_CLEARANCE_FRACTION of its clearance. TD_ERR_INVALID for a
+ * NULL argument.
+ */
+TD_API td_status td_sweep_clearance_check(const td_sweep *s, const td_model *m, td_clearance_check *out, td_error *err);
+/** The speed range td_sweep_clearance_check looks at, rad/s: the operating range, else the sweep's. */
+TD_API void td_sweep_clearance_range(const td_sweep *s, double *lo, double *hi);
 
 /**
  * The default response nodes of a model: every disc's, AMB sensor's and retainer's node, ascending,

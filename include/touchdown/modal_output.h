@@ -44,6 +44,8 @@ typedef struct td_modal_results {
     const double *static_bearing; /**< optional, with model: 2 per plain bearing (/static_reactions/bearing_force) */
     const int *sensor_zones;      /**< optional, with sweep and model: td_sweep_sensor_zones (speeds x n_amb) */
     double zone_c_min;            /**< m, their C_min */
+    const td_clearance_check *clearance; /**< optional, with sweep and model: td_sweep_clearance_check, one per
+                                          *   retainer (/running_clearance; CSV section running_clearance) */
 } td_modal_results;
 
 /**

@@ -433,6 +433,9 @@ TD_API td_status td_model_get_disc(const td_model *m, int i, td_disc *out);
 TD_API td_status td_model_get_amb(const td_model *m, int i, td_amb *out);
 TD_API td_status td_model_get_bearing(const td_model *m, int i, td_bearing *out);
 TD_API td_status td_model_get_retainer(const td_model *m, int i, td_retainer *out);
+/** C_min: the smallest retainer clearance, m (the touchdown clearance of ISO 14839-2 and the
+ *  close clearance of API 617's amplitude check); TD_UNDEFINED without a retainer. */
+TD_API double td_model_min_retainer_clearance(const td_model *m);
 TD_API td_status td_model_get_unbalance(const td_model *m, int i, td_unbalance *out);
 TD_API td_status td_model_get_change(const td_model *m, int i, td_change *out);
 /** Controller i as the model keeps it (NULL when i is out of range, and for a plug-in controller,

@@ -352,7 +352,18 @@ typedef enum td_out_id {
     TD_OUT_RETAINER_DROPS_TO_FAILURE,
     TD_OUT_RETAINER_LOAD_CYCLES,
     TD_OUT_SWEEP_DROPS_TO_FAILURE, /**< only in a table with a row whose bearings have a dynamic rating */
-    TD_OUT_ID_COUNT                /**< number of ids; also "several objects" as the parent of an attribute */
+    /* API 617's amplitude at the close clearances (the retainers; td_sweep_clearance_check) */
+    TD_OUT_RUNNING_CLEARANCE, /**< /running_clearance, one row per retainer */
+    TD_OUT_RC_FRACTION,       /**< attribute: the limit, a fraction of the clearance */
+    TD_OUT_RC_SPEED_MIN,      /**< attribute: the range checked, rad/s (the sweep's when no operating range) */
+    TD_OUT_RC_SPEED_MAX,
+    TD_OUT_RC_NODE,
+    TD_OUT_RC_CLEARANCE,
+    TD_OUT_RC_AMPLITUDE,
+    TD_OUT_RC_SPEED,
+    TD_OUT_RC_RATIO,
+    TD_OUT_RC_VERDICT,
+    TD_OUT_ID_COUNT /**< number of ids; also "several objects" as the parent of an attribute */
 } td_out_id;
 
 /** What a name is in the file. */

@@ -105,6 +105,27 @@ static void csv_zones(FILE *f, const td_modal_results *r)
     fputc('\n', f);
 }
 
+/* API 617's amplitude check, one row per retainer, the limit and the range as comment lines. */
+static void csv_clearance(FILE *f, const td_modal_results *r)
+{
+    static const td_out_id cols[] = {TD_OUT_RETAINER, TD_OUT_RC_NODE,  TD_OUT_RC_CLEARANCE, TD_OUT_RC_AMPLITUDE,
+                                     TD_OUT_RC_SPEED, TD_OUT_RC_RATIO, TD_OUT_RC_VERDICT};
+    double lo, hi;
+    int i;
+    td_sweep_clearance_range(r->sweep, &lo, &hi);
+    fprintf(f, "# section: %s\n# %s = %.12g\n# %s = %.12g\n# %s = %.12g\n", td_out_name(TD_OUT_RUNNING_CLEARANCE),
+            td_out_name(TD_OUT_RC_FRACTION), TD_API617_CLEARANCE_FRACTION, td_out_name(TD_OUT_RC_SPEED_MIN), lo,
+            td_out_name(TD_OUT_RC_SPEED_MAX), hi);
+    csv_columns(f, NULL, cols, 7);
+    fputc('\n', f);
+    for (i = 0; i < td_model_retainer_count(r->model); i++) {
+        const td_clearance_check *c = &r->clearance[i];
+        fprintf(f, "%d,%d,%.12g,%.12g,%.12g,%.12g,%d\n", i, c->node, c->clearance, c->amplitude, c->speed, c->ratio,
+                c->verdict);
+    }
+    fputc('\n', f);
+}
+
 void td_api617_write_csv_sections(FILE *f, const td_modal_results *r)
 {
     if (r->sweep) {
@@ -115,6 +136,8 @@ void td_api617_write_csv_sections(FILE *f, const td_modal_results *r)
         csv_reactions(f, r);
     if (r->sweep && r->model && r->sensor_zones && td_model_amb_count(r->model) > 0)
         csv_zones(f, r);
+    if (r->sweep && r->model && r->clearance && td_model_retainer_count(r->model) > 0)
+        csv_clearance(f, r);
 }
 
 /* ---- HDF5 -------------------------------------------------------------------------------- */
@@ -242,6 +265,39 @@ static int h5_reactions(hid_t file, const td_modal_results *r)
     return ok;
 }
 
+/* /running_clearance: API 617's amplitude check, one row per retainer. */
+static int h5_clearance(hid_t file, const td_modal_results *r)
+{
+    static const td_out_id cols[4] = {TD_OUT_RC_CLEARANCE, TD_OUT_RC_AMPLITUDE, TD_OUT_RC_SPEED, TD_OUT_RC_RATIO};
+    int n = td_model_retainer_count(r->model), i, c, ok;
+    double *d = malloc((size_t)n * sizeof *d), lo, hi;
+    int *k = malloc(2u * (size_t)n * sizeof *k);
+    hid_t g = H5Gcreate2(file, td_out_name(TD_OUT_RUNNING_CLEARANCE), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    td_sweep_clearance_range(r->sweep, &lo, &hi);
+    ok = d && k && g >= 0 && td_h5_attr_double(g, td_out_name(TD_OUT_RC_FRACTION), TD_API617_CLEARANCE_FRACTION) >= 0 &&
+         td_h5_attr_double(g, td_out_name(TD_OUT_RC_SPEED_MIN), lo) >= 0 &&
+         td_h5_attr_double(g, td_out_name(TD_OUT_RC_SPEED_MAX), hi) >= 0;
+    for (i = 0; ok && i < n; i++) {
+        k[i] = r->clearance[i].node;
+        k[n + i] = r->clearance[i].verdict;
+    }
+    for (c = 0; ok && c < 4; c++) {
+        for (i = 0; i < n; i++) {
+            const td_clearance_check *q = &r->clearance[i];
+            const double v[4] = {q->clearance, q->amplitude, q->speed, q->ratio};
+            d[i] = v[c];
+        }
+        ok = h5_data(g, cols[c], H5T_NATIVE_DOUBLE, d, (hsize_t)n, 0);
+    }
+    ok = ok && h5_data(g, TD_OUT_RC_NODE, H5T_NATIVE_INT, k, (hsize_t)n, 0) &&
+         h5_data(g, TD_OUT_RC_VERDICT, H5T_NATIVE_INT, k + n, (hsize_t)n, 0);
+    if (g >= 0)
+        H5Gclose(g);
+    free(d);
+    free(k);
+    return ok;
+}
+
 /* In /modes: the log decrement of every mode, and the disc and AMB sensor nodes. */
 static int h5_modes_extra(hid_t file, const td_modal_results *r)
 {
@@ -286,5 +342,7 @@ const char *td_api617_write_h5(hid_t file, const td_modal_results *r)
         return "/response_peaks";
     if (r->model && r->static_amb && r->static_bearing && !h5_reactions(file, r))
         return "/static_reactions";
+    if (r->sweep && r->model && r->clearance && td_model_retainer_count(r->model) > 0 && !h5_clearance(file, r))
+        return "/running_clearance";
     return NULL;
 }

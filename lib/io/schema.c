@@ -373,6 +373,18 @@ static const td_schema_entry entries[TD_OUT_ID_COUNT] = {
     DATA(TD_OUT_UR_SENSOR_ZONE, "sensor_zone", TD_OUT_UNBALANCE_RESPONSE, MODAL, I32,
          "ISO 14839-2 zone: 0 A, 1 B, 2 C, 3 D, -1 undefined", "(speeds, n_amb)"),
     ATTR(TD_OUT_UR_C_MIN, "c_min", TD_OUT_UNBALANCE_RESPONSE, MODAL, F64, "m", "scalar"),
+    /* API 617's amplitude at the close clearances (the retainers; td_sweep_clearance_check) */
+    GROUP(TD_OUT_RUNNING_CLEARANCE, "running_clearance", TD_OUT_ROOT, MODAL),
+    ATTR(TD_OUT_RC_FRACTION, "fraction", TD_OUT_RUNNING_CLEARANCE, MODAL, F64, "1", "scalar"),
+    ATTR(TD_OUT_RC_SPEED_MIN, "speed_min", TD_OUT_RUNNING_CLEARANCE, MODAL, F64, "rad/s", "scalar"),
+    ATTR(TD_OUT_RC_SPEED_MAX, "speed_max", TD_OUT_RUNNING_CLEARANCE, MODAL, F64, "rad/s", "scalar"),
+    DATA(TD_OUT_RC_NODE, "node", TD_OUT_RUNNING_CLEARANCE, MODAL, I32, "node number", "(n_ret)"),
+    DATA_CSV(TD_OUT_RC_CLEARANCE, "clearance", TD_OUT_RUNNING_CLEARANCE, F64, "m", "(n_ret)", "clearance_m"),
+    DATA_CSV(TD_OUT_RC_AMPLITUDE, "amplitude", TD_OUT_RUNNING_CLEARANCE, F64, "m", "(n_ret)", "amplitude_m"),
+    DATA_CSV(TD_OUT_RC_SPEED, "speed", TD_OUT_RUNNING_CLEARANCE, F64, "rad/s", "(n_ret)", "speed_rad_s"),
+    DATA(TD_OUT_RC_RATIO, "ratio", TD_OUT_RUNNING_CLEARANCE, MODAL, F64, "1", "(n_ret)"),
+    DATA(TD_OUT_RC_VERDICT, "verdict", TD_OUT_RUNNING_CLEARANCE, MODAL, I32, "1: pass, 0: fail, -1: undefined",
+         "(n_ret)"),
 };
 
 /* The lateral components, each name written once here (td_schema_components). */

@@ -21,11 +21,13 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define SWEEP_START 101       /* even speeds of the first grid */
-#define SWEEP_CHANGE 0.05     /* largest relative change of an amplitude between grid neighbours */
-#define SWEEP_FLOOR 1e-6      /* amplitudes below this fraction of a node's largest are not refined */
-#define SWEEP_NARROWEST 1e-7  /* narrowest interval, fraction of the range */
-#define PEAK_FLOOR 1e-3       /* peaks below this fraction of a node's largest are not reported */
+#define SWEEP_START 101      /* even speeds of the first grid */
+#define SWEEP_CHANGE 0.05    /* largest relative change of an amplitude between grid neighbours */
+#define SWEEP_FLOOR 1e-6     /* amplitudes below this fraction of a node's largest are not refined */
+#define SWEEP_NARROWEST 1e-7 /* narrowest interval, fraction of the range */
+/* Peaks below PEAK_FLOOR of their node's largest amplitude are not assessed (docs/api617.md): a
+ * ripple of a far mode on the flank of a dominant one is no resonance to clear. */
+#define PEAK_FLOOR 1e-2
 #define SPEED_TOLERANCE 1e-10 /* relative, of the half-power speeds */
 
 struct td_sweep {
@@ -196,6 +198,18 @@ static td_status sweep_insert(td_sweep *s, sweep_problem *p, int k, double w)
     s->n++;
     st = orbits_at(p, w, s->nodes, s->nn, &s->orbit[(size_t)(k + 1) * nn]);
     return st;
+}
+
+/* Speed w on the grid when it lies inside it (the operating range's ends: the amplitude check at the
+ * clearances reads the curve there, not at the nearest grid speed). */
+static td_status insert_speed(td_sweep *s, sweep_problem *p, double w)
+{
+    int k;
+    if (!(w > s->speed[0] && w < s->speed[s->n - 1]))
+        return TD_OK;
+    for (k = 0; s->speed[k + 1] < w; k++)
+        ;
+    return s->speed[k + 1] == w ? TD_OK : sweep_insert(s, p, k, w);
 }
 
 /* The largest amplitude of node j over the grid (0 when none is finite). */
@@ -370,7 +384,7 @@ static td_status add_peak(td_sweep *s, sweep_problem *p, int j, int k, const td_
     return TD_OK;
 }
 
-/* Every local maximum of every node's curve above PEAK_FLOOR of its largest. */
+/* Every local maximum of every node's curve of at least PEAK_FLOOR of its largest over the sweep. */
 static td_status find_peaks(td_sweep *s, sweep_problem *p, const td_sweep_options *opt)
 {
     int j, k;
@@ -381,7 +395,7 @@ static td_status find_peaks(td_sweep *s, sweep_problem *p, const td_sweep_option
             double a0 = s->orbit[(size_t)(k - 1) * (size_t)s->nn + (size_t)j].major;
             double a = s->orbit[(size_t)k * (size_t)s->nn + (size_t)j].major;
             double a1 = s->orbit[(size_t)(k + 1) * (size_t)s->nn + (size_t)j].major;
-            if (a > a0 && a >= a1 && a > PEAK_FLOOR * top)
+            if (a > a0 && a >= a1 && a >= PEAK_FLOOR * top)
                 st = add_peak(s, p, j, k, opt);
         }
     }
@@ -436,6 +450,10 @@ td_status td_unbalance_sweep(const td_system *sys, const td_unbalance *u, int n_
         s->n = k + 1;
         st = orbits_at(&p, s->speed[k], s->nodes, s->nn, &s->orbit[(size_t)k * (size_t)s->nn]);
     }
+    if (st == TD_OK)
+        st = insert_speed(s, &p, opt->operating_min);
+    if (st == TD_OK)
+        st = insert_speed(s, &p, opt->operating_max);
     if (st == TD_OK)
         st = sweep_refine(s, &p, opt->speed_max - opt->speed_min);
     if (st == TD_OK)
@@ -546,20 +564,6 @@ td_status td_static_reactions(const td_system *sys, double *amb, double *bearing
     return st;
 }
 
-/* The smallest retainer clearance of m, TD_UNDEFINED without retainers. */
-static double min_clearance(const td_model *m)
-{
-    double c = TD_UNDEFINED;
-    int i;
-    for (i = 0; i < td_model_retainer_count(m); i++) {
-        td_retainer r;
-        td_model_get_retainer(m, i, &r);
-        if (!(r.clearance >= c))
-            c = r.clearance;
-    }
-    return c;
-}
-
 td_status td_sweep_sensor_zones(const td_sweep *s, const td_model *m, int *zones, double *c_min, td_error *err)
 {
     td_limits lim;
@@ -568,7 +572,7 @@ td_status td_sweep_sensor_zones(const td_sweep *s, const td_model *m, int *zones
         return td_error_set(err, TD_ERR_INVALID, "td_sweep_sensor_zones: NULL argument");
     na = td_model_amb_count(m);
     td_model_get_limits(m, &lim);
-    *c_min = min_clearance(m);
+    *c_min = td_model_min_retainer_clearance(m);
     for (i = 0; i < na; i++) {
         td_amb a;
         td_model_get_amb(m, i, &a);
@@ -581,6 +585,74 @@ td_status td_sweep_sensor_zones(const td_sweep *s, const td_model *m, int *zones
         for (k = 0; k < s->n; k++)
             zones[(size_t)k * (size_t)na + (size_t)i] =
                 td_vibration_zone_of(s->orbit[(size_t)k * (size_t)s->nn + (size_t)j].major, *c_min, &lim.zones);
+    }
+    return TD_OK;
+}
+
+/* The largest major semi-axis of response node j over lo..hi (grid speeds and the located peaks,
+ * which the grid only brackets) into c; undefined when the response is somewhere undefined there. */
+static void largest_in(const td_sweep *s, int j, double lo, double hi, td_clearance_check *c)
+{
+    int k;
+    c->amplitude = c->speed = TD_UNDEFINED;
+    for (k = 0; k < s->n; k++) {
+        double a = s->orbit[(size_t)k * (size_t)s->nn + (size_t)j].major;
+        if (s->speed[k] < lo || s->speed[k] > hi)
+            continue;
+        if (!isfinite(a)) { /* an undamped resonance: no amplitude to compare */
+            c->amplitude = c->speed = TD_UNDEFINED;
+            return;
+        }
+        if (!(a <= c->amplitude)) {
+            c->amplitude = a;
+            c->speed = s->speed[k];
+        }
+    }
+    for (k = 0; k < s->n_peaks; k++) {
+        const td_response_peak *p = &s->peaks[k];
+        if (p->node == s->nodes[j] && p->speed >= lo && p->speed <= hi && p->amplitude > c->amplitude) {
+            c->amplitude = p->amplitude;
+            c->speed = p->speed;
+        }
+    }
+}
+
+void td_sweep_clearance_range(const td_sweep *s, double *lo, double *hi)
+{
+    *lo = *hi = TD_UNDEFINED;
+    if (!s || s->n < 1)
+        return;
+    if (s->operating_min > 0.0 && s->operating_max >= s->operating_min) { /* as assess() takes it */
+        *lo = s->operating_min;
+        *hi = s->operating_max;
+    } else {
+        *lo = s->speed[0];
+        *hi = s->speed[s->n - 1];
+    }
+}
+
+td_status td_sweep_clearance_check(const td_sweep *s, const td_model *m, td_clearance_check *out, td_error *err)
+{
+    double lo, hi;
+    int i, j;
+    if (!s || !m || (!out && td_model_retainer_count(m) > 0))
+        return td_error_set(err, TD_ERR_INVALID, "td_sweep_clearance_check: NULL argument");
+    td_sweep_clearance_range(s, &lo, &hi);
+    for (i = 0; i < td_model_retainer_count(m); i++) {
+        td_retainer r;
+        td_clearance_check *c = &out[i];
+        td_model_get_retainer(m, i, &r);
+        c->node = r.node;
+        c->clearance = r.clearance;
+        c->amplitude = c->speed = TD_UNDEFINED;
+        for (j = 0; j < s->nn && s->nodes[j] != r.node; j++)
+            ;
+        if (j < s->nn)
+            largest_in(s, j, lo, hi, c);
+        c->ratio = c->amplitude / c->clearance;
+        c->verdict = isfinite(c->ratio) ? c->ratio <= TD_API617_CLEARANCE_FRACTION : -1;
+        if (!isfinite(c->ratio))
+            c->ratio = TD_UNDEFINED;
     }
     return TD_OK;
 }

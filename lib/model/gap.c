@@ -1,7 +1,9 @@
 /* The machine's smallest gap and the bound it sets on solver.atol (TD_MAX_ATOL_FRACTION of
- * touchdown/limits.h). A question about the model, so it lives with the model: util/ stays below
- * every part of the library. */
+ * touchdown/limits.h), and C_min, the smallest retainer clearance (td_model_min_retainer_clearance,
+ * one definition for the run's zones and the modal report's). A question about the model, so it
+ * lives with the model: util/ stays below every part of the library. */
 #include "model/gap.h"
+#include "touchdown/dofs.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -30,6 +32,18 @@ double td_model_smallest_gap(const td_model *m, int *retainer, int *amb)
     if (amb)
         *amb = a;
     return gap;
+}
+
+double td_model_min_retainer_clearance(const td_model *m)
+{
+    double c = TD_UNDEFINED;
+    int i;
+    for (i = 0; i < td_model_retainer_count(m); i++) {
+        td_retainer r;
+        if (td_model_get_retainer(m, i, &r) == TD_OK && (td_is_undefined(c) || r.clearance < c))
+            c = r.clearance;
+    }
+    return c;
 }
 
 td_run_limit td_atol_limit_check(const td_model *m, double atol, char *why, size_t n)

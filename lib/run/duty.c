@@ -51,19 +51,6 @@ static double load_ratio(const td_model *m, int k, const td_retainer_totals *t)
     return t->peak_normal_force / b.static_rating;
 }
 
-/* C_min: the smallest retainer clearance (TD_UNDEFINED without a retainer). */
-static double smallest_clearance(const td_model *m)
-{
-    double c = TD_UNDEFINED;
-    int k;
-    for (k = 0; k < td_model_retainer_count(m); k++) {
-        td_retainer r;
-        if (td_model_get_retainer(m, k, &r) == TD_OK && (td_is_undefined(c) || r.clearance < c))
-            c = r.clearance;
-    }
-    return c;
-}
-
 /* Settled: in one contact, or free of the retainers, through the whole last stretch (ending_window). */
 static void settle(td_run_summary *s)
 {
@@ -85,7 +72,7 @@ void td_run_duty_collect(td_run_summary *s, const td_sim *sim)
     for (k = 0; k < n; k++)
         s->retainers[k].load_ratio = load_ratio(m, k, &s->retainers[k].totals);
     td_model_get_limits(m, &lim);
-    s->sensor_clearance = smallest_clearance(m);
+    s->sensor_clearance = td_model_min_retainer_clearance(m);
     s->sensor_count = td_model_amb_count(m);
     for (k = 0; k < s->sensor_count && k < TD_RUN_SUMMARY_AMBS; k++) {
         if (td_sim_sensor_peak_displacement(sim, k, &s->sensor_peak_displacement[k]) != TD_OK)

@@ -3,6 +3,7 @@
  * reactions under gravity. */
 #include "modal/modal_print.h"
 #include "touchdown/assess.h"
+#include "touchdown/dofs.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -36,6 +37,31 @@ static void sensor_zones(const td_model *m, td_modal_api617_results *out)
     }
 }
 
+/* API 617's amplitude check at the retainers (none when the machine has no retainer). */
+static void clearance_check(const td_model *m, td_modal_api617_results *out)
+{
+    size_t n = (size_t)td_model_retainer_count(m);
+    if (n == 0 || !(out->clearance = malloc(n * sizeof *out->clearance)))
+        return;
+    if (td_sweep_clearance_check(out->sweep, m, out->clearance, NULL) != TD_OK) {
+        free(out->clearance);
+        out->clearance = NULL;
+    }
+}
+
+/* Without gravity the static reactions are no quantity: NaN in the files, said in the text. */
+static void no_gravity(const td_model *m, td_modal_api617_results *out)
+{
+    double gx, gy;
+    int i;
+    td_model_gravity(m, &gx, &gy);
+    out->gravity = gx != 0.0 || gy != 0.0;
+    for (i = 0; !out->gravity && i < 2 * td_model_amb_count(m); i++)
+        out->amb[i] = TD_UNDEFINED;
+    for (i = 0; !out->gravity && i < 2 * td_model_bearing_count(m); i++)
+        out->bearing[i] = TD_UNDEFINED;
+}
+
 td_status td_modal_api617(const td_model *m, const td_system *sys, const td_modal_options *opt, const td_unbalance *u,
                           int n_u, td_modal_api617_results *out, td_error *err)
 {
@@ -45,6 +71,7 @@ td_status td_modal_api617(const td_model *m, const td_system *sys, const td_moda
     td_status st = TD_OK;
     out->sweep = NULL;
     out->zones = NULL;
+    out->clearance = NULL;
     out->amb = calloc(na, sizeof *out->amb);
     out->bearing = calloc(nb, sizeof *out->bearing);
     if (!out->amb || !out->bearing)
@@ -62,9 +89,12 @@ td_status td_modal_api617(const td_model *m, const td_system *sys, const td_moda
         td_error_clear(err);
         st = TD_OK;
     }
-    if (st == TD_OK && out->sweep)
+    if (st == TD_OK && out->sweep) {
         sensor_zones(m, out);
+        clearance_check(m, out);
+    }
     out->reactions_ok = st == TD_OK && td_static_reactions(sys, out->amb, out->bearing, NULL) == TD_OK;
+    no_gravity(m, out);
     return st;
 }
 
@@ -76,6 +106,7 @@ void td_modal_api617_into(td_modal_results *res, const td_modal_api617_results *
     res->static_bearing = r->reactions_ok ? r->bearing : NULL;
     res->sensor_zones = r->zones;
     res->zone_c_min = r->c_min;
+    res->clearance = r->clearance;
 }
 
 void td_modal_api617_free(td_modal_api617_results *r)
@@ -84,13 +115,24 @@ void td_modal_api617_free(td_modal_api617_results *r)
     free(r->amb);
     free(r->bearing);
     free(r->zones);
+    free(r->clearance);
     r->amb = r->bearing = NULL;
     r->zones = NULL;
+    r->clearance = NULL;
 }
 
 static const char *verdict_word(int v)
 {
     return v == 1 ? "pass" : v == 0 ? "FAIL" : "undefined";
+}
+
+/* x with format fmt into buf, or "n/a" when it is undefined (the files keep the NaN). */
+static const char *number(char *buf, size_t n, const char *fmt, double x)
+{
+    if (td_is_undefined(x))
+        return "n/a";
+    snprintf(buf, n, fmt, x);
+    return buf;
 }
 
 /* The peak table: node, N_c, amplitude, N_1, N_2, AF, SM, required SM, verdict. */
@@ -103,10 +145,33 @@ static void print_peaks(FILE *f, const td_sweep *s)
         fprintf(f, "  none\n");
     for (i = 0; i < td_sweep_peak_count(s); i++) {
         td_response_peak p;
+        char n1[24], n2[24], af[24], sm[24], req[24];
         td_sweep_get_peak(s, i, &p);
-        fprintf(f, "  %-4d %14.8g %12.5g %14.8g %14.8g %8.4g %9.4g %9.4g  %s\n", p.node, p.speed, p.amplitude,
-                p.speed_low, p.speed_high, p.amplification, p.margin, p.required_margin, verdict_word(p.verdict));
+        fprintf(f, "  %-4d %14.8g %12.5g %14s %14s %8s %9s %9s  %s\n", p.node, p.speed, p.amplitude,
+                number(n1, sizeof n1, "%.8g", p.speed_low), number(n2, sizeof n2, "%.8g", p.speed_high),
+                number(af, sizeof af, "%.4g", p.amplification), number(sm, sizeof sm, "%.4g", p.margin),
+                number(req, sizeof req, "%.4g", p.required_margin), verdict_word(p.verdict));
     }
+}
+
+/* API 617's amplitude check at the retainers: the largest major semi-axis over the range against
+ * TD_API617_CLEARANCE_FRACTION of the radial clearance. */
+static void print_clearance(FILE *f, const td_model *m, const td_modal_options *opt, const td_clearance_check *c)
+{
+    int i;
+    char a[24], w[24], q[24];
+    fprintf(f, "API 617 amplitude at the retainers (close clearances) ");
+    if (isfinite(opt->operating_speed_min))
+        fprintf(f, "over the operating range");
+    else
+        fprintf(f, "over the whole sweep (no operating range)");
+    fprintf(f, ", limit %g %% of the clearance:\n", 100.0 * TD_API617_CLEARANCE_FRACTION);
+    fprintf(f, "  %-8s %-4s %14s %12s %14s %12s  %s\n", "retainer", "node", "clearance [m]", "amp [m]", "at [rad/s]",
+            "amp/clear.", "verdict");
+    for (i = 0; i < td_model_retainer_count(m); i++)
+        fprintf(f, "  %-8d %-4d %14.6g %12s %14s %12s  %s\n", i, c[i].node, c[i].clearance,
+                number(a, sizeof a, "%.5g", c[i].amplitude), number(w, sizeof w, "%.8g", c[i].speed),
+                number(q, sizeof q, "%.4g", c[i].ratio), verdict_word(c[i].verdict));
 }
 
 /* Per AMB sensor: the worst zone along the sweep, and inside the operating range when one is given. */
@@ -145,11 +210,17 @@ void td_print_api617(FILE *f, const td_model *m, const td_modal_options *opt, co
         else
             fprintf(f, "API 617 peaks (no operating range: modal.operating_speed_min/max not given):\n");
         print_peaks(f, r->sweep);
+        if (r->clearance)
+            print_clearance(f, m, opt, r->clearance);
         if (r->zones)
             print_zones(f, m, opt, r);
     }
     if (!r->reactions_ok)
         return;
+    if (!r->gravity) {
+        fprintf(f, "static reactions: none, no gravity in the case\n");
+        return;
+    }
     fprintf(f, "static reactions under gravity (force on the rotor, N):\n");
     for (i = 0; i < td_model_amb_count(m); i++) {
         td_amb a;

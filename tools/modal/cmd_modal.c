@@ -229,7 +229,7 @@ static int analyse(const td_case *c, double speed, const modal_outputs *paths, i
     td_loop *loop = NULL;
     int n_cs = 0, n_h = 0, n_u = 0, i, code = TD_EXIT_FAILED;
     td_modal_results res;
-    td_modal_api617_results api = {NULL, NULL, NULL, 0, NULL, 0.0};
+    td_modal_api617_results api = {NULL, NULL, NULL, 0, NULL, 0.0, 0, NULL};
     td_error err;
     td_status st;
 

@@ -33,12 +33,14 @@ int td_print_reduction_error(FILE *f, const td_system *red, double speed, const 
 
 /* The API 617 unbalance response report of a case (api617_report.c). */
 typedef struct td_modal_api617_results {
-    td_sweep *sweep;  /* NULL without unbalances */
-    double *amb;      /* static reactions, 2 per AMB */
-    double *bearing;  /* 2 per plain bearing */
-    int reactions_ok; /* 0: the static state was refused (a free rotor, sampled controllers) */
-    int *zones;       /* ISO 14839-2 zone per speed and AMB sensor (td_sweep_sensor_zones); NULL: none */
-    double c_min;     /* m, their C_min */
+    td_sweep *sweep;               /* NULL without unbalances */
+    double *amb;                   /* static reactions, 2 per AMB */
+    double *bearing;               /* 2 per plain bearing */
+    int reactions_ok;              /* 0: the static state was refused (a free rotor, sampled controllers) */
+    int *zones;                    /* ISO 14839-2 zone per speed and AMB sensor (td_sweep_sensor_zones); NULL: none */
+    double c_min;                  /* m, their C_min */
+    int gravity;                   /* 0: the case has no gravity (the reactions are NaN, "no gravity in the case") */
+    td_clearance_check *clearance; /* API 617's amplitude check, one per retainer; NULL without a sweep */
 } td_modal_api617_results;
 /* The sweep over modal.speed_min..speed_max at the response nodes and the static reactions. */
 td_status td_modal_api617(const td_model *m, const td_system *sys, const td_modal_options *opt, const td_unbalance *u,
