@@ -56,13 +56,13 @@ else
 fi
 
 # ---- a rated bearing the run never loads: unlimited, not "no drops" (0) -------------------------
-t "$work/u" run --json --set end_time=0.01 --set "$rated" -o u "$drop"
+t "$work/u" run --json --set end_time=0.01 --set "$rated" --set "$unrated1" -o u "$drop"
 check "rated, no contact: JSON damage 0, drops to failure null (infinite)" /usr/bin/python3 -c '
 import json, sys
 d = json.load(open(sys.argv[1]))
 assert d["contacts"] == 0 and d["retainer_damage"][0] == 0 and d["retainer_drops_to_failure"][0] is None, d' \
     "$work/u/.out"
-t "$work/u" run --set end_time=0.01 --set "$rated" -o u "$drop"
+t "$work/u" run --set end_time=0.01 --set "$rated" --set "$unrated1" -o u "$drop"
 check "rated, no contact: the text says unlimited (no damage)" \
     grep -qE "^retainer 0  life +damage 0 over 0 load cycles, .*drops to failure unlimited \(no damage\)" "$work/u/.out"
 check "rated, no contact: the CSV holds inf (no damage), nan for the unrated retainer" \
