@@ -142,15 +142,6 @@ void td_api617_write_csv_sections(FILE *f, const td_modal_results *r)
 
 /* ---- HDF5 -------------------------------------------------------------------------------- */
 
-static int h5_data(hid_t g, td_out_id id, hid_t memtype, const void *data, hsize_t rows, hsize_t cols)
-{
-    hsize_t dims[2];
-    dims[0] = rows;
-    dims[1] = cols;
-    return td_h5_dataset(g, td_out_name(id), memtype == H5T_NATIVE_INT ? H5T_STD_I32LE : H5T_IEEE_F64LE, memtype, data,
-                         cols ? 2 : 1, dims, td_out_units(id));
-}
-
 /* Make dataset `scale` of g a dimension scale, attached to axis `axis` of ids[0 .. n). */
 static int h5_scale(hid_t g, td_out_id scale, const td_out_id *ids, int n, unsigned axis)
 {
@@ -173,7 +164,7 @@ static double orbit_field(const td_orbit *o, int c)
 static int h5_zones(hid_t g, const td_modal_results *r)
 {
     int ns = td_sweep_speed_count(r->sweep), na = td_model_amb_count(r->model);
-    return h5_data(g, TD_OUT_UR_SENSOR_ZONE, H5T_NATIVE_INT, r->sensor_zones, (hsize_t)ns, (hsize_t)na) &&
+    return td_h5_table(g, TD_OUT_UR_SENSOR_ZONE, H5T_NATIVE_INT, r->sensor_zones, (hsize_t)ns, (hsize_t)na) &&
            td_h5_attr_double(g, td_out_name(TD_OUT_UR_C_MIN), r->zone_c_min) >= 0;
 }
 
@@ -190,8 +181,8 @@ static int h5_sweep(hid_t file, const td_sweep *s, const td_modal_results *r)
         sp[k] = td_sweep_speed(s, k);
     for (j = 0; ok && j < nn; j++)
         nodes[j] = td_sweep_node(s, j);
-    ok = ok && h5_data(g, TD_OUT_UR_SPEED, H5T_NATIVE_DOUBLE, sp, (hsize_t)ns, 0) &&
-         h5_data(g, TD_OUT_UR_NODE, H5T_NATIVE_INT, nodes, (hsize_t)nn, 0);
+    ok = ok && td_h5_table(g, TD_OUT_UR_SPEED, H5T_NATIVE_DOUBLE, sp, (hsize_t)ns, 0) &&
+         td_h5_table(g, TD_OUT_UR_NODE, H5T_NATIVE_INT, nodes, (hsize_t)nn, 0);
     for (c = 0; ok && c < 8; c++) {
         for (k = 0; k < ns; k++)
             for (j = 0; j < nn; j++) {
@@ -199,7 +190,7 @@ static int h5_sweep(hid_t file, const td_sweep *s, const td_modal_results *r)
                 td_sweep_orbit(s, k, j, &o);
                 d[(size_t)k * (size_t)nn + (size_t)j] = orbit_field(&o, c);
             }
-        ok = h5_data(g, cols[c], H5T_NATIVE_DOUBLE, d, (hsize_t)ns, (hsize_t)nn);
+        ok = td_h5_table(g, cols[c], H5T_NATIVE_DOUBLE, d, (hsize_t)ns, (hsize_t)nn);
     }
     ok = ok && h5_scale(g, TD_OUT_UR_SPEED, cols, 8, 0) && h5_scale(g, TD_OUT_UR_NODE, cols, 8, 1);
     ok = ok && (!r->model || !r->sensor_zones || td_model_amb_count(r->model) == 0 || h5_zones(g, r));
@@ -241,10 +232,10 @@ static int h5_peaks(hid_t file, const td_sweep *s)
     for (c = 0; ok && c < 7; c++) {
         for (i = 0; i < np; i++)
             d[i] = peak_field(&p[i], c);
-        ok = h5_data(g, cols[c], H5T_NATIVE_DOUBLE, d, (hsize_t)np, 0);
+        ok = td_h5_table(g, cols[c], H5T_NATIVE_DOUBLE, d, (hsize_t)np, 0);
     }
-    ok = ok && h5_data(g, TD_OUT_PEAK_NODE, H5T_NATIVE_INT, n, (hsize_t)np, 0) &&
-         h5_data(g, TD_OUT_PEAK_VERDICT, H5T_NATIVE_INT, n + np, (hsize_t)np, 0);
+    ok = ok && td_h5_table(g, TD_OUT_PEAK_NODE, H5T_NATIVE_INT, n, (hsize_t)np, 0) &&
+         td_h5_table(g, TD_OUT_PEAK_VERDICT, H5T_NATIVE_INT, n + np, (hsize_t)np, 0);
     if (g >= 0)
         H5Gclose(g);
     free(p);
@@ -257,8 +248,8 @@ static int h5_reactions(hid_t file, const td_modal_results *r)
 {
     hid_t g = H5Gcreate2(file, td_out_name(TD_OUT_STATIC_REACTIONS), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
     int na = td_model_amb_count(r->model), nb = td_model_bearing_count(r->model);
-    int ok = g >= 0 && h5_data(g, TD_OUT_STATIC_AMB_FORCE, H5T_NATIVE_DOUBLE, r->static_amb, (hsize_t)na, 2) &&
-             h5_data(g, TD_OUT_STATIC_BEARING_FORCE, H5T_NATIVE_DOUBLE, r->static_bearing, (hsize_t)nb, 2) &&
+    int ok = g >= 0 && td_h5_table(g, TD_OUT_STATIC_AMB_FORCE, H5T_NATIVE_DOUBLE, r->static_amb, (hsize_t)na, 2) &&
+             td_h5_table(g, TD_OUT_STATIC_BEARING_FORCE, H5T_NATIVE_DOUBLE, r->static_bearing, (hsize_t)nb, 2) &&
              td_h5_attr_string(g, "components", td_schema_components_list()) >= 0;
     if (g >= 0)
         H5Gclose(g);
@@ -287,10 +278,10 @@ static int h5_clearance(hid_t file, const td_modal_results *r)
             const double v[4] = {q->clearance, q->amplitude, q->speed, q->ratio};
             d[i] = v[c];
         }
-        ok = h5_data(g, cols[c], H5T_NATIVE_DOUBLE, d, (hsize_t)n, 0);
+        ok = td_h5_table(g, cols[c], H5T_NATIVE_DOUBLE, d, (hsize_t)n, 0);
     }
-    ok = ok && h5_data(g, TD_OUT_RC_NODE, H5T_NATIVE_INT, k, (hsize_t)n, 0) &&
-         h5_data(g, TD_OUT_RC_VERDICT, H5T_NATIVE_INT, k + n, (hsize_t)n, 0);
+    ok = ok && td_h5_table(g, TD_OUT_RC_NODE, H5T_NATIVE_INT, k, (hsize_t)n, 0) &&
+         td_h5_table(g, TD_OUT_RC_VERDICT, H5T_NATIVE_INT, k + n, (hsize_t)n, 0);
     if (g >= 0)
         H5Gclose(g);
     free(d);
@@ -322,9 +313,9 @@ static int h5_modes_extra(hid_t file, const td_modal_results *r)
         td_model_get_amb(r->model, i, &a);
         nodes[nd + i] = a.sensor_node;
     }
-    ok = ok && h5_data(g, TD_OUT_MODES_LOG_DECREMENT, H5T_NATIVE_DOUBLE, ld, (hsize_t)nm, 0);
-    ok = ok && (nd == 0 || h5_data(g, TD_OUT_MODES_DISC_NODES, H5T_NATIVE_INT, nodes, (hsize_t)nd, 0));
-    ok = ok && (na == 0 || h5_data(g, TD_OUT_MODES_SENSOR_NODES, H5T_NATIVE_INT, nodes + nd, (hsize_t)na, 0));
+    ok = ok && td_h5_table(g, TD_OUT_MODES_LOG_DECREMENT, H5T_NATIVE_DOUBLE, ld, (hsize_t)nm, 0);
+    ok = ok && (nd == 0 || td_h5_table(g, TD_OUT_MODES_DISC_NODES, H5T_NATIVE_INT, nodes, (hsize_t)nd, 0));
+    ok = ok && (na == 0 || td_h5_table(g, TD_OUT_MODES_SENSOR_NODES, H5T_NATIVE_INT, nodes + nd, (hsize_t)na, 0));
     if (g >= 0)
         H5Gclose(g);
     free(ld);

@@ -116,6 +116,15 @@ int td_h5_dataset(hid_t loc, const char *name, hid_t file_type, hid_t mem_type, 
     return ok;
 }
 
+int td_h5_table(hid_t g, td_out_id id, hid_t memtype, const void *data, hsize_t rows, hsize_t cols)
+{
+    hsize_t dims[2];
+    dims[0] = rows;
+    dims[1] = cols;
+    return td_h5_dataset(g, td_out_name(id), memtype == H5T_NATIVE_INT ? H5T_STD_I32LE : H5T_IEEE_F64LE, memtype, data,
+                         cols ? 2 : 1, dims, td_out_units(id));
+}
+
 int td_h5_index(hid_t loc, const char *name, int n, const char *units)
 {
     int *v = malloc((size_t)(n > 0 ? n : 1) * sizeof *v), i, ok;

@@ -12,6 +12,7 @@
 #define TD_IO_H5_UTIL_H
 
 #include "touchdown/error.h"
+#include "touchdown/result.h"
 
 #include <hdf5.h>
 
@@ -47,6 +48,11 @@ hid_t td_h5_fixed_dataset(hid_t loc, const char *name, hid_t file_type, hid_t me
 /** td_h5_fixed_dataset plus its "units" attribute, closed; 0 on failure. */
 int td_h5_dataset(hid_t loc, const char *name, hid_t file_type, hid_t mem_type, const void *data, int rank,
                   const hsize_t *dims, const char *units);
+
+/** Output `id`'s dataset under g, named and with the units the schema declares: rows values (cols 0)
+ *  or rows x cols (cols > 0) of memtype, int32 in the file for H5T_NATIVE_INT, else float64; 0 on
+ *  failure. */
+int td_h5_table(hid_t g, td_out_id id, hid_t memtype, const void *data, hsize_t rows, hsize_t cols);
 
 /** A 1-D int32 dataset 0..n-1 with its "units" attribute, closed (the axis of rows that have no
  *  other coordinate); 0 on failure. */

@@ -79,15 +79,6 @@ void td_loop_write_csv_sections(FILE *f, const td_loop *l)
 
 /* ---- HDF5 -------------------------------------------------------------------------------- */
 
-static int h5_data(hid_t g, td_out_id id, hid_t memtype, const void *data, hsize_t rows, hsize_t cols)
-{
-    hsize_t dims[2];
-    dims[0] = rows;
-    dims[1] = cols;
-    return td_h5_dataset(g, td_out_name(id), memtype == H5T_NATIVE_INT ? H5T_STD_I32LE : H5T_IEEE_F64LE, memtype, data,
-                         cols ? 2 : 1, dims, td_out_units(id));
-}
-
 /* Table `id` (re) and id + 1 (im): (frequencies, cols) from get(l, j, k). */
 static int h5_table(hid_t g, const td_loop *l, td_out_id id, int cols,
                     td_status (*get)(const td_loop *, int, int, double *, double *))
@@ -98,8 +89,8 @@ static int h5_table(hid_t g, const td_loop *l, td_out_id id, int cols,
     for (k = 0; ok && k < nf; k++)
         for (j = 0; j < cols; j++)
             get(l, j, k, &re[k * cols + j], &im[k * cols + j]);
-    ok = ok && h5_data(g, id, H5T_NATIVE_DOUBLE, re, (hsize_t)nf, (hsize_t)cols) &&
-         h5_data(g, (td_out_id)(id + 1), H5T_NATIVE_DOUBLE, im, (hsize_t)nf, (hsize_t)cols);
+    ok = ok && td_h5_table(g, id, H5T_NATIVE_DOUBLE, re, (hsize_t)nf, (hsize_t)cols) &&
+         td_h5_table(g, (td_out_id)(id + 1), H5T_NATIVE_DOUBLE, im, (hsize_t)nf, (hsize_t)cols);
     free(re);
     free(im);
     return ok;
@@ -125,10 +116,10 @@ static int h5_axes(hid_t g, const td_loop *l)
     for (j = 0; ok && j < na; j++)
         ax[nc + j] = j;
     dims[0] = (hsize_t)nc;
-    ok = ok && h5_data(g, TD_OUT_LOOP_AXIS, H5T_NATIVE_INT, ax, (hsize_t)nc, 0) &&
-         h5_data(g, TD_OUT_LOOP_AMB_AXIS, H5T_NATIVE_INT, ax + nc, (hsize_t)na, 0) &&
-         h5_data(g, TD_OUT_LOOP_SENSITIVITY_PEAK, H5T_NATIVE_DOUBLE, pk, (hsize_t)nc, 0) &&
-         h5_data(g, TD_OUT_LOOP_SENSITIVITY_PEAK_FREQUENCY, H5T_NATIVE_DOUBLE, pk + nc, (hsize_t)nc, 0) &&
+    ok = ok && td_h5_table(g, TD_OUT_LOOP_AXIS, H5T_NATIVE_INT, ax, (hsize_t)nc, 0) &&
+         td_h5_table(g, TD_OUT_LOOP_AMB_AXIS, H5T_NATIVE_INT, ax + nc, (hsize_t)na, 0) &&
+         td_h5_table(g, TD_OUT_LOOP_SENSITIVITY_PEAK, H5T_NATIVE_DOUBLE, pk, (hsize_t)nc, 0) &&
+         td_h5_table(g, TD_OUT_LOOP_SENSITIVITY_PEAK_FREQUENCY, H5T_NATIVE_DOUBLE, pk + nc, (hsize_t)nc, 0) &&
          td_h5_dataset(g, td_out_name(TD_OUT_LOOP_SENSITIVITY_ZONES), text, text, zp, 1, dims,
                        td_out_units(TD_OUT_LOOP_SENSITIVITY_ZONES));
     if (text >= 0)
@@ -165,7 +156,7 @@ int td_loop_write_h5_group(hid_t file, const td_loop *l)
          td_h5_attr_string(g, td_out_name(TD_OUT_LOOP_SENSITIVITY_ZONE), zone_text(td_loop_worst_zone(l), z)) >= 0;
     if (ok && td_loop_sample_rate(l) > 0.0)
         ok = td_h5_attr_double(g, td_out_name(TD_OUT_LOOP_SAMPLE_RATE), td_loop_sample_rate(l)) >= 0;
-    ok = ok && h5_data(g, TD_OUT_LOOP_FREQUENCY, H5T_NATIVE_DOUBLE, f, (hsize_t)nf, 0);
+    ok = ok && td_h5_table(g, TD_OUT_LOOP_FREQUENCY, H5T_NATIVE_DOUBLE, f, (hsize_t)nf, 0);
     ok = ok && h5_table(g, l, TD_OUT_LOOP_SENSITIVITY_RE, td_loop_axis_count(l), td_loop_sensitivity) &&
          h5_table(g, l, TD_OUT_LOOP_OPEN_LOOP_RE, td_loop_axis_count(l), td_loop_open_loop) &&
          h5_table(g, l, TD_OUT_LOOP_COMPLIANCE_RE, td_loop_amb_axis_count(l), td_loop_compliance) && h5_axes(g, l);

@@ -170,16 +170,6 @@ td_status td_modal_write_csv(const char *path, const td_modal_results *r, td_err
 
 /* ---- HDF5 -------------------------------------------------------------------------------- */
 
-/* The 1-D (cols == 0) or 2-D dataset `id` of doubles or ints with its "units" attribute. */
-static int h5_dataset(hid_t group, td_out_id id, hid_t memtype, const void *data, hsize_t rows, hsize_t cols)
-{
-    hsize_t dims[2];
-    dims[0] = rows;
-    dims[1] = cols;
-    return td_h5_dataset(group, td_out_name(id), memtype == H5T_NATIVE_INT ? H5T_STD_I32LE : H5T_IEEE_F64LE, memtype,
-                         data, cols ? 2 : 1, dims, td_out_units(id));
-}
-
 /* The index dataset `id` 0..n-1 with its units (td_h5_index). */
 static int h5_index(hid_t group, td_out_id id, int n)
 {
@@ -241,11 +231,11 @@ static int h5_mode_table(hid_t g, td_out_id first, const td_mode *modes, hsize_t
     for (f = 0; ok && f < 6; f++) {
         for (i = 0; i < n; i++)
             d[i] = mode_field(&modes[i], f);
-        ok = h5_dataset(g, (td_out_id)(first + f), H5T_NATIVE_DOUBLE, d, rows, cols);
+        ok = td_h5_table(g, (td_out_id)(first + f), H5T_NATIVE_DOUBLE, d, rows, cols);
     }
     for (i = 0; ok && i < n; i++)
         w[i] = (int)modes[i].whirl;
-    ok = ok && h5_dataset(g, (td_out_id)(first + MODE_TABLE_SIZE - 1), H5T_NATIVE_INT, w, rows, cols);
+    ok = ok && td_h5_table(g, (td_out_id)(first + MODE_TABLE_SIZE - 1), H5T_NATIVE_INT, w, rows, cols);
     free(d);
     free(w);
     return ok;
@@ -270,14 +260,14 @@ static int h5_modes(hid_t file, const td_modal *m)
     ok = ok && td_h5_attr_double(g, td_out_name(TD_OUT_MODES_SPEED), td_modal_speed(m)) >= 0 &&
          td_h5_attr_string(g, td_out_name(TD_OUT_MODES_SPEED_UNITS), td_out_units(TD_OUT_MODES_SPEED)) >= 0;
     ok = ok && h5_mode_table(g, TD_OUT_MODES_SIGMA, modes, (hsize_t)nm, 0);
-    ok = ok && h5_dataset(g, TD_OUT_MODES_REAL_EIGENVALUES, H5T_NATIVE_DOUBLE, real, (hsize_t)nr, 0);
+    ok = ok && td_h5_table(g, TD_OUT_MODES_REAL_EIGENVALUES, H5T_NATIVE_DOUBLE, real, (hsize_t)nr, 0);
     ok = ok && h5_attach(g, TD_OUT_MODES_REAL_EIGENVALUES, NULL, 0, 0); /* its own axis */
     for (i = 0; ok && i < 4; i++) {
         int k, j;
         for (k = 0; k < nm; k++)
             for (j = 0; j < nn; j++)
                 part[(size_t)k * (size_t)nn + (size_t)j] = sh[(size_t)(4 * k + i) * (size_t)nn + (size_t)j];
-        ok = h5_dataset(g, shape_ids[i], H5T_NATIVE_DOUBLE, part, (hsize_t)nm, (hsize_t)nn);
+        ok = td_h5_table(g, shape_ids[i], H5T_NATIVE_DOUBLE, part, (hsize_t)nm, (hsize_t)nn);
     }
     ok = ok && h5_index(g, TD_OUT_MODES_MODE, nm) && h5_mode_table_axis(g, TD_OUT_MODES_SIGMA, TD_OUT_MODES_MODE, 0) &&
          h5_attach(g, TD_OUT_MODES_MODE, shape_ids, 4, 0);
@@ -305,9 +295,9 @@ static int h5_campbell(hid_t file, const td_campbell *c)
             mac[(size_t)k * (size_t)nb + (size_t)j] = td_campbell_mac(c, k, j);
         }
     }
-    ok = ok && h5_dataset(g, TD_OUT_CAMPBELL_SPEED, H5T_NATIVE_DOUBLE, sp, (hsize_t)ns, 0);
+    ok = ok && td_h5_table(g, TD_OUT_CAMPBELL_SPEED, H5T_NATIVE_DOUBLE, sp, (hsize_t)ns, 0);
     ok = ok && h5_mode_table(g, TD_OUT_CAMPBELL_SIGMA, pts, (hsize_t)ns, (hsize_t)nb);
-    ok = ok && h5_dataset(g, TD_OUT_CAMPBELL_MAC, H5T_NATIVE_DOUBLE, mac, (hsize_t)ns, (hsize_t)nb);
+    ok = ok && td_h5_table(g, TD_OUT_CAMPBELL_MAC, H5T_NATIVE_DOUBLE, mac, (hsize_t)ns, (hsize_t)nb);
     ok = ok && td_h5_attr_string(g, td_out_name(TD_OUT_CAMPBELL_LAYOUT),
                                  "rows: speeds, columns: branches (tracked by MAC from the j-th lowest omega_d at "
                                  "the first speed)") >= 0;
@@ -340,12 +330,12 @@ static int h5_critical(hid_t file, const td_critical_speed *cs, int n)
         w[i] = (int)cs[i].whirl;
         w[n + i] = cs[i].branch;
     }
-    ok = ok && h5_dataset(g, TD_OUT_CRITICAL_SPEED, H5T_NATIVE_DOUBLE, d, (hsize_t)n, 0);
-    ok = ok && h5_dataset(g, TD_OUT_CRITICAL_FREQ_HZ, H5T_NATIVE_DOUBLE, d + n, (hsize_t)n, 0);
-    ok = ok && h5_dataset(g, TD_OUT_CRITICAL_ZETA, H5T_NATIVE_DOUBLE, d + 2 * n, (hsize_t)n, 0);
-    ok = ok && h5_dataset(g, TD_OUT_CRITICAL_SIGMA, H5T_NATIVE_DOUBLE, d + 3 * n, (hsize_t)n, 0);
-    ok = ok && h5_dataset(g, TD_OUT_CRITICAL_WHIRL, H5T_NATIVE_INT, w, (hsize_t)n, 0);
-    ok = ok && h5_dataset(g, TD_OUT_CRITICAL_BRANCH, H5T_NATIVE_INT, w + n, (hsize_t)n, 0);
+    ok = ok && td_h5_table(g, TD_OUT_CRITICAL_SPEED, H5T_NATIVE_DOUBLE, d, (hsize_t)n, 0);
+    ok = ok && td_h5_table(g, TD_OUT_CRITICAL_FREQ_HZ, H5T_NATIVE_DOUBLE, d + n, (hsize_t)n, 0);
+    ok = ok && td_h5_table(g, TD_OUT_CRITICAL_ZETA, H5T_NATIVE_DOUBLE, d + 2 * n, (hsize_t)n, 0);
+    ok = ok && td_h5_table(g, TD_OUT_CRITICAL_SIGMA, H5T_NATIVE_DOUBLE, d + 3 * n, (hsize_t)n, 0);
+    ok = ok && td_h5_table(g, TD_OUT_CRITICAL_WHIRL, H5T_NATIVE_INT, w, (hsize_t)n, 0);
+    ok = ok && td_h5_table(g, TD_OUT_CRITICAL_BRANCH, H5T_NATIVE_INT, w + n, (hsize_t)n, 0);
     ok = ok && h5_attach(g, TD_OUT_CRITICAL_SPEED, critical_ids, 5, 0);
     if (g >= 0)
         H5Gclose(g);
@@ -377,12 +367,12 @@ static int h5_harmonic_one(hid_t parent, int index, const td_harmonic *h)
             v[4] = o.forward, v[5] = o.backward, v[6] = o.major, v[7] = o.minor;
             d[k] = v[c];
         }
-        ok = h5_dataset(g, cols[c], H5T_NATIVE_DOUBLE, d, (hsize_t)nn, 0);
+        ok = td_h5_table(g, cols[c], H5T_NATIVE_DOUBLE, d, (hsize_t)nn, 0);
     }
     for (k = 0; ok && k < ns; k++)
         td_harmonic_state(h, k, &d[k], &d[ns + k]);
-    ok = ok && h5_dataset(g, TD_OUT_HARMONIC_STATE_RE, H5T_NATIVE_DOUBLE, d, (hsize_t)ns, 0);
-    ok = ok && h5_dataset(g, TD_OUT_HARMONIC_STATE_IM, H5T_NATIVE_DOUBLE, d + ns, (hsize_t)ns, 0);
+    ok = ok && td_h5_table(g, TD_OUT_HARMONIC_STATE_RE, H5T_NATIVE_DOUBLE, d, (hsize_t)ns, 0);
+    ok = ok && td_h5_table(g, TD_OUT_HARMONIC_STATE_IM, H5T_NATIVE_DOUBLE, d + ns, (hsize_t)ns, 0);
     ok = ok && h5_index(g, TD_OUT_HARMONIC_NODE, nn) && h5_attach(g, TD_OUT_HARMONIC_NODE, cols, 8, 0);
     ok = ok && h5_index(g, TD_OUT_HARMONIC_STATE, ns) && h5_attach(g, TD_OUT_HARMONIC_STATE, states, 2, 0);
     if (g >= 0)
@@ -424,9 +414,9 @@ static int h5_layout(hid_t file, const td_model *model)
         td_model_get_amb(model, i, &a);
         nodes[nr + i] = a.node;
     }
-    ok = ok && h5_dataset(g, TD_OUT_MODES_NODE_Z, H5T_NATIVE_DOUBLE, z, (hsize_t)nn, 0);
-    ok = ok && (nr == 0 || h5_dataset(g, TD_OUT_MODES_RETAINER_NODES, H5T_NATIVE_INT, nodes, (hsize_t)nr, 0));
-    ok = ok && (na == 0 || h5_dataset(g, TD_OUT_MODES_AMB_NODES, H5T_NATIVE_INT, nodes + nr, (hsize_t)na, 0));
+    ok = ok && td_h5_table(g, TD_OUT_MODES_NODE_Z, H5T_NATIVE_DOUBLE, z, (hsize_t)nn, 0);
+    ok = ok && (nr == 0 || td_h5_table(g, TD_OUT_MODES_RETAINER_NODES, H5T_NATIVE_INT, nodes, (hsize_t)nr, 0));
+    ok = ok && (na == 0 || td_h5_table(g, TD_OUT_MODES_AMB_NODES, H5T_NATIVE_INT, nodes + nr, (hsize_t)na, 0));
     /* node_z is the column axis of the mode shapes; the bearing lists are their own axes */
     ok = ok && h5_attach(g, TD_OUT_MODES_NODE_Z, shape_ids, 4, 1);
     ok = ok && (nr == 0 || h5_attach(g, TD_OUT_MODES_RETAINER_NODES, NULL, 0, 0)) &&

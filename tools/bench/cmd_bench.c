@@ -331,26 +331,10 @@ static double first_contact_error(int ci, const td_run_summary *s)
     return s->first_contact_time - CASE_A_FIRST_CONTACT;
 }
 
-/* `s` as a JSON string, escaped by the library (touchdown/json.h); "" if it cannot be held. */
-static void json_string(FILE *f, const char *s)
-{
-    char small[512], *big;
-    int n = td_json_string(small, sizeof small, s);
-    if (n < (int)sizeof small) {
-        fputs(small, f);
-        return;
-    }
-    big = malloc((size_t)n + 1);
-    if (big)
-        td_json_string(big, (size_t)n + 1, s);
-    fputs(big ? big : "\"\"", f);
-    free(big);
-}
-
 static void print_machine_json(FILE *f, int nproc, const char *cpu, double l0, double l1)
 {
     fprintf(f, "\"machine\":{\"nproc\":%d,\"cpu\":", nproc);
-    json_string(f, cpu);
+    td_cli_json_string(f, cpu);
     fprintf(f, ",\"loadavg_start\":%.2f,\"loadavg_end\":%.2f}", l0, l1);
 }
 
@@ -366,11 +350,11 @@ static void print_run_json(FILE *f, int ci, int rep, const bench_run *r)
 {
     const td_run_summary *s = &r->sum;
     fprintf(f, "{\"case\":");
-    json_string(f, bench_cases[ci].key);
+    td_cli_json_string(f, bench_cases[ci].key);
     fprintf(f, ",\"file\":");
-    json_string(f, bench_cases[ci].file);
+    td_cli_json_string(f, bench_cases[ci].file);
     fprintf(f, ",\"model\":");
-    json_string(f, bench_cases[ci].model);
+    td_cli_json_string(f, bench_cases[ci].model);
     fprintf(f, ",\"repeat\":%d,", rep);
     json_number(f, "t_start", s->t_start, 1);
     json_number(f, "t_end", s->t_reached, 1);
@@ -456,7 +440,7 @@ static void paper_json(FILE *f, const bench_options *bo, const machine *mc, benc
     fprintf(f, ",\"quick\":%s,\"repeats\":%d,\"sets\":[", bo->quick ? "true" : "false", bo->repeats);
     for (i = 0; i < bo->sets.count; i++) {
         fprintf(f, "%s", i ? "," : "");
-        json_string(f, bo->sets.items[i]);
+        td_cli_json_string(f, bo->sets.items[i]);
     }
     fprintf(f, "],\"runs\":[");
     for (ci = 0; ci < N_CASES; ci++)
@@ -471,7 +455,7 @@ static void paper_json(FILE *f, const bench_options *bo, const machine *mc, benc
         if (!bo->selected[ci])
             continue;
         fprintf(f, "%s{\"case\":", first ? "" : ",");
-        json_string(f, bench_cases[ci].key);
+        td_cli_json_string(f, bench_cases[ci].key);
         fprintf(f, ",");
         json_number(f, "wall_time", cs[ci].wall, 1);
         json_number(f, "cpu_time", cs[ci].cpu, 1);

@@ -1,7 +1,10 @@
 /* Helpers shared by the subcommands: overrides, case loading, error lines, exit codes. */
 #include "common/cli.h"
 
+#include "touchdown/json.h"
+
 #include <stdarg.h>
+#include <stdlib.h>
 #include <string.h>
 #include <time.h>
 
@@ -128,6 +131,21 @@ void td_cli_error(const char *cmd, const char *fmt, ...)
     vfprintf(stderr, fmt, ap);
     va_end(ap);
     fputc('\n', stderr);
+}
+
+void td_cli_json_string(FILE *f, const char *s)
+{
+    char small[1024], *big;
+    int n = td_json_string(small, sizeof small, s);
+    if (n < (int)sizeof small) {
+        fputs(small, f);
+        return;
+    }
+    big = malloc((size_t)n + 1);
+    if (big)
+        td_json_string(big, (size_t)n + 1, s);
+    fputs(big ? big : "\"\"", f);
+    free(big);
 }
 
 double td_cli_now(void)

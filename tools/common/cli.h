@@ -53,6 +53,9 @@ volatile sig_atomic_t *td_cli_catch_signals(void);
  * clock is internal); only differences mean anything. */
 double td_cli_now(void);
 
+/* `s` as a JSON string into f, escaped by the library (touchdown/json.h); "" if it cannot be held. */
+void td_cli_json_string(FILE *f, const char *s);
+
 /* Map a library status to an exit code: input errors 2, everything else 1. */
 int td_cli_exit_code(td_status st);
 

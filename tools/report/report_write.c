@@ -3,8 +3,8 @@
  * a number; an incomplete run says so on its first line. */
 #include "report/report.h"
 
+#include "common/cli.h"
 #include "touchdown/assess.h"
-#include "touchdown/json.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -133,21 +133,6 @@ void report_write_text(FILE *f, const report *rep)
 
 /* ---- JSON ------------------------------------------------------------------------------------ */
 
-static void json_string(FILE *f, const char *s)
-{
-    char small[1024], *big;
-    int n = td_json_string(small, sizeof small, s);
-    if (n < (int)sizeof small) {
-        fputs(small, f);
-        return;
-    }
-    big = malloc((size_t)n + 1);
-    if (big)
-        td_json_string(big, (size_t)n + 1, s);
-    fputs(big ? big : "\"\"", f);
-    free(big);
-}
-
 static void json_number(FILE *f, double v)
 {
     if (isfinite(v))
@@ -161,7 +146,7 @@ static void json_text(FILE *f, const char *key, const char *text)
 {
     fprintf(f, "\"%s\":", key);
     if (text[0])
-        json_string(f, text);
+        td_cli_json_string(f, text);
     else
         fputs("null", f);
 }
@@ -169,7 +154,7 @@ static void json_text(FILE *f, const char *key, const char *text)
 static void json_item(FILE *f, const report_item *it)
 {
     fprintf(f, "{\"name\":\"%s\",\"label\":", td_out_name(it->def->id));
-    json_string(f, it->def->label);
+    td_cli_json_string(f, it->def->label);
     fprintf(f, ",\"%s\":", it->def->per == 2 ? "sensor" : "retainer");
     if (it->part >= 0)
         fprintf(f, "%d", it->part);
@@ -178,7 +163,7 @@ static void json_item(FILE *f, const report_item *it)
     fputs(",\"value\":", f);
     json_number(f, it->state == REPORT_VALUE ? it->value : NAN);
     fputs(",\"units\":", f);
-    json_string(f, it->units);
+    td_cli_json_string(f, it->units);
     fprintf(f, ",\"state\":\"%s\",\"limit\":", it->state == REPORT_VALUE ? "value" : report_state_words(it->state));
     json_number(f, it->limit);
     fputs(",\"verdict\":", f);
@@ -229,7 +214,7 @@ void report_write_json(FILE *f, const report *rep)
 {
     int i;
     fputs("{\"file\":", f);
-    json_string(f, rep->path);
+    td_cli_json_string(f, rep->path);
     fprintf(f, ",\"complete\":%s,", rep->complete ? "true" : "false");
     json_text(f, "incomplete_reason", rep->complete ? "" : rep->reason[0] ? rep->reason : "no reason given");
     fputc(',', f);
