@@ -377,7 +377,7 @@ static void summary_finish(run_state *r, double wall_start)
     td_sim_stats_get(r->sim, &s->stats);
     note_peak(s, s->stats.peak_normal_force, s->stats.peak_time, s->stats.peak_retainer);
     span = s->t_reached - s->t_start;
-    s->contact_fraction = span > 0.0 ? s->contact_time / span : 0.0;
+    s->contact_fraction = span > 0.0 ? s->contact_time / span : TD_UNDEFINED; /* 0/0: no time, no fraction */
     s->revolutions = s->speed * span / (2.0 * TD_PI);
     if (!td_is_undefined(s->first_contact_time))
         s->revolutions_after_contact = s->speed * (s->t_reached - s->first_contact_time) / (2.0 * TD_PI);

@@ -444,6 +444,8 @@ int td_run_summary_format(char *buf, size_t n, const td_run_summary *s)
     }
     if (td_is_undefined(s->contact_time))
         td_text_printf(&b, "time in contact             n/a (the run did not reach its end)\n");
+    else if (td_is_undefined(s->contact_fraction))
+        td_text_printf(&b, "time in contact             %.10f s (the run covered no time)\n", s->contact_time);
     else
         td_text_printf(&b, "time in contact             %.10f s (%.4f %% of the run)\n", s->contact_time,
                        100.0 * s->contact_fraction);

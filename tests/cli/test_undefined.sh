@@ -107,4 +107,10 @@ sys.exit(0 if all(np.isnan(a[k]) for k in keys) else 1)
 EOF
 fi
 
+# ---- a run that covers no time: no fraction of it in contact (0/0 is not 0) ----------------------
+t "$work/z" run --json -q --csv '' --hdf5 '' --set end_time=1e-300 --set speed=60 "$case_a"
+o=$work/z/.out
+check "run over no time (end_time 1e-300): JSON contact_fraction null, never 0 ($(jf "$o" contact_fraction))" \
+    test "$rc" = 0 -a "$(jf "$o" t_reached)" = 0 -a "$(jf "$o" contact_fraction)" = null
+
 finish
