@@ -113,6 +113,42 @@ static void test_constant_acceleration(void **state)
     td_model_free(&m);
 }
 
+/* The run's statistics to t_end of the rigid rotor with an unbalance, free flight on, with the shocks
+ * given (n of them). */
+static td_sim_stats kinks_run(const td_housing_pulse *p, int n, double t_end)
+{
+    td_model *m = rigid_rotor(150.0);
+    td_unbalance u = {2, 1e-4, 0.0};
+    td_sim_stats st;
+    td_sim *s;
+    int i;
+    assert_int_equal(td_model_add_unbalance(m, &u, NULL), TD_OK);
+    for (i = 0; i < n; i++)
+        assert_int_equal(td_model_add_housing_shock(m, &p[i], NULL), TD_OK);
+    s = new_sim(m, 1e-6, 1e-9, 0);
+    td_test_step_to(s, t_end);
+    assert_int_equal(td_sim_stats_get(s, &st), TD_OK);
+    td_sim_free(&s);
+    td_model_free(&m);
+    return st;
+}
+
+/* The integrator stops at each pulse's start and end (and a triangle's peak): a restart each, on top
+ * of the run without them; and the closed-form free flight, which carries the run without housing
+ * motion, is off with it (its forcing is time-invariant). */
+static void test_kinks_and_flight(void **state)
+{
+    const td_housing_pulse p[2] = {{TD_PULSE_SAWTOOTH, 5.0, 0.01, 0.02, {1.0, 0.0}},
+                                   {TD_PULSE_TRIANGLE, 5.0, 0.01, 0.05, {0.0, 1.0}}};
+    td_sim_stats none = kinks_run(p, 0, 0.1), with = kinks_run(p, 2, 0.1);
+    (void)state;
+    print_message("restarts %ld without the shocks, %ld with; flight %.3g s and %.3g s of 0.1 s\n", none.restarts,
+                  with.restarts, none.flight_time, with.flight_time);
+    assert_int_equal(with.restarts, none.restarts + 5); /* 0.02, 0.03; 0.05, 0.055, 0.06 */
+    assert_true(none.flight_time > 0.05);
+    assert_true(with.flight_time == 0.0);
+}
+
 /* The rig at 190 rad/s (with or without its retainers) under a half-sine of `g` times 1 g over 10 ms
  * upward, energy kept, to t_end. */
 static void shock_energy(double g, int retainers, double rtol, double t_end, td_energy *e, td_sim_stats *stats)
@@ -177,9 +213,8 @@ static void test_shock_energy_contact(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_constant_rotation_rate),
-        cmocka_unit_test(test_constant_acceleration),
-        cmocka_unit_test(test_shock_energy_free),
+        cmocka_unit_test(test_constant_rotation_rate), cmocka_unit_test(test_constant_acceleration),
+        cmocka_unit_test(test_kinks_and_flight),       cmocka_unit_test(test_shock_energy_free),
         cmocka_unit_test(test_shock_energy_contact),
     };
     return cmocka_run_group_tests_name("base_motion", tests, NULL, NULL);
