@@ -113,6 +113,39 @@ static void test_constant_acceleration(void **state)
     td_model_free(&m);
 }
 
+/* A race on its mount (a retainer at node 1, clear of the rotor) under a steady acceleration along +x
+ * and a steady angular acceleration about x (a slow rate ramp): at rest on its mount it is
+ * deflected by its own d'Alembert load, -m_b (a_x, a_y - (z - z_ref) alpha_x) / k_mount. */
+static void test_race_share(void **state)
+{
+    const double acc = 10.0, alpha = 0.1, mb = 2.0, km = 1.0e7;
+    td_model *m = rigid_rotor(150.0);
+    td_retainer r;
+    td_housing_pulse p = {TD_PULSE_RAMP, acc, 0.05, 0.0, {1.0, 0.0}};
+    td_retainer_state rs;
+    double dz;
+    td_sim *s;
+    (void)state;
+    memset(&r, 0, sizeof r);
+    r.node = 1, r.clearance = 1e-3, r.shaft_radius = 0.05, r.bore_radius = 0.051, r.friction = 0.1;
+    r.race.mass = mb, r.race.mount_stiffness = km, r.race.mount_damping = 2.0e3;
+    assert_int_equal(td_model_add_retainer(m, &r, NULL), TD_OK);
+    assert_int_equal(td_model_add_housing_shock(m, &p, NULL), TD_OK);
+    p.amplitude = alpha * 10.0, p.duration = 10.0; /* rate rising at alpha over 10 s */
+    assert_int_equal(td_model_add_housing_rotation(m, &p, NULL), TD_OK);
+    dz = td_model_node_position(m, 1) - td_model_housing_reference(m);
+    s = new_sim(m, 1e-10, 1e-14, 0);
+    td_test_step_to(s, 0.5);
+    assert_int_equal(td_sim_retainer_state(s, 0, &rs), TD_OK);
+    print_message("race at 0.5 s: (%.9g, %.9g) m; expected (%.9g, %.9g) m\n", rs.race_x, rs.race_y, -mb * acc / km,
+                  mb * dz * alpha / km);
+    assert_int_equal(rs.in_contact, 0);
+    assert_close(rs.race_x, -mb * acc / km, 1e-6, 0.0);
+    assert_close(rs.race_y, mb * dz * alpha / km, 1e-6, 0.0);
+    td_sim_free(&s);
+    td_model_free(&m);
+}
+
 /* The run's statistics to t_end of the rigid rotor with an unbalance, free flight on, with the shocks
  * given (n of them). */
 static td_sim_stats kinks_run(const td_housing_pulse *p, int n, double t_end)
@@ -214,8 +247,8 @@ int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_constant_rotation_rate), cmocka_unit_test(test_constant_acceleration),
-        cmocka_unit_test(test_kinks_and_flight),       cmocka_unit_test(test_shock_energy_free),
-        cmocka_unit_test(test_shock_energy_contact),
+        cmocka_unit_test(test_kinks_and_flight),       cmocka_unit_test(test_race_share),
+        cmocka_unit_test(test_shock_energy_free),      cmocka_unit_test(test_shock_energy_contact),
     };
     return cmocka_run_group_tests_name("base_motion", tests, NULL, NULL);
 }
