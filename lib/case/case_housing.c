@@ -406,7 +406,8 @@ static td_status read_csv(td_case_reader *r, const config_setting_t *g, const ch
     return st;
 }
 
-/* A model fault about history point i: at that entry of the inline array, or at its line of the file. */
+/* A model fault about history point i: at that entry of the inline array, or at its line of the file
+ * (csv->at set: the history is a file's). */
 static td_status history_fail(td_case_reader *r, const config_setting_t *g, const cr_points *p, const cr_csv *csv,
                               td_status st, const td_error *merr)
 {
@@ -415,10 +416,10 @@ static td_status history_fail(td_case_reader *r, const config_setting_t *g, cons
     const config_setting_t *s;
     if (st == TD_ERR_NOMEM || !merr->site.part || strcmp(merr->site.part, "history") != 0)
         return td_cr_model_fail(r, g, st, merr);
-    if (p->line && i >= 0 && i < p->n)
+    if (csv->at && i >= 0 && i < p->n)
         return CSV_FAIL(r, csv, "%s:%d: column %d '%s': %s", csv->shown, p->line[i], c + 1, csv->names[c],
                         merr->message + merr->reason);
-    if (p->line)
+    if (csv->at) /* the record as a whole (too few points) */
         return CSV_FAIL(r, csv, "%s: %s", csv->shown, merr->message + merr->reason);
     s = config_setting_get_member(g, f);
     if (s && i >= 0 && i < config_setting_length(s))
