@@ -232,7 +232,9 @@ void td_sim_external_forces(const td_sim *s, double t, const double *y, double s
 
 /* f += sign * the housing motion's inertial loads (touchdown/housing.h, docs/theory.md "Base motion"):
  * -M R a - M T alpha - Omega G T w on the rotor at the speed Omega it has now (also a varying one),
- * the races' share beside it (race.c). */
+ * the races' share beside it (race.c). They depend on the state only through a free spin's Omega;
+ * the Jacobian leaves that column's G T w out (a load of the order Ip w, which the Newton iteration
+ * absorbs as it does any inexact Jacobian). */
 void td_sim_housing_forces(const td_sim *s, double t, const double *y, double sign, double *f)
 {
     const td_system *sys = s->sys;
