@@ -85,6 +85,43 @@ static void test_constant_rotation_rate(void **state)
     td_model_free(&m);
 }
 
+/* The gyroscopic load follows the speed when it varies: a speed ramp from 100 to 200 rad/s (held
+ * after 0.2 s) and a free spin at 150 rad/s (no torque on it: its speed stays), each under a steady
+ * pitch rate: the couple is Ip Omega w / L at the speed of the end. */
+static void test_varying_speed(void **state)
+{
+    const double w = 0.4;
+    int k;
+    (void)state;
+    for (k = 0; k < 2; k++) {
+        td_model *m = rigid_rotor(k == 0 ? 100.0 : 150.0);
+        td_housing_pulse p = {TD_PULSE_RAMP, w, 0.05, 0.01, {1.0, 0.0}};
+        td_speed_point a = {0.0, 100.0}, b = {0.2, 200.0};
+        td_spin sp;
+        double f1[2], omega = k == 0 ? 200.0 : 150.0;
+        td_sim *s;
+        memset(&sp, 0, sizeof sp);
+        sp.free = 1;
+        assert_int_equal(td_model_add_housing_rotation(m, &p, NULL), TD_OK);
+        if (k == 0) {
+            assert_int_equal(td_model_add_speed_point(m, &a, NULL), TD_OK);
+            assert_int_equal(td_model_add_speed_point(m, &b, NULL), TD_OK);
+        } else {
+            assert_int_equal(td_model_set_spin(m, &sp, NULL), TD_OK);
+        }
+        s = new_sim(m, 1e-10, 1e-14, 0);
+        td_test_step_to(s, 0.8);
+        assert_int_equal(td_sim_amb_force(s, 1, f1), TD_OK);
+        print_message("%s: speed %.12g rad/s, AMB 1 force %.12g N; closed form %.12g N\n",
+                      k == 0 ? "speed ramp" : "free spin", td_sim_speed(s), f1[0],
+                      -td_model_polar_inertia(m) * omega * w / SPAN);
+        assert_close(td_sim_speed(s), omega, 1e-9, 0.0);
+        assert_close(f1[0], -td_model_polar_inertia(m) * omega * w / SPAN, 1e-6, 0.0);
+        td_sim_free(&s);
+        td_model_free(&m);
+    }
+}
+
 /* A steady acceleration a along +x (a ramp held): the rotor lags behind, to -x relative to the
  * housing, and its bearings push it along with the housing, their forces summing to m a (m the
  * rotor's mass) with no moment about the centre of mass. */
@@ -246,9 +283,13 @@ static void test_shock_energy_contact(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_constant_rotation_rate), cmocka_unit_test(test_constant_acceleration),
-        cmocka_unit_test(test_kinks_and_flight),       cmocka_unit_test(test_race_share),
-        cmocka_unit_test(test_shock_energy_free),      cmocka_unit_test(test_shock_energy_contact),
+        cmocka_unit_test(test_constant_rotation_rate),
+        cmocka_unit_test(test_varying_speed),
+        cmocka_unit_test(test_constant_acceleration),
+        cmocka_unit_test(test_kinks_and_flight),
+        cmocka_unit_test(test_race_share),
+        cmocka_unit_test(test_shock_energy_free),
+        cmocka_unit_test(test_shock_energy_contact),
     };
     return cmocka_run_group_tests_name("base_motion", tests, NULL, NULL);
 }
