@@ -363,7 +363,9 @@ typedef enum td_out_id {
     TD_OUT_RC_SPEED,
     TD_OUT_RC_RATIO,
     TD_OUT_RC_VERDICT,
-    TD_OUT_ID_COUNT /**< number of ids; also "several objects" as the parent of an attribute */
+    /* housing motion */
+    TD_OUT_SUM_ENERGY_HOUSING_WORK, /**< only with the energy account of a model with housing motion */
+    TD_OUT_ID_COUNT                 /**< number of ids; also "several objects" as the parent of an attribute */
 } td_out_id;
 
 /** What a name is in the file. */
