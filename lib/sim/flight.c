@@ -106,6 +106,50 @@ static void amb_span(td_sim *s, td_sim_flight *f, double a, double b, const doub
     amb_peaks(s, f, a, b - a, fa, f->amb_b, b2);
 }
 
+/* ---- clearance margin: the retainers' largest radius between points ------------------------ */
+
+/* Retainer k's node at the last propagate (time t): r^2 into *r2, the bound B on |(r^2)''| from t over
+ * the next h_max into *bound (as flight_roots.c's root functions), the radius noted. */
+static void margin_at(td_sim *s, td_sim_flight *f, int k, double t, double *r2, double *bound)
+{
+    flight_val x = td_sim_flight_observe(f, 2 * k, t), y = td_sim_flight_observe(f, 2 * k + 1, t);
+    double p = hypot(x.b0, y.b0), v = hypot(x.b1, y.b1), a = hypot(x.b2, y.b2);
+    *r2 = x.v * x.v + y.v * y.v;
+    if (bound)
+        *bound = 2.0 * (v * v + p * a);
+    td_sim_margin_note(s, k, sqrt(*r2));
+}
+
+/* The largest radius of retainer k's node on [ta, ta + h] (r^2 = fa, fb at the ends, |(r^2)''| <= b2) to
+ * TD_MARGIN_RTOL of its clearance: r^2 exceeds the larger end by at most b2 h^2 / 8; halve the interval
+ * while that could beat the largest radius so far by more. */
+static void margin_search(td_sim *s, td_sim_flight *f, int k, double ta, double h, double fa, double fb, double b2,
+                          int depth)
+{
+    double c = s->contacts.ret[k].r.clearance, reach = c - s->monitor.totals[k].margin + TD_MARGIN_RTOL * c, fm;
+    if (fmax(fa, fb) + 0.125 * b2 * h * h <= reach * reach || depth >= 40)
+        return;
+    td_sim_flight_propagate(f, ta + 0.5 * h);
+    margin_at(s, f, k, ta + 0.5 * h, &fm, NULL);
+    margin_search(s, f, k, ta, 0.5 * h, fa, fm, b2, depth + 1);
+    margin_search(s, f, k, ta + 0.5 * h, 0.5 * h, fm, fb, b2, depth + 1);
+}
+
+/* The retainers' largest radii over [a, b] (b - a <= h_max), the flight's own solution; a time the run
+ * has reached. Leaves f->e anywhere. */
+static void margin_span(td_sim *s, td_sim_flight *f, double a, double b)
+{
+    int k;
+    for (k = 0; b > a && k < s->dae.nr; k++) {
+        double fa, fb, b2;
+        td_sim_flight_propagate(f, a);
+        margin_at(s, f, k, a, &fa, &b2);
+        td_sim_flight_propagate(f, b);
+        margin_at(s, f, k, b, &fb, NULL);
+        margin_search(s, f, k, a, b - a, fa, fb, b2, 0);
+    }
+}
+
 /* A step [t, tn] ran past the output time t_out: the AMBs' peak up to t_out now, the rest
  * (pending from t_out, with the step's bounds) when the next call's output time is known, so that
  * no peak is recorded beyond the time reached. */
@@ -123,6 +167,7 @@ static void amb_pending_part(td_sim *s, td_sim_flight *f, double t_out)
     if (!(f->amb_pending < f->t_step))
         return;
     amb_span(s, f, f->amb_pending, end, NULL, f->amb_b2p);
+    margin_span(s, f, f->amb_pending, end); /* clearance margin: the bounds from the part's start */
     f->amb_pending = end < f->t_step ? end : INFINITY;
 }
 
@@ -196,8 +241,10 @@ int td_sim_flight_advance(td_sim *s, const double *scale, double t_out, double t
             td_sim_flight_propagate(f, tn);
             amb_forces(s, f, tn, f->amb_b, NULL, 1);
             amb_peaks(s, f, t, tn - t, f->amb_a, f->amb_b, f->amb_b2);
+            margin_span(s, f, t, tn); /* clearance margin */
         } else {
             amb_past_output(s, f, t, t_out);
+            margin_span(s, f, t, fmax(t, t_out)); /* clearance margin: the rest with the pending part */
         }
         td_sim_flight_propagate(f, tn);
         amb_forces(s, f, tn, f->amb_a, f->amb_b2, tn <= t_out);
@@ -208,6 +255,8 @@ int td_sim_flight_advance(td_sim *s, const double *scale, double t_out, double t
         return 0;
     if (t > t_end && !*root) /* the last step ran past the output: the state there */
         t = t_end;
+    td_sim_margin_rewind(s); /* clearance margin: a step of IDA's held beyond s->dae.t counts up to it */
+    s->monitor.margin_flown = 1;
     td_sim_flight_materialise(s, f, t, 0);
     s->monitor.stats.flight_steps += steps;
     s->monitor.stats.flight_time += t - s->dae.t;
