@@ -55,8 +55,7 @@ void td_sweep_row_from_summary(td_sweep_row *row, const td_run_summary *s)
         row->t_reached = s->t_reached;
         row->wall_time = s->wall_time;
         row_warnings(row, s);
-        row->life_kept = s->life_kept;               /* life: its column, with no number */
-        row->contact_happened = s->contact_happened; /* clearance margin: a contact before it failed */
+        row->life_kept = s->life_kept; /* life: its column, with no number */
         return;
     }
     memset(row, 0, sizeof *row);
