@@ -1392,7 +1392,8 @@ SPANS = {"rub-mean-normal": span_rub_mean_normal, "val-first-contact-cell": span
 # The sections of docs/results/keys.json (touchdown info --keys), each a table of its own region
 # "keys-SECTION"; a section the tool names that is not here fails the rendering.
 KEY_SECTIONS = ["top", "shaft", "discs", "ambs", "controllers", "recovery", "speed", "bearings", "retainers", "retainer-parts", "unbalances",
-                "schedule", "gravity", "reduction", "contact", "solver", "output", "modal", "sweep", "limits"]
+                "schedule", "gravity", "reduction", "contact", "solver", "output", "modal", "sweep", "limits",
+                "housing"]
 
 
 def cell(text):

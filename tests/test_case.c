@@ -313,6 +313,33 @@ static void check_all_keys_thermal(const td_model *m)
     assert_int_equal(td_model_get_retainer_thermal(m, 1, &t), 0);
 }
 
+/* housing motion: the shock (its direction normalised), the record shifted by 0.1 s and doubled, the ramp. */
+static void check_all_keys_housing(const td_model *m)
+{
+    td_housing_pulse p;
+    td_housing_motion hm;
+    assert_true(td_model_has_housing_motion(m));
+    assert_close(td_model_housing_reference(m), 0.25, 0.0, 0.0);
+    assert_int_equal(td_model_housing_shock_count(m), 1);
+    assert_int_equal(td_model_get_housing_shock(m, 0, &p), TD_OK);
+    assert_int_equal(p.shape, TD_PULSE_HALF_SINE);
+    assert_close(p.amplitude, 490.0, 0.0, 0.0);
+    assert_close(p.duration, 0.011, 0.0, 0.0);
+    assert_close(p.start, 0.05, 0.0, 0.0);
+    assert_close(p.direction[0], 0.0, 0.0, 0.0);
+    assert_close(p.direction[1], 1.0, 0.0, 0.0);
+    assert_int_equal(td_model_housing_history_count(m), 3);
+    td_model_housing_motion_at(m, 0.11, &hm); /* the record's peak: the shock is over */
+    assert_close(hm.acceleration[0], 20.0, 1e-12, 0.0);
+    assert_close(hm.acceleration[1], -10.0, 1e-12, 0.0);
+    assert_int_equal(td_model_housing_rotation_count(m), 1);
+    assert_int_equal(td_model_get_housing_rotation(m, 0, &p), TD_OK);
+    assert_int_equal(p.shape, TD_PULSE_RAMP);
+    assert_close(p.amplitude, 0.1, 0.0, 0.0);
+    assert_close(p.direction[0], 1.0, 0.0, 0.0);
+    assert_close(hm.rate[0], 0.1 * 0.01 / 0.5, 1e-15, 0.0);
+}
+
 /* retainers[0].bearing and limits of all-keys.cfg; retainer 1 has no bearing. */
 static void check_all_keys_assessment(const td_model *m)
 {
@@ -485,6 +512,7 @@ static void check_all_keys_model(const td_model *m)
     td_model_gravity(m, &gx, &gy); /* 9.8 along [3, -4]/5 */
     assert_close(gx, 9.8 * 0.6, 1e-15, 0.0);
     assert_close(gy, -9.8 * 0.8, 1e-15, 0.0);
+    check_all_keys_housing(m);
     (void)i;
 }
 
@@ -572,6 +600,15 @@ static void test_other_forms_and_defaults(void **state)
     assert_close(gy, -9.81, 1e-15, 0.0);
     assert_close(td_model_speed(m), 0.0, 0.0, 0.0);
     assert_string_equal(td_case_description(c), "");
+    /* the history from housing-record.csv: ms and g to s and m/s^2; the reference the centre of mass */
+    assert_int_equal(td_model_housing_history_count(m), 3);
+    {
+        td_housing_motion hm;
+        td_model_housing_motion_at(m, 0.005, &hm);
+        assert_close(hm.acceleration[0], 0.5 * 9.80665, 1e-15, 0.0);
+        assert_close(hm.acceleration[1], -9.80665, 1e-15, 0.0);
+    }
+    assert_close(td_model_housing_reference(m), td_model_mass_centre(m), 0.0, 0.0);
 
     td_sim_options_default(&sdef);
     sdef.contact.damping = TD_DAMPING_KELVIN_VOIGT;
@@ -643,7 +680,11 @@ static void test_docs_match_reader(void **state)
                                          "recovery.",
                                          "recovery.detect.",
                                          "recovery.release.",
-                                         "limits."};
+                                         "limits.",
+                                         "housing.",
+                                         "housing.shocks[0].",
+                                         "housing.history.",
+                                         "housing.rotation[0]."};
     char *doc = td_test_read_file(td_source_path("docs/case-format.md"));
     char *a = td_test_read_file(td_source_path("tests/data/case/all-keys.cfg"));
     char *b = td_test_read_file(td_source_path("tests/data/case/all-keys-nodes.cfg"));
@@ -846,6 +887,30 @@ static void dump_recovery(const td_model *m, char *buf, size_t n)
         dump_add(buf, n, "  pair %d: %d -> %d\n", i, r.nominal[i], r.controller[i]);
 }
 /* The retainers, unbalances and timed changes of a model. */
+/* housing motion: the pulses, the reference and the motion at a few times (the history's shift and scale). */
+static void dump_housing(const td_model *m, char *buf, size_t n)
+{
+    static const double times[] = {0.0, 0.004, 0.013, 0.3, 1.0};
+    size_t k;
+    int i;
+    for (i = 0; i < td_model_housing_shock_count(m) + td_model_housing_rotation_count(m); i++) {
+        td_housing_pulse p;
+        int shock = i < td_model_housing_shock_count(m);
+        assert_int_equal(shock ? td_model_get_housing_shock(m, i, &p)
+                               : td_model_get_housing_rotation(m, i - td_model_housing_shock_count(m), &p),
+                         TD_OK);
+        dump_add(buf, n, "%s %d %a %a %a %a %a\n", shock ? "shock" : "rotation", (int)p.shape, p.amplitude, p.duration,
+                 p.start, p.direction[0], p.direction[1]);
+    }
+    dump_add(buf, n, "housing %a %d\n", td_model_housing_reference(m), td_model_housing_history_count(m));
+    for (k = 0; k < sizeof times / sizeof times[0]; k++) {
+        td_housing_motion hm;
+        td_model_housing_motion_at(m, times[k], &hm);
+        dump_add(buf, n, "  at %a: %a %a %a %a %a %a\n", times[k], hm.acceleration[0], hm.acceleration[1],
+                 hm.displacement[0], hm.displacement[1], hm.angle[0], hm.angle[1]);
+    }
+}
+
 static void dump_events(const td_model *m, char *buf, size_t n)
 {
     int i;
@@ -870,6 +935,7 @@ static void dump_events(const td_model *m, char *buf, size_t n)
                  td_model_change_entry(m, i));
     }
     dump_recovery(m, buf, n);
+    dump_housing(m, buf, n);
 }
 
 /* Everything a case gives, as text: the model through its getters, the end time, the description
@@ -949,7 +1015,11 @@ static const char documented_defaults_base[] =
     "gravity = {};\nspin = {};\n"
     "contact = {};\nsolver = {};\noutput = {};\nmodal = {};\n"
     "sweep = { vary = ( { key = \"speed\"; from = 100.0; to = 200.0; points = 3;\n"
-    "  with = ( { key = \"end_time\"; from = 0.1; to = 0.2; points = 3; } ); } ); };\n";
+    "  with = ( { key = \"end_time\"; from = 0.1; to = 0.2; points = 3; } ); } ); };\n"
+    /* housing motion */
+    "housing = { shocks = ( { amplitude = 1.0; duration = 0.01; direction = [0.0, 1.0]; } );\n"
+    "  history = { time = [0.0, 0.01]; x = [0.0, 1.0]; y = [0.0, 0.0]; };\n"
+    "  rotation = ( { rate = 0.1; duration = 0.5; axis = [1.0, 0.0]; } ); };\n";
 
 /* Keys whose documented default is another key's value (of their entry, the unbalance they set, the
  * shaft), and that value in the base. */
@@ -1067,9 +1137,9 @@ static void test_documented_defaults(void **state)
     print_message("documented defaults: %d keys checked; skipped: %d groups and lists, %d required, %d other\n", tried,
                   part, required, other);
     assert_int_equal(tried + part + required + other, td_case_key_count());
-    assert_int_equal(tried, 88);
-    assert_int_equal(part, 46);     /* their keys are checked */
-    assert_int_equal(required, 78); /* required, or one form's required key (a sweep entry's range or values) */
+    assert_int_equal(tried, 94);
+    assert_int_equal(part, 50);     /* their keys are checked */
+    assert_int_equal(required, 84); /* required, or one form's required key (a sweep entry's range or values) */
     /* an alternative with no default ("-": shaft.nodes, sections' element, schedule's unbalance,
      * amb_off, amb_on, a law's gain block), "unknown" (an AMB's air gap), "all nodes", "none"
      * (response speeds, overrides, a zpk's zeros and poles, an ss block's A, B and C), "the rotor's"
@@ -1079,8 +1149,9 @@ static void test_documented_defaults(void **state)
      * parameters), "none" (a retainer bearing's ratings, geometry and width; the limits on temperature and
      * drops), "the defaults below" (limits), "none" (modal.operating_speed_min and _max), "every disc, AMB
      * sensor and retainer node" (modal.response_nodes), "none (no growth reported)" (a thermal network's
-     * expansion) */
-    assert_int_equal(other, 34);
+     * expansion), "the rotor's centre of mass" (housing.reference), "none" (a housing history's file, time, x
+     * and y: alternatives) */
+    assert_int_equal(other, 39);
     td_case_free(&base);
     free(want);
     free(got);
@@ -1982,6 +2053,14 @@ static const bad_file bad_files[] = {
     {"retainer-thermal-missing-conductance.cfg", 6, "retainers[0].thermal.housing_ambient_conductance", NULL},
     {"retainer-thermal-negative-expansion.cfg", 7, "retainers[0].thermal.expansion", NULL},
     {"retainer-thermal-unknown-key.cfg", 7, "retainers[0].thermal.expansoin", NULL},
+    /* housing motion (a CSV history's fault is also located in the CSV file: test_housing.c) */
+    {"housing-shock-zero-amplitude.cfg", 5, "housing.shocks[0].amplitude", NULL},
+    {"housing-rotation-zero-axis.cfg", 5, "housing.rotation[0].axis", NULL},
+    {"housing-history-backwards.cfg", 5, "housing.history.time[2]", NULL},
+    {"housing-history-both.cfg", 5, "housing.history.file", NULL},
+    {"housing-csv-unit.cfg", 5, "housing.history.file", NULL},
+    {"housing-csv-number.cfg", 5, "housing.history.file", NULL},
+    {"housing-csv-missing.cfg", 5, "housing.history.file", NULL},
 };
 
 static void check_bad_file(const bad_file *b)

@@ -13,6 +13,7 @@
 #include "touchdown/controller.h"
 #include "touchdown/error.h"
 #include "touchdown/export.h"
+#include "touchdown/housing.h"
 #include "touchdown/options.h"
 #include "touchdown/plugin.h"
 

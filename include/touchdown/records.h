@@ -134,7 +134,10 @@ typedef struct td_energy {
     double contact_loss;  /**< J: dissipated in the contacts (friction heat, contact dampers) */
     double drag_loss;     /**< J: the races' constant drag */
     double impact_loss;   /**< J: kinetic energy the impacts took (restitution < 1) */
-    double residual;      /**< J: kinetic + elastic - initial - external - drive + the losses */
+    double residual;      /**< J: kinetic + elastic - initial - external - drive - housing + the losses */
+    /* housing motion */
+    double housing_work; /**< J: work of the housing motion's inertial loads on the relative motion
+                              (touchdown/housing.h; 0 without housing motion) */
 } td_energy;
 
 /** A contact that sweeps less whirl angle than this (rad) before it ends is a touch-and-go impact. */

@@ -363,6 +363,8 @@ typedef enum td_out_id {
     TD_OUT_RC_SPEED,
     TD_OUT_RC_RATIO,
     TD_OUT_RC_VERDICT,
+    /* housing motion */
+    TD_OUT_SUM_ENERGY_HOUSING_WORK, /**< only with the energy account of a model with housing motion */
     /* clearance margin (docs/output-format.md, "Clearance margin and shock outcome") */
     TD_OUT_RETAINER_MIN_CLEARANCE_MARGIN, /**< root attribute (n_ret), m */
     TD_OUT_SUM_MIN_CLEARANCE_MARGIN,      /**< root attribute, m: the smallest over the retainers */

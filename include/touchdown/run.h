@@ -236,6 +236,9 @@ typedef struct td_run_summary {
     /* life */
     int life_kept; /**< 1: some retainer's bearing has a dynamic rating (td_model_get_retainer_bearing): the
                         retainers' damage, drops to failure and load cycles are in the text, JSON and files */
+    /* housing motion */
+    int housing_motion; /**< 1: the model has a prescribed housing motion (touchdown/housing.h): with the energy
+                             account, its housing_work is in the text, JSON and files */
     /* clearance margin (docs/output-format.md, "Clearance margin and shock outcome") */
     double min_clearance_margin; /**< m: the smallest td_retainer_totals.min_clearance_margin over the retainers
                                       (TD_UNDEFINED without a retainer, and for a run that did not reach its end) */

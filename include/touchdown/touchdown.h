@@ -10,6 +10,7 @@
 #include "touchdown/dofs.h"
 #include "touchdown/error.h"
 #include "touchdown/fmu.h"
+#include "touchdown/housing.h"
 #include "touchdown/job.h"
 #include "touchdown/json.h"
 #include "touchdown/modal.h"

@@ -849,5 +849,13 @@ static const td_cs_key root_keys[] = {
      .doc_default = "the defaults below",
      .doc = "the limits a run is assessed against (vibration zones, temperature rise, drops), see "
             "[limits (assessment)](#limits-assessment)"},
+    /* housing motion */
+    {.key = "housing",
+     .type = TD_CS_GROUP,
+     .sub = &td_cs_housing,
+     .order = 14,
+     .doc_default = "none (a fixed housing)",
+     .doc = "the housing's prescribed motion (shocks, a measured acceleration, a rotation), see "
+            "[housing](#housing)"},
 };
 const td_cs_table td_cs_root = {"", "top", root_keys, TD_CS_COUNT(root_keys), sizeof(td_case), root_preset, NULL};

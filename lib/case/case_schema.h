@@ -138,4 +138,7 @@ td_status td_cr_set_retainer_bearing(td_case_reader *r, const config_setting_t *
 td_status td_cr_read_block(td_case_reader *r, const config_setting_t *e, double sample_rate, td_controller **out,
                            int *sampled);
 
+/* housing motion (case_housing.c): the top-level `housing` group */
+extern const td_cs_table td_cs_housing;
+
 #endif

@@ -385,6 +385,8 @@ static const td_schema_entry entries[TD_OUT_ID_COUNT] = {
     DATA(TD_OUT_RC_RATIO, "ratio", TD_OUT_RUNNING_CLEARANCE, MODAL, F64, "1", "(n_ret)"),
     DATA(TD_OUT_RC_VERDICT, "verdict", TD_OUT_RUNNING_CLEARANCE, MODAL, I32, "1: pass, 0: fail, -1: undefined",
          "(n_ret)"),
+    /* housing motion */
+    RUN_ATTR(TD_OUT_SUM_ENERGY_HOUSING_WORK, "summary_energy_housing_work", F64, "J"),
     /* clearance margin */
     RET_ATTR(TD_OUT_RETAINER_MIN_CLEARANCE_MARGIN, "retainer_min_clearance_margin", F64, "m"),
     RUN_ATTR(TD_OUT_SUM_MIN_CLEARANCE_MARGIN, "summary_min_clearance_margin", F64, "m"),

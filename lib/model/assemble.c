@@ -321,6 +321,35 @@ static td_status build_gravity_load(td_system *s, td_error *err)
     return TD_OK;
 }
 
+/* The housing motion's loads (docs/theory.md, "Base motion"): base_load = M R_x, M R_y, M T_x, M T_y
+ * and base_gyro = G T_x, G T_y, with R a unit rigid translation (1 on every node's x, resp. y) and
+ * T a unit rigid rotation about x (y_i = -(z_i - z_ref), theta_i = 1) or y (x_i = z_i - z_ref,
+ * phi_i = 1) through the reference point (touchdown/dofs.h: theta = -dy/dz, phi = dx/dz). */
+static td_status build_base_loads(td_system *s, td_error *err)
+{
+    double zref = td_model_housing_reference(s->model), *u = calloc((size_t)s->nphys, sizeof *u);
+    int k, i;
+    for (k = 0; k < 6 && u; k++) {
+        double **out = k < 4 ? &s->base_load[k] : &s->base_gyro[k - 4];
+        int rot = k >= 2 ? (k - 2) % 2 : -1; /* -1 translation; 0 about x; 1 about y */
+        if (!(*out = calloc((size_t)s->nphys, sizeof **out)))
+            break;
+        memset(u, 0, (size_t)s->nphys * sizeof *u);
+        for (i = 0; i < s->nnodes; i++) {
+            double dz = td_model_node_position(s->model, i) - zref;
+            if (rot < 0)
+                u[TD_DOF(i, k == 0 ? TD_DOF_X : TD_DOF_Y)] = 1.0;
+            else if (rot == 0)
+                u[TD_DOF(i, TD_DOF_Y)] = -dz, u[TD_DOF(i, TD_DOF_THETA)] = 1.0;
+            else
+                u[TD_DOF(i, TD_DOF_X)] = dz, u[TD_DOF(i, TD_DOF_PHI)] = 1.0;
+        }
+        cs_di_gaxpy(k < 4 ? s->M : s->G, u, *out);
+    }
+    free(u);
+    return k == 6 ? TD_OK : td_error_set(err, TD_ERR_NOMEM, "out of memory building the housing motion's loads");
+}
+
 td_status td_system_create(const td_model *model, td_system **out, td_error *err)
 {
     td_system *s;
@@ -342,6 +371,8 @@ td_status td_system_create(const td_model *model, td_system **out, td_error *err
     }
     if (st == TD_OK)
         st = build_gravity_load(s, err);
+    if (st == TD_OK && td_model_has_housing_motion(s->model))
+        st = build_base_loads(s, err);
     if (st == TD_OK && s->model->reduction_cutoff > 0.0)
         st = td_system_reduce(s, err);
     if (st == TD_OK)
@@ -359,6 +390,7 @@ td_status td_system_create(const td_model *model, td_system **out, td_error *err
 void td_system_free(td_system **sys)
 {
     td_system *s;
+    int k;
     if (!sys || !*sys)
         return;
     s = *sys;
@@ -370,6 +402,10 @@ void td_system_free(td_system **sys)
     free(s->amb_axes);
     free_laws(s);
     free(s->gravity_load);
+    for (k = 0; k < 4; k++)
+        free(s->base_load[k]);
+    for (k = 0; k < 2; k++)
+        free(s->base_gyro[k]);
     td_system_reduction_free(s);
     free(s);
     *sys = NULL;

@@ -93,6 +93,7 @@ void td_model_free(td_model **model)
     free(m->thermals.items);
     td_model_free_controllers(m);
     td_model_free_assessment(m);
+    td_model_free_housing(m);
     free(m);
     *model = NULL;
 }
@@ -147,6 +148,8 @@ td_status td_model_clone(const td_model *model, td_model **out, td_error *err)
     m->recovery = model->recovery;
     if (ok)
         ok = td_model_clone_assessment(m, model);
+    if (ok)
+        ok = td_model_clone_housing(m, model);
     if (!ok) {
         td_model_free(&m);
         return td_error_set(err, TD_ERR_NOMEM, "out of memory cloning a model");
@@ -849,6 +852,14 @@ double td_model_mass_centre(const td_model *m)
         moment += m->discs.items[i].mass * td_model_node_position(m, m->discs.items[i].node);
     }
     return total > 0.0 ? moment / total : 0.0;
+}
+
+/* The housing's reference point (touchdown/housing.h; set in housing.c): by default the rotor's centre of mass. */
+double td_model_housing_reference(const td_model *m)
+{
+    if (!m)
+        return 0.0;
+    return m->has_housing_reference ? m->housing_reference : td_model_mass_centre(m);
 }
 
 #define GETTER(fn, type, arr)                                                                                          \

@@ -64,6 +64,14 @@ struct td_model {
     int has_limits;
     /* heat */
     TD_PART_ARRAY(td_model_thermal) thermals; /* the retainers' thermal networks (thermal.c), by retainer */
+    /* housing motion (housing.c) */
+    TD_PART_ARRAY(td_housing_pulse) shocks;    /* the housing's acceleration pulses, summed */
+    TD_PART_ARRAY(td_housing_pulse) rotations; /* its rotation-rate profiles, summed */
+    int history_count;                         /* points of the acceleration history; 0: none */
+    double *history;          /* history_count rows (t, ax, ay, vx, vy, dx, dy): the points and the exact
+                               * integrals of the piecewise-linear acceleration up to each (from rest at t = 0) */
+    double housing_reference; /* m, valid when has_housing_reference */
+    int has_housing_reference;
 };
 
 /* The controllers' part in freeing, copying and validating a model (controllers.c). */
@@ -99,5 +107,10 @@ int td_model_recovery_standby(const td_model *m, int l);
 void td_model_free_assessment(td_model *m);
 /* A copy of src's retainer bearings and limits into m (which has none); 0 when out of memory. */
 int td_model_clone_assessment(td_model *m, const td_model *src);
+
+/* The housing motion's part in freeing and copying a model (housing.c). */
+void td_model_free_housing(td_model *m);
+/* A copy of src's housing motion into m (which has none); 0 when out of memory. */
+int td_model_clone_housing(td_model *m, const td_model *src);
 
 #endif

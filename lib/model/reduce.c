@@ -473,6 +473,27 @@ static cs_di *project(const gsl_matrix *T, const cs_di *A, double sign)
     return out;
 }
 
+/* The housing motion's loads (physical, when the model has them) replaced by their projections
+ * T^T f, as the gravity load: the work of a load on the reduced motion is that on the physical one. */
+static td_status project_base_loads(td_system *s, const reduction *r)
+{
+    size_t nq = r->T->size2;
+    int k;
+    for (k = 0; k < 6; k++) {
+        double **f = k < 4 ? &s->base_load[k] : &s->base_gyro[k - 4], *q = *f ? calloc(nq, sizeof *q) : NULL;
+        if (!*f)
+            continue;
+        if (!q)
+            return TD_ERR_NOMEM;
+        gsl_vector_const_view fp = gsl_vector_const_view_array(*f, (size_t)s->nphys);
+        gsl_vector_view fq = gsl_vector_view_array(q, nq);
+        gsl_blas_dgemv(CblasTrans, 1.0, r->T, &fp.vector, 0.0, &fq.vector);
+        free(*f);
+        *f = q;
+    }
+    return TD_OK;
+}
+
 /* The reduced matrices and gravity load replace the physical ones in s. */
 static td_status apply(td_system *s, const reduction *r, td_error *err)
 {
@@ -487,6 +508,10 @@ static td_status apply(td_system *s, const reduction *r, td_error *err)
         return td_error_set(err, TD_ERR_NOMEM, "reduction: out of memory for the reduced matrices");
     }
     gsl_blas_dgemv(CblasTrans, 1.0, r->T, &gp.vector, 0.0, &gq.vector); /* f_r = T^T f */
+    if (project_base_loads(s, r) != TD_OK) {
+        cs_di_spfree(M), cs_di_spfree(K), cs_di_spfree(C), cs_di_spfree(G), free(g);
+        return td_error_set(err, TD_ERR_NOMEM, "reduction: out of memory for the housing motion's loads");
+    }
     cs_di_spfree(s->M), cs_di_spfree(s->K), cs_di_spfree(s->C), cs_di_spfree(s->G), free(s->gravity_load);
     s->M = M, s->K = K, s->C = C, s->G = G, s->gravity_load = g;
     s->ndof = (int)nq;

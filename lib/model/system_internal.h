@@ -79,6 +79,10 @@ struct td_system {
     int n_laws;              /* linear controllers, in the model's order */
     td_lti_law *laws;
     double *gravity_load; /* M g, length ndof: the weight as nodal forces */
+    /* housing motion (touchdown/housing.h): all NULL when the model has none */
+    double *base_load[4]; /* ndof: M R_x, M R_y, M T_x, M T_y: the inertial load of a unit base acceleration
+                           * (translation x, y; rotation about x, y at z_ref); projected like gravity_load */
+    double *base_gyro[2]; /* ndof: G T_x, G T_y (per unit speed): the gyroscopic load of a unit base rate */
 };
 
 /* Mark AMB `amb`'s axes off (off != 0) or working, so that the contact-free system's analyses

@@ -323,6 +323,7 @@ static void summary_totals(run_state *r)
     s->final_speed = td_sim_speed(r->sim);
     s->energy_kept = td_sim_energy(r->sim, &s->energy) == TD_OK;
     s->supervised = td_model_get_recovery(m, NULL) > 0;
+    s->housing_motion = td_model_has_housing_motion(m);
     s->retainer_count = td_model_retainer_count(m);
     for (k = 0; k < s->retainer_count; k++) {
         td_retainer_totals t;
@@ -608,6 +609,8 @@ static td_status write_summary(td_recorder *rec, const td_run_summary *s, const 
         st = write_warnings(rec, s, err);
     if (st == TD_OK && s->energy_kept)
         st = write_energy(rec, &s->energy, err);
+    if (st == TD_OK && s->energy_kept && s->housing_motion)
+        st = td_recorder_set_double(rec, TD_OUT_SUM_ENERGY_HOUSING_WORK, s->energy.housing_work, err);
     if (st == TD_OK && s->supervised)
         st = write_recovery(rec, &s->stats, err);
     if (st == TD_OK)

@@ -86,6 +86,7 @@ void td_run_summary_undefine_answers(td_run_summary *s)
     energy[9] = &s->energy.residual;
     for (i = 0; i < sizeof energy / sizeof energy[0]; i++)
         *energy[i] = TD_UNDEFINED;
+    s->energy.housing_work = TD_UNDEFINED;
     for (k = 0; k < TD_RUN_SUMMARY_RETAINERS; k++)
         retainer_undefine(&s->retainers[k]);
     snprintf(s->ending, sizeof s->ending, "undetermined");
@@ -282,7 +283,7 @@ static void format_files(td_text *b, const td_run_summary *s)
     td_text_printf(b, "%s%s\n", n ? "" : " none", n && !s->complete ? " (marked incomplete)" : "");
 }
 /* The energy account: held now and at the start, put in, lost, and the balance's residual. */
-static void format_energy(td_text *b, const td_energy *e)
+static void format_energy(td_text *b, const td_energy *e, int housing)
 {
     td_text_printf(b,
                    "energy                      held %.6g J (%.6g J at the start); in: external %.6g J, drive %.6g J\n",
@@ -291,6 +292,9 @@ static void format_energy(td_text *b, const td_energy *e)
                    "energy lost                 damping %.6g J, contact %.6g J, drag %.6g J, impacts %.6g J; "
                    "residual %.3g J\n",
                    e->damping_loss, e->contact_loss, e->drag_loss, e->impact_loss, e->residual);
+    if (housing) /* the residual has it in */
+        td_text_printf(b, "energy housing work         %.6g J (work of the housing motion's inertial loads)\n",
+                       e->housing_work);
 }
 
 /* A retainer's line. Its counts say how it touched: a sustained contact (one that swept at least
@@ -411,7 +415,7 @@ static void format_answers(td_text *b, const td_run_summary *s)
     if (s->energy_kept && td_is_undefined(s->energy.residual))
         td_text_printf(b, "energy                      n/a (the run did not reach its end)\n");
     else if (s->energy_kept)
-        format_energy(b, &s->energy);
+        format_energy(b, &s->energy, s->housing_motion);
     for (k = 0; k < n; k++) {
         format_retainer(b, s, k);
         format_retainer_heat(b, s, k);
@@ -667,6 +671,8 @@ static void json_answers(td_text *b, const td_run_summary *s)
     json_real(b, "contact_loss", s->energy.contact_loss, 1);
     json_real(b, "drag_loss", s->energy.drag_loss, 1);
     json_real(b, "impact_loss", s->energy.impact_loss, 1);
+    if (s->housing_motion)
+        json_real(b, "housing_work", s->energy.housing_work, 1);
     json_real(b, "residual", s->energy.residual, 0);
     td_text_printf(b, "},");
 }

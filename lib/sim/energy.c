@@ -3,8 +3,10 @@
  * retainers' totals (totals.c): what the rotor and the races hold, and the powers that fill and
  * drain them, integrated by the trapezoid rule over the integrator's steps.
  *
- *     d/dt (1/2 v^T M v + 1/2 q^T K q + E_c) = P_ext + P_drive - v^T C v - P_contact - P_drag
+ *     d/dt (1/2 v^T M v + 1/2 q^T K q + E_c) = P_ext + P_drive + P_housing - v^T C v - P_contact - P_drag
  *
+ * P_housing = f_housing . v, the power of the housing motion's inertial loads on the relative
+ * velocities (touchdown/housing.h), kept apart from P_ext so that the account says what the base put in.
  * The gyroscopic forces do no work (v^T G v = 0). E_c is the contact springs' energy
  * Kc delta^(p+1)/(p+1). The friction force F_t on the race along t has the rotor's surface, moving
  * at R_s Omega with the spin the model holds fixed, push against it: the drive that holds the
@@ -64,8 +66,9 @@ static double contact_spring(const td_sim *s, int k, const double *y, double *lo
     return e;
 }
 
-/* The powers at y (external, drive, damping, contact, drag) into pw; returns the energy held. */
-static double powers(td_sim *s, double t, const double *y, double pw[5])
+/* The powers at y (external, drive, damping, contact, drag) into pw and the housing motion's into
+ * *housing; returns the energy held. */
+static double powers(td_sim *s, double t, const double *y, double pw[5], double *housing)
 {
     const double *q = y + s->dae.oq, *v = y + s->dae.ov;
     double held = td_sim_kinetic_energy(s, y) + 0.5 * quadratic(s, s->ops.st_K, q, q);
@@ -75,6 +78,14 @@ static double powers(td_sim *s, double t, const double *y, double pw[5])
     memset(pw, 0, 5 * sizeof *pw);
     for (i = 0; i < s->dae.n; i++)
         pw[0] += s->monitor.energy_f[i] * v[i];
+    *housing = 0.0;
+    if (s->sys->base_load[0]) { /* the housing motion's share of those forces, booked apart */
+        memset(s->monitor.energy_f, 0, sizeof(double) * (size_t)s->dae.n);
+        td_sim_housing_forces(s, t, y, 1.0, s->monitor.energy_f);
+        for (i = 0; i < s->dae.n; i++)
+            *housing += s->monitor.energy_f[i] * v[i];
+        pw[0] -= *housing;
+    }
     pw[0] += td_sim_unbalance_spin_coupling(s, t, y, N_VGetArrayPointer(s->dae.yp), NULL);
     pw[2] = quadratic(s, s->ops.st_D, v, v);
     for (k = 0; k < s->dae.nr; k++) {
@@ -95,9 +106,10 @@ static double powers(td_sim *s, double t, const double *y, double pw[5])
 void td_sim_energy_point(td_sim *s, double t, int restart, double dt)
 {
     const double *y = N_VGetArrayPointer(s->dae.y);
-    double pw[5], held = powers(s, t, y, pw), *prev = s->monitor.energy_prev;
+    double pw[5], ph, held = powers(s, t, y, pw, &ph), *prev = s->monitor.energy_prev;
     td_energy *e = &s->monitor.energy;
     if (dt > 0.0) {
+        e->housing_work += 0.5 * dt * (s->monitor.housing_prev + ph);
         e->external_work += 0.5 * dt * (prev[0] + pw[0]);
         e->drive_work += 0.5 * dt * (prev[1] + pw[1]);
         e->damping_loss += 0.5 * dt * (prev[2] + pw[2]);
@@ -109,6 +121,7 @@ void td_sim_energy_point(td_sim *s, double t, int restart, double dt)
         s->monitor.energy_started = 1;
     }
     memcpy(prev, pw, sizeof pw);
+    s->monitor.housing_prev = ph;
     e->kinetic = td_sim_kinetic_energy(s, y);
     e->elastic = held - e->kinetic;
 }
@@ -120,12 +133,14 @@ void td_sim_energy_impact(td_sim *s, double before, double after)
 
 /* The account at s->dae.t when the last point lies beyond it (an output, the end time, or a change
  * inside the integrator's last step): the trapezoids from s->dae.t to that point taken back, and what
- * the machine holds read at s->dae.t, as the retainers' totals do (totals.c). Returns the powers at s->dae.t. */
-static void energy_back_to_now(td_sim *s, td_energy *e, double pw[5])
+ * the machine holds read at s->dae.t, as the retainers' totals do (totals.c). Returns the powers at
+ * s->dae.t (the housing motion's in *ph). */
+static void energy_back_to_now(td_sim *s, td_energy *e, double pw[5], double *ph)
 {
     const double *y = N_VGetArrayPointer(s->dae.y), *prev = s->monitor.energy_prev;
-    double dt = s->monitor.totals_t - s->dae.t, held = powers(s, s->dae.t, y, pw);
+    double dt = s->monitor.totals_t - s->dae.t, held = powers(s, s->dae.t, y, pw, ph);
     if (dt > 0.0) {
+        e->housing_work -= 0.5 * dt * (s->monitor.housing_prev + *ph);
         e->external_work -= 0.5 * dt * (prev[0] + pw[0]);
         e->drive_work -= 0.5 * dt * (prev[1] + pw[1]);
         e->damping_loss -= 0.5 * dt * (prev[2] + pw[2]);
@@ -138,19 +153,20 @@ static void energy_back_to_now(td_sim *s, td_energy *e, double pw[5])
 
 void td_sim_energy_rewind(td_sim *s)
 {
-    double pw[5];
+    double pw[5], ph;
     if (!s->opt.energy || !(s->monitor.totals_t > s->dae.t))
         return;
-    energy_back_to_now(s, &s->monitor.energy, pw);
+    energy_back_to_now(s, &s->monitor.energy, pw, &ph);
     memcpy(s->monitor.energy_prev, pw, sizeof pw);
+    s->monitor.housing_prev = ph;
 }
 
 void td_sim_energy_get(const td_sim *s, td_energy *out)
 {
-    double pw[5];
+    double pw[5], ph;
     *out = s->monitor.energy;
     if (s->monitor.totals_t > s->dae.t) /* powers() uses the sim's scratch force vector only */
-        energy_back_to_now((td_sim *)s, out, pw);
+        energy_back_to_now((td_sim *)s, out, pw, &ph);
     out->residual = out->kinetic + out->elastic - out->initial - out->external_work - out->drive_work +
-                    out->damping_loss + out->contact_loss + out->drag_loss + out->impact_loss;
+                    out->damping_loss + out->contact_loss + out->drag_loss + out->impact_loss - out->housing_work;
 }

@@ -10,7 +10,7 @@
 #include <string.h>
 
 /* 1 if the machine may fly in closed form now: free flight on (td_solver_options), no energy
- * account, a prescribed constant speed, no races, no AMB saturation or slew
+ * account, a prescribed constant speed, no housing motion, no races, no AMB saturation or slew
  * limit (the flight has no root function for their kinks and would step across one unseen, and its
  * probes of the residual, half a clearance and 1 m/s, would reach a clip), every retainer free (one
  * with a force law only once its gap has opened by eps after its last exit). The decomposition may
@@ -19,6 +19,9 @@ static int flight_eligible(const td_sim *s)
 {
     int k;
     if (!s->opt.solver.free_flight || s->opt.energy || s->machine.spin >= 0 || td_model_speed_varies(s->model))
+        return 0;
+    /* housing motion: its loads vary in time (the flight's forcing is harmonic, probed ahead of now) */
+    if (s->sys->base_load[0])
         return 0;
     for (k = 0; k < s->sys->n_amb_axes; k++)
         if (s->sys->amb_axes[k].saturation || s->sys->amb_axes[k].slew_rate > 0.0)

@@ -72,6 +72,7 @@ typedef struct td_sim_monitor {
     double energy_prev[5]; /* its powers at the last point: external, drive, damping, contact, drag */
     double *energy_f;      /* n: the external forces at a point */
     int energy_started;    /* the initial energy is set */
+    double housing_prev;   /* the housing motion's power at the last point (energy.c) */
 
     /* statistics (monitor.c) */
     td_sim_stats stats; /* event totals, drift, forces, times (counters filled on demand) */

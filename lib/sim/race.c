@@ -128,6 +128,24 @@ void td_sim_races_gravity(const td_sim *s, double *f, double sign)
     }
 }
 
+void td_sim_races_housing(const td_sim *s, const td_housing_motion *hm, double *f, double sign)
+{
+    double zref = 0.0;
+    int k, have_ref = 0;
+    for (k = 0; k < s->dae.nr; k++) {
+        const td_sim_retainer *r = &s->contacts.ret[k];
+        double m = r->r.race.mass, dz;
+        if (r->rx < 0)
+            continue;
+        if (!have_ref)
+            zref = td_model_housing_reference(s->model), have_ref = 1;
+        /* the housing's acceleration at the race's axial position: a + alpha x (z - z_ref) e_z */
+        dz = td_model_node_position(s->model, r->r.node) - zref;
+        f[r->rx] -= sign * m * (hm->acceleration[0] + dz * hm->rate_change[1]);
+        f[r->ry] -= sign * m * (hm->acceleration[1] - dz * hm->rate_change[0]);
+    }
+}
+
 void td_sim_races_start(const td_sim *s, double *y)
 {
     double gx, gy;

@@ -81,8 +81,9 @@ void td_sim_apply_past_changes(td_sim *s)
 }
 
 /* Where the integrator must stop next: the next schedule change, the next point of a speed ramp
- * (the speed's slope jumps there, and with it the unbalance's alpha term), or the next sample of a
- * sampled controller (its held command jumps there); infinity if none. */
+ * (the speed's slope jumps there, and with it the unbalance's alpha term), the next sample of a
+ * sampled controller (its held command jumps there), or the next kink of the housing's motion;
+ * infinity if none. */
 double td_sim_next_stop(const td_sim *s)
 {
     double stop = INFINITY;
@@ -102,5 +103,8 @@ double td_sim_next_stop(const td_sim *s)
     }
     if (s->sampler)
         stop = fmin(stop, td_sim_sampler_next_time(s));
+    /* housing motion: its pulses' starts and ends and the history's ends (touchdown/housing.h) */
+    if (s->sys->base_load[0])
+        stop = fmin(stop, td_model_housing_next_kink(s->model, s->dae.t + due_tolerance(s->dae.t)));
     return stop;
 }

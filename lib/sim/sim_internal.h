@@ -192,6 +192,9 @@ td_status td_sim_races_matrices(td_sim *s, td_error *err);
 void td_sim_races_free(td_sim *s);
 /* f += sign * the races' weight (length n). */
 void td_sim_races_gravity(const td_sim *s, double *f, double sign);
+/* f += sign * the races' share of the housing motion's inertial loads (their mass times the
+ * housing's acceleration at their axial position), for the motion hm. */
+void td_sim_races_housing(const td_sim *s, const td_housing_motion *hm, double *f, double sign);
 /* The races' start state into y: centres resting on their mounts, speeds at bore_speed. */
 void td_sim_races_start(const td_sim *s, double *y);
 
@@ -215,6 +218,9 @@ void td_sim_mass_solve(const td_sim *s, double *b);
 /* f += sign * the external forces: gravity, unbalance and AMBs (what does work on the machine from
  * outside; applied_forces adds the contacts and the races' drag to them). */
 void td_sim_external_forces(const td_sim *s, double t, const double *y, double sign, double *f);
+/* f += sign * the housing motion's inertial loads alone (the part of td_sim_external_forces that
+ * the energy account books as housing_work); nothing without housing motion. */
+void td_sim_housing_forces(const td_sim *s, double t, const double *y, double sign, double *f);
 /* Generalised force f(t, q, v, w) of the header comment (everything but inertia and constraints). */
 void td_sim_forces(const td_sim *s, double t, const double *y, double *f);
 /* F(t, y, y'). */

@@ -226,6 +226,29 @@ void td_sim_external_forces(const td_sim *s, double t, const double *y, double s
         f[s->machine.spin] += sign * td_sim_spin_torque(s, t);
     for (k = 0; k < sys->n_amb_axes; k++)
         f[sys->amb_axes[k].actuator_dof] += sign * td_sim_amb_axis_force(s, k, y);
+    if (sys->base_load[0])
+        td_sim_housing_forces(s, t, y, sign, f);
+}
+
+/* f += sign * the housing motion's inertial loads (touchdown/housing.h, docs/theory.md "Base motion"):
+ * -M R a - M T alpha - Omega G T w on the rotor at the speed Omega it has now (also a varying one),
+ * the races' share beside it (race.c). */
+void td_sim_housing_forces(const td_sim *s, double t, const double *y, double sign, double *f)
+{
+    const td_system *sys = s->sys;
+    double w = td_sim_rotor_speed(s, y), c[6];
+    td_housing_motion hm;
+    int i;
+    if (!sys->base_load[0])
+        return;
+    td_model_housing_motion_at(s->model, t, &hm);
+    c[0] = -sign * hm.acceleration[0], c[1] = -sign * hm.acceleration[1];
+    c[2] = -sign * hm.rate_change[0], c[3] = -sign * hm.rate_change[1];
+    c[4] = -sign * w * hm.rate[0], c[5] = -sign * w * hm.rate[1];
+    for (i = 0; i < sys->ndof; i++)
+        f[i] += c[0] * sys->base_load[0][i] + c[1] * sys->base_load[1][i] + c[2] * sys->base_load[2][i] +
+                c[3] * sys->base_load[3][i] + c[4] * sys->base_gyro[0][i] + c[5] * sys->base_gyro[1][i];
+    td_sim_races_housing(s, &hm, f, sign);
 }
 
 static void applied_forces(const td_sim *s, double t, const double *y, double sign, double *f)
