@@ -166,6 +166,39 @@ static void test_near_miss_ida(void **state)
     near_miss(0, 5e-3 * c, 2e-5 * c);
 }
 
+/* The margin at an output time inside an integrator step counts the step only up to that time: at
+ * outputs every 20 us (IDA's steps are ~0.26 ms, so most outputs fall inside one, its end held beyond
+ * them), over the first revolution, while the largest radius so far still grows, the margin equals
+ * c - the largest radius sampled so far, to the samples' spacing (the radius between two samples
+ * 20 us apart exceeds the larger end by r w^2 h^2 / 8 ~ 3e-11 m) and the Hermite's error (6e-11 m).
+ * A step counted whole would run ahead of the samples by up to 2e-7 m on the orbit's rising flanks. */
+static void test_margin_up_to_output(void **state)
+{
+    double major = orbit_major(), c = WIDE * major, r_max = 0.0, worst = 0.0;
+    td_model *m = jeffcott(c, 0.0, 0.0, 0.0);
+    td_sim_options o;
+    td_sim *sim = NULL;
+    long k;
+    (void)state;
+    td_sim_options_default(&o);
+    o.start = TD_START_ORBIT;
+    o.solver.free_flight = 0;
+    assert_int_equal(td_sim_create(m, &o, &sim, NULL), TD_OK);
+    for (k = 1; k <= 1300; k++) {
+        td_retainer_state st;
+        td_retainer_totals tot;
+        assert_int_equal(td_sim_step(sim, 2e-5 * (double)k, NULL, NULL), TD_OK);
+        assert_int_equal(td_sim_retainer_state(sim, 0, &st), TD_OK);
+        assert_int_equal(td_sim_retainer_totals(sim, 0, &tot), TD_OK);
+        r_max = fmax(r_max, st.radius);
+        worst = fmax(worst, fabs(tot.min_clearance_margin - (c - r_max)));
+    }
+    print_message("margin at the outputs against c - the largest radius sampled so far: worst %.3e m\n", worst);
+    assert_true(worst < 2e-10);
+    td_sim_free(&sim);
+    td_model_free(&m);
+}
+
 /* The orbit outside the clearance: it touches at once and rubs to the end (a drop); the rigid
  * constraint holds the node on the clearance (margin 0 to its drift), a compliant contact lets it in
  * (a negative margin: its penetration, about the orbit's overshoot force over the stiffness). */
@@ -236,8 +269,9 @@ static void test_failed_run(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_near_miss_flight), cmocka_unit_test(test_near_miss_ida), cmocka_unit_test(test_drop),
-        cmocka_unit_test(test_touch_and_rub),    cmocka_unit_test(test_failed_run),
+        cmocka_unit_test(test_near_miss_flight),    cmocka_unit_test(test_near_miss_ida),
+        cmocka_unit_test(test_margin_up_to_output), cmocka_unit_test(test_drop),
+        cmocka_unit_test(test_touch_and_rub),       cmocka_unit_test(test_failed_run),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

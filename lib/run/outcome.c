@@ -72,7 +72,9 @@ void td_run_outcome_format(td_text *b, const td_run_summary *s)
     else
         td_text_printf(b, "clearance margin            %.6g m, retainer %d (smallest clearance - radius%s)",
                        s->min_clearance_margin, s->min_clearance_retainer,
-                       s->min_clearance_margin < 0.0 ? ": a compliant contact's penetration" : "");
+                       s->min_clearance_margin < 0.0 ? "; below 0: past the clearance, a compliant contact's "
+                                                       "penetration or the rigid constraint's drift"
+                                                     : "");
     td_text_printf(b, "; contact %s", contact_word(s->contact_happened));
     if (td_shock_outcome_name((td_shock_outcome)s->shock_outcome))
         td_text_printf(b, "; outcome %s\n", td_shock_outcome_name((td_shock_outcome)s->shock_outcome));
