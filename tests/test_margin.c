@@ -25,12 +25,13 @@
 
 /* The rotor; clearance c at the disc's retainer; a second unbalance entry (index 1, zero) that the
  * schedule may raise for `pulse` s from t_pulse (0: none). */
-static td_model *jeffcott(double c, double t_pulse, double pulse, double u_pulse)
+/* The rotor with friction coefficient mu at its retainer, no schedule. */
+static td_model *jeffcott_mu(double c, double mu)
 {
     td_model *m = NULL;
     td_shaft_element el = {0.5, 0.05, 0.0, {2.11e11, 8.1e10, 1.0}};
     td_bearing b0 = {0, 1.0e6, 2.0e6, 2000.0, 2000.0}, b2 = {2, 1.0e6, 2.0e6, 2000.0, 2000.0};
-    td_retainer r = {.node = 1, .clearance = c, .shaft_radius = 0.025, .bore_radius = 0.025 + c, .friction = 0.1};
+    td_retainer r = {.node = 1, .clearance = c, .shaft_radius = 0.025, .bore_radius = 0.025 + c, .friction = mu};
     td_unbalance u = {1, UNBALANCE, PHASE}, u2 = {1, 0.0, PHASE};
     assert_int_equal(td_model_create(&m, NULL), TD_OK);
     assert_int_equal(td_model_add_shaft_element(m, &el, NULL), TD_OK);
@@ -42,6 +43,12 @@ static td_model *jeffcott(double c, double t_pulse, double pulse, double u_pulse
     assert_int_equal(td_model_add_unbalance(m, &u, NULL), TD_OK);
     assert_int_equal(td_model_add_unbalance(m, &u2, NULL), TD_OK);
     assert_int_equal(td_model_set_speed(m, SPEED, NULL), TD_OK);
+    return m;
+}
+
+static td_model *jeffcott(double c, double t_pulse, double pulse, double u_pulse)
+{
+    td_model *m = jeffcott_mu(c, 0.1);
     if (pulse > 0.0) {
         td_change on = {t_pulse, TD_CHANGE_UNBALANCE, 1, u_pulse, PHASE};
         td_change off = {t_pulse + pulse, TD_CHANGE_UNBALANCE, 1, 0.0, PHASE};
@@ -248,6 +255,29 @@ static void test_touch_and_rub(void **state)
     assert_int_equal(s.shock_outcome, TD_SHOCK_RUB);
 }
 
+/* A long shock pulse presses the rotor onto its retainer for several revolutions; without friction it
+ * hardly whirls there (less than TD_TOUCH_AND_GO_ANGLE), but a contact longer than a revolution is
+ * sustained: a rub, not a touch. Then it lifts off and ends free. */
+static void test_pinned_is_rub(void **state)
+{
+    double major = orbit_major(), c = 2.0 * major, revolution = 2.0 * TD_PI / SPEED;
+    td_model *m = jeffcott_mu(c, 0.0);
+    td_housing_pulse push = {TD_PULSE_HALF_SINE, 20.0, 0.1, 0.05, {0.0, -1.0}};
+    td_run_summary s;
+    (void)state;
+    assert_int_equal(td_model_add_housing_shock(m, &push, NULL), TD_OK);
+    run(m, 0, TD_START_ORBIT, 0, 0.5, 1000.0, &s);
+    print_message(
+        "pinned: longest contact %.4g s (a revolution %.4g s), sustained %ld, touch-and-go %ld, free at end %d: "
+        "%s\n",
+        s.retainers[0].totals.longest_contact, revolution, s.retainers[0].totals.contacts,
+        s.retainers[0].totals.touch_and_go, s.free_at_end, td_shock_outcome_name((td_shock_outcome)s.shock_outcome));
+    assert_true(s.retainers[0].totals.longest_contact > revolution);
+    assert_int_equal(s.retainers[0].totals.contacts, 0); /* by the whirl angle alone, a touch-and-go */
+    assert_int_equal(s.free_at_end, 1);
+    assert_int_equal(s.shock_outcome, TD_SHOCK_RUB);
+}
+
 /* A run that does not reach its end has no margin and no outcome: null in JSON; it touched only if it
  * had a contact before it stopped, else that is undetermined. */
 static void test_failed_run(void **state)
@@ -271,7 +301,8 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_near_miss_flight),    cmocka_unit_test(test_near_miss_ida),
         cmocka_unit_test(test_margin_up_to_output), cmocka_unit_test(test_drop),
-        cmocka_unit_test(test_touch_and_rub),       cmocka_unit_test(test_failed_run),
+        cmocka_unit_test(test_touch_and_rub),       cmocka_unit_test(test_pinned_is_rub),
+        cmocka_unit_test(test_failed_run),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -80,8 +80,10 @@ typedef enum td_regime {
 
 /**
  * What a run's contacts came to (docs/output-format.md, "Clearance margin and shock outcome"): NONE no
- * contact; TOUCH contact, every one a touch-and-go (it left within TD_TOUCH_AND_GO_ANGLE of whirl), and
- * free at the end; RUB a sustained contact, and free at the end; DROP in contact at the end (a contact
+ * contact; TOUCH contact, every one brief (it left within TD_TOUCH_AND_GO_ANGLE of whirl and within one
+ * revolution, 2 pi / |speed|), and free at the end; RUB a sustained contact (one that whirled
+ * TD_TOUCH_AND_GO_ANGLE or more, or lasted longer than a revolution), and free at the end; DROP in
+ * contact at the end (a contact
  * within the last TD_RUN_FREE_REVOLUTIONS revolutions: td_run_summary.free_at_end 0, or, where that is
  * undetermined, a retainer in contact at the end); UNDEFINED the run did not reach its end.
  */

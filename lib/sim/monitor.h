@@ -43,6 +43,7 @@ typedef struct td_sim_totals {
     td_sim_margin_sample m_from; /* the held segment's start (m_held) */
     td_sim_margin_sample m_to;   /* and its end, beyond s->dae.t until the run reaches it */
     int m_held;
+    double onset_t; /* s, when the open (or the last) contact interval began (longest_contact) */
 } td_sim_totals;
 
 /* heat: retainer k's drag power and thermal network at the points of the totals (thermal.c) */
