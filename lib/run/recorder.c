@@ -266,7 +266,9 @@ static td_status read_state(td_recorder *r, const td_sim *sim, td_error *err)
  * absolute displacement, the relative one plus the housing's rigid motion at the node's z: its
  * displacement, and its rotation about the reference point z_ref, which by a about x moves y by
  * -(z - z_ref) a and by a about y moves x by +(z - z_ref) a (touchdown/dofs.h: theta = -dy/dz,
- * phi = +dx/dz). A compliant housing's own displacement at the node would be added here.
+ * phi = +dx/dz). A compliant housing (a body on mounts) adds its own rigid motion here the same
+ * way: its centre's x_b, y_b and its tilts theta_b, phi_b about its centre z_b, x + x_b + (z - z_b) phi_b,
+ * y + y_b - (z - z_b) theta_b (and sets housing_fields for a model with a body and no base motion).
  */
 static td_status housing_sample(td_recorder *r, const td_sim *sim, double t, td_error *err)
 {
