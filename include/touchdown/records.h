@@ -118,9 +118,6 @@ typedef struct td_retainer_totals {
                                       compliant contact's penetration. Between the integrator's points the largest
                                       r of the cubic Hermite through r and dr/dt at both ends; in closed-form free
                                       flight the flight's own solution, searched to TD_MARGIN_RTOL of the clearance */
-    double longest_contact;      /**< s: the longest contact interval (the one still open up to now), onset to release:
-                                      a contact longer than a revolution is sustained however little it whirls
-                                      (td_shock_outcome) */
 } td_retainer_totals;
 
 /**

@@ -80,11 +80,11 @@ typedef enum td_regime {
 
 /**
  * What a run's contacts came to (docs/output-format.md, "Clearance margin and shock outcome"): NONE no
- * contact; TOUCH contact, every one brief (it left within TD_TOUCH_AND_GO_ANGLE of whirl and within one
- * revolution, 2 pi / |speed|), and free at the end; RUB a sustained contact (one that whirled
- * TD_TOUCH_AND_GO_ANGLE or more, or lasted longer than a revolution), and free at the end; DROP in
- * contact at the end (a contact
- * within the last TD_RUN_FREE_REVOLUTIONS revolutions: td_run_summary.free_at_end 0, or, where that is
+ * contact; TOUCH contact, brief: every contact left within TD_TOUCH_AND_GO_ANGLE of whirl, and each
+ * retainer was in contact for less than a revolution (2 pi / |speed|) in all; and free at the end; RUB
+ * sustained contact (a contact that whirled TD_TOUCH_AND_GO_ANGLE or more, or a retainer in contact
+ * longer than a revolution in all), and free at the end; DROP in contact at the end (a contact within
+ * the last TD_RUN_FREE_REVOLUTIONS revolutions: td_run_summary.free_at_end 0, or, where that is
  * undetermined, a retainer in contact at the end); UNDEFINED the run did not reach its end.
  */
 typedef enum td_shock_outcome {

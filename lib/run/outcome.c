@@ -33,7 +33,7 @@ void td_run_outcome_undefine(td_run_summary *s)
 {
     int k;
     for (k = 0; k < TD_RUN_SUMMARY_RETAINERS; k++)
-        s->retainers[k].totals.min_clearance_margin = s->retainers[k].totals.longest_contact = TD_UNDEFINED;
+        s->retainers[k].totals.min_clearance_margin = TD_UNDEFINED;
     s->min_clearance_margin = TD_UNDEFINED;
     s->min_clearance_retainer = -1;
     s->contact_happened = s->contacts > 0 ? 1 : -1; /* it may have touched after the time reached */
@@ -53,9 +53,9 @@ void td_run_outcome_collect(td_run_summary *s, const td_sim *sim, int in_contact
         }
         /* a contact from the start has no onset, but its time */
         touched = touched || t.contacts + t.touch_and_go > 0 || t.contact_time > 0.0;
-        /* sustained: it whirled TD_TOUCH_AND_GO_ANGLE, or it lasted longer than a revolution (a rotor pinned to
-           its retainer by a long pulse hardly whirls) */
-        sustained = sustained || t.contacts > 0 || t.longest_contact > revolution;
+        /* sustained: a contact that whirled TD_TOUCH_AND_GO_ANGLE, or contact longer than a revolution in all
+           (a rotor pressed onto its retainer by a long pulse hardly whirls, and may chatter there) */
+        sustained = sustained || t.contacts > 0 || t.contact_time > revolution;
     }
     s->contact_happened = touched;
     drop = s->free_at_end == 0 || (s->free_at_end < 0 && in_contact);

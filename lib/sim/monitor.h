@@ -43,7 +43,6 @@ typedef struct td_sim_totals {
     td_sim_margin_sample m_from; /* the held segment's start (m_held) */
     td_sim_margin_sample m_to;   /* and its end, beyond s->dae.t until the run reaches it */
     int m_held;
-    double onset_t; /* s, when the open (or the last) contact interval began (longest_contact) */
     /* the closed-form flight's point (flight.c): r^2 and the bound on |(r^2)''| from it, at the start of
      * its step and (b) at the end of the part searched */
     double flight_r2, flight_b2, flight_r2b, flight_b2b;

@@ -62,19 +62,15 @@ static void interval_ends(td_sim *s, int k)
         tk->t.touch_and_go++;
 }
 
-/* Open and close contact intervals as retainer k's mode says at this point (time t; the modes change
- * at restarts only, so an interval opens and closes at an event's time, never at a held point). */
-static void track_interval(td_sim *s, int k, double t)
+/* Open and close contact intervals as retainer k's mode says at this point. */
+static void track_interval(td_sim *s, int k)
 {
     td_sim_totals *tk = &s->monitor.totals[k];
     int in = s->contacts.ret[k].mode != TD_RMODE_FREE;
-    if (in && !tk->in_contact) {
+    if (in && !tk->in_contact)
         tk->whirl_at_onset = tk->t.whirl_angle;
-        tk->onset_t = t; /* clearance margin: the interval's duration */
-    } else if (!in && tk->in_contact) {
+    else if (!in && tk->in_contact)
         interval_ends(s, k);
-        tk->t.longest_contact = fmax(tk->t.longest_contact, t - tk->onset_t);
-    }
     tk->in_contact = in;
 }
 
@@ -149,7 +145,7 @@ void td_sim_totals_point(td_sim *s, double t, int restart)
         tk->prev.power = now.power;
         tk->prev.whirl_rate = now.whirl_rate;
         if (restart || dt > 0.0)
-            track_interval(s, k, t);
+            track_interval(s, k);
         { /* life: the race's revolutions under load (load_cycles.c) */
             double rate = td_sim_life_rate(s, k, y);
             if (dt > 0.0)
@@ -237,12 +233,10 @@ void td_sim_totals_get(const td_sim *s, int k, td_retainer_totals *out)
     back_to_now(s, k, out);
     /* heat */
     td_sim_thermal_back(s, k, out, NULL);
-    if (tk->in_contact) { /* the interval still open counts as a contact, its duration up to now */
+    if (tk->in_contact) /* the interval still open counts as a contact */
         out->contacts++;
-        out->longest_contact = fmax(out->longest_contact, s->dae.t - tk->onset_t);
-    }
     duty_get(s, k, out);
-    td_sim_life_get(s, k, out);                          /* life: the rainflow cycles added, the end's included */
+    td_sim_life_get(s, k, out); /* life: the rainflow cycles added, the end's included */
     out->min_clearance_margin = td_sim_margin_get(s, k); /* clearance margin */
 }
 
