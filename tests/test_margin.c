@@ -267,11 +267,11 @@ static void test_pinned_is_rub(void **state)
     (void)state;
     assert_int_equal(td_model_add_housing_shock(m, &push, NULL), TD_OK);
     run(m, 0, TD_START_ORBIT, 0, 0.5, 1000.0, &s);
-    print_message(
-        "pinned: in contact %.4g s (a revolution %.4g s), sustained %ld, touch-and-go %ld, free at end %d: "
-        "%s\n",
-        s.retainers[0].totals.contact_time, revolution, s.retainers[0].totals.contacts,
-        s.retainers[0].totals.touch_and_go, s.free_at_end, td_shock_outcome_name((td_shock_outcome)s.shock_outcome));
+    print_message("pinned: in contact %.4g s (a revolution %.4g s), sustained %ld, touch-and-go %ld, free at end %d: "
+                  "%s\n",
+                  s.retainers[0].totals.contact_time, revolution, s.retainers[0].totals.contacts,
+                  s.retainers[0].totals.touch_and_go, s.free_at_end,
+                  td_shock_outcome_name((td_shock_outcome)s.shock_outcome));
     assert_true(s.retainers[0].totals.contact_time > revolution);
     assert_int_equal(s.retainers[0].totals.contacts, 0); /* by the whirl angle alone, a touch-and-go */
     assert_int_equal(s.free_at_end, 1);

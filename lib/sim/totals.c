@@ -237,7 +237,8 @@ void td_sim_totals_get(const td_sim *s, int k, td_retainer_totals *out)
         out->contacts++;
     duty_get(s, k, out);
     td_sim_life_get(s, k, out); /* life: the rainflow cycles added, the end's included */
-    out->min_clearance_margin = td_sim_margin_get(s, k); /* clearance margin */
+    /* clearance margin */
+    out->min_clearance_margin = td_sim_margin_get(s, k);
 }
 
 void td_sim_sensor_peak_get(const td_sim *s, int amb, double *out)
