@@ -647,8 +647,8 @@ static void test_sweep_file(void **state)
     td_result_array_free(&a);
     /* the numeric columns in name order: not /point, not the text columns, not /section_radius */
     assert_int_equal(td_result_columns(r, TD_OUT_ROOT, NULL, 3, &cols, &ncols, &err), TD_OK);
-    assert_int_equal(ncols, 16); /* the sixteen number columns of docs/output-format.md, "Sweep table" */
-    assert_string_equal(cols[0], "contact_time");
+    assert_int_equal(ncols, 18); /* the eighteen number columns of docs/output-format.md, "Sweep table" */
+    assert_string_equal(cols[0], "contact_happened");
     for (i = 1; i < ncols; i++)
         assert_true(strcmp(cols[i - 1], cols[i]) < 0);
     td_result_strings_free(cols, ncols);

@@ -58,6 +58,9 @@ typedef struct td_output_layout {
     /* heat */
     int thermal_fields; /**< nonzero: also each retainer's race and housing temperature rise (models where some
                          *   retainer has a thermal network; NaN for the others). Last, as switch_fields */
+    /* housing motion */
+    int housing_fields; /**< nonzero: also the housing's motion (/housing, (N, 2) each) and the nodes' absolute
+                         *   displacement, given by td_writer_housing (models with housing motion). Last */
 } td_output_layout;
 
 /**
@@ -79,6 +82,18 @@ TD_API td_status td_writer_open(td_writer_kind kind, const char *path, const td_
  */
 TD_API td_status td_writer_sample(td_writer *w, double t, double speed, const double *node_xy,
                                   const td_retainer_state *ret, const double *amb_f, td_error *err);
+
+/** The number of values of a housing motion sample (td_writer_housing). */
+#define TD_WRITER_HOUSING_VALUES 10
+
+/**
+ * housing motion: the housing's part of the next td_writer_sample of a writer whose layout has
+ * housing_fields. `motion`: TD_WRITER_HOUSING_VALUES values, the housing's acceleration x, y (m/s^2),
+ * velocity x, y (m/s), displacement x, y (m), rotation rate about x, y (rad/s) and rotation angle about
+ * x, y (rad); `node_abs_xy`: 2 node_count values, the nodes' absolute displacement x0, y0, ... (m; may be
+ * NULL when node_count is 0). Copied; a sample without it holds NaN there.
+ */
+TD_API td_status td_writer_housing(td_writer *w, const double *motion, const double *node_abs_xy, td_error *err);
 
 /**
  * Append one event. `sample` is the row (from 0) of the sample that shows the state right after

@@ -112,6 +112,12 @@ typedef struct td_retainer_totals {
                              under load; TD_UNDEFINED without the bearing's dynamic rating */
     double load_cycles; /**< the contact load's rainflow cycles counted (a half cycle 0.5), those of the end
                              included; TD_UNDEFINED without the bearing's dynamic rating (the gate's scale) */
+    /* clearance margin (docs/output-format.md, "Clearance margin") */
+    double min_clearance_margin; /**< m: the smallest clearance - r over the run, r the node's radius from the race
+                                      centre (the housing's bore, or the race's moving centre on a mount); < 0: a
+                                      compliant contact's penetration. Between the integrator's points the largest
+                                      r of the cubic Hermite through r and dr/dt at both ends; in closed-form free
+                                      flight the flight's own solution, searched to TD_MARGIN_RTOL of the clearance */
 } td_retainer_totals;
 
 /**
@@ -136,6 +142,10 @@ typedef struct td_energy {
 
 /** A contact that sweeps less whirl angle than this (rad) before it ends is a touch-and-go impact. */
 #define TD_TOUCH_AND_GO_ANGLE 1.0
+
+/** clearance margin: the closed-form flight finds a retainer's smallest margin to this fraction of its
+ *  clearance (td_retainer_totals.min_clearance_margin) */
+#define TD_MARGIN_RTOL 1e-4
 
 /** Running totals across every restart of the integrator. */
 typedef struct td_sim_stats {

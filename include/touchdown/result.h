@@ -365,7 +365,23 @@ typedef enum td_out_id {
     TD_OUT_RC_VERDICT,
     /* housing motion */
     TD_OUT_SUM_ENERGY_HOUSING_WORK, /**< only with the energy account of a model with housing motion */
-    TD_OUT_ID_COUNT                 /**< number of ids; also "several objects" as the parent of an attribute */
+    /* clearance margin (docs/output-format.md, "Clearance margin and shock outcome") */
+    TD_OUT_RETAINER_MIN_CLEARANCE_MARGIN, /**< root attribute (n_ret), m */
+    TD_OUT_SUM_MIN_CLEARANCE_MARGIN,      /**< root attribute, m: the smallest over the retainers */
+    TD_OUT_SUM_CONTACT_HAPPENED,          /**< root attribute: 1, 0, NaN (undetermined) */
+    TD_OUT_SUM_SHOCK_OUTCOME,             /**< root attribute: none, touch, rub, drop ("" for a failed run) */
+    TD_OUT_SWEEP_MIN_CLEARANCE_MARGIN,    /**< sweep column, m */
+    TD_OUT_SWEEP_CONTACT_HAPPENED,        /**< sweep column: 1, 0, NaN */
+    TD_OUT_SWEEP_SHOCK_OUTCOME,           /**< sweep column: text */
+    /* housing motion (the series of a model with housing motion) */
+    TD_OUT_HOUSING,                    /**< group /housing */
+    TD_OUT_HOUSING_ACCELERATION,       /**< (N, 2) m/s^2 */
+    TD_OUT_HOUSING_VELOCITY,           /**< (N, 2) m/s */
+    TD_OUT_HOUSING_DISPLACEMENT,       /**< (N, 2) m */
+    TD_OUT_HOUSING_ROTATION_RATE,      /**< (N, 2) rad/s, about x and y */
+    TD_OUT_HOUSING_ROTATION_ANGLE,     /**< (N, 2) rad */
+    TD_OUT_NODE_ABSOLUTE_DISPLACEMENT, /**< /nodes/absolute_displacement (N, n_nodes, 2) m */
+    TD_OUT_ID_COUNT                    /**< number of ids; also "several objects" as the parent of an attribute */
 } td_out_id;
 
 /** What a name is in the file. */

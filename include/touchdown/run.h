@@ -78,6 +78,23 @@ typedef enum td_regime {
 /** Number of td_regime values. */
 #define TD_REGIME_COUNT 5
 
+/**
+ * What a run's contacts came to (docs/output-format.md, "Clearance margin and shock outcome"): NONE no
+ * contact; TOUCH contact, brief: every contact left within TD_TOUCH_AND_GO_ANGLE of whirl, and each
+ * retainer was in contact for less than a revolution (2 pi / |speed|) in all; and free at the end; RUB
+ * sustained contact (a contact that whirled TD_TOUCH_AND_GO_ANGLE or more, or a retainer in contact
+ * longer than a revolution in all), and free at the end; DROP in contact at the end (a contact within
+ * the last TD_RUN_FREE_REVOLUTIONS revolutions: td_run_summary.free_at_end 0, or, where that is
+ * undetermined, a retainer in contact at the end); UNDEFINED the run did not reach its end.
+ */
+typedef enum td_shock_outcome {
+    TD_SHOCK_UNDEFINED = -1,
+    TD_SHOCK_NONE = 0,
+    TD_SHOCK_TOUCH = 1,
+    TD_SHOCK_RUB = 2,
+    TD_SHOCK_DROP = 3
+} td_shock_outcome;
+
 /** Retainers whose totals td_run_summary carries itself (the output files carry every retainer's). */
 #define TD_RUN_SUMMARY_RETAINERS 8
 /** AMBs whose sensors the summary grades (ISO 14839-2 zones): the first this many. */
@@ -224,6 +241,13 @@ typedef struct td_run_summary {
     /* housing motion */
     int housing_motion; /**< 1: the model has a prescribed housing motion (touchdown/housing.h): with the energy
                              account, its housing_work is in the text, JSON and files */
+    /* clearance margin (docs/output-format.md, "Clearance margin and shock outcome") */
+    double min_clearance_margin; /**< m: the smallest td_retainer_totals.min_clearance_margin over the retainers
+                                      (TD_UNDEFINED without a retainer, and for a run that did not reach its end) */
+    int min_clearance_retainer;  /**< its retainer (-1: none) */
+    int contact_happened;        /**< 1: the rotor touched a retainer (a contact onset, or in contact from the
+                                      start); 0: it did not; -1: undetermined (the run failed before any contact) */
+    int shock_outcome;           /**< td_shock_outcome */
 } td_run_summary;
 
 /**
@@ -272,6 +296,8 @@ TD_API void td_run_summary_ending(td_run_summary *s, const td_retainer_totals *b
 TD_API td_regime td_run_summary_regime(const td_run_summary *s);
 /** "free", "rub", "bounce", "backward whirl", "failed" (anything else). */
 TD_API const char *td_regime_name(td_regime r);
+/** "none", "touch", "rub", "drop"; NULL for TD_SHOCK_UNDEFINED (anything else): no value. */
+TD_API const char *td_shock_outcome_name(td_shock_outcome o);
 /** Whether a rotor that started at speed0 and turns at speed (rad/s) is at rest: below 1 % of
  *  speed0 or below 1 rad/s. The summary's ending "at rest" uses it; a report judges the totals of a
  *  run (damage, heat) as those of a whole drop only when the run ended at rest. */

@@ -157,6 +157,10 @@ typedef struct td_sweep_row {
     /* life (td_run_summary.life_kept; docs/theory.md, "Touchdown bearing life") */
     int life_kept;           /**< 1: the point's bearings have a dynamic rating: the table has drops_to_failure */
     double drops_to_failure; /**< the fewest over the retainers (the first bearing to fail); TD_UNDEFINED: none */
+    /* clearance margin (td_run_summary.min_clearance_margin, contact_happened, shock_outcome) */
+    double min_clearance_margin; /**< m (TD_UNDEFINED: a failed point) */
+    int contact_happened;        /**< 1, 0, -1: undetermined */
+    char shock_outcome[8];       /**< td_shock_outcome_name: "none", "touch", "rub", "drop"; "" for a failed point */
 } td_sweep_row;
 
 /** The row of a point whose run ended with summary `s` (state DONE if s->status is TD_OK, else

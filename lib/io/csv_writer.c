@@ -41,6 +41,24 @@ static const char *exact_text(double v, char *buf, size_t n)
 
 /* ---- headers ----------------------------------------------------------------------------- */
 
+static int column(FILE *f, int first, td_out_id id, const char *comp, int i);
+
+/* housing motion: the housing's five x-y pairs, then the nodes' absolute displacement, last. */
+static int housing_header(FILE *f, const td_writer *w)
+{
+    static const td_out_id ids[] = {TD_OUT_HOUSING_ACCELERATION, TD_OUT_HOUSING_VELOCITY, TD_OUT_HOUSING_DISPLACEMENT,
+                                    TD_OUT_HOUSING_ROTATION_RATE, TD_OUT_HOUSING_ROTATION_ANGLE};
+    const char *const *xy = td_schema_components();
+    int i, k, rc = 0;
+    for (i = 0; i < (int)(sizeof ids / sizeof ids[0]); i++)
+        for (k = 0; k < 2; k++)
+            rc |= column(f, 0, ids[i], xy[k], 0);
+    for (i = 0; i < w->node_count; i++)
+        for (k = 0; k < 2; k++)
+            rc |= column(f, 0, TD_OUT_NODE_ABSOLUTE_DISPLACEMENT, xy[k], w->nodes[i]);
+    return rc;
+}
+
 /* One column title: ",NAME [UNITS]" (no comma first, no brackets without a unit), NAME the schema's
  * CSV column of `id` filled with the component `comp` and/or the index `i`. */
 static int column(FILE *f, int first, td_out_id id, const char *comp, int i)
@@ -91,6 +109,8 @@ static int write_sample_header(FILE *f, const td_writer *w)
     for (i = 0; i < w->amb_count; i++)
         for (k = 0; k < 2; k++)
             rc |= column(f, 0, TD_OUT_AMB_FORCE, xy[k], i);
+    if (w->housing_fields)
+        rc |= housing_header(f, w);
     rc |= fputc('\n', f) == EOF;
     return rc;
 }
@@ -163,6 +183,10 @@ static td_status csv_sample(td_writer *w, double t, double speed, const double *
     }
     for (i = 0; i < 2 * w->amb_count; i++)
         rc |= fprintf(f, ",%.17g", amb_f[i]) < 0;
+    for (i = 0; w->housing_fields && i < TD_WRITER_HOUSING_VALUES; i++) /* housing motion */
+        rc |= fprintf(f, ",%.17g", w->housing[i]) < 0;
+    for (i = 0; w->housing_fields && i < 2 * w->node_count; i++)
+        rc |= fprintf(f, ",%.17g", w->node_abs_xy[i]) < 0;
     rc |= fputc('\n', f) == EOF;
     return rc ? td_io_fail(err, w->tmp_path, "cannot write a sample") : TD_OK;
 }

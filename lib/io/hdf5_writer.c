@@ -29,7 +29,7 @@
 #include <unistd.h>
 
 /* Largest number of sample datasets: time, speed, displacement, 13 retainer fields, AMB force (17), with room. */
-#define H5_MAX_SERIES 24
+#define H5_MAX_SERIES 32
 /* Chunk of the sample datasets: at most this many rows and about this many bytes. */
 #define H5_CHUNK_ROWS 1024
 #define H5_CHUNK_BYTES (512 * 1024)
@@ -72,6 +72,8 @@ typedef struct h5_impl {
     int series_count;
     int idx_time, idx_speed, idx_disp, idx_ret, idx_whirl, idx_amb; /* first series of each part, -1 if absent */
     int idx_thermal; /* heat: the race temperature's series (the housing's next), -1 if absent */
+    int idx_housing; /* housing motion: /housing/acceleration, the other four next, -1 if absent */
+    int idx_abs;     /* housing motion: /nodes/absolute_displacement, -1 if absent */
     size_t chunk_rows, buffered;
     hsize_t flushed;
     hsize_t event_rows;      /* events in the file */
@@ -259,6 +261,48 @@ static hid_t make_group(hid_t file, td_out_id id, int count)
     return g;
 }
 
+/* housing motion: /nodes/absolute_displacement beside /nodes/displacement, with its axes. */
+static td_status create_absolute(td_writer *w, h5_impl *h, hid_t g, const hsize_t *row, td_error *err)
+{
+    td_status st;
+    h->idx_abs = h->series_count;
+    st = add_series(w, h, g, TD_OUT_NODE_ABSOLUTE_DISPLACEMENT, 3, row, 0, err);
+    if (st == TD_OK && (td_h5_attr_numeric(h->series[h->idx_abs].dset, td_out_name(TD_OUT_NODES_ATTR), H5T_STD_I32LE,
+                                           H5T_NATIVE_INT, w->nodes, w->node_count, 1) < 0 ||
+                        td_h5_attr_string(h->series[h->idx_abs].dset, td_out_name(TD_OUT_COMPONENTS),
+                                          td_schema_components_list()) < 0))
+        st = h5_fail(err, w, "cannot write the node attributes");
+    if (st == TD_OK) {
+        hid_t node = H5Dopen2(g, td_out_name(TD_OUT_NODE), H5P_DEFAULT);
+        st = attach_own_axis(w, h, h->idx_abs, node, 1, err);
+    }
+    return st == TD_OK ? attach_axis(w, h, h->idx_abs, h->component, 2, err) : st;
+}
+
+/* housing motion: the group /housing, its five (N, 2) series over /component. */
+static td_status create_housing(td_writer *w, h5_impl *h, td_error *err)
+{
+    static const td_out_id ids[] = {TD_OUT_HOUSING_ACCELERATION, TD_OUT_HOUSING_VELOCITY, TD_OUT_HOUSING_DISPLACEMENT,
+                                    TD_OUT_HOUSING_ROTATION_RATE, TD_OUT_HOUSING_ROTATION_ANGLE};
+    hid_t g = H5Gcreate2(h->file, td_out_name(TD_OUT_HOUSING), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
+    hsize_t row[1] = {2};
+    td_status st = TD_OK;
+    size_t i;
+    if (g < 0)
+        return h5_fail(err, w, "cannot create /housing");
+    h->idx_housing = h->series_count;
+    for (i = 0; st == TD_OK && i < sizeof ids / sizeof ids[0]; i++) {
+        st = add_series(w, h, g, ids[i], 2, row, 0, err);
+        if (st == TD_OK && td_h5_attr_string(h->series[h->series_count - 1].dset, td_out_name(TD_OUT_COMPONENTS),
+                                             td_schema_components_list()) < 0)
+            st = h5_fail(err, w, "cannot write the housing attributes");
+    }
+    if (st == TD_OK)
+        st = attach_axis(w, h, h->idx_housing, h->component, 1, err);
+    H5Gclose(g);
+    return st;
+}
+
 static td_status create_nodes(td_writer *w, h5_impl *h, td_error *err)
 {
     hid_t g = make_group(h->file, TD_OUT_NODES, w->node_count);
@@ -282,6 +326,8 @@ static td_status create_nodes(td_writer *w, h5_impl *h, td_error *err)
                 make_scale(g, TD_OUT_NODE, H5T_STD_I32LE, H5T_NATIVE_INT, w->nodes, (hsize_t)w->node_count), 1, err);
         if (st == TD_OK)
             st = attach_axis(w, h, h->idx_disp, h->component, 2, err);
+        if (st == TD_OK && w->housing_fields) /* housing motion */
+            st = create_absolute(w, h, g, row, err);
     }
     H5Gclose(g);
     return st;
@@ -465,10 +511,13 @@ static td_status open_impl(td_writer *w, h5_impl *h, td_error *err)
         if ((st = add_series(w, h, h->file, TD_OUT_SPEED, 1, NULL, 0, err)) != TD_OK)
             return st;
     }
-    if ((w->node_count > 0 || w->amb_count > 0) && (h->component = make_component_scale(h->file)) < 0)
+    if ((w->node_count > 0 || w->amb_count > 0 || w->housing_fields) &&
+        (h->component = make_component_scale(h->file)) < 0)
         return h5_fail(err, w, "cannot create /component");
     if ((st = create_nodes(w, h, err)) != TD_OK || (st = create_retainers(w, h, err)) != TD_OK ||
         (st = create_ambs(w, h, err)) != TD_OK || (st = create_events(w, h, err)) != TD_OK)
+        return st;
+    if (w->housing_fields && (st = create_housing(w, h, err)) != TD_OK) /* housing motion */
         return st;
     if (units_attr(h->file, TD_OUT_ROOT) < 0)
         return h5_fail(err, w, "cannot write the units attribute");
@@ -485,6 +534,7 @@ static td_status h5_open(td_writer *w, td_error *err)
         h->driver = -1;
     h->idx_time = h->idx_speed = h->idx_disp = h->idx_ret = h->idx_whirl = h->idx_amb = -1;
     h->idx_thermal = -1;
+    h->idx_housing = h->idx_abs = -1; /* housing motion */
     h->chunk_rows = choose_chunk_rows(w);
     w->impl = h;
     h->event_buf = malloc(H5_EVENT_CHUNK * sizeof *h->event_buf);
@@ -574,6 +624,11 @@ static void buffer_row(const td_writer *w, h5_impl *h, double t, double speed, c
     if (h->idx_amb >= 0)
         memcpy((double *)h->series[h->idx_amb].buf + r * 2 * (size_t)w->amb_count, amb_f,
                2 * (size_t)w->amb_count * sizeof(double));
+    for (f = 0; h->idx_housing >= 0 && f < TD_WRITER_HOUSING_VALUES / 2; f++) /* housing motion */
+        memcpy((double *)h->series[h->idx_housing + f].buf + r * 2, w->housing + 2 * f, 2 * sizeof(double));
+    if (h->idx_abs >= 0)
+        memcpy((double *)h->series[h->idx_abs].buf + r * 2 * (size_t)w->node_count, w->node_abs_xy,
+               2 * (size_t)w->node_count * sizeof(double));
     h->buffered++;
 }
 

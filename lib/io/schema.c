@@ -387,6 +387,24 @@ static const td_schema_entry entries[TD_OUT_ID_COUNT] = {
          "(n_ret)"),
     /* housing motion */
     RUN_ATTR(TD_OUT_SUM_ENERGY_HOUSING_WORK, "summary_energy_housing_work", F64, "J"),
+    /* clearance margin */
+    RET_ATTR(TD_OUT_RETAINER_MIN_CLEARANCE_MARGIN, "retainer_min_clearance_margin", F64, "m"),
+    RUN_ATTR(TD_OUT_SUM_MIN_CLEARANCE_MARGIN, "summary_min_clearance_margin", F64, "m"),
+    RUN_ATTR(TD_OUT_SUM_CONTACT_HAPPENED, "summary_contact_happened", F64, ""),
+    RUN_ATTR(TD_OUT_SUM_SHOCK_OUTCOME, "summary_shock_outcome", TEXT, ""),
+    COLUMN(TD_OUT_SWEEP_MIN_CLEARANCE_MARGIN, "min_clearance_margin", F64, "m"),
+    COLUMN(TD_OUT_SWEEP_CONTACT_HAPPENED, "contact_happened", F64, "-"),
+    COLUMN(TD_OUT_SWEEP_SHOCK_OUTCOME, "shock_outcome", TEXT, ""),
+    /* housing motion: the series of a model with housing motion (td_model_has_housing_motion) */
+    GROUP(TD_OUT_HOUSING, "housing", TD_OUT_ROOT, H5RUN),
+    SERIES(TD_OUT_HOUSING_ACCELERATION, "acceleration", TD_OUT_HOUSING, F64, "m/s^2", "(N, 2)", "a%s_housing", NULL),
+    SERIES(TD_OUT_HOUSING_VELOCITY, "velocity", TD_OUT_HOUSING, F64, "m/s", "(N, 2)", "v%s_housing", NULL),
+    SERIES(TD_OUT_HOUSING_DISPLACEMENT, "displacement", TD_OUT_HOUSING, F64, "m", "(N, 2)", "%s_housing", NULL),
+    SERIES(TD_OUT_HOUSING_ROTATION_RATE, "rotation_rate", TD_OUT_HOUSING, F64, "rad/s", "(N, 2)", "w%s_housing", NULL),
+    SERIES(TD_OUT_HOUSING_ROTATION_ANGLE, "rotation_angle", TD_OUT_HOUSING, F64, "rad", "(N, 2)", "rot%s_housing",
+           NULL),
+    SERIES(TD_OUT_NODE_ABSOLUTE_DISPLACEMENT, "absolute_displacement", TD_OUT_NODES, F64, "m", "(N, n_nodes, 2)",
+           "%s_abs_n%d", NULL),
 };
 
 /* The lateral components, each name written once here (td_schema_components). */

@@ -4,6 +4,7 @@
  */
 #include "io/schema.h"
 #include "io/writer_internal.h"
+#include "touchdown/dofs.h"
 #include "util/error_internal.h"
 
 #include <dirent.h>
@@ -297,6 +298,7 @@ static void writer_free(td_writer *w)
         attr_release(&w->attrs[i]);
     free(w->attrs);
     free(w->nodes);
+    free(w->node_abs_xy); /* housing motion */
     free(w->path);
     free(w->tmp_path);
     free(w->events_path);
@@ -357,6 +359,23 @@ static td_status remove_stale(const char *path, td_error *err)
     return TD_OK;
 }
 
+/* housing motion: the layout's flag and the next sample's values, NaN until td_writer_housing gives them. */
+static td_status housing_open(td_writer *w, const td_output_layout *layout)
+{
+    int i;
+    w->housing_fields = layout->housing_fields != 0;
+    for (i = 0; i < TD_WRITER_HOUSING_VALUES; i++)
+        w->housing[i] = TD_UNDEFINED;
+    if (!w->housing_fields)
+        return TD_OK;
+    w->node_abs_xy = malloc((size_t)(2 * layout->node_count + 1) * sizeof *w->node_abs_xy);
+    if (!w->node_abs_xy)
+        return TD_ERR_NOMEM;
+    for (i = 0; i < 2 * layout->node_count; i++)
+        w->node_abs_xy[i] = TD_UNDEFINED;
+    return TD_OK;
+}
+
 td_status td_writer_open(td_writer_kind kind, const char *path, const td_output_layout *layout, td_writer **out,
                          td_error *err)
 {
@@ -389,6 +408,10 @@ td_status td_writer_open(td_writer_kind kind, const char *path, const td_output_
     w->whirl_field = layout->whirl_field != 0;
     w->switch_fields = layout->switch_fields != 0;
     w->thermal_fields = layout->thermal_fields != 0; /* heat */
+    if ((st = housing_open(w, layout)) != TD_OK) {   /* housing motion */
+        writer_free(w);
+        return td_error_set(err, st, "out of memory opening %s", path);
+    }
     w->amb_count = layout->amb_count;
     w->compression = layout->compression;
     if (layout->node_count > 0) {
@@ -450,6 +473,21 @@ td_status td_writer_sample(td_writer *w, double t, double speed, const double *n
     if (st != TD_OK)
         return mark_failed(w, st, &local, err);
     w->samples++;
+    return TD_OK;
+}
+
+td_status td_writer_housing(td_writer *w, const double *motion, const double *node_abs_xy, td_error *err)
+{
+    td_status st = usable(w, "td_writer_housing", err);
+    if (st != TD_OK)
+        return st;
+    if (!w->housing_fields)
+        return td_error_set(err, TD_ERR_INVALID, "td_writer_housing: the layout has no housing fields");
+    if (!motion || (w->node_count > 0 && !node_abs_xy))
+        return td_error_set(err, TD_ERR_INVALID, "td_writer_housing: NULL array");
+    memcpy(w->housing, motion, sizeof w->housing);
+    if (w->node_count > 0)
+        memcpy(w->node_abs_xy, node_abs_xy, 2 * (size_t)w->node_count * sizeof *w->node_abs_xy);
     return TD_OK;
 }
 

@@ -59,6 +59,10 @@ struct td_writer {
 
     /* heat */
     int thermal_fields; /**< nonzero: the retainers' temperature rises too (td_output_layout) */
+    /* housing motion */
+    int housing_fields;                       /**< nonzero: /housing and the absolute displacement (td_output_layout) */
+    double housing[TD_WRITER_HOUSING_VALUES]; /**< the next sample's (td_writer_housing), NaN until given */
+    double *node_abs_xy;                      /**< 2 node_count: the next sample's absolute displacement */
 };
 
 /** Back-end operations. Each returns a status and fills err; finish and destroy release impl. */

@@ -28,6 +28,11 @@ struct td_recorder {
 
     /* heat */
     int thermal_fields; /* the writers' temperature columns (td_output_layout) */
+    /* housing motion */
+    int housing_fields;                       /* the writers' housing series (td_output_layout) */
+    double housing[TD_WRITER_HOUSING_VALUES]; /* the housing's motion at the sample (td_writer_housing) */
+    double *node_abs_xy;                      /* 2 node_count: the nodes' absolute displacement */
+    double *node_z;                           /* node_count: their axial positions, m */
 };
 
 static void recorder_free(td_recorder *r)
@@ -39,6 +44,8 @@ static void recorder_free(td_recorder *r)
     free(r->node_xy);
     free(r->ret);
     free(r->amb_f);
+    free(r->node_abs_xy); /* housing motion */
+    free(r->node_z);
     free(r);
 }
 
@@ -175,12 +182,29 @@ static td_status open_writers(td_recorder *r, const td_output_options *out, td_e
     layout.whirl_field = r->race_fields || r->speed_field;
     layout.switch_fields = r->switch_fields;
     layout.thermal_fields = r->thermal_fields;
+    layout.housing_fields = r->housing_fields; /* housing motion */
     layout.compression = out->compression;
     if (out->hdf5_path[0])
         st = td_writer_open(TD_WRITER_HDF5, out->hdf5_path, &layout, &r->writers[r->writer_count++], err);
     if (st == TD_OK && out->csv_path[0])
         st = td_writer_open(TD_WRITER_CSV, out->csv_path, &layout, &r->writers[r->writer_count++], err);
     return st;
+}
+
+/* housing motion: the buffers of the absolute displacement and the output nodes' axial positions. */
+static td_status housing_setup(td_recorder *r, const td_model *model, td_error *err)
+{
+    int i;
+    r->housing_fields = td_model_has_housing_motion(model);
+    if (!r->housing_fields)
+        return TD_OK;
+    r->node_abs_xy = malloc((size_t)(2 * r->node_count + 1) * sizeof *r->node_abs_xy);
+    r->node_z = malloc((size_t)(r->node_count + 1) * sizeof *r->node_z);
+    if (!r->node_abs_xy || !r->node_z)
+        return td_error_set(err, TD_ERR_NOMEM, "out of memory for the output buffers");
+    for (i = 0; i < r->node_count; i++)
+        r->node_z[i] = td_model_node_position(model, r->nodes[i]);
+    return TD_OK;
 }
 
 td_status td_recorder_create(const td_model *model, const td_output_options *out, td_recorder **rec, td_error *err)
@@ -206,8 +230,9 @@ td_status td_recorder_create(const td_model *model, const td_output_options *out
     r->speed_field = td_model_speed_varies(model);
     r->switch_fields = td_model_get_recovery(model, NULL) > 0;
     r->thermal_fields = has_thermal(model);
-    if ((st = choose_nodes(r, model, out, err)) != TD_OK || (st = allocate_scratch(r, err)) != TD_OK ||
-        (st = open_writers(r, out, err)) != TD_OK || (st = write_model_attributes(r, model, out, err)) != TD_OK) {
+    if ((st = choose_nodes(r, model, out, err)) != TD_OK || (st = housing_setup(r, model, err)) != TD_OK ||
+        (st = allocate_scratch(r, err)) != TD_OK || (st = open_writers(r, out, err)) != TD_OK ||
+        (st = write_model_attributes(r, model, out, err)) != TD_OK) {
         td_recorder_discard(&r);
         return st;
     }
@@ -236,6 +261,38 @@ static td_status read_state(td_recorder *r, const td_sim *sim, td_error *err)
     return TD_OK;
 }
 
+/*
+ * housing motion: the housing's prescribed motion at t (td_model_housing_motion_at) and the nodes'
+ * absolute displacement, the relative one plus the housing's rigid motion at the node's z: its
+ * displacement, and its rotation about the reference point z_ref, which by a about x moves y by
+ * -(z - z_ref) a and by a about y moves x by +(z - z_ref) a (touchdown/dofs.h: theta = -dy/dz,
+ * phi = +dx/dz). A compliant housing (a body on mounts) adds its own rigid motion here the same
+ * way: its centre's x_b, y_b and its tilts theta_b, phi_b about its centre z_b, x + x_b + (z - z_b) phi_b,
+ * y + y_b - (z - z_b) theta_b (and sets housing_fields for a model with a body and no base motion).
+ */
+static td_status housing_sample(td_recorder *r, const td_sim *sim, double t, td_error *err)
+{
+    const td_model *model = td_sim_model(sim);
+    double z_ref = td_model_housing_reference(model);
+    td_housing_motion hm;
+    td_status st = TD_OK;
+    int i;
+    td_model_housing_motion_at(model, t, &hm);
+    memcpy(r->housing, hm.acceleration, 2 * sizeof(double));
+    memcpy(r->housing + 2, hm.velocity, 2 * sizeof(double));
+    memcpy(r->housing + 4, hm.displacement, 2 * sizeof(double));
+    memcpy(r->housing + 6, hm.rate, 2 * sizeof(double));
+    memcpy(r->housing + 8, hm.angle, 2 * sizeof(double));
+    for (i = 0; i < r->node_count; i++) {
+        double arm = r->node_z[i] - z_ref;
+        r->node_abs_xy[2 * i] = r->node_xy[2 * i] + hm.displacement[0] + arm * hm.angle[1];
+        r->node_abs_xy[2 * i + 1] = r->node_xy[2 * i + 1] + hm.displacement[1] - arm * hm.angle[0];
+    }
+    for (i = 0; st == TD_OK && i < r->writer_count; i++)
+        st = td_writer_housing(r->writers[i], r->housing, r->node_abs_xy, err);
+    return st;
+}
+
 td_status td_recorder_sample(td_recorder *r, const td_sim *sim, double t, td_error *err)
 {
     td_status st;
@@ -246,6 +303,8 @@ td_status td_recorder_sample(td_recorder *r, const td_sim *sim, double t, td_err
         return td_error_set(err, TD_ERR_INVALID, "the simulation has %d DOFs, the output layout %d",
                             td_system_physical_dof_count(td_sim_system(sim)), r->dof_count);
     if ((st = read_state(r, sim, err)) != TD_OK)
+        return st;
+    if (r->housing_fields && (st = housing_sample(r, sim, t, err)) != TD_OK)
         return st;
     for (i = 0; i < r->writer_count; i++)
         if ((st = td_writer_sample(r->writers[i], t, td_sim_speed(sim), r->node_xy, r->ret, r->amb_f, err)) != TD_OK)

@@ -13,6 +13,7 @@
 #include <string.h>
 
 #include "run/duty.h"
+#include "run/outcome.h"
 #include "run/recorder.h"
 #include "run/summary.h"
 #include "run/warnings.h"
@@ -397,6 +398,7 @@ static void summary_finish(run_state *r, double wall_start)
     summary_section(r);
     summary_ending(r);
     td_run_duty_collect(s, r->sim); /* after the ending: the time to settle is judged over its stretch */
+    td_run_outcome_collect(s, r->sim, r->in_contact); /* clearance margin */
     if (s->contacts == 0)
         s->returned_to_free_orbit = TD_RUN_NOT_APPLICABLE;
     else if (s->free_at_end < 0)
@@ -696,6 +698,8 @@ td_status td_run(td_sim *sim, double t_end, const td_output_options *out, const 
         cst = write_retainer_life(r.rec, sim, st == TD_OK, &close_err);
     if (cst == TD_OK)
         cst = td_run_duty_write(r.rec, summary, sim, st == TD_OK, &close_err);
+    if (cst == TD_OK) /* clearance margin */
+        cst = td_run_outcome_write(r.rec, summary, sim, st == TD_OK, &close_err);
     if (cst == TD_OK)
         cst = td_recorder_close(&r.rec, st == TD_OK, loop_err.message, &close_err);
     else

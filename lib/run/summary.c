@@ -3,6 +3,7 @@
  */
 #include "run/summary.h"
 #include "run/duty.h"
+#include "run/outcome.h"
 
 #include <math.h>
 #include <stddef.h>
@@ -49,6 +50,7 @@ void td_run_summary_init(td_run_summary *s, double t0, double t_end, double spee
     s->start.stability = TD_STABILITY_UNCHECKED;
     s->start.max_real_part = TD_UNDEFINED;
     td_run_duty_init(s);
+    td_run_outcome_init(s); /* clearance margin */
 }
 
 /* A retainer's answers: its totals' sums and peaks, and what they lead to. */
@@ -90,6 +92,7 @@ void td_run_summary_undefine_answers(td_run_summary *s)
     snprintf(s->ending, sizeof s->ending, "undetermined");
     s->regime = TD_REGIME_FAILED;
     td_run_duty_undefine(s);
+    td_run_outcome_undefine(s); /* clearance margin */
 }
 
 /*
@@ -420,6 +423,7 @@ static void format_answers(td_text *b, const td_run_summary *s)
     for (k = 0; s->life_kept && k < n; k++) /* life */
         format_life(b, s, k);
     td_run_duty_format(b, s);
+    td_run_outcome_format(b, s); /* clearance margin */
 }
 
 int td_run_summary_format(char *buf, size_t n, const td_run_summary *s)
@@ -591,7 +595,9 @@ static void json_retainers(td_text *b, const td_run_summary *s)
                   {"drag_work", offsetof(td_run_retainer, totals.drag_work), 0},
                   {"heat", offsetof(td_run_retainer, totals.heat), 0},
                   {"peak_temperature_rise", offsetof(td_run_retainer, totals.peak_temperature_rise), 0},
-                  {"peak_thermal_growth", offsetof(td_run_retainer, totals.peak_thermal_growth), 0}};
+                  {"peak_thermal_growth", offsetof(td_run_retainer, totals.peak_thermal_growth), 0},
+                  /* clearance margin */
+                  {"min_clearance_margin", offsetof(td_run_retainer, totals.min_clearance_margin), 0}};
     int k, n = s->retainer_count < TD_RUN_SUMMARY_RETAINERS ? s->retainer_count : TD_RUN_SUMMARY_RETAINERS;
     size_t i;
     td_text_printf(b, "\"retainer_whirl\":[");
@@ -736,6 +742,7 @@ void td_run_summary_json_members(td_text *b, const td_run_summary *s)
     json_section(b, s);
     json_warnings(b, s);
     td_run_duty_json(b, s);
+    td_run_outcome_json(b, s); /* clearance margin */
     json_retainers(b, s);
 }
 

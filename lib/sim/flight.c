@@ -109,6 +109,83 @@ static void amb_span(td_sim *s, td_sim_flight *f, double a, double b, const doub
     amb_peaks(s, f, a, b - a, fa, f->amb_b, b2);
 }
 
+/* ---- clearance margin: the retainers' largest radius between points ------------------------ */
+
+/* Retainer k's node at the last propagate (time t): r^2 into *r2, the bound on |(r^2)''| from t over
+ * the next h_max into *bound (as flight_roots.c's root functions; may be NULL). */
+static void margin_value(const td_sim_flight *f, int k, double t, double *r2, double *bound)
+{
+    flight_val x = td_sim_flight_observe(f, 2 * k, t), y = td_sim_flight_observe(f, 2 * k + 1, t);
+    double p = hypot(x.b0, y.b0), v = hypot(x.b1, y.b1), a = hypot(x.b2, y.b2);
+    *r2 = x.v * x.v + y.v * y.v;
+    if (bound)
+        *bound = 2.0 * (v * v + p * a);
+}
+
+/* The largest radius of retainer k's node on [ta, ta + h] (r^2 = fa, fb at the ends, |(r^2)''| <= b2) to
+ * TD_MARGIN_RTOL of its clearance: r^2 exceeds the larger end by at most b2 h^2 / 8; halve the interval
+ * while that could beat the largest radius so far by more. A time the run has reached. */
+static void margin_search(td_sim *s, td_sim_flight *f, int k, double ta, double h, double fa, double fb, double b2,
+                          int depth)
+{
+    double c = s->contacts.ret[k].r.clearance, reach = c - s->monitor.totals[k].margin + TD_MARGIN_RTOL * c, fm;
+    if (fmax(fa, fb) + 0.125 * b2 * h * h <= reach * reach || depth >= 40)
+        return;
+    td_sim_flight_propagate(f, ta + 0.5 * h);
+    margin_value(f, k, ta + 0.5 * h, &fm, NULL);
+    td_sim_margin_note(s, k, sqrt(fm));
+    margin_search(s, f, k, ta, 0.5 * h, fa, fm, b2, depth + 1);
+    margin_search(s, f, k, ta + 0.5 * h, 0.5 * h, fm, fb, b2, depth + 1);
+}
+
+/* The flight's point t (the last propagate there; `reached`: a time the run has reached, its radii
+ * noted): each retainer's r^2 and bound kept for the step from t. */
+static void margin_point(td_sim *s, td_sim_flight *f, double t, int reached)
+{
+    int k;
+    for (k = 0; k < s->dae.nr; k++) {
+        td_sim_totals *tk = &s->monitor.totals[k];
+        margin_value(f, k, t, &tk->flight_r2, &tk->flight_b2);
+        if (reached)
+            td_sim_margin_note(s, k, sqrt(tk->flight_r2));
+    }
+}
+
+/* The part [a, b] of the step from a (its values kept by margin_point), b a time the run has reached:
+ * the radii at b and the largest between. With `to_end` b ends the step (the last propagate is at b):
+ * b's values are kept for the next one. Leaves f->e anywhere. */
+static void margin_part(td_sim *s, td_sim_flight *f, double a, double b, int to_end)
+{
+    int k;
+    if (!to_end)
+        td_sim_flight_propagate(f, b);
+    for (k = 0; k < s->dae.nr; k++) /* every value at b first: the searches move f->e */
+        margin_value(f, k, b, &s->monitor.totals[k].flight_r2b, &s->monitor.totals[k].flight_b2b);
+    for (k = 0; k < s->dae.nr; k++) {
+        td_sim_totals *tk = &s->monitor.totals[k];
+        td_sim_margin_note(s, k, sqrt(tk->flight_r2b));
+        margin_search(s, f, k, a, b - a, tk->flight_r2, tk->flight_r2b, tk->flight_b2, 0);
+        if (to_end) {
+            tk->flight_r2 = tk->flight_r2b;
+            tk->flight_b2 = tk->flight_b2b;
+        }
+    }
+}
+
+/* The retainers' largest radii over [a, b] (the pending part of a step, b - a <= h_max), from a's bounds;
+ * b a time the run has reached. Leaves f->e anywhere, and the values kept those of a (margin_point
+ * keeps the step's again). */
+static void margin_span(td_sim *s, td_sim_flight *f, double a, double b)
+{
+    int k;
+    if (!(b > a))
+        return;
+    td_sim_flight_propagate(f, a);
+    for (k = 0; k < s->dae.nr; k++)
+        margin_value(f, k, a, &s->monitor.totals[k].flight_r2, &s->monitor.totals[k].flight_b2);
+    margin_part(s, f, a, b, 0);
+}
+
 /* A step [t, tn] ran past the output time t_out: the AMBs' peak up to t_out now, the rest
  * (pending from t_out, with the step's bounds) when the next call's output time is known, so that
  * no peak is recorded beyond the time reached. */
@@ -126,6 +203,7 @@ static void amb_pending_part(td_sim *s, td_sim_flight *f, double t_out)
     if (!(f->amb_pending < f->t_step))
         return;
     amb_span(s, f, f->amb_pending, end, NULL, f->amb_b2p);
+    margin_span(s, f, f->amb_pending, end); /* clearance margin: the bounds from the part's start */
     f->amb_pending = end < f->t_step ? end : INFINITY;
 }
 
@@ -170,6 +248,8 @@ int td_sim_flight_advance(td_sim *s, const double *scale, double t_out, double t
         amb_forces(s, f, f->t_step, f->amb_a, f->amb_b2, 1);
     }
     amb_pending_part(s, f, t_out);
+    td_sim_flight_propagate(f, f->t_step); /* clearance margin: the bounds of this anchor and forcing */
+    margin_point(s, f, f->t_step, f->t_step <= s->dae.t);
     t = f->t_step;
     while (t < t_end) {
         double h, tn;
@@ -201,9 +281,15 @@ int td_sim_flight_advance(td_sim *s, const double *scale, double t_out, double t
             amb_peaks(s, f, t, tn - t, f->amb_a, f->amb_b, f->amb_b2);
         } else {
             amb_past_output(s, f, t, t_out);
+            if (t_out > t) /* clearance margin: up to the output, the rest with the pending part */
+                margin_part(s, f, t, t_out, 0);
         }
         td_sim_flight_propagate(f, tn);
         amb_forces(s, f, tn, f->amb_a, f->amb_b2, tn <= t_out);
+        if (tn <= t_out) /* clearance margin: the step's end, and the largest radius inside it */
+            margin_part(s, f, t, tn, 1);
+        else
+            margin_point(s, f, tn, 0);
         t = tn;
     }
     f->t_step = t;
@@ -211,6 +297,8 @@ int td_sim_flight_advance(td_sim *s, const double *scale, double t_out, double t
         return 0;
     if (t > t_end && !*root) /* the last step ran past the output: the state there */
         t = t_end;
+    td_sim_margin_rewind(s); /* clearance margin: a step of IDA's held beyond s->dae.t counts up to it */
+    s->monitor.margin_flown = 1;
     td_sim_flight_materialise(s, f, t, 0);
     s->monitor.stats.flight_steps += steps;
     s->monitor.stats.flight_time += t - s->dae.t;

@@ -13,6 +13,11 @@
 #include "touchdown/records.h"
 #include "touchdown/sim.h"
 
+/* clearance margin: a point of a retainer node's radial motion (margin.c) */
+typedef struct td_sim_margin_sample {
+    double t, r, v; /* s, m (radius from the race centre), m/s (dr/dt) */
+} td_sim_margin_sample;
+
 /* One retainer's running totals (totals.c): the public record, the integrands at the last point
  * and the contact interval's bookkeeping. */
 typedef struct td_sim_totals {
@@ -31,6 +36,16 @@ typedef struct td_sim_totals {
     double closed_cycles;  /* their count */
     double life_rate_prev; /* the rolling damage rate at the last point */
     int life_failed;       /* the counter could not grow: the life is undefined */
+    /* clearance margin (margin.c): the node's radius r and dr/dt at the last point, and the segment to a
+     * held point (an integrator step's end beyond the output time), which counts up to the time reached */
+    double margin;               /* m, the smallest clearance - r over the time reached before the held segment */
+    td_sim_margin_sample m_last; /* the last point */
+    td_sim_margin_sample m_from; /* the held segment's start (m_held) */
+    td_sim_margin_sample m_to;   /* and its end, beyond s->dae.t until the run reaches it */
+    int m_held;
+    /* the closed-form flight's point (flight.c): r^2 and the bound on |(r^2)''| from it, at the start of
+     * its step and (b) at the end of the part searched */
+    double flight_r2, flight_b2, flight_r2b, flight_b2b;
 } td_sim_totals;
 
 /* heat: retainer k's drag power and thermal network at the points of the totals (thermal.c) */
@@ -80,6 +95,9 @@ typedef struct td_sim_monitor {
 
     /* the bearing's duty: the largest 0-peak displacement at each AMB's sensor while it works (totals.c) */
     double *sensor_peak; /* n_amb */
+    /* clearance margin: the segment ending at the next point was covered by the closed-form flight's own
+     * search (flight.c), not by the Hermite of the points */
+    int margin_flown;
 } td_sim_monitor;
 
 #endif

@@ -397,6 +397,7 @@ td_status td_sim_setup(const td_model *model, const td_sim_options *options, vol
         return st;
     }
     td_sim_thermal_setup(s);
+    td_sim_margin_start(s); /* clearance margin */
     td_sim_totals_point(s, s->dae.t, 1);
     s->monitor.slewing = td_sim_amb_slewing_axes(s, N_VGetArrayPointer(s->dae.y)); /* from the start */
     s->monitor.slew_t = s->dae.t;

@@ -298,6 +298,18 @@ void td_sim_totals_rewind(td_sim *s);
 void td_sim_totals_impact(td_sim *s, int k, double impulse, int bounced);
 /* Retainer k's totals at s->dae.t (td_sim_retainer_totals). */
 void td_sim_totals_get(const td_sim *s, int k, td_retainer_totals *out);
+/* clearance margin (margin.c): the retainers' smallest clearance - r, from the start (before the first point) */
+void td_sim_margin_start(td_sim *s);
+/* A point of the totals at t with the state in s->dae.y (td_sim_totals_point): the segment since the last
+ * point counted (held when the monitor holds the point, td_sim_monitor_step_ahead), unless the flight
+ * covered it (monitor.margin_flown). */
+void td_sim_margin_point(td_sim *s, double t);
+/* The run goes on from s->dae.t inside a held segment (a change, the flight): it counts up to there. */
+void td_sim_margin_rewind(td_sim *s);
+/* Retainer k's node reached radius r (m) at a time the run has reached (the flight's own search). */
+void td_sim_margin_note(td_sim *s, int k, double r);
+/* Retainer k's smallest margin up to s->dae.t, m. */
+double td_sim_margin_get(const td_sim *s, int k);
 /* The bearing's duty: AMB amb's largest sensed displacement so far (td_sim_sensor_peak_displacement). */
 void td_sim_sensor_peak_get(const td_sim *s, int amb, double *out);
 /* life (load_cycles.c): the retainers' rainflow counters for those whose bearing has a dynamic

@@ -155,6 +155,7 @@ void td_sim_totals_point(td_sim *s, double t, int restart)
     }
     if (!(s->monitor.ahead && s->monitor.ahead_t == t))
         td_sim_totals_peaks(s, y);
+    td_sim_margin_point(s, t); /* clearance margin */
     if (s->opt.energy)
         td_sim_energy_point(s, t, restart, dt);
     if (t > s->monitor.totals_t || restart)
@@ -207,6 +208,7 @@ void td_sim_totals_rewind(td_sim *s)
         tk->life_rate_prev = td_sim_life_rate(s, k, N_VGetArrayPointer(s->dae.y)); /* life */
     }
     td_sim_energy_rewind(s);
+    td_sim_margin_rewind(s); /* clearance margin */
     s->monitor.totals_t = s->dae.t;
 }
 
@@ -235,6 +237,8 @@ void td_sim_totals_get(const td_sim *s, int k, td_retainer_totals *out)
         out->contacts++;
     duty_get(s, k, out);
     td_sim_life_get(s, k, out); /* life: the rainflow cycles added, the end's included */
+    /* clearance margin */
+    out->min_clearance_margin = td_sim_margin_get(s, k);
 }
 
 void td_sim_sensor_peak_get(const td_sim *s, int amb, double *out)

@@ -79,6 +79,13 @@ void td_sweep_row_from_summary(td_sweep_row *row, const td_run_summary *s)
     row_section(row, s);
     row_warnings(row, s);
     row_life(row, s);
+    /* clearance margin */
+    row->min_clearance_margin = s->min_clearance_margin;
+    row->contact_happened = s->contact_happened;
+    snprintf(row->shock_outcome, sizeof row->shock_outcome, "%s",
+             td_shock_outcome_name((td_shock_outcome)s->shock_outcome)
+                 ? td_shock_outcome_name((td_shock_outcome)s->shock_outcome)
+                 : "");
 }
 
 void td_sweep_row_unknown(td_sweep_row *row, td_sweep_state state, const char *status, const char *message)
@@ -99,4 +106,6 @@ void td_sweep_row_unknown(td_sweep_row *row, td_sweep_state state, const char *s
     row->section_radius_min = row->section_radius_max = row->section_clearance = TD_UNDEFINED;
     for (i = 0; i < TD_RUN_SECTION_SAMPLES; i++)
         row->section_radius[i] = TD_UNDEFINED;
+    row->min_clearance_margin = TD_UNDEFINED; /* clearance margin */
+    row->contact_happened = -1;
 }

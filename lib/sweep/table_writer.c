@@ -54,6 +54,10 @@ static const sweep_column columns[] = {
     {TD_OUT_SWEEP_PEAK_AMB_LOAD, COL_DOUBLE, offsetof(td_sweep_row, peak_amb_load)},
     {TD_OUT_SWEEP_T_REACHED, COL_DOUBLE, offsetof(td_sweep_row, t_reached)},
     {TD_OUT_SWEEP_DROPS_TO_FAILURE, COL_DOUBLE, offsetof(td_sweep_row, drops_to_failure)}, /* life: see shown() */
+    /* clearance margin */
+    {TD_OUT_SWEEP_MIN_CLEARANCE_MARGIN, COL_DOUBLE, offsetof(td_sweep_row, min_clearance_margin)},
+    {TD_OUT_SWEEP_CONTACT_HAPPENED, COL_INT, offsetof(td_sweep_row, contact_happened)},
+    {TD_OUT_SWEEP_SHOCK_OUTCOME, COL_TEXT, offsetof(td_sweep_row, shock_outcome)},
     {TD_OUT_SWEEP_WARNINGS, COL_TEXT, offsetof(td_sweep_row, warnings)},
     {TD_OUT_SWEEP_WALL_TIME, COL_DOUBLE, offsetof(td_sweep_row, wall_time)},
 };

@@ -210,6 +210,26 @@ else
     echo "note: 'touchdown run' wrote no file in this build; real-run plotting not tested ($(head -c 200 run.err))"
 fi
 
+# ---- housing motion: its figure, the housing's acceleration in g against the prescribed pulse ----
+# (case A to 0.03 s under a 5 g half-sine from 5 ms to 15 ms: the peak, -5 g at 10 ms, is a sample;
+# a run without housing motion, above, has no housing figure)
+(timeout 300 "$tool" run -q --no-progress --set end_time=0.03 \
+    --set 'housing={shocks=({shape="half-sine";amplitude=49.03325;duration=0.01;start=0.005;direction=[0.0,-1.0];});}' \
+    -o shock "$src/cases/paper-a.cfg") >/dev/null 2>shock.err
+if [ -s shock.h5 ]; then
+    if "$tool" plot -q shock.h5 2>err.txt; then
+        expect_pngs shock-plots housing
+        awk '!/^#/ && $1 == 0.01 { found = 1; if ($3 > -5 - 1e-6 && $3 < -5 + 1e-6) ok = 1 } END { exit !(found && ok) }' \
+            shock-plots/housing.dat && pass "housing figure: -5 g at the pulse's middle" ||
+            fail "housing figure data: $(grep -v '^#' shock-plots/housing.dat | awk '$1 == 0.01')"
+    else
+        fail "plot of a run with housing motion: $(cat err.txt)"
+    fi
+    [ ! -e run-plots/housing.gp ] && pass "no housing figure without housing motion" || fail "a housing figure without housing motion"
+else
+    fail "a run with housing motion wrote no file ($(head -c 200 shock.err))"
+fi
+
 # ---- bad input: exit 2, one line on stderr ------------------------------------------------
 echo "not hdf5" >text.h5
 expect_error 2 "missing file" missing.h5

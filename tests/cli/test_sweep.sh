@@ -56,18 +56,23 @@ check "sweep: the HDF5 table is flagged complete" \
 bad=""
 while IFS= read -r line; do
     IFS=, read -r p speed mag status _ phf imp fw ct nc fct _ <<<"$line"
-    # from the end (the warnings column may hold quoted commas): wall_time, warnings, t_reached, ..
-    final=$(sed -E 's/"[^"]*"/x/g' <<<"$line" | awk -F, '{ print $(NF - 4) }')
+    # from the end (the warnings column may hold quoted commas): wall_time, warnings, shock_outcome,
+    # contact_happened, min_clearance_margin, t_reached, peak_amb_load, final_speed
+    final=$(sed -E 's/"[^"]*"/x/g' <<<"$line" | awk -F, '{ print $(NF - 7) }')
+    margin=$(sed -E 's/"[^"]*"/x/g' <<<"$line" | awk -F, '{ print $(NF - 4) }')
+    outcome=$(sed -E 's/"[^"]*"/x/g' <<<"$line" | awk -F, '{ print $(NF - 2) }')
     t "$work/run$p" run --json -q --csv '' --hdf5 '' --set end_time=0.2 --set "speed=$speed" \
         --set "schedule[0].magnitude=$mag" "$case_r"
     o=$work/run$p/.out
     jfct=$(jf "$o" first_contact_time)
     for pair in "$phf:$(jf "$o" peak_housing_force)" "$imp:$(jf "$o" total_impulse)" "$fw:$(jf "$o" friction_work)" \
-        "$ct:$(jf "$o" contact_time)" "$nc:$(jf "$o" contacts)" "$fct:$jfct" "$final:$(jf "$o" final_speed)"; do
+        "$ct:$(jf "$o" contact_time)" "$nc:$(jf "$o" contacts)" "$fct:$jfct" "$final:$(jf "$o" final_speed)" \
+        "$margin:$(jf "$o" min_clearance_margin)"; do
         same_number "${pair%%:*}" "${pair#*:}" || bad="$bad point $p (${pair})"
     done
     [ "$status" = success ] && has "$work/j2/s.csv" "$p,$speed,$mag,success,,$phf," || bad="$bad point $p status"
     has "$work/j2/s.csv" "$(jf "$o" ending | tr -d '"')" || bad="$bad point $p ending"
+    [ "\"$outcome\"" = "$(jf "$o" shock_outcome)" ] || bad="$bad point $p shock_outcome $outcome"
 done < <(grep -v '^#' "$work/j2/s.csv" | tail -n +2)
 check "sweep rows equal independent 'touchdown run --json' of each point${bad:+:$bad}" test -z "$bad"
 

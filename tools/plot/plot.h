@@ -76,6 +76,9 @@ typedef struct plot_sim {
     long *amb_nodes;                  /* namb, -1 when unknown */
     plot_event *ev;                   /* events inside the window */
     size_t nev;
+    /* housing motion */
+    double *housing; /* n x 4: the housing's acceleration x, y [m/s^2] and displacement x, y [m]; NULL: the file
+                        has no housing motion */
 } plot_sim;
 
 /* A modal file. Arrays absent from the file are NULL with zero counts. */
@@ -203,7 +206,7 @@ extern const char plot_tpl_common[], plot_tpl_markers[], plot_tpl_orbit[], plot_
     plot_tpl_amb_forces[], plot_tpl_palette[], plot_tpl_compare[], plot_tpl_campbell[], plot_tpl_mode_shapes[],
     plot_tpl_sweep_quantity[], plot_tpl_regime_map[], plot_tpl_bifurcation[], plot_tpl_sensitivity[],
     plot_tpl_open_loop[], plot_tpl_nyquist[], plot_tpl_compliance[], plot_tpl_bode[], plot_tpl_polar[],
-    plot_tpl_report[];
+    plot_tpl_report[], plot_tpl_housing[];
 
 /* ---- plot_sweep_load.c: sweep tables --------------------------------------------------------- */
 

@@ -194,6 +194,32 @@ static int count_columns(const td_result *r, td_out_id id, size_t n, int *count)
     return 0;
 }
 
+/* housing motion: the housing's acceleration and displacement, (n, 2) each, into s->housing (n x 4) with the
+ * rows kept; nothing without them (a file without housing motion), -1 when they do not fit the samples. */
+static int keep_housing(const td_result *r, plot_sim *s, const unsigned char *keep, size_t n)
+{
+    td_result_array a, d;
+    size_t i, k = 0;
+    int rc = 0;
+    if (!td_result_has(r, TD_OUT_HOUSING_ACCELERATION, NULL) || !td_result_has(r, TD_OUT_HOUSING_DISPLACEMENT, NULL))
+        return 0;
+    memset(&d, 0, sizeof d);
+    if (read_matrix(r, TD_OUT_HOUSING_ACCELERATION, n, 2, 1, &a) != 0)
+        return -1;
+    if (read_matrix(r, TD_OUT_HOUSING_DISPLACEMENT, n, 2, 1, &d) != 0 ||
+        !(s->housing = malloc(4 * s->n * sizeof(double))))
+        rc = -1;
+    for (i = 0; rc == 0 && i < n; i++)
+        if (keep[i]) {
+            memcpy(s->housing + 4 * k, a.v + 2 * i, 2 * sizeof(double));
+            memcpy(s->housing + 4 * k + 2, d.v + 2 * i, 2 * sizeof(double));
+            k++;
+        }
+    td_result_array_free(&a);
+    td_result_array_free(&d);
+    return rc;
+}
+
 /* The samples of /retainers and /ambs (kept where keep is set), the tables and the events. */
 static int keep_samples(const td_result *r, plot_file *f, const plot_window *win, td_result_array *t,
                         td_result_array *a, td_result_array *amb)
@@ -224,6 +250,10 @@ static int keep_samples(const td_result *r, plot_file *f, const plot_window *win
     }
     s->amb = compact(amb->v, keep, n, 2 * (size_t)s->namb);
     amb->v = NULL;
+    if (keep_housing(r, s, keep, n) != 0) { /* housing motion */
+        free(keep);
+        return plot_bad_part(f->path, "", TD_OUT_HOUSING_ACCELERATION, " or its displacement has the wrong shape");
+    }
     free(keep);
     if (read_tables(r, s) != 0)
         return bad(f->path, "out of memory", PLOT_FAILED);
@@ -436,6 +466,7 @@ void plot_file_free(plot_file *f)
     plot_modal *m = &f->modal;
     free(s->t), free(s->x), free(s->y), free(s->r), free(s->fn), free(s->contact), free(s->amb);
     free(s->clearance), free(s->ret_nodes), free(s->amb_nodes), free(s->ev);
+    free(s->housing); /* housing motion */
     free(m->speed), free(m->freq), free(m->whirl), free(m->mac), free(m->crit_speed), free(m->crit_freq),
         free(m->crit_whirl);
     free(m->mode_freq), free(m->mode_whirl), free(m->mode_zeta), free(m->xr), free(m->xi), free(m->yr), free(m->yi);

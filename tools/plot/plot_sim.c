@@ -3,7 +3,8 @@
  *   PREFIXorbit-rN         orbit at retainer N (x, y in mm, clearance circle, contact samples)
  *   PREFIXradial-force-rN  radial displacement and normal contact force against time, contact shaded
  *   PREFIXamb-forces       AMB forces against time
- * with the data files PREFIXretainerN.dat, PREFIXcontactsN.dat and PREFIXambs.dat.
+ *   PREFIXhousing          the housing's acceleration and displacement against time (a run with housing motion)
+ * with the data files PREFIXretainerN.dat, PREFIXcontactsN.dat, PREFIXambs.dat and PREFIXhousing.dat.
  */
 #include "plot/plot.h"
 #include "touchdown/output.h" /* td_event_kind_name */
@@ -289,6 +290,36 @@ static int amb_figure(plot_job *job, const plot_file *f, const char *prefix)
     return plot_script_end(out, job, name, plot_tpl_markers, plot_tpl_amb_forces);
 }
 
+/* housing motion: the housing's acceleration (in g, 9.80665 m/s^2, the shock standards' unit) and
+ * displacement against time, x and y, from PREFIXhousing.dat. */
+static int housing_figure(plot_job *job, const plot_file *f, const char *prefix)
+{
+    const plot_sim *s = &f->sim;
+    char name[300], data[300];
+    FILE *out;
+    size_t i;
+    snprintf(name, sizeof name, "%shousing", prefix);
+    snprintf(data, sizeof data, "%shousing.dat", prefix);
+    if (!(out = plot_open(job->opt, data)))
+        return PLOT_FAILED;
+    fprintf(out,
+            "# the housing's prescribed motion from %s\n# columns: 1 time [s], 2 ax [g], 3 ay [g], 4 x [mm], "
+            "5 y [mm] (1 g = 9.80665 m/s^2)\n",
+            f->path);
+    for (i = 0; i < s->n; i++)
+        fprintf(out, "%.12g %.9g %.9g %.9g %.9g\n", s->t[i], s->housing[4 * i] / 9.80665,
+                s->housing[4 * i + 1] / 9.80665, 1e3 * s->housing[4 * i + 2], 1e3 * s->housing[4 * i + 3]);
+    if (plot_close(out, job->opt, data) != PLOT_OK)
+        return PLOT_FAILED;
+    if (!(out = plot_script_begin(job, name, "Housing motion", f->path, 1000, 700)))
+        return PLOT_FAILED;
+    plot_var_string(out, "case_title", f->title);
+    plot_var_string(out, "data", data);
+    time_range(out, s);
+    schedule_markers(out, s);
+    return plot_script_end(out, job, name, plot_tpl_markers, plot_tpl_housing);
+}
+
 int plot_sim_figures(plot_job *job, const plot_file *f, const char *prefix)
 {
     const plot_sim *s = &f->sim;
@@ -310,5 +341,7 @@ int plot_sim_figures(plot_job *job, const plot_file *f, const char *prefix)
     }
     if (rc == PLOT_OK && s->namb > 0 && (rc = write_amb_data(job, f, prefix)) == PLOT_OK)
         rc = amb_figure(job, f, prefix);
+    if (rc == PLOT_OK && s->housing) /* housing motion */
+        rc = housing_figure(job, f, prefix);
     return rc;
 }

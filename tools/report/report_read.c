@@ -62,6 +62,10 @@ static const report_def defs[] = {
     {TD_OUT_RETAINER_LOAD_CYCLES, "load cycles (rainflow)", 1, REPORT_LIMIT_NONE, TOTALS, 1},
     {TD_OUT_RETAINER_DAMAGE, "damage (Miner)", 1, REPORT_LIMIT_NONE, TOTALS, 1},
     {TD_OUT_RETAINER_DROPS_TO_FAILURE, "drops to failure (1 / damage)", 1, REPORT_LIMIT_DROPS, TOTALS, 1},
+    /* clearance margin: did it touch, and by how much did it miss (docs/output-format.md) */
+    {TD_OUT_SUM_CONTACT_HAPPENED, "contact happened (1 yes, 0 no)", 0, REPORT_LIMIT_NONE, NONE, 0},
+    {TD_OUT_SUM_MIN_CLEARANCE_MARGIN, "smallest clearance margin (c - r)", 0, REPORT_LIMIT_NONE, NONE, 0},
+    {TD_OUT_RETAINER_MIN_CLEARANCE_MARGIN, "smallest clearance margin (c - r)", 1, REPORT_LIMIT_NONE, NONE, 0},
 };
 
 const char *report_state_words(report_state s)

@@ -124,7 +124,8 @@ int sweep_row_texts_end(const td_sweep_row *r)
     /* every char array of td_sweep_row (touchdown/sweep.h): a text field added there is added here */
     return text_ends(r->status, sizeof r->status) && text_ends(r->message, sizeof r->message) &&
            text_ends(r->ending, sizeof r->ending) && text_ends(r->warnings, sizeof r->warnings) &&
-           text_ends(r->regime, sizeof r->regime);
+           text_ends(r->regime, sizeof r->regime) &&
+           text_ends(r->shock_outcome, sizeof r->shock_outcome); /* clearance margin */
 }
 
 /* 1 if rec is a whole record of a sweep of `points` points: its frame holds, its point is one of
