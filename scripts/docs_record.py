@@ -101,7 +101,7 @@ def git_revision():
     # that run them) differ from the commit; the docs and their results do not count
     dirty = git("status", "--porcelain", "--untracked-files=no", "--", "lib", "include", "tools", "cases",
                 "cmake", "CMakeLists.txt", "bench", "scripts/make-figures.sh", "scripts/docs_record.py",
-                "scripts/recovery_study.py")
+                "scripts/recovery_study.py", "scripts/shock_study.py", "tests/validation/base_motion")
     return rev + ("-modified" if dirty else "")
 
 
@@ -438,12 +438,19 @@ def src_recovery(tool, build):
     return recovery_study.record(tool, stamp)
 
 
+def src_shock(tool, build):
+    """docs/shock-study.md's runs (scripts/shock_study.py: cases/shock.cfg and the grid of
+    cases/shock-sweep.cfg, with the linear prediction beside each point)."""
+    import shock_study
+    return shock_study.record(tool, stamp)
+
+
 SOURCES = {"fast": [("runs", src_runs), ("modal", src_modal), ("validation", src_validation), ("keys", src_keys)],
            "slow": [("bench", src_bench), ("digital", src_digital), ("fmu", src_fmu), ("scaling", src_scaling), ("references", src_references),
                     ("intervals", src_intervals), ("tolerances", src_tolerances), ("mesh", src_mesh),
                     ("convergence", src_convergence), ("spread", src_spread), ("figures", src_figures),
                     ("recovery", src_recovery), ("report", src_report),
-                    ("drop_sweep", src_drop_sweep)]}
+                    ("drop_sweep", src_drop_sweep), ("shock", src_shock)]}
 
 
 # The runs are deterministic: the same build gives the same bits. The tolerance allows for another

@@ -1421,6 +1421,8 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import recovery_study  # noqa: E402
 
 REGIONS.update(recovery_study.REGIONS)
+import shock_study  # noqa: E402
+REGIONS.update(shock_study.REGIONS)
 
 
 def render(path, text):

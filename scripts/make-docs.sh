@@ -19,7 +19,8 @@
 #   scripts/make-docs.sh --render              only rewrite the regions from the recorded results
 #   scripts/make-docs.sh --full --only SOURCE  rerun one source (runs, modal, validation, keys, bench,
 #                                              digital, scaling, references, intervals, tolerances, mesh,
-#                                              convergence, spread, figures, recovery, report, drop_sweep), then render
+#                                              convergence, spread, figures, recovery, report, drop_sweep,
+#                                              shock), then render
 # BUILD_DIR defaults to ./build (scripts/setup.sh builds it). tests/cli/test_docs.sh checks that
 # the docs match the records and that the tool still prints the recorded numbers.
 set -euo pipefail
