@@ -14,7 +14,8 @@
  *   "nodes N" and N axial positions z_i (m);
  *   "retainers K" and K lines "node clearance" (m);
  *   "unbalances K" and K lines "node magnitude phase" (kg m, rad; the magnitudes at t = 0);
- *   "gravity gx gy" (m/s^2, zero when it is off).
+ *   "gravity gx gy" (m/s^2, zero when it is off);
+ *   "air_gaps A" and A lines "sensor_node air_gap" (m; 0: not given), one per AMB.
  * The housing motion of the case is not written: the script applies it from its own numbers.
  * Only a full (unreduced) rotor without races is written (every DOF is a node's), and every AMB
  * must have the same gains (one law line); anything else exits 1 with the reason.
@@ -54,7 +55,8 @@ static int write_axes(FILE *f, const td_model *m, const td_system *sys)
     return 0;
 }
 
-/* The retainers (node, clearance), the unbalances (node, magnitude, phase) and gravity. */
+/* The retainers (node, clearance), the unbalances (node, magnitude, phase), gravity and the AMBs'
+ * air gaps (at their sensor nodes). */
 static int write_loads(FILE *f, const td_model *m)
 {
     double gx, gy;
@@ -75,6 +77,13 @@ static int write_loads(FILE *f, const td_model *m)
     }
     td_model_gravity(m, &gx, &gy);
     fprintf(f, "gravity %.17g %.17g\n", gx, gy);
+    fprintf(f, "air_gaps %d\n", td_model_amb_count(m));
+    for (i = 0; i < td_model_amb_count(m); i++) {
+        td_amb a;
+        if (td_model_get_amb(m, i, &a) != TD_OK)
+            return 1;
+        fprintf(f, "%d %.17g\n", a.sensor_node, a.air_gap);
+    }
     return 0;
 }
 

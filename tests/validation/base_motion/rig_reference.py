@@ -61,7 +61,7 @@ RETAINERS = (2, 10)
 
 def read_plant(path):
     """The probe's file: closed_loop.py's layout, then the node positions, the retainers, the
-    unbalances and gravity (plant_probe.c says how). Returns a dict."""
+    unbalances, gravity and the AMBs' air gaps (plant_probe.c says how). Returns a dict."""
     tok = open(path).read().split()
     pos = 0
 
@@ -92,6 +92,8 @@ def read_plant(path):
     p["unbalances"] = [(int(u[0]), u[1], u[2]) for u in (take(3) for _ in range(int(take(1)[0])))]
     word("gravity")
     p["gravity"] = take(2)
+    word("air_gaps")
+    p["air_gaps"] = [(int(a[0]), a[1]) for a in (take(2) for _ in range(int(take(1)[0])))]
     return p
 
 
