@@ -235,9 +235,6 @@ def record(tool, stamp):
             futures = {"%g %g" % (a, d): pool.submit(point, tool, lin, tmp, a, d)
                        for a in amplitudes for d in durations}
             data["map"] = {k: f.result() for k, f in futures.items()}
-    if os.environ.get("SHOCK_STUDY_DUMP"):
-        with open(os.environ["SHOCK_STUDY_DUMP"], "w") as f:
-            json.dump(data, f)
     figures(data)
     return data
 
