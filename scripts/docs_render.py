@@ -1423,6 +1423,7 @@ import recovery_study  # noqa: E402
 REGIONS.update(recovery_study.REGIONS)
 import shock_study  # noqa: E402
 REGIONS.update(shock_study.REGIONS)
+SPANS.update(shock_study.SPANS)
 
 
 def render(path, text):

@@ -438,6 +438,22 @@ def _weakest(r, points):
     return "%s g at %s ms" % (_g(a / G0, 3), ", ".join(_g(d * 1e3) for d in ds))
 
 
+def _largest(name, prefix=""):
+    """The largest error/peak a reference printed (on its lines starting with prefix)."""
+    vals = [float(l.split("error/peak")[1].split()[0]) for l in _res()["references"][name]["messages"]
+            if "error/peak" in l and "largest" not in l and l.startswith(prefix)]
+    return ("%.1e" % max(vals)).replace("e-0", "e-")
+
+
+def span_val_base_jeffcott_cell():
+    return "%s of the peak" % _largest("jeffcott")
+
+
+def span_val_base_rig_cell():
+    return "%s (shock), %s (rotation) of the peak" % (_largest("rig", "shock"), _largest("rig", "rotation"))
+
+
+SPANS = {"val-base-jeffcott-cell": span_val_base_jeffcott_cell, "val-base-rig-cell": span_val_base_rig_cell}
 REGIONS = {"shock-references": region_references, "shock-case": region_case, "shock-map": region_map, "shock-agreement": region_agreement}
 
 
