@@ -306,7 +306,7 @@ def map_figure(data, tmp):
 set output "%s"
 set grid
 set logscale xy
-set xrange [2:100]
+set xrange [2:150]
 set yrange [0.15:40]
 set xlabel "half-sine duration [ms]"
 set ylabel "peak acceleration of the housing [g]"
