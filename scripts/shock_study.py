@@ -3,7 +3,7 @@
 shock's amplitude and duration (cases/shock-sweep.cfg's grid) beside the linear prediction.
 
     shock_study.py BUILD_DIR     rerun the study: docs/results/shock.json and docs/figures/shock-*.png
-                                 (about 2 min of CPU, two runs at a time), then render the docs
+                                 (about 2 min, two runs at a time), then render the docs
 
 scripts/make-docs.sh --full --only shock does the same (docs_record.py's source "shock");
 docs_render.py renders the regions of docs/shock-study.md from the record with REGIONS below.
