@@ -313,6 +313,24 @@ static void check_all_keys_thermal(const td_model *m)
     assert_int_equal(td_model_get_retainer_thermal(m, 1, &t), 0);
 }
 
+/* housing body: the tilting housing on two mounts, the second undamped (damping's default 0). */
+static void check_all_keys_housing_body(const td_model *m)
+{
+    td_housing_body b;
+    assert_int_equal(td_model_get_housing_body(m, &b), 1);
+    assert_int_equal(td_model_housing_body_dofs(m), 4);
+    assert_close(b.mass, 40.0, 0.0, 0.0);
+    assert_close(b.inertia, 1.5, 0.0, 0.0);
+    assert_close(b.centre, 0.3, 0.0, 0.0);
+    assert_int_equal(b.mount_count, 2);
+    assert_close(b.mounts[0].position, 0.0, 0.0, 0.0);
+    assert_close(b.mounts[0].stiffness, 2.0e7, 0.0, 0.0);
+    assert_close(b.mounts[0].damping, 2.0e3, 0.0, 0.0);
+    assert_close(b.mounts[1].position, 0.6, 0.0, 0.0);
+    assert_close(b.mounts[1].stiffness, 3.0e7, 0.0, 0.0);
+    assert_close(b.mounts[1].damping, 0.0, 0.0, 0.0);
+}
+
 /* housing motion: the shock (its direction normalised), the record shifted by 0.1 s and doubled, the ramp. */
 static void check_all_keys_housing(const td_model *m)
 {
@@ -338,6 +356,7 @@ static void check_all_keys_housing(const td_model *m)
     assert_close(p.amplitude, 0.1, 0.0, 0.0);
     assert_close(p.direction[0], 1.0, 0.0, 0.0);
     assert_close(hm.rate[0], 0.1 * 0.01 / 0.5, 1e-15, 0.0);
+    check_all_keys_housing_body(m);
 }
 
 /* retainers[0].bearing and limits of all-keys.cfg; retainer 1 has no bearing. */
@@ -888,6 +907,16 @@ static void dump_recovery(const td_model *m, char *buf, size_t n)
 }
 /* The retainers, unbalances and timed changes of a model. */
 /* housing motion: the pulses, the reference and the motion at a few times (the history's shift and scale). */
+/* housing body */
+static void dump_housing_body(const td_model *m, char *buf, size_t n)
+{
+    td_housing_body b;
+    int has = td_model_get_housing_body(m, &b), k;
+    dump_add(buf, n, "body %d %a %a %a %d\n", has, b.mass, b.inertia, b.centre, b.mount_count);
+    for (k = 0; k < b.mount_count; k++)
+        dump_add(buf, n, "  mount %a %a %a\n", b.mounts[k].position, b.mounts[k].stiffness, b.mounts[k].damping);
+}
+
 static void dump_housing(const td_model *m, char *buf, size_t n)
 {
     static const double times[] = {0.0, 0.004, 0.013, 0.3, 1.0};
@@ -909,6 +938,7 @@ static void dump_housing(const td_model *m, char *buf, size_t n)
         dump_add(buf, n, "  at %a: %a %a %a %a %a %a\n", times[k], hm.acceleration[0], hm.acceleration[1],
                  hm.displacement[0], hm.displacement[1], hm.angle[0], hm.angle[1]);
     }
+    dump_housing_body(m, buf, n);
 }
 
 static void dump_events(const td_model *m, char *buf, size_t n)
@@ -1019,7 +1049,9 @@ static const char documented_defaults_base[] =
     /* housing motion */
     "housing = { shocks = ( { amplitude = 1.0; duration = 0.01; direction = [0.0, 1.0]; } );\n"
     "  history = { time = [0.0, 0.01]; x = [0.0, 1.0]; y = [0.0, 0.0]; };\n"
-    "  rotation = ( { rate = 0.1; duration = 0.5; axis = [1.0, 0.0]; } ); };\n";
+    "  rotation = ( { rate = 0.1; duration = 0.5; axis = [1.0, 0.0]; } );\n"
+    /* housing body */
+    "  body = { mass = 40.0; centre = 1.0; mounts = ( { position = 0.5; stiffness = 1.0e7; } ); }; };\n";
 
 /* Keys whose documented default is another key's value (of their entry, the unbalance they set, the
  * shaft), and that value in the base. */
@@ -1137,9 +1169,9 @@ static void test_documented_defaults(void **state)
     print_message("documented defaults: %d keys checked; skipped: %d groups and lists, %d required, %d other\n", tried,
                   part, required, other);
     assert_int_equal(tried + part + required + other, td_case_key_count());
-    assert_int_equal(tried, 94);
-    assert_int_equal(part, 50);     /* their keys are checked */
-    assert_int_equal(required, 84); /* required, or one form's required key (a sweep entry's range or values) */
+    assert_int_equal(tried, 96);
+    assert_int_equal(part, 52);     /* their keys are checked */
+    assert_int_equal(required, 88); /* required, or one form's required key (a sweep entry's range or values) */
     /* an alternative with no default ("-": shaft.nodes, sections' element, schedule's unbalance,
      * amb_off, amb_on, a law's gain block), "unknown" (an AMB's air gap), "all nodes", "none"
      * (response speeds, overrides, a zpk's zeros and poles, an ss block's A, B and C), "the rotor's"
@@ -2061,6 +2093,10 @@ static const bad_file bad_files[] = {
     {"housing-csv-unit.cfg", 5, "housing.history.file", NULL},
     {"housing-csv-number.cfg", 5, "housing.history.file", NULL},
     {"housing-csv-missing.cfg", 5, "housing.history.file", NULL},
+    /* housing body */
+    {"housing-body-one-mount.cfg", 5, "housing.body.mounts", NULL},
+    {"housing-body-mount-negative.cfg", 6, "housing.body.mounts[1].stiffness", NULL},
+    {"housing-body-free-spin.cfg", 5, "housing.body", NULL},
 };
 
 static void check_bad_file(const bad_file *b)

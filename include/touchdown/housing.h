@@ -92,6 +92,46 @@ TD_API int td_model_housing_history_count(const struct td_model *m);
  * inner points); INFINITY if none. */
 TD_API double td_model_housing_next_kink(const struct td_model *m, double t);
 
+/* housing body */
+/**
+ * A compliant housing (docs/theory.md, "Compliant housing"): the housing as a rigid body on
+ * resilient mounts, as machines on shock mounts are. The rotor's and the races' coordinates stay
+ * relative to the housing (AMBs, sensors, gaps and controllers are unchanged); the body's own DOFs,
+ * relative to the base, are appended after the rotor's generalized coordinates (touchdown/system.h):
+ * x, y of its centre of mass, then, with an inertia, its tilts theta (about x) and phi (about y)
+ * with touchdown/dofs.h's conventions. Without an inertia the body only translates: its tilt is held
+ * by the base (a guided mounting, or mounts far stiffer in tilt than in translation), and the
+ * mounts' positions do not matter. `mass` is everything that moves with the housing (the stator,
+ * the retainers; a race on a mount is a body of its own, coupled to the body as the rotor is); the
+ * rotor's mass adds to it through the coupled mass matrix.
+ */
+#define TD_HOUSING_MAX_MOUNTS 16 /**< most mounts of a housing body (mounts at one position add up) */
+
+/** One resilient mount, isotropic in x and y. */
+typedef struct td_housing_mount {
+    double position;  /**< m, axial z of the mount, finite */
+    double stiffness; /**< N/m, in each of x and y, >= 0 */
+    double damping;   /**< N s/m, in each of x and y, >= 0 */
+} td_housing_mount;
+
+/** The housing as a rigid body on its mounts. */
+typedef struct td_housing_body {
+    double mass;     /**< kg, > 0 */
+    double inertia;  /**< kg m^2, transverse, about the centre of mass, >= 0; 0: the body only translates */
+    double centre;   /**< m, axial z of the centre of mass, finite */
+    int mount_count; /**< 1..TD_HOUSING_MAX_MOUNTS */
+    td_housing_mount mounts[TD_HOUSING_MAX_MOUNTS];
+} td_housing_body;
+
+/** Give the model a housing body (copied), replacing any it had. The mounts must hold the body:
+ *  a total stiffness > 0, and with an inertia mounts at two positions at least. Not with a free
+ *  spin (td_spin.free): td_model_validate refuses that. Errors: TD_ERR_INVALID (the field named). */
+TD_API td_status td_model_set_housing_body(struct td_model *m, const td_housing_body *b, td_error *err);
+/** 1 if the model has a housing body (*out filled, out may be NULL), else 0. */
+TD_API int td_model_get_housing_body(const struct td_model *m, td_housing_body *out);
+/** The body's DOFs: 0 (none), 2 (translating) or 4 (with an inertia). */
+TD_API int td_model_housing_body_dofs(const struct td_model *m);
+
 #ifdef __cplusplus
 }
 #endif

@@ -93,7 +93,7 @@ TD_API double td_sim_time(const td_sim *sim);
 TD_API td_status td_sim_last_event(const td_sim *sim, td_event *ev);
 
 /** Number of the rotor's generalized coordinates (touchdown/system.h: 4 per node for the full
- *  model; the races' states are read with td_sim_retainer_state). */
+ *  model, then a housing body's DOFs; the races' states are read with td_sim_retainer_state). */
 TD_API int td_sim_dof_count(const td_sim *sim);
 /** Copy displacements q and velocities v (each td_sim_dof_count long; either may be NULL), in the
  *  generalized coordinates of td_sim_system (td_system_expand gives the nodes' displacements). */
@@ -144,6 +144,13 @@ TD_API td_status td_sim_options_get(const td_sim *sim, td_sim_options *out);
  *  points while the AMB works (ISO 14839-2's D: touchdown/assess.h), m; 0 before any. TD_ERR_INVALID
  *  for an AMB out of range or a NULL argument. */
 TD_API td_status td_sim_sensor_peak_displacement(const td_sim *sim, int amb, double *out);
+
+/* housing body */
+/** The housing body's state (touchdown/housing.h td_housing_body) relative to the base: q and v (each
+ *  4 long, either may be NULL) receive x, y of its centre of mass (m, m/s) and its tilts theta, phi
+ *  (rad, rad/s; touchdown/dofs.h), the tilts 0 for a body that only translates. Returns 1 with a body,
+ *  0 without one (q, v zeroed) or for a NULL sim. */
+TD_API int td_sim_housing_body_state(const td_sim *sim, double q[4], double v[4]);
 
 #ifdef __cplusplus
 }

@@ -14,7 +14,9 @@
  * as a Craig-Bampton reduced rotor (docs/theory.md, "Reduced rotor"): q = [q_b; eta] holds the four
  * physical DOFs of every boundary node (a node carrying a part), node by node, then the
  * fixed-interface modal coordinates eta; the physical displacements are q_phys = T q. Without a
- * reduction q is the physical vector of touchdown/dofs.h and T the identity. Every matrix, load
+ * reduction q is the physical vector of touchdown/dofs.h and T the identity. A compliant housing's
+ * DOFs (touchdown/housing.h td_housing_body) come last: the rotor's coordinates stay relative to the
+ * housing, so they move no node (T has zero columns for them). Every matrix, load
  * and state of the system, the modal analysis and the simulation is in q; td_system_node_dof and
  * td_system_expand are the one map between q and the nodes.
  */
@@ -44,7 +46,8 @@ TD_API td_status td_system_create(const td_model *model, td_system **out, td_err
 /** Free and set *sys to NULL; accepts NULL. */
 TD_API void td_system_free(td_system **sys);
 /** Number of generalized coordinates q: 4 per node for the full model, 4 per boundary node plus
- *  the fixed-interface modes kept for a reduced one. */
+ *  the fixed-interface modes kept for a reduced one; then a housing body's DOFs, last (2 or 4:
+ *  touchdown/housing.h td_housing_body), which move no node relative to the housing. */
 TD_API int td_system_dof_count(const td_system *sys);
 /** Number of physical DOFs, 4 per node, whether reduced or not. */
 TD_API int td_system_physical_dof_count(const td_system *sys);

@@ -540,5 +540,12 @@ static const td_cs_key housing_keys[] = {
      .type = TD_CS_LIST,
      .sub = &td_cs_housing_rotation,
      .doc = "rotation-rate profiles of the housing about x and y (pitch, yaw), summed"},
+    /* housing body */
+    {.key = "body",
+     .type = TD_CS_GROUP,
+     .sub = &td_cs_housing_body,
+     .doc_default = "none (a rigid housing, moved by the base alone)",
+     .doc = "the housing as a rigid body on resilient mounts, below; the base motion above then moves the mounts "
+            "([theory](theory.md#compliant-housing))"},
 };
 const td_cs_table td_cs_housing = {"housing", "housing", housing_keys, TD_CS_COUNT(housing_keys), 0, NULL, NULL};

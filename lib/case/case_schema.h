@@ -140,5 +140,8 @@ td_status td_cr_read_block(td_case_reader *r, const config_setting_t *e, double 
 
 /* housing motion (case_housing.c): the top-level `housing` group */
 extern const td_cs_table td_cs_housing;
+/* housing body */
+/* The compliant housing, `housing.body` (case_housing_body.c). */
+extern const td_cs_table td_cs_housing_body;
 
 #endif

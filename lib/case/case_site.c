@@ -71,6 +71,14 @@ static const config_setting_t *part_entry(const config_setting_t *root, const td
         return entry(root, "schedule", td_model_change_entry(model, site->index));
     if (strcmp(site->part, "spin") == 0 || strcmp(site->part, "recovery") == 0 || strcmp(site->part, "shaft") == 0)
         return config_setting_get_member(root, site->part);
+    if (strcmp(site->part, "housing.body") == 0) /* housing body: a group inside `housing`, its mounts' list */
+        return config_setting_lookup((config_setting_t *)root, site->part);
+    if (strcmp(site->part, "housing.body.mounts") == 0) {
+        const config_setting_t *list = config_setting_lookup((config_setting_t *)root, site->part);
+        return list && site->index >= 0 && site->index < config_setting_length(list)
+                   ? config_setting_get_elem(list, (unsigned)site->index)
+                   : list;
+    }
     for (k = 0; k < sizeof parts / sizeof parts[0]; k++)
         if (strcmp(site->part, parts[k][0]) == 0)
             return site->index < 0 ? config_setting_get_member(root, parts[k][1])

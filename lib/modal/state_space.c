@@ -321,6 +321,10 @@ td_status td_unbalance_forces(const td_system *sys, double omega, const td_unbal
     st = physical_unbalance_forces(sys, omega, u, n_u, phys, phys + sys->nphys, err);
     td_system_project_load(sys, phys, fre);
     td_system_project_load(sys, phys + sys->nphys, fim);
+    if (sys->nbody > 0) { /* housing body: the unbalance, from outside the machine, shakes it too */
+        td_system_body_share(sys, fre);
+        td_system_body_share(sys, fim);
+    }
     free(phys);
     return st;
 }

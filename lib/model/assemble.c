@@ -97,25 +97,6 @@ static int add_bearings(const td_model *m, triplets *t)
     return 1;
 }
 
-/* Triplets -> compressed column, duplicates summed, rows sorted. NULL on out-of-memory. */
-static cs_di *compress_sorted(const cs_di *T)
-{
-    cs_di *A = cs_di_compress(T), *At;
-    if (!A)
-        return NULL;
-    if (!cs_di_dupl(A)) {
-        cs_di_spfree(A);
-        return NULL;
-    }
-    At = cs_di_transpose(A, 1);
-    cs_di_spfree(A);
-    if (!At)
-        return NULL;
-    A = cs_di_transpose(At, 1);
-    cs_di_spfree(At);
-    return A;
-}
-
 static td_status assemble_matrices(td_system *s, td_error *err)
 {
     triplets t;
@@ -128,10 +109,10 @@ static td_status assemble_matrices(td_system *s, td_error *err)
     t.G = cs_di_spalloc(n, n, guess, 1, 1);
     ok = t.M && t.K && t.C && t.G && add_shaft(s->model, &t) && add_discs(s->model, &t) && add_bearings(s->model, &t);
     if (ok) {
-        s->M = compress_sorted(t.M);
-        s->K = compress_sorted(t.K);
-        s->C = compress_sorted(t.C);
-        s->G = compress_sorted(t.G);
+        s->M = td_system_compress(t.M);
+        s->K = td_system_compress(t.K);
+        s->C = td_system_compress(t.C);
+        s->G = td_system_compress(t.G);
         ok = s->M && s->K && s->C && s->G;
     }
     triplets_free(&t);
@@ -376,6 +357,8 @@ td_status td_system_create(const td_model *model, td_system **out, td_error *err
     if (st == TD_OK && s->model->reduction_cutoff > 0.0)
         st = td_system_reduce(s, err);
     if (st == TD_OK)
+        st = td_system_add_housing_body(s, err);
+    if (st == TD_OK)
         st = build_amb_axes(s, err);
     if (st == TD_OK)
         st = build_laws(s, err);
@@ -406,6 +389,7 @@ void td_system_free(td_system **sys)
         free(s->base_load[k]);
     for (k = 0; k < 2; k++)
         free(s->base_gyro[k]);
+    free(s->body_field);
     td_system_reduction_free(s);
     free(s);
     *sys = NULL;

@@ -146,6 +146,8 @@ td_status td_model_clone(const td_model *model, td_model **out, td_error *err)
     CLONE(m->thermals, model->thermals, ok);
     m->spin = model->spin;
     m->recovery = model->recovery;
+    m->body = model->body;
+    m->has_body = model->has_body;
     if (ok)
         ok = td_model_clone_assessment(m, model);
     if (ok)
@@ -682,6 +684,10 @@ td_status td_model_validate(const td_model *m, td_error *err)
                        "the speed would step from `speed` %g rad/s to %g rad/s at the ramp's first point (%g s): "
                        "start the ramp at `speed`, or add a point at time 0",
                        m->speed, m->speed_points.items[0].speed, m->speed_points.items[0].time);
+    /* housing body: a free spin's torque balance (spin.c) takes the unbalances' accelerations relative
+     * to the housing, without the body's */
+    if (m->has_body && m->spin.free)
+        return FAIL_AT(err, "housing.body", -1, NULL, "a housing body needs a prescribed speed (no free spin)");
     if (td_model_check_recovery(m, err) || td_model_check_controllers(m, err))
         return TD_ERR_INVALID;
     return check_changes(m, err);

@@ -72,6 +72,9 @@ struct td_model {
                                * integrals of the piecewise-linear acceleration up to each (from rest at t = 0) */
     double housing_reference; /* m, valid when has_housing_reference */
     int has_housing_reference;
+    /* housing body */
+    td_housing_body body; /* the compliant housing (housing_body.c), valid when has_body */
+    int has_body;
 };
 
 /* The controllers' part in freeing, copying and validating a model (controllers.c). */

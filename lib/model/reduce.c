@@ -608,6 +608,11 @@ void td_system_reduction_free(td_system *s)
 
 int td_system_coordinate_node(const td_system *s, int i, int *offset)
 {
+    if (i >= s->ndof - s->nbody) { /* a housing body's DOF (assemble_body.c) */
+        if (offset)
+            *offset = -1;
+        return -1;
+    }
     if (offset)
         *offset = s->q_node ? (s->q_node[i] >= 0 ? i % TD_DOFS_PER_NODE : -1) : i % TD_DOFS_PER_NODE;
     if (!s->q_node)
@@ -617,8 +622,8 @@ int td_system_coordinate_node(const td_system *s, int i, int *offset)
 
 double td_system_coordinate_amplitude(const td_system *s, int i)
 {
-    int k = i - (s->ndof - s->n_modes);
-    return s->q_node && k >= 0 && s->mode_amp[k] > 0.0 ? s->mode_amp[k] : 1.0;
+    int k = i - (s->ndof - s->nbody - s->n_modes);
+    return s->q_node && k >= 0 && k < s->n_modes && s->mode_amp[k] > 0.0 ? s->mode_amp[k] : 1.0;
 }
 
 int td_system_is_reduced(const td_system *sys)
@@ -675,14 +680,15 @@ void td_system_project_load(const td_system *s, const double *f_phys, double *f_
     int i, j;
     if (!s->T) {
         memcpy(f_q, f_phys, (size_t)s->nphys * sizeof *f_q);
-        return;
-    }
-    for (j = 0; j < s->ndof; j++) {
-        double sum = 0.0;
-        for (i = 0; i < s->nphys; i++)
-            sum += s->T[i + (size_t)j * (size_t)s->nphys] * f_phys[i];
-        f_q[j] = sum;
-    }
+        for (j = s->nphys; j < s->ndof; j++) /* a housing body's rows: its share below */
+            f_q[j] = 0.0;
+    } else
+        for (j = 0; j < s->ndof; j++) {
+            double sum = 0.0;
+            for (i = 0; i < s->nphys; i++)
+                sum += s->T[i + (size_t)j * (size_t)s->nphys] * f_phys[i];
+            f_q[j] = sum;
+        }
 }
 
 double td_system_node_displacement(const td_system *sys, const double *q, int node, int offset)

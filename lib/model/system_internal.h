@@ -83,6 +83,10 @@ struct td_system {
     double *base_load[4]; /* ndof: M R_x, M R_y, M T_x, M T_y: the inertial load of a unit base acceleration
                            * (translation x, y; rotation about x, y at z_ref); projected like gravity_load */
     double *base_gyro[2]; /* ndof: G T_x, G T_y (per unit speed): the gyroscopic load of a unit base rate */
+    /* housing body */
+    int nbody;          /* the housing body's DOFs (assemble_body.c), the last nbody coordinates of q; 0: none */
+    double *body_field; /* (ndof - nbody) x nbody, column-major: R, the rotor's rigid displacement of a unit
+                         * body DOF (translation, or rotation about the body's centre); NULL: no body */
 };
 
 /* Mark AMB `amb`'s axes off (off != 0) or working, so that the contact-free system's analyses
@@ -95,13 +99,33 @@ td_status td_system_reduce(td_system *s, td_error *err);
 /* Free the reduction fields. */
 void td_system_reduction_free(td_system *s);
 /* Generalized load f_q = T^T f_phys (ndof long) of a physical load f_phys (nphys long); a copy for
- * the full model. */
+ * the full model. A housing body's rows are 0: td_system_body_share adds its share of a load from
+ * outside the machine. */
 void td_system_project_load(const td_system *s, const double *f_phys, double *f_q);
 /* Node of coordinate i of q and its offset in *offset; -1 for a fixed-interface modal coordinate. */
 int td_system_coordinate_node(const td_system *s, int i, int *offset);
 /* Displacement scale of coordinate i: 1 for a physical DOF, the mode's largest nodal amplitude
  * (m per unit coordinate) for a modal one. */
 double td_system_coordinate_amplitude(const td_system *s, int i);
+
+/* Triplets -> compressed column, duplicates summed, rows sorted (sparse.c); NULL on out-of-memory. */
+cs_di *td_system_compress(const cs_di *T);
+
+/* housing body */
+/* Append the housing body's DOFs to q (assemble_body.c): the coupled M and G, the mounts' K and C,
+ * the whole machine's weight on them. After the reduction; nothing without a body. */
+td_status td_system_add_housing_body(td_system *s, td_error *err);
+/* f[body rows] += R^T f[rotor rows] (f ndof long): the body's share of a load on the rotor from
+ * outside the machine (a weight, an unbalance), not of a force between rotor and housing. */
+void td_system_body_share(const td_system *s, double *f);
+/* The rigid field at node `node`'s axial position: its x (rx) and y (ry) displacement per unit body
+ * DOF (4 each; 0 past the body's DOFs, all 0 without a body). */
+void td_system_body_point_field(const td_system *s, int node, double rx[4], double ry[4]);
+/* The body's share of a point force (fx, fy) at node `node`'s axial position (on the rotor or on a
+ * race there): f[body rows] += its R^T (fx, fy); nothing without a body. */
+void td_system_body_point_force(const td_system *s, int node, double fx, double fy, double *f);
+/* The body's static displacement dh (nbody) under the load `load` (nbody) on its DOFs, on its mounts. */
+void td_system_body_static(const td_system *s, const double *load, double *dh);
 
 /* --- The AMB axis law (docs/reference-rig.md), one place for modal analysis and simulation. --- */
 

@@ -82,9 +82,10 @@ static td_status choose_nodes(td_recorder *r, const td_model *model, const td_ou
     return TD_OK;
 }
 
-static td_status allocate_scratch(td_recorder *r, td_error *err)
+/* body_dofs: a housing body's coordinates, after the rotor's in the sim's q (td_sim_get_state). */
+static td_status allocate_scratch(td_recorder *r, int body_dofs, td_error *err)
 {
-    r->q = malloc((size_t)(r->dof_count > 0 ? r->dof_count : 1) * sizeof *r->q);
+    r->q = malloc((size_t)(r->dof_count > 0 ? r->dof_count + body_dofs : 1) * sizeof *r->q);
     r->node_xy = malloc((size_t)(2 * r->node_count + 1) * sizeof *r->node_xy);
     r->ret = calloc((size_t)r->retainer_count + 1, sizeof *r->ret);
     r->amb_f = malloc((size_t)(2 * r->amb_count + 1) * sizeof *r->amb_f);
@@ -231,8 +232,8 @@ td_status td_recorder_create(const td_model *model, const td_output_options *out
     r->switch_fields = td_model_get_recovery(model, NULL) > 0;
     r->thermal_fields = has_thermal(model);
     if ((st = choose_nodes(r, model, out, err)) != TD_OK || (st = housing_setup(r, model, err)) != TD_OK ||
-        (st = allocate_scratch(r, err)) != TD_OK || (st = open_writers(r, out, err)) != TD_OK ||
-        (st = write_model_attributes(r, model, out, err)) != TD_OK) {
+        (st = allocate_scratch(r, td_model_housing_body_dofs(model), err)) != TD_OK ||
+        (st = open_writers(r, out, err)) != TD_OK || (st = write_model_attributes(r, model, out, err)) != TD_OK) {
         td_recorder_discard(&r);
         return st;
     }

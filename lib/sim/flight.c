@@ -10,7 +10,7 @@
 #include <string.h>
 
 /* 1 if the machine may fly in closed form now: free flight on (td_solver_options), no energy
- * account, a prescribed constant speed, no housing motion, no races, no AMB saturation or slew
+ * account, a prescribed constant speed, no housing motion or body, no races, no AMB saturation or slew
  * limit (the flight has no root function for their kinks and would step across one unseen, and its
  * probes of the residual, half a clearance and 1 m/s, would reach a clip), every retainer free (one
  * with a force law only once its gap has opened by eps after its last exit). The decomposition may
@@ -22,6 +22,8 @@ static int flight_eligible(const td_sim *s)
         return 0;
     /* housing motion: its loads vary in time (the flight's forcing is harmonic, probed ahead of now) */
     if (s->sys->base_load[0])
+        return 0;
+    if (s->sys->nbody > 0) /* housing body: its unbalance share is not in the flight's forcing */
         return 0;
     for (k = 0; k < s->sys->n_amb_axes; k++)
         if (s->sys->amb_axes[k].saturation || s->sys->amb_axes[k].slew_rate > 0.0)

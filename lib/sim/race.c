@@ -80,6 +80,43 @@ static cs_di *extend(const td_sim *s, const cs_di *A, char which, double *diag)
     return E;
 }
 
+/* housing body */
+/* The races' mass coupled to a housing body (assemble_body.c): a race's absolute displacement is its
+ * own (relative to the housing) plus the body's rigid field at its axial position, r_x h and r_y h,
+ * so M gains m (r_x, r_y) between the race's x, y and the body's DOFs and m (r_x r_x^T + r_y r_y^T)
+ * on the body's. *M is replaced; nothing without a body or a mounted race. */
+static td_status couple_races(const td_sim *s, cs_di **M, td_error *err)
+{
+    int h = s->sys->ndof - s->sys->nbody, nb = s->sys->nbody, k, i, j, ok = 1, c, p;
+    cs_di *T, *C;
+    if (nb == 0)
+        return TD_OK;
+    T = cs_di_spalloc(s->dae.n, s->dae.n, (*M)->p[(*M)->n] + 4 * nb * s->dae.nr + nb * nb * s->dae.nr + 1, 1, 1);
+    for (c = 0; T && ok && c < (*M)->n; c++)
+        for (p = (*M)->p[c]; ok && p < (*M)->p[c + 1]; p++)
+            ok = cs_di_entry(T, (*M)->i[p], c, (*M)->x[p]);
+    for (k = 0; T && ok && k < s->dae.nr; k++) {
+        const td_sim_retainer *r = &s->contacts.ret[k];
+        double rx[4], ry[4], m = r->r.race.mass;
+        if (r->rx < 0)
+            continue;
+        td_system_body_point_field(s->sys, r->r.node, rx, ry);
+        for (j = 0; ok && j < nb; j++) {
+            ok = cs_di_entry(T, r->rx, h + j, m * rx[j]) && cs_di_entry(T, h + j, r->rx, m * rx[j]) &&
+                 cs_di_entry(T, r->ry, h + j, m * ry[j]) && cs_di_entry(T, h + j, r->ry, m * ry[j]);
+            for (i = 0; ok && i < nb; i++)
+                ok = cs_di_entry(T, h + i, h + j, m * (rx[i] * rx[j] + ry[i] * ry[j]));
+        }
+    }
+    C = T && ok ? td_system_compress(T) : NULL;
+    cs_di_spfree(T);
+    if (!C)
+        return td_error_set(err, TD_ERR_NOMEM, "out of memory coupling the races to the housing body");
+    cs_di_spfree(*M);
+    *M = C;
+    return TD_OK;
+}
+
 td_status td_sim_races_matrices(td_sim *s, td_error *err)
 {
     const td_system *sys = s->sys;
@@ -99,7 +136,7 @@ td_status td_sim_races_matrices(td_sim *s, td_error *err)
     free(diag);
     if (!s->dae.M || !s->dae.K || !s->dae.C || !s->dae.G)
         return td_error_set(err, TD_ERR_NOMEM, "out of memory assembling the retainer races");
-    return TD_OK;
+    return couple_races(s, &s->dae.M, err);
 }
 
 void td_sim_races_free(td_sim *s)
@@ -125,6 +162,8 @@ void td_sim_races_gravity(const td_sim *s, double *f, double sign)
             continue;
         f[r->rx] += sign * r->r.race.mass * gx;
         f[r->ry] += sign * r->r.race.mass * gy;
+        /* housing body: its share of the race's weight (nothing without a body) */
+        td_system_body_point_force(s->sys, r->r.node, sign * r->r.race.mass * gx, sign * r->r.race.mass * gy, f);
     }
 }
 
@@ -143,7 +182,33 @@ void td_sim_races_housing(const td_sim *s, const td_housing_motion *hm, double *
         dz = td_model_node_position(s->model, r->r.node) - zref;
         f[r->rx] -= sign * m * (hm->acceleration[0] + dz * hm->rate_change[1]);
         f[r->ry] -= sign * m * (hm->acceleration[1] - dz * hm->rate_change[0]);
+        /* housing body: its share of the race's inertial load (nothing without a body) */
+        td_system_body_point_force(s->sys, r->r.node, -sign * m * (hm->acceleration[0] + dz * hm->rate_change[1]),
+                                   -sign * m * (hm->acceleration[1] - dz * hm->rate_change[0]), f);
     }
+}
+
+/* housing body: the races' weight carried by its mounts, added to the body's static position of
+ * an orbit start (the system's, without the races). Nothing without a body or from rest. */
+static void races_body_sag(const td_sim *s, double *y)
+{
+    double load[4] = {0.0, 0.0, 0.0, 0.0}, dh[4], gx, gy;
+    int h = s->sys->ndof - s->sys->nbody, j, k;
+    if (s->sys->nbody == 0 || s->start.used != TD_START_ORBIT)
+        return;
+    td_model_gravity(s->model, &gx, &gy);
+    for (k = 0; k < s->dae.nr; k++) {
+        const td_sim_retainer *r = &s->contacts.ret[k];
+        double rx[4], ry[4];
+        if (r->rx < 0)
+            continue;
+        td_system_body_point_field(s->sys, r->r.node, rx, ry);
+        for (j = 0; j < s->sys->nbody; j++)
+            load[j] += r->r.race.mass * (rx[j] * gx + ry[j] * gy);
+    }
+    td_system_body_static(s->sys, load, dh);
+    for (j = 0; j < s->sys->nbody; j++)
+        y[s->dae.oq + h + j] += dh[j];
 }
 
 void td_sim_races_start(const td_sim *s, double *y)
@@ -161,5 +226,6 @@ void td_sim_races_start(const td_sim *s, double *y)
         if (r->rs >= 0)
             y[s->dae.ov + r->rs] = r->r.bore_speed;
     }
+    races_body_sag(s, y);
     td_sim_spin_start(s, y);
 }

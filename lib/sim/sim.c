@@ -141,6 +141,20 @@ td_status td_sim_get_state(const td_sim *sim, double *q, double *v)
     return TD_OK;
 }
 
+int td_sim_housing_body_state(const td_sim *sim, double q[4], double v[4])
+{
+    const double *y;
+    int nb = sim ? sim->sys->nbody : 0, h = sim ? sim->sys->ndof - nb : 0, k;
+    y = sim ? N_VGetArrayPointer(sim->dae.y) : NULL;
+    for (k = 0; k < 4; k++) {
+        if (q)
+            q[k] = k < nb ? y[sim->dae.oq + h + k] : 0.0;
+        if (v)
+            v[k] = k < nb ? y[sim->dae.ov + h + k] : 0.0;
+    }
+    return nb > 0;
+}
+
 td_status td_sim_retainer_state(const td_sim *sim, int retainer, td_retainer_state *out)
 {
     const double *y;

@@ -216,10 +216,13 @@ void td_sim_external_forces(const td_sim *s, double t, const double *y, double s
         double a = sign * u->magnitude * w2;
         f[td_system_node_dof(s->sys, u->node, TD_DOF_X)] += a * cos(phi + u->phase);
         f[td_system_node_dof(s->sys, u->node, TD_DOF_Y)] += a * sin(phi + u->phase);
+        /* from outside the machine: a housing body carries it too (no body: nothing) */
+        td_system_body_point_force(sys, u->node, a * cos(phi + u->phase), a * sin(phi + u->phase), f);
         if (alpha != 0.0) {
             double b = sign * u->magnitude * alpha;
             f[td_system_node_dof(s->sys, u->node, TD_DOF_X)] += b * sin(phi + u->phase);
             f[td_system_node_dof(s->sys, u->node, TD_DOF_Y)] -= b * cos(phi + u->phase);
+            td_system_body_point_force(sys, u->node, b * sin(phi + u->phase), -b * cos(phi + u->phase), f);
         }
     }
     if (s->machine.spin >= 0)

@@ -201,6 +201,21 @@ static int print_keys(void)
     return TD_EXIT_OK;
 }
 
+/* housing body: the housing on its mounts, when it has them. */
+static void print_housing_body(const td_model *m)
+{
+    td_housing_body b;
+    int i;
+    if (!td_model_get_housing_body(m, &b))
+        return;
+    printf("housing      a body of %.6g kg, %.6g kg m^2 about z = %.6g m (%s), on %d mount%s:", b.mass, b.inertia,
+           b.centre, b.inertia > 0.0 ? "tilting" : "translating", b.mount_count, b.mount_count > 1 ? "s" : "");
+    for (i = 0; i < b.mount_count; i++)
+        printf("%s z %.6g m: k %.6g N/m, c %.6g N s/m", i > 0 ? ";" : "", b.mounts[i].position, b.mounts[i].stiffness,
+               b.mounts[i].damping);
+    printf("\n");
+}
+
 /* 1 if a controller of m is a plug-in (no linear law for the modes). */
 static int has_plugin(const td_model *m)
 {
@@ -224,8 +239,13 @@ static int print_modes(const td_model *m, const td_modal_options *opt, int count
     td_model_gravity(m, &gx, &gy);
     print_speed(m);
     printf("gravity      %s\n", (gx != 0.0 || gy != 0.0) ? "on" : "off");
-    printf("DOFs         %d mechanical (%s), %d first-order states with the AMB lags\n", td_system_dof_count(sys),
-           td_system_is_reduced(sys) ? "reduced" : "4 per node", td_modal_state_count(sys));
+    print_housing_body(m);
+    printf("DOFs         %d mechanical (%s%s), %d first-order states with the AMB lags\n", td_system_dof_count(sys),
+           td_system_is_reduced(sys) ? "reduced" : "4 per node",
+           td_model_housing_body_dofs(m) == 4   ? " + 4 of the housing body"
+           : td_model_housing_body_dofs(m) == 2 ? " + 2 of the housing body"
+                                                : "",
+           td_modal_state_count(sys));
     td_print_reduction(stdout, sys);
     if (td_modal_solve_lowest(sys, td_model_speed(m), count, &modes, &err) != TD_OK) {
         int plugin = has_plugin(m); /* the analysis refuses a plug-in's law: a fact of the case, said */

@@ -160,7 +160,8 @@ void td_print_reduction(FILE *f, const td_system *sys)
     if (!td_system_is_reduced(sys))
         return;
     fprintf(f, "reduction    Craig-Bampton below %.9g Hz: %d boundary DOFs + %d fixed-interface modes",
-            td_model_reduction(td_system_model(sys)), nq - nm - ns, nm);
+            td_model_reduction(td_system_model(sys)), nq - nm - ns - td_model_housing_body_dofs(td_system_model(sys)),
+            nm);
     if (nm > 0)
         fprintf(f, " (%.6g..%.6g Hz)", td_system_mode_frequency(sys, 0), td_system_mode_frequency(sys, nm - 1));
     if (ns > 0)
