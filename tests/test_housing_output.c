@@ -6,7 +6,9 @@
  * middle, 2 A T / pi (t - start - T / 2); a ramp of the rotation rate to w over d holds w, its angle
  * w d / 2 + w (t - start - d). The absolute displacement of node i is the relative one plus the
  * housing's displacement and its rotation's rigid field at z_i about z_ref: by a about x,
- * y - (z_i - z_ref) a; about y, x + (z_i - z_ref) a.
+ * y - (z_i - z_ref) a; about y, x + (z_i - z_ref) a. A housing body (no base motion) writes the housing
+ * fields too, with its own series /housing/body_displacement and /housing/body_tilt: its state as the
+ * simulation gives it (td_sim_housing_body_state), and its rigid field in the absolute displacement.
  */
 #include "td_test.h"
 
@@ -25,6 +27,9 @@
 #define T0_ROT 0.03   /* s */
 #define Z_REF 0.25    /* m */
 #define T_END 0.1     /* s */
+#define BODY 2        /* rotor(): a housing body, no base motion */
+#define M_BODY 30.0   /* kg */
+#define Z_BODY 0.4    /* m */
 
 static void tmp_name(char *buf, size_t n, const char *name)
 {
@@ -49,7 +54,13 @@ static td_model *rotor(int motion)
     assert_int_equal(td_model_add_bearing(m, &b2, NULL), TD_OK);
     assert_int_equal(td_model_add_retainer(m, &r, NULL), TD_OK);
     assert_int_equal(td_model_set_speed(m, 100.0, NULL), TD_OK);
-    if (motion) {
+    if (motion == BODY) { /* the body sags on its mounts under gravity from rest, and rocks */
+        td_housing_body body = {.mass = M_BODY, .inertia = 0.4, .centre = Z_BODY, .mount_count = 2};
+        body.mounts[0] = (td_housing_mount){0.0, 4.0e6, 400.0};
+        body.mounts[1] = (td_housing_mount){1.0, 2.0e6, 200.0};
+        assert_int_equal(td_model_set_housing_body(m, &body, NULL), TD_OK);
+        assert_int_equal(td_model_set_gravity(m, 0.0, -9.81, NULL), TD_OK);
+    } else if (motion) {
         assert_int_equal(td_model_add_housing_shock(m, &shock, NULL), TD_OK);
         assert_int_equal(td_model_add_housing_rotation(m, &turn, NULL), TD_OK);
         assert_int_equal(td_model_set_housing_reference(m, Z_REF, NULL), TD_OK);
@@ -57,7 +68,9 @@ static td_model *rotor(int motion)
     return m;
 }
 
-static void run_to_files(int motion, const char *h5, const char *csv)
+/* Run rotor(motion) to T_END into h5 and csv; body_q (may be NULL) receives the housing body's state
+ * at the end (td_sim_housing_body_state). */
+static void run_to_files(int motion, const char *h5, const char *csv, double *body_q)
 {
     td_model *m = rotor(motion);
     td_sim_options o;
@@ -75,6 +88,8 @@ static void run_to_files(int motion, const char *h5, const char *csv)
         fail_msg("td_sim_create: %s", err.message);
     if (td_run(sim, T_END, &out, NULL, NULL, &s, &err) != TD_OK)
         fail_msg("td_run: %s", err.message);
+    if (body_q)
+        assert_int_equal(td_sim_housing_body_state(sim, body_q, NULL), 1);
     td_sim_free(&sim);
     td_model_free(&m);
 }
@@ -146,11 +161,13 @@ static void test_housing_series(void **state)
     (void)state;
     tmp_name(h5, sizeof h5, "motion.h5");
     tmp_name(csv, sizeof csv, "motion.csv");
-    run_to_files(1, h5, csv);
+    run_to_files(1, h5, csv, NULL);
     assert_int_equal(td_result_open(h5, &r, NULL), TD_OK);
     assert_int_equal(td_result_read(r, TD_OUT_TIME, NULL, &t, NULL), TD_OK);
     check_motion(r, t.n, t.v);
     check_absolute(r, t.n);
+    assert_false(td_result_has(r, TD_OUT_HOUSING_BODY_DISPLACEMENT, NULL)); /* written only with a body */
+    assert_false(td_result_has(r, TD_OUT_HOUSING_BODY_TILT, NULL));
     td_result_array_free(&t);
     td_result_free(&r);
     /* the CSV's header: the housing's columns and the nodes' absolute displacement, last */
@@ -173,7 +190,7 @@ static void test_no_motion_no_series(void **state)
     (void)state;
     tmp_name(h5, sizeof h5, "still.h5");
     tmp_name(csv, sizeof csv, "still.csv");
-    run_to_files(0, h5, csv);
+    run_to_files(0, h5, csv, NULL);
     assert_int_equal(td_result_open(h5, &r, NULL), TD_OK);
     assert_false(td_result_has(r, TD_OUT_HOUSING, NULL));
     assert_false(td_result_has(r, TD_OUT_HOUSING_ACCELERATION, NULL));
@@ -188,11 +205,72 @@ static void test_no_motion_no_series(void **state)
     remove(h5), remove(csv), remove(events);
 }
 
+/* housing body: the last sample of /housing/body_displacement and /housing/body_tilt is the body's state
+ * at the end (td_sim_housing_body_state); the prescribed motion's series are zero; at every sample the
+ * absolute displacement is the relative one plus the body's rigid field at the node's z about its centre:
+ * x + x_b + (z - z_b) phi_b, y + y_b - (z - z_b) theta_b. */
+static void check_body(const td_result *r, size_t n, const double *q)
+{
+    td_result_array d, tilt, acc, rel, abs_;
+    size_t k;
+    int i;
+    read_shape(r, TD_OUT_HOUSING_BODY_DISPLACEMENT, n, 2, 1, "m", &d);
+    read_shape(r, TD_OUT_HOUSING_BODY_TILT, n, 2, 1, "rad", &tilt);
+    read_shape(r, TD_OUT_HOUSING_ACCELERATION, n, 2, 1, "m/s^2", &acc);
+    read_shape(r, TD_OUT_NODE_DISPLACEMENT, n, 3, 2, "m", &rel);
+    read_shape(r, TD_OUT_NODE_ABSOLUTE_DISPLACEMENT, n, 3, 2, "m", &abs_);
+    assert_true(q[1] < -1e-6 && fabs(q[2]) > 1e-9); /* it sags and rocks: a test that can fail */
+    for (i = 0; i < 2; i++) {
+        assert_close(d.v[2 * (n - 1) + (size_t)i], q[i], 1e-12, 0.0);
+        assert_close(tilt.v[2 * (n - 1) + (size_t)i], q[2 + i], 1e-12, 0.0);
+    }
+    for (k = 0; k < n; k++)
+        for (i = 0; i < 3; i++) {
+            double z = 0.5 * i, *a = abs_.v + 6 * k + 2 * (size_t)i, *p = rel.v + 6 * k + 2 * (size_t)i;
+            const double *b = d.v + 2 * k, *th = tilt.v + 2 * k;
+            assert_true(acc.v[2 * k] == 0.0 && acc.v[2 * k + 1] == 0.0);
+            assert_close(a[0], p[0] + b[0] + (z - Z_BODY) * th[1], 1e-12, 1e-18);
+            assert_close(a[1], p[1] + b[1] - (z - Z_BODY) * th[0], 1e-12, 1e-18);
+        }
+    td_result_array_free(&d);
+    td_result_array_free(&tilt);
+    td_result_array_free(&acc);
+    td_result_array_free(&rel);
+    td_result_array_free(&abs_);
+}
+
+/* A housing body without base motion writes the housing fields, its own series among them. */
+static void test_body_series(void **state)
+{
+    char h5[512], csv[512], events[600], line[4096];
+    double q[4];
+    td_result *r = NULL;
+    td_result_array t;
+    FILE *f;
+    (void)state;
+    tmp_name(h5, sizeof h5, "body.h5");
+    tmp_name(csv, sizeof csv, "body.csv");
+    run_to_files(BODY, h5, csv, q);
+    assert_int_equal(td_result_open(h5, &r, NULL), TD_OK);
+    assert_int_equal(td_result_read(r, TD_OUT_TIME, NULL, &t, NULL), TD_OK);
+    check_body(r, t.n, q);
+    td_result_array_free(&t);
+    td_result_free(&r);
+    assert_non_null(f = fopen(csv, "r"));
+    assert_non_null(fgets(line, sizeof line, f));
+    fclose(f);
+    assert_non_null(strstr(line, ",rotx_housing [rad],roty_housing [rad],x_housing_body [m],y_housing_body [m],"
+                                 "tiltx_housing_body [rad],tilty_housing_body [rad],x_abs_n0 [m],"));
+    td_writer_events_path(csv, events, sizeof events);
+    remove(h5), remove(csv), remove(events);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_housing_series),
         cmocka_unit_test(test_no_motion_no_series),
+        cmocka_unit_test(test_body_series),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -60,7 +60,11 @@ typedef struct td_output_layout {
                          *   retainer has a thermal network; NaN for the others). Last, as switch_fields */
     /* housing motion */
     int housing_fields; /**< nonzero: also the housing's motion (/housing, (N, 2) each) and the nodes' absolute
-                         *   displacement, given by td_writer_housing (models with housing motion). Last */
+                         *   displacement, given by td_writer_housing (models with housing motion or a housing
+                         *   body) */
+    /* housing body */
+    int housing_body_fields; /**< nonzero (only with housing_fields): also the housing body's displacement and tilt
+                              *   (/housing/body_displacement, /housing/body_tilt; models with a housing body). Last */
 } td_output_layout;
 
 /**
@@ -85,13 +89,17 @@ TD_API td_status td_writer_sample(td_writer *w, double t, double speed, const do
 
 /** The number of values of a housing motion sample (td_writer_housing). */
 #define TD_WRITER_HOUSING_VALUES 10
+/** housing body: the number of values a layout with housing_body_fields adds to it. */
+#define TD_WRITER_HOUSING_BODY_VALUES 4
 
 /**
  * housing motion: the housing's part of the next td_writer_sample of a writer whose layout has
  * housing_fields. `motion`: TD_WRITER_HOUSING_VALUES values, the housing's acceleration x, y (m/s^2),
  * velocity x, y (m/s), displacement x, y (m), rotation rate about x, y (rad/s) and rotation angle about
- * x, y (rad); `node_abs_xy`: 2 node_count values, the nodes' absolute displacement x0, y0, ... (m; may be
- * NULL when node_count is 0). Copied; a sample without it holds NaN there.
+ * x, y (rad), then, when the layout has housing_body_fields, TD_WRITER_HOUSING_BODY_VALUES more: the housing
+ * body's centre x, y relative to the base (m) and its tilts theta, phi (rad); `node_abs_xy`: 2 node_count
+ * values, the nodes' absolute displacement x0, y0, ... (m; may be NULL when node_count is 0). Copied; a sample
+ * without it holds NaN there.
  */
 TD_API td_status td_writer_housing(td_writer *w, const double *motion, const double *node_abs_xy, td_error *err);
 

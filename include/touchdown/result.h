@@ -381,7 +381,10 @@ typedef enum td_out_id {
     TD_OUT_HOUSING_ROTATION_RATE,      /**< (N, 2) rad/s, about x and y */
     TD_OUT_HOUSING_ROTATION_ANGLE,     /**< (N, 2) rad */
     TD_OUT_NODE_ABSOLUTE_DISPLACEMENT, /**< /nodes/absolute_displacement (N, n_nodes, 2) m */
-    TD_OUT_ID_COUNT                    /**< number of ids; also "several objects" as the parent of an attribute */
+    /* housing body (the series of a model with a housing body) */
+    TD_OUT_HOUSING_BODY_DISPLACEMENT, /**< (N, 2) m, the body's centre relative to the base */
+    TD_OUT_HOUSING_BODY_TILT,         /**< (N, 2) rad, the body's theta, phi */
+    TD_OUT_ID_COUNT                   /**< number of ids; also "several objects" as the parent of an attribute */
 } td_out_id;
 
 /** What a name is in the file. */

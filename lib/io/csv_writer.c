@@ -43,14 +43,17 @@ static const char *exact_text(double v, char *buf, size_t n)
 
 static int column(FILE *f, int first, td_out_id id, const char *comp, int i);
 
-/* housing motion: the housing's five x-y pairs, then the nodes' absolute displacement, last. */
+/* housing motion: the housing's five x-y pairs (with a housing body its two more), then the nodes'
+ * absolute displacement, last. */
 static int housing_header(FILE *f, const td_writer *w)
 {
-    static const td_out_id ids[] = {TD_OUT_HOUSING_ACCELERATION, TD_OUT_HOUSING_VELOCITY, TD_OUT_HOUSING_DISPLACEMENT,
-                                    TD_OUT_HOUSING_ROTATION_RATE, TD_OUT_HOUSING_ROTATION_ANGLE};
+    static const td_out_id ids[] = {TD_OUT_HOUSING_ACCELERATION,   TD_OUT_HOUSING_VELOCITY,
+                                    TD_OUT_HOUSING_DISPLACEMENT,   TD_OUT_HOUSING_ROTATION_RATE,
+                                    TD_OUT_HOUSING_ROTATION_ANGLE, TD_OUT_HOUSING_BODY_DISPLACEMENT,
+                                    TD_OUT_HOUSING_BODY_TILT};
     const char *const *xy = td_schema_components();
     int i, k, rc = 0;
-    for (i = 0; i < (int)(sizeof ids / sizeof ids[0]); i++)
+    for (i = 0; i < TD_WRITER_HOUSING_COUNT(w) / 2; i++)
         for (k = 0; k < 2; k++)
             rc |= column(f, 0, ids[i], xy[k], 0);
     for (i = 0; i < w->node_count; i++)
@@ -183,7 +186,7 @@ static td_status csv_sample(td_writer *w, double t, double speed, const double *
     }
     for (i = 0; i < 2 * w->amb_count; i++)
         rc |= fprintf(f, ",%.17g", amb_f[i]) < 0;
-    for (i = 0; w->housing_fields && i < TD_WRITER_HOUSING_VALUES; i++) /* housing motion */
+    for (i = 0; w->housing_fields && i < TD_WRITER_HOUSING_COUNT(w); i++) /* housing motion */
         rc |= fprintf(f, ",%.17g", w->housing[i]) < 0;
     for (i = 0; w->housing_fields && i < 2 * w->node_count; i++)
         rc |= fprintf(f, ",%.17g", w->node_abs_xy[i]) < 0;

@@ -279,19 +279,22 @@ static td_status create_absolute(td_writer *w, h5_impl *h, hid_t g, const hsize_
     return st == TD_OK ? attach_axis(w, h, h->idx_abs, h->component, 2, err) : st;
 }
 
-/* housing motion: the group /housing, its five (N, 2) series over /component. */
+/* housing motion: the group /housing, its five (N, 2) series over /component, then with a housing body
+ * its two (in the order of td_writer_housing's values). */
 static td_status create_housing(td_writer *w, h5_impl *h, td_error *err)
 {
-    static const td_out_id ids[] = {TD_OUT_HOUSING_ACCELERATION, TD_OUT_HOUSING_VELOCITY, TD_OUT_HOUSING_DISPLACEMENT,
-                                    TD_OUT_HOUSING_ROTATION_RATE, TD_OUT_HOUSING_ROTATION_ANGLE};
+    static const td_out_id ids[] = {TD_OUT_HOUSING_ACCELERATION,   TD_OUT_HOUSING_VELOCITY,
+                                    TD_OUT_HOUSING_DISPLACEMENT,   TD_OUT_HOUSING_ROTATION_RATE,
+                                    TD_OUT_HOUSING_ROTATION_ANGLE, TD_OUT_HOUSING_BODY_DISPLACEMENT,
+                                    TD_OUT_HOUSING_BODY_TILT};
     hid_t g = H5Gcreate2(h->file, td_out_name(TD_OUT_HOUSING), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT);
     hsize_t row[1] = {2};
     td_status st = TD_OK;
-    size_t i;
+    int i;
     if (g < 0)
         return h5_fail(err, w, "cannot create /housing");
     h->idx_housing = h->series_count;
-    for (i = 0; st == TD_OK && i < sizeof ids / sizeof ids[0]; i++) {
+    for (i = 0; st == TD_OK && i < TD_WRITER_HOUSING_COUNT(w) / 2; i++) {
         st = add_series(w, h, g, ids[i], 2, row, 0, err);
         if (st == TD_OK && td_h5_attr_string(h->series[h->series_count - 1].dset, td_out_name(TD_OUT_COMPONENTS),
                                              td_schema_components_list()) < 0)
@@ -624,7 +627,7 @@ static void buffer_row(const td_writer *w, h5_impl *h, double t, double speed, c
     if (h->idx_amb >= 0)
         memcpy((double *)h->series[h->idx_amb].buf + r * 2 * (size_t)w->amb_count, amb_f,
                2 * (size_t)w->amb_count * sizeof(double));
-    for (f = 0; h->idx_housing >= 0 && f < TD_WRITER_HOUSING_VALUES / 2; f++) /* housing motion */
+    for (f = 0; h->idx_housing >= 0 && f < TD_WRITER_HOUSING_COUNT(w) / 2; f++) /* housing motion */
         memcpy((double *)h->series[h->idx_housing + f].buf + r * 2, w->housing + 2 * f, 2 * sizeof(double));
     if (h->idx_abs >= 0)
         memcpy((double *)h->series[h->idx_abs].buf + r * 2 * (size_t)w->node_count, w->node_abs_xy,

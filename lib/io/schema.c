@@ -405,6 +405,10 @@ static const td_schema_entry entries[TD_OUT_ID_COUNT] = {
            NULL),
     SERIES(TD_OUT_NODE_ABSOLUTE_DISPLACEMENT, "absolute_displacement", TD_OUT_NODES, F64, "m", "(N, n_nodes, 2)",
            "%s_abs_n%d", NULL),
+    /* housing body: the series of a model with a housing body (td_model_get_housing_body) */
+    SERIES(TD_OUT_HOUSING_BODY_DISPLACEMENT, "body_displacement", TD_OUT_HOUSING, F64, "m", "(N, 2)", "%s_housing_body",
+           NULL),
+    SERIES(TD_OUT_HOUSING_BODY_TILT, "body_tilt", TD_OUT_HOUSING, F64, "rad", "(N, 2)", "tilt%s_housing_body", NULL),
 };
 
 /* The lateral components, each name written once here (td_schema_components). */

@@ -364,7 +364,8 @@ static td_status housing_open(td_writer *w, const td_output_layout *layout)
 {
     int i;
     w->housing_fields = layout->housing_fields != 0;
-    for (i = 0; i < TD_WRITER_HOUSING_VALUES; i++)
+    w->housing_body_fields = w->housing_fields && layout->housing_body_fields; /* housing body */
+    for (i = 0; i < TD_WRITER_HOUSING_VALUES + TD_WRITER_HOUSING_BODY_VALUES; i++)
         w->housing[i] = TD_UNDEFINED;
     if (!w->housing_fields)
         return TD_OK;
@@ -485,7 +486,7 @@ td_status td_writer_housing(td_writer *w, const double *motion, const double *no
         return td_error_set(err, TD_ERR_INVALID, "td_writer_housing: the layout has no housing fields");
     if (!motion || (w->node_count > 0 && !node_abs_xy))
         return td_error_set(err, TD_ERR_INVALID, "td_writer_housing: NULL array");
-    memcpy(w->housing, motion, sizeof w->housing);
+    memcpy(w->housing, motion, (size_t)TD_WRITER_HOUSING_COUNT(w) * sizeof *motion);
     if (w->node_count > 0)
         memcpy(w->node_abs_xy, node_abs_xy, 2 * (size_t)w->node_count * sizeof *w->node_abs_xy);
     return TD_OK;

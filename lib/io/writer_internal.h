@@ -60,10 +60,17 @@ struct td_writer {
     /* heat */
     int thermal_fields; /**< nonzero: the retainers' temperature rises too (td_output_layout) */
     /* housing motion */
-    int housing_fields;                       /**< nonzero: /housing and the absolute displacement (td_output_layout) */
-    double housing[TD_WRITER_HOUSING_VALUES]; /**< the next sample's (td_writer_housing), NaN until given */
-    double *node_abs_xy;                      /**< 2 node_count: the next sample's absolute displacement */
+    int housing_fields; /**< nonzero: /housing and the absolute displacement (td_output_layout) */
+    /** the next sample's (td_writer_housing; a housing body's after the housing's), NaN until given */
+    double housing[TD_WRITER_HOUSING_VALUES + TD_WRITER_HOUSING_BODY_VALUES];
+    double *node_abs_xy; /**< 2 node_count: the next sample's absolute displacement */
+    /* housing body */
+    int housing_body_fields; /**< nonzero: the body's displacement and tilt in /housing too (td_output_layout) */
 };
+
+/** housing motion: the number of td_writer_housing's values a sample of `w` holds (the body's with a body). */
+#define TD_WRITER_HOUSING_COUNT(w)                                                                                     \
+    (TD_WRITER_HOUSING_VALUES + ((w)->housing_body_fields ? TD_WRITER_HOUSING_BODY_VALUES : 0))
 
 /** Back-end operations. Each returns a status and fills err; finish and destroy release impl. */
 struct td_writer_ops {

@@ -29,10 +29,14 @@ struct td_recorder {
     /* heat */
     int thermal_fields; /* the writers' temperature columns (td_output_layout) */
     /* housing motion */
-    int housing_fields;                       /* the writers' housing series (td_output_layout) */
-    double housing[TD_WRITER_HOUSING_VALUES]; /* the housing's motion at the sample (td_writer_housing) */
-    double *node_abs_xy;                      /* 2 node_count: the nodes' absolute displacement */
-    double *node_z;                           /* node_count: their axial positions, m */
+    int housing_fields; /* the writers' housing series (td_output_layout) */
+    /* the housing's motion at the sample, then a housing body's (td_writer_housing) */
+    double housing[TD_WRITER_HOUSING_VALUES + TD_WRITER_HOUSING_BODY_VALUES];
+    double *node_abs_xy; /* 2 node_count: the nodes' absolute displacement */
+    double *node_z;      /* node_count: their axial positions, m */
+    /* housing body */
+    int housing_body_fields; /* the writers' body series (td_output_layout) */
+    double body_centre;      /* m, axial z of the body's centre (td_housing_body.centre) */
 };
 
 static void recorder_free(td_recorder *r)
@@ -183,7 +187,8 @@ static td_status open_writers(td_recorder *r, const td_output_options *out, td_e
     layout.whirl_field = r->race_fields || r->speed_field;
     layout.switch_fields = r->switch_fields;
     layout.thermal_fields = r->thermal_fields;
-    layout.housing_fields = r->housing_fields; /* housing motion */
+    layout.housing_fields = r->housing_fields;           /* housing motion */
+    layout.housing_body_fields = r->housing_body_fields; /* housing body */
     layout.compression = out->compression;
     if (out->hdf5_path[0])
         st = td_writer_open(TD_WRITER_HDF5, out->hdf5_path, &layout, &r->writers[r->writer_count++], err);
@@ -192,11 +197,15 @@ static td_status open_writers(td_recorder *r, const td_output_options *out, td_e
     return st;
 }
 
-/* housing motion: the buffers of the absolute displacement and the output nodes' axial positions. */
+/* housing motion: the buffers of the absolute displacement and the output nodes' axial positions, for a
+ * model with housing motion or a housing body (whose own motion the housing fields show too). */
 static td_status housing_setup(td_recorder *r, const td_model *model, td_error *err)
 {
+    td_housing_body body;
     int i;
-    r->housing_fields = td_model_has_housing_motion(model);
+    r->housing_body_fields = td_model_get_housing_body(model, &body);
+    r->body_centre = r->housing_body_fields ? body.centre : 0.0;
+    r->housing_fields = td_model_has_housing_motion(model) || r->housing_body_fields;
     if (!r->housing_fields)
         return TD_OK;
     r->node_abs_xy = malloc((size_t)(2 * r->node_count + 1) * sizeof *r->node_abs_xy);
@@ -267,17 +276,19 @@ static td_status read_state(td_recorder *r, const td_sim *sim, td_error *err)
  * absolute displacement, the relative one plus the housing's rigid motion at the node's z: its
  * displacement, and its rotation about the reference point z_ref, which by a about x moves y by
  * -(z - z_ref) a and by a about y moves x by +(z - z_ref) a (touchdown/dofs.h: theta = -dy/dz,
- * phi = +dx/dz). A compliant housing (a body on mounts) adds its own rigid motion here the same
- * way: its centre's x_b, y_b and its tilts theta_b, phi_b about its centre z_b, x + x_b + (z - z_b) phi_b,
- * y + y_b - (z - z_b) theta_b (and sets housing_fields for a model with a body and no base motion).
+ * phi = +dx/dz). A compliant housing (a body on mounts) adds its own rigid motion relative to the
+ * base the same way: its centre's x_b, y_b and its tilts theta_b, phi_b about its centre z_b,
+ * x + x_b + (z - z_b) phi_b, y + y_b - (z - z_b) theta_b (td_sim_housing_body_state; its four values
+ * follow the housing's in td_writer_housing's).
  */
 static td_status housing_sample(td_recorder *r, const td_sim *sim, double t, td_error *err)
 {
     const td_model *model = td_sim_model(sim);
-    double z_ref = td_model_housing_reference(model);
+    double z_ref = td_model_housing_reference(model), *b = r->housing + TD_WRITER_HOUSING_VALUES;
     td_housing_motion hm;
     td_status st = TD_OK;
     int i;
+    td_sim_housing_body_state(sim, b, NULL); /* zeros without a body */
     td_model_housing_motion_at(model, t, &hm);
     memcpy(r->housing, hm.acceleration, 2 * sizeof(double));
     memcpy(r->housing + 2, hm.velocity, 2 * sizeof(double));
@@ -286,8 +297,13 @@ static td_status housing_sample(td_recorder *r, const td_sim *sim, double t, td_
     memcpy(r->housing + 8, hm.angle, 2 * sizeof(double));
     for (i = 0; i < r->node_count; i++) {
         double arm = r->node_z[i] - z_ref;
+        double arm_b = r->node_z[i] - r->body_centre;
         r->node_abs_xy[2 * i] = r->node_xy[2 * i] + hm.displacement[0] + arm * hm.angle[1];
         r->node_abs_xy[2 * i + 1] = r->node_xy[2 * i + 1] + hm.displacement[1] - arm * hm.angle[0];
+        if (r->housing_body_fields) {
+            r->node_abs_xy[2 * i] += b[0] + arm_b * b[3];
+            r->node_abs_xy[2 * i + 1] += b[1] - arm_b * b[2];
+        }
     }
     for (i = 0; st == TD_OK && i < r->writer_count; i++)
         st = td_writer_housing(r->writers[i], r->housing, r->node_abs_xy, err);

@@ -32,6 +32,10 @@ housing to the base. Checked:
      run stays there, within 1e-6 of the static displacements.
   6. A base shock and rotation (the base moves the mounts), with the race; a prescribed speed ramp
      (the unbalance's tangential force too), both as check 2.
+  7. In checks 2, 4, 5 and 6 the run's housing body series (/housing/body_displacement, body_tilt)
+     against the reference's housing coordinates, and /nodes/absolute_displacement against the
+     reference's absolute rotor displacement at the node (plus the base's own motion in check 6),
+     max error / peak < 1e-4 as check 2.
 
 usage: housing_body.py TOUCHDOWN WORKDIR
 """
@@ -282,6 +286,38 @@ def check_response(tool, cfg, work, tilting, race=False):
         cfg, "the AMB nodes and the race" if race else "the AMB nodes", worst, len(t)))
     if not worst < 1e-4:
         sys.exit("FAIL %s: the response differs from the reference (max error / peak %.3e)" % (cfg, worst))
+    check_body_outputs(cfg, head, data, sol.y[:n], tilting)
+
+
+def check_body_outputs(cfg, head, data, x, tilting, base=False):
+    """The housing body's own series (its centre's x, y relative to the base and its tilts) against the
+    reference's housing coordinates x = [rotor 4 | housing 4 or 2 | ...] (n, samples), and the nodes'
+    absolute displacement: the reference's rotor field at the node (its coordinates are absolute in
+    the base's frame), plus with base motion the base's own rigid motion from the run's /housing
+    columns (checked against closed forms elsewhere)."""
+    hz = x[4:8] if tilting else np.vstack([x[4:6], np.zeros((2, x.shape[1]))])
+    worst = 0.0
+    for i, col in enumerate(["x_housing_body [m]", "y_housing_body [m]", "tiltx_housing_body [rad]",
+                             "tilty_housing_body [rad]"]):
+        peak = np.max(np.abs(hz[i]))
+        if peak > 0.0:
+            worst = max(worst, np.max(np.abs(data[:, head.index(col)] - hz[i])) / peak)
+        elif np.any(data[:, head.index(col)] != 0.0):
+            worst = float("inf")
+    for node in (0, 2):
+        z = Z_NODES[node]
+        ref = point(z, Z_R) @ x[:4]
+        if base:
+            col = lambda name: data[:, head.index(name)]
+            ref = ref + np.vstack([col("x_housing [m]") + (z - Z_REF) * col("roty_housing [rad]"),
+                                   col("y_housing [m]") - (z - Z_REF) * col("rotx_housing [rad]")])
+        for k, a in enumerate("xy"):
+            got = data[:, head.index("%s_abs_n%d [m]" % (a, node))]
+            worst = max(worst, np.max(np.abs(got - ref[k])) / np.max(np.abs(ref[k])))
+    print("%s: the housing body's series and the nodes' absolute displacement, max error / peak %.3e" % (cfg, worst))
+    if not worst < 1e-4:
+        sys.exit("FAIL %s: the housing body's outputs differ from the reference (max error / peak %.3e)" % (cfg,
+                                                                                                        worst))
 
 
 def half_sine(p, t):
@@ -337,6 +373,7 @@ def check_base(tool, cfg, work):
     if not worst < 1e-4:
         sys.exit("FAIL %s: the base-excited response differs from the reference (max error / peak %.3e)" % (cfg,
                                                                                                           worst))
+    check_body_outputs(cfg, head, data, sol.y[:n], True, base=True)
 
 
 def check_ramp(tool, cfg, work):
