@@ -22,6 +22,9 @@
  *   a directory removed before the FMU runs, gives the direct run's answers bit for bit (the
  *   libraries travel in resources/plugins/); the guid follows the libraries' bytes, not where they
  *   were; a NaN command or a refusing init is fmi2Error with the plug-in's line.
+ * - A housing history file: case A with a shock from a CSV beside it, staged from a directory removed
+ *   before the FMU runs, gives the direct run's answers bit for bit (the file travels in
+ *   resources/history/); the guid follows its bytes, not where it was.
  * - Bad inputs: NaN, a value reference that is not an input, a fixed parameter after
  *   initialisation, a step from the wrong time, a wrong guid or resource location: fmi2Error (NULL
  *   for fmi2Instantiate) with one line through the logger, and nothing crashes.
@@ -946,6 +949,92 @@ static void test_plugin_case(void **state)
     unload_fmu(&api);
 }
 
+/* ---- a housing history file in the FMU -------------------------------------------------------- */
+
+/* A 5 g downward triangle of the housing from 20 ms to 30 ms, as a CSV history (s, m/s^2). */
+static const char history_csv[] = "t [s], ax [m/s^2], ay [m/s^2]\n0.02, 0, 0\n0.025, 0, -49.0\n0.03, 0, 0\n";
+
+/* In dir: CASE's text (its @include files expanded) as shock.cfg with the housing history h/shock.csv
+ * (`csv`) beside it: a file relative to the case file, in a directory of its own. */
+static void write_history_case(const char *dir, const char *csv)
+{
+    char path[600];
+    td_case *c = NULL;
+    FILE *f;
+    assert_int_equal(td_case_load(td_source_path(CASE), NULL, 0, &c, NULL), TD_OK);
+    snprintf(path, sizeof path, "%s/h", dir);
+    assert_int_equal(mkdir(path, 0777), 0);
+    snprintf(path, sizeof path, "%s/h/shock.csv", dir);
+    assert_non_null(f = fopen(path, "w"));
+    fputs(csv, f);
+    assert_int_equal(fclose(f), 0);
+    snprintf(path, sizeof path, "%s/shock.cfg", dir);
+    assert_non_null(f = fopen(path, "w"));
+    fprintf(f, "%s\nhousing = { history = { file = \"h/shock.csv\"; }; };\n", td_case_text(c));
+    assert_int_equal(fclose(f), 0);
+    td_case_free(&c);
+}
+
+/* The case with a housing history staged from a directory that is gone when the FMU runs: the FMU
+ * carries the file and its answers are the direct run's bit for bit (which the shock changes: the
+ * file is read). The same case and file from elsewhere have the same guid, other bytes another. */
+static void test_history_case(void **state)
+{
+    const char *ov[] = {"end_time=0.12"};
+    char src[] = "/tmp/td-test-fmu-XXXXXX", other[] = "/tmp/td-test-fmu-XXXXXX", path[600], g[64], *text;
+    fmu_api api, again;
+    log_lines log = {0};
+    builtin_run r, still;
+    fmi2Component c;
+    double first, peak;
+    long k, events;
+    (void)state;
+    assert_non_null(mkdtemp(src));
+    write_history_case(src, history_csv);
+    snprintf(path, sizeof path, "%s/shock.cfg", src);
+    run_case(path, ov, 1, 0.12, &r);
+    run_builtin(ov, 1, 0.12, &still);
+    assert_true(r.stats.peak_normal_force != still.stats.peak_normal_force); /* the shock tells */
+    load_fmu_of(&api, path, ov, 1, TD_FMU_INPUTS_NONE);
+    remove_tree(src); /* the case and its history where they were written are gone */
+    snprintf(path, sizeof path, "%s/resources/history/shock.csv", api.dir);
+    text = td_test_read_file(path);
+    assert_string_equal(text, history_csv);
+    free(text);
+    c = start(&api, &log, 0.12);
+    for (k = 0; k < 120; k++)
+        assert_int_equal(api.do_step(c, (double)k / 1000.0, (double)(k + 1) / 1000.0 - (double)k / 1000.0, fmi2True),
+                         fmi2OK);
+    fmu_answers(&api, c, &first, &peak, &events);
+    printf("history: first contact %.17g s (direct %.17g), peak %.17g N (direct %.17g, without the shock %.17g), "
+           "events %ld (direct %ld)\n",
+           first, r.stats.first_contact_time, peak, r.stats.peak_normal_force, still.stats.peak_normal_force, events,
+           r.stats.events);
+    assert_true(first == r.stats.first_contact_time);
+    assert_true(peak == r.stats.peak_normal_force);
+    assert_int_equal(events, r.stats.events);
+    api.terminate(c);
+    api.free_instance(c);
+    /* the guid: the same case and file from another directory, then other bytes in the file */
+    assert_non_null(mkdtemp(other));
+    write_history_case(other, history_csv);
+    snprintf(path, sizeof path, "%s/shock.cfg", other);
+    load_fmu_of(&again, path, ov, 1, TD_FMU_INPUTS_NONE);
+    read_guid(again.dir, g, sizeof g);
+    assert_string_equal(g, api.guid);
+    unload_fmu(&again);
+    remove_tree(other);
+    assert_non_null(mkdtemp(strcpy(other, "/tmp/td-test-fmu-XXXXXX")));
+    write_history_case(other, "t [s], ax [m/s^2], ay [m/s^2]\n0.02, 0, 0\n0.025, 0, -48.0\n0.03, 0, 0\n");
+    snprintf(path, sizeof path, "%s/shock.cfg", other);
+    load_fmu_of(&again, path, ov, 1, TD_FMU_INPUTS_NONE);
+    read_guid(again.dir, g, sizeof g);
+    assert_string_not_equal(g, api.guid);
+    unload_fmu(&again);
+    remove_tree(other);
+    unload_fmu(&api);
+}
+
 /* Two different libraries of one file name both go into the FMU, the second as plugins/2/pd.so, and
  * each controller loads its own: controller 1's (the NaN plug-in, NaN from sample 3) fails the step
  * with fmi2Error and its one-line message, and a later step is refused too; one whose init refuses
@@ -1171,6 +1260,7 @@ int main(void)
         cmocka_unit_test(test_schedule_and_inputs),
         cmocka_unit_test(test_force_inputs),
         cmocka_unit_test(test_plugin_case),
+        cmocka_unit_test(test_history_case),
         cmocka_unit_test(test_plugin_failing),
         cmocka_unit_test(test_logging_and_status),
         cmocka_unit_test(test_inputs_start),

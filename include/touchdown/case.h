@@ -108,6 +108,9 @@ TD_API const char *td_case_name(const td_case *c);
  * NULL) receives their number. Lets a caller keep its outputs from overwriting its inputs.
  */
 TD_API const char *const *td_case_files(const td_case *c, int *count);
+/** The housing history's CSV file (`housing.history.file`) as the case opened it (the case file's
+ *  directory joined with a relative name), NULL for a case without one (borrowed). */
+TD_API const char *td_case_housing_history_file(const td_case *c);
 /** The optional "description" string of the case; "" when absent (borrowed). */
 TD_API const char *td_case_description(const td_case *c);
 

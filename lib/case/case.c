@@ -314,6 +314,7 @@ void td_case_free(td_case **c)
     while ((*c)->controller_count > 0)
         free((char *)(*c)->controllers[--(*c)->controller_count].where);
     free((*c)->controllers);
+    free((*c)->history_file); /* housing motion */
     free(*c);
     *c = NULL;
 }
@@ -356,6 +357,11 @@ const char *const *td_case_files(const td_case *c, int *count)
         *count = c ? c->file_count : 0;
     return c ? (const char *const *)c->files : NULL;
 }
+const char *td_case_housing_history_file(const td_case *c)
+{
+    return c ? c->history_file : NULL;
+}
+
 const char *td_case_description(const td_case *c)
 {
     return c && c->description ? c->description : "";

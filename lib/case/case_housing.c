@@ -397,12 +397,13 @@ static td_status read_csv(td_case_reader *r, const config_setting_t *g, const ch
         free(path);
         return st;
     }
-    /* an input: the outputs must never overwrite it (td_case_files) */
+    /* an input: the outputs must never overwrite it (td_case_files); an FMU carries it (lib/fmu) */
     st = td_cr_record_file(r->c, path) == TD_OK
              ? csv_parse(r, csv, text, p)
              : td_error_set(r->err, TD_ERR_NOMEM, "%s: out of memory", r->path_shown);
     free(text);
-    free(path);
+    free(r->c->history_file);
+    r->c->history_file = path;
     return st;
 }
 

@@ -45,6 +45,8 @@ struct td_case {
     int sweep_count;
     td_case_controller_info *controllers; /* per controller of the model, as the file wrote it */
     int controller_count;
+    /* housing motion */
+    char *history_file; /* the housing history's CSV file as read (td_case_housing_history_file); NULL: none */
 };
 
 /* A decimal or hex integer literal that libconfig 1.5 silently wraps to 32 bits (it has no

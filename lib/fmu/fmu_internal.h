@@ -11,9 +11,11 @@
  *                                overrides the FMU was staged with, applied again at instantiation,
  *                                then one `controllers[i].plugin.library="plugins/NAME"` per
  *                                plug-in controller: a relative library resolves under the case
- *                                file's directory, resources/)
+ *                                file's directory, resources/; then `housing.history.file=
+ *                                "history/NAME"` for a case with a housing history file)
  *   resources/plugins/NAME       each plug-in library the case loads, copied (plugins.c); another
  *                                library of the same file name as plugins/2/NAME, ...
+ *   resources/history/NAME       the case's housing history file (CSV), copied (plugins.c)
  *
  * The variables are a pure function of the case's model and the inputs (td_fmu_variables): the
  * stage lists them in modelDescription.xml and the binary rebuilds the same list from the same
@@ -115,8 +117,9 @@ typedef struct td_fmu_plugins {
     td_text fingerprint;
 } td_fmu_plugins;
 
-/* Copy each plug-in library case c loads into resources_dir/plugins/ (plugins.c) and fill *out
- * (freed with td_fmu_plugins_free, also after a failure). TD_ERR_IO naming a file. */
+/* Copy each plug-in library case c loads into resources_dir/plugins/, and its housing history file
+ * into resources_dir/history/ (plugins.c), and fill *out (freed with td_fmu_plugins_free, also after
+ * a failure). TD_ERR_IO naming a file. */
 td_status td_fmu_plugins_stage(const td_case *c, const char *resources_dir, td_fmu_plugins *out, td_error *err);
 void td_fmu_plugins_free(td_fmu_plugins *p);
 

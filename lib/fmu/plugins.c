@@ -7,7 +7,8 @@
  * file name; a second, different library of the same name goes into plugins/2/ (then 3/, ...), one
  * used by several controllers is copied once. The fingerprint (the libraries' bytes, hashed, with
  * the names they are staged under) goes into the guid: the same libraries give the same guid
- * wherever they were read from.
+ * wherever they were read from. A housing history file (`housing.history.file`, a CSV the case
+ * reads) travels the same way, as resources/history/NAME with `housing.history.file="history/NAME"`.
  */
 #include "fmu/fmu_internal.h"
 #include "util/error_internal.h"
@@ -38,8 +39,8 @@ static uint64_t fnv_bytes(uint64_t h, const unsigned char *p, size_t n)
     return h;
 }
 
-/* The whole file `path` into *data (free()) and *size; TD_ERR_IO naming the library. */
-static td_status read_library(const char *path, unsigned char **data, long *size, td_error *err)
+/* The whole file `path` (a `what`: "plug-in library", ...) into *data (free()) and *size; TD_ERR_IO naming it. */
+static td_status read_library(const char *path, const char *what, unsigned char **data, long *size, td_error *err)
 {
     FILE *f;
     long n = -1;
@@ -56,7 +57,7 @@ static td_status read_library(const char *path, unsigned char **data, long *size
     *data = NULL;
     if (f)
         fclose(f);
-    return td_error_set(err, TD_ERR_IO, "%s: cannot read the plug-in library to put it into the FMU: %s", path,
+    return td_error_set(err, TD_ERR_IO, "%s: cannot read the %s to put it into the FMU: %s", path, what,
                         errno ? strerror(errno) : "short read");
 }
 
@@ -138,7 +139,7 @@ static td_status stage_one(const char *resources_dir, int i, const char *path, s
         return td_error_set(err, TD_ERR_INVALID,
                             "%s: the plug-in library's file name is too long for an FMU (at most %d)", path,
                             TD_FMU_PLUGIN_NAME_SIZE - 17);
-    if ((st = read_library(path, &data, &size, err)) != TD_OK)
+    if ((st = read_library(path, "plug-in library", &data, &size, err)) != TD_OK)
         return st;
     h[0] = fnv_bytes(14695981039346656037ULL, data, (size_t)size);
     h[1] = fnv_bytes(0x6c62272e07bb0142ULL, data, (size_t)size);
@@ -161,17 +162,55 @@ static td_status stage_one(const char *resources_dir, int i, const char *path, s
     return st;
 }
 
+/* housing motion: the case's housing history file `path` copied to history/NAME (NAME its file name),
+ * hashed into the fingerprint as a library is, and the override `housing.history.file="history/NAME"`:
+ * a relative history file resolves under the case file's directory (lib/case/case_housing.c),
+ * which in the FMU is resources/. */
+static td_status stage_history(const char *resources_dir, const char *path, td_fmu_plugins *out, td_error *err)
+{
+    unsigned char *data;
+    staged_lib lib;
+    const char *base = strrchr(path, '/') ? strrchr(path, '/') + 1 : path;
+    td_text ov = {NULL, 0, 0, 0, 0};
+    td_status st;
+    if (strlen(base) + 16 >= TD_FMU_PLUGIN_NAME_SIZE)
+        return td_error_set(err, TD_ERR_INVALID,
+                            "%s: the housing history's file name is too long for an FMU (at most %d)", path,
+                            TD_FMU_PLUGIN_NAME_SIZE - 17);
+    if ((st = read_library(path, "housing history file", &data, &lib.size, err)) != TD_OK)
+        return st;
+    lib.hash[0] = fnv_bytes(14695981039346656037ULL, data, (size_t)lib.size);
+    lib.hash[1] = fnv_bytes(0x6c62272e07bb0142ULL, data, (size_t)lib.size);
+    snprintf(lib.name, sizeof lib.name, "history/%s", base);
+    st = put_library(resources_dir, &lib, data, err);
+    free(data);
+    td_text_printf(&out->fingerprint, "%s %016llx%016llx %ld\n", lib.name, (unsigned long long)lib.hash[0],
+                   (unsigned long long)lib.hash[1], lib.size);
+    td_text_printf(&ov, "housing.history.file=");
+    td_fmu_config_string(&ov, lib.name);
+    if (st == TD_OK && (ov.failed || out->fingerprint.failed))
+        st = td_error_set(err, TD_ERR_NOMEM, "out of memory staging an FMU");
+    if (st == TD_OK)
+        out->overrides[out->n++] = ov.data;
+    else
+        free(ov.data);
+    return st;
+}
+
 td_status td_fmu_plugins_stage(const td_case *c, const char *resources_dir, td_fmu_plugins *out, td_error *err)
 {
     const td_model *m = td_case_model(c);
+    const char *history = td_case_housing_history_file(c);
     int i, n_libs = 0, count = td_model_controller_count(m);
     staged_lib *libs;
     td_status st = TD_OK;
     memset(out, 0, sizeof *out);
-    if (count <= 0)
+    if (count < 0)
+        count = 0;
+    if (count == 0 && !history)
         return TD_OK;
-    libs = calloc((size_t)count, sizeof *libs);
-    out->overrides = calloc((size_t)count, sizeof *out->overrides);
+    libs = calloc((size_t)count + 1, sizeof *libs);
+    out->overrides = calloc((size_t)count + 1, sizeof *out->overrides); /* one more: the history's */
     if (!libs || !out->overrides) {
         free(libs);
         return td_error_set(err, TD_ERR_NOMEM, "out of memory staging an FMU");
@@ -184,6 +223,8 @@ td_status td_fmu_plugins_stage(const td_case *c, const char *resources_dir, td_f
             st = stage_one(resources_dir, i, spec->library, libs, &n_libs, out, err);
     }
     free(libs);
+    if (st == TD_OK && history) /* housing motion */
+        st = stage_history(resources_dir, history, out, err);
     return st;
 }
 
