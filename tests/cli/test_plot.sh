@@ -230,6 +230,23 @@ else
     fail "a run with housing motion wrote no file ($(head -c 200 shock.err))"
 fi
 
+# ---- a housing body (no base motion): the same figure, with the body's displacement relative to the
+# base in columns 6, 7 (mm): at the last sample those of the run's CSV (x_housing_body, y_housing_body, m)
+(timeout 300 "$tool" run -q --no-progress --set end_time=0.03 \
+    --set 'housing={body={mass=50.0;centre=0.5;mounts=({position=0.0;stiffness=1.0e7;damping=1.0e3;},{position=1.0;stiffness=1.0e7;damping=1.0e3;});};}' \
+    -o body "$src/cases/paper-a.cfg") >/dev/null 2>body.err
+if [ -s body.h5 ] && "$tool" plot -q body.h5 2>err.txt; then
+    expect_pngs body-plots housing
+    want=$(awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) { if ($i ~ /^x_housing_body /) cx = i; if ($i ~ /^y_housing_body /) cy = i } }
+                    NR > 1 && !/^#/ { x = $cx; y = $cy } END { printf "%.6e %.6e", 1e3 * x, 1e3 * y }' body.csv)
+    got=$(awk '!/^#/ { x = $6; y = $7 } END { printf "%.6e %.6e", x, y }' body-plots/housing.dat)
+    [ "$got" = "$want" ] && [ "$want" != "0.000000e+00 0.000000e+00" ] &&
+        pass "housing figure of a body: its displacement $got mm at the end, as the run's CSV" ||
+        fail "housing figure of a body: $got mm, the CSV $want mm"
+else
+    fail "plot of a run with a housing body: $(head -c 200 body.err) $(cat err.txt)"
+fi
+
 # ---- bad input: exit 2, one line on stderr ------------------------------------------------
 echo "not hdf5" >text.h5
 expect_error 2 "missing file" missing.h5

@@ -77,8 +77,9 @@ typedef struct plot_sim {
     plot_event *ev;                   /* events inside the window */
     size_t nev;
     /* housing motion */
-    double *housing; /* n x 4: the housing's acceleration x, y [m/s^2] and displacement x, y [m]; NULL: the file
-                        has no housing motion */
+    double *housing;  /* n x 6: the housing's acceleration x, y [m/s^2] and displacement x, y [m], then a housing
+                         body's displacement x, y [m] (0 without one); NULL: the file has no housing fields */
+    int housing_body; /* the file has a housing body's displacement (/housing/body_displacement) */
 } plot_sim;
 
 /* A modal file. Arrays absent from the file are NULL with zero counts. */

@@ -194,29 +194,36 @@ static int count_columns(const td_result *r, td_out_id id, size_t n, int *count)
     return 0;
 }
 
-/* housing motion: the housing's acceleration and displacement, (n, 2) each, into s->housing (n x 4) with the
- * rows kept; nothing without them (a file without housing motion), -1 when they do not fit the samples. */
+/* housing motion: the housing's acceleration and displacement, and a housing body's displacement, (n, 2)
+ * each, into s->housing (n x 6) with the rows kept; nothing without them (a file without housing fields),
+ * -1 when they do not fit the samples. */
 static int keep_housing(const td_result *r, plot_sim *s, const unsigned char *keep, size_t n)
 {
-    td_result_array a, d;
+    td_result_array a, d, b;
     size_t i, k = 0;
     int rc = 0;
     if (!td_result_has(r, TD_OUT_HOUSING_ACCELERATION, NULL) || !td_result_has(r, TD_OUT_HOUSING_DISPLACEMENT, NULL))
         return 0;
     memset(&d, 0, sizeof d);
+    memset(&b, 0, sizeof b);
+    s->housing_body = td_result_has(r, TD_OUT_HOUSING_BODY_DISPLACEMENT, NULL);
     if (read_matrix(r, TD_OUT_HOUSING_ACCELERATION, n, 2, 1, &a) != 0)
         return -1;
     if (read_matrix(r, TD_OUT_HOUSING_DISPLACEMENT, n, 2, 1, &d) != 0 ||
-        !(s->housing = malloc(4 * s->n * sizeof(double))))
+        (s->housing_body && read_matrix(r, TD_OUT_HOUSING_BODY_DISPLACEMENT, n, 2, 1, &b) != 0) ||
+        !(s->housing = calloc(6 * s->n + 1, sizeof(double))))
         rc = -1;
     for (i = 0; rc == 0 && i < n; i++)
         if (keep[i]) {
-            memcpy(s->housing + 4 * k, a.v + 2 * i, 2 * sizeof(double));
-            memcpy(s->housing + 4 * k + 2, d.v + 2 * i, 2 * sizeof(double));
+            memcpy(s->housing + 6 * k, a.v + 2 * i, 2 * sizeof(double));
+            memcpy(s->housing + 6 * k + 2, d.v + 2 * i, 2 * sizeof(double));
+            if (s->housing_body)
+                memcpy(s->housing + 6 * k + 4, b.v + 2 * i, 2 * sizeof(double));
             k++;
         }
     td_result_array_free(&a);
     td_result_array_free(&d);
+    td_result_array_free(&b);
     return rc;
 }
 

@@ -291,30 +291,38 @@ static int amb_figure(plot_job *job, const plot_file *f, const char *prefix)
 }
 
 /* housing motion: the housing's acceleration (in g, 9.80665 m/s^2, the shock standards' unit) and
- * displacement against time, x and y, from PREFIXhousing.dat. */
+ * displacement against time, x and y, with a housing body's displacement, from PREFIXhousing.dat. */
 static int housing_figure(plot_job *job, const plot_file *f, const char *prefix)
 {
     const plot_sim *s = &f->sim;
     char name[300], data[300];
     FILE *out;
     size_t i;
+    int still = 1;
     snprintf(name, sizeof name, "%shousing", prefix);
     snprintf(data, sizeof data, "%shousing.dat", prefix);
     if (!(out = plot_open(job->opt, data)))
         return PLOT_FAILED;
     fprintf(out,
             "# the housing's prescribed motion from %s\n# columns: 1 time [s], 2 ax [g], 3 ay [g], 4 x [mm], "
-            "5 y [mm] (1 g = 9.80665 m/s^2)\n",
-            f->path);
-    for (i = 0; i < s->n; i++)
-        fprintf(out, "%.12g %.9g %.9g %.9g %.9g\n", s->t[i], s->housing[4 * i] / 9.80665,
-                s->housing[4 * i + 1] / 9.80665, 1e3 * s->housing[4 * i + 2], 1e3 * s->housing[4 * i + 3]);
+            "5 y [mm] (1 g = 9.80665 m/s^2)%s\n",
+            f->path, s->housing_body ? ", 6 body x [mm], 7 body y [mm] (relative to the base)" : "");
+    for (i = 0; i < s->n; i++) {
+        const double *h = s->housing + 6 * i;
+        still = still && h[0] == 0.0 && h[1] == 0.0;
+        fprintf(out, "%.12g %.9g %.9g %.9g %.9g", s->t[i], h[0] / 9.80665, h[1] / 9.80665, 1e3 * h[2], 1e3 * h[3]);
+        if (s->housing_body)
+            fprintf(out, " %.9g %.9g", 1e3 * h[4], 1e3 * h[5]);
+        fputc('\n', out);
+    }
     if (plot_close(out, job->opt, data) != PLOT_OK)
         return PLOT_FAILED;
     if (!(out = plot_script_begin(job, name, "Housing motion", f->path, 1000, 700)))
         return PLOT_FAILED;
     plot_var_string(out, "case_title", f->title);
     plot_var_string(out, "data", data);
+    fprintf(out, "body = %d    # 1: the data has a housing body's displacement\n", s->housing_body);
+    fprintf(out, "still = %d   # 1: the housing's acceleration is 0 throughout (a body without base motion)\n", still);
     time_range(out, s);
     schedule_markers(out, s);
     return plot_script_end(out, job, name, plot_tpl_markers, plot_tpl_housing);
