@@ -2088,6 +2088,7 @@ static const bad_file bad_files[] = {
     /* housing motion (a CSV history's fault is also located in the CSV file: test_housing.c) */
     {"housing-shock-zero-amplitude.cfg", 5, "housing.shocks[0].amplitude", NULL},
     {"housing-rotation-zero-axis.cfg", 5, "housing.rotation[0].axis", NULL},
+    {"housing-rotation-sawtooth.cfg", 5, "housing.rotation[0].shape", NULL},
     {"housing-history-backwards.cfg", 5, "housing.history.time[2]", NULL},
     {"housing-history-both.cfg", 5, "housing.history.file", NULL},
     {"housing-csv-unit.cfg", 5, "housing.history.file", NULL},

@@ -106,8 +106,8 @@ static const td_cs_key rotation_keys[] = {
      .names = shape_names,
      .name_count = 5,
      .def = TD_PULSE_RAMP,
-     .doc = "the rate's profile: the pulses of `housing.shocks[].shape`, or `ramp`: a linear rise over `duration`, "
-            "then held"},
+     .doc = "the rate's profile: the pulses of `housing.shocks[].shape` but `sawtooth` (a rate that drops at once is "
+            "an angular impulse: use `triangle` or `versine`), or `ramp`: a linear rise over `duration`, then held"},
     {.key = "rate",
      .type = TD_CS_REAL,
      .offset = offsetof(td_housing_pulse, amplitude),
