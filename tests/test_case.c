@@ -2094,6 +2094,8 @@ static const bad_file bad_files[] = {
     {"housing-csv-unit.cfg", 5, "housing.history.file", NULL},
     {"housing-csv-number.cfg", 5, "housing.history.file", NULL},
     {"housing-csv-missing.cfg", 5, "housing.history.file", NULL},
+    {"housing-csv-name.cfg", 5, "housing.history.file", NULL},
+    {"housing-csv-twice.cfg", 5, "housing.history.file", NULL},
     /* housing body */
     {"housing-body-one-mount.cfg", 5, "housing.body.mounts", NULL},
     {"housing-body-mount-negative.cfg", 6, "housing.body.mounts[1].stiffness", NULL},

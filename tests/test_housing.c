@@ -347,6 +347,31 @@ static void test_csv_fault_located(void **state)
                      TD_ERR_PARSE);
     assert_non_null(
         strstr(err.message, "housing-csv-unit.csv:1: column 3 'ay [furlong/fortnight^2]': an unknown unit"));
+    /* the header's names are required: a name that is no quantity, a quantity named twice */
+    assert_int_equal(td_case_load(td_source_path("tests/data/bad/housing-csv-name.cfg"), NULL, 0, &c, &err),
+                     TD_ERR_PARSE);
+    assert_non_null(strstr(err.message, "housing-csv-name.csv:2: column 2 'accel [g]': name it t or time"));
+    assert_int_equal(td_case_load(td_source_path("tests/data/bad/housing-csv-twice.cfg"), NULL, 0, &c, &err),
+                     TD_ERR_PARSE);
+    assert_non_null(
+        strstr(err.message, "housing-csv-twice.csv:1: column 3 'Y [m/s^2]': the same quantity as column 2 'ay [g]'"));
+}
+
+/* The CSV columns are mapped by their names, in any order and case: housing-reordered.csv is
+ * tests/data/case/housing-record.csv (0.5 g along x, -1 g along y at 5 ms) as `Time [ms], AY [g], x [m/s^2]`. */
+static void test_csv_columns_by_name(void **state)
+{
+    td_case *c = NULL;
+    td_housing_motion hm;
+    (void)state;
+    assert_int_equal(td_case_load(td_source_path("tests/data/case/housing-reordered.cfg"), NULL, 0, &c, NULL), TD_OK);
+    assert_int_equal(td_model_housing_history_count(td_case_model(c)), 3);
+    td_model_housing_motion_at(td_case_model(c), 0.005, &hm);
+    assert_close(hm.acceleration[0], 0.5 * 9.80665, 1e-15, 0.0);
+    assert_close(hm.acceleration[1], -9.80665, 1e-15, 0.0);
+    td_model_housing_motion_at(td_case_model(c), 0.0075, &hm); /* halfway down the second segment */
+    assert_close(hm.acceleration[0], 0.25 * 9.80665, 1e-15, 0.0);
+    td_case_free(&c);
 }
 
 /* sum of x . f over the rotor's x (y) DOFs of a load f: with R_x, the load of a unit translation
@@ -416,6 +441,7 @@ int main(void)
         cmocka_unit_test(test_rules),
         cmocka_unit_test(test_clone_and_refine),
         cmocka_unit_test(test_csv_fault_located),
+        cmocka_unit_test(test_csv_columns_by_name),
         cmocka_unit_test(test_base_loads),
     };
     return cmocka_run_group_tests_name("housing", tests, NULL, NULL);

@@ -13,6 +13,7 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 #include <sys/stat.h>
 
 /* TD_CS_ENUM stores an int (case_schema.c): the shape must be int-sized */
@@ -281,49 +282,76 @@ static int split_fields(char *line, char **field, int max)
     }
 }
 
-/* The factor to SI of column c's unit in header field f ("NAME [UNIT]": time s or ms, acceleration
- * m/s^2 or g); 0 when it has none or an unknown one, the unit written into unit. */
-static double column_unit(const char *f, int c, char *unit, size_t n)
+/* The quantity header field f ("NAME [UNIT]") names, case-insensitive: 0 the time (`t`, `time`), 1 the
+ * acceleration along x (`ax`, `x`), 2 along y (`ay`, `y`); -1 any other name. */
+static int column_quantity(const char *f)
+{
+    static const char *const names[] = {"t", "time", "ax", "x", "ay", "y"};
+    const char *open = strchr(f, '[');
+    size_t n = open ? (size_t)(open - f) : strlen(f), k;
+    while (n > 0 && (f[n - 1] == ' ' || f[n - 1] == '\t'))
+        n--;
+    for (k = 0; k < sizeof names / sizeof names[0]; k++)
+        if (strlen(names[k]) == n && strncasecmp(f, names[k], n) == 0)
+            return (int)k / 2;
+    return -1;
+}
+
+/* The factor to SI of the unit in header field f ("NAME [UNIT]") of quantity q (column_quantity: time
+ * s or ms, acceleration m/s^2 or g); 0 when it has none or an unknown one, the unit written into unit. */
+static double column_unit(const char *f, int q, char *unit, size_t n)
 {
     const char *open = strchr(f, '['), *close = open ? strchr(open, ']') : NULL;
     unit[0] = '\0';
     if (!open || !close)
         return 0.0;
     snprintf(unit, n, "%.*s", (int)(close - open - 1), open + 1);
-    if (c == 0)
+    if (q == 0)
         return strcmp(unit, "s") == 0 ? 1.0 : strcmp(unit, "ms") == 0 ? 1e-3 : 0.0;
     return strcmp(unit, "m/s^2") == 0 ? 1.0 : strcmp(unit, "g") == 0 ? CR_STANDARD_GRAVITY : 0.0;
 }
 
-/* Where a CSV fault is: the `file` setting, the file as shown and the line. */
+/* Where a CSV fault is: the `file` setting, the file as shown and the line; the header's columns: each
+ * one's name as written, its quantity (column_quantity) and factor to SI, and each quantity's column. */
 typedef struct cr_csv {
     const config_setting_t *at;
     char shown[256];
     int line;
     char names[3][64];
+    int quantity[3], column[3];
     double factor[3];
 } cr_csv;
 
 #define CSV_FAIL(r, csv, ...) td_cr_fail((r), (csv)->at, NULL, __VA_ARGS__)
 
-/* The header line: three columns, each named with its unit in brackets. */
+/* The header line: three columns in any order, the time, x and y, each named with its unit in brackets. */
 static td_status csv_header(td_case_reader *r, cr_csv *csv, char *line)
 {
     static const char *const want[] = {"a time: s or ms", "an acceleration: m/s^2 or g", "an acceleration: m/s^2 or g"};
     char *field[4], unit[64];
-    int n = split_fields(line, field, 3), c;
+    int n = split_fields(line, field, 3), c, q;
     if (n != 3)
         return CSV_FAIL(r, csv, "%s:%d: the header must name 3 columns, e.g. 't [s], ax [m/s^2], ay [m/s^2]' (got %s)",
                         csv->shown, csv->line,
                         n > 3    ? "more"
                         : n == 2 ? "2"
                                  : "1");
+    csv->column[0] = csv->column[1] = csv->column[2] = -1;
     for (c = 0; c < 3; c++) {
         snprintf(csv->names[c], sizeof csv->names[c], "%s", field[c]);
-        csv->factor[c] = column_unit(field[c], c, unit, sizeof unit);
+        q = csv->quantity[c] = column_quantity(field[c]);
+        if (q < 0)
+            return CSV_FAIL(r, csv,
+                            "%s:%d: column %d '%.60s': name it t or time, ax or x, ay or y (each once, any order)",
+                            csv->shown, csv->line, c + 1, field[c]);
+        if (csv->column[q] >= 0)
+            return CSV_FAIL(r, csv, "%s:%d: column %d '%.60s': the same quantity as column %d '%.60s'", csv->shown,
+                            csv->line, c + 1, field[c], csv->column[q] + 1, csv->names[csv->column[q]]);
+        csv->column[q] = c;
+        csv->factor[c] = column_unit(field[c], q, unit, sizeof unit);
         if (csv->factor[c] == 0.0)
             return CSV_FAIL(r, csv, "%s:%d: column %d '%.60s': %s unit in brackets (%s)", csv->shown, csv->line, c + 1,
-                            field[c], unit[0] ? "an unknown" : "no", want[c]);
+                            field[c], unit[0] ? "an unknown" : "no", want[q]);
     }
     return TD_OK;
 }
@@ -342,12 +370,13 @@ static td_status csv_row(td_case_reader *r, cr_csv *csv, char *line, cr_points *
                                  : "1");
     for (c = 0; c < 3; c++) {
         char *end;
+        double x;
         errno = 0;
-        v[c] = strtod(field[c], &end);
-        if (end == field[c] || *end != '\0' || !isfinite(v[c]) || errno == ERANGE)
+        x = strtod(field[c], &end);
+        if (end == field[c] || *end != '\0' || !isfinite(x) || errno == ERANGE)
             return CSV_FAIL(r, csv, "%s:%d: column %d '%s': '%.40s' is not a finite number", csv->shown, csv->line,
                             c + 1, csv->names[c], field[c]);
-        v[c] *= csv->factor[c];
+        v[csv->quantity[c]] = x * csv->factor[c]; /* v by quantity: the time, x, y */
     }
     if (!points_grow(p))
         return td_error_set(r->err, TD_ERR_NOMEM, "%s: out of memory reading %s", r->path_shown, csv->shown);
@@ -412,7 +441,7 @@ static td_status history_fail(td_case_reader *r, const config_setting_t *g, cons
                               td_status st, const td_error *merr)
 {
     const char *f = merr->site.field ? merr->site.field : "time";
-    int c = strcmp(f, "x") == 0 ? 1 : strcmp(f, "y") == 0 ? 2 : 0, i = merr->site.index;
+    int q = strcmp(f, "x") == 0 ? 1 : strcmp(f, "y") == 0 ? 2 : 0, i = merr->site.index, c = csv->column[q];
     const config_setting_t *s;
     if (st == TD_ERR_NOMEM || !merr->site.part || strcmp(merr->site.part, "history") != 0)
         return td_cr_model_fail(r, g, st, merr);
@@ -467,7 +496,8 @@ static const td_cs_key history_keys[] = {
      .offset = offsetof(cr_history, file),
      .doc_default = "none",
      .doc = "a CSV record of the housing's acceleration, relative to the case file's directory unless absolute: a "
-            "header naming each column with its unit in brackets, `t [s], ax [m/s^2], ay [m/s^2]` (time in `s` or "
+            "header naming each column with its unit in brackets, `t [s], ax [m/s^2], ay [m/s^2]` (the names `t` or "
+            "`time`, `ax` or `x`, `ay` or `y`, in any case and any order, the columns read by them; time in `s` or "
             "`ms`, acceleration in `m/s^2` or `g` = 9.80665 m/s^2), then one point a line; `#` comments and blank "
             "lines are skipped. A fault names the file, its line and column"},
     {.key = "time",
