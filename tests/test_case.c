@@ -2091,6 +2091,7 @@ static const bad_file bad_files[] = {
     {"housing-rotation-sawtooth.cfg", 5, "housing.rotation[0].shape", NULL},
     {"housing-history-backwards.cfg", 5, "housing.history.time[2]", NULL},
     {"housing-history-both.cfg", 5, "housing.history.file", NULL},
+    {"housing-history-start.cfg", 5, "housing.history.start", NULL},
     {"housing-csv-unit.cfg", 5, "housing.history.file", NULL},
     {"housing-csv-number.cfg", 5, "housing.history.file", NULL},
     {"housing-csv-missing.cfg", 5, "housing.history.file", NULL},

@@ -473,6 +473,13 @@ static td_status set_history(td_case_reader *r, const config_setting_t *g, void 
     if (!h->file && !inline_)
         return td_cr_fail(r, g, NULL, "give `file` (a CSV record) or `time`, `x` and `y`");
     st = h->file ? read_csv(r, g, h->file, &p, &csv) : read_inline(r, g, &p);
+    /* the shift's fault, not the first point's: the model sees only the shifted times (t >= 0 once,
+     * there; the later points' order is the record's own) */
+    if (st == TD_OK && p.n > 0 && td_cr_has(g, "start") && !(p.t[0] + h->start >= 0.0))
+        st = td_cr_fail(r, config_setting_get_member(g, "start"), NULL,
+                        "shifts the record's first time %g s to %g s: the shifted times must be >= 0 (the run starts "
+                        "at 0 with the housing at rest)",
+                        p.t[0], p.t[0] + h->start);
     for (i = 0; st == TD_OK && i < p.n; i++) {
         p.t[i] += h->start;
         p.x[i] *= h->scale;
