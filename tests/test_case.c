@@ -2097,6 +2097,7 @@ static const bad_file bad_files[] = {
     {"housing-csv-missing.cfg", 5, "housing.history.file", NULL},
     {"housing-csv-name.cfg", 5, "housing.history.file", NULL},
     {"housing-csv-twice.cfg", 5, "housing.history.file", NULL},
+    {"housing-csv-cr.cfg", 5, "housing.history.file", NULL},
     /* housing body */
     {"housing-body-one-mount.cfg", 5, "housing.body.mounts", NULL},
     {"housing-body-mount-negative.cfg", 6, "housing.body.mounts[1].stiffness", NULL},

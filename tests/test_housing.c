@@ -355,6 +355,13 @@ static void test_csv_fault_located(void **state)
                      TD_ERR_PARSE);
     assert_non_null(
         strstr(err.message, "housing-csv-twice.csv:1: column 3 'Y [m/s^2]': the same quantity as column 2 'ay [g]'"));
+    /* read as the case file is (td_cr_read_file): CR-only line endings are refused, not run together */
+    assert_int_equal(td_case_load(td_source_path("tests/data/bad/housing-csv-cr.cfg"), NULL, 0, &c, &err),
+                     TD_ERR_PARSE);
+    assert_non_null(strstr(err.message, "housing-csv-cr.csv:1: carriage return without a line feed"));
+    assert_int_equal(td_case_load(td_source_path("tests/data/bad/housing-csv-missing.cfg"), NULL, 0, &c, &err),
+                     TD_ERR_PARSE);
+    assert_non_null(strstr(err.message, ": cannot read the history file: "));
 }
 
 /* The CSV columns are mapped by their names, in any order and case: housing-reordered.csv is

@@ -14,7 +14,6 @@
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
-#include <sys/stat.h>
 
 /* TD_CS_ENUM stores an int (case_schema.c): the shape must be int-sized */
 typedef char cr_shape_is_int[sizeof(td_pulse_shape) == sizeof(int) ? 1 : -1];
@@ -223,41 +222,6 @@ static td_status read_inline(td_case_reader *r, const config_setting_t *g, cr_po
     return TD_OK;
 }
 
-/* The file at `path`: a regular file of at most TD_CASE_MAX_FILE_SIZE bytes, as text; *why the
- * reason when not (a FIFO or a device could block or never end). */
-static char *slurp(const char *path, const char **why)
-{
-    struct stat sb;
-    FILE *f;
-    char *buf;
-    size_t n;
-    *why = NULL;
-    if (stat(path, &sb) != 0 || !(f = fopen(path, "rb"))) {
-        *why = strerror(errno);
-        return NULL;
-    }
-    if (!S_ISREG(sb.st_mode) || (long long)sb.st_size > (long long)TD_CASE_MAX_FILE_SIZE) {
-        *why = S_ISREG(sb.st_mode) ? "the file is too large" : "not a regular file";
-        fclose(f);
-        return NULL;
-    }
-    buf = malloc((size_t)sb.st_size + 1);
-    n = buf ? fread(buf, 1, (size_t)sb.st_size, f) : 0; /* at most the size stat() saw */
-    if (!buf || ferror(f))
-        *why = buf ? "read error" : "out of memory";
-    fclose(f);
-    if (!*why) {
-        buf[n] = '\0';
-        if (strlen(buf) != n)
-            *why = "it holds binary data (a NUL byte)";
-    }
-    if (*why) {
-        free(buf);
-        return NULL;
-    }
-    return buf;
-}
-
 /* A CSV line split at its commas into at most `max` fields, each trimmed; returns the count (max + 1
  * when there are more). Writes into line. */
 static int split_fields(char *line, char **field, int max)
@@ -412,19 +376,20 @@ static td_status read_csv(td_case_reader *r, const config_setting_t *g, const ch
 {
     size_t n = strlen(r->dir) + strlen(file) + 2;
     char *path = malloc(n), *text;
-    const char *why;
+    td_error ferr;
     td_status st;
     csv->at = config_setting_get_member(g, "file");
     td_cr_printable(file, csv->shown, sizeof csv->shown);
     if (!path)
         return td_error_set(r->err, TD_ERR_NOMEM, "%s: out of memory", r->path_shown);
     snprintf(path, n, "%s%s%s", file[0] == '/' ? "" : r->dir, file[0] == '/' ? "" : "/", file);
-    text = slurp(path, &why);
-    if (!text) {
-        st = CSV_FAIL(r, csv, "cannot read '%s' (%s; the path is relative to the case file's directory)", csv->shown,
-                      why);
+    st = td_cr_read_file("history file", csv->shown, path, &text, &ferr);
+    if (st != TD_OK) {
         free(path);
-        return st;
+        if (st == TD_ERR_NOMEM)
+            return td_error_set(r->err, TD_ERR_NOMEM, "%s: %s", r->path_shown, ferr.message);
+        return CSV_FAIL(r, csv, "%s%s", ferr.message,
+                        st == TD_ERR_IO ? " (the path is relative to the case file's directory)" : "");
     }
     /* an input: the outputs must never overwrite it (td_case_files) */
     st = td_cr_record_file(r->c, path) == TD_OK
