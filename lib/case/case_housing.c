@@ -18,9 +18,6 @@
 /* TD_CS_ENUM stores an int (case_schema.c): the shape must be int-sized */
 typedef char cr_shape_is_int[sizeof(td_pulse_shape) == sizeof(int) ? 1 : -1];
 
-/* 1 g in m/s^2: the standard acceleration of gravity (CGPM 1901), a CSV column's unit `g` */
-#define CR_STANDARD_GRAVITY 9.80665
-
 static const char *const shape_names[] = {"half-sine", "triangle", "sawtooth", "versine", "ramp"}; /* td_pulse_shape */
 
 /* A pulse's direction or axis: two finite components (the model normalises them and refuses zero). */
@@ -272,7 +269,7 @@ static double column_unit(const char *f, int q, char *unit, size_t n)
     snprintf(unit, n, "%.*s", (int)(close - open - 1), open + 1);
     if (q == 0)
         return strcmp(unit, "s") == 0 ? 1.0 : strcmp(unit, "ms") == 0 ? 1e-3 : 0.0;
-    return strcmp(unit, "m/s^2") == 0 ? 1.0 : strcmp(unit, "g") == 0 ? CR_STANDARD_GRAVITY : 0.0;
+    return strcmp(unit, "m/s^2") == 0 ? 1.0 : strcmp(unit, "g") == 0 ? TD_STANDARD_GRAVITY : 0.0;
 }
 
 /* Where a CSV fault is: the `file` setting, the file as shown and the line; the header's columns: each

@@ -7,6 +7,7 @@
  * with the data files PREFIXretainerN.dat, PREFIXcontactsN.dat, PREFIXambs.dat and PREFIXhousing.dat.
  */
 #include "plot/plot.h"
+#include "touchdown/dofs.h"   /* TD_STANDARD_GRAVITY */
 #include "touchdown/output.h" /* td_event_kind_name */
 
 #include <math.h>
@@ -290,7 +291,7 @@ static int amb_figure(plot_job *job, const plot_file *f, const char *prefix)
     return plot_script_end(out, job, name, plot_tpl_markers, plot_tpl_amb_forces);
 }
 
-/* housing motion: the housing's acceleration (in g, 9.80665 m/s^2, the shock standards' unit) and
+/* housing motion: the housing's acceleration (in g, TD_STANDARD_GRAVITY, the shock standards' unit) and
  * displacement against time, x and y, from PREFIXhousing.dat. */
 static int housing_figure(plot_job *job, const plot_file *f, const char *prefix)
 {
@@ -304,11 +305,11 @@ static int housing_figure(plot_job *job, const plot_file *f, const char *prefix)
         return PLOT_FAILED;
     fprintf(out,
             "# the housing's prescribed motion from %s\n# columns: 1 time [s], 2 ax [g], 3 ay [g], 4 x [mm], "
-            "5 y [mm] (1 g = 9.80665 m/s^2)\n",
-            f->path);
+            "5 y [mm] (1 g = %g m/s^2)\n",
+            f->path, TD_STANDARD_GRAVITY);
     for (i = 0; i < s->n; i++)
-        fprintf(out, "%.12g %.9g %.9g %.9g %.9g\n", s->t[i], s->housing[4 * i] / 9.80665,
-                s->housing[4 * i + 1] / 9.80665, 1e3 * s->housing[4 * i + 2], 1e3 * s->housing[4 * i + 3]);
+        fprintf(out, "%.12g %.9g %.9g %.9g %.9g\n", s->t[i], s->housing[4 * i] / TD_STANDARD_GRAVITY,
+                s->housing[4 * i + 1] / TD_STANDARD_GRAVITY, 1e3 * s->housing[4 * i + 2], 1e3 * s->housing[4 * i + 3]);
     if (plot_close(out, job->opt, data) != PLOT_OK)
         return PLOT_FAILED;
     if (!(out = plot_script_begin(job, name, "Housing motion", f->path, 1000, 700)))
