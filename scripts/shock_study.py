@@ -269,7 +269,7 @@ plot "%(dat)s" using 1:2 with lines lw 1.5 title "NDE retainer (touchdown)", \\
 
 
 OUTCOME_COLOUR = {"none": "#2ca02c", "touch": "#1f77b4", "rub": "#ff7f0e", "drop": "#d62728",
-                  "contact": "#ff7f0e", None: "#7f7f7f"}
+                  "unsettled": "#9467bd", "contact": "#ff7f0e", None: "#7f7f7f"}
 
 
 def map_figure(data, tmp):
