@@ -2092,6 +2092,7 @@ static const bad_file bad_files[] = {
     {"housing-history-backwards.cfg", 5, "housing.history.time[2]", NULL},
     {"housing-history-both.cfg", 5, "housing.history.file", NULL},
     {"housing-history-start.cfg", 5, "housing.history.start", NULL},
+    {"housing-history-scale-zero.cfg", 5, "housing.history.scale", NULL},
     {"housing-csv-unit.cfg", 5, "housing.history.file", NULL},
     {"housing-csv-number.cfg", 5, "housing.history.file", NULL},
     {"housing-csv-missing.cfg", 5, "housing.history.file", NULL},

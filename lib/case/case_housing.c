@@ -434,6 +434,10 @@ static td_status set_history(td_case_reader *r, const config_setting_t *g, void 
                           "give either `file` or `time`, `x` and `y`, not both");
     if (!h->file && !inline_)
         return td_cr_fail(r, g, NULL, "give `file` (a CSV record) or `time`, `x` and `y`");
+    /* the factor exists only here (the model takes the scaled record): its rule too */
+    if (h->scale == 0.0)
+        return td_cr_fail(r, config_setting_get_member(g, "scale"), NULL,
+                          "must not be 0 (it cancels the record; leave the history out for no motion)");
     st = h->file ? read_csv(r, g, h->file, &p, &csv) : read_inline(r, g, &p);
     /* the shift's fault, not the first point's: the model sees only the shifted times (t >= 0 once,
      * there; the later points' order is the record's own) */
@@ -497,6 +501,7 @@ static const td_cs_key history_keys[] = {
      .type = TD_CS_REAL,
      .offset = offsetof(cr_history, scale),
      .def = 1.0,
+     .doc_range = "not 0",
      .doc = "factor on the record's acceleration"},
 };
 const td_cs_table td_cs_housing_history = {"housing.history",  NULL,           history_keys, TD_CS_COUNT(history_keys),
