@@ -3,7 +3,7 @@
 shock's amplitude and duration (cases/shock-sweep.cfg's grid) beside the linear prediction.
 
     shock_study.py BUILD_DIR     rerun the study: docs/results/shock.json and docs/figures/shock-*.png
-                                 (about 2 min, two runs at a time), then render the docs
+                                 (two runs at a time; the wall time in the record), then render the docs
 
 scripts/make-docs.sh --full --only shock does the same (docs_record.py's source "shock");
 docs_render.py renders the regions of docs/shock-study.md from the record with REGIONS below.
@@ -337,7 +337,12 @@ def _g(x, digits=3):
 
 
 def _um(x):
-    return "-" if x is None else "%.0f" % (x * 1e6)
+    """In um, to the um; below 0.5 um one significant digit, so that a small negative margin keeps its sign
+    ("-0.4", not "-0")."""
+    if x is None:
+        return "-"
+    v = x * 1e6
+    return "%.0f" % v if abs(v) >= 0.5 or v == 0.0 else "%.1g" % v
 
 
 def _table(header, rows):
@@ -453,7 +458,14 @@ def span_val_base_rig_cell():
     return "%s (shock), %s (rotation) of the peak" % (_largest("rig", "shock"), _largest("rig", "rotation"))
 
 
-SPANS = {"val-base-jeffcott-cell": span_val_base_jeffcott_cell, "val-base-rig-cell": span_val_base_rig_cell}
+def span_shock_record_time():
+    """The study's cost, as its record measured it."""
+    t = _res()["record_wall_time"]
+    return "about %.0f min" % (t / 60.0) if t >= 90.0 else "about %.0f s" % t
+
+
+SPANS = {"val-base-jeffcott-cell": span_val_base_jeffcott_cell, "val-base-rig-cell": span_val_base_rig_cell,
+         "shock-record-time": span_shock_record_time}
 REGIONS = {"shock-references": region_references, "shock-case": region_case, "shock-map": region_map, "shock-agreement": region_agreement}
 
 
