@@ -3,7 +3,9 @@
 shock's amplitude and duration (cases/shock-sweep.cfg's grid) beside the linear prediction.
 
     shock_study.py BUILD_DIR     rerun the study: docs/results/shock.json and docs/figures/shock-*.png
-                                 (about 2 min, two runs at a time), then render the docs
+                                 (two runs at a time; the wall time in the record), then render the docs
+    shock_study.py --check TOOL  rerun the record's `case` row (cases/shock.cfg as shipped, about 1 s) and
+                                 compare its outcome and margins with the record (tests/cli/test_docs.sh)
 
 scripts/make-docs.sh --full --only shock does the same (docs_record.py's source "shock");
 docs_render.py renders the regions of docs/shock-study.md from the record with REGIONS below.
@@ -269,7 +271,7 @@ plot "%(dat)s" using 1:2 with lines lw 1.5 title "NDE retainer (touchdown)", \\
 
 
 OUTCOME_COLOUR = {"none": "#2ca02c", "touch": "#1f77b4", "rub": "#ff7f0e", "drop": "#d62728",
-                  "contact": "#ff7f0e", None: "#7f7f7f"}
+                  "unsettled": "#9467bd", "contact": "#ff7f0e", None: "#7f7f7f"}
 
 
 def map_figure(data, tmp):
@@ -337,7 +339,12 @@ def _g(x, digits=3):
 
 
 def _um(x):
-    return "-" if x is None else "%.0f" % (x * 1e6)
+    """In um, to the um; below 0.5 um one significant digit, so that a small negative margin keeps its sign
+    ("-0.4", not "-0")."""
+    if x is None:
+        return "-"
+    v = x * 1e6
+    return "%.0f" % v if abs(v) >= 0.5 or v == 0.0 else "%.1g" % v
 
 
 def _table(header, rows):
@@ -453,14 +460,46 @@ def span_val_base_rig_cell():
     return "%s (shock), %s (rotation) of the peak" % (_largest("rig", "shock"), _largest("rig", "rotation"))
 
 
-SPANS = {"val-base-jeffcott-cell": span_val_base_jeffcott_cell, "val-base-rig-cell": span_val_base_rig_cell}
+def span_shock_record_time():
+    """The study's cost, as its record measured it."""
+    t = _res()["record_wall_time"]
+    return "about %.0f min" % (t / 60.0) if t >= 90.0 else "about %.0f s" % t
+
+
+SPANS = {"val-base-jeffcott-cell": span_val_base_jeffcott_cell, "val-base-rig-cell": span_val_base_rig_cell,
+         "shock-record-time": span_shock_record_time}
 REGIONS = {"shock-references": region_references, "shock-case": region_case, "shock-map": region_map, "shock-agreement": region_agreement}
 
 
+CHECKED = ("shock_outcome", "contact_happened", "min_clearance_margin", "retainer_min_clearance_margin",
+           "first_contact_time")
+
+
+def check_case(tool):
+    """The record's `case` row against the tool: cases/shock.cfg rerun, its outcome and margins (and the
+    first contact's time) to docs_record's RTOL; 0 when they agree."""
+    import docs_record  # noqa: E402  (its comparison and tolerance)
+    rec = _res()["case"]["summary"]
+    with tempfile.TemporaryDirectory() as tmp:
+        new = touchdown_run(tool, [], os.path.join(tmp, "case.csv"))["summary"]
+    diffs = docs_record.differences({k: rec[k] for k in CHECKED if k in rec}, new, "case")
+    missing = [k for k in CHECKED if k not in rec]
+    if diffs or missing:
+        print("FAIL: shock study: cases/shock.cfg differs from docs/results/shock.json's case (rtol %g; rerun "
+              "scripts/make-docs.sh --full --only shock): %s" % (docs_record.RTOL, "; ".join(
+                  diffs[:8] + ["%s: not recorded" % k for k in missing])))
+        return 1
+    print("ok:   shock study: cases/shock.cfg's %s match docs/results/shock.json's case (outcome %s, margin %.6g m)"
+          % (", ".join(CHECKED), new["shock_outcome"], new["min_clearance_margin"]))
+    return 0
+
+
 def main(argv):
+    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+    if len(argv) == 2 and argv[0] == "--check":
+        return check_case(os.path.abspath(argv[1]))
     if len(argv) != 1:
         sys.exit(__doc__)
-    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
     import docs_record  # noqa: E402  (its stamp and save)
     tool = os.path.join(os.path.abspath(argv[0]), "touchdown")
     docs_record.save("shock", record(tool, docs_record.stamp))

@@ -2088,11 +2088,17 @@ static const bad_file bad_files[] = {
     /* housing motion (a CSV history's fault is also located in the CSV file: test_housing.c) */
     {"housing-shock-zero-amplitude.cfg", 5, "housing.shocks[0].amplitude", NULL},
     {"housing-rotation-zero-axis.cfg", 5, "housing.rotation[0].axis", NULL},
+    {"housing-rotation-sawtooth.cfg", 5, "housing.rotation[0].shape", NULL},
     {"housing-history-backwards.cfg", 5, "housing.history.time[2]", NULL},
     {"housing-history-both.cfg", 5, "housing.history.file", NULL},
+    {"housing-history-start.cfg", 5, "housing.history.start", NULL},
+    {"housing-history-scale-zero.cfg", 5, "housing.history.scale", NULL},
     {"housing-csv-unit.cfg", 5, "housing.history.file", NULL},
     {"housing-csv-number.cfg", 5, "housing.history.file", NULL},
     {"housing-csv-missing.cfg", 5, "housing.history.file", NULL},
+    {"housing-csv-name.cfg", 5, "housing.history.file", NULL},
+    {"housing-csv-twice.cfg", 5, "housing.history.file", NULL},
+    {"housing-csv-cr.cfg", 5, "housing.history.file", NULL},
     /* housing body */
     {"housing-body-one-mount.cfg", 5, "housing.body.mounts", NULL},
     {"housing-body-mount-negative.cfg", 6, "housing.body.mounts[1].stiffness", NULL},

@@ -156,17 +156,19 @@ static void test_pulse_quadrature(void **state)
     td_model *m = shaft_model();
     td_housing_pulse a = pulse(TD_PULSE_TRIANGLE, 100.0, 0.02, 0.01, 1.0, 0.0);
     td_housing_pulse b = pulse(TD_PULSE_VERSINE, 50.0, 0.006, 0.015, 1.0, 0.0);
-    td_housing_pulse r = pulse(TD_PULSE_SAWTOOTH, 0.3, 0.05, 0.02, 0.0, 1.0);
+    td_housing_pulse c = pulse(TD_PULSE_SAWTOOTH, 30.0, 0.05, 0.02, 1.0, 0.0);
+    td_housing_pulse r = pulse(TD_PULSE_RAMP, 0.3, 0.05, 0.02, 0.0, 1.0);
     double kinks[16], v = 0.0, d = 0.0, ang = 0.0, t = 0.0;
     int n = 0, i;
     td_housing_motion hm;
     (void)state;
     assert_int_equal(td_model_add_housing_shock(m, &a, NULL), TD_OK);
     assert_int_equal(td_model_add_housing_shock(m, &b, NULL), TD_OK);
+    assert_int_equal(td_model_add_housing_shock(m, &c, NULL), TD_OK);
     assert_int_equal(td_model_add_housing_rotation(m, &r, NULL), TD_OK);
     while (n < 16 && isfinite(kinks[n] = td_model_housing_next_kink(m, n ? kinks[n - 1] : 0.0)))
         n++;
-    /* starts, the triangle's peak, ends: 0.01, 0.015, 0.02 (both), 0.021, 0.03, 0.07 */
+    /* starts, the triangle's peak, ends: 0.01, 0.015, 0.02 (all), 0.021, 0.03, 0.07 */
     assert_int_equal(n, 6);
     assert_close(kinks[0], 0.01, 0.0, 0.0);
     assert_close(kinks[2], 0.02, 0.0, 0.0);
@@ -183,7 +185,8 @@ static void test_pulse_quadrature(void **state)
     assert_close(hm.velocity[0], v, 1e-11, 0.0);
     assert_close(hm.displacement[0], d, 1e-11, 0.0);
     assert_close(hm.angle[1], ang, 1e-11, 0.0);
-    assert_close(hm.rate[1], 0.0, 0.0, 0.0); /* the sawtooth has dropped */
+    assert_close(hm.acceleration[0], 0.0, 0.0, 0.0); /* the sawtooth has dropped */
+    assert_close(hm.rate[1], 0.3, 0.0, 0.0);         /* the ramp holds */
     td_model_free(&m);
 }
 
@@ -196,6 +199,10 @@ static void test_rate_change(void **state)
         td_model *m = shaft_model();
         td_housing_pulse p = pulse((td_pulse_shape)shape, 0.2, 0.4, 0.1, 1.0, 1.0);
         double t, h = 1e-6;
+        if (shape == TD_PULSE_SAWTOOTH) { /* refused as a rotation: test_rules */
+            td_model_free(&m);
+            continue;
+        }
         assert_int_equal(td_model_add_housing_rotation(m, &p, NULL), TD_OK);
         for (t = 0.11; t < 0.5; t += 0.037) {
             td_housing_motion a, b, c;
@@ -279,6 +286,11 @@ static void test_rules(void **state)
     expect_fault(td_model_add_housing_rotation(m, &p, &err), &err, "rotation", 0, "direction");
     p = ok, p.shape = (td_pulse_shape)7;
     expect_fault(td_model_add_housing_shock(m, &p, &err), &err, "shock", 1, "shape");
+    /* a rate that drops at once is an angular impulse the loads cannot apply; an acceleration's drop is a step */
+    p = ok, p.shape = TD_PULSE_SAWTOOTH;
+    expect_fault(td_model_add_housing_rotation(m, &p, &err), &err, "rotation", 0, "shape");
+    assert_non_null(strstr(err.message, "angular impulse: use triangle or versine"));
+    assert_int_equal(td_model_add_housing_shock(m, &p, &err), TD_OK);
     p = ok, p.direction[0] = 1e308, p.direction[1] = 1e308; /* no overflow in the norm */
     assert_int_equal(td_model_add_housing_rotation(m, &p, &err), TD_OK);
     expect_fault(td_model_set_housing_history(m, 3, t, a, a, &err), &err, "history", 2, "time");
@@ -288,7 +300,7 @@ static void test_rules(void **state)
     expect_fault(td_model_set_housing_history(m, 1, t, a, a, &err), &err, "history", -1, "time");
     expect_fault(td_model_set_housing_reference(m, NAN, &err), &err, "housing", 0, "reference");
     assert_int_equal(td_model_housing_history_count(m), 0); /* nothing set by a refused call */
-    assert_int_equal(td_model_housing_shock_count(m), 1);
+    assert_int_equal(td_model_housing_shock_count(m), 2);
     assert_int_equal(td_model_housing_rotation_count(m), 1);
     td_model_free(&m);
 }
@@ -335,6 +347,38 @@ static void test_csv_fault_located(void **state)
                      TD_ERR_PARSE);
     assert_non_null(
         strstr(err.message, "housing-csv-unit.csv:1: column 3 'ay [furlong/fortnight^2]': an unknown unit"));
+    /* the header's names are required: a name that is no quantity, a quantity named twice */
+    assert_int_equal(td_case_load(td_source_path("tests/data/bad/housing-csv-name.cfg"), NULL, 0, &c, &err),
+                     TD_ERR_PARSE);
+    assert_non_null(strstr(err.message, "housing-csv-name.csv:2: column 2 'accel [g]': name it t or time"));
+    assert_int_equal(td_case_load(td_source_path("tests/data/bad/housing-csv-twice.cfg"), NULL, 0, &c, &err),
+                     TD_ERR_PARSE);
+    assert_non_null(
+        strstr(err.message, "housing-csv-twice.csv:1: column 3 'Y [m/s^2]': the same quantity as column 2 'ay [g]'"));
+    /* read as the case file is (td_cr_read_file): CR-only line endings are refused, not run together */
+    assert_int_equal(td_case_load(td_source_path("tests/data/bad/housing-csv-cr.cfg"), NULL, 0, &c, &err),
+                     TD_ERR_PARSE);
+    assert_non_null(strstr(err.message, "housing-csv-cr.csv:1: carriage return without a line feed"));
+    assert_int_equal(td_case_load(td_source_path("tests/data/bad/housing-csv-missing.cfg"), NULL, 0, &c, &err),
+                     TD_ERR_PARSE);
+    assert_non_null(strstr(err.message, ": cannot read the history file: "));
+}
+
+/* The CSV columns are mapped by their names, in any order and case: housing-reordered.csv is
+ * tests/data/case/housing-record.csv (0.5 g along x, -1 g along y at 5 ms) as `Time [ms], AY [g], x [m/s^2]`. */
+static void test_csv_columns_by_name(void **state)
+{
+    td_case *c = NULL;
+    td_housing_motion hm;
+    (void)state;
+    assert_int_equal(td_case_load(td_source_path("tests/data/case/housing-reordered.cfg"), NULL, 0, &c, NULL), TD_OK);
+    assert_int_equal(td_model_housing_history_count(td_case_model(c)), 3);
+    td_model_housing_motion_at(td_case_model(c), 0.005, &hm);
+    assert_close(hm.acceleration[0], 0.5 * 9.80665, 1e-15, 0.0);
+    assert_close(hm.acceleration[1], -9.80665, 1e-15, 0.0);
+    td_model_housing_motion_at(td_case_model(c), 0.0075, &hm); /* halfway down the second segment */
+    assert_close(hm.acceleration[0], 0.25 * 9.80665, 1e-15, 0.0);
+    td_case_free(&c);
 }
 
 /* sum of x . f over the rotor's x (y) DOFs of a load f: with R_x, the load of a unit translation
@@ -404,6 +448,7 @@ int main(void)
         cmocka_unit_test(test_rules),
         cmocka_unit_test(test_clone_and_refine),
         cmocka_unit_test(test_csv_fault_located),
+        cmocka_unit_test(test_csv_columns_by_name),
         cmocka_unit_test(test_base_loads),
     };
     return cmocka_run_group_tests_name("housing", tests, NULL, NULL);

@@ -82,6 +82,10 @@ enum td_dof_offset {
  *  and back; only for display, the library takes and gives rad/s. */
 #define TD_RPM_FROM_RAD_S(w) ((w)*30.0 / TD_PI)
 
+/** 1 g, m/s^2: the standard acceleration of gravity (CGPM 1901), the unit `g` of shocks and of a
+ *  housing history's columns; the library takes and gives m/s^2. */
+#define TD_STANDARD_GRAVITY 9.80665
+
 /** The value of a quantity that has none (see "Undefined values" above). */
 #define TD_UNDEFINED ((double)NAN)
 

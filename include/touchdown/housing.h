@@ -50,7 +50,8 @@ typedef struct td_housing_pulse {
 /** Add a translational acceleration pulse of the housing (the pulses and the history are summed).
  *  A fault names part "shock", its index and the field. */
 TD_API td_status td_model_add_housing_shock(struct td_model *m, const td_housing_pulse *p, td_error *err);
-/** Add a rotation-rate profile of the housing (summed). A fault names part "rotation". */
+/** Add a rotation-rate profile of the housing (summed). A fault names part "rotation". Not a
+ *  sawtooth: a rate that drops at once is an angular impulse (its rate change a delta). */
 TD_API td_status td_model_add_housing_rotation(struct td_model *m, const td_housing_pulse *p, td_error *err);
 /** The housing's acceleration as a piecewise-linear history through the n >= 2 points
  *  (t[i], ax[i], ay[i]) (s, m/s^2), zero before t[0] and after t[n - 1]; t[0] >= 0, t increasing,

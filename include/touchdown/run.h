@@ -83,16 +83,19 @@ typedef enum td_regime {
  * contact; TOUCH contact, brief: every contact left within TD_TOUCH_AND_GO_ANGLE of whirl, and each
  * retainer was in contact for less than a revolution (2 pi / |speed|) in all; and free at the end; RUB
  * sustained contact (a contact that whirled TD_TOUCH_AND_GO_ANGLE or more, or a retainer in contact
- * longer than a revolution in all), and free at the end; DROP in contact at the end (a contact within
- * the last TD_RUN_FREE_REVOLUTIONS revolutions: td_run_summary.free_at_end 0, or, where that is
- * undetermined, a retainer in contact at the end); UNDEFINED the run did not reach its end.
+ * longer than a revolution in all), and free at the end; DROP a retainer in contact at the end;
+ * UNSETTLED free at the end but within the last TD_RUN_FREE_REVOLUTIONS revolutions of a contact
+ * (td_run_summary.free_at_end 0): the run ended too soon after its last contact to tell (end_time must
+ * cover the settling); UNDEFINED the run did not reach its end. The revolution is 2 pi over the speed
+ * at the first contact (td_run_summary.contact_speed).
  */
 typedef enum td_shock_outcome {
     TD_SHOCK_UNDEFINED = -1,
     TD_SHOCK_NONE = 0,
     TD_SHOCK_TOUCH = 1,
     TD_SHOCK_RUB = 2,
-    TD_SHOCK_DROP = 3
+    TD_SHOCK_DROP = 3,
+    TD_SHOCK_UNSETTLED = 4
 } td_shock_outcome;
 
 /** Retainers whose totals td_run_summary carries itself (the output files carry every retainer's). */
@@ -248,6 +251,8 @@ typedef struct td_run_summary {
     int contact_happened;        /**< 1: the rotor touched a retainer (a contact onset, or in contact from the
                                       start); 0: it did not; -1: undetermined (the run failed before any contact) */
     int shock_outcome;           /**< td_shock_outcome */
+    double contact_speed;        /**< rad/s: the rotor speed at the first contact, whose revolution bounds a touch
+                                      (TD_UNDEFINED without a contact) */
 } td_run_summary;
 
 /**
@@ -296,7 +301,7 @@ TD_API void td_run_summary_ending(td_run_summary *s, const td_retainer_totals *b
 TD_API td_regime td_run_summary_regime(const td_run_summary *s);
 /** "free", "rub", "bounce", "backward whirl", "failed" (anything else). */
 TD_API const char *td_regime_name(td_regime r);
-/** "none", "touch", "rub", "drop"; NULL for TD_SHOCK_UNDEFINED (anything else): no value. */
+/** "none", "touch", "rub", "drop", "unsettled"; NULL for TD_SHOCK_UNDEFINED (anything else): no value. */
 TD_API const char *td_shock_outcome_name(td_shock_outcome o);
 /** Whether a rotor that started at speed0 and turns at speed (rad/s) is at rest: below 1 % of
  *  speed0 or below 1 rad/s. The summary's ending "at rest" uses it; a report judges the totals of a

@@ -160,7 +160,8 @@ typedef struct td_sweep_row {
     /* clearance margin (td_run_summary.min_clearance_margin, contact_happened, shock_outcome) */
     double min_clearance_margin; /**< m (TD_UNDEFINED: a failed point) */
     int contact_happened;        /**< 1, 0, -1: undetermined */
-    char shock_outcome[8];       /**< td_shock_outcome_name: "none", "touch", "rub", "drop"; "" for a failed point */
+    char shock_outcome[16]; /**< td_shock_outcome_name: "none", "touch", "rub", "drop", "unsettled"; "" for a failed
+                                 point */
 } td_sweep_row;
 
 /** The row of a point whose run ended with summary `s` (state DONE if s->status is TD_OK, else

@@ -216,7 +216,7 @@ static td_status load(td_case_reader *r, const char *const *overrides, int n_ove
     int i;
     td_status st = set_dir(r);
     if (st == TD_OK)
-        st = td_cr_read_file(r->path_shown, r->path, &main_text, r->err);
+        st = td_cr_read_file("case file", r->path_shown, r->path, &main_text, r->err);
     if (st == TD_OK) {
         r->bytes = strlen(main_text);
         st = td_cr_expand(r, main_text, NULL, 0, &text);

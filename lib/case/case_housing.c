@@ -13,13 +13,10 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
+#include <strings.h>
 
 /* TD_CS_ENUM stores an int (case_schema.c): the shape must be int-sized */
 typedef char cr_shape_is_int[sizeof(td_pulse_shape) == sizeof(int) ? 1 : -1];
-
-/* 1 g in m/s^2: the standard acceleration of gravity (CGPM 1901), a CSV column's unit `g` */
-#define CR_STANDARD_GRAVITY 9.80665
 
 static const char *const shape_names[] = {"half-sine", "triangle", "sawtooth", "versine", "ramp"}; /* td_pulse_shape */
 
@@ -106,8 +103,8 @@ static const td_cs_key rotation_keys[] = {
      .names = shape_names,
      .name_count = 5,
      .def = TD_PULSE_RAMP,
-     .doc = "the rate's profile: the pulses of `housing.shocks[].shape`, or `ramp`: a linear rise over `duration`, "
-            "then held"},
+     .doc = "the rate's profile: the pulses of `housing.shocks[].shape` but `sawtooth` (a rate that drops at once is "
+            "an angular impulse: use `triangle` or `versine`), or `ramp`: a linear rise over `duration`, then held"},
     {.key = "rate",
      .type = TD_CS_REAL,
      .offset = offsetof(td_housing_pulse, amplitude),
@@ -222,41 +219,6 @@ static td_status read_inline(td_case_reader *r, const config_setting_t *g, cr_po
     return TD_OK;
 }
 
-/* The file at `path`: a regular file of at most TD_CASE_MAX_FILE_SIZE bytes, as text; *why the
- * reason when not (a FIFO or a device could block or never end). */
-static char *slurp(const char *path, const char **why)
-{
-    struct stat sb;
-    FILE *f;
-    char *buf;
-    size_t n;
-    *why = NULL;
-    if (stat(path, &sb) != 0 || !(f = fopen(path, "rb"))) {
-        *why = strerror(errno);
-        return NULL;
-    }
-    if (!S_ISREG(sb.st_mode) || (long long)sb.st_size > (long long)TD_CASE_MAX_FILE_SIZE) {
-        *why = S_ISREG(sb.st_mode) ? "the file is too large" : "not a regular file";
-        fclose(f);
-        return NULL;
-    }
-    buf = malloc((size_t)sb.st_size + 1);
-    n = buf ? fread(buf, 1, (size_t)sb.st_size, f) : 0; /* at most the size stat() saw */
-    if (!buf || ferror(f))
-        *why = buf ? "read error" : "out of memory";
-    fclose(f);
-    if (!*why) {
-        buf[n] = '\0';
-        if (strlen(buf) != n)
-            *why = "it holds binary data (a NUL byte)";
-    }
-    if (*why) {
-        free(buf);
-        return NULL;
-    }
-    return buf;
-}
-
 /* A CSV line split at its commas into at most `max` fields, each trimmed; returns the count (max + 1
  * when there are more). Writes into line. */
 static int split_fields(char *line, char **field, int max)
@@ -281,49 +243,76 @@ static int split_fields(char *line, char **field, int max)
     }
 }
 
-/* The factor to SI of column c's unit in header field f ("NAME [UNIT]": time s or ms, acceleration
- * m/s^2 or g); 0 when it has none or an unknown one, the unit written into unit. */
-static double column_unit(const char *f, int c, char *unit, size_t n)
+/* The quantity header field f ("NAME [UNIT]") names, case-insensitive: 0 the time (`t`, `time`), 1 the
+ * acceleration along x (`ax`, `x`), 2 along y (`ay`, `y`); -1 any other name. */
+static int column_quantity(const char *f)
+{
+    static const char *const names[] = {"t", "time", "ax", "x", "ay", "y"};
+    const char *open = strchr(f, '[');
+    size_t n = open ? (size_t)(open - f) : strlen(f), k;
+    while (n > 0 && (f[n - 1] == ' ' || f[n - 1] == '\t'))
+        n--;
+    for (k = 0; k < sizeof names / sizeof names[0]; k++)
+        if (strlen(names[k]) == n && strncasecmp(f, names[k], n) == 0)
+            return (int)k / 2;
+    return -1;
+}
+
+/* The factor to SI of the unit in header field f ("NAME [UNIT]") of quantity q (column_quantity: time
+ * s or ms, acceleration m/s^2 or g); 0 when it has none or an unknown one, the unit written into unit. */
+static double column_unit(const char *f, int q, char *unit, size_t n)
 {
     const char *open = strchr(f, '['), *close = open ? strchr(open, ']') : NULL;
     unit[0] = '\0';
     if (!open || !close)
         return 0.0;
     snprintf(unit, n, "%.*s", (int)(close - open - 1), open + 1);
-    if (c == 0)
+    if (q == 0)
         return strcmp(unit, "s") == 0 ? 1.0 : strcmp(unit, "ms") == 0 ? 1e-3 : 0.0;
-    return strcmp(unit, "m/s^2") == 0 ? 1.0 : strcmp(unit, "g") == 0 ? CR_STANDARD_GRAVITY : 0.0;
+    return strcmp(unit, "m/s^2") == 0 ? 1.0 : strcmp(unit, "g") == 0 ? TD_STANDARD_GRAVITY : 0.0;
 }
 
-/* Where a CSV fault is: the `file` setting, the file as shown and the line. */
+/* Where a CSV fault is: the `file` setting, the file as shown and the line; the header's columns: each
+ * one's name as written, its quantity (column_quantity) and factor to SI, and each quantity's column. */
 typedef struct cr_csv {
     const config_setting_t *at;
     char shown[256];
     int line;
     char names[3][64];
+    int quantity[3], column[3];
     double factor[3];
 } cr_csv;
 
 #define CSV_FAIL(r, csv, ...) td_cr_fail((r), (csv)->at, NULL, __VA_ARGS__)
 
-/* The header line: three columns, each named with its unit in brackets. */
+/* The header line: three columns in any order, the time, x and y, each named with its unit in brackets. */
 static td_status csv_header(td_case_reader *r, cr_csv *csv, char *line)
 {
     static const char *const want[] = {"a time: s or ms", "an acceleration: m/s^2 or g", "an acceleration: m/s^2 or g"};
     char *field[4], unit[64];
-    int n = split_fields(line, field, 3), c;
+    int n = split_fields(line, field, 3), c, q;
     if (n != 3)
         return CSV_FAIL(r, csv, "%s:%d: the header must name 3 columns, e.g. 't [s], ax [m/s^2], ay [m/s^2]' (got %s)",
                         csv->shown, csv->line,
                         n > 3    ? "more"
                         : n == 2 ? "2"
                                  : "1");
+    csv->column[0] = csv->column[1] = csv->column[2] = -1;
     for (c = 0; c < 3; c++) {
         snprintf(csv->names[c], sizeof csv->names[c], "%s", field[c]);
-        csv->factor[c] = column_unit(field[c], c, unit, sizeof unit);
+        q = csv->quantity[c] = column_quantity(field[c]);
+        if (q < 0)
+            return CSV_FAIL(r, csv,
+                            "%s:%d: column %d '%.60s': name it t or time, ax or x, ay or y (each once, any order)",
+                            csv->shown, csv->line, c + 1, field[c]);
+        if (csv->column[q] >= 0)
+            return CSV_FAIL(r, csv, "%s:%d: column %d '%.60s': the same quantity as column %d '%.60s'", csv->shown,
+                            csv->line, c + 1, field[c], csv->column[q] + 1, csv->names[csv->column[q]]);
+        csv->column[q] = c;
+        csv->factor[c] = column_unit(field[c], q, unit, sizeof unit);
         if (csv->factor[c] == 0.0)
             return CSV_FAIL(r, csv, "%s:%d: column %d '%.60s': %s unit in brackets (%s)", csv->shown, csv->line, c + 1,
-                            field[c], unit[0] ? "an unknown" : "no", want[c]);
+                            field[c], unit[0] ? "an unknown" : "no", want[q]);
     }
     return TD_OK;
 }
@@ -342,12 +331,13 @@ static td_status csv_row(td_case_reader *r, cr_csv *csv, char *line, cr_points *
                                  : "1");
     for (c = 0; c < 3; c++) {
         char *end;
+        double x;
         errno = 0;
-        v[c] = strtod(field[c], &end);
-        if (end == field[c] || *end != '\0' || !isfinite(v[c]) || errno == ERANGE)
+        x = strtod(field[c], &end);
+        if (end == field[c] || *end != '\0' || !isfinite(x) || errno == ERANGE)
             return CSV_FAIL(r, csv, "%s:%d: column %d '%s': '%.40s' is not a finite number", csv->shown, csv->line,
                             c + 1, csv->names[c], field[c]);
-        v[c] *= csv->factor[c];
+        v[csv->quantity[c]] = x * csv->factor[c]; /* v by quantity: the time, x, y */
     }
     if (!points_grow(p))
         return td_error_set(r->err, TD_ERR_NOMEM, "%s: out of memory reading %s", r->path_shown, csv->shown);
@@ -383,19 +373,20 @@ static td_status read_csv(td_case_reader *r, const config_setting_t *g, const ch
 {
     size_t n = strlen(r->dir) + strlen(file) + 2;
     char *path = malloc(n), *text;
-    const char *why;
+    td_error ferr;
     td_status st;
     csv->at = config_setting_get_member(g, "file");
     td_cr_printable(file, csv->shown, sizeof csv->shown);
     if (!path)
         return td_error_set(r->err, TD_ERR_NOMEM, "%s: out of memory", r->path_shown);
     snprintf(path, n, "%s%s%s", file[0] == '/' ? "" : r->dir, file[0] == '/' ? "" : "/", file);
-    text = slurp(path, &why);
-    if (!text) {
-        st = CSV_FAIL(r, csv, "cannot read '%s' (%s; the path is relative to the case file's directory)", csv->shown,
-                      why);
+    st = td_cr_read_file("history file", csv->shown, path, &text, &ferr);
+    if (st != TD_OK) {
         free(path);
-        return st;
+        if (st == TD_ERR_NOMEM)
+            return td_error_set(r->err, TD_ERR_NOMEM, "%s: %s", r->path_shown, ferr.message);
+        return CSV_FAIL(r, csv, "%s%s", ferr.message,
+                        st == TD_ERR_IO ? " (the path is relative to the case file's directory)" : "");
     }
     /* an input: the outputs must never overwrite it (td_case_files); an FMU carries it (lib/fmu) */
     st = td_cr_record_file(r->c, path) == TD_OK
@@ -413,7 +404,7 @@ static td_status history_fail(td_case_reader *r, const config_setting_t *g, cons
                               td_status st, const td_error *merr)
 {
     const char *f = merr->site.field ? merr->site.field : "time";
-    int c = strcmp(f, "x") == 0 ? 1 : strcmp(f, "y") == 0 ? 2 : 0, i = merr->site.index;
+    int q = strcmp(f, "x") == 0 ? 1 : strcmp(f, "y") == 0 ? 2 : 0, i = merr->site.index, c = csv->column[q];
     const config_setting_t *s;
     if (st == TD_ERR_NOMEM || !merr->site.part || strcmp(merr->site.part, "history") != 0)
         return td_cr_model_fail(r, g, st, merr);
@@ -444,7 +435,18 @@ static td_status set_history(td_case_reader *r, const config_setting_t *g, void 
                           "give either `file` or `time`, `x` and `y`, not both");
     if (!h->file && !inline_)
         return td_cr_fail(r, g, NULL, "give `file` (a CSV record) or `time`, `x` and `y`");
+    /* the factor exists only here (the model takes the scaled record): its rule too */
+    if (h->scale == 0.0)
+        return td_cr_fail(r, config_setting_get_member(g, "scale"), NULL,
+                          "must not be 0 (it cancels the record; leave the history out for no motion)");
     st = h->file ? read_csv(r, g, h->file, &p, &csv) : read_inline(r, g, &p);
+    /* the shift's fault, not the first point's: the model sees only the shifted times (t >= 0 once,
+     * there; the later points' order is the record's own) */
+    if (st == TD_OK && p.n > 0 && td_cr_has(g, "start") && !(p.t[0] + h->start >= 0.0))
+        st = td_cr_fail(r, config_setting_get_member(g, "start"), NULL,
+                        "shifts the record's first time %g s to %g s: the shifted times must be >= 0 (the run starts "
+                        "at 0 with the housing at rest)",
+                        p.t[0], p.t[0] + h->start);
     for (i = 0; st == TD_OK && i < p.n; i++) {
         p.t[i] += h->start;
         p.x[i] *= h->scale;
@@ -468,7 +470,8 @@ static const td_cs_key history_keys[] = {
      .offset = offsetof(cr_history, file),
      .doc_default = "none",
      .doc = "a CSV record of the housing's acceleration, relative to the case file's directory unless absolute: a "
-            "header naming each column with its unit in brackets, `t [s], ax [m/s^2], ay [m/s^2]` (time in `s` or "
+            "header naming each column with its unit in brackets, `t [s], ax [m/s^2], ay [m/s^2]` (the names `t` or "
+            "`time`, `ax` or `x`, `ay` or `y`, in any case and any order, the columns read by them; time in `s` or "
             "`ms`, acceleration in `m/s^2` or `g` = 9.80665 m/s^2), then one point a line; `#` comments and blank "
             "lines are skipped. A fault names the file, its line and column"},
     {.key = "time",
@@ -499,6 +502,7 @@ static const td_cs_key history_keys[] = {
      .type = TD_CS_REAL,
      .offset = offsetof(cr_history, scale),
      .def = 1.0,
+     .doc_range = "not 0",
      .doc = "factor on the record's acceleration"},
 };
 const td_cs_table td_cs_housing_history = {"housing.history",  NULL,           history_keys, TD_CS_COUNT(history_keys),

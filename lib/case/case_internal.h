@@ -176,9 +176,10 @@ td_status td_cr_ints(td_case_reader *r, const config_setting_t *g, const char *k
                      int *n);
 
 /* ---- 3. text (case_text.c) ------------------------------------------------------------- */
-/* Read a regular file of at most TD_CASE_MAX_FILE_SIZE bytes, rejecting binary data.
- * `shown` names the file in messages. TD_ERR_IO if unreadable, TD_ERR_PARSE if binary. */
-td_status td_cr_read_file(const char *shown, const char *path, char **text, td_error *err);
+/* Read a regular file of at most TD_CASE_MAX_FILE_SIZE bytes, rejecting binary data and CR-only line
+ * endings. `what` says what it is ("case file", "history file"), `shown` names it in messages.
+ * TD_ERR_IO if unreadable, TD_ERR_PARSE if binary. */
+td_status td_cr_read_file(const char *what, const char *shown, const char *path, char **text, td_error *err);
 /* Add `path` to the case's list of files read (td_case_files); TD_ERR_NOMEM on failure. */
 td_status td_cr_record_file(td_case *c, const char *path);
 /* Append `text` (the file libconfig calls `file`, NULL for the main file) to `out` with every

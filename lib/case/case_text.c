@@ -24,7 +24,7 @@ static int binary_byte(unsigned char ch)
     return (ch < 0x20 && ch != '\t' && ch != '\n' && ch != '\r' && ch != '\f' && ch != '\v') || ch == 0x7f;
 }
 
-td_status td_cr_read_file(const char *shown, const char *path, char **text, td_error *err)
+td_status td_cr_read_file(const char *what, const char *shown, const char *path, char **text, td_error *err)
 {
     struct stat st;
     FILE *f;
@@ -34,21 +34,21 @@ td_status td_cr_read_file(const char *shown, const char *path, char **text, td_e
 
     *text = NULL;
     if (stat(path, &st) != 0)
-        return td_cr_fail_file(err, TD_ERR_IO, shown, 0, "cannot read the case file: %s", strerror(errno));
+        return td_cr_fail_file(err, TD_ERR_IO, shown, 0, "cannot read the %s: %s", what, strerror(errno));
     if (S_ISDIR(st.st_mode))
-        return td_cr_fail_file(err, TD_ERR_IO, shown, 0, "cannot read the case file: it is a directory");
+        return td_cr_fail_file(err, TD_ERR_IO, shown, 0, "cannot read the %s: it is a directory", what);
     if (!S_ISREG(st.st_mode)) /* FIFOs and devices could block or never end */
-        return td_cr_fail_file(err, TD_ERR_IO, shown, 0, "cannot read the case file: not a regular file");
+        return td_cr_fail_file(err, TD_ERR_IO, shown, 0, "cannot read the %s: not a regular file", what);
     if ((long long)st.st_size > (long long)TD_CASE_MAX_FILE_SIZE)
-        return td_cr_fail_file(err, TD_ERR_IO, shown, 0, "the case file is too large (%lld bytes, limit %ld)",
+        return td_cr_fail_file(err, TD_ERR_IO, shown, 0, "the %s is too large (%lld bytes, limit %ld)", what,
                                (long long)st.st_size, (long)TD_CASE_MAX_FILE_SIZE);
     f = fopen(path, "rb");
     if (!f)
-        return td_cr_fail_file(err, TD_ERR_IO, shown, 0, "cannot read the case file: %s", strerror(errno));
+        return td_cr_fail_file(err, TD_ERR_IO, shown, 0, "cannot read the %s: %s", what, strerror(errno));
     buf = malloc((size_t)st.st_size + 1);
     if (!buf) {
         fclose(f);
-        return td_cr_fail_file(err, TD_ERR_NOMEM, shown, 0, "out of memory reading the case file");
+        return td_cr_fail_file(err, TD_ERR_NOMEM, shown, 0, "out of memory reading the %s", what);
     }
     /* read at most the size stat() saw; a file growing meanwhile is cut there */
     n = fread(buf, 1, (size_t)st.st_size, f);
@@ -56,7 +56,7 @@ td_status td_cr_read_file(const char *shown, const char *path, char **text, td_e
         int e = errno;
         fclose(f);
         free(buf);
-        return td_cr_fail_file(err, TD_ERR_IO, shown, 0, "cannot read the case file: %s", strerror(e));
+        return td_cr_fail_file(err, TD_ERR_IO, shown, 0, "cannot read the %s: %s", what, strerror(e));
     }
     fclose(f);
     buf[n] = '\0';
@@ -64,12 +64,12 @@ td_status td_cr_read_file(const char *shown, const char *path, char **text, td_e
         unsigned char ch = (unsigned char)buf[i];
         if (binary_byte(ch)) {
             free(buf);
-            return td_cr_fail_file(err, TD_ERR_PARSE, shown, line, "binary data (byte 0x%02x): a case file is text",
-                                   ch);
+            return td_cr_fail_file(err, TD_ERR_PARSE, shown, line, "binary data (byte 0x%02x): a %s is text", ch, what);
         }
         if (ch == '\r' && buf[i + 1] != '\n') {
             /* libconfig ends a line (and a # comment) only at '\n': after a bare CR the settings
-             * on the next "line" would be part of a comment, silently dropped */
+             * on the next "line" would be part of a comment, silently dropped (a CSV record's lines
+             * end at '\n' too) */
             free(buf);
             return td_cr_fail_file(err, TD_ERR_PARSE, shown, line,
                                    "carriage return without a line feed (CR-only line endings are not "
@@ -238,7 +238,7 @@ static td_status expand_include(td_case_reader *r, const char *file, int line_no
     if (stat(path, &sb) == 0 && S_ISREG(sb.st_mode) &&
         (unsigned long long)sb.st_size > (unsigned long long)TD_CASE_MAX_TOTAL_SIZE - r->bytes)
         return too_many_bytes(r, including, line_no); /* refused before reading a byte of it */
-    st = td_cr_read_file(shown, path, &text, &ierr);
+    st = td_cr_read_file("case file", shown, path, &text, &ierr);
     if (st == TD_ERR_IO)
         return td_cr_fail_file(r->err, TD_ERR_PARSE, including, line_no,
                                "cannot open include file \"%.200s\" (%.200s; @include paths are relative to %.200s)",

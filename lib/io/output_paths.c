@@ -136,7 +136,9 @@ static td_status check_all(const char *const *outs, const char *const *whats, in
     for (i = 0; st == TD_OK && i < n_out; i++)
         st = identify(outs[i], whats[i], 1, &ids[i], err);
     for (i = 0; st == TD_OK && i < n_inputs; i++)
-        st = identify(inputs[i], i == 0 ? "case file" : "@include file", 0, &ids[n_out + i], err);
+        st =
+            identify(inputs[i], i == 0 ? "case file" : "input file of the case (an @include file or a record it reads)",
+                     0, &ids[n_out + i], err);
     if (st == TD_OK)
         st = check_pairs(ids, n_out, n_out + n_inputs, err);
     free(ids);

@@ -10,6 +10,7 @@
  */
 #include "model/elements.h"
 #include "model/model_internal.h"
+#include "model/rigid_motion.h"
 #include "model/system_internal.h"
 #include "util/error_internal.h"
 
@@ -304,27 +305,19 @@ static td_status build_gravity_load(td_system *s, td_error *err)
 
 /* The housing motion's loads (docs/theory.md, "Base motion"): base_load = M R_x, M R_y, M T_x, M T_y
  * and base_gyro = G T_x, G T_y, with R a unit rigid translation (1 on every node's x, resp. y) and
- * T a unit rigid rotation about x (y_i = -(z_i - z_ref), theta_i = 1) or y (x_i = z_i - z_ref,
- * phi_i = 1) through the reference point (touchdown/dofs.h: theta = -dy/dz, phi = dx/dz). */
+ * T a unit rigid rotation about x or y through the reference point (td_rigid_unit_at). */
 static td_status build_base_loads(td_system *s, td_error *err)
 {
     double zref = td_model_housing_reference(s->model), *u = calloc((size_t)s->nphys, sizeof *u);
     int k, i;
     for (k = 0; k < 6 && u; k++) {
         double **out = k < 4 ? &s->base_load[k] : &s->base_gyro[k - 4];
-        int rot = k >= 2 ? (k - 2) % 2 : -1; /* -1 translation; 0 about x; 1 about y */
+        int j = k < 4 ? k : k - 2; /* the unit motion: translation x, y; rotation about x, y */
         if (!(*out = calloc((size_t)s->nphys, sizeof **out)))
             break;
         memset(u, 0, (size_t)s->nphys * sizeof *u);
-        for (i = 0; i < s->nnodes; i++) {
-            double dz = td_model_node_position(s->model, i) - zref;
-            if (rot < 0)
-                u[TD_DOF(i, k == 0 ? TD_DOF_X : TD_DOF_Y)] = 1.0;
-            else if (rot == 0)
-                u[TD_DOF(i, TD_DOF_Y)] = -dz, u[TD_DOF(i, TD_DOF_THETA)] = 1.0;
-            else
-                u[TD_DOF(i, TD_DOF_X)] = dz, u[TD_DOF(i, TD_DOF_PHI)] = 1.0;
-        }
+        for (i = 0; i < s->nnodes; i++)
+            td_rigid_unit_at(j, td_model_node_position(s->model, i) - zref, u + TD_DOF(i, 0));
         cs_di_gaxpy(k < 4 ? s->M : s->G, u, *out);
     }
     free(u);

@@ -19,6 +19,7 @@
  * the machine on the rotor (its weight, an unbalance) acts on h through R^T f as well.
  */
 #include "model/model_internal.h"
+#include "model/rigid_motion.h"
 #include "model/system_internal.h"
 #include "util/error_internal.h"
 
@@ -33,15 +34,13 @@ static void rigid_field(const td_system *s, int nr, int nb, double *R)
     double zc = s->model->body.centre;
     int i;
     for (i = 0; i < nr; i++) {
-        int off, node = td_system_coordinate_node(s, i, &off);
-        double d = node >= 0 ? td_model_node_position(s->model, node) - zc : 0.0;
+        int off, node = td_system_coordinate_node(s, i, &off), j;
+        double d = node >= 0 ? td_model_node_position(s->model, node) - zc : 0.0, u[TD_DOFS_PER_NODE];
         if (node < 0)
             continue;
-        R[i] = off == TD_DOF_X;
-        R[i + (size_t)nr] = off == TD_DOF_Y;
-        if (nb == 4) {
-            R[i + 2 * (size_t)nr] = off == TD_DOF_Y ? -d : off == TD_DOF_THETA;
-            R[i + 3 * (size_t)nr] = off == TD_DOF_X ? d : off == TD_DOF_PHI;
+        for (j = 0; j < nb; j++) { /* translation x, y; rotation about x, y (nb = 4) */
+            td_rigid_unit_at(j, d, u);
+            R[i + (size_t)j * nr] = u[off];
         }
     }
 }
@@ -197,14 +196,12 @@ static td_status body_base_loads(td_system *s, int nr, int nb, const double *R, 
                 v += R[i + (size_t)j * nr] * g[i];
             g[nr + j] = v;
         }
-        if (k == 0 || k == 1) /* M_h w: translation */
-            g[nr + k] += b->mass;
-        else if (k == 2) /* about x: y = -(z_c - z_ref), theta = 1 */
-            g[nr + 1] -= b->mass * dz;
-        else if (k == 3) /* about y: x = z_c - z_ref, phi = 1 */
-            g[nr] += b->mass * dz;
-        if (nb == 4 && (k == 2 || k == 3))
-            g[nr + k] += b->inertia;
+        if (k < 4) { /* M_h w, w the body's field of the unit base motion k at its centre */
+            double w[TD_DOFS_PER_NODE];
+            td_rigid_unit_at(k, dz, w);
+            for (j = 0; j < nb; j++)
+                g[nr + j] += (j < 2 ? b->mass : b->inertia) * w[j];
+        }
     }
     return TD_OK;
 }
@@ -281,10 +278,11 @@ void td_system_body_point_field(const td_system *s, int node, double rx[4], doub
         rx[j] = ry[j] = 0.0;
     if (s->nbody == 0)
         return;
-    rx[0] = ry[1] = 1.0;
-    if (s->nbody == 4) {
-        ry[2] = -d; /* theta: y = -d theta */
-        rx[3] = d;  /* phi: x = d phi */
+    for (j = 0; j < s->nbody; j++) {
+        double u[TD_DOFS_PER_NODE];
+        td_rigid_unit_at(j, d, u);
+        rx[j] = u[TD_DOF_X];
+        ry[j] = u[TD_DOF_Y];
     }
 }
 

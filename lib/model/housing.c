@@ -122,6 +122,13 @@ td_status td_model_add_housing_rotation(td_model *m, const td_housing_pulse *p, 
         return td_error_set(err, TD_ERR_INVALID, "housing rotation: NULL argument");
     if (check_pulse(p, "rotation", m->rotations.count, &q, err))
         return TD_ERR_INVALID;
+    /* A rate that falls from A to 0 at once has alpha = -A delta(t - end): an angular impulse that the
+     * load -M T alpha (docs/theory.md, "Base motion") cannot apply between integrator steps, so the
+     * rotor's relative velocity would miss its jump of +T A. An acceleration's jump (a shock's
+     * sawtooth) is only a step of the load, which the integrator stops at. */
+    if (q.shape == TD_PULSE_SAWTOOTH)
+        return FAIL_AT(err, "rotation", m->rotations.count, "shape",
+                       "a rate that drops at once is an angular impulse: use triangle or versine");
     return append_pulse(&m->rotations.items, &m->rotations.count, &m->rotations.capacity, &q, err);
 }
 

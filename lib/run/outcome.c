@@ -17,6 +17,7 @@ const char *td_shock_outcome_name(td_shock_outcome o)
     case TD_SHOCK_TOUCH: return "touch";
     case TD_SHOCK_RUB: return "rub";
     case TD_SHOCK_DROP: return "drop";
+    case TD_SHOCK_UNSETTLED: return "unsettled";
     default: return NULL;
     }
 }
@@ -27,6 +28,7 @@ void td_run_outcome_init(td_run_summary *s)
     s->min_clearance_retainer = -1;
     s->contact_happened = 0;
     s->shock_outcome = TD_SHOCK_UNDEFINED;
+    s->contact_speed = TD_UNDEFINED;
 }
 
 void td_run_outcome_undefine(td_run_summary *s)
@@ -42,8 +44,10 @@ void td_run_outcome_undefine(td_run_summary *s)
 
 void td_run_outcome_collect(td_run_summary *s, const td_sim *sim, int in_contact)
 {
-    int k, n = td_model_retainer_count(td_sim_model(sim)), touched = s->contacts > 0, sustained = 0, drop;
-    double revolution = s->speed != 0.0 ? 2.0 * TD_PI / fabs(s->speed) : INFINITY;
+    int k, n = td_model_retainer_count(td_sim_model(sim)), touched = s->contacts > 0, sustained = 0;
+    /* the revolution at the contacts (the first's speed), not the model's: a run-down's speed is 0 */
+    double w = td_is_undefined(s->contact_speed) ? s->speed : s->contact_speed;
+    double revolution = w != 0.0 ? 2.0 * TD_PI / fabs(w) : INFINITY;
     for (k = 0; k < n; k++) {
         td_retainer_totals t;
         td_sim_retainer_totals(sim, k, &t);
@@ -58,8 +62,12 @@ void td_run_outcome_collect(td_run_summary *s, const td_sim *sim, int in_contact
         sustained = sustained || t.contacts > 0 || t.contact_time > revolution;
     }
     s->contact_happened = touched;
-    drop = s->free_at_end == 0 || (s->free_at_end < 0 && in_contact);
-    s->shock_outcome = !touched ? TD_SHOCK_NONE : drop ? TD_SHOCK_DROP : sustained ? TD_SHOCK_RUB : TD_SHOCK_TOUCH;
+    /* in contact at the end: a drop; free, but a contact within the last free_window: too soon to tell */
+    s->shock_outcome = !touched              ? TD_SHOCK_NONE
+                       : in_contact          ? TD_SHOCK_DROP
+                       : s->free_at_end == 0 ? TD_SHOCK_UNSETTLED
+                       : sustained           ? TD_SHOCK_RUB
+                                             : TD_SHOCK_TOUCH;
 }
 
 static const char *contact_word(int v)

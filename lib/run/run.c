@@ -98,6 +98,7 @@ static void contact_advance(run_state *r, double t, int now_in_contact)
         r->s->contact_onset = now_in_contact ? t : TD_UNDEFINED;
     if (now_in_contact && td_is_undefined(r->s->first_contact_time)) {
         r->s->first_contact_time = t;
+        r->s->contact_speed = td_sim_speed(r->sim);
         r->solver_wall_at_contact = r->s->solver_wall_time;
     }
     r->in_contact = now_in_contact;
@@ -165,6 +166,7 @@ static td_status handle_event(run_state *r, td_error *err)
         r->s->contacts++;
         if (td_is_undefined(r->s->first_contact_time)) {
             r->s->first_contact_time = ev.time;
+            r->s->contact_speed = td_sim_speed(r->sim);
             r->solver_wall_at_contact = r->s->solver_wall_time;
         }
     }

@@ -72,6 +72,22 @@ static void check_clearances(td_run_summary *s, const td_model *m)
                  i, r.clearance, r.shaft_radius);
 }
 
+/* A rotor past an AMB's air gap at its sensor would strike the AMB's stator: the model has no stator
+ * contact (only the retainers'), so from there on the result is not physical. The peak is the one
+ * while the AMB worked (td_sim_sensor_peak_displacement); an AMB with no air gap stated is not judged. */
+static void check_air_gaps(td_run_summary *s, const td_model *m)
+{
+    int k;
+    td_amb a;
+    for (k = 0; k < s->sensor_count && k < TD_RUN_SUMMARY_AMBS; k++)
+        if (td_model_get_amb(m, k, &a) == TD_OK && a.air_gap > 0.0 && s->sensor_peak_displacement[k] > a.air_gap)
+            warn(s,
+                 "AMB %d's sensor saw the rotor %.4g m from centre, past the AMB's air gap %.6g m (ambs[%d].air_gap): "
+                 "it would strike the AMB's stator, which the model does not hold, so the result is not physical "
+                 "from there",
+                 k, s->sensor_peak_displacement[k], a.air_gap, k);
+}
+
 /* A section from a few crossings cannot tell a period-n orbit from a spread. */
 static void check_section(td_run_summary *s)
 {
@@ -89,4 +105,5 @@ void td_run_check_warnings(td_run_summary *s, const td_model *m)
     check_schedule(s, m);
     check_clearances(s, m);
     check_section(s);
+    check_air_gaps(s, m);
 }

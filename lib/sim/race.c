@@ -14,6 +14,7 @@
  * polar inertia in M, a free spin's viscous drag in C). Without either the rotor's matrices are used
  * as they are (the paper's cases).
  */
+#include "model/rigid_motion.h"
 #include "sim/sim_internal.h"
 #include "util/error_internal.h"
 
@@ -173,18 +174,19 @@ void td_sim_races_housing(const td_sim *s, const td_housing_motion *hm, double *
     int k, have_ref = 0;
     for (k = 0; k < s->dae.nr; k++) {
         const td_sim_retainer *r = &s->contacts.ret[k];
-        double m = r->r.race.mass, dz;
+        double m = r->r.race.mass, base[TD_DOFS_PER_NODE], a[TD_DOFS_PER_NODE];
         if (r->rx < 0)
             continue;
         if (!have_ref)
             zref = td_model_housing_reference(s->model), have_ref = 1;
         /* the housing's acceleration at the race's axial position: a + alpha x (z - z_ref) e_z */
-        dz = td_model_node_position(s->model, r->r.node) - zref;
-        f[r->rx] -= sign * m * (hm->acceleration[0] + dz * hm->rate_change[1]);
-        f[r->ry] -= sign * m * (hm->acceleration[1] - dz * hm->rate_change[0]);
+        base[TD_DOF_X] = hm->acceleration[0], base[TD_DOF_Y] = hm->acceleration[1];
+        base[TD_DOF_THETA] = hm->rate_change[0], base[TD_DOF_PHI] = hm->rate_change[1];
+        td_rigid_motion_at(base, td_model_node_position(s->model, r->r.node) - zref, a);
+        f[r->rx] -= sign * m * a[TD_DOF_X];
+        f[r->ry] -= sign * m * a[TD_DOF_Y];
         /* housing body: its share of the race's inertial load (nothing without a body) */
-        td_system_body_point_force(s->sys, r->r.node, -sign * m * (hm->acceleration[0] + dz * hm->rate_change[1]),
-                                   -sign * m * (hm->acceleration[1] - dz * hm->rate_change[0]), f);
+        td_system_body_point_force(s->sys, r->r.node, -sign * m * a[TD_DOF_X], -sign * m * a[TD_DOF_Y], f);
     }
 }
 

@@ -15,7 +15,10 @@
 #   (c) the case keys the tool knows (touchdown info --keys, the reader's tables) equal
 #       docs/results/keys.json, the record the key tables of docs/case-format.md are made from: a
 #       key, type, range, unit, default or doc changed in the reader without rerunning
-#       scripts/make-docs.sh fails (and (a) fails a key table edited by hand).
+#       scripts/make-docs.sh fails (and (a) fails a key table edited by hand);
+#   (d) the shock study's `case` row: cases/shock.cfg as shipped (about 1 s) rerun, its outcome, margins
+#       and first contact time against docs/results/shock.json (scripts/shock_study.py --check): (a)
+#       checks docs/shock-study.md against the record, this the record against the tool.
 # Needs python3 (json, difflib only). Args: $1 = the touchdown binary, $2 = the source directory.
 set -u
 tool=$1
@@ -45,5 +48,13 @@ while IFS= read -r line; do
     *) echo "$line" ;;
     esac
 done < <("$py" "$src/scripts/docs_record.py" --check-keys "$tool" 2>&1)
-check "every cheap run and the case keys checked (${#cheap[@]} + 1)" test "$checks" -ge $((${#cheap[@]} + 2))
+# (d) the shock study's case row
+while IFS= read -r line; do
+    case $line in
+    ok:*) pass "${line#ok:   }" ;;
+    FAIL:*) fail "${line#FAIL: }" ;;
+    *) echo "$line" ;;
+    esac
+done < <("$py" "$src/scripts/shock_study.py" --check "$tool" 2>&1)
+check "every cheap run, the case keys and the shock case checked (${#cheap[@]} + 2)" test "$checks" -ge $((${#cheap[@]} + 3))
 finish

@@ -53,6 +53,8 @@ check "without housing motion: no housing_work in the JSON, the text or the file
 
 t "$work/clobber" run "${args[@]}" --set 'output.csv="../case/records/shock.csv"' ../case/housing.cfg
 check "an output aimed at the CSV record: exit 2 (got $rc: $(cat "$work/clobber/.err"))" test "$rc" = 2
+check "the refusal names the record an input file of the case, not an @include file ($(cat "$work/clobber/.err"))" \
+    grep -q 'the same file as the input file of the case (an @include file or a record it reads)' "$work/clobber/.err"
 check "the CSV record is left as it was" cmp -s "$work/case/records/shock.csv" "$work/shock.orig"
 
 finish

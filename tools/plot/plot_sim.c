@@ -7,6 +7,7 @@
  * with the data files PREFIXretainerN.dat, PREFIXcontactsN.dat, PREFIXambs.dat and PREFIXhousing.dat.
  */
 #include "plot/plot.h"
+#include "touchdown/dofs.h"   /* TD_STANDARD_GRAVITY */
 #include "touchdown/output.h" /* td_event_kind_name */
 
 #include <math.h>
@@ -290,7 +291,7 @@ static int amb_figure(plot_job *job, const plot_file *f, const char *prefix)
     return plot_script_end(out, job, name, plot_tpl_markers, plot_tpl_amb_forces);
 }
 
-/* housing motion: the housing's acceleration (in g, 9.80665 m/s^2, the shock standards' unit) and
+/* housing motion: the housing's acceleration (in g, TD_STANDARD_GRAVITY, the shock standards' unit) and
  * displacement against time, x and y, with a housing body's displacement, from PREFIXhousing.dat. */
 static int housing_figure(plot_job *job, const plot_file *f, const char *prefix)
 {
@@ -305,12 +306,12 @@ static int housing_figure(plot_job *job, const plot_file *f, const char *prefix)
         return PLOT_FAILED;
     fprintf(out,
             "# the housing's prescribed motion from %s\n# columns: 1 time [s], 2 ax [g], 3 ay [g], 4 x [mm], "
-            "5 y [mm] (1 g = 9.80665 m/s^2)%s\n",
-            f->path, s->housing_body ? ", 6 body x [mm], 7 body y [mm] (relative to the base)" : "");
+            "5 y [mm] (1 g = %g m/s^2)%s\n",
+            f->path, TD_STANDARD_GRAVITY, s->housing_body ? ", 6 body x [mm], 7 body y [mm] (relative to the base)" : "");
     for (i = 0; i < s->n; i++) {
         const double *h = s->housing + 6 * i;
         still = still && h[0] == 0.0 && h[1] == 0.0;
-        fprintf(out, "%.12g %.9g %.9g %.9g %.9g", s->t[i], h[0] / 9.80665, h[1] / 9.80665, 1e3 * h[2], 1e3 * h[3]);
+        fprintf(out, "%.12g %.9g %.9g %.9g %.9g", s->t[i], h[0] / TD_STANDARD_GRAVITY, h[1] / TD_STANDARD_GRAVITY, 1e3 * h[2], 1e3 * h[3]);
         if (s->housing_body)
             fprintf(out, " %.9g %.9g", 1e3 * h[4], 1e3 * h[5]);
         fputc('\n', out);
