@@ -220,8 +220,10 @@ static void test_drop(void **state)
                   td_shock_outcome_name((td_shock_outcome)s.shock_outcome));
     assert_int_equal(s.contact_happened, 1);
     assert_int_equal(s.free_at_end, 0);
-    /* it bounces on the retainer: a drop when the end finds it in contact, else too soon to tell */
-    assert_int_equal(s.shock_outcome, isnan(s.contact_onset) ? TD_SHOCK_UNSETTLED : TD_SHOCK_DROP);
+    /* it bounces on the retainer: a drop only when the end finds it in contact in a sustained rub, else
+       too soon to tell (no AMB here to fail) */
+    assert_int_equal(s.shock_outcome,
+                     !isnan(s.contact_onset) && s.regime != TD_REGIME_BOUNCE ? TD_SHOCK_DROP : TD_SHOCK_UNSETTLED);
     assert_true(fabs(s.min_clearance_margin) <= 1e-3 * major);
     run(jeffcott(0.5 * major, 0.0, 0.0, 0.0), 1, TD_START_REST, 1, 0.2, 1000.0, &s);
     print_message("penalty: margin %.3e m, in contact at the end %d, outcome %s\n", s.min_clearance_margin,
@@ -284,7 +286,8 @@ static void test_pinned_is_rub(void **state)
 }
 
 /* The pinned rotor's run ended one revolution after its last contact: free at the end, but too soon to
- * tell (unsettled), not a drop; ended in contact it is a drop. */
+ * tell (unsettled), not a drop; ended pressed onto its retainer while the pulse still acts, unsettled too
+ * (a drop needs an AMB off or a sustained rub held to the end). */
 static void test_unsettled(void **state)
 {
     double major = orbit_major(), c = 2.0 * major, revolution = 2.0 * TD_PI / SPEED, last;
@@ -308,9 +311,9 @@ static void test_unsettled(void **state)
     assert_string_equal(td_shock_outcome_name(TD_SHOCK_UNSETTLED), "unsettled");
     m = jeffcott_mu(c, 0.0);
     assert_int_equal(td_model_add_housing_shock(m, &push, NULL), TD_OK);
-    run(m, 0, TD_START_ORBIT, 0, 0.1, 1000.0, &s); /* pressed onto the retainer at the end */
+    run(m, 0, TD_START_ORBIT, 0, 0.1, 1000.0, &s); /* pressed onto the retainer at the end, the pulse on */
     assert_false(isnan(s.contact_onset));
-    assert_int_equal(s.shock_outcome, TD_SHOCK_DROP);
+    assert_int_equal(s.shock_outcome, TD_SHOCK_UNSETTLED); /* it may yet lift off (a drop: tests/cli/test_drop.sh) */
 }
 
 /* The revolution that bounds a touch is the one at the contacts: the pinned rotor of test_pinned_is_rub

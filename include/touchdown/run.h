@@ -83,11 +83,13 @@ typedef enum td_regime {
  * contact; TOUCH contact, brief: every contact left within TD_TOUCH_AND_GO_ANGLE of whirl, and each
  * retainer was in contact for less than a revolution (2 pi / |speed|) in all; and free at the end; RUB
  * sustained contact (a contact that whirled TD_TOUCH_AND_GO_ANGLE or more, or a retainer in contact
- * longer than a revolution in all), and free at the end; DROP a retainer in contact at the end;
- * UNSETTLED free at the end but within the last TD_RUN_FREE_REVOLUTIONS revolutions of a contact
- * (td_run_summary.free_at_end 0): the run ended too soon after its last contact to tell (end_time must
- * cover the settling); UNDEFINED the run did not reach its end. The revolution is 2 pi over the speed
- * at the first contact (td_run_summary.contact_speed).
+ * longer than a revolution in all), and free at the end; DROP on the retainers at the end (in contact,
+ * or within the last TD_RUN_FREE_REVOLUTIONS revolutions of a contact: td_run_summary.free_at_end 0)
+ * with nothing to lift it off: an AMB off, or in contact at the end after contact over at least half
+ * the ending's stretch (the regime a rub or a backward whirl, not a bounce); UNSETTLED on the retainers
+ * at the end otherwise (bouncing, or just lifted off, with every AMB working): too soon to tell (end_time must cover
+ * the settling); UNDEFINED the run did not reach its end. The revolution is 2 pi over the speed at the first contact
+ * (td_run_summary.contact_speed).
  */
 typedef enum td_shock_outcome {
     TD_SHOCK_UNDEFINED = -1,

@@ -42,6 +42,19 @@ void td_run_outcome_undefine(td_run_summary *s)
     s->shock_outcome = TD_SHOCK_UNDEFINED;
 }
 
+/* 1 if nothing will lift the rotor off its retainers: an AMB off at the end (it cannot), or the rotor
+ * in contact at the end after contact over at least half of the ending's stretch (td_run_summary_ending:
+ * a rub, a rolling or a whirl, at rest; not a bounce, from which working AMBs may still lift it, nor a
+ * rotor that has just lifted off). */
+static int held_down(const td_run_summary *s, const td_sim *sim, int in_contact)
+{
+    int a, n = td_model_amb_count(td_sim_model(sim));
+    for (a = 0; a < n; a++)
+        if (td_sim_amb_mode(sim, a) == TD_AMB_OFF)
+            return 1;
+    return in_contact && (s->regime == TD_REGIME_RUB || s->regime == TD_REGIME_BACKWARD_WHIRL);
+}
+
 void td_run_outcome_collect(td_run_summary *s, const td_sim *sim, int in_contact)
 {
     int k, n = td_model_retainer_count(td_sim_model(sim)), touched = s->contacts > 0, sustained = 0;
@@ -62,12 +75,12 @@ void td_run_outcome_collect(td_run_summary *s, const td_sim *sim, int in_contact
         sustained = sustained || t.contacts > 0 || t.contact_time > revolution;
     }
     s->contact_happened = touched;
-    /* in contact at the end: a drop; free, but a contact within the last free_window: too soon to tell */
-    s->shock_outcome = !touched              ? TD_SHOCK_NONE
-                       : in_contact          ? TD_SHOCK_DROP
-                       : s->free_at_end == 0 ? TD_SHOCK_UNSETTLED
-                       : sustained           ? TD_SHOCK_RUB
-                                             : TD_SHOCK_TOUCH;
+    /* on the retainers at the end (in contact, or a contact within the last free_window): a drop when
+       nothing will lift the rotor off them, else too soon to tell */
+    s->shock_outcome = !touched                               ? TD_SHOCK_NONE
+                       : !(in_contact || s->free_at_end == 0) ? (sustained ? TD_SHOCK_RUB : TD_SHOCK_TOUCH)
+                       : held_down(s, sim, in_contact)        ? TD_SHOCK_DROP
+                                                              : TD_SHOCK_UNSETTLED;
 }
 
 static const char *contact_word(int v)

@@ -1,5 +1,6 @@
 /* The bridge between a td_sim and the writers (recorder.h). */
 #include "run/recorder.h"
+#include "model/rigid_motion.h"
 #include "util/error_internal.h"
 
 #include <math.h>
@@ -273,18 +274,16 @@ static td_status read_state(td_recorder *r, const td_sim *sim, td_error *err)
 
 /*
  * housing motion: the housing's prescribed motion at t (td_model_housing_motion_at) and the nodes'
- * absolute displacement, the relative one plus the housing's rigid motion at the node's z: its
- * displacement, and its rotation about the reference point z_ref, which by a about x moves y by
- * -(z - z_ref) a and by a about y moves x by +(z - z_ref) a (touchdown/dofs.h: theta = -dy/dz,
- * phi = +dx/dz). A compliant housing (a body on mounts) adds its own rigid motion relative to the
- * base the same way: its centre's x_b, y_b and its tilts theta_b, phi_b about its centre z_b,
- * x + x_b + (z - z_b) phi_b, y + y_b - (z - z_b) theta_b (td_sim_housing_body_state; its four values
- * follow the housing's in td_writer_housing's).
+ * absolute displacement, the relative one plus the housing's rigid motion at the node's z
+ * (td_rigid_motion_at): its displacement and its rotation about the reference point z_ref, and a
+ * compliant housing's (a body on mounts) own rigid motion relative to the base about its centre z_b
+ * (td_sim_housing_body_state; its four values follow the housing's in td_writer_housing's).
  */
 static td_status housing_sample(td_recorder *r, const td_sim *sim, double t, td_error *err)
 {
     const td_model *model = td_sim_model(sim);
     double z_ref = td_model_housing_reference(model), *b = r->housing + TD_WRITER_HOUSING_VALUES;
+    double base[TD_DOFS_PER_NODE], at[TD_DOFS_PER_NODE], body_at[TD_DOFS_PER_NODE];
     td_housing_motion hm;
     td_status st = TD_OK;
     int i;
@@ -295,14 +294,16 @@ static td_status housing_sample(td_recorder *r, const td_sim *sim, double t, td_
     memcpy(r->housing + 4, hm.displacement, 2 * sizeof(double));
     memcpy(r->housing + 6, hm.rate, 2 * sizeof(double));
     memcpy(r->housing + 8, hm.angle, 2 * sizeof(double));
+    base[TD_DOF_X] = hm.displacement[0], base[TD_DOF_Y] = hm.displacement[1];
+    base[TD_DOF_THETA] = hm.angle[0], base[TD_DOF_PHI] = hm.angle[1];
     for (i = 0; i < r->node_count; i++) {
-        double arm = r->node_z[i] - z_ref;
-        double arm_b = r->node_z[i] - r->body_centre;
-        r->node_abs_xy[2 * i] = r->node_xy[2 * i] + hm.displacement[0] + arm * hm.angle[1];
-        r->node_abs_xy[2 * i + 1] = r->node_xy[2 * i + 1] + hm.displacement[1] - arm * hm.angle[0];
+        td_rigid_motion_at(base, r->node_z[i] - z_ref, at);
+        td_rigid_motion_at(b, r->node_z[i] - r->body_centre, body_at);
+        r->node_abs_xy[2 * i] = r->node_xy[2 * i] + at[TD_DOF_X];
+        r->node_abs_xy[2 * i + 1] = r->node_xy[2 * i + 1] + at[TD_DOF_Y];
         if (r->housing_body_fields) {
-            r->node_abs_xy[2 * i] += b[0] + arm_b * b[3];
-            r->node_abs_xy[2 * i + 1] += b[1] - arm_b * b[2];
+            r->node_abs_xy[2 * i] += body_at[TD_DOF_X];
+            r->node_abs_xy[2 * i + 1] += body_at[TD_DOF_Y];
         }
     }
     for (i = 0; st == TD_OK && i < r->writer_count; i++)

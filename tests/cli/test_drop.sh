@@ -26,6 +26,7 @@ assert 180.0 < d["final_speed"] < 190.0, d["final_speed"]     # friction and dra
 assert d["ending"] not in ("undetermined", "free (no contact)", "recovered"), d["ending"]
 assert 0.0 < d["peak_amb_load"] < 1.0                         # levitated within capacity
 assert d["first_contact_time"] > 0.05                          # falls after the failure
+assert d["shock_outcome"] == "drop", d["shock_outcome"]        # on its retainers with both AMBs off
 e = d["energy"]
 held = e["kinetic"] + e["elastic"]
 lost = e["damping_loss"] + e["contact_loss"] + e["drag_loss"] + e["impact_loss"]

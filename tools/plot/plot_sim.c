@@ -307,11 +307,13 @@ static int housing_figure(plot_job *job, const plot_file *f, const char *prefix)
     fprintf(out,
             "# the housing's prescribed motion from %s\n# columns: 1 time [s], 2 ax [g], 3 ay [g], 4 x [mm], "
             "5 y [mm] (1 g = %g m/s^2)%s\n",
-            f->path, TD_STANDARD_GRAVITY, s->housing_body ? ", 6 body x [mm], 7 body y [mm] (relative to the base)" : "");
+            f->path, TD_STANDARD_GRAVITY,
+            s->housing_body ? ", 6 body x [mm], 7 body y [mm] (relative to the base)" : "");
     for (i = 0; i < s->n; i++) {
         const double *h = s->housing + 6 * i;
         still = still && h[0] == 0.0 && h[1] == 0.0;
-        fprintf(out, "%.12g %.9g %.9g %.9g %.9g", s->t[i], h[0] / TD_STANDARD_GRAVITY, h[1] / TD_STANDARD_GRAVITY, 1e3 * h[2], 1e3 * h[3]);
+        fprintf(out, "%.12g %.9g %.9g %.9g %.9g", s->t[i], h[0] / TD_STANDARD_GRAVITY, h[1] / TD_STANDARD_GRAVITY,
+                1e3 * h[2], 1e3 * h[3]);
         if (s->housing_body)
             fprintf(out, " %.9g %.9g", 1e3 * h[4], 1e3 * h[5]);
         fputc('\n', out);
