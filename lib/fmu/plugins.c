@@ -39,6 +39,13 @@ static uint64_t fnv_bytes(uint64_t h, const unsigned char *p, size_t n)
     return h;
 }
 
+/* The 128-bit fingerprint of n bytes: FNV-1a from two seeds. */
+static void fingerprint_bytes(const unsigned char *data, long n, uint64_t h[2])
+{
+    h[0] = fnv_bytes(14695981039346656037ULL, data, (size_t)n);
+    h[1] = fnv_bytes(0x6c62272e07bb0142ULL, data, (size_t)n);
+}
+
 /* The whole file `path` (a `what`: "plug-in library", ...) into *data (free()) and *size; TD_ERR_IO naming it. */
 static td_status read_library(const char *path, const char *what, unsigned char **data, long *size, td_error *err)
 {
@@ -141,8 +148,7 @@ static td_status stage_one(const char *resources_dir, int i, const char *path, s
                             TD_FMU_PLUGIN_NAME_SIZE - 17);
     if ((st = read_library(path, "plug-in library", &data, &size, err)) != TD_OK)
         return st;
-    h[0] = fnv_bytes(14695981039346656037ULL, data, (size_t)size);
-    h[1] = fnv_bytes(0x6c62272e07bb0142ULL, data, (size_t)size);
+    fingerprint_bytes(data, size, h);
     choose_name(libs, *n, base, h, size, &libs[*n], &fresh);
     snprintf(name, sizeof name, "%s", libs[*n].name);
     if (fresh && (st = put_library(resources_dir, &libs[*n], data, err)) == TD_OK) {
@@ -179,8 +185,7 @@ static td_status stage_history(const char *resources_dir, const char *path, td_f
                             TD_FMU_PLUGIN_NAME_SIZE - 17);
     if ((st = read_library(path, "housing history file", &data, &lib.size, err)) != TD_OK)
         return st;
-    lib.hash[0] = fnv_bytes(14695981039346656037ULL, data, (size_t)lib.size);
-    lib.hash[1] = fnv_bytes(0x6c62272e07bb0142ULL, data, (size_t)lib.size);
+    fingerprint_bytes(data, lib.size, lib.hash);
     snprintf(lib.name, sizeof lib.name, "history/%s", base);
     st = put_library(resources_dir, &lib, data, err);
     free(data);
