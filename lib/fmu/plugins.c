@@ -130,6 +130,44 @@ static td_status put_library(const char *resources_dir, const staged_lib *lib, c
     return st == TD_OK ? write_library(path, data, lib->size, err) : st;
 }
 
+/* The file `path` to stage (a `what`: "plug-in library", "housing history") read into *data and *size,
+ * its fingerprint into h and its file name (in path) into *base; TD_ERR_INVALID when that name is too
+ * long for its place under resources/. */
+static td_status read_staged(const char *path, const char *what, const char **base, unsigned char **data, long *size,
+                             uint64_t h[2], td_error *err)
+{
+    td_status st;
+    *base = strrchr(path, '/') ? strrchr(path, '/') + 1 : path;
+    if (strlen(*base) + 16 >= TD_FMU_PLUGIN_NAME_SIZE)
+        return td_error_set(err, TD_ERR_INVALID, "%s: the %s's file name is too long for an FMU (at most %d)", path,
+                            what, TD_FMU_PLUGIN_NAME_SIZE - 17);
+    if ((st = read_library(path, what, data, size, err)) != TD_OK)
+        return st;
+    fingerprint_bytes(*data, *size, h);
+    return TD_OK;
+}
+
+/* The staged file `name`'s line of the fingerprint: its name, its bytes' hash and its size. */
+static void note_fingerprint(td_fmu_plugins *out, const char *name, const uint64_t h[2], long size)
+{
+    td_text_printf(&out->fingerprint, "%s %016llx%016llx %ld\n", name, (unsigned long long)h[0],
+                   (unsigned long long)h[1], size);
+}
+
+/* The override `ov` (its key written) completed with the staged file's `name` and kept in out when
+ * staging went well (st), else dropped; the status. */
+static td_status keep_override(td_fmu_plugins *out, td_text *ov, const char *name, td_status st, td_error *err)
+{
+    td_fmu_config_string(ov, name);
+    if (st == TD_OK && (ov->failed || out->fingerprint.failed))
+        st = td_error_set(err, TD_ERR_NOMEM, "out of memory staging an FMU");
+    if (st == TD_OK)
+        out->overrides[out->n++] = ov->data;
+    else
+        free(ov->data);
+    return st;
+}
+
 /* Stage the library of plug-in controller i (path) among the `n` staged so far into libs[n]. */
 static td_status stage_one(const char *resources_dir, int i, const char *path, staged_lib *libs, int *n,
                            td_fmu_plugins *out, td_error *err)
@@ -139,33 +177,20 @@ static td_status stage_one(const char *resources_dir, int i, const char *path, s
     long size = 0;
     int fresh;
     char name[TD_FMU_PLUGIN_NAME_SIZE];
-    const char *base = strrchr(path, '/') ? strrchr(path, '/') + 1 : path;
+    const char *base;
     td_text ov = {NULL, 0, 0, 0, 0};
     td_status st;
-    if (strlen(base) + 16 >= TD_FMU_PLUGIN_NAME_SIZE)
-        return td_error_set(err, TD_ERR_INVALID,
-                            "%s: the plug-in library's file name is too long for an FMU (at most %d)", path,
-                            TD_FMU_PLUGIN_NAME_SIZE - 17);
-    if ((st = read_library(path, "plug-in library", &data, &size, err)) != TD_OK)
+    if ((st = read_staged(path, "plug-in library", &base, &data, &size, h, err)) != TD_OK)
         return st;
-    fingerprint_bytes(data, size, h);
     choose_name(libs, *n, base, h, size, &libs[*n], &fresh);
     snprintf(name, sizeof name, "%s", libs[*n].name);
     if (fresh && (st = put_library(resources_dir, &libs[*n], data, err)) == TD_OK) {
-        td_text_printf(&out->fingerprint, "%s %016llx%016llx %ld\n", name, (unsigned long long)h[0],
-                       (unsigned long long)h[1], size);
+        note_fingerprint(out, name, h, size);
         (*n)++;
     }
     free(data);
     td_text_printf(&ov, "controllers[%d].plugin.library=", i);
-    td_fmu_config_string(&ov, name);
-    if (st == TD_OK && (ov.failed || out->fingerprint.failed))
-        st = td_error_set(err, TD_ERR_NOMEM, "out of memory staging an FMU");
-    if (st == TD_OK)
-        out->overrides[out->n++] = ov.data;
-    else
-        free(ov.data);
-    return st;
+    return keep_override(out, &ov, name, st, err);
 }
 
 /* housing motion: the case's housing history file `path` copied to history/NAME (NAME its file name),
@@ -176,30 +201,17 @@ static td_status stage_history(const char *resources_dir, const char *path, td_f
 {
     unsigned char *data;
     staged_lib lib;
-    const char *base = strrchr(path, '/') ? strrchr(path, '/') + 1 : path;
+    const char *base;
     td_text ov = {NULL, 0, 0, 0, 0};
     td_status st;
-    if (strlen(base) + 16 >= TD_FMU_PLUGIN_NAME_SIZE)
-        return td_error_set(err, TD_ERR_INVALID,
-                            "%s: the housing history's file name is too long for an FMU (at most %d)", path,
-                            TD_FMU_PLUGIN_NAME_SIZE - 17);
-    if ((st = read_library(path, "housing history file", &data, &lib.size, err)) != TD_OK)
+    if ((st = read_staged(path, "housing history", &base, &data, &lib.size, lib.hash, err)) != TD_OK)
         return st;
-    fingerprint_bytes(data, lib.size, lib.hash);
     snprintf(lib.name, sizeof lib.name, "history/%s", base);
     st = put_library(resources_dir, &lib, data, err);
     free(data);
-    td_text_printf(&out->fingerprint, "%s %016llx%016llx %ld\n", lib.name, (unsigned long long)lib.hash[0],
-                   (unsigned long long)lib.hash[1], lib.size);
+    note_fingerprint(out, lib.name, lib.hash, lib.size);
     td_text_printf(&ov, "housing.history.file=");
-    td_fmu_config_string(&ov, lib.name);
-    if (st == TD_OK && (ov.failed || out->fingerprint.failed))
-        st = td_error_set(err, TD_ERR_NOMEM, "out of memory staging an FMU");
-    if (st == TD_OK)
-        out->overrides[out->n++] = ov.data;
-    else
-        free(ov.data);
-    return st;
+    return keep_override(out, &ov, lib.name, st, err);
 }
 
 td_status td_fmu_plugins_stage(const td_case *c, const char *resources_dir, td_fmu_plugins *out, td_error *err)
