@@ -1090,6 +1090,12 @@ def span_val_run_up_cell():
     return "%s rad/s: %s %%" % (", ".join(s for s, _ in out), ", ".join(v for _, v in out))
 
 
+def span_val_tolerance_cell():
+    a = search("test_tolerance", r"error against the reference: " + FLOAT + r" \(defaults\)")
+    b = search("test_tolerance", r"error against the reference: .*\(defaults\), " + FLOAT)
+    return "%s (defaults), %s (rtol 1e-7, atol 1e-10)" % (pct(a, 2), pct(b, 2))
+
+
 # --- inline spans --------------------------------------------------------------------------------
 def span_rub_mean_normal():
     s = summary("runs", "rub-damped")
@@ -1385,7 +1391,9 @@ SPANS = {"rub-mean-normal": span_rub_mean_normal, "val-first-contact-cell": span
          "val-spin-up-cell": span_val_spin_up_cell, "val-run-up-cell": span_val_run_up_cell,
          "conv-impulses": span_conv_impulses, "drop-24-vs-96": span_drop_24_vs_96,
          "readme-spread-a": span_readme_spread_a, "drop-energy": span_drop_energy,
-         "flight-sampled-flight": span_flight_sampled_flight, "flight-sampled-ida": span_flight_sampled_ida}
+         "flight-sampled-flight": span_flight_sampled_flight, "flight-sampled-ida": span_flight_sampled_ida,
+         # issue 31, tolerances
+         "val-tolerance-cell": span_val_tolerance_cell}
 
 
 # --- the case keys (docs/case-format.md) ------------------------------------------------------------
