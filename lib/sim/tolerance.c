@@ -50,7 +50,7 @@ int td_sim_races_retolerance(td_sim *s)
  *           slopes bind most steps of the damped rig cases: the slope error is the bending ringing
  *           an impact excites, and it reaches the contact force. With the looser scale the first
  *           impact of cases/rub-damped.cfg misses a converged reference by 0.82 % instead of
- *           0.34 % (tests/validation/test_tolerance.c), where atol x 2 on every component saves as
+ *           0.35 % (tests/validation/test_tolerance.c), where atol x 2 on every component saves as
  *           many steps over the run (27 %) for 0.43 %; cases/drop.cfg stays longer in contact
  *           (1.26 s against 1.08 s, means of five runs), away from a 10x tighter run (0.91 s), and
  *           case B's peak force leaves its spread;
@@ -72,7 +72,7 @@ int td_sim_races_retolerance(td_sim *s)
  * atol / R_b at the race surface, and the speed as race_speed_atol says. The shaft's freq_max
  * would be looser (the race's velocities bind a quarter of cases/drop.cfg's steps), but the race's
  * velocity drives its contact's damper: at freq_max the first impact of cases/rub-damped.cfg moves
- * away from its converged value (0.34 -> 0.48 %) with no fewer steps, and the drop saves 13 % of its
+ * away from its converged value (0.35 -> 0.48 %) with no fewer steps, and the drop saves 13 % of its
  * steps (means of five runs), inside the scatter of its bounce sequence. */
 static void race_tolerances(td_sim *s, double *at, double *id)
 {

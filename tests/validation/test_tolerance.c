@@ -12,8 +12,8 @@
  * What it guards: the slopes' and velocities' tolerances are scaled from the displacement one, and
  * the scale decides this error. The slopes' atol / L_e is not the loosest scale a deflection
  * argument allows (atol 27 / (4 L_e), the Hermite bound of the deflection between two nodes); with
- * that looser scale the defaults' error here grows from 0.34 % to 0.82 % (tolerance.c says why the
- * scale stays).
+ * that looser scale the defaults' error here more than doubles and this test fails
+ * (lib/sim/tolerance.c has the numbers and says why the scale stays).
  */
 #include "td_test.h"
 
