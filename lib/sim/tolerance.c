@@ -51,9 +51,9 @@ int td_sim_races_retolerance(td_sim *s)
  *           an impact excites, and it reaches the contact force. With the looser scale the first
  *           impact of cases/rub-damped.cfg misses a converged reference by 0.82 % instead of
  *           0.35 % (tests/validation/test_tolerance.c), where atol x 2 on every component saves as
- *           many steps over the run (27 %) for 0.43 %; cases/drop.cfg stays longer in contact
- *           (1.26 s against 1.08 s, means of five runs), away from a 10x tighter run (0.91 s), and
- *           case B's peak force leaves its spread;
+ *           many steps over the run (27 %) for 0.43 %, and case B's peak force leaves its
+ *           spread. (cases/drop.cfg saves a quarter of its steps and its answers stay inside the
+ *           scatter of its bounce sequence, which hides the error the first impact above shows.);
  *   v       atol * freq_max, the velocity of a displacement atol in the fastest mode of the shaft.
  *           The shaft has no structural damping, so every impact or force step sets its highest
  *           modes ringing (amplitude ~ impulse / (m omega), undamped for ever). A velocity
