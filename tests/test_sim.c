@@ -133,6 +133,29 @@ static void test_jacobian_free_and_amb_modes(void **state)
     td_sim_free(&s);
 }
 
+/* A free spin (a speed DOF): the speed's column carries G v (the gyroscopic term follows the
+ * state's speed), the unbalance forces' derivatives and the drag's; fill_state's speed differs from
+ * the model's, so the residual's gyroscopic correction is live too. */
+static void test_jacobian_free_spin(void **state)
+{
+    td_model *m = small_rotor();
+    td_spin spin = {.free = 1, .inertia = 0.0, .drive_torque = 0.0, .drag_torque = 0.0, .drag_viscous = 1e-4};
+    td_sim_options o;
+    td_sim *s = NULL;
+    td_error err;
+    (void)state;
+    assert_int_equal(td_model_set_spin(m, &spin, NULL), TD_OK);
+    td_sim_options_default(&o);
+    o.start = TD_START_REST;
+    o.solver.linear_solver = TD_LINSOL_KLU;
+    if (td_sim_create(m, &o, &s, &err) != TD_OK)
+        fail_msg("td_sim_create: %s", err.message);
+    td_model_free(&m);
+    assert_true(s->machine.spin >= 0);
+    check_jacobian(s, 3e-4, "free, free spin");
+    td_sim_free(&s);
+}
+
 /* While an amplifier slews its lag's row is Fc' = +-ki slew_rate: no entry but cj on the diagonal.
  * The small rotor's lagged AMB (node 1) given a limit below its x axis's rate at the test state (it
  * slews) and above its y axis's (it does not). */
@@ -1285,6 +1308,7 @@ int main(void)
         cmocka_unit_test(test_jacobian_constrained_with_friction),
         cmocka_unit_test(test_jacobian_penalty_with_damping),
         cmocka_unit_test(test_jacobian_slip_band),
+        cmocka_unit_test(test_jacobian_free_spin),
         cmocka_unit_test(test_api_errors),
         cmocka_unit_test(test_dense_matches_klu),
         cmocka_unit_test(test_two_sims_independent),
