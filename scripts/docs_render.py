@@ -1368,13 +1368,14 @@ BREAKDOWN_CASES = {"drop": "`drop.cfg`", "rub-damped": "`rub-damped.cfg`", "pape
 def breakdown_columns():
     """The record's tools in order (the earlier version first), each with its version."""
     b = res("breakdown")["breakdown"]
-    return b, [(label, b["versions"][label].replace("touchdown ", "")) for label in ("before", "after")
+    names = {"before": "before: %s", "after": "now: %%s at %s" % res("breakdown")["revision"]}
+    return b, [(label, names[label] % b["versions"][label].replace("touchdown ", "")) for label in ("before", "after")
                if label in b["versions"]]
 
 
 def breakdown_when(b):
     before = b.get("before_measured", {}).get("date")
-    return (" The %s column was measured on %s beside the other, alternating run by run." % (
+    return (" The column before (%s) was measured on %s beside the other, alternating run by run." % (
         b["versions"]["before"].replace("touchdown ", ""), before[:10]) if before else "")
 
 
@@ -1435,7 +1436,7 @@ def perf_breakdown_findings():
         text = "- %s: %s us per step" % (name, f(a["us_per_step"], 2))
         if "before" in rows:
             text += " against %s with %s (%s of it; %s against %s s of CPU for the run)" % (
-                f(rows["before"]["us_per_step"], 2), cols[0][1], g(div(a["us_per_step"], rows["before"]["us_per_step"]), 3),
+                f(rows["before"]["us_per_step"], 2), b["versions"]["before"].replace("touchdown ", ""), g(div(a["us_per_step"], rows["before"]["us_per_step"]), 3),
                 f(a["cpu_median"], 2), f(rows["before"]["cpu_median"], 2))
         if top:
             text += "; the largest parts: %s" % ", ".join("%s %s us" % (names[k], f(per[k], 2)) for k in top)
