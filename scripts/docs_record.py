@@ -440,6 +440,38 @@ def src_recovery(tool, build):
     return recovery_study.record(tool, stamp)
 
 
+def src_breakdown(tool, build):
+    """bench/breakdown.sh (docs/performance.md, "Cost per step"): CPU time, steps and the cost per
+    IDA step by category of drop, rub-damped and paper-b (3 repeats, medians; a perf profile each).
+    The earlier version's column: with TD_BENCH_BEFORE=BUILD_DIR (a build of that version) both
+    tools are measured, alternating; without it the recorded earlier column is kept as it was
+    measured (its version and date stay in the record)."""
+    before = os.environ.get("TD_BENCH_BEFORE")
+    args = ["-n", "3", "--json"] + (["--before", os.path.abspath(before)] if before else []) + [build]
+    note = "bench/breakdown.sh -n 3 --json%s BUILD_DIR" % (" --before BEFORE_BUILD_DIR" if before else "")
+    data = stamp(tool, "breakdown", note)
+    start = time.monotonic()
+    proc = subprocess.run([os.path.join(ROOT, "bench", "breakdown.sh")] + args, stdout=subprocess.PIPE,
+                          stderr=subprocess.PIPE, universal_newlines=True)
+    if proc.returncode != 0:
+        sys.exit("docs_record: bench/breakdown.sh failed:\n%s" % proc.stderr[-2000:])
+    print("  bench/breakdown.sh %6.1f s" % (time.monotonic() - start), flush=True)
+    data["command"] = note
+    data["breakdown"] = json.loads(proc.stdout)
+    if not before:
+        path = os.path.join(RESULTS, "breakdown.json")
+        old = json.load(open(path))["breakdown"] if os.path.exists(path) else None
+        if old and "before" in old["versions"]:
+            data["breakdown"]["versions"]["before"] = old["versions"]["before"]
+            data["breakdown"]["before_measured"] = old.get("before_measured", {"date": None})
+            for case, rows in old["cases"].items():
+                if case in data["breakdown"]["cases"] and "before" in rows:
+                    data["breakdown"]["cases"][case]["before"] = rows["before"]
+    else:
+        data["breakdown"]["before_measured"] = {"date": data["date"]}
+    return data
+
+
 def src_shock(tool, build):
     """docs/shock-study.md's runs (scripts/shock_study.py: cases/shock.cfg and the grid of
     cases/shock-sweep.cfg, with the linear prediction beside each point)."""
@@ -452,7 +484,9 @@ SOURCES = {"fast": [("runs", src_runs), ("modal", src_modal), ("validation", src
                     ("intervals", src_intervals), ("tolerances", src_tolerances), ("mesh", src_mesh),
                     ("convergence", src_convergence), ("spread", src_spread), ("figures", src_figures),
                     ("recovery", src_recovery), ("report", src_report),
-                    ("drop_sweep", src_drop_sweep), ("shock", src_shock)]}
+                    ("drop_sweep", src_drop_sweep), ("shock", src_shock),
+                    # issue 31: the cost per step
+                    ("breakdown", src_breakdown)]}
 
 
 # The runs are deterministic: the same build gives the same bits. The tolerance allows for another

@@ -1367,6 +1367,91 @@ def theory_drop_sweep():
             + "\n%d points, %s s of CPU in all (%s).\n" % (len(runs), f(total, 1), cite("drop_sweep")))
 
 
+# --- issue 31: the cost per step (bench/breakdown.sh, docs/results/breakdown.json) -------------------
+BREAKDOWN_CASES = {"drop": "`drop.cfg`", "rub-damped": "`rub-damped.cfg`", "paper-b": "`paper-b.cfg`"}
+
+
+def breakdown_columns():
+    """The record's tools in order (the earlier version first), each with its version."""
+    b = res("breakdown")["breakdown"]
+    names = {"before": "before: %s", "after": "now: %%s at %s" % res("breakdown")["revision"]}
+    return b, [(label, names[label] % b["versions"][label].replace("touchdown ", "")) for label in ("before", "after")
+               if label in b["versions"]]
+
+
+def breakdown_when(b):
+    before = b.get("before_measured", {}).get("date")
+    return (" The column before (%s) was measured on %s beside the other, alternating run by run." % (
+        b["versions"]["before"].replace("touchdown ", ""), before[:10]) if before else "")
+
+
+def perf_breakdown_cost():
+    """The whole runs: CPU time, real-time factor, steps, restarts, CPU per step, before and after."""
+    b, cols = breakdown_columns()
+    rows = []
+    for case, name in BREAKDOWN_CASES.items():
+        for label, version in cols:
+            r = b["cases"][case][label]
+            rows.append([name, version, f(r["cpu_median"], 2), g(r["realtime_factor_cpu"], 3) + "x", n(r["steps"]),
+                         n(r["restarts"]), n(r["flight_steps"]), f(r["us_per_step"], 2)])
+    return ("From %s: `touchdown run -q --json --hdf5 '' --csv '' cases/CASE.cfg` as shipped, CPU seconds "
+            "(user + system) of the tool's process, median of %d runs; real-time factor = simulated "
+            "time / CPU time.%s\n\n" % (cite("breakdown"), b["repeats"], breakdown_when(b))
+            + table(["case", "version", "CPU s", "real time", "IDA steps", "restarts", "flight steps", "CPU us / step"],
+                    rows))
+
+
+def breakdown_cell(r, key):
+    per, prof = r.get("us_per_step_by_category"), r.get("profile")
+    if not per:
+        return "-"
+    return "%s (%s)" % (f(per[key], 2), pct(prof["shares"][key], 0).replace(" %", "%"))
+
+
+def perf_breakdown():
+    """Per case, CPU us per IDA step by category (the profile's share in brackets), before and after."""
+    b, cols = breakdown_columns()
+    out = []
+    for case, name in BREAKDOWN_CASES.items():
+        rs = [b["cases"][case][label] for label, _ in cols]
+        rows = [[what] + [breakdown_cell(r, key) for r in rs] for key, what in b["categories"]]
+        rows.append(["**all** (CPU us per step)"] + ["**%s**" % f(r["us_per_step"], 2) for r in rs])
+        rows.append(["of the step's work (%s): failed attempts, estimated" % ", ".join(b["step_parts"])]
+                    + [f(r.get("failed_attempts_us_per_step"), 2) for r in rs])
+        rows.append(["**floor**: residual + linear solve"] + [f(r.get("floor_us_per_step"), 2) for r in rs])
+        rows.append(["step / floor"] + [g(div(r["us_per_step"], r.get("floor_us_per_step")), 2) for r in rs])
+        samples = ", ".join("%s %s samples at %s Hz" % (v, n(r["profile"]["samples"]), n(r["profile"]["frequency"]))
+                            for (_, v), r in zip(cols, rs) if r.get("profile"))
+        out.append("%s (%s):\n\n" % (name, samples or "no profile")
+                   + table(["CPU us per IDA step (share of the samples)"] + [v for _, v in cols], rows))
+    return ("From %s (`perf record --call-graph dwarf` of one run per case and version, each sample put in "
+            "the first category whose functions are on its stack: bench/breakdown.py).\n\n" % cite("breakdown")
+            + "\n".join(out))
+
+
+def perf_breakdown_findings():
+    """What the breakdown says, per case: the change in CPU per step, the largest parts, the floor."""
+    b, cols = breakdown_columns()
+    names = dict((k, w) for k, w in b["categories"])
+    out = []
+    for case, name in BREAKDOWN_CASES.items():
+        rows = b["cases"][case]
+        a = rows["after"]
+        per = a.get("us_per_step_by_category") or {}
+        top = sorted(per, key=lambda k: -per[k])[:3]
+        text = "- %s: %s us per step" % (name, f(a["us_per_step"], 2))
+        if "before" in rows:
+            text += " against %s with %s (%s of it; %s against %s s of CPU for the run)" % (
+                f(rows["before"]["us_per_step"], 2), b["versions"]["before"].replace("touchdown ", ""), g(div(a["us_per_step"], rows["before"]["us_per_step"]), 3),
+                f(a["cpu_median"], 2), f(rows["before"]["cpu_median"], 2))
+        if top:
+            text += "; the largest parts: %s" % ", ".join("%s %s us" % (names[k], f(per[k], 2)) for k in top)
+            text += "; the floor %s us, the step %s times it" % (f(a["floor_us_per_step"], 2),
+                                                                 g(div(a["us_per_step"], a["floor_us_per_step"]), 2))
+        out.append(text + ".")
+    return "\n".join(out) + "\n"
+
+
 REGIONS = {"readme-glance": readme_glance, "readme-realtime": readme_realtime,
            "perf-summary": perf_summary, "perf-paper-settings": perf_paper_settings,
            "perf-paper-findings": perf_paper_findings, "perf-remains": perf_remains,
@@ -1378,7 +1463,10 @@ REGIONS = {"readme-glance": readme_glance, "readme-realtime": readme_realtime,
            "val-conv-paper-a": val_conv_paper_a, "val-conv-drop": val_conv_drop, "val-spread": val_spread,
            "out-name-index": out_name_index, "perf-scaling": perf_scaling, "perf-digital": perf_digital,
            "fmu-loop": fmu_loop, "perf-fmu": perf_fmu, "report-drop": report_drop,
-           "theory-drop-sweep": theory_drop_sweep}
+           "theory-drop-sweep": theory_drop_sweep,
+           # issue 31: the cost per step
+           "perf-breakdown-cost": perf_breakdown_cost, "perf-breakdown": perf_breakdown,
+           "perf-breakdown-findings": perf_breakdown_findings}
 SPANS = {"rub-mean-normal": span_rub_mean_normal, "val-first-contact-cell": span_val_first_contact_cell,
          "val-rig-modal-cell": span_val_rig_modal_cell, "rig-mass": span_rig_mass,
          "rig-polar": span_rig_polar, "drop-cpu": span_drop_cpu, "run-up-criticals": span_run_up_criticals,

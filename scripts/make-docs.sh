@@ -20,7 +20,9 @@
 #   scripts/make-docs.sh --full --only SOURCE  rerun one source (runs, modal, validation, keys, bench,
 #                                              digital, scaling, references, intervals, tolerances, mesh,
 #                                              convergence, spread, figures, recovery, report, drop_sweep,
-#                                              shock), then render
+#                                              shock, breakdown), then render; breakdown (bench/breakdown.sh,
+#                                              about 1 min of CPU and perf) measures beside the tool the
+#                                              build in TD_BENCH_BEFORE when that is set (twice the time)
 # BUILD_DIR defaults to ./build (scripts/setup.sh builds it). tests/cli/test_docs.sh checks that
 # the docs match the records and that the tool still prints the recorded numbers.
 set -euo pipefail

@@ -133,6 +133,64 @@ static void test_jacobian_free_and_amb_modes(void **state)
     td_sim_free(&s);
 }
 
+/* The speed's column of a free spin's Jacobian (cj = 1) against central differences of the
+ * residual in the speed alone, entry by entry to 1e-7 of the column's largest: the column's G v
+ * entries are small beside the mass terms of the rows (td_test_check_jacobian's tolerance is per
+ * row), so they are checked here at the column's own scale, with velocities of order 1 m/s. */
+static void check_speed_column(td_sim *s)
+{
+    int n = s->dae.neq, wz = s->dae.ov + s->machine.spin, i;
+    double *y = calloc((size_t)n, sizeof(double)), *yp = calloc((size_t)n, sizeof(double));
+    double *rp = calloc((size_t)n, sizeof(double)), *rm = calloc((size_t)n, sizeof(double));
+    double t = 0.0123, h, w, big = 0.0;
+    assert_true(y && yp && rp && rm);
+    fill_state(s, 3e-4, y, yp);
+    for (i = s->dae.ov; i < s->dae.ov + s->dae.n; i++)
+        y[i] *= 100.0;
+    w = y[wz] = 150.0;
+    h = 1e-6 * w;
+    y[wz] = w + h, yp[wz] += h;
+    td_sim_residual(s, t, y, yp, rp);
+    y[wz] = w - h, yp[wz] -= 2.0 * h;
+    td_sim_residual(s, t, y, yp, rm);
+    y[wz] = w, yp[wz] += h;
+    td_sim_jacobian(s, t, 1.0, y);
+    for (i = 0; i < n; i++)
+        big = fmax(big, fabs(rp[i] - rm[i]) / (2.0 * h));
+    assert_true(big > 0.0);
+    for (i = 0; i < n; i++) {
+        int p = td_sim_pattern_find(s, i, wz);
+        double an = p >= 0 ? s->ops.jdata[p] : 0.0, fd = (rp[i] - rm[i]) / (2.0 * h);
+        if (!(fabs(an - fd) <= 1e-7 * big))
+            fail_msg("speed column, row %d: analytic %.10g, differences %.10g (column max %.3g)", i, an, fd, big);
+    }
+    free(y), free(yp), free(rp), free(rm);
+}
+
+/* A free spin (a speed DOF): the speed's column carries G v (the gyroscopic term follows the
+ * state's speed), the unbalance forces' derivatives and the drag's; fill_state's speed differs from
+ * the model's, so the residual's gyroscopic correction is live too. */
+static void test_jacobian_free_spin(void **state)
+{
+    td_model *m = small_rotor();
+    td_spin spin = {.free = 1, .inertia = 0.0, .drive_torque = 0.0, .drag_torque = 0.0, .drag_viscous = 1e-4};
+    td_sim_options o;
+    td_sim *s = NULL;
+    td_error err;
+    (void)state;
+    assert_int_equal(td_model_set_spin(m, &spin, NULL), TD_OK);
+    td_sim_options_default(&o);
+    o.start = TD_START_REST;
+    o.solver.linear_solver = TD_LINSOL_KLU;
+    if (td_sim_create(m, &o, &s, &err) != TD_OK)
+        fail_msg("td_sim_create: %s", err.message);
+    td_model_free(&m);
+    assert_true(s->machine.spin >= 0);
+    check_jacobian(s, 3e-4, "free, free spin");
+    check_speed_column(s);
+    td_sim_free(&s);
+}
+
 /* While an amplifier slews its lag's row is Fc' = +-ki slew_rate: no entry but cj on the diagonal.
  * The small rotor's lagged AMB (node 1) given a limit below its x axis's rate at the test state (it
  * slews) and above its y axis's (it does not). */
@@ -1285,6 +1343,7 @@ int main(void)
         cmocka_unit_test(test_jacobian_constrained_with_friction),
         cmocka_unit_test(test_jacobian_penalty_with_damping),
         cmocka_unit_test(test_jacobian_slip_band),
+        cmocka_unit_test(test_jacobian_free_spin),
         cmocka_unit_test(test_api_errors),
         cmocka_unit_test(test_dense_matches_klu),
         cmocka_unit_test(test_two_sims_independent),

@@ -309,10 +309,66 @@ static void test_model_api(void **state)
     td_model_free(&m);
 }
 
+/* The closed-form step with the 20-term series of phi1, phi2 summed in full (thermal.c's series
+ * before its early stop, written out again here): the early stop must give the same bits, at the
+ * step lengths of a run (x = lambda h from 1e-12 up) and of the series' whole range (|x| < 0.5), both
+ * signs of h (a step taken back). */
+static void full_series(double x, double *phi1, double *phi2)
+{
+    double term1 = 1.0, term2 = 0.5, s1 = 0.0, s2 = 0.0;
+    int k;
+    for (k = 0; k < 20; k++) {
+        s1 += term1;
+        s2 += term2;
+        term1 *= -x / (double)(k + 2);
+        term2 *= -x / (double)(k + 3);
+    }
+    *phi1 = s1;
+    *phi2 = s2;
+}
+
+static void step_full_series(const td_thermal_network *n, double T[2], double h, double p0, double p1)
+{
+    double u[2], z[2], b, phi1, phi2;
+    int i;
+    u[0] = sqrt(n->capacity[0]) * T[0];
+    u[1] = sqrt(n->capacity[1]) * T[1];
+    for (i = 0; i < 2; i++) {
+        double x = n->lambda[i] * h;
+        full_series(x, &phi1, &phi2);
+        b = n->q[0][i] / sqrt(n->capacity[0]);
+        z[i] = n->q[0][i] * u[0] + n->q[1][i] * u[1];
+        z[i] = exp(-x) * z[i] + b * h * (p0 * (phi1 - phi2) + p1 * phi2);
+    }
+    T[0] = (n->q[0][0] * z[0] + n->q[0][1] * z[1]) / sqrt(n->capacity[0]);
+    T[1] = (n->q[1][0] * z[0] + n->q[1][1] * z[1]) / sqrt(n->capacity[1]);
+}
+
+static void test_series_stop_same_bits(void **state)
+{
+    td_thermal_network n;
+    double lmax;
+    int i, sign;
+    (void)state;
+    td_thermal_network_init(&n, &bearing);
+    lmax = fmax(n.lambda[0], n.lambda[1]);
+    for (sign = -1; sign <= 1; sign += 2)
+        for (i = 0; i <= 240; i++) {
+            /* x = lambda_max h from 1e-12 to just under 0.5, 20 steps a decade */
+            double x = fmin(1e-12 * pow(10.0, i / 20.0), 0.4999), h = sign * x / lmax;
+            double a[2] = {3.25, 1.5}, b[2] = {3.25, 1.5};
+            td_thermal_network_step(&n, a, h, 120.0, 80.0);
+            step_full_series(&n, b, h, 120.0, 80.0);
+            if (memcmp(a, b, sizeof a) != 0)
+                fail_msg("h = %.17g s: T = (%.17g, %.17g), the full series (%.17g, %.17g)", h, a[0], a[1], b[0], b[1]);
+        }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_constant_heat_two_exponentials),
+        cmocka_unit_test(test_series_stop_same_bits),
         cmocka_unit_test(test_single_node_limit),
         cmocka_unit_test(test_energy_balance_and_back_step),
         cmocka_unit_test(test_linear_heat_subdivides),

@@ -445,6 +445,7 @@ void td_sim_teardown(td_sim *s)
     free(s->ops.map_C);
     free(s->ops.map_G);
     free(s->ops.map_K);
+    free(s->ops.map_Gw);
     free(s->ops.st_rowptr);
     free(s->ops.st_col);
     free(s->ops.st_M);

@@ -175,6 +175,19 @@ static int *map_matrix(const td_sim *s, const cs_di *A, int roff, int coff)
     return map;
 }
 
+/* Where G's entry p times v_j goes in the speed's column (the free spin's d(G v Omega)/dOmega,
+ * sim_residual.c jacobian_spin): looked up once here, not at every Jacobian. */
+static int *map_spin_column(const td_sim *s)
+{
+    const cs_di *G = s->dae.G;
+    int p, nz = G->p[G->n], *map = malloc(sizeof(int) * (size_t)(nz > 0 ? nz : 1));
+    if (!map)
+        return NULL;
+    for (p = 0; p < nz; p++)
+        map[p] = td_sim_pattern_find(s, s->dae.ov + G->i[p], s->dae.ov + s->machine.spin);
+    return map;
+}
+
 td_status td_sim_pattern_build(td_sim *s, td_error *err)
 {
     cs_di *T = cs_di_spalloc(s->dae.neq, s->dae.neq, 16 * s->dae.neq, 1, 1), *C = NULL, *Ct = NULL, *S = NULL;
@@ -209,6 +222,8 @@ td_status td_sim_pattern_build(td_sim *s, td_error *err)
     s->ops.map_G = map_matrix(s, s->dae.G, s->dae.ov, s->dae.ov);
     s->ops.map_K = map_matrix(s, s->dae.K, s->dae.ov, s->dae.oq);
     if (!s->ops.map_M || !s->ops.map_C || !s->ops.map_G || !s->ops.map_K)
+        return td_error_set(err, TD_ERR_NOMEM, "out of memory building the Jacobian pattern");
+    if (s->machine.spin >= 0 && !(s->ops.map_Gw = map_spin_column(s)))
         return td_error_set(err, TD_ERR_NOMEM, "out of memory building the Jacobian pattern");
     return TD_OK;
 }

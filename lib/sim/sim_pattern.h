@@ -23,6 +23,7 @@ typedef struct td_sim_operators {
     int *colptr, *rowind;
     double *jdata;
     int *map_M, *map_C, *map_G, *map_K; /* position of each stored entry of the system matrices */
+    int *map_Gw;                        /* free spin: position of entry (row of G's entry p, the speed's column) */
 
     /* M, K and D = C + Omega G on the union of their patterns, row-compressed (CSR): the residual
      * forms M v' + D v + K q row by row in one pass (sim_residual.c); D follows the speed */

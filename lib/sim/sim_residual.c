@@ -697,9 +697,10 @@ static void jacobian_spin(td_sim *s, double t, const double *y)
     const double *v = y + s->dae.ov;
     double w = td_sim_rotor_speed(s, y), phi = td_sim_rotor_angle(s, t, y), alpha = rotor_rate(s, t, y), dT;
     int qz = s->dae.oq + s->machine.spin, wz = s->dae.ov + s->machine.spin, i, j, p;
-    for (j = 0; j < G->n; j++)
+    for (j = 0; j < G->n; j++) /* jadd through the positions found once (sim_pattern.c) */
         for (p = G->p[j]; p < G->p[j + 1]; p++)
-            jadd(s, s->dae.ov + G->i[p], wz, G->x[p] * v[j]);
+            if (s->ops.map_Gw[p] >= 0)
+                s->ops.jdata[s->ops.map_Gw[p]] += G->x[p] * v[j];
     for (i = 0; i < s->machine.nu; i++) { /* v rows carry -f */
         const td_unbalance *u = &s->machine.unb[i];
         double c = cos(phi + u->phase), sn = sin(phi + u->phase), U = u->magnitude;
