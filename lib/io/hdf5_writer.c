@@ -189,7 +189,7 @@ static td_status add_series(td_writer *w, h5_impl *h, hid_t loc, td_out_id id, i
     h5_series *s = &h->series[h->series_count];
     const char *name = td_out_name(id);
     hsize_t dims[3], maxdims[3], chunk[3];
-    hid_t space, dcpl, dset = -1;
+    hid_t space, dcpl, dapl, dset = -1;
     int i;
     if (h->series_count >= H5_MAX_SERIES) /* a layout this file format was not sized for: a bug */
         return td_error_set(err, TD_ERR_INVALID, "%s: too many sample datasets (%d)", w->tmp_path, H5_MAX_SERIES);
@@ -212,8 +212,11 @@ static td_status add_series(td_writer *w, h5_impl *h, hid_t loc, td_out_id id, i
         dims[i] = maxdims[i] = chunk[i] = row_dims[i - 1];
     space = H5Screate_simple(rank, dims, maxdims);
     dcpl = chunked_dcpl(rank, chunk, w->compression);
-    if (space >= 0 && dcpl >= 0)
-        dset = H5Dcreate2(loc, name, is_int8 ? H5T_STD_I8LE : H5T_IEEE_F64LE, space, H5P_DEFAULT, dcpl, H5P_DEFAULT);
+    dapl = td_h5_stream_dapl(); /* long runs: no chunk cache */
+    if (space >= 0 && dcpl >= 0 && dapl >= 0)
+        dset = H5Dcreate2(loc, name, is_int8 ? H5T_STD_I8LE : H5T_IEEE_F64LE, space, H5P_DEFAULT, dcpl, dapl);
+    if (dapl >= 0)
+        H5Pclose(dapl);
     if (dcpl >= 0)
         H5Pclose(dcpl);
     if (space >= 0)
@@ -451,7 +454,7 @@ static int event_types(const td_writer *w, h5_impl *h, char *names, size_t size)
 static td_status create_events(td_writer *w, h5_impl *h, td_error *err)
 {
     hsize_t dims[1] = {0}, maxdims[1] = {H5S_UNLIMITED}, chunk[1] = {H5_EVENT_CHUNK};
-    hid_t space = -1, dcpl = -1;
+    hid_t space = -1, dcpl = -1, dapl = -1;
     char names[256] = "";
     int ok = event_types(w, h, names, sizeof names);
     if (ok) {
@@ -461,14 +464,15 @@ static td_status create_events(td_writer *w, h5_impl *h, td_error *err)
     if (ok) {
         space = H5Screate_simple(1, dims, maxdims);
         dcpl = chunked_dcpl(1, chunk, w->compression);
-        ok = space >= 0 && dcpl >= 0;
+        dapl = td_h5_stream_dapl(); /* long runs: no chunk cache */
+        ok = space >= 0 && dcpl >= 0 && dapl >= 0;
     }
     if (ok)
-        h->event_dset =
-            H5Dcreate2(h->file, td_out_name(TD_OUT_EVENTS), h->event_ftype, space, H5P_DEFAULT, dcpl, H5P_DEFAULT);
+        h->event_dset = H5Dcreate2(h->file, td_out_name(TD_OUT_EVENTS), h->event_ftype, space, H5P_DEFAULT, dcpl, dapl);
     if (ok && h->event_dset >= 0)
-        h->event_index =
-            H5Dcreate2(h->file, td_out_name(TD_OUT_EVENT), H5T_STD_I64LE, space, H5P_DEFAULT, dcpl, H5P_DEFAULT);
+        h->event_index = H5Dcreate2(h->file, td_out_name(TD_OUT_EVENT), H5T_STD_I64LE, space, H5P_DEFAULT, dcpl, dapl);
+    if (dapl >= 0)
+        H5Pclose(dapl);
     if (dcpl >= 0)
         H5Pclose(dcpl);
     if (space >= 0)
