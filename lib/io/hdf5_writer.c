@@ -15,6 +15,7 @@
  */
 #include "io/h5_util.h"
 #include "io/h5_vfd.h"
+#include "io/h5_windows.h"
 #include "io/schema.h"
 #include "io/writer_internal.h"
 #include "util/error_internal.h"
@@ -79,8 +80,9 @@ typedef struct h5_impl {
     hsize_t event_rows;      /* events in the file */
     h5_event_row *event_buf; /* H5_EVENT_CHUNK buffered events */
     size_t events_buffered;
-    hid_t driver; /* h5_vfd.h registration, -1 if none */
-    int io_errno; /* first I/O error seen by the driver, 0 if none */
+    hid_t driver;           /* h5_vfd.h registration, -1 if none */
+    int io_errno;           /* first I/O error seen by the driver, 0 if none */
+    td_h5_windows *windows; /* long runs: /windows, NULL without window_fields */
 } h5_impl;
 
 /* Retainer fields in the order of the /retainers datasets. */
@@ -309,6 +311,17 @@ static td_status create_housing(td_writer *w, h5_impl *h, td_error *err)
     return st;
 }
 
+/* long runs: /windows (h5_windows.c) */
+static td_status create_windows(td_writer *w, h5_impl *h, td_error *err)
+{
+    int nomem;
+    h->windows = td_h5_windows_create(h->file, w->retainer_count, w->compression, &nomem);
+    if (!h->windows)
+        return nomem ? td_error_set(err, TD_ERR_NOMEM, "out of memory opening %s", w->path)
+                     : h5_fail(err, w, "cannot create /windows");
+    return TD_OK;
+}
+
 static td_status create_nodes(td_writer *w, h5_impl *h, td_error *err)
 {
     hid_t g = make_group(h->file, TD_OUT_NODES, w->node_count);
@@ -525,6 +538,8 @@ static td_status open_impl(td_writer *w, h5_impl *h, td_error *err)
         (st = create_ambs(w, h, err)) != TD_OK || (st = create_events(w, h, err)) != TD_OK)
         return st;
     if (w->housing_fields && (st = create_housing(w, h, err)) != TD_OK) /* housing motion */
+        return st;
+    if (w->window_fields && (st = create_windows(w, h, err)) != TD_OK) /* long runs */
         return st;
     if (units_attr(h->file, TD_OUT_ROOT) < 0)
         return h5_fail(err, w, "cannot write the units attribute");
@@ -747,6 +762,8 @@ static td_status finish_impl(td_writer *w, h5_impl *h, int complete, const char 
     int i;
     if (st == TD_OK)
         st = flush_events(w, h, err);
+    if (st == TD_OK && h->windows && td_h5_windows_flush(h->windows) < 0) /* long runs */
+        st = h5_fail(err, w, "cannot write window summaries");
     if (st != TD_OK)
         return st;
     for (i = 0; i < w->attr_count; i++)
@@ -775,6 +792,8 @@ static herr_t close_handles(h5_impl *h)
         h->series[i].buf = NULL;
     }
     h->series_count = 0;
+    td_h5_windows_free(h->windows); /* long runs */
+    h->windows = NULL;
     free(h->event_buf);
     h->event_buf = NULL;
     if (h->event_dset >= 0)
@@ -829,4 +848,19 @@ static void h5_destroy(td_writer *w)
     w->impl = NULL;
 }
 
-const td_writer_ops td_hdf5_writer_ops = {h5_open, h5_sample, h5_event, h5_finish, h5_destroy};
+/* long runs: one window summary */
+static td_status h5_window(td_writer *w, const td_window_summary *win, td_error *err)
+{
+    h5_impl *h = w->impl;
+    td_status st = TD_OK;
+    H5E_BEGIN_TRY
+    {
+        if (td_h5_windows_add(h->windows, win) < 0)
+            st = h5_fail(err, w, "cannot write window summaries");
+        st = io_checked(st, w, "cannot write window summaries", err);
+    }
+    H5E_END_TRY;
+    return st;
+}
+
+const td_writer_ops td_hdf5_writer_ops = {h5_open, h5_sample, h5_event, h5_finish, h5_destroy, h5_window};
