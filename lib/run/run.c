@@ -282,7 +282,7 @@ static td_status loop(run_state *r, td_error *err)
         }
         if ((st = take_sample(r, target, SAMPLE_GRID, err)) != TD_OK)
             return st;
-        if (r->end_at_rest && td_run_at_rest(r->s->speed, td_sim_speed(r->sim))) /* long runs */
+        if (!last && r->end_at_rest && td_run_at_rest(r->s->speed, td_sim_speed(r->sim))) /* long runs */
             last = r->stopped = 1;
         if ((st = grid_window(r, target, last, err)) != TD_OK)
             return st;
@@ -385,9 +385,7 @@ static void summary_ending(run_state *r)
     td_retainer_totals after[TD_RUN_SUMMARY_RETAINERS];
     int k, n = s->retainer_count < TD_RUN_SUMMARY_RETAINERS ? s->retainer_count : TD_RUN_SUMMARY_RETAINERS;
     if (r->stopped) { /* long runs: ended at rest, judged over the whole run */
-        memset(after, 0, sizeof after);
-        for (k = 0; k < n; k++)
-            r->window[k] = after[k];
+        memset(r->window, 0, sizeof r->window);
         for (k = 0; k < n; k++)
             after[k] = s->retainers[k].totals;
         td_run_summary_ending(s, r->window, after, n, s->speed, s->final_speed);
