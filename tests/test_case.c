@@ -565,6 +565,9 @@ static void test_all_keys(void **state)
     assert_close(oo->sample_rate, 2000.0, 0.0, 0.0);
     assert_int_equal(oo->compression, 5);
     assert_true(oo->section_after == 0.25);
+    assert_true(oo->window == 0.05); /* long runs */
+    assert_int_equal(oo->omit_events, 1);
+    assert_int_equal(oo->end_at_rest, 1);
     assert_int_equal(oo->node_count, 2);
     assert_int_equal(oo->nodes[0], 1);
     assert_int_equal(oo->nodes[1], 5);
@@ -1169,7 +1172,7 @@ static void test_documented_defaults(void **state)
     print_message("documented defaults: %d keys checked; skipped: %d groups and lists, %d required, %d other\n", tried,
                   part, required, other);
     assert_int_equal(tried + part + required + other, td_case_key_count());
-    assert_int_equal(tried, 96);
+    assert_int_equal(tried, 98);    /* long runs: end_at_rest, output.window */
     assert_int_equal(part, 52);     /* their keys are checked */
     assert_int_equal(required, 88); /* required, or one form's required key (a sweep entry's range or values) */
     /* an alternative with no default ("-": shaft.nodes, sections' element, schedule's unbalance,
@@ -1182,8 +1185,8 @@ static void test_documented_defaults(void **state)
      * drops), "the defaults below" (limits), "none" (modal.operating_speed_min and _max), "every disc, AMB
      * sensor and retainer node" (modal.response_nodes), "none (no growth reported)" (a thermal network's
      * expansion), "the rotor's centre of mass" (housing.reference), "none" (a housing history's file, time, x
-     * and y: alternatives) */
-    assert_int_equal(other, 39);
+     * and y: alternatives), "`true`" (long runs: output.events, read by hand as the opposite it is stored as) */
+    assert_int_equal(other, 40);
     td_case_free(&base);
     free(want);
     free(got);

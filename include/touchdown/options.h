@@ -83,6 +83,12 @@ typedef struct td_output_options {
     double section_after; /**< the once-per-revolution section (td_run_summary) is taken after this
                                fraction of the run, 0 .. 1 (the transient before it is left out);
                                default 0.5: the last half */
+    /* long runs */
+    int end_at_rest; /**< nonzero: the run ends, complete, at the first grid sample at which the rotor is at
+                          rest (td_run_at_rest: below 1 % of its start speed or 1 rad/s), else at t_end */
+    double window;   /**< length of the window summaries (td_run_window), s; 0: none */
+    int omit_events; /**< nonzero: no event rows and no samples at events in the files (the run's
+                          bookkeeping and the window summaries still see every event) */
 } td_output_options;
 
 typedef struct td_modal_options {

@@ -65,6 +65,9 @@ typedef struct td_output_layout {
     /* housing body */
     int housing_body_fields; /**< nonzero (only with housing_fields): also the housing body's displacement and tilt
                               *   (/housing/body_displacement, /housing/body_tilt; models with a housing body). Last */
+    /* long runs */
+    int window_fields; /**< nonzero: the writer also takes window summaries (td_writer_window): /windows in HDF5, a
+                        *   third CSV file (td_writer_windows_path). Last */
 } td_output_layout;
 
 /**
@@ -176,6 +179,34 @@ TD_API int td_output_same_file(const char *a, const char *b);
 
 /** Lower-case name of an event kind ("contact_onset", "release", ...); "unknown" otherwise. */
 TD_API const char *td_event_kind_name(td_event_kind kind);
+
+/* ---- long runs: window summaries (docs/output-format.md, "Window summaries") ---------------- */
+
+/** One window's summary: the run from t_start to t_end condensed. The per-retainer arrays hold
+ *  the layout's retainer_count values each. */
+typedef struct td_window_summary {
+    double t_start, t_end;           /**< s */
+    double speed;                    /**< rad/s, the rotor's at t_end */
+    double energy_kinetic;           /**< J at t_end (td_energy.kinetic); TD_UNDEFINED without the energy account */
+    double energy_residual;          /**< J at t_end (td_energy.residual); TD_UNDEFINED without the energy account */
+    const long *contacts;            /**< contact onsets in the window (the events contact_onset and penalty_enter) */
+    const double *contact_fraction;  /**< time in contact / (t_end - t_start) */
+    const double *peak_normal_force; /**< N, the largest normal force seen in the window: at its samples, its
+                                      *   events (their force and the peak of a contact that ended) and the run's
+                                      *   peak where that rose in the window; 0 without contact */
+    const double *friction_work;     /**< J, the sliding friction's heat in the window */
+    const double *race_temperature;  /**< K above the ambient at t_end; TD_UNDEFINED without retainers[].thermal */
+} td_window_summary;
+
+/**
+ * Append one window summary (a writer whose layout has window_fields; else TD_ERR_INVALID).
+ * Written as it comes (HDF5 in chunks), so a long run holds none of them in memory.
+ */
+TD_API td_status td_writer_window(td_writer *w, const td_window_summary *win, td_error *err);
+
+/** Path of the CSV window file that goes with `csv_path`: as td_writer_events_path with
+ *  ".windows.csv". */
+TD_API int td_writer_windows_path(const char *csv_path, char *buf, size_t n);
 
 #ifdef __cplusplus
 }

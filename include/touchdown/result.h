@@ -384,7 +384,19 @@ typedef enum td_out_id {
     /* housing body (the series of a model with a housing body) */
     TD_OUT_HOUSING_BODY_DISPLACEMENT, /**< (N, 2) m, the body's centre relative to the base */
     TD_OUT_HOUSING_BODY_TILT,         /**< (N, 2) rad, the body's theta, phi */
-    TD_OUT_ID_COUNT                   /**< number of ids; also "several objects" as the parent of an attribute */
+    /* long runs: the window summaries (a run with output.window; docs/output-format.md, "Window summaries") */
+    TD_OUT_WINDOWS,               /**< group /windows; in CSV the window file */
+    TD_OUT_WIN_TIME_START,        /**< (W) s */
+    TD_OUT_WIN_TIME_END,          /**< (W) s */
+    TD_OUT_WIN_SPEED,             /**< (W) rad/s at the window's end */
+    TD_OUT_WIN_ENERGY_KINETIC,    /**< (W) J at the window's end, NaN without the energy account */
+    TD_OUT_WIN_ENERGY_RESIDUAL,   /**< (W) J at the window's end, NaN without the energy account */
+    TD_OUT_WIN_CONTACTS,          /**< (W, n_ret) contact onsets */
+    TD_OUT_WIN_CONTACT_FRACTION,  /**< (W, n_ret) 1 */
+    TD_OUT_WIN_PEAK_NORMAL_FORCE, /**< (W, n_ret) N */
+    TD_OUT_WIN_FRICTION_WORK,     /**< (W, n_ret) J */
+    TD_OUT_WIN_RACE_TEMPERATURE,  /**< (W, n_ret) K above the ambient at the window's end */
+    TD_OUT_ID_COUNT               /**< number of ids; also "several objects" as the parent of an attribute */
 } td_out_id;
 
 /** What a name is in the file. */

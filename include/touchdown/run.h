@@ -255,6 +255,9 @@ typedef struct td_run_summary {
     int shock_outcome;           /**< td_shock_outcome */
     double contact_speed;        /**< rad/s: the rotor speed at the first contact, whose revolution bounds a touch
                                       (TD_UNDEFINED without a contact) */
+    /* long runs */
+    int ended_at_rest; /**< 1: the run ended, complete, at the first grid sample at rest (end_at_rest,
+                            td_run_at_rest) at t_reached before t_end; 0 otherwise */
 } td_run_summary;
 
 /**

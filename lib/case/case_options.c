@@ -292,6 +292,28 @@ static td_status read_output_nodes(td_case_reader *r, const config_setting_t *g,
     return TD_OK;
 }
 
+/* long runs: output.window, 0 or at least one sample interval (a window closes at a grid sample) */
+static td_status check_window(td_case_reader *r, const config_setting_t *g, const td_cs_key *k, void *rec)
+{
+    const td_output_options *o = rec;
+    if (o->window > 0.0 && o->window * o->sample_rate < 1.0)
+        return td_cr_fail(r, config_setting_get_member(g, k->key), NULL,
+                          "%g s is shorter than the sample interval 1 / sample_rate = %g s", o->window,
+                          1.0 / o->sample_rate);
+    return TD_OK;
+}
+
+/* long runs: output.events (true: the files keep the event table), stored as its opposite so that
+ * a td_output_options set to zeros writes the events as before */
+static td_status read_output_events(td_case_reader *r, const config_setting_t *g, const td_cs_key *k, void *rec)
+{
+    td_output_options *o = rec;
+    int keep = !o->omit_events;
+    td_status st = td_cr_bool(r, g, k->key, keep, &keep);
+    o->omit_events = !keep;
+    return st;
+}
+
 static void output_preset(void *rec)
 {
     td_output_options_default(rec);
@@ -342,6 +364,27 @@ static const td_cs_key output_keys[] = {
      .doc = "the once-per-revolution section (docs/output-format.md, \"Once-per-revolution section\") is taken after "
             "this fraction of the run: from t_start + section_after x (end_time - t_start); the part before is the "
             "transient it leaves out"},
+    /* long runs */
+    {.key = "window",
+     .type = TD_CS_REAL,
+     .offset = offsetof(td_output_options, window),
+     .need = TD_CS_PRESET,
+     .range = TD_CR_NONNEGATIVE,
+     .check = check_window,
+     .doc_range = "0, or at least 1 / sample_rate",
+     .doc_default = "%s (none)",
+     .unit = "s",
+     .doc = "summaries over windows of this length, each closed at the first grid sample at or after its end: the "
+            "speed, and each retainer's contacts, time in contact, peak normal force, friction work and race "
+            "temperature rise, the energy account (docs/output-format.md, \"Window summaries\"); a long run keeps its "
+            "story in them at any sample rate"},
+    {.key = "events",
+     .type = TD_CS_CUSTOM,
+     .read = read_output_events,
+     .doc_type = "boolean",
+     .doc_default = "`true`",
+     .doc = "write the event table and a sample at each event; `false`: neither, for a long run that bounces (its "
+            "events would outgrow everything else in the files; the window summaries still count every contact)"},
 };
 const td_cs_table td_cs_output = {
     "output", "output", output_keys, TD_CS_COUNT(output_keys), sizeof(td_output_options), output_preset, NULL};
@@ -857,5 +900,14 @@ static const td_cs_key root_keys[] = {
      .doc_default = "none (a fixed housing)",
      .doc = "the housing's prescribed motion (shocks, a measured acceleration, a rotation), see "
             "[housing](#housing)"},
+    /* long runs */
+    {.key = "end_at_rest",
+     .type = TD_CS_BOOL,
+     .offset = offsetof(td_case, output.end_at_rest),
+     .need = TD_CS_PRESET,
+     .order = 14,
+     .doc = "end the run, complete, at the first grid sample at which the rotor is at rest: its speed below 1 % of "
+            "its start speed or below 1 rad/s (the rule of the ending \"at rest\"); `end_time` then bounds the run. "
+            "For a free `spin` (a coast-down, a drop followed to rest): `t_reached` says when it stopped"},
 };
 const td_cs_table td_cs_root = {"", "top", root_keys, TD_CS_COUNT(root_keys), sizeof(td_case), root_preset, NULL};

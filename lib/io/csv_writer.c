@@ -19,6 +19,7 @@
 typedef struct csv_impl {
     FILE *samples;
     FILE *events;
+    FILE *windows; /* long runs: the window file, NULL without window_fields */
 } csv_impl;
 
 /* The shortest of %.15g, %.16g, %.17g that reads back to the same double: grid times print as
@@ -128,6 +129,24 @@ static int write_event_header(FILE *f, const td_writer *w)
     return rc;
 }
 
+/* long runs: the window file's columns (td_window_summary's order; per retainer, retainer by retainer) */
+static const td_out_id window_cols[] = {TD_OUT_WIN_CONTACTS, TD_OUT_WIN_CONTACT_FRACTION, TD_OUT_WIN_PEAK_NORMAL_FORCE,
+                                        TD_OUT_WIN_FRICTION_WORK, TD_OUT_WIN_RACE_TEMPERATURE};
+
+static int write_window_header(FILE *f, const td_writer *w)
+{
+    static const td_out_id run_cols[] = {TD_OUT_WIN_TIME_START, TD_OUT_WIN_TIME_END, TD_OUT_WIN_SPEED,
+                                         TD_OUT_WIN_ENERGY_KINETIC, TD_OUT_WIN_ENERGY_RESIDUAL};
+    int i, k, rc = 0;
+    for (k = 0; k < 5; k++)
+        rc |= column(f, k == 0, run_cols[k], NULL, 0);
+    for (i = 0; i < w->retainer_count; i++)
+        for (k = 0; k < 5; k++)
+            rc |= column(f, 0, window_cols[k], NULL, i);
+    rc |= fputc('\n', f) == EOF;
+    return rc;
+}
+
 static void csv_destroy(td_writer *w);
 
 /* A stream on the created temporary file; the writer's descriptor is taken over. */
@@ -151,7 +170,10 @@ static td_status csv_open(td_writer *w, td_error *err)
         st = td_io_fail(err, w->tmp_path, "cannot open");
     else if (!(c->events = adopt(&w->events_fd)))
         st = td_io_fail(err, w->events_tmp, "cannot open");
-    else if (write_sample_header(c->samples, w) || write_event_header(c->events, w))
+    else if (w->window_fields && !(c->windows = adopt(&w->windows_fd))) /* long runs */
+        st = td_io_fail(err, w->windows_tmp, "cannot open");
+    else if (write_sample_header(c->samples, w) || write_event_header(c->events, w) ||
+             (c->windows && write_window_header(c->windows, w)))
         st = td_io_fail(err, w->tmp_path, "cannot write the header");
     if (st != TD_OK)
         csv_destroy(w);
@@ -209,6 +231,22 @@ static td_status csv_event(td_writer *w, const td_event *ev, long sample, td_err
     return TD_OK;
 }
 
+/* long runs: one window summary, times as exact_text, the rest %.17g */
+static td_status csv_window(td_writer *w, const td_window_summary *win, td_error *err)
+{
+    FILE *f = ((csv_impl *)w->impl)->windows;
+    char a[32], b[32];
+    int i, rc;
+    errno = 0;
+    rc = fprintf(f, "%s,%s,%.17g,%.17g,%.17g", exact_text(win->t_start, a, sizeof a),
+                 exact_text(win->t_end, b, sizeof b), win->speed, win->energy_kinetic, win->energy_residual) < 0;
+    for (i = 0; i < w->retainer_count; i++)
+        rc |= fprintf(f, ",%ld,%.17g,%.17g,%.17g,%.17g", win->contacts[i], win->contact_fraction[i],
+                      win->peak_normal_force[i], win->friction_work[i], win->race_temperature[i]) < 0;
+    rc |= fputc('\n', f) == EOF;
+    return rc ? td_io_fail(err, w->windows_tmp, "cannot write a window summary") : TD_OK;
+}
+
 /* ---- finish ------------------------------------------------------------------------------ */
 
 /* A string attribute: one line "# name = value", or for text with newlines "# name:" and one
@@ -256,7 +294,12 @@ static td_status csv_finish(td_writer *w, int complete, const char *reason, td_e
         rc |= write_attr(c->samples, &w->attrs[i]);
     if (!complete)
         rc |= write_string_attr(c->samples, td_out_name(TD_OUT_INCOMPLETE_REASON), reason);
-    /* Events file first, samples file last: its flag line is the authority. */
+    /* Events (and window) file first, samples file last: its flag line is the authority. */
+    if (c->windows) { /* long runs */
+        rc |= td_io_csv_flag(c->windows, complete, reason);
+        if (td_io_close_stream(&c->windows))
+            st = td_io_fail(err, w->windows_tmp, "cannot finish");
+    }
     rc |= td_io_csv_flag(c->events, complete, reason);
     if (td_io_close_stream(&c->events))
         st = td_io_fail(err, w->events_tmp, "cannot finish");
@@ -276,8 +319,9 @@ static void csv_destroy(td_writer *w)
         return;
     td_io_close_stream(&c->samples);
     td_io_close_stream(&c->events);
+    td_io_close_stream(&c->windows); /* long runs */
     free(c);
     w->impl = NULL;
 }
 
-const td_writer_ops td_csv_writer_ops = {csv_open, csv_sample, csv_event, csv_finish, csv_destroy};
+const td_writer_ops td_csv_writer_ops = {csv_open, csv_sample, csv_event, csv_finish, csv_destroy, csv_window};

@@ -176,3 +176,14 @@ td_status td_h5_fail(td_error *err, const char *path, int io_errno, const char *
     return td_error_set(err, TD_ERR_IO, "%s: %s%s%s%s", path, what, m.text[0] ? " (HDF5 " : "", m.text,
                         m.text[0] ? ")" : "");
 }
+
+/* long runs */
+hid_t td_h5_stream_dapl(void)
+{
+    hid_t dapl = H5Pcreate(H5P_DATASET_ACCESS);
+    if (dapl >= 0 && H5Pset_chunk_cache(dapl, H5D_CHUNK_CACHE_NSLOTS_DEFAULT, 0, H5D_CHUNK_CACHE_W0_DEFAULT) < 0) {
+        H5Pclose(dapl);
+        return -1;
+    }
+    return dapl;
+}

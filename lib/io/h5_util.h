@@ -70,4 +70,11 @@ int td_h5_attach(hid_t loc, const char *scale, const char *const *names, unsigne
  */
 td_status td_h5_fail(td_error *err, const char *path, int io_errno, const char *what);
 
+/** long runs: a dataset access property list without a raw chunk cache, for an extendible dataset
+ *  written a whole chunk at a time, in order (the run's series, events and windows): HDF5's default
+ *  keeps up to 1 MiB of written chunks of each dataset in memory, which grows with the run until it
+ *  is full (about 20 MiB for the rig's datasets); nothing is ever read back. -1 on failure (close with
+ *  H5Pclose). */
+hid_t td_h5_stream_dapl(void);
+
 #endif

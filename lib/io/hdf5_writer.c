@@ -15,6 +15,7 @@
  */
 #include "io/h5_util.h"
 #include "io/h5_vfd.h"
+#include "io/h5_windows.h"
 #include "io/schema.h"
 #include "io/writer_internal.h"
 #include "util/error_internal.h"
@@ -79,8 +80,9 @@ typedef struct h5_impl {
     hsize_t event_rows;      /* events in the file */
     h5_event_row *event_buf; /* H5_EVENT_CHUNK buffered events */
     size_t events_buffered;
-    hid_t driver; /* h5_vfd.h registration, -1 if none */
-    int io_errno; /* first I/O error seen by the driver, 0 if none */
+    hid_t driver;           /* h5_vfd.h registration, -1 if none */
+    int io_errno;           /* first I/O error seen by the driver, 0 if none */
+    td_h5_windows *windows; /* long runs: /windows, NULL without window_fields */
 } h5_impl;
 
 /* Retainer fields in the order of the /retainers datasets. */
@@ -189,7 +191,7 @@ static td_status add_series(td_writer *w, h5_impl *h, hid_t loc, td_out_id id, i
     h5_series *s = &h->series[h->series_count];
     const char *name = td_out_name(id);
     hsize_t dims[3], maxdims[3], chunk[3];
-    hid_t space, dcpl, dset = -1;
+    hid_t space, dcpl, dapl, dset = -1;
     int i;
     if (h->series_count >= H5_MAX_SERIES) /* a layout this file format was not sized for: a bug */
         return td_error_set(err, TD_ERR_INVALID, "%s: too many sample datasets (%d)", w->tmp_path, H5_MAX_SERIES);
@@ -212,8 +214,11 @@ static td_status add_series(td_writer *w, h5_impl *h, hid_t loc, td_out_id id, i
         dims[i] = maxdims[i] = chunk[i] = row_dims[i - 1];
     space = H5Screate_simple(rank, dims, maxdims);
     dcpl = chunked_dcpl(rank, chunk, w->compression);
-    if (space >= 0 && dcpl >= 0)
-        dset = H5Dcreate2(loc, name, is_int8 ? H5T_STD_I8LE : H5T_IEEE_F64LE, space, H5P_DEFAULT, dcpl, H5P_DEFAULT);
+    dapl = td_h5_stream_dapl(); /* long runs: no chunk cache */
+    if (space >= 0 && dcpl >= 0 && dapl >= 0)
+        dset = H5Dcreate2(loc, name, is_int8 ? H5T_STD_I8LE : H5T_IEEE_F64LE, space, H5P_DEFAULT, dcpl, dapl);
+    if (dapl >= 0)
+        H5Pclose(dapl);
     if (dcpl >= 0)
         H5Pclose(dcpl);
     if (space >= 0)
@@ -304,6 +309,17 @@ static td_status create_housing(td_writer *w, h5_impl *h, td_error *err)
         st = attach_axis(w, h, h->idx_housing, h->component, 1, err);
     H5Gclose(g);
     return st;
+}
+
+/* long runs: /windows (h5_windows.c) */
+static td_status create_windows(td_writer *w, h5_impl *h, td_error *err)
+{
+    int nomem;
+    h->windows = td_h5_windows_create(h->file, w->retainer_count, w->compression, &nomem);
+    if (!h->windows)
+        return nomem ? td_error_set(err, TD_ERR_NOMEM, "out of memory opening %s", w->path)
+                     : h5_fail(err, w, "cannot create /windows");
+    return TD_OK;
 }
 
 static td_status create_nodes(td_writer *w, h5_impl *h, td_error *err)
@@ -451,7 +467,7 @@ static int event_types(const td_writer *w, h5_impl *h, char *names, size_t size)
 static td_status create_events(td_writer *w, h5_impl *h, td_error *err)
 {
     hsize_t dims[1] = {0}, maxdims[1] = {H5S_UNLIMITED}, chunk[1] = {H5_EVENT_CHUNK};
-    hid_t space = -1, dcpl = -1;
+    hid_t space = -1, dcpl = -1, dapl = -1;
     char names[256] = "";
     int ok = event_types(w, h, names, sizeof names);
     if (ok) {
@@ -461,14 +477,15 @@ static td_status create_events(td_writer *w, h5_impl *h, td_error *err)
     if (ok) {
         space = H5Screate_simple(1, dims, maxdims);
         dcpl = chunked_dcpl(1, chunk, w->compression);
-        ok = space >= 0 && dcpl >= 0;
+        dapl = td_h5_stream_dapl(); /* long runs: no chunk cache */
+        ok = space >= 0 && dcpl >= 0 && dapl >= 0;
     }
     if (ok)
-        h->event_dset =
-            H5Dcreate2(h->file, td_out_name(TD_OUT_EVENTS), h->event_ftype, space, H5P_DEFAULT, dcpl, H5P_DEFAULT);
+        h->event_dset = H5Dcreate2(h->file, td_out_name(TD_OUT_EVENTS), h->event_ftype, space, H5P_DEFAULT, dcpl, dapl);
     if (ok && h->event_dset >= 0)
-        h->event_index =
-            H5Dcreate2(h->file, td_out_name(TD_OUT_EVENT), H5T_STD_I64LE, space, H5P_DEFAULT, dcpl, H5P_DEFAULT);
+        h->event_index = H5Dcreate2(h->file, td_out_name(TD_OUT_EVENT), H5T_STD_I64LE, space, H5P_DEFAULT, dcpl, dapl);
+    if (dapl >= 0)
+        H5Pclose(dapl);
     if (dcpl >= 0)
         H5Pclose(dcpl);
     if (space >= 0)
@@ -521,6 +538,8 @@ static td_status open_impl(td_writer *w, h5_impl *h, td_error *err)
         (st = create_ambs(w, h, err)) != TD_OK || (st = create_events(w, h, err)) != TD_OK)
         return st;
     if (w->housing_fields && (st = create_housing(w, h, err)) != TD_OK) /* housing motion */
+        return st;
+    if (w->window_fields && (st = create_windows(w, h, err)) != TD_OK) /* long runs */
         return st;
     if (units_attr(h->file, TD_OUT_ROOT) < 0)
         return h5_fail(err, w, "cannot write the units attribute");
@@ -743,6 +762,8 @@ static td_status finish_impl(td_writer *w, h5_impl *h, int complete, const char 
     int i;
     if (st == TD_OK)
         st = flush_events(w, h, err);
+    if (st == TD_OK && h->windows && td_h5_windows_flush(h->windows) < 0) /* long runs */
+        st = h5_fail(err, w, "cannot write window summaries");
     if (st != TD_OK)
         return st;
     for (i = 0; i < w->attr_count; i++)
@@ -771,6 +792,8 @@ static herr_t close_handles(h5_impl *h)
         h->series[i].buf = NULL;
     }
     h->series_count = 0;
+    td_h5_windows_free(h->windows); /* long runs */
+    h->windows = NULL;
     free(h->event_buf);
     h->event_buf = NULL;
     if (h->event_dset >= 0)
@@ -825,4 +848,19 @@ static void h5_destroy(td_writer *w)
     w->impl = NULL;
 }
 
-const td_writer_ops td_hdf5_writer_ops = {h5_open, h5_sample, h5_event, h5_finish, h5_destroy};
+/* long runs: one window summary */
+static td_status h5_window(td_writer *w, const td_window_summary *win, td_error *err)
+{
+    h5_impl *h = w->impl;
+    td_status st = TD_OK;
+    H5E_BEGIN_TRY
+    {
+        if (td_h5_windows_add(h->windows, win) < 0)
+            st = h5_fail(err, w, "cannot write window summaries");
+        st = io_checked(st, w, "cannot write window summaries", err);
+    }
+    H5E_END_TRY;
+    return st;
+}
+
+const td_writer_ops td_hdf5_writer_ops = {h5_open, h5_sample, h5_event, h5_finish, h5_destroy, h5_window};

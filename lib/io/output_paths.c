@@ -147,8 +147,8 @@ static td_status check_all(const char *const *outs, const char *const *whats, in
 
 td_status td_output_check_paths(const td_output_options *out, const char *const *inputs, int n_inputs, td_error *err)
 {
-    const char *outs[3], *whats[3];
-    char *events = NULL;
+    const char *outs[4], *whats[4];
+    char *events = NULL, *windows = NULL;
     int n_out = 0;
     td_status st;
     if (!out || n_inputs < 0 || (n_inputs > 0 && !inputs))
@@ -160,6 +160,13 @@ td_status td_output_check_paths(const td_output_options *out, const char *const 
         if (!(events = malloc((size_t)len + 1)))
             return td_error_set(err, TD_ERR_NOMEM, "out of memory checking the output paths");
         td_writer_events_path(out->csv_path, events, (size_t)len + 1);
+        len = td_writer_windows_path(out->csv_path, NULL, 0); /* long runs */
+        if (out->window > 0.0 && !(windows = malloc((size_t)len + 1))) {
+            free(events);
+            return td_error_set(err, TD_ERR_NOMEM, "out of memory checking the output paths");
+        }
+        if (windows)
+            td_writer_windows_path(out->csv_path, windows, (size_t)len + 1);
     }
     if (out->hdf5_path[0]) {
         outs[n_out] = out->hdf5_path;
@@ -171,8 +178,13 @@ td_status td_output_check_paths(const td_output_options *out, const char *const 
         outs[n_out] = events;
         whats[n_out++] = "CSV events output";
     }
+    if (windows) { /* long runs */
+        outs[n_out] = windows;
+        whats[n_out++] = "CSV window output";
+    }
     st = check_all(outs, whats, n_out, inputs, n_inputs, err);
     free(events);
+    free(windows);
     return st;
 }
 

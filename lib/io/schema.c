@@ -409,6 +409,21 @@ static const td_schema_entry entries[TD_OUT_ID_COUNT] = {
     SERIES(TD_OUT_HOUSING_BODY_DISPLACEMENT, "body_displacement", TD_OUT_HOUSING, F64, "m", "(N, 2)", "%s_housing_body",
            NULL),
     SERIES(TD_OUT_HOUSING_BODY_TILT, "body_tilt", TD_OUT_HOUSING, F64, "rad", "(N, 2)", "tilt%s_housing_body", NULL),
+    /* long runs: the window summaries of a run with output.window (td_writer_window) */
+    GROUP(TD_OUT_WINDOWS, "windows", TD_OUT_ROOT, H5RUN),
+    SERIES(TD_OUT_WIN_TIME_START, "time_start", TD_OUT_WINDOWS, F64, "s", "(W)", "t_start", NULL),
+    SERIES(TD_OUT_WIN_TIME_END, "time_end", TD_OUT_WINDOWS, F64, "s", "(W)", "t_end", NULL),
+    SERIES(TD_OUT_WIN_SPEED, "speed", TD_OUT_WINDOWS, F64, "rad/s", "(W)", "speed", NULL),
+    SERIES(TD_OUT_WIN_ENERGY_KINETIC, "energy_kinetic", TD_OUT_WINDOWS, F64, "J", "(W)", "energy_kinetic", NULL),
+    SERIES(TD_OUT_WIN_ENERGY_RESIDUAL, "energy_residual", TD_OUT_WINDOWS, F64, "J", "(W)", "energy_residual", NULL),
+    SERIES(TD_OUT_WIN_CONTACTS, "contacts", TD_OUT_WINDOWS, I64, "1", "(W, n_ret)", "contacts_ret%d", "-"),
+    SERIES(TD_OUT_WIN_CONTACT_FRACTION, "contact_fraction", TD_OUT_WINDOWS, F64, "1", "(W, n_ret)",
+           "contact_fraction_ret%d", "-"),
+    SERIES(TD_OUT_WIN_PEAK_NORMAL_FORCE, "peak_normal_force", TD_OUT_WINDOWS, F64, "N", "(W, n_ret)", "N_peak_ret%d",
+           NULL),
+    SERIES(TD_OUT_WIN_FRICTION_WORK, "friction_work", TD_OUT_WINDOWS, F64, "J", "(W, n_ret)", "friction_work_ret%d",
+           NULL),
+    SERIES(TD_OUT_WIN_RACE_TEMPERATURE, "race_temperature", TD_OUT_WINDOWS, F64, "K", "(W, n_ret)", "Tr_ret%d", NULL),
 };
 
 /* The lateral components, each name written once here (td_schema_components). */

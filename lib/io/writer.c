@@ -37,6 +37,17 @@ int td_writer_events_path(const char *csv_path, char *buf, size_t n)
     return snprintf(buf, n, "%.*s.events.csv", (int)len, csv_path ? csv_path : "");
 }
 
+/* long runs */
+int td_writer_windows_path(const char *csv_path, char *buf, size_t n)
+{
+    static const char ext[] = ".csv";
+    size_t len = csv_path ? strlen(csv_path) : 0;
+    size_t ext_len = sizeof ext - 1;
+    if (len >= ext_len && strcmp(csv_path + len - ext_len, ext) == 0)
+        len -= ext_len;
+    return snprintf(buf, n, "%.*s.windows.csv", (int)len, csv_path ? csv_path : "");
+}
+
 /* SplitMix64 finaliser: spreads a few changing bits over all 64. */
 static uint64_t mix64(uint64_t x)
 {
@@ -311,6 +322,12 @@ static void writer_free(td_writer *w)
         close(w->tmp_lock);
     if (w->events_lock >= 0)
         close(w->events_lock);
+    free(w->windows_path); /* long runs */
+    free(w->windows_tmp);
+    if (w->windows_fd >= 0)
+        close(w->windows_fd);
+    if (w->windows_lock >= 0)
+        close(w->windows_lock);
     free(w);
 }
 
@@ -335,6 +352,12 @@ static td_status events_path(td_writer *w)
     if (!w->events_path)
         return TD_ERR_NOMEM;
     td_writer_events_path(w->path, w->events_path, (size_t)n + 1);
+    if (!w->window_fields) /* long runs: the window file */
+        return TD_OK;
+    n = td_writer_windows_path(w->path, NULL, 0);
+    if (!(w->windows_path = malloc((size_t)n + 1)))
+        return TD_ERR_NOMEM;
+    td_writer_windows_path(w->path, w->windows_path, (size_t)n + 1);
     return TD_OK;
 }
 
@@ -347,6 +370,15 @@ static td_status create_temps(td_writer *w, td_error *err)
         remove(w->tmp_path);
         free(w->tmp_path);
         w->tmp_path = NULL;
+    }
+    if (st == TD_OK && w->windows_path && /* long runs */
+        (st = td_io_create_temp(w->windows_path, &w->windows_tmp, &w->windows_fd, &w->windows_lock, err)) != TD_OK) {
+        remove(w->tmp_path);
+        if (w->events_tmp)
+            remove(w->events_tmp);
+        free(w->tmp_path);
+        free(w->events_tmp);
+        w->tmp_path = w->events_tmp = NULL;
     }
     return st;
 }
@@ -395,7 +427,8 @@ td_status td_writer_open(td_writer_kind kind, const char *path, const td_output_
     if (!w)
         return td_error_set(err, TD_ERR_NOMEM, "out of memory opening %s", path);
     w->kind = kind;
-    w->tmp_fd = w->events_fd = w->tmp_lock = w->events_lock = -1;
+    w->tmp_fd = w->events_fd = w->tmp_lock = w->events_lock = w->windows_fd = w->windows_lock = -1;
+    w->window_fields = layout->window_fields != 0; /* long runs */
     w->ops = kind == TD_WRITER_HDF5 ? &td_hdf5_writer_ops : &td_csv_writer_ops;
     w->path = string_copy(path, NULL);
     if (!w->path || (kind == TD_WRITER_CSV && (st = events_path(w)) != TD_OK)) {
@@ -433,7 +466,8 @@ td_status td_writer_open(td_writer_kind kind, const char *path, const td_output_
         return st;
     }
     if ((st = remove_stale(w->path, err)) != TD_OK ||
-        (w->events_path && (st = remove_stale(w->events_path, err)) != TD_OK)) {
+        (w->events_path && (st = remove_stale(w->events_path, err)) != TD_OK) ||
+        (w->windows_path && (st = remove_stale(w->windows_path, err)) != TD_OK)) {
         td_writer_discard(&w);
         return st;
     }
@@ -508,6 +542,26 @@ td_status td_writer_event(td_writer *w, const td_event *ev, long sample, td_erro
     if (st != TD_OK)
         return mark_failed(w, st, &local, err);
     w->events++;
+    return TD_OK;
+}
+
+/* long runs */
+td_status td_writer_window(td_writer *w, const td_window_summary *win, td_error *err)
+{
+    td_status st = usable(w, "td_writer_window", err);
+    td_error local;
+    if (st != TD_OK)
+        return st;
+    if (!w->window_fields)
+        return td_error_set(err, TD_ERR_INVALID, "td_writer_window: the layout has no window fields");
+    if (!win || (w->retainer_count > 0 && (!win->contacts || !win->contact_fraction || !win->peak_normal_force ||
+                                           !win->friction_work || !win->race_temperature)))
+        return td_error_set(err, TD_ERR_INVALID, "td_writer_window: NULL summary or array");
+    td_error_clear(&local);
+    st = w->ops->window(w, win, &local);
+    if (st != TD_OK)
+        return mark_failed(w, st, &local, err);
+    w->windows++;
     return TD_OK;
 }
 
@@ -690,6 +744,8 @@ void td_writer_discard(td_writer **wp)
         remove(w->tmp_path);
     if (w->events_tmp)
         remove(w->events_tmp);
+    if (w->windows_tmp) /* long runs */
+        remove(w->windows_tmp);
     writer_free(w);
     *wp = NULL;
 }
@@ -719,6 +775,12 @@ td_status td_writer_close(td_writer **wp, int complete, const char *reason, td_e
         st = td_io_fsync_path(w->tmp_path, &local);
     if (st == TD_OK && w->events_tmp)
         st = td_io_fsync_path(w->events_tmp, &local);
+    if (st == TD_OK && w->windows_tmp) /* long runs: the window file first, as the events file */
+        st = td_io_commit_temp(w->windows_tmp, w->windows_path, &local);
+    if (st == TD_OK && w->windows_tmp) {
+        free(w->windows_tmp); /* renamed: nothing left to remove */
+        w->windows_tmp = NULL;
+    }
     /* The events file first: the samples file carries the authoritative flag. */
     if (st == TD_OK && w->events_tmp && rename(w->events_tmp, w->events_path) != 0)
         st = td_error_set(&local, TD_ERR_IO, "%s: cannot rename to %s: %s", w->events_tmp, w->events_path,
@@ -727,6 +789,8 @@ td_status td_writer_close(td_writer **wp, int complete, const char *reason, td_e
         st = td_error_set(&local, TD_ERR_IO, "%s: cannot rename to %s: %s", w->tmp_path, w->path, strerror(errno));
         if (w->events_path)
             remove(w->events_path);
+        if (w->windows_path)
+            remove(w->windows_path);
     }
     if (st != TD_OK) {
         td_error_set(err, st, "%s", local.message);

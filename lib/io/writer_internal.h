@@ -66,6 +66,13 @@ struct td_writer {
     double *node_abs_xy; /**< 2 node_count: the next sample's absolute displacement */
     /* housing body */
     int housing_body_fields; /**< nonzero: the body's displacement and tilt in /housing too (td_output_layout) */
+    /* long runs */
+    int window_fields;  /**< nonzero: window summaries too (td_output_layout) */
+    char *windows_path; /**< CSV with window_fields: the window file (td_writer_windows_path), else NULL */
+    char *windows_tmp;  /**< its windows_path + ".XXXXXX.partial" */
+    int windows_fd;     /**< as events_fd */
+    int windows_lock;   /**< as events_lock */
+    long windows;       /**< window summaries written */
 };
 
 /** housing motion: the number of td_writer_housing's values a sample of `w` holds (the body's with a body). */
@@ -86,6 +93,8 @@ struct td_writer_ops {
     td_status (*finish)(td_writer *w, int complete, const char *reason, td_error *err);
     /* Release impl (may be NULL) without finishing; the caller removes the files. */
     void (*destroy)(td_writer *w);
+    /* long runs: one window summary (only with window_fields) */
+    td_status (*window)(td_writer *w, const td_window_summary *win, td_error *err);
 };
 
 extern const td_writer_ops td_hdf5_writer_ops;

@@ -191,6 +191,7 @@ static td_status open_writers(td_recorder *r, const td_output_options *out, td_e
     layout.housing_fields = r->housing_fields;           /* housing motion */
     layout.housing_body_fields = r->housing_body_fields; /* housing body */
     layout.compression = out->compression;
+    layout.window_fields = out->window > 0.0; /* long runs */
     if (out->hdf5_path[0])
         st = td_writer_open(TD_WRITER_HDF5, out->hdf5_path, &layout, &r->writers[r->writer_count++], err);
     if (st == TD_OK && out->csv_path[0])
@@ -326,6 +327,24 @@ td_status td_recorder_sample(td_recorder *r, const td_sim *sim, double t, td_err
         return st;
     for (i = 0; i < r->writer_count; i++)
         if ((st = td_writer_sample(r->writers[i], t, td_sim_speed(sim), r->node_xy, r->ret, r->amb_f, err)) != TD_OK)
+            return st;
+    return TD_OK;
+}
+
+/* long runs */
+td_status td_recorder_observe(td_recorder *r, const td_sim *sim, td_error *err)
+{
+    if (!r || !sim)
+        return td_error_set(err, TD_ERR_INVALID, "td_recorder_observe: NULL argument");
+    return read_state(r, sim, err);
+}
+
+td_status td_recorder_window(td_recorder *r, const td_window_summary *win, td_error *err)
+{
+    td_status st;
+    int i;
+    for (i = 0; i < r->writer_count; i++)
+        if ((st = td_writer_window(r->writers[i], win, err)) != TD_OK)
             return st;
     return TD_OK;
 }

@@ -40,6 +40,14 @@ td_status td_recorder_set_doubles(td_recorder *rec, td_out_id name, const double
 td_status td_recorder_set_longs(td_recorder *rec, td_out_id name, const long *values, int n, td_error *err);
 td_status td_recorder_set_stats(td_recorder *rec, const td_sim_stats *stats, td_error *err);
 
+/* long runs */
+/** Read the simulation's current state as td_recorder_sample does (td_recorder_retainers then
+ *  give it) without writing a sample. */
+td_status td_recorder_observe(td_recorder *rec, const td_sim *sim, td_error *err);
+
+/** Append a window summary to every writer (they were opened with window_fields: out->window > 0). */
+td_status td_recorder_window(td_recorder *rec, const td_window_summary *win, td_error *err);
+
 /** Close every writer (all are tried even if one fails; the first failure is returned) and free. */
 td_status td_recorder_close(td_recorder **rec, int complete, const char *reason, td_error *err);
 

@@ -17,6 +17,7 @@
 #include "run/recorder.h"
 #include "run/summary.h"
 #include "run/warnings.h"
+#include "run/windows.h"
 #include "sim/section.h"
 #include "touchdown/assess.h"
 #include "touchdown/dofs.h"
@@ -42,7 +43,15 @@ typedef struct run_state {
     double t_window;
     int window_taken;
     td_retainer_totals window[TD_RUN_SUMMARY_RETAINERS];
+    /* long runs */
+    td_run_windows *windows; /* the window summaries, NULL without output.window */
+    int omit_events;         /* output.events = false: no event rows, no samples at events */
+    int end_at_rest;         /* end_at_rest: stop at the first grid sample at rest */
+    int stopped;             /* the run ended at rest before t_end */
 } run_state;
+
+/* long runs: what a sample is for; an event's is not written when the events are omitted */
+typedef enum sample_kind { SAMPLE_EVENT = 0, SAMPLE_GRID = 1, SAMPLE_LAST = 2 } sample_kind;
 
 static double max2(double a, double b)
 {
@@ -128,16 +137,18 @@ static void window_snapshot(run_state *r, double t)
     r->window_taken = 1;
 }
 
-static td_status take_sample(run_state *r, double t, int on_grid, td_error *err)
+static td_status take_sample(run_state *r, double t, sample_kind kind, td_error *err)
 {
-    td_status st = td_recorder_sample(r->rec, r->sim, t, err);
+    int write = kind != SAMPLE_EVENT || !r->omit_events; /* long runs */
+    td_status st = write ? td_recorder_sample(r->rec, r->sim, t, err) : td_recorder_observe(r->rec, r->sim, err);
     if (st != TD_OK)
         return st;
     window_snapshot(r, t);
-    r->s->samples++;
-    if (on_grid)
+    r->s->samples += write;
+    if (kind == SAMPLE_GRID)
         r->s->grid_samples++;
     peak_from_retainers(r, t);
+    td_run_windows_sample(r->windows, td_recorder_retainers(r->rec), td_recorder_retainer_count(r->rec));
     return TD_OK;
 }
 
@@ -156,11 +167,12 @@ static td_status handle_event(run_state *r, td_error *err)
     if (st != TD_OK)
         return td_error_set(err, st, "reading the event at t = %.17g s: %s", t, td_sim_errmsg(r->sim));
     if (!(r->event_sample_row >= 0 && r->event_sample_time == t)) {
-        if ((st = take_sample(r, t, 0, err)) != TD_OK)
+        if ((st = take_sample(r, t, SAMPLE_EVENT, err)) != TD_OK)
             return st;
-        r->event_sample_row = r->s->samples - 1;
+        r->event_sample_row = r->omit_events ? -1 : r->s->samples - 1;
         r->event_sample_time = t;
     }
+    td_run_windows_event(r->windows, &ev); /* long runs */
     r->s->events++;
     if (is_onset(ev.kind)) {
         r->s->contacts++;
@@ -172,7 +184,7 @@ static td_status handle_event(run_state *r, td_error *err)
     }
     note_peak(r->s, ev.normal_force, ev.time, ev.retainer);
     contact_advance(r, t, any_in_contact(r->rec));
-    return td_recorder_event(r->rec, &ev, r->event_sample_row, err);
+    return r->omit_events ? TD_OK : td_recorder_event(r->rec, &ev, r->event_sample_row, err);
 }
 
 /* Progress callback after a grid sample; nonzero: the caller asked to stop. */
@@ -217,6 +229,14 @@ static td_status step_failed(run_state *r, double target, td_status st, const td
     return st;
 }
 
+/* long runs: at a grid sample, close the window due there, or the last one at the run's end. */
+static td_status grid_window(run_state *r, double t, int last, td_error *err)
+{
+    if (!r->windows || !(last || td_run_windows_due(r->windows, t)))
+        return TD_OK;
+    return td_run_windows_close(r->windows, r->sim, td_recorder_retainers(r->rec), t, r->rec, err);
+}
+
 /* Step over the grid to t_end. Returns TD_OK at t_end, else the failure with `err` filled. */
 static td_status loop(run_state *r, td_error *err)
 {
@@ -225,7 +245,7 @@ static td_status loop(run_state *r, td_error *err)
     const double tol = 1e-6 / r->rate;
     td_status st;
     long k = 1;
-    if ((st = take_sample(r, t0, 1, err)) != TD_OK)
+    if ((st = take_sample(r, t0, SAMPLE_GRID, err)) != TD_OK)
         return st;
     contact_advance(r, t0, any_in_contact(r->rec));
     if (progress(r, t0, 0))
@@ -253,14 +273,18 @@ static td_status loop(run_state *r, td_error *err)
             if (st == TD_ERR_INTERRUPTED) { /* the cancel flag, seen inside the step */
                 /* the sim stopped at its last good step: record the state there (off the grid),
                  * unless it has not moved since the last sample */
-                if (reached > now && (st = take_sample(r, reached, 0, err)) != TD_OK)
+                if (reached > now && (st = take_sample(r, reached, SAMPLE_LAST, err)) != TD_OK)
                     return st;
                 return td_error_set(err, TD_ERR_INTERRUPTED, "interrupted at t = %.10f s", reached);
             }
             if (st != TD_OK)
                 return step_failed(r, target, st, &step_err, err);
         }
-        if ((st = take_sample(r, target, 1, err)) != TD_OK)
+        if ((st = take_sample(r, target, SAMPLE_GRID, err)) != TD_OK)
+            return st;
+        if (!last && r->end_at_rest && td_run_at_rest(r->s->speed, td_sim_speed(r->sim))) /* long runs */
+            last = r->stopped = 1;
+        if ((st = grid_window(r, target, last, err)) != TD_OK)
             return st;
         if (progress(r, target, last))
             return td_error_set(err, TD_ERR_INTERRUPTED, "stopped by the progress callback at t = %.10f s", target);
@@ -360,6 +384,13 @@ static void summary_ending(run_state *r)
     td_run_summary *s = r->s;
     td_retainer_totals after[TD_RUN_SUMMARY_RETAINERS];
     int k, n = s->retainer_count < TD_RUN_SUMMARY_RETAINERS ? s->retainer_count : TD_RUN_SUMMARY_RETAINERS;
+    if (r->stopped) { /* long runs: ended at rest, judged over the whole run */
+        memset(r->window, 0, sizeof r->window);
+        for (k = 0; k < n; k++)
+            after[k] = s->retainers[k].totals;
+        td_run_summary_ending(s, r->window, after, n, s->speed, s->final_speed);
+        return;
+    }
     if (!r->window_taken || s->t_reached < s->t_end) {
         snprintf(s->ending, sizeof s->ending, "undetermined");
         return;
@@ -642,6 +673,22 @@ static td_status check_args(const td_sim *sim, double t_end, const td_output_opt
     return TD_OK;
 }
 
+/* The loop's state at the start of the run. */
+static void state_init(run_state *r, td_sim *sim, const td_run_hooks *hooks, td_run_summary *summary,
+                       const td_output_options *out)
+{
+    memset(r, 0, sizeof *r);
+    r->sim = sim;
+    r->hooks = hooks;
+    r->s = summary;
+    r->rate = out->sample_rate;
+    r->mark = summary->t_start;
+    r->next_progress = summary->t_start;
+    r->event_sample_row = -1;
+    r->omit_events = out->omit_events != 0; /* long runs */
+    r->end_at_rest = out->end_at_rest != 0;
+}
+
 td_status td_run(td_sim *sim, double t_end, const td_output_options *out, const td_run_hooks *hooks,
                  const char *case_text, td_run_summary *summary, td_error *err)
 {
@@ -662,19 +709,14 @@ td_status td_run(td_sim *sim, double t_end, const td_output_options *out, const 
     }
     td_run_summary_init(summary, td_sim_time(sim), t_end, td_model_speed(model));
     summary->start_known = td_sim_start_info_get(sim, &summary->start) == TD_OK;
-    memset(&r, 0, sizeof r);
-    r.sim = sim;
-    r.hooks = hooks;
-    r.s = summary;
-    r.rate = out->sample_rate;
-    r.mark = summary->t_start;
-    r.next_progress = summary->t_start;
-    r.event_sample_row = -1;
+    state_init(&r, sim, hooks, summary, out);
     summary->ending_window = ending_window(summary);
     r.t_window = summary->t_end - summary->ending_window;
     summary->section_start = summary->t_start + out->section_after * (summary->t_end - summary->t_start);
     if ((st = td_sim_section_begin(sim, summary->section_start, TD_RUN_SECTION_SAMPLES, err)) != TD_OK ||
+        (st = td_run_windows_create(sim, out->window, summary->t_start, &r.windows, err)) != TD_OK ||
         (st = td_recorder_create(model, out, &r.rec, err)) != TD_OK) {
+        td_run_windows_free(&r.windows);
         td_sim_section_end(sim);
         summary->status = st;
         snprintf(summary->message, sizeof summary->message, "%s", err ? err->message : td_strerror(st));
@@ -687,6 +729,8 @@ td_status td_run(td_sim *sim, double t_end, const td_output_options *out, const 
     st = loop(&r, &loop_err);
     td_sim_set_interrupt(sim, NULL);
     summary_finish(&r, wall_start);
+    summary->ended_at_rest = r.stopped; /* long runs */
+    td_run_windows_free(&r.windows);
     td_sim_section_end(sim);
     summary->status = st;
     td_run_check_warnings(summary, model);

@@ -1,0 +1,163 @@
+/*
+ * long runs: the window summaries (windows.h). A window's counts and sums are the differences of the
+ * retainers' running totals (td_sim_retainer_totals: exact at the output time) between its ends; its
+ * peak is the largest normal force among its samples, its events and the run's peak where that rose
+ * inside it (the run's peak is taken at the integrator's accepted points, finer than any sample).
+ */
+#include "run/windows.h"
+
+#include "touchdown/dofs.h"
+#include "touchdown/model.h"
+#include "util/error_internal.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+/* A grid time this close below a window's end closes it (grid times are t0 + k / rate, rounded). */
+#define WINDOW_END_TOLERANCE 1e-9
+
+struct td_run_windows {
+    double length, t_begin;
+    int n;                     /* retainers */
+    long count;                /* windows written */
+    td_retainer_totals *begin; /* the totals where the open window began */
+    td_retainer_totals *now;   /* scratch: the totals where it ends */
+    long *onsets;              /* per retainer in the open window */
+    double *peak, *fraction, *friction, *temperature, *peak_begin;
+};
+
+static void totals_now(const td_sim *sim, int n, td_retainer_totals *t)
+{
+    int k;
+    for (k = 0; k < n; k++)
+        td_sim_retainer_totals(sim, k, &t[k]);
+}
+
+/* Open a window at t: the totals there, nothing counted yet. */
+static void open_window(td_run_windows *w, const td_sim *sim, double t)
+{
+    int k;
+    w->t_begin = t;
+    totals_now(sim, w->n, w->begin);
+    for (k = 0; k < w->n; k++) {
+        w->onsets[k] = 0;
+        w->peak[k] = 0.0;
+        w->peak_begin[k] = w->begin[k].peak_normal_force;
+    }
+}
+
+td_status td_run_windows_create(const td_sim *sim, double length, double t0, td_run_windows **out, td_error *err)
+{
+    td_run_windows *w;
+    size_t n;
+    *out = NULL;
+    if (!(length > 0.0))
+        return TD_OK;
+    if (!(w = calloc(1, sizeof *w)))
+        return td_error_set(err, TD_ERR_NOMEM, "out of memory for the window summaries");
+    w->length = length;
+    w->n = td_model_retainer_count(td_sim_model(sim));
+    n = (size_t)(w->n > 0 ? w->n : 1);
+    w->begin = calloc(n, sizeof *w->begin);
+    w->now = calloc(n, sizeof *w->now);
+    w->onsets = calloc(n, sizeof *w->onsets);
+    w->peak = calloc(6 * n, sizeof *w->peak); /* peak, fraction, friction, temperature, peak_begin */
+    if (!w->begin || !w->now || !w->onsets || !w->peak) {
+        td_run_windows_free(&w);
+        return td_error_set(err, TD_ERR_NOMEM, "out of memory for the window summaries");
+    }
+    w->fraction = w->peak + n;
+    w->friction = w->peak + 2 * n;
+    w->temperature = w->peak + 3 * n;
+    w->peak_begin = w->peak + 4 * n;
+    open_window(w, sim, t0);
+    *out = w;
+    return TD_OK;
+}
+
+static void note(td_run_windows *w, int k, double f)
+{
+    if (k >= 0 && k < w->n && f > w->peak[k])
+        w->peak[k] = f;
+}
+
+void td_run_windows_sample(td_run_windows *w, const td_retainer_state *ret, int n)
+{
+    int k;
+    for (k = 0; w && k < n && k < w->n; k++)
+        if (ret[k].in_contact)
+            note(w, k, ret[k].normal_force);
+}
+
+void td_run_windows_event(td_run_windows *w, const td_event *ev)
+{
+    if (!w || ev->retainer < 0 || ev->retainer >= w->n)
+        return;
+    if (ev->kind == TD_EVENT_CONTACT_ONSET || ev->kind == TD_EVENT_PENALTY_ENTER)
+        w->onsets[ev->retainer]++;
+    note(w, ev->retainer, ev->normal_force);
+    note(w, ev->retainer, ev->peak_normal_force);
+}
+
+int td_run_windows_due(const td_run_windows *w, double t)
+{
+    return w && t >= w->t_begin + w->length - WINDOW_END_TOLERANCE * w->length;
+}
+
+td_status td_run_windows_close(td_run_windows *w, const td_sim *sim, const td_retainer_state *ret, double t,
+                               td_recorder *rec, td_error *err)
+{
+    td_retainer_totals *now;
+    td_window_summary s;
+    td_energy e;
+    int k, n;
+    td_status st;
+    if (!w || !(t > w->t_begin))
+        return TD_OK;
+    now = w->now;
+    n = w->n;
+    totals_now(sim, n, now);
+    td_run_windows_sample(w, ret, n);
+    for (k = 0; k < n; k++) {
+        w->fraction[k] = (now[k].contact_time - w->begin[k].contact_time) / (t - w->t_begin);
+        w->friction[k] = now[k].friction_work - w->begin[k].friction_work;
+        w->temperature[k] = ret[k].race_temperature;
+        if (now[k].peak_normal_force > w->peak_begin[k]) /* the run's peak rose in this window */
+            note(w, k, now[k].peak_normal_force);
+    }
+    s.t_start = w->t_begin;
+    s.t_end = t;
+    s.speed = td_sim_speed(sim);
+    s.energy_kinetic = s.energy_residual = TD_UNDEFINED;
+    if (td_sim_energy(sim, &e) == TD_OK) {
+        s.energy_kinetic = e.kinetic;
+        s.energy_residual = e.residual;
+    }
+    s.contacts = w->onsets;
+    s.contact_fraction = w->fraction;
+    s.peak_normal_force = w->peak;
+    s.friction_work = w->friction;
+    s.race_temperature = w->temperature;
+    if ((st = td_recorder_window(rec, &s, err)) != TD_OK)
+        return st;
+    w->count++;
+    open_window(w, sim, t);
+    return TD_OK;
+}
+
+long td_run_windows_count(const td_run_windows *w)
+{
+    return w ? w->count : 0;
+}
+
+void td_run_windows_free(td_run_windows **w)
+{
+    if (!w || !*w)
+        return;
+    free((*w)->begin);
+    free((*w)->now);
+    free((*w)->onsets);
+    free((*w)->peak);
+    free(*w);
+    *w = NULL;
+}

@@ -1,0 +1,63 @@
+#!/usr/bin/env bash
+# A long run's keys through the tool (tests/test_long_run.c checks them through the library):
+#   - end_at_rest: rub-damped.cfg's rotor, nothing pushing it, spinning down freely from 100 rad/s
+#     under a constant drag torque 0.7 N m on J = 0.01 kg m^2, ends complete at the first 1 ms grid
+#     sample at rest (after 0.99 J Omega0 / T = 1.4142857 s: at 1.415 s), says so in the text and the
+#     JSON, and its files end there;
+#   - output.window and output.events = false: the window file has one row per window and its flag,
+#     the events file no row, /windows is in the HDF5 file, and the samples are the grid's alone (the
+#     same run with its events has both);
+#   - a window shorter than a sample interval is refused with one line (exit 2, no file).
+# Args: $1 = the touchdown binary, $2 = the source directory.
+set -u
+tool=$1
+src=$2
+rub=$src/cases/rub-damped.cfg
+work=$(mktemp -d "${PWD}/long-run.XXXXXX")
+trap 'rm -rf "$work"' EXIT
+
+. "$(dirname "${BASH_SOURCE[0]}")/common.sh" # fail, pass, check, t, jf, finish
+need h5ls hdf5-tools
+
+spin=(--set 'unbalances=()' --set 'schedule=()' --set speed=100
+    --set 'spin={free=true; inertia=0.01; drag_torque=0.7; drag_viscous=0.0;}' --set end_time=3
+    --set output.sample_rate=1000 --set end_at_rest=true)
+
+t "$work/rest" run "${spin[@]}" "$rub" -o r
+check "end_at_rest: exit 0 (got $rc: $(head -c 300 "$work/rest/.err"))" test "$rc" = 0
+check "end_at_rest: the text says when ($(grep '^ended at rest' "$work/rest/.out"))" \
+    grep -q '^ended at rest  *at 1.4150000000 s' "$work/rest/.out"
+t "$work/rest-json" run -q --json --csv '' --hdf5 '' "${spin[@]}" "$rub"
+check "end_at_rest: JSON ended_at_rest true, t_reached 1.415 ($(jf "$work/rest-json/.out" ended_at_rest), \
+$(jf "$work/rest-json/.out" t_reached))" \
+    test "$(jf "$work/rest-json/.out" ended_at_rest)" = true -a "$(jf "$work/rest-json/.out" t_reached)" = 1.415
+check "end_at_rest: complete ($(jf "$work/rest-json/.out" complete))" \
+    test "$(jf "$work/rest-json/.out" complete)" = true
+t "$work/plain" run -q --json --csv '' --hdf5 '' --set end_time=0.01 "$rub"
+check "a run without end_at_rest has no ended_at_rest member" test -z "$(jf "$work/plain/.out" ended_at_rest)"
+check "end_at_rest: the CSV file's last sample is at 1.415 s ($(grep -v '^#' "$work/rest/r.csv" | tail -n 1 | cut -d, -f1))" \
+    test "$(grep -v '^#' "$work/rest/r.csv" | tail -n 1 | cut -d, -f1)" = 1.415
+
+t "$work/win" run -q --set end_time=0.3 --set output.window=0.05 --set output.events=false "$rub" -o w
+check "windows: exit 0 (got $rc: $(head -c 300 "$work/win/.err"))" test "$rc" = 0
+check "windows: 6 rows and the flag in w.windows.csv ($(grep -vc '^#' "$work/win/w.windows.csv") lines)" \
+    test "$(grep -vc '^#' "$work/win/w.windows.csv")" = 7 -a "$(tail -n 1 "$work/win/w.windows.csv")" = "# complete"
+check "windows: its header starts with t_start, t_end, speed ($(head -c 40 "$work/win/w.windows.csv"))" \
+    grep -q '^t_start \[s\],t_end \[s\],speed \[rad/s\],' "$work/win/w.windows.csv"
+check "events = false: the events file has its header and flag only ($(wc -l <"$work/win/w.events.csv") lines)" \
+    test "$(wc -l <"$work/win/w.events.csv")" = 2
+check "events = false: the 3001 grid samples and nothing else in w.csv ($(grep -vc '^#' "$work/win/w.csv") lines)" \
+    test "$(grep -vc '^#' "$work/win/w.csv")" = 3002
+t "$work/ev" run -q --set end_time=0.3 "$rub" -o e
+check "events = true: the same run's events file has rows, w.csv as many more ($(grep -vc '^#' "$work/ev/e.events.csv"), \
+$(grep -vc '^#' "$work/ev/e.csv"))" \
+    test "$(grep -vc '^#' "$work/ev/e.events.csv")" -gt 1 -a "$(grep -vc '^#' "$work/ev/e.csv")" -gt 3002
+check "windows: /windows/contact_fraction in w.h5 is 6 x 2" \
+    test -n "$(h5ls "$work/win/w.h5/windows/contact_fraction" | grep -F '{6/Inf, 2}')"
+
+t "$work/short" run -q --set output.window=1e-5 "$rub" -o s
+check "window shorter than a sample interval: exit 2, one line naming output.window ($(cat "$work/short/.err"))" \
+    test "$rc" = 2 -a "$(wc -l <"$work/short/.err")" = 1 -a -n "$(grep -F 'output.window' "$work/short/.err")"
+check "window shorter than a sample interval: no file" test -z "$(ls "$work/short")"
+
+finish

@@ -1,0 +1,256 @@
+/*
+ * Long runs: a run that ends at rest (end_at_rest), the window summaries (output.window) and a
+ * run's memory that does not grow with its length.
+ */
+#include "td_test.h"
+
+#include <malloc.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "touchdown/case.h"
+#include "touchdown/result.h"
+#include "touchdown/run.h"
+#include "touchdown/sim.h"
+
+/* rub-damped.cfg's rotor held centred by its AMBs with nothing to push it (no unbalance, no
+ * schedule, no gravity), its speed free from 100 rad/s under a constant drag torque T only, on a
+ * spin inertia J: the lateral motion stays at rest and the spin obeys J dOmega/dt = -T, so
+ * Omega(t) = Omega0 - T t / J and the rotor is at rest (below 1 % of Omega0, 1 rad/s) after
+ * t* = 0.99 J Omega0 / T. */
+#define SPIN_J 0.01
+#define SPIN_T 0.7
+#define SPIN_W0 100.0
+static const char *spin_down[] = {"unbalances = ()",
+                                  "schedule = ()",
+                                  "speed = 100.0",
+                                  "spin = { free = true; inertia = 0.01; drag_torque = 0.7; drag_viscous = 0.0; }",
+                                  "end_at_rest = true",
+                                  "end_time = 3.0",
+                                  "output.sample_rate = 1000.0"};
+
+/* The run ends, complete, at the first grid sample after t*, with the closed form's speed there. */
+static void test_end_at_rest_closed_form(void **state)
+{
+    td_case *c = td_test_load_case("cases/rub-damped.cfg", spin_down, 7);
+    td_output_options out = *td_case_output_options(c);
+    td_run_summary sum;
+    td_sim *s = NULL;
+    td_error err;
+    const double t_star = 0.99 * SPIN_J * SPIN_W0 / SPIN_T, dt = 1.0 / out.sample_rate;
+    (void)state;
+    assert_int_equal(out.end_at_rest, 1);
+    out.hdf5_path[0] = out.csv_path[0] = '\0';
+    assert_int_equal(td_sim_create(td_case_model(c), td_case_sim_options(c), &s, &err), TD_OK);
+    assert_int_equal(td_run(s, td_case_end_time(c), &out, NULL, NULL, &sum, &err), TD_OK);
+    print_message("t* = %.12f s, ended at %.12f s, speed %.12g rad/s, ending %s\n", t_star, sum.t_reached,
+                  sum.final_speed, sum.ending);
+    assert_int_equal(sum.complete, 1);
+    assert_int_equal(sum.ended_at_rest, 1);
+    assert_true(sum.t_reached >= t_star && sum.t_reached <= t_star + dt * (1.0 + 1e-9));
+    assert_close(sum.final_speed, SPIN_W0 - SPIN_T * sum.t_reached / SPIN_J, 0.0, 1e-6);
+    assert_true(td_run_at_rest(SPIN_W0, sum.final_speed));
+    assert_string_equal(sum.ending, "free (no contact)");
+    td_sim_free(&s);
+    td_case_free(&c);
+}
+
+/* A dataset of the run file as doubles (fails the test if absent). */
+static void read_set(const td_result *r, td_out_id id, td_result_array *a)
+{
+    td_error err;
+    assert_int_equal(td_result_read(r, id, NULL, a, &err), TD_OK);
+}
+
+/* The row of /time equal to t among the grid rows (an event row at t comes before it). */
+static size_t grid_row(const td_result_array *time, double t)
+{
+    size_t i, at = time->n;
+    for (i = 0; i < time->n; i++)
+        if (time->v[i] == t)
+            at = i; /* the last row at t: the grid sample, taken after the events there */
+    assert_true(at < time->n);
+    return at;
+}
+
+/* 1 if row j is a grid sample: on the grid k / rate, the last row at its time (events come first). */
+static int is_grid_row(const td_result_array *time, size_t j, double rate)
+{
+    double k = time->v[j] * rate;
+    return fabs(k - floor(k + 0.5)) < 1e-6 && (j + 1 == time->n || time->v[j + 1] != time->v[j]);
+}
+
+typedef struct window_check {
+    td_result_array t0, t1, speed, contacts, fraction, peak, friction, temp, residual;
+} window_check;
+
+/* The window summaries of drop.cfg to 0.2 s in windows of 0.02 s against the run's own series, events
+ * and totals in the same file (a second reading of the same run): the speed and the race temperature
+ * at each window's end are the grid sample's there, the contacts are the onsets in the events table
+ * between its ends, the time in contact and the friction work add up to the run's totals, the peak
+ * is at least that of the samples and events in the window and the largest of them is the run's
+ * peak, the contact fraction is within a sample interval's worth of the contact flag of the grid
+ * samples, and the last residual is the summary's. */
+static void test_windows_against_series(void **state)
+{
+    static const char *ov[] = {"end_time = 0.2", "output.window = 0.02", "energy = true"};
+    td_case *c = td_test_load_case("cases/drop.cfg", ov, 3);
+    td_output_options out = *td_case_output_options(c);
+    const char *path = "test_long_run_windows.h5";
+    td_run_summary sum;
+    td_sim *s = NULL;
+    td_result *r = NULL;
+    td_result_event *ev = NULL;
+    td_result_array time, speed, normal, contact, temp;
+    window_check w;
+    td_error err;
+    size_t n_ev, i, j;
+    int k, n_ret = 2;
+    double contact_sum[2] = {0.0, 0.0}, friction_sum[2] = {0.0, 0.0}, top[2] = {0.0, 0.0};
+    (void)state;
+    snprintf(out.hdf5_path, sizeof out.hdf5_path, "%s", path);
+    out.csv_path[0] = '\0';
+    assert_int_equal(td_sim_create(td_case_model(c), td_case_sim_options(c), &s, &err), TD_OK);
+    assert_int_equal(td_run(s, 0.2, &out, NULL, NULL, &sum, &err), TD_OK);
+    assert_int_equal(td_result_open(path, &r, &err), TD_OK);
+    read_set(r, TD_OUT_TIME, &time);
+    read_set(r, TD_OUT_SPEED, &speed);
+    read_set(r, TD_OUT_RET_NORMAL_FORCE, &normal);
+    read_set(r, TD_OUT_RET_CONTACT_STATE, &contact);
+    read_set(r, TD_OUT_RET_RACE_TEMPERATURE, &temp);
+    read_set(r, TD_OUT_WIN_TIME_START, &w.t0);
+    read_set(r, TD_OUT_WIN_TIME_END, &w.t1);
+    read_set(r, TD_OUT_WIN_SPEED, &w.speed);
+    read_set(r, TD_OUT_WIN_CONTACTS, &w.contacts);
+    read_set(r, TD_OUT_WIN_CONTACT_FRACTION, &w.fraction);
+    read_set(r, TD_OUT_WIN_PEAK_NORMAL_FORCE, &w.peak);
+    read_set(r, TD_OUT_WIN_FRICTION_WORK, &w.friction);
+    read_set(r, TD_OUT_WIN_RACE_TEMPERATURE, &w.temp);
+    read_set(r, TD_OUT_WIN_ENERGY_RESIDUAL, &w.residual);
+    assert_int_equal(td_result_events(r, &ev, &n_ev, &err), TD_OK);
+    assert_int_equal(w.t1.n, 10);
+    assert_int_equal(w.contacts.dims[1], n_ret);
+    for (i = 0; i < w.t1.n; i++) {
+        size_t row = grid_row(&time, w.t1.v[i]);
+        assert_close(w.t1.v[i], 0.02 * (double)(i + 1), 1e-12, 0.0);
+        assert_true(i == 0 ? w.t0.v[i] == 0.0 : w.t0.v[i] == w.t1.v[i - 1]);
+        assert_true(w.speed.v[i] == speed.v[row]);
+        for (k = 0; k < n_ret; k++) {
+            size_t at = i * (size_t)n_ret + (size_t)k, grid = 0, touching = 0;
+            long onsets = 0;
+            double peak = 0.0;
+            assert_true(w.temp.v[at] == temp.v[row * (size_t)n_ret + (size_t)k]);
+            for (j = 0; j < n_ev; j++) {
+                const td_event *e = &ev[j].event;
+                if (e->retainer == k && e->time > w.t0.v[i] && e->time <= w.t1.v[i]) {
+                    onsets += e->kind == TD_EVENT_CONTACT_ONSET || e->kind == TD_EVENT_PENALTY_ENTER;
+                    peak = fmax(peak, fmax(e->normal_force, e->peak_normal_force));
+                }
+            }
+            for (j = 0; j < time.n; j++)
+                if (time.v[j] >= w.t0.v[i] && time.v[j] <= w.t1.v[i]) {
+                    if (contact.v[j * (size_t)n_ret + (size_t)k] > 0.0)
+                        peak = fmax(peak, normal.v[j * (size_t)n_ret + (size_t)k]);
+                    if (time.v[j] > w.t0.v[i] && is_grid_row(&time, j, out.sample_rate)) {
+                        grid++;
+                        touching += contact.v[j * (size_t)n_ret + (size_t)k] > 0.0;
+                    }
+                }
+            assert_int_equal((long)w.contacts.v[at], onsets);
+            assert_true(w.peak.v[at] >= peak);
+            assert_close(w.fraction.v[at], (double)touching / (double)grid, 0.0, 0.1);
+            contact_sum[k] += w.fraction.v[at] * (w.t1.v[i] - w.t0.v[i]);
+            friction_sum[k] += w.friction.v[at];
+            top[k] = fmax(top[k], w.peak.v[at]);
+        }
+    }
+    for (k = 0; k < n_ret; k++) {
+        assert_close(contact_sum[k], sum.retainers[k].totals.contact_time, 1e-12, 1e-15);
+        assert_close(friction_sum[k], sum.retainers[k].totals.friction_work, 1e-12, 1e-15);
+        assert_true(top[k] == sum.retainers[k].totals.peak_normal_force);
+    }
+    assert_true(sum.energy_kept);
+    assert_true(w.residual.v[w.residual.n - 1] == sum.energy.residual);
+    td_result_array_free(&time);
+    td_result_array_free(&speed);
+    td_result_array_free(&normal);
+    td_result_array_free(&contact);
+    td_result_array_free(&temp);
+    td_result_array_free(&w.t0);
+    td_result_array_free(&w.t1);
+    td_result_array_free(&w.speed);
+    td_result_array_free(&w.contacts);
+    td_result_array_free(&w.fraction);
+    td_result_array_free(&w.peak);
+    td_result_array_free(&w.friction);
+    td_result_array_free(&w.temp);
+    td_result_array_free(&w.residual);
+    free(ev);
+    td_result_free(&r);
+    td_sim_free(&s);
+    td_case_free(&c);
+    remove(path);
+}
+
+/* The heap in use at the progress calls, its largest (glibc's count of the bytes malloc handed out
+ * and not yet freed: it does not depend on time or load; under a sanitizer's allocator it reads 0). */
+static int heap_peak(double t, double fraction, long contacts, void *user)
+{
+    size_t *peak = user, now = mallinfo2().uordblks;
+    (void)t;
+    (void)fraction;
+    (void)contacts;
+    if (now > *peak)
+        *peak = now;
+    return 0;
+}
+
+/* The heap a run of rub-damped.cfg to t_end with HDF5 and CSV files at 50 kHz holds at its largest. */
+static size_t run_heap(double t_end)
+{
+    static const char *ov[] = {"output.sample_rate = 50000.0"};
+    td_case *c = td_test_load_case("cases/rub-damped.cfg", ov, 1);
+    td_output_options out = *td_case_output_options(c);
+    td_run_hooks hooks;
+    td_run_summary sum;
+    td_sim *s = NULL;
+    td_error err;
+    size_t peak = 0;
+    memset(&hooks, 0, sizeof hooks);
+    hooks.progress = heap_peak;
+    hooks.user = &peak;
+    hooks.progress_interval = 0.01;
+    snprintf(out.hdf5_path, sizeof out.hdf5_path, "test_long_run_heap.h5");
+    snprintf(out.csv_path, sizeof out.csv_path, "test_long_run_heap.csv");
+    assert_int_equal(td_sim_create(td_case_model(c), td_case_sim_options(c), &s, &err), TD_OK);
+    assert_int_equal(td_run(s, t_end, &out, &hooks, NULL, &sum, &err), TD_OK);
+    td_sim_free(&s);
+    td_case_free(&c);
+    remove("test_long_run_heap.h5");
+    remove("test_long_run_heap.csv");
+    remove("test_long_run_heap.events.csv");
+    return peak;
+}
+
+/* A run four times as long (20,000 samples of every series more, the contacts of the unbalance step)
+ * holds no more heap than the shorter one, give or take 256 KiB: what it writes goes to the files as
+ * it comes (HDF5's chunk cache kept up to 1 MiB of each series' written chunks: about 4 MiB more here). */
+static void test_memory_bounded(void **state)
+{
+    size_t short_run = run_heap(0.15), long_run = run_heap(0.55);
+    (void)state;
+    print_message("heap in use at its largest: %zu bytes to 0.15 s, %zu bytes to 0.55 s\n", short_run, long_run);
+    assert_true(long_run <= short_run + 256 * 1024);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_end_at_rest_closed_form),
+        cmocka_unit_test(test_windows_against_series),
+        cmocka_unit_test(test_memory_bounded),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
