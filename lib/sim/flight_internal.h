@@ -130,5 +130,14 @@ void td_sim_flight_materialise(td_sim *s, td_sim_flight *f, double t, int rate);
 double td_sim_flight_next_step(td_sim *s, td_sim_flight *f, double t, int *root);
 /* Every root function positive at s->dae.t: the flight starts clear of every root. */
 int td_sim_flight_clear_of_roots(td_sim *s, td_sim_flight *f);
+/* The node inside radius R until F(tau) = R - m - a tau^2 / 2 - |p + v tau| (concave) reaches zero:
+ * the lower end of a 30-step bisection of [0, hi] for the crossing (F > 0 there as computed), hi if
+ * F(hi) > 0, 0 if F(0) <= 0; td_sim_flight_inside_until with a few evaluations of F, bit for bit
+ * td_sim_flight_inside_bisect's answer (the plain bisection). */
+double td_sim_flight_inside_until(double R, double m, double a, const double p[2], const double v[2], double hi);
+double td_sim_flight_inside_bisect(double R, double m, double a, const double p[2], const double v[2], double hi);
+/* 1 if td_sim_flight_inside_until's answer is at most t (t >= 0) for every hi: F as computed is
+ * proven negative from t on (one evaluation); 0 if that is not proven. */
+int td_sim_flight_outside_from(double R, double m, double a, const double p[2], const double v[2], double t);
 
 #endif
