@@ -1,12 +1,14 @@
 /* The closed-form flight's safe step inside a radius (lib/sim/flight_roots.c): the fast search
  * (td_sim_flight_inside_until) must give the plain 30-step bisection's answer bit for bit on every
  * input, including crossings that lie on a point of the bisection's grid (where the sign of F as
- * computed is rounding noise), grazing orbits and a start at the radius; and the proof that a split
- * cannot beat the best step so far (td_sim_flight_outside_from) must never be wrong. */
+ * computed is rounding noise), grazing orbits and a start at the radius; the proof that a split
+ * cannot beat the best step so far (td_sim_flight_outside_from) must never be wrong; and the modal
+ * sums' real product (flight_mul) must be C's complex product. */
 #include "td_test.h"
 
 #include "sim/flight_internal.h"
 
+#include <complex.h>
 #include <math.h>
 #include <string.h>
 
@@ -159,12 +161,33 @@ static void test_degenerate(void **state)
     assert_false(td_sim_flight_outside_from(3e-4, 0.0, 1.0, nan2, v, 1e-3));
 }
 
+/* The modal sums' product without the NaN check: C's complex product's bits for finite factors of
+ * any size (each part of x y one rounding of ac - bd, ad + bc). */
+static void test_product(void **state)
+{
+    uint64_t seed = 5;
+    int i, differ = 0;
+    (void)state;
+    for (i = 0; i < NCASES; i++) {
+        double complex x = decades(&seed, -20.0, 20.0) * (uniform(&seed) - 0.5) +
+                           I * decades(&seed, -20.0, 20.0) * (uniform(&seed) - 0.5);
+        double complex y = decades(&seed, -20.0, 20.0) * (uniform(&seed) - 0.5) +
+                           I * decades(&seed, -20.0, 20.0) * (uniform(&seed) - 0.5);
+        double complex z = x * y;
+        double xy[2], re = creal(z), im = cimag(z);
+        flight_mul(x, y, xy);
+        differ += memcmp(&xy[0], &re, sizeof re) != 0 || memcmp(&xy[1], &im, sizeof im) != 0;
+    }
+    assert_int_equal(differ, 0);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_same_as_bisection),
         cmocka_unit_test(test_outside_from),
         cmocka_unit_test(test_degenerate),
+        cmocka_unit_test(test_product),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

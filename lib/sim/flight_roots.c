@@ -236,7 +236,7 @@ static double split_step(const td_sim_flight *f, int k, double t, double R)
     for (c = 0; c < 2; c++) { /* start: the forcing slow, every mode fast */
         p[c] = creal(o[c]->h0 + o[c]->hp * ep + o[c]->hm * conj(ep));
         v[c] = creal(I * w * (o[c]->hp * ep - o[c]->hm * conj(ep)));
-        a[c] = w * w * (cabs(o[c]->hp) + cabs(o[c]->hm));
+        a[c] = w * w * o[c]->h_abs;
         for (i = 0; i < f->nkeep; i++)
             m[c] += o[c]->m0[f->keep[i]] * f->ae[f->keep[i]];
     }
@@ -252,14 +252,28 @@ static double split_step(const td_sim_flight *f, int k, double t, double R)
             break;
         j = f->order[i]; /* mode j joins the slow side */
         for (c = 0; c < 2; c++) {
-            double complex ce = o[c]->c[j] * f->e[j];
-            p[c] += creal(ce);
-            v[c] += creal(ce * f->lam[j]);
+            double ce[2];
+            flight_mul(o[c]->c[j], f->e[j], ce);
+            p[c] += ce[0];
+            v[c] += ce[0] * creal(f->lam[j]) - ce[1] * cimag(f->lam[j]);
             a[c] += o[c]->m2[j] * f->ae[j];
             m[c] -= o[c]->m0[j] * f->ae[j];
         }
     }
     return best;
+}
+
+double td_sim_flight_node(const td_sim_flight *f, int k, double t, flight_val *x, flight_val *y)
+{
+    flight_obs *ox = &f->obs[2 * k], *oy = &f->obs[2 * k + 1];
+    double p, v, a;
+    *x = td_sim_flight_observe(f, 2 * k, t);
+    *y = td_sim_flight_observe(f, 2 * k + 1, t);
+    if (!isnan(ox->seen_bound) && ox->seen_bound == oy->seen_bound) /* both kept from this t */
+        return ox->seen_bound;
+    p = hypot(x->b0, y->b0), v = hypot(x->b1, y->b1), a = hypot(x->b2, y->b2);
+    ox->seen_bound = oy->seen_bound = 2.0 * (v * v + p * a);
+    return ox->seen_bound;
 }
 
 /* Retainer k's root functions at the last propagate (time t): the safe step to each (contact,
@@ -269,21 +283,21 @@ static double split_step(const td_sim_flight *f, int k, double t, double R)
  * for a slow approach: the safe steps creep up to the root and may stop a rounding error short of
  * it or beyond it, where the evaluation ahead is itself at the rounding level; missed there, the
  * flight hands over to IDA with the root behind IDA's restart, and the node passes through the
- * retainer unseen. */
-static void retainer_roots(const td_sim *s, td_sim_flight *f, int k, double t, double tau[2], int hit[2])
+ * retainer unseen. The contact's step is exact below `cap` (the step is at most that already: the
+ * other retainers' and the longest), and at least cap where it is not (no split is searched then). */
+static void retainer_roots(const td_sim *s, td_sim_flight *f, int k, double t, double cap, double tau[2], int hit[2])
 {
     const td_sim_retainer *r = &s->contacts.ret[k];
-    flight_val x = td_sim_flight_observe(f, 2 * k, t), y = td_sim_flight_observe(f, 2 * k + 1, t);
+    flight_val x, y;
+    double bound = td_sim_flight_node(f, k, t, &x, &y);
     double c = r->r.clearance, r2 = x.v * x.v + y.v * y.v, dr2 = 2.0 * (x.v * x.d + y.v * y.d);
-    double p = hypot(x.b0, y.b0), v = hypot(x.b1, y.b1), a = hypot(x.b2, y.b2);
-    double bound = 2.0 * (v * v + p * a);
     /* the radii of td_sim_roots' functions: gap + off = 0 (contact), gap - eps = 0 (rearm) */
     double contact2 = c * c + (r->armed ? 0.0 : 2.0 * c * s->machine.rearm_eps);
     double rearm2 = c * c - 2.0 * c * s->machine.rearm_eps;
     tau[0] = safe_step(contact2 - r2, -dr2, bound);
     hit[0] = tau[0] < FLIGHT_ROOT_TOL && dr2 > 0.0 &&
              (surely_crossed(contact2 - r2, dr2, bound) || crosses(f, k, t, contact2, 1.0, (contact2 - r2) / dr2));
-    if (!hit[0]) {
+    if (!hit[0] && !(tau[0] >= cap)) { /* a longer step is not taken */
         td_sim_flight_propagate(f, t); /* crosses() may have moved it */
         tau[0] = fmax(tau[0], split_step(f, k, t, sqrt(contact2)));
     }
@@ -296,8 +310,8 @@ static void retainer_roots(const td_sim *s, td_sim_flight *f, int k, double t, d
     }
 }
 
-/* The step from t that cannot pass a root; the roots reached (to FLIGHT_ROOT_TOL) flagged in
- * s->dae.rootsfound (*root: any). */
+/* The step from t that cannot pass a root (exact up to f->h_max, longer ones at least that); the
+ * roots reached (to FLIGHT_ROOT_TOL) flagged in s->dae.rootsfound (*root: any). */
 double td_sim_flight_next_step(td_sim *s, td_sim_flight *f, double t, int *root)
 {
     int k, i;
@@ -308,7 +322,7 @@ double td_sim_flight_next_step(td_sim *s, td_sim_flight *f, double t, int *root)
         double tau[2];
         int hit[2];
         td_sim_flight_propagate(f, t); /* crosses() moves it */
-        retainer_roots(s, f, k, t, tau, hit);
+        retainer_roots(s, f, k, t, fmin(step, f->h_max), tau, hit);
         for (i = 0; i < 2; i++) {
             if (hit[i]) {
                 s->dae.rootsfound[TD_ROOTS_PER_RETAINER * k + (i == 0 ? TD_ROOT_CONTACT : TD_ROOT_REARM)] =
