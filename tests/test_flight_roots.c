@@ -143,7 +143,7 @@ static void test_outside_from(void **state)
     assert_true(proven > tried / 2);
 }
 
-/* Degenerate inputs: no motion, a start outside, a NaN: the bisection's answers. */
+/* Degenerate inputs: no motion, a start outside, a NaN, a negative a: the bisection's answers. */
 static void test_degenerate(void **state)
 {
     static const double zero[2] = {0.0, 0.0}, p[2] = {2e-4, 0.0}, v[2] = {0.0, 1e-3};
@@ -159,6 +159,10 @@ static void test_degenerate(void **state)
     y = td_sim_flight_inside_bisect(3e-4, 0.0, 1.0, nan2, v, 1e-2);
     assert_memory_equal(&x, &y, sizeof x);
     assert_false(td_sim_flight_outside_from(3e-4, 0.0, 1.0, nan2, v, 1e-3));
+    x = td_sim_flight_inside_until(3e-4, 0.0, -50.0, p, v, 1e-2); /* F convex: no proof, the bisection */
+    y = td_sim_flight_inside_bisect(3e-4, 0.0, -50.0, p, v, 1e-2);
+    assert_memory_equal(&x, &y, sizeof x);
+    assert_false(td_sim_flight_outside_from(3e-4, 0.0, -50.0, p, v, 1e-3));
 }
 
 /* The modal sums' product without the NaN check: C's complex product's bits for finite factors of

@@ -223,17 +223,23 @@ static int decompose(const td_sim *s, td_sim_flight *f, const double *scale)
 
 /* ---- the forcing --------------------------------------------------------------------------- */
 
+/* (V^-1 x)_i, x complex */
+static double complex modal_row(const td_sim_flight *f, int i, const double complex *x)
+{
+    double complex acc = 0.0;
+    const double complex *row = f->Vinv + (size_t)i * (size_t)f->nz;
+    int j;
+    for (j = 0; j < f->nz; j++)
+        acc += row[j] * x[j];
+    return acc;
+}
+
 /* out = V^-1 x, x complex */
 static void to_modal(const td_sim_flight *f, const double complex *x, double complex *out)
 {
-    int i, j, nz = f->nz;
-    for (i = 0; i < nz; i++) {
-        double complex acc = 0.0;
-        const double complex *row = f->Vinv + (size_t)i * (size_t)nz;
-        for (j = 0; j < nz; j++)
-            acc += row[j] * x[j];
-        out[i] = acc;
-    }
+    int i;
+    for (i = 0; i < f->nz; i++)
+        out[i] = modal_row(f, i, x);
 }
 
 /* The block of first-order state i: 0 the displacements q, 1 the velocities v, 2 the AMB states w. */
@@ -413,11 +419,12 @@ static void particular(const td_sim_flight *f, double t, double complex *out)
 /* The observations' homogeneous parts for the amplitudes d at the anchor ta. */
 static void anchor_observations(td_sim_flight *f)
 {
-    int j, o, nz = f->nz;
+    int i, o;
     f->t_e = NAN; /* e is stale */
     for (o = 0; o < f->nobs; o++) {
         flight_obs *b = &f->obs[o];
-        for (j = 0; j < nz; j++) {
+        for (i = 0; i < f->nkeep; i++) { /* the kept modes: the others are never summed */
+            int j = f->keep[i];
             double l = cabs(f->lam[j]);
             b->c[j] = f->weight[j] * b->w[j] * f->d[j];
             b->m0[j] = cabs(b->c[j]);
@@ -436,7 +443,8 @@ static void anchor(td_sim *s, td_sim_flight *f)
     int j, nz = f->nz;
     for (j = 0; j < nz; j++)
         f->e[j] = y[j];
-    to_modal(f, f->e, f->d);
+    for (j = 0; j < f->nkeep; j++) /* the kept modes' amplitudes: the others are never summed */
+        f->d[f->keep[j]] = modal_row(f, f->keep[j], f->e);
     particular(f, s->dae.t, f->e);
     for (j = 0; j < nz; j++)
         f->d[j] -= f->e[j];

@@ -186,7 +186,7 @@ double td_sim_flight_inside_until(double R, double m, double a, const double p[2
     inside_fn g = inside_make(R, m, a, p, v);
     double f0, lo = 0.0, up = hi;
     int i;
-    if (!(hi > 0.0) || !isfinite(g.e0 + hi * (g.e1 + hi * g.e2)))
+    if (!(hi > 0.0) || !(a >= 0.0) || !isfinite(g.e0 + hi * (g.e1 + hi * g.e2))) /* (F concave: a >= 0) */
         return td_sim_flight_inside_bisect(R, m, a, p, v, hi);
     f0 = inside_eval(&g, 0.0, NULL);
     if (f0 <= 0.0)
@@ -210,7 +210,7 @@ double td_sim_flight_inside_until(double R, double m, double a, const double p[2
 int td_sim_flight_outside_from(double R, double m, double a, const double p[2], const double v[2], double t)
 {
     inside_fn g = inside_make(R, m, a, p, v);
-    if (!(t >= 0.0) || !isfinite(g.e0 + t * (g.e1 + t * g.e2)))
+    if (!(t >= 0.0) || !(a >= 0.0) || !isfinite(g.e0 + t * (g.e1 + t * g.e2)))
         return 0;
     inside_eval(&g, t, NULL);
     return g.t_neg <= t;
