@@ -117,11 +117,14 @@ static void amb_span(td_sim *s, td_sim_flight *f, double a, double b, const doub
  * the next h_max into *bound (as flight_roots.c's root functions; may be NULL). */
 static void margin_value(const td_sim_flight *f, int k, double t, double *r2, double *bound)
 {
-    flight_val x = td_sim_flight_observe(f, 2 * k, t), y = td_sim_flight_observe(f, 2 * k + 1, t);
-    double p = hypot(x.b0, y.b0), v = hypot(x.b1, y.b1), a = hypot(x.b2, y.b2);
+    flight_val x, y;
+    if (bound) {
+        *bound = td_sim_flight_node(f, k, t, &x, &y);
+    } else {
+        x = td_sim_flight_observe(f, 2 * k, t);
+        y = td_sim_flight_observe(f, 2 * k + 1, t);
+    }
     *r2 = x.v * x.v + y.v * y.v;
-    if (bound)
-        *bound = 2.0 * (v * v + p * a);
 }
 
 /* The largest radius of retainer k's node on [ta, ta + h] (r^2 = fa, fb at the ends, |(r^2)''| <= b2) to

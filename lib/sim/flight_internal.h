@@ -45,6 +45,11 @@
 /* the decomposition is used when A V = V diag(lambda) and V V^-1 = I hold to this */
 #define FLIGHT_DECOMPOSITION_TOL 1e-9
 
+/* An observation's value, rate and bounds from now on (|o|, |o'|, |o''| <= b0, b1, b2). */
+typedef struct flight_val {
+    double v, d, b0, b1, b2;
+} flight_val;
+
 /* One observed linear function of the state, o(t) = Re(sum_j c_j e^{lambda_j (t - ta)} + harmonic):
  * a retainer node's x or y, an AMB axis force. */
 typedef struct flight_obs {
@@ -52,13 +57,15 @@ typedef struct flight_obs {
     double complex *c;         /* nz: w_j d_j at the anchor */
     double *m0, *m1, *m2;      /* nz: |c_j|, |c_j lambda_j|, |c_j| |lambda_j|^2 */
     double complex h0, hp, hm; /* constant and harmonic parts: a0 + w.p0, w.pp, w.pm */
+    double h0_abs, h_abs;      /* |h0|, |hp| + |hm| */
     double offset;             /* a0: its value at z = 0 */
+    /* its last evaluation (td_sim_flight_observe), at seen_t (NaN: none since the anchor or forcing
+     * changed): a step's end is observed by the AMBs' peak, the clearance margin and the next step's
+     * roots, the same bits each time */
+    double seen_t;
+    flight_val seen;
+    double seen_bound; /* a retainer node's x or y: td_sim_flight_node's bound for seen (NaN: none) */
 } flight_obs;
-
-/* An observation's value, rate and bounds from now on (|o|, |o'|, |o''| <= b0, b1, b2). */
-typedef struct flight_val {
-    double v, d, b0, b1, b2;
-} flight_val;
 
 struct td_sim_flight {
     int nz;
@@ -104,6 +111,15 @@ struct td_sim_flight {
     double complex *work;           /* 2 nz */
 };
 
+/* x y into xy (real, imaginary) as C's complex product (C99 G.5.1: each part one rounding of
+ * ac - bd, ad + bc, which the compiled product gives for finite factors), without its check for a
+ * NaN: the sums over the modes that need only a real part. */
+static inline void flight_mul(double complex x, double complex y, double xy[2])
+{
+    xy[0] = creal(x) * creal(y) - cimag(x) * cimag(y);
+    xy[1] = creal(x) * cimag(y) + cimag(x) * creal(y);
+}
+
 /* ---- flight_modal.c ------------------------------------------------------------------------- */
 
 /* The flight allocated, its decomposition (in the states scaled by `scale`, neq) and forcing brought
@@ -125,10 +141,24 @@ void td_sim_flight_materialise(td_sim *s, td_sim_flight *f, double t, int rate);
 
 /* ---- flight_roots.c ------------------------------------------------------------------------- */
 
-/* The step from t that cannot pass a root; the roots reached (to FLIGHT_ROOT_TOL) flagged in
- * s->dae.rootsfound (*root: any). */
+/* The step from t that cannot pass a root (exact up to f->h_max, longer ones at least that); the
+ * roots reached (to FLIGHT_ROOT_TOL) flagged in s->dae.rootsfound (*root: any). */
 double td_sim_flight_next_step(td_sim *s, td_sim_flight *f, double t, int *root);
+/* Retainer k's node at the last propagate (time t): x and y into *x, *y, and the bound
+ * B = 2 (|p'|^2 + |p| |p''|) >= |(r^2)''| from t on (r^2 = x^2 + y^2, p = (x, y): |p|, |p'|, |p''| from
+ * the modal sums' bounds), shared by the root functions and the clearance margin (kept with the
+ * observations: the same t gives the same bits). */
+double td_sim_flight_node(const td_sim_flight *f, int k, double t, flight_val *x, flight_val *y);
 /* Every root function positive at s->dae.t: the flight starts clear of every root. */
 int td_sim_flight_clear_of_roots(td_sim *s, td_sim_flight *f);
+/* The node inside radius R until F(tau) = R - m - a tau^2 / 2 - |p + v tau| (concave) reaches zero:
+ * the lower end of a 30-step bisection of [0, hi] for the crossing (F > 0 there as computed), hi if
+ * F(hi) > 0, 0 if F(0) <= 0; td_sim_flight_inside_until with a few evaluations of F, bit for bit
+ * td_sim_flight_inside_bisect's answer (the plain bisection). */
+double td_sim_flight_inside_until(double R, double m, double a, const double p[2], const double v[2], double hi);
+double td_sim_flight_inside_bisect(double R, double m, double a, const double p[2], const double v[2], double hi);
+/* 1 if td_sim_flight_inside_until's answer is at most t (t >= 0) for every hi: F as computed is
+ * proven negative from t on (one evaluation); 0 if that is not proven. */
+int td_sim_flight_outside_from(double R, double m, double a, const double p[2], const double v[2], double t);
 
 #endif

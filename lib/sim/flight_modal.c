@@ -223,17 +223,23 @@ static int decompose(const td_sim *s, td_sim_flight *f, const double *scale)
 
 /* ---- the forcing --------------------------------------------------------------------------- */
 
+/* (V^-1 x)_i, x complex */
+static double complex modal_row(const td_sim_flight *f, int i, const double complex *x)
+{
+    double complex acc = 0.0;
+    const double complex *row = f->Vinv + (size_t)i * (size_t)f->nz;
+    int j;
+    for (j = 0; j < f->nz; j++)
+        acc += row[j] * x[j];
+    return acc;
+}
+
 /* out = V^-1 x, x complex */
 static void to_modal(const td_sim_flight *f, const double complex *x, double complex *out)
 {
-    int i, j, nz = f->nz;
-    for (i = 0; i < nz; i++) {
-        double complex acc = 0.0;
-        const double complex *row = f->Vinv + (size_t)i * (size_t)nz;
-        for (j = 0; j < nz; j++)
-            acc += row[j] * x[j];
-        out[i] = acc;
-    }
+    int i;
+    for (i = 0; i < f->nz; i++)
+        out[i] = modal_row(f, i, x);
 }
 
 /* The block of first-order state i: 0 the displacements q, 1 the velocities v, 2 the AMB states w. */
@@ -383,11 +389,14 @@ static void observe_forcing(td_sim_flight *f)
         flight_obs *b = &f->obs[o];
         b->h0 = b->offset;
         b->hp = b->hm = 0.0;
+        b->seen_t = NAN;
         for (j = 0; j < f->nz; j++) {
             b->h0 += b->w[j] * f->p0[j];
             b->hp += b->w[j] * f->pp[j];
             b->hm += b->w[j] * f->pm[j];
         }
+        b->h0_abs = cabs(b->h0);
+        b->h_abs = cabs(b->hp) + cabs(b->hm);
     }
 }
 
@@ -410,17 +419,19 @@ static void particular(const td_sim_flight *f, double t, double complex *out)
 /* The observations' homogeneous parts for the amplitudes d at the anchor ta. */
 static void anchor_observations(td_sim_flight *f)
 {
-    int j, o, nz = f->nz;
+    int i, o;
     f->t_e = NAN; /* e is stale */
     for (o = 0; o < f->nobs; o++) {
         flight_obs *b = &f->obs[o];
-        for (j = 0; j < nz; j++) {
+        for (i = 0; i < f->nkeep; i++) { /* the kept modes: the others are never summed */
+            int j = f->keep[i];
             double l = cabs(f->lam[j]);
             b->c[j] = f->weight[j] * b->w[j] * f->d[j];
             b->m0[j] = cabs(b->c[j]);
             b->m1[j] = b->m0[j] * l;
             b->m2[j] = b->m1[j] * l;
         }
+        b->seen_t = NAN;
     }
     f->anchored = 1;
 }
@@ -432,7 +443,8 @@ static void anchor(td_sim *s, td_sim_flight *f)
     int j, nz = f->nz;
     for (j = 0; j < nz; j++)
         f->e[j] = y[j];
-    to_modal(f, f->e, f->d);
+    for (j = 0; j < f->nkeep; j++) /* the kept modes' amplitudes: the others are never summed */
+        f->d[f->keep[j]] = modal_row(f, f->keep[j], f->e);
     particular(f, s->dae.t, f->e);
     for (j = 0; j < nz; j++)
         f->d[j] -= f->e[j];
@@ -494,30 +506,37 @@ void td_sim_flight_shift_held(td_sim *s, td_sim_flight *f, int reanchor)
     anchor_observations(f);
 }
 
-/* Observation o at the time of the last propagate (t). */
+/* Observation o at the time of the last propagate (t). Kept (flight_obs.seen): the same t again
+ * with the same propagate gives the same bits without the sums (e at t depends on t and the anchor
+ * only, and an anchor or a forcing clears what was kept). */
 flight_val td_sim_flight_observe(const td_sim_flight *f, int o, double t)
 {
-    const flight_obs *b = &f->obs[o];
-    double complex ep = td_sim_flight_phase(f, t), v = 0.0, d = 0.0;
-    double w = fabs(f->omega), h = cabs(b->hp) + cabs(b->hm);
+    flight_obs *b = &f->obs[o];
+    double complex ep;
+    double w = fabs(f->omega), h = b->h_abs;
     flight_val r = {0.0, 0.0, 0.0, 0.0, 0.0};
     int i;
-    for (i = 0; i < f->nkeep; i++) {
+    if (t == b->seen_t && t == f->t_e)
+        return b->seen;
+    ep = td_sim_flight_phase(f, t);
+    for (i = 0; i < f->nkeep; i++) { /* the real parts of sum c e and sum c e lambda, as complex */
         int j = f->keep[i];
-        double complex ce = b->c[j] * f->e[j];
-        v += ce;
-        d += ce * f->lam[j];
+        double ce[2];
+        flight_mul(b->c[j], f->e[j], ce);
+        r.v += ce[0];
+        r.d += ce[0] * creal(f->lam[j]) - ce[1] * cimag(f->lam[j]);
         r.b0 += b->m0[j] * f->ae[j];
         r.b1 += b->m1[j] * f->ae[j];
         r.b2 += b->m2[j] * f->ae[j];
     }
-    v += b->h0 + b->hp * ep + b->hm * conj(ep);
-    d += I * f->omega * (b->hp * ep - b->hm * conj(ep));
-    r.v = creal(v);
-    r.d = creal(d);
-    r.b0 += cabs(b->h0) + h;
+    r.v += creal(b->h0 + b->hp * ep + b->hm * conj(ep));
+    r.d += creal(I * f->omega * (b->hp * ep - b->hm * conj(ep)));
+    r.b0 += b->h0_abs + h;
     r.b1 += w * h;
     r.b2 += w * w * h;
+    b->seen_t = t;
+    b->seen = r;
+    b->seen_bound = NAN;
     return r;
 }
 
@@ -658,6 +677,7 @@ static int alloc_obs(flight_obs *o, size_t nz)
     o->m0 = calloc(nz, sizeof *o->m0);
     o->m1 = calloc(nz, sizeof *o->m1);
     o->m2 = calloc(nz, sizeof *o->m2);
+    o->seen_t = o->seen_bound = NAN;
     return o->w && o->c && o->m0 && o->m1 && o->m2;
 }
 

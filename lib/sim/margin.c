@@ -65,6 +65,17 @@ static double hermite_max(const td_sim_margin_sample *a, const td_sim_margin_sam
     return best;
 }
 
+/* 0 if the Hermite from a to b cannot come nearer retainer k's clearance than its margin so far: on
+ * [0, 1] its basis functions hold h00 + h01 = 1 (both >= 0), 0 <= h10 <= 4/27, -4/27 <= h11 <= 0, so
+ * it stays below max(a.r, b.r) + 4/27 h (|a.v| + |b.v|), evaluated within 2^-40 of its terms' sizes
+ * (a few ulps). */
+static int may_come_nearer(const td_sim *s, int k, const td_sim_margin_sample *a, const td_sim_margin_sample *b)
+{
+    double dv = fabs(b->t - a->t) * (fabs(a->v) + fabs(b->v));
+    double top = fmax(a->r, b->r) + (4.0 / 27.0) * dv + 0x1p-40 * (fabs(a->r) + fabs(b->r) + dv);
+    return !(s->contacts.ret[k].r.clearance - top >= s->monitor.totals[k].margin);
+}
+
 void td_sim_margin_start(td_sim *s)
 {
     int k;
@@ -106,7 +117,7 @@ void td_sim_margin_point(td_sim *s, double t)
                 tk->m_from = tk->m_last;
                 tk->m_to = now;
                 tk->m_held = 1;
-            } else {
+            } else if (may_come_nearer(s, k, &tk->m_last, &now)) {
                 td_sim_margin_note(s, k, hermite_max(&tk->m_last, &now, t));
             }
         } else if (!held) {
