@@ -60,9 +60,22 @@ typedef struct flight_val {
     double v, d, b0, b1, b2;
 } flight_val;
 
+/* A race that spins (retainer k, its DOF rs): its angle and speed at the flight's t_race
+ * (flight_race.c carries them; the modal states leave them out). */
+typedef struct flight_race {
+    int k;
+    double angle, speed;
+} flight_race;
+
 struct td_sim_flight {
-    int nz;
-    int handover; /* the flight gave up (step budget, creeping steps): IDA goes on until its next step */
+    int nz;    /* the modal states: the first ny unknowns of y but the races' angles and speeds */
+    int ny;    /* 2 n + nw: the q, v, w blocks at the start of y */
+    int *map;  /* nz: each modal state's index in y */
+    int *pos;  /* ny: each index of y's modal state, -1 for a race's angle or speed */
+    int nrace; /* races that spin, carried apart (flight_race.c) */
+    flight_race *race;
+    double t_race; /* the time of their anchor */
+    int handover;  /* the flight gave up (step budget, creeping steps): IDA goes on until its next step */
     /* the machine: valid for machine_key */
     int machine_ok;
     double *machine_key, *key_work;
@@ -122,6 +135,13 @@ double complex td_sim_flight_phase(const td_sim_flight *f, double t);
 void td_sim_flight_shift_held(td_sim *s, td_sim_flight *f, int reanchor);
 /* The state z at t into s->dae.y (and its rate into s->dae.yp with `rate`). */
 void td_sim_flight_materialise(td_sim *s, td_sim_flight *f, double t, int rate);
+
+/* ---- flight_race.c -------------------------------------------------------------------------- */
+
+/* The races' angles and speeds at s->dae.t (the state in s->dae.y) as their anchor. */
+void td_sim_flight_race_anchor(const td_sim *s, td_sim_flight *f);
+/* The races' angles and speeds at t into y (and their rates into yp, if not NULL). */
+void td_sim_flight_race_state(const td_sim *s, const td_sim_flight *f, double t, double *y, double *yp);
 
 /* ---- flight_roots.c ------------------------------------------------------------------------- */
 

@@ -54,16 +54,20 @@ static int key_changed(td_sim_flight *f, double *stored, int n)
 
 /* ---- the first-order rates, probed from the residual ------------------------------------ */
 
-/* z' at (t, z) with every retainer free: -F(t, y, 0) on the q and w rows, M^-1 (-F) on the v rows. */
+/* z' at (t, z) with every retainer free: -F(t, y, 0) on the q and w rows, M^-1 (-F) on the v rows
+ * (of all ny first unknowns, in f->res; the modal states' into rate). */
 static void rates(const td_sim *s, td_sim_flight *f, double t, const double *z, double *rate)
 {
     int i;
     memset(f->y, 0, sizeof(double) * (size_t)s->dae.neq);
-    memcpy(f->y, z, sizeof(double) * (size_t)f->nz);
-    td_sim_residual(s, t, f->y, f->yp, f->res);
     for (i = 0; i < f->nz; i++)
-        rate[i] = -f->res[i];
-    td_sim_mass_solve(s, rate + s->dae.ov);
+        f->y[f->map[i]] = z[i];
+    td_sim_residual(s, t, f->y, f->yp, f->res);
+    for (i = 0; i < f->ny; i++)
+        f->res[i] = -f->res[i];
+    td_sim_mass_solve(s, f->res + s->dae.ov);
+    for (i = 0; i < f->nz; i++)
+        rate[i] = f->res[f->map[i]];
 }
 
 /* Probe size of state i: half the smallest clearance for a displacement (a penalty contact stays
@@ -83,20 +87,22 @@ static double probe_size(const td_sim *s, int i)
 /* ---- the machine: A and its eigen-decomposition ----------------------------------------- */
 
 /* A in the scaled states z_i / S_i, S the integrator's absolute tolerances (each state in its
- * tolerance's units: the eigenvectors come out balanced, and their checks mean something). */
+ * tolerance's units: the eigenvectors come out balanced, and their checks mean something; S is
+ * indexed as y is). */
 static void fill_matrix(const td_sim *s, td_sim_flight *f, gsl_matrix *A, const double *S)
 {
     double *z = f->b[0];
+    const int *m = f->map;
     int i, j, nz = f->nz;
     memset(z, 0, sizeof(double) * (size_t)nz);
     rates(s, f, s->dae.t, z, f->rate0);
     for (j = 0; j < nz; j++) {
-        double h = probe_size(s, j);
+        double h = probe_size(s, m[j]);
         z[j] = h;
         rates(s, f, s->dae.t, z, f->rate);
         z[j] = 0.0;
         for (i = 0; i < nz; i++)
-            gsl_matrix_set(A, (size_t)i, (size_t)j, (f->rate[i] - f->rate0[i]) / h * S[j] / S[i]);
+            gsl_matrix_set(A, (size_t)i, (size_t)j, (f->rate[i] - f->rate0[i]) / h * S[m[j]] / S[m[i]]);
     }
 }
 
@@ -106,8 +112,8 @@ static void unscale_modes(td_sim_flight *f, const double *S)
     size_t i, j, nz = (size_t)f->nz;
     for (i = 0; i < nz; i++)
         for (j = 0; j < nz; j++) {
-            f->V[i * nz + j] *= S[i];
-            f->Vinv[i * nz + j] /= S[j];
+            f->V[i * nz + j] *= S[f->map[i]];
+            f->Vinv[i * nz + j] /= S[f->map[j]];
         }
 }
 
@@ -256,12 +262,13 @@ static int probe_forcing(const td_sim *s, td_sim_flight *f)
     rates(s, f, f->tf + q, z, f->b[2]);
     rates(s, f, f->tf + 0.25 * q, z, f->b[3]);
     for (i = 0; i < nz; i++) /* each block's size: the rounding of the mass solve is relative to it */
-        scale[forcing_block(s, i)] = fmax(scale[forcing_block(s, i)], fabs(f->b[0][i]) + fabs(f->b[1][i]));
+        scale[forcing_block(s, f->map[i])] =
+            fmax(scale[forcing_block(s, f->map[i])], fabs(f->b[0][i]) + fabs(f->b[1][i]));
     for (i = 0; i < nz; i++) {
         double b0 = w != 0.0 ? 0.5 * (f->b[0][i] + f->b[2][i]) : f->b[0][i];
         double bc = f->b[0][i] - b0, bs = w != 0.0 ? f->b[1][i] - b0 : 0.0;
         double check = b0 + M_SQRT1_2 * (bc + bs);
-        if (fabs(check - f->b[3][i]) > 1e-10 * scale[forcing_block(s, i)] + 1e-300)
+        if (fabs(check - f->b[3][i]) > 1e-10 * scale[forcing_block(s, f->map[i])] + 1e-300)
             ok = 0;
         f->b[0][i] = b0;
         bp[i] = 0.5 * (bc - I * bs);
@@ -348,17 +355,26 @@ static void set_obs_row(td_sim_flight *f, flight_obs *o, const double *a, double
     o->offset = a0;
 }
 
+/* Retainer k's node's x (c = 0) or y (c = 1) relative to its race's centre (retainer.h: what the
+ * contact sees; the race on its mount is one of the modal states) as the row a. */
+static void node_row(const td_sim *s, const td_sim_flight *f, int k, int c, double *a)
+{
+    const td_sim_retainer *r = &s->contacts.ret[k];
+    memset(a, 0, sizeof(double) * (size_t)f->nz);
+    a[f->pos[s->dae.oq + (c ? r->dy : r->dx)]] = 1.0;
+    if (r->rx >= 0)
+        a[f->pos[s->dae.oq + (c ? r->ry : r->rx)]] = -1.0;
+}
+
 /* The rows of the observations: retainer nodes' x, y; AMB axis forces (probed, linear). */
 static void build_observations(const td_sim *s, td_sim_flight *f)
 {
     double *a = f->rate;
     int i, k, nz = f->nz;
     for (k = 0; k < s->dae.nr; k++) {
-        memset(a, 0, sizeof(double) * (size_t)nz);
-        a[s->dae.oq + s->contacts.ret[k].dx] = 1.0;
+        node_row(s, f, k, 0, a);
         set_obs_row(f, &f->obs[2 * k], a, 0.0);
-        a[s->dae.oq + s->contacts.ret[k].dx] = 0.0;
-        a[s->dae.oq + s->contacts.ret[k].dy] = 1.0;
+        node_row(s, f, k, 1, a);
         set_obs_row(f, &f->obs[2 * k + 1], a, 0.0);
     }
     for (k = 0; k < s->sys->n_amb_axes; k++) {
@@ -366,10 +382,10 @@ static void build_observations(const td_sim *s, td_sim_flight *f)
         memset(f->y, 0, sizeof(double) * (size_t)s->dae.neq);
         f0 = td_sim_amb_axis_force(s, k, f->y);
         for (i = 0; i < nz; i++) {
-            double h = probe_size(s, i);
-            f->y[i] = h;
+            double h = probe_size(s, f->map[i]);
+            f->y[f->map[i]] = h;
             a[i] = (td_sim_amb_axis_force(s, k, f->y) - f0) / h;
-            f->y[i] = 0.0;
+            f->y[f->map[i]] = 0.0;
         }
         set_obs_row(f, &f->obs[2 * s->dae.nr + k], a, f0);
     }
@@ -431,13 +447,14 @@ static void anchor(td_sim *s, td_sim_flight *f)
     const double *y = N_VGetArrayPointer(s->dae.y);
     int j, nz = f->nz;
     for (j = 0; j < nz; j++)
-        f->e[j] = y[j];
+        f->e[j] = y[f->map[j]];
     to_modal(f, f->e, f->d);
     particular(f, s->dae.t, f->e);
     for (j = 0; j < nz; j++)
         f->d[j] -= f->e[j];
     f->ta = s->dae.t;
     anchor_observations(f);
+    td_sim_flight_race_anchor(s, f);
 }
 
 /* e_j = e^{lambda_j (t - ta)} and the bound factors |e_j| grow_j, for the time t. */
@@ -536,7 +553,8 @@ static void modal_state(const td_sim_flight *f, double t, double complex *a, dou
     }
 }
 
-/* The state z at t into y (and its rate into yp with `rate`; the rest of yp: zero in free flight). */
+/* The state z at t into y, the races' spins with it (and their rates into yp with `rate`; the rest
+ * of yp: zero in free flight). */
 void td_sim_flight_materialise(td_sim *s, td_sim_flight *f, double t, int rate)
 {
     double *y = N_VGetArrayPointer(s->dae.y), *yp = N_VGetArrayPointer(s->dae.yp);
@@ -544,6 +562,8 @@ void td_sim_flight_materialise(td_sim *s, td_sim_flight *f, double t, int rate)
     int i, k, nz = f->nz;
     td_sim_flight_propagate(f, t);
     modal_state(f, t, a, da);
+    if (rate)
+        memset(yp, 0, sizeof(double) * (size_t)s->dae.neq);
     for (i = 0; i < nz; i++) {
         const double complex *row = f->V + (size_t)i * (size_t)nz;
         double z = 0.0, zd = 0.0;
@@ -553,16 +573,16 @@ void td_sim_flight_materialise(td_sim *s, td_sim_flight *f, double t, int rate)
             if (rate)
                 zd += creal(v) * creal(da[k]) - cimag(v) * cimag(da[k]);
         }
-        y[i] = z;
+        y[f->map[i]] = z;
         if (rate)
-            yp[i] = zd;
+            yp[f->map[i]] = zd;
     }
-    for (i = nz; rate && i < s->dae.neq; i++)
-        yp[i] = 0.0;
+    td_sim_flight_race_state(s, f, t, y, rate ? yp : NULL);
 }
 
-/* The displacements z at t into y[0..nz) from the anchored flight, leaving the flight's own cache
- * (e, t_e) untouched: the modal coordinates go to the caller's `work` (2 neq doubles). */
+/* The modal states z at t into y (the races' spins left as they are) from the anchored flight,
+ * leaving the flight's own cache (e, t_e) untouched: the modal coordinates go to the caller's
+ * `work` (2 neq doubles). */
 int td_sim_flight_peek(const td_sim *s, double t, double *y, double *work)
 {
     const td_sim_flight *f = s->flight;
@@ -584,7 +604,7 @@ int td_sim_flight_peek(const td_sim *s, double t, double *y, double *work)
         double z = 0.0;
         for (k = 0; k < f->nkeep; k++)
             z += creal(row[f->keep[k]]) * creal(e[k]) - cimag(row[f->keep[k]]) * cimag(e[k]);
-        y[i] = z;
+        y[f->map[i]] = z;
     }
     return 1;
 }
@@ -615,6 +635,9 @@ void td_sim_flight_free(td_sim *s)
     for (i = 0; f->obs && i < f->nobs; i++)
         free_obs(&f->obs[i]);
     free(f->obs);
+    free(f->map);
+    free(f->pos);
+    free(f->race);
     free(f->machine_key);
     free(f->forcing_key);
     free(f->key_work);
@@ -690,16 +713,47 @@ static int alloc_held(const td_sim *s, td_sim_flight *f)
     return 1;
 }
 
+/* The modal states (f->nz, f->map, f->pos): the first ny unknowns of y but the angle and speed of
+ * each race that spins, which flight_race.c carries (f->race); 0 when out of memory. */
+static int alloc_map(const td_sim *s, td_sim_flight *f)
+{
+    int i, k, n = 0;
+    f->ny = 2 * s->dae.n + s->dae.nw;
+    for (k = 0; k < s->dae.nr; k++)
+        f->nrace += s->contacts.ret[k].rs >= 0;
+    f->nz = f->ny - 2 * f->nrace;
+    f->map = calloc((size_t)f->nz, sizeof *f->map);
+    f->pos = calloc((size_t)f->ny, sizeof *f->pos);
+    f->race = calloc((size_t)(f->nrace > 0 ? f->nrace : 1), sizeof *f->race);
+    if (!f->map || !f->pos || !f->race)
+        return 0;
+    for (k = 0, f->nrace = 0; k < s->dae.nr; k++)
+        if (s->contacts.ret[k].rs >= 0) {
+            f->race[f->nrace++].k = k;
+            f->pos[s->dae.oq + s->contacts.ret[k].rs] = f->pos[s->dae.ov + s->contacts.ret[k].rs] = -1;
+        }
+    for (i = 0; i < f->ny; i++)
+        if (f->pos[i] == 0) {
+            f->map[n] = i;
+            f->pos[i] = n++;
+        }
+    return 1;
+}
+
 /* The flight's arrays; 0 when out of memory (the integrator then carries the machine). */
 static int flight_alloc(td_sim *s)
 {
     td_sim_flight *f = calloc(1, sizeof *f);
-    size_t nz = (size_t)(2 * s->dae.n + s->dae.nw), neq = (size_t)s->dae.neq, nk, na;
+    size_t nz, neq = (size_t)s->dae.neq, nk, na;
     int i, ok = f != NULL;
     if (!ok)
         return 0;
     s->flight = f;
-    f->nz = (int)nz;
+    if (!alloc_map(s, f)) {
+        td_sim_flight_free(s);
+        return 0;
+    }
+    nz = (size_t)f->nz;
     f->nobs = 2 * s->dae.nr + s->sys->n_amb_axes;
     nk = (size_t)(3 + 2 * s->machine.nu + 5 * td_model_amb_count(s->model));
     f->machine_key = calloc(nk, sizeof(double));
