@@ -196,11 +196,43 @@ static void test_first_contact_with_races(void **state)
     td_case_free(&c);
 }
 
+/* A saturating AMB that has failed exerts nothing and integrates nothing (model/amb.c): its clip is
+ * no kink, and the flight carries the machine (here rub-damped with AMB 1 saturating, failed from
+ * the start, a plain bearing at its node instead): the state at 0.09 s against IDA's at 1e-5 of the
+ * tolerances. */
+static void test_failed_saturating_amb_flies(void **state)
+{
+    const char *ov[4] = {"end_time=0.1", "ambs[1].saturation = true",
+                         "bearings = ( { node = 9; kxx = 1.0e6; cxx = 200.0; } )",
+                         "schedule = ( { time = 0.0; amb_off = 1; } )"};
+    td_case *c = td_test_load_case("cases/rub-damped.cfg", ov, 4);
+    double atol = td_case_sim_options(c)->solver.atol, f[2 * VALUES * POINTS], i[2 * VALUES * POINTS], d[5];
+    td_sim_stats sf, si;
+    td_sim *s;
+    (void)state;
+    s = create(c, 1, 1.0);
+    assert_int_equal(td_sim_amb_mode(s, 1), TD_AMB_OFF);
+    run_free(s, f, &sf);
+    td_sim_free(&s);
+    s = create(c, 0, 1e5);
+    run_free(s, i, &si);
+    td_sim_free(&s);
+    differences(f, i, d);
+    print_message(
+        "AMB 1 saturating and failed: flight %ld steps (%.4f s); nodes %.3g m from IDA's at tolerances / 1e5\n",
+        sf.flight_steps, sf.flight_time, d[4]);
+    assert_int_equal(sf.contact_onsets, 0);
+    assert_true(sf.flight_time > 0.99 * T_FREE);
+    assert_true(d[4] <= atol);
+    td_case_free(&c);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_races_fly_as_integrated),
         cmocka_unit_test(test_first_contact_with_races),
+        cmocka_unit_test(test_failed_saturating_amb_flies),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
