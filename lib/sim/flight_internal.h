@@ -4,7 +4,9 @@
  *
  * While every retainer is free, the speed is prescribed and constant and the AMB laws are linear
  * (no saturation), the machine is linear and time-invariant with harmonic forcing. In the first
- * unknowns of y, z = [q | v | w] (sim_internal.h: y begins with exactly these blocks),
+ * unknowns of y, z = [q | v | w] (sim_internal.h: y begins with exactly these blocks) less the
+ * angle and speed of each race that spins (their drag is not linear: flight_race.c carries them;
+ * f->map places z in y; a race's centre on its mount is in z),
  *
  *   z' = A z + b0 + bc cos W(t - tf) + bs sin W(t - tf)
  *
@@ -19,11 +21,12 @@
  * integrates, with rounding as its only error.
  *
  * The next root is found with a step that cannot pass it: for each root function
- * G(t) = R^2 - |p(t)|^2 (p the node's position, R the radius of the root: the clearance, the
- * rearm radius), positive until the root, the modal sum bounds |p|, |p'|, |p''| from now on
- * (|e^{lambda t}| <= 1 for a stable mode), so G'' >= -B with B = 2 (|p'|max^2 + |p|max |p''|max),
- * and G stays positive for tau below the root of G + G' tau - B tau^2 / 2. Stepping by that tau
- * never crosses a root, however grazing, and converges on a simple root like Newton's method.
+ * G(t) = R^2 - |p(t)|^2 (p the node's position relative to its race's centre, R the radius of the
+ * root: the clearance, the rearm radius), positive until the root, the modal sum bounds |p|, |p'|,
+ * |p''| from now on (|e^{lambda t}| <= 1 for a stable mode), so G'' >= -B with
+ * B = 2 (|p'|max^2 + |p|max |p''|max), and G stays positive for tau below the root of
+ * G + G' tau - B tau^2 / 2. Stepping by that tau never crosses a root, however grazing, and
+ * converges on a simple root like Newton's method.
  */
 #ifndef TD_SIM_FLIGHT_INTERNAL_H
 #define TD_SIM_FLIGHT_INTERNAL_H
