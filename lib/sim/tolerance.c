@@ -48,8 +48,8 @@ int td_sim_races_retolerance(td_sim *s)
  *           Not the loosest scale that argument allows, atol 27 / (4 L_e) (the Hermite shape
  *           functions move the deflection between two nodes by at most (4/27) e L_e), although the
  *           slopes bind most steps of the damped rig cases: the slope error is the bending ringing
- *           an impact excites, and it reaches the contact force. With the looser scale the first
- *           impact of cases/rub-damped.cfg misses a converged reference by 0.82 % instead of
+ *           an impact excites, and it reaches the contact force. Measured on 0.16.0: with the looser
+ *           scale the first impact of cases/rub-damped.cfg misses a converged reference by 0.82 % instead of
  *           0.35 % (tests/validation/test_tolerance.c), where atol x 2 on every component saves as
  *           many steps over the run (27 %) for 0.43 %, and case B's peak force leaves its
  *           spread. (cases/drop.cfg saves a quarter of its steps and its answers stay inside the
@@ -71,7 +71,7 @@ int td_sim_races_retolerance(td_sim *s)
  * sqrt(k_m / m_r) (the race rings on its mount, not in the shaft's modes); the angle as the arc
  * atol / R_b at the race surface, and the speed as race_speed_atol says. The shaft's freq_max
  * would be looser (the race's velocities bind a quarter of cases/drop.cfg's steps), but the race's
- * velocity drives its contact's damper: at freq_max the first impact of cases/rub-damped.cfg moves
+ * velocity drives its contact's damper: at freq_max (measured on 0.16.0) the first impact of cases/rub-damped.cfg moves
  * away from its converged value (0.35 -> 0.48 %) with no fewer steps, and the drop saves 13 % of its
  * steps (means of five runs), inside the scatter of its bounce sequence. */
 static void race_tolerances(td_sim *s, double *at, double *id)
