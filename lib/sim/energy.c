@@ -34,24 +34,22 @@ static double quadratic(const td_sim *s, const double *vals, const double *x, co
     return sum;
 }
 
-/* v^T M v, q^T K q and v^T D v into out[0..2], row by row. Each sum is accumulated in the order
- * quadratic() takes it over the union pattern, row by row and along each row, less the entries
- * where M and K are both zero (ops->mk_*): with finite q and v such a product is a signed zero, and
- * adding a signed zero to a partial sum changes nothing, since a sum that starts at +0 can never
- * be -0 in round-to-nearest (x + (-x) = +0, +0 + -0 = +0) and x + -0 = x for every other x. So the
- * three are bit for bit what three separate passes over the union pattern give. */
-void td_sim_quadratic_forms(const td_sim_operators *ops, int n, const double *q, const double *v, double out[3])
+/* v^T M v, q^T K q and v^T D v into out[0..2] in one pass over the shared pattern, M, K and D stored
+ * on it (row-compressed, n rows). Each sum is accumulated in the same order as quadratic() takes it,
+ * row by row and along each row, so the three are bit for bit what three separate passes give. */
+void td_sim_quadratic_forms(int n, const int *rowptr, const int *col, const double *M, const double *K, const double *D,
+                            const double *q, const double *v, double out[3])
 {
     double sm = 0.0, sk = 0.0, sd = 0.0;
     int i, p;
     for (i = 0; i < n; i++) {
         double rm = 0.0, rk = 0.0, rd = 0.0;
-        for (p = ops->mk_rowptr[i]; p < ops->mk_rowptr[i + 1]; p++) {
-            rm += ops->mk_M[p] * v[ops->mk_col[p]];
-            rk += ops->mk_K[p] * q[ops->mk_col[p]];
+        for (p = rowptr[i]; p < rowptr[i + 1]; p++) {
+            double vc = v[col[p]];
+            rm += M[p] * vc;
+            rk += K[p] * q[col[p]];
+            rd += D[p] * vc;
         }
-        for (p = ops->st_rowptr[i]; p < ops->st_rowptr[i + 1]; p++)
-            rd += ops->st_D[p] * v[ops->st_col[p]];
         sm += v[i] * rm;
         sk += q[i] * rk;
         sd += v[i] * rd;
@@ -100,7 +98,8 @@ static double powers(td_sim *s, double t, const double *y, double pw[5], double 
     const double *q = y + s->dae.oq, *v = y + s->dae.ov;
     double forms[3], held;
     int i, k;
-    td_sim_quadratic_forms(&s->ops, s->dae.n, q, v, forms);
+    td_sim_quadratic_forms(s->dae.n, s->ops.st_rowptr, s->ops.st_col, s->ops.st_M, s->ops.st_K, s->ops.st_D, q, v,
+                           forms);
     *kinetic = 0.5 * forms[0];
     held = *kinetic + 0.5 * forms[1];
     memset(s->monitor.energy_f, 0, sizeof(double) * (size_t)s->dae.n);

@@ -451,10 +451,6 @@ void td_sim_teardown(td_sim *s)
     free(s->ops.st_M);
     free(s->ops.st_K);
     free(s->ops.st_D);
-    free(s->ops.mk_rowptr);
-    free(s->ops.mk_col);
-    free(s->ops.mk_M);
-    free(s->ops.mk_K);
     free(s->machine.unb);
     free(s->machine.amb_mode);
     free(s->monitor.sensor_peak);

@@ -206,9 +206,6 @@ td_status td_sim_pattern_build(td_sim *s, td_error *err);
 int td_sim_pattern_find(const td_sim *s, int row, int col);
 /* Build the row-compressed M, K, D of the structural operator (s->st_*), D at s->machine.omega. */
 td_status td_sim_structural_build(td_sim *s, td_error *err);
-/* ops->mk_* from ops->st_* (n rows): M and K on the union pattern's entries where either is not
- * zero, in the same order; returns 0 out of memory (what was allocated is in ops, to free). */
-int td_sim_operators_compress_mk(td_sim_operators *ops, int n);
 /* Recompute D = C + Omega G after a change of s->machine.omega. */
 void td_sim_structural_speed(td_sim *s);
 /* Factorise M (s->ops.Ms, s->ops.Mn). */
@@ -286,9 +283,10 @@ void td_sim_energy_impact(td_sim *s, double before, double after);
 void td_sim_energy_rewind(td_sim *s);
 /* Kinetic energy 1/2 v^T M v of the state y, J. */
 double td_sim_kinetic_energy(const td_sim *s, const double *y);
-/* v^T M v, q^T K q and v^T D v (out[0..2]) in one sweep of the rows of n: M and K on ops->mk_*, D on
- * ops->st_*; bit for bit the three row-by-row sums over the union pattern (energy.c). */
-void td_sim_quadratic_forms(const td_sim_operators *ops, int n, const double *q, const double *v, double out[3]);
+/* v^T M v, q^T K q and v^T D v (out[0..2]) of M, K, D stored on one row-compressed pattern of n rows,
+ * in one pass; bit for bit the three separate row-by-row sums. */
+void td_sim_quadratic_forms(int n, const int *rowptr, const int *col, const double *M, const double *K, const double *D,
+                            const double *q, const double *v, double out[3]);
 /* The energy account at s->dae.t (td_sim_energy). */
 void td_sim_energy_get(const td_sim *s, td_energy *out);
 /* A point of the totals at time t with the state in s->dae.y: closes the segment since the last point

@@ -268,29 +268,6 @@ void td_sim_structural_speed(td_sim *s)
         st_add(s, s->dae.G, s->machine.omega, s->ops.st_D);
 }
 
-int td_sim_operators_compress_mk(td_sim_operators *ops, int n)
-{
-    size_t room = (size_t)(ops->st_nnz > 0 ? ops->st_nnz : 1);
-    int i, p, m = 0;
-    ops->mk_rowptr = malloc(sizeof(int) * (size_t)(n + 1));
-    ops->mk_col = malloc(sizeof(int) * room);
-    ops->mk_M = malloc(sizeof(double) * room);
-    ops->mk_K = malloc(sizeof(double) * room);
-    if (!ops->mk_rowptr || !ops->mk_col || !ops->mk_M || !ops->mk_K)
-        return 0;
-    for (i = 0; i < n; i++) {
-        ops->mk_rowptr[i] = m;
-        for (p = ops->st_rowptr[i]; p < ops->st_rowptr[i + 1]; p++)
-            if (ops->st_M[p] != 0.0 || ops->st_K[p] != 0.0) {
-                ops->mk_col[m] = ops->st_col[p];
-                ops->mk_M[m] = ops->st_M[p];
-                ops->mk_K[m++] = ops->st_K[p];
-            }
-    }
-    ops->mk_rowptr[n] = m;
-    return 1;
-}
-
 td_status td_sim_structural_build(td_sim *s, td_error *err)
 {
     cs_di *T = cs_di_spalloc(s->dae.n, s->dae.n, 1, 1, 1), *C = NULL, *R = NULL;
@@ -325,8 +302,6 @@ td_status td_sim_structural_build(td_sim *s, td_error *err)
         return td_error_set(err, TD_ERR_NOMEM, "out of memory building the structural operator");
     st_add(s, s->dae.M, 1.0, s->ops.st_M);
     st_add(s, s->dae.K, 1.0, s->ops.st_K);
-    if (!td_sim_operators_compress_mk(&s->ops, s->dae.n))
-        return td_error_set(err, TD_ERR_NOMEM, "out of memory building the structural operator");
     td_sim_structural_speed(s);
     return TD_OK;
 }

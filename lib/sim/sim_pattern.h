@@ -30,10 +30,6 @@ typedef struct td_sim_operators {
     int st_nnz;
     int *st_rowptr, *st_col;
     double *st_M, *st_K, *st_D;
-    /* M and K alone, on the entries of the union pattern where either is not zero (the same rows,
-     * in the same order): the energy account's v^T M v and q^T K q (energy.c) without the stored zeros */
-    int *mk_rowptr, *mk_col;
-    double *mk_M, *mk_K;
 } td_sim_operators;
 
 #endif
