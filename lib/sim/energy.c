@@ -34,6 +34,31 @@ static double quadratic(const td_sim *s, const double *vals, const double *x, co
     return sum;
 }
 
+/* v^T M v, q^T K q and v^T D v into out[0..2] in one pass over the shared pattern, M, K and D stored
+ * on it (row-compressed, n rows). Each sum is accumulated in the same order as quadratic() takes it,
+ * row by row and along each row, so the three are bit for bit what three separate passes give. */
+void td_sim_quadratic_forms(int n, const int *rowptr, const int *col, const double *M, const double *K, const double *D,
+                            const double *q, const double *v, double out[3])
+{
+    double sm = 0.0, sk = 0.0, sd = 0.0;
+    int i, p;
+    for (i = 0; i < n; i++) {
+        double rm = 0.0, rk = 0.0, rd = 0.0;
+        for (p = rowptr[i]; p < rowptr[i + 1]; p++) {
+            double vc = v[col[p]];
+            rm += M[p] * vc;
+            rk += K[p] * q[col[p]];
+            rd += D[p] * vc;
+        }
+        sm += v[i] * rm;
+        sk += q[i] * rk;
+        sd += v[i] * rd;
+    }
+    out[0] = sm;
+    out[1] = sk;
+    out[2] = sd;
+}
+
 double td_sim_kinetic_energy(const td_sim *s, const double *y)
 {
     return 0.5 * quadratic(s, s->ops.st_M, y + s->dae.ov, y + s->dae.ov);
@@ -66,13 +91,17 @@ static double contact_spring(const td_sim *s, int k, const double *y, double *lo
     return e;
 }
 
-/* The powers at y (external, drive, damping, contact, drag) into pw and the housing motion's into
- * *housing; returns the energy held. */
-static double powers(td_sim *s, double t, const double *y, double pw[5], double *housing)
+/* The powers at y (external, drive, damping, contact, drag) into pw, the housing motion's into
+ * *housing and the kinetic energy into *kinetic; returns the energy held. */
+static double powers(td_sim *s, double t, const double *y, double pw[5], double *housing, double *kinetic)
 {
     const double *q = y + s->dae.oq, *v = y + s->dae.ov;
-    double held = td_sim_kinetic_energy(s, y) + 0.5 * quadratic(s, s->ops.st_K, q, q);
+    double forms[3], held;
     int i, k;
+    td_sim_quadratic_forms(s->dae.n, s->ops.st_rowptr, s->ops.st_col, s->ops.st_M, s->ops.st_K, s->ops.st_D, q, v,
+                           forms);
+    *kinetic = 0.5 * forms[0];
+    held = *kinetic + 0.5 * forms[1];
     memset(s->monitor.energy_f, 0, sizeof(double) * (size_t)s->dae.n);
     td_sim_external_forces(s, t, y, 1.0, s->monitor.energy_f);
     memset(pw, 0, 5 * sizeof *pw);
@@ -87,7 +116,7 @@ static double powers(td_sim *s, double t, const double *y, double pw[5], double 
         pw[0] -= *housing;
     }
     pw[0] += td_sim_unbalance_spin_coupling(s, t, y, N_VGetArrayPointer(s->dae.yp), NULL);
-    pw[2] = quadratic(s, s->ops.st_D, v, v);
+    pw[2] = forms[2];
     for (k = 0; k < s->dae.nr; k++) {
         double loss;
         held += contact_spring(s, k, y, &loss);
@@ -106,7 +135,7 @@ static double powers(td_sim *s, double t, const double *y, double pw[5], double 
 void td_sim_energy_point(td_sim *s, double t, int restart, double dt)
 {
     const double *y = N_VGetArrayPointer(s->dae.y);
-    double pw[5], ph, held = powers(s, t, y, pw, &ph), *prev = s->monitor.energy_prev;
+    double pw[5], ph, ke, held = powers(s, t, y, pw, &ph, &ke), *prev = s->monitor.energy_prev;
     td_energy *e = &s->monitor.energy;
     if (dt > 0.0) {
         e->housing_work += 0.5 * dt * (s->monitor.housing_prev + ph);
@@ -122,7 +151,7 @@ void td_sim_energy_point(td_sim *s, double t, int restart, double dt)
     }
     memcpy(prev, pw, sizeof pw);
     s->monitor.housing_prev = ph;
-    e->kinetic = td_sim_kinetic_energy(s, y);
+    e->kinetic = ke;
     e->elastic = held - e->kinetic;
 }
 
@@ -138,7 +167,7 @@ void td_sim_energy_impact(td_sim *s, double before, double after)
 static void energy_back_to_now(td_sim *s, td_energy *e, double pw[5], double *ph)
 {
     const double *y = N_VGetArrayPointer(s->dae.y), *prev = s->monitor.energy_prev;
-    double dt = s->monitor.totals_t - s->dae.t, held = powers(s, s->dae.t, y, pw, ph);
+    double ke, dt = s->monitor.totals_t - s->dae.t, held = powers(s, s->dae.t, y, pw, ph, &ke);
     if (dt > 0.0) {
         e->housing_work -= 0.5 * dt * (s->monitor.housing_prev + *ph);
         e->external_work -= 0.5 * dt * (prev[0] + pw[0]);
@@ -147,7 +176,7 @@ static void energy_back_to_now(td_sim *s, td_energy *e, double pw[5], double *ph
         e->contact_loss -= 0.5 * dt * (prev[3] + pw[3]);
         e->drag_loss -= 0.5 * dt * (prev[4] + pw[4]);
     }
-    e->kinetic = td_sim_kinetic_energy(s, y);
+    e->kinetic = ke;
     e->elastic = held - e->kinetic;
 }
 

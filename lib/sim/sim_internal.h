@@ -283,6 +283,10 @@ void td_sim_energy_impact(td_sim *s, double before, double after);
 void td_sim_energy_rewind(td_sim *s);
 /* Kinetic energy 1/2 v^T M v of the state y, J. */
 double td_sim_kinetic_energy(const td_sim *s, const double *y);
+/* v^T M v, q^T K q and v^T D v (out[0..2]) of M, K, D stored on one row-compressed pattern of n rows,
+ * in one pass; bit for bit the three separate row-by-row sums. */
+void td_sim_quadratic_forms(int n, const int *rowptr, const int *col, const double *M, const double *K, const double *D,
+                            const double *q, const double *v, double out[3]);
 /* The energy account at s->dae.t (td_sim_energy). */
 void td_sim_energy_get(const td_sim *s, td_energy *out);
 /* A point of the totals at time t with the state in s->dae.y: closes the segment since the last point
