@@ -9,6 +9,7 @@
 #include "model/gap.h"
 #include "touchdown/dofs.h"
 #include "touchdown/modal.h"
+#include "touchdown/run.h"
 #include "util/error_internal.h"
 #include "util/limits.h"
 
@@ -664,6 +665,18 @@ static td_status check_run(td_case_reader *r, const config_setting_t *root, cons
     return st;
 }
 
+/* long runs: end_at_rest only on a run that can come to rest (td_run_rest_refused), named at the key
+ * and at the speed it judges */
+static td_status check_end_at_rest(td_case_reader *r, const config_setting_t *root, const td_cs_key *k, void *rec)
+{
+    const td_case *c = rec;
+    char why[256];
+    if (!c->output.end_at_rest || !td_run_rest_refused(c->model, why, sizeof why))
+        return TD_OK;
+    return td_cr_fail_vs(r, config_setting_get_member(root, k->key), config_setting_get_member(root, "speed"), "%s",
+                         why);
+}
+
 static td_status read_description(td_case_reader *r, const config_setting_t *root, const td_cs_key *k, void *rec)
 {
     td_case *c = rec;
@@ -906,8 +919,13 @@ static const td_cs_key root_keys[] = {
      .offset = offsetof(td_case, output.end_at_rest),
      .need = TD_CS_PRESET,
      .order = 14,
+     .check = check_end_at_rest,
      .doc = "end the run, complete, at the first grid sample at which the rotor is at rest: its speed below 1 % of "
-            "its start speed or below 1 rad/s (the rule of the ending \"at rest\"); `end_time` then bounds the run. "
-            "For a free `spin` (a coast-down, a drop followed to rest): `t_reached` says when it stopped"},
+            "its start speed or below 1 rad/s (the rule of the ending \"at rest\"), tested only after the last "
+            "prescribed change (every `schedule` entry's time, every `speed_ramp` point's: a drop still to come "
+            "has not happened); `end_time` then bounds the run. For a free `spin` (a coast-down, a drop followed "
+            "to rest): `t_reached` says when it stopped. Refused when the rotor could not come to rest: a start "
+            "`speed` of at most 1 rad/s (already at rest), or a speed held constant (neither `spin.free` nor a "
+            "`speed_ramp`). It judges the speed alone: a rotor at rest may still bounce on its retainers"},
 };
 const td_cs_table td_cs_root = {"", "top", root_keys, TD_CS_COUNT(root_keys), sizeof(td_case), root_preset, NULL};
