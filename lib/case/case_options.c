@@ -293,14 +293,14 @@ static td_status read_output_nodes(td_case_reader *r, const config_setting_t *g,
     return TD_OK;
 }
 
-/* long runs: output.window, 0 or at least one sample interval (a window closes at a grid sample) */
+/* long runs: output.window, 0 or a whole number of sample intervals (td_run_window_check) */
 static td_status check_window(td_case_reader *r, const config_setting_t *g, const td_cs_key *k, void *rec)
 {
     const td_output_options *o = rec;
-    if (o->window > 0.0 && o->window * o->sample_rate < 1.0)
-        return td_cr_fail(r, config_setting_get_member(g, k->key), NULL,
-                          "%g s is shorter than the sample interval 1 / sample_rate = %g s", o->window,
-                          1.0 / o->sample_rate);
+    char why[320];
+    if (td_run_window_check(o->window, o->sample_rate, why, sizeof why))
+        return td_cr_fail_vs(r, config_setting_get_member(g, k->key), config_setting_get_member(g, "sample_rate"), "%s",
+                             why);
     return TD_OK;
 }
 
@@ -372,13 +372,14 @@ static const td_cs_key output_keys[] = {
      .need = TD_CS_PRESET,
      .range = TD_CR_NONNEGATIVE,
      .check = check_window,
-     .doc_range = "0, or at least 1 / sample_rate",
+     .doc_range = "0, or a whole number (at least 1) of sample intervals 1 / sample_rate",
      .doc_default = "%s (none)",
      .unit = "s",
-     .doc = "summaries over windows of this length, each closed at the first grid sample at or after its end: the "
-            "speed, and each retainer's contacts, time in contact, peak normal force, friction work and race "
-            "temperature rise, the energy account (docs/output-format.md, \"Window summaries\"); a long run keeps its "
-            "story in them at any sample rate"},
+     .doc = "summaries over windows of this length, each closed at the grid sample at its end (so a length that is "
+            "not a whole number of sample intervals is refused, never lengthened): the speed, and each retainer's "
+            "contacts, time in contact, peak normal force (at the integrator's points inside the window), friction "
+            "work and race temperature rise, the energy account (docs/output-format.md, \"Window summaries\"); a "
+            "long run keeps its story in them at any sample rate"},
     {.key = "events",
      .type = TD_CS_CUSTOM,
      .read = read_output_events,

@@ -662,6 +662,8 @@ static td_status check_args(const td_sim *sim, double t_end, const td_output_opt
     if (!(out->section_after >= 0.0 && out->section_after <= 1.0))
         return td_error_set(err, TD_ERR_INVALID, "td_run: section_after = %g is not a fraction of the run in [0, 1]",
                             out->section_after);
+    if (td_run_window_check(out->window, out->sample_rate, why, sizeof why)) /* long runs */
+        return td_error_set(err, TD_ERR_INVALID, "td_run: window: %s", why);
     if (out->end_at_rest && td_run_rest_refused(td_sim_model(sim), why, sizeof why)) /* long runs */
         return td_error_set(err, TD_ERR_INVALID, "td_run: end_at_rest: %s", why);
     td_sim_options_get(sim, &opt);

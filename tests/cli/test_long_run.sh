@@ -7,7 +7,8 @@
 #   - output.window and output.events = false: the window file has one row per window and its flag,
 #     the events file no row, /windows is in the HDF5 file, and the samples are the grid's alone (the
 #     same run with its events has both);
-#   - a window shorter than a sample interval is refused with one line (exit 2, no file);
+#   - a window shorter than a sample interval, or not a whole number of them, is refused with one
+#     line (exit 2, no file);
 #   - end_at_rest tests the speed only after the last schedule entry (a drop still to come), and
 #     is refused (exit 2, one line naming it) on a rotor already at rest or held at speed.
 # Args: $1 = the touchdown binary, $2 = the source directory.
@@ -85,5 +86,11 @@ t "$work/short" run -q --set output.window=1e-5 "$rub" -o s
 check "window shorter than a sample interval: exit 2, one line naming output.window ($(cat "$work/short/.err"))" \
     test "$rc" = 2 -a "$(wc -l <"$work/short/.err")" = 1 -a -n "$(grep -F 'output.window' "$work/short/.err")"
 check "window shorter than a sample interval: no file" test -z "$(ls "$work/short")"
+# rub-damped.cfg samples at 10 kHz: 0.15 ms is one and a half sample intervals, which a window
+# closed at grid samples would silently make 0.2 ms
+t "$work/half" run -q --set output.window=1.5e-4 "$rub" -o h
+check "window not a whole number of sample intervals: exit 2, one line naming output.window ($(cat "$work/half/.err"))" \
+    test "$rc" = 2 -a "$(wc -l <"$work/half/.err")" = 1 -a -n "$(grep -F 'output.window: 0.00015 s is not a whole number of sample intervals' "$work/half/.err")"
+check "window not a whole number of sample intervals: no file" test -z "$(ls "$work/half")"
 
 finish
