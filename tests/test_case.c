@@ -1498,10 +1498,11 @@ static void test_rules_name_the_set_they_compare_with(void **state)
                    "shaft.elements at ",
                    "cases/paper-a.cfg: --set 'shaft.elements=2'");
     snprintf(tail, sizeof tail, "cases/drop.cfg: --set '%s'", one_amb[0]);
-    expect_located("cases/drop.cfg", one_amb, 1,
-                   "cases/drop.cfg:40: schedule[1].amb_off: AMB 1 does not exist (1 defined, indices start at 0; the "
-                   "change at t = 0.05 s); see ambs at ",
-                   tail);
+    expect_located(
+        "cases/drop.cfg", one_amb, 1,
+        "cases/include/drop-rig.cfg:39: schedule[1].amb_off: AMB 1 does not exist (1 defined, indices start at 0; the "
+        "change at t = 0.05 s); see ambs at ",
+        tail);
     expect_located("cases/recovery.cfg", renamed, 1,
                    "cases/recovery.cfg:66: recovery.nominal: no controller is named \"pd\" (the controllers table "
                    "names \"x\", \"pd-sync\"; see controllers at ",
