@@ -7,6 +7,8 @@
 #ifndef TOUCHDOWN_RECORDS_H
 #define TOUCHDOWN_RECORDS_H
 
+#include "touchdown/export.h"
+
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -27,6 +29,10 @@ typedef enum td_event_kind {
                                          (touchdown/model.h td_recovery): td_event.controller is the law
                                          switched to, td_event.sensed_radius the radius it judged */
 } td_event_kind;
+
+/** 1 if an event of `kind` opens a contact (an onset: TD_EVENT_CONTACT_ONSET or
+ *  TD_EVENT_PENALTY_ENTER, which the contacts count), else 0. */
+TD_API int td_event_is_onset(td_event_kind kind);
 
 /** One event, as recorded in the event table. Velocities are of the retainer node. */
 typedef struct td_event {

@@ -312,6 +312,15 @@ TD_API const char *td_shock_outcome_name(td_shock_outcome o);
  *  speed0 or below 1 rad/s. The summary's ending "at rest" uses it; a report judges the totals of a
  *  run (damage, heat) as those of a whole drop only when the run ended at rest. */
 TD_API int td_run_at_rest(double speed0, double speed);
+/** end_at_rest (td_output_options): the time after which the rest test applies, the time of the last
+ *  change the model has prescribed (its schedule's last entry, its speed ramp's last point), before
+ *  which the rotor is not yet at rest whatever its speed (a drop still to come); -HUGE_VAL when none. */
+TD_API double td_run_rest_after(const td_model *m);
+/** end_at_rest: 0 if a run of `m` can end at rest, else 1 with the reason into `why` (size bytes):
+ *  its start speed already at rest (at most 1 rad/s: the run would stop at its first sample) or a
+ *  speed held constant (neither a free spin nor a speed ramp: it never slows down). The one rule the
+ *  case reader (naming the key) and td_run apply. */
+TD_API int td_run_rest_refused(const td_model *m, char *why, size_t size);
 /** 1 if a section of `crossings` (> 0) samples is too short to tell an orbit (fewer than
  *  TD_RUN_SECTION_MIN_CROSSINGS), 0 otherwise (none at all: nothing to tell). The one rule behind
  *  the run's warning and the bifurcation diagram's. */

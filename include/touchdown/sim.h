@@ -107,6 +107,10 @@ TD_API td_status td_sim_amb_force(const td_sim *sim, int amb, double f[2]);
 TD_API td_status td_sim_stats_get(const td_sim *sim, td_sim_stats *out);
 /** Totals of retainer `retainer` up to the current time (touchdown/records.h td_retainer_totals). */
 TD_API td_status td_sim_retainer_totals(const td_sim *sim, int retainer, td_retainer_totals *out);
+/** long runs: the largest normal force of retainer `retainer` at the points reached (those of its
+ *  totals' peak_normal_force) since the last call for it, or since the start, N (0 without contact),
+ *  into *peak; the next call counts from now. The peak of a window of a run (td_output_options.window). */
+TD_API td_status td_sim_retainer_peak_since(td_sim *sim, int retainer, double *peak);
 /** The energy account so far (touchdown/records.h td_energy). */
 TD_API td_status td_sim_energy(const td_sim *sim, td_energy *out);
 /** The rotor speed now, rad/s: the model's or the last td_sim_set_speed, the ramp's, or the free spin's state. */

@@ -9,6 +9,7 @@
 #include "model/gap.h"
 #include "touchdown/dofs.h"
 #include "touchdown/modal.h"
+#include "touchdown/run.h"
 #include "util/error_internal.h"
 #include "util/limits.h"
 
@@ -292,14 +293,14 @@ static td_status read_output_nodes(td_case_reader *r, const config_setting_t *g,
     return TD_OK;
 }
 
-/* long runs: output.window, 0 or at least one sample interval (a window closes at a grid sample) */
+/* long runs: output.window, 0 or a whole number of sample intervals (td_run_window_check) */
 static td_status check_window(td_case_reader *r, const config_setting_t *g, const td_cs_key *k, void *rec)
 {
     const td_output_options *o = rec;
-    if (o->window > 0.0 && o->window * o->sample_rate < 1.0)
-        return td_cr_fail(r, config_setting_get_member(g, k->key), NULL,
-                          "%g s is shorter than the sample interval 1 / sample_rate = %g s", o->window,
-                          1.0 / o->sample_rate);
+    char why[320];
+    if (td_run_window_check(o->window, o->sample_rate, why, sizeof why))
+        return td_cr_fail_vs(r, config_setting_get_member(g, k->key), config_setting_get_member(g, "sample_rate"), "%s",
+                             why);
     return TD_OK;
 }
 
@@ -371,13 +372,14 @@ static const td_cs_key output_keys[] = {
      .need = TD_CS_PRESET,
      .range = TD_CR_NONNEGATIVE,
      .check = check_window,
-     .doc_range = "0, or at least 1 / sample_rate",
+     .doc_range = "0, or a whole number (at least 1) of sample intervals 1 / sample_rate",
      .doc_default = "%s (none)",
      .unit = "s",
-     .doc = "summaries over windows of this length, each closed at the first grid sample at or after its end: the "
-            "speed, and each retainer's contacts, time in contact, peak normal force, friction work and race "
-            "temperature rise, the energy account (docs/output-format.md, \"Window summaries\"); a long run keeps its "
-            "story in them at any sample rate"},
+     .doc = "summaries over windows of this length, each closed at the grid sample at its end (so a length that is "
+            "not a whole number of sample intervals is refused, never lengthened): the speed, and each retainer's "
+            "contacts, time in contact, peak normal force (at the integrator's points inside the window), friction "
+            "work and race temperature rise, the energy account (docs/output-format.md, \"Window summaries\"); a "
+            "long run keeps its story in them at any sample rate"},
     {.key = "events",
      .type = TD_CS_CUSTOM,
      .read = read_output_events,
@@ -664,6 +666,18 @@ static td_status check_run(td_case_reader *r, const config_setting_t *root, cons
     return st;
 }
 
+/* long runs: end_at_rest only on a run that can come to rest (td_run_rest_refused), named at the key
+ * and at the speed it judges */
+static td_status check_end_at_rest(td_case_reader *r, const config_setting_t *root, const td_cs_key *k, void *rec)
+{
+    const td_case *c = rec;
+    char why[256];
+    if (!c->output.end_at_rest || !td_run_rest_refused(c->model, why, sizeof why))
+        return TD_OK;
+    return td_cr_fail_vs(r, config_setting_get_member(root, k->key), config_setting_get_member(root, "speed"), "%s",
+                         why);
+}
+
 static td_status read_description(td_case_reader *r, const config_setting_t *root, const td_cs_key *k, void *rec)
 {
     td_case *c = rec;
@@ -906,8 +920,13 @@ static const td_cs_key root_keys[] = {
      .offset = offsetof(td_case, output.end_at_rest),
      .need = TD_CS_PRESET,
      .order = 14,
+     .check = check_end_at_rest,
      .doc = "end the run, complete, at the first grid sample at which the rotor is at rest: its speed below 1 % of "
-            "its start speed or below 1 rad/s (the rule of the ending \"at rest\"); `end_time` then bounds the run. "
-            "For a free `spin` (a coast-down, a drop followed to rest): `t_reached` says when it stopped"},
+            "its start speed or below 1 rad/s (the rule of the ending \"at rest\"), tested only after the last "
+            "prescribed change (every `schedule` entry's time, every `speed_ramp` point's: a drop still to come "
+            "has not happened); `end_time` then bounds the run. For a free `spin` (a coast-down, a drop followed "
+            "to rest): `t_reached` says when it stopped. Refused when the rotor could not come to rest: a start "
+            "`speed` of at most 1 rad/s (already at rest), or a speed held constant (neither `spin.free` nor a "
+            "`speed_ramp`). It judges the speed alone: a rotor at rest may still bounce on its retainers"},
 };
 const td_cs_table td_cs_root = {"", "top", root_keys, TD_CS_COUNT(root_keys), sizeof(td_case), root_preset, NULL};

@@ -47,6 +47,7 @@ typedef struct run_state {
     td_run_windows *windows; /* the window summaries, NULL without output.window */
     int omit_events;         /* output.events = false: no event rows, no samples at events */
     int end_at_rest;         /* end_at_rest: stop at the first grid sample at rest */
+    double rest_after;       /* end_at_rest: after the model's last prescribed change (td_run_rest_after) */
     int stopped;             /* the run ended at rest before t_end */
 } run_state;
 
@@ -152,11 +153,6 @@ static td_status take_sample(run_state *r, double t, sample_kind kind, td_error 
     return TD_OK;
 }
 
-static int is_onset(td_event_kind k)
-{
-    return k == TD_EVENT_CONTACT_ONSET || k == TD_EVENT_PENALTY_ENTER;
-}
-
 /* td_sim_step stopped at an event: sample there (once per instant: several events at one time
  * share the sample), then record the event. */
 static td_status handle_event(run_state *r, td_error *err)
@@ -174,7 +170,7 @@ static td_status handle_event(run_state *r, td_error *err)
     }
     td_run_windows_event(r->windows, &ev); /* long runs */
     r->s->events++;
-    if (is_onset(ev.kind)) {
+    if (td_event_is_onset(ev.kind)) {
         r->s->contacts++;
         if (td_is_undefined(r->s->first_contact_time)) {
             r->s->first_contact_time = ev.time;
@@ -282,7 +278,7 @@ static td_status loop(run_state *r, td_error *err)
         }
         if ((st = take_sample(r, target, SAMPLE_GRID, err)) != TD_OK)
             return st;
-        if (!last && r->end_at_rest && td_run_at_rest(r->s->speed, td_sim_speed(r->sim))) /* long runs */
+        if (!last && r->end_at_rest && target > r->rest_after && td_run_at_rest(r->s->speed, td_sim_speed(r->sim)))
             last = r->stopped = 1;
         if ((st = grid_window(r, target, last, err)) != TD_OK)
             return st;
@@ -384,7 +380,8 @@ static void summary_ending(run_state *r)
     td_run_summary *s = r->s;
     td_retainer_totals after[TD_RUN_SUMMARY_RETAINERS];
     int k, n = s->retainer_count < TD_RUN_SUMMARY_RETAINERS ? s->retainer_count : TD_RUN_SUMMARY_RETAINERS;
-    if (r->stopped) { /* long runs: ended at rest, judged over the whole run */
+    if (r->stopped) { /* long runs: ended at rest, judged over the whole run, the time it reached */
+        s->ending_window = s->t_reached - s->t_start;
         memset(r->window, 0, sizeof r->window);
         for (k = 0; k < n; k++)
             after[k] = s->retainers[k].totals;
@@ -665,6 +662,10 @@ static td_status check_args(const td_sim *sim, double t_end, const td_output_opt
     if (!(out->section_after >= 0.0 && out->section_after <= 1.0))
         return td_error_set(err, TD_ERR_INVALID, "td_run: section_after = %g is not a fraction of the run in [0, 1]",
                             out->section_after);
+    if (td_run_window_check(out->window, out->sample_rate, why, sizeof why)) /* long runs */
+        return td_error_set(err, TD_ERR_INVALID, "td_run: window: %s", why);
+    if (out->end_at_rest && td_run_rest_refused(td_sim_model(sim), why, sizeof why)) /* long runs */
+        return td_error_set(err, TD_ERR_INVALID, "td_run: end_at_rest: %s", why);
     td_sim_options_get(sim, &opt);
     /* the bounds of touchdown/limits.h, also checked (with the key) by the case reader */
     if (td_run_limit_check(t_end - t0, td_model_speed(td_sim_model(sim)), out->sample_rate, opt.solver.max_step, why,
@@ -687,6 +688,7 @@ static void state_init(run_state *r, td_sim *sim, const td_run_hooks *hooks, td_
     r->event_sample_row = -1;
     r->omit_events = out->omit_events != 0; /* long runs */
     r->end_at_rest = out->end_at_rest != 0;
+    r->rest_after = td_run_rest_after(td_sim_model(sim));
 }
 
 td_status td_run(td_sim *sim, double t_end, const td_output_options *out, const td_run_hooks *hooks,

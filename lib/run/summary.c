@@ -138,11 +138,6 @@ static int busiest(const td_retainer_totals *before, const td_retainer_totals *a
     return best;
 }
 
-int td_run_at_rest(double speed0, double speed)
-{
-    return fabs(speed) < 0.01 * fabs(speed0) || fabs(speed) < 1.0;
-}
-
 void td_run_summary_ending(td_run_summary *s, const td_retainer_totals *before, const td_retainer_totals *after, int n,
                            double speed0, double speed)
 {

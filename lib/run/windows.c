@@ -1,8 +1,10 @@
 /*
  * long runs: the window summaries (windows.h). A window's counts and sums are the differences of the
  * retainers' running totals (td_sim_retainer_totals: exact at the output time) between its ends; its
- * peak is the largest normal force among its samples, its events and the run's peak where that rose
- * inside it (the run's peak is taken at the integrator's accepted points, finer than any sample).
+ * peak is the largest normal force at the points inside it: its samples, the forces right after its
+ * events and the integrator's accepted points since it opened (td_sim_retainer_peak_since, the points
+ * of the run's own peak). Never an event's whole-contact peak: a contact that ends in this window
+ * may have peaked in an earlier one.
  */
 #include "run/windows.h"
 
@@ -23,7 +25,7 @@ struct td_run_windows {
     td_retainer_totals *begin; /* the totals where the open window began */
     td_retainer_totals *now;   /* scratch: the totals where it ends */
     long *onsets;              /* per retainer in the open window */
-    double *peak, *fraction, *friction, *temperature, *peak_begin;
+    double *peak, *fraction, *friction, *temperature;
 };
 
 static void totals_now(const td_sim *sim, int n, td_retainer_totals *t)
@@ -33,20 +35,21 @@ static void totals_now(const td_sim *sim, int n, td_retainer_totals *t)
         td_sim_retainer_totals(sim, k, &t[k]);
 }
 
-/* Open a window at t: the totals there, nothing counted yet. */
-static void open_window(td_run_windows *w, const td_sim *sim, double t)
+/* Open a window at t: the totals there, nothing counted yet (the accepted points' peak from here). */
+static void open_window(td_run_windows *w, td_sim *sim, double t)
 {
     int k;
+    double since;
     w->t_begin = t;
     totals_now(sim, w->n, w->begin);
     for (k = 0; k < w->n; k++) {
         w->onsets[k] = 0;
         w->peak[k] = 0.0;
-        w->peak_begin[k] = w->begin[k].peak_normal_force;
+        td_sim_retainer_peak_since(sim, k, &since);
     }
 }
 
-td_status td_run_windows_create(const td_sim *sim, double length, double t0, td_run_windows **out, td_error *err)
+td_status td_run_windows_create(td_sim *sim, double length, double t0, td_run_windows **out, td_error *err)
 {
     td_run_windows *w;
     size_t n;
@@ -61,7 +64,7 @@ td_status td_run_windows_create(const td_sim *sim, double length, double t0, td_
     w->begin = calloc(n, sizeof *w->begin);
     w->now = calloc(n, sizeof *w->now);
     w->onsets = calloc(n, sizeof *w->onsets);
-    w->peak = calloc(6 * n, sizeof *w->peak); /* peak, fraction, friction, temperature, peak_begin */
+    w->peak = calloc(4 * n, sizeof *w->peak); /* peak, fraction, friction, temperature */
     if (!w->begin || !w->now || !w->onsets || !w->peak) {
         td_run_windows_free(&w);
         return td_error_set(err, TD_ERR_NOMEM, "out of memory for the window summaries");
@@ -69,7 +72,6 @@ td_status td_run_windows_create(const td_sim *sim, double length, double t0, td_
     w->fraction = w->peak + n;
     w->friction = w->peak + 2 * n;
     w->temperature = w->peak + 3 * n;
-    w->peak_begin = w->peak + 4 * n;
     open_window(w, sim, t0);
     *out = w;
     return TD_OK;
@@ -93,10 +95,9 @@ void td_run_windows_event(td_run_windows *w, const td_event *ev)
 {
     if (!w || ev->retainer < 0 || ev->retainer >= w->n)
         return;
-    if (ev->kind == TD_EVENT_CONTACT_ONSET || ev->kind == TD_EVENT_PENALTY_ENTER)
+    if (td_event_is_onset(ev->kind))
         w->onsets[ev->retainer]++;
     note(w, ev->retainer, ev->normal_force);
-    note(w, ev->retainer, ev->peak_normal_force);
 }
 
 int td_run_windows_due(const td_run_windows *w, double t)
@@ -104,8 +105,8 @@ int td_run_windows_due(const td_run_windows *w, double t)
     return w && t >= w->t_begin + w->length - WINDOW_END_TOLERANCE * w->length;
 }
 
-td_status td_run_windows_close(td_run_windows *w, const td_sim *sim, const td_retainer_state *ret, double t,
-                               td_recorder *rec, td_error *err)
+td_status td_run_windows_close(td_run_windows *w, td_sim *sim, const td_retainer_state *ret, double t, td_recorder *rec,
+                               td_error *err)
 {
     td_retainer_totals *now;
     td_window_summary s;
@@ -119,11 +120,12 @@ td_status td_run_windows_close(td_run_windows *w, const td_sim *sim, const td_re
     totals_now(sim, n, now);
     td_run_windows_sample(w, ret, n);
     for (k = 0; k < n; k++) {
+        double since;
         w->fraction[k] = (now[k].contact_time - w->begin[k].contact_time) / (t - w->t_begin);
         w->friction[k] = now[k].friction_work - w->begin[k].friction_work;
         w->temperature[k] = ret[k].race_temperature;
-        if (now[k].peak_normal_force > w->peak_begin[k]) /* the run's peak rose in this window */
-            note(w, k, now[k].peak_normal_force);
+        if (td_sim_retainer_peak_since(sim, k, &since) == TD_OK)
+            note(w, k, since);
     }
     s.t_start = w->t_begin;
     s.t_end = t;

@@ -13,12 +13,12 @@
 typedef struct td_run_windows td_run_windows;
 
 /** Windows of `length` s from t0 over the retainers of `sim`; *out NULL when length is 0 (none). */
-td_status td_run_windows_create(const td_sim *sim, double length, double t0, td_run_windows **out, td_error *err);
+td_status td_run_windows_create(td_sim *sim, double length, double t0, td_run_windows **out, td_error *err);
 
 /** A state read at a sample (td_recorder_retainers): its normal forces count towards the peaks. */
 void td_run_windows_sample(td_run_windows *w, const td_retainer_state *ret, int n);
 
-/** An event: an onset counts as a contact; its force and a contact's peak count towards the peaks. */
+/** An event: an onset counts as a contact; its force (right after it) counts towards the peak. */
 void td_run_windows_event(td_run_windows *w, const td_event *ev);
 
 /** 1 if the window open now ends at or before t (a grid time). */
@@ -26,8 +26,8 @@ int td_run_windows_due(const td_run_windows *w, double t);
 
 /** Close the window open now at t (the state of `sim` and `ret` being that at t) and write its
  *  summary; the next window begins at t. Nothing when the window has no length. */
-td_status td_run_windows_close(td_run_windows *w, const td_sim *sim, const td_retainer_state *ret, double t,
-                               td_recorder *rec, td_error *err);
+td_status td_run_windows_close(td_run_windows *w, td_sim *sim, const td_retainer_state *ret, double t, td_recorder *rec,
+                               td_error *err);
 
 /** Windows written so far. */
 long td_run_windows_count(const td_run_windows *w);

@@ -9,12 +9,17 @@
 #include <math.h>
 #include <string.h>
 
+int td_event_is_onset(td_event_kind kind)
+{
+    return kind == TD_EVENT_CONTACT_ONSET || kind == TD_EVENT_PENALTY_ENTER;
+}
+
 /* Queue an event and count it. A contact onset opens the retainer's interval peak; an event that
  * ends a contact interval carries it. */
 void td_sim_queue_event(td_sim *s, const td_event *ev)
 {
     td_event e = *ev;
-    if ((e.kind == TD_EVENT_CONTACT_ONSET || e.kind == TD_EVENT_PENALTY_ENTER) && e.retainer >= 0)
+    if (td_event_is_onset(e.kind) && e.retainer >= 0)
         s->monitor.totals[e.retainer].interval_peak = 0.0;
     if ((e.kind == TD_EVENT_RELEASE || e.kind == TD_EVENT_PENALTY_EXIT) && e.retainer >= 0)
         e.peak_normal_force = s->monitor.totals[e.retainer].interval_peak;

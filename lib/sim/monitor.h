@@ -29,6 +29,8 @@ typedef struct td_sim_totals {
     double whirl_at_onset; /* t.whirl_angle when the open interval began */
     double interval_peak;  /* N, the largest normal force of the open (or the last) contact interval
                               at the accepted points (monitor.c, td_sim_monitor_at) */
+    double mark_peak;      /* long runs: N, the largest normal force at the points reached since
+                              td_sim_retainer_peak_since last read it (totals.c) */
     /* life (load_cycles.c): t.damage sums the rolling damage over the steps as the other integrals */
     td_life_law law;       /* the bearing's ratings; dynamic_rating 0: none, no life */
     td_rainflow *cycles;   /* the contact load's rainflow count at the points the run has reached */

@@ -225,6 +225,15 @@ td_status td_sim_retainer_totals(const td_sim *sim, int retainer, td_retainer_to
     return TD_OK;
 }
 
+td_status td_sim_retainer_peak_since(td_sim *sim, int retainer, double *peak)
+{
+    if (!sim || !peak || retainer < 0 || retainer >= sim->dae.nr)
+        return TD_ERR_INVALID;
+    *peak = sim->monitor.totals[retainer].mark_peak;
+    sim->monitor.totals[retainer].mark_peak = 0.0;
+    return TD_OK;
+}
+
 td_status td_sim_energy(const td_sim *sim, td_energy *out)
 {
     if (!sim || !out || !sim->opt.energy)

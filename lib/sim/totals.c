@@ -112,8 +112,11 @@ void td_sim_totals_peaks(td_sim *s, const double *y)
     for (k = 0; k < s->dae.nr; k++) {
         td_sim_totals *tk = &s->monitor.totals[k];
         tk->t.peak_housing_force = fmax(tk->t.peak_housing_force, housing_force(s, k, y));
-        if (s->contacts.ret[k].mode != TD_RMODE_FREE) /* as integrands_at's n */
-            tk->t.peak_normal_force = fmax(tk->t.peak_normal_force, td_sim_normal_force(s, k, y));
+        if (s->contacts.ret[k].mode != TD_RMODE_FREE) { /* as integrands_at's n */
+            double fn = td_sim_normal_force(s, k, y);
+            tk->t.peak_normal_force = fmax(tk->t.peak_normal_force, fn);
+            tk->mark_peak = fmax(tk->mark_peak, fn); /* long runs: a window's peak */
+        }
         duty_peaks(s, k, y);
         td_sim_thermal_peak(s, k);  /* heat */
         td_sim_life_point(s, k, y); /* life: a point reached, into the rainflow count */

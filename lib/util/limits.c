@@ -28,3 +28,23 @@ td_run_limit td_run_limit_check(double duration, double speed, double sample_rat
     }
     return TD_LIMIT_NONE;
 }
+
+int td_run_window_check(double window, double sample_rate, char *why, size_t n)
+{
+    double periods = window * sample_rate, whole = floor(periods + 0.5);
+    if (!(window > 0.0))
+        return 0;
+    if (periods < 1.0 - 1e-9) {
+        snprintf(why, n, "%g s is shorter than the sample interval 1 / sample_rate = %g s", window, 1.0 / sample_rate);
+        return 1;
+    }
+    /* grid times are t0 + k / rate in floating point: a relative 1e-9 is a whole number */
+    if (fabs(periods - whole) > 1e-9 * whole) {
+        snprintf(why, n,
+                 "%g s is not a whole number of sample intervals 1 / sample_rate = %g s (%.6g of them): a window "
+                 "closes at a grid sample; write %g or %g",
+                 window, 1.0 / sample_rate, periods, floor(periods) / sample_rate, ceil(periods) / sample_rate);
+        return 1;
+    }
+    return 0;
+}

@@ -21,4 +21,10 @@ typedef enum td_run_limit {
 td_run_limit td_run_limit_check(double duration, double speed, double sample_rate, double max_step, char *why,
                                 size_t n);
 
+/* long runs: 1 if a window of `window` s (td_output_options.window, > 0) cannot be one at a rate of
+ * `sample_rate` Hz, with the reason into `why` (n bytes): a window closes at a grid sample, so it is
+ * a whole number (at least one) of sample intervals; any other length would silently become the
+ * next whole number of them. 0 when it can (or there is no window). */
+int td_run_window_check(double window, double sample_rate, char *why, size_t n);
+
 #endif

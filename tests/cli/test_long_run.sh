@@ -7,7 +7,10 @@
 #   - output.window and output.events = false: the window file has one row per window and its flag,
 #     the events file no row, /windows is in the HDF5 file, and the samples are the grid's alone (the
 #     same run with its events has both);
-#   - a window shorter than a sample interval is refused with one line (exit 2, no file).
+#   - a window shorter than a sample interval, or not a whole number of them, is refused with one
+#     line (exit 2, no file);
+#   - end_at_rest tests the speed only after the last schedule entry (a drop still to come), and
+#     is refused (exit 2, one line naming it) on a rotor already at rest or held at speed.
 # Args: $1 = the touchdown binary, $2 = the source directory.
 set -u
 tool=$1
@@ -38,6 +41,30 @@ check "a run without end_at_rest has no ended_at_rest member" test -z "$(jf "$wo
 check "end_at_rest: the CSV file's last sample is at 1.415 s ($(grep -v '^#' "$work/rest/r.csv" | tail -n 1 | cut -d, -f1))" \
     test "$(grep -v '^#' "$work/rest/r.csv" | tail -n 1 | cut -d, -f1)" = 1.415
 
+# end_at_rest waits for the last prescribed change: the same rotor under a viscous drag only
+# (J dOmega/dt = -c Omega, Omega = 100 exp(-c t / J), c / J = 5 /s) is below 1 % of its start speed
+# from ln(100) / 5 = 0.921 s, but an AMB is scheduled to fail at 1.2 s: the run ends at the first
+# grid sample after the failure, 1.201 s, and its ending is judged over the whole run it reached
+visc=(--set 'unbalances=()' --set 'schedule=({time=1.2; amb_off=0;})' --set speed=100
+    --set 'spin={free=true; inertia=0.01; drag_torque=0.0; drag_viscous=0.05;}' --set end_time=3
+    --set output.sample_rate=1000 --set end_at_rest=true)
+near() { awk -v a="$1" -v b="$2" 'BEGIN { exit !(a != "" && a - b < 1e-9 && b - a < 1e-9) }'; }
+t "$work/sched" run -q --json --csv '' --hdf5 '' "${visc[@]}" "$rub"
+check "end_at_rest after the schedule's last entry: exit 0, ended at rest ($rc, $(jf "$work/sched/.out" ended_at_rest))" \
+    test "$rc" = 0 -a "$(jf "$work/sched/.out" ended_at_rest)" = true
+check "end_at_rest after the schedule's last entry: t_reached 1.201 s ($(jf "$work/sched/.out" t_reached))" \
+    near "$(jf "$work/sched/.out" t_reached)" 1.201
+check "end_at_rest: ending_window is the time reached, 1.201 s ($(jf "$work/sched/.out" ending_window))" \
+    near "$(jf "$work/sched/.out" ending_window)" 1.201
+# a rotor that cannot come to rest is refused, naming end_at_rest: one already at rest, one held at speed
+t "$work/still" run -q --set speed=0 --set end_time=0.5 "$src/cases/drop-to-rest.cfg" -o s
+check "end_at_rest at a start speed of 0: exit 2, one line naming end_at_rest ($(cat "$work/still/.err"))" \
+    test "$rc" = 2 -a "$(wc -l <"$work/still/.err")" = 1 -a -n "$(grep -F 'drop-to-rest.cfg:' "$work/still/.err" | grep -F 'end_at_rest: the start speed 0 rad/s')"
+t "$work/held" run -q --set end_at_rest=true "$rub" -o h
+check "end_at_rest at a held speed: exit 2, one line naming end_at_rest ($(cat "$work/held/.err"))" \
+    test "$rc" = 2 -a "$(wc -l <"$work/held/.err")" = 1 -a -n "$(grep -F 'end_at_rest: the speed is held at 90 rad/s' "$work/held/.err")"
+check "end_at_rest refused: no file" test -z "$(ls "$work/still")$(ls "$work/held")"
+
 t "$work/win" run -q --set end_time=0.3 --set output.window=0.05 --set output.events=false "$rub" -o w
 check "windows: exit 0 (got $rc: $(head -c 300 "$work/win/.err"))" test "$rc" = 0
 check "windows: 6 rows and the flag in w.windows.csv ($(grep -vc '^#' "$work/win/w.windows.csv") lines)" \
@@ -59,5 +86,11 @@ t "$work/short" run -q --set output.window=1e-5 "$rub" -o s
 check "window shorter than a sample interval: exit 2, one line naming output.window ($(cat "$work/short/.err"))" \
     test "$rc" = 2 -a "$(wc -l <"$work/short/.err")" = 1 -a -n "$(grep -F 'output.window' "$work/short/.err")"
 check "window shorter than a sample interval: no file" test -z "$(ls "$work/short")"
+# rub-damped.cfg samples at 10 kHz: 0.15 ms is one and a half sample intervals, which a window
+# closed at grid samples would silently make 0.2 ms
+t "$work/half" run -q --set output.window=1.5e-4 "$rub" -o h
+check "window not a whole number of sample intervals: exit 2, one line naming output.window ($(cat "$work/half/.err"))" \
+    test "$rc" = 2 -a "$(wc -l <"$work/half/.err")" = 1 -a -n "$(grep -F 'output.window: 0.00015 s is not a whole number of sample intervals' "$work/half/.err")"
+check "window not a whole number of sample intervals: no file" test -z "$(ls "$work/half")"
 
 finish
