@@ -27,25 +27,26 @@ static const char partial_suffix[] = TD_IO_TEMP_SUFFIX;
 #define TEMP_TAG_LEN 6
 #define TEMP_ATTEMPTS 100
 
-int td_writer_events_path(const char *csv_path, char *buf, size_t n)
+/* The path of a CSV file that goes with `csv_path`: its name without ".csv", then `suffix`. */
+static int companion_path(const char *csv_path, const char *suffix, char *buf, size_t n)
 {
     static const char ext[] = ".csv";
     size_t len = csv_path ? strlen(csv_path) : 0;
     size_t ext_len = sizeof ext - 1;
     if (len >= ext_len && strcmp(csv_path + len - ext_len, ext) == 0)
         len -= ext_len;
-    return snprintf(buf, n, "%.*s.events.csv", (int)len, csv_path ? csv_path : "");
+    return snprintf(buf, n, "%.*s%s", (int)len, csv_path ? csv_path : "", suffix);
+}
+
+int td_writer_events_path(const char *csv_path, char *buf, size_t n)
+{
+    return companion_path(csv_path, ".events.csv", buf, n);
 }
 
 /* long runs */
 int td_writer_windows_path(const char *csv_path, char *buf, size_t n)
 {
-    static const char ext[] = ".csv";
-    size_t len = csv_path ? strlen(csv_path) : 0;
-    size_t ext_len = sizeof ext - 1;
-    if (len >= ext_len && strcmp(csv_path + len - ext_len, ext) == 0)
-        len -= ext_len;
-    return snprintf(buf, n, "%.*s.windows.csv", (int)len, csv_path ? csv_path : "");
+    return companion_path(csv_path, ".windows.csv", buf, n);
 }
 
 /* SplitMix64 finaliser: spreads a few changing bits over all 64. */
