@@ -145,6 +145,17 @@ static td_status check_all(const char *const *outs, const char *const *whats, in
     return st;
 }
 
+/* A CSV file that goes with csv_path (td_writer_events_path, td_writer_windows_path), allocated; NULL
+ * when out of memory. */
+static char *companion(int (*path)(const char *, char *, size_t), const char *csv_path)
+{
+    int len = path(csv_path, NULL, 0);
+    char *p = malloc((size_t)len + 1);
+    if (p)
+        path(csv_path, p, (size_t)len + 1);
+    return p;
+}
+
 td_status td_output_check_paths(const td_output_options *out, const char *const *inputs, int n_inputs, td_error *err)
 {
     const char *outs[4], *whats[4];
@@ -156,17 +167,13 @@ td_status td_output_check_paths(const td_output_options *out, const char *const 
     if (!memchr(out->hdf5_path, '\0', sizeof out->hdf5_path) || !memchr(out->csv_path, '\0', sizeof out->csv_path))
         return td_error_set(err, TD_ERR_INVALID, "td_output_check_paths: output path not NUL-terminated");
     if (out->csv_path[0]) {
-        int len = td_writer_events_path(out->csv_path, NULL, 0);
-        if (!(events = malloc((size_t)len + 1)))
-            return td_error_set(err, TD_ERR_NOMEM, "out of memory checking the output paths");
-        td_writer_events_path(out->csv_path, events, (size_t)len + 1);
-        len = td_writer_windows_path(out->csv_path, NULL, 0); /* long runs */
-        if (out->window > 0.0 && !(windows = malloc((size_t)len + 1))) {
+        events = companion(td_writer_events_path, out->csv_path);
+        windows = out->window > 0.0 ? companion(td_writer_windows_path, out->csv_path) : NULL; /* long runs */
+        if (!events || (out->window > 0.0 && !windows)) {
             free(events);
+            free(windows);
             return td_error_set(err, TD_ERR_NOMEM, "out of memory checking the output paths");
         }
-        if (windows)
-            td_writer_windows_path(out->csv_path, windows, (size_t)len + 1);
     }
     if (out->hdf5_path[0]) {
         outs[n_out] = out->hdf5_path;

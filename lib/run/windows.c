@@ -117,8 +117,7 @@ td_status td_run_windows_close(td_run_windows *w, td_sim *sim, const td_retainer
         return TD_OK;
     now = w->now;
     n = w->n;
-    totals_now(sim, n, now);
-    td_run_windows_sample(w, ret, n);
+    totals_now(sim, n, now); /* the sample at t was noted when the run took it (td_run_windows_sample) */
     for (k = 0; k < n; k++) {
         double since;
         w->fraction[k] = (now[k].contact_time - w->begin[k].contact_time) / (t - w->t_begin);

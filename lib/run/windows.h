@@ -24,8 +24,9 @@ void td_run_windows_event(td_run_windows *w, const td_event *ev);
 /** 1 if the window open now ends at or before t (a grid time). */
 int td_run_windows_due(const td_run_windows *w, double t);
 
-/** Close the window open now at t (the state of `sim` and `ret` being that at t) and write its
- *  summary; the next window begins at t. Nothing when the window has no length. */
+/** Close the window open now at t (the state of `sim` and `ret` being that at t, its sample already
+ *  noted by td_run_windows_sample) and write its summary; the next window begins at t. Nothing when the window has no
+ * length. */
 td_status td_run_windows_close(td_run_windows *w, td_sim *sim, const td_retainer_state *ret, double t, td_recorder *rec,
                                td_error *err);
 
