@@ -258,6 +258,8 @@ typedef struct td_run_summary {
     /* long runs */
     int ended_at_rest; /**< 1: the run ended, complete, at the first grid sample at rest (end_at_rest,
                             td_run_at_rest) at t_reached before t_end; 0 otherwise */
+    int end_at_rest;   /**< 1: the run was asked to end at rest (td_output_options.end_at_rest); one that
+                            reached t_end instead then carries a warning saying so */
 } td_run_summary;
 
 /**

@@ -732,6 +732,7 @@ td_status td_run(td_sim *sim, double t_end, const td_output_options *out, const 
     td_sim_set_interrupt(sim, NULL);
     summary_finish(&r, wall_start);
     summary->ended_at_rest = r.stopped; /* long runs */
+    summary->end_at_rest = r.end_at_rest;
     td_run_windows_free(&r.windows);
     td_sim_section_end(sim);
     summary->status = st;

@@ -397,6 +397,10 @@ static void format_answers(td_text *b, const td_run_summary *s)
     if (s->ended_at_rest) /* long runs */
         td_text_printf(b, "ended at rest               at %.10f s (end_at_rest; end_time %.6g s)\n", s->t_reached,
                        s->t_end);
+    else if (s->end_at_rest && s->status == TD_OK)
+        td_text_printf(b,
+                       "ended at rest               no: at speed at end_time %.6g s (end_at_rest; see the warning)\n",
+                       s->t_reached);
     if (s->stats.peak_amb >= 0)
         td_text_printf(b, "peak AMB force              %.6g N, AMB %d, %.4g %% of its capacity, at %.10f s\n",
                        s->stats.peak_amb_force, s->stats.peak_amb, 100.0 * s->stats.peak_amb_load,
@@ -651,8 +655,10 @@ static void json_answers(td_text *b, const td_run_summary *s)
     json_real(b, "ending_whirl_frequency", s->ending_whirl_frequency, 1);
     json_real(b, "ending_window", s->ending_window, 1);
     json_string(b, "regime", td_regime_name(td_run_summary_regime(s)));
-    if (s->ended_at_rest) /* long runs: only a run that asked for it, and stopped */
+    if (s->ended_at_rest) /* long runs: only a run that asked for it: true when it stopped at rest */
         td_text_printf(b, "\"ended_at_rest\":true,");
+    else if (s->end_at_rest) /* false when it reached end_time at speed; null when it failed */
+        td_text_printf(b, "\"ended_at_rest\":%s,", s->status == TD_OK ? "false" : "null");
     json_real(b, "peak_amb_force", s->stats.peak_amb >= 0 ? s->stats.peak_amb_force : TD_UNDEFINED, 1);
     json_real(b, "peak_amb_load", s->stats.peak_amb >= 0 ? s->stats.peak_amb_load : TD_UNDEFINED, 1);
     if (s->stats.peak_amb >= 0)

@@ -99,6 +99,29 @@ static void check_section(td_run_summary *s)
          s->section_count, s->section_start, TD_RUN_SECTION_MIN_CROSSINGS);
 }
 
+/* long runs: end_at_rest asked, and the run reached end_time at speed: the ending and every answer are
+ * those of end_time, not of rest (a drive that outruns the drag, a rub that holds the rotor's speed,
+ * an end_time too short). A load-time refusal cannot decide it: contact friction and the unbalance's
+ * mean drag brake the spin too, by amounts only the run knows. */
+static void check_rest(td_run_summary *s, const td_model *m)
+{
+    td_spin spin;
+    if (s->status != TD_OK || !s->end_at_rest || s->ended_at_rest)
+        return;
+    td_model_spin(m, &spin);
+    if (spin.free && spin.drive_torque > spin.drag_torque)
+        warn(s,
+             "end_at_rest: the rotor did not come to rest by end_time %.6g s (speed %.6g rad/s at the end, %.6g at "
+             "the start): its spin.drive_torque %g N m exceeds its spin.drag_torque %g N m, so only contact "
+             "friction and the unbalance's drag can stop it",
+             s->t_reached, s->final_speed, s->speed, spin.drive_torque, spin.drag_torque);
+    else
+        warn(s,
+             "end_at_rest: the rotor did not come to rest by end_time %.6g s (speed %.6g rad/s at the end, %.6g at "
+             "the start): the answers are those of end_time; lengthen end_time to follow it to rest",
+             s->t_reached, s->final_speed, s->speed);
+}
+
 void td_run_check_warnings(td_run_summary *s, const td_model *m)
 {
     check_amb_capacity(s, m);
@@ -106,4 +129,5 @@ void td_run_check_warnings(td_run_summary *s, const td_model *m)
     check_clearances(s, m);
     check_section(s);
     check_air_gaps(s, m);
+    check_rest(s, m); /* long runs */
 }

@@ -10,7 +10,9 @@
 #   - a window shorter than a sample interval, or not a whole number of them, is refused with one
 #     line (exit 2, no file);
 #   - end_at_rest tests the speed only after the last schedule entry (a drop still to come), and
-#     is refused (exit 2, one line naming it) on a rotor already at rest or held at speed.
+#     is refused (exit 2, one line naming it) on a rotor already at rest or held at speed;
+#   - a free spin whose drive outruns its drag under end_at_rest runs to end_time at the closed-form
+#     speed and says it did not come to rest (a warning, ended_at_rest false, the text's line).
 # Args: $1 = the touchdown binary, $2 = the source directory.
 set -u
 tool=$1
@@ -56,6 +58,25 @@ check "end_at_rest after the schedule's last entry: t_reached 1.201 s ($(jf "$wo
     near "$(jf "$work/sched/.out" t_reached)" 1.201
 check "end_at_rest: ending_window is the time reached, 1.201 s ($(jf "$work/sched/.out" ending_window))" \
     near "$(jf "$work/sched/.out" ending_window)" 1.201
+# a drive that outruns the drag (1.0 against 0.7 N m on J = 0.01 kg m^2: J dOmega/dt = 0.3 N m, so
+# Omega = 100 + 30 t, 115 rad/s at 0.5 s): the run reaches end_time at speed, says so in a warning
+# naming end_at_rest and the drive, and in the summary (ended_at_rest false, the text's line)
+drive=(--set 'unbalances=()' --set 'schedule=()' --set speed=100 --set end_time=0.5 --set output.section_after=0
+    --set 'spin={free=true; inertia=0.01; drive_torque=1.0; drag_torque=0.7;}' --set output.sample_rate=1000
+    --set end_at_rest=true)
+t "$work/drive" run --json --csv '' --hdf5 '' "${drive[@]}" "$rub"
+check "end_at_rest, drive > drag: exit 0, complete at 0.5 s ($rc, $(jf "$work/drive/.out" t_reached))" \
+    test "$rc" = 0 -a "$(jf "$work/drive/.out" complete)" = true -a "$(jf "$work/drive/.out" t_reached)" = 0.5
+check "end_at_rest, drive > drag: JSON ended_at_rest false ($(jf "$work/drive/.out" ended_at_rest))" \
+    test "$(jf "$work/drive/.out" ended_at_rest)" = false
+check "end_at_rest, drive > drag: final speed 115 rad/s, the closed form ($(jf "$work/drive/.out" final_speed))" \
+    near "$(jf "$work/drive/.out" final_speed)" 115
+check "end_at_rest, drive > drag: one warning line naming end_at_rest and the drive ($(cat "$work/drive/.err"))" \
+    test "$(grep -c 'warning: end_at_rest: the rotor did not come to rest by end_time 0.5 s.*spin.drive_torque 1 N m exceeds' \
+        "$work/drive/.err")" = 1
+t "$work/drive-text" run --csv '' --hdf5 '' "${drive[@]}" "$rub"
+check "end_at_rest, drive > drag: the text says it did not ($(grep '^ended at rest' "$work/drive-text/.out"))" \
+    grep -q '^ended at rest  *no: at speed at end_time 0.5 s' "$work/drive-text/.out"
 # a rotor that cannot come to rest is refused, naming end_at_rest: one already at rest, one held at speed
 t "$work/still" run -q --set speed=0 --set end_time=0.5 "$src/cases/drop-to-rest.cfg" -o s
 check "end_at_rest at a start speed of 0: exit 2, one line naming end_at_rest ($(cat "$work/still/.err"))" \
