@@ -187,3 +187,75 @@ hid_t td_h5_stream_dapl(void)
     }
     return dapl;
 }
+
+/* The chunked creation properties of an appendable table; with level > 0 shuffle then deflate
+ * (lossless: shuffle groups the bytes of equal significance, which deflate then compresses far
+ * better for doubles). */
+static hid_t append_dcpl(int rank, const hsize_t *chunk, int level)
+{
+    hid_t dcpl = H5Pcreate(H5P_DATASET_CREATE);
+    if (dcpl >= 0 && (H5Pset_chunk(dcpl, rank, chunk) < 0 ||
+                      (level > 0 && (H5Pset_shuffle(dcpl) < 0 || H5Pset_deflate(dcpl, (unsigned)level) < 0)))) {
+        H5Pclose(dcpl);
+        return -1;
+    }
+    return dcpl;
+}
+
+hid_t td_h5_append_create(hid_t loc, const char *name, hid_t file_type, int rank, const hsize_t *row_dims,
+                          hsize_t chunk_rows, int level)
+{
+    hsize_t dims[TD_H5_APPEND_MAX_RANK], maxdims[TD_H5_APPEND_MAX_RANK], chunk[TD_H5_APPEND_MAX_RANK];
+    hid_t space, dcpl, dapl, dset = -1;
+    int i;
+    if (rank < 1 || rank > TD_H5_APPEND_MAX_RANK)
+        return -1;
+    dims[0] = 0;
+    maxdims[0] = H5S_UNLIMITED;
+    chunk[0] = chunk_rows;
+    for (i = 1; i < rank; i++) { /* an empty axis (no retainer) still needs a chunk of 1 */
+        dims[i] = maxdims[i] = row_dims[i - 1];
+        chunk[i] = row_dims[i - 1] > 0 ? row_dims[i - 1] : 1;
+    }
+    space = H5Screate_simple(rank, dims, maxdims);
+    dcpl = append_dcpl(rank, chunk, level);
+    dapl = td_h5_stream_dapl(); /* long runs: no chunk cache */
+    if (space >= 0 && dcpl >= 0 && dapl >= 0)
+        dset = H5Dcreate2(loc, name, file_type, space, H5P_DEFAULT, dcpl, dapl);
+    if (dapl >= 0)
+        H5Pclose(dapl);
+    if (dcpl >= 0)
+        H5Pclose(dcpl);
+    if (space >= 0)
+        H5Sclose(space);
+    return dset;
+}
+
+herr_t td_h5_append_rows(hid_t dset, hid_t mem_type, int rank, const hsize_t *row_dims, hsize_t at, hsize_t rows,
+                         const void *data)
+{
+    hsize_t dims[TD_H5_APPEND_MAX_RANK], start[TD_H5_APPEND_MAX_RANK], count[TD_H5_APPEND_MAX_RANK];
+    hid_t fspace = -1, mspace = -1;
+    herr_t rc = -1;
+    int i;
+    if (rank < 1 || rank > TD_H5_APPEND_MAX_RANK)
+        return -1;
+    dims[0] = at + rows;
+    start[0] = at;
+    count[0] = rows;
+    for (i = 1; i < rank; i++) {
+        if (row_dims[i - 1] == 0)
+            return 0; /* a row of no elements: nothing to extend into, the table stays (0, 0) */
+        dims[i] = count[i] = row_dims[i - 1];
+        start[i] = 0;
+    }
+    if (H5Dset_extent(dset, dims) >= 0 && (fspace = H5Dget_space(dset)) >= 0 &&
+        H5Sselect_hyperslab(fspace, H5S_SELECT_SET, start, NULL, count, NULL) >= 0 &&
+        (mspace = H5Screate_simple(rank, count, NULL)) >= 0)
+        rc = H5Dwrite(dset, mem_type, mspace, fspace, H5P_DEFAULT, data);
+    if (mspace >= 0)
+        H5Sclose(mspace);
+    if (fspace >= 0)
+        H5Sclose(fspace);
+    return rc;
+}

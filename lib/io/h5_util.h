@@ -77,4 +77,26 @@ td_status td_h5_fail(td_error *err, const char *path, int io_errno, const char *
  *  H5Pclose). */
 hid_t td_h5_stream_dapl(void);
 
+/* ---- appendable tables: the run's series, events and windows ---------------------------------- */
+
+/** Most axes of an appendable table: rows, then up to two fixed axes (a node's x and y). */
+#define TD_H5_APPEND_MAX_RANK 3
+
+/**
+ * Create the appendable table `name` under `loc`: an extendible dataset of `file_type` with rows
+ * along axis 0 (none at first, unlimited) and the fixed axes row_dims[0..rank-2] after it, chunked
+ * `chunk_rows` rows at a time, shuffled and deflated at `level` > 0, without a chunk cache
+ * (td_h5_stream_dapl). Returns the open dataset, -1 on failure.
+ */
+hid_t td_h5_append_create(hid_t loc, const char *name, hid_t file_type, int rank, const hsize_t *row_dims,
+                          hsize_t chunk_rows, int level);
+
+/**
+ * Append `rows` rows of `mem_type` from `data` to the table `dset` created by td_h5_append_create
+ * with the same rank and row_dims, `at` rows being there already: extends it to at + rows and
+ * writes them. A row of no elements (a fixed axis of 0) writes nothing. Negative on failure.
+ */
+herr_t td_h5_append_rows(hid_t dset, hid_t mem_type, int rank, const hsize_t *row_dims, hsize_t at, hsize_t rows,
+                         const void *data);
+
 #endif

@@ -1,7 +1,8 @@
 /*
  * long runs: /windows of the HDF5 back end (h5_windows.h). Each quantity of td_window_summary is a
  * dataset (W) or (W, n_ret) under /windows with its `units`, its rows along /windows/time_end (a
- * dimension scale), buffered H5_WINDOW_CHUNK rows at a time.
+ * dimension scale), buffered H5_WINDOW_CHUNK rows at a time: appendable tables (h5_util.h
+ * td_h5_append_create, td_h5_append_rows) like the run's series and events.
  */
 #include "io/h5_windows.h"
 
@@ -50,25 +51,14 @@ static size_t buf_at(const td_h5_windows *t, int set)
 
 static hid_t create_set(hid_t g, const td_h5_windows *t, int set, int level)
 {
-    int rank = set >= FIRST_PER_RETAINER ? 2 : 1;
-    hsize_t dims[2] = {0, (hsize_t)t->n_ret}, maxdims[2] = {H5S_UNLIMITED, (hsize_t)t->n_ret};
-    hsize_t chunk[2] = {H5_WINDOW_CHUNK, (hsize_t)(t->n_ret > 0 ? t->n_ret : 1)};
-    hid_t space = H5Screate_simple(rank, dims, maxdims), dcpl = H5Pcreate(H5P_DATASET_CREATE), dset = -1;
-    hid_t dapl = td_h5_stream_dapl();
-    if (space >= 0 && dcpl >= 0 && dapl >= 0 && H5Pset_chunk(dcpl, rank, chunk) >= 0 &&
-        (level == 0 || (H5Pset_shuffle(dcpl) >= 0 && H5Pset_deflate(dcpl, (unsigned)level) >= 0)))
-        dset = H5Dcreate2(g, td_out_name(window_ids[set]), set == CONTACTS_SET ? H5T_STD_I64LE : H5T_IEEE_F64LE, space,
-                          H5P_DEFAULT, dcpl, dapl);
-    if (dapl >= 0)
-        H5Pclose(dapl);
+    const hsize_t row[1] = {(hsize_t)t->n_ret};
+    hid_t dset =
+        td_h5_append_create(g, td_out_name(window_ids[set]), set == CONTACTS_SET ? H5T_STD_I64LE : H5T_IEEE_F64LE,
+                            set >= FIRST_PER_RETAINER ? 2 : 1, row, H5_WINDOW_CHUNK, level);
     if (dset >= 0 && td_h5_attr_string(dset, td_out_name(TD_OUT_UNITS), td_out_units(window_ids[set])) < 0) {
         H5Dclose(dset);
         dset = -1;
     }
-    if (dcpl >= 0)
-        H5Pclose(dcpl);
-    if (space >= 0)
-        H5Sclose(space);
     return dset;
 }
 
@@ -132,28 +122,14 @@ td_h5_windows *td_h5_windows_create(hid_t file, int n_ret, int level, int *nomem
 
 int td_h5_windows_flush(td_h5_windows *t)
 {
+    const hsize_t row[1] = {(hsize_t)t->n_ret};
     int i;
     if (t->buffered == 0)
         return 0;
     for (i = 0; i < N_WINDOW_SETS; i++) {
-        int rank = i >= FIRST_PER_RETAINER ? 2 : 1;
-        hsize_t dims[2] = {t->flushed + t->buffered, (hsize_t)t->n_ret}, start[2] = {t->flushed, 0};
-        hsize_t count[2] = {t->buffered, (hsize_t)t->n_ret};
-        hid_t fspace = -1, mspace = -1;
-        herr_t rc = -1;
         const void *data = i == CONTACTS_SET ? (const void *)t->counts : (const void *)(t->buf + buf_at(t, i));
-        if (rank == 2 && t->n_ret == 0)
-            continue; /* nothing to extend into: the set stays (0, 0) */
-        if (H5Dset_extent(t->dset[i], dims) >= 0 && (fspace = H5Dget_space(t->dset[i])) >= 0 &&
-            H5Sselect_hyperslab(fspace, H5S_SELECT_SET, start, NULL, count, NULL) >= 0 &&
-            (mspace = H5Screate_simple(rank, count, NULL)) >= 0)
-            rc = H5Dwrite(t->dset[i], i == CONTACTS_SET ? H5T_NATIVE_LLONG : H5T_NATIVE_DOUBLE, mspace, fspace,
-                          H5P_DEFAULT, data);
-        if (mspace >= 0)
-            H5Sclose(mspace);
-        if (fspace >= 0)
-            H5Sclose(fspace);
-        if (rc < 0)
+        if (td_h5_append_rows(t->dset[i], i == CONTACTS_SET ? H5T_NATIVE_LLONG : H5T_NATIVE_DOUBLE,
+                              i >= FIRST_PER_RETAINER ? 2 : 1, row, t->flushed, t->buffered, data) < 0)
             return -1;
     }
     t->flushed += t->buffered;

@@ -126,19 +126,6 @@ static td_status io_checked(td_status st, const td_writer *w, const char *what, 
 
 /* ---- creation ---------------------------------------------------------------------------- */
 
-/* Chunked creation properties; with level > 0 shuffle then deflate (lossless: shuffle groups the
- * bytes of equal significance, which deflate then compresses far better for doubles). */
-static hid_t chunked_dcpl(int rank, const hsize_t *chunk, int level)
-{
-    hid_t dcpl = H5Pcreate(H5P_DATASET_CREATE);
-    if (dcpl >= 0 && (H5Pset_chunk(dcpl, rank, chunk) < 0 ||
-                      (level > 0 && (H5Pset_shuffle(dcpl) < 0 || H5Pset_deflate(dcpl, (unsigned)level) < 0)))) {
-        H5Pclose(dcpl);
-        return -1;
-    }
-    return dcpl;
-}
-
 /* The `units` attribute of the dataset `id` (td_schema). */
 static herr_t units_attr(hid_t dset, td_out_id id)
 {
@@ -190,8 +177,7 @@ static td_status add_series(td_writer *w, h5_impl *h, hid_t loc, td_out_id id, i
 {
     h5_series *s = &h->series[h->series_count];
     const char *name = td_out_name(id);
-    hsize_t dims[3], maxdims[3], chunk[3];
-    hid_t space, dcpl, dapl, dset = -1;
+    hid_t dset;
     int i;
     if (h->series_count >= H5_MAX_SERIES) /* a layout this file format was not sized for: a bug */
         return td_error_set(err, TD_ERR_INVALID, "%s: too many sample datasets (%d)", w->tmp_path, H5_MAX_SERIES);
@@ -207,22 +193,8 @@ static td_status add_series(td_writer *w, h5_impl *h, hid_t loc, td_out_id id, i
     if (!s->buf)
         return td_error_set(err, TD_ERR_NOMEM, "out of memory for the %s buffer", name);
     h->series_count++; /* from here on destroy() frees the buffer */
-    dims[0] = 0;
-    maxdims[0] = H5S_UNLIMITED;
-    chunk[0] = (hsize_t)h->chunk_rows;
-    for (i = 1; i < rank; i++)
-        dims[i] = maxdims[i] = chunk[i] = row_dims[i - 1];
-    space = H5Screate_simple(rank, dims, maxdims);
-    dcpl = chunked_dcpl(rank, chunk, w->compression);
-    dapl = td_h5_stream_dapl(); /* long runs: no chunk cache */
-    if (space >= 0 && dcpl >= 0 && dapl >= 0)
-        dset = H5Dcreate2(loc, name, is_int8 ? H5T_STD_I8LE : H5T_IEEE_F64LE, space, H5P_DEFAULT, dcpl, dapl);
-    if (dapl >= 0)
-        H5Pclose(dapl);
-    if (dcpl >= 0)
-        H5Pclose(dcpl);
-    if (space >= 0)
-        H5Sclose(space);
+    dset = td_h5_append_create(loc, name, is_int8 ? H5T_STD_I8LE : H5T_IEEE_F64LE, rank, s->row_dims,
+                               (hsize_t)h->chunk_rows, w->compression);
     if (dset < 0)
         return h5_fail(err, w, "cannot create a sample dataset");
     s->dset = dset;
@@ -466,30 +438,18 @@ static int event_types(const td_writer *w, h5_impl *h, char *names, size_t size)
 /* The event kind enum, the compound row types and the /events dataset with its scale /event. */
 static td_status create_events(td_writer *w, h5_impl *h, td_error *err)
 {
-    hsize_t dims[1] = {0}, maxdims[1] = {H5S_UNLIMITED}, chunk[1] = {H5_EVENT_CHUNK};
-    hid_t space = -1, dcpl = -1, dapl = -1;
     char names[256] = "";
     int ok = event_types(w, h, names, sizeof names);
     if (ok) {
         h->event_ftype = H5Tcopy(h->event_mtype);
         ok = h->event_ftype >= 0 && H5Tpack(h->event_ftype) >= 0;
     }
-    if (ok) {
-        space = H5Screate_simple(1, dims, maxdims);
-        dcpl = chunked_dcpl(1, chunk, w->compression);
-        dapl = td_h5_stream_dapl(); /* long runs: no chunk cache */
-        ok = space >= 0 && dcpl >= 0 && dapl >= 0;
-    }
     if (ok)
-        h->event_dset = H5Dcreate2(h->file, td_out_name(TD_OUT_EVENTS), h->event_ftype, space, H5P_DEFAULT, dcpl, dapl);
+        h->event_dset = td_h5_append_create(h->file, td_out_name(TD_OUT_EVENTS), h->event_ftype, 1, NULL,
+                                            H5_EVENT_CHUNK, w->compression);
     if (ok && h->event_dset >= 0)
-        h->event_index = H5Dcreate2(h->file, td_out_name(TD_OUT_EVENT), H5T_STD_I64LE, space, H5P_DEFAULT, dcpl, dapl);
-    if (dapl >= 0)
-        H5Pclose(dapl);
-    if (dcpl >= 0)
-        H5Pclose(dcpl);
-    if (space >= 0)
-        H5Sclose(space);
+        h->event_index = td_h5_append_create(h->file, td_out_name(TD_OUT_EVENT), H5T_STD_I64LE, 1, NULL, H5_EVENT_CHUNK,
+                                             w->compression);
     if (!ok || h->event_dset < 0 || h->event_index < 0 ||
         H5DSset_scale(h->event_index, td_out_name(TD_OUT_EVENT)) < 0 ||
         H5DSattach_scale(h->event_dset, h->event_index, 0) < 0)
@@ -580,31 +540,13 @@ static td_status h5_open(td_writer *w, td_error *err)
 /* Write the buffered rows to the end of every sample dataset. */
 static td_status flush_rows(td_writer *w, h5_impl *h, td_error *err)
 {
-    int i, k;
+    int i;
     if (h->buffered == 0)
         return TD_OK;
     for (i = 0; i < h->series_count; i++) {
-        h5_series *s = &h->series[i];
-        hsize_t dims[3], start[3], count[3];
-        hid_t fspace = -1, mspace = -1;
-        herr_t rc = -1;
-        dims[0] = h->flushed + h->buffered;
-        start[0] = h->flushed;
-        count[0] = h->buffered;
-        for (k = 1; k < s->rank; k++) {
-            dims[k] = count[k] = s->row_dims[k - 1];
-            start[k] = 0;
-        }
-        if (H5Dset_extent(s->dset, dims) >= 0 && (fspace = H5Dget_space(s->dset)) >= 0 &&
-            H5Sselect_hyperslab(fspace, H5S_SELECT_SET, start, NULL, count, NULL) >= 0 &&
-            (mspace = H5Screate_simple(s->rank, count, NULL)) >= 0)
-            rc = H5Dwrite(s->dset, s->is_int8 ? H5T_NATIVE_INT8 : H5T_NATIVE_DOUBLE, mspace, fspace, H5P_DEFAULT,
-                          s->buf);
-        if (mspace >= 0)
-            H5Sclose(mspace);
-        if (fspace >= 0)
-            H5Sclose(fspace);
-        if (rc < 0)
+        const h5_series *s = &h->series[i];
+        if (td_h5_append_rows(s->dset, s->is_int8 ? H5T_NATIVE_INT8 : H5T_NATIVE_DOUBLE, s->rank, s->row_dims,
+                              h->flushed, h->buffered, s->buf) < 0)
             return h5_fail(err, w, "cannot write samples");
     }
     h->flushed += h->buffered;
@@ -672,39 +614,19 @@ static td_status h5_sample(td_writer *w, double t, double speed, const double *n
 
 /* ---- events ------------------------------------------------------------------------------ */
 
-/* The row numbers of the buffered events into /event (same extent and selection as /events). */
-static herr_t write_event_index(h5_impl *h, const hsize_t *dims, hid_t fspace, hid_t mspace)
+/* Append the buffered events to /events and their row numbers to /event. */
+static td_status flush_events(td_writer *w, h5_impl *h, td_error *err)
 {
     int64_t rows[H5_EVENT_CHUNK];
     size_t i;
-    for (i = 0; i < h->events_buffered; i++)
-        rows[i] = (int64_t)(h->event_rows + i);
-    if (H5Dset_extent(h->event_index, dims) < 0)
-        return -1;
-    return H5Dwrite(h->event_index, H5T_NATIVE_INT64, mspace, fspace, H5P_DEFAULT, rows);
-}
-
-/* Append the buffered events to /events. */
-static td_status flush_events(td_writer *w, h5_impl *h, td_error *err)
-{
-    hsize_t dims[1], start[1], count[1];
-    hid_t fspace = -1, mspace = -1;
-    herr_t rc = -1;
+    herr_t rc;
     if (h->events_buffered == 0)
         return TD_OK;
-    dims[0] = h->event_rows + h->events_buffered;
-    start[0] = h->event_rows;
-    count[0] = h->events_buffered;
-    if (H5Dset_extent(h->event_dset, dims) >= 0 && (fspace = H5Dget_space(h->event_dset)) >= 0 &&
-        H5Sselect_hyperslab(fspace, H5S_SELECT_SET, start, NULL, count, NULL) >= 0 &&
-        (mspace = H5Screate_simple(1, count, NULL)) >= 0)
-        rc = H5Dwrite(h->event_dset, h->event_mtype, mspace, fspace, H5P_DEFAULT, h->event_buf);
+    for (i = 0; i < h->events_buffered; i++)
+        rows[i] = (int64_t)(h->event_rows + i);
+    rc = td_h5_append_rows(h->event_dset, h->event_mtype, 1, NULL, h->event_rows, h->events_buffered, h->event_buf);
     if (rc >= 0)
-        rc = write_event_index(h, dims, fspace, mspace);
-    if (mspace >= 0)
-        H5Sclose(mspace);
-    if (fspace >= 0)
-        H5Sclose(fspace);
+        rc = td_h5_append_rows(h->event_index, H5T_NATIVE_INT64, 1, NULL, h->event_rows, h->events_buffered, rows);
     if (rc < 0)
         return h5_fail(err, w, "cannot write events");
     h->event_rows += h->events_buffered;
