@@ -1187,6 +1187,19 @@ def span_val_tight_cell():
     return "%s s; %s Newton failures for %s onsets" % (e(d, 3), n(nf), n(on))
 
 
+def span_val_annular_order():
+    """BDF2's h^2: the steps and N errors of the rub at the defaults and at rtol 1e-10 (order 2)."""
+    def run(label):
+        pre = re.escape(label) + r":\s+N = \S+ N \(rel\. error "
+        return search("test_annular_rub", pre + FLOAT), search("test_annular_rub", pre + r".*, (\d+) steps")
+    (e6, s6), (e10, s10) = run("defaults (rtol 1e-6, BDF2)"), run("rtol 1e-10, BDF2")
+    w = search("test_annular_rub", r"closed form: .* W " + FLOAT + " rad/s")
+    sr, er = div(s10, s6), div(e6, e10)
+    return "W h = %s here, 2 s over %s steps: it scales as h^2 (%.1fx more steps at rtol 1e-10 cut the error %.0fx, " \
+           "the square of the steps' ratio, %.0f)" % ("%.2g" % (w * 2.0 / s6) if w and s6 else "-", n(s6), sr or 0,
+                                                     er or 0, (sr or 0) ** 2)
+
+
 def span_val_releases_cell():
     return "%s releases" % n(search("test_sim_scenarios", FLOAT + r" releases, largest interval peaks"))
 
@@ -1607,7 +1620,7 @@ SPANS = {"rub-mean-normal": span_rub_mean_normal, "val-first-contact-cell": span
          "val-levitation-cell": span_val_levitation_cell, "val-tight-cell": span_val_tight_cell,
          "val-releases-cell": span_val_releases_cell, "val-grazing-cell": span_val_grazing_cell,
          "val-drift-cell": span_val_drift_cell, "val-drift-onsets": span_val_drift_onsets,
-         "val-jeffcott-flight-cell": span_val_jeffcott_flight_cell}
+         "val-jeffcott-flight-cell": span_val_jeffcott_flight_cell, "val-annular-order": span_val_annular_order}
 
 
 # --- the case keys (docs/case-format.md) ------------------------------------------------------------
