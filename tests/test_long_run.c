@@ -57,6 +57,43 @@ static void test_end_at_rest_closed_form(void **state)
     td_case_free(&c);
 }
 
+/* The same rotor with a drive of 1.0 N m against the 0.7 N m drag: J dOmega/dt = 0.3 N m, so it
+ * speeds up (Omega = 100 + 30 t) and never rests. The run reaches end_time, complete, at the closed
+ * form's speed, and its summary says it asked to end at rest and did not, in a warning naming the
+ * drive. */
+static void test_end_at_rest_drive_outruns_drag(void **state)
+{
+    const char *drive[] = {"unbalances = ()",
+                           "schedule = ()",
+                           "speed = 100.0",
+                           "spin = { free = true; inertia = 0.01; drive_torque = 1.0; drag_torque = 0.7; }",
+                           "end_at_rest = true",
+                           "end_time = 0.5",
+                           "output.sample_rate = 1000.0",
+                           "output.section_after = 0.0"};
+    td_case *c = td_test_load_case("cases/rub-damped.cfg", drive, 8);
+    td_output_options out = *td_case_output_options(c);
+    td_run_summary sum;
+    td_sim *s = NULL;
+    td_error err;
+    int i, named = 0;
+    (void)state;
+    out.hdf5_path[0] = out.csv_path[0] = '\0';
+    assert_int_equal(td_sim_create(td_case_model(c), td_case_sim_options(c), &s, &err), TD_OK);
+    assert_int_equal(td_run(s, td_case_end_time(c), &out, NULL, NULL, &sum, &err), TD_OK);
+    assert_int_equal(sum.complete, 1);
+    assert_int_equal(sum.end_at_rest, 1);
+    assert_int_equal(sum.ended_at_rest, 0);
+    assert_close(sum.t_reached, 0.5, 0.0, 1e-12);
+    assert_close(sum.final_speed, SPIN_W0 + (1.0 - SPIN_T) * 0.5 / SPIN_J, 0.0, 1e-6);
+    for (i = 0; i < sum.warning_count; i++)
+        named += strstr(sum.warnings[i], "end_at_rest: the rotor did not come to rest") != NULL &&
+                 strstr(sum.warnings[i], "spin.drive_torque 1 N m exceeds its spin.drag_torque 0.7 N m") != NULL;
+    assert_int_equal(named, 1);
+    td_sim_free(&s);
+    td_case_free(&c);
+}
+
 /* td_run applies the case reader's rule: end_at_rest on a speed held constant (rub-damped.cfg: no
  * free spin, no ramp) is refused before anything runs; the rest test of drop.cfg waits for its AMBs'
  * failure at 0.05 s (its schedule's last entry). */
@@ -335,9 +372,9 @@ static void test_memory_bounded(void **state)
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_end_at_rest_closed_form), cmocka_unit_test(test_end_at_rest_refused),
-        cmocka_unit_test(test_window_peak_is_its_own),  cmocka_unit_test(test_windows_against_series),
-        cmocka_unit_test(test_memory_bounded),
+        cmocka_unit_test(test_end_at_rest_closed_form),        cmocka_unit_test(test_end_at_rest_refused),
+        cmocka_unit_test(test_end_at_rest_drive_outruns_drag), cmocka_unit_test(test_window_peak_is_its_own),
+        cmocka_unit_test(test_windows_against_series),         cmocka_unit_test(test_memory_bounded),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
