@@ -10,10 +10,12 @@
 #include <string.h>
 
 /* 1 if the machine may fly in closed form now: free flight on (td_solver_options), no energy
- * account, a prescribed constant speed, no housing motion or body, no races, no AMB saturation or slew
- * limit (the flight has no root function for their kinks and would step across one unseen, and its
- * probes of the residual, half a clearance and 1 m/s, would reach a clip), every retainer free (one
- * with a force law only once its gap has opened by eps after its last exit). The decomposition may
+ * account, a prescribed constant speed, no housing motion or body, no AMB saturation on a live AMB
+ * and no slew limit (the flight has no root function for their kinks and would step across one
+ * unseen, and its probes of the residual, half a clearance and 1 m/s, would reach a clip; a failed
+ * AMB exerts nothing and integrates nothing, model/amb.c, so its clip is no kink), every retainer
+ * free (one with a force law only once its gap has opened by eps after its last exit). Races fly:
+ * on their mounts among the modal states, their spins apart (flight_race.c). The decomposition may
  * still refuse it (td_sim_flight_advance). The step loop flies only with no stop pending. */
 static int flight_eligible(const td_sim *s)
 {
@@ -25,12 +27,14 @@ static int flight_eligible(const td_sim *s)
         return 0;
     if (s->sys->nbody > 0) /* housing body: its unbalance share is not in the flight's forcing */
         return 0;
-    for (k = 0; k < s->sys->n_amb_axes; k++)
-        if (s->sys->amb_axes[k].saturation || s->sys->amb_axes[k].slew_rate > 0.0)
+    for (k = 0; k < s->sys->n_amb_axes; k++) {
+        const td_amb_axis *a = &s->sys->amb_axes[k];
+        if ((a->saturation && s->machine.amb_mode[a->amb] != TD_AMB_OFF) || a->slew_rate > 0.0)
             return 0;
+    }
     for (k = 0; k < s->dae.nr; k++) {
         const td_sim_retainer *r = &s->contacts.ret[k];
-        if ((r->compliant && !r->armed) || r->rx >= 0 || r->rs >= 0 || r->mode != TD_RMODE_FREE || r->rolling)
+        if ((r->compliant && !r->armed) || r->mode != TD_RMODE_FREE || r->rolling)
             return 0;
     }
     return 1;

@@ -54,16 +54,20 @@ static int key_changed(td_sim_flight *f, double *stored, int n)
 
 /* ---- the first-order rates, probed from the residual ------------------------------------ */
 
-/* z' at (t, z) with every retainer free: -F(t, y, 0) on the q and w rows, M^-1 (-F) on the v rows. */
+/* z' at (t, z) with every retainer free: -F(t, y, 0) on the q and w rows, M^-1 (-F) on the v rows
+ * (of all ny first unknowns, in f->res; the modal states' into rate). */
 static void rates(const td_sim *s, td_sim_flight *f, double t, const double *z, double *rate)
 {
     int i;
     memset(f->y, 0, sizeof(double) * (size_t)s->dae.neq);
-    memcpy(f->y, z, sizeof(double) * (size_t)f->nz);
-    td_sim_residual(s, t, f->y, f->yp, f->res);
     for (i = 0; i < f->nz; i++)
-        rate[i] = -f->res[i];
-    td_sim_mass_solve(s, rate + s->dae.ov);
+        f->y[f->map[i]] = z[i];
+    td_sim_residual(s, t, f->y, f->yp, f->res);
+    for (i = 0; i < f->ny; i++)
+        f->res[i] = -f->res[i];
+    td_sim_mass_solve(s, f->res + s->dae.ov);
+    for (i = 0; i < f->nz; i++)
+        rate[i] = f->res[f->map[i]];
 }
 
 /* Probe size of state i: half the smallest clearance for a displacement (a penalty contact stays
@@ -83,20 +87,22 @@ static double probe_size(const td_sim *s, int i)
 /* ---- the machine: A and its eigen-decomposition ----------------------------------------- */
 
 /* A in the scaled states z_i / S_i, S the integrator's absolute tolerances (each state in its
- * tolerance's units: the eigenvectors come out balanced, and their checks mean something). */
+ * tolerance's units: the eigenvectors come out balanced, and their checks mean something; S is
+ * indexed as y is). */
 static void fill_matrix(const td_sim *s, td_sim_flight *f, gsl_matrix *A, const double *S)
 {
     double *z = f->b[0];
+    const int *m = f->map;
     int i, j, nz = f->nz;
     memset(z, 0, sizeof(double) * (size_t)nz);
     rates(s, f, s->dae.t, z, f->rate0);
     for (j = 0; j < nz; j++) {
-        double h = probe_size(s, j);
+        double h = probe_size(s, m[j]);
         z[j] = h;
         rates(s, f, s->dae.t, z, f->rate);
         z[j] = 0.0;
         for (i = 0; i < nz; i++)
-            gsl_matrix_set(A, (size_t)i, (size_t)j, (f->rate[i] - f->rate0[i]) / h * S[j] / S[i]);
+            gsl_matrix_set(A, (size_t)i, (size_t)j, (f->rate[i] - f->rate0[i]) / h * S[m[j]] / S[m[i]]);
     }
 }
 
@@ -106,8 +112,8 @@ static void unscale_modes(td_sim_flight *f, const double *S)
     size_t i, j, nz = (size_t)f->nz;
     for (i = 0; i < nz; i++)
         for (j = 0; j < nz; j++) {
-            f->V[i * nz + j] *= S[i];
-            f->Vinv[i * nz + j] /= S[j];
+            f->V[i * nz + j] *= S[f->map[i]];
+            f->Vinv[i * nz + j] /= S[f->map[j]];
         }
 }
 
@@ -180,6 +186,19 @@ static void pair_modes(td_sim_flight *f)
     }
 }
 
+/* The kept modes' columns of V, real and imaginary parts apart, mode after mode (f->vr, f->vi):
+ * the state is sum_k Re(V_ik a_k) over them, and this order sums it row-wise in one pass. */
+static void kept_columns(td_sim_flight *f)
+{
+    size_t i, k, nz = (size_t)f->nz;
+    for (k = 0; k < (size_t)f->nkeep; k++)
+        for (i = 0; i < nz; i++) {
+            double complex v = f->V[i * nz + (size_t)f->keep[k]];
+            f->vr[k * nz + i] = creal(v);
+            f->vi[k * nz + i] = cimag(v);
+        }
+}
+
 /* A's modes; 0 if A cannot be trusted to them (defective, ill-conditioned, a zero or resonant
  * eigenvalue, a mode growing faster than the bounds allow: by more than e over a step of h_max; with
  * a current held between samples the magnets' negative stiffness makes modes grow at ~144 s^-1, which
@@ -212,6 +231,7 @@ static int decompose(const td_sim *s, td_sim_flight *f, const double *scale)
     if (ok) {
         unscale_modes(f, scale);
         pair_modes(f);
+        kept_columns(f);
     }
     gsl_eigen_nonsymmv_free(w);
     gsl_matrix_complex_free(evec);
@@ -253,7 +273,7 @@ static int forcing_block(const td_sim *s, int i)
 static int probe_forcing(const td_sim *s, td_sim_flight *f)
 {
     double *z = f->rate0, w = f->omega, q = w != 0.0 ? M_PI / w : 0.0;
-    double complex *bp = f->e, *bm = f->d; /* work until the anchor */
+    double complex *bp = f->e, *bm = f->d; /* work until the anchor (which makes e stale) */
     double scale[3] = {0.0, 0.0, 0.0};
     int i, nz = f->nz, ok = 1;
     memset(z, 0, sizeof(double) * (size_t)nz);
@@ -262,12 +282,13 @@ static int probe_forcing(const td_sim *s, td_sim_flight *f)
     rates(s, f, f->tf + q, z, f->b[2]);
     rates(s, f, f->tf + 0.25 * q, z, f->b[3]);
     for (i = 0; i < nz; i++) /* each block's size: the rounding of the mass solve is relative to it */
-        scale[forcing_block(s, i)] = fmax(scale[forcing_block(s, i)], fabs(f->b[0][i]) + fabs(f->b[1][i]));
+        scale[forcing_block(s, f->map[i])] =
+            fmax(scale[forcing_block(s, f->map[i])], fabs(f->b[0][i]) + fabs(f->b[1][i]));
     for (i = 0; i < nz; i++) {
         double b0 = w != 0.0 ? 0.5 * (f->b[0][i] + f->b[2][i]) : f->b[0][i];
         double bc = f->b[0][i] - b0, bs = w != 0.0 ? f->b[1][i] - b0 : 0.0;
         double check = b0 + M_SQRT1_2 * (bc + bs);
-        if (fabs(check - f->b[3][i]) > 1e-10 * scale[forcing_block(s, i)] + 1e-300)
+        if (fabs(check - f->b[3][i]) > 1e-10 * scale[forcing_block(s, f->map[i])] + 1e-300)
             ok = 0;
         f->b[0][i] = b0;
         bp[i] = 0.5 * (bc - I * bs);
@@ -354,17 +375,26 @@ static void set_obs_row(td_sim_flight *f, flight_obs *o, const double *a, double
     o->offset = a0;
 }
 
+/* Retainer k's node's x (c = 0) or y (c = 1) relative to its race's centre (retainer.h: what the
+ * contact sees; the race on its mount is one of the modal states) as the row a. */
+static void node_row(const td_sim *s, const td_sim_flight *f, int k, int c, double *a)
+{
+    const td_sim_retainer *r = &s->contacts.ret[k];
+    memset(a, 0, sizeof(double) * (size_t)f->nz);
+    a[f->pos[s->dae.oq + (c ? r->dy : r->dx)]] = 1.0;
+    if (r->rx >= 0)
+        a[f->pos[s->dae.oq + (c ? r->ry : r->rx)]] = -1.0;
+}
+
 /* The rows of the observations: retainer nodes' x, y; AMB axis forces (probed, linear). */
 static void build_observations(const td_sim *s, td_sim_flight *f)
 {
     double *a = f->rate;
     int i, k, nz = f->nz;
     for (k = 0; k < s->dae.nr; k++) {
-        memset(a, 0, sizeof(double) * (size_t)nz);
-        a[s->dae.oq + s->contacts.ret[k].dx] = 1.0;
+        node_row(s, f, k, 0, a);
         set_obs_row(f, &f->obs[2 * k], a, 0.0);
-        a[s->dae.oq + s->contacts.ret[k].dx] = 0.0;
-        a[s->dae.oq + s->contacts.ret[k].dy] = 1.0;
+        node_row(s, f, k, 1, a);
         set_obs_row(f, &f->obs[2 * k + 1], a, 0.0);
     }
     for (k = 0; k < s->sys->n_amb_axes; k++) {
@@ -372,10 +402,10 @@ static void build_observations(const td_sim *s, td_sim_flight *f)
         memset(f->y, 0, sizeof(double) * (size_t)s->dae.neq);
         f0 = td_sim_amb_axis_force(s, k, f->y);
         for (i = 0; i < nz; i++) {
-            double h = probe_size(s, i);
-            f->y[i] = h;
+            double h = probe_size(s, f->map[i]);
+            f->y[f->map[i]] = h;
             a[i] = (td_sim_amb_axis_force(s, k, f->y) - f0) / h;
-            f->y[i] = 0.0;
+            f->y[f->map[i]] = 0.0;
         }
         set_obs_row(f, &f->obs[2 * s->dae.nr + k], a, f0);
     }
@@ -420,7 +450,7 @@ static void particular(const td_sim_flight *f, double t, double complex *out)
 static void anchor_observations(td_sim_flight *f)
 {
     int i, o;
-    f->t_e = NAN; /* e is stale */
+    f->t_e = f->t_e2 = NAN; /* e is stale, and the one kept before it */
     for (o = 0; o < f->nobs; o++) {
         flight_obs *b = &f->obs[o];
         for (i = 0; i < f->nkeep; i++) { /* the kept modes: the others are never summed */
@@ -442,7 +472,7 @@ static void anchor(td_sim *s, td_sim_flight *f)
     const double *y = N_VGetArrayPointer(s->dae.y);
     int j, nz = f->nz;
     for (j = 0; j < nz; j++)
-        f->e[j] = y[j];
+        f->e[j] = y[f->map[j]];
     for (j = 0; j < f->nkeep; j++) /* the kept modes' amplitudes: the others are never summed */
         f->d[f->keep[j]] = modal_row(f, f->keep[j], f->e);
     particular(f, s->dae.t, f->e);
@@ -450,13 +480,21 @@ static void anchor(td_sim *s, td_sim_flight *f)
         f->d[j] -= f->e[j];
     f->ta = s->dae.t;
     anchor_observations(f);
+    td_sim_flight_race_anchor(s, f);
 }
 
-/* e_j = e^{lambda_j (t - ta)} and the bound factors |e_j| grow_j, for the time t. */
+/* e_j = e^{lambda_j (t - ta)} and the bound factors |e_j| grow_j, for the time t. The last two
+ * times' are kept (the flight's bookkeeping goes back and forth between a step's ends and the
+ * output time): the earlier one is swapped back in as it was computed. */
 void td_sim_flight_propagate(td_sim_flight *f, double t)
 {
-    double dt = t - f->ta;
+    double dt = t - f->ta, *ae = f->ae, te = f->t_e;
+    double complex *e = f->e;
     int i;
+    if (t == f->t_e)
+        return;
+    f->e = f->e2, f->ae = f->ae2, f->t_e = f->t_e2;
+    f->e2 = e, f->ae2 = ae, f->t_e2 = te;
     if (t == f->t_e)
         return;
     for (i = 0; i < f->nkeep; i++) {
@@ -555,39 +593,50 @@ static void modal_state(const td_sim_flight *f, double t, double complex *a, dou
     }
 }
 
-/* The state z at t into y (and its rate into yp with `rate`; the rest of yp: zero in free flight). */
+/* The modal states z = Re(V a) over the kept modes (a: nkeep, weighted, modal_state) into y at
+ * their places (f->map): per state the same terms in the same order as a row of V times a, summed
+ * for all states at once into y[0, nz), then moved up to their places (map[i] >= i: from the last
+ * down, nothing is overwritten before it is moved). The races' spins' places are left written over. */
+static void state_sum(const td_sim_flight *f, const double complex *a, double *y)
+{
+    int i, k, nz = f->nz;
+    for (i = 0; i < nz; i++)
+        y[i] = 0.0;
+    for (k = 0; k < f->nkeep; k++) {
+        const double *vr = f->vr + (size_t)k * (size_t)nz, *vi = f->vi + (size_t)k * (size_t)nz;
+        double ar = creal(a[k]), ai = cimag(a[k]);
+        for (i = 0; i < nz; i++)
+            y[i] += vr[i] * ar - vi[i] * ai;
+    }
+    for (i = nz - 1; f->nrace > 0 && i >= 0; i--)
+        y[f->map[i]] = y[i];
+}
+
+/* The state z at t into y, the races' spins with it (and their rates into yp with `rate`; the rest
+ * of yp: zero in free flight). */
 void td_sim_flight_materialise(td_sim *s, td_sim_flight *f, double t, int rate)
 {
     double *y = N_VGetArrayPointer(s->dae.y), *yp = N_VGetArrayPointer(s->dae.yp);
     double complex *a = f->work, *da = rate ? f->work + f->nz : NULL;
-    int i, k, nz = f->nz;
     td_sim_flight_propagate(f, t);
     modal_state(f, t, a, da);
-    for (i = 0; i < nz; i++) {
-        const double complex *row = f->V + (size_t)i * (size_t)nz;
-        double z = 0.0, zd = 0.0;
-        for (k = 0; k < f->nkeep; k++) {
-            double complex v = row[f->keep[k]];
-            z += creal(v) * creal(a[k]) - cimag(v) * cimag(a[k]);
-            if (rate)
-                zd += creal(v) * creal(da[k]) - cimag(v) * cimag(da[k]);
-        }
-        y[i] = z;
-        if (rate)
-            yp[i] = zd;
+    state_sum(f, a, y);
+    if (rate) {
+        state_sum(f, da, yp);
+        memset(yp + f->ny, 0, sizeof(double) * (size_t)(s->dae.neq - f->ny));
     }
-    for (i = nz; rate && i < s->dae.neq; i++)
-        yp[i] = 0.0;
+    td_sim_flight_race_state(s, f, t, y, rate ? yp : NULL);
 }
 
-/* The displacements z at t into y[0..nz) from the anchored flight, leaving the flight's own cache
- * (e, t_e) untouched: the modal coordinates go to the caller's `work` (2 neq doubles). */
+/* The state at t into y's first ny unknowns (the races' spins too) from the anchored flight,
+ * leaving the flight's own cache (e, t_e) untouched: the modal coordinates go to the caller's
+ * `work` (2 neq doubles). */
 int td_sim_flight_peek(const td_sim *s, double t, double *y, double *work)
 {
     const td_sim_flight *f = s->flight;
     double complex *e = (double complex *)(void *)work;
     double complex ep, em;
-    int i, k;
+    int i;
     if (!f || !f->anchored)
         return 0;
     ep = td_sim_flight_phase(f, t);
@@ -598,13 +647,8 @@ int td_sim_flight_peek(const td_sim *s, double t, double *y, double *work)
         double complex h = f->d[j] * (m * (cos(cimag(f->lam[j]) * dt) + I * sin(cimag(f->lam[j]) * dt)));
         e[i] = f->weight[j] * (h + f->p0[j] + f->pp[j] * ep + f->pm[j] * em);
     }
-    for (i = 0; i < f->nz; i++) {
-        const double complex *row = f->V + (size_t)i * (size_t)f->nz;
-        double z = 0.0;
-        for (k = 0; k < f->nkeep; k++)
-            z += creal(row[f->keep[k]]) * creal(e[k]) - cimag(row[f->keep[k]]) * cimag(e[k]);
-        y[i] = z;
-    }
+    state_sum(f, e, y);
+    td_sim_flight_race_state(s, f, t, y, NULL);
     return 1;
 }
 
@@ -634,12 +678,17 @@ void td_sim_flight_free(td_sim *s)
     for (i = 0; f->obs && i < f->nobs; i++)
         free_obs(&f->obs[i]);
     free(f->obs);
+    free(f->map);
+    free(f->pos);
+    free(f->race);
     free(f->machine_key);
     free(f->forcing_key);
     free(f->key_work);
     free(f->lam);
     free(f->V);
     free(f->Vinv);
+    free(f->vr);
+    free(f->vi);
     free(f->grow);
     free(f->keep);
     free(f->order);
@@ -654,6 +703,8 @@ void td_sim_flight_free(td_sim *s)
     free(f->d);
     free(f->e);
     free(f->ae);
+    free(f->e2);
+    free(f->ae2);
     free(f->y);
     free(f->yp);
     free(f->res);
@@ -710,16 +761,47 @@ static int alloc_held(const td_sim *s, td_sim_flight *f)
     return 1;
 }
 
+/* The modal states (f->nz, f->map, f->pos): the first ny unknowns of y but the angle and speed of
+ * each race that spins, which flight_race.c carries (f->race); 0 when out of memory. */
+static int alloc_map(const td_sim *s, td_sim_flight *f)
+{
+    int i, k, n = 0;
+    f->ny = 2 * s->dae.n + s->dae.nw;
+    for (k = 0; k < s->dae.nr; k++)
+        f->nrace += s->contacts.ret[k].rs >= 0;
+    f->nz = f->ny - 2 * f->nrace;
+    f->map = calloc((size_t)f->nz, sizeof *f->map);
+    f->pos = calloc((size_t)f->ny, sizeof *f->pos);
+    f->race = calloc((size_t)(f->nrace > 0 ? f->nrace : 1), sizeof *f->race);
+    if (!f->map || !f->pos || !f->race)
+        return 0;
+    for (k = 0, f->nrace = 0; k < s->dae.nr; k++)
+        if (s->contacts.ret[k].rs >= 0) {
+            f->race[f->nrace++].k = k;
+            f->pos[s->dae.oq + s->contacts.ret[k].rs] = f->pos[s->dae.ov + s->contacts.ret[k].rs] = -1;
+        }
+    for (i = 0; i < f->ny; i++)
+        if (f->pos[i] == 0) {
+            f->map[n] = i;
+            f->pos[i] = n++;
+        }
+    return 1;
+}
+
 /* The flight's arrays; 0 when out of memory (the integrator then carries the machine). */
 static int flight_alloc(td_sim *s)
 {
     td_sim_flight *f = calloc(1, sizeof *f);
-    size_t nz = (size_t)(2 * s->dae.n + s->dae.nw), neq = (size_t)s->dae.neq, nk, na;
+    size_t nz, neq = (size_t)s->dae.neq, nk, na;
     int i, ok = f != NULL;
     if (!ok)
         return 0;
     s->flight = f;
-    f->nz = (int)nz;
+    if (!alloc_map(s, f)) {
+        td_sim_flight_free(s);
+        return 0;
+    }
+    nz = (size_t)f->nz;
     f->nobs = 2 * s->dae.nr + s->sys->n_amb_axes;
     nk = (size_t)(3 + 2 * s->machine.nu + 5 * td_model_amb_count(s->model));
     f->machine_key = calloc(nk, sizeof(double));
@@ -728,6 +810,8 @@ static int flight_alloc(td_sim *s)
     f->lam = calloc(nz, sizeof *f->lam);
     f->V = calloc(nz * nz, sizeof *f->V);
     f->Vinv = calloc(nz * nz, sizeof *f->Vinv);
+    f->vr = calloc(nz * nz, sizeof *f->vr);
+    f->vi = calloc(nz * nz, sizeof *f->vi);
     f->grow = calloc(nz, sizeof *f->grow);
     f->keep = calloc(nz, sizeof *f->keep);
     f->order = calloc(nz, sizeof *f->order);
@@ -739,6 +823,8 @@ static int flight_alloc(td_sim *s)
     f->d = calloc(nz, sizeof *f->d);
     f->e = calloc(nz, sizeof *f->e);
     f->ae = calloc(nz, sizeof *f->ae);
+    f->e2 = calloc(nz, sizeof *f->e2);
+    f->ae2 = calloc(nz, sizeof *f->ae2);
     f->y = calloc(neq, sizeof *f->y);
     f->yp = calloc(neq, sizeof *f->yp);
     f->res = calloc(neq, sizeof *f->res);
@@ -754,14 +840,16 @@ static int flight_alloc(td_sim *s)
     f->amb_p = calloc(na, sizeof(double));
     f->amb_b2p = calloc(na, sizeof(double));
     ok = ok && f->amb_a && f->amb_b && f->amb_b2 && f->amb_p && f->amb_b2p;
+    ok = ok && f->vr && f->vi;
     ok = ok && f->machine_key && f->forcing_key && f->key_work && f->lam && f->V && f->Vinv && f->grow && f->keep &&
-         f->order && f->weight && f->work && f->p0 && f->pp && f->pm && f->d && f->e && f->ae && f->y && f->yp &&
-         f->res && f->rate && f->rate0 && f->obs;
+         f->order && f->weight && f->work && f->p0 && f->pp && f->pm && f->d && f->e && f->ae && f->e2 && f->ae2 &&
+         f->y && f->yp && f->res && f->rate && f->rate0 && f->obs;
     for (i = 0; ok && i < f->nobs; i++)
         ok = alloc_obs(&f->obs[i], nz);
     ok = ok && alloc_held(s, f);
     f->nkey_m = f->nkey_f = -1;
     f->t_root = -INFINITY;
+    f->t_e = f->t_e2 = NAN;
     if (!ok)
         td_sim_flight_free(s);
     return ok;
