@@ -493,17 +493,16 @@ def perf_remains():
         "  cases/paper-b.cfg`, %s). What would reach it needs a decision on the model or the rig\n"
         "  ([above](#what-would-reach-10x-decisions-outside-this-code)).\n"
         "- `rub-damped` at 30x real time (full model) and 100x (reduced): %s; %sx and %sx\n"
-        "  (%s and %s s of CPU for 2 s, one run each). It is %s IDA steps, nearly all in contact: the free\n"
-        "  flight carries the free phases, races and all (%s s of the 2 s in %s flight steps), but at the\n"
-        "  case's output rate its bookkeeping at every output point (the AMBs' peak load, the clearance\n"
-        "  margin, the state) costs more than the IDA steps it replaces: that bookkeeping is the next step.\n" % (
+        "  (%s and %s s of CPU for 2 s, one run each). It is %s IDA steps and\n"
+        "  no free flight: the flight does not carry retainers with a race body or their own contact law\n"
+        "  even while they are free, and half of the 2 s is free. Carrying those phases (the race on its\n"
+        "  mount is linear; its spin-down under Coulomb drag is piecewise) is the next step for speed.\n" % (
             g(rtf_cpu("shipped", "B"), 2),
             g(cpu("runs", "paper-b/0.5"), 3), n(num(full, "stats", "steps")), g(cpu("runs", "paper-b/0.5/reduced"), 3),
             n(num(red, "stats", "steps")), f(num(full, "total_impulse"), 2), f(num(red, "total_impulse"), 2),
             n(num(full, "contacts")), n(num(red, "contacts")), cite("runs"),
             "met" if lt(rub_c, 2 / 30) and lt(rubr_c, 2 / 100) else "not met",
-            g(div(2, rub_c), 2), g(div(2, rubr_c), 2), g(rub_c, 2), g(rubr_c, 2), n(num(rub, "stats", "steps")),
-            g(num(rub, "stats", "flight_time"), 3), n(num(rub, "stats", "flight_steps"))))
+            g(div(2, rub_c), 2), g(div(2, rubr_c), 2), g(rub_c, 2), g(rubr_c, 2), n(num(rub, "stats", "steps"))))
 
 
 # --- docs/validation.md --------------------------------------------------------------------------

@@ -10,12 +10,10 @@
 #include <string.h>
 
 /* 1 if the machine may fly in closed form now: free flight on (td_solver_options), no energy
- * account, a prescribed constant speed, no housing motion or body, no AMB saturation on a live AMB
- * and no slew limit (the flight has no root function for their kinks and would step across one
- * unseen, and its probes of the residual, half a clearance and 1 m/s, would reach a clip; a failed
- * AMB exerts nothing and integrates nothing, model/amb.c, so its clip is no kink), every retainer
- * free (one with a force law only once its gap has opened by eps after its last exit). Races fly:
- * on their mounts among the modal states, their spins apart (flight_race.c). The decomposition may
+ * account, a prescribed constant speed, no housing motion or body, no races, no AMB saturation or slew
+ * limit (the flight has no root function for their kinks and would step across one unseen, and its
+ * probes of the residual, half a clearance and 1 m/s, would reach a clip), every retainer free (one
+ * with a force law only once its gap has opened by eps after its last exit). The decomposition may
  * still refuse it (td_sim_flight_advance). The step loop flies only with no stop pending. */
 static int flight_eligible(const td_sim *s)
 {
@@ -27,14 +25,12 @@ static int flight_eligible(const td_sim *s)
         return 0;
     if (s->sys->nbody > 0) /* housing body: its unbalance share is not in the flight's forcing */
         return 0;
-    for (k = 0; k < s->sys->n_amb_axes; k++) {
-        const td_amb_axis *a = &s->sys->amb_axes[k];
-        if ((a->saturation && s->machine.amb_mode[a->amb] != TD_AMB_OFF) || a->slew_rate > 0.0)
+    for (k = 0; k < s->sys->n_amb_axes; k++)
+        if (s->sys->amb_axes[k].saturation || s->sys->amb_axes[k].slew_rate > 0.0)
             return 0;
-    }
     for (k = 0; k < s->dae.nr; k++) {
         const td_sim_retainer *r = &s->contacts.ret[k];
-        if ((r->compliant && !r->armed) || r->mode != TD_RMODE_FREE || r->rolling)
+        if ((r->compliant && !r->armed) || r->rx >= 0 || r->rs >= 0 || r->mode != TD_RMODE_FREE || r->rolling)
             return 0;
     }
     return 1;
@@ -73,18 +69,14 @@ static void amb_peak_search(td_sim *s, td_sim_flight *f, int k, double ta, doubl
  * load updated if `record` (t is not beyond the output time). */
 static void amb_forces(td_sim *s, td_sim_flight *f, double t, double *fa, double *b2, int record)
 {
-    int k, n = s->sys->n_amb_axes, o = 2 * s->dae.nr;
-    flight_val v[2];
-    for (k = 0; k < n; k++) {
-        if (k % 2 == 0 && k + 1 < n) /* two axes in one pass over the modes */
-            td_sim_flight_observe2(f, o + k, o + k + 1, t, &v[0], &v[1]);
-        else if (k % 2 == 0)
-            v[0] = td_sim_flight_observe(f, o + k, t);
-        fa[k] = v[k % 2].v;
+    int k;
+    for (k = 0; k < s->sys->n_amb_axes; k++) {
+        flight_val v = td_sim_flight_observe(f, 2 * s->dae.nr + k, t);
+        fa[k] = v.v;
         if (b2)
-            b2[k] = v[k % 2].b2;
+            b2[k] = v.b2;
         if (record && s->machine.amb_mode[s->sys->amb_axes[k].amb] != TD_AMB_OFF)
-            td_sim_monitor_amb_load(s, k, v[k % 2].v, t);
+            td_sim_monitor_amb_load(s, k, v.v, t);
     }
 }
 
@@ -186,26 +178,17 @@ static void margin_part(td_sim *s, td_sim_flight *f, double a, double b, int to_
 }
 
 /* The retainers' largest radii over [a, b] (the pending part of a step, b - a <= h_max), from a's bounds;
- * b a time the run has reached. Leaves f->e anywhere; the values kept for the step (those at its end,
- * which margin_point would compute again with the same bits) are kept as they were. */
+ * b a time the run has reached. Leaves f->e anywhere, and the values kept those of a (margin_point
+ * keeps the step's again). */
 static void margin_span(td_sim *s, td_sim_flight *f, double a, double b)
 {
     int k;
     if (!(b > a))
         return;
     td_sim_flight_propagate(f, a);
-    for (k = 0; k < s->dae.nr; k++) {
-        td_sim_totals *tk = &s->monitor.totals[k];
-        tk->flight_r2s = tk->flight_r2;
-        tk->flight_b2s = tk->flight_b2;
-        margin_value(f, k, a, &tk->flight_r2, &tk->flight_b2);
-    }
+    for (k = 0; k < s->dae.nr; k++)
+        margin_value(f, k, a, &s->monitor.totals[k].flight_r2, &s->monitor.totals[k].flight_b2);
     margin_part(s, f, a, b, 0);
-    for (k = 0; k < s->dae.nr; k++) {
-        td_sim_totals *tk = &s->monitor.totals[k];
-        tk->flight_r2 = tk->flight_r2s;
-        tk->flight_b2 = tk->flight_b2s;
-    }
 }
 
 /* A step [t, tn] ran past the output time t_out: the AMBs' peak up to t_out now, the rest
@@ -218,17 +201,15 @@ static void amb_past_output(td_sim *s, td_sim_flight *f, double t, double t_out)
     memcpy(f->amb_b2p, f->amb_b2, sizeof(double) * (size_t)s->sys->n_amb_axes);
 }
 
-/* The pending part of the last step (amb_past_output) up to this call's output time; 1 if there was
- * one (the clearance margin's values at the step's end are then still those kept, beyond s->dae.t). */
-static int amb_pending_part(td_sim *s, td_sim_flight *f, double t_out)
+/* The pending part of the last step (amb_past_output) up to this call's output time. */
+static void amb_pending_part(td_sim *s, td_sim_flight *f, double t_out)
 {
     double end = fmin(f->t_step, t_out);
     if (!(f->amb_pending < f->t_step))
-        return 0;
+        return;
     amb_span(s, f, f->amb_pending, end, NULL, f->amb_b2p);
     margin_span(s, f, f->amb_pending, end); /* clearance margin: the bounds from the part's start */
     f->amb_pending = end < f->t_step ? end : INFINITY;
-    return 1;
 }
 
 /*
@@ -271,10 +252,9 @@ int td_sim_flight_advance(td_sim *s, const double *scale, double t_out, double t
         td_sim_flight_propagate(f, f->t_step);
         amb_forces(s, f, f->t_step, f->amb_a, f->amb_b2, 1);
     }
-    if (!amb_pending_part(s, f, t_out)) {
-        td_sim_flight_propagate(f, f->t_step); /* clearance margin: the bounds of this anchor and forcing */
-        margin_point(s, f, f->t_step, f->t_step <= s->dae.t);
-    }
+    amb_pending_part(s, f, t_out);
+    td_sim_flight_propagate(f, f->t_step); /* clearance margin: the bounds of this anchor and forcing */
+    margin_point(s, f, f->t_step, f->t_step <= s->dae.t);
     t = f->t_step;
     while (t < t_end) {
         double h, tn;

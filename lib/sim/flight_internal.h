@@ -4,9 +4,7 @@
  *
  * While every retainer is free, the speed is prescribed and constant and the AMB laws are linear
  * (no saturation), the machine is linear and time-invariant with harmonic forcing. In the first
- * unknowns of y, z = [q | v | w] (sim_internal.h: y begins with exactly these blocks) less the
- * angle and speed of each race that spins (their drag is not linear: flight_race.c carries them;
- * f->map places z in y; a race's centre on its mount is in z),
+ * unknowns of y, z = [q | v | w] (sim_internal.h: y begins with exactly these blocks),
  *
  *   z' = A z + b0 + bc cos W(t - tf) + bs sin W(t - tf)
  *
@@ -21,12 +19,11 @@
  * integrates, with rounding as its only error.
  *
  * The next root is found with a step that cannot pass it: for each root function
- * G(t) = R^2 - |p(t)|^2 (p the node's position relative to its race's centre, R the radius of the
- * root: the clearance, the rearm radius), positive until the root, the modal sum bounds |p|, |p'|,
- * |p''| from now on (|e^{lambda t}| <= 1 for a stable mode), so G'' >= -B with
- * B = 2 (|p'|max^2 + |p|max |p''|max), and G stays positive for tau below the root of
- * G + G' tau - B tau^2 / 2. Stepping by that tau never crosses a root, however grazing, and
- * converges on a simple root like Newton's method.
+ * G(t) = R^2 - |p(t)|^2 (p the node's position, R the radius of the root: the clearance, the
+ * rearm radius), positive until the root, the modal sum bounds |p|, |p'|, |p''| from now on
+ * (|e^{lambda t}| <= 1 for a stable mode), so G'' >= -B with B = 2 (|p'|max^2 + |p|max |p''|max),
+ * and G stays positive for tau below the root of G + G' tau - B tau^2 / 2. Stepping by that tau
+ * never crosses a root, however grazing, and converges on a simple root like Newton's method.
  */
 #ifndef TD_SIM_FLIGHT_INTERNAL_H
 #define TD_SIM_FLIGHT_INTERNAL_H
@@ -70,28 +67,14 @@ typedef struct flight_obs {
     double seen_bound; /* a retainer node's x or y: td_sim_flight_node's bound for seen (NaN: none) */
 } flight_obs;
 
-/* A race that spins (retainer k, its DOF rs): its angle and speed at the flight's t_race
- * (flight_race.c carries them; the modal states leave them out). */
-typedef struct flight_race {
-    int k;
-    double angle, speed;
-} flight_race;
-
 struct td_sim_flight {
-    int nz;    /* the modal states: the first ny unknowns of y but the races' angles and speeds */
-    int ny;    /* 2 n + nw: the q, v, w blocks at the start of y */
-    int *map;  /* nz: each modal state's index in y */
-    int *pos;  /* ny: each index of y's modal state, -1 for a race's angle or speed */
-    int nrace; /* races that spin, carried apart (flight_race.c) */
-    flight_race *race;
-    double t_race; /* the time of their anchor */
-    int handover;  /* the flight gave up (step budget, creeping steps): IDA goes on until its next step */
+    int nz;
+    int handover; /* the flight gave up (step budget, creeping steps): IDA goes on until its next step */
     /* the machine: valid for machine_key */
     int machine_ok;
     double *machine_key, *key_work;
     int nkey_m;
     double complex *lam, *V, *Vinv; /* V, V^-1 row-major nz x nz */
-    double *vr, *vi;                /* nkeep x nz: the kept modes' columns of V, real, imaginary (kept_columns) */
     double h_max;                   /* s: the longest step, min(FLIGHT_MAX_STEP, the shortest sample period) */
     double *grow;                   /* nz: e^{max(0, Re lambda) h_max} */
     int *keep, nkeep;               /* the modes summed: one of each conjugate pair (z is real) */
@@ -115,10 +98,7 @@ struct td_sim_flight {
     double t_root;         /* the last root the flight stopped at */
     double complex *d, *e; /* nz: homogeneous amplitudes at ta, e^{lambda (t - ta)} at t_e */
     double t_e;
-    double *ae;             /* nz: |e_j| grow_j */
-    double complex *e2;     /* nz: e at the time propagated before t_e, t_e2 (NAN: none) */
-    double *ae2, t_e2;      /* nz: its |e_j| grow_j */
-    double complex ep, ep2; /* the forcing's phase e^{iW(t - tf)} at t_e and at t_e2 */
+    double *ae; /* nz: |e_j| grow_j */
     /* observations: x, y of each retainer node, then each AMB axis force */
     int nobs;
     flight_obs *obs;
@@ -149,9 +129,6 @@ int td_sim_flight_ready(td_sim *s, const double *scale);
 void td_sim_flight_propagate(td_sim_flight *f, double t);
 /* Observation o at the time of the last propagate (t). */
 flight_val td_sim_flight_observe(const td_sim_flight *f, int o, double t);
-/* Observations o1 and o2 at the time of the last propagate (t): the same bits as two calls of
- * td_sim_flight_observe, in one pass over the modes. */
-void td_sim_flight_observe2(const td_sim_flight *f, int o1, int o2, double t, flight_val *r1, flight_val *r2);
 /* e^{iW(t - tf)}: the forcing's phase at t. */
 double complex td_sim_flight_phase(const td_sim_flight *f, double t);
 /* The held currents of sampled controllers (machine.held_current) now in the forcing: p0 shifted by
@@ -161,13 +138,6 @@ double complex td_sim_flight_phase(const td_sim_flight *f, double t);
 void td_sim_flight_shift_held(td_sim *s, td_sim_flight *f, int reanchor);
 /* The state z at t into s->dae.y (and its rate into s->dae.yp with `rate`). */
 void td_sim_flight_materialise(td_sim *s, td_sim_flight *f, double t, int rate);
-
-/* ---- flight_race.c -------------------------------------------------------------------------- */
-
-/* The races' angles and speeds at s->dae.t (the state in s->dae.y) as their anchor. */
-void td_sim_flight_race_anchor(const td_sim *s, td_sim_flight *f);
-/* The races' angles and speeds at t into y (and their rates into yp, if not NULL). */
-void td_sim_flight_race_state(const td_sim *s, const td_sim_flight *f, double t, double *y, double *yp);
 
 /* ---- flight_roots.c ------------------------------------------------------------------------- */
 

@@ -15,10 +15,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#ifdef __SSE2__
-#include <emmintrin.h>
-#endif
-
 /* What A depends on: the speed and the AMBs' modes. */
 static int machine_key(const td_sim *s, double *key)
 {
@@ -58,20 +54,16 @@ static int key_changed(td_sim_flight *f, double *stored, int n)
 
 /* ---- the first-order rates, probed from the residual ------------------------------------ */
 
-/* z' at (t, z) with every retainer free: -F(t, y, 0) on the q and w rows, M^-1 (-F) on the v rows
- * (of all ny first unknowns, in f->res; the modal states' into rate). */
+/* z' at (t, z) with every retainer free: -F(t, y, 0) on the q and w rows, M^-1 (-F) on the v rows. */
 static void rates(const td_sim *s, td_sim_flight *f, double t, const double *z, double *rate)
 {
     int i;
     memset(f->y, 0, sizeof(double) * (size_t)s->dae.neq);
-    for (i = 0; i < f->nz; i++)
-        f->y[f->map[i]] = z[i];
+    memcpy(f->y, z, sizeof(double) * (size_t)f->nz);
     td_sim_residual(s, t, f->y, f->yp, f->res);
-    for (i = 0; i < f->ny; i++)
-        f->res[i] = -f->res[i];
-    td_sim_mass_solve(s, f->res + s->dae.ov);
     for (i = 0; i < f->nz; i++)
-        rate[i] = f->res[f->map[i]];
+        rate[i] = -f->res[i];
+    td_sim_mass_solve(s, rate + s->dae.ov);
 }
 
 /* Probe size of state i: half the smallest clearance for a displacement (a penalty contact stays
@@ -91,22 +83,20 @@ static double probe_size(const td_sim *s, int i)
 /* ---- the machine: A and its eigen-decomposition ----------------------------------------- */
 
 /* A in the scaled states z_i / S_i, S the integrator's absolute tolerances (each state in its
- * tolerance's units: the eigenvectors come out balanced, and their checks mean something; S is
- * indexed as y is). */
+ * tolerance's units: the eigenvectors come out balanced, and their checks mean something). */
 static void fill_matrix(const td_sim *s, td_sim_flight *f, gsl_matrix *A, const double *S)
 {
     double *z = f->b[0];
-    const int *m = f->map;
     int i, j, nz = f->nz;
     memset(z, 0, sizeof(double) * (size_t)nz);
     rates(s, f, s->dae.t, z, f->rate0);
     for (j = 0; j < nz; j++) {
-        double h = probe_size(s, m[j]);
+        double h = probe_size(s, j);
         z[j] = h;
         rates(s, f, s->dae.t, z, f->rate);
         z[j] = 0.0;
         for (i = 0; i < nz; i++)
-            gsl_matrix_set(A, (size_t)i, (size_t)j, (f->rate[i] - f->rate0[i]) / h * S[m[j]] / S[m[i]]);
+            gsl_matrix_set(A, (size_t)i, (size_t)j, (f->rate[i] - f->rate0[i]) / h * S[j] / S[i]);
     }
 }
 
@@ -116,31 +106,24 @@ static void unscale_modes(td_sim_flight *f, const double *S)
     size_t i, j, nz = (size_t)f->nz;
     for (i = 0; i < nz; i++)
         for (j = 0; j < nz; j++) {
-            f->V[i * nz + j] *= S[f->map[i]];
-            f->Vinv[i * nz + j] /= S[f->map[j]];
+            f->V[i * nz + j] *= S[i];
+            f->Vinv[i * nz + j] /= S[j];
         }
 }
 
 /* The decomposition's quality: the largest of max_i |A v_j - lambda_j v_j| / (|lambda_j| max_i |v_j|)
  * over the modes j (the phase error per radian of each mode) and max |V V^-1 - I|. */
-static double decomposition_error(td_sim_flight *f, const gsl_matrix *A)
+static double decomposition_error(const td_sim_flight *f, const gsl_matrix *A)
 {
     int i, j, k, nz = f->nz;
     double worst = 0.0;
-    double complex *vj = f->work, *wj = f->work + nz; /* column j of V and of V^-1, contiguous */
     for (j = 0; j < nz; j++) {
         double res = 0.0, vmax = 0.0;
-        for (k = 0; k < nz; k++) {
-            vj[k] = f->V[k * nz + j];
-            wj[k] = f->Vinv[k * nz + j];
-        }
         for (i = 0; i < nz; i++) {
-            const double *ai = A->data + (size_t)i * A->tda; /* row i: gsl_matrix_get(A, i, k) = ai[k] */
-            const double complex *vi = f->V + (size_t)i * (size_t)nz;
             double complex av = -f->V[i * nz + j] * f->lam[j], vv = 0.0;
             for (k = 0; k < nz; k++) {
-                av += ai[k] * vj[k];
-                vv += vi[k] * wj[k];
+                av += gsl_matrix_get(A, (size_t)i, (size_t)k) * f->V[k * nz + j];
+                vv += f->V[i * nz + k] * f->Vinv[k * nz + j];
             }
             res = fmax(res, cabs(av));
             vmax = fmax(vmax, cabs(f->V[i * nz + j]));
@@ -197,19 +180,6 @@ static void pair_modes(td_sim_flight *f)
     }
 }
 
-/* The kept modes' columns of V, real and imaginary parts apart, mode after mode (f->vr, f->vi):
- * the state is sum_k Re(V_ik a_k) over them, and this order sums it row-wise in one pass. */
-static void kept_columns(td_sim_flight *f)
-{
-    size_t i, k, nz = (size_t)f->nz;
-    for (k = 0; k < (size_t)f->nkeep; k++)
-        for (i = 0; i < nz; i++) {
-            double complex v = f->V[i * nz + (size_t)f->keep[k]];
-            f->vr[k * nz + i] = creal(v);
-            f->vi[k * nz + i] = cimag(v);
-        }
-}
-
 /* A's modes; 0 if A cannot be trusted to them (defective, ill-conditioned, a zero or resonant
  * eigenvalue, a mode growing faster than the bounds allow: by more than e over a step of h_max; with
  * a current held between samples the magnets' negative stiffness makes modes grow at ~144 s^-1, which
@@ -242,7 +212,6 @@ static int decompose(const td_sim *s, td_sim_flight *f, const double *scale)
     if (ok) {
         unscale_modes(f, scale);
         pair_modes(f);
-        kept_columns(f);
     }
     gsl_eigen_nonsymmv_free(w);
     gsl_matrix_complex_free(evec);
@@ -284,7 +253,7 @@ static int forcing_block(const td_sim *s, int i)
 static int probe_forcing(const td_sim *s, td_sim_flight *f)
 {
     double *z = f->rate0, w = f->omega, q = w != 0.0 ? M_PI / w : 0.0;
-    double complex *bp = f->e, *bm = f->d; /* work until the anchor (which makes e stale) */
+    double complex *bp = f->e, *bm = f->d; /* work until the anchor */
     double scale[3] = {0.0, 0.0, 0.0};
     int i, nz = f->nz, ok = 1;
     memset(z, 0, sizeof(double) * (size_t)nz);
@@ -293,13 +262,12 @@ static int probe_forcing(const td_sim *s, td_sim_flight *f)
     rates(s, f, f->tf + q, z, f->b[2]);
     rates(s, f, f->tf + 0.25 * q, z, f->b[3]);
     for (i = 0; i < nz; i++) /* each block's size: the rounding of the mass solve is relative to it */
-        scale[forcing_block(s, f->map[i])] =
-            fmax(scale[forcing_block(s, f->map[i])], fabs(f->b[0][i]) + fabs(f->b[1][i]));
+        scale[forcing_block(s, i)] = fmax(scale[forcing_block(s, i)], fabs(f->b[0][i]) + fabs(f->b[1][i]));
     for (i = 0; i < nz; i++) {
         double b0 = w != 0.0 ? 0.5 * (f->b[0][i] + f->b[2][i]) : f->b[0][i];
         double bc = f->b[0][i] - b0, bs = w != 0.0 ? f->b[1][i] - b0 : 0.0;
         double check = b0 + M_SQRT1_2 * (bc + bs);
-        if (fabs(check - f->b[3][i]) > 1e-10 * scale[forcing_block(s, f->map[i])] + 1e-300)
+        if (fabs(check - f->b[3][i]) > 1e-10 * scale[forcing_block(s, i)] + 1e-300)
             ok = 0;
         f->b[0][i] = b0;
         bp[i] = 0.5 * (bc - I * bs);
@@ -386,26 +354,17 @@ static void set_obs_row(td_sim_flight *f, flight_obs *o, const double *a, double
     o->offset = a0;
 }
 
-/* Retainer k's node's x (c = 0) or y (c = 1) relative to its race's centre (retainer.h: what the
- * contact sees; the race on its mount is one of the modal states) as the row a. */
-static void node_row(const td_sim *s, const td_sim_flight *f, int k, int c, double *a)
-{
-    const td_sim_retainer *r = &s->contacts.ret[k];
-    memset(a, 0, sizeof(double) * (size_t)f->nz);
-    a[f->pos[s->dae.oq + (c ? r->dy : r->dx)]] = 1.0;
-    if (r->rx >= 0)
-        a[f->pos[s->dae.oq + (c ? r->ry : r->rx)]] = -1.0;
-}
-
 /* The rows of the observations: retainer nodes' x, y; AMB axis forces (probed, linear). */
 static void build_observations(const td_sim *s, td_sim_flight *f)
 {
     double *a = f->rate;
     int i, k, nz = f->nz;
     for (k = 0; k < s->dae.nr; k++) {
-        node_row(s, f, k, 0, a);
+        memset(a, 0, sizeof(double) * (size_t)nz);
+        a[s->dae.oq + s->contacts.ret[k].dx] = 1.0;
         set_obs_row(f, &f->obs[2 * k], a, 0.0);
-        node_row(s, f, k, 1, a);
+        a[s->dae.oq + s->contacts.ret[k].dx] = 0.0;
+        a[s->dae.oq + s->contacts.ret[k].dy] = 1.0;
         set_obs_row(f, &f->obs[2 * k + 1], a, 0.0);
     }
     for (k = 0; k < s->sys->n_amb_axes; k++) {
@@ -413,10 +372,10 @@ static void build_observations(const td_sim *s, td_sim_flight *f)
         memset(f->y, 0, sizeof(double) * (size_t)s->dae.neq);
         f0 = td_sim_amb_axis_force(s, k, f->y);
         for (i = 0; i < nz; i++) {
-            double h = probe_size(s, f->map[i]);
-            f->y[f->map[i]] = h;
+            double h = probe_size(s, i);
+            f->y[i] = h;
             a[i] = (td_sim_amb_axis_force(s, k, f->y) - f0) / h;
-            f->y[f->map[i]] = 0.0;
+            f->y[i] = 0.0;
         }
         set_obs_row(f, &f->obs[2 * s->dae.nr + k], a, f0);
     }
@@ -461,7 +420,7 @@ static void particular(const td_sim_flight *f, double t, double complex *out)
 static void anchor_observations(td_sim_flight *f)
 {
     int i, o;
-    f->t_e = f->t_e2 = NAN; /* e is stale, and the one kept before it */
+    f->t_e = NAN; /* e is stale */
     for (o = 0; o < f->nobs; o++) {
         flight_obs *b = &f->obs[o];
         for (i = 0; i < f->nkeep; i++) { /* the kept modes: the others are never summed */
@@ -483,7 +442,7 @@ static void anchor(td_sim *s, td_sim_flight *f)
     const double *y = N_VGetArrayPointer(s->dae.y);
     int j, nz = f->nz;
     for (j = 0; j < nz; j++)
-        f->e[j] = y[f->map[j]];
+        f->e[j] = y[j];
     for (j = 0; j < f->nkeep; j++) /* the kept modes' amplitudes: the others are never summed */
         f->d[f->keep[j]] = modal_row(f, f->keep[j], f->e);
     particular(f, s->dae.t, f->e);
@@ -491,24 +450,15 @@ static void anchor(td_sim *s, td_sim_flight *f)
         f->d[j] -= f->e[j];
     f->ta = s->dae.t;
     anchor_observations(f);
-    td_sim_flight_race_anchor(s, f);
 }
 
-/* e_j = e^{lambda_j (t - ta)} and the bound factors |e_j| grow_j, for the time t. The last two
- * times' are kept (the flight's bookkeeping goes back and forth between a step's ends and the
- * output time): the earlier one is swapped back in as it was computed. */
+/* e_j = e^{lambda_j (t - ta)} and the bound factors |e_j| grow_j, for the time t. */
 void td_sim_flight_propagate(td_sim_flight *f, double t)
 {
-    double dt = t - f->ta, *ae = f->ae, te = f->t_e;
-    double complex *e = f->e, ep = f->ep;
+    double dt = t - f->ta;
     int i;
     if (t == f->t_e)
         return;
-    f->e = f->e2, f->ae = f->ae2, f->t_e = f->t_e2, f->ep = f->ep2;
-    f->e2 = e, f->ae2 = ae, f->t_e2 = te, f->ep2 = ep;
-    if (t == f->t_e)
-        return;
-    f->ep = td_sim_flight_phase(f, t); /* shared by every observation at t */
     for (i = 0; i < f->nkeep; i++) {
         int j = f->keep[i];
         double m = exp(creal(f->lam[j]) * dt);
@@ -556,17 +506,6 @@ void td_sim_flight_shift_held(td_sim *s, td_sim_flight *f, int reanchor)
     anchor_observations(f);
 }
 
-/* The constant and harmonic parts of observation b (phase ep) added to its modal sums r. */
-static void observe_tail(const td_sim_flight *f, const flight_obs *b, double complex ep, flight_val *r)
-{
-    double w = fabs(f->omega), h = b->h_abs;
-    r->v += creal(b->h0 + b->hp * ep + b->hm * conj(ep));
-    r->d += creal(I * f->omega * (b->hp * ep - b->hm * conj(ep)));
-    r->b0 += b->h0_abs + h;
-    r->b1 += w * h;
-    r->b2 += w * w * h;
-}
-
 /* Observation o at the time of the last propagate (t). Kept (flight_obs.seen): the same t again
  * with the same propagate gives the same bits without the sums (e at t depends on t and the anchor
  * only, and an anchor or a forcing clears what was kept). */
@@ -574,11 +513,12 @@ flight_val td_sim_flight_observe(const td_sim_flight *f, int o, double t)
 {
     flight_obs *b = &f->obs[o];
     double complex ep;
+    double w = fabs(f->omega), h = b->h_abs;
     flight_val r = {0.0, 0.0, 0.0, 0.0, 0.0};
     int i;
     if (t == b->seen_t && t == f->t_e)
         return b->seen;
-    ep = t == f->t_e ? f->ep : td_sim_flight_phase(f, t);
+    ep = td_sim_flight_phase(f, t);
     for (i = 0; i < f->nkeep; i++) { /* the real parts of sum c e and sum c e lambda, as complex */
         int j = f->keep[i];
         double ce[2];
@@ -589,64 +529,22 @@ flight_val td_sim_flight_observe(const td_sim_flight *f, int o, double t)
         r.b1 += b->m1[j] * f->ae[j];
         r.b2 += b->m2[j] * f->ae[j];
     }
-    observe_tail(f, b, ep, &r);
+    r.v += creal(b->h0 + b->hp * ep + b->hm * conj(ep));
+    r.d += creal(I * f->omega * (b->hp * ep - b->hm * conj(ep)));
+    r.b0 += b->h0_abs + h;
+    r.b1 += w * h;
+    r.b2 += w * w * h;
     b->seen_t = t;
     b->seen = r;
     b->seen_bound = NAN;
     return r;
 }
 
-/* Observations o1, o2 at the last propagate (t) into r1, r2, as td_sim_flight_observe gives and keeps
- * them: the two sums side by side in packed doubles where neither is kept already. */
-void td_sim_flight_observe2(const td_sim_flight *f, int o1, int o2, double t, flight_val *r1, flight_val *r2)
-{
-#ifdef __SSE2__
-    flight_obs *a = &f->obs[o1], *b = &f->obs[o2];
-    double out[5][2];
-    __m128d v = _mm_setzero_pd(), d = v, b0 = v, b1 = v, b2 = v;
-    int i, q;
-    if ((t == a->seen_t || t == b->seen_t) || t != f->t_e) {
-#endif
-        *r1 = td_sim_flight_observe(f, o1, t);
-        *r2 = td_sim_flight_observe(f, o2, t);
-#ifdef __SSE2__
-        return;
-    }
-    for (i = 0; i < f->nkeep; i++) { /* each lane td_sim_flight_observe's sum for its observation */
-        int j = f->keep[i];
-        __m128d cr = _mm_set_pd(creal(b->c[j]), creal(a->c[j])), ci = _mm_set_pd(cimag(b->c[j]), cimag(a->c[j]));
-        __m128d er = _mm_set1_pd(creal(f->e[j])), ei = _mm_set1_pd(cimag(f->e[j])), ae = _mm_set1_pd(f->ae[j]);
-        __m128d ce0 = _mm_sub_pd(_mm_mul_pd(cr, er), _mm_mul_pd(ci, ei));
-        __m128d ce1 = _mm_add_pd(_mm_mul_pd(cr, ei), _mm_mul_pd(ci, er));
-        v = _mm_add_pd(v, ce0);
-        d = _mm_add_pd(d, _mm_sub_pd(_mm_mul_pd(ce0, _mm_set1_pd(creal(f->lam[j]))),
-                                     _mm_mul_pd(ce1, _mm_set1_pd(cimag(f->lam[j])))));
-        b0 = _mm_add_pd(b0, _mm_mul_pd(_mm_set_pd(b->m0[j], a->m0[j]), ae));
-        b1 = _mm_add_pd(b1, _mm_mul_pd(_mm_set_pd(b->m1[j], a->m1[j]), ae));
-        b2 = _mm_add_pd(b2, _mm_mul_pd(_mm_set_pd(b->m2[j], a->m2[j]), ae));
-    }
-    _mm_storeu_pd(out[0], v);
-    _mm_storeu_pd(out[1], d);
-    _mm_storeu_pd(out[2], b0);
-    _mm_storeu_pd(out[3], b1);
-    _mm_storeu_pd(out[4], b2);
-    for (q = 0; q < 2; q++) {
-        flight_obs *o = q ? b : a;
-        flight_val r = {out[0][q], out[1][q], out[2][q], out[3][q], out[4][q]};
-        observe_tail(f, o, f->ep, &r);
-        o->seen_t = t;
-        o->seen = r;
-        o->seen_bound = NAN;
-        *(q ? r2 : r1) = r;
-    }
-#endif
-}
-
 /* The modal coordinates at t (propagated), weighted for the kept modes, into f->b-sized complex
  * work `a`; with `rate`, their time derivatives into `da`. */
 static void modal_state(const td_sim_flight *f, double t, double complex *a, double complex *da)
 {
-    double complex ep = t == f->t_e ? f->ep : td_sim_flight_phase(f, t), em = conj(ep);
+    double complex ep = td_sim_flight_phase(f, t), em = conj(ep);
     int i;
     for (i = 0; i < f->nkeep; i++) {
         int j = f->keep[i];
@@ -657,68 +555,39 @@ static void modal_state(const td_sim_flight *f, double t, double complex *a, dou
     }
 }
 
-/* The modal states z = Re(V a) over the kept modes (a: nkeep, weighted, modal_state) into y at
- * their places (f->map): per state the same terms in the same order as a row of V times a, summed
- * for all states at once into y[0, nz), then moved up to their places (map[i] >= i: from the last
- * down, nothing is overwritten before it is moved). The races' spins' places are left written over. */
-static void state_sum(const td_sim_flight *f, const double complex *a, double *y)
-{
-    int i, k, nz = f->nz;
-    for (i = 0; i < nz; i++)
-        y[i] = 0.0;
-    for (k = 0; k + 1 < f->nkeep; k += 2) { /* two modes a pass: y_i + term_k, then + term_k+1 */
-        const double *vr = f->vr + (size_t)k * (size_t)nz, *vi = f->vi + (size_t)k * (size_t)nz;
-        const double *wr = vr + nz, *wi = vi + nz;
-        double ar = creal(a[k]), ai = cimag(a[k]), br = creal(a[k + 1]), bi = cimag(a[k + 1]);
-        i = 0;
-#ifdef __SSE2__
-        { /* two rows at a time in packed doubles: each lane the scalar loop's operations, the same bits */
-            __m128d par = _mm_set1_pd(ar), pai = _mm_set1_pd(ai), pbr = _mm_set1_pd(br), pbi = _mm_set1_pd(bi);
-            for (; i + 1 < nz; i += 2) {
-                __m128d t = _mm_sub_pd(_mm_mul_pd(_mm_loadu_pd(vr + i), par), _mm_mul_pd(_mm_loadu_pd(vi + i), pai));
-                __m128d u = _mm_sub_pd(_mm_mul_pd(_mm_loadu_pd(wr + i), pbr), _mm_mul_pd(_mm_loadu_pd(wi + i), pbi));
-                _mm_storeu_pd(y + i, _mm_add_pd(_mm_add_pd(_mm_loadu_pd(y + i), t), u));
-            }
-        }
-#endif
-        for (; i < nz; i++)
-            y[i] = (y[i] + (vr[i] * ar - vi[i] * ai)) + (wr[i] * br - wi[i] * bi);
-    }
-    for (; k < f->nkeep; k++) {
-        const double *vr = f->vr + (size_t)k * (size_t)nz, *vi = f->vi + (size_t)k * (size_t)nz;
-        double ar = creal(a[k]), ai = cimag(a[k]);
-        for (i = 0; i < nz; i++)
-            y[i] += vr[i] * ar - vi[i] * ai;
-    }
-    for (i = nz - 1; f->nrace > 0 && i >= 0; i--)
-        y[f->map[i]] = y[i];
-}
-
-/* The state z at t into y, the races' spins with it (and their rates into yp with `rate`; the rest
- * of yp: zero in free flight). */
+/* The state z at t into y (and its rate into yp with `rate`; the rest of yp: zero in free flight). */
 void td_sim_flight_materialise(td_sim *s, td_sim_flight *f, double t, int rate)
 {
     double *y = N_VGetArrayPointer(s->dae.y), *yp = N_VGetArrayPointer(s->dae.yp);
     double complex *a = f->work, *da = rate ? f->work + f->nz : NULL;
+    int i, k, nz = f->nz;
     td_sim_flight_propagate(f, t);
     modal_state(f, t, a, da);
-    state_sum(f, a, y);
-    if (rate) {
-        state_sum(f, da, yp);
-        memset(yp + f->ny, 0, sizeof(double) * (size_t)(s->dae.neq - f->ny));
+    for (i = 0; i < nz; i++) {
+        const double complex *row = f->V + (size_t)i * (size_t)nz;
+        double z = 0.0, zd = 0.0;
+        for (k = 0; k < f->nkeep; k++) {
+            double complex v = row[f->keep[k]];
+            z += creal(v) * creal(a[k]) - cimag(v) * cimag(a[k]);
+            if (rate)
+                zd += creal(v) * creal(da[k]) - cimag(v) * cimag(da[k]);
+        }
+        y[i] = z;
+        if (rate)
+            yp[i] = zd;
     }
-    td_sim_flight_race_state(s, f, t, y, rate ? yp : NULL);
+    for (i = nz; rate && i < s->dae.neq; i++)
+        yp[i] = 0.0;
 }
 
-/* The state at t into y's first ny unknowns (the races' spins too) from the anchored flight,
- * leaving the flight's own cache (e, t_e) untouched: the modal coordinates go to the caller's
- * `work` (2 neq doubles). */
+/* The displacements z at t into y[0..nz) from the anchored flight, leaving the flight's own cache
+ * (e, t_e) untouched: the modal coordinates go to the caller's `work` (2 neq doubles). */
 int td_sim_flight_peek(const td_sim *s, double t, double *y, double *work)
 {
     const td_sim_flight *f = s->flight;
     double complex *e = (double complex *)(void *)work;
     double complex ep, em;
-    int i;
+    int i, k;
     if (!f || !f->anchored)
         return 0;
     ep = td_sim_flight_phase(f, t);
@@ -729,8 +598,13 @@ int td_sim_flight_peek(const td_sim *s, double t, double *y, double *work)
         double complex h = f->d[j] * (m * (cos(cimag(f->lam[j]) * dt) + I * sin(cimag(f->lam[j]) * dt)));
         e[i] = f->weight[j] * (h + f->p0[j] + f->pp[j] * ep + f->pm[j] * em);
     }
-    state_sum(f, e, y);
-    td_sim_flight_race_state(s, f, t, y, NULL);
+    for (i = 0; i < f->nz; i++) {
+        const double complex *row = f->V + (size_t)i * (size_t)f->nz;
+        double z = 0.0;
+        for (k = 0; k < f->nkeep; k++)
+            z += creal(row[f->keep[k]]) * creal(e[k]) - cimag(row[f->keep[k]]) * cimag(e[k]);
+        y[i] = z;
+    }
     return 1;
 }
 
@@ -760,17 +634,12 @@ void td_sim_flight_free(td_sim *s)
     for (i = 0; f->obs && i < f->nobs; i++)
         free_obs(&f->obs[i]);
     free(f->obs);
-    free(f->map);
-    free(f->pos);
-    free(f->race);
     free(f->machine_key);
     free(f->forcing_key);
     free(f->key_work);
     free(f->lam);
     free(f->V);
     free(f->Vinv);
-    free(f->vr);
-    free(f->vi);
     free(f->grow);
     free(f->keep);
     free(f->order);
@@ -785,8 +654,6 @@ void td_sim_flight_free(td_sim *s)
     free(f->d);
     free(f->e);
     free(f->ae);
-    free(f->e2);
-    free(f->ae2);
     free(f->y);
     free(f->yp);
     free(f->res);
@@ -843,47 +710,16 @@ static int alloc_held(const td_sim *s, td_sim_flight *f)
     return 1;
 }
 
-/* The modal states (f->nz, f->map, f->pos): the first ny unknowns of y but the angle and speed of
- * each race that spins, which flight_race.c carries (f->race); 0 when out of memory. */
-static int alloc_map(const td_sim *s, td_sim_flight *f)
-{
-    int i, k, n = 0;
-    f->ny = 2 * s->dae.n + s->dae.nw;
-    for (k = 0; k < s->dae.nr; k++)
-        f->nrace += s->contacts.ret[k].rs >= 0;
-    f->nz = f->ny - 2 * f->nrace;
-    f->map = calloc((size_t)f->nz, sizeof *f->map);
-    f->pos = calloc((size_t)f->ny, sizeof *f->pos);
-    f->race = calloc((size_t)(f->nrace > 0 ? f->nrace : 1), sizeof *f->race);
-    if (!f->map || !f->pos || !f->race)
-        return 0;
-    for (k = 0, f->nrace = 0; k < s->dae.nr; k++)
-        if (s->contacts.ret[k].rs >= 0) {
-            f->race[f->nrace++].k = k;
-            f->pos[s->dae.oq + s->contacts.ret[k].rs] = f->pos[s->dae.ov + s->contacts.ret[k].rs] = -1;
-        }
-    for (i = 0; i < f->ny; i++)
-        if (f->pos[i] == 0) {
-            f->map[n] = i;
-            f->pos[i] = n++;
-        }
-    return 1;
-}
-
 /* The flight's arrays; 0 when out of memory (the integrator then carries the machine). */
 static int flight_alloc(td_sim *s)
 {
     td_sim_flight *f = calloc(1, sizeof *f);
-    size_t nz, neq = (size_t)s->dae.neq, nk, na;
+    size_t nz = (size_t)(2 * s->dae.n + s->dae.nw), neq = (size_t)s->dae.neq, nk, na;
     int i, ok = f != NULL;
     if (!ok)
         return 0;
     s->flight = f;
-    if (!alloc_map(s, f)) {
-        td_sim_flight_free(s);
-        return 0;
-    }
-    nz = (size_t)f->nz;
+    f->nz = (int)nz;
     f->nobs = 2 * s->dae.nr + s->sys->n_amb_axes;
     nk = (size_t)(3 + 2 * s->machine.nu + 5 * td_model_amb_count(s->model));
     f->machine_key = calloc(nk, sizeof(double));
@@ -892,8 +728,6 @@ static int flight_alloc(td_sim *s)
     f->lam = calloc(nz, sizeof *f->lam);
     f->V = calloc(nz * nz, sizeof *f->V);
     f->Vinv = calloc(nz * nz, sizeof *f->Vinv);
-    f->vr = calloc(nz * nz, sizeof *f->vr);
-    f->vi = calloc(nz * nz, sizeof *f->vi);
     f->grow = calloc(nz, sizeof *f->grow);
     f->keep = calloc(nz, sizeof *f->keep);
     f->order = calloc(nz, sizeof *f->order);
@@ -905,8 +739,6 @@ static int flight_alloc(td_sim *s)
     f->d = calloc(nz, sizeof *f->d);
     f->e = calloc(nz, sizeof *f->e);
     f->ae = calloc(nz, sizeof *f->ae);
-    f->e2 = calloc(nz, sizeof *f->e2);
-    f->ae2 = calloc(nz, sizeof *f->ae2);
     f->y = calloc(neq, sizeof *f->y);
     f->yp = calloc(neq, sizeof *f->yp);
     f->res = calloc(neq, sizeof *f->res);
@@ -922,16 +754,14 @@ static int flight_alloc(td_sim *s)
     f->amb_p = calloc(na, sizeof(double));
     f->amb_b2p = calloc(na, sizeof(double));
     ok = ok && f->amb_a && f->amb_b && f->amb_b2 && f->amb_p && f->amb_b2p;
-    ok = ok && f->vr && f->vi;
     ok = ok && f->machine_key && f->forcing_key && f->key_work && f->lam && f->V && f->Vinv && f->grow && f->keep &&
-         f->order && f->weight && f->work && f->p0 && f->pp && f->pm && f->d && f->e && f->ae && f->e2 && f->ae2 &&
-         f->y && f->yp && f->res && f->rate && f->rate0 && f->obs;
+         f->order && f->weight && f->work && f->p0 && f->pp && f->pm && f->d && f->e && f->ae && f->y && f->yp &&
+         f->res && f->rate && f->rate0 && f->obs;
     for (i = 0; ok && i < f->nobs; i++)
         ok = alloc_obs(&f->obs[i], nz);
     ok = ok && alloc_held(s, f);
     f->nkey_m = f->nkey_f = -1;
     f->t_root = -INFINITY;
-    f->t_e = f->t_e2 = NAN;
     if (!ok)
         td_sim_flight_free(s);
     return ok;

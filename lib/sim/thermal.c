@@ -213,8 +213,3 @@ void td_sim_thermal_now(const td_sim *s, int k, double T[2])
     memset(&scratch, 0, sizeof scratch);
     td_sim_thermal_back(s, k, &scratch, T);
 }
-
-void td_sim_phis(double x, double *phi1, double *phi2)
-{
-    phis(x, phi1, phi2);
-}

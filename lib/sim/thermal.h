@@ -35,8 +35,4 @@ void td_thermal_network_step(const td_thermal_network *n, double T[2], double h,
 /* The largest lambda_i |h|: how far a step of h reaches into the network's fastest mode. */
 double td_thermal_network_reach(const td_thermal_network *n, double h);
 
-/* phi1(x) = (1 - e^-x)/x and phi2(x) = (x - 1 + e^-x)/x^2 without their cancellation near x = 0
- * (also for a race's spin in the free flight, flight_race.c). */
-void td_sim_phis(double x, double *phi1, double *phi2);
-
 #endif
