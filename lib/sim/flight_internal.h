@@ -75,6 +75,7 @@ struct td_sim_flight {
     double *machine_key, *key_work;
     int nkey_m;
     double complex *lam, *V, *Vinv; /* V, V^-1 row-major nz x nz */
+    double *vr, *vi;                /* nkeep x nz: the kept modes' columns of V, real, imaginary (kept_columns) */
     double h_max;                   /* s: the longest step, min(FLIGHT_MAX_STEP, the shortest sample period) */
     double *grow;                   /* nz: e^{max(0, Re lambda) h_max} */
     int *keep, nkeep;               /* the modes summed: one of each conjugate pair (z is real) */
@@ -98,7 +99,9 @@ struct td_sim_flight {
     double t_root;         /* the last root the flight stopped at */
     double complex *d, *e; /* nz: homogeneous amplitudes at ta, e^{lambda (t - ta)} at t_e */
     double t_e;
-    double *ae; /* nz: |e_j| grow_j */
+    double *ae;         /* nz: |e_j| grow_j */
+    double complex *e2; /* nz: e at the time propagated before t_e, t_e2 (NAN: none) */
+    double *ae2, t_e2;  /* nz: its |e_j| grow_j */
     /* observations: x, y of each retainer node, then each AMB axis force */
     int nobs;
     flight_obs *obs;

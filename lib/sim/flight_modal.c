@@ -180,6 +180,19 @@ static void pair_modes(td_sim_flight *f)
     }
 }
 
+/* The kept modes' columns of V, real and imaginary parts apart, mode after mode (f->vr, f->vi):
+ * the state is sum_k Re(V_ik a_k) over them, and this order sums it row-wise in one pass. */
+static void kept_columns(td_sim_flight *f)
+{
+    size_t i, k, nz = (size_t)f->nz;
+    for (k = 0; k < (size_t)f->nkeep; k++)
+        for (i = 0; i < nz; i++) {
+            double complex v = f->V[i * nz + (size_t)f->keep[k]];
+            f->vr[k * nz + i] = creal(v);
+            f->vi[k * nz + i] = cimag(v);
+        }
+}
+
 /* A's modes; 0 if A cannot be trusted to them (defective, ill-conditioned, a zero or resonant
  * eigenvalue, a mode growing faster than the bounds allow: by more than e over a step of h_max; with
  * a current held between samples the magnets' negative stiffness makes modes grow at ~144 s^-1, which
@@ -212,6 +225,7 @@ static int decompose(const td_sim *s, td_sim_flight *f, const double *scale)
     if (ok) {
         unscale_modes(f, scale);
         pair_modes(f);
+        kept_columns(f);
     }
     gsl_eigen_nonsymmv_free(w);
     gsl_matrix_complex_free(evec);
@@ -253,7 +267,7 @@ static int forcing_block(const td_sim *s, int i)
 static int probe_forcing(const td_sim *s, td_sim_flight *f)
 {
     double *z = f->rate0, w = f->omega, q = w != 0.0 ? M_PI / w : 0.0;
-    double complex *bp = f->e, *bm = f->d; /* work until the anchor */
+    double complex *bp = f->e, *bm = f->d; /* work until the anchor (which makes e stale) */
     double scale[3] = {0.0, 0.0, 0.0};
     int i, nz = f->nz, ok = 1;
     memset(z, 0, sizeof(double) * (size_t)nz);
@@ -420,7 +434,7 @@ static void particular(const td_sim_flight *f, double t, double complex *out)
 static void anchor_observations(td_sim_flight *f)
 {
     int i, o;
-    f->t_e = NAN; /* e is stale */
+    f->t_e = f->t_e2 = NAN; /* e is stale, and the one kept before it */
     for (o = 0; o < f->nobs; o++) {
         flight_obs *b = &f->obs[o];
         for (i = 0; i < f->nkeep; i++) { /* the kept modes: the others are never summed */
@@ -452,11 +466,18 @@ static void anchor(td_sim *s, td_sim_flight *f)
     anchor_observations(f);
 }
 
-/* e_j = e^{lambda_j (t - ta)} and the bound factors |e_j| grow_j, for the time t. */
+/* e_j = e^{lambda_j (t - ta)} and the bound factors |e_j| grow_j, for the time t. The last two
+ * times' are kept (the flight's bookkeeping goes back and forth between a step's ends and the
+ * output time): the earlier one is swapped back in as it was computed. */
 void td_sim_flight_propagate(td_sim_flight *f, double t)
 {
-    double dt = t - f->ta;
+    double dt = t - f->ta, *ae = f->ae, te = f->t_e;
+    double complex *e = f->e;
     int i;
+    if (t == f->t_e)
+        return;
+    f->e = f->e2, f->ae = f->ae2, f->t_e = f->t_e2;
+    f->e2 = e, f->ae2 = ae, f->t_e2 = te;
     if (t == f->t_e)
         return;
     for (i = 0; i < f->nkeep; i++) {
@@ -555,28 +576,33 @@ static void modal_state(const td_sim_flight *f, double t, double complex *a, dou
     }
 }
 
+/* The states z = Re(V a) over the kept modes (a: nkeep, weighted, modal_state) into y: per state the
+ * same terms in the same order as a row of V times a, summed for all states at once. */
+static void state_sum(const td_sim_flight *f, const double complex *a, double *y)
+{
+    int i, k, nz = f->nz;
+    for (i = 0; i < nz; i++)
+        y[i] = 0.0;
+    for (k = 0; k < f->nkeep; k++) {
+        const double *vr = f->vr + (size_t)k * (size_t)nz, *vi = f->vi + (size_t)k * (size_t)nz;
+        double ar = creal(a[k]), ai = cimag(a[k]);
+        for (i = 0; i < nz; i++)
+            y[i] += vr[i] * ar - vi[i] * ai;
+    }
+}
+
 /* The state z at t into y (and its rate into yp with `rate`; the rest of yp: zero in free flight). */
 void td_sim_flight_materialise(td_sim *s, td_sim_flight *f, double t, int rate)
 {
     double *y = N_VGetArrayPointer(s->dae.y), *yp = N_VGetArrayPointer(s->dae.yp);
     double complex *a = f->work, *da = rate ? f->work + f->nz : NULL;
-    int i, k, nz = f->nz;
+    int i;
     td_sim_flight_propagate(f, t);
     modal_state(f, t, a, da);
-    for (i = 0; i < nz; i++) {
-        const double complex *row = f->V + (size_t)i * (size_t)nz;
-        double z = 0.0, zd = 0.0;
-        for (k = 0; k < f->nkeep; k++) {
-            double complex v = row[f->keep[k]];
-            z += creal(v) * creal(a[k]) - cimag(v) * cimag(a[k]);
-            if (rate)
-                zd += creal(v) * creal(da[k]) - cimag(v) * cimag(da[k]);
-        }
-        y[i] = z;
-        if (rate)
-            yp[i] = zd;
-    }
-    for (i = nz; rate && i < s->dae.neq; i++)
+    state_sum(f, a, y);
+    if (rate)
+        state_sum(f, da, yp);
+    for (i = f->nz; rate && i < s->dae.neq; i++)
         yp[i] = 0.0;
 }
 
@@ -587,7 +613,7 @@ int td_sim_flight_peek(const td_sim *s, double t, double *y, double *work)
     const td_sim_flight *f = s->flight;
     double complex *e = (double complex *)(void *)work;
     double complex ep, em;
-    int i, k;
+    int i;
     if (!f || !f->anchored)
         return 0;
     ep = td_sim_flight_phase(f, t);
@@ -598,13 +624,7 @@ int td_sim_flight_peek(const td_sim *s, double t, double *y, double *work)
         double complex h = f->d[j] * (m * (cos(cimag(f->lam[j]) * dt) + I * sin(cimag(f->lam[j]) * dt)));
         e[i] = f->weight[j] * (h + f->p0[j] + f->pp[j] * ep + f->pm[j] * em);
     }
-    for (i = 0; i < f->nz; i++) {
-        const double complex *row = f->V + (size_t)i * (size_t)f->nz;
-        double z = 0.0;
-        for (k = 0; k < f->nkeep; k++)
-            z += creal(row[f->keep[k]]) * creal(e[k]) - cimag(row[f->keep[k]]) * cimag(e[k]);
-        y[i] = z;
-    }
+    state_sum(f, e, y);
     return 1;
 }
 
@@ -640,6 +660,8 @@ void td_sim_flight_free(td_sim *s)
     free(f->lam);
     free(f->V);
     free(f->Vinv);
+    free(f->vr);
+    free(f->vi);
     free(f->grow);
     free(f->keep);
     free(f->order);
@@ -654,6 +676,8 @@ void td_sim_flight_free(td_sim *s)
     free(f->d);
     free(f->e);
     free(f->ae);
+    free(f->e2);
+    free(f->ae2);
     free(f->y);
     free(f->yp);
     free(f->res);
@@ -728,6 +752,8 @@ static int flight_alloc(td_sim *s)
     f->lam = calloc(nz, sizeof *f->lam);
     f->V = calloc(nz * nz, sizeof *f->V);
     f->Vinv = calloc(nz * nz, sizeof *f->Vinv);
+    f->vr = calloc(nz * nz, sizeof *f->vr);
+    f->vi = calloc(nz * nz, sizeof *f->vi);
     f->grow = calloc(nz, sizeof *f->grow);
     f->keep = calloc(nz, sizeof *f->keep);
     f->order = calloc(nz, sizeof *f->order);
@@ -739,6 +765,8 @@ static int flight_alloc(td_sim *s)
     f->d = calloc(nz, sizeof *f->d);
     f->e = calloc(nz, sizeof *f->e);
     f->ae = calloc(nz, sizeof *f->ae);
+    f->e2 = calloc(nz, sizeof *f->e2);
+    f->ae2 = calloc(nz, sizeof *f->ae2);
     f->y = calloc(neq, sizeof *f->y);
     f->yp = calloc(neq, sizeof *f->yp);
     f->res = calloc(neq, sizeof *f->res);
@@ -754,14 +782,16 @@ static int flight_alloc(td_sim *s)
     f->amb_p = calloc(na, sizeof(double));
     f->amb_b2p = calloc(na, sizeof(double));
     ok = ok && f->amb_a && f->amb_b && f->amb_b2 && f->amb_p && f->amb_b2p;
+    ok = ok && f->vr && f->vi;
     ok = ok && f->machine_key && f->forcing_key && f->key_work && f->lam && f->V && f->Vinv && f->grow && f->keep &&
-         f->order && f->weight && f->work && f->p0 && f->pp && f->pm && f->d && f->e && f->ae && f->y && f->yp &&
-         f->res && f->rate && f->rate0 && f->obs;
+         f->order && f->weight && f->work && f->p0 && f->pp && f->pm && f->d && f->e && f->ae && f->e2 && f->ae2 &&
+         f->y && f->yp && f->res && f->rate && f->rate0 && f->obs;
     for (i = 0; ok && i < f->nobs; i++)
         ok = alloc_obs(&f->obs[i], nz);
     ok = ok && alloc_held(s, f);
     f->nkey_m = f->nkey_f = -1;
     f->t_root = -INFINITY;
+    f->t_e = f->t_e2 = NAN;
     if (!ok)
         td_sim_flight_free(s);
     return ok;
