@@ -99,9 +99,10 @@ struct td_sim_flight {
     double t_root;         /* the last root the flight stopped at */
     double complex *d, *e; /* nz: homogeneous amplitudes at ta, e^{lambda (t - ta)} at t_e */
     double t_e;
-    double *ae;         /* nz: |e_j| grow_j */
-    double complex *e2; /* nz: e at the time propagated before t_e, t_e2 (NAN: none) */
-    double *ae2, t_e2;  /* nz: its |e_j| grow_j */
+    double *ae;             /* nz: |e_j| grow_j */
+    double complex *e2;     /* nz: e at the time propagated before t_e, t_e2 (NAN: none) */
+    double *ae2, t_e2;      /* nz: its |e_j| grow_j */
+    double complex ep, ep2; /* the forcing's phase e^{iW(t - tf)} at t_e and at t_e2 */
     /* observations: x, y of each retainer node, then each AMB axis force */
     int nobs;
     flight_obs *obs;

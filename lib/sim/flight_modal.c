@@ -15,6 +15,10 @@
 #include <stdlib.h>
 #include <string.h>
 
+#ifdef __SSE2__
+#include <emmintrin.h>
+#endif
+
 /* What A depends on: the speed and the AMBs' modes. */
 static int machine_key(const td_sim *s, double *key)
 {
@@ -113,17 +117,24 @@ static void unscale_modes(td_sim_flight *f, const double *S)
 
 /* The decomposition's quality: the largest of max_i |A v_j - lambda_j v_j| / (|lambda_j| max_i |v_j|)
  * over the modes j (the phase error per radian of each mode) and max |V V^-1 - I|. */
-static double decomposition_error(const td_sim_flight *f, const gsl_matrix *A)
+static double decomposition_error(td_sim_flight *f, const gsl_matrix *A)
 {
     int i, j, k, nz = f->nz;
     double worst = 0.0;
+    double complex *vj = f->work, *wj = f->work + nz; /* column j of V and of V^-1, contiguous */
     for (j = 0; j < nz; j++) {
         double res = 0.0, vmax = 0.0;
+        for (k = 0; k < nz; k++) {
+            vj[k] = f->V[k * nz + j];
+            wj[k] = f->Vinv[k * nz + j];
+        }
         for (i = 0; i < nz; i++) {
+            const double *ai = A->data + (size_t)i * A->tda; /* row i: gsl_matrix_get(A, i, k) = ai[k] */
+            const double complex *vi = f->V + (size_t)i * (size_t)nz;
             double complex av = -f->V[i * nz + j] * f->lam[j], vv = 0.0;
             for (k = 0; k < nz; k++) {
-                av += gsl_matrix_get(A, (size_t)i, (size_t)k) * f->V[k * nz + j];
-                vv += f->V[i * nz + k] * f->Vinv[k * nz + j];
+                av += ai[k] * vj[k];
+                vv += vi[k] * wj[k];
             }
             res = fmax(res, cabs(av));
             vmax = fmax(vmax, cabs(f->V[i * nz + j]));
@@ -472,14 +483,15 @@ static void anchor(td_sim *s, td_sim_flight *f)
 void td_sim_flight_propagate(td_sim_flight *f, double t)
 {
     double dt = t - f->ta, *ae = f->ae, te = f->t_e;
-    double complex *e = f->e;
+    double complex *e = f->e, ep = f->ep;
     int i;
     if (t == f->t_e)
         return;
-    f->e = f->e2, f->ae = f->ae2, f->t_e = f->t_e2;
-    f->e2 = e, f->ae2 = ae, f->t_e2 = te;
+    f->e = f->e2, f->ae = f->ae2, f->t_e = f->t_e2, f->ep = f->ep2;
+    f->e2 = e, f->ae2 = ae, f->t_e2 = te, f->ep2 = ep;
     if (t == f->t_e)
         return;
+    f->ep = td_sim_flight_phase(f, t); /* shared by every observation at t */
     for (i = 0; i < f->nkeep; i++) {
         int j = f->keep[i];
         double m = exp(creal(f->lam[j]) * dt);
@@ -539,7 +551,7 @@ flight_val td_sim_flight_observe(const td_sim_flight *f, int o, double t)
     int i;
     if (t == b->seen_t && t == f->t_e)
         return b->seen;
-    ep = td_sim_flight_phase(f, t);
+    ep = t == f->t_e ? f->ep : td_sim_flight_phase(f, t);
     for (i = 0; i < f->nkeep; i++) { /* the real parts of sum c e and sum c e lambda, as complex */
         int j = f->keep[i];
         double ce[2];
@@ -565,7 +577,7 @@ flight_val td_sim_flight_observe(const td_sim_flight *f, int o, double t)
  * work `a`; with `rate`, their time derivatives into `da`. */
 static void modal_state(const td_sim_flight *f, double t, double complex *a, double complex *da)
 {
-    double complex ep = td_sim_flight_phase(f, t), em = conj(ep);
+    double complex ep = t == f->t_e ? f->ep : td_sim_flight_phase(f, t), em = conj(ep);
     int i;
     for (i = 0; i < f->nkeep; i++) {
         int j = f->keep[i];
@@ -583,7 +595,25 @@ static void state_sum(const td_sim_flight *f, const double complex *a, double *y
     int i, k, nz = f->nz;
     for (i = 0; i < nz; i++)
         y[i] = 0.0;
-    for (k = 0; k < f->nkeep; k++) {
+    for (k = 0; k + 1 < f->nkeep; k += 2) { /* two modes a pass: y_i + term_k, then + term_k+1 */
+        const double *vr = f->vr + (size_t)k * (size_t)nz, *vi = f->vi + (size_t)k * (size_t)nz;
+        const double *wr = vr + nz, *wi = vi + nz;
+        double ar = creal(a[k]), ai = cimag(a[k]), br = creal(a[k + 1]), bi = cimag(a[k + 1]);
+        i = 0;
+#ifdef __SSE2__
+        { /* two rows at a time in packed doubles: each lane the scalar loop's operations, the same bits */
+            __m128d par = _mm_set1_pd(ar), pai = _mm_set1_pd(ai), pbr = _mm_set1_pd(br), pbi = _mm_set1_pd(bi);
+            for (; i + 1 < nz; i += 2) {
+                __m128d t = _mm_sub_pd(_mm_mul_pd(_mm_loadu_pd(vr + i), par), _mm_mul_pd(_mm_loadu_pd(vi + i), pai));
+                __m128d u = _mm_sub_pd(_mm_mul_pd(_mm_loadu_pd(wr + i), pbr), _mm_mul_pd(_mm_loadu_pd(wi + i), pbi));
+                _mm_storeu_pd(y + i, _mm_add_pd(_mm_add_pd(_mm_loadu_pd(y + i), t), u));
+            }
+        }
+#endif
+        for (; i < nz; i++)
+            y[i] = (y[i] + (vr[i] * ar - vi[i] * ai)) + (wr[i] * br - wi[i] * bi);
+    }
+    for (; k < f->nkeep; k++) {
         const double *vr = f->vr + (size_t)k * (size_t)nz, *vi = f->vi + (size_t)k * (size_t)nz;
         double ar = creal(a[k]), ai = cimag(a[k]);
         for (i = 0; i < nz; i++)
