@@ -69,14 +69,18 @@ static void amb_peak_search(td_sim *s, td_sim_flight *f, int k, double ta, doubl
  * load updated if `record` (t is not beyond the output time). */
 static void amb_forces(td_sim *s, td_sim_flight *f, double t, double *fa, double *b2, int record)
 {
-    int k;
-    for (k = 0; k < s->sys->n_amb_axes; k++) {
-        flight_val v = td_sim_flight_observe(f, 2 * s->dae.nr + k, t);
-        fa[k] = v.v;
+    int k, n = s->sys->n_amb_axes, o = 2 * s->dae.nr;
+    flight_val v[2];
+    for (k = 0; k < n; k++) {
+        if (k % 2 == 0 && k + 1 < n) /* two axes in one pass over the modes */
+            td_sim_flight_observe2(f, o + k, o + k + 1, t, &v[0], &v[1]);
+        else if (k % 2 == 0)
+            v[0] = td_sim_flight_observe(f, o + k, t);
+        fa[k] = v[k % 2].v;
         if (b2)
-            b2[k] = v.b2;
+            b2[k] = v[k % 2].b2;
         if (record && s->machine.amb_mode[s->sys->amb_axes[k].amb] != TD_AMB_OFF)
-            td_sim_monitor_amb_load(s, k, v.v, t);
+            td_sim_monitor_amb_load(s, k, v[k % 2].v, t);
     }
 }
 

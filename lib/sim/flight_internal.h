@@ -133,6 +133,9 @@ int td_sim_flight_ready(td_sim *s, const double *scale);
 void td_sim_flight_propagate(td_sim_flight *f, double t);
 /* Observation o at the time of the last propagate (t). */
 flight_val td_sim_flight_observe(const td_sim_flight *f, int o, double t);
+/* Observations o1 and o2 at the time of the last propagate (t): the same bits as two calls of
+ * td_sim_flight_observe, in one pass over the modes. */
+void td_sim_flight_observe2(const td_sim_flight *f, int o1, int o2, double t, flight_val *r1, flight_val *r2);
 /* e^{iW(t - tf)}: the forcing's phase at t. */
 double complex td_sim_flight_phase(const td_sim_flight *f, double t);
 /* The held currents of sampled controllers (machine.held_current) now in the forcing: p0 shifted by
