@@ -579,9 +579,8 @@ flight_val td_sim_flight_observe(const td_sim_flight *f, int o, double t)
     return r;
 }
 
-/* Observations o1 and o2 at the time of the last propagate (t) into r1, r2: each exactly as
- * td_sim_flight_observe gives it (and kept as it keeps it), the two sums side by side in packed
- * doubles where they are not kept already. */
+/* Observations o1, o2 at the last propagate (t) into r1, r2, as td_sim_flight_observe gives and keeps
+ * them: the two sums side by side in packed doubles where neither is kept already. */
 void td_sim_flight_observe2(const td_sim_flight *f, int o1, int o2, double t, flight_val *r1, flight_val *r2)
 {
 #ifdef __SSE2__
