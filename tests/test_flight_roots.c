@@ -4,7 +4,8 @@
  * computed is rounding noise), grazing orbits and a start at the radius; the proof that a split
  * cannot beat the best step so far (td_sim_flight_outside_from) must never be wrong; and the modal
  * sums' real product (flight_mul) must be C's complex product; two observations summed side by side
- * (td_sim_flight_observe2) must be the single sums' bits. */
+ * (td_sim_flight_observe2) must be the single sums' bits, and the state summed over the kept modes'
+ * columns (td_sim_flight_peek, as materialise) each state's row of V times the modal coordinates. */
 #include "td_test.h"
 
 #include "sim/flight_internal.h"
@@ -259,12 +260,63 @@ static void test_observe_pair(void **state)
     assert_int_equal(differ, 0);
 }
 
+#define SUM_STATES 23
+#define SUM_MODES 17
+
+/* The state from the flight's kept-column sum (td_sim_flight_peek, materialise's sum) is, bit for
+ * bit, each state's row of V times the weighted modal coordinates, the terms in mode order (the sum
+ * the flight made before its columns were stored apart), for even and odd numbers of kept modes. */
+static void test_state_sum(void **state)
+{
+    static double complex V[SUM_STATES * SUM_STATES], mem[5 * SUM_STATES], work[2 * SUM_STATES];
+    static double vr[SUM_STATES * SUM_STATES], vi[SUM_STATES * SUM_STATES], weight[SUM_STATES];
+    int keep[SUM_STATES], i, j, k, n, differ = 0;
+    uint64_t seed = 17;
+    (void)state;
+    for (n = 0; n < 400; n++) {
+        td_sim s;
+        td_sim_flight f;
+        double y[SUM_STATES], t = uniform(&seed);
+        memset(&s, 0, sizeof s);
+        memset(&f, 0, sizeof f);
+        s.flight = &f;
+        f.nz = SUM_STATES, f.anchored = 1, f.V = V, f.vr = vr, f.vi = vi, f.keep = keep, f.weight = weight;
+        f.lam = mem, f.d = mem + SUM_STATES, f.p0 = mem + 2 * SUM_STATES, f.pp = mem + 3 * SUM_STATES,
+        f.pm = mem + 4 * SUM_STATES;
+        f.omega = decades(&seed, 1.0, 3.0), f.tf = uniform(&seed), f.ta = uniform(&seed);
+        for (j = 0; j < SUM_STATES * SUM_STATES; j++)
+            V[j] = random_complex(&seed, -4.0, 1.0);
+        for (j = 0; j < SUM_STATES; j++) {
+            f.lam[j] = -decades(&seed, 0.0, 3.0) + I * decades(&seed, 1.0, 4.0);
+            f.d[j] = random_complex(&seed, -6.0, 0.0), f.p0[j] = random_complex(&seed, -6.0, 0.0);
+            f.pp[j] = random_complex(&seed, -6.0, 0.0), f.pm[j] = random_complex(&seed, -6.0, 0.0);
+            weight[j] = uniform(&seed) < 0.5 ? 1.0 : 2.0;
+        }
+        for (j = 0; j < SUM_MODES - n % 2; j++) /* kept: random columns */
+            keep[f.nkeep++] = j + (int)(uniform(&seed) * (SUM_STATES - SUM_MODES));
+        for (k = 0; k < f.nkeep; k++) /* the kept columns apart, as kept_columns stores them */
+            for (i = 0; i < SUM_STATES; i++) {
+                vr[k * SUM_STATES + i] = creal(V[i * SUM_STATES + keep[k]]);
+                vi[k * SUM_STATES + i] = cimag(V[i * SUM_STATES + keep[k]]);
+            }
+        assert_int_equal(td_sim_flight_peek(&s, t, y, (double *)(void *)work), 1);
+        for (i = 0; i < SUM_STATES; i++) { /* work holds the weighted modal coordinates */
+            const double complex *row = V + i * SUM_STATES;
+            double z = 0.0;
+            for (k = 0; k < f.nkeep; k++)
+                z += creal(row[keep[k]]) * creal(work[k]) - cimag(row[keep[k]]) * cimag(work[k]);
+            differ += memcmp(&z, &y[i], sizeof z) != 0;
+        }
+    }
+    assert_int_equal(differ, 0);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_same_as_bisection), cmocka_unit_test(test_outside_from),
         cmocka_unit_test(test_degenerate),        cmocka_unit_test(test_product),
-        cmocka_unit_test(test_observe_pair),
+        cmocka_unit_test(test_observe_pair),      cmocka_unit_test(test_state_sum),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
