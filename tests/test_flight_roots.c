@@ -3,13 +3,16 @@
  * input, including crossings that lie on a point of the bisection's grid (where the sign of F as
  * computed is rounding noise), grazing orbits and a start at the radius; the proof that a split
  * cannot beat the best step so far (td_sim_flight_outside_from) must never be wrong; and the modal
- * sums' real product (flight_mul) must be C's complex product. */
+ * sums' real product (flight_mul) must be C's complex product; two observations summed side by side
+ * (td_sim_flight_observe2) must be the single sums' bits, and the state summed over the kept modes'
+ * columns (td_sim_flight_peek, as materialise) each state's row of V times the modal coordinates. */
 #include "td_test.h"
 
 #include "sim/flight_internal.h"
 
 #include <complex.h>
 #include <math.h>
+#include <stdlib.h>
 #include <string.h>
 
 #define NCASES 60000
@@ -185,13 +188,135 @@ static void test_product(void **state)
     assert_int_equal(differ, 0);
 }
 
+#define OBS_MODES 37
+
+static double complex random_complex(uint64_t *s, double lo, double hi)
+{
+    return decades(s, lo, hi) * (uniform(s) - 0.5) + I * decades(s, lo, hi) * (uniform(s) - 0.5);
+}
+
+/* A flight of OBS_MODES modes (every other one kept) with two random observations, propagated to t
+ * as td_sim_flight_propagate leaves it (e, |e| grow, the phase at t_e); its arrays in `mem`. */
+static void random_flight(uint64_t *s, td_sim_flight *f, flight_obs obs[2], double complex *mem, double *rmem,
+                          int *keep, double t)
+{
+    int j, o;
+    memset(f, 0, sizeof *f);
+    f->nz = OBS_MODES;
+    f->lam = mem, f->e = mem + OBS_MODES;
+    f->ae = rmem;
+    f->keep = keep;
+    for (j = 0; j < OBS_MODES; j++) {
+        f->lam[j] = -decades(s, 0.0, 3.0) + I * decades(s, 1.0, 4.0);
+        f->e[j] = random_complex(s, -3.0, 0.0);
+        f->ae[j] = cabs(f->e[j]) * (1.0 + uniform(s));
+        if (j % 2 == 0)
+            f->keep[f->nkeep++] = j;
+    }
+    f->omega = decades(s, 1.0, 3.0), f->tf = uniform(s), f->t_e = t;
+    f->ep = td_sim_flight_phase(f, t);
+    f->nobs = 2, f->obs = obs;
+    for (o = 0; o < 2; o++) {
+        flight_obs *b = &obs[o];
+        memset(b, 0, sizeof *b);
+        b->c = mem + (2 + o) * OBS_MODES;
+        b->m0 = rmem + (1 + 3 * o) * OBS_MODES, b->m1 = b->m0 + OBS_MODES, b->m2 = b->m1 + OBS_MODES;
+        for (j = 0; j < OBS_MODES; j++) {
+            b->c[j] = random_complex(s, -8.0, 2.0);
+            b->m0[j] = cabs(b->c[j]), b->m1[j] = b->m0[j] * cabs(f->lam[j]), b->m2[j] = b->m1[j] * cabs(f->lam[j]);
+        }
+        b->h0 = random_complex(s, -6.0, 0.0), b->hp = random_complex(s, -6.0, 0.0),
+        b->hm = random_complex(s, -6.0, 0.0);
+        b->h0_abs = cabs(b->h0), b->h_abs = cabs(b->hp) + cabs(b->hm);
+        b->seen_t = NAN;
+    }
+}
+
+/* td_sim_flight_observe2 gives (and keeps) td_sim_flight_observe's bits for each observation, with
+ * none, one or both kept already. */
+static void test_observe_pair(void **state)
+{
+    uint64_t seed = 11;
+    double complex mem[4 * OBS_MODES];
+    double rmem[7 * OBS_MODES];
+    int keep[OBS_MODES], i, differ = 0;
+    (void)state;
+    for (i = 0; i < 2000; i++) {
+        td_sim_flight f;
+        flight_obs obs[2];
+        flight_val one[2], two[2];
+        double t = uniform(&seed);
+        random_flight(&seed, &f, obs, mem, rmem, keep, t);
+        one[0] = td_sim_flight_observe(&f, 0, t);
+        one[1] = td_sim_flight_observe(&f, 1, t);
+        obs[0].seen_t = i % 3 == 1 ? t : NAN; /* kept already: 0, 1 or neither */
+        obs[1].seen_t = i % 3 == 2 ? t : NAN;
+        td_sim_flight_observe2(&f, 0, 1, t, &two[0], &two[1]);
+        differ += memcmp(one, two, sizeof one) != 0;
+        differ +=
+            memcmp(&obs[0].seen, &one[0], sizeof one[0]) != 0 || memcmp(&obs[1].seen, &one[1], sizeof one[1]) != 0;
+        differ += obs[0].seen_t != t || obs[1].seen_t != t;
+    }
+    assert_int_equal(differ, 0);
+}
+
+#define SUM_STATES 23
+#define SUM_MODES 17
+
+/* The state from the flight's kept-column sum (td_sim_flight_peek, materialise's sum) is, bit for
+ * bit, each state's row of V times the weighted modal coordinates, the terms in mode order (the sum
+ * the flight made before its columns were stored apart), for even and odd numbers of kept modes. */
+static void test_state_sum(void **state)
+{
+    static double complex V[SUM_STATES * SUM_STATES], mem[5 * SUM_STATES], work[2 * SUM_STATES];
+    static double vr[SUM_STATES * SUM_STATES], vi[SUM_STATES * SUM_STATES], weight[SUM_STATES];
+    int keep[SUM_STATES], i, j, k, n, differ = 0;
+    uint64_t seed = 17;
+    (void)state;
+    for (n = 0; n < 400; n++) {
+        td_sim s;
+        td_sim_flight f;
+        double y[SUM_STATES], t = uniform(&seed);
+        memset(&s, 0, sizeof s);
+        memset(&f, 0, sizeof f);
+        s.flight = &f;
+        f.nz = SUM_STATES, f.anchored = 1, f.V = V, f.vr = vr, f.vi = vi, f.keep = keep, f.weight = weight;
+        f.lam = mem, f.d = mem + SUM_STATES, f.p0 = mem + 2 * SUM_STATES, f.pp = mem + 3 * SUM_STATES,
+        f.pm = mem + 4 * SUM_STATES;
+        f.omega = decades(&seed, 1.0, 3.0), f.tf = uniform(&seed), f.ta = uniform(&seed);
+        for (j = 0; j < SUM_STATES * SUM_STATES; j++)
+            V[j] = random_complex(&seed, -4.0, 1.0);
+        for (j = 0; j < SUM_STATES; j++) {
+            f.lam[j] = -decades(&seed, 0.0, 3.0) + I * decades(&seed, 1.0, 4.0);
+            f.d[j] = random_complex(&seed, -6.0, 0.0), f.p0[j] = random_complex(&seed, -6.0, 0.0);
+            f.pp[j] = random_complex(&seed, -6.0, 0.0), f.pm[j] = random_complex(&seed, -6.0, 0.0);
+            weight[j] = uniform(&seed) < 0.5 ? 1.0 : 2.0;
+        }
+        for (j = 0; j < SUM_MODES - n % 2; j++) /* kept: random columns */
+            keep[f.nkeep++] = j + (int)(uniform(&seed) * (SUM_STATES - SUM_MODES));
+        for (k = 0; k < f.nkeep; k++) /* the kept columns apart, as kept_columns stores them */
+            for (i = 0; i < SUM_STATES; i++) {
+                vr[k * SUM_STATES + i] = creal(V[i * SUM_STATES + keep[k]]);
+                vi[k * SUM_STATES + i] = cimag(V[i * SUM_STATES + keep[k]]);
+            }
+        assert_int_equal(td_sim_flight_peek(&s, t, y, (double *)(void *)work), 1);
+        for (i = 0; i < SUM_STATES; i++) { /* work holds the weighted modal coordinates */
+            const double complex *row = V + i * SUM_STATES;
+            double z = 0.0;
+            for (k = 0; k < f.nkeep; k++)
+                z += creal(row[keep[k]]) * creal(work[k]) - cimag(row[keep[k]]) * cimag(work[k]);
+            differ += memcmp(&z, &y[i], sizeof z) != 0;
+        }
+    }
+    assert_int_equal(differ, 0);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_same_as_bisection),
-        cmocka_unit_test(test_outside_from),
-        cmocka_unit_test(test_degenerate),
-        cmocka_unit_test(test_product),
+        cmocka_unit_test(test_same_as_bisection), cmocka_unit_test(test_outside_from),
+        cmocka_unit_test(test_degenerate),        cmocka_unit_test(test_product),
+        cmocka_unit_test(test_observe_pair),      cmocka_unit_test(test_state_sum),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

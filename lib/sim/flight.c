@@ -69,14 +69,18 @@ static void amb_peak_search(td_sim *s, td_sim_flight *f, int k, double ta, doubl
  * load updated if `record` (t is not beyond the output time). */
 static void amb_forces(td_sim *s, td_sim_flight *f, double t, double *fa, double *b2, int record)
 {
-    int k;
-    for (k = 0; k < s->sys->n_amb_axes; k++) {
-        flight_val v = td_sim_flight_observe(f, 2 * s->dae.nr + k, t);
-        fa[k] = v.v;
+    int k, n = s->sys->n_amb_axes, o = 2 * s->dae.nr;
+    flight_val v[2];
+    for (k = 0; k < n; k++) {
+        if (k % 2 == 0 && k + 1 < n) /* two axes in one pass over the modes */
+            td_sim_flight_observe2(f, o + k, o + k + 1, t, &v[0], &v[1]);
+        else if (k % 2 == 0)
+            v[0] = td_sim_flight_observe(f, o + k, t);
+        fa[k] = v[k % 2].v;
         if (b2)
-            b2[k] = v.b2;
+            b2[k] = v[k % 2].b2;
         if (record && s->machine.amb_mode[s->sys->amb_axes[k].amb] != TD_AMB_OFF)
-            td_sim_monitor_amb_load(s, k, v.v, t);
+            td_sim_monitor_amb_load(s, k, v[k % 2].v, t);
     }
 }
 
@@ -178,17 +182,26 @@ static void margin_part(td_sim *s, td_sim_flight *f, double a, double b, int to_
 }
 
 /* The retainers' largest radii over [a, b] (the pending part of a step, b - a <= h_max), from a's bounds;
- * b a time the run has reached. Leaves f->e anywhere, and the values kept those of a (margin_point
- * keeps the step's again). */
+ * b a time the run has reached. Leaves f->e anywhere; the values kept for the step (those at its end,
+ * which margin_point would compute again with the same bits) are kept as they were. */
 static void margin_span(td_sim *s, td_sim_flight *f, double a, double b)
 {
     int k;
     if (!(b > a))
         return;
     td_sim_flight_propagate(f, a);
-    for (k = 0; k < s->dae.nr; k++)
-        margin_value(f, k, a, &s->monitor.totals[k].flight_r2, &s->monitor.totals[k].flight_b2);
+    for (k = 0; k < s->dae.nr; k++) {
+        td_sim_totals *tk = &s->monitor.totals[k];
+        tk->flight_r2s = tk->flight_r2;
+        tk->flight_b2s = tk->flight_b2;
+        margin_value(f, k, a, &tk->flight_r2, &tk->flight_b2);
+    }
     margin_part(s, f, a, b, 0);
+    for (k = 0; k < s->dae.nr; k++) {
+        td_sim_totals *tk = &s->monitor.totals[k];
+        tk->flight_r2 = tk->flight_r2s;
+        tk->flight_b2 = tk->flight_b2s;
+    }
 }
 
 /* A step [t, tn] ran past the output time t_out: the AMBs' peak up to t_out now, the rest
@@ -201,15 +214,17 @@ static void amb_past_output(td_sim *s, td_sim_flight *f, double t, double t_out)
     memcpy(f->amb_b2p, f->amb_b2, sizeof(double) * (size_t)s->sys->n_amb_axes);
 }
 
-/* The pending part of the last step (amb_past_output) up to this call's output time. */
-static void amb_pending_part(td_sim *s, td_sim_flight *f, double t_out)
+/* The pending part of the last step (amb_past_output) up to this call's output time; 1 if there was
+ * one (the clearance margin's values at the step's end are then still those kept, beyond s->dae.t). */
+static int amb_pending_part(td_sim *s, td_sim_flight *f, double t_out)
 {
     double end = fmin(f->t_step, t_out);
     if (!(f->amb_pending < f->t_step))
-        return;
+        return 0;
     amb_span(s, f, f->amb_pending, end, NULL, f->amb_b2p);
     margin_span(s, f, f->amb_pending, end); /* clearance margin: the bounds from the part's start */
     f->amb_pending = end < f->t_step ? end : INFINITY;
+    return 1;
 }
 
 /*
@@ -252,9 +267,10 @@ int td_sim_flight_advance(td_sim *s, const double *scale, double t_out, double t
         td_sim_flight_propagate(f, f->t_step);
         amb_forces(s, f, f->t_step, f->amb_a, f->amb_b2, 1);
     }
-    amb_pending_part(s, f, t_out);
-    td_sim_flight_propagate(f, f->t_step); /* clearance margin: the bounds of this anchor and forcing */
-    margin_point(s, f, f->t_step, f->t_step <= s->dae.t);
+    if (!amb_pending_part(s, f, t_out)) {
+        td_sim_flight_propagate(f, f->t_step); /* clearance margin: the bounds of this anchor and forcing */
+        margin_point(s, f, f->t_step, f->t_step <= s->dae.t);
+    }
     t = f->t_step;
     while (t < t_end) {
         double h, tn;

@@ -75,6 +75,7 @@ struct td_sim_flight {
     double *machine_key, *key_work;
     int nkey_m;
     double complex *lam, *V, *Vinv; /* V, V^-1 row-major nz x nz */
+    double *vr, *vi;                /* nkeep x nz: the kept modes' columns of V, real, imaginary (kept_columns) */
     double h_max;                   /* s: the longest step, min(FLIGHT_MAX_STEP, the shortest sample period) */
     double *grow;                   /* nz: e^{max(0, Re lambda) h_max} */
     int *keep, nkeep;               /* the modes summed: one of each conjugate pair (z is real) */
@@ -98,7 +99,10 @@ struct td_sim_flight {
     double t_root;         /* the last root the flight stopped at */
     double complex *d, *e; /* nz: homogeneous amplitudes at ta, e^{lambda (t - ta)} at t_e */
     double t_e;
-    double *ae; /* nz: |e_j| grow_j */
+    double *ae;             /* nz: |e_j| grow_j */
+    double complex *e2;     /* nz: e at the time propagated before t_e, t_e2 (NAN: none) */
+    double *ae2, t_e2;      /* nz: its |e_j| grow_j */
+    double complex ep, ep2; /* the forcing's phase e^{iW(t - tf)} at t_e and at t_e2 */
     /* observations: x, y of each retainer node, then each AMB axis force */
     int nobs;
     flight_obs *obs;
@@ -129,6 +133,9 @@ int td_sim_flight_ready(td_sim *s, const double *scale);
 void td_sim_flight_propagate(td_sim_flight *f, double t);
 /* Observation o at the time of the last propagate (t). */
 flight_val td_sim_flight_observe(const td_sim_flight *f, int o, double t);
+/* Observations o1 and o2 at the time of the last propagate (t): the same bits as two calls of
+ * td_sim_flight_observe, in one pass over the modes. */
+void td_sim_flight_observe2(const td_sim_flight *f, int o1, int o2, double t, flight_val *r1, flight_val *r2);
 /* e^{iW(t - tf)}: the forcing's phase at t. */
 double complex td_sim_flight_phase(const td_sim_flight *f, double t);
 /* The held currents of sampled controllers (machine.held_current) now in the forcing: p0 shifted by

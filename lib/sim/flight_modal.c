@@ -15,6 +15,10 @@
 #include <stdlib.h>
 #include <string.h>
 
+#ifdef __SSE2__
+#include <emmintrin.h>
+#endif
+
 /* What A depends on: the speed and the AMBs' modes. */
 static int machine_key(const td_sim *s, double *key)
 {
@@ -113,17 +117,24 @@ static void unscale_modes(td_sim_flight *f, const double *S)
 
 /* The decomposition's quality: the largest of max_i |A v_j - lambda_j v_j| / (|lambda_j| max_i |v_j|)
  * over the modes j (the phase error per radian of each mode) and max |V V^-1 - I|. */
-static double decomposition_error(const td_sim_flight *f, const gsl_matrix *A)
+static double decomposition_error(td_sim_flight *f, const gsl_matrix *A)
 {
     int i, j, k, nz = f->nz;
     double worst = 0.0;
+    double complex *vj = f->work, *wj = f->work + nz; /* column j of V and of V^-1, contiguous */
     for (j = 0; j < nz; j++) {
         double res = 0.0, vmax = 0.0;
+        for (k = 0; k < nz; k++) {
+            vj[k] = f->V[k * nz + j];
+            wj[k] = f->Vinv[k * nz + j];
+        }
         for (i = 0; i < nz; i++) {
+            const double *ai = A->data + (size_t)i * A->tda; /* row i: gsl_matrix_get(A, i, k) = ai[k] */
+            const double complex *vi = f->V + (size_t)i * (size_t)nz;
             double complex av = -f->V[i * nz + j] * f->lam[j], vv = 0.0;
             for (k = 0; k < nz; k++) {
-                av += gsl_matrix_get(A, (size_t)i, (size_t)k) * f->V[k * nz + j];
-                vv += f->V[i * nz + k] * f->Vinv[k * nz + j];
+                av += ai[k] * vj[k];
+                vv += vi[k] * wj[k];
             }
             res = fmax(res, cabs(av));
             vmax = fmax(vmax, cabs(f->V[i * nz + j]));
@@ -180,6 +191,19 @@ static void pair_modes(td_sim_flight *f)
     }
 }
 
+/* The kept modes' columns of V, real and imaginary parts apart, mode after mode (f->vr, f->vi):
+ * the state is sum_k Re(V_ik a_k) over them, and this order sums it row-wise in one pass. */
+static void kept_columns(td_sim_flight *f)
+{
+    size_t i, k, nz = (size_t)f->nz;
+    for (k = 0; k < (size_t)f->nkeep; k++)
+        for (i = 0; i < nz; i++) {
+            double complex v = f->V[i * nz + (size_t)f->keep[k]];
+            f->vr[k * nz + i] = creal(v);
+            f->vi[k * nz + i] = cimag(v);
+        }
+}
+
 /* A's modes; 0 if A cannot be trusted to them (defective, ill-conditioned, a zero or resonant
  * eigenvalue, a mode growing faster than the bounds allow: by more than e over a step of h_max; with
  * a current held between samples the magnets' negative stiffness makes modes grow at ~144 s^-1, which
@@ -212,6 +236,7 @@ static int decompose(const td_sim *s, td_sim_flight *f, const double *scale)
     if (ok) {
         unscale_modes(f, scale);
         pair_modes(f);
+        kept_columns(f);
     }
     gsl_eigen_nonsymmv_free(w);
     gsl_matrix_complex_free(evec);
@@ -253,7 +278,7 @@ static int forcing_block(const td_sim *s, int i)
 static int probe_forcing(const td_sim *s, td_sim_flight *f)
 {
     double *z = f->rate0, w = f->omega, q = w != 0.0 ? M_PI / w : 0.0;
-    double complex *bp = f->e, *bm = f->d; /* work until the anchor */
+    double complex *bp = f->e, *bm = f->d; /* work until the anchor (which makes e stale) */
     double scale[3] = {0.0, 0.0, 0.0};
     int i, nz = f->nz, ok = 1;
     memset(z, 0, sizeof(double) * (size_t)nz);
@@ -420,7 +445,7 @@ static void particular(const td_sim_flight *f, double t, double complex *out)
 static void anchor_observations(td_sim_flight *f)
 {
     int i, o;
-    f->t_e = NAN; /* e is stale */
+    f->t_e = f->t_e2 = NAN; /* e is stale, and the one kept before it */
     for (o = 0; o < f->nobs; o++) {
         flight_obs *b = &f->obs[o];
         for (i = 0; i < f->nkeep; i++) { /* the kept modes: the others are never summed */
@@ -452,13 +477,21 @@ static void anchor(td_sim *s, td_sim_flight *f)
     anchor_observations(f);
 }
 
-/* e_j = e^{lambda_j (t - ta)} and the bound factors |e_j| grow_j, for the time t. */
+/* e_j = e^{lambda_j (t - ta)} and the bound factors |e_j| grow_j, for the time t. The last two
+ * times' are kept (the flight's bookkeeping goes back and forth between a step's ends and the
+ * output time): the earlier one is swapped back in as it was computed. */
 void td_sim_flight_propagate(td_sim_flight *f, double t)
 {
-    double dt = t - f->ta;
+    double dt = t - f->ta, *ae = f->ae, te = f->t_e;
+    double complex *e = f->e, ep = f->ep;
     int i;
     if (t == f->t_e)
         return;
+    f->e = f->e2, f->ae = f->ae2, f->t_e = f->t_e2, f->ep = f->ep2;
+    f->e2 = e, f->ae2 = ae, f->t_e2 = te, f->ep2 = ep;
+    if (t == f->t_e)
+        return;
+    f->ep = td_sim_flight_phase(f, t); /* shared by every observation at t */
     for (i = 0; i < f->nkeep; i++) {
         int j = f->keep[i];
         double m = exp(creal(f->lam[j]) * dt);
@@ -506,6 +539,17 @@ void td_sim_flight_shift_held(td_sim *s, td_sim_flight *f, int reanchor)
     anchor_observations(f);
 }
 
+/* The constant and harmonic parts of observation b (phase ep) added to its modal sums r. */
+static void observe_tail(const td_sim_flight *f, const flight_obs *b, double complex ep, flight_val *r)
+{
+    double w = fabs(f->omega), h = b->h_abs;
+    r->v += creal(b->h0 + b->hp * ep + b->hm * conj(ep));
+    r->d += creal(I * f->omega * (b->hp * ep - b->hm * conj(ep)));
+    r->b0 += b->h0_abs + h;
+    r->b1 += w * h;
+    r->b2 += w * w * h;
+}
+
 /* Observation o at the time of the last propagate (t). Kept (flight_obs.seen): the same t again
  * with the same propagate gives the same bits without the sums (e at t depends on t and the anchor
  * only, and an anchor or a forcing clears what was kept). */
@@ -513,12 +557,11 @@ flight_val td_sim_flight_observe(const td_sim_flight *f, int o, double t)
 {
     flight_obs *b = &f->obs[o];
     double complex ep;
-    double w = fabs(f->omega), h = b->h_abs;
     flight_val r = {0.0, 0.0, 0.0, 0.0, 0.0};
     int i;
     if (t == b->seen_t && t == f->t_e)
         return b->seen;
-    ep = td_sim_flight_phase(f, t);
+    ep = t == f->t_e ? f->ep : td_sim_flight_phase(f, t);
     for (i = 0; i < f->nkeep; i++) { /* the real parts of sum c e and sum c e lambda, as complex */
         int j = f->keep[i];
         double ce[2];
@@ -529,22 +572,64 @@ flight_val td_sim_flight_observe(const td_sim_flight *f, int o, double t)
         r.b1 += b->m1[j] * f->ae[j];
         r.b2 += b->m2[j] * f->ae[j];
     }
-    r.v += creal(b->h0 + b->hp * ep + b->hm * conj(ep));
-    r.d += creal(I * f->omega * (b->hp * ep - b->hm * conj(ep)));
-    r.b0 += b->h0_abs + h;
-    r.b1 += w * h;
-    r.b2 += w * w * h;
+    observe_tail(f, b, ep, &r);
     b->seen_t = t;
     b->seen = r;
     b->seen_bound = NAN;
     return r;
 }
 
+/* Observations o1, o2 at the last propagate (t) into r1, r2, as td_sim_flight_observe gives and keeps
+ * them: the two sums side by side in packed doubles where neither is kept already. */
+void td_sim_flight_observe2(const td_sim_flight *f, int o1, int o2, double t, flight_val *r1, flight_val *r2)
+{
+#ifdef __SSE2__
+    flight_obs *a = &f->obs[o1], *b = &f->obs[o2];
+    double out[5][2];
+    __m128d v = _mm_setzero_pd(), d = v, b0 = v, b1 = v, b2 = v;
+    int i, q;
+    if ((t == a->seen_t || t == b->seen_t) || t != f->t_e) {
+#endif
+        *r1 = td_sim_flight_observe(f, o1, t);
+        *r2 = td_sim_flight_observe(f, o2, t);
+#ifdef __SSE2__
+        return;
+    }
+    for (i = 0; i < f->nkeep; i++) { /* each lane td_sim_flight_observe's sum for its observation */
+        int j = f->keep[i];
+        __m128d cr = _mm_set_pd(creal(b->c[j]), creal(a->c[j])), ci = _mm_set_pd(cimag(b->c[j]), cimag(a->c[j]));
+        __m128d er = _mm_set1_pd(creal(f->e[j])), ei = _mm_set1_pd(cimag(f->e[j])), ae = _mm_set1_pd(f->ae[j]);
+        __m128d ce0 = _mm_sub_pd(_mm_mul_pd(cr, er), _mm_mul_pd(ci, ei));
+        __m128d ce1 = _mm_add_pd(_mm_mul_pd(cr, ei), _mm_mul_pd(ci, er));
+        v = _mm_add_pd(v, ce0);
+        d = _mm_add_pd(d, _mm_sub_pd(_mm_mul_pd(ce0, _mm_set1_pd(creal(f->lam[j]))),
+                                     _mm_mul_pd(ce1, _mm_set1_pd(cimag(f->lam[j])))));
+        b0 = _mm_add_pd(b0, _mm_mul_pd(_mm_set_pd(b->m0[j], a->m0[j]), ae));
+        b1 = _mm_add_pd(b1, _mm_mul_pd(_mm_set_pd(b->m1[j], a->m1[j]), ae));
+        b2 = _mm_add_pd(b2, _mm_mul_pd(_mm_set_pd(b->m2[j], a->m2[j]), ae));
+    }
+    _mm_storeu_pd(out[0], v);
+    _mm_storeu_pd(out[1], d);
+    _mm_storeu_pd(out[2], b0);
+    _mm_storeu_pd(out[3], b1);
+    _mm_storeu_pd(out[4], b2);
+    for (q = 0; q < 2; q++) {
+        flight_obs *o = q ? b : a;
+        flight_val r = {out[0][q], out[1][q], out[2][q], out[3][q], out[4][q]};
+        observe_tail(f, o, f->ep, &r);
+        o->seen_t = t;
+        o->seen = r;
+        o->seen_bound = NAN;
+        *(q ? r2 : r1) = r;
+    }
+#endif
+}
+
 /* The modal coordinates at t (propagated), weighted for the kept modes, into f->b-sized complex
  * work `a`; with `rate`, their time derivatives into `da`. */
 static void modal_state(const td_sim_flight *f, double t, double complex *a, double complex *da)
 {
-    double complex ep = td_sim_flight_phase(f, t), em = conj(ep);
+    double complex ep = t == f->t_e ? f->ep : td_sim_flight_phase(f, t), em = conj(ep);
     int i;
     for (i = 0; i < f->nkeep; i++) {
         int j = f->keep[i];
@@ -555,28 +640,51 @@ static void modal_state(const td_sim_flight *f, double t, double complex *a, dou
     }
 }
 
+/* The states z = Re(V a) over the kept modes (a: nkeep, weighted, modal_state) into y: per state the
+ * same terms in the same order as a row of V times a, summed for all states at once. */
+static void state_sum(const td_sim_flight *f, const double complex *a, double *y)
+{
+    int i, k, nz = f->nz;
+    for (i = 0; i < nz; i++)
+        y[i] = 0.0;
+    for (k = 0; k + 1 < f->nkeep; k += 2) { /* two modes a pass: y_i + term_k, then + term_k+1 */
+        const double *vr = f->vr + (size_t)k * (size_t)nz, *vi = f->vi + (size_t)k * (size_t)nz;
+        const double *wr = vr + nz, *wi = vi + nz;
+        double ar = creal(a[k]), ai = cimag(a[k]), br = creal(a[k + 1]), bi = cimag(a[k + 1]);
+        i = 0;
+#ifdef __SSE2__
+        { /* two rows at a time in packed doubles: each lane the scalar loop's operations, the same bits */
+            __m128d par = _mm_set1_pd(ar), pai = _mm_set1_pd(ai), pbr = _mm_set1_pd(br), pbi = _mm_set1_pd(bi);
+            for (; i + 1 < nz; i += 2) {
+                __m128d t = _mm_sub_pd(_mm_mul_pd(_mm_loadu_pd(vr + i), par), _mm_mul_pd(_mm_loadu_pd(vi + i), pai));
+                __m128d u = _mm_sub_pd(_mm_mul_pd(_mm_loadu_pd(wr + i), pbr), _mm_mul_pd(_mm_loadu_pd(wi + i), pbi));
+                _mm_storeu_pd(y + i, _mm_add_pd(_mm_add_pd(_mm_loadu_pd(y + i), t), u));
+            }
+        }
+#endif
+        for (; i < nz; i++)
+            y[i] = (y[i] + (vr[i] * ar - vi[i] * ai)) + (wr[i] * br - wi[i] * bi);
+    }
+    for (; k < f->nkeep; k++) {
+        const double *vr = f->vr + (size_t)k * (size_t)nz, *vi = f->vi + (size_t)k * (size_t)nz;
+        double ar = creal(a[k]), ai = cimag(a[k]);
+        for (i = 0; i < nz; i++)
+            y[i] += vr[i] * ar - vi[i] * ai;
+    }
+}
+
 /* The state z at t into y (and its rate into yp with `rate`; the rest of yp: zero in free flight). */
 void td_sim_flight_materialise(td_sim *s, td_sim_flight *f, double t, int rate)
 {
     double *y = N_VGetArrayPointer(s->dae.y), *yp = N_VGetArrayPointer(s->dae.yp);
     double complex *a = f->work, *da = rate ? f->work + f->nz : NULL;
-    int i, k, nz = f->nz;
+    int i;
     td_sim_flight_propagate(f, t);
     modal_state(f, t, a, da);
-    for (i = 0; i < nz; i++) {
-        const double complex *row = f->V + (size_t)i * (size_t)nz;
-        double z = 0.0, zd = 0.0;
-        for (k = 0; k < f->nkeep; k++) {
-            double complex v = row[f->keep[k]];
-            z += creal(v) * creal(a[k]) - cimag(v) * cimag(a[k]);
-            if (rate)
-                zd += creal(v) * creal(da[k]) - cimag(v) * cimag(da[k]);
-        }
-        y[i] = z;
-        if (rate)
-            yp[i] = zd;
-    }
-    for (i = nz; rate && i < s->dae.neq; i++)
+    state_sum(f, a, y);
+    if (rate)
+        state_sum(f, da, yp);
+    for (i = f->nz; rate && i < s->dae.neq; i++)
         yp[i] = 0.0;
 }
 
@@ -587,7 +695,7 @@ int td_sim_flight_peek(const td_sim *s, double t, double *y, double *work)
     const td_sim_flight *f = s->flight;
     double complex *e = (double complex *)(void *)work;
     double complex ep, em;
-    int i, k;
+    int i;
     if (!f || !f->anchored)
         return 0;
     ep = td_sim_flight_phase(f, t);
@@ -598,13 +706,7 @@ int td_sim_flight_peek(const td_sim *s, double t, double *y, double *work)
         double complex h = f->d[j] * (m * (cos(cimag(f->lam[j]) * dt) + I * sin(cimag(f->lam[j]) * dt)));
         e[i] = f->weight[j] * (h + f->p0[j] + f->pp[j] * ep + f->pm[j] * em);
     }
-    for (i = 0; i < f->nz; i++) {
-        const double complex *row = f->V + (size_t)i * (size_t)f->nz;
-        double z = 0.0;
-        for (k = 0; k < f->nkeep; k++)
-            z += creal(row[f->keep[k]]) * creal(e[k]) - cimag(row[f->keep[k]]) * cimag(e[k]);
-        y[i] = z;
-    }
+    state_sum(f, e, y);
     return 1;
 }
 
@@ -640,6 +742,8 @@ void td_sim_flight_free(td_sim *s)
     free(f->lam);
     free(f->V);
     free(f->Vinv);
+    free(f->vr);
+    free(f->vi);
     free(f->grow);
     free(f->keep);
     free(f->order);
@@ -654,6 +758,8 @@ void td_sim_flight_free(td_sim *s)
     free(f->d);
     free(f->e);
     free(f->ae);
+    free(f->e2);
+    free(f->ae2);
     free(f->y);
     free(f->yp);
     free(f->res);
@@ -728,6 +834,8 @@ static int flight_alloc(td_sim *s)
     f->lam = calloc(nz, sizeof *f->lam);
     f->V = calloc(nz * nz, sizeof *f->V);
     f->Vinv = calloc(nz * nz, sizeof *f->Vinv);
+    f->vr = calloc(nz * nz, sizeof *f->vr);
+    f->vi = calloc(nz * nz, sizeof *f->vi);
     f->grow = calloc(nz, sizeof *f->grow);
     f->keep = calloc(nz, sizeof *f->keep);
     f->order = calloc(nz, sizeof *f->order);
@@ -739,6 +847,8 @@ static int flight_alloc(td_sim *s)
     f->d = calloc(nz, sizeof *f->d);
     f->e = calloc(nz, sizeof *f->e);
     f->ae = calloc(nz, sizeof *f->ae);
+    f->e2 = calloc(nz, sizeof *f->e2);
+    f->ae2 = calloc(nz, sizeof *f->ae2);
     f->y = calloc(neq, sizeof *f->y);
     f->yp = calloc(neq, sizeof *f->yp);
     f->res = calloc(neq, sizeof *f->res);
@@ -754,14 +864,16 @@ static int flight_alloc(td_sim *s)
     f->amb_p = calloc(na, sizeof(double));
     f->amb_b2p = calloc(na, sizeof(double));
     ok = ok && f->amb_a && f->amb_b && f->amb_b2 && f->amb_p && f->amb_b2p;
+    ok = ok && f->vr && f->vi;
     ok = ok && f->machine_key && f->forcing_key && f->key_work && f->lam && f->V && f->Vinv && f->grow && f->keep &&
-         f->order && f->weight && f->work && f->p0 && f->pp && f->pm && f->d && f->e && f->ae && f->y && f->yp &&
-         f->res && f->rate && f->rate0 && f->obs;
+         f->order && f->weight && f->work && f->p0 && f->pp && f->pm && f->d && f->e && f->ae && f->e2 && f->ae2 &&
+         f->y && f->yp && f->res && f->rate && f->rate0 && f->obs;
     for (i = 0; ok && i < f->nobs; i++)
         ok = alloc_obs(&f->obs[i], nz);
     ok = ok && alloc_held(s, f);
     f->nkey_m = f->nkey_f = -1;
     f->t_root = -INFINITY;
+    f->t_e = f->t_e2 = NAN;
     if (!ok)
         td_sim_flight_free(s);
     return ok;

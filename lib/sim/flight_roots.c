@@ -267,8 +267,7 @@ double td_sim_flight_node(const td_sim_flight *f, int k, double t, flight_val *x
 {
     flight_obs *ox = &f->obs[2 * k], *oy = &f->obs[2 * k + 1];
     double p, v, a;
-    *x = td_sim_flight_observe(f, 2 * k, t);
-    *y = td_sim_flight_observe(f, 2 * k + 1, t);
+    td_sim_flight_observe2(f, 2 * k, 2 * k + 1, t, x, y);
     if (!isnan(ox->seen_bound) && ox->seen_bound == oy->seen_bound) /* both kept from this t */
         return ox->seen_bound;
     p = hypot(x->b0, y->b0), v = hypot(x->b1, y->b1), a = hypot(x->b2, y->b2);

@@ -46,8 +46,8 @@ typedef struct td_sim_totals {
     td_sim_margin_sample m_to;   /* and its end, beyond s->dae.t until the run reaches it */
     int m_held;
     /* the closed-form flight's point (flight.c): r^2 and the bound on |(r^2)''| from it, at the start of
-     * its step and (b) at the end of the part searched */
-    double flight_r2, flight_b2, flight_r2b, flight_b2b;
+     * its step and (b) at the end of the part searched; (s) the step's, kept while a pending part is searched */
+    double flight_r2, flight_b2, flight_r2b, flight_b2b, flight_r2s, flight_b2s;
 } td_sim_totals;
 
 /* heat: retainer k's drag power and thermal network at the points of the totals (thermal.c) */
