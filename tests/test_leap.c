@@ -1,0 +1,144 @@
+/*
+ * The projective leap (lib/sim/leap.h): the rates read over a burst and the leap of the slow state,
+ * against the closed form of a free rotor spinning down under drag with no contact.
+ */
+#include "td_test.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "sim/leap.h"
+#include "touchdown/case.h"
+#include "touchdown/sim.h"
+
+/* rub-damped.cfg's rotor centred by its AMBs with nothing to push it (no unbalance, schedule or
+ * gravity), its speed free from W0 under a constant drag torque T and a viscous drag c on a spin
+ * inertia J, the energy account kept: J dOmega/dt = -T - c Omega, so
+ *   Omega(t) = (W0 + T/c) exp(-c t / J) - T/c   (c > 0),   Omega(t) = W0 - T t / J   (c = 0),
+ * and the constant drag's loss is T times the integral of Omega. */
+#define SPIN_J 0.01
+#define SPIN_T 0.7
+#define SPIN_W0 100.0
+
+static td_case *spin_case(double viscous)
+{
+    static char spin[200];
+    static const char *ov[] = {"unbalances = ()", "schedule = ()", "speed = 100.0", spin, "energy = true",
+                               "end_time = 3.0"};
+    snprintf(spin, sizeof spin, "spin = { free = true; inertia = %.17g; drag_torque = %.17g; drag_viscous = %.17g; }",
+             SPIN_J, SPIN_T, viscous);
+    return td_test_load_case("cases/rub-damped.cfg", ov, 6);
+}
+
+static double omega_at(double c, double t)
+{
+    return c > 0.0 ? (SPIN_W0 + SPIN_T / c) * exp(-c * t / SPIN_J) - SPIN_T / c : SPIN_W0 - SPIN_T * t / SPIN_J;
+}
+
+/* integral of Omega from 0 to t */
+static double angle_at(double c, double t)
+{
+    return c > 0.0 ? (SPIN_W0 + SPIN_T / c) * SPIN_J / c * -expm1(-c * t / SPIN_J) - SPIN_T / c * t
+                   : SPIN_W0 * t - 0.5 * SPIN_T * t * t / SPIN_J;
+}
+
+/* The rates over a burst are the closed form's mean rates: the speed's and the constant drag's loss. */
+static void test_rates_closed_form(void **state)
+{
+    const double c = 2.0e-3, t1 = 0.2, t2 = 0.5;
+    td_case *cs = spin_case(c);
+    td_sim *s = td_test_new_sim(td_case_model(cs), cs);
+    td_sim_leap_state a, b, r;
+    td_error err;
+    (void)state;
+    td_test_step_to(s, t1);
+    assert_int_equal(td_sim_leap_read(s, &a, &err), TD_OK);
+    td_test_step_to(s, t2);
+    assert_int_equal(td_sim_leap_read(s, &b, &err), TD_OK);
+    assert_int_equal(td_sim_leap_rates(&a, &b, &r, &err), TD_OK);
+    print_message("rate %.12g rad/s^2 (closed form %.12g), drag loss %.12g W (%.12g)\n", r.speed,
+                  (omega_at(c, t2) - omega_at(c, t1)) / (t2 - t1), r.energy.drag_loss,
+                  SPIN_T * (angle_at(c, t2) - angle_at(c, t1)) / (t2 - t1));
+    assert_close(r.t, t2 - t1, 1e-14, 0.0);
+    assert_close(r.speed, (omega_at(c, t2) - omega_at(c, t1)) / (t2 - t1), 1e-6, 0.0);
+    assert_close(r.mean_speed, 0.5 * (omega_at(c, t1) + omega_at(c, t2)), 1e-8, 0.0);
+    assert_close(r.energy.drag_loss, SPIN_T * (angle_at(c, t2) - angle_at(c, t1)) / (t2 - t1), 1e-6, 0.0);
+    assert_true(r.contacts[0] == 0.0 && r.totals[0].contact_time == 0.0);
+    /* the ends must be of one run, in order */
+    assert_int_equal(td_sim_leap_rates(&b, &a, &r, &err), TD_ERR_INVALID);
+    td_sim_free(&s);
+    td_case_free(&cs);
+}
+
+/* Under a constant torque the speed falls linearly: a leap of L after a burst lands on the closed
+ * form, the integration after it goes on from there (the speed at simulation time t is that of
+ * t + L), and the energy account, the drag's loss included, still closes. */
+static void test_leap_closed_form(void **state)
+{
+    const double t1 = 0.1, t2 = 0.3, L = 0.6, t3 = 0.5;
+    td_case *cs = spin_case(0.0);
+    td_sim *s = td_test_new_sim(td_case_model(cs), cs);
+    td_sim_leap_state a, b, r;
+    td_energy e;
+    td_error err;
+    (void)state;
+    td_test_step_to(s, t1);
+    assert_int_equal(td_sim_leap_read(s, &a, &err), TD_OK);
+    td_test_step_to(s, t2);
+    assert_int_equal(td_sim_leap_read(s, &b, &err), TD_OK);
+    assert_int_equal(td_sim_leap_rates(&a, &b, &r, &err), TD_OK);
+    assert_close(r.speed, -SPIN_T / SPIN_J, 1e-9, 0.0);
+    assert_int_equal(td_sim_leap(s, L, &r, &err), TD_OK);
+    assert_close(td_sim_time(s), t2, 0.0, 0.0); /* the clock is the caller's */
+    assert_close(td_sim_speed(s), omega_at(0.0, t2 + L), 1e-10, 0.0);
+    td_test_step_to(s, t3);
+    assert_close(td_sim_speed(s), omega_at(0.0, t3 + L), 1e-10, 0.0);
+    assert_int_equal(td_sim_energy(s, &e), TD_OK);
+    print_message("after the leap: %.12g rad/s (closed form %.12g), drag loss %.12g J (%.12g), residual %.3g J\n",
+                  td_sim_speed(s), omega_at(0.0, t3 + L), e.drag_loss, SPIN_T * angle_at(0.0, t3 + L), e.residual);
+    assert_close(e.drag_loss, SPIN_T * angle_at(0.0, t3 + L), 1e-9, 0.0);
+    assert_close(e.kinetic - e.initial, 0.5 * SPIN_J * (pow(omega_at(0.0, t3 + L), 2) - SPIN_W0 * SPIN_W0), 1e-8,
+                 0.0);
+    assert_true(fabs(e.residual) < 1e-9 * e.initial);
+    td_sim_free(&s);
+    td_case_free(&cs);
+}
+
+/* Leaps refused: no length, one that would stop the rotor, one on a speed that is not free. */
+static void test_leap_refused(void **state)
+{
+    td_case *cs = spin_case(0.0), *fixed = td_test_load_case("cases/rub-damped.cfg", NULL, 0);
+    td_sim *s = td_test_new_sim(td_case_model(cs), cs), *f = td_test_new_sim(td_case_model(fixed), fixed);
+    td_sim_leap_state a, b, r, fa, fb, fr;
+    td_error err;
+    (void)state;
+    assert_int_equal(td_sim_leap_read(s, &a, &err), TD_OK);
+    td_test_step_to(s, 0.1);
+    assert_int_equal(td_sim_leap_read(s, &b, &err), TD_OK);
+    assert_int_equal(td_sim_leap_rates(&a, &b, &r, &err), TD_OK);
+    assert_int_equal(td_sim_leap(s, 0.0, &r, &err), TD_ERR_INVALID);
+    assert_int_equal(td_sim_leap(s, 2.0, &r, &err), TD_ERR_INVALID); /* 100 - 70 x 2 < 0 */
+    print_message("%s\n", err.message);
+    assert_non_null(strstr(err.message, "would stop the rotor"));
+    assert_close(td_sim_speed(s), omega_at(0.0, 0.1), 1e-9, 0.0); /* nothing changed */
+    assert_int_equal(td_sim_leap_read(f, &fa, &err), TD_OK);
+    td_test_step_to(f, 0.01);
+    assert_int_equal(td_sim_leap_read(f, &fb, &err), TD_OK);
+    assert_int_equal(td_sim_leap_rates(&fa, &fb, &fr, &err), TD_OK);
+    assert_int_equal(td_sim_leap(f, 0.1, &fr, &err), TD_ERR_INVALID);
+    td_sim_free(&s);
+    td_sim_free(&f);
+    td_case_free(&cs);
+    td_case_free(&fixed);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_rates_closed_form),
+        cmocka_unit_test(test_leap_closed_form),
+        cmocka_unit_test(test_leap_refused),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
