@@ -24,8 +24,8 @@
 static td_case *spin_case(double viscous)
 {
     static char spin[200];
-    static const char *ov[] = {"unbalances = ()", "schedule = ()", "speed = 100.0", spin, "energy = true",
-                               "end_time = 3.0"};
+    static const char *ov[] = {"unbalances = ()", "schedule = ()", "speed = 100.0", spin,
+                               "energy = true",   "end_time = 3.0"};
     snprintf(spin, sizeof spin, "spin = { free = true; inertia = %.17g; drag_torque = %.17g; drag_viscous = %.17g; }",
              SPIN_J, SPIN_T, viscous);
     return td_test_load_case("cases/rub-damped.cfg", ov, 6);
@@ -98,8 +98,7 @@ static void test_leap_closed_form(void **state)
     print_message("after the leap: %.12g rad/s (closed form %.12g), drag loss %.12g J (%.12g), residual %.3g J\n",
                   td_sim_speed(s), omega_at(0.0, t3 + L), e.drag_loss, SPIN_T * angle_at(0.0, t3 + L), e.residual);
     assert_close(e.drag_loss, SPIN_T * angle_at(0.0, t3 + L), 1e-9, 0.0);
-    assert_close(e.kinetic - e.initial, 0.5 * SPIN_J * (pow(omega_at(0.0, t3 + L), 2) - SPIN_W0 * SPIN_W0), 1e-8,
-                 0.0);
+    assert_close(e.kinetic - e.initial, 0.5 * SPIN_J * (pow(omega_at(0.0, t3 + L), 2) - SPIN_W0 * SPIN_W0), 1e-8, 0.0);
     assert_true(fabs(e.residual) < 1e-9 * e.initial);
     td_sim_free(&s);
     td_case_free(&cs);

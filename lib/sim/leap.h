@@ -20,15 +20,15 @@
 
 /* The slow state at one time, or (td_sim_leap_rates) its mean rates over a burst. */
 typedef struct td_sim_leap_state {
-    double t;                                  /* s: the simulation's time; for rates, the burst's length */
-    double speed;                              /* rad/s: the rotor's speed; for rates, rad/s^2 */
-    double mean_speed;                         /* rates only: rad/s, the burst's mean speed (trapezoid) */
-    int retainers;                             /* how many follow */
-    double race_speed[TD_SIM_LEAP_RETAINERS];  /* rad/s (0 for a race without a speed of its own) */
+    double t;                                         /* s: the simulation's time; for rates, the burst's length */
+    double speed;                                     /* rad/s: the rotor's speed; for rates, rad/s^2 */
+    double mean_speed;                                /* rates only: rad/s, the burst's mean speed (trapezoid) */
+    int retainers;                                    /* how many follow */
+    double race_speed[TD_SIM_LEAP_RETAINERS];         /* rad/s (0 for a race without a speed of its own) */
     td_retainer_totals totals[TD_SIM_LEAP_RETAINERS]; /* for rates: the additive ones a second */
-    double contacts[TD_SIM_LEAP_RETAINERS];     /* the totals' counts (contacts, touch_and_go): for rates, */
-    double touch_and_go[TD_SIM_LEAP_RETAINERS]; /* a second, not rounded */
-    int energy_on;                             /* the run keeps the energy account (td_sim_options.energy) */
+    double contacts[TD_SIM_LEAP_RETAINERS];           /* the totals' counts (contacts, touch_and_go): for rates, */
+    double touch_and_go[TD_SIM_LEAP_RETAINERS];       /* a second, not rounded */
+    int energy_on;                                    /* the run keeps the energy account (td_sim_options.energy) */
     td_energy energy;
 } td_sim_leap_state;
 
