@@ -1489,7 +1489,9 @@ SPANS = {"rub-mean-normal": span_rub_mean_normal, "val-first-contact-cell": span
 # "keys-SECTION"; a section the tool names that is not here fails the rendering.
 KEY_SECTIONS = ["top", "shaft", "discs", "ambs", "controllers", "recovery", "speed", "bearings", "retainers", "retainer-parts", "unbalances",
                 "schedule", "gravity", "reduction", "contact", "solver", "output", "modal", "sweep", "limits",
-                "housing"]
+                "housing",
+                # projective leap
+                "leap"]
 
 
 def cell(text):

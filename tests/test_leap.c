@@ -10,6 +10,8 @@
 
 #include "sim/leap.h"
 #include "touchdown/case.h"
+#include "touchdown/result.h"
+#include "touchdown/run.h"
 #include "touchdown/sim.h"
 
 /* rub-damped.cfg's rotor centred by its AMBs with nothing to push it (no unbalance, schedule or
@@ -132,12 +134,100 @@ static void test_leap_refused(void **state)
     td_case_free(&fixed);
 }
 
+/* Through td_run and the case key: the spin-down with constant torque leapt (bursts of 0.1 s, leaps
+ * of 0.3 s after 0.05 s of healing, from 0.1 s) ends at rest at the first grid sample after the
+ * closed form's t* = 0.99 J W0 / T, with the closed form's speed there; the file's series have no
+ * row inside a leap (every gap between rows is a sample interval, or a leap), and the summary says
+ * how much was leapt. */
+static void test_run_leap_closed_form(void **state)
+{
+    static const char *ov[] = {"unbalances = ()",
+                               "schedule = ()",
+                               "speed = 100.0",
+                               "spin = { free = true; inertia = 0.01; drag_torque = 0.7; drag_viscous = 0.0; }",
+                               "end_at_rest = true",
+                               "end_time = 3.0",
+                               "output.sample_rate = 1000.0",
+                               "leap = { burst = 0.1; factor = 3.0; heal = 0.05; start = 0.1; }"};
+    td_case *c = td_test_load_case("cases/rub-damped.cfg", ov, 8);
+    td_output_options out = *td_case_output_options(c);
+    const char *path = "test_leap_run.h5";
+    const double t_star = 0.99 * SPIN_J * SPIN_W0 / SPIN_T, dt = 1.0e-3;
+    td_run_summary sum;
+    td_sim *s = NULL;
+    td_result *r = NULL;
+    td_result_array time, speed;
+    td_error err;
+    double gaps = 0.0;
+    size_t i;
+    (void)state;
+    assert_close(out.leap_burst, 0.1, 0.0, 0.0);
+    snprintf(out.hdf5_path, sizeof out.hdf5_path, "%s", path);
+    out.csv_path[0] = '\0';
+    assert_int_equal(td_sim_create(td_case_model(c), td_case_sim_options(c), &s, &err), TD_OK);
+    assert_int_equal(td_run(s, td_case_end_time(c), &out, NULL, NULL, &sum, &err), TD_OK);
+    print_message("t* = %.12f s, ended at %.12f s (%ld leaps, %.6g s leapt), speed %.12g rad/s\n", t_star,
+                  sum.t_reached, sum.leaps, sum.leapt_time, sum.final_speed);
+    assert_int_equal(sum.ended_at_rest, 1);
+    assert_true(sum.leaps >= 2 && sum.leapt_time > 0.5);
+    assert_true(sum.t_reached >= t_star && sum.t_reached <= t_star + dt * (1.0 + 1e-9));
+    assert_close(sum.final_speed, SPIN_W0 - SPIN_T * sum.t_reached / SPIN_J, 0.0, 1e-6);
+    assert_int_equal(td_result_open(path, &r, &err), TD_OK);
+    assert_int_equal(td_result_read(r, TD_OUT_TIME, NULL, &time, &err), TD_OK);
+    assert_int_equal(td_result_read(r, TD_OUT_SPEED, NULL, &speed, &err), TD_OK);
+    for (i = 1; i < time.n; i++) {
+        double gap = time.v[i] - time.v[i - 1];
+        assert_close(speed.v[i], SPIN_W0 - SPIN_T * time.v[i] / SPIN_J, 0.0, 1e-6); /* before and after leaps */
+        if (gap > 1.5 * dt)
+            gaps += gap; /* a leap, from the row before it to the row it lands on: no rows inside */
+        else
+            assert_close(gap, dt, 1e-6, 0.0);
+    }
+    assert_close(gaps, sum.leapt_time, 1e-9, 0.0);
+    td_result_array_free(&time);
+    td_result_array_free(&speed);
+    td_result_free(&r);
+    td_sim_free(&s);
+    td_case_free(&c);
+    remove(path);
+}
+
+/* Bad leap groups: one line naming the file, the override and the key, and why. */
+static void test_leap_bad_input(void **state)
+{
+    static const struct {
+        const char *base, *set, *want;
+    } bad[] = {
+        {"cases/drop-to-rest.cfg", "leap = { burst = 1.0; factor = 0.5; heal = 0.5; start = 3.0; }",
+         "leap.factor: must be >= 1 (got 0.5)"},
+        {"cases/drop-to-rest.cfg", "leap = { burst = 0.001; factor = 4.0; heal = 0.5; start = 3.0; }",
+         "leap.burst: 0.001 s is shorter than the sample interval"},
+        {"cases/drop-to-rest.cfg", "leap = { burst = 1.0; factor = 4.0; start = 3.0; }", "leap.heal: missing"},
+        {"cases/drop-to-rest.cfg", "leap = { burst = 1.0; factor = 4.0; heal = -1.0; start = 3.0; }", "leap.heal"},
+        {"cases/rub-damped.cfg", "leap = { burst = 0.1; factor = 4.0; heal = 0.0; start = 0.0; }",
+         "leap: a leap needs the speed as a free state (spin.free = true)"},
+    };
+    size_t i;
+    (void)state;
+    for (i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+        const char *ov[1];
+        td_case *c = NULL;
+        td_error err;
+        ov[0] = bad[i].set;
+        assert_int_equal(td_case_load(td_source_path(bad[i].base), ov, 1, &c, &err), TD_ERR_PARSE);
+        print_message("%s\n", err.message);
+        assert_non_null(strstr(err.message, bad[i].want));
+        assert_non_null(strstr(err.message, bad[i].base));
+        assert_null(strchr(err.message, '\n'));
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_rates_closed_form),
-        cmocka_unit_test(test_leap_closed_form),
-        cmocka_unit_test(test_leap_refused),
+        cmocka_unit_test(test_rates_closed_form), cmocka_unit_test(test_leap_closed_form),
+        cmocka_unit_test(test_leap_refused),      cmocka_unit_test(test_run_leap_closed_form),
+        cmocka_unit_test(test_leap_bad_input),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -258,6 +258,10 @@ typedef struct td_run_summary {
     /* long runs */
     int ended_at_rest; /**< 1: the run ended, complete, at the first grid sample at rest (end_at_rest,
                             td_run_at_rest) at t_reached before t_end; 0 otherwise */
+    /* projective leap (td_output_options.leap_burst) */
+    int leap;          /**< 1: the run was asked to leap */
+    long leaps;        /**< leaps made: stretches not integrated, their slow state moved on at a burst's rates */
+    double leapt_time; /**< s of the run leapt (the rest, t_reached - t_start - leapt_time, integrated) */
 } td_run_summary;
 
 /**

@@ -397,6 +397,11 @@ static void format_answers(td_text *b, const td_run_summary *s)
     if (s->ended_at_rest) /* long runs */
         td_text_printf(b, "ended at rest               at %.10f s (end_at_rest; end_time %.6g s)\n", s->t_reached,
                        s->t_end);
+    if (s->leap) /* projective leap: never to be taken for integrated motion */
+        td_text_printf(b,
+                       "leapt (not integrated)      %.6g s of %.6g s in %ld leaps (projective leap: the files have no "
+                       "rows there)\n",
+                       s->leapt_time, s->t_reached - s->t_start, s->leaps);
     if (s->stats.peak_amb >= 0)
         td_text_printf(b, "peak AMB force              %.6g N, AMB %d, %.4g %% of its capacity, at %.10f s\n",
                        s->stats.peak_amb_force, s->stats.peak_amb, 100.0 * s->stats.peak_amb_load,
@@ -653,6 +658,10 @@ static void json_answers(td_text *b, const td_run_summary *s)
     json_string(b, "regime", td_regime_name(td_run_summary_regime(s)));
     if (s->ended_at_rest) /* long runs: only a run that asked for it, and stopped */
         td_text_printf(b, "\"ended_at_rest\":true,");
+    if (s->leap) { /* projective leap: only a run that asked for it */
+        td_text_printf(b, "\"leaps\":%ld,", s->leaps);
+        json_real(b, "leapt_time", s->leapt_time, 1);
+    }
     json_real(b, "peak_amb_force", s->stats.peak_amb >= 0 ? s->stats.peak_amb_force : TD_UNDEFINED, 1);
     json_real(b, "peak_amb_load", s->stats.peak_amb >= 0 ? s->stats.peak_amb_load : TD_UNDEFINED, 1);
     if (s->stats.peak_amb >= 0)

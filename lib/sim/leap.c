@@ -152,21 +152,26 @@ static void leap_energy(td_sim *s, double Lf, const td_energy *r)
     e->housing_work += Lf * r->housing_work;
 }
 
-/* The speeds and angles moved on: linear speeds, the angles by the mean speed times L. */
+/* The speeds and angles moved on: the rotor's speed linearly, its angle by the mean speed times L;
+ * a race in contact moves with the rotor so that its sliding velocity R_s Omega + r theta' - R_b Omega_b
+ * stays as it was (a rolling race keeps rolling: the fast state carried over), a free race at its
+ * burst's rate; the race's angle by its mean speed. */
 static void leap_motion(td_sim *s, double L, const td_sim_leap_state *rate)
 {
     double *y = N_VGetArrayPointer(s->dae.y);
-    double *w = &y[s->dae.ov + s->machine.spin];
+    double *w = &y[s->dae.ov + s->machine.spin], dw = L * rate->speed;
     int k;
-    y[s->dae.oq + s->machine.spin] += L * (*w + 0.5 * L * rate->speed);
-    *w += L * rate->speed;
+    y[s->dae.oq + s->machine.spin] += L * (*w + 0.5 * dw);
+    *w += dw;
     td_sim_spin_wrap(s, y);
     for (k = 0; k < s->dae.nr; k++) {
-        int rs = s->contacts.ret[k].rs;
-        if (rs < 0)
+        const td_sim_retainer *r = &s->contacts.ret[k];
+        double dwb;
+        if (r->rs < 0)
             continue;
-        y[s->dae.oq + rs] += L * (y[s->dae.ov + rs] + 0.5 * L * rate->race_speed[k]);
-        y[s->dae.ov + rs] += L * rate->race_speed[k];
+        dwb = r->mode != TD_RMODE_FREE ? r->r.shaft_radius / r->r.bore_radius * dw : L * rate->race_speed[k];
+        y[s->dae.oq + r->rs] += L * (y[s->dae.ov + r->rs] + 0.5 * dwb);
+        y[s->dae.ov + r->rs] += dwb;
     }
 }
 
