@@ -135,7 +135,8 @@ static void test_leap_refused(void **state)
 }
 
 /* Through td_run and the case key: the spin-down with constant torque leapt (bursts of 0.1 s, leaps
- * of 0.3 s after 0.05 s of healing, from 0.1 s) ends at rest at the first grid sample after the
+ * of 0.8 s after 0.05 s of healing, from 0.1 s; the second would overshoot rest, and is shortened to
+ * end at twice the at-rest speed) ends at rest at the first grid sample after the
  * closed form's t* = 0.99 J W0 / T, with the closed form's speed there; the file's series have no
  * row inside a leap (every gap between rows is a sample interval, or a leap), and the summary says
  * how much was leapt. */
@@ -148,7 +149,7 @@ static void test_run_leap_closed_form(void **state)
                                "end_at_rest = true",
                                "end_time = 3.0",
                                "output.sample_rate = 1000.0",
-                               "leap = { burst = 0.1; factor = 3.0; heal = 0.05; start = 0.1; }"};
+                               "leap = { burst = 0.1; factor = 8.0; heal = 0.05; start = 0.1; }"};
     td_case *c = td_test_load_case("cases/rub-damped.cfg", ov, 8);
     td_output_options out = *td_case_output_options(c);
     const char *path = "test_leap_run.h5";

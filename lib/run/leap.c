@@ -33,10 +33,11 @@ static int ended(double t, double until)
 }
 
 /* 1 if a leap ending at `speed` would end too close to rest: half of it is at rest (td_run_at_rest),
- * so that the last approach to rest is integrated. */
+ * or past it (the rule takes |speed|: a leap that would turn the rotor backwards), so that the last
+ * approach to rest is integrated. */
 static int near_rest(const td_run_leap *l, double speed)
 {
-    return td_run_at_rest(l->speed0, 0.5 * speed);
+    return !(speed > 0.0) || td_run_at_rest(l->speed0, 0.5 * speed);
 }
 
 /* The leap's length: factor bursts in whole sample intervals, ending before t_end less a healing
