@@ -6,9 +6,11 @@
  * steady over many bursts) and to every additive total, so that works, heat, times, counts and
  * damage, and the energy account, cover the leapt time. Powers go with the speed (a sliding
  * contact's and a drag's power are a force times a speed that follows the rotor's): over the leap
- * each power is the burst's mean times speed / the burst's mean speed, which keeps the account
- * closed: the rotor's kinetic energy changes by J Omega_mid dOmega across the leap, the burst's
- * powers by the same factor.
+ * each power is the burst's mean times speed / the burst's mean speed: the rotor's kinetic energy
+ * changes by J Omega_mid dOmega across the leap, the burst's powers by the same factor, so the
+ * account closes across the leap up to the change of the lateral motion's energy over the burst
+ * (a fluctuation of the bounce), which the burst's speed rate carries and the leap multiplies by
+ * L / B; the closed form of a spin-down, with no lateral motion, closes to round-off (test_leap).
  */
 #include "sim/leap.h"
 #include "sim/sim_internal.h"

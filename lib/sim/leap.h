@@ -46,7 +46,8 @@ td_status td_sim_leap_rates(const td_sim_leap_state *a, const td_sim_leap_state 
 /* Move the slow state of `sim` on by `duration` s at `rate` (td_sim_leap_rates), and restart the
  * integrator there (the simulation's time stays). The speeds move linearly; the works, heat and
  * energy terms at the burst's powers scaled by the speed (speed / rate->mean_speed: sliding and
- * drag powers go with the speed), so that the energy account still closes across the leap; times,
+ * drag powers go with the speed; the account then closes up to the burst's lateral-energy change
+ * times duration / burst); times,
  * impulses, counts and damage at the burst's rates; the thermal networks in closed form under that
  * heat. TD_ERR_INVALID for a duration not > 0, a rate of another machine, a model without a free
  * spin, or a leap that would turn the rotor backwards; a failed restart its status. */
