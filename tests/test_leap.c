@@ -207,6 +207,8 @@ static void test_leap_bad_input(void **state)
         {"cases/drop-to-rest.cfg", "leap = { burst = 1.0; factor = 4.0; heal = -1.0; start = 3.0; }", "leap.heal"},
         {"cases/rub-damped.cfg", "leap = { burst = 0.1; factor = 4.0; heal = 0.0; start = 0.0; }",
          "leap: a leap needs the speed as a free state (spin.free = true)"},
+        {"cases/drop-to-rest.cfg", "leap = { burst = 1.0; factor = 4.0; heal = 0.5; start = 0.01; }",
+         "leap.start: 0.01 s is before the schedule's change at 0.05 s: a leap would move it"},
     };
     size_t i;
     (void)state;

@@ -787,12 +787,20 @@ static td_status check_leap(td_case_reader *r, const config_setting_t *g, const 
 {
     const config_setting_t *s = config_setting_get_member(g, k->key);
     td_spin sp;
+    int i;
     (void)rec;
     if (!s)
         return TD_OK;
     td_model_spin(r->c->model, &sp);
     if (!td_model_speed_varies(r->c->model) || !sp.free)
         return td_cr_fail(r, s, NULL, "a leap needs the speed as a free state (spin.free = true)");
+    for (i = 0; i < td_model_change_count(r->c->model); i++) { /* the simulation's clock stays in a leap */
+        td_change ch;
+        if (td_model_get_change(r->c->model, i, &ch) == TD_OK && ch.time > r->c->output.leap_start)
+            return td_cr_fail(r, config_setting_get_member(s, "start"), NULL,
+                              "%g s is before the schedule's change at %g s: a leap would move it",
+                              r->c->output.leap_start, ch.time);
+    }
     return TD_OK;
 }
 
