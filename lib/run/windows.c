@@ -146,7 +146,7 @@ td_status td_run_windows_close(td_run_windows *w, td_sim *sim, const td_retainer
     return TD_OK;
 }
 
-void td_run_windows_reopen(td_run_windows *w, const td_sim *sim, double t)
+void td_run_windows_reopen(td_run_windows *w, td_sim *sim, double t)
 {
     if (w)
         open_window(w, sim, t);
