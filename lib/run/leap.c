@@ -88,10 +88,13 @@ double td_run_leap_due(td_run_leap *l, const td_sim *sim, double t, double rate,
 td_status td_run_leap_make(td_run_leap *l, td_sim *sim, double t, double length, const td_sim_leap_state *rate,
                            td_run_leap_counts *now, td_error *err)
 {
-    double B = rate->t;
-    td_status st = td_sim_leap(sim, length, rate, err);
-    if (st != TD_OK)
+    double B = rate->t, dw;
+    td_status st = td_sim_leap_speed_change(sim, length, rate, &dw, err);
+    if (st != TD_OK || (st = td_sim_leap(sim, length, rate, err)) != TD_OK)
         return st;
+    l->dw_power += dw; /* what the leap made, and what the burst's own dOmega/dt would have */
+    l->dw_rate += length * rate->speed;
+    l->rate_sq += length * rate->speed * rate->speed;
     now->events += lround(length * (double)(now->events - l->counts.events) / B);
     now->contacts += lround(length * (double)(now->contacts - l->counts.contacts) / B);
     now->contact_time += length * (now->contact_time - l->counts.contact_time) / B;

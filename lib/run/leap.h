@@ -27,6 +27,8 @@ typedef struct td_run_leap {
     td_sim_leap_state from;            /* the slow state where the burst began */
     td_run_leap_counts counts;         /* and the run's counters there */
     long leaps;                        /* leaps made */
+    double dw_power, dw_rate, rate_sq; /* over the leaps: the speed changes made (from the bursts' net
+                                          power), those the bursts' dOmega/dt gave, its square sum */
 } td_run_leap;
 
 /* Options o's leaps for a run starting at speed0 rad/s; 0 when o asks for none (then leave *l). */

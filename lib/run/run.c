@@ -277,6 +277,9 @@ static td_status leap_at(run_state *r, double t, long *k, td_error *err)
     r->s->contact_time = now.contact_time;
     r->s->leaps = r->leap.leaps;
     r->s->leapt_time = r->leap.offset;
+    r->s->leap_decel_power = r->leap.dw_power / r->leap.offset;
+    r->s->leap_decel_speed = r->leap.dw_rate / r->leap.offset;
+    r->s->leap_decel_sd = sqrt(fmax(r->leap.rate_sq / r->leap.offset - pow(r->s->leap_decel_speed, 2), 0.0));
     r->mark = t_after; /* the contact state carried over holds from the leap's end */
     *k += n;
     td_run_windows_reopen(r->windows, r->sim, t_after);

@@ -43,14 +43,23 @@ td_status td_sim_leap_read(const td_sim *sim, td_sim_leap_state *out, td_error *
 td_status td_sim_leap_rates(const td_sim_leap_state *a, const td_sim_leap_state *b, td_sim_leap_state *rate,
                             td_error *err);
 
+/* The rotor's speed change a leap of `duration` s at `rate` would make on `sim` now, into *change:
+ * with the energy account on, the change whose kinetic energy pays the burst's net power (its
+ * inputs less every loss the account books) at the speed's scale over the leap; without it, the
+ * burst's dOmega/dt times duration. TD_ERR_INVALID when no speed pays it. */
+td_status td_sim_leap_speed_change(const td_sim *sim, double duration, const td_sim_leap_state *rate, double *change,
+                                   td_error *err);
+
 /* Move the slow state of `sim` on by `duration` s at `rate` (td_sim_leap_rates), and restart the
- * integrator there (the simulation's time stays). The speeds move linearly; the works, heat and
- * energy terms at the burst's powers scaled by the speed (speed / rate->mean_speed: sliding and
- * drag powers go with the speed; the account then closes up to the burst's lateral-energy change
- * times duration / burst); times,
- * impulses, counts and damage at the burst's rates; the thermal networks in closed form under that
- * heat. TD_ERR_INVALID for a duration not > 0, a rate of another machine, a model without a free
- * spin, or a leap that would turn the rotor backwards; a failed restart its status. */
+ * integrator there (the simulation's time stays; its once-per-revolution section's clock moves on
+ * with the run's). The works, heat and energy terms at the burst's powers scaled by the speed
+ * (speed / rate->mean_speed: sliding and drag powers go with the speed); the rotor's speed by
+ * td_sim_leap_speed_change, so that with the energy account on its kinetic energy pays exactly the
+ * terms booked and the account closes across the leap to rounding; a race in contact with the rotor
+ * with it (its sliding velocity kept), a free race at its burst's rate; times, impulses, counts and
+ * damage at the burst's rates; the thermal networks in closed form under that heat. TD_ERR_INVALID
+ * for a duration not > 0, a rate of another machine, a model without a free spin, or a leap that
+ * would turn the rotor backwards; a failed restart its status. */
 td_status td_sim_leap(td_sim *sim, double duration, const td_sim_leap_state *rate, td_error *err);
 
 #endif
