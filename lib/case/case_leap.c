@@ -7,11 +7,12 @@
 #include <stddef.h>
 
 /* projective leap: leap { burst; factor; heal; start; } (td_output_options.leap_*; the run loop,
- * lib/run/leap.c). A burst of at least one sample interval (the rates are read at grid samples). */
+ * lib/run/leap.c). A burst of at least one sample interval (the rates are read at grid samples), or 0:
+ * no leaps (a case that ships with leaps run in full by one override, `leap.burst = 0`). */
 static td_status check_leap_burst(td_case_reader *r, const config_setting_t *g, const td_cs_key *k, void *rec)
 {
     const td_output_options *o = rec;
-    if (o->leap_burst * o->sample_rate < 1.0)
+    if (o->leap_burst != 0.0 && o->leap_burst * o->sample_rate < 1.0)
         return td_cr_fail(r, config_setting_get_member(g, k->key), NULL,
                           "%g s is shorter than the sample interval 1 / output.sample_rate = %g s", o->leap_burst,
                           1.0 / o->sample_rate);
@@ -32,12 +33,13 @@ static const td_cs_key leap_keys[] = {
      .offset = offsetof(td_output_options, leap_burst),
      .need = TD_CS_REQUIRED,
      .what = "the burst's length",
-     .range = TD_CR_POSITIVE,
+     .range = TD_CR_NONNEGATIVE,
      .check = check_leap_burst,
-     .doc_range = "at least 1 / output.sample_rate",
+     .doc_range = "0, or at least 1 / output.sample_rate",
      .unit = "s",
      .doc = "the stretch of full integration the slow rates are read over (the speed's, every total's, the energy "
-            "account's terms)"},
+            "account's terms); 0: no leaps, every second integrated (`--set leap.burst=0` runs a case that "
+            "leaps in full)"},
     {.key = "factor",
      .type = TD_CS_REAL,
      .offset = offsetof(td_output_options, leap_factor),
@@ -75,7 +77,7 @@ td_status td_cr_check_leap(td_case_reader *r, const config_setting_t *g, const t
     td_spin sp;
     int i;
     (void)rec;
-    if (!s)
+    if (!s || r->c->output.leap_burst == 0.0) /* none asked for, or turned off */
         return TD_OK;
     td_model_spin(r->c->model, &sp);
     if (!td_model_speed_varies(r->c->model) || !sp.free)

@@ -9,6 +9,7 @@
 #     held, as the integration's own does (5.4e-4 J for this run integrated throughout; a leap at the
 #     burst's dOmega/dt left the lateral energy's change over each burst, times the factor, in it:
 #     0.088 J);
+#   - leap.burst = 0 turns the leaps off (the summary of a run without the group);
 #   - the windows (CSV and HDF5) and the samples have no row inside a leap: the gaps between them
 #     add up to the time leapt;
 #   - a leap key written wrong (a misspelt key in the file, a factor below 1, a group on a held
@@ -51,6 +52,14 @@ check "leap: the two rates are given ($(jf "$out" leap_decel_power), $(jf "$out"
 t "$work/text" run "${spin[@]}" --set "$leap" --csv '' --hdf5 '' "$rub"
 check "leap: the text summary says it ($(grep '^leapt' "$work/text/.out"))" \
     grep -q "^leapt (not integrated) .* in $leaps leaps" "$work/text/.out"
+
+# leap.burst = 0 turns a case's leaps off: the run is the one without a leap group, bit for bit
+t "$work/off" run -q --json --csv '' --hdf5 '' "${spin[@]}" --set "$leap" --set leap.burst=0 "$rub"
+t "$work/none" run -q --json --csv '' --hdf5 '' "${spin[@]}" "$rub"
+strip() { sed -E 's/"(wall_time|solver_wall_time|wall_time_per_revolution|realtime_factor)":[^,}]*//g' "$1"; }
+check "leap.burst = 0: no leaps member, the same summary as without the group (exit $rc)" \
+    test -z "$(jf "$work/off/.out" leaps)" -a -n "$(jf "$work/off/.out" t_reached)" -a \
+    "$(strip "$work/off/.out")" = "$(strip "$work/none/.out")"
 
 # the gaps: between consecutive windows (CSV), their HDF5 copies, and the samples, each sums to leapt
 gaps_csv=$(grep -v '^#' "$work/run/l.windows.csv" | awk -F, 'NR > 2 { g += $1 - e } NR > 1 { e = $2 } END { print g }')
