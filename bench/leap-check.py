@@ -49,7 +49,7 @@ def answers(summary):
 
 
 def main():
-    build, members, end, factors = os.path.join(ROOT, "build"), 5, 20.0, [10.0]
+    build, members, end, factors = os.path.join(ROOT, "build"), 5, 20.0, [20.0]
     argv = sys.argv[1:]
     while argv:
         a = argv.pop(0)

@@ -7,12 +7,13 @@
 # cases/drop-to-rest.cfg to T s (default 20) twice as an ensemble of MEMBERS runs (default 5;
 # `touchdown run --spread MEMBERS`, solver.atol within +-1 %: the drop's bounce is chaotic, so one
 # run is one draw): integrated throughout (--set leap.burst=0) and with the case's leaps; then the
-# leap run once more at leap.factor = 10. Each answer of the spread (peak housing force, impulse,
-# friction work, final speed, contacts, time in contact, ...) is given for the leap run against the
-# full ensemble's least, median and greatest, whether it lies inside, and whether the two ensembles'
-# ranges meet; the energy account's terms beside; the CPU seconds of each. Prints one JSON object
-# (scripts/make-docs.sh --full --only leap-check records it in docs/results/leap-check.json).
-# BUILD_DIR defaults to ./build of the source tree. About 5 min of CPU at the defaults.
+# leap run once more at leap.factor = 20 (twice the shipped leap). Each answer of the spread (peak
+# housing force, impulse, friction work, final speed, contacts, time in contact, ...) is given for
+# the leap run against the full ensemble's least, median and greatest, whether it lies inside, and
+# whether the two ensembles' ranges meet; the energy account's terms beside; the CPU seconds of
+# each. Prints one JSON object (scripts/make-docs.sh --full --only leap-check records it in
+# docs/results/leap-check.json).
+# BUILD_DIR defaults to ./build of the source tree. About 10 min of CPU at the defaults.
 set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 for a in "$@"; do

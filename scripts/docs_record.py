@@ -483,7 +483,7 @@ def src_shock(tool, build):
 def src_leap_check(tool, build):
     """bench/leap-check.sh (docs/performance.md, "Long runs: the projective leap"): cases/drop-to-rest.cfg
     to 20 s integrated throughout and with its leaps, each an ensemble of 5 (touchdown run --spread 5),
-    and once at leap factor 10 (about 5 min of CPU)."""
+    and once at leap factor 20 (about 10 min of CPU)."""
     note = "bench/leap-check.sh -n 5 --end 20 --json BUILD_DIR"
     data = stamp(tool, "leap-check", note)
     start = time.monotonic()
