@@ -90,7 +90,7 @@ def main():
                                  "answers": {k: v["run"] for k, v in answers(s).items()},
                                  "final_speed": s.get("final_speed"), "contacts": s.get("contacts")}
     with open(CASE) as f:
-        leap_line = next((line.strip() for line in f if line.startswith("leap")), None)
+        leap_line = next((line.split("#")[0].strip() for line in f if line.startswith("leap")), None)
     out = {"case": "cases/drop-to-rest.cfg", "leap": leap_line, "end_time": end, "members": members,
            "full": {"cpu": full_cpu, "command": "touchdown run -q --json --csv '' --hdf5 '' --spread %d --set "
                     "end_time=%g --set leap.burst=0 cases/drop-to-rest.cfg" % (members, end),

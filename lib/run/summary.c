@@ -400,9 +400,9 @@ static void format_answers(td_text *b, const td_run_summary *s)
                        s->t_end);
     if (s->leap) /* projective leap: never to be taken for integrated motion */
         td_text_printf(b,
-                       "leapt (not integrated)      %.6g s of %.6g s in %ld leaps (projective leap: the files have no "
-                       "rows there)\n",
-                       s->leapt_time, s->t_reached - s->t_start, s->leaps);
+                       "leapt (not integrated)      %.6g s of %.6g s in %ld leap%s (projective leap: the files have "
+                       "no rows there; the totals, counts and energy include the leaps at their bursts' rates)\n",
+                       s->leapt_time, s->t_reached - s->t_start, s->leaps, s->leaps == 1 ? "" : "s");
     if (s->leap && s->leaps > 0)
         td_text_printf(b,
                        "leaps' dspeed/dt            %.6g rad/s^2 from the bursts' net power (what the leaps made), "
