@@ -481,6 +481,24 @@ def src_shock(tool, build):
     return shock_study.record(tool, stamp)
 
 
+# --- projective leap: the check against the full integration (bench/leap-check.sh) -----------------
+def src_leap_check(tool, build):
+    """bench/leap-check.sh (docs/performance.md, "Long runs: the projective leap"): cases/drop-to-rest.cfg
+    to 20 s integrated throughout and with its leaps, each an ensemble of 5 (touchdown run --spread 5),
+    and once at leap factor 20 (about 10 min of CPU)."""
+    note = "bench/leap-check.sh -n 5 --end 20 --json BUILD_DIR"
+    data = stamp(tool, "leap-check", note)
+    start = time.monotonic()
+    proc = subprocess.run([os.path.join(ROOT, "bench", "leap-check.sh"), "-n", "5", "--end", "20", "--json", build],
+                          stdout=subprocess.PIPE, stderr=subprocess.PIPE, universal_newlines=True)
+    if proc.returncode != 0:
+        sys.exit("docs_record: bench/leap-check.sh failed:\n%s" % proc.stderr[-2000:])
+    print("  bench/leap-check.sh %6.1f s" % (time.monotonic() - start), flush=True)
+    data["command"] = note
+    data["check"] = json.loads(proc.stdout)
+    return data
+
+
 SOURCES = {"fast": [("runs", src_runs), ("modal", src_modal), ("validation", src_validation), ("keys", src_keys)],
            "slow": [("bench", src_bench), ("digital", src_digital), ("fmu", src_fmu), ("scaling", src_scaling), ("references", src_references),
                     ("intervals", src_intervals), ("tolerances", src_tolerances), ("mesh", src_mesh),
@@ -488,7 +506,9 @@ SOURCES = {"fast": [("runs", src_runs), ("modal", src_modal), ("validation", src
                     ("recovery", src_recovery), ("report", src_report),
                     ("drop_sweep", src_drop_sweep), ("shock", src_shock),
                     # issue 31: the cost per step
-                    ("breakdown", src_breakdown)]}
+                    ("breakdown", src_breakdown),
+                    # projective leap
+                    ("leap-check", src_leap_check)]}
 
 
 # The runs are deterministic: the same build gives the same bits. The tolerance allows for another

@@ -1583,6 +1583,46 @@ def perf_breakdown_findings():
     return "\n".join(out) + "\n"
 
 
+# --- projective leap: the check against the full integration (bench/leap-check.sh) -----------------
+def perf_leap_check():
+    """Each answer of the leap run on the stretch against the full integration's ensemble."""
+    c = res("leap-check")["check"]
+    rows, inside, meet, spread = [], 0, 0, 0
+    for name in sorted(c["answers"]):
+        a = c["answers"][name]
+        full = ("%s to %s (median %s)" % (g(a["full_least"], 5), g(a["full_greatest"], 5), g(a["full_median"], 5))
+                if "full_least" in a else g(a["full_run"], 5))
+        leap = ("%s to %s" % (g(a["leap_least"], 5), g(a["leap_greatest"], 5)) if a.get("leap_least") is not None
+                else "-")
+        if "inside" in a:
+            spread += 1
+            inside += a["inside"]
+            meet += a["ranges_meet"]
+        rows.append(["`%s`" % name, g(a["leap"], 5), leap, full, ("yes" if a["inside"] else "no") if "inside" in a
+                     else "-", ("yes" if a["ranges_meet"] else "no") if "ranges_meet" in a else "-"])
+    fr, lp = c["full"], c["leapt"]
+    rates = ("from their speeds %s +- %s rad/s^2" % (g(lp["leap_decel_speed"], 4), g(lp["leap_decel_sd"], 2))
+             if lp["leaps"] > 1 else "from its burst's speeds %s rad/s^2" % g(lp["leap_decel_speed"], 4))
+    text = ("From %s: `%s` (integrated throughout) against `%s` (`%s`), %d members each "
+            "(solver.atol within +-1 %%). The leap run leapt %s s of the %s s in %s leap%s; the CPU for the "
+            "ensemble %s s against %s s integrated (%s IDA steps against %s for the run itself). "
+            "The speed's rate over the leaps from the bursts' net power %s rad/s^2, %s. "
+            "Of the %d answers with a spread, the leap run lies inside the full ensemble's range in %d, and the "
+            "two ensembles' ranges meet in %d.\n\n"
+            % (cite("leap-check"), fr["command"], lp["command"], c["leap"].split("#")[0].strip(), c["members"],
+               g(lp["leapt_time"], 4), g(c["end_time"], 3), n(lp["leaps"]), "" if lp["leaps"] == 1 else "s",
+               f(lp["cpu"], 1), f(fr["cpu"], 1), n(lp["steps"]), n(fr["steps"]), g(lp["leap_decel_power"], 4), rates,
+               spread, inside, meet))
+    text += table(["answer", "leap run", "leap ensemble", "full ensemble", "leap run inside", "ranges meet"], rows)
+    for factor, o in sorted(c["factors"].items()):
+        text += ("\nThe same stretch at `leap.factor = %s` (one run, %s s of CPU, %s s leapt in %s leap%s): final "
+                 "speed %s rad/s, contacts %s, drag loss %s J, energy residual %s J.\n"
+                 % (factor, f(o["cpu"], 1), g(o["leapt_time"], 4), n(o["leaps"]), "" if o["leaps"] == 1 else "s",
+                    g(o["final_speed"], 6), n(o["contacts"]), g(o["answers"].get("energy.drag_loss"), 5),
+                    g(o["answers"].get("energy.residual"), 3)))
+    return text
+
+
 REGIONS = {"readme-glance": readme_glance, "readme-realtime": readme_realtime,
            "perf-summary": perf_summary, "perf-paper-settings": perf_paper_settings,
            "perf-paper-findings": perf_paper_findings, "perf-remains": perf_remains,
@@ -1597,7 +1637,9 @@ REGIONS = {"readme-glance": readme_glance, "readme-realtime": readme_realtime,
            "theory-drop-sweep": theory_drop_sweep,
            # issue 31: the cost per step
            "perf-breakdown-cost": perf_breakdown_cost, "perf-breakdown": perf_breakdown,
-           "perf-breakdown-findings": perf_breakdown_findings}
+           "perf-breakdown-findings": perf_breakdown_findings,
+           # projective leap
+           "perf-leap-check": perf_leap_check}
 SPANS = {"rub-mean-normal": span_rub_mean_normal, "val-first-contact-cell": span_val_first_contact_cell,
          "val-rig-modal-cell": span_val_rig_modal_cell, "rig-mass": span_rig_mass,
          "rig-polar": span_rig_polar, "drop-cpu": span_drop_cpu, "run-up-criticals": span_run_up_criticals,
@@ -1628,7 +1670,9 @@ SPANS = {"rub-mean-normal": span_rub_mean_normal, "val-first-contact-cell": span
 # "keys-SECTION"; a section the tool names that is not here fails the rendering.
 KEY_SECTIONS = ["top", "shaft", "discs", "ambs", "controllers", "recovery", "speed", "bearings", "retainers", "retainer-parts", "unbalances",
                 "schedule", "gravity", "reduction", "contact", "solver", "output", "modal", "sweep", "limits",
-                "housing"]
+                "housing",
+                # projective leap
+                "leap"]
 
 
 def cell(text):

@@ -637,6 +637,10 @@ static void test_other_forms_and_defaults(void **state)
     sdef.contact.damping_coefficient = 1.0e3;
     assert_memory_equal(td_case_sim_options(c), &sdef, sizeof sdef);
     td_output_options_default(&odef);
+    odef.leap_burst = 0.1; /* projective leap: the file's leap group */
+    odef.leap_factor = 5.0;
+    odef.leap_heal = 0.05;
+    odef.leap_start = 0.2;
     assert_memory_equal(td_case_output_options(c), &odef, sizeof odef);
     td_modal_options_default(&mdef);
     assert_memory_equal(td_case_modal_options(c), &mdef, sizeof mdef);
@@ -1173,8 +1177,9 @@ static void test_documented_defaults(void **state)
                   part, required, other);
     assert_int_equal(tried + part + required + other, td_case_key_count());
     assert_int_equal(tried, 98);    /* long runs: end_at_rest, output.window */
-    assert_int_equal(part, 52);     /* their keys are checked */
-    assert_int_equal(required, 88); /* required, or one form's required key (a sweep entry's range or values) */
+    assert_int_equal(part, 53);     /* their keys are checked (projective leap: leap) */
+    assert_int_equal(required, 92); /* required, or one form's required key (a sweep entry's range or values);
+                                       projective leap: leap's four */
     /* an alternative with no default ("-": shaft.nodes, sections' element, schedule's unbalance,
      * amb_off, amb_on, a law's gain block), "unknown" (an AMB's air gap), "all nodes", "none"
      * (response speeds, overrides, a zpk's zeros and poles, an ss block's A, B and C), "the rotor's"

@@ -89,6 +89,11 @@ typedef struct td_output_options {
     double window;   /**< length of the window summaries (td_run_window), s; 0: none */
     int omit_events; /**< nonzero: no event rows and no samples at events in the files (the run's
                           bookkeeping and the window summaries still see every event) */
+    /* projective leap (td_run; docs/case-format.md, "Projective leap") */
+    double leap_burst;  /**< s: the stretch of full integration the slow rates are read over; 0: no leaps */
+    double leap_factor; /**< a leap is this many bursts long (>= 1) */
+    double leap_heal;   /**< s: integrated after each leap (and before the first burst), not read */
+    double leap_start;  /**< s: no leap before this time (the fall's transient) */
 } td_output_options;
 
 typedef struct td_modal_options {

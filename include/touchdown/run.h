@@ -260,6 +260,14 @@ typedef struct td_run_summary {
                             td_run_at_rest) at t_reached before t_end; 0 otherwise */
     int end_at_rest;   /**< 1: the run was asked to end at rest (td_output_options.end_at_rest); one that
                             reached t_end instead then carries a warning saying so */
+    /* projective leap (td_output_options.leap_burst) */
+    int leap;                /**< 1: the run was asked to leap */
+    long leaps;              /**< leaps made: stretches not integrated, their slow state moved on at a burst's rates */
+    double leapt_time;       /**< s of the run leapt (the rest, t_reached - t_start - leapt_time, integrated) */
+    double leap_decel_power; /**< rad/s^2 over the leaps: the speed's rate the leaps made (the kinetic energy
+                                  paying the bursts' net power), time-weighted; undefined without a leap */
+    double leap_decel_speed; /**< rad/s^2: the bursts' own dOmega/dt over the same leaps (the check) */
+    double leap_decel_sd;    /**< rad/s^2: the time-weighted spread (sd) of the bursts' dOmega/dt */
 } td_run_summary;
 
 /**

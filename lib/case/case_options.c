@@ -928,5 +928,15 @@ static const td_cs_key root_keys[] = {
             "to rest): `t_reached` says when it stopped. Refused when the rotor could not come to rest: a start "
             "`speed` of at most 1 rad/s (already at rest), or a speed held constant (neither `spin.free` nor a "
             "`speed_ramp`). It judges the speed alone: a rotor at rest may still bounce on its retainers"},
+    /* projective leap */
+    {.key = "leap",
+     .type = TD_CS_GROUP,
+     .sub = &td_cs_leap,
+     .offset = offsetof(td_case, output),
+     .order = 20,
+     .check = td_cr_check_leap,
+     .doc_default = "none (every second integrated)",
+     .doc = "step the slow variables of a long coast-down over its stationary bounce, see "
+            "[projective leap](#projective-leap)"},
 };
 const td_cs_table td_cs_root = {"", "top", root_keys, TD_CS_COUNT(root_keys), sizeof(td_case), root_preset, NULL};

@@ -144,4 +144,9 @@ extern const td_cs_table td_cs_housing;
 /* The compliant housing, `housing.body` (case_housing_body.c). */
 extern const td_cs_table td_cs_housing_body;
 
+/* projective leap (case_leap.c): the `leap` group's table, and the root row's check (a free spin, a
+ * start after the schedule's last change). */
+extern const td_cs_table td_cs_leap;
+td_status td_cr_check_leap(td_case_reader *r, const config_setting_t *g, const td_cs_key *k, void *rec);
+
 #endif

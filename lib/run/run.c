@@ -13,6 +13,7 @@
 #include <string.h>
 
 #include "run/duty.h"
+#include "run/leap.h"
 #include "run/outcome.h"
 #include "run/recorder.h"
 #include "run/summary.h"
@@ -49,10 +50,24 @@ typedef struct run_state {
     int end_at_rest;         /* end_at_rest: stop at the first grid sample at rest */
     double rest_after;       /* end_at_rest: after the model's last prescribed change (td_run_rest_after) */
     int stopped;             /* the run ended at rest before t_end */
+    /* projective leap */
+    int leaping;      /* the run leaps (td_output_options.leap_burst > 0) */
+    td_run_leap leap; /* its state: run time = simulation time + leap.offset */
 } run_state;
 
 /* long runs: what a sample is for; an event's is not written when the events are omitted */
 typedef enum sample_kind { SAMPLE_EVENT = 0, SAMPLE_GRID = 1, SAMPLE_LAST = 2 } sample_kind;
+
+/* projective leap: the run's time, the simulation's plus the time leapt (none without leaps) */
+static double leapt(const run_state *r)
+{
+    return r->leaping ? r->leap.offset : 0.0;
+}
+
+static double run_time(const run_state *r)
+{
+    return td_sim_time(r->sim) + leapt(r);
+}
 
 static double max2(double a, double b)
 {
@@ -158,10 +173,12 @@ static td_status take_sample(run_state *r, double t, sample_kind kind, td_error 
 static td_status handle_event(run_state *r, td_error *err)
 {
     td_event ev;
-    double t = td_sim_time(r->sim);
+    double t = run_time(r);
     td_status st = td_sim_last_event(r->sim, &ev);
     if (st != TD_OK)
         return td_error_set(err, st, "reading the event at t = %.17g s: %s", t, td_sim_errmsg(r->sim));
+    if (r->leaping) /* projective leap: the event at the run's time */
+        ev.time += r->leap.offset;
     if (!(r->event_sample_row >= 0 && r->event_sample_time == t)) {
         if ((st = take_sample(r, t, SAMPLE_EVENT, err)) != TD_OK)
             return st;
@@ -210,7 +227,7 @@ static td_status step_failed(run_state *r, double target, td_status st, const td
 {
     char at[400], to[400], where[900]; /* %.10f of any double fits */
     int len;
-    snprintf(at, sizeof at, "%.10f", td_sim_time(r->sim));
+    snprintf(at, sizeof at, "%.10f", run_time(r));
     snprintf(to, sizeof to, "%.10f", target);
     if (strcmp(at, to) == 0)
         len = snprintf(where, sizeof where, "simulation failed at t = %s s: ", at);
@@ -233,6 +250,42 @@ static td_status grid_window(run_state *r, double t, int last, td_error *err)
     return td_run_windows_close(r->windows, r->sim, td_recorder_retainers(r->rec), t, r->rec, err);
 }
 
+/* projective leap: at the grid sample at t (index *k), the leap due there if any: the window open
+ * closed at t (its row is of integrated motion), the slow state and the run's counters moved on,
+ * the grid resumed at the sample the leap lands on, which is taken (the state after the leap). */
+static td_status leap_at(run_state *r, double t, long *k, td_error *err)
+{
+    td_run_leap_counts now = {r->s->events, r->s->contacts, r->s->contact_time};
+    td_sim_leap_state rate;
+    double L = td_run_leap_due(&r->leap, r->sim, t, r->rate, r->s->t_end, &now, &rate, err), t_after;
+    long n;
+    td_status st;
+    if (L < 0.0)
+        return err ? err->code : TD_ERR_INVALID;
+    if (L == 0.0)
+        return TD_OK;
+    n = lround(L * r->rate);
+    t_after = grid_time(r->s->t_start, r->rate, *k + n);
+    if (r->windows &&
+        (st = td_run_windows_close(r->windows, r->sim, td_recorder_retainers(r->rec), t, r->rec, err)) != TD_OK)
+        return st;
+    contact_advance(r, t, r->in_contact);
+    if ((st = td_run_leap_make(&r->leap, r->sim, t, t_after - t, &rate, &now, err)) != TD_OK)
+        return st;
+    r->s->events = now.events;
+    r->s->contacts = now.contacts;
+    r->s->contact_time = now.contact_time;
+    r->s->leaps = r->leap.leaps;
+    r->s->leapt_time = r->leap.offset;
+    r->s->leap_decel_power = r->leap.dw_power / r->leap.offset;
+    r->s->leap_decel_speed = r->leap.dw_rate / r->leap.offset;
+    r->s->leap_decel_sd = sqrt(fmax(r->leap.rate_sq / r->leap.offset - pow(r->s->leap_decel_speed, 2), 0.0));
+    r->mark = t_after; /* the contact state carried over holds from the leap's end */
+    *k += n;
+    td_run_windows_reopen(r->windows, r->sim, t_after);
+    return take_sample(r, t_after, SAMPLE_GRID, err);
+}
+
 /* Step over the grid to t_end. Returns TD_OK at t_end, else the failure with `err` filled. */
 static td_status loop(run_state *r, td_error *err)
 {
@@ -252,14 +305,15 @@ static td_status loop(run_state *r, td_error *err)
         if (last)
             target = t_end;
         if (cancelled(r->hooks))
-            return td_error_set(err, TD_ERR_INTERRUPTED, "interrupted at t = %.10f s", td_sim_time(r->sim));
-        now = td_sim_time(r->sim);
+            return td_error_set(err, TD_ERR_INTERRUPTED, "interrupted at t = %.10f s", run_time(r));
+        now = run_time(r);
         /* After an event exactly at the grid time the state is already there: no step (IDA
          * rejects an output time that is not ahead of the current one). */
         if (target - now > 4.0 * DBL_EPSILON * max2(fabs(target), 1.0)) {
             double w0 = td_wall_clock(), reached = now;
             td_error step_err;
-            st = td_sim_step(r->sim, target, &reached, &step_err);
+            st = td_sim_step(r->sim, target - leapt(r), &reached, &step_err);
+            reached += leapt(r);
             r->s->solver_wall_time += td_wall_clock() - w0;
             if (st == TD_EVENT) {
                 if ((st = handle_event(r, err)) != TD_OK)
@@ -281,6 +335,8 @@ static td_status loop(run_state *r, td_error *err)
         if (!last && r->end_at_rest && target > r->rest_after && td_run_at_rest(r->s->speed, td_sim_speed(r->sim)))
             last = r->stopped = 1;
         if ((st = grid_window(r, target, last, err)) != TD_OK)
+            return st;
+        if (r->leaping && !last && (st = leap_at(r, target, &k, err)) != TD_OK) /* projective leap */
             return st;
         if (progress(r, target, last))
             return td_error_set(err, TD_ERR_INTERRUPTED, "stopped by the progress callback at t = %.10f s", target);
@@ -402,7 +458,7 @@ static void summary_finish(run_state *r, double wall_start)
 {
     td_run_summary *s = r->s;
     double span, rev_period;
-    s->t_reached = td_sim_time(r->sim);
+    s->t_reached = run_time(r);
     contact_advance(r, s->t_reached, r->in_contact);
     if (r->in_contact)
         s->last_contact_time = s->t_reached;
@@ -689,6 +745,8 @@ static void state_init(run_state *r, td_sim *sim, const td_run_hooks *hooks, td_
     r->omit_events = out->omit_events != 0; /* long runs */
     r->end_at_rest = out->end_at_rest != 0;
     r->rest_after = td_run_rest_after(td_sim_model(sim));
+    r->leaping = td_run_leap_init(&r->leap, out, summary->speed); /* projective leap */
+    summary->leap = r->leaping;
 }
 
 td_status td_run(td_sim *sim, double t_end, const td_output_options *out, const td_run_hooks *hooks,

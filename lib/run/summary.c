@@ -38,6 +38,7 @@ void td_run_summary_init(td_run_summary *s, double t0, double t_end, double spee
     s->wall_time_per_revolution = TD_UNDEFINED;
     s->realtime_factor = TD_UNDEFINED;
     s->section_start = TD_UNDEFINED;
+    s->leap_decel_power = s->leap_decel_speed = s->leap_decel_sd = TD_UNDEFINED; /* projective leap: none made */
     s->section_retainer = -1;
     s->section_clearance = TD_UNDEFINED;
     s->stats.first_contact_time = TD_UNDEFINED;
@@ -401,6 +402,16 @@ static void format_answers(td_text *b, const td_run_summary *s)
         td_text_printf(b,
                        "ended at rest               no: at speed at end_time %.6g s (end_at_rest; see the warning)\n",
                        s->t_reached);
+    if (s->leap) /* projective leap: never to be taken for integrated motion */
+        td_text_printf(b,
+                       "leapt (not integrated)      %.6g s of %.6g s in %ld leap%s (projective leap: the files have "
+                       "no rows there; the totals, counts and energy include the leaps at their bursts' rates)\n",
+                       s->leapt_time, s->t_reached - s->t_start, s->leaps, s->leaps == 1 ? "" : "s");
+    if (s->leap && s->leaps > 0)
+        td_text_printf(b,
+                       "leaps' dspeed/dt            %.6g rad/s^2 from the bursts' net power (what the leaps made), "
+                       "%.6g +- %.3g rad/s^2 from their speeds\n",
+                       s->leap_decel_power, s->leap_decel_speed, s->leap_decel_sd);
     if (s->stats.peak_amb >= 0)
         td_text_printf(b, "peak AMB force              %.6g N, AMB %d, %.4g %% of its capacity, at %.10f s\n",
                        s->stats.peak_amb_force, s->stats.peak_amb, 100.0 * s->stats.peak_amb_load,
@@ -659,6 +670,13 @@ static void json_answers(td_text *b, const td_run_summary *s)
         td_text_printf(b, "\"ended_at_rest\":true,");
     else if (s->end_at_rest) /* false when it reached end_time at speed; null when it failed */
         td_text_printf(b, "\"ended_at_rest\":%s,", s->status == TD_OK ? "false" : "null");
+    if (s->leap) { /* projective leap: only a run that asked for it */
+        td_text_printf(b, "\"leaps\":%ld,", s->leaps);
+        json_real(b, "leapt_time", s->leapt_time, 1);
+        json_real(b, "leap_decel_power", s->leap_decel_power, 1);
+        json_real(b, "leap_decel_speed", s->leap_decel_speed, 1);
+        json_real(b, "leap_decel_sd", s->leap_decel_sd, 1);
+    }
     json_real(b, "peak_amb_force", s->stats.peak_amb >= 0 ? s->stats.peak_amb_force : TD_UNDEFINED, 1);
     json_real(b, "peak_amb_load", s->stats.peak_amb >= 0 ? s->stats.peak_amb_load : TD_UNDEFINED, 1);
     if (s->stats.peak_amb >= 0)

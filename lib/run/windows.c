@@ -146,6 +146,12 @@ td_status td_run_windows_close(td_run_windows *w, td_sim *sim, const td_retainer
     return TD_OK;
 }
 
+void td_run_windows_reopen(td_run_windows *w, td_sim *sim, double t)
+{
+    if (w)
+        open_window(w, sim, t);
+}
+
 long td_run_windows_count(const td_run_windows *w)
 {
     return w ? w->count : 0;

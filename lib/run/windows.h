@@ -30,6 +30,10 @@ int td_run_windows_due(const td_run_windows *w, double t);
 td_status td_run_windows_close(td_run_windows *w, td_sim *sim, const td_retainer_state *ret, double t, td_recorder *rec,
                                td_error *err);
 
+/** projective leap: open the next window at t without closing one (the stretch before t was leapt: no
+ *  window covers it). Nothing for a NULL w. */
+void td_run_windows_reopen(td_run_windows *w, td_sim *sim, double t);
+
 /** Windows written so far. */
 long td_run_windows_count(const td_run_windows *w);
 

@@ -59,6 +59,11 @@ void td_sim_quadratic_forms(int n, const int *rowptr, const int *col, const doub
     out[2] = sd;
 }
 
+double td_sim_mass_form(const td_sim *s, const double *x, const double *y)
+{
+    return quadratic(s, s->ops.st_M, x, y);
+}
+
 double td_sim_kinetic_energy(const td_sim *s, const double *y)
 {
     return 0.5 * quadratic(s, s->ops.st_M, y + s->dae.ov, y + s->dae.ov);

@@ -31,7 +31,7 @@ void td_sim_queue_event(td_sim *s, const td_event *ev)
     case TD_EVENT_PENALTY_ENTER:
         s->monitor.stats.contact_onsets++;
         if (td_is_undefined(s->monitor.stats.first_contact_time))
-            s->monitor.stats.first_contact_time = ev->time;
+            s->monitor.stats.first_contact_time = ev->time + s->monitor.leapt;
         break;
     case TD_EVENT_RELEASE:
     case TD_EVENT_PENALTY_EXIT: s->monitor.stats.releases++; break;
@@ -75,7 +75,7 @@ void td_sim_monitor_amb_load(td_sim *s, int k, double force, double t)
     if (load > s->monitor.stats.peak_amb_load) {
         s->monitor.stats.peak_amb_load = load;
         s->monitor.stats.peak_amb_force = fabs(force);
-        s->monitor.stats.peak_amb_time = t;
+        s->monitor.stats.peak_amb_time = t + s->monitor.leapt;
         s->monitor.stats.peak_amb = a->amb;
     }
 }
@@ -128,7 +128,7 @@ static void monitor_peaks(td_sim *s, double t, const double *y, int at_step)
         s->monitor.totals[k].interval_peak = fmax(s->monitor.totals[k].interval_peak, fn);
         if (fn > s->monitor.stats.peak_normal_force) {
             s->monitor.stats.peak_normal_force = fn;
-            s->monitor.stats.peak_time = t;
+            s->monitor.stats.peak_time = t + s->monitor.leapt;
             s->monitor.stats.peak_retainer = k;
         }
     }

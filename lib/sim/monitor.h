@@ -64,6 +64,9 @@ typedef struct td_sim_thermal {
 } td_sim_thermal;
 
 typedef struct td_sim_monitor {
+    /* projective leap (leap.h): s the run's clock is ahead of the simulation's (the time leapt); the
+     * time stamps of the statistics (first contact, peaks) and of the section are the run's */
+    double leapt;
     /* events waiting to be reported (monitor.c), the last one reported */
     td_event *queue;
     int q_len, q_pos, q_cap;

@@ -136,9 +136,9 @@ static void record(td_sim *s, source from, double t)
     section *c = s->section;
     long slot = c->count % c->capacity;
     int k;
-    if (t < c->t_from || !state_at(s, from, t))
+    if (t + s->monitor.leapt < c->t_from || !state_at(s, from, t))
         return;
-    c->time[slot] = t;
+    c->time[slot] = t + s->monitor.leapt;
     if (++c->count > c->high)
         c->high = c->count;
     for (k = 0; k < s->dae.nr; k++) {
@@ -157,7 +157,7 @@ static void cover(td_sim *s, source from, double t)
     if (!(t > a))
         return;
     c->t_done = t;
-    if (t < c->t_from)
+    if (t + s->monitor.leapt < c->t_from)
         return;
     phi_a = angle_at(s, from, a);
     phi_b = angle_at(s, from, t);
@@ -189,7 +189,7 @@ void td_sim_section_rewind(td_sim *s)
     section *c = s->section;
     if (!c || c->t_done <= s->dae.t)
         return;
-    while (c->count > 0 && c->time[(c->count - 1) % c->capacity] > s->dae.t)
+    while (c->count > 0 && c->time[(c->count - 1) % c->capacity] > s->dae.t + s->monitor.leapt)
         c->count--;
     c->t_done = s->dae.t;
 }
@@ -208,7 +208,7 @@ static long reached_count(const td_sim *s)
 {
     const section *c = s->section;
     long n = c->count, kept = c->high - c->capacity > 0 ? c->high - c->capacity : 0;
-    while (n > kept && c->time[(n - 1) % c->capacity] > s->dae.t)
+    while (n > kept && c->time[(n - 1) % c->capacity] > s->dae.t + s->monitor.leapt)
         n--;
     return n;
 }

@@ -3,7 +3,8 @@
  * of every retainer's node each time the rotor's spin angle passes a multiple of 2 pi, at the
  * exact crossing time, from the same interpolant that gives td_run its output samples (IDA's, or
  * the closed-form flight's). Sampling never moves the simulation: its steps, events and totals
- * are those of a run without the section. Inside the library only (td_run, run.h).
+ * are those of a run without the section. Its start and its crossings' times are the run's clock
+ * (the simulation's plus the time leapt, td_sim_monitor.leapt). Inside the library only (td_run, run.h).
  */
 #ifndef TD_SIM_SECTION_H
 #define TD_SIM_SECTION_H

@@ -281,6 +281,8 @@ void td_sim_energy_impact(td_sim *s, double before, double after);
 /* The energy account taken back from its last point to s->dae.t (a change or an output inside the
  * integrator's last step), as td_sim_totals_rewind does with the retainers' totals. */
 void td_sim_energy_rewind(td_sim *s);
+/* projective leap: x^T M y over the velocities (n of them), M the structural mass (energy.c) */
+double td_sim_mass_form(const td_sim *s, const double *x, const double *y);
 /* Kinetic energy 1/2 v^T M v of the state y, J. */
 double td_sim_kinetic_energy(const td_sim *s, const double *y);
 /* v^T M v, q^T K q and v^T D v (out[0..2]) of M, K, D stored on one row-compressed pattern of n rows,

@@ -141,7 +141,7 @@ static void take_switch(td_sim *s, td_sim_supervisor *sv, int p, double r)
         q->since = s->dae.t;
     } else {
         sv->recovery_time += s->dae.t - q->since;
-        sv->last_return = s->dae.t;
+        sv->last_return = s->dae.t + s->monitor.leapt; /* the run's clock (projective leap) */
     }
     ev = td_sim_event_at(s, TD_EVENT_CONTROLLER_SWITCH, -1);
     ev.controller = in->law; /* the system's laws are the model's controllers, in order */

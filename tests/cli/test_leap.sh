@@ -1,0 +1,92 @@
+#!/usr/bin/env bash
+# The projective leap through the tool (tests/test_leap.c checks it through the library), end to end
+# from the case file to the summary and the files:
+#   - rub-damped.cfg's rotor, levitated with its unbalance and nothing scheduled, spinning down
+#     freely from 100 rad/s under a drag torque 0.7 N m on J = 0.01 kg m^2, with leaps (bursts of
+#     0.1 s, leaps of 4 bursts after 0.05 s of healing, from 0.1 s), ends at rest and says how much
+#     it leapt (text and JSON);
+#   - the energy account closes over the whole run, leaps included, to 2e-5 of the 50.1 J the machine
+#     held, as the integration's own does (5.4e-4 J for this run integrated throughout; a leap at the
+#     burst's dOmega/dt left the lateral energy's change over each burst, times the factor, in it:
+#     0.088 J);
+#   - leap.burst = 0 turns the leaps off (the summary of a run without the group);
+#   - the windows (CSV and HDF5) and the samples have no row inside a leap: the gaps between them
+#     add up to the time leapt;
+#   - a leap key written wrong (a misspelt key in the file, a factor below 1, a group on a held
+#     speed) is refused with one line naming the file, the line or the override and the key, exit 2,
+#     and no file.
+# Args: $1 = the touchdown binary, $2 = the source directory.
+set -u
+tool=$1
+src=$2
+rub=$src/cases/rub-damped.cfg
+work=$(mktemp -d "${PWD}/leap.XXXXXX")
+trap 'rm -rf "$work"' EXIT
+
+. "$(dirname "${BASH_SOURCE[0]}")/common.sh" # fail, pass, check, t, jf, finish
+need h5dump hdf5-tools
+
+spin=(--set 'schedule=()' --set speed=100
+    --set 'spin={free=true; inertia=0.01; drag_torque=0.7; drag_viscous=0.0;}' --set end_time=2
+    --set end_at_rest=true --set energy=true --set output.sample_rate=1000 --set output.window=0.05
+    --set output.events=false)
+leap='leap={burst=0.1; factor=4.0; heal=0.05; start=0.1;}'
+# a <= b, numerically
+le() { awk -v a="$1" -v b="$2" 'BEGIN { exit !(a != "" && b != "" && a + 0 <= b + 0) }'; }
+
+t "$work/run" run --json "${spin[@]}" --set "$leap" "$rub" -o l
+out=$work/run/.out
+check "leap: exit 0 (got $rc: $(head -c 300 "$work/run/.err"))" test "$rc" = 0
+leaps=$(jf "$out" leaps)
+leapt=$(jf "$out" leapt_time)
+check "leap: ended at rest, with leaps and time leapt in the JSON ($(jf "$out" ended_at_rest), $leaps, $leapt)" \
+    test "$(jf "$out" ended_at_rest)" = true -a "${leaps:-0}" -ge 2
+check "leap: at least 0.5 s of the run leapt ($leapt)" le 0.5 "$leapt"
+residual=$(jf "$out" residual)
+initial=$(jf "$out" initial)
+abs=$(awk -v r="$residual" 'BEGIN { print r < 0 ? -r : r }')
+check "leap: the energy account closes over the run to 2e-5 of $initial J (residual $residual J)" \
+    le "$abs" "$(awk -v e="$initial" 'BEGIN { print 2e-5 * e }')"
+check "leap: the two rates are given ($(jf "$out" leap_decel_power), $(jf "$out" leap_decel_speed))" \
+    test -n "$(jf "$out" leap_decel_power)" -a "$(jf "$out" leap_decel_power)" != null
+t "$work/text" run "${spin[@]}" --set "$leap" --csv '' --hdf5 '' "$rub"
+check "leap: the text summary says it ($(grep '^leapt' "$work/text/.out"))" \
+    grep -q "^leapt (not integrated) .* in $leaps leaps" "$work/text/.out"
+
+# leap.burst = 0 turns a case's leaps off: the run is the one without a leap group, bit for bit
+t "$work/off" run -q --json --csv '' --hdf5 '' "${spin[@]}" --set "$leap" --set leap.burst=0 "$rub"
+t "$work/none" run -q --json --csv '' --hdf5 '' "${spin[@]}" "$rub"
+strip() { sed -E 's/"(wall_time|solver_wall_time|wall_time_per_revolution|realtime_factor)":[^,}]*//g' "$1"; }
+check "leap.burst = 0: no leaps member, the same summary as without the group (exit $rc)" \
+    test -z "$(jf "$work/off/.out" leaps)" -a -n "$(jf "$work/off/.out" t_reached)" -a \
+    "$(strip "$work/off/.out")" = "$(strip "$work/none/.out")"
+
+# the gaps: between consecutive windows (CSV), their HDF5 copies, and the samples, each sums to leapt
+gaps_csv=$(grep -v '^#' "$work/run/l.windows.csv" | awk -F, 'NR > 2 { g += $1 - e } NR > 1 { e = $2 } END { print g }')
+check "leap: the windows' gaps (CSV) add up to the time leapt ($gaps_csv, $leapt)" \
+    awk -v a="$gaps_csv" -v b="$leapt" 'BEGIN { d = a - b; exit !(d < 1e-9 && d > -1e-9) }'
+h5col() { h5dump -d "/windows/$1" -y -w 0 "$work/run/l.h5" | awk '/DATA \{/ { getline; gsub(/[ ]/, ""); print; exit }' | tr ',' '\n'; }
+gaps_h5=$(paste -d, <(h5col time_start) <(h5col time_end) | awk -F, 'NR > 1 { g += $1 - e } { e = $2 } END { print g }')
+check "leap: the windows' gaps (HDF5) add up to the time leapt ($gaps_h5, $leapt)" \
+    awk -v a="$gaps_h5" -v b="$leapt" 'BEGIN { d = a - b; exit !(d < 1e-9 && d > -1e-9) }'
+gaps_s=$(grep -v '^#' "$work/run/l.csv" | awk -F, 'NR > 2 && $1 - p > 0.0015 { g += $1 - p } NR > 1 { p = $1 } END { print g }')
+check "leap: the samples' gaps add up to the time leapt ($gaps_s, $leapt)" \
+    awk -v a="$gaps_s" -v b="$leapt" 'BEGIN { d = a - b; exit !(d < 1e-9 && d > -1e-9) }'
+
+# bad leap keys: a misspelt key in a file (its line), a factor below 1 (the override), a held speed
+mkdir -p "$work/bad"
+cp "$src/cases/rig.cfg" "$work/bad/"
+awk '{ print } /^end_time/ { print "spin = { free = true; inertia = 0.01; drag_torque = 0.7; drag_viscous = 0.0; };\n" \
+    "leap = { burst = 1.0;\n    factr = 20.0; heal = 0.75; start = 3.0; };" }' "$rub" >"$work/bad/c.cfg"
+line=$(grep -n 'factr' "$work/bad/c.cfg" | cut -d: -f1)
+t "$work/bad" run -q "$work/bad/c.cfg" -o b
+check "a misspelt leap key: exit 2, one line naming the file, line $line and the key ($(cat "$work/bad/.err"))" \
+    test "$rc" = 2 -a "$(wc -l <"$work/bad/.err")" = 1 -a -n "$(grep -F "c.cfg:$line: leap.factr: unknown key" "$work/bad/.err")"
+t "$work/factor" run -q "${spin[@]}" --set 'leap={burst=0.1; factor=0.5; heal=0.05; start=0.1;}' "$rub" -o f
+check "a leap factor below 1: exit 2, one line naming the override and leap.factor ($(cat "$work/factor/.err"))" \
+    test "$rc" = 2 -a "$(wc -l <"$work/factor/.err")" = 1 -a -n "$(grep -F 'leap.factor: must be >= 1' "$work/factor/.err")"
+t "$work/held" run -q --set "$leap" --set 'schedule=()' "$rub" -o h
+check "a leap on a held speed: exit 2, one line naming leap ($(cat "$work/held/.err"))" \
+    test "$rc" = 2 -a "$(wc -l <"$work/held/.err")" = 1 -a -n "$(grep -F 'leap: a leap needs the speed as a free state' "$work/held/.err")"
+check "bad leap keys: no file" test -z "$(ls "$work/bad" | grep -v '^rig.cfg$\|^c.cfg$')$(ls "$work/factor")$(ls "$work/held")"
+finish

@@ -1,0 +1,305 @@
+/*
+ * The projective leap (lib/sim/leap.h): the rates read over a burst and the leap of the slow state,
+ * against the closed form of a free rotor spinning down under drag with no contact.
+ */
+#include "td_test.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "sim/leap.h"
+#include "sim/sim_internal.h"
+#include "touchdown/case.h"
+#include "touchdown/result.h"
+#include "touchdown/run.h"
+#include "touchdown/sim.h"
+
+/* rub-damped.cfg's rotor centred by its AMBs with nothing to push it (no unbalance, schedule or
+ * gravity), its speed free from W0 under a constant drag torque T and a viscous drag c on a spin
+ * inertia J, the energy account kept: J dOmega/dt = -T - c Omega, so
+ *   Omega(t) = (W0 + T/c) exp(-c t / J) - T/c   (c > 0),   Omega(t) = W0 - T t / J   (c = 0),
+ * and the constant drag's loss is T times the integral of Omega. */
+#define SPIN_J 0.01
+#define SPIN_T 0.7
+#define SPIN_W0 100.0
+
+static td_case *spin_case(double viscous)
+{
+    static char spin[200];
+    static const char *ov[] = {"unbalances = ()", "schedule = ()", "speed = 100.0", spin,
+                               "energy = true",   "end_time = 3.0"};
+    snprintf(spin, sizeof spin, "spin = { free = true; inertia = %.17g; drag_torque = %.17g; drag_viscous = %.17g; }",
+             SPIN_J, SPIN_T, viscous);
+    return td_test_load_case("cases/rub-damped.cfg", ov, 6);
+}
+
+static double omega_at(double c, double t)
+{
+    return c > 0.0 ? (SPIN_W0 + SPIN_T / c) * exp(-c * t / SPIN_J) - SPIN_T / c : SPIN_W0 - SPIN_T * t / SPIN_J;
+}
+
+/* integral of Omega from 0 to t */
+static double angle_at(double c, double t)
+{
+    return c > 0.0 ? (SPIN_W0 + SPIN_T / c) * SPIN_J / c * -expm1(-c * t / SPIN_J) - SPIN_T / c * t
+                   : SPIN_W0 * t - 0.5 * SPIN_T * t * t / SPIN_J;
+}
+
+/* The rates over a burst are the closed form's mean rates: the speed's and the constant drag's loss. */
+static void test_rates_closed_form(void **state)
+{
+    const double c = 2.0e-3, t1 = 0.2, t2 = 0.5;
+    td_case *cs = spin_case(c);
+    td_sim *s = td_test_new_sim(td_case_model(cs), cs);
+    td_sim_leap_state a, b, r;
+    td_error err;
+    (void)state;
+    td_test_step_to(s, t1);
+    assert_int_equal(td_sim_leap_read(s, &a, &err), TD_OK);
+    td_test_step_to(s, t2);
+    assert_int_equal(td_sim_leap_read(s, &b, &err), TD_OK);
+    assert_int_equal(td_sim_leap_rates(&a, &b, &r, &err), TD_OK);
+    print_message("rate %.12g rad/s^2 (closed form %.12g), drag loss %.12g W (%.12g)\n", r.speed,
+                  (omega_at(c, t2) - omega_at(c, t1)) / (t2 - t1), r.energy.drag_loss,
+                  SPIN_T * (angle_at(c, t2) - angle_at(c, t1)) / (t2 - t1));
+    assert_close(r.t, t2 - t1, 1e-14, 0.0);
+    assert_close(r.speed, (omega_at(c, t2) - omega_at(c, t1)) / (t2 - t1), 1e-6, 0.0);
+    assert_close(r.mean_speed, 0.5 * (omega_at(c, t1) + omega_at(c, t2)), 1e-8, 0.0);
+    assert_close(r.energy.drag_loss, SPIN_T * (angle_at(c, t2) - angle_at(c, t1)) / (t2 - t1), 1e-6, 0.0);
+    assert_true(r.contacts[0] == 0.0 && r.totals[0].contact_time == 0.0);
+    /* the ends must be of one run, in order */
+    assert_int_equal(td_sim_leap_rates(&b, &a, &r, &err), TD_ERR_INVALID);
+    td_sim_free(&s);
+    td_case_free(&cs);
+}
+
+/* Under a constant torque the speed falls linearly: a leap of L after a burst lands on the closed
+ * form, the integration after it goes on from there (the speed at simulation time t is that of
+ * t + L), and the energy account, the drag's loss included, still closes. */
+static void test_leap_closed_form(void **state)
+{
+    const double t1 = 0.1, t2 = 0.3, L = 0.6, t3 = 0.5;
+    td_case *cs = spin_case(0.0);
+    td_sim *s = td_test_new_sim(td_case_model(cs), cs);
+    td_sim_leap_state a, b, r;
+    td_energy e;
+    td_error err;
+    (void)state;
+    td_test_step_to(s, t1);
+    assert_int_equal(td_sim_leap_read(s, &a, &err), TD_OK);
+    td_test_step_to(s, t2);
+    assert_int_equal(td_sim_leap_read(s, &b, &err), TD_OK);
+    assert_int_equal(td_sim_leap_rates(&a, &b, &r, &err), TD_OK);
+    assert_close(r.speed, -SPIN_T / SPIN_J, 1e-9, 0.0);
+    assert_int_equal(td_sim_leap(s, L, &r, &err), TD_OK);
+    assert_close(td_sim_time(s), t2, 0.0, 0.0); /* the clock is the caller's */
+    assert_close(td_sim_speed(s), omega_at(0.0, t2 + L), 1e-10, 0.0);
+    td_test_step_to(s, t3);
+    assert_close(td_sim_speed(s), omega_at(0.0, t3 + L), 1e-10, 0.0);
+    assert_int_equal(td_sim_energy(s, &e), TD_OK);
+    print_message("after the leap: %.12g rad/s (closed form %.12g), drag loss %.12g J (%.12g), residual %.3g J\n",
+                  td_sim_speed(s), omega_at(0.0, t3 + L), e.drag_loss, SPIN_T * angle_at(0.0, t3 + L), e.residual);
+    assert_close(e.drag_loss, SPIN_T * angle_at(0.0, t3 + L), 1e-9, 0.0);
+    assert_close(e.kinetic - e.initial, 0.5 * SPIN_J * (pow(omega_at(0.0, t3 + L), 2) - SPIN_W0 * SPIN_W0), 1e-8, 0.0);
+    assert_true(fabs(e.residual) < 1e-9 * e.initial);
+    td_sim_free(&s);
+    td_case_free(&cs);
+}
+
+/* The energy account closes across a leap to rounding when the lateral motion's energy changes over
+ * the burst: rub-damped.cfg's rotor with its unbalance, spinning down freely under a constant torque
+ * (its unbalance response grows from rest and follows the falling speed), a burst over that
+ * change. The leap books every term at the burst's powers (scaled by the speed) and moves the spin
+ * so that the kinetic energy pays for exactly their sum: the residual after the leap is the one
+ * before it (the burst's dOmega/dt would have put the lateral energy's change times L / B into it).
+ * The speed so moved differs from the burst's own dOmega/dt by that share. (The closed form of a
+ * spin-down with no lateral motion: test_leap_closed_form.) */
+static void test_leap_energy_closes(void **state)
+{
+    static char spin[200];
+    static const char *ov[] = {"speed = 100.0", spin, "energy = true", "end_time = 3.0"};
+    const double t1 = 0.05, t2 = 0.25, L = 0.6, t3 = 0.3;
+    td_case *cs;
+    td_sim *s;
+    td_sim_leap_state a, b, r;
+    td_energy e0, e1, e2;
+    td_error err;
+    double w0, w1, dlat;
+    (void)state;
+    snprintf(spin, sizeof spin, "spin = { free = true; inertia = %.17g; drag_torque = %.17g; drag_viscous = 0.0; }",
+             SPIN_J, SPIN_T);
+    cs = td_test_load_case("cases/rub-damped.cfg", ov, 4);
+    s = td_test_new_sim(td_case_model(cs), cs);
+    td_test_step_to(s, t1);
+    assert_int_equal(td_sim_leap_read(s, &a, &err), TD_OK);
+    td_test_step_to(s, t2);
+    assert_int_equal(td_sim_leap_read(s, &b, &err), TD_OK);
+    assert_int_equal(td_sim_leap_rates(&a, &b, &r, &err), TD_OK);
+    /* a restart's own projection (the constrained contact's drift, taken back at every restart, at the
+     * integrator's tolerance) first, so that what the residual measures is the leap's */
+    assert_int_equal(td_sim_restart_between_steps(s), TD_OK);
+    assert_int_equal(td_sim_energy(s, &e0), TD_OK);
+    w0 = td_sim_speed(s);
+    assert_int_equal(td_sim_leap(s, L, &r, &err), TD_OK);
+    assert_int_equal(td_sim_energy(s, &e1), TD_OK);
+    w1 = td_sim_speed(s);
+    dlat = (b.energy.kinetic + b.energy.elastic - 0.5 * SPIN_J * b.speed * b.speed) -
+           (a.energy.kinetic + a.energy.elastic - 0.5 * SPIN_J * a.speed * a.speed);
+    print_message("lateral energy over the burst %.6g J; residual %.6g J before the leap, %.6g J after (of %.6g J); "
+                  "speed change %.12g rad/s, the burst's rate gives %.12g\n",
+                  dlat, e0.residual, e1.residual, e0.initial, w1 - w0, L * r.speed);
+    assert_true(fabs(e1.residual - e0.residual) < 1e-12 * e0.initial);
+    /* the speed: the burst's dOmega/dt carries the lateral motion's energy change dE over the burst,
+     * the energy's speed does not; they differ by at most its share L / B dE over J Omega, Omega the
+     * least speed on the way (the races that move with the rotor only add inertia) */
+    assert_true(fabs((w1 - w0) - L * r.speed) <= L / (t2 - t1) * fabs(dlat) / (SPIN_J * w1));
+    assert_true(fabs((w1 - w0) - L * r.speed) > 0.1 * L / (t2 - t1) * fabs(dlat) / (SPIN_J * w0));
+    td_test_step_to(s, t3); /* and the integration after it keeps closing */
+    assert_int_equal(td_sim_energy(s, &e2), TD_OK);
+    print_message("residual %.6g J at %g s\n", e2.residual, t3);
+    assert_true(fabs(e2.residual - e0.residual) < 1e-4 * e0.initial); /* the integrator's own, as before */
+    td_sim_free(&s);
+    td_case_free(&cs);
+}
+
+/* Leaps refused: no length, one that would stop the rotor, one on a speed that is not free. */
+static void test_leap_refused(void **state)
+{
+    td_case *cs = spin_case(0.0), *fixed = td_test_load_case("cases/rub-damped.cfg", NULL, 0);
+    td_sim *s = td_test_new_sim(td_case_model(cs), cs), *f = td_test_new_sim(td_case_model(fixed), fixed);
+    td_sim_leap_state a, b, r, fa, fb, fr;
+    td_error err;
+    (void)state;
+    assert_int_equal(td_sim_leap_read(s, &a, &err), TD_OK);
+    td_test_step_to(s, 0.1);
+    assert_int_equal(td_sim_leap_read(s, &b, &err), TD_OK);
+    assert_int_equal(td_sim_leap_rates(&a, &b, &r, &err), TD_OK);
+    assert_int_equal(td_sim_leap(s, 0.0, &r, &err), TD_ERR_INVALID);
+    assert_int_equal(td_sim_leap(s, 2.0, &r, &err), TD_ERR_INVALID); /* 100 - 70 x 2 < 0 */
+    print_message("%s\n", err.message);
+    assert_non_null(strstr(err.message, "would stop the rotor"));
+    assert_close(td_sim_speed(s), omega_at(0.0, 0.1), 1e-9, 0.0); /* nothing changed */
+    assert_int_equal(td_sim_leap_read(f, &fa, &err), TD_OK);
+    td_test_step_to(f, 0.01);
+    assert_int_equal(td_sim_leap_read(f, &fb, &err), TD_OK);
+    assert_int_equal(td_sim_leap_rates(&fa, &fb, &fr, &err), TD_OK);
+    assert_int_equal(td_sim_leap(f, 0.1, &fr, &err), TD_ERR_INVALID);
+    td_sim_free(&s);
+    td_sim_free(&f);
+    td_case_free(&cs);
+    td_case_free(&fixed);
+}
+
+/* Through td_run and the case key: the spin-down with constant torque leapt (bursts of 0.1 s, leaps
+ * of 0.8 s after 0.05 s of healing, from 0.1 s; the second would overshoot rest, and is shortened to
+ * end at twice the at-rest speed) ends at rest at the first grid sample after the
+ * closed form's t* = 0.99 J W0 / T, with the closed form's speed there; the file's series have no
+ * row inside a leap (every gap between rows is a sample interval, or a leap), and the summary says
+ * how much was leapt. */
+static void test_run_leap_closed_form(void **state)
+{
+    static const char *ov[] = {"unbalances = ()",
+                               "schedule = ()",
+                               "speed = 100.0",
+                               "spin = { free = true; inertia = 0.01; drag_torque = 0.7; drag_viscous = 0.0; }",
+                               "end_at_rest = true",
+                               "end_time = 2.0",
+                               "output.sample_rate = 1000.0",
+                               "leap = { burst = 0.1; factor = 8.0; heal = 0.05; start = 0.1; }"};
+    td_case *c = td_test_load_case("cases/rub-damped.cfg", ov, 8);
+    td_output_options out = *td_case_output_options(c);
+    const char *path = "test_leap_run.h5";
+    const double t_star = 0.99 * SPIN_J * SPIN_W0 / SPIN_T, dt = 1.0e-3;
+    td_run_summary sum;
+    td_sim *s = NULL;
+    td_result *r = NULL;
+    td_result_array time, speed;
+    td_error err;
+    double gaps = 0.0;
+    size_t i;
+    (void)state;
+    assert_close(out.leap_burst, 0.1, 0.0, 0.0);
+    snprintf(out.hdf5_path, sizeof out.hdf5_path, "%s", path);
+    out.csv_path[0] = '\0';
+    assert_int_equal(td_sim_create(td_case_model(c), td_case_sim_options(c), &s, &err), TD_OK);
+    assert_int_equal(td_run(s, td_case_end_time(c), &out, NULL, NULL, &sum, &err), TD_OK);
+    print_message("t* = %.12f s, ended at %.12f s (%ld leaps, %.6g s leapt), speed %.12g rad/s\n", t_star,
+                  sum.t_reached, sum.leaps, sum.leapt_time, sum.final_speed);
+    assert_int_equal(sum.ended_at_rest, 1);
+    assert_true(sum.leaps >= 2 && sum.leapt_time > 0.5);
+    assert_true(sum.t_reached >= t_star && sum.t_reached <= t_star + dt * (1.0 + 1e-9));
+    assert_close(sum.final_speed, SPIN_W0 - SPIN_T * sum.t_reached / SPIN_J, 0.0, 1e-6);
+    assert_int_equal(td_result_open(path, &r, &err), TD_OK);
+    assert_int_equal(td_result_read(r, TD_OUT_TIME, NULL, &time, &err), TD_OK);
+    assert_int_equal(td_result_read(r, TD_OUT_SPEED, NULL, &speed, &err), TD_OK);
+    for (i = 1; i < time.n; i++) {
+        double gap = time.v[i] - time.v[i - 1];
+        assert_close(speed.v[i], SPIN_W0 - SPIN_T * time.v[i] / SPIN_J, 0.0, 1e-6); /* before and after leaps */
+        if (gap > 1.5 * dt)
+            gaps += gap; /* a leap, from the row before it to the row it lands on: no rows inside */
+        else
+            assert_close(gap, dt, 1e-6, 0.0);
+    }
+    assert_close(gaps, sum.leapt_time, 1e-9, 0.0);
+    /* the once-per-revolution section is the run's: it starts at half of end_time = 2 s, 1 s of run
+     * time, which the simulation's own clock (behind by the time leapt) never reaches, and its
+     * crossings are where the closed form's angle, integrated and leapt alike, passes 2 pi k */
+    print_message("section from %.6g s: %ld crossings, the last at %.12g s\n", sum.section_start, sum.section_count,
+                  sum.section_kept > 0 ? sum.section_time[sum.section_kept - 1] : NAN);
+    assert_true(sum.t_reached - sum.leapt_time < sum.section_start);
+    assert_true(sum.section_count > 0 && sum.section_kept > 0);
+    for (i = 0; i < (size_t)sum.section_kept; i++) {
+        double phi = angle_at(0.0, sum.section_time[i]) / (2.0 * TD_PI);
+        assert_true(sum.section_time[i] >= sum.section_start && sum.section_time[i] <= sum.t_reached);
+        assert_close(phi, round(phi), 0.0, 1e-6);
+    }
+    td_result_array_free(&time);
+    td_result_array_free(&speed);
+    td_result_free(&r);
+    td_sim_free(&s);
+    td_case_free(&c);
+    remove(path);
+}
+
+/* Bad leap groups: one line naming the file, the override and the key, and why. */
+static void test_leap_bad_input(void **state)
+{
+    static const struct {
+        const char *base, *set, *want;
+    } bad[] = {
+        {"cases/drop-to-rest.cfg", "leap = { burst = 1.0; factor = 0.5; heal = 0.5; start = 3.0; }",
+         "leap.factor: must be >= 1 (got 0.5)"},
+        {"cases/drop-to-rest.cfg", "leap = { burst = 0.001; factor = 4.0; heal = 0.5; start = 3.0; }",
+         "leap.burst: 0.001 s is shorter than the sample interval"},
+        {"cases/drop-to-rest.cfg", "leap = { burst = 1.0; factor = 4.0; start = 3.0; }", "leap.heal: missing"},
+        {"cases/drop-to-rest.cfg", "leap = { burst = 1.0; factor = 4.0; heal = -1.0; start = 3.0; }", "leap.heal"},
+        {"cases/rub-damped.cfg", "leap = { burst = 0.1; factor = 4.0; heal = 0.0; start = 0.0; }",
+         "leap: a leap needs the speed as a free state (spin.free = true)"},
+        {"cases/drop-to-rest.cfg", "leap = { burst = 1.0; factor = 4.0; heal = 0.5; start = 0.01; }",
+         "leap.start: 0.01 s is before the schedule's change at 0.05 s: a leap would move it"},
+    };
+    size_t i;
+    (void)state;
+    for (i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+        const char *ov[1];
+        td_case *c = NULL;
+        td_error err;
+        ov[0] = bad[i].set;
+        assert_int_equal(td_case_load(td_source_path(bad[i].base), ov, 1, &c, &err), TD_ERR_PARSE);
+        print_message("%s\n", err.message);
+        assert_non_null(strstr(err.message, bad[i].want));
+        assert_non_null(strstr(err.message, bad[i].base));
+        assert_null(strchr(err.message, '\n'));
+    }
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_rates_closed_form), cmocka_unit_test(test_leap_closed_form),
+        cmocka_unit_test(test_leap_refused),      cmocka_unit_test(test_run_leap_closed_form),
+        cmocka_unit_test(test_leap_bad_input),    cmocka_unit_test(test_leap_energy_closes),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
