@@ -20,9 +20,11 @@
 #   scripts/make-docs.sh --full --only SOURCE  rerun one source (runs, modal, validation, keys, bench,
 #                                              digital, scaling, references, intervals, tolerances, mesh,
 #                                              convergence, spread, figures, recovery, report, drop_sweep,
-#                                              shock, breakdown), then render; breakdown (bench/breakdown.sh,
-#                                              about 1 min of CPU and perf) measures beside the tool the
-#                                              build in TD_BENCH_BEFORE when that is set (twice the time)
+#                                              shock, breakdown, leap-check), then render; breakdown
+#                                              (bench/breakdown.sh, about 1 min of CPU and perf) measures
+#                                              beside the tool the build in TD_BENCH_BEFORE when that is set
+#                                              (twice the time); leap-check (bench/leap-check.sh, about
+#                                              6 min of CPU) the leap against the full integration
 # BUILD_DIR defaults to ./build (scripts/setup.sh builds it). tests/cli/test_docs.sh checks that
 # the docs match the records and that the tool still prints the recorded numbers.
 set -euo pipefail
