@@ -47,6 +47,18 @@ static double angle_at(double c, double t)
 }
 
 /* The rates over a burst are the closed form's mean rates: the speed's and the constant drag's loss. */
+/* A burst of `s` from t1 to t2 (t1 at or after its time now): the slow state at its ends into *a and
+ * *b, their mean rates into *r. */
+static void burst(td_sim *s, double t1, double t2, td_sim_leap_state *a, td_sim_leap_state *b, td_sim_leap_state *r)
+{
+    td_error err;
+    td_test_step_to(s, t1);
+    assert_int_equal(td_sim_leap_read(s, a, &err), TD_OK);
+    td_test_step_to(s, t2);
+    assert_int_equal(td_sim_leap_read(s, b, &err), TD_OK);
+    assert_int_equal(td_sim_leap_rates(a, b, r, &err), TD_OK);
+}
+
 static void test_rates_closed_form(void **state)
 {
     const double c = 2.0e-3, t1 = 0.2, t2 = 0.5;
@@ -55,11 +67,7 @@ static void test_rates_closed_form(void **state)
     td_sim_leap_state a, b, r;
     td_error err;
     (void)state;
-    td_test_step_to(s, t1);
-    assert_int_equal(td_sim_leap_read(s, &a, &err), TD_OK);
-    td_test_step_to(s, t2);
-    assert_int_equal(td_sim_leap_read(s, &b, &err), TD_OK);
-    assert_int_equal(td_sim_leap_rates(&a, &b, &r, &err), TD_OK);
+    burst(s, t1, t2, &a, &b, &r);
     print_message("rate %.12g rad/s^2 (closed form %.12g), drag loss %.12g W (%.12g)\n", r.speed,
                   (omega_at(c, t2) - omega_at(c, t1)) / (t2 - t1), r.energy.drag_loss,
                   SPIN_T * (angle_at(c, t2) - angle_at(c, t1)) / (t2 - t1));
@@ -86,11 +94,7 @@ static void test_leap_closed_form(void **state)
     td_energy e;
     td_error err;
     (void)state;
-    td_test_step_to(s, t1);
-    assert_int_equal(td_sim_leap_read(s, &a, &err), TD_OK);
-    td_test_step_to(s, t2);
-    assert_int_equal(td_sim_leap_read(s, &b, &err), TD_OK);
-    assert_int_equal(td_sim_leap_rates(&a, &b, &r, &err), TD_OK);
+    burst(s, t1, t2, &a, &b, &r);
     assert_close(r.speed, -SPIN_T / SPIN_J, 1e-9, 0.0);
     assert_int_equal(td_sim_leap(s, L, &r, &err), TD_OK);
     assert_close(td_sim_time(s), t2, 0.0, 0.0); /* the clock is the caller's */
@@ -131,11 +135,7 @@ static void test_leap_energy_closes(void **state)
              SPIN_J, SPIN_T);
     cs = td_test_load_case("cases/rub-damped.cfg", ov, 4);
     s = td_test_new_sim(td_case_model(cs), cs);
-    td_test_step_to(s, t1);
-    assert_int_equal(td_sim_leap_read(s, &a, &err), TD_OK);
-    td_test_step_to(s, t2);
-    assert_int_equal(td_sim_leap_read(s, &b, &err), TD_OK);
-    assert_int_equal(td_sim_leap_rates(&a, &b, &r, &err), TD_OK);
+    burst(s, t1, t2, &a, &b, &r);
     /* a restart's own projection (the constrained contact's drift, taken back at every restart, at the
      * integrator's tolerance) first, so that what the residual measures is the leap's */
     assert_int_equal(td_sim_restart_between_steps(s), TD_OK);
