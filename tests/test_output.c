@@ -880,6 +880,59 @@ static void test_stale_file_removed(void **state)
     }
 }
 
+static void put_file(const char *path, const char *text);
+
+/* output.events = false: no event table at all (an empty one would say "no events, complete" of a run
+ * that had them): no CSV events file (a stale one removed, no temporary one left), no /events or
+ * /event in HDF5, events refused; a run that fails still marks its samples file incomplete. */
+static void test_omitted_events(void **state)
+{
+    td_output_layout l = full_layout();
+    td_retainer_state ret[RETS];
+    td_event ev;
+    td_writer *w = NULL;
+    double xy[2 * NODES] = {0.0}, amb[2 * AMBS] = {0.0};
+    char path[512], events[600], last[256] = "", line[256];
+    FILE *f;
+    hid_t h;
+    int kind;
+    (void)state;
+    memset(ret, 0, sizeof ret);
+    memset(&ev, 0, sizeof ev);
+    l.omit_events = 1;
+    for (kind = 0; kind < 2; kind++) {
+        tmp_name(path, sizeof path, kind ? "noev.csv" : "noev.h5");
+        td_writer_events_path(path, events, sizeof events);
+        if (kind)
+            put_file(events, "old events\n# complete\n");
+        assert_int_equal(td_writer_open((td_writer_kind)kind, path, &l, &w, NULL), TD_OK);
+        assert_false(exists(events));
+        assert_int_equal(partials_of(events), 0);
+        assert_int_equal(td_writer_sample(w, 0.0, 0.0, xy, ret, amb, NULL), TD_OK);
+        assert_int_equal(td_writer_event(w, &ev, 0, NULL), TD_ERR_INVALID);
+        assert_int_equal(td_writer_close(&w, 0, "solver failed", NULL), TD_OK);
+        assert_false(exists(events));
+        assert_int_equal(partials_of(path) + partials_of(events), 0);
+        if (kind) {
+            f = fopen(path, "r");
+            assert_non_null(f);
+            while (fgets(line, sizeof line, f))
+                snprintf(last, sizeof last, "%s", line);
+            fclose(f);
+            assert_string_equal(last, "# incomplete: solver failed\n");
+        } else {
+            h = H5Fopen(path, H5F_ACC_RDONLY, H5P_DEFAULT);
+            assert_true(h >= 0);
+            assert_int_equal(H5Lexists(h, "events", H5P_DEFAULT), 0);
+            assert_int_equal(H5Lexists(h, "event", H5P_DEFAULT), 0);
+            assert_int_equal(h5_attr_ll(h, "complete"), 0);
+            H5Fclose(h);
+        }
+        remove(path);
+        remove(events);
+    }
+}
+
 /* One writer of `path` from start to end: its temporary file created (the leftover scan first),
  * written and renamed to `path` if `commit`, else removed; 0 on success, else 1 with the message
  * in *err. */
@@ -1449,6 +1502,7 @@ int main(void)
         cmocka_unit_test(test_csv_gnuplot),
         cmocka_unit_test(test_open_failure_leaves_nothing),
         cmocka_unit_test(test_stale_file_removed),
+        cmocka_unit_test(test_omitted_events),
         cmocka_unit_test(test_concurrent_writers),
         cmocka_unit_test(test_leftovers),
         cmocka_unit_test(test_failed_writes_leave_nothing),

@@ -36,7 +36,7 @@ typedef struct td_writer td_writer;
 /** File format. */
 typedef enum td_writer_kind {
     TD_WRITER_HDF5 = 0, /**< one HDF5 file, extendible chunked datasets */
-    TD_WRITER_CSV = 1   /**< PATH (samples) and a sibling events file (see td_writer_events_path) */
+    TD_WRITER_CSV = 1   /**< PATH (samples) and a sibling events file (td_writer_events_path; omit_events: none) */
 } td_writer_kind;
 
 /** What one sample holds, and how the file stores it. Set every field (a struct filled field by
@@ -67,7 +67,10 @@ typedef struct td_output_layout {
                               *   (/housing/body_displacement, /housing/body_tilt; models with a housing body). Last */
     /* long runs */
     int window_fields; /**< nonzero: the writer also takes window summaries (td_writer_window): /windows in HDF5, a
-                        *   third CSV file (td_writer_windows_path). Last */
+                        *   third CSV file (td_writer_windows_path) */
+    int omit_events;   /**< nonzero: the file has no event table: no /events and /event in HDF5, no CSV events file
+                        *   (a stale one at td_writer_events_path is still removed), and td_writer_event is refused.
+                        *   Its summary attributes still count the events (output.events = false). Last */
 } td_output_layout;
 
 /**
@@ -109,7 +112,8 @@ TD_API td_status td_writer_housing(td_writer *w, const double *motion, const dou
 /**
  * Append one event. `sample` is the row (from 0) of the sample that shows the state right after
  * the event, normally td_writer_sample_count(w) - 1 just after writing it; -1 if there is none.
- * It must be -1 or an existing row (else TD_ERR_INVALID). The run loop takes one sample per event
+ * It must be -1 or an existing row (else TD_ERR_INVALID); a writer opened with omit_events takes
+ * no event (TD_ERR_INVALID). The run loop takes one sample per event
  * instant, so rows not referenced by any event form the uniform grid.
  */
 TD_API td_status td_writer_event(td_writer *w, const td_event *ev, long sample, td_error *err);

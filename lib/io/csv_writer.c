@@ -168,11 +168,11 @@ static td_status csv_open(td_writer *w, td_error *err)
     errno = 0;
     if (!(c->samples = adopt(&w->tmp_fd)))
         st = td_io_fail(err, w->tmp_path, "cannot open");
-    else if (!(c->events = adopt(&w->events_fd)))
+    else if (!w->omit_events && !(c->events = adopt(&w->events_fd)))
         st = td_io_fail(err, w->events_tmp, "cannot open");
     else if (w->window_fields && !(c->windows = adopt(&w->windows_fd))) /* long runs */
         st = td_io_fail(err, w->windows_tmp, "cannot open");
-    else if (write_sample_header(c->samples, w) || write_event_header(c->events, w) ||
+    else if (write_sample_header(c->samples, w) || (c->events && write_event_header(c->events, w)) ||
              (c->windows && write_window_header(c->windows, w)))
         st = td_io_fail(err, w->tmp_path, "cannot write the header");
     if (st != TD_OK)
@@ -300,9 +300,11 @@ static td_status csv_finish(td_writer *w, int complete, const char *reason, td_e
         if (td_io_close_stream(&c->windows))
             st = td_io_fail(err, w->windows_tmp, "cannot finish");
     }
-    rc |= td_io_csv_flag(c->events, complete, reason);
-    if (td_io_close_stream(&c->events))
-        st = td_io_fail(err, w->events_tmp, "cannot finish");
+    if (c->events) { /* none without an event table */
+        rc |= td_io_csv_flag(c->events, complete, reason);
+        if (td_io_close_stream(&c->events))
+            st = td_io_fail(err, w->events_tmp, "cannot finish");
+    }
     rc |= td_io_csv_flag(c->samples, complete, reason);
     rc |= td_io_close_stream(&c->samples);
     if (rc && st == TD_OK)

@@ -495,7 +495,7 @@ static td_status open_impl(td_writer *w, h5_impl *h, td_error *err)
         (h->component = make_component_scale(h->file)) < 0)
         return h5_fail(err, w, "cannot create /component");
     if ((st = create_nodes(w, h, err)) != TD_OK || (st = create_retainers(w, h, err)) != TD_OK ||
-        (st = create_ambs(w, h, err)) != TD_OK || (st = create_events(w, h, err)) != TD_OK)
+        (st = create_ambs(w, h, err)) != TD_OK || (!w->omit_events && (st = create_events(w, h, err)) != TD_OK))
         return st;
     if (w->housing_fields && (st = create_housing(w, h, err)) != TD_OK) /* housing motion */
         return st;

@@ -366,7 +366,7 @@ static td_status events_path(td_writer *w)
 static td_status create_temps(td_writer *w, td_error *err)
 {
     td_status st = td_io_create_temp(w->path, &w->tmp_path, &w->tmp_fd, &w->tmp_lock, err);
-    if (st == TD_OK && w->events_path &&
+    if (st == TD_OK && w->events_path && !w->omit_events &&
         (st = td_io_create_temp(w->events_path, &w->events_tmp, &w->events_fd, &w->events_lock, err)) != TD_OK) {
         remove(w->tmp_path);
         free(w->tmp_path);
@@ -430,6 +430,7 @@ td_status td_writer_open(td_writer_kind kind, const char *path, const td_output_
     w->kind = kind;
     w->tmp_fd = w->events_fd = w->tmp_lock = w->events_lock = w->windows_fd = w->windows_lock = -1;
     w->window_fields = layout->window_fields != 0; /* long runs */
+    w->omit_events = layout->omit_events != 0;
     w->ops = kind == TD_WRITER_HDF5 ? &td_hdf5_writer_ops : &td_csv_writer_ops;
     w->path = string_copy(path, NULL);
     if (!w->path || (kind == TD_WRITER_CSV && (st = events_path(w)) != TD_OK)) {
@@ -535,6 +536,8 @@ td_status td_writer_event(td_writer *w, const td_event *ev, long sample, td_erro
         return st;
     if (!ev)
         return td_error_set(err, TD_ERR_INVALID, "td_writer_event: NULL event");
+    if (w->omit_events)
+        return td_error_set(err, TD_ERR_INVALID, "td_writer_event: %s was opened without an event table", w->path);
     if (sample < -1 || sample >= w->samples)
         return td_error_set(err, TD_ERR_INVALID, "td_writer_event: sample %ld is not a written row (0..%ld)", sample,
                             w->samples - 1);

@@ -73,6 +73,7 @@ struct td_writer {
     int windows_fd;     /**< as events_fd */
     int windows_lock;   /**< as events_lock */
     long windows;       /**< window summaries written */
+    int omit_events;    /**< nonzero: no event table (td_output_layout); events_path is then only removed */
 };
 
 /** housing motion: the number of td_writer_housing's values a sample of `w` holds (the body's with a body). */

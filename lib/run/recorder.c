@@ -192,6 +192,7 @@ static td_status open_writers(td_recorder *r, const td_output_options *out, td_e
     layout.housing_body_fields = r->housing_body_fields; /* housing body */
     layout.compression = out->compression;
     layout.window_fields = out->window > 0.0; /* long runs */
+    layout.omit_events = out->omit_events;
     if (out->hdf5_path[0])
         st = td_writer_open(TD_WRITER_HDF5, out->hdf5_path, &layout, &r->writers[r->writer_count++], err);
     if (st == TD_OK && out->csv_path[0])

@@ -348,12 +348,12 @@ static td_status loop(run_state *r, td_error *err)
 
 /* ---- summary ----------------------------------------------------------------------------- */
 
-/* The files td_run writes: those of `out`, the events CSV beside the samples CSV. */
+/* The files td_run writes: those of `out`, the events CSV beside the samples CSV unless events are omitted. */
 static void summary_paths(td_run_summary *s, const td_output_options *out)
 {
     snprintf(s->hdf5_path, sizeof s->hdf5_path, "%s", out->hdf5_path);
     snprintf(s->csv_path, sizeof s->csv_path, "%s", out->csv_path);
-    if (out->csv_path[0])
+    if (out->csv_path[0] && !out->omit_events)
         td_writer_events_path(out->csv_path, s->events_path, sizeof s->events_path);
 }
 

@@ -5,8 +5,10 @@
 #     sample at rest (after 0.99 J Omega0 / T = 1.4142857 s: at 1.415 s), says so in the text and the
 #     JSON, and its files end there;
 #   - output.window and output.events = false: the window file has one row per window and its flag,
-#     the events file no row, /windows is in the HDF5 file, and the samples are the grid's alone (the
-#     same run with its events has both);
+#     /windows is in the HDF5 file, and the samples are the grid's alone (the same run with its events
+#     has both); the events are not recorded, so there is no events file (a stale one is removed, no
+#     temporary one is left) and no /events table, which would say "no events, complete" of a run that
+#     had them: the JSON names no events file and still counts the events;
 #   - a window shorter than a sample interval, or not a whole number of them, is refused with one
 #     line (exit 2, no file);
 #   - end_at_rest tests the speed only after the last schedule entry (a drop still to come), and
@@ -86,14 +88,22 @@ check "end_at_rest at a held speed: exit 2, one line naming end_at_rest ($(cat "
     test "$rc" = 2 -a "$(wc -l <"$work/held/.err")" = 1 -a -n "$(grep -F 'end_at_rest: the speed is held at 90 rad/s' "$work/held/.err")"
 check "end_at_rest refused: no file" test -z "$(ls "$work/still")$(ls "$work/held")"
 
-t "$work/win" run -q --set end_time=0.3 --set output.window=0.05 --set output.events=false "$rub" -o w
+mkdir -p "$work/win" && echo "stale" >"$work/win/w.events.csv"
+t "$work/win" run -q --json --set end_time=0.3 --set output.window=0.05 --set output.events=false "$rub" -o w
 check "windows: exit 0 (got $rc: $(head -c 300 "$work/win/.err"))" test "$rc" = 0
 check "windows: 6 rows and the flag in w.windows.csv ($(grep -vc '^#' "$work/win/w.windows.csv") lines)" \
     test "$(grep -vc '^#' "$work/win/w.windows.csv")" = 7 -a "$(tail -n 1 "$work/win/w.windows.csv")" = "# complete"
 check "windows: its header starts with t_start, t_end, speed ($(head -c 40 "$work/win/w.windows.csv"))" \
     grep -q '^t_start \[s\],t_end \[s\],speed \[rad/s\],' "$work/win/w.windows.csv"
-check "events = false: the events file has its header and flag only ($(wc -l <"$work/win/w.events.csv") lines)" \
-    test "$(wc -l <"$work/win/w.events.csv")" = 2
+check "events = false: no events file, not even a stale one, and no temporary file ($(ls "$work/win" | tr '\n' ' '))" \
+    test ! -e "$work/win/w.events.csv" -a -z "$(ls "$work/win" | grep -F partial)"
+check "events = false: no /events or /event in w.h5 ($(h5ls "$work/win/w.h5" | grep -cE '^event'))" \
+    test -z "$(h5ls "$work/win/w.h5" | grep -E '^events? ')"
+check "events = false: the JSON names no events file and counts the events ($(jf "$work/win/.out" events_path), \
+$(jf "$work/win/.out" events))" \
+    test "$(jf "$work/win/.out" events_path)" = null -a "$(jf "$work/win/.out" events)" -gt 0
+check "events = false: the samples file still ends with its flag ($(tail -n 1 "$work/win/w.csv"))" \
+    test "$(tail -n 1 "$work/win/w.csv")" = "# complete"
 check "events = false: the 3001 grid samples and nothing else in w.csv ($(grep -vc '^#' "$work/win/w.csv") lines)" \
     test "$(grep -vc '^#' "$work/win/w.csv")" = 3002
 t "$work/ev" run -q --set end_time=0.3 "$rub" -o e
