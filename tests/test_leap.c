@@ -277,7 +277,19 @@ static void test_leap_bad_input(void **state)
         {"cases/rub-damped.cfg", "leap = { burst = 0.1; factor = 4.0; heal = 0.0; start = 0.0; }",
          "leap: a leap needs the speed as a free state (spin.free = true)"},
         {"cases/drop-to-rest.cfg", "leap = { burst = 1.0; factor = 4.0; heal = 0.5; start = 0.01; }",
-         "leap.start: 0.01 s is before the schedule's change at 0.05 s: a leap would move it"},
+         "leap.start: 0.01 s is before the last prescribed change, at 0.05 s"},
+        /* the housing's motion runs on the simulation's clock as the schedule does: a shock ending
+         * at 50.011 s, the last point of a history, are prescribed changes; a ramp never ends */
+        {"cases/drop-to-rest.cfg",
+         "housing = { shocks = ({ shape = \"half-sine\"; amplitude = 490.0; duration = 0.011; start = 50.0; "
+         "direction = [0.0, 1.0]; }); }",
+         "leap.start: 3 s is before the last prescribed change, at 50.011 s"},
+        {"cases/drop-to-rest.cfg", "housing = { history = { time = [0.0, 4.0]; x = [0.0, 1.0]; y = [0.0, 0.0]; }; }",
+         "leap.start: 3 s is before the last prescribed change, at 4 s"},
+        {"cases/drop-to-rest.cfg",
+         "housing = { rotation = ({ shape = \"ramp\"; rate = 0.1; duration = 0.01; start = 0.0; "
+         "axis = [1.0, 0.0]; }); }",
+         "leap: housing.rotation[0] (a ramp) turns the housing for ever: the housing's motion never ends"},
     };
     size_t i;
     (void)state;
@@ -294,12 +306,71 @@ static void test_leap_bad_input(void **state)
     }
 }
 
+/* td_run checks the leap's options against the model as the case reader does (td_run_leap_check):
+ * each bad one is TD_ERR_INVALID, named, before any file is written. */
+static void test_run_leap_checked(void **state)
+{
+    td_case *cs = spin_case(0.0), *held = td_test_load_case("cases/rub-damped.cfg", NULL, 0);
+    const td_output_options *good = td_case_output_options(cs);
+    const char *path = "test_leap_checked.h5";
+    const td_housing_pulse shock = {TD_PULSE_HALF_SINE, 10.0, 0.1, 1.0, {0.0, 1.0}}; /* ends at 1.1 s */
+    td_model *nine = NULL, *shocked = NULL;
+    td_retainer ret, other;
+    td_error err;
+    int i;
+    (void)state;
+    remove(path);
+    assert_int_equal(td_model_clone(td_case_model(cs), &nine, &err), TD_OK);
+    assert_int_equal(td_model_get_retainer(nine, 0, &ret), TD_OK);
+    assert_int_equal(td_model_clone(td_case_model(cs), &shocked, &err), TD_OK);
+    assert_int_equal(td_model_add_housing_shock(shocked, &shock, &err), TD_OK);
+    assert_int_equal(td_model_get_retainer(nine, 1, &other), TD_OK);
+    /* one more than a leap holds (TD_SIM_LEAP_RETAINERS), one a node: at the nodes without one */
+    for (i = 0; i < td_model_node_count(nine) && td_model_retainer_count(nine) < 9; i++) {
+        td_retainer at = ret;
+        at.node = i;
+        if (i != ret.node && i != other.node)
+            assert_int_equal(td_model_add_retainer(nine, &at, &err), TD_OK);
+    }
+    assert_int_equal(td_model_retainer_count(nine), 9);
+    for (i = 0; i < 8; i++) {
+        td_output_options out = *good;
+        const td_model *m = i == 5 ? td_case_model(held) : i == 6 ? shocked : i == 7 ? nine : td_case_model(cs);
+        const char *want[] = {"leap: must be >= 1 (got 0.5)",
+                              "leap: must be >= 1 (got nan)",
+                              "leap: must be a finite time >= 0 s (got -1)",
+                              "s is shorter than the sample interval 1 / output.sample_rate",
+                              "leap: must be a finite time >= 0 s (got nan)",
+                              "leap: a leap needs the speed as a free state",
+                              "leap: 0.1 s is before the last prescribed change, at 1.1 s",
+                              "leap: a leap handles at most 8 retainers (the model has 9)"};
+        td_sim *s = NULL;
+        td_run_summary sum;
+        out.leap_burst = i == 3 ? 0.5 / out.sample_rate : 0.1, out.leap_factor = i == 0 ? 0.5 : i == 1 ? NAN : 4.0;
+        out.leap_heal = i == 2 ? -1.0 : 0.05, out.leap_start = i == 4 ? NAN : 0.1;
+        snprintf(out.hdf5_path, sizeof out.hdf5_path, "%s", path);
+        out.csv_path[0] = '\0';
+        assert_int_equal(td_sim_create(m, td_case_sim_options(cs), &s, &err), TD_OK);
+        assert_int_equal(td_run(s, 1.0, &out, NULL, NULL, &sum, &err), TD_ERR_INVALID);
+        print_message("%s\n", err.message);
+        assert_non_null(strstr(err.message, want[i]));
+        assert_int_equal(sum.status, TD_ERR_INVALID);
+        assert_null(fopen(path, "rb")); /* refused before any file */
+        td_sim_free(&s);
+    }
+    td_model_free(&nine);
+    td_model_free(&shocked);
+    td_case_free(&cs);
+    td_case_free(&held);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_rates_closed_form), cmocka_unit_test(test_leap_closed_form),
         cmocka_unit_test(test_leap_refused),      cmocka_unit_test(test_run_leap_closed_form),
         cmocka_unit_test(test_leap_bad_input),    cmocka_unit_test(test_leap_energy_closes),
+        cmocka_unit_test(test_run_leap_checked),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

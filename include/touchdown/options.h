@@ -96,6 +96,9 @@ typedef struct td_output_options {
     double leap_start;  /**< s: no leap before this time (the fall's transient) */
 } td_output_options;
 
+/** projective leap: the most retainers a leap's slow state holds (td_run_leap_check refuses more) */
+#define TD_LEAP_MAX_RETAINERS 8
+
 typedef struct td_modal_options {
     double speed_min; /**< Campbell diagram speed range, rad/s */
     double speed_max;

@@ -257,7 +257,7 @@ typedef struct td_run_summary {
                                       (TD_UNDEFINED without a contact) */
     /* long runs */
     int ended_at_rest; /**< 1: the run ended, complete, at the first grid sample at rest (end_at_rest,
-                            td_run_at_rest) at t_reached before t_end; 0 otherwise */
+                            td_run_at_rest) at t_reached, at or before t_end; 0 otherwise */
     int end_at_rest;   /**< 1: the run was asked to end at rest (td_output_options.end_at_rest); one that
                             reached t_end instead then carries a warning saying so */
     /* projective leap (td_output_options.leap_burst) */
@@ -322,15 +322,31 @@ TD_API const char *td_shock_outcome_name(td_shock_outcome o);
  *  speed0 or below 1 rad/s. The summary's ending "at rest" uses it; a report judges the totals of a
  *  run (damage, heat) as those of a whole drop only when the run ended at rest. */
 TD_API int td_run_at_rest(double speed0, double speed);
-/** end_at_rest (td_output_options): the time after which the rest test applies, the time of the last
- *  change the model has prescribed (its schedule's last entry, its speed ramp's last point), before
- *  which the rotor is not yet at rest whatever its speed (a drop still to come); -HUGE_VAL when none. */
+/** The time of the last change the model prescribes: its schedule's last entry, its speed ramp's last
+ *  point, the end of its last housing shock or rotation (a ramp's: the end of its rise), its housing
+ *  history's last time; -HUGE_VAL when none. end_at_rest (td_output_options) tests the speed only
+ *  after it (before it a drop is still to come); a leap may start only after it (td_run_leap_check). */
 TD_API double td_run_rest_after(const td_model *m);
 /** end_at_rest: 0 if a run of `m` can end at rest, else 1 with the reason into `why` (size bytes):
  *  its start speed already at rest (at most 1 rad/s: the run would stop at its first sample) or a
- *  speed held constant (neither a free spin nor a speed ramp: it never slows down). The one rule the
+ *  speed held constant (neither a free spin nor a speed ramp: it never slows down), or a speed ramp
+ *  whose last point is not at rest (td_run_at_rest: the ramp holds that speed after it). The one rule the
  *  case reader (naming the key) and td_run apply. */
 TD_API int td_run_rest_refused(const td_model *m, char *why, size_t size);
+/** projective leap: the option td_run_leap_check finds at fault. */
+typedef enum td_leap_fault {
+    TD_LEAP_FINE = 0,   /**< none (or no leaps asked for: leap_burst = 0) */
+    TD_LEAP_BURST = 1,  /**< leap_burst: not finite, negative, or shorter than a sample interval */
+    TD_LEAP_FACTOR = 2, /**< leap_factor: not finite, or below 1 */
+    TD_LEAP_HEAL = 3,   /**< leap_heal: not finite, or negative */
+    TD_LEAP_START = 4,  /**< leap_start: not finite, negative, or before a prescribed change (td_run_rest_after) */
+    TD_LEAP_MODEL = 5   /**< the model: a speed that is not a free state, more retainers than a leap handles
+                             (TD_LEAP_MAX_RETAINERS), housing motion held for ever (a ramp shock or rotation) */
+} td_leap_fault;
+/** projective leap (td_output_options.leap_*): TD_LEAP_FINE if a run of `m` may leap as `o` asks,
+ *  else the option at fault with the reason into `why` (size bytes). The one rule the case reader
+ *  (naming the key) and td_run (TD_ERR_INVALID) apply. */
+TD_API td_leap_fault td_run_leap_check(const td_model *m, const td_output_options *o, char *why, size_t size);
 /** 1 if a section of `crossings` (> 0) samples is too short to tell an orbit (fewer than
  *  TD_RUN_SECTION_MIN_CROSSINGS), 0 otherwise (none at all: nothing to tell). The one rule behind
  *  the run's warning and the bifurcation diagram's. */

@@ -923,11 +923,13 @@ static const td_cs_key root_keys[] = {
      .check = check_end_at_rest,
      .doc = "end the run, complete, at the first grid sample at which the rotor is at rest: its speed below 1 % of "
             "its start speed or below 1 rad/s (the rule of the ending \"at rest\"), tested only after the last "
-            "prescribed change (every `schedule` entry's time, every `speed_ramp` point's: a drop still to come "
-            "has not happened); `end_time` then bounds the run. For a free `spin` (a coast-down, a drop followed "
+            "prescribed change (every `schedule` entry's time, every `speed_ramp` point's, the end of every "
+            "`housing` shock and rotation, the `housing.history`'s last time: a drop still to come has not "
+            "happened); `end_time` then bounds the run. For a free `spin` (a coast-down, a drop followed "
             "to rest): `t_reached` says when it stopped. Refused when the rotor could not come to rest: a start "
-            "`speed` of at most 1 rad/s (already at rest), or a speed held constant (neither `spin.free` nor a "
-            "`speed_ramp`). It judges the speed alone: a rotor at rest may still bounce on its retainers"},
+            "`speed` of at most 1 rad/s (already at rest), a speed held constant (neither `spin.free` nor a "
+            "`speed_ramp`), or a `speed_ramp` whose last point is not at rest (it holds that speed). It judges the "
+            "speed alone: a rotor at rest may still bounce on its retainers"},
     /* projective leap */
     {.key = "leap",
      .type = TD_CS_GROUP,

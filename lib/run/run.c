@@ -332,7 +332,7 @@ static td_status loop(run_state *r, td_error *err)
         }
         if ((st = take_sample(r, target, SAMPLE_GRID, err)) != TD_OK)
             return st;
-        if (!last && r->end_at_rest && target > r->rest_after && td_run_at_rest(r->s->speed, td_sim_speed(r->sim)))
+        if (r->end_at_rest && target > r->rest_after && td_run_at_rest(r->s->speed, td_sim_speed(r->sim)))
             last = r->stopped = 1;
         if ((st = grid_window(r, target, last, err)) != TD_OK)
             return st;
@@ -722,6 +722,8 @@ static td_status check_args(const td_sim *sim, double t_end, const td_output_opt
         return td_error_set(err, TD_ERR_INVALID, "td_run: window: %s", why);
     if (out->end_at_rest && td_run_rest_refused(td_sim_model(sim), why, sizeof why)) /* long runs */
         return td_error_set(err, TD_ERR_INVALID, "td_run: end_at_rest: %s", why);
+    if (td_run_leap_check(td_sim_model(sim), out, why, sizeof why) != TD_LEAP_FINE) /* projective leap */
+        return td_error_set(err, TD_ERR_INVALID, "td_run: leap: %s", why);
     td_sim_options_get(sim, &opt);
     /* the bounds of touchdown/limits.h, also checked (with the key) by the case reader */
     if (td_run_limit_check(t_end - t0, td_model_speed(td_sim_model(sim)), out->sample_rate, opt.solver.max_step, why,

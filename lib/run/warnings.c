@@ -99,10 +99,12 @@ static void check_section(td_run_summary *s)
          s->section_count, s->section_start, TD_RUN_SECTION_MIN_CROSSINGS);
 }
 
-/* long runs: end_at_rest asked, and the run reached end_time at speed: the ending and every answer are
- * those of end_time, not of rest (a drive that outruns the drag, a rub that holds the rotor's speed,
- * an end_time too short). A load-time refusal cannot decide it: contact friction and the unbalance's
- * mean drag brake the spin too, by amounts only the run knows. */
+/* long runs: end_at_rest asked, and the run reached end_time at speed (the last sample is tested like
+ * the others): the ending and every answer are those of end_time, not of rest (a drive that outruns
+ * the drag, a rub that holds the rotor's speed, an end_time too short; a speed held, or a speed_ramp
+ * ending at speed, is refused at load by td_run_rest_refused, so a longer end_time is the advice). A load-time refusal
+ * cannot decide it: contact friction and the unbalance's mean drag brake the spin too, by amounts only the run knows.
+ */
 static void check_rest(td_run_summary *s, const td_model *m)
 {
     td_spin spin;

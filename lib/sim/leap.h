@@ -15,8 +15,8 @@
 #include "touchdown/records.h"
 #include "touchdown/sim.h"
 
-/* Retainers a leap handles (a model with more is refused). */
-#define TD_SIM_LEAP_RETAINERS 8
+/* Retainers a leap handles (a model with more is refused: td_run_leap_check). */
+#define TD_SIM_LEAP_RETAINERS TD_LEAP_MAX_RETAINERS
 
 /* The slow state at one time, or (td_sim_leap_rates) its mean rates over a burst. */
 typedef struct td_sim_leap_state {

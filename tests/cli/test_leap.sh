@@ -13,8 +13,9 @@
 #   - the windows (CSV and HDF5) and the samples have no row inside a leap: the gaps between them
 #     add up to the time leapt;
 #   - a leap key written wrong (a misspelt key in the file, a factor below 1, a group on a held
-#     speed) is refused with one line naming the file, the line or the override and the key, exit 2,
-#     and no file.
+#     speed, a start before a housing shock's end, housing motion held for ever, more retainers than
+#     a leap holds) is refused with one line naming the file, the line or the override and the key,
+#     exit 2, and no file.
 # Args: $1 = the touchdown binary, $2 = the source directory.
 set -u
 tool=$1
@@ -89,4 +90,25 @@ t "$work/held" run -q --set "$leap" --set 'schedule=()' "$rub" -o h
 check "a leap on a held speed: exit 2, one line naming leap ($(cat "$work/held/.err"))" \
     test "$rc" = 2 -a "$(wc -l <"$work/held/.err")" = 1 -a -n "$(grep -F 'leap: a leap needs the speed as a free state' "$work/held/.err")"
 check "bad leap keys: no file" test -z "$(ls "$work/bad" | grep -v '^rig.cfg$\|^c.cfg$')$(ls "$work/factor")$(ls "$work/held")"
+
+# a leap does not move the simulation's clock, on which the housing's motion runs as the schedule
+# does: drop-to-rest.cfg (leaps from 3 s) with a shock ending at 50.011 s is refused at leap.start,
+# its line in the file; a ramp rotation (held for ever) at the group; nine retainers (a leap holds 8)
+drop=$src/cases/drop-to-rest.cfg
+line=$(grep -n '^leap' "$drop" | cut -d: -f1)
+shock='shocks=({shape="half-sine"; amplitude=490.0; duration=0.011; start=50.0; direction=[0.0,1.0];});'
+t "$work/shock" run -q --set end_time=0.02 --set end_at_rest=false --set "housing={$shock}" "$drop" -o s
+check "a housing shock after leap.start: exit 2, one line naming line $line and leap.start ($(cat "$work/shock/.err"))" \
+    test "$rc" = 2 -a "$(wc -l <"$work/shock/.err")" = 1 -a -n "$(grep -F "drop-to-rest.cfg:$line: leap.start: 3 s is before the last prescribed change, at 50.011 s" "$work/shock/.err")"
+t "$work/ramp" run -q --set 'housing={rotation=({shape="ramp"; rate=0.1; duration=0.01; axis=[1.0,0.0];});}' "$drop" -o r
+check "a ramp housing rotation under leaps: exit 2, one line naming leap ($(cat "$work/ramp/.err"))" \
+    test "$rc" = 2 -a "$(wc -l <"$work/ramp/.err")" = 1 -a -n "$(grep -F "drop-to-rest.cfg:$line: leap: housing.rotation[0] (a ramp) turns the housing for ever" "$work/ramp/.err")"
+nine=
+for n in 2 10 0 1 3 4 5 6 7; do
+    nine="$nine{ node = $n; clearance = 0.75e-3; shaft_radius = 0.025; friction = 0.1; bore_speed = 0.0; restitution = 0.0; },"
+done
+t "$work/nine" run -q "${spin[@]}" --set "retainers = (${nine%,})" --set "$leap" "$rub" -o n
+check "a leap with nine retainers: exit 2 at load, one line naming leap ($(cat "$work/nine/.err"))" \
+    test "$rc" = 2 -a "$(wc -l <"$work/nine/.err")" = 1 -a -n "$(grep -F -e "--set '$leap': leap: a leap handles at most 8 retainers (the model has 9)" "$work/nine/.err")"
+check "leaps refused by the model: no file" test -z "$(ls "$work/shock")$(ls "$work/ramp")$(ls "$work/nine")"
 finish

@@ -11,8 +11,9 @@
 #     had them: the JSON names no events file and still counts the events;
 #   - a window shorter than a sample interval, or not a whole number of them, is refused with one
 #     line (exit 2, no file);
-#   - end_at_rest tests the speed only after the last schedule entry (a drop still to come), and
-#     is refused (exit 2, one line naming it) on a rotor already at rest or held at speed;
+#   - end_at_rest tests the last sample too (a run at rest at end_time ended at rest), tests the
+#     speed only after the last schedule entry (a drop still to come), and is refused (exit 2, one
+#     line naming it) on a rotor already at rest, held at speed or ramped to a speed it holds;
 #   - a free spin whose drive outruns its drag under end_at_rest runs to end_time at the closed-form
 #     speed and says it did not come to rest (a warning, ended_at_rest false, the text's line).
 # Args: $1 = the touchdown binary, $2 = the source directory.
@@ -42,6 +43,14 @@ check "end_at_rest: complete ($(jf "$work/rest-json/.out" complete))" \
     test "$(jf "$work/rest-json/.out" complete)" = true
 t "$work/plain" run -q --json --csv '' --hdf5 '' --set end_time=0.01 "$rub"
 check "a run without end_at_rest has no ended_at_rest member" test -z "$(jf "$work/plain/.out" ended_at_rest)"
+# the last sample is tested like the others: the same spin-down with end_time = 1.4145 s, where its
+# speed is 100 - 70 x 1.4145 = 0.985 rad/s (at rest: below 1 rad/s), ends there at rest, no warning
+t "$work/rest-end" run --json --csv '' --hdf5 '' "${spin[@]}" --set end_time=1.4145 --set output.section_after=0 "$rub"
+check "end_at_rest, at rest at end_time: JSON ended_at_rest true at 1.4145 s, no warning ($(jf "$work/rest-end/.out" \
+ended_at_rest), $(jf "$work/rest-end/.out" t_reached), $(cat "$work/rest-end/.err"))" \
+    test "$rc" = 0 -a "$(jf "$work/rest-end/.out" ended_at_rest)" = true -a ! -s "$work/rest-end/.err"
+check "end_at_rest, at rest at end_time: t_reached 1.4145 s ($(jf "$work/rest-end/.out" t_reached))" \
+    awk -v a="$(jf "$work/rest-end/.out" t_reached)" 'BEGIN { exit !(a != "" && a - 1.4145 < 1e-9 && 1.4145 - a < 1e-9) }'
 check "end_at_rest: the CSV file's last sample is at 1.415 s ($(grep -v '^#' "$work/rest/r.csv" | tail -n 1 | cut -d, -f1))" \
     test "$(grep -v '^#' "$work/rest/r.csv" | tail -n 1 | cut -d, -f1)" = 1.415
 
@@ -86,7 +95,12 @@ check "end_at_rest at a start speed of 0: exit 2, one line naming end_at_rest ($
 t "$work/held" run -q --set end_at_rest=true "$rub" -o h
 check "end_at_rest at a held speed: exit 2, one line naming end_at_rest ($(cat "$work/held/.err"))" \
     test "$rc" = 2 -a "$(wc -l <"$work/held/.err")" = 1 -a -n "$(grep -F 'end_at_rest: the speed is held at 90 rad/s' "$work/held/.err")"
-check "end_at_rest refused: no file" test -z "$(ls "$work/still")$(ls "$work/held")"
+# a speed_ramp ending at 50 rad/s holds that speed for ever: refused too (not a run to end_time)
+t "$work/ramp" run -q --set end_at_rest=true --set 'schedule=()' \
+    --set 'speed_ramp=({time=0.0; speed=90.0;}, {time=0.2; speed=50.0;})' "$rub" -o p
+check "end_at_rest on a ramp ending at speed: exit 2, one line naming end_at_rest ($(cat "$work/ramp/.err"))" \
+    test "$rc" = 2 -a "$(wc -l <"$work/ramp/.err")" = 1 -a -n "$(grep -F 'end_at_rest: the speed_ramp ends at 50 rad/s (at 0.2 s) and holds that speed' "$work/ramp/.err")"
+check "end_at_rest refused: no file" test -z "$(ls "$work/still")$(ls "$work/held")$(ls "$work/ramp")"
 
 mkdir -p "$work/win" && echo "stale" >"$work/win/w.events.csv"
 t "$work/win" run -q --json --set end_time=0.3 --set output.window=0.05 --set output.events=false "$rub" -o w
