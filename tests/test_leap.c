@@ -8,6 +8,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "run/leap.h"
 #include "sim/leap.h"
 #include "sim/sim_internal.h"
 #include "touchdown/case.h"
@@ -262,6 +263,52 @@ static void test_run_leap_closed_form(void **state)
     remove(path);
 }
 
+/* A leap's length is the one the leap will make: with the energy account on, the speed moves by the
+ * energy balance's change (td_sim_leap_speed_change), not by the burst's own dOmega/dt, which a
+ * fluctuation of the lateral motion's energy can bias. Here the burst's start is read with the
+ * speed of its end (a dOmega/dt of 0), while its net power is the drag's: a leap of factor 20
+ * bursts at the energy balance's -T / J would turn the rotor backwards. The run's side shortens it
+ * to the longest whole number of sample intervals that keeps twice the at-rest speed (2 rad/s of
+ * W0 = 100 rad/s), and the leap is made, at the closed form's rate: the drag's power T Omega_mean over
+ * the burst, booked at the speed's scale against the mean speed the burst's ends give (here the end's),
+ * pays J Omega dOmega, so dOmega/dt = -T / J Omega_mean / Omega_end. */
+static void test_run_leap_shortened_by_energy(void **state)
+{
+    td_case *cs = spin_case(0.0);
+    td_sim *s = td_test_new_sim(td_case_model(cs), cs);
+    td_output_options o;
+    td_run_leap l;
+    td_run_leap_counts now = {0, 0, 0.0};
+    td_sim_leap_state a, b, r;
+    td_error err;
+    const double t1 = 0.05, t2 = 0.15, sample_rate = 1000.0;
+    double L, w0, w1, g;
+    (void)state;
+    memset(&o, 0, sizeof o);
+    o.leap_burst = t2 - t1;
+    o.leap_factor = 20.0;
+    o.leap_heal = 0.05;
+    o.leap_start = 0.0;
+    assert_int_equal(td_run_leap_init(&l, &o, SPIN_W0), 1);
+    burst(s, t1, t2, &a, &b, &r);
+    l.phase = 2; /* in the burst begun at t1, which ends now */
+    l.until = t2;
+    l.from = a;
+    l.from.speed = b.speed; /* its dOmega/dt reads 0 */
+    w0 = td_sim_speed(s);
+    g = SPIN_T / SPIN_J * 0.5 * (a.speed + b.speed) / b.speed; /* the drag's power over the mean speed read */
+    L = td_run_leap_due(&l, s, t2, sample_rate, 3.0, &now, &r, &err);
+    print_message("leap of %.6g s from %.12g rad/s (the burst's dOmega/dt %g rad/s^2)\n", L, w0, r.speed);
+    assert_true(L > 0.0 && L < 20.0 * o.leap_burst);
+    assert_int_equal(td_run_leap_make(&l, s, t2, L, &r, &now, &err), TD_OK);
+    w1 = td_sim_speed(s);
+    print_message("after it: %.12g rad/s (closed form %.12g)\n", w1, w0 - g * L);
+    assert_close(w1, w0 - g * L, 1e-6, 0.0);
+    assert_true(w1 >= 2.0 && w1 < 2.0 + g / sample_rate + 1e-6); /* the longest, to a sample */
+    td_sim_free(&s);
+    td_case_free(&cs);
+}
+
 /* Bad leap groups: one line naming the file, the override and the key, and why. */
 static void test_leap_bad_input(void **state)
 {
@@ -370,7 +417,7 @@ int main(void)
         cmocka_unit_test(test_rates_closed_form), cmocka_unit_test(test_leap_closed_form),
         cmocka_unit_test(test_leap_refused),      cmocka_unit_test(test_run_leap_closed_form),
         cmocka_unit_test(test_leap_bad_input),    cmocka_unit_test(test_leap_energy_closes),
-        cmocka_unit_test(test_run_leap_checked),
+        cmocka_unit_test(test_run_leap_checked),  cmocka_unit_test(test_run_leap_shortened_by_energy),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -27,8 +27,10 @@ typedef struct td_run_leap {
     td_sim_leap_state from;            /* the slow state where the burst began */
     td_run_leap_counts counts;         /* and the run's counters there */
     long leaps;                        /* leaps made */
-    double dw_power, dw_rate, rate_sq; /* over the leaps: the speed changes made (from the bursts' net
-                                          power), those the bursts' dOmega/dt gave, its square sum */
+    double dw_power, dw_rate;          /* over the leaps: the speed changes made (from the bursts' net
+                                          power), those the bursts' dOmega/dt gave */
+    double rate_mean, rate_m2;         /* the bursts' dOmega/dt's time-weighted running mean and sum of
+                                          squared deviations (West's weighted Welford: no cancellation) */
 } td_run_leap;
 
 /* Options o's leaps for a run starting at speed0 rad/s; 0 when o asks for none (then leave *l). */
@@ -39,9 +41,18 @@ int td_run_leap_init(td_run_leap *l, const td_output_options *o, double speed0);
 double td_run_leap_due(td_run_leap *l, const td_sim *sim, double t, double rate, double t_end,
                        const td_run_leap_counts *now, td_sim_leap_state *rate_out, td_error *err);
 
+/* 1 if a leap of `length` s at `rate` can be made on sim now: td_sim_leap_speed_change finds the
+ * speed change it will make, and that leaves the rotor's speed off rest (the last approach to rest is
+ * integrated); 0 if not (the run then integrates on). */
+int td_run_leap_feasible(const td_run_leap *l, const td_sim *sim, double length, const td_sim_leap_state *rate);
+
 /* The leap of `length` s at `rate` made at run time t: the simulation's slow state moved on, the
  * counters in *now moved on at the burst's rates, the offset grown, the next healing begun. */
 td_status td_run_leap_make(td_run_leap *l, td_sim *sim, double t, double length, const td_sim_leap_state *rate,
                            td_run_leap_counts *now, td_error *err);
+
+/* The time-weighted sd of the bursts' dOmega/dt over the leaps made: TD_UNDEFINED below 2 leaps (one
+ * leap has no spread, which 0 would claim). */
+double td_run_leap_decel_sd(const td_run_leap *l);
 
 #endif

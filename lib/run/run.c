@@ -250,26 +250,47 @@ static td_status grid_window(run_state *r, double t, int last, td_error *err)
     return td_run_windows_close(r->windows, r->sim, td_recorder_retainers(r->rec), t, r->rec, err);
 }
 
+/* projective leap: a leap of n sample intervals from the grid sample at t (index k), shortened so
+ * that it does not cross the start of the ending's stretch (t_window): the retainers' totals there
+ * are read from integrated motion, and the stretch the ending is judged over begins where it says. */
+static long leap_samples(const run_state *r, double t, long k, long n)
+{
+    long m;
+    if (r->window_taken || t >= r->t_window)
+        return n;
+    m = (long)floor((r->t_window - r->s->t_start) * r->rate) - k + 1; /* a sample past it at most */
+    n = m < n ? m : n;
+    while (n > 0 && grid_time(r->s->t_start, r->rate, k + n) > r->t_window)
+        n--;
+    return n;
+}
+
 /* projective leap: at the grid sample at t (index *k), the leap due there if any: the window open
  * closed at t (its row is of integrated motion), the slow state and the run's counters moved on,
- * the grid resumed at the sample the leap lands on, which is taken (the state after the leap). */
+ * the grid resumed at the sample the leap lands on, which is taken (the state after the leap). The
+ * contact clock is brought to t first, so that the burst's ends and the leap count the contact
+ * held since the last event; a leap that cannot be made (td_run_leap_feasible) is not: the run
+ * integrates on. */
 static td_status leap_at(run_state *r, double t, long *k, td_error *err)
 {
-    td_run_leap_counts now = {r->s->events, r->s->contacts, r->s->contact_time};
+    td_run_leap_counts now;
     td_sim_leap_state rate;
-    double L = td_run_leap_due(&r->leap, r->sim, t, r->rate, r->s->t_end, &now, &rate, err), t_after;
+    double L, t_after;
     long n;
     td_status st;
-    if (L < 0.0)
+    contact_advance(r, t, r->in_contact);
+    now.events = r->s->events;
+    now.contacts = r->s->contacts;
+    now.contact_time = r->s->contact_time;
+    if ((L = td_run_leap_due(&r->leap, r->sim, t, r->rate, r->s->t_end, &now, &rate, err)) < 0.0)
         return err ? err->code : TD_ERR_INVALID;
-    if (L == 0.0)
-        return TD_OK;
-    n = lround(L * r->rate);
+    n = leap_samples(r, t, *k, lround(L * r->rate));
     t_after = grid_time(r->s->t_start, r->rate, *k + n);
+    if (n <= 0 || !td_run_leap_feasible(&r->leap, r->sim, t_after - t, &rate))
+        return TD_OK;
     if (r->windows &&
         (st = td_run_windows_close(r->windows, r->sim, td_recorder_retainers(r->rec), t, r->rec, err)) != TD_OK)
         return st;
-    contact_advance(r, t, r->in_contact);
     if ((st = td_run_leap_make(&r->leap, r->sim, t, t_after - t, &rate, &now, err)) != TD_OK)
         return st;
     r->s->events = now.events;
@@ -279,7 +300,7 @@ static td_status leap_at(run_state *r, double t, long *k, td_error *err)
     r->s->leapt_time = r->leap.offset;
     r->s->leap_decel_power = r->leap.dw_power / r->leap.offset;
     r->s->leap_decel_speed = r->leap.dw_rate / r->leap.offset;
-    r->s->leap_decel_sd = sqrt(fmax(r->leap.rate_sq / r->leap.offset - pow(r->s->leap_decel_speed, 2), 0.0));
+    r->s->leap_decel_sd = td_run_leap_decel_sd(&r->leap);
     r->mark = t_after; /* the contact state carried over holds from the leap's end */
     *k += n;
     td_run_windows_reopen(r->windows, r->sim, t_after);

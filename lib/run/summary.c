@@ -407,11 +407,16 @@ static void format_answers(td_text *b, const td_run_summary *s)
                        "leapt (not integrated)      %.6g s of %.6g s in %ld leap%s (projective leap: the files have "
                        "no rows there; the totals, counts and energy include the leaps at their bursts' rates)\n",
                        s->leapt_time, s->t_reached - s->t_start, s->leaps, s->leaps == 1 ? "" : "s");
-    if (s->leap && s->leaps > 0)
+    if (s->leap && s->leaps > 1)
         td_text_printf(b,
                        "leaps' dspeed/dt            %.6g rad/s^2 from the bursts' net power (what the leaps made), "
                        "%.6g +- %.3g rad/s^2 from their speeds\n",
                        s->leap_decel_power, s->leap_decel_speed, s->leap_decel_sd);
+    else if (s->leap && s->leaps > 0) /* one leap: no spread */
+        td_text_printf(b,
+                       "leaps' dspeed/dt            %.6g rad/s^2 from the burst's net power (what the leap made), "
+                       "%.6g rad/s^2 from its speed\n",
+                       s->leap_decel_power, s->leap_decel_speed);
     if (s->stats.peak_amb >= 0)
         td_text_printf(b, "peak AMB force              %.6g N, AMB %d, %.4g %% of its capacity, at %.10f s\n",
                        s->stats.peak_amb_force, s->stats.peak_amb, 100.0 * s->stats.peak_amb_load,

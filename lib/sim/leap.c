@@ -40,6 +40,11 @@ td_status td_sim_leap_read(const td_sim *s, td_sim_leap_state *out, td_error *er
         out->contacts[k] = (double)out->totals[k].contacts;
         out->touch_and_go[k] = (double)out->totals[k].touch_and_go;
     }
+    out->events = (double)s->monitor.stats.events;
+    out->contact_onsets = (double)s->monitor.stats.contact_onsets;
+    out->releases = (double)s->monitor.stats.releases;
+    out->time_in_contact = s->monitor.stats.time_in_contact;
+    out->time_slewing = s->monitor.stats.time_slewing;
     out->energy_on = s->opt.energy != 0;
     if (out->energy_on)
         td_sim_energy_get(s, &out->energy);
@@ -96,6 +101,11 @@ td_status td_sim_leap_rates(const td_sim_leap_state *a, const td_sim_leap_state 
     rate->mean_speed = 0.5 * (a->speed + b->speed);
     rate->retainers = a->retainers;
     rate->energy_on = a->energy_on;
+    rate->events = (b->events - a->events) / dt;
+    rate->contact_onsets = (b->contact_onsets - a->contact_onsets) / dt;
+    rate->releases = (b->releases - a->releases) / dt;
+    rate->time_in_contact = (b->time_in_contact - a->time_in_contact) / dt;
+    rate->time_slewing = (b->time_slewing - a->time_slewing) / dt;
     for (k = 0; k < a->retainers; k++) {
         rate->race_speed[k] = (b->race_speed[k] - a->race_speed[k]) / dt;
         totals_rates(&a->totals[k], &b->totals[k], dt, &rate->totals[k]);
@@ -142,6 +152,19 @@ static void leap_heat(td_sim *s, int k, double L, double f0, double f1, const td
     memcpy(h->T_before, h->T, sizeof h->T);
     h->t_before = s->dae.t;
     h->peak = fmax(h->peak, h->T[0]); /* a network under a steady heat rises or falls monotonically */
+}
+
+/* The statistics of the motion (td_sim_stats) moved on by L s at `rate`, as the totals are; the
+ * solver's counters (steps, evaluations, restarts, flight, controller samples) are of the
+ * integration, which a leap skips, and stay as they are. */
+static void leap_stats(td_sim *s, double L, const td_sim_leap_state *rate)
+{
+    td_sim_stats *st = &s->monitor.stats;
+    st->events += lround(L * rate->events);
+    st->contact_onsets += lround(L * rate->contact_onsets);
+    st->releases += lround(L * rate->releases);
+    st->time_in_contact += L * rate->time_in_contact;
+    st->time_slewing += L * rate->time_slewing;
 }
 
 static void leap_energy(td_sim *s, double Lf, const td_energy *r)
@@ -281,6 +304,7 @@ td_status td_sim_leap(td_sim *s, double L, const td_sim_leap_state *rate, td_err
         leap_totals(s, k, L, 0.5 * (f0 + f1), rate);
         leap_heat(s, k, L, f0, f1, rate);
     }
+    leap_stats(s, L, rate);
     if (s->opt.energy)
         leap_energy(s, L * 0.5 * (f0 + f1), &rate->energy);
     leap_motion(s, L, x, work, work + s->dae.n, rate->energy_on);

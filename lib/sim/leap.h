@@ -28,6 +28,8 @@ typedef struct td_sim_leap_state {
     td_retainer_totals totals[TD_SIM_LEAP_RETAINERS]; /* for rates: the additive ones a second */
     double contacts[TD_SIM_LEAP_RETAINERS];           /* the totals' counts (contacts, touch_and_go): for rates, */
     double touch_and_go[TD_SIM_LEAP_RETAINERS];       /* a second, not rounded */
+    double events, contact_onsets, releases;          /* td_sim_stats' counts of the motion (for rates, a second) */
+    double time_in_contact, time_slewing;             /* and its times (s; for rates, s a second) */
     int energy_on;                                    /* the run keeps the energy account (td_sim_options.energy) */
     td_energy energy;
 } td_sim_leap_state;
@@ -57,9 +59,11 @@ td_status td_sim_leap_speed_change(const td_sim *sim, double duration, const td_
  * td_sim_leap_speed_change, so that with the energy account on its kinetic energy pays exactly the
  * terms booked and the account closes across the leap to rounding; a race in contact with the rotor
  * with it (its sliding velocity kept), a free race at its burst's rate; times, impulses, counts and
- * damage at the burst's rates; the thermal networks in closed form under that heat. TD_ERR_INVALID
- * for a duration not > 0, a rate of another machine, a model without a free spin, or a leap that
- * would turn the rotor backwards; a failed restart its status. */
+ * damage at the burst's rates, and so the statistics' counts and times of the motion (td_sim_stats:
+ * events, contact_onsets, releases, time_in_contact, time_slewing), not the solver's own (a leap takes
+ * no step); the thermal networks in closed form under that heat. TD_ERR_INVALID for a duration not
+ * > 0, a rate of another machine, a model without a free spin, or a leap that would turn the rotor
+ * backwards; a failed restart its status. */
 td_status td_sim_leap(td_sim *sim, double duration, const td_sim_leap_state *rate, td_error *err);
 
 #endif

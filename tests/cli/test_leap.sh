@@ -12,6 +12,11 @@
 #   - leap.burst = 0 turns the leaps off (the summary of a run without the group);
 #   - the windows (CSV and HDF5) and the samples have no row inside a leap: the gaps between them
 #     add up to the time leapt;
+#   - a rub held through the leaps: the summary's contact time and the stats' time in contact are the
+#     retainers' (the contact held up to a burst's ends and the leaps counted), within 10 % of the run
+#     integrated throughout, and the ending is that run's kind (no leap crosses the ending's stretch);
+#     a bouncing rub's stats count the leaps' onsets and events as the summary does; one leap's
+#     spread of dOmega/dt is null;
 #   - a leap key written wrong (a misspelt key in the file, a factor below 1, a group on a held
 #     speed, a start before a housing shock's end, housing motion held for ever, more retainers than
 #     a leap holds) is refused with one line naming the file, the line or the override and the key,
@@ -73,6 +78,45 @@ check "leap: the windows' gaps (HDF5) add up to the time leapt ($gaps_h5, $leapt
 gaps_s=$(grep -v '^#' "$work/run/l.csv" | awk -F, 'NR > 2 && $1 - p > 0.0015 { g += $1 - p } NR > 1 { p = $1 } END { print g }')
 check "leap: the samples' gaps add up to the time leapt ($gaps_s, $leapt)" \
     awk -v a="$gaps_s" -v b="$leapt" 'BEGIN { d = a - b; exit !(d < 1e-9 && d > -1e-9) }'
+
+# a rub held through the leaps (rub-damped.cfg's rotor with a 0.12 kg m unbalance, spinning down freely
+# from 90 rad/s on J = 0.05 kg m^2 while it rubs): the summary's contact time counts the contact held
+# from the last event up to a burst's ends and the leaps (as the retainers' totals do), the stats block
+# counts the leaps' shares as the summary does (below), and no leap crosses the start of the ending's stretch,
+# so the run ends as the run integrated throughout does (a forward rub) and its contact time is that
+# run's to 10 %
+rubbing=(--set 'unbalances=({node=1; magnitude=0.12; phase=0.0;})' --set 'schedule=()'
+    --set 'spin={free=true; inertia=0.05; drag_torque=0.7; drag_viscous=0.0;}' --set end_time=1.5
+    --set output.sample_rate=1000 --set output.section_after=0)
+held='leap={burst=0.1; factor=4; heal=0.05; start=0.2;}'
+t "$work/held-leap" run -q --json --csv '' --hdf5 '' "${rubbing[@]}" --set "$held" "$rub"
+t "$work/held-full" run -q --json --csv '' --hdf5 '' "${rubbing[@]}" --set "$held" --set leap.burst=0 "$rub"
+hl=$work/held-leap/.out
+hf=$work/held-full/.out
+ret_ct=$(grep -oE '"retainer_contact_time":\[[^]]*\]' "$hl" | tr -d '[]' | cut -d: -f2 | tr ',' '\n' | awk '{ s += $1 } END { printf "%.17g", s }')
+near() { awk -v a="$1" -v b="$2" -v r="$3" 'BEGIN { d = a - b; if (d < 0) d = -d; exit !(a != "" && b != "" && d <= r * b) }'; }
+check "held rub, leaps: $(jf "$hl" leaps) leaps, the summary's contact time is the retainers' ($(jf "$hl" contact_time), $ret_ct)" \
+    near "$(jf "$hl" contact_time)" "$ret_ct" 1e-9
+check "held rub, leaps: the stats' time in contact is the retainers' ($(jf "$hl" time_in_contact), $ret_ct)" \
+    near "$(jf "$hl" time_in_contact)" "$ret_ct" 1e-9
+# and a bouncing rub (an unbalance of 0.06 kg m: onsets and events inside the bursts), whose stats
+# count the leaps' shares of onsets and events as the summary does
+t "$work/bounce" run -q --json --csv '' --hdf5 '' "${rubbing[@]}" --set "$held" \
+    --set 'unbalances=({node=1; magnitude=0.06; phase=0.0;})' "$rub"
+hb=$work/bounce/.out
+stats_events=$(grep -oE '"stats":\{[^}]*' "$hb" | grep -oE '"events":[0-9]+' | cut -d: -f2)
+check "bouncing rub, leaps: the stats' onsets and events are the summary's ($(jf "$hb" contact_onsets) $(jf "$hb" contacts), $stats_events $(jf "$hb" events))" \
+    test -n "$stats_events" -a "$(jf "$hb" contact_onsets)" = "$(jf "$hb" contacts)" -a "$stats_events" = "$(jf "$hb" events)"
+check "bouncing rub, leaps: the stats' time in contact is the summary's ($(jf "$hb" time_in_contact), $(jf "$hb" contact_time))" \
+    near "$(jf "$hb" time_in_contact)" "$(jf "$hb" contact_time)" 1e-9
+check "held rub, leaps: the contact time is the integrated run's to 10 % ($(jf "$hl" contact_time), $(jf "$hf" contact_time))" \
+    near "$(jf "$hl" contact_time)" "$(jf "$hf" contact_time)" 0.1
+check "held rub, leaps: the ending is the integrated run's kind ($(jf "$hl" ending); $(jf "$hf" ending))" \
+    test "$(jf "$hl" ending | cut -c1-12)" = '"forward rub' -a "$(jf "$hf" ending | cut -c1-12)" = '"forward rub'
+# one leap has no spread: leap_decel_sd is null (the first leap from 0.6 s is the only one)
+t "$work/one" run -q --json --csv '' --hdf5 '' "${rubbing[@]}" --set end_time=1.0 --set "$held" --set leap.start=0.6 "$rub"
+check "one leap: leap_decel_sd is null ($(jf "$work/one/.out" leaps) leap, sd $(jf "$work/one/.out" leap_decel_sd))" \
+    test "$(jf "$work/one/.out" leaps)" = 1 -a "$(jf "$work/one/.out" leap_decel_sd)" = null
 
 # bad leap keys: a misspelt key in a file (its line), a factor below 1 (the override), a held speed
 mkdir -p "$work/bad"
