@@ -5,7 +5,8 @@ Usage: scipy_reference.py CONTROLLER_PROBE
 
 Each law below is written once, as the commands controller_probe reads (the library builds it
 through the public API) and as polynomials or matrices that scipy.signal works on: freqs/freqz
-for the frequency responses, step/lsim/dstep for the step responses, cont2discrete (bilinear,
+for the frequency responses, a matrix exponential per time (scipy.linalg.expm) and lsim/dstep for
+the step responses, cont2discrete (bilinear,
 zoh) and bilinear at a prewarped rate for the sampled laws, zpk2tf and ss2tf for the other
 forms. It prints the largest relative difference per law and fails above TOL. Frequency
 responses are compared point by point (|G - G_scipy| / |G_scipy|), step responses relative to
@@ -16,7 +17,7 @@ import sys
 import warnings
 
 import numpy as np
-from scipy import signal
+from scipy import linalg, signal
 
 TOL = 1e-11  # relative; what the comparisons reach is printed
 # scipy warns about a numerator whose leading coefficients are zero; here they are on purpose (a
@@ -135,6 +136,21 @@ def rel_step(rows, ref):
     return float(np.max(np.abs(c - ref)) / np.max(np.abs(ref)))
 
 
+def step_reference(ss, t):
+    """The continuous step response of a SISO state space at the times t, each from one matrix
+    exponential (Van Loan): expm([[A, B], [0, 0]] t) holds the integral of e^(A s) B over [0, t] in
+    its last column, so y(t) = C that + D, with no error carried from one time to the next.
+    signal.step propagates from sample to sample instead (lsim), and for the sixth-order chain
+    pid_resonant_lowpass, whose state matrix spans 2 kHz to an undamped 51 Hz pair, what it carries
+    reached 1.1e-11 of the response on one machine's BLAS: scipy's own two answers differed by
+    that much, the one taken here and touchdown's by 1.5e-13."""
+    a, b, c, d = ss
+    n = a.shape[0]
+    m = np.zeros((n + 1, n + 1))
+    m[:n, :n], m[:n, n:] = a, b
+    return np.array([(c @ linalg.expm(m * tk)[:n, n:] + d)[0, 0] for tk in t])
+
+
 def continuous_laws():
     """name -> (commands, (num, den) in s, state space or None (improper: no step response))"""
     return {
@@ -192,8 +208,7 @@ def check_continuous(rows, laws, f, t):
         print(f"{name:36s} continuous  freq {e:.2e}", end="")
         worst = max(worst, e)
         if ss is not None:
-            _, ys = signal.step(signal.StateSpace(*ss), T=t)
-            e = rel_step(rows[("step", name)], ys)
+            e = rel_step(rows[("step", name)], step_reference(ss, t))
             print(f"  step {e:.2e}", end="")
             worst = max(worst, e)
         print()
