@@ -5,6 +5,7 @@
 #include "common/cli.h"
 #include "sweep/sweep_mpi.h"
 
+#include <dlfcn.h>
 #include <string.h>
 
 static const char usage[] =
@@ -40,9 +41,27 @@ static const struct {
     {"bench", td_cmd_bench}, {"sweep", td_cmd_sweep}, {"fmu", td_cmd_fmu},   {"report", td_cmd_report},
 };
 
+/* One run is one thread. A threaded BLAS (OpenBLAS, which SLICOT loads as the system's libblas)
+ * wakes its worker threads for the modal and stability analyses' LAPACK calls, and each worker then
+ * spins on sched_yield for about 0.1 s of CPU before it sleeps: a tax on every run that a sweep pays
+ * once per point and that the other core pays under load. Sweeps run their points in parallel
+ * processes instead. Asked by name, so that another BLAS (none of this symbol) changes nothing. */
+static void blas_on_one_thread(void)
+{
+    void *self = dlopen(NULL, RTLD_LAZY);
+    void (*set_threads)(int);
+    if (!self)
+        return;
+    *(void **)&set_threads = dlsym(self, "openblas_set_num_threads");
+    if (set_threads)
+        set_threads(1);
+    dlclose(self);
+}
+
 int main(int argc, char **argv)
 {
     size_t i;
+    blas_on_one_thread();
     if (argc < 2) {
         fputs(usage, stderr);
         return TD_EXIT_USAGE;
