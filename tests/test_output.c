@@ -11,6 +11,7 @@
 #include "touchdown/modal.h"
 #include "touchdown/modal_output.h"
 #include "touchdown/output.h"
+#include "touchdown/result.h"
 #include "touchdown/version.h"
 
 #include <dirent.h>
@@ -882,6 +883,26 @@ static void test_stale_file_removed(void **state)
 
 static void put_file(const char *path, const char *text);
 
+/* What a reader of a run file learns of its events through the public API: 1 if the file has its
+ * event table, 0 if the run omitted it; in both cases td_result_events must give 0 rows here (no
+ * event was written). */
+static int events_recorded(const char *path)
+{
+    td_result *r = NULL;
+    td_result_event *rows = NULL;
+    size_t n = 1;
+    int has;
+    assert_int_equal(td_result_open(path, &r, NULL), TD_OK);
+    has = td_result_has(r, TD_OUT_EVENTS, NULL);
+    assert_int_equal(td_result_events(r, &rows, &n, NULL), TD_OK);
+    assert_int_equal(n, 0);
+    if (!has)
+        assert_null(rows); /* as documented: no table, no rows */
+    free(rows);
+    td_result_free(&r);
+    return has;
+}
+
 /* output.events = false: no event table at all (an empty one would say "no events, complete" of a run
  * that had them): no CSV events file (a stale one removed, no temporary one left), no /events or
  * /event in HDF5, events refused; a run that fails still marks its samples file incomplete. */
@@ -927,10 +948,19 @@ static void test_omitted_events(void **state)
             assert_int_equal(H5Lexists(h, "event", H5P_DEFAULT), 0);
             assert_int_equal(h5_attr_ll(h, "complete"), 0);
             H5Fclose(h);
+            assert_int_equal(events_recorded(path), 0);
         }
         remove(path);
         remove(events);
     }
+    /* the same file with its events kept and none happening has an event table, empty */
+    l.omit_events = 0;
+    tmp_name(path, sizeof path, "noev-kept.h5");
+    assert_int_equal(td_writer_open(TD_WRITER_HDF5, path, &l, &w, NULL), TD_OK);
+    assert_int_equal(td_writer_sample(w, 0.0, 0.0, xy, ret, amb, NULL), TD_OK);
+    assert_int_equal(td_writer_close(&w, 1, NULL, NULL), TD_OK);
+    assert_int_equal(events_recorded(path), 1);
+    remove(path);
 }
 
 /* One writer of `path` from start to end: its temporary file created (the leftover scan first),

@@ -579,7 +579,9 @@ typedef struct td_result_event {
 
 /**
  * Every row of a run file's /events, malloc'd into *events (the caller frees it with free()), their
- * number in *n: 0 rows (and *events NULL) when the file has no /events.
+ * number in *n: 0 rows (and *events NULL) when the file has no /events. A run that had no event and
+ * one that omitted them (output.events = false: no /events, its summary attributes still count
+ * them) both give 0 rows here; td_result_has(r, TD_OUT_EVENTS, NULL) tells the two apart.
  *
  * Returns TD_OK; TD_ERR_INVALID for a NULL events, n or r, and an /events table that cannot be
  * read (the message names the file). On failure *events is NULL and *n 0.
