@@ -371,10 +371,11 @@ static void test_memory_bounded(void **state)
 }
 
 /* A window closes at the first grid sample at or after its end late in a long run: after a day,
- * 86400 s (an ulp of 1.5e-11 s; 8.64e7 samples at 1 kHz, within TD_MAX_SAMPLES) a window of one sample interval
- * (1 ms) opened at each grid time t0 + k / rate is due at the next, t0 + (k + 1) / rate, whichever
- * way the two sums round, and not at the one it opened at (the rule of run/clock.h, the leap's
- * phases' too: a tolerance of 1e-9 of the window's length alone is below an ulp there). */
+ * 86400 s (an ulp of 1.5e-11 s; 8.64e7 samples at 1 kHz, within TD_MAX_SAMPLES), a window of one
+ * sample interval (1 ms) opened at each of 2000 grid times t0 + k / rate is due at the next,
+ * t0 + (k + 1) / rate, whichever way the two sums round, and not at the one it opened at (the rule
+ * of run/clock.h, the leap's phases' too: a tolerance of 1e-9 of the window's length alone is below
+ * an ulp there). */
 static void test_window_due_late_clock(void **state)
 {
     const double t0 = 86400.0, rate = 1000.0, length = 1.0 / rate;
