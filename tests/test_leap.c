@@ -6,6 +6,7 @@
 
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "run/leap.h"
@@ -192,12 +193,61 @@ static void test_leap_refused(void **state)
     td_case_free(&fixed);
 }
 
+/* The progress calls of a run (progress_interval 0: after every grid sample), their times kept. */
+typedef struct progress_log {
+    long n;
+    double t[4096];
+} progress_log;
+
+static int log_progress(double t, double fraction, long contacts, void *user)
+{
+    progress_log *p = user;
+    (void)fraction;
+    (void)contacts;
+    if (p->n < (long)(sizeof p->t / sizeof p->t[0]))
+        p->t[p->n] = t;
+    p->n++;
+    return 0;
+}
+
+/* The CSV file's `#` lines list the leaps as the HDF5 file does (at, len: its leap_time, leap_length):
+ * "# summary_leaps = N", "# leap_time = t1 t2 ...", "# leap_length = L1 L2 ...". */
+static void csv_leaps(const char *csv, const td_result_array *at, const td_result_array *len, long leaps)
+{
+    char line[8192];
+    int seen = 0;
+    FILE *f = fopen(csv, "r");
+    assert_non_null(f);
+    while (fgets(line, sizeof line, f)) {
+        const td_result_array *want = strncmp(line, "# leap_time = ", 14) == 0     ? at
+                                      : strncmp(line, "# leap_length = ", 16) == 0 ? len
+                                                                                   : NULL;
+        char *p = strchr(line, '=') + 1, *end;
+        size_t k;
+        if (strncmp(line, "# summary_leaps = ", 18) == 0) {
+            assert_int_equal(strtol(line + 18, NULL, 10), leaps);
+            seen++;
+        }
+        for (k = 0; want && k < want->n; k++, p = end) {
+            double v = strtod(p, &end);
+            assert_true(end != p);
+            assert_close(v, want->v[k], 0.0, 0.0); /* the same bits */
+        }
+        seen += want != NULL;
+    }
+    fclose(f);
+    assert_int_equal(seen, 3);
+}
+
 /* Through td_run and the case key: the spin-down with constant torque leapt (bursts of 0.1 s, leaps
  * of 0.8 s after 0.05 s of healing, from 0.1 s; the second would overshoot rest, and is shortened to
  * end at twice the at-rest speed) ends at rest at the first grid sample after the
  * closed form's t* = 0.99 J W0 / T, with the closed form's speed there; the file's series have no
  * row inside a leap (every gap between rows is a sample interval, or a leap), and the summary says
- * how much was leapt. */
+ * how much was leapt; the files list the leaps (each one's start and length, a gap between rows in
+ * order; HDF5 attributes and the CSV's `#` lines alike) and that the run ended at rest. The progress
+ * calls report the run's clock: each the time of a row of the file, in order, after a leap the row it
+ * lands on (the simulation's clock is behind by the time leapt). */
 static void test_run_leap_closed_form(void **state)
 {
     static const char *ov[] = {"unbalances = ()",
@@ -210,21 +260,27 @@ static void test_run_leap_closed_form(void **state)
                                "leap = { burst = 0.1; factor = 8.0; heal = 0.05; start = 0.1; }"};
     td_case *c = td_test_load_case("cases/rub-damped.cfg", ov, 8);
     td_output_options out = *td_case_output_options(c);
-    const char *path = "test_leap_run.h5";
+    const char *path = "test_leap_run.h5", *csv = "test_leap_run.csv";
     const double t_star = 0.99 * SPIN_J * SPIN_W0 / SPIN_T, dt = 1.0e-3;
+    static progress_log calls;
+    td_run_hooks hooks;
     td_run_summary sum;
     td_sim *s = NULL;
     td_result *r = NULL;
-    td_result_array time, speed;
+    td_result_array time, speed, at, len, total;
     td_error err;
     double gaps = 0.0;
-    size_t i;
+    size_t i, j = 0, k;
     (void)state;
+    memset(&hooks, 0, sizeof hooks);
+    hooks.progress = log_progress;
+    hooks.user = &calls;
+    calls.n = 0;
     assert_close(out.leap_burst, 0.1, 0.0, 0.0);
     snprintf(out.hdf5_path, sizeof out.hdf5_path, "%s", path);
-    out.csv_path[0] = '\0';
+    snprintf(out.csv_path, sizeof out.csv_path, "%s", csv);
     assert_int_equal(td_sim_create(td_case_model(c), td_case_sim_options(c), &s, &err), TD_OK);
-    assert_int_equal(td_run(s, td_case_end_time(c), &out, NULL, NULL, &sum, &err), TD_OK);
+    assert_int_equal(td_run(s, td_case_end_time(c), &out, &hooks, NULL, &sum, &err), TD_OK);
     print_message("t* = %.12f s, ended at %.12f s (%ld leaps, %.6g s leapt), speed %.12g rad/s\n", t_star,
                   sum.t_reached, sum.leaps, sum.leapt_time, sum.final_speed);
     assert_int_equal(sum.ended_at_rest, 1);
@@ -234,15 +290,50 @@ static void test_run_leap_closed_form(void **state)
     assert_int_equal(td_result_open(path, &r, &err), TD_OK);
     assert_int_equal(td_result_read(r, TD_OUT_TIME, NULL, &time, &err), TD_OK);
     assert_int_equal(td_result_read(r, TD_OUT_SPEED, NULL, &speed, &err), TD_OK);
+    /* the files list the leaps: each gap between rows that is not a sample interval, in order */
+    assert_int_equal(td_result_read(r, TD_OUT_LEAP_TIME, NULL, &at, &err), TD_OK);
+    assert_int_equal(td_result_read(r, TD_OUT_LEAP_LENGTH, NULL, &len, &err), TD_OK);
+    assert_int_equal(at.n, (size_t)sum.leaps);
+    assert_int_equal(len.n, (size_t)sum.leaps);
     for (i = 1; i < time.n; i++) {
         double gap = time.v[i] - time.v[i - 1];
         assert_close(speed.v[i], SPIN_W0 - SPIN_T * time.v[i] / SPIN_J, 0.0, 1e-6); /* before and after leaps */
-        if (gap > 1.5 * dt)
+        if (gap > 1.5 * dt) {
             gaps += gap; /* a leap, from the row before it to the row it lands on: no rows inside */
-        else
+            assert_true(j < at.n);
+            assert_close(at.v[j], time.v[i - 1], 0.0, 0.0);
+            assert_close(len.v[j], gap, 1e-12, 0.0);
+            j++;
+        } else {
             assert_close(gap, dt, 1e-6, 0.0);
+        }
     }
+    assert_int_equal(j, at.n);
     assert_close(gaps, sum.leapt_time, 1e-9, 0.0);
+    assert_int_equal(td_result_read(r, TD_OUT_SUM_LEAPS, NULL, &total, &err), TD_OK);
+    assert_close(total.v[0], (double)sum.leaps, 0.0, 0.0);
+    td_result_array_free(&total);
+    assert_int_equal(td_result_read(r, TD_OUT_SUM_LEAPT_TIME, NULL, &total, &err), TD_OK);
+    assert_close(total.v[0], sum.leapt_time, 0.0, 0.0);
+    td_result_array_free(&total);
+    /* the run asked to end at rest and did: the files say so, as the JSON's ended_at_rest */
+    assert_int_equal(td_result_read(r, TD_OUT_SUM_ENDED_AT_REST, NULL, &total, &err), TD_OK);
+    assert_close(total.v[0], 1.0, 0.0, 0.0);
+    td_result_array_free(&total);
+    csv_leaps(csv, &at, &len, sum.leaps);
+    /* one progress call after each grid sample the loop takes (no events: every row a grid sample),
+     * but for a leap's start: the leap is made there and the call reports the row it lands on */
+    print_message("%ld progress calls, %zu rows, %ld leaps\n", calls.n, time.n, sum.leaps);
+    assert_int_equal(calls.n, (long)time.n - sum.leaps);
+    for (i = 0, j = 0, k = 0; i < time.n && k < sizeof calls.t / sizeof calls.t[0]; i++) {
+        if (j < at.n && time.v[i] == at.v[j]) {
+            j++;
+            continue;
+        }
+        assert_close(calls.t[k], time.v[i], 0.0, 0.0);
+        k++;
+    }
+    assert_int_equal(k, (size_t)calls.n);
     /* the once-per-revolution section is the run's: it starts at half of end_time = 2 s, 1 s of run
      * time, which the simulation's own clock (behind by the time leapt) never reaches, and its
      * crossings are where the closed form's angle, integrated and leapt alike, passes 2 pi k */
@@ -257,10 +348,14 @@ static void test_run_leap_closed_form(void **state)
     }
     td_result_array_free(&time);
     td_result_array_free(&speed);
+    td_result_array_free(&at);
+    td_result_array_free(&len);
     td_result_free(&r);
     td_sim_free(&s);
     td_case_free(&c);
     remove(path);
+    remove(csv);
+    remove("test_leap_run.events.csv");
 }
 
 /* A leap's length is the one the leap will make: with the energy account on, the speed moves by the
@@ -325,6 +420,11 @@ static void test_leap_bad_input(void **state)
          "leap: a leap needs the speed as a free state (spin.free = true)"},
         {"cases/drop-to-rest.cfg", "leap = { burst = 1.0; factor = 4.0; heal = 0.5; start = 0.01; }",
          "leap.start: 0.01 s is before the last prescribed change, at 0.05 s"},
+        /* a start at or after end_time, which bounds a run that ends at rest too: no leap could happen */
+        {"cases/drop-to-rest.cfg", "leap = { burst = 1.0; factor = 4.0; heal = 0.5; start = 400.0; }",
+         "leap.start: 400 s is not before end_time = 400 s"},
+        {"cases/drop.cfg", "leap = { burst = 0.1; factor = 4.0; heal = 0.1; start = 2.5; }",
+         "leap.start: 2.5 s is not before end_time ="},
         /* the housing's motion runs on the simulation's clock as the schedule does: a shock ending
          * at 50.011 s, the last point of a history, are prescribed changes; a ramp never ends */
         {"cases/drop-to-rest.cfg",
@@ -380,7 +480,7 @@ static void test_run_leap_checked(void **state)
             assert_int_equal(td_model_add_retainer(nine, &at, &err), TD_OK);
     }
     assert_int_equal(td_model_retainer_count(nine), 9);
-    for (i = 0; i < 8; i++) {
+    for (i = 0; i < 9; i++) {
         td_output_options out = *good;
         const td_model *m = i == 5 ? td_case_model(held) : i == 6 ? shocked : i == 7 ? nine : td_case_model(cs);
         const char *want[] = {"leap: must be >= 1 (got 0.5)",
@@ -390,11 +490,12 @@ static void test_run_leap_checked(void **state)
                               "leap: must be a finite time >= 0 s (got nan)",
                               "leap: a leap needs the speed as a free state",
                               "leap: 0.1 s is before the last prescribed change, at 1.1 s",
-                              "leap: a leap handles at most 8 retainers (the model has 9)"};
+                              "leap: a leap handles at most 8 retainers (the model has 9)",
+                              "leap: 1 s is not before end_time = 1 s"};
         td_sim *s = NULL;
         td_run_summary sum;
         out.leap_burst = i == 3 ? 0.5 / out.sample_rate : 0.1, out.leap_factor = i == 0 ? 0.5 : i == 1 ? NAN : 4.0;
-        out.leap_heal = i == 2 ? -1.0 : 0.05, out.leap_start = i == 4 ? NAN : 0.1;
+        out.leap_heal = i == 2 ? -1.0 : 0.05, out.leap_start = i == 4 ? NAN : i == 8 ? 1.0 : 0.1;
         snprintf(out.hdf5_path, sizeof out.hdf5_path, "%s", path);
         out.csv_path[0] = '\0';
         assert_int_equal(td_sim_create(m, td_case_sim_options(cs), &s, &err), TD_OK);

@@ -10,6 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "run/windows.h"
 #include "touchdown/case.h"
 #include "touchdown/result.h"
 #include "touchdown/run.h"
@@ -369,12 +370,42 @@ static void test_memory_bounded(void **state)
     assert_true(long_run <= short_run + 256 * 1024);
 }
 
+/* A window closes at the first grid sample at or after its end late in a long run: after a day,
+ * 86400 s (an ulp of 1.5e-11 s; 8.64e7 samples at 1 kHz, within TD_MAX_SAMPLES), a window of one
+ * sample interval (1 ms) opened at each of 2000 grid times t0 + k / rate is due at the next,
+ * t0 + (k + 1) / rate, whichever way the two sums round, and not at the one it opened at (the rule
+ * of run/clock.h, the leap's phases' too: a tolerance of 1e-9 of the window's length alone is below
+ * an ulp there). */
+static void test_window_due_late_clock(void **state)
+{
+    const double t0 = 86400.0, rate = 1000.0, length = 1.0 / rate;
+    td_case *c = td_test_load_case("cases/rub-damped.cfg", spin_down, 7);
+    td_sim *s = td_test_new_sim(td_case_model(c), c);
+    td_run_windows *w = NULL;
+    td_error err;
+    long k, late = 0;
+    (void)state;
+    assert_int_equal(td_run_windows_create(s, length, t0, &w, &err), TD_OK);
+    for (k = 0; k < 2000; k++) {
+        double t = t0 + (double)k / rate, next = t0 + (double)(k + 1) / rate;
+        td_run_windows_reopen(w, s, t);
+        assert_false(td_run_windows_due(w, t));
+        late += !td_run_windows_due(w, next);
+    }
+    print_message("%ld of 2000 windows not due at their next grid sample\n", late);
+    assert_int_equal(late, 0);
+    td_run_windows_free(&w);
+    td_sim_free(&s);
+    td_case_free(&c);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_end_at_rest_closed_form),        cmocka_unit_test(test_end_at_rest_refused),
         cmocka_unit_test(test_end_at_rest_drive_outruns_drag), cmocka_unit_test(test_window_peak_is_its_own),
         cmocka_unit_test(test_windows_against_series),         cmocka_unit_test(test_memory_bounded),
+        cmocka_unit_test(test_window_due_late_clock),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -963,6 +963,37 @@ static void test_omitted_events(void **state)
     remove(path);
 }
 
+/* The CSV file's companions (the events file, the window file) follow one rule: a stale one from an
+ * earlier run is removed when a writer opens on PATH, whether or not this run writes it. Here
+ * neither is written (output.events = false, no window summaries), so neither may be left. */
+static void test_stale_companions_removed(void **state)
+{
+    td_output_layout l = full_layout();
+    td_retainer_state ret[RETS];
+    td_writer *w = NULL;
+    double xy[2 * NODES] = {0.0}, amb[2 * AMBS] = {0.0};
+    char path[512], events[600], windows[600];
+    (void)state;
+    memset(ret, 0, sizeof ret);
+    l.omit_events = 1;
+    l.window_fields = 0;
+    tmp_name(path, sizeof path, "companions.csv");
+    td_writer_events_path(path, events, sizeof events);
+    td_writer_windows_path(path, windows, sizeof windows);
+    put_file(events, "old events\n# complete\n");
+    put_file(windows, "old windows\n# complete\n");
+    assert_int_equal(td_writer_open(TD_WRITER_CSV, path, &l, &w, NULL), TD_OK);
+    assert_false(exists(events));
+    assert_false(exists(windows));
+    assert_int_equal(td_writer_sample(w, 0.0, 0.0, xy, ret, amb, NULL), TD_OK);
+    assert_int_equal(td_writer_close(&w, 1, NULL, NULL), TD_OK);
+    assert_true(exists(path));
+    assert_false(exists(events));
+    assert_false(exists(windows));
+    assert_int_equal(partials_of(path) + partials_of(events) + partials_of(windows), 0);
+    remove(path);
+}
+
 /* One writer of `path` from start to end: its temporary file created (the leftover scan first),
  * written and renamed to `path` if `commit`, else removed; 0 on success, else 1 with the message
  * in *err. */
@@ -1532,6 +1563,7 @@ int main(void)
         cmocka_unit_test(test_csv_gnuplot),
         cmocka_unit_test(test_open_failure_leaves_nothing),
         cmocka_unit_test(test_stale_file_removed),
+        cmocka_unit_test(test_stale_companions_removed),
         cmocka_unit_test(test_omitted_events),
         cmocka_unit_test(test_concurrent_writers),
         cmocka_unit_test(test_leftovers),

@@ -161,7 +161,9 @@ TD_API int td_writer_events_path(const char *csv_path, char *buf, size_t n);
 /**
  * Check the output paths of `out` before a run, so that nothing is computed that cannot be
  * written and no input is overwritten. TD_ERR_INVALID, naming the path, when:
- *  - two of the outputs (HDF5, CSV, the CSV events file) are the same file;
+ *  - two of the outputs (HDF5, CSV, the CSV events file, the CSV window file) are the same file;
+ *    the CSV's companions are checked whether or not the run writes them (td_output_options
+ *    omit_events, window), as a stale file at either is removed;
  *  - an output is one of the `n_inputs` paths `inputs` (the case file first, then its @include
  *    files: td_case_files);
  *  - an output's name ends in ".partial" (reserved for temporary files);

@@ -396,7 +396,18 @@ typedef enum td_out_id {
     TD_OUT_WIN_PEAK_NORMAL_FORCE, /**< (W, n_ret) N */
     TD_OUT_WIN_FRICTION_WORK,     /**< (W, n_ret) J */
     TD_OUT_WIN_RACE_TEMPERATURE,  /**< (W, n_ret) K above the ambient at the window's end */
-    TD_OUT_ID_COUNT               /**< number of ids; also "several objects" as the parent of an attribute */
+    /* projective leap: the leaps made (a run with a leap group; docs/output-format.md, "Leaps in the files") */
+    TD_OUT_SUM_LEAPS,      /**< leaps made */
+    TD_OUT_SUM_LEAPT_TIME, /**< s of the run leapt, not integrated */
+    TD_OUT_LEAP_TIME,      /**< (leaps) s: each leap's start, the run's time of the row before its gap */
+    TD_OUT_LEAP_LENGTH,    /**< (leaps) s: each leap's length, its gap */
+    /* long runs */
+    TD_OUT_SUM_ENDED_AT_REST, /**< 1, 0, NaN (failed): a run with end_at_rest ended at rest */
+    /* projective leap and long runs: the sweep's columns of them */
+    TD_OUT_SWEEP_LEAPS,         /**< sweep column: leaps made (a table with a point that leaps) */
+    TD_OUT_SWEEP_LEAPT_TIME,    /**< sweep column: s leapt */
+    TD_OUT_SWEEP_ENDED_AT_REST, /**< sweep column: 1, 0, NaN (a table with a point asked to end at rest) */
+    TD_OUT_ID_COUNT             /**< number of ids; also "several objects" as the parent of an attribute */
 } td_out_id;
 
 /** What a name is in the file. */

@@ -37,8 +37,10 @@ extern "C" {
  *  diagram from fewer is said to be suspect (a warning). */
 #define TD_RUN_SECTION_MIN_CROSSINGS 8
 
-/** Progress callback: simulated time t (s), fraction of the run done (0..1), contact onsets so
- *  far, the user pointer. Return 0 to go on, nonzero to stop the run (incomplete, TD_ERR_INTERRUPTED). */
+/** Progress callback: the run's time t (s) at the grid sample just taken (with projective leaps the
+ *  run's clock, the simulation's plus the time leapt: after a leap, the sample it lands on), fraction
+ *  of the run done (0..1), contact onsets so far, the user pointer. Return 0 to go on, nonzero to stop the run
+ * (incomplete, TD_ERR_INTERRUPTED). */
 typedef int (*td_progress_fn)(double t, double fraction, long contacts, void *user);
 
 /** Optional hooks; a NULL td_run_hooks pointer means none. */
@@ -339,14 +341,17 @@ typedef enum td_leap_fault {
     TD_LEAP_BURST = 1,  /**< leap_burst: not finite, negative, or shorter than a sample interval */
     TD_LEAP_FACTOR = 2, /**< leap_factor: not finite, or below 1 */
     TD_LEAP_HEAL = 3,   /**< leap_heal: not finite, or negative */
-    TD_LEAP_START = 4,  /**< leap_start: not finite, negative, or before a prescribed change (td_run_rest_after) */
+    TD_LEAP_START = 4,  /**< leap_start: not finite, negative, not before the run's end, or before a prescribed
+                             change (td_run_rest_after) */
     TD_LEAP_MODEL = 5   /**< the model: a speed that is not a free state, more retainers than a leap handles
                              (TD_LEAP_MAX_RETAINERS), housing motion held for ever (a ramp shock or rotation) */
 } td_leap_fault;
-/** projective leap (td_output_options.leap_*): TD_LEAP_FINE if a run of `m` may leap as `o` asks,
- *  else the option at fault with the reason into `why` (size bytes). The one rule the case reader
- *  (naming the key) and td_run (TD_ERR_INVALID) apply. */
-TD_API td_leap_fault td_run_leap_check(const td_model *m, const td_output_options *o, char *why, size_t size);
+/** projective leap (td_output_options.leap_*): TD_LEAP_FINE if a run of `m` to t_end (s; the case's
+ *  end_time, also when it ends at rest: then its cap) may leap as `o` asks, else the option at fault
+ *  with the reason into `why` (size bytes); a leap_start at or after t_end is refused (no leap could
+ *  happen). The one rule the case reader (naming the key) and td_run (TD_ERR_INVALID) apply. */
+TD_API td_leap_fault td_run_leap_check(const td_model *m, const td_output_options *o, double t_end, char *why,
+                                       size_t size);
 /** 1 if a section of `crossings` (> 0) samples is too short to tell an orbit (fewer than
  *  TD_RUN_SECTION_MIN_CROSSINGS), 0 otherwise (none at all: nothing to tell). The one rule behind
  *  the run's warning and the bifurcation diagram's. */

@@ -42,15 +42,18 @@ static const td_cs_key leap_keys[] = {
      .need = TD_CS_REQUIRED,
      .what = "the time the leaps may begin",
      .range = TD_CR_NONNEGATIVE,
+     .doc_range = ">= 0, < `end_time`",
      .unit = "s",
-     .doc = "no leap before this time: the slow rates must not be read over a transient (a fall)"},
+     .doc = "no leap before this time: the slow rates must not be read over a transient (a fall); refused at or "
+            "after `end_time` (an `end_at_rest` run's cap too): no leap could happen"},
 };
 const td_cs_table td_cs_leap = {"leap", "leap", leap_keys, TD_CS_COUNT(leap_keys), sizeof(td_output_options),
                                 NULL,   NULL};
 
 /* projective leap: the options and the machine (td_run_leap_check, the rule td_run applies too), the
  * fault named at its key, or at the group for the machine's. After every other key (the leap group is
- * read last): the schedule, the speed ramp, the spin, the retainers and the housing are the model's. */
+ * read last): the schedule, the speed ramp, the spin, the retainers and the housing are the model's,
+ * end_time the case's. */
 td_status td_cr_check_leap(td_case_reader *r, const config_setting_t *g, const td_cs_key *k, void *rec)
 {
     static const char *const keys[] = {NULL, "burst", "factor", "heal", "start", NULL};
@@ -58,7 +61,7 @@ td_status td_cr_check_leap(td_case_reader *r, const config_setting_t *g, const t
     char why[320];
     td_leap_fault f;
     (void)rec;
-    if (!s || (f = td_run_leap_check(r->c->model, &r->c->output, why, sizeof why)) == TD_LEAP_FINE)
+    if (!s || (f = td_run_leap_check(r->c->model, &r->c->output, r->c->end_time, why, sizeof why)) == TD_LEAP_FINE)
         return TD_OK;
     at = keys[f] ? config_setting_get_member(s, keys[f]) : NULL;
     return td_cr_fail(r, at ? at : s, NULL, "%s", why);

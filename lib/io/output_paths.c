@@ -168,8 +168,8 @@ td_status td_output_check_paths(const td_output_options *out, const char *const 
         return td_error_set(err, TD_ERR_INVALID, "td_output_check_paths: output path not NUL-terminated");
     if (out->csv_path[0]) {
         events = companion(td_writer_events_path, out->csv_path);
-        windows = out->window > 0.0 ? companion(td_writer_windows_path, out->csv_path) : NULL; /* long runs */
-        if (!events || (out->window > 0.0 && !windows)) {
+        windows = companion(td_writer_windows_path, out->csv_path); /* long runs */
+        if (!events || !windows) {
             free(events);
             free(windows);
             return td_error_set(err, TD_ERR_NOMEM, "out of memory checking the output paths");

@@ -424,6 +424,17 @@ static const td_schema_entry entries[TD_OUT_ID_COUNT] = {
     SERIES(TD_OUT_WIN_FRICTION_WORK, "friction_work", TD_OUT_WINDOWS, F64, "J", "(W, n_ret)", "friction_work_ret%d",
            NULL),
     SERIES(TD_OUT_WIN_RACE_TEMPERATURE, "race_temperature", TD_OUT_WINDOWS, F64, "K", "(W, n_ret)", "Tr_ret%d", NULL),
+    /* projective leap: the leaps made, so that a gap between rows reads as leapt (a run with a leap group) */
+    RUN_ATTR(TD_OUT_SUM_LEAPS, "summary_leaps", I64, ""),
+    RUN_ATTR(TD_OUT_SUM_LEAPT_TIME, "summary_leapt_time", F64, "s"),
+    ATTR(TD_OUT_LEAP_TIME, "leap_time", TD_OUT_ROOT, RUN, F64, "s", "(leaps)"),
+    ATTR(TD_OUT_LEAP_LENGTH, "leap_length", TD_OUT_ROOT, RUN, F64, "s", "(leaps)"),
+    /* long runs: a run with end_at_rest */
+    RUN_ATTR(TD_OUT_SUM_ENDED_AT_REST, "summary_ended_at_rest", F64, ""),
+    /* projective leap and long runs: the sweep's columns (a table with a point asked for them) */
+    COLUMN(TD_OUT_SWEEP_LEAPS, "leaps", F64, "-"),
+    COLUMN(TD_OUT_SWEEP_LEAPT_TIME, "leapt_time", F64, "s"),
+    COLUMN(TD_OUT_SWEEP_ENDED_AT_REST, "ended_at_rest", F64, "-"),
 };
 
 /* The lateral components, each name written once here (td_schema_components). */

@@ -345,7 +345,9 @@ static char *string_copy(const char *s, const char *suffix)
     return p;
 }
 
-/* CSV: the events file's final name. */
+/* CSV: the final names of the files that go with it, the events file and (long runs) the window
+ * file, named whether or not this run writes them: a file at either name is removed when the writer
+ * opens (td_writer_open), so that one left by an earlier run is never read as this run's. */
 static td_status events_path(td_writer *w)
 {
     int n = td_writer_events_path(w->path, NULL, 0);
@@ -353,8 +355,6 @@ static td_status events_path(td_writer *w)
     if (!w->events_path)
         return TD_ERR_NOMEM;
     td_writer_events_path(w->path, w->events_path, (size_t)n + 1);
-    if (!w->window_fields) /* long runs: the window file */
-        return TD_OK;
     n = td_writer_windows_path(w->path, NULL, 0);
     if (!(w->windows_path = malloc((size_t)n + 1)))
         return TD_ERR_NOMEM;
@@ -372,7 +372,7 @@ static td_status create_temps(td_writer *w, td_error *err)
         free(w->tmp_path);
         w->tmp_path = NULL;
     }
-    if (st == TD_OK && w->windows_path && /* long runs */
+    if (st == TD_OK && w->windows_path && w->window_fields && /* long runs: a CSV file's */
         (st = td_io_create_temp(w->windows_path, &w->windows_tmp, &w->windows_fd, &w->windows_lock, err)) != TD_OK) {
         remove(w->tmp_path);
         if (w->events_tmp)

@@ -68,7 +68,7 @@ struct td_writer {
     int housing_body_fields; /**< nonzero: the body's displacement and tilt in /housing too (td_output_layout) */
     /* long runs */
     int window_fields;  /**< nonzero: window summaries too (td_output_layout) */
-    char *windows_path; /**< CSV with window_fields: the window file (td_writer_windows_path), else NULL */
+    char *windows_path; /**< CSV: the window file (td_writer_windows_path); without window_fields only removed */
     char *windows_tmp;  /**< its windows_path + ".XXXXXX.partial" */
     int windows_fd;     /**< as events_fd */
     int windows_lock;   /**< as events_lock */

@@ -113,7 +113,7 @@ static int perpetual_housing(const td_model *m, char *why, size_t size)
     return 0;
 }
 
-td_leap_fault td_run_leap_check(const td_model *m, const td_output_options *o, char *why, size_t size)
+td_leap_fault td_run_leap_check(const td_model *m, const td_output_options *o, double t_end, char *why, size_t size)
 {
     td_spin sp;
     td_leap_fault f;
@@ -144,6 +144,13 @@ td_leap_fault td_run_leap_check(const td_model *m, const td_output_options *o, c
                  "%g s is before the last prescribed change, at %g s (a schedule entry, a speed_ramp point, the end "
                  "of a housing shock, rotation or history): a leap would move it",
                  o->leap_start, last);
+        return TD_LEAP_START;
+    }
+    /* the run's end, on the run's clock as the start is: an end_at_rest run's end_time is its cap,
+     * and a leap may begin only before it (one at or after it never happens) */
+    if (!(o->leap_start < t_end)) {
+        snprintf(why, size, "%g s is not before end_time = %g s: the run ends before a leap may begin", o->leap_start,
+                 t_end);
         return TD_LEAP_START;
     }
     return TD_LEAP_FINE;

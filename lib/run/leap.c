@@ -5,15 +5,13 @@
  */
 #include "run/leap.h"
 
+#include "run/clock.h"
 #include "touchdown/dofs.h"
 #include "touchdown/run.h"
 #include "util/error_internal.h"
 
 #include <math.h>
 #include <string.h>
-
-/* A grid time this close below a phase's end ends it (grid times are t0 + k / rate, rounded). */
-#define LEAP_END_TOLERANCE 1e-9
 
 int td_run_leap_init(td_run_leap *l, const td_output_options *o, double speed0)
 {
@@ -26,11 +24,6 @@ int td_run_leap_init(td_run_leap *l, const td_output_options *o, double speed0)
     l->start = o->leap_start;
     l->speed0 = speed0;
     return 1;
-}
-
-static int ended(double t, double until)
-{
-    return t >= until - LEAP_END_TOLERANCE * fmax(fabs(until), 1.0);
 }
 
 /* 1 if a leap ending at `speed` would end too close to rest: half of it is at rest (td_run_at_rest),
@@ -84,7 +77,7 @@ double td_run_leap_due(td_run_leap *l, const td_sim *sim, double t, double rate,
         l->phase = 1;
         l->until = t + l->heal;
     }
-    if (l->phase == 1 && ended(t, l->until)) {
+    if (l->phase == 1 && td_run_reached(t, l->until)) {
         if (td_sim_leap_read(sim, &l->from, err) != TD_OK)
             return -1.0;
         l->counts = *now;
@@ -92,7 +85,7 @@ double td_run_leap_due(td_run_leap *l, const td_sim *sim, double t, double rate,
         l->until = t + l->burst;
         return 0.0;
     }
-    if (l->phase != 2 || !ended(t, l->until))
+    if (l->phase != 2 || !td_run_reached(t, l->until))
         return 0.0;
     if (td_sim_leap_read(sim, &to, err) != TD_OK || td_sim_leap_rates(&l->from, &to, rate_out, err) != TD_OK)
         return -1.0;

@@ -53,6 +53,8 @@ typedef struct run_state {
     /* projective leap */
     int leaping;      /* the run leaps (td_output_options.leap_burst > 0) */
     td_run_leap leap; /* its state: run time = simulation time + leap.offset */
+    double *made;     /* the leaps made, for the files: 2 per leap, its start (run time) and length */
+    long made_cap;    /* leaps `made` holds */
 } run_state;
 
 /* long runs: what a sample is for; an event's is not written when the events are omitted */
@@ -265,17 +267,35 @@ static long leap_samples(const run_state *r, double t, long k, long n)
     return n;
 }
 
-/* projective leap: at the grid sample at t (index *k), the leap due there if any: the window open
- * closed at t (its row is of integrated motion), the slow state and the run's counters moved on,
- * the grid resumed at the sample the leap lands on, which is taken (the state after the leap). The
+/* projective leap: the leap made from t to t_after kept for the files (write_leaps). */
+static td_status keep_leap(run_state *r, double t, double t_after, td_error *err)
+{
+    long n = r->leap.leaps; /* this one counted */
+    if (n > r->made_cap) {
+        long cap = 2 * n + 16;
+        double *p = realloc(r->made, 2 * (size_t)cap * sizeof *p);
+        if (!p)
+            return td_error_set(err, TD_ERR_NOMEM, "out of memory for the leaps' list");
+        r->made = p;
+        r->made_cap = cap;
+    }
+    r->made[2 * (n - 1)] = t;
+    r->made[2 * (n - 1) + 1] = t_after - t;
+    return TD_OK;
+}
+
+/* projective leap: at the grid sample at *t (index *k), the leap due there if any: the window open
+ * closed at *t (its row is of integrated motion), the slow state and the run's counters moved on,
+ * the grid resumed at the sample the leap lands on, which is taken (the state after the leap), and
+ * *t moved there (the run's clock, which the progress call after the sample reports). The
  * contact clock is brought to t first, so that the burst's ends and the leap count the contact
  * held since the last event; a leap that cannot be made (td_run_leap_feasible) is not: the run
  * integrates on. */
-static td_status leap_at(run_state *r, double t, long *k, td_error *err)
+static td_status leap_at(run_state *r, double *at, long *k, td_error *err)
 {
     td_run_leap_counts now;
     td_sim_leap_state rate;
-    double L, t_after;
+    double L, t_after, t = *at;
     long n;
     td_status st;
     contact_advance(r, t, r->in_contact);
@@ -291,7 +311,8 @@ static td_status leap_at(run_state *r, double t, long *k, td_error *err)
     if (r->windows &&
         (st = td_run_windows_close(r->windows, r->sim, td_recorder_retainers(r->rec), t, r->rec, err)) != TD_OK)
         return st;
-    if ((st = td_run_leap_make(&r->leap, r->sim, t, t_after - t, &rate, &now, err)) != TD_OK)
+    if ((st = td_run_leap_make(&r->leap, r->sim, t, t_after - t, &rate, &now, err)) != TD_OK ||
+        (st = keep_leap(r, t, t_after, err)) != TD_OK)
         return st;
     r->s->events = now.events;
     r->s->contacts = now.contacts;
@@ -303,6 +324,7 @@ static td_status leap_at(run_state *r, double t, long *k, td_error *err)
     r->s->leap_decel_sd = td_run_leap_decel_sd(&r->leap);
     r->mark = t_after; /* the contact state carried over holds from the leap's end */
     *k += n;
+    *at = t_after;
     td_run_windows_reopen(r->windows, r->sim, t_after);
     return take_sample(r, t_after, SAMPLE_GRID, err);
 }
@@ -357,7 +379,7 @@ static td_status loop(run_state *r, td_error *err)
             last = r->stopped = 1;
         if ((st = grid_window(r, target, last, err)) != TD_OK)
             return st;
-        if (r->leaping && !last && (st = leap_at(r, target, &k, err)) != TD_OK) /* projective leap */
+        if (r->leaping && !last && (st = leap_at(r, &target, &k, err)) != TD_OK) /* projective leap */
             return st;
         if (progress(r, target, last))
             return td_error_set(err, TD_ERR_INTERRUPTED, "stopped by the progress callback at t = %.10f s", target);
@@ -658,6 +680,40 @@ static double flag_value(int v)
     return v == 0 || v == 1 ? (double)v : TD_UNDEFINED;
 }
 
+/* projective leap: the leaps in the files, so that a gap between two rows reads as leapt, not
+ * integrated: their count and the time they covered, and each one's start (the run's time of the
+ * row before the gap) and length (the gap), absent when none was made. long runs: whether a run
+ * asked to end at rest did (1, 0, NaN when it failed: td_run_summary_rest_flag, as the JSON's). */
+static td_status write_leaps(td_recorder *rec, const run_state *r, td_error *err)
+{
+    const td_run_summary *s = r->s;
+    int rest = td_run_summary_rest_flag(s);
+    td_status st = TD_OK;
+    long i, n = r->made ? s->leaps : 0;
+    double *at = n > 0 ? malloc(2 * (size_t)n * sizeof *at) : NULL;
+    if (rest != TD_RUN_NOT_APPLICABLE)
+        st = td_recorder_set_double(rec, TD_OUT_SUM_ENDED_AT_REST, flag_value(rest), err);
+    if (st != TD_OK || !s->leap) {
+        free(at);
+        return st;
+    }
+    st = td_recorder_set_long(rec, TD_OUT_SUM_LEAPS, s->leaps, err);
+    if (st == TD_OK)
+        st = td_recorder_set_double(rec, TD_OUT_SUM_LEAPT_TIME, s->leapt_time, err);
+    if (st == TD_OK && n > 0 && !at)
+        st = td_error_set(err, TD_ERR_NOMEM, "out of memory for the leaps' list");
+    for (i = 0; st == TD_OK && i < n; i++) { /* the pairs split into the two lists */
+        at[i] = r->made[2 * i];
+        at[n + i] = r->made[2 * i + 1];
+    }
+    if (st == TD_OK && n > 0)
+        st = td_recorder_set_doubles(rec, TD_OUT_LEAP_TIME, at, (int)n, err);
+    if (st == TD_OK && n > 0)
+        st = td_recorder_set_doubles(rec, TD_OUT_LEAP_LENGTH, at + n, (int)n, err);
+    free(at);
+    return st;
+}
+
 /* The summary and run parameters as attributes of every file. */
 static td_status write_summary(td_recorder *rec, const td_run_summary *s, const char *case_text, td_error *err)
 {
@@ -725,6 +781,17 @@ static td_status write_summary(td_recorder *rec, const td_run_summary *s, const 
     return st;
 }
 
+/* The summary's attributes, then the leaps' (write_leaps), whose list is spent then. */
+static td_status write_run_attributes(td_recorder *rec, run_state *r, const char *case_text, td_error *err)
+{
+    td_status st = write_summary(rec, r->s, case_text, err);
+    if (st == TD_OK)
+        st = write_leaps(rec, r, err);
+    free(r->made);
+    r->made = NULL;
+    return st;
+}
+
 static td_status check_args(const td_sim *sim, double t_end, const td_output_options *out, td_error *err)
 {
     char why[256];
@@ -743,7 +810,7 @@ static td_status check_args(const td_sim *sim, double t_end, const td_output_opt
         return td_error_set(err, TD_ERR_INVALID, "td_run: window: %s", why);
     if (out->end_at_rest && td_run_rest_refused(td_sim_model(sim), why, sizeof why)) /* long runs */
         return td_error_set(err, TD_ERR_INVALID, "td_run: end_at_rest: %s", why);
-    if (td_run_leap_check(td_sim_model(sim), out, why, sizeof why) != TD_LEAP_FINE) /* projective leap */
+    if (td_run_leap_check(td_sim_model(sim), out, t_end, why, sizeof why) != TD_LEAP_FINE) /* projective leap */
         return td_error_set(err, TD_ERR_INVALID, "td_run: leap: %s", why);
     td_sim_options_get(sim, &opt);
     /* the bounds of touchdown/limits.h, also checked (with the key) by the case reader */
@@ -821,7 +888,7 @@ td_status td_run(td_sim *sim, double t_end, const td_output_options *out, const 
     if (st != TD_OK) /* no answers from a run that did not reach its end, in the files either */
         td_run_summary_undefine_answers(summary);
     td_error_clear(&close_err);
-    cst = write_summary(r.rec, summary, case_text, &close_err);
+    cst = write_run_attributes(r.rec, &r, case_text, &close_err);
     if (cst == TD_OK)
         cst = write_retainer_totals(r.rec, sim, st == TD_OK, &close_err);
     if (cst == TD_OK && summary->life_kept)

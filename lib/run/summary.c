@@ -671,10 +671,11 @@ static void json_answers(td_text *b, const td_run_summary *s)
     json_real(b, "ending_whirl_frequency", s->ending_whirl_frequency, 1);
     json_real(b, "ending_window", s->ending_window, 1);
     json_string(b, "regime", td_regime_name(td_run_summary_regime(s)));
-    if (s->ended_at_rest) /* long runs: only a run that asked for it: true when it stopped at rest */
-        td_text_printf(b, "\"ended_at_rest\":true,");
-    else if (s->end_at_rest) /* false when it reached end_time at speed; null when it failed */
-        td_text_printf(b, "\"ended_at_rest\":%s,", s->status == TD_OK ? "false" : "null");
+    if (td_run_summary_rest_flag(s) != TD_RUN_NOT_APPLICABLE) /* long runs: only a run that asked for it */
+        td_text_printf(b, "\"ended_at_rest\":%s,",
+                       td_run_summary_rest_flag(s) == 1   ? "true"
+                       : td_run_summary_rest_flag(s) == 0 ? "false"
+                                                          : "null");
     if (s->leap) { /* projective leap: only a run that asked for it */
         td_text_printf(b, "\"leaps\":%ld,", s->leaps);
         json_real(b, "leapt_time", s->leapt_time, 1);
@@ -706,6 +707,15 @@ static void json_answers(td_text *b, const td_run_summary *s)
         json_real(b, "housing_work", s->energy.housing_work, 1);
     json_real(b, "residual", s->energy.residual, 0);
     td_text_printf(b, "},");
+}
+
+int td_run_summary_rest_flag(const td_run_summary *s)
+{
+    if (s->ended_at_rest) /* true when it stopped at rest */
+        return 1;
+    if (!s->end_at_rest)
+        return TD_RUN_NOT_APPLICABLE;
+    return s->status == TD_OK ? 0 : -1; /* false when it reached end_time at speed; null when it failed */
 }
 
 void td_run_summary_json_members(td_text *b, const td_run_summary *s)

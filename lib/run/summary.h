@@ -18,6 +18,11 @@ void td_run_retainer_classify(td_run_retainer *out, double speed, double span);
  *  largest over the whole run, or describes its end, set TD_UNDEFINED (touchdown/run.h). */
 void td_run_summary_undefine_answers(td_run_summary *s);
 
+/** long runs: whether a run asked to end at rest did: 1 (it stopped at rest), 0 (it reached t_end at
+ *  speed), -1 (undetermined: it failed), TD_RUN_NOT_APPLICABLE (not asked: no end_at_rest). The one
+ *  reading of the JSON's `ended_at_rest` and the files' `summary_ended_at_rest`. */
+int td_run_summary_rest_flag(const td_run_summary *s);
+
 /** td_run_summary_json's object less its closing brace, into `b`: a writer that adds members to it
  *  (td_run_summary_json_spread) closes it. */
 void td_run_summary_json_members(td_text *b, const td_run_summary *s);

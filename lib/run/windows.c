@@ -8,15 +8,13 @@
  */
 #include "run/windows.h"
 
+#include "run/clock.h"
 #include "touchdown/dofs.h"
 #include "touchdown/model.h"
 #include "util/error_internal.h"
 
 #include <stdlib.h>
 #include <string.h>
-
-/* A grid time this close below a window's end closes it (grid times are t0 + k / rate, rounded). */
-#define WINDOW_END_TOLERANCE 1e-9
 
 struct td_run_windows {
     double length, t_begin;
@@ -102,7 +100,7 @@ void td_run_windows_event(td_run_windows *w, const td_event *ev)
 
 int td_run_windows_due(const td_run_windows *w, double t)
 {
-    return w && t >= w->t_begin + w->length - WINDOW_END_TOLERANCE * w->length;
+    return w && td_run_reached(t, w->t_begin + w->length);
 }
 
 td_status td_run_windows_close(td_run_windows *w, td_sim *sim, const td_retainer_state *ret, double t, td_recorder *rec,

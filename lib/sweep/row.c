@@ -1,4 +1,5 @@
 /* A sweep's summary row (touchdown/sweep.h): the quantities a run summary leads with. */
+#include "run/summary.h"
 #include "touchdown/dofs.h"
 #include "touchdown/sweep.h"
 
@@ -48,6 +49,20 @@ static void row_life(td_sweep_row *row, const td_run_summary *s)
     }
 }
 
+/* projective leap and long runs: what the point was asked (its columns), and with `answers` (a
+ * point that reached its end) what it made of it: the leaps, and whether it ended at rest as the
+ * run's JSON and files say (td_run_summary_rest_flag) */
+static void row_leap(td_sweep_row *row, const td_run_summary *s, int answers)
+{
+    row->leap = s->leap;
+    row->end_at_rest = s->end_at_rest;
+    if (!answers)
+        return;
+    row->leaps = s->leaps;
+    row->leapt_time = s->leapt_time;
+    row->ended_at_rest = s->end_at_rest ? td_run_summary_rest_flag(s) : -1;
+}
+
 void td_sweep_row_from_summary(td_sweep_row *row, const td_run_summary *s)
 {
     if (s->status != TD_OK) { /* a failed point has no answers: only how far it got and how long */
@@ -56,6 +71,7 @@ void td_sweep_row_from_summary(td_sweep_row *row, const td_run_summary *s)
         row->wall_time = s->wall_time;
         row_warnings(row, s);
         row->life_kept = s->life_kept; /* life: its column, with no number */
+        row_leap(row, s, 0);           /* its columns, with no number */
         return;
     }
     memset(row, 0, sizeof *row);
@@ -79,6 +95,7 @@ void td_sweep_row_from_summary(td_sweep_row *row, const td_run_summary *s)
     row_section(row, s);
     row_warnings(row, s);
     row_life(row, s);
+    row_leap(row, s, 1);
     /* clearance margin */
     row->min_clearance_margin = s->min_clearance_margin;
     row->contact_happened = s->contact_happened;
@@ -108,4 +125,7 @@ void td_sweep_row_unknown(td_sweep_row *row, td_sweep_state state, const char *s
         row->section_radius[i] = TD_UNDEFINED;
     row->min_clearance_margin = TD_UNDEFINED; /* clearance margin */
     row->contact_happened = -1;
+    row->leaps = -1; /* projective leap and long runs */
+    row->leapt_time = TD_UNDEFINED;
+    row->ended_at_rest = -1;
 }

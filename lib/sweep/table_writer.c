@@ -58,20 +58,43 @@ static const sweep_column columns[] = {
     {TD_OUT_SWEEP_MIN_CLEARANCE_MARGIN, COL_DOUBLE, offsetof(td_sweep_row, min_clearance_margin)},
     {TD_OUT_SWEEP_CONTACT_HAPPENED, COL_INT, offsetof(td_sweep_row, contact_happened)},
     {TD_OUT_SWEEP_SHOCK_OUTCOME, COL_TEXT, offsetof(td_sweep_row, shock_outcome)},
+    /* projective leap and long runs: see shown() */
+    {TD_OUT_SWEEP_LEAPS, COL_LONG, offsetof(td_sweep_row, leaps)},
+    {TD_OUT_SWEEP_LEAPT_TIME, COL_DOUBLE, offsetof(td_sweep_row, leapt_time)},
+    {TD_OUT_SWEEP_ENDED_AT_REST, COL_INT, offsetof(td_sweep_row, ended_at_rest)},
     {TD_OUT_SWEEP_WARNINGS, COL_TEXT, offsetof(td_sweep_row, warnings)},
     {TD_OUT_SWEEP_WALL_TIME, COL_DOUBLE, offsetof(td_sweep_row, wall_time)},
 };
 #define N_COLUMNS ((int)(sizeof columns / sizeof columns[0]))
 
+/* The columns shown only when some row asks for them (asks). */
+static int optional(td_out_id id)
+{
+    return id == TD_OUT_SWEEP_DROPS_TO_FAILURE || id == TD_OUT_SWEEP_LEAPS || id == TD_OUT_SWEEP_LEAPT_TIME ||
+           id == TD_OUT_SWEEP_ENDED_AT_REST;
+}
+
+/* Whether row r asks for the optional column `id`. */
+static int asks(const td_sweep_row *r, td_out_id id)
+{
+    switch (id) {
+    case TD_OUT_SWEEP_DROPS_TO_FAILURE: return r->life_kept;
+    case TD_OUT_SWEEP_ENDED_AT_REST: return r->end_at_rest;
+    default: return r->leap; /* leaps, leapt_time */
+    }
+}
+
 /* Whether column c is in the table: the life's only when some row's bearings have a dynamic rating
- * (td_sweep_row.life_kept), so that a sweep without ratings has the table it always had. */
+ * (td_sweep_row.life_kept), the leaps' when some point leaps and ended_at_rest when some point was
+ * asked to end at rest (td_sweep_row.leap, end_at_rest: as the run's JSON has them), so that a
+ * sweep without them has the table it always had. */
 static int shown(const td_sweep_table *t, int c)
 {
     long p, n = td_sweep_grid_points(t->grid);
-    if (columns[c].id != TD_OUT_SWEEP_DROPS_TO_FAILURE)
+    if (!optional(columns[c].id))
         return 1;
     for (p = 0; p < n; p++)
-        if (t->rows[p].life_kept)
+        if (asks(&t->rows[p], columns[c].id))
             return 1;
     return 0;
 }

@@ -11,14 +11,17 @@
 #     0.088 J);
 #   - leap.burst = 0 turns the leaps off (the summary of a run without the group);
 #   - the windows (CSV and HDF5) and the samples have no row inside a leap: the gaps between them
-#     add up to the time leapt;
+#     add up to the time leapt; the files list the leaps (the CSV's `#` lines: the count, each
+#     leap's start and length, the lengths adding up to the time leapt) and that the run ended at
+#     rest; touchdown plot's data has a blank line (a break in gnuplot's line) at each leap; a
+#     sweep's table has the leaps and the end at rest as the run's JSON has them;
 #   - a rub held through the leaps: the summary's contact time and the stats' time in contact are the
 #     retainers' (the contact held up to a burst's ends and the leaps counted), within 10 % of the run
 #     integrated throughout, and the ending is that run's kind (no leap crosses the ending's stretch);
 #     a bouncing rub's stats count the leaps' onsets and events as the summary does; one leap's
 #     spread of dOmega/dt is null;
 #   - a leap key written wrong (a misspelt key in the file, a factor below 1, a group on a held
-#     speed, a start before a housing shock's end, housing motion held for ever, more retainers than
+#     speed, a start at or after end_time, a start before a housing shock's end, housing motion held for ever, more retainers than
 #     a leap holds) is refused with one line naming the file, the line or the override and the key,
 #     exit 2, and no file.
 # Args: $1 = the touchdown binary, $2 = the source directory.
@@ -78,6 +81,39 @@ check "leap: the windows' gaps (HDF5) add up to the time leapt ($gaps_h5, $leapt
 gaps_s=$(grep -v '^#' "$work/run/l.csv" | awk -F, 'NR > 2 && $1 - p > 0.0015 { g += $1 - p } NR > 1 { p = $1 } END { print g }')
 check "leap: the samples' gaps add up to the time leapt ($gaps_s, $leapt)" \
     awk -v a="$gaps_s" -v b="$leapt" 'BEGIN { d = a - b; exit !(d < 1e-9 && d > -1e-9) }'
+# the files list the leaps: the CSV's count, starts and lengths (`#` lines), the lengths adding up
+# to the time leapt, and the end at rest
+csv_attr() { grep "^# $1 = " "$work/run/l.csv" | cut -d= -f2; }
+check "leap: the CSV lists $leaps leaps ($(csv_attr summary_leaps); $(csv_attr leap_time | wc -w) starts, $(csv_attr leap_length | wc -w) lengths)" \
+    test "$(csv_attr summary_leaps | tr -d ' ')" = "$leaps" -a "$(csv_attr leap_time | wc -w)" = "$leaps" -a \
+    "$(csv_attr leap_length | wc -w)" = "$leaps"
+lengths=$(csv_attr leap_length | tr ' ' '\n' | awk '{ s += $1 } END { printf "%.17g", s }')
+check "leap: the CSV's leap lengths add up to the time leapt ($lengths, $leapt)" \
+    awk -v a="$lengths" -v b="$leapt" 'BEGIN { d = a - b; exit !(d < 1e-9 && d > -1e-9) }'
+check "leap: the CSV says the run ended at rest ($(csv_attr summary_ended_at_rest))" \
+    test "$(csv_attr summary_ended_at_rest | tr -d ' ')" = 1
+check "leap: the HDF5 file lists the leaps too ($(h5dump -a /leap_time "$work/run/l.h5" | grep -c DATASPACE))" \
+    h5dump -a /leap_time -a /leap_length -a /summary_leaps -a /summary_ended_at_rest "$work/run/l.h5"
+# touchdown plot draws no line across a leap: a blank line in its data at each one
+t "$work/plot" plot -q --no-run -d "$work/plot/p" "$work/run/l.h5"
+blanks=$(grep -c '^$' "$work/plot/p/retainer0.dat")
+check "leap: the plot's data breaks its line at each of the $leaps leaps ($blanks blank lines; exit $rc)" \
+    test "$rc" = 0 -a "$blanks" = "$leaps"
+
+# the sweep's table has the leaps and the end at rest as the run's JSON has them: a point of the
+# run above (end_time 2 s) and one that ends at speed before rest (end_time 1 s, after its leaps)
+t "$work/sweep" sweep -j 1 -q "${spin[@]}" --set "$leap" --vary end_time=2,1 -o s "$rub"
+row() { /usr/bin/python3 -c '
+import csv, sys
+rows = list(csv.DictReader(l for l in open(sys.argv[1]) if not l.startswith("#")))
+print(" ".join(rows[int(sys.argv[2])][k] for k in ("leaps [-]", "leapt_time [s]", "ended_at_rest [-]")))' "$work/sweep/s.csv" "$1" 2>&1; }
+check "sweep: the leaps and the end at rest of the run above ($(row 0); the run: $leaps $leapt 1)" \
+    test "$rc" = 0 -a "$(row 0 | cut -d' ' -f1,3)" = "$leaps 1" -a \
+    "$(awk -v a="$(row 0 | cut -d' ' -f2)" -v b="$leapt" 'BEGIN { print (a - b < 1e-12 && b - a < 1e-12) }')" = 1
+check "sweep: a point that reached end_time at speed: ended_at_rest 0 ($(row 1))" \
+    test "$(row 1 | cut -d' ' -f3)" = 0 -a "$(row 1 | cut -d' ' -f1)" -ge 1
+check "sweep: the HDF5 table has the columns ($(h5ls "$work/sweep/s.h5" | grep -cE '^(leaps|leapt_time|ended_at_rest) '))" \
+    test "$(h5ls "$work/sweep/s.h5" | grep -cE '^(leaps|leapt_time|ended_at_rest) ')" = 3
 
 # a rub held through the leaps (rub-damped.cfg's rotor with a 0.12 kg m unbalance, spinning down freely
 # from 90 rad/s on J = 0.05 kg m^2 while it rubs): the summary's contact time counts the contact held
@@ -133,7 +169,13 @@ check "a leap factor below 1: exit 2, one line naming the override and leap.fact
 t "$work/held" run -q --set "$leap" --set 'schedule=()' "$rub" -o h
 check "a leap on a held speed: exit 2, one line naming leap ($(cat "$work/held/.err"))" \
     test "$rc" = 2 -a "$(wc -l <"$work/held/.err")" = 1 -a -n "$(grep -F 'leap: a leap needs the speed as a free state' "$work/held/.err")"
-check "bad leap keys: no file" test -z "$(ls "$work/bad" | grep -v '^rig.cfg$\|^c.cfg$')$(ls "$work/factor")$(ls "$work/held")"
+# a start at or after end_time (drop-to-rest.cfg's 3 s, end_time its cap as it ends at rest): no leap
+# could happen
+line=$(grep -n '^leap' "$src/cases/drop-to-rest.cfg" | cut -d: -f1)
+t "$work/late" run -q --set end_time=3 "$src/cases/drop-to-rest.cfg" -o late
+check "a leap start at end_time: exit 2, one line naming line $line and leap.start ($(cat "$work/late/.err"))" \
+    test "$rc" = 2 -a "$(wc -l <"$work/late/.err")" = 1 -a -n "$(grep -F "drop-to-rest.cfg:$line: leap.start: 3 s is not before end_time = 3 s" "$work/late/.err")"
+check "bad leap keys: no file" test -z "$(ls "$work/bad" | grep -v '^rig.cfg$\|^c.cfg$')$(ls "$work/factor")$(ls "$work/held")$(ls "$work/late")"
 
 # a leap does not move the simulation's clock, on which the housing's motion runs as the schedule
 # does: drop-to-rest.cfg (leaps from 3 s) with a shock ending at 50.011 s is refused at leap.start,

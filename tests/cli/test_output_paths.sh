@@ -74,7 +74,10 @@ for cfg in "$src"/cases/*.cfg; do
     name=$(basename "$cfg" .cfg)
     [ "$name" = rig ] && continue # the machine only, included by the paper cases
     n=$((n + 1))
-    if "$tool" run -q --no-progress --set end_time=0.002 -o "$work/$name" "$cfg" >"$work/$name.log" 2>&1; then
+    # a leap group's start lies after 2 ms, and a start at or after end_time is refused: no leaps
+    cut=()
+    if grep -q '^leap *=' "$cfg"; then cut=(--set leap.burst=0); fi
+    if "$tool" run -q --no-progress --set end_time=0.002 "${cut[@]}" -o "$work/$name" "$cfg" >"$work/$name.log" 2>&1; then
         check_outputs "$name" "$work/$name" 1
     else
         fail "$name: touchdown run failed: $(head -n 2 "$work/$name.log")"

@@ -80,6 +80,9 @@ typedef struct plot_sim {
     double *housing;  /* n x 6: the housing's acceleration x, y [m/s^2] and displacement x, y [m], then a housing
                          body's displacement x, y [m] (0 without one); NULL: the file has no housing fields */
     int housing_body; /* the file has a housing body's displacement (/housing/body_displacement) */
+    /* projective leap */
+    double *leap_time; /* nleap: each leap's start, the time of the row before its gap (leap_time); NULL: none */
+    size_t nleap;
 } plot_sim;
 
 /* A modal file. Arrays absent from the file are NULL with zero counts. */

@@ -295,6 +295,13 @@ static int load_sim(const td_result *r, plot_file *f, const plot_window *win)
         rc = plot_bad_part(f->path, "", TD_OUT_AMB_FORCE, " has the wrong shape");
     if (rc == PLOT_OK)
         rc = keep_samples(r, f, win, &t, a, &amb);
+    if (rc == PLOT_OK && td_result_has(r, TD_OUT_LEAP_TIME, NULL)) { /* projective leap: where the gaps are */
+        td_result_array leaps;
+        if (td_result_read(r, TD_OUT_LEAP_TIME, NULL, &leaps, NULL) != TD_OK)
+            rc = plot_bad_part(f->path, "unreadable ", TD_OUT_LEAP_TIME, " attribute");
+        s->leap_time = leaps.v;
+        s->nleap = leaps.n;
+    }
     td_result_array_free(&t);
     td_result_array_free(&amb);
     for (k = 0; k < 5; k++)
@@ -473,7 +480,8 @@ void plot_file_free(plot_file *f)
     plot_modal *m = &f->modal;
     free(s->t), free(s->x), free(s->y), free(s->r), free(s->fn), free(s->contact), free(s->amb);
     free(s->clearance), free(s->ret_nodes), free(s->amb_nodes), free(s->ev);
-    free(s->housing); /* housing motion */
+    free(s->housing);   /* housing motion */
+    free(s->leap_time); /* projective leap */
     free(m->speed), free(m->freq), free(m->whirl), free(m->mac), free(m->crit_speed), free(m->crit_freq),
         free(m->crit_whirl);
     free(m->mode_freq), free(m->mode_whirl), free(m->mode_zeta), free(m->xr), free(m->xi), free(m->yr), free(m->yi);

@@ -1,0 +1,9 @@
+/* The run's grid clock (clock.h). */
+#include "run/clock.h"
+
+#include <math.h>
+
+int td_run_reached(double t, double end)
+{
+    return t >= end - TD_RUN_REACHED_TOLERANCE * fmax(fabs(end), 1.0);
+}
