@@ -422,7 +422,8 @@ static void test_leap_bad_input(void **state)
          "leap.start: 0.01 s is before the last prescribed change, at 0.05 s"},
         /* a start at or after end_time, which bounds a run that ends at rest too: no leap could happen */
         {"cases/drop-to-rest.cfg", "leap = { burst = 1.0; factor = 4.0; heal = 0.5; start = 400.0; }",
-         "leap.start: 400 s is not before end_time = 400 s"},
+         "leap.start: 400 s is not before end_time = 400 s: the run ends before a leap may begin (leap.burst = 0 runs "
+         "without leaps)"},
         {"cases/drop.cfg", "leap = { burst = 0.1; factor = 4.0; heal = 0.1; start = 2.5; }",
          "leap.start: 2.5 s is not before end_time ="},
         /* the housing's motion runs on the simulation's clock as the schedule does: a shock ending
@@ -483,15 +484,17 @@ static void test_run_leap_checked(void **state)
     for (i = 0; i < 9; i++) {
         td_output_options out = *good;
         const td_model *m = i == 5 ? td_case_model(held) : i == 6 ? shocked : i == 7 ? nine : td_case_model(cs);
-        const char *want[] = {"leap: must be >= 1 (got 0.5)",
-                              "leap: must be >= 1 (got nan)",
-                              "leap: must be a finite time >= 0 s (got -1)",
-                              "s is shorter than the sample interval 1 / output.sample_rate",
-                              "leap: must be a finite time >= 0 s (got nan)",
-                              "leap: a leap needs the speed as a free state",
-                              "leap: 0.1 s is before the last prescribed change, at 1.1 s",
-                              "leap: a leap handles at most 8 retainers (the model has 9)",
-                              "leap: 1 s is not before end_time = 1 s"};
+        const char *want[] = {
+            "leap: must be >= 1 (got 0.5)",
+            "leap: must be >= 1 (got nan)",
+            "leap: must be a finite time >= 0 s (got -1)",
+            "s is shorter than the sample interval 1 / output.sample_rate",
+            "leap: must be a finite time >= 0 s (got nan)",
+            "leap: a leap needs the speed as a free state",
+            "leap: 0.1 s is before the last prescribed change, at 1.1 s",
+            "leap: a leap handles at most 8 retainers (the model has 9)",
+            "leap: 1 s is not before end_time = 1 s: the run ends before a leap may begin (leap.burst = 0 "
+            "runs without leaps)"};
         td_sim *s = NULL;
         td_run_summary sum;
         out.leap_burst = i == 3 ? 0.5 / out.sample_rate : 0.1, out.leap_factor = i == 0 ? 0.5 : i == 1 ? NAN : 4.0;
