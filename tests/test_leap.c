@@ -515,13 +515,67 @@ static void test_run_leap_checked(void **state)
     td_case_free(&held);
 }
 
+/* The number of the summary's warnings that contain `text`. */
+static int warned(const td_run_summary *sum, const char *text)
+{
+    int i, n = 0;
+    for (i = 0; i < sum->warning_count; i++)
+        n += strstr(sum->warnings[i], text) != NULL;
+    return n;
+}
+
+/* A leap group that can make no leap: a leap needs a healing and a burst from leap.start and room for
+ * another of each after it, 0.9 + 2 (0.05 + 0.1) = 1.2 s, past end_time = 1 s. The run completes,
+ * integrated throughout (no leap, no time leapt, the closed form's speed at the end), and says so in a
+ * warning, in the summary and its JSON's `warnings` (the tool prints them on stderr); the same group
+ * from 0.1 s leaps, without that warning. */
+static void test_run_leap_none_warned(void **state)
+{
+    static const char *ov[] = {"unbalances = ()",
+                               "schedule = ()",
+                               "speed = 100.0",
+                               "spin = { free = true; inertia = 0.01; drag_torque = 0.7; drag_viscous = 0.0; }",
+                               "end_time = 1.0",
+                               "output.sample_rate = 1000.0",
+                               "leap = { burst = 0.1; factor = 8.0; heal = 0.05; start = 0.9; }"};
+    const char *text = "the leap group made no leap: the run ended at t = 1 s (end_time 1 s)";
+    td_case *c = td_test_load_case("cases/rub-damped.cfg", ov, 7);
+    td_output_options out = *td_case_output_options(c);
+    td_run_summary sum;
+    td_sim *s = NULL;
+    td_error err;
+    char json[65536];
+    int early;
+    (void)state;
+    out.hdf5_path[0] = out.csv_path[0] = '\0';
+    for (early = 0; early < 2; early++) {
+        out.leap_start = early ? 0.1 : 0.9;
+        assert_int_equal(td_sim_create(td_case_model(c), td_case_sim_options(c), &s, &err), TD_OK);
+        assert_int_equal(td_run(s, td_case_end_time(c), &out, NULL, NULL, &sum, &err), TD_OK);
+        print_message("from %g s: %ld leaps, %d warnings%s%s\n", out.leap_start, sum.leaps, sum.warning_count,
+                      sum.warning_count ? ", the first: " : "", sum.warning_count ? sum.warnings[0] : "");
+        assert_int_equal(sum.leap, 1);
+        assert_true(early ? sum.leaps > 0 : sum.leaps == 0 && sum.leapt_time == 0.0);
+        assert_close(sum.final_speed, SPIN_W0 - SPIN_T * 1.0 / SPIN_J, 0.0, 1e-6);
+        assert_int_equal(warned(&sum, text), !early);
+        assert_int_equal(warned(&sum, "leap.start 0.9 s"), !early);
+        assert_int_equal(warned(&sum, "past 1.2 s"), !early);
+        assert_true(td_run_summary_json(json, sizeof json, &sum) < (int)sizeof json);
+        assert_non_null(strstr(json, "\"warnings\":["));
+        assert_true((strstr(strstr(json, "\"warnings\":["), "the leap group made no leap") != NULL) == !early);
+        td_sim_free(&s);
+    }
+    td_case_free(&c);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_rates_closed_form), cmocka_unit_test(test_leap_closed_form),
-        cmocka_unit_test(test_leap_refused),      cmocka_unit_test(test_run_leap_closed_form),
-        cmocka_unit_test(test_leap_bad_input),    cmocka_unit_test(test_leap_energy_closes),
-        cmocka_unit_test(test_run_leap_checked),  cmocka_unit_test(test_run_leap_shortened_by_energy),
+        cmocka_unit_test(test_rates_closed_form),    cmocka_unit_test(test_leap_closed_form),
+        cmocka_unit_test(test_leap_refused),         cmocka_unit_test(test_run_leap_closed_form),
+        cmocka_unit_test(test_leap_bad_input),       cmocka_unit_test(test_leap_energy_closes),
+        cmocka_unit_test(test_run_leap_checked),     cmocka_unit_test(test_run_leap_shortened_by_energy),
+        cmocka_unit_test(test_run_leap_none_warned),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
