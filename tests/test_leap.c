@@ -524,9 +524,13 @@ static int warned(const td_run_summary *sum, const char *text)
     return n;
 }
 
-/* A leap group that can make no leap: a leap needs a healing and a burst from leap.start and room for
- * another of each after it, 0.9 + 2 (0.05 + 0.1) = 1.2 s, past end_time = 1 s. The run completes,
- * integrated throughout (no leap, no time leapt, the closed form's speed at the end), and says so in a
+/* A leap group that makes no leap, on the free spin-down from 100 rad/s (70 rad/s^2: 30 rad/s at 1 s,
+ * far from rest), healings of 0.05 s and bursts of 0.1 s: a leap is made at the end of a burst that
+ * follows a healing from leap.start, with a healing and a burst left after it before end_time
+ * (run/leap.c). From 0.9 s to end_time 1 s the first burst would end at 1.05 s; from 0.8 s it ends at
+ * 0.95 s but a leap needs end_time past 0.8 + 2 (0.05 + 0.1) = 1.1 s; to 1.1005 s it has room for
+ * half a sample interval, and is refused (a leap is whole sample intervals). Each run completes,
+ * integrated throughout (no time leapt, the closed form's speed at the end), and says why in a
  * warning, in the summary and its JSON's `warnings` (the tool prints them on stderr); the same group
  * from 0.1 s leaps, without that warning. */
 static void test_run_leap_none_warned(void **state)
@@ -538,31 +542,47 @@ static void test_run_leap_none_warned(void **state)
                                "end_time = 1.0",
                                "output.sample_rate = 1000.0",
                                "leap = { burst = 0.1; factor = 8.0; heal = 0.05; start = 0.9; }"};
-    const char *text = "the leap group made no leap: the run ended at t = 1 s (end_time 1 s)";
+    static const struct {
+        double start, end;
+        const char *why; /* NULL: it leaps */
+    } runs[] = {
+        {0.9, 1.0, "the run ended at t = 1 s, before its first burst ended at 1.05 s"},
+        {0.8, 1.0,
+         "end_time 1 s leaves no room after the first burst (ending at 0.95 s) for the healing and the "
+         "burst a leap must end before it: it would need to be past 1.1 s"},
+        {0.8, 1.1005, "each leap due was refused"},
+        {0.1, 1.0, NULL},
+    };
     td_case *c = td_test_load_case("cases/rub-damped.cfg", ov, 7);
     td_output_options out = *td_case_output_options(c);
     td_run_summary sum;
     td_sim *s = NULL;
     td_error err;
     char json[65536];
-    int early;
+    size_t i;
     (void)state;
     out.hdf5_path[0] = out.csv_path[0] = '\0';
-    for (early = 0; early < 2; early++) {
-        out.leap_start = early ? 0.1 : 0.9;
+    for (i = 0; i < sizeof runs / sizeof runs[0]; i++) {
+        int none = runs[i].why != NULL;
+        out.leap_start = runs[i].start;
         assert_int_equal(td_sim_create(td_case_model(c), td_case_sim_options(c), &s, &err), TD_OK);
-        assert_int_equal(td_run(s, td_case_end_time(c), &out, NULL, NULL, &sum, &err), TD_OK);
-        print_message("from %g s: %ld leaps, %d warnings%s%s\n", out.leap_start, sum.leaps, sum.warning_count,
-                      sum.warning_count ? ", the first: " : "", sum.warning_count ? sum.warnings[0] : "");
+        assert_int_equal(td_run(s, runs[i].end, &out, NULL, NULL, &sum, &err), TD_OK);
+        print_message("from %g s to %g s: %ld leaps, %d warnings\n", out.leap_start, runs[i].end, sum.leaps,
+                      sum.warning_count);
         assert_int_equal(sum.leap, 1);
-        assert_true(early ? sum.leaps > 0 : sum.leaps == 0 && sum.leapt_time == 0.0);
-        assert_close(sum.final_speed, SPIN_W0 - SPIN_T * 1.0 / SPIN_J, 0.0, 1e-6);
-        assert_int_equal(warned(&sum, text), !early);
-        assert_int_equal(warned(&sum, "leap.start 0.9 s"), !early);
-        assert_int_equal(warned(&sum, "past 1.2 s"), !early);
+        assert_true(none ? sum.leaps == 0 && sum.leapt_time == 0.0 : sum.leaps > 0);
+        if (none)
+            assert_close(sum.final_speed, SPIN_W0 - SPIN_T * runs[i].end / SPIN_J, 0.0, 1e-6);
+        assert_int_equal(warned(&sum, "the leap group made no leap"), none);
+        if (none) {
+            assert_int_equal(warned(&sum, runs[i].why), 1);
+            assert_int_equal(warned(&sum, "(leap.start 0.8 s, leap.heal 0.05 s, leap.burst 0.1 s)") +
+                                 warned(&sum, "(leap.start 0.9 s, leap.heal 0.05 s, leap.burst 0.1 s)"),
+                             1);
+        }
         assert_true(td_run_summary_json(json, sizeof json, &sum) < (int)sizeof json);
         assert_non_null(strstr(json, "\"warnings\":["));
-        assert_true((strstr(strstr(json, "\"warnings\":["), "the leap group made no leap") != NULL) == !early);
+        assert_true((strstr(strstr(json, "\"warnings\":["), "the leap group made no leap") != NULL) == none);
         td_sim_free(&s);
     }
     td_case_free(&c);

@@ -126,27 +126,32 @@ static void check_rest(td_run_summary *s, const td_model *m)
 
 /* projective leap: a leap group (leap.burst > 0) under which the run, complete, made no leap at all:
  * the case asked for leaps and got a run integrated throughout. A leap is made at the end of a burst
- * that follows a healing from leap.start, and only with room for a healing and a burst after it
- * before end_time (run/leap.c, leap_length), so a run that ends by leap.start + 2 (leap.heal +
- * leap.burst) has none; after that, each leap due was refused (too short, or ending near rest). */
+ * that follows a healing from leap.start (or the run's start, if later), and only with room for a
+ * healing and a burst after it before end_time (run/leap.c, leap_length); past that, each leap due
+ * was refused (shorter than a sample interval, or ending near rest). */
 static void check_leaps(td_run_summary *s, const td_output_options *out)
 {
-    double need;
+    const double from = out->leap_start > s->t_start ? out->leap_start : s->t_start,
+                 first = from + out->leap_heal + out->leap_burst, need = first + out->leap_heal + out->leap_burst;
+    char why[256];
     if (s->status != TD_OK || !s->leap || s->leaps > 0)
         return;
-    need = (out->leap_start > s->t_start ? out->leap_start : s->t_start) + 2.0 * (out->leap_heal + out->leap_burst);
-    if (s->t_reached <= need)
-        warn(s,
-             "the leap group made no leap: the run ended at t = %.6g s (end_time %.6g s), and a leap needs a healing "
-             "and a burst from leap.start %.6g s and room for another of each after it (leap.heal %.6g s, leap.burst "
-             "%.6g s), so the run would need to go past %.6g s; lower leap.start or lengthen end_time",
-             s->t_reached, s->t_end, out->leap_start, out->leap_heal, out->leap_burst, need);
+    if (s->t_reached < first)
+        snprintf(why, sizeof why, "the run ended at t = %.6g s, before its first burst ended at %.6g s", s->t_reached,
+                 first);
+    else if (s->t_end <= need)
+        snprintf(why, sizeof why,
+                 "end_time %.6g s leaves no room after the first burst (ending at %.6g s) for the healing and the "
+                 "burst a leap must end before it: it would need to be past %.6g s",
+                 s->t_end, first, need);
     else
-        warn(s,
-             "the leap group made no leap: from leap.start %.6g s to the end at t = %.6g s each leap due was refused "
-             "(shorter than a sample interval before end_time less a healing and a burst, or ending near rest): the "
-             "run was integrated throughout",
-             out->leap_start, s->t_reached);
+        snprintf(why, sizeof why,
+                 "each leap due was refused (shorter than a sample interval once a healing and a burst before "
+                 "end_time are left, or ending near rest)");
+    warn(s,
+         "the leap group made no leap: %s (leap.start %.6g s, leap.heal %.6g s, leap.burst %.6g s); the run was "
+         "integrated throughout",
+         why, out->leap_start, out->leap_heal, out->leap_burst);
 }
 
 void td_run_check_warnings(td_run_summary *s, const td_model *m, const td_output_options *out)
