@@ -422,7 +422,8 @@ static void test_leap_bad_input(void **state)
          "leap.start: 0.01 s is before the last prescribed change, at 0.05 s"},
         /* a start at or after end_time, which bounds a run that ends at rest too: no leap could happen */
         {"cases/drop-to-rest.cfg", "leap = { burst = 1.0; factor = 4.0; heal = 0.5; start = 400.0; }",
-         "leap.start: 400 s is not before end_time = 400 s"},
+         "leap.start: 400 s is not before end_time = 400 s: the run ends before a leap may begin (leap.burst = 0 runs "
+         "without leaps)"},
         {"cases/drop.cfg", "leap = { burst = 0.1; factor = 4.0; heal = 0.1; start = 2.5; }",
          "leap.start: 2.5 s is not before end_time ="},
         /* the housing's motion runs on the simulation's clock as the schedule does: a shock ending
@@ -483,15 +484,17 @@ static void test_run_leap_checked(void **state)
     for (i = 0; i < 9; i++) {
         td_output_options out = *good;
         const td_model *m = i == 5 ? td_case_model(held) : i == 6 ? shocked : i == 7 ? nine : td_case_model(cs);
-        const char *want[] = {"leap: must be >= 1 (got 0.5)",
-                              "leap: must be >= 1 (got nan)",
-                              "leap: must be a finite time >= 0 s (got -1)",
-                              "s is shorter than the sample interval 1 / output.sample_rate",
-                              "leap: must be a finite time >= 0 s (got nan)",
-                              "leap: a leap needs the speed as a free state",
-                              "leap: 0.1 s is before the last prescribed change, at 1.1 s",
-                              "leap: a leap handles at most 8 retainers (the model has 9)",
-                              "leap: 1 s is not before end_time = 1 s"};
+        const char *want[] = {
+            "leap: must be >= 1 (got 0.5)",
+            "leap: must be >= 1 (got nan)",
+            "leap: must be a finite time >= 0 s (got -1)",
+            "s is shorter than the sample interval 1 / output.sample_rate",
+            "leap: must be a finite time >= 0 s (got nan)",
+            "leap: a leap needs the speed as a free state",
+            "leap: 0.1 s is before the last prescribed change, at 1.1 s",
+            "leap: a leap handles at most 8 retainers (the model has 9)",
+            "leap: 1 s is not before end_time = 1 s: the run ends before a leap may begin (leap.burst = 0 "
+            "runs without leaps)"};
         td_sim *s = NULL;
         td_run_summary sum;
         out.leap_burst = i == 3 ? 0.5 / out.sample_rate : 0.1, out.leap_factor = i == 0 ? 0.5 : i == 1 ? NAN : 4.0;
@@ -512,13 +515,87 @@ static void test_run_leap_checked(void **state)
     td_case_free(&held);
 }
 
+/* The number of the summary's warnings that contain `text`. */
+static int warned(const td_run_summary *sum, const char *text)
+{
+    int i, n = 0;
+    for (i = 0; i < sum->warning_count; i++)
+        n += strstr(sum->warnings[i], text) != NULL;
+    return n;
+}
+
+/* A leap group that makes no leap, on the free spin-down from 100 rad/s (70 rad/s^2: 30 rad/s at 1 s,
+ * far from rest), healings of 0.05 s and bursts of 0.1 s: a leap is made at the end of a burst that
+ * follows a healing from leap.start, with a healing and a burst left after it before end_time
+ * (run/leap.c). From 0.9 s to end_time 1 s the first burst would end at 1.05 s; from 0.8 s it ends at
+ * 0.95 s but a leap needs end_time past 0.8 + 2 (0.05 + 0.1) = 1.1 s; to 1.1005 s it has room for
+ * half a sample interval, and is refused (a leap is whole sample intervals). Each run completes,
+ * integrated throughout (no time leapt, the closed form's speed at the end), and says why in a
+ * warning, in the summary and its JSON's `warnings` (the tool prints them on stderr); the same group
+ * from 0.1 s leaps, without that warning. */
+static void test_run_leap_none_warned(void **state)
+{
+    static const char *ov[] = {"unbalances = ()",
+                               "schedule = ()",
+                               "speed = 100.0",
+                               "spin = { free = true; inertia = 0.01; drag_torque = 0.7; drag_viscous = 0.0; }",
+                               "end_time = 1.0",
+                               "output.sample_rate = 1000.0",
+                               "leap = { burst = 0.1; factor = 8.0; heal = 0.05; start = 0.9; }"};
+    static const struct {
+        double start, end;
+        const char *why; /* NULL: it leaps */
+    } runs[] = {
+        {0.9, 1.0, "the run ended at t = 1 s, before its first burst ended at 1.05 s"},
+        {0.8, 1.0,
+         "end_time 1 s leaves no room after the first burst (ending at 0.95 s) for the healing and the "
+         "burst a leap must end before it: it would need to be past 1.1 s"},
+        {0.8, 1.1005, "each leap due was refused"},
+        {0.1, 1.0, NULL},
+    };
+    td_case *c = td_test_load_case("cases/rub-damped.cfg", ov, 7);
+    td_output_options out = *td_case_output_options(c);
+    td_run_summary sum;
+    td_sim *s = NULL;
+    td_error err;
+    char json[65536];
+    size_t i;
+    (void)state;
+    out.hdf5_path[0] = out.csv_path[0] = '\0';
+    for (i = 0; i < sizeof runs / sizeof runs[0]; i++) {
+        int none = runs[i].why != NULL;
+        out.leap_start = runs[i].start;
+        assert_int_equal(td_sim_create(td_case_model(c), td_case_sim_options(c), &s, &err), TD_OK);
+        assert_int_equal(td_run(s, runs[i].end, &out, NULL, NULL, &sum, &err), TD_OK);
+        print_message("from %g s to %g s: %ld leaps, %d warnings\n", out.leap_start, runs[i].end, sum.leaps,
+                      sum.warning_count);
+        assert_int_equal(sum.leap, 1);
+        assert_true(none ? sum.leaps == 0 && sum.leapt_time == 0.0 : sum.leaps > 0);
+        if (none)
+            assert_close(sum.final_speed, SPIN_W0 - SPIN_T * runs[i].end / SPIN_J, 0.0, 1e-6);
+        assert_int_equal(warned(&sum, "the leap group made no leap"), none);
+        if (none) {
+            assert_int_equal(warned(&sum, runs[i].why), 1);
+            assert_int_equal(warned(&sum, "(leap.start 0.8 s, leap.heal 0.05 s, leap.burst 0.1 s)") +
+                                 warned(&sum, "(leap.start 0.9 s, leap.heal 0.05 s, leap.burst 0.1 s)"),
+                             1);
+        }
+        assert_true(td_run_summary_json(json, sizeof json, &sum) < (int)sizeof json);
+        assert_non_null(strstr(json, "\"warnings\":["));
+        assert_true((strstr(strstr(json, "\"warnings\":["), "the leap group made no leap") != NULL) == none);
+        td_sim_free(&s);
+    }
+    td_case_free(&c);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_rates_closed_form), cmocka_unit_test(test_leap_closed_form),
-        cmocka_unit_test(test_leap_refused),      cmocka_unit_test(test_run_leap_closed_form),
-        cmocka_unit_test(test_leap_bad_input),    cmocka_unit_test(test_leap_energy_closes),
-        cmocka_unit_test(test_run_leap_checked),  cmocka_unit_test(test_run_leap_shortened_by_energy),
+        cmocka_unit_test(test_rates_closed_form),    cmocka_unit_test(test_leap_closed_form),
+        cmocka_unit_test(test_leap_refused),         cmocka_unit_test(test_run_leap_closed_form),
+        cmocka_unit_test(test_leap_bad_input),       cmocka_unit_test(test_leap_energy_closes),
+        cmocka_unit_test(test_run_leap_checked),     cmocka_unit_test(test_run_leap_shortened_by_energy),
+        cmocka_unit_test(test_run_leap_none_warned),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -58,6 +58,89 @@ static void test_end_at_rest_closed_form(void **state)
     td_case_free(&c);
 }
 
+/* The value of the CSV file's `#` line "# NAME = VALUE" (the file's attributes), NAN text read as NaN;
+ * fails the test if the line is absent. */
+static double csv_attribute(const char *csv, const char *name)
+{
+    char line[1024], head[128];
+    double v = 0.0;
+    int seen = 0;
+    FILE *f = fopen(csv, "r");
+    assert_non_null(f);
+    snprintf(head, sizeof head, "# %s = ", name);
+    while (fgets(line, sizeof line, f))
+        if (strncmp(line, head, strlen(head)) == 0) {
+            v = strtod(line + strlen(head), NULL);
+            seen++;
+        }
+    fclose(f);
+    assert_int_equal(seen, 1);
+    return v;
+}
+
+/* The run file's summary_ended_at_rest, from the HDF5 file and the CSV file's `#` line alike. */
+static double files_rest_flag(const char *h5, const char *csv)
+{
+    td_result *r = NULL;
+    td_result_array a;
+    td_error err;
+    double v, c = csv_attribute(csv, "summary_ended_at_rest");
+    assert_int_equal(td_result_open(h5, &r, &err), TD_OK);
+    assert_int_equal(td_result_read(r, TD_OUT_SUM_ENDED_AT_REST, NULL, &a, &err), TD_OK);
+    assert_int_equal(a.n, 1);
+    v = a.v[0];
+    td_result_array_free(&a);
+    td_result_free(&r);
+    assert_true(isnan(v) ? isnan(c) : c == v); /* the two files say the same */
+    return v;
+}
+
+/* A progress callback that stops the run at its first call at or after the time *user: there the
+ * rest test has just ended the run, so it is the run's last call. */
+static int stop_after(double t, double fraction, long contacts, void *user)
+{
+    (void)fraction;
+    (void)contacts;
+    return t >= *(const double *)user;
+}
+
+/* A run that stopped at rest and then failed (its last progress call asked it to stop): it did not
+ * end, complete, at rest: the summary, the JSON and the files say undetermined (false, null, NaN),
+ * as for any failed run, never that it ended at rest next to a status that says it failed. */
+static void test_end_at_rest_then_interrupted(void **state)
+{
+    td_case *c = td_test_load_case("cases/rub-damped.cfg", spin_down, 7);
+    td_output_options out = *td_case_output_options(c);
+    const char *h5 = "test_long_run_stopped.h5", *csv = "test_long_run_stopped.csv";
+    double t_star = 0.99 * SPIN_J * SPIN_W0 / SPIN_T;
+    td_run_hooks hooks;
+    td_run_summary sum;
+    td_sim *s = NULL;
+    td_error err;
+    char json[65536];
+    (void)state;
+    memset(&hooks, 0, sizeof hooks);
+    hooks.progress = stop_after;
+    hooks.user = &t_star;
+    snprintf(out.hdf5_path, sizeof out.hdf5_path, "%s", h5);
+    snprintf(out.csv_path, sizeof out.csv_path, "%s", csv);
+    assert_int_equal(td_sim_create(td_case_model(c), td_case_sim_options(c), &s, &err), TD_OK);
+    assert_int_equal(td_run(s, td_case_end_time(c), &out, &hooks, NULL, &sum, &err), TD_ERR_INTERRUPTED);
+    print_message("%s; t_reached %.12f s (t* %.12f s)\n", err.message, sum.t_reached, t_star);
+    assert_true(td_run_at_rest(SPIN_W0, td_sim_speed(s))); /* it had reached rest: the rest sample was taken */
+    assert_int_equal(sum.complete, 0);
+    assert_int_equal(sum.end_at_rest, 1);
+    assert_int_equal(sum.ended_at_rest, 0);
+    assert_true(td_run_summary_json(json, sizeof json, &sum) < (int)sizeof json);
+    assert_non_null(strstr(json, "\"ended_at_rest\":null"));
+    assert_true(isnan(files_rest_flag(h5, csv)));
+    td_sim_free(&s);
+    td_case_free(&c);
+    remove(h5);
+    remove(csv);
+    remove("test_long_run_stopped.events.csv");
+}
+
 /* The same rotor with a drive of 1.0 N m against the 0.7 N m drag: J dOmega/dt = 0.3 N m, so it
  * speeds up (Omega = 100 + 30 t) and never rests. The run reaches end_time, complete, at the closed
  * form's speed, and its summary says it asked to end at rest and did not, in a warning naming the
@@ -77,14 +160,20 @@ static void test_end_at_rest_drive_outruns_drag(void **state)
     td_run_summary sum;
     td_sim *s = NULL;
     td_error err;
+    const char *h5 = "test_long_run_drive.h5", *csv = "test_long_run_drive.csv";
     int i, named = 0;
     (void)state;
-    out.hdf5_path[0] = out.csv_path[0] = '\0';
+    snprintf(out.hdf5_path, sizeof out.hdf5_path, "%s", h5);
+    snprintf(out.csv_path, sizeof out.csv_path, "%s", csv);
     assert_int_equal(td_sim_create(td_case_model(c), td_case_sim_options(c), &s, &err), TD_OK);
     assert_int_equal(td_run(s, td_case_end_time(c), &out, NULL, NULL, &sum, &err), TD_OK);
     assert_int_equal(sum.complete, 1);
     assert_int_equal(sum.end_at_rest, 1);
     assert_int_equal(sum.ended_at_rest, 0);
+    assert_true(files_rest_flag(h5, csv) == 0.0); /* the files say it too: 0, not NaN */
+    remove(h5);
+    remove(csv);
+    remove("test_long_run_drive.events.csv");
     assert_close(sum.t_reached, 0.5, 0.0, 1e-12);
     assert_close(sum.final_speed, SPIN_W0 + (1.0 - SPIN_T) * 0.5 / SPIN_J, 0.0, 1e-6);
     for (i = 0; i < sum.warning_count; i++)
@@ -399,13 +488,66 @@ static void test_window_due_late_clock(void **state)
     td_case_free(&c);
 }
 
+/* A run that starts late (td_run runs from the simulation's clock, here 10 s) at a high sample rate
+ * (200 MHz: a sample interval of 5e-9 s, 1e10 times below the clock) closes each window of 10
+ * sample intervals on its own grid sample, t0 + 10 (i + 1) / rate, not one or two samples early: the
+ * grid clock's tolerance (run/clock.h) is rounding's, of the times' ulps (1.8e-15 s here), not a part
+ * of the time (1e-9 of 10 s is two sample intervals). The rotor is held still, so the 10 s before
+ * cost little. */
+static void test_windows_late_start(void **state)
+{
+    static const char *still[] = {"unbalances = ()", "schedule = ()"};
+    td_case *c = td_test_load_case("cases/rub-damped.cfg", still, 2);
+    td_output_options out = *td_case_output_options(c);
+    const char *path = "test_long_run_late.h5";
+    const double t0 = 10.0, rate = 2.0e8;
+    td_run_summary sum;
+    td_sim *s = NULL;
+    td_result *r = NULL;
+    td_result_array w0, w1;
+    td_error err;
+    size_t i, off = 0;
+    (void)state;
+    out.sample_rate = rate; /* the case reader bounds the samples over end_time: this run is 2000 */
+    out.window = 10.0 / rate;
+    snprintf(out.hdf5_path, sizeof out.hdf5_path, "%s", path);
+    out.csv_path[0] = '\0';
+    assert_int_equal(td_sim_create(td_case_model(c), td_case_sim_options(c), &s, &err), TD_OK);
+    td_test_step_to(s, t0);
+    assert_true(td_sim_time(s) == t0);
+    assert_int_equal(td_run(s, t0 + 2000.0 / rate, &out, NULL, NULL, &sum, &err), TD_OK);
+    assert_int_equal(td_result_open(path, &r, &err), TD_OK);
+    read_set(r, TD_OUT_WIN_TIME_START, &w0);
+    read_set(r, TD_OUT_WIN_TIME_END, &w1);
+    print_message("%zu windows, the first (%.17g, %.17g]\n", w1.n, w0.v[0], w1.v[0]);
+    assert_int_equal(w1.n, 200);
+    for (i = 0; i < w1.n; i++) {
+        double want = t0 + (double)(10 * (i + 1)) / rate; /* the grid time of its end */
+        off += fabs(w1.v[i] - want) > 0.01 / rate;
+        assert_true(i == 0 ? w0.v[i] == t0 : w0.v[i] == w1.v[i - 1]);
+    }
+    print_message("%zu of %zu windows closed off their grid sample\n", off, w1.n);
+    assert_int_equal(off, 0);
+    td_result_array_free(&w0);
+    td_result_array_free(&w1);
+    td_result_free(&r);
+    td_sim_free(&s);
+    td_case_free(&c);
+    remove(path);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_end_at_rest_closed_form),        cmocka_unit_test(test_end_at_rest_refused),
-        cmocka_unit_test(test_end_at_rest_drive_outruns_drag), cmocka_unit_test(test_window_peak_is_its_own),
-        cmocka_unit_test(test_windows_against_series),         cmocka_unit_test(test_memory_bounded),
+        cmocka_unit_test(test_end_at_rest_closed_form),
+        cmocka_unit_test(test_end_at_rest_refused),
+        cmocka_unit_test(test_end_at_rest_drive_outruns_drag),
+        cmocka_unit_test(test_window_peak_is_its_own),
+        cmocka_unit_test(test_windows_against_series),
+        cmocka_unit_test(test_memory_bounded),
         cmocka_unit_test(test_window_due_late_clock),
+        cmocka_unit_test(test_end_at_rest_then_interrupted),
+        cmocka_unit_test(test_windows_late_start),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -973,9 +973,11 @@ static void test_warnings_overflow(void **state)
     td_model *m = NULL;
     td_run_summary s;
     td_change c = {0};
+    td_output_options out;
     char want[TD_RUN_WARNING_SIZE];
     int i, n;
     (void)state;
+    td_output_options_default(&out);
     for (n = TD_RUN_MAX_WARNINGS; n <= TD_RUN_MAX_WARNINGS + 2; n += 2) {
         assert_int_equal(td_model_create(&m, NULL), TD_OK);
         for (i = 0; i < n; i++) {
@@ -983,7 +985,7 @@ static void test_warnings_overflow(void **state)
             assert_int_equal(td_model_add_change(m, &c, NULL), TD_OK);
         }
         td_run_summary_init(&s, 0.0, 1.0, 0.0);
-        td_run_check_warnings(&s, m);
+        td_run_check_warnings(&s, m, &out);
         assert_int_equal(s.warning_count, TD_RUN_MAX_WARNINGS);
         assert_int_equal(s.warnings_left_out, n > TD_RUN_MAX_WARNINGS ? n - (TD_RUN_MAX_WARNINGS - 1) : 0);
         for (i = 0; i < TD_RUN_MAX_WARNINGS - (s.warnings_left_out > 0); i++) {

@@ -67,7 +67,8 @@ typedef struct td_output_layout {
                               *   (/housing/body_displacement, /housing/body_tilt; models with a housing body). Last */
     /* long runs */
     int window_fields; /**< nonzero: the writer also takes window summaries (td_writer_window): /windows in HDF5, a
-                        *   third CSV file (td_writer_windows_path) */
+                        *   third CSV file (td_writer_windows_path); 0: no window CSV file (a stale one at
+                        *   td_writer_windows_path is still removed) */
     int omit_events;   /**< nonzero: the file has no event table: no /events and /event in HDF5, no CSV events file
                         *   (a stale one at td_writer_events_path is still removed), and td_writer_event is refused.
                         *   Its summary attributes still count the events (output.events = false). Last */

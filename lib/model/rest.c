@@ -149,8 +149,10 @@ td_leap_fault td_run_leap_check(const td_model *m, const td_output_options *o, d
     /* the run's end, on the run's clock as the start is: an end_at_rest run's end_time is its cap,
      * and a leap may begin only before it (one at or after it never happens) */
     if (!(o->leap_start < t_end)) {
-        snprintf(why, size, "%g s is not before end_time = %g s: the run ends before a leap may begin", o->leap_start,
-                 t_end);
+        snprintf(why, size,
+                 "%g s is not before end_time = %g s: the run ends before a leap may begin (leap.burst = 0 runs "
+                 "without leaps)",
+                 o->leap_start, t_end);
         return TD_LEAP_START;
     }
     return TD_LEAP_FINE;

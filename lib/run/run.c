@@ -12,6 +12,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "run/clock.h"
 #include "run/duty.h"
 #include "run/leap.h"
 #include "run/outcome.h"
@@ -267,10 +268,12 @@ static long leap_samples(const run_state *r, double t, long k, long n)
     return n;
 }
 
-/* projective leap: the leap made from t to t_after kept for the files (write_leaps). */
-static td_status keep_leap(run_state *r, double t, double t_after, td_error *err)
+/* projective leap: room in the list of leaps (write_leaps) for one more, made before the leap is, so
+ * that a leap made is always listed: an allocation that fails leaves the simulation where it was. The
+ * list holds two doubles a leap for the whole run (docs/output-format.md, "Leaps in the files"). */
+static td_status reserve_leap(run_state *r, td_error *err)
 {
-    long n = r->leap.leaps; /* this one counted */
+    long n = r->leap.leaps + 1; /* the one about to be made */
     if (n > r->made_cap) {
         long cap = 2 * n + 16;
         double *p = realloc(r->made, 2 * (size_t)cap * sizeof *p);
@@ -279,9 +282,15 @@ static td_status keep_leap(run_state *r, double t, double t_after, td_error *err
         r->made = p;
         r->made_cap = cap;
     }
+    return TD_OK;
+}
+
+/* projective leap: the leap just made from t to t_after kept in the room reserve_leap made for it. */
+static void keep_leap(run_state *r, double t, double t_after)
+{
+    long n = r->leap.leaps; /* this one counted */
     r->made[2 * (n - 1)] = t;
     r->made[2 * (n - 1) + 1] = t_after - t;
-    return TD_OK;
 }
 
 /* projective leap: at the grid sample at *t (index *k), the leap due there if any: the window open
@@ -311,9 +320,10 @@ static td_status leap_at(run_state *r, double *at, long *k, td_error *err)
     if (r->windows &&
         (st = td_run_windows_close(r->windows, r->sim, td_recorder_retainers(r->rec), t, r->rec, err)) != TD_OK)
         return st;
-    if ((st = td_run_leap_make(&r->leap, r->sim, t, t_after - t, &rate, &now, err)) != TD_OK ||
-        (st = keep_leap(r, t, t_after, err)) != TD_OK)
+    if ((st = reserve_leap(r, err)) != TD_OK ||
+        (st = td_run_leap_make(&r->leap, r->sim, t, t_after - t, &rate, &now, err)) != TD_OK)
         return st;
+    keep_leap(r, t, t_after);
     r->s->events = now.events;
     r->s->contacts = now.contacts;
     r->s->contact_time = now.contact_time;
@@ -333,8 +343,6 @@ static td_status leap_at(run_state *r, double *at, long *k, td_error *err)
 static td_status loop(run_state *r, td_error *err)
 {
     const double t0 = r->s->t_start, t_end = r->s->t_end;
-    /* A grid time this close to t_end is t_end (a millionth of a sample interval). */
-    const double tol = 1e-6 / r->rate;
     td_status st;
     long k = 1;
     if ((st = take_sample(r, t0, SAMPLE_GRID, err)) != TD_OK)
@@ -344,7 +352,7 @@ static td_status loop(run_state *r, td_error *err)
         return td_error_set(err, TD_ERR_INTERRUPTED, "stopped by the progress callback at t = %.10f s", t0);
     for (;;) {
         double target = grid_time(t0, r->rate, k), now;
-        int last = target >= t_end - tol;
+        int last = td_run_reached(target, t_end); /* the grid clock's one rule (run/clock.h) */
         if (last)
             target = t_end;
         if (cancelled(r->hooks))
@@ -884,7 +892,7 @@ td_status td_run(td_sim *sim, double t_end, const td_output_options *out, const 
     td_run_windows_free(&r.windows);
     td_sim_section_end(sim);
     summary->status = st;
-    td_run_check_warnings(summary, model);
+    td_run_check_warnings(summary, model, out);
     if (st != TD_OK) /* no answers from a run that did not reach its end, in the files either */
         td_run_summary_undefine_answers(summary);
     td_error_clear(&close_err);
@@ -909,6 +917,7 @@ td_status td_run(td_sim *sim, double t_end, const td_output_options *out, const 
         td_run_summary_undefine_answers(summary);
     summary->status = st;
     summary->complete = st == TD_OK;
+    summary->ended_at_rest = r.stopped && st == TD_OK; /* long runs: "ended, complete" (touchdown/run.h) */
     snprintf(summary->message, sizeof summary->message, "%s", st == TD_OK ? "" : loop_err.message);
     summary->wall_time = td_wall_clock() - wall_start;
     if (st != TD_OK && err) { /* the whole record: the part at fault too (step_failed) */

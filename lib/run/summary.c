@@ -395,7 +395,7 @@ static void format_answers(td_text *b, const td_run_summary *s)
     format_answer(b, "final speed", s->final_speed, "rad/s");
     td_text_printf(b, "ending                      %s (last %.6g s), regime %s\n", s->ending, s->ending_window,
                    td_regime_name(td_run_summary_regime(s)));
-    if (s->ended_at_rest) /* long runs */
+    if (td_run_summary_rest_flag(s) == 1) /* long runs */
         td_text_printf(b, "ended at rest               at %.10f s (end_at_rest; end_time %.6g s)\n", s->t_reached,
                        s->t_end);
     else if (s->end_at_rest && s->status == TD_OK)
@@ -711,11 +711,11 @@ static void json_answers(td_text *b, const td_run_summary *s)
 
 int td_run_summary_rest_flag(const td_run_summary *s)
 {
-    if (s->ended_at_rest) /* true when it stopped at rest */
-        return 1;
     if (!s->end_at_rest)
         return TD_RUN_NOT_APPLICABLE;
-    return s->status == TD_OK ? 0 : -1; /* false when it reached end_time at speed; null when it failed */
+    if (s->status != TD_OK) /* undetermined when it failed, even after a rest sample: a run that stopped at */
+        return -1;          /* rest and then failed (its last progress call, a window, the files) did not end there */
+    return s->ended_at_rest ? 1 : 0; /* true when it stopped at rest, false when it reached end_time at speed */
 }
 
 void td_run_summary_json_members(td_text *b, const td_run_summary *s)

@@ -124,12 +124,43 @@ static void check_rest(td_run_summary *s, const td_model *m)
              s->t_reached, s->final_speed, s->speed);
 }
 
-void td_run_check_warnings(td_run_summary *s, const td_model *m)
+/* projective leap: a leap group (leap.burst > 0) under which the run, complete, made no leap at all:
+ * the case asked for leaps and got a run integrated throughout. A leap is made at the end of a burst
+ * that follows a healing from leap.start (or the run's start, if later), and only with room for a
+ * healing and a burst after it before end_time (run/leap.c, leap_length); past that, each leap due
+ * was refused (shorter than a sample interval, or ending near rest). */
+static void check_leaps(td_run_summary *s, const td_output_options *out)
+{
+    const double from = out->leap_start > s->t_start ? out->leap_start : s->t_start,
+                 first = from + out->leap_heal + out->leap_burst, need = first + out->leap_heal + out->leap_burst;
+    char why[256];
+    if (s->status != TD_OK || !s->leap || s->leaps > 0)
+        return;
+    if (s->t_reached < first)
+        snprintf(why, sizeof why, "the run ended at t = %.6g s, before its first burst ended at %.6g s", s->t_reached,
+                 first);
+    else if (s->t_end <= need)
+        snprintf(why, sizeof why,
+                 "end_time %.6g s leaves no room after the first burst (ending at %.6g s) for the healing and the "
+                 "burst a leap must end before it: it would need to be past %.6g s",
+                 s->t_end, first, need);
+    else
+        snprintf(why, sizeof why,
+                 "each leap due was refused (shorter than a sample interval once a healing and a burst before "
+                 "end_time are left, or ending near rest)");
+    warn(s,
+         "the leap group made no leap: %s (leap.start %.6g s, leap.heal %.6g s, leap.burst %.6g s); the run was "
+         "integrated throughout",
+         why, out->leap_start, out->leap_heal, out->leap_burst);
+}
+
+void td_run_check_warnings(td_run_summary *s, const td_model *m, const td_output_options *out)
 {
     check_amb_capacity(s, m);
     check_schedule(s, m);
     check_clearances(s, m);
     check_section(s);
     check_air_gaps(s, m);
-    check_rest(s, m); /* long runs */
+    check_rest(s, m);    /* long runs */
+    check_leaps(s, out); /* projective leap */
 }

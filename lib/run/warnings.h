@@ -3,10 +3,11 @@
 #ifndef TD_RUN_WARNINGS_H
 #define TD_RUN_WARNINGS_H
 
+#include "touchdown/output.h"
 #include "touchdown/run.h"
 
-/** Append the warnings of a run of model `m` from s->t_start towards s->t_end that ended with
- *  summary `s` (its statistics and section filled) to s->warnings. */
-void td_run_check_warnings(td_run_summary *s, const td_model *m);
+/** Append the warnings of a run of model `m` with output options `out` from s->t_start towards
+ *  s->t_end that ended with summary `s` (its statistics and section filled) to s->warnings. */
+void td_run_check_warnings(td_run_summary *s, const td_model *m, const td_output_options *out);
 
 #endif

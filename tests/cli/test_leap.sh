@@ -174,7 +174,10 @@ check "a leap on a held speed: exit 2, one line naming leap ($(cat "$work/held/.
 line=$(grep -n '^leap' "$src/cases/drop-to-rest.cfg" | cut -d: -f1)
 t "$work/late" run -q --set end_time=3 "$src/cases/drop-to-rest.cfg" -o late
 check "a leap start at end_time: exit 2, one line naming line $line and leap.start ($(cat "$work/late/.err"))" \
-    test "$rc" = 2 -a "$(wc -l <"$work/late/.err")" = 1 -a -n "$(grep -F "drop-to-rest.cfg:$line: leap.start: 3 s is not before end_time = 3 s" "$work/late/.err")"
+    test "$rc" = 2 -a "$(wc -l <"$work/late/.err")" = 1 -a -n "$(grep -F "drop-to-rest.cfg:$line: leap.start: 3 s is not before end_time = 3 s: the run ends before a leap may begin (leap.burst = 0 runs without leaps)" "$work/late/.err")"
+# the advice the refusal gives holds: the same end_time with leap.burst = 0 is a case the tool takes
+t "$work/unleapt" info --set end_time=3 --set leap.burst=0 "$src/cases/drop-to-rest.cfg"
+check "the same end_time with leap.burst = 0: read ($(head -c 300 "$work/unleapt/.err"))" test "$rc" = 0
 check "bad leap keys: no file" test -z "$(ls "$work/bad" | grep -v '^rig.cfg$\|^c.cfg$')$(ls "$work/factor")$(ls "$work/held")$(ls "$work/late")"
 
 # a leap does not move the simulation's clock, on which the housing's motion runs as the schedule
