@@ -53,13 +53,12 @@ static const sweep_column columns[] = {
     {TD_OUT_SWEEP_FINAL_SPEED, COL_DOUBLE, offsetof(td_sweep_row, final_speed)},
     {TD_OUT_SWEEP_PEAK_AMB_LOAD, COL_DOUBLE, offsetof(td_sweep_row, peak_amb_load)},
     {TD_OUT_SWEEP_T_REACHED, COL_DOUBLE, offsetof(td_sweep_row, t_reached)},
-    {TD_OUT_SWEEP_DROPS_TO_FAILURE, COL_DOUBLE,
-     offsetof(td_sweep_row, drops_to_failure)}, /* life: see shown_columns() */
+    {TD_OUT_SWEEP_DROPS_TO_FAILURE, COL_DOUBLE, offsetof(td_sweep_row, drops_to_failure)}, /* life: optional */
     /* clearance margin */
     {TD_OUT_SWEEP_MIN_CLEARANCE_MARGIN, COL_DOUBLE, offsetof(td_sweep_row, min_clearance_margin)},
     {TD_OUT_SWEEP_CONTACT_HAPPENED, COL_INT, offsetof(td_sweep_row, contact_happened)},
     {TD_OUT_SWEEP_SHOCK_OUTCOME, COL_TEXT, offsetof(td_sweep_row, shock_outcome)},
-    /* projective leap and long runs: see shown_columns() */
+    /* projective leap and long runs: optional (shown_columns) */
     {TD_OUT_SWEEP_LEAPS, COL_LONG, offsetof(td_sweep_row, leaps)},
     {TD_OUT_SWEEP_LEAPT_TIME, COL_DOUBLE, offsetof(td_sweep_row, leapt_time)},
     {TD_OUT_SWEEP_ENDED_AT_REST, COL_INT, offsetof(td_sweep_row, ended_at_rest)},
@@ -68,7 +67,7 @@ static const sweep_column columns[] = {
 };
 #define N_COLUMNS ((int)(sizeof columns / sizeof columns[0]))
 
-/* The columns shown only when some row asks for them (asks). */
+/* The columns shown only when some row asks for them (asks; shown_columns). */
 static int optional(td_out_id id)
 {
     return id == TD_OUT_SWEEP_DROPS_TO_FAILURE || id == TD_OUT_SWEEP_LEAPS || id == TD_OUT_SWEEP_LEAPT_TIME ||
