@@ -1239,6 +1239,39 @@ static void test_modal_writers_rename(void **state)
         }
 }
 
+/* td_output_files: the HDF5 file, the CSV file and its two companions, named as the writer names
+ * them (td_writer_events_path, td_writer_windows_path), whole even for the longest CSV path. */
+static void test_output_files(void **state)
+{
+    td_output_file f[TD_OUTPUT_FILES];
+    td_output_options o;
+    size_t len;
+    (void)state;
+    td_output_options_default(&o);
+    snprintf(o.hdf5_path, sizeof o.hdf5_path, "d/r.h5");
+    snprintf(o.csv_path, sizeof o.csv_path, "d/r.csv");
+    assert_int_equal(td_output_files(&o, f), 4);
+    assert_string_equal(f[0].path, "d/r.h5");
+    assert_string_equal(f[1].path, "d/r.csv");
+    assert_string_equal(f[2].path, "d/r.events.csv");
+    assert_string_equal(f[3].path, "d/r.windows.csv");
+    assert_string_equal(f[3].what, "CSV window output");
+    o.hdf5_path[0] = '\0';
+    memset(o.csv_path, 'a', sizeof o.csv_path - 1); /* the longest path, without ".csv" */
+    o.csv_path[sizeof o.csv_path - 1] = '\0';
+    assert_int_equal(td_output_files(&o, f), 3);
+    len = strlen(o.csv_path);
+    assert_true(strlen(f[0].path) == len && !strncmp(f[1].path, o.csv_path, len) &&
+                !strncmp(f[2].path, o.csv_path, len));
+    assert_string_equal(f[1].path + len, ".events.csv");
+    assert_string_equal(f[2].path + len, ".windows.csv");
+    o.csv_path[0] = '\0';
+    assert_int_equal(td_output_files(&o, f), 0);
+    assert_int_equal(td_output_files(NULL, f), -1);
+    memset(o.hdf5_path, 'a', sizeof o.hdf5_path); /* not NUL-terminated */
+    assert_int_equal(td_output_files(&o, f), -1);
+}
+
 /* td_output_check_paths against independently built collisions: the same file by name, by hard
  * link, through the events file; an input recorded by td_case_load (td_case_files: the case
  * and its @include file); reserved names; non-regular outputs; missing directories. */
@@ -1571,6 +1604,7 @@ int main(void)
         cmocka_unit_test(test_modal_writers_rename),
         cmocka_unit_test(test_modal_path_checks),
         cmocka_unit_test(test_output_path_checks),
+        cmocka_unit_test(test_output_files),
         cmocka_unit_test(test_attribute_names),
         cmocka_unit_test(test_events_path),
         cmocka_unit_test(test_hdf5_dimension_scales),

@@ -12,8 +12,9 @@
  * "penalty", the second with half the force and a small penetration) and an incomplete file.
  *
  * Files go to $TD_PLOT_FIXTURE_DIR if set, else to the build directory's tests/ folder:
- * plot-fixture-constraint.h5, plot-fixture-penalty.h5, plot-fixture-incomplete.h5, and
- * plot-fixture-foreign.h5 (an HDF5 file that is not a touchdown result).
+ * plot-fixture-constraint.h5, plot-fixture-penalty.h5, plot-fixture-incomplete.h5,
+ * plot-fixture-leap.h5 (two leaps, see write_leaps) and plot-fixture-foreign.h5 (an HDF5 file that
+ * is not a touchdown result).
  */
 #include "td_test.h"
 
@@ -218,6 +219,44 @@ static void check_layout(const char *path, long samples)
     H5Fclose(f);
 }
 
+/* projective leap: the whirl of the constraint variant (free radius 0.3 mm, no contact) with two
+ * leaps, as a run that leaps writes them: rows every 1/RATE from 0 to 0.05 s, where an event's
+ * row and the grid's row share the time (the event at the grid's instant), the first leap's start;
+ * a gap to 0.25 s; rows to 0.3 s, the second leap's start (a grid row alone); a gap to 0.45 s; rows
+ * to 0.5 s. The root attributes leap_time and leap_length list the two (docs/output-format.md,
+ * "Leaps in the files"). */
+static void write_leaps(void)
+{
+    static const double starts[2] = {0.05, 0.3}, lengths[2] = {0.2, 0.15};
+    static const variant v = {"plot-fixture-leap.h5", "constraint", 1.0, 0.0, 0.5, 1};
+    const double clearance[2] = {CLEARANCE, CLEARANCE};
+    td_output_layout layout;
+    td_writer *w = NULL;
+    long k, n = (long)floor(v.t_stop * RATE + 0.5);
+    memset(&layout, 0, sizeof layout);
+    layout.retainer_count = 2;
+    layout.amb_count = 2;
+    assert_int_equal(td_writer_open(TD_WRITER_HDF5, fixture_path(v.name), &layout, &w, NULL), TD_OK);
+    for (k = 0; k <= n; k++) {
+        double t = (double)k / RATE, amb[4] = {0.0, 0.0, 0.0, 0.0};
+        td_retainer_state ret[2];
+        if ((t > starts[0] && t < starts[0] + lengths[0]) || (t > starts[1] && t < starts[1] + lengths[1]))
+            continue; /* leapt: no row */
+        retainer_at(t, 1.0, &v, &ret[0]);
+        retainer_at(t, 0.4, &v, &ret[1]);
+        if (t == starts[0]) { /* the event's row, then the grid's at the same time */
+            assert_int_equal(td_writer_sample(w, t, 0.0, NULL, ret, amb, NULL), TD_OK);
+            write_event(w, TD_EVENT_SCHEDULE, t, -1, 0.0);
+        }
+        assert_int_equal(td_writer_sample(w, t, 0.0, NULL, ret, amb, NULL), TD_OK);
+    }
+    assert_int_equal(td_writer_set_string(w, "case_text", "description = \"Plot fixture: two leaps\";\n", NULL), TD_OK);
+    assert_int_equal(td_writer_set_doubles(w, "retainer_clearance", clearance, 2, NULL), TD_OK);
+    assert_int_equal(td_writer_set_doubles(w, "leap_time", starts, 2, NULL), TD_OK);
+    assert_int_equal(td_writer_set_doubles(w, "leap_length", lengths, 2, NULL), TD_OK);
+    assert_int_equal(td_writer_close(&w, 1, NULL, NULL), TD_OK);
+}
+
 /* An HDF5 file that is not a touchdown result (for the "not a touchdown file" error). */
 static void write_foreign(void)
 {
@@ -247,6 +286,7 @@ static void test_write_fixtures(void **state)
     for (i = 0; i < 3; i++)
         write_variant(&variants[i]);
     check_layout(fixture_path(variants[0].name), samples);
+    write_leaps();
     write_foreign();
 }
 

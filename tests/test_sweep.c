@@ -467,7 +467,7 @@ static void test_csv_table(void **state)
 
 static double read_double(hid_t f, const char *name, int i)
 {
-    double v[3];
+    double v[8]; /* the tables here have at most 8 points */
     hid_t d = H5Dopen2(f, name, H5P_DEFAULT);
     assert_true(d >= 0);
     assert_true(H5Dread(d, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, v) >= 0);
@@ -511,6 +511,64 @@ static void test_hdf5_table(void **state)
     H5Fclose(f);
     remove(path);
     assert_int_equal(access(path, F_OK), -1);
+    td_sweep_grid_free(&g);
+}
+
+/* The leaps' columns of four points: one that leapt (3 leaps, 0.75 s), one that was not asked to
+ * leap (no leap group, or leap.burst = 0: td_run_summary.leap 0, its leaps and leapt_time zero as
+ * the run leaves them), and two that failed, asked to leap and not. Only the first has numbers: a
+ * point not asked has no leaps as its run's JSON has none (NaN, never 0, which is "asked, and every
+ * leap refused"), a failed point no answers. */
+static void test_leap_columns(void **state)
+{
+    const char *specs[] = {"speed=1,2,3,4"};
+    td_sweep_grid *g = grid_of(specs, 1);
+    td_sweep_row rows[4];
+    td_sweep_table t = {NULL, NULL, "", NULL, 0, 1, NULL};
+    td_run_summary s;
+    char *text, *at;
+    hid_t f;
+    int p;
+    (void)state;
+    memset(&s, 0, sizeof s);
+    s.status = TD_OK;
+    s.stats.peak_amb = -1;
+    s.leap = 1;
+    s.leaps = 3;
+    s.leapt_time = 0.75;
+    td_sweep_row_from_summary(&rows[0], &s);
+    s.leap = 0;
+    s.leaps = 0;
+    s.leapt_time = 0.0;
+    td_sweep_row_from_summary(&rows[1], &s);
+    s.status = TD_ERR_SOLVER;
+    td_sweep_row_from_summary(&rows[3], &s);
+    s.leap = 1;
+    td_sweep_row_from_summary(&rows[2], &s);
+    t.grid = g;
+    t.rows = rows;
+    assert_int_equal(td_sweep_write_csv("sweep-leap.csv", &t, NULL), TD_OK);
+    text = td_test_read_file("sweep-leap.csv");
+    assert_non_null(strstr(text, ",leaps [-],leapt_time [s],warnings,wall_time [s]\n"));
+    assert_null(strstr(text, "ended_at_rest")); /* no point was asked to end at rest */
+    for (p = 0; p < 4; p++) { /* each line ends "LEAPS,LEAPT_TIME,WARNINGS,WALL_TIME": no warnings, 0 s */
+        char line[8];
+        const char *want = p == 0 ? ",3,0.75,,0\n" : ",nan,nan,,0\n";
+        snprintf(line, sizeof line, "\n%d,", p);
+        assert_non_null(at = strstr(text, line));
+        at = strchr(at + 1, '\n') + 1;
+        assert_true(strncmp(at - strlen(want), want, strlen(want)) == 0);
+    }
+    free(text);
+    remove("sweep-leap.csv");
+    assert_int_equal(td_sweep_write_hdf5("sweep-leap.h5", &t, NULL), TD_OK);
+    f = H5Fopen("sweep-leap.h5", H5F_ACC_RDONLY, H5P_DEFAULT);
+    assert_true(f >= 0);
+    assert_true(read_double(f, "leaps", 0) == 3.0 && read_double(f, "leapt_time", 0) == 0.75);
+    for (p = 1; p < 4; p++)
+        assert_true(td_is_undefined(read_double(f, "leaps", p)) && td_is_undefined(read_double(f, "leapt_time", p)));
+    H5Fclose(f);
+    remove("sweep-leap.h5");
     td_sweep_grid_free(&g);
 }
 
@@ -578,6 +636,7 @@ int main(void)
         cmocka_unit_test(test_case_group_errors),
         cmocka_unit_test(test_case_group_none),
         cmocka_unit_test(test_zipped_table),
+        cmocka_unit_test(test_leap_columns),
         cmocka_unit_test(test_bad_spec_control_chars), /* found by fuzz/fuzz_vary.c */
     };
     return cmocka_run_group_tests(tests, NULL, NULL);

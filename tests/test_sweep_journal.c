@@ -2,16 +2,17 @@
  * The sweep journal (tools/sweep/sweep_journal.c, the tool's) against what a crash or a bad disk leaves
  * behind: a zero-filled tail, a last record of garbage that says "done", a record cut short, text
  * fields without their terminating zero, a damaged record with whole records after it, a
- * journal of the previous format, and files shorter than a header. Each journal is written by the journal's own writer
- * and then has its bytes changed; what it must read back is what was written, never more: the rows of the whole
- * records, every text field ending in bounds, a torn tail dropped (its point runs again) and damage in the middle
- * refused.
+ * journal of the previous format, one of another build (its row layout), and files shorter than a header. Each journal
+ * is written by the journal's own writer and then has its bytes changed; what it must read back is what was written,
+ * never more: the rows of the whole records, every text field ending in bounds, a torn tail dropped (its point runs
+ * again) and damage in the middle refused.
  */
 #include "td_test.h"
 
 #include "common/cli.h"
 #include "sweep/sweep_journal.h"
 
+#include <fcntl.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -248,6 +249,58 @@ static void test_previous_format(void **state)
     remove(journal_path);
 }
 
+/* What f printed on stderr (malloc'ed), *rc what it returned. */
+static char *stderr_of(int (*f)(td_sweep_row *, long *), td_sweep_row *rows, long *found, int *rc)
+{
+    const char *path = "sweep_journal_test.err";
+    int saved, fd;
+    char *text;
+    fflush(stderr);
+    saved = dup(STDERR_FILENO);
+    fd = open(path, O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    assert_true(saved >= 0 && fd >= 0);
+    dup2(fd, STDERR_FILENO);
+    close(fd);
+    *rc = f(rows, found);
+    fflush(stderr);
+    dup2(saved, STDERR_FILENO);
+    close(saved);
+    text = td_test_read_file(path);
+    remove(path);
+    return text;
+}
+
+/* A journal of another build (a different row layout: its header's row size, bytes 16 to 23,
+ * changed and nothing else, so that the fingerprint still matches) is refused for that, by the
+ * reader and the writer, and the line says so rather than "another sweep". */
+static void test_other_build(void **state)
+{
+    td_sweep_row rows[POINTS];
+    sweep_journal *j = NULL;
+    long n, found;
+    unsigned char *head;
+    uint64_t size;
+    char *text;
+    int rc;
+    (void)state;
+    write_journal();
+    head = bytes_of(16, 8, &n);
+    memcpy(&size, head, sizeof size);
+    free(head);
+    assert_true(size == sizeof(td_sweep_row)); /* the field is where the layout says */
+    size += 8;
+    put_bytes(16, &size, sizeof size);
+    text = stderr_of(read_back, rows, &found, &rc);
+    assert_int_equal(rc, TD_EXIT_USAGE);
+    assert_non_null(strstr(text, "sweep_journal_test.journal is a sweep journal written by another build of "
+                                 "touchdown (its row layout differs)"));
+    assert_null(strstr(text, "another sweep"));
+    free(text);
+    assert_int_equal(sweep_journal_open(journal_path, FP, POINTS, &j), TD_EXIT_USAGE);
+    assert_null(j);
+    remove(journal_path);
+}
+
 /* A file shorter than the header: the first 20 bytes of the journal's own header (a crash while
  * the header was written) are no journal, started afresh; 10 bytes of text are not a journal,
  * refused by the reader and the writer and left as they were. */
@@ -289,6 +342,7 @@ int main(void)
         cmocka_unit_test(test_garbage_last_record), cmocka_unit_test(test_unterminated_text),
         cmocka_unit_test(test_torn_record_cut),     cmocka_unit_test(test_damage_in_the_middle),
         cmocka_unit_test(test_previous_format),     cmocka_unit_test(test_short_file),
+        cmocka_unit_test(test_other_build),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

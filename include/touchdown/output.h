@@ -176,6 +176,25 @@ TD_API int td_writer_events_path(const char *csv_path, char *buf, size_t n);
 TD_API td_status td_output_check_paths(const td_output_options *out, const char *const *inputs, int n_inputs,
                                        td_error *err);
 
+/** The most files one run's output options name (td_output_files). */
+#define TD_OUTPUT_FILES 4
+
+/** A file a run writes, or removes when stale, and what it is. */
+typedef struct td_output_file {
+    char path[TD_OUTPUT_PATH_SIZE + 16]; /**< room for a CSV path and its longest companion's suffix */
+    const char *what;                    /**< "HDF5 output", "CSV output", "CSV events output", "CSV window output" */
+} td_output_file;
+
+/**
+ * The files of a run with the output options `out`, the one list td_output_check_paths checks: the
+ * HDF5 file, and with a CSV path the CSV file and its companions, the events file
+ * (td_writer_events_path) and the window file (td_writer_windows_path), whether or not the run
+ * writes them (a stale one is removed). Empty paths are skipped. For a caller whose own files must
+ * not be a run's (a sweep's table and its points' files). Returns their count (at most
+ * TD_OUTPUT_FILES), or -1 when `out` is NULL or a path is not NUL-terminated within its array.
+ */
+TD_API int td_output_files(const td_output_options *out, td_output_file files[TD_OUTPUT_FILES]);
+
 /**
  * 1 if the paths a and b name one file by the rule of td_output_check_paths (equal device and
  * inode when both exist; when neither exists, the same base name in the same directory), else 0

@@ -164,10 +164,11 @@ typedef struct td_sweep_row {
                                  point */
     /* projective leap and long runs (td_run_summary.leap, leaps, leapt_time, end_at_rest, ended_at_rest) */
     int leap;          /**< 1: the point was asked to leap: the table has leaps and leapt_time */
-    long leaps;        /**< leaps made (-1: unknown) */
-    double leapt_time; /**< s of the run leapt, not integrated (TD_UNDEFINED: unknown) */
+    long leaps;        /**< leaps made (-1: not asked to leap, or unknown) */
+    double leapt_time; /**< s of the run leapt, not integrated (TD_UNDEFINED: not asked to leap, or unknown) */
     int end_at_rest;   /**< 1: the point was asked to end at rest: the table has ended_at_rest */
-    int ended_at_rest; /**< 1: it ended at rest, 0: it reached end_time at speed, -1: undetermined (failed) */
+    int ended_at_rest; /**< 1: it ended at rest, 0: it reached end_time at speed, -1: not asked, or undetermined
+                            (failed) */
 } td_sweep_row;
 
 /** The row of a point whose run ended with summary `s` (state DONE if s->status is TD_OK, else

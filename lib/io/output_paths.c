@@ -15,6 +15,7 @@
 #include "util/error_internal.h"
 
 #include <errno.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
@@ -145,54 +146,46 @@ static td_status check_all(const char *const *outs, const char *const *whats, in
     return st;
 }
 
-/* A CSV file that goes with csv_path (td_writer_events_path, td_writer_windows_path), allocated; NULL
- * when out of memory. */
-static char *companion(int (*path)(const char *, char *, size_t), const char *csv_path)
+/* The file at `path` into files[n], `what` it is; returns n + 1. */
+static int add_file(td_output_file *files, int n, const char *path, const char *what)
 {
-    int len = path(csv_path, NULL, 0);
-    char *p = malloc((size_t)len + 1);
-    if (p)
-        path(csv_path, p, (size_t)len + 1);
-    return p;
+    snprintf(files[n].path, sizeof files[n].path, "%s", path);
+    files[n].what = what;
+    return n + 1;
+}
+
+int td_output_files(const td_output_options *out, td_output_file files[TD_OUTPUT_FILES])
+{
+    int n = 0;
+    if (!out || !files || !memchr(out->hdf5_path, '\0', sizeof out->hdf5_path) ||
+        !memchr(out->csv_path, '\0', sizeof out->csv_path))
+        return -1;
+    if (out->hdf5_path[0])
+        n = add_file(files, n, out->hdf5_path, "HDF5 output");
+    if (out->csv_path[0]) { /* the companions fit: the path is shorter than TD_OUTPUT_PATH_SIZE */
+        n = add_file(files, n, out->csv_path, "CSV output");
+        td_writer_events_path(out->csv_path, files[n].path, sizeof files[n].path);
+        files[n++].what = "CSV events output";
+        td_writer_windows_path(out->csv_path, files[n].path, sizeof files[n].path); /* long runs */
+        files[n++].what = "CSV window output";
+    }
+    return n;
 }
 
 td_status td_output_check_paths(const td_output_options *out, const char *const *inputs, int n_inputs, td_error *err)
 {
-    const char *outs[4], *whats[4];
-    char *events = NULL, *windows = NULL;
-    int n_out = 0;
-    td_status st;
+    td_output_file files[TD_OUTPUT_FILES];
+    const char *outs[TD_OUTPUT_FILES], *whats[TD_OUTPUT_FILES];
+    int i, n_out;
     if (!out || n_inputs < 0 || (n_inputs > 0 && !inputs))
         return td_error_set(err, TD_ERR_INVALID, "td_output_check_paths: NULL argument");
-    if (!memchr(out->hdf5_path, '\0', sizeof out->hdf5_path) || !memchr(out->csv_path, '\0', sizeof out->csv_path))
+    if ((n_out = td_output_files(out, files)) < 0)
         return td_error_set(err, TD_ERR_INVALID, "td_output_check_paths: output path not NUL-terminated");
-    if (out->csv_path[0]) {
-        events = companion(td_writer_events_path, out->csv_path);
-        windows = companion(td_writer_windows_path, out->csv_path); /* long runs */
-        if (!events || !windows) {
-            free(events);
-            free(windows);
-            return td_error_set(err, TD_ERR_NOMEM, "out of memory checking the output paths");
-        }
+    for (i = 0; i < n_out; i++) {
+        outs[i] = files[i].path;
+        whats[i] = files[i].what;
     }
-    if (out->hdf5_path[0]) {
-        outs[n_out] = out->hdf5_path;
-        whats[n_out++] = "HDF5 output";
-    }
-    if (events) {
-        outs[n_out] = out->csv_path;
-        whats[n_out++] = "CSV output";
-        outs[n_out] = events;
-        whats[n_out++] = "CSV events output";
-    }
-    if (windows) { /* long runs */
-        outs[n_out] = windows;
-        whats[n_out++] = "CSV window output";
-    }
-    st = check_all(outs, whats, n_out, inputs, n_inputs, err);
-    free(events);
-    free(windows);
-    return st;
+    return check_all(outs, whats, n_out, inputs, n_inputs, err);
 }
 
 int td_output_same_file(const char *a, const char *b)

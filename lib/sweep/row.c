@@ -51,16 +51,16 @@ static void row_life(td_sweep_row *row, const td_run_summary *s)
 
 /* projective leap and long runs: what the point was asked (its columns), and with `answers` (a
  * point that reached its end) what it made of it: the leaps, and whether it ended at rest as the
- * run's JSON and files say (td_run_summary_rest_flag) */
+ * run's JSON and files say (td_run_summary_rest_flag). A point not asked has none of them, as its
+ * JSON has no member: undefined (-1 and TD_UNDEFINED, NaN in the table), never 0 leaps, which
+ * would read as a point asked to leap whose every leap was refused. */
 static void row_leap(td_sweep_row *row, const td_run_summary *s, int answers)
 {
     row->leap = s->leap;
     row->end_at_rest = s->end_at_rest;
-    if (!answers)
-        return;
-    row->leaps = s->leaps;
-    row->leapt_time = s->leapt_time;
-    row->ended_at_rest = s->end_at_rest ? td_run_summary_rest_flag(s) : -1;
+    row->leaps = answers && s->leap ? s->leaps : -1;
+    row->leapt_time = answers && s->leap ? s->leapt_time : TD_UNDEFINED;
+    row->ended_at_rest = answers && s->end_at_rest ? td_run_summary_rest_flag(s) : -1;
 }
 
 void td_sweep_row_from_summary(td_sweep_row *row, const td_run_summary *s)

@@ -53,12 +53,12 @@ static const sweep_column columns[] = {
     {TD_OUT_SWEEP_FINAL_SPEED, COL_DOUBLE, offsetof(td_sweep_row, final_speed)},
     {TD_OUT_SWEEP_PEAK_AMB_LOAD, COL_DOUBLE, offsetof(td_sweep_row, peak_amb_load)},
     {TD_OUT_SWEEP_T_REACHED, COL_DOUBLE, offsetof(td_sweep_row, t_reached)},
-    {TD_OUT_SWEEP_DROPS_TO_FAILURE, COL_DOUBLE, offsetof(td_sweep_row, drops_to_failure)}, /* life: see shown() */
+    {TD_OUT_SWEEP_DROPS_TO_FAILURE, COL_DOUBLE, offsetof(td_sweep_row, drops_to_failure)}, /* life: optional */
     /* clearance margin */
     {TD_OUT_SWEEP_MIN_CLEARANCE_MARGIN, COL_DOUBLE, offsetof(td_sweep_row, min_clearance_margin)},
     {TD_OUT_SWEEP_CONTACT_HAPPENED, COL_INT, offsetof(td_sweep_row, contact_happened)},
     {TD_OUT_SWEEP_SHOCK_OUTCOME, COL_TEXT, offsetof(td_sweep_row, shock_outcome)},
-    /* projective leap and long runs: see shown() */
+    /* projective leap and long runs: optional (shown_columns) */
     {TD_OUT_SWEEP_LEAPS, COL_LONG, offsetof(td_sweep_row, leaps)},
     {TD_OUT_SWEEP_LEAPT_TIME, COL_DOUBLE, offsetof(td_sweep_row, leapt_time)},
     {TD_OUT_SWEEP_ENDED_AT_REST, COL_INT, offsetof(td_sweep_row, ended_at_rest)},
@@ -67,7 +67,7 @@ static const sweep_column columns[] = {
 };
 #define N_COLUMNS ((int)(sizeof columns / sizeof columns[0]))
 
-/* The columns shown only when some row asks for them (asks). */
+/* The columns shown only when some row asks for them (asks; shown_columns). */
 static int optional(td_out_id id)
 {
     return id == TD_OUT_SWEEP_DROPS_TO_FAILURE || id == TD_OUT_SWEEP_LEAPS || id == TD_OUT_SWEEP_LEAPT_TIME ||
@@ -84,19 +84,21 @@ static int asks(const td_sweep_row *r, td_out_id id)
     }
 }
 
-/* Whether column c is in the table: the life's only when some row's bearings have a dynamic rating
- * (td_sweep_row.life_kept), the leaps' when some point leaps and ended_at_rest when some point was
- * asked to end at rest (td_sweep_row.leap, end_at_rest: as the run's JSON has them), so that a
- * sweep without them has the table it always had. */
-static int shown(const td_sweep_table *t, int c)
+/* Which columns are in the table (shown[c]): every column but the optional ones, the life's only
+ * when some row's bearings have a dynamic rating (td_sweep_row.life_kept), the leaps' when some
+ * point leaps and ended_at_rest when some point was asked to end at rest (td_sweep_row.leap,
+ * end_at_rest: as the run's JSON has them), so that a sweep without them has the table it always
+ * had. Found once per table and handed to the writers: a scan of the rows per optional column,
+ * O(points), where asking it per cell cost O(points^2) for a table of 100,000 points. */
+static void shown_columns(const td_sweep_table *t, int shown[N_COLUMNS])
 {
     long p, n = td_sweep_grid_points(t->grid);
-    if (!optional(columns[c].id))
-        return 1;
-    for (p = 0; p < n; p++)
-        if (asks(&t->rows[p], columns[c].id))
-            return 1;
-    return 0;
+    int c;
+    for (c = 0; c < N_COLUMNS; c++) {
+        shown[c] = !optional(columns[c].id);
+        for (p = 0; !shown[c] && p < n; p++)
+            shown[c] = asks(&t->rows[p], columns[c].id);
+    }
 }
 
 static const char *col_text(const td_sweep_row *r, int c)
@@ -146,7 +148,7 @@ static void csv_text(FILE *f, const char *s)
     fputc('"', f);
 }
 
-static void csv_header(FILE *f, const td_sweep_table *t)
+static void csv_header(FILE *f, const td_sweep_table *t, const int *shown)
 {
     const td_sweep_grid *g = t->grid;
     int a, c;
@@ -156,13 +158,13 @@ static void csv_header(FILE *f, const td_sweep_table *t)
         csv_text(f, td_sweep_grid_key(g, a));
     }
     for (c = 0; c < N_COLUMNS; c++)
-        if (shown(t, c))
+        if (shown[c])
             fprintf(f, td_out_units(columns[c].id)[0] ? ",%s [%s]" : ",%s", td_out_name(columns[c].id),
                     td_out_units(columns[c].id));
     fputc('\n', f);
 }
 
-static void csv_row(FILE *f, const td_sweep_table *t, long point, const td_sweep_row *r)
+static void csv_row(FILE *f, const td_sweep_table *t, const int *shown, long point, const td_sweep_row *r)
 {
     const td_sweep_grid *g = t->grid;
     int a, c;
@@ -172,7 +174,7 @@ static void csv_row(FILE *f, const td_sweep_table *t, long point, const td_sweep
         csv_text(f, td_sweep_grid_value(g, point, a));
     }
     for (c = 0; c < N_COLUMNS; c++) {
-        if (!shown(t, c))
+        if (!shown[c])
             continue;
         fputc(',', f);
         if (columns[c].kind == COL_TEXT)
@@ -237,9 +239,11 @@ static void csv_attributes(FILE *f, const td_sweep_table *t)
 static void csv_write_all(FILE *f, const td_sweep_table *t)
 {
     long p, n = td_sweep_grid_points(t->grid);
-    csv_header(f, t);
+    int shown[N_COLUMNS];
+    shown_columns(t, shown);
+    csv_header(f, t, shown);
     for (p = 0; p < n; p++)
-        csv_row(f, t, p, &t->rows[p]);
+        csv_row(f, t, shown, p, &t->rows[p]);
     csv_attributes(f, t);
 }
 
@@ -346,12 +350,14 @@ static int h5_columns(hid_t file, const td_sweep_table *t)
     double *num = malloc((size_t)n * sizeof *num);
     const char *names[N_COLUMNS + TD_SWEEP_MAX_KEYS + 2];
     char vary_names[TD_SWEEP_MAX_KEYS][TD_SWEEP_KEY_SIZE + 8];
+    int shown[N_COLUMNS];
     int c, a, m = 0,
               ok = text && num &&
                    td_h5_index(file, td_out_name(TD_OUT_SWEEP_POINT), (int)n, td_out_units(TD_OUT_SWEEP_POINT)) &&
                    h5_axes(file, t, n, text, num);
+    shown_columns(t, shown);
     for (c = 0; ok && c < N_COLUMNS; c++)
-        if (shown(t, c)) {
+        if (shown[c]) {
             ok = h5_quantity(file, t, c, n, text, num);
             names[m++] = td_out_name(columns[c].id);
         }

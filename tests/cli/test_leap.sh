@@ -13,8 +13,9 @@
 #   - the windows (CSV and HDF5) and the samples have no row inside a leap: the gaps between them
 #     add up to the time leapt; the files list the leaps (the CSV's `#` lines: the count, each
 #     leap's start and length, the lengths adding up to the time leapt) and that the run ended at
-#     rest; touchdown plot's data has a blank line (a break in gnuplot's line) at each leap; a
-#     sweep's table has the leaps and the end at rest as the run's JSON has them;
+#     rest; touchdown plot's data, and touchdown report's, has a blank line (a break in gnuplot's
+#     line) at each leap; a sweep's table has the leaps and the end at rest as the run's JSON has
+#     them (a point that does not leap: none, NaN);
 #   - a rub held through the leaps: the summary's contact time and the stats' time in contact are the
 #     retainers' (the contact held up to a burst's ends and the leaps counted), within 10 % of the run
 #     integrated throughout, and the ending is that run's kind (no leap crosses the ending's stretch);
@@ -99,10 +100,20 @@ t "$work/plot" plot -q --no-run -d "$work/plot/p" "$work/run/l.h5"
 blanks=$(grep -c '^$' "$work/plot/p/retainer0.dat")
 check "leap: the plot's data breaks its line at each of the $leaps leaps ($blanks blank lines; exit $rc)" \
     test "$rc" = 0 -a "$blanks" = "$leaps"
+# and so does touchdown report's figure: its data, copied by a "gnuplot" that then fails (no gnuplot
+# needed: the report gives up, exit 1, and leaves nothing), has a blank line at each leap
+mkdir -p "$work/report"
+printf '#!/bin/sh\ncp report.dat "%s/report/report.dat"\nexit 1\n' "$work" >"$work/report/gnuplot"
+chmod +x "$work/report/gnuplot"
+(cd "$work/report" && TOUCHDOWN_GNUPLOT="$work/report/gnuplot" "$tool" report -o r "$work/run/l.h5" >/dev/null 2>&1)
+blanks=$(grep -c '^$' "$work/report/report.dat")
+check "leap: the report's figure breaks its lines at each of the $leaps leaps ($blanks blank lines)" \
+    test "$blanks" = "$leaps" -a "$(grep -vc '^#' "$work/report/report.dat")" -gt "$leaps"
 
 # the sweep's table has the leaps and the end at rest as the run's JSON has them: a point of the
-# run above (end_time 2 s) and one that ends at speed before rest (end_time 1 s, after its leaps)
-t "$work/sweep" sweep -j 1 -q "${spin[@]}" --set "$leap" --vary end_time=2,1 -o s "$rub"
+# run above (end_time 2 s), one that ends at speed before rest (end_time 1 s, after its leaps) and
+# one with leap.burst = 0, which does not leap: no leaps (NaN, as its JSON has no member), not 0
+t "$work/sweep" sweep -j 1 -q "${spin[@]}" --set "$leap" --vary end_time=2,1,1 --with leap.burst=0.1,0.1,0 -o s "$rub"
 row() { /usr/bin/python3 -c '
 import csv, sys
 rows = list(csv.DictReader(l for l in open(sys.argv[1]) if not l.startswith("#")))
@@ -112,6 +123,8 @@ check "sweep: the leaps and the end at rest of the run above ($(row 0); the run:
     "$(awk -v a="$(row 0 | cut -d' ' -f2)" -v b="$leapt" 'BEGIN { print (a - b < 1e-12 && b - a < 1e-12) }')" = 1
 check "sweep: a point that reached end_time at speed: ended_at_rest 0 ($(row 1))" \
     test "$(row 1 | cut -d' ' -f3)" = 0 -a "$(row 1 | cut -d' ' -f1)" -ge 1
+check "sweep: a point with leap.burst = 0: leaps and leapt_time nan, ended_at_rest 0 ($(row 2))" \
+    test "$(row 2)" = "nan nan 0"
 check "sweep: the HDF5 table has the columns ($(h5ls "$work/sweep/s.h5" | grep -cE '^(leaps|leapt_time|ended_at_rest) '))" \
     test "$(h5ls "$work/sweep/s.h5" | grep -cE '^(leaps|leapt_time|ended_at_rest) ')" = 3
 

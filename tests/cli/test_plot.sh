@@ -144,6 +144,31 @@ else
     fail "plot of an incomplete file: $(cat err.txt)"
 fi
 
+# ---- projective leap: no line across a leap, and no break anywhere else -----------------------
+# plot-fixture-leap.h5 (tests/test_plot_fixture.c, write_leaps): leaps from 0.05 s (where an
+# event's row and the grid's share the time) to 0.25 s and from 0.3 s to 0.45 s. The data files
+# break their line (a blank line) between each leap's start and the row it lands on, and only
+# there: not between the two rows at 0.05 s. touchdown report's data (report.dat, kept by a
+# gnuplot that copies it before it draws) breaks at the same places, by the same rule.
+# BEFORE AFTER pairs around each blank line of a data file: "0.05>0.25 0.3>0.45"
+breaks() { awk '/^#/ { next } /^$/ { b = 1; next } { if (b) printf "%s%s>%s", n++ ? " " : "", p, $1; b = 0; p = $1 }' "$1"; }
+if "$tool" plot -q --no-run -d leap plot-fixture-leap.h5 2>err.txt; then
+    for f in retainer0 retainer1 ambs; do
+        test "$(breaks leap/$f.dat)" = "0.05>0.25 0.3>0.45" && pass "leaps: $f.dat breaks at the two leaps only" ||
+            fail "leaps: $f.dat breaks at '$(breaks leap/$f.dat)', not '0.05>0.25 0.3>0.45'"
+    done
+else
+    fail "plot of a file with leaps: $(cat err.txt)"
+fi
+printf '#!/bin/sh\ncp report.dat "%s/report-leap.dat" && exec gnuplot "$@"\n' "$work" >keep-gnuplot
+chmod +x keep-gnuplot
+if TOUCHDOWN_GNUPLOT="$work/keep-gnuplot" "$tool" report -o leap-report plot-fixture-leap.h5 >/dev/null 2>err.txt; then
+    test "$(breaks report-leap.dat)" = "0.05>0.25 0.3>0.45" && pass "leaps: the report's data breaks at the two leaps only" ||
+        fail "leaps: the report's data breaks at '$(breaks report-leap.dat)', not '0.05>0.25 0.3>0.45'"
+else
+    fail "report of a file with leaps: $(cat err.txt)"
+fi
+
 # ---- several files: overlays with the file names as legend --------------------------------
 if "$tool" plot -q -d cmp plot-fixture-constraint.h5 plot-fixture-penalty.h5 2>err.txt; then
     expect_pngs cmp compare-r0 compare-r1 plot-fixture-constraint-orbit-r0 plot-fixture-penalty-radial-force-r0

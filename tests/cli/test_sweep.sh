@@ -6,7 +6,7 @@
 # table that looks finished; a sweep killed half way (SIGKILL) and run again resumes from its
 # journal and writes the table of an uninterrupted run (a zero-filled tail of the journal, what a
 # crash leaves, is dropped with a notice), and a journal of another sweep or a file that is not a
-# journal is refused.
+# journal is refused, one of another build (its row layout) as such.
 # Args: $1 = the touchdown binary, $2 = the source directory. Runs in the build's tests directory.
 set -u
 tool=$1
@@ -175,6 +175,7 @@ jsize=$(stat -c %s "$work/res/r.journal" 2>/dev/null || echo 0)
 check "resume: the killed sweep left its journal ($jsize bytes) and no table" \
     test "$jsize" -gt 32 -a ! -e "$work/res/r.csv"
 cp "$work/res/r.journal" "$work/res/other.journal" # a journal of this sweep, for (g) below
+cp "$work/res/r.journal" "$work/res/build.journal" # and one of another build, for (g)
 # what a crash of the machine leaves after the last record: blocks of zeros (several records' worth)
 head -c 9000 /dev/zero >>"$work/res/r.journal"
 (cd "$work/res" && "$tool" sweep --json -j 2 "${rgrid[@]}" -o r "$case_r" >"$work/res/r2.json" 2>"$work/res/r2.err")
@@ -196,6 +197,16 @@ t "$work/res/o" sweep -q -j 1 --set end_time=0.29 --vary speed=60:150:20 --vary 
     -o ../other "$case_r"
 check "resume: a journal of another sweep is refused, exit 2, one line ($(head -c 200 "$work/res/o/.err"))" \
     test "$rc" = 2 -a "$(wc -l <"$work/res/o/.err")" = 1 -a -n "$(grep 'journal of another sweep' "$work/res/o/.err")"
+# a journal of another build: its header's row size (bytes 16-23, little-endian) one row longer
+/usr/bin/python3 -c '
+import struct, sys
+with open(sys.argv[1], "r+b") as f:
+    f.seek(16); size, = struct.unpack("<Q", f.read(8)); f.seek(16); f.write(struct.pack("<Q", size + 8))' \
+    "$work/res/build.journal"
+t "$work/res/b" sweep -q -j 1 "${rgrid[@]}" -o ../build "$case_r"
+check "resume: a journal of another build is refused as such, exit 2, one line ($(head -c 200 "$work/res/b/.err"))" \
+    test "$rc" = 2 -a "$(wc -l <"$work/res/b/.err")" = 1 -a \
+    -n "$(grep 'build.journal is a sweep journal written by another build of touchdown (its row layout differs)' "$work/res/b/.err")"
 printf 'not a journal of this sweep, but longer than a header.\n' >"$work/res/x.journal"
 t "$work/res/x" sweep -q -j 1 "${rgrid[@]}" -o ../x "$case_r"
 check "resume: a file that is not a journal is refused, exit 2, one line ($(head -c 200 "$work/res/x/.err"))" \

@@ -5,7 +5,8 @@
 # anything runs: one line naming the file, exit 2, the input unchanged and still there, and the
 # advice is to choose another -o prefix, never to remove the file (it is the user's case). A file
 # shorter than a journal's header at the journal's name is refused and kept. A point's file that is
-# the sweep's own table or journal (by name, or by device and inode) is refused. A sweep
+# the sweep's own table or journal (by name, or by device and inode; its CSV's window file too) is
+# refused. A sweep
 # killed by SIGKILL takes its workers with it.
 # Args: $1 = the touchdown binary, $2 = the source directory. Runs in the build's tests directory.
 set -u
@@ -96,6 +97,13 @@ t "$work/pt" sweep -j 1 --point-files out --vary speed=60,90,120 -o out/point-00
 check "-o out/point-000001 --point-files out: exit 2, one line naming point 1's HDF5 file and the table ($(head -c 300 "$work/pt/.err"))" \
     test "$rc" = 2 -a "$(wc -l <"$work/pt/.err")" = 1 -a -n "$(grep -F 'out/point-000001.h5' "$work/pt/.err" | grep -F 'table')"
 check "-o out/point-000001 --point-files out: nothing written" test -z "$(ls -A "$work/pt/out")"
+# -o out/point-000000.windows --point-csv with windows on: the table's CSV is point 0's window file
+t "$work/pt" sweep -j 1 --point-files out --point-csv --set output.window=0.0005 --vary speed=60,90 \
+    -o out/point-000000.windows main.cfg
+check "-o out/point-000000.windows --point-csv: exit 2, one line naming point 0's window file and the table ($(head -c 300 "$work/pt/.err"))" \
+    test "$rc" = 2 -a "$(wc -l <"$work/pt/.err")" = 1 -a \
+    -n "$(grep -F 'out/point-000000.windows.csv, a file of point 0' "$work/pt/.err" | grep -F 'table')"
+check "-o out/point-000000.windows --point-csv: nothing written" test -z "$(ls -A "$work/pt/out")"
 printf 'TDSWJ02' >"$work/pt/s.journal" # a journal cut in its header, of this sweep
 ln "$work/pt/s.journal" "$work/pt/out/point-000001.h5"
 t "$work/pt" sweep -j 1 --point-files out --vary speed=60,90 -o s main.cfg

@@ -187,6 +187,20 @@ void plot_remove_new_dirs(const char *dir, size_t created);
 FILE *plot_open(const plot_opts *opt, const char *name);
 /* Close a file opened by plot_open; PLOT_OK or PLOT_FAILED with a line printed. */
 int plot_close(FILE *f, const plot_opts *opt, const char *name);
+/* projective leap: no line across a leap. A data file written in time order gets a blank line (a
+ * break in gnuplot's line) between the row at a leap's start and the next row, the leap's gap.
+ * The leaps' starts (the file's leap_time: the time of the row before each gap, in order) are
+ * walked with a moving index, O(rows + leaps) over a data file. */
+typedef struct plot_leaps {
+    const double *time; /* each leap's start, in order (NULL: none) */
+    size_t n, k;        /* leaps; the first one not yet passed */
+} plot_leaps;
+/* The leaps `time` (n, NULL: none) from the first row of a data file on. */
+void plot_leaps_begin(plot_leaps *l, const double *time, size_t n);
+/* A blank line before row i of the rows at times t[] (called for i = 0, 1, ... in order) when a
+ * leap's gap lies between rows i - 1 and i: row i - 1 is at a leap's start and row i after it.
+ * Rows that share the leap's start (an event's row and the grid's) have no gap between them. */
+void plot_leap_break(FILE *out, plot_leaps *l, const double *t, size_t i);
 /* Start the script NAME.gp for the figure NAME.png/.svg (width x height pixels): header comment
  * `what` and the variables figure, format, width and height that tools/plot/gp/common.gp uses.
  * Returns the open file (NULL with a line printed) and records the script in the job. The caller

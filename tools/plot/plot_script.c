@@ -101,6 +101,23 @@ int plot_close(FILE *f, const plot_opts *opt, const char *name)
     return PLOT_OK;
 }
 
+void plot_leaps_begin(plot_leaps *l, const double *time, size_t n)
+{
+    l->time = time;
+    l->n = time ? n : 0;
+    l->k = 0;
+}
+
+void plot_leap_break(FILE *out, plot_leaps *l, const double *t, size_t i)
+{
+    if (i == 0)
+        return;
+    while (l->k < l->n && !(l->time[l->k] >= t[i - 1])) /* passed (or NaN): no row will be at it */
+        l->k++;
+    if (l->k < l->n && l->time[l->k] == t[i - 1] && t[i] > t[i - 1])
+        fputc('\n', out);
+}
+
 void plot_gp_string(FILE *f, const char *s)
 {
     /* double quotes so that a newline can be written as \n (two-line titles) */

@@ -30,18 +30,6 @@ static double at(const double *m, const plot_sim *s, size_t i, int r)
     return m[i * (size_t)s->nret + (size_t)r];
 }
 
-/* projective leap: a blank line before sample i when a leap ends there (the sample before it is a
- * leap's start, leap_time), so that gnuplot draws no line across the leapt stretch. */
-static void leap_break(FILE *out, const plot_sim *s, size_t i)
-{
-    size_t k;
-    for (k = 0; i > 0 && k < s->nleap; k++)
-        if (s->leap_time[k] == s->t[i - 1]) {
-            fputc('\n', out);
-            return;
-        }
-}
-
 static double max_of(const double *m, const plot_sim *s, int r)
 {
     double v = 0.0;
@@ -69,6 +57,7 @@ static int write_retainer_data(const plot_job *job, const plot_file *f, const ch
     char name[300];
     FILE *out;
     size_t i;
+    plot_leaps leaps;
     plot_retainer_data_name(name, sizeof name, prefix, r);
     if (!(out = plot_open(job->opt, name)))
         return PLOT_FAILED;
@@ -76,8 +65,9 @@ static int write_retainer_data(const plot_job *job, const plot_file *f, const ch
             1e3 * s->clearance[r]);
     fprintf(out, "# columns: 1 time [s], 2 x [mm], 3 y [mm], 4 radial displacement [mm], "
                  "5 normal force [N], 6 in contact (1/0)\n");
+    plot_leaps_begin(&leaps, s->leap_time, s->nleap); /* projective leap */
     for (i = 0; i < s->n; i++) {
-        leap_break(out, s, i);
+        plot_leap_break(out, &leaps, s->t, i);
         fprintf(out, "%.12g %.9g %.9g %.9g %.9g %d\n", s->t[i], 1e3 * at(s->x, s, i, r), 1e3 * at(s->y, s, i, r),
                 1e3 * at(s->r, s, i, r), at(s->fn, s, i, r), at(s->contact, s, i, r) != 0.0);
     }
@@ -177,6 +167,7 @@ static int write_amb_data(const plot_job *job, const plot_file *f, const char *p
     char name[300];
     FILE *out;
     size_t i;
+    plot_leaps leaps;
     int a;
     snprintf(name, sizeof name, "%sambs.dat", prefix);
     if (!(out = plot_open(job->opt, name)))
@@ -185,8 +176,9 @@ static int write_amb_data(const plot_job *job, const plot_file *f, const char *p
     for (a = 0; a < s->namb; a++)
         fprintf(out, ", %d Fx AMB %d [N], %d Fy AMB %d [N]", 2 + 2 * a, a, 3 + 2 * a, a);
     fputc('\n', out);
+    plot_leaps_begin(&leaps, s->leap_time, s->nleap); /* projective leap */
     for (i = 0; i < s->n; i++) {
-        leap_break(out, s, i);
+        plot_leap_break(out, &leaps, s->t, i);
         fprintf(out, "%.12g", s->t[i]);
         for (a = 0; a < 2 * s->namb; a++)
             fprintf(out, " %.9g", s->amb[i * 2 * (size_t)s->namb + (size_t)a]);
@@ -314,6 +306,7 @@ static int housing_figure(plot_job *job, const plot_file *f, const char *prefix)
     char name[300], data[300];
     FILE *out;
     size_t i;
+    plot_leaps leaps;
     int still = 1;
     snprintf(name, sizeof name, "%shousing", prefix);
     snprintf(data, sizeof data, "%shousing.dat", prefix);
@@ -324,9 +317,10 @@ static int housing_figure(plot_job *job, const plot_file *f, const char *prefix)
             "5 y [mm] (1 g = %g m/s^2)%s\n",
             f->path, TD_STANDARD_GRAVITY,
             s->housing_body ? ", 6 body x [mm], 7 body y [mm] (relative to the base)" : "");
+    plot_leaps_begin(&leaps, s->leap_time, s->nleap); /* projective leap */
     for (i = 0; i < s->n; i++) {
         const double *h = s->housing + 6 * i;
-        leap_break(out, s, i);
+        plot_leap_break(out, &leaps, s->t, i);
         still = still && h[0] == 0.0 && h[1] == 0.0;
         fprintf(out, "%.12g %.9g %.9g %.9g %.9g", s->t[i], h[0] / TD_STANDARD_GRAVITY, h[1] / TD_STANDARD_GRAVITY,
                 1e3 * h[2], 1e3 * h[3]);

@@ -8,11 +8,12 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* The series of the figure; a dataset the file lacks is NULL (its columns NaN). */
+/* The series of the figure; a dataset the file lacks is NULL (its columns NaN). leaps: the
+ * leaps' starts (projective leap; empty without a leap made). */
 typedef struct figure_data {
     size_t n;
     int nret;
-    td_result_array t, speed, fn, race, x, y, temp;
+    td_result_array t, speed, fn, race, x, y, temp, leaps;
 } figure_data;
 
 /* Read the dataset `id` when it has the shape (n) or (n, nret); else leave *a empty. */
@@ -39,6 +40,7 @@ static void data_free(figure_data *d)
     td_result_array_free(&d->x);
     td_result_array_free(&d->y);
     td_result_array_free(&d->temp);
+    td_result_array_free(&d->leaps);
 }
 
 static int data_load(const td_result *r, int nret, figure_data *d)
@@ -54,21 +56,27 @@ static int data_load(const td_result *r, int nret, figure_data *d)
     series(r, TD_OUT_RET_X, d->n, nret, &d->x);
     series(r, TD_OUT_RET_Y, d->n, nret, &d->y);
     series(r, td_out_find("race_temperature", TD_OUT_DATASET, TD_OUT_IN_RUN), d->n, nret, &d->temp);
+    /* projective leap: where the gaps are, so that no line is drawn across one (as touchdown plot) */
+    if (td_result_has(r, TD_OUT_LEAP_TIME, NULL) && td_result_read(r, TD_OUT_LEAP_TIME, NULL, &d->leaps, NULL) != TD_OK)
+        return -1;
     return 0;
 }
 
 static int write_data(const plot_opts *opt, const figure_data *d, const char *path)
 {
     FILE *out = plot_open(opt, "report.dat");
+    plot_leaps leaps;
     size_t i;
     int k;
     if (!out)
         return PLOT_FAILED;
+    plot_leaps_begin(&leaps, d->leaps.v, d->leaps.n);
     fprintf(out,
             "# the drop report's figure of %s\n# columns: 1 time [s], 2 rotor speed [rad/s], then per retainer "
             "k from 3 + 5k: normal force [N], race speed [rad/s], x [mm], y [mm], race temperature rise [K]\n",
             path);
     for (i = 0; i < d->n; i++) {
+        plot_leap_break(out, &leaps, d->t.v, i);
         fprintf(out, "%.12g %.9g", d->t.v[i], at(&d->speed, i, 0));
         for (k = 0; k < d->nret; k++)
             fprintf(out, " %.9g %.9g %.9g %.9g %.9g", at(&d->fn, i, k), at(&d->race, i, k), 1e3 * at(&d->x, i, k),

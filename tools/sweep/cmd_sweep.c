@@ -198,38 +198,33 @@ static int add_case_axes(td_sweep_grid *g, const td_case *base)
     return TD_EXIT_USAGE;
 }
 
-/* 0, or TD_EXIT_USAGE after an error line when a file of point p (out: its .h5, .csv and
- * .events.csv) is one of the sweep's own files (the table's CSV and HDF5 files, the journal), by
- * name or by device and inode (td_output_same_file): the table, written last, would replace it. */
+/* 0, or TD_EXIT_USAGE after an error line when a file of point p (td_output_files of out: its .h5,
+ * .csv, .events.csv and .windows.csv, the list the run's own check uses) is one of the sweep's own
+ * files (the table's CSV and HDF5 files, the journal), by name or by device and inode
+ * (td_output_same_file): the table, written last, would replace it. */
 static int check_point_against_table(const sweep_job *job, long p, const td_output_options *out,
                                      const td_output_options *table, const char *journal)
 {
-    char events[TD_OUTPUT_PATH_SIZE + 16];
-    const char *mine[3], *theirs[3];
-    int i, j;
-    events[0] = '\0';
-    if (out->csv_path[0])
-        td_writer_events_path(out->csv_path, events, sizeof events);
-    mine[0] = out->hdf5_path;
-    mine[1] = out->csv_path;
-    mine[2] = events;
+    td_output_file mine[TD_OUTPUT_FILES];
+    const char *theirs[3];
+    int i, j, n = td_output_files(out, mine);
     theirs[0] = table->csv_path;
     theirs[1] = table->hdf5_path;
     theirs[2] = journal;
-    for (i = 0; i < 3; i++)
+    for (i = 0; i < n; i++)
         for (j = 0; j < 3; j++)
-            if (td_output_same_file(mine[i], theirs[j])) {
+            if (td_output_same_file(mine[i].path, theirs[j])) {
                 td_cli_error("sweep",
                              "--point-files %s: %s, a file of point %ld, is the same file as the sweep's %s (%s): "
                              "choose another -o prefix or --point-files directory",
-                             job->point_dir, mine[i], p, j == 2 ? "journal" : "table", theirs[j]);
+                             job->point_dir, mine[i].path, p, j == 2 ? "journal" : "table", theirs[j]);
                 return TD_EXIT_USAGE;
             }
     return 0;
 }
 
 /* The points' result files, checked by the rules of touchdown run before anything runs, every
- * point's: the names fit, no file of a point (.h5, .csv, .events.csv) is an input (the case file
+ * point's: the names fit, no file of a point (.h5, .csv, .events.csv, .windows.csv) is an input (the case file
  * or an @include, compared by device and inode) or another of its files, is anything but a
  * regular file, or lies in a directory that is missing or not writable; nor is it one of the
  * sweep's own files (the table's CSV and HDF5 files, the journal). */

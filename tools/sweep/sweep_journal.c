@@ -170,7 +170,14 @@ static void read_records(FILE *f, long points, td_sweep_row *rows, journal_read 
 
 /* What a journal's first bytes say: the header wanted, none (the file was cut before its header
  * was whole, a prefix of it, or only zeros reached the disk: as good as no journal), or a refusal. */
-enum { HEADER_OTHER_SWEEP = -1, HEADER_OTHER_FORMAT = -2, HEADER_NOT_JOURNAL = -3, HEADER_NONE = 0, HEADER_OURS = 1 };
+enum {
+    HEADER_OTHER_SWEEP = -1,
+    HEADER_OTHER_FORMAT = -2,
+    HEADER_NOT_JOURNAL = -3,
+    HEADER_OTHER_BUILD = -4,
+    HEADER_NONE = 0,
+    HEADER_OURS = 1
+};
 
 /* 1 if the rest of f is zeros. */
 static int rest_is_zero(FILE *f)
@@ -196,7 +203,11 @@ static int header_matches(FILE *f, const journal_header *want)
         return HEADER_NONE;
     if (memcmp(have.magic, JOURNAL_MAGIC_STEM, strlen(JOURNAL_MAGIC_STEM)) != 0)
         return HEADER_NOT_JOURNAL;
-    return memcmp(have.magic, want->magic, sizeof have.magic) ? HEADER_OTHER_FORMAT : HEADER_OTHER_SWEEP;
+    if (memcmp(have.magic, want->magic, sizeof have.magic))
+        return HEADER_OTHER_FORMAT;
+    /* the row size first: the fingerprint holds it too, but a journal whose rows are not this
+     * build's is refused for that, not taken for another sweep's */
+    return have.row_size != want->row_size ? HEADER_OTHER_BUILD : HEADER_OTHER_SWEEP;
 }
 
 /* The error line of a journal refused by its header (m < 0); returns TD_EXIT_USAGE. */
@@ -210,6 +221,11 @@ static int refuse_foreign(const char *path, int m)
                      "%s is a sweep journal of another format (not " JOURNAL_MAGIC
                      ", written by another touchdown version): remove it to start afresh, or choose another -o "
                      "prefix",
+                     path);
+    else if (m == HEADER_OTHER_BUILD)
+        td_cli_error("sweep",
+                     "%s is a sweep journal written by another build of touchdown (its row layout differs): "
+                     "remove it to start afresh, or choose another -o prefix",
                      path);
     else
         td_cli_error("sweep",
