@@ -6,6 +6,7 @@
 #include "sweep/sweep_mpi.h"
 
 #include <dlfcn.h>
+#include <stdlib.h>
 #include <string.h>
 
 static const char usage[] =
@@ -41,20 +42,29 @@ static const struct {
     {"bench", td_cmd_bench}, {"sweep", td_cmd_sweep}, {"fmu", td_cmd_fmu},   {"report", td_cmd_report},
 };
 
-/* One run is one thread. A threaded BLAS (OpenBLAS, which SLICOT loads as the system's libblas)
- * wakes its worker threads for the modal and stability analyses' LAPACK calls, and each worker then
- * spins on sched_yield for about 0.1 s of CPU before it sleeps: a tax on every run that a sweep pays
- * once per point and that the other core pays under load. Sweeps run their points in parallel
- * processes instead. Asked by name, so that another BLAS (none of this symbol) changes nothing. */
+/* One run is one thread. OpenBLAS (which SLICOT loads as the system's libblas) starts a worker
+ * thread per core as it loads, and each spins on sched_yield before it sleeps: about 0.1 s of CPU
+ * of every run on another core, paid once per point by a sweep and by the other jobs of a busy
+ * machine. Its count asked down to one, the workers are ended (blas_thread_shutdown_, the routine
+ * OpenBLAS's own fork handler calls); with one thread asked for, no BLAS call starts them again.
+ * Asked by name, so that another BLAS (none of these symbols) changes nothing; a user's
+ * OPENBLAS_NUM_THREADS is theirs to keep. */
 static void blas_on_one_thread(void)
 {
-    void *self = dlopen(NULL, RTLD_LAZY);
+    void *self;
     void (*set_threads)(int);
+    int (*end_workers)(void);
+    if (getenv("OPENBLAS_NUM_THREADS"))
+        return;
+    self = dlopen(NULL, RTLD_LAZY);
     if (!self)
         return;
     *(void **)&set_threads = dlsym(self, "openblas_set_num_threads");
-    if (set_threads)
+    *(void **)&end_workers = dlsym(self, "blas_thread_shutdown_");
+    if (set_threads && end_workers) {
         set_threads(1);
+        end_workers();
+    }
     dlclose(self);
 }
 
