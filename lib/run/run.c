@@ -52,10 +52,11 @@ typedef struct run_state {
     double rest_after;       /* end_at_rest: after the model's last prescribed change (td_run_rest_after) */
     int stopped;             /* the run ended at rest before t_end */
     /* projective leap */
-    int leaping;      /* the run leaps (td_output_options.leap_burst > 0) */
-    td_run_leap leap; /* its state: run time = simulation time + leap.offset */
-    double *made;     /* the leaps made, for the files: 2 per leap, its start (run time) and length */
-    long made_cap;    /* leaps `made` holds */
+    int leaping;         /* the run leaps (td_output_options.leap_burst > 0) */
+    td_run_leap leap;    /* its state: run time = simulation time + leap.offset */
+    double *leap_start;  /* the leaps made, for the files: each one's start (run time) */
+    double *leap_length; /* and length (s) */
+    long leap_cap;       /* leaps the two lists hold */
 } run_state;
 
 /* long runs: what a sample is for; an event's is not written when the events are omitted */
@@ -274,13 +275,16 @@ static long leap_samples(const run_state *r, double t, long k, long n)
 static td_status reserve_leap(run_state *r, td_error *err)
 {
     long n = r->leap.leaps + 1; /* the one about to be made */
-    if (n > r->made_cap) {
+    if (n > r->leap_cap) {
         long cap = 2 * n + 16;
-        double *p = realloc(r->made, 2 * (size_t)cap * sizeof *p);
-        if (!p)
+        double *at = realloc(r->leap_start, (size_t)cap * sizeof *at), *length;
+        if (at)
+            r->leap_start = at; /* kept even if the second fails: the capacity is the smaller */
+        length = at ? realloc(r->leap_length, (size_t)cap * sizeof *length) : NULL;
+        if (!length)
             return td_error_set(err, TD_ERR_NOMEM, "out of memory for the leaps' list");
-        r->made = p;
-        r->made_cap = cap;
+        r->leap_length = length;
+        r->leap_cap = cap;
     }
     return TD_OK;
 }
@@ -289,8 +293,8 @@ static td_status reserve_leap(run_state *r, td_error *err)
 static void keep_leap(run_state *r, double t, double t_after)
 {
     long n = r->leap.leaps; /* this one counted */
-    r->made[2 * (n - 1)] = t;
-    r->made[2 * (n - 1) + 1] = t_after - t;
+    r->leap_start[n - 1] = t;
+    r->leap_length[n - 1] = t_after - t;
 }
 
 /* projective leap: at the grid sample at *t (index *k), the leap due there if any: the window open
@@ -697,28 +701,18 @@ static td_status write_leaps(td_recorder *rec, const run_state *r, td_error *err
     const td_run_summary *s = r->s;
     int rest = td_run_summary_rest_flag(s);
     td_status st = TD_OK;
-    long i, n = r->made ? s->leaps : 0;
-    double *at = n > 0 ? malloc(2 * (size_t)n * sizeof *at) : NULL;
+    long n = r->leap_length ? s->leaps : 0;
     if (rest != TD_RUN_NOT_APPLICABLE)
         st = td_recorder_set_double(rec, TD_OUT_SUM_ENDED_AT_REST, flag_value(rest), err);
-    if (st != TD_OK || !s->leap) {
-        free(at);
+    if (st != TD_OK || !s->leap)
         return st;
-    }
     st = td_recorder_set_long(rec, TD_OUT_SUM_LEAPS, s->leaps, err);
     if (st == TD_OK)
         st = td_recorder_set_double(rec, TD_OUT_SUM_LEAPT_TIME, s->leapt_time, err);
-    if (st == TD_OK && n > 0 && !at)
-        st = td_error_set(err, TD_ERR_NOMEM, "out of memory for the leaps' list");
-    for (i = 0; st == TD_OK && i < n; i++) { /* the pairs split into the two lists */
-        at[i] = r->made[2 * i];
-        at[n + i] = r->made[2 * i + 1];
-    }
     if (st == TD_OK && n > 0)
-        st = td_recorder_set_doubles(rec, TD_OUT_LEAP_TIME, at, (int)n, err);
+        st = td_recorder_set_doubles(rec, TD_OUT_LEAP_TIME, r->leap_start, (int)n, err);
     if (st == TD_OK && n > 0)
-        st = td_recorder_set_doubles(rec, TD_OUT_LEAP_LENGTH, at + n, (int)n, err);
-    free(at);
+        st = td_recorder_set_doubles(rec, TD_OUT_LEAP_LENGTH, r->leap_length, (int)n, err);
     return st;
 }
 
@@ -795,8 +789,9 @@ static td_status write_run_attributes(td_recorder *rec, run_state *r, const char
     td_status st = write_summary(rec, r->s, case_text, err);
     if (st == TD_OK)
         st = write_leaps(rec, r, err);
-    free(r->made);
-    r->made = NULL;
+    free(r->leap_start);
+    free(r->leap_length);
+    r->leap_start = r->leap_length = NULL;
     return st;
 }
 

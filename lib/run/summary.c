@@ -663,6 +663,7 @@ static void json_warnings(td_text *b, const td_run_summary *s)
 /* The answers that converge, first (docs/validation.md). */
 static void json_answers(td_text *b, const td_run_summary *s)
 {
+    int rest = td_run_summary_rest_flag(s);
     json_real(b, "peak_housing_force", s->peak_housing_force, 1);
     json_real(b, "total_impulse", s->total_impulse, 1);
     json_real(b, "friction_work", s->friction_work, 1);
@@ -671,11 +672,8 @@ static void json_answers(td_text *b, const td_run_summary *s)
     json_real(b, "ending_whirl_frequency", s->ending_whirl_frequency, 1);
     json_real(b, "ending_window", s->ending_window, 1);
     json_string(b, "regime", td_regime_name(td_run_summary_regime(s)));
-    if (td_run_summary_rest_flag(s) != TD_RUN_NOT_APPLICABLE) /* long runs: only a run that asked for it */
-        td_text_printf(b, "\"ended_at_rest\":%s,",
-                       td_run_summary_rest_flag(s) == 1   ? "true"
-                       : td_run_summary_rest_flag(s) == 0 ? "false"
-                                                          : "null");
+    if (rest != TD_RUN_NOT_APPLICABLE) /* long runs: only a run that asked for it */
+        td_text_printf(b, "\"ended_at_rest\":%s,", rest == 1 ? "true" : rest == 0 ? "false" : "null");
     if (s->leap) { /* projective leap: only a run that asked for it */
         td_text_printf(b, "\"leaps\":%ld,", s->leaps);
         json_real(b, "leapt_time", s->leapt_time, 1);
