@@ -223,16 +223,16 @@ static int solve_state(td_synchronous *s, double W)
     for (i = 0; i < nf; i++) { /* S = X Q */
         gsl_complex sum = gsl_complex_rect(0.0, 0.0);
         for (j = 0; j < nd; j++)
-            sum = gsl_complex_add(sum, gsl_complex_mul(gsl_matrix_complex_get(s->X, i, j),
-                                                       gsl_vector_complex_get(s->q, j)));
+            sum = gsl_complex_add(sum,
+                                  gsl_complex_mul(gsl_matrix_complex_get(s->X, i, j), gsl_vector_complex_get(s->q, j)));
         re[2 * nd + i] = GSL_REAL(sum);
         im[2 * nd + i] = GSL_IMAG(sum);
     }
     return 1;
 }
 
-td_status td_synchronous_response(td_synchronous *s, double omega, const td_unbalance *u, int n_u,
-                                  td_harmonic **out, td_error *err)
+td_status td_synchronous_response(td_synchronous *s, double omega, const td_unbalance *u, int n_u, td_harmonic **out,
+                                  td_error *err)
 {
     size_t nd, i;
     int any = 0;
