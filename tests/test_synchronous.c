@@ -69,8 +69,8 @@ static int compare_case(const char *path, const char **ov, int n_ov, int node, i
         gv = block_gap(h, ref, nd, 2 * nd);
         gs = block_gap(h, ref, 2 * nd, 2 * nd + nf);
         if (!(gq <= TOLERANCE && gv <= TOLERANCE && gs <= TOLERANCE))
-            fail_msg("%s at %g rad/s: q %.3g, v %.3g, controller states %.3g of their largest", path, speeds[k], gq,
-                     gv, gs);
+            fail_msg("%s at %g rad/s: q %.3g, v %.3g, controller states %.3g of their largest", path, speeds[k], gq, gv,
+                     gs);
         td_harmonic_free(&ref);
         td_harmonic_free(&h);
     }
