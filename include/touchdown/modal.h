@@ -492,10 +492,10 @@ typedef struct td_response_peak {
 typedef struct td_sweep td_sweep;
 
 /**
- * The steady unbalance response (td_harmonic_compute, to u[0..n_u-1]) over the speed range of
- * `opt` on an adaptive grid: 101 even speeds, then every interval bisected where the orbit's
- * major semi-axis at a response node changes by more than 5 % (amplitudes above 1e-6 of that
- * node's largest), until none does, the interval is 1e-7 of the range or the grid holds
+ * The steady unbalance response (td_harmonic_compute's, to u[0..n_u-1], solved in second-order
+ * form: the same to rounding, docs/api617.md) over the speed range of `opt` on an adaptive grid: 101 even speeds, then
+ * every interval bisected where the orbit's major semi-axis at a response node changes by more than 5 % (amplitudes
+ * above 1e-6 of that node's largest), until none does, the interval is 1e-7 of the range or the grid holds
  * TD_SWEEP_MAX_SPEEDS speeds. Each local maximum of a node's amplitude of at least 1 % of that
  * node's largest over the sweep is a peak (smaller ones are not assessed), located by Brent's minimiser between its
  * grid neighbours, its half-power speeds by Brent's root finder on the curve (never read off the grid), and assessed by
