@@ -206,7 +206,7 @@ typedef struct td_campbell td_campbell;
 /**
  * Case files may ask for at most this many speed_steps x mechanical DOFs: every grid speed costs an
  * eigen-solve for the Campbell diagram (more where its branch tracking halves the step) and one for
- * the critical speeds (docs/performance.md).
+ * the critical speeds, unless td_campbell_critical_speeds reuses the diagram's (docs/performance.md).
  */
 #define TD_MODAL_MAX_GRID_WORK 200000L
 
@@ -279,6 +279,16 @@ typedef struct td_critical_speed {
  */
 TD_API td_status td_modal_critical_speeds(const td_system *sys, const td_modal_options *opt, td_critical_speed *out,
                                           int capacity, int *count, td_error *err);
+/**
+ * td_modal_critical_speeds(sys, opt, ...), its results bit for bit, reusing the eigen-solves of the
+ * Campbell diagram c at the grid speeds (one per grid speed, about a third of the search's solves)
+ * where they are the ones the search makes: c computed by td_campbell_compute on this sys, unchanged
+ * since, with the same speed_min, speed_max and speed_steps, and solved in full (a system small enough
+ * for the dense solver, td_modal_solve_lowest). Otherwise (c NULL too) it solves as
+ * td_modal_critical_speeds does.
+ */
+TD_API td_status td_campbell_critical_speeds(const td_campbell *c, const td_system *sys, const td_modal_options *opt,
+                                             td_critical_speed *out, int capacity, int *count, td_error *err);
 
 /* ---------------------------------------------------------------------------------------- */
 /* Harmonic (steady-state) unbalance response                                                */
@@ -482,10 +492,10 @@ typedef struct td_response_peak {
 typedef struct td_sweep td_sweep;
 
 /**
- * The steady unbalance response (td_harmonic_compute, to u[0..n_u-1]) over the speed range of
- * `opt` on an adaptive grid: 101 even speeds, then every interval bisected where the orbit's
- * major semi-axis at a response node changes by more than 5 % (amplitudes above 1e-6 of that
- * node's largest), until none does, the interval is 1e-7 of the range or the grid holds
+ * The steady unbalance response (td_harmonic_compute's, to u[0..n_u-1], solved in second-order
+ * form: the same to rounding, docs/api617.md) over the speed range of `opt` on an adaptive grid: 101 even speeds, then
+ * every interval bisected where the orbit's major semi-axis at a response node changes by more than 5 % (amplitudes
+ * above 1e-6 of that node's largest), until none does, the interval is 1e-7 of the range or the grid holds
  * TD_SWEEP_MAX_SPEEDS speeds. Each local maximum of a node's amplitude of at least 1 % of that
  * node's largest over the sweep is a peak (smaller ones are not assessed), located by Brent's minimiser between its
  * grid neighbours, its half-power speeds by Brent's root finder on the curve (never read off the grid), and assessed by

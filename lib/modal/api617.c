@@ -5,9 +5,10 @@
  * 7th ed., 2002, 2.6.2.10; API 684 2nd ed., 2005: docs/api617.md), the log decrement, the default response
  * nodes and the static reactions under gravity.
  *
- * Every point of the curve is td_harmonic_compute's solve, so the curve between grid speeds is
- * the exact steady response: the peak and its half-power speeds are found on it by Brent's
- * methods (GSL), not read off the grid, which only has to bracket them.
+ * Every point of the curve is the steady response of td_harmonic_compute, by its second-order
+ * solve (td_synchronous_response, lib/modal/synchronous.c: the same to rounding, several times
+ * faster), so the curve between grid speeds is the exact steady response: the peak and its half-power speeds are found
+ * on it by Brent's methods (GSL), not read off the grid, which only has to bracket them.
  */
 #include "modal/modal_internal.h"
 #include "touchdown/assess.h"
@@ -118,6 +119,7 @@ typedef struct sweep_problem {
     const td_unbalance *u;
     int n_u;
     int node; /* the node of amplitude() */
+    td_synchronous *solver;
     td_status st;
     td_error *err;
 } sweep_problem;
@@ -129,7 +131,7 @@ static td_status orbits_at(sweep_problem *p, double w, const int *nodes, int nn,
     td_harmonic *h = NULL;
     td_error e;
     int j;
-    td_status st = td_harmonic_compute(p->sys, w, p->u, p->n_u, &h, &e);
+    td_status st = td_synchronous_response(p->solver, w, p->u, p->n_u, &h, &e);
     for (j = 0; j < nn; j++) {
         if (st == TD_OK)
             td_harmonic_orbit(h, nodes[j], &o[j]);
@@ -423,7 +425,7 @@ static td_status check_sweep(const td_system *sys, const td_sweep_options *opt, 
 td_status td_unbalance_sweep(const td_system *sys, const td_unbalance *u, int n_u, const td_sweep_options *opt,
                              td_sweep **out, td_error *err)
 {
-    sweep_problem p = {sys, u, n_u, 0, TD_OK, err};
+    sweep_problem p = {sys, u, n_u, 0, NULL, TD_OK, err};
     td_sweep *s;
     td_status st;
     int k;
@@ -432,7 +434,8 @@ td_status td_unbalance_sweep(const td_system *sys, const td_unbalance *u, int n_
     *out = NULL;
     if ((st = check_sweep(sys, opt, err)) != TD_OK)
         return st;
-    td_modal_gsl_quiet();
+    if ((st = td_synchronous_create(sys, &p.solver, err)) != TD_OK)
+        return st;
     s = calloc(1, sizeof *s);
     if (s) {
         s->nn = opt->node_count;
@@ -440,6 +443,7 @@ td_status td_unbalance_sweep(const td_system *sys, const td_unbalance *u, int n_
     }
     if (!s || !s->nodes || !sweep_grow(s, SWEEP_START)) {
         td_sweep_free(&s);
+        td_synchronous_free(&p.solver);
         return td_error_set(err, TD_ERR_NOMEM, "modal: out of memory for the unbalance sweep");
     }
     memcpy(s->nodes, opt->nodes, (size_t)s->nn * sizeof *s->nodes);
@@ -458,6 +462,7 @@ td_status td_unbalance_sweep(const td_system *sys, const td_unbalance *u, int n_
         st = sweep_refine(s, &p, opt->speed_max - opt->speed_min);
     if (st == TD_OK)
         st = find_peaks(s, &p, opt);
+    td_synchronous_free(&p.solver);
     if (st != TD_OK) {
         td_sweep_free(&s);
         return st;

@@ -12,12 +12,24 @@
 #include <stdlib.h>
 #include <string.h>
 
+/* Modes of one whirl sense at one speed (ascending omega_d, as td_modal stores them). */
+typedef struct whirl_list {
+    int count;
+    td_mode *modes;
+} whirl_list;
+
 struct td_campbell {
     int nspeeds;
     int nbranches;
     double *speeds;  /* nspeeds */
     td_mode *points; /* nspeeds x nbranches, speed-major */
     double *mac;     /* nspeeds x nbranches: each point's weakest MAC link from the previous speed */
+    /* For td_campbell_critical_speeds: the system, the grid's ends, and at each grid speed the forward
+     * and backward vibration modes (2 nspeeds lists) of its solve, kept when that solve is the full
+     * dense one (td_modal_solve), the one the crossing search makes there too; else NULL. */
+    const td_system *sys;
+    double speed_min, speed_max;
+    whirl_list *grid;
 };
 
 /* Relative width at which a critical-speed bracket counts as converged. */
@@ -46,6 +58,29 @@ static double grid_speed(const td_modal_options *opt, int k)
     return opt->speed_min + (opt->speed_max - opt->speed_min) * (double)k / (double)(opt->speed_steps - 1);
 }
 
+/* The forward (lists[0]) and backward (lists[1]) vibration modes of m, each ascending, those below
+ * m's td_modal_complete_below (all of a full solve). */
+static td_status whirl_split(const td_modal *m, whirl_list lists[2], td_error *err)
+{
+    static const td_whirl senses[2] = {TD_WHIRL_FORWARD, TD_WHIRL_BACKWARD};
+    int i, s;
+    td_status st = TD_OK;
+    for (s = 0; s < 2; s++) {
+        lists[s].count = 0;
+        lists[s].modes = NULL;
+    }
+    for (s = 0; s < 2 && st == TD_OK; s++) {
+        lists[s].modes = malloc((size_t)(m->n_modes > 0 ? m->n_modes : 1) * sizeof *lists[s].modes);
+        if (!lists[s].modes)
+            st = td_error_set(err, TD_ERR_NOMEM, "modal: out of memory");
+        for (i = 0; st == TD_OK && i < m->n_modes; i++)
+            if (m->modes[i].whirl == senses[s] && td_mode_is_vibration(&m->modes[i]) &&
+                m->modes[i].omega_d < m->complete_below)
+                lists[s].modes[lists[s].count++] = m->modes[i];
+    }
+    return st;
+}
+
 void td_campbell_free(td_campbell **c)
 {
     if (!c || !*c)
@@ -53,6 +88,12 @@ void td_campbell_free(td_campbell **c)
     free((*c)->speeds);
     free((*c)->points);
     free((*c)->mac);
+    if ((*c)->grid) {
+        int k;
+        for (k = 0; k < 2 * (*c)->nspeeds; k++)
+            free((*c)->grid[k].modes);
+        free((*c)->grid);
+    }
     free(*c);
     *c = NULL;
 }
@@ -296,17 +337,24 @@ static td_status track_interval(const td_system *sys, tracker *t, double s0, dou
     return TD_OK;
 }
 
-static td_campbell *campbell_new(const td_modal_options *opt)
+/* A new diagram; it keeps its grid's whirl lists when its solves are full dense ones (td_modal_lowest
+ * of any demand is td_modal_solve there), the same as the crossing search's at the grid speeds. */
+static td_campbell *campbell_new(const td_system *sys, const td_modal_options *opt)
 {
     td_campbell *c = calloc(1, sizeof *c);
+    int dense = td_modal_state_count(sys) <= TD_MODAL_DENSE_MAX_STATES;
     if (!c)
         return NULL;
     c->nspeeds = opt->speed_steps;
     c->nbranches = opt->mode_count;
+    c->sys = sys;
+    c->speed_min = opt->speed_min;
+    c->speed_max = opt->speed_max;
     c->speeds = malloc((size_t)c->nspeeds * sizeof *c->speeds);
     c->points = malloc((size_t)c->nspeeds * (size_t)c->nbranches * sizeof *c->points);
     c->mac = malloc((size_t)c->nspeeds * (size_t)c->nbranches * sizeof *c->mac);
-    if (!c->speeds || !c->points || !c->mac)
+    c->grid = dense ? calloc(2u * (size_t)c->nspeeds, sizeof *c->grid) : NULL;
+    if (!c->speeds || !c->points || !c->mac || (dense && !c->grid))
         td_campbell_free(&c);
     return c;
 }
@@ -337,7 +385,7 @@ td_status td_campbell_compute(const td_system *sys, const td_modal_options *opt,
     *out = NULL;
     if ((st = check_options(opt, err)) != TD_OK)
         return st;
-    if (!(c = campbell_new(opt)))
+    if (!(c = campbell_new(sys, opt)))
         return td_error_set(err, TD_ERR_NOMEM, "modal: out of memory for the Campbell diagram");
     memset(&t, 0, sizeof t);
     for (k = 0; k < c->nspeeds && st == TD_OK; k++) {
@@ -352,6 +400,8 @@ td_status td_campbell_compute(const td_system *sys, const td_modal_options *opt,
         } else if (k > 0 && (st = track_interval(sys, &t, c->speeds[k - 1], c->speeds[k], &m, err)) == TD_OK) {
             tracker_row(&t, m, c->points + row, c->mac + row);
         }
+        if (st == TD_OK && c->grid)
+            st = whirl_split(m, &c->grid[2 * k], err);
         td_modal_free(&m);
     }
     tracker_free(&t);
@@ -396,12 +446,6 @@ td_status td_campbell_get(const td_campbell *c, int k, int j, td_mode *out)
 
 /* ---- critical speeds ---------------------------------------------------------------------- */
 
-/* Modes of one whirl sense at one speed (ascending omega_d, as td_modal stores them). */
-typedef struct whirl_list {
-    int count;
-    td_mode *modes;
-} whirl_list;
-
 /* What the crossing search solves: the system, and the damped frequency up to which every vibration
  * mode is needed (the top of the speed range: a branch crossing the 1x line there lies below it). */
 typedef struct crossing_problem {
@@ -412,25 +456,12 @@ typedef struct crossing_problem {
 /* The forward (lists[0]) and backward (lists[1]) vibration modes at one speed, from one eigen-solve. */
 static td_status whirl_modes(const crossing_problem *cp, double omega, whirl_list lists[2], td_error *err)
 {
-    static const td_whirl senses[2] = {TD_WHIRL_FORWARD, TD_WHIRL_BACKWARD};
     td_modal *m = NULL;
     td_status st = td_modal_lowest(cp->sys, omega, 1, cp->wmax, 0, &m, err);
-    int i, s;
-    for (s = 0; s < 2; s++) {
-        lists[s].count = 0;
-        lists[s].modes = NULL;
-    }
-    if (st != TD_OK)
-        return st;
-    for (s = 0; s < 2 && st == TD_OK; s++) {
-        lists[s].modes = malloc((size_t)(m->n_modes > 0 ? m->n_modes : 1) * sizeof *lists[s].modes);
-        if (!lists[s].modes)
-            st = td_error_set(err, TD_ERR_NOMEM, "modal: out of memory");
-        for (i = 0; st == TD_OK && i < m->n_modes; i++)
-            if (m->modes[i].whirl == senses[s] && td_mode_is_vibration(&m->modes[i]) &&
-                m->modes[i].omega_d < m->complete_below)
-                lists[s].modes[lists[s].count++] = m->modes[i];
-    }
+    lists[0].count = lists[1].count = 0;
+    lists[0].modes = lists[1].modes = NULL;
+    if (st == TD_OK)
+        st = whirl_split(m, lists, err);
     td_modal_free(&m);
     return st;
 }
@@ -566,8 +597,33 @@ static td_status scan_interval(const crossing_problem *cp, td_whirl which, doubl
     return TD_OK;
 }
 
-td_status td_modal_critical_speeds(const td_system *sys, const td_modal_options *opt, td_critical_speed *out,
-                                   int capacity, int *count, td_error *err)
+/* A copy of a whirl list (to be freed as whirl_modes' lists are). */
+static td_status whirl_copy(const whirl_list *from, whirl_list *to, td_error *err)
+{
+    to->count = from->count;
+    to->modes = malloc((size_t)(from->count > 0 ? from->count : 1) * sizeof *to->modes);
+    if (!to->modes)
+        return td_error_set(err, TD_ERR_NOMEM, "modal: out of memory");
+    memcpy(to->modes, from->modes, (size_t)from->count * sizeof *to->modes);
+    return TD_OK;
+}
+
+/* The whirl lists at grid speed k: a copy of those of `grid` (the Campbell diagram's, the same solve)
+ * when there are any, else from a fresh solve. */
+static td_status grid_modes(const crossing_problem *cp, const whirl_list *grid, int k, double sp, whirl_list cur[2],
+                            td_error *err)
+{
+    td_status st;
+    if (!grid)
+        return whirl_modes(cp, sp, cur, err);
+    cur[0].modes = cur[1].modes = NULL;
+    st = whirl_copy(&grid[2 * k], &cur[0], err);
+    return st == TD_OK ? whirl_copy(&grid[2 * k + 1], &cur[1], err) : st;
+}
+
+/* td_modal_critical_speeds, with the grid's whirl lists from `grid` (2 speed_steps lists) if not NULL. */
+static td_status critical_speeds(const td_system *sys, const td_modal_options *opt, const whirl_list *grid,
+                                 td_critical_speed *out, int capacity, int *count, td_error *err)
 {
     static const td_whirl senses[2] = {TD_WHIRL_FORWARD, TD_WHIRL_BACKWARD};
     cs_list res = {NULL, 0, 0};
@@ -587,7 +643,7 @@ td_status td_modal_critical_speeds(const td_system *sys, const td_modal_options 
     /* one eigen-solve per grid speed serves both whirl senses */
     for (k = 0; k < opt->speed_steps && st == TD_OK; k++) {
         double sp = grid_speed(opt, k);
-        st = whirl_modes(&cp, sp, cur, err);
+        st = grid_modes(&cp, grid, k, sp, cur, err);
         for (s = 0; s < 2 && st == TD_OK && k > 0; s++)
             st = scan_interval(&cp, senses[s], sprev, &prev[s], sp, &cur[s], &res, err);
         whirl_lists_free(prev);
@@ -606,4 +662,18 @@ td_status td_modal_critical_speeds(const td_system *sys, const td_modal_options 
     *count = res.count;
     free(res.items);
     return TD_OK;
+}
+
+td_status td_modal_critical_speeds(const td_system *sys, const td_modal_options *opt, td_critical_speed *out,
+                                   int capacity, int *count, td_error *err)
+{
+    return critical_speeds(sys, opt, NULL, out, capacity, count, err);
+}
+
+td_status td_campbell_critical_speeds(const td_campbell *c, const td_system *sys, const td_modal_options *opt,
+                                      td_critical_speed *out, int capacity, int *count, td_error *err)
+{
+    int same = c && c->grid && opt && c->sys == sys && c->nspeeds == opt->speed_steps &&
+               c->speed_min == opt->speed_min && c->speed_max == opt->speed_max;
+    return critical_speeds(sys, opt, same ? c->grid : NULL, out, capacity, count, err);
 }

@@ -15,6 +15,7 @@
 #include <float.h>
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
 struct td_harmonic {
     double omega;
@@ -113,37 +114,29 @@ static td_status unbalance_response(const td_system *sys, const td_state_space *
     return st;
 }
 
-td_status td_harmonic_compute(const td_system *sys, double omega, const td_unbalance *u, int n_u, td_harmonic **out,
-                              td_error *err)
+/* A new td_harmonic holding its own copy of the states re, im (n each), its nodes' displacements expanded. */
+td_status td_harmonic_from_state(const td_system *sys, double omega, int n, const double *re, const double *im,
+                                 td_harmonic **out, td_error *err)
 {
-    td_state_space ss;
-    td_harmonic *h;
+    td_harmonic *h = calloc(1, sizeof *h);
     td_status st;
-    if (!out)
-        return td_error_set(err, TD_ERR_INVALID, "td_harmonic_compute: NULL output pointer");
     *out = NULL;
-    st = td_state_space_build(sys, omega, &ss, err);
-    if (st != TD_OK)
-        return st;
-    h = calloc(1, sizeof *h);
     if (h) {
-        h->re = malloc((size_t)ss.n * sizeof *h->re);
-        h->im = malloc((size_t)ss.n * sizeof *h->im);
+        h->re = malloc((size_t)n * sizeof *h->re);
+        h->im = malloc((size_t)n * sizeof *h->im);
         h->q_re = malloc((size_t)sys->nphys * sizeof *h->q_re);
         h->q_im = malloc((size_t)sys->nphys * sizeof *h->q_im);
     }
     if (!h || !h->re || !h->im || !h->q_re || !h->q_im) {
         td_harmonic_free(&h);
-        td_state_space_free(&ss);
         return td_error_set(err, TD_ERR_NOMEM, "modal: out of memory for the harmonic response");
     }
     h->omega = omega;
     h->nnodes = sys->nnodes;
-    h->n = ss.n;
-    st = unbalance_response(sys, &ss, u, n_u, h->re, h->im, err);
-    td_state_space_free(&ss);
-    if (st == TD_OK) /* the displacement rows of the state, q first */
-        st = td_system_expand(sys, h->re, h->q_re, err);
+    h->n = n;
+    memcpy(h->re, re, (size_t)n * sizeof *re);
+    memcpy(h->im, im, (size_t)n * sizeof *im);
+    st = td_system_expand(sys, h->re, h->q_re, err); /* the displacement rows of the state, q first */
     if (st == TD_OK)
         st = td_system_expand(sys, h->im, h->q_im, err);
     if (st != TD_OK) {
@@ -152,6 +145,31 @@ td_status td_harmonic_compute(const td_system *sys, double omega, const td_unbal
     }
     *out = h;
     return TD_OK;
+}
+
+td_status td_harmonic_compute(const td_system *sys, double omega, const td_unbalance *u, int n_u, td_harmonic **out,
+                              td_error *err)
+{
+    td_state_space ss;
+    double *z;
+    td_status st;
+    if (!out)
+        return td_error_set(err, TD_ERR_INVALID, "td_harmonic_compute: NULL output pointer");
+    *out = NULL;
+    st = td_state_space_build(sys, omega, &ss, err);
+    if (st != TD_OK)
+        return st;
+    z = malloc(2u * (size_t)ss.n * sizeof *z);
+    if (!z) {
+        td_state_space_free(&ss);
+        return td_error_set(err, TD_ERR_NOMEM, "modal: out of memory for the harmonic response");
+    }
+    st = unbalance_response(sys, &ss, u, n_u, z, z + ss.n, err);
+    if (st == TD_OK)
+        st = td_harmonic_from_state(sys, omega, ss.n, z, z + ss.n, out, err);
+    free(z);
+    td_state_space_free(&ss);
+    return st;
 }
 
 double td_harmonic_speed(const td_harmonic *h)

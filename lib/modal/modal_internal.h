@@ -78,6 +78,23 @@ td_status td_state_space_load(const td_state_space *ss, const double *f, double 
 td_status td_unbalance_forces(const td_system *sys, double omega, const td_unbalance *u, int n_u, double *fre,
                               double *fim, td_error *err);
 
+/* A new td_harmonic (touchdown/modal.h) of the state re + i im (n entries each) at speed omega, the
+ * nodes' displacements expanded from its first ndof rows (lib/modal/harmonic.c). */
+td_status td_harmonic_from_state(const td_system *sys, double omega, int n, const double *re, const double *im,
+                                 td_harmonic **out, td_error *err);
+
+/* The synchronous unbalance response by the second-order (dynamic-stiffness) solve of
+ * lib/modal/synchronous.c: td_harmonic_compute's response to rounding, several times faster, for the
+ * speeds of the API 617 sweep. The solver keeps sys (not owned) and its speed-independent matrices;
+ * _create refuses what td_state_space_build refuses (plug-in or sampled controllers). */
+typedef struct td_synchronous td_synchronous;
+td_status td_synchronous_create(const td_system *sys, td_synchronous **out, td_error *err);
+void td_synchronous_free(td_synchronous **s);
+/* As td_harmonic_compute(sys, omega, u, n_u, out, err), with the same errors (TD_ERR_NUMERIC: i omega
+ * is an eigenvalue of the system, or M is not positive definite). */
+td_status td_synchronous_response(td_synchronous *s, double omega, const td_unbalance *u, int n_u, td_harmonic **out,
+                                  td_error *err);
+
 /* Sorted oscillatory modes and mode shapes of a solved analysis (lib/modal/eigen.c). */
 struct td_modal {
     double omega;

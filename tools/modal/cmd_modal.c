@@ -243,7 +243,7 @@ static int analyse(const td_case *c, double speed, const modal_outputs *paths, i
         goto done;
     if ((st = stage(td_campbell_compute(sys, opt, &camp, &err), cancel, &err)) != TD_OK)
         goto done;
-    if ((st = stage(td_modal_critical_speeds(sys, opt, cs, 64, &n_cs, &err), cancel, &err)) != TD_OK)
+    if ((st = stage(td_campbell_critical_speeds(camp, sys, opt, cs, 64, &n_cs, &err), cancel, &err)) != TD_OK)
         goto done;
     if (!(u = model_unbalances(m, &n_u))) {
         st = TD_ERR_NOMEM;
