@@ -101,7 +101,8 @@ def git_revision():
     # that run them) differ from the commit; the docs and their results do not count
     dirty = git("status", "--porcelain", "--untracked-files=no", "--", "lib", "include", "tools", "cases",
                 "cmake", "CMakeLists.txt", "bench", "scripts/make-figures.sh", "scripts/docs_record.py",
-                "scripts/recovery_study.py", "scripts/shock_study.py", "tests/validation/base_motion")
+                "scripts/recovery_study.py", "scripts/shock_study.py", "scripts/sweep_study.py",
+                "tests/validation/base_motion")
     return rev + ("-modified" if dirty else "")
 
 
@@ -481,6 +482,14 @@ def src_shock(tool, build):
     return shock_study.record(tool, stamp)
 
 
+def src_sweep_study(tool, build):
+    """docs/sweep-study.md's sweeps and runs (scripts/sweep_study.py: the two study sweeps and the phase
+    sweep, their figures, and the single runs the page reads: convergence, the bounces at 20 kHz, the
+    drops behind the choice of keys and end time)."""
+    import sweep_study
+    return sweep_study.record(tool, stamp)
+
+
 # --- projective leap: the check against the full integration (bench/leap-check.sh) -----------------
 def src_leap_check(tool, build):
     """bench/leap-check.sh (docs/performance.md, "Long runs: the projective leap"): cases/drop-to-rest.cfg
@@ -504,7 +513,7 @@ SOURCES = {"fast": [("runs", src_runs), ("modal", src_modal), ("validation", src
                     ("intervals", src_intervals), ("tolerances", src_tolerances), ("mesh", src_mesh),
                     ("convergence", src_convergence), ("spread", src_spread), ("figures", src_figures),
                     ("recovery", src_recovery), ("report", src_report),
-                    ("drop_sweep", src_drop_sweep), ("shock", src_shock),
+                    ("drop_sweep", src_drop_sweep), ("shock", src_shock), ("sweep_study", src_sweep_study),
                     # issue 31: the cost per step
                     ("breakdown", src_breakdown),
                     # projective leap

@@ -20,7 +20,7 @@
 #   scripts/make-docs.sh --full --only SOURCE  rerun one source (runs, modal, validation, keys, bench,
 #                                              digital, scaling, references, intervals, tolerances, mesh,
 #                                              convergence, spread, figures, recovery, report, drop_sweep,
-#                                              shock, breakdown, leap-check), then render; breakdown
+#                                              shock, sweep_study, breakdown, leap-check), then render; breakdown
 #                                              (bench/breakdown.sh, about 1 min of CPU and perf) measures
 #                                              beside the tool the build in TD_BENCH_BEFORE when that is set
 #                                              (twice the time); leap-check (bench/leap-check.sh, about
