@@ -378,26 +378,14 @@ def src_spread(tool, build):
 
 
 def src_figures(tool, build):
-    """docs/figures/ by scripts/make-figures.sh (its own runs of the cases and the studies), and the
-    tables of the two study sweeps it runs (docs/sweep-study.md reads them)."""
-    import csv
-    import tempfile
-    data = stamp(tool, "figures", "scripts/make-figures.sh BUILD_DIR; the study sweeps' tables kept")
+    """docs/figures/ by scripts/make-figures.sh (its own runs of the paper's cases; the sweep studies'
+    figures come with their record, the source sweep_study)."""
+    data = stamp(tool, "figures", "scripts/make-figures.sh BUILD_DIR")
     start = time.monotonic()
-    with tempfile.TemporaryDirectory() as tmp:
-        subprocess.run([os.path.join(ROOT, "scripts", "make-figures.sh"), build], check=True,
-                       env=dict(os.environ, TD_FIGURES_TABLES=tmp))
-        data["sweeps"] = {}
-        for name, command in [("study", "touchdown sweep -j 1 --vary speed=50:250:41 --vary "
-                               "'unbalances[0].magnitude=0.005,0.01,0.015,0.02,0.05,0.1' -o study cases/study-a.cfg"),
-                              ("study-drop", "touchdown sweep -j 2 -o study-drop cases/study-drop.cfg")]:
-            with open(os.path.join(tmp, name + ".csv")) as f:
-                lines = [l for l in f if not l.startswith("#")]
-            rows = list(csv.reader(lines))
-            data["sweeps"][name] = {"command": command, "columns": rows[0], "rows": rows[1:]}
+    subprocess.run([os.path.join(ROOT, "scripts", "make-figures.sh"), build], check=True)
     data["wall_time"] = time.monotonic() - start
     data["figures"] = sorted(f for f in os.listdir(os.path.join(ROOT, "docs", "figures"))
-                             if f.endswith(".png"))
+                             if f.endswith(".png") and not f.startswith("study-"))
     return data
 
 
