@@ -178,24 +178,36 @@ def bounce_measures(cols, t0, t1, rs, rb):
     return out
 
 
-def fall_windows(cols):
-    """drop.cfg run long at 20 kHz: in each 0.1 s, per retainer, the mean angle of its node (deg) and
-    the fraction of the 0.1 s in contact."""
+def fall_windows(cols, t_fail, clearance):
+    """drop.cfg run long at 20 kHz: in each 0.1 s from the AMBs' failure, per retainer, the mean angle
+    of its node (deg), the net angle it turned through while out at the clearance (radius over half of
+    it: a node that goes round the clearance turns 360 deg; a flight through the middle does not count)
+    and the fraction of the 0.1 s in contact."""
     t = cols["t"]
     out = []
-    w0 = 0.0
-    while w0 < t[-1] - 1e-9:
+    w0 = t_fail
+    while w0 + 0.1 <= t[-1] + 1e-9:
         sel = [i for i, x in enumerate(t) if w0 <= x < w0 + 0.1]
         row = {"from": round(w0, 3)}
         for j in range(2):
-            sx = sum(math.cos(cols["theta_ret%d" % j][i]) for i in sel)
-            sy = sum(math.sin(cols["theta_ret%d" % j][i]) for i in sel)
+            th = unwrap([cols["theta_ret%d" % j][i] for i in sel])
+            out_ = [cols["r_ret%d" % j][i] > 0.5 * clearance for i in sel]
+            sx = sum(math.cos(a) for a in th)
+            sy = sum(math.sin(a) for a in th)
             row["angle%d" % j] = math.degrees(math.atan2(sy, sx))
+            row["turned%d" % j] = math.degrees(abs(sum(th[k + 1] - th[k] for k in range(len(th) - 1)
+                                                       if out_[k] and out_[k + 1])))
             row["contact%d" % j] = sum(1 for i in sel if cols["contact_ret%d" % j][i] != 0.0) / len(sel)
-            row["radius%d" % j] = max(cols["r_ret%d" % j][i] for i in sel)
         out.append(row)
         w0 += 0.1
     return out
+
+
+def failure_time():
+    """cases/drop.cfg's failure: the time of its schedule's first amb_off entry (cases/include/drop-rig.cfg,
+    its one source)."""
+    with open(os.path.join(ROOT, "cases", "include", "drop-rig.cfg")) as f:
+        return float(re.search(r"\{\s*time = ([0-9.]+);\s*amb_off = 0;", f.read()).group(1))
 
 
 def bounce_job(tool, tmp, speed, drag, rs, rb):
@@ -210,10 +222,11 @@ def bounce_job(tool, tmp, speed, drag, rs, rb):
     return rec
 
 
-def fall_job(tool, tmp):
+def fall_job(tool, tmp, clearance):
     name = os.path.join(tmp, "fall")
     rec = run(tool, DROP, [("end_time", "1.5"), ("output.sample_rate", "20000")], csv_path=name)
-    rec["windows"] = fall_windows(read_csv(name + ".csv"))
+    rec["failure_time"] = failure_time()
+    rec["windows"] = fall_windows(read_csv(name + ".csv"), rec["failure_time"], clearance)
     for ext in (".csv", ".events.csv"):
         if os.path.exists(name + ext):
             os.remove(name + ext)
@@ -276,7 +289,7 @@ def record(tool, stamp):
                      (tool, DROP, [("end_time", "0.6"), ("speed", "%g" % s), (FRICTION[0], mu), (FRICTION[1], mu),
                                    (DRAG[0], t), (DRAG[1], t)])))
     with tempfile.TemporaryDirectory() as tmp:
-        jobs.append(("fall", fall_job, (tool, tmp)))
+        jobs.append(("fall", fall_job, (tool, tmp, rb - rs)))
         for s, t in BOUNCES:
             jobs.append(("bounce %g %s" % (s, t), bounce_job, (tool, tmp, s, t, rs, rb)))
         data["runs"] = parallel(jobs)
@@ -474,7 +487,7 @@ def region_a_solver():
         dr = max(abs(x - y) for x, y in zip(ra[:n], rb[:n])) if n else None
         dp = (b["peak_housing_force"] / a["peak_housing_force"] - 1.0) if a["peak_housing_force"] else None
         out.append("| %g rad/s, U = %s kg m | %s, %s | %s, %s | %s | %s |" % (
-            s, u, a["regime"], _g(a["peak_housing_force"], 4) + " N", b["regime"], _g(b["peak_housing_force"], 4) + " N",
+            s, u, a["regime"], "%.0f N" % a["peak_housing_force"], b["regime"], "%.0f N" % b["peak_housing_force"],
             "-" if dp is None else "%+.2f %%" % (100 * dp), "-" if dr is None else "%.2g um" % (dr * 1e6)))
     return ("| point | defaults: regime, peak housing force | rtol 1e-8, atol 1e-11 | force changed by | section radii "
             "changed by (largest, sample by sample) |\n|---|---|---|---|---|\n" + "\n".join(out) + "\n\n"
@@ -661,7 +674,7 @@ def _keys_cell(s):
     return "%s, %s%s; races at %s rad/s, shaft at %s rad/s" % (
         s["regime"], s["ending"], "" if s.get("ending_whirl_frequency") is None or s["regime"] == "backward whirl"
         else " (%s Hz in contact)" % _g(s["ending_whirl_frequency"], 3),
-        "/".join(_g(x, 3) for x in races), _g(s["final_speed"], 4))
+        "/".join("%.0f" % (x + 0.0) for x in races).replace("-0", "0"), _g(s["final_speed"], 4))
 
 
 def region_drop_keys():
@@ -681,33 +694,43 @@ def region_drop_keys():
     return "\n".join(lines) + "\n\n" + text + "\nCommand (one run): `%s`.\n" % _res()["runs"]["keys 190 0.1 10"]["command"]
 
 
-def region_drop_fall():
-    rec = _res()["runs"]["fall"]
-    w = rec["windows"]
-    lines = ["| from [s] | mean angle, retainer 0 / 1 [deg] | in contact, 0 / 1 |", "|---|---|---|"]
-    for x in w:
-        lines.append("| %.1f | %.0f / %.0f | %s / %s |" % (x["from"], x["angle0"], x["angle1"], _pct(x["contact0"]),
-                                                            _pct(x["contact1"])))
-    bottom = lambda x: all(abs(x["angle%d" % j] + 90.0) <= 45.0 for j in range(2))
+def _settled():
+    """The fall's 0.1 s windows, and the index of the first from which every window has both retainer
+    nodes at the bottom (mean angle within 45 degrees of straight down) and turning less than half a turn."""
+    w = _res()["runs"]["fall"]["windows"]
+    calm = lambda x: all(abs(x["angle%d" % j] + 90.0) <= 45.0 and x["turned%d" % j] < 180.0 for j in range(2))
     k = len(w)
-    while k > 0 and bottom(w[k - 1]):
+    while k > 0 and calm(w[k - 1]):
         k -= 1
     if k == len(w):
         fail("the drop comes to rest at the bottom of the retainers by the end of the 1.5 s run")
+    return w, k
+
+
+def region_drop_fall():
+    rec = _res()["runs"]["fall"]
+    w, k = _settled()
+    lines = ["| from [s] | mean angle, retainer 0 / 1 [deg] | net angle turned out at the clearance, 0 / 1 [deg] | in contact, 0 / 1 |",
+             "|---|---|---|---|"]
+    for x in w:
+        lines.append("| %.2f | %.0f / %.0f | %.0f / %.0f | %s / %s |" % (
+            x["from"], x["angle0"], x["angle1"], x["turned0"], x["turned1"], _pct(x["contact0"]), _pct(x["contact1"])))
+    rounds = [x for x in w if max(x["turned0"], x["turned1"]) >= 360.0]
     settled = w[k:]
-    return ("\n".join(lines) + "\n\nFrom %.1f s on the mean angle of both retainer nodes in every 0.1 s stays at the bottom "
-            "(%s degrees, -90 is straight down), in contact %s of each 0.1 s. Command: `%s`.\n" % (
-                settled[0]["from"], _span([x["angle%d" % j] for x in settled for j in range(2)], lambda v: "%.0f" % v),
-                _span([x["contact%d" % j] for x in settled for j in range(2)], lambda v: "%.0f" % (100 * v), "%"),
-                rec["command"]))
+    text = ("After the failure at %g s %s. From %.2f s on the mean angle of both retainer nodes in every 0.1 s stays "
+            "at the bottom (%s degrees, -90 is straight down), each turning through %s degrees net while out at the clearance, in contact %s of each "
+            "0.1 s. Command: `%s`.\n") % (
+        rec["failure_time"], ("a retainer node goes once round the clearance or more in the 0.1 s from %s s" %
+                              _list("%.2f" % x["from"] for x in rounds)) if rounds else "no retainer node goes round the clearance in any 0.1 s",
+        settled[0]["from"], _span([x["angle%d" % j] for x in settled for j in range(2)], lambda v: "%.0f" % v),
+        _span([x["turned%d" % j] for x in settled for j in range(2)], lambda v: "%.0f" % v),
+        _span([x["contact%d" % j] for x in settled for j in range(2)], lambda v: "%.0f" % (100 * v), "%"), rec["command"])
+    return "\n".join(lines) + "\n\n" + text
 
 
 def span_drop_settled():
-    w = _res()["runs"]["fall"]["windows"]
-    k = len(w)
-    while k > 0 and all(abs(w[k - 1]["angle%d" % j] + 90.0) <= 45.0 for j in range(2)):
-        k -= 1
-    return "%.1f s" % w[k]["from"]
+    w, k = _settled()
+    return "%.2f s" % w[k]["from"]
 
 
 def span_drop_windows():
@@ -938,11 +961,17 @@ def region_drop_peak():
         "; ".join(parts), _span(ratios, lambda v: "%.1f" % v) if ratios else "-", times)
 
 
+def _pctg(x):
+    """A relative change in percent: two significant digits, no exponent."""
+    p = 100.0 * x
+    return "%.0f" % p if abs(p) >= 10 else "%.2g" % p
+
+
 def _cell(s, ref=None):
     text = "%s (%s), %.0f N" % (s["regime"], s["ending"], s["peak_housing_force"])
     if ref is not None:
         d = s["peak_housing_force"] / ref["peak_housing_force"] - 1.0
-        text += " (same)" if abs(d) < 5e-7 else " (%+.2g %%)" % (100 * d)
+        text += " (same)" if abs(d) < 5e-7 else " (%s%s %%)" % ("+" if d > 0 else "", _pctg(d))
     return text
 
 
@@ -988,8 +1017,8 @@ def region_drop_verdict():
         regs = [s["regime"] for _, s in v]
         if len(set(regs)) == 1:
             f = [s["peak_housing_force"] for _, s in v]
-            held.append("%s (%s; peak housing force within %.2g %%)" % (
-                label, regs[0], 100 * (max(f) - min(f)) / min(f)))
+            held.append("%s (%s; peak housing force within %s %%)" % (
+                label, regs[0], _pctg((max(f) - min(f)) / min(f))))
         else:
             moved.append("%s (%s)" % (label, ", ".join("%s %s" % (n, s["regime"]) for n, s in v)))
     whirl_moved = [m for label, v in _checks() for m in [label]
@@ -1053,10 +1082,11 @@ def region_drop_creep():
     rows = _rows("study-drop")
     spin = lambda r: r["final_speed"] / (2 * math.pi)
     fast = [r for r in rows if r["regime"] == "bounce" and r["ending_whirl_frequency"] is not None
-            and abs(r["ending_whirl_frequency"]) >= 0.05 * spin(r)]
+            and r["ending_whirl_frequency"] <= -0.05 * spin(r)]
     round_ = [r for r in rows if r["regime"] == "backward whirl" and "bouncing" in r["ending"]]
-    text = "In this study the bounces whose contact point creeps faster than 5 %% of the spin while in contact: %s." % (
-        _list("%g rad/s and %g N m (%+.1f Hz)" % (r["speed"], r[DRAG[0]], r["ending_whirl_frequency"]) for r in fast) or "none")
+    text = ("In this study %d bounces have contact points that creep backward faster than 5 %% of the spin while in "
+            "contact: %s.") % (len(fast), _list("%g rad/s and %g N m (%+.1f Hz)" % (
+                r["speed"], r[DRAG[0]], r["ending_whirl_frequency"]) for r in fast) or "none")
     if round_:
         text += " In contact under half the stretch too, but carried round: %s, a backward whirl." % _list(
             "%g rad/s and %g N m (%.1f Hz)" % (r["speed"], r[DRAG[0]], r["ending_whirl_frequency"]) for r in round_)
