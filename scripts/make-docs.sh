@@ -12,8 +12,9 @@
 #                                              at converged settings, tolerance, mesh and convergence
 #                                              studies, the spread of the answers of the paper's cases,
 #                                              the drop and the damped rub (touchdown run --spread 5,
-#                                              about 2 min of CPU), the figures (scripts/make-figures.sh; 13 min
-#                                              on 2 cores at load 2, 40 min at load 5-14), and
+#                                              about 2 min of CPU), the figures of the paper's cases
+#                                              (scripts/make-figures.sh), the sweep study (scripts/sweep_study.py
+#                                              with its figures; its record gives its CPU and wall time), and
 #                                              touchdown bench --scaling (about 6 min of CPU more: its
 #                                              record says how much)
 #   scripts/make-docs.sh --render              only rewrite the regions from the recorded results

@@ -6,6 +6,8 @@ reads beside the sweeps.
     sweep_study.py BUILD_DIR     rerun the study: docs/results/sweep_study.json and the study figures
                                  docs/figures/study-*.png (the sweeps one at a time, the single runs two
                                  at a time; the CPU and wall time in the record), then render the docs
+    sweep_study.py --check TOOL  rerun one recorded run (cases/study-a.cfg at 150 rad/s and 0.05 kg m,
+                                 under a second) and compare it with the record (tests/cli/test_docs.sh)
 
 scripts/make-docs.sh --full --only sweep_study does the same (docs_record.py's source "sweep_study");
 docs_render.py renders the regions and spans of docs/sweep-study.md from the record with REGIONS and
@@ -605,6 +607,8 @@ def span_a_free_peaks():
 
 def span_a_press():
     rub = [x for x in _rows("study") if x["regime"] == "rub"]
+    if any(x["section_radius_max"] < x["section_clearance"] for x in rub):
+        fail("every point in rub reaches the clearance in its section")
     return "up to %.0f um" % (1e6 * max(x["section_radius_max"] - x["section_clearance"] for x in rub))
 
 
@@ -686,6 +690,9 @@ def region_drop_keys():
     draggy = reg(lambda sp, mu, t: sp == 190 and float(t) >= 5 and float(mu) >= 0.1)
     slick = reg(lambda sp, mu, t: sp == 190 and float(t) >= 5 and float(mu) < 0.1)
     slow = reg(lambda sp, mu, t: sp < 190)
+    if len(free_race) != 1 or "backward whirl" not in draggy:
+        fail("the friction coefficient alone does not change the regime, a draggy race does (so the study sweeps "
+             "the drag and keeps the friction)")
     text = ("At 190 rad/s on races of 0.02 to 0.5 N m every friction from 0.1 to 0.3 ended in %s: %s. "
             % (_list(free_race), "the friction coefficient alone did not change the regime" if len(free_race) == 1
                else "the friction coefficient moved these runs between regimes"))
@@ -730,6 +737,8 @@ def region_drop_fall():
 
 def span_drop_settled():
     w, k = _settled()
+    if w[k]["from"] + max(_run("100 0.02")["ending_window"], _run("250 0.5")["ending_window"]) > 0.8 + 1e-9:
+        fail("0.8 s leaves room for the regime's window after the fall")
     return "%.2f s" % w[k]["from"]
 
 
@@ -779,6 +788,8 @@ def _drags_text(ts):
 
 
 def region_drop_rows():
+    if {r["regime"] for r in _rows("study-drop")} != {"rub", "bounce", "backward whirl"}:
+        fail("the drop's regime map shows rub, bounce and backward whirl (and nothing else)")
     out = []
     for sp in _drop_speeds():
         rows = [_drop(sp, t) for t in _drags()]
@@ -1137,10 +1148,34 @@ SPANS = {"sweep-record": span_record, "sweep-record-cost": span_record_cost, "sw
          "drop-mechanism": span_drop_mechanism, "drop-drag-force": span_drop_drag_force,
          "drop-whirl-speeds": span_drop_whirl_speeds, "drop-dry-whip": span_drop_dry_whip}
 
+CHECKED_RUN = "a 150 0.05"   # cases/study-a.cfg at 150 rad/s, 0.05 kg m: a rub, well under a second
+
+
+def check_run(tool):
+    """The record's CHECKED_RUN rerun with its recorded arguments against its recorded summary (docs_record's
+    comparison and tolerance; wall-clock quantities not compared); 0 when they agree."""
+    import docs_record  # noqa: E402  (its comparison and tolerance)
+    rec = _res()["runs"][CHECKED_RUN]
+    sets = [("speed", "150"), ("unbalances[0].magnitude", "0.05")]
+    new = run(tool, STUDY_A, sets)
+    if new["command"] != rec["command"]:
+        print("FAIL: sweep study: the check's command %s is not the recorded %s" % (new["command"], rec["command"]))
+        return 1
+    diffs = docs_record.differences(rec["summary"], new["summary"], CHECKED_RUN)
+    if diffs:
+        print("FAIL: sweep study: %s differs from docs/results/sweep_study.json (rtol %g; rerun scripts/make-docs.sh "
+              "--full --only sweep_study): %s" % (new["command"], docs_record.RTOL, "; ".join(diffs[:8])))
+        return 1
+    print("ok:   sweep study: %s matches docs/results/sweep_study.json (rtol %g)" % (new["command"], docs_record.RTOL))
+    return 0
+
+
 def main(argv):
+    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+    if len(argv) == 2 and argv[0] == "--check":
+        return check_run(os.path.abspath(argv[1]))
     if len(argv) != 1:
         sys.exit(__doc__)
-    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
     import docs_record  # noqa: E402  (its stamp and save)
     tool = os.path.join(os.path.abspath(argv[0]), "touchdown")
     start = time.monotonic()
