@@ -101,7 +101,8 @@ def git_revision():
     # that run them) differ from the commit; the docs and their results do not count
     dirty = git("status", "--porcelain", "--untracked-files=no", "--", "lib", "include", "tools", "cases",
                 "cmake", "CMakeLists.txt", "bench", "scripts/make-figures.sh", "scripts/docs_record.py",
-                "scripts/recovery_study.py", "scripts/shock_study.py", "tests/validation/base_motion")
+                "scripts/recovery_study.py", "scripts/shock_study.py", "scripts/sweep_study.py",
+                "tests/validation/base_motion")
     return rev + ("-modified" if dirty else "")
 
 
@@ -377,26 +378,14 @@ def src_spread(tool, build):
 
 
 def src_figures(tool, build):
-    """docs/figures/ by scripts/make-figures.sh (its own runs of the cases and the studies), and the
-    tables of the two study sweeps it runs (docs/sweep-study.md reads them)."""
-    import csv
-    import tempfile
-    data = stamp(tool, "figures", "scripts/make-figures.sh BUILD_DIR; the study sweeps' tables kept")
+    """docs/figures/ by scripts/make-figures.sh (its own runs of the paper's cases; the sweep studies'
+    figures come with their record, the source sweep_study)."""
+    data = stamp(tool, "figures", "scripts/make-figures.sh BUILD_DIR")
     start = time.monotonic()
-    with tempfile.TemporaryDirectory() as tmp:
-        subprocess.run([os.path.join(ROOT, "scripts", "make-figures.sh"), build], check=True,
-                       env=dict(os.environ, TD_FIGURES_TABLES=tmp))
-        data["sweeps"] = {}
-        for name, command in [("study", "touchdown sweep -j 1 --vary speed=50:250:41 --vary "
-                               "'unbalances[0].magnitude=0.005,0.01,0.015,0.02,0.05,0.1' -o study cases/study-a.cfg"),
-                              ("study-drop", "touchdown sweep -j 2 -o study-drop cases/study-drop.cfg")]:
-            with open(os.path.join(tmp, name + ".csv")) as f:
-                lines = [l for l in f if not l.startswith("#")]
-            rows = list(csv.reader(lines))
-            data["sweeps"][name] = {"command": command, "columns": rows[0], "rows": rows[1:]}
+    subprocess.run([os.path.join(ROOT, "scripts", "make-figures.sh"), build], check=True)
     data["wall_time"] = time.monotonic() - start
     data["figures"] = sorted(f for f in os.listdir(os.path.join(ROOT, "docs", "figures"))
-                             if f.endswith(".png"))
+                             if f.endswith(".png") and not f.startswith("study-"))
     return data
 
 
@@ -481,6 +470,14 @@ def src_shock(tool, build):
     return shock_study.record(tool, stamp)
 
 
+def src_sweep_study(tool, build):
+    """docs/sweep-study.md's sweeps and runs (scripts/sweep_study.py: the two study sweeps and the phase
+    sweep, their figures, and the single runs the page reads: convergence, the bounces at 20 kHz, the
+    drops behind the choice of keys and end time)."""
+    import sweep_study
+    return sweep_study.record(tool, stamp)
+
+
 # --- projective leap: the check against the full integration (bench/leap-check.sh) -----------------
 def src_leap_check(tool, build):
     """bench/leap-check.sh (docs/performance.md, "Long runs: the projective leap"): cases/drop-to-rest.cfg
@@ -504,7 +501,7 @@ SOURCES = {"fast": [("runs", src_runs), ("modal", src_modal), ("validation", src
                     ("intervals", src_intervals), ("tolerances", src_tolerances), ("mesh", src_mesh),
                     ("convergence", src_convergence), ("spread", src_spread), ("figures", src_figures),
                     ("recovery", src_recovery), ("report", src_report),
-                    ("drop_sweep", src_drop_sweep), ("shock", src_shock),
+                    ("drop_sweep", src_drop_sweep), ("shock", src_shock), ("sweep_study", src_sweep_study),
                     # issue 31: the cost per step
                     ("breakdown", src_breakdown),
                     # projective leap

@@ -12,15 +12,16 @@
 #                                              at converged settings, tolerance, mesh and convergence
 #                                              studies, the spread of the answers of the paper's cases,
 #                                              the drop and the damped rub (touchdown run --spread 5,
-#                                              about 2 min of CPU), the figures (scripts/make-figures.sh; 13 min
-#                                              on 2 cores at load 2, 40 min at load 5-14), and
+#                                              about 2 min of CPU), the figures of the paper's cases
+#                                              (scripts/make-figures.sh), the sweep study (scripts/sweep_study.py
+#                                              with its figures; its record gives its CPU and wall time), and
 #                                              touchdown bench --scaling (about 6 min of CPU more: its
 #                                              record says how much)
 #   scripts/make-docs.sh --render              only rewrite the regions from the recorded results
 #   scripts/make-docs.sh --full --only SOURCE  rerun one source (runs, modal, validation, keys, bench,
 #                                              digital, scaling, references, intervals, tolerances, mesh,
 #                                              convergence, spread, figures, recovery, report, drop_sweep,
-#                                              shock, breakdown, leap-check), then render; breakdown
+#                                              shock, sweep_study, breakdown, leap-check), then render; breakdown
 #                                              (bench/breakdown.sh, about 1 min of CPU and perf) measures
 #                                              beside the tool the build in TD_BENCH_BEFORE when that is set
 #                                              (twice the time); leap-check (bench/leap-check.sh, about

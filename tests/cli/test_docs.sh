@@ -18,7 +18,9 @@
 #       scripts/make-docs.sh fails (and (a) fails a key table edited by hand);
 #   (d) the shock study's `case` row: cases/shock.cfg as shipped (about 1 s) rerun, its outcome, margins
 #       and first contact time against docs/results/shock.json (scripts/shock_study.py --check): (a)
-#       checks docs/shock-study.md against the record, this the record against the tool.
+#       checks docs/shock-study.md against the record, this the record against the tool;
+#   (e) the sweep study: one of its recorded runs, cases/study-a.cfg at 150 rad/s and 0.05 kg m (under a
+#       second), rerun and compared with docs/results/sweep_study.json (scripts/sweep_study.py --check).
 # Needs python3 (json, difflib only). Args: $1 = the touchdown binary, $2 = the source directory.
 set -u
 tool=$1
@@ -56,5 +58,13 @@ while IFS= read -r line; do
     *) echo "$line" ;;
     esac
 done < <("$py" "$src/scripts/shock_study.py" --check "$tool" 2>&1)
-check "every cheap run, the case keys and the shock case checked (${#cheap[@]} + 2)" test "$checks" -ge $((${#cheap[@]} + 3))
+# (e) the sweep study's run
+while IFS= read -r line; do
+    case $line in
+    ok:*) pass "${line#ok:   }" ;;
+    FAIL:*) fail "${line#FAIL: }" ;;
+    *) echo "$line" ;;
+    esac
+done < <("$py" "$src/scripts/sweep_study.py" --check "$tool" 2>&1)
+check "every cheap run, the case keys, the shock case and the sweep study's run checked (${#cheap[@]} + 3)" test "$checks" -ge $((${#cheap[@]} + 4))
 finish
