@@ -23,6 +23,12 @@ finish() {
     exit 1
 }
 
+# sanitized: true when the script runs in the sanitizer pass (TD_TEST_SANITIZED=1, set by
+# tests/CMakeLists.txt on every test of that build). That pass looks for memory errors and undefined
+# behaviour, so a script may then take the same code paths with fewer or shorter runs; each script
+# that does says what it still covers there and what only the plain pass checks.
+sanitized() { [ "${TD_TEST_SANITIZED:-0}" = 1 ]; }
+
 # t DIR ARGS...: run the tool ($tool) in DIR (created if missing); rc, and DIR/.out, DIR/.err.
 t() {
     local d=$1

@@ -53,9 +53,13 @@ check "sweep: the HDF5 table is flagged complete" \
     test -n "$(h5dump -a /complete "$work/j2/s.h5" | grep -E '^ *\(0\): 1$')"
 
 # ---- (b) each row against an independent touchdown run ----------------------------------------
+# Under the sanitizers (TD_TEST_SANITIZED=1) the rows 0, 4 and 8 only (a speed and an unbalance
+# step each, from 60 rad/s with 0.05 kg m to 120 rad/s with 0.2 kg m): the run and the JSON
+# summary the comparison reads are the same code for every row; every row is the plain pass's.
 bad=""
 while IFS= read -r line; do
     IFS=, read -r p speed mag status _ phf imp fw ct nc fct _ <<<"$line"
+    sanitized && [ $((p % 4)) != 0 ] && continue
     # from the end (the warnings column may hold quoted commas): wall_time, warnings, shock_outcome,
     # contact_happened, min_clearance_margin, t_reached, peak_amb_load, final_speed
     final=$(sed -E 's/"[^"]*"/x/g' <<<"$line" | awk -F, '{ print $(NF - 7) }')
@@ -158,8 +162,11 @@ fi
 
 # ---- (f) resume after SIGKILL ----------------------------------------------------------------
 # 40 points of 0.3 s; the uninterrupted table first, then the same sweep killed once its journal
-# holds rows, then run again.
-rgrid=(--set end_time=0.3 --vary speed=60:150:20 --vary 'schedule[0].magnitude=0.05,0.2')
+# holds rows, then run again. Under the sanitizers the points end at 0.15 s (rubbing and bouncing
+# points still among them): the journal, its records, the resume and the table are the same code.
+rend=0.3
+sanitized && rend=0.15
+rgrid=(--set end_time=$rend --vary speed=60:150:20 --vary 'schedule[0].magnitude=0.05,0.2')
 t "$work/res" sweep -q -j 2 "${rgrid[@]}" -o u "$case_r"
 check "resume: the uninterrupted sweep, exit 0, no journal left ($(ls "$work/res"))" \
     test "$rc" = 0 -a ! -e "$work/res/u.journal"

@@ -101,6 +101,12 @@ uint64_t td_test_splitmix(uint64_t *s)
     return z ^ (z >> 31);
 }
 
+int td_test_sanitized(void)
+{
+    const char *v = getenv("TD_TEST_SANITIZED");
+    return v != NULL && v[0] == '1' && v[1] == '\0';
+}
+
 char *td_test_summary_json(const td_run_summary *s, const td_run_summary *like)
 {
     td_run_summary t = *s;

@@ -54,4 +54,10 @@ const char *td_source_path(const char *relative);
  * and Flood 2014): synthetic data that any seed reproduces. */
 uint64_t td_test_splitmix(uint64_t *s);
 
+/* 1 when the test runs in the sanitizer pass (TD_TEST_SANITIZED=1, set by tests/CMakeLists.txt on
+ * every test of that build), else 0. That pass looks for memory errors and undefined behaviour, so
+ * a test may then take the same code paths in a shorter run (fewer repeats, shorter simulations);
+ * each test that does says what it still covers there and what only the plain pass checks. */
+int td_test_sanitized(void);
+
 #endif

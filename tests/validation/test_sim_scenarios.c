@@ -89,7 +89,12 @@ static void test_two_contacts(void **state)
     td_sim *s = make_sim(c, 0.0, 0.0);
     td_retainer ret[2];
     td_sim_stats st;
-    double t = 0.0, t_end = 0.3, dt = 1e-4, sampled_peak[2] = {0.0, 0.0}, release_peak[2] = {0.0, 0.0};
+    /* Under the sanitizers the run ends at 0.2 s: the step up at 0.1 s, both retainers in contact,
+     * onsets, releases and the same checks at every sample (measured: 598 releases and 1155
+     * samples with both in contact to 0.3 s, 319 and 391 to 0.2 s); the longer run is the plain
+     * pass's. */
+    double t = 0.0, t_end = td_test_sanitized() ? 0.2 : 0.3, dt = 1e-4, sampled_peak[2] = {0.0, 0.0},
+           release_peak[2] = {0.0, 0.0};
     long both = 0, in_contact = 0, releases = 0;
     int k;
     (void)state;
@@ -291,6 +296,18 @@ static void test_energy_conservation(void **state)
     long on_loose, on_tight;
     (void)state;
     energy_run(c, 1e-8, 1e-11, &phase_loose, &gain_loose, &on_loose);
+    if (td_test_sanitized()) {
+        /* Under the sanitizers the loose run alone: the same drop, onsets, chatter and releases
+         * and the energy bookkeeping; the convergence with the tolerance (the tight run, 1e-10,
+         * several times the loose one's cost) is the plain pass's. */
+        print_message("energy drift inside contact phases: %.3g (rtol 1e-8); onsets %ld; largest relative change "
+                      "across an onset %.3g\n",
+                      phase_loose, on_loose, gain_loose);
+        assert_true(on_loose > 2);
+        assert_true(gain_loose < 0.0);
+        td_case_free(&c);
+        return;
+    }
     energy_run(c, 1e-10, 1e-13, &phase_tight, &gain_tight, &on_tight);
     print_message("energy drift inside contact phases: %.3g (rtol 1e-8), %.3g (rtol 1e-10); onsets %ld, %ld; "
                   "largest relative change across an onset %.3g, %.3g\n",
@@ -328,7 +345,10 @@ static void test_rotor_drop_bouncing_settles(void **state)
     td_sim *s = make_sim(c, 0.0, 0.0);
     const td_model *m = td_case_model(c);
     energy_model em = energy_model_of(m);
-    const double e = 0.5, t_end = 0.6, t_settled = 0.3, dt = 1e-5;
+    /* Under the sanitizers the run ends at 0.4 s: every bouncing sequence (AMBs off at 0.1 s)
+     * and its energy check are past by 0.3 s, and the rotor is checked in contact over 0.1 s after
+     * that; that it stays so to 0.6 s is the plain pass's. */
+    const double e = 0.5, t_end = td_test_sanitized() ? 0.4 : 0.6, t_settled = 0.3, dt = 1e-5;
     double t = 0.0, gx, gy, atol = td_case_sim_options(c)->solver.atol, v0[2] = {0.0, 0.0}, E_prev = 0.0,
            worst_gain = -HUGE_VAL, vmin;
     long seq[2] = {0, 0}, b[2] = {0, 0}, longest = 0, bound = 0, checked = 0, onsets = 0, late = 0;
