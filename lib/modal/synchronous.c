@@ -14,9 +14,7 @@
  * the same solution: one pivoted complex LU of order ndof + nfilter, and no M^-1. The [Q; S] system
  * is bordered, not reduced to Q by eliminating S: i W I - P_s alone is singular where i W is a pole
  * of a controller (an undamped resonant block at its own frequency, a PID integrator at W = 0)
- * although the closed loop i W I - A is regular there. The roundings differ from
- * td_harmonic_compute's, so the results agree to rounding only: the simulations' start state keeps
- * td_harmonic_compute.
+ * although the closed loop i W I - A is regular there.
  */
 #include "modal/modal_internal.h"
 #include "util/error_internal.h"
