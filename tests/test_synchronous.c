@@ -2,10 +2,11 @@
  * The second-order synchronous response of the API 617 sweep (lib/modal/synchronous.c) against the
  * first-order solve of td_harmonic_compute (lib/modal/harmonic.c), a second method: the whole state
  * Z = [Q; V; S] at several speeds, below, near and above the machines' rigid-body and bending
- * criticals, on cases with every kind of controller state the elimination handles: lag filters
- * (paper-a), PID integrators, race bodies, a housing body on mounts and a reduced shaft (all-keys),
- * a linear controller with a lag (rig-notch) and without one, its current then acting directly
- * (rig-notch, tau = 0).
+ * criticals, on cases with every kind of controller state the bordered [Q; S] system holds: lag
+ * filters (paper-a), PID integrators, race bodies, a housing body on mounts and a reduced shaft
+ * (all-keys), a linear controller with a lag (rig-notch) and without one, its current then acting
+ * directly (rig-notch, tau = 0), an undamped resonant block at its own frequency (its states alone
+ * singular there) and AMBs switched off.
  *
  * Tolerance: the two solves round differently, and the dynamic stiffness of a stiff shaft on soft
  * bearings is ill-conditioned (cond ~ (highest mode / speed)^2): the gaps seen are up to 1e-10 of
@@ -23,6 +24,7 @@
 
 #include "modal/modal_internal.h"
 #include "touchdown/case.h"
+#include "touchdown/dofs.h"
 #include "touchdown/modal.h"
 #include "touchdown/system.h"
 
@@ -50,18 +52,20 @@ static double block_gap(const td_harmonic *a, const td_harmonic *b, int lo, int 
     return big > 0.0 ? gap / big : gap;
 }
 
-/* Both solves of `path` (with overrides) at each speed; returns the controller state count. */
-static int compare_case(const char *path, const char **ov, int n_ov, int node, int want_states)
+/* Both solves of `path` (with overrides; AMB amb_off switched off unless -1) at the n_speeds speeds;
+ * returns the controller state count. */
+static int compare_at(const char *path, const char **ov, int n_ov, int node, int want_states, const double *speeds,
+                      int n_speeds, int amb_off)
 {
-    static const double speeds[] = {0.0, 1.0, 60.0, 117.0, 150.0, 190.0, 400.0, 1200.0};
     td_case *c = td_test_load_case(path, ov, n_ov);
     td_system *sys = NULL;
     td_synchronous *fast = NULL;
     td_unbalance u[2] = {{0, 1e-3, 0.4}, {0, 2e-3, -1.9}};
     td_error err;
-    size_t k;
-    int nd, nf;
+    int nd, nf, k;
     assert_int_equal(td_system_create(td_case_model(c), &sys, &err), TD_OK);
+    if (amb_off >= 0)
+        td_system_set_amb_off(sys, amb_off, 1);
     if (td_synchronous_create(sys, &fast, &err) != TD_OK)
         fail_msg("%s: %s", path, err.message);
     nd = td_system_dof_count(sys);
@@ -69,7 +73,7 @@ static int compare_case(const char *path, const char **ov, int n_ov, int node, i
     assert_true(nf >= want_states);
     u[0].node = node;
     u[1].node = node + 2;
-    for (k = 0; k < sizeof speeds / sizeof speeds[0]; k++) {
+    for (k = 0; k < n_speeds; k++) {
         td_harmonic *ref = NULL, *h = NULL;
         double gq, gv, gs;
         assert_int_equal(td_harmonic_compute(sys, speeds[k], u, 2, &ref, &err), TD_OK);
@@ -89,6 +93,13 @@ static int compare_case(const char *path, const char **ov, int n_ov, int node, i
     td_system_free(&sys);
     td_case_free(&c);
     return nf;
+}
+
+/* compare_at over speeds below, near and above the machines' rigid-body and bending criticals. */
+static int compare_case(const char *path, const char **ov, int n_ov, int node, int want_states)
+{
+    static const double speeds[] = {0.0, 1.0, 60.0, 117.0, 150.0, 190.0, 400.0, 1200.0};
+    return compare_at(path, ov, n_ov, node, want_states, speeds, (int)(sizeof speeds / sizeof speeds[0]), -1);
 }
 
 static void test_lag_filters(void **state)
@@ -111,6 +122,35 @@ static void test_linear_controller(void **state)
     (void)state;
     compare_case("cases/rig-notch.cfg", NULL, 0, 1, 5);
     compare_case("cases/rig-notch.cfg", no_lag, 1, 1, 1);
+}
+
+/* An undamped resonant block (poles +-j w, w = 2 pi 20 Hz) in rig-notch's translation law: at and
+ * within 1e-7 of w the controller's own states alone are singular (i w I - P_s), the closed loop
+ * is not; the response there is td_harmonic_compute's. */
+static void test_undamped_resonant(void **state)
+{
+    const char *resonant[] = {
+        "controllers = ( { name = \"rigid-notch-resonant\"; ambs = [0, 1]; coordinates = \"rigid\"; "
+        "translation = ( { parallel = ( { pid = { kp = 2.0e4; kd = 80.0; derivative_filter = 2000.0; }; }, "
+        "{ resonant = { gain = 0.5; phase = 60.0; frequency = 20.0; }; } ); }, "
+        "{ notch = { frequency = 34.4; width = 6.0; depth = 0.3; }; } ); "
+        "tilt = ( { pid = { kp = 5.0e3; kd = 20.0; derivative_filter = 2000.0; }; } ); } )"};
+    const double w = 2.0 * TD_PI * 20.0; /* as lib/control/blocks.c forms it */
+    const double speeds[] = {w, w * (1.0 - 1e-7), w * (1.0 + 1e-7), 0.0, 60.0, 150.0, 400.0};
+    (void)state;
+    compare_at("cases/rig-notch.cfg", resonant, 1, 1, 7, speeds, (int)(sizeof speeds / sizeof speeds[0]), -1);
+}
+
+/* An AMB that is off (td_system_set_amb_off: no force, its controller runs on, a PID integrator
+ * holds): a lag filter's (paper-a), PID integrators (all-keys) and a linear controller (rig-notch). */
+static void test_amb_off(void **state)
+{
+    static const double speeds[] = {0.0, 60.0, 150.0, 400.0};
+    const int n = (int)(sizeof speeds / sizeof speeds[0]);
+    (void)state;
+    compare_at("cases/paper-a.cfg", NULL, 0, 1, 4, speeds, n, 0);
+    compare_at("tests/data/case/all-keys.cfg", NULL, 0, 1, 4, speeds, n, 0);
+    compare_at("cases/rig-notch.cfg", NULL, 0, 1, 5, speeds, n, 1);
 }
 
 /* Row i of the system in [Q; S] (nd + nf unknowns) at speed W into T (row-major, N columns):
@@ -274,7 +314,8 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_lag_filters),       cmocka_unit_test(test_integrators_races_housing_body),
         cmocka_unit_test(test_linear_controller), cmocka_unit_test(test_accuracy),
-        cmocka_unit_test(test_refusals),
+        cmocka_unit_test(test_refusals),          cmocka_unit_test(test_undamped_resonant),
+        cmocka_unit_test(test_amb_off),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -281,10 +281,9 @@ TD_API td_status td_modal_critical_speeds(const td_system *sys, const td_modal_o
                                           int capacity, int *count, td_error *err);
 /**
  * td_modal_critical_speeds(sys, opt, ...), its results bit for bit, reusing the eigen-solves of the
- * Campbell diagram c at the grid speeds (one per grid speed, about a third of the search's solves)
- * where they are the ones the search makes: c computed by td_campbell_compute on this sys, unchanged
- * since, with the same speed_min, speed_max and speed_steps, and solved in full (a system small enough
- * for the dense solver, td_modal_solve_lowest). Otherwise (c NULL too) it solves as
+ * Campbell diagram c at the grid speeds (one per grid speed) where they are the ones the search makes: c computed by
+ * td_campbell_compute on this sys, unchanged since, with the same speed_min, speed_max and speed_steps, and solved in
+ * full (a system small enough for the dense solver, td_modal_solve_lowest). Otherwise (c NULL too) it solves as
  * td_modal_critical_speeds does.
  */
 TD_API td_status td_campbell_critical_speeds(const td_campbell *c, const td_system *sys, const td_modal_options *opt,
@@ -493,7 +492,7 @@ typedef struct td_sweep td_sweep;
 
 /**
  * The steady unbalance response (td_harmonic_compute's, to u[0..n_u-1], solved in second-order
- * form: the same to rounding, docs/api617.md) over the speed range of `opt` on an adaptive grid: 101 even speeds, then
+ * form, docs/api617.md) over the speed range of `opt` on an adaptive grid: 101 even speeds, then
  * every interval bisected where the orbit's major semi-axis at a response node changes by more than 5 % (amplitudes
  * above 1e-6 of that node's largest), until none does, the interval is 1e-7 of the range or the grid holds
  * TD_SWEEP_MAX_SPEEDS speeds. Each local maximum of a node's amplitude of at least 1 % of that

@@ -6,9 +6,9 @@
  * nodes and the static reactions under gravity.
  *
  * Every point of the curve is the steady response of td_harmonic_compute, by its second-order
- * solve (td_synchronous_response, lib/modal/synchronous.c: the same to rounding, several times
- * faster), so the curve between grid speeds is the exact steady response: the peak and its half-power speeds are found
- * on it by Brent's methods (GSL), not read off the grid, which only has to bracket them.
+ * solve (td_synchronous_response, lib/modal/synchronous.c; its cost and accuracy: docs/api617.md), so the curve between
+ * grid speeds is the exact steady response: the peak and its half-power speeds are found on it by Brent's methods
+ * (GSL), not read off the grid, which only has to bracket them.
  */
 #include "modal/modal_internal.h"
 #include "touchdown/assess.h"

@@ -77,6 +77,11 @@ static td_status whirl_split(const td_modal *m, whirl_list lists[2], td_error *e
             if (m->modes[i].whirl == senses[s] && td_mode_is_vibration(&m->modes[i]) &&
                 m->modes[i].omega_d < m->complete_below)
                 lists[s].modes[lists[s].count++] = m->modes[i];
+        if (st == TD_OK && lists[s].count > 0) { /* kept per grid speed: shrink to the count */
+            td_mode *fit = realloc(lists[s].modes, (size_t)lists[s].count * sizeof *fit);
+            if (fit)
+                lists[s].modes = fit;
+        }
     }
     return st;
 }

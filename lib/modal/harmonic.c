@@ -39,8 +39,7 @@ void td_harmonic_free(td_harmonic **h)
     *h = NULL;
 }
 
-/* A zero LU pivot (or a non-finite one) means i W is an eigenvalue of A. */
-static int complex_lu_singular(const gsl_matrix_complex *LU)
+int td_complex_lu_singular(const gsl_matrix_complex *LU)
 {
     size_t i;
     for (i = 0; i < LU->size1; i++) {
@@ -49,6 +48,11 @@ static int complex_lu_singular(const gsl_matrix_complex *LU)
             return 1;
     }
     return 0;
+}
+
+td_status td_resonance_error(td_error *err, double W)
+{
+    return td_error_set(err, TD_ERR_NUMERIC, "modal: i*%g is an eigenvalue of the system (undamped resonance)", W);
 }
 
 /* Z (re, im; ss->n entries) of the response to complex forces F = fre + i fim at frequency W. */
@@ -77,9 +81,9 @@ static td_status solve_harmonic(const td_state_space *ss, double W, const double
     for (i = 0; i < n; i++)
         for (j = 0; j < n; j++)
             gsl_matrix_complex_set(T, i, j, gsl_complex_rect(-gsl_matrix_get(ss->A, i, j), i == j ? W : 0.0));
-    if (gsl_linalg_complex_LU_decomp(T, p, &sign) != GSL_SUCCESS || complex_lu_singular(T) ||
+    if (gsl_linalg_complex_LU_decomp(T, p, &sign) != GSL_SUCCESS || td_complex_lu_singular(T) ||
         gsl_linalg_complex_LU_svx(T, p, b) != GSL_SUCCESS) {
-        st = td_error_set(err, TD_ERR_NUMERIC, "modal: i*%g is an eigenvalue of the system (undamped resonance)", W);
+        st = td_resonance_error(err, W);
         goto done;
     }
     for (i = 0; i < n; i++) {

@@ -39,6 +39,14 @@ void td_entry_add_matrix(td_entry_sink *k, const cs_di *S, int col0, double scal
 void td_state_space_rhs_blocks(const td_system *sys, double omega, td_entry_sink *R);
 /* Filter rows w' = rate_x xs + rate_v vs + rate_w w (rows 2 ndof + state of the state vector). */
 void td_state_space_filter_rows(const td_system *sys, td_entry_sink *A);
+/* L = the Cholesky factor of M (ndof x ndof); TD_ERR_NUMERIC when M is not positive definite (the
+ * first-order form needs M^-1, and every steady response refuses such an M alike). */
+td_status td_state_space_factor_mass(const td_system *sys, gsl_matrix *L, td_error *err);
+/* A zero LU pivot (or a non-finite one) of a complex LU (lib/modal/harmonic.c): i W I - A, or its
+ * second-order form, is singular. */
+int td_complex_lu_singular(const gsl_matrix_complex *LU);
+/* TD_ERR_NUMERIC: i W is an eigenvalue of the system (an undamped resonance), into err. */
+td_status td_resonance_error(td_error *err, double W);
 /* TD_ERR_INVALID naming the first plug-in controller of sys that drives its axes (touchdown/plugin.h:
  * no linear law to analyse; one standing by for a recovery pair is left out, as a linear one is);
  * TD_OK when there is none. Every analysis of the closed loop asks this first. */
@@ -84,8 +92,8 @@ td_status td_harmonic_from_state(const td_system *sys, double omega, int n, cons
                                  td_harmonic **out, td_error *err);
 
 /* The synchronous unbalance response by the second-order (dynamic-stiffness) solve of
- * lib/modal/synchronous.c: td_harmonic_compute's response to rounding, several times faster, for the
- * speeds of the API 617 sweep. The solver keeps sys (not owned) and its speed-independent matrices;
+ * lib/modal/synchronous.c: td_harmonic_compute's response, for the speeds of the API 617 sweep (its
+ * cost and accuracy: docs/api617.md). The solver keeps sys (not owned) and its speed-independent matrices;
  * _create refuses what td_state_space_build refuses (plug-in or sampled controllers). */
 typedef struct td_synchronous td_synchronous;
 td_status td_synchronous_create(const td_system *sys, td_synchronous **out, td_error *err);

@@ -200,8 +200,8 @@ void td_state_space_free(td_state_space *ss)
     ss->A = ss->L = NULL;
 }
 
-/* L = Cholesky factor of the dense M. */
-static td_status factor_mass(const td_system *sys, gsl_matrix *L, td_error *err)
+/* L = Cholesky factor of the dense M (modal_internal.h). */
+td_status td_state_space_factor_mass(const td_system *sys, gsl_matrix *L, td_error *err)
 {
     td_entry_sink k = {NULL, NULL, 0, 1};
     k.dense = L;
@@ -246,7 +246,7 @@ td_status td_state_space_build_plant(const td_system *sys, double omega, td_stat
         td_state_space_free(ss);
         return td_error_set(err, TD_ERR_NOMEM, "modal: out of memory for a %d-state system", ss->n);
     }
-    st = factor_mass(sys, ss->L, err);
+    st = td_state_space_factor_mass(sys, ss->L, err);
     if (st == TD_OK) {
         size_t i;
         td_entry_sink rk = {NULL, NULL, 0, 1}, ak = {NULL, NULL, 0, 1};
