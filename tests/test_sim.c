@@ -602,6 +602,10 @@ static void test_grazing_orbit(void **state)
         td_sim_stats_get(s, &st);
         print_message("grazing, scale %.9f: %ld events, %ld steps, peak force %.3g N, max r - c %.3g m\n", scale[i],
                       events, st.steps, st.peak_normal_force, max_dev);
+        /* above the grazing unbalance the orbit is pushed past the circle: the rotor must meet the
+         * retainer (the micro-bounce path the bounds below judge was taken, in both passes) */
+        if (scale[i] > 1.0)
+            assert_true(st.contact_onsets > 0 && events > 0);
         assert_int_equal(crowded, 0);
         assert_true(events < 2000);
         assert_true(max_dev < 1e-8);

@@ -136,15 +136,13 @@ check "$n_files files (at least 40) under tests/data/bad/, as many as the table 
     test "$n_files" -ge 40 -a "$n_files" = "$n_table"
 
 # ---- exact messages: the whole stderr line of these files ("|" separates the file from what
-# follows its path); each is in the table above as well (under the sanitizers, `run` and `info`
-# alternate from file to file, as above) ------------------------------------------------------
+# follows its path); each is in the table above as well. The commands: cmds_of's, as above, by the
+# file's place in this list --------------------------------------------------------------------
 n_exact=0
 while IFS='|' read -r file rest; do
     [ -z "$file" ] && continue
     n_exact=$((n_exact + 1))
-    cmds="run info"
-    sanitized && cmds=$([ $((n_exact % 2)) = 0 ] && echo run || echo info)
-    for cmd in $cmds; do
+    for cmd in $(cmds_of $n_exact); do
         rest=${rest//BAD/$bad_dir} # BAD: the directory, where a message names a second place in the file
         run_tool "$cmd" "$bad_dir/$file"
         if created=$(scratch_empty); then created=""; else created="; created files: $created"; fi

@@ -5,8 +5,9 @@
 # retainer, the supervisor switches back to the nominal law, and the rotor stays free. To keep the
 # test cheap the heavy-contact phase is shortened (the unbalance steps back at 0.4 s, not 1.1 s) and
 # the run ends at 1.5 s: the same rub sets in, and the same recovery follows (the run's ending is
-# judged over its last 0.4 s); docs/recovery-study.md runs the case as it is, to 4 s. Under ASan
-# these two runs are most of the test's cost. Also: the case's machine is rub-damped.cfg's (its overrides
+# judged over its last 0.4 s); docs/recovery-study.md runs the case as it is, to 4 s. These runs
+# are most of the test's cost; under the sanitizers the one with the supervisor alone (below).
+# Also: the case's machine is rub-damped.cfg's (its overrides
 # repeated, checked line by line here), and its recovery law is the one scripts/recovery_study.py
 # writes (--law 320, the same coefficients to the last digit).
 # Args: $1 = the touchdown binary, $2 = the source directory.
@@ -30,10 +31,15 @@ den=$(echo "$law" | grep -oE 'den = \[[^]]*\]')
 check "pd-sync's numerator is recovery_study.py --law 320's ($num)" grep -qF "$num" "$case_file"
 check "pd-sync's denominator is recovery_study.py --law 320's ($den)" grep -qF "$den" "$case_file"
 
-# The run without the supervisor, under the sanitizers (TD_TEST_SANITIZED=1), is left to the plain
-# pass: its code is that of every run without a supervisor (the default), and a forward-rub ending
-# is reached sanitized by tests/cli/test_leap.sh and tests/test_run.c. The run with the supervisor
-# (the rub, both switches, the release and the return) is checked in both passes.
+# The run with `recovery.enabled = false`, under the sanitizers (TD_TEST_SANITIZED=1), is left to
+# the plain pass. That run still has its supervisor, judged at every sample and held back by
+# `enabled` alone (lib/sim/supervisor.c, judge); that path is taken sanitized by the
+# `--set recovery.enabled=false` run of tests/cli/test_recovery.sh (through the tool, no switch
+# event) and by test_disabled_takes_no_switch of tests/test_supervisor.c (the rule met, no switch,
+# the held currents those of the nominal law alone), and a forward-rub ending by
+# tests/cli/test_leap.sh and tests/test_run.c. What only this run checks is this case's ending
+# without its supervisor. The run with the supervisor (the rub, both switches, the release and the
+# return) is checked in both passes.
 if ! sanitized; then
     t "$work/off" run -q --json --hdf5 '' --csv '' --set recovery.enabled=false $short "$case_file"
     out="$work/off/.out"

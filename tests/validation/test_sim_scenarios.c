@@ -292,30 +292,28 @@ static void test_energy_conservation(void **state)
                          "retainers[1].friction=0.0",
                          "start=\"rest\""};
     td_case *c = td_test_load_case("cases/paper-a.cfg", ov, 8);
-    double phase_loose, phase_tight, gain_loose, gain_tight;
-    long on_loose, on_tight;
+    /* Under the sanitizers the loose run alone (the tight one's figures print as nan and 0): the same
+     * drop, onsets, chatter and releases and the energy bookkeeping; the convergence with the
+     * tolerance (the tight run, several times the loose one's cost) is the plain pass's. */
+    const int runs = td_test_sanitized() ? 1 : 2;
+    const double rtol[2] = {1e-8, 1e-10}, atol[2] = {1e-11, 1e-13};
+    double phase[2] = {NAN, NAN}, gain[2] = {NAN, NAN};
+    long on[2] = {0, 0};
+    int k;
     (void)state;
-    energy_run(c, 1e-8, 1e-11, &phase_loose, &gain_loose, &on_loose);
-    if (td_test_sanitized()) {
-        /* Under the sanitizers the loose run alone: the same drop, onsets, chatter and releases
-         * and the energy bookkeeping; the convergence with the tolerance (the tight run, 1e-10,
-         * several times the loose one's cost) is the plain pass's. */
-        print_message("energy drift inside contact phases: %.3g (rtol 1e-8); onsets %ld; largest relative change "
-                      "across an onset %.3g\n",
-                      phase_loose, on_loose, gain_loose);
-        assert_true(on_loose > 2);
-        assert_true(gain_loose < 0.0);
-        td_case_free(&c);
-        return;
-    }
-    energy_run(c, 1e-10, 1e-13, &phase_tight, &gain_tight, &on_tight);
+    for (k = 0; k < runs; k++)
+        energy_run(c, rtol[k], atol[k], &phase[k], &gain[k], &on[k]);
     print_message("energy drift inside contact phases: %.3g (rtol 1e-8), %.3g (rtol 1e-10); onsets %ld, %ld; "
                   "largest relative change across an onset %.3g, %.3g\n",
-                  phase_loose, phase_tight, on_loose, on_tight, gain_loose, gain_tight);
-    assert_true(on_loose > 2 && on_tight > 2);
-    assert_true(phase_tight < 2e-6);
-    assert_true(phase_tight < 0.1 * phase_loose);
-    assert_true(gain_tight < 0.0 && gain_loose < 0.0); /* every impact loses energy */
+                  phase[0], phase[1], on[0], on[1], gain[0], gain[1]);
+    for (k = 0; k < runs; k++) {
+        assert_true(on[k] > 2);
+        assert_true(gain[k] < 0.0); /* every impact loses energy */
+    }
+    if (runs == 2) {
+        assert_true(phase[1] < 2e-6);
+        assert_true(phase[1] < 0.1 * phase[0]);
+    }
     td_case_free(&c);
 }
 
