@@ -6,7 +6,8 @@
 #   - the JSON summary,
 # all except the wall-clock quantities (wall_time, solver_wall_time, wall_time_per_revolution,
 # realtime_factor). Runs cases/paper-a.cfg (constraint contact) and cases/paper-c.cfg (penalty
-# contact) to end_time = 0.3 s: both through many contacts, events and integrator restarts.
+# contact) to end_time = 0.3 s (0.15 s under the sanitizers, below): both through many contacts,
+# events and integrator restarts.
 # The HDF5 checks need h5dump (hdf5-tools): without it the test fails.
 # Args: $1 = the touchdown binary, $2 = the source directory.
 set -u
@@ -44,7 +45,8 @@ compare() { # WHAT FILE1 FILE2
 # Under the sanitizers (TD_TEST_SANITIZED=1) the runs end at 0.15 s: past the first contacts
 # (0.105 s) with their events, restarts and the same files compared byte for byte; the longer runs,
 # through more contacts, are the plain pass's (more than 3000 samples each, 1000 under the
-# sanitizers; more than 100 events in both).
+# sanitizers; more than 100 events in both). Measured to 0.15 s, sanitized build: paper-a 1664
+# samples and 163 events, paper-c 1764 and 263 (CSV data rows and event rows).
 end=0.3
 min_rows=3000
 if sanitized; then
