@@ -7,9 +7,9 @@
 # the run ends at 1.5 s: the same rub sets in, and the same recovery follows (the run's ending is
 # judged over its last 0.4 s); docs/recovery-study.md runs the case as it is, to 4 s. These runs
 # are most of the test's cost; under the sanitizers the one with the supervisor alone (below).
-# Also: the case's machine is rub-damped.cfg's (its overrides
-# repeated, checked line by line here), and its recovery law is the one scripts/recovery_study.py
-# writes (--law 320, the same coefficients to the last digit).
+# Also: the case's machine is rub-damped.cfg's (its overrides repeated, checked line by line
+# here), and its recovery law is the one scripts/recovery_study.py writes (--law 320, the same
+# coefficients to the last digit).
 # Args: $1 = the touchdown binary, $2 = the source directory.
 set -u
 tool=$1
