@@ -611,8 +611,13 @@ def main():
         start = time.monotonic()
         print("docs_record: %s ..." % name, flush=True)
         data = fn(tool, build)
+        after = None
+        if isinstance(data, tuple):  # a record with files to install once it is saved (sweep_study)
+            data, after = data
         data["record_wall_time"] = round(time.monotonic() - start, 1)
         save(name, data)
+        if after:
+            after()
 
 
 if __name__ == "__main__":

@@ -14,8 +14,8 @@ docs_render.py renders the regions and spans of docs/sweep-study.md from the rec
 SPANS below. Every number the page quotes is in the record, with the command that gave it; where the
 page draws a conclusion from them, the sentence is written here from the numbers (or the rendering
 stops, saying which sentence the numbers no longer support). The figures are the sweeps' own plots
-(`touchdown plot` of the tables recorded here), so they show the recorded rows; scripts/make-figures.sh
-runs the same commands and makes the same figures. Only Debian's python3 modules are used.
+(`touchdown plot` of the tables recorded here), so they show the recorded rows; they are installed only
+once the record is saved. Only Debian's python3 modules are used.
 """
 import concurrent.futures
 import csv
@@ -23,7 +23,6 @@ import json
 import math
 import os
 import re
-import shutil
 import subprocess
 import sys
 import tempfile
@@ -74,34 +73,48 @@ def quote(a):
 
 
 def tool_run(tool, args, cwd=ROOT):
-    """Run the tool under /usr/bin/time: (stdout, stderr, return code, wall s, CPU s = user + sys)."""
-    with tempfile.NamedTemporaryFile("r", suffix=".time") as tf:
+    """Run the tool: (stdout, stderr, return code, wall s, CPU s = user + sys). The CPU time is the
+    child's own resource usage from wait4(2), so runs in parallel threads do not count each other's."""
+    with tempfile.TemporaryFile("w+") as out, tempfile.TemporaryFile("w+") as err:
         start = time.monotonic()
-        proc = subprocess.run(["/usr/bin/time", "-f", "%U %S", "-o", tf.name, tool] + args, cwd=cwd,
-                              stdout=subprocess.PIPE, stderr=subprocess.PIPE, universal_newlines=True)
+        proc = subprocess.Popen([tool] + args, cwd=cwd, stdout=out, stderr=err)
+        _, status, usage = os.wait4(proc.pid, 0)
         wall = time.monotonic() - start
-        user, sys_ = (float(x) for x in tf.read().split()[-2:])
-    return proc.stdout, proc.stderr, proc.returncode, wall, user + sys_
+        proc.returncode = os.waitstatus_to_exitcode(status) if hasattr(os, "waitstatus_to_exitcode") else \
+            (os.WEXITSTATUS(status) if os.WIFEXITED(status) else -os.WTERMSIG(status))
+        out.seek(0)
+        err.seek(0)
+        return out.read(), err.read(), proc.returncode, wall, usage.ru_utime + usage.ru_stime
 
 
-def run(tool, case, sets, csv_path=None):
-    """touchdown run --json of CASE with --set SETS [(key, value)]; a CSV when csv_path is given."""
-    args = ["run", "--json", "-q", "--hdf5", ""] + (["-o", csv_path] if csv_path else ["--csv", ""])
+def run(tool, case, sets, out_dir=None, name=None):
+    """touchdown run --json of CASE with --set SETS [(key, value)]; with OUT_DIR and NAME, run in OUT_DIR
+    (which links cases/ to the repository's) writing NAME.csv there. The command recorded is the one run.
+    Stops when the tool fails or its status is not success: a failed run is never recorded as numbers."""
+    args = ["run", "--json", "-q", "--hdf5", ""] + (["-o", name] if name else ["--csv", ""])
     for k, v in sets:
         args += ["--set", "%s=%s" % (k, v)]
     args.append(case)
-    out, err, rc, wall, cpu = tool_run(tool, args)
+    out, err, rc, wall, cpu = tool_run(tool, args, cwd=out_dir or ROOT)
+    command = "touchdown " + " ".join(quote(a) for a in args)
     try:
         summary = json.loads(out)
     except ValueError:
-        sys.exit("sweep_study: touchdown %s printed no JSON: %s" % (" ".join(args), err[:300]))
+        sys.exit("sweep_study: %s: exit %d, printed no JSON: %s" % (command, rc, err[:300]))
+    if rc != 0 or summary.get("status") != "success":
+        sys.exit("sweep_study: %s: exit %d, status %s: %s" % (command, rc, summary.get("status"), err[:300]))
     for key in ("hdf5_path", "csv_path", "events_path"):
         if summary.get(key):
             summary[key] = os.path.basename(summary[key])
-    words = [os.path.basename(a) + ".csv" if csv_path and a == csv_path else quote(a) for a in args]
-    print("  %-90s %6.1f s wall %6.1f s CPU" % (" ".join(words[5:])[:90], wall, cpu), flush=True)
-    return {"command": "touchdown " + " ".join(words), "cpu_time": round(cpu, 3), "wall_time": round(wall, 3),
-            "summary": summary}
+    print("  %-90s %6.1f s wall %6.1f s CPU" % (command[len("touchdown run --json -q --hdf5 '' "):][:90], wall, cpu),
+          flush=True)
+    return {"command": command, "cpu_time": round(cpu, 3), "wall_time": round(wall, 3), "summary": summary}
+
+
+def scratch(tmp):
+    """TMP with cases/ linked to the repository's, so that the commands run there read as recorded."""
+    os.symlink(os.path.join(ROOT, "cases"), os.path.join(tmp, "cases"))
+    return tmp
 
 
 def drop_sets(speed, drag, more=()):
@@ -110,8 +123,7 @@ def drop_sets(speed, drag, more=()):
 
 def sweep(tool, args, tmp):
     """A touchdown sweep in TMP: its command, summary line, CPU and wall time, and its table."""
-    case = args[-1]
-    out, err, rc, wall, cpu = tool_run(tool, args[:-1] + [os.path.join(ROOT, case)], cwd=tmp)
+    out, err, rc, wall, cpu = tool_run(tool, args, cwd=tmp)
     if rc != 0:
         sys.exit("sweep_study: touchdown %s: exit %d: %s" % (" ".join(args), rc, err[-500:]))
     line = [l for l in (out + err).splitlines() if l.startswith("sweep:")]
@@ -148,7 +160,8 @@ def unwrap(a):
 
 def bounce_measures(cols, t0, t1, rs, rb):
     """Over [t0, t1]: per retainer the time in contact, the angle the contact point turns while in
-    contact (deg), the range of contact angles (deg), the node's angle from start to end, and the mean
+    contact (deg), the range of contact angles (deg, unwrapped), the node's net turn while out at the
+    clearance (deg, radius over half of it), and the mean
     angle and race speed in each 50 ms; the no-whirl rolling race speed R_s Omega / R_b."""
     t = cols["t"]
     idx = [i for i, x in enumerate(t) if t0 <= x <= t1]
@@ -156,9 +169,16 @@ def bounce_measures(cols, t0, t1, rs, rb):
     for j in range(2):
         th = unwrap([cols["theta_ret%d" % j][i] for i in idx])
         c = [cols["contact_ret%d" % j][i] != 0.0 for i in idx]
-        dt = (t[idx[-1]] - t[idx[0]]) / max(1, len(idx) - 1)
+        far = [cols["r_ret%d" % j][i] > 0.5 * (rb - rs) for i in idx]
+        # the table has extra rows at the contact events (docs/output-format.md), crowded round the
+        # contacts: each interval counts by its length, half to each end (trapezoidal rule)
+        contact = sum((t[idx[k + 1]] - t[idx[k]]) * (c[k] + c[k + 1]) / 2 for k in range(len(idx) - 1))
         turned = sum(th[k + 1] - th[k] for k in range(len(idx) - 1) if c[k] and c[k + 1])
-        angles = [math.degrees(math.atan2(math.sin(th[k]), math.cos(th[k]))) for k in range(len(idx)) if c[k]]
+        # the range on the unwrapped angle, so that a contact arc across +-180 degrees is not taken as a
+        # full circle
+        angles = [math.degrees(th[k]) for k in range(len(idx)) if c[k]]
+        # the node's net turn while out at the clearance (radius over half of it), as fall_windows counts
+        node_turned = sum(th[k + 1] - th[k] for k in range(len(idx) - 1) if far[k] and far[k + 1])
         windows = []
         w0 = t0
         while w0 < t1 - 1e-9:
@@ -170,10 +190,10 @@ def bounce_measures(cols, t0, t1, rs, rb):
                                 "race_speed": sum(cols["wr_ret%d" % j][idx[k]] for k in sel) / len(sel),
                                 "speed": sum(cols["speed"][idx[k]] for k in sel) / len(sel)})
             w0 += 0.05
-        out["ret%d" % j] = {"contact_time": sum(c) * dt, "turned_in_contact": math.degrees(turned),
+        out["ret%d" % j] = {"contact_time": contact, "turned_in_contact": math.degrees(turned),
                             "contact_angle_min": min(angles) if angles else None,
                             "contact_angle_max": max(angles) if angles else None,
-                            "node_turned": math.degrees(th[-1] - th[0]), "windows": windows}
+                            "node_turned": math.degrees(node_turned), "windows": windows}
     out["window"] = [t0, t1]
     out["busiest"] = max(range(2), key=lambda j: out["ret%d" % j]["contact_time"])
     out["rolling_race_speed"] = [rs * w["speed"] / rb for w in out["ret0"]["windows"]]
@@ -199,7 +219,10 @@ def fall_windows(cols, t_fail, clearance):
             row["angle%d" % j] = math.degrees(math.atan2(sy, sx))
             row["turned%d" % j] = math.degrees(abs(sum(th[k + 1] - th[k] for k in range(len(th) - 1)
                                                        if out_[k] and out_[k + 1])))
-            row["contact%d" % j] = sum(1 for i in sel if cols["contact_ret%d" % j][i] != 0.0) / len(sel)
+            # time-weighted: the extra rows at contact events crowd round the contacts (trapezoidal rule)
+            c = [cols["contact_ret%d" % j][i] != 0.0 for i in sel]
+            row["contact%d" % j] = sum((t[sel[k + 1]] - t[sel[k]]) * (c[k] + c[k + 1]) / 2
+                                       for k in range(len(sel) - 1)) / (t[sel[-1]] - t[sel[0]])
         out.append(row)
         w0 += 0.1
     return out
@@ -213,8 +236,9 @@ def failure_time():
 
 
 def bounce_job(tool, tmp, speed, drag, rs, rb):
-    name = os.path.join(tmp, "b-%g-%s" % (speed, drag))
-    rec = run(tool, STUDY_DROP, drop_sets(speed, drag, [("output.sample_rate", "20000")]), csv_path=name)
+    name = "b-%g-%s" % (speed, drag)
+    rec = run(tool, STUDY_DROP, drop_sets(speed, drag, [("output.sample_rate", "20000")]), out_dir=tmp, name=name)
+    name = os.path.join(tmp, name)
     s = rec["summary"]
     end = s["t_reached"]
     rec["measured"] = bounce_measures(read_csv(name + ".csv"), end - s["ending_window"], end, rs, rb)
@@ -225,8 +249,8 @@ def bounce_job(tool, tmp, speed, drag, rs, rb):
 
 
 def fall_job(tool, tmp, clearance):
+    rec = run(tool, DROP, [("end_time", "1.5"), ("output.sample_rate", "20000")], out_dir=tmp, name="fall")
     name = os.path.join(tmp, "fall")
-    rec = run(tool, DROP, [("end_time", "1.5"), ("output.sample_rate", "20000")], csv_path=name)
     rec["failure_time"] = failure_time()
     rec["windows"] = fall_windows(read_csv(name + ".csv"), rec["failure_time"], clearance)
     for ext in (".csv", ".events.csv"):
@@ -238,8 +262,10 @@ def fall_job(tool, tmp, clearance):
 def texts(tool):
     """The modal text of study-a (its critical speeds) and the info text of study-drop (mass, radii)."""
     out = {}
-    for key, args in (("modal_a", ["modal", STUDY_A]), ("info_drop", ["info", STUDY_DROP])):
+    for key, args in (("modal_a", ["modal", "--csv", "", "--hdf5", "", STUDY_A]), ("info_drop", ["info", STUDY_DROP])):
         o, err, rc, wall, cpu = tool_run(tool, args)
+        if rc != 0:
+            sys.exit("sweep_study: touchdown %s: exit %d: %s" % (" ".join(quote(a) for a in args), rc, err[-300:]))
         out[key] = {"command": "touchdown " + " ".join(args), "text": o}
     return out
 
@@ -256,21 +282,25 @@ def radii(info_text):
 
 
 def record(tool, stamp):
-    """Every run the page quotes; returns the record (docs/results/sweep_study.json)."""
+    """Every run the page quotes; returns the record (docs/results/sweep_study.json) and what to call once
+    it is saved (installing the figures)."""
     data = stamp(tool, "sweep_study", "scripts/sweep_study.py: the page's three sweeps in a scratch directory "
-                 "(each under /usr/bin/time), then touchdown run --json of the cases with --set variants, two at a time")
+                 "(the CPU time of each from wait4(2)), then touchdown run --json of the cases with --set variants, two at a time")
     t0 = time.monotonic()
     data["texts"] = texts(tool)
     rs, rb = radii(data["texts"]["info_drop"]["text"])
     with tempfile.TemporaryDirectory() as tmp:
+        scratch(tmp)
         data["sweeps"] = {"study": sweep(tool, SWEEP_A, tmp), "study-drop": sweep(tool, SWEEP_DROP, tmp),
                           "phase": sweep(tool, SWEEP_PHASE, tmp)}
         for args in PLOTS:
             out, err, rc, wall, cpu = tool_run(tool, args, cwd=tmp)
             if rc != 0:
                 sys.exit("sweep_study: touchdown %s: %s" % (" ".join(args), err[-300:]))
+        figures = {}
         for src, dst in FIGURES:
-            shutil.copyfile(os.path.join(tmp, src), os.path.join(ROOT, "docs", "figures", dst))
+            with open(os.path.join(tmp, src), "rb") as f:
+                figures[dst] = f.read()
     jobs = []
     for s, u in A_TIGHT:
         base = [("speed", "%g" % s), ("unbalances[0].magnitude", u)]
@@ -291,6 +321,7 @@ def record(tool, stamp):
                      (tool, DROP, [("end_time", "0.6"), ("speed", "%g" % s), (FRICTION[0], mu), (FRICTION[1], mu),
                                    (DRAG[0], t), (DRAG[1], t)])))
     with tempfile.TemporaryDirectory() as tmp:
+        scratch(tmp)
         jobs.append(("fall", fall_job, (tool, tmp, rb - rs)))
         for s, t in BOUNCES:
             jobs.append(("bounce %g %s" % (s, t), bounce_job, (tool, tmp, s, t, rs, rb)))
@@ -299,7 +330,17 @@ def record(tool, stamp):
     cpu = sum(x["cpu_time"] for x in data["sweeps"].values()) + sum(x["cpu_time"] for x in data["runs"].values())
     data["cpu_time"] = round(cpu, 1)
     data["runs_wall_time"] = round(time.monotonic() - t0, 1)
-    return data
+    return data, lambda: install(figures)
+
+
+def install(figures):
+    """The figures into docs/figures, each through a temporary file and a rename; called once the record
+    is saved, so that a record that failed leaves the figures of the record in place."""
+    for name, png in figures.items():
+        path = os.path.join(ROOT, "docs", "figures", name)
+        with open(path + ".tmp", "wb") as f:
+            f.write(png)
+        os.replace(path + ".tmp", path)
 
 
 # --- the docs (render) ------------------------------------------------------------------------------
@@ -473,7 +514,7 @@ def region_a_timing():
     us = sorted({x["unbalances[0].magnitude"] for x in rows})
     done = sum(1 for x in rows if x["status"] == "success")
     return ("```\n%s\n```\n\n%d points (%d speeds, %g rad/s apart, times %d unbalances), %d of them ran to their "
-            "ends: %.1f s of wall time and %.1f s of CPU (user + system, `/usr/bin/time`) on one worker, %.2f s a "
+            "ends: %.1f s of wall time and %.1f s of CPU (user + system of the process) on one worker, %.2f s a "
             "point on average and %.2f s at most (the table's `wall_time` column), on the machine of the record "
             "(above) with other jobs beside it.\n") % (
         sw["summary_line"], len(rows), len(speeds), speeds[1] - speeds[0], len(us), done, sw["wall_time"], sw["cpu_time"],
@@ -766,7 +807,7 @@ def region_drop_timing():
     cpu = "; ".join("%s s (%g rad/s, %s N m)" % (_f(_res()["runs"]["%g %s" % k]["cpu_time"]), k[0], k[1]) for k in CONVERGE)
     return ("```\n%s\n```\n\n%d points (%d speeds times %d drag torques) in %.0f s of wall time and %.0f s of CPU on two "
             "workers, %.1f s a point on average, %.1f s at least and %.1f s at most (the table's `wall_time`); "
-            "the CPU time (user + system, `/usr/bin/time`) of single points, run two at a time: %s.\n") % (
+            "the CPU time (user + system of the process) of single points, run two at a time: %s.\n") % (
         sw["summary_line"], len(rows), len(_drop_speeds()), len(_drags()), sw["wall_time"], sw["cpu_time"],
         sum(wt) / len(wt), min(wt), max(wt), cpu)
 
@@ -1174,14 +1215,15 @@ def main(argv):
     sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
     if len(argv) == 2 and argv[0] == "--check":
         return check_run(os.path.abspath(argv[1]))
-    if len(argv) != 1:
+    if len(argv) != 1 or argv[0].startswith("-"):
         sys.exit(__doc__)
     import docs_record  # noqa: E402  (its stamp and save)
     tool = os.path.join(os.path.abspath(argv[0]), "touchdown")
     start = time.monotonic()
-    data = record(tool, docs_record.stamp)
+    data, after = record(tool, docs_record.stamp)
     data["record_wall_time"] = round(time.monotonic() - start, 1)
     docs_record.save("sweep_study", data)
+    after()
     return subprocess.run([sys.executable, os.path.join(ROOT, "scripts", "docs_render.py")]).returncode
 
 
