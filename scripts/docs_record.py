@@ -101,7 +101,7 @@ def git_revision():
     # that run them) differ from the commit; the docs and their results do not count
     dirty = git("status", "--porcelain", "--untracked-files=no", "--", "lib", "include", "tools", "cases",
                 "cmake", "CMakeLists.txt", "bench", "scripts/make-figures.sh", "scripts/docs_record.py",
-                "scripts/recovery_study.py", "scripts/shock_study.py", "scripts/sweep_study.py",
+                "scripts/recovery_study.py", "scripts/shock_study.py", "scripts/sweep_study.py", "scripts/sweep_study_page.py",
                 "tests/validation/base_motion")
     return rev + ("-modified" if dirty else "")
 
