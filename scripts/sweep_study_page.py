@@ -10,7 +10,7 @@ import os
 import re
 import sys
 
-from sweep_study import (A_TIGHT, BOUNCES, CONVERGE, CONVERGE_TIGHT_ONLY, DRAG, KEYS_RUNS, PHASE_DRAGS, PHASES, PLOTS,
+from sweep_study import (quote, A_TIGHT, BOUNCES, CONVERGE, CONVERGE_TIGHT_ONLY, DRAG, KEYS_RUNS, PHASE_DRAGS, PHASES, PLOTS,
                          ROOT, STUDY_A, STUDY_DROP, TIGHT)
 
 _cache = {}
@@ -160,6 +160,42 @@ def _clearance():
 def fail(what):
     """Stop the rendering: a sentence of the page the record no longer supports."""
     sys.exit("docs_render: docs/sweep-study.md: the record no longer supports: %s (rewrite the sentence)" % what)
+
+
+# - the commands, as the record ran them -
+def _shell(command, width=100):
+    """A recorded command ("touchdown ...") as the page's shell line from the repository root, broken
+    with backslashes before an option where it passes WIDTH."""
+    words = command.split(" ")
+    words[0] = "build/touchdown"
+    lines, cur = [], ""
+    for k, w in enumerate(words):
+        if cur and w.startswith("-") and len(cur) + 1 + len(w) + sum(len(x) + 1 for x in words[k + 1:k + 2]) > width:
+            lines.append(cur + " \\")
+            cur = "    " + w
+        else:
+            cur = (cur + " " + w) if cur else w
+    return "\n".join(lines + [cur])
+
+
+def _commands(sweep):
+    """The sweep SWEEP's recorded command and the plots of its table (PLOTS, as the record ran them)."""
+    cmd = _res()["sweeps"][sweep]["command"]
+    h5 = cmd.split(" -o ")[1].split(" ")[0] + ".h5"
+    plots = [_shell("touchdown " + " ".join(quote(a) for a in p)) for p in PLOTS if p[-1] == h5]
+    return "```sh\n%s\n```\n" % "\n".join([_shell(cmd)] + plots)
+
+
+def region_a_commands():
+    return _commands("study")
+
+
+def region_drop_commands():
+    return _commands("study-drop")
+
+
+def region_phase_commands():
+    return _commands("phase")
 
 
 # - the record and timings -
@@ -842,7 +878,8 @@ def region_drop_creep():
     return text + "\n\n" + "\n".join(lines) + "\n" + after
 
 
-REGIONS = {"sweep-a-timing": region_a_timing, "sweep-a-solver": region_a_solver, "sweep-a-regimes": region_a_regimes,
+REGIONS = {"sweep-a-commands": region_a_commands, "drop-commands": region_drop_commands,
+           "drop-phase-commands": region_phase_commands, "sweep-a-timing": region_a_timing, "sweep-a-solver": region_a_solver, "sweep-a-regimes": region_a_regimes,
            "sweep-a-spread": region_a_spread, "drop-keys": region_drop_keys, "drop-fall": region_drop_fall,
            "drop-timing": region_drop_timing, "drop-rows": region_drop_rows, "drop-race": region_drop_race,
            "drop-whirl-freq": region_drop_whirl_freq, "drop-rolling": region_drop_rolling, "drop-peak": region_drop_peak,
