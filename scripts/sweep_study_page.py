@@ -289,19 +289,39 @@ def region_a_regimes():
     return text + "\n" + "\n".join(lines) + "\n"
 
 
+def _damped(zetas):
+    """How damped modes of damping ratios ZETAS are: heavily over 0.1, lightly under 0.05 (the usual
+    reading of a damping ratio; API 617's amplification factor 1 / (2 zeta) is then under 5, over 10)."""
+    if min(zetas) > 0.1:
+        return "heavily damped"
+    if max(zetas) < 0.05:
+        return "lightly damped"
+    return "damped"
+
+
 def span_a_rigid_modes():
     c = [x for x in _critical() if x[1] < 180.0]
-    return "%s rad/s, heavily damped: zeta %s" % (_span([x[1] for x in c], lambda v: "%.0f" % v),
-                                                   _span([x[2] for x in c], lambda v: "%.2f" % v))
+    if not c:
+        fail("the rig has critical speeds under 180 rad/s (its rigid-body modes)")
+    return "%s rad/s, %s: zeta %s" % (_span([x[1] for x in c], lambda v: "%.0f" % v), _damped([x[2] for x in c]),
+                                      _span([x[2] for x in c], lambda v: "%.2f" % v))
 
 
 def span_a_bending_modes():
     c = [x for x in _critical() if 180.0 <= x[1] < 300.0]
+    if not c:
+        fail("the rig has critical speeds from 180 to 300 rad/s (its first bending modes)")
     umin = min(x["unbalances[0].magnitude"] for x in _rows("study"))
     if not any(x["regime"] != "free" and 180.0 <= x["speed"] for x in _u_rows(umin)):
         fail("the smallest unbalance touches near the bending pair")
-    return "%s rad/s (zeta %s, the first bending modes)" % (_span([x[1] for x in c], lambda v: "%.0f" % v),
-                                                           _span([x[2] for x in c], lambda v: "%.2f" % v))
+    p1, p2 = _free_peak(50, 180), _free_peak(180, 250)
+    between = [x["section_radius_max"] for x in _u_rows(umin) if p1 and p2 and p1[0] < x["speed"] < p2[0]
+               and x["regime"] == "free"]
+    if not between or min(between) >= min(p1[1], p2[1]):
+        fail("above the rigid-body modes the free orbit shrinks, then grows into the bending pair")
+    return ("Above them the free orbit shrinks, then grows into the %s pair near %s rad/s (zeta %s, the first bending "
+            "modes)") % (_damped([x[2] for x in c]), _span([x[1] for x in c], lambda v: "%.0f" % v),
+                         _span([x[2] for x in c], lambda v: "%.2f" % v))
 
 
 def _first_touch():
@@ -323,6 +343,8 @@ def span_a_boundary():
     lo = ft[speeds[0]]
     start = ("above %g kg m at %g rad/s" % (umax, speeds[0])) if lo is None else ("%g kg m at %g rad/s" % (lo, speeds[0]))
     below = [s for s in speeds if s < 180.0 and ft[s] is not None]
+    if not below:
+        fail("the smallest unbalance that brings contact falls with speed up to the rigid-body modes")
     umin = min(ft[s] for s in below)
     at = min(s for s in below if ft[s] == umin)
     return "%s to %g kg m from %g rad/s" % (start, umin, at)
@@ -348,7 +370,11 @@ def _free_peak(lo, hi):
 
 def span_a_free_peaks():
     p1, p2 = _free_peak(50, 180), _free_peak(180, 250)
-    return "near %g rad/s and the sharp bending resonance near %g rad/s" % (p1[0], p2[0])
+    if p1 is None or p2 is None:
+        fail("the 0.005 kg m curve runs free at a rigid-body peak under 180 rad/s and a bending peak above")
+    c = [x[2] for x in _critical() if 180.0 <= x[1] < 300.0]
+    sharp = "the sharp " if c and _damped(c) == "lightly damped" else "the "
+    return "near %g rad/s and %sbending resonance near %g rad/s" % (p1[0], sharp, p2[0])
 
 
 def span_a_press():
@@ -373,6 +399,22 @@ def span_a_sync():
         100 * max(dev), len(pts), _g(x[0]["ending_whirl_frequency"], 4), x[0]["speed"])
 
 
+def _tight_moves(points):
+    """What the tolerance check above says of POINTS (those of them it reran)."""
+    said = []
+    for x in points:
+        k = "a %g %s" % (x["speed"], "%g" % x["unbalances[0].magnitude"])
+        if k + " tight" not in _res()["runs"]:
+            continue
+        ra, rb = _run(k).get("section_radius") or [], _run(k + " tight").get("section_radius") or []
+        n = min(len(ra), len(rb))
+        if n:
+            said.append("at %g rad/s and %g kg m its samples move by up to %.2g um at rtol 1e-8" % (
+                x["speed"], x["unbalances[0].magnitude"], 1e6 * max(abs(p - q) for p, q in zip(ra[:n], rb[:n]))))
+    return (" The check above reran %d of %d: %s." % (len(said), len(points), "; ".join(said))) if said else \
+        " The check above reran none of them."
+
+
 def region_a_spread():
     pts = [x for x in _rows("study") if x["regime"] != "free" and x["section_radius_max"] - x["section_radius_min"] >= 2e-6]
     if not pts:
@@ -387,8 +429,9 @@ def region_a_spread():
     if intermittent:
         text += ("\nAt %s the section reaches well inside the clearance: the rotor touches, is thrown off and returns, "
                  "an intermittent, non-synchronous rub at the edge of the resonance, the non-periodic motion a "
-                 "bifurcation diagram is made to show; its samples depend on the tolerances (the check above).\n" %
-                 _list("%g rad/s and %g kg m" % (x["speed"], x["unbalances[0].magnitude"]) for x in intermittent))
+                 "bifurcation diagram is made to show.%s\n") % (
+            _list("%g rad/s and %g kg m" % (x["speed"], x["unbalances[0].magnitude"]) for x in intermittent),
+            _tight_moves(intermittent))
     return text
 
 
@@ -684,6 +727,8 @@ def region_drop_rolling():
            for x in (k, k + " 1.6")):
         fail("the whirls are far slower than the dry whip")
     healthy = _drop(float(sp), "0.02")
+    if not _run(k + " 1.6")["final_speed"] < _run(k)["final_speed"] < healthy["final_speed"]:
+        fail("the backward whirl brakes the rotor: slower at 0.8 s than on the healthy race, slower still by 1.6 s")
     return ("Checked on the point at %s rad/s and %s N m (single runs, `touchdown run --json`, race speeds "
             "`retainer_race_speed` at the end): %s. The races turn at %s of the no-whirl rolling speed R_s Omega / R_b. "
             "The backward whirl also brakes the rotor: it ends at %.1f rad/s at 0.8 s against %.1f rad/s on the healthy "
@@ -711,11 +756,13 @@ def region_drop_peak():
             if mean:
                 ratios += [r["peak_housing_force"] / mean for r in bw]
         parts.append(text)
+    if not ratios or min(ratios) <= 1.0:
+        fail("backward whirl raises the peak housing force above the mean of the same speed's points without whirl")
     times = "; ".join("%s at %g rad/s and %s N m (%s)" % (_g(_run("%g %s" % k)["peak_time"], 2) + " s", k[0], k[1],
                                                             _run("%g %s" % k)["regime"]) for k in CONVERGE)
     return ("Peak housing force by speed: %s. Backward whirl raises it %s times the mean of the same speed's points "
             "without whirl. When the peak comes, in the single runs: %s.\n") % (
-        "; ".join(parts), _span(ratios, lambda v: "%.1f" % v) if ratios else "-", times)
+        "; ".join(parts), _span(ratios, lambda v: "%.1f" % v), times)
 
 
 def _pctg(x):
@@ -841,14 +888,16 @@ def region_drop_creep():
     fast = [r for r in rows if r["regime"] == "bounce" and r["ending_whirl_frequency"] is not None
             and r["ending_whirl_frequency"] <= -0.05 * spin(r)]
     round_ = [r for r in rows if r["regime"] == "backward whirl" and "bouncing" in r["ending"]]
+    if not fast:
+        fail("some bounces have contact points that creep backward faster than 5 % of the spin while in contact")
     text = ("In this study %d bounces have contact points that creep backward faster than 5 %% of the spin while in "
             "contact: %s.") % (len(fast), _list("%g rad/s and %g N m (%+.1f Hz)" % (
-                r["speed"], r[DRAG[0]], r["ending_whirl_frequency"]) for r in fast) or "none")
+                r["speed"], r[DRAG[0]], r["ending_whirl_frequency"]) for r in fast))
     if round_:
         text += " In contact under half the stretch too, but carried round: %s, a backward whirl." % _list(
             "%g rad/s and %g N m (%.1f Hz)" % (r["speed"], r[DRAG[0]], r["ending_whirl_frequency"]) for r in round_)
     lines = ["| point | `ending`, `ending_whirl_frequency` | busiest retainer: in contact, angle turned while in contact | "
-             "where the contacts are (-90 degrees is straight down) | node angle, start to end of the stretch | mean "
+             "where the contacts are (-90 degrees is straight down) | node's net turn out at the clearance | mean "
              "angle in each 50 ms |", "|---|---|---|---|---|---|"]
     turned = []
     for sp, t in BOUNCES:
@@ -856,6 +905,13 @@ def region_drop_creep():
         s, m = rec["summary"], rec["measured"]
         b = m["ret%d" % m["busiest"]]
         turned.append(abs(b["turned_in_contact"]))
+        # the angle turned in contact over the time in contact, from the 20 kHz table, against the tool's own
+        # ending_whirl_frequency (the whirl of the retainer most in contact, docs/output-format.md "Run
+        # summary"): a check of both measures
+        f = b["turned_in_contact"] / 360.0 / b["contact_time"]
+        if s["ending_whirl_frequency"] is None or abs(f - s["ending_whirl_frequency"]) > 0.02 * abs(s["ending_whirl_frequency"]):
+            fail("the bounce at %g rad/s and %s N m: its angle turned over its time in contact, %.3f Hz, is the tool's "
+                 "ending_whirl_frequency %s Hz (within 2 %%)" % (sp, t, f, s["ending_whirl_frequency"]))
         lines.append("| %g rad/s, %s N m | %s; %.3f Hz | %.3f s of %.3f s, %.0f degrees | %.0f to %.0f degrees | %.0f degrees "
                      "| %s degrees |" % (sp, t, s["ending"], s["ending_whirl_frequency"], b["contact_time"],
                                          m["window"][1] - m["window"][0], b["turned_in_contact"], b["contact_angle_min"],
