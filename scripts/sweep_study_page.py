@@ -482,9 +482,8 @@ def region_drop_keys():
     if len(free_race) != 1 or "backward whirl" not in draggy:
         fail("the friction coefficient alone does not change the regime, a draggy race does (so the study sweeps "
              "the drag and keeps the friction)")
-    text = ("At 190 rad/s on races of 0.02 to 0.5 N m every friction from 0.1 to 0.3 ended in %s: %s. "
-            % (_list(free_race), "the friction coefficient alone did not change the regime" if len(free_race) == 1
-               else "the friction coefficient moved these runs between regimes"))
+    text = ("At 190 rad/s on races of 0.02 to 0.5 N m every friction from 0.1 to 0.3 ended in %s: on a free-turning "
+            "race the friction coefficient alone did not change the regime. " % _list(free_race))
     text += ("On races of 5 and 10 N m at friction 0.1 to 0.3: %s; at friction 0.05: %s. " % (_list(draggy), _list(slick)))
     text += "At 80 and 120 rad/s: %s.\n" % _list(slow)
     return "\n".join(lines) + "\n\n" + text + "\nCommand (one run): `%s`.\n" % _res()["runs"]["keys 190 0.1 10"]["command"]
@@ -526,8 +525,9 @@ def region_drop_fall():
 
 def span_drop_settled():
     w, k = _settled()
-    if w[k]["from"] + max(_run("100 0.02")["ending_window"], _run("250 0.5")["ending_window"]) > 0.8 + 1e-9:
-        fail("0.8 s leaves room for the regime's window after the fall")
+    end = _case_value(STUDY_DROP, r"\nend_time = ([0-9.]+);")
+    if w[k]["from"] + max(_run("100 0.02")["ending_window"], _run("250 0.5")["ending_window"]) > end + 1e-9:
+        fail("the study's end time, %g s, leaves room for the regime's window after the fall" % end)
     return "%.2f s" % w[k]["from"]
 
 
@@ -593,8 +593,9 @@ def region_drop_rows():
             _span([r["peak_housing_force"] / 1e3 for r in rows], lambda v: "%.1f" % v, "kN"))
         rub = [r for r in rows if r["regime"] == "rub" and not r["ending"].startswith("forward")]
         if rub:
-            text += " Where it sits, its section radius is %s mm." % _span(
-                [r["section_radius_min"] * 1e3 for r in rub] + [r["section_radius_max"] * 1e3 for r in rub], lambda v: "%.3f" % v)
+            text += " In rub its once-per-revolution section radius is %s mm (clearance %s mm)." % (_span(
+                [r["section_radius_min"] * 1e3 for r in rub] + [r["section_radius_max"] * 1e3 for r in rub], lambda v: "%.3f" % v),
+                _span([r["section_clearance"] * 1e3 for r in rub], lambda v: "%.3f" % v))
         bounce = [r for r in rows if r["regime"] == "bounce" and not r["ending"].startswith("forward")]
         if bounce:
             text += " The bounces' contact points (forward rubs aside) creep at %s while in contact." % _span(
@@ -739,7 +740,8 @@ def region_drop_rolling():
 
 def span_drop_dry_whip():
     rs, c = _res()["radii"]["rs"], _c()
-    return "-%.0f times the spin: %.0f Hz at 190 rad/s" % (rs / c, -rs * 190.0 / c / (2 * math.pi))
+    sp = float(_whirl_point().split()[0])  # the whirl region_drop_rolling checks
+    return "-%.0f times the spin: %.0f Hz at %g rad/s" % (rs / c, -rs * sp / c / (2 * math.pi), sp)
 
 
 def region_drop_peak():
@@ -885,11 +887,11 @@ def region_drop_phase():
                                           for r in rows if r[DRAG[0]] == float(t))]
     h = [r["peak_housing_force"] / 1e3 for r in rows if r[DRAG[0]] == 0.02 and r["regime"] != "backward whirl"]
     text = ("At 190 rad/s a draggy race (3 to 10 N m) lets the drop end in backward whirl in %s of %d phases, and the "
-            "healthy race in %d. The study's phase, 0, whirls at %s. The whirls' peak force is %s times the mean of "
+            "healthy race in %d. The study's phase, 0, %s. The whirls' peak force is %s times the mean of "
             "the same drag's phases without whirl; the phase alone moves the peak force of a drop without whirl on "
             "the healthy race over %s, so the drop.cfg point is one sample of a spread.\n") % (
         _span(draggy, lambda v: "%d" % v), len(PHASES), healthy,
-        ("%s N m" % _list(zero)) if zero else "no drag", _span(ratios, lambda v: "%.1f" % v) if ratios else "-",
+        ("whirls at %s N m" % _list(zero)) if zero else "ends in backward whirl at none of the drags", _span(ratios, lambda v: "%.1f" % v) if ratios else "-",
         _span(h, lambda v: "%.1f" % v, "kN"))
     return "```\n%s\n```\n\n%s\n\n%s" % (sw["summary_line"], "\n".join(lines), text)
 
