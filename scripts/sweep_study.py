@@ -266,7 +266,7 @@ def texts(tool):
         o, err, rc, wall, cpu = tool_run(tool, args)
         if rc != 0:
             sys.exit("sweep_study: touchdown %s: exit %d: %s" % (" ".join(quote(a) for a in args), rc, err[-300:]))
-        out[key] = {"command": "touchdown " + " ".join(args), "text": o}
+        out[key] = {"command": "touchdown " + " ".join(quote(a) for a in args), "text": o}
     return out
 
 
