@@ -171,9 +171,10 @@ def bounce_measures(cols, t0, t1, rs, rb):
         c = [cols["contact_ret%d" % j][i] != 0.0 for i in idx]
         far = [cols["r_ret%d" % j][i] > 0.5 * (rb - rs) for i in idx]
         # the table has extra rows at the contact events (docs/output-format.md), crowded round the
-        # contacts: each interval counts by its length, half to each end (trapezoidal rule)
+        # contacts: each interval counts by its length, half to each end (trapezoidal rule), for the time
+        # in contact and the angle turned in it alike, so that their ratio is the whirl in contact
         contact = sum((t[idx[k + 1]] - t[idx[k]]) * (c[k] + c[k + 1]) / 2 for k in range(len(idx) - 1))
-        turned = sum(th[k + 1] - th[k] for k in range(len(idx) - 1) if c[k] and c[k + 1])
+        turned = sum((th[k + 1] - th[k]) * (c[k] + c[k + 1]) / 2 for k in range(len(idx) - 1))
         # the range on the unwrapped angle, so that a contact arc across +-180 degrees is not taken as a
         # full circle
         angles = [math.degrees(th[k]) for k in range(len(idx)) if c[k]]
