@@ -101,7 +101,7 @@ def git_revision():
     # that run them) differ from the commit; the docs and their results do not count
     dirty = git("status", "--porcelain", "--untracked-files=no", "--", "lib", "include", "tools", "cases",
                 "cmake", "CMakeLists.txt", "bench", "scripts/make-figures.sh", "scripts/docs_record.py",
-                "scripts/recovery_study.py", "scripts/shock_study.py", "scripts/sweep_study.py",
+                "scripts/recovery_study.py", "scripts/shock_study.py", "scripts/sweep_study.py", "scripts/sweep_study_page.py",
                 "tests/validation/base_motion")
     return rev + ("-modified" if dirty else "")
 
@@ -611,8 +611,13 @@ def main():
         start = time.monotonic()
         print("docs_record: %s ..." % name, flush=True)
         data = fn(tool, build)
+        after = None
+        if isinstance(data, tuple):  # a record with files to install once it is saved (sweep_study)
+            data, after = data
         data["record_wall_time"] = round(time.monotonic() - start, 1)
         save(name, data)
+        if after:
+            after()
 
 
 if __name__ == "__main__":

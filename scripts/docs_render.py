@@ -1703,9 +1703,9 @@ REGIONS.update(recovery_study.REGIONS)
 import shock_study  # noqa: E402
 REGIONS.update(shock_study.REGIONS)
 SPANS.update(shock_study.SPANS)
-import sweep_study  # noqa: E402  (docs/sweep-study.md, from docs/results/sweep_study.json)
-REGIONS.update(sweep_study.REGIONS)
-SPANS.update(sweep_study.SPANS)
+import sweep_study_page  # noqa: E402  (docs/sweep-study.md, from docs/results/sweep_study.json)
+REGIONS.update(sweep_study_page.REGIONS)
+SPANS.update(sweep_study_page.SPANS)
 
 
 def render(path, text):
