@@ -105,18 +105,23 @@ def _pct(x):
     return "%.0f %%" % (100.0 * x)
 
 
-def _runs_of(drags):
-    """Consecutive drag torques grouped: '0.02-0.5 N m', '3 N m'."""
-    all_ = _drags()
+def _stretches(items, keep):
+    """The runs of consecutive ITEMS for which KEEP(item) holds, each a list, in order."""
     groups, cur = [], []
-    for t in all_:
-        if t in drags:
-            cur.append(t)
+    for x in items:
+        if keep(x):
+            cur.append(x)
         elif cur:
             groups.append(cur)
             cur = []
     if cur:
         groups.append(cur)
+    return groups
+
+
+def _runs_of(drags):
+    """Consecutive drag torques grouped: '0.02-0.5 N m', '3 N m'."""
+    groups = _stretches(_drags(), lambda t: t in drags)
     return _list(("%g N m" % g[0]) if len(g) == 1 else ("%g-%g N m" % (g[0], g[-1])) for g in groups)
 
 
@@ -271,15 +276,7 @@ def region_a_regimes():
     lines = ["| unbalance [kg m] | speeds in contact [rad/s] (regime rub unless said) |", "|---|---|"]
     for u in sorted({x["unbalances[0].magnitude"] for x in rows}):
         touch = [x for x in _u_rows(u) if x["regime"] != "free"]
-        groups, cur = [], []
-        for x in _u_rows(u):
-            if x["regime"] != "free":
-                cur.append(x)
-            elif cur:
-                groups.append(cur)
-                cur = []
-        if cur:
-            groups.append(cur)
+        groups = _stretches(_u_rows(u), lambda x: x["regime"] != "free")
         cells = []
         for g in groups:
             rng = "%g" % g[0]["speed"] if len(g) == 1 else "%g-%g" % (g[0]["speed"], g[-1]["speed"])

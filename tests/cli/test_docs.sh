@@ -33,38 +33,26 @@ out=$("$py" "$src/scripts/docs_render.py" --check 2>&1)
 rc=$?
 if [ "$rc" = 0 ]; then pass "generated regions match docs/results/ ($out)"; else fail "generated regions: $out"; fi
 
+# relay: each line of a checker's output (on stdin) as a pass, a fail, or a note
+relay() {
+    local line
+    while IFS= read -r line; do
+        case $line in
+        ok:*) pass "${line#ok:   }" ;;
+        FAIL:*) fail "${line#FAIL: }" ;;
+        *) echo "$line" ;;
+        esac
+    done
+}
+
 # the runs of docs/results/runs.json cheap enough to rerun here
 cheap=(rub-damped rub-damped/reduced paper-c)
-while IFS= read -r line; do
-    case $line in
-    ok:*) pass "${line#ok:   }" ;;
-    FAIL:*) fail "${line#FAIL: }" ;;
-    *) echo "$line" ;;
-    esac
-done < <("$py" "$src/scripts/docs_record.py" --check "$tool" runs "${cheap[@]}" 2>&1)
+relay < <("$py" "$src/scripts/docs_record.py" --check "$tool" runs "${cheap[@]}" 2>&1)
 # (c) the case keys
-while IFS= read -r line; do
-    case $line in
-    ok:*) pass "${line#ok:   }" ;;
-    FAIL:*) fail "${line#FAIL: }" ;;
-    *) echo "$line" ;;
-    esac
-done < <("$py" "$src/scripts/docs_record.py" --check-keys "$tool" 2>&1)
+relay < <("$py" "$src/scripts/docs_record.py" --check-keys "$tool" 2>&1)
 # (d) the shock study's case row
-while IFS= read -r line; do
-    case $line in
-    ok:*) pass "${line#ok:   }" ;;
-    FAIL:*) fail "${line#FAIL: }" ;;
-    *) echo "$line" ;;
-    esac
-done < <("$py" "$src/scripts/shock_study.py" --check "$tool" 2>&1)
+relay < <("$py" "$src/scripts/shock_study.py" --check "$tool" 2>&1)
 # (e) the sweep study's run
-while IFS= read -r line; do
-    case $line in
-    ok:*) pass "${line#ok:   }" ;;
-    FAIL:*) fail "${line#FAIL: }" ;;
-    *) echo "$line" ;;
-    esac
-done < <("$py" "$src/scripts/sweep_study.py" --check "$tool" 2>&1)
+relay < <("$py" "$src/scripts/sweep_study.py" --check "$tool" 2>&1)
 check "every cheap run, the case keys, the shock case and the sweep study's run checked (${#cheap[@]} + 3)" test "$checks" -ge $((${#cheap[@]} + 4))
 finish
