@@ -17,7 +17,6 @@ repository's). The figures are the sweeps' own plots
 (`touchdown plot` of the tables recorded here), so they show the recorded rows; they are installed only
 once the record is saved. Only Debian's python3 modules are used.
 """
-import concurrent.futures
 import csv
 import json
 import math
@@ -27,6 +26,8 @@ import subprocess
 import sys
 import tempfile
 import time
+
+from recovery_study import parallel  # the studies' runs, two at a time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 STUDY_A, STUDY_DROP, DROP = "cases/study-a.cfg", "cases/study-drop.cfg", "cases/drop.cfg"
@@ -80,8 +81,7 @@ def tool_run(tool, args, cwd=ROOT):
         proc = subprocess.Popen([tool] + args, cwd=cwd, stdout=out, stderr=err)
         _, status, usage = os.wait4(proc.pid, 0)
         wall = time.monotonic() - start
-        proc.returncode = os.waitstatus_to_exitcode(status) if hasattr(os, "waitstatus_to_exitcode") else \
-            (os.WEXITSTATUS(status) if os.WIFEXITED(status) else -os.WTERMSIG(status))
+        proc.returncode = os.waitstatus_to_exitcode(status)
         out.seek(0)
         err.seek(0)
         return out.read(), err.read(), proc.returncode, wall, usage.ru_utime + usage.ru_stime
@@ -269,12 +269,6 @@ def texts(tool):
             sys.exit("sweep_study: touchdown %s: exit %d: %s" % (" ".join(quote(a) for a in args), rc, err[-300:]))
         out[key] = {"command": "touchdown " + " ".join(quote(a) for a in args), "text": o}
     return out
-
-
-def parallel(jobs):
-    with concurrent.futures.ThreadPoolExecutor(max_workers=2) as pool:
-        futures = {key: pool.submit(fn, *args) for key, fn, args in jobs}
-        return {key: f.result() for key, f in futures.items()}
 
 
 def radii(info_text):
