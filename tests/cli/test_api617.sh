@@ -61,6 +61,27 @@ PY
 check "case A HDF5: NaN static reactions, /running_clearance against /unbalance_response ($out)" \
     test -n "$out" -a "$(printf '%s' "$out" | grep -c '^retainer')" = 2
 
+# a modal file whose arrays disagree in shape (edited, or written by another program): `touchdown plot`
+# refuses it in one line naming the group, and never reads past the shorter array (which the
+# sanitizer pass would catch); the file as written plots
+t "$work/a" plot -d plots m.h5
+check "case A modal file plots: exit 0 (got $rc: $(head -c 300 "$work/a/.err"))" test "$rc" = 0
+for cut in unbalance_response/x_amp unbalance_response/major response_peaks/amplitude response_peaks/amplification; do
+    bad=$work/a/cut-${cut//\//-}.h5
+    "$py" - "$work/a/m.h5" "$bad" "$cut" <<'PY'
+import shutil, sys, h5py
+shutil.copyfile(sys.argv[1], sys.argv[2])
+with h5py.File(sys.argv[2], "r+") as f:
+    data = f[sys.argv[3]][...]
+    del f[sys.argv[3]]
+    f[sys.argv[3]] = data[:-1]  # one row fewer than its group's other arrays
+PY
+    t "$work/a" plot -d "plots-${cut//\//-}" "$bad"
+    group=${cut%%/*}
+    check "plot of a modal file with $cut one row short: exit 2, one line naming /$group (got $rc: $(head -c 300 "$work/a/.err"))" \
+        test "$rc" = 2 -a "$(wc -l <"$work/a/.err")" = 1 -a -n "$(grep "unreadable /$group group" "$work/a/.err")"
+done
+
 t "$work/g" modal --set 'gravity={enabled=true; g=9.81; direction=[0.0,-1.0];}' "$case_a" -o m
 check "case A with gravity: exit 0 (got $rc)" test "$rc" = 0
 check "case A with gravity: the static reactions are printed as numbers" \

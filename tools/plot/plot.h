@@ -145,6 +145,9 @@ int plot_bad_part(const char *path, const char *before, td_out_id id, const char
  * "touchdown plot: PATH: why" and returns PLOT_BAD_INPUT (or PLOT_FAILED when out of memory). */
 int plot_file_load(const char *path, const plot_window *win, plot_file *f);
 void plot_file_free(plot_file *f);
+/* Dataset `id` (+ `sub`) as a new array of `n` doubles; NULL when absent or of another size, so
+ * that the arrays read together with one whose shape sets n are never read past their end. */
+double *plot_read_vector(const td_result *r, td_out_id id, const char *sub, size_t n);
 
 /* ---- plot_loop.c: the loop analysis of a modal file ------------------------------------------ */
 
@@ -252,8 +255,8 @@ int plot_loop_figures(plot_job *job, const plot_file *f, const char *prefix);
 /* ---- plot_api617.c: the API 617 report of a modal file --------------------------------------- */
 
 /* Read /unbalance_response, /response_peaks and the parts' nodes in /modes (absent parts stay
- * empty); 0, or -1 when a part is there but unreadable. */
-int plot_api617_load(const td_result *r, plot_api617 *a);
+ * empty); 0, or -1 when a part is there but unreadable, the group that is into *unreadable. */
+int plot_api617_load(const td_result *r, plot_api617 *a, td_out_id *unreadable);
 void plot_api617_free(plot_api617 *a);
 /* PREFIXbode (amplitude and phase against speed at the response nodes, the peaks and the operating
  * range marked) and PREFIXpolar (the x response in the complex plane), when the file has a sweep. */

@@ -51,34 +51,36 @@ static int load_parts(const td_result *r, plot_api617 *a)
 
 static int load_peaks(const td_result *r, plot_api617 *a)
 {
-    size_t n = 0, c, n2 = 0;
+    size_t n = 0, c = 0;
     a->op_min = read_scalar(r, TD_OUT_PEAK_OPERATING_SPEED_MIN);
     a->op_max = read_scalar(r, TD_OUT_PEAK_OPERATING_SPEED_MAX);
     if (!(a->peak_speed = read_any(r, TD_OUT_PEAK_SPEED, &n, &c)))
         return 0;
     a->np = (int)n;
-    a->peak_node = read_any(r, TD_OUT_PEAK_NODE, &n2, &c);
-    a->peak_amp = read_any(r, TD_OUT_PEAK_AMPLITUDE, &n2, &c);
-    a->peak_af = read_any(r, TD_OUT_PEAK_AMPLIFICATION, &n2, &c);
+    a->peak_node = plot_read_vector(r, TD_OUT_PEAK_NODE, NULL, n * c);
+    a->peak_amp = plot_read_vector(r, TD_OUT_PEAK_AMPLITUDE, NULL, n * c);
+    a->peak_af = plot_read_vector(r, TD_OUT_PEAK_AMPLIFICATION, NULL, n * c);
     return a->peak_node && a->peak_amp && a->peak_af ? 0 : -1;
 }
 
-int plot_api617_load(const td_result *r, plot_api617 *a)
+int plot_api617_load(const td_result *r, plot_api617 *a, td_out_id *unreadable)
 {
-    size_t ns = 0, nn = 0, c = 0, n2, c2;
+    size_t ns = 0, nn = 0, c = 0;
     memset(a, 0, sizeof *a);
     a->op_min = a->op_max = NAN;
     load_parts(r, a);
     if (!(a->speed = read_any(r, TD_OUT_UR_SPEED, &ns, &c)))
         return 0;
     a->node = read_any(r, TD_OUT_UR_NODE, &nn, &c);
-    a->major = read_any(r, TD_OUT_UR_MAJOR, &n2, &c2);
-    a->x_amp = read_any(r, TD_OUT_UR_X_AMP, &n2, &c2);
-    a->x_phase = read_any(r, TD_OUT_UR_X_PHASE, &n2, &c2);
+    a->major = plot_read_vector(r, TD_OUT_UR_MAJOR, NULL, ns * nn);
+    a->x_amp = plot_read_vector(r, TD_OUT_UR_X_AMP, NULL, ns * nn);
+    a->x_phase = plot_read_vector(r, TD_OUT_UR_X_PHASE, NULL, ns * nn);
     a->ns = (int)ns;
     a->nn = (int)nn;
-    if (!a->node || !a->major || !a->x_amp || !a->x_phase || n2 != ns || c2 != nn)
+    *unreadable = TD_OUT_UNBALANCE_RESPONSE;
+    if (!a->node || !a->major || !a->x_amp || !a->x_phase)
         return -1;
+    *unreadable = TD_OUT_RESPONSE_PEAKS;
     return load_peaks(r, a);
 }
 

@@ -311,8 +311,7 @@ static int load_sim(const td_result *r, plot_file *f, const plot_window *win)
 
 /* ---- modal files --------------------------------------------------------------------------- */
 
-/* Dataset `id` (+ `sub`) as a new array of `n` doubles (NULL when absent or of another size). */
-static double *read_vector(const td_result *r, td_out_id id, const char *sub, size_t n)
+double *plot_read_vector(const td_result *r, td_out_id id, const char *sub, size_t n)
 {
     td_result_array a;
     if (td_result_read(r, id, sub, &a, NULL) != TD_OK)
@@ -336,10 +335,10 @@ static int load_campbell(const td_result *r, plot_modal *m)
     m->ns = (int)f.dims[0];
     m->nb = (int)f.dims[1];
     m->freq = f.v;
-    m->speed = read_vector(r, TD_OUT_CAMPBELL_SPEED, NULL, (size_t)m->ns);
-    m->whirl = read_vector(r, TD_OUT_CAMPBELL_WHIRL, NULL, (size_t)m->ns * (size_t)m->nb);
+    m->speed = plot_read_vector(r, TD_OUT_CAMPBELL_SPEED, NULL, (size_t)m->ns);
+    m->whirl = plot_read_vector(r, TD_OUT_CAMPBELL_WHIRL, NULL, (size_t)m->ns * (size_t)m->nb);
     if (td_result_has(r, TD_OUT_CAMPBELL_MAC, NULL) &&
-        !(m->mac = read_vector(r, TD_OUT_CAMPBELL_MAC, NULL, (size_t)m->ns * (size_t)m->nb)))
+        !(m->mac = plot_read_vector(r, TD_OUT_CAMPBELL_MAC, NULL, (size_t)m->ns * (size_t)m->nb)))
         return -1;
     return m->speed && m->whirl ? 0 : -1;
 }
@@ -355,16 +354,16 @@ static int load_critical(const td_result *r, plot_modal *m)
     }
     m->ncrit = (int)s.n;
     m->crit_speed = s.v;
-    m->crit_freq = read_vector(r, TD_OUT_CRITICAL_FREQ_HZ, NULL, s.n);
-    m->crit_whirl = read_vector(r, TD_OUT_CRITICAL_WHIRL, NULL, s.n);
+    m->crit_freq = plot_read_vector(r, TD_OUT_CRITICAL_FREQ_HZ, NULL, s.n);
+    m->crit_whirl = plot_read_vector(r, TD_OUT_CRITICAL_WHIRL, NULL, s.n);
     return m->crit_freq && m->crit_whirl ? 0 : -1;
 }
 
 /* Axial node positions, if the file has them (/modes/node_z, or at the root in older files, m). */
 static double *node_positions(const td_result *r, size_t nn)
 {
-    double *z = read_vector(r, TD_OUT_MODES_NODE_Z, NULL, nn);
-    return z ? z : read_vector(r, TD_OUT_ROOT, td_out_name(TD_OUT_MODES_NODE_Z), nn);
+    double *z = plot_read_vector(r, TD_OUT_MODES_NODE_Z, NULL, nn);
+    return z ? z : plot_read_vector(r, TD_OUT_ROOT, td_out_name(TD_OUT_MODES_NODE_Z), nn);
 }
 
 /* Keep only vibration modes: the overdamped AMB-lag pairs (see touchdown/modal.h) have no
@@ -404,12 +403,12 @@ static int load_shapes(const td_result *r, plot_modal *m)
     m->nn = (int)xr.dims[1];
     m->xr = xr.v;
     total = (size_t)m->nm * (size_t)m->nn;
-    m->xi = read_vector(r, TD_OUT_MODES_SHAPE_X_IM, NULL, total);
-    m->yr = read_vector(r, TD_OUT_MODES_SHAPE_Y_RE, NULL, total);
-    m->yi = read_vector(r, TD_OUT_MODES_SHAPE_Y_IM, NULL, total);
-    m->mode_freq = read_vector(r, TD_OUT_MODES_FREQ_HZ, NULL, (size_t)m->nm);
-    m->mode_whirl = read_vector(r, TD_OUT_MODES_WHIRL, NULL, (size_t)m->nm);
-    m->mode_zeta = read_vector(r, TD_OUT_MODES_ZETA, NULL, (size_t)m->nm);
+    m->xi = plot_read_vector(r, TD_OUT_MODES_SHAPE_X_IM, NULL, total);
+    m->yr = plot_read_vector(r, TD_OUT_MODES_SHAPE_Y_RE, NULL, total);
+    m->yi = plot_read_vector(r, TD_OUT_MODES_SHAPE_Y_IM, NULL, total);
+    m->mode_freq = plot_read_vector(r, TD_OUT_MODES_FREQ_HZ, NULL, (size_t)m->nm);
+    m->mode_whirl = plot_read_vector(r, TD_OUT_MODES_WHIRL, NULL, (size_t)m->nm);
+    m->mode_zeta = plot_read_vector(r, TD_OUT_MODES_ZETA, NULL, (size_t)m->nm);
     m->node_z = node_positions(r, (size_t)m->nn);
     m->mode_speed = NAN;
     if (td_result_read(r, TD_OUT_MODES_SPEED, NULL, &speed, NULL) == TD_OK) {
@@ -425,6 +424,7 @@ static int load_shapes(const td_result *r, plot_modal *m)
 static int load_modal(const td_result *r, plot_file *f)
 {
     plot_modal *m = &f->modal;
+    td_out_id unreadable;
     if (load_campbell(r, m) != 0)
         return plot_bad_part(f->path, "unreadable ", TD_OUT_CAMPBELL, " group");
     if (load_critical(r, m) != 0)
@@ -433,8 +433,8 @@ static int load_modal(const td_result *r, plot_file *f)
         return plot_bad_part(f->path, "unreadable ", TD_OUT_MODES, " group");
     if (plot_loop_load(r, &m->loop) != 0)
         return plot_bad_part(f->path, "unreadable ", TD_OUT_LOOP, " group");
-    if (plot_api617_load(r, &m->api) != 0)
-        return plot_bad_part(f->path, "unreadable ", TD_OUT_UNBALANCE_RESPONSE, " group");
+    if (plot_api617_load(r, &m->api, &unreadable) != 0)
+        return plot_bad_part(f->path, "unreadable ", unreadable, " group");
     if (m->ns == 0 && m->nm == 0)
         return bad(f->path, "the modal file holds neither a Campbell diagram nor mode shapes", PLOT_BAD_INPUT);
     return PLOT_OK;

@@ -31,19 +31,6 @@ static int read_table(const td_result *r, td_out_id id, int nf, int *cols, doubl
     return 0;
 }
 
-/* A vector `id` of n values (NULL when absent or of another size). */
-static double *read_list(const td_result *r, td_out_id id, int n)
-{
-    td_result_array a;
-    if (td_result_read(r, id, NULL, &a, NULL) != TD_OK)
-        return NULL;
-    if ((int)a.n != n) {
-        td_result_array_free(&a);
-        return NULL;
-    }
-    return a.v;
-}
-
 int plot_loop_load(const td_result *r, plot_loop *l)
 {
     td_result_array f, st;
@@ -68,9 +55,9 @@ int plot_loop_load(const td_result *r, plot_loop *l)
         read_table(r, TD_OUT_LOOP_OPEN_LOOP_RE, l->nf, &l->nc, &l->l_re, &l->l_im) ||
         read_table(r, TD_OUT_LOOP_COMPLIANCE_RE, l->nf, &l->na, &l->c_re, &l->c_im))
         return -1;
-    l->axis = read_list(r, TD_OUT_LOOP_AXIS, l->nc);
-    l->peak = read_list(r, TD_OUT_LOOP_SENSITIVITY_PEAK, l->nc);
-    l->fp = read_list(r, TD_OUT_LOOP_SENSITIVITY_PEAK_FREQUENCY, l->nc);
+    l->axis = plot_read_vector(r, TD_OUT_LOOP_AXIS, NULL, (size_t)l->nc);
+    l->peak = plot_read_vector(r, TD_OUT_LOOP_SENSITIVITY_PEAK, NULL, (size_t)l->nc);
+    l->fp = plot_read_vector(r, TD_OUT_LOOP_SENSITIVITY_PEAK_FREQUENCY, NULL, (size_t)l->nc);
     return l->axis && l->peak && l->fp && l->nf > 1 ? 0 : -1;
 }
 
