@@ -145,6 +145,9 @@ int plot_bad_part(const char *path, const char *before, td_out_id id, const char
  * "touchdown plot: PATH: why" and returns PLOT_BAD_INPUT (or PLOT_FAILED when out of memory). */
 int plot_file_load(const char *path, const plot_window *win, plot_file *f);
 void plot_file_free(plot_file *f);
+
+/* ---- plot_read.c: the loaders' checked reader ------------------------------------------------ */
+
 /* Dataset `id` (+ `sub`) as a new array of `n` doubles; NULL when absent or of another size, so
  * that the arrays read together with one whose shape sets n are never read past their end. */
 double *plot_read_vector(const td_result *r, td_out_id id, const char *sub, size_t n);

@@ -311,18 +311,6 @@ static int load_sim(const td_result *r, plot_file *f, const plot_window *win)
 
 /* ---- modal files --------------------------------------------------------------------------- */
 
-double *plot_read_vector(const td_result *r, td_out_id id, const char *sub, size_t n)
-{
-    td_result_array a;
-    if (td_result_read(r, id, sub, &a, NULL) != TD_OK)
-        return NULL;
-    if (a.n != n) {
-        td_result_array_free(&a);
-        return NULL;
-    }
-    return a.v;
-}
-
 static int load_campbell(const td_result *r, plot_modal *m)
 {
     td_result_array f;
