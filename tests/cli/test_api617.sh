@@ -63,22 +63,34 @@ check "case A HDF5: NaN static reactions, /running_clearance against /unbalance_
 
 # a modal file whose arrays disagree in shape (edited, or written by another program): `touchdown plot`
 # refuses it in one line naming the group, and never reads past the shorter array (which the
-# sanitizer pass would catch); the file as written plots
+# sanitizer pass would catch); the file as written plots. Each cut AXIS:DATASET[,DATASET...] drops
+# the last row (axis 0) or column (axis 1) of the datasets named, the rest of the file as written:
+# /loop's sensitivity (both parts, so that the pair agree) one controlled axis short of the open
+# loop L, which is read at the sensitivity's columns.
 t "$work/a" plot -d plots m.h5
 check "case A modal file plots: exit 0 (got $rc: $(head -c 300 "$work/a/.err"))" test "$rc" = 0
-for cut in unbalance_response/x_amp unbalance_response/major response_peaks/amplitude response_peaks/amplification; do
-    bad=$work/a/cut-${cut//\//-}.h5
-    "$py" - "$work/a/m.h5" "$bad" "$cut" <<'PY'
+for cut in 0:unbalance_response/x_amp 0:unbalance_response/major 0:response_peaks/amplitude \
+    0:response_peaks/amplification 1:loop/sensitivity_re,loop/sensitivity_im 0:loop/open_loop_re; do
+    axis=${cut%%:*}
+    names=${cut#*:}
+    tag=${names%%,*}
+    tag=${tag//\//-}
+    bad=$work/a/cut-$tag.h5
+    IFS=, read -ra datasets <<<"$names"
+    "$py" - "$work/a/m.h5" "$bad" "$axis" "${datasets[@]}" <<'PY'
 import shutil, sys, h5py
 shutil.copyfile(sys.argv[1], sys.argv[2])
 with h5py.File(sys.argv[2], "r+") as f:
-    data = f[sys.argv[3]][...]
-    del f[sys.argv[3]]
-    f[sys.argv[3]] = data[:-1]  # one row fewer than its group's other arrays
+    for name in sys.argv[4:]:
+        data = f[name][...]
+        del f[name]
+        # one row (or column) fewer than its group's other arrays
+        f[name] = data[:-1] if sys.argv[3] == "0" else data[:, :-1]
 PY
-    t "$work/a" plot -d "plots-${cut//\//-}" "$bad"
-    group=${cut%%/*}
-    check "plot of a modal file with $cut one row short: exit 2, one line naming /$group (got $rc: $(head -c 300 "$work/a/.err"))" \
+    t "$work/a" plot -d "plots-$tag" "$bad"
+    group=${names%%/*}
+    what=$([ "$axis" = 0 ] && echo row || echo column)
+    check "plot of a modal file with $names one $what short: exit 2, one line naming /$group (got $rc: $(head -c 300 "$work/a/.err"))" \
         test "$rc" = 2 -a "$(wc -l <"$work/a/.err")" = 1 -a -n "$(grep "unreadable /$group group" "$work/a/.err")"
 done
 

@@ -52,13 +52,16 @@ int plot_loop_load(const td_result *r, plot_loop *l)
         td_result_array_free(&st);
     }
     if (read_table(r, TD_OUT_LOOP_SENSITIVITY_RE, l->nf, &l->nc, &l->s_re, &l->s_im) ||
-        read_table(r, TD_OUT_LOOP_OPEN_LOOP_RE, l->nf, &l->nc, &l->l_re, &l->l_im) ||
         read_table(r, TD_OUT_LOOP_COMPLIANCE_RE, l->nf, &l->na, &l->c_re, &l->c_im))
         return -1;
+    /* the sensitivity's shape sets the controlled axes: L and the per-axis vectors are read at
+     * that count, so that a file whose tables disagree is refused, never read past its end */
+    l->l_re = plot_read_vector(r, TD_OUT_LOOP_OPEN_LOOP_RE, NULL, (size_t)l->nf * (size_t)l->nc);
+    l->l_im = plot_read_vector(r, TD_OUT_LOOP_OPEN_LOOP_IM, NULL, (size_t)l->nf * (size_t)l->nc);
     l->axis = plot_read_vector(r, TD_OUT_LOOP_AXIS, NULL, (size_t)l->nc);
     l->peak = plot_read_vector(r, TD_OUT_LOOP_SENSITIVITY_PEAK, NULL, (size_t)l->nc);
     l->fp = plot_read_vector(r, TD_OUT_LOOP_SENSITIVITY_PEAK_FREQUENCY, NULL, (size_t)l->nc);
-    return l->axis && l->peak && l->fp && l->nf > 1 ? 0 : -1;
+    return l->l_re && l->l_im && l->axis && l->peak && l->fp && l->nf > 1 ? 0 : -1;
 }
 
 void plot_loop_free(plot_loop *l)
