@@ -66,11 +66,14 @@ check "case A HDF5: NaN static reactions, /running_clearance against /unbalance_
 # sanitizer pass would catch); the file as written plots. Each cut AXIS:DATASET[,DATASET...] drops
 # the last row (axis 0) or column (axis 1) of the datasets named, the rest of the file as written:
 # /loop's sensitivity (both parts, so that the pair agree) one controlled axis short of the open
-# loop L, which is read at the sensitivity's columns.
+# loop L, which is read at the sensitivity's columns; /modes' optional damping ratios and node
+# positions, which the plot read as absent when their size was wrong (overdamped modes kept, the
+# axis without positions) and now refuses.
 t "$work/a" plot -d plots m.h5
 check "case A modal file plots: exit 0 (got $rc: $(head -c 300 "$work/a/.err"))" test "$rc" = 0
 for cut in 0:unbalance_response/x_amp 0:unbalance_response/major 0:response_peaks/amplitude \
-    0:response_peaks/amplification 1:loop/sensitivity_re,loop/sensitivity_im 0:loop/open_loop_re; do
+    0:response_peaks/amplification 1:loop/sensitivity_re,loop/sensitivity_im 0:loop/open_loop_re \
+    0:modes/zeta 0:modes/node_z; do
     axis=${cut%%:*}
     names=${cut#*:}
     tag=${names%%,*}

@@ -151,6 +151,10 @@ void plot_file_free(plot_file *f);
 /* Dataset `id` (+ `sub`) as a new array of `n` doubles; NULL when absent or of another size, so
  * that the arrays read together with one whose shape sets n are never read past their end. */
 double *plot_read_vector(const td_result *r, td_out_id id, const char *sub, size_t n);
+/* An optional dataset `id` (+ `sub`): 0 with *out NULL when absent or the array of `n` doubles,
+ * -1 when it is there with another size (a file to refuse: read without it, its figure would
+ * be wrong, with no word said). */
+int plot_read_optional(const td_result *r, td_out_id id, const char *sub, size_t n, double **out);
 
 /* ---- plot_loop.c: the loop analysis of a modal file ------------------------------------------ */
 

@@ -325,8 +325,7 @@ static int load_campbell(const td_result *r, plot_modal *m)
     m->freq = f.v;
     m->speed = plot_read_vector(r, TD_OUT_CAMPBELL_SPEED, NULL, (size_t)m->ns);
     m->whirl = plot_read_vector(r, TD_OUT_CAMPBELL_WHIRL, NULL, (size_t)m->ns * (size_t)m->nb);
-    if (td_result_has(r, TD_OUT_CAMPBELL_MAC, NULL) &&
-        !(m->mac = plot_read_vector(r, TD_OUT_CAMPBELL_MAC, NULL, (size_t)m->ns * (size_t)m->nb)))
+    if (plot_read_optional(r, TD_OUT_CAMPBELL_MAC, NULL, (size_t)m->ns * (size_t)m->nb, &m->mac))
         return -1;
     return m->speed && m->whirl ? 0 : -1;
 }
@@ -347,11 +346,13 @@ static int load_critical(const td_result *r, plot_modal *m)
     return m->crit_freq && m->crit_whirl ? 0 : -1;
 }
 
-/* Axial node positions, if the file has them (/modes/node_z, or at the root in older files, m). */
-static double *node_positions(const td_result *r, size_t nn)
+/* Axial node positions into *z, if the file has them (/modes/node_z, or at the root in older
+ * files, m); -1 when they are there with another count than the shapes' nodes. */
+static int node_positions(const td_result *r, size_t nn, double **z)
 {
-    double *z = plot_read_vector(r, TD_OUT_MODES_NODE_Z, NULL, nn);
-    return z ? z : plot_read_vector(r, TD_OUT_ROOT, td_out_name(TD_OUT_MODES_NODE_Z), nn);
+    if (td_result_has(r, TD_OUT_MODES_NODE_Z, NULL))
+        return plot_read_optional(r, TD_OUT_MODES_NODE_Z, NULL, nn, z);
+    return plot_read_optional(r, TD_OUT_ROOT, td_out_name(TD_OUT_MODES_NODE_Z), nn, z);
 }
 
 /* Keep only vibration modes: the overdamped AMB-lag pairs (see touchdown/modal.h) have no
@@ -396,8 +397,9 @@ static int load_shapes(const td_result *r, plot_modal *m)
     m->yi = plot_read_vector(r, TD_OUT_MODES_SHAPE_Y_IM, NULL, total);
     m->mode_freq = plot_read_vector(r, TD_OUT_MODES_FREQ_HZ, NULL, (size_t)m->nm);
     m->mode_whirl = plot_read_vector(r, TD_OUT_MODES_WHIRL, NULL, (size_t)m->nm);
-    m->mode_zeta = plot_read_vector(r, TD_OUT_MODES_ZETA, NULL, (size_t)m->nm);
-    m->node_z = node_positions(r, (size_t)m->nn);
+    if (plot_read_optional(r, TD_OUT_MODES_ZETA, NULL, (size_t)m->nm, &m->mode_zeta) ||
+        node_positions(r, (size_t)m->nn, &m->node_z))
+        return -1;
     m->mode_speed = NAN;
     if (td_result_read(r, TD_OUT_MODES_SPEED, NULL, &speed, NULL) == TD_OK) {
         m->mode_speed = speed.v[0];

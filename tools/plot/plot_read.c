@@ -15,3 +15,12 @@ double *plot_read_vector(const td_result *r, td_out_id id, const char *sub, size
     }
     return a.v;
 }
+
+int plot_read_optional(const td_result *r, td_out_id id, const char *sub, size_t n, double **out)
+{
+    *out = NULL;
+    if (!td_result_has(r, id, sub))
+        return 0;
+    *out = plot_read_vector(r, id, sub, n);
+    return *out ? 0 : -1;
+}
