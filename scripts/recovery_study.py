@@ -107,6 +107,11 @@ def run(tool, sets, files=None):
     # the output prefix is a temporary directory's: shown as its base name alone
     shown = [os.path.basename(a) if files and a == files else ("'%s'" % a if (" " in a or not a) else a)
              for a in args + [CASE]]
+    # a run that failed has no answers: its partial files would be read as a steady state and its
+    # summary classified (a failed run is not free, so it would read as "stays in contact")
+    if summary.get("status") != "success":
+        sys.exit("recovery_study: touchdown %s: status %s: %s; the record is not written" % (
+            " ".join(shown), summary.get("status"), (summary.get("message") or "")[:400]))
     for key in ("hdf5_path", "csv_path", "events_path"):
         if summary.get(key):
             summary[key] = os.path.basename(summary[key])
