@@ -146,7 +146,7 @@ int plot_bad_part(const char *path, const char *before, td_out_id id, const char
 int plot_file_load(const char *path, const plot_window *win, plot_file *f);
 void plot_file_free(plot_file *f);
 
-/* ---- plot_read.c: the loaders' checked reader ------------------------------------------------ */
+/* ---- plot_read.c: the loaders' checked readers ----------------------------------------------- */
 
 /* Dataset `id` (+ `sub`) as a new array of `n` doubles; NULL when absent or of another size, so
  * that the arrays read together with one whose shape sets n are never read past their end. */

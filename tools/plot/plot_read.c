@@ -1,5 +1,5 @@
 /*
- * The plot's length-checked reader of a result file's arrays: shared by the modal loaders
+ * The plot's length-checked readers of a result file's arrays: shared by the modal loaders
  * (plot_file.c, plot_loop.c, plot_api617.c), below all of them, so that no call cycle joins them.
  */
 #include "plot/plot.h"
