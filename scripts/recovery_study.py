@@ -96,6 +96,16 @@ def touchdown_json(tool, args):
         sys.exit("recovery_study: touchdown %s printed no JSON: %s" % (" ".join(args), proc.stderr[:300]))
 
 
+def answered(summary, command):
+    """The summary of COMMAND, or the study stopped: a run that failed has no answers. Its partial
+    files would be read as a steady state and its summary classified (a failed run is not free, so
+    it would read as "stays in contact"; with no contacts counted, as "no free orbit")."""
+    if summary.get("status") != "success":
+        sys.exit("recovery_study: %s: status %s: %s; the record is not written" % (
+            command, summary.get("status"), (summary.get("message") or "")[:400]))
+    return summary
+
+
 def run(tool, sets, files=None):
     """touchdown run --json of the case with --set SETS (a list of (key, value)); files: an output
     prefix for the CSV (no HDF5), else none. The command as written and the summary."""
@@ -107,15 +117,12 @@ def run(tool, sets, files=None):
     # the output prefix is a temporary directory's: shown as its base name alone
     shown = [os.path.basename(a) if files and a == files else ("'%s'" % a if (" " in a or not a) else a)
              for a in args + [CASE]]
-    # a run that failed has no answers: its partial files would be read as a steady state and its
-    # summary classified (a failed run is not free, so it would read as "stays in contact")
-    if summary.get("status") != "success":
-        sys.exit("recovery_study: touchdown %s: status %s: %s; the record is not written" % (
-            " ".join(shown), summary.get("status"), (summary.get("message") or "")[:400]))
+    command = "touchdown " + " ".join(shown)
+    answered(summary, command)
     for key in ("hdf5_path", "csv_path", "events_path"):
         if summary.get(key):
             summary[key] = os.path.basename(summary[key])
-    return {"command": "touchdown " + " ".join(shown), "summary": summary}
+    return {"command": command, "summary": summary}
 
 
 def modal(tool, sets):
@@ -185,9 +192,10 @@ def exists(tool, speed, u2):
     args += ["--set", "end_time=0.3", "cases/rub-damped.cfg"]
     proc = subprocess.run([tool] + args, cwd=ROOT, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
                           universal_newlines=True)
-    s = json.loads(proc.stdout)
-    return {"command": "touchdown " + " ".join(a or "''" for a in args), "start": s.get("start"),
-            "start_reason": s.get("start_reason"), "exists": s.get("start") == "orbit" and s.get("contacts") == 0}
+    command = "touchdown " + " ".join(a or "''" for a in args)
+    s = answered(json.loads(proc.stdout), command)
+    return {"command": command, "start": s.get("start"), "start_reason": s.get("start_reason"),
+            "exists": s.get("start") == "orbit" and s.get("contacts") == 0}
 
 
 def run_with_tail(tool, sets, tmp, name):
