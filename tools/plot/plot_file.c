@@ -350,9 +350,9 @@ static int load_critical(const td_result *r, plot_modal *m)
  * files, m); -1 when they are there with another count than the shapes' nodes. */
 static int node_positions(const td_result *r, size_t nn, double **z)
 {
-    if (td_result_has(r, TD_OUT_MODES_NODE_Z, NULL))
-        return plot_read_optional(r, TD_OUT_MODES_NODE_Z, NULL, nn, z);
-    return plot_read_optional(r, TD_OUT_ROOT, td_out_name(TD_OUT_MODES_NODE_Z), nn, z);
+    if (plot_read_optional(r, TD_OUT_MODES_NODE_Z, NULL, nn, z))
+        return -1;
+    return *z ? 0 : plot_read_optional(r, TD_OUT_ROOT, td_out_name(TD_OUT_MODES_NODE_Z), nn, z);
 }
 
 /* Keep only vibration modes: the overdamped AMB-lag pairs (see touchdown/modal.h) have no
